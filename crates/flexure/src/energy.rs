@@ -1,0 +1,45 @@
+//! Bending energy, its gradient and Hessian (paper Eqs. 9, 18, 28).
+//!
+//! The shifted-Legendre basis is $L^2$-orthogonal on $[0, L]$, so the energy
+//! of Eq. 5 is a weighted sum of squares and needs no quadrature.
+
+use crate::basis::energy_weight;
+use crate::joint::Flexure;
+use crate::scalar::Scalar;
+
+/// $U(\alpha) = \frac{EI}{2L}\sum_{i} \frac{(\alpha_i - \kappa_i)^2}{2i-1}$ (Eq. 9, any order), in joules.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(2.0, 3.0, 3).unwrap();
+/// // Eq. 9: EI/(2L)·(1 + 4/3 + 9/5)
+/// let u = flexure::energy(&f, &[1.0, 2.0, 3.0]);
+/// assert!((u - 0.75 * (1.0 + 4.0 / 3.0 + 9.0 / 5.0)).abs() < 1e-14);
+/// ```
+pub fn energy<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
+    let mut u = T::zero();
+    for (i, (&a, &k)) in alpha.iter().zip(flexure.rest()).enumerate() {
+        let d = a - T::c(k);
+        u += T::c(stiffness(flexure, i)) * d * d;
+    }
+    u * T::c(0.5)
+}
+
+/// $\partial U/\partial\alpha_i = \frac{EI}{L}\frac{\alpha_i - \kappa_i}{2i-1}$ (Eq. 18), written into `out`.
+pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T]) {
+    for (i, ((o, &a), &k)) in out.iter_mut().zip(alpha).zip(flexure.rest()).enumerate() {
+        *o = T::c(stiffness(flexure, i)) * (a - T::c(k));
+    }
+}
+
+/// Diagonal entry $i$ (0-based) of the constant energy Hessian,
+/// $\frac{EI}{L}\frac{1}{2i+1}$ (Eq. 28 as corrected by the errata: $1, 1/3, 1/5, \dots$).
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// assert_eq!(flexure::energy::stiffness(&f, 1), 1.0 / 3.0);
+/// ```
+pub fn stiffness(flexure: &Flexure, i: usize) -> f64 {
+    flexure.ei() / flexure.length() * energy_weight(i)
+}

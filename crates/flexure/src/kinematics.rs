@@ -1,0 +1,169 @@
+//! Tip pose, transform, Jacobian and Hessians in one pass over the
+//! quadrature points (paper Eqs. 7, 11, 14–15, 19–21, 29–31).
+
+use crate::joint::Flexure;
+use crate::scalar::Scalar;
+use nalgebra::{DMatrix, Matrix4};
+
+/// A planar pose $(\phi, x, y)$: the tip frame in the root frame.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pose<T = f64> {
+    /// Rotation of the tip frame, radians.
+    pub phi: T,
+    /// Tip position along the root's x axis, metres.
+    pub x: T,
+    /// Tip position along the root's y axis, metres.
+    pub y: T,
+}
+
+impl<T: Scalar> Pose<T> {
+    /// The homogeneous transform $G$ of Eq. 7.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::Pose;
+    /// let g = Pose { phi: std::f64::consts::FRAC_PI_2, x: 1.0, y: 2.0 }.transform();
+    /// assert!((g[(0, 1)] + 1.0).abs() < 1e-15 && g[(1, 3)] == 2.0 && g[(3, 3)] == 1.0);
+    /// ```
+    pub fn transform(&self) -> Matrix4<T> {
+        let (s, c) = self.phi.sin_cos();
+        let (o, i) = (T::zero(), T::one());
+        Matrix4::new(c, -s, o, self.x, s, c, o, self.y, o, o, i, o, o, o, o, i)
+    }
+}
+
+/// How far [`update`] goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Level {
+    /// Tip pose only.
+    Pose,
+    /// Pose and Jacobian.
+    Jacobian,
+    /// Pose, Jacobian and the Hessians of $x$ and $y$.
+    Hessian,
+}
+
+/// Kinematics results for one flexure, reused across evaluations (the Data).
+#[derive(Debug, Clone)]
+pub struct Kinematics<T: Scalar = f64> {
+    /// Tip pose in the root frame.
+    pub pose_root_tip: Pose<T>,
+    /// $3 \times N$ Jacobian of the tip pose, rows $(\phi, x, y)$ (Eqs. 19–21).
+    pub jacobian_root_tip: DMatrix<T>,
+    /// $N \times N$ Hessian of the tip's $x$ (Eq. 30).
+    pub hessian_root_tip_x: DMatrix<T>,
+    /// $N \times N$ Hessian of the tip's $y$ (Eq. 31).
+    pub hessian_root_tip_y: DMatrix<T>,
+}
+
+impl<T: Scalar> Kinematics<T> {
+    /// Buffers sized for `flexure`.
+    pub fn new(flexure: &Flexure) -> Self {
+        let n = flexure.order();
+        Self {
+            pose_root_tip: Pose { phi: T::zero(), x: T::zero(), y: T::zero() },
+            jacobian_root_tip: DMatrix::zeros(3, n),
+            hessian_root_tip_x: DMatrix::zeros(n, n),
+            hessian_root_tip_y: DMatrix::zeros(n, n),
+        }
+    }
+}
+
+/// The tip pose alone: $\phi = \alpha_1$, $x = L\sum_k \Delta_k\cos\phi(t_k)$,
+/// $y = L\sum_k \Delta_k\sin\phi(t_k)$ (Eqs. 11, 14, 15).
+///
+/// Needs no workspace and does not allocate. `alpha` must have
+/// [`Flexure::order`] entries.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// // A constant-curvature arc of angle a: x = sin(a)/a, y = (1 − cos a)/a.
+/// let p = flexure::pose_root_tip(&f, &[1.0, 0.0, 0.0]);
+/// assert!((p.x - 1f64.sin()).abs() < 1e-9 && (p.y - (1.0 - 1f64.cos())).abs() < 1e-9);
+/// ```
+pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
+    assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    let (mut x, mut y) = (T::zero(), T::zero());
+    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
+        let (s, c) = node_angle(psi, alpha).sin_cos();
+        x += T::c(w) * c;
+        y += T::c(w) * s;
+    }
+    Pose { phi: alpha[0], x, y }
+}
+
+#[inline(always)]
+fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
+    let mut phi = T::zero();
+    for (&p, &a) in psi.iter().zip(alpha) {
+        phi += T::c(p) * a;
+    }
+    phi
+}
+
+/// Fills `data` up to `level` at `alpha`, sharing one $\sin/\cos$ pair per
+/// quadrature point between pose, Jacobian and Hessians:
+///
+/// $$\frac{\partial x}{\partial\alpha_i} = -L\sum_k \Delta_k\psi_i(t_k)\sin\phi_k,\quad
+/// \frac{\partial^2 x}{\partial\alpha_i\partial\alpha_j} = -L\sum_k \Delta_k\psi_i\psi_j\cos\phi_k$$
+///
+/// and likewise for $y$ (Eqs. 20–21, 30–31). Does not allocate.
+///
+/// # Example
+/// ```
+/// use flexure::{Flexure, Kinematics, Level, update_kinematics};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let mut k = Kinematics::new(&f);
+/// update_kinematics(&f, &[0.0, 0.0, 0.0], &mut k, Level::Hessian);
+/// // Straight flexure: ∂²x/∂α₁² = −L∫t² = −1/3 (Eq. 39).
+/// assert!((k.hessian_root_tip_x[(0, 0)] + 1.0 / 3.0).abs() < 1e-14);
+/// ```
+pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
+    let n = flexure.order();
+    assert_eq!(alpha.len(), n, "alpha must have one entry per order");
+    let jac = data.jacobian_root_tip.as_mut_slice();
+    let hx = data.hessian_root_tip_x.as_mut_slice();
+    let hy = data.hessian_root_tip_y.as_mut_slice();
+    if level >= Level::Jacobian {
+        jac.fill(T::zero());
+        jac[0] = T::one();
+    }
+    if level >= Level::Hessian {
+        hx.fill(T::zero());
+        hy.fill(T::zero());
+    }
+    let (mut x, mut y) = (T::zero(), T::zero());
+    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
+        let (s, c) = node_angle(psi, alpha).sin_cos();
+        let (ws, wc) = (T::c(w) * s, T::c(w) * c);
+        x += wc;
+        y += ws;
+        if level >= Level::Jacobian {
+            for (col, &p) in jac.chunks_exact_mut(3).zip(psi) {
+                let p = T::c(p);
+                col[1] -= p * ws;
+                col[2] += p * wc;
+            }
+        }
+        if level >= Level::Hessian {
+            for (j, &pj) in psi.iter().enumerate() {
+                let (cx, cy) = (&mut hx[j * n..=j * n + j], &mut hy[j * n..=j * n + j]);
+                for ((ex, ey), &pi) in cx.iter_mut().zip(cy.iter_mut()).zip(psi) {
+                    let p = T::c(pi * pj);
+                    *ex -= p * wc;
+                    *ey -= p * ws;
+                }
+            }
+        }
+    }
+    if level >= Level::Hessian {
+        for j in 0..n {
+            for i in 0..j {
+                hx[i * n + j] = hx[j * n + i];
+                hy[i * n + j] = hy[j * n + i];
+            }
+        }
+    }
+    data.pose_root_tip = Pose { phi: alpha[0], x, y };
+}

@@ -1,0 +1,59 @@
+#![doc = include_str!("../../../README.md")]
+//!
+//! # Conventions
+//!
+//! This section is the one place where units and signs are defined; every
+//! module follows it.
+//!
+//! - **Units**: SI throughout: metres, newtons, N·m for moments, N·m² for
+//!   the bending stiffness $EI$, joules for energy. Angles are in radians.
+//! - **Frames**: the root frame has its x axis along the unbent flexure
+//!   (tangent at $s = 0$). The tip frame is the root frame moved to
+//!   $(x_{tip}, y_{tip})$ and turned by $\phi_{tip}$ (Eq. 7). A name such as
+//!   `pose_root_tip` is the pose of the tip frame expressed in the root frame.
+//! - **Ordering**: poses, Jacobian rows, loads and compliance rows/columns are
+//!   ordered $(\phi, x, y)$; the matching load vector is $(M, F_x, F_y)$ (Eq. 33).
+//! - **Loads**: a tip moment $M$ is counter-clockwise positive; a tip force
+//!   $(F_x, F_y)$ is given in the root frame. The paper's polar form (Sec.
+//!   III-C) is $F_x = -P\sin\theta$, $F_y = P\cos\theta$
+//!   ([`TipLoad::polar`]). Buckling loads are compressive, along the root's
+//!   $-x$ axis, and reported as positive numbers.
+//! - **Coordinates**: joint coordinates $\alpha \in \mathbb R^N$ are the
+//!   curvature coefficients in the shifted-Legendre basis (Eq. 8, any
+//!   order): $\hat\omega(\alpha, s) = \frac1L\sum_i \alpha_i \tilde P_{i-1}(s/L)$.
+//!   The rest shape $\kappa$ uses the same basis; $\alpha_1$ is the tip angle.
+//! - **Paper corrections**: equations follow `ERRATA.md` of the paper: the
+//!   energy Hessian is $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$;
+//!   the clamped–pinned Euler load is $20.1907\,EI/L^2$; a tendon's potential
+//!   is $+f\lvert\Delta x\rvert$.
+//!
+//! # Layout
+//!
+//! An immutable [`Flexure`] (the model) and reusable buffers ([`Kinematics`],
+//! [`Statics`]) that evaluations fill without allocating; algorithms are
+//! plain functions over them. Kernels and solvers are generic over
+//! [`Scalar`], so `num-dual` numbers differentiate through the same code.
+
+pub mod basis;
+pub mod buckling;
+pub mod cholesky;
+pub mod compliance;
+pub mod energy;
+pub mod error;
+pub mod joint;
+pub mod kinematics;
+pub mod newton;
+pub mod ode;
+pub mod quadrature;
+pub mod reference;
+pub mod scalar;
+pub mod statics;
+
+pub use buckling::{Buckling, TipConstraint, buckling_load};
+pub use compliance::{compliance_tip, compliance_tip_rest};
+pub use energy::{energy, energy_gradient};
+pub use error::{Error, Result};
+pub use joint::{Flexure, bending_stiffness};
+pub use kinematics::{Kinematics, Level, Pose, pose_root_tip, update as update_kinematics};
+pub use scalar::Scalar;
+pub use statics::{Equilibrium, Settings, Statics, TipLoad, deflect};

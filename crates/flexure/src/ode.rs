@@ -1,0 +1,128 @@
+//! An adaptive Dormand–Prince 5(4) integrator.
+//!
+//! Our own rather than ode_solvers, which still depends on nalgebra 0.34, a
+//! second, incompatible nalgebra. Generic over [`Scalar`]: step sizes are
+//! chosen from value parts only, so `num-dual` numbers carried through it
+//! give the exact derivative of the discrete solution (for shooting Jacobians).
+
+use crate::error::{Error, Result};
+use crate::scalar::Scalar;
+
+/// Error control.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    /// Relative tolerance per step.
+    pub relative: f64,
+    /// Absolute tolerance per step.
+    pub absolute: f64,
+    /// Step limit.
+    pub max_steps: usize,
+}
+
+impl Default for Tolerance {
+    fn default() -> Self {
+        Self { relative: 1e-12, absolute: 1e-13, max_steps: 100_000 }
+    }
+}
+
+const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
+    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
+    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+];
+/// Fifth-order weights minus the embedded fourth-order ones.
+const E: [f64; 7] =
+    [71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0];
+
+/// Integrates $dy/ds = f(s, y)$ from `s0` to `s1`, calling `observe` at the
+/// start and after every accepted step; returns $y(s_1)$.
+///
+/// # Example
+/// ```
+/// use flexure::ode::{integrate, Tolerance};
+/// // y' = y, y(0) = 1: y(1) = e.
+/// let y = integrate(|_, y: &[f64; 1]| [y[0]], 0.0, 1.0, [1.0], &Tolerance::default(), |_, _| {}).unwrap();
+/// assert!((y[0] - std::f64::consts::E).abs() < 1e-11);
+/// ```
+pub fn integrate<T: Scalar, const D: usize>(
+    mut f: impl FnMut(f64, &[T; D]) -> [T; D],
+    s0: f64,
+    s1: f64,
+    y0: [T; D],
+    tol: &Tolerance,
+    mut observe: impl FnMut(f64, &[T; D]),
+) -> Result<[T; D]> {
+    let span = s1 - s0;
+    let mut s = s0;
+    let mut y = y0;
+    observe(s, &y);
+    if span == 0.0 {
+        return Ok(y);
+    }
+    let mut h = span * 1e-2;
+    let mut k = [[T::zero(); D]; 7];
+    k[0] = f(s, &y);
+    for _ in 0..tol.max_steps {
+        let last = (s + h - s1) * span.signum() >= 0.0;
+        if last {
+            h = s1 - s;
+        }
+        for stage in 1..7 {
+            let mut yi = y;
+            for (j, kj) in k.iter().enumerate().take(stage) {
+                let a = A[stage][j];
+                if a != 0.0 {
+                    for (v, &d) in yi.iter_mut().zip(kj) {
+                        *v += T::c(h * a) * d;
+                    }
+                }
+            }
+            k[stage] = f(s + C[stage] * h, &yi);
+        }
+        // The seventh stage was evaluated at the fifth-order solution.
+        let mut y_new = y;
+        for (j, kj) in k.iter().enumerate().take(6) {
+            for (v, &d) in y_new.iter_mut().zip(kj) {
+                *v += T::c(h * A[6][j]) * d;
+            }
+        }
+        let mut err = 0.0;
+        for i in 0..D {
+            let e: f64 = (0..7).map(|j| E[j] * k[j][i].re()).sum::<f64>() * h;
+            let sc = tol.absolute + tol.relative * y[i].re().abs().max(y_new[i].re().abs());
+            err += (e / sc).powi(2);
+        }
+        let err = (err / D as f64).sqrt();
+        if !err.is_finite() {
+            return Err(Error::NoConvergence {
+                solver: "Dormand-Prince integrator (non-finite state)",
+                iterations: 0,
+                residual: f64::NAN,
+            });
+        }
+        if err <= 1.0 {
+            s = if last { s1 } else { s + h };
+            y = y_new;
+            k[0] = k[6];
+            observe(s, &y);
+            if last {
+                return Ok(y);
+            }
+        }
+        let factor = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
+        h *= factor;
+        if (h / span).abs() < 1e-14 {
+            break;
+        }
+    }
+    Err(Error::NoConvergence {
+        solver: "Dormand-Prince integrator (step limit)",
+        iterations: tol.max_steps,
+        residual: f64::NAN,
+    })
+}

@@ -1,0 +1,10 @@
+//! Exact Euler–Bernoulli references, kept apart from the model so that
+//! users (and our tests) can measure the model's error against them.
+//!
+//! - [`elastica`]: the large-deflection elastica (Eq. 3) solved by shooting;
+//! - [`compliance`]: the compliance ODE (Eq. 34);
+//! - [`euler`]: Euler's closed-form buckling loads.
+
+pub mod compliance;
+pub mod elastica;
+pub mod euler;

@@ -1,0 +1,57 @@
+//! The scalar type that kernels and solvers are generic over.
+//!
+//! Every evaluation and solver is written once for any [`Scalar`], so that
+//! `f64` runs fast and `num-dual` numbers differentiate through the very same
+//! code (including the Newton iterations and the adaptive ODE steps) for
+//! derivative checks and for the exact shooting Jacobians.
+
+use nalgebra::RealField;
+use num_dual::{Dual, Dual2, DualVec, HyperDual};
+
+/// A real scalar: `f64` or a forward-mode dual number over `f64`.
+pub trait Scalar: RealField + Copy {
+    /// The value part. Step-size control, line searches and convergence tests
+    /// look only at values, so derivatives follow the same discrete path.
+    fn re(self) -> f64;
+
+    /// A constant.
+    #[inline(always)]
+    fn c(x: f64) -> Self {
+        nalgebra::convert(x)
+    }
+}
+
+impl Scalar for f64 {
+    #[inline(always)]
+    fn re(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn c(x: f64) -> Self {
+        x
+    }
+}
+
+impl Scalar for Dual<f64> {
+    fn re(self) -> f64 {
+        self.re
+    }
+}
+
+impl Scalar for Dual2<f64> {
+    fn re(self) -> f64 {
+        self.re
+    }
+}
+
+impl Scalar for HyperDual<f64> {
+    fn re(self) -> f64 {
+        self.re
+    }
+}
+
+impl<const M: usize> Scalar for DualVec<f64, nalgebra::Const<M>> {
+    fn re(self) -> f64 {
+        self.re
+    }
+}

@@ -1,0 +1,217 @@
+//! Equilibrium under tip loads (paper Eqs. 22 and 32).
+
+use crate::energy::{energy, energy_gradient, stiffness};
+use crate::error::{Error, Result, finite};
+use crate::joint::Flexure;
+use crate::kinematics::{self, Kinematics, Level, Pose};
+use crate::newton::{self, Objective};
+use crate::scalar::Scalar;
+use nalgebra::DMatrix;
+
+/// A load at the tip, in the root frame: moment $M$ (N·m) and force $(F_x, F_y)$ (N).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TipLoad<T = f64> {
+    /// Moment about the tip, counter-clockwise positive.
+    pub moment: T,
+    /// Force along the root's x axis.
+    pub fx: T,
+    /// Force along the root's y axis.
+    pub fy: T,
+}
+
+impl TipLoad<f64> {
+    /// The paper's load (Sec. III-C): force of magnitude $P$ at angle $\theta$,
+    /// $F_x = -P\sin\theta$, $F_y = P\cos\theta$, with moment $M$.
+    ///
+    /// # Example
+    /// ```
+    /// let l = flexure::TipLoad::polar(0.0, 2.0, std::f64::consts::FRAC_PI_2);
+    /// assert!((l.fx + 2.0).abs() < 1e-15 && l.fy.abs() < 1e-15);
+    /// ```
+    pub fn polar(moment: f64, force: f64, angle: f64) -> Self {
+        let (s, c) = angle.sin_cos();
+        Self { moment, fx: -force * s, fy: force * c }
+    }
+
+    /// Checks that every component is finite.
+    pub fn validate(&self) -> Result<()> {
+        finite("moment", self.moment)?;
+        finite("fx", self.fx)?;
+        finite("fy", self.fy)?;
+        Ok(())
+    }
+}
+
+/// Solver settings for [`deflect`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Relative tolerance on the generalized force residual, scaled by
+    /// $EI/L + |M| + L(|F_x| + |F_y|)$.
+    pub tolerance: f64,
+    /// Newton iterations per load step.
+    pub max_iterations: usize,
+    /// Smallest load-continuation step before giving up.
+    pub min_load_step: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self { tolerance: 1e-12, max_iterations: 50, min_load_step: 1e-4 }
+    }
+}
+
+/// Work buffers and results of [`deflect`] for one flexure (the Data).
+#[derive(Debug, Clone)]
+pub struct Statics<T: Scalar = f64> {
+    /// Kinematics at the solution.
+    pub kinematics: Kinematics<T>,
+    /// Generalized stiffness $K$ at the solution (Eq. 32).
+    pub stiffness: DMatrix<T>,
+    newton: newton::Workspace<T>,
+    alpha: Vec<T>,
+    previous: Vec<T>,
+}
+
+impl<T: Scalar> Statics<T> {
+    /// Buffers sized for `flexure`.
+    pub fn new(flexure: &Flexure) -> Self {
+        let n = flexure.order();
+        Self {
+            kinematics: Kinematics::new(flexure),
+            stiffness: DMatrix::zeros(n, n),
+            newton: newton::Workspace::new(n),
+            alpha: vec![T::zero(); n],
+            previous: vec![T::zero(); n],
+        }
+    }
+
+    /// Joint coordinates $\alpha$ at the last equilibrium.
+    pub fn alpha(&self) -> &[T] {
+        &self.alpha
+    }
+
+    /// Tip pose at the last equilibrium.
+    pub fn pose_root_tip(&self) -> Pose<T> {
+        self.kinematics.pose_root_tip
+    }
+}
+
+/// What [`deflect`] found, beside the data left in [`Statics`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Equilibrium {
+    /// Whether $K$ is positive definite: a stable equilibrium.
+    pub stable: bool,
+    /// Final generalized-force residual (N·m).
+    pub residual: f64,
+    /// Newton iterations over all load steps.
+    pub iterations: usize,
+    /// Load-continuation steps taken.
+    pub load_steps: usize,
+}
+
+/// The potential $\Pi(\alpha) = U(\alpha) - \lambda(M\phi + F_x x + F_y y)$.
+struct TipLoadPotential<'a, T: Scalar> {
+    flexure: &'a Flexure,
+    kinematics: &'a mut Kinematics<T>,
+    load: TipLoad<T>,
+    scale: T,
+}
+
+impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
+    fn evaluate(&mut self, alpha: &[T], gradient: &mut [T], hessian: &mut [T]) -> T {
+        let (f, k) = (self.flexure, &mut *self.kinematics);
+        kinematics::update(f, alpha, k, Level::Hessian);
+        let (m, fx, fy) = (self.load.moment * self.scale, self.load.fx * self.scale, self.load.fy * self.scale);
+        energy_gradient(f, alpha, gradient);
+        let n = f.order();
+        for (i, g) in gradient.iter_mut().enumerate() {
+            let j = k.jacobian_root_tip.column(i);
+            *g -= m * j[0] + fx * j[1] + fy * j[2];
+        }
+        let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
+        for (idx, h) in hessian.iter_mut().enumerate() {
+            *h = -(fx * hx[idx] + fy * hy[idx]);
+        }
+        for i in 0..n {
+            hessian[i * n + i] += T::c(stiffness(f, i));
+        }
+        let p = k.pose_root_tip;
+        energy(f, alpha) - (m * p.phi + fx * p.x + fy * p.y)
+    }
+}
+
+/// Equilibrium of the flexure under `load`: the $\alpha$ where
+/// $\tau = \nabla U - M\nabla\phi - F_x\nabla x - F_y\nabla y = 0$ (Eq. 22),
+/// with stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32).
+///
+/// Newton with exact $K$ and a line search, starting from the rest shape
+/// with the full load and falling back to load continuation (halving the
+/// step, with a secant predictor) when a step fails, so it follows the
+/// branch that grows from the rest shape. Results stay in `data`; nothing
+/// is allocated.
+///
+/// # Example
+/// ```
+/// use flexure::{deflect, Flexure, Statics, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let mut data = Statics::new(&f);
+/// // A pure moment bends the flexure into an arc of angle ML/EI.
+/// let eq = deflect(&f, &TipLoad { moment: 1.2, fx: 0.0, fy: 0.0 }, &mut data, &Default::default()).unwrap();
+/// assert!(eq.stable && (data.alpha()[0] - 1.2).abs() < 1e-12);
+/// ```
+pub fn deflect<T: Scalar>(
+    flexure: &Flexure,
+    load: &TipLoad<T>,
+    data: &mut Statics<T>,
+    settings: &Settings,
+) -> Result<Equilibrium> {
+    TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
+    let l = flexure.length();
+    let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
+    let newton_settings =
+        newton::Settings { tolerance: settings.tolerance * scale, max_iterations: settings.max_iterations };
+    for (a, &k) in data.alpha.iter_mut().zip(flexure.rest()) {
+        *a = T::c(k);
+    }
+    data.previous.copy_from_slice(&data.alpha);
+    let (mut lambda, mut previous_lambda, mut step) = (0.0_f64, 0.0_f64, 1.0_f64);
+    let (mut iterations, mut load_steps, mut residual) = (0, 0, f64::NAN);
+    loop {
+        let target = (lambda + step).min(1.0);
+        // Secant predictor along the load path.
+        let ratio = if lambda > previous_lambda { (target - lambda) / (lambda - previous_lambda) } else { 0.0 };
+        for ((x, &a), &p) in data.newton.x.iter_mut().zip(&data.alpha).zip(&data.previous) {
+            *x = a + (a - p) * T::c(ratio);
+        }
+        let mut potential =
+            TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::c(target) };
+        match newton::minimize(&mut potential, &mut data.newton, &newton_settings) {
+            Ok(report) => {
+                iterations += report.iterations;
+                load_steps += 1;
+                residual = report.residual;
+                data.previous.copy_from_slice(&data.alpha);
+                data.alpha.copy_from_slice(&data.newton.x);
+                previous_lambda = lambda;
+                lambda = target;
+                if lambda >= 1.0 {
+                    // The minimizer's last evaluation was at its solution, so
+                    // the kinematics in `data` already belong to it.
+                    data.stiffness.as_mut_slice().copy_from_slice(&data.newton.hessian);
+                    return Ok(Equilibrium { stable: report.positive_definite, residual, iterations, load_steps });
+                }
+                step = (2.0 * step).min(1.0 - lambda);
+            }
+            Err(e) => {
+                if let Error::NoConvergence { iterations: it, residual: r, .. } = e {
+                    iterations += it;
+                    residual = r;
+                }
+                step *= 0.25;
+                if step < settings.min_load_step {
+                    return Err(Error::NoConvergence { solver: "deflect (load continuation)", iterations, residual });
+                }
+            }
+        }
+    }
+}
