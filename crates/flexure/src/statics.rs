@@ -52,11 +52,15 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Smallest load-continuation step before giving up.
     pub min_load_step: f64,
+    /// Largest change of any coefficient $\alpha_i$ (rad) one load step may
+    /// cause. Bounding it keeps the solution on the branch that grows from
+    /// the rest shape, as quasi-static loading would.
+    pub max_rotation_per_step: f64,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { tolerance: 1e-12, max_iterations: 50, min_load_step: 1e-4 }
+        Self { tolerance: 1e-12, max_iterations: 50, min_load_step: 1e-4, max_rotation_per_step: 0.5 }
     }
 }
 
@@ -144,10 +148,11 @@ impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
 /// $\tau = \nabla U - M\nabla\phi - F_x\nabla x - F_y\nabla y = 0$ (Eq. 22),
 /// with stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32).
 ///
-/// Newton with exact $K$ and a line search, starting from the rest shape
-/// with the full load and falling back to load continuation (halving the
-/// step, with a secant predictor) when a step fails, so it follows the
-/// branch that grows from the rest shape. Results stay in `data`; nothing
+/// Newton with exact $K$ and a line search, inside load continuation: it
+/// tries the full load from the rest shape first and shortens the load
+/// step (with a secant predictor) when Newton fails or the step would move
+/// any $\alpha_i$ by more than [`Settings::max_rotation_per_step`], so it
+/// follows the branch that grows from the rest shape. Results stay in `data`; nothing
 /// is allocated.
 ///
 /// # Example
@@ -185,7 +190,21 @@ pub fn deflect<T: Scalar>(
         }
         let mut potential =
             TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::c(target) };
-        match newton::minimize(&mut potential, &mut data.newton, &newton_settings) {
+        let found = newton::minimize(&mut potential, &mut data.newton, &newton_settings);
+        let change = data.newton.x.iter().zip(&data.alpha).fold(0.0_f64, |m, (x, a)| m.max((x.re() - a.re()).abs()));
+        match found {
+            Ok(report) if change > settings.max_rotation_per_step => {
+                residual = report.residual;
+                iterations += report.iterations;
+                step *= 0.5;
+                if step < settings.min_load_step {
+                    return Err(Error::NoConvergence {
+                        solver: "deflect (load continuation: the tip snaps)",
+                        iterations,
+                        residual,
+                    });
+                }
+            }
             Ok(report) => {
                 iterations += report.iterations;
                 load_steps += 1;

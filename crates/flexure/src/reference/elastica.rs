@@ -22,11 +22,21 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Smallest load-continuation step before giving up.
     pub min_load_step: f64,
+    /// Largest tip rotation (rad) one load step may cause. Bounding it keeps
+    /// Newton on the branch that grows from the rest shape, as a quasi-static
+    /// loading would, instead of jumping to a distant root.
+    pub max_rotation_per_step: f64,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { ode: Tolerance::default(), tolerance: 1e-11, max_iterations: 30, min_load_step: 1e-4 }
+        Self {
+            ode: Tolerance::default(),
+            tolerance: 1e-11,
+            max_iterations: 30,
+            min_load_step: 1e-4,
+            max_rotation_per_step: 0.5,
+        }
     }
 }
 
@@ -81,10 +91,10 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
     let l = flexure.length();
     let tolerance = settings.tolerance * (flexure.ei() / l + load.moment.abs() + l * (load.fx.abs() + load.fy.abs()));
     let rest = shoot(flexure, 0.0, 0.0, 0.0, &settings.ode, |_, _| {})?;
+    let mut tip_now = rest;
     let (mut lambda, mut m0) = (0.0_f64, 0.0_f64);
     let mut history: Option<(f64, f64)> = None;
     let (mut step, mut load_steps) = (1.0_f64, 0);
-    let mut last_residual = f64::NAN;
     loop {
         let target = (lambda + step).min(1.0);
         let guess = match history {
@@ -93,38 +103,42 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
             None => target * (load.moment + load.fy * rest[1] - load.fx * rest[2]),
         };
         let (m, fx, fy) = (target * load.moment, target * load.fx, target * load.fy);
+        // The root finder's last evaluation is at the root it returns.
+        let mut tip_new = tip_now;
         let residual = |x: &SVector<f64, 1>| -> Result<(SVector<f64, 1>, SMatrix<f64, 1, 1>)> {
             let m0 = Dual64::from_re(x[0]).derivative();
             let tip = shoot(flexure, m0, Dual64::from(fx), Dual64::from(fy), &settings.ode, |_, _| {})?;
+            tip_new = [tip[0].re, tip[1].re, tip[2].re];
             let r = m0 - tip[1] * fy + tip[2] * fx - m;
             Ok((SVector::from([r.re]), SMatrix::from([[r.eps]])))
         };
-        match find_root(residual, SVector::from([guess]), tolerance, settings.max_iterations) {
-            Ok(root) => {
+        let found = find_root(residual, SVector::from([guess]), tolerance, settings.max_iterations);
+        let rotation = (tip_new[0] - tip_now[0]).abs();
+        match found {
+            Ok(root) if rotation <= settings.max_rotation_per_step => {
                 history = Some((lambda, m0));
                 lambda = target;
                 m0 = root.x[0];
+                tip_now = tip_new;
                 load_steps += 1;
                 if lambda >= 1.0 {
-                    let tip = shoot(flexure, m0, load.fx, load.fy, &settings.ode, |_, _| {})?;
-                    return Ok(Solution {
-                        pose: Pose { phi: tip[0], x: tip[1], y: tip[2] },
-                        root_moment: m0,
-                        load_steps,
-                    });
+                    let pose = Pose { phi: tip_now[0], x: tip_now[1], y: tip_now[2] };
+                    return Ok(Solution { pose, root_moment: m0, load_steps });
                 }
                 step = (2.0 * step).min(1.0 - lambda);
             }
-            Err(e) => {
-                if let Error::NoConvergence { residual, .. } = e {
-                    last_residual = residual;
-                }
-                step *= 0.25;
+            found => {
+                // Newton's residual, or zero when it converged on a root too far away.
+                let residual = match found {
+                    Err(Error::NoConvergence { residual, .. }) => residual,
+                    _ => 0.0,
+                };
+                step *= 0.5;
                 if step < settings.min_load_step {
                     return Err(Error::NoConvergence {
-                        solver: "elastica shooting (load continuation)",
+                        solver: "elastica shooting (load continuation; the tip may snap through)",
                         iterations: load_steps,
-                        residual: last_residual,
+                        residual,
                     });
                 }
             }

@@ -1,0 +1,162 @@
+//! Equilibrium under tip loads (Eq. 22) against the exact elastica (Figs. 7–8),
+//! and the loaded stiffness (Eq. 32) against differentiation through the solver.
+
+use flexure::reference::elastica;
+use flexure::{Error, Flexure, Settings, Statics, TipLoad, compliance_tip, deflect};
+use num_dual::Dual64;
+use std::f64::consts::FRAC_PI_2;
+
+fn unit() -> Flexure {
+    Flexure::new(1.0, 1.0, 3).unwrap()
+}
+
+/// The force magnitude P, at angle θ with extra moment M, that bends the
+/// exact elastica's tip to 90° (secant on P).
+fn exact_load_for_right_angle(moment: f64, theta: f64, mut p0: f64, mut p1: f64) -> f64 {
+    let f = unit();
+    let angle =
+        |p| elastica::deflect(&f, &TipLoad::polar(moment, p, theta), &Default::default()).unwrap().pose.phi - FRAC_PI_2;
+    let (mut a0, mut a1) = (angle(p0), angle(p1));
+    for _ in 0..50 {
+        let p2 = p1 - a1 * (p1 - p0) / (a1 - a0);
+        (p0, a0, p1) = (p1, a1, p2);
+        a1 = angle(p1);
+        if a1.abs() < 1e-12 {
+            break;
+        }
+    }
+    p1
+}
+
+/// Figs. 7–8: up to a 90° tip angle the model stays within 1 % of L in
+/// position and 1° in angle of the exact elastica (paper Sec. III-C).
+fn check_path(name: &str, load_at: impl Fn(f64) -> TipLoad) {
+    let f = unit();
+    let mut data = Statics::new(&f);
+    for i in 1..=10 {
+        let load = load_at(i as f64 / 10.0);
+        let eq = deflect(&f, &load, &mut data, &Default::default()).unwrap();
+        let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
+        let model = data.pose_root_tip();
+        let position = (model.x - exact.x).hypot(model.y - exact.y);
+        let angle = (model.phi - exact.phi).abs().to_degrees();
+        assert!(eq.stable, "{name} step {i}: the equilibrium must be stable");
+        assert!(position < 0.01, "{name} step {i}: position error {position} ≥ 1 % of L");
+        assert!(angle < 1.0, "{name} step {i}: angle error {angle}° ≥ 1°");
+    }
+}
+
+#[test]
+fn case_a_pure_moment() {
+    check_path("A", |s| TipLoad { moment: s * FRAC_PI_2, fx: 0.0, fy: 0.0 });
+}
+
+#[test]
+fn case_b_pure_force() {
+    // A force at θ = 45°, scaled to bend the exact tip to 90° (P ≈ 3.8477).
+    let p = exact_load_for_right_angle(0.0, 45f64.to_radians(), 3.5, 3.9);
+    assert!((p - 3.8477).abs() < 1e-3, "the load used by the speed benchmark: {p}");
+    check_path("B", |s| TipLoad::polar(0.0, s * p, 45f64.to_radians()));
+}
+
+#[test]
+fn case_c_force_opposed_by_moment() {
+    // Case A's moment reversed, and a force at 45° large enough for 90°.
+    let p = exact_load_for_right_angle(-FRAC_PI_2, 45f64.to_radians(), 6.0, 7.0);
+    check_path("C", |s| TipLoad::polar(-s * FRAC_PI_2, s * p, 45f64.to_radians()));
+}
+
+/// The pure moment's exact answer is an arc with α = (ML/EI, 0, 0): the model
+/// contains it, so Newton must land on it to the solver tolerance.
+#[test]
+fn pure_moment_is_exact() {
+    let f = Flexure::new(0.4, 2.5, 5).unwrap();
+    let mut data = Statics::new(&f);
+    deflect(&f, &TipLoad { moment: 7.0, fx: 0.0, fy: 0.0 }, &mut data, &Default::default()).unwrap();
+    let expected = 7.0 * 0.4 / 2.5;
+    assert!((data.alpha()[0] - expected).abs() < 1e-12);
+    assert!(data.alpha()[1..].iter().all(|a| a.abs() < 1e-12));
+}
+
+/// Eq. 32 by the implicit function theorem: dα/dF_y = K⁻¹ J_yᵀ, so the tip's
+/// response is column y of C = J K⁻¹ Jᵀ. Checked against num-dual carried
+/// through the whole solver (exact to its tolerance) and central differences
+/// of the solver (h = 1e-5: error ~1e-8).
+#[test]
+fn loaded_compliance_is_the_solvers_derivative() {
+    let f = unit();
+    let load = TipLoad::polar(0.3, 2.0, 0.6);
+    let mut data = Statics::new(&f);
+    deflect(&f, &load, &mut data, &Default::default()).unwrap();
+    let c = compliance_tip(&data.kinematics, &data.stiffness).unwrap();
+
+    let mut dual = Statics::<Dual64>::new(&f);
+    let dload = TipLoad { moment: Dual64::from(load.moment), fx: Dual64::from(load.fx), fy: Dual64::new(load.fy, 1.0) };
+    deflect(&f, &dload, &mut dual, &Default::default()).unwrap();
+    let p = dual.pose_root_tip();
+    for (r, d) in [p.phi.eps, p.x.eps, p.y.eps].into_iter().enumerate() {
+        assert!((c[(r, 2)] - d).abs() < 1e-9, "C[{r},y] vs num-dual through deflect");
+    }
+
+    let h = 1e-5;
+    let mut up = Statics::new(&f);
+    let mut dn = Statics::new(&f);
+    deflect(&f, &TipLoad { fx: load.fx + h, ..load }, &mut up, &Default::default()).unwrap();
+    deflect(&f, &TipLoad { fx: load.fx - h, ..load }, &mut dn, &Default::default()).unwrap();
+    let (pu, pd) = (up.pose_root_tip(), dn.pose_root_tip());
+    let fd = [(pu.phi - pd.phi) / (2.0 * h), (pu.x - pd.x) / (2.0 * h), (pu.y - pd.y) / (2.0 * h)];
+    for r in 0..3 {
+        assert!((c[(r, 1)] - fd[r]).abs() < 1e-7, "C[{r},x] vs central differences");
+        // Maxwell–Betti: the loaded compliance is symmetric.
+        assert!((c[(r, 1)] - c[(1, r)]).abs() < 1e-12);
+    }
+}
+
+/// Compression along the axis: the straight shape is always an equilibrium;
+/// below Euler's π²/4 it is stable, above it the solver says it is not.
+#[test]
+fn instability_is_reported() {
+    let f = unit();
+    let mut data = Statics::new(&f);
+    assert!(deflect(&f, &TipLoad { moment: 0.0, fx: -2.4, fy: 0.0 }, &mut data, &Default::default()).unwrap().stable);
+    assert!(!deflect(&f, &TipLoad { moment: 0.0, fx: -2.5, fy: 0.0 }, &mut data, &Default::default()).unwrap().stable);
+    assert!(compliance_tip(&data.kinematics, &data.stiffness).is_err(), "an unstable equilibrium has no compliance");
+}
+
+#[test]
+fn bad_load_is_named() {
+    let f = unit();
+    let mut data = Statics::new(&f);
+    let err = deflect(&f, &TipLoad { moment: 0.0, fx: f64::NAN, fy: 0.0 }, &mut data, &Default::default()).unwrap_err();
+    assert!(matches!(err, Error::InvalidParameter { name: "fx", .. }), "{err}");
+}
+
+/// A solver starved of iterations reports non-convergence with its residual.
+#[test]
+fn non_convergence_reports_the_residual() {
+    let f = unit();
+    let mut data = Statics::new(&f);
+    let settings = Settings { max_iterations: 1, min_load_step: 0.5, ..Default::default() };
+    match deflect(&f, &TipLoad::polar(0.0, 20.0, 0.3), &mut data, &settings) {
+        Err(Error::NoConvergence { residual, .. }) => assert!(residual.is_finite() && residual > 0.0),
+        other => panic!("expected NoConvergence, got {other:?}"),
+    }
+}
+
+/// Large loads: both solvers follow the loading path from rest. A full
+/// Newton step at PL²/EI = 15 can land on a far root with the tip turned
+/// past −180°; continuation must not. The exact angle is 1.5018 rad
+/// (elliptic integrals, see tests/reference.rs); the model stays within 1°
+/// and 1 % of L.
+#[test]
+fn large_load_stays_on_the_loading_branch() {
+    let f = unit();
+    let load = TipLoad { moment: 0.0, fx: 0.0, fy: 15.0 };
+    let mut data = Statics::new(&f);
+    deflect(&f, &load, &mut data, &Default::default()).unwrap();
+    let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
+    let model = data.pose_root_tip();
+    assert!((exact.phi - 1.5018401541771547).abs() < 1e-8);
+    assert!((model.phi - exact.phi).abs().to_degrees() < 1.0, "{} vs {}", model.phi, exact.phi);
+    assert!((model.x - exact.x).hypot(model.y - exact.y) < 0.01);
+}
