@@ -1,1 +1,70 @@
-fn main() {}
+//! `flexure`: the command-line face of the flexure library.
+//!
+//! Every subcommand prints one JSON object with `--json`, a readable table
+//! otherwise. Bad input exits with status 2 and a message on stderr naming
+//! the option; so does a solver that cannot find an answer.
+
+mod joint;
+mod options;
+mod render;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "flexure",
+    version,
+    about = "Flexure joints with the Smooth Curvature Model, beside exact beam theory"
+)]
+struct Cli {
+    /// Print one JSON object on stdout instead of a table.
+    #[arg(long, global = true)]
+    json: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Tip pose, transform, Jacobian, Hessians and energy at joint coordinates α.
+    Kinematics(joint::KinematicsArgs),
+    /// Equilibrium under a tip load, with its stiffness and stability.
+    Deflect(joint::DeflectArgs),
+    /// Small-load tip compliance at the rest shape, order (φ, x, y).
+    Compliance(joint::ComplianceArgs),
+    /// Critical compressive load under a tip constraint.
+    Buckling(joint::BucklingArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Kinematics(a) => joint::kinematics(a),
+        Command::Deflect(a) => joint::deflect_cmd(a),
+        Command::Compliance(a) => joint::compliance(a),
+        Command::Buckling(a) => joint::buckling(a),
+    };
+    match result {
+        Ok(value) => {
+            if cli.json {
+                println!("{value}");
+            } else {
+                print!("{}", render::readable(&value));
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {}", describe(&e));
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The library's error with the parameter spelled as the option that set it.
+fn describe(e: &flexure::Error) -> String {
+    match e {
+        flexure::Error::InvalidParameter { name, value, reason } => format!("--{name} = {value}: {reason}"),
+        other => other.to_string(),
+    }
+}

@@ -52,9 +52,10 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Smallest load-continuation step before giving up.
     pub min_load_step: f64,
-    /// Largest change of any coefficient $\alpha_i$ (rad) one load step may
-    /// cause. Bounding it keeps the solution on the branch that grows from
-    /// the rest shape, as quasi-static loading would.
+    /// Largest rotation (rad) of any cross-section, $\phi(t_k)$ at the
+    /// quadrature nodes, that one load step may cause. Bounding it keeps the
+    /// solution on the branch that grows from the rest shape, as quasi-static
+    /// loading would.
     pub max_rotation_per_step: f64,
 }
 
@@ -150,8 +151,8 @@ impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
 ///
 /// Newton with exact $K$ and a line search, inside load continuation: it
 /// tries the full load from the rest shape first and shortens the load
-/// step (with a secant predictor) when Newton fails or the step would move
-/// any $\alpha_i$ by more than [`Settings::max_rotation_per_step`], so it
+/// step (with a secant predictor) when Newton fails or the step would turn
+/// a cross-section by more than [`Settings::max_rotation_per_step`], so it
 /// follows the branch that grows from the rest shape. Results stay in `data`; nothing
 /// is allocated.
 ///
@@ -191,7 +192,10 @@ pub fn deflect<T: Scalar>(
         let mut potential =
             TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::c(target) };
         let found = newton::minimize(&mut potential, &mut data.newton, &newton_settings);
-        let change = data.newton.x.iter().zip(&data.alpha).fold(0.0_f64, |m, (x, a)| m.max((x.re() - a.re()).abs()));
+        let change = flexure.psi_rows().fold(0.0_f64, |m, psi| {
+            let d: f64 = psi.iter().zip(&data.newton.x).zip(&data.alpha).map(|((p, x), a)| p * (x.re() - a.re())).sum();
+            m.max(d.abs())
+        });
         match found {
             Ok(report) if change > settings.max_rotation_per_step => {
                 residual = report.residual;
@@ -199,7 +203,7 @@ pub fn deflect<T: Scalar>(
                 step *= 0.5;
                 if step < settings.min_load_step {
                     return Err(Error::NoConvergence {
-                        solver: "deflect (load continuation: the tip snaps)",
+                        solver: "deflect (load continuation: step below min_load_step; the shape may snap through)",
                         iterations,
                         residual,
                     });

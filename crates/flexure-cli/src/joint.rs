@@ -1,0 +1,199 @@
+//! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
+
+use crate::options::{FlexureOptions, List, angle, number, numbers};
+use clap::{Args, ValueEnum};
+use flexure::reference::{self, elastica};
+use flexure::{
+    Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect,
+    energy, energy_gradient, update_kinematics,
+};
+use nalgebra::{DMatrix, Matrix3, Matrix4};
+use serde_json::{Value, json};
+
+pub fn pose(p: &Pose) -> Value {
+    json!({ "phi": p.phi, "x": p.x, "y": p.y })
+}
+
+pub fn matrix(m: &DMatrix<f64>) -> Value {
+    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
+}
+
+pub fn matrix3(m: &Matrix3<f64>) -> Value {
+    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
+}
+
+fn matrix4(m: &Matrix4<f64>) -> Value {
+    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
+}
+
+#[derive(Debug, Args)]
+pub struct KinematicsArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    /// Joint coordinates α1,α2,… (one per order).
+    #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
+    alpha: List,
+}
+
+/// Pose, transform, Jacobian, Hessians, energy and gradient at α.
+pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
+    let f = args.flexure.build()?;
+    let alpha = args.alpha.0.clone();
+    f.check_coordinates("alpha", &alpha)?;
+    let mut k = Kinematics::new(&f);
+    update_kinematics(&f, &alpha, &mut k, Level::Hessian);
+    let mut gradient = vec![0.0; f.order()];
+    energy_gradient(&f, &alpha, &mut gradient);
+    let j = &k.jacobian_root_tip;
+    let row = |r: usize| j.row(r).iter().copied().collect::<Vec<_>>();
+    Ok(json!({
+        "pose": pose(&k.pose_root_tip),
+        "transform": matrix4(&k.pose_root_tip.transform()),
+        "jacobian": { "phi": row(0), "x": row(1), "y": row(2) },
+        "hessian": { "x": matrix(&k.hessian_root_tip_x), "y": matrix(&k.hessian_root_tip_y) },
+        "energy": energy(&f, &alpha),
+        "gradient": gradient,
+    }))
+}
+
+/// A tip load: `--moment`, and `--force P --angle θ` or `--fx --fy`.
+#[derive(Debug, Clone, Args)]
+pub struct LoadOptions {
+    /// Tip moment M in N·m (counter-clockwise positive).
+    #[arg(long, default_value = "0", value_parser = number, allow_hyphen_values = true)]
+    pub moment: f64,
+    /// Tip force magnitude P in N, at --angle θ: Fx = −P sin θ, Fy = P cos θ (paper Sec. III-C).
+    #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with_all = ["fx", "fy"])]
+    pub force: Option<f64>,
+    /// Angle θ of --force, radians or e.g. 45deg [default: 0, across the flexure].
+    #[arg(long, value_parser = angle, allow_hyphen_values = true, requires = "force")]
+    pub angle: Option<f64>,
+    /// Tip force along the root's x axis, N.
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    pub fx: Option<f64>,
+    /// Tip force along the root's y axis, N.
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    pub fy: Option<f64>,
+}
+
+impl LoadOptions {
+    pub fn load(&self) -> TipLoad {
+        match self.force {
+            Some(p) => TipLoad::polar(self.moment, p, self.angle.unwrap_or(0.0)),
+            None => TipLoad { moment: self.moment, fx: self.fx.unwrap_or(0.0), fy: self.fy.unwrap_or(0.0) },
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct DeflectArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    #[command(flatten)]
+    load: LoadOptions,
+    /// Also solve the exact elastica (shooting); `pose` is then the exact one.
+    #[arg(long)]
+    exact: bool,
+}
+
+/// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
+pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
+    let f = args.flexure.build()?;
+    let load = args.load.load();
+    let mut data = Statics::new(&f);
+    let eq = deflect(&f, &load, &mut data, &Default::default())?;
+    let model = json!({
+        "alpha": data.alpha(),
+        "pose": pose(&data.pose_root_tip()),
+        "stiffness": matrix(&data.stiffness),
+        "stable": eq.stable,
+        "residual": eq.residual,
+    });
+    if !args.exact {
+        return Ok(model);
+    }
+    let exact = elastica::deflect(&f, &load, &Default::default())?;
+    let (m, e) = (data.pose_root_tip(), exact.pose);
+    Ok(json!({
+        "pose": pose(&e),
+        "root_moment": exact.root_moment,
+        "model": model,
+        "error": {
+            "position": (m.x - e.x).hypot(m.y - e.y),
+            "position_over_length": (m.x - e.x).hypot(m.y - e.y) / f.length(),
+            "angle": (m.phi - e.phi).abs(),
+            "angle_degrees": (m.phi - e.phi).abs().to_degrees(),
+        },
+    }))
+}
+
+#[derive(Debug, Args)]
+pub struct ComplianceArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    /// Integrate the compliance ODE (Eq. 34) instead of the model's J K⁻¹ Jᵀ.
+    #[arg(long)]
+    exact: bool,
+}
+
+/// Small-load tip compliance at the rest shape, order (φ, x, y).
+pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
+    let f = args.flexure.build()?;
+    let c = if args.exact {
+        reference::compliance::compliance_tip(&f, &Default::default())?
+    } else {
+        compliance_tip_rest(&f)
+    };
+    Ok(json!({ "compliance": matrix3(&c) }))
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum Tip {
+    Free,
+    Guided,
+    Pinned,
+    Clamped,
+}
+
+impl From<Tip> for TipConstraint {
+    fn from(t: Tip) -> Self {
+        match t {
+            Tip::Free => TipConstraint::Free,
+            Tip::Guided => TipConstraint::Guided,
+            Tip::Pinned => TipConstraint::Pinned,
+            Tip::Clamped => TipConstraint::Clamped,
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct BucklingArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    /// How the tip is held.
+    #[arg(long, value_enum)]
+    tip: Tip,
+    /// Euler's closed form for a straight column instead of the model.
+    #[arg(long)]
+    exact: bool,
+}
+
+/// Critical compressive tip load under a tip constraint.
+pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
+    let f = args.flexure.build()?;
+    let tip = TipConstraint::from(args.tip);
+    if args.exact {
+        if f.rest().iter().any(|&k| k != 0.0) {
+            return Err(Error::invalid(
+                "kappa",
+                format!("{:?}", f.rest()),
+                "Euler's closed form is for a straight flexure",
+            ));
+        }
+        return Ok(
+            json!({ "critical_load": reference::euler::buckling_load(tip, f.length(), f.ei()), "tip": tip.name() }),
+        );
+    }
+    let b = buckling_load(&f, tip)?;
+    Ok(json!({ "critical_load": b.critical_load, "mode": b.mode.as_slice(), "tip": tip.name() }))
+}
