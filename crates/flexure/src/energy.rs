@@ -3,7 +3,6 @@
 //! The shifted-Legendre basis is $L^2$-orthogonal on $[0, L]$, so the energy
 //! of Eq. 5 is a weighted sum of squares and needs no quadrature.
 
-use crate::basis::energy_weight;
 use crate::joint::Flexure;
 use crate::scalar::Scalar;
 
@@ -41,5 +40,5 @@ pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T])
 /// assert_eq!(flexure::energy::stiffness(&f, 1), 1.0 / 3.0);
 /// ```
 pub fn stiffness(flexure: &Flexure, i: usize) -> f64 {
-    flexure.ei() / flexure.length() * energy_weight(i)
+    flexure.ei() / flexure.length() * flexure.energy_weight(i)
 }

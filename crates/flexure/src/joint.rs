@@ -31,21 +31,43 @@ pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Opti
     positive("ei", e * plate * b * h.powi(3) / 12.0)
 }
 
+/// The curvature basis of a joint's coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Basis {
+    /// The Smooth Curvature Model: shifted Legendre polynomials (Eq. 8, any
+    /// order). $\alpha_1$ is the tip angle.
+    Legendre,
+    /// The paper's finite-element comparison: $K$ equal segments of constant
+    /// curvature; $\alpha_j$ is the rotation across segment $j$, so the
+    /// curvature there is $\alpha_j K/L$ and the tip angle is $\sum_j\alpha_j$.
+    Segments,
+}
+
 /// An immutable planar flexure joint of order $N$ (the Model).
 ///
 /// Holds length $L$, stiffness $EI$, rest coefficients $\kappa$ (Eq. 5) and
-/// the quadrature tables shared by every evaluation. Build it with
-/// [`Flexure::new`] and the `with_*` methods; all input is validated there.
+/// the tables every evaluation shares. In either [`Basis`] the tangent angle
+/// is linear in the coordinates, $\phi(\alpha, s) = \sum_i \alpha_i\psi_i(s/L)$,
+/// and the energy is $U = \frac{EI}{2L}\sum_i w_i(\alpha_i - \kappa_i)^2$, so one
+/// kinematics kernel serves both. Build it with [`Flexure::new`] (or
+/// [`Flexure::segments`]) and the `with_*` methods; all input is validated there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Flexure {
     length: f64,
     ei: f64,
     kappa: Vec<f64>,
+    basis: Basis,
     rule: GaussLegendre,
+    /// Quadrature nodes $t_k$ on $[0, 1]$ (composite, one rule per segment, for [`Basis::Segments`]).
+    nodes: Vec<f64>,
     /// `psi[k * n + i]` = $\psi_i(t_k)$: angle shapes at the nodes.
     psi: Vec<f64>,
     /// `weights[k]` = $L\Delta_k$.
     weights: Vec<f64>,
+    /// $w_i$ in the energy.
+    energy_weights: Vec<f64>,
+    /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
+    tip_angle: Vec<f64>,
 }
 
 impl Flexure {
@@ -59,14 +81,51 @@ impl Flexure {
     /// assert!(flexure::Flexure::new(-1.0, 1.0, 3).is_err());
     /// ```
     pub fn new(length: f64, ei: f64, order: usize) -> Result<Self> {
+        Self::with_basis(length, ei, order, Basis::Legendre, GaussLegendre::default_points(order))
+    }
+
+    /// A straight chain of `count` constant-curvature segments (the paper's
+    /// finite elements, Sec. II-E), integrated with 5 Gauss points per segment.
+    ///
+    /// # Example
+    /// ```
+    /// // Three equal bends of 0.5 rad: the tip turns 1.5 rad.
+    /// let f = flexure::Flexure::segments(1.0, 1.0, 3).unwrap();
+    /// let p = flexure::pose_root_tip(&f, &[0.5, 0.5, 0.5]);
+    /// assert!((p.phi - 1.5).abs() < 1e-15 && (p.x - 1.5f64.sin() / 1.5).abs() < 1e-12);
+    /// ```
+    pub fn segments(length: f64, ei: f64, count: usize) -> Result<Self> {
+        Self::with_basis(length, ei, count, Basis::Segments, 5)
+    }
+
+    fn with_basis(length: f64, ei: f64, order: usize, basis: Basis, points: usize) -> Result<Self> {
         let length = positive("length", length)?;
         let ei = positive("ei", ei)?;
         if order == 0 {
-            return Err(Error::invalid("order", order, "must be at least 1"));
+            let name = if basis == Basis::Legendre { "order" } else { "segments" };
+            return Err(Error::invalid(name, order, "must be at least 1"));
         }
-        let mut f =
-            Self { length, ei, kappa: vec![0.0; order], rule: GaussLegendre::new(1)?, psi: vec![], weights: vec![] };
-        f.set_rule(GaussLegendre::new(GaussLegendre::default_points(order))?);
+        let (energy_weights, tip_angle) = match basis {
+            Basis::Legendre => {
+                let mut tip = vec![0.0; order];
+                tip[0] = 1.0;
+                ((0..order).map(basis::energy_weight).collect(), tip)
+            }
+            Basis::Segments => (vec![order as f64; order], vec![1.0; order]),
+        };
+        let mut f = Self {
+            length,
+            ei,
+            kappa: vec![0.0; order],
+            basis,
+            rule: GaussLegendre::new(points)?,
+            nodes: vec![],
+            psi: vec![],
+            weights: vec![],
+            energy_weights,
+            tip_angle,
+        };
+        f.set_rule(GaussLegendre::new(points)?);
         Ok(f)
     }
 
@@ -82,7 +141,8 @@ impl Flexure {
         Ok(self)
     }
 
-    /// The same flexure with a `points`-point Gauss–Legendre rule.
+    /// The same flexure with a `points`-point Gauss–Legendre rule (per
+    /// segment, for [`Basis::Segments`]).
     pub fn with_quadrature(mut self, points: usize) -> Result<Self> {
         self.set_rule(GaussLegendre::new(points)?);
         Ok(self)
@@ -90,12 +150,61 @@ impl Flexure {
 
     fn set_rule(&mut self, rule: GaussLegendre) {
         let n = self.order();
-        self.psi = vec![0.0; rule.len() * n];
-        for (row, &t) in self.psi.chunks_exact_mut(n).zip(rule.nodes()) {
-            basis::angle_shapes(t, row);
+        let pieces = if self.basis == Basis::Segments { n } else { 1 };
+        self.nodes.clear();
+        self.weights.clear();
+        for j in 0..pieces {
+            for (&t, &w) in rule.nodes().iter().zip(rule.weights()) {
+                self.nodes.push((j as f64 + t) / pieces as f64);
+                self.weights.push(w * self.length / pieces as f64);
+            }
         }
-        self.weights = rule.weights().iter().map(|w| w * self.length).collect();
+        self.psi = vec![0.0; self.nodes.len() * n];
+        for (row, &t) in self.psi.chunks_exact_mut(n).zip(&self.nodes) {
+            match self.basis {
+                Basis::Legendre => basis::angle_shapes(t, row),
+                Basis::Segments => {
+                    for (j, v) in row.iter_mut().enumerate() {
+                        *v = (n as f64 * t - j as f64).clamp(0.0, 1.0);
+                    }
+                }
+            }
+        }
         self.rule = rule;
+    }
+
+    /// The basis of the coordinates.
+    pub fn basis(&self) -> Basis {
+        self.basis
+    }
+
+    /// Curvature $\hat\omega(c, s)$ (1/m) of coordinates `c` at arc length `s`.
+    ///
+    /// # Example
+    /// ```
+    /// let f = flexure::Flexure::segments(2.0, 1.0, 4).unwrap();
+    /// // Segment 1 spans s in [0.5, 1): rotation 0.3 over 0.5 m.
+    /// assert!((f.curvature(&[0.0, 0.3, 0.0, 0.0], 0.7) - 0.6).abs() < 1e-15);
+    /// ```
+    pub fn curvature(&self, c: &[f64], s: f64) -> f64 {
+        match self.basis {
+            Basis::Legendre => basis::curvature(c, self.length, s),
+            Basis::Segments => {
+                let n = c.len();
+                let j = ((s / self.length * n as f64).floor().max(0.0) as usize).min(n - 1);
+                c[j] * n as f64 / self.length
+            }
+        }
+    }
+
+    /// Energy weight $w_i$: $U = \frac{EI}{2L}\sum_i w_i(\alpha_i - \kappa_i)^2$.
+    pub fn energy_weight(&self, i: usize) -> f64 {
+        self.energy_weights[i]
+    }
+
+    /// $\partial\phi_{tip}/\partial\alpha$: $(1, 0, \dots)$ for Legendre (Eq. 19), all ones for segments.
+    pub fn tip_angle_row(&self) -> &[f64] {
+        &self.tip_angle
     }
 
     /// Length $L$ in metres.
@@ -118,14 +227,14 @@ impl Flexure {
         &self.kappa
     }
 
-    /// Number of quadrature points $Q$.
+    /// Number of quadrature points $Q$ (per segment, for [`Basis::Segments`]).
     pub fn quadrature_points(&self) -> usize {
         self.rule.len()
     }
 
-    /// The quadrature rule on $[0, 1]$.
-    pub fn quadrature(&self) -> &GaussLegendre {
-        &self.rule
+    /// Nodes $t_k$ on $[0, 1]$ of the whole (composite) rule.
+    pub fn nodes(&self) -> &[f64] {
+        &self.nodes
     }
 
     /// Rows $\psi_i(t_k)$, one per node.

@@ -90,7 +90,16 @@ pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
         x += T::c(w) * c;
         y += T::c(w) * s;
     }
-    Pose { phi: alpha[0], x, y }
+    Pose { phi: tip_angle(flexure, alpha), x, y }
+}
+
+#[inline(always)]
+fn tip_angle<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
+    match flexure.basis() {
+        // Eq. 11: exactly α₁, with no rounding from the other coordinates.
+        crate::joint::Basis::Legendre => alpha[0],
+        crate::joint::Basis::Segments => node_angle(flexure.tip_angle_row(), alpha),
+    }
 }
 
 #[inline(always)]
@@ -127,7 +136,9 @@ pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T
     let hy = data.hessian_root_tip_y.as_mut_slice();
     if level >= Level::Jacobian {
         jac.fill(T::zero());
-        jac[0] = T::one();
+        for (col, &d) in jac.chunks_exact_mut(3).zip(flexure.tip_angle_row()) {
+            col[0] = T::c(d);
+        }
     }
     if level >= Level::Hessian {
         hx.fill(T::zero());
@@ -165,5 +176,5 @@ pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T
             }
         }
     }
-    data.pose_root_tip = Pose { phi: alpha[0], x, y };
+    data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
 }

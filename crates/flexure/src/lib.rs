@@ -38,6 +38,7 @@ pub mod basis;
 pub mod buckling;
 pub mod cholesky;
 pub mod compliance;
+pub mod connect;
 pub mod energy;
 pub mod error;
 pub mod joint;
@@ -48,6 +49,7 @@ pub mod quadrature;
 pub mod reference;
 pub mod scalar;
 pub mod statics;
+pub mod tendon;
 
 pub use buckling::{Buckling, TipConstraint, buckling_load};
 pub use compliance::{compliance_tip, compliance_tip_rest};

@@ -238,3 +238,43 @@ pub fn deflect<T: Scalar>(
         }
     }
 }
+
+/// The smallest factor $\lambda$ for which the equilibrium under
+/// $\lambda\cdot$`load`, followed from the rest shape, stops being stable:
+/// $K$ (Eq. 32) is no longer positive definite, or continuation loses the
+/// branch (a snap-through). `None` if it stays stable up to `max_factor`.
+///
+/// Brackets by doubling $\lambda$, then bisects to a relative $10^{-10}$.
+///
+/// # Example
+/// ```
+/// use flexure::{statics::stability_limit, Flexure, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// // Axial compression: the model's free buckling load, Table I.
+/// let l = stability_limit(&f, &TipLoad { moment: 0.0, fx: -1.0, fy: 0.0 }, 100.0).unwrap().unwrap();
+/// assert!((l - 2.4677).abs() < 1e-4);
+/// ```
+pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Result<Option<f64>> {
+    load.validate()?;
+    if !(max_factor.is_finite() && max_factor > 0.0) {
+        return Err(Error::invalid("max_factor", max_factor, "must be a finite number greater than zero"));
+    }
+    let mut data = Statics::new(flexure);
+    let mut stable_at = |factor: f64| {
+        let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
+        deflect(flexure, &scaled, &mut data, &Settings::default()).map(|e| e.stable).unwrap_or(false)
+    };
+    let (mut lo, mut hi) = (0.0, max_factor / 1024.0);
+    while stable_at(hi) {
+        if hi >= max_factor {
+            return Ok(None);
+        }
+        lo = hi;
+        hi = (2.0 * hi).min(max_factor);
+    }
+    while hi - lo > 1e-10 * hi {
+        let mid = 0.5 * (lo + hi);
+        if stable_at(mid) { lo = mid } else { hi = mid }
+    }
+    Ok(Some(0.5 * (lo + hi)))
+}

@@ -175,3 +175,16 @@ fn converges_beyond_a_right_angle() {
     assert!(eq.stable && eq.residual < 1e-11);
     assert!((data.pose_root_tip().phi - exact.phi).abs().to_degrees() < 2.0);
 }
+
+/// Stability limit along a load path: axial compression loses stability at
+/// the model's free buckling load (Table I, 2.4677 EI/L²; ±5e-5), and a
+/// load that only bends never does.
+#[test]
+fn stability_limit_matches_buckling() {
+    let f = unit();
+    let limit =
+        flexure::statics::stability_limit(&f, &TipLoad { moment: 0.0, fx: -2.0, fy: 0.0 }, 100.0).unwrap().unwrap();
+    assert!((2.0 * limit - 2.4677).abs() < 5e-5, "{}", 2.0 * limit);
+    let bend = flexure::statics::stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 4.0).unwrap();
+    assert_eq!(bend, None);
+}

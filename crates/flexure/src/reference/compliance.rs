@@ -1,6 +1,5 @@
 //! The compliance ODE of a curved beam (paper Eq. 34).
 
-use crate::basis;
 use crate::error::Result;
 use crate::joint::Flexure;
 use crate::ode::{Tolerance, integrate};
@@ -26,7 +25,7 @@ pub fn compliance_tip(flexure: &Flexure, tol: &Tolerance) -> Result<Matrix3<f64>
     let rhs = |s: f64, y: &[f64; 7]| {
         let (sn, cs) = y[0].sin_cos();
         [
-            basis::curvature(kappa, l, s),
+            flexure.curvature(kappa, s),
             1.0 / ei,
             -sn * y[1],
             cs * y[1],

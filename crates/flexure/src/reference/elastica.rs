@@ -1,6 +1,5 @@
 //! The exact large-deflection elastica (paper Eq. 3), solved by shooting.
 
-use crate::basis;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::Pose;
@@ -66,7 +65,7 @@ pub fn shoot<T: Scalar>(
     let (l, ei, kappa) = (flexure.length(), T::c(flexure.ei()), flexure.rest());
     let rhs = |s: f64, y: &[T; 3]| {
         let (sn, cs) = y[0].sin_cos();
-        [T::c(basis::curvature(kappa, l, s)) + (root_moment - fy * y[1] + fx * y[2]) / ei, cs, sn]
+        [T::c(flexure.curvature(kappa, s)) + (root_moment - fy * y[1] + fx * y[2]) / ei, cs, sn]
     };
     integrate(rhs, 0.0, l, [T::zero(); 3], tol, observe)
 }
@@ -144,4 +143,59 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
             }
         }
     }
+}
+
+/// An exact minimum-energy shape between two poses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Connection {
+    /// Bending energy $U^* = \int_0^L \frac{EI}{2}(\omega - \omega_0)^2 ds$ (J).
+    pub energy: f64,
+    /// Bending moment at the root, $M_0$ (N·m).
+    pub root_moment: f64,
+    /// The force carried along the beam, equal to the force on the tip (N).
+    pub fx: f64,
+    /// See `fx`.
+    pub fy: f64,
+}
+
+/// Integrates Eq. 3 as [`shoot`] does, adding the energy $\int m^2/2EI\,ds$ as a fourth state.
+fn shoot_with_energy<T: Scalar>(flexure: &Flexure, m0: T, fx: T, fy: T, tol: &Tolerance) -> Result<[T; 4]> {
+    let (ei, kappa) = (T::c(flexure.ei()), flexure.rest());
+    let rhs = |s: f64, y: &[T; 4]| {
+        let (sn, cs) = y[0].sin_cos();
+        let m = m0 - fy * y[1] + fx * y[2];
+        [T::c(flexure.curvature(kappa, s)) + m / ei, cs, sn, m * m / (ei + ei)]
+    };
+    integrate(rhs, 0.0, flexure.length(), [T::zero(); 4], tol, |_, _| {})
+}
+
+/// The exact elastica through `target`, by shooting on the root moment and
+/// both force components (three unknowns) until the tip pose matches.
+///
+/// `guess` is $(M_0, F_x, F_y)$; the model's [`crate::connect::connect`]
+/// multipliers, moved to the root, make a good one. The Jacobian comes from
+/// dual numbers through the integrator. The minimum energy $U^*$ of Eq. 16.
+///
+/// # Example
+/// ```
+/// use flexure::{reference::elastica, Flexure, Pose};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// // An arc of angle 1 needs a pure moment 1: U* = 1/2.
+/// let target = Pose { phi: 1.0, x: 1f64.sin(), y: 1.0 - 1f64.cos() };
+/// let c = elastica::connect(&f, &target, [0.9, 0.0, 0.0], &Default::default()).unwrap();
+/// assert!((c.energy - 0.5).abs() < 1e-10 && (c.root_moment - 1.0).abs() < 1e-9);
+/// ```
+pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Settings) -> Result<Connection> {
+    crate::connect::check_pose(flexure, target)?;
+    let l = flexure.length();
+    let residual = |z: &SVector<f64, 3>| -> Result<(SVector<f64, 3>, SMatrix<f64, 3, 3>)> {
+        let v = |i: usize| num_dual::DualSVec64::<3>::from_re(z[i]).derivative(i);
+        let tip = shoot_with_energy(flexure, v(0), v(1), v(2), &settings.ode)?;
+        let r = [(tip[0] - target.phi) * l, tip[1] - target.x, tip[2] - target.y];
+        let jac = SMatrix::<f64, 3, 3>::from_fn(|row, col| r[row].eps.unwrap_generic(nalgebra::U3, nalgebra::U1)[col]);
+        Ok((SVector::from([r[0].re, r[1].re, r[2].re]), jac))
+    };
+    let root = find_root(residual, SVector::from(guess), 1e-12 * l, settings.max_iterations)?;
+    let tip = shoot_with_energy(flexure, root.x[0], root.x[1], root.x[2], &settings.ode)?;
+    Ok(Connection { energy: tip[3], root_moment: root.x[0], fx: root.x[1], fy: root.x[2] })
 }

@@ -1,0 +1,105 @@
+//! The tendon-driven joint (Sec. III-D, Eqs. 23–26, errata sign), against the
+//! exact elastica loaded by the tendon's own force.
+
+use flexure::newton::Objective;
+use flexure::reference::elastica;
+use flexure::tendon::{Tendon, TendonData, TendonPotential, pull, tendon_length};
+use flexure::{Flexure, Kinematics, TipLoad, bending_stiffness};
+use num_dual::Dual64;
+use std::f64::consts::FRAC_PI_2;
+
+fn steel() -> Flexure {
+    Flexure::new(0.015, bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap(), 3).unwrap()
+}
+const PAPER: Tendon = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+
+fn angle_at(f: &Flexure, t: &Tendon, force: f64) -> f64 {
+    let mut d = TendonData::new(f);
+    pull(f, t, force, &mut d).unwrap();
+    d.alpha()[0]
+}
+
+/// Fig. 10: "approximately 28 N" turns the paper's steel flexure to 90°
+/// (read off the figure: 28 ± 0.5 N).
+#[test]
+fn fig_10_right_angle_near_28_newtons() {
+    let f = steel();
+    let (mut lo, mut hi) = (20.0, 40.0);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if angle_at(&f, &PAPER, mid) < FRAC_PI_2 { lo = mid } else { hi = mid }
+    }
+    assert!((lo - 28.0).abs() < 0.5, "{lo} N");
+}
+
+/// Errata, Eq. 24: tension shortens the tendon, so the joint bends toward it.
+#[test]
+fn bends_toward_the_tendon() {
+    let f = steel();
+    assert!(angle_at(&f, &PAPER, 10.0) > 0.3);
+    assert!(angle_at(&f, &Tendon { root_offset: -0.005, tip_offset: -0.005 }, 10.0) < -0.3);
+    let mut d = TendonData::new(&f);
+    assert!(pull(&f, &PAPER, -1.0, &mut d).is_err(), "negative tension");
+}
+
+/// Gradient and Hessian of E(α) three ways: central differences (h = 1e-6,
+/// error ~1e-9 relative), num-dual through the energy, symmetry.
+#[test]
+fn derivatives() {
+    let f = steel();
+    let tension = 12.0;
+    let alpha = [0.7, -0.3, 0.2];
+    let mut k = Kinematics::new(&f);
+    let (mut g, mut h) = ([0.0; 3], [0.0; 9]);
+    TendonPotential { flexure: &f, tendon: PAPER, tension, kinematics: &mut k }.evaluate(&alpha, &mut g, &mut h);
+    let e = |a: &[f64]| flexure::energy(&f, a) + tension * tendon_length(&f, &PAPER, a);
+    let step = 1e-6;
+    for i in 0..3 {
+        let (mut up, mut dn) = (alpha, alpha);
+        up[i] += step;
+        dn[i] -= step;
+        let fd = (e(&up) - e(&dn)) / (2.0 * step);
+        assert!((g[i] - fd).abs() < 1e-7 * g[i].abs().max(1e-2), "gradient {i}");
+        let d: Vec<Dual64> = (0..3).map(|m| Dual64::new(alpha[m], (m == i) as u8 as f64)).collect();
+        let ed = flexure::energy(&f, &d) + Dual64::from(tension) * tendon_length(&f, &PAPER, &d);
+        assert!((g[i] - ed.eps).abs() < 1e-12, "gradient {i} vs num-dual");
+        let mut kd = Kinematics::<Dual64>::new(&f);
+        let (mut gd, mut hd) = ([Dual64::from(0.0); 3], [Dual64::from(0.0); 9]);
+        TendonPotential { flexure: &f, tendon: PAPER, tension: Dual64::from(tension), kinematics: &mut kd }
+            .evaluate(&d, &mut gd, &mut hd);
+        for j in 0..3 {
+            assert!((h[i * 3 + j] - gd[j].eps).abs() < 1e-10, "Hessian ({j},{i}) vs num-dual of the gradient");
+            assert!((h[i * 3 + j] - h[j * 3 + i]).abs() < 1e-12, "symmetry");
+        }
+    }
+}
+
+/// The exact tendon joint, composed by hand: the tendon pulls the tip
+/// attachment toward the root one with force f, so the elastica carries the
+/// tip load F = −f·u, M = r × F with r the attachment offset. Iterate the
+/// exact pose and its load to a fixed point; the model stays within 1 % of
+/// L and 1° of it up to 90° (Sec. III-C's accuracy).
+#[test]
+fn agrees_with_the_exact_elastica() {
+    let f = steel();
+    let mut d = TendonData::new(&f);
+    for force in [5.0, 15.0, 27.0] {
+        pull(&f, &PAPER, force, &mut d).unwrap();
+        let model = d.kinematics.pose_root_tip;
+        let load_at = |phi: f64, x: f64, y: f64| {
+            let [dx, dy] = PAPER.span(phi, x, y);
+            let l = dx.hypot(dy);
+            let (fx, fy) = (-force * dx / l, -force * dy / l);
+            let (rx, ry) = (-PAPER.tip_offset * phi.sin(), PAPER.tip_offset * phi.cos());
+            TipLoad { moment: rx * fy - ry * fx, fx, fy }
+        };
+        let mut pose = model;
+        for _ in 0..30 {
+            pose = elastica::deflect(&f, &load_at(pose.phi, pose.x, pose.y), &Default::default()).unwrap().pose;
+        }
+        let again = elastica::deflect(&f, &load_at(pose.phi, pose.x, pose.y), &Default::default()).unwrap().pose;
+        assert!((again.phi - pose.phi).abs() < 1e-9, "fixed point reached");
+        assert!((model.x - pose.x).hypot(model.y - pose.y) < 0.01 * 0.015, "{force} N position");
+        assert!((model.phi - pose.phi).abs().to_degrees() < 1.0, "{force} N angle");
+    }
+}
