@@ -94,6 +94,9 @@ pub struct DeflectArgs {
     /// Also solve the exact elastica (shooting); `pose` is then the exact one.
     #[arg(long)]
     exact: bool,
+    /// Also find the factor on the load at which the equilibrium stops being stable.
+    #[arg(long)]
+    limit: bool,
 }
 
 /// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
@@ -102,13 +105,17 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let load = args.load.load();
     let mut data = Statics::new(&f);
     let eq = deflect(&f, &load, &mut data, &Default::default())?;
-    let model = json!({
+    let mut model = json!({
         "alpha": data.alpha(),
         "pose": pose(&data.pose_root_tip()),
         "stiffness": matrix(&data.stiffness),
         "stable": eq.stable,
         "residual": eq.residual,
     });
+    if args.limit {
+        // Factors up to 1000 × the given load; null if it stays stable.
+        model["stability_limit"] = json!(flexure::statics::stability_limit(&f, &load, 1000.0)?);
+    }
     if !args.exact {
         return Ok(model);
     }

@@ -4,6 +4,7 @@
 //! otherwise. Bad input exits with status 2 and a message on stderr naming
 //! the option; so does a solver that cannot find an answer.
 
+mod analyses;
 mod joint;
 mod options;
 mod render;
@@ -35,6 +36,10 @@ enum Command {
     Compliance(joint::ComplianceArgs),
     /// Critical compressive load under a tip constraint.
     Buckling(joint::BucklingArgs),
+    /// Minimum-energy shape reaching a tip pose (model, exact, or segment chain).
+    Connect(analyses::ConnectArgs),
+    /// Tendon-driven joint: equilibrium under tendon tension, or a sweep.
+    Tendon(analyses::TendonArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +49,8 @@ fn main() -> ExitCode {
         Command::Deflect(a) => joint::deflect_cmd(a),
         Command::Compliance(a) => joint::compliance(a),
         Command::Buckling(a) => joint::buckling(a),
+        Command::Connect(a) => analyses::connect_cmd(a),
+        Command::Tendon(a) => analyses::tendon_cmd(a),
     };
     match result {
         Ok(value) => {

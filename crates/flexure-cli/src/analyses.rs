@@ -1,0 +1,158 @@
+//! Subcommands for the paper's analyses: connect and tendon.
+
+use crate::joint::pose as pose_json;
+use crate::options::{FlexureOptions, angle, number};
+use clap::Args;
+use flexure::connect::{Connection, connect};
+use flexure::reference::elastica;
+use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
+use flexure::{Error, Flexure, Pose};
+use serde_json::{Value, json};
+
+/// A tip pose `PHI,X,Y`; PHI may end in `deg`.
+#[derive(Debug, Clone, Copy)]
+pub struct PoseArg(pub Pose);
+
+pub fn pose_arg(s: &str) -> Result<PoseArg, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("{s:?} must be three values PHI,X,Y"));
+    }
+    Ok(PoseArg(Pose { phi: angle(parts[0])?, x: number(parts[1])?, y: number(parts[2])? }))
+}
+
+#[derive(Debug, Args)]
+pub struct ConnectArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    /// Tip pose PHI,X,Y in the root frame (PHI in radians, or e.g. 90deg).
+    #[arg(long, value_parser = pose_arg, allow_hyphen_values = true)]
+    pose: PoseArg,
+    /// Solve the exact elastica through the pose instead (shooting on three unknowns).
+    #[arg(long, conflicts_with = "segments")]
+    exact: bool,
+    /// Use a chain of K constant-curvature segments instead of the model.
+    #[arg(long)]
+    segments: Option<usize>,
+}
+
+/// The exact connection, seeded by the order-3 model's multipliers.
+pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<elastica::Connection> {
+    let seed = Flexure::new(flexure.length(), flexure.ei(), 3)?;
+    let seed = if flexure.order() == 3 { flexure.clone() } else { seed };
+    let c: Connection = connect(&seed, target)?;
+    let m0 = c.load.moment + target.x * c.load.fy - target.y * c.load.fx;
+    elastica::connect(flexure, target, [m0, c.load.fx, c.load.fy], &Default::default())
+}
+
+/// Minimum-energy shape to a tip pose (Sec. II-E), with η against the exact elastica when it can be found.
+pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
+    let target = args.pose.0;
+    let model = args.flexure.build()?;
+    if args.exact {
+        let e = exact_connection(&model, &target)?;
+        let c = connect(&model, &target)?;
+        return Ok(json!({
+            "energy": e.energy,
+            "loads": { "moment": e.root_moment, "fx": e.fx, "fy": e.fy },
+            "model_energy": c.energy,
+            "eta": c.energy / e.energy - 1.0,
+        }));
+    }
+    if let Some(k) = args.segments {
+        let chain = Flexure::segments(model.length(), model.ei(), k)?;
+        let c = connect(&chain, &target)?;
+        let curvatures: Vec<f64> = c.alpha.iter().map(|a| a * k as f64 / model.length()).collect();
+        let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
+        if let Ok(e) = exact_connection(&model, &target) {
+            out["eta"] = json!(c.energy / e.energy - 1.0);
+        }
+        return Ok(out);
+    }
+    let c = connect(&model, &target)?;
+    let mut out = json!({
+        "alpha": c.alpha,
+        "energy": c.energy,
+        "load": { "moment": c.load.moment, "fx": c.load.fx, "fy": c.load.fy },
+    });
+    if let Ok(e) = exact_connection(&model, &target) {
+        out["eta"] = json!(c.energy / e.energy - 1.0);
+    }
+    Ok(out)
+}
+
+/// A sweep `F0:F1:COUNT` of tendon tension.
+#[derive(Debug, Clone, Copy)]
+pub struct Sweep {
+    pub from: f64,
+    pub to: f64,
+    pub count: usize,
+}
+
+pub fn sweep_arg(s: &str) -> Result<Sweep, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    if parts.len() != 3 {
+        return Err(format!("{s:?} must be F0:F1:COUNT"));
+    }
+    let count: usize = parts[2].trim().parse().map_err(|_| format!("COUNT {:?} is not a whole number", parts[2]))?;
+    if count < 2 {
+        return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
+    }
+    let (from, to) = (number(parts[0])?, number(parts[1])?);
+    if from < 0.0 || to < 0.0 {
+        return Err(format!("{s:?}: a tendon's tension cannot be negative"));
+    }
+    Ok(Sweep { from, to, count })
+}
+
+#[derive(Debug, Args)]
+pub struct TendonArgs {
+    #[command(flatten)]
+    flexure: FlexureOptions,
+    /// Tendon tension f in N.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, required_unless_present = "sweep")]
+    force: Option<f64>,
+    /// Tendon offset from the neutral axis at the root, m (T1 = translation (0, D1)).
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    root_offset: f64,
+    /// Tendon offset from the neutral axis at the tip, m (T2 = translation (0, D2)).
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    tip_offset: f64,
+    /// Sweep the tension F0:F1:COUNT, following the loading path.
+    #[arg(long, value_parser = sweep_arg, allow_hyphen_values = true, conflicts_with = "force")]
+    sweep: Option<Sweep>,
+}
+
+fn tendon_row(f: &Flexure, t: &Tendon, force: f64, data: &mut TendonData) -> flexure::Result<Value> {
+    let eq = pull(f, t, force, data)?;
+    Ok(json!({
+        "force": force,
+        "alpha": data.alpha(),
+        "pose": pose_json(&data.kinematics.pose_root_tip),
+        "tendon_length": tendon_length(f, t, data.alpha()),
+        "stable": eq.stable,
+    }))
+}
+
+/// Tendon-driven joint equilibrium (Sec. III-D), or a sweep of tensions.
+pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
+    let f = args.flexure.build()?;
+    let t = Tendon { root_offset: args.root_offset, tip_offset: args.tip_offset };
+    let mut data = TendonData::new(&f);
+    match (args.sweep, args.force) {
+        (Some(s), _) => {
+            let rows: flexure::Result<Vec<Value>> = (0..s.count)
+                .map(|i| tendon_row(&f, &t, s.from + (s.to - s.from) * i as f64 / (s.count - 1) as f64, &mut data))
+                .collect();
+            Ok(json!({ "rows": rows? }))
+        }
+        (None, Some(force)) => {
+            let mut row = tendon_row(&f, &t, force, &mut data)?;
+            if let Some(map) = row.as_object_mut() {
+                map.remove("force");
+            }
+            Ok(row)
+        }
+        (None, None) => Err(Error::invalid("force", "nothing", "give --force or --sweep")),
+    }
+}

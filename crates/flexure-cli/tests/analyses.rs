@@ -1,0 +1,91 @@
+//! The CLI contract of connect and tendon: keys, reference values, bad input.
+
+use serde_json::Value;
+use std::process::Command;
+
+fn run(args: &str) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flexure")).args(args.split_whitespace()).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn json(args: &str) -> Value {
+    let (code, out, err) = run(&format!("{args} --json"));
+    assert_eq!(code, 0, "{args}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap()
+}
+
+/// An arc of angle 1.2 (L = EI = 1): every method reaches it with U = a²/2
+/// and the pure moment a at the root (closed form).
+#[test]
+fn connect_an_arc() {
+    let a = 1.2_f64;
+    let pose = format!("{a},{},{}", a.sin() / a, (1.0 - a.cos()) / a);
+    let model = json(&format!("connect --pose {pose}"));
+    assert_eq!(model["alpha"].as_array().unwrap().len(), 3);
+    assert!((f(&model["energy"]) - a * a / 2.0).abs() < 1e-10);
+    let exact = json(&format!("connect --pose {pose} --exact"));
+    assert!((f(&exact["energy"]) - a * a / 2.0).abs() < 1e-10);
+    assert!((f(&exact["loads"]["moment"]) - a).abs() < 1e-8 && f(&exact["loads"]["fx"]).abs() < 1e-8);
+    let chain = json(&format!("connect --pose {pose} --segments 4"));
+    let k = chain["curvatures"].as_array().unwrap();
+    assert_eq!(k.len(), 4);
+    assert!(k.iter().all(|c| (f(c) - a).abs() < 1e-8), "constant curvature a/L");
+    let order5 = json(&format!("connect --pose {pose} --order 5"));
+    assert_eq!(order5["alpha"].as_array().unwrap().len(), 5);
+}
+
+/// η ≥ 0 (Eq. 16: the elastica has the least energy) and the chain's energy
+/// lies above the exact one.
+#[test]
+fn connect_energy_ordering() {
+    let exact = json("connect --pose 90deg,0.55,0.65 --exact");
+    let model = json("connect --pose 90deg,0.55,0.65");
+    let chain = json("connect --pose 90deg,0.55,0.65 --segments 22");
+    assert!(f(&model["energy"]) > f(&exact["energy"]) && f(&chain["energy"]) > f(&exact["energy"]));
+    assert!((f(&model["eta"]) - (f(&model["energy"]) / f(&exact["energy"]) - 1.0)).abs() < 1e-12);
+}
+
+/// Fig. 10: about 28 N turns the paper's steel flexure (Eq. 25, 5 mm offsets) to 90°.
+#[test]
+fn tendon_paper_joint() {
+    let steel = "--length 0.015 --modulus 200e9 --width 0.01 --thickness 0.0002 --poisson 0.29";
+    let v = json(&format!("tendon {steel} --force 28 --root-offset 0.005 --tip-offset 0.005"));
+    assert!((f(&v["pose"]["phi"]).to_degrees() - 90.0).abs() < 2.0, "{}", f(&v["pose"]["phi"]).to_degrees());
+    assert!(f(&v["tendon_length"]) < 0.015, "tension shortens the tendon");
+    let s = json(&format!("tendon {steel} --sweep 0:40:9 --root-offset 0.005 --tip-offset 0.005"));
+    let rows = s["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 9);
+    assert_eq!(f(&rows[0]["force"]), 0.0);
+    let angles: Vec<f64> = rows.iter().map(|r| f(&r["pose"]["phi"])).collect();
+    assert!(angles.windows(2).all(|w| w[1] > w[0]), "rotation grows with tension");
+    for key in ["alpha", "pose", "tendon_length"] {
+        assert!(rows[3].get(key).is_some(), "{key}");
+    }
+}
+
+#[test]
+fn bad_input_exits_2() {
+    for (args, option) in [
+        ("connect --pose 0,0.9,0.5", "--pose"),
+        ("connect --pose 0,1,0", "--pose"),
+        ("connect --pose 1,0.5", "--pose"),
+        ("connect --pose 1,0.5,0.5 --segments 0", "--segments"),
+        ("tendon --force -1 --root-offset 0 --tip-offset 0", "--force"),
+        ("tendon --sweep 0:1:1 --root-offset 0 --tip-offset 0", "--sweep"),
+        ("tendon --sweep -1:1:3 --root-offset 0 --tip-offset 0", "--sweep"),
+        ("tendon --force 1 --root-offset nan --tip-offset 0", "--root-offset"),
+    ] {
+        let (code, out, err) = run(&format!("{args} --json"));
+        assert_eq!(code, 2, "{args}");
+        assert!(err.contains(option) && !err.contains("panicked"), "{args}: {err}");
+        assert!(out.is_empty());
+    }
+}
