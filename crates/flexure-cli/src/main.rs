@@ -5,9 +5,11 @@
 //! the option; so does a solver that cannot find an answer.
 
 mod analyses;
+mod figures;
 mod joint;
 mod options;
 mod render;
+mod reproduce;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -40,17 +42,20 @@ enum Command {
     Connect(analyses::ConnectArgs),
     /// Tendon-driven joint: equilibrium under tendon tension, or a sweep.
     Tendon(analyses::TendonArgs),
+    /// Regenerate the paper's tables and figures beside its printed values.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Kinematics(a) => joint::kinematics(a),
-        Command::Deflect(a) => joint::deflect_cmd(a),
-        Command::Compliance(a) => joint::compliance(a),
-        Command::Buckling(a) => joint::buckling(a),
-        Command::Connect(a) => analyses::connect_cmd(a),
-        Command::Tendon(a) => analyses::tendon_cmd(a),
+        Command::Kinematics(a) => joint::kinematics(a).map_err(describe),
+        Command::Deflect(a) => joint::deflect_cmd(a).map_err(describe),
+        Command::Compliance(a) => joint::compliance(a).map_err(describe),
+        Command::Buckling(a) => joint::buckling(a).map_err(describe),
+        Command::Connect(a) => analyses::connect_cmd(a).map_err(describe),
+        Command::Tendon(a) => analyses::tendon_cmd(a).map_err(describe),
+        Command::Reproduce(a) => reproduce::run(a),
     };
     match result {
         Ok(value) => {
@@ -62,15 +67,15 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {}", describe(&e));
+            eprintln!("error: {e}");
             ExitCode::from(2)
         }
     }
 }
 
 /// The library's error with the parameter spelled as the option that set it.
-fn describe(e: &flexure::Error) -> String {
-    match e {
+fn describe(e: flexure::Error) -> String {
+    match &e {
         flexure::Error::InvalidParameter { name, value, reason } => format!("--{name} = {value}: {reason}"),
         other => other.to_string(),
     }

@@ -160,16 +160,11 @@ impl Flexure {
             }
         }
         self.psi = vec![0.0; self.nodes.len() * n];
-        for (row, &t) in self.psi.chunks_exact_mut(n).zip(&self.nodes) {
-            match self.basis {
-                Basis::Legendre => basis::angle_shapes(t, row),
-                Basis::Segments => {
-                    for (j, v) in row.iter_mut().enumerate() {
-                        *v = (n as f64 * t - j as f64).clamp(0.0, 1.0);
-                    }
-                }
-            }
+        let mut psi = std::mem::take(&mut self.psi);
+        for (row, &t) in psi.chunks_exact_mut(n).zip(&self.nodes) {
+            self.angle_shapes(t, row);
         }
+        self.psi = psi;
         self.rule = rule;
     }
 
@@ -193,6 +188,19 @@ impl Flexure {
                 let n = c.len();
                 let j = ((s / self.length * n as f64).floor().max(0.0) as usize).min(n - 1);
                 c[j] * n as f64 / self.length
+            }
+        }
+    }
+
+    /// Angle shapes $\psi_i(t)$ at any $t \in [0, 1]$, written into `out` (one per coordinate).
+    pub fn angle_shapes(&self, t: f64, out: &mut [f64]) {
+        match self.basis {
+            Basis::Legendre => basis::angle_shapes(t, out),
+            Basis::Segments => {
+                let n = out.len() as f64;
+                for (j, v) in out.iter_mut().enumerate() {
+                    *v = (n * t - j as f64).clamp(0.0, 1.0);
+                }
             }
         }
     }

@@ -178,3 +178,39 @@ pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T
     }
     data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
 }
+
+/// The pose of the cross-section at `samples` equally spaced arc lengths
+/// $s_i = iL/(\text{samples} - 1)$, from the root (identity) to the tip: for
+/// drawing. Each interval is integrated with a 5-point Gauss rule.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// let b = flexure::kinematics::backbone(&f, &[1.0, 0.0, 0.0], 11);
+/// // Halfway along an arc of angle 1: φ = 1/2, x = sin(1/2).
+/// assert!((b[5].phi - 0.5).abs() < 1e-14 && (b[5].x - 0.5f64.sin()).abs() < 1e-12);
+/// ```
+pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f64>> {
+    let n = flexure.order();
+    let rule = crate::quadrature::GaussLegendre::new(5).expect("five points");
+    let mut psi = vec![0.0; n];
+    let mut angle = |t: f64| {
+        flexure.angle_shapes(t, &mut psi);
+        psi.iter().zip(alpha).map(|(p, a)| p * a).sum::<f64>()
+    };
+    let count = samples.max(2);
+    let h = 1.0 / (count - 1) as f64;
+    let mut out = Vec::with_capacity(count);
+    let (mut x, mut y) = (0.0, 0.0);
+    out.push(Pose { phi: angle(0.0), x, y });
+    for i in 1..count {
+        let t0 = (i - 1) as f64 * h;
+        for (&t, &w) in rule.nodes().iter().zip(rule.weights()) {
+            let (s, c) = angle(t0 + t * h).sin_cos();
+            x += w * h * flexure.length() * c;
+            y += w * h * flexure.length() * s;
+        }
+        out.push(Pose { phi: angle(i as f64 * h), x, y });
+    }
+    out
+}

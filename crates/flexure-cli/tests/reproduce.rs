@@ -1,0 +1,95 @@
+//! `flexure reproduce` into a temporary directory; the numbers in
+//! results.json checked against closed forms and the paper (errata applied).
+
+use serde_json::Value;
+use std::f64::consts::PI;
+use std::process::Command;
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn reproduce_writes_a_checked_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_flexure"))
+        .args(["reproduce", "--json", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(summary["fig10_force_at_90"].is_number());
+    let r: Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
+
+    // Table I: model column as printed (±5e-5); Euler from closed forms,
+    // with the errata's clamped–pinned (tan x = x, x = 4.493409457909064).
+    let euler = [PI * PI / 4.0, PI * PI, 4.493409457909064f64.powi(2), 4.0 * PI * PI];
+    let model = [2.4677, 10.0, 20.9187, 42.0];
+    for (i, row) in r["table1"]["rows"].as_array().unwrap().iter().enumerate() {
+        assert!((f(&row["model"]) - model[i]).abs() < 5e-5, "Table I model {i}");
+        assert!((f(&row["euler"]) - euler[i]).abs() < 1e-9, "Table I Euler {i}");
+        assert!((f(&row["error_percent"]) - 100.0 * (model[i] / euler[i] - 1.0)).abs() < 5e-3);
+    }
+
+    // Fig. 13: 7.33e-4 as printed (±5e-7), at the largest curvature; Eq. 37 (±5e-5).
+    let c = &r["fig12_13"];
+    assert!((f(&c["max_error"]) - 7.33e-4).abs() < 5e-7);
+    assert!((f(&c["max_error_at"]) - PI).abs() < 1e-12);
+    // The paper's printed digits, not a stand-in for 1/π.
+    #[allow(clippy::approx_constant)]
+    let printed = [[1.0000, -0.3183, -0.2026], [-0.3183, 0.1520, 0.0645], [-0.2026, 0.0645, 0.0507]];
+    for i in 0..3 {
+        for j in 0..3 {
+            assert!((f(&c["eq37_exact"][i][j]) - printed[i][j]).abs() < 5e-5, "Eq. 37 ({i},{j})");
+        }
+    }
+
+    // Figs. 7–8: each case reaches 90° exactly on the elastica, and the model
+    // is within 1 % of L and 1° there (Sec. III-C). Case A is an arc: exact.
+    for case in r["fig7_8"]["cases"].as_array().unwrap() {
+        assert!((f(&case["exact"]["phi"]) - PI / 2.0).abs() < 1e-8);
+        assert!(f(&case["position_error"]) < 0.01 && f(&case["angle_error_degrees"]) < 1.0);
+    }
+    assert!(f(&r["fig7_8"]["cases"][0]["position_error"]) < 1e-9, "case A: the arc is in the model");
+
+    // Fig. 10: about 28 N for 90° (read off the figure, ±0.5 N); rotation grows with tension.
+    assert!((f(&r["fig10"]["force_at_90"]) - 28.0).abs() < 0.5);
+    let rows = r["fig10"]["rows"].as_array().unwrap();
+    assert!(rows.windows(2).all(|w| f(&w[1]["rotation_degrees"]) > f(&w[0]["rotation_degrees"])));
+
+    // Figs. 4–5: η ≥ 0 (Eq. 16: the elastica is the energy minimum); chains
+    // converge as O(1/K²) (η·K² settles: within 5 % from K = 20 to 40); the
+    // reported K is the first chain below the model.
+    let fig4 = &r["fig4_5"];
+    let eta = f(&fig4["model"]["eta"]);
+    assert!(eta > 0.0);
+    let chains = fig4["segments"].as_array().unwrap();
+    let k_star = fig4["smallest_k_beating_model"].as_u64().unwrap();
+    for ch in chains {
+        let (k, e) = (ch["k"].as_u64().unwrap(), f(&ch["eta"]));
+        assert!(e > 0.0);
+        assert_eq!(e < eta, k >= k_star, "K = {k}");
+    }
+    let scaled =
+        |k: u64| chains.iter().find(|c| c["k"].as_u64() == Some(k)).map(|c| f(&c["eta"]) * (k * k) as f64).unwrap();
+    assert!((scaled(20) / scaled(40) - 1.0).abs() < 0.05);
+
+    // Convergence: buckling errors positive and falling with N (Rayleigh–Ritz),
+    // down to the eigen-solve's rounding (1e-11 relative) where they flatten.
+    for tip in r["convergence"]["buckling"].as_array().unwrap() {
+        let e: Vec<f64> = tip["relative_error"].as_array().unwrap().iter().map(f).collect();
+        assert!(e.iter().all(|&x| x > -1e-11) && e.windows(2).all(|w| w[1] <= w[0] + 1e-11), "{e:?}");
+        assert!(e[0] > 1e-4 && e[e.len() - 1] < 1e-6, "{e:?}");
+    }
+
+    // The report and the figures: every SVG it embeds exists, with axis labels.
+    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    for name in md.split("](").skip(1).map(|s| s.split(')').next().unwrap()) {
+        let svg = std::fs::read_to_string(dir.path().join(name)).unwrap_or_else(|_| panic!("{name} missing"));
+        // An SVG with data drawn, a title, axis descriptions and tick labels.
+        assert!(svg.contains("<svg") && (svg.contains("<polyline") || svg.contains("<circle")), "{name}: no data");
+        assert!(svg.matches("<text").count() >= 10, "{name}: too little text for labelled axes");
+    }
+    assert!(md.contains("Table I") && md.contains("20.1907"));
+}
