@@ -31,14 +31,23 @@ pub struct KinematicsArgs {
     #[command(flatten)]
     flexure: FlexureOptions,
     /// Joint coordinates α1,α2,… (one per order).
-    #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
-    alpha: List,
+    #[arg(long, value_parser = numbers, allow_hyphen_values = true, required_unless_present = "input")]
+    alpha: Option<List>,
+    /// A CSV of α rows with header a1,a2,…: one output line per row.
+    #[arg(long, conflicts_with = "alpha")]
+    pub input: Option<std::path::PathBuf>,
+}
+
+impl KinematicsArgs {
+    pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
+        self.flexure.build()
+    }
 }
 
 /// Pose, transform, Jacobian, Hessians, energy and gradient at α.
 pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
     let f = args.flexure.build()?;
-    let alpha = args.alpha.0.clone();
+    let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
     f.check_coordinates("alpha", &alpha)?;
     let mut k = Kinematics::new(&f);
     update_kinematics(&f, &alpha, &mut k, Level::Hessian);
@@ -97,6 +106,21 @@ pub struct DeflectArgs {
     /// Also find the factor on the load at which the equilibrium stops being stable.
     #[arg(long)]
     limit: bool,
+    /// Relative tolerance on the generalized-force residual.
+    #[arg(long, default_value = "1e-12", value_parser = number, allow_hyphen_values = true)]
+    tolerance: f64,
+    /// Newton iterations allowed per load step.
+    #[arg(long, default_value_t = 50)]
+    max_iterations: usize,
+    /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
+    #[arg(long, conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit"])]
+    pub input: Option<std::path::PathBuf>,
+}
+
+impl DeflectArgs {
+    pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
+        self.flexure.build()
+    }
 }
 
 /// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
@@ -104,7 +128,12 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let f = args.flexure.build()?;
     let load = args.load.load();
     let mut data = Statics::new(&f);
-    let eq = deflect(&f, &load, &mut data, &Default::default())?;
+    if args.tolerance <= 0.0 {
+        return Err(Error::invalid("tolerance", args.tolerance, "must be greater than zero"));
+    }
+    let settings =
+        flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
+    let eq = deflect(&f, &load, &mut data, &settings)?;
     let mut model = json!({
         "alpha": data.alpha(),
         "pose": pose(&data.pose_root_tip()),

@@ -5,6 +5,7 @@
 //! the option; so does a solver that cannot find an answer.
 
 mod analyses;
+mod batch;
 mod figures;
 mod joint;
 mod options;
@@ -48,6 +49,28 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // --input: one result per CSV row, printed line by line.
+    let rows = match &cli.command {
+        Command::Kinematics(a) => {
+            a.input.as_ref().map(|p| a.flexure().map_err(describe).and_then(|f| batch::kinematics(&f, p, cli.json)))
+        }
+        Command::Deflect(a) => {
+            a.input.as_ref().map(|p| a.flexure().map_err(describe).and_then(|f| batch::deflect_rows(&f, p, cli.json)))
+        }
+        _ => None,
+    };
+    if let Some(rows) = rows {
+        return match rows {
+            Ok(text) => {
+                print!("{text}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let result = match &cli.command {
         Command::Kinematics(a) => joint::kinematics(a).map_err(describe),
         Command::Deflect(a) => joint::deflect_cmd(a).map_err(describe),

@@ -132,6 +132,8 @@ fn bad_input_exits_2_and_names_the_option() {
         ("buckling --tip sideways", "--tip"),
         ("buckling", "--tip"),
         ("deflect --force 1 --fx 2", "--fx"),
+        ("deflect --tolerance 0", "--tolerance"),
+        ("deflect --tolerance -1", "--tolerance"),
     ];
     for (args, option) in cases {
         for args in [args.to_string(), format!("{args} --json")] {
@@ -144,10 +146,11 @@ fn bad_input_exits_2_and_names_the_option() {
     }
 }
 
-/// A load no continuation can follow is reported (status 2, residual), not printed as garbage.
+/// A solver that cannot converge is reported (status 2, residual), not printed as garbage.
 #[test]
 fn non_convergence_is_reported() {
-    let (code, out, err) = run("deflect --force 1e9 --json");
+    // A tolerance below rounding cannot be met.
+    let (code, out, err) = run("deflect --force 20 --tolerance 1e-20 --json");
     assert_eq!(code, 2);
     assert!(err.contains("did not converge") && err.contains("residual"), "{err}");
     assert!(out.is_empty());

@@ -64,6 +64,10 @@ pub struct Flexure {
     psi: Vec<f64>,
     /// `weights[k]` = $L\Delta_k$.
     weights: Vec<f64>,
+    /// `jacobian_weights[k * n + i]` = $L\Delta_k\psi_i(t_k)$ (Eqs. 20–21).
+    jacobian_weights: Vec<f64>,
+    /// `hessian_weights[(k * n + i) * n + j]` = $L\Delta_k\psi_i(t_k)\psi_j(t_k)$ (Eqs. 30–31).
+    hessian_weights: Vec<f64>,
     /// $w_i$ in the energy.
     energy_weights: Vec<f64>,
     /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
@@ -122,6 +126,8 @@ impl Flexure {
             nodes: vec![],
             psi: vec![],
             weights: vec![],
+            jacobian_weights: vec![],
+            hessian_weights: vec![],
             energy_weights,
             tip_angle,
         };
@@ -165,6 +171,15 @@ impl Flexure {
             self.angle_shapes(t, row);
         }
         self.psi = psi;
+        // Products of the weights with the shapes: the kernel's only per-node constants.
+        self.jacobian_weights =
+            self.psi.chunks_exact(n).zip(&self.weights).flat_map(|(row, &w)| row.iter().map(move |p| w * p)).collect();
+        self.hessian_weights = self
+            .psi
+            .chunks_exact(n)
+            .zip(&self.weights)
+            .flat_map(|(row, &w)| row.iter().flat_map(move |pi| row.iter().map(move |pj| w * pi * pj)))
+            .collect();
         self.rule = rule;
     }
 
@@ -253,6 +268,16 @@ impl Flexure {
     /// Scaled weights $L\Delta_k$.
     pub(crate) fn scaled_weights(&self) -> &[f64] {
         &self.weights
+    }
+
+    /// $L\Delta_k\psi_i(t_k)$, row-major by node.
+    pub(crate) fn jacobian_weights(&self) -> &[f64] {
+        &self.jacobian_weights
+    }
+
+    /// $L\Delta_k\psi_i(t_k)\psi_j(t_k)$, an $N\times N$ block per node.
+    pub(crate) fn hessian_weights(&self) -> &[f64] {
+        &self.hessian_weights
     }
 
     /// Checks that `alpha` has one finite value per order.

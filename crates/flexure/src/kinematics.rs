@@ -84,6 +84,33 @@ impl<T: Scalar> Kinematics<T> {
 /// ```
 pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    match flexure.order() {
+        2 => fixed_pose::<T, 2>(flexure, alpha),
+        3 => fixed_pose::<T, 3>(flexure, alpha),
+        4 => fixed_pose::<T, 4>(flexure, alpha),
+        5 => fixed_pose::<T, 5>(flexure, alpha),
+        6 => fixed_pose::<T, 6>(flexure, alpha),
+        _ => any_pose(flexure, alpha),
+    }
+}
+
+#[inline(always)]
+fn fixed_pose<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
+    let a: [T; N] = std::array::from_fn(|i| alpha[i]);
+    let (mut x, mut y) = (T::zero(), T::zero());
+    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
+        let mut phi = T::zero();
+        for i in 0..N {
+            phi += T::c(psi[i]) * a[i];
+        }
+        let (s, c) = phi.sin_cos();
+        x += T::c(w) * c;
+        y += T::c(w) * s;
+    }
+    Pose { phi: tip_angle(flexure, alpha), x, y }
+}
+
+fn any_pose<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     let (mut x, mut y) = (T::zero(), T::zero());
     for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
         let (s, c) = node_angle(psi, alpha).sin_cos();
@@ -129,8 +156,74 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// assert!((k.hessian_root_tip_x[(0, 0)] + 1.0 / 3.0).abs() < 1e-14);
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
+    assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    // Fixed sizes for the common orders: the loops unroll and lose their bounds checks.
+    match flexure.order() {
+        1 => fused::<T, 1>(flexure, alpha, data, level),
+        2 => fused::<T, 2>(flexure, alpha, data, level),
+        3 => fused::<T, 3>(flexure, alpha, data, level),
+        4 => fused::<T, 4>(flexure, alpha, data, level),
+        5 => fused::<T, 5>(flexure, alpha, data, level),
+        6 => fused::<T, 6>(flexure, alpha, data, level),
+        _ => general(flexure, alpha, data, level),
+    }
+}
+
+/// The one-pass kernel for order `N`, accumulating in registers.
+#[inline(always)]
+fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
+    let a: [T; N] = std::array::from_fn(|i| alpha[i]);
+    let (mut x, mut y) = (T::zero(), T::zero());
+    let (mut jx, mut jy) = ([T::zero(); N], [T::zero(); N]);
+    let (mut hx, mut hy) = ([[T::zero(); N]; N], [[T::zero(); N]; N]);
+    let rows = flexure.psi_rows().zip(flexure.scaled_weights());
+    let tables = flexure.jacobian_weights().chunks_exact(N).zip(flexure.hessian_weights().chunks_exact(N * N));
+    for ((psi, &w), (jw, hw)) in rows.zip(tables) {
+        let mut phi = T::zero();
+        for i in 0..N {
+            phi += T::c(psi[i]) * a[i];
+        }
+        let (s, c) = phi.sin_cos();
+        x += T::c(w) * c;
+        y += T::c(w) * s;
+        if level >= Level::Jacobian {
+            for i in 0..N {
+                jx[i] -= T::c(jw[i]) * s;
+                jy[i] += T::c(jw[i]) * c;
+            }
+        }
+        if level >= Level::Hessian {
+            for i in 0..N {
+                for j in i..N {
+                    hx[i][j] -= T::c(hw[i * N + j]) * c;
+                    hy[i][j] -= T::c(hw[i * N + j]) * s;
+                }
+            }
+        }
+    }
+    if level >= Level::Jacobian {
+        let jac = data.jacobian_root_tip.as_mut_slice();
+        for (i, &d) in flexure.tip_angle_row().iter().enumerate() {
+            jac[3 * i] = T::c(d);
+            jac[3 * i + 1] = jx[i];
+            jac[3 * i + 2] = jy[i];
+        }
+    }
+    if level >= Level::Hessian {
+        let (ox, oy) = (data.hessian_root_tip_x.as_mut_slice(), data.hessian_root_tip_y.as_mut_slice());
+        for i in 0..N {
+            for j in i..N {
+                (ox[j * N + i], ox[i * N + j]) = (hx[i][j], hx[i][j]);
+                (oy[j * N + i], oy[i * N + j]) = (hy[i][j], hy[i][j]);
+            }
+        }
+    }
+    data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
+}
+
+/// The same pass for any order, on slices.
+fn general<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
     let n = flexure.order();
-    assert_eq!(alpha.len(), n, "alpha must have one entry per order");
     let jac = data.jacobian_root_tip.as_mut_slice();
     let hx = data.hessian_root_tip_x.as_mut_slice();
     let hy = data.hessian_root_tip_y.as_mut_slice();
@@ -145,25 +238,24 @@ pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T
         hy.fill(T::zero());
     }
     let (mut x, mut y) = (T::zero(), T::zero());
-    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
+    let rows = flexure.psi_rows().zip(flexure.scaled_weights());
+    let tables = flexure.jacobian_weights().chunks_exact(n).zip(flexure.hessian_weights().chunks_exact(n * n));
+    for ((psi, &w), (jw, hw)) in rows.zip(tables) {
         let (s, c) = node_angle(psi, alpha).sin_cos();
-        let (ws, wc) = (T::c(w) * s, T::c(w) * c);
-        x += wc;
-        y += ws;
+        x += T::c(w) * c;
+        y += T::c(w) * s;
         if level >= Level::Jacobian {
-            for (col, &p) in jac.chunks_exact_mut(3).zip(psi) {
-                let p = T::c(p);
-                col[1] -= p * ws;
-                col[2] += p * wc;
+            for (col, &p) in jac.chunks_exact_mut(3).zip(jw) {
+                col[1] -= T::c(p) * s;
+                col[2] += T::c(p) * c;
             }
         }
         if level >= Level::Hessian {
-            for (j, &pj) in psi.iter().enumerate() {
-                let (cx, cy) = (&mut hx[j * n..=j * n + j], &mut hy[j * n..=j * n + j]);
-                for ((ex, ey), &pi) in cx.iter_mut().zip(cy.iter_mut()).zip(psi) {
-                    let p = T::c(pi * pj);
-                    *ex -= p * wc;
-                    *ey -= p * ws;
+            for j in 0..n {
+                for i in 0..=j {
+                    let p = T::c(hw[i * n + j]);
+                    hx[j * n + i] -= p * c;
+                    hy[j * n + i] -= p * s;
                 }
             }
         }
@@ -213,4 +305,50 @@ pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f6
         out.push(Pose { phi: angle(i as f64 * h), x, y });
     }
     out
+}
+
+/// Tip poses of many configurations: `alphas` holds one row of
+/// [`Flexure::order`] coordinates per pose, row after row, and `poses`
+/// receives one pose per row. Does not allocate.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// let alphas = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+/// let mut poses = [flexure::Pose::default(); 2];
+/// flexure::kinematics::poses_root_tip(&f, &alphas, &mut poses).unwrap();
+/// assert_eq!(poses[1], flexure::pose_root_tip(&f, &alphas[3..]));
+/// ```
+pub fn poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) -> crate::Result<()> {
+    check_batch(flexure, alphas, poses)?;
+    for (alpha, pose) in alphas.chunks_exact(flexure.order()).zip(poses.iter_mut()) {
+        *pose = pose_root_tip(flexure, alpha);
+    }
+    Ok(())
+}
+
+/// [`poses_root_tip`] spread over all cores with rayon, in chunks of 4096 poses.
+#[cfg(feature = "parallel")]
+pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) -> crate::Result<()> {
+    use rayon::prelude::*;
+    check_batch(flexure, alphas, poses)?;
+    const CHUNK: usize = 4096;
+    let n = flexure.order();
+    alphas.par_chunks(CHUNK * n).zip(poses.par_chunks_mut(CHUNK)).for_each(|(a, p)| {
+        for (alpha, pose) in a.chunks_exact(n).zip(p.iter_mut()) {
+            *pose = pose_root_tip(flexure, alpha);
+        }
+    });
+    Ok(())
+}
+
+fn check_batch(flexure: &Flexure, alphas: &[f64], poses: &[Pose<f64>]) -> crate::Result<()> {
+    if alphas.len() != poses.len() * flexure.order() {
+        return Err(crate::Error::invalid(
+            "alpha",
+            format!("{} values for {} poses", alphas.len(), poses.len()),
+            "must hold one row of `order` coordinates per pose",
+        ));
+    }
+    Ok(())
 }

@@ -1,5 +1,6 @@
 //! Equilibrium under tip loads (paper Eqs. 22 and 32).
 
+use crate::cholesky;
 use crate::energy::{energy, energy_gradient, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
@@ -30,7 +31,8 @@ impl TipLoad<f64> {
     /// ```
     pub fn polar(moment: f64, force: f64, angle: f64) -> Self {
         let (s, c) = angle.sin_cos();
-        Self { moment, fx: -force * s, fy: force * c }
+        // + 0.0 turns the −0 of a zero angle into 0.
+        Self { moment, fx: -force * s + 0.0, fy: force * c }
     }
 
     /// Checks that every component is finite.
@@ -74,7 +76,9 @@ pub struct Statics<T: Scalar = f64> {
     pub stiffness: DMatrix<T>,
     newton: newton::Workspace<T>,
     alpha: Vec<T>,
-    previous: Vec<T>,
+    /// $d\alpha/d\lambda$ along the load path.
+    tangent: Vec<T>,
+    factor: Vec<T>,
 }
 
 impl<T: Scalar> Statics<T> {
@@ -86,7 +90,8 @@ impl<T: Scalar> Statics<T> {
             stiffness: DMatrix::zeros(n, n),
             newton: newton::Workspace::new(n),
             alpha: vec![T::zero(); n],
-            previous: vec![T::zero(); n],
+            tangent: vec![T::zero(); n],
+            factor: vec![T::zero(); n * n],
         }
     }
 
@@ -149,12 +154,14 @@ impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
 /// $\tau = \nabla U - M\nabla\phi - F_x\nabla x - F_y\nabla y = 0$ (Eq. 22),
 /// with stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32).
 ///
-/// Newton with exact $K$ and a line search, inside load continuation: it
-/// tries the full load from the rest shape first and shortens the load
-/// step (with a secant predictor) when Newton fails or the step would turn
-/// a cross-section by more than [`Settings::max_rotation_per_step`], so it
-/// follows the branch that grows from the rest shape. Results stay in `data`; nothing
-/// is allocated.
+/// Newton with exact $K$ and a line search, inside load continuation from
+/// the rest shape. Each load step is sized by the tangent
+/// $d\alpha/d\lambda = K^{-1}\mathcal J^T(M, F_x, F_y)$ so that no
+/// cross-section is predicted to turn more than 70 % of
+/// [`Settings::max_rotation_per_step`], and the tangent also gives Newton its
+/// start. A step that fails, or turns a cross-section by more than the bound,
+/// is halved; so the solution follows the branch that grows from the rest
+/// shape. Results stay in `data`; nothing is allocated.
 ///
 /// # Example
 /// ```
@@ -179,43 +186,36 @@ pub fn deflect<T: Scalar>(
     for (a, &k) in data.alpha.iter_mut().zip(flexure.rest()) {
         *a = T::c(k);
     }
-    data.previous.copy_from_slice(&data.alpha);
-    let (mut lambda, mut previous_lambda, mut step) = (0.0_f64, 0.0_f64, 1.0_f64);
+    // The rest shape is the equilibrium at λ = 0; evaluate there for K and 𝒥.
+    data.newton.x.copy_from_slice(&data.alpha);
+    let mut rest = TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::zero() };
+    rest.evaluate(&data.newton.x, &mut data.newton.gradient, &mut data.newton.hessian);
+    let mut has_tangent = tangent(flexure, load, data);
+    let (mut lambda, mut allowed) = (0.0_f64, 1.0_f64);
     let (mut iterations, mut load_steps, mut residual) = (0, 0, f64::NAN);
     loop {
-        let target = (lambda + step).min(1.0);
-        // Secant predictor along the load path.
-        let ratio = if lambda > previous_lambda { (target - lambda) / (lambda - previous_lambda) } else { 0.0 };
-        for ((x, &a), &p) in data.newton.x.iter_mut().zip(&data.alpha).zip(&data.previous) {
-            *x = a + (a - p) * T::c(ratio);
+        let mut step = allowed.min(1.0 - lambda);
+        if has_tangent {
+            let rate = rotation(flexure, &data.tangent, None);
+            if rate > 0.0 {
+                step = step.min(0.7 * settings.max_rotation_per_step / rate);
+            }
+        }
+        let target = if 1.0 - lambda - step < 1e-12 { 1.0 } else { lambda + step };
+        let h = T::c(if has_tangent { target - lambda } else { 0.0 });
+        for ((x, &a), &t) in data.newton.x.iter_mut().zip(&data.alpha).zip(&data.tangent) {
+            *x = a + h * t;
         }
         let mut potential =
             TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::c(target) };
         let found = newton::minimize(&mut potential, &mut data.newton, &newton_settings);
-        let change = flexure.psi_rows().fold(0.0_f64, |m, psi| {
-            let d: f64 = psi.iter().zip(&data.newton.x).zip(&data.alpha).map(|((p, x), a)| p * (x.re() - a.re())).sum();
-            m.max(d.abs())
-        });
+        let change = rotation(flexure, &data.newton.x, Some(&data.alpha));
         match found {
-            Ok(report) if change > settings.max_rotation_per_step => {
-                residual = report.residual;
-                iterations += report.iterations;
-                step *= 0.5;
-                if step < settings.min_load_step {
-                    return Err(Error::NoConvergence {
-                        solver: "deflect (load continuation: step below min_load_step; the shape may snap through)",
-                        iterations,
-                        residual,
-                    });
-                }
-            }
-            Ok(report) => {
+            Ok(report) if change <= settings.max_rotation_per_step => {
                 iterations += report.iterations;
                 load_steps += 1;
                 residual = report.residual;
-                data.previous.copy_from_slice(&data.alpha);
                 data.alpha.copy_from_slice(&data.newton.x);
-                previous_lambda = lambda;
                 lambda = target;
                 if lambda >= 1.0 {
                     // The minimizer's last evaluation was at its solution, so
@@ -223,20 +223,53 @@ pub fn deflect<T: Scalar>(
                     data.stiffness.as_mut_slice().copy_from_slice(&data.newton.hessian);
                     return Ok(Equilibrium { stable: report.positive_definite, residual, iterations, load_steps });
                 }
-                step = (2.0 * step).min(1.0 - lambda);
+                has_tangent = tangent(flexure, load, data);
+                allowed = 2.0 * step;
             }
-            Err(e) => {
-                if let Error::NoConvergence { iterations: it, residual: r, .. } = e {
-                    iterations += it;
-                    residual = r;
+            found => {
+                if let Ok(report) = &found {
+                    (iterations, residual) = (iterations + report.iterations, report.residual);
+                } else if let Err(Error::NoConvergence { iterations: it, residual: r, .. }) = found {
+                    (iterations, residual) = (iterations + it, r);
                 }
-                step *= 0.25;
-                if step < settings.min_load_step {
-                    return Err(Error::NoConvergence { solver: "deflect (load continuation)", iterations, residual });
+                allowed = 0.5 * step;
+                if allowed < settings.min_load_step {
+                    return Err(Error::NoConvergence {
+                        solver: "deflect (load continuation: the load step fell below min_load_step)",
+                        iterations,
+                        residual,
+                    });
                 }
+                // The tangent at the last equilibrium is still valid: the data there is unchanged.
             }
         }
     }
+}
+
+/// Writes $d\alpha/d\lambda = K^{-1}\mathcal J^T(M, F_x, F_y)$ into `data.tangent`,
+/// from the Hessian and kinematics of the last evaluation. False where $K$
+/// is not positive definite (no tangent: the next step starts from $\alpha$).
+fn tangent<T: Scalar>(flexure: &Flexure, load: &TipLoad<T>, data: &mut Statics<T>) -> bool {
+    let n = flexure.order();
+    data.factor.copy_from_slice(&data.newton.hessian);
+    if !cholesky::factor(&mut data.factor, n) {
+        data.tangent.fill(T::zero());
+        return false;
+    }
+    for (i, t) in data.tangent.iter_mut().enumerate() {
+        let j = data.kinematics.jacobian_root_tip.column(i);
+        *t = load.moment * j[0] + load.fx * j[1] + load.fy * j[2];
+    }
+    cholesky::solve(&data.factor, n, &mut data.tangent);
+    true
+}
+
+/// Largest cross-section rotation $\max_k\lvert\sum_i\psi_i(t_k)(a_i - b_i)\rvert$ (b = 0 if absent).
+fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -> f64 {
+    flexure.psi_rows().fold(0.0_f64, |m, psi| {
+        let d: f64 = psi.iter().enumerate().map(|(i, p)| p * (a[i].re() - b.map_or(0.0, |b| b[i].re()))).sum();
+        m.max(d.abs())
+    })
 }
 
 /// The smallest factor $\lambda$ for which the equilibrium under
