@@ -69,6 +69,11 @@ def main():
     for name, value, target in rows:
         ok = value <= float(target[2:]) if target.startswith("≤") else value >= float(target[2:])
         out.append(f"| {name} | {value:.3g} | {target} | {'yes' if ok else 'no'} |")
+    quad = {q: estimate(f"quadrature/pose_jacobian_hessian/{q}") for q in (5, 10, 20, 40)}
+    out += ["", "## Cost against quadrature points", "",
+            "Order 3, pose with Jacobian and Hessians: the cost per point settles to a constant, so it grows linearly.", "",
+            "| points | time | per point |", "|---|---|---|"]
+    out += [f"| {q} | {fmt(v)} | {fmt(v / q)} |" for q, v in quad.items()]
     out += ["", "## Cost against order", "",
             "Order N with the default N + 2 quadrature points. The pose costs one sin/cos pair and N multiply-adds per point; "
             "the Hessians add N(N+1)/2 per point.", "",

@@ -156,3 +156,31 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
         (None, None) => Err(Error::invalid("force", "nothing", "give --force or --sweep")),
     }
 }
+
+/// A sweep of one mechanism load: `PARAMETER=F0:F1:COUNT`.
+#[derive(Debug, Clone)]
+pub struct SweepSpec {
+    pub parameter: String,
+    pub range: Sweep,
+}
+
+pub fn sweep_spec(s: &str) -> Result<SweepSpec, String> {
+    let (parameter, range) = s.split_once('=').ok_or_else(|| format!("{s:?} must be PARAMETER=F0:F1:COUNT"))?;
+    let parts: Vec<&str> = range.split(':').collect();
+    if parts.len() != 3 {
+        return Err(format!("{range:?} must be F0:F1:COUNT"));
+    }
+    let count: usize = parts[2].trim().parse().map_err(|_| format!("COUNT {:?} is not a whole number", parts[2]))?;
+    if count < 2 {
+        return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
+    }
+    Ok(SweepSpec {
+        parameter: parameter.trim().to_string(),
+        range: Sweep { from: number(parts[0])?, to: number(parts[1])?, count },
+    })
+}
+
+/// The values of a sweep, ends included.
+pub fn sweep_values(s: &Sweep) -> Vec<f64> {
+    (0..s.count).map(|i| s.from + (s.to - s.from) * i as f64 / (s.count - 1) as f64).collect()
+}

@@ -8,6 +8,7 @@ mod analyses;
 mod batch;
 mod figures;
 mod joint;
+mod mechanism;
 mod options;
 mod render;
 mod reproduce;
@@ -45,6 +46,12 @@ enum Command {
     Tendon(analyses::TendonArgs),
     /// Regenerate the paper's tables and figures beside its printed values.
     Reproduce(reproduce::ReproduceArgs),
+    /// Equilibrium of a mechanism file: body poses, joint coordinates, energy, stability.
+    Solve(mechanism::SolveArgs),
+    /// Linear buckling of a mechanism file: the factor on its loads, and the mode.
+    Buckle(mechanism::BuckleArgs),
+    /// Draw a mechanism's unloaded and loaded shapes as SVG.
+    Draw(mechanism::DrawArgs),
 }
 
 fn main() -> ExitCode {
@@ -79,6 +86,9 @@ fn main() -> ExitCode {
         Command::Connect(a) => analyses::connect_cmd(a).map_err(describe),
         Command::Tendon(a) => analyses::tendon_cmd(a).map_err(describe),
         Command::Reproduce(a) => reproduce::run(a),
+        Command::Solve(a) => mechanism::solve_cmd(a),
+        Command::Buckle(a) => mechanism::buckle_cmd(a),
+        Command::Draw(a) => mechanism::draw_cmd(a),
     };
     match result {
         Ok(value) => {
@@ -97,7 +107,7 @@ fn main() -> ExitCode {
 }
 
 /// The library's error with the parameter spelled as the option that set it.
-fn describe(e: flexure::Error) -> String {
+pub fn describe(e: flexure::Error) -> String {
     match &e {
         flexure::Error::InvalidParameter { name, value, reason } => format!("--{name} = {value}: {reason}"),
         other => other.to_string(),

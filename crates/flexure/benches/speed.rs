@@ -6,6 +6,8 @@
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use flexure::connect::connect;
 use flexure::kinematics::{Kinematics, Level, par_poses_root_tip, pose_root_tip, update};
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{Settings as MechanismSettings, solve};
 use flexure::reference::elastica;
 use flexure::{Flexure, Pose, Settings, Statics, TipLoad, deflect};
 use std::f64::consts::FRAC_PI_2;
@@ -83,6 +85,30 @@ fn joint(c: &mut Criterion) {
         });
     }
     g.finish();
+
+    // At a fixed order, cost against the number of quadrature points: linear.
+    let mut g = c.benchmark_group("quadrature");
+    for q in [5, 10, 20, 40] {
+        let f = Flexure::new(1.0, 1.0, 3).unwrap().with_quadrature(q).unwrap();
+        let mut k = Kinematics::new(&f);
+        let mut i = 0;
+        g.bench_with_input(BenchmarkId::new("pose_jacobian_hessian", q), &q, |b, _| {
+            b.iter(|| {
+                i = (i + 3) % alphas.len();
+                update(&f, black_box(&alphas[i..i + 3]), &mut k, Level::Hessian);
+                k.pose_root_tip.x
+            })
+        });
+    }
+    g.finish();
+}
+
+fn mechanism(c: &mut Criterion) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml");
+    let m = from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut g = c.benchmark_group("mechanism");
+    g.bench_function("finger_equilibrium", |b| b.iter(|| solve(black_box(&m), &MechanismSettings::default()).unwrap()));
+    g.finish();
 }
 
 fn statics(c: &mut Criterion) {
@@ -117,5 +143,5 @@ fn batch(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, joint, statics, batch);
+criterion_group!(benches, joint, statics, batch, mechanism);
 criterion_main!(benches);

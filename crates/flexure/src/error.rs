@@ -24,6 +24,14 @@ pub enum Error {
         /// The last residual, in the solver's own units.
         residual: f64,
     },
+    /// A mechanism file is malformed or inconsistent, at `place` (line and column).
+    #[error("{place}: {message}")]
+    File {
+        /// "line L, column C".
+        place: String,
+        /// What is wrong there.
+        message: String,
+    },
     /// A matrix that must be positive definite or invertible is not.
     #[error("{what}")]
     Singular {

@@ -43,6 +43,7 @@ pub mod energy;
 pub mod error;
 pub mod joint;
 pub mod kinematics;
+pub mod mechanism;
 pub mod newton;
 pub mod ode;
 pub mod quadrature;

@@ -1,0 +1,217 @@
+//! Subcommands on mechanism files: solve, buckle, draw.
+
+use crate::analyses::{SweepSpec, sweep_values};
+use crate::figures::{COLORS, Chart, Series, draw};
+use crate::options::number;
+use clap::Args;
+use flexure::kinematics::backbone;
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::kinematics::Frames;
+use flexure::mechanism::statics::{Parameter, Settings, Solution, body_frames, buckle, compliance, solve, sweep};
+use flexure::mechanism::{JointKind, Mechanism};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+
+fn load(path: &Path) -> Result<Mechanism, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// A point `X,Y`.
+pub fn point_arg(s: &str) -> Result<[f64; 2], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 2 {
+        return Err(format!("{s:?} must be two values X,Y"));
+    }
+    Ok([number(parts[0])?, number(parts[1])?])
+}
+
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Mechanism file (TOML).
+    file: PathBuf,
+    /// Report the compliance of a frame on this body…
+    #[arg(long, requires = "at")]
+    compliance: Option<String>,
+    /// …at this point X,Y of the body's frame (m).
+    #[arg(long, value_parser = point_arg, allow_hyphen_values = true, requires = "compliance")]
+    at: Option<[f64; 2]>,
+    /// Sweep one load, e.g. tendon.flexor.tension=0:30:31 (or force.NAME.fx|fy|moment, gravity.x|y).
+    #[arg(long, value_parser = crate::analyses::sweep_spec, allow_hyphen_values = true)]
+    sweep: Option<SweepSpec>,
+}
+
+fn solution_json(m: &Mechanism, s: &Solution) -> Value {
+    let f = body_frames(m, s);
+    let bodies: serde_json::Map<String, Value> = m
+        .bodies
+        .iter()
+        .zip(&f.bodies)
+        .map(|(b, fr)| (b.name.clone(), json!({ "x": fr.origin[0], "y": fr.origin[1], "phi": fr.angle })))
+        .collect();
+    let coordinates: serde_json::Map<String, Value> =
+        m.joints.iter().map(|j| (j.name.clone(), json!(s.q[j.offset..j.offset + j.kind.joint().dof()]))).collect();
+    json!({ "bodies": bodies, "coordinates": coordinates, "energy": s.energy, "stable": s.stable })
+}
+
+/// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
+pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
+    let m = load(&args.file)?;
+    let settings = Settings::default();
+    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let body = match &args.compliance {
+        Some(name) => Some(
+            m.body(name).ok_or_else(|| format!("--compliance: no body named {name:?} in {}", args.file.display()))?,
+        ),
+        None => None,
+    };
+    let with_compliance = |s: &Solution, mut v: Value| -> Result<Value, String> {
+        if let (Some(b), Some(at)) = (body, args.at) {
+            let c = compliance(&m, s, b, at).map_err(err)?;
+            v["compliance"] = crate::joint::matrix3(&c);
+        }
+        Ok(v)
+    };
+    match &args.sweep {
+        Some(spec) => {
+            let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
+            let values = sweep_values(&spec.range);
+            let rows = sweep(&m, &p, &values, &settings).map_err(err)?;
+            let rows: Result<Vec<Value>, String> = rows
+                .iter()
+                .zip(&values)
+                .map(|(s, v)| {
+                    let mut row = with_compliance(s, solution_json(&m, s))?;
+                    row["value"] = json!(v);
+                    Ok(row)
+                })
+                .collect();
+            Ok(json!({ "parameter": spec.parameter, "rows": rows? }))
+        }
+        None => {
+            let s = solve(&m, &settings).map_err(err)?;
+            with_compliance(&s, solution_json(&m, &s))
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct BuckleArgs {
+    /// Mechanism file (TOML).
+    file: PathBuf,
+}
+
+/// Linear buckling factor on all loads, and the mode.
+pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
+    let m = load(&args.file)?;
+    let b = buckle(&m, &Settings::default()).map_err(|e| format!("{}: {e}", args.file.display()))?;
+    Ok(json!({ "load_factor": b.load_factor, "mode": b.mode }))
+}
+
+#[derive(Debug, Args)]
+pub struct DrawArgs {
+    /// Mechanism file (TOML).
+    file: PathBuf,
+    /// SVG to write.
+    #[arg(long)]
+    out: PathBuf,
+    /// Draw a loaded shape for each value of one load, e.g. tendon.flexor.tension=0:30:4.
+    #[arg(long, value_parser = crate::analyses::sweep_spec, allow_hyphen_values = true)]
+    sweep: Option<SweepSpec>,
+}
+
+/// Every drawable line of the mechanism in one configuration.
+fn shape(m: &Mechanism, s: &Solution, color: plotters::style::RGBColor, label: &str) -> Vec<Series> {
+    let f: Frames = body_frames(m, s);
+    let mut out = Vec::new();
+    let mut named = false;
+    let mut line = |points: Vec<(f64, f64)>, out: &mut Vec<Series>| {
+        let name = if named { "" } else { label };
+        named = true;
+        out.push(Series::line(name, points, color));
+    };
+    for (ji, j) in m.joints.iter().enumerate() {
+        let root = f.roots[ji];
+        // Parent body outline: from its frame origin to this joint's root.
+        let parent = f.bodies[j.parent].origin;
+        line(vec![(parent[0], parent[1]), (root.origin[0], root.origin[1])], &mut out);
+        if let JointKind::Flexure(fl) = &j.kind {
+            let q = &s.q[j.offset..j.offset + fl.order()];
+            let pts = backbone(fl, q, 41).iter().map(|p| root.point([p.x, p.y])).map(|p| (p[0], p[1])).collect();
+            line(pts, &mut out);
+        } else {
+            let c = f.bodies[j.child].origin;
+            line(vec![(root.origin[0], root.origin[1]), (c[0], c[1])], &mut out);
+        }
+    }
+    // Bodies reach out to every point attached to them.
+    let attach = |b: usize, r: [f64; 2]| {
+        let o = f.bodies[b].origin;
+        let p = f.bodies[b].point(r);
+        vec![(o[0], o[1]), (p[0], p[1])]
+    };
+    for t in &m.tendons {
+        for &(b, r) in &t.path {
+            line(attach(b, r), &mut out);
+        }
+        out.push(Series::line(
+            "",
+            t.path.iter().map(|&(b, r)| f.bodies[b].point(r)).map(|p| (p[0], p[1])).collect(),
+            COLORS[4],
+        ));
+    }
+    let scale = m
+        .joints
+        .iter()
+        .map(|j| if let JointKind::Flexure(fl) = &j.kind { fl.length() } else { 0.01 })
+        .fold(0.0, f64::max);
+    for (p, l) in m.forces.iter().zip(&s.loads.force) {
+        let at = f.bodies[p.body].point(p.at);
+        line(attach(p.body, p.at), &mut out);
+        let n = l[0].hypot(l[1]);
+        if n > 0.0 {
+            let tip = [at[0] + scale * l[0] / n, at[1] + scale * l[1] / n];
+            let (dx, dy) = ((tip[0] - at[0]) * 0.25, (tip[1] - at[1]) * 0.25);
+            out.push(Series::line(
+                "",
+                vec![
+                    (at[0], at[1]),
+                    (tip[0], tip[1]),
+                    (tip[0] - dx - dy * 0.5, tip[1] - dy + dx * 0.5),
+                    (tip[0], tip[1]),
+                    (tip[0] - dx + dy * 0.5, tip[1] - dy - dx * 0.5),
+                ],
+                COLORS[1],
+            ));
+        }
+    }
+    out
+}
+
+/// An SVG of the unloaded and loaded shapes.
+pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
+    let m = load(&args.file)?;
+    let settings = Settings::default();
+    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
+    let mut series = shape(&m, &unloaded, plotters::style::RGBColor(160, 160, 160), "unloaded");
+    let loaded: Vec<(String, Solution)> = match &args.sweep {
+        Some(spec) => {
+            let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
+            let values = sweep_values(&spec.range);
+            let rows = sweep(&m, &p, &values, &settings).map_err(err)?;
+            values.iter().map(|v| format!("{} = {v}", spec.parameter)).zip(rows).collect()
+        }
+        None => vec![("loaded".into(), solve(&m, &settings).map_err(err)?)],
+    };
+    for (i, (label, s)) in loaded.iter().enumerate() {
+        series.extend(shape(&m, s, COLORS[[0, 2, 3, 5][i % 4]], label));
+    }
+    let title = format!("{}", args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy()));
+    draw(
+        &args.out,
+        &Chart { title: &title, x_label: "x (m)", y_label: "y (m)", log_y: false, equal_aspect: true },
+        &series,
+    )?;
+    Ok(json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 }))
+}

@@ -1,0 +1,126 @@
+//! The CLI contract of solve, buckle and draw on the example files.
+
+use serde_json::Value;
+use std::process::Command;
+
+fn examples() -> String {
+    format!("{}/../../examples", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_flexure")).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn json(args: &[&str]) -> Value {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let (code, out, err) = run(&a);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+#[test]
+fn solve_keys_and_values() {
+    let file = format!("{}/mixed_chain.toml", examples());
+    let v = json(&["solve", &file]);
+    for key in ["bodies", "coordinates", "energy", "stable"] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    // Closed form: the spring turns M/k = 0.01/2.
+    assert!((v["coordinates"]["shoulder"][0].as_f64().unwrap() - 0.005).abs() < 1e-10);
+    assert_eq!(v["coordinates"]["wrist"].as_array().unwrap().len(), 5);
+    assert!(v["bodies"]["hand"]["phi"].is_number());
+}
+
+#[test]
+fn compliance_and_buckling_of_the_stage() {
+    let file = format!("{}/parallelogram.toml", examples());
+    let v = json(&["solve", &file, "--compliance", "stage", "--at", "0,-0.02"]);
+    // Under the file's 1 N push: 24 EI/L³ · (1 − 1/16) = 360 N/m.
+    let c = v["compliance"][1][1].as_f64().unwrap();
+    assert!((1.0 / c - 360.0).abs() < 1e-6, "{}", 1.0 / c);
+    let b = json(&["buckle", &file]);
+    assert!((b["load_factor"].as_f64().unwrap() - 16.0).abs() < 1e-8, "2 × 10 EI/L² for 1 N");
+    assert_eq!(b["mode"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn sweep_and_draw() {
+    let file = format!("{}/paper_tendon.toml", examples());
+    let v = json(&["solve", &file, "--sweep", "tendon.flexor.tension=0:30:31"]);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 31);
+    // Fig. 10: past 90° by 30 N, near it at 28 N.
+    let at28 = rows[28]["coordinates"]["hinge"][0].as_f64().unwrap();
+    assert!((at28.to_degrees() - 90.0).abs() < 2.0, "{}", at28.to_degrees());
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shape.svg");
+    let d = json(&[
+        "draw",
+        &format!("{}/finger.toml", examples()),
+        "--out",
+        out.to_str().unwrap(),
+        "--sweep",
+        "tendon.flexor.tension=0:12:3",
+    ]);
+    assert_eq!(d["shapes"].as_u64(), Some(4));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("<svg") && svg.matches("<polyline").count() > 10);
+}
+
+#[test]
+fn bad_files_exit_2_naming_the_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"palm\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n",
+            "line 4",
+        ),
+        (
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0\nei = 1.0\n",
+            "line 6",
+        ),
+        (
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n[[pin]]\na = \"b\"\nb = \"c\"\n",
+            "line 10",
+        ),
+        ("[[joint]\n", "line 1"),
+    ];
+    for (i, (text, place)) in cases.iter().enumerate() {
+        let path = dir.path().join(format!("bad{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
+        assert_eq!(code, 2, "{text}");
+        assert!(err.contains(place) && err.contains(path.to_str().unwrap()) && !err.contains("panicked"), "{err}");
+        assert!(out.is_empty());
+    }
+    // Beyond the buckling load: an unstable or missing equilibrium is reported.
+    let heavy = std::fs::read_to_string(format!("{}/parallelogram.toml", examples()))
+        .unwrap()
+        .replace("[0.0, -1.0]", "[0.0, -40.0]");
+    let path = dir.path().join("heavy.toml");
+    std::fs::write(&path, heavy).unwrap();
+    let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
+    if code == 0 {
+        assert!(out.contains("\"stable\":false"), "{out}");
+    } else {
+        assert_eq!(code, 2);
+        assert!(err.contains("residual"), "{err}");
+    }
+    let file = format!("{}/paper_tendon.toml", examples());
+    for (args, what) in [
+        (vec!["solve", file.as_str(), "--sweep", "tendon.nope.tension=0:1:3"], "--sweep"),
+        (vec!["solve", file.as_str(), "--sweep", "tendon.flexor.tension=0:1:1"], "--sweep"),
+        (vec!["solve", file.as_str(), "--compliance", "nobody", "--at", "0,0"], "--compliance"),
+        (vec!["solve", "/nonexistent.toml"], "nonexistent"),
+    ] {
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(err.contains(what), "{args:?}: {err}");
+    }
+}

@@ -1,0 +1,210 @@
+//! Mechanisms: trees of rigid bodies joined by flexures, pins, sliders and
+//! welds, closed into loops by weld and pin closures, loaded by tendons,
+//! point forces, moments and gravity.
+//!
+//! Bodies are created by the joints that name them as `child`; body 0 is
+//! `ground`. Each joint's `origin` is the pose of its root frame in the
+//! parent body's frame, and the child body's frame is the joint's output
+//! frame (for a flexure, the tip frame of Eq. 7).
+
+pub mod file;
+pub mod joints;
+pub mod kinematics;
+pub mod statics;
+
+use crate::kinematics::Pose;
+pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
+
+/// A rigid body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Its name.
+    pub name: String,
+    /// Mass (kg), for gravity.
+    pub mass: f64,
+    /// Centre of mass in the body frame (m).
+    pub com: [f64; 2],
+}
+
+/// A joint between two bodies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointSpec {
+    /// Its name.
+    pub name: String,
+    /// What it is.
+    pub kind: JointKind,
+    /// Parent body index.
+    pub parent: usize,
+    /// Child body index.
+    pub child: usize,
+    /// Root frame in the parent body's frame.
+    pub origin: Pose,
+    /// Index of its first coordinate in $q$.
+    pub offset: usize,
+}
+
+/// A tendon of constant tension through via points; potential tension × length.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tendon {
+    /// Its name.
+    pub name: String,
+    /// Tension (N), not negative.
+    pub tension: f64,
+    /// Via points: (body, position in the body frame).
+    pub path: Vec<(usize, [f64; 2])>,
+}
+
+/// A force and moment applied to a point of a body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointLoad {
+    /// Its name (or its index, as text).
+    pub name: String,
+    /// The body.
+    pub body: usize,
+    /// Point of application in the body frame (m).
+    pub at: [f64; 2],
+    /// Force in the ground frame (N).
+    pub force: [f64; 2],
+    /// Moment (N·m).
+    pub moment: f64,
+}
+
+/// A loop closure.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Closure {
+    /// Frame `a_origin` on body `a` coincides with frame `b_origin` on body `b` (3 equations).
+    Weld {
+        /// First body.
+        a: usize,
+        /// Frame on it.
+        a_origin: Pose,
+        /// Second body.
+        b: usize,
+        /// Frame on it.
+        b_origin: Pose,
+    },
+    /// Point `a_at` on body `a` coincides with point `b_at` on body `b` (2 equations).
+    Pin {
+        /// First body.
+        a: usize,
+        /// Point on it.
+        a_at: [f64; 2],
+        /// Second body.
+        b: usize,
+        /// Point on it.
+        b_at: [f64; 2],
+    },
+}
+
+impl Closure {
+    /// Number of scalar equations.
+    pub fn equations(&self) -> usize {
+        match self {
+            Closure::Weld { .. } => 3,
+            Closure::Pin { .. } => 2,
+        }
+    }
+}
+
+/// The magnitudes of every load, which continuation and sweeps scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Loads {
+    /// Tendon tensions, in the order of [`Mechanism::tendons`].
+    pub tension: Vec<f64>,
+    /// (Fx, Fy, M) of each point load.
+    pub force: Vec<[f64; 3]>,
+    /// Gravity (m/s²).
+    pub gravity: [f64; 2],
+}
+
+impl Loads {
+    /// `(1 − s)·self + s·other`.
+    pub fn lerp(&self, other: &Loads, s: f64) -> Loads {
+        let mix = |a: f64, b: f64| a + s * (b - a);
+        Loads {
+            tension: self.tension.iter().zip(&other.tension).map(|(a, b)| mix(*a, *b)).collect(),
+            force: self.force.iter().zip(&other.force).map(|(a, b)| std::array::from_fn(|i| mix(a[i], b[i]))).collect(),
+            gravity: std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i])),
+        }
+    }
+
+    /// No load at all.
+    pub fn zero_like(&self) -> Loads {
+        self.lerp(self, 0.0).scaled(0.0)
+    }
+
+    fn scaled(mut self, s: f64) -> Loads {
+        self.tension.iter_mut().for_each(|t| *t *= s);
+        self.force.iter_mut().for_each(|f| f.iter_mut().for_each(|v| *v *= s));
+        self.gravity.iter_mut().for_each(|g| *g *= s);
+        self
+    }
+}
+
+/// An immutable mechanism (the Model): build it with [`file::from_toml`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mechanism {
+    /// Bodies; index 0 is `ground`.
+    pub bodies: Vec<Body>,
+    /// Joints in an order where every parent comes before its children.
+    pub joints: Vec<JointSpec>,
+    /// Tendons.
+    pub tendons: Vec<Tendon>,
+    /// Point loads.
+    pub forces: Vec<PointLoad>,
+    /// Loop closures.
+    pub closures: Vec<Closure>,
+    /// Gravity (m/s²), zero if absent.
+    pub gravity: [f64; 2],
+    /// `parent_joint[b]`: the joint whose child is body `b`.
+    parent_joint: Vec<Option<usize>>,
+    dof: usize,
+}
+
+impl Mechanism {
+    /// Number of generalized coordinates.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Number of closure equations.
+    pub fn constraints(&self) -> usize {
+        self.closures.iter().map(Closure::equations).sum()
+    }
+
+    /// The body's index by name.
+    pub fn body(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// The joint with `body` as its child.
+    pub fn parent_joint(&self, body: usize) -> Option<usize> {
+        self.parent_joint[body]
+    }
+
+    /// Coordinates of the unloaded joints.
+    pub fn rest(&self) -> Vec<f64> {
+        self.joints.iter().flat_map(|j| j.kind.joint().rest()).collect()
+    }
+
+    /// The loads as given.
+    pub fn loads(&self) -> Loads {
+        Loads {
+            tension: self.tendons.iter().map(|t| t.tension).collect(),
+            force: self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]).collect(),
+            gravity: self.gravity,
+        }
+    }
+
+    /// Joints from the ground to `body`, root first.
+    pub fn path(&self, body: usize) -> Vec<usize> {
+        let mut path = Vec::new();
+        let mut b = body;
+        while let Some(j) = self.parent_joint[b] {
+            path.push(j);
+            b = self.joints[j].parent;
+        }
+        path.reverse();
+        path
+    }
+}

@@ -1,0 +1,189 @@
+//! Mechanisms against independent computations: closed forms, the single-joint
+//! library functions, and the exact elastica composed by hand.
+
+use flexure::mechanism::Mechanism;
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{
+    Parameter, Settings, assemble_unloaded, body_frames, buckle, compliance, solve, sweep,
+};
+use flexure::reference::elastica;
+use flexure::tendon::{Tendon, TendonData, pull};
+use flexure::{Error, Flexure, TipLoad, bending_stiffness};
+
+fn example(name: &str) -> Mechanism {
+    let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    from_toml(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// Fig. 9 as a mechanism agrees with the tendon module (a separate code path: Eq. 24 directly).
+#[test]
+fn paper_tendon_matches_the_tendon_module() {
+    let m = example("paper_tendon");
+    let s = solve(&m, &Settings::default()).unwrap();
+    let f = Flexure::new(0.015, bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap(), 3).unwrap();
+    let mut d = TendonData::new(&f);
+    pull(&f, &Tendon { root_offset: 0.005, tip_offset: 0.005 }, 28.0, &mut d).unwrap();
+    for (a, b) in s.q.iter().zip(d.alpha()) {
+        assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+    }
+    assert!(s.stable);
+}
+
+/// Parallelogram stage, closed forms: unloaded lateral stiffness 2 × 12 EI/L³
+/// (a guided beam's curvature is linear, so N = 3 is exact); buckling under
+/// axial compression at 2 × the model's guided load (Table I: 10 EI/L²);
+/// and under the file's 1 N push the sway stiffness falls by 1 − P/P_cr.
+#[test]
+fn parallelogram_stage() {
+    let m = example("parallelogram");
+    let (l, ei): (f64, f64) = (0.05, 2.0e-3);
+    let stage = m.body("stage").unwrap();
+    let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
+    let c = compliance(&m, &unloaded, stage, [0.0, -0.02]).unwrap();
+    assert!((1.0 / c[(1, 1)] - 24.0 * ei / l.powi(3)).abs() < 1e-8 * 24.0 * ei / l.powi(3));
+    let b = buckle(&m, &Settings::default()).unwrap();
+    let critical = b.load_factor * 1.0;
+    assert!((critical - 2.0 * 10.0 * ei / (l * l)).abs() < 1e-8 * critical, "{critical}");
+    // Euler: 2π²EI/L², 1.3 % below the model (Table I's guided error).
+    assert!((critical / (2.0 * std::f64::consts::PI.powi(2) * ei / (l * l)) - 1.0 - 0.01321).abs() < 1e-4);
+    let loaded = solve(&m, &Settings::default()).unwrap();
+    let cl = compliance(&m, &loaded, stage, [0.0, -0.02]).unwrap();
+    assert!((c[(1, 1)] / cl[(1, 1)] - (1.0 - 1.0 / critical)).abs() < 1e-8);
+    // The sway mode moves both flexures alike.
+    assert!((b.mode[1] - b.mode[4]).abs() < 1e-6);
+}
+
+/// Mixed chain under an end moment M, closed forms: the spring turns M/k,
+/// each flexure bends into an arc of ML/EI, the slider's spring carries nothing.
+#[test]
+fn mixed_chain_closed_form() {
+    let m = example("mixed_chain");
+    let s = solve(&m, &Settings::default()).unwrap();
+    let moment = 0.01;
+    assert!((s.q[0] - moment / 2.0).abs() < 1e-10, "revolute: M/k");
+    assert!((s.q[1] - moment * 0.02 / 1e-3).abs() < 1e-10, "elbow arc: ML/EI");
+    assert!(s.q[2].abs() < 1e-10 && s.q[3].abs() < 1e-10);
+    assert!(s.q[4].abs() < 1e-12, "slider carries no force");
+    assert!((s.q[5] - moment * 0.015 / 5e-4).abs() < 1e-10, "wrist arc");
+    // The hand's angle is the sum of the joint rotations.
+    let f = body_frames(&m, &s);
+    let hand = m.body("hand").unwrap();
+    assert!((f.bodies[hand].angle - (s.q[0] + s.q[1] + s.q[5])).abs() < 1e-12);
+}
+
+/// The finger, composed by hand: cut each flexure, sum the loads on
+/// everything beyond it (fingertip force; the tendon's pull at its via
+/// points and where it leaves the cut), express them at the flexure tip in
+/// its root frame, and solve the exact elastica. The model's joint poses
+/// agree within 1 % of L and 1° (Sec. III-C).
+#[test]
+fn finger_against_the_exact_elastica() {
+    let m = example("finger");
+    let s = solve(&m, &Settings::default()).unwrap();
+    assert!(s.stable);
+    let f = body_frames(&m, &s);
+    let tendon = &m.tendons[0];
+    let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+    for (ji, j) in m.joints.iter().enumerate() {
+        // Bodies beyond this joint: its child and everything below.
+        let beyond: Vec<usize> = (0..m.bodies.len()).filter(|&b| m.path(b).contains(&ji)).collect();
+        let tip = f.bodies[j.child];
+        let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
+        let mut add = |p: [f64; 2], force: [f64; 2]| {
+            fx += force[0];
+            fy += force[1];
+            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0];
+        };
+        for load in &m.forces {
+            if beyond.contains(&load.body) {
+                add(f.bodies[load.body].point(load.at), load.force);
+            }
+        }
+        // The tendon pulls each via point toward its neighbours; count the
+        // pulls on via points that ride on bodies beyond the cut.
+        for (i, &(b, _)) in tendon.path.iter().enumerate() {
+            if !beyond.contains(&b) {
+                continue;
+            }
+            for k in [i.wrapping_sub(1), i + 1] {
+                if let Some(q) = world.get(k) {
+                    let d = [q[0] - world[i][0], q[1] - world[i][1]];
+                    let n = d[0].hypot(d[1]);
+                    add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n]);
+                }
+            }
+        }
+        // Into the flexure's root frame.
+        let root = f.roots[ji];
+        let (sn, cs) = root.angle.sin_cos();
+        let load = TipLoad { moment: mz, fx: cs * fx + sn * fy, fy: -sn * fx + cs * fy };
+        let flex = match &j.kind {
+            flexure::mechanism::JointKind::Flexure(fl) => fl,
+            _ => unreachable!("the finger has flexures only"),
+        };
+        let exact = elastica::deflect(flex, &load, &Default::default()).unwrap().pose;
+        let model = &f.joints[ji].pose;
+        let l = flex.length();
+        assert!((model.x - exact.x).hypot(model.y - exact.y) < 0.01 * l, "{}: position", j.name);
+        assert!((model.phi - exact.phi).abs().to_degrees() < 1.0, "{}: angle {} vs {}", j.name, model.phi, exact.phi);
+        assert!(exact.phi.abs() > 0.02, "{}: a test that bends the joint", j.name);
+    }
+}
+
+/// A sweep continues from value to value and ends where a direct solve does.
+#[test]
+fn sweep_follows_the_load() {
+    let m = example("paper_tendon");
+    let p = Parameter::parse(&m, "tendon.flexor.tension").unwrap();
+    let rows = sweep(&m, &p, &[0.0, 10.0, 20.0, 28.0], &Settings::default()).unwrap();
+    assert_eq!(rows.len(), 4);
+    assert!(rows.windows(2).all(|w| w[1].q[0] > w[0].q[0]));
+    let direct = solve(&m, &Settings::default()).unwrap();
+    assert!((rows[3].q[0] - direct.q[0]).abs() < 1e-9);
+    assert!(Parameter::parse(&m, "tendon.nope.tension").is_err());
+    assert!(sweep(&m, &p, &[-1.0], &Settings::default()).is_err());
+}
+
+/// Beyond its buckling load, an imperfect column has no equilibrium nearby
+/// along the loading path, or loses stability; either way it is reported.
+#[test]
+fn instability_is_reported() {
+    let text =
+        std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let heavy = text.replace("force = [0.0, -1.0]", "force = [0.0, -40.0]");
+    let m = from_toml(&heavy).unwrap();
+    match solve(&m, &Settings::default()) {
+        Ok(s) => assert!(!s.stable, "40 N is 2.5 × the buckling load"),
+        Err(e) => assert!(matches!(e, Error::NoConvergence { .. }), "{e}"),
+    }
+}
+
+/// File errors name the place, with line and column.
+#[test]
+fn file_errors_name_the_place() {
+    let joint = |name: &str, parent: &str, child: &str, extra: &str| {
+        format!(
+            "[[joint]]\nname = \"{name}\"\nkind = \"flexure\"\nparent = \"{parent}\"\nchild = \"{child}\"\nlength = 0.01\nei = 1e-3\n{extra}\n"
+        )
+    };
+    let cases = [
+        (joint("a", "palm", "b", ""), "unknown body \"palm\"", "line 4"),
+        (joint("a", "ground", "b", "") + &joint("a", "b", "c", ""), "duplicate joint name", "line 10"),
+        (joint("a", "ground", "b", "") + &joint("c", "ground", "b", ""), "reached by two joints", "line 13"),
+        (joint("a", "c", "b", "") + &joint("d", "b", "c", ""), "cycle", "line 4"),
+        (joint("a", "ground", "b", "").replace("length = 0.01", "length = -0.01"), "length", "line 6"),
+        (
+            joint("a", "ground", "b", "") + "[[weld]]\na = \"b\"\nb = \"nowhere\"\n",
+            "unknown body \"nowhere\"",
+            "line 11",
+        ),
+        (joint("a", "ground", "b", "").replace("kind = \"flexure\"", "kind = \"hinge\""), "unknown kind", "line 3"),
+        ("[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = ground\n".to_string(), "", "line 4"),
+        (joint("a", "ground", "b", "") + "[[force]]\nbody = \"b\"\nat = [nan, 0.0]\n", "finite", "line 11"),
+    ];
+    for (text, what, place) in cases {
+        let e = from_toml(&text).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains(what) && msg.contains(place), "expected {what:?} at {place}: {msg}");
+    }
+}
