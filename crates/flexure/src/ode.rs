@@ -102,7 +102,7 @@ pub fn integrate<T: Scalar, const D: usize>(
             return Err(Error::NoConvergence {
                 solver: "Dormand-Prince integrator (non-finite state)",
                 iterations: 0,
-                residual: f64::NAN,
+                residual: f64::INFINITY, // the state blew up: no finite residual
             });
         }
         if err <= 1.0 {
@@ -123,6 +123,6 @@ pub fn integrate<T: Scalar, const D: usize>(
     Err(Error::NoConvergence {
         solver: "Dormand-Prince integrator (step limit)",
         iterations: tol.max_steps,
-        residual: f64::NAN,
+        residual: f64::INFINITY, // no step met the tolerance
     })
 }

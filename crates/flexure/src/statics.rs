@@ -192,7 +192,7 @@ pub fn deflect<T: Scalar>(
     rest.evaluate(&data.newton.x, &mut data.newton.gradient, &mut data.newton.hessian);
     let mut has_tangent = tangent(flexure, load, data);
     let (mut lambda, mut allowed) = (0.0_f64, 1.0_f64);
-    let (mut iterations, mut load_steps, mut residual) = (0, 0, f64::NAN);
+    let (mut iterations, mut load_steps, mut residual) = (0, 0, f64::INFINITY);
     loop {
         let mut step = allowed.min(1.0 - lambda);
         if has_tangent {

@@ -127,15 +127,16 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
                 step = (2.0 * step).min(1.0 - lambda);
             }
             found => {
-                // Newton's residual, or zero when it converged on a root too far away.
+                // Newton's residual; or, when it converged on a root too far
+                // away, how far (rad) that root would have turned the tip.
                 let residual = match found {
                     Err(Error::NoConvergence { residual, .. }) => residual,
-                    _ => 0.0,
+                    _ => rotation,
                 };
                 step *= 0.5;
                 if step < settings.min_load_step {
                     return Err(Error::NoConvergence {
-                        solver: "elastica shooting (load continuation; the tip may snap through)",
+                        solver: "elastica shooting (load continuation stalled: Newton failed, or the tip would turn by the residual, in rad, in one step)",
                         iterations: load_steps,
                         residual,
                     });

@@ -1,0 +1,367 @@
+//! Python bindings: a thin layer over the flexure library.
+//!
+//! Inputs accept anything array-like; outputs are float64 NumPy arrays.
+//! Bad input raises `ValueError` naming the parameter; a solver that does
+//! not converge raises `flexure.ConvergenceError` with its residual.
+
+use flexure::kinematics::{Pose, par_poses_root_tip};
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
+use flexure::reference::{compliance as exact_compliance, elastica};
+use flexure::{
+    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect, energy,
+    update_kinematics,
+};
+use numpy::ndarray::{Array1, Array2};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+create_exception!(
+    _flexure,
+    ConvergenceError,
+    PyRuntimeError,
+    "A solver stopped before meeting its tolerance; `residual` holds its last residual."
+);
+
+/// The library's error as a Python exception.
+fn to_py(e: Error) -> PyErr {
+    match e {
+        Error::NoConvergence { residual, .. } => {
+            let err = ConvergenceError::new_err(e.to_string());
+            Python::attach(|py| {
+                let _ = err.value(py).setattr("residual", residual);
+            });
+            err
+        }
+        other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+/// A pair of NumPy matrices, as `hessians` returns.
+type MatrixPair<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
+
+fn matrix(m: &nalgebra::DMatrix<f64>) -> Array2<f64> {
+    Array2::from_shape_fn((m.nrows(), m.ncols()), |(i, j)| m[(i, j)])
+}
+
+/// A planar flexure joint of the Smooth Curvature Model (SI units, radians).
+#[pyclass(frozen, module = "flexure")]
+struct Flexure {
+    inner: flexure::Flexure,
+}
+
+/// Reads `alpha` as an (N,) or (n, N) float64 array and checks it.
+fn coordinates(
+    f: &flexure::Flexure,
+    alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>,
+) -> PyResult<(Vec<f64>, Option<usize>)> {
+    let n = f.order();
+    let shape = alpha.shape().to_vec();
+    let rows = match shape.as_slice() {
+        [k] if *k == n => None,
+        [r, k] if *k == n => Some(*r),
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "alpha has shape {shape:?}; expected ({n},) or (n, {n}) for order {n}"
+            )));
+        }
+    };
+    let values: Vec<f64> = alpha.as_array().iter().copied().collect();
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(PyValueError::new_err(format!("alpha contains {v}: every coordinate must be a finite number")));
+    }
+    Ok((values, rows))
+}
+
+fn single(f: &flexure::Flexure, alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
+    match coordinates(f, alpha)? {
+        (v, None) => Ok(v),
+        (_, Some(_)) => Err(PyValueError::new_err(format!("alpha must have shape ({},) here", f.order()))),
+    }
+}
+
+fn finite(name: &str, v: f64) -> PyResult<f64> {
+    if v.is_finite() { Ok(v) } else { Err(PyValueError::new_err(format!("{name} = {v}: must be a finite number"))) }
+}
+
+#[pymethods]
+impl Flexure {
+    /// Flexure(length=1.0, ei=1.0, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
+    #[new]
+    #[pyo3(signature = (length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        length: f64,
+        ei: Option<f64>,
+        order: usize,
+        quadrature: Option<usize>,
+        rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+        modulus: Option<f64>,
+        width: Option<f64>,
+        thickness: Option<f64>,
+        poisson: Option<f64>,
+    ) -> PyResult<Self> {
+        let ei = match (ei, modulus) {
+            (Some(_), Some(_)) => {
+                return Err(PyValueError::new_err("give ei, or modulus, width and thickness, not both"));
+            }
+            (Some(ei), None) => ei,
+            (None, Some(e)) => {
+                let (Some(w), Some(h)) = (width, thickness) else {
+                    return Err(PyValueError::new_err("modulus needs width and thickness"));
+                };
+                flexure::bending_stiffness(e, w, h, poisson).map_err(to_py)?
+            }
+            (None, None) => 1.0,
+        };
+        let mut f = flexure::Flexure::new(length, ei, order).map_err(to_py)?;
+        if let Some(q) = quadrature {
+            f = f.with_quadrature(q).map_err(to_py)?;
+        }
+        if let Some(r) = rest {
+            let kappa: Vec<f64> = r.as_array().iter().copied().collect();
+            f = f.with_rest(&kappa).map_err(to_py)?;
+        }
+        Ok(Self { inner: f })
+    }
+
+    /// Length L (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length()
+    }
+    /// Bending stiffness EI (N·m²).
+    #[getter]
+    fn ei(&self) -> f64 {
+        self.inner.ei()
+    }
+    /// Order N.
+    #[getter]
+    fn order(&self) -> usize {
+        self.inner.order()
+    }
+    /// Gauss–Legendre points.
+    #[getter]
+    fn quadrature(&self) -> usize {
+        self.inner.quadrature_points()
+    }
+    /// Rest coefficients κ, shape (N,).
+    #[getter]
+    fn rest<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.inner.rest().to_vec())
+    }
+
+    /// Tip pose [phi, x, y] for alpha of shape (N,); (n, 3) for shape (n, N), computed in parallel without the GIL.
+    fn pose<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (values, rows) = coordinates(&self.inner, &alpha)?;
+        match rows {
+            None => {
+                let p = flexure::pose_root_tip(&self.inner, &values);
+                Ok(PyArray1::from_vec(py, vec![p.phi, p.x, p.y]).into_any())
+            }
+            Some(r) => {
+                let f = &self.inner;
+                let poses = py.detach(|| {
+                    let mut poses = vec![Pose::default(); r];
+                    par_poses_root_tip(f, &values, &mut poses).map(|_| poses)
+                });
+                let poses = poses.map_err(to_py)?;
+                let flat: Vec<f64> = poses.iter().flat_map(|p| [p.phi, p.x, p.y]).collect();
+                let a = Array2::from_shape_vec((r, 3), flat).map_err(|e| PyValueError::new_err(e.to_string()))?;
+                Ok(a.into_pyarray(py).into_any())
+            }
+        }
+    }
+
+    /// Jacobian of the tip pose, shape (3, N), rows phi, x, y (Eqs. 19–21).
+    fn jacobian<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let a = single(&self.inner, &alpha)?;
+        let mut k = Kinematics::new(&self.inner);
+        update_kinematics(&self.inner, &a, &mut k, Level::Jacobian);
+        Ok(matrix(&k.jacobian_root_tip).into_pyarray(py))
+    }
+
+    /// Hessians (Hx, Hy) of the tip's x and y, each (N, N) (Eqs. 30–31).
+    fn hessians<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<MatrixPair<'py>> {
+        let a = single(&self.inner, &alpha)?;
+        let mut k = Kinematics::new(&self.inner);
+        update_kinematics(&self.inner, &a, &mut k, Level::Hessian);
+        Ok((matrix(&k.hessian_root_tip_x).into_pyarray(py), matrix(&k.hessian_root_tip_y).into_pyarray(py)))
+    }
+
+    /// Homogeneous transform of the tip in the root frame, (4, 4) (Eq. 7).
+    fn transform<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let a = single(&self.inner, &alpha)?;
+        let g = flexure::pose_root_tip(&self.inner, &a).transform();
+        Ok(Array2::from_shape_fn((4, 4), |(i, j)| g[(i, j)]).into_pyarray(py))
+    }
+
+    /// Bending energy U(alpha) in joules (Eq. 9).
+    fn energy(&self, alpha: PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<f64> {
+        Ok(energy(&self.inner, &single(&self.inner, &alpha)?))
+    }
+
+    /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22).
+    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0))]
+    fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
+        let f = &self.inner;
+        let alpha = py.detach(|| {
+            let mut data = Statics::new(f);
+            deflect(f, &load, &mut data, &Default::default()).map(|_| data.alpha().to_vec())
+        });
+        Ok(PyArray1::from_vec(py, alpha.map_err(to_py)?))
+    }
+
+    /// Tip compliance (3, 3), order (phi, x, y): J K⁻¹ Jᵀ with K the energy Hessian (Eq. 36), at alpha (default: the rest shape).
+    #[pyo3(signature = (alpha=None))]
+    fn compliance<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let c = match alpha {
+            None => compliance_tip_rest(&self.inner),
+            Some(a) => {
+                let a = single(&self.inner, &a)?;
+                let shape = self.inner.clone().with_rest(&a).map_err(to_py)?;
+                compliance_tip_rest(&shape)
+            }
+        };
+        Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+    }
+
+    /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or "clamped".
+    #[pyo3(signature = (tip="free"))]
+    fn buckling_load(&self, tip: &str) -> PyResult<f64> {
+        let t: TipConstraint = tip.parse().map_err(to_py)?;
+        Ok(buckling_load(&self.inner, t).map_err(to_py)?.critical_load)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Flexure(length={}, ei={}, order={}, quadrature={})",
+            self.inner.length(),
+            self.inner.ei(),
+            self.inner.order(),
+            self.inner.quadrature_points()
+        )
+    }
+}
+
+/// Exact tip pose [phi, x, y] of the Euler–Bernoulli elastica under a tip load (shooting).
+#[pyfunction]
+#[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, length=1.0, ei=1.0, rest=None))]
+fn exact_deflect<'py>(
+    py: Python<'py>,
+    moment: f64,
+    fx: f64,
+    fy: f64,
+    length: f64,
+    ei: f64,
+    rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let f = rest_flexure(length, ei, rest)?;
+    let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
+    let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
+    Ok(PyArray1::from_vec(py, vec![s.pose.phi, s.pose.x, s.pose.y]))
+}
+
+/// Exact tip compliance (3, 3) from the compliance ODE (Eq. 34), order (phi, x, y).
+#[pyfunction]
+#[pyo3(signature = (length=1.0, ei=1.0, rest=None))]
+fn exact_compliance_tip<'py>(
+    py: Python<'py>,
+    length: f64,
+    ei: f64,
+    rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let f = rest_flexure(length, ei, rest)?;
+    let c = exact_compliance::compliance_tip(&f, &Default::default()).map_err(to_py)?;
+    Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+}
+
+fn rest_flexure(
+    length: f64,
+    ei: f64,
+    rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+) -> PyResult<flexure::Flexure> {
+    let kappa: Vec<f64> = rest.map(|r| r.as_array().iter().copied().collect()).unwrap_or_else(|| vec![0.0; 3]);
+    flexure::Flexure::new(length, ei, kappa.len().max(1)).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
+}
+
+/// A mechanism read from a TOML description.
+#[pyclass(frozen, module = "flexure")]
+struct Mechanism {
+    inner: flexure::mechanism::Mechanism,
+}
+
+#[pymethods]
+impl Mechanism {
+    /// Parses mechanism TOML text.
+    #[staticmethod]
+    fn from_text(text: &str) -> PyResult<Self> {
+        Ok(Self { inner: from_toml(text).map_err(to_py)? })
+    }
+
+    /// Equilibrium as a dict shaped like `flexure solve --json`.
+    fn solve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let m = &self.inner;
+        let s = py.detach(|| solve(m, &MechanismSettings::default())).map_err(to_py)?;
+        let frames = body_frames(m, &s);
+        let bodies = PyDict::new(py);
+        for (b, f) in m.bodies.iter().zip(&frames.bodies) {
+            let d = PyDict::new(py);
+            d.set_item("x", f.origin[0])?;
+            d.set_item("y", f.origin[1])?;
+            d.set_item("phi", f.angle)?;
+            bodies.set_item(&b.name, d)?;
+        }
+        let coordinates = PyDict::new(py);
+        for j in &m.joints {
+            let q = Array1::from_vec(s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec());
+            coordinates.set_item(&j.name, q.into_pyarray(py))?;
+        }
+        let out = PyDict::new(py);
+        out.set_item("bodies", bodies)?;
+        out.set_item("coordinates", coordinates)?;
+        out.set_item("energy", s.energy)?;
+        out.set_item("stable", s.stable)?;
+        Ok(out)
+    }
+
+    /// Number of generalized coordinates.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.inner.dof()
+    }
+}
+
+#[pymodule]
+fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Flexure>()?;
+    m.add_class::<Mechanism>()?;
+    m.add_function(wrap_pyfunction!(exact_deflect, m)?)?;
+    m.add_function(wrap_pyfunction!(exact_compliance_tip, m)?)?;
+    m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
+    Ok(())
+}

@@ -1,0 +1,142 @@
+"""The Python package against the same references as the Rust tests.
+
+Each test names its source and its tolerance's reason.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexure
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_table_i_buckling_loads():
+    # Table I, model column, N = 3 (4 decimals printed: 5e-5).
+    f = flexure.Flexure()
+    for tip, load in [("free", 2.4677), ("guided", 10.0), ("pinned", 20.9187), ("clamped", 42.0)]:
+        assert abs(f.buckling_load(tip) - load) < 5e-5, tip
+    # Loads scale as EI/L^2.
+    g = flexure.Flexure(length=2.0, ei=3.0)
+    assert abs(g.buckling_load("free") - 2.4677 * 3.0 / 4.0) < 5e-5
+
+
+def test_eq_37_compliance():
+    # Eq. 37: the ODE's compliance for constant rest curvature pi (printed to 4 decimals).
+    printed = np.array([[1.0000, -0.3183, -0.2026], [-0.3183, 0.1520, 0.0645], [-0.2026, 0.0645, 0.0507]])
+    exact = flexure.exact.compliance(rest=[math.pi, 0.0, 0.0])
+    assert np.max(np.abs(exact - printed)) < 5e-5
+    # Fig. 13: the model within 7.33e-4 (printed to 3 digits: 5e-7).
+    model = flexure.Flexure(rest=[math.pi, 0, 0]).compliance()
+    assert abs(np.max(np.abs(model - exact)) - 7.33e-4) < 5e-7
+    assert model.shape == (3, 3) and model.dtype == np.float64
+
+
+def test_bisshopp_drucker():
+    # PL^2/EI = 1 across the tip: x = 0.94357, y = 0.30172, phi = 0.46135 (5 digits: 5e-6).
+    exact = flexure.exact.deflect(fy=1.0)
+    assert np.allclose(exact, [0.46135, 0.94357, 0.30172], atol=5e-6)
+    f = flexure.Flexure()
+    model = f.pose(f.deflect(fy=1.0))
+    # The model: within 1 % of L and 1 degree (Sec. III-C).
+    assert math.hypot(*(model[1:] - exact[1:])) < 0.01
+    assert abs(math.degrees(model[0] - exact[0])) < 1.0
+
+
+def test_circular_arc():
+    # A pure moment bends an arc of angle ML/EI: closed form (5-point rule: 1e-9).
+    f = flexure.Flexure(length=2.0, ei=4.0)
+    alpha = f.deflect(moment=2.0)
+    a = 2.0 * 2.0 / 4.0
+    assert np.allclose(f.pose(alpha), [a, 2.0 * math.sin(a) / a, 2.0 * (1 - math.cos(a)) / a], atol=1e-9)
+    assert abs(f.energy(alpha) - 4.0 * a * a / (2 * 2.0)) < 1e-12
+    g = f.transform(alpha)
+    assert g.shape == (4, 4) and abs(g[0, 3] - f.pose(alpha)[1]) < 1e-15
+
+
+def test_derivatives_against_central_differences():
+    # Central differences, h = 1e-6: truncation 1e-12, rounding 1e-10.
+    rng = np.random.default_rng(7)
+    f = flexure.Flexure(order=4)
+    for _ in range(10):
+        alpha = rng.uniform(-1.5, 1.5, 4)
+        jac = f.jacobian(alpha)
+        hx, hy = f.hessians(alpha)
+        h = 1e-6
+        for i in range(4):
+            step = np.zeros(4)
+            step[i] = h
+            fd = (f.pose(alpha + step) - f.pose(alpha - step)) / (2 * h)
+            assert np.allclose(jac[:, i], fd, atol=1e-8)
+            jd = (f.jacobian(alpha + step) - f.jacobian(alpha - step)) / (2 * h)
+            assert np.allclose(hx[:, i], jd[1], atol=1e-8) and np.allclose(hy[:, i], jd[2], atol=1e-8)
+        assert np.array_equal(hx, hx.T) and np.array_equal(hy, hy.T)
+
+
+def test_batch_equals_rows():
+    rng = np.random.default_rng(3)
+    f = flexure.Flexure()
+    alphas = rng.uniform(-2, 2, (10_000, 3))
+    batch = f.pose(alphas)
+    assert batch.shape == (10_000, 3) and batch.dtype == np.float64
+    for i in range(0, 10_000, 997):
+        assert np.array_equal(batch[i], f.pose(alphas[i]))
+
+
+def test_array_like_inputs():
+    f = flexure.Flexure()
+    assert np.array_equal(f.pose([1, 0, 0]), f.pose(np.array([1.0, 0.0, 0.0])))
+    assert np.array_equal(f.pose((1, 0, 0)), f.pose(np.array([1, 0, 0], dtype=np.int64)))
+    assert f.pose([[0, 0, 0], [1, 0, 0]]).shape == (2, 3)
+
+
+def test_material_options():
+    # Eq. 25: the paper's steel flexure, EI = 1.4558e-3 N*m^2.
+    f = flexure.Flexure(length=0.015, modulus=200e9, width=0.01, thickness=0.0002, poisson=0.29)
+    assert abs(f.ei - 1.4558e-3) < 1e-7
+
+
+@pytest.mark.parametrize(
+    "make, name",
+    [
+        (lambda: flexure.Flexure(length=-1.0), "length"),
+        (lambda: flexure.Flexure(ei=0.0), "ei"),
+        (lambda: flexure.Flexure(length=float("nan")), "length"),
+        (lambda: flexure.Flexure(order=0), "order"),
+        (lambda: flexure.Flexure(quadrature=0), "quadrature"),
+        (lambda: flexure.Flexure(rest=[1.0, 2.0]), "kappa"),
+        (lambda: flexure.Flexure().pose([1.0, 2.0]), "alpha"),
+        (lambda: flexure.Flexure().pose([1.0, float("nan"), 0.0]), "alpha"),
+        (lambda: flexure.Flexure().jacobian([[0, 0, 0]]), "alpha"),
+        (lambda: flexure.Flexure().deflect(fx=float("inf")), "fx"),
+        (lambda: flexure.Flexure().buckling_load("sideways"), "tip"),
+        (lambda: flexure.Flexure(modulus=2e11, width=0.01, thickness=-1.0), "thickness"),
+        (lambda: flexure.Mechanism.from_toml("[[joint]]\nname = 'a'\nkind = 'flexure'\nparent = 'palm'\nchild = 'b'\nlength = 0.01\nei = 1.0\n"), "line 4"),
+    ],
+)
+def test_bad_input_raises_value_error(make, name):
+    with pytest.raises(ValueError, match=name):
+        make()
+
+
+def test_non_convergence_raises_with_residual():
+    # A moment that coils the elastica through a million radians: continuation stalls.
+    with pytest.raises(flexure.ConvergenceError) as info:
+        flexure.exact.deflect(moment=1e6)
+    assert math.isfinite(info.value.residual) and info.value.residual > 0
+
+
+def test_mechanism_from_path_and_text():
+    path = ROOT / "examples" / "mixed_chain.toml"
+    for source in (path, str(path), path.read_text()):
+        result = flexure.Mechanism.from_toml(source).solve()
+        assert set(result) == {"bodies", "coordinates", "energy", "stable"}
+        # Closed form: the shoulder spring turns M/k = 0.01/2.
+        assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
+        assert result["stable"] is True
+    tendon = flexure.Mechanism.from_toml(ROOT / "examples" / "paper_tendon.toml").solve()
+    # Fig. 10: about 28 N turns the paper's steel flexure to 90 degrees.
+    assert abs(math.degrees(tendon["bodies"]["link"]["phi"]) - 90) < 2
