@@ -29,7 +29,7 @@ create_exception!(
 /// The library's error as a Python exception.
 fn to_py(e: Error) -> PyErr {
     match e {
-        Error::NoConvergence { residual, .. } => {
+        Error::NoConvergence { residual, .. } | Error::Unstable { residual, .. } => {
             let err = ConvergenceError::new_err(e.to_string());
             Python::attach(|py| {
                 let _ = err.value(py).setattr("residual", residual);

@@ -24,6 +24,20 @@ pub enum Error {
         /// The last residual, in the solver's own units.
         residual: f64,
     },
+    /// Followed from rest, the equilibrium stops being stable: past a
+    /// buckling or limit load, where no stable equilibrium is within reach.
+    #[error(
+        "{what}: the loading path loses stability at {pct:.1} % of the load (past a buckling or limit load there is no stable equilibrium); residual {residual:.3e}",
+        pct = .load_fraction * 100.0
+    )]
+    Unstable {
+        /// Which problem.
+        what: &'static str,
+        /// Fraction of the load at the first unstable step.
+        load_fraction: f64,
+        /// The KKT residual there.
+        residual: f64,
+    },
     /// A mechanism file is malformed or inconsistent, at `place` (line and column).
     #[error("{place}: {message}")]
     File {

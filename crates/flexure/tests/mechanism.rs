@@ -144,18 +144,63 @@ fn sweep_follows_the_load() {
     assert!(sweep(&m, &p, &[-1.0], &Settings::default()).is_err());
 }
 
-/// Beyond its buckling load, an imperfect column has no equilibrium nearby
-/// along the loading path, or loses stability; either way it is reported.
+/// Beyond its buckling load (16 N) the stage has no stable equilibrium: the
+/// loading path loses stability at 16/40 of a 40 N push, and says so.
 #[test]
 fn instability_is_reported() {
     let text =
         std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-    let heavy = text.replace("force = [0.0, -1.0]", "force = [0.0, -40.0]");
-    let m = from_toml(&heavy).unwrap();
-    match solve(&m, &Settings::default()) {
-        Ok(s) => assert!(!s.stable, "40 N is 2.5 × the buckling load"),
-        Err(e) => assert!(matches!(e, Error::NoConvergence { .. }), "{e}"),
+    let heavy = from_toml(&text.replace("force = [0.0, -1.0]", "force = [0.0, -40.0]")).unwrap();
+    match solve(&heavy, &Settings::default()) {
+        Err(Error::Unstable { load_fraction, residual, .. }) => {
+            // The model's critical push is 16 N (2 × 10 EI/L², Table I): 40 % of 40 N.
+            assert!((load_fraction - 0.4).abs() < 1e-5, "{load_fraction}");
+            assert!(residual.is_finite());
+        }
+        other => panic!("expected Unstable, got {other:?}"),
     }
+    let light = from_toml(&text.replace("force = [0.0, -1.0]", "force = [0.0, -15.0]")).unwrap();
+    assert!(solve(&light, &Settings::default()).unwrap().stable, "below it, a stable equilibrium");
+}
+
+/// Gravity on a sprung pendulum, closed form: k θ = −m g l cos θ (moment of
+/// the weight about the pivot), solved here by bisection.
+#[test]
+fn gravity_on_a_sprung_pendulum() {
+    let (k, m, l, g) = (3.0, 0.5, 0.4, 9.81);
+    let text = format!(
+        "gravity = [0.0, -{g}]\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = {k}\n[[body]]\nname = \"arm\"\nmass = {m}\ncom = [{l}, 0.0]\n"
+    );
+    let mech = from_toml(&text).unwrap();
+    let s = solve(&mech, &Settings::default()).unwrap();
+    let (mut lo, mut hi) = (-std::f64::consts::FRAC_PI_2, 0.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if k * mid + m * g * l * f64::cos(mid) > 0.0 { hi = mid } else { lo = mid }
+    }
+    assert!((s.q[0] - 0.5 * (lo + hi)).abs() < 1e-10, "{} vs {}", s.q[0], lo);
+}
+
+/// Pin closure, closed form: two sprung slider stacks (x, then y) pinned at
+/// their ends act as springs in parallel: Δx = Fx/(k1 + k2), Δy = Fy/(k3 + k4).
+#[test]
+fn pinned_springs_add() {
+    let slider = |name: &str, parent: &str, child: &str, angle: f64, k: f64| {
+        format!(
+            "[[joint]]\nname = \"{name}\"\nkind = \"prismatic\"\nparent = \"{parent}\"\nchild = \"{child}\"\norigin = [0.0, 0.0, {angle}]\nstiffness = {k}\n"
+        )
+    };
+    let half = std::f64::consts::FRAC_PI_2;
+    let text = slider("ax", "ground", "a1", 0.0, 100.0)
+        + &slider("ay", "a1", "a", half, 300.0)
+        + &slider("bx", "ground", "b1", 0.0, 50.0)
+        + &slider("by", "b1", "b", half, 100.0)
+        + "[[pin]]\na = \"a\"\nb = \"b\"\n[[force]]\nbody = \"a\"\nat = [0.0, 0.0]\nforce = [3.0, -8.0]\n";
+    let mech = from_toml(&text).unwrap();
+    let s = solve(&mech, &Settings::default()).unwrap();
+    assert!((s.q[0] - 3.0 / 150.0).abs() < 1e-12 && (s.q[2] - 3.0 / 150.0).abs() < 1e-12, "{:?}", s.q);
+    assert!((s.q[1] + 8.0 / 400.0).abs() < 1e-12 && (s.q[3] + 8.0 / 400.0).abs() < 1e-12, "{:?}", s.q);
+    assert!(s.stable);
 }
 
 /// File errors name the place, with line and column.

@@ -193,13 +193,18 @@ fn newton(m: &Mechanism, q: &mut [f64], mu: &mut [f64], loads: &Loads, settings:
         kkt.view_mut((0, 0), (n, n)).copy_from(&a.hessian);
         kkt.view_mut((0, n), (n, rows)).copy_from(&a.g.transpose());
         kkt.view_mut((n, 0), (rows, n)).copy_from(&a.g);
-        // A singular KKT matrix (free joints at zero load): shift the stiffness block.
+        // A singular KKT matrix: free joints at zero load (shift the stiffness
+        // block up) or redundant closure equations (shift the multiplier block
+        // down, which picks the least-norm multipliers).
         let mut step = kkt.clone().lu().solve(&rhs);
-        let mut tau = 1e-10 * fs;
-        while step.is_none() && tau < 1e3 * fs {
+        let mut tau = 1e-10;
+        while step.is_none() && tau < 1e3 {
             let mut shifted = kkt.clone();
             for i in 0..n {
-                shifted[(i, i)] += tau;
+                shifted[(i, i)] += tau * fs;
+            }
+            for i in n..n + rows {
+                shifted[(i, i)] -= tau * ls * ls / fs;
             }
             step = shifted.lu().solve(&rhs);
             tau *= 100.0;
@@ -258,6 +263,9 @@ fn positive_definite(k: &DMatrix<f64>) -> bool {
 /// Equilibrium under `to`, continued from `start` (an equilibrium under `from`).
 pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
     let from = &start.loads;
+    // A path that starts stable must stay stable: past a buckling or limit
+    // load the mechanism has no equilibrium it can reach by loading.
+    let watch = start.stable;
     let (mut q, mut mu) = (start.q.clone(), start.multipliers.clone());
     let mut angles: Vec<f64> = frames(m, &q).bodies.iter().map(|b| b.angle).collect();
     let mut history: Option<(f64, Vec<f64>, Vec<f64>)> = None;
@@ -275,6 +283,36 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
         let turned = frames(m, &tq).bodies.iter().zip(&angles).map(|(b, a)| (b.angle - a).abs()).fold(0.0, f64::max);
         match found {
             Ok(r) if turned <= settings.max_rotation_per_step => {
+                if watch {
+                    let trial = Solution {
+                        q: tq.clone(),
+                        multipliers: tm.clone(),
+                        loads: loads.clone(),
+                        energy: 0.0,
+                        stable: false,
+                        residual: r.1,
+                        load_steps: steps,
+                    };
+                    if !positive_definite(&reduced(m, &trial)?.1) {
+                        // Bisect between the last stable step and this one for where it is lost.
+                        let (mut lo, mut hi) = (s, target);
+                        while hi - lo > 1e-6 {
+                            let mid = 0.5 * (lo + hi);
+                            let (mut bq, mut bm) = (q.clone(), mu.clone());
+                            let mid_loads = from.lerp(to, mid);
+                            let stable = newton(m, &mut bq, &mut bm, &mid_loads, settings).ok().is_some_and(|_| {
+                                let probe = Solution { q: bq, multipliers: bm, loads: mid_loads, ..trial.clone() };
+                                reduced(m, &probe).is_ok_and(|(_, k)| positive_definite(&k))
+                            });
+                            if stable { lo = mid } else { hi = mid }
+                        }
+                        return Err(Error::Unstable {
+                            what: "mechanism equilibrium",
+                            load_fraction: hi,
+                            residual: r.1,
+                        });
+                    }
+                }
                 history = Some((s, q.clone(), mu.clone()));
                 (q, mu, s, last) = (tq, tm, target, r);
                 angles = frames(m, &q).bodies.iter().map(|b| b.angle).collect();
