@@ -68,6 +68,10 @@ pub struct Flexure {
     jacobian_weights: Vec<f64>,
     /// `hessian_weights[(k * n + i) * n + j]` = $L\Delta_k\psi_i(t_k)\psi_j(t_k)$ (Eqs. 30–31).
     hessian_weights: Vec<f64>,
+    /// The same tables transposed, node index last: `[i][k]` and `[(i, j ≥ i)][k]`,
+    /// so each Jacobian or Hessian entry is one dot product over the nodes.
+    jacobian_weights_by_node: Vec<f64>,
+    hessian_weights_by_node: Vec<f64>,
     /// $w_i$ in the energy.
     energy_weights: Vec<f64>,
     /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
@@ -128,6 +132,8 @@ impl Flexure {
             weights: vec![],
             jacobian_weights: vec![],
             hessian_weights: vec![],
+            jacobian_weights_by_node: vec![],
+            hessian_weights_by_node: vec![],
             energy_weights,
             tip_angle,
         };
@@ -180,10 +186,18 @@ impl Flexure {
             .zip(&self.weights)
             .flat_map(|(row, &w)| row.iter().flat_map(move |pi| row.iter().map(move |pj| w * pi * pj)))
             .collect();
+        let q = self.nodes.len();
+        self.jacobian_weights_by_node =
+            (0..n).flat_map(|i| (0..q).map(move |k| (i, k))).map(|(i, k)| self.jacobian_weights[k * n + i]).collect();
+        self.hessian_weights_by_node = (0..n)
+            .flat_map(|i| (i..n).flat_map(move |j| (0..q).map(move |k| (i, j, k))))
+            .map(|(i, j, k)| self.hessian_weights[(k * n + i) * n + j])
+            .collect();
         self.rule = rule;
     }
 
     /// The basis of the coordinates.
+    #[inline]
     pub fn basis(&self) -> Basis {
         self.basis
     }
@@ -226,6 +240,7 @@ impl Flexure {
     }
 
     /// $\partial\phi_{tip}/\partial\alpha$: $(1, 0, \dots)$ for Legendre (Eq. 19), all ones for segments.
+    #[inline]
     pub fn tip_angle_row(&self) -> &[f64] {
         &self.tip_angle
     }
@@ -241,6 +256,7 @@ impl Flexure {
     }
 
     /// Order $N$: the number of curvature coefficients.
+    #[inline]
     pub fn order(&self) -> usize {
         self.kappa.len()
     }
@@ -261,23 +277,45 @@ impl Flexure {
     }
 
     /// Rows $\psi_i(t_k)$, one per node.
+    #[inline]
     pub(crate) fn psi_rows(&self) -> std::slice::ChunksExact<'_, f64> {
         self.psi.chunks_exact(self.order())
     }
 
+    /// $\psi_i(t_k)$ at `[k * n + i]`.
+    #[inline]
+    pub(crate) fn psi_table(&self) -> &[f64] {
+        &self.psi
+    }
+
     /// Scaled weights $L\Delta_k$.
+    #[inline]
     pub(crate) fn scaled_weights(&self) -> &[f64] {
         &self.weights
     }
 
     /// $L\Delta_k\psi_i(t_k)$, row-major by node.
+    #[inline]
     pub(crate) fn jacobian_weights(&self) -> &[f64] {
         &self.jacobian_weights
     }
 
     /// $L\Delta_k\psi_i(t_k)\psi_j(t_k)$, an $N\times N$ block per node.
+    #[inline]
     pub(crate) fn hessian_weights(&self) -> &[f64] {
         &self.hessian_weights
+    }
+
+    /// $L\Delta_k\psi_i(t_k)$ by coordinate: row $i$ holds all nodes.
+    #[inline]
+    pub(crate) fn jacobian_weights_by_node(&self) -> &[f64] {
+        &self.jacobian_weights_by_node
+    }
+
+    /// $L\Delta_k\psi_i\psi_j$ for $j \ge i$ in row-major pair order, each row holding all nodes.
+    #[inline]
+    pub(crate) fn hessian_weights_by_node(&self) -> &[f64] {
+        &self.hessian_weights_by_node
     }
 
     /// Checks that `alpha` has one finite value per order.

@@ -157,21 +157,95 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
     assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
-    // Fixed sizes for the common orders: the loops unroll and lose their bounds checks.
-    match flexure.order() {
-        1 => fused::<T, 1>(flexure, alpha, data, level),
-        2 => fused::<T, 2>(flexure, alpha, data, level),
-        3 => fused::<T, 3>(flexure, alpha, data, level),
-        4 => fused::<T, 4>(flexure, alpha, data, level),
-        5 => fused::<T, 5>(flexure, alpha, data, level),
-        6 => fused::<T, 6>(flexure, alpha, data, level),
+    // Fixed sizes for the common orders: the loops unroll and lose their
+    // bounds checks. With the default rule (N + 2 points) the node count is
+    // a constant too, so the dot products over nodes unroll completely.
+    let q = flexure.scaled_weights().len();
+    match (flexure.order(), q) {
+        (3, 5) => fused::<T, 3>(flexure, alpha, data, level, 5),
+        (4, 6) => fused::<T, 4>(flexure, alpha, data, level, 6),
+        (5, 7) => fused::<T, 5>(flexure, alpha, data, level, 7),
+        (6, 8) => fused::<T, 6>(flexure, alpha, data, level, 8),
+        (1, q) => fused::<T, 1>(flexure, alpha, data, level, q),
+        (2, q) => fused::<T, 2>(flexure, alpha, data, level, q),
+        (3, q) => fused::<T, 3>(flexure, alpha, data, level, q),
+        (4, q) => fused::<T, 4>(flexure, alpha, data, level, q),
+        (5, q) => fused::<T, 5>(flexure, alpha, data, level, q),
+        (6, q) => fused::<T, 6>(flexure, alpha, data, level, q),
         _ => general(flexure, alpha, data, level),
     }
 }
 
-/// The one-pass kernel for order `N`, accumulating in registers.
+/// Most nodes the two-phase kernel keeps on the stack.
+const MAX_NODES: usize = 32;
+
+/// The one-pass kernel for order `N`, in two phases: first every node's
+/// sin/cos into small stack arrays, then the pose, Jacobian and Hessians as
+/// dot products over the nodes. Keeping the libm calls apart from the
+/// accumulation means no accumulator lives across a call, where every
+/// floating-point register is caller-saved and would be spilled.
 #[inline(always)]
-fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
+fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level, q: usize) {
+    if q > MAX_NODES {
+        return fused_interleaved::<T, N>(flexure, alpha, data, level);
+    }
+    let a: [T; N] = std::array::from_fn(|i| alpha[i]);
+    // (cos, sin) of each node as one pair: every x and y quantity below
+    // shares its weight, so each multiply-add works on both lanes at once.
+    let mut cs = [[T::zero(); 2]; MAX_NODES];
+    for (k, psi) in flexure.psi_table()[..q * N].chunks_exact(N).enumerate() {
+        let mut phi = T::zero();
+        for i in 0..N {
+            phi += T::c(psi[i]) * a[i];
+        }
+        let (s, c) = phi.sin_cos();
+        cs[k] = [c, s];
+    }
+    let cs = &cs[..q];
+    let dot = |w: &[f64]| {
+        let mut acc = [T::zero(); 2];
+        for (&w, v) in w.iter().zip(cs) {
+            acc[0] += T::c(w) * v[0];
+            acc[1] += T::c(w) * v[1];
+        }
+        acc
+    };
+    let [x, y] = dot(&flexure.scaled_weights()[..q]);
+    if level >= Level::Jacobian {
+        let jac = data.jacobian_root_tip.as_mut_slice();
+        for (i, (row, &d)) in
+            flexure.jacobian_weights_by_node().chunks_exact(q).zip(flexure.tip_angle_row()).enumerate()
+        {
+            // ∂x = −Σ w ψ sin, ∂y = Σ w ψ cos (Eqs. 20–21).
+            let [c, s] = dot(row);
+            jac[3 * i] = T::c(d);
+            jac[3 * i + 1] = -s;
+            jac[3 * i + 2] = c;
+        }
+    }
+    if level >= Level::Hessian {
+        let (ox, oy) = (data.hessian_root_tip_x.as_mut_slice(), data.hessian_root_tip_y.as_mut_slice());
+        let mut rows = flexure.hessian_weights_by_node().chunks_exact(q);
+        for i in 0..N {
+            for j in i..N {
+                // ∂²x = −Σ w ψψ cos, ∂²y = −Σ w ψψ sin (Eqs. 30–31).
+                let [c, s] = dot(rows.next().unwrap_or(&[]));
+                (ox[j * N + i], ox[i * N + j]) = (-c, -c);
+                (oy[j * N + i], oy[i * N + j]) = (-s, -s);
+            }
+        }
+    }
+    data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
+}
+
+/// The one-pass kernel for order `N` and many nodes: accumulates node by node.
+#[inline(always)]
+fn fused_interleaved<T: Scalar, const N: usize>(
+    flexure: &Flexure,
+    alpha: &[T],
+    data: &mut Kinematics<T>,
+    level: Level,
+) {
     let a: [T; N] = std::array::from_fn(|i| alpha[i]);
     let (mut x, mut y) = (T::zero(), T::zero());
     let (mut jx, mut jy) = ([T::zero(); N], [T::zero(); N]);
@@ -334,12 +408,29 @@ pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f
     check_batch(flexure, alphas, poses)?;
     const CHUNK: usize = 4096;
     let n = flexure.order();
-    alphas.par_chunks(CHUNK * n).zip(poses.par_chunks_mut(CHUNK)).for_each(|(a, p)| {
-        for (alpha, pose) in a.chunks_exact(n).zip(p.iter_mut()) {
-            *pose = pose_root_tip(flexure, alpha);
-        }
-    });
+    alphas.par_chunks(CHUNK * n).zip(poses.par_chunks_mut(CHUNK)).for_each(|(a, p)| poses_chunk(flexure, a, p));
     Ok(())
+}
+
+/// One chunk of a batch, dispatched on the order once rather than per pose.
+#[cfg(feature = "parallel")]
+fn poses_chunk(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
+    fn run<const N: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
+        for (alpha, pose) in alphas.chunks_exact(N).zip(poses.iter_mut()) {
+            *pose = fixed_pose::<f64, N>(flexure, alpha);
+        }
+    }
+    match flexure.order() {
+        3 => run::<3>(flexure, alphas, poses),
+        4 => run::<4>(flexure, alphas, poses),
+        5 => run::<5>(flexure, alphas, poses),
+        6 => run::<6>(flexure, alphas, poses),
+        n => {
+            for (alpha, pose) in alphas.chunks_exact(n).zip(poses.iter_mut()) {
+                *pose = pose_root_tip(flexure, alpha);
+            }
+        }
+    }
 }
 
 fn check_batch(flexure: &Flexure, alphas: &[f64], poses: &[Pose<f64>]) -> crate::Result<()> {
