@@ -61,7 +61,10 @@ def main():
     out = ["# Benchmarks", "",
            f"Measured {datetime.date.today().isoformat()} on {machine()}.", "",
            "Reproduce with `python3 scripts/benchmarks.py`, which runs `" + " ".join(CMD) + "` and rewrites this file.",
-           "Times are criterion medians; every ratio divides two benchmarks of the same run.", "",
+           "Times are criterion medians; every ratio divides two benchmarks of the same run.",
+           "On this shared 2-core machine the same benchmark's median moved by up to about 30 % between runs",
+           "of the same code (the sincos floor read anywhere from 50 to 72 ns), so a ratio close to its target",
+           "can land on either side of it in another run.", "",
            "| benchmark | median |", "|---|---|"]
     out += [f"| `{k}` | {fmt(v)} |" for k, v in {**t, **optional}.items()]
     out += [f"| batch/pose_1m, per pose | {fmt(per_pose)} |", "", "## Targets", "",
