@@ -140,3 +140,11 @@ def test_mechanism_from_path_and_text():
     tendon = flexure.Mechanism.from_toml(ROOT / "examples" / "paper_tendon.toml").solve()
     # Fig. 10: about 28 N turns the paper's steel flexure to 90 degrees.
     assert abs(math.degrees(tendon["bodies"]["link"]["phi"]) - 90) < 2
+
+
+def test_docstring_example():
+    # The package docstring's example runs and prints what it says.
+    import doctest
+
+    result = doctest.testmod(flexure)
+    assert result.attempted > 0 and result.failed == 0
