@@ -60,6 +60,14 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         }));
     }
     if let Some(k) = args.segments {
+        // A chain's rest shape lives in its own basis; the CLI builds straight chains only.
+        if model.rest().iter().any(|&r| r != 0.0) {
+            return Err(Error::invalid(
+                "kappa",
+                format!("{:?}", model.rest()),
+                "--segments compares straight chains; drop --kappa",
+            ));
+        }
         let chain = Flexure::segments(model.length(), model.ei(), k)?;
         let c = connect(&chain, &target)?;
         let curvatures: Vec<f64> = c.alpha.iter().map(|a| a * k as f64 / model.length()).collect();

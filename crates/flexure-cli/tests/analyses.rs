@@ -78,6 +78,7 @@ fn bad_input_exits_2() {
         ("connect --pose 0,1,0", "--pose"),
         ("connect --pose 1,0.5", "--pose"),
         ("connect --pose 1,0.5,0.5 --segments 0", "--segments"),
+        ("connect --pose 1,0.5,0.5 --segments 5 --kappa 1,0,0", "--kappa"),
         ("tendon --force -1 --root-offset 0 --tip-offset 0", "--force"),
         ("tendon --sweep 0:1:1 --root-offset 0 --tip-offset 0", "--sweep"),
         ("tendon --sweep -1:1:3 --root-offset 0 --tip-offset 0", "--sweep"),
