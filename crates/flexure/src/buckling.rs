@@ -98,15 +98,10 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
     let d = DMatrix::from_fn(n, n, |i, j| if i == j { stiffness(flexure, i) } else { 0.0 });
     let a = z.transpose() * d * &z;
     let b = -(z.transpose() * &k.hessian_root_tip_x * &z);
-    // A is positive definite: reduce with its Cholesky factor to a standard problem.
-    let chol = a.cholesky().ok_or_else(|| Error::Singular { what: "energy Hessian not positive definite".into() })?;
-    let l = chol.l();
-    let linv = l.clone().try_inverse().ok_or_else(|| Error::Singular { what: "energy Hessian singular".into() })?;
-    let m = &linv * b * linv.transpose();
-    let eig = nalgebra::SymmetricEigen::new((&m + m.transpose()) * 0.5);
+    let (mus, modes) = generalized_symmetric(&a, &b)
+        .ok_or_else(|| Error::Singular { what: "energy Hessian not positive definite".into() })?;
     // nalgebra returns eigenvalues unsorted: the largest 1/P is the smallest P.
-    let (best, &mu) = eig
-        .eigenvalues
+    let (best, &mu) = mus
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(b.1))
@@ -116,13 +111,7 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
             what: format!("no compressive load buckles this flexure with a {} tip", tip.name()),
         });
     }
-    let v = linv.transpose() * eig.eigenvectors.column(best);
-    let mut mode = z * v;
-    mode /= mode.norm();
-    let largest = mode.iter().copied().fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m });
-    if largest < 0.0 {
-        mode = -mode;
-    }
+    let mode = normalized(z * modes.column(best));
     Ok(Buckling { critical_load: 1.0 / mu, mode })
 }
 
@@ -136,4 +125,25 @@ fn admissible_basis(jacobian: &DMatrix<f64>, rows: &[usize], n: usize) -> DMatri
     let top = eig.eigenvalues.amax().max(f64::MIN_POSITIVE);
     let keep: Vec<usize> = (0..n).filter(|&i| eig.eigenvalues[i] <= 1e-12 * top).collect();
     DMatrix::from_fn(n, keep.len(), |r, c| eig.eigenvectors[(r, keep[c])])
+}
+
+/// Eigenpairs of $B v = \mu A v$ for symmetric $A$ (positive definite) and $B$,
+/// by reduction with $A = LL^T$ to the standard problem for $L^{-1}BL^{-T}$.
+/// Eigenvalues unsorted; eigenvectors (columns) in the original coordinates.
+/// `None` if $A$ is not positive definite.
+pub(crate) fn generalized_symmetric(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix<f64>)> {
+    let l = nalgebra::Cholesky::new((a + a.transpose()) * 0.5)?.l();
+    let linv = l.try_inverse()?;
+    let m = &linv * b * linv.transpose();
+    let eig = nalgebra::SymmetricEigen::new((&m + m.transpose()) * 0.5);
+    Some((eig.eigenvalues, linv.transpose() * eig.eigenvectors))
+}
+
+/// A mode scaled to unit length with its largest entry positive.
+pub(crate) fn normalized(mut mode: DVector<f64>) -> DVector<f64> {
+    mode /= mode.norm();
+    if mode.iter().copied().fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m }) < 0.0 {
+        mode = -mode;
+    }
+    mode
 }

@@ -94,16 +94,22 @@ pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     }
 }
 
+/// $\phi(t_k) = \sum_i \psi_i(t_k)\alpha_i$ at one node, for order `N`.
+#[inline(always)]
+fn fixed_angle<T: Scalar, const N: usize>(psi: &[f64], a: &[T; N]) -> T {
+    let mut phi = T::zero();
+    for i in 0..N {
+        phi += T::c(psi[i]) * a[i];
+    }
+    phi
+}
+
 #[inline(always)]
 fn fixed_pose<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     let a: [T; N] = std::array::from_fn(|i| alpha[i]);
     let (mut x, mut y) = (T::zero(), T::zero());
     for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
-        let mut phi = T::zero();
-        for i in 0..N {
-            phi += T::c(psi[i]) * a[i];
-        }
-        let (s, c) = phi.sin_cos();
+        let (s, c) = fixed_angle(psi, &a).sin_cos();
         x += T::c(w) * c;
         y += T::c(w) * s;
     }
@@ -187,18 +193,14 @@ const MAX_NODES: usize = 32;
 #[inline(always)]
 fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level, q: usize) {
     if q > MAX_NODES {
-        return fused_interleaved::<T, N>(flexure, alpha, data, level);
+        return general(flexure, alpha, data, level);
     }
     let a: [T; N] = std::array::from_fn(|i| alpha[i]);
     // (cos, sin) of each node as one pair: every x and y quantity below
     // shares its weight, so each multiply-add works on both lanes at once.
     let mut cs = [[T::zero(); 2]; MAX_NODES];
     for (k, psi) in flexure.psi_table()[..q * N].chunks_exact(N).enumerate() {
-        let mut phi = T::zero();
-        for i in 0..N {
-            phi += T::c(psi[i]) * a[i];
-        }
-        let (s, c) = phi.sin_cos();
+        let (s, c) = fixed_angle(psi, &a).sin_cos();
         cs[k] = [c, s];
     }
     let cs = &cs[..q];
@@ -232,63 +234,6 @@ fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut K
                 let [c, s] = dot(rows.next().unwrap_or(&[]));
                 (ox[j * N + i], ox[i * N + j]) = (-c, -c);
                 (oy[j * N + i], oy[i * N + j]) = (-s, -s);
-            }
-        }
-    }
-    data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
-}
-
-/// The one-pass kernel for order `N` and many nodes: accumulates node by node.
-#[inline(always)]
-fn fused_interleaved<T: Scalar, const N: usize>(
-    flexure: &Flexure,
-    alpha: &[T],
-    data: &mut Kinematics<T>,
-    level: Level,
-) {
-    let a: [T; N] = std::array::from_fn(|i| alpha[i]);
-    let (mut x, mut y) = (T::zero(), T::zero());
-    let (mut jx, mut jy) = ([T::zero(); N], [T::zero(); N]);
-    let (mut hx, mut hy) = ([[T::zero(); N]; N], [[T::zero(); N]; N]);
-    let rows = flexure.psi_rows().zip(flexure.scaled_weights());
-    let tables = flexure.jacobian_weights().chunks_exact(N).zip(flexure.hessian_weights().chunks_exact(N * N));
-    for ((psi, &w), (jw, hw)) in rows.zip(tables) {
-        let mut phi = T::zero();
-        for i in 0..N {
-            phi += T::c(psi[i]) * a[i];
-        }
-        let (s, c) = phi.sin_cos();
-        x += T::c(w) * c;
-        y += T::c(w) * s;
-        if level >= Level::Jacobian {
-            for i in 0..N {
-                jx[i] -= T::c(jw[i]) * s;
-                jy[i] += T::c(jw[i]) * c;
-            }
-        }
-        if level >= Level::Hessian {
-            for i in 0..N {
-                for j in i..N {
-                    hx[i][j] -= T::c(hw[i * N + j]) * c;
-                    hy[i][j] -= T::c(hw[i * N + j]) * s;
-                }
-            }
-        }
-    }
-    if level >= Level::Jacobian {
-        let jac = data.jacobian_root_tip.as_mut_slice();
-        for (i, &d) in flexure.tip_angle_row().iter().enumerate() {
-            jac[3 * i] = T::c(d);
-            jac[3 * i + 1] = jx[i];
-            jac[3 * i + 2] = jy[i];
-        }
-    }
-    if level >= Level::Hessian {
-        let (ox, oy) = (data.hessian_root_tip_x.as_mut_slice(), data.hessian_root_tip_y.as_mut_slice());
-        for i in 0..N {
-            for j in i..N {
-                (ox[j * N + i], ox[i * N + j]) = (hx[i][j], hx[i][j]);
-                (oy[j * N + i], oy[i * N + j]) = (hy[i][j], hy[i][j]);
             }
         }
     }

@@ -11,6 +11,7 @@
 
 use super::kinematics::{Frames, frames, point};
 use super::{Closure, Loads, Mechanism};
+use crate::buckling::{generalized_symmetric, normalized};
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen};
 
@@ -428,30 +429,19 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     let z = null_space(&a0.g, n);
     let a = z.transpose() * &a0.hessian * &z;
     let b = z.transpose() * geometric * &z;
-    let l = nalgebra::Cholesky::new((&a + a.transpose()) * 0.5)
-        .ok_or_else(|| Error::Singular {
-            what: "the unloaded mechanism has a zero-stiffness mode (a free joint): linear buckling is undefined"
-                .into(),
-        })?
-        .l();
-    let linv = l.try_inverse().ok_or_else(|| Error::Singular { what: "singular elastic stiffness".into() })?;
-    let mm = &linv * b * linv.transpose();
-    let eig = SymmetricEigen::new((&mm + mm.transpose()) * 0.5);
-    // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of L⁻¹BL⁻ᵀ; the smallest positive λ comes from the most negative μ.
-    let (best, &mu) = eig
-        .eigenvalues
+    let (mus, modes) = generalized_symmetric(&a, &b).ok_or_else(|| Error::Singular {
+        what: "the unloaded mechanism has a zero-stiffness mode (a free joint): linear buckling is undefined".into(),
+    })?;
+    // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of B v = μ A v; the smallest positive λ comes from the most negative μ.
+    let (best, &mu) = mus
         .iter()
         .enumerate()
         .min_by(|x, y| x.1.total_cmp(y.1))
         .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
-    if mu >= -1e-14 * eig.eigenvalues.amax() {
+    if mu >= -1e-14 * mus.amax() {
         return Err(Error::Singular { what: "these loads only stiffen the mechanism: no buckling load".into() });
     }
-    let mut mode = &z * (linv.transpose() * eig.eigenvectors.column(best));
-    mode /= mode.norm();
-    if mode.iter().copied().fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m }) < 0.0 {
-        mode = -mode;
-    }
+    let mode = normalized(&z * modes.column(best));
     Ok(Buckling { load_factor: -1.0 / mu, mode: mode.iter().copied().collect() })
 }
 
