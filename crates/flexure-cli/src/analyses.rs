@@ -97,7 +97,8 @@ pub struct Sweep {
     pub count: usize,
 }
 
-pub fn sweep_arg(s: &str) -> Result<Sweep, String> {
+/// Parses `F0:F1:COUNT` with finite ends and at least two values.
+fn range(s: &str) -> Result<Sweep, String> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
         return Err(format!("{s:?} must be F0:F1:COUNT"));
@@ -106,11 +107,16 @@ pub fn sweep_arg(s: &str) -> Result<Sweep, String> {
     if count < 2 {
         return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
     }
-    let (from, to) = (number(parts[0])?, number(parts[1])?);
-    if from < 0.0 || to < 0.0 {
+    Ok(Sweep { from: number(parts[0])?, to: number(parts[1])?, count })
+}
+
+/// A tendon-tension sweep: a range whose ends are not negative.
+pub fn sweep_arg(s: &str) -> Result<Sweep, String> {
+    let sweep = range(s)?;
+    if sweep.from < 0.0 || sweep.to < 0.0 {
         return Err(format!("{s:?}: a tendon's tension cannot be negative"));
     }
-    Ok(Sweep { from, to, count })
+    Ok(sweep)
 }
 
 #[derive(Debug, Args)]
@@ -149,9 +155,8 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
     let mut data = TendonData::new(&f);
     match (args.sweep, args.force) {
         (Some(s), _) => {
-            let rows: flexure::Result<Vec<Value>> = (0..s.count)
-                .map(|i| tendon_row(&f, &t, s.from + (s.to - s.from) * i as f64 / (s.count - 1) as f64, &mut data))
-                .collect();
+            let rows: flexure::Result<Vec<Value>> =
+                sweep_values(&s).into_iter().map(|force| tendon_row(&f, &t, force, &mut data)).collect();
             Ok(json!({ "rows": rows? }))
         }
         (None, Some(force)) => {
@@ -173,19 +178,8 @@ pub struct SweepSpec {
 }
 
 pub fn sweep_spec(s: &str) -> Result<SweepSpec, String> {
-    let (parameter, range) = s.split_once('=').ok_or_else(|| format!("{s:?} must be PARAMETER=F0:F1:COUNT"))?;
-    let parts: Vec<&str> = range.split(':').collect();
-    if parts.len() != 3 {
-        return Err(format!("{range:?} must be F0:F1:COUNT"));
-    }
-    let count: usize = parts[2].trim().parse().map_err(|_| format!("COUNT {:?} is not a whole number", parts[2]))?;
-    if count < 2 {
-        return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
-    }
-    Ok(SweepSpec {
-        parameter: parameter.trim().to_string(),
-        range: Sweep { from: number(parts[0])?, to: number(parts[1])?, count },
-    })
+    let (parameter, values) = s.split_once('=').ok_or_else(|| format!("{s:?} must be PARAMETER=F0:F1:COUNT"))?;
+    Ok(SweepSpec { parameter: parameter.trim().to_string(), range: range(values)? })
 }
 
 /// The values of a sweep, ends included.

@@ -7,22 +7,15 @@ use flexure::{
     Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect,
     energy, energy_gradient, update_kinematics,
 };
-use nalgebra::{DMatrix, Matrix3, Matrix4};
+use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
 
 pub fn pose(p: &Pose) -> Value {
     json!({ "phi": p.phi, "x": p.x, "y": p.y })
 }
 
-pub fn matrix(m: &DMatrix<f64>) -> Value {
-    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
-}
-
-pub fn matrix3(m: &Matrix3<f64>) -> Value {
-    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
-}
-
-fn matrix4(m: &Matrix4<f64>) -> Value {
+/// Any matrix as JSON rows.
+pub fn matrix<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(m: &Matrix<f64, R, C, S>) -> Value {
     json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
 }
 
@@ -57,7 +50,7 @@ pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
     let row = |r: usize| j.row(r).iter().copied().collect::<Vec<_>>();
     Ok(json!({
         "pose": pose(&k.pose_root_tip),
-        "transform": matrix4(&k.pose_root_tip.transform()),
+        "transform": matrix(&k.pose_root_tip.transform()),
         "jacobian": { "phi": row(0), "x": row(1), "y": row(2) },
         "hessian": { "x": matrix(&k.hessian_root_tip_x), "y": matrix(&k.hessian_root_tip_y) },
         "energy": energy(&f, &alpha),
@@ -180,7 +173,7 @@ pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
     } else {
         compliance_tip_rest(&f)
     };
-    Ok(json!({ "compliance": matrix3(&c) }))
+    Ok(json!({ "compliance": matrix(&c) }))
 }
 
 #[derive(Debug, Clone, Copy, ValueEnum)]

@@ -68,7 +68,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     let with_compliance = |s: &Solution, mut v: Value| -> Result<Value, String> {
         if let (Some(b), Some(at)) = (body, args.at) {
             let c = compliance(&m, s, b, at).map_err(err)?;
-            v["compliance"] = crate::joint::matrix3(&c);
+            v["compliance"] = crate::joint::matrix(&c);
         }
         Ok(v)
     };

@@ -4,7 +4,7 @@
 //! and connection; errors name the place, with line and column.
 
 use super::joints::{Fixed, Prismatic, Revolute};
-use super::{Body, Closure, JointKind, JointSpec, Loads, Mechanism, PointLoad, Tendon};
+use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
 use crate::error::{Error, Result};
 use crate::joint::{Flexure, bending_stiffness};
 use crate::kinematics::Pose;
@@ -297,7 +297,6 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         None => [0.0; 2],
     };
     let m = Mechanism { bodies, joints, tendons, forces, closures, gravity, parent_joint, dof: offset };
-    let _: Loads = m.loads();
     Ok(m)
 }
 

@@ -130,7 +130,7 @@ impl Loads {
 
     /// No load at all.
     pub fn zero_like(&self) -> Loads {
-        self.lerp(self, 0.0).scaled(0.0)
+        self.clone().scaled(0.0)
     }
 
     fn scaled(mut self, s: f64) -> Loads {
