@@ -61,6 +61,19 @@ fn joint(c: &mut Criterion) {
     });
     g.finish();
 
+    // The kernel's own node trigonometry on the same angles: all five at
+    // once, vectorized (flexure::sincos), against the floor's libm calls.
+    let mut g = c.benchmark_group("sincos");
+    g.bench_function("nodes5", |b| {
+        b.iter(|| {
+            i = (i + 5) % angles.len();
+            let x: [f64; 5] = black_box(angles[i..i + 5].try_into().expect("five angles"));
+            let out = flexure::sincos::cos_sin(&x);
+            out.iter().map(|[c, s]| c + s).sum::<f64>()
+        })
+    });
+    g.finish();
+
     let mut g = c.benchmark_group("joint");
     let mut i = 0;
     g.bench_function("pose", |b| {

@@ -84,12 +84,12 @@ impl<T: Scalar> Kinematics<T> {
 /// ```
 pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
-    match flexure.order() {
-        2 => fixed_pose::<T, 2>(flexure, alpha),
-        3 => fixed_pose::<T, 3>(flexure, alpha),
-        4 => fixed_pose::<T, 4>(flexure, alpha),
-        5 => fixed_pose::<T, 5>(flexure, alpha),
-        6 => fixed_pose::<T, 6>(flexure, alpha),
+    match (flexure.order(), flexure.scaled_weights().len()) {
+        (2, 4) => fixed_pose::<T, 2, 4>(flexure, alpha),
+        (3, 5) => fixed_pose::<T, 3, 5>(flexure, alpha),
+        (4, 6) => fixed_pose::<T, 4, 6>(flexure, alpha),
+        (5, 7) => fixed_pose::<T, 5, 7>(flexure, alpha),
+        (6, 8) => fixed_pose::<T, 6, 8>(flexure, alpha),
         _ => any_pose(flexure, alpha),
     }
 }
@@ -104,25 +104,61 @@ fn fixed_angle<T: Scalar, const N: usize>(psi: &[f64], a: &[T; N]) -> T {
     phi
 }
 
+/// $(\cos\phi(t_k), \sin\phi(t_k))$ at all `Q` nodes for order `N`, one
+/// pair per node: every x and y quantity downstream shares its weight, so
+/// each multiply-add works on both lanes at once.
 #[inline(always)]
-fn fixed_pose<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
+fn fixed_cos_sin<T: Scalar, const N: usize, const Q: usize>(flexure: &Flexure, alpha: &[T]) -> [[T; 2]; Q] {
     let a: [T; N] = std::array::from_fn(|i| alpha[i]);
-    let (mut x, mut y) = (T::zero(), T::zero());
-    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
-        let (s, c) = fixed_angle(psi, &a).sin_cos();
-        x += T::c(w) * c;
-        y += T::c(w) * s;
-    }
+    let psi = &flexure.psi_table()[..Q * N];
+    let phi: [T; Q] = std::array::from_fn(|k| fixed_angle(&psi[k * N..(k + 1) * N], &a));
+    T::cos_sin(&phi)
+}
+
+#[inline(always)]
+fn fixed_pose<T: Scalar, const N: usize, const Q: usize>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
+    let [x, y] = weighted_sum(&flexure.scaled_weights()[..Q], &fixed_cos_sin::<T, N, Q>(flexure, alpha));
     Pose { phi: tip_angle(flexure, alpha), x, y }
+}
+
+/// $\sum_k w_k (\cos\phi_k, \sin\phi_k)$.
+#[inline(always)]
+fn weighted_sum<T: Scalar>(weights: &[f64], cs: &[[T; 2]]) -> [T; 2] {
+    let mut acc = [T::zero(); 2];
+    for (&w, v) in weights.iter().zip(cs) {
+        acc[0] += T::c(w) * v[0];
+        acc[1] += T::c(w) * v[1];
+    }
+    acc
+}
+
+/// Nodes per block on the any-order paths: angles and their sin/cos for a
+/// block are computed together, then accumulated.
+const BLOCK: usize = 8;
+
+/// Calls `each(k, [cos, sin])` for every node $k$, a block of nodes at a time.
+#[inline(always)]
+fn for_each_node<T: Scalar>(flexure: &Flexure, alpha: &[T], mut each: impl FnMut(usize, [T; 2])) {
+    let n = flexure.order();
+    for (b, psi) in flexure.psi_table().chunks(BLOCK * n).enumerate() {
+        let mut phi = [T::zero(); BLOCK];
+        for (p, row) in phi.iter_mut().zip(psi.chunks_exact(n)) {
+            *p = node_angle(row, alpha);
+        }
+        // A short last block is padded with zero angles, computed and unused.
+        for (k, v) in T::cos_sin(&phi)[..psi.len() / n].iter().enumerate() {
+            each(b * BLOCK + k, *v);
+        }
+    }
 }
 
 fn any_pose<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     let (mut x, mut y) = (T::zero(), T::zero());
-    for (psi, &w) in flexure.psi_rows().zip(flexure.scaled_weights()) {
-        let (s, c) = node_angle(psi, alpha).sin_cos();
-        x += T::c(w) * c;
-        y += T::c(w) * s;
-    }
+    let w = flexure.scaled_weights();
+    for_each_node(flexure, alpha, |k, [c, s]| {
+        x += T::c(w[k]) * c;
+        y += T::c(w[k]) * s;
+    });
     Pose { phi: tip_angle(flexure, alpha), x, y }
 }
 
@@ -163,63 +199,37 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
     assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
-    // Fixed sizes for the common orders: the loops unroll and lose their
-    // bounds checks. With the default rule (N + 2 points) the node count is
-    // a constant too, so the dot products over nodes unroll completely.
-    let q = flexure.scaled_weights().len();
-    match (flexure.order(), q) {
-        (3, 5) => fused::<T, 3>(flexure, alpha, data, level, 5),
-        (4, 6) => fused::<T, 4>(flexure, alpha, data, level, 6),
-        (5, 7) => fused::<T, 5>(flexure, alpha, data, level, 7),
-        (6, 8) => fused::<T, 6>(flexure, alpha, data, level, 8),
-        (1, q) => fused::<T, 1>(flexure, alpha, data, level, q),
-        (2, q) => fused::<T, 2>(flexure, alpha, data, level, q),
-        (3, q) => fused::<T, 3>(flexure, alpha, data, level, q),
-        (4, q) => fused::<T, 4>(flexure, alpha, data, level, q),
-        (5, q) => fused::<T, 5>(flexure, alpha, data, level, q),
-        (6, q) => fused::<T, 6>(flexure, alpha, data, level, q),
+    // Fixed sizes for the common orders with the default rule (N + 2
+    // points): every loop unrolls and loses its bounds checks.
+    match (flexure.order(), flexure.scaled_weights().len()) {
+        (2, 4) => fused::<T, 2, 4>(flexure, alpha, data, level),
+        (3, 5) => fused::<T, 3, 5>(flexure, alpha, data, level),
+        (4, 6) => fused::<T, 4, 6>(flexure, alpha, data, level),
+        (5, 7) => fused::<T, 5, 7>(flexure, alpha, data, level),
+        (6, 8) => fused::<T, 6, 8>(flexure, alpha, data, level),
         _ => general(flexure, alpha, data, level),
     }
 }
 
-/// Most nodes the two-phase kernel keeps on the stack.
-const MAX_NODES: usize = 32;
-
-/// The one-pass kernel for order `N`, in two phases: first every node's
-/// sin/cos into small stack arrays, then the pose, Jacobian and Hessians as
-/// dot products over the nodes. Keeping the libm calls apart from the
-/// accumulation means no accumulator lives across a call, where every
-/// floating-point register is caller-saved and would be spilled.
+/// The one-pass kernel for order `N` and `Q` nodes, in two phases: first
+/// every node's sin/cos, all at once, then the pose, Jacobian and Hessians
+/// as dot products over the nodes.
 #[inline(always)]
-fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level, q: usize) {
-    if q > MAX_NODES {
-        return general(flexure, alpha, data, level);
-    }
-    let a: [T; N] = std::array::from_fn(|i| alpha[i]);
-    // (cos, sin) of each node as one pair: every x and y quantity below
-    // shares its weight, so each multiply-add works on both lanes at once.
-    let mut cs = [[T::zero(); 2]; MAX_NODES];
-    for (k, psi) in flexure.psi_table()[..q * N].chunks_exact(N).enumerate() {
-        let (s, c) = fixed_angle(psi, &a).sin_cos();
-        cs[k] = [c, s];
-    }
-    let cs = &cs[..q];
-    let dot = |w: &[f64]| {
-        let mut acc = [T::zero(); 2];
-        for (&w, v) in w.iter().zip(cs) {
-            acc[0] += T::c(w) * v[0];
-            acc[1] += T::c(w) * v[1];
-        }
-        acc
-    };
-    let [x, y] = dot(&flexure.scaled_weights()[..q]);
+fn fused<T: Scalar, const N: usize, const Q: usize>(
+    flexure: &Flexure,
+    alpha: &[T],
+    data: &mut Kinematics<T>,
+    level: Level,
+) {
+    let cs = fixed_cos_sin::<T, N, Q>(flexure, alpha);
+    let [x, y] = weighted_sum(&flexure.scaled_weights()[..Q], &cs);
     if level >= Level::Jacobian {
         let jac = data.jacobian_root_tip.as_mut_slice();
         for (i, (row, &d)) in
-            flexure.jacobian_weights_by_node().chunks_exact(q).zip(flexure.tip_angle_row()).enumerate()
+            flexure.jacobian_weights_by_node().chunks_exact(Q).zip(flexure.tip_angle_row()).enumerate()
         {
             // ∂x = −Σ w ψ sin, ∂y = Σ w ψ cos (Eqs. 20–21).
-            let [c, s] = dot(row);
+            let [c, s] = weighted_sum(row, &cs);
             jac[3 * i] = T::c(d);
             jac[3 * i + 1] = -s;
             jac[3 * i + 2] = c;
@@ -227,11 +237,11 @@ fn fused<T: Scalar, const N: usize>(flexure: &Flexure, alpha: &[T], data: &mut K
     }
     if level >= Level::Hessian {
         let (ox, oy) = (data.hessian_root_tip_x.as_mut_slice(), data.hessian_root_tip_y.as_mut_slice());
-        let mut rows = flexure.hessian_weights_by_node().chunks_exact(q);
+        let mut rows = flexure.hessian_weights_by_node().chunks_exact(Q);
         for i in 0..N {
             for j in i..N {
                 // ∂²x = −Σ w ψψ cos, ∂²y = −Σ w ψψ sin (Eqs. 30–31).
-                let [c, s] = dot(rows.next().unwrap_or(&[]));
+                let [c, s] = weighted_sum(rows.next().unwrap_or(&[]), &cs);
                 (ox[j * N + i], ox[i * N + j]) = (-c, -c);
                 (oy[j * N + i], oy[i * N + j]) = (-s, -s);
             }
@@ -257,10 +267,9 @@ fn general<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, 
         hy.fill(T::zero());
     }
     let (mut x, mut y) = (T::zero(), T::zero());
-    let rows = flexure.psi_rows().zip(flexure.scaled_weights());
-    let tables = flexure.jacobian_weights().chunks_exact(n).zip(flexure.hessian_weights().chunks_exact(n * n));
-    for ((psi, &w), (jw, hw)) in rows.zip(tables) {
-        let (s, c) = node_angle(psi, alpha).sin_cos();
+    let (weights, jws, hws) = (flexure.scaled_weights(), flexure.jacobian_weights(), flexure.hessian_weights());
+    for_each_node(flexure, alpha, |k, [c, s]| {
+        let (w, jw, hw) = (weights[k], &jws[k * n..(k + 1) * n], &hws[k * n * n..(k + 1) * n * n]);
         x += T::c(w) * c;
         y += T::c(w) * s;
         if level >= Level::Jacobian {
@@ -278,7 +287,7 @@ fn general<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, 
                 }
             }
         }
-    }
+    });
     if level >= Level::Hessian {
         for j in 0..n {
             for i in 0..j {
@@ -360,17 +369,17 @@ pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f
 /// One chunk of a batch, dispatched on the order once rather than per pose.
 #[cfg(feature = "parallel")]
 fn poses_chunk(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
-    fn run<const N: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
+    fn run<const N: usize, const Q: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
         for (alpha, pose) in alphas.chunks_exact(N).zip(poses.iter_mut()) {
-            *pose = fixed_pose::<f64, N>(flexure, alpha);
+            *pose = fixed_pose::<f64, N, Q>(flexure, alpha);
         }
     }
-    match flexure.order() {
-        3 => run::<3>(flexure, alphas, poses),
-        4 => run::<4>(flexure, alphas, poses),
-        5 => run::<5>(flexure, alphas, poses),
-        6 => run::<6>(flexure, alphas, poses),
-        n => {
+    match (flexure.order(), flexure.scaled_weights().len()) {
+        (3, 5) => run::<3, 5>(flexure, alphas, poses),
+        (4, 6) => run::<4, 6>(flexure, alphas, poses),
+        (5, 7) => run::<5, 7>(flexure, alphas, poses),
+        (6, 8) => run::<6, 8>(flexure, alphas, poses),
+        (n, _) => {
             for (alpha, pose) in alphas.chunks_exact(n).zip(poses.iter_mut()) {
                 *pose = pose_root_tip(flexure, alpha);
             }

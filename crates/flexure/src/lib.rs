@@ -49,6 +49,7 @@ pub mod ode;
 pub mod quadrature;
 pub mod reference;
 pub mod scalar;
+pub mod sincos;
 pub mod statics;
 pub mod tendon;
 

@@ -19,6 +19,17 @@ pub trait Scalar: RealField + Copy {
     fn c(x: f64) -> Self {
         nalgebra::convert(x)
     }
+
+    /// $(\cos x_k, \sin x_k)$ of every angle, one pair per angle:
+    /// the quadrature nodes' trigonometry. `f64` evaluates all nodes together
+    /// with [`crate::sincos::cos_sin`]; dual numbers take one angle at a time.
+    #[inline(always)]
+    fn cos_sin<const M: usize>(angles: &[Self; M]) -> [[Self; 2]; M] {
+        angles.map(|x| {
+            let (s, c) = x.sin_cos();
+            [c, s]
+        })
+    }
 }
 
 impl Scalar for f64 {
@@ -29,6 +40,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn c(x: f64) -> Self {
         x
+    }
+    #[inline(always)]
+    fn cos_sin<const M: usize>(angles: &[Self; M]) -> [[Self; 2]; M] {
+        crate::sincos::cos_sin(angles)
     }
 }
 
