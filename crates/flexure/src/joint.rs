@@ -64,14 +64,12 @@ pub struct Flexure {
     psi: Vec<f64>,
     /// `weights[k]` = $L\Delta_k$.
     weights: Vec<f64>,
-    /// `jacobian_weights[k * n + i]` = $L\Delta_k\psi_i(t_k)$ (Eqs. 20–21).
+    /// `jacobian_weights[i * q + k]` = $L\Delta_k\psi_i(t_k)$ (Eqs. 20–21):
+    /// node index last, so each Jacobian entry is one dot product over nodes.
     jacobian_weights: Vec<f64>,
-    /// `hessian_weights[(k * n + i) * n + j]` = $L\Delta_k\psi_i(t_k)\psi_j(t_k)$ (Eqs. 30–31).
+    /// $L\Delta_k\psi_i(t_k)\psi_j(t_k)$ (Eqs. 30–31) for the pairs $j \ge i$
+    /// in row-major order, a row of $q$ nodes per pair.
     hessian_weights: Vec<f64>,
-    /// The same tables transposed, node index last: `[i][k]` and `[(i, j ≥ i)][k]`,
-    /// so each Jacobian or Hessian entry is one dot product over the nodes.
-    jacobian_weights_by_node: Vec<f64>,
-    hessian_weights_by_node: Vec<f64>,
     /// $w_i$ in the energy.
     energy_weights: Vec<f64>,
     /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
@@ -132,8 +130,6 @@ impl Flexure {
             weights: vec![],
             jacobian_weights: vec![],
             hessian_weights: vec![],
-            jacobian_weights_by_node: vec![],
-            hessian_weights_by_node: vec![],
             energy_weights,
             tip_angle,
         };
@@ -178,20 +174,12 @@ impl Flexure {
         }
         self.psi = psi;
         // Products of the weights with the shapes: the kernel's only per-node constants.
-        self.jacobian_weights =
-            self.psi.chunks_exact(n).zip(&self.weights).flat_map(|(row, &w)| row.iter().map(move |p| w * p)).collect();
-        self.hessian_weights = self
-            .psi
-            .chunks_exact(n)
-            .zip(&self.weights)
-            .flat_map(|(row, &w)| row.iter().flat_map(move |pi| row.iter().map(move |pj| w * pi * pj)))
-            .collect();
         let q = self.nodes.len();
-        self.jacobian_weights_by_node =
-            (0..n).flat_map(|i| (0..q).map(move |k| (i, k))).map(|(i, k)| self.jacobian_weights[k * n + i]).collect();
-        self.hessian_weights_by_node = (0..n)
+        let product = |k: usize, i: usize| self.weights[k] * self.psi[k * n + i];
+        self.jacobian_weights = (0..n).flat_map(|i| (0..q).map(move |k| product(k, i))).collect();
+        self.hessian_weights = (0..n)
             .flat_map(|i| (i..n).flat_map(move |j| (0..q).map(move |k| (i, j, k))))
-            .map(|(i, j, k)| self.hessian_weights[(k * n + i) * n + j])
+            .map(|(i, j, k)| product(k, i) * self.psi[k * n + j])
             .collect();
         self.rule = rule;
     }
@@ -294,28 +282,16 @@ impl Flexure {
         &self.weights
     }
 
-    /// $L\Delta_k\psi_i(t_k)$, row-major by node.
+    /// $L\Delta_k\psi_i(t_k)$ by coordinate: row $i$ holds all nodes.
     #[inline]
     pub(crate) fn jacobian_weights(&self) -> &[f64] {
         &self.jacobian_weights
     }
 
-    /// $L\Delta_k\psi_i(t_k)\psi_j(t_k)$, an $N\times N$ block per node.
+    /// $L\Delta_k\psi_i\psi_j$ for $j \ge i$ in row-major pair order, each row holding all nodes.
     #[inline]
     pub(crate) fn hessian_weights(&self) -> &[f64] {
         &self.hessian_weights
-    }
-
-    /// $L\Delta_k\psi_i(t_k)$ by coordinate: row $i$ holds all nodes.
-    #[inline]
-    pub(crate) fn jacobian_weights_by_node(&self) -> &[f64] {
-        &self.jacobian_weights_by_node
-    }
-
-    /// $L\Delta_k\psi_i\psi_j$ for $j \ge i$ in row-major pair order, each row holding all nodes.
-    #[inline]
-    pub(crate) fn hessian_weights_by_node(&self) -> &[f64] {
-        &self.hessian_weights_by_node
     }
 
     /// Checks that `alpha` has one finite value per order.

@@ -54,6 +54,9 @@ pub struct Kinematics<T: Scalar = f64> {
     pub hessian_root_tip_x: DMatrix<T>,
     /// $N \times N$ Hessian of the tip's $y$ (Eq. 31).
     pub hessian_root_tip_y: DMatrix<T>,
+    /// $(\cos\phi_k, \sin\phi_k)$ at every node, for orders and rules
+    /// without a fixed-size kernel.
+    node_cos_sin: Vec<[T; 2]>,
 }
 
 impl<T: Scalar> Kinematics<T> {
@@ -65,6 +68,7 @@ impl<T: Scalar> Kinematics<T> {
             jacobian_root_tip: DMatrix::zeros(3, n),
             hessian_root_tip_x: DMatrix::zeros(n, n),
             hessian_root_tip_y: DMatrix::zeros(n, n),
+            node_cos_sin: vec![[T::zero(); 2]; flexure.scaled_weights().len()],
         }
     }
 }
@@ -121,45 +125,59 @@ fn fixed_pose<T: Scalar, const N: usize, const Q: usize>(flexure: &Flexure, alph
     Pose { phi: tip_angle(flexure, alpha), x, y }
 }
 
-/// $\sum_k w_k (\cos\phi_k, \sin\phi_k)$.
+/// $\sum_k w_k (\cos\phi_k, \sin\phi_k)$ over as many nodes as `weights`
+/// holds, in four partial sums: one running sum would make every add wait
+/// for the previous one, four let the processor overlap them.
 #[inline(always)]
 fn weighted_sum<T: Scalar>(weights: &[f64], cs: &[[T; 2]]) -> [T; 2] {
-    let mut acc = [T::zero(); 2];
-    for (&w, v) in weights.iter().zip(cs) {
-        acc[0] += T::c(w) * v[0];
-        acc[1] += T::c(w) * v[1];
+    let cs = &cs[..weights.len()];
+    let mut acc = [[T::zero(); 2]; 4];
+    let (w4, c4) = (weights.chunks_exact(4), cs.chunks_exact(4));
+    let rest = w4.remainder().iter().zip(c4.remainder());
+    for (w, c) in w4.zip(c4) {
+        for l in 0..4 {
+            acc[l][0] += T::c(w[l]) * c[l][0];
+            acc[l][1] += T::c(w[l]) * c[l][1];
+        }
     }
-    acc
+    for (a, (&w, c)) in acc.iter_mut().zip(rest) {
+        a[0] += T::c(w) * c[0];
+        a[1] += T::c(w) * c[1];
+    }
+    std::array::from_fn(|i| (acc[0][i] + acc[1][i]) + (acc[2][i] + acc[3][i]))
 }
 
-/// Nodes per block on the any-order paths: angles and their sin/cos for a
-/// block are computed together, then accumulated.
-const BLOCK: usize = 8;
+/// Nodes per block on the any-order paths: a block's angles are turned into
+/// sin/cos together.
+const BLOCK: usize = 4;
 
-/// Calls `each(k, [cos, sin])` for every node $k$, a block of nodes at a time.
+/// The angles $\phi(t_k)$ of one block of nodes (`psi` holds its rows),
+/// padded with zeros.
 #[inline(always)]
-fn for_each_node<T: Scalar>(flexure: &Flexure, alpha: &[T], mut each: impl FnMut(usize, [T; 2])) {
-    let n = flexure.order();
-    for (b, psi) in flexure.psi_table().chunks(BLOCK * n).enumerate() {
-        let mut phi = [T::zero(); BLOCK];
-        for (p, row) in phi.iter_mut().zip(psi.chunks_exact(n)) {
-            *p = node_angle(row, alpha);
-        }
-        // A short last block is padded with zero angles, computed and unused.
-        for (k, v) in T::cos_sin(&phi)[..psi.len() / n].iter().enumerate() {
-            each(b * BLOCK + k, *v);
-        }
+fn block_angles<T: Scalar>(psi: &[f64], alpha: &[T]) -> [T; BLOCK] {
+    let mut phi = [T::zero(); BLOCK];
+    for (p, row) in phi.iter_mut().zip(psi.chunks_exact(alpha.len())) {
+        *p = node_angle(row, alpha);
     }
+    phi
 }
 
 fn any_pose<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
     let (mut x, mut y) = (T::zero(), T::zero());
-    let w = flexure.scaled_weights();
-    for_each_node(flexure, alpha, |k, [c, s]| {
-        x += T::c(w[k]) * c;
-        y += T::c(w[k]) * s;
-    });
+    let blocks = flexure.scaled_weights().chunks(BLOCK).zip(flexure.psi_table().chunks(BLOCK * alpha.len()));
+    for (weights, psi) in blocks {
+        let [dx, dy] = weighted_sum(weights, &T::cos_sin(&block_angles(psi, alpha)));
+        x += dx;
+        y += dy;
+    }
     Pose { phi: tip_angle(flexure, alpha), x, y }
+}
+
+/// $(\cos\phi(t_k), \sin\phi(t_k))$ at every node into `out`, a block at a time.
+fn any_cos_sin<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [[T; 2]]) {
+    for (block, psi) in out.chunks_mut(BLOCK).zip(flexure.psi_table().chunks(BLOCK * alpha.len())) {
+        block.copy_from_slice(&T::cos_sin(&block_angles(psi, alpha))[..block.len()]);
+    }
 }
 
 #[inline(always)]
@@ -202,34 +220,41 @@ pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T
     // Fixed sizes for the common orders with the default rule (N + 2
     // points): every loop unrolls and loses its bounds checks.
     match (flexure.order(), flexure.scaled_weights().len()) {
-        (2, 4) => fused::<T, 2, 4>(flexure, alpha, data, level),
-        (3, 5) => fused::<T, 3, 5>(flexure, alpha, data, level),
-        (4, 6) => fused::<T, 4, 6>(flexure, alpha, data, level),
-        (5, 7) => fused::<T, 5, 7>(flexure, alpha, data, level),
-        (6, 8) => fused::<T, 6, 8>(flexure, alpha, data, level),
-        _ => general(flexure, alpha, data, level),
+        (2, 4) => accumulate(flexure, alpha, &fixed_cos_sin::<T, 2, 4>(flexure, alpha), 2, data, level),
+        (3, 5) => accumulate(flexure, alpha, &fixed_cos_sin::<T, 3, 5>(flexure, alpha), 3, data, level),
+        (4, 6) => accumulate(flexure, alpha, &fixed_cos_sin::<T, 4, 6>(flexure, alpha), 4, data, level),
+        (5, 7) => accumulate(flexure, alpha, &fixed_cos_sin::<T, 5, 7>(flexure, alpha), 5, data, level),
+        (6, 8) => accumulate(flexure, alpha, &fixed_cos_sin::<T, 6, 8>(flexure, alpha), 6, data, level),
+        (n, _) => {
+            // Taken out and put back, so the buffer is read while the
+            // outputs are written; neither step allocates.
+            let mut cs = std::mem::take(&mut data.node_cos_sin);
+            any_cos_sin(flexure, alpha, &mut cs);
+            accumulate(flexure, alpha, &cs, n, data, level);
+            data.node_cos_sin = cs;
+        }
     }
 }
 
-/// The one-pass kernel for order `N` and `Q` nodes, in two phases: first
-/// every node's sin/cos, all at once, then the pose, Jacobian and Hessians
-/// as dot products over the nodes.
+/// The second phase of the one pass: with every node's sin/cos in `cs`, the
+/// pose, Jacobian and Hessians are dot products over the nodes. Inlined into
+/// the fixed-size paths, where `n` and the length of `cs` are constants.
 #[inline(always)]
-fn fused<T: Scalar, const N: usize, const Q: usize>(
+fn accumulate<T: Scalar>(
     flexure: &Flexure,
     alpha: &[T],
+    cs: &[[T; 2]],
+    n: usize,
     data: &mut Kinematics<T>,
     level: Level,
 ) {
-    let cs = fixed_cos_sin::<T, N, Q>(flexure, alpha);
-    let [x, y] = weighted_sum(&flexure.scaled_weights()[..Q], &cs);
+    let q = cs.len();
+    let [x, y] = weighted_sum(&flexure.scaled_weights()[..q], cs);
     if level >= Level::Jacobian {
         let jac = data.jacobian_root_tip.as_mut_slice();
-        for (i, (row, &d)) in
-            flexure.jacobian_weights_by_node().chunks_exact(Q).zip(flexure.tip_angle_row()).enumerate()
-        {
+        for (i, (row, &d)) in flexure.jacobian_weights().chunks_exact(q).zip(flexure.tip_angle_row()).enumerate() {
             // ∂x = −Σ w ψ sin, ∂y = Σ w ψ cos (Eqs. 20–21).
-            let [c, s] = weighted_sum(row, &cs);
+            let [c, s] = weighted_sum(row, cs);
             jac[3 * i] = T::c(d);
             jac[3 * i + 1] = -s;
             jac[3 * i + 2] = c;
@@ -237,62 +262,13 @@ fn fused<T: Scalar, const N: usize, const Q: usize>(
     }
     if level >= Level::Hessian {
         let (ox, oy) = (data.hessian_root_tip_x.as_mut_slice(), data.hessian_root_tip_y.as_mut_slice());
-        let mut rows = flexure.hessian_weights_by_node().chunks_exact(Q);
-        for i in 0..N {
-            for j in i..N {
+        let mut rows = flexure.hessian_weights().chunks_exact(q);
+        for i in 0..n {
+            for j in i..n {
                 // ∂²x = −Σ w ψψ cos, ∂²y = −Σ w ψψ sin (Eqs. 30–31).
-                let [c, s] = weighted_sum(rows.next().unwrap_or(&[]), &cs);
-                (ox[j * N + i], ox[i * N + j]) = (-c, -c);
-                (oy[j * N + i], oy[i * N + j]) = (-s, -s);
-            }
-        }
-    }
-    data.pose_root_tip = Pose { phi: tip_angle(flexure, alpha), x, y };
-}
-
-/// The same pass for any order, on slices.
-fn general<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
-    let n = flexure.order();
-    let jac = data.jacobian_root_tip.as_mut_slice();
-    let hx = data.hessian_root_tip_x.as_mut_slice();
-    let hy = data.hessian_root_tip_y.as_mut_slice();
-    if level >= Level::Jacobian {
-        jac.fill(T::zero());
-        for (col, &d) in jac.chunks_exact_mut(3).zip(flexure.tip_angle_row()) {
-            col[0] = T::c(d);
-        }
-    }
-    if level >= Level::Hessian {
-        hx.fill(T::zero());
-        hy.fill(T::zero());
-    }
-    let (mut x, mut y) = (T::zero(), T::zero());
-    let (weights, jws, hws) = (flexure.scaled_weights(), flexure.jacobian_weights(), flexure.hessian_weights());
-    for_each_node(flexure, alpha, |k, [c, s]| {
-        let (w, jw, hw) = (weights[k], &jws[k * n..(k + 1) * n], &hws[k * n * n..(k + 1) * n * n]);
-        x += T::c(w) * c;
-        y += T::c(w) * s;
-        if level >= Level::Jacobian {
-            for (col, &p) in jac.chunks_exact_mut(3).zip(jw) {
-                col[1] -= T::c(p) * s;
-                col[2] += T::c(p) * c;
-            }
-        }
-        if level >= Level::Hessian {
-            for j in 0..n {
-                for i in 0..=j {
-                    let p = T::c(hw[i * n + j]);
-                    hx[j * n + i] -= p * c;
-                    hy[j * n + i] -= p * s;
-                }
-            }
-        }
-    });
-    if level >= Level::Hessian {
-        for j in 0..n {
-            for i in 0..j {
-                hx[i * n + j] = hx[j * n + i];
-                hy[i * n + j] = hy[j * n + i];
+                let [c, s] = weighted_sum(rows.next().unwrap_or(&[]), cs);
+                (ox[j * n + i], ox[i * n + j]) = (-c, -c);
+                (oy[j * n + i], oy[i * n + j]) = (-s, -s);
             }
         }
     }

@@ -73,20 +73,28 @@ fn reduced<const M: usize>(x: &[f64; M]) -> [[f64; 2]; M] {
     let cos_r = lanes::<M>(|l| w[l] + (((1.0 - w[l]) - h[l]) + (zz[l] * q[l] - r[l] * y[l])));
     // Quadrant n mod 4: sin x = (sin r, cos r, −sin r, −cos r)[n], and
     // cos x = (cos r, −sin r, −cos r, sin r)[n].
-    std::array::from_fn(|l| {
+    let mut out = [[0.0; 2]; M];
+    for l in 0..M {
         let quadrant = t[l].to_bits();
         let swap = (quadrant & 1).wrapping_neg();
         let (sb, cb) = (sin_r[l].to_bits(), cos_r[l].to_bits());
         let sin_bits = ((cb & swap) | (sb & !swap)) ^ ((quadrant & 2) << 62);
         let cos_bits = ((sb & swap) | (cb & !swap)) ^ ((quadrant.wrapping_add(1) & 2) << 62);
-        [f64::from_bits(cos_bits), f64::from_bits(sin_bits)]
-    })
+        out[l] = [f64::from_bits(cos_bits), f64::from_bits(sin_bits)];
+    }
+    out
 }
 
 /// One step applied to every lane.
 #[inline(always)]
 fn lanes<const M: usize>(step: impl Fn(usize) -> f64) -> [f64; M] {
-    std::array::from_fn(step)
+    // A plain loop over a constant count: fully unrolled and inlined, where
+    // `array::from_fn` left an out-of-line closure call per lane at M = 8.
+    let mut out = [0.0; M];
+    for l in 0..M {
+        out[l] = step(l);
+    }
+    out
 }
 
 /// $(\cos x_l, \sin x_l)$ of `M` angles at once.
