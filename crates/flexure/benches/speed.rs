@@ -169,6 +169,9 @@ fn batch(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(1_000_000));
     g.bench_function("pose_1m", |b| b.iter(|| par_poses_root_tip(&f, black_box(&alphas), &mut poses).unwrap()));
+    g.bench_function("pose_1m_serial", |b| {
+        b.iter(|| flexure::kinematics::poses_root_tip(&f, black_box(&alphas), &mut poses).unwrap())
+    });
     g.finish();
 }
 

@@ -325,9 +325,7 @@ pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f6
 /// ```
 pub fn poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) -> crate::Result<()> {
     check_batch(flexure, alphas, poses)?;
-    for (alpha, pose) in alphas.chunks_exact(flexure.order()).zip(poses.iter_mut()) {
-        *pose = pose_root_tip(flexure, alpha);
-    }
+    poses_chunk(flexure, alphas, poses);
     Ok(())
 }
 
@@ -343,7 +341,6 @@ pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f
 }
 
 /// One chunk of a batch, dispatched on the order once rather than per pose.
-#[cfg(feature = "parallel")]
 fn poses_chunk(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
     fn run<const N: usize, const Q: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
         for (alpha, pose) in alphas.chunks_exact(N).zip(poses.iter_mut()) {
@@ -351,13 +348,14 @@ fn poses_chunk(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
         }
     }
     match (flexure.order(), flexure.scaled_weights().len()) {
+        (2, 4) => run::<2, 4>(flexure, alphas, poses),
         (3, 5) => run::<3, 5>(flexure, alphas, poses),
         (4, 6) => run::<4, 6>(flexure, alphas, poses),
         (5, 7) => run::<5, 7>(flexure, alphas, poses),
         (6, 8) => run::<6, 8>(flexure, alphas, poses),
         (n, _) => {
             for (alpha, pose) in alphas.chunks_exact(n).zip(poses.iter_mut()) {
-                *pose = pose_root_tip(flexure, alpha);
+                *pose = any_pose(flexure, alpha);
             }
         }
     }

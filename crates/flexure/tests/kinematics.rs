@@ -53,6 +53,28 @@ fn pose_levels_agree() {
     assert_eq!(k.pose_root_tip, pose_root_tip(&f, &a));
 }
 
+/// The batch API fills exactly the poses the single-pose function gives, for
+/// fixed-size and any-order kernels, serially and in parallel over chunks
+/// (9000 poses span three); a length mismatch is an error naming `alpha`.
+#[test]
+fn batch_matches_single_poses() {
+    use flexure::kinematics::{par_poses_root_tip, poses_root_tip};
+    for order in 1..=8 {
+        let f = flexure(order);
+        for count in [0, 1, 2, 5, 9000] {
+            let alphas: Vec<f64> = (0..count * order).map(|i| ((i * 7919) % 1000) as f64 / 400.0 - 1.25).collect();
+            let single: Vec<Pose> = alphas.chunks_exact(order).map(|a| pose_root_tip(&f, a)).collect();
+            let mut serial = vec![Pose::default(); count];
+            let mut parallel = vec![Pose::default(); count];
+            poses_root_tip(&f, &alphas, &mut serial).unwrap();
+            par_poses_root_tip(&f, &alphas, &mut parallel).unwrap();
+            assert!(serial == single && parallel == single, "order {order}, {count} poses");
+        }
+        let err = poses_root_tip(&f, &[0.0; 9], &mut [Pose::default(); 2]).unwrap_err().to_string();
+        assert!(err.contains("alpha") && err.contains("9 values for 2 poses"), "{err}");
+    }
+}
+
 /// Eq. 7: the transform composes like the pose it came from.
 #[test]
 fn transform_is_rigid() {
