@@ -56,6 +56,19 @@ fn within_one_ulp_of_libm() {
     }
 }
 
+/// Within 1 ulp at every magnitude, from subnormal to the limit: log-uniform
+/// magnitudes with random signs.
+#[test]
+fn within_one_ulp_at_every_magnitude() {
+    let top = REDUCTION_LIMIT.log10();
+    let exponents = uniform(200_000, -310.0, top, 0x2545_f491_4f6c_dd1d);
+    let signs = uniform(200_000, -1.0, 1.0, 0x1234_5678_9abc_def1);
+    let angles: Vec<f64> =
+        exponents.iter().zip(&signs).map(|(e, s)| 10f64.powf(*e).min(REDUCTION_LIMIT).copysign(*s)).collect();
+    let (c, s) = worst(&angles);
+    assert!(c <= 1.0 && s <= 1.0, "cos {c} ulp, sin {s} ulp");
+}
+
 /// Next to multiples of π/2, where the reduced argument cancels and the
 /// small result must keep its relative accuracy; and at quadrant edges π/4.
 #[test]
