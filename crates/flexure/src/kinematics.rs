@@ -217,6 +217,10 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
     assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    assert!(
+        data.jacobian_root_tip.ncols() == flexure.order() && data.node_cos_sin.len() == flexure.scaled_weights().len(),
+        "Kinematics buffers were made for a flexure of another order or quadrature rule"
+    );
     // Fixed sizes for the common orders with the default rule (N + 2
     // points): every loop unrolls and loses its bounds checks.
     match (flexure.order(), flexure.scaled_weights().len()) {

@@ -75,6 +75,15 @@ fn batch_matches_single_poses() {
     }
 }
 
+/// Buffers made for another quadrature rule are refused, not misread.
+#[test]
+#[should_panic(expected = "another order or quadrature rule")]
+fn buffers_of_another_rule_are_refused() {
+    let f = flexure(3);
+    let mut k = Kinematics::new(&f.clone().with_quadrature(9).unwrap());
+    update_kinematics(&f, &[0.1, 0.2, 0.3], &mut k, Level::Hessian);
+}
+
 /// Eq. 7: the transform composes like the pose it came from.
 #[test]
 fn transform_is_rigid() {
