@@ -146,6 +146,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     Ok(json!({
         "pose": pose(&e),
         "root_moment": exact.root_moment,
+        "stable": exact.stable,
         "model": model,
         "error": {
             "position": (m.x - e.x).hypot(m.y - e.y),

@@ -48,6 +48,11 @@ fn deflect_model_and_exact() {
     assert!((f(&v["pose"]["phi"]) - 0.46135).abs() < 5e-6);
     // Root moment of a tip force across the flexure: P·x_tip.
     assert!((f(&v["root_moment"]) - f(&v["pose"]["x"])).abs() < 1e-9);
+    assert_eq!(v["stable"], Value::Bool(true));
+    // A straight column past Euler's π²/4 ≈ 2.47: both say unstable.
+    let column = json("deflect --fx -3 --fy 0 --exact");
+    assert_eq!(column["stable"], Value::Bool(false));
+    assert_eq!(column["model"]["stable"], Value::Bool(false));
     let m = json("deflect --fx 0 --fy 1");
     assert_eq!(m["alpha"].as_array().unwrap().len(), 3);
     assert_eq!(m["stiffness"].as_array().unwrap().len(), 3);

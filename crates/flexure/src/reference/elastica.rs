@@ -48,6 +48,9 @@ pub struct Solution {
     pub root_moment: f64,
     /// Load-continuation steps taken.
     pub load_steps: usize,
+    /// Whether the shape is a minimum of the potential energy under the
+    /// (dead) tip load: see [`is_stable`].
+    pub stable: bool,
 }
 
 /// Integrates Eq. 3 from the clamped root, $\phi(0) = x(0) = y(0) = 0$, with
@@ -93,7 +96,7 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
     let mut tip_now = rest;
     let (mut lambda, mut m0) = (0.0_f64, 0.0_f64);
     let mut history: Option<(f64, f64)> = None;
-    let (mut step, mut load_steps) = (1.0_f64, 0);
+    let (mut step, mut load_steps, mut on_stable_path) = (1.0_f64, 0, true);
     loop {
         let target = (lambda + step).min(1.0);
         let guess = match history {
@@ -103,18 +106,25 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
         };
         let (m, fx, fy) = (target * load.moment, target * load.fx, target * load.fy);
         // The root finder's last evaluation is at the root it returns.
-        let mut tip_new = tip_now;
+        let (mut tip_new, mut stable_new) = (tip_now, true);
         let residual = |x: &SVector<f64, 1>| -> Result<(SVector<f64, 1>, SMatrix<f64, 1, 1>)> {
-            let m0 = Dual64::from_re(x[0]).derivative();
-            let tip = shoot(flexure, m0, Dual64::from(fx), Dual64::from(fy), &settings.ode, |_, _| {})?;
-            tip_new = [tip[0].re, tip[1].re, tip[2].re];
-            let r = m0 - tip[1] * fy + tip[2] * fx - m;
+            let shot = jacobi_shot(flexure, x[0], fx, fy, &settings.ode)?;
+            (tip_new, stable_new) = (shot.tip, shot.stable());
+            let r = shot.balance - m;
             Ok((SVector::from([r.re]), SMatrix::from([[r.eps]])))
         };
         let found = find_root(residual, SVector::from([guess]), tolerance, settings.max_iterations);
         let rotation = (tip_new[0] - tip_now[0]).abs();
+        // From the stable rest shape, a quasi-static path stays stable: an
+        // unstable root is another branch, reached by too long a step, unless
+        // no shorter step finds a stable one (the path itself lost stability
+        // at a bifurcation or limit point).
+        let last_chance = step * 0.5 < settings.min_load_step;
         match found {
-            Ok(root) if rotation <= settings.max_rotation_per_step => {
+            Ok(root)
+                if rotation <= settings.max_rotation_per_step && (stable_new || !on_stable_path || last_chance) =>
+            {
+                on_stable_path &= stable_new;
                 history = Some((lambda, m0));
                 lambda = target;
                 m0 = root.x[0];
@@ -122,7 +132,7 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
                 load_steps += 1;
                 if lambda >= 1.0 {
                     let pose = Pose { phi: tip_now[0], x: tip_now[1], y: tip_now[2] };
-                    return Ok(Solution { pose, root_moment: m0, load_steps });
+                    return Ok(Solution { pose, root_moment: m0, load_steps, stable: stable_new });
                 }
                 step = (2.0 * step).min(1.0 - lambda);
             }
@@ -144,6 +154,58 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
             }
         }
     }
+}
+
+/// Whether the elastica shot from `root_moment` under the tip force
+/// $(F_x, F_y)$ is stable, by the Jacobi (conjugate-point) test.
+///
+/// The second variation of the potential energy about the shape $\phi(s)$,
+///
+/// $$\delta^2 E = \int_0^L EI\,\delta\phi'^2 + (F_x\cos\phi + F_y\sin\phi)\,\delta\phi^2\,ds,
+/// \qquad \delta\phi(0) = 0,$$
+///
+/// is positive definite exactly when the Jacobi field $h = \partial\phi/\partial M_0$
+/// (which solves $(EI h')' = (F_x\cos\phi + F_y\sin\phi)h$, $h(0) = 0$,
+/// $EI h'(0) = 1$) stays positive on $(0, L]$ and $EI h'(L) > 0$: the
+/// Prüfer angle of $h$ then stays below $\pi/2$ at the free end. $h$ is the
+/// dual part of $\phi$ when the shot carries a dual root moment, and
+/// $EI h'(L)$ is the derivative of the tip-moment balance the shooting solves.
+///
+/// # Example
+/// ```
+/// use flexure::{reference::elastica, Flexure};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// // A straight column, clamped and free, buckles at P = π²EI/4L² ≈ 2.467.
+/// assert!(elastica::is_stable(&f, 0.0, -2.4, 0.0, &Default::default()).unwrap());
+/// assert!(!elastica::is_stable(&f, 0.0, -2.5, 0.0, &Default::default()).unwrap());
+/// ```
+pub fn is_stable(flexure: &Flexure, root_moment: f64, fx: f64, fy: f64, tol: &Tolerance) -> Result<bool> {
+    Ok(jacobi_shot(flexure, root_moment, fx, fy, tol)?.stable())
+}
+
+/// One shot carrying the Jacobi field $h = \partial\phi/\partial M_0$ as a dual part.
+struct JacobiShot {
+    /// $(\phi, x, y)$ at the tip.
+    tip: [f64; 3],
+    /// The tip-moment balance $M_0 - F_y x_L + F_x y_L$ with derivative $EI h'(L)$.
+    balance: Dual64,
+    /// Whether $h > 0$ at every accepted step on $(0, L]$.
+    positive: bool,
+}
+
+impl JacobiShot {
+    fn stable(&self) -> bool {
+        self.positive && self.balance.eps > 0.0
+    }
+}
+
+fn jacobi_shot(flexure: &Flexure, root_moment: f64, fx: f64, fy: f64, tol: &Tolerance) -> Result<JacobiShot> {
+    let m0 = Dual64::from_re(root_moment).derivative();
+    let (fx, fy) = (Dual64::from(fx), Dual64::from(fy));
+    let mut positive = true;
+    let tip = shoot(flexure, m0, fx, fy, tol, |s, y| positive &= s == 0.0 || y[0].eps > 0.0)?;
+    let balance = m0 - tip[1] * fy + tip[2] * fx;
+    Ok(JacobiShot { tip: [tip[0].re, tip[1].re, tip[2].re], balance, positive })
 }
 
 /// An exact minimum-energy shape between two poses.
