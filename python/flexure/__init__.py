@@ -17,10 +17,10 @@ from pathlib import Path
 from typing import Union
 
 from . import exact
-from ._flexure import ConvergenceError, Flexure
+from ._flexure import ConvergenceError, Flexure, StabilityWarning
 from ._flexure import Mechanism as _Mechanism
 
-__all__ = ["Flexure", "Mechanism", "ConvergenceError", "exact"]
+__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "exact"]
 
 
 class Mechanism:

@@ -9,6 +9,9 @@ class ConvergenceError(RuntimeError):
     """A solver stopped before meeting its tolerance."""
     residual: float
 
+class StabilityWarning(UserWarning):
+    """An equilibrium was found but is unstable."""
+
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
 
@@ -42,7 +45,7 @@ class Flexure:
         """Bending energy in joules."""
     def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
         """Equilibrium alpha (N,) under a tip moment (N*m) and force (N) in the root frame.
-        Raises ConvergenceError if no equilibrium is found."""
+        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable."""
     def compliance(self, alpha: Optional[ArrayLike] = None) -> np.ndarray:
         """(3, 3) tip compliance J K^-1 J^T (Eq. 36), at the rest shape by default."""
     def buckling_load(self, tip: str = "free") -> float:

@@ -4,6 +4,7 @@ Each test names its source and its tolerance's reason.
 """
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -44,6 +45,24 @@ def test_bisshopp_drucker():
     # The model: within 1 % of L and 1 degree (Sec. III-C).
     assert math.hypot(*(model[1:] - exact[1:])) < 0.01
     assert abs(math.degrees(model[0] - exact[0])) < 1.0
+
+
+def test_unstable_equilibrium_warns():
+    # A straight column past Euler's pi^2 EI/(4 L^2) = 2.467 (model, N = 3: 2.4677):
+    # the straight shape is an equilibrium, but unstable, and both solvers say so.
+    f = flexure.Flexure()
+    with pytest.warns(flexure.StabilityWarning, match="unstable"):
+        alpha = f.deflect(fx=-3.0)
+    assert np.allclose(alpha, 0.0)
+    with pytest.warns(flexure.StabilityWarning, match="Jacobi"):
+        flexure.exact.deflect(fx=-3.0)
+    # Below it, and with the side force that makes it bend stably, no warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        f.deflect(fx=-2.4)
+        flexure.exact.deflect(fx=-2.4)
+        f.deflect(fx=-4.0, fy=0.05)
+        flexure.exact.deflect(fx=-4.0, fy=0.05)
 
 
 def test_circular_arc():

@@ -2,7 +2,8 @@
 //!
 //! Inputs accept anything array-like; outputs are float64 NumPy arrays.
 //! Bad input raises `ValueError` naming the parameter; a solver that does
-//! not converge raises `flexure.ConvergenceError` with its residual.
+//! not converge raises `flexure.ConvergenceError` with its residual; an
+//! equilibrium that is found but unstable warns with `flexure.StabilityWarning`.
 
 use flexure::kinematics::{Pose, par_poses_root_tip};
 use flexure::mechanism::file::from_toml;
@@ -15,7 +16,7 @@ use flexure::{
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,6 +26,20 @@ create_exception!(
     PyRuntimeError,
     "A solver stopped before meeting its tolerance; `residual` holds its last residual."
 );
+
+create_exception!(
+    _flexure,
+    StabilityWarning,
+    PyUserWarning,
+    "An equilibrium was found but is unstable: a small disturbance would move the flexure away from it."
+);
+
+/// Warns that the equilibrium `what` describes is unstable.
+fn warn_unstable(py: Python<'_>, what: String) -> PyResult<()> {
+    // The message is built from numbers, so it has no interior NUL.
+    let message = std::ffi::CString::new(what).unwrap_or_default();
+    PyErr::warn(py, py.get_type::<StabilityWarning>().as_any(), &message, 1)
+}
 
 /// The library's error as a Python exception.
 fn to_py(e: Error) -> PyErr {
@@ -225,11 +240,22 @@ impl Flexure {
     fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
         let f = &self.inner;
-        let alpha = py.detach(|| {
+        let found = py.detach(|| {
             let mut data = Statics::new(f);
-            deflect(f, &load, &mut data, &Default::default()).map(|_| data.alpha().to_vec())
+            deflect(f, &load, &mut data, &Default::default()).map(|eq| (data.alpha().to_vec(), eq.stable))
         });
-        Ok(PyArray1::from_vec(py, alpha.map_err(to_py)?))
+        let (alpha, stable) = found.map_err(to_py)?;
+        if !stable {
+            let (m, fx, fy) = (load.moment, load.fx, load.fy);
+            warn_unstable(
+                py,
+                format!(
+                    "deflect: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: its stiffness \
+                     is not positive definite (the load is past a buckling load)"
+                ),
+            )?;
+        }
+        Ok(PyArray1::from_vec(py, alpha))
     }
 
     /// Tip compliance (3, 3), order (phi, x, y): J K⁻¹ Jᵀ with K the energy Hessian (Eq. 36), at alpha (default: the rest shape).
@@ -283,6 +309,13 @@ fn exact_deflect<'py>(
     let f = rest_flexure(length, ei, rest)?;
     let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
     let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
+    if !s.stable {
+        let (m, fx, fy) = (load.moment, load.fx, load.fy);
+        warn_unstable(
+            py,
+            format!("exact.deflect: the elastica under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable (Jacobi test)"),
+        )?;
+    }
     Ok(PyArray1::from_vec(py, vec![s.pose.phi, s.pose.x, s.pose.y]))
 }
 
@@ -363,5 +396,6 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exact_deflect, m)?)?;
     m.add_function(wrap_pyfunction!(exact_compliance_tip, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
+    m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
     Ok(())
 }
