@@ -78,7 +78,9 @@ pub fn shoot<T: Scalar>(
 ///
 /// Newton's Jacobian comes from a dual number carried through the
 /// integrator; the load is applied by continuation from the rest shape, so
-/// the solution lies on the branch that grows from it.
+/// the solution lies on the branch that grows from it. A step that lands on
+/// an unstable shape ([`is_stable`]) is retried shorter while the path is
+/// still stable; [`Solution::stable`] tells whether the final shape is.
 ///
 /// # Example
 /// ```
