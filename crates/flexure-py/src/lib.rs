@@ -34,10 +34,12 @@ create_exception!(
     "An equilibrium was found but is unstable: a small disturbance would move the flexure away from it."
 );
 
-/// Warns that the equilibrium `what` describes is unstable.
-fn warn_unstable(py: Python<'_>, what: String) -> PyResult<()> {
-    // The message is built from numbers, so it has no interior NUL.
-    let message = std::ffi::CString::new(what).unwrap_or_default();
+/// Warns that the equilibrium `solver` found under `load` is unstable, and `why`.
+fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str) -> PyResult<()> {
+    let (m, fx, fy) = (load.moment, load.fx, load.fy);
+    let text = format!("{solver}: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: {why}");
+    // Built from fixed text and numbers, so it has no interior NUL.
+    let message = std::ffi::CString::new(text).unwrap_or_default();
     PyErr::warn(py, py.get_type::<StabilityWarning>().as_any(), &message, 1)
 }
 
@@ -246,14 +248,8 @@ impl Flexure {
         });
         let (alpha, stable) = found.map_err(to_py)?;
         if !stable {
-            let (m, fx, fy) = (load.moment, load.fx, load.fy);
-            warn_unstable(
-                py,
-                format!(
-                    "deflect: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: its stiffness \
-                     is not positive definite (the load is past a buckling load)"
-                ),
-            )?;
+            let why = "its stiffness is not positive definite (the load is past a buckling load)";
+            warn_unstable(py, "deflect", &load, why)?;
         }
         Ok(PyArray1::from_vec(py, alpha))
     }
@@ -310,11 +306,7 @@ fn exact_deflect<'py>(
     let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
     let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
     if !s.stable {
-        let (m, fx, fy) = (load.moment, load.fx, load.fy);
-        warn_unstable(
-            py,
-            format!("exact.deflect: the elastica under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable (Jacobi test)"),
-        )?;
+        warn_unstable(py, "exact.deflect", &load, "the elastica fails the Jacobi test")?;
     }
     Ok(PyArray1::from_vec(py, vec![s.pose.phi, s.pose.x, s.pose.y]))
 }

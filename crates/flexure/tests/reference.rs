@@ -77,8 +77,8 @@ fn straight_column_stability_by_jacobi_field() {
     assert!(!stable(1.01 * half_pi) && !stable(2.0 * half_pi));
     assert!((1.75 * std::f64::consts::PI).cos() > 0.0 && !stable(1.75 * std::f64::consts::PI));
     // Through `deflect`: the straight column past Euler's load is reported unstable.
-    let s = elastica::deflect(&f, &TipLoad { moment: 0.0, fx: -load(1.2 * half_pi), fy: 0.0 }, &Default::default());
-    let s = s.unwrap();
+    let column = TipLoad { moment: 0.0, fx: -load(1.2 * half_pi), fy: 0.0 };
+    let s = elastica::deflect(&f, &column, &Default::default()).unwrap();
     assert!(s.pose.y == 0.0 && !s.stable);
 }
 
