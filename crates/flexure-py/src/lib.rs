@@ -46,13 +46,21 @@ fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str) -> PyR
 /// The library's error as a Python exception.
 fn to_py(e: Error) -> PyErr {
     match e {
-        Error::NoConvergence { residual, .. } | Error::Unstable { residual, .. } => {
+        Error::NoConvergence { residual, .. } | Error::ContinuationStalled { residual, .. } => {
             let err = ConvergenceError::new_err(e.to_string());
             Python::attach(|py| {
                 let _ = err.value(py).setattr("residual", residual);
             });
             err
         }
+        Error::Unstable { load_fraction, .. } => {
+            let err = ConvergenceError::new_err(e.to_string());
+            Python::attach(|py| {
+                let _ = err.value(py).setattr("load_fraction", load_fraction);
+            });
+            err
+        }
+        Error::Interrupted { .. } => pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
     }
 }

@@ -1,7 +1,9 @@
 //! The one error type of the library.
+//!
+//! Every variant says what was reached, in named units, and what to try.
 
 /// Everything that can go wrong: bad input (named, with the value received),
-/// and numerical failure (reported with its residual, never hidden).
+/// and numerical failure (reported with what was reached, never hidden).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A parameter is out of its domain.
@@ -14,29 +16,56 @@ pub enum Error {
         /// What the parameter must satisfy.
         reason: &'static str,
     },
-    /// An iterative solver stopped before meeting its tolerance.
-    #[error("{solver} did not converge after {iterations} iterations: residual {residual:.3e}")]
+    /// An iterative solver stopped at its iteration limit (or on a
+    /// non-finite residual) before meeting its tolerance.
+    #[error(
+        "{solver} did not converge: {iterations} iterations reached a residual of {residual:.3e} {unit}; try a larger max_iterations or a looser tolerance, or check that the problem has a solution"
+    )]
     NoConvergence {
         /// Which solver.
         solver: &'static str,
-        /// Iterations (or continuation steps) spent.
+        /// Iterations spent.
         iterations: usize,
-        /// The last residual, in the solver's own units.
+        /// The last residual.
         residual: f64,
+        /// The residual's unit (for example "N·m" or "relative").
+        unit: &'static str,
+    },
+    /// Load continuation could not advance: its step fell below the
+    /// smallest allowed step, or it ran out of steps.
+    #[error(
+        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}); the load may be beyond what the solver can follow; try a smaller load, or a larger max_steps or smaller min_step",
+        pct = .load_fraction * 100.0
+    )]
+    ContinuationStalled {
+        /// Which problem.
+        solver: &'static str,
+        /// Fraction of the load reached (0 to 1).
+        load_fraction: f64,
+        /// Accepted continuation steps.
+        steps: usize,
+        /// The last residual.
+        residual: f64,
+        /// The residual's unit.
+        unit: &'static str,
     },
     /// Followed from rest, the equilibrium stops being stable: past a
     /// buckling or limit load, where no stable equilibrium is within reach.
     #[error(
-        "{what}: the loading path loses stability at {pct:.1} % of the load (past a buckling or limit load there is no stable equilibrium); residual {residual:.3e}",
+        "{what}: the loading path loses stability at {pct:.4} % of the load (a buckling or limit load); no stable equilibrium is reachable beyond it by loading; try a load below that fraction",
         pct = .load_fraction * 100.0
     )]
     Unstable {
         /// Which problem.
         what: &'static str,
-        /// Fraction of the load at the first unstable step.
+        /// Fraction of the load (0 to 1) at which stability is lost.
         load_fraction: f64,
-        /// The KKT residual there.
-        residual: f64,
+    },
+    /// The caller's interrupt check asked the solver to stop.
+    #[error("interrupted at {pct:.4} % of the load", pct = .load_fraction * 100.0)]
+    Interrupted {
+        /// Fraction of the load reached.
+        load_fraction: f64,
     },
     /// A mechanism file is malformed or inconsistent, at `place` (line and column).
     #[error("{place}: {message}")]
@@ -76,4 +105,9 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
     } else {
         Err(Error::invalid(name, value, "must be a finite number greater than zero"))
     }
+}
+
+/// Checks that a count lies in `1..=max`.
+pub(crate) fn count(name: &'static str, value: usize, max: usize, reason: &'static str) -> Result<usize> {
+    if (1..=max).contains(&value) { Ok(value) } else { Err(Error::invalid(name, value, reason)) }
 }

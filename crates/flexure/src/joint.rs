@@ -31,6 +31,17 @@ pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Opti
     positive("ei", e * plate * b * h.powi(3) / 12.0)
 }
 
+/// The highest order of the Legendre basis. Order 64 resolves curvature
+/// to a polynomial of degree 63, far past where the model converges to
+/// rounding for any load a flexure survives; beyond it the Hessian tables
+/// ($N^2Q/2$ entries) and the $O(N^3)$ solves stop paying for themselves.
+pub const MAX_ORDER: usize = 64;
+
+/// The most constant-curvature segments in a chain (the paper's finite
+/// elements). 64 segments with 5 points each keep the Hessian tables under
+/// 6 MB; the paper's comparison needs 22 to 24.
+pub const MAX_SEGMENTS: usize = 64;
+
 /// The curvature basis of a joint's coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Basis {
@@ -107,10 +118,10 @@ impl Flexure {
     fn with_basis(length: f64, ei: f64, order: usize, basis: Basis, points: usize) -> Result<Self> {
         let length = positive("length", length)?;
         let ei = positive("ei", ei)?;
-        if order == 0 {
-            let name = if basis == Basis::Legendre { "order" } else { "segments" };
-            return Err(Error::invalid(name, order, "must be at least 1"));
-        }
+        match basis {
+            Basis::Legendre => crate::error::count("order", order, MAX_ORDER, "must be from 1 to 64")?,
+            Basis::Segments => crate::error::count("segments", order, MAX_SEGMENTS, "must be from 1 to 64")?,
+        };
         let (energy_weights, tip_angle) = match basis {
             Basis::Legendre => {
                 let mut tip = vec![0.0; order];

@@ -39,7 +39,7 @@
 
 pub mod basis;
 pub mod buckling;
-pub mod cholesky;
+pub mod linalg;
 pub mod compliance;
 pub mod connect;
 pub mod energy;

@@ -5,7 +5,7 @@
 //! over [`Scalar`] so that `num-dual` differentiates through the iterations,
 //! and it works in caller-owned buffers so the hot path does not allocate.
 
-use crate::cholesky;
+use crate::linalg;
 use crate::error::{Error, Result};
 use crate::scalar::Scalar;
 use nalgebra::{SMatrix, SVector};
@@ -91,12 +91,12 @@ pub fn minimize<T: Scalar, O: Objective<T>>(
     for iteration in 0..=settings.max_iterations {
         let residual = norm_inf(&ws.gradient);
         ws.factor.copy_from_slice(&ws.hessian);
-        let positive_definite = cholesky::factor(&mut ws.factor, n);
+        let positive_definite = linalg::cholesky(&mut ws.factor, n);
         if residual <= settings.tolerance {
             return Ok(Report { iterations: iteration, residual, positive_definite });
         }
         if iteration == settings.max_iterations || !residual.is_finite() {
-            return Err(Error::NoConvergence { solver: "Newton minimizer", iterations: iteration, residual });
+            return Err(Error::NoConvergence { unit: "gradient units", solver: "Newton minimizer", iterations: iteration, residual });
         }
         if !positive_definite {
             shift_until_positive_definite(ws);
@@ -104,7 +104,7 @@ pub fn minimize<T: Scalar, O: Objective<T>>(
         for (p, &g) in ws.step.iter_mut().zip(&ws.gradient) {
             *p = -g;
         }
-        cholesky::solve(&ws.factor, n, &mut ws.step);
+        linalg::cholesky_solve(&ws.factor, n, &mut ws.step);
         let slope: f64 = ws.step.iter().zip(&ws.gradient).map(|(p, g)| p.re() * g.re()).sum();
         let mut t = 1.0;
         loop {
@@ -120,7 +120,7 @@ pub fn minimize<T: Scalar, O: Objective<T>>(
             }
             t *= 0.5;
             if t < 1e-12 {
-                return Err(Error::NoConvergence { solver: "Newton line search", iterations: iteration, residual });
+                return Err(Error::NoConvergence { unit: "gradient units", solver: "Newton line search", iterations: iteration, residual });
             }
         }
         std::mem::swap(&mut ws.x, &mut ws.trial_x);
@@ -140,7 +140,7 @@ fn shift_until_positive_definite<T: Scalar>(ws: &mut Workspace<T>) {
         for i in 0..n {
             ws.factor[i * n + i] += T::c(tau);
         }
-        if cholesky::factor(&mut ws.factor, n) {
+        if linalg::cholesky(&mut ws.factor, n) {
             return;
         }
         tau *= 10.0;
@@ -183,7 +183,7 @@ pub fn find_root<const D: usize>(
         if residual <= tolerance {
             return Ok(Root { x, iterations: iteration, residual });
         }
-        let fail = Error::NoConvergence { solver: "Newton shooting", iterations: iteration, residual };
+        let fail = Error::NoConvergence { unit: "residual units", solver: "Newton shooting", iterations: iteration, residual };
         if iteration == max_iterations || !residual.is_finite() {
             return Err(fail);
         }

@@ -1,6 +1,6 @@
 //! Equilibrium under tip loads (paper Eqs. 22 and 32).
 
-use crate::cholesky;
+use crate::linalg;
 use crate::energy::{energy, energy_gradient, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
@@ -234,7 +234,7 @@ pub fn deflect<T: Scalar>(
                 }
                 allowed = 0.5 * step;
                 if allowed < settings.min_load_step {
-                    return Err(Error::NoConvergence {
+                    return Err(Error::NoConvergence { unit: "N·m",
                         solver: "deflect (load continuation: the load step fell below min_load_step)",
                         iterations,
                         residual,
@@ -252,7 +252,7 @@ pub fn deflect<T: Scalar>(
 fn tangent<T: Scalar>(flexure: &Flexure, load: &TipLoad<T>, data: &mut Statics<T>) -> bool {
     let n = flexure.order();
     data.factor.copy_from_slice(&data.newton.hessian);
-    if !cholesky::factor(&mut data.factor, n) {
+    if !linalg::cholesky(&mut data.factor, n) {
         data.tangent.fill(T::zero());
         return false;
     }
@@ -260,7 +260,7 @@ fn tangent<T: Scalar>(flexure: &Flexure, load: &TipLoad<T>, data: &mut Statics<T
         let j = data.kinematics.jacobian_root_tip.column(i);
         *t = load.moment * j[0] + load.fx * j[1] + load.fy * j[2];
     }
-    cholesky::solve(&data.factor, n, &mut data.tangent);
+    linalg::cholesky_solve(&data.factor, n, &mut data.tangent);
     true
 }
 

@@ -195,7 +195,7 @@ pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonD
                 };
                 step *= 0.5;
                 if step < 1e-4 {
-                    return Err(Error::NoConvergence {
+                    return Err(Error::NoConvergence { unit: "N·m",
                         solver: "tendon equilibrium (continuation)",
                         iterations,
                         residual,

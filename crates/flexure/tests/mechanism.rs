@@ -152,10 +152,9 @@ fn instability_is_reported() {
         std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
     let heavy = from_toml(&text.replace("force = [0.0, -1.0]", "force = [0.0, -40.0]")).unwrap();
     match solve(&heavy, &Settings::default()) {
-        Err(Error::Unstable { load_fraction, residual, .. }) => {
+        Err(Error::Unstable { load_fraction, .. }) => {
             // The model's critical push is 16 N (2 × 10 EI/L², Table I): 40 % of 40 N.
             assert!((load_fraction - 0.4).abs() < 1e-5, "{load_fraction}");
-            assert!(residual.is_finite());
         }
         other => panic!("expected Unstable, got {other:?}"),
     }

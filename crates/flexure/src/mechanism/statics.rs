@@ -183,7 +183,7 @@ fn newton(m: &Mechanism, q: &mut [f64], mu: &mut [f64], loads: &Loads, settings:
             return Ok((iteration, r));
         }
         let fail =
-            Error::NoConvergence { solver: "mechanism equilibrium (KKT Newton)", iterations: iteration, residual: r };
+            Error::NoConvergence { unit: "relative", solver: "mechanism equilibrium (KKT Newton)", iterations: iteration, residual: r };
         if iteration == settings.max_iterations || !r.is_finite() {
             return Err(fail);
         }
@@ -310,7 +310,6 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
                         return Err(Error::Unstable {
                             what: "mechanism equilibrium",
                             load_fraction: hi,
-                            residual: r.1,
                         });
                     }
                 }
@@ -327,7 +326,7 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
                         Err(Error::NoConvergence { residual, .. }) => residual,
                         _ => last.1,
                     };
-                    return Err(Error::NoConvergence {
+                    return Err(Error::NoConvergence { unit: "relative",
                         solver: "mechanism equilibrium (no equilibrium reachable by load continuation; beyond a limit or buckling load?)",
                         iterations: steps,
                         residual,

@@ -1,0 +1,189 @@
+//! The library's linear algebra, in one place: in-place Cholesky and LU on
+//! column-major slices (the solvers' hot path, generic so dual numbers pass
+//! through), the one definiteness test, and null spaces by SVD.
+
+use crate::scalar::Scalar;
+use nalgebra::DMatrix;
+
+/// Overwrites the lower triangle of the $n\times n$ column-major `a` with
+/// $L$, $A = LL^T$. Returns `false` (leaving `a` partly overwritten) unless
+/// $A$ is positive definite.
+///
+/// # Example
+/// ```
+/// let mut a = [4.0, 2.0, 2.0, 3.0];
+/// assert!(flexure::linalg::cholesky(&mut a, 2));
+/// let mut b = [2.0, 1.0];
+/// flexure::linalg::cholesky_solve(&a, 2, &mut b);
+/// assert!((b[0] - 0.5).abs() < 1e-15 && b[1].abs() < 1e-15);
+/// ```
+pub fn cholesky<T: Scalar>(a: &mut [T], n: usize) -> bool {
+    for j in 0..n {
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[k * n + j] * a[k * n + j];
+        }
+        if d.re().is_nan() || d.re() <= 0.0 {
+            return false;
+        }
+        let d = d.sqrt();
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = a[j * n + i];
+            for k in 0..j {
+                s -= a[k * n + i] * a[k * n + j];
+            }
+            a[j * n + i] = s / d;
+        }
+    }
+    true
+}
+
+/// Solves $LL^T x = b$ in place, with `l` from [`cholesky`].
+pub fn cholesky_solve<T: Scalar>(l: &[T], n: usize, b: &mut [T]) {
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[k * n + i] * b[k];
+        }
+        b[i] = s / l[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= l[i * n + k] * b[k];
+        }
+        b[i] = s / l[i * n + i];
+    }
+}
+
+/// The one definiteness test: whether the symmetric column-major $n\times n$
+/// matrix `a` is positive definite, by Cholesky on a copy (`scratch`, length
+/// $n^2$), with every pivot $d_j$ required to exceed $10^{-12}\max_i a_{ii}$
+/// so that a matrix singular to rounding counts as not definite.
+///
+/// # Example
+/// ```
+/// let mut scratch = [0.0; 4];
+/// assert!(flexure::linalg::positive_definite(&[2.0, 1.0, 1.0, 2.0], 2, &mut scratch));
+/// assert!(!flexure::linalg::positive_definite(&[1.0, 1.0, 1.0, 1.0], 2, &mut scratch));
+/// ```
+pub fn positive_definite<T: Scalar>(a: &[T], n: usize, scratch: &mut [T]) -> bool {
+    let scale = (0..n).map(|i| a[i * n + i].re()).fold(0.0_f64, f64::max);
+    if n == 0 {
+        return true;
+    }
+    if !(scale > 0.0 && scale.is_finite()) {
+        return false;
+    }
+    scratch.copy_from_slice(a);
+    for i in 0..n {
+        scratch[i * n + i] -= T::c(1e-12 * scale);
+    }
+    cholesky(scratch, n)
+}
+
+/// [`positive_definite`] for an owned matrix (allocates its scratch copy).
+pub fn is_positive_definite(a: &DMatrix<f64>) -> bool {
+    let n = a.nrows();
+    let mut scratch = vec![0.0; n * n];
+    positive_definite(a.as_slice(), n, &mut scratch)
+}
+
+/// LU factorization with partial pivoting of the $n\times n$ column-major
+/// `a`, in place; `pivots[k]` is the row swapped into place at step $k$.
+/// Returns `false` if a pivot is zero or not finite (a singular matrix).
+pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
+    for k in 0..n {
+        let p = (k..n).fold(k, |best, i| if a[k * n + i].re().abs() > a[k * n + best].re().abs() { i } else { best });
+        let pivot = a[k * n + p].re();
+        if !(pivot.is_finite() && pivot != 0.0) {
+            return false;
+        }
+        pivots[k] = p;
+        if p != k {
+            for j in 0..n {
+                a.swap(j * n + k, j * n + p);
+            }
+        }
+        let d = a[k * n + k];
+        for i in k + 1..n {
+            a[k * n + i] /= d;
+        }
+        for j in k + 1..n {
+            let f = a[j * n + k];
+            if f.re() != 0.0 || f != T::zero() {
+                for i in k + 1..n {
+                    let l = a[k * n + i];
+                    a[j * n + i] -= l * f;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Solves $Ax = b$ in place with the factors from [`lu`].
+///
+/// # Example
+/// ```
+/// use flexure::linalg::{lu, lu_solve};
+/// let mut a = [0.0, 1.0, 2.0, 3.0]; // columns (0, 1) and (2, 3)
+/// let mut piv = [0; 2];
+/// assert!(lu(&mut a, 2, &mut piv));
+/// let mut b = [4.0, 5.0];
+/// lu_solve(&a, 2, &piv, &mut b);
+/// assert!((b[0] + 1.0).abs() < 1e-15 && (b[1] - 2.0).abs() < 1e-15);
+/// ```
+pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
+    for k in 0..n {
+        b.swap(k, pivots[k]);
+    }
+    for j in 0..n {
+        let bj = b[j];
+        for i in j + 1..n {
+            b[i] -= a[j * n + i] * bj;
+        }
+    }
+    for j in (0..n).rev() {
+        b[j] /= a[j * n + j];
+        let bj = b[j];
+        for i in 0..j {
+            b[i] -= a[j * n + i] * bj;
+        }
+    }
+}
+
+/// An orthonormal basis of the null space of the $m\times n$ matrix `g`
+/// (the identity when $m = 0$), from its singular value decomposition:
+/// singular values at most $10^{-10}\sigma_{max}$ count as zero. Working on
+/// $G$ itself, not $G^TG$, keeps the condition number unsquared, so
+/// redundant closure equations (many parallel legs) are told from real ones.
+///
+/// # Example
+/// ```
+/// use nalgebra::DMatrix;
+/// // Two equal rows: one constraint on three coordinates leaves two motions.
+/// let g = DMatrix::from_row_slice(2, 3, &[1.0, 1.0, 0.0, 1.0, 1.0, 0.0]);
+/// let z = flexure::linalg::null_space(&g);
+/// assert_eq!(z.ncols(), 2);
+/// assert!((&g * &z).amax() < 1e-14);
+/// ```
+pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
+    let (m, n) = g.shape();
+    if m == 0 {
+        return DMatrix::identity(n, n);
+    }
+    // Pad to at least n rows so the decomposition returns all n right singular vectors.
+    let rows = m.max(n);
+    let mut padded = DMatrix::zeros(rows, n);
+    padded.view_mut((0, 0), (m, n)).copy_from(g);
+    let svd = nalgebra::SVD::new(padded, false, true);
+    let Some(v_t) = svd.v_t else { return DMatrix::zeros(n, 0) };
+    let top = svd.singular_values.amax();
+    let keep: Vec<usize> = (0..n).filter(|&i| !(svd.singular_values[i] > 1e-10 * top)).collect();
+    if top == 0.0 {
+        return DMatrix::identity(n, n);
+    }
+    DMatrix::from_fn(n, keep.len(), |r, c| v_t[(keep[c], r)])
+}
