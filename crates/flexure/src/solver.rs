@@ -168,6 +168,10 @@ pub struct Workspace<T: Scalar> {
     pub x: Vec<T>,
     /// $\lambda$ of the current state.
     pub lambda: f64,
+    /// Where the last [`continuation`] first lost stability ([`Path::limit`]),
+    /// kept when it stops with an error, so a caller can tell a path that
+    /// failed after losing stability from one that failed before.
+    pub limit: Option<f64>,
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
     dlambda: Vec<T>,
@@ -193,6 +197,7 @@ impl<T: Scalar> Workspace<T> {
             n,
             x: vec![z; n],
             lambda: 0.0,
+            limit: None,
             jacobian: vec![z; n * n],
             dlambda: vec![z; n],
             matrix: vec![z; m * m],
@@ -441,6 +446,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     check_dim(problem, ws)?;
     let n = ws.n;
     let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
+    ws.limit = None;
     // The start: converge at λ = 0 (the rest state, or the assembled one).
     let start = newton(problem, ws, 0.0, settings)?;
     path.iterations += start.iterations;
@@ -532,6 +538,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
         }
         if path.stable && !stable && path.limit.is_none() {
             path.limit = Some(if fold { new_lambda.max(lambda) } else { lambda });
+            ws.limit = path.limit;
         }
         if !has_tangent {
             ws.tangent.copy_from_slice(&ws.previous_tangent);

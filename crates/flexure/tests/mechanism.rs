@@ -2,10 +2,10 @@
 //! library functions, and the exact elastica composed by hand.
 
 use flexure::mechanism::Mechanism;
+use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
-use flexure::mechanism::statics::{
-    Parameter, Settings, assemble_unloaded, body_frames, buckle, compliance, solve, sweep,
-};
+use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames, compliance, solve};
+use flexure::mechanism::sweep::{Parameter, sweep};
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{Error, Flexure, TipLoad, bending_stiffness};
@@ -135,7 +135,9 @@ fn finger_against_the_exact_elastica() {
 fn sweep_follows_the_load() {
     let m = example("paper_tendon");
     let p = Parameter::parse(&m, "tendon.flexor.tension").unwrap();
-    let rows = sweep(&m, &p, &[0.0, 10.0, 20.0, 28.0], &Settings::default()).unwrap();
+    let out = sweep(&m, &p, &[0.0, 10.0, 20.0, 28.0], &Settings::default()).unwrap();
+    assert!(out.stability_limit.is_none());
+    let rows: Vec<_> = out.rows.iter().map(|(_, s)| s).collect();
     assert_eq!(rows.len(), 4);
     assert!(rows.windows(2).all(|w| w[1].q[0] > w[0].q[0]));
     let direct = solve(&m, &Settings::default()).unwrap();

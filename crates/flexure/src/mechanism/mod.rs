@@ -7,10 +7,14 @@
 //! parent body's frame, and the child body's frame is the joint's output
 //! frame (for a flexure, the tip frame of Eq. 7).
 
+pub mod buckling;
 pub mod file;
+mod indeterminate;
 pub mod joints;
 pub mod kinematics;
+pub mod lagrangian;
 pub mod statics;
+pub mod sweep;
 
 use crate::kinematics::Pose;
 pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
@@ -126,6 +130,27 @@ impl Loads {
             force: self.force.iter().zip(&other.force).map(|(a, b)| std::array::from_fn(|i| mix(a[i], b[i]))).collect(),
             gravity: std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i])),
         }
+    }
+
+    /// Checks that the loads fit `m` (a tension per tendon, a triple per
+    /// point load), are finite, and that no tension is negative.
+    pub fn validate(&self, m: &Mechanism) -> crate::Result<()> {
+        use crate::Error;
+        if self.tension.len() != m.tendons.len() || self.force.len() != m.forces.len() {
+            return Err(Error::invalid(
+                "loads",
+                format!("{} tensions and {} forces", self.tension.len(), self.force.len()),
+                "must have one tension per tendon and one (Fx, Fy, M) per force of the mechanism",
+            ));
+        }
+        let all = self.tension.iter().chain(self.force.iter().flatten()).chain(&self.gravity);
+        if let Some(v) = all.into_iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("loads", v, "must be finite"));
+        }
+        if let Some(t) = self.tension.iter().find(|t| **t < 0.0) {
+            return Err(Error::invalid("tension", t, "a tendon's tension must not be negative"));
+        }
+        Ok(())
     }
 
     /// No load at all.
