@@ -1,11 +1,11 @@
 //! Mechanisms against independent computations: closed forms, the single-joint
 //! library functions, and the exact elastica composed by hand.
 
-use flexure::mechanism::Mechanism;
 use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, sweep};
+use flexure::mechanism::{Closure, JointKind, Mechanism};
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{Error, Flexure, TipLoad, bending_stiffness};
@@ -71,56 +71,76 @@ fn mixed_chain_closed_form() {
     assert!((f.bodies[hand].angle - (s.q[0] + s.q[1] + s.q[5])).abs() < 1e-12);
 }
 
-/// The finger, composed by hand: cut each flexure, sum the loads on
-/// everything beyond it (fingertip force; the tendon's pull at its via
-/// points and where it leaves the cut), express them at the flexure tip in
-/// its root frame, and solve the exact elastica. The model's joint poses
-/// agree within 1 % of L and 1° (Sec. III-C).
-#[test]
-fn finger_against_the_exact_elastica() {
-    let m = example("finger");
-    let s = solve(&m, &Settings::default()).unwrap();
+/// Composed by hand: cut each flexure, sum the loads on everything beyond
+/// it (point forces; weights; the tendon's pull at its via points and where
+/// it leaves the cut; closure forces, −μ on body a and +μ on body b of each
+/// pin or weld, from the solution's multipliers), express them at the
+/// flexure tip in its root frame, and solve the exact elastica. The model's
+/// joint poses agree within 1 % of L and 1° (Sec. III-C).
+fn against_the_exact_elastica(m: &Mechanism, gravity: bool) {
+    let s = solve(m, &Settings::default()).unwrap();
     assert!(s.stable);
-    let f = body_frames(&m, &s);
-    let tendon = &m.tendons[0];
-    let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+    let f = body_frames(m, &s);
     for (ji, j) in m.joints.iter().enumerate() {
         // Bodies beyond this joint: its child and everything below.
         let beyond: Vec<usize> = (0..m.bodies.len()).filter(|&b| m.path(b).contains(&ji)).collect();
         let tip = f.bodies[j.child];
         let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
-        let mut add = |p: [f64; 2], force: [f64; 2]| {
+        let mut add = |p: [f64; 2], force: [f64; 2], moment: f64| {
             fx += force[0];
             fy += force[1];
-            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0];
+            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0] + moment;
         };
         for load in &m.forces {
             if beyond.contains(&load.body) {
-                add(f.bodies[load.body].point(load.at), load.force);
+                add(f.bodies[load.body].point(load.at), load.force, load.moment);
+            }
+        }
+        for &b in &beyond {
+            if gravity {
+                let body = &m.bodies[b];
+                add(f.bodies[b].point(body.com), [body.mass * m.gravity[0], body.mass * m.gravity[1]], 0.0);
             }
         }
         // The tendon pulls each via point toward its neighbours; count the
         // pulls on via points that ride on bodies beyond the cut.
-        for (i, &(b, _)) in tendon.path.iter().enumerate() {
-            if !beyond.contains(&b) {
-                continue;
-            }
-            for k in [i.wrapping_sub(1), i + 1] {
-                if let Some(q) = world.get(k) {
-                    let d = [q[0] - world[i][0], q[1] - world[i][1]];
-                    let n = d[0].hypot(d[1]);
-                    add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n]);
+        for tendon in &m.tendons {
+            let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+            for (i, &(b, _)) in tendon.path.iter().enumerate() {
+                if !beyond.contains(&b) {
+                    continue;
+                }
+                for k in [i.wrapping_sub(1), i + 1] {
+                    if let Some(q) = world.get(k) {
+                        let d = [q[0] - world[i][0], q[1] - world[i][1]];
+                        let n = d[0].hypot(d[1]);
+                        add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n], 0.0);
+                    }
                 }
             }
+        }
+        let mut row = 0;
+        for c in &m.closures {
+            let (a, a_at, b, b_at, moment) = match *c {
+                Closure::Weld { a, a_origin, b, b_origin } => {
+                    (a, [a_origin.x, a_origin.y], b, [b_origin.x, b_origin.y], Some(s.multipliers[row + 2]))
+                }
+                Closure::Pin { a, a_at, b, b_at } => (a, a_at, b, b_at, None),
+            };
+            let mu = [s.multipliers[row], s.multipliers[row + 1]];
+            if beyond.contains(&a) {
+                add(f.bodies[a].point(a_at), [-mu[0], -mu[1]], -moment.unwrap_or(0.0));
+            }
+            if beyond.contains(&b) {
+                add(f.bodies[b].point(b_at), mu, moment.unwrap_or(0.0));
+            }
+            row += c.equations();
         }
         // Into the flexure's root frame.
         let root = f.roots[ji];
         let (sn, cs) = root.angle.sin_cos();
         let load = TipLoad { moment: mz, fx: cs * fx + sn * fy, fy: -sn * fx + cs * fy };
-        let flex = match &j.kind {
-            flexure::mechanism::JointKind::Flexure(fl) => fl,
-            _ => unreachable!("the finger has flexures only"),
-        };
+        let JointKind::Flexure(flex) = &j.kind else { panic!("flexures only") };
         let exact = elastica::deflect(flex, &load, &Default::default()).unwrap().pose;
         let model = &f.joints[ji].pose;
         let l = flex.length();
@@ -128,6 +148,47 @@ fn finger_against_the_exact_elastica() {
         assert!((model.phi - exact.phi).abs().to_degrees() < 1.0, "{}: angle {} vs {}", j.name, model.phi, exact.phi);
         assert!(exact.phi.abs() > 0.02, "{}: a test that bends the joint", j.name);
     }
+}
+
+/// The finger: an open chain loaded by a tendon and a fingertip force.
+#[test]
+fn finger_against_the_exact_elastica() {
+    against_the_exact_elastica(&example("finger"), false);
+}
+
+/// The four-bar: a loop closed by a pin (its force from the multipliers),
+/// with gravity, a tendon and a force.
+#[test]
+fn four_bar_against_the_exact_elastica() {
+    let m = example("four_bar");
+    assert_eq!(m.constraints(), 2);
+    against_the_exact_elastica(&m, true);
+}
+
+/// The four-leg example's stated numbers: lateral stiffness 4 × 12 EI/L³
+/// (N = 3 exact for guided legs) and buckling at 4 × 10 EI/L² (Table I).
+#[test]
+fn four_leg_stage_example() {
+    let m = example("four_leg_stage");
+    let (l, ei): (f64, f64) = (0.05, 2.0e-3);
+    let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
+    let c = compliance(&m, &unloaded, m.body("stage").unwrap(), [0.0, -0.06]).unwrap();
+    assert!((1.0 / c[(1, 1)] - 48.0 * ei / l.powi(3)).abs() < 1e-9 * 48.0 * ei / l.powi(3));
+    let b = buckle(&m, &Settings::default()).unwrap();
+    // The file pushes with 10 N.
+    assert!((b.load_factor * 10.0 - 40.0 * ei / (l * l)).abs() < 1e-9 * 40.0 * ei / (l * l));
+    // Under its 2 N lateral, 10 N axial load the welds' forces are fixed by
+    // compatibility, not by the least-force rule: a rigid stage on identical
+    // inextensible legs shortens them linearly across it, so the legs'
+    // forces along world y are P_k = a + b·d_k (equal steps, the overturning
+    // moment of the lateral load making b ≠ 0), and they carry the 10 N
+    // (leg0 takes what the welds, pushing the stage with −μ, do not).
+    let s = solve(&m, &Settings::default()).unwrap();
+    let welds: Vec<f64> = (0..3).map(|k| -s.multipliers[3 * k + 1]).collect();
+    let legs = [10.0 - welds.iter().sum::<f64>(), welds[0], welds[1], welds[2]];
+    let steps: Vec<f64> = legs.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(steps[0].abs() > 0.1, "the lateral load tilts the shares: {legs:?}");
+    assert!(steps.windows(2).all(|w| (w[1] - w[0]).abs() < 1e-6 * 10.0), "{legs:?}");
 }
 
 /// A sweep continues from value to value and ends where a direct solve does.
