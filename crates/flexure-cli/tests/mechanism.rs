@@ -130,3 +130,72 @@ fn bad_files_exit_2_naming_the_place() {
         assert!(err.contains(what), "{args:?}: {err}");
     }
 }
+
+/// Sweeping the parallelogram's push past its critical load: the stable rows,
+/// then the limit, found between the two values around it. The model's
+/// critical push is twice one leg's guided load (`buckling_load`, Table I:
+/// 10 EI/L² at N = 3), from the file's L = 0.05 m and EI = 2e-3 N·m². The
+/// limit is bisected to 1e-6 of the value and the stability test's margin
+/// (√tolerance of the joints' stiffness) moves it by about as much: 1e-5.
+#[test]
+fn sweep_past_the_critical_load() {
+    use flexure::{Flexure, TipConstraint, buckling_load};
+    let leg = Flexure::new(0.05, 2.0e-3, 3).unwrap();
+    let critical = 2.0 * buckling_load(&leg, TipConstraint::Guided).unwrap().critical_load;
+    let file = format!("{}/parallelogram.toml", examples());
+    for (range, stable) in [("0:-20:5", vec![0.0, -5.0, -10.0, -15.0]), ("0:-20:3", vec![0.0, -10.0])] {
+        let spec = format!("force.push.fy={range}");
+        let (code, out, err) = run(&["solve", &file, "--sweep", &spec, "--json"]);
+        assert_eq!(code, 0, "{err}");
+        assert!(err.starts_with("warning: ") && err.contains("stability is lost"), "{err}");
+        let v: Value = serde_json::from_str(&out).unwrap();
+        let rows = v["rows"].as_array().unwrap();
+        let at = column(&v, "force.push.fy");
+        let values: Vec<f64> = rows.iter().map(|r| r[at].as_f64().unwrap()).collect();
+        assert_eq!(values, stable, "{range}");
+        let limit = &v["stability_limit"];
+        let value = limit["value"].as_f64().unwrap();
+        assert!((value / -critical - 1.0).abs() < 1e-5, "{range}: {value} vs {}", -critical);
+        assert!((limit["fraction"].as_f64().unwrap() - critical / 20.0).abs() < 1e-5, "{range}");
+        // The table: one line per stable value, then the limit; no null.
+        let (code, table, _) = run(&["solve", &file, "--sweep", &spec]);
+        assert_eq!(code, 0);
+        let lines: Vec<&str> = table.lines().collect();
+        let first = lines.iter().position(|l| *l == "rows:").unwrap() + 1;
+        let last = lines.iter().position(|l| *l == "stability_limit:").unwrap();
+        assert_eq!(last - first, stable.len(), "{table}");
+        assert!(!table.contains("null") && !table.contains("NaN"), "{table}");
+        assert!(lines[last + 1].trim_start().starts_with("value:"), "{table}");
+    }
+}
+
+/// The fuzzer's findings at the command line: exit 2 with the key, line and
+/// column, no panic, nothing on stdout.
+#[test]
+fn fuzzer_findings_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let spring = "[[joint]]\nname = \"a\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 5e-324\n[[force]]\nbody = \"b\"\nat = [0.0, 0.0]\nmoment = 1.0\n";
+    let long = std::fs::read_to_string(format!("{}/parallelogram.toml", examples())).unwrap().replacen(
+        "length = 0.05",
+        "length = 1e300",
+        1,
+    );
+    for (name, text, command, what) in [
+        ("empty.toml", String::new(), "buckle", "nothing can buckle".to_string()),
+        ("spring.toml", spring.to_string(), "solve", "line 6, column 13: joint \"a\": stiffness = 5e-324".to_string()),
+        ("long.toml", long, "buckle", "line 11, column 10: joint \"left\": length = 1e300".to_string()),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        for json in [true, false] {
+            let mut args = vec![command, path.to_str().unwrap()];
+            if json {
+                args.push("--json");
+            }
+            let (code, out, err) = run(&args);
+            assert_eq!(code, 2, "{name}: {out}{err}");
+            assert!(err.contains(&what) && !err.contains("panicked"), "{name}: {err}");
+            assert!(out.is_empty(), "{name}: {out}");
+        }
+    }
+}

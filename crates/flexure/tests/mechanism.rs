@@ -294,3 +294,11 @@ fn file_errors_name_the_place() {
         assert!(msg.contains(what) && msg.contains(place), "expected {what:?} at {place}: {msg}");
     }
 }
+
+/// The solver core's interrupt hook stops mechanism solves too, saying where.
+#[test]
+fn interruptible() {
+    let m = example("finger");
+    let r = flexure::solver::with_interrupt(|| true, || solve(&m, &Settings::default()));
+    assert!(matches!(r, Err(Error::Interrupted { .. })), "{r:?}");
+}

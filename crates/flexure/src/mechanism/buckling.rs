@@ -4,7 +4,7 @@ use super::Mechanism;
 use super::indeterminate::settle;
 use super::kinematics::frames;
 use super::lagrangian::lagrangian;
-use super::statics::{Settings, assemble_unloaded, constrained};
+use super::statics::{Settings, assemble_unloaded, constrained, free_motion};
 use crate::buckling::{generalized_symmetric, normalized};
 use crate::error::{Error, Result};
 use crate::linalg;
@@ -38,10 +38,11 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     if z.ncols() == 0 {
         return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can buckle".into() });
     }
+    let moving = free_motion(m, &s0).map_or(String::new(), |j| format!(" ({j})"));
     let free = || Error::Singular {
-        what:
-            "the unloaded mechanism has a zero-stiffness mode (a free joint or mechanism): linear buckling is undefined"
-                .into(),
+        what: format!(
+            "the unloaded mechanism has a zero-stiffness motion{moving}: linear buckling is undefined; give a joint on it a stiffness, or hold it with a closure"
+        ),
     };
     let k0 = constrained(&a0.hessian, &z);
     if !linalg::is_positive_definite(&k0) {

@@ -144,8 +144,8 @@ impl Loads {
             ));
         }
         let all = self.tension.iter().chain(self.force.iter().flatten()).chain(&self.gravity);
-        if let Some(v) = all.into_iter().find(|v| !v.is_finite()) {
-            return Err(Error::invalid("loads", v, "must be finite"));
+        if let Some(v) = all.into_iter().find(|v| !(v.is_finite() && v.abs() <= file::MAX_MAGNITUDE)) {
+            return Err(Error::invalid("loads", v, "must be finite and at most 1e30 in magnitude"));
         }
         if let Some(t) = self.tension.iter().find(|t| **t < 0.0) {
             return Err(Error::invalid("tension", t, "a tendon's tension must not be negative"));

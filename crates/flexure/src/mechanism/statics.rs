@@ -362,7 +362,8 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
     let mut g = DMatrix::zeros(m.constraints(), m.dof());
     add_closures(m, &f, &[], &mut DVector::zeros(m.constraints()), &mut g, None);
     let multipliers = settle(m, &f, &g, &problem.multipliers(&ws.x), &problem.to);
-    let energy = f.joints.iter().map(|s| s.energy).sum::<f64>();
+    // + 0.0: an empty sum is −0.
+    let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
         return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
     }
@@ -418,11 +419,40 @@ pub(super) fn follow(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
         Ok(path) if path.stable => solution(&problem, &ws, &path),
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
+        // The start has a zero-stiffness motion along the load: name it.
+        Err(Error::Singular { what }) if ws.limit.is_none() => Err(Error::Singular {
+            what: match free_motion(m, start) {
+                Some(joints) => format!(
+                    "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
+                ),
+                None => what,
+            },
+        }),
         Err(e) => match ws.limit {
             Some(limit) => Err(unstable(Some(limit))),
             None => Err(e),
         },
     }
+}
+
+/// The joints that move in a zero-stiffness motion of `s` (the constrained
+/// stiffness's softest mode, if it is singular), as "joint \"a\" and joint \"b\"".
+pub(super) fn free_motion(m: &Mechanism, s: &Solution) -> Option<String> {
+    let (z, k) = stiffness(m, s).ok()?;
+    if k.nrows() == 0 || linalg::is_positive_definite(&k) {
+        return None;
+    }
+    let eig = nalgebra::SymmetricEigen::new(k);
+    let soft = eig.eigenvalues.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?.0;
+    let motion = &z * eig.eigenvectors.column(soft);
+    let largest = motion.amax();
+    let names: Vec<String> = m
+        .joints
+        .iter()
+        .filter(|j| (0..j.kind.joint().dof()).any(|i| motion[j.offset + i].abs() > 0.1 * largest))
+        .map(|j| format!("joint {:?}", j.name))
+        .collect();
+    (!names.is_empty()).then(|| names.join(" and "))
 }
 
 /// The fraction of the load change from `start.loads` to `to` where the
