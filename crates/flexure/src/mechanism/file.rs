@@ -383,7 +383,14 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         closures.push(Closure::Pin { a, a_at, b: find(&p.b)?, b_at });
     }
     let gravity = src.array("", "gravity", &file.gravity)?;
-    let m = Mechanism { bodies, joints, tendons, forces, closures, gravity, parent_joint, dof: offset };
+    let closure_places = file
+        .weld
+        .iter()
+        .map(|w| &w.a)
+        .chain(file.pin.iter().map(|p| &p.a))
+        .map(|a| place(text, a.span().start))
+        .collect();
+    let m = Mechanism { bodies, joints, tendons, forces, closures, gravity, parent_joint, dof: offset, closure_places };
     check_stiffness_ratio(&src, &m, &stiffness_places)?;
     check_tendon_directions(&src, &m, &via_places)?;
     Ok(m)

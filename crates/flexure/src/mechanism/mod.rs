@@ -184,6 +184,8 @@ pub struct Mechanism {
     /// `parent_joint[b]`: the joint whose child is body `b`.
     parent_joint: Vec<Option<usize>>,
     dof: usize,
+    /// "line L, column C" of each closure in the file, for errors.
+    closure_places: Vec<String>,
 }
 
 impl Mechanism {
@@ -219,6 +221,11 @@ impl Mechanism {
             force: self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]).collect(),
             gravity: self.gravity,
         }
+    }
+
+    /// Where closure `i` was given in the file ("line L, column C").
+    pub fn closure_place(&self, i: usize) -> &str {
+        self.closure_places.get(i).map_or("the file", String::as_str)
     }
 
     /// Joints from the ground to `body`, root first.

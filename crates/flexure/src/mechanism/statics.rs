@@ -39,7 +39,7 @@
 use super::indeterminate::settle;
 use super::kinematics::{Frames, frames, point};
 use super::lagrangian::{add_closures, add_loads, assemble, check_sizes, closure_hessian, lagrangian};
-use super::{JointKind, Loads, Mechanism};
+use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::solver;
@@ -493,10 +493,49 @@ pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution>
     let mut problem = Kkt::new(m, &zero, &zero, settings)?;
     let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
     ws.x = problem.state(&m.rest(), &vec![0.0; m.constraints()]);
-    let report = solver::newton(&mut problem, &mut ws, 0.0, settings)?;
+    let report = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
+        Ok(report) => report,
+        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => {
+            return Err(unassembled(m, problem.length, e));
+        }
+        Err(e) => return Err(e),
+    };
     let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
     let path = solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual };
     solution(&problem, &ws, &path)
+}
+
+/// The error for closures that Newton could not close from rest: placed at
+/// the closure open widest at rest (position gap over the mechanism's
+/// `length`, plus angle gap), or `e` itself if all are closed there.
+fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
+    let rest = frames(m, &m.rest());
+    let rows = m.constraints();
+    let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
+    add_closures(m, &rest, &[], &mut c, &mut g, None);
+    let mut row = 0;
+    let mut widest: Option<(usize, f64, f64, f64)> = None;
+    for (i, closure) in m.closures.iter().enumerate() {
+        let gap = c[row].hypot(c[row + 1]);
+        let turn = if closure.equations() == 3 { c[row + 2].abs() } else { 0.0 };
+        let size = gap / length + turn;
+        if size > widest.map_or(1e-9, |w| w.1) {
+            widest = Some((i, size, gap, turn));
+        }
+        row += closure.equations();
+    }
+    let Some((i, _, gap, turn)) = widest else { return e };
+    let name = |b: usize| &m.bodies[b].name;
+    let what = match m.closures[i] {
+        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
+        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
+    };
+    Error::File {
+        place: m.closure_place(i).to_string(),
+        message: format!(
+            "{what}: the closures cannot be assembled; at rest this one is open widest ({gap:.3e} m, {turn:.3e} rad), and from there {e}"
+        ),
+    }
 }
 
 /// Equilibrium under the mechanism's loads, by continuation from the
