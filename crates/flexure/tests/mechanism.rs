@@ -302,3 +302,87 @@ fn interruptible() {
     let r = flexure::solver::with_interrupt(|| true, || solve(&m, &Settings::default()));
     assert!(matches!(r, Err(Error::Interrupted { .. })), "{r:?}");
 }
+
+/// Newton's root of `f` from `x` with derivative `df` (100 steps).
+fn root(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut x: f64) -> f64 {
+    for _ in 0..100 {
+        x -= f(x) / df(x);
+    }
+    x
+}
+
+/// A sprung arm (k, length l) pushed along itself by P = 1.5 k/l, closed
+/// forms. Perfectly aligned, the straight arm is an equilibrium at every
+/// load and loses stability at P = k/l, 2/3 of the push: the path follows
+/// it and ends unstable, an error at 2/3. With a transverse force F of
+/// 1e-3 N the bifurcation is imperfect and the path leads smoothly to the
+/// buckled arm, kθ = P l sin θ + F l cos θ.
+#[test]
+fn pitchfork_of_a_sprung_arm() {
+    let (k, l, p) = (1.0, 0.1, 15.0);
+    let arm = |transverse: f64| {
+        from_toml(&format!(
+            "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = {k}\n\
+             [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [{l}, 0.0]\nforce = [-{p}, {transverse}]\n"
+        ))
+        .unwrap()
+    };
+    match solve(&arm(0.0), &Settings::default()) {
+        // The stability margin and the bisection: 1e-5.
+        Err(Error::Unstable { load_fraction, .. }) => assert!((load_fraction - k / (p * l)).abs() < 1e-5),
+        other => panic!("{other:?}"),
+    }
+    let f = 1e-3;
+    let s = solve(&arm(f), &Settings::default()).unwrap();
+    let theta = root(|t| k * t - p * l * t.sin() - f * l * t.cos(), |t| k - p * l * t.cos() + f * l * t.sin(), 1.4);
+    assert!(s.stable && s.limit.is_none());
+    assert!((s.q[0] - theta).abs() < 1e-10, "{} vs {theta}", s.q[0]);
+}
+
+/// A von Mises half-truss snaps through, closed form: a bar of length
+/// l = √(X² + h²) on a free hinge, its foot on a slider with spring k,
+/// its head pinned to an apex that slides vertically on a spring k_v,
+/// pressed down by P. With apex height y the foot moves d = X − √(l² − y²),
+/// and equilibrium is P = k_v(h − y) − k d y/√(l² − y²): a local maximum
+/// (the limit load) at y > 0, then the path runs back to a stable state at
+/// y < −h. Loaded past the maximum the mechanism snaps through: the answer
+/// is that stable state, with the limit fraction P_max/P (to the 1e-6 the
+/// bisection seeks, plus the stability margin's shift).
+#[test]
+fn von_mises_truss_snaps_through() {
+    let (x, h, k, kv, p) = (0.1_f64, 0.03_f64, 1000.0, 12.0, 1.0);
+    let l = x.hypot(h);
+    let text = format!(
+        "[[joint]]\nname = \"roll\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"foot\"\nstiffness = {k}\n\
+         [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"foot\"\nchild = \"bar\"\nrest = {}\n\
+         [[joint]]\nname = \"guide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"apex\"\n\
+         origin = [{x}, 0.0, {}]\nrest = {h}\nstiffness = {kv}\n\
+         [[pin]]\na = \"bar\"\na_at = [{l}, 0.0]\nb = \"apex\"\n\
+         [[force]]\nname = \"press\"\nbody = \"apex\"\nat = [0.0, 0.0]\nforce = [0.0, -{p}]\n",
+        h.atan2(x),
+        std::f64::consts::FRAC_PI_2
+    );
+    let load = |y: f64| {
+        let s = (l * l - y * y).sqrt();
+        kv * (h - y) - k * (x - s) * y / s
+    };
+    // The limit load: the maximum of the load on 0 < y < h, by ternary search.
+    let (mut a, mut b) = (0.0, h);
+    for _ in 0..200 {
+        let (m1, m2) = (a + (b - a) / 3.0, b - (b - a) / 3.0);
+        if load(m1) < load(m2) { a = m1 } else { b = m2 }
+    }
+    let limit = load(a);
+    assert!(limit < p && load(-a) > 0.0, "a snap-through that stays under load");
+    // The far stable state: load(y) = P for y < −h, by bisection.
+    let (mut lo, mut hi) = (-0.9999 * l, -h);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if load(mid) > p { lo = mid } else { hi = mid }
+    }
+    let s = solve(&from_toml(&text).unwrap(), &Settings::default()).unwrap();
+    assert!(s.stable);
+    assert!((s.q[2] - lo).abs() < 1e-10, "apex {} vs {lo}", s.q[2]);
+    let fraction = s.limit.unwrap();
+    assert!((fraction / (limit / p) - 1.0).abs() < 2e-6, "{fraction} vs {}", limit / p);
+}

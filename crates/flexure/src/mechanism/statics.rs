@@ -93,12 +93,13 @@ const MULTIPLIER_SHIFT: f64 = 1e-10;
 ///
 /// Unknowns $x = (q, \nu)$ with the multipliers scaled to the joints,
 /// $\mu_i = s_i\nu_i$ ($s_i = k/\ell$ for position rows, $k$ for angle
-/// rows; $k$ the stiffest joint's diagonal stiffness, $\ell$ the
-/// mechanism's length). Residual: each coordinate's row of
-/// $\nabla V + G^T\mu$ divided by that coordinate's stiffness (radians of
-/// the joint alone), each closure row divided by $\ell$ (position) or 1
-/// (angle): dimensionless, unit "relative". Arc-length weights: 1 for
-/// angles, $1/\ell$ for slider travel, 0 for multipliers.
+/// rows; $k$ the stiffest joint's diagonal stiffness in N·m/rad, a slider's
+/// N/m times $\ell^2$; $\ell$ the mechanism's length). Residual: each
+/// coordinate's row of $\nabla V + G^T\mu$ divided by that coordinate's
+/// stiffness (radians, or metres, of the joint alone; a free joint's by
+/// $k$), each closure row divided by $\ell$ (position) or 1 (angle):
+/// dimensionless, unit "relative". Arc-length weights: 1 for angles,
+/// $1/\ell$ for slider travel, 0 for multipliers.
 #[derive(Debug, Clone)]
 pub struct Kkt<'a> {
     mechanism: &'a Mechanism,
@@ -126,29 +127,31 @@ impl<'a> Kkt<'a> {
         from.validate(m)?;
         to.validate(m)?;
         let n = m.dof();
-        // Diagonal stiffness of each coordinate (constant for every joint kind).
-        let rest = frames(m, &m.rest());
-        let mut stiffness = vec![0.0; n];
-        let mut weight = vec![1.0; n];
-        for (j, s) in m.joints.iter().zip(&rest.joints) {
-            for i in 0..s.gradient.len() {
-                stiffness[j.offset + i] = s.stiffness[(i, i)];
-            }
-            if let JointKind::Prismatic(_) = j.kind {
-                weight[j.offset] = f64::NAN; // set below, once the length is known
-            }
-        }
-        let k_max = stiffness.iter().copied().fold(0.0, f64::max);
-        let k_max = if k_max > 0.0 { k_max } else { 1.0 };
-        let k_min = stiffness.iter().copied().filter(|&k| k > 0.0).fold(k_max, f64::min);
         let length = m
             .joints
             .iter()
             .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
             .sum::<f64>();
         let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
-        weight.iter_mut().filter(|w| w.is_nan()).for_each(|w| *w = 1.0 / length);
-        let row_scale = stiffness.iter().map(|&k| 1.0 / if k > 0.0 { k } else { k_max }).collect();
+        // Diagonal stiffness of each coordinate (constant for every joint
+        // kind), and the factor to N·m/rad: 1 for angles, ℓ² for slider travel.
+        let rest = frames(m, &m.rest());
+        let (mut stiffness, mut unit) = (vec![0.0; n], vec![1.0; n]);
+        for (j, s) in m.joints.iter().zip(&rest.joints) {
+            for i in 0..s.gradient.len() {
+                stiffness[j.offset + i] = s.stiffness[(i, i)];
+            }
+            if let JointKind::Prismatic(_) = j.kind {
+                unit[j.offset] = length * length;
+            }
+        }
+        let moments: Vec<f64> = stiffness.iter().zip(&unit).map(|(k, u)| k * u).collect();
+        let k_max = moments.iter().copied().fold(0.0, f64::max);
+        let k_max = if k_max > 0.0 { k_max } else { 1.0 };
+        let k_min = moments.iter().copied().filter(|&k| k > 0.0).fold(k_max, f64::min);
+        let weight = unit.iter().map(|u| 1.0 / u.sqrt()).collect();
+        // A free coordinate is measured against the stiffest joint.
+        let row_scale = stiffness.iter().zip(&unit).map(|(&k, u)| if k > 0.0 { 1.0 / k } else { u / k_max }).collect();
         let (mut closure_scale, mut multiplier_scale) = (Vec::new(), Vec::new());
         for c in &m.closures {
             for row in 0..c.equations() {
