@@ -23,8 +23,22 @@ pub struct Buckling {
 /// $\det Z^T(K_0 + \lambda K_g)Z = 0$ at the unloaded configuration, where
 /// $K_0$ is the elastic stiffness, $K_g$ the loads' geometric stiffness
 /// with the closure forces of the linear pre-buckling solve, and $Z$ =
-/// [`linalg::null_space`]$(G)$. With redundant closures the pre-buckling
-/// closure forces are the least-norm ones.
+/// [`linalg::null_space`]$(G)$. With redundant closures the indeterminate
+/// part of the pre-buckling closure forces is the one with the least force
+/// through the flexures (see [`super::statics::Solution::multipliers`]).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{buckling::buckle, file::from_toml, statics::Settings};
+/// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself by 2 N
+/// // buckles at P = k/l = 10 N: a factor of 5.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+///      [[force]]\nbody = \"arm\"\nat = [0.1, 0.0]\nforce = [-2.0, 0.0]\n",
+/// )
+/// .unwrap();
+/// assert!((buckle(&m, &Settings::default()).unwrap().load_factor - 5.0).abs() < 1e-12);
+/// ```
 pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     if m.dof() == 0 {
         return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can buckle".into() });

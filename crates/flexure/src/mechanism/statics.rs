@@ -77,7 +77,7 @@ pub struct Solution {
     pub iterations: usize,
 }
 
-/// Relative precision of a sweep's stability limit in the swept value.
+/// Relative precision of a reported stability limit (a load fraction, or a sweep's swept value).
 pub const LIMIT_PRECISION: f64 = 1e-6;
 
 /// Most continuation steps of one bisection probe: a probe below the limit
@@ -392,7 +392,7 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
 /// state at the full load (it ends unstable, or stops after the loss) is
 /// [`Error::Unstable`] at that fraction. The fraction is the continuation's
 /// ([`solver::Path::limit`]) refined by bisection to a relative
-/// [`LIMIT_PRECISION`] (see [`sweep`]).
+/// [`LIMIT_PRECISION`] (as [`super::sweep::sweep`] does between two values).
 pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
     let found = follow(m, start, to, settings);
     let lost = match &found {
@@ -576,6 +576,16 @@ pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f
 
 /// Compliance of the frame at `at` on `body` to a small extra load
 /// $(M, F_x, F_y)$ there: $C = J Z (Z^T\nabla^2 L Z)^{-1} Z^T J^T$, order $(\phi, x, y)$.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::{assemble_unloaded, compliance, Settings}};
+/// // A sprung arm (k = 2 N·m/rad): its tip, 0.1 m out, yields l²/k sideways.
+/// let m = from_toml("[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n").unwrap();
+/// let s = assemble_unloaded(&m, &Settings::default()).unwrap();
+/// let c = compliance(&m, &s, m.body("arm").unwrap(), [0.1, 0.0]).unwrap();
+/// assert!((c[(0, 0)] - 0.5).abs() < 1e-15 && (c[(2, 2)] - 0.005).abs() < 1e-15);
+/// ```
 pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: [f64; 2]) -> Result<Matrix3<f64>> {
     if body >= m.bodies.len() {
         return Err(Error::invalid("body", body, "names no body of the mechanism"));

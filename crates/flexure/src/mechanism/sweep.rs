@@ -82,11 +82,29 @@ pub struct Sweep {
 /// Every row is stable. When the path loses stability between two values,
 /// the loss is found by bisection between them, to a relative
 /// [`LIMIT_PRECISION`] of the swept value (at most 64 halvings, each a
-/// continuation of at most [`PROBE_STEPS`] steps from the last stable
-/// state); the sweep goes on past a
-/// snap-through that lands on a stable state and stops where none is
-/// reached. A first value that cannot be reached stably from the unloaded
-/// state is [`Error::Unstable`].
+/// continuation of at most [`super::statics::PROBE_STEPS`] steps from the
+/// last stable state). The sweep goes on past a snap-through that lands on
+/// a stable state, and stops where none is reached. The first value is
+/// reached from the unloaded state with every load ramped together: if
+/// stability is lost on the way, that is the first row's own
+/// [`Solution::limit`] (or [`Error::Unstable`] if no stable state is reached).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::Settings, sweep::{sweep, Parameter}};
+/// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself loses
+/// // stability at P = k/l = 10 N: found between the rows at 8 and 12 N.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+///      [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0]\n",
+/// )
+/// .unwrap();
+/// let p = Parameter::parse(&m, "force.push.fx").unwrap();
+/// let out = sweep(&m, &p, &[0.0, -4.0, -8.0, -12.0, -16.0], &Settings::default()).unwrap();
+/// assert_eq!(out.rows.len(), 3);
+/// let limit = out.stability_limit.unwrap();
+/// assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5);
+/// ```
 pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Settings) -> Result<Sweep> {
     settings.validate()?;
     if values.is_empty() {
