@@ -1,7 +1,7 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
 use crate::joint::pose as pose_json;
-use crate::options::{FlexureOptions, angle, number};
+use crate::options::{FlexureOptions, angle_of, count, number, segments};
 use clap::Args;
 use flexure::connect::{Connection, connect};
 use flexure::reference::elastica;
@@ -18,7 +18,7 @@ pub fn pose_arg(s: &str) -> Result<PoseArg, String> {
     if parts.len() != 3 {
         return Err(format!("{s:?} must be three values PHI,X,Y"));
     }
-    Ok(PoseArg(Pose { phi: angle(parts[0])?, x: number(parts[1])?, y: number(parts[2])? }))
+    Ok(PoseArg(Pose { phi: angle_of("--pose PHI", parts[0])?, x: number(parts[1])?, y: number(parts[2])? }))
 }
 
 #[derive(Debug, Args)]
@@ -31,8 +31,8 @@ pub struct ConnectArgs {
     /// Solve the exact elastica through the pose instead (shooting on three unknowns).
     #[arg(long, conflicts_with = "segments")]
     exact: bool,
-    /// Use a chain of K constant-curvature segments instead of the model.
-    #[arg(long)]
+    /// Use a chain of K constant-curvature segments instead of the model (1 to 64).
+    #[arg(long, value_parser = segments, allow_hyphen_values = true)]
     segments: Option<usize>,
 }
 
@@ -97,16 +97,16 @@ pub struct Sweep {
     pub count: usize,
 }
 
-/// Parses `F0:F1:COUNT` with finite ends and at least two values.
+/// Most values in one sweep: every value is a full solve, and each is kept for the answer.
+pub const MAX_SWEEP: usize = 10_000;
+
+/// Parses `F0:F1:COUNT` with finite ends and 2 to [`MAX_SWEEP`] values.
 fn range(s: &str) -> Result<Sweep, String> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
         return Err(format!("{s:?} must be F0:F1:COUNT"));
     }
-    let count: usize = parts[2].trim().parse().map_err(|_| format!("COUNT {:?} is not a whole number", parts[2]))?;
-    if count < 2 {
-        return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
-    }
+    let count = count(parts[2], 2, MAX_SWEEP).map_err(|e| format!("COUNT {e}"))?;
     Ok(Sweep { from: number(parts[0])?, to: number(parts[1])?, count })
 }
 

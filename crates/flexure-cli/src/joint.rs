@@ -1,6 +1,6 @@
 //! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
 
-use crate::options::{FlexureOptions, List, angle, number, numbers};
+use crate::options::{FlexureOptions, List, angle, iterations, number, numbers, tolerance};
 use clap::{Args, ValueEnum};
 use flexure::reference::{self, elastica};
 use flexure::{
@@ -96,14 +96,15 @@ pub struct DeflectArgs {
     /// Also solve the exact elastica (shooting); `pose` is then the exact one.
     #[arg(long)]
     exact: bool,
-    /// Also find the factor on the load at which the equilibrium stops being stable.
+    /// Also find the factor on the load, up to 1000, at which the equilibrium
+    /// stops being stable (`stability_limit`; `stable_up_to: 1000` if it stays stable).
     #[arg(long)]
     limit: bool,
-    /// Relative tolerance on the generalized-force residual.
-    #[arg(long, default_value = "1e-12", value_parser = number, allow_hyphen_values = true)]
+    /// Relative tolerance on the generalized-force residual, in (0, 1).
+    #[arg(long, default_value = "1e-12", value_parser = tolerance, allow_hyphen_values = true)]
     tolerance: f64,
-    /// Newton iterations allowed per load step.
-    #[arg(long, default_value_t = 50)]
+    /// Newton iterations allowed per load step, 1 to 10000.
+    #[arg(long, default_value = "50", value_parser = iterations, allow_hyphen_values = true)]
     max_iterations: usize,
     /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
     #[arg(long, conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit"])]
@@ -121,9 +122,6 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let f = args.flexure.build()?;
     let load = args.load.load();
     let mut data = Statics::new(&f);
-    if args.tolerance <= 0.0 {
-        return Err(Error::invalid("tolerance", args.tolerance, "must be greater than zero"));
-    }
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
     let eq = deflect(&f, &load, &mut data, &settings)?;
@@ -135,8 +133,12 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
         "residual": eq.residual,
     });
     if args.limit {
-        // Factors up to 1000 × the given load; null if it stays stable.
-        model["stability_limit"] = json!(flexure::statics::stability_limit(&f, &load, 1000.0)?);
+        const MAX_FACTOR: f64 = 1000.0;
+        // No null in an answer: a null is how a NaN would show (see render::non_finite).
+        match flexure::statics::stability_limit(&f, &load, MAX_FACTOR)? {
+            Some(factor) => model["stability_limit"] = json!(factor),
+            None => model["stable_up_to"] = json!(MAX_FACTOR),
+        }
     }
     if !args.exact {
         return Ok(model);

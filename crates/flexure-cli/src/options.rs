@@ -9,12 +9,83 @@ pub fn number(s: &str) -> Result<f64, String> {
     if v.is_finite() { Ok(v) } else { Err(format!("{s:?} is not a finite number")) }
 }
 
-/// Parses an angle in radians, or in degrees with a `deg` suffix (`45deg`).
-pub fn angle(s: &str) -> Result<f64, String> {
+/// Parses an angle: radians, or degrees with a `deg` suffix (`45deg`).
+/// Also tells whether it is a bare number larger than 2π in magnitude,
+/// which was probably meant in degrees.
+pub fn parse_angle(s: &str) -> Result<(f64, bool), String> {
     match s.trim().strip_suffix("deg") {
-        Some(d) => number(d).map(f64::to_radians),
-        None => number(s),
+        Some(d) => number(d).map(|v| (v.to_radians(), false)),
+        None => number(s).map(|v| (v, v.abs() > std::f64::consts::TAU)),
     }
+}
+
+/// Parses the angle given to `option`, warning when a bare number exceeds 2π.
+pub fn angle_of(option: &str, s: &str) -> Result<f64, String> {
+    let (v, bare_and_large) = parse_angle(s)?;
+    if bare_and_large {
+        let t = s.trim();
+        warn(format!("{option} {t} is read as radians ({:.0}°); write {t}deg for degrees", v.to_degrees()));
+    }
+    Ok(v)
+}
+
+/// Parses `--angle`: radians, or degrees with a `deg` suffix.
+pub fn angle(s: &str) -> Result<f64, String> {
+    angle_of("--angle", s)
+}
+
+/// Parses a whole number from `min` to `max`. Comparing the text's value
+/// before anything is sized by it keeps a huge count from allocating.
+pub fn count(s: &str, min: usize, max: usize) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("{s:?} is not a whole number from {min} to {max}")),
+    }
+}
+
+/// `--order`: from 1 to [`flexure::joint::MAX_ORDER`].
+pub fn order(s: &str) -> Result<usize, String> {
+    count(s, 1, flexure::joint::MAX_ORDER)
+}
+
+/// `--quadrature`: from 1 to [`flexure::quadrature::MAX_POINTS`].
+pub fn quadrature(s: &str) -> Result<usize, String> {
+    count(s, 1, flexure::quadrature::MAX_POINTS)
+}
+
+/// `--segments`: from 1 to [`flexure::joint::MAX_SEGMENTS`].
+pub fn segments(s: &str) -> Result<usize, String> {
+    count(s, 1, flexure::joint::MAX_SEGMENTS)
+}
+
+/// Most Newton iterations one load step may take: enough for any problem
+/// that converges (the default is 50), few enough to stop soon on one that does not.
+pub const MAX_ITERATIONS: usize = 10_000;
+
+/// `--max-iterations`: from 1 to [`MAX_ITERATIONS`].
+pub fn iterations(s: &str) -> Result<usize, String> {
+    count(s, 1, MAX_ITERATIONS)
+}
+
+/// A relative tolerance: a finite number in (0, 1).
+pub fn tolerance(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v > 0.0 && v < 1.0 { Ok(v) } else { Err(format!("{s:?} must be greater than 0 and less than 1")) }
+}
+
+thread_local! {
+    /// Warnings raised while parsing, for [`crate::run`] to write on stderr.
+    static WARNINGS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Queues a warning; value parsers have no stream of their own to write it to.
+pub fn warn(message: String) {
+    WARNINGS.with(|w| w.borrow_mut().push(message));
+}
+
+/// The queued warnings, oldest first; the queue is left empty.
+pub fn take_warnings() -> Vec<String> {
+    WARNINGS.with(|w| std::mem::take(&mut *w.borrow_mut()))
 }
 
 /// A comma-separated list of finite numbers (a newtype: clap reads a bare
@@ -52,11 +123,11 @@ pub struct FlexureOptions {
     /// Rest curvature coefficients κ1,κ2,… (one per order) [default: straight].
     #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
     pub kappa: Option<List>,
-    /// Order N: the number of curvature coefficients.
-    #[arg(long, default_value_t = 3)]
+    /// Order N: the number of curvature coefficients, 1 to 64.
+    #[arg(long, default_value = "3", value_parser = order, allow_hyphen_values = true)]
     pub order: usize,
-    /// Gauss–Legendre points [default: order + 2].
-    #[arg(long)]
+    /// Gauss–Legendre points, 1 to 1024 [default: order + 2].
+    #[arg(long, value_parser = quadrature, allow_hyphen_values = true)]
     pub quadrature: Option<usize>,
 }
 
