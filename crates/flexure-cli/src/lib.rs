@@ -82,6 +82,10 @@ where
         Ok(cli) => cli,
         Err(e) => {
             // --help and --version are answers; everything else is bad input.
+            if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                let _ = write!(stderr, "error: a subcommand is required\n\n{}", e.render());
+                return FAILURE;
+            }
             if e.use_stderr() {
                 let _ = write!(stderr, "{}", e.render());
                 return FAILURE;
