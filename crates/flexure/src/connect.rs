@@ -144,7 +144,8 @@ fn kkt(flexure: &Flexure, target: &Pose, k: &mut Kinematics<f64>, tolerance: f64
         if residual <= tolerance {
             return Ok((z.rows(0, n).iter().copied().collect(), iteration));
         }
-        let fail = Error::NoConvergence { unit: "relative", solver: "connect (KKT Newton)", iterations: iteration, residual };
+        let fail =
+            Error::NoConvergence { unit: "relative", solver: "connect (KKT Newton)", iterations: iteration, residual };
         let step = jac.clone().lu().solve(&(-&r)).ok_or(fail.clone())?;
         let mut t = 1.0;
         loop {

@@ -39,13 +39,13 @@
 
 pub mod basis;
 pub mod buckling;
-pub mod linalg;
 pub mod compliance;
 pub mod connect;
 pub mod energy;
 pub mod error;
 pub mod joint;
 pub mod kinematics;
+pub mod linalg;
 pub mod mechanism;
 pub mod newton;
 pub mod ode;
@@ -53,6 +53,7 @@ pub mod quadrature;
 pub mod reference;
 pub mod scalar;
 pub mod sincos;
+pub mod solver;
 pub mod statics;
 pub mod tendon;
 

@@ -181,7 +181,8 @@ pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
     let svd = nalgebra::SVD::new(padded, false, true);
     let Some(v_t) = svd.v_t else { return DMatrix::zeros(n, 0) };
     let top = svd.singular_values.amax();
-    let keep: Vec<usize> = (0..n).filter(|&i| !(svd.singular_values[i] > 1e-10 * top)).collect();
+    let keep: Vec<usize> =
+        (0..n).filter(|&i| svd.singular_values[i] <= 1e-10 * top || svd.singular_values[i].is_nan()).collect();
     if top == 0.0 {
         return DMatrix::identity(n, n);
     }

@@ -5,8 +5,8 @@
 //! over [`Scalar`] so that `num-dual` differentiates through the iterations,
 //! and it works in caller-owned buffers so the hot path does not allocate.
 
-use crate::linalg;
 use crate::error::{Error, Result};
+use crate::linalg;
 use crate::scalar::Scalar;
 use nalgebra::{SMatrix, SVector};
 
@@ -96,7 +96,12 @@ pub fn minimize<T: Scalar, O: Objective<T>>(
             return Ok(Report { iterations: iteration, residual, positive_definite });
         }
         if iteration == settings.max_iterations || !residual.is_finite() {
-            return Err(Error::NoConvergence { unit: "gradient units", solver: "Newton minimizer", iterations: iteration, residual });
+            return Err(Error::NoConvergence {
+                unit: "gradient units",
+                solver: "Newton minimizer",
+                iterations: iteration,
+                residual,
+            });
         }
         if !positive_definite {
             shift_until_positive_definite(ws);
@@ -120,7 +125,12 @@ pub fn minimize<T: Scalar, O: Objective<T>>(
             }
             t *= 0.5;
             if t < 1e-12 {
-                return Err(Error::NoConvergence { unit: "gradient units", solver: "Newton line search", iterations: iteration, residual });
+                return Err(Error::NoConvergence {
+                    unit: "gradient units",
+                    solver: "Newton line search",
+                    iterations: iteration,
+                    residual,
+                });
             }
         }
         std::mem::swap(&mut ws.x, &mut ws.trial_x);
@@ -183,7 +193,8 @@ pub fn find_root<const D: usize>(
         if residual <= tolerance {
             return Ok(Root { x, iterations: iteration, residual });
         }
-        let fail = Error::NoConvergence { unit: "residual units", solver: "Newton shooting", iterations: iteration, residual };
+        let fail =
+            Error::NoConvergence { unit: "residual units", solver: "Newton shooting", iterations: iteration, residual };
         if iteration == max_iterations || !residual.is_finite() {
             return Err(fail);
         }

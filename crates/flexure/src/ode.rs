@@ -99,7 +99,8 @@ pub fn integrate<T: Scalar, const D: usize>(
         }
         let err = (err / D as f64).sqrt();
         if !err.is_finite() {
-            return Err(Error::NoConvergence { unit: "relative",
+            return Err(Error::NoConvergence {
+                unit: "relative",
                 solver: "Dormand-Prince integrator (non-finite state)",
                 iterations: 0,
                 residual: f64::INFINITY, // the state blew up: no finite residual
@@ -120,7 +121,8 @@ pub fn integrate<T: Scalar, const D: usize>(
             break;
         }
     }
-    Err(Error::NoConvergence { unit: "relative",
+    Err(Error::NoConvergence {
+        unit: "relative",
         solver: "Dormand-Prince integrator (step limit)",
         iterations: tol.max_steps,
         residual: f64::INFINITY, // no step met the tolerance

@@ -20,6 +20,14 @@ pub trait Scalar: RealField + Copy {
         nalgebra::convert(x)
     }
 
+    /// Whether the type is a plain value with no derivative parts. Newton
+    /// on dual numbers takes at least one iteration at the solution, so the
+    /// derivative parts converge with the value.
+    #[inline(always)]
+    fn is_value() -> bool {
+        false
+    }
+
     /// $(\cos x_k, \sin x_k)$ of every angle, one pair per angle:
     /// the quadrature nodes' trigonometry. `f64` evaluates all nodes together
     /// with [`crate::sincos::cos_sin`]; dual numbers take one angle at a time.
@@ -36,6 +44,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn re(self) -> f64 {
         self
+    }
+    #[inline(always)]
+    fn is_value() -> bool {
+        true
     }
     #[inline(always)]
     fn c(x: f64) -> Self {

@@ -1,12 +1,12 @@
 //! Equilibrium under tip loads (paper Eqs. 22 and 32).
 
-use crate::linalg;
-use crate::energy::{energy, energy_gradient, stiffness};
+use crate::energy::{energy_gradient, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
-use crate::newton::{self, Objective};
+use crate::linalg;
 use crate::scalar::Scalar;
+use crate::solver;
 use nalgebra::DMatrix;
 
 /// A load at the tip, in the root frame: moment $M$ (N·m) and force $(F_x, F_y)$ (N).
@@ -44,28 +44,7 @@ impl TipLoad<f64> {
     }
 }
 
-/// Solver settings for [`deflect`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// Relative tolerance on the generalized force residual, scaled by
-    /// $EI/L + |M| + L(|F_x| + |F_y|)$.
-    pub tolerance: f64,
-    /// Newton iterations per load step.
-    pub max_iterations: usize,
-    /// Smallest load-continuation step before giving up.
-    pub min_load_step: f64,
-    /// Largest rotation (rad) of any cross-section, $\phi(t_k)$ at the
-    /// quadrature nodes, that one load step may cause. Bounding it keeps the
-    /// solution on the branch that grows from the rest shape, as quasi-static
-    /// loading would.
-    pub max_rotation_per_step: f64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self { tolerance: 1e-12, max_iterations: 50, min_load_step: 1e-4, max_rotation_per_step: 0.5 }
-    }
-}
+pub use crate::solver::Settings;
 
 /// Work buffers and results of [`deflect`] for one flexure (the Data).
 #[derive(Debug, Clone)]
@@ -74,11 +53,8 @@ pub struct Statics<T: Scalar = f64> {
     pub kinematics: Kinematics<T>,
     /// Generalized stiffness $K$ at the solution (Eq. 32).
     pub stiffness: DMatrix<T>,
-    newton: newton::Workspace<T>,
-    alpha: Vec<T>,
-    /// $d\alpha/d\lambda$ along the load path.
-    tangent: Vec<T>,
-    factor: Vec<T>,
+    solver: solver::Workspace<T>,
+    scratch: Vec<T>,
 }
 
 impl<T: Scalar> Statics<T> {
@@ -88,16 +64,14 @@ impl<T: Scalar> Statics<T> {
         Self {
             kinematics: Kinematics::new(flexure),
             stiffness: DMatrix::zeros(n, n),
-            newton: newton::Workspace::new(n),
-            alpha: vec![T::zero(); n],
-            tangent: vec![T::zero(); n],
-            factor: vec![T::zero(); n * n],
+            solver: solver::Workspace::new(n),
+            scratch: vec![T::zero(); n * n],
         }
     }
 
     /// Joint coordinates $\alpha$ at the last equilibrium.
     pub fn alpha(&self) -> &[T] {
-        &self.alpha
+        &self.solver.x
     }
 
     /// Tip pose at the last equilibrium.
@@ -111,6 +85,9 @@ impl<T: Scalar> Statics<T> {
 pub struct Equilibrium {
     /// Whether $K$ is positive definite: a stable equilibrium.
     pub stable: bool,
+    /// The load fraction at which the loading path first lost stability
+    /// (a limit load passed by snap-through, or a bifurcation), if it did.
+    pub limit: Option<f64>,
     /// Final generalized-force residual (N·m).
     pub residual: f64,
     /// Newton iterations over all load steps.
@@ -119,34 +96,93 @@ pub struct Equilibrium {
     pub load_steps: usize,
 }
 
-/// The potential $\Pi(\alpha) = U(\alpha) - \lambda(M\phi + F_x x + F_y y)$.
-struct TipLoadPotential<'a, T: Scalar> {
-    flexure: &'a Flexure,
-    kinematics: &'a mut Kinematics<T>,
-    load: TipLoad<T>,
-    scale: T,
+impl Equilibrium {
+    /// The equilibrium a continuation [`solver::Path`] reached.
+    pub fn from_path(path: &solver::Path) -> Self {
+        Self {
+            stable: path.stable,
+            limit: path.limit,
+            residual: path.residual,
+            iterations: path.iterations,
+            load_steps: path.steps,
+        }
+    }
 }
 
-impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
-    fn evaluate(&mut self, alpha: &[T], gradient: &mut [T], hessian: &mut [T]) -> T {
+/// The tip-load problem: $r(\alpha, \lambda) = \nabla U - \lambda\mathcal J^T(M, F_x, F_y)$
+/// (Eq. 22) with Jacobian $K = \nabla\nabla U - \lambda(F_x\nabla\nabla x + F_y\nabla\nabla y)$ (Eq. 32).
+struct TipLoadProblem<'a, T: Scalar> {
+    flexure: &'a Flexure,
+    kinematics: &'a mut Kinematics<T>,
+    scratch: &'a mut [T],
+    load: TipLoad<T>,
+    scale: f64,
+}
+
+impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
+    fn dim(&self) -> usize {
+        self.flexure.order()
+    }
+
+    fn evaluate(
+        &mut self,
+        alpha: &[T],
+        lambda: f64,
+        residual: &mut [T],
+        jacobian: Option<&mut [T]>,
+        dlambda: Option<&mut [T]>,
+    ) -> Result<()> {
         let (f, k) = (self.flexure, &mut *self.kinematics);
-        kinematics::update(f, alpha, k, Level::Hessian);
-        let (m, fx, fy) = (self.load.moment * self.scale, self.load.fx * self.scale, self.load.fy * self.scale);
-        energy_gradient(f, alpha, gradient);
-        let n = f.order();
-        for (i, g) in gradient.iter_mut().enumerate() {
+        let level = if jacobian.is_some() { Level::Hessian } else { Level::Jacobian };
+        kinematics::update(f, alpha, k, level);
+        let l = T::c(lambda);
+        let w = [self.load.moment, self.load.fx, self.load.fy];
+        energy_gradient(f, alpha, residual);
+        for (i, r) in residual.iter_mut().enumerate() {
             let j = k.jacobian_root_tip.column(i);
-            *g -= m * j[0] + fx * j[1] + fy * j[2];
+            *r -= l * (w[0] * j[0] + w[1] * j[1] + w[2] * j[2]);
         }
-        let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
-        for (idx, h) in hessian.iter_mut().enumerate() {
-            *h = -(fx * hx[idx] + fy * hy[idx]);
+        if let Some(d) = dlambda {
+            for (i, d) in d.iter_mut().enumerate() {
+                let j = k.jacobian_root_tip.column(i);
+                *d = -(w[0] * j[0] + w[1] * j[1] + w[2] * j[2]);
+            }
         }
-        for i in 0..n {
-            hessian[i * n + i] += T::c(stiffness(f, i));
+        if let Some(h) = jacobian {
+            let n = f.order();
+            let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
+            for (idx, h) in h.iter_mut().enumerate() {
+                *h = -l * (w[1] * hx[idx] + w[2] * hy[idx]);
+            }
+            for i in 0..n {
+                h[i * n + i] += T::c(stiffness(f, i));
+            }
         }
-        let p = k.pose_root_tip;
-        energy(f, alpha) - (m * p.phi + fx * p.x + fy * p.y)
+        if residual.iter().all(|r| r.re().is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::Singular { what: "non-finite generalized force".into() })
+        }
+    }
+
+    fn stable(&mut self, _alpha: &[T], _lambda: f64, jacobian: &[T]) -> bool {
+        linalg::positive_definite(jacobian, self.flexure.order(), self.scratch)
+    }
+
+    fn distance(&self, a: &[T], b: &[T]) -> f64 {
+        rotation(self.flexure, a, Some(b))
+    }
+
+    fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    fn unit(&self) -> &'static str {
+        "N·m"
+    }
+
+    fn name(&self) -> &'static str {
+        "deflect"
     }
 }
 
@@ -154,14 +190,11 @@ impl<T: Scalar> Objective<T> for TipLoadPotential<'_, T> {
 /// $\tau = \nabla U - M\nabla\phi - F_x\nabla x - F_y\nabla y = 0$ (Eq. 22),
 /// with stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32).
 ///
-/// Newton with exact $K$ and a line search, inside load continuation from
-/// the rest shape. Each load step is sized by the tangent
-/// $d\alpha/d\lambda = K^{-1}\mathcal J^T(M, F_x, F_y)$ so that no
-/// cross-section is predicted to turn more than 70 % of
-/// [`Settings::max_rotation_per_step`], and the tangent also gives Newton its
-/// start. A step that fails, or turns a cross-section by more than the bound,
-/// is halved; so the solution follows the branch that grows from the rest
-/// shape. Results stay in `data`; nothing is allocated.
+/// The load is applied by the shared continuation ([`crate::solver`]) from
+/// the rest shape, so the answer lies on the loading path: a snap-through
+/// load reaches the stable equilibrium the path leads to, and
+/// [`Equilibrium::limit`] names the load fraction where stability was lost.
+/// Results stay in `data`; nothing is allocated.
 ///
 /// # Example
 /// ```
@@ -179,93 +212,24 @@ pub fn deflect<T: Scalar>(
     settings: &Settings,
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
+    if data.solver.dim() != flexure.order() {
+        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
+    }
     let l = flexure.length();
     let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
-    let newton_settings =
-        newton::Settings { tolerance: settings.tolerance * scale, max_iterations: settings.max_iterations };
-    for (a, &k) in data.alpha.iter_mut().zip(flexure.rest()) {
+    for (a, &k) in data.solver.x.iter_mut().zip(flexure.rest()) {
         *a = T::c(k);
     }
-    // The rest shape is the equilibrium at λ = 0; evaluate there for K and 𝒥.
-    data.newton.x.copy_from_slice(&data.alpha);
-    let mut rest = TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::zero() };
-    rest.evaluate(&data.newton.x, &mut data.newton.gradient, &mut data.newton.hessian);
-    let mut has_tangent = tangent(flexure, load, data);
-    let (mut lambda, mut allowed) = (0.0_f64, 1.0_f64);
-    let (mut iterations, mut load_steps, mut residual) = (0, 0, f64::INFINITY);
-    loop {
-        let mut step = allowed.min(1.0 - lambda);
-        if has_tangent {
-            let rate = rotation(flexure, &data.tangent, None);
-            if rate > 0.0 {
-                step = step.min(0.7 * settings.max_rotation_per_step / rate);
-            }
-        }
-        let target = if 1.0 - lambda - step < 1e-12 { 1.0 } else { lambda + step };
-        let h = T::c(if has_tangent { target - lambda } else { 0.0 });
-        for ((x, &a), &t) in data.newton.x.iter_mut().zip(&data.alpha).zip(&data.tangent) {
-            *x = a + h * t;
-        }
-        let mut potential =
-            TipLoadPotential { flexure, kinematics: &mut data.kinematics, load: *load, scale: T::c(target) };
-        let found = newton::minimize(&mut potential, &mut data.newton, &newton_settings);
-        let change = rotation(flexure, &data.newton.x, Some(&data.alpha));
-        match found {
-            Ok(report) if change <= settings.max_rotation_per_step => {
-                iterations += report.iterations;
-                load_steps += 1;
-                residual = report.residual;
-                data.alpha.copy_from_slice(&data.newton.x);
-                lambda = target;
-                if lambda >= 1.0 {
-                    // The minimizer's last evaluation was at its solution, so
-                    // the kinematics in `data` already belong to it.
-                    data.stiffness.as_mut_slice().copy_from_slice(&data.newton.hessian);
-                    return Ok(Equilibrium { stable: report.positive_definite, residual, iterations, load_steps });
-                }
-                has_tangent = tangent(flexure, load, data);
-                allowed = 2.0 * step;
-            }
-            found => {
-                if let Ok(report) = &found {
-                    (iterations, residual) = (iterations + report.iterations, report.residual);
-                } else if let Err(Error::NoConvergence { iterations: it, residual: r, .. }) = found {
-                    (iterations, residual) = (iterations + it, r);
-                }
-                allowed = 0.5 * step;
-                if allowed < settings.min_load_step {
-                    return Err(Error::NoConvergence { unit: "N·m",
-                        solver: "deflect (load continuation: the load step fell below min_load_step)",
-                        iterations,
-                        residual,
-                    });
-                }
-                // The tangent at the last equilibrium is still valid: the data there is unchanged.
-            }
-        }
-    }
-}
-
-/// Writes $d\alpha/d\lambda = K^{-1}\mathcal J^T(M, F_x, F_y)$ into `data.tangent`,
-/// from the Hessian and kinematics of the last evaluation. False where $K$
-/// is not positive definite (no tangent: the next step starts from $\alpha$).
-fn tangent<T: Scalar>(flexure: &Flexure, load: &TipLoad<T>, data: &mut Statics<T>) -> bool {
-    let n = flexure.order();
-    data.factor.copy_from_slice(&data.newton.hessian);
-    if !linalg::cholesky(&mut data.factor, n) {
-        data.tangent.fill(T::zero());
-        return false;
-    }
-    for (i, t) in data.tangent.iter_mut().enumerate() {
-        let j = data.kinematics.jacobian_root_tip.column(i);
-        *t = load.moment * j[0] + load.fx * j[1] + load.fy * j[2];
-    }
-    linalg::cholesky_solve(&data.factor, n, &mut data.tangent);
-    true
+    let mut problem =
+        TipLoadProblem { flexure, kinematics: &mut data.kinematics, scratch: &mut data.scratch, load: *load, scale };
+    let path = solver::continuation(&mut problem, &mut data.solver, settings)?;
+    // The last evaluation was at the end state, with the Hessian level.
+    data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
+    Ok(Equilibrium::from_path(&path))
 }
 
 /// Largest cross-section rotation $\max_k\lvert\sum_i\psi_i(t_k)(a_i - b_i)\rvert$ (b = 0 if absent).
-fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -> f64 {
+pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -> f64 {
     flexure.psi_rows().fold(0.0_f64, |m, psi| {
         let d: f64 = psi.iter().enumerate().map(|(i, p)| p * (a[i].re() - b.map_or(0.0, |b| b[i].re()))).sum();
         m.max(d.abs())

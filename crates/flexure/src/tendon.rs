@@ -1,12 +1,13 @@
 //! A tendon-driven flexure joint (paper Sec. III-D, Eqs. 23–26).
 
-use crate::energy::{energy, energy_gradient, stiffness};
+use crate::energy::{energy, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
-use crate::newton::{self, Objective};
+use crate::linalg;
 use crate::scalar::Scalar;
-use crate::statics::Equilibrium;
+use crate::solver;
+use crate::statics::{Equilibrium, Settings, rotation};
 
 /// A tendon of constant tension spanning the flexure, attached at
 /// $T_1$ = translation $(0, d_1)$ in the root frame and $T_2$ = translation
@@ -65,10 +66,31 @@ pub struct TendonPotential<'a, T: Scalar> {
     pub kinematics: &'a mut Kinematics<T>,
 }
 
-impl<T: Scalar> Objective<T> for TendonPotential<'_, T> {
-    fn evaluate(&mut self, alpha: &[T], gradient: &mut [T], hessian: &mut [T]) -> T {
+impl<T: Scalar> TendonPotential<'_, T> {
+    /// Returns $E(\alpha)$ and writes $\nabla E$ and the column-major $\nabla\nabla E$.
+    pub fn evaluate(&mut self, alpha: &[T], gradient: &mut [T], hessian: &mut [T]) -> T {
+        let n = self.flexure.order();
+        let length = self.length_derivatives(alpha, gradient, Some(hessian));
+        for g in gradient.iter_mut() {
+            *g *= self.tension;
+        }
+        for h in hessian.iter_mut() {
+            *h *= self.tension;
+        }
+        let mut ug = [T::zero(); 1];
+        for i in 0..n {
+            energy_gradient_entry(self.flexure, alpha, i, &mut ug);
+            gradient[i] += ug[0];
+            hessian[i * n + i] += T::c(stiffness(self.flexure, i));
+        }
+        energy(self.flexure, alpha) + self.tension * length
+    }
+
+    /// Updates the kinematics at `alpha` and returns the tendon length
+    /// $\ell = \lvert\Delta x\rvert$, writing $\nabla\ell$ and, if asked, $\nabla\nabla\ell$.
+    fn length_derivatives(&mut self, alpha: &[T], gradient: &mut [T], hessian: Option<&mut [T]>) -> T {
         let (f, k, n) = (self.flexure, &mut *self.kinematics, self.flexure.order());
-        kinematics::update(f, alpha, k, Level::Hessian);
+        kinematics::update(f, alpha, k, if hessian.is_some() { Level::Hessian } else { Level::Jacobian });
         let p = k.pose_root_tip;
         let [dx, dy] = self.tendon.span(p.phi, p.x, p.y);
         let length = (dx * dx + dy * dy).sqrt();
@@ -79,27 +101,32 @@ impl<T: Scalar> Objective<T> for TendonPotential<'_, T> {
         let ddx = |i: usize| j[(1, i)] - d2 * c * j[(0, i)];
         let ddy = |i: usize| j[(2, i)] - d2 * s * j[(0, i)];
         let (ux, uy) = (dx / length, dy / length);
-        energy_gradient(f, alpha, gradient);
         for (i, g) in gradient.iter_mut().enumerate() {
-            *g += self.tension * (ux * ddx(i) + uy * ddy(i));
+            *g = ux * ddx(i) + uy * ddy(i);
         }
-        let (hx, hy) = (&k.hessian_root_tip_x, &k.hessian_root_tip_y);
-        for col in 0..n {
-            for row in 0..n {
-                let (ar, ac) = ([ddx(row), ddy(row)], [ddx(col), ddy(col)]);
-                let jj = j[(0, row)] * j[(0, col)];
-                // ∂²Δx: the tip Hessians plus the attachment's rotation terms.
-                let d2x = hx[(row, col)] + d2 * s * jj;
-                let d2y = hy[(row, col)] - d2 * c * jj;
-                // ∂²|Δx| = (∂Δx)ᵀ(I − u uᵀ)(∂Δx)/|Δx| + u·∂²Δx.
-                let proj =
-                    (ar[0] * ac[0] + ar[1] * ac[1] - (ux * ar[0] + uy * ar[1]) * (ux * ac[0] + uy * ac[1])) / length;
-                hessian[col * n + row] = self.tension * (proj + ux * d2x + uy * d2y);
+        if let Some(hessian) = hessian {
+            let (hx, hy) = (&k.hessian_root_tip_x, &k.hessian_root_tip_y);
+            for col in 0..n {
+                for row in 0..n {
+                    let (ar, ac) = ([ddx(row), ddy(row)], [ddx(col), ddy(col)]);
+                    let jj = j[(0, row)] * j[(0, col)];
+                    // ∂²Δx: the tip Hessians plus the attachment's rotation terms.
+                    let d2x = hx[(row, col)] + d2 * s * jj;
+                    let d2y = hy[(row, col)] - d2 * c * jj;
+                    // ∂²|Δx| = (∂Δx)ᵀ(I − u uᵀ)(∂Δx)/|Δx| + u·∂²Δx.
+                    let proj = (ar[0] * ac[0] + ar[1] * ac[1] - (ux * ar[0] + uy * ar[1]) * (ux * ac[0] + uy * ac[1]))
+                        / length;
+                    hessian[col * n + row] = proj + ux * d2x + uy * d2y;
+                }
             }
-            hessian[col * n + col] += T::c(stiffness(f, col));
         }
-        energy(f, alpha) + self.tension * length
+        length
     }
+}
+
+/// One entry of $\nabla U$.
+fn energy_gradient_entry<T: Scalar>(flexure: &Flexure, alpha: &[T], i: usize, out: &mut [T; 1]) {
+    out[0] = T::c(stiffness(flexure, i)) * (alpha[i] - T::c(flexure.rest()[i]));
 }
 
 /// Work buffers and results of [`pull`].
@@ -107,19 +134,22 @@ impl<T: Scalar> Objective<T> for TendonPotential<'_, T> {
 pub struct TendonData {
     /// Kinematics at the solution.
     pub kinematics: Kinematics<f64>,
-    newton: newton::Workspace<f64>,
+    solver: solver::Workspace<f64>,
     alpha: Vec<f64>,
     tension: f64,
+    scratch: Vec<f64>,
 }
 
 impl TendonData {
     /// Buffers for `flexure`, starting at its rest shape with no tension.
     pub fn new(flexure: &Flexure) -> Self {
+        let n = flexure.order();
         Self {
             kinematics: Kinematics::new(flexure),
-            newton: newton::Workspace::new(flexure.order()),
+            solver: solver::Workspace::new(n),
             alpha: flexure.rest().to_vec(),
             tension: 0.0,
+            scratch: vec![0.0; n * n],
         }
     }
 
@@ -130,14 +160,85 @@ impl TendonData {
 
     /// Generalized stiffness $\nabla\nabla E$ at the last equilibrium (column-major).
     pub fn stiffness(&self) -> &[f64] {
-        &self.newton.hessian
+        &self.solver.jacobian
     }
 }
 
-/// Equilibrium of the joint under tendon tension `tension`: the minimum of
-/// $E(\alpha)$, reached by continuation in the tension from the last
-/// equilibrium held in `data` (from rest on a fresh `data`), so sweeps follow
-/// the loading path. Steps are bounded to 0.5 rad of tip rotation.
+/// The tendon problem in the load factor: tension $f_0 + \lambda(f_1 - f_0)$,
+/// $r = \nabla E$, Jacobian $\nabla\nabla E$, $\partial_\lambda r = (f_1 - f_0)\nabla\ell$.
+struct TendonProblem<'a> {
+    potential: TendonPotential<'a, f64>,
+    start: f64,
+    end: f64,
+    scale: f64,
+    scratch: &'a mut [f64],
+}
+
+impl solver::Problem<f64> for TendonProblem<'_> {
+    fn dim(&self) -> usize {
+        self.potential.flexure.order()
+    }
+
+    fn evaluate(
+        &mut self,
+        alpha: &[f64],
+        lambda: f64,
+        residual: &mut [f64],
+        mut jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> Result<()> {
+        let (f, n) = (self.potential.flexure, self.dim());
+        let tension = self.start + lambda * (self.end - self.start);
+        let length = self.potential.length_derivatives(alpha, residual, jacobian.as_deref_mut());
+        if length.is_nan() || length <= 1e-15 * f.length() {
+            return Err(Error::Singular { what: "the tendon's attachments coincide".into() });
+        }
+        if let Some(d) = dlambda {
+            for (d, g) in d.iter_mut().zip(residual.iter()) {
+                *d = (self.end - self.start) * g;
+            }
+        }
+        let mut ug = [0.0];
+        for i in 0..n {
+            energy_gradient_entry(f, alpha, i, &mut ug);
+            residual[i] = ug[0] + tension * residual[i];
+        }
+        if let Some(h) = jacobian {
+            for v in h.iter_mut() {
+                *v *= tension;
+            }
+            for i in 0..n {
+                h[i * n + i] += stiffness(f, i);
+            }
+        }
+        Ok(())
+    }
+
+    fn stable(&mut self, _alpha: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        linalg::positive_definite(jacobian, self.dim(), self.scratch)
+    }
+
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        rotation(self.potential.flexure, a, Some(b))
+    }
+
+    fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    fn unit(&self) -> &'static str {
+        "N·m"
+    }
+
+    fn name(&self) -> &'static str {
+        "tendon equilibrium"
+    }
+}
+
+/// Equilibrium of the joint under tendon tension `tension`: a minimum of
+/// $E(\alpha)$, reached by the shared continuation ([`crate::solver`]) in
+/// the tension from the last equilibrium held in `data` (from rest on a
+/// fresh `data`), so sweeps follow the loading path.
 ///
 /// # Example
 /// ```
@@ -155,53 +256,20 @@ pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonD
     if !(tension.is_finite() && tension >= 0.0) {
         return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
     }
-    let start = data.tension;
-    let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
-    let settings = newton::Settings { tolerance: 1e-12 * scale, max_iterations: 50 };
-    let (mut done, mut step) = (0.0_f64, 1.0_f64);
-    let (mut iterations, mut load_steps) = (0, 0);
-    loop {
-        let target = (done + step).min(1.0);
-        data.newton.x.copy_from_slice(&data.alpha);
-        let mut potential = TendonPotential {
-            flexure,
-            tendon: *tendon,
-            tension: start + target * (tension - start),
-            kinematics: &mut data.kinematics,
-        };
-        let found = newton::minimize(&mut potential, &mut data.newton, &settings);
-        let turn = (data.newton.x[0] - data.alpha[0]).abs();
-        match found {
-            Ok(report) if turn <= 0.5 || step < 1e-3 => {
-                iterations += report.iterations;
-                load_steps += 1;
-                data.alpha.copy_from_slice(&data.newton.x);
-                done = target;
-                if done >= 1.0 {
-                    data.tension = tension;
-                    return Ok(Equilibrium {
-                        stable: report.positive_definite,
-                        residual: report.residual,
-                        iterations,
-                        load_steps,
-                    });
-                }
-                step = (2.0 * step).min(1.0 - done);
-            }
-            other => {
-                let residual = match other {
-                    Err(Error::NoConvergence { residual, .. }) => residual,
-                    _ => 0.0,
-                };
-                step *= 0.5;
-                if step < 1e-4 {
-                    return Err(Error::NoConvergence { unit: "N·m",
-                        solver: "tendon equilibrium (continuation)",
-                        iterations,
-                        residual,
-                    });
-                }
-            }
-        }
+    if data.alpha.len() != flexure.order() {
+        return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
     }
+    let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
+    data.solver.x.copy_from_slice(&data.alpha);
+    let mut problem = TendonProblem {
+        potential: TendonPotential { flexure, tendon: *tendon, tension: 0.0, kinematics: &mut data.kinematics },
+        start: data.tension,
+        end: tension,
+        scale,
+        scratch: &mut data.scratch,
+    };
+    let path = solver::continuation(&mut problem, &mut data.solver, &Settings::default())?;
+    data.alpha.copy_from_slice(&data.solver.x);
+    data.tension = tension;
+    Ok(Equilibrium::from_path(&path))
 }

@@ -131,15 +131,50 @@ fn bad_load_is_named() {
     assert!(matches!(err, Error::InvalidParameter { name: "fx", .. }), "{err}");
 }
 
-/// A solver starved of iterations reports non-convergence with its residual.
+/// A solver starved of iterations and steps reports how far it got.
 #[test]
-fn non_convergence_reports_the_residual() {
+fn a_stalled_continuation_reports_the_load_reached() {
     let f = unit();
     let mut data = Statics::new(&f);
-    let settings = Settings { max_iterations: 1, min_load_step: 0.5, ..Default::default() };
+    let settings = Settings { max_iterations: 1, min_step: 0.5, ..Default::default() };
     match deflect(&f, &TipLoad::polar(0.0, 20.0, 0.3), &mut data, &settings) {
-        Err(Error::NoConvergence { residual, .. }) => assert!(residual.is_finite() && residual > 0.0),
-        other => panic!("expected NoConvergence, got {other:?}"),
+        Err(Error::ContinuationStalled { residual, load_fraction, .. }) => {
+            assert!(residual.is_finite() && residual > 0.0 && (0.0..1.0).contains(&load_fraction))
+        }
+        other => panic!("expected ContinuationStalled, got {other:?}"),
+    }
+    // A moment of 1e12 N·m would turn the tip by 1e12 rad: the step limit ends it.
+    let settings = Settings { max_steps: 50, ..Default::default() };
+    match deflect(&f, &TipLoad { moment: 1e12, fx: 0.0, fy: 0.0 }, &mut data, &settings) {
+        Err(Error::ContinuationStalled { steps, load_fraction, .. }) => {
+            assert!(steps == 50 && load_fraction > 0.0 && load_fraction < 1e-9, "{steps} {load_fraction}")
+        }
+        other => panic!("expected ContinuationStalled, got {other:?}"),
+    }
+}
+
+/// Every setting is validated: zero, negative or non-finite is an error naming it.
+#[test]
+fn settings_are_validated() {
+    let f = unit();
+    let mut data = Statics::new(&f);
+    let load = TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 };
+    let base = Settings::default();
+    let bad = [
+        ("tolerance", Settings { tolerance: 0.0, ..base }),
+        ("tolerance", Settings { tolerance: f64::NAN, ..base }),
+        ("max_iterations", Settings { max_iterations: 0, ..base }),
+        ("max_steps", Settings { max_steps: 0, ..base }),
+        ("min_step", Settings { min_step: 0.0, ..base }),
+        ("min_step", Settings { min_step: -1.0, ..base }),
+        ("max_rotation_per_step", Settings { max_rotation_per_step: 0.0, ..base }),
+        ("max_rotation_per_step", Settings { max_rotation_per_step: f64::INFINITY, ..base }),
+    ];
+    for (name, settings) in bad {
+        match deflect(&f, &load, &mut data, &settings) {
+            Err(Error::InvalidParameter { name: got, .. }) => assert_eq!(got, name),
+            other => panic!("{name}: expected InvalidParameter, got {other:?}"),
+        }
     }
 }
 

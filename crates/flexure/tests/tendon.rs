@@ -1,7 +1,6 @@
 //! The tendon-driven joint (Sec. III-D, Eqs. 23–26, errata sign), against the
 //! exact elastica loaded by the tendon's own force.
 
-use flexure::newton::Objective;
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, TendonPotential, pull, tendon_length};
 use flexure::{Flexure, Kinematics, TipLoad, bending_stiffness};

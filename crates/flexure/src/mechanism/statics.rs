@@ -182,8 +182,12 @@ fn newton(m: &Mechanism, q: &mut [f64], mu: &mut [f64], loads: &Loads, settings:
         if r <= settings.tolerance {
             return Ok((iteration, r));
         }
-        let fail =
-            Error::NoConvergence { unit: "relative", solver: "mechanism equilibrium (KKT Newton)", iterations: iteration, residual: r };
+        let fail = Error::NoConvergence {
+            unit: "relative",
+            solver: "mechanism equilibrium (KKT Newton)",
+            iterations: iteration,
+            residual: r,
+        };
         if iteration == settings.max_iterations || !r.is_finite() {
             return Err(fail);
         }
@@ -307,10 +311,7 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
                             });
                             if stable { lo = mid } else { hi = mid }
                         }
-                        return Err(Error::Unstable {
-                            what: "mechanism equilibrium",
-                            load_fraction: hi,
-                        });
+                        return Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: hi });
                     }
                 }
                 history = Some((s, q.clone(), mu.clone()));
@@ -326,7 +327,8 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
                         Err(Error::NoConvergence { residual, .. }) => residual,
                         _ => last.1,
                     };
-                    return Err(Error::NoConvergence { unit: "relative",
+                    return Err(Error::NoConvergence {
+                        unit: "relative",
                         solver: "mechanism equilibrium (no equilibrium reachable by load continuation; beyond a limit or buckling load?)",
                         iterations: steps,
                         residual,

@@ -147,7 +147,8 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
                 };
                 step *= 0.5;
                 if step < settings.min_load_step {
-                    return Err(Error::NoConvergence { unit: "N·m",
+                    return Err(Error::NoConvergence {
+                        unit: "N·m",
                         solver: "elastica shooting (load continuation stalled: Newton failed, or the tip would turn by the residual, in rad, in one step)",
                         iterations: load_steps,
                         residual,

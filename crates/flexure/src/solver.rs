@@ -1,0 +1,615 @@
+//! The one solver core: a damped Newton method and a pseudo-arclength load
+//! continuation over a [`Problem`], shared by every layer (tip loads,
+//! tendons, minimum-energy connections, the exact elastica, mechanisms).
+//!
+//! A problem is a family of square systems $r(x, \lambda) = 0$ in the load
+//! factor $\lambda \in [0, 1]$, with $r(x_0, 0) = 0$ at the rest state.
+//! [`continuation`] follows the solution path from $(x_0, 0)$ to
+//! $\lambda = 1$ in the arc length of $(x, \lambda)$, so it passes limit
+//! points (snap-through): at a fold, where the path turns back in
+//! $\lambda$, the tangent comes from the bordered system
+//! $$\begin{bmatrix} \partial_x r & \partial_\lambda r \\ t_{prev}^T W & \end{bmatrix}
+//! t = \begin{bmatrix} 0 \\ 1\end{bmatrix},$$
+//! which stays regular there. Each step predicts along the tangent, then
+//! Newton corrects on the hyperplane orthogonal to it; the last step lands
+//! on $\lambda = 1$ exactly with $\lambda$ held fixed.
+//!
+//! Policies, shared by all problems:
+//! - **Bounded**: at most [`Settings::max_steps`] steps of at least
+//!   [`Settings::min_step`], each corrected by at most
+//!   [`Settings::max_iterations`] Newton iterations of at most 30 halvings.
+//! - **On the loading branch**: a step may turn no cross-section or body by
+//!   more than [`Settings::max_rotation_per_step`] (the problem's
+//!   [`Problem::distance`]), and a step that lands on an unstable state
+//!   while $\lambda$ still increases (a jump to another branch, not a fold)
+//!   is retried shorter. Only when no step down to `min_step` avoids it is
+//!   the loss of stability accepted: a bifurcation on the path itself.
+//! - **Honest**: the result says whether the end state is stable and the
+//!   load fraction where stability was first lost ([`Path::limit`]).
+//! - **Interruptible**: every step and iteration polls the hook set by
+//!   [`with_interrupt`].
+
+use crate::error::{Error, Result};
+use crate::linalg;
+use crate::scalar::Scalar;
+use std::cell::Cell;
+
+/// A family of square systems $r(x, \lambda) = 0$.
+pub trait Problem<T: Scalar> {
+    /// Number of unknowns $n$.
+    fn dim(&self) -> usize;
+
+    /// Writes $r(x, \lambda)$ and, when asked, the column-major
+    /// $n\times n$ Jacobian $\partial_x r$ and the load derivative
+    /// $\partial_\lambda r$. An `Err` marks a state that cannot be evaluated.
+    fn evaluate(
+        &mut self,
+        x: &[T],
+        lambda: f64,
+        residual: &mut [T],
+        jacobian: Option<&mut [T]>,
+        dlambda: Option<&mut [T]>,
+    ) -> Result<()>;
+
+    /// Whether the state just evaluated (with its Jacobian) is stable.
+    /// Potential problems, whose Jacobian is the Hessian of the potential,
+    /// test its definiteness ([`linalg::positive_definite`]); problems with
+    /// no notion of stability keep the default, `true`.
+    fn stable(&mut self, _x: &[T], _lambda: f64, _jacobian: &[T]) -> bool {
+        true
+    }
+
+    /// How far apart two states are, in radians: the largest rotation of a
+    /// cross-section or body between them. Bounds the continuation's steps.
+    fn distance(&self, a: &[T], b: &[T]) -> f64;
+
+    /// The residual's scale: Newton stops when $\max_i |r_i| \le$
+    /// tolerance × scale.
+    fn scale(&self) -> f64;
+
+    /// The residual's unit, for messages.
+    fn unit(&self) -> &'static str;
+
+    /// The problem's name, for messages.
+    fn name(&self) -> &'static str;
+
+    /// Weight of unknown `i` in the arc length (default 1: radians and
+    /// dimensionless coordinates).
+    fn weight(&self, _i: usize) -> f64 {
+        1.0
+    }
+}
+
+/// Settings of [`newton`] and [`continuation`], validated by [`Settings::validate`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Relative tolerance: converged when $\max_i|r_i| \le$ tolerance × [`Problem::scale`].
+    pub tolerance: f64,
+    /// Newton iterations per solve (per continuation step).
+    pub max_iterations: usize,
+    /// Continuation steps before giving up.
+    pub max_steps: usize,
+    /// Smallest continuation step, in the scaled arc length of $(x, \lambda)$
+    /// (where a step carrying the whole load without turning measures 1).
+    pub min_step: f64,
+    /// Largest rotation (rad) of any cross-section or body in one step.
+    pub max_rotation_per_step: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self { tolerance: 1e-12, max_iterations: 50, max_steps: 1000, min_step: 1e-6, max_rotation_per_step: 0.5 }
+    }
+}
+
+/// The most iterations or steps a setting may ask for: enough for any
+/// problem this library solves, small enough that a run always ends.
+pub const MAX_COUNT: usize = 1_000_000;
+
+impl Settings {
+    /// Checks every setting: zero, negative or non-finite is an error naming it.
+    ///
+    /// # Example
+    /// ```
+    /// let bad = flexure::solver::Settings { min_step: 0.0, ..Default::default() };
+    /// assert!(bad.validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        let positive = |name: &'static str, v: f64, max: f64| {
+            if v.is_finite() && v > 0.0 && v <= max {
+                Ok(())
+            } else {
+                Err(Error::invalid(name, v, "must be a finite number greater than zero (and at most 1 for min_step)"))
+            }
+        };
+        positive("tolerance", self.tolerance, 1.0)?;
+        positive("min_step", self.min_step, 1.0)?;
+        positive("max_rotation_per_step", self.max_rotation_per_step, f64::MAX)?;
+        crate::error::count("max_iterations", self.max_iterations, MAX_COUNT, "must be from 1 to 1000000")?;
+        crate::error::count("max_steps", self.max_steps, MAX_COUNT, "must be from 1 to 1000000")?;
+        Ok(())
+    }
+}
+
+thread_local! {
+    static INTERRUPT: Cell<Option<fn() -> bool>> = const { Cell::new(None) };
+}
+
+/// Runs `work` with `check` polled at every continuation step and Newton
+/// iteration on this thread; when it returns `true` the solver stops with
+/// [`Error::Interrupted`]. Bindings use it to honour Ctrl-C.
+///
+/// # Example
+/// ```
+/// use flexure::{deflect, solver::with_interrupt, Error, Flexure, Statics, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let mut data = Statics::new(&f);
+/// let load = TipLoad { moment: 100.0, fx: 0.0, fy: 0.0 };
+/// let r = with_interrupt(|| true, || deflect(&f, &load, &mut data, &Default::default()));
+/// assert!(matches!(r, Err(Error::Interrupted { .. })));
+/// ```
+pub fn with_interrupt<R>(check: fn() -> bool, work: impl FnOnce() -> R) -> R {
+    let previous = INTERRUPT.with(|c| c.replace(Some(check)));
+    let out = work();
+    INTERRUPT.with(|c| c.set(previous));
+    out
+}
+
+fn interrupted() -> bool {
+    INTERRUPT.with(|c| c.get()).is_some_and(|check| check())
+}
+
+/// Buffers for [`newton`] and [`continuation`] on an $n$-unknown problem;
+/// nothing is allocated once they exist.
+#[derive(Debug, Clone)]
+pub struct Workspace<T: Scalar> {
+    n: usize,
+    /// The current state $x$: the start on entry, the solution on success.
+    pub x: Vec<T>,
+    /// $\lambda$ of the current state.
+    pub lambda: f64,
+    /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
+    pub jacobian: Vec<T>,
+    dlambda: Vec<T>,
+    /// Augmented $(n+1)$ system and its factors.
+    matrix: Vec<T>,
+    pivots: Vec<usize>,
+    step: Vec<T>,
+    trial: Vec<T>,
+    trial_residual: Vec<T>,
+    /// Tangent $(t_x, t_\lambda)$ and the previous one, in unscaled units.
+    tangent: Vec<T>,
+    previous_tangent: Vec<T>,
+    anchor: Vec<T>,
+    scratch: Vec<T>,
+}
+
+impl<T: Scalar> Workspace<T> {
+    /// Buffers for an `n`-unknown problem.
+    pub fn new(n: usize) -> Self {
+        let z = T::zero();
+        let m = n + 1;
+        Self {
+            n,
+            x: vec![z; n],
+            lambda: 0.0,
+            jacobian: vec![z; n * n],
+            dlambda: vec![z; n],
+            matrix: vec![z; m * m],
+            pivots: vec![0; m],
+            step: vec![z; m],
+            trial: vec![z; m],
+            trial_residual: vec![z; m],
+            tangent: vec![z; m],
+            previous_tangent: vec![z; m],
+            anchor: vec![z; m],
+            scratch: vec![z; m * m],
+        }
+    }
+
+    /// Number of unknowns the buffers are sized for.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+}
+
+/// What a Newton solve achieved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonReport {
+    /// Iterations taken.
+    pub iterations: usize,
+    /// Final $\max_i|r_i|$, in the problem's unit.
+    pub residual: f64,
+}
+
+fn amax<T: Scalar>(v: &[T]) -> f64 {
+    v.iter().fold(0.0, |m: f64, x| if x.re().is_nan() { f64::NAN } else { m.max(x.re().abs()) })
+}
+
+/// Which system a Newton solve works on.
+#[derive(Clone, Copy)]
+enum Mode {
+    /// $r(x, \lambda) = 0$ at fixed $\lambda$.
+    Fixed,
+    /// $r(x, \lambda) = 0$ and $t^T W ((x,\lambda) - \text{anchor}) = 0$ (pseudo-arclength).
+    Arclength,
+}
+
+/// Evaluates the residual (and the Newton matrix, if `matrix`) of the
+/// system `mode` at the unknowns `z` ($x$, then $\lambda$ in arclength mode).
+#[allow(clippy::too_many_arguments)]
+fn system<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    mode: Mode,
+    z: &[T],
+    lambda: f64,
+    tangent: &[T],
+    anchor: &[T],
+    lambda_weight: f64,
+    residual: &mut [T],
+    jacobian: Option<(&mut [T], &mut [T], &mut [T])>,
+) -> Result<()> {
+    let n = problem.dim();
+    let lam = match mode {
+        Mode::Fixed => lambda,
+        Mode::Arclength => z[n].re(),
+    };
+    let (x, r) = (&z[..n], &mut residual[..n]);
+    match jacobian {
+        None => problem.evaluate(x, lam, r, None, None)?,
+        Some((jac, dlambda, matrix)) => {
+            problem.evaluate(x, lam, r, Some(&mut *jac), Some(&mut *dlambda))?;
+            let m = match mode {
+                Mode::Fixed => n,
+                Mode::Arclength => n + 1,
+            };
+            for c in 0..n {
+                matrix[c * m..c * m + n].copy_from_slice(&jac[c * n..c * n + n]);
+            }
+            if let Mode::Arclength = mode {
+                matrix[n * m..n * m + n].copy_from_slice(dlambda);
+                for c in 0..n {
+                    matrix[c * m + n] = tangent[c] * T::c(problem.weight(c).powi(2));
+                }
+                matrix[n * m + n] = tangent[n] * T::c(lambda_weight * lambda_weight);
+            }
+        }
+    }
+    if let Mode::Arclength = mode {
+        let mut s = T::zero();
+        for c in 0..n {
+            s += tangent[c] * T::c(problem.weight(c).powi(2)) * (z[c] - anchor[c]);
+        }
+        s += tangent[n] * T::c(lambda_weight * lambda_weight) * (z[n] - anchor[n]);
+        residual[n] = s;
+    }
+    Ok(())
+}
+
+/// Damped Newton on `mode`'s system, from and into `ws.trial` (length $n$ or $n+1$).
+fn correct<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut Workspace<T>,
+    mode: Mode,
+    lambda: f64,
+    lambda_weight: f64,
+    settings: &Settings,
+    min_iterations: usize,
+) -> Result<NewtonReport> {
+    let n = ws.n;
+    let m = match mode {
+        Mode::Fixed => n,
+        Mode::Arclength => n + 1,
+    };
+    let tolerance = settings.tolerance * problem.scale();
+    let (name, unit) = (problem.name(), problem.unit());
+    let Workspace { trial, trial_residual, jacobian, dlambda, matrix, pivots, step, tangent, anchor, scratch, .. } = ws;
+    let matrix = &mut matrix[..m * m];
+    let sys = |problem: &mut P, z: &[T], r: &mut [T], jac: Option<(&mut [T], &mut [T], &mut [T])>| {
+        system(problem, mode, z, lambda, tangent, anchor, lambda_weight, r, jac)
+    };
+    sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
+    let mut residual = amax(&trial_residual[..m]);
+    for iteration in 0..=settings.max_iterations {
+        if interrupted() {
+            return Err(Error::Interrupted { load_fraction: lambda });
+        }
+        if residual <= tolerance && iteration >= min_iterations {
+            return Ok(NewtonReport { iterations: iteration, residual });
+        }
+        let fail = |iterations| Error::NoConvergence { solver: name, iterations, residual, unit };
+        if iteration == settings.max_iterations || !residual.is_finite() {
+            return Err(fail(iteration));
+        }
+        // Newton step; a singular matrix (a free motion, a bifurcation
+        // point) is shifted along its diagonal until it factors.
+        let diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let mut shift = 0.0;
+        loop {
+            scratch_copy(matrix, scratch, m, shift * diag);
+            if linalg::lu(&mut scratch[..m * m], m, &mut pivots[..m]) {
+                break;
+            }
+            shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
+            if shift > 1e2 {
+                return Err(fail(iteration));
+            }
+        }
+        for (s, r) in step[..m].iter_mut().zip(&trial_residual[..m]) {
+            *s = -*r;
+        }
+        linalg::lu_solve(&scratch[..m * m], m, &pivots[..m], &mut step[..m]);
+        // Backtrack on the residual norm; near the tolerance accept a full
+        // step that does not grow the residual much (rounding).
+        let mut t = 1.0;
+        loop {
+            for i in 0..m {
+                trial[i] += step[i] * T::c(t);
+            }
+            let ok = sys(problem, &trial[..m], trial_residual, None).is_ok();
+            let rt = amax(&trial_residual[..m]);
+            if ok
+                && (rt <= (1.0 - 1e-4 * t) * residual
+                    || (t == 1.0 && residual < 1e3 * tolerance && rt < 10.0 * residual))
+            {
+                break;
+            }
+            // Undo this trial and halve.
+            for i in 0..m {
+                trial[i] -= step[i] * T::c(t);
+            }
+            t *= 0.5;
+            if t < 1e-9 {
+                return Err(fail(iteration));
+            }
+        }
+        sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
+        residual = amax(&trial_residual[..m]);
+    }
+    unreachable!("the loop returns at max_iterations")
+}
+
+fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64) {
+    scratch[..m * m].copy_from_slice(matrix);
+    if shift != 0.0 {
+        for i in 0..m {
+            scratch[i * m + i] += T::c(shift);
+        }
+    }
+}
+
+/// Damped Newton on $r(x, \lambda) = 0$ at fixed $\lambda$, from `ws.x`
+/// (updated in place; `ws.jacobian` holds $\partial_x r$ at the solution).
+///
+/// Each step solves $\partial_x r\,\delta = -r$ by LU (shifting a singular
+/// matrix along its diagonal), then halves until $\max|r|$ decreases.
+/// Stops with [`Error::NoConvergence`] at the iteration limit.
+pub fn newton<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut Workspace<T>,
+    lambda: f64,
+    settings: &Settings,
+) -> Result<NewtonReport> {
+    settings.validate()?;
+    check_dim(problem, ws)?;
+    let n = ws.n;
+    ws.trial[..n].copy_from_slice(&ws.x);
+    let min_iterations = if T::is_value() { 0 } else { 1 };
+    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations)?;
+    ws.x.copy_from_slice(&ws.trial[..n]);
+    ws.lambda = lambda;
+    Ok(report)
+}
+
+fn check_dim<T: Scalar, P: Problem<T>>(problem: &P, ws: &Workspace<T>) -> Result<()> {
+    if problem.dim() != ws.n {
+        return Err(Error::invalid("workspace", ws.n, "was made for a problem of another size"));
+    }
+    Ok(())
+}
+
+/// What [`continuation`] reached.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Path {
+    /// Whether the end state is stable ([`Problem::stable`]).
+    pub stable: bool,
+    /// The load fraction where stability was first lost along the path (a
+    /// limit or bifurcation load), if it was.
+    pub limit: Option<f64>,
+    /// Accepted continuation steps.
+    pub steps: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
+    /// Final residual, in the problem's unit.
+    pub residual: f64,
+}
+
+/// Follows the solution of $r(x, \lambda) = 0$ from `ws.x` at $\lambda = 0$
+/// to $\lambda = 1$, leaving the end state in `ws.x` (see the module docs
+/// for the policies).
+///
+/// Errors: [`Error::ContinuationStalled`] when the step falls below
+/// `min_step` or the steps run out (with the load fraction reached);
+/// [`Error::Unstable`] when the path loses stability at a limit load and
+/// does not come back to $\lambda = 1$; [`Error::Interrupted`].
+pub fn continuation<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut Workspace<T>,
+    settings: &Settings,
+) -> Result<Path> {
+    settings.validate()?;
+    check_dim(problem, ws)?;
+    let n = ws.n;
+    let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
+    // The start: converge at λ = 0 (the rest state, or the assembled one).
+    let start = newton(problem, ws, 0.0, settings)?;
+    path.iterations += start.iterations;
+    path.residual = start.residual;
+    path.stable = problem.stable(&ws.x, 0.0, &ws.jacobian);
+    let mut lambda = 0.0_f64;
+    // The first tangent: dx/dλ = −J⁻¹ ∂r/∂λ, bordered with (0, …, 0, 1).
+    ws.previous_tangent.fill(T::zero());
+    ws.previous_tangent[n] = T::one();
+    if !tangent(ws, problem, 1.0) {
+        return Err(Error::Singular {
+            what: format!("{}: the rest state has a zero-stiffness mode along the load", problem.name()),
+        });
+    }
+    // λ's weight in the arc length: the rate at which x first moves, so
+    // that both parts of the first tangent count alike.
+    let rate = (0..n).map(|i| (ws.tangent[i].re() * problem.weight(i)).powi(2)).sum::<f64>().sqrt()
+        / ws.tangent[n].re().abs().max(f64::MIN_POSITIVE);
+    let lambda_weight = rate.max(1e-3);
+    // The arc length of the whole load taken as one linear step: the unit
+    // of the step length, so min_step is relative to the load.
+    let full = normalize(ws, problem, lambda_weight);
+    let (min_step, max_step) = (settings.min_step * full, 4.0 * full);
+    let mut h = full;
+    let mut rotation_rate = unit_rotation(problem, ws);
+    let mut last_residual = start.residual;
+    while path.steps < settings.max_steps {
+        if interrupted() {
+            return Err(Error::Interrupted { load_fraction: lambda });
+        }
+        // Step length: at most double the last, turning no section by more
+        // than 70 % of the bound; the last step lands on λ = 1.
+        if rotation_rate > 0.0 {
+            h = h.min(0.7 * settings.max_rotation_per_step / rotation_rate);
+        }
+        let t_lambda = ws.tangent[n].re();
+        let landing = t_lambda > 0.0 && lambda + h * t_lambda >= 1.0 - 1e-12;
+        let found = if landing {
+            let hl = (1.0 - lambda) / t_lambda;
+            for i in 0..n {
+                ws.trial[i] = ws.x[i] + ws.tangent[i] * T::c(hl);
+            }
+            let min_iterations = if T::is_value() { 0 } else { 1 };
+            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations).map(|r| (r, 1.0))
+        } else {
+            // Predict along the tangent; correct on the hyperplane through
+            // the prediction, orthogonal to the tangent.
+            for i in 0..n {
+                ws.trial[i] = ws.x[i] + ws.tangent[i] * T::c(h);
+            }
+            ws.trial[n] = T::c(lambda) + ws.tangent[n] * T::c(h);
+            ws.anchor.copy_from_slice(&ws.trial);
+            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0).map(|r| (r, ws.trial[n].re()))
+        };
+        let outcome = match found {
+            Err(Error::Interrupted { .. }) => return Err(Error::Interrupted { load_fraction: lambda }),
+            Err(Error::NoConvergence { iterations, residual, .. }) => {
+                path.iterations += iterations;
+                last_residual = residual;
+                None
+            }
+            Err(e @ Error::InvalidParameter { .. }) => return Err(e),
+            Err(_) => None,
+            Ok((report, new_lambda)) => {
+                path.iterations += report.iterations;
+                let turned = problem.distance(&ws.trial[..n], &ws.x);
+                if turned > settings.max_rotation_per_step { None } else { Some((report, new_lambda)) }
+            }
+        };
+        let Some((report, new_lambda)) = outcome else {
+            h *= 0.5;
+            if h < min_step {
+                return Err(stalled(problem, lambda, &path, last_residual));
+            }
+            continue;
+        };
+        // Stability of the new state, and the tangent there (to tell a fold).
+        let stable = problem.stable(&ws.trial[..n], new_lambda, &ws.jacobian);
+        let old_tangent_lambda = ws.tangent[n].re();
+        ws.previous_tangent.copy_from_slice(&ws.tangent);
+        let has_tangent = tangent(ws, problem, lambda_weight);
+        let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
+        if path.stable && !stable && !fold && h * 0.5 >= min_step {
+            // Stable to unstable while λ still rises: a jump to another
+            // branch, or a bifurcation; shorter steps tell them apart.
+            ws.tangent.copy_from_slice(&ws.previous_tangent);
+            h *= 0.5;
+            continue;
+        }
+        if path.stable && !stable && path.limit.is_none() {
+            path.limit = Some(if fold { new_lambda.max(lambda) } else { lambda });
+        }
+        if !has_tangent {
+            ws.tangent.copy_from_slice(&ws.previous_tangent);
+        }
+        let _ = normalize(ws, problem, lambda_weight);
+        ws.x.copy_from_slice(&ws.trial[..n]);
+        lambda = new_lambda;
+        path.steps += 1;
+        path.stable = stable;
+        path.residual = report.residual;
+        last_residual = report.residual;
+        ws.lambda = lambda;
+        if landing {
+            return Ok(path);
+        }
+        if lambda < -1e-9 {
+            return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(0.0) });
+        }
+        rotation_rate = unit_rotation(problem, ws);
+        h = (2.0 * h).min(max_step);
+    }
+    match path.limit {
+        Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
+        _ => Err(stalled(problem, lambda, &path, last_residual)),
+    }
+}
+
+fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64) -> Error {
+    Error::ContinuationStalled {
+        solver: problem.name(),
+        load_fraction: lambda.clamp(0.0, 1.0),
+        steps: path.steps,
+        residual,
+        unit: problem.unit(),
+    }
+}
+
+/// Rotation caused by a unit step along the tangent.
+fn unit_rotation<T: Scalar, P: Problem<T>>(problem: &P, ws: &mut Workspace<T>) -> f64 {
+    let n = ws.n;
+    for i in 0..n {
+        ws.step[i] = ws.x[i] + ws.tangent[i];
+    }
+    problem.distance(&ws.step[..n], &ws.x)
+}
+
+/// Scales the tangent to unit weighted length; returns the length it had.
+fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> f64 {
+    let n = ws.n;
+    let norm = ((0..n).map(|i| (ws.tangent[i].re() * problem.weight(i)).powi(2)).sum::<f64>()
+        + (ws.tangent[n].re() * lambda_weight).powi(2))
+    .sqrt();
+    if norm > 0.0 && norm.is_finite() {
+        for t in ws.tangent.iter_mut() {
+            *t /= T::c(norm);
+        }
+    }
+    norm
+}
+
+/// The tangent at the state just evaluated (its Jacobian and load
+/// derivative in `ws`), oriented along `ws.previous_tangent`:
+/// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\,t = (0, 1)$.
+/// False where that bordered matrix is singular.
+fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> bool {
+    let n = ws.n;
+    let m = n + 1;
+    for c in 0..n {
+        ws.matrix[c * m..c * m + n].copy_from_slice(&ws.jacobian[c * n..c * n + n]);
+        ws.matrix[c * m + n] = ws.previous_tangent[c] * T::c(problem.weight(c).powi(2));
+    }
+    ws.matrix[n * m..n * m + n].copy_from_slice(&ws.dlambda);
+    ws.matrix[n * m + n] = ws.previous_tangent[n] * T::c(lambda_weight * lambda_weight);
+    if !linalg::lu(&mut ws.matrix[..m * m], m, &mut ws.pivots[..m]) {
+        return false;
+    }
+    ws.tangent.fill(T::zero());
+    ws.tangent[n] = T::one();
+    linalg::lu_solve(&ws.matrix[..m * m], m, &ws.pivots[..m], &mut ws.tangent);
+    ws.tangent.iter().all(|t| t.re().is_finite())
+}

@@ -1,0 +1,111 @@
+//! The shared solver core on problems with closed-form answers.
+
+use flexure::Error;
+use flexure::solver::{Problem, Settings, Workspace, continuation, newton, with_interrupt};
+
+/// $r(x, \lambda) = x^3 - 3x + 3 - 8\lambda$: the gradient of a one-degree
+/// potential with a fold at $x = -1$, $\lambda = 5/8$ (the limit load) and
+/// another at $x = 1$, $\lambda = 1/8$. Loaded from the rest root at
+/// $\lambda = 0$, the path snaps through to the stable root of
+/// $x^3 - 3x - 5 = 0$ at $\lambda = 1$.
+struct Snap;
+
+impl Problem<f64> for Snap {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        j: Option<&mut [f64]>,
+        d: Option<&mut [f64]>,
+    ) -> flexure::Result<()> {
+        r[0] = x[0].powi(3) - 3.0 * x[0] + 3.0 - 8.0 * lambda;
+        if let Some(j) = j {
+            j[0] = 3.0 * x[0] * x[0] - 3.0;
+        }
+        if let Some(d) = d {
+            d[0] = -8.0;
+        }
+        Ok(())
+    }
+    fn stable(&mut self, _x: &[f64], _lambda: f64, j: &[f64]) -> bool {
+        j[0] > 0.0
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        (a[0] - b[0]).abs()
+    }
+    fn scale(&self) -> f64 {
+        1.0
+    }
+    fn unit(&self) -> &'static str {
+        "1"
+    }
+    fn name(&self) -> &'static str {
+        "snap"
+    }
+}
+
+/// Cardano: the real root of $x^3 + px + q = 0$ with one real root.
+fn cardano(p: f64, q: f64) -> f64 {
+    let d = (q * q / 4.0 + p * p * p / 27.0).sqrt();
+    (-q / 2.0 + d).cbrt() + (-q / 2.0 - d).cbrt()
+}
+
+#[test]
+fn snap_through_reaches_the_stable_root_and_names_the_limit_load() {
+    let mut ws = Workspace::new(1);
+    ws.x[0] = cardano(-3.0, 3.0);
+    let path = continuation(&mut Snap, &mut ws, &Settings::default()).unwrap();
+    // Closed form: the root of x³ − 3x − 5 = 0 (tolerance: Newton's, 1e-12 on r).
+    assert!((ws.x[0] - cardano(-3.0, -5.0)).abs() < 1e-11, "{}", ws.x[0]);
+    assert!(path.stable);
+    // The fold is at λ = 5/8; the limit is the largest λ of the steps around
+    // it, within the 0.35 rotation units a step may take near it (|dλ/dx| ≤ 0.4 there).
+    let limit = path.limit.expect("stability is lost at the fold");
+    assert!((limit - 0.625).abs() < 0.05, "{limit}");
+}
+
+#[test]
+fn newton_converges_quadratically_on_a_cubic() {
+    let mut ws = Workspace::new(1);
+    ws.x[0] = 3.0;
+    let r = newton(&mut Snap, &mut ws, 1.0, &Settings::default()).unwrap();
+    assert!((ws.x[0] - cardano(-3.0, -5.0)).abs() < 1e-12 && r.iterations <= 8, "{r:?}");
+}
+
+#[test]
+fn limits_are_reported_with_what_was_reached() {
+    let mut ws = Workspace::new(1);
+    ws.x[0] = 3.0;
+    let one = Settings { max_iterations: 1, ..Default::default() };
+    match newton(&mut Snap, &mut ws, 1.0, &one) {
+        Err(Error::NoConvergence { iterations: 1, residual, unit: "1", .. }) => assert!(residual > 0.0),
+        other => panic!("expected NoConvergence after one iteration, got {other:?}"),
+    }
+    ws.x[0] = cardano(-3.0, 3.0);
+    let few = Settings { max_steps: 2, ..Default::default() };
+    match continuation(&mut Snap, &mut ws, &few) {
+        Err(Error::ContinuationStalled { steps: 2, load_fraction, .. }) => assert!(load_fraction > 0.0),
+        other => panic!("expected ContinuationStalled after two steps, got {other:?}"),
+    }
+}
+
+#[test]
+fn an_interrupt_stops_the_solver() {
+    let mut ws = Workspace::new(1);
+    ws.x[0] = cardano(-3.0, 3.0);
+    let r = with_interrupt(|| true, || continuation(&mut Snap, &mut ws, &Settings::default()));
+    assert!(matches!(r, Err(Error::Interrupted { load_fraction }) if load_fraction == 0.0), "{r:?}");
+    // The hook is removed afterwards.
+    ws.x[0] = cardano(-3.0, 3.0);
+    assert!(continuation(&mut Snap, &mut ws, &Settings::default()).is_ok());
+}
+
+#[test]
+fn a_workspace_of_another_size_is_refused() {
+    let mut ws = Workspace::new(2);
+    assert!(matches!(newton(&mut Snap, &mut ws, 0.0, &Settings::default()), Err(Error::InvalidParameter { .. })));
+}
