@@ -37,7 +37,8 @@ class Flexure:
     def rest(self) -> np.ndarray: ...
     # Every alpha below must have N entries (per row): another length raises ValueError.
     def pose(self, alpha: ArrayLike) -> np.ndarray:
-        """[phi, x, y] for alpha (N,); (n, 3) for alpha (n, N), in parallel without the GIL."""
+        """[phi, x, y] for alpha (N,); (n, 3) for alpha (n, N), in parallel without the GIL
+        (Ctrl-C stops a batch with KeyboardInterrupt)."""
     def jacobian(self, alpha: ArrayLike) -> np.ndarray:
         """(3, N), rows phi, x, y."""
     def hessians(self, alpha: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
@@ -48,7 +49,8 @@ class Flexure:
         """Bending energy in joules."""
     def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
         """Equilibrium alpha (N,) under a tip moment (N*m) and force (N) in the root frame.
-        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable."""
+        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable.
+        Runs without the GIL; Ctrl-C stops it with KeyboardInterrupt."""
     def stiffness(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
         """(N, N) generalized stiffness K = ∇∇U − Fx∇∇x − Fy∇∇y at alpha under the tip load (Eq. 32)."""
     def compliance(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:

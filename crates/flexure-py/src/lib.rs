@@ -16,9 +16,10 @@ use flexure::{
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt};
+use std::time::{Duration, Instant};
 
 create_exception!(
     _flexure,
@@ -60,8 +61,71 @@ fn to_py(e: Error) -> PyErr {
             });
             err
         }
-        Error::Interrupted { .. } => pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+thread_local! {
+    /// What a Python signal handler raised while an interruptible call ran on this thread.
+    static RAISED: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
+    /// When the interrupt check next runs Python's handlers.
+    static NEXT_POLL: std::cell::Cell<Option<Instant>> = const { std::cell::Cell::new(None) };
+}
+
+/// How often a running solve hands control to Python's signal handlers:
+/// taking the GIL at every Newton iteration would double the cost of a
+/// small solve, and 10 ms is well below what a person pressing Ctrl-C notices.
+const POLL: Duration = Duration::from_millis(10);
+
+/// The solvers' interrupt check: at most every [`POLL`], runs Python's signal
+/// handlers (only on the main thread; Ctrl-C's raises `KeyboardInterrupt`)
+/// and keeps what they raised for [`interruptible`] to raise.
+fn signalled() -> bool {
+    let now = Instant::now();
+    if NEXT_POLL.with(|t| t.get()).is_some_and(|next| now < next) {
+        return false;
+    }
+    NEXT_POLL.with(|t| t.set(Some(now + POLL)));
+    Python::attach(|py| match py.check_signals() {
+        Ok(()) => false,
+        Err(e) => {
+            RAISED.with(|r| *r.borrow_mut() = Some(e));
+            true
+        }
+    })
+}
+
+/// Starts an interruptible call: forgets what a handler raised before, and
+/// first polls after [`POLL`], so a quick call never takes the GIL back.
+fn clear_raised() {
+    RAISED.with(|r| r.borrow_mut().take());
+    NEXT_POLL.with(|t| t.set(Some(Instant::now() + POLL)));
+}
+
+/// What a signal handler raised during the work, if anything; a plain
+/// `KeyboardInterrupt` is replaced by `interrupted`, which says how far the
+/// work got.
+fn raised_during(py: Python<'_>, interrupted: impl FnOnce() -> PyErr) -> Option<PyErr> {
+    let raised = RAISED.with(|r| r.borrow_mut().take())?;
+    if raised.is_instance_of::<PyKeyboardInterrupt>(py) { Some(interrupted()) } else { Some(raised) }
+}
+
+/// Runs a solve without the GIL, polling Python's signal handlers at every
+/// continuation step and Newton iteration ([`flexure::solver::with_interrupt`]):
+/// Ctrl-C stops it with `KeyboardInterrupt` saying the load fraction reached,
+/// and an exception raised by any other handler propagates as it is.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> flexure::Result<T> + Send) -> PyResult<T> {
+    clear_raised();
+    let out = py.detach(|| flexure::solver::with_interrupt(signalled, work));
+    let message = match &out {
+        Err(e @ Error::Interrupted { .. }) => e.to_string(),
+        _ => "interrupted".to_string(),
+    };
+    // A handler that raised wins even over a result: Python would have raised it.
+    match raised_during(py, || PyKeyboardInterrupt::new_err(message)) {
+        Some(err) => Err(err),
+        None => out.map_err(to_py),
     }
 }
 
@@ -280,11 +344,29 @@ impl Flexure {
             }
             Some(r) => {
                 let f = &self.inner;
-                let poses = py.detach(|| {
-                    let mut poses = vec![Pose::default(); r];
-                    par_poses_root_tip(f, &values, &mut poses).map(|_| poses)
-                });
-                let poses = poses.map_err(to_py)?;
+                let n = f.order();
+                // Chunks of about 2^24 node evaluations (milliseconds), between which Ctrl-C is polled.
+                let rows_per_chunk = ((1usize << 24) / (n * f.quadrature_points())).max(1);
+                clear_raised();
+                let (poses, done) = py
+                    .detach(|| {
+                        let mut poses = vec![Pose::default(); r];
+                        let mut done = 0;
+                        for (a, p) in values.chunks(rows_per_chunk * n).zip(poses.chunks_mut(rows_per_chunk)) {
+                            if signalled() {
+                                break;
+                            }
+                            par_poses_root_tip(f, a, p)?;
+                            done += p.len();
+                        }
+                        Ok((poses, done))
+                    })
+                    .map_err(to_py)?;
+                let interrupted =
+                    || PyKeyboardInterrupt::new_err(format!("pose: interrupted after {done} of {r} rows"));
+                if let Some(err) = raised_during(py, interrupted) {
+                    return Err(err);
+                }
                 let flat: Vec<f64> = poses.iter().flat_map(|p| [p.phi, p.x, p.y]).collect();
                 let a = Array2::from_shape_vec((r, 3), flat).map_err(|e| PyValueError::new_err(e.to_string()))?;
                 Ok(a.into_pyarray(py).into_any())
@@ -337,11 +419,10 @@ impl Flexure {
     fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let load = tip_load(moment, fx, fy)?;
         let f = &self.inner;
-        let found = py.detach(|| {
+        let (alpha, stable) = interruptible(py, || {
             let mut data = Statics::new(f);
             deflect(f, &load, &mut data, &Default::default()).map(|eq| (data.alpha().to_vec(), eq.stable))
-        });
-        let (alpha, stable) = found.map_err(to_py)?;
+        })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
             warn_unstable(py, "deflect", &load, why)?;
@@ -421,7 +502,7 @@ fn exact_deflect<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
     let load = tip_load(moment, fx, fy)?;
-    let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
+    let s = interruptible(py, || elastica::deflect(&f, &load, &Default::default()))?;
     if !s.stable {
         warn_unstable(py, "exact.deflect", &load, "the elastica fails the Jacobi test")?;
     }
@@ -438,7 +519,7 @@ fn exact_compliance_tip<'py>(
     rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
-    let c = exact_compliance::compliance_tip(&f, &Default::default()).map_err(to_py)?;
+    let c = interruptible(py, || exact_compliance::compliance_tip(&f, &Default::default()))?;
     Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
 }
 
@@ -480,7 +561,7 @@ impl Mechanism {
     /// Equilibrium as a dict shaped like `flexure solve --json`.
     fn solve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let m = &self.inner;
-        let s = py.detach(|| solve(m, &MechanismSettings::default())).map_err(to_py)?;
+        let s = interruptible(py, || solve(m, &MechanismSettings::default()))?;
         let frames = body_frames(m, &s);
         let bodies = PyDict::new(py);
         for (b, f) in m.bodies.iter().zip(&frames.bodies) {
