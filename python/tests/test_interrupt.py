@@ -26,6 +26,16 @@ DELAY = 0.2
 BOUND = 1.5
 
 
+@pytest.fixture(autouse=True)
+def python_handles_sigint():
+    # A process started with SIGINT ignored (as a shell does for background jobs, and as
+    # some CI runners do) has no Python handler, and interrupt_main then does nothing:
+    # give these tests Python's default handler, as an interactive session has.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def interrupted_after(call, delay=DELAY):
     """Runs `call` with SIGINT simulated `delay` s in; the exception it raised and the seconds it took."""
     timer = threading.Timer(delay, _thread.interrupt_main)
