@@ -4,6 +4,10 @@ Conventions (the same as the Rust crate): SI units, angles in radians.
 The root frame's x axis runs along the unbent flexure; poses, Jacobian
 rows and compliance rows/columns are ordered (phi, x, y); tip loads are a
 moment M (counter-clockwise) and a force (Fx, Fy) in the root frame.
+Bad input raises ValueError naming the parameter. Solves and batches run
+without the GIL; Ctrl-C stops `Flexure.deflect` and a batch `Flexure.pose`
+with KeyboardInterrupt (the exact and mechanism solvers poll for it once
+they run on the library's interruptible solver core).
 
 >>> import flexure
 >>> f = flexure.Flexure(length=1.0, ei=1.0)

@@ -15,9 +15,11 @@ class StabilityWarning(UserWarning):
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
 
-    length (m), ei (N*m^2) or modulus (Pa), width, thickness (m) and poisson;
-    order N of the shifted-Legendre curvature basis; quadrature points (default N + 2);
-    rest curvature coefficients (N,). Invalid values raise ValueError naming the parameter.
+    length (m), ei (N*m^2) or modulus (Pa) with width and thickness (m) and optional poisson;
+    order N (1 to 64) of the shifted-Legendre curvature basis; quadrature points
+    (1 to 1024, default N + 2); rest curvature coefficients (N,).
+    Invalid values raise ValueError naming the parameter, as do options that
+    would be ignored (width, thickness or poisson without modulus; ei with modulus).
     """
     def __init__(self, length: float = 1.0, ei: Optional[float] = None, order: int = 3,
                  quadrature: Optional[int] = None, rest: Optional[ArrayLike] = None, *,
@@ -33,8 +35,10 @@ class Flexure:
     def quadrature(self) -> int: ...
     @property
     def rest(self) -> np.ndarray: ...
+    # Every alpha below must have N entries (per row): another length raises ValueError.
     def pose(self, alpha: ArrayLike) -> np.ndarray:
-        """[phi, x, y] for alpha (N,); (n, 3) for alpha (n, N), in parallel without the GIL."""
+        """[phi, x, y] for alpha (N,); (n, 3) for alpha (n, N), in parallel without the GIL
+        (Ctrl-C stops a batch with KeyboardInterrupt)."""
     def jacobian(self, alpha: ArrayLike) -> np.ndarray:
         """(3, N), rows phi, x, y."""
     def hessians(self, alpha: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
@@ -45,9 +49,16 @@ class Flexure:
         """Bending energy in joules."""
     def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
         """Equilibrium alpha (N,) under a tip moment (N*m) and force (N) in the root frame.
-        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable."""
-    def compliance(self, alpha: Optional[ArrayLike] = None) -> np.ndarray:
-        """(3, 3) tip compliance J K^-1 J^T (Eq. 36), at the rest shape by default."""
+        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable.
+        Runs without the GIL; Ctrl-C stops it with KeyboardInterrupt."""
+    def stiffness(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
+        """(N, N) generalized stiffness K = ∇∇U − Fx∇∇x − Fy∇∇y at alpha under the tip load (Eq. 32)."""
+    def compliance(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
+        """(3, 3) tip compliance J K^-1 J^T with the loaded stiffness K (Eqs. 32, 36). At an equilibrium
+        alpha for that load (from deflect) it is d(pose)/d(moment, fx, fy). Raises ValueError where K
+        is not positive definite (an unstable equilibrium has no compliance)."""
+    def rest_compliance(self) -> np.ndarray:
+        """(3, 3) tip compliance of the unloaded flexure at its rest shape (Eqs. 35–36)."""
     def buckling_load(self, tip: str = "free") -> float:
         """Critical compressive tip load (N): tip is free, guided, pinned or clamped."""
 

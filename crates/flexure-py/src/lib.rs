@@ -10,15 +10,16 @@ use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
 use flexure::reference::{compliance as exact_compliance, elastica};
 use flexure::{
-    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect, energy,
-    update_kinematics,
+    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip, compliance_tip_rest,
+    deflect, energy, update_kinematics,
 };
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyInt};
+use std::time::{Duration, Instant};
 
 create_exception!(
     _flexure,
@@ -60,8 +61,71 @@ fn to_py(e: Error) -> PyErr {
             });
             err
         }
-        Error::Interrupted { .. } => pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+thread_local! {
+    /// What a Python signal handler raised while an interruptible call ran on this thread.
+    static RAISED: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
+    /// When the interrupt check next runs Python's handlers.
+    static NEXT_POLL: std::cell::Cell<Option<Instant>> = const { std::cell::Cell::new(None) };
+}
+
+/// How often a running solve hands control to Python's signal handlers:
+/// taking the GIL at every Newton iteration would double the cost of a
+/// small solve, and 10 ms is well below what a person pressing Ctrl-C notices.
+const POLL: Duration = Duration::from_millis(10);
+
+/// The solvers' interrupt check: at most every [`POLL`], runs Python's signal
+/// handlers (only on the main thread; Ctrl-C's raises `KeyboardInterrupt`)
+/// and keeps what they raised for [`interruptible`] to raise.
+fn signalled() -> bool {
+    let now = Instant::now();
+    if NEXT_POLL.with(|t| t.get()).is_some_and(|next| now < next) {
+        return false;
+    }
+    NEXT_POLL.with(|t| t.set(Some(now + POLL)));
+    Python::attach(|py| match py.check_signals() {
+        Ok(()) => false,
+        Err(e) => {
+            RAISED.with(|r| *r.borrow_mut() = Some(e));
+            true
+        }
+    })
+}
+
+/// Starts an interruptible call: forgets what a handler raised before, and
+/// first polls after [`POLL`], so a quick call never takes the GIL back.
+fn clear_raised() {
+    RAISED.with(|r| r.borrow_mut().take());
+    NEXT_POLL.with(|t| t.set(Some(Instant::now() + POLL)));
+}
+
+/// What a signal handler raised during the work, if anything; a plain
+/// `KeyboardInterrupt` is replaced by `interrupted`, which says how far the
+/// work got.
+fn raised_during(py: Python<'_>, interrupted: impl FnOnce() -> PyErr) -> Option<PyErr> {
+    let raised = RAISED.with(|r| r.borrow_mut().take())?;
+    if raised.is_instance_of::<PyKeyboardInterrupt>(py) { Some(interrupted()) } else { Some(raised) }
+}
+
+/// Runs a solve without the GIL, polling Python's signal handlers at every
+/// continuation step and Newton iteration ([`flexure::solver::with_interrupt`]):
+/// Ctrl-C stops it with `KeyboardInterrupt` saying the load fraction reached,
+/// and an exception raised by any other handler propagates as it is.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> flexure::Result<T> + Send) -> PyResult<T> {
+    clear_raised();
+    let out = py.detach(|| flexure::solver::with_interrupt(signalled, work));
+    let message = match &out {
+        Err(e @ Error::Interrupted { .. }) => e.to_string(),
+        _ => "interrupted".to_string(),
+    };
+    // A handler that raised wins even over a result: Python would have raised it.
+    match raised_during(py, || PyKeyboardInterrupt::new_err(message)) {
+        Some(err) => Err(err),
+        None => out.map_err(to_py),
     }
 }
 
@@ -78,7 +142,7 @@ struct Flexure {
     inner: flexure::Flexure,
 }
 
-/// Reads `alpha` as an (N,) or (n, N) float64 array and checks it.
+/// Reads `alpha` as an (N,) or (n, N) float64 array of finite values.
 fn coordinates(
     f: &flexure::Flexure,
     alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>,
@@ -88,23 +152,54 @@ fn coordinates(
     let rows = match shape.as_slice() {
         [k] if *k == n => None,
         [r, k] if *k == n => Some(*r),
+        [k] | [_, k] => {
+            return Err(PyValueError::new_err(format!(
+                "alpha must have {n} entries per row (the flexure's order), got {k} (shape {shape:?})"
+            )));
+        }
         _ => {
             return Err(PyValueError::new_err(format!(
-                "alpha has shape {shape:?}; expected ({n},) or (n, {n}) for order {n}"
+                "alpha must have shape ({n},) or (n, {n}) for order {n}, got shape {shape:?}"
             )));
         }
     };
     let values: Vec<f64> = alpha.as_array().iter().copied().collect();
-    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return Err(PyValueError::new_err(format!("alpha contains {v}: every coordinate must be a finite number")));
-    }
+    all_finite("alpha", &values)?;
     Ok((values, rows))
 }
 
+/// Reads `alpha` as one configuration, shape (N,).
 fn single(f: &flexure::Flexure, alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
     match coordinates(f, alpha)? {
         (v, None) => Ok(v),
-        (_, Some(_)) => Err(PyValueError::new_err(format!("alpha must have shape ({},) here", f.order()))),
+        (_, Some(r)) => Err(PyValueError::new_err(format!(
+            "alpha must have shape ({n},) here (one configuration), got shape ({r}, {n})",
+            n = f.order()
+        ))),
+    }
+}
+
+/// Reads `name` as a 1-D array of `expected` finite values (any count if `None`).
+fn vector(name: &str, array: &PyArrayLikeDyn<'_, f64, AllowTypeChange>, expected: Option<usize>) -> PyResult<Vec<f64>> {
+    let shape = array.shape().to_vec();
+    let got = match shape.as_slice() {
+        [k] => *k,
+        _ => return Err(PyValueError::new_err(format!("{name} must be one-dimensional, got shape {shape:?}"))),
+    };
+    if let Some(n) = expected.filter(|&n| n != got) {
+        return Err(PyValueError::new_err(format!(
+            "{name} must have {n} entries (one per coordinate, the flexure's order), got {got}"
+        )));
+    }
+    let values: Vec<f64> = array.as_array().iter().copied().collect();
+    all_finite(name, &values)?;
+    Ok(values)
+}
+
+fn all_finite(name: &str, values: &[f64]) -> PyResult<()> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(v) => Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number"))),
+        None => Ok(()),
     }
 }
 
@@ -112,17 +207,51 @@ fn finite(name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() { Ok(v) } else { Err(PyValueError::new_err(format!("{name} = {v}: must be a finite number"))) }
 }
 
+/// A tip load of finite components.
+fn tip_load(moment: f64, fx: f64, fy: f64) -> PyResult<TipLoad> {
+    Ok(TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? })
+}
+
+/// A count such as `order` from any Python integer: one that does not fit a
+/// `usize` (negative, or past 2^64) is a `ValueError` naming `name` and the
+/// bound, not an `OverflowError`. The library checks the bound itself.
+fn count(name: &str, value: &Bound<'_, PyAny>, max: usize) -> PyResult<usize> {
+    match value.extract::<usize>() {
+        Ok(v) => Ok(v),
+        // Integers (also NumPy's, through __index__) out of usize's range.
+        Err(_) if value.is_instance_of::<PyInt>() || value.hasattr("__index__").unwrap_or(false) => {
+            Err(PyValueError::new_err(format!("invalid {name} = {value}: must be from 1 to {max}")))
+        }
+        Err(e) => Err(PyTypeError::new_err(format!("argument '{name}': {}", e.value(value.py())))),
+    }
+}
+
+/// The stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$
+/// (Eq. 32) at `alpha`, with the kinematics there (Hessian level).
+fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kinematics<f64>, nalgebra::DMatrix<f64>) {
+    let mut k = Kinematics::new(f);
+    update_kinematics(f, alpha, &mut k, Level::Hessian);
+    let mut stiffness = -(&k.hessian_root_tip_x * load.fx + &k.hessian_root_tip_y * load.fy);
+    for i in 0..f.order() {
+        stiffness[(i, i)] += flexure::energy::stiffness(f, i);
+    }
+    (k, stiffness)
+}
+
 #[pymethods]
 impl Flexure {
-    /// Flexure(length=1.0, ei=1.0, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
+    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
     #[new]
-    #[pyo3(signature = (length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None))]
+    #[pyo3(
+        signature = (length=1.0, ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None),
+        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn new(
         length: f64,
         ei: Option<f64>,
-        order: usize,
-        quadrature: Option<usize>,
+        order: Option<&Bound<'_, PyAny>>,
+        quadrature: Option<&Bound<'_, PyAny>>,
         rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
         modulus: Option<f64>,
         width: Option<f64>,
@@ -131,24 +260,46 @@ impl Flexure {
     ) -> PyResult<Self> {
         let ei = match (ei, modulus) {
             (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err("give ei, or modulus, width and thickness, not both"));
+                return Err(PyValueError::new_err(
+                    "ei and modulus were both given: give ei, or modulus with width and thickness, not both",
+                ));
             }
-            (Some(ei), None) => ei,
+            (ei, None) => {
+                // Section options only count with a modulus: refuse them rather than ignore them.
+                let unused: Vec<&str> =
+                    [("width", width.is_some()), ("thickness", thickness.is_some()), ("poisson", poisson.is_some())]
+                        .into_iter()
+                        .filter_map(|(name, given)| given.then_some(name))
+                        .collect();
+                if !unused.is_empty() {
+                    return Err(PyValueError::new_err(format!(
+                        "{} given without modulus would be ignored: give modulus (with width and thickness) to compute ei from the section, or leave them out",
+                        unused.join(", ")
+                    )));
+                }
+                ei.unwrap_or(1.0)
+            }
             (None, Some(e)) => {
                 let (Some(w), Some(h)) = (width, thickness) else {
-                    return Err(PyValueError::new_err("modulus needs width and thickness"));
+                    let missing = if width.is_none() && thickness.is_none() {
+                        "width and thickness"
+                    } else if width.is_none() {
+                        "width"
+                    } else {
+                        "thickness"
+                    };
+                    return Err(PyValueError::new_err(format!("modulus needs width and thickness: {missing} missing")));
                 };
                 flexure::bending_stiffness(e, w, h, poisson).map_err(to_py)?
             }
-            (None, None) => 1.0,
         };
+        let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
         let mut f = flexure::Flexure::new(length, ei, order).map_err(to_py)?;
         if let Some(q) = quadrature {
-            f = f.with_quadrature(q).map_err(to_py)?;
+            f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
         if let Some(r) = rest {
-            let kappa: Vec<f64> = r.as_array().iter().copied().collect();
-            f = f.with_rest(&kappa).map_err(to_py)?;
+            f = f.with_rest(&vector("rest", &r, Some(order))?).map_err(to_py)?;
         }
         Ok(Self { inner: f })
     }
@@ -193,11 +344,29 @@ impl Flexure {
             }
             Some(r) => {
                 let f = &self.inner;
-                let poses = py.detach(|| {
-                    let mut poses = vec![Pose::default(); r];
-                    par_poses_root_tip(f, &values, &mut poses).map(|_| poses)
-                });
-                let poses = poses.map_err(to_py)?;
+                let n = f.order();
+                // Chunks of about 2^24 node evaluations (milliseconds), between which Ctrl-C is polled.
+                let rows_per_chunk = ((1usize << 24) / (n * f.quadrature_points())).max(1);
+                clear_raised();
+                let (poses, done) = py
+                    .detach(|| {
+                        let mut poses = vec![Pose::default(); r];
+                        let mut done = 0;
+                        for (a, p) in values.chunks(rows_per_chunk * n).zip(poses.chunks_mut(rows_per_chunk)) {
+                            if signalled() {
+                                break;
+                            }
+                            par_poses_root_tip(f, a, p)?;
+                            done += p.len();
+                        }
+                        Ok((poses, done))
+                    })
+                    .map_err(to_py)?;
+                let interrupted =
+                    || PyKeyboardInterrupt::new_err(format!("pose: interrupted after {done} of {r} rows"));
+                if let Some(err) = raised_during(py, interrupted) {
+                    return Err(err);
+                }
                 let flat: Vec<f64> = poses.iter().flat_map(|p| [p.phi, p.x, p.y]).collect();
                 let a = Array2::from_shape_vec((r, 3), flat).map_err(|e| PyValueError::new_err(e.to_string()))?;
                 Ok(a.into_pyarray(py).into_any())
@@ -248,13 +417,12 @@ impl Flexure {
     /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22).
     #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0))]
     fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
+        let load = tip_load(moment, fx, fy)?;
         let f = &self.inner;
-        let found = py.detach(|| {
+        let (alpha, stable) = interruptible(py, || {
             let mut data = Statics::new(f);
             deflect(f, &load, &mut data, &Default::default()).map(|eq| (data.alpha().to_vec(), eq.stable))
-        });
-        let (alpha, stable) = found.map_err(to_py)?;
+        })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
             warn_unstable(py, "deflect", &load, why)?;
@@ -262,22 +430,44 @@ impl Flexure {
         Ok(PyArray1::from_vec(py, alpha))
     }
 
-    /// Tip compliance (3, 3), order (phi, x, y): J K⁻¹ Jᵀ with K the energy Hessian (Eq. 36), at alpha (default: the rest shape).
-    #[pyo3(signature = (alpha=None))]
+    /// Generalized stiffness (N, N) at alpha under a tip load:
+    /// K = ∇∇U − Fx∇∇x − Fy∇∇y (Eq. 32; the moment adds nothing, φ_tip being linear in alpha).
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
+    fn stiffness<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let load = tip_load(moment, fx, fy)?;
+        let (_, k) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        Ok(matrix(&k).into_pyarray(py))
+    }
+
+    /// Tip compliance (3, 3), order (phi, x, y), at alpha under a tip load: C = J K⁻¹ Jᵀ with the
+    /// loaded stiffness K of Eq. 32 (Eq. 36 at a loaded equilibrium). At an equilibrium alpha for
+    /// that load (from `deflect`) it is the response d(pose)/d(moment, fx, fy) to a small extra load.
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
     fn compliance<'py>(
         &self,
         py: Python<'py>,
-        alpha: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let c = match alpha {
-            None => compliance_tip_rest(&self.inner),
-            Some(a) => {
-                let a = single(&self.inner, &a)?;
-                let shape = self.inner.clone().with_rest(&a).map_err(to_py)?;
-                compliance_tip_rest(&shape)
-            }
-        };
+        let load = tip_load(moment, fx, fy)?;
+        let (k, stiffness) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        let c = compliance_tip(&k, &stiffness).map_err(to_py)?;
         Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+    }
+
+    /// Tip compliance (3, 3) of the unloaded flexure at its rest shape (Eqs. 35–36).
+    fn rest_compliance<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let c = compliance_tip_rest(&self.inner);
+        Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py)
     }
 
     /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or "clamped".
@@ -311,8 +501,8 @@ fn exact_deflect<'py>(
     rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
-    let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
-    let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
+    let load = tip_load(moment, fx, fy)?;
+    let s = interruptible(py, || elastica::deflect(&f, &load, &Default::default()))?;
     if !s.stable {
         warn_unstable(py, "exact.deflect", &load, "the elastica fails the Jacobi test")?;
     }
@@ -329,17 +519,29 @@ fn exact_compliance_tip<'py>(
     rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
-    let c = exact_compliance::compliance_tip(&f, &Default::default()).map_err(to_py)?;
+    let c = interruptible(py, || exact_compliance::compliance_tip(&f, &Default::default()))?;
     Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
 }
 
+/// The rest shape of an exact reference: any order from 1 to 64, given by
+/// the number of `rest` coefficients (straight, order 3, without them).
 fn rest_flexure(
     length: f64,
     ei: f64,
     rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
 ) -> PyResult<flexure::Flexure> {
-    let kappa: Vec<f64> = rest.map(|r| r.as_array().iter().copied().collect()).unwrap_or_else(|| vec![0.0; 3]);
-    flexure::Flexure::new(length, ei, kappa.len().max(1)).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
+    let kappa = match rest {
+        Some(r) => vector("rest", &r, None)?,
+        None => vec![0.0; 3],
+    };
+    let max = flexure::joint::MAX_ORDER;
+    if !(1..=max).contains(&kappa.len()) {
+        return Err(PyValueError::new_err(format!(
+            "rest must have from 1 to {max} entries (rest curvature coefficients), got {}",
+            kappa.len()
+        )));
+    }
+    flexure::Flexure::new(length, ei, kappa.len()).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
 }
 
 /// A mechanism read from a TOML description.
@@ -359,7 +561,7 @@ impl Mechanism {
     /// Equilibrium as a dict shaped like `flexure solve --json`.
     fn solve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let m = &self.inner;
-        let s = py.detach(|| solve(m, &MechanismSettings::default())).map_err(to_py)?;
+        let s = interruptible(py, || solve(m, &MechanismSettings::default()))?;
         let frames = body_frames(m, &s);
         let bodies = PyDict::new(py);
         for (b, f) in m.bodies.iter().zip(&frames.bodies) {

@@ -305,13 +305,20 @@ impl Flexure {
         &self.hessian_weights
     }
 
-    /// Checks that `alpha` has one finite value per order.
-    pub fn check_coordinates(&self, name: &'static str, alpha: &[f64]) -> Result<()> {
+    /// Checks that `alpha` has one finite value per order (per segment).
+    ///
+    /// # Example
+    /// ```
+    /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+    /// assert!(f.check_coordinates("alpha", &[0.0; 3]).is_ok());
+    /// assert!(f.check_coordinates("alpha", &[0.0; 4]).is_err());
+    /// ```
+    pub fn check_coordinates<T: crate::Scalar>(&self, name: &'static str, alpha: &[T]) -> Result<()> {
         if alpha.len() != self.order() {
             return Err(Error::invalid(name, format!("{} values", alpha.len()), "must have one value per order"));
         }
-        for &a in alpha {
-            finite(name, a)?;
+        for a in alpha {
+            finite(name, a.re())?;
         }
         Ok(())
     }

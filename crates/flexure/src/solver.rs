@@ -346,7 +346,9 @@ fn correct<T: Scalar, P: Problem<T>>(
             for i in 0..m {
                 trial[i] += step[i] * T::c(t);
             }
-            let ok = sys(problem, &trial[..m], trial_residual, None).is_ok();
+            // The trial is evaluated with its Jacobian: accepted trials (most)
+            // then need no second evaluation.
+            let ok = sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix))).is_ok();
             let rt = amax(&trial_residual[..m]);
             if ok
                 && (rt <= (1.0 - 1e-4 * t) * residual
@@ -363,7 +365,6 @@ fn correct<T: Scalar, P: Problem<T>>(
                 return Err(fail(iteration));
             }
         }
-        sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
         residual = amax(&trial_residual[..m]);
     }
     unreachable!("the loop returns at max_iterations")

@@ -228,6 +228,32 @@ pub fn deflect<T: Scalar>(
     Ok(Equilibrium::from_path(&path))
 }
 
+/// The equilibrium under the full `load` nearest to `alpha`: Newton alone,
+/// with no continuation (for a good start, such as a lower order's answer).
+/// Leaves the solution and its stiffness in `data`.
+pub fn correct<T: Scalar>(
+    flexure: &Flexure,
+    load: &TipLoad<T>,
+    alpha: &[T],
+    data: &mut Statics<T>,
+    settings: &Settings,
+) -> Result<Equilibrium> {
+    TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
+    flexure.check_coordinates("alpha", alpha)?;
+    if data.solver.dim() != flexure.order() {
+        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
+    }
+    let l = flexure.length();
+    let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
+    data.solver.x.copy_from_slice(alpha);
+    let mut problem =
+        TipLoadProblem { flexure, kinematics: &mut data.kinematics, scratch: &mut data.scratch, load: *load, scale };
+    let report = solver::newton(&mut problem, &mut data.solver, 1.0, settings)?;
+    let stable = solver::Problem::stable(&mut problem, &data.solver.x, 1.0, &data.solver.jacobian);
+    data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
+    Ok(Equilibrium { stable, limit: None, residual: report.residual, iterations: report.iterations, load_steps: 0 })
+}
+
 /// Largest cross-section rotation $\max_k\lvert\sum_i\psi_i(t_k)(a_i - b_i)\rvert$ (b = 0 if absent).
 pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -> f64 {
     flexure.psi_rows().fold(0.0_f64, |m, psi| {
