@@ -16,8 +16,9 @@
 //! interrupt hook stops it there) and never hang past [`HARD_BOUND`]; exit
 //! with 0 or 2, a failure carrying a message on stderr; print only finite
 //! numbers (no `null`, `NaN` or `inf`), and a library `Ok` holds only
-//! finite numbers. The summary line (`cargo test -p flexure-cli --test fuzz
-//! -- --nocapture`) gives the cases per family and the failures.
+//! finite numbers. Each test prints a summary line (`cargo test -p
+//! flexure-cli --test fuzz -- --nocapture`): the cases per family and the
+//! failures, grouped by kind with a reproducing case each.
 
 use flexure::kinematics::{Level, backbone, par_poses_root_tip};
 use flexure::reference::{compliance as exact_compliance, elastica};
@@ -184,8 +185,11 @@ const FLEXURE: [(&str, Kind); 9] = [
     ("--quadrature", Kind::Quadrature),
 ];
 
+/// A subcommand, whether it takes a mechanism file, and its options.
+type Subcommand = (&'static str, bool, Vec<(&'static str, Kind)>);
+
 /// Each subcommand, whether it takes a mechanism file, and its own options.
-fn commands() -> Vec<(&'static str, bool, Vec<(&'static str, Kind)>)> {
+fn commands() -> Vec<Subcommand> {
     let with_flexure = |own: &[(&'static str, Kind)]| FLEXURE.iter().chain(own).copied().collect::<Vec<_>>();
     vec![
         ("kinematics", false, with_flexure(&[("--alpha", Kind::List), ("--input", Kind::Csv)])),
@@ -249,8 +253,9 @@ struct Scratch {
 }
 
 impl Scratch {
-    fn new() -> Self {
-        let dir = std::env::temp_dir().join(format!("flexure-fuzz-{}", std::process::id()));
+    /// A directory of this test's own: tests run at once, and each removes its directory.
+    fn new(test: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("flexure-fuzz-{}-{test}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
         let mut examples: Vec<(String, String)> = std::fs::read_dir(&root)
@@ -582,12 +587,12 @@ fn check_output(args: &[String], status: i32, out: &str, err: &str) -> Result<()
         }
     }
     if let Some(svg) = args.iter().position(|a| a == "--out").and_then(|i| args.get(i + 1)) {
-        if status == 0 && args.first().is_some_and(|c| c == "draw") {
-            if let Ok(text) = std::fs::read_to_string(svg) {
-                if text.contains("NaN") || text.contains("inf\"") {
-                    return Err("non-finite: NaN in the SVG".into());
-                }
-            }
+        if status == 0
+            && args.first().is_some_and(|c| c == "draw")
+            && let Ok(text) = std::fs::read_to_string(svg)
+            && (text.contains("NaN") || text.contains("inf\""))
+        {
+            return Err("non-finite: NaN in the SVG".into());
         }
         let _ = std::fs::remove_file(svg);
     }
@@ -824,10 +829,13 @@ struct Tally {
     elapsed: Duration,
 }
 
+/// Case `i` of a family: its description, and its verdict.
+type CaseFn = dyn Fn(usize) -> (String, Result<(), String>) + Send + Sync;
+
 /// Runs `cases` cases of one family on a worker thread, so a case that
 /// hangs past [`HARD_BOUND`] is reported and left behind while the rest go
 /// on. `case(i)` returns the case's description and its verdict.
-fn drive(cases: usize, case: Arc<dyn Fn(usize) -> (String, Result<(), String>) + Send + Sync>) -> Tally {
+fn drive(cases: usize, case: Arc<CaseFn>) -> Tally {
     let mut tally = Tally::default();
     let started = Instant::now();
     let mut next = 0;
@@ -898,71 +906,22 @@ fn shown(args: &[String]) -> String {
     format!("flexure {}", quoted.join(" "))
 }
 
-#[test]
-fn fuzz() {
-    let start = Instant::now();
-    let scratch = Arc::new(Scratch::new());
-    let s = scratch.clone();
-    let argv_tally = drive(
-        ARGV_CASES,
-        Arc::new(move |i| {
-            let args = argv(&mut Rng::for_case(1, i), &s, &format!("argv{i}"));
-            let verdict = run_in_process(&args);
-            (shown(&args), verdict)
-        }),
-    );
-    let s = scratch.clone();
-    let file_tally = drive(
-        FILE_CASES,
-        Arc::new(move |i| {
-            let tag = format!("file{i}");
-            let args = file_case(&mut Rng::for_case(2, i), &s, &tag);
-            let verdict = run_in_process(&args);
-            let toml = s.dir.join(format!("{tag}.toml"));
-            let what = format!(
-                "{} (file: {})",
-                shown(&args),
-                std::fs::read_to_string(&toml).unwrap_or_default().replace('\n', "⏎")
-            );
-            let _ = std::fs::remove_file(toml);
-            (what, verdict)
-        }),
-    );
-    let library_tally = drive(
-        LIBRARY_CASES,
-        Arc::new(|i| {
-            let (mut r, mut call) = (Rng::for_case(3, i), String::new());
-            let verdict = guarded(|| library_case(&mut r, &mut call)).and_then(|v| v);
-            (call, verdict)
-        }),
-    );
-    let s = scratch.clone();
-    let process_tally = drive(
-        PROCESS_CASES,
-        Arc::new(move |i| {
-            let tag = format!("process{i}");
-            let args = argv(&mut Rng::for_case(4, i), &s, &tag);
-            let verdict = run_process(&args, &s, &tag);
-            (shown(&args), verdict)
-        }),
-    );
-    let _ = std::fs::remove_dir_all(&scratch.dir);
-    let families =
-        [("argv", &argv_tally), ("files", &file_tally), ("library", &library_tally), ("process", &process_tally)];
+/// Prints the one-line summary of a test's families (with `--nocapture`),
+/// then one line per kind of failure with its first case, and fails if any case did.
+fn report(test: &str, families: &[(&str, Tally)], start: Instant) {
     let total: usize = families.iter().map(|f| f.1.cases).sum();
     let failed: usize = families.iter().map(|f| f.1.failures.len()).sum();
     let counts: Vec<String> = families
         .iter()
-        .map(|(n, t)| format!("{n} {} ({} failed, {:.1?})", t.cases, t.failures.len(), t.elapsed))
+        .map(|(n, t)| format!("{n} {} cases ({} failed, {:.1?})", t.cases, t.failures.len(), t.elapsed))
         .collect();
-    eprintln!("fuzz: {total} cases, {failed} failures: {} in {:.1?}", counts.join(", "), start.elapsed());
-    for (name, t) in &families {
-        eprintln!("fuzz: slowest {name} case {:.1?}: {}", t.slowest.0, t.slowest.1);
+    eprintln!("fuzz {test}: {total} cases, {failed} failures: {} in {:.1?}", counts.join(", "), start.elapsed());
+    for (name, t) in families {
+        eprintln!("fuzz {test}: slowest {name} case {:.1?}: {}", t.slowest.0, t.slowest.1);
     }
-    let report: Vec<&String> = families.iter().flat_map(|f| f.1.failures.iter()).collect();
     // One line per kind of failure (the call, or the first 60 characters), with its first case.
     let mut kinds: Vec<(String, usize, &String)> = Vec::new();
-    for f in &report {
+    for f in families.iter().flat_map(|f| f.1.failures.iter()) {
         let first = f.lines().next().unwrap_or_default();
         let key: String = match first.rsplit_once("; ") {
             Some((_, call)) if first.starts_with("non-finite") => {
@@ -979,11 +938,76 @@ fn fuzz() {
         let first: String = first.chars().take(1200).collect();
         eprintln!("FAIL ×{n}: {first}");
     }
-    assert!(report.is_empty(), "{failed} of {total} fuzz cases failed (listed above)");
+    assert!(failed == 0, "{failed} of {total} fuzz cases failed (listed above)");
+}
+
+/// Families `argv` (in-process) and `process` (real processes): the CLI's contract.
+#[test]
+fn fuzz_command_lines() {
+    let start = Instant::now();
+    let scratch = Arc::new(Scratch::new("argv"));
+    let s = scratch.clone();
+    let argv_tally = drive(
+        ARGV_CASES,
+        Arc::new(move |i| {
+            let args = argv(&mut Rng::for_case(1, i), &s, &format!("argv{i}"));
+            let verdict = run_in_process(&args);
+            (shown(&args), verdict)
+        }),
+    );
+    let s = scratch.clone();
+    let process_tally = drive(
+        PROCESS_CASES,
+        Arc::new(move |i| {
+            let tag = format!("process{i}");
+            let args = argv(&mut Rng::for_case(4, i), &s, &tag);
+            let verdict = run_process(&args, &s, &tag);
+            (shown(&args), verdict)
+        }),
+    );
+    let _ = std::fs::remove_dir_all(&scratch.dir);
+    report("command lines", &[("argv", argv_tally), ("process", process_tally)], start);
+}
+
+/// Family `files`: mutated mechanism files through solve, buckle and draw.
+#[test]
+fn fuzz_mechanism_files() {
+    let start = Instant::now();
+    let scratch = Arc::new(Scratch::new("files"));
+    let s = scratch.clone();
+    let tally = drive(
+        FILE_CASES,
+        Arc::new(move |i| {
+            let tag = format!("file{i}");
+            let args = file_case(&mut Rng::for_case(2, i), &s, &tag);
+            let verdict = run_in_process(&args);
+            let toml = s.dir.join(format!("{tag}.toml"));
+            let text = std::fs::read_to_string(&toml).unwrap_or_default().replace('\n', "⏎");
+            let _ = std::fs::remove_file(toml);
+            (format!("{} (file: {text})", shown(&args)), verdict)
+        }),
+    );
+    let _ = std::fs::remove_dir_all(&scratch.dir);
+    report("mechanism files", &[("files", tally)], start);
+}
+
+/// Family `library`: library functions called directly.
+#[test]
+fn fuzz_library() {
+    let start = Instant::now();
+    let tally = drive(
+        LIBRARY_CASES,
+        Arc::new(|i| {
+            let (mut r, mut call) = (Rng::for_case(3, i), String::new());
+            let verdict = guarded(|| library_case(&mut r, &mut call)).and_then(|v| v);
+            (call, verdict)
+        }),
+    );
+    report("library", &[("library", tally)], start);
 }
 
 /// Calls the fuzzer found running past [`SOFT_BOUND`], kept as explicit
-/// cases (from earlier seeds and weights, so `fuzz` may not draw them). The
+/// cases (from earlier seeds and weights, so `fuzz_library` may not draw them). The
 /// exact elastica's `connect` does not poll the interrupt hook; the
 /// stability limit bisects over full deflections, each of order 64 or of an
 /// absurd flexure taking seconds. Reachable from the command line:
