@@ -203,9 +203,6 @@ def test_mechanism_examples_carry_estimates_without_warning():
         assert all(not e["flagged"] for e in result["estimates"].values()), name
 
 
-@pytest.mark.xfail(strict=True, raises=flexure.AccuracyWarning, reason=(
-    "library: estimate::joint_error solves the tip load from J^T J by LU, which is singular at a straight "
-    "shape (the x row of J vanishes), so an unloaded flexure joint has no estimate and warns"))
 def test_unloaded_mechanism_has_zero_error():
     # A straight, unloaded flexure is the exact elastica: its error is zero (to the rounding
     # of two Gauss rules' weight sums, 1e-15).
