@@ -1,6 +1,6 @@
 """Type stubs for the compiled module. Units SI, angles in radians; order (phi, x, y)."""
 
-from typing import Optional, Tuple
+from typing import Literal, Optional, Tuple, TypedDict, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -11,6 +11,20 @@ class ConvergenceError(RuntimeError):
 
 class StabilityWarning(UserWarning):
     """An equilibrium was found but is unstable."""
+
+class AccuracyWarning(UserWarning):
+    """A model answer's estimated error misses its accuracy target (by default 1 % of L and 1 degree)."""
+
+class _ErrorEstimate(TypedDict):
+    """An answer's error, estimated against a refined model of reference_order with reference_quadrature points."""
+    position: float  # m
+    angle: float  # rad
+    flagged: bool  # whether it misses the accuracy target
+    reference_order: int
+    reference_quadrature: int
+
+# Stub-only names. accuracy: (position as a fraction of L, angle in rad), each finite and > 0; None means (0.01, 1 degree).
+_Accuracy = Optional[Tuple[float, float]]
 
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
@@ -47,10 +61,22 @@ class Flexure:
         """(4, 4) homogeneous transform of the tip frame in the root frame."""
     def energy(self, alpha: ArrayLike) -> float:
         """Bending energy in joules."""
-    def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
+    @overload
+    def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, *,
+                accuracy: _Accuracy = None, order: None = None) -> np.ndarray:
         """Equilibrium alpha (N,) under a tip moment (N*m) and force (N) in the root frame.
-        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable.
+        Raises ConvergenceError if no equilibrium is found; warns StabilityWarning if it is unstable,
+        and AccuracyWarning if its estimated error (see error_estimate) misses `accuracy`.
         Runs without the GIL; Ctrl-C stops it with KeyboardInterrupt."""
+    @overload
+    def deflect(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, *,
+                accuracy: _Accuracy = None, order: Literal["auto"]) -> Tuple["Flexure", np.ndarray]:
+        """(flexure_used, alpha): the lowest order (from this one, doubling, with the reference's
+        quadrature) whose equilibrium meets `accuracy`. ValueError if even order 64 misses it."""
+    def error_estimate(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0,
+                       accuracy: _Accuracy = None) -> _ErrorEstimate:
+        """Estimated error of alpha (N,) as the equilibrium under the tip load, against a refined
+        model corrected from it (estimate::deflect_error). Does not warn: flagged says it misses."""
     def stiffness(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
         """(N, N) generalized stiffness K = ∇∇U − Fx∇∇x − Fy∇∇y at alpha under the tip load (Eq. 32)."""
     def compliance(self, alpha: ArrayLike, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> np.ndarray:
@@ -67,7 +93,7 @@ class Mechanism:
     def from_text(text: str) -> "Mechanism": ...
     @property
     def dof(self) -> int: ...
-    def solve(self) -> dict: ...
+    def solve(self, accuracy: _Accuracy = None) -> dict: ...
 
 def exact_deflect(moment: float, fx: float, fy: float, length: float, ei: float,
                   rest: Optional[ArrayLike]) -> np.ndarray: ...

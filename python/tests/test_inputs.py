@@ -66,6 +66,14 @@ CASES = [
     ("flexure.exact.compliance(ei=0.0)", r"ei = 0"),
     ("flexure.Flexure(length=float('inf'))", r"length = inf"),
     ("f.buckling_load('sideways')", r"tip"),
+    # Accuracy targets and the order of an answer (test_accuracy.py has the full table).
+    ("f.deflect(fy=1.0, accuracy=(0.0, 0.01))", r"accuracy = \(0, 0\.01\): its position fraction of L is 0"),
+    ("f.deflect(fy=1.0, accuracy=(0.01, float('nan')), order='auto')", r"accuracy .*angle \(rad\) is NaN"),
+    ("f.deflect(fy=1.0, accuracy=0.01)", r"accuracy must be a pair"),
+    ("f.deflect(fy=1.0, order=5)", r'order must be None or "auto", got 5'),
+    ("f.error_estimate([0.0] * 4)", r"alpha must have 3 entries .*got 4"),
+    ("f.error_estimate([0.0] * 3, fx=float('nan'))", r"fx = NaN"),
+    ("f.error_estimate([0.0] * 3, accuracy=(-1.0, 0.01))", r"accuracy .*position fraction of L is -1"),
     # An unstable state has no compliance: said, not a NaN matrix.
     ("f.compliance([0.0] * 3, fx=-3.0)", r"not positive definite"),
     # A mechanism file with a count out of range.

@@ -3,9 +3,13 @@
 //! Inputs accept anything array-like; outputs are float64 NumPy arrays.
 //! Bad input raises `ValueError` naming the parameter; a solver that does
 //! not converge raises `flexure.ConvergenceError` with its residual; an
-//! equilibrium that is found but unstable warns with `flexure.StabilityWarning`.
+//! equilibrium that is found but unstable warns with `flexure.StabilityWarning`;
+//! an answer whose estimated error misses its accuracy target warns with
+//! `flexure.AccuracyWarning`.
 
+use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::kinematics::{Pose, par_poses_root_tip};
+use flexure::mechanism::JointKind;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
 use flexure::reference::{compliance as exact_compliance, elastica};
@@ -18,7 +22,7 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, Py
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyInt};
+use pyo3::types::{PyDict, PyInt, PyTuple};
 use std::time::{Duration, Instant};
 
 create_exception!(
@@ -35,13 +39,118 @@ create_exception!(
     "An equilibrium was found but is unstable: a small disturbance would move the flexure away from it."
 );
 
+create_exception!(
+    _flexure,
+    AccuracyWarning,
+    PyUserWarning,
+    "A model answer's estimated error misses its accuracy target (by default 1 % of the length and 1 degree)."
+);
+
+/// Warns `text` as `category` (`stacklevel` 1: the Python line that called the binding).
+fn warn(py: Python<'_>, category: &Bound<'_, pyo3::types::PyType>, text: String, stacklevel: i32) -> PyResult<()> {
+    // Built from fixed text, numbers and names; a NUL in a name is dropped rather than losing the warning.
+    let message = std::ffi::CString::new(text.replace('\0', "")).unwrap_or_default();
+    PyErr::warn(py, category.as_any(), &message, stacklevel)
+}
+
 /// Warns that the equilibrium `solver` found under `load` is unstable, and `why`.
 fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str) -> PyResult<()> {
     let (m, fx, fy) = (load.moment, load.fx, load.fy);
     let text = format!("{solver}: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: {why}");
-    // Built from fixed text and numbers, so it has no interior NUL.
-    let message = std::ffi::CString::new(text).unwrap_or_default();
-    PyErr::warn(py, py.get_type::<StabilityWarning>().as_any(), &message, 1)
+    warn(py, &py.get_type::<StabilityWarning>(), text, 1)
+}
+
+/// `x` to 3 significant digits, without trailing zeros; in exponent form when very small or large.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor() as i32;
+    if !(-4..6).contains(&e) {
+        return format!("{x:.2e}");
+    }
+    let plain = format!("{:.*}", (2 - e).max(0) as usize, x);
+    if plain.contains('.') { plain.trim_end_matches('0').trim_end_matches('.').to_string() } else { plain }
+}
+
+/// Reads `accuracy` = (position as a fraction of L, angle in rad); the
+/// paper's 1 % of L and 1° when it is `None`.
+fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
+    let Some(v) = value.filter(|v| !v.is_none()) else {
+        return Ok(Accuracy::default());
+    };
+    let shape = || {
+        PyValueError::new_err(format!(
+            "accuracy must be a pair (position as a fraction of L, angle in rad), such as (0.01, 0.0175), got {}",
+            v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
+        ))
+    };
+    // A str is a sequence too, but never a pair of numbers: pyo3 refuses it as a Vec.
+    let pair: Vec<f64> = v.extract().map_err(|_| shape())?;
+    let [position, angle] = pair[..] else {
+        return Err(shape());
+    };
+    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle)] {
+        if !(x.is_finite() && x > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "accuracy = ({position}, {angle}): its {what} is {x}, and must be a finite number greater than zero"
+            )));
+        }
+    }
+    Ok(Accuracy { position, angle })
+}
+
+/// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
+/// names the answer, `hint` says what to do about it.
+fn warn_inaccurate(
+    py: Python<'_>,
+    what: &str,
+    f: &flexure::Flexure,
+    e: &ErrorEstimate,
+    target: &Accuracy,
+    hint: &str,
+    stacklevel: i32,
+) -> PyResult<()> {
+    let text = format!(
+        "{what}: estimated error {} m ({} % of L) in position and {}° in angle misses the target of {} % of L and {}° \
+         (estimated against order {} with {} quadrature points); {hint}",
+        sig(e.position),
+        sig(100.0 * e.position / f.length()),
+        sig(e.angle.to_degrees()),
+        sig(100.0 * target.position),
+        sig(target.angle.to_degrees()),
+        e.reference_order,
+        e.reference_quadrature,
+    );
+    warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
+}
+
+/// Warns that the error of `what` could not be estimated, and why.
+fn warn_unestimated(py: Python<'_>, what: &str, why: &Error, stacklevel: i32) -> PyResult<()> {
+    let text = format!("{what}: the error could not be estimated, so the answer's accuracy is unknown: {why}");
+    warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
+}
+
+/// An estimate as a dict: position (m), angle (rad), flagged, reference_order, reference_quadrature.
+fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("position", e.position)?;
+    d.set_item("angle", e.angle)?;
+    d.set_item("flagged", e.flagged)?;
+    d.set_item("reference_order", e.reference_order)?;
+    d.set_item("reference_quadrature", e.reference_quadrature)?;
+    Ok(d)
+}
+
+/// An estimate's result, with an interruption passed on as the solve's error
+/// (the answer is not returned) and any other failure kept for a warning.
+type Estimated = std::result::Result<ErrorEstimate, Error>;
+
+fn interrupted_or(e: flexure::Result<ErrorEstimate>) -> flexure::Result<Estimated> {
+    match e {
+        Err(e @ Error::Interrupted { .. }) => Err(e),
+        other => Ok(other),
+    }
 }
 
 /// The library's error as a Python exception.
@@ -414,20 +523,98 @@ impl Flexure {
         Ok(energy(&self.inner, &single(&self.inner, &alpha)?))
     }
 
-    /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22).
-    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0))]
-    fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22),
+    /// with its error estimated against a refined model: a miss of `accuracy` (position as a
+    /// fraction of L, angle in rad; default 1 % and 1°) warns `AccuracyWarning`. With
+    /// `order="auto"`, raises the order until the target is met and returns `(flexure_used, alpha)`.
+    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, *, accuracy=None, order=None))]
+    fn deflect<'py>(
+        &self,
+        py: Python<'py>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        order: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let load = tip_load(moment, fx, fy)?;
+        let target = self::accuracy(accuracy)?;
+        let auto = match order.filter(|o| !o.is_none()) {
+            None => false,
+            Some(o) if o.extract::<String>().is_ok_and(|s| s == "auto") => true,
+            Some(o) => {
+                return Err(PyValueError::new_err(format!(
+                    "order must be None or \"auto\", got {}: a flexure's own order is set when it is built",
+                    o.repr()?
+                )));
+            }
+        };
         let f = &self.inner;
-        let (alpha, stable) = interruptible(py, || {
+        if auto {
+            // The library refuses `order` when even its highest order misses the target.
+            let found = interruptible(py, || match estimate::deflect_auto(f, &load, &target) {
+                Ok((used, alpha, _)) => Ok(Some((used, alpha))),
+                Err(Error::InvalidParameter { name: "order", .. }) => Ok(None),
+                Err(e) => Err(e),
+            })?;
+            let Some((used, alpha)) = found else {
+                return Err(PyValueError::new_err(format!(
+                    "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}): loosen accuracy or reduce the load",
+                    flexure::joint::MAX_ORDER,
+                    sig(100.0 * target.position),
+                    sig(target.angle.to_degrees())
+                )));
+            };
+            let (_, stiffness) = loaded_stiffness(&used, &alpha, &load);
+            if !flexure::linalg::is_positive_definite(&stiffness) {
+                let why = "its stiffness is not positive definite (the load is past a buckling load)";
+                warn_unstable(py, "deflect", &load, why)?;
+            }
+            let used = Py::new(py, Flexure { inner: used })?;
+            let alpha = PyArray1::from_vec(py, alpha);
+            return Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any());
+        }
+        let (alpha, stable, estimated) = interruptible(py, || {
             let mut data = Statics::new(f);
-            deflect(f, &load, &mut data, &Default::default()).map(|eq| (data.alpha().to_vec(), eq.stable))
+            let eq = deflect(f, &load, &mut data, &Default::default())?;
+            let alpha = data.alpha().to_vec();
+            let estimated = interrupted_or(estimate::deflect_error(f, &load, &alpha, &target))?;
+            Ok((alpha, eq.stable, estimated))
         })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
             warn_unstable(py, "deflect", &load, why)?;
         }
-        Ok(PyArray1::from_vec(py, alpha))
+        match estimated {
+            Ok(e) if e.flagged => {
+                let hint = "use deflect(..., order=\"auto\") to raise the order until the target is met";
+                warn_inaccurate(py, "deflect", f, &e, &target, hint, 1)?
+            }
+            Ok(_) => {}
+            Err(why) => warn_unestimated(py, "deflect", &why, 1)?,
+        }
+        Ok(PyArray1::from_vec(py, alpha).into_any())
+    }
+
+    /// The estimated error of `alpha` as the equilibrium under a tip load, against a refined
+    /// model: a dict of position (m), angle (rad), flagged (whether it misses `accuracy`),
+    /// reference_order and reference_quadrature.
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0, accuracy=None))]
+    fn error_estimate<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+        accuracy: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let a = single(&self.inner, &alpha)?;
+        let load = tip_load(moment, fx, fy)?;
+        let target = self::accuracy(accuracy)?;
+        let f = &self.inner;
+        let e = interruptible(py, || estimate::deflect_error(f, &load, &a, &target))?;
+        estimate_dict(py, &e)
     }
 
     /// Generalized stiffness (N, N) at alpha under a tip load:
@@ -558,10 +745,25 @@ impl Mechanism {
         Ok(Self { inner: from_toml(text).map_err(to_py)? })
     }
 
-    /// Equilibrium as a dict shaped like `flexure solve --json`.
-    fn solve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// Equilibrium as a dict shaped like `flexure solve --json`, with `estimates`: the
+    /// estimated error of each flexure joint (a dict as `Flexure.error_estimate` returns, or
+    /// None where it could not be made). A joint that misses `accuracy` warns `AccuracyWarning`.
+    #[pyo3(signature = (accuracy=None))]
+    fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        let target = self::accuracy(accuracy)?;
         let m = &self.inner;
-        let s = interruptible(py, || solve(m, &MechanismSettings::default()))?;
+        let (s, estimated) = interruptible(py, || {
+            let s = solve(m, &MechanismSettings::default())?;
+            // Each flexure joint carries only the load at its tip: its error is that of a deflect.
+            let mut estimated = Vec::new();
+            for j in &m.joints {
+                if let JointKind::Flexure(f) = &j.kind {
+                    let alpha = &s.q[j.offset..j.offset + f.order()];
+                    estimated.push((j, f.as_ref(), interrupted_or(estimate::joint_error(f, alpha, &target))?));
+                }
+            }
+            Ok((s, estimated))
+        })?;
         let frames = body_frames(m, &s);
         let bodies = PyDict::new(py);
         for (b, f) in m.bodies.iter().zip(&frames.bodies) {
@@ -576,11 +778,30 @@ impl Mechanism {
             let q = Array1::from_vec(s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec());
             coordinates.set_item(&j.name, q.into_pyarray(py))?;
         }
+        let estimates = PyDict::new(py);
+        // Stack level 2: the line calling `flexure.Mechanism.solve`, past its Python wrapper.
+        for (j, f, e) in &estimated {
+            let what = format!("Mechanism.solve, flexure joint '{}'", j.name);
+            match e {
+                Ok(e) => {
+                    if e.flagged {
+                        let hint = "raise the joint's order (and quadrature) in the mechanism file";
+                        warn_inaccurate(py, &what, f, e, &target, hint, 2)?;
+                    }
+                    estimates.set_item(&j.name, estimate_dict(py, e)?)?;
+                }
+                Err(why) => {
+                    warn_unestimated(py, &what, why, 2)?;
+                    estimates.set_item(&j.name, py.None())?;
+                }
+            }
+        }
         let out = PyDict::new(py);
         out.set_item("bodies", bodies)?;
         out.set_item("coordinates", coordinates)?;
         out.set_item("energy", s.energy)?;
         out.set_item("stable", s.stable)?;
+        out.set_item("estimates", estimates)?;
         Ok(out)
     }
 
@@ -599,5 +820,6 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exact_compliance_tip, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
+    m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;
     Ok(())
 }

@@ -178,10 +178,6 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
 pub fn tip_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result<TipLoad> {
     let mut g = vec![0.0; alpha.len()];
     energy_gradient(flexure, alpha, &mut g);
-    let jt = k.jacobian_root_tip.transpose();
-    let l = (jt.transpose() * &jt)
-        .lu()
-        .solve(&(jt.transpose() * DVector::from_vec(g)))
-        .ok_or_else(|| Error::Singular { what: "the tip Jacobian is rank-deficient at this shape".into() })?;
+    let l = crate::linalg::least_squares(&k.jacobian_root_tip.transpose(), &DVector::from_vec(g));
     Ok(TipLoad { moment: l[0], fx: l[1], fy: l[2] })
 }

@@ -209,7 +209,11 @@ impl Flexure {
     /// // Segment 1 spans s in [0.5, 1): rotation 0.3 over 0.5 m.
     /// assert!((f.curvature(&[0.0, 0.3, 0.0, 0.0], 0.7) - 0.6).abs() < 1e-15);
     /// ```
+    ///
+    /// # Panics
+    /// If `c` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn curvature(&self, c: &[f64], s: f64) -> f64 {
+        crate::kinematics::assert_coordinates(self, "c", c.len());
         match self.basis {
             Basis::Legendre => basis::curvature(c, self.length, s),
             Basis::Segments => {
@@ -221,7 +225,11 @@ impl Flexure {
     }
 
     /// Angle shapes $\psi_i(t)$ at any $t \in [0, 1]$, written into `out` (one per coordinate).
+    ///
+    /// # Panics
+    /// If `out` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn angle_shapes(&self, t: f64, out: &mut [f64]) {
+        crate::kinematics::assert_coordinates(self, "out", out.len());
         match self.basis {
             Basis::Legendre => basis::angle_shapes(t, out),
             Basis::Segments => {
@@ -315,7 +323,15 @@ impl Flexure {
     /// ```
     pub fn check_coordinates<T: crate::Scalar>(&self, name: &'static str, alpha: &[T]) -> Result<()> {
         if alpha.len() != self.order() {
-            return Err(Error::invalid(name, format!("{} values", alpha.len()), "must have one value per order"));
+            return Err(Error::InvalidParameter {
+                name,
+                value: format!("{} values", alpha.len()),
+                reason: if self.basis == Basis::Legendre {
+                    "must have one value per order (the flexure's order N)"
+                } else {
+                    "must have one value per segment"
+                },
+            });
         }
         for a in alpha {
             finite(name, a.re())?;

@@ -123,6 +123,14 @@ impl Settings {
             }
         };
         positive("tolerance", self.tolerance, 1.0)?;
+        if self.tolerance < 1e-15 {
+            // Below rounding no residual can meet it: Newton would spin to its limit.
+            return Err(Error::invalid(
+                "tolerance",
+                self.tolerance,
+                "must be at least 1e-15 (double-precision rounding)",
+            ));
+        }
         positive("min_step", self.min_step, 1.0)?;
         positive("max_rotation_per_step", self.max_rotation_per_step, f64::MAX)?;
         crate::error::count("max_iterations", self.max_iterations, MAX_COUNT, "must be from 1 to 1000000")?;
@@ -149,10 +157,15 @@ thread_local! {
 /// assert!(matches!(r, Err(Error::Interrupted { .. })));
 /// ```
 pub fn with_interrupt<R>(check: fn() -> bool, work: impl FnOnce() -> R) -> R {
-    let previous = INTERRUPT.with(|c| c.replace(Some(check)));
-    let out = work();
-    INTERRUPT.with(|c| c.set(previous));
-    out
+    /// Restores the previous hook on every exit, unwinding included.
+    struct Restore(Option<fn() -> bool>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            INTERRUPT.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(INTERRUPT.with(|c| c.replace(Some(check))));
+    work()
 }
 
 fn interrupted() -> bool {
