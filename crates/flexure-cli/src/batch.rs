@@ -123,7 +123,7 @@ pub fn kinematics(f: &Flexure, path: &Path) -> Result<Rows, String> {
 }
 
 /// Equilibria for the load rows: columns among `moment,fx,fy` or `moment,force,angle`.
-pub fn deflect_rows(f: &Flexure, path: &Path) -> Result<Rows, String> {
+pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accuracy) -> Result<Rows, String> {
     let table = read(path, &["moment", "fx", "fy", "force", "angle"])?;
     let get = |r: &[f64], name: &str| column(&table, name).map_or(0.0, |i| r[i]);
     let polar = column(&table, "force").is_some() || column(&table, "angle").is_some();
@@ -131,6 +131,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path) -> Result<Rows, String> {
         return Err(format!("--input {}: give force,angle or fx,fy, not both", path.display()));
     }
     let mut data = Statics::new(f);
+    let mut flagged = 0;
     let mut answers = Vec::with_capacity(table.rows.len());
     for row in &table.rows {
         let answer = row.as_ref().map_err(String::clone).and_then(|r| {
@@ -139,11 +140,19 @@ pub fn deflect_rows(f: &Flexure, path: &Path) -> Result<Rows, String> {
             } else {
                 TipLoad { moment: get(r, "moment"), fx: get(r, "fx"), fy: get(r, "fy") }
             };
-            match deflect(f, &load, &mut data, &Default::default()) {
-                Ok(eq) => Ok(json!({
-                    "load": { "moment": load.moment, "fx": load.fx, "fy": load.fy },
-                    "alpha": data.alpha(), "pose": pose_json(&data.pose_root_tip()), "stable": eq.stable,
-                })),
+            let solved = deflect(f, &load, &mut data, &Default::default()).and_then(|eq| {
+                let e = flexure::estimate::deflect_error(f, &load, data.alpha(), target)?;
+                Ok((eq, e))
+            });
+            match solved {
+                Ok((eq, e)) => {
+                    flagged += usize::from(e.flagged);
+                    Ok(json!({
+                        "load": { "moment": load.moment, "fx": load.fx, "fy": load.fy },
+                        "alpha": data.alpha(), "pose": pose_json(&data.pose_root_tip()), "stable": eq.stable,
+                        "error_estimate": { "position": e.position, "angle": e.angle }, "flagged": e.flagged,
+                    }))
+                }
                 Err(e) => {
                     // Nothing of a failed solve carries over to the next row.
                     data = Statics::new(f);
@@ -153,10 +162,16 @@ pub fn deflect_rows(f: &Flexure, path: &Path) -> Result<Rows, String> {
         });
         answers.push(answer);
     }
+    if flagged > 0 {
+        crate::options::warn(format!(
+            "--input {}: {flagged} rows have an estimated error above the accuracy target (flagged); try a higher --order",
+            path.display()
+        ));
+    }
     let a: Vec<String> = (1..=f.order()).map(|i| format!("a{i}")).collect();
     Ok(Rows {
         source: format!("--input {}", path.display()),
-        header: format!("moment,fx,fy,{},phi,x,y,stable", a.join(",")),
+        header: format!("moment,fx,fy,{},phi,x,y,stable,error_position,error_angle,flagged", a.join(",")),
         answers,
     })
 }

@@ -120,7 +120,9 @@ fn answer(command: &Command) -> Result<Answer, String> {
             None => one(joint::kinematics(a).map_err(describe)),
         },
         Command::Deflect(a) => match &a.input {
-            Some(path) => batch::deflect_rows(&a.flexure().map_err(describe)?, path).map(Answer::Rows),
+            Some(path) => {
+                batch::deflect_rows(&a.flexure().map_err(describe)?, path, &a.accuracy.target()).map(Answer::Rows)
+            }
             None => one(joint::deflect_cmd(a).map_err(describe)),
         },
         Command::Compliance(a) => one(joint::compliance(a).map_err(describe)),
@@ -216,5 +218,22 @@ pub fn describe(e: flexure::Error) -> String {
     match &e {
         flexure::Error::InvalidParameter { name, value, reason } => format!("--{name} = {value}: {reason}"),
         other => other.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A NaN anywhere in an answer is refused by name, exit 2, nothing on stdout.
+    #[test]
+    fn emit_refuses_a_non_finite_answer() {
+        for as_json in [true, false] {
+            let (mut out, mut err) = (Vec::new(), Vec::new());
+            let answer = Answer::One(serde_json::json!({ "pose": { "x": f64::NAN, "y": 1.0 } }));
+            assert_eq!(emit(answer, as_json, &mut out, &mut err), FAILURE);
+            let err = String::from_utf8_lossy(&err);
+            assert!(out.is_empty() && err.contains("x"), "{err}");
+        }
     }
 }

@@ -43,9 +43,47 @@ pub fn count(s: &str, min: usize, max: usize) -> Result<usize, String> {
     }
 }
 
-/// `--order`: from 1 to [`flexure::joint::MAX_ORDER`].
-pub fn order(s: &str) -> Result<usize, String> {
-    count(s, 1, flexure::joint::MAX_ORDER)
+/// `--order`: from 1 to [`flexure::joint::MAX_ORDER`], or `auto`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Order {
+    /// A given order.
+    Fixed(usize),
+    /// Raise order and quadrature until the error estimate meets `--accuracy`.
+    Auto,
+}
+
+/// Parses `--order`: a whole number from 1 to 64, or `auto`.
+pub fn order(s: &str) -> Result<Order, String> {
+    if s.trim() == "auto" {
+        return Ok(Order::Auto);
+    }
+    count(s, 1, flexure::joint::MAX_ORDER).map(Order::Fixed).map_err(|e| format!("{e}, or auto"))
+}
+
+/// Parses `--accuracy POS,ANGLE`: the position tolerance as a fraction of
+/// the length, and the angle tolerance in radians or with `deg`.
+pub fn accuracy(s: &str) -> Result<flexure::estimate::Accuracy, String> {
+    let (p, a) = s.split_once(',').ok_or_else(|| format!("{s:?} must be POS,ANGLE (for example 0.005,0.5deg)"))?;
+    let target = flexure::estimate::Accuracy { position: number(p)?, angle: parse_angle(a)?.0 };
+    target.validate().map_err(|_| format!("{s:?}: both tolerances must be finite and greater than zero"))?;
+    Ok(target)
+}
+
+/// `--accuracy`: the target every model answer's error estimate is held to.
+#[derive(Debug, Clone, Args)]
+pub struct AccuracyOptions {
+    /// Accuracy target POS,ANGLE: position as a fraction of L and angle in
+    /// radians or with deg. An answer whose error estimate exceeds it is
+    /// flagged, with a warning [default: 0.01,1deg].
+    #[arg(long, value_parser = accuracy, allow_hyphen_values = true)]
+    pub accuracy: Option<flexure::estimate::Accuracy>,
+}
+
+impl AccuracyOptions {
+    /// The target, or the default 1 % of L and 1°.
+    pub fn target(&self) -> flexure::estimate::Accuracy {
+        self.accuracy.unwrap_or_default()
+    }
 }
 
 /// `--quadrature`: from 1 to [`flexure::quadrature::MAX_POINTS`].
@@ -123,16 +161,39 @@ pub struct FlexureOptions {
     /// Rest curvature coefficients κ1,κ2,… (one per order) [default: straight].
     #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
     pub kappa: Option<List>,
-    /// Order N: the number of curvature coefficients, 1 to 64.
+    /// Order N: the number of curvature coefficients, 1 to 64; or `auto`
+    /// (deflect, tendon, connect): from 3, raise order and quadrature until
+    /// the error estimate meets --accuracy.
     #[arg(long, default_value = "3", value_parser = order, allow_hyphen_values = true)]
-    pub order: usize,
+    pub order: Order,
     /// Gauss–Legendre points, 1 to 1024 [default: order + 2].
     #[arg(long, value_parser = quadrature, allow_hyphen_values = true)]
     pub quadrature: Option<usize>,
 }
 
 impl FlexureOptions {
-    /// Builds and validates the flexure.
+    /// Builds the flexure, refusing `--order auto` where `command` has no error estimate.
+    pub fn build_fixed(&self, command: &'static str) -> flexure::Result<Flexure> {
+        if self.order == Order::Auto {
+            return Err(flexure::Error::invalid(
+                "order",
+                "auto",
+                match command {
+                    "kinematics" => "kinematics takes coordinates of a given order: give a number",
+                    "deflect --input" => "the rows of --input share one order: give a number",
+                    _ => "auto applies to deflect, tendon and connect: give a number here",
+                },
+            ));
+        }
+        self.build()
+    }
+
+    /// Whether `--order auto` was given.
+    pub fn auto(&self) -> bool {
+        self.order == Order::Auto
+    }
+
+    /// Builds and validates the flexure (order 3 to start from, for `--order auto`).
     pub fn build(&self) -> flexure::Result<Flexure> {
         let ei = match self.modulus {
             Some(e) => {
@@ -140,7 +201,11 @@ impl FlexureOptions {
             }
             None => self.ei.unwrap_or(1.0),
         };
-        let mut f = Flexure::new(self.length, ei, self.order)?;
+        let order = match self.order {
+            Order::Fixed(n) => n,
+            Order::Auto => 3,
+        };
+        let mut f = Flexure::new(self.length, ei, order)?;
         if let Some(q) = self.quadrature {
             f = f.with_quadrature(q)?;
         }
