@@ -477,7 +477,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     // The arc length of the whole load taken as one linear step: the unit
     // of the step length, so min_step is relative to the load.
     let full = normalize(ws, problem, lambda_weight);
-    let (min_step, max_step) = (settings.min_step * full, 4.0 * full);
+    let min_step = settings.min_step * full;
     let mut h = full;
     let mut rotation_rate = unit_rotation(problem, ws);
     let mut last_residual = start.residual;
@@ -544,13 +544,17 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             h *= 0.5;
             continue;
         }
-        if path.stable && !stable && path.limit.is_none() {
-            path.limit = Some(if fold { new_lambda.max(lambda) } else { lambda });
-        }
         if !has_tangent {
             ws.tangent.copy_from_slice(&ws.previous_tangent);
         }
         let _ = normalize(ws, problem, lambda_weight);
+        if path.stable && !stable && path.limit.is_none() {
+            path.limit = Some(if fold {
+                fold_peak(lambda, new_lambda, ws.previous_tangent[n].re(), ws.tangent[n].re(), h)
+            } else {
+                lambda
+            });
+        }
         ws.x.copy_from_slice(&ws.trial[..n]);
         lambda = new_lambda;
         path.steps += 1;
@@ -565,12 +569,36 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(0.0) });
         }
         rotation_rate = unit_rotation(problem, ws);
-        h = (2.0 * h).min(max_step);
+        // Grow the step; the rotation bound above keeps it on the branch.
+        h *= 2.0;
     }
     match path.limit {
         Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
         _ => Err(stalled(problem, lambda, &path, last_residual)),
     }
+}
+
+/// The largest $\lambda$ between two points of a path that turns back
+/// between them (a fold): the peak of the cubic Hermite through
+/// $(0, \lambda_0)$ and $(h, \lambda_1)$ with slopes $d_0, d_1$ in the arc length.
+fn fold_peak(l0: f64, l1: f64, d0: f64, d1: f64, h: f64) -> f64 {
+    let (a, b, c) = (6.0 * (l0 - l1) + 3.0 * h * (d0 + d1), 6.0 * (l1 - l0) - h * (4.0 * d0 + 2.0 * d1), h * d0);
+    let hermite = |t: f64| {
+        let (t2, t3) = (t * t, t * t * t);
+        (2.0 * t3 - 3.0 * t2 + 1.0) * l0
+            + (t3 - 2.0 * t2 + t) * h * d0
+            + (3.0 * t2 - 2.0 * t3) * l1
+            + (t3 - t2) * h * d1
+    };
+    let disc = b * b - 4.0 * a * c;
+    let roots = if a.abs() < 1e-300 {
+        [-c / b, f64::NAN]
+    } else if disc >= 0.0 {
+        [(-b + disc.sqrt()) / (2.0 * a), (-b - disc.sqrt()) / (2.0 * a)]
+    } else {
+        [f64::NAN; 2]
+    };
+    roots.iter().filter(|t| (0.0..=1.0).contains(*t)).map(|&t| hermite(t)).fold(l0.max(l1), f64::max)
 }
 
 fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64) -> Error {
