@@ -65,6 +65,7 @@ fn snap_through_reaches_the_stable_root_and_names_the_limit_load() {
     // The fold is at λ = 5/8; the limit is the peak of the cubic Hermite
     // through the two path points around it (error of order h⁴ in the step:
     // 1.8e-5 at the steps taken here, so 1e-4).
+    let limit = path.limit.expect("stability is lost at the fold");
     assert!((limit - 0.625).abs() < 1e-4, "{limit}");
 }
 
