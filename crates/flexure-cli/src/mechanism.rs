@@ -111,25 +111,6 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
     ))
 }
 
-/// Every number in `value` is finite (serde_json writes NaN and ±∞ as `null`).
-fn checked(value: Value) -> Result<Value, String> {
-    fn first_null(v: &Value, path: String) -> Option<String> {
-        match v {
-            Value::Null => Some(path),
-            Value::Array(items) => items.iter().enumerate().find_map(|(i, x)| first_null(x, format!("{path}[{i}]"))),
-            Value::Object(map) => map.iter().find_map(|(k, x)| first_null(x, format!("{path}.{k}"))),
-            _ => None,
-        }
-    }
-    match first_null(&value, String::new()) {
-        Some(field) => Err(format!(
-            "the result's field `{}` is not a finite number; nothing was printed",
-            field.trim_start_matches('.')
-        )),
-        None => Ok(value),
-    }
-}
-
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
@@ -169,9 +150,8 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             if let Some(l) = &out.stability_limit {
                 v["stability_limit"] = limit_json(l);
             }
-            let v = checked(v)?;
             if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
-                eprintln!("warning: {w}");
+                crate::options::warn(w);
             }
             return Ok(v);
         }
@@ -181,13 +161,12 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             if let Some(limit) = s.limit {
                 v["limit_fraction"] = json!(limit);
             }
-            let v = checked(v)?;
             if let Some(limit) = s.limit {
-                eprintln!(
-                    "warning: {}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+                crate::options::warn(format!(
+                    "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
                     args.file.display(),
                     100.0 * limit
-                );
+                ));
             }
             v
         }
@@ -205,7 +184,7 @@ pub struct BuckleArgs {
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
     let b = buckle(&m, &Settings::default()).map_err(|e| format!("{}: {e}", args.file.display()))?;
-    checked(json!({ "load_factor": b.load_factor, "mode": b.mode }))
+    Ok(json!({ "load_factor": b.load_factor, "mode": b.mode }))
 }
 
 #[derive(Debug, Args)]
@@ -302,7 +281,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
             let values = sweep_values(&spec.range);
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
             if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
-                eprintln!("warning: {w}");
+                crate::options::warn(w);
             }
             limit = out.stability_limit;
             out.rows.into_iter().map(|(v, s)| (format!("{} = {v}", spec.parameter), s)).collect()
@@ -322,5 +301,5 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     if let Some(l) = &limit {
         v["stability_limit"] = limit_json(l);
     }
-    checked(v)
+    Ok(v)
 }

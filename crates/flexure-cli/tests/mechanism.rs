@@ -106,17 +106,31 @@ fn bad_files_exit_2_naming_the_place() {
         assert!(err.contains(place) && err.contains(path.to_str().unwrap()) && !err.contains("panicked"), "{err}");
         assert!(out.is_empty());
     }
-    // Beyond the buckling load: an unstable or missing equilibrium is reported.
+    // Beyond the buckling load the stage buckles sideways to a stable state:
+    // an answer (exit 0), with the fraction where stability was lost, and a
+    // warning. The model's critical push, 2 × 10 EI/L² = 16 N (Table I,
+    // guided), is 40 % of 40 N.
     let heavy = std::fs::read_to_string(format!("{}/parallelogram.toml", examples()))
         .unwrap()
         .replace("[0.0, -1.0]", "[0.0, -40.0]");
     let path = dir.path().join("heavy.toml");
     std::fs::write(&path, heavy).unwrap();
     let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert!((v["limit_fraction"].as_f64().unwrap() - 0.4).abs() < 1e-5, "{out}");
+    assert!(err.starts_with("warning: ") && err.contains("lost stability at 39.9999 %"), "{err}");
+    // A perfectly aligned sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along
+    // itself by 15 N stays straight, an equilibrium at every load, unstable
+    // past k/l = 10 N: no stable state is reached, exit 2 at 2/3 of the load.
+    let arm = "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+               [[force]]\nbody = \"arm\"\nat = [0.1, 0.0]\nforce = [-15.0, 0.0]\n";
+    let path = dir.path().join("arm.toml");
+    std::fs::write(&path, arm).unwrap();
+    let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
     assert_eq!(code, 2, "{out}");
-    // The model's critical push, 2 × 10 EI/L² = 16 N (Table I, guided), is 40 % of 40 N.
     let pct: f64 = err.split("loses stability at ").nth(1).and_then(|t| t.split(' ').next()).unwrap().parse().unwrap();
-    assert!((pct - 40.0).abs() < 1e-3, "{err}");
+    assert!((pct - 100.0 / 1.5).abs() < 1e-3, "{err}");
     assert!(out.is_empty());
     let file = format!("{}/paper_tendon.toml", examples());
     for (args, what) in [
@@ -131,8 +145,9 @@ fn bad_files_exit_2_naming_the_place() {
     }
 }
 
-/// Sweeping the parallelogram's push past its critical load: the stable rows,
-/// then the limit, found between the two values around it. The model's
+/// Sweeping the parallelogram's push past its critical load: the stable rows
+/// (beyond the limit, the stage buckled sideways), then the limit, found
+/// between the two values around it. The model's
 /// critical push is twice one leg's guided load (`buckling_load`, Table I:
 /// 10 EI/L² at N = 3), from the file's L = 0.05 m and EI = 2e-3 N·m². The
 /// limit is bisected to 1e-6 of the value and the stability test's margin
@@ -143,7 +158,8 @@ fn sweep_past_the_critical_load() {
     let leg = Flexure::new(0.05, 2.0e-3, 3).unwrap();
     let critical = 2.0 * buckling_load(&leg, TipConstraint::Guided).unwrap().critical_load;
     let file = format!("{}/parallelogram.toml", examples());
-    for (range, stable) in [("0:-20:5", vec![0.0, -5.0, -10.0, -15.0]), ("0:-20:3", vec![0.0, -10.0])] {
+    // Past 16 N the stage buckles sideways to stable states: rows too.
+    for (range, stable) in [("0:-20:5", vec![0.0, -5.0, -10.0, -15.0, -20.0]), ("0:-20:3", vec![0.0, -10.0, -20.0])] {
         let spec = format!("force.push.fy={range}");
         let (code, out, err) = run(&["solve", &file, "--sweep", &spec, "--json"]);
         assert_eq!(code, 0, "{err}");

@@ -75,7 +75,7 @@ pub fn connect(flexure: &Flexure, target: &Pose) -> Result<Connection> {
     let path = solver::continuation(&mut problem, &mut ws, &settings)?;
     let alpha = ws.x[..n].to_vec();
     kinematics::update(flexure, &alpha, &mut k, Level::Jacobian);
-    let load = multipliers(flexure, &alpha, &k)?;
+    let load = tip_load(flexure, &alpha, &k)?;
     Ok(Connection { energy: energy(flexure, &alpha), alpha, load, iterations: path.iterations })
 }
 
@@ -172,14 +172,12 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
     }
 }
 
-/// Least-squares tip load with $\nabla U = \mathcal J^T\lambda$ (exact at a KKT point).
-fn multipliers(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result<TipLoad> {
+/// The tip load that holds `alpha` in equilibrium: the least-squares
+/// solution of $\nabla U = \mathcal J^T\lambda$ (exact at a KKT point, and
+/// for any equilibrium under a tip load), with `k` evaluated at `alpha`.
+pub fn tip_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result<TipLoad> {
     let mut g = vec![0.0; alpha.len()];
     energy_gradient(flexure, alpha, &mut g);
-    let jt = k.jacobian_root_tip.transpose();
-    let l = (jt.transpose() * &jt)
-        .lu()
-        .solve(&(jt.transpose() * DVector::from_vec(g)))
-        .ok_or_else(|| Error::Singular { what: "the tip Jacobian is rank-deficient at this shape".into() })?;
+    let l = crate::linalg::least_squares(&k.jacobian_root_tip.transpose(), &DVector::from_vec(g));
     Ok(TipLoad { moment: l[0], fx: l[1], fy: l[2] })
 }

@@ -188,3 +188,22 @@ pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
     }
     DMatrix::from_fn(n, keep.len(), |r, c| v_t[(keep[c], r)])
 }
+
+/// The least-squares solution of $Ax = b$ of least norm, by SVD: singular
+/// values at most $10^{-12}\sigma_{max}$ count as zero, so a rank-deficient
+/// $A$ (a straight flexure's tip Jacobian has a zero row) gives the
+/// minimal answer instead of failing.
+///
+/// # Example
+/// ```
+/// use nalgebra::{DMatrix, DVector};
+/// // x + y = 2 twice: the least-norm answer is (1, 1).
+/// let a = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
+/// let x = flexure::linalg::least_squares(&a, &DVector::from_vec(vec![2.0, 2.0]));
+/// assert!((x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14);
+/// ```
+pub fn least_squares(a: &DMatrix<f64>, b: &nalgebra::DVector<f64>) -> nalgebra::DVector<f64> {
+    let svd = nalgebra::SVD::new(a.clone(), true, true);
+    let cutoff = 1e-12 * svd.singular_values.amax();
+    svd.solve(b, cutoff).unwrap_or_else(|_| nalgebra::DVector::zeros(a.ncols()))
+}

@@ -546,7 +546,14 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
             };
             let order = j.order.as_ref().map_or(3, |o| *o.get_ref());
             let order_span = j.order.as_ref().map_or(j.name.span(), Spanned::span);
-            let mut f = Flexure::new(l, ei, order).map_err(|x| src.placed(owner, &order_span, x))?;
+            let mut f = Flexure::new(l, ei, order).map_err(|x| {
+                let span = match &x {
+                    Error::InvalidParameter { name: "length", .. } => length.span(),
+                    Error::InvalidParameter { name: "ei", .. } => ei_span.clone(),
+                    _ => order_span.clone(),
+                };
+                src.placed(owner, &span, x)
+            })?;
             if let Some(q) = &j.quadrature {
                 f = f.with_quadrature(*q.get_ref()).map_err(|x| src.placed(owner, &q.span(), x))?;
             }
