@@ -117,14 +117,8 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
 
 /// Orthonormal basis of $\{\delta\alpha : J_r\,\delta\alpha = 0\ \forall r \in \text{rows}\}$.
 fn admissible_basis(jacobian: &DMatrix<f64>, rows: &[usize], n: usize) -> DMatrix<f64> {
-    if rows.is_empty() {
-        return DMatrix::identity(n, n);
-    }
     let g = DMatrix::from_fn(rows.len(), n, |r, c| jacobian[(rows[r], c)]);
-    let eig = nalgebra::SymmetricEigen::new(g.transpose() * &g);
-    let top = eig.eigenvalues.amax().max(f64::MIN_POSITIVE);
-    let keep: Vec<usize> = (0..n).filter(|&i| eig.eigenvalues[i] <= 1e-12 * top).collect();
-    DMatrix::from_fn(n, keep.len(), |r, c| eig.eigenvectors[(r, keep[c])])
+    crate::linalg::null_space(&g)
 }
 
 /// Eigenpairs of $B v = \mu A v$ for symmetric $A$ (positive definite) and $B$,
@@ -132,7 +126,11 @@ fn admissible_basis(jacobian: &DMatrix<f64>, rows: &[usize], n: usize) -> DMatri
 /// Eigenvalues unsorted; eigenvectors (columns) in the original coordinates.
 /// `None` if $A$ is not positive definite.
 pub(crate) fn generalized_symmetric(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix<f64>)> {
-    let l = nalgebra::Cholesky::new((a + a.transpose()) * 0.5)?.l();
+    let a = (a + a.transpose()) * 0.5;
+    if !crate::linalg::is_positive_definite(&a) {
+        return None;
+    }
+    let l = nalgebra::Cholesky::new(a)?.l();
     let linv = l.try_inverse()?;
     let m = &linv * b * linv.transpose();
     let eig = nalgebra::SymmetricEigen::new((&m + m.transpose()) * 0.5);
