@@ -38,7 +38,9 @@ pub struct SolveArgs {
     /// …at this point X,Y of the body's frame (m).
     #[arg(long, value_parser = point_arg, allow_hyphen_values = true, requires = "compliance")]
     at: Option<[f64; 2]>,
-    /// Sweep one load, e.g. tendon.flexor.tension=0:30:31 (or force.NAME.fx|fy|moment, gravity.x|y).
+    /// Sweep one load, e.g. tendon.flexor.tension=0:30:31 (or force.NAME.fx|fy|moment, gravity.x|y):
+    /// a table with one row per value reached stably, then `stability_limit` (value, fraction) if
+    /// stability is lost between two values (found by bisection; a warning on stderr, exit 0).
     #[arg(long, value_parser = crate::analyses::sweep_spec, allow_hyphen_values = true)]
     sweep: Option<SweepSpec>,
 }
