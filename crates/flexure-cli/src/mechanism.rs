@@ -4,6 +4,7 @@ use crate::analyses::{SweepSpec, sweep_values};
 use crate::figures::{COLORS, Chart, Series, draw};
 use crate::options::number;
 use clap::Args;
+use flexure::estimate::{Accuracy, ErrorEstimate, joint_error};
 use flexure::kinematics::backbone;
 use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
@@ -43,6 +44,8 @@ pub struct SolveArgs {
     /// stability is lost between two values (found by bisection; a warning on stderr, exit 0).
     #[arg(long, value_parser = crate::analyses::sweep_spec, allow_hyphen_values = true)]
     sweep: Option<SweepSpec>,
+    #[command(flatten)]
+    accuracy: crate::options::AccuracyOptions,
 }
 
 fn solution_json(m: &Mechanism, s: &Solution) -> Value {
@@ -56,6 +59,50 @@ fn solution_json(m: &Mechanism, s: &Solution) -> Value {
     let coordinates: serde_json::Map<String, Value> =
         m.joints.iter().map(|j| (j.name.clone(), json!(s.q[j.offset..j.offset + j.kind.joint().dof()]))).collect();
     json!({ "bodies": bodies, "coordinates": coordinates, "energy": s.energy, "stable": s.stable })
+}
+
+/// The error estimate of every flexure joint at `s`, in joint order: the
+/// joint under the tip load it carries, against the refined model.
+fn joint_estimates(
+    m: &Mechanism,
+    s: &Solution,
+    target: &Accuracy,
+) -> flexure::Result<Vec<(&'static str, String, ErrorEstimate, f64)>> {
+    let mut out = Vec::new();
+    for j in &m.joints {
+        if let JointKind::Flexure(fl) = &j.kind {
+            let e = joint_error(fl, &s.q[j.offset..j.offset + fl.order()], target)?;
+            out.push(("flexure joint", j.name.clone(), e, fl.length()));
+        }
+    }
+    Ok(out)
+}
+
+/// `error_estimate` {joint: {position, angle}} and `flagged` for a solution, warning per flagged joint.
+fn put_joint_estimates(
+    v: &mut Value,
+    m: &Mechanism,
+    s: &Solution,
+    target: &Accuracy,
+    file: &Path,
+) -> Result<(), String> {
+    let estimates = joint_estimates(m, s, target).map_err(|e| format!("{}: {e}", file.display()))?;
+    let mut map = serde_json::Map::new();
+    for (what, name, e, length) in &estimates {
+        if e.flagged {
+            crate::options::warn(format!(
+                "{}: {what} {name:?}: the estimated error ({:.3e} m = {:.3} % of its length, {:.3}°) exceeds the accuracy target; raise its order",
+                file.display(),
+                e.position,
+                100.0 * e.position / length,
+                e.angle.to_degrees()
+            ));
+        }
+        map.insert(name.clone(), json!({ "position": e.position, "angle": e.angle }));
+    }
+    v["error_estimate"] = Value::Object(map);
+    v["flagged"] = json!(estimates.iter().any(|e| e.2.flagged));
+    Ok(())
 }
 
 /// A sweep as a table: the column names, then one row of numbers per
@@ -155,11 +202,28 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
                 crate::options::warn(w);
             }
+            // Each row's flexure joints, held to the accuracy target.
+            let target = args.accuracy.target();
+            let mut flagged = Vec::new();
+            for (value, s) in &out.rows {
+                if joint_estimates(&m, s, &target).map_err(err)?.iter().any(|e| e.2.flagged) {
+                    flagged.push(*value);
+                }
+            }
+            v["flagged"] = json!(flagged);
+            if !flagged.is_empty() {
+                crate::options::warn(format!(
+                    "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
+                    args.file.display(),
+                    flagged.len()
+                ));
+            }
             return Ok(v);
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
             let mut v = with_compliance(&s, solution_json(&m, &s))?;
+            put_joint_estimates(&mut v, &m, &s, &args.accuracy.target(), &args.file)?;
             if let Some(limit) = s.limit {
                 v["limit_fraction"] = json!(limit);
             }

@@ -85,3 +85,34 @@ fn order_auto_is_refused_where_it_does_not_apply() {
         assert!(code == 2 && err.contains("order"), "{args:?}: {err}");
     }
 }
+
+/// `solve` holds every flexure joint to the target: a moment of 20 N·m on a
+/// unit flexure joint winds it into the circle of radius 1/20 (closed form),
+/// which five points cannot integrate; the joint is flagged by name, and its
+/// estimate is the true error of its tip (1e-6 relative, the reference's
+/// Newton tolerance).
+#[test]
+fn mechanism_joints_are_flagged_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("wound.toml");
+    std::fs::write(
+        &path,
+        "[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\n\
+         origin = [0.0, 0.0, 0.0]\nlength = 1.0\nei = 1.0\n\n\
+         [[force]]\nname = \"twist\"\nbody = \"link\"\nat = [0.0, 0.0]\nforce = [0.0, 0.0]\nmoment = 20.0\n",
+    )
+    .unwrap();
+    let (v, err) = json(&["solve", path.to_str().unwrap()]);
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert!(err.contains("flexure joint \"hinge\"") && err.contains("accuracy target"), "{err}");
+    let (x, y) = (v["bodies"]["link"]["x"].as_f64().unwrap(), v["bodies"]["link"]["y"].as_f64().unwrap());
+    let truth = (x - 20f64.sin() / 20.0).hypot(y - (1.0 - 20f64.cos()) / 20.0);
+    let estimate = v["error_estimate"]["hinge"]["position"].as_f64().unwrap();
+    assert!((estimate / truth - 1.0).abs() < 1e-6, "estimate {estimate}, truth {truth}");
+    // The shipped examples are all within the default target.
+    for example in ["finger", "four_bar", "four_leg_stage", "mixed_chain", "paper_tendon", "parallelogram"] {
+        let file = format!("{}/../../examples/{example}.toml", env!("CARGO_MANIFEST_DIR"));
+        let (v, _) = json(&["solve", &file]);
+        assert_eq!(v["flagged"], Value::Bool(false), "{example}");
+    }
+}
