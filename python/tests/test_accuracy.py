@@ -236,3 +236,15 @@ def test_stubs_cover_the_module():
     assert {"accuracy", "order"} <= set(methods["deflect"])
     assert methods["error_estimate"] == ["self", "alpha", "moment", "fx", "fy", "accuracy"]
     assert "accuracy" in stub_methods("Mechanism")["solve"]
+
+
+def test_snap_through_of_a_mechanism_warns_and_names_the_limit():
+    # The parallelogram under a 40 N push is past its critical load: the order-3 model's
+    # guided load is 10 EI/L^2 per flexure (paper Table I), 2 x 8 N = 16 N, i.e. 40 % of the
+    # push. Loading from rest, the path buckles there and reaches a stable buckled shape.
+    root = Path(__file__).resolve().parents[2] / "examples"
+    text = (root / "parallelogram.toml").read_text().replace("force = [0.0, -1.0]", "force = [0.0, -40.0]")
+    with pytest.warns(flexure.StabilityWarning, match="lost stability at 40.0"):
+        result = flexure.Mechanism.from_toml(text).solve()
+    assert result["stable"]
+    assert abs(result["limit_fraction"] - 0.4) < 1e-5

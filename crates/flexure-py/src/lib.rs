@@ -802,6 +802,15 @@ impl Mechanism {
         out.set_item("energy", s.energy)?;
         out.set_item("stable", s.stable)?;
         out.set_item("estimates", estimates)?;
+        if let Some(limit) = s.limit {
+            // A snap-through: the stable answer beyond a limit load, which the caller must know of.
+            out.set_item("limit_fraction", limit)?;
+            let text = format!(
+                "Mechanism.solve: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+                100.0 * limit
+            );
+            warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+        }
         Ok(out)
     }
 
