@@ -5,7 +5,7 @@ use super::indeterminate::settle;
 use super::kinematics::frames;
 use super::lagrangian::lagrangian;
 use super::statics::{Settings, assemble_unloaded, constrained, free_motion};
-use crate::buckling::{generalized_symmetric, normalized};
+use crate::buckling::normalized;
 use crate::error::{Error, Result};
 use crate::linalg;
 use nalgebra::DVector;
@@ -68,13 +68,7 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     let y = k0.clone().cholesky().ok_or_else(free)?.solve(&-(z.transpose() * &load_gradient));
     let dq = &z * y;
     let rhs = -(&load_gradient + &a0.hessian * &dq);
-    let dmu = if g.nrows() == 0 {
-        DVector::zeros(0)
-    } else {
-        let svd = nalgebra::SVD::new(g.transpose(), true, true);
-        let cut = 1e-10 * svd.singular_values.amax();
-        svd.solve(&rhs, cut).map_err(|e| Error::Singular { what: format!("pre-buckling closure forces: {e}") })?
-    };
+    let dmu = if g.nrows() == 0 { DVector::zeros(0) } else { linalg::least_squares(&g.transpose(), &rhs) };
     // The indeterminate part of δμ: least transmitted force under the base loads.
     let f0 = frames(m, &s0.q);
     let dmu = settle(m, &f0, g, dmu.as_slice(), &base);
@@ -82,7 +76,7 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     let closure_part = lagrangian(m, &s0.q, &mu1, zero)?.hessian - &a0.hessian;
     let geometric = &a1.hessian - &a0.hessian + closure_part;
     let b = constrained(&geometric, &z);
-    let (mus, modes) = generalized_symmetric(&k0, &b).ok_or_else(free)?;
+    let (mus, modes) = linalg::generalized_symmetric(&k0, &b).ok_or_else(free)?;
     // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of B v = μ A v; the smallest positive λ comes from the most negative μ.
     let (best, &mu) = mus
         .iter()

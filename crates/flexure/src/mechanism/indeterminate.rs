@@ -87,10 +87,6 @@ pub(super) fn settle(m: &Mechanism, f: &Frames, g: &DMatrix<f64>, mu: &[f64], lo
     }
     let mu0 = DVector::from_column_slice(mu);
     let bn = &b * &free;
-    let svd = nalgebra::SVD::new(bn, true, true);
-    let cut = 1e-10 * svd.singular_values.amax();
-    match svd.solve(&-(e + &b * &mu0), cut) {
-        Ok(y) if y.iter().all(|v| v.is_finite()) => (mu0 + &free * y).iter().copied().collect(),
-        _ => mu.to_vec(),
-    }
+    let y = crate::linalg::least_squares(&bn, &-(e + &b * &mu0));
+    if y.iter().all(|v| v.is_finite()) { (mu0 + &free * y).iter().copied().collect() } else { mu.to_vec() }
 }

@@ -445,9 +445,8 @@ pub(super) fn free_motion(m: &Mechanism, s: &Solution) -> Option<String> {
     if k.nrows() == 0 || linalg::is_positive_definite(&k) {
         return None;
     }
-    let eig = nalgebra::SymmetricEigen::new(k);
-    let soft = eig.eigenvalues.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?.0;
-    let motion = &z * eig.eigenvectors.column(soft);
+    let (_, soft) = linalg::softest_mode(&k)?;
+    let motion = &z * soft;
     let largest = motion.amax();
     let names: Vec<String> = m
         .joints
