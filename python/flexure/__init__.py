@@ -4,6 +4,14 @@ Conventions (the same as the Rust crate): SI units, angles in radians.
 The root frame's x axis runs along the unbent flexure; poses, Jacobian
 rows and compliance rows/columns are ordered (phi, x, y); tip loads are a
 moment M (counter-clockwise) and a force (Fx, Fy) in the root frame.
+Bad input raises ValueError naming the parameter. Every model answer
+carries its error, estimated against a refined model (`Flexure.error_estimate`,
+the `estimates` of `Mechanism.solve`); one that misses its accuracy target
+(by default 1 % of L and 1 degree) warns AccuracyWarning, and
+`Flexure.deflect(..., order="auto")` raises the order until it is met.
+Solves and batches run without the GIL; Ctrl-C stops `Flexure.deflect`
+and a batch `Flexure.pose` with KeyboardInterrupt (the exact and mechanism
+solvers poll for it once they run on the library's interruptible solver core).
 
 >>> import flexure
 >>> f = flexure.Flexure(length=1.0, ei=1.0)
@@ -14,13 +22,13 @@ moment M (counter-clockwise) and a force (Fx, Fy) in the root frame.
 
 from os import PathLike, fspath
 from pathlib import Path
-from typing import Union
+from typing import Optional, Tuple, Union
 
 from . import exact
-from ._flexure import ConvergenceError, Flexure, StabilityWarning
+from ._flexure import AccuracyWarning, ConvergenceError, Flexure, StabilityWarning
 from ._flexure import Mechanism as _Mechanism
 
-__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "exact"]
+__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "AccuracyWarning", "exact"]
 
 
 class Mechanism:
@@ -47,7 +55,11 @@ class Mechanism:
         """Number of generalized coordinates."""
         return self._inner.dof
 
-    def solve(self) -> dict:
+    def solve(self, accuracy: Optional[Tuple[float, float]] = None) -> dict:
         """Static equilibrium: a dict shaped like `flexure solve --json`
-        (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable)."""
-        return self._inner.solve()
+        (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable), and
+        estimates {flexure joint: dict as `Flexure.error_estimate` returns, or None}.
+        A flexure joint whose estimated error misses `accuracy` (position as a fraction
+        of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
+        naming it, as does one whose error could not be estimated."""
+        return self._inner.solve(accuracy)

@@ -31,7 +31,7 @@ def test_eq_37_compliance():
     exact = flexure.exact.compliance(rest=[math.pi, 0.0, 0.0])
     assert np.max(np.abs(exact - printed)) < 5e-5
     # Fig. 13: the model within 7.33e-4 (printed to 3 digits: 5e-7).
-    model = flexure.Flexure(rest=[math.pi, 0, 0]).compliance()
+    model = flexure.Flexure(rest=[math.pi, 0, 0]).rest_compliance()
     assert abs(np.max(np.abs(model - exact)) - 7.33e-4) < 5e-7
     assert model.shape == (3, 3) and model.dtype == np.float64
 
@@ -126,7 +126,7 @@ def test_material_options():
         (lambda: flexure.Flexure(length=float("nan")), "length"),
         (lambda: flexure.Flexure(order=0), "order"),
         (lambda: flexure.Flexure(quadrature=0), "quadrature"),
-        (lambda: flexure.Flexure(rest=[1.0, 2.0]), "kappa"),
+        (lambda: flexure.Flexure(rest=[1.0, 2.0]), "rest"),
         (lambda: flexure.Flexure().pose([1.0, 2.0]), "alpha"),
         (lambda: flexure.Flexure().pose([1.0, float("nan"), 0.0]), "alpha"),
         (lambda: flexure.Flexure().jacobian([[0, 0, 0]]), "alpha"),
@@ -152,7 +152,7 @@ def test_mechanism_from_path_and_text():
     path = ROOT / "examples" / "mixed_chain.toml"
     for source in (path, str(path), path.read_text()):
         result = flexure.Mechanism.from_toml(source).solve()
-        assert set(result) == {"bodies", "coordinates", "energy", "stable"}
+        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates"}
         # Closed form: the shoulder spring turns M/k = 0.01/2.
         assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
         assert result["stable"] is True

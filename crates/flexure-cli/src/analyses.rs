@@ -1,9 +1,10 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
-use crate::joint::pose as pose_json;
-use crate::options::{FlexureOptions, angle, number};
+use crate::joint::{chosen, pose as pose_json, put_estimate};
+use crate::options::{AccuracyOptions, FlexureOptions, angle_of, count, number, segments};
 use clap::Args;
 use flexure::connect::{Connection, connect};
+use flexure::estimate::Accuracy;
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
 use flexure::{Error, Flexure, Pose};
@@ -18,7 +19,7 @@ pub fn pose_arg(s: &str) -> Result<PoseArg, String> {
     if parts.len() != 3 {
         return Err(format!("{s:?} must be three values PHI,X,Y"));
     }
-    Ok(PoseArg(Pose { phi: angle(parts[0])?, x: number(parts[1])?, y: number(parts[2])? }))
+    Ok(PoseArg(Pose { phi: angle_of("--pose PHI", parts[0])?, x: number(parts[1])?, y: number(parts[2])? }))
 }
 
 #[derive(Debug, Args)]
@@ -31,9 +32,11 @@ pub struct ConnectArgs {
     /// Solve the exact elastica through the pose instead (shooting on three unknowns).
     #[arg(long, conflicts_with = "segments")]
     exact: bool,
-    /// Use a chain of K constant-curvature segments instead of the model.
-    #[arg(long)]
+    /// Use a chain of K constant-curvature segments instead of the model (1 to 64).
+    #[arg(long, value_parser = segments, allow_hyphen_values = true)]
     segments: Option<usize>,
+    #[command(flatten)]
+    accuracy: AccuracyOptions,
 }
 
 /// The exact connection, seeded by the order-3 model's multipliers.
@@ -48,7 +51,11 @@ pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<ela
 /// Minimum-energy shape to a tip pose (Sec. II-E), with η against the exact elastica when it can be found.
 pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
     let target = args.pose.0;
-    let model = args.flexure.build()?;
+    let accuracy = args.accuracy.target();
+    if args.segments.is_some() && args.flexure.auto() {
+        return Err(Error::invalid("order", "auto", "--segments compares a chain of its own: give no --order auto"));
+    }
+    let model = chosen(&args.flexure, |f| Ok(flexure::estimate::connect_auto(f, &target, &accuracy)?.0))?;
     if args.exact {
         let e = exact_connection(&model, &target)?;
         let c = connect(&model, &target)?;
@@ -78,11 +85,17 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         return Ok(out);
     }
     let c = connect(&model, &target)?;
+    let e = flexure::estimate::connect_error(&model, &target, &c.alpha, &accuracy)?;
     let mut out = json!({
         "alpha": c.alpha,
         "energy": c.energy,
         "load": { "moment": c.load.moment, "fx": c.load.fx, "fy": c.load.fy },
     });
+    if args.flexure.auto() {
+        out["order"] = json!(model.order());
+        out["quadrature"] = json!(model.quadrature_points());
+    }
+    put_estimate(&mut out, &e, &model, &accuracy, "connect");
     if let Ok(e) = exact_connection(&model, &target) {
         out["eta"] = json!(c.energy / e.energy - 1.0);
     }
@@ -97,16 +110,16 @@ pub struct Sweep {
     pub count: usize,
 }
 
-/// Parses `F0:F1:COUNT` with finite ends and at least two values.
+/// Most values in one sweep: every value is a full solve, and each is kept for the answer.
+pub const MAX_SWEEP: usize = 10_000;
+
+/// Parses `F0:F1:COUNT` with finite ends and 2 to [`MAX_SWEEP`] values.
 fn range(s: &str) -> Result<Sweep, String> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
         return Err(format!("{s:?} must be F0:F1:COUNT"));
     }
-    let count: usize = parts[2].trim().parse().map_err(|_| format!("COUNT {:?} is not a whole number", parts[2]))?;
-    if count < 2 {
-        return Err(format!("COUNT = {count}: a sweep needs at least 2 values"));
-    }
+    let count = count(parts[2], 2, MAX_SWEEP).map_err(|e| format!("COUNT {e}"))?;
     Ok(Sweep { from: number(parts[0])?, to: number(parts[1])?, count })
 }
 
@@ -135,32 +148,48 @@ pub struct TendonArgs {
     /// Sweep the tension F0:F1:COUNT, following the loading path.
     #[arg(long, value_parser = sweep_arg, allow_hyphen_values = true, conflicts_with = "force")]
     sweep: Option<Sweep>,
+    #[command(flatten)]
+    accuracy: AccuracyOptions,
 }
 
-fn tendon_row(f: &Flexure, t: &Tendon, force: f64, data: &mut TendonData) -> flexure::Result<Value> {
+fn tendon_row(f: &Flexure, t: &Tendon, force: f64, data: &mut TendonData, target: &Accuracy) -> flexure::Result<Value> {
     let eq = pull(f, t, force, data)?;
-    Ok(json!({
+    let mut row = json!({
         "force": force,
         "alpha": data.alpha(),
         "pose": pose_json(&data.kinematics.pose_root_tip),
         "tendon_length": tendon_length(f, t, data.alpha()),
         "stable": eq.stable,
-    }))
+    });
+    let e = flexure::estimate::tendon_error(f, t, force, data.alpha(), target)?;
+    put_estimate(&mut row, &e, f, target, &format!("tendon at {force} N"));
+    Ok(row)
 }
 
 /// Tendon-driven joint equilibrium (Sec. III-D), or a sweep of tensions.
 pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build()?;
     let t = Tendon { root_offset: args.root_offset, tip_offset: args.tip_offset };
+    let target = args.accuracy.target();
+    if args.sweep.is_some() && args.flexure.auto() {
+        return Err(Error::invalid("order", "auto", "a sweep's rows share one order: give a number with --sweep"));
+    }
+    let f = chosen(&args.flexure, |f| match args.force {
+        Some(force) => Ok(flexure::estimate::tendon_auto(f, &t, force, &target)?.0),
+        None => Ok(f.clone()),
+    })?;
     let mut data = TendonData::new(&f);
     match (args.sweep, args.force) {
         (Some(s), _) => {
             let rows: flexure::Result<Vec<Value>> =
-                sweep_values(&s).into_iter().map(|force| tendon_row(&f, &t, force, &mut data)).collect();
+                sweep_values(&s).into_iter().map(|force| tendon_row(&f, &t, force, &mut data, &target)).collect();
             Ok(json!({ "rows": rows? }))
         }
         (None, Some(force)) => {
-            let mut row = tendon_row(&f, &t, force, &mut data)?;
+            let mut row = tendon_row(&f, &t, force, &mut data, &target)?;
+            if args.flexure.auto() {
+                row["order"] = json!(f.order());
+                row["quadrature"] = json!(f.quadrature_points());
+            }
             if let Some(map) = row.as_object_mut() {
                 map.remove("force");
             }

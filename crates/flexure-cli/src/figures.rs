@@ -54,9 +54,28 @@ fn bounds(series: &[Series], log_y: bool) -> ((f64, f64), (f64, f64)) {
     if log_y { ((x0 - px, x1 + px), (y0 / 2.0, y1 * 2.0)) } else { ((x0 - px, x1 + px), (y0 - py, y1 + py)) }
 }
 
-/// Writes an SVG chart of `series` to `path`.
+/// Writes an SVG chart of `series` to `path`; an error names the path. A
+/// series with a non-finite point is refused before anything is written.
 pub fn draw(path: &Path, chart: &Chart, series: &[Series]) -> Result<(), String> {
-    let root = SVGBackend::new(path, (1080, 720)).into_drawing_area();
+    for s in series {
+        if let Some((i, p)) = s.points.iter().enumerate().find(|(_, p)| !(p.0.is_finite() && p.1.is_finite())) {
+            let name = if s.name.is_empty() { "a line" } else { s.name.as_str() };
+            return Err(format!(
+                "drawing {}: point {i} of {name} is ({}, {}), not finite; nothing was written",
+                path.display(),
+                p.0,
+                p.1
+            ));
+        }
+    }
+    let mut svg = String::new();
+    plot(&mut svg, chart, series).map_err(|e| format!("drawing {}: {e}", path.display()))?;
+    std::fs::write(path, svg).map_err(|e| format!("writing {}: {e}", path.display()))
+}
+
+/// Renders the chart as SVG text.
+fn plot(svg: &mut String, chart: &Chart, series: &[Series]) -> Result<(), String> {
+    let root = SVGBackend::with_string(svg, (1080, 720)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let ((mut x0, mut x1), (mut y0, mut y1)) = bounds(series, chart.log_y);
     if chart.equal_aspect {

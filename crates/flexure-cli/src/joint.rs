@@ -1,7 +1,9 @@
 //! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
 
-use crate::options::{FlexureOptions, List, angle, number, numbers};
+use crate::options::{AccuracyOptions, FlexureOptions, List, angle, iterations, number, numbers, tolerance, warn};
 use clap::{Args, ValueEnum};
+use flexure::Flexure;
+use flexure::estimate::{Accuracy, ErrorEstimate};
 use flexure::reference::{self, elastica};
 use flexure::{
     Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect,
@@ -9,6 +11,38 @@ use flexure::{
 };
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
+
+/// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
+/// when the estimate misses `target` (`what` names the answer).
+pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
+    if e.flagged {
+        warn(format!(
+            "{what}: the estimated error ({:.3e} m = {:.3} % of L, {:.3}°) exceeds the accuracy target ({} % of L, {}°); try --order auto",
+            e.position,
+            100.0 * e.position / f.length(),
+            e.angle.to_degrees(),
+            100.0 * target.position,
+            target.angle.to_degrees(),
+        ));
+    }
+    answer["error_estimate"] = json!({
+        "position": e.position,
+        "angle": e.angle,
+        "reference_order": e.reference_order,
+        "reference_quadrature": e.reference_quadrature,
+    });
+    answer["flagged"] = json!(e.flagged);
+}
+
+/// The flexure to answer with: as given, or with `--order auto` the lowest
+/// order meeting the target, found by `auto` (which returns it).
+pub fn chosen(
+    options: &FlexureOptions,
+    auto: impl FnOnce(&Flexure) -> flexure::Result<Flexure>,
+) -> flexure::Result<Flexure> {
+    let f = options.build()?;
+    if options.auto() { auto(&f) } else { Ok(f) }
+}
 
 pub fn pose(p: &Pose) -> Value {
     json!({ "phi": p.phi, "x": p.x, "y": p.y })
@@ -33,13 +67,13 @@ pub struct KinematicsArgs {
 
 impl KinematicsArgs {
     pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
-        self.flexure.build()
+        self.flexure.build_fixed("kinematics")
     }
 }
 
 /// Pose, transform, Jacobian, Hessians, energy and gradient at α.
 pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build()?;
+    let f = args.flexure.build_fixed("kinematics")?;
     let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
     f.check_coordinates("alpha", &alpha)?;
     let mut k = Kinematics::new(&f);
@@ -93,17 +127,20 @@ pub struct DeflectArgs {
     flexure: FlexureOptions,
     #[command(flatten)]
     load: LoadOptions,
+    #[command(flatten)]
+    pub accuracy: AccuracyOptions,
     /// Also solve the exact elastica (shooting); `pose` is then the exact one.
     #[arg(long)]
     exact: bool,
-    /// Also find the factor on the load at which the equilibrium stops being stable.
+    /// Also find the factor on the load, up to 1000, at which the equilibrium
+    /// stops being stable (`stability_limit`; `stable_up_to: 1000` if it stays stable).
     #[arg(long)]
     limit: bool,
-    /// Relative tolerance on the generalized-force residual.
-    #[arg(long, default_value = "1e-12", value_parser = number, allow_hyphen_values = true)]
+    /// Relative tolerance on the generalized-force residual, in (0, 1).
+    #[arg(long, default_value = "1e-12", value_parser = tolerance, allow_hyphen_values = true)]
     tolerance: f64,
-    /// Newton iterations allowed per load step.
-    #[arg(long, default_value_t = 50)]
+    /// Newton iterations allowed per load step, 1 to 10000.
+    #[arg(long, default_value = "50", value_parser = iterations, allow_hyphen_values = true)]
     max_iterations: usize,
     /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
     #[arg(long, conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit"])]
@@ -111,19 +148,18 @@ pub struct DeflectArgs {
 }
 
 impl DeflectArgs {
+    /// The flexure for `--input` rows, which share one order.
     pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
-        self.flexure.build()
+        self.flexure.build_fixed("deflect --input")
     }
 }
 
 /// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
 pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build()?;
     let load = args.load.load();
+    let target = args.accuracy.target();
+    let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
     let mut data = Statics::new(&f);
-    if args.tolerance <= 0.0 {
-        return Err(Error::invalid("tolerance", args.tolerance, "must be greater than zero"));
-    }
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
     let eq = deflect(&f, &load, &mut data, &settings)?;
@@ -134,9 +170,22 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
         "stable": eq.stable,
         "residual": eq.residual,
     });
+    if let Some(limit) = eq.limit {
+        model["limit_load_fraction"] = json!(limit);
+    }
+    if args.flexure.auto() {
+        model["order"] = json!(f.order());
+        model["quadrature"] = json!(f.quadrature_points());
+    }
+    let e = flexure::estimate::deflect_error(&f, &load, data.alpha(), &target)?;
+    put_estimate(&mut model, &e, &f, &target, "deflect");
     if args.limit {
-        // Factors up to 1000 × the given load; null if it stays stable.
-        model["stability_limit"] = json!(flexure::statics::stability_limit(&f, &load, 1000.0)?);
+        const MAX_FACTOR: f64 = 1000.0;
+        // No null in an answer: a null is how a NaN would show (see render::non_finite).
+        match flexure::statics::stability_limit(&f, &load, MAX_FACTOR)? {
+            Some(factor) => model["stability_limit"] = json!(factor),
+            None => model["stable_up_to"] = json!(MAX_FACTOR),
+        }
     }
     if !args.exact {
         return Ok(model);
@@ -168,7 +217,7 @@ pub struct ComplianceArgs {
 
 /// Small-load tip compliance at the rest shape, order (φ, x, y).
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build()?;
+    let f = args.flexure.build_fixed("compliance")?;
     let c = if args.exact {
         reference::compliance::compliance_tip(&f, &Default::default())?
     } else {
@@ -210,7 +259,7 @@ pub struct BucklingArgs {
 
 /// Critical compressive tip load under a tip constraint.
 pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build()?;
+    let f = args.flexure.build_fixed("buckling")?;
     let tip = TipConstraint::from(args.tip);
     if args.exact {
         if f.rest().iter().any(|&k| k != 0.0) {

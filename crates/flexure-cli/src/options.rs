@@ -9,12 +9,121 @@ pub fn number(s: &str) -> Result<f64, String> {
     if v.is_finite() { Ok(v) } else { Err(format!("{s:?} is not a finite number")) }
 }
 
-/// Parses an angle in radians, or in degrees with a `deg` suffix (`45deg`).
-pub fn angle(s: &str) -> Result<f64, String> {
+/// Parses an angle: radians, or degrees with a `deg` suffix (`45deg`).
+/// Also tells whether it is a bare number larger than 2π in magnitude,
+/// which was probably meant in degrees.
+pub fn parse_angle(s: &str) -> Result<(f64, bool), String> {
     match s.trim().strip_suffix("deg") {
-        Some(d) => number(d).map(f64::to_radians),
-        None => number(s),
+        Some(d) => number(d).map(|v| (v.to_radians(), false)),
+        None => number(s).map(|v| (v, v.abs() > std::f64::consts::TAU)),
     }
+}
+
+/// Parses the angle given to `option`, warning when a bare number exceeds 2π.
+pub fn angle_of(option: &str, s: &str) -> Result<f64, String> {
+    let (v, bare_and_large) = parse_angle(s)?;
+    if bare_and_large {
+        let t = s.trim();
+        warn(format!("{option} {t} is read as radians ({:.0}°); write {t}deg for degrees", v.to_degrees()));
+    }
+    Ok(v)
+}
+
+/// Parses `--angle`: radians, or degrees with a `deg` suffix.
+pub fn angle(s: &str) -> Result<f64, String> {
+    angle_of("--angle", s)
+}
+
+/// Parses a whole number from `min` to `max`. Comparing the text's value
+/// before anything is sized by it keeps a huge count from allocating.
+pub fn count(s: &str, min: usize, max: usize) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("{s:?} is not a whole number from {min} to {max}")),
+    }
+}
+
+/// `--order`: from 1 to [`flexure::joint::MAX_ORDER`], or `auto`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Order {
+    /// A given order.
+    Fixed(usize),
+    /// Raise order and quadrature until the error estimate meets `--accuracy`.
+    Auto,
+}
+
+/// Parses `--order`: a whole number from 1 to 64, or `auto`.
+pub fn order(s: &str) -> Result<Order, String> {
+    if s.trim() == "auto" {
+        return Ok(Order::Auto);
+    }
+    count(s, 1, flexure::joint::MAX_ORDER).map(Order::Fixed).map_err(|e| format!("{e}, or auto"))
+}
+
+/// Parses `--accuracy POS,ANGLE`: the position tolerance as a fraction of
+/// the length, and the angle tolerance in radians or with `deg`.
+pub fn accuracy(s: &str) -> Result<flexure::estimate::Accuracy, String> {
+    let (p, a) = s.split_once(',').ok_or_else(|| format!("{s:?} must be POS,ANGLE (for example 0.005,0.5deg)"))?;
+    let target = flexure::estimate::Accuracy { position: number(p)?, angle: parse_angle(a)?.0 };
+    target.validate().map_err(|_| format!("{s:?}: both tolerances must be finite and greater than zero"))?;
+    Ok(target)
+}
+
+/// `--accuracy`: the target every model answer's error estimate is held to.
+#[derive(Debug, Clone, Args)]
+pub struct AccuracyOptions {
+    /// Accuracy target POS,ANGLE: position as a fraction of L and angle in
+    /// radians or with deg. An answer whose error estimate exceeds it is
+    /// flagged, with a warning [default: 0.01,1deg].
+    #[arg(long, value_parser = accuracy, allow_hyphen_values = true)]
+    pub accuracy: Option<flexure::estimate::Accuracy>,
+}
+
+impl AccuracyOptions {
+    /// The target, or the default 1 % of L and 1°.
+    pub fn target(&self) -> flexure::estimate::Accuracy {
+        self.accuracy.unwrap_or_default()
+    }
+}
+
+/// `--quadrature`: from 1 to [`flexure::quadrature::MAX_POINTS`].
+pub fn quadrature(s: &str) -> Result<usize, String> {
+    count(s, 1, flexure::quadrature::MAX_POINTS)
+}
+
+/// `--segments`: from 1 to [`flexure::joint::MAX_SEGMENTS`].
+pub fn segments(s: &str) -> Result<usize, String> {
+    count(s, 1, flexure::joint::MAX_SEGMENTS)
+}
+
+/// Most Newton iterations one load step may take: enough for any problem
+/// that converges (the default is 50), few enough to stop soon on one that does not.
+pub const MAX_ITERATIONS: usize = 10_000;
+
+/// `--max-iterations`: from 1 to [`MAX_ITERATIONS`].
+pub fn iterations(s: &str) -> Result<usize, String> {
+    count(s, 1, MAX_ITERATIONS)
+}
+
+/// A relative tolerance: a finite number in (0, 1).
+pub fn tolerance(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v > 0.0 && v < 1.0 { Ok(v) } else { Err(format!("{s:?} must be greater than 0 and less than 1")) }
+}
+
+thread_local! {
+    /// Warnings raised while parsing, for [`crate::run`] to write on stderr.
+    static WARNINGS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Queues a warning; value parsers have no stream of their own to write it to.
+pub fn warn(message: String) {
+    WARNINGS.with(|w| w.borrow_mut().push(message));
+}
+
+/// The queued warnings, oldest first; the queue is left empty.
+pub fn take_warnings() -> Vec<String> {
+    WARNINGS.with(|w| std::mem::take(&mut *w.borrow_mut()))
 }
 
 /// A comma-separated list of finite numbers (a newtype: clap reads a bare
@@ -52,16 +161,39 @@ pub struct FlexureOptions {
     /// Rest curvature coefficients κ1,κ2,… (one per order) [default: straight].
     #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
     pub kappa: Option<List>,
-    /// Order N: the number of curvature coefficients.
-    #[arg(long, default_value_t = 3)]
-    pub order: usize,
-    /// Gauss–Legendre points [default: order + 2].
-    #[arg(long)]
+    /// Order N: the number of curvature coefficients, 1 to 64; or `auto`
+    /// (deflect, tendon, connect): from 3, raise order and quadrature until
+    /// the error estimate meets --accuracy.
+    #[arg(long, default_value = "3", value_parser = order, allow_hyphen_values = true)]
+    pub order: Order,
+    /// Gauss–Legendre points, 1 to 1024 [default: order + 2].
+    #[arg(long, value_parser = quadrature, allow_hyphen_values = true)]
     pub quadrature: Option<usize>,
 }
 
 impl FlexureOptions {
-    /// Builds and validates the flexure.
+    /// Builds the flexure, refusing `--order auto` where `command` has no error estimate.
+    pub fn build_fixed(&self, command: &'static str) -> flexure::Result<Flexure> {
+        if self.order == Order::Auto {
+            return Err(flexure::Error::invalid(
+                "order",
+                "auto",
+                match command {
+                    "kinematics" => "kinematics takes coordinates of a given order: give a number",
+                    "deflect --input" => "the rows of --input share one order: give a number",
+                    _ => "auto applies to deflect, tendon and connect: give a number here",
+                },
+            ));
+        }
+        self.build()
+    }
+
+    /// Whether `--order auto` was given.
+    pub fn auto(&self) -> bool {
+        self.order == Order::Auto
+    }
+
+    /// Builds and validates the flexure (order 3 to start from, for `--order auto`).
     pub fn build(&self) -> flexure::Result<Flexure> {
         let ei = match self.modulus {
             Some(e) => {
@@ -69,7 +201,11 @@ impl FlexureOptions {
             }
             None => self.ei.unwrap_or(1.0),
         };
-        let mut f = Flexure::new(self.length, ei, self.order)?;
+        let order = match self.order {
+            Order::Fixed(n) => n,
+            Order::Auto => 3,
+        };
+        let mut f = Flexure::new(self.length, ei, order)?;
         if let Some(q) = self.quadrature {
             f = f.with_quadrature(q)?;
         }

@@ -62,3 +62,41 @@ fn inline(v: &Value) -> String {
 fn number(x: f64) -> String {
     if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x:>12.6}") } else { format!("{x:>12.4e}") }
 }
+
+/// The path of the first `null` in `value` (`""` for the whole value), if
+/// any: serde_json writes NaN and ±∞ as `null`, and no answer holds a
+/// `null` otherwise, so this finds every non-finite number.
+pub fn non_finite(value: &Value) -> Option<String> {
+    match value {
+        Value::Null => Some(String::new()),
+        Value::Array(items) => items.iter().enumerate().find_map(|(i, v)| non_finite(v).map(|p| format!("[{i}]{p}"))),
+        Value::Object(map) => map.iter().find_map(|(k, v)| non_finite(v).map(|p| format!(".{k}{p}"))),
+        _ => None,
+    }
+}
+
+/// The error for a non-finite number at `path` (as found by [`non_finite`]).
+pub fn non_finite_message(path: &str) -> String {
+    let field = path.strip_prefix('.').unwrap_or(path);
+    if field.is_empty() {
+        "the result is not a finite number (NaN or infinite); nothing was printed".into()
+    } else {
+        format!("the result's field `{field}` is not a finite number (NaN or infinite); nothing was printed")
+    }
+}
+
+/// The leaves of `value`, in order, as one CSV line (the `--input` table form).
+pub fn csv_line(value: &Value) -> String {
+    fn leaves(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Array(items) => items.iter().for_each(|i| leaves(i, out)),
+            Value::Object(map) => map.values().for_each(|i| leaves(i, out)),
+            Value::Number(n) => out.push(n.as_f64().map_or_else(|| n.to_string(), |x| x.to_string())),
+            Value::String(s) => out.push(s.clone()),
+            other => out.push(other.to_string()),
+        }
+    }
+    let mut out = Vec::new();
+    leaves(value, &mut out);
+    out.join(",")
+}

@@ -16,6 +16,11 @@ fn run(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// The index of the sweep table's column `name`.
+fn column(v: &Value, name: &str) -> usize {
+    v["columns"].as_array().unwrap().iter().position(|c| c == name).unwrap_or_else(|| panic!("no column {name}"))
+}
+
 fn json(args: &[&str]) -> Value {
     let mut a = args.to_vec();
     a.push("--json");
@@ -55,8 +60,10 @@ fn sweep_and_draw() {
     let v = json(&["solve", &file, "--sweep", "tendon.flexor.tension=0:30:31"]);
     let rows = v["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 31);
+    assert!(v.get("stability_limit").is_none());
     // Fig. 10: past 90° by 30 N, near it at 28 N.
-    let at28 = rows[28]["coordinates"]["hinge"][0].as_f64().unwrap();
+    let at28 = rows[28][column(&v, "hinge[0]")].as_f64().unwrap();
+    assert_eq!(rows[28][column(&v, "tendon.flexor.tension")].as_f64(), Some(28.0));
     assert!((at28.to_degrees() - 90.0).abs() < 2.0, "{}", at28.to_degrees());
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("shape.svg");
@@ -99,15 +106,32 @@ fn bad_files_exit_2_naming_the_place() {
         assert!(err.contains(place) && err.contains(path.to_str().unwrap()) && !err.contains("panicked"), "{err}");
         assert!(out.is_empty());
     }
-    // Beyond the buckling load: an unstable or missing equilibrium is reported.
+    // Beyond the buckling load the stage buckles sideways to a stable state:
+    // an answer (exit 0), with the fraction where stability was lost, and a
+    // warning. The model's critical push, 2 × 10 EI/L² = 16 N (Table I,
+    // guided), is 40 % of 40 N.
     let heavy = std::fs::read_to_string(format!("{}/parallelogram.toml", examples()))
         .unwrap()
         .replace("[0.0, -1.0]", "[0.0, -40.0]");
     let path = dir.path().join("heavy.toml");
     std::fs::write(&path, heavy).unwrap();
     let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert!((v["limit_fraction"].as_f64().unwrap() - 0.4).abs() < 1e-5, "{out}");
+    assert!(err.starts_with("warning: ") && err.contains("lost stability at 39.9999 %"), "{err}");
+    // A perfectly aligned sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along
+    // itself by 15 N stays straight, an equilibrium at every load, unstable
+    // past k/l = 10 N: no stable state is reached, exit 2 at 2/3 of the load.
+    let arm = "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+               [[force]]\nbody = \"arm\"\nat = [0.1, 0.0]\nforce = [-15.0, 0.0]\n";
+    let path = dir.path().join("arm.toml");
+    std::fs::write(&path, arm).unwrap();
+    let (code, out, err) = run(&["solve", path.to_str().unwrap(), "--json"]);
     assert_eq!(code, 2, "{out}");
-    assert!(err.contains("loses stability") && err.contains("residual"), "{err}");
+    let pct: f64 = err.split("loses stability at ").nth(1).and_then(|t| t.split(' ').next()).unwrap().parse().unwrap();
+    assert!((pct - 100.0 / 1.5).abs() < 1e-3, "{err}");
+    assert!(out.is_empty());
     let file = format!("{}/paper_tendon.toml", examples());
     for (args, what) in [
         (vec!["solve", file.as_str(), "--sweep", "tendon.nope.tension=0:1:3"], "--sweep"),
@@ -118,5 +142,76 @@ fn bad_files_exit_2_naming_the_place() {
         let (code, _, err) = run(&args);
         assert_eq!(code, 2, "{args:?}");
         assert!(err.contains(what), "{args:?}: {err}");
+    }
+}
+
+/// Sweeping the parallelogram's push past its critical load: the stable rows
+/// (beyond the limit, the stage buckled sideways), then the limit, found
+/// between the two values around it. The model's
+/// critical push is twice one leg's guided load (`buckling_load`, Table I:
+/// 10 EI/L² at N = 3), from the file's L = 0.05 m and EI = 2e-3 N·m². The
+/// limit is bisected to 1e-6 of the value and the stability test's margin
+/// (√tolerance of the joints' stiffness) moves it by about as much: 1e-5.
+#[test]
+fn sweep_past_the_critical_load() {
+    use flexure::{Flexure, TipConstraint, buckling_load};
+    let leg = Flexure::new(0.05, 2.0e-3, 3).unwrap();
+    let critical = 2.0 * buckling_load(&leg, TipConstraint::Guided).unwrap().critical_load;
+    let file = format!("{}/parallelogram.toml", examples());
+    // Past 16 N the stage buckles sideways to stable states: rows too.
+    for (range, stable) in [("0:-20:5", vec![0.0, -5.0, -10.0, -15.0, -20.0]), ("0:-20:3", vec![0.0, -10.0, -20.0])] {
+        let spec = format!("force.push.fy={range}");
+        let (code, out, err) = run(&["solve", &file, "--sweep", &spec, "--json"]);
+        assert_eq!(code, 0, "{err}");
+        assert!(err.starts_with("warning: ") && err.contains("stability is lost"), "{err}");
+        let v: Value = serde_json::from_str(&out).unwrap();
+        let rows = v["rows"].as_array().unwrap();
+        let at = column(&v, "force.push.fy");
+        let values: Vec<f64> = rows.iter().map(|r| r[at].as_f64().unwrap()).collect();
+        assert_eq!(values, stable, "{range}");
+        let limit = &v["stability_limit"];
+        let value = limit["value"].as_f64().unwrap();
+        assert!((value / -critical - 1.0).abs() < 1e-5, "{range}: {value} vs {}", -critical);
+        assert!((limit["fraction"].as_f64().unwrap() - critical / 20.0).abs() < 1e-5, "{range}");
+        // The table: one line per stable value, then the limit; no null.
+        let (code, table, _) = run(&["solve", &file, "--sweep", &spec]);
+        assert_eq!(code, 0);
+        let lines: Vec<&str> = table.lines().collect();
+        let first = lines.iter().position(|l| *l == "rows:").unwrap() + 1;
+        let last = lines.iter().position(|l| *l == "stability_limit:").unwrap();
+        assert_eq!(last - first, stable.len(), "{table}");
+        assert!(!table.contains("null") && !table.contains("NaN"), "{table}");
+        assert!(lines[last + 1].trim_start().starts_with("value:"), "{table}");
+    }
+}
+
+/// The fuzzer's findings at the command line: exit 2 with the key, line and
+/// column, no panic, nothing on stdout.
+#[test]
+fn fuzzer_findings_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let spring = "[[joint]]\nname = \"a\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 5e-324\n[[force]]\nbody = \"b\"\nat = [0.0, 0.0]\nmoment = 1.0\n";
+    let long = std::fs::read_to_string(format!("{}/parallelogram.toml", examples())).unwrap().replacen(
+        "length = 0.05",
+        "length = 1e300",
+        1,
+    );
+    for (name, text, command, what) in [
+        ("empty.toml", String::new(), "buckle", "nothing can buckle".to_string()),
+        ("spring.toml", spring.to_string(), "solve", "line 6, column 13: joint \"a\": stiffness = 5e-324".to_string()),
+        ("long.toml", long, "buckle", "line 11, column 10: joint \"left\": length = 1e300".to_string()),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        for json in [true, false] {
+            let mut args = vec![command, path.to_str().unwrap()];
+            if json {
+                args.push("--json");
+            }
+            let (code, out, err) = run(&args);
+            assert_eq!(code, 2, "{name}: {out}{err}");
+            assert!(err.contains(&what) && !err.contains("panicked"), "{name}: {err}");
+            assert!(out.is_empty(), "{name}: {out}");
+        }
     }
 }

@@ -3,22 +3,27 @@
 //! Inputs accept anything array-like; outputs are float64 NumPy arrays.
 //! Bad input raises `ValueError` naming the parameter; a solver that does
 //! not converge raises `flexure.ConvergenceError` with its residual; an
-//! equilibrium that is found but unstable warns with `flexure.StabilityWarning`.
+//! equilibrium that is found but unstable warns with `flexure.StabilityWarning`;
+//! an answer whose estimated error misses its accuracy target warns with
+//! `flexure.AccuracyWarning`.
 
+use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::kinematics::{Pose, par_poses_root_tip};
+use flexure::mechanism::JointKind;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
 use flexure::reference::{compliance as exact_compliance, elastica};
 use flexure::{
-    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect, energy,
-    update_kinematics,
+    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip, compliance_tip_rest,
+    deflect, energy, update_kinematics,
 };
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyInt, PyTuple};
+use std::time::{Duration, Instant};
 
 create_exception!(
     _flexure,
@@ -34,13 +39,118 @@ create_exception!(
     "An equilibrium was found but is unstable: a small disturbance would move the flexure away from it."
 );
 
+create_exception!(
+    _flexure,
+    AccuracyWarning,
+    PyUserWarning,
+    "A model answer's estimated error misses its accuracy target (by default 1 % of the length and 1 degree)."
+);
+
+/// Warns `text` as `category` (`stacklevel` 1: the Python line that called the binding).
+fn warn(py: Python<'_>, category: &Bound<'_, pyo3::types::PyType>, text: String, stacklevel: i32) -> PyResult<()> {
+    // Built from fixed text, numbers and names; a NUL in a name is dropped rather than losing the warning.
+    let message = std::ffi::CString::new(text.replace('\0', "")).unwrap_or_default();
+    PyErr::warn(py, category.as_any(), &message, stacklevel)
+}
+
 /// Warns that the equilibrium `solver` found under `load` is unstable, and `why`.
 fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str) -> PyResult<()> {
     let (m, fx, fy) = (load.moment, load.fx, load.fy);
     let text = format!("{solver}: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: {why}");
-    // Built from fixed text and numbers, so it has no interior NUL.
-    let message = std::ffi::CString::new(text).unwrap_or_default();
-    PyErr::warn(py, py.get_type::<StabilityWarning>().as_any(), &message, 1)
+    warn(py, &py.get_type::<StabilityWarning>(), text, 1)
+}
+
+/// `x` to 3 significant digits, without trailing zeros; in exponent form when very small or large.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor() as i32;
+    if !(-4..6).contains(&e) {
+        return format!("{x:.2e}");
+    }
+    let plain = format!("{:.*}", (2 - e).max(0) as usize, x);
+    if plain.contains('.') { plain.trim_end_matches('0').trim_end_matches('.').to_string() } else { plain }
+}
+
+/// Reads `accuracy` = (position as a fraction of L, angle in rad); the
+/// paper's 1 % of L and 1° when it is `None`.
+fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
+    let Some(v) = value.filter(|v| !v.is_none()) else {
+        return Ok(Accuracy::default());
+    };
+    let shape = || {
+        PyValueError::new_err(format!(
+            "accuracy must be a pair (position as a fraction of L, angle in rad), such as (0.01, 0.0175), got {}",
+            v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
+        ))
+    };
+    // A str is a sequence too, but never a pair of numbers: pyo3 refuses it as a Vec.
+    let pair: Vec<f64> = v.extract().map_err(|_| shape())?;
+    let [position, angle] = pair[..] else {
+        return Err(shape());
+    };
+    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle)] {
+        if !(x.is_finite() && x > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "accuracy = ({position}, {angle}): its {what} is {x}, and must be a finite number greater than zero"
+            )));
+        }
+    }
+    Ok(Accuracy { position, angle })
+}
+
+/// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
+/// names the answer, `hint` says what to do about it.
+fn warn_inaccurate(
+    py: Python<'_>,
+    what: &str,
+    f: &flexure::Flexure,
+    e: &ErrorEstimate,
+    target: &Accuracy,
+    hint: &str,
+    stacklevel: i32,
+) -> PyResult<()> {
+    let text = format!(
+        "{what}: estimated error {} m ({} % of L) in position and {}° in angle misses the target of {} % of L and {}° \
+         (estimated against order {} with {} quadrature points); {hint}",
+        sig(e.position),
+        sig(100.0 * e.position / f.length()),
+        sig(e.angle.to_degrees()),
+        sig(100.0 * target.position),
+        sig(target.angle.to_degrees()),
+        e.reference_order,
+        e.reference_quadrature,
+    );
+    warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
+}
+
+/// Warns that the error of `what` could not be estimated, and why.
+fn warn_unestimated(py: Python<'_>, what: &str, why: &Error, stacklevel: i32) -> PyResult<()> {
+    let text = format!("{what}: the error could not be estimated, so the answer's accuracy is unknown: {why}");
+    warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
+}
+
+/// An estimate as a dict: position (m), angle (rad), flagged, reference_order, reference_quadrature.
+fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("position", e.position)?;
+    d.set_item("angle", e.angle)?;
+    d.set_item("flagged", e.flagged)?;
+    d.set_item("reference_order", e.reference_order)?;
+    d.set_item("reference_quadrature", e.reference_quadrature)?;
+    Ok(d)
+}
+
+/// An estimate's result, with an interruption passed on as the solve's error
+/// (the answer is not returned) and any other failure kept for a warning.
+type Estimated = std::result::Result<ErrorEstimate, Error>;
+
+fn interrupted_or(e: flexure::Result<ErrorEstimate>) -> flexure::Result<Estimated> {
+    match e {
+        Err(e @ Error::Interrupted { .. }) => Err(e),
+        other => Ok(other),
+    }
 }
 
 /// The library's error as a Python exception.
@@ -60,8 +170,71 @@ fn to_py(e: Error) -> PyErr {
             });
             err
         }
-        Error::Interrupted { .. } => pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+thread_local! {
+    /// What a Python signal handler raised while an interruptible call ran on this thread.
+    static RAISED: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
+    /// When the interrupt check next runs Python's handlers.
+    static NEXT_POLL: std::cell::Cell<Option<Instant>> = const { std::cell::Cell::new(None) };
+}
+
+/// How often a running solve hands control to Python's signal handlers:
+/// taking the GIL at every Newton iteration would double the cost of a
+/// small solve, and 10 ms is well below what a person pressing Ctrl-C notices.
+const POLL: Duration = Duration::from_millis(10);
+
+/// The solvers' interrupt check: at most every [`POLL`], runs Python's signal
+/// handlers (only on the main thread; Ctrl-C's raises `KeyboardInterrupt`)
+/// and keeps what they raised for [`interruptible`] to raise.
+fn signalled() -> bool {
+    let now = Instant::now();
+    if NEXT_POLL.with(|t| t.get()).is_some_and(|next| now < next) {
+        return false;
+    }
+    NEXT_POLL.with(|t| t.set(Some(now + POLL)));
+    Python::attach(|py| match py.check_signals() {
+        Ok(()) => false,
+        Err(e) => {
+            RAISED.with(|r| *r.borrow_mut() = Some(e));
+            true
+        }
+    })
+}
+
+/// Starts an interruptible call: forgets what a handler raised before, and
+/// first polls after [`POLL`], so a quick call never takes the GIL back.
+fn clear_raised() {
+    RAISED.with(|r| r.borrow_mut().take());
+    NEXT_POLL.with(|t| t.set(Some(Instant::now() + POLL)));
+}
+
+/// What a signal handler raised during the work, if anything; a plain
+/// `KeyboardInterrupt` is replaced by `interrupted`, which says how far the
+/// work got.
+fn raised_during(py: Python<'_>, interrupted: impl FnOnce() -> PyErr) -> Option<PyErr> {
+    let raised = RAISED.with(|r| r.borrow_mut().take())?;
+    if raised.is_instance_of::<PyKeyboardInterrupt>(py) { Some(interrupted()) } else { Some(raised) }
+}
+
+/// Runs a solve without the GIL, polling Python's signal handlers at every
+/// continuation step and Newton iteration ([`flexure::solver::with_interrupt`]):
+/// Ctrl-C stops it with `KeyboardInterrupt` saying the load fraction reached,
+/// and an exception raised by any other handler propagates as it is.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> flexure::Result<T> + Send) -> PyResult<T> {
+    clear_raised();
+    let out = py.detach(|| flexure::solver::with_interrupt(signalled, work));
+    let message = match &out {
+        Err(e @ Error::Interrupted { .. }) => e.to_string(),
+        _ => "interrupted".to_string(),
+    };
+    // A handler that raised wins even over a result: Python would have raised it.
+    match raised_during(py, || PyKeyboardInterrupt::new_err(message)) {
+        Some(err) => Err(err),
+        None => out.map_err(to_py),
     }
 }
 
@@ -78,7 +251,7 @@ struct Flexure {
     inner: flexure::Flexure,
 }
 
-/// Reads `alpha` as an (N,) or (n, N) float64 array and checks it.
+/// Reads `alpha` as an (N,) or (n, N) float64 array of finite values.
 fn coordinates(
     f: &flexure::Flexure,
     alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>,
@@ -88,23 +261,54 @@ fn coordinates(
     let rows = match shape.as_slice() {
         [k] if *k == n => None,
         [r, k] if *k == n => Some(*r),
+        [k] | [_, k] => {
+            return Err(PyValueError::new_err(format!(
+                "alpha must have {n} entries per row (the flexure's order), got {k} (shape {shape:?})"
+            )));
+        }
         _ => {
             return Err(PyValueError::new_err(format!(
-                "alpha has shape {shape:?}; expected ({n},) or (n, {n}) for order {n}"
+                "alpha must have shape ({n},) or (n, {n}) for order {n}, got shape {shape:?}"
             )));
         }
     };
     let values: Vec<f64> = alpha.as_array().iter().copied().collect();
-    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return Err(PyValueError::new_err(format!("alpha contains {v}: every coordinate must be a finite number")));
-    }
+    all_finite("alpha", &values)?;
     Ok((values, rows))
 }
 
+/// Reads `alpha` as one configuration, shape (N,).
 fn single(f: &flexure::Flexure, alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
     match coordinates(f, alpha)? {
         (v, None) => Ok(v),
-        (_, Some(_)) => Err(PyValueError::new_err(format!("alpha must have shape ({},) here", f.order()))),
+        (_, Some(r)) => Err(PyValueError::new_err(format!(
+            "alpha must have shape ({n},) here (one configuration), got shape ({r}, {n})",
+            n = f.order()
+        ))),
+    }
+}
+
+/// Reads `name` as a 1-D array of `expected` finite values (any count if `None`).
+fn vector(name: &str, array: &PyArrayLikeDyn<'_, f64, AllowTypeChange>, expected: Option<usize>) -> PyResult<Vec<f64>> {
+    let shape = array.shape().to_vec();
+    let got = match shape.as_slice() {
+        [k] => *k,
+        _ => return Err(PyValueError::new_err(format!("{name} must be one-dimensional, got shape {shape:?}"))),
+    };
+    if let Some(n) = expected.filter(|&n| n != got) {
+        return Err(PyValueError::new_err(format!(
+            "{name} must have {n} entries (one per coordinate, the flexure's order), got {got}"
+        )));
+    }
+    let values: Vec<f64> = array.as_array().iter().copied().collect();
+    all_finite(name, &values)?;
+    Ok(values)
+}
+
+fn all_finite(name: &str, values: &[f64]) -> PyResult<()> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(v) => Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number"))),
+        None => Ok(()),
     }
 }
 
@@ -112,17 +316,51 @@ fn finite(name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() { Ok(v) } else { Err(PyValueError::new_err(format!("{name} = {v}: must be a finite number"))) }
 }
 
+/// A tip load of finite components.
+fn tip_load(moment: f64, fx: f64, fy: f64) -> PyResult<TipLoad> {
+    Ok(TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? })
+}
+
+/// A count such as `order` from any Python integer: one that does not fit a
+/// `usize` (negative, or past 2^64) is a `ValueError` naming `name` and the
+/// bound, not an `OverflowError`. The library checks the bound itself.
+fn count(name: &str, value: &Bound<'_, PyAny>, max: usize) -> PyResult<usize> {
+    match value.extract::<usize>() {
+        Ok(v) => Ok(v),
+        // Integers (also NumPy's, through __index__) out of usize's range.
+        Err(_) if value.is_instance_of::<PyInt>() || value.hasattr("__index__").unwrap_or(false) => {
+            Err(PyValueError::new_err(format!("invalid {name} = {value}: must be from 1 to {max}")))
+        }
+        Err(e) => Err(PyTypeError::new_err(format!("argument '{name}': {}", e.value(value.py())))),
+    }
+}
+
+/// The stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$
+/// (Eq. 32) at `alpha`, with the kinematics there (Hessian level).
+fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kinematics<f64>, nalgebra::DMatrix<f64>) {
+    let mut k = Kinematics::new(f);
+    update_kinematics(f, alpha, &mut k, Level::Hessian);
+    let mut stiffness = -(&k.hessian_root_tip_x * load.fx + &k.hessian_root_tip_y * load.fy);
+    for i in 0..f.order() {
+        stiffness[(i, i)] += flexure::energy::stiffness(f, i);
+    }
+    (k, stiffness)
+}
+
 #[pymethods]
 impl Flexure {
-    /// Flexure(length=1.0, ei=1.0, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
+    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
     #[new]
-    #[pyo3(signature = (length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None))]
+    #[pyo3(
+        signature = (length=1.0, ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None),
+        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn new(
         length: f64,
         ei: Option<f64>,
-        order: usize,
-        quadrature: Option<usize>,
+        order: Option<&Bound<'_, PyAny>>,
+        quadrature: Option<&Bound<'_, PyAny>>,
         rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
         modulus: Option<f64>,
         width: Option<f64>,
@@ -131,24 +369,46 @@ impl Flexure {
     ) -> PyResult<Self> {
         let ei = match (ei, modulus) {
             (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err("give ei, or modulus, width and thickness, not both"));
+                return Err(PyValueError::new_err(
+                    "ei and modulus were both given: give ei, or modulus with width and thickness, not both",
+                ));
             }
-            (Some(ei), None) => ei,
+            (ei, None) => {
+                // Section options only count with a modulus: refuse them rather than ignore them.
+                let unused: Vec<&str> =
+                    [("width", width.is_some()), ("thickness", thickness.is_some()), ("poisson", poisson.is_some())]
+                        .into_iter()
+                        .filter_map(|(name, given)| given.then_some(name))
+                        .collect();
+                if !unused.is_empty() {
+                    return Err(PyValueError::new_err(format!(
+                        "{} given without modulus would be ignored: give modulus (with width and thickness) to compute ei from the section, or leave them out",
+                        unused.join(", ")
+                    )));
+                }
+                ei.unwrap_or(1.0)
+            }
             (None, Some(e)) => {
                 let (Some(w), Some(h)) = (width, thickness) else {
-                    return Err(PyValueError::new_err("modulus needs width and thickness"));
+                    let missing = if width.is_none() && thickness.is_none() {
+                        "width and thickness"
+                    } else if width.is_none() {
+                        "width"
+                    } else {
+                        "thickness"
+                    };
+                    return Err(PyValueError::new_err(format!("modulus needs width and thickness: {missing} missing")));
                 };
                 flexure::bending_stiffness(e, w, h, poisson).map_err(to_py)?
             }
-            (None, None) => 1.0,
         };
+        let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
         let mut f = flexure::Flexure::new(length, ei, order).map_err(to_py)?;
         if let Some(q) = quadrature {
-            f = f.with_quadrature(q).map_err(to_py)?;
+            f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
         if let Some(r) = rest {
-            let kappa: Vec<f64> = r.as_array().iter().copied().collect();
-            f = f.with_rest(&kappa).map_err(to_py)?;
+            f = f.with_rest(&vector("rest", &r, Some(order))?).map_err(to_py)?;
         }
         Ok(Self { inner: f })
     }
@@ -193,11 +453,29 @@ impl Flexure {
             }
             Some(r) => {
                 let f = &self.inner;
-                let poses = py.detach(|| {
-                    let mut poses = vec![Pose::default(); r];
-                    par_poses_root_tip(f, &values, &mut poses).map(|_| poses)
-                });
-                let poses = poses.map_err(to_py)?;
+                let n = f.order();
+                // Chunks of about 2^24 node evaluations (milliseconds), between which Ctrl-C is polled.
+                let rows_per_chunk = ((1usize << 24) / (n * f.quadrature_points())).max(1);
+                clear_raised();
+                let (poses, done) = py
+                    .detach(|| {
+                        let mut poses = vec![Pose::default(); r];
+                        let mut done = 0;
+                        for (a, p) in values.chunks(rows_per_chunk * n).zip(poses.chunks_mut(rows_per_chunk)) {
+                            if signalled() {
+                                break;
+                            }
+                            par_poses_root_tip(f, a, p)?;
+                            done += p.len();
+                        }
+                        Ok((poses, done))
+                    })
+                    .map_err(to_py)?;
+                let interrupted =
+                    || PyKeyboardInterrupt::new_err(format!("pose: interrupted after {done} of {r} rows"));
+                if let Some(err) = raised_during(py, interrupted) {
+                    return Err(err);
+                }
                 let flat: Vec<f64> = poses.iter().flat_map(|p| [p.phi, p.x, p.y]).collect();
                 let a = Array2::from_shape_vec((r, 3), flat).map_err(|e| PyValueError::new_err(e.to_string()))?;
                 Ok(a.into_pyarray(py).into_any())
@@ -245,39 +523,138 @@ impl Flexure {
         Ok(energy(&self.inner, &single(&self.inner, &alpha)?))
     }
 
-    /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22).
-    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0))]
-    fn deflect<'py>(&self, py: Python<'py>, moment: f64, fx: f64, fy: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
+    /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22),
+    /// with its error estimated against a refined model: a miss of `accuracy` (position as a
+    /// fraction of L, angle in rad; default 1 % and 1°) warns `AccuracyWarning`. With
+    /// `order="auto"`, raises the order until the target is met and returns `(flexure_used, alpha)`.
+    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, *, accuracy=None, order=None))]
+    fn deflect<'py>(
+        &self,
+        py: Python<'py>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        order: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let load = tip_load(moment, fx, fy)?;
+        let target = self::accuracy(accuracy)?;
+        let auto = match order.filter(|o| !o.is_none()) {
+            None => false,
+            Some(o) if o.extract::<String>().is_ok_and(|s| s == "auto") => true,
+            Some(o) => {
+                return Err(PyValueError::new_err(format!(
+                    "order must be None or \"auto\", got {}: a flexure's own order is set when it is built",
+                    o.repr()?
+                )));
+            }
+        };
         let f = &self.inner;
-        let found = py.detach(|| {
+        if auto {
+            // The library refuses `order` when even its highest order misses the target.
+            let found = interruptible(py, || match estimate::deflect_auto(f, &load, &target) {
+                Ok((used, alpha, _)) => Ok(Some((used, alpha))),
+                Err(Error::InvalidParameter { name: "order", .. }) => Ok(None),
+                Err(e) => Err(e),
+            })?;
+            let Some((used, alpha)) = found else {
+                return Err(PyValueError::new_err(format!(
+                    "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}): loosen accuracy or reduce the load",
+                    flexure::joint::MAX_ORDER,
+                    sig(100.0 * target.position),
+                    sig(target.angle.to_degrees())
+                )));
+            };
+            let (_, stiffness) = loaded_stiffness(&used, &alpha, &load);
+            if !flexure::linalg::is_positive_definite(&stiffness) {
+                let why = "its stiffness is not positive definite (the load is past a buckling load)";
+                warn_unstable(py, "deflect", &load, why)?;
+            }
+            let used = Py::new(py, Flexure { inner: used })?;
+            let alpha = PyArray1::from_vec(py, alpha);
+            return Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any());
+        }
+        let (alpha, stable, estimated) = interruptible(py, || {
             let mut data = Statics::new(f);
-            deflect(f, &load, &mut data, &Default::default()).map(|eq| (data.alpha().to_vec(), eq.stable))
-        });
-        let (alpha, stable) = found.map_err(to_py)?;
+            let eq = deflect(f, &load, &mut data, &Default::default())?;
+            let alpha = data.alpha().to_vec();
+            let estimated = interrupted_or(estimate::deflect_error(f, &load, &alpha, &target))?;
+            Ok((alpha, eq.stable, estimated))
+        })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
             warn_unstable(py, "deflect", &load, why)?;
         }
-        Ok(PyArray1::from_vec(py, alpha))
+        match estimated {
+            Ok(e) if e.flagged => {
+                let hint = "use deflect(..., order=\"auto\") to raise the order until the target is met";
+                warn_inaccurate(py, "deflect", f, &e, &target, hint, 1)?
+            }
+            Ok(_) => {}
+            Err(why) => warn_unestimated(py, "deflect", &why, 1)?,
+        }
+        Ok(PyArray1::from_vec(py, alpha).into_any())
     }
 
-    /// Tip compliance (3, 3), order (phi, x, y): J K⁻¹ Jᵀ with K the energy Hessian (Eq. 36), at alpha (default: the rest shape).
-    #[pyo3(signature = (alpha=None))]
+    /// The estimated error of `alpha` as the equilibrium under a tip load, against a refined
+    /// model: a dict of position (m), angle (rad), flagged (whether it misses `accuracy`),
+    /// reference_order and reference_quadrature.
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0, accuracy=None))]
+    fn error_estimate<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+        accuracy: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let a = single(&self.inner, &alpha)?;
+        let load = tip_load(moment, fx, fy)?;
+        let target = self::accuracy(accuracy)?;
+        let f = &self.inner;
+        let e = interruptible(py, || estimate::deflect_error(f, &load, &a, &target))?;
+        estimate_dict(py, &e)
+    }
+
+    /// Generalized stiffness (N, N) at alpha under a tip load:
+    /// K = ∇∇U − Fx∇∇x − Fy∇∇y (Eq. 32; the moment adds nothing, φ_tip being linear in alpha).
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
+    fn stiffness<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let load = tip_load(moment, fx, fy)?;
+        let (_, k) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        Ok(matrix(&k).into_pyarray(py))
+    }
+
+    /// Tip compliance (3, 3), order (phi, x, y), at alpha under a tip load: C = J K⁻¹ Jᵀ with the
+    /// loaded stiffness K of Eq. 32 (Eq. 36 at a loaded equilibrium). At an equilibrium alpha for
+    /// that load (from `deflect`) it is the response d(pose)/d(moment, fx, fy) to a small extra load.
+    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
     fn compliance<'py>(
         &self,
         py: Python<'py>,
-        alpha: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let c = match alpha {
-            None => compliance_tip_rest(&self.inner),
-            Some(a) => {
-                let a = single(&self.inner, &a)?;
-                let shape = self.inner.clone().with_rest(&a).map_err(to_py)?;
-                compliance_tip_rest(&shape)
-            }
-        };
+        let load = tip_load(moment, fx, fy)?;
+        let (k, stiffness) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        let c = compliance_tip(&k, &stiffness).map_err(to_py)?;
         Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+    }
+
+    /// Tip compliance (3, 3) of the unloaded flexure at its rest shape (Eqs. 35–36).
+    fn rest_compliance<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let c = compliance_tip_rest(&self.inner);
+        Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py)
     }
 
     /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or "clamped".
@@ -311,8 +688,8 @@ fn exact_deflect<'py>(
     rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
-    let load = TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? };
-    let s = py.detach(|| elastica::deflect(&f, &load, &Default::default())).map_err(to_py)?;
+    let load = tip_load(moment, fx, fy)?;
+    let s = interruptible(py, || elastica::deflect(&f, &load, &Default::default()))?;
     if !s.stable {
         warn_unstable(py, "exact.deflect", &load, "the elastica fails the Jacobi test")?;
     }
@@ -329,17 +706,29 @@ fn exact_compliance_tip<'py>(
     rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let f = rest_flexure(length, ei, rest)?;
-    let c = exact_compliance::compliance_tip(&f, &Default::default()).map_err(to_py)?;
+    let c = interruptible(py, || exact_compliance::compliance_tip(&f, &Default::default()))?;
     Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
 }
 
+/// The rest shape of an exact reference: any order from 1 to 64, given by
+/// the number of `rest` coefficients (straight, order 3, without them).
 fn rest_flexure(
     length: f64,
     ei: f64,
     rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
 ) -> PyResult<flexure::Flexure> {
-    let kappa: Vec<f64> = rest.map(|r| r.as_array().iter().copied().collect()).unwrap_or_else(|| vec![0.0; 3]);
-    flexure::Flexure::new(length, ei, kappa.len().max(1)).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
+    let kappa = match rest {
+        Some(r) => vector("rest", &r, None)?,
+        None => vec![0.0; 3],
+    };
+    let max = flexure::joint::MAX_ORDER;
+    if !(1..=max).contains(&kappa.len()) {
+        return Err(PyValueError::new_err(format!(
+            "rest must have from 1 to {max} entries (rest curvature coefficients), got {}",
+            kappa.len()
+        )));
+    }
+    flexure::Flexure::new(length, ei, kappa.len()).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
 }
 
 /// A mechanism read from a TOML description.
@@ -356,10 +745,25 @@ impl Mechanism {
         Ok(Self { inner: from_toml(text).map_err(to_py)? })
     }
 
-    /// Equilibrium as a dict shaped like `flexure solve --json`.
-    fn solve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// Equilibrium as a dict shaped like `flexure solve --json`, with `estimates`: the
+    /// estimated error of each flexure joint (a dict as `Flexure.error_estimate` returns, or
+    /// None where it could not be made). A joint that misses `accuracy` warns `AccuracyWarning`.
+    #[pyo3(signature = (accuracy=None))]
+    fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        let target = self::accuracy(accuracy)?;
         let m = &self.inner;
-        let s = py.detach(|| solve(m, &MechanismSettings::default())).map_err(to_py)?;
+        let (s, estimated) = interruptible(py, || {
+            let s = solve(m, &MechanismSettings::default())?;
+            // Each flexure joint carries only the load at its tip: its error is that of a deflect.
+            let mut estimated = Vec::new();
+            for j in &m.joints {
+                if let JointKind::Flexure(f) = &j.kind {
+                    let alpha = &s.q[j.offset..j.offset + f.order()];
+                    estimated.push((j, f.as_ref(), interrupted_or(estimate::joint_error(f, alpha, &target))?));
+                }
+            }
+            Ok((s, estimated))
+        })?;
         let frames = body_frames(m, &s);
         let bodies = PyDict::new(py);
         for (b, f) in m.bodies.iter().zip(&frames.bodies) {
@@ -374,11 +778,39 @@ impl Mechanism {
             let q = Array1::from_vec(s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec());
             coordinates.set_item(&j.name, q.into_pyarray(py))?;
         }
+        let estimates = PyDict::new(py);
+        // Stack level 2: the line calling `flexure.Mechanism.solve`, past its Python wrapper.
+        for (j, f, e) in &estimated {
+            let what = format!("Mechanism.solve, flexure joint '{}'", j.name);
+            match e {
+                Ok(e) => {
+                    if e.flagged {
+                        let hint = "raise the joint's order (and quadrature) in the mechanism file";
+                        warn_inaccurate(py, &what, f, e, &target, hint, 2)?;
+                    }
+                    estimates.set_item(&j.name, estimate_dict(py, e)?)?;
+                }
+                Err(why) => {
+                    warn_unestimated(py, &what, why, 2)?;
+                    estimates.set_item(&j.name, py.None())?;
+                }
+            }
+        }
         let out = PyDict::new(py);
         out.set_item("bodies", bodies)?;
         out.set_item("coordinates", coordinates)?;
         out.set_item("energy", s.energy)?;
         out.set_item("stable", s.stable)?;
+        out.set_item("estimates", estimates)?;
+        if let Some(limit) = s.limit {
+            // A snap-through: the stable answer beyond a limit load, which the caller must know of.
+            out.set_item("limit_fraction", limit)?;
+            let text = format!(
+                "Mechanism.solve: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+                100.0 * limit
+            );
+            warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+        }
         Ok(out)
     }
 
@@ -397,5 +829,6 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exact_compliance_tip, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
+    m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;
     Ok(())
 }

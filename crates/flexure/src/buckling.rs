@@ -98,7 +98,7 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
     let d = DMatrix::from_fn(n, n, |i, j| if i == j { stiffness(flexure, i) } else { 0.0 });
     let a = z.transpose() * d * &z;
     let b = -(z.transpose() * &k.hessian_root_tip_x * &z);
-    let (mus, modes) = generalized_symmetric(&a, &b)
+    let (mus, modes) = crate::linalg::generalized_symmetric(&a, &b)
         .ok_or_else(|| Error::Singular { what: "energy Hessian not positive definite".into() })?;
     // nalgebra returns eigenvalues unsorted: the largest 1/P is the smallest P.
     let (best, &mu) = mus
@@ -117,26 +117,8 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
 
 /// Orthonormal basis of $\{\delta\alpha : J_r\,\delta\alpha = 0\ \forall r \in \text{rows}\}$.
 fn admissible_basis(jacobian: &DMatrix<f64>, rows: &[usize], n: usize) -> DMatrix<f64> {
-    if rows.is_empty() {
-        return DMatrix::identity(n, n);
-    }
     let g = DMatrix::from_fn(rows.len(), n, |r, c| jacobian[(rows[r], c)]);
-    let eig = nalgebra::SymmetricEigen::new(g.transpose() * &g);
-    let top = eig.eigenvalues.amax().max(f64::MIN_POSITIVE);
-    let keep: Vec<usize> = (0..n).filter(|&i| eig.eigenvalues[i] <= 1e-12 * top).collect();
-    DMatrix::from_fn(n, keep.len(), |r, c| eig.eigenvectors[(r, keep[c])])
-}
-
-/// Eigenpairs of $B v = \mu A v$ for symmetric $A$ (positive definite) and $B$,
-/// by reduction with $A = LL^T$ to the standard problem for $L^{-1}BL^{-T}$.
-/// Eigenvalues unsorted; eigenvectors (columns) in the original coordinates.
-/// `None` if $A$ is not positive definite.
-pub(crate) fn generalized_symmetric(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Option<(DVector<f64>, DMatrix<f64>)> {
-    let l = nalgebra::Cholesky::new((a + a.transpose()) * 0.5)?.l();
-    let linv = l.try_inverse()?;
-    let m = &linv * b * linv.transpose();
-    let eig = nalgebra::SymmetricEigen::new((&m + m.transpose()) * 0.5);
-    Some((eig.eigenvalues, linv.transpose() * eig.eigenvectors))
+    crate::linalg::null_space(&g)
 }
 
 /// A mode scaled to unit length with its largest entry positive.

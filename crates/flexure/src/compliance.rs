@@ -36,7 +36,17 @@ pub fn compliance_tip_rest(flexure: &Flexure) -> Matrix3<f64> {
 /// about a loaded equilibrium.
 ///
 /// Fails when $K$ is not positive definite (the equilibrium is unstable).
+///
+/// # Panics
+/// If `stiffness` is not $N \times N$ for the $N$ coordinates of the
+/// Jacobian in `kinematics` (never truncates).
 pub fn compliance_tip(kinematics: &Kinematics<f64>, stiffness: &DMatrix<f64>) -> Result<Matrix3<f64>> {
+    let n = kinematics.jacobian_root_tip.ncols();
+    let (rows, cols) = stiffness.shape();
+    assert!(
+        rows == n && cols == n,
+        "stiffness must be {n} x {n} (one row and column per coordinate), got {rows} x {cols}"
+    );
     let chol = stiffness.clone().cholesky().ok_or_else(|| Error::Singular {
         what:
             "the generalized stiffness is not positive definite: the equilibrium is unstable, so it has no compliance"

@@ -4,9 +4,9 @@ use crate::energy::{energy, energy_gradient, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::{Basis, Flexure};
 use crate::kinematics::{self, Kinematics, Level, Pose};
-use crate::newton::find_root;
-use crate::statics::TipLoad;
-use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use crate::solver;
+use crate::statics::{Settings, TipLoad, rotation};
+use nalgebra::DVector;
 
 /// A minimum-energy shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,14 +40,14 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 
 /// The coordinates of least energy $U(\alpha)$ whose tip reaches `target`.
 ///
-/// For the paper's $N = 3$ Legendre model there is nothing to minimize: Eq. 11
-/// fixes $\alpha_1 = \phi$, and Eqs. 14–15 give two equations in $\alpha_2,
-/// \alpha_3$, solved by Newton. Otherwise (any order $N > 3$, or a segment
-/// chain) Newton solves the KKT conditions of $\min U$ s.t. tip pose = target,
+/// Newton on the KKT conditions of $\min U$ s.t. tip pose = target,
 /// $$\begin{bmatrix} K & -\mathcal J^T\\ \mathcal J & 0\end{bmatrix}
 /// \begin{bmatrix}\delta\alpha\\ \delta\lambda\end{bmatrix} = -\begin{bmatrix}\nabla U - \mathcal J^T\lambda\\ p(\alpha) - p^*\end{bmatrix},$$
-/// with $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32).
-/// Both start from the circular arc through the target angle.
+/// with $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32), followed by the
+/// shared continuation ([`crate::solver`]) from the circular arc with the
+/// target's tip angle, whose tip is moved to the target. For the paper's
+/// $N = 3$ this solves Eqs. 11, 14 and 15 ($\alpha_1 = \phi$, two equations
+/// in $\alpha_2, \alpha_3$), with the multipliers alongside.
 ///
 /// # Example
 /// ```
@@ -65,15 +65,18 @@ pub fn connect(flexure: &Flexure, target: &Pose) -> Result<Connection> {
         return Err(Error::invalid("order", n, "must be at least 3 to reach a tip pose (three constraints)"));
     }
     let mut k = Kinematics::new(flexure);
-    let tolerance = 1e-13 * flexure.length();
-    let (alpha, iterations) = if flexure.basis() == Basis::Legendre && n == 3 {
-        direct(flexure, target, &mut k, tolerance)?
-    } else {
-        kkt(flexure, target, &mut k, tolerance)?
-    };
+    let start = arc(flexure, target.phi);
+    kinematics::update(flexure, &start, &mut k, Level::Pose);
+    let from = k.pose_root_tip;
+    let mut problem = ConnectProblem { flexure, kinematics: &mut k, from, target: *target };
+    let mut ws = solver::Workspace::new(n + 3);
+    ws.x[..n].copy_from_slice(&start);
+    let settings = Settings { tolerance: 1e-13, ..Default::default() };
+    let path = solver::continuation(&mut problem, &mut ws, &settings)?;
+    let alpha = ws.x[..n].to_vec();
     kinematics::update(flexure, &alpha, &mut k, Level::Jacobian);
-    let load = multipliers(flexure, &alpha, &k)?;
-    Ok(Connection { energy: energy(flexure, &alpha), alpha, load, iterations })
+    let load = tip_load(flexure, &alpha, &k)?;
+    Ok(Connection { energy: energy(flexure, &alpha), alpha, load, iterations: path.iterations })
 }
 
 /// Coordinates of the circular arc with tip angle `phi`.
@@ -85,94 +88,96 @@ fn arc(flexure: &Flexure, phi: f64) -> Vec<f64> {
     }
 }
 
-/// Eqs. 11, 14, 15: $\alpha_1 = \phi$, then Newton on $(x, y)$ in $(\alpha_2, \alpha_3)$.
-fn direct(flexure: &Flexure, target: &Pose, k: &mut Kinematics<f64>, tolerance: f64) -> Result<(Vec<f64>, usize)> {
-    let phi = target.phi;
-    let residual = |z: &SVector<f64, 2>| -> Result<(SVector<f64, 2>, SMatrix<f64, 2, 2>)> {
-        kinematics::update(flexure, &[phi, z[0], z[1]], k, Level::Jacobian);
-        let (p, j) = (k.pose_root_tip, &k.jacobian_root_tip);
-        Ok((
-            SVector::from([p.x - target.x, p.y - target.y]),
-            SMatrix::<f64, 2, 2>::new(j[(1, 1)], j[(1, 2)], j[(2, 1)], j[(2, 2)]),
-        ))
-    };
-    let root = find_root(residual, SVector::zeros(), tolerance, 100)?;
-    Ok((vec![phi, root.x[0], root.x[1]], root.iterations))
+/// The KKT system in $z = (\alpha, M, F_x, F_y)$, with the target moved
+/// from `from` (at $\lambda = 0$) to `target` (at $\lambda = 1$); the first
+/// block is scaled by $L/EI$ and the second by $1/L$, so both are dimensionless.
+struct ConnectProblem<'a> {
+    flexure: &'a Flexure,
+    kinematics: &'a mut Kinematics<f64>,
+    from: Pose,
+    target: Pose,
 }
 
-/// Newton on the KKT system, with damping on the residual norm.
-fn kkt(flexure: &Flexure, target: &Pose, k: &mut Kinematics<f64>, tolerance: f64) -> Result<(Vec<f64>, usize)> {
-    let n = flexure.order();
-    let mut z = DVector::zeros(n + 3);
-    z.rows_mut(0, n).copy_from_slice(&arc(flexure, target.phi));
-    let scale = flexure.ei() / flexure.length();
-    let mut gradient = vec![0.0; n];
-    let mut evaluate = |z: &DVector<f64>, jacobian: Option<&mut DMatrix<f64>>| -> DVector<f64> {
-        let alpha = z.rows(0, n);
-        kinematics::update(flexure, alpha.as_slice(), k, Level::Hessian);
-        energy_gradient(flexure, alpha.as_slice(), &mut gradient);
-        let (m, fx, fy) = (z[n], z[n + 1], z[n + 2]);
+impl solver::Problem<f64> for ConnectProblem<'_> {
+    fn dim(&self) -> usize {
+        self.flexure.order() + 3
+    }
+
+    fn evaluate(
+        &mut self,
+        z: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> Result<()> {
+        let (f, k) = (self.flexure, &mut *self.kinematics);
+        let (n, m) = (f.order(), f.order() + 3);
+        let (l, scale) = (f.length(), f.ei() / f.length());
+        let alpha = &z[..n];
+        kinematics::update(f, alpha, k, if jacobian.is_some() { Level::Hessian } else { Level::Jacobian });
+        energy_gradient(f, alpha, &mut r[..n]);
+        let (mo, fx, fy) = (z[n], z[n + 1], z[n + 2]);
         let j = &k.jacobian_root_tip;
-        let mut r = DVector::zeros(n + 3);
         for i in 0..n {
-            r[i] = (gradient[i] - (j[(0, i)] * m + j[(1, i)] * fx + j[(2, i)] * fy)) / scale;
+            r[i] = (r[i] - (j[(0, i)] * mo + j[(1, i)] * fx + j[(2, i)] * fy)) / scale;
         }
         let p = k.pose_root_tip;
-        r[n] = (p.phi - target.phi) * flexure.length();
-        r[n + 1] = p.x - target.x;
-        r[n + 2] = p.y - target.y;
+        let goal = |a: f64, b: f64| a + lambda * (b - a);
+        r[n] = p.phi - goal(self.from.phi, self.target.phi);
+        r[n + 1] = (p.x - goal(self.from.x, self.target.x)) / l;
+        r[n + 2] = (p.y - goal(self.from.y, self.target.y)) / l;
+        if let Some(d) = dlambda {
+            d[..n].fill(0.0);
+            d[n] = -(self.target.phi - self.from.phi);
+            d[n + 1] = -(self.target.x - self.from.x) / l;
+            d[n + 2] = -(self.target.y - self.from.y) / l;
+        }
         if let Some(jac) = jacobian {
             jac.fill(0.0);
             for c in 0..n {
                 for row in 0..n {
-                    jac[(row, c)] =
+                    jac[c * m + row] =
                         -(fx * k.hessian_root_tip_x[(row, c)] + fy * k.hessian_root_tip_y[(row, c)]) / scale;
                 }
-                jac[(c, c)] += stiffness(flexure, c) / scale;
+                jac[c * m + c] += stiffness(f, c) / scale;
                 for a in 0..3 {
-                    jac[(c, n + a)] = -j[(a, c)] / scale;
-                    jac[(n + a, c)] = j[(a, c)] * if a == 0 { flexure.length() } else { 1.0 };
+                    jac[(n + a) * m + c] = -j[(a, c)] / scale;
+                    jac[c * m + n + a] = j[(a, c)] / if a == 0 { 1.0 } else { l };
                 }
             }
         }
-        r
-    };
-    let mut jac = DMatrix::zeros(n + 3, n + 3);
-    let mut r = evaluate(&z, Some(&mut jac));
-    for iteration in 0..200 {
-        let residual = r.amax();
-        if residual <= tolerance {
-            return Ok((z.rows(0, n).iter().copied().collect(), iteration));
-        }
-        let fail =
-            Error::NoConvergence { unit: "relative", solver: "connect (KKT Newton)", iterations: iteration, residual };
-        let step = jac.clone().lu().solve(&(-&r)).ok_or(fail.clone())?;
-        let mut t = 1.0;
-        loop {
-            let trial = &z + &step * t;
-            let rt = evaluate(&trial, None);
-            if rt.amax() < residual || (t == 1.0 && residual < 1e3 * tolerance) {
-                z = trial;
-                r = evaluate(&z, Some(&mut jac));
-                break;
-            }
-            t *= 0.5;
-            if t < 1e-8 {
-                return Err(fail);
-            }
-        }
+        Ok(())
     }
-    Err(Error::NoConvergence { unit: "relative", solver: "connect (KKT Newton)", iterations: 200, residual: r.amax() })
+
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        rotation(self.flexure, a, Some(b))
+    }
+
+    fn weight(&self, i: usize) -> f64 {
+        // Arc length in the coordinates only: the multipliers follow them.
+        if i < self.flexure.order() { 1.0 } else { 0.0 }
+    }
+
+    fn scale(&self) -> f64 {
+        1.0
+    }
+
+    fn unit(&self) -> &'static str {
+        "relative"
+    }
+
+    fn name(&self) -> &'static str {
+        "connect"
+    }
 }
 
-/// Least-squares tip load with $\nabla U = \mathcal J^T\lambda$ (exact at a KKT point).
-fn multipliers(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result<TipLoad> {
+/// The tip load that holds `alpha` in equilibrium: the least-squares
+/// solution of $\nabla U = \mathcal J^T\lambda$ (exact at a KKT point, and
+/// for any equilibrium under a tip load), with `k` evaluated at `alpha`.
+pub fn tip_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result<TipLoad> {
     let mut g = vec![0.0; alpha.len()];
     energy_gradient(flexure, alpha, &mut g);
-    let jt = k.jacobian_root_tip.transpose();
-    let l = (jt.transpose() * &jt)
-        .lu()
-        .solve(&(jt.transpose() * DVector::from_vec(g)))
-        .ok_or_else(|| Error::Singular { what: "the tip Jacobian is rank-deficient at this shape".into() })?;
+    let l = crate::linalg::least_squares(&k.jacobian_root_tip.transpose(), &DVector::from_vec(g));
     Ok(TipLoad { moment: l[0], fx: l[1], fy: l[2] })
 }

@@ -4,9 +4,14 @@
 //! of Eq. 5 is a weighted sum of squares and needs no quadrature.
 
 use crate::joint::Flexure;
+use crate::kinematics::assert_coordinates;
 use crate::scalar::Scalar;
 
 /// $U(\alpha) = \frac{EI}{2L}\sum_{i} \frac{(\alpha_i - \kappa_i)^2}{2i-1}$ (Eq. 9, any order), in joules.
+///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries (never truncates;
+/// validate user input with [`Flexure::check_coordinates`]).
 ///
 /// # Example
 /// ```
@@ -16,6 +21,7 @@ use crate::scalar::Scalar;
 /// assert!((u - 0.75 * (1.0 + 4.0 / 3.0 + 9.0 / 5.0)).abs() < 1e-14);
 /// ```
 pub fn energy<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
+    assert_coordinates(flexure, "alpha", alpha.len());
     let mut u = T::zero();
     for (i, (&a, &k)) in alpha.iter().zip(flexure.rest()).enumerate() {
         let d = a - T::c(k);
@@ -25,7 +31,22 @@ pub fn energy<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
 }
 
 /// $\partial U/\partial\alpha_i = \frac{EI}{L}\frac{\alpha_i - \kappa_i}{2i-1}$ (Eq. 18), written into `out`.
+///
+/// # Panics
+/// If `alpha` or `out` does not have [`Flexure::order`] entries (never
+/// truncates; validate user input with [`Flexure::check_coordinates`]).
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(2.0, 3.0, 2).unwrap();
+/// let mut g = [0.0; 2];
+/// flexure::energy_gradient(&f, &[1.0, 2.0], &mut g);
+/// // Eq. 18: EI/L·(1, 2/3).
+/// assert!((g[0] - 1.5).abs() < 1e-15 && (g[1] - 1.0).abs() < 1e-15);
+/// ```
 pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T]) {
+    assert_coordinates(flexure, "alpha", alpha.len());
+    assert_coordinates(flexure, "out", out.len());
     for (i, ((o, &a), &k)) in out.iter_mut().zip(alpha).zip(flexure.rest()).enumerate() {
         *o = T::c(stiffness(flexure, i)) * (a - T::c(k));
     }

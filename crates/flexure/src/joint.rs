@@ -1,7 +1,7 @@
 //! The flexure joint model: geometry, stiffness, rest shape and precomputed tables.
 
 use crate::basis;
-use crate::error::{Error, Result, finite, positive};
+use crate::error::{Error, Result, positive};
 use crate::quadrature::GaussLegendre;
 
 /// Bending stiffness $EI = \frac{E}{1-\nu^2}\,\frac{b h^3}{12}$ of a
@@ -28,7 +28,40 @@ pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Opti
             1.0 / (1.0 - nu * nu)
         }
     };
-    positive("ei", e * plate * b * h.powi(3) / 12.0)
+    within("ei", e * plate * b * h.powi(3) / 12.0, EI_RANGE)
+}
+
+/// Lengths a flexure may have (m): a nanometre to a thousand kilometres.
+/// With [`EI_RANGE`] every derived scale ($EI/L$, $L^3/EI$, energies at
+/// [`MAX_COORDINATE`]) stays far inside the range of `f64`, so no answer
+/// overflows to infinity or underflows to zero.
+pub const LENGTH_RANGE: (f64, f64) = (1e-9, 1e6);
+
+/// Bending stiffnesses a flexure may have (N·m²): from a nanowire's to a bridge girder's and beyond.
+pub const EI_RANGE: (f64, f64) = (1e-30, 1e15);
+
+/// The largest magnitude of a coordinate (rad): a flexure wound 160 000
+/// times round. Beyond it, angles lose their precision in `f64`.
+pub const MAX_COORDINATE: f64 = 1e6;
+
+fn within(name: &'static str, v: f64, (lo, hi): (f64, f64)) -> Result<f64> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(Error::invalid(
+            name,
+            v,
+            if name == "length" { "must lie in [1e-9, 1e6] m" } else { "must lie in [1e-30, 1e15] N·m²" },
+        ))
+    }
+}
+
+fn within_magnitude(name: &'static str, v: f64, max: f64) -> Result<f64> {
+    if v.is_finite() && v.abs() <= max {
+        Ok(v)
+    } else {
+        Err(Error::invalid(name, v, "must be a finite number of magnitude at most 1e6 rad"))
+    }
 }
 
 /// The highest order of the Legendre basis. Order 64 resolves curvature
@@ -116,8 +149,8 @@ impl Flexure {
     }
 
     fn with_basis(length: f64, ei: f64, order: usize, basis: Basis, points: usize) -> Result<Self> {
-        let length = positive("length", length)?;
-        let ei = positive("ei", ei)?;
+        let length = within("length", length, LENGTH_RANGE)?;
+        let ei = within("ei", ei, EI_RANGE)?;
         match basis {
             Basis::Legendre => crate::error::count("order", order, MAX_ORDER, "must be from 1 to 64")?,
             Basis::Segments => crate::error::count("segments", order, MAX_SEGMENTS, "must be from 1 to 64")?,
@@ -154,7 +187,7 @@ impl Flexure {
             return Err(Error::invalid("kappa", format!("{} values", kappa.len()), "must have one value per order"));
         }
         for &k in kappa {
-            finite("kappa", k)?;
+            within_magnitude("kappa", k, MAX_COORDINATE)?;
         }
         self.kappa = kappa.to_vec();
         Ok(self)
@@ -209,7 +242,11 @@ impl Flexure {
     /// // Segment 1 spans s in [0.5, 1): rotation 0.3 over 0.5 m.
     /// assert!((f.curvature(&[0.0, 0.3, 0.0, 0.0], 0.7) - 0.6).abs() < 1e-15);
     /// ```
+    ///
+    /// # Panics
+    /// If `c` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn curvature(&self, c: &[f64], s: f64) -> f64 {
+        crate::kinematics::assert_coordinates(self, "c", c.len());
         match self.basis {
             Basis::Legendre => basis::curvature(c, self.length, s),
             Basis::Segments => {
@@ -221,7 +258,11 @@ impl Flexure {
     }
 
     /// Angle shapes $\psi_i(t)$ at any $t \in [0, 1]$, written into `out` (one per coordinate).
+    ///
+    /// # Panics
+    /// If `out` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn angle_shapes(&self, t: f64, out: &mut [f64]) {
+        crate::kinematics::assert_coordinates(self, "out", out.len());
         match self.basis {
             Basis::Legendre => basis::angle_shapes(t, out),
             Basis::Segments => {
@@ -305,13 +346,28 @@ impl Flexure {
         &self.hessian_weights
     }
 
-    /// Checks that `alpha` has one finite value per order.
-    pub fn check_coordinates(&self, name: &'static str, alpha: &[f64]) -> Result<()> {
+    /// Checks that `alpha` has one finite value per order (per segment).
+    ///
+    /// # Example
+    /// ```
+    /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+    /// assert!(f.check_coordinates("alpha", &[0.0; 3]).is_ok());
+    /// assert!(f.check_coordinates("alpha", &[0.0; 4]).is_err());
+    /// ```
+    pub fn check_coordinates<T: crate::Scalar>(&self, name: &'static str, alpha: &[T]) -> Result<()> {
         if alpha.len() != self.order() {
-            return Err(Error::invalid(name, format!("{} values", alpha.len()), "must have one value per order"));
+            return Err(Error::InvalidParameter {
+                name,
+                value: format!("{} values", alpha.len()),
+                reason: if self.basis == Basis::Legendre {
+                    "must have one value per order (the flexure's order N)"
+                } else {
+                    "must have one value per segment"
+                },
+            });
         }
-        for &a in alpha {
-            finite(name, a)?;
+        for a in alpha {
+            within_magnitude(name, a.re(), MAX_COORDINATE)?;
         }
         Ok(())
     }

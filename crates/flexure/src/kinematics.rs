@@ -73,11 +73,26 @@ impl<T: Scalar> Kinematics<T> {
     }
 }
 
+/// Panics unless a coordinate slice called `name` has `len` =
+/// [`Flexure::order`] entries: the kernels' precondition, checked once per
+/// call so that no kernel ever zips a short or long slice into a silently
+/// truncated result. User-facing entries validate first with
+/// [`Flexure::check_coordinates`], which returns an error instead.
+#[inline]
+#[track_caller]
+pub(crate) fn assert_coordinates(flexure: &Flexure, name: &str, len: usize) {
+    let order = flexure.order();
+    assert!(len == order, "{name} must have {order} entries (one per coordinate, the flexure's order), got {len}");
+}
+
 /// The tip pose alone: $\phi = \alpha_1$, $x = L\sum_k \Delta_k\cos\phi(t_k)$,
 /// $y = L\sum_k \Delta_k\sin\phi(t_k)$ (Eqs. 11, 14, 15).
 ///
-/// Needs no workspace and does not allocate. `alpha` must have
-/// [`Flexure::order`] entries.
+/// Needs no workspace and does not allocate.
+///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries (never truncates);
+/// validate user input first with [`Flexure::check_coordinates`].
 ///
 /// # Example
 /// ```
@@ -87,7 +102,7 @@ impl<T: Scalar> Kinematics<T> {
 /// assert!((p.x - 1f64.sin()).abs() < 1e-9 && (p.y - (1.0 - 1f64.cos())).abs() < 1e-9);
 /// ```
 pub fn pose_root_tip<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> Pose<T> {
-    assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    assert_coordinates(flexure, "alpha", alpha.len());
     match (flexure.order(), flexure.scaled_weights().len()) {
         (2, 4) => fixed_pose::<T, 2, 4>(flexure, alpha),
         (3, 5) => fixed_pose::<T, 3, 5>(flexure, alpha),
@@ -206,6 +221,11 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 ///
 /// and likewise for $y$ (Eqs. 20–21, 30–31). Does not allocate.
 ///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries (never truncates;
+/// validate user input with [`Flexure::check_coordinates`]), or if `data` was
+/// made for a flexure of another order or quadrature rule.
+///
 /// # Example
 /// ```
 /// use flexure::{Flexure, Kinematics, Level, update_kinematics};
@@ -216,7 +236,7 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// assert!((k.hessian_root_tip_x[(0, 0)] + 1.0 / 3.0).abs() < 1e-14);
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
-    assert_eq!(alpha.len(), flexure.order(), "alpha must have one entry per order");
+    assert_coordinates(flexure, "alpha", alpha.len());
     assert!(
         data.jacobian_root_tip.ncols() == flexure.order() && data.node_cos_sin.len() == flexure.scaled_weights().len(),
         "Kinematics buffers were made for a flexure of another order or quadrature rule"
@@ -283,6 +303,10 @@ fn accumulate<T: Scalar>(
 /// $s_i = iL/(\text{samples} - 1)$, from the root (identity) to the tip: for
 /// drawing. Each interval is integrated with a 5-point Gauss rule.
 ///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries (never truncates;
+/// validate user input with [`Flexure::check_coordinates`]).
+///
 /// # Example
 /// ```
 /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
@@ -291,6 +315,7 @@ fn accumulate<T: Scalar>(
 /// assert!((b[5].phi - 0.5).abs() < 1e-14 && (b[5].x - 0.5f64.sin()).abs() < 1e-12);
 /// ```
 pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f64>> {
+    assert_coordinates(flexure, "alpha", alpha.len());
     let n = flexure.order();
     let rule = crate::quadrature::GaussLegendre::new(5).expect("five points");
     let mut psi = vec![0.0; n];

@@ -43,6 +43,7 @@ pub mod compliance;
 pub mod connect;
 pub mod energy;
 pub mod error;
+pub mod estimate;
 pub mod joint;
 pub mod kinematics;
 pub mod linalg;

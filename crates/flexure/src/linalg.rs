@@ -188,3 +188,57 @@ pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
     }
     DMatrix::from_fn(n, keep.len(), |r, c| v_t[(keep[c], r)])
 }
+
+/// The least-squares solution of $Ax = b$ of least norm, by SVD: singular
+/// values at most $10^{-10}\sigma_{max}$ count as zero (the cut-off of [`null_space`]), so a rank-deficient
+/// $A$ (a straight flexure's tip Jacobian has a zero row) gives the
+/// minimal answer instead of failing.
+///
+/// # Example
+/// ```
+/// use nalgebra::{DMatrix, DVector};
+/// // x + y = 2 twice: the least-norm answer is (1, 1).
+/// let a = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
+/// let x = flexure::linalg::least_squares(&a, &DVector::from_vec(vec![2.0, 2.0]));
+/// assert!((x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14);
+/// ```
+pub fn least_squares(a: &DMatrix<f64>, b: &nalgebra::DVector<f64>) -> nalgebra::DVector<f64> {
+    let svd = nalgebra::SVD::new(a.clone(), true, true);
+    let cutoff = 1e-10 * svd.singular_values.amax();
+    svd.solve(b, cutoff).unwrap_or_else(|_| nalgebra::DVector::zeros(a.ncols()))
+}
+
+/// Eigenpairs of $B v = \mu A v$ for symmetric $A$ (positive definite) and $B$,
+/// by reduction with $A = LL^T$ to the standard problem for $L^{-1}BL^{-T}$.
+/// Eigenvalues unsorted (nalgebra's order); eigenvectors (columns) in the
+/// original coordinates. `None` if $A$ is not positive definite.
+///
+/// # Example
+/// ```
+/// use nalgebra::DMatrix;
+/// let a = DMatrix::from_row_slice(2, 2, &[2.0, 0.0, 0.0, 1.0]);
+/// let b = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 3.0]);
+/// let (mu, _) = flexure::linalg::generalized_symmetric(&a, &b).unwrap();
+/// let mut mu: Vec<f64> = mu.iter().copied().collect();
+/// mu.sort_by(f64::total_cmp);
+/// assert!((mu[0] - 0.5).abs() < 1e-14 && (mu[1] - 3.0).abs() < 1e-14);
+/// ```
+pub fn generalized_symmetric(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Option<(nalgebra::DVector<f64>, DMatrix<f64>)> {
+    let a = (a + a.transpose()) * 0.5;
+    if !is_positive_definite(&a) {
+        return None;
+    }
+    let l = nalgebra::Cholesky::new(a)?.l();
+    let linv = l.try_inverse()?;
+    let m = &linv * b * linv.transpose();
+    let eig = nalgebra::SymmetricEigen::new((&m + m.transpose()) * 0.5);
+    Some((eig.eigenvalues, linv.transpose() * eig.eigenvectors))
+}
+
+/// The eigenvector of the smallest eigenvalue of the symmetric `a`
+/// (nalgebra returns them unsorted), with that eigenvalue.
+pub fn softest_mode(a: &DMatrix<f64>) -> Option<(f64, nalgebra::DVector<f64>)> {
+    let eig = nalgebra::SymmetricEigen::new((a + a.transpose()) * 0.5);
+    let (i, &value) = eig.eigenvalues.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1))?;
+    Some((value, eig.eigenvectors.column(i).into_owned()))
+}

@@ -46,7 +46,7 @@ impl GaussLegendre {
     /// does; one more point absorbs the non-polynomial $\cos\phi$ of bent
     /// shapes, and $N = 3$ gives the paper's five points.
     pub fn default_points(order: usize) -> usize {
-        order + 2
+        order.saturating_add(2)
     }
 
     /// Nodes on $[0, 1]$, increasing.

@@ -123,6 +123,14 @@ impl Settings {
             }
         };
         positive("tolerance", self.tolerance, 1.0)?;
+        if self.tolerance < 1e-15 {
+            // Below rounding no residual can meet it: Newton would spin to its limit.
+            return Err(Error::invalid(
+                "tolerance",
+                self.tolerance,
+                "must be at least 1e-15 (double-precision rounding)",
+            ));
+        }
         positive("min_step", self.min_step, 1.0)?;
         positive("max_rotation_per_step", self.max_rotation_per_step, f64::MAX)?;
         crate::error::count("max_iterations", self.max_iterations, MAX_COUNT, "must be from 1 to 1000000")?;
@@ -149,10 +157,15 @@ thread_local! {
 /// assert!(matches!(r, Err(Error::Interrupted { .. })));
 /// ```
 pub fn with_interrupt<R>(check: fn() -> bool, work: impl FnOnce() -> R) -> R {
-    let previous = INTERRUPT.with(|c| c.replace(Some(check)));
-    let out = work();
-    INTERRUPT.with(|c| c.set(previous));
-    out
+    /// Restores the previous hook on every exit, unwinding included.
+    struct Restore(Option<fn() -> bool>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            INTERRUPT.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(INTERRUPT.with(|c| c.replace(Some(check))));
+    work()
 }
 
 fn interrupted() -> bool {
@@ -168,6 +181,10 @@ pub struct Workspace<T: Scalar> {
     pub x: Vec<T>,
     /// $\lambda$ of the current state.
     pub lambda: f64,
+    /// Where the last [`continuation`] first lost stability ([`Path::limit`]),
+    /// kept when it stops with an error, so a caller can tell a path that
+    /// failed after losing stability from one that failed before.
+    pub limit: Option<f64>,
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
     dlambda: Vec<T>,
@@ -193,6 +210,7 @@ impl<T: Scalar> Workspace<T> {
             n,
             x: vec![z; n],
             lambda: 0.0,
+            limit: None,
             jacobian: vec![z; n * n],
             dlambda: vec![z; n],
             matrix: vec![z; m * m],
@@ -346,7 +364,9 @@ fn correct<T: Scalar, P: Problem<T>>(
             for i in 0..m {
                 trial[i] += step[i] * T::c(t);
             }
-            let ok = sys(problem, &trial[..m], trial_residual, None).is_ok();
+            // The trial is evaluated with its Jacobian: accepted trials (most)
+            // then need no second evaluation.
+            let ok = sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix))).is_ok();
             let rt = amax(&trial_residual[..m]);
             if ok
                 && (rt <= (1.0 - 1e-4 * t) * residual
@@ -363,7 +383,6 @@ fn correct<T: Scalar, P: Problem<T>>(
                 return Err(fail(iteration));
             }
         }
-        sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
         residual = amax(&trial_residual[..m]);
     }
     unreachable!("the loop returns at max_iterations")
@@ -441,6 +460,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     check_dim(problem, ws)?;
     let n = ws.n;
     let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
+    ws.limit = None;
     // The start: converge at λ = 0 (the rest state, or the assembled one).
     let start = newton(problem, ws, 0.0, settings)?;
     path.iterations += start.iterations;
@@ -463,7 +483,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     // The arc length of the whole load taken as one linear step: the unit
     // of the step length, so min_step is relative to the load.
     let full = normalize(ws, problem, lambda_weight);
-    let (min_step, max_step) = (settings.min_step * full, 4.0 * full);
+    let min_step = settings.min_step * full;
     let mut h = full;
     let mut rotation_rate = unit_rotation(problem, ws);
     let mut last_residual = start.residual;
@@ -530,13 +550,18 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             h *= 0.5;
             continue;
         }
-        if path.stable && !stable && path.limit.is_none() {
-            path.limit = Some(if fold { new_lambda.max(lambda) } else { lambda });
-        }
         if !has_tangent {
             ws.tangent.copy_from_slice(&ws.previous_tangent);
         }
         let _ = normalize(ws, problem, lambda_weight);
+        if path.stable && !stable && path.limit.is_none() {
+            path.limit = Some(if fold {
+                fold_peak(lambda, new_lambda, ws.previous_tangent[n].re(), ws.tangent[n].re(), h)
+            } else {
+                lambda
+            });
+            ws.limit = path.limit;
+        }
         ws.x.copy_from_slice(&ws.trial[..n]);
         lambda = new_lambda;
         path.steps += 1;
@@ -551,12 +576,36 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(0.0) });
         }
         rotation_rate = unit_rotation(problem, ws);
-        h = (2.0 * h).min(max_step);
+        // Grow the step; the rotation bound above keeps it on the branch.
+        h *= 2.0;
     }
     match path.limit {
         Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
         _ => Err(stalled(problem, lambda, &path, last_residual)),
     }
+}
+
+/// The largest $\lambda$ between two points of a path that turns back
+/// between them (a fold): the peak of the cubic Hermite through
+/// $(0, \lambda_0)$ and $(h, \lambda_1)$ with slopes $d_0, d_1$ in the arc length.
+fn fold_peak(l0: f64, l1: f64, d0: f64, d1: f64, h: f64) -> f64 {
+    let (a, b, c) = (6.0 * (l0 - l1) + 3.0 * h * (d0 + d1), 6.0 * (l1 - l0) - h * (4.0 * d0 + 2.0 * d1), h * d0);
+    let hermite = |t: f64| {
+        let (t2, t3) = (t * t, t * t * t);
+        (2.0 * t3 - 3.0 * t2 + 1.0) * l0
+            + (t3 - 2.0 * t2 + t) * h * d0
+            + (3.0 * t2 - 2.0 * t3) * l1
+            + (t3 - t2) * h * d1
+    };
+    let disc = b * b - 4.0 * a * c;
+    let roots = if a.abs() < 1e-300 {
+        [-c / b, f64::NAN]
+    } else if disc >= 0.0 {
+        [(-b + disc.sqrt()) / (2.0 * a), (-b - disc.sqrt()) / (2.0 * a)]
+    } else {
+        [f64::NAN; 2]
+    };
+    roots.iter().filter(|t| (0.0..=1.0).contains(*t)).map(|&t| hermite(t)).fold(l0.max(l1), f64::max)
 }
 
 fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64) -> Error {

@@ -228,6 +228,32 @@ pub fn deflect<T: Scalar>(
     Ok(Equilibrium::from_path(&path))
 }
 
+/// The equilibrium under the full `load` nearest to `alpha`: Newton alone,
+/// with no continuation (for a good start, such as a lower order's answer).
+/// Leaves the solution and its stiffness in `data`.
+pub fn correct<T: Scalar>(
+    flexure: &Flexure,
+    load: &TipLoad<T>,
+    alpha: &[T],
+    data: &mut Statics<T>,
+    settings: &Settings,
+) -> Result<Equilibrium> {
+    TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
+    flexure.check_coordinates("alpha", alpha)?;
+    if data.solver.dim() != flexure.order() {
+        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
+    }
+    let l = flexure.length();
+    let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
+    data.solver.x.copy_from_slice(alpha);
+    let mut problem =
+        TipLoadProblem { flexure, kinematics: &mut data.kinematics, scratch: &mut data.scratch, load: *load, scale };
+    let report = solver::newton(&mut problem, &mut data.solver, 1.0, settings)?;
+    let stable = solver::Problem::stable(&mut problem, &data.solver.x, 1.0, &data.solver.jacobian);
+    data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
+    Ok(Equilibrium { stable, limit: None, residual: report.residual, iterations: report.iterations, load_steps: 0 })
+}
+
 /// Largest cross-section rotation $\max_k\lvert\sum_i\psi_i(t_k)(a_i - b_i)\rvert$ (b = 0 if absent).
 pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -> f64 {
     flexure.psi_rows().fold(0.0_f64, |m, psi| {
@@ -238,10 +264,14 @@ pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -
 
 /// The smallest factor $\lambda$ for which the equilibrium under
 /// $\lambda\cdot$`load`, followed from the rest shape, stops being stable:
-/// $K$ (Eq. 32) is no longer positive definite, or continuation loses the
-/// branch (a snap-through). `None` if it stays stable up to `max_factor`.
+/// $K$ (Eq. 32) stops being positive definite on the loading path (a
+/// buckling or limit load). `None` if the path stays stable up to `max_factor`.
 ///
-/// Brackets by doubling $\lambda$, then bisects to a relative $10^{-10}$.
+/// One continuation to `max_factor` finds where the path first loses
+/// stability ([`Equilibrium::limit`]), to within a step; bisection on
+/// "the path from rest to $\lambda$ stays stable" then refines it to a
+/// relative $10^{-10}$. A solver failure (a stalled continuation, an
+/// interrupt) is returned as the error it is, never read as instability.
 ///
 /// # Example
 /// ```
@@ -250,6 +280,8 @@ pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -
 /// // Axial compression: the model's free buckling load, Table I.
 /// let l = stability_limit(&f, &TipLoad { moment: 0.0, fx: -1.0, fy: 0.0 }, 100.0).unwrap().unwrap();
 /// assert!((l - 2.4677).abs() < 1e-4);
+/// // A pure moment never destabilizes the flexure.
+/// assert_eq!(stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 10.0).unwrap(), None);
 /// ```
 pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Result<Option<f64>> {
     load.validate()?;
@@ -257,21 +289,43 @@ pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Re
         return Err(Error::invalid("max_factor", max_factor, "must be a finite number greater than zero"));
     }
     let mut data = Statics::new(flexure);
-    let mut stable_at = |factor: f64| {
+    let mut path_to = |factor: f64| {
         let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
-        deflect(flexure, &scaled, &mut data, &Settings::default()).map(|e| e.stable).unwrap_or(false)
+        deflect(flexure, &scaled, &mut data, &Settings::default())
     };
-    let (mut lo, mut hi) = (0.0, max_factor / 1024.0);
-    while stable_at(hi) {
-        if hi >= max_factor {
-            return Ok(None);
+    let first = match path_to(max_factor) {
+        Ok(e) if e.stable && e.limit.is_none() => return Ok(None),
+        Ok(e) => e.limit.unwrap_or(1.0),
+        Err(Error::Unstable { load_fraction, .. }) => load_fraction,
+        Err(e) => return Err(e),
+    };
+    let mut stable_path_to = |factor: f64| -> Result<bool> {
+        match path_to(factor) {
+            Ok(e) => Ok(e.stable && e.limit.is_none()),
+            Err(Error::Unstable { .. }) => Ok(false),
+            Err(e) => Err(e),
         }
-        lo = hi;
-        hi = (2.0 * hi).min(max_factor);
+    };
+    // Bracket around the continuation's estimate, then bisect.
+    let (mut lo, mut hi) = (0.5 * first * max_factor, (1.5 * first * max_factor).min(max_factor));
+    for _ in 0..60 {
+        if lo <= 0.0 || stable_path_to(lo)? {
+            break;
+        }
+        (hi, lo) = (lo, 0.5 * lo);
     }
-    while hi - lo > 1e-10 * hi {
+    for _ in 0..60 {
+        if hi >= max_factor || !stable_path_to(hi)? {
+            break;
+        }
+        (lo, hi) = (hi, (2.0 * hi).min(max_factor));
+    }
+    for _ in 0..200 {
+        if hi - lo <= 1e-10 * hi {
+            break;
+        }
         let mid = 0.5 * (lo + hi);
-        if stable_at(mid) { lo = mid } else { hi = mid }
+        if stable_path_to(mid)? { lo = mid } else { hi = mid }
     }
     Ok(Some(0.5 * (lo + hi)))
 }

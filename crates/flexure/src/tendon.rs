@@ -273,3 +273,36 @@ pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonD
     data.tension = tension;
     Ok(Equilibrium::from_path(&path))
 }
+
+/// The equilibrium under the full `tension` nearest to `alpha`: Newton
+/// alone, with no continuation. Leaves the solution in `data`.
+pub fn correct(
+    flexure: &Flexure,
+    tendon: &Tendon,
+    tension: f64,
+    alpha: &[f64],
+    data: &mut TendonData,
+) -> Result<Equilibrium> {
+    tendon.validate()?;
+    flexure.check_coordinates("alpha", alpha)?;
+    if !(tension.is_finite() && tension >= 0.0) {
+        return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
+    }
+    if data.alpha.len() != flexure.order() {
+        return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
+    }
+    let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
+    data.solver.x.copy_from_slice(alpha);
+    let mut problem = TendonProblem {
+        potential: TendonPotential { flexure, tendon: *tendon, tension: 0.0, kinematics: &mut data.kinematics },
+        start: tension,
+        end: tension,
+        scale,
+        scratch: &mut data.scratch,
+    };
+    let report = solver::newton(&mut problem, &mut data.solver, 1.0, &Settings::default())?;
+    let stable = solver::Problem::stable(&mut problem, &data.solver.x, 1.0, &data.solver.jacobian);
+    data.alpha.copy_from_slice(&data.solver.x);
+    data.tension = tension;
+    Ok(Equilibrium { stable, limit: None, residual: report.residual, iterations: report.iterations, load_steps: 0 })
+}

@@ -1,11 +1,11 @@
 //! Mechanisms against independent computations: closed forms, the single-joint
 //! library functions, and the exact elastica composed by hand.
 
-use flexure::mechanism::Mechanism;
+use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
-use flexure::mechanism::statics::{
-    Parameter, Settings, assemble_unloaded, body_frames, buckle, compliance, solve, sweep,
-};
+use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames, compliance, solve};
+use flexure::mechanism::sweep::{Parameter, sweep};
+use flexure::mechanism::{Closure, JointKind, Mechanism};
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{Error, Flexure, TipLoad, bending_stiffness};
@@ -71,56 +71,76 @@ fn mixed_chain_closed_form() {
     assert!((f.bodies[hand].angle - (s.q[0] + s.q[1] + s.q[5])).abs() < 1e-12);
 }
 
-/// The finger, composed by hand: cut each flexure, sum the loads on
-/// everything beyond it (fingertip force; the tendon's pull at its via
-/// points and where it leaves the cut), express them at the flexure tip in
-/// its root frame, and solve the exact elastica. The model's joint poses
-/// agree within 1 % of L and 1° (Sec. III-C).
-#[test]
-fn finger_against_the_exact_elastica() {
-    let m = example("finger");
-    let s = solve(&m, &Settings::default()).unwrap();
+/// Composed by hand: cut each flexure, sum the loads on everything beyond
+/// it (point forces; weights; the tendon's pull at its via points and where
+/// it leaves the cut; closure forces, −μ on body a and +μ on body b of each
+/// pin or weld, from the solution's multipliers), express them at the
+/// flexure tip in its root frame, and solve the exact elastica. The model's
+/// joint poses agree within 1 % of L and 1° (Sec. III-C).
+fn against_the_exact_elastica(m: &Mechanism, gravity: bool) {
+    let s = solve(m, &Settings::default()).unwrap();
     assert!(s.stable);
-    let f = body_frames(&m, &s);
-    let tendon = &m.tendons[0];
-    let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+    let f = body_frames(m, &s);
     for (ji, j) in m.joints.iter().enumerate() {
         // Bodies beyond this joint: its child and everything below.
         let beyond: Vec<usize> = (0..m.bodies.len()).filter(|&b| m.path(b).contains(&ji)).collect();
         let tip = f.bodies[j.child];
         let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
-        let mut add = |p: [f64; 2], force: [f64; 2]| {
+        let mut add = |p: [f64; 2], force: [f64; 2], moment: f64| {
             fx += force[0];
             fy += force[1];
-            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0];
+            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0] + moment;
         };
         for load in &m.forces {
             if beyond.contains(&load.body) {
-                add(f.bodies[load.body].point(load.at), load.force);
+                add(f.bodies[load.body].point(load.at), load.force, load.moment);
+            }
+        }
+        for &b in &beyond {
+            if gravity {
+                let body = &m.bodies[b];
+                add(f.bodies[b].point(body.com), [body.mass * m.gravity[0], body.mass * m.gravity[1]], 0.0);
             }
         }
         // The tendon pulls each via point toward its neighbours; count the
         // pulls on via points that ride on bodies beyond the cut.
-        for (i, &(b, _)) in tendon.path.iter().enumerate() {
-            if !beyond.contains(&b) {
-                continue;
-            }
-            for k in [i.wrapping_sub(1), i + 1] {
-                if let Some(q) = world.get(k) {
-                    let d = [q[0] - world[i][0], q[1] - world[i][1]];
-                    let n = d[0].hypot(d[1]);
-                    add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n]);
+        for tendon in &m.tendons {
+            let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+            for (i, &(b, _)) in tendon.path.iter().enumerate() {
+                if !beyond.contains(&b) {
+                    continue;
+                }
+                for k in [i.wrapping_sub(1), i + 1] {
+                    if let Some(q) = world.get(k) {
+                        let d = [q[0] - world[i][0], q[1] - world[i][1]];
+                        let n = d[0].hypot(d[1]);
+                        add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n], 0.0);
+                    }
                 }
             }
+        }
+        let mut row = 0;
+        for c in &m.closures {
+            let (a, a_at, b, b_at, moment) = match *c {
+                Closure::Weld { a, a_origin, b, b_origin } => {
+                    (a, [a_origin.x, a_origin.y], b, [b_origin.x, b_origin.y], Some(s.multipliers[row + 2]))
+                }
+                Closure::Pin { a, a_at, b, b_at } => (a, a_at, b, b_at, None),
+            };
+            let mu = [s.multipliers[row], s.multipliers[row + 1]];
+            if beyond.contains(&a) {
+                add(f.bodies[a].point(a_at), [-mu[0], -mu[1]], -moment.unwrap_or(0.0));
+            }
+            if beyond.contains(&b) {
+                add(f.bodies[b].point(b_at), mu, moment.unwrap_or(0.0));
+            }
+            row += c.equations();
         }
         // Into the flexure's root frame.
         let root = f.roots[ji];
         let (sn, cs) = root.angle.sin_cos();
         let load = TipLoad { moment: mz, fx: cs * fx + sn * fy, fy: -sn * fx + cs * fy };
-        let flex = match &j.kind {
-            flexure::mechanism::JointKind::Flexure(fl) => fl,
-            _ => unreachable!("the finger has flexures only"),
-        };
+        let JointKind::Flexure(flex) = &j.kind else { panic!("flexures only") };
         let exact = elastica::deflect(flex, &load, &Default::default()).unwrap().pose;
         let model = &f.joints[ji].pose;
         let l = flex.length();
@@ -130,12 +150,55 @@ fn finger_against_the_exact_elastica() {
     }
 }
 
+/// The finger: an open chain loaded by a tendon and a fingertip force.
+#[test]
+fn finger_against_the_exact_elastica() {
+    against_the_exact_elastica(&example("finger"), false);
+}
+
+/// The four-bar: a loop closed by a pin (its force from the multipliers),
+/// with gravity, a tendon and a force.
+#[test]
+fn four_bar_against_the_exact_elastica() {
+    let m = example("four_bar");
+    assert_eq!(m.constraints(), 2);
+    against_the_exact_elastica(&m, true);
+}
+
+/// The four-leg example's stated numbers: lateral stiffness 4 × 12 EI/L³
+/// (N = 3 exact for guided legs) and buckling at 4 × 10 EI/L² (Table I).
+#[test]
+fn four_leg_stage_example() {
+    let m = example("four_leg_stage");
+    let (l, ei): (f64, f64) = (0.05, 2.0e-3);
+    let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
+    let c = compliance(&m, &unloaded, m.body("stage").unwrap(), [0.0, -0.06]).unwrap();
+    assert!((1.0 / c[(1, 1)] - 48.0 * ei / l.powi(3)).abs() < 1e-9 * 48.0 * ei / l.powi(3));
+    let b = buckle(&m, &Settings::default()).unwrap();
+    // The file pushes with 10 N.
+    assert!((b.load_factor * 10.0 - 40.0 * ei / (l * l)).abs() < 1e-9 * 40.0 * ei / (l * l));
+    // Under its 2 N lateral, 10 N axial load the welds' forces are fixed by
+    // compatibility, not by the least-force rule: a rigid stage on identical
+    // inextensible legs shortens them linearly across it, so the legs'
+    // forces along world y are P_k = a + b·d_k (equal steps, the overturning
+    // moment of the lateral load making b ≠ 0), and they carry the 10 N
+    // (leg0 takes what the welds, pushing the stage with −μ, do not).
+    let s = solve(&m, &Settings::default()).unwrap();
+    let welds: Vec<f64> = (0..3).map(|k| -s.multipliers[3 * k + 1]).collect();
+    let legs = [10.0 - welds.iter().sum::<f64>(), welds[0], welds[1], welds[2]];
+    let steps: Vec<f64> = legs.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!(steps[0].abs() > 0.1, "the lateral load tilts the shares: {legs:?}");
+    assert!(steps.windows(2).all(|w| (w[1] - w[0]).abs() < 1e-6 * 10.0), "{legs:?}");
+}
+
 /// A sweep continues from value to value and ends where a direct solve does.
 #[test]
 fn sweep_follows_the_load() {
     let m = example("paper_tendon");
     let p = Parameter::parse(&m, "tendon.flexor.tension").unwrap();
-    let rows = sweep(&m, &p, &[0.0, 10.0, 20.0, 28.0], &Settings::default()).unwrap();
+    let out = sweep(&m, &p, &[0.0, 10.0, 20.0, 28.0], &Settings::default()).unwrap();
+    assert!(out.stability_limit.is_none());
+    let rows: Vec<_> = out.rows.iter().map(|(_, s)| s).collect();
     assert_eq!(rows.len(), 4);
     assert!(rows.windows(2).all(|w| w[1].q[0] > w[0].q[0]));
     let direct = solve(&m, &Settings::default()).unwrap();
@@ -144,22 +207,33 @@ fn sweep_follows_the_load() {
     assert!(sweep(&m, &p, &[-1.0], &Settings::default()).is_err());
 }
 
-/// Beyond its buckling load (16 N) the stage has no stable equilibrium: the
-/// loading path loses stability at 16/40 of a 40 N push, and says so.
+/// Beyond its buckling load (16 N) the stage's straight path loses
+/// stability at 16/40 of a 40 N push, and says so: rounding makes the
+/// bifurcation slightly imperfect, the path follows the stage as it buckles
+/// sideways, and the stable buckled state it reaches is the answer, with
+/// the limit fraction where stability was lost. Below the load, a stable
+/// straight stage and no limit.
 #[test]
 fn instability_is_reported() {
     let text =
         std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
     let heavy = from_toml(&text.replace("force = [0.0, -1.0]", "force = [0.0, -40.0]")).unwrap();
-    match solve(&heavy, &Settings::default()) {
-        Err(Error::Unstable { load_fraction, .. }) => {
-            // The model's critical push is 16 N (2 × 10 EI/L², Table I): 40 % of 40 N.
-            assert!((load_fraction - 0.4).abs() < 1e-5, "{load_fraction}");
+    let limit = match solve(&heavy, &Settings::default()) {
+        Ok(s) => {
+            assert!(s.stable);
+            let sway = body_frames(&heavy, &s).bodies[heavy.body("stage").unwrap()].origin[0];
+            assert!(sway.abs() > 0.01, "buckled sideways: {sway}");
+            s.limit.unwrap()
         }
-        other => panic!("expected Unstable, got {other:?}"),
-    }
+        // The policy's other outcome, had no stable state been reached.
+        Err(Error::Unstable { load_fraction, .. }) => load_fraction,
+        Err(e) => panic!("{e}"),
+    };
+    // The model's critical push is 16 N (2 × 10 EI/L², Table I): 40 % of 40 N.
+    assert!((limit - 0.4).abs() < 1e-5, "{limit}");
     let light = from_toml(&text.replace("force = [0.0, -1.0]", "force = [0.0, -15.0]")).unwrap();
-    assert!(solve(&light, &Settings::default()).unwrap().stable, "below it, a stable equilibrium");
+    let s = solve(&light, &Settings::default()).unwrap();
+    assert!(s.stable && s.limit.is_none(), "below it, a stable equilibrium");
 }
 
 /// Gravity on a sprung pendulum, closed form: k θ = −m g l cos θ (moment of
@@ -230,4 +304,96 @@ fn file_errors_name_the_place() {
         let msg = e.to_string();
         assert!(msg.contains(what) && msg.contains(place), "expected {what:?} at {place}: {msg}");
     }
+}
+
+/// The solver core's interrupt hook stops mechanism solves too, saying where.
+#[test]
+fn interruptible() {
+    let m = example("finger");
+    let r = flexure::solver::with_interrupt(|| true, || solve(&m, &Settings::default()));
+    assert!(matches!(r, Err(Error::Interrupted { .. })), "{r:?}");
+}
+
+/// Newton's root of `f` from `x` with derivative `df` (100 steps).
+fn root(f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64, mut x: f64) -> f64 {
+    for _ in 0..100 {
+        x -= f(x) / df(x);
+    }
+    x
+}
+
+/// A sprung arm (k, length l) pushed along itself by P = 1.5 k/l, closed
+/// forms. Perfectly aligned, the straight arm is an equilibrium at every
+/// load and loses stability at P = k/l, 2/3 of the push: the path follows
+/// it and ends unstable, an error at 2/3. With a transverse force F of
+/// 1e-3 N the bifurcation is imperfect and the path leads smoothly to the
+/// buckled arm, kθ = P l sin θ + F l cos θ.
+#[test]
+fn pitchfork_of_a_sprung_arm() {
+    let (k, l, p) = (1.0, 0.1, 15.0);
+    let arm = |transverse: f64| {
+        from_toml(&format!(
+            "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = {k}\n\
+             [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [{l}, 0.0]\nforce = [-{p}, {transverse}]\n"
+        ))
+        .unwrap()
+    };
+    match solve(&arm(0.0), &Settings::default()) {
+        // The stability margin and the bisection: 1e-5.
+        Err(Error::Unstable { load_fraction, .. }) => assert!((load_fraction - k / (p * l)).abs() < 1e-5),
+        other => panic!("{other:?}"),
+    }
+    let f = 1e-3;
+    let s = solve(&arm(f), &Settings::default()).unwrap();
+    let theta = root(|t| k * t - p * l * t.sin() - f * l * t.cos(), |t| k - p * l * t.cos() + f * l * t.sin(), 1.4);
+    assert!(s.stable && s.limit.is_none());
+    assert!((s.q[0] - theta).abs() < 1e-10, "{} vs {theta}", s.q[0]);
+}
+
+/// A von Mises half-truss snaps through, closed form: a bar of length
+/// l = √(X² + h²) on a free hinge, its foot on a slider with spring k,
+/// its head pinned to an apex that slides vertically on a spring k_v,
+/// pressed down by P. With apex height y the foot moves d = X − √(l² − y²),
+/// and equilibrium is P = k_v(h − y) − k d y/√(l² − y²): a local maximum
+/// (the limit load) at y > 0, then the path runs back to a stable state at
+/// y < −h. Loaded past the maximum the mechanism snaps through: the answer
+/// is that stable state, with the limit fraction P_max/P (to the 1e-6 the
+/// bisection seeks, plus the stability margin's shift).
+#[test]
+fn von_mises_truss_snaps_through() {
+    let (x, h, k, kv, p) = (0.1_f64, 0.03_f64, 1000.0, 12.0, 1.0);
+    let l = x.hypot(h);
+    let text = format!(
+        "[[joint]]\nname = \"roll\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"foot\"\nstiffness = {k}\n\
+         [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"foot\"\nchild = \"bar\"\nrest = {}\n\
+         [[joint]]\nname = \"guide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"apex\"\n\
+         origin = [{x}, 0.0, {}]\nrest = {h}\nstiffness = {kv}\n\
+         [[pin]]\na = \"bar\"\na_at = [{l}, 0.0]\nb = \"apex\"\n\
+         [[force]]\nname = \"press\"\nbody = \"apex\"\nat = [0.0, 0.0]\nforce = [0.0, -{p}]\n",
+        h.atan2(x),
+        std::f64::consts::FRAC_PI_2
+    );
+    let load = |y: f64| {
+        let s = (l * l - y * y).sqrt();
+        kv * (h - y) - k * (x - s) * y / s
+    };
+    // The limit load: the maximum of the load on 0 < y < h, by ternary search.
+    let (mut a, mut b) = (0.0, h);
+    for _ in 0..200 {
+        let (m1, m2) = (a + (b - a) / 3.0, b - (b - a) / 3.0);
+        if load(m1) < load(m2) { a = m1 } else { b = m2 }
+    }
+    let limit = load(a);
+    assert!(limit < p && load(-a) > 0.0, "a snap-through that stays under load");
+    // The far stable state: load(y) = P for y < −h, by bisection.
+    let (mut lo, mut hi) = (-0.9999 * l, -h);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if load(mid) > p { lo = mid } else { hi = mid }
+    }
+    let s = solve(&from_toml(&text).unwrap(), &Settings::default()).unwrap();
+    assert!(s.stable);
+    assert!((s.q[2] - lo).abs() < 1e-10, "apex {} vs {lo}", s.q[2]);
+    let fraction = s.limit.unwrap();
+    assert!((fraction / (limit / p) - 1.0).abs() < 2e-6, "{fraction} vs {}", limit / p);
 }

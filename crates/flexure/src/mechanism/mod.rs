@@ -7,10 +7,14 @@
 //! parent body's frame, and the child body's frame is the joint's output
 //! frame (for a flexure, the tip frame of Eq. 7).
 
+pub mod buckling;
 pub mod file;
+mod indeterminate;
 pub mod joints;
 pub mod kinematics;
+pub mod lagrangian;
 pub mod statics;
+pub mod sweep;
 
 use crate::kinematics::Pose;
 pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
@@ -128,6 +132,27 @@ impl Loads {
         }
     }
 
+    /// Checks that the loads fit `m` (a tension per tendon, a triple per
+    /// point load), are finite, and that no tension is negative.
+    pub fn validate(&self, m: &Mechanism) -> crate::Result<()> {
+        use crate::Error;
+        if self.tension.len() != m.tendons.len() || self.force.len() != m.forces.len() {
+            return Err(Error::invalid(
+                "loads",
+                format!("{} tensions and {} forces", self.tension.len(), self.force.len()),
+                "must have one tension per tendon and one (Fx, Fy, M) per force of the mechanism",
+            ));
+        }
+        let all = self.tension.iter().chain(self.force.iter().flatten()).chain(&self.gravity);
+        if let Some(v) = all.into_iter().find(|v| !(v.is_finite() && v.abs() <= file::MAX_MAGNITUDE)) {
+            return Err(Error::invalid("loads", v, "must be finite and at most 1e30 in magnitude"));
+        }
+        if let Some(t) = self.tension.iter().find(|t| **t < 0.0) {
+            return Err(Error::invalid("tension", t, "a tendon's tension must not be negative"));
+        }
+        Ok(())
+    }
+
     /// No load at all.
     pub fn zero_like(&self) -> Loads {
         self.clone().scaled(0.0)
@@ -159,6 +184,8 @@ pub struct Mechanism {
     /// `parent_joint[b]`: the joint whose child is body `b`.
     parent_joint: Vec<Option<usize>>,
     dof: usize,
+    /// "line L, column C" of each closure in the file, for errors.
+    closure_places: Vec<String>,
 }
 
 impl Mechanism {
@@ -194,6 +221,11 @@ impl Mechanism {
             force: self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]).collect(),
             gravity: self.gravity,
         }
+    }
+
+    /// Where closure `i` was given in the file ("line L, column C").
+    pub fn closure_place(&self, i: usize) -> &str {
+        self.closure_places.get(i).map_or("the file", String::as_str)
     }
 
     /// Joints from the ground to `body`, root first.

@@ -1,45 +1,64 @@
-//! Static equilibrium, stiffness, compliance and linear buckling of a mechanism.
+//! Static equilibrium, stiffness and compliance of a mechanism.
 //!
-//! Equilibrium minimizes the potential
-//! $V(q) = \sum_j U_j(q_j) - \sum_k (F_k\cdot w_k + M_k\theta_k) - \sum_b m_b\,g\cdot w_b + \sum_t T_t\,\ell_t(q)$
-//! subject to the closures $c(q) = 0$. Newton solves the KKT conditions
-//! $\nabla V + G^T\mu = 0$, $c = 0$ with exact Hessians (the joints' own,
-//! chained through the tree), inside load continuation from the unloaded,
-//! assembled configuration. Each Newton step costs one dense
-//! $(n+m)\times(n+m)$ solve, $O((n+m)^3)$, after assembling point Hessians in
-//! $O(n^2)$ per loaded point, for $n$ coordinates and $m$ closure equations.
+//! Equilibrium makes the potential $V(q)$ ([`super::lagrangian`])
+//! stationary subject to the closures $c(q) = 0$: the KKT conditions
+//! $$\nabla V + G^T\mu = 0,\qquad c(q) = 0,\qquad G = \partial c/\partial q,$$
+//! with Jacobian the KKT matrix $\begin{bmatrix}\nabla^2 L & G^T\\ G & 0\end{bmatrix}$,
+//! $L = V + \mu^T c$, from exact Hessians. [`Kkt`] states them as a
+//! [`solver::Problem`] in the load factor $\lambda$ (every load is linear
+//! in its magnitude, so $\partial_\lambda r$ is the gradient of the load
+//! potential of the load change), and the shared continuation
+//! ([`crate::solver`]) follows them from the unloaded, assembled
+//! configuration: it passes limit points and reports where stability was
+//! lost. Each Newton step costs one dense $(n+m)\times(n+m)$ solve for $n$
+//! coordinates and $m$ closure equations.
+//!
+//! **Stability** is the constrained stiffness $Z^T\nabla^2 L\,Z$ positive
+//! definite ([`linalg::positive_definite`]), where the columns of
+//! $Z$ = [`linalg::null_space`]$(G)$ span the admissible motions, with a
+//! margin: measured against the joints' own stiffness, every admissible
+//! motion must keep a stiffness above $\sqrt{\text{tolerance}}$ ($10^{-6}$ by
+//! default). An equilibrium converged to a residual $t$ is known only to
+//! $t/\kappa$ along a mode of stiffness $\kappa$, so a softer mode is not
+//! resolved: this is what makes a bifurcation visible. Rounding makes
+//! every symmetric bifurcation slightly imperfect, and the continuation
+//! would otherwise glide through its knee, where $\kappa$ dips to about
+//! $t^{2/3}$ but stays positive, without a loss of stability to report.
+//! The margin moves a reported limit load by about $10^{-6}$ of itself.
+//!
+//! **Redundant closures** (several legs welded to one stage) make rows of
+//! $G$ dependent, so part of $\mu$ is statically indeterminate in these
+//! inextensible joints. The null space comes from the singular values of
+//! $G$ itself; the multiplier block of the Newton matrix carries a shift of
+//! $10^{-10}$ (relative to its unit scaling), in the Jacobian only, so the
+//! residual and every converged answer stay exact: where the equations fix
+//! $\mu$ the shift is invisible, where they do not it keeps the free part
+//! where it was. Stability and the reported multipliers then take the free
+//! part with the least force through the flexures (see [`Solution::multipliers`]).
 
+use super::indeterminate::settle;
 use super::kinematics::{Frames, frames, point};
-use super::{Closure, Loads, Mechanism};
-use crate::buckling::{generalized_symmetric, normalized};
+use super::lagrangian::{add_closures, add_loads, assemble, check_sizes, closure_hessian, lagrangian};
+use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
-use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen};
+use crate::linalg;
+use crate::solver;
+use nalgebra::{DMatrix, DVector, Matrix3};
 
-/// Solver settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// Relative tolerance on the KKT residual.
-    pub tolerance: f64,
-    /// Newton iterations per load step.
-    pub max_iterations: usize,
-    /// Largest body rotation (rad) one load step may cause.
-    pub max_rotation_per_step: f64,
-    /// Smallest load step before giving up.
-    pub min_load_step: f64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self { tolerance: 1e-10, max_iterations: 50, max_rotation_per_step: 0.5, min_load_step: 1e-4 }
-    }
-}
+pub use crate::solver::Settings;
 
 /// An equilibrium.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Solution {
     /// Generalized coordinates.
     pub q: Vec<f64>,
-    /// Closure multipliers (constraint forces and moments).
+    /// Closure multipliers (constraint forces in N and moments in N·m):
+    /// $\mu^T(w_a - w_b)$ is their potential, so a weld or pin pushes body
+    /// `a` with $-\mu$ and body `b` with $+\mu$. Where redundant closures
+    /// (several legs welded to one stage) leave part of $\mu$ statically
+    /// indeterminate, that part is the one that passes the least force
+    /// through the flexures ($\min\sum_j L_j\lvert F_j\rvert^2$): the limit the
+    /// model's own compatibility approaches as deflection vanishes.
     pub multipliers: Vec<f64>,
     /// The loads it carries.
     pub loads: Loads,
@@ -47,324 +66,494 @@ pub struct Solution {
     pub energy: f64,
     /// Whether the constrained stiffness is positive definite.
     pub stable: bool,
-    /// Final scaled KKT residual.
+    /// Where the loading path to it lost stability before snapping through
+    /// to this stable state: the fraction of the load change, if it did.
+    pub limit: Option<f64>,
+    /// Final KKT residual, relative ([`Kkt`]).
     pub residual: f64,
     /// Load-continuation steps.
     pub load_steps: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
 }
 
-/// Potential, its derivatives and the closures at one configuration.
-struct Assembly {
-    elastic: f64,
-    gradient: DVector<f64>,
-    /// Hessian of the Lagrangian $V + \mu^T c$.
-    hessian: DMatrix<f64>,
-    closure: DVector<f64>,
-    /// Closure Jacobian $G$.
-    g: DMatrix<f64>,
+/// Relative precision of a reported stability limit (a load fraction, or a sweep's swept value).
+pub const LIMIT_PRECISION: f64 = 1e-6;
+
+/// Most continuation steps of one bisection probe: a probe below the limit
+/// is a short, smooth path; one beyond it has lost stability within its
+/// first steps, and need not follow what comes after.
+pub const PROBE_STEPS: usize = 100;
+
+/// The shift of the multiplier block of the Newton matrix (see the module docs).
+const MULTIPLIER_SHIFT: f64 = 1e-10;
+
+/// The KKT conditions of a mechanism under the loads
+/// $\text{from} + \lambda(\text{to} - \text{from})$, as a [`solver::Problem`].
+///
+/// Unknowns $x = (q, \nu)$ with the multipliers scaled to the joints,
+/// $\mu_i = s_i\nu_i$ ($s_i = k/\ell$ for position rows, $k$ for angle
+/// rows; $k$ the stiffest joint's diagonal stiffness in N·m/rad, a slider's
+/// N/m times $\ell^2$; $\ell$ the mechanism's length). Residual: each
+/// coordinate's row of $\nabla V + G^T\mu$ divided by that coordinate's
+/// stiffness (radians, or metres, of the joint alone; a free joint's by
+/// $k$), each closure row divided by $\ell$ (position) or 1 (angle):
+/// dimensionless, unit "relative". Arc-length weights: 1 for angles,
+/// $1/\ell$ for slider travel, 0 for multipliers.
+#[derive(Debug, Clone)]
+pub struct Kkt<'a> {
+    mechanism: &'a Mechanism,
+    from: Loads,
+    to: Loads,
+    change: Loads,
+    /// $1/k_i$ per coordinate row.
+    row_scale: Vec<f64>,
+    /// $1/\ell$ or 1 per closure row.
+    closure_scale: Vec<f64>,
+    /// $s_i$ per closure row.
+    multiplier_scale: Vec<f64>,
+    weight: Vec<f64>,
+    length: f64,
+    scale: f64,
+    /// Smallest relative stiffness of a stable state.
+    margin: f64,
 }
 
-fn wrap(a: f64) -> f64 {
-    a - std::f64::consts::TAU * (a / std::f64::consts::TAU).round()
-}
-
-fn assemble(m: &Mechanism, q: &[f64], mu: &[f64], loads: &Loads) -> Result<Assembly> {
-    let n = m.dof();
-    let f = frames(m, q);
-    let (mut gradient, mut hessian) = (DVector::zeros(n), DMatrix::zeros(n, n));
-    let mut elastic = 0.0;
-    for (j, s) in m.joints.iter().zip(&f.joints) {
-        let k = s.gradient.len();
-        elastic += s.energy;
-        let mut g = gradient.rows_mut(j.offset, k);
-        g += &s.gradient;
-        let mut h = hessian.view_mut((j.offset, j.offset), (k, k));
-        h += &s.stiffness;
-    }
-    let mut push = |body: usize, at: [f64; 2], force: [f64; 2], moment: f64, f: &Frames| {
-        if force == [0.0; 2] && moment == 0.0 {
-            return;
-        }
-        let p = point(m, f, body, at, true);
-        for c in 0..n {
-            gradient[c] -= force[0] * p.jacobian[(1, c)] + force[1] * p.jacobian[(2, c)] + moment * p.jacobian[(0, c)];
-        }
-        if let Some([hx, hy]) = &p.hessian {
-            hessian -= hx * force[0] + hy * force[1];
-        }
-    };
-    for (p, l) in m.forces.iter().zip(&loads.force) {
-        push(p.body, p.at, [l[0], l[1]], l[2], &f);
-    }
-    for (b, body) in m.bodies.iter().enumerate() {
-        if body.mass > 0.0 {
-            push(b, body.com, [body.mass * loads.gravity[0], body.mass * loads.gravity[1]], 0.0, &f);
-        }
-    }
-    for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
-        if tension == 0.0 {
-            continue;
-        }
-        let pts: Vec<_> = t.path.iter().map(|&(b, r)| point(m, &f, b, r, true)).collect();
-        for (i, pair) in pts.windows(2).enumerate() {
-            let (a, b) = (&pair[0], &pair[1]);
-            let d = [b.position[0] - a.position[0], b.position[1] - a.position[1]];
-            let len = d[0].hypot(d[1]);
-            if len < 1e-15 {
-                return Err(Error::Singular {
-                    what: format!("tendon {:?}: via points {i} and {} coincide", t.name, i + 1),
-                });
+impl<'a> Kkt<'a> {
+    /// The problem of moving `m` from `from` to `to` (both validated), for
+    /// a solver run with `settings` (whose tolerance sets the stability margin).
+    pub fn new(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings) -> Result<Self> {
+        settings.validate()?;
+        from.validate(m)?;
+        to.validate(m)?;
+        let n = m.dof();
+        let length = m
+            .joints
+            .iter()
+            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
+            .sum::<f64>();
+        let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
+        // Diagonal stiffness of each coordinate (constant for every joint
+        // kind), and the factor to N·m/rad: 1 for angles, ℓ² for slider travel.
+        let rest = frames(m, &m.rest());
+        let (mut stiffness, mut unit) = (vec![0.0; n], vec![1.0; n]);
+        for (j, s) in m.joints.iter().zip(&rest.joints) {
+            for i in 0..s.gradient.len() {
+                stiffness[j.offset + i] = s.stiffness[(i, i)];
             }
-            let u = [d[0] / len, d[1] / len];
-            let jd = b.jacobian.rows(1, 2) - a.jacobian.rows(1, 2);
-            gradient += jd.transpose() * DVector::from_column_slice(&u) * tension;
-            let proj = nalgebra::Matrix2::new(1.0 - u[0] * u[0], -u[0] * u[1], -u[0] * u[1], 1.0 - u[1] * u[1]) / len;
-            hessian += jd.transpose() * proj * &jd * tension;
-            if let (Some([ax, ay]), Some([bx, by])) = (&a.hessian, &b.hessian) {
-                hessian += ((bx - ax) * u[0] + (by - ay) * u[1]) * tension;
+            if let JointKind::Prismatic(_) = j.kind {
+                unit[j.offset] = length * length;
             }
         }
-    }
-    let rows = m.constraints();
-    let (mut closure, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, n));
-    let mut row = 0;
-    for c in &m.closures {
-        let (a, ar, aphi, b, br, bphi, angle) = match *c {
-            Closure::Weld { a, a_origin, b, b_origin } => {
-                (a, [a_origin.x, a_origin.y], a_origin.phi, b, [b_origin.x, b_origin.y], b_origin.phi, true)
+        let moments: Vec<f64> = stiffness.iter().zip(&unit).map(|(k, u)| k * u).collect();
+        let k_max = moments.iter().copied().fold(0.0, f64::max);
+        let k_max = if k_max > 0.0 { k_max } else { 1.0 };
+        let k_min = moments.iter().copied().filter(|&k| k > 0.0).fold(k_max, f64::min);
+        let weight = unit.iter().map(|u| 1.0 / u.sqrt()).collect();
+        // A free coordinate is measured against the stiffest joint.
+        let row_scale = stiffness.iter().zip(&unit).map(|(&k, u)| if k > 0.0 { 1.0 / k } else { u / k_max }).collect();
+        let (mut closure_scale, mut multiplier_scale) = (Vec::new(), Vec::new());
+        for c in &m.closures {
+            for row in 0..c.equations() {
+                let position = row < 2;
+                closure_scale.push(if position { 1.0 / length } else { 1.0 });
+                multiplier_scale.push(if position { k_max / length } else { k_max });
             }
-            Closure::Pin { a, a_at, b, b_at } => (a, a_at, 0.0, b, b_at, 0.0, false),
+        }
+        // Largest load, as a moment, in radians of the softest joint.
+        let magnitude = |l: &Loads| {
+            let forces: f64 = l.force.iter().map(|f| f[0].hypot(f[1]) * length + f[2].abs()).sum();
+            let tendons: f64 = l.tension.iter().map(|t| t * length).sum();
+            let mass: f64 = m.bodies.iter().map(|b| b.mass).sum();
+            forces + tendons + mass * l.gravity[0].hypot(l.gravity[1]) * length
         };
-        let (pa, pb) = (point(m, &f, a, ar, true), point(m, &f, b, br, true));
-        for k in 0..2 {
-            closure[row + k] = pa.position[k] - pb.position[k];
-            g.row_mut(row + k).copy_from(&(pa.jacobian.row(1 + k) - pb.jacobian.row(1 + k)));
+        let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
+        if !scale.is_finite() {
+            return Err(Error::invalid(
+                "loads",
+                format!("{:.3e}", scale - 1.0),
+                "are too large for the joints' stiffness to be represented",
+            ));
         }
-        if let (Some([ax, ay]), Some([bx, by])) = (&pa.hessian, &pb.hessian) {
-            hessian += (ax - bx) * mu[row] + (ay - by) * mu[row + 1];
-        }
-        if angle {
-            closure[row + 2] = wrap(pa.angle + aphi - pb.angle - bphi);
-            g.row_mut(row + 2).copy_from(&(pa.jacobian.row(0) - pb.jacobian.row(0)));
-        }
-        row += c.equations();
+        let change = Loads {
+            tension: to.tension.iter().zip(&from.tension).map(|(b, a)| b - a).collect(),
+            force: to.force.iter().zip(&from.force).map(|(b, a)| std::array::from_fn(|i| b[i] - a[i])).collect(),
+            gravity: std::array::from_fn(|i| to.gravity[i] - from.gravity[i]),
+        };
+        Ok(Self {
+            mechanism: m,
+            from: from.clone(),
+            to: to.clone(),
+            change,
+            row_scale,
+            closure_scale,
+            multiplier_scale,
+            weight,
+            length,
+            scale,
+            margin: settings.tolerance.sqrt(),
+        })
     }
-    Ok(Assembly { elastic, gradient, hessian, closure, g })
+
+    /// The unknowns $(q, \nu)$ of coordinates `q` and multipliers `mu`.
+    pub fn state(&self, q: &[f64], mu: &[f64]) -> Vec<f64> {
+        q.iter().copied().chain(mu.iter().zip(&self.multiplier_scale).map(|(m, s)| m / s)).collect()
+    }
+
+    /// The multipliers $\mu$ (N, N·m) of the unknowns `x`.
+    pub fn multipliers(&self, x: &[f64]) -> Vec<f64> {
+        x[self.mechanism.dof()..].iter().zip(&self.multiplier_scale).map(|(v, s)| v * s).collect()
+    }
+
+    /// The loads at load factor `lambda`.
+    pub fn loads(&self, lambda: f64) -> Loads {
+        self.from.lerp(&self.to, lambda)
+    }
 }
 
-/// Scales that make the KKT residual dimensionless: a stiffness and a length.
-fn scales(m: &Mechanism) -> (f64, f64) {
-    let f = frames(m, &m.rest());
-    let stiffness =
-        f.joints.iter().flat_map(|s| s.stiffness.diagonal().iter().copied().collect::<Vec<_>>()).fold(0.0, f64::max);
-    let length = m
+impl solver::Problem<f64> for Kkt<'_> {
+    fn dim(&self) -> usize {
+        self.mechanism.dof() + self.mechanism.constraints()
+    }
+
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        residual: &mut [f64],
+        jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> Result<()> {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        let q = &x[..n];
+        let mu = self.multipliers(x);
+        let f = frames(m, q);
+        let a = assemble(m, &f, &mu, &self.loads(lambda), jacobian.is_some())?;
+        let force = &a.gradient + a.closure_jacobian.transpose() * DVector::from_column_slice(&mu);
+        for i in 0..n {
+            residual[i] = force[i] * self.row_scale[i];
+        }
+        for i in 0..rows {
+            residual[n + i] = a.closure[i] * self.closure_scale[i];
+        }
+        if !residual.iter().all(|r| r.is_finite()) {
+            return Err(Error::Singular { what: "mechanism equilibrium: a non-finite generalized force".into() });
+        }
+        if let Some(jac) = jacobian {
+            let g = &a.closure_jacobian;
+            for c in 0..n {
+                for r in 0..n {
+                    jac[c * size + r] = a.hessian[(r, c)] * self.row_scale[r];
+                }
+                for i in 0..rows {
+                    jac[c * size + n + i] = g[(i, c)] * self.closure_scale[i];
+                    jac[(n + i) * size + c] = g[(i, c)] * self.multiplier_scale[i] * self.row_scale[c];
+                }
+            }
+            for i in 0..rows {
+                for k in 0..rows {
+                    jac[(n + i) * size + n + k] = if i == k { -MULTIPLIER_SHIFT } else { 0.0 };
+                }
+            }
+        }
+        if let Some(d) = dlambda {
+            let mut g = DVector::zeros(n);
+            add_loads(m, &f, &self.change, &mut g, None)?;
+            for i in 0..n {
+                d[i] = g[i] * self.row_scale[i];
+            }
+            d[n..].fill(0.0);
+        }
+        Ok(())
+    }
+
+    /// $Z^T\nabla^2 L\,Z$ positive definite with the margin of the module
+    /// docs: in coordinates $\tilde q_i = \sqrt{k_i}\,q_i$ (each joint's own
+    /// stiffness 1), $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\,I$
+    /// positive definite, $\tilde Z$ = [`linalg::null_space`]$(\tilde G)$.
+    /// Where redundant closures leave part of $\mu$ indeterminate, that
+    /// part is taken with the least transmitted force first (see [`Solution::multipliers`]).
+    fn stable(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
+        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
+        if rows > 0 {
+            let f = frames(m, &x[..n]);
+            let mu = self.multipliers(x);
+            let settled = settle(m, &f, &g, &mu, &self.loads(lambda));
+            if settled != mu {
+                let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
+                h += closure_hessian(m, &f, &change);
+            }
+        }
+        // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
+        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
+        let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
+        let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
+        let mut k = constrained(&h, &linalg::null_space(&g));
+        for i in 0..k.nrows() {
+            k[(i, i)] -= self.margin;
+        }
+        linalg::is_positive_definite(&k)
+    }
+
+    /// The largest rotation of a body, or of a flexure's cross-section
+    /// relative to its root, and a slider's travel over the mechanism's length.
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        let m = self.mechanism;
+        let n = m.dof();
+        // Body angles down the tree: the parent's, the origin's, the joint's.
+        let angles = |q: &[f64]| {
+            let mut body = vec![0.0; m.bodies.len()];
+            for j in &m.joints {
+                let phi: f64 = match &j.kind {
+                    JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
+                    JointKind::Revolute(_) => q[j.offset],
+                    _ => 0.0,
+                };
+                body[j.child] = body[j.parent] + j.origin.phi + phi;
+            }
+            body
+        };
+        let (ba, bb) = (angles(&a[..n]), angles(&b[..n]));
+        let mut d = ba.iter().zip(&bb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        for j in &m.joints {
+            match &j.kind {
+                JointKind::Flexure(f) => {
+                    let range = j.offset..j.offset + f.order();
+                    d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
+                }
+                JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / self.length),
+                _ => {}
+            }
+        }
+        d
+    }
+
+    fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    fn unit(&self) -> &'static str {
+        "relative"
+    }
+
+    fn name(&self) -> &'static str {
+        "mechanism equilibrium"
+    }
+
+    fn weight(&self, i: usize) -> f64 {
+        self.weight.get(i).copied().unwrap_or(0.0)
+    }
+}
+
+/// $Z^T H Z$, symmetrized.
+pub(super) fn constrained(h: &DMatrix<f64>, z: &DMatrix<f64>) -> DMatrix<f64> {
+    let k = z.transpose() * h * z;
+    (&k + k.transpose()) * 0.5
+}
+
+/// The solution the solver left in `ws`.
+fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> Result<Solution> {
+    let m = problem.mechanism;
+    let q = ws.x[..m.dof()].to_vec();
+    let f = frames(m, &q);
+    let mut g = DMatrix::zeros(m.constraints(), m.dof());
+    add_closures(m, &f, &[], &mut DVector::zeros(m.constraints()), &mut g, None);
+    let multipliers = settle(m, &f, &g, &problem.multipliers(&ws.x), &problem.to);
+    // + 0.0: an empty sum is −0.
+    let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
+    if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
+        return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
+    }
+    Ok(Solution {
+        q,
+        multipliers,
+        loads: problem.to.clone(),
+        energy,
+        stable: path.stable,
+        limit: path.limit,
+        residual: path.residual,
+        load_steps: path.steps,
+        iterations: path.iterations,
+    })
+}
+
+/// Equilibrium under `to`, continued from `start` (an equilibrium under
+/// `start.loads`) by the shared continuation.
+///
+/// A snap-through that ends in a stable state is an answer, with
+/// [`Solution::limit`] the fraction of the load change where stability was
+/// first lost. A path that loses stability and does not reach a stable
+/// state at the full load (it ends unstable, or stops after the loss) is
+/// [`Error::Unstable`] at that fraction. The fraction is the continuation's
+/// ([`solver::Path::limit`]) refined by bisection to a relative
+/// [`LIMIT_PRECISION`] (as [`super::sweep::sweep`] does between two values).
+pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
+    let found = follow(m, start, to, settings);
+    let lost = match &found {
+        Ok(s) => s.limit.is_some(),
+        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
+        Err(_) => false,
+    };
+    if !lost {
+        return found;
+    }
+    let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= LIMIT_PRECISION * hi)?;
+    match found {
+        Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
+        Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
+    }
+}
+
+/// [`solve_between`] with the continuation's own limit, unrefined.
+pub(super) fn follow(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
+    check_sizes(m, &start.q, &start.multipliers, &start.loads)?;
+    let mut problem = Kkt::new(m, &start.loads, to, settings)?;
+    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
+    ws.x = problem.state(&start.q, &start.multipliers);
+    let unstable =
+        |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
+    match solver::continuation(&mut problem, &mut ws, settings) {
+        Ok(path) if path.stable => solution(&problem, &ws, &path),
+        Ok(path) => Err(unstable(path.limit)),
+        Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
+        // The start has a zero-stiffness motion along the load: name it.
+        Err(Error::Singular { what }) if ws.limit.is_none() => Err(Error::Singular {
+            what: match free_motion(m, start) {
+                Some(joints) => format!(
+                    "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
+                ),
+                None => what,
+            },
+        }),
+        Err(e) => match ws.limit {
+            Some(limit) => Err(unstable(Some(limit))),
+            None => Err(e),
+        },
+    }
+}
+
+/// The joints that move in a zero-stiffness motion of `s` (the constrained
+/// stiffness's softest mode, if it is singular), as "joint \"a\" and joint \"b\"".
+pub(super) fn free_motion(m: &Mechanism, s: &Solution) -> Option<String> {
+    let (z, k) = stiffness(m, s).ok()?;
+    if k.nrows() == 0 || linalg::is_positive_definite(&k) {
+        return None;
+    }
+    let (_, soft) = linalg::softest_mode(&k)?;
+    let motion = &z * soft;
+    let largest = motion.amax();
+    let names: Vec<String> = m
         .joints
         .iter()
-        .map(|j| {
-            j.origin.x.hypot(j.origin.y) + if let super::JointKind::Flexure(fl) = &j.kind { fl.length() } else { 0.0 }
-        })
-        .sum::<f64>();
-    (if stiffness > 0.0 { stiffness } else { 1.0 }, if length > 0.0 { length } else { 1.0 })
+        .filter(|j| (0..j.kind.joint().dof()).any(|i| motion[j.offset + i].abs() > 0.1 * largest))
+        .map(|j| format!("joint {:?}", j.name))
+        .collect();
+    (!names.is_empty()).then(|| names.join(" and "))
 }
 
-fn residual(a: &Assembly, mu: &[f64], force: f64, length: f64) -> f64 {
-    let top = &a.gradient + a.g.transpose() * DVector::from_column_slice(mu);
-    (top.amax() / force).max(a.closure.amax() / length)
-}
-
-/// Damped Newton on the KKT system at fixed loads; `q`, `mu` updated in place.
-fn newton(m: &Mechanism, q: &mut [f64], mu: &mut [f64], loads: &Loads, settings: &Settings) -> Result<(usize, f64)> {
-    let (n, rows) = (m.dof(), m.constraints());
-    let (fs, ls) = scales(m);
-    let mut a = assemble(m, q, mu, loads)?;
-    for iteration in 0..=settings.max_iterations {
-        let r = residual(&a, mu, fs, ls);
-        if r <= settings.tolerance {
-            return Ok((iteration, r));
+/// The fraction of the load change from `start.loads` to `to` where the
+/// path from `start` first loses stability, by bisection until
+/// `precise(lo, hi)`: each probe continues from the last stable state, for
+/// at most [`PROBE_STEPS`] steps, and at most 64 probes are made.
+pub(super) fn first_loss(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    precise: impl Fn(f64, f64) -> bool,
+) -> Result<f64> {
+    let settings = Settings { max_steps: settings.max_steps.min(PROBE_STEPS), ..*settings };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut at = start.clone();
+    for _ in 0..64 {
+        if precise(lo, hi) {
+            break;
         }
-        let fail = Error::NoConvergence {
-            unit: "relative",
-            solver: "mechanism equilibrium (KKT Newton)",
-            iterations: iteration,
-            residual: r,
-        };
-        if iteration == settings.max_iterations || !r.is_finite() {
-            return Err(fail);
-        }
-        let mut rhs = DVector::zeros(n + rows);
-        rhs.rows_mut(0, n).copy_from(&-(&a.gradient + a.g.transpose() * DVector::from_column_slice(mu)));
-        rhs.rows_mut(n, rows).copy_from(&-&a.closure);
-        let mut kkt = DMatrix::zeros(n + rows, n + rows);
-        kkt.view_mut((0, 0), (n, n)).copy_from(&a.hessian);
-        kkt.view_mut((0, n), (n, rows)).copy_from(&a.g.transpose());
-        kkt.view_mut((n, 0), (rows, n)).copy_from(&a.g);
-        // A singular KKT matrix: free joints at zero load (shift the stiffness
-        // block up) or redundant closure equations (shift the multiplier block
-        // down, which picks the least-norm multipliers).
-        let mut step = kkt.clone().lu().solve(&rhs);
-        let mut tau = 1e-10;
-        while step.is_none() && tau < 1e3 {
-            let mut shifted = kkt.clone();
-            for i in 0..n {
-                shifted[(i, i)] += tau * fs;
+        let mid = 0.5 * (lo + hi);
+        match follow(m, &at, &start.loads.lerp(to, mid), &settings) {
+            Ok(s) if s.limit.is_none() => {
+                lo = mid;
+                at = s;
             }
-            for i in n..n + rows {
-                shifted[(i, i)] -= tau * ls * ls / fs;
-            }
-            step = shifted.lu().solve(&rhs);
-            tau *= 100.0;
-        }
-        let step = step.ok_or(fail.clone())?;
-        let mut t = 1.0;
-        loop {
-            let tq: Vec<f64> = q.iter().enumerate().map(|(i, v)| v + t * step[i]).collect();
-            let tm: Vec<f64> = mu.iter().enumerate().map(|(i, v)| v + t * step[n + i]).collect();
-            if let Ok(trial) = assemble(m, &tq, &tm, loads) {
-                let rt = residual(&trial, &tm, fs, ls);
-                if rt < r || (t == 1.0 && r < 1e3 * settings.tolerance && rt < 10.0 * r) {
-                    q.copy_from_slice(&tq);
-                    mu.copy_from_slice(&tm);
-                    a = trial;
-                    break;
-                }
-            }
-            t *= 0.5;
-            if t < 1e-6 {
-                return Err(fail);
-            }
+            Ok(_) | Err(Error::Unstable { .. }) => hi = mid,
+            Err(e) => return Err(e),
         }
     }
-    unreachable!("the loop returns at max_iterations")
-}
-
-/// Orthonormal basis of the null space of `g` ($n\times 0$ if there are no rows: the identity).
-fn null_space(g: &DMatrix<f64>, n: usize) -> DMatrix<f64> {
-    if g.nrows() == 0 {
-        return DMatrix::identity(n, n);
-    }
-    let eig = SymmetricEigen::new(g.transpose() * g);
-    let top = eig.eigenvalues.amax().max(f64::MIN_POSITIVE);
-    let keep: Vec<usize> = (0..n).filter(|&i| eig.eigenvalues[i] <= 1e-10 * top).collect();
-    DMatrix::from_fn(n, keep.len(), |r, c| eig.eigenvectors[(r, keep[c])])
-}
-
-/// Generalized stiffness on the admissible motions: $Z$ and $Z^T\nabla^2 L\,Z$ (Eq. 27, projected).
-fn reduced(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-    let a = assemble(m, &s.q, &s.multipliers, &s.loads)?;
-    let z = null_space(&a.g, m.dof());
-    let k = z.transpose() * &a.hessian * &z;
-    Ok((z, (&k + k.transpose()) * 0.5))
-}
-
-fn positive_definite(k: &DMatrix<f64>) -> bool {
-    if k.nrows() == 0 {
-        return true;
-    }
-    let e = SymmetricEigen::new(k.clone()).eigenvalues;
-    let top = e.amax();
-    e.min() > 1e-10 * top
-}
-
-/// Equilibrium under `to`, continued from `start` (an equilibrium under `from`).
-pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
-    let from = &start.loads;
-    // A path that starts stable must stay stable: past a buckling or limit
-    // load the mechanism has no equilibrium it can reach by loading.
-    let watch = start.stable;
-    let (mut q, mut mu) = (start.q.clone(), start.multipliers.clone());
-    let mut angles: Vec<f64> = frames(m, &q).bodies.iter().map(|b| b.angle).collect();
-    let mut history: Option<(f64, Vec<f64>, Vec<f64>)> = None;
-    let (mut s, mut allowed, mut steps, mut last) = (0.0_f64, 1.0_f64, 0, (0, 0.0));
-    while s < 1.0 {
-        let target = (s + allowed).min(1.0);
-        let (mut tq, mut tm) = (q.clone(), mu.clone());
-        if let Some((sp, qp, mp)) = &history {
-            let ratio = (target - s) / (s - sp);
-            tq.iter_mut().zip(&qp[..]).for_each(|(v, p)| *v += (*v - p) * ratio);
-            tm.iter_mut().zip(&mp[..]).for_each(|(v, p)| *v += (*v - p) * ratio);
-        }
-        let loads = from.lerp(to, target);
-        let found = newton(m, &mut tq, &mut tm, &loads, settings);
-        let turned = frames(m, &tq).bodies.iter().zip(&angles).map(|(b, a)| (b.angle - a).abs()).fold(0.0, f64::max);
-        match found {
-            Ok(r) if turned <= settings.max_rotation_per_step => {
-                if watch {
-                    let trial = Solution {
-                        q: tq.clone(),
-                        multipliers: tm.clone(),
-                        loads: loads.clone(),
-                        energy: 0.0,
-                        stable: false,
-                        residual: r.1,
-                        load_steps: steps,
-                    };
-                    if !positive_definite(&reduced(m, &trial)?.1) {
-                        // Bisect between the last stable step and this one for where it is lost.
-                        let (mut lo, mut hi) = (s, target);
-                        while hi - lo > 1e-6 {
-                            let mid = 0.5 * (lo + hi);
-                            let (mut bq, mut bm) = (q.clone(), mu.clone());
-                            let mid_loads = from.lerp(to, mid);
-                            let stable = newton(m, &mut bq, &mut bm, &mid_loads, settings).ok().is_some_and(|_| {
-                                let probe = Solution { q: bq, multipliers: bm, loads: mid_loads, ..trial.clone() };
-                                reduced(m, &probe).is_ok_and(|(_, k)| positive_definite(&k))
-                            });
-                            if stable { lo = mid } else { hi = mid }
-                        }
-                        return Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: hi });
-                    }
-                }
-                history = Some((s, q.clone(), mu.clone()));
-                (q, mu, s, last) = (tq, tm, target, r);
-                angles = frames(m, &q).bodies.iter().map(|b| b.angle).collect();
-                steps += 1;
-                allowed *= 2.0;
-            }
-            other => {
-                allowed = 0.5 * (target - s);
-                if allowed < settings.min_load_step {
-                    let residual = match other {
-                        Err(Error::NoConvergence { residual, .. }) => residual,
-                        _ => last.1,
-                    };
-                    return Err(Error::NoConvergence {
-                        unit: "relative",
-                        solver: "mechanism equilibrium (no equilibrium reachable by load continuation; beyond a limit or buckling load?)",
-                        iterations: steps,
-                        residual,
-                    });
-                }
-            }
-        }
-    }
-    let a = assemble(m, &q, &mu, to)?;
-    let mut sol = Solution {
-        q,
-        multipliers: mu,
-        loads: to.clone(),
-        energy: a.elastic,
-        stable: false,
-        residual: last.1,
-        load_steps: steps,
-    };
-    sol.stable = positive_definite(&reduced(m, &sol)?.1);
-    Ok(sol)
+    Ok(0.5 * (lo + hi))
 }
 
 /// The unloaded, assembled configuration: the rest coordinates moved, if
 /// the closures require it, to the nearest configuration that closes them.
 pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution> {
     let zero = m.loads().zero_like();
-    let (mut q, mut mu) = (m.rest(), vec![0.0; m.constraints()]);
-    let (_, r) = newton(m, &mut q, &mut mu, &zero, settings)?;
-    let a = assemble(m, &q, &mu, &zero)?;
-    let mut sol =
-        Solution { q, multipliers: mu, loads: zero, energy: a.elastic, stable: false, residual: r, load_steps: 0 };
-    sol.stable = positive_definite(&reduced(m, &sol)?.1);
-    Ok(sol)
+    let mut problem = Kkt::new(m, &zero, &zero, settings)?;
+    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
+    ws.x = problem.state(&m.rest(), &vec![0.0; m.constraints()]);
+    let report = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
+        Ok(report) => report,
+        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => {
+            return Err(unassembled(m, problem.length, e));
+        }
+        Err(e) => return Err(e),
+    };
+    let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
+    let path = solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual };
+    solution(&problem, &ws, &path)
 }
 
-/// Equilibrium under the mechanism's loads, by continuation from the unloaded, assembled shape.
+/// The error for closures that Newton could not close from rest: placed at
+/// the closure open widest at rest (position gap over the mechanism's
+/// `length`, plus angle gap), or `e` itself if all are closed there.
+fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
+    let rest = frames(m, &m.rest());
+    let rows = m.constraints();
+    let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
+    add_closures(m, &rest, &[], &mut c, &mut g, None);
+    let mut row = 0;
+    let mut widest: Option<(usize, f64, f64, f64)> = None;
+    for (i, closure) in m.closures.iter().enumerate() {
+        let gap = c[row].hypot(c[row + 1]);
+        let turn = if closure.equations() == 3 { c[row + 2].abs() } else { 0.0 };
+        let size = gap / length + turn;
+        if size > widest.map_or(1e-9, |w| w.1) {
+            widest = Some((i, size, gap, turn));
+        }
+        row += closure.equations();
+    }
+    let Some((i, _, gap, turn)) = widest else { return e };
+    let name = |b: usize| &m.bodies[b].name;
+    let what = match m.closures[i] {
+        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
+        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
+    };
+    Error::File {
+        place: m.closure_place(i).to_string(),
+        message: format!(
+            "{what}: the closures cannot be assembled; at rest this one is open widest ({gap:.3e} m, {turn:.3e} rad), and from there {e}"
+        ),
+    }
+}
+
+/// Equilibrium under the mechanism's loads, by continuation from the
+/// unloaded, assembled shape (see [`solve_between`] for the policy).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::{solve, Settings}};
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\nmoment = 0.5\n",
+/// )
+/// .unwrap();
+/// let s = solve(&m, &Settings::default()).unwrap();
+/// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
+/// ```
 pub fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
     let start = assemble_unloaded(m, settings)?;
     solve_between(m, &start, &m.loads(), settings)
@@ -375,146 +564,49 @@ pub fn body_frames(m: &Mechanism, s: &Solution) -> Frames {
     frames(m, &s.q)
 }
 
-/// Generalized stiffness on the admissible motions, $Z^T\nabla^2 L Z$ (Eq. 27), and $Z$.
+/// $Z$ and the generalized stiffness on the admissible motions,
+/// $Z^T\nabla^2 L\,Z$ (Eq. 27, projected), at a solution.
 pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-    reduced(m, s)
+    let a = lagrangian(m, &s.q, &s.multipliers, &s.loads)?;
+    let z = linalg::null_space(&a.closure_jacobian);
+    let k = constrained(&a.hessian, &z);
+    Ok((z, k))
 }
 
 /// Compliance of the frame at `at` on `body` to a small extra load
 /// $(M, F_x, F_y)$ there: $C = J Z (Z^T\nabla^2 L Z)^{-1} Z^T J^T$, order $(\phi, x, y)$.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::{assemble_unloaded, compliance, Settings}};
+/// // A sprung arm (k = 2 N·m/rad): its tip, 0.1 m out, yields l²/k sideways.
+/// let m = from_toml("[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n").unwrap();
+/// let s = assemble_unloaded(&m, &Settings::default()).unwrap();
+/// let c = compliance(&m, &s, m.body("arm").unwrap(), [0.1, 0.0]).unwrap();
+/// assert!((c[(0, 0)] - 0.5).abs() < 1e-15 && (c[(2, 2)] - 0.005).abs() < 1e-15);
+/// ```
 pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: [f64; 2]) -> Result<Matrix3<f64>> {
-    let (z, k) = reduced(m, s)?;
-    let chol = k.cholesky().ok_or_else(|| Error::Singular {
+    if body >= m.bodies.len() {
+        return Err(Error::invalid("body", body, "names no body of the mechanism"));
+    }
+    if !at.iter().all(|v| v.is_finite()) {
+        return Err(Error::invalid("at", format!("{at:?}"), "must be finite"));
+    }
+    let (z, k) = stiffness(m, s)?;
+    let not_definite = || Error::Singular {
         what: "the constrained stiffness is not positive definite: the equilibrium is unstable or a joint is free"
             .into(),
-    })?;
-    let f = frames(m, &s.q);
-    let jz = point(m, &f, body, at, false).jacobian * &z;
+    };
+    if !linalg::is_positive_definite(&k) {
+        return Err(not_definite());
+    }
+    let chol = k.cholesky().ok_or_else(not_definite)?;
+    let jz = point(m, &frames(m, &s.q), body, at, false).jacobian * &z;
     let c = &jz * chol.solve(&jz.transpose());
-    Ok(Matrix3::from_fn(|i, j| c[(i, j)]))
-}
-
-/// Result of [`buckle`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct Buckling {
-    /// Factor on all forces, tensions and gravity at which the constrained stiffness becomes singular.
-    pub load_factor: f64,
-    /// Buckling mode in generalized coordinates, unit length, largest entry positive.
-    pub mode: Vec<f64>,
-}
-
-/// Linear buckling: the smallest $\lambda > 0$ with
-/// $\det Z^T(K_0 + \lambda K_g)Z = 0$ at the unloaded configuration, where
-/// $K_0$ is the elastic stiffness and $K_g$ the loads' geometric stiffness
-/// (with closure forces from the linear pre-buckling solve).
-pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
-    let s0 = assemble_unloaded(m, settings)?;
-    let (n, rows) = (m.dof(), m.constraints());
-    let base = m.loads();
-    let a0 = assemble(m, &s0.q, &s0.multipliers, &s0.loads)?;
-    let a1 = assemble(m, &s0.q, &s0.multipliers, &base)?;
-    let load_gradient = &a1.gradient - &a0.gradient;
-    // Linear pre-buckling state: the closure forces that carry the loads.
-    let mut kkt = DMatrix::zeros(n + rows, n + rows);
-    kkt.view_mut((0, 0), (n, n)).copy_from(&a0.hessian);
-    kkt.view_mut((0, n), (n, rows)).copy_from(&a0.g.transpose());
-    kkt.view_mut((n, 0), (rows, n)).copy_from(&a0.g);
-    let mut rhs = DVector::zeros(n + rows);
-    rhs.rows_mut(0, n).copy_from(&-&load_gradient);
-    let pre = kkt.lu().solve(&rhs).ok_or_else(|| Error::Singular {
-        what: "the unloaded mechanism has a zero-stiffness mode (a free joint): linear buckling is undefined".into(),
-    })?;
-    let mu1: Vec<f64> = s0.multipliers.iter().zip(pre.rows(n, rows).iter()).map(|(a, b)| a + b).collect();
-    let closure_part = assemble(m, &s0.q, &mu1, &s0.loads)?.hessian - &a0.hessian;
-    let geometric = &a1.hessian - &a0.hessian + closure_part;
-    let z = null_space(&a0.g, n);
-    let a = z.transpose() * &a0.hessian * &z;
-    let b = z.transpose() * geometric * &z;
-    let (mus, modes) = generalized_symmetric(&a, &b).ok_or_else(|| Error::Singular {
-        what: "the unloaded mechanism has a zero-stiffness mode (a free joint): linear buckling is undefined".into(),
-    })?;
-    // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of B v = μ A v; the smallest positive λ comes from the most negative μ.
-    let (best, &mu) = mus
-        .iter()
-        .enumerate()
-        .min_by(|x, y| x.1.total_cmp(y.1))
-        .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
-    if mu >= -1e-14 * mus.amax() {
-        return Err(Error::Singular { what: "these loads only stiffen the mechanism: no buckling load".into() });
+    let c = Matrix3::from_fn(|i, j| c[(i, j)]);
+    if c.iter().all(|v| v.is_finite()) {
+        Ok(c)
+    } else {
+        Err(Error::Singular { what: "the compliance is not finite".into() })
     }
-    let mode = normalized(&z * modes.column(best));
-    Ok(Buckling { load_factor: -1.0 / mu, mode: mode.iter().copied().collect() })
-}
-
-/// A load that a sweep varies.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Parameter {
-    /// `tendon.NAME.tension`
-    Tension(usize),
-    /// `force.NAME.fx`, `.fy` or `.moment` (component 0, 1, 2).
-    Force(usize, usize),
-    /// `gravity.x` or `gravity.y`.
-    Gravity(usize),
-}
-
-impl Parameter {
-    /// Parses `tendon.NAME.tension`, `force.NAME.fx|fy|moment` or `gravity.x|y`.
-    pub fn parse(m: &Mechanism, spec: &str) -> Result<Parameter> {
-        let bad = |why: &'static str| Error::invalid("sweep", format!("{spec:?}"), why);
-        let parts: Vec<&str> = spec.split('.').collect();
-        match parts.as_slice() {
-            ["tendon", name, "tension"] => m
-                .tendons
-                .iter()
-                .position(|t| t.name == *name)
-                .map(Parameter::Tension)
-                .ok_or_else(|| bad("names no tendon of the mechanism")),
-            ["force", name, comp] => {
-                let k = m
-                    .forces
-                    .iter()
-                    .position(|f| f.name == *name)
-                    .ok_or_else(|| bad("names no force of the mechanism"))?;
-                let c = match *comp {
-                    "fx" => 0,
-                    "fy" => 1,
-                    "moment" => 2,
-                    _ => return Err(bad("a force's component is fx, fy or moment")),
-                };
-                Ok(Parameter::Force(k, c))
-            }
-            ["gravity", "x"] => Ok(Parameter::Gravity(0)),
-            ["gravity", "y"] => Ok(Parameter::Gravity(1)),
-            _ => Err(bad("must be tendon.NAME.tension, force.NAME.fx|fy|moment or gravity.x|y")),
-        }
-    }
-
-    /// `loads` with this parameter set to `value`.
-    pub fn apply(&self, loads: &Loads, value: f64) -> Loads {
-        let mut l = loads.clone();
-        match *self {
-            Parameter::Tension(t) => l.tension[t] = value,
-            Parameter::Force(k, c) => l.force[k][c] = value,
-            Parameter::Gravity(c) => l.gravity[c] = value,
-        }
-        l
-    }
-}
-
-/// Equilibria along `values` of one load, each continued from the last.
-pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Settings) -> Result<Vec<Solution>> {
-    if let Parameter::Tension(_) = parameter
-        && let Some(v) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0))
-    {
-        return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
-    }
-    let base = m.loads();
-    let mut out: Vec<Solution> = Vec::with_capacity(values.len());
-    let mut start = assemble_unloaded(m, settings)?;
-    for &v in values {
-        let s = solve_between(m, &start, &parameter.apply(&base, v), settings)?;
-        start = s.clone();
-        out.push(s);
-    }
-    Ok(out)
 }

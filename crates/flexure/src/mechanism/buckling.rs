@@ -1,0 +1,95 @@
+//! Linear buckling of a mechanism about its unloaded, assembled configuration.
+
+use super::Mechanism;
+use super::indeterminate::settle;
+use super::kinematics::frames;
+use super::lagrangian::lagrangian;
+use super::statics::{Settings, assemble_unloaded, constrained, free_motion};
+use crate::buckling::normalized;
+use crate::error::{Error, Result};
+use crate::linalg;
+use nalgebra::DVector;
+
+/// Result of [`buckle`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Buckling {
+    /// Factor on all forces, tensions and gravity at which the constrained stiffness becomes singular.
+    pub load_factor: f64,
+    /// Buckling mode in generalized coordinates, unit length, largest entry positive.
+    pub mode: Vec<f64>,
+}
+
+/// Linear buckling: the smallest $\lambda > 0$ with
+/// $\det Z^T(K_0 + \lambda K_g)Z = 0$ at the unloaded configuration, where
+/// $K_0$ is the elastic stiffness, $K_g$ the loads' geometric stiffness
+/// with the closure forces of the linear pre-buckling solve, and $Z$ =
+/// [`linalg::null_space`]$(G)$. With redundant closures the indeterminate
+/// part of the pre-buckling closure forces is the one with the least force
+/// through the flexures (see [`super::statics::Solution::multipliers`]).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{buckling::buckle, file::from_toml, statics::Settings};
+/// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself by 2 N
+/// // buckles at P = k/l = 10 N: a factor of 5.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+///      [[force]]\nbody = \"arm\"\nat = [0.1, 0.0]\nforce = [-2.0, 0.0]\n",
+/// )
+/// .unwrap();
+/// assert!((buckle(&m, &Settings::default()).unwrap().load_factor - 5.0).abs() < 1e-12);
+/// ```
+pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
+    if m.dof() == 0 {
+        return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can buckle".into() });
+    }
+    let s0 = assemble_unloaded(m, settings)?;
+    let (zero, base) = (&s0.loads, m.loads());
+    let a0 = lagrangian(m, &s0.q, &s0.multipliers, zero)?;
+    let a1 = lagrangian(m, &s0.q, &s0.multipliers, &base)?;
+    let g = &a0.closure_jacobian;
+    let z = linalg::null_space(g);
+    if z.ncols() == 0 {
+        return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can buckle".into() });
+    }
+    let moving = free_motion(m, &s0).map_or(String::new(), |j| format!(" ({j})"));
+    let free = || Error::Singular {
+        what: format!(
+            "the unloaded mechanism has a zero-stiffness motion{moving}: linear buckling is undefined; give a joint on it a stiffness, or hold it with a closure"
+        ),
+    };
+    let k0 = constrained(&a0.hessian, &z);
+    if !linalg::is_positive_definite(&k0) {
+        return Err(free());
+    }
+    // Linear pre-buckling state: admissible motion δq = Z y with
+    // (ZᵀK₀Z) y = −Zᵀf, then the closure forces Gᵀδμ = −(f + K₀δq), least-norm.
+    let load_gradient = &a1.gradient - &a0.gradient;
+    let y = k0.clone().cholesky().ok_or_else(free)?.solve(&-(z.transpose() * &load_gradient));
+    let dq = &z * y;
+    let rhs = -(&load_gradient + &a0.hessian * &dq);
+    let dmu = if g.nrows() == 0 { DVector::zeros(0) } else { linalg::least_squares(&g.transpose(), &rhs) };
+    // The indeterminate part of δμ: least transmitted force under the base loads.
+    let f0 = frames(m, &s0.q);
+    let dmu = settle(m, &f0, g, dmu.as_slice(), &base);
+    let mu1: Vec<f64> = s0.multipliers.iter().zip(&dmu).map(|(a, b)| a + b).collect();
+    let closure_part = lagrangian(m, &s0.q, &mu1, zero)?.hessian - &a0.hessian;
+    let geometric = &a1.hessian - &a0.hessian + closure_part;
+    let b = constrained(&geometric, &z);
+    let (mus, modes) = linalg::generalized_symmetric(&k0, &b).ok_or_else(free)?;
+    // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of B v = μ A v; the smallest positive λ comes from the most negative μ.
+    let (best, &mu) = mus
+        .iter()
+        .enumerate()
+        .min_by(|x, y| x.1.total_cmp(y.1))
+        .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
+    if mu.is_nan() || mu >= -1e-14 * mus.amax() {
+        return Err(Error::Singular { what: "these loads only stiffen the mechanism: no buckling load".into() });
+    }
+    let mode = normalized(&z * modes.column(best));
+    let load_factor = -1.0 / mu;
+    if !(load_factor.is_finite() && mode.iter().all(|v| v.is_finite())) {
+        return Err(Error::Singular { what: "the buckling load is not finite".into() });
+    }
+    Ok(Buckling { load_factor, mode: mode.iter().copied().collect() })
+}

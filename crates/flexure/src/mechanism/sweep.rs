@@ -1,0 +1,162 @@
+//! Sweeps of one load, with the stability limit found between two values.
+
+use super::statics::{LIMIT_PRECISION, Settings, Solution, assemble_unloaded, first_loss, follow, solve_between};
+use super::{Loads, Mechanism};
+use crate::error::{Error, Result};
+
+/// A load that a sweep varies.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Parameter {
+    /// `tendon.NAME.tension`
+    Tension(usize),
+    /// `force.NAME.fx`, `.fy` or `.moment` (component 0, 1, 2).
+    Force(usize, usize),
+    /// `gravity.x` or `gravity.y`.
+    Gravity(usize),
+}
+
+impl Parameter {
+    /// Parses `tendon.NAME.tension`, `force.NAME.fx|fy|moment` or `gravity.x|y`
+    /// (NAME may itself hold dots).
+    pub fn parse(m: &Mechanism, spec: &str) -> Result<Parameter> {
+        let bad = |why: &'static str| Error::invalid("sweep", format!("{spec:?}"), why);
+        if let Some(name) = spec.strip_prefix("tendon.").and_then(|s| s.strip_suffix(".tension")) {
+            return m
+                .tendons
+                .iter()
+                .position(|t| t.name == name)
+                .map(Parameter::Tension)
+                .ok_or_else(|| bad("names no tendon of the mechanism"));
+        }
+        if let Some((name, comp)) = spec.strip_prefix("force.").and_then(|s| s.rsplit_once('.')) {
+            let k =
+                m.forces.iter().position(|f| f.name == name).ok_or_else(|| bad("names no force of the mechanism"))?;
+            let c = match comp {
+                "fx" => 0,
+                "fy" => 1,
+                "moment" => 2,
+                _ => return Err(bad("a force's component is fx, fy or moment")),
+            };
+            return Ok(Parameter::Force(k, c));
+        }
+        match spec {
+            "gravity.x" => Ok(Parameter::Gravity(0)),
+            "gravity.y" => Ok(Parameter::Gravity(1)),
+            _ => Err(bad("must be tendon.NAME.tension, force.NAME.fx|fy|moment or gravity.x|y")),
+        }
+    }
+
+    /// `loads` with this parameter set to `value`.
+    pub fn apply(&self, loads: &Loads, value: f64) -> Loads {
+        let mut l = loads.clone();
+        match *self {
+            Parameter::Tension(t) => l.tension[t] = value,
+            Parameter::Force(k, c) => l.force[k][c] = value,
+            Parameter::Gravity(c) => l.gravity[c] = value,
+        }
+        l
+    }
+}
+
+/// Where a sweep lost stability.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabilityLimit {
+    /// The swept quantity's value there, in its units.
+    pub value: f64,
+    /// Its position along the sweep's range, `(value − first)/(last − first)`.
+    pub fraction: f64,
+}
+
+/// What [`sweep`] reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    /// The values solved, each with its stable equilibrium: every value up
+    /// to where stability was lost beyond recovery.
+    pub rows: Vec<(f64, Solution)>,
+    /// The first loss of stability along the sweep, if any.
+    pub stability_limit: Option<StabilityLimit>,
+}
+
+/// Equilibria along `values` of one load, each continued from the last.
+///
+/// Every row is stable. When the path loses stability between two values,
+/// the loss is found by bisection between them, to a relative
+/// [`LIMIT_PRECISION`] of the swept value (at most 64 halvings, each a
+/// continuation of at most [`super::statics::PROBE_STEPS`] steps from the
+/// last stable state). The sweep goes on past a snap-through that lands on
+/// a stable state, and stops where none is reached. The first value is
+/// reached from the unloaded state with every load ramped together: if
+/// stability is lost on the way, that is the first row's own
+/// [`Solution::limit`] (or [`Error::Unstable`] if no stable state is reached).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::Settings, sweep::{sweep, Parameter}};
+/// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself loses
+/// // stability at P = k/l = 10 N: found between the rows at 8 and 12 N.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+///      [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0]\n",
+/// )
+/// .unwrap();
+/// let p = Parameter::parse(&m, "force.push.fx").unwrap();
+/// let out = sweep(&m, &p, &[0.0, -4.0, -8.0, -12.0, -16.0], &Settings::default()).unwrap();
+/// assert_eq!(out.rows.len(), 3);
+/// let limit = out.stability_limit.unwrap();
+/// assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5);
+/// ```
+pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Settings) -> Result<Sweep> {
+    settings.validate()?;
+    if values.is_empty() {
+        return Err(Error::invalid("sweep", "no values", "a sweep needs at least one value"));
+    }
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(Error::invalid("sweep", v, "values must be finite"));
+    }
+    if let Parameter::Tension(_) = parameter
+        && let Some(v) = values.iter().find(|v| **v < 0.0)
+    {
+        return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
+    }
+    let base = m.loads();
+    let (first, last) = (values[0], values[values.len() - 1]);
+    let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
+    let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None };
+    let mut start = assemble_unloaded(m, settings)?;
+    for (i, &v) in values.iter().enumerate() {
+        let target = parameter.apply(&base, v);
+        // The first value is reached from the unloaded state with every load
+        // ramped together: a loss there is solve_between's error.
+        let found =
+            if i == 0 { solve_between(m, &start, &target, settings) } else { follow(m, &start, &target, settings) };
+        let lost = i > 0
+            && match &found {
+                Ok(s) => s.limit.is_some(),
+                Err(Error::Unstable { .. }) => true,
+                Err(_) => false,
+            };
+        let mut limit = None;
+        if lost {
+            let previous = values[i - 1];
+            let value = |s: f64| previous + s * (v - previous);
+            let precise = |lo: f64, hi: f64| {
+                (value(hi) - value(lo)).abs() <= LIMIT_PRECISION * value(lo).abs().max(value(hi).abs())
+            };
+            let s = first_loss(m, &start, &target, settings, precise)?;
+            limit = Some(s);
+            if out.stability_limit.is_none() {
+                out.stability_limit = Some(StabilityLimit { value: value(s), fraction: fraction(value(s)) });
+            }
+        }
+        match found {
+            Ok(s) => {
+                let s = Solution { limit: limit.or(s.limit), ..s };
+                start = s.clone();
+                out.rows.push((v, s));
+            }
+            Err(Error::Unstable { .. }) if lost => break,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(out)
+}

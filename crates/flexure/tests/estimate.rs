@@ -1,0 +1,96 @@
+//! Error estimates against true errors: closed forms and the exact elastica.
+
+use flexure::estimate::{Accuracy, deflect_auto, deflect_error, tendon_error};
+use flexure::reference::elastica;
+use flexure::tendon::{Tendon, TendonData, pull};
+use flexure::{Flexure, Pose, Statics, TipLoad, deflect};
+
+fn unit(order: usize) -> Flexure {
+    Flexure::new(1.0, 1.0, order).unwrap()
+}
+
+/// (estimate, true error) of the tip position for one load, the truth from the exact elastica.
+fn estimate_and_truth(f: &Flexure, load: &TipLoad) -> (f64, f64, bool) {
+    let mut data = Statics::new(f);
+    deflect(f, load, &mut data, &Default::default()).unwrap();
+    let e = deflect_error(f, load, data.alpha(), &Accuracy::default()).unwrap();
+    let exact = elastica::deflect(f, load, &Default::default()).unwrap().pose;
+    let p = data.pose_root_tip();
+    (e.position, (p.x - exact.x).hypot(p.y - exact.y), e.flagged)
+}
+
+/// Pure moments: the exact shape is a circle, $\phi = Ms/EI$, so the true
+/// error is the model's quadrature error alone (the basis is exact). The
+/// reference integrates to rounding, so the estimate equals the truth to
+/// 1e-6 relative (the reference's Newton tolerance).
+#[test]
+fn pure_moment_quadrature_error_is_caught() {
+    let f = unit(3);
+    for m in [2.0, 8.0, 14.0, 20.0, -23.0] {
+        let mut data = Statics::new(&f);
+        let load = TipLoad { moment: m, fx: 0.0, fy: 0.0 };
+        deflect(&f, &load, &mut data, &Default::default()).unwrap();
+        let e = deflect_error(&f, &load, data.alpha(), &Accuracy::default()).unwrap();
+        let p = data.pose_root_tip();
+        let truth = (p.x - m.sin() / m).hypot(p.y - (1.0 - m.cos()) / m);
+        assert!((e.position - truth).abs() <= 1e-6 * truth.max(1e-9), "M = {m}: estimate {} truth {truth}", e.position);
+        assert_eq!(e.flagged, truth > 0.01, "M = {m}: flagged iff the true error exceeds 1 % of L");
+    }
+}
+
+/// Transverse and oblique forces up to and past 90°: basis truncation is
+/// the error here. The estimate is within a factor 3 of the true error
+/// (the acceptance bound of the Trust issue) wherever that exceeds 1e-3 L.
+#[test]
+fn truncation_error_is_caught() {
+    let f = unit(3);
+    for (p, theta) in [(3.0, 0.0), (10.0, 0.0), (30.0, 0.0), (6.0, 2.0), (12.0, 2.8), (20.0, -1.0)] {
+        let (estimate, truth, flagged) = estimate_and_truth(&f, &TipLoad::polar(0.0, p, theta));
+        if truth > 1e-3 {
+            let ratio = estimate / truth;
+            assert!((1.0 / 3.0..=3.0).contains(&ratio), "P = {p}, θ = {theta}: estimate {estimate} truth {truth}");
+        }
+        assert!(truth <= 0.03 || flagged, "P = {p}: a true error of {truth} L must be flagged");
+    }
+}
+
+/// Order 6 meets the 1 % target where order 3 does not, and `deflect_auto`
+/// finds an order whose true error meets it.
+#[test]
+fn auto_order_meets_the_target_in_truth() {
+    let load = TipLoad::polar(0.0, 30.0, 0.3);
+    let (f, alpha, e) = deflect_auto(&unit(3), &load, &Accuracy::default()).unwrap();
+    assert!(f.order() > 3 && !e.flagged);
+    let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
+    let p = flexure::pose_root_tip(&f, &alpha);
+    assert!((p.x - exact.x).hypot(p.y - exact.y) < 0.01 && (p.phi - exact.phi).abs() < 1f64.to_radians());
+}
+
+/// The tendon joint's estimate against the same joint at order 12 with 40
+/// points (converged to 1e-9 L, far below the order-3 error measured).
+#[test]
+fn tendon_estimate_matches_a_converged_model() {
+    let ei = flexure::bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap();
+    let t = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+    let f = Flexure::new(0.015, ei, 3).unwrap();
+    let fine = Flexure::new(0.015, ei, 12).unwrap().with_quadrature(40).unwrap();
+    for tension in [10.0, 28.0, 45.0] {
+        let (mut d, mut dfine) = (TendonData::new(&f), TendonData::new(&fine));
+        pull(&f, &t, tension, &mut d).unwrap();
+        pull(&fine, &t, tension, &mut dfine).unwrap();
+        let (a, b): (Pose, Pose) =
+            (flexure::pose_root_tip(&f, d.alpha()), flexure::pose_root_tip(&fine, dfine.alpha()));
+        let truth = (a.x - b.x).hypot(a.y - b.y);
+        let e = tendon_error(&f, &t, tension, d.alpha(), &Accuracy::default()).unwrap();
+        assert!((e.position / truth - 1.0).abs() < 0.5, "tension {tension}: estimate {} truth {truth}", e.position);
+    }
+}
+
+/// A bad accuracy target is named.
+#[test]
+fn bad_accuracy_is_named() {
+    let f = unit(3);
+    let bad = Accuracy { position: 0.0, angle: 0.01 };
+    let err = deflect_error(&f, &TipLoad::default(), &[0.0; 3], &bad).unwrap_err();
+    assert!(err.to_string().contains("accuracy"), "{err}");
+}

@@ -1,0 +1,244 @@
+//! Bad mechanism files: every bad value is an error naming its key, line
+//! and column; nothing panics; no result holds a number that is not finite.
+
+use flexure::Error;
+use flexure::mechanism::buckling::buckle;
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{Settings, solve};
+
+fn joint(extra: &str) -> String {
+    format!(
+        "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1e-3\n{extra}"
+    )
+}
+
+fn file_error(text: &str) -> String {
+    match from_toml(text) {
+        Err(e @ Error::File { .. }) => e.to_string(),
+        other => panic!("expected a file error for\n{text}\ngot {other:?}"),
+    }
+}
+
+/// The fuzzer's findings: an empty file, a subnormal spring, a huge length.
+#[test]
+fn fuzzer_findings() {
+    // An empty file is a mechanism of the ground alone: it solves to nothing
+    // and has nothing to buckle (an error, not a panic).
+    let empty = from_toml("").unwrap();
+    let s = solve(&empty, &Settings::default()).unwrap();
+    assert!(s.q.is_empty() && s.energy == 0.0 && s.stable);
+    assert!(matches!(buckle(&empty, &Settings::default()), Err(Error::Singular { .. })));
+    let spring =
+        "[[joint]]\nname = \"a\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 5e-324\n";
+    let e = file_error(spring);
+    assert!(
+        e.starts_with("line 6, column 13: joint \"a\": stiffness = 5e-324: must be zero or between 1e-30 and 1e30"),
+        "{e}"
+    );
+    let e = file_error(&joint("").replace("length = 0.01", "length = 1e300"));
+    assert!(e.starts_with("line 6, column 10: joint \"a\": length = 1e300"), "{e}");
+}
+
+/// Each bad value names its key and the place of its value.
+#[test]
+fn bad_values_name_key_line_and_column() {
+    let cases = [
+        (joint("order = 65\n"), "line 8, column 9", "order = 65"),
+        (joint("order = -1\n"), "line 8, column 9", ""),
+        (joint("quadrature = 0\n"), "line 8, column 14", "quadrature = 0"),
+        (joint("kappa = [0.1]\n"), "line 8, column 9", "kappa"),
+        (joint("kappa = [0.0, 1e31, 0.0]\n"), "line 8, column 9", "kappa[1] = 1e31"),
+        (joint("origin = [0.0, nan, 0.0]\n"), "line 8, column 10", "origin[1] = NaN"),
+        (joint("stiffness = 2.0\n"), "line 8, column 13", "`stiffness` does not apply to a flexure joint"),
+        (joint("width = 0.01\n"), "line 8, column 9", "`width` goes with modulus"),
+        (joint("").replace("ei = 1e-3", "modulus = 2e11\nwidth = 0.01"), "line 7, column 11", "thickness is missing"),
+        (
+            joint("").replace("ei = 1e-3", "modulus = 2e11\nwidth = 0.01\nthickness = 2e-4\npoisson = 0.7"),
+            "line 10, column 11",
+            "poisson = 0.7",
+        ),
+        (joint("").replace("ei = 1e-3", "ei = -1e-3"), "line 7, column 6", "ei = -0.001: must be greater than zero"),
+        (
+            joint("").replace("kind = \"flexure\"", "kind = \"revolute\""),
+            "line 6, column 10",
+            "`length` does not apply",
+        ),
+        (joint("[[body]]\nname = \"b\"\nmass = -1.0\n"), "line 10, column 8", "mass = -1"),
+        (joint("[[body]]\nname = \"b\"\ncom = [inf, 0.0]\n"), "line 10, column 7", "com[0] = inf"),
+        (joint("[[body]]\nname = \"b\"\n[[body]]\nname = \"b\"\n"), "line 11, column 8", "described twice"),
+        (joint("[[body]]\nname = \"ground\"\nmass = 1.0\n"), "line 9, column 8", "the ground does not move"),
+        (
+            joint("[[force]]\nbody = \"b\"\nat = [0.0, 0.0]\nforce = [1e31, 0.0]\n"),
+            "line 11, column 9",
+            "force[0] = 1e31",
+        ),
+        (joint("[[force]]\nbody = \"b\"\nat = [0.0, 0.0]\nmoment = -inf\n"), "line 11, column 10", "moment = -inf"),
+        (
+            joint("[[tendon]]\nname = \"t\"\ntension = -2.0\npath = [[\"ground\", 0.0, 0.001], [\"b\", 0.0, 0.001]]\n"),
+            "line 10, column 11",
+            "tension = -2",
+        ),
+        (
+            joint(
+                "[[tendon]]\nname = \"t\"\ntension = 2.0\npath = [[\"ground\", 0.0, 0.001], [\"b\", 1e-40, 0.001]]\n",
+            ),
+            "line 11, column 33",
+            "path[1][0] = 1e-40",
+        ),
+        (
+            joint("[[tendon]]\nname = \"t\"\ntension = 2.0\npath = [[\"ground\", 0.01, 0.0], [\"b\", 0.0, 0.0]]\n"),
+            "line 11, column 32",
+            "via points 1 and 2 coincide",
+        ),
+        (joint("[[weld]]\na = \"b\"\nb = \"b\"\n"), "line 10, column 5", "joins body \"b\" to itself"),
+        (joint("[[pin]]\na = \"b\"\nb = \"ground\"\nb_at = [0.0, 1e99]\n"), "line 11, column 8", "b_at[1] = 1e99"),
+        (joint("gravity = [0.0, -9.81]\n"), "line 8, column 1", ""),
+        (format!("gravity = [0.0, nan]\n{}", joint("")), "line 1, column 11", "gravity[1] = NaN"),
+        (
+            joint("[[joint]]\nname = \"s\"\nkind = \"revolute\"\nparent = \"b\"\nchild = \"c\"\nstiffness = 1e-14\n"),
+            "line 13, column 13",
+            "times softer than joint \"a\"",
+        ),
+    ];
+    for (text, place, what) in cases {
+        let e = file_error(&text);
+        assert!(e.starts_with(&format!("{place}:")) && e.contains(what), "expected {what:?} at {place}:\n{text}\n{e}");
+    }
+}
+
+/// Closures that no configuration near rest can close: a pin joining a
+/// 1 m arm's end, which can only reach the unit circle, to a point 2 m from
+/// its pivot. The error places the pin.
+#[test]
+fn closures_that_cannot_be_assembled_are_placed() {
+    let text = "[[joint]]\nname = \"a\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 1.0\n\
+                [[pin]]\na = \"b\"\na_at = [1.0, 0.0]\nb = \"ground\"\nb_at = [0.0, 2.0]\n";
+    let m = from_toml(text).unwrap();
+    let e = solve(&m, &Settings::default()).unwrap_err().to_string();
+    assert!(e.starts_with("line 8, column 5: pin of \"b\" and \"ground\": the closures cannot be assembled"), "{e}");
+}
+
+/// SplitMix64, seeded.
+struct Rng(u64);
+
+impl Rng {
+    fn below(&mut self, n: usize) -> usize {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) % n as u64) as usize
+    }
+}
+
+/// Mutated example files (a number replaced by an extreme or wrong value,
+/// a line dropped or doubled), seeded: parsing names the place of every
+/// file error; a file that parses never fails later on a value (the
+/// solvers' errors are numerical ones: no convergence, stalled, unstable,
+/// singular; or closures that cannot be assembled, placed); nothing
+/// panics; every answer is finite.
+#[test]
+fn mutated_examples() {
+    let dir = format!("{}/../../examples", env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| std::fs::read_to_string(p).unwrap())
+        .collect();
+    files.sort();
+    let values = [
+        "0",
+        "-1",
+        "1e300",
+        "-1e300",
+        "5e-324",
+        "nan",
+        "inf",
+        "-inf",
+        "1e-300",
+        "0.0",
+        "3",
+        "-0.5",
+        "1e30",
+        "1e-30",
+        "99999999999",
+        "\"x\"",
+        "[]",
+        "[1.0]",
+        "true",
+        "1e16",
+        "1e-3",
+        "65",
+        "1.0e5",
+    ];
+    let mut rng = Rng(20261130);
+    let (mut parsed, mut answered) = (0, 0);
+    for _ in 0..600 {
+        let mut lines: Vec<String> = files[rng.below(files.len())].lines().map(str::to_string).collect();
+        for _ in 0..1 + rng.below(2) {
+            let i = rng.below(lines.len());
+            match rng.below(6) {
+                0 => {
+                    lines.remove(i);
+                }
+                1 => lines.insert(i, lines[i].clone()),
+                _ => {
+                    // Replace a value (the right of `key = `, or a number inside an array).
+                    let v = values[rng.below(values.len())];
+                    if let Some(eq) = lines[i].find(" = ") {
+                        lines[i] = format!("{} = {v}", &lines[i][..eq]);
+                    }
+                }
+            }
+        }
+        let text = lines.join("\n");
+        let outcome = std::panic::catch_unwind(|| match from_toml(&text) {
+            Err(Error::File { place, .. }) => {
+                assert!(place.starts_with("line ") && place.contains(", column "), "{place}\n{text}");
+                None
+            }
+            Err(e) => panic!("a file error that is not Error::File: {e}\n{text}"),
+            Ok(m) => {
+                // Numerical outcomes, or closures that cannot be assembled
+                // (an inconsistent file, placed at the widest-open closure).
+                let numerical = |e: &Error| match e {
+                    Error::File { place, .. } => place.starts_with("line ") && place.contains(", column "),
+                    e => matches!(
+                        e,
+                        Error::NoConvergence { .. }
+                            | Error::ContinuationStalled { .. }
+                            | Error::Unstable { .. }
+                            | Error::Singular { .. }
+                    ),
+                };
+                let mut answers = 0;
+                match solve(&m, &Settings::default()) {
+                    Ok(s) => {
+                        assert!(s.q.iter().chain(&s.multipliers).chain([&s.energy]).all(|v| v.is_finite()), "{text}");
+                        answers += 1;
+                    }
+                    Err(e) => assert!(numerical(&e), "{e}\n{text}"),
+                }
+                match buckle(&m, &Settings::default()) {
+                    Ok(b) => {
+                        assert!(b.load_factor.is_finite() && b.mode.iter().all(|v| v.is_finite()), "{text}");
+                        answers += 1;
+                    }
+                    Err(e) => assert!(numerical(&e), "{e}\n{text}"),
+                }
+                Some(answers)
+            }
+        });
+        match outcome {
+            Ok(Some(n)) => {
+                parsed += 1;
+                answered += n;
+            }
+            Ok(None) => {}
+            Err(_) => panic!("panicked on\n{text}"),
+        }
+    }
+    // The mutations leave work for both halves of the check.
+    assert!(parsed > 100 && answered > 100, "{parsed} parsed, {answered} answered");
+}
