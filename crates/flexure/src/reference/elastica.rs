@@ -146,6 +146,11 @@ struct Chain<'a> {
     /// $EI/L$ (N·m per rad).
     stiffness: f64,
     segments: usize,
+    /// The largest $|\mu|$ of any equilibrium under the full load:
+    /// $(|M| + L|F|)L/EI$, the load's moment about a point within $L$ of the tip.
+    reach: f64,
+    /// The nodes' rest angles $\phi_j$, $j = 1..N$.
+    rest: Vec<f64>,
     /// The integrator's next step, carried from segment to segment.
     step: f64,
     /// The Jacobi test of the last evaluation with derivatives.
@@ -167,7 +172,23 @@ impl<'a> Chain<'a> {
         }
         let segments = (growth.ceil() as usize).max(MIN_SEGMENTS);
         let (stiffness, last) = (flexure.ei() / l, Jacobi::default());
-        Ok(Self { flexure, load, ode, scale, stiffness, segments, step: 0.0, last })
+        let reach = (load.moment.abs() + l * load.fx.hypot(load.fy)) / stiffness;
+        let mut chain = Self { flexure, load, ode, scale, stiffness, segments, reach, rest: vec![], step: 0.0, last };
+        let rest = chain.shot(0.0, 0.0)?;
+        chain.rest = (1..=segments).map(|j| rest[Self::angle(j)]).collect();
+        Ok(chain)
+    }
+
+    /// Whether `x` at `lambda` lies where an equilibrium on the way to the
+    /// full load can: $-1 \le \lambda \le 2$, and no node's moment or
+    /// turn from rest beyond twice $\max(1, |\lambda|)$ × [`Chain::reach`]
+    /// (plus 1 rad). Newton iterates outside are refused unevaluated: coiled
+    /// shapes cost integrator steps in proportion to their moment.
+    fn within_reach(&self, x: &[f64], lambda: f64) -> bool {
+        let bound = 2.0 * lambda.abs().max(1.0) * self.reach + 1.0;
+        (-1.0..=2.0).contains(&lambda)
+            && (0..self.segments).all(|j| x[Self::moment(j)].abs() <= bound)
+            && (1..=self.segments).all(|j| (x[Self::angle(j)] - self.rest[j - 1]).abs() <= bound)
     }
 
     /// Node $j$'s arc length.
@@ -223,25 +244,21 @@ impl<'a> Chain<'a> {
     }
 
     /// The state reached by shooting from the root with moment $M_0$ under
-    /// the full load, each segment starting where the last one ended.
-    fn shot(&mut self, root_moment: f64) -> Result<Vec<f64>> {
+    /// `lambda` × the load, each segment starting where the last one ended.
+    fn shot(&mut self, root_moment: f64, lambda: f64) -> Result<Vec<f64>> {
         let mut x = vec![0.0; 2 * self.segments];
         let mut start = [0.0, root_moment / self.stiffness];
         for j in 0..self.segments {
             x[Self::moment(j)] = start[1];
-            start = self.segment(j, start, 1.0, |_, _| {})?;
+            start = self.segment(j, start, lambda, |_, _| {})?;
             x[Self::angle(j + 1)] = start[0];
         }
         Ok(x)
     }
-}
 
-impl Problem<f64> for Chain<'_> {
-    fn dim(&self) -> usize {
-        2 * self.segments
-    }
-
-    fn evaluate(
+    /// The residuals at `x` under `lambda` × the load and, when asked, their
+    /// derivatives and the Jacobi test (see [`Problem::evaluate`]).
+    fn sweep(
         &mut self,
         x: &[f64],
         lambda: f64,
@@ -313,6 +330,28 @@ impl Problem<f64> for Chain<'_> {
             Err(Error::Singular { what: "exact elastica: non-finite moment or angle at a node".into() })
         }
     }
+}
+
+impl Problem<f64> for Chain<'_> {
+    fn dim(&self) -> usize {
+        2 * self.segments
+    }
+
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        residual: &mut [f64],
+        jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> Result<()> {
+        if !self.within_reach(x, lambda) {
+            return Err(Error::Singular {
+                what: "exact elastica: a Newton iterate beyond the bending moment of any equilibrium".into(),
+            });
+        }
+        self.sweep(x, lambda, residual, jacobian, dlambda)
+    }
 
     /// The Jacobi test (see [`is_stable`]) of the state, from the
     /// derivatives of its last evaluation.
@@ -320,7 +359,7 @@ impl Problem<f64> for Chain<'_> {
         if !self.last.at(x, lambda) {
             let mut r = vec![0.0; x.len()];
             let mut d = vec![0.0; x.len()];
-            if self.evaluate(x, lambda, &mut r, None, Some(&mut d)).is_err() {
+            if self.sweep(x, lambda, &mut r, None, Some(&mut d)).is_err() {
                 return false;
             }
         }
@@ -382,7 +421,7 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
     let mut chain = Chain::new(flexure, *load, settings.ode)?;
     let mut ws = solver::Workspace::new(chain.dim());
     // The rest shape: no moment anywhere, the nodes at their rest angles.
-    ws.x = chain.shot(0.0)?;
+    ws.x = chain.shot(0.0, 0.0)?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
     Ok(Solution {
         pose: chain.pose(&ws.x)?,
@@ -422,7 +461,7 @@ pub fn is_stable(flexure: &Flexure, root_moment: f64, fx: f64, fy: f64, tol: &To
     // The chain through the shot from the root (the tip moment that shot
     // carries does not enter the test).
     let mut chain = Chain::new(flexure, TipLoad { moment: 0.0, fx, fy }, *tol)?;
-    let x = chain.shot(root_moment)?;
+    let x = chain.shot(root_moment, 1.0)?;
     Ok(chain.stable(&x, 1.0, &[]))
 }
 
