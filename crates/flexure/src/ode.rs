@@ -25,6 +25,33 @@ impl Default for Tolerance {
     }
 }
 
+impl Tolerance {
+    /// Checks that both tolerances are finite and non-negative, not both
+    /// zero, and that `max_steps` is from 1 to [`crate::solver::MAX_COUNT`].
+    ///
+    /// # Example
+    /// ```
+    /// let t = flexure::ode::Tolerance { relative: 0.0, absolute: 0.0, max_steps: 10 };
+    /// assert!(t.validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        let non_negative = |name: &'static str, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(Error::invalid(name, v, "must be a finite number, zero or greater"))
+            }
+        };
+        non_negative("relative", self.relative)?;
+        non_negative("absolute", self.absolute)?;
+        if self.relative == 0.0 && self.absolute == 0.0 {
+            return Err(Error::invalid("absolute", self.absolute, "and relative cannot both be zero"));
+        }
+        crate::error::count("max_steps", self.max_steps, crate::solver::MAX_COUNT, "must be from 1 to 1000000")?;
+        Ok(())
+    }
+}
+
 const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [
     [0.0; 6],
@@ -50,13 +77,41 @@ const E: [f64; 7] =
 /// assert!((y[0] - std::f64::consts::E).abs() < 1e-11);
 /// ```
 pub fn integrate<T: Scalar, const D: usize>(
+    f: impl FnMut(f64, &[T; D]) -> [T; D],
+    s0: f64,
+    s1: f64,
+    y0: [T; D],
+    tol: &Tolerance,
+    observe: impl FnMut(f64, &[T; D]),
+) -> Result<[T; D]> {
+    integrate_from(f, s0, s1, y0, tol, &mut 0.0, observe)
+}
+
+/// [`integrate`], trying `step` first (0: a hundredth of the span) and
+/// leaving in it the step the integrator would take next, so that spans
+/// integrated one after another (multiple shooting) do not each start small.
+///
+/// # Example
+/// ```
+/// use flexure::ode::{integrate_from, Tolerance};
+/// let mut step = 0.0;
+/// let tol = Tolerance::default();
+/// let half = integrate_from(|_, y: &[f64; 1]| [y[0]], 0.0, 0.5, [1.0], &tol, &mut step, |_, _| {}).unwrap();
+/// let one = integrate_from(|_, y: &[f64; 1]| [y[0]], 0.5, 1.0, half, &tol, &mut step, |_, _| {}).unwrap();
+/// assert!(step > 0.0 && (one[0] - std::f64::consts::E).abs() < 1e-11);
+/// ```
+pub fn integrate_from<T: Scalar, const D: usize>(
     mut f: impl FnMut(f64, &[T; D]) -> [T; D],
     s0: f64,
     s1: f64,
     y0: [T; D],
     tol: &Tolerance,
+    step: &mut f64,
     mut observe: impl FnMut(f64, &[T; D]),
 ) -> Result<[T; D]> {
+    tol.validate()?;
+    crate::error::finite("s0", s0)?;
+    crate::error::finite("s1", s1)?;
     let span = s1 - s0;
     let mut s = s0;
     let mut y = y0;
@@ -64,36 +119,35 @@ pub fn integrate<T: Scalar, const D: usize>(
     if span == 0.0 {
         return Ok(y);
     }
-    let mut h = span * 1e-2;
+    let mut h = if step.is_finite() && *step != 0.0 { step.abs().min(span.abs()) * span.signum() } else { span * 1e-2 };
     let mut k = [[T::zero(); D]; 7];
     k[0] = f(s, &y);
     for _ in 0..tol.max_steps {
+        // The last step is shortened to land on s1.
         let last = (s + h - s1) * span.signum() >= 0.0;
-        if last {
-            h = s1 - s;
-        }
+        let dh = if last { s1 - s } else { h };
         for stage in 1..7 {
             let mut yi = y;
             for (j, kj) in k.iter().enumerate().take(stage) {
                 let a = A[stage][j];
                 if a != 0.0 {
                     for (v, &d) in yi.iter_mut().zip(kj) {
-                        *v += T::c(h * a) * d;
+                        *v += T::c(dh * a) * d;
                     }
                 }
             }
-            k[stage] = f(s + C[stage] * h, &yi);
+            k[stage] = f(s + C[stage] * dh, &yi);
         }
         // The seventh stage was evaluated at the fifth-order solution.
         let mut y_new = y;
         for (j, kj) in k.iter().enumerate().take(6) {
             for (v, &d) in y_new.iter_mut().zip(kj) {
-                *v += T::c(h * A[6][j]) * d;
+                *v += T::c(dh * A[6][j]) * d;
             }
         }
         let mut err = 0.0;
         for i in 0..D {
-            let e: f64 = (0..7).map(|j| E[j] * k[j][i].re()).sum::<f64>() * h;
+            let e: f64 = (0..7).map(|j| E[j] * k[j][i].re()).sum::<f64>() * dh;
             let sc = tol.absolute + tol.relative * y[i].re().abs().max(y_new[i].re().abs());
             err += (e / sc).powi(2);
         }
@@ -106,17 +160,20 @@ pub fn integrate<T: Scalar, const D: usize>(
                 residual: f64::INFINITY, // the state blew up: no finite residual
             });
         }
+        let factor = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
         if err <= 1.0 {
-            s = if last { s1 } else { s + h };
+            s = if last { s1 } else { s + dh };
             y = y_new;
             k[0] = k[6];
             observe(s, &y);
             if last {
+                // The next span's first step: the longer of the proposal
+                // and the grown last step (shortened only to land on s1).
+                *step = if (dh * factor).abs() > h.abs() { dh * factor } else { h };
                 return Ok(y);
             }
         }
-        let factor = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
-        h *= factor;
+        h = dh * factor;
         if (h / span).abs() < 1e-14 {
             break;
         }
