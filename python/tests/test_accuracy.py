@@ -244,7 +244,8 @@ def test_snap_through_of_a_mechanism_warns_and_names_the_limit():
     # push. Loading from rest, the path buckles there and reaches a stable buckled shape.
     root = Path(__file__).resolve().parents[2] / "examples"
     text = (root / "parallelogram.toml").read_text().replace("force = [0.0, -1.0]", "force = [0.0, -40.0]")
-    with pytest.warns(flexure.StabilityWarning, match="lost stability at 40.0"):
+    # (The buckled legs turn far: the order-3 joints may also warn AccuracyWarning, honestly.)
+    with pytest.warns(flexure.StabilityWarning, match="lost stability at 40.0000 %|lost stability at 39.9999 %"):
         result = flexure.Mechanism.from_toml(text).solve()
     assert result["stable"]
     assert abs(result["limit_fraction"] - 0.4) < 1e-5
