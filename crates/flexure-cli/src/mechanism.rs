@@ -1,14 +1,11 @@
 //! Subcommands on mechanism files: solve, buckle, draw.
 
 use crate::analyses::{SweepSpec, sweep_values};
-use crate::figures::{COLORS, Chart, Series, draw};
 use crate::options::number;
 use clap::Args;
 use flexure::estimate::{Accuracy, ErrorEstimate, joint_error};
-use flexure::kinematics::backbone;
 use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
-use flexure::mechanism::kinematics::Frames;
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, StabilityLimit, Sweep, sweep};
 use flexure::mechanism::{JointKind, Mechanism};
@@ -265,81 +262,12 @@ pub struct DrawArgs {
     sweep: Option<SweepSpec>,
 }
 
-/// Every drawable line of the mechanism in one configuration.
-fn shape(m: &Mechanism, s: &Solution, color: plotters::style::RGBColor, label: &str) -> Vec<Series> {
-    let f: Frames = body_frames(m, s);
-    let mut out = Vec::new();
-    let mut named = false;
-    let mut line = |points: Vec<(f64, f64)>, out: &mut Vec<Series>| {
-        let name = if named { "" } else { label };
-        named = true;
-        out.push(Series::line(name, points, color));
-    };
-    for (ji, j) in m.joints.iter().enumerate() {
-        let root = f.roots[ji];
-        // Parent body outline: from its frame origin to this joint's root.
-        let parent = f.bodies[j.parent].origin;
-        line(vec![(parent[0], parent[1]), (root.origin[0], root.origin[1])], &mut out);
-        if let JointKind::Flexure(fl) = &j.kind {
-            let q = &s.q[j.offset..j.offset + fl.order()];
-            let pts = backbone(fl, q, 41).iter().map(|p| root.point([p.x, p.y])).map(|p| (p[0], p[1])).collect();
-            line(pts, &mut out);
-        } else {
-            let c = f.bodies[j.child].origin;
-            line(vec![(root.origin[0], root.origin[1]), (c[0], c[1])], &mut out);
-        }
-    }
-    // Bodies reach out to every point attached to them.
-    let attach = |b: usize, r: [f64; 2]| {
-        let o = f.bodies[b].origin;
-        let p = f.bodies[b].point(r);
-        vec![(o[0], o[1]), (p[0], p[1])]
-    };
-    for t in &m.tendons {
-        for &(b, r) in &t.path {
-            line(attach(b, r), &mut out);
-        }
-        out.push(Series::line(
-            "",
-            t.path.iter().map(|&(b, r)| f.bodies[b].point(r)).map(|p| (p[0], p[1])).collect(),
-            COLORS[4],
-        ));
-    }
-    let scale = m
-        .joints
-        .iter()
-        .map(|j| if let JointKind::Flexure(fl) = &j.kind { fl.length() } else { 0.01 })
-        .fold(0.0, f64::max);
-    for (p, l) in m.forces.iter().zip(&s.loads.force) {
-        let at = f.bodies[p.body].point(p.at);
-        line(attach(p.body, p.at), &mut out);
-        let n = l[0].hypot(l[1]);
-        if n > 0.0 {
-            let tip = [at[0] + scale * l[0] / n, at[1] + scale * l[1] / n];
-            let (dx, dy) = ((tip[0] - at[0]) * 0.25, (tip[1] - at[1]) * 0.25);
-            out.push(Series::line(
-                "",
-                vec![
-                    (at[0], at[1]),
-                    (tip[0], tip[1]),
-                    (tip[0] - dx - dy * 0.5, tip[1] - dy + dx * 0.5),
-                    (tip[0], tip[1]),
-                    (tip[0] - dx + dy * 0.5, tip[1] - dy - dx * 0.5),
-                ],
-                COLORS[1],
-            ));
-        }
-    }
-    out
-}
-
-/// An SVG of the unloaded and loaded shapes.
+/// An SVG of the unloaded and loaded shapes, to one scale on both axes.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
     let settings = Settings::default();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
-    let mut series = shape(&m, &unloaded, plotters::style::RGBColor(160, 160, 160), "unloaded");
     let mut limit = None;
     let loaded: Vec<(String, Solution)> = match &args.sweep {
         Some(spec) => {
@@ -350,22 +278,429 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
                 crate::options::warn(w);
             }
             limit = out.stability_limit;
-            out.rows.into_iter().map(|(v, s)| (format!("{} = {v}", spec.parameter), s)).collect()
+            out.rows.into_iter().map(|(v, s)| (drawing::swept(&spec.parameter, v), s)).collect()
         }
         None => vec![("loaded".into(), solve(&m, &settings).map_err(err)?)],
     };
-    for (i, (label, s)) in loaded.iter().enumerate() {
-        series.extend(shape(&m, s, COLORS[[0, 2, 3, 5][i % 4]], label));
-    }
-    let title = format!("{}", args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy()));
-    draw(
-        &args.out,
-        &Chart { title: &title, x_label: "x (m)", y_label: "y (m)", log_y: false, equal_aspect: true },
-        &series,
-    )?;
+    let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
+    let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded);
+    crate::figures::write(&args.out, &figure)?;
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
+    if let Some(k) = per_newton {
+        v["force_scale_m_per_n"] = json!(k);
+    }
     if let Some(l) = &limit {
         v["stability_limit"] = limit_json(l);
     }
     Ok(v)
+}
+
+/// `flexure draw`: a mechanism's shapes as one figure. Each shape has its
+/// colour: its rigid links are filled hulls of every point attached to
+/// them, its flexures thick curves, its tendons thin lines through marked
+/// via points, its loads arrows (forces, weights, drawn to a stated scale)
+/// and turning arrows (moments).
+mod drawing {
+    use crate::figures::{Anchor, COLORS, Color, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch};
+    use flexure::kinematics::backbone;
+    use flexure::mechanism::statics::{Solution, body_frames};
+    use flexure::mechanism::{Closure, JointKind, Mechanism};
+    use std::f64::consts::TAU;
+
+    /// The colour of legend keys that stand for every shape.
+    const KEY: Color = Color(60, 60, 60);
+    const GROUND: Color = Color(90, 90, 90);
+    /// The loaded shapes' colours, in order.
+    const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4]];
+    /// Tendons are told apart by dash and via-point marker, not colour.
+    const TENDON_DASH: [Dash; 3] = [Dash::Solid, Dash::Dashed, Dash::Chain];
+    const VIA: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
+    const FLEXURE_WIDTH: f64 = 5.0;
+
+    /// `x` to four significant digits, without trailing zeros, with a true minus sign.
+    pub fn short(x: f64) -> String {
+        if x == 0.0 {
+            return "0".into();
+        }
+        let magnitude = x.abs().log10().floor();
+        let text = if (-3.0..5.0).contains(&magnitude) {
+            let t = format!("{x:.*}", (3.0 - magnitude).max(0.0) as usize);
+            if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t }
+        } else {
+            format!("{x:.3e}")
+        };
+        text.replace('-', "−")
+    }
+
+    /// The unit of a swept parameter (`tendon.NAME.tension`, `force.NAME.fx|fy|moment`, `gravity.x|y`).
+    fn unit(parameter: &str) -> &'static str {
+        if parameter.ends_with(".moment") {
+            "N·m"
+        } else if parameter.starts_with("gravity.") {
+            "m/s²"
+        } else {
+            "N"
+        }
+    }
+
+    /// A swept shape's name: `tendon.flexor.tension = 4 N`.
+    pub fn swept(parameter: &str, value: f64) -> String {
+        format!("{parameter} = {} {}", short(value), unit(parameter))
+    }
+
+    /// Every point attached to body `b`, in its frame: its origin (where
+    /// its joint holds it), the roots of the joints it carries, tendon via
+    /// points, load points, closure points and its centre of mass.
+    pub(super) fn attachments(m: &Mechanism, b: usize) -> Vec<[f64; 2]> {
+        let mut pts = Vec::new();
+        if b != 0 {
+            pts.push([0.0, 0.0]);
+        }
+        pts.extend(m.joints.iter().filter(|j| j.parent == b).map(|j| [j.origin.x, j.origin.y]));
+        pts.extend(m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
+        pts.extend(m.forces.iter().filter(|f| f.body == b).map(|f| f.at));
+        for c in &m.closures {
+            let (a, ra, other, rb) = match c {
+                Closure::Weld { a, a_origin, b, b_origin } => {
+                    (*a, [a_origin.x, a_origin.y], *b, [b_origin.x, b_origin.y])
+                }
+                Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
+            };
+            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
+        }
+        if m.bodies[b].mass > 0.0 {
+            pts.push(m.bodies[b].com);
+        }
+        pts
+    }
+
+    /// The convex hull, counter-clockwise (Andrew's monotone chain).
+    pub(super) fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+        p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        p.dedup();
+        if p.len() < 3 {
+            return p;
+        }
+        let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
+        let chain = |pts: &mut dyn Iterator<Item = &(f64, f64)>| {
+            let mut h: Vec<(f64, f64)> = Vec::new();
+            for &q in pts {
+                while h.len() >= 2 && cross(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
+                    h.pop();
+                }
+                h.push(q);
+            }
+            h.pop();
+            h
+        };
+        let mut lower = chain(&mut p.iter());
+        lower.extend(chain(&mut p.iter().rev()));
+        lower
+    }
+
+    /// A rigid link: the hull of its points grown by `r`, so that two
+    /// points make a bar and one a disc.
+    pub(super) fn slab(pts: &[[f64; 2]], r: f64) -> Vec<(f64, f64)> {
+        let round = (0..16).map(|k| TAU * f64::from(k) / 16.0).map(|a| (r * a.cos(), r * a.sin()));
+        hull(pts.iter().flat_map(|p| round.clone().map(move |d| (p[0] + d.0, p[1] + d.1))).collect())
+    }
+
+    /// The largest 1, 2 or 5 × 10ᵏ not above `x`.
+    fn round_down(x: f64) -> f64 {
+        let base = 10f64.powf(x.log10().floor());
+        [5.0, 2.0, 1.0].into_iter().map(|m| m * base).find(|s| *s <= x * (1.0 + 1e-9)).unwrap_or(base)
+    }
+
+    /// The forces (N) a solution applies: each point load's, then each weight's.
+    fn force_vectors(m: &Mechanism, s: &Solution) -> Vec<[f64; 2]> {
+        let g = s.loads.gravity;
+        let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| [b.mass * g[0], b.mass * g[1]]);
+        s.loads.force.iter().map(|l| [l[0], l[1]]).chain(weights).collect()
+    }
+
+    /// How a load reads in the legend: one value, or the range over the shapes.
+    fn values(v: &[f64], unit: &str) -> String {
+        let (lo, hi) = v.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        if v.is_empty() || lo == hi {
+            format!("{} {unit}", short(v.first().copied().unwrap_or(0.0)))
+        } else {
+            format!("{} to {} {unit}", short(lo), short(hi))
+        }
+    }
+
+    /// How a shape's loads are drawn: not at all (the unloaded shape), or
+    /// with force arrows `per_newton` m long per N (none if no force acts).
+    #[derive(Clone, Copy)]
+    enum Loads {
+        Hidden,
+        Drawn { per_newton: Option<f64> },
+    }
+
+    /// One shape's marks.
+    fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64, loads: Loads) {
+        let f = body_frames(m, s);
+        let at = |b: usize, r: [f64; 2]| {
+            let p = f.bodies[b].point(r);
+            (p[0], p[1])
+        };
+        for b in 1..m.bodies.len() {
+            let pts: Vec<[f64; 2]> = attachments(m, b).iter().map(|&r| f.bodies[b].point(r)).collect();
+            fig.marks.push(Mark::Path {
+                points: slab(&pts, thick),
+                stroke: Some(Stroke::solid(color, 1.5)),
+                fill: Some(Fill { color: color.tint(0.55), opacity: 0.55 }),
+                closed: true,
+            });
+        }
+        for (ji, j) in m.joints.iter().enumerate() {
+            let root = f.roots[ji];
+            let origin = (root.origin[0], root.origin[1]);
+            match &j.kind {
+                JointKind::Flexure(fl) => {
+                    let q = &s.q[j.offset..j.offset + fl.order()];
+                    let points =
+                        backbone(fl, q, 41).iter().map(|p| root.point([p.x, p.y])).map(|p| (p[0], p[1])).collect();
+                    let stroke = Some(Stroke::solid(color, FLEXURE_WIDTH));
+                    fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
+                }
+                JointKind::Revolute(_) => {
+                    fig.marks.push(Mark::Dot { at: origin, shape: Marker::Circle, radius: 6.0, color, filled: false });
+                }
+                JointKind::Prismatic(_) => {
+                    let points = vec![origin, at(j.child, [0.0, 0.0])];
+                    let stroke = Some(Stroke { color, width: 2.0, dash: Dash::Dashed });
+                    fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
+                    fig.marks.push(Mark::Dot { at: origin, shape: Marker::Square, radius: 6.0, color, filled: false });
+                }
+                JointKind::Fixed(_) => {}
+            }
+        }
+        for c in &m.closures {
+            if let Closure::Pin { a, a_at, .. } = c {
+                fig.marks.push(Mark::Dot {
+                    at: at(*a, *a_at),
+                    shape: Marker::Circle,
+                    radius: 5.0,
+                    color,
+                    filled: false,
+                });
+            }
+        }
+        for (k, t) in m.tendons.iter().enumerate() {
+            let points: Vec<(f64, f64)> = t.path.iter().map(|&(b, r)| at(b, r)).collect();
+            for &p in &points {
+                fig.marks.push(Mark::Dot { at: p, shape: VIA[k % VIA.len()], radius: 4.0, color, filled: false });
+            }
+            let stroke = Some(Stroke { color, width: 1.5, dash: TENDON_DASH[k % TENDON_DASH.len()] });
+            fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
+        }
+        let Loads::Drawn { per_newton } = loads else { return };
+        for ((b, r), v) in load_places(m).into_iter().zip(force_vectors(m, s)) {
+            let from = at(b, r);
+            if let (Some(k), true) = (per_newton, v != [0.0, 0.0]) {
+                let to = (from.0 + k * v[0], from.1 + k * v[1]);
+                fig.marks.push(Mark::Arrow { from, to, color, width: 2.5 });
+            }
+        }
+        for (p, l) in m.forces.iter().zip(&s.loads.force) {
+            if l[2] != 0.0 {
+                fig.marks.push(Mark::Turn { at: at(p.body, p.at), radius: 18.0, ccw: l[2] > 0.0, color, width: 2.0 });
+            }
+        }
+    }
+
+    /// Where each load of [`force_vectors`] acts: (body, point in its frame).
+    fn load_places(m: &Mechanism) -> Vec<(usize, [f64; 2])> {
+        let heavy = m.bodies.iter().enumerate().filter(|(_, b)| b.mass > 0.0).map(|(i, b)| (i, b.com));
+        m.forces.iter().map(|p| (p.body, p.at)).chain(heavy).collect()
+    }
+
+    /// Names beside the last shape's loads: past a force's head, beside a moment's turn.
+    fn load_names(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, per_newton: Option<f64>) {
+        let f = body_frames(m, s);
+        let names = m
+            .forces
+            .iter()
+            .map(|p| p.name.clone())
+            .chain(m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| format!("weight of {}", b.name)));
+        let moments = s.loads.force.iter().map(|l| l[2]).chain(std::iter::repeat(0.0));
+        for ((((b, r), name), v), moment) in load_places(m).into_iter().zip(names).zip(force_vectors(m, s)).zip(moments)
+        {
+            let p = f.bodies[b].point(r);
+            let n = v[0].hypot(v[1]);
+            let k = per_newton.unwrap_or(0.0);
+            if n == 0.0 && moment == 0.0 {
+                continue;
+            }
+            let (ux, uy) = if n > 0.0 { (v[0] / n, v[1] / n) } else { (0.7, 0.7) };
+            let at = (p[0] + k * v[0], p[1] + k * v[1]);
+            let anchor = if ux > 0.3 {
+                Anchor::Start
+            } else if ux < -0.3 {
+                Anchor::End
+            } else {
+                Anchor::Middle
+            };
+            // Beyond the head (px: y down), or beside the moment's turn.
+            let offset = if n > 0.0 { (10.0 * ux, -14.0 * uy + 6.0) } else { (24.0, -18.0) };
+            fig.marks.push(Mark::Label { at, offset, text: name, color, anchor });
+        }
+    }
+
+    /// The figure, and the arrows' scale (m per N) if any force is drawn.
+    pub fn figure(
+        m: &Mechanism,
+        title: &str,
+        unloaded: &Solution,
+        loaded: &[(String, Solution)],
+    ) -> (Figure, Option<f64>) {
+        let mut fig = Figure::new(title, "x (m)", "y (m)");
+        fig.equal_aspect = true;
+        fig.width = 1200.0;
+        fig.height = 760.0;
+        fig.place = Place::Outside;
+        fig.fit_height = true;
+
+        // Sizes from the unloaded mechanism: links 2.4 % of it thick, the
+        // longest force arrow about a quarter of it, at a round scale.
+        let f0 = body_frames(m, unloaded);
+        let mut pts: Vec<[f64; 2]> = (0..m.bodies.len())
+            .flat_map(|b| attachments(m, b).into_iter().map(move |r| (b, r)))
+            .map(|(b, r)| f0.bodies[b].point(r))
+            .collect();
+        pts.extend(m.joints.iter().zip(&f0.roots).map(|(_, r)| r.origin));
+        pts.extend(f0.bodies.iter().map(|b| b.origin));
+        let span = |i: usize| {
+            let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
+            if hi > lo { hi - lo } else { 0.0 }
+        };
+        let lengths = m.joints.iter().map(|j| if let JointKind::Flexure(fl) = &j.kind { fl.length() } else { 0.0 });
+        let extent = span(0).max(span(1)).max(lengths.fold(0.0, f64::max)).max(1e-9);
+        let thick = 0.012 * extent;
+        let largest =
+            loaded.iter().flat_map(|(_, s)| force_vectors(m, s)).map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
+        let per_newton = (largest > 0.0).then(|| round_down(0.25 * extent / largest));
+
+        // The ground, once: it does not move.
+        let ground = attachments(m, 0);
+        let (fill, stroke) = (Fill { color: GROUND.tint(0.4), opacity: 0.8 }, Stroke::solid(GROUND, 1.5));
+        if !ground.is_empty() {
+            let points = slab(&ground, thick);
+            fig.marks.push(Mark::Path { points, stroke: Some(stroke), fill: Some(fill), closed: true });
+        }
+        fig.legend.push(Entry { swatch: Swatch::Area(fill, stroke), label: "ground".into() });
+        let link = |c: Color| Swatch::Area(Fill { color: c.tint(0.55), opacity: 0.55 }, Stroke::solid(c, 1.5));
+        shape(&mut fig, m, unloaded, GRAY, thick, Loads::Hidden);
+        fig.legend.push(Entry { swatch: link(GRAY), label: "unloaded".into() });
+        for (i, (label, s)) in loaded.iter().enumerate() {
+            let color = SHAPES[i % SHAPES.len()];
+            shape(&mut fig, m, s, color, thick, Loads::Drawn { per_newton });
+            fig.legend.push(Entry { swatch: link(color), label: label.clone() });
+        }
+        if let Some((_, s)) = loaded.last() {
+            load_names(&mut fig, m, s, SHAPES[(loaded.len() - 1) % SHAPES.len()], per_newton);
+        }
+
+        // Keys for what every shape shows.
+        if m.joints.iter().any(|j| matches!(j.kind, JointKind::Flexure(_))) {
+            let swatch = Swatch::Line(Some(Stroke::solid(KEY, FLEXURE_WIDTH)), None);
+            fig.legend.push(Entry { swatch, label: "flexure".into() });
+        }
+        let revolute = m.joints.iter().any(|j| matches!(j.kind, JointKind::Revolute(_)));
+        let pin = m.closures.iter().any(|c| matches!(c, Closure::Pin { .. }));
+        if revolute || pin {
+            let swatch = Swatch::Line(None, Some((Marker::Circle, KEY, false)));
+            let label = match (revolute, pin) {
+                (true, true) => "revolute joint or pin",
+                (true, false) => "revolute joint",
+                _ => "pin",
+            };
+            fig.legend.push(Entry { swatch, label: label.into() });
+        }
+        if m.joints.iter().any(|j| matches!(j.kind, JointKind::Prismatic(_))) {
+            let swatch = Swatch::Line(
+                Some(Stroke { color: KEY, width: 2.0, dash: Dash::Dashed }),
+                Some((Marker::Square, KEY, false)),
+            );
+            fig.legend.push(Entry { swatch, label: "slider (its travel dashed)".into() });
+        }
+        for (k, t) in m.tendons.iter().enumerate() {
+            let tensions: Vec<f64> = loaded.iter().map(|(_, s)| s.loads.tension[k]).collect();
+            let stroke = Stroke { color: KEY, width: 1.5, dash: TENDON_DASH[k % TENDON_DASH.len()] };
+            fig.legend.push(Entry {
+                swatch: Swatch::Line(Some(stroke), Some((VIA[k % VIA.len()], KEY, false))),
+                label: format!("tendon {}: {}", t.name, values(&tensions, "N")),
+            });
+        }
+        for (i, p) in m.forces.iter().enumerate() {
+            let body = &m.bodies[p.body].name;
+            let loads: Vec<[f64; 3]> = loaded.iter().map(|(_, s)| s.loads.force[i]).collect();
+            let moments: Vec<f64> = loads.iter().map(|l| l[2]).collect();
+            let pushes = loads.iter().any(|l| l[0] != 0.0 || l[1] != 0.0);
+            if pushes || moments.iter().all(|&x| x == 0.0) {
+                let same = loads.windows(2).all(|w| w[0][..2] == w[1][..2]);
+                let value = match loads.first() {
+                    Some(l) if same => format!("({}, {}) N", short(l[0]), short(l[1])),
+                    _ => values(&loads.iter().map(|l| l[0].hypot(l[1])).collect::<Vec<_>>(), "N"),
+                };
+                let label = format!("force {} on {body}: {value}", p.name);
+                fig.legend.push(Entry { swatch: Swatch::Arrow(KEY), label });
+            }
+            if moments.iter().any(|&x| x != 0.0) {
+                let positive = moments.iter().all(|&x| x > 0.0);
+                let value = if positive || moments.iter().all(|&x| x < 0.0) {
+                    let sizes: Vec<f64> = moments.iter().map(|x| x.abs()).collect();
+                    format!("{} {}", values(&sizes, "N·m"), if positive { "counter-clockwise" } else { "clockwise" })
+                } else {
+                    format!("{} (+: counter-clockwise)", values(&moments, "N·m"))
+                };
+                let label = format!("moment {} on {body}: {value}", p.name);
+                fig.legend.push(Entry { swatch: Swatch::Turn(KEY), label });
+            }
+        }
+        if loaded.iter().any(|(_, s)| s.loads.gravity != [0.0, 0.0]) {
+            for b in m.bodies.iter().filter(|b| b.mass > 0.0) {
+                let w: Vec<f64> =
+                    loaded.iter().map(|(_, s)| b.mass * s.loads.gravity[0].hypot(s.loads.gravity[1])).collect();
+                fig.legend.push(Entry {
+                    swatch: Swatch::Arrow(KEY),
+                    label: format!("weight of {}: {}", b.name, values(&w, "N")),
+                });
+            }
+        }
+        if let Some(k) = per_newton {
+            fig.legend.push(Entry { swatch: Swatch::Note, label: format!("force arrows: {} m per N", short(k)) });
+        }
+        (fig, per_newton)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::drawing::{attachments, hull, slab};
+    use flexure::mechanism::file::from_toml;
+    use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames};
+
+    #[test]
+    fn a_hull_keeps_the_corners_only() {
+        let h = hull(vec![(0.0, 0.0), (1.0, 0.0), (0.5, 0.5), (1.0, 1.0), (0.0, 1.0), (0.5, 0.0)]);
+        assert_eq!(h, [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]);
+    }
+
+    /// The parallelogram's stage is drawn across both flexure tips: the
+    /// file puts them 0.04 m apart, at x = 0 and x = 0.04 when unloaded.
+    #[test]
+    fn a_stage_spans_every_leg() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
+        let m = from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let s = assemble_unloaded(&m, &Settings::default()).unwrap();
+        let f = body_frames(&m, &s);
+        let stage = m.body("stage").unwrap();
+        let pts: Vec<[f64; 2]> = attachments(&m, stage).iter().map(|&r| f.bodies[stage].point(r)).collect();
+        let r = 1e-3;
+        let xs: Vec<f64> = slab(&pts, r).iter().map(|p| p.0).collect();
+        let (lo, hi) = xs.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        // Closure solved to ~1e-12 m; the slab reaches r beyond each tip.
+        assert!((lo + r).abs() < 1e-9 && (hi - 0.04 - r).abs() < 1e-9, "{lo} {hi}");
+    }
 }

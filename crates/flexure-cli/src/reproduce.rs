@@ -3,7 +3,7 @@
 //! results.json holding every number in the report.
 
 use crate::analyses::exact_connection;
-use crate::figures::{COLORS, Chart, Series, draw};
+use crate::figures::{COLORS, Chart, Color, Dash, Marker, Series, draw};
 use clap::Args;
 use flexure::connect::connect;
 use flexure::kinematics::backbone;
@@ -25,6 +25,12 @@ pub struct ReproduceArgs {
     #[arg(long, default_value = "report")]
     out: PathBuf,
 }
+
+/// The exact solution in a chart: a wide pale band the model's lines run along.
+const EXACT: Color = Color(170, 170, 170);
+/// Curves that may overlap differ in dash and marker as well as colour.
+const DASHES: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Chain, Dash::Dotted];
+const MARKERS: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
 
 /// The issue's stand-in for Fig. 4's pose, which the paper does not print.
 const FIG4_POSE: Pose = Pose { phi: FRAC_PI_2, x: 0.55, y: 0.65 };
@@ -153,9 +159,12 @@ fn fig4_5(out: &Path, md: &mut String) -> Run<Value> {
             equal_aspect: true,
         },
         &[
-            Series::line("exact elastica", exact_shape, COLORS[5]),
-            Series::line("Smooth Curvature, N = 3", model_shape, COLORS[0]),
-            Series::line(&format!("{k_star} constant-curvature segments"), chain_shape, COLORS[1]),
+            Series::line("exact elastica", exact_shape, EXACT).width(8.0),
+            Series::line(&format!("{k_star} constant-curvature segments (joints marked)"), chain_shape, COLORS[1])
+                .width(1.5)
+                .marked(Marker::Square, 4, 0)
+                .hollow(),
+            Series::line("Smooth Curvature, N = 3", model_shape, COLORS[0]).dashed(Dash::Dashed).width(2.5),
         ],
     )?;
     text += &svg(
@@ -169,13 +178,16 @@ fn fig4_5(out: &Path, md: &mut String) -> Run<Value> {
             equal_aspect: false,
         },
         &[
-            Series::line("exact elastica", exact_curvature, COLORS[5]),
-            Series::line("Smooth Curvature, N = 3", profile(&model, &c.alpha, 101), COLORS[0]),
+            Series::line("exact elastica", exact_curvature, EXACT).width(8.0),
+            Series::line("Smooth Curvature, N = 3", profile(&model, &c.alpha, 101), COLORS[0])
+                .dashed(Dash::Dashed)
+                .width(2.5),
             Series::line(
                 &format!("{k_star} segments"),
                 profile(&chain_flexure, &chain_star.alpha, 40 * k_star),
                 COLORS[1],
-            ),
+            )
+            .width(1.5),
         ],
     )?;
     text += &svg(
@@ -190,7 +202,8 @@ fn fig4_5(out: &Path, md: &mut String) -> Run<Value> {
         },
         &[
             Series::dots("constant-curvature chain", chains.iter().map(|c| (c.0 as f64, c.2)).collect(), COLORS[1]),
-            Series::line("Smooth Curvature, N = 3", vec![(3.0, eta_model), (40.0, eta_model)], COLORS[0]),
+            Series::line("Smooth Curvature, N = 3", vec![(3.0, eta_model), (40.0, eta_model)], COLORS[0])
+                .dashed(Dash::Dashed),
         ],
     )?;
     md.push_str(&text);
@@ -266,8 +279,11 @@ fn fig7_8(out: &Path, md: &mut String) -> Run<Value> {
                 }));
             }
         }
-        pos_series.push(Series::line(&format!("case {name}"), pos, COLORS[i]));
-        ang_series.push(Series::line(&format!("case {name}"), ang, COLORS[i]));
+        let styled = |points| {
+            Series::line(&format!("case {name}: {what}"), points, COLORS[i]).dashed(DASHES[i]).marked(MARKERS[i], 1, 0)
+        };
+        pos_series.push(styled(pos));
+        ang_series.push(styled(ang));
     }
     let mut text = String::from("## Figs. 7–8: deflection under tip loads, to a 90° tip angle\n\n");
     text += "The paper's claim: within 1 % of L in position and 1° in angle in every case. \
@@ -387,8 +403,9 @@ fn fig12_13(out: &Path, md: &mut String) -> Run<Value> {
                 )
             })
             .collect();
-        shapes.push(Series::line(&format!("ω₀ = {:.2}", c), b.iter().map(|p| (p.x, p.y)).collect(), COLORS[i]));
-        shapes.push(Series::line("", ellipse, COLORS[i]));
+        let name = format!("ω₀ = {}", ["0", "π/4", "π/2", "3π/4", "π"][i]);
+        shapes.push(Series::line(&name, b.iter().map(|p| (p.x, p.y)).collect(), COLORS[i]).width(2.5));
+        shapes.push(Series::line("", ellipse, COLORS[i]).dashed(Dash::Dashed).width(1.5));
     }
     let mut text = String::from("## Figs. 12–13: small-load compliance against the compliance ODE\n\n");
     let _ = write!(
@@ -413,7 +430,7 @@ fn fig12_13(out: &Path, md: &mut String) -> Run<Value> {
         out,
         "fig12_ellipses.svg",
         &Chart {
-            title: "Fig. 12: shapes and tip compliance ellipses (unit force, ×0.6)",
+            title: "Fig. 12: shapes and tip compliance ellipses (dashed; unit force, ×0.6)",
             x_label: "x (m)",
             y_label: "y (m)",
             log_y: false,
@@ -486,7 +503,9 @@ fn convergence(out: &Path, md: &mut String) -> Run<Value> {
             pts.push((n as f64, p / e - 1.0));
         }
         table.push(json!({ "tip": tip.name(), "relative_error": pts.iter().map(|p| p.1).collect::<Vec<_>>() }));
-        series.push(Series::line(tip.name(), pts, COLORS[i]));
+        // Magnitudes: past N ≈ 8 the differences are rounding of either sign.
+        let magnitudes = pts.iter().map(|p| (p.0, p.1.abs())).collect();
+        series.push(Series::line(tip.name(), magnitudes, COLORS[i]).dashed(DASHES[i]).marked(MARKERS[i], 1, 0));
     }
     let exact = exact_connection(&unit(3)?, &FIG4_POSE).map_err(lib)?;
     let mut eta = Vec::new();
@@ -496,7 +515,9 @@ fn convergence(out: &Path, md: &mut String) -> Run<Value> {
     let mut text = String::from(
         "## Beyond the paper: convergence with the order N\n\n\
         With the default quadrature (N + 2 points) the straight flexure's load stiffness is integrated exactly, \
-        so buckling is a Rayleigh–Ritz problem: loads fall monotonically onto Euler's from above.\n\n",
+        so buckling is a Rayleigh–Ritz problem: loads fall monotonically onto Euler's from above. \
+        The chart shows magnitudes: near 10⁻¹⁶ they are double-precision rounding, of either sign, \
+        and a difference of exactly 0 has no place on a log axis.\n\n",
     );
     text += &svg(
         out,
@@ -504,7 +525,7 @@ fn convergence(out: &Path, md: &mut String) -> Run<Value> {
         &Chart {
             title: "Buckling load error against order",
             x_label: "order N",
-            y_label: "P_model / P_Euler − 1",
+            y_label: "|P_model / P_Euler − 1|",
             log_y: true,
             equal_aspect: false,
         },
