@@ -20,6 +20,8 @@ solvers poll for it once they run on the library's interruptible solver core).
 0.94
 """
 
+import errno
+import os
 from os import PathLike, fspath
 from pathlib import Path
 from typing import Optional, Tuple, Union
@@ -32,23 +34,52 @@ __all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "Accu
 
 
 class Mechanism:
-    """A flexure-jointed mechanism described in TOML (see the README's Mechanisms section)."""
+    """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository)."""
 
-    def __init__(self, inner: _Mechanism):
+    def __init__(self, inner: _Mechanism, source: Optional[str] = None):
         self._inner = inner
+        # The file it was read from, named in its errors.
+        self._source = source
+
+    @classmethod
+    def from_file(cls, path: Union[str, "PathLike[str]"]) -> "Mechanism":
+        """Reads a mechanism file. A missing file raises FileNotFoundError naming `path`;
+        an error in the file raises ValueError naming the file, line and column."""
+        if not isinstance(path, (str, PathLike)):
+            raise ValueError(f"path must be a str or os.PathLike naming a mechanism file, got {type(path).__name__}")
+        name = fspath(path)
+        if not isinstance(name, str):
+            raise ValueError(f"path must name the file as text, got {type(name).__name__}")
+        try:
+            text = Path(name).read_text(encoding="utf-8")
+        except FileNotFoundError:
+            where = f"no such mechanism file (relative paths start at {os.getcwd()})"
+            raise FileNotFoundError(errno.ENOENT, where, name) from None
+        except UnicodeDecodeError as e:
+            raise ValueError(f"{name}: not UTF-8 text ({e.reason} at byte {e.start})") from None
+        try:
+            inner = _Mechanism.from_text(text)
+        except ValueError as e:
+            raise ValueError(f"{name}: {e}") from None
+        return cls(inner, name)
 
     @classmethod
     def from_toml(cls, text_or_path: Union[str, "PathLike[str]"]) -> "Mechanism":
-        """Parses TOML text, or reads it from a path (a `Path`, or a string naming an existing file)."""
+        """Parses TOML text, or reads a file as `from_file` does: a `Path`, a string naming an
+        existing file, or a one-line string ending in ".toml" (a missing file then raises
+        FileNotFoundError rather than being parsed as TOML)."""
         if isinstance(text_or_path, PathLike) or (
-            isinstance(text_or_path, str) and "\n" not in text_or_path and Path(text_or_path).is_file()
+            isinstance(text_or_path, str)
+            and "\n" not in text_or_path
+            and (
+                Path(text_or_path).is_file()
+                or (text_or_path.strip().endswith(".toml") and not any(c in text_or_path for c in "=#["))
+            )
         ):
-            text = Path(fspath(text_or_path)).read_text()
-        elif isinstance(text_or_path, str):
-            text = text_or_path
-        else:
-            raise ValueError(f"text_or_path must be TOML text or a path, got {type(text_or_path).__name__}")
-        return cls(_Mechanism.from_text(text))
+            return cls.from_file(text_or_path)
+        if isinstance(text_or_path, str):
+            return cls(_Mechanism.from_text(text_or_path))
+        raise ValueError(f"text_or_path must be TOML text or a path, got {type(text_or_path).__name__}")
 
     @property
     def dof(self) -> int:
@@ -61,5 +92,12 @@ class Mechanism:
         estimates {flexure joint: dict as `Flexure.error_estimate` returns, or None}.
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
-        naming it, as does one whose error could not be estimated."""
-        return self._inner.solve(accuracy)
+        naming it, as does one whose error could not be estimated. Errors name the
+        mechanism's file, if it was read from one."""
+        try:
+            return self._inner.solve(accuracy)
+        except (ValueError, ConvergenceError) as e:
+            # Name the file, unless the error is about the `accuracy` argument.
+            if self._source is not None and e.args and not str(e.args[0]).startswith("accuracy"):
+                e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
+            raise

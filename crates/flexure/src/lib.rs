@@ -1,5 +1,15 @@
 #![doc = include_str!("../../../README.md")]
 //!
+//! # The paper
+//!
+//! The model is that of L. U. Odhner and A. M. Dollar, "The Smooth Curvature
+//! Model: An Efficient Representation of Euler–Bernoulli Flexures as Robot
+//! Joints", *IEEE Transactions on Robotics* 28(4), 2012,
+//! [doi:10.1109/TRO.2012.2193232](https://doi.org/10.1109/TRO.2012.2193232).
+//! "Eq. N", "Sec. N" and "Table I" in these docs are that paper's. Where
+//! its print is wrong the code follows the derivation; `ERRATA.md` in the
+//! repository lists each correction and the test that checks it.
+//!
 //! # Conventions
 //!
 //! This section is the one place where units and signs are defined; every
@@ -17,15 +27,17 @@
 //!   $(F_x, F_y)$ is given in the root frame. The paper's polar form (Sec.
 //!   III-C) is $F_x = -P\sin\theta$, $F_y = P\cos\theta$
 //!   ([`TipLoad::polar`]). Buckling loads are compressive, along the root's
-//!   $-x$ axis, and reported as positive numbers.
+//!   $-x$ axis, and reported as positive numbers. In a mechanism file, forces
+//!   are given in the ground frame and their points in the body's frame
+//!   (`docs/mechanism-format.md`).
 //! - **Coordinates**: joint coordinates $\alpha \in \mathbb R^N$ are the
 //!   curvature coefficients in the shifted-Legendre basis (Eq. 8, any
 //!   order): $\hat\omega(\alpha, s) = \frac1L\sum_i \alpha_i \tilde P_{i-1}(s/L)$.
 //!   The rest shape $\kappa$ uses the same basis; $\alpha_1$ is the tip angle.
-//! - **Paper corrections**: equations follow `ERRATA.md` of the paper: the
-//!   energy Hessian is $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$;
-//!   the clamped–pinned Euler load is $20.1907\,EI/L^2$; a tendon's potential
-//!   is $+f\lvert\Delta x\rvert$.
+//! - **Paper corrections** (`ERRATA.md`): the energy Hessian is
+//!   $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$; the clamped–pinned
+//!   Euler load is $20.1907\thinspace EI/L^2$; a tendon's potential is
+//!   $+f\lvert\Delta x\rvert$.
 //!
 //! # Layout
 //!
@@ -35,7 +47,11 @@
 //! [`Scalar`], so `num-dual` numbers differentiate through the same code.
 //! For `f64`, the quadrature nodes' sines and cosines are computed all at
 //! once by [`sincos`] (vectorized, within 1 ulp of libm), which is why an
-//! evaluation can cost less than five calls of libm's `sin_cos`.
+//! evaluation can cost less than five calls of libm's `sin_cos`. The model's
+//! solves (tip loads, tendons, minimum-energy connections, mechanisms) share
+//! one solver core, [`solver`]; the exact elastica, a reference, shoots on
+//! its own. `ARCHITECTURE.md` in the repository describes the layers, where
+//! each of the paper's equations lives, and the solver's policies.
 
 pub mod basis;
 pub mod buckling;
