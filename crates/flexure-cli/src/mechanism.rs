@@ -207,8 +207,8 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
                     flagged.push(*value);
                 }
             }
-            v["flagged"] = json!(flagged);
             if !flagged.is_empty() {
+                v["flagged"] = json!(flagged);
                 crate::options::warn(format!(
                     "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
                     args.file.display(),

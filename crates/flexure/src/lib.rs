@@ -64,7 +64,6 @@ pub mod joint;
 pub mod kinematics;
 pub mod linalg;
 pub mod mechanism;
-pub mod newton;
 pub mod ode;
 pub mod quadrature;
 pub mod reference;

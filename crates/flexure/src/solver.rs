@@ -20,10 +20,10 @@
 //!   [`Settings::max_iterations`] Newton iterations of at most 30 halvings.
 //! - **On the loading branch**: a step may turn no cross-section or body by
 //!   more than [`Settings::max_rotation_per_step`] (the problem's
-//!   [`Problem::distance`]), and a step that lands on an unstable state
-//!   while $\lambda$ still increases (a jump to another branch, not a fold)
-//!   is retried shorter. Only when no step down to `min_step` avoids it is
-//!   the loss of stability accepted: a bifurcation on the path itself.
+//!   [`Problem::distance`]), and a step whose stability differs from the
+//!   last state's without a fold between them (a jump to another branch) is
+//!   retried shorter. Only when no step down to `min_step` avoids it is the
+//!   change accepted: a bifurcation on the path itself.
 //! - **Honest**: the result says whether the end state is stable and the
 //!   load fraction where stability was first lost ([`Path::limit`]).
 //! - **Interruptible**: every step and iteration polls the hook set by
@@ -350,7 +350,11 @@ fn correct<T: Scalar, P: Problem<T>>(
             }
             shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
             if shift > 1e2 {
-                return Err(fail(iteration));
+                return Err(Error::Singular {
+                    what: format!(
+                        "{name}: the Newton matrix is singular after {iteration} iterations (residual {residual:.3e} {unit}): a motion nothing resists, or constraints that cannot all be met"
+                    ),
+                });
             }
         }
         for (s, r) in step[..m].iter_mut().zip(&trial_residual[..m]) {
@@ -543,9 +547,10 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
         ws.previous_tangent.copy_from_slice(&ws.tangent);
         let has_tangent = tangent(ws, problem, lambda_weight);
         let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
-        if path.stable && !stable && !fold && h * 0.5 >= min_step {
-            // Stable to unstable while λ still rises: a jump to another
-            // branch, or a bifurcation; shorter steps tell them apart.
+        if path.stable != stable && !fold && h * 0.5 >= min_step {
+            // A change of stability without a fold: a jump to another branch
+            // (onto the loading path behind a snap, or off it), or a
+            // bifurcation on the path; shorter steps tell them apart.
             ws.tangent.copy_from_slice(&ws.previous_tangent);
             h *= 0.5;
             continue;
