@@ -63,38 +63,66 @@ struct Row {
     flagged: bool,
 }
 
-fn main() {
-    let cases: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(2000);
+/// The sweep's outcome: one row per compared case, and the cases left out.
+pub struct Sweep {
+    rows: Vec<Row>,
+    cases: usize,
+    model_failed: usize,
+    exact_failed: usize,
+    exact_unstable: usize,
+}
+
+impl Sweep {
+    /// (cases whose true position error exceeds 1e-3 L, of them those estimated within 3×).
+    pub fn honesty(&self) -> (usize, usize) {
+        let large: Vec<&Row> = self.rows.iter().filter(|r| r.true_position > 1e-3).collect();
+        let honest =
+            large.iter().filter(|r| (1.0 / 3.0..=3.0).contains(&(r.estimate_position / r.true_position))).count();
+        (large.len(), honest)
+    }
+
+    /// Cases truly outside the target but not flagged.
+    pub fn missed(&self, t: &Accuracy) -> usize {
+        self.rows.iter().filter(|r| !r.flagged && (r.true_position > t.position || r.true_angle > t.angle)).count()
+    }
+
+    /// Cases compared, and cases left out.
+    pub fn counts(&self) -> (usize, usize) {
+        (self.rows.len(), self.model_failed + self.exact_failed + self.exact_unstable)
+    }
+}
+
+/// Runs `cases` seeded random cases.
+pub fn sweep(cases: usize) -> Sweep {
     let mut rng = Rng(20261130);
     let target = Accuracy::default();
-    let mut rows = Vec::new();
-    let (mut model_failed, mut exact_failed, mut exact_unstable) = (0, 0, 0);
+    let mut out = Sweep { rows: Vec::new(), cases, model_failed: 0, exact_failed: 0, exact_unstable: 0 };
     for _ in 0..cases {
         let (_name, load, kappa) = case(&mut rng);
         let f = Flexure::new(1.0, 1.0, 3).and_then(|f| f.with_rest(&kappa)).expect("a valid flexure");
         let mut data = Statics::new(&f);
         if deflect(&f, &load, &mut data, &Default::default()).is_err() {
-            model_failed += 1;
+            out.model_failed += 1;
             continue;
         }
         let alpha = data.alpha().to_vec();
         let model = data.pose_root_tip();
         let Ok(e) = deflect_error(&f, &load, &alpha, &target) else {
-            model_failed += 1;
+            out.model_failed += 1;
             continue;
         };
         let exact = match elastica::deflect(&f, &load, &Default::default()) {
             Ok(s) if s.stable => s.pose,
             Ok(_) => {
-                exact_unstable += 1;
+                out.exact_unstable += 1;
                 continue;
             }
             Err(_) => {
-                exact_failed += 1;
+                out.exact_failed += 1;
                 continue;
             }
         };
-        rows.push(Row {
+        out.rows.push(Row {
             angle: exact.phi.abs(),
             true_position: (model.x - exact.x).hypot(model.y - exact.y),
             true_angle: (model.phi - exact.phi).abs(),
@@ -102,7 +130,13 @@ fn main() {
             flagged: e.flagged,
         });
     }
-    print_report(&rows, cases, model_failed, exact_failed, exact_unstable, &target);
+    out
+}
+
+fn main() {
+    let cases: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(2000);
+    let s = sweep(cases);
+    print_report(&s.rows, s.cases, s.model_failed, s.exact_failed, s.exact_unstable, &Accuracy::default());
 }
 
 fn print_report(rows: &[Row], cases: usize, model_failed: usize, exact_failed: usize, unstable: usize, t: &Accuracy) {
@@ -151,13 +185,7 @@ fn print_report(rows: &[Row], cases: usize, model_failed: usize, exact_failed: u
     println!("| flagged | {} | {} |", count(true, false), count(true, true));
     println!("| not flagged | {} | {} |", count(false, false), count(false, true));
     let large: Vec<&Row> = rows.iter().filter(|r| r.true_position > 1e-3).collect();
-    let honest = large
-        .iter()
-        .filter(|r| {
-            let ratio = r.estimate_position / r.true_position;
-            (1.0 / 3.0..=3.0).contains(&ratio)
-        })
-        .count();
+    let honest = large.iter().filter(|r| (1.0 / 3.0..=3.0).contains(&(r.estimate_position / r.true_position))).count();
     let worst_low = large.iter().map(|r| r.estimate_position / r.true_position).fold(f64::INFINITY, f64::min);
     let worst_high = large.iter().map(|r| r.estimate_position / r.true_position).fold(0.0, f64::max);
     println!("\n## Honesty\n");

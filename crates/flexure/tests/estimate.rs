@@ -94,3 +94,22 @@ fn bad_accuracy_is_named() {
     let err = deflect_error(&f, &TipLoad::default(), &[0.0; 3], &bad).unwrap_err();
     assert!(err.to_string().contains("accuracy"), "{err}");
 }
+
+/// The validation sweep (`examples/validation.rs`, which writes
+/// VALIDATION.md), on 300 of its seeded cases: against the exact elastica,
+/// the estimate is within 3× of the true error in at least 90 % of the
+/// cases whose true error exceeds 1e-3 L (the Trust issue's bound), and no
+/// answer truly outside 1 % L or 1° goes unflagged.
+#[path = "../examples/validation.rs"]
+#[allow(dead_code)]
+mod validation;
+
+#[test]
+fn validation_sweep_is_honest() {
+    let sweep = validation::sweep(300);
+    let (compared, left_out) = sweep.counts();
+    assert!(compared >= 290, "{compared} compared, {left_out} left out");
+    let (large, honest) = sweep.honesty();
+    assert!(large >= 100 && honest as f64 >= 0.9 * large as f64, "{honest} of {large} within 3x");
+    assert_eq!(sweep.missed(&Accuracy::default()), 0, "answers outside the target left unflagged");
+}
