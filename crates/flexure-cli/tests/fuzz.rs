@@ -1006,16 +1006,15 @@ fn fuzz_library() {
     report("library", &[("library", tally)], start);
 }
 
-/// Calls the fuzzer found running past [`SOFT_BOUND`], kept as explicit
-/// cases (from earlier seeds and weights, so `fuzz_library` may not draw them). The
-/// exact elastica's `connect` does not poll the interrupt hook; the
-/// stability limit bisects over full deflections, each of order 64 or of an
-/// absurd flexure taking seconds. Reachable from the command line:
-/// `flexure deflect --order 64 --fx 1.78 --fy -3.95 --moment 3.94 --limit`
-/// took 23.5 s. Ignored while they fail (the Trust issue's hangs, being
-/// bounded in the solver core): `cargo test -p flexure-cli --test fuzz -- --ignored`.
+/// Calls the fuzzer found running past [`SOFT_BOUND`] (from earlier seeds
+/// and weights, so `fuzz_library` may not draw them), kept as explicit
+/// cases: the exact elastica's `connect` from a far guess (13.8 s before its
+/// Newton iterates were bounded and it polled the interrupt hook), and the
+/// stability limit of order-64 and absurd flexures (each bisection step a
+/// full deflection, before it started from the path's own limit). Reachable
+/// from the command line: `flexure deflect --order 64 --fx 1.78 --fy -3.95
+/// --moment 3.94 --limit` took 23.5 s.
 #[test]
-#[ignore = "library calls past the time bound: elastica::connect ignores the interrupt hook, stability_limit bisects for seconds (Trust issue)"]
 fn known_slow_library_calls() {
     type Case = (&'static str, fn());
     let cases: Vec<Case> = vec![

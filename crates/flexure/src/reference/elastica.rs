@@ -511,6 +511,14 @@ impl Problem<f64> for Through<'_> {
         dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
         let (l, t) = (self.flexure.length(), self.target);
+        // Iterates no connection needs are refused before integrating: a
+        // shot under such loads coils and costs steps in proportion to them.
+        let ei = self.flexure.ei();
+        if l * (z[1].hypot(z[2]) / ei).sqrt() > MAX_FORCE_GROWTH || z[0].abs() * l / ei > MAX_FORCE_GROWTH.powi(2) {
+            return Err(Error::Singular {
+                what: "exact connection: a Newton iterate beyond any connection's load".into(),
+            });
+        }
         if let Some(jac) = jacobian {
             let v = |i: usize| DualSVec64::<3>::from_re(z[i]).derivative(i);
             let tip = shoot_with_energy(self.flexure, v(0), v(1), v(2), &self.ode)?;
