@@ -7,7 +7,7 @@ Every ratio compares two benchmarks measured in the same run.
 import json, os, platform, subprocess, sys, datetime
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CMD = ["cargo", "bench", "-p", "flexure", "--bench", "speed"]
+CMD = ["cargo", "bench", "-p", "flexure-bench", "--bench", "speed"]
 
 
 def estimate(bench_id):

@@ -1,7 +1,7 @@
 //! Speed against the floor: five sin/cos pairs, the cost of one evaluation's
 //! trigonometry; and against exact beam theory solving the same task.
 //!
-//! `cargo bench -p flexure --bench speed`; ratios are in BENCHMARKS.md.
+//! `cargo bench -p flexure-bench --bench speed`; ratios are in BENCHMARKS.md.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use flexure::connect::connect;
