@@ -17,8 +17,8 @@
 //! with 0 or 2, a failure carrying a message on stderr; print only finite
 //! numbers (no `null`, `NaN` or `inf`), and a library `Ok` holds only
 //! finite numbers. Each test prints a summary line (`cargo test -p
-//! flexure-cli --test fuzz -- --nocapture`): the cases per family and the
-//! failures, grouped by kind with a reproducing case each.
+//! flexure-cli --test all fuzz:: -- --nocapture`): the cases per family and
+//! the failures, grouped by kind with a reproducing case each.
 
 use flexure::kinematics::{Level, backbone, par_poses_root_tip};
 use flexure::reference::{compliance as exact_compliance, elastica};

@@ -1,0 +1,56 @@
+//! The library's integration tests: one module per subject (one file in
+//! `tests/`), linked into one test binary rather than one per file, so a
+//! change to the library rebuilds one test crate, not twenty-two. Cargo's
+//! auto-discovery of `tests/*.rs` is off (`autotests = false` in
+//! Cargo.toml), so a new file is added below; `every_test_file_is_compiled`
+//! fails until it is. `allocation.rs` is a binary of its own: its counting
+//! global allocator would serve every test here.
+//!
+//! One subject: `cargo test -p flexure --test all basis::`.
+
+mod basis;
+mod buckling;
+mod compliance;
+mod connect;
+mod coordinates;
+mod elastica;
+mod energy;
+mod estimate;
+mod format;
+mod kinematics;
+mod mechanism;
+mod mechanism_derivatives;
+mod mechanism_files;
+mod ode;
+mod quadrature;
+mod reference;
+mod segments;
+mod sincos;
+mod solver;
+mod stages;
+mod statics;
+mod tendon;
+
+/// Every `tests/*.rs` file is a module here or a `[[test]]` target of
+/// Cargo.toml: with auto-discovery off, a file named in neither would
+/// silently never run.
+#[test]
+fn every_test_file_is_compiled() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::fs::read_to_string(dir.join("tests/all.rs")).unwrap();
+    let manifest = std::fs::read_to_string(dir.join("Cargo.toml")).unwrap();
+    let mut files = 0;
+    for entry in std::fs::read_dir(dir.join("tests")).unwrap() {
+        let entry = entry.unwrap();
+        let name = entry.file_name().into_string().unwrap();
+        let (module, path) = match name.strip_suffix(".rs") {
+            Some(stem) => (format!("mod {stem};"), format!("path = \"tests/{name}\"")),
+            None if entry.path().is_dir() => (String::new(), format!("path = \"tests/{name}/")),
+            None => continue,
+        };
+        files += 1;
+        let declared = root.lines().any(|line| line.trim() == module) || manifest.contains(&path);
+        assert!(declared, "tests/{name} belongs to no test target: add `{module}` to tests/all.rs");
+    }
+    assert!(files >= 2, "only {files} test files found in {}", dir.display());
+}
