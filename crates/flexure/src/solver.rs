@@ -491,6 +491,8 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     let mut h = full;
     let mut rotation_rate = unit_rotation(problem, ws);
     let mut last_residual = start.residual;
+    // Why the last rejected step failed, for the error if the steps run out.
+    let mut cause = Cause::Corrector;
     while path.steps < settings.max_steps {
         if interrupted() {
             return Err(Error::Interrupted { load_fraction: lambda });
@@ -524,20 +526,29 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             Err(Error::NoConvergence { iterations, residual, .. }) => {
                 path.iterations += iterations;
                 last_residual = residual;
+                cause = Cause::Corrector;
                 None
             }
             Err(e @ Error::InvalidParameter { .. }) => return Err(e),
-            Err(_) => None,
+            Err(e) => {
+                cause = Cause::Failed(e);
+                None
+            }
             Ok((report, new_lambda)) => {
                 path.iterations += report.iterations;
                 let turned = problem.distance(&ws.trial[..n], &ws.x);
-                if turned > settings.max_rotation_per_step { None } else { Some((report, new_lambda)) }
+                if turned > settings.max_rotation_per_step {
+                    cause = Cause::Turned;
+                    None
+                } else {
+                    Some((report, new_lambda))
+                }
             }
         };
         let Some((report, new_lambda)) = outcome else {
             h *= 0.5;
             if h < min_step {
-                return Err(stalled(problem, lambda, &path, last_residual));
+                return Err(stalled(problem, lambda, &path, last_residual, &cause.to_string()));
             }
             continue;
         };
@@ -586,7 +597,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     }
     match path.limit {
         Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
-        _ => Err(stalled(problem, lambda, &path, last_residual)),
+        _ => Err(stalled(problem, lambda, &path, last_residual, "the step limit max_steps was reached")),
     }
 }
 
@@ -613,8 +624,29 @@ fn fold_peak(l0: f64, l1: f64, d0: f64, d1: f64, h: f64) -> f64 {
     roots.iter().filter(|t| (0.0..=1.0).contains(*t)).map(|&t| hermite(t)).fold(l0.max(l1), f64::max)
 }
 
-fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64) -> Error {
+/// Why a continuation step was rejected (formatted only when the continuation stalls).
+enum Cause {
+    /// Newton did not converge on the step.
+    Corrector,
+    /// The corrected state turned a section by more than the bound.
+    Turned,
+    /// The problem could not be evaluated there.
+    Failed(Error),
+}
+
+impl std::fmt::Display for Cause {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cause::Corrector => write!(f, "the Newton corrector did not converge"),
+            Cause::Turned => write!(f, "every shorter step turned a section too far"),
+            Cause::Failed(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64, cause: &str) -> Error {
     Error::ContinuationStalled {
+        cause: cause.to_string(),
         solver: problem.name(),
         load_fraction: lambda.clamp(0.0, 1.0),
         steps: path.steps,
