@@ -437,8 +437,8 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
 ///
 /// The second variation of the potential energy about the shape $\phi(s)$,
 ///
-/// $$\delta^2 E = \int_0^L EI\thinspace\delta\phi^{\prime 2} +
-/// (F_x\cos\phi + F_y\sin\phi)\thinspace\delta\phi^2\thinspace ds,
+/// $$\delta^2 E = \int_0^L \big[EI\thinspace\delta\phi^{\prime 2} +
+/// (F_x\cos\phi + F_y\sin\phi)\thinspace\delta\phi^2\big]\thinspace ds,
 /// \qquad \delta\phi(0) = 0,$$
 ///
 /// is positive definite exactly when the Jacobi field $h = \partial\phi/\partial M_0$
