@@ -5,7 +5,7 @@
 //! answer's error is estimated against a **reference model** that refines
 //! both: order $N_r = \min(2N, 64)$ (at least $N + 3$) and a rule of
 //! $Q_r = N_r + 6 + \lceil V\rceil$ points, where $V$ is the total turning
-//! $\int_0^L|\phi'|\,ds$ of the answer's shape, so that $\cos\phi$ and
+//! $\int_0^L|\phi^{\prime}|\thinspace ds$ of the answer's shape, so that $\cos\phi$ and
 //! $\sin\phi$ are integrated to rounding however far the flexure winds.
 //! The reference starts from the answer (its coordinates padded with zeros:
 //! the shifted-Legendre basis is nested) and one Newton solve at the full
@@ -74,7 +74,7 @@ impl ErrorEstimate {
     }
 }
 
-/// Total turning $\int_0^1|\partial_t\phi|\,dt$ (rad) of the shape `alpha`, sampled at 129 points.
+/// Total turning $\int_0^1|\partial_t\phi|\thinspace dt$ (rad) of the shape `alpha`, sampled at 129 points.
 pub fn turning(flexure: &Flexure, alpha: &[f64]) -> f64 {
     let mut psi = vec![0.0; flexure.order()];
     let mut angle = |t: f64| {

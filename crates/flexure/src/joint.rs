@@ -4,7 +4,7 @@ use crate::basis;
 use crate::error::{Error, Result, positive};
 use crate::quadrature::GaussLegendre;
 
-/// Bending stiffness $EI = \frac{E}{1-\nu^2}\,\frac{b h^3}{12}$ of a
+/// Bending stiffness $EI = \frac{E}{1-\nu^2}\thinspace\frac{b h^3}{12}$ of a
 /// rectangular section (Eq. 25); without `poisson`, $EI = E b h^3 / 12$.
 ///
 /// The $1/(1-\nu^2)$ factor is the plate (wide flexure) modulus.

@@ -8,8 +8,8 @@
 //! $\lambda = 1$ in the arc length of $(x, \lambda)$, so it passes limit
 //! points (snap-through): at a fold, where the path turns back in
 //! $\lambda$, the tangent comes from the bordered system
-//! $$\begin{bmatrix} \partial_x r & \partial_\lambda r \\ t_{prev}^T W & \end{bmatrix}
-//! t = \begin{bmatrix} 0 \\ 1\end{bmatrix},$$
+//! $$\begin{bmatrix} \partial_x r & \partial_\lambda r \cr t_{prev}^T W & \end{bmatrix}
+//! t = \begin{bmatrix} 0 \cr 1\end{bmatrix},$$
 //! which stays regular there. Each step predicts along the tangent, then
 //! Newton corrects on the hyperplane orthogonal to it; the last step lands
 //! on $\lambda = 1$ exactly with $\lambda$ held fixed.
@@ -404,7 +404,7 @@ fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64
 /// Damped Newton on $r(x, \lambda) = 0$ at fixed $\lambda$, from `ws.x`
 /// (updated in place; `ws.jacobian` holds $\partial_x r$ at the solution).
 ///
-/// Each step solves $\partial_x r\,\delta = -r$ by LU (shifting a singular
+/// Each step solves $\partial_x r\thinspace\delta = -r$ by LU (shifting a singular
 /// matrix along its diagonal), then halves until $\max|r|$ decreases.
 /// Stops with [`Error::NoConvergence`] at the iteration limit.
 pub fn newton<T: Scalar, P: Problem<T>>(
@@ -680,7 +680,7 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
 
 /// The tangent at the state just evaluated (its Jacobian and load
 /// derivative in `ws`), oriented along `ws.previous_tangent`:
-/// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\,t = (0, 1)$.
+/// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\thinspace t = (0, 1)$.
 /// False where that bordered matrix is singular.
 fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> bool {
     let n = ws.n;
