@@ -4,9 +4,10 @@
 //! $N$) and the quadrature of the tip position (Eqs. 14–15, $Q$ points). An
 //! answer's error is estimated against a **reference model** that refines
 //! both: order $N_r = \min(2N, 64)$ (at least $N + 3$) and a rule of
-//! $Q_r = N_r + 6 + \lceil V\rceil$ points, where $V$ is the total turning
-//! $\int_0^L|\phi^{\prime}|\thinspace ds$ of the answer's shape, so that $\cos\phi$ and
-//! $\sin\phi$ are integrated to rounding however far the flexure winds.
+//! $Q_r = N_r + 6 + \lceil V\rceil$ points, where $V = \sum_i|\alpha_i|$
+//! bounds the total turning $\int_0^L|\phi^{\prime}|\thinspace ds$ of the answer's
+//! shape ([`turning`]), so that $\cos\phi$ and $\sin\phi$ are integrated to
+//! rounding however far the flexure winds.
 //! The reference starts from the answer (its coordinates padded with zeros:
 //! the shifted-Legendre basis is nested) and one Newton solve at the full
 //! load corrects it, which costs a few evaluations at the higher order,
