@@ -33,7 +33,7 @@ pub fn shifted_legendre(t: f64, out: &mut [f64]) {
     }
 }
 
-/// Fills `out[n]` with the angle shape $\psi_n(t) = \int_0^t \tilde P_n(\tau)\,d\tau$.
+/// Fills `out[n]` with the angle shape $\psi_n(t) = \int_0^t \tilde P_n(\tau)\thinspace d\tau$.
 ///
 /// $\psi_0 = t$ and, for $n \ge 1$,
 /// $\psi_n = \frac{\tilde P_{n+1} - \tilde P_{n-1}}{2(2n+1)}$, so
@@ -57,7 +57,7 @@ pub fn angle_shapes(t: f64, out: &mut [f64]) {
     }
 }
 
-/// $\int_0^1 \tilde P_n^2\,dt = \frac{1}{2n+1}$: the weight of coefficient
+/// $\int_0^1 \tilde P_n^2\thinspace dt = \frac{1}{2n+1}$: the weight of coefficient
 /// $n$ (0-based) in the bending energy, Eq. 9.
 pub fn energy_weight(n: usize) -> f64 {
     1.0 / (2 * n + 1) as f64

@@ -64,7 +64,7 @@ pub struct Buckling {
     pub mode: DVector<f64>,
 }
 
-/// Smallest positive $P$ with $\det\big(Z^T(\nabla\nabla U + P\,\nabla\nabla x)Z\big) = 0$,
+/// Smallest positive $P$ with $\det\big(Z^T(\nabla\nabla U + P\thinspace\nabla\nabla x)Z\big) = 0$,
 /// where the columns of $Z$ span the perturbations $\delta\alpha$ the tip
 /// constraint admits (Eqs. 39–44, with $L P$ for $L P_{crit}$ per the errata).
 ///
@@ -115,7 +115,7 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
     Ok(Buckling { critical_load: 1.0 / mu, mode })
 }
 
-/// Orthonormal basis of $\{\delta\alpha : J_r\,\delta\alpha = 0\ \forall r \in \text{rows}\}$.
+/// Orthonormal basis of $\lbrace\delta\alpha : J_r\thinspace\delta\alpha = 0\ \forall r \in \text{rows}\rbrace$.
 fn admissible_basis(jacobian: &DMatrix<f64>, rows: &[usize], n: usize) -> DMatrix<f64> {
     let g = DMatrix::from_fn(rows.len(), n, |r, c| jacobian[(rows[r], c)]);
     crate::linalg::null_space(&g)

@@ -41,8 +41,9 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 /// The coordinates of least energy $U(\alpha)$ whose tip reaches `target`.
 ///
 /// Newton on the KKT conditions of $\min U$ s.t. tip pose = target,
-/// $$\begin{bmatrix} K & -\mathcal J^T\\ \mathcal J & 0\end{bmatrix}
-/// \begin{bmatrix}\delta\alpha\\ \delta\lambda\end{bmatrix} = -\begin{bmatrix}\nabla U - \mathcal J^T\lambda\\ p(\alpha) - p^*\end{bmatrix},$$
+/// $$\begin{bmatrix} K & -\mathcal J^T\cr \mathcal J & 0\end{bmatrix}
+/// \begin{bmatrix}\delta\alpha\cr \delta\lambda\end{bmatrix} = -
+/// \begin{bmatrix}\nabla U - \mathcal J^T\lambda\cr p(\alpha) - p^*\end{bmatrix},$$
 /// with $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$ (Eq. 32), followed by the
 /// shared continuation ([`crate::solver`]) from the circular arc with the
 /// target's tip angle, whose tip is moved to the target. For the paper's

@@ -34,10 +34,14 @@ pub enum Error {
     /// Load continuation could not advance: its step fell below the
     /// smallest allowed step, or it ran out of steps.
     #[error(
-        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}); the load may be beyond what the solver can follow; try a smaller load, or a larger max_steps or smaller min_step",
+        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load, or a larger max_steps or smaller min_step",
         pct = .load_fraction * 100.0
     )]
     ContinuationStalled {
+        /// Why the last step failed: the corrector's non-convergence, a
+        /// state that cannot be evaluated (for example a tendon of zero
+        /// length), a step that turned too far, or the step limit.
+        cause: String,
         /// Which problem.
         solver: &'static str,
         /// Fraction of the load reached (0 to 1).

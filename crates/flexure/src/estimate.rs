@@ -4,9 +4,10 @@
 //! $N$) and the quadrature of the tip position (Eqs. 14–15, $Q$ points). An
 //! answer's error is estimated against a **reference model** that refines
 //! both: order $N_r = \min(2N, 64)$ (at least $N + 3$) and a rule of
-//! $Q_r = N_r + 6 + \lceil V\rceil$ points, where $V$ is the total turning
-//! $\int_0^L|\phi'|\,ds$ of the answer's shape, so that $\cos\phi$ and
-//! $\sin\phi$ are integrated to rounding however far the flexure winds.
+//! $Q_r = N_r + 6 + \lceil V\rceil$ points, where $V = \sum_i|\alpha_i|$
+//! bounds the total turning $\int_0^L|\phi^{\prime}|\thinspace ds$ of the answer's
+//! shape ([`turning`]), so that $\cos\phi$ and $\sin\phi$ are integrated to
+//! rounding however far the flexure winds.
 //! The reference starts from the answer (its coordinates padded with zeros:
 //! the shifted-Legendre basis is nested) and one Newton solve at the full
 //! load corrects it, which costs a few evaluations at the higher order,
@@ -74,20 +75,13 @@ impl ErrorEstimate {
     }
 }
 
-/// Total turning $\int_0^1|\partial_t\phi|\,dt$ (rad) of the shape `alpha`, sampled at 129 points.
-pub fn turning(flexure: &Flexure, alpha: &[f64]) -> f64 {
-    let mut psi = vec![0.0; flexure.order()];
-    let mut angle = |t: f64| {
-        flexure.angle_shapes(t, &mut psi);
-        psi.iter().zip(alpha).map(|(p, a)| p * a).sum::<f64>()
-    };
-    let mut last = angle(0.0);
-    (1..=128).fold(0.0, |v, i| {
-        let a = angle(i as f64 / 128.0);
-        let d = (a - last).abs();
-        last = a;
-        v + d
-    })
+/// A bound on the total turning $\int_0^1|\partial_t\phi|\thinspace dt$
+/// (rad) of the shape `alpha`: $\sum_i|\alpha_i|$, since
+/// $\partial_t\psi_i = \tilde P_{i-1}$ and $|\tilde P_{i-1}| \le 1$ on
+/// $[0, 1]$ (exact for an arc). It only sizes the reference's quadrature,
+/// where an overestimate costs a few points and an underestimate accuracy.
+pub fn turning(alpha: &[f64]) -> f64 {
+    alpha.iter().map(|a| a.abs()).sum()
 }
 
 /// The reference model for an answer `alpha` of `flexure` (see the module docs).
@@ -105,11 +99,16 @@ pub fn reference(flexure: &Flexure, alpha: &[f64]) -> Result<Flexure> {
     }
     let n = flexure.order();
     let order = (2 * n).max(n + 3).min(MAX_ORDER);
-    let v = turning(flexure, alpha);
+    let v = turning(alpha);
     let points = (order as f64 + 6.0 + v.ceil()).min(MAX_POINTS as f64) as usize;
+    refined(flexure, order, points)
+}
+
+/// `flexure` at another order and quadrature, its rest shape padded with zeros.
+fn refined(flexure: &Flexure, order: usize, points: usize) -> Result<Flexure> {
     let mut kappa = flexure.rest().to_vec();
     kappa.resize(order, 0.0);
-    Flexure::new(flexure.length(), flexure.ei(), order)?.with_rest(&kappa)?.with_quadrature(points)
+    Flexure::with_points(flexure.length(), flexure.ei(), order, points)?.with_rest(&kappa)
 }
 
 fn padded(alpha: &[f64], order: usize) -> Vec<f64> {
@@ -288,9 +287,6 @@ fn auto(
                 "even order 64 misses the accuracy target: loosen --accuracy or reduce the load",
             ));
         }
-        let order = e.reference_order;
-        let mut kappa = f.rest().to_vec();
-        kappa.resize(order, 0.0);
-        f = Flexure::new(f.length(), f.ei(), order)?.with_rest(&kappa)?.with_quadrature(e.reference_quadrature)?;
+        f = refined(&f, e.reference_order, e.reference_quadrature)?;
     }
 }

@@ -4,7 +4,7 @@ use crate::basis;
 use crate::error::{Error, Result, positive};
 use crate::quadrature::GaussLegendre;
 
-/// Bending stiffness $EI = \frac{E}{1-\nu^2}\,\frac{b h^3}{12}$ of a
+/// Bending stiffness $EI = \frac{E}{1-\nu^2}\thinspace\frac{b h^3}{12}$ of a
 /// rectangular section (Eq. 25); without `poisson`, $EI = E b h^3 / 12$.
 ///
 /// The $1/(1-\nu^2)$ factor is the plate (wide flexure) modulus.
@@ -134,6 +134,19 @@ impl Flexure {
         Self::with_basis(length, ei, order, Basis::Legendre, GaussLegendre::default_points(order))
     }
 
+    /// A straight flexure of order `order` with a `points`-point rule: the
+    /// same as [`Flexure::new`] then [`Flexure::with_quadrature`], building
+    /// the tables once.
+    ///
+    /// # Example
+    /// ```
+    /// let f = flexure::Flexure::with_points(1.0, 1.0, 6, 20).unwrap();
+    /// assert_eq!((f.order(), f.quadrature_points()), (6, 20));
+    /// ```
+    pub fn with_points(length: f64, ei: f64, order: usize, points: usize) -> Result<Self> {
+        Self::with_basis(length, ei, order, Basis::Legendre, points)
+    }
+
     /// A straight chain of `count` constant-curvature segments (the paper's
     /// finite elements, Sec. II-E), integrated with 5 Gauss points per segment.
     ///
@@ -163,12 +176,13 @@ impl Flexure {
             }
             Basis::Segments => (vec![order as f64; order], vec![1.0; order]),
         };
+        let rule = GaussLegendre::new(points)?;
         let mut f = Self {
             length,
             ei,
             kappa: vec![0.0; order],
             basis,
-            rule: GaussLegendre::new(points)?,
+            rule: rule.clone(),
             nodes: vec![],
             psi: vec![],
             weights: vec![],
@@ -177,7 +191,7 @@ impl Flexure {
             energy_weights,
             tip_angle,
         };
-        f.set_rule(GaussLegendre::new(points)?);
+        f.set_rule(rule);
         Ok(f)
     }
 

@@ -40,7 +40,7 @@ impl GaussLegendre {
     /// The default number of points for a model of order `order`: $N + 2$.
     ///
     /// The geometric (load) stiffness of a straight flexure is
-    /// $-L\int_0^1 \psi_i\psi_j\,dt$, a polynomial of degree $2N$; the rule
+    /// $-L\int_0^1 \psi_i\psi_j\thinspace dt$, a polynomial of degree $2N$; the rule
     /// must integrate it exactly or the buckling eigenproblem loses rank (at
     /// $N = 6$, 5 points give a rank-5 matrix). $Q = N + 1$ is the least that
     /// does; one more point absorbs the non-polynomial $\cos\phi$ of bent

@@ -8,8 +8,8 @@
 //! $\lambda = 1$ in the arc length of $(x, \lambda)$, so it passes limit
 //! points (snap-through): at a fold, where the path turns back in
 //! $\lambda$, the tangent comes from the bordered system
-//! $$\begin{bmatrix} \partial_x r & \partial_\lambda r \\ t_{prev}^T W & \end{bmatrix}
-//! t = \begin{bmatrix} 0 \\ 1\end{bmatrix},$$
+//! $$\begin{bmatrix} \partial_x r & \partial_\lambda r \cr t_{prev}^T W & \end{bmatrix}
+//! t = \begin{bmatrix} 0 \cr 1\end{bmatrix},$$
 //! which stays regular there. Each step predicts along the tangent, then
 //! Newton corrects on the hyperplane orthogonal to it; the last step lands
 //! on $\lambda = 1$ exactly with $\lambda$ held fixed.
@@ -404,7 +404,7 @@ fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64
 /// Damped Newton on $r(x, \lambda) = 0$ at fixed $\lambda$, from `ws.x`
 /// (updated in place; `ws.jacobian` holds $\partial_x r$ at the solution).
 ///
-/// Each step solves $\partial_x r\,\delta = -r$ by LU (shifting a singular
+/// Each step solves $\partial_x r\thinspace\delta = -r$ by LU (shifting a singular
 /// matrix along its diagonal), then halves until $\max|r|$ decreases.
 /// Stops with [`Error::NoConvergence`] at the iteration limit.
 pub fn newton<T: Scalar, P: Problem<T>>(
@@ -491,6 +491,8 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     let mut h = full;
     let mut rotation_rate = unit_rotation(problem, ws);
     let mut last_residual = start.residual;
+    // Why the last rejected step failed, for the error if the steps run out.
+    let mut cause = Cause::Corrector;
     while path.steps < settings.max_steps {
         if interrupted() {
             return Err(Error::Interrupted { load_fraction: lambda });
@@ -524,20 +526,29 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             Err(Error::NoConvergence { iterations, residual, .. }) => {
                 path.iterations += iterations;
                 last_residual = residual;
+                cause = Cause::Corrector;
                 None
             }
             Err(e @ Error::InvalidParameter { .. }) => return Err(e),
-            Err(_) => None,
+            Err(e) => {
+                cause = Cause::Failed(e);
+                None
+            }
             Ok((report, new_lambda)) => {
                 path.iterations += report.iterations;
                 let turned = problem.distance(&ws.trial[..n], &ws.x);
-                if turned > settings.max_rotation_per_step { None } else { Some((report, new_lambda)) }
+                if turned > settings.max_rotation_per_step {
+                    cause = Cause::Turned;
+                    None
+                } else {
+                    Some((report, new_lambda))
+                }
             }
         };
         let Some((report, new_lambda)) = outcome else {
             h *= 0.5;
             if h < min_step {
-                return Err(stalled(problem, lambda, &path, last_residual));
+                return Err(stalled(problem, lambda, &path, last_residual, &cause.to_string()));
             }
             continue;
         };
@@ -586,7 +597,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     }
     match path.limit {
         Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
-        _ => Err(stalled(problem, lambda, &path, last_residual)),
+        _ => Err(stalled(problem, lambda, &path, last_residual, "the step limit max_steps was reached")),
     }
 }
 
@@ -613,8 +624,29 @@ fn fold_peak(l0: f64, l1: f64, d0: f64, d1: f64, h: f64) -> f64 {
     roots.iter().filter(|t| (0.0..=1.0).contains(*t)).map(|&t| hermite(t)).fold(l0.max(l1), f64::max)
 }
 
-fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64) -> Error {
+/// Why a continuation step was rejected (formatted only when the continuation stalls).
+enum Cause {
+    /// Newton did not converge on the step.
+    Corrector,
+    /// The corrected state turned a section by more than the bound.
+    Turned,
+    /// The problem could not be evaluated there.
+    Failed(Error),
+}
+
+impl std::fmt::Display for Cause {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cause::Corrector => write!(f, "the Newton corrector did not converge"),
+            Cause::Turned => write!(f, "every shorter step turned a section too far"),
+            Cause::Failed(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64, cause: &str) -> Error {
     Error::ContinuationStalled {
+        cause: cause.to_string(),
         solver: problem.name(),
         load_fraction: lambda.clamp(0.0, 1.0),
         steps: path.steps,
@@ -648,7 +680,7 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
 
 /// The tangent at the state just evaluated (its Jacobian and load
 /// derivative in `ws`), oriented along `ws.previous_tangent`:
-/// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\,t = (0, 1)$.
+/// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\thinspace t = (0, 1)$.
 /// False where that bordered matrix is singular.
 fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> bool {
     let n = ws.n;

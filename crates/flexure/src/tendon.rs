@@ -29,7 +29,7 @@ impl Tendon {
     }
 
     /// $\Delta x$ of Eq. 23: the tip attachment seen from the root one,
-    /// $\Delta x = (x - d_2\sin\phi,\; y + d_2\cos\phi - d_1)$.
+    /// $\Delta x = (x - d_2\sin\phi,\thickspace y + d_2\cos\phi - d_1)$.
     pub fn span<T: Scalar>(&self, phi: T, x: T, y: T) -> [T; 2] {
         let (s, c) = phi.sin_cos();
         let d2 = T::c(self.tip_offset);

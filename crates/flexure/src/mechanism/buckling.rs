@@ -84,7 +84,9 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
         .min_by(|x, y| x.1.total_cmp(y.1))
         .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
     if mu.is_nan() || mu >= -1e-14 * mus.amax() {
-        return Err(Error::Singular { what: "these loads only stiffen the mechanism: no buckling load".into() });
+        return Err(Error::Singular {
+            what: "these loads do not soften the mechanism (a pure moment, or only tension): no buckling load".into(),
+        });
     }
     let mode = normalized(&z * modes.column(best));
     let load_factor = -1.0 / mu;

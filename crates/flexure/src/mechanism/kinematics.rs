@@ -2,11 +2,12 @@
 //!
 //! For a point $w$ on a body and a coordinate $a$ of joint $j$ on the path
 //! from the ground (root frame $A$ in the world, output origin $o_j$):
-//! $$\partial_a w = R_A\,\partial_a p_j + \partial_a\phi_j\,\mathrm J(w - o_j),\qquad
+//! $$\partial_a w = R_A\thinspace\partial_a p_j + \partial_a\phi_j\thinspace\mathrm J(w - o_j),\qquad
 //! \partial_a\theta = \partial_a\phi_j,$$
 //! with $\mathrm J$ the quarter turn. Second derivatives: for $a$ in a joint
-//! upstream of $b$'s, $\partial_{ab} w = \partial_a\phi\,\mathrm J\,\partial_b w$;
-//! within one joint, $\partial_{ab} w = R_A\,\partial_{ab} p_j - \partial_a\phi\,\partial_b\phi\,(w - o_j)$
+//! upstream of $b$'s, $\partial_{ab} w = \partial_a\phi\thinspace\mathrm J\thinspace\partial_b w$;
+//! within one joint, $\partial_{ab} w = R_A\thinspace\partial_{ab} p_j -
+//! \partial_a\phi\thinspace\partial_b\phi\thinspace(w - o_j)$
 //! (no joint kind here has a curved angle, $\partial_{ab}\phi = 0$). So a
 //! point's Jacobian costs one pass along its path: linear in the joints.
 

@@ -1,6 +1,7 @@
 //! The potential of a mechanism, its exact derivatives, and its closures.
 //!
-//! $V(q) = \sum_j U_j(q_j) - \sum_k (F_k\cdot w_k + M_k\theta_k) - \sum_b m_b\,g\cdot w_b + \sum_t T_t\,\ell_t(q)$
+//! $V(q) = \sum_j U_j(q_j) - \sum_k (F_k\cdot w_k + M_k\theta_k) -
+//! \sum_b m_b\thinspace g\cdot w_b + \sum_t T_t\thinspace\ell_t(q)$
 //! (elastic joints, point forces and moments, weights, tendons of constant
 //! tension), and the closures $c(q) = 0$ with $G = \partial c/\partial q$.
 //! Point derivatives come from [`super::kinematics::point`], chained

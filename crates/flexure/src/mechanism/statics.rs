@@ -3,7 +3,7 @@
 //! Equilibrium makes the potential $V(q)$ ([`super::lagrangian`])
 //! stationary subject to the closures $c(q) = 0$: the KKT conditions
 //! $$\nabla V + G^T\mu = 0,\qquad c(q) = 0,\qquad G = \partial c/\partial q,$$
-//! with Jacobian the KKT matrix $\begin{bmatrix}\nabla^2 L & G^T\\ G & 0\end{bmatrix}$,
+//! with Jacobian the KKT matrix $\begin{bmatrix}\nabla^2 L & G^T\cr G & 0\end{bmatrix}$,
 //! $L = V + \mu^T c$, from exact Hessians. [`Kkt`] states them as a
 //! [`solver::Problem`] in the load factor $\lambda$ (every load is linear
 //! in its magnitude, so $\partial_\lambda r$ is the gradient of the load
@@ -13,7 +13,7 @@
 //! lost. Each Newton step costs one dense $(n+m)\times(n+m)$ solve for $n$
 //! coordinates and $m$ closure equations.
 //!
-//! **Stability** is the constrained stiffness $Z^T\nabla^2 L\,Z$ positive
+//! **Stability** is the constrained stiffness $Z^T\nabla^2 L\thinspace Z$ positive
 //! definite ([`linalg::positive_definite`]), where the columns of
 //! $Z$ = [`linalg::null_space`]$(G)$ span the admissible motions, with a
 //! margin: measured against the joints' own stiffness, every admissible
@@ -269,9 +269,9 @@ impl solver::Problem<f64> for Kkt<'_> {
         Ok(())
     }
 
-    /// $Z^T\nabla^2 L\,Z$ positive definite with the margin of the module
-    /// docs: in coordinates $\tilde q_i = \sqrt{k_i}\,q_i$ (each joint's own
-    /// stiffness 1), $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\,I$
+    /// $Z^T\nabla^2 L\thinspace Z$ positive definite with the margin of the module
+    /// docs: in coordinates $\tilde q_i = \sqrt{k_i}\thinspace q_i$ (each joint's own
+    /// stiffness 1), $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\thinspace I$
     /// positive definite, $\tilde Z$ = [`linalg::null_space`]$(\tilde G)$.
     /// Where redundant closures leave part of $\mu$ indeterminate, that
     /// part is taken with the least transmitted force first (see [`Solution::multipliers`]).
@@ -565,7 +565,7 @@ pub fn body_frames(m: &Mechanism, s: &Solution) -> Frames {
 }
 
 /// $Z$ and the generalized stiffness on the admissible motions,
-/// $Z^T\nabla^2 L\,Z$ (Eq. 27, projected), at a solution.
+/// $Z^T\nabla^2 L\thinspace Z$ (Eq. 27, projected), at a solution.
 pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     let a = lagrangian(m, &s.q, &s.multipliers, &s.loads)?;
     let z = linalg::null_space(&a.closure_jacobian);

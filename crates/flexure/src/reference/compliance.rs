@@ -8,8 +8,8 @@ use nalgebra::Matrix3;
 /// Exact tip compliance of the continuous beam with rest curvature
 /// $\omega_0(s) = \hat\omega(\kappa, s)$: integrates
 /// $\frac{dC}{ds} = AC + CA^T + B$, $C(0) = 0$ (Eq. 34) with
-/// $A = \begin{bmatrix}0&0&0\\-\sin\phi&0&0\\\cos\phi&0&0\end{bmatrix}$,
-/// $B = \mathrm{diag}(1/EI, 0, 0)$, $\phi' = \omega_0$, to `tol`.
+/// $A = \begin{bmatrix}0&0&0\cr -\sin\phi&0&0\cr \cos\phi&0&0\end{bmatrix}$,
+/// $B = \mathrm{diag}(1/EI, 0, 0)$, $\phi^{\prime} = \omega_0$, to `tol`.
 /// Order $(\phi, x, y)$ as in Eq. 33.
 ///
 /// # Example

@@ -56,7 +56,7 @@ pub struct Solution {
 }
 
 /// Integrates Eq. 3 from the clamped root, $\phi(0) = x(0) = y(0) = 0$, with
-/// $\phi' = \omega_0(s) + (M_0 - F_y x + F_x y)/EI$: the internal moment of a
+/// $\phi^{\prime} = \omega_0(s) + (M_0 - F_y x + F_x y)/EI$: the internal moment of a
 /// beam carrying tip force $(F_x, F_y)$ and root moment $M_0$.
 /// Returns $(\phi, x, y)$ at $s = L$; `observe` sees every accepted step.
 pub fn shoot<T: Scalar>(
@@ -109,7 +109,7 @@ struct Jacobi {
     lambda: f64,
     /// Whether $h = \partial\phi/\partial M_0$ stayed positive at every accepted step on $(0, L]$.
     positive: bool,
-    /// Whether $EI h'(L) = \partial m(L)/\partial M_0 > 0$.
+    /// Whether $EI h^{\prime}(L) = \partial m(L)/\partial M_0 > 0$.
     rising: bool,
 }
 
@@ -123,7 +123,7 @@ impl Jacobi {
 ///
 /// Along the beam Eq. 3 reads, with the bending moment $m(s)$ scaled to a
 /// rotation $\mu = mL/EI$, under the load $\lambda(M, F_x, F_y)$,
-/// $$\phi' = \omega_0(s) + \mu/L, \qquad \mu' = \tfrac{L}{EI}\lambda(F_x\sin\phi - F_y\cos\phi),$$
+/// $$\phi^{\prime} = \omega_0(s) + \mu/L, \qquad \mu^{\prime} = \tfrac{L}{EI}\lambda(F_x\sin\phi - F_y\cos\phi),$$
 /// with $\phi(0) = 0$ (clamped) and $m(L) = \lambda M$ (the tip moment).
 /// The beam is cut into $N$ equal segments; the unknowns are the root's
 /// $\mu_0$, the angle and moment $(\phi_j, \mu_j)$ at the inner nodes and the
@@ -437,15 +437,16 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
 ///
 /// The second variation of the potential energy about the shape $\phi(s)$,
 ///
-/// $$\delta^2 E = \int_0^L EI\,\delta\phi'^2 + (F_x\cos\phi + F_y\sin\phi)\,\delta\phi^2\,ds,
+/// $$\delta^2 E = \int_0^L \big[EI\thinspace\delta\phi^{\prime 2} +
+/// (F_x\cos\phi + F_y\sin\phi)\thinspace\delta\phi^2\big]\thinspace ds,
 /// \qquad \delta\phi(0) = 0,$$
 ///
 /// is positive definite exactly when the Jacobi field $h = \partial\phi/\partial M_0$
-/// (which solves $(EI h')' = (F_x\cos\phi + F_y\sin\phi)h$, $h(0) = 0$,
-/// $EI h'(0) = 1$) stays positive on $(0, L]$ and $EI h'(L) > 0$: the
+/// (which solves $(EI h^{\prime})^{\prime} = (F_x\cos\phi + F_y\sin\phi)h$, $h(0) = 0$,
+/// $EI h^{\prime}(0) = 1$) stays positive on $(0, L]$ and $EI h^{\prime}(L) > 0$: the
 /// Prüfer angle of $h$ then stays below $\pi/2$ at the free end. $h$ is the
 /// dual part of $\phi$ when the shot carries a dual root moment, and
-/// $EI h'(L)$ is the derivative of the tip-moment balance the shooting solves.
+/// $EI h^{\prime}(L)$ is the derivative of the tip-moment balance the shooting solves.
 ///
 /// # Example
 /// ```
@@ -478,7 +479,7 @@ pub struct Connection {
     pub fy: f64,
 }
 
-/// Integrates Eq. 3 as [`shoot`] does, adding the energy $\int m^2/2EI\,ds$ as a fourth state.
+/// Integrates Eq. 3 as [`shoot`] does, adding the energy $\int m^2/2EI\thinspace ds$ as a fourth state.
 fn shoot_with_energy<T: Scalar>(flexure: &Flexure, m0: T, fx: T, fy: T, tol: &Tolerance) -> Result<[T; 4]> {
     let (ei, kappa) = (T::c(flexure.ei()), flexure.rest());
     let rhs = |s: f64, y: &[T; 4]| {

@@ -22,7 +22,7 @@ pub fn tan_root() -> f64 {
     x
 }
 
-/// Critical load $P = c\,EI/L^2$ with $c$ = $\pi^2/4$ (free), $\pi^2$ (guided),
+/// Critical load $P = c\thinspace EI/L^2$ with $c$ = $\pi^2/4$ (free), $\pi^2$ (guided),
 /// $4.4934^2$ (pinned, errata: not $2\pi^2$), $4\pi^2$ (clamped).
 ///
 /// # Example

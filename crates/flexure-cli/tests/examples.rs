@@ -1,0 +1,390 @@
+//! Every shipped example with every mechanism subcommand that applies to it
+//! (issue 13, item 9), typed as a newcomer would (`solve`, `solve --sweep`,
+//! `solve --compliance`, `buckle`, `draw`, `draw --sweep`), run in-process
+//! through `flexure_cli::run`. Each pair either exits 0 with a finite answer
+//! and no warning, or exits 2 with the reason its example's header comment
+//! gives; the commands its closing comment shows are the ones run here.
+//! Then the answers with an independent reference are held to it.
+
+use serde_json::Value;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::{Path, PathBuf};
+
+fn examples_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn file(name: &str) -> String {
+    examples_dir().join(format!("{name}.toml")).display().to_string()
+}
+
+fn run(args: &[&str]) -> (u8, String, String) {
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
+    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
+}
+
+/// The answer to `args --json`, which must exit 0 without a warning.
+fn json(args: &[&str]) -> Value {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let (code, out, err) = run(&a);
+    assert!(code == 0 && err.is_empty(), "{args:?}: exit {code}: {err}");
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}: {out}"))
+}
+
+/// An example's comments as one line of words: its header (the leading
+/// `#` lines), or all of them (with the closing "Running it" block).
+fn comments(name: &str, header_only: bool) -> String {
+    let text = std::fs::read_to_string(file(name)).unwrap();
+    let lines: Vec<&str> = if header_only {
+        text.lines().take_while(|l| l.starts_with('#')).collect()
+    } else {
+        text.lines().filter(|l| l.starts_with('#')).collect()
+    };
+    lines.iter().flat_map(|l| l.trim_start_matches('#').split_whitespace()).collect::<Vec<_>>().join(" ")
+}
+
+/// What a subcommand must do with an example.
+#[derive(Clone, Copy, Debug)]
+enum Expect {
+    Answers,
+    /// Exit 2, nothing on stdout, this on stderr, and the header saying it.
+    Refused(&'static str),
+}
+
+struct Example {
+    name: &'static str,
+    /// `PARAMETER=FROM:TO:COUNT` over one of its loads.
+    sweep: &'static str,
+    /// `--compliance BODY --at X,Y`: where its load acts, or its tip.
+    compliance: (&'static str, &'static str),
+    buckle: Expect,
+}
+
+const EXAMPLES: [Example; 6] = [
+    Example {
+        name: "finger",
+        sweep: "tendon.flexor.tension=0:6:4",
+        compliance: ("distal", "0.025,0"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "four_bar",
+        sweep: "tendon.pull.tension=0:1.5:4",
+        compliance: ("output", "0.04,0"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "four_leg_stage",
+        sweep: "force.push.fx=0:2:3",
+        compliance: ("stage", "0,-0.06"),
+        buckle: Expect::Answers,
+    },
+    // A pure moment adds no geometric stiffness: see the file's header.
+    Example {
+        name: "mixed_chain",
+        sweep: "force.grip.moment=0:0.01:3",
+        compliance: ("hand", "0.02,0"),
+        buckle: Expect::Refused("no buckling load"),
+    },
+    Example {
+        name: "paper_tendon",
+        sweep: "tendon.flexor.tension=0:28:5",
+        compliance: ("link", "0,0.005"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "parallelogram",
+        sweep: "force.push.fy=0:-1:2",
+        compliance: ("stage", "0,-0.02"),
+        buckle: Expect::Answers,
+    },
+];
+
+fn count(sweep: &str) -> usize {
+    sweep.rsplit(':').next().unwrap().parse().unwrap()
+}
+
+/// The `null`s in `v` (serde_json's stand-in for NaN and ±∞), by path.
+fn nulls(v: &Value, path: &str, found: &mut Vec<String>) {
+    match v {
+        Value::Null => found.push(path.to_string()),
+        Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| nulls(x, &format!("{path}[{i}]"), found)),
+        Value::Object(o) => o.iter().for_each(|(k, x)| nulls(x, &format!("{path}.{k}"), found)),
+        _ => {}
+    }
+}
+
+fn matrix(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array().unwrap().iter().map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()).collect()
+}
+
+/// The sweep table's column `name` in row `row`.
+fn cell(v: &Value, row: usize, name: &str) -> f64 {
+    let columns = v["columns"].as_array().unwrap();
+    let i = columns.iter().position(|c| c == name).unwrap_or_else(|| panic!("no column {name}"));
+    v["rows"][row][i].as_f64().unwrap()
+}
+
+/// What each kind of answer must hold besides being finite.
+fn check_answer(what: &str, ex: &Example, v: &Value, out: &Path) {
+    match what {
+        "solve" => assert_eq!(v["stable"], true, "{}: {v}", ex.name),
+        "solve --sweep" => {
+            let rows = v["rows"].as_array().unwrap();
+            assert_eq!(rows.len(), count(ex.sweep), "{}: every value reached stably", ex.name);
+            assert!(v.get("stability_limit").is_none() && v.get("flagged").is_none(), "{}: {v}", ex.name);
+        }
+        "solve --compliance" => {
+            // C = J K⁻¹ Jᵀ with K positive definite: symmetric, no negative diagonal.
+            let c = matrix(&v["compliance"]);
+            let scale = c.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+            for i in 0..3 {
+                assert!(c[i][i] >= -1e-12 * scale, "{}: {c:?}", ex.name);
+                for j in 0..3 {
+                    assert!((c[i][j] - c[j][i]).abs() <= 1e-9 * scale, "{}: {c:?}", ex.name);
+                }
+            }
+        }
+        "buckle" => {
+            assert!(v["load_factor"].as_f64().unwrap() > 0.0, "{}: {v}", ex.name);
+            let mode = v["mode"].as_array().unwrap();
+            assert!(mode.iter().any(|x| x.as_f64().unwrap() != 0.0), "{}: {v}", ex.name);
+        }
+        "draw" | "draw --sweep" => {
+            let shapes = if what == "draw" { 2 } else { count(ex.sweep) + 1 };
+            assert_eq!(v["shapes"].as_u64(), Some(shapes as u64), "{}: {v}", ex.name);
+            let svg = std::fs::read_to_string(out).unwrap_or_else(|e| panic!("{}: {}: {e}", ex.name, out.display()));
+            assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{}: not an SVG", ex.name);
+        }
+        _ => unreachable!(),
+    }
+}
+
+/// Each example, each subcommand: an answer, or the refusal its header states.
+#[test]
+fn every_example_with_every_subcommand() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut outcomes = Vec::new();
+    for ex in &EXAMPLES {
+        let path = file(ex.name);
+        let (head, all) = (comments(ex.name, true), comments(ex.name, false));
+        // The comments show the commands run here.
+        for shown in
+            [format!("--sweep {}", ex.sweep), format!("--compliance {} --at {}", ex.compliance.0, ex.compliance.1)]
+        {
+            assert!(all.contains(&shown), "{}: the comments do not show {shown:?}", ex.name);
+        }
+        let (body, at) = ex.compliance;
+        let out = dir.path().join(format!("{}.svg", ex.name));
+        let out_sweep = dir.path().join(format!("{}-sweep.svg", ex.name));
+        let (out_str, out_sweep_str) = (out.display().to_string(), out_sweep.display().to_string());
+        let pairs: [(&str, Vec<&str>, Expect, &Path); 6] = [
+            ("solve", vec!["solve", &path], Expect::Answers, &out),
+            ("solve --sweep", vec!["solve", &path, "--sweep", ex.sweep], Expect::Answers, &out),
+            ("solve --compliance", vec!["solve", &path, "--compliance", body, "--at", at], Expect::Answers, &out),
+            ("buckle", vec!["buckle", &path], ex.buckle, &out),
+            ("draw", vec!["draw", &path, "--out", &out_str], Expect::Answers, &out),
+            (
+                "draw --sweep",
+                vec!["draw", &path, "--out", &out_sweep_str, "--sweep", ex.sweep],
+                Expect::Answers,
+                &out_sweep,
+            ),
+        ];
+        for (what, mut args, expect, written) in pairs {
+            args.push("--json");
+            let (code, stdout, stderr) = run(&args);
+            match expect {
+                Expect::Answers => {
+                    assert!(code == 0 && stderr.is_empty(), "{} {what}: exit {code}: {stderr}", ex.name);
+                    let v: Value = serde_json::from_str(&stdout).unwrap();
+                    let mut found = Vec::new();
+                    nulls(&v, "", &mut found);
+                    assert!(found.is_empty(), "{} {what}: not finite: {found:?}", ex.name);
+                    check_answer(what, ex, &v, written);
+                }
+                Expect::Refused(reason) => {
+                    assert_eq!(code, 2, "{} {what}: {stdout}", ex.name);
+                    assert!(stdout.is_empty(), "{} {what}: {stdout}", ex.name);
+                    assert!(stderr.contains(reason), "{} {what}: {stderr}", ex.name);
+                    assert!(
+                        head.contains(&format!("`{what}` does not apply")) && head.contains(reason),
+                        "{} {what}: the header must say why: {reason:?}",
+                        ex.name
+                    );
+                }
+            }
+            outcomes.push(format!("{} {what}: {expect:?}", ex.name));
+        }
+    }
+    assert_eq!(outcomes.len(), 36, "{outcomes:#?}");
+}
+
+/// No example escapes the table above.
+#[test]
+fn the_table_names_every_example() {
+    let mut shipped: Vec<String> = std::fs::read_dir(examples_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    shipped.sort();
+    let tested: Vec<&str> = EXAMPLES.iter().map(|e| e.name).collect();
+    assert_eq!(shipped, tested);
+}
+
+/// Lateral stiffness of a clamped–guided beam under compression `p`
+/// (beam-column: two cantilevers of L/2 with a tip force, Timoshenko & Gere,
+/// Theory of Elastic Stability, §1.11): δ/F = (2 tan(kL/2)/k − L)/p, k² = p/EI;
+/// 12 EI/L³ as p → 0.
+fn guided_stiffness(p: f64, ei: f64, l: f64) -> f64 {
+    let k = (p / ei).sqrt();
+    p / (2.0 * (k * l / 2.0).tan() / k - l)
+}
+
+/// Legs of the stages: L = 0.05 m, EI = 2e-3 N·m².
+const LEG: (f64, f64) = (0.05, 2.0e-3);
+
+/// Table I, guided: the three-term model buckles at 10 EI/L², 1.32 % above
+/// Euler's π² EI/L². Its lateral stiffness falls from the same 12 EI/L³ to
+/// zero at that load, so under a push p it is high by at most about
+/// 1.32 % · p/P_cr: the tolerance of the loaded stiffness checks.
+const GUIDED_EXCESS: f64 = 0.0132;
+
+/// The parallelogram: lateral stiffness 24 EI/L³ unloaded (exact for the
+/// model: linear curvature is in its basis), the beam-column's under the
+/// file's 1 N push, and buckling at 2 × 10 EI/L² (Table I, model).
+#[test]
+fn parallelogram_stiffness_and_buckling() {
+    let (l, ei) = LEG;
+    let f = file("parallelogram");
+    let v = json(&["solve", &f, "--sweep", "force.push.fy=0:-1:2", "--compliance", "stage", "--at", "0,-0.02"]);
+    let unloaded = 1.0 / cell(&v, 0, "compliance.xx");
+    assert!((unloaded / (24.0 * ei / l.powi(3)) - 1.0).abs() < 1e-9, "{unloaded}");
+    // Each leg carries half of the 1 N; P_cr = 16 N.
+    let loaded = 1.0 / cell(&v, 1, "compliance.xx");
+    let beam = 2.0 * guided_stiffness(0.5, ei, l);
+    assert!(loaded >= beam && loaded / beam - 1.0 < GUIDED_EXCESS / 16.0, "{loaded} vs {beam}");
+    // The centred push below buckling moves nothing: the legs are inextensible.
+    let s = json(&["solve", &f]);
+    assert!(s["bodies"]["stage"]["x"].as_f64().unwrap().abs() < 1e-12 && s["energy"].as_f64().unwrap() < 1e-20);
+    let b = json(&["buckle", &f])["load_factor"].as_f64().unwrap();
+    assert!((b / (2.0 * 10.0 * ei / (l * l)) - 1.0).abs() < 1e-9, "{b}");
+}
+
+/// The four-leg stage: at fx = 0 of its sweep the legs are straight under
+/// the 10 N push, and its lateral stiffness is four beam-columns' (48 EI/L³
+/// softened by 2.5 N each); it slides level; it buckles at 4 × 10 EI/L².
+#[test]
+fn four_leg_stage_stiffness_and_buckling() {
+    let (l, ei) = LEG;
+    let f = file("four_leg_stage");
+    let v = json(&["solve", &f, "--sweep", "force.push.fx=0:2:3", "--compliance", "stage", "--at", "0,-0.06"]);
+    let k = 1.0 / cell(&v, 0, "compliance.xx");
+    let beam = 4.0 * guided_stiffness(2.5, ei, l);
+    assert!(48.0 * ei / l.powi(3) > beam);
+    assert!(k >= beam && k / beam - 1.0 < GUIDED_EXCESS * 10.0 / 32.0, "{k} vs {beam}");
+    // Welded parallel legs keep the stage level; the lateral load pushes it along +x.
+    for row in 0..3 {
+        assert!((cell(&v, row, "stage.phi") - FRAC_PI_2).abs() < 1e-9);
+    }
+    let x = [0, 1, 2].map(|row| cell(&v, row, "stage.x"));
+    assert!(x[0].abs() < 1e-12 && x[1] > 1e-4 && x[2] > x[1], "{x:?}");
+    let b = json(&["buckle", &f])["load_factor"].as_f64().unwrap();
+    assert!((b * 10.0 / (4.0 * 10.0 * ei / (l * l)) - 1.0).abs() < 1e-9, "{b}");
+}
+
+/// The mixed chain under a pure end moment M: each joint turns by M times
+/// its compliance (1/k for the spring, L/EI for a flexure bent into an arc),
+/// so the hand turns M · 50.5 rad and its rotational compliance is 50.5
+/// rad/(N·m) whatever M is. Exact for the model (constant curvature is in
+/// its basis): to rounding.
+#[test]
+fn mixed_chain_turns_by_its_compliances() {
+    let per_moment = 1.0 / 2.0 + 0.02 / 1.0e-3 + 0.015 / 5.0e-4;
+    let f = file("mixed_chain");
+    let v = json(&["solve", &f, "--sweep", "force.grip.moment=0:0.01:3"]);
+    for row in 0..3 {
+        let m = cell(&v, row, "force.grip.moment");
+        assert!((cell(&v, row, "hand.phi") - per_moment * m).abs() < 1e-12, "row {row}");
+        assert!(cell(&v, row, "slide[0]").abs() < 1e-12, "the slider's spring carries nothing");
+    }
+    let c = matrix(&json(&["solve", &f, "--compliance", "hand", "--at", "0.02,0"])["compliance"]);
+    assert!((c[0][0] / per_moment - 1.0).abs() < 1e-9, "{c:?}");
+}
+
+/// Linearised about the straight flexure, a tendon of tension T anchored a
+/// behind the flexure's root (and offset from it) pulls the tip toward the
+/// anchor: to second order its potential T·(length) adds −(T/2)∫w'² + T w(L)²/(2(L + a)),
+/// a dead compression T with a lateral spring T/(L + a) at the tip (the offset
+/// gives only the first-order moment). Clamped at the root, the Euler problem
+/// EI w'' + T w = T w(L) (x + a)/(L + a) then buckles at tan(kL) = −k a,
+/// k² = T/EI: kL = π when a = 0. The model, a Ritz reduction, can only
+/// buckle later; for one half wave its excess is within Table I's 1.32 %.
+fn tendon_euler_load(a: f64, l: f64, ei: f64) -> f64 {
+    // sin z + (a/L) z cos z falls from 1 to −1 across (π/2, 3π/2), through
+    // its one root there (in (π/2, π] for a ≥ 0): bisection.
+    let g = |z: f64| z.sin() + a / l * z * z.cos();
+    let (mut lo, mut hi) = (FRAC_PI_2, 1.5 * PI);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if g(lo) * g(mid) <= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let z = 0.5 * (lo + hi);
+    z * z * ei / (l * l)
+}
+
+/// The tendon examples' `buckle` against [`tendon_euler_load`].
+#[test]
+fn tendon_buckling_against_the_beam() {
+    // Eq. 25: the paper's steel flexure, 15 mm; its tendon anchored at the root (a = 0), 28 N.
+    let ei = 200e9 / (1.0 - 0.29_f64.powi(2)) * 0.01 * 0.0002_f64.powi(3) / 12.0;
+    let euler = tendon_euler_load(0.0, 0.015, ei);
+    assert!((euler - PI * PI * ei / (0.015 * 0.015)).abs() < 1e-9 * euler);
+    let f = file("paper_tendon");
+    let t = 28.0 * json(&["buckle", &f])["load_factor"].as_f64().unwrap();
+    assert!(t >= euler && t / euler - 1.0 < GUIDED_EXCESS, "{t} vs {euler}");
+    // Fig. 10: about 28 N turns it to a right angle (read off a plot: 2°).
+    let v = json(&["solve", &f, "--sweep", "tendon.flexor.tension=0:28:5"]);
+    assert!((cell(&v, 4, "link.phi").to_degrees() - 90.0).abs() < 2.0);
+
+    // The finger: its mcp flexure (15 mm, EI 1.4558e-3) buckles alone: its
+    // tendon is anchored 10 mm behind the root, the pip's at its own root
+    // (68 N, beyond), and the tip force adds no stiffness about straight links.
+    let euler = tendon_euler_load(0.01, 0.015, 1.4558e-3);
+    let t = 6.0 * json(&["buckle", &file("finger")])["load_factor"].as_f64().unwrap();
+    assert!(t >= euler && t / euler - 1.0 < GUIDED_EXCESS, "{t} vs {euler}");
+}
+
+/// The four-bar's pin holds: the coupler's end and the output's top, each
+/// placed from its body's reported pose, are one point, along the sweep too
+/// (closures are solved to rounding; 1 nm is 1e-7 of the 10 mm hinges).
+#[test]
+fn four_bar_pin_holds() {
+    let f = file("four_bar");
+    let point = |x: f64, y: f64, phi: f64| [x + 0.04 * phi.cos(), y + 0.04 * phi.sin()];
+    let s = json(&["solve", &f]);
+    let pose = |b: &str| ["x", "y", "phi"].map(|k| s["bodies"][b][k].as_f64().unwrap());
+    let ([cx, cy, cp], [ox, oy, op]) = (pose("coupler"), pose("output"));
+    let (a, b) = (point(cx, cy, cp), point(ox, oy, op));
+    assert!((a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9, "{a:?} {b:?}");
+    let v = json(&["solve", &f, "--sweep", "tendon.pull.tension=0:1.5:4"]);
+    for row in 0..4 {
+        let c = |b: &str| {
+            point(
+                cell(&v, row, &format!("{b}.x")),
+                cell(&v, row, &format!("{b}.y")),
+                cell(&v, row, &format!("{b}.phi")),
+            )
+        };
+        let (a, b) = (c("coupler"), c("output"));
+        assert!((a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9, "row {row}: {a:?} {b:?}");
+    }
+}
