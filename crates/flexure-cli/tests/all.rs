@@ -10,6 +10,7 @@
 mod analyses;
 mod batch;
 mod estimate;
+mod examples;
 mod figures;
 mod fuzz;
 mod joint;
