@@ -858,36 +858,15 @@ pub fn render(fig: &Figure) -> Result<String, String> {
     // Grid, then the frame.
     for &m in &l.y.minor {
         let y = ypx(m);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#f0f0f0" stroke-width="1"/>"##,
-            num(left),
-            num(y),
-            num(right),
-            num(y)
-        );
+        line(&mut svg, [left, y, right, y], "#f0f0f0", "1");
     }
     for t in &l.x.ticks {
         let x = xpx(t.at);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#dddddd" stroke-width="1"/>"##,
-            num(x),
-            num(top),
-            num(x),
-            num(bottom)
-        );
+        line(&mut svg, [x, top, x, bottom], "#dddddd", "1");
     }
     for t in &l.y.ticks {
         let y = ypx(t.at);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#dddddd" stroke-width="1"/>"##,
-            num(left),
-            num(y),
-            num(right),
-            num(y)
-        );
+        line(&mut svg, [left, y, right, y], "#dddddd", "1");
     }
     let _ = writeln!(
         svg,
@@ -899,37 +878,16 @@ pub fn render(fig: &Figure) -> Result<String, String> {
     );
     for t in &l.x.ticks {
         let x = xpx(t.at);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333333" stroke-width="1.2"/>"##,
-            num(x),
-            num(bottom),
-            num(x),
-            num(bottom + 6.0)
-        );
+        line(&mut svg, [x, bottom, x, bottom + 6.0], "#333333", "1.2");
         text(&mut svg, (x, bottom + 8.0 + TICK_SIZE), TICK_SIZE, Anchor::Middle, r#" class="tick-x""#, &t.label);
     }
     for &m in &l.y.minor {
         let y = ypx(m);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333333" stroke-width="1"/>"##,
-            num(left - 3.0),
-            num(y),
-            num(left),
-            num(y)
-        );
+        line(&mut svg, [left - 3.0, y, left, y], "#333333", "1");
     }
     for t in &l.y.ticks {
         let y = ypx(t.at);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333333" stroke-width="1.2"/>"##,
-            num(left - 6.0),
-            num(y),
-            num(left),
-            num(y)
-        );
+        line(&mut svg, [left - 6.0, y, left, y], "#333333", "1.2");
         text(&mut svg, (left - 10.0, y + 0.36 * TICK_SIZE), TICK_SIZE, Anchor::End, r#" class="tick-y""#, &t.label);
     }
     let with_factor = |label: &str, axis: &Axis| match &axis.factor {
@@ -1067,6 +1025,18 @@ fn draw_legend(svg: &mut String, entries: &[Entry], (x, y, w, h): (f64, f64, f64
         let (tx, size) = if e.swatch == Swatch::Note { (x + 12.0, NOTE_SIZE) } else { (sx1 + 8.0, LEGEND_SIZE) };
         text(svg, (tx, cy + 0.36 * size), size, Anchor::Start, r#" class="legend""#, &e.label);
     }
+}
+
+/// One SVG line from `(x1, y1)` to `(x2, y2)` (`[x1, y1, x2, y2]`, px), in `stroke` of `width` px.
+fn line(svg: &mut String, [x1, y1, x2, y2]: [f64; 4], stroke: &str, width: &str) {
+    let _ = writeln!(
+        svg,
+        r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{stroke}" stroke-width="{width}"/>"#,
+        num(x1),
+        num(y1),
+        num(x2),
+        num(y2)
+    );
 }
 
 #[cfg(test)]
