@@ -47,9 +47,16 @@ pub fn energy<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
 pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T]) {
     assert_coordinates(flexure, "alpha", alpha.len());
     assert_coordinates(flexure, "out", out.len());
-    for (i, ((o, &a), &k)) in out.iter_mut().zip(alpha).zip(flexure.rest()).enumerate() {
-        *o = T::c(stiffness(flexure, i)) * (a - T::c(k));
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = energy_gradient_entry(flexure, alpha, i);
     }
+}
+
+/// Entry $i$ (0-based) of [`energy_gradient`], for callers that add it to
+/// a gradient of their own without a scratch buffer.
+#[inline]
+pub fn energy_gradient_entry<T: Scalar>(flexure: &Flexure, alpha: &[T], i: usize) -> T {
+    T::c(stiffness(flexure, i)) * (alpha[i] - T::c(flexure.rest()[i]))
 }
 
 /// Diagonal entry $i$ (0-based) of the constant energy Hessian,

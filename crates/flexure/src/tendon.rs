@@ -1,6 +1,6 @@
 //! A tendon-driven flexure joint (paper Sec. III-D, Eqs. 23–26).
 
-use crate::energy::{energy, stiffness};
+use crate::energy::{energy, energy_gradient_entry, stiffness};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
@@ -77,10 +77,8 @@ impl<T: Scalar> TendonPotential<'_, T> {
         for h in hessian.iter_mut() {
             *h *= self.tension;
         }
-        let mut ug = [T::zero(); 1];
         for i in 0..n {
-            energy_gradient_entry(self.flexure, alpha, i, &mut ug);
-            gradient[i] += ug[0];
+            gradient[i] += energy_gradient_entry(self.flexure, alpha, i);
             hessian[i * n + i] += T::c(stiffness(self.flexure, i));
         }
         energy(self.flexure, alpha) + self.tension * length
@@ -122,11 +120,6 @@ impl<T: Scalar> TendonPotential<'_, T> {
         }
         length
     }
-}
-
-/// One entry of $\nabla U$.
-fn energy_gradient_entry<T: Scalar>(flexure: &Flexure, alpha: &[T], i: usize, out: &mut [T; 1]) {
-    out[0] = T::c(stiffness(flexure, i)) * (alpha[i] - T::c(flexure.rest()[i]));
 }
 
 /// Work buffers and results of [`pull`].
@@ -198,10 +191,8 @@ impl solver::Problem<f64> for TendonProblem<'_> {
                 *d = (self.end - self.start) * g;
             }
         }
-        let mut ug = [0.0];
         for i in 0..n {
-            energy_gradient_entry(f, alpha, i, &mut ug);
-            residual[i] = ug[0] + tension * residual[i];
+            residual[i] = energy_gradient_entry(f, alpha, i) + tension * residual[i];
         }
         if let Some(h) = jacobian {
             for v in h.iter_mut() {
