@@ -1,32 +1,13 @@
-//! Speed against the floor: five sin/cos pairs, the cost of one evaluation's
-//! trigonometry; and against exact beam theory solving the same task.
-//!
-//! `cargo bench -p flexure-bench --bench speed`; ratios are in BENCHMARKS.md.
+//! The kernel against its floor: five sin/cos pairs.
 
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use flexure::connect::connect;
-use flexure::kinematics::{Kinematics, Level, par_poses_root_tip, pose_root_tip, update};
-use flexure::mechanism::file::from_toml;
-use flexure::mechanism::statics::{Settings as MechanismSettings, solve};
-use flexure::reference::elastica;
-use flexure::{Flexure, Pose, Settings, Statics, TipLoad, deflect};
-use std::f64::consts::FRAC_PI_2;
+use criterion::{BenchmarkId, Criterion};
+use flexure::Flexure;
+use flexure::kinematics::{Kinematics, Level, pose_root_tip, update};
 use std::hint::black_box;
 
-/// Seeded inputs, cycled so each call sees different arguments.
-fn inputs(count: usize, width: usize) -> Vec<f64> {
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    (0..count * width)
-        .map(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        })
-        .collect()
-}
+use crate::inputs;
 
-fn joint(c: &mut Criterion) {
+pub fn run(c: &mut Criterion) {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let alphas = inputs(1024, 3);
     // The floor: the five sin/cos pairs one evaluation needs, of the very
@@ -131,49 +112,3 @@ fn joint(c: &mut Criterion) {
     }
     g.finish();
 }
-
-fn mechanism(c: &mut Criterion) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml");
-    let m = from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let mut g = c.benchmark_group("mechanism");
-    g.bench_function("finger_equilibrium", |b| b.iter(|| solve(black_box(&m), &MechanismSettings::default()).unwrap()));
-    g.finish();
-}
-
-fn statics(c: &mut Criterion) {
-    let f = Flexure::new(1.0, 1.0, 3).unwrap();
-    let load = TipLoad::polar(0.0, 3.8477, 45f64.to_radians());
-    let mut data = Statics::new(&f);
-    let settings = Settings { tolerance: 1e-12, ..Default::default() };
-    let target = Pose { phi: FRAC_PI_2, x: 0.55, y: 0.65 };
-    let mut g = c.benchmark_group("statics");
-    g.bench_function("deflect_90", |b| b.iter(|| deflect(&f, black_box(&load), &mut data, &settings).unwrap()));
-    g.bench_function("connect", |b| b.iter(|| connect(&f, black_box(&target)).unwrap()));
-    g.finish();
-
-    let mut g = c.benchmark_group("reference");
-    g.sample_size(20);
-    g.bench_function("elastica_90", |b| {
-        b.iter(|| elastica::deflect(&f, black_box(&load), &Default::default()).unwrap())
-    });
-    let chain = Flexure::segments(1.0, 1.0, 22).unwrap();
-    g.bench_function("segments_22", |b| b.iter(|| connect(&chain, black_box(&target)).unwrap()));
-    g.finish();
-}
-
-fn batch(c: &mut Criterion) {
-    let f = Flexure::new(1.0, 1.0, 3).unwrap();
-    let alphas = inputs(1_000_000, 3);
-    let mut poses = vec![Pose::default(); 1_000_000];
-    let mut g = c.benchmark_group("batch");
-    g.sample_size(10);
-    g.throughput(Throughput::Elements(1_000_000));
-    g.bench_function("pose_1m", |b| b.iter(|| par_poses_root_tip(&f, black_box(&alphas), &mut poses).unwrap()));
-    g.bench_function("pose_1m_serial", |b| {
-        b.iter(|| flexure::kinematics::poses_root_tip(&f, black_box(&alphas), &mut poses).unwrap())
-    });
-    g.finish();
-}
-
-criterion_group!(benches, joint, statics, batch, mechanism);
-criterion_main!(benches);
