@@ -342,7 +342,9 @@ fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kin
     update_kinematics(f, alpha, &mut k, Level::Hessian);
     let mut stiffness = -(&k.hessian_root_tip_x * load.fx + &k.hessian_root_tip_y * load.fy);
     for i in 0..f.order() {
-        stiffness[(i, i)] += flexure::energy::stiffness(f, i);
+        for j in 0..f.order() {
+            stiffness[(i, j)] += flexure::energy::stiffness(f, i, j);
+        }
     }
     (k, stiffness)
 }

@@ -1,6 +1,5 @@
 //! Buckling of a flexure in compression under tip constraints (paper Sec. IV-D, Eqs. 39–44).
 
-use crate::energy::stiffness;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
@@ -95,7 +94,7 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
             what: format!("a {} tip leaves an order-{n} flexure no freedom to buckle; use a higher order", tip.name()),
         });
     }
-    let d = DMatrix::from_fn(n, n, |i, j| if i == j { stiffness(flexure, i) } else { 0.0 });
+    let d = DMatrix::from_row_slice(n, n, flexure.stiffness_matrix());
     let a = z.transpose() * d * &z;
     let b = -(z.transpose() * &k.hessian_root_tip_x * &z);
     let (mus, modes) = crate::linalg::generalized_symmetric(&a, &b)

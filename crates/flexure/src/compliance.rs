@@ -1,6 +1,5 @@
 //! Small-load tip compliance (paper Eqs. 33–36).
 
-use crate::energy::stiffness;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
@@ -23,11 +22,14 @@ use nalgebra::{DMatrix, Matrix3};
 pub fn compliance_tip_rest(flexure: &Flexure) -> Matrix3<f64> {
     let mut k = Kinematics::new(flexure);
     kinematics::update(flexure, flexure.rest(), &mut k, Level::Jacobian);
-    let mut c = Matrix3::zeros();
-    for (i, col) in k.jacobian_root_tip.column_iter().enumerate() {
-        c += col * col.transpose() / stiffness(flexure, i);
-    }
-    c
+    let n = flexure.order();
+    let stiffness = DMatrix::from_row_slice(n, n, flexure.stiffness_matrix());
+    // K is positive definite by construction (EI > 0 everywhere, independent shapes).
+    let kinv_jt = match stiffness.cholesky() {
+        Some(chol) => chol.solve(&k.jacobian_root_tip.transpose()),
+        None => unreachable!("a flexure's stiffness matrix is positive definite"),
+    };
+    Matrix3::from_iterator((&k.jacobian_root_tip * kinv_jt).iter().copied())
 }
 
 /// Tip compliance at any configuration, $C = \mathcal J K^{-1}\mathcal J^T$,

@@ -141,7 +141,9 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
                     jac[c * m + row] =
                         -(fx * k.hessian_root_tip_x[(row, c)] + fy * k.hessian_root_tip_y[(row, c)]) / scale;
                 }
-                jac[c * m + c] += stiffness(f, c) / scale;
+                for row in 0..n {
+                    jac[c * m + row] += stiffness(f, row, c) / scale;
+                }
                 for a in 0..3 {
                     jac[(n + a) * m + c] = -j[(a, c)] / scale;
                     jac[c * m + n + a] = j[(a, c)] / if a == 0 { 1.0 } else { l };

@@ -1,13 +1,16 @@
 //! Bending energy, its gradient and Hessian (paper Eqs. 9, 18, 28).
 //!
-//! The shifted-Legendre basis is $L^2$-orthogonal on $[0, L]$, so the energy
-//! of Eq. 5 is a weighted sum of squares and needs no quadrature.
+//! The energy of Eq. 5 is the quadratic form $U = \frac12(\alpha-\kappa)^TK(\alpha-\kappa)$
+//! with the flexure's stiffness matrix $K$ ([`Flexure::stiffness_matrix`]),
+//! integrated once when the flexure is built. The shifted-Legendre basis is
+//! $L^2$-orthogonal on $[0, L]$, so for a uniform section $K$ is diagonal.
 
 use crate::joint::Flexure;
 use crate::kinematics::assert_coordinates;
 use crate::scalar::Scalar;
 
-/// $U(\alpha) = \frac{EI}{2L}\sum_{i} \frac{(\alpha_i - \kappa_i)^2}{2i-1}$ (Eq. 9, any order), in joules.
+/// $U(\alpha) = \frac12(\alpha-\kappa)^TK(\alpha-\kappa)$, in joules; for a uniform
+/// section $\frac{EI}{2L}\sum_{i} \frac{(\alpha_i - \kappa_i)^2}{2i-1}$ (Eq. 9, any order).
 ///
 /// # Panics
 /// If `alpha` does not have [`Flexure::order`] entries (never truncates;
@@ -24,13 +27,13 @@ pub fn energy<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
     assert_coordinates(flexure, "alpha", alpha.len());
     let mut u = T::zero();
     for (i, (&a, &k)) in alpha.iter().zip(flexure.rest()).enumerate() {
-        let d = a - T::c(k);
-        u += T::c(stiffness(flexure, i)) * d * d;
+        u += (a - T::c(k)) * energy_gradient_entry(flexure, alpha, i);
     }
     u * T::c(0.5)
 }
 
-/// $\partial U/\partial\alpha_i = \frac{EI}{L}\frac{\alpha_i - \kappa_i}{2i-1}$ (Eq. 18), written into `out`.
+/// $\nabla U = K(\alpha-\kappa)$; for a uniform section
+/// $\partial U/\partial\alpha_i = \frac{EI}{L}\frac{\alpha_i - \kappa_i}{2i-1}$ (Eq. 18); written into `out`.
 ///
 /// # Panics
 /// If `alpha` or `out` does not have [`Flexure::order`] entries (never
@@ -56,17 +59,28 @@ pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T])
 /// a gradient of their own without a scratch buffer.
 #[inline]
 pub fn energy_gradient_entry<T: Scalar>(flexure: &Flexure, alpha: &[T], i: usize) -> T {
-    T::c(stiffness(flexure, i)) * (alpha[i] - T::c(flexure.rest()[i]))
+    let n = alpha.len();
+    let row = &flexure.stiffness_matrix()[i * n..(i + 1) * n];
+    let mut g = T::zero();
+    for ((&k, &a), &r) in row.iter().zip(alpha).zip(flexure.rest()) {
+        if k != 0.0 {
+            g += T::c(k) * (a - T::c(r));
+        }
+    }
+    g
 }
 
-/// Diagonal entry $i$ (0-based) of the constant energy Hessian,
-/// $\frac{EI}{L}\frac{1}{2i+1}$ (Eq. 28 as corrected by the errata: $1, 1/3, 1/5, \dots$).
+/// Entry $(i, j)$ (0-based) of the constant energy Hessian $K$; for a
+/// uniform section $\frac{EI}{L}\frac{\delta_{ij}}{2i+1}$ (Eq. 28 as corrected by the
+/// errata: $1, 1/3, 1/5, \dots$).
 ///
 /// # Example
 /// ```
 /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
-/// assert_eq!(flexure::energy::stiffness(&f, 1), 1.0 / 3.0);
+/// assert_eq!(flexure::energy::stiffness(&f, 1, 1), 1.0 / 3.0);
+/// assert_eq!(flexure::energy::stiffness(&f, 0, 1), 0.0);
 /// ```
-pub fn stiffness(flexure: &Flexure, i: usize) -> f64 {
-    flexure.ei() / flexure.length() * flexure.energy_weight(i)
+#[inline]
+pub fn stiffness(flexure: &Flexure, i: usize, j: usize) -> f64 {
+    flexure.stiffness_matrix()[i * flexure.order() + j]
 }

@@ -108,7 +108,9 @@ pub fn reference(flexure: &Flexure, alpha: &[f64]) -> Result<Flexure> {
 fn refined(flexure: &Flexure, order: usize, points: usize) -> Result<Flexure> {
     let mut kappa = flexure.rest().to_vec();
     kappa.resize(order, 0.0);
-    Flexure::with_points(flexure.length(), flexure.ei(), order, points)?.with_rest(&kappa)
+    Flexure::with_points(flexure.length(), flexure.ei(), order, points)?
+        .with_rest(&kappa)?
+        .with_section(flexure.section().clone())
 }
 
 fn padded(alpha: &[f64], order: usize) -> Vec<f64> {

@@ -3,6 +3,7 @@
 use crate::basis;
 use crate::error::{Error, Result, positive};
 use crate::quadrature::GaussLegendre;
+use crate::section::Section;
 
 /// Bending stiffness $EI = \frac{E}{1-\nu^2}\thinspace\frac{b h^3}{12}$ of a
 /// rectangular section (Eq. 25); without `poisson`, $EI = E b h^3 / 12$.
@@ -89,16 +90,23 @@ pub enum Basis {
 
 /// An immutable planar flexure joint of order $N$ (the Model).
 ///
-/// Holds length $L$, stiffness $EI$, rest coefficients $\kappa$ (Eq. 5) and
-/// the tables every evaluation shares. In either [`Basis`] the tangent angle
-/// is linear in the coordinates, $\phi(\alpha, s) = \sum_i \alpha_i\psi_i(s/L)$,
-/// and the energy is $U = \frac{EI}{2L}\sum_i w_i(\alpha_i - \kappa_i)^2$, so one
-/// kinematics kernel serves both. Build it with [`Flexure::new`] (or
+/// Holds length $L$, the [`Section`] (stiffness $EI(s)$, thickness, mass),
+/// rest coefficients $\kappa$ (Eq. 5) and the tables every evaluation
+/// shares. In either [`Basis`] the tangent angle is linear in the
+/// coordinates, $\phi(\alpha, s) = \sum_i \alpha_i\psi_i(s/L)$, and so is the
+/// curvature, $\hat\omega = \frac1L\sum_i\alpha_i\psi_i'(s/L)$; the energy
+/// $U = \frac12\int_0^L EI(s)(\hat\omega - \hat\omega_0)^2 ds$ is the quadratic form
+/// $U = \frac12(\alpha-\kappa)^T K(\alpha-\kappa)$ with the stiffness matrix
+/// $K_{ij} = \frac1L\int_0^1 EI(t)\thinspace\psi_i'(t)\psi_j'(t)\thinspace dt$, so one
+/// kinematics kernel serves both. For a uniform section $K$ is diagonal,
+/// $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$ (Eq. 28 as corrected). Build it with [`Flexure::new`] (or
 /// [`Flexure::segments`]) and the `with_*` methods; all input is validated there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Flexure {
     length: f64,
+    /// Mean bending stiffness $\frac1L\int_0^L EI\thinspace ds$: the scale of loads.
     ei: f64,
+    section: Section,
     kappa: Vec<f64>,
     basis: Basis,
     rule: GaussLegendre,
@@ -114,8 +122,8 @@ pub struct Flexure {
     /// $L\Delta_k\psi_i(t_k)\psi_j(t_k)$ (Eqs. 30–31) for the pairs $j \ge i$
     /// in row-major order, a row of $q$ nodes per pair.
     hessian_weights: Vec<f64>,
-    /// $w_i$ in the energy.
-    energy_weights: Vec<f64>,
+    /// $K_{ij}$ at `[i * n + j]`: the energy's Hessian.
+    stiffness: Vec<f64>,
     /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
     tip_angle: Vec<f64>,
 }
@@ -168,18 +176,19 @@ impl Flexure {
             Basis::Legendre => crate::error::count("order", order, MAX_ORDER, "must be from 1 to 64")?,
             Basis::Segments => crate::error::count("segments", order, MAX_SEGMENTS, "must be from 1 to 64")?,
         };
-        let (energy_weights, tip_angle) = match basis {
+        let tip_angle = match basis {
             Basis::Legendre => {
                 let mut tip = vec![0.0; order];
                 tip[0] = 1.0;
-                ((0..order).map(basis::energy_weight).collect(), tip)
+                tip
             }
-            Basis::Segments => (vec![order as f64; order], vec![1.0; order]),
+            Basis::Segments => vec![1.0; order],
         };
         let rule = GaussLegendre::new(points)?;
         let mut f = Self {
             length,
             ei,
+            section: Section::uniform(ei)?,
             kappa: vec![0.0; order],
             basis,
             rule: rule.clone(),
@@ -188,11 +197,109 @@ impl Flexure {
             weights: vec![],
             jacobian_weights: vec![],
             hessian_weights: vec![],
-            energy_weights,
+            stiffness: vec![],
             tip_angle,
         };
         f.set_rule(rule);
+        f.stiffness = f.stiffness_matrix_of(&f.section)?.0;
         Ok(f)
+    }
+
+    /// The same flexure with a non-uniform [`Section`]: its $EI(s)$ replaces
+    /// the uniform `ei` the flexure was built with, and [`Flexure::ei`]
+    /// becomes the mean. The stiffness matrix $K$ is integrated once here:
+    /// exactly (Gauss–Legendre on each smooth piece) when $EI$ is a polynomial
+    /// there, as for tapers and tables; adaptively to $10^{-13}$ of its
+    /// largest entry for a notch.
+    ///
+    /// Fails when $EI(s)$ leaves [`EI_RANGE`] anywhere, naming where.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, Section};
+    /// // EI falling linearly from 2 to 1: K₁₁ = (1/L)∫EI dt = 1.5/L, K₁₂ = (1/L)∫EI(2t−1)dt = −1/(6L).
+    /// let s = Section::given(Profile::Linear { root: 2.0, tip: 1.0 }).unwrap();
+    /// let f = flexure::Flexure::new(0.5, 1.0, 3).unwrap().with_section(s).unwrap();
+    /// let k = f.stiffness_matrix();
+    /// assert!((k[0] - 3.0).abs() < 1e-14 && (k[1] + 1.0 / 3.0).abs() < 1e-14 && (f.ei() - 1.5).abs() < 1e-14);
+    /// ```
+    pub fn with_section(mut self, section: Section) -> Result<Self> {
+        let (stiffness, mean) = self.stiffness_matrix_of(&section)?;
+        within("ei", mean, EI_RANGE)?;
+        let n = self.order();
+        if !crate::linalg::positive_definite(&stiffness, n, &mut vec![0.0; n * n]) {
+            return Err(Error::invalid(
+                "ei",
+                format!("from {:e} to {:e} N·m²", section.ei(0.0, self.length), section.ei(1.0, self.length)),
+                "varies too much along the flexure: its stiffness matrix is not positive definite to rounding",
+            ));
+        }
+        self.stiffness = stiffness;
+        self.ei = mean;
+        self.section = section;
+        Ok(self)
+    }
+
+    /// $K$ (row-major) and the mean $EI$ of `section` on this flexure's length and basis.
+    fn stiffness_matrix_of(&self, section: &Section) -> Result<(Vec<f64>, f64)> {
+        let (n, l) = (self.order(), self.length);
+        if section.is_uniform() {
+            let ei = section.ei(0.0, l);
+            let diagonal = |i: usize| match self.basis {
+                Basis::Legendre => basis::energy_weight(i),
+                Basis::Segments => n as f64,
+            };
+            let k = (0..n * n).map(|ij| if ij / n == ij % n { ei / l * diagonal(ij / n) } else { 0.0 }).collect();
+            return Ok((k, ei));
+        }
+        let mut breaks = section.breakpoints(l);
+        if self.basis == Basis::Segments {
+            breaks.extend((1..n).map(|j| j as f64 / n as f64));
+            breaks.sort_by(f64::total_cmp);
+        }
+        let mut shapes = vec![0.0; n];
+        let mut outside: Option<(f64, f64)> = None;
+        let integrand = |t: f64, out: &mut [f64]| {
+            let ei = section.ei(t, l);
+            if !(ei.is_finite() && (EI_RANGE.0..=EI_RANGE.1).contains(&ei)) && outside.is_none() {
+                outside = Some((t, ei));
+            }
+            match self.basis {
+                Basis::Legendre => basis::shifted_legendre(t, &mut shapes),
+                Basis::Segments => {
+                    let j = ((t * n as f64) as usize).min(n - 1);
+                    shapes.fill(0.0);
+                    shapes[j] = n as f64;
+                }
+            }
+            let mut k = 0;
+            for i in 0..n {
+                for j in i..n {
+                    out[k] = ei * shapes[i] * shapes[j];
+                    k += 1;
+                }
+            }
+            out[k] = ei;
+        };
+        let pairs = n * (n + 1) / 2;
+        let v = crate::quadrature::integrate(&breaks, n + 4, section.polynomial(), 1e-13, pairs + 1, integrand)?;
+        if let Some((t, ei)) = outside {
+            return Err(Error::InvalidParameter {
+                name: "ei",
+                value: format!("{ei:e} at s = {:e} m", t * l),
+                reason: "must lie in [1e-30, 1e15] N·m² all along the flexure",
+            });
+        }
+        let mut k = vec![0.0; n * n];
+        let mut idx = 0;
+        for i in 0..n {
+            for j in i..n {
+                k[i * n + j] = v[idx] / l;
+                k[j * n + i] = v[idx] / l;
+                idx += 1;
+            }
+        }
+        Ok((k, v[pairs]))
     }
 
     /// The same flexure with rest curvature coefficients $\kappa$ (Eq. 5).
@@ -288,9 +395,27 @@ impl Flexure {
         }
     }
 
-    /// Energy weight $w_i$: $U = \frac{EI}{2L}\sum_i w_i(\alpha_i - \kappa_i)^2$.
-    pub fn energy_weight(&self, i: usize) -> f64 {
-        self.energy_weights[i]
+    /// The stiffness matrix $K$ (N·m/rad², row-major $N\times N$, symmetric):
+    /// $U = \frac12(\alpha-\kappa)^TK(\alpha-\kappa)$.
+    #[inline]
+    pub fn stiffness_matrix(&self) -> &[f64] {
+        &self.stiffness
+    }
+
+    /// The cross-section along the flexure.
+    pub fn section(&self) -> &Section {
+        &self.section
+    }
+
+    /// Bending stiffness $EI(s)$ (N·m²) at arc length `s` (m).
+    ///
+    /// # Example
+    /// ```
+    /// let f = flexure::Flexure::new(2.0, 3.0, 3).unwrap();
+    /// assert_eq!(f.ei_at(0.7), 3.0);
+    /// ```
+    pub fn ei_at(&self, s: f64) -> f64 {
+        self.section.ei(s / self.length, self.length)
     }
 
     /// $\partial\phi_{tip}/\partial\alpha$: $(1, 0, \dots)$ for Legendre (Eq. 19), all ones for segments.
@@ -304,7 +429,8 @@ impl Flexure {
         self.length
     }
 
-    /// Bending stiffness $EI$ in N·m².
+    /// Bending stiffness $EI$ in N·m²; for a non-uniform [`Section`], its
+    /// mean $\frac1L\int_0^L EI\thinspace ds$ (the scale of loads and energies).
     pub fn ei(&self) -> f64 {
         self.ei
     }

@@ -68,6 +68,7 @@ pub mod ode;
 pub mod quadrature;
 pub mod reference;
 pub mod scalar;
+pub mod section;
 pub mod sincos;
 pub mod solver;
 pub mod statics;

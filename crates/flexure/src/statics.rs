@@ -1,6 +1,6 @@
 //! Equilibrium under tip loads (paper Eqs. 22 and 32).
 
-use crate::energy::{energy_gradient, stiffness};
+use crate::energy::energy_gradient;
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
@@ -149,13 +149,12 @@ impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
             }
         }
         if let Some(h) = jacobian {
-            let n = f.order();
             let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
             for (idx, h) in h.iter_mut().enumerate() {
                 *h = -l * (w[1] * hx[idx] + w[2] * hy[idx]);
             }
-            for i in 0..n {
-                h[i * n + i] += T::c(stiffness(f, i));
+            for (h, &k) in h.iter_mut().zip(f.stiffness_matrix()) {
+                *h += T::c(k);
             }
         }
         if residual.iter().all(|r| r.re().is_finite()) {

@@ -1,6 +1,6 @@
 //! A tendon-driven flexure joint (paper Sec. III-D, Eqs. 23–26).
 
-use crate::energy::{energy, energy_gradient_entry, stiffness};
+use crate::energy::{energy, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
@@ -79,7 +79,9 @@ impl<T: Scalar> TendonPotential<'_, T> {
         }
         for i in 0..n {
             gradient[i] += energy_gradient_entry(self.flexure, alpha, i);
-            hessian[i * n + i] += T::c(stiffness(self.flexure, i));
+        }
+        for (h, &k) in hessian.iter_mut().zip(self.flexure.stiffness_matrix()) {
+            *h += T::c(k);
         }
         energy(self.flexure, alpha) + self.tension * length
     }
@@ -198,8 +200,8 @@ impl solver::Problem<f64> for TendonProblem<'_> {
             for v in h.iter_mut() {
                 *v *= tension;
             }
-            for i in 0..n {
-                h[i * n + i] += stiffness(f, i);
+            for (h, &k) in h.iter_mut().zip(f.stiffness_matrix()) {
+                *h += k;
             }
         }
         Ok(())

@@ -41,10 +41,10 @@ fn derivatives() {
         for j in 0..4 {
             let d: Vec<HyperDual64> =
                 (0..4).map(|m| HyperDual64::new(alpha[m], (m == i) as u8 as f64, (m == j) as u8 as f64, 0.0)).collect();
-            let expected = if i == j { flexure::energy::stiffness(&f, i) } else { 0.0 };
+            let expected = if i == j { flexure::energy::stiffness(&f, i, i) } else { 0.0 };
             assert!((energy(&f, &d).eps1eps2 - expected).abs() < 1e-13, "Hessian ({i},{j})");
         }
     }
     // Errata for Eq. 28: the middle entry is (EI/L)/3, not 0.
-    assert!((flexure::energy::stiffness(&f, 1) - 6.0 / 3.0).abs() < 1e-15);
+    assert!((flexure::energy::stiffness(&f, 1, 1) - 6.0 / 3.0).abs() < 1e-15);
 }

@@ -88,7 +88,9 @@ impl Joint for Flexure {
         s.energy = energy(self, q);
         energy_gradient(self, q, s.gradient.as_mut_slice());
         for i in 0..n {
-            s.stiffness[(i, i)] = stiffness(self, i);
+            for j in 0..n {
+                s.stiffness[(i, j)] = stiffness(self, i, j);
+            }
         }
         s
     }
