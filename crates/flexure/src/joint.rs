@@ -259,6 +259,15 @@ impl Flexure {
         }
         let mut shapes = vec![0.0; n];
         let mut outside: Option<(f64, f64)> = None;
+        // EI of a taper or table piece is smallest at a piece's end (a product
+        // of positive linear factors is log-concave); a notch's at its middle.
+        let ends = [0.0, 0.5, 1.0];
+        for &t in breaks.iter().chain(&ends) {
+            let ei = section.ei(t, l);
+            if !(ei.is_finite() && (EI_RANGE.0..=EI_RANGE.1).contains(&ei)) && outside.is_none() {
+                outside = Some((t, ei));
+            }
+        }
         let integrand = |t: f64, out: &mut [f64]| {
             let ei = section.ei(t, l);
             if !(ei.is_finite() && (EI_RANGE.0..=EI_RANGE.1).contains(&ei)) && outside.is_none() {

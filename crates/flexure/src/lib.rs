@@ -72,6 +72,7 @@ pub mod section;
 pub mod sincos;
 pub mod solver;
 pub mod statics;
+pub mod stress;
 pub mod tendon;
 
 pub use buckling::{Buckling, TipConstraint, buckling_load};

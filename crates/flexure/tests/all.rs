@@ -24,6 +24,7 @@ mod mechanism_files;
 mod ode;
 mod quadrature;
 mod reference;
+mod section;
 mod segments;
 mod sincos;
 mod solver;

@@ -1,0 +1,117 @@
+//! Bending stress along a flexure, and where it peaks.
+//!
+//! At arc length $s$ the outer fibre of a section of thickness $h(s)$ is
+//! strained by $\frac{h}{2}(\hat\omega - \hat\omega_0)$, so the bending stress is
+//! $\sigma(s) = E^{\prime}\thinspace\frac{h(s)}{2}\thinspace\lvert\hat\omega(s) - \hat\omega_0(s)\rvert$
+//! with $E^{\prime}$ the section's effective modulus ([`crate::section::Section::modulus`]).
+//! A section given by $EI$ alone has no thickness, so no stress: its
+//! answers report the largest change of curvature instead.
+
+use crate::joint::Flexure;
+use crate::kinematics::assert_coordinates;
+
+/// Samples of the coarse scan that brackets a peak, per coordinate (at least 64 in all).
+const SAMPLES_PER_ORDER: usize = 16;
+
+/// Golden-section steps refining a bracketed peak: $0.618^{80} \approx 10^{-17}$ of the bracket.
+const REFINEMENTS: usize = 80;
+
+/// The largest value of a quantity along the flexure and where it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peak {
+    /// The value (Pa for stress, 1/m for curvature).
+    pub value: f64,
+    /// Arc length from the root where it is reached (m).
+    pub at: f64,
+}
+
+/// The change of curvature from rest, $\hat\omega(\alpha, s) - \hat\omega_0(s)$ (1/m), at `s` (m).
+///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(2.0, 1.0, 2).unwrap().with_rest(&[0.5, 0.0]).unwrap();
+/// // A tip angle of 1.5 rad over 2 m against a rest of 0.5 rad: 0.5 1/m more.
+/// assert!((flexure::stress::curvature_change(&f, &[1.5, 0.0], 0.3) - 0.5).abs() < 1e-15);
+/// ```
+pub fn curvature_change(flexure: &Flexure, alpha: &[f64], s: f64) -> f64 {
+    assert_coordinates(flexure, "alpha", alpha.len());
+    let n = alpha.len();
+    let mut d = [0.0; crate::joint::MAX_ORDER];
+    for ((d, a), k) in d.iter_mut().zip(alpha).zip(flexure.rest()) {
+        *d = a - k;
+    }
+    flexure.curvature(&d[..n], s)
+}
+
+/// Bending stress $\sigma(s)$ (Pa) at `s` (m); `None` for a section without thickness.
+///
+/// # Example
+/// ```
+/// use flexure::section::{Profile, Section};
+/// let section = Section::rectangle(200e9, None, Profile::Constant(0.01), Profile::Constant(2e-4)).unwrap();
+/// let f = flexure::Flexure::new(0.02, 1.0, 3).unwrap().with_section(section).unwrap();
+/// // A uniform bend of 0.5 rad over 20 mm: 25 1/m, so σ = E h/2 · 25 = 500 MPa.
+/// let sigma = flexure::stress::stress(&f, &[0.5, 0.0, 0.0], 0.01).unwrap();
+/// assert!((sigma - 500e6).abs() < 1e-3);
+/// ```
+pub fn stress(flexure: &Flexure, alpha: &[f64], s: f64) -> Option<f64> {
+    let section = flexure.section();
+    let (e, h) = (section.modulus()?, section.thickness(s / flexure.length(), flexure.length())?);
+    Some(e * 0.5 * h * curvature_change(flexure, alpha, s).abs())
+}
+
+/// The peak bending stress along the flexure; `None` for a section without thickness.
+pub fn peak_stress(flexure: &Flexure, alpha: &[f64]) -> Option<Peak> {
+    flexure.section().modulus()?;
+    Some(peak(flexure, |s| stress(flexure, alpha, s).unwrap_or(0.0)))
+}
+
+/// The largest change of curvature from rest, $\max_s\lvert\hat\omega - \hat\omega_0\rvert$ (1/m).
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 2).unwrap();
+/// // ω = 1 + (2s − 1): largest at the tip, 2 1/m.
+/// let p = flexure::stress::peak_curvature(&f, &[1.0, 1.0]);
+/// assert!((p.value - 2.0).abs() < 1e-12 && (p.at - 1.0).abs() < 1e-12);
+/// ```
+pub fn peak_curvature(flexure: &Flexure, alpha: &[f64]) -> Peak {
+    peak(flexure, |s| curvature_change(flexure, alpha, s).abs())
+}
+
+/// The maximum of `g` on $[0, L]$: a scan of evenly spaced points, the
+/// section's breakpoints and the segment boundaries, then golden-section
+/// refinement between the best point's neighbours (bounded steps).
+fn peak(flexure: &Flexure, g: impl Fn(f64) -> f64) -> Peak {
+    let l = flexure.length();
+    let count = (SAMPLES_PER_ORDER * flexure.order()).max(64);
+    let mut points: Vec<f64> = (0..=count).map(|k| k as f64 / count as f64).collect();
+    points.extend(flexure.section().breakpoints(l));
+    if flexure.basis() == crate::joint::Basis::Segments {
+        // Curvature jumps at each boundary: take both sides.
+        let n = flexure.order() as f64;
+        for j in 1..flexure.order() {
+            points.extend([(j as f64 - 1e-9) / n, (j as f64 + 1e-9) / n]);
+        }
+    }
+    points.sort_by(f64::total_cmp);
+    let values: Vec<f64> = points.iter().map(|t| g(t * l)).collect();
+    let best = (0..points.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
+    let (mut a, mut b) = (points[best.saturating_sub(1)] * l, points[(best + 1).min(points.len() - 1)] * l);
+    let mut top = Peak { value: values[best], at: points[best] * l };
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..REFINEMENTS {
+        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+        let (gc, gd) = (g(c), g(d));
+        for (s, v) in [(c, gc), (d, gd)] {
+            if v > top.value {
+                top = Peak { value: v, at: s };
+            }
+        }
+        if gc >= gd { b = d } else { a = c }
+    }
+    top
+}
