@@ -225,6 +225,7 @@ fn tapered_cantilever_stress_matches_beam_theory() {
     let mut data = flexure::Statics::new(&f);
     let eq =
         flexure::deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: force }, &mut data, &Default::default()).unwrap();
+    assert!(eq.stable);
     let s_star = l * (2.0 * h1 - h0) / (h1 - h0);
     assert!((s_star - 0.5 * l).abs() < 1e-15);
     let h_star = h0 + (h1 - h0) * s_star / l;
