@@ -20,7 +20,12 @@
 //!   [`Settings::max_iterations`] Newton iterations of at most 30 halvings.
 //! - **On the loading branch**: a step may turn no cross-section or body by
 //!   more than [`Settings::max_rotation_per_step`] (the problem's
-//!   [`Problem::distance`]), and a step whose stability differs from the
+//!   [`Problem::distance`]), or [`FAR_STEP`] times that while the problem
+//!   reports its state far from instability; its corrector must contract
+//!   (the second Newton step at most half the first, no damping: Deuflhard's
+//!   test that it stays in the branch's quadratic basin) and a step across
+//!   a fold may turn sections by at most 0.35 rad, so the limit load is read
+//!   off close points. A step whose stability differs from the
 //!   last state's without a fold between them (a jump to another branch) is
 //!   retried shorter. Only when no step down to `min_step` avoids it is the
 //!   change accepted: a bifurcation on the path itself.
@@ -57,6 +62,15 @@ pub trait Problem<T: Scalar> {
     /// no notion of stability keep the default, `true`.
     fn stable(&mut self, _x: &[T], _lambda: f64, _jacobian: &[T]) -> bool {
         true
+    }
+
+    /// Whether the state just evaluated is far from any loss of stability:
+    /// its Jacobian stays positive definite with a margin, so no fold or
+    /// bifurcation is near and the continuation may take steps
+    /// [`FAR_STEP`] times longer. The default, `false`, keeps every step
+    /// within [`Settings::max_rotation_per_step`].
+    fn far_from_instability(&mut self, _x: &[T], _lambda: f64, _jacobian: &[T]) -> bool {
+        false
     }
 
     /// How far apart two states are, in radians: the largest rotation of a
@@ -313,6 +327,7 @@ fn correct<T: Scalar, P: Problem<T>>(
     lambda_weight: f64,
     settings: &Settings,
     min_iterations: usize,
+    contraction: bool,
 ) -> Result<NewtonReport> {
     let n = ws.n;
     let m = match mode {
@@ -328,6 +343,8 @@ fn correct<T: Scalar, P: Problem<T>>(
     };
     sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
     let mut residual = amax(&trial_residual[..m]);
+    // Size of the first Newton step, for the contraction test.
+    let mut first = 0.0;
     for iteration in 0..=settings.max_iterations {
         if interrupted() {
             return Err(Error::Interrupted { load_fraction: lambda });
@@ -361,6 +378,23 @@ fn correct<T: Scalar, P: Problem<T>>(
             *s = -*r;
         }
         linalg::lu_solve(&scratch[..m * m], m, &pivots[..m], &mut step[..m]);
+        if contraction {
+            // A continuation step must land in the quadratic basin of the
+            // branch it follows (Deuflhard's contraction test): the second
+            // Newton step at most half the first, and no damping. Otherwise
+            // the step is too long and is retried shorter.
+            let size = (0..m)
+                .map(|i| (step[i].re() * if i < n { problem.weight(i) } else { lambda_weight }).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            match iteration {
+                0 => first = size,
+                1 if size > CONTRACTION * first && first > 0.0 => {
+                    return Err(Error::NoConvergence { solver: name, iterations: iteration, residual, unit });
+                }
+                _ => {}
+            }
+        }
         // Backtrack on the residual norm; near the tolerance accept a full
         // step that does not grow the residual much (rounding).
         let mut t = 1.0;
@@ -383,7 +417,7 @@ fn correct<T: Scalar, P: Problem<T>>(
                 trial[i] -= step[i] * T::c(t);
             }
             t *= 0.5;
-            if t < 1e-9 {
+            if t < 1e-9 || contraction {
                 return Err(fail(iteration));
             }
         }
@@ -391,6 +425,21 @@ fn correct<T: Scalar, P: Problem<T>>(
     }
     unreachable!("the loop returns at max_iterations")
 }
+
+/// The longest step (largest rotation, rad) across a fold: the limit load
+/// is the peak of a cubic through the two points around the fold, accurate
+/// to about $10^{-5}$ of the load at this spacing.
+const FOLD_ROTATION: f64 = 0.35;
+
+/// How many times [`Settings::max_rotation_per_step`] a step may turn a
+/// section while the problem reports its state far from instability
+/// ([`Problem::far_from_instability`]); the contraction test keeps such a
+/// step on its branch.
+pub const FAR_STEP: f64 = 4.0;
+
+/// The largest ratio of the second Newton step to the first that a
+/// continuation step accepts: Deuflhard's $\bar\Theta = 1/2$.
+const CONTRACTION: f64 = 0.5;
 
 fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64) {
     scratch[..m * m].copy_from_slice(matrix);
@@ -418,7 +467,7 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     let n = ws.n;
     ws.trial[..n].copy_from_slice(&ws.x);
     let min_iterations = if T::is_value() { 0 } else { 1 };
-    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations)?;
+    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false)?;
     ws.x.copy_from_slice(&ws.trial[..n]);
     ws.lambda = lambda;
     Ok(report)
@@ -490,6 +539,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     let min_step = settings.min_step * full;
     let mut h = full;
     let mut rotation_rate = unit_rotation(problem, ws);
+    let mut far = path.stable && problem.far_from_instability(&ws.x, 0.0, &ws.jacobian);
     let mut last_residual = start.residual;
     // Why the last rejected step failed, for the error if the steps run out.
     let mut cause = Cause::Corrector;
@@ -499,8 +549,15 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
         }
         // Step length: at most double the last, turning no section by more
         // than 70 % of the bound; the last step lands on λ = 1.
+        let bound = (settings.max_rotation_per_step * if far { FAR_STEP } else { 1.0 }).min(f64::MAX);
+        // The step the ordinary bound allows: a longer one must end far from instability too.
+        let ordinary = if rotation_rate > 0.0 { 0.7 * settings.max_rotation_per_step / rotation_rate } else { h };
         if rotation_rate > 0.0 {
-            h = h.min(0.7 * settings.max_rotation_per_step / rotation_rate);
+            h = h.min(0.7 * bound / rotation_rate);
+        }
+        if !h.is_finite() {
+            // Only an overflowing tangent gets here; halving would never end.
+            return Err(stalled(problem, lambda, &path, last_residual, "the step length overflowed"));
         }
         let t_lambda = ws.tangent[n].re();
         let landing = t_lambda > 0.0 && lambda + h * t_lambda >= 1.0 - 1e-12;
@@ -510,7 +567,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
                 ws.trial[i] = ws.x[i] + ws.tangent[i] * T::c(hl);
             }
             let min_iterations = if T::is_value() { 0 } else { 1 };
-            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations).map(|r| (r, 1.0))
+            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations, true).map(|r| (r, 1.0))
         } else {
             // Predict along the tangent; correct on the hyperplane through
             // the prediction, orthogonal to the tangent.
@@ -519,7 +576,8 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             }
             ws.trial[n] = T::c(lambda) + ws.tangent[n] * T::c(h);
             ws.anchor.copy_from_slice(&ws.trial);
-            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0).map(|r| (r, ws.trial[n].re()))
+            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0, true)
+                .map(|r| (r, ws.trial[n].re()))
         };
         let outcome = match found {
             Err(Error::Interrupted { .. }) => return Err(Error::Interrupted { load_fraction: lambda }),
@@ -537,7 +595,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
             Ok((report, new_lambda)) => {
                 path.iterations += report.iterations;
                 let turned = problem.distance(&ws.trial[..n], &ws.x);
-                if turned > settings.max_rotation_per_step {
+                if turned > bound {
                     cause = Cause::Turned;
                     None
                 } else {
@@ -554,11 +612,25 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
         };
         // Stability of the new state, and the tangent there (to tell a fold).
         let stable = problem.stable(&ws.trial[..n], new_lambda, &ws.jacobian);
+        let next_far = stable && problem.far_from_instability(&ws.trial[..n], new_lambda, &ws.jacobian);
+        let taken = if landing { (1.0 - lambda) / t_lambda } else { h };
+        if taken > ordinary && !next_far {
+            // A long step may only cross ground far from instability.
+            h = ordinary;
+            continue;
+        }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
         let has_tangent = tangent(ws, problem, lambda_weight);
         let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
-        if path.stable != stable && !fold && h * 0.5 >= min_step {
+        if fold && problem.distance(&ws.trial[..n], &ws.x) > FOLD_ROTATION && h * 0.5 >= min_step {
+            // Long steps are fine along the path, but the limit load is
+            // read off the two points around a fold: take them close.
+            ws.tangent.copy_from_slice(&ws.previous_tangent);
+            h *= 0.5;
+            continue;
+        }
+        if path.stable != stable && (!fold || landing) && h * 0.5 >= min_step {
             // A change of stability without a fold: a jump to another branch
             // (onto the loading path behind a snap, or off it), or a
             // bifurcation on the path; shorter steps tell them apart.
@@ -582,6 +654,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
         lambda = new_lambda;
         path.steps += 1;
         path.stable = stable;
+        far = next_far;
         path.residual = report.residual;
         last_residual = report.residual;
         ws.lambda = lambda;

@@ -168,6 +168,10 @@ impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
         linalg::positive_definite(jacobian, self.flexure.order(), self.scratch)
     }
 
+    fn far_from_instability(&mut self, _alpha: &[T], _lambda: f64, jacobian: &[T]) -> bool {
+        far_from_instability(self.flexure, jacobian, self.scratch)
+    }
+
     fn distance(&self, a: &[T], b: &[T]) -> f64 {
         rotation(self.flexure, a, Some(b))
     }
@@ -251,6 +255,20 @@ pub fn correct<T: Scalar>(
     let stable = solver::Problem::stable(&mut problem, &data.solver.x, 1.0, &data.solver.jacobian);
     data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
     Ok(Equilibrium { stable, limit: None, residual: report.residual, iterations: report.iterations, load_steps: 0 })
+}
+
+/// How much of the elastic stiffness a load may take away, in every
+/// direction, for a state to count as far from instability.
+const MARGIN: f64 = 0.5;
+
+/// Whether $\nabla\nabla E - \frac12 K$ is positive definite (`scratch`: $N^2$):
+/// the load softens no direction by half its elastic stiffness $K$, so no
+/// fold or bifurcation is near ([`solver::Problem::far_from_instability`]).
+pub(crate) fn far_from_instability<T: Scalar>(flexure: &Flexure, hessian: &[T], scratch: &mut [T]) -> bool {
+    for (s, (&h, &k)) in scratch.iter_mut().zip(hessian.iter().zip(flexure.stiffness_matrix())) {
+        *s = h - T::c(MARGIN * k);
+    }
+    linalg::cholesky(scratch, flexure.order())
 }
 
 /// Largest cross-section rotation $\max_k\lvert\sum_i\psi_i(t_k)(a_i - b_i)\rvert$ (b = 0 if absent).

@@ -211,6 +211,10 @@ impl solver::Problem<f64> for TendonProblem<'_> {
         linalg::positive_definite(jacobian, self.dim(), self.scratch)
     }
 
+    fn far_from_instability(&mut self, _alpha: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        crate::statics::far_from_instability(self.potential.flexure, jacobian, self.scratch)
+    }
+
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
         rotation(self.potential.flexure, a, Some(b))
     }

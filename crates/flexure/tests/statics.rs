@@ -223,3 +223,51 @@ fn stability_limit_matches_buckling() {
     let bend = flexure::statics::stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 4.0).unwrap();
     assert_eq!(bend, None);
 }
+
+/// Long steps far from instability: the paper's 90° case (Fig. 6's load,
+/// 3.8477 EI/L² at 45°) is reached in one continuation step, because every
+/// state on the way keeps more than half its elastic stiffness; the answer
+/// is the equilibrium the short-step path reaches (max_rotation_per_step
+/// pinned small enough that the long steps are not allowed), to Newton's tolerance.
+#[test]
+fn far_from_instability_the_continuation_takes_long_steps() {
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let load = TipLoad::polar(0.0, 3.8477, 45f64.to_radians());
+    let mut data = Statics::new(&f);
+    let long = deflect(&f, &load, &mut data, &Settings::default()).unwrap();
+    let alpha = data.alpha().to_vec();
+    let short_settings = Settings { max_rotation_per_step: 0.5 / flexure::solver::FAR_STEP, ..Default::default() };
+    let short = deflect(&f, &load, &mut data, &short_settings).unwrap();
+    assert_eq!(long.load_steps, 1, "{long:?}");
+    assert!(short.load_steps > 4, "{short:?}");
+    assert!(long.stable && short.stable);
+    for (a, b) in alpha.iter().zip(data.alpha()) {
+        assert!((a - b).abs() < 1e-10, "{alpha:?} vs {:?}", data.alpha());
+    }
+}
+
+/// A long first step must not land past a fold: a column under 8.7× its
+/// Euler load with a side force and rest curvature buckles to φ ≈ 3.13; a
+/// single step to the full load lands on the unstable near-straight state
+/// (φ ≈ 0.20) instead. The answer must be the stable buckled state, within
+/// 0.01 rad of the exact elastica's (the order-3 model's own error here).
+#[test]
+fn a_long_step_does_not_land_past_a_fold() {
+    let kappa = [0.13682064279451467, 0.1878018480661532, 0.2852641999269957];
+    let f = Flexure::new(1.0, 1.0, 3).unwrap().with_rest(&kappa).unwrap();
+    let load = TipLoad { moment: 0.0, fx: -21.53936555702723, fy: 0.14229491318230522 };
+    let mut data = Statics::new(&f);
+    let eq = deflect(&f, &load, &mut data, &Settings::default()).unwrap();
+    let exact = flexure::reference::elastica::deflect(&f, &load, &Default::default()).unwrap();
+    assert!(eq.stable && exact.stable, "{eq:?}");
+    assert!((data.alpha()[0] - exact.pose.phi).abs() < 0.01, "{} vs {}", data.alpha()[0], exact.pose.phi);
+}
+
+/// An overflowing load is an error at once, never an endless loop of halvings.
+#[test]
+fn an_overflowing_step_is_an_error() {
+    let f = Flexure::new(2.0339121109392635, 1.6035678019230033, 6).unwrap().with_quadrature(3).unwrap();
+    let load = TipLoad { moment: 1.9659202388348458, fx: 4.437708090274985, fy: 1e300 };
+    let settings = Settings { max_rotation_per_step: f64::MAX, ..Default::default() };
+    assert!(deflect(&f, &load, &mut Statics::new(&f), &settings).is_err());
+}
