@@ -319,6 +319,7 @@ fn system<T: Scalar, P: Problem<T>>(
 }
 
 /// Damped Newton on `mode`'s system, from and into `ws.trial` (length $n$ or $n+1$).
+#[allow(clippy::too_many_arguments)]
 fn correct<T: Scalar, P: Problem<T>>(
     problem: &mut P,
     ws: &mut Workspace<T>,
