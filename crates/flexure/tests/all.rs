@@ -14,6 +14,7 @@ mod compliance;
 mod connect;
 mod coordinates;
 mod elastica;
+mod elastica_path;
 mod energy;
 mod estimate;
 mod format;

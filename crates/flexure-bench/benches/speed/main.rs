@@ -9,6 +9,7 @@ use criterion::{criterion_group, criterion_main};
 mod batch;
 mod joint;
 mod mechanism;
+mod reference;
 mod statics;
 
 /// Seeded inputs, cycled so each call sees different arguments.
@@ -24,5 +25,5 @@ pub fn inputs(count: usize, width: usize) -> Vec<f64> {
         .collect()
 }
 
-criterion_group!(benches, joint::run, statics::run, batch::run, mechanism::run);
+criterion_group!(benches, joint::run, statics::run, batch::run, mechanism::run, reference::run);
 criterion_main!(benches);

@@ -1,8 +1,7 @@
-//! Single-joint statics, and the exact references solving the same tasks.
+//! Single-joint statics (the exact references solving such tasks are in `reference.rs`).
 
 use criterion::Criterion;
 use flexure::connect::connect;
-use flexure::reference::elastica;
 use flexure::{Flexure, Pose, Settings, Statics, TipLoad, deflect};
 use std::f64::consts::FRAC_PI_2;
 use std::hint::black_box;
@@ -16,14 +15,5 @@ pub fn run(c: &mut Criterion) {
     let mut g = c.benchmark_group("statics");
     g.bench_function("deflect_90", |b| b.iter(|| deflect(&f, black_box(&load), &mut data, &settings).unwrap()));
     g.bench_function("connect", |b| b.iter(|| connect(&f, black_box(&target)).unwrap()));
-    g.finish();
-
-    let mut g = c.benchmark_group("reference");
-    g.sample_size(20);
-    g.bench_function("elastica_90", |b| {
-        b.iter(|| elastica::deflect(&f, black_box(&load), &Default::default()).unwrap())
-    });
-    let chain = Flexure::segments(1.0, 1.0, 22).unwrap();
-    g.bench_function("segments_22", |b| b.iter(|| connect(&chain, black_box(&target)).unwrap()));
     g.finish();
 }

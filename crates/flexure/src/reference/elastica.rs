@@ -12,7 +12,7 @@ use nalgebra::Const;
 use num_dual::DualSVec64;
 
 /// Settings of [`deflect`] and [`connect`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// Integrator tolerance.
     pub ode: Tolerance,
@@ -20,7 +20,26 @@ pub struct Settings {
     /// mismatch, relative to $EI/L + |M| + L(|F_x| + |F_y|)$ ([`deflect`]),
     /// or the tip-pose mismatch relative to $L$ ([`connect`]).
     pub solver: solver::Settings,
+    /// The integrator's tolerance (relative and absolute) while [`deflect`]
+    /// follows the loading path; the end state is then refined to `ode`.
+    /// The path only has to keep to its branch and tell where it loses
+    /// stability, and a looser integration takes far fewer steps, the more
+    /// so the more the beam bends. Zero (or anything below `ode`'s
+    /// tolerances) follows the path at `ode` itself.
+    pub path_tolerance: f64,
 }
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self { ode: Tolerance::default(), solver: solver::Settings::default(), path_tolerance: PATH_TOLERANCE }
+    }
+}
+
+/// The default [`Settings::path_tolerance`]: where the loading path still
+/// costs a few times less than the refinement of its end (a tip angle of
+/// 45° to 270°), while its states and stability stay those of the exact
+/// elastica to about that tolerance.
+pub const PATH_TOLERANCE: f64 = 1e-6;
 
 impl Settings {
     /// Checks the integrator and solver settings, naming the first bad one.
@@ -34,7 +53,18 @@ impl Settings {
     /// ```
     pub fn validate(&self) -> Result<()> {
         self.ode.validate()?;
-        self.solver.validate()
+        self.solver.validate()?;
+        let p = self.path_tolerance;
+        if !(p.is_finite() && (0.0..=1e-4).contains(&p)) {
+            return Err(Error::invalid("path_tolerance", p, "must be a finite number from 0 to 1e-4"));
+        }
+        Ok(())
+    }
+
+    /// The integrator's tolerance along the loading path.
+    fn path_ode(&self) -> Tolerance {
+        let p = self.path_tolerance;
+        Tolerance { relative: self.ode.relative.max(p), absolute: self.ode.absolute.max(p), ..self.ode }
     }
 }
 
@@ -88,6 +118,10 @@ const MIN_SEGMENTS: usize = 4;
 /// shooting a beam in tension is too sensitive (in a sweep of forces from
 /// $10^4$ to $10^5 EI/L^2$, 2 % failed and one took 14 s).
 pub const MAX_FORCE_GROWTH: f64 = 100.0;
+
+/// The integrator's first step in each evaluation of the residual, as a
+/// fraction of a segment (it is then carried from segment to segment).
+const FIRST_STEP: f64 = 0.3;
 
 /// Three derivative directions: a segment's start angle and moment, and the load factor.
 type Dual3 = DualSVec64<3>;
@@ -151,7 +185,10 @@ struct Chain<'a> {
     reach: f64,
     /// The nodes' rest angles $\phi_j$, $j = 1..N$.
     rest: Vec<f64>,
-    /// The integrator's next step, carried from segment to segment.
+    /// The integrator's next step, carried from segment to segment within
+    /// one evaluation (and restarted at [`FIRST_STEP`] in each): each
+    /// residual is then a function of $(x, \lambda)$ alone, and Newton can
+    /// meet its tolerance even when the integrator's is far looser.
     step: f64,
     /// The Jacobi test of the last evaluation with derivatives.
     last: Jacobi,
@@ -267,6 +304,7 @@ impl<'a> Chain<'a> {
         mut dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
         let (k, n, last) = (self.stiffness, 2 * self.segments, self.segments - 1);
+        self.step = FIRST_STEP * self.node(1);
         let tip_moment = lambda * self.load.moment / k;
         let target = |j: usize| {
             let phi = x[Self::angle(j + 1)];
@@ -393,9 +431,11 @@ impl Problem<f64> for Chain<'_> {
 /// buckles, a snap-through load reaches the stable shape the path leads to
 /// ([`Solution::limit`] names the load fraction where stability was lost),
 /// and no step turns a node's cross-section by more than
-/// `settings.solver.max_rotation_per_step`. Newton's derivatives come from
-/// dual numbers carried through the integrator; [`Solution::stable`] is the
-/// Jacobi test ([`is_stable`]).
+/// `settings.solver.max_rotation_per_step`. The path is integrated to
+/// `settings.path_tolerance` and its end refined by Newton to `settings.ode`,
+/// so that the cost grows little with the angle the tip turns. Newton's
+/// derivatives come from dual numbers carried through the integrator;
+/// [`Solution::stable`] is the Jacobi test ([`is_stable`]) of the refined state.
 ///
 /// The beam is cut into $N = \lceil L\sqrt{|F|/EI}\rceil$ segments (at
 /// least 4), so that shooting across one segment stays well conditioned and
@@ -418,16 +458,21 @@ impl Problem<f64> for Chain<'_> {
 pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result<Solution> {
     load.validate()?;
     settings.validate()?;
-    let mut chain = Chain::new(flexure, *load, settings.ode)?;
+    let mut chain = Chain::new(flexure, *load, settings.path_ode())?;
     let mut ws = solver::Workspace::new(chain.dim());
     // The rest shape: no moment anywhere, the nodes at their rest angles.
     ws.x = chain.shot(0.0, 0.0)?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
+    // The end state refined to `ode`: Newton starts within about
+    // path_tolerance of it and converges in one or two iterations; the
+    // stability verdict is the refined state's.
+    chain.ode = settings.ode;
+    solver::newton(&mut chain, &mut ws, 1.0, &settings.solver)?;
     Ok(Solution {
+        stable: chain.stable(&ws.x, 1.0, &ws.jacobian),
         pose: chain.pose(&ws.x)?,
         root_moment: ws.x[0] * chain.stiffness,
         load_steps: path.steps,
-        stable: path.stable,
         limit: path.limit,
     })
 }
