@@ -60,3 +60,56 @@ fn evaluation_path_does_not_allocate() {
         assert_eq!(n, 0, "order {order}: {n} allocations");
     }
 }
+
+/// A mechanism's Newton iterations allocate nothing once its problem and
+/// the solver's buffers exist: a whole `solver::newton` at the full load of
+/// a 4-flexure chain under a tip force (several iterations, each evaluating
+/// residual, Jacobian and load derivative) and its stability test (no
+/// closures: a Cholesky in the workspace), repeated from the rest state on
+/// warm buffers; and, for the parallelogram (closures), one evaluation with
+/// its Jacobian. Counted per call: any allocation fails the test.
+#[test]
+fn mechanism_newton_does_not_allocate() {
+    use flexure::mechanism::file::from_toml;
+    use flexure::mechanism::statics::{Kkt, Settings};
+    use flexure::solver::{self, Problem};
+    let mut text = String::new();
+    for i in 0..4 {
+        let parent = if i == 0 { "ground".to_string() } else { format!("b{}", i - 1) };
+        text += &format!("[[joint]]\nname = \"j{i}\"\nkind = \"flexure\"\nparent = \"{parent}\"\nchild = \"b{i}\"\n");
+        text += "length = 0.25\nei = 1.0\n";
+    }
+    text += "[[force]]\nbody = \"b3\"\nat = [0.0, 0.0]\nforce = [0.0, 0.5]\n";
+    let chain = from_toml(&text).unwrap();
+    let settings = Settings::default();
+    let zero = chain.loads().zero_like();
+    let mut kkt = Kkt::new(&chain, &zero, &chain.loads(), &settings).unwrap();
+    let mut ws = solver::Workspace::new(kkt.dim());
+    let start = kkt.state(&chain.rest(), &[]);
+    ws.x.copy_from_slice(&start);
+    solver::newton(&mut kkt, &mut ws, 1.0, &settings).unwrap();
+    ws.x.copy_from_slice(&start);
+    let mut report = None;
+    let mut stable = false;
+    let n = allocations(|| {
+        report = Some(solver::newton(&mut kkt, &mut ws, 1.0, &settings).unwrap());
+        stable = kkt.stable(&ws.x, 1.0, &ws.jacobian);
+        std::hint::black_box(kkt.distance(&ws.x, &start));
+    });
+    let report = report.unwrap();
+    assert!(report.iterations > 2 && stable, "a solve that iterates to a stable state: {report:?}");
+    assert_eq!(n, 0, "chain: {n} allocations in {} Newton iterations", report.iterations);
+
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
+    let text = std::fs::read_to_string(path).unwrap().replace("force = [0.0, -1.0]", "force = [0.5, -1.0]");
+    let stage = from_toml(&text).unwrap();
+    let zero = stage.loads().zero_like();
+    let mut kkt = Kkt::new(&stage, &zero, &stage.loads(), &settings).unwrap();
+    let size = kkt.dim();
+    let x = kkt.state(&stage.rest(), &vec![0.0; stage.constraints()]);
+    let (mut r, mut jac, mut dl) = (vec![0.0; size], vec![0.0; size * size], vec![0.0; size]);
+    kkt.evaluate(&x, 0.5, &mut r, Some(&mut jac), Some(&mut dl)).unwrap();
+    let n = allocations(|| kkt.evaluate(&x, 0.5, &mut r, Some(&mut jac), Some(&mut dl)).unwrap());
+    assert!(r.iter().any(|v| *v != 0.0), "a loaded state has a residual");
+    assert_eq!(n, 0, "parallelogram: {n} allocations in one evaluation");
+}

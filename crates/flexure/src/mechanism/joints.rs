@@ -23,6 +23,8 @@ pub struct JointState {
     pub gradient: DVector<f64>,
     /// Its Hessian.
     pub stiffness: DMatrix<f64>,
+    /// A flexure's kinematics buffers, reused by [`Joint::evaluate_into`].
+    kinematics: Option<Box<Kinematics>>,
 }
 
 /// The interface every joint kind implements.
@@ -31,8 +33,19 @@ pub trait Joint {
     fn dof(&self) -> usize;
     /// Coordinates of the unloaded joint.
     fn rest(&self) -> Vec<f64>;
-    /// Pose, derivatives and energy at `q`.
-    fn evaluate(&self, q: &[f64]) -> JointState;
+    /// Buffers for [`Joint::evaluate_into`] (the Data of this joint).
+    fn state(&self) -> JointState {
+        state(self.dof())
+    }
+    /// Pose, derivatives and energy at `q`, written into `out` (made by
+    /// [`Joint::state`]) without allocating.
+    fn evaluate_into(&self, q: &[f64], out: &mut JointState);
+    /// Pose, derivatives and energy at `q`, in fresh buffers.
+    fn evaluate(&self, q: &[f64]) -> JointState {
+        let mut s = self.state();
+        self.evaluate_into(q, &mut s);
+        s
+    }
 }
 
 /// A pin joint about the root frame's origin, angle $\theta$, with an optional torsional spring.
@@ -66,6 +79,7 @@ fn state(k: usize) -> JointState {
         energy: 0.0,
         gradient: DVector::zeros(k),
         stiffness: DMatrix::zeros(k, k),
+        kinematics: None,
     }
 }
 
@@ -76,23 +90,26 @@ impl Joint for Flexure {
     fn rest(&self) -> Vec<f64> {
         Flexure::rest(self).to_vec()
     }
-    fn evaluate(&self, q: &[f64]) -> JointState {
+    fn state(&self) -> JointState {
         let n = self.order();
-        let mut k = Kinematics::new(self);
-        kinematics::update(self, q, &mut k, Level::Hessian);
         let mut s = state(n);
-        s.pose = k.pose_root_tip;
-        s.jacobian = k.jacobian_root_tip;
-        s.hessian_x = k.hessian_root_tip_x;
-        s.hessian_y = k.hessian_root_tip_y;
-        s.energy = energy(self, q);
-        energy_gradient(self, q, s.gradient.as_mut_slice());
+        s.kinematics = Some(Box::new(Kinematics::new(self)));
         for i in 0..n {
             for j in 0..n {
                 s.stiffness[(i, j)] = stiffness(self, i, j);
             }
         }
         s
+    }
+    fn evaluate_into(&self, q: &[f64], s: &mut JointState) {
+        let k = s.kinematics.get_or_insert_with(|| Box::new(Kinematics::new(self)));
+        kinematics::update(self, q, k, Level::Hessian);
+        s.pose = k.pose_root_tip;
+        s.jacobian.copy_from(&k.jacobian_root_tip);
+        s.hessian_x.copy_from(&k.hessian_root_tip_x);
+        s.hessian_y.copy_from(&k.hessian_root_tip_y);
+        s.energy = energy(self, q);
+        energy_gradient(self, q, s.gradient.as_mut_slice());
     }
 }
 
@@ -103,14 +120,16 @@ impl Joint for Revolute {
     fn rest(&self) -> Vec<f64> {
         vec![self.rest]
     }
-    fn evaluate(&self, q: &[f64]) -> JointState {
+    fn state(&self) -> JointState {
         let mut s = state(1);
-        s.pose = Pose { phi: q[0], x: 0.0, y: 0.0 };
         s.jacobian[(0, 0)] = 1.0;
-        s.energy = 0.5 * self.stiffness * (q[0] - self.rest).powi(2);
-        s.gradient[0] = self.stiffness * (q[0] - self.rest);
         s.stiffness[(0, 0)] = self.stiffness;
         s
+    }
+    fn evaluate_into(&self, q: &[f64], s: &mut JointState) {
+        s.pose = Pose { phi: q[0], x: 0.0, y: 0.0 };
+        s.energy = 0.5 * self.stiffness * (q[0] - self.rest).powi(2);
+        s.gradient[0] = self.stiffness * (q[0] - self.rest);
     }
 }
 
@@ -121,14 +140,16 @@ impl Joint for Prismatic {
     fn rest(&self) -> Vec<f64> {
         vec![self.rest]
     }
-    fn evaluate(&self, q: &[f64]) -> JointState {
+    fn state(&self) -> JointState {
         let mut s = state(1);
-        s.pose = Pose { phi: 0.0, x: q[0], y: 0.0 };
         s.jacobian[(1, 0)] = 1.0;
-        s.energy = 0.5 * self.stiffness * (q[0] - self.rest).powi(2);
-        s.gradient[0] = self.stiffness * (q[0] - self.rest);
         s.stiffness[(0, 0)] = self.stiffness;
         s
+    }
+    fn evaluate_into(&self, q: &[f64], s: &mut JointState) {
+        s.pose = Pose { phi: 0.0, x: q[0], y: 0.0 };
+        s.energy = 0.5 * self.stiffness * (q[0] - self.rest).powi(2);
+        s.gradient[0] = self.stiffness * (q[0] - self.rest);
     }
 }
 
@@ -139,9 +160,7 @@ impl Joint for Fixed {
     fn rest(&self) -> Vec<f64> {
         vec![]
     }
-    fn evaluate(&self, _: &[f64]) -> JointState {
-        state(0)
-    }
+    fn evaluate_into(&self, _: &[f64], _: &mut JointState) {}
 }
 
 /// One of the joint kinds.

@@ -44,7 +44,7 @@ impl Frame {
 }
 
 /// Every frame of the mechanism at one configuration (the Data).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Frames {
     /// Body frames in the world; index 0 is the ground.
     pub bodies: Vec<Frame>,
@@ -54,20 +54,35 @@ pub struct Frames {
     pub joints: Vec<JointState>,
 }
 
+impl Frames {
+    /// Buffers for the frames of `m` (each joint's from [`super::Joint::state`]).
+    pub fn new(m: &Mechanism) -> Self {
+        Frames {
+            bodies: vec![Frame::default(); m.bodies.len()],
+            roots: vec![Frame::default(); m.joints.len()],
+            joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
+        }
+    }
+}
+
 /// Frames at coordinates `q`, parents before children.
 pub fn frames(m: &Mechanism, q: &[f64]) -> Frames {
-    let mut bodies = vec![Frame::default(); m.bodies.len()];
-    let mut roots = Vec::with_capacity(m.joints.len());
-    let mut joints = Vec::with_capacity(m.joints.len());
-    for j in &m.joints {
-        let dof = j.kind.joint().dof();
-        let state = j.kind.joint().evaluate(&q[j.offset..j.offset + dof]);
-        let root = bodies[j.parent].then(j.origin.x, j.origin.y, j.origin.phi);
-        bodies[j.child] = root.then(state.pose.x, state.pose.y, state.pose.phi);
-        roots.push(root);
-        joints.push(state);
+    let mut f = Frames::new(m);
+    frames_into(m, q, &mut f);
+    f
+}
+
+/// [`frames`] into the buffers `f` (made by [`Frames::new`] for `m`), without allocating.
+pub fn frames_into(m: &Mechanism, q: &[f64], f: &mut Frames) {
+    f.bodies[0] = Frame::default();
+    for (i, j) in m.joints.iter().enumerate() {
+        let joint = j.kind.joint();
+        let state = &mut f.joints[i];
+        joint.evaluate_into(&q[j.offset..j.offset + joint.dof()], state);
+        let root = f.bodies[j.parent].then(j.origin.x, j.origin.y, j.origin.phi);
+        f.bodies[j.child] = root.then(state.pose.x, state.pose.y, state.pose.phi);
+        f.roots[i] = root;
     }
-    Frames { bodies, roots, joints }
 }
 
 /// A point's world position and angle with derivatives in $q$.
@@ -87,57 +102,108 @@ fn quarter(v: [f64; 2]) -> [f64; 2] {
     [-v[1], v[0]]
 }
 
-/// Derivatives of point `r` (in the frame of `body`).
-pub fn point(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], hessian: bool) -> PointDerivatives {
-    let n = m.dof();
+/// A point's position, angle and Jacobian, with the coordinates on its
+/// path, reused from one evaluation to the next (the Data of [`point_into`]).
+#[derive(Debug, Clone, Default)]
+pub struct PointBuffer {
+    /// Angle of the body (rad).
+    pub angle: f64,
+    /// World position (m).
+    pub position: [f64; 2],
+    /// $3\times n$: rows $(\theta, x, y)$; zero off the path.
+    pub jacobian: DMatrix<f64>,
+    /// The coordinates on the path: (joint's distance from the body, joint, coordinate within it).
+    coords: Vec<(usize, usize, usize)>,
+}
+
+impl PointBuffer {
+    /// Buffers for a point of `m`.
+    pub fn new(m: &Mechanism) -> Self {
+        PointBuffer {
+            angle: 0.0,
+            position: [0.0; 2],
+            jacobian: DMatrix::zeros(3, m.dof()),
+            coords: Vec::with_capacity(m.dof()),
+        }
+    }
+}
+
+/// Position, angle and Jacobian of point `r` (in the frame of `body`) into
+/// `out`, in one pass from the body down to the ground; allocates nothing
+/// once `out` has held a path this long.
+pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut PointBuffer) {
     let w = f.bodies[body].point(r);
-    let mut jac = DMatrix::zeros(3, n);
-    let path = m.path(body);
-    // Coordinates on the path, with their joint's position along it.
-    let mut coords: Vec<(usize, usize, usize)> = Vec::new();
-    for (step, &ji) in path.iter().enumerate() {
+    for &(_, ji, i) in &out.coords {
+        out.jacobian.column_mut(m.joints[ji].offset + i).fill(0.0);
+    }
+    out.coords.clear();
+    let (mut b, mut step) = (body, 0);
+    while let Some(ji) = m.parent_joint(b) {
         let j = &m.joints[ji];
         let s = &f.joints[ji];
         let root = f.roots[ji];
         let o = f.bodies[j.child].origin;
-        let arm = [w[0] - o[0], w[1] - o[1]];
-        for i in 0..j.kind.joint().dof() {
+        let turn = quarter([w[0] - o[0], w[1] - o[1]]);
+        for i in 0..s.gradient.len() {
             let col = j.offset + i;
             let dphi = s.jacobian[(0, i)];
             let dp = root.rotate([s.jacobian[(1, i)], s.jacobian[(2, i)]]);
-            let turn = quarter(arm);
-            jac[(0, col)] = dphi;
-            jac[(1, col)] = dp[0] + dphi * turn[0];
-            jac[(2, col)] = dp[1] + dphi * turn[1];
-            coords.push((step, ji, i));
+            out.jacobian[(0, col)] = dphi;
+            out.jacobian[(1, col)] = dp[0] + dphi * turn[0];
+            out.jacobian[(2, col)] = dp[1] + dphi * turn[1];
+            out.coords.push((step, ji, i));
         }
+        b = j.parent;
+        step += 1;
     }
-    let hessian = hessian.then(|| {
-        let (mut hx, mut hy) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-        for (ia, &(sa, ja, a)) in coords.iter().enumerate() {
-            let ca = m.joints[ja].offset + a;
-            for &(sb, jb, b) in &coords[ia..] {
-                let cb = m.joints[jb].offset + b;
-                let (vx, vy) = if sa == sb {
-                    let s = &f.joints[ja];
-                    let root = f.roots[ja];
-                    let o = f.bodies[m.joints[ja].child].origin;
-                    let local = root.rotate([s.hessian_x[(a, b)], s.hessian_y[(a, b)]]);
-                    let k = s.jacobian[(0, a)] * s.jacobian[(0, b)];
-                    (local[0] - k * (w[0] - o[0]), local[1] - k * (w[1] - o[1]))
-                } else {
-                    // a is upstream of b: ∂_a φ · J · ∂_b w.
-                    let dphi = f.joints[ja].jacobian[(0, a)];
-                    let t = quarter([jac[(1, cb)], jac[(2, cb)]]);
-                    (dphi * t[0], dphi * t[1])
-                };
-                hx[(ca, cb)] = vx;
-                hx[(cb, ca)] = vx;
-                hy[(ca, cb)] = vy;
-                hy[(cb, ca)] = vy;
+    out.angle = f.bodies[body].angle;
+    out.position = w;
+}
+
+/// Adds $w_x\nabla^2 x + w_y\nabla^2 y$ of the point in `p` (from
+/// [`point_into`]) to `h`, entries on its path only (see the module docs).
+pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f64; 2], h: &mut DMatrix<f64>) {
+    if weight == [0.0; 2] {
+        return;
+    }
+    let w = p.position;
+    for (ia, &(sa, ja, a)) in p.coords.iter().enumerate() {
+        let ca = m.joints[ja].offset + a;
+        for &(sb, jb, b) in &p.coords[ia..] {
+            let cb = m.joints[jb].offset + b;
+            let (vx, vy) = if sa == sb {
+                let s = &f.joints[ja];
+                let root = f.roots[ja];
+                let o = f.bodies[m.joints[ja].child].origin;
+                let local = root.rotate([s.hessian_x[(a, b)], s.hessian_y[(a, b)]]);
+                let k = s.jacobian[(0, a)] * s.jacobian[(0, b)];
+                (local[0] - k * (w[0] - o[0]), local[1] - k * (w[1] - o[1]))
+            } else {
+                // The joint farther from the body is upstream: ∂_up φ · J · ∂_down w.
+                let ((up, i), cdown) = if sa > sb { ((ja, a), cb) } else { ((jb, b), ca) };
+                let dphi = f.joints[up].jacobian[(0, i)];
+                let t = quarter([p.jacobian[(1, cdown)], p.jacobian[(2, cdown)]]);
+                (dphi * t[0], dphi * t[1])
+            };
+            let v = weight[0] * vx + weight[1] * vy;
+            h[(ca, cb)] += v;
+            if ca != cb {
+                h[(cb, ca)] += v;
             }
         }
+    }
+}
+
+/// Derivatives of point `r` (in the frame of `body`), in fresh buffers.
+pub fn point(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], hessian: bool) -> PointDerivatives {
+    let n = m.dof();
+    let mut p = PointBuffer::new(m);
+    point_into(m, f, body, r, &mut p);
+    let hessian = hessian.then(|| {
+        let (mut hx, mut hy) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        add_point_hessian(m, f, &p, [1.0, 0.0], &mut hx);
+        add_point_hessian(m, f, &p, [0.0, 1.0], &mut hy);
         [hx, hy]
     });
-    PointDerivatives { angle: f.bodies[body].angle, position: w, jacobian: jac, hessian }
+    PointDerivatives { angle: p.angle, position: p.position, jacobian: p.jacobian, hessian }
 }

@@ -9,7 +9,7 @@
 //! $d_i = w_{i+1} - w_i$, has $\nabla\ell = \sum_i \partial d_i^T u_i$ and
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
-use super::kinematics::{Frames, frames, point};
+use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
 use super::{Closure, Loads, Mechanism};
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix2};
@@ -72,8 +72,55 @@ pub fn lagrangian(m: &Mechanism, q: &[f64], mu: &[f64], loads: &Loads) -> Result
 }
 
 pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, with_hessian: bool) -> Result<Lagrangian> {
-    let n = m.dof();
-    let (mut gradient, mut hessian) = (DVector::zeros(n), DMatrix::zeros(n, n));
+    let mut a = Assembly::new(m);
+    let (potential, elastic) = assemble_into(m, f, mu, loads, with_hessian, &mut a)?;
+    let Assembly { gradient, hessian, closure, closure_jacobian, .. } = a;
+    Ok(Lagrangian { potential, elastic, gradient, hessian, closure, closure_jacobian })
+}
+
+/// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Assembly {
+    /// $\nabla V$.
+    pub gradient: DVector<f64>,
+    /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$ (when asked for).
+    pub hessian: DMatrix<f64>,
+    /// $c(q)$.
+    pub closure: DVector<f64>,
+    /// $G$.
+    pub closure_jacobian: DMatrix<f64>,
+    /// Two points' derivatives.
+    pub points: [PointBuffer; 2],
+}
+
+impl Assembly {
+    pub fn new(m: &Mechanism) -> Self {
+        let (n, rows) = (m.dof(), m.constraints());
+        Assembly {
+            gradient: DVector::zeros(n),
+            hessian: DMatrix::zeros(n, n),
+            closure: DVector::zeros(rows),
+            closure_jacobian: DMatrix::zeros(rows, n),
+            points: [PointBuffer::new(m), PointBuffer::new(m)],
+        }
+    }
+}
+
+/// [`assemble`] into `a` (made for `m`): returns $V$ and its elastic part.
+/// Allocates nothing.
+pub(super) fn assemble_into(
+    m: &Mechanism,
+    f: &Frames,
+    mu: &[f64],
+    loads: &Loads,
+    with_hessian: bool,
+    a: &mut Assembly,
+) -> Result<(f64, f64)> {
+    let Assembly { gradient, hessian, closure, closure_jacobian, points } = a;
+    gradient.fill(0.0);
+    if with_hessian {
+        hessian.fill(0.0);
+    }
     let mut elastic = 0.0;
     for (j, s) in m.joints.iter().zip(&f.joints) {
         let k = s.gradient.len();
@@ -85,11 +132,16 @@ pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, wit
             h += &s.stiffness;
         }
     }
-    let load = add_loads(m, f, loads, &mut gradient, with_hessian.then_some(&mut hessian))?;
-    let rows = m.constraints();
-    let (mut closure, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, n));
-    add_closures(m, f, mu, &mut closure, &mut g, with_hessian.then_some(&mut hessian));
-    Ok(Lagrangian { potential: elastic + load, elastic, gradient, hessian, closure, closure_jacobian: g })
+    let load = add_loads(m, f, loads, gradient, with_hessian.then_some(&mut *hessian), points)?;
+    add_closures(m, f, mu, closure, closure_jacobian, with_hessian.then_some(hessian), points);
+    Ok((elastic + load, elastic))
+}
+
+/// $c$ and $G$ at the frames `f`.
+pub(super) fn closures(m: &Mechanism, f: &Frames) -> (DVector<f64>, DMatrix<f64>) {
+    let (mut c, mut g) = (DVector::zeros(m.constraints()), DMatrix::zeros(m.constraints(), m.dof()));
+    add_closures(m, f, &[], &mut c, &mut g, None, &mut [PointBuffer::new(m), PointBuffer::new(m)]);
+    (c, g)
 }
 
 /// Writes $c$ and $G$, and adds $\sum_i\mu_i\nabla^2 c_i$ to `hessian` if given.
@@ -100,8 +152,10 @@ pub(super) fn add_closures(
     closure: &mut DVector<f64>,
     g: &mut DMatrix<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
+    points: &mut [PointBuffer; 2],
 ) {
     let mut row = 0;
+    let [pa, pb] = points;
     for c in &m.closures {
         let (a, ar, aphi, b, br, bphi, angle) = match *c {
             Closure::Weld { a, a_origin, b, b_origin } => {
@@ -109,19 +163,24 @@ pub(super) fn add_closures(
             }
             Closure::Pin { a, a_at, b, b_at } => (a, a_at, 0.0, b, b_at, 0.0, false),
         };
-        let with_hessian = hessian.is_some();
-        let (pa, pb) = (point(m, f, a, ar, with_hessian), point(m, f, b, br, with_hessian));
+        point_into(m, f, a, ar, pa);
+        point_into(m, f, b, br, pb);
         for k in 0..2 {
             closure[row + k] = pa.position[k] - pb.position[k];
-            g.row_mut(row + k).copy_from(&(pa.jacobian.row(1 + k) - pb.jacobian.row(1 + k)));
+            for col in 0..g.ncols() {
+                g[(row + k, col)] = pa.jacobian[(1 + k, col)] - pb.jacobian[(1 + k, col)];
+            }
         }
         // The angle is linear in q for every joint kind: no Hessian term.
-        if let (Some(h), Some([ax, ay]), Some([bx, by])) = (hessian.as_deref_mut(), &pa.hessian, &pb.hessian) {
-            *h += (ax - bx) * mu[row] + (ay - by) * mu[row + 1];
+        if let Some(h) = hessian.as_deref_mut() {
+            add_point_hessian(m, f, pa, [mu[row], mu[row + 1]], h);
+            add_point_hessian(m, f, pb, [-mu[row], -mu[row + 1]], h);
         }
         if angle {
             closure[row + 2] = wrap(pa.angle + aphi - pb.angle - bphi);
-            g.row_mut(row + 2).copy_from(&(pa.jacobian.row(0) - pb.jacobian.row(0)));
+            for col in 0..g.ncols() {
+                g[(row + 2, col)] = pa.jacobian[(0, col)] - pb.jacobian[(0, col)];
+            }
         }
         row += c.equations();
     }
@@ -131,18 +190,20 @@ pub(super) fn add_closures(
 pub(super) fn closure_hessian(m: &Mechanism, f: &Frames, mu: &[f64]) -> DMatrix<f64> {
     let (n, rows) = (m.dof(), m.constraints());
     let mut h = DMatrix::zeros(n, n);
-    add_closures(m, f, mu, &mut DVector::zeros(rows), &mut DMatrix::zeros(rows, n), Some(&mut h));
+    let mut points = [PointBuffer::new(m), PointBuffer::new(m)];
+    add_closures(m, f, mu, &mut DVector::zeros(rows), &mut DMatrix::zeros(rows, n), Some(&mut h), &mut points);
     h
 }
 
 /// Adds the loads' gradient (and Hessian) to `gradient` (`hessian`);
-/// returns their potential.
+/// returns their potential. `points` are scratch buffers.
 pub(super) fn add_loads(
     m: &Mechanism,
     f: &Frames,
     loads: &Loads,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
+    points: &mut [PointBuffer; 2],
 ) -> Result<f64> {
     let n = m.dof();
     let mut potential = 0.0;
@@ -151,12 +212,13 @@ pub(super) fn add_loads(
         if force == [0.0; 2] && moment == 0.0 {
             return 0.0;
         }
-        let p = point(m, f, body, at, h.is_some());
+        let p = &mut points[0];
+        point_into(m, f, body, at, p);
         for c in 0..n {
             gradient[c] -= force[0] * p.jacobian[(1, c)] + force[1] * p.jacobian[(2, c)] + moment * p.jacobian[(0, c)];
         }
-        if let (Some(h), Some([hx, hy])) = (h, &p.hessian) {
-            *h -= hx * force[0] + hy * force[1];
+        if let Some(h) = h {
+            add_point_hessian(m, f, p, [-force[0], -force[1]], h);
         }
         -(force[0] * p.position[0] + force[1] * p.position[1] + moment * p.angle)
     };
@@ -169,14 +231,17 @@ pub(super) fn add_loads(
             potential += push(b, body.com, weight, 0.0, hessian.as_deref_mut());
         }
     }
-    // A tendon: V = T Σ|w_{i+1} − w_i|.
+    // A tendon: V = T Σ|w_{i+1} − w_i|, its via points taken two at a time.
     for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
         if tension == 0.0 {
             continue;
         }
-        let pts: Vec<_> = t.path.iter().map(|&(b, r)| point(m, f, b, r, hessian.is_some())).collect();
-        for (i, pair) in pts.windows(2).enumerate() {
-            let (a, b) = (&pair[0], &pair[1]);
+        let [first, second] = points;
+        let (mut a, mut b) = (first, second);
+        point_into(m, f, t.path[0].0, t.path[0].1, a);
+        for i in 0..t.path.len() - 1 {
+            let (body, r) = t.path[i + 1];
+            point_into(m, f, body, r, b);
             let d = [b.position[0] - a.position[0], b.position[1] - a.position[1]];
             let len = d[0].hypot(d[1]);
             // Coincident to rounding: the direction u is undefined.
@@ -188,16 +253,27 @@ pub(super) fn add_loads(
             }
             potential += tension * len;
             let u = [d[0] / len, d[1] / len];
-            let jd = b.jacobian.rows(1, 2) - a.jacobian.rows(1, 2);
-            *gradient += jd.transpose() * DVector::from_column_slice(&u) * tension;
+            let jd = |k: usize, c: usize| b.jacobian[(1 + k, c)] - a.jacobian[(1 + k, c)];
+            for c in 0..n {
+                gradient[c] += (jd(0, c) * u[0] + jd(1, c) * u[1]) * tension;
+            }
             if let Some(h) = hessian.as_deref_mut() {
                 // ∂²|d| = ∂dᵀ(I − u uᵀ)∂d/|d| + u·∂²d.
                 let proj = Matrix2::new(1.0 - u[0] * u[0], -u[0] * u[1], -u[0] * u[1], 1.0 - u[1] * u[1]) / len;
-                *h += jd.transpose() * proj * &jd * tension;
-                if let (Some([ax, ay]), Some([bx, by])) = (&a.hessian, &b.hessian) {
-                    *h += ((bx - ax) * u[0] + (by - ay) * u[1]) * tension;
+                for c in 0..n {
+                    let (x, y) = (jd(0, c), jd(1, c));
+                    if x == 0.0 && y == 0.0 {
+                        continue;
+                    }
+                    let pc = [proj[(0, 0)] * x + proj[(0, 1)] * y, proj[(1, 0)] * x + proj[(1, 1)] * y];
+                    for r in 0..n {
+                        h[(r, c)] += (jd(0, r) * pc[0] + jd(1, r) * pc[1]) * tension;
+                    }
                 }
+                add_point_hessian(m, f, b, [u[0] * tension, u[1] * tension], h);
+                add_point_hessian(m, f, a, [-u[0] * tension, -u[1] * tension], h);
             }
+            std::mem::swap(&mut a, &mut b);
         }
     }
     Ok(potential)

@@ -111,7 +111,7 @@ impl Closure {
 }
 
 /// The magnitudes of every load, which continuation and sweeps scale.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Loads {
     /// Tendon tensions, in the order of [`Mechanism::tendons`].
     pub tension: Vec<f64>,
@@ -130,6 +130,18 @@ impl Loads {
             force: self.force.iter().zip(&other.force).map(|(a, b)| std::array::from_fn(|i| mix(a[i], b[i]))).collect(),
             gravity: std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i])),
         }
+    }
+
+    /// [`Loads::lerp`] into `out` (shaped like `self`), without allocating.
+    pub fn lerp_into(&self, other: &Loads, s: f64, out: &mut Loads) {
+        let mix = |a: f64, b: f64| a + s * (b - a);
+        for ((o, a), b) in out.tension.iter_mut().zip(&self.tension).zip(&other.tension) {
+            *o = mix(*a, *b);
+        }
+        for ((o, a), b) in out.force.iter_mut().zip(&self.force).zip(&other.force) {
+            *o = std::array::from_fn(|i| mix(a[i], b[i]));
+        }
+        out.gravity = std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i]));
     }
 
     /// Checks that the loads fit `m` (a tension per tendon, a triple per

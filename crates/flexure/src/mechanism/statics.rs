@@ -36,14 +36,15 @@
 //! where it was. Stability and the reported multipliers then take the free
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
-use super::indeterminate::settle;
-use super::kinematics::{Frames, frames, point};
-use super::lagrangian::{add_closures, add_loads, assemble, check_sizes, closure_hessian, lagrangian};
+use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
+use super::kinematics::{Frames, frames, frames_into, point};
+use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
 use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::solver;
 use nalgebra::{DMatrix, DVector, Matrix3};
+use std::cell::RefCell;
 
 pub use crate::solver::Settings;
 
@@ -88,6 +89,64 @@ pub const PROBE_STEPS: usize = 100;
 /// The shift of the multiplier block of the Newton matrix (see the module docs).
 const MULTIPLIER_SHIFT: f64 = 1e-10;
 
+/// The reusable buffers of a mechanism's equilibrium problem (the Data;
+/// the [`Mechanism`] is the Model): frames, the assembled Lagrangian, the
+/// load derivative and the stability test's matrices. Once made by
+/// [`Workspace::new`], evaluating [`Kkt`] (residual, Jacobian, load
+/// derivative) allocates nothing, and neither does its stability test
+/// when the mechanism has no closures.
+#[derive(Debug, Clone, Default)]
+pub struct Workspace {
+    dof: usize,
+    constraints: usize,
+    frames: Frames,
+    assembly: Assembly,
+    load_gradient: DVector<f64>,
+    mu: Vec<f64>,
+    loads: Loads,
+    /// $n\times n$ column-major: the scaled stiffness and its Cholesky copy.
+    stiffness: Vec<f64>,
+    scratch: Vec<f64>,
+    /// Body angles of two states, for [`solver::Problem::distance`].
+    angles: RefCell<[Vec<f64>; 2]>,
+    /// The solver core's buffers, kept between solves.
+    solver: Option<solver::Workspace<f64>>,
+}
+
+impl Workspace {
+    /// Buffers for `m`.
+    pub fn new(m: &Mechanism) -> Self {
+        let (n, rows) = (m.dof(), m.constraints());
+        Workspace {
+            dof: n,
+            constraints: rows,
+            frames: Frames::new(m),
+            assembly: Assembly::new(m),
+            load_gradient: DVector::zeros(n),
+            mu: vec![0.0; rows],
+            loads: m.loads(),
+            stiffness: vec![0.0; n * n],
+            scratch: vec![0.0; n * n],
+            angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
+            solver: None,
+        }
+    }
+
+    /// The solver core's buffers for `dim` unknowns, kept ones if they fit.
+    fn solver(&mut self, dim: usize) -> solver::Workspace<f64> {
+        self.solver.take().filter(|w| w.dim() == dim).unwrap_or_else(|| solver::Workspace::new(dim))
+    }
+
+    fn fits(&self, m: &Mechanism) -> bool {
+        self.dof == m.dof()
+            && self.constraints == m.constraints()
+            && self.frames.bodies.len() == m.bodies.len()
+            && self.frames.joints.len() == m.joints.len()
+            && self.loads.tension.len() == m.tendons.len()
+            && self.loads.force.len() == m.forces.len()
+    }
+}
+
 /// The KKT conditions of a mechanism under the loads
 /// $\text{from} + \lambda(\text{to} - \text{from})$, as a [`solver::Problem`].
 ///
@@ -117,12 +176,27 @@ pub struct Kkt<'a> {
     scale: f64,
     /// Smallest relative stiffness of a stable state.
     margin: f64,
+    work: Workspace,
 }
 
 impl<'a> Kkt<'a> {
     /// The problem of moving `m` from `from` to `to` (both validated), for
     /// a solver run with `settings` (whose tolerance sets the stability margin).
     pub fn new(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings) -> Result<Self> {
+        Self::with_workspace(m, from, to, settings, Workspace::new(m))
+    }
+
+    /// [`Kkt::new`] with the buffers `work` (made for `m` by [`Workspace::new`]).
+    pub fn with_workspace(
+        m: &'a Mechanism,
+        from: &Loads,
+        to: &Loads,
+        settings: &Settings,
+        work: Workspace,
+    ) -> Result<Self> {
+        if !work.fits(m) {
+            return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
+        }
         settings.validate()?;
         from.validate(m)?;
         to.validate(m)?;
@@ -135,9 +209,10 @@ impl<'a> Kkt<'a> {
         let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
         // Diagonal stiffness of each coordinate (constant for every joint
         // kind), and the factor to N·m/rad: 1 for angles, ℓ² for slider travel.
-        let rest = frames(m, &m.rest());
+        let mut work = work;
+        frames_into(m, &m.rest(), &mut work.frames);
         let (mut stiffness, mut unit) = (vec![0.0; n], vec![1.0; n]);
-        for (j, s) in m.joints.iter().zip(&rest.joints) {
+        for (j, s) in m.joints.iter().zip(&work.frames.joints) {
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
             }
@@ -192,7 +267,13 @@ impl<'a> Kkt<'a> {
             length,
             scale,
             margin: settings.tolerance.sqrt(),
+            work,
         })
+    }
+
+    /// The buffers, for the next problem on the same mechanism.
+    pub fn into_workspace(self) -> Workspace {
+        self.work
     }
 
     /// The unknowns $(q, \nu)$ of coordinates `q` and multipliers `mu`.
@@ -228,12 +309,20 @@ impl solver::Problem<f64> for Kkt<'_> {
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
         let q = &x[..n];
-        let mu = self.multipliers(x);
-        let f = frames(m, q);
-        let a = assemble(m, &f, &mu, &self.loads(lambda), jacobian.is_some())?;
-        let force = &a.gradient + a.closure_jacobian.transpose() * DVector::from_column_slice(&mu);
+        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, .. } = &mut self.work;
+        for ((m, v), s) in mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
+            *m = v * s;
+        }
+        frames_into(m, q, f);
+        self.from.lerp_into(&self.to, lambda, loads);
+        assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
+        let g = &a.closure_jacobian;
         for i in 0..n {
-            residual[i] = force[i] * self.row_scale[i];
+            let mut force = a.gradient[i];
+            for (k, mu) in mu.iter().enumerate() {
+                force += g[(k, i)] * mu;
+            }
+            residual[i] = force * self.row_scale[i];
         }
         for i in 0..rows {
             residual[n + i] = a.closure[i] * self.closure_scale[i];
@@ -242,7 +331,6 @@ impl solver::Problem<f64> for Kkt<'_> {
             return Err(Error::Singular { what: "mechanism equilibrium: a non-finite generalized force".into() });
         }
         if let Some(jac) = jacobian {
-            let g = &a.closure_jacobian;
             for c in 0..n {
                 for r in 0..n {
                     jac[c * size + r] = a.hessian[(r, c)] * self.row_scale[r];
@@ -259,10 +347,10 @@ impl solver::Problem<f64> for Kkt<'_> {
             }
         }
         if let Some(d) = dlambda {
-            let mut g = DVector::zeros(n);
-            add_loads(m, &f, &self.change, &mut g, None)?;
+            load_gradient.fill(0.0);
+            add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
             for i in 0..n {
-                d[i] = g[i] * self.row_scale[i];
+                d[i] = load_gradient[i] * self.row_scale[i];
             }
             d[n..].fill(0.0);
         }
@@ -279,22 +367,38 @@ impl solver::Problem<f64> for Kkt<'_> {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
+        if rows == 0 {
+            // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
+            let Workspace { stiffness: k, scratch, .. } = &mut self.work;
+            let s = |r: usize| self.row_scale[r].sqrt();
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s(r) * s(c);
+            for c in 0..n {
+                for r in 0..n {
+                    k[c * n + r] = (scaled(r, c) + scaled(c, r)) * 0.5;
+                }
+                k[c * n + c] -= self.margin;
+            }
+            return linalg::positive_definite(k, n, scratch);
+        }
         let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
         let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
         if rows > 0 {
-            let f = frames(m, &x[..n]);
             let mu = self.multipliers(x);
-            let settled = settle(m, &f, &g, &mu, &self.loads(lambda));
+            let Workspace { frames: f, loads, .. } = &mut self.work;
+            frames_into(m, &x[..n], f);
+            self.from.lerp_into(&self.to, lambda, loads);
+            let settled = settle(m, f, &g, &mu, loads);
             if settled != mu {
                 let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
-                h += closure_hessian(m, &f, &change);
+                h += closure_hessian(m, f, &change);
             }
         }
         // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
         let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
         let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
         let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
-        let mut k = constrained(&h, &linalg::null_space(&g));
+        let z = if full_row_rank(&g) { null_space_full_rank(&g) } else { linalg::null_space(&g) };
+        let mut k = constrained(&h, &z);
         for i in 0..k.nrows() {
             k[(i, i)] -= self.margin;
         }
@@ -306,9 +410,11 @@ impl solver::Problem<f64> for Kkt<'_> {
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
         let m = self.mechanism;
         let n = m.dof();
+        let mut buffers = self.work.angles.borrow_mut();
+        let [ba, bb] = &mut *buffers;
         // Body angles down the tree: the parent's, the origin's, the joint's.
-        let angles = |q: &[f64]| {
-            let mut body = vec![0.0; m.bodies.len()];
+        let angles = |q: &[f64], body: &mut Vec<f64>| {
+            body.fill(0.0);
             for j in &m.joints {
                 let phi: f64 = match &j.kind {
                     JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
@@ -317,10 +423,10 @@ impl solver::Problem<f64> for Kkt<'_> {
                 };
                 body[j.child] = body[j.parent] + j.origin.phi + phi;
             }
-            body
         };
-        let (ba, bb) = (angles(&a[..n]), angles(&b[..n]));
-        let mut d = ba.iter().zip(&bb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        angles(&a[..n], ba);
+        angles(&b[..n], bb);
+        let mut d = ba.iter().zip(bb.iter()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
         for j in &m.joints {
             match &j.kind {
                 JointKind::Flexure(f) => {
@@ -362,8 +468,7 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
     let m = problem.mechanism;
     let q = ws.x[..m.dof()].to_vec();
     let f = frames(m, &q);
-    let mut g = DMatrix::zeros(m.constraints(), m.dof());
-    add_closures(m, &f, &[], &mut DVector::zeros(m.constraints()), &mut g, None);
+    let (_, g) = closures(m, &f);
     let multipliers = settle(m, &f, &g, &problem.multipliers(&ws.x), &problem.to);
     // + 0.0: an empty sum is −0.
     let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
@@ -394,7 +499,17 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
 /// ([`solver::Path::limit`]) refined by bisection to a relative
 /// [`LIMIT_PRECISION`] (as [`super::sweep::sweep`] does between two values).
 pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
-    let found = follow(m, start, to, settings);
+    solve_between_in(m, start, to, settings, &mut Workspace::new(m))
+}
+
+fn solve_between_in(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    work: &mut Workspace,
+) -> Result<Solution> {
+    let found = follow_in(m, start, to, settings, work);
     let lost = match &found {
         Ok(s) => s.limit.is_some(),
         Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
@@ -412,14 +527,42 @@ pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Set
 
 /// [`solve_between`] with the continuation's own limit, unrefined.
 pub(super) fn follow(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
+    follow_in(m, start, to, settings, &mut Workspace::new(m))
+}
+
+/// [`follow`] in the buffers `work` (made for `m`).
+fn follow_in(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    work: &mut Workspace,
+) -> Result<Solution> {
     check_sizes(m, &start.q, &start.multipliers, &start.loads)?;
-    let mut problem = Kkt::new(m, &start.loads, to, settings)?;
-    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
-    ws.x = problem.state(&start.q, &start.multipliers);
+    let mut problem = Kkt::with_workspace(m, &start.loads, to, settings, std::mem::take(work))?;
+    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    ws.x.iter_mut().zip(&start.q).for_each(|(x, q)| *x = *q);
+    let n = m.dof();
+    for ((x, mu), s) in ws.x[n..].iter_mut().zip(&start.multipliers).zip(&problem.multiplier_scale) {
+        *x = mu / s;
+    }
+    let found = follow_path(m, start, &mut problem, &mut ws, settings);
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    found
+}
+
+fn follow_path(
+    m: &Mechanism,
+    start: &Solution,
+    problem: &mut Kkt,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<Solution> {
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
-    match solver::continuation(&mut problem, &mut ws, settings) {
-        Ok(path) if path.stable => solution(&problem, &ws, &path),
+    match solver::continuation(problem, ws, settings) {
+        Ok(path) if path.stable => solution(problem, ws, &path),
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
@@ -491,20 +634,34 @@ pub(super) fn first_loss(
 /// The unloaded, assembled configuration: the rest coordinates moved, if
 /// the closures require it, to the nearest configuration that closes them.
 pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution> {
+    assemble_in(m, settings, &mut Workspace::new(m))
+}
+
+/// [`assemble_unloaded`] in the buffers `work` (made for `m`).
+fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Result<Solution> {
     let zero = m.loads().zero_like();
-    let mut problem = Kkt::new(m, &zero, &zero, settings)?;
-    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
-    ws.x = problem.state(&m.rest(), &vec![0.0; m.constraints()]);
-    let report = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
-        Ok(report) => report,
-        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => {
-            return Err(unassembled(m, problem.length, e));
+    let mut problem = Kkt::with_workspace(m, &zero, &zero, settings, std::mem::take(work))?;
+    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    ws.x.fill(0.0);
+    ws.x.iter_mut().zip(m.joints.iter().flat_map(|j| j.kind.joint().rest())).for_each(|(x, q)| *x = q);
+    let found = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
+        Ok(report) => {
+            let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
+            let path = solver::Path {
+                stable,
+                limit: None,
+                steps: 0,
+                iterations: report.iterations,
+                residual: report.residual,
+            };
+            solution(&problem, &ws, &path)
         }
-        Err(e) => return Err(e),
+        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
+        Err(e) => Err(e),
     };
-    let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
-    let path = solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual };
-    solution(&problem, &ws, &path)
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    found
 }
 
 /// The error for closures that Newton could not close from rest: placed at
@@ -512,9 +669,7 @@ pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution>
 /// `length`, plus angle gap), or `e` itself if all are closed there.
 fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
     let rest = frames(m, &m.rest());
-    let rows = m.constraints();
-    let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
-    add_closures(m, &rest, &[], &mut c, &mut g, None);
+    let (c, _) = closures(m, &rest);
     let mut row = 0;
     let mut widest: Option<(usize, f64, f64, f64)> = None;
     for (i, closure) in m.closures.iter().enumerate() {
@@ -555,8 +710,35 @@ fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
 /// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
 pub fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
-    let start = assemble_unloaded(m, settings)?;
-    solve_between(m, &start, &m.loads(), settings)
+    solve_with(m, settings, &mut Workspace::new(m))
+}
+
+/// [`solve`] in the buffers `work`, kept for the next solve on the same
+/// mechanism (a workspace made for another is replaced).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{file::from_toml, statics::{solve_with, Settings, Workspace}};
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\nmoment = 0.5\n",
+/// )
+/// .unwrap();
+/// let mut work = Workspace::new(&m);
+/// for _ in 0..2 {
+///     let s = solve_with(&m, &Settings::default(), &mut work).unwrap();
+///     assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
+/// }
+/// ```
+pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Result<Solution> {
+    if !work.fits(m) {
+        *work = Workspace::new(m);
+    }
+    let start = assemble_in(m, settings, work)?;
+    if !work.fits(m) {
+        *work = Workspace::new(m);
+    }
+    solve_between_in(m, &start, &m.loads(), settings, work)
 }
 
 /// Frames of the solution.
