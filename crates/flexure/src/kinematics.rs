@@ -373,10 +373,11 @@ pub fn poses_root_tip<P: From<Pose<f64>>>(flexure: &Flexure, alphas: &[f64], pos
 
 /// [`poses_root_tip`] spread over all cores with rayon, in chunks of 4096 poses.
 ///
-/// What two cores give: on an idle two-core machine about 2× the serial
-/// speed (criterion `batch/pose_1m` against `batch/pose_1m_serial`), but
-/// about 1.0× when the second core is busy with other work, since the
-/// chunks then wait for it: the speed-up is that of the idle cores.
+/// The speed-up is that of the cores left idle. On two cores, criterion's
+/// `batch/pose_1m` against `batch/pose_1m_serial` (10⁶ poses, order 3) gave
+/// about 2× when both were idle (1.86× in BENCHMARKS.md's run), but 0.8–1.3×
+/// while other builds kept the machine busy (load average 4–5): a busy
+/// second core gives about 1.0×, no speed-up.
 #[cfg(feature = "parallel")]
 pub fn par_poses_root_tip<P: From<Pose<f64>> + Send>(
     flexure: &Flexure,
