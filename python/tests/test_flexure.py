@@ -112,6 +112,78 @@ def test_array_like_inputs():
     assert f.pose([[0, 0, 0], [1, 0, 0]]).shape == (2, 3)
 
 
+def arc(length, angle):
+    """Tip pose of a circular arc of `length` turning by `angle`: alpha = (angle, 0, 0) is one."""
+    return np.array([angle, length * math.sin(angle) / angle, length * (1 - math.cos(angle)) / angle])
+
+
+def test_every_form_of_one_configuration_is_read_alike():
+    # Closed form: alpha = (a, 0, 0) bends the flexure into a circular arc of tip angle a, whose
+    # energy is EI a^2 / (2 L). Tolerance 1e-9: the Gauss rule's error on the arc (as in
+    # test_circular_arc). Every form of the input (the fast paths for a float64 vector and a
+    # list or tuple of numbers, and NumPy's conversion for the rest) must give the same bits.
+    f = flexure.Flexure(length=2.0, ei=3.0)
+    wide = np.zeros(6)
+    wide[::2] = [1.0, 0.0, 0.0]
+    frozen = np.array([1.0, 0.0, 0.0])
+    frozen.flags.writeable = False
+    forms = [
+        np.array([1.0, 0.0, 0.0]),
+        wide[::2],  # strided view
+        frozen,
+        np.array([1.0, 0.0, 0.0], dtype=np.float32),
+        np.array([1, 0, 0], dtype=np.int64),
+        [1.0, 0.0, 0.0],
+        [1, 0, 0],
+        (1.0, 0, 0.0),
+        [np.float64(1.0), np.int32(0), 0.0],
+        np.array([[1.0, 0.0, 0.0]])[0],
+    ]
+    reference = f.pose(forms[0])
+    assert type(reference) is np.ndarray and reference.shape == (3,) and reference.dtype == np.float64
+    assert np.allclose(reference, arc(2.0, 1.0), rtol=0, atol=1e-9)
+    assert abs(f.energy(forms[0]) - 3.0 / 4.0) < 1e-12
+    for alpha in forms:
+        assert np.array_equal(f.pose(alpha), reference), repr(alpha)
+        assert f.energy(alpha) == f.energy(forms[0]), repr(alpha)
+        assert np.array_equal(f.jacobian(alpha), f.jacobian(forms[0])), repr(alpha)
+    # Past order 8 a configuration is held on the heap, not inline: the same reading.
+    g = flexure.Flexure(length=2.0, ei=3.0, order=12)
+    high = [1.0] + [0.0] * 11
+    assert np.allclose(g.pose(high), arc(2.0, 1.0), rtol=0, atol=1e-9)
+    for alpha in [np.array(high), tuple(high), np.repeat(high, 2)[::2]]:
+        assert np.array_equal(g.pose(alpha), g.pose(high))
+    # Each call returns a fresh array: changing one answer changes no other.
+    again = f.pose(forms[0])
+    again[0] = 99.0
+    assert f.pose(forms[0])[0] == 1.0 and reference[0] == 1.0
+
+
+def test_batch_reads_any_layout():
+    # Rows of circular arcs (closed form above, tolerance 1e-9) in every memory layout: read in
+    # place when C-contiguous float64, copied once otherwise; all give the same bits.
+    f = flexure.Flexure()
+    angles = np.arange(1, 51) / 32.0  # exact in float32 too
+    rows = np.zeros((50, 3))
+    rows[:, 0] = angles
+    expected = np.array([arc(1.0, a) for a in angles])
+    wide = np.zeros((100, 6))
+    wide[::2, ::2] = rows
+    forms = [rows, np.asfortranarray(rows), rows.T.copy().T, wide[::2, ::2], rows.astype(np.float32), rows.tolist()]
+    reference = f.pose(rows)
+    assert reference.shape == (50, 3) and reference.dtype == np.float64 and reference.flags.c_contiguous
+    assert np.allclose(reference, expected, rtol=0, atol=1e-9)
+    for alpha in forms:
+        assert np.array_equal(f.pose(alpha), reference)
+    # The input is only read, and the answer is a new array.
+    before = rows.copy()
+    out = f.pose(rows)
+    out[:] = 0.0
+    assert np.array_equal(rows, before) and np.array_equal(f.pose(rows), reference)
+    # No rows: an empty (0, 3) answer.
+    assert f.pose(np.zeros((0, 3))).shape == (0, 3)
+
+
 def test_material_options():
     # Eq. 25: the paper's steel flexure, EI = 1.4558e-3 N*m^2.
     f = flexure.Flexure(length=0.015, modulus=200e9, width=0.01, thickness=0.0002, poisson=0.29)

@@ -8,7 +8,7 @@
 //! `flexure.AccuracyWarning`.
 
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
-use flexure::kinematics::{Pose, par_poses_root_tip};
+use flexure::kinematics::par_poses_root_tip;
 use flexure::mechanism::JointKind;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
@@ -18,12 +18,15 @@ use flexure::{
     deflect, energy, update_kinematics,
 };
 use numpy::ndarray::{Array1, Array2};
-use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt, PyTuple};
 use std::time::{Duration, Instant};
+
+mod coordinates;
+use coordinates::{Coordinates, single, vector};
 
 create_exception!(
     _flexure,
@@ -251,67 +254,6 @@ struct Flexure {
     inner: flexure::Flexure,
 }
 
-/// Reads `alpha` as an (N,) or (n, N) float64 array of finite values.
-fn coordinates(
-    f: &flexure::Flexure,
-    alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>,
-) -> PyResult<(Vec<f64>, Option<usize>)> {
-    let n = f.order();
-    let shape = alpha.shape().to_vec();
-    let rows = match shape.as_slice() {
-        [k] if *k == n => None,
-        [r, k] if *k == n => Some(*r),
-        [k] | [_, k] => {
-            return Err(PyValueError::new_err(format!(
-                "alpha must have {n} entries per row (the flexure's order), got {k} (shape {shape:?})"
-            )));
-        }
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "alpha must have shape ({n},) or (n, {n}) for order {n}, got shape {shape:?}"
-            )));
-        }
-    };
-    let values: Vec<f64> = alpha.as_array().iter().copied().collect();
-    all_finite("alpha", &values)?;
-    Ok((values, rows))
-}
-
-/// Reads `alpha` as one configuration, shape (N,).
-fn single(f: &flexure::Flexure, alpha: &PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<Vec<f64>> {
-    match coordinates(f, alpha)? {
-        (v, None) => Ok(v),
-        (_, Some(r)) => Err(PyValueError::new_err(format!(
-            "alpha must have shape ({n},) here (one configuration), got shape ({r}, {n})",
-            n = f.order()
-        ))),
-    }
-}
-
-/// Reads `name` as a 1-D array of `expected` finite values (any count if `None`).
-fn vector(name: &str, array: &PyArrayLikeDyn<'_, f64, AllowTypeChange>, expected: Option<usize>) -> PyResult<Vec<f64>> {
-    let shape = array.shape().to_vec();
-    let got = match shape.as_slice() {
-        [k] => *k,
-        _ => return Err(PyValueError::new_err(format!("{name} must be one-dimensional, got shape {shape:?}"))),
-    };
-    if let Some(n) = expected.filter(|&n| n != got) {
-        return Err(PyValueError::new_err(format!(
-            "{name} must have {n} entries (one per coordinate, the flexure's order), got {got}"
-        )));
-    }
-    let values: Vec<f64> = array.as_array().iter().copied().collect();
-    all_finite(name, &values)?;
-    Ok(values)
-}
-
-fn all_finite(name: &str, values: &[f64]) -> PyResult<()> {
-    match values.iter().find(|v| !v.is_finite()) {
-        Some(v) => Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number"))),
-        None => Ok(()),
-    }
-}
-
 fn finite(name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() { Ok(v) } else { Err(PyValueError::new_err(format!("{name} = {v}: must be a finite number"))) }
 }
@@ -442,87 +384,72 @@ impl Flexure {
     }
 
     /// Tip pose [phi, x, y] for alpha of shape (N,); (n, 3) for shape (n, N), computed in parallel without the GIL.
-    fn pose<'py>(
-        &self,
-        py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let (values, rows) = coordinates(&self.inner, &alpha)?;
-        match rows {
-            None => {
-                let p = flexure::pose_root_tip(&self.inner, &values);
-                Ok(PyArray1::from_vec(py, vec![p.phi, p.x, p.y]).into_any())
+    fn pose<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let f = &self.inner;
+        let (count, rows) = match coordinates::read(f.order(), alpha)? {
+            Coordinates::One(a) => {
+                let p = flexure::pose_root_tip(f, &a);
+                return Ok(PyArray1::from_slice(py, &<[f64; 3]>::from(p)).into_any());
             }
-            Some(r) => {
-                let f = &self.inner;
-                let n = f.order();
-                // Chunks of about 2^24 node evaluations (milliseconds), between which Ctrl-C is polled.
-                let rows_per_chunk = ((1usize << 24) / (n * f.quadrature_points())).max(1);
-                clear_raised();
-                let (poses, done) = py
-                    .detach(|| {
-                        let mut poses = vec![Pose::default(); r];
-                        let mut done = 0;
-                        for (a, p) in values.chunks(rows_per_chunk * n).zip(poses.chunks_mut(rows_per_chunk)) {
-                            if signalled() {
-                                break;
-                            }
-                            par_poses_root_tip(f, a, p)?;
-                            done += p.len();
-                        }
-                        Ok((poses, done))
-                    })
-                    .map_err(to_py)?;
-                let interrupted =
-                    || PyKeyboardInterrupt::new_err(format!("pose: interrupted after {done} of {r} rows"));
-                if let Some(err) = raised_during(py, interrupted) {
-                    return Err(err);
+            Coordinates::Many { count, rows } => (count, rows),
+        };
+        let n = f.order();
+        // Written in place: a fresh C-ordered (count, 3) array, one [phi, x, y] row per pose.
+        let out = PyArray2::<f64>::zeros(py, [count, 3], false);
+        let mut written = out.readwrite();
+        let poses = written.as_slice_mut().map_err(|e| PyRuntimeError::new_err(format!("pose: {e}")))?;
+        let poses = poses.as_chunks_mut::<3>().0;
+        let alphas = rows.as_slice();
+        // Chunks of about 2^24 node evaluations (milliseconds), between which Ctrl-C is polled.
+        let rows_per_chunk = ((1usize << 24) / (n * f.quadrature_points())).max(1);
+        clear_raised();
+        let done = py
+            .detach(|| {
+                let mut done = 0;
+                for (a, p) in alphas.chunks(rows_per_chunk * n).zip(poses.chunks_mut(rows_per_chunk)) {
+                    if signalled() {
+                        break;
+                    }
+                    par_poses_root_tip(f, a, p)?;
+                    done += p.len();
                 }
-                let flat: Vec<f64> = poses.iter().flat_map(|p| [p.phi, p.x, p.y]).collect();
-                let a = Array2::from_shape_vec((r, 3), flat).map_err(|e| PyValueError::new_err(e.to_string()))?;
-                Ok(a.into_pyarray(py).into_any())
-            }
+                Ok(done)
+            })
+            .map_err(to_py)?;
+        let interrupted = || PyKeyboardInterrupt::new_err(format!("pose: interrupted after {done} of {count} rows"));
+        if let Some(err) = raised_during(py, interrupted) {
+            return Err(err);
         }
+        drop(written);
+        Ok(out.into_any())
     }
 
     /// Jacobian of the tip pose, shape (3, N), rows phi, x, y (Eqs. 19–21).
-    fn jacobian<'py>(
-        &self,
-        py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let a = single(&self.inner, &alpha)?;
+    fn jacobian<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let a = single(self.inner.order(), alpha)?;
         let mut k = Kinematics::new(&self.inner);
         update_kinematics(&self.inner, &a, &mut k, Level::Jacobian);
         Ok(matrix(&k.jacobian_root_tip).into_pyarray(py))
     }
 
     /// Hessians (Hx, Hy) of the tip's x and y, each (N, N) (Eqs. 30–31).
-    fn hessians<'py>(
-        &self,
-        py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<MatrixPair<'py>> {
-        let a = single(&self.inner, &alpha)?;
+    fn hessians<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<MatrixPair<'py>> {
+        let a = single(self.inner.order(), alpha)?;
         let mut k = Kinematics::new(&self.inner);
         update_kinematics(&self.inner, &a, &mut k, Level::Hessian);
         Ok((matrix(&k.hessian_root_tip_x).into_pyarray(py), matrix(&k.hessian_root_tip_y).into_pyarray(py)))
     }
 
     /// Homogeneous transform of the tip in the root frame, (4, 4) (Eq. 7).
-    fn transform<'py>(
-        &self,
-        py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let a = single(&self.inner, &alpha)?;
+    fn transform<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let a = single(self.inner.order(), alpha)?;
         let g = flexure::pose_root_tip(&self.inner, &a).transform();
         Ok(Array2::from_shape_fn((4, 4), |(i, j)| g[(i, j)]).into_pyarray(py))
     }
 
     /// Bending energy U(alpha) in joules (Eq. 9).
-    fn energy(&self, alpha: PyArrayLikeDyn<'_, f64, AllowTypeChange>) -> PyResult<f64> {
-        Ok(energy(&self.inner, &single(&self.inner, &alpha)?))
+    fn energy(&self, alpha: &Bound<'_, PyAny>) -> PyResult<f64> {
+        Ok(energy(&self.inner, &single(self.inner.order(), alpha)?))
     }
 
     /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22),
@@ -605,13 +532,13 @@ impl Flexure {
     fn error_estimate<'py>(
         &self,
         py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        alpha: &Bound<'py, PyAny>,
         moment: f64,
         fx: f64,
         fy: f64,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let a = single(&self.inner, &alpha)?;
+        let a = single(self.inner.order(), alpha)?;
         let load = tip_load(moment, fx, fy)?;
         let target = self::accuracy(accuracy)?;
         let f = &self.inner;
@@ -625,13 +552,13 @@ impl Flexure {
     fn stiffness<'py>(
         &self,
         py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        alpha: &Bound<'py, PyAny>,
         moment: f64,
         fx: f64,
         fy: f64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let load = tip_load(moment, fx, fy)?;
-        let (_, k) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        let (_, k) = loaded_stiffness(&self.inner, &single(self.inner.order(), alpha)?, &load);
         Ok(matrix(&k).into_pyarray(py))
     }
 
@@ -642,13 +569,13 @@ impl Flexure {
     fn compliance<'py>(
         &self,
         py: Python<'py>,
-        alpha: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        alpha: &Bound<'py, PyAny>,
         moment: f64,
         fx: f64,
         fy: f64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let load = tip_load(moment, fx, fy)?;
-        let (k, stiffness) = loaded_stiffness(&self.inner, &single(&self.inner, &alpha)?, &load);
+        let (k, stiffness) = loaded_stiffness(&self.inner, &single(self.inner.order(), alpha)?, &load);
         let c = compliance_tip(&k, &stiffness).map_err(to_py)?;
         Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
     }

@@ -32,6 +32,13 @@ impl<T: Scalar> Pose<T> {
     }
 }
 
+impl<T> From<Pose<T>> for [T; 3] {
+    /// The pose as a row $[\phi, x, y]$, the order of the Jacobian's rows.
+    fn from(p: Pose<T>) -> Self {
+        [p.phi, p.x, p.y]
+    }
+}
+
 /// How far [`update`] goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Level {
@@ -342,7 +349,9 @@ pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f6
 
 /// Tip poses of many configurations: `alphas` holds one row of
 /// [`Flexure::order`] coordinates per pose, row after row, and `poses`
-/// receives one pose per row. Does not allocate.
+/// receives one pose per row, as a [`Pose`] or as a row $[\phi, x, y]$
+/// (`[f64; 3]`; a flat buffer of three values per pose is one through
+/// `as_chunks_mut::<3>()`). Does not allocate.
 ///
 /// # Example
 /// ```
@@ -351,18 +360,32 @@ pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f6
 /// let mut poses = [flexure::Pose::default(); 2];
 /// flexure::kinematics::poses_root_tip(&f, &alphas, &mut poses).unwrap();
 /// assert_eq!(poses[1], flexure::pose_root_tip(&f, &alphas[3..]));
+/// // The same poses written as rows of a flat (2, 3) buffer.
+/// let mut flat = [0.0; 6];
+/// flexure::kinematics::poses_root_tip(&f, &alphas, flat.as_chunks_mut::<3>().0).unwrap();
+/// assert_eq!(flat[3..], <[f64; 3]>::from(poses[1]));
 /// ```
-pub fn poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) -> crate::Result<()> {
-    check_batch(flexure, alphas, poses)?;
+pub fn poses_root_tip<P: From<Pose<f64>>>(flexure: &Flexure, alphas: &[f64], poses: &mut [P]) -> crate::Result<()> {
+    check_batch(flexure, alphas, poses.len())?;
     poses_chunk(flexure, alphas, poses);
     Ok(())
 }
 
 /// [`poses_root_tip`] spread over all cores with rayon, in chunks of 4096 poses.
+///
+/// The speed-up is that of the cores left idle. On two cores, criterion's
+/// `batch/pose_1m` against `batch/pose_1m_serial` (10⁶ poses, order 3) gave
+/// about 2× when both were idle (1.86× in BENCHMARKS.md's run), but 0.8–1.3×
+/// while other builds kept the machine busy (load average 4–5): a busy
+/// second core gives about 1.0×, no speed-up.
 #[cfg(feature = "parallel")]
-pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) -> crate::Result<()> {
+pub fn par_poses_root_tip<P: From<Pose<f64>> + Send>(
+    flexure: &Flexure,
+    alphas: &[f64],
+    poses: &mut [P],
+) -> crate::Result<()> {
     use rayon::prelude::*;
-    check_batch(flexure, alphas, poses)?;
+    check_batch(flexure, alphas, poses.len())?;
     const CHUNK: usize = 4096;
     let n = flexure.order();
     alphas.par_chunks(CHUNK * n).zip(poses.par_chunks_mut(CHUNK)).for_each(|(a, p)| poses_chunk(flexure, a, p));
@@ -370,31 +393,31 @@ pub fn par_poses_root_tip(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f
 }
 
 /// One chunk of a batch, dispatched on the order once rather than per pose.
-fn poses_chunk(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
-    fn run<const N: usize, const Q: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [Pose<f64>]) {
+fn poses_chunk<P: From<Pose<f64>>>(flexure: &Flexure, alphas: &[f64], poses: &mut [P]) {
+    fn run<P: From<Pose<f64>>, const N: usize, const Q: usize>(flexure: &Flexure, alphas: &[f64], poses: &mut [P]) {
         for (alpha, pose) in alphas.chunks_exact(N).zip(poses.iter_mut()) {
-            *pose = fixed_pose::<f64, N, Q>(flexure, alpha);
+            *pose = fixed_pose::<f64, N, Q>(flexure, alpha).into();
         }
     }
     match (flexure.order(), flexure.scaled_weights().len()) {
-        (2, 4) => run::<2, 4>(flexure, alphas, poses),
-        (3, 5) => run::<3, 5>(flexure, alphas, poses),
-        (4, 6) => run::<4, 6>(flexure, alphas, poses),
-        (5, 7) => run::<5, 7>(flexure, alphas, poses),
-        (6, 8) => run::<6, 8>(flexure, alphas, poses),
+        (2, 4) => run::<P, 2, 4>(flexure, alphas, poses),
+        (3, 5) => run::<P, 3, 5>(flexure, alphas, poses),
+        (4, 6) => run::<P, 4, 6>(flexure, alphas, poses),
+        (5, 7) => run::<P, 5, 7>(flexure, alphas, poses),
+        (6, 8) => run::<P, 6, 8>(flexure, alphas, poses),
         (n, _) => {
             for (alpha, pose) in alphas.chunks_exact(n).zip(poses.iter_mut()) {
-                *pose = any_pose(flexure, alpha);
+                *pose = any_pose(flexure, alpha).into();
             }
         }
     }
 }
 
-fn check_batch(flexure: &Flexure, alphas: &[f64], poses: &[Pose<f64>]) -> crate::Result<()> {
-    if alphas.len() != poses.len() * flexure.order() {
+fn check_batch(flexure: &Flexure, alphas: &[f64], poses: usize) -> crate::Result<()> {
+    if alphas.len() != poses * flexure.order() {
         return Err(crate::Error::invalid(
             "alpha",
-            format!("{} values for {} poses", alphas.len(), poses.len()),
+            format!("{} values for {poses} poses", alphas.len()),
             "must hold one row of `order` coordinates per pose",
         ));
     }
