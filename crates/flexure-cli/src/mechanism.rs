@@ -818,7 +818,7 @@ mod drawing {
 #[cfg(test)]
 mod tests {
     use super::drawing::{attachments, hull, slab};
-    use flexure::mechanism::file::{Report, from_toml, reports};
+    use flexure::mechanism::file::from_toml;
     use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames};
 
     #[test]

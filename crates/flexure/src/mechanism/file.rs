@@ -599,6 +599,9 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 src.placed(owner, &span, x)
             })?;
             if let Some(mu) = &j.mass_per_length {
+                if j.density.is_some() {
+                    return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+                }
                 let p = src.profile(owner, "mass_per_length", mu)?;
                 let s = section
                     .take()
