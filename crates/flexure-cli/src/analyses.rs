@@ -1,7 +1,7 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
 use crate::joint::{chosen, pose as pose_json, put_estimate};
-use crate::options::{AccuracyOptions, FlexureOptions, angle_of, count, number, segments};
+use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments};
 use clap::Args;
 use flexure::connect::{Connection, connect};
 use flexure::estimate::Accuracy;
@@ -37,6 +37,8 @@ pub struct ConnectArgs {
     segments: Option<usize>,
     #[command(flatten)]
     accuracy: AccuracyOptions,
+    #[command(flatten)]
+    stress: StressOptions,
 }
 
 /// The exact connection, seeded by the order-3 model's multipliers.
@@ -56,14 +58,22 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         return Err(Error::invalid("order", "auto", "--segments compares a chain of its own: give no --order auto"));
     }
     let model = chosen(&args.flexure, |f| Ok(flexure::estimate::connect_auto(f, &target, &accuracy)?.0))?;
+    crate::stress::check(&model, &args.stress)?;
     if args.exact {
+        crate::joint::exact_takes_uniform(&model)?;
         let e = exact_connection(&model, &target)?;
         let c = connect(&model, &target)?;
+        let mut reported = json!({});
+        crate::stress::put(&mut reported, &model, &c.alpha, &args.stress, "connect (model)");
+        // TODO(exact stress): once the exact elastica takes EI(s) and gives
+        // its shape, put the exact connection's `stress` (or `curvature_max`),
+        // `safety_factor` and `shape` here at the top level.
         return Ok(json!({
             "energy": e.energy,
             "loads": { "moment": e.root_moment, "fx": e.fx, "fy": e.fy },
             "model_energy": c.energy,
             "eta": c.energy / e.energy - 1.0,
+            "model": reported,
         }));
     }
     if let Some(k) = args.segments {
@@ -75,11 +85,14 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
                 "--segments compares straight chains; drop --kappa",
             ));
         }
-        let chain = Flexure::segments(model.length(), model.ei(), k)?;
+        let chain = Flexure::segments(model.length(), model.ei(), k)?.with_section(model.section().clone())?;
         let c = connect(&chain, &target)?;
         let curvatures: Vec<f64> = c.alpha.iter().map(|a| a * k as f64 / model.length()).collect();
         let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
-        if let Ok(e) = exact_connection(&model, &target) {
+        crate::stress::put(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
+        if model.section().is_uniform()
+            && let Ok(e) = exact_connection(&model, &target)
+        {
             out["eta"] = json!(c.energy / e.energy - 1.0);
         }
         return Ok(out);
@@ -96,7 +109,11 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         out["quadrature"] = json!(model.quadrature_points());
     }
     put_estimate(&mut out, &e, &model, &accuracy, "connect");
-    if let Ok(e) = exact_connection(&model, &target) {
+    crate::stress::put(&mut out, &model, &c.alpha, &args.stress, "connect");
+    // η compares with the exact elastica, which takes a uniform EI for now.
+    if model.section().is_uniform()
+        && let Ok(e) = exact_connection(&model, &target)
+    {
         out["eta"] = json!(c.energy / e.energy - 1.0);
     }
     Ok(out)
@@ -150,9 +167,18 @@ pub struct TendonArgs {
     sweep: Option<Sweep>,
     #[command(flatten)]
     accuracy: AccuracyOptions,
+    #[command(flatten)]
+    stress: StressOptions,
 }
 
-fn tendon_row(f: &Flexure, t: &Tendon, force: f64, data: &mut TendonData, target: &Accuracy) -> flexure::Result<Value> {
+fn tendon_row(
+    f: &Flexure,
+    t: &Tendon,
+    force: f64,
+    data: &mut TendonData,
+    target: &Accuracy,
+    stress: &StressOptions,
+) -> flexure::Result<Value> {
     let eq = pull(f, t, force, data)?;
     let mut row = json!({
         "force": force,
@@ -163,6 +189,7 @@ fn tendon_row(f: &Flexure, t: &Tendon, force: f64, data: &mut TendonData, target
     });
     let e = flexure::estimate::tendon_error(f, t, force, data.alpha(), target)?;
     put_estimate(&mut row, &e, f, target, &format!("tendon at {force} N"));
+    crate::stress::put(&mut row, f, data.alpha(), stress, &format!("tendon at {force} N"));
     Ok(row)
 }
 
@@ -177,15 +204,18 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
         Some(force) => Ok(flexure::estimate::tendon_auto(f, &t, force, &target)?.0),
         None => Ok(f.clone()),
     })?;
+    crate::stress::check(&f, &args.stress)?;
     let mut data = TendonData::new(&f);
     match (args.sweep, args.force) {
         (Some(s), _) => {
-            let rows: flexure::Result<Vec<Value>> =
-                sweep_values(&s).into_iter().map(|force| tendon_row(&f, &t, force, &mut data, &target)).collect();
+            let rows: flexure::Result<Vec<Value>> = sweep_values(&s)
+                .into_iter()
+                .map(|force| tendon_row(&f, &t, force, &mut data, &target, &args.stress))
+                .collect();
             Ok(json!({ "rows": rows? }))
         }
         (None, Some(force)) => {
-            let mut row = tendon_row(&f, &t, force, &mut data, &target)?;
+            let mut row = tendon_row(&f, &t, force, &mut data, &target, &args.stress)?;
             if args.flexure.auto() {
                 row["order"] = json!(f.order());
                 row["quadrature"] = json!(f.quadrature_points());

@@ -41,6 +41,31 @@ pub const GRAY: Color = Color(140, 140, 140);
 pub const COLORS: [Color; 6] =
     [Color(31, 119, 180), Color(214, 39, 40), Color(44, 160, 44), Color(148, 103, 189), Color(255, 127, 14), BLACK];
 
+/// A sequential colour map for a quantity from 0 to 1: the dark four
+/// fifths of matplotlib's *plasma* (blue, purple, red, orange), each end
+/// visible on white and its lightness rising with the value.
+const RAMP: [Color; 5] =
+    [Color(13, 8, 135), Color(106, 0, 168), Color(177, 42, 144), Color(225, 100, 98), Color(252, 166, 54)];
+
+/// The colour of `t` in [0, 1] (clamped) on the sequential map.
+pub fn ramp(t: f64) -> Color {
+    let x = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 } * (RAMP.len() - 1) as f64;
+    let k = (x.floor() as usize).min(RAMP.len() - 2);
+    let f = x - k as f64;
+    let mix = |a: u8, b: u8| (f64::from(a) + f * (f64::from(b) - f64::from(a))).round() as u8;
+    let (a, b) = (RAMP[k], RAMP[k + 1]);
+    Color(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// A colour bar under the legend: the [`ramp`] from `lo` to `hi`, with round ticks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColorBar {
+    /// What the colours stand for, with its unit: `bending stress (MPa)`.
+    pub label: String,
+    pub lo: f64,
+    pub hi: f64,
+}
+
 /// A line's dash pattern.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Dash {
@@ -181,6 +206,8 @@ pub struct Figure {
     pub fit_height: bool,
     pub marks: Vec<Mark>,
     pub legend: Vec<Entry>,
+    /// A colour bar, drawn in the legend's box under its entries.
+    pub color_bar: Option<ColorBar>,
 }
 
 impl Figure {
@@ -198,6 +225,7 @@ impl Figure {
             fit_height: false,
             marks: Vec::new(),
             legend: Vec::new(),
+            color_bar: None,
         }
     }
 }
@@ -473,13 +501,21 @@ fn legend_column(entries: &[Entry]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The height of a colour bar's block in the legend (px): its label, the
+/// bar, and its tick labels.
+const BAR_BLOCK: f64 = LEGEND_ROW + BAR_HEIGHT + 6.0 + TICK_SIZE + 12.0;
+const BAR_HEIGHT: f64 = 16.0;
+/// The least width of a legend holding a colour bar (px), for its ticks to read.
+const BAR_WIDTH: f64 = 300.0;
+
 /// A legend's size (px) and rows per column, in as many columns (at most
-/// three) as fit in `room` px.
-fn legend_size(entries: &[Entry], room: f64) -> (f64, f64, usize) {
+/// three) as fit in `room` px; a colour bar adds a block under the entries.
+fn legend_size(entries: &[Entry], bar: bool, room: f64) -> (f64, f64, usize) {
     let column = legend_column(entries) + 24.0;
     let columns = ((room / column).floor() as usize).clamp(1, 3).min(entries.len().max(1));
     let rows = entries.len().div_ceil(columns);
-    (columns as f64 * column, rows as f64 * LEGEND_ROW + 14.0, rows)
+    let (w, h) = (columns as f64 * column, rows as f64 * LEGEND_ROW + 14.0);
+    if bar { (w.max(BAR_WIDTH), h + BAR_BLOCK, rows) } else { (w, h, rows) }
 }
 
 /// Data range in axis units, padded: linear axes by 4 % a side, log axes
@@ -523,9 +559,10 @@ fn layout(fig: &Figure, place: Place) -> Layout {
     let mut l = None;
     let mut legend = None;
     for _ in 0..8 {
-        legend = (!fig.legend.is_empty()).then(|| match place {
-            Place::Below => legend_size(&fig.legend, fig.width - left - right),
-            _ => legend_size(&fig.legend, 0.0),
+        let bar = fig.color_bar.is_some();
+        legend = (!fig.legend.is_empty() || bar).then(|| match place {
+            Place::Below => legend_size(&fig.legend, bar, fig.width - left - right),
+            _ => legend_size(&fig.legend, bar, 0.0),
         });
         let beside = if place == Place::Right { legend.map_or(0.0, |l| l.0 + 20.0) } else { 0.0 };
         let under = if place == Place::Below { legend.map_or(0.0, |l| l.1 + 12.0) } else { 0.0 };
@@ -928,6 +965,9 @@ pub fn render(fig: &Figure) -> Result<String, String> {
     let _ = writeln!(svg, "</g>");
     if let Some(b) = l.legend {
         draw_legend(&mut svg, &fig.legend, b, l.rows);
+        if let Some(bar) = &fig.color_bar {
+            draw_color_bar(&mut svg, bar, (b.0, b.1 + b.3 - BAR_BLOCK, b.2));
+        }
     }
     let _ = writeln!(svg, "</svg>");
     Ok(svg)
@@ -1024,6 +1064,54 @@ fn draw_legend(svg: &mut String, entries: &[Entry], (x, y, w, h): (f64, f64, f64
         }
         let (tx, size) = if e.swatch == Swatch::Note { (x + 12.0, NOTE_SIZE) } else { (sx1 + 8.0, LEGEND_SIZE) };
         text(svg, (tx, cy + 0.36 * size), size, Anchor::Start, r#" class="legend""#, &e.label);
+    }
+}
+
+/// A colour bar in the block at `(x, y)` (px, top left) `w` wide: its
+/// label, the ramp as a gradient, and ticks at round values under it.
+fn draw_color_bar(svg: &mut String, bar: &ColorBar, (x, y, w): (f64, f64, f64)) {
+    let (x0, x1) = (x + 12.0, x + w - 24.0);
+    text(
+        svg,
+        (x0, y + 0.5 * LEGEND_ROW + 0.36 * LEGEND_SIZE),
+        LEGEND_SIZE,
+        Anchor::Start,
+        r#" class="bar-label""#,
+        &bar.label,
+    );
+    let stops: String = (0..=8)
+        .map(|i| {
+            let t = f64::from(i) / 8.0;
+            format!(r#"<stop offset="{t}" stop-color="{}"/>"#, ramp(t).hex())
+        })
+        .collect();
+    let _ = writeln!(svg, r#"<defs><linearGradient id="color-bar">{stops}</linearGradient></defs>"#);
+    let top = y + LEGEND_ROW;
+    let _ = writeln!(
+        svg,
+        r##"<rect x="{}" y="{}" width="{}" height="{}" fill="url(#color-bar)" stroke="#333333" stroke-width="1"/>"##,
+        num(x0),
+        num(top),
+        num(x1 - x0),
+        num(BAR_HEIGHT)
+    );
+    let axis = linear_axis(bar.lo, bar.hi, ((x1 - x0) / 70.0).max(2.0), false);
+    let span = (bar.hi - bar.lo).max(f64::MIN_POSITIVE);
+    let mut last_right = f64::MIN;
+    for t in &axis.ticks {
+        let tx = x0 + (t.at - bar.lo) / span * (x1 - x0);
+        line(svg, [tx, top + BAR_HEIGHT, tx, top + BAR_HEIGHT + 5.0], "#333333", "1.2");
+        let label = match &axis.factor {
+            Some(f) => format!("{}{f}", t.label),
+            None => t.label.clone(),
+        };
+        // Labels that would touch the one before are left out.
+        let half = text_width(&label, NOTE_SIZE) / 2.0;
+        if tx - half > last_right + 4.0 {
+            let at = (tx, top + BAR_HEIGHT + 6.0 + NOTE_SIZE);
+            text(svg, at, NOTE_SIZE, Anchor::Middle, r#" class="bar-tick""#, &label);
+            last_right = tx + half;
+        }
     }
 }
 

@@ -1,6 +1,8 @@
 //! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
 
-use crate::options::{AccuracyOptions, FlexureOptions, List, angle, iterations, number, numbers, tolerance, warn};
+use crate::options::{
+    AccuracyOptions, FlexureOptions, List, StressOptions, angle, iterations, number, numbers, tolerance, warn,
+};
 use clap::{Args, ValueEnum};
 use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
@@ -129,7 +131,10 @@ pub struct DeflectArgs {
     load: LoadOptions,
     #[command(flatten)]
     pub accuracy: AccuracyOptions,
-    /// Also solve the exact elastica (shooting); `pose` is then the exact one.
+    #[command(flatten)]
+    stress: StressOptions,
+    /// Also solve the exact elastica (shooting); `pose` is then the exact one,
+    /// and the model's stress and shape sit under `model`.
     #[arg(long)]
     exact: bool,
     /// Also find the factor on the load, up to 1000, at which the equilibrium
@@ -143,7 +148,10 @@ pub struct DeflectArgs {
     #[arg(long, default_value = "50", value_parser = iterations, allow_hyphen_values = true)]
     max_iterations: usize,
     /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
-    #[arg(long, conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit"])]
+    #[arg(
+        long,
+        conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit", "yield_strength", "shape"]
+    )]
     pub input: Option<std::path::PathBuf>,
 }
 
@@ -159,6 +167,10 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let load = args.load.load();
     let target = args.accuracy.target();
     let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
+    crate::stress::check(&f, &args.stress)?;
+    if args.exact {
+        exact_takes_uniform(&f)?;
+    }
     let mut data = Statics::new(&f);
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
@@ -173,6 +185,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     if let Some(limit) = eq.limit {
         model["limit_load_fraction"] = json!(limit);
     }
+    crate::stress::put(&mut model, &f, data.alpha(), &args.stress, "deflect");
     if args.flexure.auto() {
         model["order"] = json!(f.order());
         model["quadrature"] = json!(f.quadrature_points());
@@ -192,6 +205,10 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     }
     let exact = elastica::deflect(&f, &load, &Default::default())?;
     let (m, e) = (data.pose_root_tip(), exact.pose);
+    // TODO(exact stress): once the exact elastica takes EI(s) and gives its
+    // shape, put the exact answer's `stress` (or `curvature_max`),
+    // `safety_factor` and `shape` here at the top level, beside its pose;
+    // the model's stay under `model`.
     Ok(json!({
         "pose": pose(&e),
         "root_moment": exact.root_moment,
@@ -204,6 +221,20 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
             "angle_degrees": (m.phi - e.phi).abs().to_degrees(),
         },
     }))
+}
+
+/// Refuses `--exact` on a flexure whose EI varies along it: the exact
+/// references (elastica, compliance ODE, Euler) take one EI for now, and
+/// would compare the model with a different flexure.
+pub fn exact_takes_uniform(f: &Flexure) -> flexure::Result<()> {
+    if f.section().is_uniform() {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "exact",
+        "with a tapered or notched flexure",
+        "the exact references take a uniform EI for now, so they would answer for another flexure: drop --exact",
+    ))
 }
 
 #[derive(Debug, Args)]
@@ -219,6 +250,7 @@ pub struct ComplianceArgs {
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
     let f = args.flexure.build_fixed("compliance")?;
     let c = if args.exact {
+        exact_takes_uniform(&f)?;
         reference::compliance::compliance_tip(&f, &Default::default())?
     } else {
         compliance_tip_rest(&f)
@@ -262,6 +294,7 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
     let f = args.flexure.build_fixed("buckling")?;
     let tip = TipConstraint::from(args.tip);
     if args.exact {
+        exact_takes_uniform(&f)?;
         if f.rest().iter().any(|&k| k != 0.0) {
             return Err(Error::invalid(
                 "kappa",

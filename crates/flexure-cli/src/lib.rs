@@ -14,6 +14,7 @@ mod mechanism;
 mod options;
 mod render;
 mod reproduce;
+mod stress;
 
 use clap::{Parser, Subcommand};
 use serde_json::Value;
@@ -216,8 +217,18 @@ fn write_failed(e: std::io::Error, stderr: &mut dyn Write) -> u8 {
 /// The library's error with the parameter spelled as the option that set it.
 pub fn describe(e: flexure::Error) -> String {
     match &e {
-        flexure::Error::InvalidParameter { name, value, reason } => format!("--{name} = {value}: {reason}"),
+        flexure::Error::InvalidParameter { name, value, reason } => format!("{} = {value}: {reason}", option(name)),
         other => other.to_string(),
+    }
+}
+
+/// The option that sets the library's parameter `name`: `--max-iterations`
+/// for `max_iterations`, `--notch R` for `notch.radius`.
+fn option(name: &str) -> String {
+    match name {
+        "notch.radius" => "--notch R".into(),
+        "notch.min_thickness" => "--notch H".into(),
+        _ => format!("--{}", name.replace('_', "-")),
     }
 }
 

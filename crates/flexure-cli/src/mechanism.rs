@@ -5,7 +5,7 @@ use crate::options::number;
 use clap::Args;
 use flexure::estimate::{Accuracy, ErrorEstimate, joint_error};
 use flexure::mechanism::buckling::buckle;
-use flexure::mechanism::file::from_toml;
+use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, StabilityLimit, Sweep, sweep};
 use flexure::mechanism::{JointKind, Mechanism};
@@ -15,6 +15,55 @@ use std::path::{Path, PathBuf};
 fn load(path: &Path) -> Result<Mechanism, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The mechanism, and each flexure joint's `yield_strength` and `shape`.
+fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((m, reports))
+}
+
+/// Each flexure joint of `m` with its coordinates in `s` and its report keys.
+fn flexures<'a>(
+    m: &'a Mechanism,
+    s: &'a Solution,
+    reports: &'a [(String, Report)],
+) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], Report)> {
+    m.joints.iter().filter_map(move |j| match &j.kind {
+        JointKind::Flexure(f) => {
+            let r = reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
+            Some((j.name.as_str(), &**f, &s.q[j.offset..j.offset + f.order()], r))
+        }
+        _ => None,
+    })
+}
+
+/// Per flexure joint, by name: `stress` {max, at} (or `curvature_max` for
+/// one given by ei alone), `safety_factor` with a `yield_strength`, and
+/// `shape` with a `shape` key; each map left out when empty.
+fn put_flexure_stress(v: &mut Value, m: &Mechanism, s: &Solution, reports: &[(String, Report)], file: &Path) {
+    let mut maps: [(&str, serde_json::Map<String, Value>); 4] =
+        ["stress", "curvature_max", "safety_factor", "shape"].map(|k| (k, serde_json::Map::new()));
+    for (name, f, q, r) in flexures(m, s, reports) {
+        let mut one = json!({});
+        let what = format!("{}: flexure joint {name:?}", file.display());
+        crate::stress::peak(&mut one, f, q, r.yield_strength, &what);
+        if let Some(k) = r.shape {
+            one["shape"] = crate::stress::shape(f, q, k);
+        }
+        for (key, map) in &mut maps {
+            if let Some(x) = one.get(*key) {
+                map.insert(name.to_string(), x.clone());
+            }
+        }
+    }
+    for (key, map) in maps {
+        if !map.is_empty() {
+            v[key] = Value::Object(map);
+        }
+    }
 }
 
 /// A point `X,Y`.
@@ -114,6 +163,14 @@ fn sweep_table(m: &Mechanism, parameter: &str, with_compliance: bool) -> Vec<Str
         columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]", j.name)));
     }
     columns.push("energy".into());
+    // The peak stress of each flexure joint that has a thickness (Pa).
+    for j in &m.joints {
+        if let JointKind::Flexure(f) = &j.kind
+            && f.section().modulus().is_some()
+        {
+            columns.push(format!("{}.stress", j.name));
+        }
+    }
     if with_compliance {
         let axes = ["phi", "x", "y"];
         columns.extend(axes.iter().flat_map(|r| axes.iter().map(move |c| format!("compliance.{r}{c}"))));
@@ -127,6 +184,13 @@ fn sweep_row(m: &Mechanism, value: f64, s: &Solution, compliance: Option<&nalgeb
     row.extend(f.bodies[1..].iter().flat_map(|b| [b.origin[0], b.origin[1], b.angle]));
     row.extend(&s.q);
     row.push(s.energy);
+    for j in &m.joints {
+        if let JointKind::Flexure(f) = &j.kind
+            && let Some(p) = flexure::stress::peak_stress(f, &s.q[j.offset..j.offset + f.order()])
+        {
+            row.push(p.value);
+        }
+    }
     if let Some(c) = compliance {
         row.extend((0..3).flat_map(|i| (0..3).map(move |j| c[(i, j)])));
     }
@@ -159,7 +223,7 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
 
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
-    let m = load(&args.file)?;
+    let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let body = match &args.compliance {
@@ -215,12 +279,31 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
                     flagged.len()
                 ));
             }
+            // Each yield strength, at the first swept value whose stress exceeds it.
+            for (k, r) in reports.iter().enumerate() {
+                let Some(strength) = r.1.yield_strength else { continue };
+                let over = out.rows.iter().find_map(|(value, s)| {
+                    let (_, f, q, _) = flexures(&m, s, &reports).nth(k)?;
+                    let p = flexure::stress::peak_stress(f, q)?;
+                    (p.value > strength).then_some((*value, p.value))
+                });
+                if let Some((value, sigma)) = over {
+                    crate::options::warn(format!(
+                        "{}: flexure joint {:?}: from {} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
+                        args.file.display(),
+                        r.0,
+                        spec.parameter,
+                        r.0
+                    ));
+                }
+            }
             return Ok(v);
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
             let mut v = with_compliance(&s, solution_json(&m, &s))?;
             put_joint_estimates(&mut v, &m, &s, &args.accuracy.target(), &args.file)?;
+            put_flexure_stress(&mut v, &m, &s, &reports, &args.file);
             if let Some(limit) = s.limit {
                 v["limit_fraction"] = json!(limit);
             }
@@ -301,7 +384,9 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
 /// via points, its loads arrows (forces, weights, drawn to a stated scale)
 /// and turning arrows (moments).
 mod drawing {
-    use crate::figures::{Anchor, COLORS, Color, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch};
+    use crate::figures::{
+        Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
+    };
     use flexure::kinematics::backbone;
     use flexure::mechanism::statics::{Solution, body_frames};
     use flexure::mechanism::{Closure, JointKind, Mechanism};
@@ -433,7 +518,31 @@ mod drawing {
     #[derive(Clone, Copy)]
     enum Loads {
         Hidden,
-        Drawn { per_newton: Option<f64> },
+        /// `stress_top`: the stress (Pa) at the top of the colour bar, when
+        /// flexures with a thickness are coloured by their stress.
+        Drawn {
+            per_newton: Option<f64>,
+            stress_top: Option<f64>,
+        },
+    }
+
+    /// Points along each drawn flexure.
+    const FLEXURE_SAMPLES: usize = 41;
+
+    /// The largest bending stress (Pa) of any flexure with a thickness in
+    /// any of the shapes, or `None` if no flexure has a thickness.
+    pub fn stress_max(m: &Mechanism, shapes: &[(String, Solution)]) -> Option<f64> {
+        let mut top = None;
+        for (_, s) in shapes {
+            for j in &m.joints {
+                if let JointKind::Flexure(fl) = &j.kind
+                    && let Some(p) = flexure::stress::peak_stress(fl, &s.q[j.offset..j.offset + fl.order()])
+                {
+                    top = Some(p.value.max(top.unwrap_or(0.0)));
+                }
+            }
+        }
+        top
     }
 
     /// One shape's marks.
@@ -458,10 +567,26 @@ mod drawing {
             match &j.kind {
                 JointKind::Flexure(fl) => {
                     let q = &s.q[j.offset..j.offset + fl.order()];
-                    let points =
-                        backbone(fl, q, 41).iter().map(|p| root.point([p.x, p.y])).map(|p| (p[0], p[1])).collect();
-                    let stroke = Some(Stroke::solid(color, FLEXURE_WIDTH));
-                    fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
+                    let points: Vec<(f64, f64)> = backbone(fl, q, FLEXURE_SAMPLES)
+                        .iter()
+                        .map(|p| root.point([p.x, p.y]))
+                        .map(|p| (p[0], p[1]))
+                        .collect();
+                    let top = match loads {
+                        Loads::Drawn { stress_top: Some(top), .. } if fl.section().modulus().is_some() => top,
+                        _ => {
+                            let stroke = Some(Stroke::solid(color, FLEXURE_WIDTH));
+                            fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
+                            continue;
+                        }
+                    };
+                    // Each piece in the colour of its mean stress.
+                    let ds = fl.length() / (FLEXURE_SAMPLES - 1) as f64;
+                    let sigma = |i: usize| flexure::stress::stress(fl, q, i as f64 * ds).unwrap_or(0.0);
+                    for (i, pair) in points.windows(2).enumerate() {
+                        let stroke = Some(Stroke::solid(ramp(0.5 * (sigma(i) + sigma(i + 1)) / top), FLEXURE_WIDTH));
+                        fig.marks.push(Mark::Path { points: pair.to_vec(), stroke, fill: None, closed: false });
+                    }
                 }
                 JointKind::Revolute(_) => {
                     fig.marks.push(Mark::Dot { at: origin, shape: Marker::Circle, radius: 6.0, color, filled: false });
@@ -494,7 +619,7 @@ mod drawing {
             let stroke = Some(Stroke { color, width: 1.5, dash: TENDON_DASH[k % TENDON_DASH.len()] });
             fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
         }
-        let Loads::Drawn { per_newton } = loads else { return };
+        let Loads::Drawn { per_newton, .. } = loads else { return };
         for ((b, r), v) in load_places(m).into_iter().zip(force_vectors(m, s)) {
             let from = at(b, r);
             if let (Some(k), true) = (per_newton, v != [0.0, 0.0]) {
@@ -580,6 +705,8 @@ mod drawing {
         let largest =
             loaded.iter().flat_map(|(_, s)| force_vectors(m, s)).map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
         let per_newton = (largest > 0.0).then(|| round_down(0.25 * extent / largest));
+        // The colour bar runs from 0 to the largest stress (1 MPa if none is loaded).
+        let stress_top = stress_max(m, loaded).map(|top| if top > 0.0 { top } else { 1e6 });
 
         // The ground, once: it does not move.
         let ground = attachments(m, 0);
@@ -594,7 +721,7 @@ mod drawing {
         fig.legend.push(Entry { swatch: link(GRAY), label: "unloaded".into() });
         for (i, (label, s)) in loaded.iter().enumerate() {
             let color = SHAPES[i % SHAPES.len()];
-            shape(&mut fig, m, s, color, thick, Loads::Drawn { per_newton });
+            shape(&mut fig, m, s, color, thick, Loads::Drawn { per_newton, stress_top });
             fig.legend.push(Entry { swatch: link(color), label: label.clone() });
         }
         if let Some((_, s)) = loaded.last() {
@@ -670,6 +797,19 @@ mod drawing {
         }
         if let Some(k) = per_newton {
             fig.legend.push(Entry { swatch: Swatch::Note, label: format!("force arrows: {} m per N", short(k)) });
+        }
+        if let Some(top) = stress_top {
+            fig.color_bar = Some(ColorBar { label: "flexures' bending stress (MPa)".into(), lo: 0.0, hi: top / 1e6 });
+            let plain = m.joints.iter().any(|j| match &j.kind {
+                JointKind::Flexure(fl) => fl.section().modulus().is_none(),
+                _ => false,
+            });
+            let label = if plain {
+                "loaded flexures coloured by stress; those given by ei alone (no thickness) in their shape's colour"
+            } else {
+                "loaded flexures coloured by bending stress"
+            };
+            fig.legend.push(Entry { swatch: Swatch::Note, label: label.into() });
         }
         (fig, per_newton)
     }

@@ -1,6 +1,7 @@
 //! Options shared by every subcommand, and the parsers that reject bad numbers.
 
 use clap::Args;
+use flexure::section::{Notch, Profile, Section};
 use flexure::{Flexure, bending_stiffness};
 
 /// Parses a finite number.
@@ -136,28 +137,81 @@ pub fn numbers(s: &str) -> Result<List, String> {
     s.split(',').map(number).collect::<Result<_, _>>().map(List)
 }
 
-/// The flexure: `--length`, `--ei` (or `--modulus --width --thickness [--poisson]`),
+/// A quantity along the flexure from the command line: `V` (constant) or
+/// `ROOT,TIP` (a linear taper). Tables are for files and the library.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProfileArg(pub Profile);
+
+/// Parses `V` or `ROOT,TIP` (finite numbers; their sign is checked with the section).
+pub fn profile(s: &str) -> Result<ProfileArg, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    match parts[..] {
+        [v] => Ok(ProfileArg(Profile::Constant(number(v)?))),
+        [root, tip] => Ok(ProfileArg(Profile::Linear { root: number(root)?, tip: number(tip)? })),
+        _ => Err(format!("{s:?} must be V, or ROOT,TIP for a linear taper")),
+    }
+}
+
+/// Parses `--notch R,H`: the cut-outs' radius and the thickness left at the middle (m).
+pub fn notch(s: &str) -> Result<Notch, String> {
+    match s.split(',').collect::<Vec<_>>()[..] {
+        [r, h] => Ok(Notch { radius: number(r)?, min_thickness: number(h)? }),
+        _ => Err(format!("{s:?} must be R,H: the notch's radius and its least thickness, in metres")),
+    }
+}
+
+/// Parses a finite number greater than zero (a strength, a density).
+pub fn positive(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v > 0.0 { Ok(v) } else { Err(format!("{s:?} must be greater than zero")) }
+}
+
+/// Most points of a `--shape` (or a file's `shape`): enough to plot any
+/// deflection line smoothly, few enough to print.
+pub const MAX_SHAPE: usize = flexure::mechanism::file::MAX_SHAPE;
+
+/// Parses `--shape K`: from 2 to [`MAX_SHAPE`] points.
+pub fn shape(s: &str) -> Result<usize, String> {
+    count(s, 2, MAX_SHAPE)
+}
+
+/// The flexure: `--length`, `--ei` (or `--modulus --width --thickness [--poisson]`
+/// with an optional `--notch`), mass (`--density` or `--mass-per-length`),
 /// `--kappa`, `--order`, `--quadrature`.
 #[derive(Debug, Clone, Args)]
 pub struct FlexureOptions {
     /// Length L in metres.
     #[arg(long, default_value = "1", value_parser = number, allow_hyphen_values = true)]
     pub length: f64,
-    /// Bending stiffness EI in N·m² [default: 1, or from --modulus --width --thickness].
-    #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with = "modulus")]
-    pub ei: Option<f64>,
+    /// Bending stiffness EI in N·m²: V, or ROOT,TIP for a linear taper
+    /// [default: 1, or from --modulus --width --thickness]. No thickness, so
+    /// answers report curvature_max instead of stress.
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, conflicts_with = "modulus")]
+    pub ei: Option<ProfileArg>,
     /// Young's modulus E in Pa (with --width and --thickness, in place of --ei).
     #[arg(long, value_parser = number, allow_hyphen_values = true, requires_all = ["width", "thickness"])]
     pub modulus: Option<f64>,
-    /// Width b in metres.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "modulus")]
-    pub width: Option<f64>,
-    /// Thickness h in metres.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "modulus")]
-    pub thickness: Option<f64>,
+    /// Width b in metres: V, or ROOT,TIP for a linear taper.
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "modulus")]
+    pub width: Option<ProfileArg>,
+    /// Thickness h in metres: V, or ROOT,TIP for a linear taper.
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "modulus")]
+    pub thickness: Option<ProfileArg>,
     /// Poisson ratio ν: a wide flexure, EI = E/(1−ν²)·b·h³/12 (Eq. 25).
     #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "modulus")]
     pub poisson: Option<f64>,
+    /// A circular notch hinge R,H: two circular cut-outs of radius R centred
+    /// on the flexure, leaving thickness H at its middle (m).
+    #[arg(long, value_parser = notch, allow_hyphen_values = true, requires = "modulus")]
+    pub notch: Option<Notch>,
+    /// Density in kg/m³ (with --width and --thickness): mass per length
+    /// density·b·h. Checked now; used by dynamics, not by these answers.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with = "mass_per_length")]
+    pub density: Option<f64>,
+    /// Mass per length in kg/m: V, or ROOT,TIP. Checked now; used by
+    /// dynamics, not by these answers.
+    #[arg(long, value_parser = profile, allow_hyphen_values = true)]
+    pub mass_per_length: Option<ProfileArg>,
     /// Rest curvature coefficients κ1,κ2,… (one per order) [default: straight].
     #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
     pub kappa: Option<List>,
@@ -193,19 +247,57 @@ impl FlexureOptions {
         self.order == Order::Auto
     }
 
+    /// The section the options describe, or `None` for a uniform `--ei` (or
+    /// the default) without mass, which needs none.
+    fn section(&self) -> flexure::Result<Option<Section>> {
+        let mut section = match (self.modulus, &self.ei) {
+            (Some(e), _) => {
+                let (w, h) = (self.width.as_ref().map(|p| &p.0), self.thickness.as_ref().map(|p| &p.0));
+                let nan = Profile::Constant(f64::NAN);
+                let s = Section::rectangle(e, self.poisson, w.unwrap_or(&nan).clone(), h.unwrap_or(&nan).clone())?;
+                match self.notch {
+                    Some(n) => s.with_notch(n)?,
+                    None => s,
+                }
+            }
+            (None, Some(ProfileArg(p @ Profile::Linear { .. }))) => Section::given(p.clone())?,
+            (None, ei) if self.density.is_some() || self.mass_per_length.is_some() => {
+                Section::given(ei.as_ref().map_or(Profile::Constant(1.0), |p| p.0.clone()))?
+            }
+            _ => return Ok(None),
+        };
+        if let Some(rho) = self.density {
+            section = section.with_density(rho)?;
+        }
+        if let Some(mu) = &self.mass_per_length {
+            section = section.with_mass_per_length(mu.0.clone())?;
+        }
+        Ok(Some(section))
+    }
+
     /// Builds and validates the flexure (order 3 to start from, for `--order auto`).
     pub fn build(&self) -> flexure::Result<Flexure> {
-        let ei = match self.modulus {
-            Some(e) => {
-                bending_stiffness(e, self.width.unwrap_or(f64::NAN), self.thickness.unwrap_or(f64::NAN), self.poisson)?
-            }
-            None => self.ei.unwrap_or(1.0),
+        // A uniform EI keeps the path it always had (Eq. 25 for a rectangle),
+        // so its stiffness is the same to the last bit.
+        let ei = match (self.modulus, &self.ei) {
+            (Some(e), _) => match (&self.width, &self.thickness) {
+                (Some(ProfileArg(Profile::Constant(b))), Some(ProfileArg(Profile::Constant(h)))) => {
+                    bending_stiffness(e, *b, *h, self.poisson)?
+                }
+                _ => 1.0,
+            },
+            (None, Some(ProfileArg(Profile::Constant(ei)))) => *ei,
+            (None, _) => 1.0,
         };
         let order = match self.order {
             Order::Fixed(n) => n,
             Order::Auto => 3,
         };
+        let section = self.section()?;
         let mut f = Flexure::new(self.length, ei, order)?;
+        if let Some(s) = section {
+            f = f.with_section(s)?;
+        }
         if let Some(q) = self.quadrature {
             f = f.with_quadrature(q)?;
         }
@@ -214,4 +306,17 @@ impl FlexureOptions {
         }
         Ok(f)
     }
+}
+
+/// What an answer reports of the flexure's stress: `--yield-strength` and `--shape`.
+#[derive(Debug, Clone, Args)]
+pub struct StressOptions {
+    /// Yield strength S in Pa (needs a thickness): adds safety_factor =
+    /// S/σmax, and a warning when it is below 1.
+    #[arg(long, value_parser = positive, allow_hyphen_values = true)]
+    pub yield_strength: Option<f64>,
+    /// Print the deformed flexure at K points evenly spaced in arc length,
+    /// ends included (2 to 10000): shape: [{s, x, y, phi, curvature, stress}].
+    #[arg(long, value_parser = shape, allow_hyphen_values = true)]
+    pub shape: Option<usize>,
 }

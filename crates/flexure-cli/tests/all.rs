@@ -17,6 +17,7 @@ mod joint;
 mod mechanism;
 mod options;
 mod reproduce;
+mod sections;
 
 /// Every `tests/*.rs` file is a module here or a `[[test]]` target of
 /// Cargo.toml: with auto-discovery off, a file named in neither would

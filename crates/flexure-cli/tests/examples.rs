@@ -62,7 +62,7 @@ struct Example {
     buckle: Expect,
 }
 
-const EXAMPLES: [Example; 6] = [
+const EXAMPLES: [Example; 7] = [
     Example {
         name: "finger",
         sweep: "tendon.flexor.tension=0:6:4",
@@ -98,6 +98,12 @@ const EXAMPLES: [Example; 6] = [
         name: "parallelogram",
         sweep: "force.push.fy=0:-1:2",
         compliance: ("stage", "0,-0.02"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "tapered_finger",
+        sweep: "tendon.flexor.tension=0:8:5",
+        compliance: ("distal", "0.02,0"),
         buckle: Expect::Answers,
     },
 ];
@@ -219,7 +225,7 @@ fn every_example_with_every_subcommand() {
             outcomes.push(format!("{} {what}: {expect:?}", ex.name));
         }
     }
-    assert_eq!(outcomes.len(), 36, "{outcomes:#?}");
+    assert_eq!(outcomes.len(), 42, "{outcomes:#?}");
 }
 
 /// No example escapes the table above.

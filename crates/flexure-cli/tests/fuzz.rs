@@ -171,15 +171,24 @@ enum Kind {
     Body,
     Out,
     Csv,
+    /// `V` or `ROOT,TIP`, near `scale`'s size: a quantity along the flexure.
+    Profile(f64),
+    /// `R,H`: a notch.
+    Notch,
+    /// `--shape K`.
+    Shape,
 }
 
-const FLEXURE: [(&str, Kind); 9] = [
+const FLEXURE: [(&str, Kind); 12] = [
     ("--length", Kind::Positive),
-    ("--ei", Kind::Positive),
+    ("--ei", Kind::Profile(1.0)),
     ("--modulus", Kind::Positive),
-    ("--width", Kind::Small),
-    ("--thickness", Kind::Small),
+    ("--width", Kind::Profile(0.1)),
+    ("--thickness", Kind::Profile(0.1)),
     ("--poisson", Kind::Small),
+    ("--notch", Kind::Notch),
+    ("--density", Kind::Positive),
+    ("--mass-per-length", Kind::Profile(1.0)),
     ("--kappa", Kind::List),
     ("--order", Kind::Order),
     ("--quadrature", Kind::Quadrature),
@@ -207,6 +216,8 @@ fn commands() -> Vec<Subcommand> {
                 ("--tolerance", Kind::Tolerance),
                 ("--max-iterations", Kind::Iterations),
                 ("--input", Kind::Csv),
+                ("--yield-strength", Kind::Positive),
+                ("--shape", Kind::Shape),
             ]),
         ),
         ("compliance", false, with_flexure(&[("--exact", Kind::Flag)])),
@@ -214,7 +225,13 @@ fn commands() -> Vec<Subcommand> {
         (
             "connect",
             false,
-            with_flexure(&[("--pose", Kind::Pose), ("--exact", Kind::Flag), ("--segments", Kind::Segments)]),
+            with_flexure(&[
+                ("--pose", Kind::Pose),
+                ("--exact", Kind::Flag),
+                ("--segments", Kind::Segments),
+                ("--yield-strength", Kind::Positive),
+                ("--shape", Kind::Shape),
+            ]),
         ),
         (
             "tendon",
@@ -224,6 +241,8 @@ fn commands() -> Vec<Subcommand> {
                 ("--root-offset", Kind::Small),
                 ("--tip-offset", Kind::Small),
                 ("--sweep", Kind::TendonSweep),
+                ("--yield-strength", Kind::Positive),
+                ("--shape", Kind::Shape),
             ]),
         ),
         ("solve", true, vec![("--compliance", Kind::Body), ("--at", Kind::Point), ("--sweep", Kind::MechanismSweep)]),
@@ -281,6 +300,14 @@ fn value(r: &mut Rng, kind: Kind, scratch: &Scratch, tag: &str) -> String {
         Kind::Number => n(r, -5.0, 5.0),
         Kind::Positive => format!("{}", 10f64.powf(r.uniform(-2.0, 1.0))),
         Kind::Small => n(r, -0.2, 0.5),
+        Kind::Profile(scale) => {
+            let v = |r: &mut Rng| {
+                format!("{}", scale * 10f64.powf(r.uniform(-2.0, 0.5)) * if r.chance(0.05) { -1.0 } else { 1.0 })
+            };
+            if r.chance(0.5) { v(r) } else { format!("{},{}", v(r), v(r)) }
+        }
+        Kind::Notch => format!("{},{}", n(r, -0.01, 0.2), n(r, -0.01, 0.1)),
+        Kind::Shape => (r.below(40) + 1).to_string(),
         Kind::Angle => {
             if r.chance(0.5) {
                 format!("{}deg", r.uniform(-400.0, 400.0))

@@ -242,3 +242,134 @@ fn mutated_examples() {
     // The mutations leave work for both halves of the check.
     assert!(parsed > 100 && answered > 100, "{parsed} parsed, {answered} answered");
 }
+
+/// A flexure of modulus 7e10 Pa, `extra` from line 8 on.
+fn rectangle(extra: &str) -> String {
+    format!(
+        "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nmodulus = 7e10\n{extra}"
+    )
+}
+
+/// Bad sections (issue 11): each names its key and the place of its value.
+#[test]
+fn bad_sections_name_key_line_and_column() {
+    let thick = "thickness = 0.004\n";
+    let with_width = |w: &str| rectangle(&format!("width = {w}\n{thick}"));
+    let with_notch = |n: &str| rectangle(&format!("width = 0.01\n{thick}notch = {n}\n"));
+    let cases = [
+        (with_width("0.0"), "line 8, column 9", "width = 0: must be greater than zero"),
+        (with_width("-0.01"), "line 8, column 9", "width = -0.01: must be greater than zero"),
+        (
+            rectangle("width = 0.01\nthickness = [0.004, 0.0]\n"),
+            "line 9, column 13",
+            "thickness[1] = 0: must be greater",
+        ),
+        (rectangle("width = 0.01\nthickness = [-0.004, 0.001]\n"), "line 9, column 13", "thickness[0] = -0.004"),
+        (with_width("[[0.0, 0.01], [0.5, 0.02]]"), "line 8, column 9", "t = s/L must start at 0, end at 1"),
+        (with_width("[[0.1, 0.01], [1.0, 0.02]]"), "line 8, column 9", "t = s/L must start at 0, end at 1"),
+        (with_width("[[0.0, 0.01], [0.5, 0.02], [0.5, 0.02], [1.0, 0.01]]"), "line 8, column 9", "increase strictly"),
+        (with_width("[[0.0, 0.01], [-0.5, 0.01], [1.0, 0.01]]"), "line 8, column 9", "width[1][0] = -0.5"),
+        (with_width("[[0.0, 0.01], [1.0, nan]]"), "line 8, column 9", "width[1][1] = NaN: must be a finite number"),
+        (with_width("[[0.0, 0.01], [1.0, 0.0]]"), "line 8, column 9", "width[1][1] = 0: must be greater than zero"),
+        (with_width("[[0.0, 0.01]]"), "line 8, column 9", "at least two points"),
+        (with_width("\"wide\""), "line 8, column 9", "width must be a number, [root, tip] or a table"),
+        (with_width("[0.01, 0.02, 0.03]"), "line 8, column 9", "width must be a number, [root, tip] or a table"),
+        (with_width("[[0.0, 0.01], [1.0]]"), "line 8, column 9", "width must be a number, [root, tip] or a table"),
+        (with_width("inf"), "line 8, column 9", "width = inf: must be a finite number"),
+        (
+            with_notch("{ radius = 0.005, min_thickness = 0.004 }"),
+            "line 10, column 9",
+            "notch.min_thickness = 0.004: must be less than the thickness",
+        ),
+        (with_notch("{ radius = 0.005, min_thickness = 0.006 }"), "line 10, column 9", "deeper than the thickness"),
+        (with_notch("{ radius = 0.001, min_thickness = 0.0001 }"), "line 10, column 9", "notch.radius = 0.001"),
+        (with_notch("{ radius = -0.005, min_thickness = 0.001 }"), "line 10, column 9", "notch.radius = -0.005"),
+        (with_notch("{ radius = 0.005, min_thickness = nan }"), "line 10, column 9", "notch.min_thickness = NaN"),
+        (with_notch("{ radius = 0.005 }"), "line 10, column 9", "notch.min_thickness is missing"),
+        (
+            with_notch("{ radius = 0.005, min_thickness = 0.001, depth = 1 }"),
+            "line 10, column 9",
+            "unknown key `depth`",
+        ),
+        (
+            with_notch("{ radius = \"big\", min_thickness = 0.001 }"),
+            "line 10, column 9",
+            "notch.radius must be a number",
+        ),
+        (with_notch("0.005"), "line 10, column 9", "notch must be { radius = R, min_thickness = h }"),
+        (rectangle(&format!("width = 0.01\n{thick}density = 0.0\n")), "line 10, column 11", "density = 0"),
+        (
+            rectangle(&format!("width = 0.01\n{thick}mass_per_length = [0.1, -0.1]\n")),
+            "line 10, column 19",
+            "mass_per_length[1] = -0.1",
+        ),
+        (
+            rectangle(&format!("width = 0.01\n{thick}density = 2700.0\nmass_per_length = 0.1\n")),
+            "line 11, column 19",
+            "give density or mass_per_length, not both",
+        ),
+        (
+            rectangle(&format!("width = 0.01\n{thick}yield_strength = 0.0\n")),
+            "line 10, column 18",
+            "yield_strength = 0",
+        ),
+        (rectangle(&format!("width = 0.01\n{thick}shape = 1\n")), "line 10, column 9", "shape = 1: must be from 2 to"),
+        (rectangle(&format!("width = 0.01\n{thick}shape = 10001\n")), "line 10, column 9", "shape = 10001"),
+        (rectangle(&format!("width = 0.01\n{thick}shape = -3\n")), "line 10, column 9", ""),
+        (rectangle("width = 0.01\n"), "line 7, column 11", "thickness is missing"),
+        (joint("notch = { radius = 0.005, min_thickness = 0.001 }\n"), "line 8, column 9", "`notch` goes with modulus"),
+        (joint("density = 7850.0\n"), "line 8, column 11", "give mass_per_length with ei"),
+        (joint("yield_strength = 1e8\n"), "line 8, column 18", "yield_strength needs a thickness"),
+        (joint("").replace("ei = 1e-3", "ei = [1e-3, 0.0]"), "line 7, column 6", "ei[1] = 0: must be greater"),
+        (joint("").replace("ei = 1e-3", "ei = [[0.0, 1e-3], [1.0, inf]]"), "line 7, column 6", "ei[1][1] = inf"),
+        (joint("").replace("ei = 1e-3", "ei = [1e-3, 1e20]"), "line 7, column 6", "ei = "),
+        (
+            joint("").replace("kind = \"flexure\"", "kind = \"revolute\"").replace("length = 0.01\nei = 1e-3\n", "")
+                + "shape = 5\n",
+            "line 6, column 9",
+            "`shape` does not apply to a revolute joint",
+        ),
+    ];
+    for (text, place, what) in cases {
+        let e = file_error(&text);
+        assert!(e.starts_with(&format!("{place}:")) && e.contains(what), "expected {what:?} at {place}:\n{text}\n{e}");
+    }
+}
+
+/// The section forms read as the library builds them: a table through the
+/// ends equals the linear taper, `[root, tip]` is `Profile::Linear`, a
+/// notch leaves its least thickness at the middle, `density` gives ρ b h,
+/// and `reports` returns `yield_strength` and `shape` by joint.
+#[test]
+fn section_forms_read_as_the_library_builds_them() {
+    use flexure::mechanism::JointKind;
+    use flexure::mechanism::file::reports;
+    use flexure::section::{Profile, Section};
+    let flexure = |text: &str| match from_toml(text).unwrap().joints.remove(0).kind {
+        JointKind::Flexure(f) => *f,
+        _ => panic!("a flexure"),
+    };
+    let table = flexure(&rectangle("width = [[0.0, 0.01], [1.0, 0.02]]\nthickness = 0.004\n"));
+    let taper = flexure(&rectangle("width = [0.01, 0.02]\nthickness = 0.004\n"));
+    let k = taper.stiffness_matrix();
+    let scale = k.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    // Both exact for a linear EI (Gauss–Legendre on one piece): to rounding.
+    assert!(table.stiffness_matrix().iter().zip(k).all(|(a, b)| (a - b).abs() < 1e-13 * scale));
+    let given = flexure(&joint("").replace("ei = 1e-3", "ei = [2e-3, 1e-3]"));
+    let library = flexure::Flexure::new(0.01, 1.0, 3)
+        .unwrap()
+        .with_section(Section::given(Profile::Linear { root: 2e-3, tip: 1e-3 }).unwrap())
+        .unwrap();
+    assert_eq!(given.stiffness_matrix(), library.stiffness_matrix());
+    assert!(given.section().thickness(0.5, 0.01).is_none());
+    let text = rectangle(
+        "width = 0.008\nthickness = 0.0105\nnotch = { radius = 0.005, min_thickness = 5e-4 }\ndensity = 2700.0\nyield_strength = 2.5e8\nshape = 7\n",
+    );
+    let notched = flexure(&text);
+    assert_eq!(notched.section().thickness(0.5, 0.01), Some(5e-4));
+    assert!((notched.section().mass_per_length(0.5, 0.01).unwrap() - 2700.0 * 0.008 * 5e-4).abs() < 1e-15);
+    let r = reports(&text).unwrap();
+    assert_eq!(r.len(), 1);
+    assert_eq!((r[0].0.as_str(), r[0].1.yield_strength, r[0].1.shape), ("a", Some(2.5e8), Some(7)));
+    assert!(reports(&rectangle("width = 0.0\nthickness = 0.004\n")).is_err());
+}

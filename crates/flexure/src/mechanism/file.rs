@@ -12,6 +12,7 @@ use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
 use crate::error::{Error, Result};
 use crate::joint::{Flexure, bending_stiffness};
 use crate::kinematics::Pose;
+use crate::section::{Notch, Profile, Section};
 use serde::Deserialize;
 use std::ops::Range;
 use toml::Spanned;
@@ -29,6 +30,10 @@ pub const MIN_MAGNITUDE: f64 = 1e-30;
 /// precision resolves the softer joint's forces beside the stiffer one's
 /// to about 1e-16 × 1e12 = 1e-4 of themselves; beyond, no equilibrium is meaningful.
 pub const MAX_STIFFNESS_RATIO: f64 = 1e12;
+
+/// The most points a flexure joint's `shape` may ask for: enough to plot
+/// any deflection line smoothly, few enough to print.
+pub const MAX_SHAPE: usize = 10_000;
 
 type Span = Range<usize>;
 
@@ -59,11 +64,20 @@ struct JointToml {
     child: Spanned<String>,
     origin: Option<Spanned<[f64; 3]>>,
     length: Option<Spanned<f64>>,
-    ei: Option<Spanned<f64>>,
+    // A quantity along the flexure (`ei`, `width`, `thickness`,
+    // `mass_per_length`) is a number, `[root, tip]` or a table
+    // `[[t, value], …]`: read by `Source::profile`.
+    ei: Option<Spanned<toml::Value>>,
     modulus: Option<Spanned<f64>>,
-    width: Option<Spanned<f64>>,
-    thickness: Option<Spanned<f64>>,
+    width: Option<Spanned<toml::Value>>,
+    thickness: Option<Spanned<toml::Value>>,
     poisson: Option<Spanned<f64>>,
+    // `{ radius = R, min_thickness = h }`: read by `Source::notch`.
+    notch: Option<Spanned<toml::Value>>,
+    density: Option<Spanned<f64>>,
+    mass_per_length: Option<Spanned<toml::Value>>,
+    yield_strength: Option<Spanned<f64>>,
+    shape: Option<Spanned<usize>>,
     order: Option<Spanned<usize>>,
     quadrature: Option<Spanned<usize>>,
     kappa: Option<Spanned<Vec<f64>>>,
@@ -196,6 +210,72 @@ impl Source<'_> {
             }
             None => Ok([0.0; N]),
         }
+    }
+
+    /// A quantity along a flexure, `key`: a number, `[root, tip]` (a linear
+    /// taper) or a table `[[t, value], …]` over $t = s/L$; every value
+    /// greater than zero, a table's $t$ from 0 to 1, increasing strictly.
+    fn profile(&self, owner: &str, key: &'static str, value: &Spanned<toml::Value>) -> Result<Profile> {
+        let span = value.span();
+        let number = |v: &toml::Value| match v {
+            toml::Value::Float(x) => Some(*x),
+            toml::Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        let pair = |v: &toml::Value| match v.as_array().map(Vec::as_slice) {
+            Some([a, b]) => Some([number(a)?, number(b)?]),
+            _ => None,
+        };
+        let items = value.get_ref().as_array();
+        let profile = if let Some(v) = number(value.get_ref()) {
+            Profile::Constant(v)
+        } else if let Some([root, tip]) = pair(value.get_ref()) {
+            Profile::Linear { root, tip }
+        } else if let Some(points) = items.and_then(|a| a.iter().map(pair).collect::<Option<Vec<_>>>()) {
+            Profile::Table(points)
+        } else {
+            return self.fail(
+                &span,
+                format!(
+                    "{owner}{key} must be a number, [root, tip] or a table [[t, value], …] with t = s/L from 0 to 1"
+                ),
+            );
+        };
+        match &profile {
+            Profile::Constant(v) => self.numbers(owner, key, &span, &[*v], Sign::Positive)?,
+            Profile::Linear { root, tip } => self.numbers(owner, key, &span, &[*root, *tip], Sign::Positive)?,
+            Profile::Table(points) => {
+                for (k, [t, v]) in points.iter().enumerate() {
+                    self.numbers(owner, &format!("{key}[{k}][0]"), &span, &[*t], Sign::NotNegative)?;
+                    self.numbers(owner, &format!("{key}[{k}][1]"), &span, &[*v], Sign::Positive)?;
+                }
+            }
+        }
+        profile.check(key).map_err(|e| self.placed(owner, &span, e))?;
+        Ok(profile)
+    }
+
+    /// A circular notch, `{ radius = R, min_thickness = h }` (m, each greater than zero).
+    fn notch(&self, owner: &str, value: &Spanned<toml::Value>) -> Result<Notch> {
+        let span = value.span();
+        let expected = "notch must be { radius = R, min_thickness = h } (m)";
+        let Some(table) = value.get_ref().as_table() else {
+            return self.fail(&span, format!("{owner}{expected}"));
+        };
+        if let Some(key) = table.keys().find(|k| !matches!(k.as_str(), "radius" | "min_thickness")) {
+            return self.fail(&span, format!("{owner}unknown key `{key}` in notch: {expected}"));
+        }
+        let part = |key: &str| -> Result<f64> {
+            let v = match table.get(key) {
+                Some(toml::Value::Float(x)) => *x,
+                Some(toml::Value::Integer(i)) => *i as f64,
+                Some(_) => return self.fail(&span, format!("{owner}notch.{key} must be a number")),
+                None => return self.fail(&span, format!("{owner}notch.{key} is missing: {expected}")),
+            };
+            self.numbers(owner, &format!("notch.{key}"), &span, &[v], Sign::Positive)?;
+            Ok(v)
+        };
+        Ok(Notch { radius: part("radius")?, min_thickness: part("min_thickness")? })
     }
 
     /// A library error about `owner`'s value at `span`, placed.
@@ -466,6 +546,11 @@ fn foreign_keys(j: &JointToml, kind: &str) -> Option<(&'static str, Span)> {
         ("width", j.width.as_ref().map(Spanned::span)),
         ("thickness", j.thickness.as_ref().map(Spanned::span)),
         ("poisson", j.poisson.as_ref().map(Spanned::span)),
+        ("notch", j.notch.as_ref().map(Spanned::span)),
+        ("density", j.density.as_ref().map(Spanned::span)),
+        ("mass_per_length", j.mass_per_length.as_ref().map(Spanned::span)),
+        ("yield_strength", j.yield_strength.as_ref().map(Spanned::span)),
+        ("shape", j.shape.as_ref().map(Spanned::span)),
         ("order", j.order.as_ref().map(Spanned::span)),
         ("quadrature", j.quadrature.as_ref().map(Spanned::span)),
         ("kappa", j.kappa.as_ref().map(Spanned::span)),
@@ -502,48 +587,7 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 .as_ref()
                 .ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
             let l = src.number(owner, "length", length, Sign::Positive)?;
-            let section = [("width", &j.width), ("thickness", &j.thickness), ("poisson", &j.poisson)];
-            let (ei, ei_span) = match (&j.ei, &j.modulus) {
-                (Some(ei), None) => {
-                    if let Some((key, Some(v))) = section.iter().find(|(_, v)| v.is_some()) {
-                        return src.fail(&v.span(), format!("{owner}`{key}` goes with modulus, not with ei"));
-                    }
-                    (src.number(owner, "ei", ei, Sign::Positive)?, ei.span())
-                }
-                (None, Some(e)) => {
-                    let e_value = src.number(owner, "modulus", e, Sign::Positive)?;
-                    let part = |key: &str, v: &Option<Spanned<f64>>| -> Result<f64> {
-                        let v = v.as_ref().ok_or_else(|| {
-                            src.error(&e.span(), format!("{owner}modulus needs width and thickness; {key} is missing"))
-                        })?;
-                        src.number(owner, key, v, Sign::Positive)
-                    };
-                    let (w, h) = (part("width", &j.width)?, part("thickness", &j.thickness)?);
-                    let nu = match &j.poisson {
-                        Some(p) => Some(src.number(owner, "poisson", p, Sign::Any)?),
-                        None => None,
-                    };
-                    let ei = bending_stiffness(e_value, w, h, nu).map_err(|x| {
-                        let span = match &x {
-                            Error::InvalidParameter { name: "poisson", .. } => {
-                                j.poisson.as_ref().map_or(e.span(), Spanned::span)
-                            }
-                            _ => e.span(),
-                        };
-                        src.placed(owner, &span, x)
-                    })?;
-                    // The product may leave the magnitudes its parts kept.
-                    src.numbers(owner, "ei (from modulus, width, thickness)", &e.span(), &[ei], Sign::Positive)?;
-                    (ei, e.span())
-                }
-                (Some(ei), Some(_)) => {
-                    return src.fail(&ei.span(), format!("{owner}give ei or modulus, width, thickness, not both"));
-                }
-                (None, None) => {
-                    return src
-                        .fail(&j.name.span(), format!("{owner}a flexure needs ei, or modulus, width and thickness"));
-                }
-            };
+            let (ei, ei_span, mut section) = flexure_section(src, owner, j)?;
             let order = j.order.as_ref().map_or(3, |o| *o.get_ref());
             let order_span = j.order.as_ref().map_or(j.name.span(), Spanned::span);
             let mut f = Flexure::new(l, ei, order).map_err(|x| {
@@ -554,6 +598,21 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 };
                 src.placed(owner, &span, x)
             })?;
+            if let Some(mu) = &j.mass_per_length {
+                if j.density.is_some() {
+                    return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+                }
+                let p = src.profile(owner, "mass_per_length", mu)?;
+                let s = section
+                    .take()
+                    .map_or_else(|| Section::uniform(ei), Ok)
+                    .map_err(|x| src.placed(owner, &ei_span, x))?;
+                section = Some(s.with_mass_per_length(p).map_err(|x| src.placed(owner, &mu.span(), x))?);
+            }
+            if let Some(s) = section {
+                f = f.with_section(s).map_err(|x| src.placed(owner, &ei_span, x))?;
+            }
+            report(src, owner, j, &f)?;
             if let Some(q) = &j.quadrature {
                 f = f.with_quadrature(*q.get_ref()).map_err(|x| src.placed(owner, &q.span(), x))?;
             }
@@ -579,4 +638,149 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
         )),
         _ => Ok((JointKind::Fixed(Fixed), j.name.span())),
     }
+}
+
+/// A flexure joint's bending stiffness: the uniform $EI$ to build it with,
+/// the place of the key that sets it, and the [`Section`] that replaces it
+/// when $EI$ varies, a thickness gives stress, or a density gives mass.
+fn flexure_section(src: &Source, owner: &str, j: &JointToml) -> Result<(f64, Span, Option<Section>)> {
+    let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
+    let rectangle_keys = [
+        ("width", span_of(&j.width)),
+        ("thickness", span_of(&j.thickness)),
+        ("poisson", j.poisson.as_ref().map(Spanned::span)),
+        ("notch", span_of(&j.notch)),
+        ("density", j.density.as_ref().map(Spanned::span)),
+    ];
+    match (&j.ei, &j.modulus) {
+        (Some(ei), None) => {
+            if let Some((key, Some(span))) = rectangle_keys.iter().find(|(_, v)| v.is_some()) {
+                let hint = if *key == "density" { "; give mass_per_length with ei" } else { "" };
+                return src.fail(span, format!("{owner}`{key}` goes with modulus, not with ei{hint}"));
+            }
+            match src.profile(owner, "ei", ei)? {
+                Profile::Constant(v) => Ok((v, ei.span(), None)),
+                p => {
+                    let s = Section::given(p).map_err(|x| src.placed(owner, &ei.span(), x))?;
+                    Ok((1.0, ei.span(), Some(s)))
+                }
+            }
+        }
+        (None, Some(e)) => {
+            let e_value = src.number(owner, "modulus", e, Sign::Positive)?;
+            let part = |key: &'static str, v: &Option<Spanned<toml::Value>>| -> Result<(Profile, Span)> {
+                let v = v.as_ref().ok_or_else(|| {
+                    src.error(&e.span(), format!("{owner}modulus needs width and thickness; {key} is missing"))
+                })?;
+                Ok((src.profile(owner, key, v)?, v.span()))
+            };
+            let ((w, w_span), (h, h_span)) = (part("width", &j.width)?, part("thickness", &j.thickness)?);
+            let nu = match &j.poisson {
+                Some(p) => Some(src.number(owner, "poisson", p, Sign::Any)?),
+                None => None,
+            };
+            let place = |x: Error| {
+                let span = match &x {
+                    Error::InvalidParameter { name: "poisson", .. } => {
+                        j.poisson.as_ref().map_or(e.span(), Spanned::span)
+                    }
+                    Error::InvalidParameter { name: "width", .. } => w_span.clone(),
+                    Error::InvalidParameter { name: "thickness", .. } => h_span.clone(),
+                    Error::InvalidParameter { name, .. } if name.starts_with("notch") => {
+                        span_of(&j.notch).unwrap_or(e.span())
+                    }
+                    Error::InvalidParameter { name: "density", .. } => {
+                        j.density.as_ref().map_or(e.span(), Spanned::span)
+                    }
+                    _ => e.span(),
+                };
+                src.placed(owner, &span, x)
+            };
+            // A uniform rectangle keeps Eq. 25, and its product's magnitude check.
+            let ei = match (&w, &h) {
+                (Profile::Constant(b), Profile::Constant(t)) => {
+                    let ei = bending_stiffness(e_value, *b, *t, nu).map_err(place)?;
+                    // The product may leave the magnitudes its parts kept.
+                    src.numbers(owner, "ei (from modulus, width, thickness)", &e.span(), &[ei], Sign::Positive)?;
+                    ei
+                }
+                _ => 1.0,
+            };
+            let mut section = Section::rectangle(e_value, nu, w, h).map_err(place)?;
+            if let Some(n) = &j.notch {
+                section = section.with_notch(src.notch(owner, n)?).map_err(place)?;
+            }
+            if let Some(rho) = &j.density {
+                section = section.with_density(src.number(owner, "density", rho, Sign::Positive)?).map_err(place)?;
+            }
+            Ok((ei, e.span(), Some(section)))
+        }
+        (Some(ei), Some(_)) => src.fail(&ei.span(), format!("{owner}give ei or modulus, width, thickness, not both")),
+        (None, None) => src.fail(&j.name.span(), format!("{owner}a flexure needs ei, or modulus, width and thickness")),
+    }
+}
+
+/// What `flexure solve` reports of a flexure joint beyond its coordinates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Report {
+    /// `yield_strength` (Pa): the safety factor is this over the peak stress.
+    pub yield_strength: Option<f64>,
+    /// `shape`: the number of points, evenly spaced in arc length, at which to print the deformed flexure.
+    pub shape: Option<usize>,
+}
+
+/// Checks a flexure joint's `yield_strength` (greater than zero, and only
+/// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]).
+fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Report> {
+    let yield_strength = match &j.yield_strength {
+        Some(v) => {
+            let s = src.number(owner, "yield_strength", v, Sign::Positive)?;
+            if f.section().modulus().is_none() {
+                return src.fail(
+                    &v.span(),
+                    format!(
+                        "{owner}yield_strength needs a thickness to give a stress: give modulus, width and thickness (a flexure given by ei alone has no stress)"
+                    ),
+                );
+            }
+            Some(s)
+        }
+        None => None,
+    };
+    let shape = match &j.shape {
+        Some(k) if !(2..=MAX_SHAPE).contains(k.get_ref()) => {
+            return src
+                .fail(&k.span(), format!("{owner}shape = {}: must be from 2 to {MAX_SHAPE} points", k.get_ref()));
+        }
+        k => k.as_ref().map(|k| *k.get_ref()),
+    };
+    Ok(Report { yield_strength, shape })
+}
+
+/// Each flexure joint's [`Report`] keys, by joint name in file order. The
+/// file is checked first, as by [`from_toml`].
+///
+/// # Example
+/// ```
+/// let text = "[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\n\
+///             length = 0.02\nmodulus = 2e11\nwidth = 0.01\nthickness = [4e-4, 2e-4]\nyield_strength = 5e8\nshape = 11\n";
+/// let r = flexure::mechanism::file::reports(text).unwrap();
+/// assert_eq!(r[0].0, "hinge");
+/// assert_eq!((r[0].1.yield_strength, r[0].1.shape), (Some(5e8), Some(11)));
+/// ```
+pub fn reports(text: &str) -> Result<Vec<(String, Report)>> {
+    let m = from_toml(text)?;
+    let file: FileToml = toml::from_str(text)
+        .map_err(|e| Error::File { place: place(text, 0), message: e.message().trim().to_string() })?;
+    let flexures = m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_)));
+    Ok(flexures
+        .map(|spec| {
+            let j = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);
+            let r = j.map_or_else(Report::default, |j| Report {
+                yield_strength: j.yield_strength.as_ref().map(|v| *v.get_ref()),
+                shape: j.shape.as_ref().map(|v| *v.get_ref()),
+            });
+            (spec.name.clone(), r)
+        })
+        .collect())
 }

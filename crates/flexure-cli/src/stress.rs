@@ -1,0 +1,81 @@
+//! What an answer reports of a flexure's bending: the peak stress (or, for a
+//! section given by EI alone, the peak change of curvature), the safety
+//! factor against a yield strength, and the deformed shape.
+
+use crate::options::{StressOptions, warn};
+use flexure::kinematics::backbone;
+use flexure::stress::{peak_curvature, peak_stress, stress};
+use flexure::{Error, Flexure};
+use serde_json::{Value, json};
+
+/// Refuses a yield strength on a flexure that has no thickness, whose
+/// stress is therefore unknown (`name` is the option or key that gave it).
+pub fn check(f: &Flexure, options: &StressOptions) -> flexure::Result<()> {
+    match options.yield_strength {
+        Some(s) if f.section().modulus().is_none() => Err(Error::invalid(
+            "yield_strength",
+            s,
+            "needs a thickness to give a stress: give --modulus, --width and --thickness (a flexure given by --ei alone has no stress)",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The peak: `stress: {max (Pa), at (m)}` with a thickness, else
+/// `curvature_max: {max (1/m), at (m)}`, the largest change of curvature
+/// from rest; with `yield_strength`, `safety_factor` = S/σmax (left out when
+/// the flexure is unstressed: it would be infinite), and a warning naming
+/// `what` below 1.
+pub fn peak(answer: &mut Value, f: &Flexure, alpha: &[f64], yield_strength: Option<f64>, what: &str) {
+    match peak_stress(f, alpha) {
+        Some(p) => {
+            answer["stress"] = json!({ "max": p.value, "at": p.at });
+            if let Some(s) = yield_strength
+                && p.value > 0.0
+            {
+                let factor = s / p.value;
+                answer["safety_factor"] = json!(factor);
+                if factor < 1.0 {
+                    warn(format!(
+                        "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
+                        p.value, p.at
+                    ));
+                }
+            }
+        }
+        None => {
+            let p = peak_curvature(f, alpha);
+            answer["curvature_max"] = json!({ "max": p.value, "at": p.at });
+        }
+    }
+}
+
+/// The deformed flexure at `count` points evenly spaced in arc length, ends
+/// included, in its root frame: `{s, x, y, phi, curvature, stress}` with the
+/// total curvature (1/m) and, with a thickness, the bending stress (Pa).
+pub fn shape(f: &Flexure, alpha: &[f64], count: usize) -> Value {
+    let poses = backbone(f, alpha, count);
+    let step = f.length() / (poses.len() - 1) as f64;
+    let points: Vec<Value> = poses
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            // The last point exactly at the tip, not at a rounded multiple.
+            let s = if i + 1 == poses.len() { f.length() } else { i as f64 * step };
+            let mut point = json!({ "s": s, "x": p.x, "y": p.y, "phi": p.phi, "curvature": f.curvature(alpha, s) });
+            if let Some(sigma) = stress(f, alpha, s) {
+                point["stress"] = json!(sigma);
+            }
+            point
+        })
+        .collect();
+    json!(points)
+}
+
+/// [`peak`], and [`shape`] when asked for: everything `options` asks of `f` at `alpha`.
+pub fn put(answer: &mut Value, f: &Flexure, alpha: &[f64], options: &StressOptions, what: &str) {
+    peak(answer, f, alpha, options.yield_strength, what);
+    if let Some(k) = options.shape {
+        answer["shape"] = shape(f, alpha, k);
+    }
+}
