@@ -224,7 +224,8 @@ def test_mechanism_from_path_and_text():
     path = ROOT / "examples" / "mixed_chain.toml"
     for source in (path, str(path), path.read_text()):
         result = flexure.Mechanism.from_toml(source).solve()
-        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates"}
+        # Its flexures are given by ei (no thickness): curvature_max, as `flexure solve --json`.
+        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates", "curvature_max"}
         # Closed form: the shoulder spring turns M/k = 0.01/2.
         assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
         assert result["stable"] is True
