@@ -259,6 +259,24 @@ fn matrix(m: &nalgebra::DMatrix<f64>) -> Array2<f64> {
 }
 
 /// A planar flexure joint of the Smooth Curvature Model (SI units, radians).
+///
+/// Flexure(length, ei, order, quadrature, rest, *, modulus, width, thickness, poisson,
+/// notch, density, mass_per_length, yield_strength). Give `ei` (N·m²), or `modulus` (Pa)
+/// with `width` and `thickness` (m) and an optional `poisson`. `ei`, `width`, `thickness`
+/// and `mass_per_length` may vary along the flexure, over t = s/L from the root (0) to the
+/// tip (1): a number; a pair (root, tip), a linear taper; or a table of [t, value] rows
+/// (an (m, 2) array or a list of pairs; t starts at 0, ends at 1 and increases strictly),
+/// linear between rows. `notch=(R, h)` cuts two circular cut-outs of radius R centred on
+/// the flexure, leaving thickness h at its middle. `density` (kg/m³) or `mass_per_length`
+/// (kg/m) gives the mass per length, for dynamics. `yield_strength` S (Pa, with a
+/// thickness) gives `safety_factor` S/σmax, and `deflect` warns `YieldWarning` below 1.
+///
+/// Read-only: `length`, `ei` (the mean for a non-uniform section), `order`, `quadrature`,
+/// `rest`, `modulus` (E′, None without a thickness), `yield_strength`, `uniform`; along
+/// the flexure at s (m, a number or an array): `ei_at`, `thickness_at`, `width_at`,
+/// `mass_per_length_at`. At coordinates alpha: `stress` {max, at} (None without a
+/// thickness), `peak_curvature` {max, at}, `safety_factor`, and `shape(alpha, k)`, a
+/// structured array of fields s, x, y, phi, curvature and (with a thickness) stress.
 #[pyclass(frozen, module = "flexure")]
 struct Flexure {
     inner: flexure::Flexure,

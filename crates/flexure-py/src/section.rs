@@ -15,8 +15,10 @@ use pyo3::types::{PyBytes, PyString};
 const FORMS: &str = "a number, a pair (root, tip) for a linear taper, or a table of [t, value] rows with t = s/L \
                      from 0 to 1 (an (m, 2) array or a list of pairs)";
 
+/// `value`'s repr on one line (NumPy's spans several for a table).
 fn shown(value: &Bound<'_, PyAny>) -> String {
-    value.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
+    let text = value.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into());
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// Reads `name` as a number, a pair `(root, tip)` or an (m, 2) table.
@@ -52,7 +54,10 @@ pub fn profile(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Profile> {
         [_, 2] => Ok(Profile::Table(values.chunks_exact(2).map(|p| [p[0], p[1]]).collect())),
         [k] => Err(bad(format!("{k} values (shape ({k},)); a taper has two, (root, tip)"))),
         [m, k] => Err(bad(format!("a table's rows must be [t, value] pairs, got shape ({m}, {k})"))),
-        _ => Err(bad(format!("shape {shape:?} has too many dimensions"))),
+        _ => {
+            let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
+            Err(bad(format!("shape ({}) has too many dimensions", dims.join(", "))))
+        }
     }
 }
 
