@@ -1,27 +1,76 @@
 #!/usr/bin/env python3
-"""Runs the `speed` criterion bench and writes BENCHMARKS.md from that one run.
+"""Runs the `speed` criterion bench several times and writes BENCHMARKS.md.
 
-Usage: python3 scripts/benchmarks.py   (from the repository root)
-Every ratio compares two benchmarks measured in the same run.
+Usage (from the repository root):
+
+    python3 scripts/benchmarks.py [--runs K] [--python]
+
+Every ratio divides two benchmarks of the same run; the table gives each
+ratio's median over the K runs (default 3) and its range, so the spread
+between runs on a shared machine is visible. With --python it also runs
+scripts/python_speed.py (the package must be installed) and copies its
+report in.
 """
-import json, os, platform, subprocess, sys, datetime
+import json, os, platform, shutil, statistics, subprocess, sys, datetime
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CMD = ["cargo", "bench", "-p", "flexure-bench", "--bench", "speed"]
+CMD = ["cargo", "bench", "-p", "flexure-bench", "--bench", "speed", "--", "--warm-up-time", "1", "--measurement-time", "3"]
+CRITERION = os.path.join(ROOT, "target", "criterion")
+
+# (name, numerator, denominator or None, target): a denominator of the form
+# "max/min:a,b,c" takes the slowest over the fastest of those benchmarks.
+RATIOS = [
+    ("joint/pose_jacobian_hessian ÷ limit/sincos5", "joint/pose_jacobian_hessian", "limit/sincos5", "≤ 2"),
+    ("statics/deflect_90 ÷ joint/pose_jacobian_hessian", "statics/deflect_90", "joint/pose_jacobian_hessian", "≤ 30"),
+    ("reference/elastica_45…270, slowest ÷ fastest", "max/min", "reference/elastica_45,reference/elastica_90,reference/elastica_180,reference/elastica_270", "≤ 5"),
+    ("reference/segments_22 ÷ statics/connect", "reference/segments_22", "statics/connect", "≥ 100"),
+    ("mechanism/chain_100 ÷ mechanism/chain_10", "mechanism/chain_100", "mechanism/chain_10", "≤ 100"),
+    ("mechanism/parallelogram ÷ joint/pose_jacobian_hessian", "mechanism/parallelogram", "joint/pose_jacobian_hessian", "≤ 75"),
+    ("batch/pose_1m per pose ÷ joint/pose", "batch/pose_1m/1e6", "joint/pose", "≤ 0.6"),
+    ("batch/pose_1m_serial ÷ batch/pose_1m (parallel speed-up)", "batch/pose_1m_serial", "batch/pose_1m", ""),
+    ("dynamics/finger_1s ÷ mechanism/finger_equilibrium", "dynamics/finger_1s", "mechanism/finger_equilibrium", "≤ 20"),
+]
 
 
-def estimate(bench_id):
-    path = os.path.join(ROOT, "target", "criterion", *bench_id.split("/"), "new", "estimates.json")
-    with open(path) as f:
-        e = json.load(f)
-    return e["median"]["point_estimate"]  # nanoseconds
+def estimates():
+    """Every benchmark's median (ns) in target/criterion after a run."""
+    out = {}
+    for dirpath, _, files in os.walk(CRITERION):
+        if "estimates.json" in files and os.path.basename(dirpath) == "new":
+            bench = os.path.relpath(os.path.dirname(dirpath), CRITERION).replace(os.sep, "/")
+            with open(os.path.join(dirpath, "estimates.json")) as f:
+                out[bench] = json.load(f)["median"]["point_estimate"]
+    return out
+
+
+def value(run, key):
+    if key.endswith("/1e6"):
+        return run[key[:-4]] / 1e6
+    return run[key]
+
+
+def ratio(run, numerator, denominator):
+    try:
+        if numerator == "max/min":
+            times = [run[k] for k in denominator.split(",")]
+            return max(times) / min(times)
+        return value(run, numerator) / value(run, denominator)
+    except KeyError:
+        return None
 
 
 def fmt(ns):
-    for unit, scale in (("ms", 1e6), ("µs", 1e3)):
+    for unit, scale in (("s", 1e9), ("ms", 1e6), ("µs", 1e3)):
         if ns >= scale:
             return f"{ns / scale:.3g} {unit}"
     return f"{ns:.3g} ns"
+
+
+def met(v, target):
+    if not target:
+        return ""
+    bound = float(target[2:])
+    return "yes" if (v <= bound if target.startswith("≤") else v >= bound) else "no"
 
 
 def machine():
@@ -37,59 +86,58 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, {rustc}"
 
 
+def load():
+    try:
+        return os.getloadavg()[0]
+    except OSError:
+        return float("nan")
+
+
 def main():
-    if "--no-run" not in sys.argv:
+    runs = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 3
+    results, loads = [], []
+    for i in range(runs):
+        shutil.rmtree(CRITERION, ignore_errors=True)
+        loads.append(load())
         subprocess.run(CMD, cwd=ROOT, check=True)
-    t = {k: estimate(k) for k in [
-        "limit/sincos5", "sincos/nodes5", "joint/pose", "joint/pose_jacobian_hessian", "statics/deflect_90",
-        "reference/elastica_90", "statics/connect", "reference/segments_22", "batch/pose_1m",
-    ]}
-    optional = {}
-    for k in ["batch/pose_1m_serial", "mechanism/finger_equilibrium"]:
-        try:
-            optional[k] = estimate(k)
-        except OSError:
-            pass
-    orders = {n: (estimate(f"order/pose/{n}"), estimate(f"order/pose_jacobian_hessian/{n}")) for n in (3, 6, 12)}
-    per_pose = t["batch/pose_1m"] / 1e6
-    rows = [
-        ("joint/pose_jacobian_hessian ÷ limit/sincos5", t["joint/pose_jacobian_hessian"] / t["limit/sincos5"], "≤ 2.0"),
-        ("reference/elastica_90 ÷ statics/deflect_90", t["reference/elastica_90"] / t["statics/deflect_90"], "≥ 100"),
-        ("reference/segments_22 ÷ statics/connect", t["reference/segments_22"] / t["statics/connect"], "≥ 100"),
-        ("batch/pose_1m per pose ÷ joint/pose", per_pose / t["joint/pose"], "≤ 0.6"),
-    ]
+        results.append(estimates())
+        print(f"run {i + 1} of {runs} done", file=sys.stderr)
+    names = sorted(set().union(*results))
     out = ["# Benchmarks", "",
-           f"Measured {datetime.date.today().isoformat()} on {machine()}.", "",
-           "Reproduce with `python3 scripts/benchmarks.py`, which runs `" + " ".join(CMD) + "` and rewrites this file.",
-           "Times are criterion medians; every ratio divides two benchmarks of the same run.",
-           "On this shared 2-core machine the same benchmark's median moved by up to about 30 % between runs",
-           "of the same code (the sincos floor read anywhere from 50 to 80 ns), so a ratio close to its target",
-           "can land on either side of it in another run.", "",
-           "`limit/sincos5` is the floor the issue sets: five calls of libm's `f64::sin_cos`. The kernel makes no such",
-           "calls: it evaluates all nodes' sin/cos together with `flexure::sincos` (fdlibm's reduction and polynomials,",
-           "written lane by lane so they compile to SIMD, within 1 ulp of libm), timed alone on the same angles as",
-           "`sincos/nodes5`. That is why a whole evaluation can cost less than the floor.", "",
-           "| benchmark | median |", "|---|---|"]
-    out += [f"| `{k}` | {fmt(v)} |" for k, v in {**t, **optional}.items()]
-    out += [f"| batch/pose_1m, per pose | {fmt(per_pose)} |", "",
-            "`batch/pose_1m_serial` is the same batch on one thread, for the parallel speed-up.", "",
-            "## Targets", "",
-            "| ratio | measured | target | met |", "|---|---|---|---|"]
-    for name, value, target in rows:
-        ok = value <= float(target[2:]) if target.startswith("≤") else value >= float(target[2:])
-        out.append(f"| {name} | {value:.3g} | {target} | {'yes' if ok else 'no'} |")
-    quad = {q: estimate(f"quadrature/pose_jacobian_hessian/{q}") for q in (5, 10, 20, 40)}
-    out += ["", "## Cost against quadrature points", "",
-            "Order 3, pose with Jacobian and Hessians: the cost per point settles to a constant, so it grows linearly.", "",
-            "| points | time | per point |", "|---|---|---|"]
-    out += [f"| {q} | {fmt(v)} | {fmt(v / q)} |" for q, v in quad.items()]
-    out += ["", "## Cost against order", "",
-            "Order N with the default N + 2 quadrature points. The pose costs one sin/cos pair and N multiply-adds per point; "
-            "the Hessians add N(N+1)/2 per point.", "",
-            "| N | points | pose | per point | pose, Jacobian, Hessians | per point |", "|---|---|---|---|---|---|"]
-    for n, (pose, full) in orders.items():
-        q = n + 2
-        out.append(f"| {n} | {q} | {fmt(pose)} | {fmt(pose / q)} | {fmt(full)} | {fmt(full / q)} |")
+           f"Measured {datetime.date.today().isoformat()} on {machine()}: {runs} runs of",
+           "`" + " ".join(CMD) + "`,",
+           f"with a one-minute load average of {', '.join(f'{l:.1f}' for l in loads)} at their starts.",
+           "Reproduce with `python3 scripts/benchmarks.py` (it rewrites this file).", "",
+           "Every ratio divides two benchmarks of the same run; the tables give the median over the runs and the",
+           "range. On this shared 2-core machine one benchmark's median moves by up to about 30 % between runs",
+           "of the same code, so a ratio close to its target can land on either side of it in another run.", "",
+           "`limit/sincos5` is the floor: five calls of libm's `f64::sin_cos` on the angles one evaluation meets.",
+           "The kernel makes no such calls: it evaluates all nodes' sin/cos together with `flexure::sincos`",
+           "(fdlibm's reduction and polynomials, written lane by lane so they compile to SIMD, within 1 ulp of",
+           "libm), timed alone as `sincos/nodes5`. That is why a whole evaluation can cost less than the floor.", "",
+           "**Two cores.** `batch/pose_1m` runs on every core; `batch/pose_1m_serial` on one. On two idle cores",
+           "the parallel batch is about 1.9× faster; when the second core is busy (another build, another",
+           "benchmark), the speed-up falls to about 1.0×, and `batch/pose_1m`'s ratio to `joint/pose` with it.",
+           "The load averages above say how busy the machine was.", "",
+           "## Targets", "",
+           "| ratio | median | range | target | met |", "|---|---|---|---|---|"]
+    for name, numerator, denominator, target in RATIOS:
+        values = [v for v in (ratio(r, numerator, denominator) for r in results) if v is not None]
+        if not values:
+            continue
+        m = statistics.median(values)
+        out.append(f"| {name} | {m:.3g} | {min(values):.3g}–{max(values):.3g} | {target or '—'} | {met(m, target) or '—'} |")
+    out += ["", "## Every benchmark", "", "| benchmark | median | range |", "|---|---|---|"]
+    for n in names:
+        values = [r[n] for r in results if n in r]
+        out.append(f"| `{n}` | {fmt(statistics.median(values))} | {fmt(min(values))}–{fmt(max(values))} |")
+    out += ["", "`order/*/N` is order N with the default N + 2 points; `quadrature/*/Q` is order 3 with Q points:",
+            "the cost per point settles to a constant, so it grows linearly in Q."]
+    if "--python" in sys.argv:
+        report = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "python_speed.py")],
+                                cwd=ROOT, capture_output=True, text=True)
+        out += ["", "## Python", "", "`python3 scripts/python_speed.py`, after the runs above:", "", "```",
+                report.stdout.strip() or report.stderr.strip(), "```"]
     with open(os.path.join(ROOT, "BENCHMARKS.md"), "w") as f:
         f.write("\n".join(out) + "\n")
     print("\n".join(out))

@@ -18,22 +18,41 @@ use serde_json::{Value, json};
 /// when the estimate misses `target` (`what` names the answer).
 pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
     if e.flagged {
-        warn(format!(
-            "{what}: the estimated error ({:.3e} m = {:.3} % of L, {:.3}°) exceeds the accuracy target ({} % of L, {}°); try --order auto",
-            e.position,
-            100.0 * e.position / f.length(),
-            e.angle.to_degrees(),
-            100.0 * target.position,
-            target.angle.to_degrees(),
-        ));
+        warn(format!("{what}: {}; try --order auto", misses(e, f.length(), target)));
     }
     answer["error_estimate"] = json!({
         "position": e.position,
         "angle": e.angle,
+        "curvature": e.curvature,
         "reference_order": e.reference_order,
         "reference_quadrature": e.reference_quadrature,
     });
+    if let Some(stress) = e.stress {
+        answer["error_estimate"]["stress"] = json!(stress);
+    }
     answer["flagged"] = json!(e.flagged);
+}
+
+/// Which parts of a flagged estimate miss `target`, and by how much, with
+/// the parts that meet it: for warnings.
+pub fn misses(e: &ErrorEstimate, length: f64, target: &Accuracy) -> String {
+    let peak = if e.stress.is_some() { "peak stress" } else { "peak curvature" };
+    let parts = [
+        ("tip position", 100.0 * e.position / length, 100.0 * target.position, "% of L"),
+        ("tip angle", e.angle.to_degrees(), target.angle.to_degrees(), "°"),
+        (peak, 100.0 * e.peak, 100.0 * target.stress, "%"),
+    ];
+    let show =
+        |(name, value, goal, unit): &(&str, f64, f64, &str)| format!("{name} {value:.3}{unit} (target {goal}{unit})");
+    let (miss, meet): (Vec<_>, Vec<_>) = parts.iter().partition(|p| p.1 > p.2);
+    let mut text = format!(
+        "the estimated error exceeds the accuracy target: {}",
+        miss.into_iter().map(show).collect::<Vec<_>>().join(", ")
+    );
+    if !meet.is_empty() {
+        text += &format!("; within it: {}", meet.into_iter().map(show).collect::<Vec<_>>().join(", "));
+    }
+    text
 }
 
 /// The flexure to answer with: as given, or with `--order auto` the lowest

@@ -137,14 +137,16 @@ fn put_joint_estimates(
     for (what, name, e, length) in &estimates {
         if e.flagged {
             crate::options::warn(format!(
-                "{}: {what} {name:?}: the estimated error ({:.3e} m = {:.3} % of its length, {:.3}°) exceeds the accuracy target; raise its order",
+                "{}: {what} {name:?}: {}; raise its order",
                 file.display(),
-                e.position,
-                100.0 * e.position / length,
-                e.angle.to_degrees()
+                crate::joint::misses(e, *length, target),
             ));
         }
-        map.insert(name.clone(), json!({ "position": e.position, "angle": e.angle }));
+        let mut entry = json!({ "position": e.position, "angle": e.angle, "curvature": e.curvature });
+        if let Some(stress) = e.stress {
+            entry["stress"] = json!(stress);
+        }
+        map.insert(name.clone(), entry);
     }
     v["error_estimate"] = Value::Object(map);
     v["flagged"] = json!(estimates.iter().any(|e| e.2.flagged));

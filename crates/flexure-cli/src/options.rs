@@ -61,21 +61,33 @@ pub fn order(s: &str) -> Result<Order, String> {
     count(s, 1, flexure::joint::MAX_ORDER).map(Order::Fixed).map_err(|e| format!("{e}, or auto"))
 }
 
-/// Parses `--accuracy POS,ANGLE`: the position tolerance as a fraction of
-/// the length, and the angle tolerance in radians or with `deg`.
+/// Parses `--accuracy POS,ANGLE[,STRESS]`: the position tolerance as a
+/// fraction of the length, the angle tolerance in radians or with `deg`,
+/// and the peak stress (or curvature) tolerance as a fraction of the peak.
 pub fn accuracy(s: &str) -> Result<flexure::estimate::Accuracy, String> {
-    let (p, a) = s.split_once(',').ok_or_else(|| format!("{s:?} must be POS,ANGLE (for example 0.005,0.5deg)"))?;
-    let target = flexure::estimate::Accuracy { position: number(p)?, angle: parse_angle(a)?.0 };
-    target.validate().map_err(|_| format!("{s:?}: both tolerances must be finite and greater than zero"))?;
+    let parts: Vec<&str> = s.split(',').collect();
+    if !(2..=3).contains(&parts.len()) {
+        return Err(format!("{s:?} must be POS,ANGLE or POS,ANGLE,STRESS (for example 0.005,0.5deg,0.02)"));
+    }
+    let mut target = flexure::estimate::Accuracy {
+        position: number(parts[0])?,
+        angle: parse_angle(parts[1])?.0,
+        ..Default::default()
+    };
+    if let Some(stress) = parts.get(2) {
+        target.stress = number(stress)?;
+    }
+    target.validate().map_err(|_| format!("{s:?}: every tolerance must be finite and greater than zero"))?;
     Ok(target)
 }
 
 /// `--accuracy`: the target every model answer's error estimate is held to.
 #[derive(Debug, Clone, Args)]
 pub struct AccuracyOptions {
-    /// Accuracy target POS,ANGLE: position as a fraction of L and angle in
-    /// radians or with deg. An answer whose error estimate exceeds it is
-    /// flagged, with a warning [default: 0.01,1deg].
+    /// Accuracy target POS,ANGLE[,STRESS]: position as a fraction of L,
+    /// angle in radians or with deg, and peak stress (curvature without a
+    /// thickness) as a fraction of the peak. An answer whose error estimate
+    /// exceeds it is flagged, with a warning [default: 0.01,1deg,0.01].
     #[arg(long, value_parser = accuracy, allow_hyphen_values = true)]
     pub accuracy: Option<flexure::estimate::Accuracy>,
 }

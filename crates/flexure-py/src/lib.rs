@@ -110,7 +110,7 @@ fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
             )));
         }
     }
-    Ok(Accuracy { position, angle })
+    Ok(Accuracy { position, angle, ..Default::default() })
 }
 
 /// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
@@ -124,14 +124,17 @@ fn warn_inaccurate(
     hint: &str,
     stacklevel: i32,
 ) -> PyResult<()> {
+    let peak = if e.stress.is_some() { "peak stress" } else { "peak curvature" };
     let text = format!(
-        "{what}: estimated error {} m ({} % of L) in position and {}° in angle misses the target of {} % of L and {}° \
-         (estimated against order {} with {} quadrature points); {hint}",
+        "{what}: estimated error {} m ({} % of L) in position, {}° in angle and {} % in {peak} misses the target of \
+         {} % of L, {}° and {} % (estimated against order {} with {} quadrature points); {hint}",
         sig(e.position),
         sig(100.0 * e.position / f.length()),
         sig(e.angle.to_degrees()),
+        sig(100.0 * e.peak),
         sig(100.0 * target.position),
         sig(target.angle.to_degrees()),
+        sig(100.0 * target.stress),
         e.reference_order,
         e.reference_quadrature,
     );
@@ -149,6 +152,10 @@ fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py,
     let d = PyDict::new(py);
     d.set_item("position", e.position)?;
     d.set_item("angle", e.angle)?;
+    d.set_item("curvature", e.curvature)?;
+    if let Some(stress) = e.stress {
+        d.set_item("stress", stress)?;
+    }
     d.set_item("flagged", e.flagged)?;
     d.set_item("reference_order", e.reference_order)?;
     d.set_item("reference_quadrature", e.reference_quadrature)?;

@@ -20,30 +20,35 @@ use crate::joint::{Basis, Flexure, MAX_ORDER};
 use crate::kinematics::{self, Pose, backbone};
 use crate::quadrature::MAX_POINTS;
 use crate::statics::{Settings, Statics, TipLoad, deflect};
+use crate::stress::{peak_curvature, peak_stress};
 use crate::tendon::{Tendon, TendonData, pull};
 
-/// The accuracy an answer must meet: tip position within `position` × L
-/// and tip angle within `angle` rad. The default is the paper's 1 % of L
-/// and 1°.
+/// The accuracy an answer must meet: tip position within `position` × L,
+/// tip angle within `angle` rad, and peak bending stress (or, for a section
+/// without thickness, peak curvature change) within `stress` of itself.
+/// The default is the paper's 1 % of L and 1°, and 1 % of the peak.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Accuracy {
     /// Position tolerance as a fraction of the flexure's length.
     pub position: f64,
     /// Angle tolerance (rad).
     pub angle: f64,
+    /// Peak stress tolerance as a fraction of the peak.
+    pub stress: f64,
 }
 
 impl Default for Accuracy {
     fn default() -> Self {
-        Self { position: 0.01, angle: 1f64.to_radians() }
+        Self { position: 0.01, angle: 1f64.to_radians(), stress: 0.01 }
     }
 }
 
 impl Accuracy {
-    /// Checks both tolerances: finite and greater than zero.
+    /// Checks every tolerance: finite and greater than zero.
     pub fn validate(&self) -> Result<()> {
         positive("accuracy", self.position)?;
         positive("accuracy", self.angle)?;
+        positive("accuracy", self.stress)?;
         Ok(())
     }
 }
@@ -55,6 +60,14 @@ pub struct ErrorEstimate {
     pub position: f64,
     /// Estimated angle error (rad).
     pub angle: f64,
+    /// Estimated error of the peak bending stress (Pa); `None` for a
+    /// section without thickness.
+    pub stress: Option<f64>,
+    /// Estimated error of the peak curvature change (1/m).
+    pub curvature: f64,
+    /// The reported peak's estimated error as a fraction of the peak:
+    /// stress with a thickness, curvature change without (0 when unbent).
+    pub peak: f64,
     /// Whether the estimate exceeds the accuracy target.
     pub flagged: bool,
     /// Order of the reference model.
@@ -64,11 +77,33 @@ pub struct ErrorEstimate {
 }
 
 impl ErrorEstimate {
-    fn new(flexure: &Flexure, reference: &Flexure, position: f64, angle: f64, target: &Accuracy) -> Self {
+    /// The estimate of the answer `alpha` of `flexure` whose tip is off by
+    /// `position` and `angle` from the reference's answer `exact`: the peaks
+    /// are compared here, along the whole flexure.
+    fn new(
+        (flexure, alpha): (&Flexure, &[f64]),
+        (reference, exact): (&Flexure, &[f64]),
+        position: f64,
+        angle: f64,
+        target: &Accuracy,
+    ) -> Self {
+        let (model_peak, exact_peak) = (peak_curvature(flexure, alpha).value, peak_curvature(reference, exact).value);
+        let curvature = (model_peak - exact_peak).abs();
+        let stress = match (peak_stress(flexure, alpha), peak_stress(reference, exact)) {
+            (Some(a), Some(b)) => Some(((a.value - b.value).abs(), b.value)),
+            _ => None,
+        };
+        // The peak that is reported: stress with a thickness, else curvature.
+        let (peak_error, peak) = stress.unwrap_or((curvature, exact_peak));
         Self {
             position,
             angle,
-            flagged: position > target.position * flexure.length() || angle > target.angle,
+            stress: stress.map(|s| s.0),
+            curvature,
+            peak: if peak > 0.0 { peak_error / peak } else { 0.0 },
+            flagged: position > target.position * flexure.length()
+                || angle > target.angle
+                || peak_error > target.stress * peak,
             reference_order: reference.order(),
             reference_quadrature: reference.quadrature_points(),
         }
@@ -149,15 +184,11 @@ pub fn deflect_error(flexure: &Flexure, load: &TipLoad, alpha: &[f64], target: &
     let mut data = Statics::new(&reference);
     let settings = Settings::default();
     let warm = padded(alpha, reference.order());
-    let pose = match crate::statics::correct(&reference, load, &warm, &mut data, &settings) {
-        Ok(_) => data.pose_root_tip(),
-        Err(_) => {
-            deflect(&reference, load, &mut data, &settings)?;
-            data.pose_root_tip()
-        }
-    };
-    let (position, angle) = pose_error(&model, &pose);
-    Ok(ErrorEstimate::new(flexure, &reference, position, angle, target))
+    if crate::statics::correct(&reference, load, &warm, &mut data, &settings).is_err() {
+        deflect(&reference, load, &mut data, &settings)?;
+    }
+    let (position, angle) = pose_error(&model, &data.pose_root_tip());
+    Ok(ErrorEstimate::new((flexure, alpha), (&reference, data.alpha()), position, angle, target))
 }
 
 /// The error of a tendon joint's answer `alpha` under `tension` (see [`deflect_error`]).
@@ -180,7 +211,7 @@ pub fn tendon_error(
     }
     let pose = kinematics::pose_root_tip(&reference, data.alpha());
     let (position, angle) = pose_error(&model, &pose);
-    Ok(ErrorEstimate::new(flexure, &reference, position, angle, target))
+    Ok(ErrorEstimate::new((flexure, alpha), (&reference, data.alpha()), position, angle, target))
 }
 
 /// The error of a [`crate::connect::connect`] answer `alpha` reaching
@@ -194,7 +225,7 @@ pub fn connect_error(flexure: &Flexure, target_pose: &Pose, alpha: &[f64], targe
     let (a, b) = (backbone(flexure, alpha, 33), backbone(&reference, &exact.alpha, 33));
     let (position, angle) =
         a.iter().zip(&b).map(|(p, q)| pose_error(p, q)).fold((0.0_f64, 0.0_f64), |m, e| (m.0.max(e.0), m.1.max(e.1)));
-    Ok(ErrorEstimate::new(flexure, &reference, position, angle, target))
+    Ok(ErrorEstimate::new((flexure, alpha), (&reference, &exact.alpha), position, angle, target))
 }
 
 /// The error of a flexure joint's coordinates `alpha` inside a mechanism:

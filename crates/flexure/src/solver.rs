@@ -510,6 +510,25 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     ws: &mut Workspace<T>,
     settings: &Settings,
 ) -> Result<Path> {
+    follow(problem, ws, settings, false)
+}
+
+/// [`continuation`] that stops with [`Error::Unstable`] as soon as the path
+/// loses stability, for callers that only ask whether it stays stable.
+pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut Workspace<T>,
+    settings: &Settings,
+) -> Result<Path> {
+    follow(problem, ws, settings, true)
+}
+
+fn follow<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut Workspace<T>,
+    settings: &Settings,
+    stop_when_unstable: bool,
+) -> Result<Path> {
     settings.validate()?;
     check_dim(problem, ws)?;
     let n = ws.n;
@@ -650,6 +669,9 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
                 lambda
             });
             ws.limit = path.limit;
+            if stop_when_unstable {
+                return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(lambda) });
+            }
         }
         ws.x.copy_from_slice(&ws.trial[..n]);
         lambda = new_lambda;

@@ -214,6 +214,17 @@ pub fn deflect<T: Scalar>(
     data: &mut Statics<T>,
     settings: &Settings,
 ) -> Result<Equilibrium> {
+    follow(flexure, load, data, settings, false)
+}
+
+/// [`deflect`], or with `while_stable` an [`Error::Unstable`] as soon as the path loses stability.
+fn follow<T: Scalar>(
+    flexure: &Flexure,
+    load: &TipLoad<T>,
+    data: &mut Statics<T>,
+    settings: &Settings,
+    while_stable: bool,
+) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
     if data.solver.dim() != flexure.order() {
         return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
@@ -225,7 +236,11 @@ pub fn deflect<T: Scalar>(
     }
     let mut problem =
         TipLoadProblem { flexure, kinematics: &mut data.kinematics, scratch: &mut data.scratch, load: *load, scale };
-    let path = solver::continuation(&mut problem, &mut data.solver, settings)?;
+    let path = if while_stable {
+        solver::continuation_while_stable(&mut problem, &mut data.solver, settings)?
+    } else {
+        solver::continuation(&mut problem, &mut data.solver, settings)?
+    };
     // The last evaluation was at the end state, with the Hessian level.
     data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
     Ok(Equilibrium::from_path(&path))
@@ -306,9 +321,10 @@ pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Re
         return Err(Error::invalid("max_factor", max_factor, "must be a finite number greater than zero"));
     }
     let mut data = Statics::new(flexure);
+    // Each probe stops where its path loses stability: only that is asked.
     let mut path_to = |factor: f64| {
         let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
-        deflect(flexure, &scaled, &mut data, &Settings::default())
+        follow(flexure, &scaled, &mut data, &Settings::default(), true)
     };
     let first = match path_to(max_factor) {
         Ok(e) if e.stable && e.limit.is_none() => return Ok(None),

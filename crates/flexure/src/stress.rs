@@ -113,5 +113,12 @@ fn peak(flexure: &Flexure, g: impl Fn(f64) -> f64) -> Peak {
         }
         if gc >= gd { b = d } else { a = c }
     }
+    // A peak at an end (the root, most often) is reported there, not a
+    // rounding error inside it.
+    for end in [0.0, l] {
+        if (top.at - end).abs() <= 1e-9 * l && g(end) >= top.value * (1.0 - 1e-12) {
+            top = Peak { value: g(end), at: end };
+        }
+    }
     top
 }

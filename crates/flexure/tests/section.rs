@@ -264,3 +264,15 @@ fn bad_sections_name_the_field() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A tip force bends a uniform cantilever most at the root (M = F·L there):
+/// the peak is reported at s = 0 exactly, not a rounding error inside.
+#[test]
+fn a_root_peak_is_reported_at_the_root() {
+    let f = Flexure::new(0.05, 1.0, 12).unwrap();
+    let mut data = flexure::Statics::new(&f);
+    flexure::deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: 10.0 }, &mut data, &Default::default()).unwrap();
+    let p = flexure::stress::peak_curvature(&f, data.alpha());
+    assert_eq!(p.at, 0.0);
+    assert_eq!(p.value, flexure::stress::curvature_change(&f, data.alpha(), 0.0).abs());
+}
