@@ -32,12 +32,15 @@ class _ErrorEstimate(TypedDict):
     """An answer's error, estimated against a refined model of reference_order with reference_quadrature points."""
     position: float  # m
     angle: float  # rad
+    curvature: float  # 1/m, the peak curvature change's error
+    stress: float  # Pa, the peak bending stress's error; present only for flexures with a thickness
     flagged: bool  # whether it misses the accuracy target
     reference_order: int
     reference_quadrature: int
 
-# Stub-only names. accuracy: (position as a fraction of L, angle in rad), each finite and > 0; None means (0.01, 1 degree).
-_Accuracy = Optional[Tuple[float, float]]
+# Stub-only names. accuracy: (position as a fraction of L, angle in rad[, peak stress or curvature as a
+# fraction of the peak]), each finite and > 0; None means (0.01, 1 degree, 0.01).
+_Accuracy = Optional[Union[Tuple[float, float], Tuple[float, float, float]]]
 
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.

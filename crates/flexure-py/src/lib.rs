@@ -86,31 +86,35 @@ fn sig(x: f64) -> String {
     if plain.contains('.') { plain.trim_end_matches('0').trim_end_matches('.').to_string() } else { plain }
 }
 
-/// Reads `accuracy` = (position as a fraction of L, angle in rad); the
-/// paper's 1 % of L and 1° when it is `None`.
+/// Reads `accuracy` = (position as a fraction of L, angle in rad[, peak
+/// stress or curvature as a fraction of the peak]); the paper's 1 % of L
+/// and 1°, and 1 % of the peak, when it is `None`.
 fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
     let Some(v) = value.filter(|v| !v.is_none()) else {
         return Ok(Accuracy::default());
     };
     let shape = || {
         PyValueError::new_err(format!(
-            "accuracy must be a pair (position as a fraction of L, angle in rad), such as (0.01, 0.0175), got {}",
+            "accuracy must be a pair (position as a fraction of L, angle in rad) or a triple adding the peak stress as a fraction of the peak, such as (0.01, 0.0175) or (0.01, 0.0175, 0.02), got {}",
             v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
         ))
     };
     // A str is a sequence too, but never a pair of numbers: pyo3 refuses it as a Vec.
     let pair: Vec<f64> = v.extract().map_err(|_| shape())?;
-    let [position, angle] = pair[..] else {
-        return Err(shape());
+    let (position, angle, stress) = match pair[..] {
+        [position, angle] => (position, angle, Accuracy::default().stress),
+        [position, angle, stress] => (position, angle, stress),
+        _ => return Err(shape()),
     };
-    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle)] {
+    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle), ("peak fraction", stress)] {
         if !(x.is_finite() && x > 0.0) {
+            let given = pair.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ");
             return Err(PyValueError::new_err(format!(
-                "accuracy = ({position}, {angle}): its {what} is {x}, and must be a finite number greater than zero"
+                "accuracy = ({given}): its {what} is {x}, and must be a finite number greater than zero"
             )));
         }
     }
-    Ok(Accuracy { position, angle, ..Default::default() })
+    Ok(Accuracy { position, angle, stress })
 }
 
 /// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
