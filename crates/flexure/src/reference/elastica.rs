@@ -536,11 +536,7 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
 /// let mid = trace.at(0.5).unwrap();
 /// assert!((mid.moment - 0.5).abs() < 1e-9 && (mid.phi - 0.25).abs() < 1e-9);
 /// ```
-pub fn deflect_traced<'a>(
-    flexure: &'a Flexure,
-    load: &TipLoad,
-    settings: &Settings,
-) -> Result<(Solution, Trace<'a>)> {
+pub fn deflect_traced<'a>(flexure: &'a Flexure, load: &TipLoad, settings: &Settings) -> Result<(Solution, Trace<'a>)> {
     load.validate()?;
     settings.validate()?;
     let mut chain = Chain::new(flexure, *load, settings.path_ode())?;
@@ -737,13 +733,8 @@ pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Set
     for (name, g) in ["guess[0]", "guess[1]", "guess[2]"].into_iter().zip(guess) {
         crate::error::finite(name, g)?;
     }
-    let (l, ei) = (flexure.length(), flexure.ei());
-    let (flexibility, stretch) = if flexure.section().is_uniform() {
-        (l / ei, l / ei.sqrt())
-    } else {
-        let s = super::Stretch::of(flexure)?;
-        (s.flexibility, s.total())
-    };
+    let s = super::Stretch::of(flexure)?;
+    let (flexibility, stretch) = (s.flexibility, s.total());
     let stops = super::stops(flexure);
     let mut problem = Through { flexure, target: *target, ode: settings.ode, stops, flexibility, stretch };
     let mut ws = solver::Workspace::new(3);
@@ -987,10 +978,19 @@ mod tests {
     #[test]
     fn derivatives_match_finite_differences() {
         let f = Flexure::new(1.3, 0.8, 3).unwrap().with_rest(&[0.4, -0.2, 0.1]).unwrap();
+        check_derivatives(&f, 5);
+        // EI(s) from a table with a kink (a breakpoint inside a segment):
+        // ∫√(|F|/EI) ds = 4.79: five segments, unequal in s.
+        let table = crate::section::Profile::Table(vec![[0.0, 1.2], [0.35, 0.5], [1.0, 0.9]]);
+        let f = f.with_section(crate::section::Section::given(table).unwrap()).unwrap();
+        check_derivatives(&f, 5);
+    }
+
+    fn check_derivatives(f: &Flexure, segments: usize) {
         let load = TipLoad { moment: 0.7, fx: -9.0, fy: 4.0 };
-        let mut chain = Chain::new(&f, load, Tolerance::default()).unwrap();
+        let mut chain = Chain::new(f, load, Tolerance::default()).unwrap();
         let n = chain.dim();
-        assert_eq!(n, 2 * 5, "L√(|F|/EI) = 4.56: five segments");
+        assert_eq!(n, 2 * segments, "L√(|F|/EI) = 4.56 when uniform");
         let x: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * (i as f64).sin()).collect();
         let lambda = 0.6;
         let (mut r, mut jac, mut dl) = (vec![0.0; n], vec![0.0; n * n], vec![0.0; n]);

@@ -50,9 +50,8 @@ impl Stretch {
             let ei = flexure.ei_at(s);
             [1.0 / ei.sqrt(), 1.0 / ei]
         };
-        let end = integrate_through(rhs, 0.0, l, &stops(flexure), [0.0; 2], &tol, &mut 0.0, |s, y| {
-            tau.push((s, y[0]))
-        })?;
+        let end =
+            integrate_through(rhs, 0.0, l, &stops(flexure), [0.0; 2], &tol, &mut 0.0, |s, y| tau.push((s, y[0])))?;
         Ok(Self { flexibility: end[1], tau })
     }
 
