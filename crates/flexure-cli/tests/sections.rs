@@ -177,7 +177,18 @@ fn exact_stress_sits_at_the_top_level() {
     let (force, l, b, h0) = (5e-5, 0.05, 0.01, 4e-4);
     let mut args = vec!["deflect"];
     args.extend(TAPER);
-    args.extend(["--force", "5e-5", "--exact", "--shape", "6", "--yield-strength", "1e9"]);
+    // The model's own peak (order 3) is 6.5 % off and would be flagged; not what is tested here.
+    args.extend([
+        "--force",
+        "5e-5",
+        "--exact",
+        "--shape",
+        "6",
+        "--yield-strength",
+        "1e9",
+        "--accuracy",
+        "0.01,1deg,0.1",
+    ]);
     let (v, err) = answer(&args);
     assert!(err.is_empty(), "{err}");
     let h = |s: f64| h0 * (1.0 - 0.75 * s / l);
