@@ -39,6 +39,7 @@
 use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
 use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
+use super::tree::Tree;
 use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
@@ -89,6 +90,10 @@ pub const PROBE_STEPS: usize = 100;
 /// The shift of the multiplier block of the Newton matrix (see the module docs).
 const MULTIPLIER_SHIFT: f64 = 1e-10;
 
+/// The share of the joints' elastic stiffness a state must keep to count
+/// as far from instability ([`solver::Problem::far_from_instability`]).
+const FAR_MARGIN: f64 = 0.5;
+
 /// The reusable buffers of a mechanism's equilibrium problem (the Data;
 /// the [`Mechanism`] is the Model): frames, the assembled Lagrangian, the
 /// load derivative and the stability test's matrices. Once made by
@@ -109,6 +114,10 @@ pub struct Workspace {
     scratch: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
     angles: RefCell<[Vec<f64>; 2]>,
+    /// The tree's $O(n)$ factorization of the Hessian ([`super::tree`]).
+    tree: Tree,
+    /// The joint of each coordinate.
+    joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     solver: Option<solver::Workspace<f64>>,
 }
@@ -128,6 +137,13 @@ impl Workspace {
             stiffness: vec![0.0; n * n],
             scratch: vec![0.0; n * n],
             angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
+            tree: Tree::new(m),
+            joint_of: m
+                .joints
+                .iter()
+                .enumerate()
+                .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
+                .collect(),
             solver: None,
         }
     }
@@ -176,6 +192,10 @@ pub struct Kkt<'a> {
     scale: f64,
     /// Smallest relative stiffness of a stable state.
     margin: f64,
+    /// Whether the Hessian has the tree's form ([`super::tree`]): no
+    /// closures, no tendons. Then Newton steps, tangents and stability
+    /// tests factor in $O(n)$.
+    tree: bool,
     work: Workspace,
 }
 
@@ -267,6 +287,7 @@ impl<'a> Kkt<'a> {
             length,
             scale,
             margin: settings.tolerance.sqrt(),
+            tree: m.closures.is_empty() && m.tendons.is_empty(),
             work,
         })
     }
@@ -367,6 +388,25 @@ impl solver::Problem<f64> for Kkt<'_> {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
+        if rows == 0 && self.tree {
+            // Z = I, and the tree's pivots: positive_definite's test of the
+            // matrix below, in O(n).
+            let Workspace { tree, scratch, .. } = &mut self.work;
+            let s = &mut scratch[..n];
+            for (s, r) in s.iter_mut().zip(&self.row_scale) {
+                *s = r.sqrt();
+            }
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
+            let scale = (0..n).map(|i| scaled(i, i) - self.margin).fold(0.0_f64, f64::max);
+            if n == 0 {
+                return true;
+            }
+            if !(scale > 0.0 && scale.is_finite()) {
+                return false;
+            }
+            let shift = self.margin + 1e-12 * scale;
+            return tree.factor(|r, c| scaled(r, c) - if r == c { shift } else { 0.0 }, s, true) == Some(true);
+        }
         if rows == 0 {
             // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
             let Workspace { stiffness: k, scratch, .. } = &mut self.work;
@@ -403,6 +443,53 @@ impl solver::Problem<f64> for Kkt<'_> {
             k[(i, i)] -= self.margin;
         }
         linalg::is_positive_definite(&k)
+    }
+
+    /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
+    /// the joints' elastic stiffness (as a single flexure's
+    /// [`crate::statics`] does), by the tree's pivots or by Cholesky.
+    fn far_from_instability(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let n = m.dof();
+        if m.constraints() > 0 || n == 0 {
+            return false;
+        }
+        let Workspace { tree, frames, stiffness, joint_of, .. } = &mut self.work;
+        let elastic = |r: usize, c: usize| {
+            let j = joint_of[r];
+            if joint_of[c] != j {
+                return 0.0;
+            }
+            let o = m.joints[j].offset;
+            frames.joints[j].stiffness[(r - o, c - o)]
+        };
+        let entry = |r: usize, c: usize| jacobian[c * n + r] / self.row_scale[r] - FAR_MARGIN * elastic(r, c);
+        if self.tree {
+            return tree.factor(entry, &[], true) == Some(true);
+        }
+        for c in 0..n {
+            for r in 0..n {
+                stiffness[c * n + r] = entry(r, c);
+            }
+        }
+        linalg::cholesky(stiffness, n)
+    }
+
+    fn factor(&mut self, jacobian: &[f64]) -> bool {
+        let n = self.mechanism.dof();
+        if !self.tree || n == 0 {
+            return false;
+        }
+        let rows = &self.row_scale;
+        self.work.tree.factor(|r, c| jacobian[c * n + r] / rows[r], &[], false).is_some()
+    }
+
+    fn solve_factored(&mut self, b: &mut [f64]) {
+        // ∂r/∂q = diag(row_scale) ∇²V.
+        for (b, r) in b.iter_mut().zip(&self.row_scale) {
+            *b /= r;
+        }
+        self.work.tree.solve(b);
     }
 
     /// The largest rotation of a body, or of a flexure's cross-section
