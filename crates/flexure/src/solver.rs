@@ -219,6 +219,15 @@ pub struct Workspace<T: Scalar> {
     pub limit: Option<f64>,
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
+    /// Set by a caller that has just converged `x` at $\lambda = 0$ by
+    /// [`newton`] on the same problem and tested its stability (the value):
+    /// the next [`continuation`] then starts from `x` as it stands, with the
+    /// Jacobian and load derivative that solve left, instead of solving and
+    /// testing again. Every continuation resets it; it is ignored unless
+    /// the last call on this workspace was that [`newton`] at $\lambda = 0$.
+    pub start_stable: Option<bool>,
+    /// What the last [`newton`] reached, if it was at $\lambda = 0$.
+    start: Option<NewtonReport>,
     dlambda: Vec<T>,
     /// Augmented $(n+1)$ system and its factors.
     matrix: Vec<T>,
@@ -246,6 +255,8 @@ impl<T: Scalar> Workspace<T> {
             lambda: 0.0,
             limit: None,
             jacobian: vec![z; n * n],
+            start_stable: None,
+            start: None,
             dlambda: vec![z; n],
             matrix: vec![z; m * m],
             pivots: vec![0; m],
@@ -600,11 +611,13 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     settings.validate()?;
     check_dim(problem, ws)?;
     let n = ws.n;
+    ws.start = None;
     ws.trial[..n].copy_from_slice(&ws.x);
     let min_iterations = if T::is_value() { 0 } else { 1 };
     let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false)?;
     ws.x.copy_from_slice(&ws.trial[..n]);
     ws.lambda = lambda;
+    ws.start = (lambda == 0.0).then_some(report);
     Ok(report)
 }
 
@@ -649,11 +662,23 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     let n = ws.n;
     let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
     ws.limit = None;
-    // The start: converge at λ = 0 (the rest state, or the assembled one).
-    let start = newton(problem, ws, 0.0, settings)?;
+    // The start: converge at λ = 0 (the rest state, or the assembled one),
+    // unless the caller just did and says how stable it is.
+    let known = ws.start_stable.take().zip(ws.start.take());
+    let start = match known {
+        Some((stable, report)) => {
+            path.stable = stable;
+            report
+        }
+        None => {
+            let report = newton(problem, ws, 0.0, settings)?;
+            path.stable = problem.stable(&ws.x, 0.0, &ws.jacobian);
+            report
+        }
+    };
+    ws.start = None;
     path.iterations += start.iterations;
     path.residual = start.residual;
-    path.stable = problem.stable(&ws.x, 0.0, &ws.jacobian);
     let mut lambda = 0.0_f64;
     // The first tangent: dx/dλ = −J⁻¹ ∂r/∂λ, bordered with (0, …, 0, 1).
     ws.previous_tangent.fill(T::zero());

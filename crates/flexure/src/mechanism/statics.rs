@@ -38,7 +38,9 @@
 
 use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
-use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
+use super::lagrangian::{
+    Assembly, add_closures, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian,
+};
 use super::tree::Tree;
 use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
@@ -422,7 +424,8 @@ impl solver::Problem<f64> for Kkt<'_> {
         }
         let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
         let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
-        if rows > 0 {
+        // settle changes nothing where G has full row rank: skip its frames.
+        if rows > 0 && !full_row_rank(&g) {
             let mu = self.multipliers(x);
             let Workspace { frames: f, loads, .. } = &mut self.work;
             frames_into(m, &x[..n], f);
@@ -550,13 +553,16 @@ pub(super) fn constrained(h: &DMatrix<f64>, z: &DMatrix<f64>) -> DMatrix<f64> {
     (&k + k.transpose()) * 0.5
 }
 
-/// The solution the solver left in `ws`.
-fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> Result<Solution> {
+/// The solution at the unknowns `x` under `loads`, computed in the
+/// problem's buffers.
+fn solution(problem: &mut Kkt, x: &[f64], loads: &Loads, path: &solver::Path) -> Result<Solution> {
     let m = problem.mechanism;
-    let q = ws.x[..m.dof()].to_vec();
-    let f = frames(m, &q);
-    let (_, g) = closures(m, &f);
-    let multipliers = settle(m, &f, &g, &problem.multipliers(&ws.x), &problem.to);
+    let q = x[..m.dof()].to_vec();
+    let mu = problem.multipliers(x);
+    let Workspace { frames: f, assembly: a, .. } = &mut problem.work;
+    frames_into(m, &q, f);
+    add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
+    let multipliers = settle(m, f, &a.closure_jacobian, &mu, loads);
     // + 0.0: an empty sum is −0.
     let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
@@ -565,7 +571,7 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
     Ok(Solution {
         q,
         multipliers,
-        loads: problem.to.clone(),
+        loads: loads.clone(),
         energy,
         stable: path.stable,
         limit: path.limit,
@@ -597,6 +603,18 @@ fn solve_between_in(
     work: &mut Workspace,
 ) -> Result<Solution> {
     let found = follow_in(m, start, to, settings, work);
+    refine_limit(m, start, to, settings, found)
+}
+
+/// The path from `start` to `to` as [`solve_between`] reports it, from
+/// what [`follow`] `found`: a lost stability's load fraction refined by bisection.
+fn refine_limit(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    found: Result<Solution>,
+) -> Result<Solution> {
     let lost = match &found {
         Ok(s) => s.limit.is_some(),
         Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
@@ -649,7 +667,10 @@ fn follow_path(
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     match solver::continuation(problem, ws, settings) {
-        Ok(path) if path.stable => solution(problem, ws, &path),
+        Ok(path) if path.stable => {
+            let to = problem.to.clone();
+            solution(problem, &ws.x, &to, &path)
+        }
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
@@ -729,11 +750,21 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
     let zero = m.loads().zero_like();
     let mut problem = Kkt::with_workspace(m, &zero, &zero, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    let found = assemble(&mut problem, &mut ws, settings);
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    found
+}
+
+/// The unloaded, assembled configuration, by Newton from rest on the
+/// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
+fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+    let m = problem.mechanism;
     ws.x.fill(0.0);
     ws.x.iter_mut().zip(m.joints.iter().flat_map(|j| j.kind.joint().rest())).for_each(|(x, q)| *x = q);
-    let found = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
+    match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
-            let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
+            let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
             let path = solver::Path {
                 stable,
                 limit: None,
@@ -741,14 +772,12 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
                 iterations: report.iterations,
                 residual: report.residual,
             };
-            solution(&problem, &ws, &path)
+            let from = problem.from.clone();
+            solution(problem, &ws.x, &from, &path)
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
-    };
-    *work = problem.into_workspace();
-    work.solver = Some(ws);
-    found
+    }
 }
 
 /// The error for closures that Newton could not close from rest: placed at
@@ -821,11 +850,20 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     if !work.fits(m) {
         *work = Workspace::new(m);
     }
-    let start = assemble_in(m, settings, work)?;
-    if !work.fits(m) {
-        *work = Workspace::new(m);
-    }
-    solve_between_in(m, &start, &m.loads(), settings, work)
+    // One problem from no load to the full load: assembled at λ = 0, then
+    // continued from there without a second solve or stability test.
+    let to = m.loads();
+    let mut problem = Kkt::with_workspace(m, &to.zero_like(), &to, settings, std::mem::take(work))?;
+    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    let found = assemble(&mut problem, &mut ws, settings).map(|start| {
+        ws.start_stable = Some(start.stable);
+        let found = follow_path(m, &start, &mut problem, &mut ws, settings);
+        (start, found)
+    });
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    let (start, found) = found?;
+    refine_limit(m, &start, &to, settings, found)
 }
 
 /// Frames of the solution.
