@@ -310,7 +310,7 @@ fn tree_factorization_against_dense_lu() {
         let tree = m.closures.is_empty() && m.tendons.is_empty();
         for _ in 0..12 {
             let scale = 10f64.powf(-3.0 + 3.5 * rng.next());
-            let mut loads = |rng: &mut Rng| {
+            let loads = |rng: &mut Rng| {
                 let mut l = loads(&m, rng);
                 l.force.iter_mut().flatten().for_each(|v| *v *= scale);
                 l
