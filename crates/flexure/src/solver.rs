@@ -791,12 +791,23 @@ fn follow<T: Scalar, P: Problem<T>>(
         };
         // Stability of the new state, and the tangent there (to tell a fold).
         let stable = problem.stable(&ws.trial[..n], new_lambda, &ws.jacobian);
-        let next_far = stable && problem.far_from_instability(&ws.trial[..n], new_lambda, &ws.jacobian);
         let taken = if landing { (1.0 - lambda) / t_lambda } else { h };
+        // Far from instability matters for a long step and for the next one (none after landing).
+        let next_far = (taken > ordinary || !landing)
+            && stable
+            && problem.far_from_instability(&ws.trial[..n], new_lambda, &ws.jacobian);
         if taken > ordinary && !next_far {
             // A long step may only cross ground far from instability.
             h = ordinary;
             continue;
+        }
+        if landing && stable == path.stable {
+            // The end, on the same side of stability: no fold or limit to read, no next tangent.
+            ws.x.copy_from_slice(&ws.trial[..n]);
+            path.steps += 1;
+            path.residual = report.residual;
+            ws.lambda = 1.0;
+            return Ok(path);
         }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
