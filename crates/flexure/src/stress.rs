@@ -100,12 +100,29 @@ fn peak(flexure: &Flexure, g: impl Fn(f64) -> f64) -> Peak {
     points.sort_by(f64::total_cmp);
     let values: Vec<f64> = points.iter().map(|t| g(t * l)).collect();
     let best = (0..points.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
-    let (mut a, mut b) = (points[best.saturating_sub(1)] * l, points[(best + 1).min(points.len() - 1)] * l);
-    let mut top = Peak { value: values[best], at: points[best] * l };
+    let bracket = (points[best.saturating_sub(1)] * l, points[(best + 1).min(points.len() - 1)] * l);
+    let top = Peak { value: values[best], at: points[best] * l };
+    match refine(bracket, top, l, REFINEMENTS, |s| Ok::<f64, std::convert::Infallible>(g(s))) {
+        Ok(peak) => peak,
+        Err(never) => match never {},
+    }
+}
+
+/// Golden-section refinement of the best scanned point `top` of `g` between
+/// its neighbours `(a, b)`, `steps` times (bounded); a peak at an end of
+/// $[0, L]$ (the root, most often) is reported there, not a rounding error
+/// inside it. Shared by the model's and the exact references' peaks.
+pub fn refine<E>(
+    (mut a, mut b): (f64, f64),
+    mut top: Peak,
+    length: f64,
+    steps: usize,
+    mut g: impl FnMut(f64) -> Result<f64, E>,
+) -> Result<Peak, E> {
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..REFINEMENTS {
+    for _ in 0..steps {
         let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
-        let (gc, gd) = (g(c), g(d));
+        let (gc, gd) = (g(c)?, g(d)?);
         for (s, v) in [(c, gc), (d, gd)] {
             if v > top.value {
                 top = Peak { value: v, at: s };
@@ -113,12 +130,13 @@ fn peak(flexure: &Flexure, g: impl Fn(f64) -> f64) -> Peak {
         }
         if gc >= gd { b = d } else { a = c }
     }
-    // A peak at an end (the root, most often) is reported there, not a
-    // rounding error inside it.
-    for end in [0.0, l] {
-        if (top.at - end).abs() <= 1e-9 * l && g(end) >= top.value * (1.0 - 1e-12) {
-            top = Peak { value: g(end), at: end };
+    for end in [0.0, length] {
+        if (top.at - end).abs() <= 1e-9 * length {
+            let v = g(end)?;
+            if v >= top.value * (1.0 - 1e-12) {
+                top = Peak { value: v, at: end };
+            }
         }
     }
-    top
+    Ok(top)
 }

@@ -939,23 +939,13 @@ impl<'a> Trace<'a> {
         let states = self.states(&points)?;
         let values: Vec<f64> = points.iter().zip(&states).map(|(&s, y)| g(&self.point(s, y))).collect();
         let best = (0..points.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
-        let mut top = Peak { value: values[best], at: points[best] };
+        let top = Peak { value: values[best], at: points[best] };
         let from = best.saturating_sub(1);
         let base = (points[from], states[from]);
-        let (mut a, mut b) = (points[from], points[(best + 1).min(points.len() - 1)]);
-        let ratio = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..PEAK_REFINEMENTS {
-            let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
-            let value = |s: f64| -> Result<f64> { Ok(g(&self.point(s, &self.advance(base, s, &mut 0.0)?))) };
-            let (gc, gd) = (value(c)?, value(d)?);
-            for (s, v) in [(c, gc), (d, gd)] {
-                if v > top.value {
-                    top = Peak { value: v, at: s };
-                }
-            }
-            if gc >= gd { b = d } else { a = c }
-        }
-        Ok(top)
+        let bracket = (points[from], points[(best + 1).min(points.len() - 1)]);
+        crate::stress::refine(bracket, top, l, PEAK_REFINEMENTS, |s| {
+            Ok(g(&self.point(s, &self.advance(base, s, &mut 0.0)?)))
+        })
     }
 }
 
