@@ -4,7 +4,9 @@
 //! - [`elastica`]: the large-deflection elastica (Eq. 3) solved by shooting;
 //! - [`compliance`]: the compliance ODE (Eq. 34);
 //! - [`euler`]: Euler's closed-form buckling loads.
+//! - [`vibration`]: linear vibration of the straight beam by shooting on the frequency.
 
 pub mod compliance;
 pub mod elastica;
 pub mod euler;
+pub mod vibration;
