@@ -13,6 +13,7 @@ mod buckling;
 mod compliance;
 mod connect;
 mod coordinates;
+mod dynamics_mass;
 mod elastica;
 mod elastica_path;
 mod energy;
