@@ -11,6 +11,11 @@ use nalgebra::DMatrix;
 /// of $M$ carry no inertia: rounding, not mass.
 const MASSLESS: f64 = 1e-12;
 
+/// Modes whose $1/\omega^2$ is at most this share of the lowest mode's are
+/// not resolved (the eigensolver's rounding), so not reported: frequencies
+/// above $10^6$ times the lowest.
+const RESOLVED: f64 = 1e-12;
+
 /// Natural frequencies and mode shapes, lowest first.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Modes {
@@ -89,8 +94,13 @@ pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usiz
 ///
 /// so they are neither reported nor turned into infinite frequencies.
 ///
-/// Errors: `mass` when $M$ is zero, [`Error::Unstable`] when $Z_0^TKZ_0$ is
-/// not positive definite or an $\omega^2$ is negative beyond rounding.
+/// The reduced problem is solved as $\tilde M a = \mu\tilde K a$, $\mu = 1/\omega^2$,
+/// so the lowest frequencies keep their relative accuracy; frequencies above
+/// $10^6$ times the lowest are not resolved and not reported.
+///
+/// Errors: `count` when zero, `stiffness` or `mass` when not square, of
+/// different sizes or not finite, `mass` when $M$ is zero, [`Error::Unstable`] when $K$ (or
+/// $Z_0^TKZ_0$, or $\tilde K$) is not positive definite.
 ///
 /// # Example
 /// ```
@@ -104,6 +114,21 @@ pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usiz
 /// ```
 pub fn finite_modes(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>, count: usize) -> Result<Modes> {
     let n = mass.nrows();
+    if count == 0 {
+        return Err(Error::invalid("count", count, "must be at least 1"));
+    }
+    for (name, a) in [("stiffness", stiffness), ("mass", mass)] {
+        if a.nrows() != n || a.ncols() != n || n == 0 {
+            return Err(Error::invalid(
+                name,
+                format!("{}x{}", a.nrows(), a.ncols()),
+                "must be square, non-empty and of the same size as the other matrix",
+            ));
+        }
+        if !a.iter().all(|x| x.is_finite()) {
+            return Err(Error::invalid(name, "a matrix with non-finite entries", "must be finite"));
+        }
+    }
     let k = (stiffness + stiffness.transpose()) * 0.5;
     let m = (mass + mass.transpose()) * 0.5;
     let eig = nalgebra::SymmetricEigen::new(m.clone());
@@ -126,21 +151,20 @@ pub fn finite_modes(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>, count: usize)
         (z.transpose() * &k * &z - k0z.transpose() * &follow, &z - &z0 * follow)
     };
     let m_reduced = if without.is_empty() { m.clone() } else { z.transpose() * &m * &z };
-    let (omega2, vectors) = crate::linalg::generalized_symmetric(&m_reduced, &k_reduced).ok_or_else(|| {
-        Error::Singular { what: "modes: the mass matrix on its massive directions is not positive definite".into() }
-    })?;
-    let mut order: Vec<usize> = (0..omega2.len()).collect();
-    order.sort_by(|&a, &b| omega2[a].total_cmp(&omega2[b]));
-    let largest = omega2.amax();
+    // Reduced with K's Cholesky factor, M v = μ K v with μ = 1/ω²: the
+    // eigensolver's error is a share of the largest μ, so the lowest
+    // frequencies, those that matter, keep their relative accuracy (reducing
+    // with M's would lose it to the stiffest coordinate's frequency).
+    let (inverse_omega2, vectors) = crate::linalg::generalized_symmetric(&k_reduced, &m_reduced)
+        .ok_or(Error::Unstable { what: "modes", load_fraction: 1.0 })?;
+    let largest = inverse_omega2.amax();
+    let mut order: Vec<usize> = (0..inverse_omega2.len()).filter(|&i| inverse_omega2[i] > RESOLVED * largest).collect();
+    order.sort_by(|&a, &b| inverse_omega2[b].total_cmp(&inverse_omega2[a]));
     let take = count.min(order.len());
     let mut omega = Vec::with_capacity(take);
     let mut shapes = DMatrix::zeros(n, take);
     for (c, &i) in order.iter().take(take).enumerate() {
-        let w2 = omega2[i];
-        if !w2.is_finite() || w2 < -1e-12 * largest {
-            return Err(Error::Unstable { what: "modes", load_fraction: 1.0 });
-        }
-        omega.push(w2.max(0.0).sqrt());
+        omega.push(inverse_omega2[i].recip().sqrt());
         let mut v = &to_shape * vectors.column(i);
         let norm = (v.transpose() * &m * &v)[(0, 0)].sqrt();
         let big = v.iter().fold(0.0_f64, |b, x| if x.abs() > b.abs() { *x } else { b });
