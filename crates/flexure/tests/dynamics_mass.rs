@@ -51,7 +51,7 @@ mod poly {
     /// P̃ₙ(t) = Pₙ(2t − 1) = Σₖ (−1)ⁿ⁺ᵏ C(n,k) C(n+k,k) tᵏ.
     pub fn shifted_legendre(n: usize) -> Vec<f64> {
         let choose = |a: usize, b: usize| (0..b).fold(1.0, |c, i| c * (a - i) as f64 / (i + 1) as f64);
-        (0..=n).map(|k| if (n + k) % 2 == 0 { 1.0 } else { -1.0 } * choose(n, k) * choose(n + k, k)).collect()
+        (0..=n).map(|k| if (n + k).is_multiple_of(2) { 1.0 } else { -1.0 } * choose(n, k) * choose(n + k, k)).collect()
     }
     /// ∫₀ᵗ p.
     pub fn integral(p: &[f64]) -> Vec<f64> {

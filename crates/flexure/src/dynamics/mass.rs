@@ -11,10 +11,11 @@
 //! $\dot J_r\dot\alpha = \dot\alpha^T\nabla\nabla r\thinspace\dot\alpha = -\int_0^s\dot\phi^2\begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds'$,
 //! $\dot\phi = \psi^T\dot\alpha$. The kinetic energy $T = \frac12\dot\alpha^TM\dot\alpha$ gives
 //!
-//! $$M = \int_0^L \mu J_r^TJ_r\thinspace ds + \int_0^L\rho I\thinspace\psi\psi^T ds
-//! + m J_c^TJ_c + I_c\thinspace\psi(L)\psi(L)^T,$$
-//! $$h = \dot M\dot\alpha - \tfrac12\nabla_\alpha(\dot\alpha^TM\dot\alpha)
-//! = \int_0^L\mu J_r^T(\dot J_r\dot\alpha)\thinspace ds + m J_c^T(\dot J_c\dot\alpha),$$
+//! $$M = \int_0^L \mu J_r^TJ_r\thinspace ds + \int_0^L\rho I\thinspace\psi\psi^T ds +
+//! m J_c^TJ_c + I_c\thinspace\psi(L)\psi(L)^T,$$
+//!
+//! $$h = \dot M\dot\alpha - \tfrac12\nabla_\alpha(\dot\alpha^TM\dot\alpha) =
+//! \int_0^L\mu J_r^T(\dot J_r\dot\alpha)\thinspace ds + m J_c^T(\dot J_c\dot\alpha),$$
 //!
 //! where the body's centre of mass is $r_c = r(L) + R(\phi_{tip})c$, so
 //! $J_c = J_r(L) + ER(\phi_{tip})c\thinspace\psi(L)^T$ ($E$ the quarter turn) and

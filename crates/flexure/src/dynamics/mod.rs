@@ -7,10 +7,10 @@
 //! inertia per length $\rho I(s)$) and of the body (mass $m$, inertia $I_c$
 //! about its centre of mass $c$) is
 //!
-//! $$T = \tfrac12\int_0^L \mu\thinspace\lvert\dot r\rvert^2 ds
-//! + \tfrac12\int_0^L \rho I\thinspace\dot\phi^2 ds
-//! + \tfrac12 m\lvert v_c\rvert^2 + \tfrac12 I_c\dot\phi_{tip}^2
-//! = \tfrac12\dot\alpha^T M(\alpha)\dot\alpha,$$
+//! $$T = \tfrac12\int_0^L \mu\thinspace\lvert\dot r\rvert^2 ds +
+//! \tfrac12\int_0^L \rho I\thinspace\dot\phi^2 ds +
+//! \tfrac12 m\lvert v_c\rvert^2 + \tfrac12 I_c\dot\phi_{tip}^2 =
+//! \tfrac12\dot\alpha^T M(\alpha)\dot\alpha,$$
 //!
 //! so that Lagrange's equations read
 //! $M(\alpha)\ddot\alpha + h(\alpha,\dot\alpha) + \nabla U = Q$ with
