@@ -1,7 +1,7 @@
 //! Dynamics of one flexure joint carrying an optional rigid tip [`Body`]:
 //! the generalized mass matrix and velocity-product terms of its
 //! coordinates ([`mass`]), and its vibration modes about a loaded
-//! equilibrium ([`modes`]).
+//! equilibrium ([`mod@modes`]).
 //!
 //! The kinetic energy of the flexure (mass per length $\mu(s)$, rotary
 //! inertia per length $\rho I(s)$) and of the body (mass $m$, inertia $I_c$
