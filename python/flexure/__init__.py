@@ -9,7 +9,10 @@ carries its error, estimated against a refined model (`Flexure.error_estimate`,
 the `estimates` of `Mechanism.solve`); one that misses its accuracy target
 (by default 1 % of L and 1 degree) warns AccuracyWarning, and
 `Flexure.deflect(..., order="auto")` raises the order until it is met.
-Solves and batches run without the GIL; Ctrl-C stops `Flexure.deflect`
+A flexure's section may vary along it (`width=(0.01, 0.005)`, tables of
+[t, value] rows, `notch=(R, h)`); `Flexure.stress`, `safety_factor` and
+`shape` report its bending, and a peak stress beyond `yield_strength` warns
+YieldWarning. Solves and batches run without the GIL; Ctrl-C stops `Flexure.deflect`
 and a batch `Flexure.pose` with KeyboardInterrupt (the exact and mechanism
 solvers poll for it once they run on the library's interruptible solver core).
 
@@ -27,10 +30,10 @@ from pathlib import Path
 from typing import Optional, Tuple, Union
 
 from . import exact
-from ._flexure import AccuracyWarning, ConvergenceError, Flexure, StabilityWarning
+from ._flexure import AccuracyWarning, ConvergenceError, Flexure, StabilityWarning, YieldWarning
 from ._flexure import Mechanism as _Mechanism
 
-__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "AccuracyWarning", "exact"]
+__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "AccuracyWarning", "YieldWarning", "exact"]
 
 
 class Mechanism:
@@ -93,7 +96,14 @@ class Mechanism:
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
         naming it, as does one whose error could not be estimated. Errors name the
-        mechanism's file, if it was read from one."""
+        mechanism's file, if it was read from one.
+
+        Per flexure joint, in maps by joint name (each left out when empty):
+        stress {max (Pa), at (m from its root)} for one with a thickness, else
+        curvature_max {max (1/m), at}; safety_factor for one with `yield_strength`
+        (left out while it is unstressed; below 1 it warns YieldWarning naming the
+        joint and the yield strength); shape, a structured array as `Flexure.shape`
+        returns, for one with `shape = K`."""
         try:
             return self._inner.solve(accuracy)
         except (ValueError, ConvergenceError) as e:

@@ -1,6 +1,6 @@
 """Type stubs for the compiled module. Units SI, angles in radians; order (phi, x, y)."""
 
-from typing import Literal, Optional, Tuple, TypedDict, overload
+from typing import Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -15,16 +15,32 @@ class StabilityWarning(UserWarning):
 class AccuracyWarning(UserWarning):
     """A model answer's estimated error misses its accuracy target (by default 1 % of L and 1 degree)."""
 
+class YieldWarning(UserWarning):
+    """A flexure's peak bending stress exceeds its yield strength: the safety factor is below 1."""
+
+class _Peak(TypedDict):
+    """The largest value of a quantity along the flexure (Pa for stress, 1/m for curvature) and where."""
+    max: float
+    at: float  # m from the root
+
+# Stub-only names. A quantity along the flexure, over t = s/L in [0, 1]: a number, a pair
+# (root, tip) for a linear taper, or a table of [t, value] rows (an (m, 2) array or a list of
+# pairs; t starts at 0, ends at 1 and increases strictly), linear between its rows.
+_Profile = Union[float, Tuple[float, float], Sequence[Sequence[float]], ArrayLike]
+
 class _ErrorEstimate(TypedDict):
     """An answer's error, estimated against a refined model of reference_order with reference_quadrature points."""
     position: float  # m
     angle: float  # rad
+    curvature: float  # 1/m, the peak curvature change's error
+    stress: float  # Pa, the peak bending stress's error; present only for flexures with a thickness
     flagged: bool  # whether it misses the accuracy target
     reference_order: int
     reference_quadrature: int
 
-# Stub-only names. accuracy: (position as a fraction of L, angle in rad), each finite and > 0; None means (0.01, 1 degree).
-_Accuracy = Optional[Tuple[float, float]]
+# Stub-only names. accuracy: (position as a fraction of L, angle in rad[, peak stress or curvature as a
+# fraction of the peak]), each finite and > 0; None means (0.01, 1 degree, 0.01).
+_Accuracy = Optional[Union[Tuple[float, float], Tuple[float, float, float]]]
 
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
@@ -32,23 +48,50 @@ class Flexure:
     length (m), ei (N*m^2) or modulus (Pa) with width and thickness (m) and optional poisson;
     order N (1 to 64) of the shifted-Legendre curvature basis; quadrature points
     (1 to 1024, default N + 2); rest curvature coefficients (N,).
+    ei, width and thickness may each vary along the flexure (see _Profile): a number, a pair
+    (root, tip), or a table of [t, value] rows over t = s/L. notch=(R, h) cuts two circular
+    cut-outs of radius R centred on the flexure, leaving thickness h at its middle.
+    density (kg/m^3, with width and thickness) or mass_per_length (kg/m, a _Profile) gives
+    the mass per length, for dynamics. yield_strength S (Pa, with a thickness) gives the
+    safety factor S/σmax, and a YieldWarning from deflect when it is below 1.
     Invalid values raise ValueError naming the parameter, as do options that
-    would be ignored (width, thickness or poisson without modulus; ei with modulus).
+    would be ignored (width, thickness, poisson or notch without modulus; ei with modulus).
     """
-    def __init__(self, length: float = 1.0, ei: Optional[float] = None, order: int = 3,
+    def __init__(self, length: float = 1.0, ei: Optional[_Profile] = None, order: int = 3,
                  quadrature: Optional[int] = None, rest: Optional[ArrayLike] = None, *,
-                 modulus: Optional[float] = None, width: Optional[float] = None,
-                 thickness: Optional[float] = None, poisson: Optional[float] = None) -> None: ...
+                 modulus: Optional[float] = None, width: Optional[_Profile] = None,
+                 thickness: Optional[_Profile] = None, poisson: Optional[float] = None,
+                 notch: Optional[Tuple[float, float]] = None, density: Optional[float] = None,
+                 mass_per_length: Optional[_Profile] = None,
+                 yield_strength: Optional[float] = None) -> None: ...
     @property
     def length(self) -> float: ...
     @property
-    def ei(self) -> float: ...
+    def ei(self) -> float:
+        """EI (N*m^2); for a non-uniform section, its mean (1/L)∫EI ds."""
     @property
     def order(self) -> int: ...
     @property
     def quadrature(self) -> int: ...
     @property
     def rest(self) -> np.ndarray: ...
+    @property
+    def modulus(self) -> Optional[float]:
+        """Effective modulus E' (Pa; E/(1-ν²) with poisson), or None for a flexure given by ei (no stress)."""
+    @property
+    def yield_strength(self) -> Optional[float]: ...
+    @property
+    def uniform(self) -> bool:
+        """Whether EI is the same all along the flexure."""
+    # Section along the flexure, at arc length s (m) in [0, L]: a float for a number, an array like s.
+    def ei_at(self, s: ArrayLike) -> Union[float, np.ndarray]:
+        """EI(s) (N*m^2)."""
+    def thickness_at(self, s: ArrayLike) -> Optional[Union[float, np.ndarray]]:
+        """h(s) (m), notch included; None for a flexure given by ei."""
+    def width_at(self, s: ArrayLike) -> Optional[Union[float, np.ndarray]]:
+        """b(s) (m); None for a flexure given by ei."""
+    def mass_per_length_at(self, s: ArrayLike) -> Optional[Union[float, np.ndarray]]:
+        """μ(s) (kg/m); None without density or mass_per_length."""
     # Every alpha below must have N entries (per row): another length raises ValueError.
     def pose(self, alpha: ArrayLike) -> np.ndarray:
         """[phi, x, y] for alpha (N,); (n, 3) for alpha (n, N), in parallel without the GIL
@@ -87,13 +130,28 @@ class Flexure:
         """(3, 3) tip compliance of the unloaded flexure at its rest shape (Eqs. 35–36)."""
     def buckling_load(self, tip: str = "free") -> float:
         """Critical compressive tip load (N): tip is free, guided, pinned or clamped."""
+    # Bending at alpha (N,), such as deflect's answer.
+    def stress(self, alpha: ArrayLike) -> Optional[_Peak]:
+        """Peak bending stress σ(s) = E' h(s)/2 |ω(s) - ω0(s)|: {max (Pa), at (m from the root)};
+        None for a flexure given by ei (no thickness)."""
+    def peak_curvature(self, alpha: ArrayLike) -> _Peak:
+        """Largest change of curvature from rest: {max (1/m), at (m)}."""
+    def safety_factor(self, alpha: ArrayLike) -> float:
+        """S/σmax against the flexure's yield_strength (inf while unstressed); warns YieldWarning
+        below 1. ValueError without a yield_strength."""
+    def shape(self, alpha: ArrayLike, k: int) -> np.ndarray:
+        """The deformed flexure at k (2 to 10000) points evenly spaced in arc length, ends included,
+        in its root frame: a structured array of fields s, x, y (m), phi (rad), curvature (1/m, total)
+        and, with a thickness, stress (Pa). shape["x"], shape["y"] plot it."""
 
 class Mechanism:
     @staticmethod
     def from_text(text: str) -> "Mechanism": ...
     @property
     def dof(self) -> int: ...
-    def solve(self, accuracy: _Accuracy = None) -> dict: ...
+    def solve(self, accuracy: _Accuracy = None) -> dict:
+        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
+        flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
 
 def exact_deflect(moment: float, fx: float, fy: float, length: float, ei: float,
                   rest: Optional[ArrayLike]) -> np.ndarray: ...

@@ -36,7 +36,8 @@ def test_coiling_moment_warns_with_the_true_error(length, ei):
     pose = f.pose(alpha)
     true_position = float(np.hypot(*(pose[1:] - circle_tip(20.0, length))))
     e = f.error_estimate(alpha, moment=moment)
-    assert set(e) == {"position", "angle", "flagged", "reference_order", "reference_quadrature"}
+    # A flexure given by ei alone has no thickness: the peak is curvature, not stress.
+    assert set(e) == {"position", "angle", "curvature", "flagged", "reference_order", "reference_quadrature"}
     assert e["flagged"] is True
     # The reference (order 6, 32 points here) integrates cos(20 t) to rounding, so the
     # estimate is the true error; 1e-6 relative as the task and the library's doc test ask.
@@ -46,7 +47,7 @@ def test_coiling_moment_warns_with_the_true_error(length, ei):
     # The message gives the error in metres and as % of L (3 digits), the angle in degrees and the target.
     message = str(caught[0].message)
     assert f"{e['position']:.3g} m ({100 * e['position'] / length:.3g} % of L)" in message
-    assert "target of 1 % of L and 1°" in message and re.search(r"and [0-9.e-]+° in angle", message)
+    assert "target of 1 % of L, 1° and 1 %" in message and re.search(r", [0-9.e-]+° in angle", message)
     # It points at the caller's line, not at the bindings.
     assert caught[0].filename == __file__
 
@@ -60,13 +61,16 @@ def test_estimate_matches_the_exact_elastica(order, load):
     # Reference: the exact elastica by shooting (flexure.exact.deflect). The estimate measures
     # the answer against an order-2N model, whose own error is far smaller (measured: the two
     # agree to 5e-4 relative for these loads); 1 % leaves room for the reference's error.
+    # The tip is what is compared here: peaks converge more slowly (the peak curvature of
+    # the compressed and the mixed loads is 5 % and 2.6 % off at order 3), so their target is loose.
     f = flexure.Flexure(order=order)
+    tip_only = (0.01, math.radians(1), 0.1)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        alpha = f.deflect(**load)
+        alpha = f.deflect(**load, accuracy=tip_only)
     exact = flexure.exact.deflect(**load)
     pose = f.pose(alpha)
-    e = f.error_estimate(alpha, **load)
+    e = f.error_estimate(alpha, **load, accuracy=tip_only)
     assert abs(e["position"] / np.hypot(*(pose[1:] - exact[1:])) - 1) < 1e-2
     assert abs(e["angle"] / abs(pose[0] - exact[0]) - 1) < 1e-2
     assert e["flagged"] is False and e["reference_order"] == 2 * order
@@ -136,7 +140,8 @@ BAD_ACCURACY = [
     ((0.01, float("nan")), r"accuracy .*angle \(rad\) is NaN"),
     ((float("inf"), 0.01), r"accuracy .*position fraction of L is inf"),
     ((0.01,), r"accuracy must be a pair"),
-    ((0.01, 0.01, 0.01), r"accuracy must be a pair"),
+    ((0.01, 0.01, 0.01, 0.01), r"accuracy must be a pair"),
+    ((0.01, 0.01, 0.0), r"accuracy = \(0\.01, 0\.01, 0\): its peak fraction is 0"),
     (0.01, r"accuracy must be a pair .*got 0\.01"),
     ("ab", r"accuracy must be a pair .*got 'ab'"),
     (("a", "b"), r"accuracy must be a pair"),

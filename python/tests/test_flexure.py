@@ -61,7 +61,8 @@ def test_unstable_equilibrium_warns():
         warnings.simplefilter("error")
         f.deflect(fx=-2.4)
         flexure.exact.deflect(fx=-2.4)
-        f.deflect(fx=-4.0, fy=0.05)
+        # (Its peak curvature is 5 % off at order 3, flagged by the default 1 % target: loosened here.)
+        f.deflect(fx=-4.0, fy=0.05, accuracy=(0.01, 0.0175, 0.1))
         flexure.exact.deflect(fx=-4.0, fy=0.05)
 
 
@@ -224,7 +225,8 @@ def test_mechanism_from_path_and_text():
     path = ROOT / "examples" / "mixed_chain.toml"
     for source in (path, str(path), path.read_text()):
         result = flexure.Mechanism.from_toml(source).solve()
-        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates"}
+        # Its flexures are given by ei (no thickness): curvature_max, as `flexure solve --json`.
+        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates", "curvature_max"}
         # Closed form: the shoulder spring turns M/k = 0.01/2.
         assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
         assert result["stable"] is True

@@ -41,10 +41,14 @@ pub struct ConnectArgs {
     stress: StressOptions,
 }
 
-/// The exact connection, seeded by the order-3 model's multipliers.
+/// The exact connection, seeded by the order-3 model's multipliers (on the
+/// same section, when order 3 can hold it).
 pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<elastica::Connection> {
-    let seed = Flexure::new(flexure.length(), flexure.ei(), 3)?;
-    let seed = if flexure.order() == 3 { flexure.clone() } else { seed };
+    let uniform = Flexure::new(flexure.length(), flexure.ei(), 3)?;
+    let seed = match flexure.order() {
+        3 => flexure.clone(),
+        _ => uniform.clone().with_section(flexure.section().clone()).unwrap_or(uniform),
+    };
     let c: Connection = connect(&seed, target)?;
     let m0 = c.load.moment + target.x * c.load.fy - target.y * c.load.fx;
     elastica::connect(flexure, target, [m0, c.load.fx, c.load.fy], &Default::default())
@@ -60,21 +64,20 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
     let model = chosen(&args.flexure, |f| Ok(flexure::estimate::connect_auto(f, &target, &accuracy)?.0))?;
     crate::stress::check(&model, &args.stress)?;
     if args.exact {
-        crate::joint::exact_takes_uniform(&model)?;
         let e = exact_connection(&model, &target)?;
         let c = connect(&model, &target)?;
         let mut reported = json!({});
         crate::stress::put(&mut reported, &model, &c.alpha, &args.stress, "connect (model)");
-        // TODO(exact stress): once the exact elastica takes EI(s) and gives
-        // its shape, put the exact connection's `stress` (or `curvature_max`),
-        // `safety_factor` and `shape` here at the top level.
-        return Ok(json!({
+        let mut answer = json!({
             "energy": e.energy,
             "loads": { "moment": e.root_moment, "fx": e.fx, "fy": e.fy },
             "model_energy": c.energy,
             "eta": c.energy / e.energy - 1.0,
             "model": reported,
-        }));
+        });
+        let trace = e.trace(&model, &Default::default())?;
+        crate::joint::put_exact_stress(&mut answer, &trace, &args.stress, "connect (exact)")?;
+        return Ok(answer);
     }
     if let Some(k) = args.segments {
         // A chain's rest shape lives in its own basis; the CLI builds straight chains only.
@@ -90,9 +93,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         let curvatures: Vec<f64> = c.alpha.iter().map(|a| a * k as f64 / model.length()).collect();
         let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
         crate::stress::put(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
-        if model.section().is_uniform()
-            && let Ok(e) = exact_connection(&model, &target)
-        {
+        if let Ok(e) = exact_connection(&model, &target) {
             out["eta"] = json!(c.energy / e.energy - 1.0);
         }
         return Ok(out);
@@ -110,10 +111,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
     }
     put_estimate(&mut out, &e, &model, &accuracy, "connect");
     crate::stress::put(&mut out, &model, &c.alpha, &args.stress, "connect");
-    // η compares with the exact elastica, which takes a uniform EI for now.
-    if model.section().is_uniform()
-        && let Ok(e) = exact_connection(&model, &target)
-    {
+    if let Ok(e) = exact_connection(&model, &target) {
         out["eta"] = json!(c.energy / e.energy - 1.0);
     }
     Ok(out)

@@ -6,6 +6,7 @@ use crate::options::{
 use clap::{Args, ValueEnum};
 use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::reference::elastica::Trace;
 use flexure::reference::{self, elastica};
 use flexure::{
     Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect,
@@ -187,9 +188,6 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let target = args.accuracy.target();
     let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
     crate::stress::check(&f, &args.stress)?;
-    if args.exact {
-        exact_takes_uniform(&f)?;
-    }
     let mut data = Statics::new(&f);
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
@@ -222,13 +220,9 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     if !args.exact {
         return Ok(model);
     }
-    let exact = elastica::deflect(&f, &load, &Default::default())?;
+    let (exact, trace) = elastica::deflect_traced(&f, &load, &Default::default())?;
     let (m, e) = (data.pose_root_tip(), exact.pose);
-    // TODO(exact stress): once the exact elastica takes EI(s) and gives its
-    // shape, put the exact answer's `stress` (or `curvature_max`),
-    // `safety_factor` and `shape` here at the top level, beside its pose;
-    // the model's stay under `model`.
-    Ok(json!({
+    let mut answer = json!({
         "pose": pose(&e),
         "root_moment": exact.root_moment,
         "stable": exact.stable,
@@ -239,28 +233,59 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
             "angle": (m.phi - e.phi).abs(),
             "angle_degrees": (m.phi - e.phi).abs().to_degrees(),
         },
-    }))
+    });
+    put_exact_stress(&mut answer, &trace, &args.stress, "deflect (exact)")?;
+    Ok(answer)
 }
 
-/// Refuses `--exact` on a flexure whose EI varies along it: the exact
-/// references (elastica, compliance ODE, Euler) take one EI for now, and
-/// would compare the model with a different flexure.
-pub fn exact_takes_uniform(f: &Flexure) -> flexure::Result<()> {
-    if f.section().is_uniform() {
-        return Ok(());
+/// The exact answer's bending, from its [`Trace`], as
+/// [`crate::stress::put`] writes the model's: `stress: {max, at}` (or,
+/// without a thickness, `curvature_max`), `safety_factor` with a warning
+/// naming `what` below 1, and `shape` when asked for.
+pub fn put_exact_stress(answer: &mut Value, trace: &Trace, options: &StressOptions, what: &str) -> flexure::Result<()> {
+    match trace.peak_stress()? {
+        Some(p) => {
+            answer["stress"] = json!({ "max": p.value, "at": p.at });
+            if let Some(s) = options.yield_strength
+                && p.value > 0.0
+            {
+                let factor = s / p.value;
+                answer["safety_factor"] = json!(factor);
+                if factor < 1.0 {
+                    warn(format!(
+                        "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
+                        p.value, p.at
+                    ));
+                }
+            }
+        }
+        None => {
+            let p = trace.peak_curvature()?;
+            answer["curvature_max"] = json!({ "max": p.value, "at": p.at });
+        }
     }
-    Err(Error::invalid(
-        "exact",
-        "with a tapered or notched flexure",
-        "the exact references take a uniform EI for now, so they would answer for another flexure: drop --exact",
-    ))
+    if let Some(k) = options.shape {
+        let points: Vec<Value> = trace
+            .shape(k)?
+            .iter()
+            .map(|p| {
+                let mut point = json!({ "s": p.s, "x": p.x, "y": p.y, "phi": p.phi, "curvature": p.curvature });
+                if let Some(sigma) = p.stress {
+                    point["stress"] = json!(sigma);
+                }
+                point
+            })
+            .collect();
+        answer["shape"] = json!(points);
+    }
+    Ok(())
 }
 
 #[derive(Debug, Args)]
 pub struct ComplianceArgs {
     #[command(flatten)]
     flexure: FlexureOptions,
-    /// Integrate the compliance ODE (Eq. 34) instead of the model's J K⁻¹ Jᵀ.
+    /// Integrate the compliance ODE (Eq. 34, with EI(s)) instead of the model's J K⁻¹ Jᵀ.
     #[arg(long)]
     exact: bool,
 }
@@ -269,7 +294,6 @@ pub struct ComplianceArgs {
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
     let f = args.flexure.build_fixed("compliance")?;
     let c = if args.exact {
-        exact_takes_uniform(&f)?;
         reference::compliance::compliance_tip(&f, &Default::default())?
     } else {
         compliance_tip_rest(&f)
@@ -303,7 +327,8 @@ pub struct BucklingArgs {
     /// How the tip is held.
     #[arg(long, value_enum)]
     tip: Tip,
-    /// Euler's closed form for a straight column instead of the model.
+    /// The exact load of a straight column instead of the model: Euler's
+    /// closed form for a uniform one, shooting on the load for EI(s).
     #[arg(long)]
     exact: bool,
 }
@@ -313,17 +338,19 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
     let f = args.flexure.build_fixed("buckling")?;
     let tip = TipConstraint::from(args.tip);
     if args.exact {
-        exact_takes_uniform(&f)?;
         if f.rest().iter().any(|&k| k != 0.0) {
             return Err(Error::invalid(
                 "kappa",
                 format!("{:?}", f.rest()),
-                "Euler's closed form is for a straight flexure",
+                "the exact buckling load is for a straight flexure",
             ));
         }
-        return Ok(
-            json!({ "critical_load": reference::euler::buckling_load(tip, f.length(), f.ei()), "tip": tip.name() }),
-        );
+        let p = if f.section().is_uniform() {
+            reference::euler::buckling_load(tip, f.length(), f.ei())
+        } else {
+            reference::column::buckling_load(&f, tip, &Default::default())?
+        };
+        return Ok(json!({ "critical_load": p, "tip": tip.name() }));
     }
     let b = buckling_load(&f, tip)?;
     Ok(json!({ "critical_load": b.critical_load, "mode": b.mode.as_slice(), "tip": tip.name() }))

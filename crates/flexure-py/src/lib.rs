@@ -5,12 +5,13 @@
 //! not converge raises `flexure.ConvergenceError` with its residual; an
 //! equilibrium that is found but unstable warns with `flexure.StabilityWarning`;
 //! an answer whose estimated error misses its accuracy target warns with
-//! `flexure.AccuracyWarning`.
+//! `flexure.AccuracyWarning`; a peak bending stress beyond the flexure's
+//! yield strength warns with `flexure.YieldWarning`.
 
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::kinematics::par_poses_root_tip;
 use flexure::mechanism::JointKind;
-use flexure::mechanism::file::from_toml;
+use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
 use flexure::reference::{compliance as exact_compliance, elastica};
 use flexure::{
@@ -26,6 +27,8 @@ use pyo3::types::{PyDict, PyInt, PyTuple};
 use std::time::{Duration, Instant};
 
 mod coordinates;
+mod section;
+mod stress;
 use coordinates::{Coordinates, single, vector};
 
 create_exception!(
@@ -47,6 +50,13 @@ create_exception!(
     AccuracyWarning,
     PyUserWarning,
     "A model answer's estimated error misses its accuracy target (by default 1 % of the length and 1 degree)."
+);
+
+create_exception!(
+    _flexure,
+    YieldWarning,
+    PyUserWarning,
+    "A flexure's peak bending stress exceeds its yield strength: the safety factor is below 1."
 );
 
 /// Warns `text` as `category` (`stacklevel` 1: the Python line that called the binding).
@@ -76,31 +86,35 @@ fn sig(x: f64) -> String {
     if plain.contains('.') { plain.trim_end_matches('0').trim_end_matches('.').to_string() } else { plain }
 }
 
-/// Reads `accuracy` = (position as a fraction of L, angle in rad); the
-/// paper's 1 % of L and 1° when it is `None`.
+/// Reads `accuracy` = (position as a fraction of L, angle in rad[, peak
+/// stress or curvature as a fraction of the peak]); the paper's 1 % of L
+/// and 1°, and 1 % of the peak, when it is `None`.
 fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
     let Some(v) = value.filter(|v| !v.is_none()) else {
         return Ok(Accuracy::default());
     };
     let shape = || {
         PyValueError::new_err(format!(
-            "accuracy must be a pair (position as a fraction of L, angle in rad), such as (0.01, 0.0175), got {}",
+            "accuracy must be a pair (position as a fraction of L, angle in rad) or a triple adding the peak stress as a fraction of the peak, such as (0.01, 0.0175) or (0.01, 0.0175, 0.02), got {}",
             v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
         ))
     };
     // A str is a sequence too, but never a pair of numbers: pyo3 refuses it as a Vec.
     let pair: Vec<f64> = v.extract().map_err(|_| shape())?;
-    let [position, angle] = pair[..] else {
-        return Err(shape());
+    let (position, angle, stress) = match pair[..] {
+        [position, angle] => (position, angle, Accuracy::default().stress),
+        [position, angle, stress] => (position, angle, stress),
+        _ => return Err(shape()),
     };
-    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle)] {
+    for (what, x) in [("position fraction of L", position), ("angle (rad)", angle), ("peak fraction", stress)] {
         if !(x.is_finite() && x > 0.0) {
+            let given = pair.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ");
             return Err(PyValueError::new_err(format!(
-                "accuracy = ({position}, {angle}): its {what} is {x}, and must be a finite number greater than zero"
+                "accuracy = ({given}): its {what} is {x}, and must be a finite number greater than zero"
             )));
         }
     }
-    Ok(Accuracy { position, angle, ..Default::default() })
+    Ok(Accuracy { position, angle, stress })
 }
 
 /// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
@@ -256,9 +270,29 @@ fn matrix(m: &nalgebra::DMatrix<f64>) -> Array2<f64> {
 }
 
 /// A planar flexure joint of the Smooth Curvature Model (SI units, radians).
+///
+/// Flexure(length, ei, order, quadrature, rest, *, modulus, width, thickness, poisson,
+/// notch, density, mass_per_length, yield_strength). Give `ei` (N·m²), or `modulus` (Pa)
+/// with `width` and `thickness` (m) and an optional `poisson`. `ei`, `width`, `thickness`
+/// and `mass_per_length` may vary along the flexure, over t = s/L from the root (0) to the
+/// tip (1): a number; a pair (root, tip), a linear taper; or a table of [t, value] rows
+/// (an (m, 2) array or a list of pairs; t starts at 0, ends at 1 and increases strictly),
+/// linear between rows. `notch=(R, h)` cuts two circular cut-outs of radius R centred on
+/// the flexure, leaving thickness h at its middle. `density` (kg/m³) or `mass_per_length`
+/// (kg/m) gives the mass per length, for dynamics. `yield_strength` S (Pa, with a
+/// thickness) gives `safety_factor` S/σmax, and `deflect` warns `YieldWarning` below 1.
+///
+/// Read-only: `length`, `ei` (the mean for a non-uniform section), `order`, `quadrature`,
+/// `rest`, `modulus` (E′, None without a thickness), `yield_strength`, `uniform`; along
+/// the flexure at s (m, a number or an array): `ei_at`, `thickness_at`, `width_at`,
+/// `mass_per_length_at`. At coordinates alpha: `stress` {max, at} (None without a
+/// thickness), `peak_curvature` {max, at}, `safety_factor`, and `shape(alpha, k)`, a
+/// structured array of fields s, x, y, phi, curvature and (with a thickness) stress.
 #[pyclass(frozen, module = "flexure")]
 struct Flexure {
     inner: flexure::Flexure,
+    /// Yield strength $S$ (Pa), for the safety factor; only with a thickness.
+    yield_strength: Option<f64>,
 }
 
 fn finite(name: &str, v: f64) -> PyResult<f64> {
@@ -284,6 +318,67 @@ fn count(name: &str, value: &Bound<'_, PyAny>, max: usize) -> PyResult<usize> {
     }
 }
 
+/// The number of points `k` of a shape, from 2 to [`stress::MAX_SHAPE`].
+fn shape_points(value: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let max = stress::MAX_SHAPE;
+    match value.extract::<usize>() {
+        Ok(k) if (2..=max).contains(&k) => Ok(k),
+        Ok(_) => Err(PyValueError::new_err(format!(
+            "invalid k = {value}: must be from 2 to {max} points (the ends included)"
+        ))),
+        Err(_) if value.is_instance_of::<PyInt>() || value.hasattr("__index__").unwrap_or(false) => Err(
+            PyValueError::new_err(format!("invalid k = {value}: must be from 2 to {max} points (the ends included)")),
+        ),
+        Err(e) => Err(PyTypeError::new_err(format!("argument 'k': {}", e.value(value.py())))),
+    }
+}
+
+/// Evaluates `g` at arc length `s` (m) on `f`: a float for a number, an
+/// array of the same shape for an array; every `s` must lie in [0, L].
+fn along<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    s: &Bound<'py, PyAny>,
+    g: impl Fn(f64) -> f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let l = f.length();
+    let check = |v: f64| {
+        if v.is_finite() && (0.0..=l).contains(&v) {
+            Ok(v)
+        } else {
+            Err(PyValueError::new_err(format!("s = {v}: must lie along the flexure, in [0, L] = [0, {l}] m")))
+        }
+    };
+    if let Ok(v) = s.extract::<f64>() {
+        return Ok(g(check(v)?).into_pyobject(py)?.into_any());
+    }
+    let array: PyArrayLikeDyn<'py, f64, AllowTypeChange> = s.extract().map_err(|e: PyErr| {
+        if e.is_instance_of::<PyTypeError>(py) {
+            PyTypeError::new_err(format!("argument 's': {}", e.value(py)))
+        } else {
+            e
+        }
+    })?;
+    let values = array.as_array().map(|&v| v).to_owned();
+    for &v in &values {
+        check(v)?;
+    }
+    Ok(values.mapv(g).into_pyarray(py).into_any())
+}
+
+/// A peak stress or curvature of `f` at `alpha`, as a dict, when it has one:
+/// `stress` with a thickness, else `curvature_max`.
+fn peak_item<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    alpha: &[f64],
+) -> PyResult<(&'static str, Bound<'py, PyDict>)> {
+    match flexure::stress::peak_stress(f, alpha) {
+        Some(p) => Ok(("stress", stress::peak_dict(py, &p)?)),
+        None => Ok(("curvature_max", stress::peak_dict(py, &flexure::stress::peak_curvature(f, alpha))?)),
+    }
+}
+
 /// The stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$
 /// (Eq. 32) at `alpha`, with the kinematics there (Hessian level).
 fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kinematics<f64>, nalgebra::DMatrix<f64>) {
@@ -300,68 +395,62 @@ fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kin
 
 #[pymethods]
 impl Flexure {
-    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)
+    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)
     #[new]
     #[pyo3(
-        signature = (length=1.0, ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None),
-        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None)"
+        signature = (length=1.0, ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None),
+        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn new(
         length: f64,
-        ei: Option<f64>,
+        ei: Option<&Bound<'_, PyAny>>,
         order: Option<&Bound<'_, PyAny>>,
         quadrature: Option<&Bound<'_, PyAny>>,
         rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
         modulus: Option<f64>,
-        width: Option<f64>,
-        thickness: Option<f64>,
+        width: Option<&Bound<'_, PyAny>>,
+        thickness: Option<&Bound<'_, PyAny>>,
         poisson: Option<f64>,
+        notch: Option<&Bound<'_, PyAny>>,
+        density: Option<f64>,
+        mass_per_length: Option<&Bound<'_, PyAny>>,
+        yield_strength: Option<f64>,
     ) -> PyResult<Self> {
-        let ei = match (ei, modulus) {
-            (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err(
-                    "ei and modulus were both given: give ei, or modulus with width and thickness, not both",
-                ));
-            }
-            (ei, None) => {
-                // Section options only count with a modulus: refuse them rather than ignore them.
-                let unused: Vec<&str> =
-                    [("width", width.is_some()), ("thickness", thickness.is_some()), ("poisson", poisson.is_some())]
-                        .into_iter()
-                        .filter_map(|(name, given)| given.then_some(name))
-                        .collect();
-                if !unused.is_empty() {
-                    return Err(PyValueError::new_err(format!(
-                        "{} given without modulus would be ignored: give modulus (with width and thickness) to compute ei from the section, or leave them out",
-                        unused.join(", ")
-                    )));
-                }
-                ei.unwrap_or(1.0)
-            }
-            (None, Some(e)) => {
-                let (Some(w), Some(h)) = (width, thickness) else {
-                    let missing = if width.is_none() && thickness.is_none() {
-                        "width and thickness"
-                    } else if width.is_none() {
-                        "width"
-                    } else {
-                        "thickness"
-                    };
-                    return Err(PyValueError::new_err(format!("modulus needs width and thickness: {missing} missing")));
-                };
-                flexure::bending_stiffness(e, w, h, poisson).map_err(to_py)?
-            }
-        };
+        let (ei, section) = section::read(&section::Arguments {
+            ei,
+            modulus,
+            width,
+            thickness,
+            poisson,
+            notch,
+            density,
+            mass_per_length,
+        })?;
         let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
         let mut f = flexure::Flexure::new(length, ei, order).map_err(to_py)?;
+        if let Some(s) = section {
+            f = f.with_section(s).map_err(to_py)?;
+        }
         if let Some(q) = quadrature {
             f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
         if let Some(r) = rest {
             f = f.with_rest(&vector("rest", &r, Some(order))?).map_err(to_py)?;
         }
-        Ok(Self { inner: f })
+        if let Some(s) = yield_strength {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "invalid yield_strength = {s}: must be a finite number greater than zero (Pa)"
+                )));
+            }
+            if f.section().modulus().is_none() {
+                return Err(PyValueError::new_err(format!(
+                    "invalid yield_strength = {s}: needs a thickness to give a stress: give modulus, width and thickness (a flexure given by ei alone has no stress)"
+                )));
+            }
+        }
+        Ok(Self { inner: f, yield_strength })
     }
 
     /// Length L (m).
@@ -369,7 +458,7 @@ impl Flexure {
     fn length(&self) -> f64 {
         self.inner.length()
     }
-    /// Bending stiffness EI (N·m²).
+    /// Bending stiffness EI (N·m²); for a non-uniform section, its mean (1/L)∫EI ds.
     #[getter]
     fn ei(&self) -> f64 {
         self.inner.ei()
@@ -388,6 +477,91 @@ impl Flexure {
     #[getter]
     fn rest<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.inner.rest().to_vec())
+    }
+    /// Effective modulus E′ (Pa; E/(1−ν²) with a Poisson ratio), or None for a flexure given by ei (no stress).
+    #[getter]
+    fn modulus(&self) -> Option<f64> {
+        self.inner.section().modulus()
+    }
+    /// Yield strength S (Pa), or None.
+    #[getter]
+    fn yield_strength(&self) -> Option<f64> {
+        self.yield_strength
+    }
+    /// Whether EI is the same all along the flexure.
+    #[getter]
+    fn uniform(&self) -> bool {
+        self.inner.section().is_uniform()
+    }
+
+    /// Bending stiffness EI(s) (N·m²) at arc length s (m) from the root: a float, or an array like s.
+    fn ei_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        along(py, &self.inner, s, |s| self.inner.ei_at(s))
+    }
+    /// Thickness h(s) (m), notch included, at arc length s (m); None for a flexure given by ei.
+    fn thickness_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let (f, l) = (&self.inner, self.inner.length());
+        let section = f.section();
+        if section.thickness(0.0, l).is_none() {
+            return Ok(None);
+        }
+        along(py, f, s, |s| section.thickness(s / l, l).unwrap_or(0.0)).map(Some)
+    }
+    /// Width b(s) (m) at arc length s (m); None for a flexure given by ei.
+    fn width_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let (f, l) = (&self.inner, self.inner.length());
+        let section = f.section();
+        if section.width(0.0).is_none() {
+            return Ok(None);
+        }
+        along(py, f, s, |s| section.width(s / l).unwrap_or(0.0)).map(Some)
+    }
+    /// Mass per length μ(s) (kg/m) at arc length s (m); None without density or mass_per_length.
+    fn mass_per_length_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let (f, l) = (&self.inner, self.inner.length());
+        let section = f.section();
+        if section.mass_per_length(0.0, l).is_none() {
+            return Ok(None);
+        }
+        along(py, f, s, |s| section.mass_per_length(s / l, l).unwrap_or(0.0)).map(Some)
+    }
+
+    /// Peak bending stress at alpha (N,): {"max": σmax (Pa), "at": s (m from the root)},
+    /// σ(s) = E′ h(s)/2 |ω̂(s) − ω̂₀(s)|; None for a flexure given by ei (no thickness).
+    fn stress<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let a = single(self.inner.order(), alpha)?;
+        flexure::stress::peak_stress(&self.inner, &a).map(|p| stress::peak_dict(py, &p)).transpose()
+    }
+
+    /// Largest change of curvature from rest at alpha (N,): {"max": |ω̂ − ω̂₀| (1/m), "at": s (m)}.
+    fn peak_curvature<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        let a = single(self.inner.order(), alpha)?;
+        stress::peak_dict(py, &flexure::stress::peak_curvature(&self.inner, &a))
+    }
+
+    /// Safety factor S/σmax at alpha (N,) against the yield strength (inf while unstressed);
+    /// below 1 it warns YieldWarning naming the yield strength.
+    fn safety_factor(&self, py: Python<'_>, alpha: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let Some(s) = self.yield_strength else {
+            return Err(PyValueError::new_err(
+                "safety_factor needs the flexure's yield_strength: build it with Flexure(..., yield_strength=S)",
+            ));
+        };
+        let a = single(self.inner.order(), alpha)?;
+        Ok(stress::safety_factor(py, &self.inner, &a, s, "safety_factor", 1)?.map_or(f64::INFINITY, |(_, f)| f))
+    }
+
+    /// The deformed flexure at alpha (N,) at k points evenly spaced in arc length, ends included,
+    /// in its root frame: a structured array of fields s, x, y, phi (m, m, m, rad), curvature
+    /// (1/m, total) and, with a thickness, stress (Pa).
+    fn shape<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: &Bound<'py, PyAny>,
+        k: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let a = single(self.inner.order(), alpha)?;
+        stress::shape(py, &self.inner, &a, shape_points(k)?)
     }
 
     /// Tip pose [phi, x, y] for alpha of shape (N,); (n, 3) for shape (n, N), computed in parallel without the GIL.
@@ -463,6 +637,7 @@ impl Flexure {
     /// with its error estimated against a refined model: a miss of `accuracy` (position as a
     /// fraction of L, angle in rad; default 1 % and 1°) warns `AccuracyWarning`. With
     /// `order="auto"`, raises the order until the target is met and returns `(flexure_used, alpha)`.
+    /// With a yield strength, a peak stress beyond it warns `YieldWarning`.
     #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, *, accuracy=None, order=None))]
     fn deflect<'py>(
         &self,
@@ -506,7 +681,10 @@ impl Flexure {
                 let why = "its stiffness is not positive definite (the load is past a buckling load)";
                 warn_unstable(py, "deflect", &load, why)?;
             }
-            let used = Py::new(py, Flexure { inner: used })?;
+            if let Some(s) = self.yield_strength {
+                stress::safety_factor(py, &used, &alpha, s, "deflect", 1)?;
+            }
+            let used = Py::new(py, Flexure { inner: used, yield_strength: self.yield_strength })?;
             let alpha = PyArray1::from_vec(py, alpha);
             return Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any());
         }
@@ -528,6 +706,9 @@ impl Flexure {
             }
             Ok(_) => {}
             Err(why) => warn_unestimated(py, "deflect", &why, 1)?,
+        }
+        if let Some(s) = self.yield_strength {
+            stress::safety_factor(py, f, &alpha, s, "deflect", 1)?;
         }
         Ok(PyArray1::from_vec(py, alpha).into_any())
     }
@@ -671,6 +852,8 @@ fn rest_flexure(
 #[pyclass(frozen, module = "flexure")]
 struct Mechanism {
     inner: flexure::mechanism::Mechanism,
+    /// Each flexure joint's `yield_strength` and `shape`, by name.
+    reports: Vec<(String, Report)>,
 }
 
 #[pymethods]
@@ -678,12 +861,17 @@ impl Mechanism {
     /// Parses mechanism TOML text.
     #[staticmethod]
     fn from_text(text: &str) -> PyResult<Self> {
-        Ok(Self { inner: from_toml(text).map_err(to_py)? })
+        let inner = from_toml(text).map_err(to_py)?;
+        Ok(Self { inner, reports: reports(text).map_err(to_py)? })
     }
 
     /// Equilibrium as a dict shaped like `flexure solve --json`, with `estimates`: the
     /// estimated error of each flexure joint (a dict as `Flexure.error_estimate` returns, or
     /// None where it could not be made). A joint that misses `accuracy` warns `AccuracyWarning`.
+    /// Per flexure joint, by name: `stress` {max, at} (or `curvature_max` for one given by ei),
+    /// `safety_factor` for one with `yield_strength` (left out while unstressed; below 1 it warns
+    /// `YieldWarning`) and `shape` (a structured array, as `Flexure.shape`) for one with `shape`;
+    /// each map left out when empty.
     #[pyo3(signature = (accuracy=None))]
     fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let target = self::accuracy(accuracy)?;
@@ -732,12 +920,35 @@ impl Mechanism {
                 }
             }
         }
+        let keys = ["stress", "curvature_max", "safety_factor", "shape"];
+        let maps = keys.map(|_| PyDict::new(py));
+        for j in &m.joints {
+            let JointKind::Flexure(f) = &j.kind else { continue };
+            let q = &s.q[j.offset..j.offset + f.order()];
+            let report = self.reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
+            let (key, peak) = peak_item(py, f, q)?;
+            maps[if key == "stress" { 0 } else { 1 }].set_item(&j.name, peak)?;
+            if let Some(strength) = report.yield_strength {
+                let what = format!("Mechanism.solve, flexure joint '{}'", j.name);
+                if let Some((_, factor)) = stress::safety_factor(py, f, q, strength, &what, 2)? {
+                    maps[2].set_item(&j.name, factor)?;
+                }
+            }
+            if let Some(k) = report.shape {
+                maps[3].set_item(&j.name, stress::shape(py, f, q, k)?)?;
+            }
+        }
         let out = PyDict::new(py);
         out.set_item("bodies", bodies)?;
         out.set_item("coordinates", coordinates)?;
         out.set_item("energy", s.energy)?;
         out.set_item("stable", s.stable)?;
         out.set_item("estimates", estimates)?;
+        for (key, map) in keys.into_iter().zip(maps) {
+            if !map.is_empty() {
+                out.set_item(key, map)?;
+            }
+        }
         if let Some(limit) = s.limit {
             // A snap-through: the stable answer beyond a limit load, which the caller must know of.
             out.set_item("limit_fraction", limit)?;
@@ -766,5 +977,6 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
     m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;
+    m.add("YieldWarning", m.py().get_type::<YieldWarning>())?;
     Ok(())
 }

@@ -34,6 +34,11 @@
 //!   curvature coefficients in the shifted-Legendre basis (Eq. 8, any
 //!   order): $\hat\omega(\alpha, s) = \frac1L\sum_i \alpha_i \tilde P_{i-1}(s/L)$.
 //!   The rest shape $\kappa$ uses the same basis; $\alpha_1$ is the tip angle.
+//! - **Sections**: a quantity along a flexure ([`section::Profile`]) is a
+//!   function of $t = s/L \in [0, 1]$, measured from the root; a notch's
+//!   radius and least thickness are in metres. Bending stress is the outer
+//!   fibre's, $\sigma = E^{\prime}\frac h2\lvert\hat\omega - \hat\omega_0\rvert$, in pascals
+//!   and never negative ([`stress`]); a peak's `at` is metres from the root.
 //! - **Paper corrections** (`ERRATA.md`): the energy Hessian is
 //!   $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$; the clamped–pinned
 //!   Euler load is $20.1907\thinspace EI/L^2$; a tendon's potential is

@@ -75,11 +75,14 @@ impl Profile {
     pub fn at(&self, t: f64) -> f64 {
         match self {
             Profile::Constant(v) => *v,
-            Profile::Linear { root, tip } => root + t * (tip - root),
+            // Weighted, not root + t·(tip − root): exact at both ends
+            // however different the two values are.
+            Profile::Linear { root, tip } => (1.0 - t) * root + t * tip,
             Profile::Table(points) => {
                 let k = points.partition_point(|p| p[0] <= t).clamp(1, points.len() - 1);
                 let ([t0, v0], [t1, v1]) = (points[k - 1], points[k]);
-                v0 + (t - t0) / (t1 - t0) * (v1 - v0)
+                let w = (t - t0) / (t1 - t0);
+                (1.0 - w) * v0 + w * v1
             }
         }
     }

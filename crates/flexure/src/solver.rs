@@ -73,6 +73,24 @@ pub trait Problem<T: Scalar> {
         false
     }
 
+    /// Factors $\partial_x r$ (the `jacobian` of the last evaluation) by
+    /// the problem's own structure, for [`Problem::solve_factored`]; a
+    /// mechanism's tree, for one, factors in $O(n)$ where dense LU costs
+    /// $O(n^3)$. The default, `false`, leaves the solver to its dense LU,
+    /// as does a `false` answer (a singular pivot). The solver checks
+    /// every structured solve by its residual against the dense matrix
+    /// (and falls back to LU if it is not accurate), solves bordered
+    /// systems by block elimination with two such solves, and factors
+    /// again before each use: [`Problem::stable`] and
+    /// [`Problem::far_from_instability`] may use the same buffers.
+    fn factor(&mut self, _jacobian: &[T]) -> bool {
+        false
+    }
+
+    /// Solves $\partial_x r\thinspace y = b$ in place (`b` in, $y$ out) with
+    /// the last factorization for which [`Problem::factor`] returned `true`.
+    fn solve_factored(&mut self, _b: &mut [T]) {}
+
     /// How far apart two states are, in radians: the largest rotation of a
     /// cross-section or body between them. Bounds the continuation's steps.
     fn distance(&self, a: &[T], b: &[T]) -> f64;
@@ -201,6 +219,15 @@ pub struct Workspace<T: Scalar> {
     pub limit: Option<f64>,
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
+    /// Set by a caller that has just converged `x` at $\lambda = 0$ by
+    /// [`newton`] on the same problem and tested its stability (the value):
+    /// the next [`continuation`] then starts from `x` as it stands, with the
+    /// Jacobian and load derivative that solve left, instead of solving and
+    /// testing again. Every continuation resets it; it is ignored unless
+    /// the last call on this workspace was that [`newton`] at $\lambda = 0$.
+    pub start_stable: Option<bool>,
+    /// What the last [`newton`] reached, if it was at $\lambda = 0$.
+    start: Option<NewtonReport>,
     dlambda: Vec<T>,
     /// Augmented $(n+1)$ system and its factors.
     matrix: Vec<T>,
@@ -213,6 +240,8 @@ pub struct Workspace<T: Scalar> {
     previous_tangent: Vec<T>,
     anchor: Vec<T>,
     scratch: Vec<T>,
+    /// Five vectors of length $n+1$ for structured solves ([`Problem::factor`]).
+    aux: Vec<T>,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -226,6 +255,8 @@ impl<T: Scalar> Workspace<T> {
             lambda: 0.0,
             limit: None,
             jacobian: vec![z; n * n],
+            start_stable: None,
+            start: None,
             dlambda: vec![z; n],
             matrix: vec![z; m * m],
             pivots: vec![0; m],
@@ -236,6 +267,7 @@ impl<T: Scalar> Workspace<T> {
             previous_tangent: vec![z; m],
             anchor: vec![z; m],
             scratch: vec![z; m * m],
+            aux: vec![z; 5 * m],
         }
     }
 
@@ -337,7 +369,9 @@ fn correct<T: Scalar, P: Problem<T>>(
     };
     let tolerance = settings.tolerance * problem.scale();
     let (name, unit) = (problem.name(), problem.unit());
-    let Workspace { trial, trial_residual, jacobian, dlambda, matrix, pivots, step, tangent, anchor, scratch, .. } = ws;
+    let Workspace {
+        trial, trial_residual, jacobian, dlambda, matrix, pivots, step, tangent, anchor, scratch, aux, ..
+    } = ws;
     let matrix = &mut matrix[..m * m];
     let sys = |problem: &mut P, z: &[T], r: &mut [T], jac: Option<(&mut [T], &mut [T], &mut [T])>| {
         system(problem, mode, z, lambda, tangent, anchor, lambda_weight, r, jac)
@@ -357,28 +391,34 @@ fn correct<T: Scalar, P: Problem<T>>(
         if iteration == settings.max_iterations || !residual.is_finite() {
             return Err(fail(iteration));
         }
-        // Newton step; a singular matrix (a free motion, a bifurcation
-        // point) is shifted along its diagonal until it factors.
-        let diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-        let mut shift = 0.0;
-        loop {
-            scratch_copy(matrix, scratch, m, shift * diag);
-            if linalg::lu(&mut scratch[..m * m], m, &mut pivots[..m]) {
-                break;
-            }
-            shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
-            if shift > 1e2 {
-                return Err(Error::Singular {
-                    what: format!(
-                        "{name}: the Newton matrix is singular after {iteration} iterations (residual {residual:.3e} {unit}): a motion nothing resists, or constraints that cannot all be met"
-                    ),
-                });
-            }
-        }
         for (s, r) in step[..m].iter_mut().zip(&trial_residual[..m]) {
             *s = -*r;
         }
-        linalg::lu_solve(&scratch[..m * m], m, &pivots[..m], &mut step[..m]);
+        // Newton step: by the problem's own factorization if it has one;
+        // else by LU, where a singular matrix (a free motion, a bifurcation
+        // point) is shifted along its diagonal until it factors.
+        if !(problem.factor(jacobian) && structured_solve(problem, matrix, n, m, &mut step[..m], aux)) {
+            let diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+            let mut shift = 0.0;
+            loop {
+                scratch_copy(matrix, scratch, m, shift * diag);
+                if linalg::lu(&mut scratch[..m * m], m, &mut pivots[..m]) {
+                    break;
+                }
+                shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
+                if shift > 1e2 {
+                    return Err(Error::Singular {
+                        what: format!(
+                            "{name}: the Newton matrix is singular after {iteration} iterations (residual {residual:.3e} {unit}): a motion nothing resists, or constraints that cannot all be met"
+                        ),
+                    });
+                }
+            }
+            for (s, r) in step[..m].iter_mut().zip(&trial_residual[..m]) {
+                *s = -*r;
+            }
+            linalg::lu_solve(&scratch[..m * m], m, &pivots[..m], &mut step[..m]);
+        }
         if contraction {
             // A continuation step must land in the quadratic basin of the
             // branch it follows (Deuflhard's contraction test): the second
@@ -442,6 +482,111 @@ pub const FAR_STEP: f64 = 4.0;
 /// continuation step accepts: Deuflhard's $\bar\Theta = 1/2$.
 const CONTRACTION: f64 = 0.5;
 
+/// The largest componentwise backward error (Oettli–Prager) a structured
+/// solve may leave, after at most one step of iterative refinement, before
+/// the solver falls back to dense LU: a Newton step this accurate still
+/// cuts the residual by $10^{11}$, well past the default tolerance.
+const STRUCTURED_ERROR: f64 = 1e-11;
+
+/// Solves `matrix` $\cdot y$ = `y` in place ($m\times m$, column-major),
+/// whose top-left $n\times n$ block is $\partial_x r$, just factored by
+/// the problem: directly when $m = n$; when $m = n + 1$ by block
+/// elimination of the border,
+/// $$\begin{bmatrix} J & c\cr b^T & e\end{bmatrix}\begin{bmatrix} x\cr y_\lambda\end{bmatrix}
+/// = \begin{bmatrix} f\cr g\end{bmatrix}:\quad J a = f,\ J w = c,\
+/// y_\lambda = \frac{g - b^Ta}{e - b^Tw},\ x = a - y_\lambda w.$$
+/// Block elimination loses accuracy near a fold, where $J$ is nearly
+/// singular: the answer is checked against `matrix`, refined once if
+/// needed, and refused (`false`, `y` unspecified) unless its
+/// componentwise backward error is at most [`STRUCTURED_ERROR`]. `aux`
+/// holds $5m$ values.
+fn structured_solve<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    matrix: &[T],
+    n: usize,
+    m: usize,
+    y: &mut [T],
+    aux: &mut [T],
+) -> bool {
+    let (rhs, rest) = aux.split_at_mut(m);
+    let (correction, rest) = rest.split_at_mut(m);
+    let (bound, work) = rest.split_at_mut(m);
+    rhs.copy_from_slice(&y[..m]);
+    if !bordered(problem, matrix, n, m, y, work) {
+        return false;
+    }
+    for refinement in 0..2 {
+        // correction = rhs − M y, and the Oettli–Prager bound |M||y| + |rhs|.
+        for i in 0..m {
+            correction[i] = rhs[i];
+            bound[i] = T::c(rhs[i].re().abs());
+        }
+        for c in 0..m {
+            let yc = y[c];
+            for r in 0..m {
+                let a = matrix[c * m + r];
+                correction[r] -= a * yc;
+                bound[r] += T::c((a.re() * yc.re()).abs());
+            }
+        }
+        let mut error = 0.0_f64;
+        for i in 0..m {
+            let (c, b) = (correction[i].re().abs(), bound[i].re());
+            if !(c.is_finite() && b.is_finite()) {
+                return false;
+            }
+            if c > 0.0 {
+                error = error.max(c / b);
+            }
+        }
+        if error <= STRUCTURED_ERROR {
+            return true;
+        }
+        if refinement == 1 || !bordered(problem, matrix, n, m, correction, work) {
+            return false;
+        }
+        for i in 0..m {
+            y[i] += correction[i];
+        }
+    }
+    false
+}
+
+/// One structured solve of [`structured_solve`]'s system, in place; `work` holds $2m$ values.
+fn bordered<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    matrix: &[T],
+    n: usize,
+    m: usize,
+    y: &mut [T],
+    work: &mut [T],
+) -> bool {
+    if m == n {
+        problem.solve_factored(&mut y[..n]);
+        return y[..n].iter().all(|v| v.re().is_finite());
+    }
+    let (a, w) = work.split_at_mut(m);
+    a[..n].copy_from_slice(&y[..n]);
+    problem.solve_factored(&mut a[..n]);
+    w[..n].copy_from_slice(&matrix[n * m..n * m + n]);
+    problem.solve_factored(&mut w[..n]);
+    let (mut ba, mut bw) = (T::zero(), T::zero());
+    for i in 0..n {
+        ba += matrix[i * m + n] * a[i];
+        bw += matrix[i * m + n] * w[i];
+    }
+    let den = matrix[n * m + n] - bw;
+    if !(den.re().is_finite() && den.re() != 0.0) {
+        return false;
+    }
+    let last = (y[n] - ba) / den;
+    for i in 0..n {
+        y[i] = a[i] - w[i] * last;
+    }
+    y[n] = last;
+    y[..m].iter().all(|v| v.re().is_finite())
+}
+
 fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64) {
     scratch[..m * m].copy_from_slice(matrix);
     if shift != 0.0 {
@@ -466,11 +611,13 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     settings.validate()?;
     check_dim(problem, ws)?;
     let n = ws.n;
+    ws.start = None;
     ws.trial[..n].copy_from_slice(&ws.x);
     let min_iterations = if T::is_value() { 0 } else { 1 };
     let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false)?;
     ws.x.copy_from_slice(&ws.trial[..n]);
     ws.lambda = lambda;
+    ws.start = (lambda == 0.0).then_some(report);
     Ok(report)
 }
 
@@ -534,16 +681,28 @@ fn follow<T: Scalar, P: Problem<T>>(
     let n = ws.n;
     let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
     ws.limit = None;
-    // The start: converge at λ = 0 (the rest state, or the assembled one).
-    let start = newton(problem, ws, 0.0, settings)?;
+    // The start: converge at λ = 0 (the rest state, or the assembled one),
+    // unless the caller just did and says how stable it is.
+    let known = ws.start_stable.take().zip(ws.start.take());
+    let start = match known {
+        Some((stable, report)) => {
+            path.stable = stable;
+            report
+        }
+        None => {
+            let report = newton(problem, ws, 0.0, settings)?;
+            path.stable = problem.stable(&ws.x, 0.0, &ws.jacobian);
+            report
+        }
+    };
+    ws.start = None;
     path.iterations += start.iterations;
     path.residual = start.residual;
-    path.stable = problem.stable(&ws.x, 0.0, &ws.jacobian);
     let mut lambda = 0.0_f64;
     // The first tangent: dx/dλ = −J⁻¹ ∂r/∂λ, bordered with (0, …, 0, 1).
     ws.previous_tangent.fill(T::zero());
     ws.previous_tangent[n] = T::one();
-    if !tangent(ws, problem, 1.0) {
+    if !tangent(ws, &mut *problem, 1.0) {
         return Err(Error::Singular {
             what: format!("{}: the rest state has a zero-stiffness mode along the load", problem.name()),
         });
@@ -632,16 +791,27 @@ fn follow<T: Scalar, P: Problem<T>>(
         };
         // Stability of the new state, and the tangent there (to tell a fold).
         let stable = problem.stable(&ws.trial[..n], new_lambda, &ws.jacobian);
-        let next_far = stable && problem.far_from_instability(&ws.trial[..n], new_lambda, &ws.jacobian);
         let taken = if landing { (1.0 - lambda) / t_lambda } else { h };
+        // Far from instability matters for a long step and for the next one (none after landing).
+        let next_far = (taken > ordinary || !landing)
+            && stable
+            && problem.far_from_instability(&ws.trial[..n], new_lambda, &ws.jacobian);
         if taken > ordinary && !next_far {
             // A long step may only cross ground far from instability.
             h = ordinary;
             continue;
         }
+        if landing && stable == path.stable {
+            // The end, on the same side of stability: no fold or limit to read, no next tangent.
+            ws.x.copy_from_slice(&ws.trial[..n]);
+            path.steps += 1;
+            path.residual = report.residual;
+            ws.lambda = 1.0;
+            return Ok(path);
+        }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
-        let has_tangent = tangent(ws, problem, lambda_weight);
+        let has_tangent = tangent(ws, &mut *problem, lambda_weight);
         let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
         if fold && problem.distance(&ws.trial[..n], &ws.x) > FOLD_ROTATION && h * 0.5 >= min_step {
             // Long steps are fine along the path, but the limit load is
@@ -778,7 +948,7 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
 /// derivative in `ws`), oriented along `ws.previous_tangent`:
 /// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\thinspace t = (0, 1)$.
 /// False where that bordered matrix is singular.
-fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> bool {
+fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &mut P, lambda_weight: f64) -> bool {
     let n = ws.n;
     let m = n + 1;
     for c in 0..n {
@@ -787,6 +957,13 @@ fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_
     }
     ws.matrix[n * m..n * m + n].copy_from_slice(&ws.dlambda);
     ws.matrix[n * m + n] = ws.previous_tangent[n] * T::c(lambda_weight * lambda_weight);
+    ws.tangent.fill(T::zero());
+    ws.tangent[n] = T::one();
+    if problem.factor(&ws.jacobian)
+        && structured_solve(problem, &ws.matrix[..m * m], n, m, &mut ws.tangent, &mut ws.aux)
+    {
+        return ws.tangent.iter().all(|t| t.re().is_finite());
+    }
     if !linalg::lu(&mut ws.matrix[..m * m], m, &mut ws.pivots[..m]) {
         return false;
     }

@@ -29,6 +29,7 @@ mod ode;
 mod quadrature;
 mod reference;
 mod section;
+mod section_exact;
 mod segments;
 mod sincos;
 mod solver;

@@ -64,10 +64,12 @@ fn evaluation_path_does_not_allocate() {
 /// A mechanism's Newton iterations allocate nothing once its problem and
 /// the solver's buffers exist: a whole `solver::newton` at the full load of
 /// a 4-flexure chain under a tip force (several iterations, each evaluating
-/// residual, Jacobian and load derivative) and its stability test (no
-/// closures: a Cholesky in the workspace), repeated from the rest state on
-/// warm buffers; and, for the parallelogram (closures), one evaluation with
-/// its Jacobian. Counted per call: any allocation fails the test.
+/// residual, Jacobian and load derivative, each step by the tree's
+/// factorization) and its stability test (no closures: the tree's pivots),
+/// repeated from the rest state on warm buffers, then a whole
+/// `solver::continuation` from rest; and, for the parallelogram (closures),
+/// one evaluation with its Jacobian. Counted per call: any allocation fails
+/// the test.
 #[test]
 fn mechanism_newton_does_not_allocate() {
     use flexure::mechanism::file::from_toml;
@@ -99,6 +101,17 @@ fn mechanism_newton_does_not_allocate() {
     let report = report.unwrap();
     assert!(report.iterations > 2 && stable, "a solve that iterates to a stable state: {report:?}");
     assert_eq!(n, 0, "chain: {n} allocations in {} Newton iterations", report.iterations);
+    // A whole continuation from rest on the same buffers: Newton steps and
+    // tangents by the tree's factorization, stability and far-from-instability
+    // tests on its pivots, step bounds.
+    let mut path = None;
+    let n = allocations(|| {
+        ws.x.copy_from_slice(&start);
+        path = Some(solver::continuation(&mut kkt, &mut ws, &settings).unwrap());
+    });
+    let path = path.unwrap();
+    assert!(path.stable && path.iterations >= 2, "a continuation that iterates: {path:?}");
+    assert_eq!(n, 0, "chain: {n} allocations in a continuation of {} steps", path.steps);
 
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
     let text = std::fs::read_to_string(path).unwrap().replace("force = [0.0, -1.0]", "force = [0.5, -1.0]");

@@ -265,3 +265,30 @@ fn bad_input_is_named() {
     assert_eq!(name(modes(&uniform(3, Some(1.0)), &none, Some(&bad), 1)), "com");
     assert_eq!(name(modes(&uniform(3, Some(1.0)), &compression(f64::NAN), None, 1)), "fx");
 }
+
+/// Non-uniform sections, distributed mass: a steel strip tapering 0.4 to 0.2 mm
+/// (EI ∝ h³, μ ∝ h, ρI ∝ h³) and a flexure whose mass per length is a table
+/// with kinks at t = 0.3 and 0.7 (integrated piecewise by both sides). The
+/// model at N = 16 against the exact shooting with EI(s), μ(s), ρI(s): the taper's
+/// three modes to 1e-11 (measured 2.4e-13); the table's kinks slow the
+/// convergence to algebraic (the exact shape's fourth derivative jumps there),
+/// its modes within 1e-6 (measured 3.6e-7 for the third).
+#[test]
+fn non_uniform_sections_against_the_exact_beam() {
+    let taper = Section::rectangle(200e9, None, Profile::Constant(0.01), Profile::Linear { root: 4e-4, tip: 2e-4 })
+        .unwrap()
+        .with_density(7850.0)
+        .unwrap();
+    let table = Section::given(Profile::Constant(1.0))
+        .unwrap()
+        .with_mass_per_length(Profile::Table(vec![[0.0, 1.0], [0.3, 2.0], [0.7, 0.5], [1.0, 1.0]]))
+        .unwrap();
+    for (name, section, length, tolerance) in [("taper", taper, 0.02, 1e-11), ("table", table, 1.0, 1e-6)] {
+        let f = Flexure::new(length, 1.0, 16).unwrap().with_section(section).unwrap();
+        let exact = frequencies(&f, None, 0.0, 3, &Default::default()).unwrap().omega;
+        let model = modes(&f, &TipLoad::default(), None, 3).unwrap().omega;
+        for (w, e) in model.iter().zip(&exact) {
+            assert!((w / e - 1.0).abs() < tolerance, "{name}: ω = {w} vs {e}");
+        }
+    }
+}

@@ -397,3 +397,171 @@ fn von_mises_truss_snaps_through() {
     let fraction = s.limit.unwrap();
     assert!((fraction / (limit / p) - 1.0).abs() < 2e-6, "{fraction} vs {}", limit / p);
 }
+
+/// A cantilever of length 1 m and EI = 1 N·m² cut into `count` flexures of
+/// order 1 (one constant-curvature arc each) in series, each welded tip to
+/// root through its own body, under a tip force `force` and moment.
+fn arc_chain(count: usize, force: [f64; 2], moment: f64) -> Mechanism {
+    let mut text = String::new();
+    for i in 0..count {
+        let parent = if i == 0 { "ground".to_string() } else { format!("b{}", i - 1) };
+        text += &format!("[[joint]]\nname = \"j{i}\"\nkind = \"flexure\"\nparent = \"{parent}\"\nchild = \"b{i}\"\n");
+        text += &format!("length = {}\nei = 1.0\norder = 1\n", 1.0 / count as f64);
+    }
+    text += &format!(
+        "[[force]]\nbody = \"b{}\"\nat = [0.0, 0.0]\nforce = [{}, {}]\nmoment = {moment}\n",
+        count - 1,
+        force[0],
+        force[1]
+    );
+    from_toml(&text).unwrap()
+}
+
+/// A chain of K one-arc flexures is the paper's K-segment flexure
+/// (`Flexure::segments`, Sec. II-E) of the same length: its coordinates are
+/// the segments' rotations. The mechanism (tree factorization, no
+/// closures) and the single flexure's `deflect` (dense, its own kinematics)
+/// agree to 1e-9 rad under tip loads that turn the tip from 0.64 to 1.65 rad,
+/// for K = 6 and 24 (both converge to 1e-12 of the load; the arcs'
+/// quadratures differ in rounding only).
+#[test]
+fn arc_chain_is_the_segmented_flexure() {
+    use flexure::{Statics, deflect};
+    for count in [6, 24] {
+        for (force, moment) in [([0.0, 1.5], 0.0), ([-1.0, 3.0], 0.5), ([0.5, -2.0], -1.5)] {
+            let m = arc_chain(count, force, moment);
+            let s = solve(&m, &Settings::default()).unwrap();
+            let f = Flexure::segments(1.0, 1.0, count).unwrap();
+            let mut data = Statics::new(&f);
+            let e =
+                deflect(&f, &TipLoad { moment, fx: force[0], fy: force[1] }, &mut data, &Default::default()).unwrap();
+            assert!(s.stable && e.stable);
+            let tip: f64 = s.q.iter().sum();
+            assert!(tip.abs() > 0.5, "a large deflection: {tip}");
+            for (a, b) in s.q.iter().zip(data.alpha()) {
+                assert!((a - b).abs() < 1e-9, "K = {count}, {force:?}: {a} vs {b}");
+            }
+        }
+    }
+}
+
+/// A chain of K one-arc flexures pushed along its axis loses stability at
+/// the K-segment flexure's buckling load (`buckling_load`, a generalized
+/// eigenproblem of its own): past it, `solve` reports the load fraction
+/// P_cr/P to the solver's limit precision (1e-6; the stability margin adds
+/// about 1e-6 more). The stability tests along the way are the tree's pivots.
+#[test]
+fn arc_chain_buckles_as_the_segmented_flexure() {
+    use flexure::{TipConstraint, buckling_load};
+    for count in [4, 16] {
+        let critical =
+            buckling_load(&Flexure::segments(1.0, 1.0, count).unwrap(), TipConstraint::Free).unwrap().critical_load;
+        let push = 1.5 * critical;
+        let m = arc_chain(count, [-push, 0.0], 0.0);
+        match solve(&m, &Settings::default()) {
+            Err(Error::Unstable { load_fraction, .. }) => {
+                assert!((load_fraction * push / critical - 1.0).abs() < 1e-5, "K = {count}: {load_fraction}")
+            }
+            other => panic!("K = {count}: expected a loss of stability, got {other:?}"),
+        }
+    }
+}
+
+/// The mechanism's problem with the solver's dense LU in place of the
+/// tree's factorization: every other answer (residual, stability, step
+/// bounds) is the mechanism's own.
+struct DenseLu<'a>(flexure::mechanism::statics::Kkt<'a>);
+
+impl flexure::solver::Problem<f64> for DenseLu<'_> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        residual: &mut [f64],
+        jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> flexure::Result<()> {
+        self.0.evaluate(x, lambda, residual, jacobian, dlambda)
+    }
+    fn stable(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        self.0.stable(x, lambda, jacobian)
+    }
+    fn far_from_instability(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        self.0.far_from_instability(x, lambda, jacobian)
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.0.distance(a, b)
+    }
+    fn scale(&self) -> f64 {
+        self.0.scale()
+    }
+    fn unit(&self) -> &'static str {
+        self.0.unit()
+    }
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    fn weight(&self, i: usize) -> f64 {
+        self.0.weight(i)
+    }
+}
+
+/// The continuation with the tree's factorization (Newton steps, bordered
+/// corrector and tangent by block elimination) follows the same path as
+/// with dense LU: chains of 3 and 30 order-3 flexures (L = 1 m, EI = 1)
+/// under tip loads that take one to eight steps, and an axial push of 4 N
+/// past buckling (at 0.617 of it, where both lose stability). Same steps,
+/// same stability and limit, end states equal to 1e-10 rad
+/// (both converge to 1e-12 of the load; the factorizations differ in
+/// rounding only).
+#[test]
+fn tree_factorization_follows_the_dense_path() {
+    use flexure::mechanism::statics::Kkt;
+    use flexure::solver::{self, Problem};
+    for count in [3, 30] {
+        for (force, moment) in [([0.0, 2.0], 0.0), ([-3.0, 6.0], 1.0), ([-4.0, 0.1], 0.0), ([-4.0, 0.0], 0.0)] {
+            let mut text = String::new();
+            for i in 0..count {
+                let parent = if i == 0 { "ground".to_string() } else { format!("b{}", i - 1) };
+                text += &format!(
+                    "[[joint]]\nname = \"j{i}\"\nkind = \"flexure\"\nparent = \"{parent}\"\nchild = \"b{i}\"\n"
+                );
+                text += &format!("length = {}\nei = 1.0\n", 1.0 / count as f64);
+            }
+            text += &format!(
+                "[[force]]\nbody = \"b{}\"\nat = [0.0, 0.0]\nforce = [{}, {}]\nmoment = {moment}\n",
+                count - 1,
+                force[0],
+                force[1]
+            );
+            let m = from_toml(&text).unwrap();
+            let settings = Settings::default();
+            let zero = m.loads().zero_like();
+            let run = |dense: bool| {
+                let kkt = Kkt::new(&m, &zero, &m.loads(), &settings).unwrap();
+                let mut ws = solver::Workspace::new(kkt.dim());
+                ws.x.copy_from_slice(&kkt.state(&m.rest(), &[]));
+                let path = if dense {
+                    solver::continuation(&mut DenseLu(kkt), &mut ws, &settings)
+                } else {
+                    solver::continuation(&mut { kkt }, &mut ws, &settings)
+                };
+                (path.unwrap(), ws.x)
+            };
+            let ((tree, x), (dense, y)) = (run(false), run(true));
+            let what = format!("{count} flexures, {force:?}, {moment}");
+            assert_eq!((tree.steps, tree.stable), (dense.steps, dense.stable), "{what}");
+            match (tree.limit, dense.limit) {
+                (None, None) => {}
+                (Some(a), Some(b)) => assert!((a - b).abs() < 1e-12, "{what}: limits {a} and {b}"),
+                other => panic!("{what}: limits {other:?}"),
+            }
+            for (a, b) in x.iter().zip(&y) {
+                assert!((a - b).abs() < 1e-10, "{what}: {a} vs {b}");
+            }
+        }
+    }
+}

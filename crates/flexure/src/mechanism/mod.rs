@@ -15,6 +15,7 @@ pub mod kinematics;
 pub mod lagrangian;
 pub mod statics;
 pub mod sweep;
+mod tree;
 
 use crate::kinematics::Pose;
 pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};

@@ -38,7 +38,10 @@
 
 use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
-use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
+use super::lagrangian::{
+    Assembly, add_closures, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian,
+};
+use super::tree::Tree;
 use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
@@ -89,6 +92,10 @@ pub const PROBE_STEPS: usize = 100;
 /// The shift of the multiplier block of the Newton matrix (see the module docs).
 const MULTIPLIER_SHIFT: f64 = 1e-10;
 
+/// The share of the joints' elastic stiffness a state must keep to count
+/// as far from instability ([`solver::Problem::far_from_instability`]).
+const FAR_MARGIN: f64 = 0.5;
+
 /// The reusable buffers of a mechanism's equilibrium problem (the Data;
 /// the [`Mechanism`] is the Model): frames, the assembled Lagrangian, the
 /// load derivative and the stability test's matrices. Once made by
@@ -109,6 +116,10 @@ pub struct Workspace {
     scratch: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
     angles: RefCell<[Vec<f64>; 2]>,
+    /// The tree's $O(n)$ factorization of the Hessian ([`super::tree`]).
+    tree: Tree,
+    /// The joint of each coordinate.
+    joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     solver: Option<solver::Workspace<f64>>,
 }
@@ -128,6 +139,13 @@ impl Workspace {
             stiffness: vec![0.0; n * n],
             scratch: vec![0.0; n * n],
             angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
+            tree: Tree::new(m),
+            joint_of: m
+                .joints
+                .iter()
+                .enumerate()
+                .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
+                .collect(),
             solver: None,
         }
     }
@@ -176,6 +194,10 @@ pub struct Kkt<'a> {
     scale: f64,
     /// Smallest relative stiffness of a stable state.
     margin: f64,
+    /// Whether the Hessian has the tree's form ([`super::tree`]): no
+    /// closures, no tendons. Then Newton steps, tangents and stability
+    /// tests factor in $O(n)$.
+    tree: bool,
     work: Workspace,
 }
 
@@ -267,6 +289,7 @@ impl<'a> Kkt<'a> {
             length,
             scale,
             margin: settings.tolerance.sqrt(),
+            tree: m.closures.is_empty() && m.tendons.is_empty(),
             work,
         })
     }
@@ -367,6 +390,25 @@ impl solver::Problem<f64> for Kkt<'_> {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
+        if rows == 0 && self.tree {
+            // Z = I, and the tree's pivots: positive_definite's test of the
+            // matrix below, in O(n).
+            let Workspace { tree, scratch, .. } = &mut self.work;
+            let s = &mut scratch[..n];
+            for (s, r) in s.iter_mut().zip(&self.row_scale) {
+                *s = r.sqrt();
+            }
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
+            let scale = (0..n).map(|i| scaled(i, i) - self.margin).fold(0.0_f64, f64::max);
+            if n == 0 {
+                return true;
+            }
+            if !(scale > 0.0 && scale.is_finite()) {
+                return false;
+            }
+            let shift = self.margin + 1e-12 * scale;
+            return tree.factor(|r, c| scaled(r, c) - if r == c { shift } else { 0.0 }, s, true) == Some(true);
+        }
         if rows == 0 {
             // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
             let Workspace { stiffness: k, scratch, .. } = &mut self.work;
@@ -382,7 +424,8 @@ impl solver::Problem<f64> for Kkt<'_> {
         }
         let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
         let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
-        if rows > 0 {
+        // settle changes nothing where G has full row rank: skip its frames.
+        if rows > 0 && !full_row_rank(&g) {
             let mu = self.multipliers(x);
             let Workspace { frames: f, loads, .. } = &mut self.work;
             frames_into(m, &x[..n], f);
@@ -403,6 +446,53 @@ impl solver::Problem<f64> for Kkt<'_> {
             k[(i, i)] -= self.margin;
         }
         linalg::is_positive_definite(&k)
+    }
+
+    /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
+    /// the joints' elastic stiffness (as a single flexure's
+    /// [`crate::statics`] does), by the tree's pivots or by Cholesky.
+    fn far_from_instability(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let n = m.dof();
+        if m.constraints() > 0 || n == 0 {
+            return false;
+        }
+        let Workspace { tree, frames, stiffness, joint_of, .. } = &mut self.work;
+        let elastic = |r: usize, c: usize| {
+            let j = joint_of[r];
+            if joint_of[c] != j {
+                return 0.0;
+            }
+            let o = m.joints[j].offset;
+            frames.joints[j].stiffness[(r - o, c - o)]
+        };
+        let entry = |r: usize, c: usize| jacobian[c * n + r] / self.row_scale[r] - FAR_MARGIN * elastic(r, c);
+        if self.tree {
+            return tree.factor(entry, &[], true) == Some(true);
+        }
+        for c in 0..n {
+            for r in 0..n {
+                stiffness[c * n + r] = entry(r, c);
+            }
+        }
+        linalg::cholesky(stiffness, n)
+    }
+
+    fn factor(&mut self, jacobian: &[f64]) -> bool {
+        let n = self.mechanism.dof();
+        if !self.tree || n == 0 {
+            return false;
+        }
+        let rows = &self.row_scale;
+        self.work.tree.factor(|r, c| jacobian[c * n + r] / rows[r], &[], false).is_some()
+    }
+
+    fn solve_factored(&mut self, b: &mut [f64]) {
+        // ∂r/∂q = diag(row_scale) ∇²V.
+        for (b, r) in b.iter_mut().zip(&self.row_scale) {
+            *b /= r;
+        }
+        self.work.tree.solve(b);
     }
 
     /// The largest rotation of a body, or of a flexure's cross-section
@@ -463,13 +553,16 @@ pub(super) fn constrained(h: &DMatrix<f64>, z: &DMatrix<f64>) -> DMatrix<f64> {
     (&k + k.transpose()) * 0.5
 }
 
-/// The solution the solver left in `ws`.
-fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> Result<Solution> {
+/// The solution at the unknowns `x` under `loads`, computed in the
+/// problem's buffers.
+fn solution(problem: &mut Kkt, x: &[f64], loads: &Loads, path: &solver::Path) -> Result<Solution> {
     let m = problem.mechanism;
-    let q = ws.x[..m.dof()].to_vec();
-    let f = frames(m, &q);
-    let (_, g) = closures(m, &f);
-    let multipliers = settle(m, &f, &g, &problem.multipliers(&ws.x), &problem.to);
+    let q = x[..m.dof()].to_vec();
+    let mu = problem.multipliers(x);
+    let Workspace { frames: f, assembly: a, .. } = &mut problem.work;
+    frames_into(m, &q, f);
+    add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
+    let multipliers = settle(m, f, &a.closure_jacobian, &mu, loads);
     // + 0.0: an empty sum is −0.
     let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
@@ -478,7 +571,7 @@ fn solution(problem: &Kkt, ws: &solver::Workspace<f64>, path: &solver::Path) -> 
     Ok(Solution {
         q,
         multipliers,
-        loads: problem.to.clone(),
+        loads: loads.clone(),
         energy,
         stable: path.stable,
         limit: path.limit,
@@ -510,6 +603,18 @@ fn solve_between_in(
     work: &mut Workspace,
 ) -> Result<Solution> {
     let found = follow_in(m, start, to, settings, work);
+    refine_limit(m, start, to, settings, found)
+}
+
+/// The path from `start` to `to` as [`solve_between`] reports it, from
+/// what [`follow`] `found`: a lost stability's load fraction refined by bisection.
+fn refine_limit(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    found: Result<Solution>,
+) -> Result<Solution> {
     let lost = match &found {
         Ok(s) => s.limit.is_some(),
         Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
@@ -562,7 +667,10 @@ fn follow_path(
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     match solver::continuation(problem, ws, settings) {
-        Ok(path) if path.stable => solution(problem, ws, &path),
+        Ok(path) if path.stable => {
+            let to = problem.to.clone();
+            solution(problem, &ws.x, &to, &path)
+        }
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
@@ -642,11 +750,21 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
     let zero = m.loads().zero_like();
     let mut problem = Kkt::with_workspace(m, &zero, &zero, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    let found = assemble(&mut problem, &mut ws, settings);
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    found
+}
+
+/// The unloaded, assembled configuration, by Newton from rest on the
+/// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
+fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+    let m = problem.mechanism;
     ws.x.fill(0.0);
     ws.x.iter_mut().zip(m.joints.iter().flat_map(|j| j.kind.joint().rest())).for_each(|(x, q)| *x = q);
-    let found = match solver::newton(&mut problem, &mut ws, 0.0, settings) {
+    match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
-            let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
+            let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
             let path = solver::Path {
                 stable,
                 limit: None,
@@ -654,14 +772,12 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
                 iterations: report.iterations,
                 residual: report.residual,
             };
-            solution(&problem, &ws, &path)
+            let from = problem.from.clone();
+            solution(problem, &ws.x, &from, &path)
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
-    };
-    *work = problem.into_workspace();
-    work.solver = Some(ws);
-    found
+    }
 }
 
 /// The error for closures that Newton could not close from rest: placed at
@@ -734,11 +850,20 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     if !work.fits(m) {
         *work = Workspace::new(m);
     }
-    let start = assemble_in(m, settings, work)?;
-    if !work.fits(m) {
-        *work = Workspace::new(m);
-    }
-    solve_between_in(m, &start, &m.loads(), settings, work)
+    // One problem from no load to the full load: assembled at λ = 0, then
+    // continued from there without a second solve or stability test.
+    let to = m.loads();
+    let mut problem = Kkt::with_workspace(m, &to.zero_like(), &to, settings, std::mem::take(work))?;
+    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    let found = assemble(&mut problem, &mut ws, settings).map(|start| {
+        ws.start_stable = Some(start.stable);
+        let found = follow_path(m, &start, &mut problem, &mut ws, settings);
+        (start, found)
+    });
+    *work = problem.into_workspace();
+    work.solver = Some(ws);
+    let (start, found) = found?;
+    refine_limit(m, &start, &to, settings, found)
 }
 
 /// Frames of the solution.

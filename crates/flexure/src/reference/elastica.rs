@@ -4,10 +4,11 @@
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::Pose;
-use crate::ode::{Tolerance, integrate, integrate_from};
+use crate::ode::{Tolerance, integrate_through};
 use crate::scalar::Scalar;
 use crate::solver::{self, Problem};
 use crate::statics::TipLoad;
+use crate::stress::Peak;
 use nalgebra::Const;
 use num_dual::DualSVec64;
 
@@ -86,9 +87,10 @@ pub struct Solution {
 }
 
 /// Integrates Eq. 3 from the clamped root, $\phi(0) = x(0) = y(0) = 0$, with
-/// $\phi^{\prime} = \omega_0(s) + (M_0 - F_y x + F_x y)/EI$: the internal moment of a
+/// $\phi^{\prime} = \omega_0(s) + (M_0 - F_y x + F_x y)/EI(s)$: the internal moment of a
 /// beam carrying tip force $(F_x, F_y)$ and root moment $M_0$.
-/// Returns $(\phi, x, y)$ at $s = L$; `observe` sees every accepted step.
+/// Returns $(\phi, x, y)$ at $s = L$; `observe` sees every accepted step
+/// (the integration restarts at the section's breakpoints).
 pub fn shoot<T: Scalar>(
     flexure: &Flexure,
     root_moment: T,
@@ -97,14 +99,16 @@ pub fn shoot<T: Scalar>(
     tol: &Tolerance,
     observe: impl FnMut(f64, &[T; 3]),
 ) -> Result<[T; 3]> {
-    integrate(rhs(flexure, root_moment, fx, fy), 0.0, flexure.length(), [T::zero(); 3], tol, observe)
+    let (l, stops) = (flexure.length(), super::stops(flexure));
+    integrate_through(rhs(flexure, root_moment, fx, fy), 0.0, l, &stops, [T::zero(); 3], tol, &mut 0.0, observe)
 }
 
 /// The right-hand side of Eq. 3 for [`shoot`].
 fn rhs<T: Scalar>(flexure: &Flexure, root_moment: T, fx: T, fy: T) -> impl FnMut(f64, &[T; 3]) -> [T; 3] {
-    let (ei, kappa) = (T::c(flexure.ei()), flexure.rest());
+    let kappa = flexure.rest();
     move |s: f64, y: &[T; 3]| {
         let (sn, cs) = y[0].sin_cos();
+        let ei = T::c(flexure.ei_at(s));
         [T::c(flexure.curvature(kappa, s)) + (root_moment - fy * y[1] + fx * y[2]) / ei, cs, sn]
     }
 }
@@ -114,7 +118,8 @@ fn rhs<T: Scalar>(flexure: &Flexure, root_moment: T, fx: T, fy: T) -> impl FnMut
 const MIN_SEGMENTS: usize = 4;
 
 /// The largest $L\sqrt{|F|/EI}$ [`deflect`] accepts (a force of $10^4 EI/L^2$,
-/// four thousand times Euler's load), one segment per unit of it. Beyond,
+/// four thousand times Euler's load), one segment per unit of it; with
+/// $EI(s)$, the largest $\int_0^L\sqrt{|F|/EI(s)}\thinspace ds$. Beyond,
 /// shooting a beam in tension is too sensitive (in a sweep of forces from
 /// $10^4$ to $10^5 EI/L^2$, 2 % failed and one took 14 s).
 pub const MAX_FORCE_GROWTH: f64 = 100.0;
@@ -156,33 +161,43 @@ impl Jacobi {
 /// The tip-load elastica by multiple shooting, as a [`Problem`].
 ///
 /// Along the beam Eq. 3 reads, with the bending moment $m(s)$ scaled to a
-/// rotation $\mu = mL/EI$, under the load $\lambda(M, F_x, F_y)$,
-/// $$\phi^{\prime} = \omega_0(s) + \mu/L, \qquad \mu^{\prime} = \tfrac{L}{EI}\lambda(F_x\sin\phi - F_y\cos\phi),$$
+/// rotation $\mu = m/k$ by $k = \overline{EI}/L$ (the mean stiffness), under the
+/// load $\lambda(M, F_x, F_y)$,
+/// $$\phi^{\prime} = \omega_0(s) + \frac{k\mu}{EI(s)}, \qquad \mu^{\prime} = \tfrac{1}{k}\lambda(F_x\sin\phi - F_y\cos\phi),$$
 /// with $\phi(0) = 0$ (clamped) and $m(L) = \lambda M$ (the tip moment).
-/// The beam is cut into $N$ equal segments; the unknowns are the root's
+/// The beam is cut into $N$ segments, equal in $\tau = \int EI^{-1/2} ds$
+/// (equal in $s$ for a uniform beam), and each segment's integration
+/// restarts at the section's breakpoints; the unknowns are the root's
 /// $\mu_0$, the angle and moment $(\phi_j, \mu_j)$ at the inner nodes and the
 /// tip angle $\phi_N$; the residuals (N·m) are the mismatches at each node
-/// of the segment arriving there, $\tfrac{EI}{L}(\phi^-_{j} - \phi_j)$ and
-/// $\tfrac{EI}{L}(\mu^-_j - \mu_j)$, the last one being $m^-(L) - \lambda M$.
+/// of the segment arriving there, $k(\phi^-_{j} - \phi_j)$ and
+/// $k(\mu^-_j - \mu_j)$, the last one being $m^-(L) - \lambda M$.
 ///
 /// Why segments: a beam pulled along its length (the end of a cantilever
 /// under a large transverse force, a buckled column) makes shooting from the
 /// root sensitive like $e^{L\sqrt{|F|/EI}}$, so that Newton's basin shrinks
 /// with the load and its wild iterates (coiled shapes) cost thousands of
-/// integrator steps each. With $N \ge L\sqrt{|F|/EI}$ segments each one's
-/// sensitivity stays below $e$, and Newton converges from the continuation's
+/// integrator steps each. With $N \ge \int_0^L\sqrt{|F|/EI}\thinspace ds$ segments, equal
+/// in $\tau$, each one's sensitivity stays below $e$, and Newton converges from the continuation's
 /// predictor in a few iterations at any load.
 struct Chain<'a> {
     flexure: &'a Flexure,
     load: TipLoad,
     ode: Tolerance,
     scale: f64,
-    /// $EI/L$ (N·m per rad).
+    /// $k = \overline{EI}/L$ (N·m per rad).
     stiffness: f64,
     segments: usize,
+    /// The arc lengths of the nodes, $s_0 = 0 < \dots < s_N = L$.
+    nodes: Vec<f64>,
+    /// The section's breakpoints (m), where each segment's integration restarts.
+    stops: Vec<f64>,
     /// The largest $|\mu|$ of any equilibrium under the full load:
-    /// $(|M| + L|F|)L/EI$, the load's moment about a point within $L$ of the tip.
+    /// $(|M| + L|F|)/k$, the load's moment about a point within $L$ of the tip.
     reach: f64,
+    /// The largest turn of a cross-section from rest under the full load:
+    /// $(|M| + L|F|)\int_0^L ds/EI$ (equal to `reach` for a uniform beam).
+    turn: f64,
     /// The nodes' rest angles $\phi_j$, $j = 1..N$.
     rest: Vec<f64>,
     /// The integrator's next step, carried from segment to segment within
@@ -199,18 +214,49 @@ impl<'a> Chain<'a> {
     fn new(flexure: &'a Flexure, load: TipLoad, ode: Tolerance) -> Result<Self> {
         let l = flexure.length();
         let scale = flexure.ei() / l + load.moment.abs() + l * (load.fx.abs() + load.fy.abs());
-        let growth = l * (load.fx.hypot(load.fy) / flexure.ei()).sqrt();
+        let stretch = super::Stretch::of(flexure)?;
+        let uniform = flexure.section().is_uniform();
+        let growth = if uniform {
+            l * (load.fx.hypot(load.fy) / flexure.ei()).sqrt()
+        } else {
+            load.fx.hypot(load.fy).sqrt() * stretch.total()
+        };
         if growth > MAX_FORCE_GROWTH {
             return Err(Error::invalid(
                 "force",
                 format!("{} N (L·√(|F|/EI) = {growth:.1})", load.fx.hypot(load.fy)),
-                "is beyond what the exact elastica can follow: L·√(|F|/EI) must be at most 100",
+                "is beyond what the exact elastica can follow: L·√(|F|/EI) (∫√(|F|/EI) ds) must be at most 100",
             ));
         }
         let segments = (growth.ceil() as usize).max(MIN_SEGMENTS);
+        let nodes = (0..=segments)
+            .map(|j| match j {
+                0 => 0.0,
+                _ if j == segments => l,
+                _ if uniform => l * j as f64 / segments as f64,
+                _ => stretch.at_fraction(j as f64 / segments as f64),
+            })
+            .collect();
         let (stiffness, last) = (flexure.ei() / l, Jacobi::default());
-        let reach = (load.moment.abs() + l * load.fx.hypot(load.fy)) / stiffness;
-        let mut chain = Self { flexure, load, ode, scale, stiffness, segments, reach, rest: vec![], step: 0.0, last };
+        let load_moment = load.moment.abs() + l * load.fx.hypot(load.fy);
+        let reach = load_moment / stiffness;
+        let turn = if uniform { reach } else { load_moment * stretch.flexibility };
+        let stops = super::stops(flexure);
+        let mut chain = Self {
+            flexure,
+            load,
+            ode,
+            scale,
+            stiffness,
+            segments,
+            nodes,
+            stops,
+            reach,
+            turn,
+            rest: vec![],
+            step: 0.0,
+            last,
+        };
         let rest = chain.shot(0.0, 0.0)?;
         chain.rest = (1..=segments).map(|j| rest[Self::angle(j)]).collect();
         Ok(chain)
@@ -219,18 +265,19 @@ impl<'a> Chain<'a> {
     /// Whether `x` at `lambda` lies where an equilibrium on the way to the
     /// full load can: $-1 \le \lambda \le 2$, and no node's moment or
     /// turn from rest beyond twice $\max(1, |\lambda|)$ × [`Chain::reach`]
-    /// (plus 1 rad). Newton iterates outside are refused unevaluated: coiled
+    /// (or [`Chain::turn`]) plus 1 rad. Newton iterates outside are refused unevaluated: coiled
     /// shapes cost integrator steps in proportion to their moment.
     fn within_reach(&self, x: &[f64], lambda: f64) -> bool {
-        let bound = 2.0 * lambda.abs().max(1.0) * self.reach + 1.0;
+        let factor = 2.0 * lambda.abs().max(1.0);
+        let (moment, turn) = (factor * self.reach + 1.0, factor * self.turn + 1.0);
         (-1.0..=2.0).contains(&lambda)
-            && (0..self.segments).all(|j| x[Self::moment(j)].abs() <= bound)
-            && (1..=self.segments).all(|j| (x[Self::angle(j)] - self.rest[j - 1]).abs() <= bound)
+            && (0..self.segments).all(|j| x[Self::moment(j)].abs() <= moment)
+            && (1..=self.segments).all(|j| (x[Self::angle(j)] - self.rest[j - 1]).abs() <= turn)
     }
 
     /// Node $j$'s arc length.
     fn node(&self, j: usize) -> f64 {
-        self.flexure.length() * j as f64 / self.segments as f64
+        self.nodes[j]
     }
 
     /// Integrates segment `j` from `start` = $(\phi_j, \mu_j)$ (and, when
@@ -242,13 +289,23 @@ impl<'a> Chain<'a> {
         lambda: T,
         observe: impl FnMut(f64, &[T; D]),
     ) -> Result<[T; D]> {
-        let (f, l) = (self.flexure, self.flexure.length());
+        let (f, l, k) = (self.flexure, self.flexure.length(), self.stiffness);
         let kappa = f.rest();
-        let (fx, fy) = (T::c(self.load.fx * l / f.ei()), T::c(self.load.fy * l / f.ei()));
+        let uniform = self.stops.is_empty() && f.section().is_uniform();
+        // k/EI(s): exactly 1/L on a uniform beam, as before sections.
+        let (fx, fy) = if uniform {
+            (T::c(self.load.fx * l / f.ei()), T::c(self.load.fy * l / f.ei()))
+        } else {
+            (T::c(self.load.fx / k), T::c(self.load.fy / k))
+        };
         let rhs = |s: f64, y: &[T; D]| {
             let (sn, cs) = y[0].sin_cos();
             let mut d = [T::zero(); D];
-            d[0] = T::c(f.curvature(kappa, s)) + y[1] / T::c(l);
+            d[0] = if uniform {
+                T::c(f.curvature(kappa, s)) + y[1] / T::c(l)
+            } else {
+                T::c(f.curvature(kappa, s)) + y[1] * T::c(k / f.ei_at(s))
+            };
             d[1] = lambda * (fx * sn - fy * cs);
             if D == 4 {
                 (d[2], d[3]) = (cs, sn);
@@ -256,7 +313,7 @@ impl<'a> Chain<'a> {
             d
         };
         let (s0, s1) = (self.node(j), self.node(j + 1));
-        integrate_from(rhs, s0, s1, start, &self.ode, &mut self.step, observe)
+        integrate_through(rhs, s0, s1, &self.stops, start, &self.ode, &mut self.step, observe)
     }
 
     /// Index of $\phi_j$ ($j \ge 1$) among the unknowns.
@@ -269,15 +326,21 @@ impl<'a> Chain<'a> {
         2 * j
     }
 
-    /// The tip pose of the state `x` (positions summed over the segments).
-    fn pose(&mut self, x: &[f64]) -> Result<Pose<f64>> {
-        let mut pose = Pose::default();
+    /// The states $(s_j, [\phi, m, x, y])$ at the nodes of the state `x`
+    /// under the full load, tip included (positions summed over the segments).
+    fn states(&mut self, x: &[f64]) -> Result<Vec<(f64, [f64; 4])>> {
+        let (k, mut out) = (self.stiffness, Vec::with_capacity(self.segments + 1));
+        let (mut px, mut py) = (0.0, 0.0);
         for j in 0..self.segments {
             let phi = if j == 0 { 0.0 } else { x[Self::angle(j)] };
-            let end = self.segment(j, [phi, x[Self::moment(j)], pose.x, pose.y], 1.0, |_, _| {})?;
-            pose = Pose { phi: end[0], x: end[2], y: end[3] };
+            out.push((self.node(j), [phi, x[Self::moment(j)] * k, px, py]));
+            let end = self.segment(j, [phi, x[Self::moment(j)], px, py], 1.0, |_, _| {})?;
+            (px, py) = (end[2], end[3]);
+            if j + 1 == self.segments {
+                out.push((self.node(j + 1), [end[0], end[1] * k, px, py]));
+            }
         }
-        Ok(pose)
+        Ok(out)
     }
 
     /// The state reached by shooting from the root with moment $M_0$ under
@@ -304,7 +367,7 @@ impl<'a> Chain<'a> {
         mut dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
         let (k, n, last) = (self.stiffness, 2 * self.segments, self.segments - 1);
-        self.step = FIRST_STEP * self.node(1);
+        self.step = FIRST_STEP * (self.node(1) - self.node(0));
         let tip_moment = lambda * self.load.moment / k;
         let target = |j: usize| {
             let phi = x[Self::angle(j + 1)];
@@ -456,6 +519,24 @@ impl Problem<f64> for Chain<'_> {
 /// assert!((s.pose.x - 0.94357).abs() < 1e-5 && (s.pose.y - 0.30172).abs() < 1e-5);
 /// ```
 pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result<Solution> {
+    deflect_traced(flexure, load, settings).map(|(solution, _)| solution)
+}
+
+/// [`deflect`], with the [`Trace`] of the exact shape: its cross-sections,
+/// bending moment and stress anywhere along the flexure.
+///
+/// # Example
+/// ```
+/// use flexure::{reference::elastica, Flexure, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// // A pure tip moment bends an arc: m = M all along, curvature M/EI.
+/// let load = TipLoad { moment: 0.5, fx: 0.0, fy: 0.0 };
+/// let (s, trace) = elastica::deflect_traced(&f, &load, &Default::default()).unwrap();
+/// assert!((s.pose.phi - 0.5).abs() < 1e-10);
+/// let mid = trace.at(0.5).unwrap();
+/// assert!((mid.moment - 0.5).abs() < 1e-9 && (mid.phi - 0.25).abs() < 1e-9);
+/// ```
+pub fn deflect_traced<'a>(flexure: &'a Flexure, load: &TipLoad, settings: &Settings) -> Result<(Solution, Trace<'a>)> {
     load.validate()?;
     settings.validate()?;
     let mut chain = Chain::new(flexure, *load, settings.path_ode())?;
@@ -468,13 +549,18 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
     // stability verdict is the refined state's.
     chain.ode = settings.ode;
     solver::newton(&mut chain, &mut ws, 1.0, &settings.solver)?;
-    Ok(Solution {
-        stable: chain.stable(&ws.x, 1.0, &ws.jacobian),
-        pose: chain.pose(&ws.x)?,
+    let stable = chain.stable(&ws.x, 1.0, &ws.jacobian);
+    let nodes = chain.states(&ws.x)?;
+    let tip = nodes[nodes.len() - 1].1;
+    let solution = Solution {
+        stable,
+        pose: Pose { phi: tip[0], x: tip[2], y: tip[3] },
         root_moment: ws.x[0] * chain.stiffness,
         load_steps: path.steps,
         limit: path.limit,
-    })
+    };
+    let trace = Trace { flexure, fx: load.fx, fy: load.fy, stops: chain.stops, nodes, ode: settings.ode };
+    Ok((solution, trace))
 }
 
 /// Whether the elastica shot from `root_moment` under the tip force
@@ -525,14 +611,22 @@ pub struct Connection {
 }
 
 /// Integrates Eq. 3 as [`shoot`] does, adding the energy $\int m^2/2EI\thinspace ds$ as a fourth state.
-fn shoot_with_energy<T: Scalar>(flexure: &Flexure, m0: T, fx: T, fy: T, tol: &Tolerance) -> Result<[T; 4]> {
-    let (ei, kappa) = (T::c(flexure.ei()), flexure.rest());
+fn shoot_with_energy<T: Scalar>(
+    flexure: &Flexure,
+    stops: &[f64],
+    m0: T,
+    fx: T,
+    fy: T,
+    tol: &Tolerance,
+) -> Result<[T; 4]> {
+    let kappa = flexure.rest();
     let rhs = |s: f64, y: &[T; 4]| {
         let (sn, cs) = y[0].sin_cos();
         let m = m0 - fy * y[1] + fx * y[2];
+        let ei = T::c(flexure.ei_at(s));
         [T::c(flexure.curvature(kappa, s)) + m / ei, cs, sn, m * m / (ei + ei)]
     };
-    integrate(rhs, 0.0, flexure.length(), [T::zero(); 4], tol, |_, _| {})
+    integrate_through(rhs, 0.0, flexure.length(), stops, [T::zero(); 4], tol, &mut 0.0, |_, _| {})
 }
 
 /// The connection as a [`Problem`] for [`solver::newton`]: unknowns
@@ -541,6 +635,11 @@ struct Through<'a> {
     flexure: &'a Flexure,
     target: Pose,
     ode: Tolerance,
+    /// The section's breakpoints (m).
+    stops: Vec<f64>,
+    /// $\int_0^L ds/EI$ and $\int_0^L EI^{-1/2} ds$ (`L/EI` and `L/√EI` when uniform).
+    flexibility: f64,
+    stretch: f64,
 }
 
 impl Problem<f64> for Through<'_> {
@@ -559,15 +658,15 @@ impl Problem<f64> for Through<'_> {
         let (l, t) = (self.flexure.length(), self.target);
         // Iterates no connection needs are refused before integrating: a
         // shot under such loads coils and costs steps in proportion to them.
-        let ei = self.flexure.ei();
-        if l * (z[1].hypot(z[2]) / ei).sqrt() > MAX_FORCE_GROWTH || z[0].abs() * l / ei > MAX_FORCE_GROWTH.powi(2) {
+        let growth = z[1].hypot(z[2]).sqrt() * self.stretch;
+        if growth > MAX_FORCE_GROWTH || z[0].abs() * self.flexibility > MAX_FORCE_GROWTH.powi(2) {
             return Err(Error::Singular {
                 what: "exact connection: a Newton iterate beyond any connection's load".into(),
             });
         }
         if let Some(jac) = jacobian {
             let v = |i: usize| DualSVec64::<3>::from_re(z[i]).derivative(i);
-            let tip = shoot_with_energy(self.flexure, v(0), v(1), v(2), &self.ode)?;
+            let tip = shoot_with_energy(self.flexure, &self.stops, v(0), v(1), v(2), &self.ode)?;
             let r = [(tip[0] - t.phi) * l, tip[1] - t.x, tip[2] - t.y];
             for (row, ri) in r.iter().enumerate() {
                 residual[row] = ri.re;
@@ -577,7 +676,7 @@ impl Problem<f64> for Through<'_> {
                 }
             }
         } else {
-            let tip = shoot_with_energy(self.flexure, z[0], z[1], z[2], &self.ode)?;
+            let tip = shoot_with_energy(self.flexure, &self.stops, z[0], z[1], z[2], &self.ode)?;
             residual.copy_from_slice(&[(tip[0] - t.phi) * l, tip[1] - t.x, tip[2] - t.y]);
         }
         if let Some(d) = dlambda {
@@ -591,10 +690,10 @@ impl Problem<f64> for Through<'_> {
     }
 
     /// An upper bound, in linear theory, of the cross-sections' rotation
-    /// between the loads $(M_0, F_x, F_y)$ `a` and `b`: $(|\Delta M_0| + L|\Delta F|_1)L/EI$.
+    /// between the loads $(M_0, F_x, F_y)$ `a` and `b`: $(|\Delta M_0| + L|\Delta F|_1)\int_0^L ds/EI$.
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
         let l = self.flexure.length();
-        ((a[0] - b[0]).abs() + l * ((a[1] - b[1]).abs() + (a[2] - b[2]).abs())) * l / self.flexure.ei()
+        ((a[0] - b[0]).abs() + l * ((a[1] - b[1]).abs() + (a[2] - b[2]).abs())) * self.flexibility
     }
 
     fn scale(&self) -> f64 {
@@ -634,12 +733,238 @@ pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Set
     for (name, g) in ["guess[0]", "guess[1]", "guess[2]"].into_iter().zip(guess) {
         crate::error::finite(name, g)?;
     }
-    let mut problem = Through { flexure, target: *target, ode: settings.ode };
+    let s = super::Stretch::of(flexure)?;
+    let (flexibility, stretch) = (s.flexibility, s.total());
+    let stops = super::stops(flexure);
+    let mut problem = Through { flexure, target: *target, ode: settings.ode, stops, flexibility, stretch };
     let mut ws = solver::Workspace::new(3);
     ws.x.copy_from_slice(&guess);
     solver::newton(&mut problem, &mut ws, 1.0, &settings.solver)?;
-    let tip = shoot_with_energy(flexure, ws.x[0], ws.x[1], ws.x[2], &settings.ode)?;
+    let tip = shoot_with_energy(flexure, &problem.stops, ws.x[0], ws.x[1], ws.x[2], &settings.ode)?;
     Ok(Connection { energy: tip[3], root_moment: ws.x[0], fx: ws.x[1], fy: ws.x[2] })
+}
+
+/// Nodes a [`Trace::shot`] keeps along the flexure: a cross-section is then
+/// integrated from at most $L/16$ away.
+const SHOT_NODES: usize = 16;
+
+/// Evenly spaced samples of the scan that brackets a peak ([`Trace::peak_stress`]).
+const PEAK_SAMPLES: usize = 256;
+
+/// Golden-section steps refining a bracketed peak: $0.618^{60} \approx 3\cdot10^{-13}$ of the bracket.
+const PEAK_REFINEMENTS: usize = 60;
+
+/// A cross-section of the exact elastica.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// Arc length from the root (m).
+    pub s: f64,
+    /// Angle (rad).
+    pub phi: f64,
+    /// Position in the root frame (m).
+    pub x: f64,
+    /// See `x`.
+    pub y: f64,
+    /// Bending moment $m(s)$ (N·m).
+    pub moment: f64,
+    /// Total curvature $\omega_0(s) + m/EI(s)$ (1/m).
+    pub curvature: f64,
+    /// Change of curvature from rest, $m/EI(s)$ (1/m).
+    pub curvature_change: f64,
+    /// Bending stress $E^{\prime}\frac{h(s)}{2}\frac{|m|}{EI(s)}$ (Pa); `None` for a section without thickness.
+    pub stress: Option<f64>,
+}
+
+/// The exact elastica along a flexure: the state $(\phi, m, x, y)$ at nodes
+/// from the root to the tip, from which any cross-section is integrated by
+/// $$\phi^{\prime} = \omega_0(s) + \frac{m}{EI(s)}, \quad m^{\prime} = F_x\sin\phi - F_y\cos\phi, \quad x^{\prime} = \cos\phi, \quad y^{\prime} = \sin\phi,$$
+/// the force $(F_x, F_y)$ carried along the beam being the tip force. Made
+/// by [`deflect_traced`], [`Trace::shot`] or [`Connection::trace`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trace<'a> {
+    flexure: &'a Flexure,
+    fx: f64,
+    fy: f64,
+    /// The section's breakpoints (m).
+    stops: Vec<f64>,
+    /// $(s_j, [\phi, m, x, y])$ with $s_0 = 0$ and the last at $L$.
+    nodes: Vec<(f64, [f64; 4])>,
+    ode: Tolerance,
+}
+
+impl<'a> Trace<'a> {
+    /// The elastica shot from the clamped root with moment $M_0$ under the
+    /// force $(F_x, F_y)$, kept at 16 evenly spaced nodes.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{reference::elastica::Trace, Flexure};
+    /// let f = Flexure::new(2.0, 4.0, 3).unwrap();
+    /// // A root moment 2 and no force: an arc of curvature 1/2, angle 1.
+    /// let t = Trace::shot(&f, 2.0, 0.0, 0.0, &Default::default()).unwrap();
+    /// assert!((t.tip().phi - 1.0).abs() < 1e-11 && (t.at(1.0).unwrap().curvature - 0.5).abs() < 1e-12);
+    /// ```
+    pub fn shot(flexure: &'a Flexure, root_moment: f64, fx: f64, fy: f64, tol: &Tolerance) -> Result<Self> {
+        TipLoad { moment: root_moment, fx, fy }.validate()?;
+        tol.validate()?;
+        let l = flexure.length();
+        let mut trace = Self { flexure, fx, fy, stops: super::stops(flexure), nodes: Vec::new(), ode: *tol };
+        let mut node = (0.0, [0.0, root_moment, 0.0, 0.0]);
+        trace.nodes.push(node);
+        for j in 1..=SHOT_NODES {
+            let s = if j == SHOT_NODES { l } else { l * j as f64 / SHOT_NODES as f64 };
+            node = (s, trace.advance(node, s, &mut 0.0)?);
+            trace.nodes.push(node);
+        }
+        Ok(trace)
+    }
+
+    /// The flexure traced.
+    pub fn flexure(&self) -> &'a Flexure {
+        self.flexure
+    }
+
+    /// The tip pose.
+    pub fn tip(&self) -> Pose {
+        let y = self.nodes[self.nodes.len() - 1].1;
+        Pose { phi: y[0], x: y[2], y: y[3] }
+    }
+
+    /// The state at `to`, integrated from `from` (forward).
+    fn advance(&self, from: (f64, [f64; 4]), to: f64, step: &mut f64) -> Result<[f64; 4]> {
+        let (f, kappa, fx, fy) = (self.flexure, self.flexure.rest(), self.fx, self.fy);
+        let rhs = |s: f64, y: &[f64; 4]| {
+            let (sn, cs) = y[0].sin_cos();
+            [f.curvature(kappa, s) + y[1] / f.ei_at(s), fx * sn - fy * cs, cs, sn]
+        };
+        integrate_through(rhs, from.0, to, &self.stops, from.1, &self.ode, step, |_, _| {})
+    }
+
+    /// The states at `points` (increasing, within $[0, L]$): each
+    /// integrated from the last point or the node before it, whichever is nearer.
+    fn states(&self, points: &[f64]) -> Result<Vec<[f64; 4]>> {
+        let l = self.flexure.length();
+        let mut out = Vec::with_capacity(points.len());
+        let mut last = self.nodes[0];
+        let mut step = 0.0;
+        for (i, &s) in points.iter().enumerate() {
+            if !(s.is_finite() && (0.0..=l).contains(&s)) || (i > 0 && s < points[i - 1]) {
+                return Err(Error::invalid("s", s, "must increase within the flexure, from 0 to its length"));
+            }
+            let j = self.nodes.partition_point(|n| n.0 <= s).max(1) - 1;
+            if last.0 < self.nodes[j].0 || last.0 > s {
+                last = self.nodes[j];
+            }
+            last = (s, self.advance(last, s, &mut step)?);
+            out.push(last.1);
+        }
+        Ok(out)
+    }
+
+    /// The cross-section at `s` from its state.
+    fn point(&self, s: f64, y: &[f64; 4]) -> Point {
+        let (f, l) = (self.flexure, self.flexure.length());
+        let change = y[1] / f.ei_at(s);
+        let section = f.section();
+        let stress = section.modulus().zip(section.thickness(s / l, l)).map(|(e, h)| e * 0.5 * h * change.abs());
+        Point {
+            s,
+            phi: y[0],
+            x: y[2],
+            y: y[3],
+            moment: y[1],
+            curvature: f.curvature(f.rest(), s) + change,
+            curvature_change: change,
+            stress,
+        }
+    }
+
+    /// The cross-section at arc length `s` (m).
+    pub fn at(&self, s: f64) -> Result<Point> {
+        Ok(self.point(s, &self.states(&[s])?[0]))
+    }
+
+    /// The cross-sections at `points` (m, increasing within $[0, L]$).
+    pub fn sample(&self, points: &[f64]) -> Result<Vec<Point>> {
+        let states = self.states(points)?;
+        Ok(points.iter().zip(&states).map(|(&s, y)| self.point(s, y)).collect())
+    }
+
+    /// The deformed flexure at `count` points evenly spaced in arc length,
+    /// ends included (2 to 100 000 points).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{reference::elastica::Trace, Flexure};
+    /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    /// let shape = Trace::shot(&f, 0.0, 0.0, 0.0, &Default::default()).unwrap().shape(5).unwrap();
+    /// assert_eq!(shape.len(), 5);
+    /// assert!((shape[2].x - 0.5).abs() < 1e-15 && shape[4].s == 1.0);
+    /// ```
+    pub fn shape(&self, count: usize) -> Result<Vec<Point>> {
+        if !(2..=100_000).contains(&count) {
+            return Err(Error::invalid("count", count, "must be from 2 to 100000 points"));
+        }
+        let l = self.flexure.length();
+        let points: Vec<f64> =
+            (0..count).map(|i| if i + 1 == count { l } else { l * i as f64 / (count - 1) as f64 }).collect();
+        self.sample(&points)
+    }
+
+    /// The peak bending stress along the flexure, $\max_s E^{\prime}\frac{h}{2}\frac{|m|}{EI}$;
+    /// `None` for a section without thickness.
+    pub fn peak_stress(&self) -> Result<Option<Peak>> {
+        if self.flexure.section().modulus().is_none() {
+            return Ok(None);
+        }
+        self.peak(|p| p.stress.unwrap_or(0.0)).map(Some)
+    }
+
+    /// The largest change of curvature from rest, $\max_s |m|/EI$ (1/m).
+    pub fn peak_curvature(&self) -> Result<Peak> {
+        self.peak(|p| p.curvature_change.abs())
+    }
+
+    /// The maximum of `g` along the flexure: a scan of evenly spaced
+    /// points, the breakpoints and the nodes, then golden-section
+    /// refinement between the best point's neighbours (bounded steps).
+    fn peak(&self, g: impl Fn(&Point) -> f64) -> Result<Peak> {
+        let l = self.flexure.length();
+        let mut points: Vec<f64> = (0..=PEAK_SAMPLES).map(|k| l * k as f64 / PEAK_SAMPLES as f64).collect();
+        points.extend(&self.stops);
+        points.extend(self.nodes.iter().map(|n| n.0));
+        points.retain(|s| (0.0..=l).contains(s));
+        points.sort_by(f64::total_cmp);
+        points.dedup();
+        let states = self.states(&points)?;
+        let values: Vec<f64> = points.iter().zip(&states).map(|(&s, y)| g(&self.point(s, y))).collect();
+        let best = (0..points.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
+        let mut top = Peak { value: values[best], at: points[best] };
+        let from = best.saturating_sub(1);
+        let base = (points[from], states[from]);
+        let (mut a, mut b) = (points[from], points[(best + 1).min(points.len() - 1)]);
+        let ratio = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..PEAK_REFINEMENTS {
+            let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+            let value = |s: f64| -> Result<f64> { Ok(g(&self.point(s, &self.advance(base, s, &mut 0.0)?))) };
+            let (gc, gd) = (value(c)?, value(d)?);
+            for (s, v) in [(c, gc), (d, gd)] {
+                if v > top.value {
+                    top = Peak { value: v, at: s };
+                }
+            }
+            if gc >= gd { b = d } else { a = c }
+        }
+        Ok(top)
+    }
+}
+
+impl Connection {
+    /// The exact shape of this connection on `flexure` (the one it was
+    /// found for): the shot from the root with its moment and force.
+    pub fn trace<'a>(&self, flexure: &'a Flexure, tol: &Tolerance) -> Result<Trace<'a>> {
+        Trace::shot(flexure, self.root_moment, self.fx, self.fy, tol)
+    }
 }
 
 #[cfg(test)]
@@ -653,10 +978,19 @@ mod tests {
     #[test]
     fn derivatives_match_finite_differences() {
         let f = Flexure::new(1.3, 0.8, 3).unwrap().with_rest(&[0.4, -0.2, 0.1]).unwrap();
+        check_derivatives(&f, 5);
+        // EI(s) from a table with a kink (a breakpoint inside a segment):
+        // ∫√(|F|/EI) ds = 4.79: five segments, unequal in s.
+        let table = crate::section::Profile::Table(vec![[0.0, 1.2], [0.35, 0.5], [1.0, 0.9]]);
+        let f = f.with_section(crate::section::Section::given(table).unwrap()).unwrap();
+        check_derivatives(&f, 5);
+    }
+
+    fn check_derivatives(f: &Flexure, segments: usize) {
         let load = TipLoad { moment: 0.7, fx: -9.0, fy: 4.0 };
-        let mut chain = Chain::new(&f, load, Tolerance::default()).unwrap();
+        let mut chain = Chain::new(f, load, Tolerance::default()).unwrap();
         let n = chain.dim();
-        assert_eq!(n, 2 * 5, "L√(|F|/EI) = 4.56: five segments");
+        assert_eq!(n, 2 * segments, "L√(|F|/EI) = 4.56 when uniform");
         let x: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * (i as f64).sin()).collect();
         let lambda = 0.6;
         let (mut r, mut jac, mut dl) = (vec![0.0; n], vec![0.0; n * n], vec![0.0; n]);

@@ -25,7 +25,7 @@
 use crate::dynamics::Body;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
-use crate::ode::{Tolerance, integrate_from};
+use crate::ode::{Tolerance, integrate_through};
 
 /// Step of the frequency scan in the scaled frequency $\bar\beta = \lambda^{1/4}$
 /// (the uniform cantilever's $\beta L$): roots of a distributed beam lie
@@ -190,13 +190,8 @@ impl Beam<'_> {
             }
             d
         };
-        let mut y = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
-        let mut step = 0.0;
-        let mut start = 0.0;
-        for &end in self.breaks.iter().chain(std::iter::once(&1.0)) {
-            y = integrate_from(rhs, start, end, y, self.tol, &mut step, |_, _| {})?;
-            start = end;
-        }
+        let start = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+        let y = integrate_through(rhs, 0.0, 1.0, self.breaks, start, self.tol, &mut 0.0, |_, _| {})?;
         let tip = |k: usize| {
             let [w, th, m, s] = [y[k], y[k + 1], y[k + 2], y[k + 3]];
             (

@@ -1,0 +1,79 @@
+//! What the bindings report of a flexure's bending, as the CLI does: the
+//! peak stress `{max (Pa), at (m)}` (or, for a section given by EI alone,
+//! the peak change of curvature), the safety factor against a yield
+//! strength with `flexure.YieldWarning` below 1, and the deformed shape.
+
+use flexure::Flexure;
+use flexure::kinematics::backbone;
+use flexure::stress::{Peak, peak_stress, stress};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+/// Most points of a shape: the mechanism files' bound, shared with the CLI.
+pub const MAX_SHAPE: usize = flexure::mechanism::file::MAX_SHAPE;
+
+/// A peak as `{"max": value, "at": s}`.
+pub fn peak_dict<'py>(py: Python<'py>, p: &Peak) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("max", p.value)?;
+    d.set_item("at", p.at)?;
+    Ok(d)
+}
+
+/// The safety factor $S/\sigma_{max}$ of `f` at `alpha` against the yield
+/// strength `s` (Pa), and a `YieldWarning` naming `what` and `s` when it is
+/// below 1. `None` when the flexure has no thickness or is unstressed (the
+/// factor would be infinite).
+pub fn safety_factor(
+    py: Python<'_>,
+    f: &Flexure,
+    alpha: &[f64],
+    s: f64,
+    what: &str,
+    stacklevel: i32,
+) -> PyResult<Option<(Peak, f64)>> {
+    let Some(p) = peak_stress(f, alpha).filter(|p| p.value > 0.0) else {
+        return Ok(None);
+    };
+    let factor = s / p.value;
+    if factor < 1.0 {
+        let text = format!(
+            "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
+            p.value, p.at
+        );
+        crate::warn(py, &py.get_type::<crate::YieldWarning>(), text, stacklevel)?;
+    }
+    Ok(Some((p, factor)))
+}
+
+/// The deformed flexure at `count` (2 to [`MAX_SHAPE`], checked by the
+/// caller) points evenly spaced in arc length, ends included, in its root
+/// frame: a NumPy structured array of fields `s, x, y, phi, curvature` (m,
+/// m, m, rad, 1/m; the total curvature) and, with a thickness, `stress` (Pa).
+pub fn shape<'py>(py: Python<'py>, f: &Flexure, alpha: &[f64], count: usize) -> PyResult<Bound<'py, PyAny>> {
+    let poses = backbone(f, alpha, count);
+    let n = poses.len();
+    let step = f.length() / (n - 1) as f64;
+    // The last point exactly at the tip, not at a rounded multiple.
+    let s: Vec<f64> = (0..n).map(|i| if i + 1 == n { f.length() } else { i as f64 * step }).collect();
+    let mut columns: Vec<(&str, Vec<f64>)> = vec![
+        ("x", poses.iter().map(|p| p.x).collect()),
+        ("y", poses.iter().map(|p| p.y).collect()),
+        ("phi", poses.iter().map(|p| p.phi).collect()),
+        ("curvature", s.iter().map(|&s| f.curvature(alpha, s)).collect()),
+    ];
+    if f.section().modulus().is_some() {
+        columns.push(("stress", s.iter().map(|&s| stress(f, alpha, s).unwrap_or(0.0)).collect()));
+    }
+    columns.insert(0, ("s", s));
+    let dtype = PyList::empty(py);
+    for (name, _) in &columns {
+        dtype.append((*name, "f8"))?;
+    }
+    let out = py.import("numpy")?.getattr("empty")?.call1((n, dtype))?;
+    for (name, values) in columns {
+        out.set_item(name, PyArray1::from_vec(py, values))?;
+    }
+    Ok(out)
+}
