@@ -62,6 +62,7 @@ pub mod basis;
 pub mod buckling;
 pub mod compliance;
 pub mod connect;
+pub mod dynamics;
 pub mod energy;
 pub mod error;
 pub mod estimate;

@@ -7,12 +7,14 @@
 //!   with its shape and bending stress ([`elastica::Trace`]);
 //! - [`compliance`]: the compliance ODE (Eq. 34);
 //! - [`column`]: the linearized buckling load of a straight column by shooting;
-//! - [`euler`]: Euler's closed-form buckling loads (uniform columns).
+//! - [`euler`]: Euler's closed-form buckling loads (uniform columns);
+//! - [`vibration`]: linear vibration of the straight beam by shooting on the frequency.
 
 pub mod column;
 pub mod compliance;
 pub mod elastica;
 pub mod euler;
+pub mod vibration;
 
 use crate::error::Result;
 use crate::joint::Flexure;

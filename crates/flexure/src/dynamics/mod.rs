@@ -1,0 +1,25 @@
+//! Dynamics of one flexure joint carrying an optional rigid tip [`Body`]:
+//! the generalized mass matrix and velocity-product terms of its
+//! coordinates ([`mass`]), and its vibration modes about a loaded
+//! equilibrium ([`mod@modes`]).
+//!
+//! The kinetic energy of the flexure (mass per length $\mu(s)$, rotary
+//! inertia per length $\rho I(s)$) and of the body (mass $m$, inertia $I_c$
+//! about its centre of mass $c$) is
+//!
+//! $$T = \tfrac12\int_0^L \mu\thinspace\lvert\dot r\rvert^2 ds +
+//! \tfrac12\int_0^L \rho I\thinspace\dot\phi^2 ds +
+//! \tfrac12 m\lvert v_c\rvert^2 + \tfrac12 I_c\dot\phi_{tip}^2 =
+//! \tfrac12\dot\alpha^T M(\alpha)\dot\alpha,$$
+//!
+//! so that Lagrange's equations read
+//! $M(\alpha)\ddot\alpha + h(\alpha,\dot\alpha) + \nabla U = Q$ with
+//! $h = \dot M\dot\alpha - \frac12\nabla_\alpha(\dot\alpha^TM\dot\alpha)$.
+
+pub mod body;
+pub mod mass;
+pub mod modes;
+
+pub use body::Body;
+pub use mass::{MassData, MassModel, update as update_mass};
+pub use modes::{Modes, modes};
