@@ -16,7 +16,7 @@ use pyo3::types::PyDict;
 use std::sync::OnceLock;
 
 /// The exact elastica of a flexure under a tip load (paper Eq. 3 with
-/// $EI(s)$), solved by multiple shooting with load continuation.
+/// EI(s)), solved by multiple shooting with load continuation.
 ///
 /// Holds the tip pose, the root moment and the stability verdict; the peak
 /// stress and curvature and the shape come from the exact shape, which is
