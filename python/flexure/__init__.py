@@ -12,7 +12,10 @@ the `estimates` of `Mechanism.solve`); one that misses its accuracy target
 A flexure's section may vary along it (`width=(0.01, 0.005)`, tables of
 [t, value] rows, `notch=(R, h)`); `Flexure.stress`, `safety_factor` and
 `shape` report its bending, and a peak stress beyond `yield_strength` warns
-YieldWarning. Solves and batches run without the GIL; Ctrl-C stops `Flexure.deflect`
+YieldWarning. `flexure.exact` solves beam theory itself on the same flexure,
+section included: `exact.elastica(fy=..., flexure=f)` has the exact pose and
+the same `stress()`, `peak_curvature()`, `safety_factor()` and `shape(k)`;
+`exact.compliance` and `exact.buckling_load` take `flexure=` too. Solves and batches run without the GIL; Ctrl-C stops `Flexure.deflect`
 and a batch `Flexure.pose` with KeyboardInterrupt (the exact and mechanism
 solvers poll for it once they run on the library's interruptible solver core).
 

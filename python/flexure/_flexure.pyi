@@ -153,6 +153,44 @@ class Mechanism:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
 
-def exact_deflect(moment: float, fx: float, fy: float, length: float, ei: float,
-                  rest: Optional[ArrayLike]) -> np.ndarray: ...
-def exact_compliance_tip(length: float, ei: float, rest: Optional[ArrayLike]) -> np.ndarray: ...
+class Elastica:
+    """The exact elastica of a flexure under a tip load (flexure.exact.elastica): Eq. 3 with EI(s),
+    solved by multiple shooting. The stress, curvature and shape come from the exact shape, solved
+    again (to the same answer) when first asked for; each runs without the GIL."""
+    @property
+    def pose(self) -> np.ndarray:
+        """Tip pose [phi, x, y] in the root frame."""
+    @property
+    def root_moment(self) -> float:
+        """Bending moment at the root (N*m)."""
+    @property
+    def stable(self) -> bool:
+        """Whether the shape is a minimum of the potential energy (Jacobi test)."""
+    @property
+    def limit(self) -> Optional[float]:
+        """The load fraction where the loading path first lost stability (snap-through), or None."""
+    @property
+    def load(self) -> Tuple[float, float, float]:
+        """(moment, fx, fy) in the root frame."""
+    @property
+    def flexure(self) -> Flexure: ...
+    def stress(self) -> Optional[_Peak]:
+        """Peak bending stress E' h(s)/2 |m(s)|/EI(s): {max (Pa), at (m from the root)};
+        None for a flexure given by ei (no thickness)."""
+    def peak_curvature(self) -> _Peak:
+        """Largest change of curvature from rest |m(s)|/EI(s): {max (1/m), at (m)}."""
+    def safety_factor(self) -> float:
+        """S/σmax against the flexure's yield_strength (inf while unstressed); warns YieldWarning
+        below 1. ValueError without a yield_strength."""
+    def shape(self, k: int) -> np.ndarray:
+        """The exact shape at k (2 to 10000) points evenly spaced in arc length, ends included: a
+        structured array of fields s, x, y (m), phi (rad), curvature (1/m, total) and, with a
+        thickness, stress (Pa), as Flexure.shape."""
+
+# The exact references behind flexure.exact, which is their documented interface.
+def exact_elastica(flexure: Flexure, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, *,
+                   what: str = "exact.elastica") -> Elastica: ...
+def exact_compliance(flexure: Flexure) -> np.ndarray: ...
+def exact_buckling_load(flexure: Flexure, tip: str = "free") -> float: ...
+def exact_flexure(length: float = 1.0, ei: Optional[_Profile] = None,
+                  rest: Optional[ArrayLike] = None) -> Flexure: ...

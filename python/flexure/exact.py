@@ -1,24 +1,96 @@
-"""Exact Euler-Bernoulli references, to measure the model's error."""
+"""Exact Euler-Bernoulli references, to measure the model's error.
 
-from typing import Optional
+Each function solves beam theory itself rather than the Smooth Curvature Model:
+the elastica (Eq. 3) by multiple shooting with load continuation, the tip
+compliance by its ODE (Eq. 34), and the buckling load of a straight column.
+Give the beam either as `flexure=` a `flexure.Flexure`, whose length, section
+(EI(s) from `ei`, or `modulus`, `width`, `thickness` and `notch`), rest curvature
+and `yield_strength` are used (its order and quadrature are not: the references
+are exact), or as `length`, `ei` (a number, a pair (root, tip) or a table of
+[t, value] rows, as `Flexure`'s) and `rest` (1 to 64 rest curvature coefficients
+in the model's basis), by default a straight flexure of length 1 and EI 1. Not
+both: `length`, `ei` or `rest` beside `flexure` raises ValueError.
+
+`elastica` returns an `Elastica`: the tip pose, root moment and stability, and
+the exact `stress()`, `peak_curvature()`, `safety_factor()` and `shape(k)`, the
+counterparts of the model's `Flexure.stress(alpha)` and the rest.
+An unstable shape warns StabilityWarning (Jacobi test); a peak stress beyond
+the flexure's yield strength warns YieldWarning.
+
+>>> import flexure
+>>> from flexure import exact
+>>> f = flexure.Flexure(length=0.05, modulus=200e9, width=0.01, thickness=(6e-4, 2e-4))
+>>> e = exact.elastica(fy=2.0, flexure=f)   # a tapered steel strip, 2 N across its tip
+>>> round(float(e.pose[2]) * 1e3, 2)        # tip deflection, mm
+4.84
+>>> round(e.stress()["max"] / 1e6)          # peak bending stress, MPa (beam theory, 6F(L-s)/(b h(s)^2): 187.5)
+185
+>>> round(e.stress()["at"] * 1e3, 1)        # where, mm from the root (beam theory: 25)
+24.6
+"""
+
+from typing import Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._flexure import exact_compliance_tip, exact_deflect
+from ._flexure import Elastica, Flexure, exact_buckling_load, exact_compliance, exact_elastica, exact_flexure
 
-__all__ = ["deflect", "compliance"]
+__all__ = ["elastica", "deflect", "compliance", "buckling_load", "Elastica"]
 
-
-def deflect(moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, length: float = 1.0, ei: float = 1.0,
-            rest: Optional[ArrayLike] = None) -> np.ndarray:
-    """Tip pose [phi, x, y] of the exact elastica (Eq. 3) under a tip moment and force,
-    solved by shooting with load continuation. `rest`: 1 to 64 rest curvature coefficients
-    in the model's basis (straight by default).
-    Warns StabilityWarning if the shape found is unstable (Jacobi test)."""
-    return exact_deflect(moment, fx, fy, length, ei, rest)
+_Profile = Union[float, Tuple[float, float], ArrayLike]
 
 
-def compliance(length: float = 1.0, ei: float = 1.0, rest: Optional[ArrayLike] = None) -> np.ndarray:
-    """Exact small-load tip compliance (3, 3), order (phi, x, y), from the compliance ODE (Eq. 34)."""
-    return exact_compliance_tip(length, ei, rest)
+def _beam(flexure: Optional[Flexure], length: Optional[float], ei: Optional[_Profile],
+          rest: Optional[ArrayLike]) -> Flexure:
+    """The flexure to solve: `flexure`, or one built from `length`, `ei` and `rest`."""
+    if flexure is None:
+        return exact_flexure(1.0 if length is None else length, ei, rest)
+    if not isinstance(flexure, Flexure):
+        raise ValueError(f"flexure must be a flexure.Flexure, got {type(flexure).__name__}")
+    given = [name for name, value in (("length", length), ("ei", ei), ("rest", rest)) if value is not None]
+    if given:
+        raise ValueError(
+            f"{' and '.join(given)} given with flexure would be ignored: the exact references use the "
+            f"flexure's own length, section and rest curvature; leave {' and '.join(given)} out"
+        )
+    return flexure
+
+
+def elastica(moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, length: Optional[float] = None,
+             ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
+             flexure: Optional[Flexure] = None) -> Elastica:
+    """The exact elastica under a tip moment (N*m) and force (N) in the root frame, with EI(s):
+    an `Elastica` (pose, root_moment, stable, limit; stress(), peak_curvature(), safety_factor(),
+    shape(k)). Warns StabilityWarning if the shape is unstable (Jacobi test), and YieldWarning if
+    the flexure has a yield_strength that its peak stress exceeds. Raises ConvergenceError if the
+    load continuation stalls, ValueError for a force beyond what shooting can follow
+    (integral of sqrt(|F|/EI(s)) ds above 100). Runs without the GIL; Ctrl-C stops it."""
+    f = _beam(flexure, length, ei, rest)
+    return exact_elastica(f, moment, fx, fy, what="exact.elastica")
+
+
+def deflect(moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, length: Optional[float] = None,
+            ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
+            flexure: Optional[Flexure] = None) -> np.ndarray:
+    """Tip pose [phi, x, y] of the exact elastica (Eq. 3) under a tip moment and force:
+    `elastica(...).pose`, with the same warnings. `rest`: 1 to 64 rest curvature coefficients
+    in the model's basis (straight by default)."""
+    f = _beam(flexure, length, ei, rest)
+    return exact_elastica(f, moment, fx, fy, what="exact.deflect").pose
+
+
+def compliance(length: Optional[float] = None, ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
+               flexure: Optional[Flexure] = None) -> np.ndarray:
+    """Exact small-load tip compliance (3, 3), order (phi, x, y), from the compliance ODE
+    (Eq. 34) with EI(s), integrated to 1e-12 relative."""
+    return exact_compliance(_beam(flexure, length, ei, rest))
+
+
+def buckling_load(tip: str = "free", length: Optional[float] = None, ei: Optional[_Profile] = None, *,
+                  flexure: Optional[Flexure] = None) -> float:
+    """Exact critical compressive tip load (N) of a straight column clamped at its root, its tip
+    "free", "guided", "pinned" or "clamped": Euler's closed form for a uniform section, else
+    the first root of the column's shooting determinant in the load, found by scan and bisection.
+    ValueError for a flexure with rest curvature."""
+    return exact_buckling_load(_beam(flexure, length, ei, None), tip)

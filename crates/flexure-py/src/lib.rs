@@ -13,7 +13,6 @@ use flexure::kinematics::par_poses_root_tip;
 use flexure::mechanism::JointKind;
 use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
-use flexure::reference::{compliance as exact_compliance, elastica};
 use flexure::{
     Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip, compliance_tip_rest,
     deflect, energy, update_kinematics,
@@ -27,6 +26,7 @@ use pyo3::types::{PyDict, PyInt, PyTuple};
 use std::time::{Duration, Instant};
 
 mod coordinates;
+mod exact;
 mod section;
 mod stress;
 use coordinates::{Coordinates, single, vector};
@@ -67,10 +67,10 @@ fn warn(py: Python<'_>, category: &Bound<'_, pyo3::types::PyType>, text: String,
 }
 
 /// Warns that the equilibrium `solver` found under `load` is unstable, and `why`.
-fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str) -> PyResult<()> {
+fn warn_unstable(py: Python<'_>, solver: &str, load: &TipLoad, why: &str, stacklevel: i32) -> PyResult<()> {
     let (m, fx, fy) = (load.moment, load.fx, load.fy);
     let text = format!("{solver}: the equilibrium under (moment, fx, fy) = ({m}, {fx}, {fy}) is unstable: {why}");
-    warn(py, &py.get_type::<StabilityWarning>(), text, 1)
+    warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)
 }
 
 /// `x` to 3 significant digits, without trailing zeros; in exponent form when very small or large.
@@ -679,7 +679,7 @@ impl Flexure {
             let (_, stiffness) = loaded_stiffness(&used, &alpha, &load);
             if !flexure::linalg::is_positive_definite(&stiffness) {
                 let why = "its stiffness is not positive definite (the load is past a buckling load)";
-                warn_unstable(py, "deflect", &load, why)?;
+                warn_unstable(py, "deflect", &load, why, 1)?;
             }
             if let Some(s) = self.yield_strength {
                 stress::safety_factor(py, &used, &alpha, s, "deflect", 1)?;
@@ -697,7 +697,7 @@ impl Flexure {
         })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
-            warn_unstable(py, "deflect", &load, why)?;
+            warn_unstable(py, "deflect", &load, why, 1)?;
         }
         match estimated {
             Ok(e) if e.flagged => {
@@ -790,62 +790,6 @@ impl Flexure {
             self.inner.quadrature_points()
         )
     }
-}
-
-/// Exact tip pose [phi, x, y] of the Euler–Bernoulli elastica under a tip load (shooting).
-#[pyfunction]
-#[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, length=1.0, ei=1.0, rest=None))]
-fn exact_deflect<'py>(
-    py: Python<'py>,
-    moment: f64,
-    fx: f64,
-    fy: f64,
-    length: f64,
-    ei: f64,
-    rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let f = rest_flexure(length, ei, rest)?;
-    let load = tip_load(moment, fx, fy)?;
-    let s = interruptible(py, || elastica::deflect(&f, &load, &Default::default()))?;
-    if !s.stable {
-        warn_unstable(py, "exact.deflect", &load, "the elastica fails the Jacobi test")?;
-    }
-    Ok(PyArray1::from_vec(py, vec![s.pose.phi, s.pose.x, s.pose.y]))
-}
-
-/// Exact tip compliance (3, 3) from the compliance ODE (Eq. 34), order (phi, x, y).
-#[pyfunction]
-#[pyo3(signature = (length=1.0, ei=1.0, rest=None))]
-fn exact_compliance_tip<'py>(
-    py: Python<'py>,
-    length: f64,
-    ei: f64,
-    rest: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let f = rest_flexure(length, ei, rest)?;
-    let c = interruptible(py, || exact_compliance::compliance_tip(&f, &Default::default()))?;
-    Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
-}
-
-/// The rest shape of an exact reference: any order from 1 to 64, given by
-/// the number of `rest` coefficients (straight, order 3, without them).
-fn rest_flexure(
-    length: f64,
-    ei: f64,
-    rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
-) -> PyResult<flexure::Flexure> {
-    let kappa = match rest {
-        Some(r) => vector("rest", &r, None)?,
-        None => vec![0.0; 3],
-    };
-    let max = flexure::joint::MAX_ORDER;
-    if !(1..=max).contains(&kappa.len()) {
-        return Err(PyValueError::new_err(format!(
-            "rest must have from 1 to {max} entries (rest curvature coefficients), got {}",
-            kappa.len()
-        )));
-    }
-    flexure::Flexure::new(length, ei, kappa.len()).and_then(|f| f.with_rest(&kappa)).map_err(to_py)
 }
 
 /// A mechanism read from a TOML description.
@@ -972,8 +916,11 @@ impl Mechanism {
 fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Flexure>()?;
     m.add_class::<Mechanism>()?;
-    m.add_function(wrap_pyfunction!(exact_deflect, m)?)?;
-    m.add_function(wrap_pyfunction!(exact_compliance_tip, m)?)?;
+    m.add_class::<exact::Elastica>()?;
+    m.add_function(wrap_pyfunction!(exact::exact_elastica, m)?)?;
+    m.add_function(wrap_pyfunction!(exact::exact_compliance, m)?)?;
+    m.add_function(wrap_pyfunction!(exact::exact_buckling_load, m)?)?;
+    m.add_function(wrap_pyfunction!(exact::exact_flexure, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
     m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;

@@ -1,10 +1,12 @@
 //! What the bindings report of a flexure's bending, as the CLI does: the
 //! peak stress `{max (Pa), at (m)}` (or, for a section given by EI alone,
 //! the peak change of curvature), the safety factor against a yield
-//! strength with `flexure.YieldWarning` below 1, and the deformed shape.
+//! strength with `flexure.YieldWarning` below 1, and the deformed shape;
+//! of the model at coordinates alpha, or of the exact elastica from its trace.
 
 use flexure::Flexure;
 use flexure::kinematics::backbone;
+use flexure::reference::elastica::Point;
 use flexure::stress::{Peak, peak_stress, stress};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -33,7 +35,19 @@ pub fn safety_factor(
     what: &str,
     stacklevel: i32,
 ) -> PyResult<Option<(Peak, f64)>> {
-    let Some(p) = peak_stress(f, alpha).filter(|p| p.value > 0.0) else {
+    safety_factor_of(py, peak_stress(f, alpha), s, what, stacklevel)
+}
+
+/// The safety factor against the yield strength `s` (Pa) of a peak stress,
+/// the model's or the exact elastica's, warning as [`safety_factor`] does.
+pub fn safety_factor_of(
+    py: Python<'_>,
+    peak: Option<Peak>,
+    s: f64,
+    what: &str,
+    stacklevel: i32,
+) -> PyResult<Option<(Peak, f64)>> {
+    let Some(p) = peak.filter(|p| p.value > 0.0) else {
         return Ok(None);
     };
     let factor = s / p.value;
@@ -67,6 +81,29 @@ pub fn shape<'py>(py: Python<'py>, f: &Flexure, alpha: &[f64], count: usize) -> 
         columns.push(("stress", s.iter().map(|&s| stress(f, alpha, s).unwrap_or(0.0)).collect()));
     }
     columns.insert(0, ("s", s));
+    table(py, n, columns)
+}
+
+/// The exact elastica's cross-sections `points` as the structured array
+/// [`shape`] makes of the model's: fields `s, x, y, phi, curvature` and,
+/// when `stressed` (the section has a thickness), `stress`.
+pub fn exact_shape<'py>(py: Python<'py>, points: &[Point], stressed: bool) -> PyResult<Bound<'py, PyAny>> {
+    let column = |g: fn(&Point) -> f64| points.iter().map(g).collect::<Vec<f64>>();
+    let mut columns: Vec<(&str, Vec<f64>)> = vec![
+        ("s", column(|p| p.s)),
+        ("x", column(|p| p.x)),
+        ("y", column(|p| p.y)),
+        ("phi", column(|p| p.phi)),
+        ("curvature", column(|p| p.curvature)),
+    ];
+    if stressed {
+        columns.push(("stress", column(|p| p.stress.unwrap_or(0.0))));
+    }
+    table(py, points.len(), columns)
+}
+
+/// A NumPy structured array of `n` rows, one float64 field per column.
+fn table<'py>(py: Python<'py>, n: usize, columns: Vec<(&str, Vec<f64>)>) -> PyResult<Bound<'py, PyAny>> {
     let dtype = PyList::empty(py);
     for (name, _) in &columns {
         dtype.append((*name, "f8"))?;

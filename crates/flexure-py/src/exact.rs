@@ -1,0 +1,244 @@
+//! The exact references on a Python `Flexure`, with its section $EI(s)$,
+//! rest curvature and length: the elastica (its tip pose, and the stress,
+//! curvature and shape along it), the compliance ODE and the column's
+//! buckling load. `flexure.exact` wraps them.
+
+use crate::coordinates::vector;
+use crate::{Flexure, interruptible, section, shape_points, stress, tip_load, to_py, warn_unstable};
+use flexure::reference::{column, compliance, elastica, euler};
+use flexure::stress::Peak;
+use flexure::{Error, TipConstraint, TipLoad};
+use numpy::ndarray::Array2;
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::sync::OnceLock;
+
+/// The exact elastica of a flexure under a tip load (paper Eq. 3 with
+/// EI(s)), solved by multiple shooting with load continuation.
+///
+/// Holds the tip pose, the root moment and the stability verdict; the peak
+/// stress and curvature and the shape come from the exact shape, which is
+/// solved again (deterministically, to the same answer) when first asked for.
+#[pyclass(frozen, module = "flexure.exact", name = "Elastica")]
+pub struct Elastica {
+    flexure: Py<Flexure>,
+    load: TipLoad,
+    solution: elastica::Solution,
+    /// The peak stress (`None` without a thickness), once known.
+    stress: OnceLock<Option<Peak>>,
+    /// The largest change of curvature, once known.
+    curvature: OnceLock<Peak>,
+}
+
+impl Elastica {
+    /// `work` on the exact shape, solved again without the GIL (Ctrl-C stops it).
+    fn traced<T: Send>(
+        &self,
+        py: Python<'_>,
+        work: impl FnOnce(&elastica::Trace) -> flexure::Result<T> + Send,
+    ) -> PyResult<T> {
+        let (f, load) = (&self.flexure.get().inner, self.load);
+        interruptible(py, || work(&elastica::deflect_traced(f, &load, &Default::default())?.1))
+    }
+
+    fn peak_stress(&self, py: Python<'_>) -> PyResult<Option<Peak>> {
+        if let Some(p) = self.stress.get() {
+            return Ok(*p);
+        }
+        let p = self.traced(py, |t| t.peak_stress())?;
+        Ok(*self.stress.get_or_init(|| p))
+    }
+}
+
+#[pymethods]
+impl Elastica {
+    /// Tip pose [phi, x, y] in the root frame.
+    #[getter]
+    fn pose<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let p = self.solution.pose;
+        PyArray1::from_vec(py, vec![p.phi, p.x, p.y])
+    }
+    /// Bending moment at the root, M0 = EI(0)(ω(0) − ω0(0)) (N·m).
+    #[getter]
+    fn root_moment(&self) -> f64 {
+        self.solution.root_moment
+    }
+    /// Whether the shape is a minimum of the potential energy (Jacobi test).
+    #[getter]
+    fn stable(&self) -> bool {
+        self.solution.stable
+    }
+    /// The load fraction where the loading path first lost stability (snap-through), or None.
+    #[getter]
+    fn limit(&self) -> Option<f64> {
+        self.solution.limit
+    }
+    /// The tip load (moment, fx, fy) in the root frame.
+    #[getter]
+    fn load(&self) -> (f64, f64, f64) {
+        (self.load.moment, self.load.fx, self.load.fy)
+    }
+    /// The flexure solved.
+    #[getter]
+    fn flexure(&self, py: Python<'_>) -> Py<Flexure> {
+        self.flexure.clone_ref(py)
+    }
+
+    /// Peak bending stress σ(s) = E′ h(s)/2 |m(s)|/EI(s): {"max": Pa, "at": m from the root};
+    /// None for a flexure given by ei (no thickness).
+    fn stress<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.peak_stress(py)?.map(|p| stress::peak_dict(py, &p)).transpose()
+    }
+
+    /// Largest change of curvature from rest, |m(s)|/EI(s): {"max": 1/m, "at": m}.
+    fn peak_curvature<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let p = match self.curvature.get() {
+            Some(p) => *p,
+            None => {
+                let p = self.traced(py, |t| t.peak_curvature())?;
+                *self.curvature.get_or_init(|| p)
+            }
+        };
+        stress::peak_dict(py, &p)
+    }
+
+    /// Safety factor S/σmax against the flexure's yield strength (inf while unstressed);
+    /// below 1 it warns YieldWarning.
+    fn safety_factor(&self, py: Python<'_>) -> PyResult<f64> {
+        let Some(s) = self.flexure.get().yield_strength else {
+            return Err(PyValueError::new_err(
+                "safety_factor needs the flexure's yield_strength: build it with Flexure(..., yield_strength=S)",
+            ));
+        };
+        let peak = self.peak_stress(py)?;
+        let factor = stress::safety_factor_of(py, peak, s, "Elastica.safety_factor", 1)?;
+        Ok(factor.map_or(f64::INFINITY, |(_, f)| f))
+    }
+
+    /// The exact shape at k points evenly spaced in arc length, ends included, in the root
+    /// frame: a structured array of fields s, x, y, phi, curvature and (with a thickness)
+    /// stress, as `Flexure.shape`.
+    fn shape<'py>(&self, py: Python<'py>, k: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let count = shape_points(k)?;
+        let points = self.traced(py, |t| t.shape(count))?;
+        let stressed = self.flexure.get().inner.section().modulus().is_some();
+        stress::exact_shape(py, &points, stressed)
+    }
+
+    fn __repr__(&self) -> String {
+        let (p, l) = (self.solution.pose, self.load);
+        format!(
+            "Elastica(load=({}, {}, {}), pose=[{}, {}, {}], root_moment={}, stable={})",
+            l.moment,
+            l.fx,
+            l.fy,
+            p.phi,
+            p.x,
+            p.y,
+            self.solution.root_moment,
+            if self.solution.stable { "True" } else { "False" }
+        )
+    }
+}
+
+/// The exact elastica of `flexure` under a tip load; `what` names the caller in warnings. Warns StabilityWarning when it is
+/// unstable, and YieldWarning when the peak stress exceeds the flexure's yield strength;
+/// both at stack level 2, the line calling `flexure.exact`'s wrapper.
+#[pyfunction]
+#[pyo3(signature = (flexure, moment=0.0, fx=0.0, fy=0.0, *, what="exact.elastica"))]
+pub fn exact_elastica(
+    py: Python<'_>,
+    flexure: Bound<'_, Flexure>,
+    moment: f64,
+    fx: f64,
+    fy: f64,
+    what: &str,
+) -> PyResult<Elastica> {
+    let load = tip_load(moment, fx, fy)?;
+    let this = flexure.get();
+    let (f, strength) = (&this.inner, this.yield_strength);
+    let (solution, peak) = interruptible(py, || {
+        let (solution, trace) = elastica::deflect_traced(f, &load, &Default::default())?;
+        // Known now only when it is needed for the yield warning.
+        let peak = if strength.is_some() { Some(trace.peak_stress()?) } else { None };
+        Ok((solution, peak))
+    })?;
+    if !solution.stable {
+        warn_unstable(py, what, &load, "the elastica fails the Jacobi test", 2)?;
+    }
+    let stress = OnceLock::new();
+    if let Some(peak) = peak {
+        if let Some(s) = strength {
+            stress::safety_factor_of(py, peak, s, what, 2)?;
+        }
+        let _ = stress.set(peak);
+    }
+    Ok(Elastica { flexure: flexure.unbind(), load, solution, stress, curvature: OnceLock::new() })
+}
+
+/// Exact tip compliance (3, 3) of `flexure` from the compliance ODE (Eq. 34, with EI(s)), order (phi, x, y).
+#[pyfunction]
+pub fn exact_compliance<'py>(py: Python<'py>, flexure: &Flexure) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let f = &flexure.inner;
+    let c = interruptible(py, || compliance::compliance_tip(f, &Default::default()))?;
+    Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+}
+
+/// Exact buckling load (N) of `flexure` as a straight column clamped at the root, its tip
+/// `tip`: Euler's closed form for a uniform section, shooting on the load for EI(s)
+/// (as `flexure buckling --exact`).
+#[pyfunction]
+#[pyo3(signature = (flexure, tip="free"))]
+pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyResult<f64> {
+    let f = &flexure.inner;
+    let tip: TipConstraint = tip.parse().map_err(to_py)?;
+    if f.rest().iter().any(|&k| k != 0.0) {
+        let rest = format!("{:?}", f.rest());
+        return Err(to_py(Error::invalid("rest", rest, "the exact buckling load is for a straight flexure")));
+    }
+    if f.section().is_uniform() {
+        return Ok(euler::buckling_load(tip, f.length(), f.ei()));
+    }
+    interruptible(py, || column::buckling_load(f, tip, &Default::default()))
+}
+
+/// The flexure `flexure.exact` builds from `length`, `ei` (a number, a pair
+/// (root, tip) or a table, as `Flexure`'s) and `rest` (1 to 64 rest curvature
+/// coefficients, any order; straight, order 3, without them).
+#[pyfunction]
+#[pyo3(signature = (length=1.0, ei=None, rest=None))]
+pub fn exact_flexure(
+    length: f64,
+    ei: Option<&Bound<'_, PyAny>>,
+    rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+) -> PyResult<Flexure> {
+    let given = section::Arguments {
+        ei,
+        modulus: None,
+        width: None,
+        thickness: None,
+        poisson: None,
+        notch: None,
+        density: None,
+        mass_per_length: None,
+    };
+    let (ei, section) = section::read(&given)?;
+    let kappa = match rest {
+        Some(r) => vector("rest", &r, None)?,
+        None => vec![0.0; 3],
+    };
+    let max = flexure::joint::MAX_ORDER;
+    if !(1..=max).contains(&kappa.len()) {
+        return Err(PyValueError::new_err(format!(
+            "rest must have from 1 to {max} entries (rest curvature coefficients), got {}",
+            kappa.len()
+        )));
+    }
+    let mut f = flexure::Flexure::new(length, ei, kappa.len()).map_err(to_py)?;
+    if let Some(s) = section {
+        f = f.with_section(s).map_err(to_py)?;
+    }
+    Ok(Flexure { inner: f.with_rest(&kappa).map_err(to_py)?, yield_strength: None })
+}
