@@ -1,7 +1,8 @@
 //! Dynamics of one flexure joint carrying an optional rigid tip [`Body`]:
 //! the generalized mass matrix and velocity-product terms of its
 //! coordinates ([`mass`]), and its vibration modes about a loaded
-//! equilibrium ([`mod@modes`]).
+//! equilibrium ([`mod@modes`]); and the [`System`] interface between
+//! equations of motion and a time integrator.
 //!
 //! The kinetic energy of the flexure (mass per length $\mu(s)$, rotary
 //! inertia per length $\rho I(s)$) and of the body (mass $m$, inertia $I_c$
@@ -19,7 +20,9 @@
 pub mod body;
 pub mod mass;
 pub mod modes;
+pub mod system;
 
 pub use body::Body;
 pub use mass::{MassData, MassModel, update as update_mass};
 pub use modes::{Modes, modes};
+pub use system::System;

@@ -1,0 +1,53 @@
+//! The interface between a mechanical system and the time integrator.
+//!
+//! A system has $n$ generalized coordinates $q$ and $m$ closure equations
+//! $c(q) = 0$ with Jacobian $G = \partial c/\partial q$. Its equations of motion are
+//!
+//! $$M(q)\ddot q = f(q, \dot q, t) - G^T\lambda, \qquad c(q) = 0,$$
+//!
+//! where the generalized force $f = Q(q, t) - h(q, \dot q) - \nabla U(q) - D\dot q$
+//! collects the applied loads $Q$, the velocity-product terms
+//! $h = \dot M\dot q - \frac12\nabla_q(\dot q^TM\dot q)$, the elastic and
+//! gravitational forces and the damping. $M$ may be singular (massless
+//! flexures carry no inertia in some directions): an integrator must not
+//! invert it, only the Newton matrix $M - \gamma h\thinspace\partial_{\dot q}f -
+//! \beta h^2\partial_qf$ (with the closure rows), which the elastic
+//! stiffness keeps regular.
+//!
+//! Matrices are column-major: `a[j * rows + i]` is row $i$, column $j$.
+
+use crate::error::Result;
+
+/// A mechanical system for [`crate::dynamics`]'s time integration and modes.
+pub trait System {
+    /// Number of coordinates $n$.
+    fn dim(&self) -> usize;
+
+    /// Number of closure equations $m$ (0 for a tree).
+    fn closures(&self) -> usize;
+
+    /// Writes $M(q)$ ($n\times n$) and $f(q, \dot q, t)$ ($n$). An `Err`
+    /// marks a state that cannot be evaluated.
+    fn dynamics(&mut self, q: &[f64], v: &[f64], t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()>;
+
+    /// Writes $-\partial f/\partial q$ (the tangent stiffness) and
+    /// $-\partial f/\partial\dot q$ (the tangent damping), each $n\times n$, at the
+    /// state last passed to [`System::dynamics`]. They enter only the Newton
+    /// matrix, so they need to be accurate enough for convergence, not exact.
+    fn tangent(&mut self, q: &[f64], v: &[f64], t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()>;
+
+    /// Writes $c(q)$ ($m$) and $G(q)$ ($m\times n$). The default, for a tree, writes nothing.
+    fn closure(&mut self, _q: &[f64], _c: &mut [f64], _g: &mut [f64]) -> Result<()> {
+        Ok(())
+    }
+
+    /// The total energy $T + U$ (kinetic, elastic and gravitational; J) at a
+    /// state, for energy checks and reports. Work done by the applied loads
+    /// $Q$ and by damping is not included.
+    fn energy(&mut self, q: &[f64], v: &[f64], t: f64) -> Result<f64>;
+
+    /// The largest rotation (rad) of any section or body between two
+    /// configurations: bounds the integrator's step as it bounds the
+    /// continuation's ([`crate::solver::Problem::distance`]).
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64;
+}
