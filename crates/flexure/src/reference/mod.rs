@@ -6,7 +6,7 @@
 //! - [`elastica`]: the large-deflection elastica (Eq. 3) solved by shooting,
 //!   with its shape and bending stress ([`elastica::Trace`]);
 //! - [`compliance`]: the compliance ODE (Eq. 34);
-//! - [`column`]: the linearized buckling load of a straight column by shooting;
+//! - [`mod@column`]: the linearized buckling load of a straight column by shooting;
 //! - [`euler`]: Euler's closed-form buckling loads (uniform columns);
 //! - [`vibration`]: linear vibration of the straight beam by shooting on the frequency.
 
