@@ -85,6 +85,25 @@ pub enum Error {
         /// What failed and why.
         what: String,
     },
+    /// Time integration could not advance: its step fell to rounding, or
+    /// it ran out of steps or of retries of one step.
+    #[error(
+        "time integration stalled at t = {time:.6e} s of {duration:.6e} s after {steps} steps and {rejected} rejected (step {step:.3e} s; last: {cause}); try a looser tolerance, or a larger max_steps, or check that the motion stays where the model holds"
+    )]
+    IntegrationStalled {
+        /// Why the last step failed.
+        cause: String,
+        /// Time reached (s).
+        time: f64,
+        /// The duration asked for (s).
+        duration: f64,
+        /// Accepted steps.
+        steps: usize,
+        /// Rejected steps.
+        rejected: usize,
+        /// The last step tried (s).
+        step: f64,
+    },
 }
 
 /// The library's result type.

@@ -200,7 +200,9 @@ pub fn with_interrupt<R>(check: fn() -> bool, work: impl FnOnce() -> R) -> R {
     work()
 }
 
-fn interrupted() -> bool {
+/// Whether the hook set by [`with_interrupt`] asks to stop; also polled by
+/// the time integrator ([`crate::dynamics::integrate`]).
+pub(crate) fn interrupted() -> bool {
     INTERRUPT.with(|c| c.get()).is_some_and(|check| check())
 }
 

@@ -13,6 +13,7 @@ mod buckling;
 mod compliance;
 mod connect;
 mod coordinates;
+mod dynamics_integrate;
 mod dynamics_mass;
 mod dynamics_modes;
 mod dynamics_vibration;

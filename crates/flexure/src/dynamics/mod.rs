@@ -18,6 +18,7 @@
 //! $h = \dot M\dot\alpha - \frac12\nabla_\alpha(\dot\alpha^TM\dot\alpha)$.
 
 pub mod body;
+pub mod integrate;
 pub mod mass;
 pub mod modes;
 pub mod system;
