@@ -75,8 +75,441 @@ fn pendulum_period_matches_the_elliptic_integral() {
     let quarter = 4.0 * (exact / 4.0 - th / om);
     // Full period: back at rest, θ̇ = θ̈ (t − T).
     let full = exact - run.v(4)[0] / (-(G / l) * run.q(4)[0].sin());
-    println!("quarter {:e} full {:e} steps {} rejected {}", (quarter - exact) / exact, (full - exact) / exact, run.steps, run.rejected);
     assert!(((quarter - exact) / exact).abs() < 10.0 * tol, "{quarter} vs {exact}");
     assert!(((full - exact) / exact).abs() < 10.0 * tol, "{full} vs {exact}");
     assert!((run.q(4)[0] - theta0).abs() < 10.0 * tol);
+}
+
+/// A double pendulum of point masses `m1`, `m2` on rods `l1`, `l2`, angles
+/// from the downward vertical, in the mass-matrix form of its Lagrange
+/// equations; the tangents by central differences (they need only make
+/// Newton converge).
+struct DoublePendulum {
+    m1: f64,
+    m2: f64,
+    l1: f64,
+    l2: f64,
+}
+
+impl DoublePendulum {
+    fn force(&self, q: &[f64], v: &[f64]) -> [f64; 2] {
+        let (m1, m2, l1, l2) = (self.m1, self.m2, self.l1, self.l2);
+        let s = (q[0] - q[1]).sin();
+        [
+            -m2 * l1 * l2 * s * v[1] * v[1] - (m1 + m2) * G * l1 * q[0].sin(),
+            m2 * l1 * l2 * s * v[0] * v[0] - m2 * G * l2 * q[1].sin(),
+        ]
+    }
+}
+
+impl System for DoublePendulum {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn closures(&self) -> usize {
+        0
+    }
+    fn dynamics(&mut self, q: &[f64], v: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        let (m1, m2, l1, l2) = (self.m1, self.m2, self.l1, self.l2);
+        let c = m2 * l1 * l2 * (q[0] - q[1]).cos();
+        mass.copy_from_slice(&[(m1 + m2) * l1 * l1, c, c, m2 * l2 * l2]);
+        force.copy_from_slice(&self.force(q, v));
+        Ok(())
+    }
+    fn tangent(&mut self, q: &[f64], v: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        let e = 1e-6;
+        for j in 0..2 {
+            let (mut qp, mut qm, mut vp, mut vm) = ([q[0], q[1]], [q[0], q[1]], [v[0], v[1]], [v[0], v[1]]);
+            qp[j] += e;
+            qm[j] -= e;
+            vp[j] += e;
+            vm[j] -= e;
+            let (fqp, fqm) = (self.force(&qp, v), self.force(&qm, v));
+            let (fvp, fvm) = (self.force(q, &vp), self.force(q, &vm));
+            for i in 0..2 {
+                k[j * 2 + i] = -(fqp[i] - fqm[i]) / (2.0 * e);
+                d[j * 2 + i] = -(fvp[i] - fvm[i]) / (2.0 * e);
+            }
+        }
+        Ok(())
+    }
+    fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
+        let (m1, m2, l1, l2) = (self.m1, self.m2, self.l1, self.l2);
+        let t = 0.5 * (m1 + m2) * (l1 * v[0]).powi(2)
+            + 0.5 * m2 * (l2 * v[1]).powi(2)
+            + m2 * l1 * l2 * v[0] * v[1] * (q[0] - q[1]).cos();
+        Ok(t - (m1 + m2) * G * l1 * q[0].cos() - m2 * G * l2 * q[1].cos())
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        (a[0] - b[0]).abs().max((a[1] - b[1]).abs())
+    }
+}
+
+/// Classical fourth-order Runge–Kutta with a fixed step on $\dot y = F(y)$.
+fn rk4<const D: usize>(f: impl Fn(&[f64; D]) -> [f64; D], y0: [f64; D], duration: f64, steps: usize) -> [f64; D] {
+    let h = duration / steps as f64;
+    let mut y = y0;
+    let add = |y: &[f64; D], k: &[f64; D], s: f64| std::array::from_fn(|i| y[i] + s * k[i]);
+    for _ in 0..steps {
+        let k1 = f(&y);
+        let k2 = f(&add(&y, &k1, h / 2.0));
+        let k3 = f(&add(&y, &k2, h / 2.0));
+        let k4 = f(&add(&y, &k3, h));
+        y = std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    }
+    y
+}
+
+/// The double pendulum's explicit closed-form accelerations (solved by
+/// hand, independent of the mass-matrix form above), integrated by RK4 at
+/// 2e-5 s (its error, of order h⁴, is below 1e-12 here). Over 3 s of large
+/// swings at tolerance 1e-10 the integrator must agree to ten times the
+/// tolerance in angles and rates, and keep the energy to 1e-9 relative.
+#[test]
+fn double_pendulum_matches_rk4_on_the_closed_form() {
+    let dp = DoublePendulum { m1: 1.2, m2: 0.8, l1: 0.5, l2: 0.4 };
+    let (m1, m2, l1, l2) = (dp.m1, dp.m2, dp.l1, dp.l2);
+    let explicit = |y: &[f64; 4]| {
+        let (t1, t2, w1, w2) = (y[0], y[1], y[2], y[3]);
+        let den = 2.0 * m1 + m2 - m2 * (2.0 * t1 - 2.0 * t2).cos();
+        let a1 = (-G * (2.0 * m1 + m2) * t1.sin()
+            - m2 * G * (t1 - 2.0 * t2).sin()
+            - 2.0 * (t1 - t2).sin() * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * (t1 - t2).cos()))
+            / (l1 * den);
+        let a2 = 2.0
+            * (t1 - t2).sin()
+            * (w1 * w1 * l1 * (m1 + m2) + G * (m1 + m2) * t1.cos() + w2 * w2 * l2 * m2 * (t1 - t2).cos())
+            / (l2 * den);
+        [w1, w2, a1, a2]
+    };
+    let (q0, v0) = ([1.6, -0.4], [0.0, 2.0]);
+    let duration = 3.0;
+    let reference = rk4(explicit, [q0[0], q0[1], v0[0], v0[1]], duration, 150_000);
+    let mut sys = dp;
+    let e0 = sys.energy(&q0, &v0, 0.0).unwrap();
+    let run = integrate(&mut sys, &q0, &v0, &settings(duration, 1.0, 1e-10)).unwrap();
+    let last = run.time.len() - 1;
+    assert!(((run.energy[last] - e0) / e0).abs() < 1e-9);
+    let err = (0..2).map(|i| (run.q(last)[i] - reference[i]).abs()).fold(0.0, f64::max);
+    let verr = (0..2).map(|i| (run.v(last)[i] - reference[2 + i]).abs()).fold(0.0, f64::max);
+    assert!(err < 1e-9, "angles differ by {err}");
+    assert!(verr < 1e-9, "rates differ by {verr}");
+}
+
+/// Linear springs and masses: $M\ddot q = -Kq$, with a constant (possibly
+/// singular) $M$ and no closures.
+struct Linear {
+    n: usize,
+    m: Vec<f64>,
+    k: Vec<f64>,
+}
+
+impl System for Linear {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn closures(&self) -> usize {
+        0
+    }
+    fn dynamics(&mut self, q: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        mass.copy_from_slice(&self.m);
+        for (r, f) in force.iter_mut().enumerate() {
+            *f = -(0..self.n).map(|c| self.k[c * self.n + r] * q[c]).sum::<f64>();
+        }
+        Ok(())
+    }
+    fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        k.copy_from_slice(&self.k);
+        d.fill(0.0);
+        Ok(())
+    }
+    fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
+        let quad = |a: &[f64], x: &[f64]| {
+            (0..self.n).map(|r| (0..self.n).map(|c| x[r] * a[c * self.n + r] * x[c]).sum::<f64>()).sum::<f64>()
+        };
+        Ok(0.5 * quad(&self.m, v) + 0.5 * quad(&self.k, q))
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    }
+}
+
+/// Two unit masses, the first tied to the wall by k = 1 N/m, the second to
+/// the first by K = 1e6 N/m (stiffness ratio 1e6, frequencies 0.707 and
+/// 1414 rad/s), started in the slow mode with the fast one excited at 1e-10
+/// m, below the tolerance (1e-8), so the error control need not resolve it.
+/// Exact: $q = A\phi_s\cos\omega_st + \epsilon\phi_f\cos\omega_ft$. Over
+/// three slow periods the slow amplitude must match to ten times the
+/// tolerance, the fast one must not grow (L-stability damps what the steps
+/// do not resolve), and it must take a tenth of the 18 800 steps an
+/// explicit method needs at its stability limit h = 2/ω_f.
+#[test]
+fn stiff_pair_is_stable_and_follows_the_slow_mode() {
+    let (k, ks): (f64, f64) = (1.0, 1e6);
+    let kmat = vec![k + ks, -ks, -ks, ks];
+    let sum = k + 2.0 * ks;
+    let disc = (sum * sum - 4.0 * k * ks).sqrt();
+    // The slow root without cancellation: λ_s λ_f = k K.
+    let (lf, ls) = ((sum + disc) / 2.0, 2.0 * k * ks / (sum + disc));
+    // Mode shapes from the second row: -K x1 + (K - λ) x2 = 0.
+    let shape = |l: f64| {
+        let x = [(ks - l) / ks, 1.0];
+        let norm = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        [x[0] / norm, x[1] / norm]
+    };
+    let (ps, pf) = (shape(ls), shape(lf));
+    let (ws, wf) = (ls.sqrt(), lf.sqrt());
+    let (a, eps) = (0.1, 1e-10);
+    let q0 = [a * ps[0] + eps * pf[0], a * ps[1] + eps * pf[1]];
+    let duration = 3.0 * 2.0 * std::f64::consts::PI / ws;
+    let mut sys = Linear { n: 2, m: vec![1.0, 0.0, 0.0, 1.0], k: kmat };
+    let run = integrate(&mut sys, &q0, &[0.0, 0.0], &settings(duration, duration / 30.0, 1e-8)).unwrap();
+    let mut worst: f64 = 0.0;
+    let mut fast: f64 = 0.0;
+    for (j, t) in run.time.iter().enumerate() {
+        let q = run.q(j);
+        // Modal amplitudes by M-orthogonality (M = I, shapes orthonormal).
+        let slow = q[0] * ps[0] + q[1] * ps[1];
+        worst = worst.max((slow - a * (ws * t).cos()).abs());
+        fast = fast.max((q[0] * pf[0] + q[1] * pf[1]).abs());
+    }
+    assert!(worst < 1e-7, "slow amplitude off by {worst}");
+    assert!(fast <= eps * (1.0 + 1e-6), "fast mode grew to {fast}");
+    // An explicit method is stable only for h < 2/ω_f.
+    let explicit = duration * wf / 2.0;
+    assert!((run.steps as f64) < explicit / 10.0, "{} steps", run.steps);
+}
+
+/// A unit mass held by two springs in series, k1 = 3000 and k2 = 1000 N/m,
+/// through a massless node: $M = \mathrm{diag}(0, 1)$ is singular. The node
+/// follows its quasi-static equilibrium $x_n = k_2x_m/(k_1 + k_2)$ and the
+/// mass oscillates at $\omega = \sqrt{k_1k_2/(k_1+k_2)}$. Started on that
+/// equilibrium, or off it (the first step projects onto it), both must
+/// follow $x_m = \cos\omega t$ to 1e-7 (ten times the tolerance) over five
+/// periods.
+#[test]
+fn massless_node_follows_its_quasi_static_equilibrium() {
+    let (k1, k2): (f64, f64) = (3000.0, 1000.0);
+    let w = (k1 * k2 / (k1 + k2)).sqrt();
+    let duration = 5.0 * 2.0 * std::f64::consts::PI / w;
+    for node in [k2 / (k1 + k2), 0.0] {
+        let mut sys = Linear { n: 2, m: vec![0.0, 0.0, 0.0, 1.0], k: vec![k1 + k2, -k2, -k2, k2] };
+        let run = integrate(&mut sys, &[node, 1.0], &[0.0, 0.0], &settings(duration, duration / 20.0, 1e-8)).unwrap();
+        let mut worst: f64 = 0.0;
+        for (j, t) in run.time.iter().enumerate().skip(1) {
+            let exact = (w * t).cos();
+            worst = worst.max((run.q(j)[1] - exact).abs()).max((run.q(j)[0] - k2 / (k1 + k2) * exact).abs());
+        }
+        assert!(worst < 1e-7, "start {node}: off by {worst}");
+    }
+}
+
+/// The pendulum in Cartesian coordinates of its mass, with the closure
+/// $x^2 + y^2 - l^2 = 0$ (index 3): $m\ddot x = -2x\lambda$,
+/// $m\ddot y = -mg - 2y\lambda$.
+struct CartesianPendulum {
+    m: f64,
+    l: f64,
+}
+
+impl System for CartesianPendulum {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn closures(&self) -> usize {
+        1
+    }
+    fn dynamics(&mut self, _: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        mass.copy_from_slice(&[self.m, 0.0, 0.0, self.m]);
+        force.copy_from_slice(&[0.0, -self.m * G]);
+        Ok(())
+    }
+    fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        k.fill(0.0);
+        d.fill(0.0);
+        Ok(())
+    }
+    fn closure(&mut self, q: &[f64], c: &mut [f64], g: &mut [f64]) -> Result<()> {
+        c[0] = q[0] * q[0] + q[1] * q[1] - self.l * self.l;
+        g.copy_from_slice(&[2.0 * q[0], 2.0 * q[1]]);
+        Ok(())
+    }
+    fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
+        Ok(0.5 * self.m * (v[0] * v[0] + v[1] * v[1]) + self.m * G * q[1])
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        (a[0].atan2(-a[1]) - b[0].atan2(-b[1])).abs()
+    }
+}
+
+/// Released from rest at θ₀ = 1.2 rad, the Cartesian pendulum must follow
+/// the angle form $\ddot\theta = -(g/l)\sin\theta$ (RK4 at 1e-5 s, error
+/// below 1e-12) to ten times the tolerance (1e-8 m) over 2 s at tolerance
+/// 1e-9, with the closure held to 1e-11 m² at every step: the index-3 stages
+/// solve it, up to Newton's stopping test (3e-5 of the tolerance here) and
+/// rounding.
+#[test]
+fn cartesian_pendulum_with_a_closure_matches_the_angle_form() {
+    let (m, l, theta0): (f64, f64, f64) = (0.5, 0.8, 1.2);
+    let mut sys = CartesianPendulum { m, l };
+    let q0 = [l * theta0.sin(), -l * theta0.cos()];
+    let duration = 2.0;
+    let run = integrate(&mut sys, &q0, &[0.0, 0.0], &settings(duration, 0.5, 1e-9)).unwrap();
+    let mut worst: f64 = 0.0;
+    for (j, &t) in run.time.iter().enumerate() {
+        let steps = (t / 1e-5).round().max(1.0) as usize;
+        let [th, _] = rk4(|y: &[f64; 2]| [y[1], -(G / l) * y[0].sin()], [theta0, 0.0], t, steps);
+        let q = run.q(j);
+        worst = worst.max((q[0] - l * th.sin()).abs()).max((q[1] + l * th.cos()).abs());
+    }
+    assert!(worst < 1e-8, "off the angle form by {worst} m");
+    assert!(run.violation < 1e-11, "closure violated by {}", run.violation);
+}
+
+/// An undamped Duffing oscillator $\ddot x = -x - x^3$ from x = 1 at rest
+/// (period 4.8 s): over 100·2π s (more than 100 periods) at tolerance 1e-10
+/// the energy $\tfrac12\dot x^2 + \tfrac12x^2 + \tfrac14x^4$ must stay within
+/// 1e-6 of its start, the bound.
+#[test]
+fn energy_drifts_less_than_1e6_over_100_periods() {
+    struct Duffing;
+    impl System for Duffing {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn closures(&self) -> usize {
+            0
+        }
+        fn dynamics(&mut self, q: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+            mass[0] = 1.0;
+            force[0] = -q[0] - q[0].powi(3);
+            Ok(())
+        }
+        fn tangent(&mut self, q: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+            k[0] = 1.0 + 3.0 * q[0] * q[0];
+            d[0] = 0.0;
+            Ok(())
+        }
+        fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
+            Ok(0.5 * v[0] * v[0] + 0.5 * q[0] * q[0] + 0.25 * q[0].powi(4))
+        }
+        fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+            (a[0] - b[0]).abs()
+        }
+    }
+    let duration = 100.0 * 2.0 * std::f64::consts::PI;
+    let run = integrate(&mut Duffing, &[1.0], &[0.0], &settings(duration, 1.0, 1e-10)).unwrap();
+    let e0 = run.energy[0];
+    let drift = run.energy.iter().map(|e| ((e - e0) / e0).abs()).fold(0.0, f64::max);
+    assert!(drift <= 1e-6, "energy drifted by {drift}");
+}
+
+fn bad(s: Settings) -> &'static str {
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
+    match integrate(&mut p, &[0.1], &[0.0], &s) {
+        Err(Error::InvalidParameter { name, .. }) => name,
+        other => panic!("expected an invalid parameter, got {other:?}"),
+    }
+}
+
+/// A duration, interval or tolerance that is zero, negative or not a
+/// number, and an initial state of the wrong length, are errors naming
+/// them (the CLI's `--duration`, `--every`, `--tolerance`).
+#[test]
+fn bad_settings_name_the_parameter() {
+    let good = settings(1.0, 0.1, 1e-8);
+    assert_eq!(bad(Settings { duration: 0.0, ..good }), "duration");
+    assert_eq!(bad(Settings { duration: -1.0, ..good }), "duration");
+    assert_eq!(bad(Settings { duration: f64::NAN, ..good }), "duration");
+    assert_eq!(bad(Settings { every: 0.0, ..good }), "every");
+    assert_eq!(bad(Settings { every: -0.1, ..good }), "every");
+    assert_eq!(bad(Settings { every: 1e-9, ..good }), "every");
+    assert_eq!(bad(Settings { tolerance: 0.0, ..good }), "tolerance");
+    assert_eq!(bad(Settings { tolerance: -1e-8, ..good }), "tolerance");
+    assert_eq!(bad(Settings { tolerance: 2.0, ..good }), "tolerance");
+    assert_eq!(bad(Settings { absolute: 0.0, ..good }), "absolute");
+    assert_eq!(bad(Settings { max_step: 0.0, ..good }), "max_step");
+    assert_eq!(bad(Settings { max_rotation_per_step: -1.0, ..good }), "max_rotation_per_step");
+    assert_eq!(bad(Settings { max_steps: 0, ..good }), "max_steps");
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
+    let e = integrate(&mut p, &[0.1, 0.2], &[0.0], &good).unwrap_err();
+    assert!(matches!(e, Error::InvalidParameter { name: "initial", .. }), "{e}");
+    let e = integrate(&mut p, &[0.1], &[f64::NAN], &good).unwrap_err();
+    assert!(matches!(e, Error::InvalidParameter { name: "initial_velocity", .. }), "{e}");
+}
+
+/// Samples fall at 0, Δt, 2Δt, … and T exactly, also when T is no multiple
+/// of Δt; `max_step` and the rotation bound are honoured (counted: the
+/// steps must at least cover the duration in steps of `max_step`, and the
+/// swing's travel, read off the samples, in turns of the bound).
+#[test]
+fn samples_steps_and_rotation_bound() {
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
+    let run = integrate(&mut p, &[1.0], &[0.0], &settings(1.05, 0.25, 1e-6)).unwrap();
+    assert_eq!(run.time, [0.0, 0.25, 0.5, 0.75, 1.0, 1.05]);
+    let loose = integrate(&mut p, &[1.0], &[0.0], &settings(2.0, 2.0, 1e-4)).unwrap();
+    let capped = integrate(&mut p, &[1.0], &[0.0], &Settings { max_step: 0.01, ..settings(2.0, 2.0, 1e-4) }).unwrap();
+    assert!(capped.steps >= 200 && capped.steps > loose.steps, "{} vs {}", capped.steps, loose.steps);
+    let bound = 0.02;
+    let turned =
+        integrate(&mut p, &[1.0], &[0.0], &Settings { max_rotation_per_step: bound, ..settings(2.0, 0.01, 1e-4) })
+            .unwrap();
+    let travel: f64 = (1..turned.time.len()).map(|k| (turned.q(k)[0] - turned.q(k - 1)[0]).abs()).sum();
+    assert!(turned.steps as f64 >= travel / bound, "{} steps for {travel} rad", turned.steps);
+}
+
+/// A system that cannot be evaluated past q = -1 (falling at 1 m/s² from
+/// rest at 0, it gets there at t = √2): the run stalls there and says so,
+/// with the time reached; an interrupt stops it at once.
+#[test]
+fn failures_say_what_was_reached() {
+    struct Fall;
+    impl System for Fall {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn closures(&self) -> usize {
+            0
+        }
+        fn dynamics(&mut self, q: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+            if q[0] < -1.0 {
+                return Err(Error::Singular { what: "beyond the floor".into() });
+            }
+            mass[0] = 1.0;
+            force[0] = -1.0;
+            Ok(())
+        }
+        fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+            k[0] = 0.0;
+            d[0] = 0.0;
+            Ok(())
+        }
+        fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
+            Ok(0.5 * v[0] * v[0] + q[0])
+        }
+        fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+            (a[0] - b[0]).abs()
+        }
+    }
+    let e = integrate(&mut Fall, &[0.0], &[0.0], &settings(3.0, 0.5, 1e-8)).unwrap_err();
+    match &e {
+        Error::IntegrationStalled { time, duration, cause, .. } => {
+            assert!((time - 2f64.sqrt()).abs() < 1e-6, "{e}");
+            assert_eq!(*duration, 3.0);
+            assert!(cause.contains("beyond the floor"), "{e}");
+        }
+        other => panic!("{other}"),
+    }
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
+    let e = flexure::solver::with_interrupt(|| true, || integrate(&mut p, &[1.0], &[0.0], &settings(1.0, 0.1, 1e-6)));
+    assert!(matches!(e, Err(Error::Interrupted { load_fraction: 0.0 })), "{e:?}");
+}
+
+/// With damping the energy only falls (sampled), and the run ends near rest.
+#[test]
+fn damped_pendulum_loses_energy() {
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 2.0 };
+    let run: Trajectory = integrate(&mut p, &[2.0], &[0.0], &settings(10.0, 0.1, 1e-8)).unwrap();
+    assert!(run.energy.windows(2).all(|e| e[1] <= e[0] + 1e-12), "{:?}", run.energy);
+    assert!(run.q(run.time.len() - 1)[0].abs() < 1e-2);
 }

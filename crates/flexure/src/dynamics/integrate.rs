@@ -125,9 +125,13 @@ impl Settings {
             return Err(Error::invalid("tolerance", self.tolerance, "must be at most 1 (a relative error)"));
         }
         if self.tolerance < 1e-14 {
-            return Err(Error::invalid("tolerance", self.tolerance, "must be at least 1e-14 (double-precision rounding)"));
+            return Err(Error::invalid(
+                "tolerance",
+                self.tolerance,
+                "must be at least 1e-14 (double-precision rounding)",
+            ));
         }
-        if !(self.max_step > 0.0) {
+        if self.max_step.is_nan() || self.max_step <= 0.0 {
             return Err(Error::invalid("max_step", self.max_step, "must be greater than zero (or infinite for none)"));
         }
         positive("max_rotation_per_step", self.max_rotation_per_step)?;
@@ -365,7 +369,12 @@ fn violation<S: System + ?Sized>(system: &mut S, q: &[f64], w: &mut Work) -> Res
 ///     assert!((run.q(k)[0] - t.cos()).abs() < 1e-8);
 /// }
 /// ```
-pub fn integrate<S: System + ?Sized>(system: &mut S, q0: &[f64], v0: &[f64], settings: &Settings) -> Result<Trajectory> {
+pub fn integrate<S: System + ?Sized>(
+    system: &mut S,
+    q0: &[f64],
+    v0: &[f64],
+    settings: &Settings,
+) -> Result<Trajectory> {
     settings.validate()?;
     let (n, m) = (system.dim(), system.closures());
     for (name, state) in [("initial", q0), ("initial_velocity", v0)] {
@@ -447,7 +456,7 @@ pub fn integrate<S: System + ?Sized>(system: &mut S, q0: &[f64], v0: &[f64], set
                 (&guess_a, &guess_l),
                 settings,
                 &mut eta,
-                last_rejected || run.steps == 0,
+                (last_rejected || run.steps == 0, run.steps < 2),
             );
             let refusal = match attempt {
                 Err(e) => return Err(e),
@@ -456,7 +465,10 @@ pub fn integrate<S: System + ?Sized>(system: &mut S, q0: &[f64], v0: &[f64], set
                     let turn = system.distance(&q, qn);
                     if turn > settings.max_rotation_per_step || turn.is_nan() {
                         let r = 0.9 * settings.max_rotation_per_step / turn;
-                        Some(Refusal::Shorter(if r.is_nan() { 0.5 } else { r.min(0.5) }, format!("a step turned {turn:.3e} rad")))
+                        Some(Refusal::Shorter(
+                            if r.is_nan() { 0.5 } else { r.min(0.5) },
+                            format!("a step turned {turn:.3e} rad"),
+                        ))
                     } else {
                         q1.copy_from_slice(qn);
                         v1.copy_from_slice(vn);
@@ -559,14 +571,25 @@ fn attempt<S: System + ?Sized>(
     (guess_a, guess_l): (&[f64], &[f64]),
     settings: &Settings,
     eta: &mut f64,
-    refine: bool,
+    (refine, start): (bool, bool),
 ) -> Result<std::result::Result<f64, Refusal>> {
     let (n, m) = (w.n, w.m);
     let big = 3 * (n + m);
     let (rtol, atol) = (settings.tolerance, settings.absolute);
     // Velocities are index-2 variables of a constrained system: their
-    // error is weighed by h (RADAU5's scaling).
-    let vw = if m > 0 { h } else { 1.0 };
+    // error is weighed by h (RADAU5's scaling). In the first two steps it
+    // is not weighed at all: where a start off the quasi-static equilibrium
+    // of a massless direction is projected onto it, that direction's
+    // velocity jumps (by the jump over h), in the first step's estimate and
+    // (through v0) the second's, and no step size would make it small. By
+    // the third step the velocities derive from consistent positions.
+    let vw = if start {
+        0.0
+    } else if m > 0 {
+        h
+    } else {
+        1.0
+    };
     for r in 0..n {
         w.sq[r] = atol + rtol * q0[r].abs();
         w.sv[r] = atol + rtol * v0[r].abs();
@@ -614,9 +637,9 @@ fn attempt<S: System + ?Sized>(
         stages(rk, w, h, q0, v0);
         for i in 0..3 {
             let (qi, vi) = (&w.qs[i * n..(i + 1) * n], &w.vs[i * n..(i + 1) * n]);
-            let evaluated = system.dynamics(qi, vi, t0 + rk.c[i] * h, &mut w.mass, &mut w.force).and_then(|()| {
-                if m > 0 { system.closure(qi, &mut w.closure, &mut w.jac) } else { Ok(()) }
-            });
+            let evaluated = system
+                .dynamics(qi, vi, t0 + rk.c[i] * h, &mut w.mass, &mut w.force)
+                .and_then(|()| if m > 0 { system.closure(qi, &mut w.closure, &mut w.jac) } else { Ok(()) });
             match evaluated {
                 Ok(()) => {}
                 Err(e) if fatal(&e) => return Err(e),
@@ -689,7 +712,9 @@ fn attempt<S: System + ?Sized>(
         other => other,
     };
     let Some(err) = err else {
-        return Ok(Err(Refusal::Failed("the error estimate's matrix is singular or its state cannot be evaluated".into())));
+        return Ok(Err(Refusal::Failed(
+            "the error estimate's matrix is singular or its state cannot be evaluated".into(),
+        )));
     };
     let ratio = (0.9 / err.powf(0.25)).clamp(0.125, 5.0);
     if err > 1.0 {
