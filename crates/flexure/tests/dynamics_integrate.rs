@@ -196,12 +196,13 @@ fn double_pendulum_matches_rk4_on_the_closed_form() {
     assert!(verr < 1e-9, "rates differ by {verr}");
 }
 
-/// Linear springs and masses: $M\ddot q = -Kq$, with a constant (possibly
-/// singular) $M$ and no closures.
+/// Linear springs, dampers and masses: $M\ddot q = -Kq - D\dot q$, with
+/// a constant (possibly singular) $M$ and no closures.
 struct Linear {
     n: usize,
     m: Vec<f64>,
     k: Vec<f64>,
+    d: Vec<f64>,
 }
 
 impl System for Linear {
@@ -211,16 +212,16 @@ impl System for Linear {
     fn closures(&self) -> usize {
         0
     }
-    fn dynamics(&mut self, q: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+    fn dynamics(&mut self, q: &[f64], v: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
         mass.copy_from_slice(&self.m);
         for (r, f) in force.iter_mut().enumerate() {
-            *f = -(0..self.n).map(|c| self.k[c * self.n + r] * q[c]).sum::<f64>();
+            *f = -(0..self.n).map(|c| self.k[c * self.n + r] * q[c] + self.d[c * self.n + r] * v[c]).sum::<f64>();
         }
         Ok(())
     }
     fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
         k.copy_from_slice(&self.k);
-        d.fill(0.0);
+        d.copy_from_slice(&self.d);
         Ok(())
     }
     fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> {
@@ -262,7 +263,7 @@ fn stiff_pair_is_stable_and_follows_the_slow_mode() {
     let (a, eps) = (0.1, 1e-10);
     let q0 = [a * ps[0] + eps * pf[0], a * ps[1] + eps * pf[1]];
     let duration = 3.0 * 2.0 * std::f64::consts::PI / ws;
-    let mut sys = Linear { n: 2, m: vec![1.0, 0.0, 0.0, 1.0], k: kmat };
+    let mut sys = Linear { n: 2, m: vec![1.0, 0.0, 0.0, 1.0], k: kmat, d: vec![0.0; 4] };
     let run = integrate(&mut sys, &q0, &[0.0, 0.0], &settings(duration, duration / 30.0, 1e-8)).unwrap();
     let mut worst: f64 = 0.0;
     let mut fast: f64 = 0.0;
@@ -280,6 +281,48 @@ fn stiff_pair_is_stable_and_follows_the_slow_mode() {
     assert!((run.steps as f64) < explicit / 10.0, "{} steps", run.steps);
 }
 
+/// The stiff pair with stiffness-proportional damping D = βK (β = 1e-3 s,
+/// a flexure's material damping: damping ratios βω/2 = 0.71 for the fast
+/// mode and 3.5e-4 for the slow one), the fast mode now excited at 1e-3 m,
+/// far above the tolerance. Each mode is an exact damped oscillator,
+/// $e^{-\zeta\omega t}(\cos\omega_dt + \frac{\zeta}{\sqrt{1-\zeta^2}}\sin\omega_dt)$:
+/// both modal amplitudes must match it to ten times the tolerance at every
+/// sample over three slow periods.
+#[test]
+fn stiff_pair_with_material_damping_matches_the_damped_modes() {
+    let (k, ks, beta): (f64, f64, f64) = (1.0, 1e6, 1e-3);
+    let kmat = vec![k + ks, -ks, -ks, ks];
+    let sum = k + 2.0 * ks;
+    let disc = (sum * sum - 4.0 * k * ks).sqrt();
+    let (lf, ls) = ((sum + disc) / 2.0, 2.0 * k * ks / (sum + disc));
+    let shape = |l: f64| {
+        let x = [(ks - l) / ks, 1.0];
+        let norm = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        [x[0] / norm, x[1] / norm]
+    };
+    let (ps, pf) = (shape(ls), shape(lf));
+    let (a, b) = (0.1, 1e-3);
+    let q0 = [a * ps[0] + b * pf[0], a * ps[1] + b * pf[1]];
+    let damped = |lambda: f64, t: f64| {
+        let w = lambda.sqrt();
+        let z = beta * w / 2.0;
+        let wd = w * (1.0 - z * z).sqrt();
+        (-z * w * t).exp() * ((wd * t).cos() + z / (1.0 - z * z).sqrt() * (wd * t).sin())
+    };
+    let duration = 3.0 * 2.0 * std::f64::consts::PI / ls.sqrt();
+    let d = kmat.iter().map(|x| beta * x).collect();
+    let mut sys = Linear { n: 2, m: vec![1.0, 0.0, 0.0, 1.0], k: kmat, d };
+    let tol = 1e-8;
+    let run = integrate(&mut sys, &q0, &[0.0, 0.0], &settings(duration, duration / 30.0, tol)).unwrap();
+    for (j, &t) in run.time.iter().enumerate() {
+        let q = run.q(j);
+        let slow = q[0] * ps[0] + q[1] * ps[1];
+        let fast = q[0] * pf[0] + q[1] * pf[1];
+        assert!((slow - a * damped(ls, t)).abs() < 10.0 * tol, "slow mode at t = {t}: {slow}");
+        assert!((fast - b * damped(lf, t)).abs() < 10.0 * tol, "fast mode at t = {t}: {fast}");
+    }
+}
+
 /// A unit mass held by two springs in series, k1 = 3000 and k2 = 1000 N/m,
 /// through a massless node: $M = \mathrm{diag}(0, 1)$ is singular. The node
 /// follows its quasi-static equilibrium $x_n = k_2x_m/(k_1 + k_2)$ and the
@@ -293,7 +336,7 @@ fn massless_node_follows_its_quasi_static_equilibrium() {
     let w = (k1 * k2 / (k1 + k2)).sqrt();
     let duration = 5.0 * 2.0 * std::f64::consts::PI / w;
     for node in [k2 / (k1 + k2), 0.0] {
-        let mut sys = Linear { n: 2, m: vec![0.0, 0.0, 0.0, 1.0], k: vec![k1 + k2, -k2, -k2, k2] };
+        let mut sys = Linear { n: 2, m: vec![0.0, 0.0, 0.0, 1.0], k: vec![k1 + k2, -k2, -k2, k2], d: vec![0.0; 4] };
         let run = integrate(&mut sys, &[node, 1.0], &[0.0, 0.0], &settings(duration, duration / 20.0, 1e-8)).unwrap();
         let mut worst: f64 = 0.0;
         for (j, t) in run.time.iter().enumerate().skip(1) {
