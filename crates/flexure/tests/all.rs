@@ -14,6 +14,7 @@ mod compliance;
 mod connect;
 mod coordinates;
 mod dynamics_mass;
+mod dynamics_mechanism;
 mod dynamics_modes;
 mod dynamics_vibration;
 mod elastica;

@@ -19,6 +19,7 @@
 
 pub mod body;
 pub mod mass;
+pub mod mechanism;
 pub mod modes;
 pub mod system;
 
