@@ -419,3 +419,56 @@ fn bad_states_are_errors() {
     let e = sys.dynamics(&q, &vec![0.0; n], 0.0, &mut mass, &mut force).unwrap_err();
     assert!(e.to_string().contains("q"), "{e}");
 }
+
+/// The tangents: −∂f/∂q̇ = D + ∂h/∂q̇ against central differences of f in
+/// q̇ (f is quadratic in q̇, so they are exact to rounding: 1e-7 of the
+/// largest entry); at rest without gravity, −∂f/∂q is the potential's
+/// Hessian, against Richardson differences of f (1e-7). The closures of the
+/// parallelogram: c = 0 at rest and G is lagrangian's.
+#[test]
+fn tangents_and_closures() {
+    let m = from_toml(&TREE.replace("gravity = [0.3, -9.81]", "")).unwrap();
+    let mut sys = MechanismSystem::new(&m).unwrap();
+    let n = m.dof();
+    let mut rng = Rng(41);
+    for _ in 0..3 {
+        let (q, v) = state(&m, &mut rng);
+        let (mut k, mut d) = (vec![0.0; n * n], vec![0.0; n * n]);
+        sys.tangent(&q, &v, 0.0, &mut k, &mut d).unwrap();
+        let d = DMatrix::from_column_slice(n, n, &d);
+        let zero = vec![0.0; n];
+        let mut k_rest = vec![0.0; n * n];
+        sys.tangent(&q, &zero, 0.0, &mut k_rest, &mut vec![0.0; n * n]).unwrap();
+        let k_rest = DMatrix::from_column_slice(n, n, &k_rest);
+        for c in 0..n {
+            let dv = derivative(1e-2, |e| {
+                let mut ve = v.clone();
+                ve[c] += e;
+                mass_and_force(&mut sys.clone(), &q, &ve).1
+            });
+            let dq = derivative(1e-5, |e| {
+                let mut qe = q.clone();
+                qe[c] += e;
+                mass_and_force(&mut sys.clone(), &qe, &zero).1
+            });
+            assert!((d.column(c) + &dv).amax() <= 1e-7 * d.amax(), "damping column {c}");
+            assert!((k_rest.column(c) + &dq).amax() <= 1e-7 * k_rest.amax(), "stiffness column {c}");
+        }
+    }
+    let file =
+        std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let p = from_toml(&file).unwrap();
+    let mut sys = MechanismSystem::new(&p).unwrap();
+    assert_eq!((sys.dim(), sys.closures()), (6, 3));
+    let (mut c, mut g) = (vec![1.0; 3], vec![0.0; 18]);
+    sys.closure(&p.rest(), &mut c, &mut g).unwrap();
+    assert!(c.iter().all(|x| x.abs() < 1e-15), "{c:?}");
+    let l = lagrangian(&p, &p.rest(), &[0.0; 3], &p.loads()).unwrap();
+    assert_eq!(g, l.closure_jacobian.as_slice());
+    // distance: a turn of the pin alone is its angle.
+    let m = from_toml(TREE).unwrap();
+    let sys = MechanismSystem::new(&m).unwrap();
+    let (a, mut b) = (m.rest(), m.rest());
+    b[3] += 0.25;
+    assert!((sys.distance(&a, &b) - 0.25).abs() < 1e-15 && sys.distance(&a, &a) == 0.0);
+}
