@@ -15,6 +15,8 @@ mod connect;
 mod coordinates;
 mod dynamics_integrate;
 mod dynamics_mass;
+mod dynamics_mechanism;
+mod dynamics_mechanism_modes;
 mod dynamics_modes;
 mod dynamics_vibration;
 mod elastica;

@@ -20,6 +20,7 @@
 pub mod body;
 pub mod integrate;
 pub mod mass;
+pub mod mechanism;
 pub mod modes;
 pub mod system;
 

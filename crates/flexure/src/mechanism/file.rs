@@ -83,6 +83,7 @@ struct JointToml {
     kappa: Option<Spanned<Vec<f64>>>,
     stiffness: Option<Spanned<f64>>,
     rest: Option<Spanned<f64>>,
+    damping: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -90,6 +91,7 @@ struct JointToml {
 struct BodyToml {
     name: Spanned<String>,
     mass: Option<Spanned<f64>>,
+    inertia: Option<Spanned<f64>>,
     com: Option<Spanned<[f64; 2]>>,
 }
 
@@ -313,7 +315,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         let at = place(text, e.span().map_or(0, |s| s.start));
         Error::File { place: at, message: e.message().trim().to_string() }
     })?;
-    let mut bodies = vec![Body { name: "ground".into(), mass: 0.0, com: [0.0; 2] }];
+    let mut bodies = vec![Body { name: "ground".into(), mass: 0.0, inertia: 0.0, com: [0.0; 2] }];
     // Bodies are created by the joints that name them as child.
     for j in &file.joint {
         let name = j.child.get_ref();
@@ -323,7 +325,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         if bodies.iter().any(|b| &b.name == name) {
             return src.fail(&j.child.span(), format!("body {name:?} is reached by two joints"));
         }
-        bodies.push(Body { name: name.clone(), mass: 0.0, com: [0.0; 2] });
+        bodies.push(Body { name: name.clone(), mass: 0.0, inertia: 0.0, com: [0.0; 2] });
     }
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
     let find = |name: &Spanned<String>| -> Result<usize> {
@@ -373,6 +375,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         let owner = format!("joint {:?}: ", j.name.get_ref());
         let origin = src.array(&owner, "origin", &j.origin)?;
         let (kind, stiffness_place) = joint_kind(&src, &owner, j)?;
+        let damping = j.damping.as_ref().map_or(Ok(0.0), |d| src.number(&owner, "damping", d, Sign::NotNegative))?;
         let dof = kind.joint().dof();
         parent_joint[i + 1] = Some(joints.len());
         joints.push(JointSpec {
@@ -382,6 +385,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
             child: i + 1,
             origin: Pose { x: origin[0], y: origin[1], phi: origin[2] },
             offset,
+            damping,
         });
         stiffness_places.push(stiffness_place);
         offset += dof;
@@ -399,6 +403,9 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         described[idx] = true;
         if let Some(mass) = &b.mass {
             bodies[idx].mass = src.number(&owner, "mass", mass, Sign::NotNegative)?;
+        }
+        if let Some(inertia) = &b.inertia {
+            bodies[idx].inertia = src.number(&owner, "inertia", inertia, Sign::NotNegative)?;
         }
         bodies[idx].com = src.array(&owner, "com", &b.com)?;
     }
@@ -559,7 +566,7 @@ fn foreign_keys(j: &JointToml, kind: &str) -> Option<(&'static str, Span)> {
     let foreign: Vec<(&'static str, Option<Span>)> = match kind {
         "flexure" => spring.to_vec(),
         "revolute" | "prismatic" => flexure.to_vec(),
-        _ => flexure.iter().chain(&spring).cloned().collect(),
+        _ => flexure.iter().chain(&spring).cloned().chain([("damping", j.damping.as_ref().map(Spanned::span))]).collect(),
     };
     foreign.into_iter().find_map(|(k, s)| s.map(|s| (k, s)))
 }

@@ -25,8 +25,10 @@ pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
 pub struct Body {
     /// Its name.
     pub name: String,
-    /// Mass (kg), for gravity.
+    /// Mass (kg), for gravity and dynamics.
     pub mass: f64,
+    /// Rotary inertia (kg·m²) about the centre of mass, for dynamics.
+    pub inertia: f64,
     /// Centre of mass in the body frame (m).
     pub com: [f64; 2],
 }
@@ -46,6 +48,10 @@ pub struct JointSpec {
     pub origin: Pose,
     /// Index of its first coordinate in $q$.
     pub offset: usize,
+    /// Damping, for dynamics: on a flexure the stiffness-proportional
+    /// coefficient $\beta$ (s), $D = \beta K$; on a revolute or prismatic joint
+    /// the viscous coefficient (N·m·s/rad or N·s/m); zero on a fixed joint.
+    pub damping: f64,
 }
 
 /// A tendon of constant tension through via points; potential tension × length.

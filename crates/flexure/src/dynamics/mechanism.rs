@@ -1,0 +1,654 @@
+//! The equations of motion of a [`Mechanism`] and its vibration modes.
+//!
+//! Every mass element of the mechanism (a body's mass $m$ at its centre of
+//! mass, its inertia $I_c$; a flexure section's mass $\mu\thinspace ds$ and
+//! rotary inertia $\rho I\thinspace ds$) sits at a world point $w(q)$ on a frame
+//! of angle $\theta(q)$, so the kinetic energy is
+//!
+//! $$T = \tfrac12\sum_e m_e\lvert\dot w_e\rvert^2 + I_e\dot\theta_e^2 = \tfrac12\dot q^TM(q)\dot q,\qquad
+//! M = \sum_e m_e J_e^TJ_e + I_e\thinspace g_e^Tg_e,$$
+//!
+//! with $J_e = \partial w_e/\partial q$ and $g_e = \partial\theta_e/\partial q$. Every
+//! joint's angle is linear in its coordinates, so $g_e$ is constant and
+//! Lagrange's velocity-product terms are
+//! $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q) = \sum_e m_eJ_e^T(\dot J_e\dot q)$,
+//! where $\dot J_e\dot q = \dot q^T\nabla\nabla w_e\thinspace\dot q$ is the
+//! acceleration of the point when $\ddot q = 0$. It is carried down the tree
+//! with the angular velocity $\omega$ and velocity $v$ of each frame: a joint
+//! whose root frame $A$ (origin $o_A$, rotation $R_A$) carries its output at
+//! $p(q_j)$ gives its child's origin
+//!
+//! $$a_C = a_A - \omega_A^2R_Ap + 2\omega_A\mathrm E R_A\dot p + R_A\thinspace\dot q_j^T\nabla\nabla p\thinspace\dot q_j,$$
+//!
+//! and a point $w$ of a body moves with $a_w = a_b - \omega_b^2(w - o_b)$
+//! ($\mathrm E$ the quarter turn). A flexure's sections are points in its root
+//! frame at $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds'$, integrated by the
+//! nested Gauss–Legendre rule of [`super::mass`] (the rule and refinement
+//! its [`MassModel`] chooses), so each section is as accurate as the tip;
+//! their local acceleration $\dot J_r\dot\alpha = -\int_0^s\dot\phi^2(\cos\phi, \sin\phi)ds'$
+//! enters $a_w$ as $\ddot p$ does $a_C$. The discrete $h$ is the exact
+//! derivative of the discrete $M$.
+//!
+//! The generalized force of [`System`] is $f = -\nabla V_{loads} - \nabla U + Q_g - h - D\dot q$:
+//! the point loads and tendons of [`crate::mechanism::lagrangian`] at
+//! constant magnitudes, the joints' elastic forces, gravity on every mass
+//! element (bodies and flexure sections), and the damping
+//! $D = \operatorname{diag}(\beta_jK_j, c_k)$ of the joints.
+
+use super::mass::MassModel;
+use super::modes::{Modes, finite_modes};
+use super::system::System;
+use crate::error::{Error, Result};
+use crate::joint::{Basis, Flexure};
+use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
+use crate::mechanism::lagrangian::lagrangian;
+use crate::mechanism::statics::{self, Settings};
+use crate::mechanism::{JointKind, Loads, Mechanism};
+use crate::quadrature::GaussLegendre;
+use nalgebra::{DMatrix, DVector};
+
+/// One flexure's distributed mass: the nested quadrature tables of
+/// [`super::mass`], with the positions of the sections kept (they turn
+/// with everything upstream).
+#[derive(Debug, Clone)]
+struct Distributed {
+    joint: usize,
+    order: usize,
+    per_panel: usize,
+    /// $\psi$ at the inner nodes, `[node * order + i]`.
+    inner_psi: Vec<f64>,
+    /// $L\Delta\tau$ of the inner nodes.
+    inner_weight: Vec<f64>,
+    /// $L\Delta_k\mu(t_k)$ of the node ending each panel (0 at a piece's end).
+    mass: Vec<f64>,
+    /// $L\Delta_k\rho I(t_k)$ of the node ending each panel.
+    rotary: Vec<f64>,
+    /// $\psi(t_k)$ of the node ending each panel.
+    outer_psi: Vec<f64>,
+    /// The coordinates its sections' positions depend on: the path to its parent, then its own.
+    columns: Vec<usize>,
+}
+
+impl Distributed {
+    fn new(m: &Mechanism, joint: usize, f: &Flexure) -> Result<Option<Self>> {
+        let (n, l) = (f.order(), f.length());
+        let section = f.section();
+        if section.mass_per_length(0.5, l).is_none() {
+            return Ok(None);
+        }
+        // The rule and refinement the single-flexure model settles on.
+        let (outer, inner, sub) = MassModel::new(f, None)?.rule();
+        let (outer, inner) = (GaussLegendre::new(outer)?, GaussLegendre::new(inner)?);
+        let mut breaks = section.breakpoints(l);
+        if f.basis() == Basis::Segments {
+            breaks.extend((1..n).map(|j| j as f64 / n as f64));
+            breaks.sort_by(f64::total_cmp);
+            breaks.dedup();
+        }
+        let ends: Vec<f64> = std::iter::once(0.0).chain(breaks.iter().copied()).chain(std::iter::once(1.0)).collect();
+        // (t, μ weight, ρI weight) of every point that ends a panel.
+        let mut points: Vec<(f64, f64, f64)> = Vec::new();
+        for p in 0..ends.len() - 1 {
+            for q in 0..sub {
+                let a = ends[p] + (ends[p + 1] - ends[p]) * q as f64 / sub as f64;
+                let b = ends[p] + (ends[p + 1] - ends[p]) * (q + 1) as f64 / sub as f64;
+                for (&x, &w) in outer.nodes().iter().zip(outer.weights()) {
+                    let t = a + (b - a) * x;
+                    let weight = l * (b - a) * w;
+                    let mu = section.mass_per_length(t, l).unwrap_or(0.0);
+                    let rho_i = section.rotary_inertia_per_length(t, l).unwrap_or(0.0);
+                    points.push((t, weight * mu, weight * rho_i));
+                }
+                points.push((b, 0.0, 0.0));
+            }
+        }
+        let mut psi = vec![0.0; n];
+        let mut d = Distributed {
+            joint,
+            order: n,
+            per_panel: inner.len(),
+            inner_psi: Vec::with_capacity(points.len() * inner.len() * n),
+            inner_weight: Vec::with_capacity(points.len() * inner.len()),
+            mass: Vec::with_capacity(points.len()),
+            rotary: Vec::with_capacity(points.len()),
+            outer_psi: Vec::with_capacity(points.len() * n),
+            columns: Vec::new(),
+        };
+        let mut start = 0.0;
+        for &(end, mass, rotary) in &points {
+            for (&x, &w) in inner.nodes().iter().zip(inner.weights()) {
+                f.angle_shapes(start + (end - start) * x, &mut psi);
+                d.inner_psi.extend_from_slice(&psi);
+                d.inner_weight.push(l * (end - start) * w);
+            }
+            f.angle_shapes(end, &mut psi);
+            d.outer_psi.extend_from_slice(&psi);
+            d.mass.push(mass);
+            d.rotary.push(rotary);
+            start = end;
+        }
+        d.columns = path_columns(m, m.joints[joint].parent);
+        d.columns.extend((0..n).map(|i| m.joints[joint].offset + i));
+        Ok(Some(d))
+    }
+}
+
+/// The coordinates of the joints from the ground to `body`.
+fn path_columns(m: &Mechanism, body: usize) -> Vec<usize> {
+    m.path(body)
+        .into_iter()
+        .flat_map(|j| (0..m.joints[j].kind.joint().dof()).map(move |i| m.joints[j].offset + i))
+        .collect()
+}
+
+/// The angular velocity (rad/s), velocity and velocity-product
+/// acceleration ($\ddot q = 0$) of a frame's origin, in the world.
+#[derive(Debug, Clone, Copy, Default)]
+struct Rate {
+    omega: f64,
+    velocity: [f64; 2],
+    acceleration: [f64; 2],
+}
+
+fn quarter(v: [f64; 2]) -> [f64; 2] {
+    [-v[1], v[0]]
+}
+
+/// The equations of motion of a [`Mechanism`] as a [`System`] (module docs):
+/// its coordinates are the mechanism's $q$, its closures the welds and pins.
+///
+/// The loads are the mechanism's own ([`Mechanism::loads`]), constant in
+/// time, until [`MechanismSystem::set_loads`] replaces them.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::{mechanism::MechanismSystem, System};
+/// use flexure::mechanism::file::from_toml;
+/// // A pendulum: a point mass of 2 kg, 0.5 m from a free pin, under gravity.
+/// let m = from_toml(
+///     "gravity = [0.0, -9.81]\n[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"bob\"\n\
+///      [[body]]\nname = \"bob\"\nmass = 2.0\ncom = [0.5, 0.0]\n",
+/// )
+/// .unwrap();
+/// let mut sys = MechanismSystem::new(&m).unwrap();
+/// let (mut mass, mut force) = ([0.0], [0.0]);
+/// sys.dynamics(&[0.0], &[0.0], 0.0, &mut mass, &mut force).unwrap();
+/// // M = m l², and gravity's moment −m g l about the pin.
+/// assert!((mass[0] - 0.5).abs() < 1e-15 && (force[0] + 9.81).abs() < 1e-13);
+/// ```
+#[derive(Debug, Clone)]
+pub struct MechanismSystem {
+    mechanism: Mechanism,
+    loads: Loads,
+    /// The loads without gravity, which this module applies to every mass element.
+    loads_weightless: Loads,
+    distributed: Vec<Distributed>,
+    /// Bodies with mass or inertia, with the coordinates they move with.
+    bodies: Vec<(usize, Vec<usize>)>,
+    /// $D$ (column-major, $n\times n$).
+    damping: DMatrix<f64>,
+    length: f64,
+    frames: Frames,
+    rates: Vec<Rate>,
+    point: PointBuffer,
+    jx: Vec<f64>,
+    jy: Vec<f64>,
+    jt: Vec<f64>,
+    zeros: Vec<f64>,
+    /// $J_r$ of the flexure being integrated.
+    jr: Vec<[f64; 2]>,
+}
+
+/// What one pass over the mass elements gives.
+struct Pass {
+    /// Gravity's generalized force $Q_g = -\nabla V_g$.
+    gravity_force: DVector<f64>,
+    /// $V_g$ (J).
+    gravity_potential: f64,
+}
+
+impl MechanismSystem {
+    /// The system of `m`, with the joints' damping and its loads. Fails if a
+    /// flexure's mass integrals cannot be made accurate ([`MassModel::new`]).
+    pub fn new(m: &Mechanism) -> Result<Self> {
+        let n = m.dof();
+        let mut distributed = Vec::new();
+        let mut damping = DMatrix::zeros(n, n);
+        for (i, j) in m.joints.iter().enumerate() {
+            match &j.kind {
+                JointKind::Flexure(f) => {
+                    if let Some(d) = Distributed::new(m, i, f)? {
+                        distributed.push(d);
+                    }
+                    let (k, o) = (f.order(), j.offset);
+                    for r in 0..k {
+                        for c in 0..k {
+                            damping[(o + r, o + c)] = j.damping * f.stiffness_matrix()[r * k + c];
+                        }
+                    }
+                }
+                JointKind::Revolute(_) | JointKind::Prismatic(_) => damping[(j.offset, j.offset)] = j.damping,
+                JointKind::Fixed(_) => {}
+            }
+        }
+        let bodies = (1..m.bodies.len())
+            .filter(|&b| m.bodies[b].mass > 0.0 || m.bodies[b].inertia > 0.0)
+            .map(|b| (b, path_columns(m, b)))
+            .collect();
+        let length = m
+            .joints
+            .iter()
+            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
+            .sum::<f64>();
+        let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
+        let loads = m.loads();
+        let mut loads_weightless = loads.clone();
+        loads_weightless.gravity = [0.0; 2];
+        let largest = m.joints.iter().map(|j| j.kind.joint().dof()).max().unwrap_or(0);
+        Ok(MechanismSystem {
+            mechanism: m.clone(),
+            loads,
+            loads_weightless,
+            distributed,
+            bodies,
+            damping,
+            length,
+            frames: Frames::new(m),
+            rates: vec![Rate::default(); m.bodies.len()],
+            point: PointBuffer::new(m),
+            jx: vec![0.0; n],
+            jy: vec![0.0; n],
+            jt: vec![0.0; n],
+            zeros: vec![0.0; m.constraints()],
+            jr: vec![[0.0; 2]; largest],
+        })
+    }
+
+    /// The mechanism.
+    pub fn mechanism(&self) -> &Mechanism {
+        &self.mechanism
+    }
+
+    /// The loads applied.
+    pub fn loads(&self) -> &Loads {
+        &self.loads
+    }
+
+    /// Replaces the loads (validated against the mechanism: [`Loads::validate`]).
+    pub fn set_loads(&mut self, loads: Loads) -> Result<()> {
+        loads.validate(&self.mechanism)?;
+        self.loads_weightless = Loads { gravity: [0.0; 2], ..loads.clone() };
+        self.loads = loads;
+        Ok(())
+    }
+
+    /// Whether anything carries inertia: a body's mass or inertia, or a flexure's distributed mass.
+    pub fn has_inertia(&self) -> bool {
+        !self.bodies.is_empty() || !self.distributed.is_empty()
+    }
+
+    /// The damping matrix $D$ ($n\times n$, constant).
+    pub fn damping(&self) -> &DMatrix<f64> {
+        &self.damping
+    }
+
+    fn check(&self, q: &[f64], v: &[f64]) -> Result<()> {
+        let n = self.mechanism.dof();
+        if q.len() != n || v.len() != n {
+            return Err(Error::invalid(
+                "q",
+                format!("{} coordinates and {} rates", q.len(), v.len()),
+                "must have one coordinate and one rate per coordinate of the mechanism",
+            ));
+        }
+        if let Some(x) = q.iter().chain(v).find(|x| !x.is_finite()) {
+            return Err(Error::invalid("q", x, "coordinates and rates must be finite"));
+        }
+        Ok(())
+    }
+
+    /// $M(q)$ ($n\times n$, symmetric, positive semi-definite).
+    ///
+    /// # Errors
+    /// If `q` does not have one finite value per coordinate.
+    pub fn mass_matrix(&mut self, q: &[f64]) -> Result<DMatrix<f64>> {
+        let n = self.mechanism.dof();
+        self.check(q, &vec![0.0; n])?;
+        let mut mass = DMatrix::zeros(n, n);
+        let mut h = DVector::zeros(n);
+        self.pass(q, &vec![0.0; n], Some(&mut mass), &mut h);
+        Ok(mass)
+    }
+
+    /// $h(q, \dot q) = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$ (module docs).
+    ///
+    /// # Errors
+    /// If `q` or `v` does not have one finite value per coordinate.
+    pub fn velocity_product(&mut self, q: &[f64], v: &[f64]) -> Result<DVector<f64>> {
+        self.check(q, v)?;
+        let mut h = DVector::zeros(self.mechanism.dof());
+        self.pass(q, v, None, &mut h);
+        Ok(h)
+    }
+
+    /// One pass over the mass elements at $(q, \dot q)$: adds $M$ (if asked)
+    /// and $h$, and returns gravity's force and potential.
+    fn pass(&mut self, q: &[f64], v: &[f64], mut mass: Option<&mut DMatrix<f64>>, h: &mut DVector<f64>) -> Pass {
+        let m = &self.mechanism;
+        let g = self.loads.gravity;
+        frames_into(m, q, &mut self.frames);
+        let f = &self.frames;
+        // Rates down the tree, parents first.
+        self.rates[0] = Rate::default();
+        for (ji, j) in m.joints.iter().enumerate() {
+            let s = &f.joints[ji];
+            let parent = self.rates[j.parent];
+            let (root, o_p, o_c) = (f.roots[ji], f.bodies[j.parent].origin, f.bodies[j.child].origin);
+            let w = parent.omega;
+            let arm = [root.origin[0] - o_p[0], root.origin[1] - o_p[1]];
+            let turn = quarter(arm);
+            let v_a = [parent.velocity[0] + w * turn[0], parent.velocity[1] + w * turn[1]];
+            let a_a = [parent.acceleration[0] - w * w * arm[0], parent.acceleration[1] - w * w * arm[1]];
+            let k = s.gradient.len();
+            let rates = &v[j.offset..j.offset + k];
+            let (mut dphi, mut dp, mut ddp) = (0.0, [0.0; 2], [0.0; 2]);
+            for (a, &va) in rates.iter().enumerate() {
+                dphi += s.jacobian[(0, a)] * va;
+                dp[0] += s.jacobian[(1, a)] * va;
+                dp[1] += s.jacobian[(2, a)] * va;
+                for (b, &vb) in rates.iter().enumerate() {
+                    ddp[0] += s.hessian_x[(a, b)] * va * vb;
+                    ddp[1] += s.hessian_y[(a, b)] * va * vb;
+                }
+            }
+            let p = [o_c[0] - root.origin[0], o_c[1] - root.origin[1]];
+            let (rdp, rddp) = (root.rotate(dp), root.rotate(ddp));
+            let (tp, tdp) = (quarter(p), quarter(rdp));
+            self.rates[j.child] = Rate {
+                omega: w + dphi,
+                velocity: [v_a[0] + w * tp[0] + rdp[0], v_a[1] + w * tp[1] + rdp[1]],
+                acceleration: [
+                    a_a[0] - w * w * p[0] + 2.0 * w * tdp[0] + rddp[0],
+                    a_a[1] - w * w * p[1] + 2.0 * w * tdp[1] + rddp[1],
+                ],
+            };
+        }
+        let n = m.dof();
+        let mut gravity_force = DVector::zeros(n);
+        let mut gravity_potential = 0.0;
+        let (jx, jy, jt) = (&mut self.jx, &mut self.jy, &mut self.jt);
+        // Adds mass × (J_xᵀJ_x + J_yᵀJ_y) and inertia × J_θᵀJ_θ on `cols`,
+        // h += mass Jᵀa, Q_g += mass Jᵀg.
+        let mut add = |cols: &[usize],
+                       jx: &[f64],
+                       jy: &[f64],
+                       jt: &[f64],
+                       mw: f64,
+                       iw: f64,
+                       a: [f64; 2],
+                       mass: Option<&mut DMatrix<f64>>| {
+            if let Some(mm) = mass {
+                for &c in cols {
+                    let (xc, yc, tc) = (mw * jx[c], mw * jy[c], iw * jt[c]);
+                    for &r in cols {
+                        mm[(r, c)] += jx[r] * xc + jy[r] * yc + jt[r] * tc;
+                    }
+                }
+            }
+            for &c in cols {
+                h[c] += mw * (jx[c] * a[0] + jy[c] * a[1]);
+                gravity_force[c] += mw * (jx[c] * g[0] + jy[c] * g[1]);
+            }
+        };
+        for (b, cols) in &self.bodies {
+            let body = &m.bodies[*b];
+            point_into(m, f, *b, body.com, &mut self.point);
+            let (w, o) = (self.point.position, f.bodies[*b].origin);
+            let r = self.rates[*b];
+            let d = [w[0] - o[0], w[1] - o[1]];
+            let a = [r.acceleration[0] - r.omega * r.omega * d[0], r.acceleration[1] - r.omega * r.omega * d[1]];
+            for &c in cols {
+                jt[c] = self.point.jacobian[(0, c)];
+                jx[c] = self.point.jacobian[(1, c)];
+                jy[c] = self.point.jacobian[(2, c)];
+            }
+            add(cols, jx, jy, jt, body.mass, body.inertia, a, mass.as_deref_mut());
+            gravity_potential -= body.mass * (g[0] * w[0] + g[1] * w[1]);
+        }
+        for d in &self.distributed {
+            let spec = &m.joints[d.joint];
+            let (off, k) = (spec.offset, d.order);
+            point_into(m, f, spec.parent, [spec.origin.x, spec.origin.y], &mut self.point);
+            let root = f.roots[d.joint];
+            let rate = self.rates[spec.parent];
+            let arm =
+                [root.origin[0] - f.bodies[spec.parent].origin[0], root.origin[1] - f.bodies[spec.parent].origin[1]];
+            let w = rate.omega;
+            let a_root = [rate.acceleration[0] - w * w * arm[0], rate.acceleration[1] - w * w * arm[1]];
+            let (alpha, alpha_dot) = (&q[off..off + k], &v[off..off + k]);
+            let jr = &mut self.jr[..k];
+            jr.fill([0.0; 2]);
+            let (mut r, mut acc) = ([0.0; 2], [0.0; 2]);
+            let panels = d.inner_psi.chunks_exact(d.per_panel * k).zip(d.inner_weight.chunks_exact(d.per_panel));
+            for (p, (psis, weights)) in panels.enumerate() {
+                for (psi, &wt) in psis.chunks_exact(k).zip(weights) {
+                    let (mut phi, mut dphi) = (0.0, 0.0);
+                    for i in 0..k {
+                        phi += psi[i] * alpha[i];
+                        dphi += psi[i] * alpha_dot[i];
+                    }
+                    let (s, c) = phi.sin_cos();
+                    r[0] += wt * c;
+                    r[1] += wt * s;
+                    for (j, &ps) in jr.iter_mut().zip(psi) {
+                        j[0] -= wt * ps * s;
+                        j[1] += wt * ps * c;
+                    }
+                    acc[0] -= wt * dphi * dphi * c;
+                    acc[1] -= wt * dphi * dphi * s;
+                }
+                let (mw, iw) = (d.mass[p], d.rotary[p]);
+                if mw == 0.0 && iw == 0.0 {
+                    continue;
+                }
+                // The section: world offset from the root, its Jacobian and acceleration.
+                let rw = root.rotate(r);
+                let er = quarter(rw);
+                let mut u = [0.0; 2];
+                for (j, &ad) in jr.iter().zip(alpha_dot) {
+                    u[0] += j[0] * ad;
+                    u[1] += j[1] * ad;
+                }
+                let (ru, racc) = (quarter(root.rotate(u)), root.rotate(acc));
+                let a = [
+                    a_root[0] - w * w * rw[0] + 2.0 * w * ru[0] + racc[0],
+                    a_root[1] - w * w * rw[1] + 2.0 * w * ru[1] + racc[1],
+                ];
+                for &c in &d.columns {
+                    let dt = self.point.jacobian[(0, c)];
+                    jt[c] = dt;
+                    jx[c] = self.point.jacobian[(1, c)] + dt * er[0];
+                    jy[c] = self.point.jacobian[(2, c)] + dt * er[1];
+                }
+                for i in 0..k {
+                    let rj = root.rotate(jr[i]);
+                    jx[off + i] = rj[0];
+                    jy[off + i] = rj[1];
+                    jt[off + i] = d.outer_psi[p * k + i];
+                }
+                add(&d.columns, jx, jy, jt, mw, iw, a, mass.as_deref_mut());
+                let wp = [root.origin[0] + rw[0], root.origin[1] + rw[1]];
+                gravity_potential -= mw * (g[0] * wp[0] + g[1] * wp[1]);
+            }
+        }
+        Pass { gravity_force, gravity_potential }
+    }
+}
+
+impl System for MechanismSystem {
+    fn dim(&self) -> usize {
+        self.mechanism.dof()
+    }
+
+    fn closures(&self) -> usize {
+        self.mechanism.constraints()
+    }
+
+    fn dynamics(&mut self, q: &[f64], v: &[f64], _t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        self.check(q, v)?;
+        let n = self.dim();
+        let mut mm = DMatrix::zeros(n, n);
+        let mut h = DVector::zeros(n);
+        let pass = self.pass(q, v, Some(&mut mm), &mut h);
+        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
+        let f = pass.gravity_force - lag.gradient - h - &self.damping * DVector::from_column_slice(v);
+        if !(mm.iter().all(|x| x.is_finite()) && f.iter().all(|x| x.is_finite())) {
+            return Err(Error::Singular { what: "the mass matrix or the generalized force is not finite".into() });
+        }
+        mass.copy_from_slice(mm.as_slice());
+        force.copy_from_slice(f.as_slice());
+        Ok(())
+    }
+
+    /// The stiffness is the Hessian of the potential (elastic, point loads,
+    /// tendons, the bodies' weight) and the damping is $D + \partial h/\partial\dot q$
+    /// (exact: $h$ is quadratic in $\dot q$). Left out: the change of $h$ and of
+    /// the flexure sections' weight with $q$, second order in the rates and
+    /// small beside the elastic stiffness of a flexure.
+    fn tangent(&mut self, q: &[f64], v: &[f64], _t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
+        self.check(q, v)?;
+        let n = self.dim();
+        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads)?;
+        stiffness.copy_from_slice(lag.hessian.as_slice());
+        let mut d = self.damping.clone();
+        // h is quadratic in v: ∂h/∂v e = (h(v + e) − h(v − e))/2 exactly.
+        let mut shifted = v.to_vec();
+        for c in 0..n {
+            let step = 1.0 + v[c].abs();
+            shifted[c] = v[c] + step;
+            let mut plus = DVector::zeros(n);
+            self.pass(q, &shifted, None, &mut plus);
+            shifted[c] = v[c] - step;
+            let mut minus = DVector::zeros(n);
+            self.pass(q, &shifted, None, &mut minus);
+            shifted[c] = v[c];
+            for r in 0..n {
+                d[(r, c)] += (plus[r] - minus[r]) / (2.0 * step);
+            }
+        }
+        damping.copy_from_slice(d.as_slice());
+        Ok(())
+    }
+
+    fn closure(&mut self, q: &[f64], c: &mut [f64], g: &mut [f64]) -> Result<()> {
+        if self.closures() == 0 {
+            return Ok(());
+        }
+        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
+        c.copy_from_slice(lag.closure.as_slice());
+        g.copy_from_slice(lag.closure_jacobian.as_slice());
+        Ok(())
+    }
+
+    fn energy(&mut self, q: &[f64], v: &[f64], _t: f64) -> Result<f64> {
+        self.check(q, v)?;
+        let n = self.dim();
+        let mut mm = DMatrix::zeros(n, n);
+        let mut h = DVector::zeros(n);
+        let pass = self.pass(q, v, Some(&mut mm), &mut h);
+        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
+        let rate = DVector::from_column_slice(v);
+        Ok(0.5 * rate.dot(&(&mm * &rate)) + lag.elastic + pass.gravity_potential)
+    }
+
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        let m = &self.mechanism;
+        let angles = |q: &[f64]| {
+            let mut body = vec![0.0; m.bodies.len()];
+            for j in &m.joints {
+                let phi: f64 = match &j.kind {
+                    JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
+                    JointKind::Revolute(_) => q[j.offset],
+                    _ => 0.0,
+                };
+                body[j.child] = body[j.parent] + j.origin.phi + phi;
+            }
+            body
+        };
+        let (ba, bb) = (angles(a), angles(b));
+        let mut d = ba.iter().zip(&bb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        for j in &m.joints {
+            match &j.kind {
+                JointKind::Flexure(f) => {
+                    let range = j.offset..j.offset + f.order();
+                    d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
+                }
+                JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / self.length),
+                _ => {}
+            }
+        }
+        d
+    }
+}
+
+/// The vibration modes of `m` about its equilibrium under its loads
+/// ([`statics::solve`] with `settings`): the finite solutions of
+///
+/// $$Z^T\nabla^2L\thinspace Z\thinspace a = \omega^2Z^TM Z\thinspace a,\qquad v = Za,$$
+///
+/// where $\nabla^2L$ is the loaded stiffness with the closure forces' part
+/// and the columns of $Z$ span the motions the closures allow
+/// ([`statics::stiffness`]), so a frequency falls to zero as the loads
+/// reach a buckling load. Directions without inertia are condensed out
+/// as quasi-static ([`finite_modes`]); at most `count` modes are returned.
+/// Shapes are in the coordinates $q$, normalized to $v^TMv = 1$.
+///
+/// The equilibrium weighs the bodies; a flexure's own weight, which the
+/// statics do not model, is left out of it (the dynamics include it).
+///
+/// Errors: `count` when zero; `mass` when nothing has mass or inertia;
+/// [`Error::Unstable`] when the equilibrium is not stable; those of the
+/// equilibrium solve.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::mechanism::modes;
+/// use flexure::mechanism::{file::from_toml, statics::Settings};
+/// // A sprung arm (k = 2 N·m/rad) carrying 0.5 kg at 0.1 m: ω = √(k / m l²) = 20 rad/s.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[body]]\nname = \"arm\"\nmass = 0.5\ncom = [0.1, 0.0]\n",
+/// )
+/// .unwrap();
+/// let w = modes(&m, &Settings::default(), 4).unwrap().omega;
+/// assert!(w.len() == 1 && (w[0] - 20.0).abs() < 1e-12);
+/// ```
+pub fn modes(m: &Mechanism, settings: &Settings, count: usize) -> Result<Modes> {
+    if count == 0 {
+        return Err(Error::invalid("count", count, "must be at least 1"));
+    }
+    let mut sys = MechanismSystem::new(m)?;
+    if !sys.has_inertia() {
+        return Err(Error::invalid(
+            "mass",
+            "none",
+            "no body has mass or inertia and no flexure has a density or mass per length",
+        ));
+    }
+    if m.dof() == 0 {
+        return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can vibrate".into() });
+    }
+    let s = statics::solve(m, settings)?;
+    if !s.stable {
+        return Err(Error::Unstable { what: "modes", load_fraction: s.limit.unwrap_or(1.0) });
+    }
+    let (z, k) = statics::stiffness(m, &s)?;
+    if z.ncols() == 0 {
+        return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can vibrate".into() });
+    }
+    let mass = sys.mass_matrix(&s.q)?;
+    let reduced = z.transpose() * &mass * &z;
+    let mut modes = finite_modes(&k, &reduced, count)?;
+    modes.shapes = &z * &modes.shapes;
+    Ok(modes)
+}
