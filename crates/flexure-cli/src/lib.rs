@@ -11,6 +11,7 @@ mod batch;
 mod figures;
 mod joint;
 mod mechanism;
+mod modes;
 mod options;
 mod render;
 mod reproduce;
@@ -62,6 +63,9 @@ enum Command {
     Buckle(mechanism::BuckleArgs),
     /// Draw a mechanism's unloaded and loaded shapes as SVG.
     Draw(mechanism::DrawArgs),
+    /// Natural frequencies and mode shapes about the loaded equilibrium: of a
+    /// mechanism file, or of one flexure joint with a tip body (--exact: beside exact beam theory).
+    Modes(modes::ModesArgs),
 }
 
 /// What a subcommand answers: one object, or one answer per `--input` row.
@@ -134,6 +138,7 @@ fn answer(command: &Command) -> Result<Answer, String> {
         Command::Solve(a) => one(mechanism::solve_cmd(a)),
         Command::Buckle(a) => one(mechanism::buckle_cmd(a)),
         Command::Draw(a) => one(mechanism::draw_cmd(a)),
+        Command::Modes(a) => one(modes::modes_cmd(a)),
     }
 }
 
