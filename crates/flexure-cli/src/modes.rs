@@ -57,7 +57,8 @@ pub struct ModesArgs {
     #[arg(long, value_parser = point_arg, allow_hyphen_values = true)]
     tip_com: Option<[f64; 2]>,
     /// How many of the lowest modes to report, from 1 to the model's number of
-    /// coordinates [default: 3, or fewer coordinates].
+    /// coordinates [default: 3, or fewer coordinates]. The highest modes of a
+    /// model of order N are its least accurate: compare with --exact, or raise --order.
     #[arg(long, value_parser = mode_count, allow_hyphen_values = true)]
     count: Option<usize>,
     /// Also the exact linear vibration of the straight beam (Euler–Bernoulli
