@@ -221,9 +221,9 @@ fn joint_error(e: Error) -> String {
         Error::InvalidParameter { name: "mass", value, reason } => format!(
             "no mass: invalid mass = {value}: {reason}; give --density (with --modulus --width --thickness) or --mass-per-length, or --tip-mass/--tip-inertia"
         ),
-        e @ Error::Unstable { .. } => format!(
-            "unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)"
-        ),
+        e @ Error::Unstable { .. } => {
+            format!("unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)")
+        }
         e => crate::describe(e),
     }
 }

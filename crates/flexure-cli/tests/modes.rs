@@ -54,7 +54,17 @@ const BETA_L: [f64; 2] = [1.875_104_068_711_961, 4.694_091_132_974_175];
 fn distributed_mass_against_the_cantilever_roots() {
     let (l, ei, mu) = (0.5_f64, 2.0_f64, 0.3_f64);
     let v = modes(&[
-        "--length", "0.5", "--ei", "2", "--mass-per-length", "0.3", "--order", "10", "--count", "2", "--exact",
+        "--length",
+        "0.5",
+        "--ei",
+        "2",
+        "--mass-per-length",
+        "0.3",
+        "--order",
+        "10",
+        "--count",
+        "2",
+        "--exact",
     ]);
     let (f, w) = (numbers(&v["frequency"]), numbers(&v["omega"]));
     let (exact, relative) = (numbers(&v["exact"]["frequency"]), numbers(&v["error"]["relative"]));
@@ -105,8 +115,7 @@ fn tip_body_under_compression_and_tension() {
     let (l, ei) = (0.5_f64, 2.0_f64);
     let half = 0.5 * PI * PI * ei / (4.0 * l * l);
     let fx = format!("{}", -half);
-    let base =
-        ["--length", "0.5", "--ei", "2", "--mass-per-length", "0.3", "--order", "8", "--tip-mass", "0.05"];
+    let base = ["--length", "0.5", "--ei", "2", "--mass-per-length", "0.3", "--order", "8", "--tip-mass", "0.05"];
     let mut args = base.to_vec();
     args.extend(["--tip-inertia", "1e-4", "--tip-com", "0.01,0", "--fx", &fx, "--exact", "--count", "2"]);
     let v = modes(&args);

@@ -26,7 +26,9 @@ pub fn tip_body(mass: Option<f64>, inertia: Option<f64>, com: Option<&Bound<'_, 
         if let Some(v) = v
             && !(v.is_finite() && v >= 0.0)
         {
-            return Err(PyValueError::new_err(format!("invalid {name} = {v}: must be a finite number, zero or greater")));
+            return Err(PyValueError::new_err(format!(
+                "invalid {name} = {v}: must be a finite number, zero or greater"
+            )));
         }
     }
     let (x, y) = match com {
