@@ -36,7 +36,7 @@
 //! where it was. Stability and the reported multipliers then take the free
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
-use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
+use super::indeterminate::{full_row_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
 use super::lagrangian::{
     Assembly, add_closures, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian,
@@ -114,6 +114,15 @@ pub struct Workspace {
     /// $n\times n$ column-major: the scaled stiffness and its Cholesky copy.
     stiffness: Vec<f64>,
     scratch: Vec<f64>,
+    /// The closure test's $\tilde G^T$ ($n\times m$), its Householder
+    /// reflections ($n\times m$), $\tilde Z$ and $\tilde H\tilde Z$ ($n\times(n-m)$),
+    /// a Gram matrix ($m\times m$) and $\sqrt{1/k_i}$ ($n$).
+    closure_t: Vec<f64>,
+    reflections: Vec<f64>,
+    basis: Vec<f64>,
+    product: Vec<f64>,
+    gram: Vec<f64>,
+    root_scale: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
     angles: RefCell<[Vec<f64>; 2]>,
     /// The tree's $O(n)$ factorization of the Hessian ([`super::tree`]).
@@ -138,6 +147,12 @@ impl Workspace {
             loads: m.loads(),
             stiffness: vec![0.0; n * n],
             scratch: vec![0.0; n * n],
+            closure_t: vec![0.0; n * rows],
+            reflections: vec![0.0; n * rows],
+            basis: vec![0.0; n * n.saturating_sub(rows)],
+            product: vec![0.0; n * n.saturating_sub(rows)],
+            gram: vec![0.0; rows * rows],
+            root_scale: vec![0.0; n],
             angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
             tree: Tree::new(m),
             joint_of: m
@@ -313,6 +328,113 @@ impl<'a> Kkt<'a> {
     pub fn loads(&self, lambda: f64) -> Loads {
         self.from.lerp(&self.to, lambda)
     }
+
+    /// [`solver::Problem::stable`] with closures on dense matrices, the
+    /// null space by singular values: the test where $G$'s rows are not
+    /// independent by a wide margin (redundant closures), and the
+    /// reference of [`Kkt::constrained_definite`].
+    fn stable_dense(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
+        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
+        // settle changes nothing where G has full row rank: skip its frames.
+        if rows > 0 && !full_row_rank(&g) {
+            let mu = self.multipliers(x);
+            let Workspace { frames: f, loads, .. } = &mut self.work;
+            frames_into(m, &x[..n], f);
+            self.from.lerp_into(&self.to, lambda, loads);
+            let settled = settle(m, f, &g, &mu, loads);
+            if settled != mu {
+                let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
+                h += closure_hessian(m, f, &change);
+            }
+        }
+        // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
+        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
+        let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
+        let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
+        let z = linalg::null_space(&g);
+        let mut k = constrained(&h, &z);
+        for i in 0..k.nrows() {
+            k[(i, i)] -= self.margin;
+        }
+        linalg::is_positive_definite(&k)
+    }
+
+
+    /// $\tilde Z^T\thinspace S(H - wK)S\thinspace\tilde Z - \text{margin}\thinspace I$ positive
+    /// definite, on the workspace's buffers without allocating: $H$ the
+    /// Hessian block of `jacobian`, $K$ the joints' elastic stiffness,
+    /// $S = \operatorname{diag}(1/\sqrt{k_i})$ and $\tilde Z$ the null space of
+    /// $\tilde G = GS$ by Householder reflections. `None` unless $G$ and
+    /// $\tilde G$ have rows independent by a wide margin
+    /// ([`linalg::columns_independent`]): then no multiplier is
+    /// indeterminate and this is the test of [`Kkt::stable_dense`].
+    fn constrained_definite(&mut self, jacobian: &[f64], w: f64, margin: f64) -> Option<bool> {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        if rows > n {
+            return None;
+        }
+        let p = n - rows;
+        let Workspace { closure_t: a, reflections, basis, product, gram, root_scale: s, stiffness: k, scratch, frames, joint_of, .. } =
+            &mut self.work;
+        // Gᵀ, n × rows, then G̃ᵀ = S Gᵀ.
+        for i in 0..rows {
+            for c in 0..n {
+                a[i * n + c] = jacobian[c * size + n + i] / self.closure_scale[i];
+            }
+        }
+        if !linalg::columns_independent(a, n, rows, gram) {
+            return None;
+        }
+        for (s, r) in s.iter_mut().zip(&self.row_scale) {
+            *s = r.sqrt();
+        }
+        for i in 0..rows {
+            for c in 0..n {
+                a[i * n + c] *= s[c];
+            }
+        }
+        if !linalg::columns_independent(a, n, rows, gram) {
+            return None;
+        }
+        linalg::null_space_of_transpose(a, n, rows, basis, reflections);
+        let elastic = |r: usize, c: usize| {
+            let j = joint_of[r];
+            if w == 0.0 || joint_of[c] != j {
+                return 0.0;
+            }
+            let o = m.joints[j].offset;
+            w * frames.joints[j].stiffness[(r - o, c - o)]
+        };
+        // H̃ Z̃, then Z̃ᵀ H̃ Z̃ symmetrized.
+        for j in 0..p {
+            for r in 0..n {
+                product[j * n + r] = (0..n)
+                    .map(|c| (jacobian[c * size + r] / self.row_scale[r] - elastic(r, c)) * s[r] * s[c] * basis[j * n + c])
+                    .sum();
+            }
+        }
+        let k = &mut k[..p * p];
+        for j in 0..p {
+            for i in 0..p {
+                k[j * p + i] = (0..n).map(|r| basis[i * n + r] * product[j * n + r]).sum();
+            }
+        }
+        for j in 0..p {
+            for i in 0..j {
+                let v = (k[j * p + i] + k[i * p + j]) * 0.5;
+                k[j * p + i] = v;
+                k[i * p + j] = v;
+            }
+            k[j * p + j] -= margin;
+        }
+        Some(linalg::positive_definite(k, p, &mut scratch[..p * p]))
+    }
 }
 
 impl solver::Problem<f64> for Kkt<'_> {
@@ -422,30 +544,10 @@ impl solver::Problem<f64> for Kkt<'_> {
             }
             return linalg::positive_definite(k, n, scratch);
         }
-        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
-        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
-        // settle changes nothing where G has full row rank: skip its frames.
-        if rows > 0 && !full_row_rank(&g) {
-            let mu = self.multipliers(x);
-            let Workspace { frames: f, loads, .. } = &mut self.work;
-            frames_into(m, &x[..n], f);
-            self.from.lerp_into(&self.to, lambda, loads);
-            let settled = settle(m, f, &g, &mu, loads);
-            if settled != mu {
-                let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
-                h += closure_hessian(m, f, &change);
-            }
+        if let Some(definite) = self.constrained_definite(jacobian, 0.0, self.margin) {
+            return definite;
         }
-        // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
-        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
-        let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
-        let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
-        let z = if full_row_rank(&g) { null_space_full_rank(&g) } else { linalg::null_space(&g) };
-        let mut k = constrained(&h, &z);
-        for i in 0..k.nrows() {
-            k[(i, i)] -= self.margin;
-        }
-        linalg::is_positive_definite(&k)
+        self.stable_dense(x, lambda, jacobian)
     }
 
     /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
