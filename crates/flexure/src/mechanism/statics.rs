@@ -131,6 +131,12 @@ pub struct Workspace {
     joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     solver: Option<solver::Workspace<f64>>,
+    /// The last problem's scales and loads.
+    spare: Spare,
+    /// The coordinates at which `frames` and the assembly's $c$ and $G$
+    /// were last evaluated, if `assembled`.
+    assembled_at: Vec<f64>,
+    assembled: bool,
 }
 
 impl Workspace {
@@ -162,6 +168,9 @@ impl Workspace {
                 .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
                 .collect(),
             solver: None,
+            spare: Spare::default(),
+            assembled_at: vec![0.0; n],
+            assembled: false,
         }
     }
 
@@ -178,6 +187,22 @@ impl Workspace {
             && self.loads.tension.len() == m.tendons.len()
             && self.loads.force.len() == m.forces.len()
     }
+}
+
+/// A problem's scales and loads ([`Kkt`]), kept for the next problem.
+#[derive(Debug, Clone, Default)]
+struct Spare {
+    vectors: [Vec<f64>; 4],
+    loads: [Loads; 3],
+}
+
+/// `from` into `to`, in `to`'s buffers.
+fn copy_loads(from: &Loads, to: &mut Loads) {
+    to.tension.clear();
+    to.tension.extend_from_slice(&from.tension);
+    to.force.clear();
+    to.force.extend_from_slice(&from.force);
+    to.gravity = from.gravity;
 }
 
 /// The KKT conditions of a mechanism under the loads
@@ -245,10 +270,16 @@ impl<'a> Kkt<'a> {
             .sum::<f64>();
         let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
         // Diagonal stiffness of each coordinate (constant for every joint
-        // kind), and the factor to N·m/rad: 1 for angles, ℓ² for slider travel.
+        // kind, so any state's), and the factor to N·m/rad: 1 for angles,
+        // ℓ² for slider travel; in the buffers of the last problem.
         let mut work = work;
-        frames_into(m, &m.rest(), &mut work.frames);
-        let (mut stiffness, mut unit) = (vec![0.0; n], vec![1.0; n]);
+        let Spare { vectors: [mut row_scale, mut weight, mut closure_scale, mut multiplier_scale], loads: [mut from_, mut to_, mut change] } =
+            std::mem::take(&mut work.spare);
+        let (stiffness, unit) = (&mut row_scale, &mut weight);
+        stiffness.clear();
+        stiffness.resize(n, 0.0);
+        unit.clear();
+        unit.resize(n, 1.0);
         for (j, s) in m.joints.iter().zip(&work.frames.joints) {
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
@@ -257,14 +288,17 @@ impl<'a> Kkt<'a> {
                 unit[j.offset] = length * length;
             }
         }
-        let moments: Vec<f64> = stiffness.iter().zip(&unit).map(|(k, u)| k * u).collect();
-        let k_max = moments.iter().copied().fold(0.0, f64::max);
+        let moments = || stiffness.iter().zip(unit.iter()).map(|(k, u)| k * u);
+        let k_max = moments().fold(0.0, f64::max);
         let k_max = if k_max > 0.0 { k_max } else { 1.0 };
-        let k_min = moments.iter().copied().filter(|&k| k > 0.0).fold(k_max, f64::min);
-        let weight = unit.iter().map(|u| 1.0 / u.sqrt()).collect();
+        let k_min = moments().filter(|&k| k > 0.0).fold(k_max, f64::min);
         // A free coordinate is measured against the stiffest joint.
-        let row_scale = stiffness.iter().zip(&unit).map(|(&k, u)| if k > 0.0 { 1.0 / k } else { u / k_max }).collect();
-        let (mut closure_scale, mut multiplier_scale) = (Vec::new(), Vec::new());
+        for (k, u) in row_scale.iter_mut().zip(weight.iter_mut()) {
+            *k = if *k > 0.0 { 1.0 / *k } else { *u / k_max };
+            *u = 1.0 / u.sqrt();
+        }
+        closure_scale.clear();
+        multiplier_scale.clear();
         for c in &m.closures {
             for row in 0..c.equations() {
                 let position = row < 2;
@@ -287,15 +321,16 @@ impl<'a> Kkt<'a> {
                 "are too large for the joints' stiffness to be represented",
             ));
         }
-        let change = Loads {
-            tension: to.tension.iter().zip(&from.tension).map(|(b, a)| b - a).collect(),
-            force: to.force.iter().zip(&from.force).map(|(b, a)| std::array::from_fn(|i| b[i] - a[i])).collect(),
-            gravity: std::array::from_fn(|i| to.gravity[i] - from.gravity[i]),
-        };
+        copy_loads(from, &mut from_);
+        copy_loads(to, &mut to_);
+        copy_loads(to, &mut change);
+        change.tension.iter_mut().zip(&from.tension).for_each(|(b, a)| *b -= a);
+        change.force.iter_mut().zip(&from.force).for_each(|(b, a)| (0..3).for_each(|i| b[i] -= a[i]));
+        change.gravity = std::array::from_fn(|i| to.gravity[i] - from.gravity[i]);
         Ok(Self {
             mechanism: m,
-            from: from.clone(),
-            to: to.clone(),
+            from: from_,
+            to: to_,
             change,
             row_scale,
             closure_scale,
@@ -311,7 +346,12 @@ impl<'a> Kkt<'a> {
 
     /// The buffers, for the next problem on the same mechanism.
     pub fn into_workspace(self) -> Workspace {
-        self.work
+        let mut work = self.work;
+        work.spare = Spare {
+            vectors: [self.row_scale, self.weight, self.closure_scale, self.multiplier_scale],
+            loads: [self.from, self.to, self.change],
+        };
+        work
     }
 
     /// The unknowns $(q, \nu)$ of coordinates `q` and multipliers `mu`.
@@ -342,7 +382,8 @@ impl<'a> Kkt<'a> {
         // settle changes nothing where G has full row rank: skip its frames.
         if rows > 0 && !full_row_rank(&g) {
             let mu = self.multipliers(x);
-            let Workspace { frames: f, loads, .. } = &mut self.work;
+            let Workspace { frames: f, loads, assembled, .. } = &mut self.work;
+            *assembled = false;
             frames_into(m, &x[..n], f);
             self.from.lerp_into(&self.to, lambda, loads);
             let settled = settle(m, f, &g, &mu, loads);
@@ -454,13 +495,17 @@ impl solver::Problem<f64> for Kkt<'_> {
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
         let q = &x[..n];
-        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, .. } = &mut self.work;
+        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, assembled_at, assembled, .. } =
+            &mut self.work;
         for ((m, v), s) in mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *m = v * s;
         }
+        *assembled = false;
         frames_into(m, q, f);
         self.from.lerp_into(&self.to, lambda, loads);
         assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
+        assembled_at.copy_from_slice(q);
+        *assembled = true;
         let g = &a.closure_jacobian;
         for i in 0..n {
             let mut force = a.gradient[i];
@@ -655,25 +700,39 @@ pub(super) fn constrained(h: &DMatrix<f64>, z: &DMatrix<f64>) -> DMatrix<f64> {
     (&k + k.transpose()) * 0.5
 }
 
-/// The solution at the unknowns `x` under `loads`, computed in the
-/// problem's buffers.
-fn solution(problem: &mut Kkt, x: &[f64], loads: &Loads, path: &solver::Path) -> Result<Solution> {
+/// The solution at the unknowns `x`, under the problem's loads at the
+/// end of its path (`end`) or at its start, computed in the problem's
+/// buffers: the frames and $G$ of the last evaluation if it was at `x`.
+fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Result<Solution> {
     let m = problem.mechanism;
-    let q = x[..m.dof()].to_vec();
-    let mu = problem.multipliers(x);
-    let Workspace { frames: f, assembly: a, .. } = &mut problem.work;
-    frames_into(m, &q, f);
-    add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
-    let multipliers = settle(m, f, &a.closure_jacobian, &mu, loads);
+    let n = m.dof();
+    let (q, mu) = (&x[..n], problem.multipliers(x));
+    let loads = if end { problem.to.clone() } else { problem.from.clone() };
+    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut problem.work;
+    if !(*assembled && assembled_at[..] == *q) {
+        *assembled = false;
+        frames_into(m, q, f);
+        add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
+    }
+    // settle changes nothing where G has independent rows: it need not be called.
+    let g = &a.closure_jacobian;
+    let rows = g.nrows();
+    for i in 0..rows {
+        for c in 0..n {
+            closure_t[i * n + c] = g[(i, c)];
+        }
+    }
+    let multipliers =
+        if linalg::columns_independent(closure_t, n, rows, gram) { mu } else { settle(m, f, g, &mu, &loads) };
     // + 0.0: an empty sum is −0.
     let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
         return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
     }
     Ok(Solution {
-        q,
+        q: q.to_vec(),
         multipliers,
-        loads: loads.clone(),
+        loads,
         energy,
         stable: path.stable,
         limit: path.limit,
@@ -769,10 +828,7 @@ fn follow_path(
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     match solver::continuation(problem, ws, settings) {
-        Ok(path) if path.stable => {
-            let to = problem.to.clone();
-            solution(problem, &ws.x, &to, &path)
-        }
+        Ok(path) if path.stable => solution(problem, &ws.x, true, &path),
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
@@ -874,8 +930,7 @@ fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Setti
                 iterations: report.iterations,
                 residual: report.residual,
             };
-            let from = problem.from.clone();
-            solution(problem, &ws.x, &from, &path)
+            solution(problem, &ws.x, false, &path)
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
