@@ -116,11 +116,12 @@ pub struct Workspace {
     scratch: Vec<f64>,
     /// The closure test's $\tilde G^T$ ($n\times m$), its Householder
     /// reflections ($n\times m$), $\tilde Z$ and $\tilde H\tilde Z$ ($n\times(n-m)$),
-    /// a Gram matrix ($m\times m$) and $\sqrt{1/k_i}$ ($n$).
+    /// $\tilde H$ ($n\times n$), a Gram matrix ($m\times m$) and $\sqrt{1/k_i}$ ($n$).
     closure_t: Vec<f64>,
     reflections: Vec<f64>,
     basis: Vec<f64>,
     product: Vec<f64>,
+    hessian: Vec<f64>,
     gram: Vec<f64>,
     root_scale: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
@@ -157,6 +158,7 @@ impl Workspace {
             reflections: vec![0.0; n * rows],
             basis: vec![0.0; n * n.saturating_sub(rows)],
             product: vec![0.0; n * n.saturating_sub(rows)],
+            hessian: vec![0.0; n * n],
             gram: vec![0.0; rows * rows],
             root_scale: vec![0.0; n],
             angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
@@ -421,8 +423,9 @@ impl<'a> Kkt<'a> {
             return None;
         }
         let p = n - rows;
-        let Workspace { closure_t: a, reflections, basis, product, gram, root_scale: s, stiffness: k, scratch, frames, joint_of, .. } =
-            &mut self.work;
+        let Workspace {
+            closure_t: a, reflections, basis, product, hessian, gram, root_scale: s, stiffness: k, scratch, frames, joint_of, ..
+        } = &mut self.work;
         // Gᵀ, n × rows, then G̃ᵀ = S Gᵀ.
         for i in 0..rows {
             for c in 0..n {
@@ -452,12 +455,20 @@ impl<'a> Kkt<'a> {
             let o = m.joints[j].offset;
             w * frames.joints[j].stiffness[(r - o, c - o)]
         };
-        // H̃ Z̃, then Z̃ᵀ H̃ Z̃ symmetrized.
-        for j in 0..p {
+        // H̃ = S(H − wK)S, H̃ Z̃, then Z̃ᵀ H̃ Z̃ symmetrized.
+        for c in 0..n {
             for r in 0..n {
-                product[j * n + r] = (0..n)
-                    .map(|c| (jacobian[c * size + r] / self.row_scale[r] - elastic(r, c)) * s[r] * s[c] * basis[j * n + c])
-                    .sum();
+                hessian[c * n + r] = (jacobian[c * size + r] / self.row_scale[r] - elastic(r, c)) * s[r] * s[c];
+            }
+        }
+        for j in 0..p {
+            let z = &basis[j * n..(j + 1) * n];
+            let hz = &mut product[j * n..(j + 1) * n];
+            hz.fill(0.0);
+            for (c, zc) in z.iter().enumerate() {
+                for (v, h) in hz.iter_mut().zip(&hessian[c * n..(c + 1) * n]) {
+                    *v += h * zc;
+                }
             }
         }
         let k = &mut k[..p * p];
