@@ -94,6 +94,7 @@ pub fn is_positive_definite(a: &DMatrix<f64>) -> bool {
 /// `a`, in place; `pivots[k]` is the row swapped into place at step $k$.
 /// Returns `false` if a pivot is zero or not finite (a singular matrix).
 pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
+    let a = &mut a[..n * n];
     for k in 0..n {
         let p = (k..n).fold(k, |best, i| if a[k * n + i].re().abs() > a[k * n + best].re().abs() { i } else { best });
         let pivot = a[k * n + p].re();
@@ -107,15 +108,17 @@ pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
             }
         }
         let d = a[k * n + k];
-        for i in k + 1..n {
-            a[k * n + i] /= d;
+        for l in &mut a[k * n + k + 1..(k + 1) * n] {
+            *l /= d;
         }
-        for j in k + 1..n {
-            let f = a[j * n + k];
+        // Slices, not indices: no bounds checks in the O(n³) loop.
+        let (left, right) = a.split_at_mut((k + 1) * n);
+        let column = &left[k * n + k + 1..];
+        for target in right.chunks_exact_mut(n) {
+            let f = target[k];
             if f.re() != 0.0 || f != T::zero() {
-                for i in k + 1..n {
-                    let l = a[k * n + i];
-                    a[j * n + i] -= l * f;
+                for (t, &l) in target[k + 1..].iter_mut().zip(column) {
+                    *t -= l * f;
                 }
             }
         }
@@ -140,16 +143,18 @@ pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
         b.swap(k, pivots[k]);
     }
     for j in 0..n {
-        let bj = b[j];
-        for i in j + 1..n {
-            b[i] -= a[j * n + i] * bj;
+        let (head, tail) = b.split_at_mut(j + 1);
+        let bj = head[j];
+        for (bi, &l) in tail[..n - j - 1].iter_mut().zip(&a[j * n + j + 1..(j + 1) * n]) {
+            *bi -= l * bj;
         }
     }
     for j in (0..n).rev() {
         b[j] /= a[j * n + j];
-        let bj = b[j];
-        for i in 0..j {
-            b[i] -= a[j * n + i] * bj;
+        let (head, tail) = b.split_at_mut(j);
+        let bj = tail[0];
+        for (bi, &u) in head.iter_mut().zip(&a[j * n..j * n + j]) {
+            *bi -= u * bj;
         }
     }
 }
