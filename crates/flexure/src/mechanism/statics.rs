@@ -134,6 +134,8 @@ pub struct Workspace {
     solver: Option<solver::Workspace<f64>>,
     /// The last problem's scales and loads.
     spare: Spare,
+    /// The loads of a [`solve_with`]: none, and the mechanism's.
+    given: [Loads; 2],
     /// The coordinates at which `frames` and the assembly's $c$ and $G$
     /// were last evaluated, if `assembled`.
     assembled_at: Vec<f64>,
@@ -171,6 +173,7 @@ impl Workspace {
                 .collect(),
             solver: None,
             spare: Spare::default(),
+            given: Default::default(),
             assembled_at: vec![0.0; n],
             assembled: false,
         }
@@ -930,7 +933,7 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
 fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
     let m = problem.mechanism;
     ws.x.fill(0.0);
-    ws.x.iter_mut().zip(m.joints.iter().flat_map(|j| j.kind.joint().rest())).for_each(|(x, q)| *x = q);
+    m.rest_into(&mut ws.x[..m.dof()]);
     match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
             let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
@@ -1020,8 +1023,11 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     }
     // One problem from no load to the full load: assembled at λ = 0, then
     // continued from there without a second solve or stability test.
-    let to = m.loads();
-    let mut problem = Kkt::with_workspace(m, &to.zero_like(), &to, settings, std::mem::take(work))?;
+    let [mut zero, mut to] = std::mem::take(&mut work.given);
+    m.loads_into(&mut to);
+    copy_loads(&to, &mut zero);
+    zero.scale(0.0);
+    let mut problem = Kkt::with_workspace(m, &zero, &to, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
     let found = assemble(&mut problem, &mut ws, settings).map(|start| {
         ws.start_stable = Some(start.stable);
@@ -1030,8 +1036,9 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     });
     *work = problem.into_workspace();
     work.solver = Some(ws);
+    work.given = [zero, to];
     let (start, found) = found?;
-    refine_limit(m, &start, &to, settings, found)
+    refine_limit(m, &start, &work.given[1], settings, found)
 }
 
 /// Frames of the solution.
