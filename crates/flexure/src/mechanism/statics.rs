@@ -136,6 +136,8 @@ pub struct Workspace {
     spare: Spare,
     /// The loads of a [`solve_with`]: none, and the mechanism's.
     given: [Loads; 2],
+    /// The unknowns of the assembled start of a [`solve_with`].
+    start_x: Vec<f64>,
     /// The coordinates at which `frames` and the assembly's $c$ and $G$
     /// were last evaluated, if `assembled`.
     assembled_at: Vec<f64>,
@@ -174,6 +176,7 @@ impl Workspace {
             solver: None,
             spare: Spare::default(),
             given: Default::default(),
+            start_x: vec![0.0; n + rows],
             assembled_at: vec![0.0; n],
             assembled: false,
         }
@@ -790,12 +793,7 @@ fn refine_limit(
     settings: &Settings,
     found: Result<Solution>,
 ) -> Result<Solution> {
-    let lost = match &found {
-        Ok(s) => s.limit.is_some(),
-        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
-        Err(_) => false,
-    };
-    if !lost {
+    if !lost(&found, start.stable) {
         return found;
     }
     let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= LIMIT_PRECISION * hi)?;
@@ -803,6 +801,23 @@ fn refine_limit(
         Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
         Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
     }
+}
+
+/// Whether the path that `found` ends lost stability on the way (from a
+/// start that was `stable`), so that its limit is refined.
+fn lost(found: &Result<Solution>, stable: bool) -> bool {
+    match found {
+        Ok(s) => s.limit.is_some(),
+        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || stable,
+        Err(_) => false,
+    }
+}
+
+/// Where a path starts: a solution, or the assembled state at $\lambda = 0$
+/// of the problem itself (its unknowns in [`Workspace::start_x`], reached by `path`).
+enum Start<'s> {
+    Given(&'s Solution),
+    Assembled(&'s solver::Path),
 }
 
 /// [`solve_between`] with the continuation's own limit, unrefined.
@@ -826,7 +841,7 @@ fn follow_in(
     for ((x, mu), s) in ws.x[n..].iter_mut().zip(&start.multipliers).zip(&problem.multiplier_scale) {
         *x = mu / s;
     }
-    let found = follow_path(m, start, &mut problem, &mut ws, settings);
+    let found = follow_path(m, Start::Given(start), &mut problem, &mut ws, settings);
     *work = problem.into_workspace();
     work.solver = Some(ws);
     found
@@ -834,7 +849,7 @@ fn follow_in(
 
 fn follow_path(
     m: &Mechanism,
-    start: &Solution,
+    start: Start,
     problem: &mut Kkt,
     ws: &mut solver::Workspace<f64>,
     settings: &Settings,
@@ -847,7 +862,13 @@ fn follow_path(
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
         Err(Error::Singular { what }) if ws.limit.is_none() => Err(Error::Singular {
-            what: match free_motion(m, start) {
+            what: match match start {
+                Start::Given(s) => free_motion(m, s),
+                Start::Assembled(path) => {
+                    let x0 = problem.work.start_x.clone();
+                    solution(problem, &x0, false, path).ok().and_then(|s| free_motion(m, &s))
+                }
+            } {
                 Some(joints) => format!(
                     "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
                 ),
@@ -931,20 +952,19 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
 /// The unloaded, assembled configuration, by Newton from rest on the
 /// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
 fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+    let path = assembled(problem, ws, settings)?;
+    solution(problem, &ws.x, false, &path)
+}
+
+/// [`assemble`] without the solution: how the path to it went.
+fn assembled(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<solver::Path> {
     let m = problem.mechanism;
     ws.x.fill(0.0);
     m.rest_into(&mut ws.x[..m.dof()]);
     match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
             let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
-            let path = solver::Path {
-                stable,
-                limit: None,
-                steps: 0,
-                iterations: report.iterations,
-                residual: report.residual,
-            };
-            solution(problem, &ws.x, false, &path)
+            Ok(solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual })
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
@@ -1029,16 +1049,24 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     zero.scale(0.0);
     let mut problem = Kkt::with_workspace(m, &zero, &to, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
-    let found = assemble(&mut problem, &mut ws, settings).map(|start| {
-        ws.start_stable = Some(start.stable);
-        let found = follow_path(m, &start, &mut problem, &mut ws, settings);
-        (start, found)
+    // The start as a solution only if the path lost stability: for the refinement.
+    let found = assembled(&mut problem, &mut ws, settings).and_then(|path| {
+        problem.work.start_x.copy_from_slice(&ws.x);
+        ws.start_stable = Some(path.stable);
+        let found = follow_path(m, Start::Assembled(&path), &mut problem, &mut ws, settings);
+        if !lost(&found, path.stable) {
+            return Ok((None, found));
+        }
+        let x0 = problem.work.start_x.clone();
+        Ok((Some(solution(&mut problem, &x0, false, &path)?), found))
     });
     *work = problem.into_workspace();
     work.solver = Some(ws);
     work.given = [zero, to];
-    let (start, found) = found?;
-    refine_limit(m, &start, &work.given[1], settings, found)
+    match found? {
+        (Some(start), found) => refine_limit(m, &start, &work.given[1], settings, found),
+        (None, found) => found,
+    }
 }
 
 /// Frames of the solution.
