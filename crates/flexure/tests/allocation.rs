@@ -126,3 +126,27 @@ fn mechanism_newton_does_not_allocate() {
     assert!(r.iter().any(|v| *v != 0.0), "a loaded state has a residual");
     assert_eq!(n, 0, "parallelogram: {n} allocations in one evaluation");
 }
+
+/// A warm `solve_with` of the parallelogram (two closures: assembly,
+/// tangent, corrector, stability tests on the workspace's buffers, and the
+/// solution) allocates exactly the three vectors of the `Solution` it
+/// returns: `q`, `multipliers` and `loads.force` (no tendons: `tension` is
+/// empty and allocates nothing).
+#[test]
+fn parallelogram_solve_with_allocates_only_its_answer() {
+    use flexure::mechanism::file::from_toml;
+    use flexure::mechanism::statics::{Settings, Workspace, solve_with};
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
+    let text = std::fs::read_to_string(path).unwrap().replace("force = [0.0, -1.0]", "force = [0.5, -1.0]");
+    let stage = from_toml(&text).unwrap();
+    let settings = Settings::default();
+    let mut work = Workspace::new(&stage);
+    let first = solve_with(&stage, &settings, &mut work).unwrap();
+    let mut found = None;
+    let n = allocations(|| found = Some(solve_with(&stage, &settings, &mut work).unwrap()));
+    let s = found.unwrap();
+    assert_eq!(s, first);
+    assert!(s.stable && s.iterations >= 2, "a solve that iterates: {s:?}");
+    assert!(s.loads.tension.is_empty() && !s.q.is_empty() && !s.multipliers.is_empty() && !s.loads.force.is_empty());
+    assert_eq!(n, 3, "parallelogram: {n} allocations in a warm solve_with");
+}
