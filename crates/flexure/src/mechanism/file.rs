@@ -566,7 +566,9 @@ fn foreign_keys(j: &JointToml, kind: &str) -> Option<(&'static str, Span)> {
     let foreign: Vec<(&'static str, Option<Span>)> = match kind {
         "flexure" => spring.to_vec(),
         "revolute" | "prismatic" => flexure.to_vec(),
-        _ => flexure.iter().chain(&spring).cloned().chain([("damping", j.damping.as_ref().map(Spanned::span))]).collect(),
+        _ => {
+            flexure.iter().chain(&spring).cloned().chain([("damping", j.damping.as_ref().map(Spanned::span))]).collect()
+        }
     };
     foreign.into_iter().find_map(|(k, s)| s.map(|s| (k, s)))
 }
