@@ -81,6 +81,10 @@ fn read(path: &Path, allowed: &[&str]) -> Result<Table, String> {
             "--input {file} line {line_no}: angle {cell} is read as radians{others}; write {cell}deg for degrees"
         ));
     }
+    if rows.is_empty() {
+        // An answer with nothing in it would pass for success.
+        return Err(format!("--input {file}: no rows after the header (nothing to answer)"));
+    }
     Ok(Table { columns, rows })
 }
 

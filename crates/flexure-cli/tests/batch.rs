@@ -168,3 +168,16 @@ fn bad_files_exit_2() {
     assert_eq!(code, 2);
     assert!(err.contains("--input /nonexistent/loads.csv"), "{err}");
 }
+
+/// A header with no rows has nothing to answer: exit 2 saying so, not an
+/// empty success (found by the fuzzer).
+#[test]
+fn a_file_without_rows_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for (command, header) in [("deflect", "moment,fx,fy\n"), ("kinematics", "a1,a2,a3\n")] {
+        let path = write(dir.path(), "empty.csv", header);
+        let (code, out, err) = run(&[command, "--json", "--input", &path]);
+        assert_eq!(code, 2, "{command}: {out}");
+        assert!(out.is_empty() && err.contains("no rows"), "{command}: {err}");
+    }
+}
