@@ -17,6 +17,7 @@ mod dynamics_integrate;
 mod dynamics_mass;
 mod dynamics_mechanism;
 mod dynamics_mechanism_modes;
+mod dynamics_simulation;
 mod dynamics_modes;
 mod dynamics_vibration;
 mod elastica;
