@@ -14,6 +14,7 @@ mod mechanism;
 mod options;
 mod render;
 mod reproduce;
+mod simulate;
 mod stress;
 
 use clap::{Parser, Subcommand};
@@ -62,6 +63,8 @@ enum Command {
     Buckle(mechanism::BuckleArgs),
     /// Draw a mechanism's unloaded and loaded shapes as SVG.
     Draw(mechanism::DrawArgs),
+    /// Motion of a mechanism file over time: body poses, coordinates and energy at each sample.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// What a subcommand answers: one object, or one answer per `--input` row.
@@ -134,6 +137,7 @@ fn answer(command: &Command) -> Result<Answer, String> {
         Command::Solve(a) => one(mechanism::solve_cmd(a)),
         Command::Buckle(a) => one(mechanism::buckle_cmd(a)),
         Command::Draw(a) => one(mechanism::draw_cmd(a)),
+        Command::Simulate(a) => one(simulate::simulate_cmd(a)),
     }
 }
 

@@ -62,9 +62,15 @@ struct Example {
     buckle: Expect,
 }
 
-const EXAMPLES: [Example; 7] = [
+const EXAMPLES: [Example; 8] = [
     Example {
         name: "finger",
+        sweep: "tendon.flexor.tension=0:6:4",
+        compliance: ("distal", "0.025,0"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "finger_dynamics",
         sweep: "tendon.flexor.tension=0:6:4",
         compliance: ("distal", "0.025,0"),
         buckle: Expect::Answers,
