@@ -231,7 +231,7 @@ fn every_example_with_every_subcommand() {
             outcomes.push(format!("{} {what}: {expect:?}", ex.name));
         }
     }
-    assert_eq!(outcomes.len(), 42, "{outcomes:#?}");
+    assert_eq!(outcomes.len(), 48, "{outcomes:#?}");
 }
 
 /// No example escapes the table above.

@@ -168,3 +168,17 @@ fn draw_simulate_writes_snapshots_and_charts() {
     let (code, _, err) = run(&["draw", &file, "--simulate", "0", "--out", &out_s]);
     assert!(code == 2 && err.contains("--duration = 0"), "{err}");
 }
+
+/// The finger example's first "Running it" command answers: 31 samples,
+/// the start at rest, no closure to violate.
+#[test]
+fn the_finger_example_runs_as_shown() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/finger_dynamics.toml");
+    let file = file.display().to_string();
+    let shown = "flexure simulate examples/finger_dynamics.toml --duration 0.3 --every 0.01 --tolerance 1e-6";
+    assert!(std::fs::read_to_string(&file).unwrap().contains(shown));
+    let v = json(&["simulate", &file, "--duration", "0.3", "--every", "0.01", "--tolerance", "1e-6"]);
+    assert_eq!(v["time"].as_array().unwrap().len(), 31);
+    assert_eq!(v["coordinates"]["mcp"].as_array().unwrap().len(), 31);
+    assert_eq!(v["violation"].as_f64(), Some(0.0));
+}
