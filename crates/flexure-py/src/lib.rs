@@ -28,6 +28,7 @@ use std::time::{Duration, Instant};
 mod coordinates;
 mod exact;
 mod section;
+mod simulate;
 mod stress;
 use coordinates::{Coordinates, single, vector};
 
@@ -195,6 +196,7 @@ fn to_py(e: Error) -> PyErr {
             err
         }
         Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::IntegrationStalled { .. } => ConvergenceError::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
     }
 }
@@ -903,6 +905,19 @@ impl Mechanism {
             warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
         }
         Ok(out)
+    }
+
+    /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
+    #[pyo3(signature = (duration, every=None, tolerance=1e-8, start="equilibrium"))]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        duration: f64,
+        every: Option<f64>,
+        tolerance: f64,
+        start: &str,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        simulate::motion(py, &self.inner, duration, every, tolerance, start)
     }
 
     /// Number of generalized coordinates.
