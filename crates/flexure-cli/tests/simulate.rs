@@ -87,7 +87,18 @@ fn start_and_csv() {
     let csv = dir.path().join("arm.csv");
     let csv_s = csv.display().to_string();
     let v = json(&[
-        "simulate", &file, "--duration", "1", "--every", "0.5", "--tolerance", "1e-10", "--start", "rest", "--out", &csv_s,
+        "simulate",
+        &file,
+        "--duration",
+        "1",
+        "--every",
+        "0.5",
+        "--tolerance",
+        "1e-10",
+        "--start",
+        "rest",
+        "--out",
+        &csv_s,
     ]);
     let phi = floats(&v["bodies"]["arm"]["phi"]);
     for (k, t) in [0.0_f64, 0.5, 1.0].iter().enumerate() {
@@ -136,8 +147,11 @@ fn bad_files_exit_2_with_their_place() {
     assert_eq!(code, 2);
     assert!(err.contains("arm.toml: line 17, column 23: schedule \"force.turn.moment\": points[1]"), "{err}");
     let file = arm(dir.path(), "").replace("arm.toml", "massless.toml");
-    std::fs::write(&file, "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n")
-        .unwrap();
+    std::fs::write(
+        &file,
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n",
+    )
+    .unwrap();
     let (code, _, err) = run(&["simulate", &file, "--duration", "1"]);
     assert_eq!(code, 2);
     assert!(err.contains("--mass = none"), "{err}");

@@ -125,7 +125,8 @@ fn schedules_interpolate_and_hold() {
         tendon_arm(0.4)
     ))
     .unwrap();
-    let cases = [(-1.0, 0.0, -1.0), (0.0, 0.0, -1.0), (0.2, 2.0, -2.0), (0.3, 3.0, -3.0), (0.4, 4.0, -1.5), (9.0, 4.0, 0.0)];
+    let cases =
+        [(-1.0, 0.0, -1.0), (0.0, 0.0, -1.0), (0.2, 2.0, -2.0), (0.3, 3.0, -3.0), (0.4, 4.0, -1.5), (9.0, 4.0, 0.0)];
     for (t, tension, gy) in cases {
         let l = loads_at(&m, t);
         assert!((l.tension[0] - tension).abs() < 1e-15 && (l.gravity[1] - gy).abs() < 1e-15, "t = {t}: {l:?}");
@@ -184,7 +185,10 @@ fn bad_schedules_and_initial_states_are_placed() {
             base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.0, -1.0]]"),
             "line 27, column 11: schedule \"tendon.flexor.tension\": points[0] value = -1: must not be negative",
         ),
-        (base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[]"), "line 27, column 10: schedule \"tendon.flexor.tension\": points is empty"),
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[]"),
+            "line 27, column 10: schedule \"tendon.flexor.tension\": points is empty",
+        ),
         (
             format!("{base}[[schedule]]\nload = \"tendon.flexor.tension\"\npoints = [[0.0, 1.0]]\n"),
             "line 29, column 8: schedule \"tendon.flexor.tension\": load \"tendon.flexor.tension\" is scheduled twice",
@@ -216,9 +220,10 @@ fn bad_schedules_and_initial_states_are_placed() {
 /// Refused runs: nothing with mass, and bad settings, each by name.
 #[test]
 fn simulations_without_mass_or_with_bad_settings_are_refused() {
-    let massless =
-        from_toml("[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n")
-            .unwrap();
+    let massless = from_toml(
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n",
+    )
+    .unwrap();
     let e = simulate(&massless, &settings(1.0, 0.1, 1e-6), Start::Equilibrium).unwrap_err();
     assert!(matches!(e, Error::InvalidParameter { name: "mass", .. }), "{e}");
     let m = from_toml(&pendulum(0.2, 0.5)).unwrap();

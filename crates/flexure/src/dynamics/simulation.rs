@@ -122,7 +122,7 @@ pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) 
 /// Errors: `mass` when nothing has mass or inertia (no motion to
 /// simulate); a bad setting by name ([`integrate::Settings::validate`]);
 /// those of the start's static solve; [`Error::IntegrationStalled`] and
-/// [`Error::Interrupted`] from [`integrate`].
+/// [`Error::Interrupted`] from [`integrate()`].
 ///
 /// # Example
 /// ```
