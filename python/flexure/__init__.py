@@ -139,3 +139,21 @@ class Mechanism:
             if self._source is not None and e.args and not str(e.args[0]).startswith("accuracy"):
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
             raise
+
+    def modes(self, count: Optional[int] = None) -> dict:
+        """Vibration modes about the loaded equilibrium (the loads' stiffness included, so a
+        frequency falls to zero at a buckling load; closures respected): a dict of omega
+        (rad/s, ascending), frequency (Hz), shapes {joint: array (modes, joint coordinates),
+        normalized to v^T M v = 1} and quasi_static (directions without inertia, such as a
+        massless flexure's, condensed out: they follow quasi-statically and have no
+        frequency). Only finite modes; count: 1 to dof (default 3, or dof), fewer returned if
+        fewer are finite. Mass comes from the file's [[body]] mass and inertia and the
+        flexures' density or mass_per_length: without any, ValueError naming mass. Past a
+        buckling load, ConvergenceError; a loading path that snapped through warns
+        StabilityWarning and adds limit_fraction. Errors name the mechanism's file."""
+        try:
+            return self._inner.modes(count)
+        except (ValueError, ConvergenceError) as e:
+            if self._source is not None and e.args and not str(e.args[0]).startswith("invalid count"):
+                e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
+            raise

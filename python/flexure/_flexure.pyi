@@ -42,6 +42,24 @@ class _ErrorEstimate(TypedDict):
 # fraction of the peak]), each finite and > 0; None means (0.01, 1 degree, 0.01).
 _Accuracy = Optional[Union[Tuple[float, float], Tuple[float, float, float]]]
 
+class _Modes(TypedDict):
+    # Angular frequencies (rad/s), ascending.
+    omega: np.ndarray
+    # omega / 2 pi (Hz).
+    frequency: np.ndarray
+    # (modes, order): each row a mode's coordinates alpha, normalized to v^T M v = 1.
+    shapes: np.ndarray
+    # Directions without inertia (a massless flexure's), condensed out as quasi-static.
+    quasi_static: int
+
+class _Vibration(TypedDict):
+    omega: np.ndarray
+    frequency: np.ndarray
+    # Scaled frequencies (mean mu omega^2 L^4 / mean EI)^(1/4): beta L for a uniform beam.
+    beta_l: np.ndarray
+    # The reference mass per length of beta_l (kg/m).
+    mass_per_length: float
+
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
 
@@ -130,6 +148,15 @@ class Flexure:
         """(3, 3) tip compliance of the unloaded flexure at its rest shape (Eqs. 35–36)."""
     def buckling_load(self, tip: str = "free") -> float:
         """Critical compressive tip load (N): tip is free, guided, pinned or clamped."""
+    def modes(self, count: Optional[int] = None, *, tip_mass: Optional[float] = None,
+              tip_inertia: Optional[float] = None, tip_com: Optional[Tuple[float, float]] = None,
+              moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> _Modes:
+        """Vibration modes about the equilibrium under a tip load (loaded stiffness: a frequency
+        falls to zero at a buckling load), with the flexure's density or mass_per_length and an
+        optional tip body (tip_mass kg, tip_inertia kg*m^2 about its centre of mass, tip_com (x, y)
+        m in the tip frame). count: 1 to order (default 3, or the order); fewer are returned if
+        fewer are finite. ValueError naming mass without any mass; ConvergenceError past a
+        buckling load."""
     # Bending at alpha (N,), such as deflect's answer.
     def stress(self, alpha: ArrayLike) -> Optional[_Peak]:
         """Peak bending stress σ(s) = E' h(s)/2 |ω(s) - ω0(s)|: {max (Pa), at (m from the root)};
@@ -157,6 +184,9 @@ class Mechanism:
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
+    def modes(self, count: Optional[int] = None) -> dict:
+        """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
+        quasi_static, and limit_fraction after a snap-through."""
 
 class Elastica:
     """The exact elastica of a flexure under a tip load (flexure.exact.elastica): Eq. 3 with EI(s),
@@ -197,5 +227,8 @@ def exact_elastica(flexure: Flexure, moment: float = 0.0, fx: float = 0.0, fy: f
                    what: str = "exact.elastica") -> Elastica: ...
 def exact_compliance(flexure: Flexure) -> np.ndarray: ...
 def exact_buckling_load(flexure: Flexure, tip: str = "free") -> float: ...
+def exact_frequencies(flexure: Flexure, count: Optional[int] = None, compression: float = 0.0,
+                      tip_mass: Optional[float] = None, tip_inertia: Optional[float] = None,
+                      tip_com: Optional[Tuple[float, float]] = None) -> _Vibration: ...
 def exact_flexure(length: float = 1.0, ei: Optional[_Profile] = None,
                   rest: Optional[ArrayLike] = None) -> Flexure: ...

@@ -34,9 +34,17 @@ from typing import Optional, Tuple, Union
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._flexure import Elastica, Flexure, exact_buckling_load, exact_compliance, exact_elastica, exact_flexure
+from ._flexure import (
+    Elastica,
+    Flexure,
+    exact_buckling_load,
+    exact_compliance,
+    exact_elastica,
+    exact_flexure,
+    exact_frequencies,
+)
 
-__all__ = ["elastica", "deflect", "compliance", "buckling_load", "Elastica"]
+__all__ = ["elastica", "deflect", "compliance", "buckling_load", "frequencies", "Elastica"]
 
 _Profile = Union[float, Tuple[float, float], ArrayLike]
 
@@ -94,3 +102,29 @@ def buckling_load(tip: str = "free", length: Optional[float] = None, ei: Optiona
     the first root of the column's shooting determinant in the load, found by scan and bisection.
     ValueError for a flexure with rest curvature."""
     return exact_buckling_load(_beam(flexure, length, ei, None), tip)
+
+
+def frequencies(count: Optional[int] = None, compression: float = 0.0, *, flexure: Flexure,
+                tip_mass: Optional[float] = None, tip_inertia: Optional[float] = None,
+                tip_com: Optional[Tuple[float, float]] = None) -> dict:
+    """Exact natural frequencies of `flexure` as a straight Euler-Bernoulli beam with rotary
+    inertia, clamped at its root: EI(s) and the mass per length mu(s) of its section (its
+    `density` or `mass_per_length`; none for a massless flexure), carrying an optional rigid tip
+    body (tip_mass kg, tip_inertia kg*m^2 about its centre of mass, tip_com (x, y) m in the tip
+    frame), under an axial `compression` (N; negative for tension), by shooting on the
+    frequency. The counterpart of `Flexure.modes` about a straight equilibrium (fx =
+    -compression). A dict of omega (rad/s, ascending), frequency (Hz), beta_l (the scaled
+    frequency: beta L for a uniform beam) and mass_per_length (its reference, kg/m). count:
+    1 to 64 (default 3); a massless flexure has at most as many modes as its body has inertial
+    degrees of freedom. ValueError naming mass without any mass, and for a flexure with rest
+    curvature.
+
+    >>> import flexure
+    >>> from flexure import exact
+    >>> f = flexure.Flexure(length=1.0, ei=1.0, mass_per_length=1.0)
+    >>> [round(float(b), 4) for b in exact.frequencies(2, flexure=f)["beta_l"]]   # cos bL cosh bL = -1
+    [1.8751, 4.6941]
+    """
+    if not isinstance(flexure, Flexure):
+        raise ValueError(f"flexure must be a flexure.Flexure, got {type(flexure).__name__}")
+    return exact_frequencies(flexure, count, compression, tip_mass, tip_inertia, tip_com)

@@ -243,27 +243,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
 /// without a thickness, `curvature_max`), `safety_factor` with a warning
 /// naming `what` below 1, and `shape` when asked for.
 pub fn put_exact_stress(answer: &mut Value, trace: &Trace, options: &StressOptions, what: &str) -> flexure::Result<()> {
-    match trace.peak_stress()? {
-        Some(p) => {
-            answer["stress"] = json!({ "max": p.value, "at": p.at });
-            if let Some(s) = options.yield_strength
-                && p.value > 0.0
-            {
-                let factor = s / p.value;
-                answer["safety_factor"] = json!(factor);
-                if factor < 1.0 {
-                    warn(format!(
-                        "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
-                        p.value, p.at
-                    ));
-                }
-            }
-        }
-        None => {
-            let p = trace.peak_curvature()?;
-            answer["curvature_max"] = json!({ "max": p.value, "at": p.at });
-        }
-    }
+    crate::stress::put_peak(answer, trace.peak_stress()?, || trace.peak_curvature(), options.yield_strength, what)?;
     if let Some(k) = options.shape {
         let points: Vec<Value> = trace
             .shape(k)?

@@ -11,6 +11,7 @@ mod batch;
 mod figures;
 mod joint;
 mod mechanism;
+mod modes;
 mod options;
 mod render;
 mod reproduce;
@@ -65,6 +66,9 @@ enum Command {
     Draw(mechanism::DrawArgs),
     /// Motion of a mechanism file over time: body poses, coordinates and energy at each sample.
     Simulate(simulate::SimulateArgs),
+    /// Natural frequencies and mode shapes about the loaded equilibrium: of a
+    /// mechanism file, or of one flexure joint with a tip body (--exact: beside exact beam theory).
+    Modes(modes::ModesArgs),
 }
 
 /// What a subcommand answers: one object, or one answer per `--input` row.
@@ -138,6 +142,7 @@ fn answer(command: &Command) -> Result<Answer, String> {
         Command::Buckle(a) => one(mechanism::buckle_cmd(a)),
         Command::Draw(a) => one(mechanism::draw_cmd(a)),
         Command::Simulate(a) => one(simulate::simulate_cmd(a)),
+        Command::Modes(a) => one(modes::modes_cmd(a)),
     }
 }
 

@@ -4,7 +4,7 @@
 
 use crate::options::{StressOptions, warn};
 use flexure::kinematics::backbone;
-use flexure::stress::{peak_curvature, peak_stress, stress};
+use flexure::stress::{Peak, peak_curvature, peak_stress, stress};
 use flexure::{Error, Flexure};
 use serde_json::{Value, json};
 
@@ -27,7 +27,28 @@ pub fn check(f: &Flexure, options: &StressOptions) -> flexure::Result<()> {
 /// the flexure is unstressed: it would be infinite), and a warning naming
 /// `what` below 1.
 pub fn peak(answer: &mut Value, f: &Flexure, alpha: &[f64], yield_strength: Option<f64>, what: &str) {
-    match peak_stress(f, alpha) {
+    let never = put_peak(
+        answer,
+        peak_stress(f, alpha),
+        || Ok::<_, std::convert::Infallible>(peak_curvature(f, alpha)),
+        yield_strength,
+        what,
+    );
+    if let Err(e) = never {
+        match e {}
+    }
+}
+
+/// Writes `stress` (and `safety_factor`) from `stress`, or without one
+/// `curvature_max` from `curvature`: shared by the model's and the exact answers.
+pub fn put_peak<E>(
+    answer: &mut Value,
+    stress: Option<Peak>,
+    curvature: impl FnOnce() -> Result<Peak, E>,
+    yield_strength: Option<f64>,
+    what: &str,
+) -> Result<(), E> {
+    match stress {
         Some(p) => {
             answer["stress"] = json!({ "max": p.value, "at": p.at });
             if let Some(s) = yield_strength
@@ -44,10 +65,11 @@ pub fn peak(answer: &mut Value, f: &Flexure, alpha: &[f64], yield_strength: Opti
             }
         }
         None => {
-            let p = peak_curvature(f, alpha);
+            let p = curvature()?;
             answer["curvature_max"] = json!({ "max": p.value, "at": p.at });
         }
     }
+    Ok(())
 }
 
 /// The deformed flexure at `count` points evenly spaced in arc length, ends

@@ -15,6 +15,7 @@ mod figures;
 mod fuzz;
 mod joint;
 mod mechanism;
+mod modes;
 mod options;
 mod reproduce;
 mod sections;

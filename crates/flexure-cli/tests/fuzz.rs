@@ -1,13 +1,15 @@
 //! Seeded fuzzing of the command line and the library.
 //!
-//! Four families of random cases, each generated from its own seed so that
+//! Five families of random cases, each generated from its own seed so that
 //! any failure is reproduced by its printed command line or call:
 //! - `argv`: random subcommands, options and values (0, negatives, 1e300,
 //!   nan, inf, huge integers, garbage, missing values), run in-process
 //!   through `flexure_cli::run`;
 //! - `files`: the mechanism examples mutated (lines deleted, duplicated,
 //!   swapped; numbers replaced by 0, −1, 1e300, nan; keys renamed; text
-//!   truncated) and run through `solve`, `buckle` and `draw`;
+//!   truncated) and run through `solve`, `buckle`, `draw` and `modes`;
+//! - `modes`: random single-joint `modes` command lines (their own family,
+//!   run with `argv`'s test);
 //! - `library`: library functions called directly with random values;
 //! - `process`: a smaller sample of `argv` cases run as real processes, to
 //!   check the exit status end to end, killed if they outlive the bound.
@@ -47,6 +49,7 @@ const ARGV_CASES: usize = 8000;
 const FILE_CASES: usize = 3000;
 const LIBRARY_CASES: usize = 5000;
 const PROCESS_CASES: usize = 300;
+const MODES_CASES: usize = 1000;
 
 // ---------------------------------------------------------------- random
 
@@ -411,6 +414,41 @@ fn argv(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
     args
 }
 
+/// A random `modes` command line for one joint (a file's modes are in
+/// [`file_case`]): a family of its own, so the other families' cases stay
+/// as they were.
+fn modes_argv(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
+    let own = [
+        ("--moment", Kind::Number),
+        ("--fx", Kind::Number),
+        ("--fy", Kind::Number),
+        ("--tip-mass", Kind::Positive),
+        ("--tip-inertia", Kind::Positive),
+        ("--tip-com", Kind::Point),
+        ("--count", Kind::Segments),
+        ("--exact", Kind::Flag),
+    ];
+    let options: Vec<(&str, Kind)> = FLEXURE.iter().chain(&own).copied().collect();
+    let mut args = vec!["modes".to_string()];
+    let mut chosen: Vec<(&str, Kind)> = Vec::new();
+    if r.chance(0.7) {
+        chosen.push(*r.pick(&[("--tip-mass", Kind::Positive), ("--mass-per-length", Kind::Profile(1.0))]));
+    }
+    for _ in 0..r.below(5) {
+        chosen.push(*r.pick(&options));
+    }
+    for (option, kind) in chosen {
+        args.push(option.to_string());
+        if !matches!(kind, Kind::Flag) {
+            args.push(value(r, kind, scratch, tag));
+        }
+    }
+    if r.chance(0.5) {
+        args.push("--json".into());
+    }
+    args
+}
+
 // ------------------------------------------------------- mechanism files
 
 /// The text of an example after one to three random edits.
@@ -494,12 +532,13 @@ fn file_case(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
     let path = scratch.dir.join(format!("{tag}.toml"));
     std::fs::write(&path, mutate(r, text)).unwrap();
     let file = path.display().to_string();
-    let mut args = match r.below(3) {
+    let mut args = match r.below(4) {
         0 => vec!["solve".into(), file],
         1 => vec!["buckle".into(), file],
+        2 => vec!["modes".into(), file],
         _ => vec!["draw".into(), file, "--out".into(), scratch.dir.join(format!("{tag}.svg")).display().to_string()],
     };
-    if args[0] != "buckle" && r.chance(0.3) {
+    if !matches!(args[0].as_str(), "buckle" | "modes") && r.chance(0.3) {
         args.push("--sweep".into());
         args.push(format!(
             "{}={}:{}:{}",
@@ -992,11 +1031,20 @@ fn fuzz_command_lines() {
             (shown(&args), verdict)
         }),
     );
+    let s = scratch.clone();
+    let modes_tally = drive(
+        MODES_CASES,
+        Arc::new(move |i| {
+            let args = modes_argv(&mut Rng::for_case(5, i), &s, &format!("modes{i}"));
+            let verdict = run_in_process(&args);
+            (shown(&args), verdict)
+        }),
+    );
     let _ = std::fs::remove_dir_all(&scratch.dir);
-    report("command lines", &[("argv", argv_tally), ("process", process_tally)], start);
+    report("command lines", &[("argv", argv_tally), ("process", process_tally), ("modes", modes_tally)], start);
 }
 
-/// Family `files`: mutated mechanism files through solve, buckle and draw.
+/// Family `files`: mutated mechanism files through solve, buckle, draw and modes.
 #[test]
 fn fuzz_mechanism_files() {
     let start = Instant::now();

@@ -27,6 +27,7 @@ use std::time::{Duration, Instant};
 
 mod coordinates;
 mod exact;
+mod modes;
 mod section;
 mod simulate;
 mod stress;
@@ -195,8 +196,14 @@ fn to_py(e: Error) -> PyErr {
             });
             err
         }
+        Error::IntegrationStalled { time, .. } => {
+            let err = ConvergenceError::new_err(e.to_string());
+            Python::attach(|py| {
+                let _ = err.value(py).setattr("time", time);
+            });
+            err
+        }
         Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
-        Error::IntegrationStalled { .. } => ConvergenceError::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
     }
 }
@@ -776,6 +783,32 @@ impl Flexure {
         Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py)
     }
 
+    /// Vibration modes about the equilibrium under a tip load (moment, fx, fy; Eq. 32's loaded
+    /// stiffness, so a frequency falls to zero at a buckling load), with the flexure's mass
+    /// (density or mass_per_length) and an optional rigid tip body: tip_mass (kg), tip_inertia
+    /// (kg·m² about its centre of mass) and tip_com (x, y) (m, in the tip frame). A dict of
+    /// omega (rad/s, ascending), frequency (Hz), shapes (modes, order: each row a mode's
+    /// coordinates, vᵀMv = 1) and quasi_static (directions without inertia, condensed out:
+    /// a massless flexure's, which have no frequency). count: the lowest modes wanted, 1 to
+    /// order (default 3, or the order); fewer are returned if fewer are finite. ValueError
+    /// naming `mass` without any mass; ConvergenceError past a buckling load.
+    #[pyo3(signature = (count=None, *, tip_mass=None, tip_inertia=None, tip_com=None, moment=0.0, fx=0.0, fy=0.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn modes<'py>(
+        &self,
+        py: Python<'py>,
+        count: Option<&Bound<'py, PyAny>>,
+        tip_mass: Option<f64>,
+        tip_inertia: Option<f64>,
+        tip_com: Option<&Bound<'py, PyAny>>,
+        moment: f64,
+        fx: f64,
+        fy: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let body = modes::tip_body(tip_mass, tip_inertia, tip_com)?;
+        modes::flexure_modes(py, &self.inner, count, body, (moment, fx, fy))
+    }
+
     /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or "clamped".
     #[pyo3(signature = (tip="free"))]
     fn buckling_load(&self, tip: &str) -> PyResult<f64> {
@@ -920,6 +953,14 @@ impl Mechanism {
         simulate::motion(py, &self.inner, duration, every, tolerance, start)
     }
 
+    /// Vibration modes about the loaded equilibrium, closures respected: a dict of omega
+    /// (rad/s, ascending), frequency (Hz), shapes {joint: array (modes, joint coordinates)}
+    /// and quasi_static, as `Mechanism.modes` documents.
+    #[pyo3(signature = (count=None))]
+    fn modes<'py>(&self, py: Python<'py>, count: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        modes::mechanism_modes(py, &self.inner, count)
+    }
+
     /// Number of generalized coordinates.
     #[getter]
     fn dof(&self) -> usize {
@@ -936,6 +977,7 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exact::exact_compliance, m)?)?;
     m.add_function(wrap_pyfunction!(exact::exact_buckling_load, m)?)?;
     m.add_function(wrap_pyfunction!(exact::exact_flexure, m)?)?;
+    m.add_function(wrap_pyfunction!(modes::exact_frequencies, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
     m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;

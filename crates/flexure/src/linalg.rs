@@ -94,6 +94,7 @@ pub fn is_positive_definite(a: &DMatrix<f64>) -> bool {
 /// `a`, in place; `pivots[k]` is the row swapped into place at step $k$.
 /// Returns `false` if a pivot is zero or not finite (a singular matrix).
 pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
+    let a = &mut a[..n * n];
     for k in 0..n {
         let p = (k..n).fold(k, |best, i| if a[k * n + i].re().abs() > a[k * n + best].re().abs() { i } else { best });
         let pivot = a[k * n + p].re();
@@ -107,15 +108,17 @@ pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
             }
         }
         let d = a[k * n + k];
-        for i in k + 1..n {
-            a[k * n + i] /= d;
+        for l in &mut a[k * n + k + 1..(k + 1) * n] {
+            *l /= d;
         }
-        for j in k + 1..n {
-            let f = a[j * n + k];
+        // Slices, not indices: no bounds checks in the O(n³) loop.
+        let (left, right) = a.split_at_mut((k + 1) * n);
+        let column = &left[k * n + k + 1..];
+        for target in right.chunks_exact_mut(n) {
+            let f = target[k];
             if f.re() != 0.0 || f != T::zero() {
-                for i in k + 1..n {
-                    let l = a[k * n + i];
-                    a[j * n + i] -= l * f;
+                for (t, &l) in target[k + 1..].iter_mut().zip(column) {
+                    *t -= l * f;
                 }
             }
         }
@@ -140,16 +143,18 @@ pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
         b.swap(k, pivots[k]);
     }
     for j in 0..n {
-        let bj = b[j];
-        for i in j + 1..n {
-            b[i] -= a[j * n + i] * bj;
+        let (head, tail) = b.split_at_mut(j + 1);
+        let bj = head[j];
+        for (bi, &l) in tail[..n - j - 1].iter_mut().zip(&a[j * n + j + 1..(j + 1) * n]) {
+            *bi -= l * bj;
         }
     }
     for j in (0..n).rev() {
         b[j] /= a[j * n + j];
-        let bj = b[j];
-        for i in 0..j {
-            b[i] -= a[j * n + i] * bj;
+        let (head, tail) = b.split_at_mut(j);
+        let bj = tail[0];
+        for (bi, &u) in head.iter_mut().zip(&a[j * n..j * n + j]) {
+            *bi -= u * bj;
         }
     }
 }
@@ -187,6 +192,97 @@ pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
         return DMatrix::identity(n, n);
     }
     DMatrix::from_fn(n, keep.len(), |r, c| v_t[(keep[c], r)])
+}
+
+/// Whether the $m$ columns of the $n\times m$ column-major `a` are
+/// independent by a wide margin: $A^TA - 10^{-12}\operatorname{tr}(A^TA)\thinspace I$
+/// positive definite, so the smallest singular value exceeds
+/// $10^{-6}\sigma_{max}$, far above the cut-off of [`null_space`]
+/// ($10^{-10}\sigma_{max}$): a true answer is one the singular values would
+/// give too, for the cost of an $m\times m$ Cholesky in `gram` ($m^2$ values).
+/// False leaves the decision to the singular values.
+///
+/// # Example
+/// ```
+/// let mut gram = [0.0; 4];
+/// // Columns (1, 0, 0) and (1, 1, 0): independent; (1, 1, 0) twice: not.
+/// assert!(flexure::linalg::columns_independent(&[1.0, 0.0, 0.0, 1.0, 1.0, 0.0], 3, 2, &mut gram));
+/// assert!(!flexure::linalg::columns_independent(&[1.0, 1.0, 0.0, 1.0, 1.0, 0.0], 3, 2, &mut gram));
+/// ```
+pub fn columns_independent(a: &[f64], n: usize, m: usize, gram: &mut [f64]) -> bool {
+    let gram = &mut gram[..m * m];
+    for i in 0..m {
+        for k in 0..m {
+            gram[k * m + i] = (0..n).map(|r| a[i * n + r] * a[k * n + r]).sum();
+        }
+    }
+    let trace: f64 = (0..m).map(|i| gram[i * m + i]).sum();
+    if !(trace > 0.0 && trace.is_finite()) {
+        return false;
+    }
+    for i in 0..m {
+        gram[i * m + i] -= 1e-12 * trace;
+    }
+    cholesky(gram, m)
+}
+
+/// An orthonormal basis of the null space of $A^T$, for the $n\times m$
+/// column-major `a` of independent columns ([`columns_independent`]): the
+/// last $n - m$ columns of $Q$ in $A = QR$ by Householder reflections,
+/// written to `z` ($n\times(n-m)$, column-major). `a` is overwritten by
+/// $R$ and `v` ($nm$ values) by the reflections. Spans the space of
+/// [`null_space`]$(A^T)$ for $O(nm(n-m) + nm^2)$ work and no allocation.
+///
+/// # Example
+/// ```
+/// // G = [1 1 0]: its null space is spanned by (1, −1, 0)/√2 and (0, 0, 1).
+/// let (mut a, mut z, mut v) = ([1.0, 1.0, 0.0], [0.0; 6], [0.0; 3]);
+/// flexure::linalg::null_space_of_transpose(&mut a, 3, 1, &mut z, &mut v);
+/// for c in 0..2 {
+///     assert!((z[3 * c] + z[3 * c + 1]).abs() < 1e-15); // G z = 0
+///     assert!(((0..3).map(|r| z[3 * c + r] * z[3 * c + r]).sum::<f64>() - 1.0).abs() < 1e-15);
+/// }
+/// ```
+pub fn null_space_of_transpose(a: &mut [f64], n: usize, m: usize, z: &mut [f64], v: &mut [f64]) {
+    let p = n - m;
+    for k in 0..m {
+        let v = &mut v[k * n..(k + 1) * n];
+        v[..k].fill(0.0);
+        v[k..].copy_from_slice(&a[k * n + k..(k + 1) * n]);
+        let norm = v[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        v[k] += if v[k] >= 0.0 { norm } else { -norm };
+        let size = v[k..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        if size == 0.0 {
+            // No reflection: H = I.
+            v[k..].fill(0.0);
+            continue;
+        }
+        v[k..].iter_mut().for_each(|x| *x /= size);
+        // H = I − 2vvᵀ on rows k.. of the columns k.. of a.
+        for j in k..m {
+            let col = &mut a[j * n..(j + 1) * n];
+            let w: f64 = (k..n).map(|i| v[i] * col[i]).sum();
+            for i in k..n {
+                col[i] -= 2.0 * v[i] * w;
+            }
+        }
+    }
+    // Z = H_0 H_1 ⋯ H_{m−1} E, E the last n − m columns of I.
+    let z = &mut z[..n * p];
+    z.fill(0.0);
+    for j in 0..p {
+        z[j * n + m + j] = 1.0;
+    }
+    for k in (0..m).rev() {
+        let v = &v[k * n..(k + 1) * n];
+        for j in 0..p {
+            let col = &mut z[j * n..(j + 1) * n];
+            let w: f64 = (k..n).map(|i| v[i] * col[i]).sum();
+            for i in k..n {
+                col[i] -= 2.0 * v[i] * w;
+            }
+        }
+    }
 }
 
 /// The least-squares solution of $Ax = b$ of least norm, by SVD: singular

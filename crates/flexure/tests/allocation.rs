@@ -126,3 +126,67 @@ fn mechanism_newton_does_not_allocate() {
     assert!(r.iter().any(|v| *v != 0.0), "a loaded state has a residual");
     assert_eq!(n, 0, "parallelogram: {n} allocations in one evaluation");
 }
+
+/// A warm `solve_with` of the parallelogram (two closures: assembly,
+/// tangent, corrector, stability tests on the workspace's buffers, and the
+/// solution) allocates exactly the three vectors of the `Solution` it
+/// returns: `q`, `multipliers` and `loads.force` (no tendons: `tension` is
+/// empty and allocates nothing).
+#[test]
+fn parallelogram_solve_with_allocates_only_its_answer() {
+    use flexure::mechanism::file::from_toml;
+    use flexure::mechanism::statics::{Settings, Workspace, solve_with};
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
+    let text = std::fs::read_to_string(path).unwrap().replace("force = [0.0, -1.0]", "force = [0.5, -1.0]");
+    let stage = from_toml(&text).unwrap();
+    let settings = Settings::default();
+    let mut work = Workspace::new(&stage);
+    let first = solve_with(&stage, &settings, &mut work).unwrap();
+    let mut found = None;
+    let n = allocations(|| found = Some(solve_with(&stage, &settings, &mut work).unwrap()));
+    let s = found.unwrap();
+    assert_eq!(s, first);
+    assert!(s.stable && s.iterations >= 2, "a solve that iterates: {s:?}");
+    assert!(s.loads.tension.is_empty() && !s.q.is_empty() && !s.multipliers.is_empty() && !s.loads.force.is_empty());
+    assert_eq!(n, 3, "parallelogram: {n} allocations in a warm solve_with");
+}
+
+/// Non-uniform sections keep evaluation allocation-free (issue "Sections"):
+/// the stiffness matrix is integrated once when the flexure is built, so
+/// energy, gradient, kinematics and a whole `deflect` on a tapered and on a
+/// notched flexure allocate nothing on warm buffers; nor does the dynamics'
+/// mass matrix with its velocity-product terms (`dynamics::update_mass`).
+#[test]
+fn sections_and_mass_do_not_allocate() {
+    use flexure::dynamics::{Body, MassData, MassModel, update_mass};
+    use flexure::section::{Notch, Profile, Section};
+    let taper = Section::rectangle(200e9, None, Profile::Constant(0.01), Profile::Linear { root: 4e-4, tip: 2e-4 })
+        .unwrap()
+        .with_density(7850.0)
+        .unwrap();
+    let notch = Section::rectangle(70e9, None, Profile::Constant(0.01), Profile::Constant(0.004))
+        .unwrap()
+        .with_notch(Notch { radius: 0.005, min_thickness: 0.0006 })
+        .unwrap()
+        .with_density(2700.0)
+        .unwrap();
+    for (section, order) in [(taper, 6), (notch, 12)] {
+        let f = Flexure::new(0.01, 1.0, order).unwrap().with_section(section).unwrap();
+        let alpha: Vec<f64> = (0..order).map(|i| 0.3 / (i + 1) as f64).collect();
+        let mut g = vec![0.0; order];
+        let mut data = Statics::new(&f);
+        let load = TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * f.ei() / (0.01 * 0.01) };
+        let body = Body::new(0.005, 1e-7, [0.002, 0.0]).unwrap();
+        let model = MassModel::new(&f, Some(&body)).unwrap();
+        let mut mass = MassData::new(&model);
+        deflect(&f, &load, &mut data, &Default::default()).unwrap();
+        let n = allocations(|| {
+            std::hint::black_box(energy(&f, &alpha));
+            energy_gradient(&f, &alpha, &mut g);
+            deflect(&f, &load, &mut data, &Default::default()).unwrap();
+            update_mass(&model, &alpha, Some(&alpha), &mut mass);
+            std::hint::black_box(mass.kinetic_energy(&alpha));
+        });
+        assert_eq!(n, 0, "order {order}: {n} allocations");
+    }
+}

@@ -53,6 +53,57 @@ fn parallelogram_stage() {
     assert!((b.mode[1] - b.mode[4]).abs() < 1e-6);
 }
 
+/// The parallelogram solved by `solve_with` in one workspace kept across
+/// loads (the benchmark's path: closure stability on the workspace's
+/// buffers), against closed forms. A lateral 1 mN sways the stage by
+/// F L³/(24 EI) (2 × 12EI/L³, exact for N = 3); the sway of 2.6e-6 m =
+/// 5e-5 L changes the stiffness by about (5e-5)², so 1e-8 bounds it with
+/// the solver's 1e-12 tolerance to spare. With the file's 1 N push the
+/// sway stiffness falls by 1 − P/P_cr exactly at small sway (P_cr = 16 N =
+/// 2 × 10 EI/L², Table I). An axial 17 N loses stability at 16/17 of
+/// the push (to the bisection's 1e-6 and the √tolerance margin), 15 N
+/// does not; 16 N is 1.3 % above Euler's 2π²EI/L². Every answer equals a
+/// fresh `solve`'s, bit for bit: the kept buffers carry nothing over.
+#[test]
+fn parallelogram_in_a_kept_workspace() {
+    use flexure::mechanism::statics::{Workspace, solve_with};
+    let text =
+        std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let with = |fx: f64, fy: f64| {
+        from_toml(&text.replace("force = [0.0, -1.0]", &format!("force = [{fx:?}, {fy:?}]"))).unwrap()
+    };
+    let (l, ei): (f64, f64) = (0.05, 2.0e-3);
+    let (k, critical) = (24.0 * ei / l.powi(3), 2.0 * 10.0 * ei / (l * l));
+    let mut work = Workspace::new(&with(0.0, 0.0));
+    let settings = Settings::default();
+    let mut solve_kept = |m: &Mechanism| {
+        let s = solve_with(m, &settings, &mut work);
+        assert_eq!(format!("{s:?}"), format!("{:?}", solve(m, &settings)), "kept and fresh workspaces differ");
+        s
+    };
+    let sway = |m: &Mechanism, s: &flexure::mechanism::statics::Solution| {
+        body_frames(m, s).bodies[m.body("stage").unwrap()].origin[0]
+    };
+    for push in [0.0, 1.0] {
+        let m = with(1e-3, -push);
+        let s = solve_kept(&m).unwrap();
+        let expected = 1e-3 / (k * (1.0 - push / critical));
+        assert!(s.stable && s.limit.is_none());
+        assert!((sway(&m, &s) / expected - 1.0).abs() < 1e-8, "push {push}: {} vs {expected}", sway(&m, &s));
+    }
+    let bench = solve_kept(&with(0.5, -1.0)).unwrap();
+    assert!(bench.stable && bench.limit.is_none() && bench.load_steps == 1);
+    let below = solve_kept(&with(0.0, -15.0)).unwrap();
+    assert!(below.stable && below.limit.is_none(), "15 N is below the 16 N buckling load");
+    let limit = match solve_kept(&with(0.0, -17.0)) {
+        Ok(s) => s.limit.unwrap(),
+        Err(Error::Unstable { load_fraction, .. }) => load_fraction,
+        Err(e) => panic!("{e}"),
+    };
+    assert!((limit * 17.0 / critical - 1.0).abs() < 3e-6, "lost at {} N", limit * 17.0);
+    assert!((critical / (2.0 * std::f64::consts::PI.powi(2) * ei / (l * l)) - 1.0 - 0.01321).abs() < 1e-4);
+}
+
 /// Mixed chain under an end moment M, closed forms: the spring turns M/k,
 /// each flexure bends into an arc of ML/EI, the slider's spring carries nothing.
 #[test]

@@ -91,49 +91,10 @@ pub(super) fn settle(m: &Mechanism, f: &Frames, g: &DMatrix<f64>, mu: &[f64], lo
     if y.iter().all(|v| v.is_finite()) { (mu0 + &free * y).iter().copied().collect() } else { mu.to_vec() }
 }
 
-/// Whether the rows of `g` are independent by a wide margin: $GG^T -
-/// 10^{-12}\operatorname{tr}(GG^T)\thinspace I$ positive definite, so the smallest
-/// singular value exceeds $10^{-6}\sigma_{max}$, far above the cut-off of
-/// [`linalg::null_space`] ($10^{-10}\sigma_{max}$): a true answer is one the
-/// singular values would give too, for the cost of an $m\times m$ Cholesky.
-/// False leaves the decision to the singular values.
+/// Whether the rows of `g` are independent by a wide margin
+/// ([`linalg::columns_independent`] of $G^T$). False leaves the decision
+/// to the singular values.
 pub(super) fn full_row_rank(g: &DMatrix<f64>) -> bool {
-    let m = g.nrows();
-    let gram = g * g.transpose();
-    let trace = gram.trace();
-    if !(trace > 0.0 && trace.is_finite()) {
-        return false;
-    }
-    let mut a: Vec<f64> = gram.iter().copied().collect();
-    for i in 0..m {
-        a[i * m + i] -= 1e-12 * trace;
-    }
-    linalg::cholesky(&mut a, m)
-}
-
-/// An orthonormal basis of the null space of `g` when [`full_row_rank`]
-/// holds: the last $n - m$ columns of $Q$ in $G^T = QR$ (Householder).
-/// Spans the same space as [`linalg::null_space`], for far less work.
-pub(super) fn null_space_full_rank(g: &DMatrix<f64>) -> DMatrix<f64> {
     let (m, n) = g.shape();
-    let mut a = g.transpose();
-    let mut q = DMatrix::<f64>::identity(n, n);
-    for k in 0..m {
-        let mut v = a.view((k, k), (n - k, 1)).clone_owned();
-        let norm = v.norm();
-        v[0] += if v[0] >= 0.0 { norm } else { -norm };
-        let size = v.norm();
-        if size == 0.0 {
-            continue;
-        }
-        v /= size;
-        // H = I − 2vvᵀ on rows k.. of a, and Q ← Q H on its columns k...
-        let mut tail = a.view_mut((k, k), (n - k, m - k));
-        let w = tail.transpose() * &v;
-        tail -= &v * (w.transpose() * 2.0);
-        let mut cols = q.view_mut((0, k), (n, n - k));
-        let w = &cols * &v;
-        cols -= (w * 2.0) * v.transpose();
-    }
-    q.columns(m, n - m).into_owned()
+    linalg::columns_independent(g.transpose().as_slice(), n, m, &mut vec![0.0; m * m])
 }

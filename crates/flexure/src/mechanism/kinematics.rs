@@ -27,20 +27,33 @@ pub struct Frame {
 impl Frame {
     /// A point given in this frame, in the world.
     pub fn point(&self, r: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
-        [self.origin[0] + c * r[0] - s * r[1], self.origin[1] + s * r[0] + c * r[1]]
+        self.point_turned(self.angle.sin_cos(), r)
     }
 
     /// A direction given in this frame, in the world.
     pub fn rotate(&self, v: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
-        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+        turn(self.angle.sin_cos(), v)
     }
 
     /// The frame `(x, y, phi)` relative to this one.
     pub fn then(&self, x: f64, y: f64, phi: f64) -> Frame {
-        Frame { angle: self.angle + phi, origin: self.point([x, y]) }
+        self.then_turned(self.angle.sin_cos(), x, y, phi)
     }
+
+    /// [`Frame::point`] with `sin_cos` of the angle known.
+    fn point_turned(&self, (s, c): (f64, f64), r: [f64; 2]) -> [f64; 2] {
+        [self.origin[0] + c * r[0] - s * r[1], self.origin[1] + s * r[0] + c * r[1]]
+    }
+
+    /// [`Frame::then`] with `sin_cos` of the angle known.
+    fn then_turned(&self, sin_cos: (f64, f64), x: f64, y: f64, phi: f64) -> Frame {
+        Frame { angle: self.angle + phi, origin: self.point_turned(sin_cos, [x, y]) }
+    }
+}
+
+/// `v` turned by the angle of `(sin, cos)`.
+fn turn((s, c): (f64, f64), v: [f64; 2]) -> [f64; 2] {
+    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }
 
 /// Every frame of the mechanism at one configuration (the Data).
@@ -52,6 +65,9 @@ pub struct Frames {
     pub roots: Vec<Frame>,
     /// Each joint's pose, derivatives and energy.
     pub joints: Vec<JointState>,
+    /// `sin_cos` of each body's angle, then of each joint root's: every
+    /// point and Hessian of one evaluation turns by these, computed once.
+    turns: Vec<(f64, f64)>,
 }
 
 impl Frames {
@@ -61,7 +77,16 @@ impl Frames {
             bodies: vec![Frame::default(); m.bodies.len()],
             roots: vec![Frame::default(); m.joints.len()],
             joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
+            turns: vec![(0.0, 1.0); m.bodies.len() + m.joints.len()],
         }
+    }
+
+    fn body_turn(&self, body: usize) -> (f64, f64) {
+        self.turns[body]
+    }
+
+    fn root_turn(&self, joint: usize) -> (f64, f64) {
+        self.turns[self.bodies.len() + joint]
     }
 }
 
@@ -75,12 +100,18 @@ pub fn frames(m: &Mechanism, q: &[f64]) -> Frames {
 /// [`frames`] into the buffers `f` (made by [`Frames::new`] for `m`), without allocating.
 pub fn frames_into(m: &Mechanism, q: &[f64], f: &mut Frames) {
     f.bodies[0] = Frame::default();
+    f.turns[0] = f.bodies[0].angle.sin_cos();
+    let bodies = f.bodies.len();
     for (i, j) in m.joints.iter().enumerate() {
         let joint = j.kind.joint();
         let state = &mut f.joints[i];
         joint.evaluate_into(&q[j.offset..j.offset + joint.dof()], state);
-        let root = f.bodies[j.parent].then(j.origin.x, j.origin.y, j.origin.phi);
-        f.bodies[j.child] = root.then(state.pose.x, state.pose.y, state.pose.phi);
+        let root = f.bodies[j.parent].then_turned(f.turns[j.parent], j.origin.x, j.origin.y, j.origin.phi);
+        let root_turn = root.angle.sin_cos();
+        let child = root.then_turned(root_turn, state.pose.x, state.pose.y, state.pose.phi);
+        f.turns[bodies + i] = root_turn;
+        f.turns[j.child] = child.angle.sin_cos();
+        f.bodies[j.child] = child;
         f.roots[i] = root;
     }
 }
@@ -132,7 +163,7 @@ impl PointBuffer {
 /// `out`, in one pass from the body down to the ground; allocates nothing
 /// once `out` has held a path this long.
 pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut PointBuffer) {
-    let w = f.bodies[body].point(r);
+    let w = f.bodies[body].point_turned(f.body_turn(body), r);
     for &(_, ji, i) in &out.coords {
         out.jacobian.column_mut(m.joints[ji].offset + i).fill(0.0);
     }
@@ -141,16 +172,16 @@ pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut
     while let Some(ji) = m.parent_joint(b) {
         let j = &m.joints[ji];
         let s = &f.joints[ji];
-        let root = f.roots[ji];
+        let root = f.root_turn(ji);
         let o = f.bodies[j.child].origin;
-        let turn = quarter([w[0] - o[0], w[1] - o[1]]);
+        let arm = quarter([w[0] - o[0], w[1] - o[1]]);
         for i in 0..s.gradient.len() {
             let col = j.offset + i;
             let dphi = s.jacobian[(0, i)];
-            let dp = root.rotate([s.jacobian[(1, i)], s.jacobian[(2, i)]]);
+            let dp = turn(root, [s.jacobian[(1, i)], s.jacobian[(2, i)]]);
             out.jacobian[(0, col)] = dphi;
-            out.jacobian[(1, col)] = dp[0] + dphi * turn[0];
-            out.jacobian[(2, col)] = dp[1] + dphi * turn[1];
+            out.jacobian[(1, col)] = dp[0] + dphi * arm[0];
+            out.jacobian[(2, col)] = dp[1] + dphi * arm[1];
             out.coords.push((step, ji, i));
         }
         b = j.parent;
@@ -173,9 +204,8 @@ pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f6
             let cb = m.joints[jb].offset + b;
             let (vx, vy) = if sa == sb {
                 let s = &f.joints[ja];
-                let root = f.roots[ja];
                 let o = f.bodies[m.joints[ja].child].origin;
-                let local = root.rotate([s.hessian_x[(a, b)], s.hessian_y[(a, b)]]);
+                let local = turn(f.root_turn(ja), [s.hessian_x[(a, b)], s.hessian_y[(a, b)]]);
                 let k = s.jacobian[(0, a)] * s.jacobian[(0, b)];
                 (local[0] - k * (w[0] - o[0]), local[1] - k * (w[1] - o[1]))
             } else {

@@ -178,10 +178,15 @@ impl Loads {
     }
 
     fn scaled(mut self, s: f64) -> Loads {
+        self.scale(s);
+        self
+    }
+
+    /// Every load times `s`, in place.
+    pub(crate) fn scale(&mut self, s: f64) {
         self.tension.iter_mut().for_each(|t| *t *= s);
         self.force.iter_mut().for_each(|f| f.iter_mut().for_each(|v| *v *= s));
         self.gravity.iter_mut().for_each(|g| *g *= s);
-        self
     }
 }
 
@@ -237,6 +242,27 @@ impl Mechanism {
     /// Coordinates of the unloaded joints.
     pub fn rest(&self) -> Vec<f64> {
         self.joints.iter().flat_map(|j| j.kind.joint().rest()).collect()
+    }
+
+    /// [`Mechanism::rest`] into `q` (one value per coordinate), without allocating.
+    pub(crate) fn rest_into(&self, q: &mut [f64]) {
+        for j in &self.joints {
+            match &j.kind {
+                JointKind::Flexure(f) => q[j.offset..j.offset + f.order()].copy_from_slice(f.rest()),
+                JointKind::Revolute(r) => q[j.offset] = r.rest,
+                JointKind::Prismatic(p) => q[j.offset] = p.rest,
+                JointKind::Fixed(_) => {}
+            }
+        }
+    }
+
+    /// [`Mechanism::loads`] into `out`, in its buffers.
+    pub(crate) fn loads_into(&self, out: &mut Loads) {
+        out.tension.clear();
+        out.tension.extend(self.tendons.iter().map(|t| t.tension));
+        out.force.clear();
+        out.force.extend(self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]));
+        out.gravity = self.gravity;
     }
 
     /// The loads as given.

@@ -36,7 +36,7 @@
 //! where it was. Stability and the reported multipliers then take the free
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
-use super::indeterminate::{full_row_rank, null_space_full_rank, settle};
+use super::indeterminate::{full_row_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
 use super::lagrangian::{
     Assembly, add_closures, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian,
@@ -114,6 +114,16 @@ pub struct Workspace {
     /// $n\times n$ column-major: the scaled stiffness and its Cholesky copy.
     stiffness: Vec<f64>,
     scratch: Vec<f64>,
+    /// The closure test's $\tilde G^T$ ($n\times m$), its Householder
+    /// reflections ($n\times m$), $\tilde Z$ and $\tilde H\tilde Z$ ($n\times(n-m)$),
+    /// $\tilde H$ ($n\times n$), a Gram matrix ($m\times m$) and $\sqrt{1/k_i}$ ($n$).
+    closure_t: Vec<f64>,
+    reflections: Vec<f64>,
+    basis: Vec<f64>,
+    product: Vec<f64>,
+    hessian: Vec<f64>,
+    gram: Vec<f64>,
+    root_scale: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
     angles: RefCell<[Vec<f64>; 2]>,
     /// The tree's $O(n)$ factorization of the Hessian ([`super::tree`]).
@@ -122,6 +132,16 @@ pub struct Workspace {
     joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     solver: Option<solver::Workspace<f64>>,
+    /// The last problem's scales and loads.
+    spare: Spare,
+    /// The loads of a [`solve_with`]: none, and the mechanism's.
+    given: [Loads; 2],
+    /// The unknowns of the assembled start of a [`solve_with`].
+    start_x: Vec<f64>,
+    /// The coordinates at which `frames` and the assembly's $c$ and $G$
+    /// were last evaluated, if `assembled`.
+    assembled_at: Vec<f64>,
+    assembled: bool,
 }
 
 impl Workspace {
@@ -138,6 +158,13 @@ impl Workspace {
             loads: m.loads(),
             stiffness: vec![0.0; n * n],
             scratch: vec![0.0; n * n],
+            closure_t: vec![0.0; n * rows],
+            reflections: vec![0.0; n * rows],
+            basis: vec![0.0; n * n.saturating_sub(rows)],
+            product: vec![0.0; n * n.saturating_sub(rows)],
+            hessian: vec![0.0; n * n],
+            gram: vec![0.0; rows * rows],
+            root_scale: vec![0.0; n],
             angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
             tree: Tree::new(m),
             joint_of: m
@@ -147,6 +174,11 @@ impl Workspace {
                 .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
                 .collect(),
             solver: None,
+            spare: Spare::default(),
+            given: Default::default(),
+            start_x: vec![0.0; n + rows],
+            assembled_at: vec![0.0; n],
+            assembled: false,
         }
     }
 
@@ -163,6 +195,22 @@ impl Workspace {
             && self.loads.tension.len() == m.tendons.len()
             && self.loads.force.len() == m.forces.len()
     }
+}
+
+/// A problem's scales and loads ([`Kkt`]), kept for the next problem.
+#[derive(Debug, Clone, Default)]
+struct Spare {
+    vectors: [Vec<f64>; 4],
+    loads: [Loads; 3],
+}
+
+/// `from` into `to`, in `to`'s buffers.
+fn copy_loads(from: &Loads, to: &mut Loads) {
+    to.tension.clear();
+    to.tension.extend_from_slice(&from.tension);
+    to.force.clear();
+    to.force.extend_from_slice(&from.force);
+    to.gravity = from.gravity;
 }
 
 /// The KKT conditions of a mechanism under the loads
@@ -230,10 +278,18 @@ impl<'a> Kkt<'a> {
             .sum::<f64>();
         let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
         // Diagonal stiffness of each coordinate (constant for every joint
-        // kind), and the factor to N·m/rad: 1 for angles, ℓ² for slider travel.
+        // kind, so any state's), and the factor to N·m/rad: 1 for angles,
+        // ℓ² for slider travel; in the buffers of the last problem.
         let mut work = work;
-        frames_into(m, &m.rest(), &mut work.frames);
-        let (mut stiffness, mut unit) = (vec![0.0; n], vec![1.0; n]);
+        let Spare {
+            vectors: [mut row_scale, mut weight, mut closure_scale, mut multiplier_scale],
+            loads: [mut from_, mut to_, mut change],
+        } = std::mem::take(&mut work.spare);
+        let (stiffness, unit) = (&mut row_scale, &mut weight);
+        stiffness.clear();
+        stiffness.resize(n, 0.0);
+        unit.clear();
+        unit.resize(n, 1.0);
         for (j, s) in m.joints.iter().zip(&work.frames.joints) {
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
@@ -242,14 +298,17 @@ impl<'a> Kkt<'a> {
                 unit[j.offset] = length * length;
             }
         }
-        let moments: Vec<f64> = stiffness.iter().zip(&unit).map(|(k, u)| k * u).collect();
-        let k_max = moments.iter().copied().fold(0.0, f64::max);
+        let moments = || stiffness.iter().zip(unit.iter()).map(|(k, u)| k * u);
+        let k_max = moments().fold(0.0, f64::max);
         let k_max = if k_max > 0.0 { k_max } else { 1.0 };
-        let k_min = moments.iter().copied().filter(|&k| k > 0.0).fold(k_max, f64::min);
-        let weight = unit.iter().map(|u| 1.0 / u.sqrt()).collect();
+        let k_min = moments().filter(|&k| k > 0.0).fold(k_max, f64::min);
         // A free coordinate is measured against the stiffest joint.
-        let row_scale = stiffness.iter().zip(&unit).map(|(&k, u)| if k > 0.0 { 1.0 / k } else { u / k_max }).collect();
-        let (mut closure_scale, mut multiplier_scale) = (Vec::new(), Vec::new());
+        for (k, u) in row_scale.iter_mut().zip(weight.iter_mut()) {
+            *k = if *k > 0.0 { 1.0 / *k } else { *u / k_max };
+            *u = 1.0 / u.sqrt();
+        }
+        closure_scale.clear();
+        multiplier_scale.clear();
         for c in &m.closures {
             for row in 0..c.equations() {
                 let position = row < 2;
@@ -272,15 +331,16 @@ impl<'a> Kkt<'a> {
                 "are too large for the joints' stiffness to be represented",
             ));
         }
-        let change = Loads {
-            tension: to.tension.iter().zip(&from.tension).map(|(b, a)| b - a).collect(),
-            force: to.force.iter().zip(&from.force).map(|(b, a)| std::array::from_fn(|i| b[i] - a[i])).collect(),
-            gravity: std::array::from_fn(|i| to.gravity[i] - from.gravity[i]),
-        };
+        copy_loads(from, &mut from_);
+        copy_loads(to, &mut to_);
+        copy_loads(to, &mut change);
+        change.tension.iter_mut().zip(&from.tension).for_each(|(b, a)| *b -= a);
+        change.force.iter_mut().zip(&from.force).for_each(|(b, a)| (0..3).for_each(|i| b[i] -= a[i]));
+        change.gravity = std::array::from_fn(|i| to.gravity[i] - from.gravity[i]);
         Ok(Self {
             mechanism: m,
-            from: from.clone(),
-            to: to.clone(),
+            from: from_,
+            to: to_,
             change,
             row_scale,
             closure_scale,
@@ -296,7 +356,12 @@ impl<'a> Kkt<'a> {
 
     /// The buffers, for the next problem on the same mechanism.
     pub fn into_workspace(self) -> Workspace {
-        self.work
+        let mut work = self.work;
+        work.spare = Spare {
+            vectors: [self.row_scale, self.weight, self.closure_scale, self.multiplier_scale],
+            loads: [self.from, self.to, self.change],
+        };
+        work
     }
 
     /// The unknowns $(q, \nu)$ of coordinates `q` and multipliers `mu`.
@@ -312,6 +377,133 @@ impl<'a> Kkt<'a> {
     /// The loads at load factor `lambda`.
     pub fn loads(&self, lambda: f64) -> Loads {
         self.from.lerp(&self.to, lambda)
+    }
+
+    /// [`solver::Problem::stable`] with closures on dense matrices, the
+    /// null space by singular values: the test where $G$'s rows are not
+    /// independent by a wide margin (redundant closures), and the
+    /// reference of [`Kkt::constrained_definite`].
+    fn stable_dense(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
+        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
+        // settle changes nothing where G has full row rank: skip its frames.
+        if rows > 0 && !full_row_rank(&g) {
+            let mu = self.multipliers(x);
+            let Workspace { frames: f, loads, assembled, .. } = &mut self.work;
+            *assembled = false;
+            frames_into(m, &x[..n], f);
+            self.from.lerp_into(&self.to, lambda, loads);
+            let settled = settle(m, f, &g, &mu, loads);
+            if settled != mu {
+                let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
+                h += closure_hessian(m, f, &change);
+            }
+        }
+        // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
+        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
+        let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
+        let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
+        let z = linalg::null_space(&g);
+        let mut k = constrained(&h, &z);
+        for i in 0..k.nrows() {
+            k[(i, i)] -= self.margin;
+        }
+        linalg::is_positive_definite(&k)
+    }
+
+    /// $\tilde Z^T\thinspace S(H - wK)S\thinspace\tilde Z - \text{margin}\thinspace I$ positive
+    /// definite, on the workspace's buffers without allocating: $H$ the
+    /// Hessian block of `jacobian`, $K$ the joints' elastic stiffness,
+    /// $S = \operatorname{diag}(1/\sqrt{k_i})$ and $\tilde Z$ the null space of
+    /// $\tilde G = GS$ by Householder reflections. `None` unless $G$ and
+    /// $\tilde G$ have rows independent by a wide margin
+    /// ([`linalg::columns_independent`]): then no multiplier is
+    /// indeterminate and this is the test of [`Kkt::stable_dense`].
+    fn constrained_definite(&mut self, jacobian: &[f64], w: f64, margin: f64) -> Option<bool> {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        if rows > n {
+            return None;
+        }
+        let p = n - rows;
+        let Workspace {
+            closure_t: a,
+            reflections,
+            basis,
+            product,
+            hessian,
+            gram,
+            root_scale: s,
+            stiffness: k,
+            scratch,
+            frames,
+            joint_of,
+            ..
+        } = &mut self.work;
+        // Gᵀ, n × rows, then G̃ᵀ = S Gᵀ.
+        for i in 0..rows {
+            for c in 0..n {
+                a[i * n + c] = jacobian[c * size + n + i] / self.closure_scale[i];
+            }
+        }
+        if !linalg::columns_independent(a, n, rows, gram) {
+            return None;
+        }
+        for (s, r) in s.iter_mut().zip(&self.row_scale) {
+            *s = r.sqrt();
+        }
+        for i in 0..rows {
+            for c in 0..n {
+                a[i * n + c] *= s[c];
+            }
+        }
+        if !linalg::columns_independent(a, n, rows, gram) {
+            return None;
+        }
+        linalg::null_space_of_transpose(a, n, rows, basis, reflections);
+        let elastic = |r: usize, c: usize| {
+            let j = joint_of[r];
+            if w == 0.0 || joint_of[c] != j {
+                return 0.0;
+            }
+            let o = m.joints[j].offset;
+            w * frames.joints[j].stiffness[(r - o, c - o)]
+        };
+        // H̃ = S(H − wK)S, H̃ Z̃, then Z̃ᵀ H̃ Z̃ symmetrized.
+        for c in 0..n {
+            for r in 0..n {
+                hessian[c * n + r] = (jacobian[c * size + r] / self.row_scale[r] - elastic(r, c)) * s[r] * s[c];
+            }
+        }
+        for j in 0..p {
+            let z = &basis[j * n..(j + 1) * n];
+            let hz = &mut product[j * n..(j + 1) * n];
+            hz.fill(0.0);
+            for (c, zc) in z.iter().enumerate() {
+                for (v, h) in hz.iter_mut().zip(&hessian[c * n..(c + 1) * n]) {
+                    *v += h * zc;
+                }
+            }
+        }
+        let k = &mut k[..p * p];
+        for j in 0..p {
+            for i in 0..p {
+                k[j * p + i] = (0..n).map(|r| basis[i * n + r] * product[j * n + r]).sum();
+            }
+        }
+        for j in 0..p {
+            for i in 0..j {
+                let v = (k[j * p + i] + k[i * p + j]) * 0.5;
+                k[j * p + i] = v;
+                k[i * p + j] = v;
+            }
+            k[j * p + j] -= margin;
+        }
+        Some(linalg::positive_definite(k, p, &mut scratch[..p * p]))
     }
 }
 
@@ -332,13 +524,17 @@ impl solver::Problem<f64> for Kkt<'_> {
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
         let q = &x[..n];
-        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, .. } = &mut self.work;
+        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, assembled_at, assembled, .. } =
+            &mut self.work;
         for ((m, v), s) in mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *m = v * s;
         }
+        *assembled = false;
         frames_into(m, q, f);
         self.from.lerp_into(&self.to, lambda, loads);
         assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
+        assembled_at.copy_from_slice(q);
+        *assembled = true;
         let g = &a.closure_jacobian;
         for i in 0..n {
             let mut force = a.gradient[i];
@@ -422,30 +618,10 @@ impl solver::Problem<f64> for Kkt<'_> {
             }
             return linalg::positive_definite(k, n, scratch);
         }
-        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i]);
-        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / self.row_scale[r]);
-        // settle changes nothing where G has full row rank: skip its frames.
-        if rows > 0 && !full_row_rank(&g) {
-            let mu = self.multipliers(x);
-            let Workspace { frames: f, loads, .. } = &mut self.work;
-            frames_into(m, &x[..n], f);
-            self.from.lerp_into(&self.to, lambda, loads);
-            let settled = settle(m, f, &g, &mu, loads);
-            if settled != mu {
-                let change: Vec<f64> = settled.iter().zip(&mu).map(|(a, b)| a - b).collect();
-                h += closure_hessian(m, f, &change);
-            }
+        if let Some(definite) = self.constrained_definite(jacobian, 0.0, self.margin) {
+            return definite;
         }
-        // In joint-relative coordinates: H̃ = S H S, G̃ = G S, S = diag(1/√k_i).
-        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
-        let h = DMatrix::from_fn(n, n, |r, c| h[(r, c)] * s[r] * s[c]);
-        let g = DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]);
-        let z = if full_row_rank(&g) { null_space_full_rank(&g) } else { linalg::null_space(&g) };
-        let mut k = constrained(&h, &z);
-        for i in 0..k.nrows() {
-            k[(i, i)] -= self.margin;
-        }
-        linalg::is_positive_definite(&k)
+        self.stable_dense(x, lambda, jacobian)
     }
 
     /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
@@ -553,25 +729,39 @@ pub(super) fn constrained(h: &DMatrix<f64>, z: &DMatrix<f64>) -> DMatrix<f64> {
     (&k + k.transpose()) * 0.5
 }
 
-/// The solution at the unknowns `x` under `loads`, computed in the
-/// problem's buffers.
-fn solution(problem: &mut Kkt, x: &[f64], loads: &Loads, path: &solver::Path) -> Result<Solution> {
+/// The solution at the unknowns `x`, under the problem's loads at the
+/// end of its path (`end`) or at its start, computed in the problem's
+/// buffers: the frames and $G$ of the last evaluation if it was at `x`.
+fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Result<Solution> {
     let m = problem.mechanism;
-    let q = x[..m.dof()].to_vec();
-    let mu = problem.multipliers(x);
-    let Workspace { frames: f, assembly: a, .. } = &mut problem.work;
-    frames_into(m, &q, f);
-    add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
-    let multipliers = settle(m, f, &a.closure_jacobian, &mu, loads);
+    let n = m.dof();
+    let (q, mu) = (&x[..n], problem.multipliers(x));
+    let loads = if end { problem.to.clone() } else { problem.from.clone() };
+    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut problem.work;
+    if !(*assembled && assembled_at[..] == *q) {
+        *assembled = false;
+        frames_into(m, q, f);
+        add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
+    }
+    // settle changes nothing where G has independent rows: it need not be called.
+    let g = &a.closure_jacobian;
+    let rows = g.nrows();
+    for i in 0..rows {
+        for c in 0..n {
+            closure_t[i * n + c] = g[(i, c)];
+        }
+    }
+    let multipliers =
+        if linalg::columns_independent(closure_t, n, rows, gram) { mu } else { settle(m, f, g, &mu, &loads) };
     // + 0.0: an empty sum is −0.
     let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
         return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
     }
     Ok(Solution {
-        q,
+        q: q.to_vec(),
         multipliers,
-        loads: loads.clone(),
+        loads,
         energy,
         stable: path.stable,
         limit: path.limit,
@@ -615,12 +805,7 @@ fn refine_limit(
     settings: &Settings,
     found: Result<Solution>,
 ) -> Result<Solution> {
-    let lost = match &found {
-        Ok(s) => s.limit.is_some(),
-        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || start.stable,
-        Err(_) => false,
-    };
-    if !lost {
+    if !lost(&found, start.stable) {
         return found;
     }
     let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= LIMIT_PRECISION * hi)?;
@@ -628,6 +813,23 @@ fn refine_limit(
         Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
         Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
     }
+}
+
+/// Whether the path that `found` ends lost stability on the way (from a
+/// start that was `stable`), so that its limit is refined.
+fn lost(found: &Result<Solution>, stable: bool) -> bool {
+    match found {
+        Ok(s) => s.limit.is_some(),
+        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || stable,
+        Err(_) => false,
+    }
+}
+
+/// Where a path starts: a solution, or the assembled state at $\lambda = 0$
+/// of the problem itself (its unknowns in [`Workspace::start_x`], reached by `path`).
+enum Start<'s> {
+    Given(&'s Solution),
+    Assembled(&'s solver::Path),
 }
 
 /// [`solve_between`] with the continuation's own limit, unrefined.
@@ -651,7 +853,7 @@ fn follow_in(
     for ((x, mu), s) in ws.x[n..].iter_mut().zip(&start.multipliers).zip(&problem.multiplier_scale) {
         *x = mu / s;
     }
-    let found = follow_path(m, start, &mut problem, &mut ws, settings);
+    let found = follow_path(m, Start::Given(start), &mut problem, &mut ws, settings);
     *work = problem.into_workspace();
     work.solver = Some(ws);
     found
@@ -659,7 +861,7 @@ fn follow_in(
 
 fn follow_path(
     m: &Mechanism,
-    start: &Solution,
+    start: Start,
     problem: &mut Kkt,
     ws: &mut solver::Workspace<f64>,
     settings: &Settings,
@@ -667,15 +869,18 @@ fn follow_path(
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     match solver::continuation(problem, ws, settings) {
-        Ok(path) if path.stable => {
-            let to = problem.to.clone();
-            solution(problem, &ws.x, &to, &path)
-        }
+        Ok(path) if path.stable => solution(problem, &ws.x, true, &path),
         Ok(path) => Err(unstable(path.limit)),
         Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
         // The start has a zero-stiffness motion along the load: name it.
         Err(Error::Singular { what }) if ws.limit.is_none() => Err(Error::Singular {
-            what: match free_motion(m, start) {
+            what: match match start {
+                Start::Given(s) => free_motion(m, s),
+                Start::Assembled(path) => {
+                    let x0 = problem.work.start_x.clone();
+                    solution(problem, &x0, false, path).ok().and_then(|s| free_motion(m, &s))
+                }
+            } {
                 Some(joints) => format!(
                     "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
                 ),
@@ -759,21 +964,19 @@ fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Resu
 /// The unloaded, assembled configuration, by Newton from rest on the
 /// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
 fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+    let path = assembled(problem, ws, settings)?;
+    solution(problem, &ws.x, false, &path)
+}
+
+/// [`assemble`] without the solution: how the path to it went.
+fn assembled(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<solver::Path> {
     let m = problem.mechanism;
     ws.x.fill(0.0);
-    ws.x.iter_mut().zip(m.joints.iter().flat_map(|j| j.kind.joint().rest())).for_each(|(x, q)| *x = q);
+    m.rest_into(&mut ws.x[..m.dof()]);
     match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
             let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
-            let path = solver::Path {
-                stable,
-                limit: None,
-                steps: 0,
-                iterations: report.iterations,
-                residual: report.residual,
-            };
-            let from = problem.from.clone();
-            solution(problem, &ws.x, &from, &path)
+            Ok(solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual })
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
@@ -852,18 +1055,30 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     }
     // One problem from no load to the full load: assembled at λ = 0, then
     // continued from there without a second solve or stability test.
-    let to = m.loads();
-    let mut problem = Kkt::with_workspace(m, &to.zero_like(), &to, settings, std::mem::take(work))?;
+    let [mut zero, mut to] = std::mem::take(&mut work.given);
+    m.loads_into(&mut to);
+    copy_loads(&to, &mut zero);
+    zero.scale(0.0);
+    let mut problem = Kkt::with_workspace(m, &zero, &to, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
-    let found = assemble(&mut problem, &mut ws, settings).map(|start| {
-        ws.start_stable = Some(start.stable);
-        let found = follow_path(m, &start, &mut problem, &mut ws, settings);
-        (start, found)
+    // The start as a solution only if the path lost stability: for the refinement.
+    let found = assembled(&mut problem, &mut ws, settings).and_then(|path| {
+        problem.work.start_x.copy_from_slice(&ws.x);
+        ws.start_stable = Some(path.stable);
+        let found = follow_path(m, Start::Assembled(&path), &mut problem, &mut ws, settings);
+        if !lost(&found, path.stable) {
+            return Ok((None, found));
+        }
+        let x0 = problem.work.start_x.clone();
+        Ok((Some(solution(&mut problem, &x0, false, &path)?), found))
     });
     *work = problem.into_workspace();
     work.solver = Some(ws);
-    let (start, found) = found?;
-    refine_limit(m, &start, &to, settings, found)
+    work.given = [zero, to];
+    match found? {
+        (Some(start), found) => refine_limit(m, &start, &work.given[1], settings, found),
+        (None, found) => found,
+    }
 }
 
 /// Frames of the solution.
@@ -915,5 +1130,77 @@ pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: [f64; 2]) -> Res
         Ok(c)
     } else {
         Err(Error::Singular { what: "the compliance is not finite".into() })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::Problem;
+
+    /// Seeded uniform numbers in [−1, 1) (xorshift64*).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    fn example(name: &str, push: [f64; 2]) -> Mechanism {
+        let path = format!("{}/../../examples/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(path).unwrap();
+        let text = text.replace("force = [0.0, -1.0]", &format!("force = [{:?}, {:?}]", push[0], push[1]));
+        super::super::file::from_toml(&text).unwrap()
+    }
+
+    /// The closure stability test on the workspace's buffers (Householder
+    /// null space) against the dense one (singular values), on seeded
+    /// random states (coordinates, multipliers, load factor) of the
+    /// parallelogram pushed to twice its 16 N buckling load and of the
+    /// four-bar linkage: the same verdict wherever the smallest eigenvalue
+    /// of the dense $Z^T\tilde HZ$ − margin is not within 1e-9 of the
+    /// largest diagonal entry of zero (where rounding may decide either way).
+    #[test]
+    fn closure_stability_matches_the_dense_test() {
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        let settings = Settings::default();
+        let cases = [(example("parallelogram", [0.3, -32.0]), 0.05), (example("four_bar", [0.0, -1.0]), 0.3)];
+        let (mut compared, mut stable, mut unstable) = (0, 0, 0);
+        for (m, spread) in &cases {
+            let (n, rows) = (m.dof(), m.constraints());
+            let zero = m.loads().zero_like();
+            let mut kkt = Kkt::new(m, &zero, &m.loads(), &settings).unwrap();
+            let size = n + rows;
+            let (mut r, mut jac) = (vec![0.0; size], vec![0.0; size * size]);
+            for _ in 0..400 {
+                let q: Vec<f64> = m.rest().iter().map(|q| q + spread * rng.next()).collect();
+                let mu: Vec<f64> = (0..rows).map(|_| 2.0 * rng.next()).collect();
+                let lambda = 0.5 * (1.0 + rng.next());
+                let x = kkt.state(&q, &mu);
+                kkt.evaluate(&x, lambda, &mut r, Some(&mut jac), None).unwrap();
+                let fast = kkt.constrained_definite(&jac, 0.0, kkt.margin).expect("independent closure rows");
+                let dense = kkt.stable_dense(&x, lambda, &jac);
+                // The dense matrix's distance from the verdict's boundary.
+                let g = DMatrix::from_fn(rows, n, |i, c| jac[c * size + n + i] / kkt.closure_scale[i]);
+                let s: Vec<f64> = kkt.row_scale.iter().map(|r| r.sqrt()).collect();
+                let h = DMatrix::from_fn(n, n, |r, c| jac[c * size + r] / kkt.row_scale[r] * s[r] * s[c]);
+                let z = linalg::null_space(&DMatrix::from_fn(rows, n, |i, c| g[(i, c)] * s[c]));
+                let k = constrained(&h, &z);
+                let (softest, _) = linalg::softest_mode(&k).unwrap();
+                let size_k = (0..k.nrows()).map(|i| k[(i, i)].abs()).fold(0.0, f64::max);
+                if (softest - kkt.margin).abs() > 1e-9 * size_k {
+                    assert_eq!(fast, dense, "q = {q:?}, mu = {mu:?}, lambda = {lambda}: softest {softest}");
+                    compared += 1;
+                    if dense { stable += 1 } else { unstable += 1 }
+                }
+            }
+        }
+        assert!(
+            compared > 700 && stable > 100 && unstable > 100,
+            "{compared} compared: {stable} stable, {unstable} not"
+        );
     }
 }
