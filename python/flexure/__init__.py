@@ -92,6 +92,31 @@ class Mechanism:
         """Number of generalized coordinates."""
         return self._inner.dof
 
+    def simulate(
+        self, duration: float, every: Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
+    ) -> dict:
+        """Motion over [0, duration] (s), as `flexure simulate --json` gives it, in NumPy arrays:
+        time (N,) at 0, every, 2 every, ... and duration (every defaults to duration/100);
+        bodies {name: {x, y, phi}} (each (N,), the body frame in the ground frame, the
+        ground left out); coordinates and velocities {joint: (N, k)}; energy (N,)
+        (kinetic, elastic and gravitational, J); steps, rejected; violation, the largest
+        closure violation. The file's [[schedule]] tables give the loads in time. It starts
+        from the static equilibrium under the loads at t = 0, at rest (start="rest": the
+        unloaded shape), with the file's [initial] and [initial_velocity] overriding it.
+        `tolerance` is the relative and absolute tolerance of each step's error.
+        A duration, every or tolerance not above zero raises ValueError naming it; an
+        integration that stalls raises ConvergenceError saying where; Ctrl-C stops it
+        with KeyboardInterrupt. Runs without the GIL."""
+        try:
+            return self._inner.simulate(duration, every, tolerance, start)
+        except (ValueError, ConvergenceError) as e:
+            # Name the file, unless the error is about an argument.
+            arguments = ("duration", "every", "tolerance", "start")
+            about_argument = str(e.args[0]).removeprefix("invalid ").startswith(arguments) if e.args else False
+            if self._source is not None and not about_argument:
+                e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
+            raise
+
     def solve(self, accuracy: Optional[Tuple[float, float]] = None) -> dict:
         """Static equilibrium: a dict shaped like `flexure solve --json`
         (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable), and

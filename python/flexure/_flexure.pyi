@@ -176,6 +176,11 @@ class Mechanism:
     def from_text(text: str) -> "Mechanism": ...
     @property
     def dof(self) -> int: ...
+    def simulate(
+        self, duration: float, every: Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
+    ) -> dict:
+        """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
+        velocities {joint: (N, k) array}, energy, steps, rejected, violation."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""

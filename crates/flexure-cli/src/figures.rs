@@ -295,18 +295,21 @@ pub struct Chart<'a> {
 /// Writes an SVG chart of `series` to `path`; an error names the path. A
 /// series with a non-finite point is refused before anything is written.
 pub fn draw(path: &Path, chart: &Chart, series: &[Series]) -> Result<(), String> {
+    let fig =
+        chart_figure(chart, series).map_err(|e| format!("drawing {}: {e}; nothing was written", path.display()))?;
+    write(path, &fig)
+}
+
+/// The figure of a chart of `series`; a series with a non-finite point is
+/// refused, by its name and the point's index.
+pub fn chart_figure(chart: &Chart, series: &[Series]) -> Result<Figure, String> {
     let mut fig = Figure::new(chart.title, chart.x_label, chart.y_label);
     fig.log_y = chart.log_y;
     fig.equal_aspect = chart.equal_aspect;
     for s in series {
         if let Some((i, p)) = s.points.iter().enumerate().find(|(_, p)| !(p.0.is_finite() && p.1.is_finite())) {
             let name = if s.name.is_empty() { "a line" } else { s.name.as_str() };
-            return Err(format!(
-                "drawing {}: point {i} of {name} is ({}, {}), not finite; nothing was written",
-                path.display(),
-                p.0,
-                p.1
-            ));
+            return Err(format!("point {i} of {name} is ({}, {}), not finite", p.0, p.1));
         }
         if let Some(dash) = s.dash {
             let stroke = Stroke { color: s.color, width: s.width, dash };
@@ -325,7 +328,46 @@ pub fn draw(path: &Path, chart: &Chart, series: &[Series]) -> Result<(), String>
             });
         }
     }
-    write(path, &fig)
+    Ok(fig)
+}
+
+/// Writes `figs` one above the other as one SVG to `path`, each at its own
+/// size (the widest sets the width); an error names the path, and nothing
+/// is written if any figure cannot be drawn.
+pub fn write_stack(path: &Path, figs: &[Figure]) -> Result<(), String> {
+    let svg = stack(figs).map_err(|e| format!("drawing {}: {e}; nothing was written", path.display()))?;
+    std::fs::write(path, svg).map_err(|e| format!("writing {}: {e}", path.display()))
+}
+
+/// `figs` one above the other in one SVG: each rendered figure nested as
+/// an `<svg>` at its offset, its clip path renamed so that each keeps its own.
+pub fn stack(figs: &[Figure]) -> Result<String, String> {
+    let (mut width, mut height) = (0.0_f64, 0.0_f64);
+    let mut body = String::new();
+    for (k, fig) in figs.iter().enumerate() {
+        let svg = render(fig)?;
+        // The size render settled on (fit_height may lower the height).
+        let attribute = |name: &str| -> f64 {
+            let head = svg.lines().next().unwrap_or_default();
+            head.split(&format!(" {name}=\""))
+                .nth(1)
+                .and_then(|r| r.split('"').next())
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(0.0)
+        };
+        let (w, h) = (attribute("width"), attribute("height"));
+        let nested = svg
+            .replacen("<svg ", &format!(r#"<svg x="0" y="{}" "#, num(height)), 1)
+            .replace(r#"id="plot""#, &format!(r#"id="plot-{k}""#))
+            .replace("url(#plot)", &format!("url(#plot-{k})"));
+        body.push_str(&nested);
+        width = width.max(w);
+        height += h;
+    }
+    let (w, h) = (num(width), num(height));
+    Ok(format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>\n{body}</svg>\n"
+    ))
 }
 
 /// Writes `fig` as SVG to `path`; an error names the path, and a mark with

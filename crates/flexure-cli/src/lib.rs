@@ -15,6 +15,7 @@ mod modes;
 mod options;
 mod render;
 mod reproduce;
+mod simulate;
 mod stress;
 
 use clap::{Parser, Subcommand};
@@ -63,6 +64,8 @@ enum Command {
     Buckle(mechanism::BuckleArgs),
     /// Draw a mechanism's unloaded and loaded shapes as SVG.
     Draw(mechanism::DrawArgs),
+    /// Motion of a mechanism file over time: body poses, coordinates and energy at each sample.
+    Simulate(simulate::SimulateArgs),
     /// Natural frequencies and mode shapes about the loaded equilibrium: of a
     /// mechanism file, or of one flexure joint with a tip body (--exact: beside exact beam theory).
     Modes(modes::ModesArgs),
@@ -138,6 +141,7 @@ fn answer(command: &Command) -> Result<Answer, String> {
         Command::Solve(a) => one(mechanism::solve_cmd(a)),
         Command::Buckle(a) => one(mechanism::buckle_cmd(a)),
         Command::Draw(a) => one(mechanism::draw_cmd(a)),
+        Command::Simulate(a) => one(simulate::simulate_cmd(a)),
         Command::Modes(a) => one(modes::modes_cmd(a)),
     }
 }

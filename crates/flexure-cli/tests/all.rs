@@ -19,6 +19,7 @@ mod modes;
 mod options;
 mod reproduce;
 mod sections;
+mod simulate;
 
 /// Every `tests/*.rs` file is a module here or a `[[test]]` target of
 /// Cargo.toml: with auto-discovery off, a file named in neither would

@@ -62,9 +62,15 @@ struct Example {
     buckle: Expect,
 }
 
-const EXAMPLES: [Example; 7] = [
+const EXAMPLES: [Example; 8] = [
     Example {
         name: "finger",
+        sweep: "tendon.flexor.tension=0:6:4",
+        compliance: ("distal", "0.025,0"),
+        buckle: Expect::Answers,
+    },
+    Example {
+        name: "finger_dynamics",
         sweep: "tendon.flexor.tension=0:6:4",
         compliance: ("distal", "0.025,0"),
         buckle: Expect::Answers,
@@ -225,7 +231,7 @@ fn every_example_with_every_subcommand() {
             outcomes.push(format!("{} {what}: {expect:?}", ex.name));
         }
     }
-    assert_eq!(outcomes.len(), 42, "{outcomes:#?}");
+    assert_eq!(outcomes.len(), 48, "{outcomes:#?}");
 }
 
 /// No example escapes the table above.

@@ -29,6 +29,7 @@ mod coordinates;
 mod exact;
 mod modes;
 mod section;
+mod simulate;
 mod stress;
 use coordinates::{Coordinates, single, vector};
 
@@ -937,6 +938,19 @@ impl Mechanism {
             warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
         }
         Ok(out)
+    }
+
+    /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
+    #[pyo3(signature = (duration, every=None, tolerance=1e-8, start="equilibrium"))]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        duration: f64,
+        every: Option<f64>,
+        tolerance: f64,
+        start: &str,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        simulate::motion(py, &self.inner, duration, every, tolerance, start)
     }
 
     /// Vibration modes about the loaded equilibrium, closures respected: a dict of omega

@@ -18,6 +18,7 @@ mod dynamics_mass;
 mod dynamics_mechanism;
 mod dynamics_mechanism_modes;
 mod dynamics_modes;
+mod dynamics_simulation;
 mod dynamics_vibration;
 mod elastica;
 mod elastica_path;

@@ -22,9 +22,12 @@ pub mod integrate;
 pub mod mass;
 pub mod mechanism;
 pub mod modes;
+pub mod schedule;
+pub mod simulation;
 pub mod system;
 
 pub use body::Body;
 pub use mass::{MassData, MassModel, update as update_mass};
 pub use modes::{Modes, modes};
+pub use simulation::{Simulation, SimulationSettings, Start, simulate};
 pub use system::System;

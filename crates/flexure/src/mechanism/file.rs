@@ -8,12 +8,15 @@
 
 use super::joints::{Fixed, Prismatic, Revolute};
 use super::kinematics::frames;
+use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
+use crate::dynamics::schedule::Schedule;
 use crate::error::{Error, Result};
 use crate::joint::{Flexure, bending_stiffness};
 use crate::kinematics::Pose;
 use crate::section::{Notch, Profile, Section};
 use serde::Deserialize;
+use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::Spanned;
 
@@ -53,6 +56,19 @@ struct FileToml {
     #[serde(default)]
     pin: Vec<PinToml>,
     gravity: Option<Spanned<[f64; 2]>>,
+    #[serde(default)]
+    schedule: Vec<ScheduleToml>,
+    // `[initial]` and `[initial_velocity]`: joint name → coordinates (a
+    // number or an array): read by `initial_state`.
+    initial: Option<BTreeMap<String, Spanned<toml::Value>>>,
+    initial_velocity: Option<BTreeMap<String, Spanned<toml::Value>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScheduleToml {
+    load: Spanned<String>,
+    points: Spanned<Vec<Spanned<[f64; 2]>>>,
 }
 
 #[derive(Deserialize)]
@@ -477,10 +493,107 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         .chain(file.pin.iter().map(|p| &p.a))
         .map(|a| place(text, a.span().start))
         .collect();
-    let m = Mechanism { bodies, joints, tendons, forces, closures, gravity, parent_joint, dof: offset, closure_places };
+    let mut m = Mechanism {
+        bodies,
+        joints,
+        tendons,
+        forces,
+        closures,
+        gravity,
+        parent_joint,
+        dof: offset,
+        closure_places,
+        schedules: Vec::new(),
+        initial: Vec::new(),
+        initial_velocity: Vec::new(),
+    };
     check_stiffness_ratio(&src, &m, &stiffness_places)?;
     check_tendon_directions(&src, &m, &via_places)?;
+    m.schedules = schedules(&src, &m, &file.schedule)?;
+    m.initial = initial_state(&src, &m, "initial", file.initial.as_ref())?;
+    m.initial_velocity = initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
+}
+
+/// The `[[schedule]]` tables: each names a load of the mechanism (as
+/// sweeps do) at most once, with points `[t, value]` of finite numbers
+/// whose times increase strictly.
+fn schedules(src: &Source, m: &Mechanism, tables: &[ScheduleToml]) -> Result<Vec<Schedule>> {
+    let mut out: Vec<Schedule> = Vec::new();
+    for s in tables {
+        let load = s.load.get_ref();
+        let owner = format!("schedule {load:?}: ");
+        let parameter = Parameter::parse(m, load).map_err(|e| match e {
+            Error::InvalidParameter { reason, .. } => {
+                src.error(&s.load.span(), format!("{owner}load {load:?} {reason}"))
+            }
+            other => src.placed(&owner, &s.load.span(), other),
+        })?;
+        if out.iter().any(|o| o.parameter == parameter) {
+            return src.fail(&s.load.span(), format!("{owner}load {load:?} is scheduled twice"));
+        }
+        let points = s.points.get_ref();
+        if points.is_empty() {
+            return src.fail(&s.points.span(), format!("{owner}points is empty: give at least one [t, value]"));
+        }
+        let sign = if matches!(parameter, Parameter::Tension(_)) { Sign::NotNegative } else { Sign::Any };
+        for (k, p) in points.iter().enumerate() {
+            let [t, v] = *p.get_ref();
+            src.numbers(&owner, &format!("points[{k}] time"), &p.span(), &[t], Sign::Any)?;
+            src.numbers(&owner, &format!("points[{k}] value"), &p.span(), &[v], sign)?;
+            if k > 0 && t <= points[k - 1].get_ref()[0] {
+                return src.fail(
+                    &p.span(),
+                    format!(
+                        "{owner}points[{k}] has time {} after points[{}] at {}: the times of points must increase strictly",
+                        number(t),
+                        k - 1,
+                        number(points[k - 1].get_ref()[0])
+                    ),
+                );
+            }
+        }
+        out.push(Schedule { load: load.clone(), parameter, points: points.iter().map(|p| *p.get_ref()).collect() });
+    }
+    Ok(out)
+}
+
+/// `[initial]` or `[initial_velocity]` (`key`): joint name → its
+/// coordinates, a number for a joint of one coordinate or an array of as
+/// many numbers as the joint has coordinates.
+fn initial_state(
+    src: &Source,
+    m: &Mechanism,
+    key: &str,
+    table: Option<&BTreeMap<String, Spanned<toml::Value>>>,
+) -> Result<Vec<(usize, Vec<f64>)>> {
+    let mut out = Vec::new();
+    for (name, value) in table.into_iter().flatten() {
+        let span = value.span();
+        let Some(j) = m.joints.iter().position(|j| &j.name == name) else {
+            return src.fail(&span, format!("{key}: unknown joint {name:?}"));
+        };
+        let owner = format!("{key}: joint {name:?}: ");
+        let number = |v: &toml::Value| match v {
+            toml::Value::Float(x) => Some(*x),
+            toml::Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        let values = match value.get_ref() {
+            toml::Value::Array(items) => items.iter().map(number).collect::<Option<Vec<f64>>>(),
+            v => number(v).map(|x| vec![x]),
+        };
+        let dof = m.joints[j].kind.joint().dof();
+        let Some(values) = values else {
+            return src.fail(&span, format!("{owner}must be a number or an array of {dof} numbers"));
+        };
+        if values.len() != dof {
+            return src.fail(&span, format!("{owner}the joint has {dof} coordinates and {} were given", values.len()));
+        }
+        src.numbers(&owner, "coordinates", &span, &values, Sign::Any)?;
+        out.push((j, values));
+    }
+    Ok(out)
 }
 
 /// The joints' diagonal stiffnesses span at most [`MAX_STIFFNESS_RATIO`].

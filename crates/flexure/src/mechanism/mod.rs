@@ -205,6 +205,12 @@ pub struct Mechanism {
     pub closures: Vec<Closure>,
     /// Gravity (m/s²), zero if absent.
     pub gravity: [f64; 2],
+    /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
+    pub schedules: Vec<crate::dynamics::schedule::Schedule>,
+    /// `[initial]`: (joint, coordinates) that override a simulation's start.
+    pub initial: Vec<(usize, Vec<f64>)>,
+    /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
+    pub initial_velocity: Vec<(usize, Vec<f64>)>,
     /// `parent_joint[b]`: the joint whose child is body `b`.
     parent_joint: Vec<Option<usize>>,
     dof: usize,

@@ -1,0 +1,152 @@
+//! `flexure simulate`: the motion of a mechanism file over time.
+
+use crate::options::number;
+use clap::{Args, ValueEnum};
+use flexure::dynamics::integrate;
+use flexure::dynamics::simulation::{Simulation, SimulationSettings, Start, simulate};
+use flexure::mechanism::Mechanism;
+use flexure::mechanism::file::from_toml;
+use serde_json::{Value, json};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Where the motion starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum StartArg {
+    /// The static equilibrium under the loads at t = 0, at rest (the default).
+    Equilibrium,
+    /// The unloaded rest shape, at rest.
+    Rest,
+}
+
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Mechanism file (TOML), with its `[[schedule]]`, `[initial]` and `[initial_velocity]`.
+    file: PathBuf,
+    /// Duration T (s): the motion over [0, T].
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    duration: f64,
+    #[command(flatten)]
+    motion: MotionOptions,
+    /// Write one CSV row per sample: time, each moving body's x, y, phi, each joint's coordinates and rates, energy.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The options of a simulation, shared with `draw --simulate`.
+#[derive(Debug, Args, Clone)]
+pub struct MotionOptions {
+    /// Sample interval (s): samples at 0, DT, 2DT, … and T [default: T/100].
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
+    pub every: Option<f64>,
+    /// Relative (and absolute) tolerance of each step's local error.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, default_value = "1e-8")]
+    pub tolerance: f64,
+    /// Where the motion starts; the file's [initial] and [initial_velocity] override it.
+    #[arg(long, value_enum, default_value = "equilibrium")]
+    pub start: StartArg,
+}
+
+impl MotionOptions {
+    /// The library's settings over `duration` (checked by the library, by name).
+    pub fn settings(&self, duration: f64) -> SimulationSettings {
+        let motion = integrate::Settings {
+            duration,
+            every: self.every.unwrap_or(duration / 100.0),
+            tolerance: self.tolerance,
+            absolute: self.tolerance,
+            ..Default::default()
+        };
+        SimulationSettings { motion, ..Default::default() }
+    }
+
+    pub fn start(&self) -> Start {
+        match self.start {
+            StartArg::Equilibrium => Start::Equilibrium,
+            StartArg::Rest => Start::Rest,
+        }
+    }
+}
+
+fn load(path: &Path) -> Result<Mechanism, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The motion of `file` over `duration` with `options`; a bad setting is named as its option.
+pub fn run_motion(file: &Path, duration: f64, options: &MotionOptions) -> Result<(Mechanism, Simulation), String> {
+    let settings = options.settings(duration);
+    // Settings first: a bad one is named before any solve.
+    settings.motion.validate().map_err(crate::describe)?;
+    let m = load(file)?;
+    let run = simulate(&m, &settings, options.start()).map_err(|e| match e {
+        e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
+        e => format!("{}: {e}", file.display()),
+    })?;
+    Ok((m, run))
+}
+
+/// `time`, `bodies` {name: {x, y, phi}}, `coordinates` {joint: one row per
+/// sample}, `energy`, `steps`, `rejected` and `violation`.
+pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
+    let (m, run) = run_motion(&args.file, args.duration, &args.motion)?;
+    let mut v = motion_json(&m, &run);
+    if let Some(path) = &args.out {
+        std::fs::write(path, csv(&m, &run)).map_err(|e| format!("writing {}: {e}", path.display()))?;
+        v["out"] = json!(path.display().to_string());
+    }
+    Ok(v)
+}
+
+fn motion_json(m: &Mechanism, run: &Simulation) -> Value {
+    let bodies: serde_json::Map<String, Value> =
+        run.bodies.iter().map(|b| (b.name.clone(), json!({ "x": b.x, "y": b.y, "phi": b.phi }))).collect();
+    let coordinates: serde_json::Map<String, Value> = m
+        .joints
+        .iter()
+        .map(|j| {
+            let k = j.kind.joint().dof();
+            let rows: Vec<&[f64]> = (0..run.time.len()).map(|s| &run.q(s)[j.offset..j.offset + k]).collect();
+            (j.name.clone(), json!(rows))
+        })
+        .collect();
+    json!({
+        "time": run.time,
+        "bodies": bodies,
+        "coordinates": coordinates,
+        "energy": run.energy,
+        "steps": run.steps,
+        "rejected": run.rejected,
+        "violation": run.violation,
+    })
+}
+
+/// One row per sample, under a header naming each column.
+fn csv(m: &Mechanism, run: &Simulation) -> String {
+    let mut columns = vec!["time".to_string()];
+    for b in &run.bodies {
+        columns.extend(["x", "y", "phi"].map(|c| format!("{}.{c}", b.name)));
+    }
+    for suffix in ["", ".rate"] {
+        for j in &m.joints {
+            columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]{suffix}", j.name)));
+        }
+    }
+    columns.push("energy".into());
+    let mut text = columns.join(",");
+    text.push('\n');
+    for k in 0..run.time.len() {
+        let mut row = vec![run.time[k]];
+        for b in &run.bodies {
+            row.extend([b.x[k], b.y[k], b.phi[k]]);
+        }
+        row.extend(run.q(k));
+        row.extend(run.v(k));
+        row.push(run.energy[k]);
+        for (i, x) in row.iter().enumerate() {
+            let _ = write!(text, "{}{x:e}", if i > 0 { "," } else { "" });
+        }
+        text.push('\n');
+    }
+    text
+}

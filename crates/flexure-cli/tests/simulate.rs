@@ -1,0 +1,198 @@
+//! `flexure simulate` and `flexure draw --simulate` end to end, in-process
+//! through `flexure_cli::run`: the output's keys and samples, a sprung
+//! arm against its closed-form motion, the CSV, the start, and bad
+//! settings and files refused with exit 2 by name.
+
+use serde_json::Value;
+use std::path::Path;
+
+fn run(args: &[&str]) -> (u8, String, String) {
+    let (mut out, mut err) = (Vec::new(), Vec::new());
+    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
+    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
+}
+
+fn json(args: &[&str]) -> Value {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let (code, out, err) = run(&a);
+    assert!(code == 0 && err.is_empty(), "{args:?}: exit {code}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// A sprung arm: k = 2 N·m/rad, I = 0.5 kg·m² about the pin (ω = 2 rad/s),
+/// a moment of 0.2 N·m (equilibrium 0.1 rad), with `extra` appended.
+fn arm(dir: &Path, extra: &str) -> String {
+    let path = dir.join("arm.toml");
+    let text = format!(
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+         [[body]]\nname = \"arm\"\ninertia = 0.5\n[[force]]\nname = \"turn\"\nbody = \"arm\"\nat = [0.0, 0.0]\nmoment = 0.2\n{extra}"
+    );
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+/// Let go from 0.3 rad at rest about its equilibrium at 0.1 rad, the arm
+/// moves as φ = 0.1 + 0.2 cos 2t (closed form of a linear oscillator).
+/// Tolerance 1e-7 rad: the integration's at 1e-10. Samples at 0, 0.4, …, 2
+/// and 2.2 = T; energy k φ²/2 + I φ̇²/2 kept (no damping; the moment's
+/// work is outside it, so it is not constant: checked against its formula).
+#[test]
+fn simulate_answers_a_sprung_arm_in_closed_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[initial]\npin = 0.3\n");
+    let v = json(&["simulate", &file, "--duration", "2.2", "--every", "0.4", "--tolerance", "1e-10"]);
+    let time = floats(&v["time"]);
+    assert_eq!(time.len(), 7);
+    for (k, t) in time.iter().enumerate() {
+        let expected = if k < 6 { 0.4 * k as f64 } else { 2.2 };
+        assert!((t - expected).abs() < 1e-12, "{time:?}");
+    }
+    let phi = floats(&v["bodies"]["arm"]["phi"]);
+    let rows = v["coordinates"]["pin"].as_array().unwrap();
+    let energy = floats(&v["energy"]);
+    for (k, t) in time.iter().enumerate() {
+        let exact = 0.1 + 0.2 * (2.0 * t).cos();
+        assert!((phi[k] - exact).abs() < 1e-7, "t = {t}: {} against {exact}", phi[k]);
+        assert_eq!(floats(&rows[k]), [phi[k]]);
+        let rate = -0.4 * (2.0 * t).sin();
+        let e = 0.5 * 2.0 * exact * exact + 0.5 * 0.5 * rate * rate;
+        assert!((energy[k] - e).abs() < 1e-7, "t = {t}: energy {} against {e}", energy[k]);
+    }
+    assert_eq!(floats(&v["bodies"]["arm"]["x"]), [0.0; 7]);
+    assert!(v["steps"].as_u64().unwrap() > 0 && v["rejected"].as_u64().is_some());
+    assert_eq!(v["violation"].as_f64(), Some(0.0));
+    // The readable answer holds the same keys.
+    let (code, out, _) = run(&["simulate", &file, "--duration", "0.4", "--every", "0.2"]);
+    assert_eq!(code, 0);
+    for key in ["time:", "bodies:", "coordinates:", "energy:", "steps:", "rejected:", "violation:"] {
+        assert!(out.contains(key), "{key}: {out}");
+    }
+}
+
+/// The default start is the equilibrium under the loads at t = 0, which
+/// then holds (0.1 rad, still); `--start rest` is the unloaded shape,
+/// from which the arm swings about the equilibrium (φ = 0.1 − 0.1 cos 2t).
+/// `--out` writes one CSV row per sample under a header.
+#[test]
+fn start_and_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "");
+    let v = json(&["simulate", &file, "--duration", "1", "--every", "0.5", "--tolerance", "1e-10"]);
+    assert!(floats(&v["bodies"]["arm"]["phi"]).iter().all(|p| (p - 0.1).abs() < 1e-9), "{v}");
+    let csv = dir.path().join("arm.csv");
+    let csv_s = csv.display().to_string();
+    let v = json(&[
+        "simulate",
+        &file,
+        "--duration",
+        "1",
+        "--every",
+        "0.5",
+        "--tolerance",
+        "1e-10",
+        "--start",
+        "rest",
+        "--out",
+        &csv_s,
+    ]);
+    let phi = floats(&v["bodies"]["arm"]["phi"]);
+    for (k, t) in [0.0_f64, 0.5, 1.0].iter().enumerate() {
+        assert!((phi[k] - (0.1 - 0.1 * (2.0 * t).cos())).abs() < 1e-8, "{phi:?}");
+    }
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "time,arm.x,arm.y,arm.phi,pin[0],pin[0].rate,energy");
+    assert_eq!(lines.len(), 4);
+    let last: Vec<f64> = lines[3].split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!(last[0], 1.0);
+    assert_eq!(last[3], phi[2]);
+    assert_eq!(v["out"], csv_s.as_str());
+}
+
+/// A duration, interval or tolerance not above zero exits 2 naming its option.
+#[test]
+fn bad_settings_exit_2_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "");
+    for (args, named) in [
+        (vec!["--duration", "0"], "--duration = 0"),
+        (vec!["--duration", "-1"], "--duration = -1"),
+        (vec!["--duration", "1", "--every", "0"], "--every = 0"),
+        (vec!["--duration", "1", "--every", "-0.1"], "--every = -0.1"),
+        (vec!["--duration", "1", "--tolerance", "0"], "--tolerance = 0"),
+        (vec!["--duration", "1", "--tolerance", "-1e-6"], "--tolerance = -0.000001"),
+        (vec!["--duration", "nan"], "--duration"),
+        (vec![], "--duration"),
+    ] {
+        let mut all = vec!["simulate", file.as_str()];
+        all.extend(&args);
+        let (code, out, err) = run(&all);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(out.is_empty() && err.contains(named), "{args:?}: {err}");
+    }
+}
+
+/// Bad files: a schedule's times, with the file, line and column; nothing
+/// with mass, by name.
+#[test]
+fn bad_files_exit_2_with_their_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[[schedule]]\nload = \"force.turn.moment\"\npoints = [[0.0, 0.0], [0.0, 1.0]]\n");
+    let (code, _, err) = run(&["simulate", &file, "--duration", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("arm.toml: line 17, column 23: schedule \"force.turn.moment\": points[1]"), "{err}");
+    let file = arm(dir.path(), "").replace("arm.toml", "massless.toml");
+    std::fs::write(
+        &file,
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n",
+    )
+    .unwrap();
+    let (code, _, err) = run(&["simulate", &file, "--duration", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--mass = none"), "{err}");
+}
+
+/// `draw --simulate`: one SVG of the snapshots and the two time charts,
+/// each chart keeping its own clip path; five snapshots from 0 to T.
+#[test]
+fn draw_simulate_writes_snapshots_and_charts() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[initial]\npin = 0.3\n");
+    let out = dir.path().join("motion.svg");
+    let out_s = out.display().to_string();
+    let v = json(&["draw", &file, "--simulate", "1", "--out", &out_s, "--every", "0.1"]);
+    // The samples nearest 0, T/4, T/2, 3T/4 and T (quarters rounded up).
+    let snapshots = floats(&v["snapshots"]);
+    assert!(snapshots.iter().zip([0.0, 0.3, 0.5, 0.8, 1.0]).all(|(a, b)| (a - b).abs() < 1e-12), "{snapshots:?}");
+    assert_eq!(v["shapes"], 6);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(svg.matches("<svg").count(), 4);
+    for k in 0..3 {
+        assert_eq!(svg.matches(&format!("id=\"plot-{k}\"")).count(), 1);
+        assert!(svg.contains(&format!("url(#plot-{k})")));
+    }
+    for label in ["t = 0.5 s", "Body angles", "arm φ", "arm x", "time (s)"] {
+        assert!(svg.contains(label), "{label}");
+    }
+    let (code, _, err) = run(&["draw", &file, "--simulate", "0", "--out", &out_s]);
+    assert!(code == 2 && err.contains("--duration = 0"), "{err}");
+}
+
+/// The finger example's first "Running it" command answers: 31 samples,
+/// the start at rest, no closure to violate.
+#[test]
+fn the_finger_example_runs_as_shown() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/finger_dynamics.toml");
+    let file = file.display().to_string();
+    let shown = "flexure simulate examples/finger_dynamics.toml --duration 0.3 --every 0.01 --tolerance 1e-6";
+    assert!(std::fs::read_to_string(&file).unwrap().contains(shown));
+    let v = json(&["simulate", &file, "--duration", "0.3", "--every", "0.01", "--tolerance", "1e-6"]);
+    assert_eq!(v["time"].as_array().unwrap().len(), 31);
+    assert_eq!(v["coordinates"]["mcp"].as_array().unwrap().len(), 31);
+    assert_eq!(v["violation"].as_f64(), Some(0.0));
+}

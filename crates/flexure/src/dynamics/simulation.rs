@@ -1,0 +1,184 @@
+//! Motion of a mechanism over time: its start, its loads in time and its
+//! integration, end to end.
+//!
+//! The equations of motion are those of [`super::mechanism`], with the loads
+//! of [`super::schedule`] at each time, integrated by [`super::integrate`].
+//! The start is, by default, the static equilibrium under the loads at
+//! $t = 0$, at rest ([`Start::Equilibrium`]), or the unloaded shape
+//! ([`Start::Rest`]); the file's `[initial]` and `[initial_velocity]`
+//! override the coordinates of the joints they name.
+//!
+//! The statics do not weigh flexures ([`crate::mechanism::statics`] puts
+//! gravity on the bodies only) while the dynamics do: under gravity, a
+//! mechanism whose flexures have a density starts a little off its
+//! dynamic equilibrium, and sags by their weight as it moves.
+
+use super::integrate::{self, integrate};
+use super::schedule::{ScheduledSystem, loads_at};
+use crate::error::{Error, Result};
+use crate::mechanism::Mechanism;
+use crate::mechanism::kinematics::frames;
+use crate::mechanism::statics::{self, assemble_unloaded, solve_between};
+
+/// Where a simulation starts, before `[initial]` and `[initial_velocity]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Start {
+    /// The static equilibrium under the loads at $t = 0$, at rest.
+    #[default]
+    Equilibrium,
+    /// The unloaded rest shape (closures assembled), at rest.
+    Rest,
+}
+
+/// Settings of [`simulate`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SimulationSettings {
+    /// The integration: duration, sample interval, tolerances, bounds.
+    pub motion: integrate::Settings,
+    /// The static solves of the start.
+    pub equilibrium: statics::Settings,
+}
+
+/// One body's motion: its frame in the ground frame at each sample.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyMotion {
+    /// The body's name.
+    pub name: String,
+    /// Its origin's x (m), ground frame.
+    pub x: Vec<f64>,
+    /// Its origin's y (m), ground frame.
+    pub y: Vec<f64>,
+    /// Its angle (rad) from the ground frame.
+    pub phi: Vec<f64>,
+}
+
+/// A simulated motion, sampled at [`integrate::Settings::times`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Simulation {
+    /// Sample times (s).
+    pub time: Vec<f64>,
+    /// Every moving body (not the ground), in the mechanism's order.
+    pub bodies: Vec<BodyMotion>,
+    /// Number of coordinates $n$.
+    pub dim: usize,
+    /// Coordinates $q$ at each sample, $n$ per sample.
+    pub coordinates: Vec<f64>,
+    /// Rates $\dot q$ at each sample, $n$ per sample.
+    pub velocities: Vec<f64>,
+    /// Kinetic, elastic and gravitational energy at each sample (J);
+    /// the work of the other loads and of damping is not in it.
+    pub energy: Vec<f64>,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected: usize,
+    /// Largest closure violation over the start and every step (m or rad).
+    pub violation: f64,
+}
+
+impl Simulation {
+    /// The coordinates at sample `k`.
+    pub fn q(&self, k: usize) -> &[f64] {
+        &self.coordinates[k * self.dim..(k + 1) * self.dim]
+    }
+
+    /// The rates at sample `k`.
+    pub fn v(&self, k: usize) -> &[f64] {
+        &self.velocities[k * self.dim..(k + 1) * self.dim]
+    }
+}
+
+/// The state $(q, \dot q)$ a simulation of `m` starts from (module docs).
+/// When `[initial]` names every joint, no static solve is made.
+///
+/// Errors: those of the static solve of the start.
+pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) -> Result<(Vec<f64>, Vec<f64>)> {
+    // `[initial]` for every joint leaves nothing to solve for (and a free
+    // joint, a pendulum's, has no static start to solve).
+    let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
+    let mut q = if (0..m.joints.len()).all(given) {
+        m.rest()
+    } else {
+        let unloaded = assemble_unloaded(m, settings)?;
+        match start {
+            Start::Rest => unloaded.q,
+            Start::Equilibrium => solve_between(m, &unloaded, &loads_at(m, 0.0), settings)?.q,
+        }
+    };
+    let mut v = vec![0.0; m.dof()];
+    for (state, given) in [(&mut q, &m.initial), (&mut v, &m.initial_velocity)] {
+        for (j, values) in given {
+            let o = m.joints[*j].offset;
+            state[o..o + values.len()].copy_from_slice(values);
+        }
+    }
+    Ok((q, v))
+}
+
+/// Simulates `m` from `start` (with the file's `[initial]` and
+/// `[initial_velocity]`) under its loads and schedules over
+/// `settings.motion.duration`.
+///
+/// Errors: `mass` when nothing has mass or inertia (no motion to
+/// simulate); a bad setting by name ([`integrate::Settings::validate`]);
+/// those of the start's static solve; [`Error::IntegrationStalled`] and
+/// [`Error::Interrupted`] from [`integrate()`].
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::simulation::{simulate, SimulationSettings, Start};
+/// use flexure::dynamics::integrate::Settings;
+/// use flexure::mechanism::file::from_toml;
+/// // A sprung arm (k = 2 N·m/rad, I = 0.5 kg·m²), started at 0.1 rad: φ = 0.1 cos 2t.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[body]]\nname = \"arm\"\ninertia = 0.5\n[initial]\npin = 0.1\n",
+/// )
+/// .unwrap();
+/// let motion = Settings { duration: 1.0, every: 0.5, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
+/// let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Equilibrium).unwrap();
+/// assert_eq!(run.time, [0.0, 0.5, 1.0]);
+/// assert!((run.bodies[0].phi[2] - 0.1 * 2f64.cos()).abs() < 1e-8);
+/// ```
+pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> Result<Simulation> {
+    settings.motion.validate()?;
+    settings.equilibrium.validate()?;
+    let mut system = ScheduledSystem::new(m)?;
+    if !system.system().has_inertia() {
+        return Err(Error::invalid(
+            "mass",
+            "none",
+            "no body has mass or inertia and no flexure has a density or mass per length: nothing moves",
+        ));
+    }
+    let (q0, v0) = initial_state(m, &settings.equilibrium, start)?;
+    let run = integrate(&mut system, &q0, &v0, &settings.motion)?;
+    let mut bodies: Vec<BodyMotion> = m.bodies[1..]
+        .iter()
+        .map(|b| BodyMotion {
+            name: b.name.clone(),
+            x: Vec::with_capacity(run.time.len()),
+            y: Vec::with_capacity(run.time.len()),
+            phi: Vec::with_capacity(run.time.len()),
+        })
+        .collect();
+    for k in 0..run.time.len() {
+        let f = frames(m, run.q(k));
+        for (motion, frame) in bodies.iter_mut().zip(&f.bodies[1..]) {
+            motion.x.push(frame.origin[0]);
+            motion.y.push(frame.origin[1]);
+            motion.phi.push(frame.angle);
+        }
+    }
+    Ok(Simulation {
+        time: run.time,
+        bodies,
+        dim: run.dim,
+        coordinates: run.coordinates,
+        velocities: run.velocities,
+        energy: run.energy,
+        steps: run.steps,
+        rejected: run.rejected,
+        violation: run.violation,
+    })
+}

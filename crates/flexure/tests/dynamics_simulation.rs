@@ -1,0 +1,240 @@
+//! Simulations of mechanism files end to end (`flexure::dynamics::simulation`):
+//! a pendulum's large-amplitude period against the complete elliptic
+//! integral, slow loading that ends at `statics::solve`'s equilibrium, the
+//! start (equilibrium, rest, `[initial]`), schedules against their linear
+//! interpolation, and bad schedules and initial states refused with their
+//! place in the file.
+
+use flexure::Error;
+use flexure::dynamics::integrate::Settings;
+use flexure::dynamics::schedule::loads_at;
+use flexure::dynamics::simulation::{SimulationSettings, Start, initial_state, simulate};
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{self, assemble_unloaded, solve};
+use std::f64::consts::FRAC_PI_2;
+
+fn settings(duration: f64, every: f64, tolerance: f64) -> SimulationSettings {
+    SimulationSettings {
+        motion: Settings { duration, every, tolerance, absolute: tolerance, ..Default::default() },
+        ..Default::default()
+    }
+}
+
+/// A point mass of 0.1 kg, `l` from a free pin, under g = 9.81 m/s² (−y),
+/// let go at rest from θ₀ off the bottom (the pin's angle −π/2 + θ₀).
+fn pendulum(l: f64, theta0: f64) -> String {
+    format!(
+        "gravity = [0.0, -9.81]\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"bob\"\n\
+         [[body]]\nname = \"bob\"\nmass = 0.1\ncom = [{l}, 0.0]\n[initial]\npivot = {}\n",
+        -FRAC_PI_2 + theta0
+    )
+}
+
+/// The period of a rigid pendulum released from rest at θ₀ is
+/// 4√(l/g) K(sin(θ₀/2)) (the complete elliptic integral; e.g. Landau &
+/// Lifshitz, Mechanics §11). Through the file format: half a period later
+/// the bob is at −θ₀, at rest; a period later back at θ₀. Tolerance 1e-7
+/// rad: the integration's, at a relative tolerance of 1e-10.
+#[test]
+fn pendulum_period_matches_the_elliptic_integral() {
+    let (l, theta0) = (0.25, 2.0);
+    let period = 4.0 * (l / 9.81f64).sqrt() * ellip::ellipk((theta0 / 2.0f64).sin().powi(2)).unwrap();
+    let m = from_toml(&pendulum(l, theta0)).unwrap();
+    let run = simulate(&m, &settings(period, period / 2.0, 1e-10), Start::Equilibrium).unwrap();
+    assert_eq!(run.time.len(), 3);
+    let phi = &run.bodies[0].phi;
+    assert!((phi[0] - (-FRAC_PI_2 + theta0)).abs() < 1e-15);
+    assert!((phi[1] - (-FRAC_PI_2 - theta0)).abs() < 1e-7, "half period: {}", phi[1] + FRAC_PI_2);
+    assert!((phi[2] - (-FRAC_PI_2 + theta0)).abs() < 1e-7, "period: {}", phi[2] + FRAC_PI_2);
+    // At the turning points the rate is zero (to the same tolerance over ω·T).
+    assert!(run.v(1)[0].abs() < 1e-6 && run.v(2)[0].abs() < 1e-6, "{:?} {:?} {:?}", run.v(1), run.v(2), phi);
+    // The body's frame turns about the pin, its origin.
+    assert!(run.bodies[0].x.iter().chain(&run.bodies[0].y).all(|c| *c == 0.0));
+    // No damping: the energy is kept (to the tolerance).
+    let e0 = run.energy[0];
+    assert!(run.energy.iter().all(|e| (e - e0).abs() < 1e-8 * e0.abs()), "{:?}", run.energy);
+}
+
+/// A flexure carrying a link, pulled by a tendon whose tension rises from
+/// 0 to 4 N over `ramp` seconds, then holds; stiffness-proportional damping.
+fn tendon_arm(ramp: f64) -> String {
+    format!(
+        r#"
+[[joint]]
+name = "hinge"
+kind = "flexure"
+parent = "ground"
+child = "link"
+length = 0.02
+modulus = 2e11
+width = 0.005
+thickness = 2e-4
+density = 7850.0
+damping = 0.004
+
+[[body]]
+name = "link"
+mass = 0.005
+inertia = 4e-7
+com = [0.01, 0.0]
+
+[[tendon]]
+name = "flexor"
+tension = 4.0
+path = [["ground", -0.005, 0.004], ["link", 0.0, 0.004], ["link", 0.02, 0.004]]
+
+[[schedule]]
+load = "tendon.flexor.tension"
+points = [[0.0, 0.0], [{ramp}, 4.0]]
+"#
+    )
+}
+
+/// Slow loading reproduces `solve`: the tension ramped over 0.4 s and held
+/// to 0.8 s ends at the static equilibrium under the full tension. The
+/// first mode under load is ω₁ ≈ 100 rad/s (`dynamics::mechanism::modes`),
+/// so the ramp spans some 6 periods, and the damping (β = 4 ms, ζ₁ = βω₁/2
+/// ≈ 0.2) shrinks what it leaves by e^{−ζ₁ω₁·0.4 s} ≈ 3e-4 over the hold.
+/// Tolerance 1e-6 of the tip angle (reached: 1.5e-7); undamped, the run
+/// ends 1.5e-2 off, so the check tells. The start is the equilibrium at
+/// zero tension, the unloaded shape.
+#[test]
+fn slow_loading_ends_at_the_static_equilibrium() {
+    let m = from_toml(&tendon_arm(0.4)).unwrap();
+    let run = simulate(&m, &settings(0.8, 0.4, 1e-6), Start::Equilibrium).unwrap();
+    let s = solve(&m, &statics::Settings::default()).unwrap();
+    let unloaded = assemble_unloaded(&m, &statics::Settings::default()).unwrap();
+    let last = run.time.len() - 1;
+    let phi_static = flexure::mechanism::kinematics::frames(&m, &s.q).bodies[1].angle;
+    assert!(phi_static > 0.05, "the tendon bends the flexure: {phi_static}");
+    assert!(run.q(0).iter().zip(&unloaded.q).all(|(a, b)| (a - b).abs() < 1e-12));
+    let phi = run.bodies[0].phi[last];
+    assert!((phi - phi_static).abs() < 1e-6 * phi_static, "{phi} against {phi_static}");
+    for (a, b) in run.q(last).iter().zip(&s.q) {
+        assert!((a - b).abs() < 1e-5 * s.q.iter().map(|x| x.abs()).fold(0.0, f64::max), "{:?} {:?}", run.q(last), s.q);
+    }
+    assert!(run.v(last).iter().all(|v| v.abs() < 1e-4), "{:?}", run.v(last));
+}
+
+/// A schedule's loads are the linear interpolation of its points, and hold
+/// outside them (module docs of `schedule`); loads it does not name keep the file's.
+#[test]
+fn schedules_interpolate_and_hold() {
+    let m = from_toml(&format!(
+        "{}[[schedule]]\nload = \"gravity.y\"\npoints = [[0.1, -1.0], [0.3, -3.0], [0.5, 0.0]]\n",
+        tendon_arm(0.4)
+    ))
+    .unwrap();
+    let cases =
+        [(-1.0, 0.0, -1.0), (0.0, 0.0, -1.0), (0.2, 2.0, -2.0), (0.3, 3.0, -3.0), (0.4, 4.0, -1.5), (9.0, 4.0, 0.0)];
+    for (t, tension, gy) in cases {
+        let l = loads_at(&m, t);
+        assert!((l.tension[0] - tension).abs() < 1e-15 && (l.gravity[1] - gy).abs() < 1e-15, "t = {t}: {l:?}");
+        assert_eq!(l.gravity[0], 0.0);
+    }
+}
+
+/// The start: the equilibrium under the loads at t = 0, or the unloaded
+/// shape (`Start::Rest`), at rest; `[initial]` and `[initial_velocity]`
+/// replace the joints they name, the others keep the start's.
+#[test]
+fn the_start_is_the_equilibrium_at_zero_or_the_rest_shape_with_overrides() {
+    let text = tendon_arm(0.4).replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.0, 2.0], [0.4, 4.0]]");
+    let m = from_toml(&text).unwrap();
+    let st = statics::Settings::default();
+    let (q, v) = initial_state(&m, &st, Start::Equilibrium).unwrap();
+    let half = from_toml(&text.replace("tension = 4.0", "tension = 2.0")).unwrap();
+    assert_eq!(q, solve(&half, &st).unwrap().q);
+    assert!(v.iter().all(|x| *x == 0.0));
+    let (q, _) = initial_state(&m, &st, Start::Rest).unwrap();
+    assert_eq!(q, m.rest());
+    // A pin after the flexure: [initial] names it alone.
+    let chain = format!(
+        "{text}[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"link\"\nchild = \"tip\"\norigin = [0.02, 0.0, 0.0]\n\
+         stiffness = 0.01\n[[body]]\nname = \"tip\"\nmass = 0.001\n[initial]\npin = 0.3\n[initial_velocity]\nhinge = [1.0, 2.0, 3.0]\n"
+    );
+    let m = from_toml(&chain).unwrap();
+    let (q, v) = initial_state(&m, &st, Start::Rest).unwrap();
+    assert_eq!(q, [0.0, 0.0, 0.0, 0.3]);
+    assert_eq!(v, [1.0, 2.0, 3.0, 0.0]);
+}
+
+/// Bad schedules and initial states: each error names the key or the load
+/// and its line and column.
+#[test]
+fn bad_schedules_and_initial_states_are_placed() {
+    let base = tendon_arm(0.4);
+    let cases = [
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.0, 0.0], [0.2, 1.0], [0.2, 4.0]]"),
+            "line 27, column 35: schedule \"tendon.flexor.tension\": points[2] has time 0.2 after points[1] at 0.2: the times of points must increase strictly",
+        ),
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.5, 0.0], [0.4, 4.0]]"),
+            "line 27, column 23: schedule \"tendon.flexor.tension\": points[1] has time 0.4",
+        ),
+        (
+            base.replace("load = \"tendon.flexor.tension\"", "load = \"tendon.extensor.tension\""),
+            "line 26, column 8: schedule \"tendon.extensor.tension\": load \"tendon.extensor.tension\" names no tendon",
+        ),
+        (
+            base.replace("load = \"tendon.flexor.tension\"", "load = \"gravity.z\""),
+            "line 26, column 8: schedule \"gravity.z\": load \"gravity.z\" must be tendon.NAME.tension",
+        ),
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.0, -1.0]]"),
+            "line 27, column 11: schedule \"tendon.flexor.tension\": points[0] value = -1: must not be negative",
+        ),
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[]"),
+            "line 27, column 10: schedule \"tendon.flexor.tension\": points is empty",
+        ),
+        (
+            format!("{base}[[schedule]]\nload = \"tendon.flexor.tension\"\npoints = [[0.0, 1.0]]\n"),
+            "line 29, column 8: schedule \"tendon.flexor.tension\": load \"tendon.flexor.tension\" is scheduled twice",
+        ),
+        (
+            base.replace("[[0.0, 0.0], [0.4, 4.0]]", "[[0.0, 0.0], [inf, 4.0]]"),
+            "line 27, column 23: schedule \"tendon.flexor.tension\": points[1] time = inf: must be a finite number",
+        ),
+        (format!("{base}[initial]\nknee = 0.1\n"), "line 29, column 8: initial: unknown joint \"knee\""),
+        (
+            format!("{base}[initial]\nhinge = [0.1, 0.2]\n"),
+            "line 29, column 9: initial: joint \"hinge\": the joint has 3 coordinates and 2 were given",
+        ),
+        (
+            format!("{base}[initial_velocity]\nhinge = [0.1, nan, 0.0]\n"),
+            "line 29, column 9: initial_velocity: joint \"hinge\": coordinates[1] = NaN: must be a finite number",
+        ),
+        (
+            format!("{base}[initial]\nhinge = \"bent\"\n"),
+            "line 29, column 9: initial: joint \"hinge\": must be a number or an array of 3 numbers",
+        ),
+    ];
+    for (text, expected) in cases {
+        let e = from_toml(&text).unwrap_err().to_string();
+        assert!(e.starts_with(expected), "{e}\nexpected: {expected}");
+    }
+}
+
+/// Refused runs: nothing with mass, and bad settings, each by name.
+#[test]
+fn simulations_without_mass_or_with_bad_settings_are_refused() {
+    let massless = from_toml(
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n",
+    )
+    .unwrap();
+    let e = simulate(&massless, &settings(1.0, 0.1, 1e-6), Start::Equilibrium).unwrap_err();
+    assert!(matches!(e, Error::InvalidParameter { name: "mass", .. }), "{e}");
+    let m = from_toml(&pendulum(0.2, 0.5)).unwrap();
+    for (s, name) in [
+        (settings(0.0, 0.1, 1e-6), "duration"),
+        (settings(-1.0, 0.1, 1e-6), "duration"),
+        (settings(1.0, 0.0, 1e-6), "every"),
+        (settings(1.0, f64::NAN, 1e-6), "every"),
+        (settings(1.0, 0.1, 0.0), "tolerance"),
+    ] {
+        let e = simulate(&m, &s, Start::Equilibrium).unwrap_err();
+        assert!(matches!(e, Error::InvalidParameter { name: n, .. } if n == name), "{name}: {e}");
+    }
+}
