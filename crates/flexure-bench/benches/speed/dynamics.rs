@@ -17,9 +17,9 @@ use flexure::Result;
 use flexure::dynamics::System;
 use flexure::dynamics::integrate::{Settings, Trajectory, integrate};
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
-use flexure::mechanism::{JointKind, Mechanism};
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics;
+use flexure::mechanism::{JointKind, Mechanism};
 use std::hint::black_box;
 
 /// The example's tendon tension (N), reached at [`RISE`].
