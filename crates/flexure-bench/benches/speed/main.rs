@@ -7,6 +7,7 @@
 use criterion::{criterion_group, criterion_main};
 
 mod batch;
+mod dynamics;
 mod joint;
 mod mechanism;
 mod reference;
@@ -25,5 +26,5 @@ pub fn inputs(count: usize, width: usize) -> Vec<f64> {
         .collect()
 }
 
-criterion_group!(benches, joint::run, statics::run, batch::run, mechanism::run, reference::run);
+criterion_group!(benches, joint::run, statics::run, batch::run, mechanism::run, reference::run, dynamics::run);
 criterion_main!(benches);

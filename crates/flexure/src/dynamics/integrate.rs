@@ -32,13 +32,18 @@
 //! $$M(Q_i)\ddot Q_i - f(Q_i, \dot Q_i, t_0 + c_ih) + G(Q_i)^T\Lambda_i = 0,
 //! \qquad c(Q_i)/h^2 = 0.$$
 //! A simplified Newton method solves them with the matrix frozen at the
-//! step's start, whose $(i, j)$ block is
+//! start of a step, whose $(i, j)$ block is
 //! $$\delta_{ij}M + h\thinspace a_{ij}D_t + h^2(A^2)_{ij}K_t\quad\text{with
 //! closure rows } (A^2)_{ij}G \text{ and columns } \delta_{ij}G^T,$$
 //! ($K_t = -\partial f/\partial q$, $D_t = -\partial f/\partial\dot q$):
 //! regular when $M$ is singular as long as the stiffness holds the
 //! massless directions, and at any step size. The new state is
-//! $(q_1, \dot q_1) = (Q_3, \dot Q_3)$, as $c_3 = 1$.
+//! $(q_1, \dot q_1) = (Q_3, \dot Q_3)$, as $c_3 = 1$. As in RADAU5, the
+//! matrix's data $M$, $K_t$, $D_t$, $G$ are kept over the following steps
+//! (and its factors while the step length stays) as long as Newton
+//! contracts by at most 0.1 per iteration, and renewed after a rejected
+//! step; Newton starts from the last step's collocation polynomial
+//! extrapolated to the new stages.
 //!
 //! **Error control** (Hairer & Wanner, *Solving ODEs II*, IV.8, the
 //! estimate of RADAU5): with $Z_i = (Q_i - q_0, \dot Q_i - \dot q_0)$, the
@@ -47,8 +52,8 @@
 //! \gamma_0\mathcal M\textstyle\sum_i d_iZ_i\bigr),$$
 //! $\mathcal M = \operatorname{diag}(I, M)$, whose position part solves
 //! $(M + h\gamma_0D_t + h^2\gamma_0^2K_t)e_q + G^T\mu = \ldots$, $Ge_q = 0$:
-//! the Newton matrix of one stage, filtered so stiff components are not
-//! overestimated. Its root mean square, each coordinate weighted by
+//! the Newton matrix of one stage (with the step's own $M$ and the kept
+//! $K_t$, $D_t$, $G$), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
 //! are closures: they are index-2 variables there), must be at most 1; the
 //! step then changes by $0.9\,\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
@@ -117,6 +122,11 @@ pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// Simplified Newton iterations per step before the step is retried shorter.
 const NEWTON_ITERATIONS: usize = 7;
+
+/// The Newton matrix's data are kept for the next step when the last
+/// Newton contraction was at most this (RADAU5's `THET`, at the value its
+/// authors advise for costly Jacobians); its factors while the step stays.
+const REUSE: f64 = 0.1;
 
 impl Settings {
     /// Checks every setting: a duration, interval or tolerance that is not a
@@ -249,12 +259,24 @@ enum Refusal {
 struct Work {
     n: usize,
     m: usize,
-    /// Start of the step: $M$, $f$, $K_t$, $D_t$, $G$ at $(q_0, \dot q_0, t_0)$.
+    /// Start of the step: $M$ and $f$ at $(q_0, \dot q_0, t_0)$.
     m0: Vec<f64>,
     f0: Vec<f64>,
+    /// The Newton matrix's data, kept over steps while Newton converges
+    /// fast (RADAU5's reuse): $M$, $K_t$, $D_t$, $G$ at the start of the
+    /// step where they were last evaluated.
+    mj: Vec<f64>,
     k0: Vec<f64>,
     d0: Vec<f64>,
     g0: Vec<f64>,
+    /// The step for which `matrix` and `e` hold their LU factors (NaN: none).
+    factored: f64,
+    /// The last accepted step's unknowns and length (0 before the first):
+    /// its collocation polynomial extrapolated gives Newton's start.
+    prev: Vec<f64>,
+    prev_h: f64,
+    /// The last Newton solve's contraction (0 when one iteration sufficed).
+    theta: f64,
     /// Scratch for evaluations at the stages.
     mass: Vec<f64>,
     force: Vec<f64>,
@@ -296,6 +318,11 @@ impl Work {
             m,
             m0: z(n * n),
             f0: z(n),
+            mj: z(n * n),
+            factored: f64::NAN,
+            prev: z(big),
+            prev_h: 0.0,
+            theta: 0.0,
             k0: z(n * n),
             d0: z(n * n),
             g0: z(m * n),
@@ -425,8 +452,8 @@ pub fn integrate<S: System + ?Sized>(
     let mut last_rejected = false;
     let mut rejections = 0;
     let mut cause = String::new();
-    let mut guess_a = vec![0.0; n];
-    let mut guess_l = vec![0.0; m];
+    // The Newton matrix's data must be evaluated anew; it was at this step's start.
+    let (mut stale, mut current) = (true, false);
     for &target in &times[1..] {
         while t < target {
             let stalled = |cause: &str, h: f64, run: &Trajectory| Error::IntegrationStalled {
@@ -452,13 +479,24 @@ pub fn integrate<S: System + ?Sized>(
                 return Err(stalled(&format!("{cause}; the step fell below 1e-12 of the duration"), step, &run));
             }
             if !fresh {
-                // The step's start: M, f and the tangents for the Newton matrix.
+                // The step's start: M and f for the error estimate.
                 system.dynamics(&q, &v, t, &mut w.m0, &mut w.f0)?;
+                fresh = true;
+                current = false;
+            }
+            if stale {
+                // The tangents for the Newton matrix, at the state last passed to `dynamics`.
+                if current {
+                    system.dynamics(&q, &v, t, &mut w.mass, &mut w.force)?;
+                }
                 system.tangent(&q, &v, t, &mut w.k0, &mut w.d0)?;
+                w.mj.copy_from_slice(&w.m0);
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g0)?;
                 }
-                fresh = true;
+                w.factored = f64::NAN;
+                stale = false;
+                current = true;
             }
             let attempt = attempt(
                 system,
@@ -466,7 +504,6 @@ pub fn integrate<S: System + ?Sized>(
                 &mut w,
                 (t, step, duration),
                 (&q, &v),
-                (&guess_a, &guess_l),
                 settings,
                 &mut eta,
                 (last_rejected || run.steps == 0, run.steps < 2),
@@ -492,10 +529,11 @@ pub fn integrate<S: System + ?Sized>(
                                 t = if landing { target } else { t + step };
                                 std::mem::swap(&mut q, &mut q1);
                                 std::mem::swap(&mut v, &mut v1);
-                                guess_a.copy_from_slice(&w.x[2 * n..3 * n]);
-                                guess_l.copy_from_slice(&w.x[3 * n + 2 * m..]);
+                                w.prev.copy_from_slice(&w.x);
+                                w.prev_h = step;
                                 run.steps += 1;
                                 fresh = false;
+                                stale = w.theta > REUSE;
                                 let mut next = step * ratio.min(if last_rejected { 1.0 } else { 5.0 });
                                 if turn > 0.0 {
                                     next = next.min(0.9 * step * settings.max_rotation_per_step / turn);
@@ -525,6 +563,8 @@ pub fn integrate<S: System + ?Sized>(
                     }
                 };
                 h = step * ratio;
+                // RADAU5: a matrix kept from an earlier step is renewed.
+                stale = !current;
                 run.rejected += 1;
                 rejections += 1;
                 last_rejected = true;
@@ -581,7 +621,6 @@ fn attempt<S: System + ?Sized>(
     w: &mut Work,
     (t0, h, duration): (f64, f64, f64),
     (q0, v0): (&[f64], &[f64]),
-    (guess_a, guess_l): (&[f64], &[f64]),
     settings: &Settings,
     eta: &mut f64,
     (refine, start): (bool, bool),
@@ -607,42 +646,18 @@ fn attempt<S: System + ?Sized>(
         w.sq[r] = atol + rtol * q0[r].abs();
         w.sv[r] = atol + rtol * v0[r].abs();
     }
-    // The Newton matrix.
-    w.matrix.fill(0.0);
-    for i in 0..3 {
-        for j in 0..3 {
-            let (ha, h2a) = (h * rk.a[i][j], h * h * rk.a2[i][j]);
-            let diag = if i == j { 1.0 } else { 0.0 };
-            for c in 0..n {
-                for r in 0..n {
-                    let k = c * n + r;
-                    w.matrix[(j * n + c) * big + i * n + r] = diag * w.m0[k] + ha * w.d0[k] + h2a * w.k0[k];
-                }
-                for k in 0..m {
-                    w.matrix[(j * n + c) * big + 3 * n + i * m + k] = rk.a2[i][j] * w.g0[c * m + k];
-                }
-            }
-        }
-        for k in 0..m {
-            for r in 0..n {
-                w.matrix[(3 * n + i * m + k) * big + i * n + r] = w.g0[r * m + k];
-            }
-        }
-    }
-    if !linalg::lu(&mut w.matrix, big, &mut w.pivots) {
+    if w.factored != h && !factor(rk, w, h) {
         return Ok(Err(Refusal::Failed(
             "the Newton matrix is singular (a direction with neither mass nor stiffness, or dependent closures)".into(),
         )));
     }
-    for j in 0..3 {
-        w.x[j * n..(j + 1) * n].copy_from_slice(guess_a);
-        w.x[3 * n + j * m..3 * n + (j + 1) * m].copy_from_slice(guess_l);
-    }
+    guess(rk, w, h);
     // Newton's stopping test (RADAU5): the estimated distance to the
     // solution at most kappa of the tolerance, above rounding.
     let kappa = (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt()));
     let mut previous = 0.0;
     let mut converged = false;
+    w.theta = 0.0;
     for iteration in 0..NEWTON_ITERATIONS {
         if interrupted() {
             return Err(Error::Interrupted { load_fraction: t0 / duration });
@@ -700,6 +715,7 @@ fn attempt<S: System + ?Sized>(
                 return Ok(Err(Refusal::Failed(format!("Newton diverged (contraction {theta:.2})"))));
             }
             *eta = theta / (1.0 - theta);
+            w.theta = theta;
         } else {
             *eta = eta.max(f64::EPSILON).powf(0.8);
         }
@@ -734,6 +750,67 @@ fn attempt<S: System + ?Sized>(
         Ok(Err(Refusal::Shorter(ratio.min(0.9), format!("a local error of {err:.3e} times the tolerance"))))
     } else {
         Ok(Ok(ratio))
+    }
+}
+
+/// Builds and factors the Newton matrix of the stages for a step `h` from
+/// the kept data (`w.mj`, `w.k0`, `w.d0`, `w.g0`); false if it is singular.
+fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
+    let (n, m) = (w.n, w.m);
+    let big = 3 * (n + m);
+    w.factored = f64::NAN;
+    w.matrix.fill(0.0);
+    for i in 0..3 {
+        for j in 0..3 {
+            let (ha, h2a) = (h * rk.a[i][j], h * h * rk.a2[i][j]);
+            let diag = if i == j { 1.0 } else { 0.0 };
+            for c in 0..n {
+                for r in 0..n {
+                    let k = c * n + r;
+                    w.matrix[(j * n + c) * big + i * n + r] = diag * w.mj[k] + ha * w.d0[k] + h2a * w.k0[k];
+                }
+                for k in 0..m {
+                    w.matrix[(j * n + c) * big + 3 * n + i * m + k] = rk.a2[i][j] * w.g0[c * m + k];
+                }
+            }
+        }
+        for k in 0..m {
+            for r in 0..n {
+                w.matrix[(3 * n + i * m + k) * big + i * n + r] = w.g0[r * m + k];
+            }
+        }
+    }
+    if !linalg::lu(&mut w.matrix, big, &mut w.pivots) {
+        return false;
+    }
+    w.factored = h;
+    true
+}
+
+/// Newton's start in `w.x`: the last accepted step's stage accelerations
+/// and multipliers, the values at its nodes $c_j$ of a quadratic in time
+/// (the derivative of the velocity's collocation polynomial), extrapolated
+/// to this step's nodes $1 + c_ih/h_{prev}$; zero before the first step.
+fn guess(rk: &Radau, w: &mut Work, h: f64) {
+    let (n, m) = (w.n, w.m);
+    if w.prev_h == 0.0 {
+        w.x.fill(0.0);
+        return;
+    }
+    for i in 0..3 {
+        let tau = 1.0 + rk.c[i] * h / w.prev_h;
+        let mut l = [1.0; 3];
+        for (j, lj) in l.iter_mut().enumerate() {
+            for k in (0..3).filter(|&k| k != j) {
+                *lj *= (tau - rk.c[k]) / (rk.c[j] - rk.c[k]);
+            }
+        }
+        for r in 0..n {
+            w.x[i * n + r] = (0..3).map(|j| l[j] * w.prev[j * n + r]).sum();
+        }
+        for k in 0..m {
+            w.x[3 * n + i * m + k] = (0..3).map(|j| l[j] * w.prev[3 * n + j * m + k]).sum();
+        }
     }
 }
 
@@ -792,6 +869,9 @@ fn estimate<S: System + ?Sized>(
         w.erhs[r] = s;
     }
     w.erhs[n..].fill(0.0);
+    // The estimate's matrix takes this step's M, as its right side does
+    // (a kept M there would misjudge the error), and the kept tangents.
+    w.e.fill(0.0);
     for c in 0..n {
         for r in 0..n {
             let k = c * n + r;
@@ -800,11 +880,6 @@ fn estimate<S: System + ?Sized>(
         for k in 0..m {
             w.e[c * size + n + k] = w.g0[c * m + k];
             w.e[(n + k) * size + c] = w.g0[c * m + k];
-        }
-    }
-    for k in 0..m {
-        for l in 0..m {
-            w.e[(n + l) * size + n + k] = 0.0;
         }
     }
     if !linalg::lu(&mut w.e, size, &mut w.epiv) {

@@ -41,10 +41,11 @@ use super::system::System;
 use crate::error::{Error, Result};
 use crate::joint::{Basis, Flexure};
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
-use crate::mechanism::lagrangian::lagrangian;
+use crate::mechanism::lagrangian::{GradientWork, gradient_into, lagrangian};
 use crate::mechanism::statics::{self, Settings};
 use crate::mechanism::{JointKind, Loads, Mechanism};
 use crate::quadrature::GaussLegendre;
+use crate::sincos::cos_sin;
 use nalgebra::{DMatrix, DVector};
 
 /// One flexure's distributed mass: the nested quadrature tables of
@@ -197,6 +198,15 @@ pub struct MechanismSystem {
     zeros: Vec<f64>,
     /// $J_r$ of the flexure being integrated.
     jr: Vec<[f64; 2]>,
+    /// The angle, its rate and $(\cos, \sin)$ at every inner node of the
+    /// flexure being integrated (the sines and cosines taken four at a time).
+    angles: Vec<f64>,
+    spins: Vec<f64>,
+    trig: Vec<[f64; 2]>,
+    /// $M$, $h$ and $\nabla V$ of [`System::dynamics`].
+    mass: DMatrix<f64>,
+    product: DVector<f64>,
+    gradient: GradientWork,
 }
 
 /// What one pass over the mass elements gives.
@@ -245,6 +255,7 @@ impl MechanismSystem {
         let mut loads_weightless = loads.clone();
         loads_weightless.gravity = [0.0; 2];
         let largest = m.joints.iter().map(|j| j.kind.joint().dof()).max().unwrap_or(0);
+        let nodes = distributed.iter().map(|d: &Distributed| d.inner_weight.len()).max().unwrap_or(0);
         Ok(MechanismSystem {
             mechanism: m.clone(),
             loads,
@@ -261,6 +272,12 @@ impl MechanismSystem {
             jt: vec![0.0; n],
             zeros: vec![0.0; m.constraints()],
             jr: vec![[0.0; 2]; largest],
+            angles: vec![0.0; nodes],
+            spins: vec![0.0; nodes],
+            trig: vec![[0.0; 2]; nodes],
+            mass: DMatrix::zeros(n, n),
+            product: DVector::zeros(n),
+            gradient: GradientWork::new(m),
         })
     }
 
@@ -429,15 +446,29 @@ impl MechanismSystem {
             let jr = &mut self.jr[..k];
             jr.fill([0.0; 2]);
             let (mut r, mut acc) = ([0.0; 2], [0.0; 2]);
+            let nodes = d.inner_weight.len();
+            for (node, psi) in d.inner_psi.chunks_exact(k).enumerate() {
+                let (mut phi, mut dphi) = (0.0, 0.0);
+                for i in 0..k {
+                    phi += psi[i] * alpha[i];
+                    dphi += psi[i] * alpha_dot[i];
+                }
+                self.angles[node] = phi;
+                self.spins[node] = dphi;
+            }
+            let (angles, trig) = (&self.angles[..nodes], &mut self.trig[..nodes]);
+            let mut chunks = trig.chunks_exact_mut(4);
+            for (out, x) in (&mut chunks).zip(angles.chunks_exact(4)) {
+                out.copy_from_slice(&cos_sin::<4>(x.try_into().expect("four angles")));
+            }
+            for (out, &x) in chunks.into_remainder().iter_mut().zip(&angles[nodes - nodes % 4..]) {
+                *out = cos_sin::<1>(&[x])[0];
+            }
             let panels = d.inner_psi.chunks_exact(d.per_panel * k).zip(d.inner_weight.chunks_exact(d.per_panel));
             for (p, (psis, weights)) in panels.enumerate() {
-                for (psi, &wt) in psis.chunks_exact(k).zip(weights) {
-                    let (mut phi, mut dphi) = (0.0, 0.0);
-                    for i in 0..k {
-                        phi += psi[i] * alpha[i];
-                        dphi += psi[i] * alpha_dot[i];
-                    }
-                    let (s, c) = phi.sin_cos();
+                for (e, (psi, &wt)) in psis.chunks_exact(k).zip(weights).enumerate() {
+                    let node = p * d.per_panel + e;
+                    let (dphi, [c, s]) = (self.spins[node], self.trig[node]);
                     r[0] += wt * c;
                     r[1] += wt * s;
                     for (j, &ps) in jr.iter_mut().zip(psi) {
@@ -497,16 +528,22 @@ impl System for MechanismSystem {
     fn dynamics(&mut self, q: &[f64], v: &[f64], _t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
-        let mut mm = DMatrix::zeros(n, n);
-        let mut h = DVector::zeros(n);
+        let (mut mm, mut h) = (std::mem::take(&mut self.mass), std::mem::take(&mut self.product));
+        mm.fill(0.0);
+        h.fill(0.0);
         let pass = self.pass(q, v, Some(&mut mm), &mut h);
-        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
-        let f = pass.gravity_force - lag.gradient - h - &self.damping * DVector::from_column_slice(v);
-        if !(mm.iter().all(|x| x.is_finite()) && f.iter().all(|x| x.is_finite())) {
-            return Err(Error::Singular { what: "the mass matrix or the generalized force is not finite".into() });
+        // The pass left the frames at q: the potential's gradient reuses them.
+        let (_, _, gradient) =
+            gradient_into(&self.mechanism, &self.frames, &self.loads_weightless, &mut self.gradient)?;
+        for r in 0..n {
+            let damping: f64 = (0..n).map(|c| self.damping[(r, c)] * v[c]).sum();
+            force[r] = pass.gravity_force[r] - gradient[r] - h[r] - damping;
         }
         mass.copy_from_slice(mm.as_slice());
-        force.copy_from_slice(f.as_slice());
+        (self.mass, self.product) = (mm, h);
+        if !(mass.iter().all(|x| x.is_finite()) && force.iter().all(|x| x.is_finite())) {
+            return Err(Error::Singular { what: "the mass matrix or the generalized force is not finite".into() });
+        }
         Ok(())
     }
 

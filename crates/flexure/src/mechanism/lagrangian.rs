@@ -278,3 +278,53 @@ pub(super) fn add_loads(
     }
     Ok(potential)
 }
+
+/// The buffers of [`gradient_into`], made once for a mechanism.
+#[derive(Debug, Clone)]
+pub struct GradientWork {
+    gradient: DVector<f64>,
+    points: [PointBuffer; 2],
+}
+
+impl GradientWork {
+    /// Buffers for `m`.
+    pub fn new(m: &Mechanism) -> Self {
+        GradientWork { gradient: DVector::zeros(m.dof()), points: [PointBuffer::new(m), PointBuffer::new(m)] }
+    }
+}
+
+/// $V$, its elastic part and $\nabla V$ under `loads` at the frames `f`
+/// (of [`super::kinematics::frames_into`] at $q$), without the Hessian or
+/// the closures: the part of [`lagrangian`] the equations of motion need at
+/// every evaluation. Allocates nothing; the gradient is `work`'s.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::kinematics::frames;
+/// use flexure::mechanism::lagrangian::{GradientWork, gradient_into, lagrangian};
+/// let m = flexure::mechanism::file::from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n",
+/// )
+/// .unwrap();
+/// let mut work = GradientWork::new(&m);
+/// let (v, elastic, g) = gradient_into(&m, &frames(&m, &[0.5]), &m.loads(), &mut work).unwrap();
+/// let full = lagrangian(&m, &[0.5], &[], &m.loads()).unwrap();
+/// assert!(v == full.potential && elastic == full.elastic && g == &full.gradient);
+/// ```
+pub fn gradient_into<'a>(
+    m: &Mechanism,
+    f: &Frames,
+    loads: &Loads,
+    work: &'a mut GradientWork,
+) -> Result<(f64, f64, &'a DVector<f64>)> {
+    let GradientWork { gradient, points } = work;
+    gradient.fill(0.0);
+    let mut elastic = 0.0;
+    for (j, s) in m.joints.iter().zip(&f.joints) {
+        elastic += s.energy;
+        let mut g = gradient.rows_mut(j.offset, s.gradient.len());
+        g += &s.gradient;
+    }
+    let load = add_loads(m, f, loads, gradient, None, points)?;
+    Ok((elastic + load, elastic, gradient))
+}
