@@ -277,6 +277,23 @@ impl<T: Scalar> Workspace<T> {
     pub fn dim(&self) -> usize {
         self.n
     }
+
+    /// $\partial_\lambda r$ at the current state, as left by the last
+    /// evaluation: for a caller that restores a start ([`Workspace::restore_start`]).
+    pub fn dlambda_mut(&mut self) -> &mut [T] {
+        &mut self.dlambda
+    }
+
+    /// Declares `x` a start at $\lambda = 0$ that [`newton`] on the same
+    /// problem reached as `report` says, with stability `stable`: what
+    /// [`Workspace::start_stable`] does after that solve, for a caller that
+    /// kept the solve's result and has put back `x`, [`Workspace::jacobian`]
+    /// and [`Workspace::dlambda_mut`] exactly as that solve left them.
+    pub fn restore_start(&mut self, report: NewtonReport, stable: bool) {
+        self.lambda = 0.0;
+        self.start = Some(report);
+        self.start_stable = Some(stable);
+    }
 }
 
 /// What a Newton solve achieved.

@@ -104,6 +104,57 @@ fn parallelogram_in_a_kept_workspace() {
     assert!((critical / (2.0 * std::f64::consts::PI.powi(2) * ei / (l * l)) - 1.0 - 0.01321).abs() < 1e-4);
 }
 
+/// A workspace kept across mechanisms and settings of one shape reuses its
+/// assembled start only where that start is theirs: each kept solve must
+/// equal a fresh one to the bit, and the sway the closed form of the
+/// parallelogram's lateral stiffness $12(EI_l + EI_r)/L^3$ (two guided
+/// flexures; a 1 mN load keeps the sway 5e-6 of the length, so 1e-8 is
+/// far above the model's nonlinearity and rounding). Changed: one joint's
+/// stiffness, then back; the tolerance; and a weld 0.1 mm off, whose start
+/// needs Newton iterations and whose Newton tolerance moves with the load.
+#[test]
+fn kept_start_is_the_mechanisms_own() {
+    use flexure::mechanism::statics::{Workspace, solve_with};
+    let text =
+        std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let with = |right_ei: &str, weld: &str, fx: f64| {
+        let text = text.replace("force = [0.0, -1.0]", &format!("force = [{fx:?}, 0.0]"));
+        let (left, right) = text.split_at(text.find("name = \"right\"").unwrap());
+        let right = right.replacen("ei = 2.0e-3", &format!("ei = {right_ei}"), 1);
+        from_toml(
+            &format!("{left}{right}")
+                .replace("a_origin = [0.0, -0.04, 0.0]", &format!("a_origin = [0.0, {weld}, 0.0]")),
+        )
+        .unwrap()
+    };
+    let (l, ei): (f64, f64) = (0.05, 2.0e-3);
+    let default = Settings::default();
+    let loose = Settings { tolerance: 1e-11, ..default };
+    let mut work = Workspace::new(&with("2.0e-3", "-0.04", 0.0));
+    let mut kept = |m: &Mechanism, settings: &Settings| {
+        let fresh = solve(m, settings);
+        let s = solve_with(m, settings, &mut work).unwrap_or_else(|e| panic!("{e:?}; fresh {fresh:?}"));
+        assert_eq!(format!("{s:?}"), format!("{:?}", solve(m, settings).unwrap()), "kept and fresh workspaces differ");
+        s
+    };
+    let sway = |m: &Mechanism, s: &flexure::mechanism::statics::Solution| {
+        body_frames(m, s).bodies[m.body("stage").unwrap()].origin[0]
+    };
+    for (right_ei, settings) in
+        [(2.0e-3, &default), (2.0e-3, &default), (6.0e-3, &default), (2.0e-3, &default), (2.0e-3, &loose)]
+    {
+        let m = with(&format!("{right_ei:?}"), "-0.04", 1e-3);
+        eprintln!("case {right_ei} {settings:?}");
+        let s = kept(&m, settings);
+        let expected = 1e-3 / (12.0 * (ei + right_ei) / l.powi(3));
+        assert!((sway(&m, &s) / expected - 1.0).abs() < 1e-8, "EI {right_ei}: {} vs {expected}", sway(&m, &s));
+    }
+    for fx in [1e-3, 2e-3, 2e-3, 0.0] {
+        let s = kept(&with("2.0e-3", "-0.0401", fx), &default);
+        assert!(s.iterations > 1 && s.stable, "an assembly that iterates: {s:?}");
+    }
+}
+
 /// Mixed chain under an end moment M, closed forms: the spring turns M/k,
 /// each flexure bends into an arc of ML/EI, the slider's spring carries nothing.
 #[test]

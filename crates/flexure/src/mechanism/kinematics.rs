@@ -81,6 +81,23 @@ impl Frames {
         }
     }
 
+    /// Copies `other` (frames of the same mechanism) into these buffers,
+    /// without allocating.
+    pub(super) fn copy_from(&mut self, other: &Frames) {
+        self.bodies.copy_from_slice(&other.bodies);
+        self.roots.copy_from_slice(&other.roots);
+        self.turns.copy_from_slice(&other.turns);
+        for (s, o) in self.joints.iter_mut().zip(&other.joints) {
+            s.pose = o.pose;
+            s.jacobian.copy_from(&o.jacobian);
+            s.hessian_x.copy_from(&o.hessian_x);
+            s.hessian_y.copy_from(&o.hessian_y);
+            s.energy = o.energy;
+            s.gradient.copy_from(&o.gradient);
+            s.stiffness.copy_from(&o.stiffness);
+        }
+    }
+
     fn body_turn(&self, body: usize) -> (f64, f64) {
         self.turns[body]
     }

@@ -132,6 +132,8 @@ pub struct Workspace {
     joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     solver: Option<solver::Workspace<f64>>,
+    /// The joints these buffers were made for.
+    joints: Vec<super::JointSpec>,
     /// The last problem's scales and loads.
     spare: Spare,
     /// The loads of a [`solve_with`]: none, and the mechanism's.
@@ -142,6 +144,77 @@ pub struct Workspace {
     /// were last evaluated, if `assembled`.
     assembled_at: Vec<f64>,
     assembled: bool,
+    /// The assembled start of the last [`solve_with`], for the next one.
+    start: StartCache,
+}
+
+/// The assembled, unloaded start of a [`solve_with`] and what made it: it
+/// depends on the joints, the closures and the settings, and on the loads
+/// only through the Newton tolerance (tolerance × [`solver::Problem::scale`]),
+/// since every load is zero at $\lambda = 0$.
+#[derive(Debug, Clone, Default)]
+struct StartCache {
+    /// Whether the fields below hold a start.
+    valid: bool,
+    closures: Vec<Closure>,
+    settings: Option<Settings>,
+    /// The Newton tolerance it was converged to.
+    tolerance: f64,
+    report: Option<solver::NewtonReport>,
+    stable: bool,
+    /// The unknowns, the Jacobian and the frames there.
+    x: Vec<f64>,
+    jacobian: Vec<f64>,
+    frames: Frames,
+}
+
+impl StartCache {
+    /// Whether the start of `m` (whose joints the workspace was made for)
+    /// under `settings`, converged to `tolerance`, is this one: the same
+    /// closures and settings, and either the
+    /// same tolerance or a start that was converged before any iteration
+    /// to within `tolerance` (Newton would stop there again).
+    fn holds(&self, m: &Mechanism, settings: &Settings, tolerance: f64) -> Option<(solver::NewtonReport, bool)> {
+        let report = self.report.filter(|_| self.valid)?;
+        let same_tolerance = tolerance == self.tolerance || (report.iterations == 0 && report.residual <= tolerance);
+        (same_tolerance && self.settings == Some(*settings) && self.closures == m.closures)
+            .then_some((report, self.stable))
+    }
+
+    /// Keeps the start `x` of `m` (Jacobian `jacobian`, frames `frames`)
+    /// that Newton reached as `report` says, converged to `tolerance` under
+    /// `settings`, with stability `stable`; allocates only the first time
+    /// and where the closures changed.
+    #[allow(clippy::too_many_arguments)]
+    fn keep(
+        &mut self,
+        m: &Mechanism,
+        settings: &Settings,
+        tolerance: f64,
+        report: solver::NewtonReport,
+        stable: bool,
+        x: &[f64],
+        jacobian: &[f64],
+        frames: &Frames,
+    ) {
+        if (self.frames.bodies.len(), self.frames.joints.len()) != (frames.bodies.len(), frames.joints.len()) {
+            self.frames = frames.clone();
+        } else {
+            self.frames.copy_from(frames);
+        }
+        if self.closures != m.closures {
+            self.closures.clone_from(&m.closures);
+        }
+        self.x.clear();
+        self.x.extend_from_slice(x);
+        self.jacobian.clear();
+        self.jacobian.extend_from_slice(jacobian);
+        self.settings = Some(*settings);
+        self.tolerance = tolerance;
+        self.report = Some(report);
+        self.stable = stable;
+        self.valid = true;
+    }
 }
 
 impl Workspace {
@@ -174,11 +247,13 @@ impl Workspace {
                 .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
                 .collect(),
             solver: None,
+            joints: m.joints.clone(),
             spare: Spare::default(),
             given: Default::default(),
             start_x: vec![0.0; n + rows],
             assembled_at: vec![0.0; n],
             assembled: false,
+            start: StartCache::default(),
         }
     }
 
@@ -187,8 +262,11 @@ impl Workspace {
         self.solver.take().filter(|w| w.dim() == dim).unwrap_or_else(|| solver::Workspace::new(dim))
     }
 
+    /// Whether these buffers were made for `m`'s joints (whose states
+    /// carry each joint's constant stiffness and tables) and fit its shape.
     fn fits(&self, m: &Mechanism) -> bool {
-        self.dof == m.dof()
+        self.joints == m.joints
+            && self.dof == m.dof()
             && self.constraints == m.constraints()
             && self.frames.bodies.len() == m.bodies.len()
             && self.frames.joints.len() == m.joints.len()
@@ -267,6 +345,11 @@ impl<'a> Kkt<'a> {
         if !work.fits(m) {
             return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
         }
+        Self::fitted(m, from, to, settings, work)
+    }
+
+    /// [`Kkt::with_workspace`] with `work` known to fit `m`.
+    fn fitted(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings, work: Workspace) -> Result<Self> {
         settings.validate()?;
         from.validate(m)?;
         to.validate(m)?;
@@ -377,6 +460,21 @@ impl<'a> Kkt<'a> {
     /// The loads at load factor `lambda`.
     pub fn loads(&self, lambda: f64) -> Loads {
         self.from.lerp(&self.to, lambda)
+    }
+
+    /// $\partial_\lambda r$ into `d`, at the frames last evaluated: the
+    /// gradient of the load change's potential, scaled as the residual.
+    fn load_derivative(&mut self, d: &mut [f64]) -> Result<()> {
+        let m = self.mechanism;
+        let n = m.dof();
+        let Workspace { frames: f, assembly: a, load_gradient, .. } = &mut self.work;
+        load_gradient.fill(0.0);
+        add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
+        for i in 0..n {
+            d[i] = load_gradient[i] * self.row_scale[i];
+        }
+        d[n..].fill(0.0);
+        Ok(())
     }
 
     /// [`solver::Problem::stable`] with closures on dense matrices, the
@@ -524,8 +622,7 @@ impl solver::Problem<f64> for Kkt<'_> {
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
         let q = &x[..n];
-        let Workspace { frames: f, assembly: a, load_gradient, mu, loads, assembled_at, assembled, .. } =
-            &mut self.work;
+        let Workspace { frames: f, assembly: a, mu, loads, assembled_at, assembled, .. } = &mut self.work;
         for ((m, v), s) in mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *m = v * s;
         }
@@ -566,12 +663,7 @@ impl solver::Problem<f64> for Kkt<'_> {
             }
         }
         if let Some(d) = dlambda {
-            load_gradient.fill(0.0);
-            add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
-            for i in 0..n {
-                d[i] = load_gradient[i] * self.row_scale[i];
-            }
-            d[n..].fill(0.0);
+            self.load_derivative(d)?;
         }
         Ok(())
     }
@@ -983,6 +1075,37 @@ fn assembled(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Sett
     }
 }
 
+/// [`assembled`] for [`solve_with`]: the start the workspace keeps if it
+/// is this problem's ([`StartCache::holds`]), with the load derivative of
+/// this problem's loads; else solved, and kept.
+fn assembled_kept(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<solver::Path> {
+    let m = problem.mechanism;
+    // The tolerance of solver::newton.
+    let tolerance = settings.tolerance * solver::Problem::scale(problem);
+    let path = |report: solver::NewtonReport, stable: bool| solver::Path {
+        stable,
+        limit: None,
+        steps: 0,
+        iterations: report.iterations,
+        residual: report.residual,
+    };
+    if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
+        let Workspace { start, frames, assembled, .. } = &mut problem.work;
+        ws.x.copy_from_slice(&start.x);
+        ws.jacobian.copy_from_slice(&start.jacobian);
+        frames.copy_from(&start.frames);
+        *assembled = false;
+        problem.load_derivative(ws.dlambda_mut())?;
+        ws.restore_start(report, stable);
+        return Ok(path(report, stable));
+    }
+    let found = assembled(problem, ws, settings)?;
+    let report = solver::NewtonReport { iterations: found.iterations, residual: found.residual };
+    let Workspace { start, frames, .. } = &mut problem.work;
+    start.keep(m, settings, tolerance, report, found.stable, &ws.x, &ws.jacobian, frames);
+    Ok(path(report, found.stable))
+}
+
 /// The error for closures that Newton could not close from rest: placed at
 /// the closure open widest at rest (position gap over the mechanism's
 /// `length`, plus angle gap), or `e` itself if all are closed there.
@@ -1033,7 +1156,10 @@ pub fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
 }
 
 /// [`solve`] in the buffers `work`, kept for the next solve on the same
-/// mechanism (a workspace made for another is replaced).
+/// mechanism (a workspace made for other joints is replaced). The
+/// workspace also keeps the assembled, unloaded start and its stability,
+/// reused while the closures and settings stay the same: a solve from a
+/// kept workspace equals a fresh one to the bit.
 ///
 /// # Example
 /// ```
@@ -1059,10 +1185,10 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     m.loads_into(&mut to);
     copy_loads(&to, &mut zero);
     zero.scale(0.0);
-    let mut problem = Kkt::with_workspace(m, &zero, &to, settings, std::mem::take(work))?;
+    let mut problem = Kkt::fitted(m, &zero, &to, settings, std::mem::take(work))?;
     let mut ws = problem.work.solver(solver::Problem::dim(&problem));
     // The start as a solution only if the path lost stability: for the refinement.
-    let found = assembled(&mut problem, &mut ws, settings).and_then(|path| {
+    let found = assembled_kept(&mut problem, &mut ws, settings).and_then(|path| {
         problem.work.start_x.copy_from_slice(&ws.x);
         ws.start_stable = Some(path.stable);
         let found = follow_path(m, Start::Assembled(&path), &mut problem, &mut ws, settings);
