@@ -599,32 +599,8 @@ impl System for MechanismSystem {
     }
 
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        let m = &self.mechanism;
-        let angles = |q: &[f64]| {
-            let mut body = vec![0.0; m.bodies.len()];
-            for j in &m.joints {
-                let phi: f64 = match &j.kind {
-                    JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
-                    JointKind::Revolute(_) => q[j.offset],
-                    _ => 0.0,
-                };
-                body[j.child] = body[j.parent] + j.origin.phi + phi;
-            }
-            body
-        };
-        let (ba, bb) = (angles(a), angles(b));
-        let mut d = ba.iter().zip(&bb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-        for j in &m.joints {
-            match &j.kind {
-                JointKind::Flexure(f) => {
-                    let range = j.offset..j.offset + f.order();
-                    d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
-                }
-                JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / self.length),
-                _ => {}
-            }
-        }
-        d
+        let mut buffers = [vec![0.0; self.mechanism.bodies.len()], vec![0.0; self.mechanism.bodies.len()]];
+        crate::mechanism::kinematics::distance(&self.mechanism, a, b, self.length, &mut buffers)
     }
 }
 

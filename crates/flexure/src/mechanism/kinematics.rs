@@ -12,7 +12,7 @@
 //! point's Jacobian costs one pass along its path: linear in the joints.
 
 use super::Mechanism;
-use super::joints::JointState;
+use super::joints::{JointKind, JointState};
 use nalgebra::DMatrix;
 
 /// A planar frame in the world: angle and origin.
@@ -253,4 +253,41 @@ pub fn point(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], hessian: bool)
         [hx, hy]
     });
     PointDerivatives { angle: p.angle, position: p.position, jacobian: p.jacobian, hessian }
+}
+
+/// The largest rotation (rad) between configurations `a` and `b` of any
+/// body or of a flexure's cross-section relative to its root, and a
+/// slider's travel over `length` (the mechanism's size): what bounds a
+/// continuation step ([`crate::solver::Problem::distance`]) and an
+/// integration step ([`crate::dynamics::System::distance`]). `angles` holds
+/// two buffers of one entry per body.
+pub fn distance(m: &Mechanism, a: &[f64], b: &[f64], length: f64, angles: &mut [Vec<f64>; 2]) -> f64 {
+    let [ba, bb] = angles;
+    // Body angles down the tree: the parent's, the origin's, the joint's.
+    let fill = |q: &[f64], body: &mut Vec<f64>| {
+        body.resize(m.bodies.len(), 0.0);
+        body.fill(0.0);
+        for j in &m.joints {
+            let phi: f64 = match &j.kind {
+                JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
+                JointKind::Revolute(_) => q[j.offset],
+                _ => 0.0,
+            };
+            body[j.child] = body[j.parent] + j.origin.phi + phi;
+        }
+    };
+    fill(a, ba);
+    fill(b, bb);
+    let mut d = ba.iter().zip(bb.iter()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    for j in &m.joints {
+        match &j.kind {
+            JointKind::Flexure(f) => {
+                let range = j.offset..j.offset + f.order();
+                d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
+            }
+            JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / length),
+            _ => {}
+        }
+    }
+    d
 }

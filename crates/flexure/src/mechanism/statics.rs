@@ -766,36 +766,9 @@ impl solver::Problem<f64> for Kkt<'_> {
     /// The largest rotation of a body, or of a flexure's cross-section
     /// relative to its root, and a slider's travel over the mechanism's length.
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        let m = self.mechanism;
-        let n = m.dof();
+        let n = self.mechanism.dof();
         let mut buffers = self.work.angles.borrow_mut();
-        let [ba, bb] = &mut *buffers;
-        // Body angles down the tree: the parent's, the origin's, the joint's.
-        let angles = |q: &[f64], body: &mut Vec<f64>| {
-            body.fill(0.0);
-            for j in &m.joints {
-                let phi: f64 = match &j.kind {
-                    JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
-                    JointKind::Revolute(_) => q[j.offset],
-                    _ => 0.0,
-                };
-                body[j.child] = body[j.parent] + j.origin.phi + phi;
-            }
-        };
-        angles(&a[..n], ba);
-        angles(&b[..n], bb);
-        let mut d = ba.iter().zip(bb.iter()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-        for j in &m.joints {
-            match &j.kind {
-                JointKind::Flexure(f) => {
-                    let range = j.offset..j.offset + f.order();
-                    d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
-                }
-                JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / self.length),
-                _ => {}
-            }
-        }
-        d
+        crate::mechanism::kinematics::distance(self.mechanism, &a[..n], &b[..n], self.length, &mut buffers)
     }
 
     fn scale(&self) -> f64 {
