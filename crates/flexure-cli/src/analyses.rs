@@ -44,10 +44,17 @@ pub struct ConnectArgs {
 /// The exact connection, seeded by the order-3 model's multipliers (on the
 /// same section, when order 3 can hold it).
 pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<elastica::Connection> {
-    let uniform = Flexure::new(flexure.length(), flexure.ei(), 3)?;
+    // The seed is the order-3 model of the same flexure: its section and its
+    // rest shape (the basis is nested, so the first three coefficients).
     let seed = match flexure.order() {
         3 => flexure.clone(),
-        _ => uniform.clone().with_section(flexure.section().clone()).unwrap_or(uniform),
+        _ => {
+            let mut kappa = flexure.rest().to_vec();
+            kappa.resize(3, 0.0);
+            Flexure::new(flexure.length(), flexure.ei(), 3)?
+                .with_rest(&kappa)?
+                .with_section(flexure.section().clone())?
+        }
     };
     let c: Connection = connect(&seed, target)?;
     let m0 = c.load.moment + target.x * c.load.fy - target.y * c.load.fx;
