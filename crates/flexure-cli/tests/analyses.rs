@@ -97,17 +97,10 @@ fn bad_input_exits_2() {
 /// three coefficients). Energies agree to the shooting tolerance (1e-9).
 #[test]
 fn exact_connection_of_a_curved_flexure_is_the_same_at_any_order() {
-    let kappa = "0.5,0.2,0.1,0.05,0.02";
-    let at = |order: usize| {
-        let rest: Vec<&str> = kappa.split(',').take(order).collect();
-        let v = json(&format!("connect --pose 1.2,0.6,0.6 --kappa {} --order {order} --exact --json", rest.join(",")));
-        f(&v["energy"])
+    // Order 5 with five rest coefficients, and order 7 with the same five and two zeros.
+    let energy = |kappa: &str, order: usize| {
+        f(&json(&format!("connect --pose 1.2,0.6,0.6 --kappa {kappa} --order {order} --exact"))["energy"])
     };
-    // Orders 3 and 5 see different rest shapes (truncated): compare 5 with 7 (zeros padded).
-    let five = at(5);
-    let seven = {
-        let v = json(&format!("connect --pose 1.2,0.6,0.6 --kappa {kappa},0,0 --order 7 --exact --json"));
-        f(&v["energy"])
-    };
+    let (five, seven) = (energy("0.5,0.2,0.1,0.05,0.02", 5), energy("0.5,0.2,0.1,0.05,0.02,0,0", 7));
     assert!((five - seven).abs() < 1e-9 * five, "{five} vs {seven}");
 }
