@@ -183,12 +183,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
     };
     let m = from_toml(&text).map_err(err)?;
     let asked = wanted(count, m.dof(), "the mechanism")?;
-    let settings = Settings::default();
-    // The equilibrium the modes are about: a loading path that snapped
-    // through a limit load is said, as `solve` says it (the library solves
-    // it again inside `modes`, deterministically, to the same state).
-    let limit = flexure::mechanism::statics::solve(&m, &settings).map_err(err)?.limit;
-    let modes = dynamics::mechanism::modes(&m, &settings, asked).map_err(err)?;
+    let modes = dynamics::mechanism::modes(&m, &Settings::default(), asked).map_err(err)?;
     let shapes: Vec<Value> = (0..modes.omega.len())
         .map(|k| {
             let v = modes.shapes.column(k);
@@ -203,7 +198,8 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
         .collect();
     let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
     put_note(&mut answer, &modes, asked, count.is_some());
-    if let Some(limit) = limit {
+    // A loading path that snapped through a limit load is said, as `solve` says it.
+    if let Some(limit) = modes.limit {
         answer["limit_fraction"] = json!(limit);
         crate::options::warn(format!(
             "{}: the loading path lost stability at {:.4} % of the load and snapped through: these are the modes about the stable equilibrium beyond it",

@@ -4,7 +4,7 @@
 
 use crate::{Flexure, StabilityWarning, count, finite, interruptible, tip_load, warn};
 use flexure::dynamics::{self, Body, Modes};
-use flexure::mechanism::statics::{Settings, solve};
+use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
@@ -96,13 +96,7 @@ pub fn mechanism_modes<'py>(
     count: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let asked = wanted(count, m.dof(), "the mechanism")?;
-    let settings = Settings::default();
-    let (limit, modes) = interruptible(py, || {
-        // The equilibrium `modes` solves again (deterministically, to the
-        // same state), for its snap-through, which it does not report.
-        let limit = solve(m, &settings)?.limit;
-        Ok((limit, dynamics::mechanism::modes(m, &settings, asked)?))
-    })?;
+    let modes = interruptible(py, || dynamics::mechanism::modes(m, &Settings::default(), asked))?;
     let out = PyDict::new(py);
     put_frequencies(py, &out, &modes)?;
     let shapes = PyDict::new(py);
@@ -112,7 +106,7 @@ pub fn mechanism_modes<'py>(
         shapes.set_item(&j.name, a.into_pyarray(py))?;
     }
     out.set_item("shapes", shapes)?;
-    if let Some(limit) = limit {
+    if let Some(limit) = modes.limit {
         out.set_item("limit_fraction", limit)?;
         let text = format!(
             "Mechanism.modes: the loading path lost stability at {:.4} % of the load and snapped through: these are the modes about the stable equilibrium beyond it",

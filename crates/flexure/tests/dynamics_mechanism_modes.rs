@@ -150,6 +150,25 @@ fn parallelogram_sway_mode() {
     let w = modes(&loaded, &Settings::default(), 4).unwrap();
     let softened = (k * (1.0 - 1.0 / 16.0) / mass).sqrt();
     assert!((w.omega[0] - softened).abs() < 1e-8 * softened, "{} vs {softened}", w.omega[0]);
+    assert_eq!(w.limit, None, "1 N of 16 N: the loading path stays stable");
+}
+
+/// Pushed at 20 N, past the stage's 16 N buckling load (above), the loading
+/// path snaps through to a stable state: `Modes::limit` says where, at
+/// 16/20 of the load, and agrees with the equilibrium's own report
+/// (`statics::solve`). Tolerance 1e-3: the continuation places a limit to
+/// within its step (the CLI's and Python's tests use the same bound).
+#[test]
+fn snap_through_is_reported() {
+    let file =
+        std::fs::read_to_string(format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let text = file.replace("force = [0.0, -1.0]", "force = [0.0, -20.0]");
+    let m = from_toml(&format!("{text}\n[[body]]\nname = \"stage\"\nmass = 0.1\n")).unwrap();
+    let w = modes(&m, &Settings::default(), 1).unwrap();
+    let limit = w.limit.expect("the path snaps through");
+    assert!((limit - 0.8).abs() < 1e-3, "16 N of 20 N: {limit}");
+    let solved = flexure::mechanism::statics::solve(&m, &Settings::default()).unwrap().limit;
+    assert_eq!(solved, Some(limit));
 }
 
 /// Errors: no mass at all names `mass`; `count` = 0 names `count`.

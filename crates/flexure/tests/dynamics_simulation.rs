@@ -2,8 +2,9 @@
 //! a pendulum's large-amplitude period against the complete elliptic
 //! integral, slow loading that ends at `statics::solve`'s equilibrium, the
 //! start (equilibrium, rest, `[initial]`), schedules against their linear
-//! interpolation, and bad schedules and initial states refused with their
-//! place in the file.
+//! interpolation, bad schedules and initial states refused with their
+//! place in the file, the energy of an undamped flexure carrying a body
+//! kept over 100 periods, and the four-bar's pin kept closed as it swings.
 
 use flexure::Error;
 use flexure::dynamics::integrate::Settings;
@@ -237,4 +238,72 @@ fn simulations_without_mass_or_with_bad_settings_are_refused() {
         let e = simulate(&m, &s, Start::Equilibrium).unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { name: n, .. } if n == name), "{name}: {e}");
     }
+}
+
+/// A massless flexure (L = 0.5 m, EI = 2 N·m², order 3) carrying 0.1 kg at
+/// its tip, let go at rest from its straight, unloaded shape under gravity:
+/// it swings about its sagged equilibrium (some 2 cm) with no damping and
+/// no load but gravity, so its energy, kinetic + elastic + gravitational,
+/// is a constant of the motion (Lagrange's equations of a conservative
+/// system). Over 100 periods of its first mode (`dynamics::mechanism::modes`:
+/// ω₁ = 21.8 rad/s) at the default tolerance 1e-8, sampled every eighth
+/// period, the energy stays within 1e-6 (the issue's bound) of the energy
+/// the motion exchanges, the largest kinetic energy reached, E(q, q̇) −
+/// E(q, 0) (the start's energy is 0 here, so it is no scale). Measured:
+/// 5.6e-10 (140 000 steps, about a second). A velocity product h inconsistent with M, or
+/// energy the integrator adds or takes, would show as a drift.
+#[test]
+fn a_flexure_carrying_a_body_keeps_its_energy_over_100_periods() {
+    use flexure::dynamics::System;
+    use flexure::dynamics::mechanism::{MechanismSystem, modes};
+    let m = from_toml(
+        "gravity = [0.0, -9.81]\n[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
+         length = 0.5\nei = 2.0\norder = 3\n[[body]]\nname = \"tip\"\nmass = 0.1\ninertia = 1e-4\n",
+    )
+    .unwrap();
+    let period = std::f64::consts::TAU / modes(&m, &statics::Settings::default(), 1).unwrap().omega[0];
+    let run = simulate(&m, &settings(100.0 * period, period / 8.0, 1e-8), Start::Rest).unwrap();
+    assert_eq!(run.time.len(), 801);
+    let mut sys = MechanismSystem::new(&m).unwrap();
+    let still = vec![0.0; run.dim];
+    let kinetic =
+        (0..run.time.len()).map(|k| run.energy[k] - sys.energy(run.q(k), &still, 0.0).unwrap()).fold(0.0, f64::max);
+    assert!(kinetic > 1e-3, "it swings: {kinetic} J");
+    let drift = run.energy.iter().map(|e| (e - run.energy[0]).abs()).fold(0.0, f64::max);
+    assert!(drift < 1e-6 * kinetic, "energy drifts by {:.3e} of the {kinetic:.3e} J exchanged", drift / kinetic);
+}
+
+/// The four-bar (`examples/four_bar.toml`: three massless flexure hinges
+/// and a pin closing the loop, 60 mm across) with masses on its three
+/// links, without its tendon and push, let go from its unloaded shape
+/// under gravity: over 10 periods of its first mode at tolerance 1e-6 the
+/// pin must hold to 1e-9 of the mechanism's 60 mm, both as the run reports
+/// it (`violation`) and as the distance between the pin's two points
+/// recomputed from each sample's frames. Measured: 2.9e-12 m (the stage
+/// equations solve c(q) = 0 at every step; what is left is Newton's
+/// stopping test and rounding), while the coupler moves by 5.8e-5 m.
+#[test]
+fn the_four_bar_keeps_its_pin_closed_while_it_swings() {
+    use flexure::dynamics::mechanism::modes;
+    use flexure::mechanism::kinematics::frames;
+    let file = std::fs::read_to_string(format!("{}/../../examples/four_bar.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let links = "[[body]]\nname = \"input\"\nmass = 0.02\ninertia = 1e-6\ncom = [0.02, 0.0]\n\
+                 [[body]]\nname = \"output\"\nmass = 0.02\ninertia = 1e-6\ncom = [0.02, 0.0]\n";
+    let m = from_toml(&format!("{}{links}", &file[..file.find("[[tendon]]").unwrap()])).unwrap();
+    assert_eq!(m.constraints(), 2);
+    let period = std::f64::consts::TAU / modes(&m, &statics::Settings::default(), 1).unwrap().omega[0];
+    let run = simulate(&m, &settings(10.0 * period, period / 8.0, 1e-6), Start::Rest).unwrap();
+    let size = 0.06;
+    assert!(run.violation < 1e-9 * size, "violation {:.3e} m", run.violation);
+    let body = |name: &str| m.bodies.iter().position(|b| b.name == name).unwrap();
+    let (coupler, output) = (body("coupler"), body("output"));
+    let mut travel: f64 = 0.0;
+    for k in 0..run.time.len() {
+        let f = frames(&m, run.q(k));
+        let (a, b) = (f.bodies[coupler].point([0.04, 0.0]), f.bodies[output].point([0.04, 0.0]));
+        let gap = (a[0] - b[0]).hypot(a[1] - b[1]);
+        assert!(gap < 1e-9 * size, "t = {}: the pin opens by {gap:.3e} m", run.time[k]);
+        travel = travel.max((run.bodies[coupler - 1].y[k] - run.bodies[coupler - 1].y[0]).abs());
+    }
+    assert!(travel > 1e-5, "the coupler moves: {travel} m");
 }

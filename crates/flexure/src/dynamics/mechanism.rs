@@ -615,6 +615,9 @@ impl System for MechanismSystem {
 /// reach a buckling load. Directions without inertia are condensed out
 /// as quasi-static ([`finite_modes`]); at most `count` modes are returned.
 /// Shapes are in the coordinates $q$, normalized to $v^TMv = 1$.
+/// [`Modes::limit`] is the load fraction where the loading path snapped
+/// through a limit, if it did: the modes are then about the stable
+/// equilibrium beyond it.
 ///
 /// The equilibrium weighs the bodies; a flexure's own weight, which the
 /// statics do not model, is left out of it (the dynamics include it).
@@ -663,5 +666,6 @@ pub fn modes(m: &Mechanism, settings: &Settings, count: usize) -> Result<Modes> 
     let reduced = z.transpose() * &mass * &z;
     let mut modes = finite_modes(&k, &reduced, count)?;
     modes.shapes = &z * &modes.shapes;
+    modes.limit = s.limit;
     Ok(modes)
 }

@@ -29,6 +29,11 @@ pub struct Modes {
     /// How many directions carry no inertia and were condensed out as
     /// quasi-static (zero for a flexure with mass).
     pub quasi_static: usize,
+    /// The load fraction where the loading path to the equilibrium lost
+    /// stability and snapped through to the stable state beyond, if it did
+    /// (the equilibrium's `limit`); `None` from [`finite_modes`], which
+    /// solves no equilibrium.
+    pub limit: Option<f64>,
 }
 
 /// The modes of `flexure` with an optional tip `body` about its equilibrium
@@ -77,7 +82,7 @@ pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usiz
     }
     let mut data = MassData::new(&model);
     update(&model, statics.alpha(), None, &mut data);
-    finite_modes(&statics.stiffness, &data.mass_matrix, count)
+    Ok(Modes { limit: eq.limit, ..finite_modes(&statics.stiffness, &data.mass_matrix, count)? })
 }
 
 /// The finite modes of $Kv = \omega^2Mv$ for a symmetric stiffness $K$ and a
@@ -172,5 +177,5 @@ pub fn finite_modes(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>, count: usize)
         shapes.set_column(c, &v);
     }
     let frequency = omega.iter().map(|w| w / std::f64::consts::TAU).collect();
-    Ok(Modes { omega, frequency, shapes, quasi_static: without.len() })
+    Ok(Modes { omega, frequency, shapes, quasi_static: without.len(), limit: None })
 }
