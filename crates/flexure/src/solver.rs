@@ -319,7 +319,8 @@ enum Mode {
 }
 
 /// Evaluates the residual (and the Newton matrix, if `matrix`) of the
-/// system `mode` at the unknowns `z` ($x$, then $\lambda$ in arclength mode).
+/// system `mode` at the unknowns `z` ($x$, then $\lambda$ in arclength mode),
+/// with the load derivative in arclength mode or if `load_derivative`.
 #[allow(clippy::too_many_arguments)]
 fn system<T: Scalar, P: Problem<T>>(
     problem: &mut P,
@@ -329,6 +330,7 @@ fn system<T: Scalar, P: Problem<T>>(
     tangent: &[T],
     anchor: &[T],
     lambda_weight: f64,
+    load_derivative: bool,
     residual: &mut [T],
     jacobian: Option<(&mut [T], &mut [T], &mut [T])>,
 ) -> Result<()> {
@@ -341,7 +343,8 @@ fn system<T: Scalar, P: Problem<T>>(
     match jacobian {
         None => problem.evaluate(x, lam, r, None, None)?,
         Some((jac, dlambda, matrix)) => {
-            problem.evaluate(x, lam, r, Some(&mut *jac), Some(&mut *dlambda))?;
+            let dlambda_wanted = load_derivative || matches!(mode, Mode::Arclength);
+            problem.evaluate(x, lam, r, Some(&mut *jac), dlambda_wanted.then_some(&mut *dlambda))?;
             let m = match mode {
                 Mode::Fixed => n,
                 Mode::Arclength => n + 1,
@@ -370,6 +373,7 @@ fn system<T: Scalar, P: Problem<T>>(
 }
 
 /// Damped Newton on `mode`'s system, from and into `ws.trial` (length $n$ or $n+1$).
+/// In fixed mode `ws.dlambda` is left at the solution only if `load_derivative`.
 #[allow(clippy::too_many_arguments)]
 fn correct<T: Scalar, P: Problem<T>>(
     problem: &mut P,
@@ -380,6 +384,7 @@ fn correct<T: Scalar, P: Problem<T>>(
     settings: &Settings,
     min_iterations: usize,
     contraction: bool,
+    load_derivative: bool,
 ) -> Result<NewtonReport> {
     let n = ws.n;
     let m = match mode {
@@ -393,7 +398,7 @@ fn correct<T: Scalar, P: Problem<T>>(
     } = ws;
     let matrix = &mut matrix[..m * m];
     let sys = |problem: &mut P, z: &[T], r: &mut [T], jac: Option<(&mut [T], &mut [T], &mut [T])>| {
-        system(problem, mode, z, lambda, tangent, anchor, lambda_weight, r, jac)
+        system(problem, mode, z, lambda, tangent, anchor, lambda_weight, load_derivative, r, jac)
     };
     sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
     let mut residual = amax(&trial_residual[..m]);
@@ -633,7 +638,7 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     ws.start = None;
     ws.trial[..n].copy_from_slice(&ws.x);
     let min_iterations = if T::is_value() { 0 } else { 1 };
-    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false)?;
+    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false, true)?;
     ws.x.copy_from_slice(&ws.trial[..n]);
     ws.lambda = lambda;
     ws.start = (lambda == 0.0).then_some(report);
@@ -765,7 +770,9 @@ fn follow<T: Scalar, P: Problem<T>>(
                 ws.trial[i] = ws.x[i] + ws.tangent[i] * T::c(hl);
             }
             let min_iterations = if T::is_value() { 0 } else { 1 };
-            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations, true).map(|r| (r, 1.0))
+            // Without the load derivative: only a tangent after a change of stability needs it.
+            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations, true, false)
+                .map(|r| (r, 1.0))
         } else {
             // Predict along the tangent; correct on the hyperplane through
             // the prediction, orthogonal to the tangent.
@@ -774,7 +781,7 @@ fn follow<T: Scalar, P: Problem<T>>(
             }
             ws.trial[n] = T::c(lambda) + ws.tangent[n] * T::c(h);
             ws.anchor.copy_from_slice(&ws.trial);
-            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0, true)
+            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0, true, true)
                 .map(|r| (r, ws.trial[n].re()))
         };
         let outcome = match found {
@@ -830,7 +837,9 @@ fn follow<T: Scalar, P: Problem<T>>(
         }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
-        let has_tangent = tangent(ws, &mut *problem, lambda_weight);
+        // The landing corrector left no load derivative: evaluate it at the landed state.
+        let has_tangent =
+            (!landing || load_derivative_at_trial(problem, ws)) && tangent(ws, &mut *problem, lambda_weight);
         let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
         if fold && problem.distance(&ws.trial[..n], &ws.x) > FOLD_ROTATION && h * 0.5 >= min_step {
             // Long steps are fine along the path, but the limit load is
@@ -961,6 +970,14 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
         }
     }
     norm
+}
+
+/// Evaluates `ws.jacobian` and `ws.dlambda` at the landed state `ws.trial`
+/// ($\lambda = 1$) again, with the load derivative; false if that fails.
+fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>) -> bool {
+    let n = ws.n;
+    let Workspace { trial, trial_residual, jacobian, dlambda, .. } = ws;
+    problem.evaluate(&trial[..n], 1.0, &mut trial_residual[..n], Some(jacobian), Some(dlambda)).is_ok()
 }
 
 /// The tangent at the state just evaluated (its Jacobian and load
