@@ -151,6 +151,12 @@ pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
 /// assert!((b[0] + 1.0).abs() < 1e-15 && (b[1] - 2.0).abs() < 1e-15);
 /// ```
 pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
+    lu_forward(a, n, pivots, b);
+    lu_backward(a, n, b);
+}
+
+/// The first half of [`lu_solve`]: $b \leftarrow L^{-1}Pb$.
+pub fn lu_forward<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
     if n == 0 {
         return;
     }
@@ -165,6 +171,14 @@ pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
             *bi -= l * bj;
         }
     }
+}
+
+/// The second half of [`lu_solve`]: $b \leftarrow U^{-1}b$.
+pub fn lu_backward<T: Scalar>(a: &[T], n: usize, b: &mut [T]) {
+    if n == 0 {
+        return;
+    }
+    let (a, b) = (&a[..n * n], &mut b[..n]);
     for (j, column) in a.chunks_exact(n).enumerate().rev() {
         let (head, tail) = b.split_at_mut(j);
         let (bj, _) = tail.split_first_mut().expect("j < n");

@@ -244,6 +244,13 @@ pub struct Workspace<T: Scalar> {
     scratch: Vec<T>,
     /// Five vectors of length $n+1$ for structured solves ([`Problem::factor`]).
     aux: Vec<T>,
+    /// A Jacobian, its LU factors and pivots, and whether they are valid
+    /// and finite: kept for the first tangent of the next continuation
+    /// from the same start ([`tangent_along_load`]).
+    factored: Vec<T>,
+    factors: Vec<T>,
+    factor_pivots: Vec<usize>,
+    factors_valid: bool,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -270,6 +277,10 @@ impl<T: Scalar> Workspace<T> {
             anchor: vec![z; m],
             scratch: vec![z; m * m],
             aux: vec![z; 5 * m],
+            factored: vec![z; n * n],
+            factors: vec![z; n * n],
+            factor_pivots: vec![0; n],
+            factors_valid: false,
         }
     }
 
@@ -972,6 +983,50 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
     norm
 }
 
+/// [`tangent`]'s solve where the bordered matrix's last row is
+/// $(0, \dots, 0, e)$ (the first tangent, along the load), `false` (leaving
+/// `ws.matrix` as it was) where it does not apply. There the bordered LU
+/// is the Jacobian's, with $\partial_\lambda r$ eliminated alongside and $e$
+/// left as the last pivot, and its solve of $(0, \dots, 0, 1)$ is
+/// $t_\lambda = 1/e$, $t_x = U^{-1}(0 - t_\lambda L^{-1}P\thinspace\partial_\lambda r)$: the
+/// same operations, so the same tangent to the bit. The Jacobian's factors
+/// are kept while it stays the same to the bit (a start restored for
+/// other loads, [`Workspace::restore_start`]). Only plain values: the bit
+/// comparison sees no derivative parts. Applies only where every factor
+/// and the eliminated $\partial_\lambda r$ are finite (where zeros times
+/// infinities would make the bordered LU differ).
+fn tangent_along_load<T: Scalar>(ws: &mut Workspace<T>) -> bool {
+    let n = ws.n;
+    let m = n + 1;
+    let Workspace { jacobian, dlambda, matrix, tangent, factored, factors, factor_pivots, factors_valid, .. } = ws;
+    let same =
+        *factors_valid && factored.iter().zip(jacobian.iter()).all(|(a, b)| a.re().to_bits() == b.re().to_bits());
+    if !same {
+        factored.copy_from_slice(jacobian);
+        factors.copy_from_slice(jacobian);
+        *factors_valid = linalg::lu(factors, n, factor_pivots) && factors.iter().all(|v| v.re().is_finite());
+    }
+    let e = matrix[n * m + n];
+    if !(*factors_valid && e.re().is_finite() && e.re() != 0.0) {
+        return false;
+    }
+    let y = &mut tangent[..n];
+    y.copy_from_slice(dlambda);
+    linalg::lu_forward(factors, n, factor_pivots, y);
+    if !y.iter().all(|v| v.re().is_finite()) {
+        return false;
+    }
+    let t_lambda = T::one() / e;
+    for v in y.iter_mut() {
+        let mut b = T::zero();
+        b -= *v * t_lambda;
+        *v = b;
+    }
+    linalg::lu_backward(factors, n, y);
+    tangent[n] = t_lambda;
+    true
+}
+
 /// Evaluates `ws.jacobian` and `ws.dlambda` at the landed state `ws.trial`
 /// ($\lambda = 1$) again, with the load derivative; false if that fails.
 fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>) -> bool {
@@ -998,6 +1053,9 @@ fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &mut P, lam
     if problem.factor(&ws.jacobian)
         && structured_solve(problem, &ws.matrix[..m * m], n, m, &mut ws.tangent, &mut ws.aux)
     {
+        return ws.tangent.iter().all(|t| t.re().is_finite());
+    }
+    if T::is_value() && (0..n).all(|c| ws.matrix[c * m + n].re().to_bits() == 0) && tangent_along_load(ws) {
         return ws.tangent.iter().all(|t| t.re().is_finite());
     }
     if !linalg::lu(&mut ws.matrix[..m * m], m, &mut ws.pivots[..m]) {
