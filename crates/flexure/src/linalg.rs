@@ -95,29 +95,41 @@ pub fn is_positive_definite(a: &DMatrix<f64>) -> bool {
 /// Returns `false` if a pivot is zero or not finite (a singular matrix).
 pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
     let a = &mut a[..n * n];
+    let pivots = &mut pivots[..n];
     for k in 0..n {
-        let p = (k..n).fold(k, |best, i| if a[k * n + i].re().abs() > a[k * n + best].re().abs() { i } else { best });
-        let pivot = a[k * n + p].re();
+        // The first entry of largest magnitude at or below the diagonal
+        // (a NaN never wins a comparison).
+        let column = &a[k * n..(k + 1) * n];
+        let (mut p, mut largest) = (k, column[k].re().abs());
+        for (i, v) in column.iter().enumerate().skip(k + 1) {
+            if v.re().abs() > largest {
+                (p, largest) = (i, v.re().abs());
+            }
+        }
+        let pivot = column[p].re();
         if !(pivot.is_finite() && pivot != 0.0) {
             return false;
         }
         pivots[k] = p;
         if p != k {
-            for j in 0..n {
-                a.swap(j * n + k, j * n + p);
+            for column in a.chunks_exact_mut(n) {
+                column.swap(k, p);
             }
         }
-        let d = a[k * n + k];
-        for l in &mut a[k * n + k + 1..(k + 1) * n] {
+        let (left, right) = a.split_at_mut((k + 1) * n);
+        let column = &mut left[k * n + k..];
+        let (d, column) = column.split_first_mut().expect("k < n");
+        let d = *d;
+        for l in column.iter_mut() {
             *l /= d;
         }
         // Slices, not indices: no bounds checks in the O(n³) loop.
-        let (left, right) = a.split_at_mut((k + 1) * n);
-        let column = &left[k * n + k + 1..];
+        let column = &*column;
         for target in right.chunks_exact_mut(n) {
-            let f = target[k];
+            let (f, rest) = target[k..].split_first_mut().expect("k < n");
+            let f = *f;
             if f.re() != 0.0 || f != T::zero() {
-                for (t, &l) in target[k + 1..].iter_mut().zip(column) {
+                for (t, &l) in rest.iter_mut().zip(column) {
                     *t -= l * f;
                 }
             }
@@ -139,21 +151,40 @@ pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
 /// assert!((b[0] + 1.0).abs() < 1e-15 && (b[1] - 2.0).abs() < 1e-15);
 /// ```
 pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
-    for k in 0..n {
-        b.swap(k, pivots[k]);
+    lu_forward(a, n, pivots, b);
+    lu_backward(a, n, b);
+}
+
+/// The first half of [`lu_solve`]: $b \leftarrow L^{-1}Pb$.
+pub fn lu_forward<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
+    if n == 0 {
+        return;
     }
-    for j in 0..n {
+    let (a, pivots, b) = (&a[..n * n], &pivots[..n], &mut b[..n]);
+    for (k, &p) in pivots.iter().enumerate() {
+        b.swap(k, p);
+    }
+    for (j, column) in a.chunks_exact(n).enumerate() {
         let (head, tail) = b.split_at_mut(j + 1);
         let bj = head[j];
-        for (bi, &l) in tail[..n - j - 1].iter_mut().zip(&a[j * n + j + 1..(j + 1) * n]) {
+        for (bi, &l) in tail.iter_mut().zip(&column[j + 1..]) {
             *bi -= l * bj;
         }
     }
-    for j in (0..n).rev() {
-        b[j] /= a[j * n + j];
+}
+
+/// The second half of [`lu_solve`]: $b \leftarrow U^{-1}b$.
+pub fn lu_backward<T: Scalar>(a: &[T], n: usize, b: &mut [T]) {
+    if n == 0 {
+        return;
+    }
+    let (a, b) = (&a[..n * n], &mut b[..n]);
+    for (j, column) in a.chunks_exact(n).enumerate().rev() {
         let (head, tail) = b.split_at_mut(j);
-        let bj = tail[0];
-        for (bi, &u) in head.iter_mut().zip(&a[j * n..j * n + j]) {
+        let (bj, _) = tail.split_first_mut().expect("j < n");
+        *bj /= column[j];
+        let bj = *bj;
+        for (bi, &u) in head.iter_mut().zip(column) {
             *bi -= u * bj;
         }
     }

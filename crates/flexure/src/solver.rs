@@ -244,6 +244,13 @@ pub struct Workspace<T: Scalar> {
     scratch: Vec<T>,
     /// Five vectors of length $n+1$ for structured solves ([`Problem::factor`]).
     aux: Vec<T>,
+    /// A Jacobian, its LU factors and pivots, and whether they are valid
+    /// and finite: kept for the first tangent of the next continuation
+    /// from the same start ([`tangent_along_load`]).
+    factored: Vec<T>,
+    factors: Vec<T>,
+    factor_pivots: Vec<usize>,
+    factors_valid: bool,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -270,6 +277,10 @@ impl<T: Scalar> Workspace<T> {
             anchor: vec![z; m],
             scratch: vec![z; m * m],
             aux: vec![z; 5 * m],
+            factored: vec![z; n * n],
+            factors: vec![z; n * n],
+            factor_pivots: vec![0; n],
+            factors_valid: false,
         }
     }
 
@@ -319,7 +330,8 @@ enum Mode {
 }
 
 /// Evaluates the residual (and the Newton matrix, if `matrix`) of the
-/// system `mode` at the unknowns `z` ($x$, then $\lambda$ in arclength mode).
+/// system `mode` at the unknowns `z` ($x$, then $\lambda$ in arclength mode),
+/// with the load derivative in arclength mode or if `load_derivative`.
 #[allow(clippy::too_many_arguments)]
 fn system<T: Scalar, P: Problem<T>>(
     problem: &mut P,
@@ -329,6 +341,7 @@ fn system<T: Scalar, P: Problem<T>>(
     tangent: &[T],
     anchor: &[T],
     lambda_weight: f64,
+    load_derivative: bool,
     residual: &mut [T],
     jacobian: Option<(&mut [T], &mut [T], &mut [T])>,
 ) -> Result<()> {
@@ -341,7 +354,8 @@ fn system<T: Scalar, P: Problem<T>>(
     match jacobian {
         None => problem.evaluate(x, lam, r, None, None)?,
         Some((jac, dlambda, matrix)) => {
-            problem.evaluate(x, lam, r, Some(&mut *jac), Some(&mut *dlambda))?;
+            let dlambda_wanted = load_derivative || matches!(mode, Mode::Arclength);
+            problem.evaluate(x, lam, r, Some(&mut *jac), dlambda_wanted.then_some(&mut *dlambda))?;
             let m = match mode {
                 Mode::Fixed => n,
                 Mode::Arclength => n + 1,
@@ -370,6 +384,7 @@ fn system<T: Scalar, P: Problem<T>>(
 }
 
 /// Damped Newton on `mode`'s system, from and into `ws.trial` (length $n$ or $n+1$).
+/// In fixed mode `ws.dlambda` is left at the solution only if `load_derivative`.
 #[allow(clippy::too_many_arguments)]
 fn correct<T: Scalar, P: Problem<T>>(
     problem: &mut P,
@@ -380,6 +395,7 @@ fn correct<T: Scalar, P: Problem<T>>(
     settings: &Settings,
     min_iterations: usize,
     contraction: bool,
+    load_derivative: bool,
 ) -> Result<NewtonReport> {
     let n = ws.n;
     let m = match mode {
@@ -393,7 +409,7 @@ fn correct<T: Scalar, P: Problem<T>>(
     } = ws;
     let matrix = &mut matrix[..m * m];
     let sys = |problem: &mut P, z: &[T], r: &mut [T], jac: Option<(&mut [T], &mut [T], &mut [T])>| {
-        system(problem, mode, z, lambda, tangent, anchor, lambda_weight, r, jac)
+        system(problem, mode, z, lambda, tangent, anchor, lambda_weight, load_derivative, r, jac)
     };
     sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
     let mut residual = amax(&trial_residual[..m]);
@@ -633,7 +649,7 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     ws.start = None;
     ws.trial[..n].copy_from_slice(&ws.x);
     let min_iterations = if T::is_value() { 0 } else { 1 };
-    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false)?;
+    let report = correct(problem, ws, Mode::Fixed, lambda, 1.0, settings, min_iterations, false, true)?;
     ws.x.copy_from_slice(&ws.trial[..n]);
     ws.lambda = lambda;
     ws.start = (lambda == 0.0).then_some(report);
@@ -765,7 +781,9 @@ fn follow<T: Scalar, P: Problem<T>>(
                 ws.trial[i] = ws.x[i] + ws.tangent[i] * T::c(hl);
             }
             let min_iterations = if T::is_value() { 0 } else { 1 };
-            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations, true).map(|r| (r, 1.0))
+            // Without the load derivative: only a tangent after a change of stability needs it.
+            correct(problem, ws, Mode::Fixed, 1.0, lambda_weight, settings, min_iterations, true, false)
+                .map(|r| (r, 1.0))
         } else {
             // Predict along the tangent; correct on the hyperplane through
             // the prediction, orthogonal to the tangent.
@@ -774,7 +792,7 @@ fn follow<T: Scalar, P: Problem<T>>(
             }
             ws.trial[n] = T::c(lambda) + ws.tangent[n] * T::c(h);
             ws.anchor.copy_from_slice(&ws.trial);
-            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0, true)
+            correct(problem, ws, Mode::Arclength, lambda, lambda_weight, settings, 0, true, true)
                 .map(|r| (r, ws.trial[n].re()))
         };
         let outcome = match found {
@@ -830,7 +848,9 @@ fn follow<T: Scalar, P: Problem<T>>(
         }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
-        let has_tangent = tangent(ws, &mut *problem, lambda_weight);
+        // The landing corrector left no load derivative: evaluate it at the landed state.
+        let has_tangent =
+            (!landing || load_derivative_at_trial(problem, ws)) && tangent(ws, &mut *problem, lambda_weight);
         let fold = has_tangent && ws.tangent[n].re() * old_tangent_lambda < 0.0;
         if fold && problem.distance(&ws.trial[..n], &ws.x) > FOLD_ROTATION && h * 0.5 >= min_step {
             // Long steps are fine along the path, but the limit load is
@@ -963,6 +983,58 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
     norm
 }
 
+/// [`tangent`]'s solve where the bordered matrix's last row is
+/// $(0, \dots, 0, e)$ (the first tangent, along the load), `false` (leaving
+/// `ws.matrix` as it was) where it does not apply. There the bordered LU
+/// is the Jacobian's, with $\partial_\lambda r$ eliminated alongside and $e$
+/// left as the last pivot, and its solve of $(0, \dots, 0, 1)$ is
+/// $t_\lambda = 1/e$, $t_x = U^{-1}(0 - t_\lambda L^{-1}P\thinspace\partial_\lambda r)$: the
+/// same operations, so the same tangent to the bit. The Jacobian's factors
+/// are kept while it stays the same to the bit (a start restored for
+/// other loads, [`Workspace::restore_start`]). Only plain values: the bit
+/// comparison sees no derivative parts. Applies only where every factor
+/// and the eliminated $\partial_\lambda r$ are finite (where zeros times
+/// infinities would make the bordered LU differ).
+fn tangent_along_load<T: Scalar>(ws: &mut Workspace<T>) -> bool {
+    let n = ws.n;
+    let m = n + 1;
+    let Workspace { jacobian, dlambda, matrix, tangent, factored, factors, factor_pivots, factors_valid, .. } = ws;
+    let same =
+        *factors_valid && factored.iter().zip(jacobian.iter()).all(|(a, b)| a.re().to_bits() == b.re().to_bits());
+    if !same {
+        factored.copy_from_slice(jacobian);
+        factors.copy_from_slice(jacobian);
+        *factors_valid = linalg::lu(factors, n, factor_pivots) && factors.iter().all(|v| v.re().is_finite());
+    }
+    let e = matrix[n * m + n];
+    if !(*factors_valid && e.re().is_finite() && e.re() != 0.0) {
+        return false;
+    }
+    let y = &mut tangent[..n];
+    y.copy_from_slice(dlambda);
+    linalg::lu_forward(factors, n, factor_pivots, y);
+    if !y.iter().all(|v| v.re().is_finite()) {
+        return false;
+    }
+    let t_lambda = T::one() / e;
+    for v in y.iter_mut() {
+        let mut b = T::zero();
+        b -= *v * t_lambda;
+        *v = b;
+    }
+    linalg::lu_backward(factors, n, y);
+    tangent[n] = t_lambda;
+    true
+}
+
+/// Evaluates `ws.jacobian` and `ws.dlambda` at the landed state `ws.trial`
+/// ($\lambda = 1$) again, with the load derivative; false if that fails.
+fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>) -> bool {
+    let n = ws.n;
+    let Workspace { trial, trial_residual, jacobian, dlambda, .. } = ws;
+    problem.evaluate(&trial[..n], 1.0, &mut trial_residual[..n], Some(jacobian), Some(dlambda)).is_ok()
+}
+
 /// The tangent at the state just evaluated (its Jacobian and load
 /// derivative in `ws`), oriented along `ws.previous_tangent`:
 /// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\thinspace t = (0, 1)$.
@@ -983,6 +1055,9 @@ fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &mut P, lam
     {
         return ws.tangent.iter().all(|t| t.re().is_finite());
     }
+    if T::is_value() && (0..n).all(|c| ws.matrix[c * m + n].re().to_bits() == 0) && tangent_along_load(ws) {
+        return ws.tangent.iter().all(|t| t.re().is_finite());
+    }
     if !linalg::lu(&mut ws.matrix[..m * m], m, &mut ws.pivots[..m]) {
         return false;
     }
@@ -990,4 +1065,54 @@ fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &mut P, lam
     ws.tangent[n] = T::one();
     linalg::lu_solve(&ws.matrix[..m * m], m, &ws.pivots[..m], &mut ws.tangent);
     ws.tangent.iter().all(|t| t.re().is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`tangent_along_load`] against the LU of the whole bordered matrix
+    /// (the general path of [`tangent`]), on seeded random systems of 1 to
+    /// 12 unknowns: the same tangent to the bit, from fresh factors, from
+    /// kept ones, and after the Jacobian changes (factors made again).
+    #[test]
+    fn tangent_along_load_is_the_bordered_solve_to_the_bit() {
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        };
+        let mut compared = 0;
+        for n in 1..=12 {
+            let m = n + 1;
+            let mut ws = Workspace::<f64>::new(n);
+            for trial in 0..6 {
+                // Every other trial keeps the Jacobian and changes only ∂λr.
+                if trial % 2 == 0 {
+                    ws.jacobian.iter_mut().for_each(|v| *v = next());
+                }
+                ws.dlambda.iter_mut().for_each(|v| *v = next());
+                let e = if trial < 2 { 1.0 } else { 0.5 + next().abs() };
+                for c in 0..n {
+                    ws.matrix[c * m..c * m + n].copy_from_slice(&ws.jacobian[c * n..c * n + n]);
+                    ws.matrix[c * m + n] = 0.0;
+                }
+                ws.matrix[n * m..n * m + n].copy_from_slice(&ws.dlambda);
+                ws.matrix[n * m + n] = e;
+                let mut bordered = ws.matrix[..m * m].to_vec();
+                let mut pivots = vec![0; m];
+                assert!(linalg::lu(&mut bordered, m, &mut pivots));
+                let mut reference = vec![0.0; m];
+                reference[n] = 1.0;
+                linalg::lu_solve(&bordered, m, &pivots, &mut reference);
+                assert!(tangent_along_load(&mut ws), "n = {n}, trial {trial}");
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&ws.tangent), bits(&reference), "n = {n}, trial {trial}");
+                compared += 1;
+            }
+        }
+        assert_eq!(compared, 72);
+    }
 }

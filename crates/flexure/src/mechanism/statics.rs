@@ -275,6 +275,39 @@ impl Workspace {
     }
 }
 
+/// The buffers a [`Kkt`] works in: its own, or a caller's, borrowed for
+/// the problem's life (moving a [`Workspace`] copies a few kilobytes).
+#[derive(Debug)]
+enum Buffers<'a> {
+    Owned(Box<Workspace>),
+    Borrowed(&'a mut Workspace),
+}
+
+impl std::ops::Deref for Buffers<'_> {
+    type Target = Workspace;
+    fn deref(&self) -> &Workspace {
+        match self {
+            Buffers::Owned(w) => w,
+            Buffers::Borrowed(w) => w,
+        }
+    }
+}
+
+impl std::ops::DerefMut for Buffers<'_> {
+    fn deref_mut(&mut self) -> &mut Workspace {
+        match self {
+            Buffers::Owned(w) => w,
+            Buffers::Borrowed(w) => w,
+        }
+    }
+}
+
+impl Clone for Buffers<'_> {
+    fn clone(&self) -> Self {
+        Buffers::Owned(Box::new(Workspace::clone(self)))
+    }
+}
+
 /// A problem's scales and loads ([`Kkt`]), kept for the next problem.
 #[derive(Debug, Clone, Default)]
 struct Spare {
@@ -324,7 +357,7 @@ pub struct Kkt<'a> {
     /// closures, no tendons. Then Newton steps, tangents and stability
     /// tests factor in $O(n)$.
     tree: bool,
-    work: Workspace,
+    work: Buffers<'a>,
 }
 
 impl<'a> Kkt<'a> {
@@ -345,11 +378,11 @@ impl<'a> Kkt<'a> {
         if !work.fits(m) {
             return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
         }
-        Self::fitted(m, from, to, settings, work)
+        Self::fitted(m, from, to, settings, Buffers::Owned(Box::new(work)))
     }
 
     /// [`Kkt::with_workspace`] with `work` known to fit `m`.
-    fn fitted(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings, work: Workspace) -> Result<Self> {
+    fn fitted(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings, work: Buffers<'a>) -> Result<Self> {
         settings.validate()?;
         from.validate(m)?;
         to.validate(m)?;
@@ -439,6 +472,14 @@ impl<'a> Kkt<'a> {
 
     /// The buffers, for the next problem on the same mechanism.
     pub fn into_workspace(self) -> Workspace {
+        match self.release() {
+            Buffers::Owned(w) => *w,
+            Buffers::Borrowed(w) => std::mem::take(w),
+        }
+    }
+
+    /// The buffers, with this problem's scales and loads put back for the next problem.
+    fn release(self) -> Buffers<'a> {
         let mut work = self.work;
         work.spare = Spare {
             vectors: [self.row_scale, self.weight, self.closure_scale, self.multiplier_scale],
@@ -467,7 +508,7 @@ impl<'a> Kkt<'a> {
     fn load_derivative(&mut self, d: &mut [f64]) -> Result<()> {
         let m = self.mechanism;
         let n = m.dof();
-        let Workspace { frames: f, assembly: a, load_gradient, .. } = &mut self.work;
+        let Workspace { frames: f, assembly: a, load_gradient, .. } = &mut *self.work;
         load_gradient.fill(0.0);
         add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
         for i in 0..n {
@@ -490,7 +531,7 @@ impl<'a> Kkt<'a> {
         // settle changes nothing where G has full row rank: skip its frames.
         if rows > 0 && !full_row_rank(&g) {
             let mu = self.multipliers(x);
-            let Workspace { frames: f, loads, assembled, .. } = &mut self.work;
+            let Workspace { frames: f, loads, assembled, .. } = &mut *self.work;
             *assembled = false;
             frames_into(m, &x[..n], f);
             self.from.lerp_into(&self.to, lambda, loads);
@@ -541,7 +582,7 @@ impl<'a> Kkt<'a> {
             frames,
             joint_of,
             ..
-        } = &mut self.work;
+        } = &mut *self.work;
         // Gᵀ, n × rows, then G̃ᵀ = S Gᵀ.
         for i in 0..rows {
             for c in 0..n {
@@ -622,7 +663,7 @@ impl solver::Problem<f64> for Kkt<'_> {
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
         let q = &x[..n];
-        let Workspace { frames: f, assembly: a, mu, loads, assembled_at, assembled, .. } = &mut self.work;
+        let Workspace { frames: f, assembly: a, mu, loads, assembled_at, assembled, .. } = &mut *self.work;
         for ((m, v), s) in mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *m = v * s;
         }
@@ -681,7 +722,7 @@ impl solver::Problem<f64> for Kkt<'_> {
         if rows == 0 && self.tree {
             // Z = I, and the tree's pivots: positive_definite's test of the
             // matrix below, in O(n).
-            let Workspace { tree, scratch, .. } = &mut self.work;
+            let Workspace { tree, scratch, .. } = &mut *self.work;
             let s = &mut scratch[..n];
             for (s, r) in s.iter_mut().zip(&self.row_scale) {
                 *s = r.sqrt();
@@ -699,7 +740,7 @@ impl solver::Problem<f64> for Kkt<'_> {
         }
         if rows == 0 {
             // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
-            let Workspace { stiffness: k, scratch, .. } = &mut self.work;
+            let Workspace { stiffness: k, scratch, .. } = &mut *self.work;
             let s = |r: usize| self.row_scale[r].sqrt();
             let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s(r) * s(c);
             for c in 0..n {
@@ -725,7 +766,7 @@ impl solver::Problem<f64> for Kkt<'_> {
         if m.constraints() > 0 || n == 0 {
             return false;
         }
-        let Workspace { tree, frames, stiffness, joint_of, .. } = &mut self.work;
+        let Workspace { tree, frames, stiffness, joint_of, .. } = &mut *self.work;
         let elastic = |r: usize, c: usize| {
             let j = joint_of[r];
             if joint_of[c] != j {
@@ -802,7 +843,7 @@ fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Res
     let n = m.dof();
     let (q, mu) = (&x[..n], problem.multipliers(x));
     let loads = if end { problem.to.clone() } else { problem.from.clone() };
-    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut problem.work;
+    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut *problem.work;
     if !(*assembled && assembled_at[..] == *q) {
         *assembled = false;
         frames_into(m, q, f);
@@ -911,15 +952,19 @@ fn follow_in(
     work: &mut Workspace,
 ) -> Result<Solution> {
     check_sizes(m, &start.q, &start.multipliers, &start.loads)?;
-    let mut problem = Kkt::with_workspace(m, &start.loads, to, settings, std::mem::take(work))?;
-    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    if !work.fits(m) {
+        return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
+    }
+    let mut problem = Kkt::fitted(m, &start.loads, to, settings, Buffers::Borrowed(work))?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = problem.work.solver(dim);
     ws.x.iter_mut().zip(&start.q).for_each(|(x, q)| *x = *q);
     let n = m.dof();
     for ((x, mu), s) in ws.x[n..].iter_mut().zip(&start.multipliers).zip(&problem.multiplier_scale) {
         *x = mu / s;
     }
     let found = follow_path(m, Start::Given(start), &mut problem, &mut ws, settings);
-    *work = problem.into_workspace();
+    let mut work = problem.release();
     work.solver = Some(ws);
     found
 }
@@ -1018,10 +1063,14 @@ pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution>
 /// [`assemble_unloaded`] in the buffers `work` (made for `m`).
 fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Result<Solution> {
     let zero = m.loads().zero_like();
-    let mut problem = Kkt::with_workspace(m, &zero, &zero, settings, std::mem::take(work))?;
-    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    if !work.fits(m) {
+        return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
+    }
+    let mut problem = Kkt::fitted(m, &zero, &zero, settings, Buffers::Borrowed(work))?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = problem.work.solver(dim);
     let found = assemble(&mut problem, &mut ws, settings);
-    *work = problem.into_workspace();
+    let mut work = problem.release();
     work.solver = Some(ws);
     found
 }
@@ -1063,7 +1112,7 @@ fn assembled_kept(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: 
         residual: report.residual,
     };
     if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
-        let Workspace { start, frames, assembled, .. } = &mut problem.work;
+        let Workspace { start, frames, assembled, .. } = &mut *problem.work;
         ws.x.copy_from_slice(&start.x);
         ws.jacobian.copy_from_slice(&start.jacobian);
         frames.copy_from(&start.frames);
@@ -1074,7 +1123,7 @@ fn assembled_kept(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: 
     }
     let found = assembled(problem, ws, settings)?;
     let report = solver::NewtonReport { iterations: found.iterations, residual: found.residual };
-    let Workspace { start, frames, .. } = &mut problem.work;
+    let Workspace { start, frames, .. } = &mut *problem.work;
     start.keep(m, settings, tolerance, report, found.stable, &ws.x, &ws.jacobian, frames);
     Ok(path(report, found.stable))
 }
@@ -1158,8 +1207,9 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
     m.loads_into(&mut to);
     copy_loads(&to, &mut zero);
     zero.scale(0.0);
-    let mut problem = Kkt::fitted(m, &zero, &to, settings, std::mem::take(work))?;
-    let mut ws = problem.work.solver(solver::Problem::dim(&problem));
+    let mut problem = Kkt::fitted(m, &zero, &to, settings, Buffers::Borrowed(work))?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = problem.work.solver(dim);
     // The start as a solution only if the path lost stability: for the refinement.
     let found = assembled_kept(&mut problem, &mut ws, settings).and_then(|path| {
         problem.work.start_x.copy_from_slice(&ws.x);
@@ -1171,9 +1221,10 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
         let x0 = problem.work.start_x.clone();
         Ok((Some(solution(&mut problem, &x0, false, &path)?), found))
     });
-    *work = problem.into_workspace();
-    work.solver = Some(ws);
-    work.given = [zero, to];
+    let mut buffers = problem.release();
+    buffers.solver = Some(ws);
+    buffers.given = [zero, to];
+    drop(buffers);
     match found? {
         (Some(start), found) => refine_limit(m, &start, &work.given[1], settings, found),
         (None, found) => found,
