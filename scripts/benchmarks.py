@@ -32,7 +32,7 @@ RATIOS = [
 ]
 
 
-NOTES = ['', 'Notes on the targets that are missed:', '', '- `mechanism/parallelogram` (issue "Speed"): from about 470× at the start of the work to about 98× here;', '  the solve is one continuation step of three evaluations, a stability test with the closures and', '  three 9–10-unknown LU solves, each evaluation of the mechanism costing about ten kernel calls.', "- `reference/segments_22 ÷ statics/connect` (an earlier target, from the paper's finite-element", '  comparison): `connect` has run on the shared KKT continuation since the "Trust" work (3.3 µs here,', '  3.4 µs at the start of this work, measured the same way), while the segment chain got faster.', '- `dynamics/finger_1s` (issue "Dynamics", in progress): the tendon ramp excites lightly damped modes', '  up to 75 Hz that a 1e-6 tolerance resolves over the whole second (about 4400 steps).']
+NOTES = ['', 'Notes on the targets that are missed:', '', '- `mechanism/parallelogram` (issue "Speed"): from about 470× at the start of the work to the ratio above;', '  the solve is one continuation step of three evaluations, a stability test with the closures and', '  three 9–10-unknown LU solves, each evaluation of the mechanism costing about ten kernel calls.', "- `reference/segments_22 ÷ statics/connect` (an earlier target, from the paper's finite-element", '  comparison): `connect` has run on the shared KKT continuation since the "Trust" work (3.3 µs here,', '  3.4 µs at the start of this work, measured the same way), while the segment chain got faster.', '- `dynamics/finger_1s` (issue "Dynamics", in progress): the tendon ramp excites lightly damped modes', '  up to 75 Hz that a 1e-6 tolerance resolves over the whole second (about 4400 steps).']
 
 
 def estimates():
