@@ -54,13 +54,13 @@ pub fn motion<'py>(
         velocities.set_item(&j.name, v.into_pyarray(py))?;
     }
     let out = PyDict::new(py);
-    out.set_item("time", Array1::from_vec(run.time).into_pyarray(py))?;
+    out.set_item("time", Array1::from_vec(run.trajectory.time).into_pyarray(py))?;
     out.set_item("bodies", bodies)?;
     out.set_item("coordinates", coordinates)?;
     out.set_item("velocities", velocities)?;
-    out.set_item("energy", Array1::from_vec(run.energy).into_pyarray(py))?;
-    out.set_item("steps", run.steps)?;
-    out.set_item("rejected", run.rejected)?;
-    out.set_item("violation", run.violation)?;
+    out.set_item("steps", run.trajectory.steps)?;
+    out.set_item("rejected", run.trajectory.rejected)?;
+    out.set_item("violation", run.trajectory.violation)?;
+    out.set_item("energy", Array1::from_vec(run.trajectory.energy).into_pyarray(py))?;
     Ok(out)
 }

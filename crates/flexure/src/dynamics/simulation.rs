@@ -13,7 +13,7 @@
 //! mechanism whose flexures have a density starts a little off its
 //! dynamic equilibrium, and sags by their weight as it moves.
 
-use super::integrate::{self, integrate};
+use super::integrate::{self, Trajectory, integrate};
 use super::schedule::{ScheduledSystem, loads_at};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
@@ -52,39 +52,25 @@ pub struct BodyMotion {
     pub phi: Vec<f64>,
 }
 
-/// A simulated motion, sampled at [`integrate::Settings::times`].
+/// A simulated motion, sampled at [`integrate::Settings::times`]: the
+/// integrator's [`Trajectory`] (times, coordinates, rates, energy, steps,
+/// closure violation; read through it directly, `simulation.time`), and
+/// every moving body's frame at each sample.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Simulation {
-    /// Sample times (s).
-    pub time: Vec<f64>,
     /// Every moving body (not the ground), in the mechanism's order.
     pub bodies: Vec<BodyMotion>,
-    /// Number of coordinates $n$.
-    pub dim: usize,
-    /// Coordinates $q$ at each sample, $n$ per sample.
-    pub coordinates: Vec<f64>,
-    /// Rates $\dot q$ at each sample, $n$ per sample.
-    pub velocities: Vec<f64>,
-    /// Kinetic, elastic and gravitational energy at each sample (J);
-    /// the work of the other loads and of damping is not in it.
-    pub energy: Vec<f64>,
-    /// Accepted steps.
-    pub steps: usize,
-    /// Rejected steps.
-    pub rejected: usize,
-    /// Largest closure violation over the start and every step (m or rad).
-    pub violation: f64,
+    /// The integrator's samples and counts. Its energy is the kinetic,
+    /// elastic and gravitational energy (J); the work of the other loads and
+    /// of damping is not in it.
+    pub trajectory: Trajectory,
 }
 
-impl Simulation {
-    /// The coordinates at sample `k`.
-    pub fn q(&self, k: usize) -> &[f64] {
-        &self.coordinates[k * self.dim..(k + 1) * self.dim]
-    }
+impl std::ops::Deref for Simulation {
+    type Target = Trajectory;
 
-    /// The rates at sample `k`.
-    pub fn v(&self, k: usize) -> &[f64] {
-        &self.velocities[k * self.dim..(k + 1) * self.dim]
+    fn deref(&self) -> &Trajectory {
+        &self.trajectory
     }
 }
 
@@ -170,15 +156,5 @@ pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> R
             motion.phi.push(frame.angle);
         }
     }
-    Ok(Simulation {
-        time: run.time,
-        bodies,
-        dim: run.dim,
-        coordinates: run.coordinates,
-        velocities: run.velocities,
-        energy: run.energy,
-        steps: run.steps,
-        rejected: run.rejected,
-        violation: run.violation,
-    })
+    Ok(Simulation { bodies, trajectory: run })
 }
