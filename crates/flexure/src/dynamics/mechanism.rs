@@ -245,12 +245,7 @@ impl MechanismSystem {
             .filter(|&b| m.bodies[b].mass > 0.0 || m.bodies[b].inertia > 0.0)
             .map(|b| (b, path_columns(m, b)))
             .collect();
-        let length = m
-            .joints
-            .iter()
-            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
-            .sum::<f64>();
-        let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
+        let length = m.size();
         let loads = m.loads();
         let mut loads_weightless = loads.clone();
         loads_weightless.gravity = [0.0; 2];

@@ -599,12 +599,7 @@ fn initial_state(
 /// The joints' diagonal stiffnesses span at most [`MAX_STIFFNESS_RATIO`].
 fn check_stiffness_ratio(src: &Source, m: &Mechanism, places: &[Span]) -> Result<()> {
     let rest = frames(m, &m.rest());
-    let length: f64 = m
-        .joints
-        .iter()
-        .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
-        .sum();
-    let length = if length > 0.0 { length } else { 1.0 };
+    let length = m.size();
     // (joint, stiffness in N·m)
     let mut all: Vec<(usize, f64)> = Vec::new();
     for (i, (j, s)) in m.joints.iter().zip(&rest.joints).enumerate() {

@@ -219,6 +219,18 @@ pub struct Mechanism {
 }
 
 impl Mechanism {
+    /// The mechanism's size (m): the sum of its joints' offsets and flexure
+    /// lengths (1 m for a mechanism of points). Slider travel is measured
+    /// against it, to compare with rotations.
+    pub fn size(&self) -> f64 {
+        let length = self
+            .joints
+            .iter()
+            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
+            .sum::<f64>();
+        if length > 0.0 && length.is_finite() { length } else { 1.0 }
+    }
+
     /// Number of generalized coordinates.
     pub fn dof(&self) -> usize {
         self.dof

@@ -387,12 +387,7 @@ impl<'a> Kkt<'a> {
         from.validate(m)?;
         to.validate(m)?;
         let n = m.dof();
-        let length = m
-            .joints
-            .iter()
-            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
-            .sum::<f64>();
-        let length = if length > 0.0 && length.is_finite() { length } else { 1.0 };
+        let length = m.size();
         // Diagonal stiffness of each coordinate (constant for every joint
         // kind, so any state's), and the factor to N·m/rad: 1 for angles,
         // ℓ² for slider travel; in the buffers of the last problem.
