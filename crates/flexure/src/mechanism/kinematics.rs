@@ -150,8 +150,8 @@ fn quarter(v: [f64; 2]) -> [f64; 2] {
     [-v[1], v[0]]
 }
 
-/// A point's position, angle and Jacobian, with the coordinates on its
-/// path, reused from one evaluation to the next (the Data of [`point_into`]).
+/// A point's position, angle and Jacobian, with the joints on its path,
+/// reused from one evaluation to the next (the Data of [`point_into`]).
 #[derive(Debug, Clone, Default)]
 pub struct PointBuffer {
     /// Angle of the body (rad).
@@ -160,8 +160,8 @@ pub struct PointBuffer {
     pub position: [f64; 2],
     /// $3\times n$: rows $(\theta, x, y)$; zero off the path.
     pub jacobian: DMatrix<f64>,
-    /// The coordinates on the path: (joint's distance from the body, joint, coordinate within it).
-    coords: Vec<(usize, usize, usize)>,
+    /// The joints on the path, from the body down to the ground.
+    path: Vec<usize>,
 }
 
 impl PointBuffer {
@@ -171,7 +171,7 @@ impl PointBuffer {
             angle: 0.0,
             position: [0.0; 2],
             jacobian: DMatrix::zeros(3, m.dof()),
-            coords: Vec::with_capacity(m.dof()),
+            path: Vec::with_capacity(m.joints.len()),
         }
     }
 }
@@ -181,28 +181,31 @@ impl PointBuffer {
 /// once `out` has held a path this long.
 pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut PointBuffer) {
     let w = f.bodies[body].point_turned(f.body_turn(body), r);
-    for &(_, ji, i) in &out.coords {
-        out.jacobian.column_mut(m.joints[ji].offset + i).fill(0.0);
+    // Column-major 3 × n: coordinate c's column is [3c, 3c + 3).
+    let jacobian = out.jacobian.as_mut_slice();
+    for &ji in &out.path {
+        let (o, k) = (m.joints[ji].offset, f.joints[ji].gradient.len());
+        jacobian[3 * o..3 * (o + k)].fill(0.0);
     }
-    out.coords.clear();
-    let (mut b, mut step) = (body, 0);
+    out.path.clear();
+    let mut b = body;
     while let Some(ji) = m.parent_joint(b) {
         let j = &m.joints[ji];
         let s = &f.joints[ji];
         let root = f.root_turn(ji);
         let o = f.bodies[j.child].origin;
         let arm = quarter([w[0] - o[0], w[1] - o[1]]);
-        for i in 0..s.gradient.len() {
-            let col = j.offset + i;
-            let dphi = s.jacobian[(0, i)];
-            let dp = turn(root, [s.jacobian[(1, i)], s.jacobian[(2, i)]]);
-            out.jacobian[(0, col)] = dphi;
-            out.jacobian[(1, col)] = dp[0] + dphi * arm[0];
-            out.jacobian[(2, col)] = dp[1] + dphi * arm[1];
-            out.coords.push((step, ji, i));
+        let k = s.gradient.len();
+        let columns = jacobian[3 * j.offset..3 * (j.offset + k)].chunks_exact_mut(3);
+        for (column, local) in columns.zip(s.jacobian.as_slice().chunks_exact(3)) {
+            let dphi = local[0];
+            let dp = turn(root, [local[1], local[2]]);
+            column[0] = dphi;
+            column[1] = dp[0] + dphi * arm[0];
+            column[2] = dp[1] + dphi * arm[1];
         }
+        out.path.push(ji);
         b = j.parent;
-        step += 1;
     }
     out.angle = f.bodies[body].angle;
     out.position = w;
@@ -215,27 +218,44 @@ pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f6
         return;
     }
     let w = p.position;
-    for (ia, &(sa, ja, a)) in p.coords.iter().enumerate() {
-        let ca = m.joints[ja].offset + a;
-        for &(sb, jb, b) in &p.coords[ia..] {
-            let cb = m.joints[jb].offset + b;
-            let (vx, vy) = if sa == sb {
-                let s = &f.joints[ja];
-                let o = f.bodies[m.joints[ja].child].origin;
-                let local = turn(f.root_turn(ja), [s.hessian_x[(a, b)], s.hessian_y[(a, b)]]);
-                let k = s.jacobian[(0, a)] * s.jacobian[(0, b)];
-                (local[0] - k * (w[0] - o[0]), local[1] - k * (w[1] - o[1]))
-            } else {
-                // The joint farther from the body is upstream: ∂_up φ · J · ∂_down w.
-                let ((up, i), cdown) = if sa > sb { ((ja, a), cb) } else { ((jb, b), ca) };
-                let dphi = f.joints[up].jacobian[(0, i)];
-                let t = quarter([p.jacobian[(1, cdown)], p.jacobian[(2, cdown)]]);
-                (dphi * t[0], dphi * t[1])
-            };
-            let v = weight[0] * vx + weight[1] * vy;
-            h[(ca, cb)] += v;
-            if ca != cb {
-                h[(cb, ca)] += v;
+    let n = h.nrows();
+    let h = h.as_mut_slice();
+    // Each entry is written once per point: the loops' order does not matter.
+    let mut add = |r: usize, c: usize, v: f64| {
+        h[c * n + r] += v;
+        if r != c {
+            h[r * n + c] += v;
+        }
+    };
+    let jacobian = p.jacobian.as_slice();
+    for (down, &ja) in p.path.iter().enumerate() {
+        let (oa, s) = (m.joints[ja].offset, &f.joints[ja]);
+        let k = s.gradient.len();
+        // Within the joint: R_A ∂_ab p − ∂_a φ ∂_b φ (w − o).
+        let o = f.bodies[m.joints[ja].child].origin;
+        let arm = [w[0] - o[0], w[1] - o[1]];
+        let root = f.root_turn(ja);
+        let (hx, hy, local) = (s.hessian_x.as_slice(), s.hessian_y.as_slice(), s.jacobian.as_slice());
+        for a in 0..k {
+            for b in a..k {
+                let turned = turn(root, [hx[b * k + a], hy[b * k + a]]);
+                let dphi = local[3 * a] * local[3 * b];
+                let (vx, vy) = (turned[0] - dphi * arm[0], turned[1] - dphi * arm[1]);
+                add(oa + a, oa + b, weight[0] * vx + weight[1] * vy);
+            }
+        }
+        // With each joint farther from the body (upstream): ∂_up φ · J · ∂_down w.
+        for &jb in &p.path[down + 1..] {
+            let (ob, up) = (m.joints[jb].offset, &f.joints[jb]);
+            let up_angle = up.jacobian.as_slice();
+            for a in 0..k {
+                let ca = oa + a;
+                let t = quarter([jacobian[3 * ca + 1], jacobian[3 * ca + 2]]);
+                for b in 0..up.gradient.len() {
+                    let dphi = up_angle[3 * b];
+                    let (vx, vy) = (dphi * t[0], dphi * t[1]);
+                    add(ca, ob + b, weight[0] * vx + weight[1] * vy);
+                }
             }
         }
     }
