@@ -105,9 +105,11 @@ impl Joint for Flexure {
         let k = s.kinematics.get_or_insert_with(|| Box::new(Kinematics::new(self)));
         kinematics::update(self, q, k, Level::Hessian);
         s.pose = k.pose_root_tip;
-        s.jacobian.copy_from(&k.jacobian_root_tip);
-        s.hessian_x.copy_from(&k.hessian_root_tip_x);
-        s.hessian_y.copy_from(&k.hessian_root_tip_y);
+        // The update writes every entry of these (same-shaped) buffers:
+        // exchanged, not copied, the state's old ones are the next update's.
+        std::mem::swap(&mut s.jacobian, &mut k.jacobian_root_tip);
+        std::mem::swap(&mut s.hessian_x, &mut k.hessian_root_tip_x);
+        std::mem::swap(&mut s.hessian_y, &mut k.hessian_root_tip_y);
         energy_gradient(self, q, s.gradient.as_mut_slice());
         // crate::energy::energy's sum, from the gradient just computed.
         let mut u = 0.0;
