@@ -498,12 +498,14 @@ impl<'a> Kkt<'a> {
         self.from.lerp(&self.to, lambda)
     }
 
-    /// $\partial_\lambda r$ into `d`, at the frames last evaluated: the
-    /// gradient of the load change's potential, scaled as the residual.
-    fn load_derivative(&mut self, d: &mut [f64]) -> Result<()> {
+    /// $\partial_\lambda r$ into `d`, at the frames last evaluated, or at
+    /// the kept start's ([`StartCache`]) if `at_start`: the gradient of the
+    /// load change's potential, scaled as the residual.
+    fn load_derivative(&mut self, d: &mut [f64], at_start: bool) -> Result<()> {
         let m = self.mechanism;
         let n = m.dof();
-        let Workspace { frames: f, assembly: a, load_gradient, .. } = &mut *self.work;
+        let Workspace { frames, start, assembly: a, load_gradient, .. } = &mut *self.work;
+        let f = if at_start { &start.frames } else { frames };
         load_gradient.fill(0.0);
         add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
         for i in 0..n {
@@ -711,11 +713,12 @@ impl solver::Problem<f64> for Kkt<'_> {
         assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
         assembled_at.copy_from_slice(q);
         *assembled = true;
-        let g = &a.closure_jacobian;
+        // Column-major: G's column i holds coordinate i's closure rows.
+        let g = a.closure_jacobian.as_slice();
         for i in 0..n {
             let mut force = a.gradient[i];
-            for (k, mu) in mu.iter().enumerate() {
-                force += g[(k, i)] * mu;
+            for (gk, mu) in g[i * rows..(i + 1) * rows].iter().zip(mu.iter()) {
+                force += gk * mu;
             }
             residual[i] = force * self.row_scale[i];
         }
@@ -726,23 +729,29 @@ impl solver::Problem<f64> for Kkt<'_> {
             return Err(Error::Singular { what: "mechanism equilibrium: a non-finite generalized force".into() });
         }
         if let Some(jac) = jacobian {
+            let hessian = a.hessian.as_slice();
             for c in 0..n {
-                for r in 0..n {
-                    jac[c * size + r] = a.hessian[(r, c)] * self.row_scale[r];
+                let column = &mut jac[c * size..(c + 1) * size];
+                let (top, bottom) = column.split_at_mut(n);
+                for ((j, h), s) in top.iter_mut().zip(&hessian[c * n..(c + 1) * n]).zip(&self.row_scale) {
+                    *j = h * s;
                 }
-                for i in 0..rows {
-                    jac[c * size + n + i] = g[(i, c)] * self.closure_scale[i];
-                    jac[(n + i) * size + c] = g[(i, c)] * self.multiplier_scale[i] * self.row_scale[c];
+                let gc = &g[c * rows..(c + 1) * rows];
+                for ((j, g), s) in bottom.iter_mut().zip(gc).zip(&self.closure_scale) {
+                    *j = g * s;
+                }
+                for (i, (g, s)) in gc.iter().zip(&self.multiplier_scale).enumerate() {
+                    jac[(n + i) * size + c] = g * s * self.row_scale[c];
                 }
             }
             for i in 0..rows {
-                for k in 0..rows {
-                    jac[(n + i) * size + n + k] = if i == k { -MULTIPLIER_SHIFT } else { 0.0 };
-                }
+                let column = &mut jac[(n + i) * size + n..(n + i + 1) * size];
+                column.fill(0.0);
+                column[i] = -MULTIPLIER_SHIFT;
             }
         }
         if let Some(d) = dlambda {
-            self.load_derivative(d)?;
+            self.load_derivative(d, false)?;
         }
         Ok(())
     }
@@ -1153,12 +1162,12 @@ fn assembled_kept(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: 
         residual: report.residual,
     };
     if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
-        let Workspace { start, frames, assembled, .. } = &mut *problem.work;
+        let Workspace { start, assembled, .. } = &mut *problem.work;
         ws.x.copy_from_slice(&start.x);
         ws.jacobian.copy_from_slice(&start.jacobian);
-        frames.copy_from(&start.frames);
+        // The workspace's frames are not the start's: the next evaluation makes them.
         *assembled = false;
-        problem.load_derivative(ws.dlambda_mut())?;
+        problem.load_derivative(ws.dlambda_mut(), true)?;
         ws.restore_start(report, stable);
         return Ok(path(report, stable));
     }
