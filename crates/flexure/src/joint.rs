@@ -101,7 +101,8 @@ pub enum Basis {
 /// kinematics kernel serves both. For a uniform section $K$ is diagonal,
 /// $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$ (Eq. 28 as corrected). Build it with [`Flexure::new`] (or
 /// [`Flexure::segments`]) and the `with_*` methods; all input is validated there.
-#[derive(Debug, Clone, PartialEq)]
+/// Two flexures are equal when their definitions are (see [`PartialEq`]).
+#[derive(Debug, Clone)]
 pub struct Flexure {
     length: f64,
     /// Mean bending stiffness $\frac1L\int_0^L EI\thinspace ds$: the scale of loads.
@@ -126,6 +127,29 @@ pub struct Flexure {
     stiffness: Vec<f64>,
     /// $\psi_i(1)$: the tip angle is $\sum_i \psi_i(1)\alpha_i$.
     tip_angle: Vec<f64>,
+}
+
+/// Equal definitions: length, section (and so $EI$), rest coefficients,
+/// basis and quadrature rule. Every table is a function of these, so a
+/// derived equality, which would compare the tables too, gives the same
+/// answer for more work (workspaces check their flexures on every solve).
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// assert_eq!(f, flexure::Flexure::with_points(1.0, 1.0, 3, 5).unwrap());
+/// assert_ne!(f, f.clone().with_quadrature(6).unwrap());
+/// assert_ne!(f, f.clone().with_rest(&[0.1, 0.0, 0.0]).unwrap());
+/// ```
+impl PartialEq for Flexure {
+    fn eq(&self, other: &Self) -> bool {
+        self.length == other.length
+            && self.ei == other.ei
+            && self.basis == other.basis
+            && self.kappa == other.kappa
+            && self.rule == other.rule
+            && self.section == other.section
+    }
 }
 
 impl Flexure {
