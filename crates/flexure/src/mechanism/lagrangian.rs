@@ -117,19 +117,22 @@ pub(super) fn assemble_into(
     a: &mut Assembly,
 ) -> Result<(f64, f64)> {
     let Assembly { gradient, hessian, closure, closure_jacobian, points } = a;
-    gradient.fill(0.0);
+    // Each joint's block is written, not added: the blocks do not overlap.
+    let n = gradient.len();
+    gradient.as_mut_slice().fill(0.0);
     if with_hessian {
-        hessian.fill(0.0);
+        hessian.as_mut_slice().fill(0.0);
     }
     let mut elastic = 0.0;
     for (j, s) in m.joints.iter().zip(&f.joints) {
-        let k = s.gradient.len();
+        let (o, k) = (j.offset, s.gradient.len());
         elastic += s.energy;
-        let mut g = gradient.rows_mut(j.offset, k);
-        g += &s.gradient;
+        gradient.as_mut_slice()[o..o + k].copy_from_slice(s.gradient.as_slice());
         if with_hessian {
-            let mut h = hessian.view_mut((j.offset, j.offset), (k, k));
-            h += &s.stiffness;
+            let h = hessian.as_mut_slice();
+            for (c, column) in s.stiffness.as_slice().chunks_exact(k).enumerate() {
+                h[(o + c) * n + o..(o + c) * n + o + k].copy_from_slice(column);
+            }
         }
     }
     let load = add_loads(m, f, loads, gradient, with_hessian.then_some(&mut *hessian), points)?;
@@ -167,8 +170,16 @@ pub(super) fn add_closures(
         point_into(m, f, b, br, pb);
         for k in 0..2 {
             closure[row + k] = pa.position[k] - pb.position[k];
-            for col in 0..g.ncols() {
-                g[(row + k, col)] = pa.jacobian[(1 + k, col)] - pb.jacobian[(1 + k, col)];
+        }
+        // Column-major: G's column `col` and the points' (θ, x, y) columns.
+        let rows = g.nrows();
+        let (ja, jb) = (pa.jacobian.as_slice(), pb.jacobian.as_slice());
+        for (col, column) in g.as_mut_slice().chunks_exact_mut(rows).enumerate() {
+            let (ja, jb) = (&ja[3 * col..3 * col + 3], &jb[3 * col..3 * col + 3]);
+            column[row] = ja[1] - jb[1];
+            column[row + 1] = ja[2] - jb[2];
+            if angle {
+                column[row + 2] = ja[0] - jb[0];
             }
         }
         // The angle is linear in q for every joint kind: no Hessian term.
@@ -178,9 +189,6 @@ pub(super) fn add_closures(
         }
         if angle {
             closure[row + 2] = wrap(pa.angle + aphi - pb.angle - bphi);
-            for col in 0..g.ncols() {
-                g[(row + 2, col)] = pa.jacobian[(0, col)] - pb.jacobian[(0, col)];
-            }
         }
         row += c.equations();
     }
@@ -214,8 +222,9 @@ pub(super) fn add_loads(
         }
         let p = &mut points[0];
         point_into(m, f, body, at, p);
-        for c in 0..n {
-            gradient[c] -= force[0] * p.jacobian[(1, c)] + force[1] * p.jacobian[(2, c)] + moment * p.jacobian[(0, c)];
+        // Column-major 3 × n: coordinate c's (θ, x, y).
+        for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
+            *g -= force[0] * j[1] + force[1] * j[2] + moment * j[0];
         }
         if let Some(h) = h {
             add_point_hessian(m, f, p, [-force[0], -force[1]], h);
