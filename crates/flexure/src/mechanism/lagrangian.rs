@@ -128,7 +128,7 @@ pub(super) fn assemble_into(
         let (o, k) = (j.offset, s.gradient.len());
         elastic += s.energy;
         gradient.as_mut_slice()[o..o + k].copy_from_slice(s.gradient.as_slice());
-        if with_hessian {
+        if with_hessian && k > 0 {
             let h = hessian.as_mut_slice();
             for (c, column) in s.stiffness.as_slice().chunks_exact(k).enumerate() {
                 h[(o + c) * n + o..(o + c) * n + o + k].copy_from_slice(column);
