@@ -302,8 +302,13 @@ pub fn distance(m: &Mechanism, a: &[f64], b: &[f64], length: f64, angles: &mut [
     for j in &m.joints {
         match &j.kind {
             JointKind::Flexure(f) => {
+                // Each node's section turns by Σᵢ ψᵢ(t_k)(aᵢ − bᵢ) relative to the root.
                 let range = j.offset..j.offset + f.order();
-                d = d.max(crate::statics::rotation(f, &a[range.clone()], Some(&b[range])));
+                let (a, b) = (&a[range.clone()], &b[range]);
+                for psi in f.psi_rows() {
+                    let turn: f64 = psi.iter().zip(a.iter().zip(b)).map(|(p, (a, b))| p * (a - b)).sum();
+                    d = d.max(turn.abs());
+                }
             }
             JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / length),
             _ => {}
