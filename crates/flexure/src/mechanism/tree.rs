@@ -48,12 +48,11 @@ pub(super) struct Tree {
     beta: Vec<f64>,
     alpha: Vec<f64>,
     theta: Vec<f64>,
-    /// The pivots' LU factors, $\sum_j k_j^2$ entries, and their row swaps.
+    /// The pivots' LU factors (Cholesky's, in a definiteness test),
+    /// $\sum_j k_j^2$ entries, and their row swaps.
     pivots: Vec<f64>,
     block: Vec<usize>,
     swaps: Vec<usize>,
-    /// One pivot's copy for the definiteness test.
-    scratch: Vec<f64>,
 }
 
 impl Tree {
@@ -76,10 +75,8 @@ impl Tree {
             pivots: Vec::new(),
             block: Vec::with_capacity(joints),
             swaps: vec![0; n],
-            scratch: Vec::new(),
         };
         let mut size = 0;
-        let mut largest = 0;
         for (j, spec) in m.joints.iter().enumerate() {
             let k = t.dof[j];
             let row: &[f64] = match &spec.kind {
@@ -91,10 +88,8 @@ impl Tree {
             t.angle[spec.offset..spec.offset + k].copy_from_slice(row);
             t.block.push(size);
             size += k * k;
-            largest = largest.max(k * k);
         }
         t.pivots = vec![0.0; size];
-        t.scratch = vec![0.0; largest];
         for j in 0..joints {
             // The nearest ancestor that turns what lies beyond it.
             let mut up = t.parent[j];
@@ -114,15 +109,18 @@ impl Tree {
     /// Factors the symmetric $H$ with entries `entry(r, c)` (read on the
     /// diagonal blocks and on one row above each joint), its angle rows
     /// scaled by `scale` (coordinates $\tilde q = q/s$: pass the scale of
-    /// a matrix $SHS$, or an empty slice). `None` if a pivot is singular;
-    /// otherwise, when `definite` is asked, whether $H$ is positive
-    /// definite (every pivot passes Cholesky), else `false`.
+    /// a matrix $SHS$, or an empty slice), for [`Tree::solve`]: `None` if
+    /// a pivot is singular, else `Some(false)`. When `definite` is asked,
+    /// only whether $H$ is positive definite (every pivot passes Cholesky):
+    /// `Some(true)` or `Some(false)` (`None` if a coupling overflows), and
+    /// the factors are not kept for solving. Then the pivots' Cholesky
+    /// factors serve the couplings, and elimination stops at the first
+    /// pivot that fails (Sylvester: $H$ is then not definite).
     pub fn factor(&mut self, entry: impl Fn(usize, usize) -> f64, scale: &[f64], definite: bool) -> Option<bool> {
         for (i, (d, a)) in self.d.iter_mut().zip(&self.angle).enumerate() {
             *d = a * scale.get(i).copied().unwrap_or(1.0);
         }
         self.beta.fill(0.0);
-        let mut positive = true;
         for j in (0..self.offset.len()).rev() {
             let (o, k) = (self.offset[j], self.dof[j]);
             let b = self.beta[j];
@@ -132,6 +130,13 @@ impl Tree {
                     p[c * k + r] = entry(o + r, o + c) - b * self.d[o + r] * self.d[o + c];
                 }
             }
+            if definite && !linalg::cholesky(p, k) {
+                return Some(false);
+            }
+            // A joint at the root passes nothing up: a definiteness test needs no more of it.
+            if definite && self.parent[j].is_none() {
+                continue;
+            }
             for r in 0..k {
                 let g = match self.anchor[j] {
                     Some(a) => entry(a, o + r) / self.d[a],
@@ -139,16 +144,15 @@ impl Tree {
                 };
                 self.h[o + r] = g - b * self.d[o + r];
             }
-            if definite && positive {
-                let s = &mut self.scratch[..k * k];
-                s.copy_from_slice(p);
-                positive = linalg::cholesky(s, k);
-            }
-            if !linalg::lu(p, k, &mut self.swaps[o..o + k]) {
-                return None;
-            }
             self.w[o..o + k].copy_from_slice(&self.h[o..o + k]);
-            linalg::lu_solve(p, k, &self.swaps[o..o + k], &mut self.w[o..o + k]);
+            if definite {
+                linalg::cholesky_solve(p, k, &mut self.w[o..o + k]);
+            } else {
+                if !linalg::lu(p, k, &mut self.swaps[o..o + k]) {
+                    return None;
+                }
+                linalg::lu_solve(p, k, &self.swaps[o..o + k], &mut self.w[o..o + k]);
+            }
             let beta = b + (o..o + k).map(|i| self.h[i] * self.w[i]).sum::<f64>();
             if !beta.is_finite() {
                 return None;
@@ -158,7 +162,7 @@ impl Tree {
             }
             self.beta[j] = beta;
         }
-        Some(definite && positive)
+        Some(definite)
     }
 
     /// Solves $H\delta = $ `x` in place with the last [`Tree::factor`]
