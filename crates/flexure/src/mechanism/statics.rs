@@ -728,26 +728,27 @@ impl solver::Problem<f64> for Kkt<'_> {
         if !residual.iter().all(|r| r.is_finite()) {
             return Err(Error::Singular { what: "mechanism equilibrium: a non-finite generalized force".into() });
         }
-        if let Some(jac) = jacobian {
+        // (Column chunks of size 0 would panic; a mechanism without coordinates has no Jacobian.)
+        if let Some(jac) = jacobian.filter(|_| size > 0) {
             let hessian = a.hessian.as_slice();
-            for c in 0..n {
-                let column = &mut jac[c * size..(c + 1) * size];
+            let (left, right) = jac.split_at_mut(n * size);
+            for (c, column) in left.chunks_exact_mut(size).enumerate() {
                 let (top, bottom) = column.split_at_mut(n);
                 for ((j, h), s) in top.iter_mut().zip(&hessian[c * n..(c + 1) * n]).zip(&self.row_scale) {
                     *j = h * s;
                 }
-                let gc = &g[c * rows..(c + 1) * rows];
-                for ((j, g), s) in bottom.iter_mut().zip(gc).zip(&self.closure_scale) {
+                for ((j, g), s) in bottom.iter_mut().zip(&g[c * rows..(c + 1) * rows]).zip(&self.closure_scale) {
                     *j = g * s;
                 }
-                for (i, (g, s)) in gc.iter().zip(&self.multiplier_scale).enumerate() {
-                    jac[(n + i) * size + c] = g * s * self.row_scale[c];
-                }
             }
-            for i in 0..rows {
-                let column = &mut jac[(n + i) * size + n..(n + i + 1) * size];
-                column.fill(0.0);
-                column[i] = -MULTIPLIER_SHIFT;
+            for (i, column) in right.chunks_exact_mut(size).enumerate() {
+                let (top, bottom) = column.split_at_mut(n);
+                let s = self.multiplier_scale[i];
+                for (c, (j, r)) in top.iter_mut().zip(&self.row_scale).enumerate() {
+                    *j = g[c * rows + i] * s * r;
+                }
+                bottom.fill(0.0);
+                bottom[i] = -MULTIPLIER_SHIFT;
             }
         }
         if let Some(d) = dlambda {
