@@ -763,6 +763,8 @@ impl solver::Problem<f64> for Kkt<'_> {
     /// positive definite, $\tilde Z$ = [`linalg::null_space`]$(\tilde G)$.
     /// Where redundant closures leave part of $\mu$ indeterminate, that
     /// part is taken with the least transmitted force first (see [`Solution::multipliers`]).
+    /// A whole Hessian that passes the test passes it on every subspace:
+    /// that is tried first, by the tree's pivots in $O(n)$.
     fn stable(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());

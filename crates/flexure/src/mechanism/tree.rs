@@ -21,8 +21,12 @@
 //! so $H$ is positive definite exactly when every pivot $M_j$ is (Sylvester's
 //! law of inertia): the definiteness test is the factorization itself.
 //!
-//! Tendons (whose length couples branches) and closures break this form;
-//! their problems keep the dense factorization.
+//! Tendons (whose length couples branches) break this form, and closures
+//! break it in the KKT matrix: their problems keep the dense
+//! factorization. A closure's own Hessian terms are point terms, though,
+//! so the Hessian of a closed mechanism without tendons keeps the form,
+//! and its definiteness is tested here too (a sufficient test of stability,
+//! [`super::statics`]).
 
 use super::{JointKind, Mechanism};
 use crate::linalg;
