@@ -550,14 +550,34 @@ impl<'a> Kkt<'a> {
         linalg::is_positive_definite(&k)
     }
 
+    /// Whether the rows of $G$ (read from `jacobian`) are independent by a
+    /// wide margin ([`linalg::columns_independent`]), so that no multiplier
+    /// is indeterminate; leaves $G^T$ ($n\times$ rows) in the workspace.
+    fn closure_rows_independent(&mut self, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        if rows > n {
+            return false;
+        }
+        let Workspace { closure_t: a, gram, .. } = &mut *self.work;
+        for i in 0..rows {
+            for c in 0..n {
+                a[i * n + c] = jacobian[c * size + n + i] / self.closure_scale[i];
+            }
+        }
+        linalg::columns_independent(a, n, rows, gram)
+    }
+
     /// $\tilde Z^T\thinspace S(H - wK)S\thinspace\tilde Z - \text{margin}\thinspace I$ positive
     /// definite, on the workspace's buffers without allocating: $H$ the
     /// Hessian block of `jacobian`, $K$ the joints' elastic stiffness,
     /// $S = \operatorname{diag}(1/\sqrt{k_i})$ and $\tilde Z$ the null space of
-    /// $\tilde G = GS$ by Householder reflections. `None` unless $G$ and
-    /// $\tilde G$ have rows independent by a wide margin
-    /// ([`linalg::columns_independent`]): then no multiplier is
-    /// indeterminate and this is the test of [`Kkt::stable_dense`].
+    /// $\tilde G = GS$ by Householder reflections. For a $G$ whose rows
+    /// [`Kkt::closure_rows_independent`] has just found independent (its
+    /// $G^T$ is read from the workspace); `None` unless $\tilde G$'s rows are
+    /// independent by a wide margin too ([`linalg::columns_independent`]):
+    /// then no multiplier is indeterminate and this is the test of [`Kkt::stable_dense`].
     fn constrained_definite(&mut self, jacobian: &[f64], w: f64, margin: f64) -> Option<bool> {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());
@@ -580,15 +600,7 @@ impl<'a> Kkt<'a> {
             joint_of,
             ..
         } = &mut *self.work;
-        // Gᵀ, n × rows, then G̃ᵀ = S Gᵀ.
-        for i in 0..rows {
-            for c in 0..n {
-                a[i * n + c] = jacobian[c * size + n + i] / self.closure_scale[i];
-            }
-        }
-        if !linalg::columns_independent(a, n, rows, gram) {
-            return None;
-        }
+        // G̃ᵀ = S Gᵀ.
         for (s, r) in s.iter_mut().zip(&self.row_scale) {
             *s = r.sqrt();
         }
@@ -655,23 +667,17 @@ impl<'a> Kkt<'a> {
     /// terms are point terms; tendons couple branches) and the rows of
     /// $G$ are independent by a wide margin, so no multiplier is
     /// indeterminate and the Hessian at the solver's multipliers is the
-    /// one stability is judged at; `false` leaves the decision to the projected test.
+    /// one stability is judged at (the caller's check,
+    /// [`Kkt::closure_rows_independent`]); `false` leaves the decision to
+    /// the projected test.
     fn hessian_definite(&mut self, jacobian: &[f64]) -> bool {
         let m = self.mechanism;
         let (n, rows) = (m.dof(), m.constraints());
         let size = n + rows;
-        if !m.tendons.is_empty() || rows > n {
+        if !m.tendons.is_empty() {
             return false;
         }
-        let Workspace { tree, closure_t: a, gram, root_scale: s, .. } = &mut *self.work;
-        for i in 0..rows {
-            for c in 0..n {
-                a[i * n + c] = jacobian[c * size + n + i] / self.closure_scale[i];
-            }
-        }
-        if !linalg::columns_independent(a, n, rows, gram) {
-            return false;
-        }
+        let Workspace { tree, root_scale: s, .. } = &mut *self.work;
         for (s, r) in s.iter_mut().zip(&self.row_scale) {
             *s = r.sqrt();
         }
@@ -800,6 +806,9 @@ impl solver::Problem<f64> for Kkt<'_> {
                 k[c * n + c] -= self.margin;
             }
             return linalg::positive_definite(k, n, scratch);
+        }
+        if !self.closure_rows_independent(jacobian) {
+            return self.stable_dense(x, lambda, jacobian);
         }
         if self.hessian_definite(jacobian) {
             return true;
@@ -1393,7 +1402,8 @@ mod tests {
                 let lambda = 0.5 * (1.0 + rng.next());
                 let x = kkt.state(&q, &mu);
                 kkt.evaluate(&x, lambda, &mut r, Some(&mut jac), None).unwrap();
-                let fast = kkt.constrained_definite(&jac, 0.0, kkt.margin).expect("independent closure rows");
+                assert!(kkt.closure_rows_independent(&jac), "independent closure rows");
+                let fast = kkt.constrained_definite(&jac, 0.0, kkt.margin).expect("independent scaled closure rows");
                 let everywhere = kkt.hessian_definite(&jac);
                 let verdict = kkt.stable(&x, lambda, &jac);
                 let dense = kkt.stable_dense(&x, lambda, &jac);
