@@ -109,6 +109,31 @@ fn reproduce_writes_a_checked_report() {
     let notch: Vec<f64> = rows[1]["position_error_over_length"].as_array().unwrap().iter().map(f).collect();
     assert!(notch.windows(2).all(|w| w[1] < w[0]) && notch[14] < 0.03 * notch[0], "{notch:?}");
 
+    // Dynamics: the strip's modes against Euler–Bernoulli vibration by
+    // shooting (a separate computation). The model at N = 8 meets f₁ and f₂
+    // to 1e-8 (measured 8e-15 and 2e-14; the mass integrals are held to
+    // 1e-8); the segment chain converges from above, slowly (first order in
+    // the segment length: each doubling at least halves f₁'s error), while
+    // its inertia matrix's condition number grows with every segment.
+    let strip = &r["dynamics"]["strip"];
+    let exact: Vec<f64> = strip["exact_frequency"].as_array().unwrap().iter().map(f).collect();
+    assert!(exact.len() == 3 && exact.windows(2).all(|w| w[0] < w[1]), "{exact:?}");
+    let models = strip["models"].as_array().unwrap();
+    let of = |name: &str| -> Vec<&Value> { models.iter().filter(|m| m["model"] == name).collect() };
+    let scm = of("Smooth Curvature");
+    let last = scm.last().unwrap();
+    assert_eq!(last["order"], 8);
+    for k in 0..2 {
+        assert!(f(&last["relative_error"][k]).abs() < 1e-8, "N = 8, f{}: {}", k + 1, last["relative_error"][k]);
+    }
+    let chain = of("constant-curvature segments");
+    let first: Vec<f64> = chain.iter().map(|m| f(&m["relative_error"][0])).collect();
+    assert!(first.iter().all(|&e| e > 0.0) && first.windows(2).all(|w| w[1] < 0.5 * w[0]), "{first:?}");
+    let condition: Vec<f64> = chain.iter().map(|m| f(&m["mass_condition"])).collect();
+    assert!(condition.windows(2).all(|w| w[1] > w[0]), "{condition:?}");
+    let finger = &r["dynamics"]["finger"];
+    assert!(f(&finger["steps"]) > 0.0 && f(&finger["distal_angle_end"]).is_finite());
+
     // The report and the figures: every SVG it embeds exists, with axis labels.
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     for name in md.split("](").skip(1).map(|s| s.split(')').next().unwrap()) {

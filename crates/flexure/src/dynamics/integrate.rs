@@ -465,7 +465,18 @@ pub fn integrate<S: System + ?Sized>(
                 step: h,
             };
             if run.steps + run.rejected >= settings.max_steps {
-                return Err(stalled(&format!("{cause}; the step limit max_steps was reached"), h, &run));
+                // Many short steps that each passed or nearly passed: the
+                // tolerance asks to resolve motion that fast, and lightly
+                // damped stiff modes are what usually moves that fast.
+                return Err(stalled(
+                    &format!(
+                        "{cause}; the step limit max_steps was reached, the steps near {h:.1e} s resolving \
+                         motion that fast to the tolerance (lightly damped stiff modes, usually: material \
+                         damping on the flexures lets the integrator step over them)"
+                    ),
+                    h,
+                    &run,
+                ));
             }
             if rejections > settings.max_rejections {
                 return Err(stalled(&format!("{cause}; {rejections} successive rejections"), h, &run));
