@@ -38,6 +38,29 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
     Ok(())
 }
 
+/// Buffers for [`connect_with`] on one flexure: kinematics and the
+/// solver's workspace, reused from call to call (the Data of [`connect`]).
+#[derive(Debug, Clone)]
+pub struct ConnectData {
+    kinematics: Kinematics<f64>,
+    solver: solver::Workspace<f64>,
+    /// The flexure's order and number of quadrature nodes, to refuse another's.
+    order: usize,
+    nodes: usize,
+}
+
+impl ConnectData {
+    /// Buffers sized for `flexure`.
+    pub fn new(flexure: &Flexure) -> Self {
+        Self {
+            kinematics: Kinematics::new(flexure),
+            solver: solver::Workspace::new(flexure.order() + 3),
+            order: flexure.order(),
+            nodes: flexure.scaled_weights().len(),
+        }
+    }
+}
+
 /// The coordinates of least energy $U(\alpha)$ whose tip reaches `target`.
 ///
 /// Newton on the KKT conditions of $\min U$ s.t. tip pose = target,
@@ -50,6 +73,8 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 /// $N = 3$ this solves Eqs. 11, 14 and 15 ($\alpha_1 = \phi$, two equations
 /// in $\alpha_2, \alpha_3$), with the multipliers alongside.
 ///
+/// Allocates its buffers on every call: [`connect_with`] reuses them.
+///
 /// # Example
 /// ```
 /// use flexure::{connect::connect, Flexure, Pose};
@@ -60,31 +85,56 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 /// assert!((c.alpha[0] - 1.0).abs() < 1e-12 && c.alpha[1].abs() < 1e-8);
 /// ```
 pub fn connect(flexure: &Flexure, target: &Pose) -> Result<Connection> {
+    connect_with(flexure, target, &mut ConnectData::new(flexure))
+}
+
+/// [`connect`] on buffers made once by [`ConnectData::new`] for the same
+/// flexure: the same answer, and the only allocation is the answer's
+/// coordinates ([`Connection::alpha`]).
+///
+/// # Example
+/// ```
+/// use flexure::{connect::{connect, connect_with, ConnectData}, Flexure, Pose};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let mut data = ConnectData::new(&f);
+/// let target = Pose { phi: 1.5, x: 0.55, y: 0.65 };
+/// assert_eq!(connect_with(&f, &target, &mut data).unwrap(), connect(&f, &target).unwrap());
+/// ```
+pub fn connect_with(flexure: &Flexure, target: &Pose, data: &mut ConnectData) -> Result<Connection> {
     check_pose(flexure, target)?;
     let n = flexure.order();
     if n < 3 {
         return Err(Error::invalid("order", n, "must be at least 3 to reach a tip pose (three constraints)"));
     }
-    let mut k = Kinematics::new(flexure);
-    let start = arc(flexure, target.phi);
-    kinematics::update(flexure, &start, &mut k, Level::Pose);
+    if data.order != n || data.nodes != flexure.scaled_weights().len() {
+        return Err(Error::invalid(
+            "data",
+            format!("order {}, {} quadrature nodes", data.order, data.nodes),
+            "was made for a flexure of another order or quadrature rule",
+        ));
+    }
+    let ConnectData { kinematics: k, solver: ws, .. } = data;
+    arc(flexure, target.phi, &mut ws.x[..n]);
+    ws.x[n..].fill(0.0);
+    kinematics::update(flexure, &ws.x[..n], k, Level::Pose);
     let from = k.pose_root_tip;
-    let mut problem = ConnectProblem { flexure, kinematics: &mut k, from, target: *target };
-    let mut ws = solver::Workspace::new(n + 3);
-    ws.x[..n].copy_from_slice(&start);
+    let mut problem = ConnectProblem { flexure, kinematics: k, from, target: *target };
     let settings = Settings { tolerance: 1e-13, ..Default::default() };
-    let path = solver::continuation(&mut problem, &mut ws, &settings)?;
+    let path = solver::continuation(&mut problem, ws, &settings)?;
     let alpha = ws.x[..n].to_vec();
     let load = TipLoad { moment: ws.x[n], fx: ws.x[n + 1], fy: ws.x[n + 2] };
     Ok(Connection { energy: energy(flexure, &alpha), alpha, load, iterations: path.iterations })
 }
 
-/// Coordinates of the circular arc with tip angle `phi`.
-fn arc(flexure: &Flexure, phi: f64) -> Vec<f64> {
+/// Writes the coordinates of the circular arc with tip angle `phi` into `alpha`.
+fn arc(flexure: &Flexure, phi: f64, alpha: &mut [f64]) {
     let n = flexure.order();
     match flexure.basis() {
-        Basis::Legendre => (0..n).map(|i| if i == 0 { phi } else { 0.0 }).collect(),
-        Basis::Segments => vec![phi / n as f64; n],
+        Basis::Legendre => {
+            alpha.fill(0.0);
+            alpha[0] = phi;
+        }
+        Basis::Segments => alpha.fill(phi / n as f64),
     }
 }
 

@@ -151,6 +151,31 @@ fn parallelogram_solve_with_allocates_only_its_answer() {
     assert_eq!(n, 3, "parallelogram: {n} allocations in a warm solve_with");
 }
 
+/// A warm `connect_with` (issue 4's Fig. 4 pose, orders 3 and 9, and a
+/// chain of 22 segments) allocates exactly the answer's coordinates
+/// (`Connection::alpha`): kinematics, KKT evaluations, Newton steps and
+/// tangents run on `ConnectData`'s buffers.
+#[test]
+fn connect_with_allocates_only_its_answer() {
+    use flexure::Pose;
+    use flexure::connect::{ConnectData, connect_with};
+    let target = Pose { phi: std::f64::consts::FRAC_PI_2, x: 0.55, y: 0.65 };
+    for f in [
+        Flexure::new(1.0, 1.0, 3).unwrap(),
+        Flexure::new(1.0, 1.0, 9).unwrap(),
+        Flexure::segments(1.0, 1.0, 22).unwrap(),
+    ] {
+        let mut data = ConnectData::new(&f);
+        let first = connect_with(&f, &target, &mut data).unwrap();
+        let mut found = None;
+        let n = allocations(|| found = Some(connect_with(&f, &target, &mut data).unwrap()));
+        let c = found.unwrap();
+        assert_eq!(c, first);
+        assert!(c.iterations >= 2, "a solve that iterates: {c:?}");
+        assert_eq!(n, 1, "order {}: {n} allocations in a warm connect_with", f.order());
+    }
+}
+
 /// Non-uniform sections keep evaluation allocation-free (issue "Sections"):
 /// the stiffness matrix is integrated once when the flexure is built, so
 /// energy, gradient, kinematics and a whole `deflect` on a tapered and on a

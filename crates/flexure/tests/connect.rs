@@ -1,6 +1,6 @@
 //! Minimum-energy shapes (Sec. II-E) and the energy error η (Eq. 16) against the exact elastica.
 
-use flexure::connect::{Connection, connect};
+use flexure::connect::{ConnectData, Connection, connect, connect_with};
 use flexure::reference::elastica;
 use flexure::{Error, Flexure, Kinematics, Level, Pose, energy_gradient, update_kinematics};
 use std::f64::consts::FRAC_PI_2;
@@ -100,4 +100,36 @@ fn unreachable_pose_is_an_error() {
         connect(&Flexure::new(1.0, 1.0, 2).unwrap(), &FIG4).is_err(),
         "two coordinates cannot meet three constraints"
     );
+}
+
+/// Reused buffers keep no state between solves: a sequence of poses (with an
+/// unreachable one and a failed solve's leftovers between them) gives, to
+/// the bit, what fresh buffers give for each pose alone.
+#[test]
+fn reused_buffers_give_the_fresh_answer() {
+    let poses = [
+        FIG4,
+        Pose { phi: 1.2, x: 1.2f64.sin() / 1.2, y: (1.0 - 1.2f64.cos()) / 1.2 },
+        Pose { phi: -0.7, x: 0.6, y: -0.3 },
+        Pose { phi: 0.0, x: 0.9, y: 0.5 },
+        FIG4,
+    ];
+    for f in [Flexure::new(1.0, 1.0, 4).unwrap(), Flexure::segments(1.0, 1.0, 9).unwrap()] {
+        let mut data = ConnectData::new(&f);
+        for (i, p) in poses.iter().enumerate() {
+            let found = connect_with(&f, p, &mut data);
+            assert_eq!(found.is_ok(), i != 3, "{:?} {p:?}: {found:?}", f.basis());
+            assert_eq!(found, connect(&f, p), "{:?} {p:?}", f.basis());
+        }
+    }
+}
+
+/// Buffers made for another flexure are refused with an error naming them.
+#[test]
+fn buffers_of_another_flexure_are_an_error() {
+    let mut data = ConnectData::new(&Flexure::new(1.0, 1.0, 4).unwrap());
+    for f in [Flexure::new(1.0, 1.0, 3).unwrap(), Flexure::segments(1.0, 1.0, 4).unwrap()] {
+        let err = connect_with(&f, &FIG4, &mut data).unwrap_err();
+        assert!(matches!(err, Error::InvalidParameter { name: "data", .. }), "{err}");
+    }
 }
