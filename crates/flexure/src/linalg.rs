@@ -94,6 +94,23 @@ pub fn is_positive_definite(a: &DMatrix<f64>) -> bool {
 /// `a`, in place; `pivots[k]` is the row swapped into place at step $k$.
 /// Returns `false` if a pivot is zero or not finite (a singular matrix).
 pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
+    // Small systems (one flexure's KKT system, a short chain) by the same
+    // operations at a size known to the compiler: unrolled, no bounds checks.
+    match n {
+        2 => return lu_fixed::<T, 2>(a, pivots),
+        3 => return lu_fixed::<T, 3>(a, pivots),
+        4 => return lu_fixed::<T, 4>(a, pivots),
+        5 => return lu_fixed::<T, 5>(a, pivots),
+        6 => return lu_fixed::<T, 6>(a, pivots),
+        7 => return lu_fixed::<T, 7>(a, pivots),
+        8 => return lu_fixed::<T, 8>(a, pivots),
+        _ => {}
+    }
+    lu_any(a, n, pivots)
+}
+
+/// [`lu`] for any $n$.
+fn lu_any<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
     let a = &mut a[..n * n];
     let pivots = &mut pivots[..n];
     for k in 0..n {
@@ -138,6 +155,60 @@ pub fn lu<T: Scalar>(a: &mut [T], n: usize, pivots: &mut [usize]) -> bool {
     true
 }
 
+/// [`lu`] for $N\times N$ ($N \le 8$): the same operations in the same
+/// order (so the same factors to the bit), with every step's size known to
+/// the compiler, so that all loops unroll.
+#[inline(always)]
+fn lu_fixed<T: Scalar, const N: usize>(a: &mut [T], pivots: &mut [usize]) -> bool {
+    let columns: &mut [[T; N]; N] = a[..N * N].as_chunks_mut::<N>().0.try_into().expect("N columns");
+    let pivots: &mut [usize; N] = (&mut pivots[..N]).try_into().expect("N pivots");
+    // The steps spelled out, k a constant in each.
+    macro_rules! steps {
+        ($($k:literal)*) => {
+            $(if $k < N && !lu_step::<T, N>(columns, pivots, $k) {
+                return false;
+            })*
+        };
+    }
+    steps!(0 1 2 3 4 5 6 7);
+    true
+}
+
+/// Step `k` of [`lu_fixed`]: pivot, swap, scale column `k`, update the rest.
+#[inline(always)]
+fn lu_step<T: Scalar, const N: usize>(columns: &mut [[T; N]; N], pivots: &mut [usize; N], k: usize) -> bool {
+    let (mut p, mut largest) = (k, columns[k][k].re().abs());
+    for i in k + 1..N {
+        if columns[k][i].re().abs() > largest {
+            (p, largest) = (i, columns[k][i].re().abs());
+        }
+    }
+    let pivot = columns[k][p].re();
+    if !(pivot.is_finite() && pivot != 0.0) {
+        return false;
+    }
+    pivots[k] = p;
+    if p != k {
+        for column in columns.iter_mut() {
+            column.swap(k, p);
+        }
+    }
+    let d = columns[k][k];
+    for i in k + 1..N {
+        columns[k][i] /= d;
+    }
+    let l = columns[k];
+    for column in columns[k + 1..].iter_mut() {
+        let f = column[k];
+        if f.re() != 0.0 || f != T::zero() {
+            for i in k + 1..N {
+                column[i] -= l[i] * f;
+            }
+        }
+    }
+    true
+}
+
 /// Solves $Ax = b$ in place with the factors from [`lu`].
 ///
 /// # Example
@@ -157,9 +228,22 @@ pub fn lu_solve<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
 
 /// The first half of [`lu_solve`]: $b \leftarrow L^{-1}Pb$.
 pub fn lu_forward<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
-    if n == 0 {
-        return;
+    match n {
+        0 => return,
+        2 => return lu_forward_fixed::<T, 2>(a, pivots, b),
+        3 => return lu_forward_fixed::<T, 3>(a, pivots, b),
+        4 => return lu_forward_fixed::<T, 4>(a, pivots, b),
+        5 => return lu_forward_fixed::<T, 5>(a, pivots, b),
+        6 => return lu_forward_fixed::<T, 6>(a, pivots, b),
+        7 => return lu_forward_fixed::<T, 7>(a, pivots, b),
+        8 => return lu_forward_fixed::<T, 8>(a, pivots, b),
+        _ => {}
     }
+    lu_forward_any(a, n, pivots, b);
+}
+
+/// [`lu_forward`] for any $n \ge 1$.
+fn lu_forward_any<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
     let (a, pivots, b) = (&a[..n * n], &pivots[..n], &mut b[..n]);
     for (k, &p) in pivots.iter().enumerate() {
         b.swap(k, p);
@@ -175,9 +259,22 @@ pub fn lu_forward<T: Scalar>(a: &[T], n: usize, pivots: &[usize], b: &mut [T]) {
 
 /// The second half of [`lu_solve`]: $b \leftarrow U^{-1}b$.
 pub fn lu_backward<T: Scalar>(a: &[T], n: usize, b: &mut [T]) {
-    if n == 0 {
-        return;
+    match n {
+        0 => return,
+        2 => return lu_backward_fixed::<T, 2>(a, b),
+        3 => return lu_backward_fixed::<T, 3>(a, b),
+        4 => return lu_backward_fixed::<T, 4>(a, b),
+        5 => return lu_backward_fixed::<T, 5>(a, b),
+        6 => return lu_backward_fixed::<T, 6>(a, b),
+        7 => return lu_backward_fixed::<T, 7>(a, b),
+        8 => return lu_backward_fixed::<T, 8>(a, b),
+        _ => {}
     }
+    lu_backward_any(a, n, b);
+}
+
+/// [`lu_backward`] for any $n \ge 1$.
+fn lu_backward_any<T: Scalar>(a: &[T], n: usize, b: &mut [T]) {
     let (a, b) = (&a[..n * n], &mut b[..n]);
     for (j, column) in a.chunks_exact(n).enumerate().rev() {
         let (head, tail) = b.split_at_mut(j);
@@ -186,6 +283,36 @@ pub fn lu_backward<T: Scalar>(a: &[T], n: usize, b: &mut [T]) {
         let bj = *bj;
         for (bi, &u) in head.iter_mut().zip(column) {
             *bi -= u * bj;
+        }
+    }
+}
+
+/// [`lu_forward`] for $N\times N$, by the same operations.
+#[inline(always)]
+fn lu_forward_fixed<T: Scalar, const N: usize>(a: &[T], pivots: &[usize], b: &mut [T]) {
+    let columns: &[[T; N]; N] = a[..N * N].as_chunks::<N>().0.try_into().expect("N columns");
+    let b: &mut [T; N] = (&mut b[..N]).try_into().expect("N values");
+    for (k, &p) in pivots[..N].iter().enumerate() {
+        b.swap(k, p);
+    }
+    for j in 0..N {
+        let bj = b[j];
+        for i in j + 1..N {
+            b[i] -= columns[j][i] * bj;
+        }
+    }
+}
+
+/// [`lu_backward`] for $N\times N$, by the same operations.
+#[inline(always)]
+fn lu_backward_fixed<T: Scalar, const N: usize>(a: &[T], b: &mut [T]) {
+    let columns: &[[T; N]; N] = a[..N * N].as_chunks::<N>().0.try_into().expect("N columns");
+    let b: &mut [T; N] = (&mut b[..N]).try_into().expect("N values");
+    for j in (0..N).rev() {
+        b[j] /= columns[j][j];
+        let bj = b[j];
+        for i in 0..j {
+            b[i] -= columns[j][i] * bj;
         }
     }
 }
@@ -368,4 +495,72 @@ pub fn softest_mode(a: &DMatrix<f64>) -> Option<(f64, nalgebra::DVector<f64>)> {
     let eig = nalgebra::SymmetricEigen::new((a + a.transpose()) * 0.5);
     let (i, &value) = eig.eigenvalues.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1))?;
     Some((value, eig.eigenvectors.column(i).into_owned()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_dual::Dual64;
+
+    /// Factors, pivots, verdict and solution by the dispatching entries
+    /// (`fast`) and by the any-size paths they shortcut, as bit patterns.
+    fn both<T: Scalar>(
+        a: &[T],
+        b: &[T],
+        n: usize,
+        bits: impl Fn(&[T]) -> Vec<u64>,
+    ) -> [(bool, Vec<usize>, Vec<u64>); 2] {
+        let (mut fast, mut general) = (a.to_vec(), a.to_vec());
+        let (mut pf, mut pg) = (vec![0; n], vec![0; n]);
+        let (ok_f, ok_g) = (lu(&mut fast, n, &mut pf), lu_any(&mut general, n, &mut pg));
+        let (mut xf, mut xg) = (b.to_vec(), b.to_vec());
+        if ok_g {
+            lu_solve(&fast, n, &pf, &mut xf);
+            lu_forward_any(&general, n, &pg, &mut xg);
+            lu_backward_any(&general, n, &mut xg);
+        }
+        [(ok_f, pf, [bits(&fast), bits(&xf)].concat()), (ok_g, pg, [bits(&general), bits(&xg)].concat())]
+    }
+
+    /// The fixed-size paths of [`lu`], [`lu_forward`] and [`lu_backward`]
+    /// against the any-size ones they shortcut, on seeded random matrices
+    /// of 1 to 10 unknowns (with zeros that skip updates, exact ties of
+    /// pivot candidates, a singular column, a NaN, an infinity), in `f64`
+    /// and in dual numbers (value and derivative parts): the same factors,
+    /// pivots, verdicts and solutions to the bit.
+    #[test]
+    fn fixed_sizes_are_the_general_path_to_the_bit() {
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        let mut next = || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            (state.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        };
+        let dual_bits = |v: &[Dual64]| v.iter().flat_map(|x| [x.re.to_bits(), x.eps.to_bits()]).collect();
+        let plain_bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect();
+        let mut factored = 0;
+        for n in 1..=10 {
+            for case in 0..8 {
+                let mut a: Vec<Dual64> = (0..n * n).map(|_| Dual64::new(next(), next())).collect();
+                match case {
+                    1 => a.iter_mut().step_by(3).for_each(|v| *v = Dual64::new(0.0, 0.0)),
+                    2 => a.iter_mut().for_each(|v| *v = Dual64::new((v.re * 4.0).round(), v.eps)),
+                    3 => a[..n].iter_mut().for_each(|v| *v = Dual64::new(0.0, v.eps)),
+                    4 => a[n * n / 2].re = f64::NAN,
+                    5 => a[n * n - 1].re = f64::INFINITY,
+                    _ => {}
+                }
+                let b: Vec<Dual64> = (0..n).map(|_| Dual64::new(next(), next())).collect();
+                let [fast, general] = both(&a, &b, n, dual_bits);
+                assert_eq!(fast, general, "dual, n = {n}, case {case}");
+                let (a, b): (Vec<f64>, Vec<f64>) = (a.iter().map(|v| v.re).collect(), b.iter().map(|v| v.re).collect());
+                let [fast, general] = both(&a, &b, n, plain_bits);
+                assert_eq!(fast, general, "f64, n = {n}, case {case}");
+                factored += usize::from(general.0);
+            }
+        }
+        // Cases 3 and 5 (and some NaNs) are singular by design; the rest must factor.
+        assert!(factored >= 40, "only {factored} of 80 matrices factored");
+    }
 }
