@@ -1,6 +1,6 @@
 //! The minimum-energy shape between two poses (paper Sec. II-E, Eq. 16).
 
-use crate::energy::{energy, energy_gradient, stiffness};
+use crate::energy::{energy, energy_gradient};
 use crate::error::{Error, Result, finite};
 use crate::joint::{Basis, Flexure};
 use crate::kinematics::{self, Kinematics, Level, Pose};
@@ -168,9 +168,10 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
         kinematics::update(f, alpha, k, if jacobian.is_some() { Level::Hessian } else { Level::Jacobian });
         energy_gradient(f, alpha, &mut r[..n]);
         let (mo, fx, fy) = (z[n], z[n + 1], z[n + 2]);
-        let j = &k.jacobian_root_tip;
-        for i in 0..n {
-            r[i] = (r[i] - (j[(0, i)] * mo + j[(1, i)] * fx + j[(2, i)] * fy)) / scale;
+        // The tip Jacobian column-major, three rows (φ, x, y) per coordinate.
+        let j = k.jacobian_root_tip.as_slice();
+        for (r, j) in r[..n].iter_mut().zip(j.chunks_exact(3)) {
+            *r = (*r - (j[0] * mo + j[1] * fx + j[2] * fy)) / scale;
         }
         let p = k.pose_root_tip;
         let goal = |a: f64, b: f64| a + lambda * (b - a);
@@ -184,19 +185,25 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
             d[n + 2] = -(self.target.y - self.from.y) / l;
         }
         if let Some(jac) = jacobian {
-            jac.fill(0.0);
-            for c in 0..n {
-                for row in 0..n {
-                    jac[c * m + row] =
-                        -(fx * k.hessian_root_tip_x[(row, c)] + fy * k.hessian_root_tip_y[(row, c)]) / scale;
+            // Column c: (K − Fx∇∇x − Fy∇∇y)/scale over 𝒥 with its x, y rows over L;
+            // the multipliers' columns: −𝒥ᵀ/scale over zeros.
+            let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
+            let stiffness = f.stiffness_matrix();
+            let (coordinates, multipliers) = jac[..m * m].split_at_mut(n * m);
+            for (c, (column, jc)) in coordinates.chunks_exact_mut(m).zip(j.chunks_exact(3)).enumerate() {
+                let (top, bottom) = column.split_at_mut(n);
+                let (hx, hy) = (&hx[c * n..(c + 1) * n], &hy[c * n..(c + 1) * n]);
+                for (row, t) in top.iter_mut().enumerate() {
+                    // K is symmetric; entry (row, c) as energy::stiffness reads it.
+                    *t = -(fx * hx[row] + fy * hy[row]) / scale + stiffness[row * n + c] / scale;
                 }
-                for row in 0..n {
-                    jac[c * m + row] += stiffness(f, row, c) / scale;
+                bottom.copy_from_slice(&[jc[0], jc[1] / l, jc[2] / l]);
+            }
+            for (a, column) in multipliers.chunks_exact_mut(m).enumerate() {
+                for (t, jc) in column[..n].iter_mut().zip(j.chunks_exact(3)) {
+                    *t = -jc[a] / scale;
                 }
-                for a in 0..3 {
-                    jac[(n + a) * m + c] = -j[(a, c)] / scale;
-                    jac[c * m + n + a] = j[(a, c)] / if a == 0 { 1.0 } else { l };
-                }
+                column[n..].fill(0.0);
             }
         }
         Ok(())
