@@ -1,6 +1,6 @@
 //! The minimum-energy shape between two poses (paper Sec. II-E, Eq. 16).
 
-use crate::energy::{energy, energy_gradient};
+use crate::energy::{energy, energy_gradient, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
 use crate::joint::{Basis, Flexure};
 use crate::kinematics::{self, Kinematics, Level, Pose};
@@ -115,16 +115,57 @@ pub fn connect_with(flexure: &Flexure, target: &Pose, data: &mut ConnectData) ->
     }
     let ConnectData { kinematics: k, solver: ws, .. } = data;
     arc(flexure, target.phi, &mut ws.x[..n]);
-    ws.x[n..].fill(0.0);
-    kinematics::update(flexure, &ws.x[..n], k, Level::Pose);
+    kinematics::update(flexure, &ws.x[..n], k, Level::Jacobian);
     let from = k.pose_root_tip;
+    let settings = Settings { tolerance: TOLERANCE, ..Default::default() };
+    let (alpha, multipliers) = ws.x.split_at_mut(n);
+    // Multipliers that solve λ = 0 outright where some do (a uniform arc
+    // is held by the pure moment EI·φ/L), so the start needs no Newton
+    // step; elsewhere (a rest curvature, a varying section) zero, as before.
+    let load = holding_load(flexure, alpha, k);
+    multipliers.copy_from_slice(&load.unwrap_or([0.0; 3]));
     let mut problem = ConnectProblem { flexure, kinematics: k, from, target: *target };
-    let settings = Settings { tolerance: 1e-13, ..Default::default() };
     let path = solver::continuation(&mut problem, ws, &settings)?;
     let alpha = ws.x[..n].to_vec();
     let load = TipLoad { moment: ws.x[n], fx: ws.x[n + 1], fy: ws.x[n + 2] };
     Ok(Connection { energy: energy(flexure, &alpha), alpha, load, iterations: path.iterations })
 }
+
+/// The multipliers $\mu$ with $\nabla U = \mathcal J^T\mu$ at `alpha`
+/// (with `k` at `alpha`, Jacobian level) to [`connect`]'s tolerance in its
+/// scaled residual, if there are such: the least-squares solution by the
+/// normal equations $\mathcal J\mathcal J^T\mu = \mathcal J\nabla U$, checked
+/// entry by entry as the solver will check it.
+fn holding_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Option<[f64; 3]> {
+    let j = k.jacobian_root_tip.as_slice();
+    let scale = flexure.ei() / flexure.length();
+    let (mut normal, mut rhs) = ([0.0; 9], [0.0; 3]);
+    for (i, jc) in j.chunks_exact(3).enumerate() {
+        let g = energy_gradient_entry(flexure, alpha, i);
+        for a in 0..3 {
+            rhs[a] += jc[a] * g;
+            for b in 0..3 {
+                normal[3 * a + b] += jc[a] * jc[b];
+            }
+        }
+    }
+    if !crate::linalg::cholesky(&mut normal, 3) {
+        return None;
+    }
+    crate::linalg::cholesky_solve(&normal, 3, &mut rhs);
+    let [mo, fx, fy] = rhs;
+    // The residual's first block exactly as ConnectProblem::evaluate writes it.
+    j.chunks_exact(3)
+        .enumerate()
+        .all(|(i, jc)| {
+            let r = (energy_gradient_entry(flexure, alpha, i) - (jc[0] * mo + jc[1] * fx + jc[2] * fy)) / scale;
+            r.abs() <= TOLERANCE
+        })
+        .then_some(rhs)
+}
+
+/// [`connect`]'s tolerance on the scaled KKT residual.
+const TOLERANCE: f64 = 1e-13;
 
 /// Writes the coordinates of the circular arc with tip angle `phi` into `alpha`.
 fn arc(flexure: &Flexure, phi: f64, alpha: &mut [f64]) {
@@ -239,4 +280,46 @@ pub fn tip_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Result
     energy_gradient(flexure, alpha, &mut g);
     let l = crate::linalg::least_squares(&k.jacobian_root_tip.transpose(), &DVector::from_vec(g));
     Ok(TipLoad { moment: l[0], fx: l[1], fy: l[2] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The start's multipliers against the closed form: a uniform arc of
+    /// tip angle φ is held by the pure moment $EI\phi/L$ (Legendre and
+    /// segments, several EI/L); with a rest curvature the arc is not held
+    /// by any tip load (its curvature differs from the rest one along the
+    /// length), so there are none and the start stays at zero.
+    #[test]
+    fn start_multipliers_are_the_arcs_moment() {
+        for f in [
+            Flexure::new(1.0, 1.0, 3).unwrap(),
+            Flexure::new(0.02, 3.0, 6).unwrap(),
+            Flexure::segments(1.5, 0.4, 22).unwrap(),
+        ] {
+            let n = f.order();
+            let mut k = Kinematics::new(&f);
+            for phi in [-2.0, 0.3, std::f64::consts::FRAC_PI_2] {
+                let mut alpha = vec![0.0; n];
+                arc(&f, phi, &mut alpha);
+                kinematics::update(&f, &alpha, &mut k, Level::Jacobian);
+                let [mo, fx, fy] = holding_load(&f, &alpha, &k).expect("an arc is held by a moment");
+                let moment = f.ei() * phi / f.length();
+                // Rounding of the 3×3 normal equations, which square the
+                // conditioning of 𝒥 (forces count by their moment F·L).
+                let tol = 1e-12 * moment.abs();
+                assert!(
+                    (mo - moment).abs() < tol && fx.abs() * f.length() < tol && fy.abs() * f.length() < tol,
+                    "order {n}, φ = {phi}: {:?} against {moment}",
+                    [mo, fx, fy]
+                );
+            }
+        }
+        let f = Flexure::new(1.0, 1.0, 4).unwrap().with_rest(&[0.4, -0.2, 0.1, 0.0]).unwrap();
+        let mut k = Kinematics::new(&f);
+        let alpha = [1.0, 0.0, 0.0, 0.0];
+        kinematics::update(&f, &alpha, &mut k, Level::Jacobian);
+        assert_eq!(holding_load(&f, &alpha, &k), None);
+    }
 }
