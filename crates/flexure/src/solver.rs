@@ -433,12 +433,16 @@ fn correct<T: Scalar, P: Problem<T>>(
         // else by LU, where a singular matrix (a free motion, a bifurcation
         // point) is shifted along its diagonal until it factors.
         if !(problem.factor(jacobian) && structured_solve(problem, matrix, n, m, &mut step[..m], aux)) {
-            let diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-            let mut shift = 0.0;
+            // The shift, relative to the largest diagonal entry; that scale
+            // is found only when the unshifted matrix does not factor.
+            let (mut shift, mut diag) = (0.0, 0.0);
             loop {
                 scratch_copy(matrix, scratch, m, shift * diag);
                 if linalg::lu(&mut scratch[..m * m], m, &mut pivots[..m]) {
                     break;
+                }
+                if shift == 0.0 {
+                    diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
                 }
                 shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
                 if shift > 1e2 {
@@ -454,11 +458,12 @@ fn correct<T: Scalar, P: Problem<T>>(
             }
             linalg::lu_solve(&scratch[..m * m], m, &pivots[..m], &mut step[..m]);
         }
-        if contraction {
+        if contraction && iteration <= 1 {
             // A continuation step must land in the quadratic basin of the
             // branch it follows (Deuflhard's contraction test): the second
             // Newton step at most half the first, and no damping. Otherwise
-            // the step is too long and is retried shorter.
+            // the step is too long and is retried shorter. (Only the first
+            // two steps' sizes are compared.)
             let size = (0..m)
                 .map(|i| (step[i].re() * if i < n { problem.weight(i) } else { lambda_weight }).powi(2))
                 .sum::<f64>()
