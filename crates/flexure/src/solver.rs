@@ -356,14 +356,13 @@ fn system<T: Scalar, P: Problem<T>>(
         Some((jac, dlambda, matrix)) => {
             let dlambda_wanted = load_derivative || matches!(mode, Mode::Arclength);
             problem.evaluate(x, lam, r, Some(&mut *jac), dlambda_wanted.then_some(&mut *dlambda))?;
-            let m = match mode {
-                Mode::Fixed => n,
-                Mode::Arclength => n + 1,
-            };
-            for c in 0..n {
-                matrix[c * m..c * m + n].copy_from_slice(&jac[c * n..c * n + n]);
-            }
+            // In fixed mode the Newton matrix is the Jacobian itself, read
+            // from `jac` ([`correct`]); only the bordered one is assembled.
             if let Mode::Arclength = mode {
+                let m = n + 1;
+                for c in 0..n {
+                    matrix[c * m..c * m + n].copy_from_slice(&jac[c * n..c * n + n]);
+                }
                 matrix[n * m..n * m + n].copy_from_slice(dlambda);
                 for c in 0..n {
                     matrix[c * m + n] = tangent[c] * T::c(problem.weight(c).powi(2));
@@ -431,18 +430,23 @@ fn correct<T: Scalar, P: Problem<T>>(
         }
         // Newton step: by the problem's own factorization if it has one;
         // else by LU, where a singular matrix (a free motion, a bifurcation
-        // point) is shifted along its diagonal until it factors.
-        if !(problem.factor(jacobian) && structured_solve(problem, matrix, n, m, &mut step[..m], aux)) {
+        // point) is shifted along its diagonal until it factors. The Newton
+        // matrix is ∂x r itself in fixed mode, else the bordered one.
+        let newton: &[T] = match mode {
+            Mode::Fixed => &jacobian[..m * m],
+            Mode::Arclength => &matrix[..m * m],
+        };
+        if !(problem.factor(jacobian) && structured_solve(problem, newton, n, m, &mut step[..m], aux)) {
             // The shift, relative to the largest diagonal entry; that scale
             // is found only when the unshifted matrix does not factor.
             let (mut shift, mut diag) = (0.0, 0.0);
             loop {
-                scratch_copy(matrix, scratch, m, shift * diag);
+                scratch_copy(newton, scratch, m, shift * diag);
                 if linalg::lu(&mut scratch[..m * m], m, &mut pivots[..m]) {
                     break;
                 }
                 if shift == 0.0 {
-                    diag = (0..m).map(|i| matrix[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+                    diag = (0..m).map(|i| newton[i * m + i].re().abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
                 }
                 shift = if shift == 0.0 { 1e-12 } else { shift * 100.0 };
                 if shift > 1e2 {
