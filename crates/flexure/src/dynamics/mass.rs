@@ -462,3 +462,110 @@ pub fn update<T: Scalar>(model: &MassModel, alpha: &[T], alpha_dot: Option<&[T]>
         }
     }
 }
+
+/// The first moment of a flexure's distributed mass about its root, in the
+/// root frame, and its derivatives in $\alpha$: what its weight contributes
+/// to a potential, $V_g = -g\cdot(m\thinspace o + R\thinspace c(\alpha))$ for a root at
+/// $o$ turned by $R$ ([`crate::mechanism::lagrangian`]).
+///
+/// $$c = \int_0^L\mu\thinspace r\thinspace ds,\quad
+/// \frac{\partial c}{\partial\alpha_i} = \int_0^L\mu\thinspace J_{r,i}\thinspace ds,\quad
+/// \frac{\partial^2c}{\partial\alpha_i\partial\alpha_j} = -\int_0^L\mu\int_0^s\psi_i\psi_j
+/// \begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds'\thinspace ds,$$
+///
+/// on the nested quadrature of [`update`] (the tip body is not included).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Weight {
+    /// $m = \int_0^L\mu\thinspace ds$ (kg).
+    pub mass: f64,
+    /// $c$ (kg·m).
+    pub first_moment: [f64; 2],
+    /// $\partial c/\partial\alpha_i$, one per coordinate.
+    pub jacobian: Vec<[f64; 2]>,
+    /// $\partial^2c/\partial\alpha_i\partial\alpha_j$, `[i * n + j]`.
+    pub hessian: Vec<[f64; 2]>,
+    /// $J_r$ and $\partial J_r/\partial\alpha$ at the current node.
+    node_jacobian: Vec<[f64; 2]>,
+    node_hessian: Vec<[f64; 2]>,
+}
+
+impl Weight {
+    /// Buffers for `model`.
+    pub fn new(model: &MassModel) -> Self {
+        let n = model.order;
+        Self {
+            mass: 0.0,
+            first_moment: [0.0; 2],
+            jacobian: vec![[0.0; 2]; n],
+            hessian: vec![[0.0; 2]; n * n],
+            node_jacobian: vec![[0.0; 2]; n],
+            node_hessian: vec![[0.0; 2]; n * n],
+        }
+    }
+}
+
+/// Fills `out` with the [`Weight`] of `model`'s distributed mass at `alpha`,
+/// in one pass over the nodes of [`update`]. Does not allocate.
+///
+/// # Panics
+/// If `alpha` does not have [`MassModel::order`] entries or `out` was made
+/// for another order.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::{mass::{weight, Weight}, MassModel};
+/// use flexure::section::{Profile, Section};
+/// let s = Section::given(Profile::Constant(1.0)).unwrap().with_mass_per_length(Profile::Constant(2.0)).unwrap();
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap().with_section(s).unwrap();
+/// let model = MassModel::new(&f, None).unwrap();
+/// let mut w = Weight::new(&model);
+/// weight(&model, &[0.0; 3], &mut w);
+/// // Straight: m = μL, c = (μL²/2, 0), and ∂c_y/∂α₁ = μ∫ s²/2L ds = μL²/6.
+/// assert!((w.mass - 2.0).abs() < 1e-14 && (w.first_moment[0] - 1.0).abs() < 1e-14);
+/// assert!((w.jacobian[0][1] - 2.0 / 6.0).abs() < 1e-14);
+/// ```
+pub fn weight(model: &MassModel, alpha: &[f64], out: &mut Weight) {
+    let n = model.order;
+    assert!(alpha.len() == n, "alpha must have {n} entries (one per coordinate), got {}", alpha.len());
+    assert!(out.jacobian.len() == n, "Weight was made for a model of another order");
+    out.mass = 0.0;
+    out.first_moment = [0.0; 2];
+    out.jacobian.fill([0.0; 2]);
+    out.hessian.fill([0.0; 2]);
+    out.node_jacobian.fill([0.0; 2]);
+    out.node_hessian.fill([0.0; 2]);
+    let mut r = [0.0; 2];
+    let q = model.per_panel;
+    let panels = model.inner_psi.chunks_exact(q * n).zip(model.inner_weight.chunks_exact(q));
+    for ((psis, weights), &mass) in panels.zip(&model.panel_mass) {
+        for (psi, &w) in psis.chunks_exact(n).zip(weights) {
+            let phi: f64 = psi.iter().zip(alpha).map(|(p, a)| p * a).sum();
+            let (s, c) = phi.sin_cos();
+            r[0] += w * c;
+            r[1] += w * s;
+            for (i, &pi) in psi.iter().enumerate() {
+                let wp = w * pi;
+                out.node_jacobian[i][0] -= wp * s;
+                out.node_jacobian[i][1] += wp * c;
+                for (j, &pj) in psi.iter().enumerate() {
+                    let h = &mut out.node_hessian[i * n + j];
+                    h[0] -= wp * pj * c;
+                    h[1] -= wp * pj * s;
+                }
+            }
+        }
+        if mass != 0.0 {
+            out.mass += mass;
+            out.first_moment[0] += mass * r[0];
+            out.first_moment[1] += mass * r[1];
+            for (o, j) in out.jacobian.iter_mut().zip(&out.node_jacobian) {
+                o[0] += mass * j[0];
+                o[1] += mass * j[1];
+            }
+            for (o, h) in out.hessian.iter_mut().zip(&out.node_hessian) {
+                o[0] += mass * h[0];
+                o[1] += mass * h[1];
+            }
+        }
+    }
+}

@@ -543,10 +543,10 @@ impl System for MechanismSystem {
     }
 
     /// The stiffness is the Hessian of the potential (elastic, point loads,
-    /// tendons, the bodies' weight) and the damping is $D + \partial h/\partial\dot q$
-    /// (exact: $h$ is quadratic in $\dot q$). Left out: the change of $h$ and of
-    /// the flexure sections' weight with $q$, second order in the rates and
-    /// small beside the elastic stiffness of a flexure.
+    /// tendons, the weight of bodies and flexure sections) and the damping is
+    /// $D + \partial h/\partial\dot q$ (exact: $h$ is quadratic in $\dot q$). Left
+    /// out: the change of $h$ with $q$, second order in the rates and small
+    /// beside the elastic stiffness of a flexure.
     fn tangent(&mut self, q: &[f64], v: &[f64], _t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
