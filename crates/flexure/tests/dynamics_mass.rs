@@ -355,3 +355,70 @@ fn body_fields_are_validated_by_name() {
     assert!(matches!(MassModel::new(&f, Some(&bad)), Err(Error::InvalidParameter { name: "inertia", .. })));
     let _ = massive(3, 1.0, 1.0, 1.0);
 }
+
+/// The weight's first moment c(α) and its hand-written derivatives, three
+/// ways, on a taper, a segment chain and a high order: num-dual's directional
+/// derivatives of c and of ∂c/∂α (to 1e-12 of the scale: the same nodes, so
+/// only rounding differs), central differences of step 1e-5 (truncation
+/// about 1e-10 of the scale; tolerance 1e-7), and the Hessian's symmetry
+/// (exact: ψᵢψⱼ = ψⱼψᵢ node by node). The mass is ∫μ ds by the outer rule.
+#[test]
+fn weight_moments_match_num_dual_and_central_differences() {
+    use flexure::dynamics::mass::{Weight, weight};
+    let mut rng = Rng(17);
+    let flexures = [
+        steel(3, 0.02, Profile::Linear { root: 3e-4, tip: 1.5e-4 }),
+        steel(7, 0.02, Profile::Constant(2e-4)),
+        Flexure::segments(0.02, 1e-3, 4)
+            .unwrap()
+            .with_section(
+                Section::given(Profile::Constant(1e-3))
+                    .unwrap()
+                    .with_mass_per_length(Profile::Table(vec![[0.0, 0.02], [0.3, 0.01], [1.0, 0.015]]))
+                    .unwrap(),
+            )
+            .unwrap(),
+    ];
+    let h = 1e-5;
+    for f in &flexures {
+        let n = f.order();
+        let model = MassModel::new(f, None).unwrap();
+        let mut w = Weight::<f64>::new(&model);
+        let mut d = Weight::<Dual64>::new(&model);
+        let (mut plus, mut minus) = (Weight::<f64>::new(&model), Weight::<f64>::new(&model));
+        for _ in 0..4 {
+            let alpha = rng.vec(n, 2.0);
+            weight(&model, &alpha, &mut w);
+            let scale_c = w.first_moment[0].abs().max(w.first_moment[1].abs());
+            let scale_j = w.jacobian.iter().flatten().fold(0.0_f64, |a, x| a.max(x.abs()));
+            let scale_h = w.hessian.iter().flatten().fold(0.0_f64, |a, x| a.max(x.abs()));
+            for i in 0..n {
+                for j in 0..n {
+                    assert_eq!(w.hessian[i * n + j], w.hessian[j * n + i], "symmetry ({i}, {j})");
+                }
+                let mut a: Vec<Dual64> = alpha.iter().map(|&x| Dual64::from(x)).collect();
+                a[i].eps = 1.0;
+                weight(&model, &a, &mut d);
+                let (mut ap, mut am) = (alpha.clone(), alpha.clone());
+                ap[i] += h;
+                am[i] -= h;
+                weight(&model, &ap, &mut plus);
+                weight(&model, &am, &mut minus);
+                for k in 0..2 {
+                    let dual = d.first_moment[k].eps;
+                    let central = (plus.first_moment[k] - minus.first_moment[k]) / (2.0 * h);
+                    assert!((w.jacobian[i][k] - dual).abs() < 1e-12 * scale_j, "∂c/∂α{i}: num-dual");
+                    assert!((w.jacobian[i][k] - central).abs() < 1e-7 * scale_j, "∂c/∂α{i}: differences");
+                    for j in 0..n {
+                        let dual = d.jacobian[j][k].eps;
+                        let central = (plus.jacobian[j][k] - minus.jacobian[j][k]) / (2.0 * h);
+                        let got = w.hessian[j * n + i][k];
+                        assert!((got - dual).abs() < 1e-12 * scale_h, "∂²c/∂α{j}∂α{i}: num-dual");
+                        assert!((got - central).abs() < 1e-7 * scale_h, "∂²c/∂α{j}∂α{i}: differences");
+                    }
+                }
+            }
+            assert!(scale_c > 0.0 && w.mass > 0.0);
+        }
+    }
+}

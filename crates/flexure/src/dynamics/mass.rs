@@ -475,37 +475,39 @@ pub fn update<T: Scalar>(model: &MassModel, alpha: &[T], alpha_dot: Option<&[T]>
 ///
 /// on the nested quadrature of [`update`] (the tip body is not included).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Weight {
+pub struct Weight<T: Scalar = f64> {
     /// $m = \int_0^L\mu\thinspace ds$ (kg).
     pub mass: f64,
     /// $c$ (kg·m).
-    pub first_moment: [f64; 2],
+    pub first_moment: [T; 2],
     /// $\partial c/\partial\alpha_i$, one per coordinate.
-    pub jacobian: Vec<[f64; 2]>,
+    pub jacobian: Vec<[T; 2]>,
     /// $\partial^2c/\partial\alpha_i\partial\alpha_j$, `[i * n + j]`.
-    pub hessian: Vec<[f64; 2]>,
+    pub hessian: Vec<[T; 2]>,
     /// $J_r$ and $\partial J_r/\partial\alpha$ at the current node.
-    node_jacobian: Vec<[f64; 2]>,
-    node_hessian: Vec<[f64; 2]>,
+    node_jacobian: Vec<[T; 2]>,
+    node_hessian: Vec<[T; 2]>,
 }
 
-impl Weight {
+impl<T: Scalar> Weight<T> {
     /// Buffers for `model`.
     pub fn new(model: &MassModel) -> Self {
         let n = model.order;
+        let zero = [T::zero(); 2];
         Self {
             mass: 0.0,
-            first_moment: [0.0; 2],
-            jacobian: vec![[0.0; 2]; n],
-            hessian: vec![[0.0; 2]; n * n],
-            node_jacobian: vec![[0.0; 2]; n],
-            node_hessian: vec![[0.0; 2]; n * n],
+            first_moment: zero,
+            jacobian: vec![zero; n],
+            hessian: vec![zero; n * n],
+            node_jacobian: vec![zero; n],
+            node_hessian: vec![zero; n * n],
         }
     }
 }
 
 /// Fills `out` with the [`Weight`] of `model`'s distributed mass at `alpha`,
-/// in one pass over the nodes of [`update`]. Does not allocate.
+/// in one pass over the nodes of [`update`]. Generic over [`Scalar`], so
+/// dual numbers differentiate it. Does not allocate.
 ///
 /// # Panics
 /// If `alpha` does not have [`MassModel::order`] entries or `out` was made
@@ -524,48 +526,59 @@ impl Weight {
 /// assert!((w.mass - 2.0).abs() < 1e-14 && (w.first_moment[0] - 1.0).abs() < 1e-14);
 /// assert!((w.jacobian[0][1] - 2.0 / 6.0).abs() < 1e-14);
 /// ```
-pub fn weight(model: &MassModel, alpha: &[f64], out: &mut Weight) {
+pub fn weight<T: Scalar>(model: &MassModel, alpha: &[T], out: &mut Weight<T>) {
     let n = model.order;
     assert!(alpha.len() == n, "alpha must have {n} entries (one per coordinate), got {}", alpha.len());
     assert!(out.jacobian.len() == n, "Weight was made for a model of another order");
+    let zero = [T::zero(); 2];
     out.mass = 0.0;
-    out.first_moment = [0.0; 2];
-    out.jacobian.fill([0.0; 2]);
-    out.hessian.fill([0.0; 2]);
-    out.node_jacobian.fill([0.0; 2]);
-    out.node_hessian.fill([0.0; 2]);
-    let mut r = [0.0; 2];
+    out.first_moment = zero;
+    out.jacobian.fill(zero);
+    out.hessian.fill(zero);
+    out.node_jacobian.fill(zero);
+    out.node_hessian.fill(zero);
+    let mut r = zero;
     let q = model.per_panel;
     let panels = model.inner_psi.chunks_exact(q * n).zip(model.inner_weight.chunks_exact(q));
     for ((psis, weights), &mass) in panels.zip(&model.panel_mass) {
         for (psi, &w) in psis.chunks_exact(n).zip(weights) {
-            let phi: f64 = psi.iter().zip(alpha).map(|(p, a)| p * a).sum();
+            let mut phi = T::zero();
+            for (&p, &a) in psi.iter().zip(alpha) {
+                phi += T::c(p) * a;
+            }
             let (s, c) = phi.sin_cos();
-            r[0] += w * c;
-            r[1] += w * s;
+            r[0] += T::c(w) * c;
+            r[1] += T::c(w) * s;
             for (i, &pi) in psi.iter().enumerate() {
                 let wp = w * pi;
-                out.node_jacobian[i][0] -= wp * s;
-                out.node_jacobian[i][1] += wp * c;
-                for (j, &pj) in psi.iter().enumerate() {
+                out.node_jacobian[i][0] -= T::c(wp) * s;
+                out.node_jacobian[i][1] += T::c(wp) * c;
+                // The upper triangle (j ≥ i), mirrored at the end: exactly symmetric.
+                for (j, &pj) in psi.iter().enumerate().skip(i) {
                     let h = &mut out.node_hessian[i * n + j];
-                    h[0] -= wp * pj * c;
-                    h[1] -= wp * pj * s;
+                    h[0] -= T::c(wp * pj) * c;
+                    h[1] -= T::c(wp * pj) * s;
                 }
             }
         }
         if mass != 0.0 {
             out.mass += mass;
-            out.first_moment[0] += mass * r[0];
-            out.first_moment[1] += mass * r[1];
+            let m = T::c(mass);
+            out.first_moment[0] += m * r[0];
+            out.first_moment[1] += m * r[1];
             for (o, j) in out.jacobian.iter_mut().zip(&out.node_jacobian) {
-                o[0] += mass * j[0];
-                o[1] += mass * j[1];
+                o[0] += m * j[0];
+                o[1] += m * j[1];
             }
             for (o, h) in out.hessian.iter_mut().zip(&out.node_hessian) {
-                o[0] += mass * h[0];
-                o[1] += mass * h[1];
+                o[0] += m * h[0];
+                o[1] += m * h[1];
             }
+        }
+    }
+    for i in 0..n {
+        for j in 0..i {
+            out.hessian[i * n + j] = out.hessian[j * n + i];
         }
     }
 }
