@@ -21,6 +21,24 @@ fn steel(n: usize, length: f64, h: Profile) -> Flexure {
     Flexure::new(length, 1.0, n).unwrap().with_section(s).unwrap()
 }
 
+/// A taper at order 3, a uniform strip at order 7, and a four-segment chain
+/// with a tabulated mass per length: the cases the derivative checks cover.
+fn varied() -> [Flexure; 3] {
+    [
+        steel(3, 0.02, Profile::Linear { root: 3e-4, tip: 1.5e-4 }),
+        steel(7, 0.02, Profile::Constant(2e-4)),
+        Flexure::segments(0.02, 1e-3, 4)
+            .unwrap()
+            .with_section(
+                Section::given(Profile::Constant(1e-3))
+                    .unwrap()
+                    .with_mass_per_length(Profile::Table(vec![[0.0, 0.02], [0.3, 0.01], [1.0, 0.015]]))
+                    .unwrap(),
+            )
+            .unwrap(),
+    ]
+}
+
 fn mass_matrix(model: &MassModel, alpha: &[f64]) -> DMatrix<f64> {
     let mut data = MassData::new(model);
     update_mass(model, alpha, None, &mut data);
@@ -218,19 +236,7 @@ fn notch_mass_is_refined() {
 fn velocity_products_match_num_dual() {
     let mut rng = Rng(11);
     let body = Body::new(0.03, 2e-6, [0.015, -0.004]).unwrap();
-    let flexures = [
-        steel(3, 0.02, Profile::Linear { root: 3e-4, tip: 1.5e-4 }),
-        steel(7, 0.02, Profile::Constant(2e-4)),
-        Flexure::segments(0.02, 1e-3, 4)
-            .unwrap()
-            .with_section(
-                Section::given(Profile::Constant(1e-3))
-                    .unwrap()
-                    .with_mass_per_length(Profile::Table(vec![[0.0, 0.02], [0.3, 0.01], [1.0, 0.015]]))
-                    .unwrap(),
-            )
-            .unwrap(),
-    ];
+    let flexures = varied();
     for f in &flexures {
         let n = f.order();
         let model = MassModel::new(f, Some(&body)).unwrap();
@@ -366,19 +372,7 @@ fn body_fields_are_validated_by_name() {
 fn weight_moments_match_num_dual_and_central_differences() {
     use flexure::dynamics::mass::{Weight, weight};
     let mut rng = Rng(17);
-    let flexures = [
-        steel(3, 0.02, Profile::Linear { root: 3e-4, tip: 1.5e-4 }),
-        steel(7, 0.02, Profile::Constant(2e-4)),
-        Flexure::segments(0.02, 1e-3, 4)
-            .unwrap()
-            .with_section(
-                Section::given(Profile::Constant(1e-3))
-                    .unwrap()
-                    .with_mass_per_length(Profile::Table(vec![[0.0, 0.02], [0.3, 0.01], [1.0, 0.015]]))
-                    .unwrap(),
-            )
-            .unwrap(),
-    ];
+    let flexures = varied();
     let h = 1e-5;
     for f in &flexures {
         let n = f.order();

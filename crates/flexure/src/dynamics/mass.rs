@@ -179,6 +179,28 @@ impl MassModel {
     }
 }
 
+impl MassModel {
+    /// Each panel's $\psi$ at its inner nodes (`[node * n + i]`), their
+    /// weights, and the mass weight of the outer node that ends it.
+    fn panels(&self) -> impl Iterator<Item = (&[f64], &[f64], f64)> {
+        let (n, q) = (self.order, self.per_panel);
+        self.inner_psi
+            .chunks_exact(q * n)
+            .zip(self.inner_weight.chunks_exact(q))
+            .zip(&self.panel_mass)
+            .map(|((psis, weights), &mass)| (psis, weights, mass))
+    }
+}
+
+/// $\phi = \psi\cdot\alpha$ at one node.
+fn angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
+    let mut phi = T::zero();
+    for (&p, &a) in psi.iter().zip(alpha) {
+        phi += T::c(p) * a;
+    }
+    phi
+}
+
 /// The pieces $[a, b]$ of $[0, 1]$ between `breaks`, each cut into `sub`.
 fn pieces(breaks: &[f64], sub: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
     let ends: Vec<f64> = std::iter::once(0.0).chain(breaks.iter().copied()).chain(std::iter::once(1.0)).collect();
@@ -388,15 +410,9 @@ pub fn update<T: Scalar>(model: &MassModel, alpha: &[T], alpha_dot: Option<&[T]>
     let jac = &mut data.jacobian;
     jac.fill([T::zero(); 2]);
     let mut acc = [T::zero(); 2];
-    let q = model.per_panel;
-    let panels = model.inner_psi.chunks_exact(q * n).zip(model.inner_weight.chunks_exact(q));
-    for ((psis, weights), &mass) in panels.zip(&model.panel_mass) {
+    for (psis, weights, mass) in model.panels() {
         for (psi, &w) in psis.chunks_exact(n).zip(weights) {
-            let mut phi = T::zero();
-            for (&p, &a) in psi.iter().zip(alpha) {
-                phi += T::c(p) * a;
-            }
-            let (s, c) = phi.sin_cos();
+            let (s, c) = angle(psi, alpha).sin_cos();
             let w = T::c(w);
             for (j, &p) in jac.iter_mut().zip(psi) {
                 let wp = w * T::c(p);
@@ -538,15 +554,9 @@ pub fn weight<T: Scalar>(model: &MassModel, alpha: &[T], out: &mut Weight<T>) {
     out.node_jacobian.fill(zero);
     out.node_hessian.fill(zero);
     let mut r = zero;
-    let q = model.per_panel;
-    let panels = model.inner_psi.chunks_exact(q * n).zip(model.inner_weight.chunks_exact(q));
-    for ((psis, weights), &mass) in panels.zip(&model.panel_mass) {
+    for (psis, weights, mass) in model.panels() {
         for (psi, &w) in psis.chunks_exact(n).zip(weights) {
-            let mut phi = T::zero();
-            for (&p, &a) in psi.iter().zip(alpha) {
-                phi += T::c(p) * a;
-            }
-            let (s, c) = phi.sin_cos();
+            let (s, c) = angle(psi, alpha).sin_cos();
             r[0] += T::c(w) * c;
             r[1] += T::c(w) * s;
             for (i, &pi) in psi.iter().enumerate() {
