@@ -41,7 +41,7 @@ use super::system::System;
 use crate::error::{Error, Result};
 use crate::joint::{Basis, Flexure};
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
-use crate::mechanism::lagrangian::{GradientWork, gradient_into, lagrangian};
+use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::statics::{self, Settings};
 use crate::mechanism::{JointKind, Loads, Mechanism};
 use crate::quadrature::GaussLegendre;
@@ -256,6 +256,9 @@ pub struct MechanismSystem {
     trig: Vec<[f64; 2]>,
     /// The mass moments of the flexure being integrated.
     moments: Moments,
+    /// The potential's assembly for [`System::tangent`] (its flexure weight
+    /// tables built once).
+    assembly: Assembly,
     /// $M$, $h$ and $\nabla V$ of [`System::dynamics`].
     mass: DMatrix<f64>,
     product: DVector<f64>,
@@ -280,7 +283,7 @@ impl MechanismSystem {
         for (i, j) in m.joints.iter().enumerate() {
             match &j.kind {
                 JointKind::Flexure(f) => {
-                    if let Some(d) = Distributed::new(m, i, f)? {
+                    if let Some(d) = Distributed::new(m, i, f).map_err(|e| e.in_joint(&j.name))? {
                         distributed.push(d);
                     }
                     let (k, o) = (f.order(), j.offset);
@@ -324,6 +327,7 @@ impl MechanismSystem {
             spins: vec![0.0; nodes],
             trig: vec![[0.0; 2]; nodes],
             moments: Moments::new(largest),
+            assembly: Assembly::new(m),
             mass: DMatrix::zeros(n, n),
             product: DVector::zeros(n),
             gradient: GradientWork::new(m),
@@ -678,8 +682,9 @@ impl System for MechanismSystem {
     fn tangent(&mut self, q: &[f64], v: &[f64], _t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
-        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads)?;
-        stiffness.copy_from_slice(lag.hessian.as_slice());
+        frames_into(&self.mechanism, q, &mut self.frames);
+        assemble_into(&self.mechanism, &self.frames, &self.zeros, &self.loads, true, &mut self.assembly)?;
+        stiffness.copy_from_slice(self.assembly.hessian.as_slice());
         let mut d = self.damping.clone();
         // h is quadratic in v: ∂h/∂v e = (h(v + e) − h(v − e))/2 exactly.
         let mut shifted = v.to_vec();

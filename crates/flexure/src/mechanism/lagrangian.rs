@@ -82,7 +82,7 @@ pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, wit
 
 /// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
 #[derive(Debug, Clone, Default)]
-pub(super) struct Assembly {
+pub(crate) struct Assembly {
     /// $\nabla V$.
     pub gradient: DVector<f64>,
     /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$ (when asked for).
@@ -143,7 +143,7 @@ impl Weights {
 
 /// [`assemble`] into `a` (made for `m`): returns $V$ and its elastic part.
 /// Allocates nothing.
-pub(super) fn assemble_into(
+pub(crate) fn assemble_into(
     m: &Mechanism,
     f: &Frames,
     mu: &[f64],
@@ -349,10 +349,12 @@ fn add_flexure_weights(
     for (j, tables) in &mut weights.flexures {
         let spec = &m.joints[*j];
         let built = tables.get_or_insert_with(|| match &spec.kind {
-            JointKind::Flexure(flexure) => MassModel::new(flexure, None).map(|model| {
-                let w = Weight::new(&model);
-                (model, w)
-            }),
+            JointKind::Flexure(flexure) => MassModel::new(flexure, None)
+                .map(|model| {
+                    let w = Weight::new(&model);
+                    (model, w)
+                })
+                .map_err(|e| e.in_joint(&spec.name)),
             _ => Err(Error::invalid("joint", *j, "is not a flexure")),
         });
         let (model, w) = match built {
