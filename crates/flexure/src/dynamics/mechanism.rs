@@ -709,9 +709,11 @@ impl System for MechanismSystem {
         if self.closures() == 0 {
             return Ok(());
         }
-        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
-        c.copy_from_slice(lag.closure.as_slice());
-        g.copy_from_slice(lag.closure_jacobian.as_slice());
+        // The closures and G alone: no Hessian, no allocation.
+        frames_into(&self.mechanism, q, &mut self.frames);
+        assemble_into(&self.mechanism, &self.frames, &self.zeros, &self.loads_weightless, false, &mut self.assembly)?;
+        c.copy_from_slice(self.assembly.closure.as_slice());
+        g.copy_from_slice(self.assembly.closure_jacobian.as_slice());
         Ok(())
     }
 
