@@ -217,11 +217,11 @@ pub struct FlexureOptions {
     #[arg(long, value_parser = notch, allow_hyphen_values = true, requires = "modulus")]
     pub notch: Option<Notch>,
     /// Density in kg/m³ (with --width and --thickness): mass per length
-    /// density·b·h, for `modes`; statics do not weigh the flexure.
+    /// density·b·h, for `modes` (a single joint has no gravity to weigh it).
     #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with = "mass_per_length")]
     pub density: Option<f64>,
-    /// Mass per length in kg/m: V, or ROOT,TIP, for `modes`; statics do
-    /// not weigh the flexure.
+    /// Mass per length in kg/m: V, or ROOT,TIP, for `modes` (a single joint
+    /// has no gravity to weigh it).
     #[arg(long, value_parser = profile, allow_hyphen_values = true)]
     pub mass_per_length: Option<ProfileArg>,
     /// Rest curvature coefficients κ1,κ2,… (one per order) [default: straight].

@@ -6,8 +6,10 @@ use flexure::dynamics::integrate;
 use flexure::dynamics::simulation::{Simulation, SimulationSettings, Start, simulate};
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::from_toml;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
 use std::fmt::Write;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 /// Where the motion starts.
@@ -79,11 +81,38 @@ pub fn run_motion(file: &Path, duration: f64, options: &MotionOptions) -> Result
     // Settings first: a bad one is named before any solve.
     settings.motion.validate().map_err(crate::describe)?;
     let m = load(file)?;
-    let run = simulate(&m, &settings, options.start()).map_err(|e| match e {
+    let run = with_progress_bar(duration, || simulate(&m, &settings, options.start())).map_err(|e| match e {
         e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
         e => format!("{}: {e}", file.display()),
     })?;
     Ok((m, run))
+}
+
+thread_local! {
+    /// The bar [`with_progress_bar`] shows; hidden unless stderr is a terminal.
+    static BAR: ProgressBar = ProgressBar::hidden();
+}
+
+/// Runs `work` (a simulation of `duration` seconds) with a progress bar on
+/// stderr when it is a terminal: the simulated time reached, updated after
+/// every step (indicatif limits the redraws), cleared at the end.
+fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
+    if !std::io::stderr().is_terminal() {
+        return work();
+    }
+    BAR.with(|bar| {
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+        bar.set_length(1000);
+        bar.set_position(0);
+        if let Ok(style) = ProgressStyle::with_template(&format!("{{bar:30}} {{percent}} % of {duration} s simulated"))
+        {
+            bar.set_style(style);
+        }
+    });
+    let result =
+        integrate::with_progress(|fraction| BAR.with(|bar| bar.set_position((fraction * 1000.0) as u64)), work);
+    BAR.with(|bar| bar.finish_and_clear());
+    result
 }
 
 /// `time`, `bodies` {name: {x, y, phi}}, `coordinates` {joint: one row per

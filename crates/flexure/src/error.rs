@@ -114,6 +114,22 @@ impl Error {
     pub fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> Self {
         Error::InvalidParameter { name, value: value.to_string(), reason }
     }
+
+    /// The same error placed at a mechanism's joint: a [`Error::Singular`]
+    /// says which joint it is about; other kinds name their parameter already.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::Error;
+    /// let e = Error::Singular { what: "no mass".into() }.in_joint("mcp");
+    /// assert_eq!(e, Error::Singular { what: "joint \"mcp\": no mass".into() });
+    /// ```
+    pub fn in_joint(self, joint: &str) -> Self {
+        match self {
+            Error::Singular { what } => Error::Singular { what: format!("joint {joint:?}: {what}") },
+            other => other,
+        }
+    }
 }
 
 /// Checks that `value` is finite, naming it otherwise.

@@ -29,6 +29,7 @@ mod kinematics;
 mod mechanism;
 mod mechanism_derivatives;
 mod mechanism_files;
+mod mechanism_weight;
 mod ode;
 mod quadrature;
 mod reference;

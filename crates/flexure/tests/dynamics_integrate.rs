@@ -501,6 +501,26 @@ fn samples_steps_and_rotation_bound() {
     assert!(turned.steps as f64 >= travel / bound, "{} steps for {travel} rad", turned.steps);
 }
 
+/// The progress hook hears once per accepted step, with the fraction of the
+/// duration reached: increasing, ending at exactly 1, and silent outside
+/// `with_progress`.
+#[test]
+fn progress_is_reported_per_step_up_to_one() {
+    use flexure::dynamics::integrate::with_progress;
+    use std::sync::Mutex;
+    static SEEN: Mutex<Vec<f64>> = Mutex::new(Vec::new());
+    let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
+    let run = with_progress(
+        |f| SEEN.lock().unwrap().push(f),
+        || integrate(&mut p, &[1.0], &[0.0], &settings(2.0, 0.5, 1e-6)).unwrap(),
+    );
+    integrate(&mut p, &[1.0], &[0.0], &settings(2.0, 0.5, 1e-6)).unwrap();
+    let seen = SEEN.lock().unwrap().clone();
+    assert_eq!(seen.len(), run.steps, "one report per accepted step");
+    assert!(seen.windows(2).all(|w| w[1] > w[0]) && seen[0] > 0.0, "{seen:?}");
+    assert_eq!(*seen.last().unwrap(), 1.0);
+}
+
 /// A system that cannot be evaluated past q = -1 (falling at 1 m/s² from
 /// rest at 0, it gets there at t = √2): the run stalls there and says so,
 /// with the time reached; an interrupt stops it at once.

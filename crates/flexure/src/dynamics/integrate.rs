@@ -117,6 +117,35 @@ impl Default for Settings {
     }
 }
 
+thread_local! {
+    static PROGRESS: std::cell::Cell<Option<fn(f64)>> = const { std::cell::Cell::new(None) };
+}
+
+/// Runs `work` with `report` called on this thread after every accepted
+/// step of [`integrate`], with the fraction of the duration reached (from 0
+/// to 1): a command line shows progress with it. The library itself prints
+/// nothing.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::integrate::with_progress;
+/// use std::sync::atomic::{AtomicU64, Ordering};
+/// static LAST: AtomicU64 = AtomicU64::new(0);
+/// let seven = with_progress(|f| LAST.store(f.to_bits(), Ordering::Relaxed), || 7);
+/// assert_eq!(seven, 7);
+/// ```
+pub fn with_progress<R>(report: fn(f64), work: impl FnOnce() -> R) -> R {
+    /// Restores the previous hook on every exit, unwinding included.
+    struct Restore(Option<fn(f64)>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            PROGRESS.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(PROGRESS.with(|c| c.replace(Some(report))));
+    work()
+}
+
 /// The most samples a run may report.
 pub const MAX_SAMPLES: usize = 1_000_000;
 
@@ -543,6 +572,9 @@ pub fn integrate<S: System + ?Sized>(
                                 w.prev.copy_from_slice(&w.x);
                                 w.prev_h = step;
                                 run.steps += 1;
+                                if let Some(report) = PROGRESS.with(|c| c.get()) {
+                                    report(t / duration);
+                                }
                                 fresh = false;
                                 stale = w.theta > REUSE;
                                 let mut next = step * ratio.min(if last_rejected { 1.0 } else { 5.0 });

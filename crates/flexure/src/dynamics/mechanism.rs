@@ -41,7 +41,7 @@ use super::system::System;
 use crate::error::{Error, Result};
 use crate::joint::{Basis, Flexure};
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
-use crate::mechanism::lagrangian::{GradientWork, gradient_into, lagrangian};
+use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::statics::{self, Settings};
 use crate::mechanism::{JointKind, Loads, Mechanism};
 use crate::quadrature::GaussLegendre;
@@ -151,6 +151,57 @@ struct Rate {
     acceleration: [f64; 2],
 }
 
+/// One flexure's mass moments in its root frame, summed over its sections
+/// $p$ (mass $m_p$, rotary inertia $i_p$, position $r_p$, $J_{r,p}$, local
+/// velocity $u_p = J_{r,p}\dot\alpha$ and velocity-product acceleration
+/// $a_p$; $E$ the quarter turn, $\omega$ the root's angular velocity): the
+/// terms of $M$, $h$ and $Q_g$ ([`MechanismSystem`]'s pass).
+#[derive(Debug, Clone, Default)]
+struct Moments {
+    /// $\sum m_p$.
+    mass: f64,
+    /// $S = \sum m_pr_p$.
+    first: [f64; 2],
+    /// $\sum m_p\lvert r_p\rvert^2 + i_p$.
+    second: f64,
+    /// $\sum m_pu_p$ and $\sum m_pa_p$.
+    velocity: [f64; 2],
+    acceleration: [f64; 2],
+    /// $\sum m_p\thinspace r_p\cdot u_p$ and $\sum m_p\thinspace Er_p\cdot a_p$.
+    turning: f64,
+    swinging: f64,
+    /// Per coordinate $i$: $A_i = \sum m_pJ_{r,p,i}$;
+    /// $\sum m_p\thinspace Er_p\cdot J_{r,p,i} + i_p\psi_i$;
+    /// $\sum m_pJ_{r,p,i}\cdot(-\omega^2r_p + 2\omega Eu_p + a_p)$.
+    along: Vec<[f64; 2]>,
+    across: Vec<f64>,
+    product: Vec<f64>,
+    /// $\sum m_pJ_{r,p,i}\cdot J_{r,p,j} + i_p\psi_i\psi_j$, upper triangle, `[i * k + j]`.
+    inertia: Vec<f64>,
+}
+
+impl Moments {
+    fn new(k: usize) -> Self {
+        Moments {
+            along: vec![[0.0; 2]; k],
+            across: vec![0.0; k],
+            product: vec![0.0; k],
+            inertia: vec![0.0; k * k],
+            ..Default::default()
+        }
+    }
+
+    /// Zeroes the moments of a flexure of order `k`.
+    fn clear(&mut self, k: usize) {
+        (self.mass, self.second, self.turning, self.swinging) = (0.0, 0.0, 0.0, 0.0);
+        (self.first, self.velocity, self.acceleration) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        self.along[..k].fill([0.0; 2]);
+        self.across[..k].fill(0.0);
+        self.product[..k].fill(0.0);
+        self.inertia[..k * k].fill(0.0);
+    }
+}
+
 fn quarter(v: [f64; 2]) -> [f64; 2] {
     [-v[1], v[0]]
 }
@@ -203,6 +254,11 @@ pub struct MechanismSystem {
     angles: Vec<f64>,
     spins: Vec<f64>,
     trig: Vec<[f64; 2]>,
+    /// The mass moments of the flexure being integrated.
+    moments: Moments,
+    /// The potential's assembly for [`System::tangent`] (its flexure weight
+    /// tables built once).
+    assembly: Assembly,
     /// $M$, $h$ and $\nabla V$ of [`System::dynamics`].
     mass: DMatrix<f64>,
     product: DVector<f64>,
@@ -227,7 +283,7 @@ impl MechanismSystem {
         for (i, j) in m.joints.iter().enumerate() {
             match &j.kind {
                 JointKind::Flexure(f) => {
-                    if let Some(d) = Distributed::new(m, i, f)? {
+                    if let Some(d) = Distributed::new(m, i, f).map_err(|e| e.in_joint(&j.name))? {
                         distributed.push(d);
                     }
                     let (k, o) = (f.order(), j.offset);
@@ -270,6 +326,8 @@ impl MechanismSystem {
             angles: vec![0.0; nodes],
             spins: vec![0.0; nodes],
             trig: vec![[0.0; 2]; nodes],
+            moments: Moments::new(largest),
+            assembly: Assembly::new(m),
             mass: DMatrix::zeros(n, n),
             product: DVector::zeros(n),
             gradient: GradientWork::new(m),
@@ -459,53 +517,127 @@ impl MechanismSystem {
             for (out, &x) in chunks.into_remainder().iter_mut().zip(&angles[nodes - nodes % 4..]) {
                 *out = cos_sin::<1>(&[x])[0];
             }
+            // The flexure's mass moments in its root frame (module docs):
+            // everything the sections add to M, h and Q_g, so the columns
+            // upstream are visited once per flexure, not once per section.
+            let c = &mut self.moments;
+            c.clear(k);
             let panels = d.inner_psi.chunks_exact(d.per_panel * k).zip(d.inner_weight.chunks_exact(d.per_panel));
             for (p, (psis, weights)) in panels.enumerate() {
                 for (e, (psi, &wt)) in psis.chunks_exact(k).zip(weights).enumerate() {
                     let node = p * d.per_panel + e;
-                    let (dphi, [c, s]) = (self.spins[node], self.trig[node]);
-                    r[0] += wt * c;
-                    r[1] += wt * s;
+                    let (dphi, [cs, sn]) = (self.spins[node], self.trig[node]);
+                    r[0] += wt * cs;
+                    r[1] += wt * sn;
                     for (j, &ps) in jr.iter_mut().zip(psi) {
-                        j[0] -= wt * ps * s;
-                        j[1] += wt * ps * c;
+                        j[0] -= wt * ps * sn;
+                        j[1] += wt * ps * cs;
                     }
-                    acc[0] -= wt * dphi * dphi * c;
-                    acc[1] -= wt * dphi * dphi * s;
+                    acc[0] -= wt * dphi * dphi * cs;
+                    acc[1] -= wt * dphi * dphi * sn;
                 }
                 let (mw, iw) = (d.mass[p], d.rotary[p]);
                 if mw == 0.0 && iw == 0.0 {
                     continue;
                 }
-                // The section: world offset from the root, its Jacobian and acceleration.
-                let rw = root.rotate(r);
-                let er = quarter(rw);
                 let mut u = [0.0; 2];
                 for (j, &ad) in jr.iter().zip(alpha_dot) {
                     u[0] += j[0] * ad;
                     u[1] += j[1] * ad;
                 }
-                let (ru, racc) = (quarter(root.rotate(u)), root.rotate(acc));
-                let a = [
-                    a_root[0] - w * w * rw[0] + 2.0 * w * ru[0] + racc[0],
-                    a_root[1] - w * w * rw[1] + 2.0 * w * ru[1] + racc[1],
-                ];
-                for &c in &d.columns {
-                    let dt = self.point.jacobian[(0, c)];
-                    jt[c] = dt;
-                    jx[c] = self.point.jacobian[(1, c)] + dt * er[0];
-                    jy[c] = self.point.jacobian[(2, c)] + dt * er[1];
+                let er = quarter(r);
+                let eu = quarter(u);
+                c.mass += mw;
+                c.first[0] += mw * r[0];
+                c.first[1] += mw * r[1];
+                c.second += mw * (r[0] * r[0] + r[1] * r[1]) + iw;
+                c.velocity[0] += mw * u[0];
+                c.velocity[1] += mw * u[1];
+                c.acceleration[0] += mw * acc[0];
+                c.acceleration[1] += mw * acc[1];
+                c.turning += mw * (r[0] * u[0] + r[1] * u[1]);
+                c.swinging += mw * (er[0] * acc[0] + er[1] * acc[1]);
+                let psi_end = &d.outer_psi[p * k..(p + 1) * k];
+                for i in 0..k {
+                    let ji = jr[i];
+                    c.along[i][0] += mw * ji[0];
+                    c.along[i][1] += mw * ji[1];
+                    c.across[i] += mw * (er[0] * ji[0] + er[1] * ji[1]) + iw * psi_end[i];
+                    c.product[i] += mw
+                        * (-w * w * (ji[0] * r[0] + ji[1] * r[1])
+                            + 2.0 * w * (ji[0] * eu[0] + ji[1] * eu[1])
+                            + ji[0] * acc[0]
+                            + ji[1] * acc[1]);
+                    for j in i..k {
+                        c.inertia[i * k + j] +=
+                            mw * (ji[0] * jr[j][0] + ji[1] * jr[j][1]) + iw * psi_end[i] * psi_end[j];
+                    }
+                }
+            }
+            if c.mass == 0.0 && c.second == 0.0 {
+                continue;
+            }
+            // World forms: R S, its quarter turn, and Σ μ a over the sections.
+            let rs = root.rotate(c.first);
+            let ers = quarter(rs);
+            let (ru, racc) = (quarter(root.rotate(c.velocity)), root.rotate(c.acceleration));
+            let sum_a = [
+                c.mass * a_root[0] - w * w * rs[0] + 2.0 * w * ru[0] + racc[0],
+                c.mass * a_root[1] - w * w * rs[1] + 2.0 * w * ru[1] + racc[1],
+            ];
+            let sum_turn_a = ers[0] * a_root[0] + ers[1] * a_root[1] + 2.0 * w * c.turning + c.swinging;
+            let upstream = &d.columns[..d.columns.len() - k];
+            for &col in upstream {
+                jt[col] = self.point.jacobian[(0, col)];
+                jx[col] = self.point.jacobian[(1, col)];
+                jy[col] = self.point.jacobian[(2, col)];
+            }
+            for i in 0..k {
+                let ra = root.rotate(c.along[i]);
+                jx[off + i] = ra[0];
+                jy[off + i] = ra[1];
+            }
+            if let Some(mm) = mass.as_deref_mut() {
+                for (b, &cv) in upstream.iter().enumerate() {
+                    let (ov, tv) = ([jx[cv], jy[cv]], jt[cv]);
+                    for &cu in &upstream[..=b] {
+                        let (ou, tu) = ([jx[cu], jy[cu]], jt[cu]);
+                        let value = c.mass * (ou[0] * ov[0] + ou[1] * ov[1])
+                            + tu * (ers[0] * ov[0] + ers[1] * ov[1])
+                            + tv * (ers[0] * ou[0] + ers[1] * ou[1])
+                            + tu * tv * c.second;
+                        mm[(cu, cv)] += value;
+                        if cu != cv {
+                            mm[(cv, cu)] += value;
+                        }
+                    }
+                    for i in 0..k {
+                        let value = ov[0] * jx[off + i] + ov[1] * jy[off + i] + tv * c.across[i];
+                        mm[(cv, off + i)] += value;
+                        mm[(off + i, cv)] += value;
+                    }
                 }
                 for i in 0..k {
-                    let rj = root.rotate(jr[i]);
-                    jx[off + i] = rj[0];
-                    jy[off + i] = rj[1];
-                    jt[off + i] = d.outer_psi[p * k + i];
+                    for j in i..k {
+                        let value = c.inertia[i * k + j];
+                        mm[(off + i, off + j)] += value;
+                        if i != j {
+                            mm[(off + j, off + i)] += value;
+                        }
+                    }
                 }
-                add(&d.columns, jx, jy, jt, mw, iw, a, mass.as_deref_mut());
-                let wp = [root.origin[0] + rw[0], root.origin[1] + rw[1]];
-                gravity_potential -= mw * (g[0] * wp[0] + g[1] * wp[1]);
             }
+            for &col in upstream {
+                h[col] += jx[col] * sum_a[0] + jy[col] * sum_a[1] + jt[col] * sum_turn_a;
+                gravity_force[col] +=
+                    c.mass * (jx[col] * g[0] + jy[col] * g[1]) + jt[col] * (ers[0] * g[0] + ers[1] * g[1]);
+            }
+            for i in 0..k {
+                let ra = [jx[off + i], jy[off + i]];
+                h[off + i] += ra[0] * a_root[0] + ra[1] * a_root[1] + c.product[i];
+                gravity_force[off + i] += ra[0] * g[0] + ra[1] * g[1];
+            }
+            gravity_potential -= c.mass * (g[0] * root.origin[0] + g[1] * root.origin[1]) + g[0] * rs[0] + g[1] * rs[1];
         }
         Pass { gravity_force, gravity_potential }
     }
@@ -543,15 +675,16 @@ impl System for MechanismSystem {
     }
 
     /// The stiffness is the Hessian of the potential (elastic, point loads,
-    /// tendons, the bodies' weight) and the damping is $D + \partial h/\partial\dot q$
-    /// (exact: $h$ is quadratic in $\dot q$). Left out: the change of $h$ and of
-    /// the flexure sections' weight with $q$, second order in the rates and
-    /// small beside the elastic stiffness of a flexure.
+    /// tendons, the weight of bodies and flexure sections) and the damping is
+    /// $D + \partial h/\partial\dot q$ (exact: $h$ is quadratic in $\dot q$). Left
+    /// out: the change of $h$ with $q$, second order in the rates and small
+    /// beside the elastic stiffness of a flexure.
     fn tangent(&mut self, q: &[f64], v: &[f64], _t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
-        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads)?;
-        stiffness.copy_from_slice(lag.hessian.as_slice());
+        frames_into(&self.mechanism, q, &mut self.frames);
+        assemble_into(&self.mechanism, &self.frames, &self.zeros, &self.loads, true, &mut self.assembly)?;
+        stiffness.copy_from_slice(self.assembly.hessian.as_slice());
         let mut d = self.damping.clone();
         // h is quadratic in v: ∂h/∂v e = (h(v + e) − h(v − e))/2 exactly.
         let mut shifted = v.to_vec();
@@ -576,9 +709,11 @@ impl System for MechanismSystem {
         if self.closures() == 0 {
             return Ok(());
         }
-        let lag = lagrangian(&self.mechanism, q, &self.zeros, &self.loads_weightless)?;
-        c.copy_from_slice(lag.closure.as_slice());
-        g.copy_from_slice(lag.closure_jacobian.as_slice());
+        // The closures and G alone: no Hessian, no allocation.
+        frames_into(&self.mechanism, q, &mut self.frames);
+        assemble_into(&self.mechanism, &self.frames, &self.zeros, &self.loads_weightless, false, &mut self.assembly)?;
+        c.copy_from_slice(self.assembly.closure.as_slice());
+        g.copy_from_slice(self.assembly.closure_jacobian.as_slice());
         Ok(())
     }
 

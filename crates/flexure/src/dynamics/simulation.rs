@@ -8,10 +8,10 @@
 //! ([`Start::Rest`]); the file's `[initial]` and `[initial_velocity]`
 //! override the coordinates of the joints they name.
 //!
-//! The statics do not weigh flexures ([`crate::mechanism::statics`] puts
-//! gravity on the bodies only) while the dynamics do: under gravity, a
-//! mechanism whose flexures have a density starts a little off its
-//! dynamic equilibrium, and sags by their weight as it moves.
+//! The statics weigh every mass the dynamics do (bodies and flexure
+//! sections, [`crate::mechanism::lagrangian`]), so under gravity the default
+//! start is an equilibrium of the equations of motion, and a mechanism
+//! started there stays at rest.
 
 use super::integrate::{self, Trajectory, integrate};
 use super::schedule::{ScheduledSystem, loads_at};

@@ -65,6 +65,8 @@ pub struct Frames {
     pub roots: Vec<Frame>,
     /// Each joint's pose, derivatives and energy.
     pub joints: Vec<JointState>,
+    /// The coordinates $q$ these frames were evaluated at.
+    pub coordinates: Vec<f64>,
     /// `sin_cos` of each body's angle, then of each joint root's: every
     /// point and Hessian of one evaluation turns by these, computed once.
     turns: Vec<(f64, f64)>,
@@ -77,6 +79,7 @@ impl Frames {
             bodies: vec![Frame::default(); m.bodies.len()],
             roots: vec![Frame::default(); m.joints.len()],
             joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
+            coordinates: vec![0.0; m.dof()],
             turns: vec![(0.0, 1.0); m.bodies.len() + m.joints.len()],
         }
     }
@@ -87,6 +90,7 @@ impl Frames {
         self.bodies.copy_from_slice(&other.bodies);
         self.roots.copy_from_slice(&other.roots);
         self.turns.copy_from_slice(&other.turns);
+        self.coordinates.copy_from_slice(&other.coordinates);
         for (s, o) in self.joints.iter_mut().zip(&other.joints) {
             s.pose = o.pose;
             s.jacobian.copy_from(&o.jacobian);
@@ -116,6 +120,7 @@ pub fn frames(m: &Mechanism, q: &[f64]) -> Frames {
 
 /// [`frames`] into the buffers `f` (made by [`Frames::new`] for `m`), without allocating.
 pub fn frames_into(m: &Mechanism, q: &[f64], f: &mut Frames) {
+    f.coordinates.copy_from_slice(q);
     f.bodies[0] = Frame::default();
     f.turns[0] = f.bodies[0].angle.sin_cos();
     let bodies = f.bodies.len();

@@ -1,8 +1,9 @@
 //! The potential of a mechanism, its exact derivatives, and its closures.
 //!
 //! $V(q) = \sum_j U_j(q_j) - \sum_k (F_k\cdot w_k + M_k\theta_k) -
-//! \sum_b m_b\thinspace g\cdot w_b + \sum_t T_t\thinspace\ell_t(q)$
-//! (elastic joints, point forces and moments, weights, tendons of constant
+//! \sum_b m_b\thinspace g\cdot w_b - \sum_f\int\mu\thinspace g\cdot w\thinspace ds +
+//! \sum_t T_t\thinspace\ell_t(q)$ (elastic joints, point forces and moments,
+//! the weights of bodies and of flexures with mass, tendons of constant
 //! tension), and the closures $c(q) = 0$ with $G = \partial c/\partial q$.
 //! Point derivatives come from [`super::kinematics::point`], chained
 //! through the tree; a tendon of length $\ell = \sum_i\lvert d_i\rvert$,
@@ -10,7 +11,8 @@
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
 use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
-use super::{Closure, Loads, Mechanism};
+use super::{Closure, JointKind, Loads, Mechanism};
+use crate::dynamics::mass::{MassModel, Weight, weight};
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix2};
 
@@ -80,7 +82,7 @@ pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, wit
 
 /// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
 #[derive(Debug, Clone, Default)]
-pub(super) struct Assembly {
+pub(crate) struct Assembly {
     /// $\nabla V$.
     pub gradient: DVector<f64>,
     /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$ (when asked for).
@@ -91,6 +93,8 @@ pub(super) struct Assembly {
     pub closure_jacobian: DMatrix<f64>,
     /// Two points' derivatives.
     pub points: [PointBuffer; 2],
+    /// The flexures' distributed mass, for their weight.
+    pub weights: Weights,
 }
 
 impl Assembly {
@@ -102,13 +106,44 @@ impl Assembly {
             closure: DVector::zeros(rows),
             closure_jacobian: DMatrix::zeros(rows, n),
             points: [PointBuffer::new(m), PointBuffer::new(m)],
+            weights: Weights::new(m),
         }
+    }
+}
+
+/// The distributed mass of a mechanism's flexures, for their weight: per
+/// flexure with a density or mass per length, the nested quadrature tables
+/// of [`MassModel`] and a buffer for its [`Weight`], built the first time
+/// gravity acts (so a weightless assembly costs nothing more).
+#[derive(Debug, Clone, Default)]
+pub struct Weights {
+    /// (joint, its tables and buffer once built); the tables are an error
+    /// where its mass integrals cannot be made accurate.
+    flexures: Vec<(usize, Option<Tables>)>,
+}
+
+/// A flexure's mass tables and weight buffer, or why they could not be built.
+type Tables = std::result::Result<(MassModel, Weight), Error>;
+
+impl Weights {
+    /// Every flexure of `m` that has mass, its tables not yet built.
+    pub fn new(m: &Mechanism) -> Self {
+        let flexures = m
+            .joints
+            .iter()
+            .enumerate()
+            .filter(|(_, j)| {
+                matches!(&j.kind, JointKind::Flexure(f) if f.section().mass_per_length(0.5, f.length()).is_some())
+            })
+            .map(|(i, _)| (i, None))
+            .collect();
+        Weights { flexures }
     }
 }
 
 /// [`assemble`] into `a` (made for `m`): returns $V$ and its elastic part.
 /// Allocates nothing.
-pub(super) fn assemble_into(
+pub(crate) fn assemble_into(
     m: &Mechanism,
     f: &Frames,
     mu: &[f64],
@@ -116,7 +151,7 @@ pub(super) fn assemble_into(
     with_hessian: bool,
     a: &mut Assembly,
 ) -> Result<(f64, f64)> {
-    let Assembly { gradient, hessian, closure, closure_jacobian, points } = a;
+    let Assembly { gradient, hessian, closure, closure_jacobian, points, weights } = a;
     // Each joint's block is written, not added: the blocks do not overlap.
     let n = gradient.len();
     gradient.as_mut_slice().fill(0.0);
@@ -135,7 +170,7 @@ pub(super) fn assemble_into(
             }
         }
     }
-    let load = add_loads(m, f, loads, gradient, with_hessian.then_some(&mut *hessian), points)?;
+    let load = add_loads(m, f, loads, gradient, with_hessian.then_some(&mut *hessian), points, weights)?;
     add_closures(m, f, mu, closure, closure_jacobian, with_hessian.then_some(hessian), points);
     Ok((elastic + load, elastic))
 }
@@ -212,6 +247,7 @@ pub(super) fn add_loads(
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
     points: &mut [PointBuffer; 2],
+    weights: &mut Weights,
 ) -> Result<f64> {
     let n = m.dof();
     let mut potential = 0.0;
@@ -285,6 +321,86 @@ pub(super) fn add_loads(
             std::mem::swap(&mut a, &mut b);
         }
     }
+    if loads.gravity != [0.0; 2] {
+        potential += add_flexure_weights(m, f, loads.gravity, gradient, hessian, &mut points[0], weights)?;
+    }
+    Ok(potential)
+}
+
+/// The flexures' weight: with the first moment $c(\alpha)$ of a flexure's
+/// mass in its root frame ([`Weight`]), $V = -g\cdot(m\thinspace o + Rc)$
+/// for a root at $o$ turned by $R$. Over the coordinates upstream it is the
+/// whole weight $mg$ at the centre of mass, a point fixed in the root frame
+/// (so its derivatives are a point load's); over the flexure's own,
+/// $\partial_iV = -g\cdot R\thinspace\partial_ic$ and $\partial_{ij}V = -g\cdot R\thinspace\partial_{ij}c$;
+/// across them, $\partial_u\partial_iV = -\theta_{,u}\thinspace g\cdot ER\thinspace\partial_ic$
+/// ($\theta$ the root's angle, $E$ the quarter turn). Returns $V$.
+fn add_flexure_weights(
+    m: &Mechanism,
+    f: &Frames,
+    g: [f64; 2],
+    gradient: &mut DVector<f64>,
+    mut hessian: Option<&mut DMatrix<f64>>,
+    p: &mut PointBuffer,
+    weights: &mut Weights,
+) -> Result<f64> {
+    let n = m.dof();
+    let mut potential = 0.0;
+    for (j, tables) in &mut weights.flexures {
+        let spec = &m.joints[*j];
+        let built = tables.get_or_insert_with(|| match &spec.kind {
+            JointKind::Flexure(flexure) => MassModel::new(flexure, None)
+                .map(|model| {
+                    let w = Weight::new(&model);
+                    (model, w)
+                })
+                .map_err(|e| e.in_joint(&spec.name)),
+            _ => Err(Error::invalid("joint", *j, "is not a flexure")),
+        });
+        let (model, w) = match built {
+            Ok((model, w)) => (&*model, w),
+            Err(e) => return Err(e.clone()),
+        };
+        let (o, k) = (spec.offset, model.order());
+        weight(model, &f.coordinates[o..o + k], w);
+        if w.mass <= 0.0 {
+            continue;
+        }
+        let centre = [w.first_moment[0] / w.mass, w.first_moment[1] / w.mass];
+        let (s0, c0) = spec.origin.phi.sin_cos();
+        let at = [spec.origin.x + c0 * centre[0] - s0 * centre[1], spec.origin.y + s0 * centre[0] + c0 * centre[1]];
+        let force = [w.mass * g[0], w.mass * g[1]];
+        point_into(m, f, spec.parent, at, p);
+        for (gc, jc) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
+            *gc -= force[0] * jc[1] + force[1] * jc[2];
+        }
+        potential -= force[0] * p.position[0] + force[1] * p.position[1];
+        let root = f.roots[*j];
+        // g·R v for v in the root frame, and g·E R v.
+        let along = |v: [f64; 2]| {
+            let world = root.rotate(v);
+            (g[0] * world[0] + g[1] * world[1], g[1] * world[0] - g[0] * world[1])
+        };
+        for (i, di) in w.jacobian.iter().enumerate() {
+            gradient[o + i] -= along(*di).0;
+        }
+        if let Some(h) = hessian.as_deref_mut() {
+            add_point_hessian(m, f, p, [-force[0], -force[1]], h);
+            for i in 0..k {
+                for jj in 0..k {
+                    h[(o + i, o + jj)] -= along(w.hessian[i * k + jj]).0;
+                }
+                let turn = along(w.jacobian[i]).1;
+                for u in 0..n {
+                    let theta = p.jacobian[(0, u)];
+                    if theta != 0.0 {
+                        h[(u, o + i)] -= theta * turn;
+                        h[(o + i, u)] -= theta * turn;
+                    }
+                }
+            }
+        }
+    }
     Ok(potential)
 }
 
@@ -293,12 +409,17 @@ pub(super) fn add_loads(
 pub struct GradientWork {
     gradient: DVector<f64>,
     points: [PointBuffer; 2],
+    weights: Weights,
 }
 
 impl GradientWork {
     /// Buffers for `m`.
     pub fn new(m: &Mechanism) -> Self {
-        GradientWork { gradient: DVector::zeros(m.dof()), points: [PointBuffer::new(m), PointBuffer::new(m)] }
+        GradientWork {
+            gradient: DVector::zeros(m.dof()),
+            points: [PointBuffer::new(m), PointBuffer::new(m)],
+            weights: Weights::new(m),
+        }
     }
 }
 
@@ -326,7 +447,7 @@ pub fn gradient_into<'a>(
     loads: &Loads,
     work: &'a mut GradientWork,
 ) -> Result<(f64, f64, &'a DVector<f64>)> {
-    let GradientWork { gradient, points } = work;
+    let GradientWork { gradient, points, weights } = work;
     gradient.fill(0.0);
     let mut elastic = 0.0;
     for (j, s) in m.joints.iter().zip(&f.joints) {
@@ -334,6 +455,6 @@ pub fn gradient_into<'a>(
         let mut g = gradient.rows_mut(j.offset, s.gradient.len());
         g += &s.gradient;
     }
-    let load = add_loads(m, f, loads, gradient, None, points)?;
+    let load = add_loads(m, f, loads, gradient, None, points, weights)?;
     Ok((elastic + load, elastic, gradient))
 }

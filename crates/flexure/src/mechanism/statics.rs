@@ -507,7 +507,7 @@ impl<'a> Kkt<'a> {
         let Workspace { frames, start, assembly: a, load_gradient, .. } = &mut *self.work;
         let f = if at_start { &start.frames } else { frames };
         load_gradient.as_mut_slice().fill(0.0);
-        add_loads(m, f, &self.change, load_gradient, None, &mut a.points)?;
+        add_loads(m, f, &self.change, load_gradient, None, &mut a.points, &mut a.weights)?;
         for i in 0..n {
             d[i] = load_gradient[i] * self.row_scale[i];
         }
