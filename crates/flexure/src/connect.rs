@@ -88,9 +88,10 @@ pub fn connect(flexure: &Flexure, target: &Pose) -> Result<Connection> {
     connect_with(flexure, target, &mut ConnectData::new(flexure))
 }
 
-/// [`connect`] on buffers made once by [`ConnectData::new`] for the same
-/// flexure: the same answer, and the only allocation is the answer's
-/// coordinates ([`Connection::alpha`]).
+/// [`connect`] on buffers made once by [`ConnectData::new`] (for this
+/// flexure, or any of the same order and quadrature rule): the same answer,
+/// and the only allocation is the answer's coordinates ([`Connection::alpha`]).
+/// Buffers of another order or rule are an error naming `data`.
 ///
 /// # Example
 /// ```
