@@ -67,6 +67,20 @@ pub struct Kinematics<T: Scalar = f64> {
 }
 
 impl<T: Scalar> Kinematics<T> {
+    /// Whether these buffers were made for a flexure of `flexure`'s order
+    /// and quadrature rule (any such flexure may use them).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{kinematics::Kinematics, Flexure};
+    /// let k: Kinematics = Kinematics::new(&Flexure::new(1.0, 1.0, 3).unwrap());
+    /// assert!(k.fits(&Flexure::new(2.0, 5.0, 3).unwrap()));
+    /// assert!(!k.fits(&Flexure::segments(1.0, 1.0, 3).unwrap()));
+    /// ```
+    pub fn fits(&self, flexure: &Flexure) -> bool {
+        self.jacobian_root_tip.ncols() == flexure.order() && self.node_cos_sin.len() == flexure.scaled_weights().len()
+    }
+
     /// Buffers sized for `flexure`.
     pub fn new(flexure: &Flexure) -> Self {
         let n = flexure.order();
@@ -244,10 +258,7 @@ fn node_angle<T: Scalar>(psi: &[f64], alpha: &[T]) -> T {
 /// ```
 pub fn update<T: Scalar>(flexure: &Flexure, alpha: &[T], data: &mut Kinematics<T>, level: Level) {
     assert_coordinates(flexure, "alpha", alpha.len());
-    assert!(
-        data.jacobian_root_tip.ncols() == flexure.order() && data.node_cos_sin.len() == flexure.scaled_weights().len(),
-        "Kinematics buffers were made for a flexure of another order or quadrature rule"
-    );
+    assert!(data.fits(flexure), "Kinematics buffers were made for a flexure of another order or quadrature rule");
     // Fixed sizes for the common orders with the default rule (N + 2
     // points): every loop unrolls and loses its bounds checks.
     match (flexure.order(), flexure.scaled_weights().len()) {

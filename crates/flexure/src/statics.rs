@@ -226,8 +226,12 @@ fn follow<T: Scalar>(
     while_stable: bool,
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
-    if data.solver.dim() != flexure.order() {
-        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
+    if data.solver.dim() != flexure.order() || !data.kinematics.fits(flexure) {
+        return Err(Error::invalid(
+            "data",
+            format!("buffers of order {}", data.solver.dim()),
+            "was made for a flexure of another order or quadrature rule",
+        ));
     }
     let l = flexure.length();
     let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
@@ -258,8 +262,12 @@ pub fn correct<T: Scalar>(
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
     flexure.check_coordinates("alpha", alpha)?;
-    if data.solver.dim() != flexure.order() {
-        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
+    if data.solver.dim() != flexure.order() || !data.kinematics.fits(flexure) {
+        return Err(Error::invalid(
+            "data",
+            format!("buffers of order {}", data.solver.dim()),
+            "was made for a flexure of another order or quadrature rule",
+        ));
     }
     let l = flexure.length();
     let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());

@@ -271,3 +271,29 @@ fn an_overflowing_step_is_an_error() {
     let settings = Settings { max_rotation_per_step: f64::MAX, ..Default::default() };
     assert!(deflect(&f, &load, &mut Statics::new(&f), &settings).is_err());
 }
+
+/// Buffers made for another flexure are refused by name, never a panic:
+/// another order, or the same order with another quadrature rule (a
+/// three-segment chain has three coordinates but 15 nodes, not 5), for
+/// `deflect`, `correct` and the tendon's `pull`.
+#[test]
+fn buffers_of_another_flexure_are_an_error_naming_data() {
+    use flexure::tendon::{Tendon, TendonData, pull};
+    let load = TipLoad { moment: 0.5, fx: 0.0, fy: 0.0 };
+    let chain = Flexure::segments(1.0, 1.0, 3).unwrap();
+    for other in [Flexure::new(1.0, 1.0, 4).unwrap(), chain.clone()] {
+        let mut data = Statics::new(&unit());
+        let e = deflect(&other, &load, &mut data, &Settings::default()).unwrap_err();
+        assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
+        let e = flexure::statics::correct(&other, &load, &vec![0.0; other.order()], &mut data, &Settings::default())
+            .unwrap_err();
+        assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
+        let tendon = Tendon { root_offset: 0.01, tip_offset: 0.01 };
+        let e = pull(&other, &tendon, 1.0, &mut TendonData::new(&unit())).unwrap_err();
+        assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
+    }
+    // Any flexure of the same order and rule may share them.
+    let mut data = Statics::new(&unit());
+    assert!(deflect(&Flexure::new(2.0, 3.0, 3).unwrap(), &load, &mut data, &Settings::default()).is_ok());
+    assert!(deflect(&chain, &load, &mut Statics::new(&chain), &Settings::default()).is_ok());
+}
