@@ -128,11 +128,19 @@ thread_local! {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::integrate::with_progress;
+/// use flexure::dynamics::{integrate::with_progress, simulate, SimulationSettings, Start};
 /// use std::sync::atomic::{AtomicU64, Ordering};
 /// static LAST: AtomicU64 = AtomicU64::new(0);
-/// let seven = with_progress(|f| LAST.store(f.to_bits(), Ordering::Relaxed), || 7);
-/// assert_eq!(seven, 7);
+/// // A sprung arm released from 0.1 rad, simulated for the default second.
+/// let m = flexure::mechanism::file::from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[body]]\nname = \"arm\"\ninertia = 0.5\n[initial]\npin = 0.1\n",
+/// )
+/// .unwrap();
+/// let report = |f: f64| LAST.store(f.to_bits(), Ordering::Relaxed);
+/// let run = with_progress(report, || simulate(&m, &SimulationSettings::default(), Start::Equilibrium)).unwrap();
+/// // The last report is the whole duration.
+/// assert!(run.steps > 0 && f64::from_bits(LAST.load(Ordering::Relaxed)) == 1.0);
 /// ```
 pub fn with_progress<R>(report: fn(f64), work: impl FnOnce() -> R) -> R {
     /// Restores the previous hook on every exit, unwinding included.
