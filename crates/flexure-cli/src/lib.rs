@@ -237,6 +237,8 @@ fn option(name: &str) -> String {
     match name {
         "notch.radius" => "--notch R".into(),
         "notch.min_thickness" => "--notch H".into(),
+        // The mechanism's or flexure's masses, set by several options or keys.
+        "mass" => "mass".into(),
         _ => format!("--{}", name.replace('_', "-")),
     }
 }

@@ -393,7 +393,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
 /// angles and positions against time, as one SVG.
 fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     use crate::figures::{COLORS, Chart, Dash, Series, chart_figure, write_stack};
-    let (m, run) = crate::simulate::run_motion(&args.file, duration, &args.motion)?;
+    let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &Settings::default()).map_err(err)?;
     let last = run.time.len() - 1;

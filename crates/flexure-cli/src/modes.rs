@@ -179,6 +179,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
             "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
             file.display()
         ),
+        e @ Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
         e => format!("{}: {e}", file.display()),
     };
     let m = from_toml(&text).map_err(err)?;
@@ -215,7 +216,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
 fn joint_error(e: Error) -> String {
     match e {
         Error::InvalidParameter { name: "mass", value, reason } => format!(
-            "no mass: invalid mass = {value}: {reason}; give --density (with --modulus --width --thickness) or --mass-per-length, or --tip-mass/--tip-inertia"
+            "mass = {value}: {reason}; give --density (with --modulus --width --thickness) or --mass-per-length, or --tip-mass/--tip-inertia"
         ),
         e @ Error::Unstable { .. } => {
             format!("unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)")

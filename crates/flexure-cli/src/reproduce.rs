@@ -838,7 +838,7 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
         "**A finger in motion** (`examples/finger_dynamics.toml`): two steel strips like it (0.206 and 0.182 mm thick), 5 g links, \
          material damping β = 0.2 ms, the flexor tendon ramped from 0 to 6 N over the first 0.1 s against a 0.5 N fingertip force. \
          From the equilibrium at t = 0, the implicit integrator (three-stage Radau IIA, tolerance 1e-6) took **{} steps** \
-         ({} rejected) for 0.3 s, an average step of {:.2e} s. \
+         ({} rejected) for 0.3 s sampled every 1 ms (samples end steps), an average step of {:.2e} s. \
          The distal link overshoots the quasi-static path (the equilibrium under the loads at each time) and rings about it \
          at the first mode, damped by the steel.\n\n",
         run.steps,

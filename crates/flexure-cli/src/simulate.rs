@@ -75,11 +75,21 @@ fn load(path: &Path) -> Result<Mechanism, String> {
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// The motion of `file` over `duration` with `options`; a bad setting is named as its option.
-pub fn run_motion(file: &Path, duration: f64, options: &MotionOptions) -> Result<(Mechanism, Simulation), String> {
+/// The motion of `file` over `duration` (set by the option `duration_option`)
+/// with `options`; a bad setting is named as its option.
+pub fn run_motion(
+    file: &Path,
+    (duration, duration_option): (f64, &str),
+    options: &MotionOptions,
+) -> Result<(Mechanism, Simulation), String> {
     let settings = options.settings(duration);
     // Settings first: a bad one is named before any solve.
-    settings.motion.validate().map_err(crate::describe)?;
+    settings.motion.validate().map_err(|e| match e {
+        flexure::Error::InvalidParameter { name: "duration", value, reason } => {
+            format!("{duration_option} = {value}: {reason}")
+        }
+        e => crate::describe(e),
+    })?;
     let m = load(file)?;
     let run = with_progress_bar(duration, || simulate(&m, &settings, options.start())).map_err(|e| match e {
         e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
@@ -101,13 +111,14 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
         return work();
     }
     BAR.with(|bar| {
-        bar.set_draw_target(ProgressDrawTarget::stderr());
-        bar.set_length(1000);
-        bar.set_position(0);
+        // Style and length before the target, so no default frame is drawn.
         if let Ok(style) = ProgressStyle::with_template(&format!("{{bar:30}} {{percent}} % of {duration} s simulated"))
         {
             bar.set_style(style);
         }
+        bar.set_length(1000);
+        bar.set_position(0);
+        bar.set_draw_target(ProgressDrawTarget::stderr());
     });
     let result =
         integrate::with_progress(|fraction| BAR.with(|bar| bar.set_position((fraction * 1000.0) as u64)), work);
@@ -118,7 +129,7 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
 /// `time`, `bodies` {name: {x, y, phi}}, `coordinates` {joint: one row per
 /// sample}, `energy`, `steps`, `rejected` and `violation`.
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
-    let (m, run) = run_motion(&args.file, args.duration, &args.motion)?;
+    let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
     if let Some(path) = &args.out {
         std::fs::write(path, csv(&m, &run)).map_err(|e| format!("writing {}: {e}", path.display()))?;
