@@ -77,10 +77,19 @@ pub fn run(args: &ReproduceArgs) -> Result<Value, String> {
         std::fs::write(args.out.join(file), text).map_err(|e| format!("writing {}: {e}", args.out.join(file).display()))
     };
     write("results.json", serde_json::to_string_pretty(&results).map_err(|e| e.to_string())?)?;
-    write("report.md", markdown)?;
+    write("report.md", markdown.clone())?;
+    // Every file written: the report, its numbers and its figures.
+    let mut files = vec!["report.md".to_string(), "results.json".to_string()];
+    let mut figures: Vec<String> = std::fs::read_dir(&args.out)
+        .map_err(|e| format!("--out = {}: {e}", args.out.display()))?
+        .filter_map(|entry| entry.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|name| name.ends_with(".svg") && markdown.contains(&format!("]({name})")))
+        .collect();
+    figures.sort();
+    files.extend(figures);
     Ok(json!({
         "out": args.out.display().to_string(),
-        "files": ["report.md", "results.json"],
+        "files": files,
         "table1_max_error_percent": results["table1"]["rows"].as_array().map(|r| r.iter().filter_map(|x| x["error_percent"].as_f64()).fold(0.0, f64::max)),
         "fig13_max_error": results["fig12_13"]["max_error"],
         "fig7_8_max_position_error": results["fig7_8"]["max_position_error"],
