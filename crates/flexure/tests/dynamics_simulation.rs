@@ -307,28 +307,3 @@ fn the_four_bar_keeps_its_pin_closed_while_it_swings() {
     }
     assert!(travel > 1e-5, "the coupler moves: {travel} m");
 }
-
-/// The four-bar example as filed (massless flexures, a point-mass coupler:
-/// M is singular in most directions, and the closure forces set them) let
-/// fall from rest under gravity alone, at the default tolerance 1e-8. Its
-/// quasi-static directions behave like the closures' multipliers (index 3);
-/// weighed as such, the run takes a few hundred steps over 0.1 s (before,
-/// their error estimate did not shrink with the step and the run stalled
-/// near 6 ms after 10⁵ steps). Checks: no damping and no other load, so
-/// kinetic + elastic + gravitational energy is conserved (to 1e-6 of the
-/// energy exchanged); the pin holds to 1e-12 m.
-#[test]
-fn the_massless_four_bar_falls_at_the_default_tolerance() {
-    let file = std::fs::read_to_string(format!("{}/../../examples/four_bar.toml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-    let m = from_toml(&file[..file.find("[[tendon]]").unwrap()]).unwrap();
-    let run = simulate(&m, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap();
-    assert!(run.steps < 2_000, "{} steps", run.steps);
-    assert!(run.violation < 1e-12, "violation {:.3e} m", run.violation);
-    let e0 = run.energy[0];
-    let swing = run.energy.iter().map(|e| (e - e0).abs()).fold(0.0, f64::max);
-    // The energy exchanged: the most stored in the flexures on the way.
-    let stored = (0..run.time.len())
-        .map(|k| flexure::mechanism::lagrangian::lagrangian(&m, run.q(k), &[0.0; 2], &m.loads()).unwrap().elastic)
-        .fold(0.0, f64::max);
-    assert!(stored > 0.0 && swing < 1e-6 * stored, "energy moved by {swing:e} of {stored:e} exchanged");
-}

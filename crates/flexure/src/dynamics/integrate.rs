@@ -55,10 +55,7 @@
 //! the Newton matrix of one stage (with the step's own $M$ and the kept
 //! $K_t$, $D_t$, $G$), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
-//! are closures: they are index-2 variables there; and with closures, the
-//! components in the null space of $M$, directions without inertia that the
-//! closure forces set, times $h^2$ and their velocities $h^3$, as index-3
-//! variables, in the estimate though not in Newton's test), must be at most 1; the
+//! are closures: they are index-2 variables there), must be at most 1; the
 //! step then changes by $0.9\,\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
 //! In the first two steps only positions are weighed: a start off the
 //! quasi-static equilibrium of a massless direction is projected onto it
@@ -344,13 +341,6 @@ struct Work {
     /// Error scales of positions and velocities.
     sq: Vec<f64>,
     sv: Vec<f64>,
-    /// The projector on M's null space at the Newton matrix's data
-    /// (column-major), whether that space is there, and the weights of this
-    /// step: velocities' (`vw`) and the null space's (`index`).
-    null: Vec<f64>,
-    massless: bool,
-    vw: f64,
-    index: f64,
     /// Newton increments of the stage positions and velocities ($3n$ each).
     dq: Vec<f64>,
     dv: Vec<f64>,
@@ -394,34 +384,8 @@ impl Work {
             vt: z(n),
             sq: z(n),
             sv: z(n),
-            null: z(n * n),
-            massless: false,
-            vw: 1.0,
-            index: 1.0,
             dq: z(3 * n),
             dv: z(3 * n),
-        }
-    }
-}
-
-/// The projector on the null space of the kept mass matrix `w.mj` (the
-/// eigenvectors whose eigenvalues are at most 1e-12 of the largest) into
-/// `w.null`, and whether there is one.
-fn null_projector(w: &mut Work) {
-    let n = w.n;
-    let eigen = nalgebra::SymmetricEigen::new(nalgebra::DMatrix::from_column_slice(n, n, &w.mj));
-    let largest = eigen.eigenvalues.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-    w.null.fill(0.0);
-    w.massless = false;
-    for (k, &lambda) in eigen.eigenvalues.iter().enumerate() {
-        if lambda.abs() <= 1e-12 * largest {
-            w.massless = true;
-            let v = eigen.eigenvectors.column(k);
-            for c in 0..n {
-                for r in 0..n {
-                    w.null[c * n + r] += v[r] * v[c];
-                }
-            }
         }
     }
 }
@@ -577,7 +541,6 @@ pub fn integrate<S: System + ?Sized>(
                 w.mj.copy_from_slice(&w.m0);
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g0)?;
-                    null_projector(&mut w);
                 }
                 w.factored = f64::NAN;
                 stale = false;
@@ -688,24 +651,13 @@ fn stages(rk: &Radau, w: &mut Work, h: f64, q0: &[f64], v0: &[f64]) {
 }
 
 /// Root mean square of the position parts `dq` and velocity parts `dv`
-/// (times `w.vw`) of `k` blocks, each entry over its scale, their
-/// components in M's null space weighed by `w.index`.
-fn scaled_norm(w: &Work, dq: &[f64], dv: &[f64]) -> f64 {
+/// (times `vw`) of `k` blocks, each entry over its scale.
+fn scaled_norm(w: &Work, dq: &[f64], dv: &[f64], vw: f64) -> f64 {
     let n = w.n;
     let mut sum = 0.0;
-    let shrink = w.index - 1.0;
-    for (bq, bv) in dq.chunks_exact(n).zip(dv.chunks_exact(n)) {
-        for r in 0..n {
-            let (mut a, mut b) = (bq[r], bv[r]);
-            if shrink != 0.0 {
-                for c in 0..n {
-                    let p = w.null[c * n + r];
-                    a += shrink * p * bq[c];
-                    b += shrink * p * bv[c];
-                }
-            }
-            sum += (a / w.sq[r]).powi(2) + (w.vw * b / w.sv[r]).powi(2);
-        }
+    for (k, (a, b)) in dq.iter().zip(dv).enumerate() {
+        let r = k % n;
+        sum += (a / w.sq[r]).powi(2) + (vw * b / w.sv[r]).powi(2);
     }
     (sum / (2 * dq.len()).max(1) as f64).sqrt()
 }
@@ -741,12 +693,6 @@ fn attempt<S: System + ?Sized>(
     } else {
         1.0
     };
-    // Directions without inertia (M's null space: massless flexures, a
-    // point mass's rotation) are quasi-static; in a closed loop the closure
-    // forces, index-3 variables, set them, so they are weighed as those are,
-    // by h² (RADAU5's scaling), their velocities by h³.
-    w.vw = vw;
-    w.index = if m > 0 && w.massless { h * h } else { 1.0 };
     for r in 0..n {
         w.sq[r] = atol + rtol * q0[r].abs();
         w.sv[r] = atol + rtol * v0[r].abs();
@@ -810,10 +756,7 @@ fn attempt<S: System + ?Sized>(
         for (x, d) in w.x.iter_mut().zip(&w.r) {
             *x += d;
         }
-        // Newton converges in every direction, the massless ones too.
-        let index = std::mem::replace(&mut w.index, 1.0);
-        let size = scaled_norm(w, &w.dq, &w.dv);
-        w.index = index;
+        let size = scaled_norm(w, &w.dq, &w.dv, vw);
         if !size.is_finite() {
             return Ok(Err(Refusal::Failed("a non-finite Newton step".into())));
         }
@@ -843,9 +786,9 @@ fn attempt<S: System + ?Sized>(
         w.sq[r] = atol + rtol * q0[r].abs().max(w.qs[2 * n + r].abs());
         w.sv[r] = atol + rtol * v0[r].abs().max(w.vs[2 * n + r].abs());
     }
-    let err = estimate(system, rk, w, t0, h, q0, v0, false)?;
+    let err = estimate(system, rk, w, t0, h, q0, v0, vw, false)?;
     let err = match err {
-        Some(e) if e >= 1.0 && refine => estimate(system, rk, w, t0, h, q0, v0, true)?,
+        Some(e) if e >= 1.0 && refine => estimate(system, rk, w, t0, h, q0, v0, vw, true)?,
         other => other,
     };
     let Some(err) = err else {
@@ -937,6 +880,7 @@ fn estimate<S: System + ?Sized>(
     h: f64,
     q0: &[f64],
     v0: &[f64],
+    vw: f64,
     refine: bool,
 ) -> Result<Option<f64>> {
     let (n, m) = (w.n, w.m);
@@ -997,6 +941,6 @@ fn estimate<S: System + ?Sized>(
         w.eq[r] = w.erhs[r];
         w.ev[r] = (w.erhs[r] - w.rq[r]) / hg;
     }
-    let err = scaled_norm(w, &w.eq, &w.ev);
+    let err = scaled_norm(w, &w.eq, &w.ev, vw);
     Ok(if err.is_finite() { Some(err) } else { None })
 }
