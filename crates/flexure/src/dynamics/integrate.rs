@@ -52,8 +52,10 @@
 //! \gamma_0\mathcal M\textstyle\sum_i d_iZ_i\bigr),$$
 //! $\mathcal M = \operatorname{diag}(I, M)$, whose position part solves
 //! $(M + h\gamma_0D_t + h^2\gamma_0^2K_t)e_q + G^T\mu = \ldots$, $Ge_q = 0$:
-//! the Newton matrix of one stage (with the step's own $M$ and the kept
-//! $K_t$, $D_t$, $G$), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
+//! the Newton matrix of one stage (with the step's own $M$ and $G$ and the
+//! kept $K_t$, $D_t$: $G$ must be the step's, since the closure forces
+//! missing from $f$ lie in its row space and its multipliers must absorb
+//! them exactly), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
 //! are closures: they are index-2 variables there), must be at most 1; the
 //! step then changes by $0.9\,\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
@@ -306,6 +308,11 @@ struct Work {
     k0: Vec<f64>,
     d0: Vec<f64>,
     g0: Vec<f64>,
+    /// $G$ at the step's start, for the error estimate: the closure forces
+    /// $G^T\lambda$ missing from $f$ there lie in its row space, so the
+    /// estimate's multipliers absorb them exactly (with a kept $G$ they would
+    /// leak, as a growing error in the directions without inertia).
+    g_start: Vec<f64>,
     /// The step for which `matrix` and `e` hold their LU factors (NaN: none).
     factored: f64,
     /// The last accepted step's unknowns and length (0 before the first):
@@ -363,6 +370,7 @@ impl Work {
             k0: z(n * n),
             d0: z(n * n),
             g0: z(m * n),
+            g_start: z(m * n),
             mass: z(n * n),
             force: z(n),
             closure: z(m),
@@ -527,8 +535,11 @@ pub fn integrate<S: System + ?Sized>(
                 return Err(stalled(&format!("{cause}; the step fell below 1e-12 of the duration"), step, &run));
             }
             if !fresh {
-                // The step's start: M and f for the error estimate.
+                // The step's start: M, f and G for the error estimate.
                 system.dynamics(&q, &v, t, &mut w.m0, &mut w.f0)?;
+                if m > 0 {
+                    system.closure(&q, &mut w.closure, &mut w.g_start)?;
+                }
                 fresh = true;
                 current = false;
             }
@@ -920,8 +931,9 @@ fn estimate<S: System + ?Sized>(
         w.erhs[r] = s;
     }
     w.erhs[n..].fill(0.0);
-    // The estimate's matrix takes this step's M, as its right side does
-    // (a kept M there would misjudge the error), and the kept tangents.
+    // The estimate's matrix takes this step's M and G, as its right side
+    // does (a kept M would misjudge the error, a kept G would leak the
+    // closure forces into the directions without inertia), and the kept tangents.
     w.e.fill(0.0);
     for c in 0..n {
         for r in 0..n {
@@ -929,8 +941,8 @@ fn estimate<S: System + ?Sized>(
             w.e[c * size + r] = w.m0[k] + hg * w.d0[k] + hg * hg * w.k0[k];
         }
         for k in 0..m {
-            w.e[c * size + n + k] = w.g0[c * m + k];
-            w.e[(n + k) * size + c] = w.g0[c * m + k];
+            w.e[c * size + n + k] = w.g_start[c * m + k];
+            w.e[(n + k) * size + c] = w.g_start[c * m + k];
         }
     }
     if !linalg::lu(&mut w.e, size, &mut w.epiv) {
