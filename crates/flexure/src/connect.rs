@@ -44,20 +44,12 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 pub struct ConnectData {
     kinematics: Kinematics<f64>,
     solver: solver::Workspace<f64>,
-    /// The flexure's order and number of quadrature nodes, to refuse another's.
-    order: usize,
-    nodes: usize,
 }
 
 impl ConnectData {
     /// Buffers sized for `flexure`.
     pub fn new(flexure: &Flexure) -> Self {
-        Self {
-            kinematics: Kinematics::new(flexure),
-            solver: solver::Workspace::new(flexure.order() + 3),
-            order: flexure.order(),
-            nodes: flexure.scaled_weights().len(),
-        }
+        Self { kinematics: Kinematics::new(flexure), solver: solver::Workspace::new(flexure.order() + 3) }
     }
 }
 
@@ -107,13 +99,7 @@ pub fn connect_with(flexure: &Flexure, target: &Pose, data: &mut ConnectData) ->
     if n < 3 {
         return Err(Error::invalid("order", n, "must be at least 3 to reach a tip pose (three constraints)"));
     }
-    if data.order != n || data.nodes != flexure.scaled_weights().len() {
-        return Err(Error::invalid(
-            "data",
-            format!("order {}, {} quadrature nodes", data.order, data.nodes),
-            "was made for a flexure of another order or quadrature rule",
-        ));
-    }
+    data.kinematics.check_fits(flexure)?;
     let ConnectData { kinematics: k, solver: ws, .. } = data;
     arc(flexure, target.phi, &mut ws.x[..n]);
     kinematics::update(flexure, &ws.x[..n], k, Level::Jacobian);

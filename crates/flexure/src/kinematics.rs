@@ -81,6 +81,27 @@ impl<T: Scalar> Kinematics<T> {
         self.jacobian_root_tip.ncols() == flexure.order() && self.node_cos_sin.len() == flexure.scaled_weights().len()
     }
 
+    /// [`Kinematics::fits`] as a result: an error naming `data`, the
+    /// workspace these buffers belong to, when they do not fit `flexure`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{kinematics::Kinematics, Error, Flexure};
+    /// let k: Kinematics = Kinematics::new(&Flexure::new(1.0, 1.0, 3).unwrap());
+    /// let e = k.check_fits(&Flexure::segments(1.0, 1.0, 3).unwrap()).unwrap_err();
+    /// assert!(matches!(e, Error::InvalidParameter { name: "data", .. }));
+    /// ```
+    pub fn check_fits(&self, flexure: &Flexure) -> crate::Result<()> {
+        if self.fits(flexure) {
+            return Ok(());
+        }
+        Err(crate::Error::invalid(
+            "data",
+            format!("buffers of order {}", self.jacobian_root_tip.ncols()),
+            "was made for a flexure of another order or quadrature rule",
+        ))
+    }
+
     /// Buffers sized for `flexure`.
     pub fn new(flexure: &Flexure) -> Self {
         let n = flexure.order();

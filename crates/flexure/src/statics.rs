@@ -226,13 +226,10 @@ fn follow<T: Scalar>(
     while_stable: bool,
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
-    if data.solver.dim() != flexure.order() || !data.kinematics.fits(flexure) {
-        return Err(Error::invalid(
-            "data",
-            format!("buffers of order {}", data.solver.dim()),
-            "was made for a flexure of another order or quadrature rule",
-        ));
+    if data.solver.dim() != flexure.order() {
+        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
     }
+    data.kinematics.check_fits(flexure)?;
     let l = flexure.length();
     let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
     for (a, &k) in data.solver.x.iter_mut().zip(flexure.rest()) {
@@ -262,13 +259,10 @@ pub fn correct<T: Scalar>(
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
     flexure.check_coordinates("alpha", alpha)?;
-    if data.solver.dim() != flexure.order() || !data.kinematics.fits(flexure) {
-        return Err(Error::invalid(
-            "data",
-            format!("buffers of order {}", data.solver.dim()),
-            "was made for a flexure of another order or quadrature rule",
-        ));
+    if data.solver.dim() != flexure.order() {
+        return Err(Error::invalid("data", data.solver.dim(), "was made for a flexure of another order"));
     }
+    data.kinematics.check_fits(flexure)?;
     let l = flexure.length();
     let scale = flexure.ei() / l + load.moment.re().abs() + l * (load.fx.re().abs() + load.fy.re().abs());
     data.solver.x.copy_from_slice(alpha);

@@ -253,13 +253,10 @@ pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonD
     if !(tension.is_finite() && tension >= 0.0) {
         return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
     }
-    if data.alpha.len() != flexure.order() || !data.kinematics.fits(flexure) {
-        return Err(Error::invalid(
-            "data",
-            format!("buffers of order {}", data.alpha.len()),
-            "was made for a flexure of another order or quadrature rule",
-        ));
+    if data.alpha.len() != flexure.order() {
+        return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
     }
+    data.kinematics.check_fits(flexure)?;
     let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
     data.solver.x.copy_from_slice(&data.alpha);
     let mut problem = TendonProblem {
@@ -289,13 +286,10 @@ pub fn correct(
     if !(tension.is_finite() && tension >= 0.0) {
         return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
     }
-    if data.alpha.len() != flexure.order() || !data.kinematics.fits(flexure) {
-        return Err(Error::invalid(
-            "data",
-            format!("buffers of order {}", data.alpha.len()),
-            "was made for a flexure of another order or quadrature rule",
-        ));
+    if data.alpha.len() != flexure.order() {
+        return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
     }
+    data.kinematics.check_fits(flexure)?;
     let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
     data.solver.x.copy_from_slice(alpha);
     let mut problem = TendonProblem {
