@@ -709,9 +709,8 @@ impl System for MechanismSystem {
         if self.closures() == 0 {
             return Ok(());
         }
-        // The closures and G alone: no Hessian, no allocation.
         frames_into(&self.mechanism, q, &mut self.frames);
-        assemble_into(&self.mechanism, &self.frames, &self.zeros, &self.loads_weightless, false, &mut self.assembly)?;
+        self.assembly.closures_at(&self.mechanism, &self.frames);
         c.copy_from_slice(self.assembly.closure.as_slice());
         g.copy_from_slice(self.assembly.closure_jacobian.as_slice());
         Ok(())

@@ -175,6 +175,14 @@ pub(crate) fn assemble_into(
     Ok((elastic + load, elastic))
 }
 
+impl Assembly {
+    /// $c$ and $G$ alone at the frames `f`, into `closure` and
+    /// `closure_jacobian` (no potential, no Hessian, no allocation).
+    pub(crate) fn closures_at(&mut self, m: &Mechanism, f: &Frames) {
+        add_closures(m, f, &[], &mut self.closure, &mut self.closure_jacobian, None, &mut self.points);
+    }
+}
+
 /// $c$ and $G$ at the frames `f`.
 pub(super) fn closures(m: &Mechanism, f: &Frames) -> (DVector<f64>, DMatrix<f64>) {
     let (mut c, mut g) = (DVector::zeros(m.constraints()), DMatrix::zeros(m.constraints(), m.dof()));

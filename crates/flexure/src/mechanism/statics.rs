@@ -38,9 +38,7 @@
 
 use super::indeterminate::{full_row_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
-use super::lagrangian::{
-    Assembly, add_closures, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian,
-};
+use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
 use super::tree::Tree;
 use super::{Closure, JointKind, Loads, Mechanism};
 use crate::error::{Error, Result};
@@ -909,7 +907,7 @@ fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Res
     if !(*assembled && assembled_at[..] == *q) {
         *assembled = false;
         frames_into(m, q, f);
-        add_closures(m, f, &[], &mut a.closure, &mut a.closure_jacobian, None, &mut a.points);
+        a.closures_at(m, f);
     }
     // settle changes nothing where G has independent rows: it need not be called.
     let g = &a.closure_jacobian;
