@@ -13,41 +13,36 @@
 //! and absolute), sampled every 10 ms.
 
 use criterion::Criterion;
-use flexure::Result;
-use flexure::dynamics::System;
 use flexure::dynamics::integrate::{Settings, Trajectory, integrate};
-use flexure::dynamics::mechanism::{MechanismSystem, modes};
+use flexure::dynamics::mechanism::modes;
+use flexure::dynamics::schedule::ScheduledSystem;
+use flexure::dynamics::simulation::{Start, initial_state};
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics;
 use flexure::mechanism::{JointKind, Mechanism};
 use std::hint::black_box;
 
-/// The example's tendon tension (N), reached at [`RISE`].
-const TENSION: f64 = 6.0;
-/// The ramp's duration (s).
-const RISE: f64 = 0.1;
-
-/// The finger with steel flexures and 5 g links, its tendon at `tension`.
-fn finger(tension: f64) -> Mechanism {
+/// The finger with steel flexures and 5 g links, its tendon at the
+/// example's 6 N for statics, and for the motion ramped from 0 to 6 N over
+/// the first 0.1 s by a `[[schedule]]`, then held.
+fn finger() -> Mechanism {
     let path = format!("{}/../../examples/finger.toml", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(path).unwrap();
     let steel = |width: f64| {
         format!("modulus = 200e9\nwidth = {width}\nthickness = 2e-4\npoisson = 0.29\ndensity = 7850.0\ndamping = 1e-5")
     };
-    let edits = [
-        ("ei = 1.4558e-3", steel(0.01)),
-        ("ei = 1.0e-3", steel(0.01 * 1.0e-3 / 1.4558e-3)),
-        ("tension = 6.0", format!("tension = {tension:?}")),
-    ];
+    let edits = [("ei = 1.4558e-3", steel(0.01)), ("ei = 1.0e-3", steel(0.01 * 1.0e-3 / 1.4558e-3))];
     let mut text = text;
     for (from, to) in edits {
         assert_eq!(text.matches(from).count(), 1, "examples/finger.toml no longer has {from:?}");
         text = text.replace(from, &to);
     }
+    assert_eq!(text.matches("tension = 6.0").count(), 1, "examples/finger.toml no longer pulls its tendon at 6 N");
     let rod = |mass: f64, length: f64| mass * length * length / 12.0;
     text += &format!(
         "\n[[body]]\nname = \"proximal\"\nmass = 0.005\ninertia = {:?}\ncom = [0.015, 0.0]\n\
-         \n[[body]]\nname = \"distal\"\nmass = 0.005\ninertia = {:?}\ncom = [0.0125, 0.0]\n",
+         \n[[body]]\nname = \"distal\"\nmass = 0.005\ninertia = {:?}\ncom = [0.0125, 0.0]\n\
+         \n[[schedule]]\nload = \"tendon.flexor.tension\"\npoints = [[0.0, 0.0], [0.1, 6.0]]\n",
         rod(0.005, 0.03),
         rod(0.005, 0.025)
     );
@@ -60,61 +55,10 @@ fn finger(tension: f64) -> Mechanism {
     m
 }
 
-/// The finger's equations of motion with the tendon's tension ramped
-/// linearly from 0 to [`TENSION`] over [`RISE`], then held.
-struct Ramped {
-    inner: MechanismSystem,
-}
-
-impl Ramped {
-    fn at(&mut self, t: f64) -> Result<()> {
-        let tension = TENSION * (t / RISE).clamp(0.0, 1.0);
-        if self.inner.loads().tension[0] != tension {
-            let mut loads = self.inner.loads().clone();
-            loads.tension[0] = tension;
-            self.inner.set_loads(loads)?;
-        }
-        Ok(())
-    }
-}
-
-impl System for Ramped {
-    fn dim(&self) -> usize {
-        self.inner.dim()
-    }
-
-    fn closures(&self) -> usize {
-        self.inner.closures()
-    }
-
-    fn dynamics(&mut self, q: &[f64], v: &[f64], t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
-        self.at(t)?;
-        self.inner.dynamics(q, v, t, mass, force)
-    }
-
-    fn tangent(&mut self, q: &[f64], v: &[f64], t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
-        self.at(t)?;
-        self.inner.tangent(q, v, t, stiffness, damping)
-    }
-
-    fn closure(&mut self, q: &[f64], c: &mut [f64], g: &mut [f64]) -> Result<()> {
-        self.inner.closure(q, c, g)
-    }
-
-    fn energy(&mut self, q: &[f64], v: &[f64], t: f64) -> Result<f64> {
-        self.at(t)?;
-        self.inner.energy(q, v, t)
-    }
-
-    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        self.inner.distance(a, b)
-    }
-}
-
 /// One second of the ramped finger's motion from `start` (at rest).
 fn finger_1s(m: &Mechanism, start: &[f64]) -> Trajectory {
     let settings = Settings { duration: 1.0, every: 0.01, tolerance: 1e-6, absolute: 1e-6, ..Default::default() };
-    let mut system = Ramped { inner: MechanismSystem::new(m).unwrap() };
+    let mut system = ScheduledSystem::new(m).unwrap();
     let run = integrate(&mut system, start, &vec![0.0; start.len()], &settings).unwrap();
     assert!(run.time.len() == 101 && run.time[100] == 1.0, "the run did not reach 1 s");
     assert!(run.coordinates.iter().chain(&run.energy).all(|x| x.is_finite()), "a sample is not finite");
@@ -122,21 +66,22 @@ fn finger_1s(m: &Mechanism, start: &[f64]) -> Trajectory {
 }
 
 pub fn run(c: &mut Criterion) {
-    let unloaded = finger(0.0);
-    let start = statics::solve(&unloaded, &statics::Settings::default()).unwrap().q;
-    let first = finger_1s(&unloaded, &start);
+    let m = finger();
+    // The equilibrium under the loads at t = 0: the tendon slack, the tip force on.
+    let (start, _) = initial_state(&m, &statics::Settings::default(), Start::Equilibrium).unwrap();
+    let first = finger_1s(&m, &start);
     // The tendon did its work: the finger ends flexed further than it began.
     let last = first.time.len() - 1;
     assert!(first.q(last)[0] > start[0] + 0.1, "the tendon did not flex the finger: {:?}", first.q(last));
-    let loaded = finger(TENSION);
     let mut g = c.benchmark_group("dynamics");
     g.sample_size(10);
-    g.bench_function("finger_1s", |b| b.iter(|| finger_1s(black_box(&unloaded), &start)));
+    g.bench_function("finger_1s", |b| b.iter(|| finger_1s(black_box(&m), &start)));
     g.sample_size(100);
+    // Statics take the file's loads: the modes are about the 6 N equilibrium.
     g.bench_function("modes_finger", |b| {
         b.iter(|| {
-            let w = modes(black_box(&loaded), &statics::Settings::default(), 10).unwrap();
-            assert!(w.omega.len() == loaded.dof() && w.omega[0] > 0.0, "modes: {:?}", w.omega);
+            let w = modes(black_box(&m), &statics::Settings::default(), 10).unwrap();
+            assert!(w.omega.len() == m.dof() && w.omega[0] > 0.0, "modes: {:?}", w.omega);
             w
         })
     });
