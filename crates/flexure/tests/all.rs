@@ -35,6 +35,7 @@ mod quadrature;
 mod reference;
 mod section;
 mod section_exact;
+mod seeded;
 mod segments;
 mod sincos;
 mod solver;

@@ -3,6 +3,7 @@
 //! forms (the straight uniform beam, the constant-curvature arc), a much
 //! finer nested rule, num-dual, central differences and the energy balance.
 
+use crate::seeded::Rng;
 use flexure::dynamics::{Body, MassData, MassModel, update_mass};
 use flexure::section::{Profile, Section};
 use flexure::{Error, Flexure};
@@ -47,21 +48,6 @@ fn mass_matrix(model: &MassModel, alpha: &[f64]) -> DMatrix<f64> {
 
 fn relative(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
     (a - b).amax() / b.amax()
-}
-
-/// A seeded generator of numbers in [-1, 1) (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        bits as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
-        (0..n).map(|i| scale * self.next() / (i + 1) as f64).collect()
-    }
 }
 
 /// Exact polynomials in monomial coefficients, independent of the library's basis code.

@@ -5,6 +5,7 @@
 //! differences of the potential, the energy balance d/dt(T + V) = −q̇ᵀDq̇ at
 //! random states, the single-flexure mass model, and the file's new keys.
 
+use crate::seeded::Rng;
 use flexure::dynamics::System;
 use flexure::dynamics::mechanism::MechanismSystem;
 use flexure::dynamics::{MassData, MassModel, update_mass};
@@ -101,18 +102,6 @@ at = [0.01, 0.0]
 force = [0.3, -0.2]
 moment = 0.01
 "#;
-
-/// A seeded generator of numbers in [-1, 1) (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        bits as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
 
 /// A random configuration near rest (flexure coefficients up to 0.4, the
 /// pin up to 0.5 rad, the slider up to 5 mm) and random rates.

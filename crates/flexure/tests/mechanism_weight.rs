@@ -107,14 +107,10 @@ fn weight_gradient_and_hessian_against_central_differences() {
     )
     .unwrap();
     let h = 1e-5;
-    let mut seed = 7u64;
-    let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut rng = crate::seeded::Rng(7);
     for _ in 0..5 {
-        let q: Vec<f64> = (0..m.dof()).map(|_| 0.6 * next()).collect();
-        let weighed = Loads { gravity: [10.0 * next(), 10.0 * next()], ..m.loads() };
+        let q: Vec<f64> = (0..m.dof()).map(|_| 0.6 * rng.next()).collect();
+        let weighed = Loads { gravity: [10.0 * rng.next(), 10.0 * rng.next()], ..m.loads() };
         let terms = |q: &[f64]| {
             let (a, b) = (lagrangian(&m, q, &[], &weighed).unwrap(), lagrangian(&m, q, &[], &m.loads()).unwrap());
             (a.potential - b.potential, a.gradient - b.gradient, a.hessian - b.hessian)
