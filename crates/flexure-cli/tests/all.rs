@@ -9,6 +9,7 @@
 
 mod analyses;
 mod batch;
+mod cli;
 mod estimate;
 mod examples;
 mod figures;

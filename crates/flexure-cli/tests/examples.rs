@@ -18,11 +18,7 @@ fn file(name: &str) -> String {
     examples_dir().join(format!("{name}.toml")).display().to_string()
 }
 
-fn run(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
-    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
-}
+use crate::cli::run;
 
 /// The answer to `args --json`, which must exit 0 without a warning.
 fn json(args: &[&str]) -> Value {

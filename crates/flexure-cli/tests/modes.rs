@@ -8,11 +8,7 @@
 use serde_json::Value;
 use std::f64::consts::{PI, TAU};
 
-fn run(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
-    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
-}
+use crate::cli::run;
 
 /// The answer to `modes args --json`, which must exit 0 without a warning.
 fn modes(args: &[&str]) -> Value {

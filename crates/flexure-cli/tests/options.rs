@@ -3,11 +3,7 @@
 //! nothing is sized by the value first (a huge count used to abort on a
 //! failed allocation). Runs the CLI in-process through `flexure_cli::run`.
 
-fn run(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
-    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
-}
+use crate::cli::run;
 
 const HUGE: [&str; 4] = ["1099511627776", "18446744073709551616", "1e300", "99999999999999999999999999"];
 const NOT_FINITE: [&str; 5] = ["nan", "inf", "-inf", "NaN", "infinity"];

@@ -6,11 +6,7 @@
 
 use serde_json::Value;
 
-fn run(args: &[&str]) -> (u8, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let code = flexure_cli::run(std::iter::once("flexure").chain(args.iter().copied()), &mut out, &mut err);
-    (code, String::from_utf8_lossy(&out).into(), String::from_utf8_lossy(&err).into())
-}
+use crate::cli::run;
 
 /// The answer to `args --json` (exit 0), and its stderr.
 fn answer(args: &[&str]) -> (Value, String) {
