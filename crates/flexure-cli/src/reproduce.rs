@@ -842,6 +842,7 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
             flexure::mechanism::statics::solve_between(&finger, &unloaded, &loads, &statics_settings).map_err(lib)?.q;
         quasi.push((t, flexure::mechanism::kinematics::frames(&finger, &q).bodies[distal_index].angle));
     }
+    let quasi_end = quasi.last().map(|p| p.1);
     let _ = write!(
         text,
         "**A finger in motion** (`examples/finger_dynamics.toml`): two steel strips like it (0.206 and 0.182 mm thick), 5 g links, \
@@ -865,7 +866,7 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
             equal_aspect: false,
         },
         &[
-            Series::line("quasi-static path", quasi.clone(), EXACT).dashed(Dash::Dashed),
+            Series::line("quasi-static path", quasi, EXACT).dashed(Dash::Dashed),
             Series::line("simulated", run.time.iter().copied().zip(distal.phi.iter().copied()).collect(), COLORS[0]),
         ],
     )?;
@@ -873,6 +874,6 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
     Ok(json!({
         "strip": { "exact_frequency": exact.frequency, "models": rows },
         "finger": { "duration": 0.3, "steps": run.steps, "rejected": run.rejected, "violation": run.violation,
-                    "distal_angle_end": distal.phi.last(), "quasi_static_end": quasi.last().map(|p| p.1) },
+                    "distal_angle_end": distal.phi.last(), "quasi_static_end": quasi_end },
     }))
 }

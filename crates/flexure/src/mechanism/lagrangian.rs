@@ -356,14 +356,15 @@ fn add_flexure_weights(
     let mut potential = 0.0;
     for (j, tables) in &mut weights.flexures {
         let spec = &m.joints[*j];
-        let built = tables.get_or_insert_with(|| match &spec.kind {
-            JointKind::Flexure(flexure) => MassModel::new(flexure, None)
+        // `Weights::new` lists flexures only.
+        let JointKind::Flexure(flexure) = &spec.kind else { continue };
+        let built = tables.get_or_insert_with(|| {
+            MassModel::new(flexure, None)
                 .map(|model| {
                     let w = Weight::new(&model);
                     (model, w)
                 })
-                .map_err(|e| e.in_joint(&spec.name)),
-            _ => Err(Error::invalid("joint", *j, "is not a flexure")),
+                .map_err(|e| e.in_joint(&spec.name))
         });
         let (model, w) = match built {
             Ok((model, w)) => (&*model, w),
