@@ -18,9 +18,13 @@
 //! need $\sim 10^3$ times more steps for that). On the constrained
 //! (index-3) system the positions keep order 5 and the velocities order 3
 //! (Hairer, Lubich & Roche 1989). It needs no initial accelerations: the
-//! stage equations use only $q_0$ and $\dot q_0$, and a state $(q_0, \dot
-//! q_0)$ off the slow manifold of a massless direction is projected onto it
-//! by the first step.
+//! stage equations use only $q_0$ and $\dot q_0$. Directions with neither
+//! inertia nor damping obey algebraic equations (quasi-static equilibrium);
+//! a start off them (a massless flexure at its unloaded shape under load)
+//! is first moved onto them, as DAE codes compute consistent initial values
+//! (IDA's `IDACalcIC`): Newton's method on those equations along the
+//! null space of $M$ and $D_t$, the other coordinates kept; the run records
+//! that state at $t = 0$.
 //!
 //! **Stage equations.** With the Butcher matrix $A = (a_{ij})$ and nodes
 //! $c_i$, the unknowns are the stage accelerations $\ddot Q_i$ and
@@ -42,7 +46,9 @@
 //! matrix's data $M$, $K_t$, $D_t$, $G$ are kept over the following steps
 //! (and its factors while the step length stays) as long as Newton
 //! contracts by at most 0.1 per iteration, and renewed after a rejected
-//! step; Newton starts from the last step's collocation polynomial
+//! step; a Newton failure with kept data retries the same step with fresh
+//! data (CVODE's rule: kept data, not the step, is the likelier cause),
+//! and with fresh data halves the step. Newton starts from the last step's collocation polynomial
 //! extrapolated to the new stages.
 //!
 //! **Error control** (Hairer & Wanner, *Solving ODEs II*, IV.8, the
@@ -59,9 +65,10 @@
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
 //! are closures: they are index-2 variables there), must be at most 1; the
 //! step then changes by $0.9\,\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
-//! In the first two steps only positions are weighed: a start off the
-//! quasi-static equilibrium of a massless direction is projected onto it
-//! by the first step, whose velocity there jumps by the offset over $h$.
+//! In the first two steps only positions are weighed: the velocities of
+//! massless directions at the start are not consistent with their motion
+//! (and if the start could not be made consistent, the first step projects
+//! it, its velocity jumping by the offset over $h$).
 //! A step is also refused when it turns a section or body by more than
 //! [`Settings::max_rotation_per_step`] ([`System::distance`]), and none
 //! exceeds [`Settings::max_step`]. Steps land on the sample times exactly.
@@ -412,6 +419,94 @@ fn violation<S: System + ?Sized>(system: &mut S, q: &[f64], w: &mut Work) -> Res
     Ok(w.closure.iter().fold(0.0, |a: f64, c| if c.is_nan() { f64::NAN } else { a.max(c.abs()) }))
 }
 
+/// Iterations of [`consistent_start`]'s Newton method.
+const START_ITERATIONS: usize = 30;
+
+/// Moves `q` onto the quasi-static equilibrium of the directions without
+/// inertia nor damping, keeping the others: with $N$ an orthonormal basis
+/// of the null space of $M(q_0)$ and $D_t(q_0)$ together, it solves for $y$ and $\lambda$
+/// $$N^T\bigl(G(q)^T\lambda - f(q, \dot q_0, 0)\bigr) = 0,\qquad c(q) = 0,
+/// \qquad q = q_0 + Ny,$$
+/// by Newton's method with the matrix $\begin{pmatrix}N^TK_tN & N^TG^T\\ GN &
+/// 0\end{pmatrix}$ solved in least squares (closure forces acting only on
+/// massive coordinates are left to the motion). These are the algebraic
+/// equations of the system at $t = 0$: a start that violates them (a
+/// massless flexure at its unloaded shape under a load) has no consistent
+/// first step, the error of whichever jump the first step makes does not
+/// shrink with the step, and at tight tolerances the run stalls there. DAE
+/// codes compute consistent initial values the same way (IDA's
+/// `IDACalcIC` for the algebraic components). Leaves `q` unchanged when
+/// there are no such directions, and when Newton does not reach rounding's floor within
+/// [`START_ITERATIONS`] (the first step then projects the start). A
+/// massless direction with damping follows a first-order equation from
+/// its start, and is left there.
+fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64], settings: &Settings) -> Result<()> {
+    use nalgebra::{DMatrix, DVector};
+    let (n, m) = (system.dim(), system.closures());
+    let (mut mass, mut force) = (vec![0.0; n * n], vec![0.0; n]);
+    let (mut k, mut d) = (vec![0.0; n * n], vec![0.0; n * n]);
+    let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
+    system.dynamics(q, v, 0.0, &mut mass, &mut force)?;
+    system.tangent(q, v, 0.0, &mut k, &mut d)?;
+    // Directions with neither inertia nor damping: a massless direction
+    // with damping follows a first-order equation, not an algebraic one.
+    let mut stacked = DMatrix::zeros(2 * n, n);
+    stacked.view_mut((0, 0), (n, n)).copy_from(&DMatrix::from_column_slice(n, n, &mass));
+    stacked.view_mut((n, 0), (n, n)).copy_from(&DMatrix::from_column_slice(n, n, &d));
+    let basis = linalg::null_space(&stacked);
+    let free = basis.ncols();
+    if free == 0 {
+        return Ok(());
+    }
+    let start = q.to_vec();
+    let mut lambda = DVector::<f64>::zeros(m);
+    for iteration in 0..START_ITERATIONS {
+        if iteration > 0 {
+            system.dynamics(q, v, 0.0, &mut mass, &mut force)?;
+            system.tangent(q, v, 0.0, &mut k, &mut d)?;
+        }
+        if m > 0 {
+            system.closure(q, &mut c, &mut g)?;
+        }
+        // G is m × n column-major: g[col * m + row].
+        let gt = DMatrix::from_column_slice(m, n, &g);
+        let closure_force = gt.transpose() * &lambda;
+        let mut residual = DVector::zeros(free + m);
+        let unbalanced = DVector::from_fn(n, |r, _| closure_force[r] - force[r]);
+        residual.rows_mut(0, free).copy_from(&(basis.transpose() * unbalanced));
+        residual.rows_mut(free, m).copy_from(&DVector::from_column_slice(&c));
+        let mut matrix = DMatrix::zeros(free + m, free + m);
+        let kt = DMatrix::from_column_slice(n, n, &k);
+        matrix.view_mut((0, 0), (free, free)).copy_from(&(basis.transpose() * kt * &basis));
+        let gn = &gt * &basis;
+        matrix.view_mut((0, free), (free, m)).copy_from(&gn.transpose());
+        matrix.view_mut((free, 0), (m, free)).copy_from(&gn);
+        let step = linalg::least_squares(&matrix, &(-residual));
+        if step.iter().any(|x| !x.is_finite()) {
+            break;
+        }
+        let dq = &basis * step.rows(0, free);
+        lambda += step.rows(free, m);
+        let mut size: f64 = 0.0;
+        for r in 0..n {
+            q[r] += dq[r];
+            let scale = settings.absolute + settings.tolerance * q[r].abs();
+            size = size.max(dq[r].abs() / scale);
+        }
+        // Converged when the last correction is far below the tolerance or
+        // at rounding's level in the coordinates.
+        let floor = dq.iter().zip(q.iter()).all(|(x, y)| x.abs() <= 1e3 * f64::EPSILON * (1.0 + y.abs()));
+        if size <= 1e-3 || floor {
+            if q.iter().all(|x| x.is_finite()) {
+                return Ok(());
+            }
+            break;
+        }
+    }
+    q.copy_from_slice(&start);
+    Ok(())
+}
+
 /// Integrates `system` from the state (`q0`, `v0`) at $t = 0$ over
 /// [`Settings::duration`], reporting the state and energy at
 /// [`Settings::times`] (see the [module docs](self) for the method).
@@ -485,7 +580,8 @@ pub fn integrate<S: System + ?Sized>(
         violation: 0.0,
     };
     let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
-    let (mut q1, mut v1) = (q0.to_vec(), v0.to_vec());
+    consistent_start(system, &mut q, &v, settings)?;
+    let (mut q1, mut v1) = (q.clone(), v.clone());
     let mut t = 0.0;
     run.violation = violation(system, &q, &mut w)?;
     record(system, &mut run, 0.0, &q, &v)?;
@@ -621,7 +717,7 @@ pub fn integrate<S: System + ?Sized>(
                     }
                     Refusal::Failed(why) => {
                         cause = why;
-                        0.5
+                        if current { 0.5 } else { 1.0 }
                     }
                 };
                 h = step * ratio;
