@@ -6,7 +6,10 @@
 //! The start is, by default, the static equilibrium under the loads at
 //! $t = 0$, at rest ([`Start::Equilibrium`]), or the unloaded shape
 //! ([`Start::Rest`]); the file's `[initial]` and `[initial_velocity]`
-//! override the coordinates of the joints they name.
+//! override the coordinates of the joints they name. Directions with
+//! neither inertia nor damping (massless flexures) are then moved onto
+//! their quasi-static equilibrium under the loads at $t = 0$ (the
+//! integrator's consistent start), which the run records at $t = 0$.
 //!
 //! The statics weigh every mass the dynamics do (bodies and flexure
 //! sections, [`crate::mechanism::lagrangian`]), so under gravity the default
@@ -26,7 +29,9 @@ pub enum Start {
     /// The static equilibrium under the loads at $t = 0$, at rest.
     #[default]
     Equilibrium,
-    /// The unloaded rest shape (closures assembled), at rest.
+    /// The unloaded rest shape (closures assembled), at rest; directions
+    /// with neither inertia nor damping start on their equilibrium under the
+    /// loads at $t = 0$.
     Rest,
 }
 
