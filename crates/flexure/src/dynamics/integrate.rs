@@ -461,12 +461,17 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
     let start = q.to_vec();
     let mut lambda = DVector::<f64>::zeros(m);
     for iteration in 0..START_ITERATIONS {
-        if iteration > 0 {
-            system.dynamics(q, v, 0.0, &mut mass, &mut force)?;
-            system.tangent(q, v, 0.0, &mut k, &mut d)?;
+        // A state Newton moved to that cannot be evaluated ends the attempt.
+        let evaluated = if iteration > 0 {
+            system.dynamics(q, v, 0.0, &mut mass, &mut force).and_then(|()| system.tangent(q, v, 0.0, &mut k, &mut d))
+        } else {
+            Ok(())
         }
-        if m > 0 {
-            system.closure(q, &mut c, &mut g)?;
+        .and_then(|()| if m > 0 { system.closure(q, &mut c, &mut g) } else { Ok(()) });
+        match evaluated {
+            Ok(()) => {}
+            Err(e) if fatal(&e) => return Err(e),
+            Err(_) => break,
         }
         // G is m × n column-major: g[col * m + row].
         let gt = DMatrix::from_column_slice(m, n, &g);
