@@ -75,7 +75,9 @@
 //!
 //! **Bounded and honest.** Each step takes at most 7 simplified Newton
 //! iterations (a contraction above 0.99 or a non-finite state ends them
-//! early, and the step is halved); a refused step is retried shorter at most
+//! early, and the step is halved; increments that stop shrinking, or run
+//! out of iterations, within 1 % of the tolerance are rounding's level in
+//! an ill-conditioned mechanism, and the solve is accepted there); a refused step is retried shorter at most
 //! [`Settings::max_rejections`] times in a row, at most
 //! [`Settings::max_steps`] steps are tried in all, and no step is shorter
 //! than $10^{-12}$ of the duration: past any of these the run stops with
@@ -168,6 +170,11 @@ pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// Simplified Newton iterations per step before the step is retried shorter.
 const NEWTON_ITERATIONS: usize = 7;
+
+/// Newton increments (scaled, as fractions of the tolerance) that stop
+/// shrinking below this are rounding's level, not divergence: the stage
+/// solve is taken as converged there.
+const NEWTON_FLOOR: f64 = 1e-2;
 
 /// The Newton matrix's data are kept for the next step when the last
 /// Newton contraction was at most this (RADAU5's `THET`, at the value its
@@ -875,6 +882,12 @@ fn attempt<S: System + ?Sized>(
         if iteration > 0 {
             let theta = size / previous;
             if theta >= 0.99 {
+                if size <= NEWTON_FLOOR && previous <= NEWTON_FLOOR {
+                    // Stalled at rounding's level, far below the tolerance.
+                    w.theta = 1.0;
+                    converged = true;
+                    break;
+                }
                 return Ok(Err(Refusal::Failed(format!("Newton diverged (contraction {theta:.2})"))));
             }
             *eta = theta / (1.0 - theta);
@@ -887,6 +900,12 @@ fn attempt<S: System + ?Sized>(
             break;
         }
         previous = size;
+    }
+    // Out of iterations while creeping at rounding's level: the estimated
+    // distance to the solution is still far below the tolerance.
+    if !converged && *eta * previous <= NEWTON_FLOOR {
+        w.theta = 1.0;
+        converged = true;
     }
     if !converged {
         *eta = 1.0;
