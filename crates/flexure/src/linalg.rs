@@ -333,6 +333,21 @@ fn lu_backward_fixed<T: Scalar, const N: usize>(a: &[T], b: &mut [T]) {
 /// assert!((&g * &z).amax() < 1e-14);
 /// ```
 pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
+    null_space_below(g, 1e-10)
+}
+
+/// [`null_space`] with singular values at most `relative` $\sigma_{max}$
+/// counting as zero.
+///
+/// # Example
+/// ```
+/// use nalgebra::DMatrix;
+/// // A 1e-12 mass beside a 1 kg one: massive at 1e-13, massless at 1e-10.
+/// let m = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1e-12]);
+/// assert_eq!(flexure::linalg::null_space_below(&m, 1e-13).ncols(), 0);
+/// assert_eq!(flexure::linalg::null_space_below(&m, 1e-10).ncols(), 1);
+/// ```
+pub fn null_space_below(g: &DMatrix<f64>, relative: f64) -> DMatrix<f64> {
     let (m, n) = g.shape();
     if m == 0 {
         return DMatrix::identity(n, n);
@@ -345,7 +360,7 @@ pub fn null_space(g: &DMatrix<f64>) -> DMatrix<f64> {
     let Some(v_t) = svd.v_t else { return DMatrix::zeros(n, 0) };
     let top = svd.singular_values.amax();
     let keep: Vec<usize> =
-        (0..n).filter(|&i| svd.singular_values[i] <= 1e-10 * top || svd.singular_values[i].is_nan()).collect();
+        (0..n).filter(|&i| svd.singular_values[i] <= relative * top || svd.singular_values[i].is_nan()).collect();
     if top == 0.0 {
         return DMatrix::identity(n, n);
     }

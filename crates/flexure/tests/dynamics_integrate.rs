@@ -399,15 +399,18 @@ impl System for TiedNodes {
 /// follow the closed form to ten times the tolerance over five periods,
 /// down to tolerance 1e-12, where a start off the equilibrium stalls an
 /// integrator that leaves the jump to its first step (its error does not
-/// shrink with the step).
+/// shrink with the step). Mass, stiffness and force scaled together by
+/// 1e3 and 1e6 give the same motion: the start's Newton matrix, with
+/// stiffness blocks of 1e8 N/m beside closure rows of 1, must still hold
+/// the closure (unbalanced, a least-squares solve dropped it).
 #[test]
 fn massless_nodes_start_on_their_equilibrium_and_follow_the_closed_form() {
     let (m, k, force): (f64, [f64; 3], f64) = (0.02, [300.0, 100.0, 200.0], 1.5);
     let big_k = k[0] + k[2];
     let w = (big_k * k[1] / ((big_k + k[1]) * m)).sqrt();
     let duration = 5.0 * 2.0 * std::f64::consts::PI / w;
-    for tolerance in [1e-8, 1e-12] {
-        let mut sys = TiedNodes { m, k, force };
+    for (tolerance, scale) in [(1e-8, 1.0), (1e-12, 1.0), (1e-8, 1e3), (1e-8, 1e6)] {
+        let mut sys = TiedNodes { m: m * scale, k: k.map(|x| x * scale), force: force * scale };
         let run = integrate(&mut sys, &[0.0; 3], &[0.0; 3], &settings(duration, duration / 20.0, tolerance)).unwrap();
         let start = force / (big_k + k[1]);
         assert!((run.q(0)[1] - start).abs() < 1e-14 && (run.q(0)[2] - start).abs() < 1e-14, "start {:?}", run.q(0));
@@ -418,9 +421,77 @@ fn massless_nodes_start_on_their_equilibrium_and_follow_the_closed_form() {
             let q = run.q(j);
             worst = worst.max((q[0] - a).abs()).max((q[1] - node).abs()).max((q[2] - node).abs());
         }
-        assert!(worst < 10.0 * tolerance * (1.0 + force / big_k), "tolerance {tolerance}: off by {worst:.3e}");
+        assert!(
+            worst < 10.0 * tolerance * (1.0 + force / big_k),
+            "tolerance {tolerance}, scale {scale}: off by {worst:.3e}"
+        );
         assert!(run.violation < 1e-14, "violation {:.3e}", run.violation);
     }
+}
+
+/// Two uncoupled unit-frequency oscillators, of mass 1 and 1e-11 (a
+/// milligram body's rotary inertia, kg·m², beside a kilogram): the light
+/// one has inertia and a free initial value. Both released from 0.1 must
+/// follow $0.1\cos t$ to 1e-6 over 3 s; a mass ratio taken for masslessness
+/// would move the light one to its equilibrium at 0 and hold it there.
+#[test]
+fn a_light_mass_keeps_its_start_and_its_motion() {
+    let mut sys = Linear { n: 2, m: vec![1.0, 0.0, 0.0, 1e-11], k: vec![1.0, 0.0, 0.0, 1e-11], d: vec![0.0; 4] };
+    let run = integrate(&mut sys, &[0.1, 0.1], &[0.0, 0.0], &settings(3.0, 0.5, 1e-8)).unwrap();
+    assert_eq!(run.q(0), &[0.1, 0.1]);
+    for (j, t) in run.time.iter().enumerate() {
+        for (i, q) in run.q(j).iter().enumerate() {
+            assert!((q - 0.1 * t.cos()).abs() < 1e-6, "oscillator {i} at t = {t}: {q}");
+        }
+    }
+}
+
+/// A system that checks the [`System::tangent`] contract: tangents are
+/// asked at the state last passed to [`System::dynamics`] (a system may
+/// cache what `dynamics` computed there).
+struct Contract<S> {
+    inner: S,
+    last: Vec<f64>,
+    tangents: usize,
+    broken: usize,
+}
+
+impl<S: System> System for Contract<S> {
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    fn closures(&self) -> usize {
+        self.inner.closures()
+    }
+    fn dynamics(&mut self, q: &[f64], v: &[f64], t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        self.last = [q, v, &[t]].concat();
+        self.inner.dynamics(q, v, t, mass, force)
+    }
+    fn tangent(&mut self, q: &[f64], v: &[f64], t: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        self.tangents += 1;
+        if self.last != [q, v, &[t]].concat() {
+            self.broken += 1;
+        }
+        self.inner.tangent(q, v, t, k, d)
+    }
+    fn energy(&mut self, q: &[f64], v: &[f64], t: f64) -> Result<f64> {
+        self.inner.energy(q, v, t)
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.inner.distance(a, b)
+    }
+}
+
+/// The double pendulum released from 2 rad and 1 rad over 10 s at 1e-9,
+/// where steps are rejected after the Newton matrix's data were kept: every
+/// tangent must be asked at the state `dynamics` last saw.
+#[test]
+fn tangents_are_asked_where_dynamics_was_last_evaluated() {
+    let inner = DoublePendulum { m1: 1.2, m2: 0.8, l1: 0.5, l2: 0.4 };
+    let mut sys = Contract { inner, last: Vec::new(), tangents: 0, broken: 0 };
+    let run = integrate(&mut sys, &[2.0, 1.0], &[0.0, 0.0], &settings(10.0, 1.0, 1e-9)).unwrap();
+    assert!(run.rejected > 0 && sys.tangents > 1, "{} rejected, {} tangents", run.rejected, sys.tangents);
+    assert_eq!(sys.broken, 0, "{} of {} tangents away from the last dynamics state", sys.broken, sys.tangents);
 }
 
 /// The pendulum in Cartesian coordinates of its mass, with the closure

@@ -304,8 +304,11 @@ impl Radau {
 enum Refusal {
     /// Its error estimate (scaled, > 1) or rotation asks for a step of this ratio.
     Shorter(f64, String),
-    /// Newton failed or the state could not be evaluated: halve the step.
+    /// The state could not be evaluated: halve the step.
     Failed(String),
+    /// Newton diverged or did not converge: retry with fresh matrix data
+    /// if they were kept, else halve the step.
+    Newton(String),
 }
 
 /// Buffers of one run; nothing is allocated per step.
@@ -365,6 +368,9 @@ struct Work {
     /// Newton increments of the stage positions and velocities ($3n$ each).
     dq: Vec<f64>,
     dv: Vec<f64>,
+    /// The previous Newton iteration's increments, for the rounding test.
+    dq_prev: Vec<f64>,
+    dv_prev: Vec<f64>,
 }
 
 impl Work {
@@ -408,6 +414,8 @@ impl Work {
             sv: z(n),
             dq: z(3 * n),
             dv: z(3 * n),
+            dq_prev: z(3 * n),
+            dv_prev: z(3 * n),
         }
     }
 }
@@ -429,24 +437,31 @@ fn violation<S: System + ?Sized>(system: &mut S, q: &[f64], w: &mut Work) -> Res
 /// Iterations of [`consistent_start`]'s Newton method.
 const START_ITERATIONS: usize = 30;
 
-/// Moves `q` onto the quasi-static equilibrium of the directions without
-/// inertia nor damping, keeping the others: with $N$ an orthonormal basis
-/// of the null space of $M(q_0)$ and $D_t(q_0)$ together, it solves for $y$ and $\lambda$
+/// Moves `q` onto the quasi-static equilibrium of the directions with
+/// neither inertia nor damping, keeping the others: with $N$ an orthonormal
+/// basis of the null space of $M(q_0)$ and $D_t(q_0)$ together, it solves
+/// for $y$ and $\lambda$
 /// $$N^T\bigl(G(q)^T\lambda - f(q, \dot q_0, 0)\bigr) = 0,\qquad c(q) = 0,
 /// \qquad q = q_0 + Ny,$$
-/// by Newton's method with the matrix $\begin{pmatrix}N^TK_tN & N^TG^T\\ GN &
-/// 0\end{pmatrix}$ solved in least squares (closure forces acting only on
-/// massive coordinates are left to the motion). These are the algebraic
-/// equations of the system at $t = 0$: a start that violates them (a
-/// massless flexure at its unloaded shape under a load) has no consistent
-/// first step, the error of whichever jump the first step makes does not
-/// shrink with the step, and at tight tolerances the run stalls there. DAE
-/// codes compute consistent initial values the same way (IDA's
-/// `IDACalcIC` for the algebraic components). Leaves `q` unchanged when
-/// there are no such directions, and when Newton does not reach rounding's floor within
-/// [`START_ITERATIONS`] (the first step then projects the start). A
-/// massless direction with damping follows a first-order equation from
-/// its start, and is left there.
+/// by Newton's method with the matrix $\begin{pmatrix}N^TK_tN & sN^TG^T\\ sGN &
+/// 0\end{pmatrix}$ for $(\delta y, \delta\lambda/s)$, $s = \lVert N^TK_tN\rVert /
+/// \lVert GN\rVert$ balancing its blocks, solved in least squares (closure
+/// forces acting only on massive coordinates are left to the motion). These
+/// are the algebraic equations of the system at $t = 0$: a start that
+/// violates them (a massless flexure at its unloaded shape under a load)
+/// has no consistent first step, the error of whichever jump the first step
+/// makes does not shrink with the step, and at tight tolerances the run
+/// stalls there. DAE codes compute consistent initial values the same way
+/// (IDA's `IDACalcIC` for the algebraic components).
+///
+/// A direction counts as without inertia (damping) when $M$ ($D_t$) is
+/// below $10^{-13}$ of its largest singular value there, far above
+/// rounding and far below real mass ratios. A massless direction with
+/// damping follows a first-order equation from its start, and is left
+/// there. `q` is left unchanged when there are no such directions, and
+/// when Newton does not converge within [`START_ITERATIONS`] or ends with
+/// a larger closure violation than the start's (or `absolute`): the first
+/// step then projects the start.
 fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64], settings: &Settings) -> Result<()> {
     use nalgebra::{DMatrix, DVector};
     let (n, m) = (system.dim(), system.closures());
@@ -455,18 +470,25 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
     let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
     system.dynamics(q, v, 0.0, &mut mass, &mut force)?;
     system.tangent(q, v, 0.0, &mut k, &mut d)?;
-    // Directions with neither inertia nor damping: a massless direction
-    // with damping follows a first-order equation, not an algebraic one.
+    // Each block over its own largest entry, so the cut-off is relative
+    // within M and within D_t, not between their units.
     let mut stacked = DMatrix::zeros(2 * n, n);
-    stacked.view_mut((0, 0), (n, n)).copy_from(&DMatrix::from_column_slice(n, n, &mass));
-    stacked.view_mut((n, 0), (n, n)).copy_from(&DMatrix::from_column_slice(n, n, &d));
-    let basis = linalg::null_space(&stacked);
+    for (block, values) in [(0, &mass), (n, &d)] {
+        let top = values.iter().fold(0.0, |a: f64, x| a.max(x.abs()));
+        if top > 0.0 {
+            stacked.view_mut((block, 0), (n, n)).copy_from(&(DMatrix::from_column_slice(n, n, values) / top));
+        }
+    }
+    let basis = linalg::null_space_below(&stacked, 1e-13);
     let free = basis.ncols();
     if free == 0 {
         return Ok(());
     }
+    let violation = |c: &[f64]| c.iter().fold(0.0, |a: f64, x| if x.is_nan() { f64::NAN } else { a.max(x.abs()) });
     let start = q.to_vec();
+    let mut start_violation = None;
     let mut lambda = DVector::<f64>::zeros(m);
+    let mut converged = false;
     for iteration in 0..START_ITERATIONS {
         // A state Newton moved to that cannot be evaluated ends the attempt.
         let evaluated = if iteration > 0 {
@@ -480,40 +502,45 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
             Err(e) if fatal(&e) => return Err(e),
             Err(_) => break,
         }
-        // G is m × n column-major: g[col * m + row].
-        let gt = DMatrix::from_column_slice(m, n, &g);
-        let closure_force = gt.transpose() * &lambda;
-        let mut residual = DVector::zeros(free + m);
+        let now = violation(&c);
+        let reference = *start_violation.get_or_insert(now);
+        if converged {
+            // The last correction was negligible; the closures must hold too.
+            if now <= reference.max(settings.absolute) {
+                return Ok(());
+            }
+            break;
+        }
+        // G is m × n, column-major.
+        let g_matrix = DMatrix::from_column_slice(m, n, &g);
+        let closure_force = g_matrix.transpose() * &lambda;
         let unbalanced = DVector::from_fn(n, |r, _| closure_force[r] - force[r]);
+        let stiffness = basis.transpose() * DMatrix::from_column_slice(n, n, &k) * &basis;
+        let gn = &g_matrix * &basis;
+        let s = if gn.amax() > 0.0 && stiffness.amax() > 0.0 { stiffness.amax() / gn.amax() } else { 1.0 };
+        let mut residual = DVector::zeros(free + m);
         residual.rows_mut(0, free).copy_from(&(basis.transpose() * unbalanced));
-        residual.rows_mut(free, m).copy_from(&DVector::from_column_slice(&c));
+        residual.rows_mut(free, m).copy_from(&(DVector::from_column_slice(&c) * s));
         let mut matrix = DMatrix::zeros(free + m, free + m);
-        let kt = DMatrix::from_column_slice(n, n, &k);
-        matrix.view_mut((0, 0), (free, free)).copy_from(&(basis.transpose() * kt * &basis));
-        let gn = &gt * &basis;
-        matrix.view_mut((0, free), (free, m)).copy_from(&gn.transpose());
-        matrix.view_mut((free, 0), (m, free)).copy_from(&gn);
+        matrix.view_mut((0, 0), (free, free)).copy_from(&stiffness);
+        matrix.view_mut((0, free), (free, m)).copy_from(&(gn.transpose() * s));
+        matrix.view_mut((free, 0), (m, free)).copy_from(&(&gn * s));
         let step = linalg::least_squares(&matrix, &(-residual));
         if step.iter().any(|x| !x.is_finite()) {
             break;
         }
         let dq = &basis * step.rows(0, free);
-        lambda += step.rows(free, m);
+        lambda += step.rows(free, m) * s;
         let mut size: f64 = 0.0;
         for r in 0..n {
             q[r] += dq[r];
             let scale = settings.absolute + settings.tolerance * q[r].abs();
             size = size.max(dq[r].abs() / scale);
         }
-        // Converged when the last correction is far below the tolerance or
-        // at rounding's level in the coordinates.
+        // A correction far below the tolerance, or at rounding's level in
+        // the coordinates, ends the iteration after one more evaluation.
         let floor = dq.iter().zip(q.iter()).all(|(x, y)| x.abs() <= 1e3 * f64::EPSILON * (1.0 + y.abs()));
-        if size <= 1e-3 || floor {
-            if q.iter().all(|x| x.is_finite()) {
-                return Ok(());
-            }
-            break;
-        }
+        converged = (size <= 1e-3 || floor) && q.iter().all(|x| x.is_finite());
     }
     q.copy_from_slice(&start);
     Ok(())
@@ -642,6 +669,8 @@ pub fn integrate<S: System + ?Sized>(
             if step < 1e-12 * duration || t + step == t {
                 return Err(stalled(&format!("{cause}; the step fell below 1e-12 of the duration"), step, &run));
             }
+            // Whether the last state passed to `dynamics` is this step's start.
+            let mut at_start = false;
             if !fresh {
                 // The step's start: M, f and G for the error estimate.
                 system.dynamics(&q, &v, t, &mut w.m0, &mut w.f0)?;
@@ -650,10 +679,12 @@ pub fn integrate<S: System + ?Sized>(
                 }
                 fresh = true;
                 current = false;
+                at_start = true;
             }
             if stale {
-                // The tangents for the Newton matrix, at the state last passed to `dynamics`.
-                if current {
+                // The tangents for the Newton matrix, at the state last
+                // passed to `dynamics`: after a rejected attempt that was a stage.
+                if !at_start {
                     system.dynamics(&q, &v, t, &mut w.mass, &mut w.force)?;
                 }
                 system.tangent(&q, &v, t, &mut w.k0, &mut w.d0)?;
@@ -729,6 +760,10 @@ pub fn integrate<S: System + ?Sized>(
                     }
                     Refusal::Failed(why) => {
                         cause = why;
+                        0.5
+                    }
+                    Refusal::Newton(why) => {
+                        cause = why;
                         if current { 0.5 } else { 1.0 }
                     }
                 };
@@ -779,6 +814,18 @@ fn scaled_norm(w: &Work, dq: &[f64], dv: &[f64], vw: f64) -> f64 {
         sum += (a / w.sq[r]).powi(2) + (vw * b / w.sv[r]).powi(2);
     }
     (sum / (2 * dq.len()).max(1) as f64).sqrt()
+}
+
+/// The scaled inner product of two increments (positions and velocities,
+/// the latter times `vw`), each entry over its scale as in [`scaled_norm`].
+fn scaled_dot(w: &Work, aq: &[f64], av: &[f64], bq: &[f64], bv: &[f64], vw: f64) -> f64 {
+    let n = w.n;
+    let mut sum = 0.0;
+    for k in 0..aq.len() {
+        let r = k % n;
+        sum += aq[k] * bq[k] / (w.sq[r] * w.sq[r]) + vw * vw * av[k] * bv[k] / (w.sv[r] * w.sv[r]);
+    }
+    sum
 }
 
 /// Tries one step of length `h` from $(q_0, \dot q_0)$ at $t_0$: on success
@@ -882,13 +929,19 @@ fn attempt<S: System + ?Sized>(
         if iteration > 0 {
             let theta = size / previous;
             if theta >= 0.99 {
-                if size <= NEWTON_FLOOR && previous <= NEWTON_FLOOR {
-                    // Stalled at rounding's level, far below the tolerance.
+                // Stalled at rounding's level, far below the tolerance? The
+                // distance to the solution is at most about the last
+                // increment when successive increments alternate (error
+                // e -> -rho e), and size * theta / |1 - theta| when they
+                // point alike (e -> rho e, divergence for theta > 1).
+                let alike = scaled_dot(w, &w.dq, &w.dv, &w.dq_prev, &w.dv_prev, vw) > 0.0;
+                let distance = if alike { size * theta / (theta - 1.0).abs() } else { size };
+                if distance <= NEWTON_FLOOR {
                     w.theta = 1.0;
                     converged = true;
                     break;
                 }
-                return Ok(Err(Refusal::Failed(format!("Newton diverged (contraction {theta:.2})"))));
+                return Ok(Err(Refusal::Newton(format!("Newton diverged (contraction {theta:.2})"))));
             }
             *eta = theta / (1.0 - theta);
             w.theta = theta;
@@ -900,6 +953,8 @@ fn attempt<S: System + ?Sized>(
             break;
         }
         previous = size;
+        w.dq_prev.copy_from_slice(&w.dq);
+        w.dv_prev.copy_from_slice(&w.dv);
     }
     // Out of iterations while creeping at rounding's level: the estimated
     // distance to the solution is still far below the tolerance.
@@ -909,7 +964,7 @@ fn attempt<S: System + ?Sized>(
     }
     if !converged {
         *eta = 1.0;
-        return Ok(Err(Refusal::Failed(format!("Newton did not converge in {NEWTON_ITERATIONS} iterations"))));
+        return Ok(Err(Refusal::Newton(format!("Newton did not converge in {NEWTON_ITERATIONS} iterations"))));
     }
     stages(rk, w, h, q0, v0);
     // Error scales over the step's two ends.
