@@ -102,7 +102,9 @@ class Mechanism:
         (kinetic, elastic and gravitational, J); steps, rejected; violation, the largest
         closure violation. The file's [[schedule]] tables give the loads in time. It starts
         from the static equilibrium under the loads at t = 0, at rest (start="rest": the
-        unloaded shape), with the file's [initial] and [initial_velocity] overriding it.
+        unloaded shape), with the file's [initial] and [initial_velocity] overriding it;
+        directions with neither mass nor damping (massless flexures) then start on
+        their equilibrium under the loads at t = 0, which time[0] records.
         `tolerance` is the relative and absolute tolerance of each step's error.
         A duration, every or tolerance not above zero raises ValueError naming it; an
         integration that stalls raises ConvergenceError saying where; Ctrl-C stops it

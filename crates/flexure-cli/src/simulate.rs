@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 pub enum StartArg {
     /// The static equilibrium under the loads at t = 0, at rest (the default).
     Equilibrium,
-    /// The unloaded rest shape, at rest.
+    /// The unloaded rest shape, at rest (massless flexures on their equilibrium under the loads at t = 0).
     Rest,
 }
 
