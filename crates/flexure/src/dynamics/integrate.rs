@@ -74,10 +74,11 @@
 //! exceeds [`Settings::max_step`]. Steps land on the sample times exactly.
 //!
 //! **Bounded and honest.** Each step takes at most 7 simplified Newton
-//! iterations (a contraction above 0.99 or a non-finite state ends them
-//! early, and the step is halved; increments that stop shrinking, or run
-//! out of iterations, within 1 % of the tolerance are rounding's level in
-//! an ill-conditioned mechanism, and the solve is accepted there); a refused step is retried shorter at most
+//! iterations; a contraction above 0.99 or a non-finite state ends them
+//! early, and the step is retried as above. Increments that stop
+//! shrinking at rounding's level (in an ill-conditioned mechanism), or
+//! iterations that run out, are accepted when the estimated distance to the
+//! solution is within 1 % of the tolerance; a refused step is retried shorter at most
 //! [`Settings::max_rejections`] times in a row, at most
 //! [`Settings::max_steps`] steps are tried in all, and no step is shorter
 //! than $10^{-12}$ of the duration: past any of these the run stops with
@@ -438,30 +439,25 @@ fn violation<S: System + ?Sized>(system: &mut S, q: &[f64], w: &mut Work) -> Res
 const START_ITERATIONS: usize = 30;
 
 /// Moves `q` onto the quasi-static equilibrium of the directions with
-/// neither inertia nor damping, keeping the others: with $N$ an orthonormal
-/// basis of the null space of $M(q_0)$ and $D_t(q_0)$ together, it solves
-/// for $y$ and $\lambda$
-/// $$N^T\bigl(G(q)^T\lambda - f(q, \dot q_0, 0)\bigr) = 0,\qquad c(q) = 0,
+/// neither inertia nor damping ([`massless_directions`], a basis $N$),
+/// keeping the others: it solves for $y$ and $\lambda$
+/// $$r = N^T\bigl(G(q)^T\lambda - f(q, \dot q_0, 0)\bigr) = 0,\qquad c(q) = 0,
 /// \qquad q = q_0 + Ny,$$
-/// by Newton's method with the matrix $\begin{pmatrix}N^TK_tN & sN^TG^T\\ sGN &
-/// 0\end{pmatrix}$ for $(\delta y, \delta\lambda/s)$, $s = \lVert N^TK_tN\rVert /
-/// \lVert GN\rVert$ balancing its blocks, solved in least squares (closure
-/// forces acting only on massive coordinates are left to the motion). These
-/// are the algebraic equations of the system at $t = 0$: a start that
-/// violates them (a massless flexure at its unloaded shape under a load)
-/// has no consistent first step, the error of whichever jump the first step
-/// makes does not shrink with the step, and at tight tolerances the run
-/// stalls there. DAE codes compute consistent initial values the same way
-/// (IDA's `IDACalcIC` for the algebraic components).
+/// by Newton's method ([`start_step`]; closure forces acting only on
+/// massive coordinates are left to the motion). These are the algebraic
+/// equations of the system at $t = 0$: a start that violates them (a
+/// massless flexure at its unloaded shape under a load) has no consistent
+/// first step, the error of whichever jump the first step makes does not
+/// shrink with the step, and at tight tolerances the run stalls there. DAE
+/// codes compute consistent initial values the same way (IDA's
+/// `IDACalcIC` for the algebraic components).
 ///
-/// A direction counts as without inertia (damping) when $M$ ($D_t$) is
-/// below $10^{-13}$ of its largest singular value there, far above
-/// rounding and far below real mass ratios. A massless direction with
-/// damping follows a first-order equation from its start, and is left
-/// there. `q` is left unchanged when there are no such directions, and
-/// when Newton does not converge within [`START_ITERATIONS`] or ends with
-/// a larger closure violation than the start's (or `absolute`): the first
-/// step then projects the start.
+/// The answer is taken when the last correction is below $10^{-3}$ of the
+/// tolerance (or rounding's level in the coordinates) and, evaluated there,
+/// $r$ has fallen below $10^{-8}$ of its start's (or rounding's level) and
+/// the closure violation is no larger than the start's (or `absolute`).
+/// Otherwise, or after [`START_ITERATIONS`], `q` is left as it was and the
+/// first step projects it.
 fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64], settings: &Settings) -> Result<()> {
     use nalgebra::{DMatrix, DVector};
     let (n, m) = (system.dim(), system.closures());
@@ -470,26 +466,16 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
     let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
     system.dynamics(q, v, 0.0, &mut mass, &mut force)?;
     system.tangent(q, v, 0.0, &mut k, &mut d)?;
-    // Each block over its own largest entry, so the cut-off is relative
-    // within M and within D_t, not between their units.
-    let mut stacked = DMatrix::zeros(2 * n, n);
-    for (block, values) in [(0, &mass), (n, &d)] {
-        let top = values.iter().fold(0.0, |a: f64, x| a.max(x.abs()));
-        if top > 0.0 {
-            stacked.view_mut((block, 0), (n, n)).copy_from(&(DMatrix::from_column_slice(n, n, values) / top));
-        }
-    }
-    let basis = linalg::null_space_below(&stacked, 1e-13);
-    let free = basis.ncols();
-    if free == 0 {
+    let basis = massless_directions(n, &mass, &d);
+    if basis.ncols() == 0 {
         return Ok(());
     }
-    let violation = |c: &[f64]| c.iter().fold(0.0, |a: f64, x| if x.is_nan() { f64::NAN } else { a.max(x.abs()) });
+    let largest = |x: &[f64]| x.iter().fold(0.0, |a: f64, x| if x.is_nan() { f64::NAN } else { a.max(x.abs()) });
     let start = q.to_vec();
-    let mut start_violation = None;
+    let (mut start_violation, mut start_residual) = (0.0, 0.0);
     let mut lambda = DVector::<f64>::zeros(m);
     let mut converged = false;
-    for iteration in 0..START_ITERATIONS {
+    for iteration in 0..=START_ITERATIONS {
         // A state Newton moved to that cannot be evaluated ends the attempt.
         let evaluated = if iteration > 0 {
             system.dynamics(q, v, 0.0, &mut mass, &mut force).and_then(|()| system.tangent(q, v, 0.0, &mut k, &mut d))
@@ -502,48 +488,105 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
             Err(e) if fatal(&e) => return Err(e),
             Err(_) => break,
         }
-        let now = violation(&c);
-        let reference = *start_violation.get_or_insert(now);
+        // G is m × n, column-major.
+        let g_matrix = DMatrix::from_column_slice(m, n, &g);
+        let closure_force = g_matrix.transpose() * &lambda;
+        let residual = basis.transpose() * DVector::from_fn(n, |r, _| closure_force[r] - force[r]);
+        let stiffness = basis.transpose() * DMatrix::from_column_slice(n, n, &k) * &basis;
+        if iteration == 0 {
+            (start_violation, start_residual) = (largest(&c), residual.amax());
+        }
         if converged {
-            // The last correction was negligible; the closures must hold too.
-            if now <= reference.max(settings.absolute) {
+            // Rounding's level of r: its terms' size, and the stiffness times the coordinates.
+            let terms = (basis.transpose() * DVector::from_column_slice(&force)).amax().max(closure_force.amax());
+            let noise = 1e3 * f64::EPSILON * terms.max(stiffness.amax() * largest(q));
+            if largest(&c) <= start_violation.max(settings.absolute)
+                && residual.amax() <= (1e-8 * start_residual).max(noise)
+            {
                 return Ok(());
             }
             break;
         }
-        // G is m × n, column-major.
-        let g_matrix = DMatrix::from_column_slice(m, n, &g);
-        let closure_force = g_matrix.transpose() * &lambda;
-        let unbalanced = DVector::from_fn(n, |r, _| closure_force[r] - force[r]);
-        let stiffness = basis.transpose() * DMatrix::from_column_slice(n, n, &k) * &basis;
-        let gn = &g_matrix * &basis;
-        let s = if gn.amax() > 0.0 && stiffness.amax() > 0.0 { stiffness.amax() / gn.amax() } else { 1.0 };
-        let mut residual = DVector::zeros(free + m);
-        residual.rows_mut(0, free).copy_from(&(basis.transpose() * unbalanced));
-        residual.rows_mut(free, m).copy_from(&(DVector::from_column_slice(&c) * s));
-        let mut matrix = DMatrix::zeros(free + m, free + m);
-        matrix.view_mut((0, 0), (free, free)).copy_from(&stiffness);
-        matrix.view_mut((0, free), (free, m)).copy_from(&(gn.transpose() * s));
-        matrix.view_mut((free, 0), (m, free)).copy_from(&(&gn * s));
-        let step = linalg::least_squares(&matrix, &(-residual));
-        if step.iter().any(|x| !x.is_finite()) {
+        if iteration == START_ITERATIONS {
             break;
         }
-        let dq = &basis * step.rows(0, free);
-        lambda += step.rows(free, m) * s;
+        let Some((dy, dlambda)) =
+            start_step(&stiffness, &(&g_matrix * &basis), &residual, &DVector::from_column_slice(&c))
+        else {
+            break;
+        };
+        let dq = &basis * dy;
+        lambda += dlambda;
         let mut size: f64 = 0.0;
         for r in 0..n {
             q[r] += dq[r];
             let scale = settings.absolute + settings.tolerance * q[r].abs();
             size = size.max(dq[r].abs() / scale);
         }
-        // A correction far below the tolerance, or at rounding's level in
-        // the coordinates, ends the iteration after one more evaluation.
         let floor = dq.iter().zip(q.iter()).all(|(x, y)| x.abs() <= 1e3 * f64::EPSILON * (1.0 + y.abs()));
         converged = (size <= 1e-3 || floor) && q.iter().all(|x| x.is_finite());
     }
     q.copy_from_slice(&start);
     Ok(())
+}
+
+/// A basis (columns) of the directions with neither inertia nor damping:
+/// the null space of $M$ and $D_t$ stacked, each row over its largest
+/// entry (a row is one coordinate's equation: this makes the test
+/// independent of the coordinates' units), singular values below
+/// $10^{-13}$ of the largest counting as zero: far above rounding (a
+/// massless direction gives about $10^{-19}$) and below real mass ratios.
+/// A massless direction with damping follows a first-order equation from
+/// its start, and is not one of them.
+fn massless_directions(n: usize, mass: &[f64], damping: &[f64]) -> nalgebra::DMatrix<f64> {
+    let mut stacked = nalgebra::DMatrix::zeros(2 * n, n);
+    for (block, values) in [(0, mass), (n, damping)] {
+        for r in 0..n {
+            let top = (0..n).fold(0.0, |a: f64, col| a.max(values[col * n + r].abs()));
+            if top > 0.0 {
+                for col in 0..n {
+                    stacked[(block + r, col)] = values[col * n + r] / top;
+                }
+            }
+        }
+    }
+    linalg::null_space_below(&stacked, 1e-13)
+}
+
+/// One Newton step of [`consistent_start`] by the null-space method, for
+/// the stiffness $A = N^TK_tN$, $B = GN$, the residual $r$ and closures
+/// $c$: $\delta y_p = -B^+c$ (least norm), then with $Z$ spanning the null
+/// space of $B$, $Z^TAZ\,b = -Z^T(r + A\delta y_p)$,
+/// $\delta y = \delta y_p + Zb$, and $\delta\lambda$ from
+/// $B^T\delta\lambda = -(r + A\delta y)$ in least squares. Only redundant closures are cut off; $Z^TAZ$ is solved
+/// down to $10^{-14}$ of its largest singular value, so a soft massless
+/// flexure beside a stiff massless spring keeps its step. `None` when a
+/// step is not finite.
+fn start_step(
+    a: &nalgebra::DMatrix<f64>,
+    b: &nalgebra::DMatrix<f64>,
+    r: &nalgebra::DVector<f64>,
+    c: &nalgebra::DVector<f64>,
+) -> Option<(nalgebra::DVector<f64>, nalgebra::DVector<f64>)> {
+    let free = a.ncols();
+    let (particular, z) = if b.nrows() == 0 {
+        (nalgebra::DVector::zeros(free), nalgebra::DMatrix::identity(free, free))
+    } else {
+        (linalg::least_squares(b, &(-c)), linalg::null_space(b))
+    };
+    let reduced = z.transpose() * a * &z;
+    let rhs = -(z.transpose() * (r + a * &particular));
+    let svd = nalgebra::SVD::new(reduced, true, true);
+    let cutoff = 1e-14 * svd.singular_values.amax();
+    let coefficients = svd.solve(&rhs, cutoff).ok()?;
+    let dy = particular + z * coefficients;
+    let dlambda = if b.nrows() == 0 {
+        nalgebra::DVector::zeros(0)
+    } else {
+        linalg::least_squares(&b.transpose(), &(-(r + a * &dy)))
+    };
+    let finite = dy.iter().chain(dlambda.iter()).all(|x| x.is_finite());
+    finite.then_some((dy, dlambda))
 }
 
 /// Integrates `system` from the state (`q0`, `v0`) at $t = 0$ over
@@ -929,13 +972,14 @@ fn attempt<S: System + ?Sized>(
         if iteration > 0 {
             let theta = size / previous;
             if theta >= 0.99 {
-                // Stalled at rounding's level, far below the tolerance? The
-                // distance to the solution is at most about the last
-                // increment when successive increments alternate (error
-                // e -> -rho e), and size * theta / |1 - theta| when they
-                // point alike (e -> rho e, divergence for theta > 1).
-                let alike = scaled_dot(w, &w.dq, &w.dv, &w.dq_prev, &w.dv_prev, vw) > 0.0;
-                let distance = if alike { size * theta / (theta - 1.0).abs() } else { size };
+                // Stalled at rounding's level, far below the tolerance? With
+                // rho the last increment's component along the one before
+                // (error e -> rho e), the distance to the solution is about
+                // size * |rho| / |1 - rho|: near the last increment when they
+                // alternate or are unrelated (noise), unbounded as they align.
+                let rho = scaled_dot(w, &w.dq, &w.dv, &w.dq_prev, &w.dv_prev, vw)
+                    / scaled_dot(w, &w.dq_prev, &w.dv_prev, &w.dq_prev, &w.dv_prev, vw);
+                let distance = size * (rho.abs() / (1.0 - rho).abs()).max(1.0);
                 if distance <= NEWTON_FLOOR {
                     w.theta = 1.0;
                     converged = true;
