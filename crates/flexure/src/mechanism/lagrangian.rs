@@ -259,29 +259,18 @@ pub(super) fn add_loads(
 ) -> Result<f64> {
     let n = m.dof();
     let mut potential = 0.0;
-    // A force and moment at a point: V = −F·w − Mθ.
-    let mut push = |body: usize, at: [f64; 2], force: [f64; 2], moment: f64, h: Option<&mut DMatrix<f64>>| {
-        if force == [0.0; 2] && moment == 0.0 {
-            return 0.0;
-        }
-        let p = &mut points[0];
-        point_into(m, f, body, at, p);
-        // Column-major 3 × n: coordinate c's (θ, x, y).
-        for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
-            *g -= force[0] * j[1] + force[1] * j[2] + moment * j[0];
-        }
-        if let Some(h) = h {
-            add_point_hessian(m, f, p, [-force[0], -force[1]], h);
-        }
-        -(force[0] * p.position[0] + force[1] * p.position[1] + moment * p.angle)
-    };
     for (p, l) in m.forces.iter().zip(&loads.force) {
-        potential += push(p.body, p.at, [l[0], l[1]], l[2], hessian.as_deref_mut());
+        if l != &[0.0; 3] {
+            let point = (p.body, p.at);
+            potential +=
+                add_point_load(m, f, point, [l[0], l[1]], l[2], gradient, hessian.as_deref_mut(), &mut points[0]);
+        }
     }
     for (b, body) in m.bodies.iter().enumerate() {
-        if body.mass > 0.0 {
-            let weight = [body.mass * loads.gravity[0], body.mass * loads.gravity[1]];
-            potential += push(b, body.com, weight, 0.0, hessian.as_deref_mut());
+        let weight = [body.mass * loads.gravity[0], body.mass * loads.gravity[1]];
+        if body.mass > 0.0 && weight != [0.0; 2] {
+            potential +=
+                add_point_load(m, f, (b, body.com), weight, 0.0, gradient, hessian.as_deref_mut(), &mut points[0]);
         }
     }
     // A tendon: V = T Σ|w_{i+1} − w_i|, its via points taken two at a time.
@@ -335,6 +324,32 @@ pub(super) fn add_loads(
     Ok(potential)
 }
 
+/// A force and moment at the point `at` of a body, `(body, at)`:
+/// $V = -F\cdot w - M\theta$, its gradient added to `gradient` and its
+/// Hessian to `hessian` if given; `p` is left holding the point and its
+/// derivatives. Returns $V$.
+#[allow(clippy::too_many_arguments)]
+fn add_point_load(
+    m: &Mechanism,
+    f: &Frames,
+    (body, at): (usize, [f64; 2]),
+    force: [f64; 2],
+    moment: f64,
+    gradient: &mut DVector<f64>,
+    hessian: Option<&mut DMatrix<f64>>,
+    p: &mut PointBuffer,
+) -> f64 {
+    point_into(m, f, body, at, p);
+    // Column-major 3 × n: coordinate c's (θ, x, y).
+    for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
+        *g -= force[0] * j[1] + force[1] * j[2] + moment * j[0];
+    }
+    if let Some(h) = hessian {
+        add_point_hessian(m, f, p, [-force[0], -force[1]], h);
+    }
+    -(force[0] * p.position[0] + force[1] * p.position[1] + moment * p.angle)
+}
+
 /// The flexures' weight: with the first moment $c(\alpha)$ of a flexure's
 /// mass in its root frame ([`Weight`]), $V = -g\cdot(m\thinspace o + Rc)$
 /// for a root at $o$ turned by $R$. Over the coordinates upstream it is the
@@ -379,11 +394,7 @@ fn add_flexure_weights(
         let (s0, c0) = spec.origin.phi.sin_cos();
         let at = [spec.origin.x + c0 * centre[0] - s0 * centre[1], spec.origin.y + s0 * centre[0] + c0 * centre[1]];
         let force = [w.mass * g[0], w.mass * g[1]];
-        point_into(m, f, spec.parent, at, p);
-        for (gc, jc) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
-            *gc -= force[0] * jc[1] + force[1] * jc[2];
-        }
-        potential -= force[0] * p.position[0] + force[1] * p.position[1];
+        potential += add_point_load(m, f, (spec.parent, at), force, 0.0, gradient, hessian.as_deref_mut(), p);
         let root = f.roots[*j];
         // g·R v for v in the root frame, and g·E R v.
         let along = |v: [f64; 2]| {
@@ -394,7 +405,6 @@ fn add_flexure_weights(
             gradient[o + i] -= along(*di).0;
         }
         if let Some(h) = hessian.as_deref_mut() {
-            add_point_hessian(m, f, p, [-force[0], -force[1]], h);
             for i in 0..k {
                 for jj in 0..k {
                     h[(o + i, o + jj)] -= along(w.hessian[i * k + jj]).0;
