@@ -121,6 +121,7 @@ pub struct Workspace {
     product: Vec<f64>,
     hessian: Vec<f64>,
     gram: Vec<f64>,
+    /// $S = \operatorname{diag}(\sqrt{1/k_i})$, set with the row scales by `Kkt::fitted`.
     root_scale: Vec<f64>,
     /// Body angles of two states, for [`solver::Problem::distance`].
     angles: RefCell<[Vec<f64>; 2]>,
@@ -416,6 +417,9 @@ impl<'a> Kkt<'a> {
             *k = if *k > 0.0 { 1.0 / *k } else { *u / k_max };
             *u = 1.0 / u.sqrt();
         }
+        // S = diag(√(1/k_i)) of the stability tests, once per problem.
+        work.root_scale.clear();
+        work.root_scale.extend(row_scale.iter().map(|r| r.sqrt()));
         closure_scale.clear();
         multiplier_scale.clear();
         for c in &m.closures {
@@ -599,9 +603,6 @@ impl<'a> Kkt<'a> {
             ..
         } = &mut *self.work;
         // G̃ᵀ = S Gᵀ.
-        for (s, r) in s.iter_mut().zip(&self.row_scale) {
-            *s = r.sqrt();
-        }
         for i in 0..rows {
             for c in 0..n {
                 a[i * n + c] *= s[c];
@@ -676,9 +677,6 @@ impl<'a> Kkt<'a> {
             return false;
         }
         let Workspace { tree, root_scale: s, .. } = &mut *self.work;
-        for (s, r) in s.iter_mut().zip(&self.row_scale) {
-            *s = r.sqrt();
-        }
         let s: &[f64] = s;
         let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
         let trace: f64 = (0..n).map(|i| (scaled(i, i) - self.margin).max(0.0)).sum();
@@ -776,11 +774,8 @@ impl solver::Problem<f64> for Kkt<'_> {
         if rows == 0 && self.tree {
             // Z = I, and the tree's pivots: positive_definite's test of the
             // matrix below, in O(n).
-            let Workspace { tree, scratch, .. } = &mut *self.work;
-            let s = &mut scratch[..n];
-            for (s, r) in s.iter_mut().zip(&self.row_scale) {
-                *s = r.sqrt();
-            }
+            let Workspace { tree, root_scale: s, .. } = &mut *self.work;
+            let s: &[f64] = s;
             let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
             let scale = (0..n).map(|i| scaled(i, i) - self.margin).fold(0.0_f64, f64::max);
             if n == 0 {
@@ -794,9 +789,8 @@ impl solver::Problem<f64> for Kkt<'_> {
         }
         if rows == 0 {
             // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
-            let Workspace { stiffness: k, scratch, .. } = &mut *self.work;
-            let s = |r: usize| self.row_scale[r].sqrt();
-            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s(r) * s(c);
+            let Workspace { stiffness: k, scratch, root_scale: s, .. } = &mut *self.work;
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
             for c in 0..n {
                 for r in 0..n {
                     k[c * n + r] = (scaled(r, c) + scaled(c, r)) * 0.5;
