@@ -432,7 +432,12 @@ fn violation<S: System + ?Sized>(system: &mut S, q: &[f64], w: &mut Work) -> Res
         return Ok(0.0);
     }
     system.closure(q, &mut w.closure, &mut w.jac)?;
-    Ok(w.closure.iter().fold(0.0, |a: f64, c| if c.is_nan() { f64::NAN } else { a.max(c.abs()) }))
+    Ok(largest(&w.closure))
+}
+
+/// Largest $\lvert x_i\rvert$; NaN if any entry is.
+fn largest(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |a: f64, x| if x.is_nan() { f64::NAN } else { a.max(x.abs()) })
 }
 
 /// Iterations of [`consistent_start`]'s Newton method.
@@ -470,7 +475,6 @@ fn consistent_start<S: System + ?Sized>(system: &mut S, q: &mut [f64], v: &[f64]
     if basis.ncols() == 0 {
         return Ok(());
     }
-    let largest = |x: &[f64]| x.iter().fold(0.0, |a: f64, x| if x.is_nan() { f64::NAN } else { a.max(x.abs()) });
     let start = q.to_vec();
     let (mut start_violation, mut start_residual) = (0.0, 0.0);
     let mut lambda = DVector::<f64>::zeros(m);
@@ -850,13 +854,7 @@ fn stages(rk: &Radau, w: &mut Work, h: f64, q0: &[f64], v0: &[f64]) {
 /// Root mean square of the position parts `dq` and velocity parts `dv`
 /// (times `vw`) of `k` blocks, each entry over its scale.
 fn scaled_norm(w: &Work, dq: &[f64], dv: &[f64], vw: f64) -> f64 {
-    let n = w.n;
-    let mut sum = 0.0;
-    for (k, (a, b)) in dq.iter().zip(dv).enumerate() {
-        let r = k % n;
-        sum += (a / w.sq[r]).powi(2) + (vw * b / w.sv[r]).powi(2);
-    }
-    (sum / (2 * dq.len()).max(1) as f64).sqrt()
+    (scaled_dot(w, dq, dv, dq, dv, vw) / (2 * dq.len()).max(1) as f64).sqrt()
 }
 
 /// The scaled inner product of two increments (positions and velocities,
@@ -866,7 +864,9 @@ fn scaled_dot(w: &Work, aq: &[f64], av: &[f64], bq: &[f64], bv: &[f64], vw: f64)
     let mut sum = 0.0;
     for k in 0..aq.len() {
         let r = k % n;
-        sum += aq[k] * bq[k] / (w.sq[r] * w.sq[r]) + vw * vw * av[k] * bv[k] / (w.sv[r] * w.sv[r]);
+        // Products of scaled entries: a vector with itself gives the sum of
+        // its scaled squares, scaled_norm's.
+        sum += (aq[k] / w.sq[r]) * (bq[k] / w.sq[r]) + (vw * av[k] / w.sv[r]) * (vw * bv[k] / w.sv[r]);
     }
     sum
 }
