@@ -140,15 +140,18 @@ fn holding_load(flexure: &Flexure, alpha: &[f64], k: &Kinematics<f64>) -> Option
         return None;
     }
     crate::linalg::cholesky_solve(&normal, 3, &mut rhs);
-    let [mo, fx, fy] = rhs;
-    // The residual's first block exactly as ConnectProblem::evaluate writes it.
+    // The residual's first block as ConnectProblem::evaluate writes it.
     j.chunks_exact(3)
         .enumerate()
-        .all(|(i, jc)| {
-            let r = (energy_gradient_entry(flexure, alpha, i) - (jc[0] * mo + jc[1] * fx + jc[2] * fy)) / scale;
-            r.abs() <= TOLERANCE
-        })
+        .all(|(i, jc)| stationarity(energy_gradient_entry(flexure, alpha, i), jc, rhs, scale).abs() <= TOLERANCE)
         .then_some(rhs)
+}
+
+/// One entry of the scaled KKT residual's first block,
+/// $(\partial_iU - \mathcal J_{\cdot i}\cdot\mu)/(EI/L)$, from $\partial_iU$ and
+/// the tip Jacobian's column $i$ ($\phi$, $x$, $y$).
+fn stationarity(gradient: f64, column: &[f64], [mo, fx, fy]: [f64; 3], scale: f64) -> f64 {
+    (gradient - (column[0] * mo + column[1] * fx + column[2] * fy)) / scale
 }
 
 /// [`connect`]'s tolerance on the scaled KKT residual.
@@ -199,7 +202,7 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
         // The tip Jacobian column-major, three rows (φ, x, y) per coordinate.
         let j = k.jacobian_root_tip.as_slice();
         for (r, j) in r[..n].iter_mut().zip(j.chunks_exact(3)) {
-            *r = (*r - (j[0] * mo + j[1] * fx + j[2] * fy)) / scale;
+            *r = stationarity(*r, j, [mo, fx, fy], scale);
         }
         let p = k.pose_root_tip;
         let goal = |a: f64, b: f64| a + lambda * (b - a);
