@@ -3,17 +3,21 @@
 The interrupt comes from `_thread.interrupt_main`, which simulates SIGINT
 arriving at the main thread, fired by a timer 0.2 s into a call that runs
 for seconds otherwise (measured uninterrupted on the development machine:
-deflect 1.3 to 1.8 s, the batch about 2 s). The call releases the GIL, so
-the timer thread runs, and the solver polls Python's signal handlers at
-least every 10 ms of work. The messages checked below come only from the
-bindings' interrupt path, so a KeyboardInterrupt raised anywhere else
-(before or after the call) fails the tests.
+deflect 1.3 to 1.8 s, the batch about 2 s; a loaded machine only makes them
+longer). The call releases the GIL, so the timer thread runs, and the solver
+polls Python's signal handlers at every Newton iteration and continuation
+step. The messages checked below come only from the bindings' interrupt
+path, so a KeyboardInterrupt raised anywhere else (before or after the call)
+fails the tests. What is asserted is the work the call had not yet done when
+it stopped (the load fraction, the rows), never the seconds it took, so the
+verdict does not depend on the machine's speed or load.
 """
+
+import re
 
 import _thread
 import signal
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -21,9 +25,6 @@ import pytest
 import flexure
 
 DELAY = 0.2
-# Much longer than the delay plus one poll, much shorter than the uninterrupted calls:
-# generous, since the 2-core machine may be busy with other work.
-BOUND = 1.5
 
 
 @pytest.fixture(autouse=True)
@@ -37,24 +38,31 @@ def python_handles_sigint():
 
 
 def interrupted_after(call, delay=DELAY):
-    """Runs `call` with SIGINT simulated `delay` s in; the exception it raised and the seconds it took."""
+    """Runs `call` with SIGINT simulated `delay` s in; the exception it raised."""
     timer = threading.Timer(delay, _thread.interrupt_main)
-    outcome, seconds = None, None
-    start = time.monotonic()
+    outcome, finished = None, False
     timer.start()
     try:
         try:
             call()
+            finished = True
         except BaseException as e:  # KeyboardInterrupt is what is tested
-            outcome, seconds = e, time.monotonic() - start
+            outcome = e
         # An interrupt the call did not honour lands here, not in the next test.
         timer.join()
-        time.sleep(0.05)
+        threading.Event().wait(0.05)
     except BaseException:
         pass
     if outcome is None:
-        pytest.fail(f"the call was not interrupted: it ended after {time.monotonic() - start:.2f} s")
-    return outcome, seconds
+        pytest.fail("the call was not interrupted" + (": it ran to its end" if finished else ""))
+    return outcome
+
+
+def load_fraction(error):
+    """The percentage of the load an interrupted solve had reached, from its message."""
+    found = re.search(r"interrupted at ([0-9.]+) % of the load", str(error))
+    assert found, str(error)
+    return float(found.group(1))
 
 
 def long_deflect():
@@ -66,10 +74,10 @@ def long_deflect():
 
 def test_ctrl_c_stops_deflect():
     call = long_deflect()
-    error, seconds = interrupted_after(call)
+    error = interrupted_after(call)
     assert isinstance(error, KeyboardInterrupt)
-    assert "interrupted at" in str(error) and "% of the load" in str(error), str(error)
-    assert seconds < BOUND
+    # Stopped on the way: uninterrupted, the call stalls at 14 % of this load after its 1000 steps.
+    assert load_fraction(error) < 14.0, str(error)
     # The flexure is usable afterwards, and a call without Ctrl-C is not stopped.
     assert np.allclose(flexure.Flexure().deflect(moment=1.0), [1.0, 0.0, 0.0])
 
@@ -85,17 +93,17 @@ def test_another_handlers_exception_propagates():
     call = long_deflect()
     previous = signal.signal(signal.SIGINT, handler)
     try:
-        error, seconds = interrupted_after(call)
+        error = interrupted_after(call)
     finally:
         signal.signal(signal.SIGINT, previous)
-    assert isinstance(error, Stop) and seconds < BOUND
+    assert isinstance(error, Stop)
 
 
 def test_ctrl_c_stops_a_batch():
     # 60 000 poses at order 64 with 1024 points: about 2 s of kernel work, polled between chunks.
     f = flexure.Flexure(order=64, quadrature=1024)
     alphas = np.random.default_rng(5).uniform(-1.0, 1.0, (60_000, 64))
-    error, seconds = interrupted_after(lambda: f.pose(alphas))
+    error = interrupted_after(lambda: f.pose(alphas))
     assert isinstance(error, KeyboardInterrupt)
-    assert "pose: interrupted after" in str(error) and "of 60000 rows" in str(error), str(error)
-    assert seconds < BOUND
+    found = re.search(r"pose: interrupted after ([0-9]+) of 60000 rows", str(error))
+    assert found and int(found.group(1)) < 60000, str(error)
