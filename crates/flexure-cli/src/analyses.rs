@@ -1,6 +1,6 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
-use crate::joint::{chosen, pose as pose_json, put_estimate};
+use crate::joint::{MAX_FACTOR, chosen, pose as pose_json, put_estimate, put_limit, warn_unstable};
 use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments};
 use clap::Args;
 use flexure::connect::{Connection, connect};
@@ -39,6 +39,12 @@ pub struct ConnectArgs {
     accuracy: AccuracyOptions,
     #[command(flatten)]
     stress: StressOptions,
+    /// Also find the factor on the tip load that holds the pose (`load`),
+    /// applied from rest as a dead load, up to 1000, at which its equilibrium
+    /// stops being stable (`stability_limit`), or up to which it stays stable
+    /// (`stable_up_to`).
+    #[arg(long, conflicts_with_all = ["exact", "segments"])]
+    limit: bool,
 }
 
 /// The exact connection, seeded by the order-3 model's multipliers (on the
@@ -118,6 +124,9 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
     }
     put_estimate(&mut out, &e, &model, &accuracy, "connect");
     crate::stress::put(&mut out, &model, &c.alpha, &args.stress, "connect");
+    if args.limit {
+        put_limit(&mut out, &flexure::statics::stability_limit(&model, &c.load, MAX_FACTOR)?, "connect --limit");
+    }
     if let Ok(e) = exact_connection(&model, &target) {
         out["eta"] = json!(c.energy / e.energy - 1.0);
     }
@@ -174,6 +183,11 @@ pub struct TendonArgs {
     accuracy: AccuracyOptions,
     #[command(flatten)]
     stress: StressOptions,
+    /// Also find the factor on the tension, up to 1000, at which the joint's
+    /// equilibrium followed from rest stops being stable (`stability_limit`),
+    /// or up to which it stays stable (`stable_up_to`).
+    #[arg(long, conflicts_with = "sweep")]
+    limit: bool,
 }
 
 fn tendon_row(
@@ -192,6 +206,7 @@ fn tendon_row(
         "tendon_length": tendon_length(f, t, data.alpha()),
         "stable": eq.stable,
     });
+    warn_unstable(eq.stable, &format!("tendon at {force} N"));
     let e = flexure::estimate::tendon_error(f, t, force, data.alpha(), target)?;
     put_estimate(&mut row, &e, f, target, &format!("tendon at {force} N"));
     crate::stress::put(&mut row, f, data.alpha(), stress, &format!("tendon at {force} N"));
@@ -213,11 +228,24 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
     let mut data = TendonData::new(&f);
     match (args.sweep, args.force) {
         (Some(s), _) => {
-            let rows: flexure::Result<Vec<Value>> = sweep_values(&s)
-                .into_iter()
-                .map(|force| tendon_row(&f, &t, force, &mut data, &target, &args.stress))
-                .collect();
-            Ok(json!({ "rows": rows? }))
+            // Every row reached is printed; a failure ends the sweep in its
+            // place (each value is continued from the last, so none after it is tried).
+            let mut rows = Vec::new();
+            for force in sweep_values(&s) {
+                match tendon_row(&f, &t, force, &mut data, &target, &args.stress) {
+                    Ok(row) => rows.push(row),
+                    Err(e) => {
+                        let reached = rows.len();
+                        let error = format!(
+                            "tendon --sweep: stopped at force = {force} N after {reached} of {} values: {}",
+                            s.count,
+                            crate::describe(e)
+                        );
+                        return Ok(json!({ "rows": rows, "stopped": { "force": force, "error": error } }));
+                    }
+                }
+            }
+            Ok(json!({ "rows": rows }))
         }
         (None, Some(force)) => {
             let mut row = tendon_row(&f, &t, force, &mut data, &target, &args.stress)?;
@@ -227,6 +255,10 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
             }
             if let Some(map) = row.as_object_mut() {
                 map.remove("force");
+            }
+            if args.limit {
+                let limit = flexure::tendon::stability_limit(&f, &t, force, MAX_FACTOR)?;
+                put_limit(&mut row, &limit, "tendon --limit");
             }
             Ok(row)
         }

@@ -64,6 +64,9 @@ pub struct ColorBar {
     pub label: String,
     pub lo: f64,
     pub hi: f64,
+    /// Values marked by a black line across the bar (yield strengths), which
+    /// `label` names.
+    pub marks: Vec<f64>,
 }
 
 /// A line's dash pattern.
@@ -1154,6 +1157,11 @@ fn draw_color_bar(svg: &mut String, bar: &ColorBar, (x, y, w): (f64, f64, f64)) 
             text(svg, at, NOTE_SIZE, Anchor::Middle, r#" class="bar-tick""#, &label);
             last_right = tx + half;
         }
+    }
+    // Marks are lines across the bar; the bar's label says what they are.
+    for value in &bar.marks {
+        let tx = x0 + ((value - bar.lo) / span).clamp(0.0, 1.0) * (x1 - x0);
+        line(svg, [tx, top - 3.0, tx, top + BAR_HEIGHT + 3.0], "#000000", "2.5");
     }
 }
 

@@ -34,6 +34,36 @@ pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: 
     answer["flagged"] = json!(e.flagged);
 }
 
+/// The largest factor `--limit` tries on a load.
+pub const MAX_FACTOR: f64 = 1000.0;
+
+/// Writes `--limit`'s one number into `answer`: `stability_limit`, the
+/// factor on the load where stability is lost, or `stable_up_to`, the
+/// factor it holds to; a path that could not be followed that far says so
+/// on stderr (`what` names the answer).
+pub fn put_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
+    match limit {
+        flexure::StabilityLimit::Lost { factor } => answer["stability_limit"] = json!(factor),
+        flexure::StabilityLimit::StableUpTo { factor, stalled } => {
+            answer["stable_up_to"] = json!(factor);
+            if let Some(why) = stalled {
+                warn(format!(
+                    "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
+                ));
+            }
+        }
+    }
+}
+
+/// Warns that an answer is not a stable equilibrium (`what` names it).
+pub fn warn_unstable(stable: bool, what: &str) {
+    if !stable {
+        warn(format!(
+            "{what}: the equilibrium is unstable (`stable: false`): the stiffness is not positive definite, so a small disturbance moves it away; it is not a state the joint can rest in"
+        ));
+    }
+}
+
 /// Which parts of a flagged estimate miss `target`, and by how much, with
 /// the parts that meet it: for warnings.
 pub fn misses(e: &ErrorEstimate, length: f64, target: &Accuracy) -> String {
@@ -158,7 +188,9 @@ pub struct DeflectArgs {
     #[arg(long)]
     exact: bool,
     /// Also find the factor on the load, up to 1000, at which the equilibrium
-    /// stops being stable (`stability_limit`; `stable_up_to: 1000` if it stays stable).
+    /// followed from rest stops being stable (`stability_limit`), or the
+    /// factor up to which it stays stable (`stable_up_to`: 1000, or as far as
+    /// the path could be followed, with a warning).
     #[arg(long)]
     limit: bool,
     /// Relative tolerance on the generalized-force residual, in (0, 1).
@@ -199,9 +231,11 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
         "stable": eq.stable,
         "residual": eq.residual,
     });
-    if let Some(limit) = eq.limit {
+    // With --limit, its refined factor is the one number printed.
+    if let Some(limit) = eq.limit.filter(|_| !args.limit) {
         model["limit_load_fraction"] = json!(limit);
     }
+    warn_unstable(eq.stable, "deflect");
     crate::stress::put(&mut model, &f, data.alpha(), &args.stress, "deflect");
     if args.flexure.auto() {
         model["order"] = json!(f.order());
@@ -210,12 +244,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let e = flexure::estimate::deflect_error(&f, &load, data.alpha(), &target)?;
     put_estimate(&mut model, &e, &f, &target, "deflect");
     if args.limit {
-        const MAX_FACTOR: f64 = 1000.0;
-        // No null in an answer: a null is how a NaN would show (see render::non_finite).
-        match flexure::statics::stability_limit(&f, &load, MAX_FACTOR)? {
-            Some(factor) => model["stability_limit"] = json!(factor),
-            None => model["stable_up_to"] = json!(MAX_FACTOR),
-        }
+        put_limit(&mut model, &flexure::statics::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
     }
     if !args.exact {
         return Ok(model);

@@ -164,9 +164,16 @@ fn emit(answer: Answer, as_json: bool, stdout: &mut dyn Write, stderr: &mut dyn 
                 }
             };
             let text = if as_json { format!("{value}\n") } else { render::readable(&value) };
-            match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
-                Ok(()) => SUCCESS,
-                Err(e) => write_failed(e, stderr),
+            if let Err(e) = stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
+                return write_failed(e, stderr);
+            }
+            // A sweep that stopped early: its rows are printed above, then its failure.
+            match value.get("stopped").and_then(|s| s.get("error")).and_then(Value::as_str) {
+                Some(error) => {
+                    let _ = writeln!(stderr, "error: {error}");
+                    FAILURE
+                }
+                None => SUCCESS,
             }
         }
         Answer::Rows(rows) => {

@@ -223,10 +223,102 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
     ))
 }
 
+/// The checks `solve` makes of one solution, shared by `draw`: each flexure
+/// joint's estimate (a warning per flagged joint), its stress (a warning past
+/// its yield strength), a snap-through on the way, and an unstable answer.
+fn put_solution_checks(
+    v: &mut Value,
+    m: &Mechanism,
+    s: &Solution,
+    reports: &[(String, Report)],
+    target: &Accuracy,
+    file: &Path,
+) -> Result<(), String> {
+    put_joint_estimates(v, m, s, target, file)?;
+    put_flexure_stress(v, m, s, reports, file);
+    if let Some(limit) = s.limit {
+        v["limit_fraction"] = json!(limit);
+        crate::options::warn(format!(
+            "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+            file.display(),
+            100.0 * limit
+        ));
+    }
+    if !s.stable {
+        crate::options::warn(format!(
+            "{}: the equilibrium is unstable (`stable: false`): its constrained stiffness is not positive definite, so a small disturbance moves it away",
+            file.display()
+        ));
+    }
+    Ok(())
+}
+
+/// The checks `solve --sweep` makes of a sweep, shared by `draw --sweep`:
+/// where stability is lost, the rows whose estimate is flagged, the first
+/// row past each yield strength, and a sweep that stopped (`stopped`, which
+/// makes the command exit 2 after printing its rows).
+fn put_sweep_checks(
+    v: &mut Value,
+    m: &Mechanism,
+    out: &Sweep,
+    reports: &[(String, Report)],
+    (target, file): (&Accuracy, &Path),
+    (parameter, values): (&str, &[f64]),
+) -> Result<(), String> {
+    let err = |e: flexure::Error| format!("{}: {e}", file.display());
+    if let Some(l) = &out.stability_limit {
+        v["stability_limit"] = limit_json(l);
+    }
+    if let Some(w) = sweep_warning(file, parameter, out, values) {
+        crate::options::warn(w);
+    }
+    let mut flagged = Vec::new();
+    for (value, s) in &out.rows {
+        if joint_estimates(m, s, target).map_err(err)?.iter().any(|e| e.2.flagged) {
+            flagged.push(*value);
+        }
+    }
+    if !flagged.is_empty() {
+        v["flagged"] = json!(flagged);
+        crate::options::warn(format!(
+            "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
+            file.display(),
+            flagged.len()
+        ));
+    }
+    for (k, r) in reports.iter().enumerate() {
+        let Some(strength) = r.1.yield_strength else { continue };
+        let over = out.rows.iter().find_map(|(value, s)| {
+            let (_, f, q, _) = flexures(m, s, reports).nth(k)?;
+            let p = flexure::stress::peak_stress(f, q)?;
+            (p.value > strength).then_some((*value, p.value))
+        });
+        if let Some((value, sigma)) = over {
+            crate::options::warn(format!(
+                "{}: flexure joint {:?}: from {parameter} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
+                file.display(),
+                r.0,
+                r.0
+            ));
+        }
+    }
+    if let Some((value, e)) = &out.stopped {
+        let error = format!(
+            "{}: the sweep stopped at {parameter} = {value} after {} of {} values (each printed above): {e}",
+            file.display(),
+            out.rows.len(),
+            values.len()
+        );
+        v["stopped"] = json!({ "value": value, "error": error });
+    }
+    Ok(())
+}
+
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
+    let target = args.accuracy.target();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let body = match &args.compliance {
         Some(name) => Some(
@@ -234,19 +326,12 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         ),
         None => None,
     };
-    let with_compliance = |s: &Solution, mut v: Value| -> Result<Value, String> {
-        if let (Some(b), Some(at)) = (body, args.at) {
-            let c = compliance(&m, s, b, at).map_err(err)?;
-            v["compliance"] = crate::joint::matrix(&c);
-        }
-        Ok(v)
-    };
-    let value = match &args.sweep {
+    let compliance_at = body.zip(args.at);
+    match &args.sweep {
         Some(spec) => {
             let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
-            let compliance_at = body.zip(args.at);
             let rows: Vec<Value> = out
                 .rows
                 .iter()
@@ -259,67 +344,19 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
                 "columns": sweep_table(&m, &spec.parameter, compliance_at.is_some()),
                 "rows": rows,
             });
-            if let Some(l) = &out.stability_limit {
-                v["stability_limit"] = limit_json(l);
-            }
-            if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
-                crate::options::warn(w);
-            }
-            // Each row's flexure joints, held to the accuracy target.
-            let target = args.accuracy.target();
-            let mut flagged = Vec::new();
-            for (value, s) in &out.rows {
-                if joint_estimates(&m, s, &target).map_err(err)?.iter().any(|e| e.2.flagged) {
-                    flagged.push(*value);
-                }
-            }
-            if !flagged.is_empty() {
-                v["flagged"] = json!(flagged);
-                crate::options::warn(format!(
-                    "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
-                    args.file.display(),
-                    flagged.len()
-                ));
-            }
-            // Each yield strength, at the first swept value whose stress exceeds it.
-            for (k, r) in reports.iter().enumerate() {
-                let Some(strength) = r.1.yield_strength else { continue };
-                let over = out.rows.iter().find_map(|(value, s)| {
-                    let (_, f, q, _) = flexures(&m, s, &reports).nth(k)?;
-                    let p = flexure::stress::peak_stress(f, q)?;
-                    (p.value > strength).then_some((*value, p.value))
-                });
-                if let Some((value, sigma)) = over {
-                    crate::options::warn(format!(
-                        "{}: flexure joint {:?}: from {} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
-                        args.file.display(),
-                        r.0,
-                        spec.parameter,
-                        r.0
-                    ));
-                }
-            }
-            return Ok(v);
+            put_sweep_checks(&mut v, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
+            Ok(v)
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
-            let mut v = with_compliance(&s, solution_json(&m, &s))?;
-            put_joint_estimates(&mut v, &m, &s, &args.accuracy.target(), &args.file)?;
-            put_flexure_stress(&mut v, &m, &s, &reports, &args.file);
-            if let Some(limit) = s.limit {
-                v["limit_fraction"] = json!(limit);
+            let mut v = solution_json(&m, &s);
+            if let Some((b, at)) = compliance_at {
+                v["compliance"] = crate::joint::matrix(&compliance(&m, &s, b, at).map_err(err)?);
             }
-            if let Some(limit) = s.limit {
-                crate::options::warn(format!(
-                    "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
-                    args.file.display(),
-                    100.0 * limit
-                ));
-            }
-            v
+            put_solution_checks(&mut v, &m, &s, &reports, &target, &args.file)?;
+            Ok(v)
         }
-    };
-    Ok(value)
+    }
 }
 
 #[derive(Debug, Args)]
@@ -351,40 +388,67 @@ pub struct DrawArgs {
     simulate: Option<f64>,
     #[command(flatten)]
     motion: crate::simulate::MotionOptions,
+    #[command(flatten)]
+    accuracy: crate::options::AccuracyOptions,
 }
 
-/// An SVG of the unloaded and loaded shapes, to one scale on both axes.
+/// An SVG of the unloaded and loaded shapes, to one scale on both axes,
+/// with the warnings `solve` gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     if let Some(duration) = args.simulate {
         return draw_motion(args, duration);
     }
-    let m = load(&args.file)?;
+    let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
+    let target = args.accuracy.target();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
-    let mut limit = None;
+    let mut marks = drawing::Marks {
+        yields: reports.iter().filter_map(|(name, r)| Some((name.clone(), r.yield_strength?))).collect(),
+        limit: None,
+    };
+    // The checks' warnings are solve's; of their answer, draw keeps only the verdicts.
+    let mut checks = json!({});
     let loaded: Vec<(String, Solution)> = match &args.sweep {
         Some(spec) => {
             let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
-            if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
-                crate::options::warn(w);
-            }
-            limit = out.stability_limit;
-            out.rows.into_iter().map(|(v, s)| (drawing::swept(&spec.parameter, v), s)).collect()
+            put_sweep_checks(&mut checks, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
+            // Shapes past the limit (on its far side from the first value) are labelled so.
+            let past =
+                |value: f64| out.stability_limit.is_some_and(|l| (value - l.value) * (values[0] - l.value) < 0.0);
+            marks.limit = out.stability_limit.map(|l| {
+                let shapes = match out.rows.iter().filter(|(value, _)| past(*value)).count() {
+                    0 => "no shape is drawn past it",
+                    1 => "the last shape is past it, reached by snap-through",
+                    _ => "the shapes marked past it were reached by snap-through",
+                };
+                format!("stability lost at {} = {}: {shapes}", spec.parameter, drawing::short(l.value))
+            });
+            let label = |v: f64| match past(v) {
+                true => format!("{} (past the stability limit)", drawing::swept(&spec.parameter, v)),
+                false => drawing::swept(&spec.parameter, v),
+            };
+            out.rows.iter().map(|(v, s)| (label(*v), s.clone())).collect()
         }
-        None => vec![("loaded".into(), solve(&m, &settings).map_err(err)?)],
+        None => {
+            let s = solve(&m, &settings).map_err(err)?;
+            put_solution_checks(&mut checks, &m, &s, &reports, &target, &args.file)?;
+            vec![("loaded".into(), s)]
+        }
     };
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
-    let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded);
+    let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded, &marks);
     crate::figures::write(&args.out, &figure)?;
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
+    for key in ["flagged", "limit_fraction", "stability_limit", "stopped"] {
+        if let Some(x) = checks.get(key) {
+            v[key] = x.clone();
+        }
+    }
     if let Some(k) = per_newton {
         v["force_scale_m_per_n"] = json!(k);
-    }
-    if let Some(l) = &limit {
-        v["stability_limit"] = limit_json(l);
     }
     Ok(v)
 }
@@ -418,8 +482,13 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
         })
         .collect();
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
-    let (shapes, per_newton) =
-        drawing::figure(&m, &format!("{title}: motion over {} s", drawing::short(duration)), &unloaded, &snapshots);
+    let (shapes, per_newton) = drawing::figure(
+        &m,
+        &format!("{title}: motion over {} s", drawing::short(duration)),
+        &unloaded,
+        &snapshots,
+        &drawing::Marks::default(),
+    );
     // Each body by colour; x solid, y dashed.
     let color = |i: usize| COLORS[i % COLORS.len()];
     let along =
@@ -768,12 +837,21 @@ mod drawing {
         }
     }
 
+    /// What a figure marks beyond the shapes: each flexure's yield strength
+    /// (Pa) on the stress colour bar, and where a sweep lost stability.
+    #[derive(Default)]
+    pub struct Marks {
+        pub yields: Vec<(String, f64)>,
+        pub limit: Option<String>,
+    }
+
     /// The figure, and the arrows' scale (m per N) if any force is drawn.
     pub fn figure(
         m: &Mechanism,
         title: &str,
         unloaded: &Solution,
         loaded: &[(String, Solution)],
+        marks: &Marks,
     ) -> (Figure, Option<f64>) {
         let mut fig = Figure::new(title, "x (m)", "y (m)");
         fig.equal_aspect = true;
@@ -801,8 +879,11 @@ mod drawing {
         let largest =
             loaded.iter().flat_map(|(_, s)| force_vectors(m, s)).map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
         let per_newton = (largest > 0.0).then(|| round_down(0.25 * extent / largest));
-        // The colour bar runs from 0 to the largest stress (1 MPa if none is loaded).
-        let stress_top = stress_max(m, loaded).map(|top| if top > 0.0 { top } else { 1e6 });
+        // The colour bar runs from 0 to the largest stress (1 MPa if none is
+        // loaded), and on past the highest yield strength, so that its mark shows.
+        let highest_yield = marks.yields.iter().map(|y| y.1).fold(0.0, f64::max);
+        let stress_top =
+            stress_max(m, loaded).map(|top| if top > 0.0 { top } else { 1e6 }).map(|top| top.max(1.05 * highest_yield));
 
         // The ground, once: it does not move.
         let ground = attachments(m, 0);
@@ -894,8 +975,18 @@ mod drawing {
         if let Some(k) = per_newton {
             fig.legend.push(Entry { swatch: Swatch::Note, label: format!("force arrows: {} m per N", short(k)) });
         }
+        if let Some(limit) = &marks.limit {
+            fig.legend.push(Entry { swatch: Swatch::Note, label: limit.clone() });
+        }
         if let Some(top) = stress_top {
-            fig.color_bar = Some(ColorBar { label: "flexures' bending stress (MPa)".into(), lo: 0.0, hi: top / 1e6 });
+            let mut label = "flexures' bending stress (MPa)".to_string();
+            if !marks.yields.is_empty() {
+                let named: Vec<String> =
+                    marks.yields.iter().map(|(name, y)| format!("{name} {} MPa", short(y / 1e6))).collect();
+                label += &format!("; black line: yield strength ({})", named.join(", "));
+            }
+            let bar_marks = marks.yields.iter().map(|y| y.1 / 1e6).collect();
+            fig.color_bar = Some(ColorBar { label, lo: 0.0, hi: top / 1e6, marks: bar_marks });
             let plain = m.joints.iter().any(|j| match &j.kind {
                 JointKind::Flexure(fl) => fl.section().modulus().is_none(),
                 _ => false,

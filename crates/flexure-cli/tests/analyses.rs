@@ -104,3 +104,77 @@ fn exact_connection_of_a_curved_flexure_is_the_same_at_any_order() {
     let (five, seven) = (energy("0.5,0.2,0.1,0.05,0.02", 5), energy("0.5,0.2,0.1,0.05,0.02,0,0", 7));
     assert!((five - seven).abs() < 1e-9 * five, "{five} vs {seven}");
 }
+
+/// `--limit` answers with one number on loads where it used to fail (issue
+/// 20: `deflect --moment 1 --fx 0.5 --fy 0.3 --limit` and `--moment 2
+/// --limit` exited 2 with a stalled probe), and never with the path's own
+/// cruder `limit_load_fraction` beside it.
+#[test]
+fn limit_answers_once_on_ordinary_loads() {
+    for load in ["--moment 1 --fx 0.5 --fy 0.3", "--moment 2", "--moment 0.2 --fx -1", "--fx -1 --fy 0.3"] {
+        let v = json(&format!("deflect {load} --limit"));
+        let shown: Vec<&str> = ["stability_limit", "stable_up_to", "limit_load_fraction"]
+            .into_iter()
+            .filter(|k| v.get(k).is_some())
+            .collect();
+        assert!(shown == ["stability_limit"] || shown == ["stable_up_to"], "{load}: {v}");
+    }
+    // A pure moment of 2 is followed, stable, to 734 times itself (the
+    // continuation's 1000 steps), said on stderr as a bound, not an instability.
+    let (code, out, err) = run("deflect --moment 2 --limit --json");
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let bound = v["stable_up_to"].as_f64().unwrap();
+    assert!(bound > 1.0 && bound < 1000.0, "{v}");
+    assert!(err.contains("as far as it could be followed") && !err.contains("max_steps"), "{err}");
+}
+
+/// `tendon --limit` and `connect --limit` answer as `deflect --limit` does.
+/// The crossing tendon snaps at 22.893 N (its mirror image, root offset
+/// −0.1 and tip offset 0.05, at the same tension); `connect`'s limit is
+/// `deflect --limit` under the load that holds the pose.
+#[test]
+fn tendon_and_connect_limits() {
+    let a = json("tendon --force 1 --root-offset 0.1 --tip-offset -0.05 --limit");
+    let b = json("tendon --force 1 --root-offset -0.1 --tip-offset 0.05 --limit");
+    let (a, b) = (a["stability_limit"].as_f64().unwrap(), b["stability_limit"].as_f64().unwrap());
+    assert!((a - 22.893).abs() < 1e-3 && (a / b - 1.0).abs() < 1e-9, "{a} {b}");
+    let c = json("connect --pose 0.5,0.9,0.3 --limit");
+    let load = &c["load"];
+    let d = json(&format!("deflect --moment {} --fx {} --fy {} --limit", load["moment"], load["fx"], load["fy"]));
+    for key in ["stability_limit", "stable_up_to"] {
+        assert_eq!(c.get(key).map(|x| x.as_f64().unwrap()), d.get(key).map(|x| x.as_f64().unwrap()), "{key}: {c} {d}");
+    }
+}
+
+/// A sweep that stops prints every row it reached, then the failure in its
+/// place, and exits 2 (issue 20: `tendon --sweep 0:20:5 --root-offset 0.1
+/// --tip-offset 0.1` printed nothing). At 20 N this tendon pulls the tip
+/// onto the root, where the continuation stalls; 0 to 15 N solve.
+#[test]
+fn a_stopped_tendon_sweep_keeps_its_rows() {
+    let (code, out, err) = run("tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1 --json");
+    assert_eq!(code, 2, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let forces: Vec<f64> = v["rows"].as_array().unwrap().iter().map(|r| r["force"].as_f64().unwrap()).collect();
+    assert_eq!(forces, [0.0, 5.0, 10.0, 15.0]);
+    assert_eq!(v["stopped"]["force"], 20.0);
+    assert!(err.contains("error: tendon --sweep: stopped at force = 20 N after 4 of 5 values"), "{err}");
+    // The table form prints the same rows first.
+    let (code, out, _) = run("tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1");
+    assert_eq!(code, 2);
+    assert!(out.contains("15.000000") && out.contains("stopped:"), "{out}");
+}
+
+/// Any unstable answer is said on stderr, as Python warns (issue 20:
+/// `deflect --fx -3` printed `stable: false` with exit 0 and no word). The
+/// free column buckles at π²/4 ≈ 2.47, so 3 N of compression is past it.
+#[test]
+fn unstable_answers_warn() {
+    let (code, out, err) = run("deflect --fx -3 --json");
+    assert_eq!(code, 0);
+    assert!(out.contains(r#""stable":false"#), "{out}");
+    assert!(err.contains("warning: deflect: the equilibrium is unstable"), "{err}");
+    let (_, _, err) = run("deflect --fx -2 --json");
+    assert!(!err.contains("unstable"), "{err}");
+}

@@ -215,3 +215,41 @@ fn fuzzer_findings_exit_2() {
         }
     }
 }
+
+/// `solve --sweep` keeps the rows it reached when a later value cannot be
+/// solved, prints them, then the failure, and exits 2. The finger's tendon
+/// at 50 N curls it past what the continuation can follow (0 and 25 N solve).
+#[test]
+fn a_stopped_sweep_keeps_its_rows() {
+    let finger = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml");
+    let (code, out, err) = crate::cli::run(&["solve", finger, "--sweep", "tendon.flexor.tension=0:100:5", "--json"]);
+    assert_eq!(code, 2, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let tensions: Vec<f64> = v["rows"].as_array().unwrap().iter().map(|r| r[0].as_f64().unwrap()).collect();
+    assert_eq!(tensions, [0.0, 25.0]);
+    assert_eq!(v["stopped"]["value"], 50.0);
+    assert!(err.contains("the sweep stopped at tendon.flexor.tension = 50 after 2 of 5 values"), "{err}");
+}
+
+/// `draw` gives the warnings `solve` gives on the same file: here a sweep
+/// past the parallelogram's buckling load (16 N, `buckle`) and the row
+/// whose estimate is flagged, and the drawing marks the limit in its legend.
+#[test]
+fn draw_warns_as_solve_does() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("p.svg");
+    let sweep = "force.push.fy=0:-30:7";
+    let (_, _, solved) = crate::cli::run(&["solve", file, "--sweep", sweep]);
+    let (code, _, drawn) = crate::cli::run(&["draw", file, "--out", svg.to_str().unwrap(), "--sweep", sweep]);
+    assert_eq!(code, 0, "{drawn}");
+    let warnings = |e: &str| e.lines().filter(|l| l.starts_with("warning:")).map(String::from).collect::<Vec<_>>();
+    assert!(warnings(&solved).len() >= 2 && warnings(&solved) == warnings(&drawn), "{solved}\n---\n{drawn}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.contains("stability lost at force.push.fy = −16")
+            || text.contains("stability lost at force.push.fy = -16"),
+        "no limit in the legend"
+    );
+    assert!(text.contains("(past the stability limit)"));
+}

@@ -373,8 +373,10 @@ fn solve_reports_stress_per_flexure_joint() {
 }
 
 /// `draw` colours flexures with a thickness by stress under a colour bar
-/// in MPa, topped at the largest stress `solve` reports; a mechanism
-/// without thickness draws as before, without a bar.
+/// in MPa, topped at the largest stress `solve` reports or, past it, at 1.05
+/// times the highest yield strength (the file's 1.2e9 Pa and 2.5e8 Pa),
+/// which the bar marks with a line per yield strength and names in its label;
+/// a mechanism without thickness draws as before, without a bar.
 #[test]
 fn draw_has_a_stress_colour_bar() {
     let dir = tempfile::tempdir().unwrap();
@@ -385,7 +387,14 @@ fn draw_has_a_stress_colour_bar() {
     let svg = std::fs::read_to_string(&out).unwrap();
     assert!(svg.contains("bending stress (MPa)") && svg.contains("linearGradient"), "no colour bar");
     let solved = answer(&["solve", &tapered_finger()]).0;
-    let top = f(&solved["stress"]["knuckle"]["max"]).max(f(&solved["stress"]["notch"]["max"])) / 1e6;
+    let top =
+        (f(&solved["stress"]["knuckle"]["max"]).max(f(&solved["stress"]["notch"]["max"])) / 1e6).max(1.05 * 1200.0);
+    assert!(
+        svg.contains("black line: yield strength (knuckle 1200 MPa, notch 250 MPa)"),
+        "no yield in the bar's label"
+    );
+    // The bar's two yield marks: black lines 2.5 px wide, beside the ticks' 1.2.
+    assert_eq!(svg.matches(r##"stroke="#000000" stroke-width="2.5""##).count(), 2, "yield marks");
     // The bar's last tick is a round value not above the largest stress.
     let ticks: Vec<f64> = svg
         .lines()

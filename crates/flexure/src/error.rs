@@ -17,9 +17,11 @@ pub enum Error {
         reason: &'static str,
     },
     /// An iterative solver stopped at its iteration limit (or on a
-    /// non-finite residual) before meeting its tolerance.
+    /// non-finite residual) before meeting its tolerance. (Messages name
+    /// what was reached, not settings to change: each front end offers its
+    /// own, and a Rust caller has `Settings`.)
     #[error(
-        "{solver} did not converge: {iterations} iterations reached a residual of {residual:.3e} {unit}; try a larger max_iterations or a looser tolerance, or check that the problem has a solution"
+        "{solver} did not converge: {iterations} iterations reached a residual of {residual:.3e} {unit}; check that the problem has a solution"
     )]
     NoConvergence {
         /// Which solver.
@@ -34,7 +36,7 @@ pub enum Error {
     /// Load continuation could not advance: its step fell below the
     /// smallest allowed step, or it ran out of steps.
     #[error(
-        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load, or a larger max_steps or smaller min_step",
+        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load",
         pct = .load_fraction * 100.0
     )]
     ContinuationStalled {
@@ -88,7 +90,7 @@ pub enum Error {
     /// Time integration could not advance: its step fell to rounding, or
     /// it ran out of steps or of retries of one step.
     #[error(
-        "time integration stalled at t = {time:.6e} s of {duration:.6e} s after {steps} steps and {rejected} rejected (step {step:.3e} s; last: {cause}); try a looser tolerance, or a larger max_steps, or check that the motion stays where the model holds"
+        "time integration stalled at t = {time:.6e} s of {duration:.6e} s after {steps} steps and {rejected} rejected (step {step:.3e} s; last: {cause}); try a looser tolerance, or check that the motion stays where the model holds"
     )]
     IntegrationStalled {
         /// Why the last step failed.

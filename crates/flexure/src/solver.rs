@@ -911,7 +911,10 @@ fn follow<T: Scalar, P: Problem<T>>(
     }
     match path.limit {
         Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
-        _ => Err(stalled(problem, lambda, &path, last_residual, "the step limit max_steps was reached")),
+        _ => {
+            let cause = format!("its limit of {} steps was reached", settings.max_steps);
+            Err(stalled(problem, lambda, &path, last_residual, &cause))
+        }
     }
 }
 

@@ -4,6 +4,7 @@ use crate::energy::energy_gradient;
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
+use crate::limit::{self, StabilityLimit};
 use crate::linalg;
 use crate::scalar::Scalar;
 use crate::solver;
@@ -299,68 +300,27 @@ pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -
 /// The smallest factor $\lambda$ for which the equilibrium under
 /// $\lambda\cdot$`load`, followed from the rest shape, stops being stable:
 /// $K$ (Eq. 32) stops being positive definite on the loading path (a
-/// buckling or limit load). `None` if the path stays stable up to `max_factor`.
-///
-/// One continuation to `max_factor` finds where the path first loses
-/// stability ([`Equilibrium::limit`]), to within a step; bisection on
-/// "the path from rest to $\lambda$ stays stable" then refines it to a
-/// relative $10^{-10}$. A solver failure (a stalled continuation, an
-/// interrupt) is returned as the error it is, never read as instability.
+/// buckling or limit load); or the factor up to which it stays stable
+/// (`max_factor`, or as far as the path can be followed). The search is
+/// [`crate::limit`]'s, shared with the tendon joint.
 ///
 /// # Example
 /// ```
-/// use flexure::{statics::stability_limit, Flexure, TipLoad};
+/// use flexure::{statics::stability_limit, Flexure, StabilityLimit, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
 /// // Axial compression: the model's free buckling load, Table I.
-/// let l = stability_limit(&f, &TipLoad { moment: 0.0, fx: -1.0, fy: 0.0 }, 100.0).unwrap().unwrap();
-/// assert!((l - 2.4677).abs() < 1e-4);
+/// let l = stability_limit(&f, &TipLoad { moment: 0.0, fx: -1.0, fy: 0.0 }, 100.0).unwrap();
+/// assert!(matches!(l, StabilityLimit::Lost { .. }) && (l.factor() - 2.4677).abs() < 1e-4);
 /// // A pure moment never destabilizes the flexure.
-/// assert_eq!(stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 10.0).unwrap(), None);
+/// let l = stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 10.0).unwrap();
+/// assert_eq!(l, StabilityLimit::StableUpTo { factor: 10.0, stalled: None });
 /// ```
-pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Result<Option<f64>> {
+pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Result<StabilityLimit> {
     load.validate()?;
-    if !(max_factor.is_finite() && max_factor > 0.0) {
-        return Err(Error::invalid("max_factor", max_factor, "must be a finite number greater than zero"));
-    }
     let mut data = Statics::new(flexure);
     // Each probe stops where its path loses stability: only that is asked.
-    let mut path_to = |factor: f64| {
+    limit::search(max_factor, |factor| {
         let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
         follow(flexure, &scaled, &mut data, &Settings::default(), true)
-    };
-    let first = match path_to(max_factor) {
-        Ok(e) if e.stable && e.limit.is_none() => return Ok(None),
-        Ok(e) => e.limit.unwrap_or(1.0),
-        Err(Error::Unstable { load_fraction, .. }) => load_fraction,
-        Err(e) => return Err(e),
-    };
-    let mut stable_path_to = |factor: f64| -> Result<bool> {
-        match path_to(factor) {
-            Ok(e) => Ok(e.stable && e.limit.is_none()),
-            Err(Error::Unstable { .. }) => Ok(false),
-            Err(e) => Err(e),
-        }
-    };
-    // Bracket around the continuation's estimate, then bisect.
-    let (mut lo, mut hi) = (0.5 * first * max_factor, (1.5 * first * max_factor).min(max_factor));
-    for _ in 0..60 {
-        if lo <= 0.0 || stable_path_to(lo)? {
-            break;
-        }
-        (hi, lo) = (lo, 0.5 * lo);
-    }
-    for _ in 0..60 {
-        if hi >= max_factor || !stable_path_to(hi)? {
-            break;
-        }
-        (lo, hi) = (hi, (2.0 * hi).min(max_factor));
-    }
-    for _ in 0..200 {
-        if hi - lo <= 1e-10 * hi {
-            break;
-        }
-        let mid = 0.5 * (lo + hi);
-        if stable_path_to(mid)? { lo = mid } else { hi = mid }
-    }
-    Ok(Some(0.5 * (lo + hi)))
+    })
 }

@@ -4,6 +4,7 @@ use crate::energy::{energy, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
+use crate::limit::{self, StabilityLimit};
 use crate::linalg;
 use crate::scalar::Scalar;
 use crate::solver;
@@ -249,6 +250,45 @@ impl solver::Problem<f64> for TendonProblem<'_> {
 /// assert!(data.alpha()[0] > 0.1);
 /// ```
 pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonData) -> Result<Equilibrium> {
+    follow(flexure, tendon, tension, data, false)
+}
+
+/// The smallest factor on `tension` at which the joint's equilibrium,
+/// followed from rest, stops being stable ($\nabla\nabla E$ stops being
+/// positive definite: a snap), or the factor up to which it stays stable
+/// (`max_factor`, or as far as the path can be followed): the search of
+/// [`crate::limit`], shared with the tip load's
+/// [`crate::statics::stability_limit`].
+///
+/// # Example
+/// ```
+/// use flexure::{tendon::{stability_limit, Tendon}, Flexure, StabilityLimit};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// // A tendon that crosses the flexure snaps it sideways near 22.9 N…
+/// let crossing = Tendon { root_offset: 0.1, tip_offset: -0.05 };
+/// let l = stability_limit(&f, &crossing, 1.0, 1000.0).unwrap();
+/// assert!(matches!(l, StabilityLimit::Lost { .. }) && (l.factor() - 22.893).abs() < 1e-3);
+/// // …and so does its mirror image, at the same tension.
+/// let mirror = Tendon { root_offset: -0.1, tip_offset: 0.05 };
+/// let m = stability_limit(&f, &mirror, 1.0, 1000.0).unwrap();
+/// assert!((m.factor() / l.factor() - 1.0).abs() < 1e-9);
+/// ```
+pub fn stability_limit(flexure: &Flexure, tendon: &Tendon, tension: f64, max_factor: f64) -> Result<StabilityLimit> {
+    let mut data = TendonData::new(flexure);
+    limit::search(max_factor, |factor| {
+        data = TendonData::new(flexure);
+        follow(flexure, tendon, factor * tension, &mut data, true)
+    })
+}
+
+/// [`pull`], or with `while_stable` stopping where the path loses stability.
+fn follow(
+    flexure: &Flexure,
+    tendon: &Tendon,
+    tension: f64,
+    data: &mut TendonData,
+    while_stable: bool,
+) -> Result<Equilibrium> {
     tendon.validate()?;
     if !(tension.is_finite() && tension >= 0.0) {
         return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
@@ -266,7 +306,11 @@ pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonD
         scale,
         scratch: &mut data.scratch,
     };
-    let path = solver::continuation(&mut problem, &mut data.solver, &Settings::default())?;
+    let path = if while_stable {
+        solver::continuation_while_stable(&mut problem, &mut data.solver, &Settings::default())?
+    } else {
+        solver::continuation(&mut problem, &mut data.solver, &Settings::default())?
+    };
     data.alpha.copy_from_slice(&data.solver.x);
     data.tension = tension;
     Ok(Equilibrium::from_path(&path))

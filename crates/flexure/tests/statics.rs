@@ -2,7 +2,7 @@
 //! and the loaded stiffness (Eq. 32) against differentiation through the solver.
 
 use flexure::reference::elastica;
-use flexure::{Error, Flexure, Settings, Statics, TipLoad, compliance_tip, deflect};
+use flexure::{Error, Flexure, Settings, StabilityLimit, Statics, TipLoad, compliance_tip, deflect};
 use num_dual::Dual64;
 use std::f64::consts::FRAC_PI_2;
 
@@ -217,11 +217,45 @@ fn converges_beyond_a_right_angle() {
 #[test]
 fn stability_limit_matches_buckling() {
     let f = unit();
-    let limit =
-        flexure::statics::stability_limit(&f, &TipLoad { moment: 0.0, fx: -2.0, fy: 0.0 }, 100.0).unwrap().unwrap();
-    assert!((2.0 * limit - 2.4677).abs() < 5e-5, "{}", 2.0 * limit);
+    let limit = flexure::statics::stability_limit(&f, &TipLoad { moment: 0.0, fx: -2.0, fy: 0.0 }, 100.0).unwrap();
+    let StabilityLimit::Lost { factor } = limit else { panic!("{limit:?}") };
+    assert!((2.0 * factor - 2.4677).abs() < 5e-5, "{}", 2.0 * factor);
     let bend = flexure::statics::stability_limit(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, 4.0).unwrap();
-    assert_eq!(bend, None);
+    assert_eq!(bend, StabilityLimit::StableUpTo { factor: 4.0, stalled: None });
+}
+
+/// `--limit` answers on every load that solves (issue 20's grid of unit-flexure
+/// loads: 32 of these 60 used to fail with a stalled probe). Each answer is
+/// checked against the definition of the limit, independently of the search:
+/// `deflect` at 0.999 of a lost factor is stable, and the path to 1.01 of it
+/// loses stability (or cannot be followed stably); a path stable up to a
+/// bound is stable at 0.999 of the bound.
+#[test]
+fn stability_limit_answers_on_the_whole_grid() {
+    let f = unit();
+    let stable_at = |load: &TipLoad, factor: f64| {
+        let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
+        let mut data = Statics::new(&f);
+        deflect(&f, &scaled, &mut data, &Default::default()).map(|e| e.stable && e.limit.is_none())
+    };
+    for moment in [0.0, 0.2, 0.5, 1.0, 2.0] {
+        for fx in [-1.0, 0.0, 1.0] {
+            for fy in [0.0, 0.3, 1.0, 3.0] {
+                let load = TipLoad { moment, fx, fy };
+                if load == TipLoad::default() {
+                    continue;
+                }
+                let limit =
+                    flexure::statics::stability_limit(&f, &load, 1000.0).unwrap_or_else(|e| panic!("{load:?}: {e}"));
+                let factor = limit.factor();
+                assert!(factor.is_finite() && factor > 0.0, "{load:?}: {limit:?}");
+                assert_eq!(stable_at(&load, 0.999 * factor), Ok(true), "{load:?}: {limit:?}");
+                if let StabilityLimit::Lost { .. } = limit {
+                    assert_ne!(stable_at(&load, 1.01 * factor), Ok(true), "{load:?}: {limit:?}");
+                }
+            }
+        }
+    }
 }
 
 /// Long steps far from instability: the paper's 90° case (Fig. 6's load,

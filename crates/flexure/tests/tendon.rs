@@ -2,8 +2,8 @@
 //! exact elastica loaded by the tendon's own force.
 
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, TendonPotential, pull, tendon_length};
-use flexure::{Flexure, Kinematics, TipLoad, bending_stiffness};
+use flexure::tendon::{Tendon, TendonData, TendonPotential, pull, stability_limit, tendon_length};
+use flexure::{Flexure, Kinematics, StabilityLimit, TipLoad, bending_stiffness};
 use num_dual::Dual64;
 use std::f64::consts::FRAC_PI_2;
 
@@ -136,4 +136,28 @@ fn agrees_with_the_exact_elastica() {
         assert!((model.x - pose.x).hypot(model.y - pose.y) < 0.01 * 0.015, "{force} N position");
         assert!((model.phi - pose.phi).abs().to_degrees() < 1.0, "{force} N angle");
     }
+}
+
+/// The tendon's stability limit against its definition, checked by `pull`
+/// alone: stable at 0.999 of the factor, and not at 1.01 of it (lost
+/// stability, or no stable path); and a bound that the path holds to. The
+/// crossing tendon snaps; a tendon on one side pulls the tip onto the root
+/// until the continuation stops, which is reported as a bound, not as a loss.
+#[test]
+fn stability_limit_meets_its_definition() {
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let stable_at = |t: &Tendon, tension: f64| {
+        let mut data = TendonData::new(&f);
+        pull(&f, t, tension, &mut data).map(|e| e.stable && e.limit.is_none())
+    };
+    let crossing = Tendon { root_offset: 0.1, tip_offset: -0.05 };
+    let l = stability_limit(&f, &crossing, 1.0, 1000.0).unwrap();
+    let StabilityLimit::Lost { factor } = l else { panic!("{l:?}") };
+    assert_eq!(stable_at(&crossing, 0.999 * factor), Ok(true));
+    assert_ne!(stable_at(&crossing, 1.01 * factor), Ok(true));
+    let one_side = Tendon { root_offset: 0.1, tip_offset: 0.05 };
+    let l = stability_limit(&f, &one_side, 1.0, 1000.0).unwrap();
+    let StabilityLimit::StableUpTo { factor, stalled: Some(_) } = l else { panic!("{l:?}") };
+    assert!(factor > 1.0 && factor < 1000.0, "{factor}");
+    assert_eq!(stable_at(&one_side, 0.999 * factor), Ok(true));
 }

@@ -697,9 +697,10 @@ pub fn integrate<S: System + ?Sized>(
                 // damped stiff modes are what usually moves that fast.
                 return Err(stalled(
                     &format!(
-                        "{cause}; the step limit max_steps was reached, the steps near {h:.1e} s resolving \
+                        "{cause}; its limit of {} steps was reached, the steps near {h:.1e} s resolving \
                          motion that fast to the tolerance (lightly damped stiff modes, usually: material \
-                         damping on the flexures lets the integrator step over them)"
+                         damping on the flexures lets the integrator step over them)",
+                        settings.max_steps
                     ),
                     h,
                     &run,

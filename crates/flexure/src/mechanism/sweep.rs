@@ -75,6 +75,11 @@ pub struct Sweep {
     pub rows: Vec<(f64, Solution)>,
     /// The first loss of stability along the sweep, if any.
     pub stability_limit: Option<StabilityLimit>,
+    /// Why the sweep ended before its last value, if a solve failed (a
+    /// stalled continuation, an interrupt): the value, and the error. The
+    /// rows before it are kept; the values after it are not tried, since
+    /// each is continued from the last.
+    pub stopped: Option<(f64, Error)>,
 }
 
 /// Equilibria along `values` of one load, each continued from the last.
@@ -88,6 +93,8 @@ pub struct Sweep {
 /// reached from the unloaded state with every load ramped together: if
 /// stability is lost on the way, that is the first row's own
 /// [`Solution::limit`] (or [`Error::Unstable`] if no stable state is reached).
+/// A solve that fails ends the sweep there, with the rows reached and the
+/// failure in [`Sweep::stopped`]; only bad input is an error.
 ///
 /// # Example
 /// ```
@@ -121,7 +128,7 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
     let base = m.loads();
     let (first, last) = (values[0], values[values.len() - 1]);
     let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
-    let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None };
+    let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut start = assemble_unloaded(m, settings)?;
     for (i, &v) in values.iter().enumerate() {
         let target = parameter.apply(&base, v);
@@ -142,7 +149,13 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
             let precise = |lo: f64, hi: f64| {
                 (value(hi) - value(lo)).abs() <= LIMIT_PRECISION * value(lo).abs().max(value(hi).abs())
             };
-            let s = first_loss(m, &start, &target, settings, precise)?;
+            let s = match first_loss(m, &start, &target, settings, precise) {
+                Ok(s) => s,
+                Err(e) => {
+                    out.stopped = Some((v, e));
+                    break;
+                }
+            };
             limit = Some(s);
             if out.stability_limit.is_none() {
                 out.stability_limit = Some(StabilityLimit { value: value(s), fraction: fraction(value(s)) });
@@ -155,7 +168,11 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
                 out.rows.push((v, s));
             }
             Err(Error::Unstable { .. }) if lost => break,
-            Err(e) => return Err(e),
+            Err(e @ Error::InvalidParameter { .. }) => return Err(e),
+            Err(e) => {
+                out.stopped = Some((v, e));
+                break;
+            }
         }
     }
     Ok(out)
