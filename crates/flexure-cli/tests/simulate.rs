@@ -138,7 +138,8 @@ fn bad_settings_exit_2_by_name() {
 #[test]
 fn bad_files_exit_2_with_their_place() {
     let dir = tempfile::tempdir().unwrap();
-    let file = arm(dir.path(), "[[schedule]]\nload = \"force.turn.moment\"\npoints = [[0.0, 0.0], [0.0, 1.0]]\n");
+    // Two points at one time are a step; going back in time is not.
+    let file = arm(dir.path(), "[[schedule]]\nload = \"force.turn.moment\"\npoints = [[0.1, 0.0], [0.0, 1.0]]\n");
     let (code, _, err) = run(&["simulate", &file, "--duration", "1"]);
     assert_eq!(code, 2);
     assert!(err.contains("arm.toml: line 17, column 23: schedule \"force.turn.moment\": points[1]"), "{err}");

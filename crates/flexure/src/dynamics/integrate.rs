@@ -681,8 +681,12 @@ pub fn integrate<S: System + ?Sized>(
     let mut cause = String::new();
     // The Newton matrix's data must be evaluated anew; it was at this step's start.
     let (mut stale, mut current) = (true, false);
+    let jumps = system.jumps();
     for &target in &times[1..] {
         while t < target {
+            // The next jump of the loads up to this sample, landed on like a sample.
+            let jump = jumps.iter().copied().find(|&j| j > t && j <= target);
+            let stop = jump.unwrap_or(target);
             let stalled = |cause: &str, h: f64, run: &Trajectory| Error::IntegrationStalled {
                 cause: cause.to_string(),
                 time: t,
@@ -710,9 +714,9 @@ pub fn integrate<S: System + ?Sized>(
                 return Err(stalled(&format!("{cause}; {rejections} successive rejections"), h, &run));
             }
             let mut step = h.min(settings.max_step);
-            let landing = t + 1.01 * step >= target && target - t <= settings.max_step;
+            let landing = t + 1.01 * step >= stop && stop - t <= settings.max_step;
             if landing {
-                step = target - t;
+                step = stop - t;
             }
             if step < 1e-12 * duration || t + step == t {
                 return Err(stalled(&format!("{cause}; the step fell below 1e-12 of the duration"), step, &run));
@@ -748,7 +752,7 @@ pub fn integrate<S: System + ?Sized>(
                 system,
                 &rk,
                 &mut w,
-                (t, step, duration),
+                (t, step, duration, jump.filter(|_| landing)),
                 (&q, &v),
                 settings,
                 &mut eta,
@@ -772,7 +776,7 @@ pub fn integrate<S: System + ?Sized>(
                             Ok(c) if c.is_finite() => {
                                 run.violation = run.violation.max(c);
                                 // Accept; next step from the controller, within the rotation bound.
-                                t = if landing { target } else { t + step };
+                                t = if landing { stop } else { t + step };
                                 std::mem::swap(&mut q, &mut q1);
                                 std::mem::swap(&mut v, &mut v1);
                                 w.prev.copy_from_slice(&w.x);
@@ -782,7 +786,8 @@ pub fn integrate<S: System + ?Sized>(
                                     report(t / duration);
                                 }
                                 fresh = false;
-                                stale = w.theta > REUSE;
+                                // Past a jump the loads, and so the tangents, are new.
+                                stale = w.theta > REUSE || (landing && jump.is_some());
                                 let mut next = step * ratio.min(if last_rejected { 1.0 } else { 5.0 });
                                 if turn > 0.0 {
                                     next = next.min(0.9 * step * settings.max_rotation_per_step / turn);
@@ -880,12 +885,17 @@ fn attempt<S: System + ?Sized>(
     system: &mut S,
     rk: &Radau,
     w: &mut Work,
-    (t0, h, duration): (f64, f64, f64),
+    (t0, h, duration, jump): (f64, f64, f64, Option<f64>),
     (q0, v0): (&[f64], &[f64]),
     settings: &Settings,
     eta: &mut f64,
     (refine, start): (bool, bool),
 ) -> Result<std::result::Result<f64, Refusal>> {
+    // A step that ends on a load's jump sees the load just before it.
+    let stage_time = |i: usize| match jump {
+        Some(j) => (t0 + rk.c[i] * h).min(j.next_down()),
+        None => t0 + rk.c[i] * h,
+    };
     let (n, m) = (w.n, w.m);
     let big = 3 * (n + m);
     let (rtol, atol) = (settings.tolerance, settings.absolute);
@@ -927,7 +937,7 @@ fn attempt<S: System + ?Sized>(
         for i in 0..3 {
             let (qi, vi) = (&w.qs[i * n..(i + 1) * n], &w.vs[i * n..(i + 1) * n]);
             let evaluated = system
-                .dynamics(qi, vi, t0 + rk.c[i] * h, &mut w.mass, &mut w.force)
+                .dynamics(qi, vi, stage_time(i), &mut w.mass, &mut w.force)
                 .and_then(|()| if m > 0 { system.closure(qi, &mut w.closure, &mut w.jac) } else { Ok(()) });
             match evaluated {
                 Ok(()) => {}

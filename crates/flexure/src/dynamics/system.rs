@@ -50,4 +50,12 @@ pub trait System {
     /// configurations: bounds the integrator's step as it bounds the
     /// continuation's ([`crate::solver::Problem::distance`]).
     fn distance(&self, a: &[f64], b: &[f64]) -> f64;
+
+    /// The times (s, ascending) at which the applied loads jump: at each,
+    /// [`System::dynamics`] gives the new load from that time on, and the
+    /// integrator lands on it and evaluates the step that ends there just
+    /// before it. The default: none.
+    fn jumps(&self) -> Vec<f64> {
+        Vec::new()
+    }
 }

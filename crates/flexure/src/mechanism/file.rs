@@ -10,7 +10,7 @@ use super::joints::{Fixed, Prismatic, Revolute};
 use super::kinematics::frames;
 use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
-use crate::dynamics::schedule::Schedule;
+use crate::dynamics::schedule::{Schedule, Waveform};
 use crate::error::{Error, Result};
 use crate::joint::{Flexure, bending_stiffness};
 use crate::kinematics::Pose;
@@ -68,7 +68,17 @@ struct FileToml {
 #[serde(deny_unknown_fields)]
 struct ScheduleToml {
     load: Spanned<String>,
-    points: Spanned<Vec<Spanned<[f64; 2]>>>,
+    points: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+    harmonic: Option<Spanned<HarmonicToml>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct HarmonicToml {
+    amplitude: Spanned<f64>,
+    frequency: Spanned<f64>,
+    phase: Option<Spanned<f64>>,
+    offset: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -516,8 +526,9 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
 }
 
 /// The `[[schedule]]` tables: each names a load of the mechanism (as
-/// sweeps do) at most once, with points `[t, value]` of finite numbers
-/// whose times increase strictly.
+/// sweeps do) at most once, with either points `[t, value]` of finite
+/// numbers whose times do not decrease, at most two at one time (a step),
+/// or a `harmonic` (amplitude, frequency in Hz, phase in rad, offset).
 fn schedules(src: &Source, m: &Mechanism, tables: &[ScheduleToml]) -> Result<Vec<Schedule>> {
     let mut out: Vec<Schedule> = Vec::new();
     for s in tables {
@@ -532,30 +543,89 @@ fn schedules(src: &Source, m: &Mechanism, tables: &[ScheduleToml]) -> Result<Vec
         if out.iter().any(|o| o.parameter == parameter) {
             return src.fail(&s.load.span(), format!("{owner}load {load:?} is scheduled twice"));
         }
-        let points = s.points.get_ref();
-        if points.is_empty() {
-            return src.fail(&s.points.span(), format!("{owner}points is empty: give at least one [t, value]"));
-        }
-        let sign = if matches!(parameter, Parameter::Tension(_)) { Sign::NotNegative } else { Sign::Any };
-        for (k, p) in points.iter().enumerate() {
-            let [t, v] = *p.get_ref();
-            src.numbers(&owner, &format!("points[{k}] time"), &p.span(), &[t], Sign::Any)?;
-            src.numbers(&owner, &format!("points[{k}] value"), &p.span(), &[v], sign)?;
-            if k > 0 && t <= points[k - 1].get_ref()[0] {
+        let tension = matches!(parameter, Parameter::Tension(_));
+        let waveform = match (&s.points, &s.harmonic) {
+            (Some(points), None) => Waveform::Points(schedule_points(src, &owner, points, tension)?),
+            (None, Some(h)) => schedule_harmonic(src, &owner, h, tension)?,
+            (Some(_), Some(h)) => {
+                return src.fail(&h.span(), format!("{owner}give points or harmonic, not both"));
+            }
+            (None, None) => {
                 return src.fail(
-                    &p.span(),
+                    &s.load.span(),
                     format!(
-                        "{owner}points[{k}] has time {} after points[{}] at {}: the times of points must increase strictly",
-                        number(t),
-                        k - 1,
-                        number(points[k - 1].get_ref()[0])
+                        "{owner}give points = [[t, value], …] or harmonic = {{ amplitude, frequency, phase, offset }}"
                     ),
                 );
             }
-        }
-        out.push(Schedule { load: load.clone(), parameter, points: points.iter().map(|p| *p.get_ref()).collect() });
+        };
+        out.push(Schedule { load: load.clone(), parameter, waveform });
     }
     Ok(out)
+}
+
+/// A schedule's `points`: at least one, times not decreasing, at most two
+/// at one time; a tension's values not negative.
+fn schedule_points(
+    src: &Source,
+    owner: &str,
+    points: &Spanned<Vec<Spanned<[f64; 2]>>>,
+    tension: bool,
+) -> Result<Vec<[f64; 2]>> {
+    let list = points.get_ref();
+    if list.is_empty() {
+        return src.fail(&points.span(), format!("{owner}points is empty: give at least one [t, value]"));
+    }
+    let sign = if tension { Sign::NotNegative } else { Sign::Any };
+    for (k, p) in list.iter().enumerate() {
+        let [t, v] = *p.get_ref();
+        src.numbers(owner, &format!("points[{k}] time"), &p.span(), &[t], Sign::Any)?;
+        src.numbers(owner, &format!("points[{k}] value"), &p.span(), &[v], sign)?;
+        let before = |j: usize| list[j].get_ref()[0];
+        if k > 0 && t < before(k - 1) {
+            return src.fail(
+                &p.span(),
+                format!(
+                    "{owner}points[{k}] has time {} after points[{}] at {}: the times of points must not decrease (two points at one time make a step)",
+                    number(t),
+                    k - 1,
+                    number(before(k - 1))
+                ),
+            );
+        }
+        if k > 1 && t == before(k - 1) && t == before(k - 2) {
+            return src.fail(
+                &p.span(),
+                format!(
+                    "{owner}points[{k}] is the third point at time {}: a step is two points at one time, the value before and the value after",
+                    number(t)
+                ),
+            );
+        }
+    }
+    Ok(list.iter().map(|p| *p.get_ref()).collect())
+}
+
+/// A schedule's `harmonic`: a finite amplitude and offset, a frequency
+/// (Hz) greater than zero, a phase (rad); a tension's offset at least its
+/// amplitude, so that it is never negative.
+fn schedule_harmonic(src: &Source, owner: &str, h: &Spanned<HarmonicToml>, tension: bool) -> Result<Waveform> {
+    let t = h.get_ref();
+    let amplitude = src.number(owner, "harmonic.amplitude", &t.amplitude, Sign::Any)?;
+    let frequency = src.number(owner, "harmonic.frequency", &t.frequency, Sign::Positive)?;
+    let phase = t.phase.as_ref().map_or(Ok(0.0), |p| src.number(owner, "harmonic.phase", p, Sign::Any))?;
+    let offset = t.offset.as_ref().map_or(Ok(0.0), |o| src.number(owner, "harmonic.offset", o, Sign::Any))?;
+    if tension && offset < amplitude.abs() {
+        return src.fail(
+            &h.span(),
+            format!(
+                "{owner}harmonic has offset {} below its amplitude {}: a tendon's tension cannot be negative",
+                number(offset),
+                number(amplitude.abs())
+            ),
+        );
+    }
+    Ok(Waveform::Harmonic { amplitude, frequency, phase, offset })
 }
 
 /// `[initial]` or `[initial_velocity]` (`key`): joint name → its
