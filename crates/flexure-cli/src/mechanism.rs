@@ -245,7 +245,10 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         Some(spec) => {
             let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
+            let mut findings = crate::findings::closures(&m, &args.file)?;
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
+            let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
+            findings.extend(crate::findings::along(&m, &shapes, &spec.parameter, "value", &args.file));
             let compliance_at = body.zip(args.at);
             let rows: Vec<Value> = out
                 .rows
@@ -261,6 +264,9 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             });
             if let Some(l) = &out.stability_limit {
                 v["stability_limit"] = limit_json(l);
+            }
+            if !findings.is_empty() {
+                v["findings"] = json!(findings);
             }
             if let Some(w) = sweep_warning(&args.file, &spec.parameter, &out, &values) {
                 crate::options::warn(w);
@@ -302,8 +308,13 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             return Ok(v);
         }
         None => {
+            let mut findings = crate::findings::closures(&m, &args.file)?;
             let s = solve(&m, &settings).map_err(err)?;
+            findings.extend(crate::findings::shape(&m, &s.q, &args.file));
             let mut v = with_compliance(&s, solution_json(&m, &s))?;
+            if !findings.is_empty() {
+                v["findings"] = json!(findings);
+            }
             put_joint_estimates(&mut v, &m, &s, &args.accuracy.target(), &args.file)?;
             put_flexure_stress(&mut v, &m, &s, &reports, &args.file);
             if let Some(limit) = s.limit {
