@@ -540,30 +540,10 @@ mod drawing {
         format!("{parameter} = {} {}", short(value), unit(parameter))
     }
 
-    /// Every point attached to body `b`, in its frame: its origin (where
-    /// its joint holds it), the roots of the joints it carries, tendon via
-    /// points, load points, closure points and its centre of mass.
+    /// Every point attached to body `b`, in its frame ([`Mechanism::attachments`]:
+    /// the library's crossing test takes the same points as the link).
     pub(super) fn attachments(m: &Mechanism, b: usize) -> Vec<[f64; 2]> {
-        let mut pts = Vec::new();
-        if b != 0 {
-            pts.push([0.0, 0.0]);
-        }
-        pts.extend(m.joints.iter().filter(|j| j.parent == b).map(|j| [j.origin.x, j.origin.y]));
-        pts.extend(m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
-        pts.extend(m.forces.iter().filter(|f| f.body == b).map(|f| f.at));
-        for c in &m.closures {
-            let (a, ra, other, rb) = match c {
-                Closure::Weld { a, a_origin, b, b_origin } => {
-                    (*a, [a_origin.x, a_origin.y], *b, [b_origin.x, b_origin.y])
-                }
-                Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
-            };
-            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
-        }
-        if m.bodies[b].mass > 0.0 {
-            pts.push(m.bodies[b].com);
-        }
-        pts
+        m.attachments(b)
     }
 
     /// The convex hull, counter-clockwise (Andrew's monotone chain).
