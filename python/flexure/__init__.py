@@ -124,9 +124,9 @@ class Mechanism:
         directions with neither mass nor damping (massless flexures) then start on
         their equilibrium under the loads at t = 0, which time[0] records.
         `tolerance` is the relative and absolute tolerance of each step's error.
-        findings lists what `solve` lists: closures open at rest (PreloadWarning),
-        and parts that cross at a sample (IntersectionWarning, once per pair of
-        parts; each sample's crossing listed with its time).
+        findings (left out when empty) lists what `solve` lists: closures open at
+        rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
+        once per pair of parts; each sample's crossing listed with its time).
         A duration, every or tolerance not above zero raises ValueError naming it; an
         integration that stalls raises ConvergenceError saying where; Ctrl-C stops it
         with KeyboardInterrupt. Runs without the GIL."""
@@ -156,7 +156,8 @@ class Mechanism:
         joint and the yield strength); shape, a structured array as `Flexure.shape`
         returns, for one with `shape = K`.
 
-        findings: a list of dicts (kind, severity, message, ...). A weld or pin open
+        findings (left out when empty, as in `flexure solve --json`): a list of
+        dicts (kind, severity, message, ...). A weld or pin open
         at rest (kind "open_closure": gap_m, gap_rad for a weld, and the preload,
         preload_force_n and preload_moment_n_m, that it carries with no load) warns
         PreloadWarning, unless the file says `preload = true` in it (severity

@@ -342,8 +342,14 @@ pub struct BuckleArgs {
 /// Linear buckling factor on all loads, and the mode.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
+    // Buckling about a preloaded assembly: the preload is told.
+    let findings = crate::findings::closures(&m, &args.file)?;
     let b = buckle(&m, &Settings::default()).map_err(|e| format!("{}: {e}", args.file.display()))?;
-    Ok(json!({ "load_factor": b.load_factor, "mode": b.mode }))
+    let mut v = json!({ "load_factor": b.load_factor, "mode": b.mode });
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
+    Ok(v)
 }
 
 #[derive(Debug, Args)]

@@ -946,7 +946,10 @@ impl Mechanism {
         }
         let crossings =
             flexure::mechanism::findings::crossings(m, &s.q).into_iter().map(|c| (None, c)).collect::<Vec<_>>();
-        out.set_item("findings", findings::report(py, "Mechanism.solve", &open, &crossings, 2)?)?;
+        let listed = findings::report(py, "Mechanism.solve", &open, &crossings, 2)?;
+        if !listed.is_empty() {
+            out.set_item("findings", listed)?;
+        }
         if let Some(limit) = s.limit {
             // A snap-through: the stable answer beyond a limit load, which the caller must know of.
             out.set_item("limit_fraction", limit)?;

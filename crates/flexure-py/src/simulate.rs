@@ -72,6 +72,8 @@ pub fn motion<'py>(
     out.set_item("rejected", run.trajectory.rejected)?;
     out.set_item("violation", run.trajectory.violation)?;
     out.set_item("energy", Array1::from_vec(run.trajectory.energy).into_pyarray(py))?;
-    out.set_item("findings", findings)?;
+    if !findings.is_empty() {
+        out.set_item("findings", findings)?;
+    }
     Ok(out)
 }
