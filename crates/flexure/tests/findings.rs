@@ -240,6 +240,7 @@ fn a_simulation_that_crosses_reports_it_at_its_samples() {
     assert!(!found.is_empty(), "the bob never crossed the post");
     let (post, bob) = (m.joints.iter().position(|j| j.name == "post").unwrap(), m.body("bob").unwrap());
     let pivot = m.joints.iter().find(|j| j.name == "pivot").unwrap().offset;
+    let mut counted = [0, 0];
     for k in 0..run.time.len() {
         let theta = run.q(k)[pivot];
         let here = found.iter().find(|f| f.0 == k);
@@ -247,9 +248,17 @@ fn a_simulation_that_crosses_reports_it_at_its_samples() {
         // Away from the window's edges (1e-3 rad), the geometry decides.
         let inside = theta > -75.52f64.to_radians() + 1e-3 && theta < -21.80f64.to_radians() - 1e-3;
         let outside = theta < -75.52f64.to_radians() - 1e-3 || theta > -21.80f64.to_radians() + 1e-3;
-        assert!(!(inside && !crosses) && !(outside && crosses), "t = {}: θ = {theta}: {here:?}", run.time[k]);
+        counted[usize::from(outside)] += usize::from(inside || outside);
+        if inside {
+            assert!(crosses, "t = {}: θ = {theta} inside the window, no crossing: {here:?}", run.time[k]);
+        }
+        if outside {
+            assert!(!crosses, "t = {}: θ = {theta} outside the window: {here:?}", run.time[k]);
+        }
     }
     assert!(found.iter().all(|f| f.0 > 0), "level at t = 0, it does not cross");
+    // Samples on both sides of the window's edges were checked.
+    assert!(counted[0] >= 3 && counted[1] >= 3, "{counted:?}");
 }
 
 /// A solved shape that crosses nothing, and the static answers of every
