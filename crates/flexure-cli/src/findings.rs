@@ -75,10 +75,17 @@ pub fn shape(m: &Mechanism, q: &[f64], file: &Path) -> Vec<Value> {
 }
 
 /// The crossings at each of a series of shapes, `(value, q)` with the
-/// value named `what` (a swept load, or `t` in s): one warning per pair of
-/// parts, at the first value where they cross, saying at how many; each
+/// value named `what` (a swept load, or `t (s)`) and the shapes called
+/// `shapes_are` ("swept values", "samples"): one warning per pair of parts,
+/// at the first value where they cross, saying at how many more; each
 /// shape's crossings listed with its value under `key`.
-pub fn along(m: &Mechanism, shapes: &[(f64, &[f64])], what: &str, key: &str, file: &Path) -> Vec<Value> {
+pub fn along(
+    m: &Mechanism,
+    shapes: &[(f64, &[f64])],
+    (what, shapes_are): (&str, &str),
+    key: &str,
+    file: &Path,
+) -> Vec<Value> {
     let found = crossings_along(m, shapes.iter().map(|s| s.1));
     let mut told: Vec<(&[String; 2], usize)> = Vec::new();
     for (_, cs) in &found {
@@ -96,8 +103,7 @@ pub fn along(m: &Mechanism, shapes: &[(f64, &[f64])], what: &str, key: &str, fil
             .expect("counted above");
         let others = match count - 1 {
             0 => String::new(),
-            1 => " and at 1 more of them".to_string(),
-            n => format!(" and at {n} more of them"),
+            n => format!(" and at {n} more of the {shapes_are}"),
         };
         warn(format!(
             "{}: at {what} = {}{others} (listed in `findings`): {}",

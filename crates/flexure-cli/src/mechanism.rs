@@ -248,7 +248,13 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
             let mut findings = crate::findings::closures(&m, &args.file)?;
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
             let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
-            findings.extend(crate::findings::along(&m, &shapes, &spec.parameter, "value", &args.file));
+            findings.extend(crate::findings::along(
+                &m,
+                &shapes,
+                (&spec.parameter, "swept values"),
+                "value",
+                &args.file,
+            ));
             let compliance_at = body.zip(args.at);
             let rows: Vec<Value> = out
                 .rows

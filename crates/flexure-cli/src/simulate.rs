@@ -133,7 +133,7 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     let mut v = motion_json(&m, &run);
     let mut findings = crate::findings::closures(&m, &args.file)?;
     let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
-    findings.extend(crate::findings::along(&m, &samples, "t (s)", "time", &args.file));
+    findings.extend(crate::findings::along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
     if !findings.is_empty() {
         v["findings"] = json!(findings);
     }

@@ -230,7 +230,8 @@ pub struct Crossing {
 impl Crossing {
     /// The finding in words.
     pub fn message(&self) -> String {
-        let along = |k: usize| self.s[k].map(|s| format!(" ({s:.6e} m along {})", self.names[k]));
+        let along: Vec<String> =
+            (0..2).filter_map(|k| self.s[k].map(|s| format!("{s:.6e} m along {}", self.names[k]))).collect();
         let mut where_ = format!("at ({:.6e}, {:.6e}) m", self.at[0], self.at[1]);
         if self.a == self.b {
             if let (Some(s0), Some(s1)) = (self.s[0], self.s[1]) {
@@ -241,10 +242,8 @@ impl Crossing {
                 self.names[0]
             );
         }
-        for k in 0..2 {
-            if let Some(a) = along(k) {
-                where_ += &a;
-            }
+        if !along.is_empty() {
+            where_ += &format!(" ({})", along.join(", "));
         }
         let more = if self.contacts > 1 { format!(", {} contacts in all", self.contacts) } else { String::new() };
         format!(
