@@ -24,12 +24,16 @@ fn closure_json(c: &OpenClosure) -> Value {
         "closure": c.what,
         "place": c.place,
         "gap_m": c.gap,
-        "preload_force_n": c.force,
         "preload": c.preload,
         "message": c.message(),
     });
-    if let (Some(turn), Some(moment)) = (c.turn, c.moment) {
+    if let Some(turn) = c.turn {
         v["gap_rad"] = json!(turn);
+    }
+    if let Some(force) = c.force {
+        v["preload_force_n"] = json!(force);
+    }
+    if let Some(moment) = c.moment {
         v["preload_moment_n_m"] = json!(moment);
     }
     v

@@ -41,7 +41,7 @@
 use super::kinematics::{Frames, frames};
 use super::statics::{Settings, assemble_unloaded};
 use super::{Closure, JointKind, Mechanism};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::kinematics::backbone;
 
 /// A closure meets at rest when its gap is at most this: relative to the
@@ -87,9 +87,12 @@ pub struct OpenClosure {
     /// A weld's angle between its two frames at rest (rad, in $(-\pi, \pi]$,
     /// frame `a`'s angle minus frame `b`'s); `None` for a pin.
     pub turn: Option<f64>,
-    /// The magnitude of the force it carries when assembled with no load (N).
-    pub force: f64,
-    /// A weld's moment when assembled with no load (N·m); `None` for a pin.
+    /// The magnitude of the force it carries when assembled with no load
+    /// (N); `None` if the unloaded mechanism cannot be assembled (from rest,
+    /// by Newton: then every solve of it fails, saying so).
+    pub force: Option<f64>,
+    /// A weld's moment when assembled with no load (N·m); `None` for a pin,
+    /// or if the unloaded mechanism cannot be assembled.
     pub moment: Option<f64>,
     /// Whether the file says `preload = true`.
     pub preload: bool,
@@ -107,12 +110,13 @@ impl OpenClosure {
             Some(t) => format!("{:.6e} m and {t:.6} rad", self.gap),
             None => format!("{:.6e} m", self.gap),
         };
-        let preload = match self.moment {
-            Some(moment) => format!("{:.6e} N and {moment:.6e} N·m", self.force),
-            None => format!("{:.6e} N", self.force),
+        let preload = match (self.force, self.moment) {
+            (Some(force), Some(moment)) => format!("with no load it carries {force:.6e} N and {moment:.6e} N·m"),
+            (Some(force), None) => format!("with no load it carries {force:.6e} N"),
+            (None, _) => "the unloaded mechanism cannot be assembled, so how much is not known".to_string(),
         };
         let what = format!(
-            "{}: {} is open at rest by {gap}; closing it preloads the mechanism: with no load it carries {preload}",
+            "{}: {} is open at rest by {gap}; closing it preloads the mechanism: {preload}",
             self.place, self.what
         );
         if self.preload {
@@ -153,8 +157,10 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
 
 /// The closures of `m` that do not meet at rest (see the module docs),
 /// each with the preload that closes it: the unloaded mechanism is
-/// assembled (with `settings`) only if one is open. An error only if that
-/// assembly fails, as every solve of `m` would.
+/// assembled (with `settings`) only if one is open. If that assembly
+/// fails, as every static solve of `m` then does, the preload is `None`
+/// (a simulation from an `[initial]` state may still run); an error only
+/// if it is interrupted.
 pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
     let length = m.size();
     let open: Vec<(usize, (f64, Option<f64>))> = rest_gaps(m)
@@ -165,7 +171,11 @@ pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosu
     if open.is_empty() {
         return Ok(Vec::new());
     }
-    let unloaded = assemble_unloaded(m, settings)?;
+    let unloaded = match assemble_unloaded(m, settings) {
+        Ok(s) => Some(s),
+        Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
+        Err(e) => return Err(e),
+    };
     let mut rows = Vec::with_capacity(m.closures.len());
     let mut row = 0;
     for c in &m.closures {
@@ -175,15 +185,15 @@ pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosu
     Ok(open
         .into_iter()
         .map(|(i, (gap, turn))| {
-            let mu = &unloaded.multipliers[rows[i]..rows[i] + m.closures[i].equations()];
+            let mu = unloaded.as_ref().map(|s| &s.multipliers[rows[i]..rows[i] + m.closures[i].equations()]);
             OpenClosure {
                 closure: i,
                 what: closure_name(m, i),
                 place: m.closure_place(i).to_string(),
                 gap,
                 turn,
-                force: mu[0].hypot(mu[1]),
-                moment: turn.map(|_| mu[2].abs()),
+                force: mu.map(|mu| mu[0].hypot(mu[1])),
+                moment: mu.zip(turn).map(|(mu, _)| mu[2].abs()),
                 preload: m.closure_preload(i),
             }
         })
