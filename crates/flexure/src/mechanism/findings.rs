@@ -24,7 +24,7 @@
 //! $V = \sum_i\lvert\alpha_i\rvert$ (each angle shape's slope is a shifted
 //! Legendre polynomial, at most 1 in magnitude), so with
 //! $\lceil V/\theta\rceil$ chords or more each chord turns by at most
-//! $\theta$ = [`CHORD_TURN`] and stays within $h\theta/4$ of its arc, $h$ its
+//! $\theta$ = [`CHORD_TURN`] and stays within $h\theta/2$ of its arc, $h$ its
 //! length (at least [`MIN_CHORDS`] chords, at most [`MAX_CHORDS`]): only a
 //! crossing shallower than that is missed. Two segments cross when they
 //! share a point (within [`TOUCH_TOLERANCE`] × the mechanism's size), a
