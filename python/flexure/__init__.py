@@ -33,10 +33,28 @@ from pathlib import Path
 from typing import Optional, Tuple, Union
 
 from . import exact
-from ._flexure import AccuracyWarning, ConvergenceError, Flexure, StabilityWarning, YieldWarning
+from ._flexure import (
+    AccuracyWarning,
+    ConvergenceError,
+    Flexure,
+    IntersectionWarning,
+    PreloadWarning,
+    StabilityWarning,
+    YieldWarning,
+)
 from ._flexure import Mechanism as _Mechanism
 
-__all__ = ["Flexure", "Mechanism", "ConvergenceError", "StabilityWarning", "AccuracyWarning", "YieldWarning", "exact"]
+__all__ = [
+    "Flexure",
+    "Mechanism",
+    "ConvergenceError",
+    "StabilityWarning",
+    "AccuracyWarning",
+    "YieldWarning",
+    "PreloadWarning",
+    "IntersectionWarning",
+    "exact",
+]
 
 
 class Mechanism:
@@ -106,6 +124,9 @@ class Mechanism:
         directions with neither mass nor damping (massless flexures) then start on
         their equilibrium under the loads at t = 0, which time[0] records.
         `tolerance` is the relative and absolute tolerance of each step's error.
+        findings (left out when empty) lists what `solve` lists: closures open at
+        rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
+        once per pair of parts; each sample's crossing listed with its time).
         A duration, every or tolerance not above zero raises ValueError naming it; an
         integration that stalls raises ConvergenceError saying where; Ctrl-C stops it
         with KeyboardInterrupt. Runs without the GIL."""
@@ -133,7 +154,15 @@ class Mechanism:
         curvature_max {max (1/m), at}; safety_factor for one with `yield_strength`
         (left out while it is unstressed; below 1 it warns YieldWarning naming the
         joint and the yield strength); shape, a structured array as `Flexure.shape`
-        returns, for one with `shape = K`."""
+        returns, for one with `shape = K`.
+
+        findings (left out when empty, as in `flexure solve --json`): a list of
+        dicts (kind, severity, message, ...). A weld or pin open
+        at rest (kind "open_closure": gap_m, gap_rad for a weld, and the preload,
+        preload_force_n and preload_moment_n_m, that it carries with no load) warns
+        PreloadWarning, unless the file says `preload = true` in it (severity
+        "note", no warning). Two parts that cross in the answer (kind "crossing":
+        parts, at, s_a and s_b along flexures, contacts) warn IntersectionWarning."""
         try:
             return self._inner.solve(accuracy)
         except (ValueError, ConvergenceError) as e:

@@ -18,6 +18,12 @@ class AccuracyWarning(UserWarning):
 class YieldWarning(UserWarning):
     """A flexure's peak bending stress exceeds its yield strength: the safety factor is below 1."""
 
+class PreloadWarning(UserWarning):
+    """A weld or pin of a mechanism is open at rest: closing it preloads the mechanism."""
+
+class IntersectionWarning(UserWarning):
+    """Two parts of a solved mechanism cross: the model has no contact."""
+
 class _Peak(TypedDict):
     """The largest value of a quantity along the flexure (Pa for stress, 1/m for curvature) and where."""
     max: float

@@ -9,6 +9,7 @@
 mod analyses;
 mod batch;
 mod figures;
+mod findings;
 mod joint;
 mod mechanism;
 mod modes;
@@ -86,6 +87,7 @@ where
     T: Into<OsString> + Clone,
 {
     options::take_warnings();
+    options::take_notes();
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -109,6 +111,9 @@ where
     // Warnings raised while answering (e.g. by an --input file's cells).
     for w in options::take_warnings() {
         let _ = writeln!(stderr, "warning: {w}");
+    }
+    for n in options::take_notes() {
+        let _ = writeln!(stderr, "note: {n}");
     }
     match answer {
         Ok(answer) => emit(answer, cli.json, stdout, stderr),

@@ -223,9 +223,10 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
     ))
 }
 
-/// The checks `solve` makes of one solution, shared by `draw`: each flexure
-/// joint's estimate (a warning per flagged joint), its stress (a warning past
-/// its yield strength), a snap-through on the way, and an unstable answer.
+/// The checks `solve` makes of one solution, shared by `draw`: closures
+/// open at rest and parts that cross (`findings`), each flexure joint's
+/// estimate (a warning per flagged joint), its stress (a warning past its
+/// yield strength), a snap-through on the way, and an unstable answer.
 fn put_solution_checks(
     v: &mut Value,
     m: &Mechanism,
@@ -234,6 +235,11 @@ fn put_solution_checks(
     target: &Accuracy,
     file: &Path,
 ) -> Result<(), String> {
+    let mut findings = crate::findings::closures(m, file)?;
+    findings.extend(crate::findings::shape(m, &s.q, file));
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
     put_joint_estimates(v, m, s, target, file)?;
     put_flexure_stress(v, m, s, reports, file);
     if let Some(limit) = s.limit {
@@ -254,9 +260,10 @@ fn put_solution_checks(
 }
 
 /// The checks `solve --sweep` makes of a sweep, shared by `draw --sweep`:
-/// where stability is lost, the rows whose estimate is flagged, the first
-/// row past each yield strength, and a sweep that stopped (`stopped`, which
-/// makes the command exit 2 after printing its rows).
+/// closures open at rest and rows whose parts cross (`findings`), where
+/// stability is lost, the rows whose estimate is flagged, the first row past
+/// each yield strength, and a sweep that stopped (`stopped`, which makes the
+/// command exit 2 after printing its rows).
 fn put_sweep_checks(
     v: &mut Value,
     m: &Mechanism,
@@ -266,6 +273,12 @@ fn put_sweep_checks(
     (parameter, values): (&str, &[f64]),
 ) -> Result<(), String> {
     let err = |e: flexure::Error| format!("{}: {e}", file.display());
+    let mut findings = crate::findings::closures(m, file)?;
+    let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
+    findings.extend(crate::findings::along(m, &shapes, (parameter, "swept values"), "value", file));
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
     if let Some(l) = &out.stability_limit {
         v["stability_limit"] = limit_json(l);
     }
@@ -368,8 +381,14 @@ pub struct BuckleArgs {
 /// Linear buckling factor on all loads, and the mode.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
+    // Buckling about a preloaded assembly: the preload is told.
+    let findings = crate::findings::closures(&m, &args.file)?;
     let b = buckle(&m, &Settings::default()).map_err(|e| format!("{}: {e}", args.file.display()))?;
-    Ok(json!({ "load_factor": b.load_factor, "mode": b.mode }))
+    let mut v = json!({ "load_factor": b.load_factor, "mode": b.mode });
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
+    Ok(v)
 }
 
 #[derive(Debug, Args)]
@@ -442,7 +461,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded, &marks);
     crate::figures::write(&args.out, &figure)?;
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
-    for key in ["flagged", "limit_fraction", "stability_limit", "stopped"] {
+    for key in ["findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {
         if let Some(x) = checks.get(key) {
             v[key] = x.clone();
         }
@@ -598,30 +617,10 @@ mod drawing {
         format!("{parameter} = {} {}", short(value), unit(parameter))
     }
 
-    /// Every point attached to body `b`, in its frame: its origin (where
-    /// its joint holds it), the roots of the joints it carries, tendon via
-    /// points, load points, closure points and its centre of mass.
+    /// Every point attached to body `b`, in its frame ([`Mechanism::attachments`]:
+    /// the library's crossing test takes the same points as the link).
     pub(super) fn attachments(m: &Mechanism, b: usize) -> Vec<[f64; 2]> {
-        let mut pts = Vec::new();
-        if b != 0 {
-            pts.push([0.0, 0.0]);
-        }
-        pts.extend(m.joints.iter().filter(|j| j.parent == b).map(|j| [j.origin.x, j.origin.y]));
-        pts.extend(m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
-        pts.extend(m.forces.iter().filter(|f| f.body == b).map(|f| f.at));
-        for c in &m.closures {
-            let (a, ra, other, rb) = match c {
-                Closure::Weld { a, a_origin, b, b_origin } => {
-                    (*a, [a_origin.x, a_origin.y], *b, [b_origin.x, b_origin.y])
-                }
-                Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
-            };
-            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
-        }
-        if m.bodies[b].mass > 0.0 {
-            pts.push(m.bodies[b].com);
-        }
-        pts
+        m.attachments(b)
     }
 
     /// The convex hull, counter-clockwise (Andrew's monotone chain).

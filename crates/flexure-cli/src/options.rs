@@ -134,6 +134,21 @@ pub fn warn(message: String) {
     WARNINGS.with(|w| w.borrow_mut().push(message));
 }
 
+thread_local! {
+    /// Notes (information, not warnings) for [`crate::run`] to write on stderr.
+    static NOTES: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Queues a note: something the input says is meant, told on stderr as `note: …`.
+pub fn note(message: String) {
+    NOTES.with(|w| w.borrow_mut().push(message));
+}
+
+/// The queued notes, oldest first; the queue is left empty.
+pub fn take_notes() -> Vec<String> {
+    NOTES.with(|w| std::mem::take(&mut *w.borrow_mut()))
+}
+
 /// The queued warnings, oldest first; the queue is left empty.
 pub fn take_warnings() -> Vec<String> {
     WARNINGS.with(|w| std::mem::take(&mut *w.borrow_mut()))

@@ -131,6 +131,12 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
+    let mut findings = crate::findings::closures(&m, &args.file)?;
+    let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
+    findings.extend(crate::findings::along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
     if let Some(path) = &args.out {
         std::fs::write(path, csv(&m, &run)).map_err(|e| format!("writing {}: {e}", path.display()))?;
         v["out"] = json!(path.display().to_string());

@@ -13,6 +13,7 @@ mod cli;
 mod estimate;
 mod examples;
 mod figures;
+mod findings;
 mod fuzz;
 mod joint;
 mod mechanism;

@@ -27,6 +27,7 @@ use std::time::{Duration, Instant};
 
 mod coordinates;
 mod exact;
+mod findings;
 mod modes;
 mod section;
 mod simulate;
@@ -59,6 +60,20 @@ create_exception!(
     YieldWarning,
     PyUserWarning,
     "A flexure's peak bending stress exceeds its yield strength: the safety factor is below 1."
+);
+
+create_exception!(
+    _flexure,
+    PreloadWarning,
+    PyUserWarning,
+    "A weld or pin of a mechanism is open at rest: closing it preloads the mechanism before any load acts (say `preload = true` in it if that is meant)."
+);
+
+create_exception!(
+    _flexure,
+    IntersectionWarning,
+    PyUserWarning,
+    "Two parts of a solved mechanism (flexures, links) cross: the model has no contact, so the shape passes through itself."
 );
 
 /// Warns `text` as `category` (`stacklevel` 1: the Python line that called the binding).
@@ -855,7 +870,8 @@ impl Mechanism {
     fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let target = self::accuracy(accuracy)?;
         let m = &self.inner;
-        let (s, estimated) = interruptible(py, || {
+        let (s, estimated, open) = interruptible(py, || {
+            let open = flexure::mechanism::findings::open_closures(m, &MechanismSettings::default())?;
             let s = solve(m, &MechanismSettings::default())?;
             // Each flexure joint carries only the load at its tip: its error is that of a deflect.
             let mut estimated = Vec::new();
@@ -865,7 +881,7 @@ impl Mechanism {
                     estimated.push((j, f.as_ref(), interrupted_or(estimate::joint_error(f, alpha, &target))?));
                 }
             }
-            Ok((s, estimated))
+            Ok((s, estimated, open))
         })?;
         let frames = body_frames(m, &s);
         let bodies = PyDict::new(py);
@@ -928,6 +944,12 @@ impl Mechanism {
                 out.set_item(key, map)?;
             }
         }
+        let crossings =
+            flexure::mechanism::findings::crossings(m, &s.q).into_iter().map(|c| (None, c)).collect::<Vec<_>>();
+        let listed = findings::report(py, "Mechanism.solve", &open, &crossings, 2)?;
+        if !listed.is_empty() {
+            out.set_item("findings", listed)?;
+        }
         if let Some(limit) = s.limit {
             // A snap-through: the stable answer beyond a limit load, which the caller must know of.
             out.set_item("limit_fraction", limit)?;
@@ -982,5 +1004,7 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;
     m.add("AccuracyWarning", m.py().get_type::<AccuracyWarning>())?;
     m.add("YieldWarning", m.py().get_type::<YieldWarning>())?;
+    m.add("PreloadWarning", m.py().get_type::<PreloadWarning>())?;
+    m.add("IntersectionWarning", m.py().get_type::<IntersectionWarning>())?;
     Ok(())
 }

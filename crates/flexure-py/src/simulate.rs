@@ -35,7 +35,17 @@ pub fn motion<'py>(
         ..Default::default()
     };
     let settings = SimulationSettings { motion, ..Default::default() };
-    let run = crate::interruptible(py, || simulate(m, &settings, start))?;
+    let (run, open) = crate::interruptible(py, || {
+        let open = flexure::mechanism::findings::open_closures(m, &settings.equilibrium)?;
+        Ok((simulate(m, &settings, start)?, open))
+    })?;
+    let crossings: Vec<(Option<f64>, _)> =
+        flexure::mechanism::findings::crossings_along(m, (0..run.time.len()).map(|k| run.q(k)))
+            .into_iter()
+            .flat_map(|(k, cs)| cs.into_iter().map(move |c| (Some(k), c)))
+            .map(|(k, c)| (k.map(|k| run.time[k]), c))
+            .collect();
+    let findings = crate::findings::report(py, "Mechanism.simulate", &open, &crossings, 2)?;
     let n = run.time.len();
     let bodies = PyDict::new(py);
     for b in &run.bodies {
@@ -62,5 +72,8 @@ pub fn motion<'py>(
     out.set_item("rejected", run.trajectory.rejected)?;
     out.set_item("violation", run.trajectory.violation)?;
     out.set_item("energy", Array1::from_vec(run.trajectory.energy).into_pyarray(py))?;
+    if !findings.is_empty() {
+        out.set_item("findings", findings)?;
+    }
     Ok(out)
 }

@@ -24,6 +24,7 @@ mod elastica;
 mod elastica_path;
 mod energy;
 mod estimate;
+mod findings;
 mod format;
 mod kinematics;
 mod mechanism;

@@ -149,6 +149,7 @@ struct WeldToml {
     a_origin: Option<Spanned<[f64; 3]>>,
     b: Spanned<String>,
     b_origin: Option<Spanned<[f64; 3]>>,
+    preload: Option<Spanned<bool>>,
 }
 
 #[derive(Deserialize)]
@@ -158,6 +159,7 @@ struct PinToml {
     a_at: Option<Spanned<[f64; 2]>>,
     b: Spanned<String>,
     b_at: Option<Spanned<[f64; 2]>>,
+    preload: Option<Spanned<bool>>,
 }
 
 /// "line L, column C" of a byte offset.
@@ -503,6 +505,13 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         .chain(file.pin.iter().map(|p| &p.a))
         .map(|a| place(text, a.span().start))
         .collect();
+    let closure_preloads = file
+        .weld
+        .iter()
+        .map(|w| &w.preload)
+        .chain(file.pin.iter().map(|p| &p.preload))
+        .map(|p| p.as_ref().is_some_and(|p| *p.get_ref()))
+        .collect();
     let mut m = Mechanism {
         bodies,
         joints,
@@ -513,6 +522,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         parent_joint,
         dof: offset,
         closure_places,
+        closure_preloads,
         schedules: Vec::new(),
         initial: Vec::new(),
         initial_velocity: Vec::new(),

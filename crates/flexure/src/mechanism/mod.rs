@@ -9,6 +9,7 @@
 
 pub mod buckling;
 pub mod file;
+pub mod findings;
 mod indeterminate;
 pub mod joints;
 pub mod kinematics;
@@ -216,6 +217,8 @@ pub struct Mechanism {
     dof: usize,
     /// "line L, column C" of each closure in the file, for errors.
     closure_places: Vec<String>,
+    /// `preload = true` of each closure: its gap at rest is meant.
+    closure_preloads: Vec<bool>,
 }
 
 impl Mechanism {
@@ -289,6 +292,42 @@ impl Mechanism {
     /// Where closure `i` was given in the file ("line L, column C").
     pub fn closure_place(&self, i: usize) -> &str {
         self.closure_places.get(i).map_or("the file", String::as_str)
+    }
+
+    /// Whether closure `i` says `preload = true`: that it is meant to be
+    /// open at rest, so that closing it preloads the mechanism
+    /// ([`findings::open_closures`] then notes its gap instead of warning).
+    pub fn closure_preload(&self, i: usize) -> bool {
+        self.closure_preloads.get(i).copied().unwrap_or(false)
+    }
+
+    /// Every point attached to body `b`, in its frame: its origin (where
+    /// its joint holds it; not for the ground), the roots of the joints it
+    /// carries, tendon via points, load points, closure points and, if it
+    /// has a mass, its centre of mass. `flexure draw` draws a rigid link as
+    /// their hull, and [`findings::crossings`] takes that hull's edges as
+    /// the link's segments.
+    pub fn attachments(&self, b: usize) -> Vec<[f64; 2]> {
+        let mut pts = Vec::new();
+        if b != 0 {
+            pts.push([0.0, 0.0]);
+        }
+        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| [j.origin.x, j.origin.y]));
+        pts.extend(self.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
+        pts.extend(self.forces.iter().filter(|f| f.body == b).map(|f| f.at));
+        for c in &self.closures {
+            let (a, ra, other, rb) = match c {
+                Closure::Weld { a, a_origin, b, b_origin } => {
+                    (*a, [a_origin.x, a_origin.y], *b, [b_origin.x, b_origin.y])
+                }
+                Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
+            };
+            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
+        }
+        if self.bodies[b].mass > 0.0 {
+            pts.push(self.bodies[b].com);
+        }
+        pts
     }
 
     /// Joints from the ground to `body`, root first.

@@ -1,0 +1,154 @@
+//! Findings on the command line (issue 20, items 3 and 4): a closure open
+//! at rest and parts that cross are told on stderr as `warning: …` (a
+//! closure with `preload = true` as `note: …`) and listed under `findings`.
+
+use crate::cli::run;
+use serde_json::Value;
+use std::path::Path;
+
+fn example(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(format!("{name}.toml")).display().to_string()
+}
+
+/// `text` written to `name` in `dir`, as a path.
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+fn parallelogram() -> String {
+    std::fs::read_to_string(example("parallelogram")).unwrap()
+}
+
+/// `args --json`: exit 0, the answer and stderr.
+fn answer(args: &[&str]) -> (Value, String) {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let (code, out, err) = run(&a);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    (serde_json::from_str(&out).unwrap(), err)
+}
+
+/// The half-turn weld (b_origin's angle π): a warning naming the weld and
+/// its place, with the gap π rad, and the finding in the JSON answer.
+#[test]
+fn a_half_turn_weld_warns_on_stderr_and_in_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = parallelogram().replace("b_origin = [0.0, 0.0, 0.0]", "b_origin = [0.0, 0.0, 3.141592653589793]");
+    let path = write(dir.path(), "half.toml", &text);
+    let (v, err) = answer(&["solve", &path]);
+    let line = err.lines().find(|l| l.contains("is open at rest")).unwrap_or_else(|| panic!("{err}"));
+    assert!(
+        line.starts_with(&format!("warning: {path}: line 26, column 5: weld of \"stage\" and \"b_tip\"")),
+        "{line}"
+    );
+    assert!(line.contains("3.141593 rad") && line.contains("N·m"), "{line}");
+    let f = &v["findings"][0];
+    assert_eq!((f["kind"].as_str(), f["severity"].as_str()), (Some("open_closure"), Some("warning")), "{v}");
+    assert!((f["gap_rad"].as_f64().unwrap().abs() - std::f64::consts::PI).abs() < 1e-12, "{f}");
+    // With preload = true: a note, and no warning of it.
+    let meant = text.replace("b_origin = [0.0, 0.0, 3.1", "preload = true\nb_origin = [0.0, 0.0, 3.1");
+    let path = write(dir.path(), "meant.toml", &meant);
+    let (v, err) = answer(&["solve", &path]);
+    assert!(err.lines().any(|l| l.starts_with("note: ") && l.ends_with("(preload = true)")), "{err}");
+    assert!(!err.lines().any(|l| l.starts_with("warning: ") && l.contains("open at rest")), "{err}");
+    assert_eq!(v["findings"][0]["severity"], "note");
+}
+
+/// The parallelogram at order 10 swept past its buckling load (16 N) to
+/// −100 N: from −20 N on, leg "right" passes through the stage; one warning
+/// per pair of parts, each crossing listed with its row's value.
+#[test]
+fn the_parallelogram_sweep_past_buckling_warns_of_a_crossing() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = parallelogram().replace("ei = 2.0e-3\n", "ei = 2.0e-3\norder = 10\n");
+    let path = write(dir.path(), "p10.toml", &text);
+    let (v, err) = answer(&["solve", &path, "--sweep", "force.push.fy=0:-100:11"]);
+    let line = err.lines().find(|l| l.contains("crosses link \"stage\"")).unwrap_or_else(|| panic!("{err}"));
+    assert!(line.starts_with(&format!("warning: {path}: at force.push.fy = -20 ")), "{line}");
+    assert!(line.contains("flexure \"right\" crosses link \"stage\" at ("), "{line}");
+    let listed: Vec<f64> = v["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["parts"] == serde_json::json!(["flexure \"right\"", "link \"stage\""]))
+        .map(|f| f["value"].as_f64().unwrap())
+        .collect();
+    assert_eq!(listed.first(), Some(&-20.0), "{v}");
+    assert!(listed.iter().all(|x| *x <= -20.0), "{listed:?}");
+}
+
+/// The examples at their own loads (`solve`) warn of nothing; the four-bar
+/// notes its pin, open 10 mm at rest with `preload = true`.
+#[test]
+fn the_examples_warn_of_nothing() {
+    for name in [
+        "finger",
+        "finger_dynamics",
+        "four_bar",
+        "four_leg_stage",
+        "mixed_chain",
+        "paper_tendon",
+        "parallelogram",
+        "tapered_finger",
+    ] {
+        let path = example(name);
+        let (v, err) = answer(&["solve", &path]);
+        assert!(!err.contains("warning:"), "{name}: {err}");
+        let findings = v.get("findings").and_then(Value::as_array).cloned().unwrap_or_default();
+        if name == "four_bar" {
+            assert_eq!(findings.len(), 1, "{v}");
+            assert_eq!(findings[0]["severity"], "note");
+            assert!((findings[0]["gap_m"].as_f64().unwrap() - 0.01).abs() < 1e-12, "{v}");
+            assert!(err.starts_with("note: ") && err.contains("pin of \"coupler\" and \"output\""), "{err}");
+        } else {
+            assert!(findings.is_empty() && err.is_empty(), "{name}: {v}: {err}");
+        }
+    }
+}
+
+/// A pendulum let go level swings through a flexure post beside its pivot:
+/// `simulate` warns of it at the first sample where the bob's link meets the
+/// post, and lists every such sample with its time; t = 0 is not one.
+#[test]
+fn a_simulation_that_crosses_warns_at_a_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"
+gravity = [0.0, -9.81]
+[[joint]]
+name = "pivot"
+kind = "revolute"
+parent = "ground"
+child = "bob"
+[[body]]
+name = "bob"
+mass = 0.1
+com = [0.2, 0.0]
+[[joint]]
+name = "post"
+kind = "flexure"
+parent = "ground"
+child = "post_tip"
+origin = [0.05, -0.3, 1.5707963267948966]
+length = 0.28
+ei = 1.0
+[initial]
+pivot = 0.0
+post = [0.0, 0.0, 0.0]
+"#;
+    let path = write(dir.path(), "pendulum.toml", text);
+    let (v, err) = answer(&["simulate", &path, "--duration", "0.3", "--every", "0.01"]);
+    let line =
+        err.lines().find(|l| l.contains("flexure \"post\" crosses link \"bob\"")).unwrap_or_else(|| panic!("{err}"));
+    assert!(line.starts_with(&format!("warning: {path}: at t (s) = ")), "{line}");
+    let times: Vec<f64> = v["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["parts"][0] == "flexure \"post\"" && f["parts"][1] == "link \"bob\"")
+        .map(|f| f["time"].as_f64().unwrap())
+        .collect();
+    assert!(!times.is_empty() && times[0] > 0.0, "{times:?}");
+    assert!(line.contains(&format!("t (s) = {} ", times[0])), "{line}");
+}

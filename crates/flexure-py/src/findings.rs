@@ -1,0 +1,70 @@
+//! The library's findings (`flexure::mechanism::findings`) in Python: a
+//! list of dicts under `findings`, each warning raised as `PreloadWarning`
+//! (a closure open at rest) or `IntersectionWarning` (parts that cross);
+//! a closure with `preload = true` is listed as a note, without a warning.
+
+use crate::{IntersectionWarning, PreloadWarning, warn};
+use flexure::mechanism::findings::{Crossing, OpenClosure, Severity};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+fn closure_dict<'py>(py: Python<'py>, c: &OpenClosure) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", "open_closure")?;
+    d.set_item("severity", if c.severity() == Severity::Note { "note" } else { "warning" })?;
+    d.set_item("closure", &c.what)?;
+    d.set_item("place", &c.place)?;
+    d.set_item("gap_m", c.gap)?;
+    d.set_item("gap_rad", c.turn)?;
+    d.set_item("preload_force_n", c.force)?;
+    d.set_item("preload_moment_n_m", c.moment)?;
+    d.set_item("preload", c.preload)?;
+    d.set_item("message", c.message())?;
+    Ok(d)
+}
+
+fn crossing_dict<'py>(py: Python<'py>, c: &Crossing) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", "crossing")?;
+    d.set_item("severity", "warning")?;
+    d.set_item("parts", (c.names[0].as_str(), c.names[1].as_str()))?;
+    d.set_item("at", (c.at[0], c.at[1]))?;
+    d.set_item("s_a", c.s[0])?;
+    d.set_item("s_b", c.s[1])?;
+    d.set_item("contacts", c.contacts)?;
+    d.set_item("message", c.message())?;
+    Ok(d)
+}
+
+/// The open closures and crossings as a list, each warning raised
+/// (`what` names the call, `stacklevel` as [`warn`]); a crossing found at
+/// a sample of a series carries its `time`, warned once per pair of parts.
+pub fn report<'py>(
+    py: Python<'py>,
+    what: &str,
+    open: &[OpenClosure],
+    crossings: &[(Option<f64>, Crossing)],
+    stacklevel: i32,
+) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for c in open {
+        if c.severity() == Severity::Warning {
+            warn(py, &py.get_type::<PreloadWarning>(), format!("{what}: {}", c.message()), stacklevel)?;
+        }
+        list.append(closure_dict(py, c)?)?;
+    }
+    let mut told: Vec<&[String; 2]> = Vec::new();
+    for (time, c) in crossings {
+        if !told.contains(&&c.names) {
+            told.push(&c.names);
+            let when = time.map_or(String::new(), |t| format!(" (first at t = {t} s)"));
+            warn(py, &py.get_type::<IntersectionWarning>(), format!("{what}{when}: {}", c.message()), stacklevel)?;
+        }
+        let d = crossing_dict(py, c)?;
+        if let Some(t) = time {
+            d.set_item("time", t)?;
+        }
+        list.append(d)?;
+    }
+    Ok(list)
+}
