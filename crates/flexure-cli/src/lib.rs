@@ -8,6 +8,7 @@
 
 mod analyses;
 mod batch;
+mod eigen;
 mod figures;
 mod joint;
 mod mechanism;
