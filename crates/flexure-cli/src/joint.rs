@@ -359,7 +359,7 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
         &e,
         &target,
         &format!("buckling ({} tip)", tip.name()),
-        |_| format!("the critical load {} N", b.critical_load),
+        |_| format!("the critical load {:.6} N", b.critical_load),
         &crate::eigen::reference_of_joint(&e),
         &hint,
     );

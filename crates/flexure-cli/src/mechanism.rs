@@ -371,7 +371,7 @@ pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
         &e,
         &target,
         &format!("{}: buckle", args.file.display()),
-        |_| format!("the load factor {}", b.load_factor),
+        |_| format!("the load factor {:.6}", b.load_factor),
         &crate::eigen::reference_of_mechanism(&e, &flexures),
         hint,
     );
