@@ -398,7 +398,7 @@ impl ValueEstimate {
     ) -> Self {
         let relative: Vec<Option<f64>> =
             values.iter().enumerate().map(|(k, v)| reference.get(k).map(|r| ((v - r) / r).abs())).collect();
-        let flagged = relative.iter().any(|e| e.is_none_or(|e| !(e <= target.eigenvalue)));
+        let flagged = relative.iter().any(|&e| misses(e, target));
         Self { relative, reference, reference_stable, flagged, reference_orders }
     }
 
@@ -409,8 +409,14 @@ impl ValueEstimate {
 
     /// The values (by index, from 0) that miss `target` or have no estimate.
     pub fn missed(&self, target: &Accuracy) -> Vec<usize> {
-        (0..self.relative.len()).filter(|&k| self.relative[k].is_none_or(|e| !(e <= target.eigenvalue))).collect()
+        (0..self.relative.len()).filter(|&k| misses(self.relative[k], target)).collect()
     }
+}
+
+/// Whether a value's estimate `e` misses `target`: above it, not a number,
+/// or missing.
+fn misses(e: Option<f64>, target: &Accuracy) -> bool {
+    e.is_none_or(|e| e.is_nan() || e > target.eigenvalue)
 }
 
 /// The reference model for an eigenvalue answer of `flexure` about the

@@ -317,10 +317,10 @@ impl Mechanism {
         let mut m = self.clone();
         let mut offset = 0;
         for (j, spec) in m.joints.iter_mut().enumerate() {
-            if let JointKind::Flexure(f) = &spec.kind {
-                if let Some(g) = refine(j, f)? {
-                    spec.kind = JointKind::Flexure(Box::new(g));
-                }
+            if let JointKind::Flexure(f) = &spec.kind
+                && let Some(g) = refine(j, f)?
+            {
+                spec.kind = JointKind::Flexure(Box::new(g));
             }
             spec.offset = offset;
             offset += spec.kind.joint().dof();
