@@ -40,7 +40,10 @@ fn nonnegative(s: &str) -> Result<f64, String> {
     (welds, pins) are respected. Directions without inertia (a massless flexure's coordinates beyond \
     what its tip body moves) follow quasi-statically: they are condensed out, counted in \
     `quasi_static`, and never reported as infinite frequencies. Only finite modes are reported; \
-    shapes are normalized to vᵀMv = 1.")]
+    shapes are normalized to vᵀMv = 1. Each mode's estimated relative error, against the same \
+    analysis with every flexure at twice the order, is in error_estimate.omega; a mode above \
+    --accuracy is flagged with a warning, and --order auto (order = \"auto\" on a file's \
+    flexures) raises the order until every mode meets it.")]
 pub struct ModesArgs {
     /// Mechanism file (TOML). Without it: one flexure joint, from the options below.
     file: Option<PathBuf>,
