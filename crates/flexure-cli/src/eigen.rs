@@ -110,10 +110,10 @@ pub fn warn_missed(
         .map(|k| match e.relative[k] {
             Some(r) => format!("{}: estimated error {:.3} % (target {goal} %)", name(k), 100.0 * r),
             None if !e.reference_stable => format!(
-                "{}: no estimate: the reference model ({reference}) is unstable under these loads (it buckles below them, the model does not), so the model's frequencies are not to be trusted",
+                "{}: no estimate: the reference model is unstable under these loads (it buckles below them, the model does not), so the model's frequencies are not to be trusted",
                 name(k)
             ),
-            None => format!("{}: no estimate: the reference model ({reference}) resolves no such mode", name(k)),
+            None => format!("{}: no estimate: the reference model resolves no such mode", name(k)),
         })
         .collect();
     warn(format!("{what}: {} (against {reference}); {hint}", parts.join("; ")));
