@@ -420,7 +420,7 @@ fn misses(e: Option<f64>, target: &Accuracy) -> bool {
 }
 
 /// The reference model for an eigenvalue answer of `flexure` about the
-/// shape `alpha`: [`reference`] (order $\min(\max(2N, N + 3), 64)$), except
+/// shape `alpha`: [`reference()`] (order $\min(\max(2N, N + 3), 64)$), except
 /// at the cap $N = 64$, where more points alone would change a straight
 /// flexure's answer by nothing and report a false 0: there it is order 32
 /// (with the same rule for its points), whose change overstates the
@@ -498,7 +498,7 @@ pub fn buckling_auto(
 }
 
 /// The error of the frequencies `modes` of `flexure` (with the tip `body`)
-/// about its equilibrium under `load` ([`dynamics::modes`]): the same
+/// about its equilibrium under `load` ([`dynamics::modes()`]): the same
 /// analysis (equilibrium, loaded stiffness, mass) in the reference model,
 /// whose frequencies are paired with the model's by rank.
 ///
