@@ -171,7 +171,7 @@ class Mechanism:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
             raise
 
-    def modes(self, count: Optional[int] = None) -> dict:
+    def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """Vibration modes about the loaded equilibrium (the loads' stiffness included, so a
         frequency falls to zero at a buckling load; closures respected): a dict of omega
         (rad/s, ascending), frequency (Hz), shapes {joint: array (modes, joint coordinates),
@@ -181,9 +181,14 @@ class Mechanism:
         fewer are finite. Mass comes from the file's [[body]] mass and inertia and the
         flexures' density or mass_per_length: without any, ValueError naming mass. Past a
         buckling load, ConvergenceError; a loading path that snapped through warns
-        StabilityWarning and adds limit_fraction. Errors name the mechanism's file."""
+        StabilityWarning and adds limit_fraction. error_estimate holds each mode's estimated
+        relative error against the mechanism with every flexure refined (omega, NaN where the
+        reference pairs none; reference_omega; reference_order and reference_quadrature by
+        flexure joint; reference_stable; flagged); a mode that misses accuracy (a fraction,
+        default 0.01) warns AccuracyWarning. Flexures of order = "auto" in the file are raised
+        until every mode meets it. Errors name the mechanism's file."""
         try:
-            return self._inner.modes(count)
+            return self._inner.modes(count, accuracy)
         except (ValueError, ConvergenceError) as e:
             if self._source is not None and e.args and not str(e.args[0]).startswith("invalid count"):
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]

@@ -57,6 +57,10 @@ class _Modes(TypedDict):
     shapes: np.ndarray
     # Directions without inertia (a massless flexure's), condensed out as quasi-static.
     quasi_static: int
+    # Each mode's estimated relative error against the refined model: omega (NaN where the
+    # reference pairs none), reference_omega, reference_order, reference_quadrature,
+    # reference_stable, flagged.
+    error_estimate: dict
 
 class _Vibration(TypedDict):
     omega: np.ndarray
@@ -152,11 +156,14 @@ class Flexure:
         is not positive definite (an unstable equilibrium has no compliance)."""
     def rest_compliance(self) -> np.ndarray:
         """(3, 3) tip compliance of the unloaded flexure at its rest shape (Eqs. 35–36)."""
-    def buckling_load(self, tip: str = "free") -> float:
-        """Critical compressive tip load (N): tip is free, guided, pinned or clamped."""
+    def buckling_load(self, tip: str = "free", *, accuracy: Optional[float] = None) -> float:
+        """Critical compressive tip load (N): tip is free, guided, pinned or clamped. Its error
+        is estimated against the same load at a higher order: a miss of accuracy (a fraction of
+        the load, default 0.01) warns AccuracyWarning."""
     def modes(self, count: Optional[int] = None, *, tip_mass: Optional[float] = None,
               tip_inertia: Optional[float] = None, tip_com: Optional[Tuple[float, float]] = None,
-              moment: float = 0.0, fx: float = 0.0, fy: float = 0.0) -> _Modes:
+              moment: float = 0.0, fx: float = 0.0, fy: float = 0.0,
+              accuracy: Optional[float] = None) -> _Modes:
         """Vibration modes about the equilibrium under a tip load (loaded stiffness: a frequency
         falls to zero at a buckling load), with the flexure's density or mass_per_length and an
         optional tip body (tip_mass kg, tip_inertia kg*m^2 about its centre of mass, tip_com (x, y)
@@ -190,7 +197,7 @@ class Mechanism:
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
-    def modes(self, count: Optional[int] = None) -> dict:
+    def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
         quasi_static, and limit_fraction after a snap-through."""
 

@@ -340,13 +340,16 @@ pub struct BucklingArgs {
     /// closed form for a uniform one, shooting on the load for EI(s).
     #[arg(long)]
     exact: bool,
+    #[command(flatten)]
+    accuracy: crate::eigen::EigenAccuracyOptions,
 }
 
-/// Critical compressive tip load under a tip constraint.
+/// Critical compressive tip load under a tip constraint, with its error
+/// estimate (`--order auto`: at the lowest order that meets the target).
 pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
-    let f = args.flexure.build_fixed("buckling")?;
     let tip = TipConstraint::from(args.tip);
     if args.exact {
+        let f = args.flexure.build_fixed("buckling --exact")?;
         if f.rest().iter().any(|&k| k != 0.0) {
             return Err(Error::invalid(
                 "kappa",
@@ -361,6 +364,33 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
         };
         return Ok(json!({ "critical_load": p, "tip": tip.name() }));
     }
-    let b = buckling_load(&f, tip)?;
-    Ok(json!({ "critical_load": b.critical_load, "mode": b.mode.as_slice(), "tip": tip.name() }))
+    let target = args.accuracy.target();
+    let given = args.flexure.build()?;
+    let (f, b, e) = if args.flexure.auto() {
+        flexure::estimate::buckling_auto(&given, tip, &target)?
+    } else {
+        let b = buckling_load(&given, tip)?;
+        let e = flexure::estimate::buckling_error(&given, tip, &b, &target)?;
+        (given, b, e)
+    };
+    let mut answer = json!({ "critical_load": b.critical_load, "mode": b.mode.as_slice(), "tip": tip.name() });
+    if args.flexure.auto() {
+        answer["order"] = json!(f.order());
+        answer["quadrature"] = json!(f.quadrature_points());
+    }
+    crate::eigen::put(&mut answer, &e, &crate::eigen::Shape { key: "critical_load", one: true, flexures: &[] });
+    let hint = if !args.flexure.auto() {
+        "try --order auto".to_string()
+    } else {
+        format!("--order auto stopped at the cap, order {}: this is the best the model can do", f.order())
+    };
+    crate::eigen::warn_missed(
+        &e,
+        &target,
+        &format!("buckling ({} tip)", tip.name()),
+        |_| format!("the critical load {:.6} N", b.critical_load),
+        &crate::eigen::reference_of_joint(&e),
+        &hint,
+    );
+    Ok(answer)
 }

@@ -8,6 +8,7 @@
 
 mod analyses;
 mod batch;
+mod eigen;
 mod figures;
 mod findings;
 mod joint;
@@ -51,7 +52,7 @@ enum Command {
     Deflect(joint::DeflectArgs),
     /// Small-load tip compliance at the rest shape, order (φ, x, y).
     Compliance(joint::ComplianceArgs),
-    /// Critical compressive load under a tip constraint.
+    /// Critical compressive load under a tip constraint, with its error estimate.
     Buckling(joint::BucklingArgs),
     /// Minimum-energy shape reaching a tip pose (model, exact, or segment chain).
     Connect(analyses::ConnectArgs),
@@ -61,7 +62,7 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Equilibrium of a mechanism file: body poses, joint coordinates, energy, stability.
     Solve(mechanism::SolveArgs),
-    /// Linear buckling of a mechanism file: the factor on its loads, and the mode.
+    /// Linear buckling of a mechanism file: the factor on its loads, the mode, and its error estimate.
     Buckle(mechanism::BuckleArgs),
     /// Draw a mechanism's unloaded and loaded shapes as SVG.
     Draw(mechanism::DrawArgs),

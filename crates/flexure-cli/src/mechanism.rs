@@ -4,7 +4,6 @@ use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::number;
 use clap::Args;
 use flexure::estimate::{Accuracy, ErrorEstimate, joint_error};
-use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, StabilityLimit, Sweep, sweep};
@@ -376,19 +375,62 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
 pub struct BuckleArgs {
     /// Mechanism file (TOML).
     file: PathBuf,
+    #[command(flatten)]
+    accuracy: crate::eigen::EigenAccuracyOptions,
 }
 
-/// Linear buckling factor on all loads, and the mode.
+/// The flexure joints' names, in joint order (the order of the library's
+/// per-flexure lists, such as an estimate's reference orders).
+pub fn flexure_names(m: &Mechanism) -> Vec<String> {
+    m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_))).map(|j| j.name.clone()).collect()
+}
+
+/// {joint: order} of the flexure joints.
+pub fn flexure_orders(m: &Mechanism) -> Value {
+    Value::Object(
+        m.joints
+            .iter()
+            .filter_map(|j| match &j.kind {
+                JointKind::Flexure(f) => Some((j.name.clone(), json!(f.order()))),
+                _ => None,
+            })
+            .collect(),
+    )
+}
+
+/// Linear buckling factor on all loads, and the mode, with its error
+/// estimate; flexures of `order = "auto"` raised until it meets the target.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let m = load(&args.file)?;
     // Buckling about a preloaded assembly: the preload is told.
     let findings = crate::findings::closures(&m, &args.file)?;
-    let b = buckle(&m, &Settings::default()).map_err(|e| format!("{}: {e}", args.file.display()))?;
-    let mut v = json!({ "load_factor": b.load_factor, "mode": b.mode });
-    if !findings.is_empty() {
-        v["findings"] = json!(findings);
+    let target = args.accuracy.target();
+    let (m, b, e) = flexure::estimate::buckle_auto(&m, &Settings::default(), &target)
+        .map_err(|e| format!("{}: {e}", args.file.display()))?;
+    let mut answer = json!({ "load_factor": b.load_factor, "mode": b.mode });
+    let flexures = flexure_names(&m);
+    let auto = m.joints.iter().any(|j| j.auto_order);
+    if auto {
+        answer["order"] = flexure_orders(&m);
     }
-    Ok(v)
+    crate::eigen::put(&mut answer, &e, &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures });
+    let hint = if auto {
+        "the flexures of order = \"auto\" are at the cap of 64: give the others order = \"auto\" too"
+    } else {
+        "give the flexures order = \"auto\" (or a higher order) in the file"
+    };
+    crate::eigen::warn_missed(
+        &e,
+        &target,
+        &format!("{}: buckle", args.file.display()),
+        |_| format!("the load factor {:.6}", b.load_factor),
+        &crate::eigen::reference_of_mechanism(&e, &flexures),
+        hint,
+    );
+    if !findings.is_empty() {
+        answer["findings"] = json!(findings);
+    }
+    Ok(answer)
 }
 
 #[derive(Debug, Args)]

@@ -7,6 +7,7 @@ use crate::mechanism::point_arg;
 use crate::options::{FlexureOptions, count, number};
 use clap::Args;
 use flexure::dynamics::{self, Body, Modes};
+use flexure::estimate::{Accuracy, ValueEstimate};
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
@@ -39,7 +40,10 @@ fn nonnegative(s: &str) -> Result<f64, String> {
     (welds, pins) are respected. Directions without inertia (a massless flexure's coordinates beyond \
     what its tip body moves) follow quasi-statically: they are condensed out, counted in \
     `quasi_static`, and never reported as infinite frequencies. Only finite modes are reported; \
-    shapes are normalized to vᵀMv = 1.")]
+    shapes are normalized to vᵀMv = 1. Each mode's estimated relative error, against the same \
+    analysis with every flexure at twice the order, is in error_estimate.omega; a mode above \
+    --accuracy is flagged with a warning, and --order auto (order = \"auto\" on a file's \
+    flexures) raises the order until every mode meets it.")]
 pub struct ModesArgs {
     /// Mechanism file (TOML). Without it: one flexure joint, from the options below.
     file: Option<PathBuf>,
@@ -67,6 +71,8 @@ pub struct ModesArgs {
     /// equilibrium: no --kappa, and no load but an axial --fx.
     #[arg(long)]
     exact: bool,
+    #[command(flatten)]
+    accuracy: crate::eigen::EigenAccuracyOptions,
 }
 
 impl ModesArgs {
@@ -166,13 +172,13 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
                     if given.len() == 1 { "it" } else { "them" }
                 ));
             }
-            mechanism_modes(file, args.count)
+            mechanism_modes(file, args.count, &args.accuracy.target())
         }
         None => joint_modes(args),
     }
 }
 
-fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
+fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
@@ -184,7 +190,8 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
     };
     let m = from_toml(&text).map_err(err)?;
     let asked = wanted(count, m.dof(), "the mechanism")?;
-    let modes = dynamics::mechanism::modes(&m, &Settings::default(), asked).map_err(err)?;
+    let (m, modes, estimate) =
+        flexure::estimate::mechanism_modes_auto(&m, &Settings::default(), asked, target).map_err(err)?;
     let shapes: Vec<Value> = (0..modes.omega.len())
         .map(|k| {
             let v = modes.shapes.column(k);
@@ -199,6 +206,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
         .collect();
     let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
     put_note(&mut answer, &modes, asked, count.is_some());
+    put_mechanism_estimate(&mut answer, &m, &modes, &estimate, target, file);
     // A loading path that snapped through a limit load is said, as `solve` says it.
     if let Some(limit) = modes.limit {
         answer["limit_fraction"] = json!(limit);
@@ -209,6 +217,37 @@ fn mechanism_modes(file: &Path, count: Option<usize>) -> Result<Value, String> {
         ));
     }
     Ok(answer)
+}
+
+/// `error_estimate` and `flagged` of a mechanism's modes (with `order`,
+/// {joint: N}, when a flexure has `order = "auto"`), warning per mode that misses.
+fn put_mechanism_estimate(
+    answer: &mut Value,
+    m: &flexure::mechanism::Mechanism,
+    modes: &Modes,
+    e: &ValueEstimate,
+    target: &Accuracy,
+    file: &Path,
+) {
+    let flexures = crate::mechanism::flexure_names(m);
+    crate::eigen::put(answer, e, &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures });
+    let auto = m.joints.iter().any(|j| j.auto_order);
+    if auto {
+        answer["order"] = crate::mechanism::flexure_orders(m);
+    }
+    let hint = if auto {
+        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\", or ask fewer --count"
+    } else {
+        "give the flexures order = \"auto\" (or a higher order), or ask fewer --count"
+    };
+    crate::eigen::warn_missed(
+        e,
+        target,
+        &format!("{}: modes", file.display()),
+        |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
+        &crate::eigen::reference_of_mechanism(e, &flexures),
+        hint,
+    );
 }
 
 /// The library's error with the option that set it: the mass options for
@@ -246,10 +285,19 @@ fn compression(args: &ModesArgs, load: &TipLoad) -> Result<f64, String> {
 }
 
 fn joint_modes(args: &ModesArgs) -> Result<Value, String> {
-    let f = args.flexure.build_fixed("modes").map_err(crate::describe)?;
+    let given = args.flexure.build().map_err(crate::describe)?;
     let load = args.load.load();
     let body = args.body();
-    let asked = wanted(args.count, f.order(), "a flexure of this order")?;
+    let target = args.accuracy.target();
+    let auto = args.flexure.auto();
+    // With --order auto the order rises to at least the count.
+    let (limit, what) = if auto {
+        (flexure::joint::MAX_ORDER, "a flexure of the highest order, 64,")
+    } else {
+        (given.order(), "a flexure of this order")
+    };
+    let asked = wanted(args.count, limit, what)?;
+    let f = &given;
     // Checked before the model solves, so a refused --exact costs nothing.
     let exact_compression = if args.exact {
         if let Some(k) = f.rest().iter().find(|&&k| k != 0.0) {
@@ -261,11 +309,35 @@ fn joint_modes(args: &ModesArgs) -> Result<Value, String> {
     } else {
         None
     };
-    let modes = dynamics::modes(&f, &load, body.as_ref(), asked).map_err(joint_error)?;
+    let (f, modes, estimate) = if auto {
+        flexure::estimate::modes_auto(f, &load, body.as_ref(), asked, &target).map_err(joint_error)?
+    } else {
+        let modes = dynamics::modes(f, &load, body.as_ref(), asked).map_err(joint_error)?;
+        let e = flexure::estimate::modes_error(f, &load, body.as_ref(), &modes, &target).map_err(joint_error)?;
+        (f.clone(), modes, e)
+    };
     let shapes: Vec<Vec<f64>> =
         (0..modes.omega.len()).map(|k| modes.shapes.column(k).iter().copied().collect()).collect();
     let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
     put_note(&mut answer, &modes, asked, args.count.is_some());
+    if auto {
+        answer["order"] = json!(f.order());
+        answer["quadrature"] = json!(f.quadrature_points());
+    }
+    crate::eigen::put(&mut answer, &estimate, &crate::eigen::Shape { key: "omega", one: false, flexures: &[] });
+    let hint = if !auto {
+        "try --order auto, or fewer --count".to_string()
+    } else {
+        format!("--order auto stopped at the cap, order {}: ask fewer --count", f.order())
+    };
+    crate::eigen::warn_missed(
+        &estimate,
+        &target,
+        "modes",
+        |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
+        &crate::eigen::reference_of_joint(&estimate),
+        &hint,
+    );
     let Some(p) = exact_compression else { return Ok(answer) };
     let exact = vibration::frequencies(&f, body.as_ref(), p, asked, &Default::default()).map_err(joint_error)?;
     let pairs = modes.omega.len().min(exact.omega.len());

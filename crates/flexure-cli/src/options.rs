@@ -243,8 +243,8 @@ pub struct FlexureOptions {
     #[arg(long, value_parser = numbers, allow_hyphen_values = true)]
     pub kappa: Option<List>,
     /// Order N: the number of curvature coefficients, 1 to 64; or `auto`
-    /// (deflect, tendon, connect): from 3, raise order and quadrature until
-    /// the error estimate meets --accuracy.
+    /// (deflect, tendon, connect, buckling, modes): from 3, raise order and
+    /// quadrature until the error estimate meets --accuracy.
     #[arg(long, default_value = "3", value_parser = order, allow_hyphen_values = true)]
     pub order: Order,
     /// Gauss–Legendre points, 1 to 1024 [default: order + 2].
@@ -262,7 +262,8 @@ impl FlexureOptions {
                 match command {
                     "kinematics" => "kinematics takes coordinates of a given order: give a number",
                     "deflect --input" => "the rows of --input share one order: give a number",
-                    _ => "auto applies to deflect, tendon and connect: give a number here",
+                    "buckling --exact" => "--exact uses no model order: give a number, or drop --exact",
+                    _ => "auto applies to deflect, tendon, connect, buckling and modes: give a number here",
                 },
             ));
         }

@@ -112,3 +112,155 @@ fn mechanism_joints_are_flagged_by_name() {
         assert_eq!(v["flagged"], Value::Bool(false), "{example}");
     }
 }
+
+/// The clamped–clamped column (`--tip clamped`: δφ = δy = 0 at the tip)
+/// buckles at Euler's 4π² EI/L² = 39.478. Order 3 says 42, 6.4 % high: the
+/// answer must be flagged with a warning naming the load, its estimate
+/// within 2 % of that true error (it is the true error less the order-6
+/// reference's 0.06 %); `--order auto` must land within 1 % of Euler,
+/// unflagged and silent, and report the order it used.
+#[test]
+fn clamped_buckling_is_flagged_and_order_auto_meets_euler() {
+    let euler = 4.0 * std::f64::consts::PI.powi(2);
+    let (v, err) = json(&["buckling", "--tip", "clamped"]);
+    let p = v["critical_load"].as_f64().unwrap();
+    let truth = p / euler - 1.0;
+    let estimate = v["error_estimate"]["critical_load"].as_f64().unwrap();
+    assert!(truth > 0.06 && (estimate / truth - 1.0).abs() < 0.02, "estimate {estimate}, truth {truth}");
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert_eq!(v["error_estimate"]["reference_order"], 6);
+    assert!(
+        err.contains("buckling (clamped tip): the critical load 42.000000 N: estimated error 6.3")
+            && err.contains("--order auto"),
+        "{err}"
+    );
+    let (v, err) = json(&["buckling", "--tip", "clamped", "--order", "auto"]);
+    assert!(err.is_empty(), "{err}");
+    assert_eq!(v["flagged"], Value::Bool(false));
+    assert!(v["order"].as_u64().unwrap() > 3);
+    assert!((v["critical_load"].as_f64().unwrap() / euler - 1.0).abs() < 0.01, "{v}");
+    // A 10 % target accepts order 3; deflect's POS,ANGLE form is refused here, naming the option.
+    let (v, err) = json(&["buckling", "--tip", "clamped", "--accuracy", "0.1"]);
+    assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{err}");
+    for bad in ["0.01,1deg", "0", "-0.01", "nan"] {
+        let (code, _, err) = run(&["buckling", "--tip", "clamped", "--accuracy", bad]);
+        assert!(code == 2 && err.contains("--accuracy"), "{bad}: {err}");
+    }
+}
+
+/// Euler's four columns (Table I; the errata's pinned 20.1907): with
+/// `--order auto` each is within 1 % of the closed form and unflagged.
+#[test]
+fn order_auto_meets_every_euler_column() {
+    let pi2 = std::f64::consts::PI.powi(2);
+    for (tip, c) in [("free", 2.4674), ("guided", pi2), ("pinned", 20.1907), ("clamped", 4.0 * pi2)] {
+        let (v, err) = json(&["buckling", "--tip", tip, "--order", "auto"]);
+        assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{tip}: {err}");
+        let p = v["critical_load"].as_f64().unwrap();
+        assert!((p / c - 1.0).abs() < 0.01, "{tip}: {p} vs {c}");
+    }
+}
+
+/// At the cap, order 64, the reference is order 32: a comparison of two
+/// models, not a false 0 (the clamped load agrees to rounding, so its
+/// estimate is rounding, well below 1e-9, but the reference is named).
+#[test]
+fn the_order_cap_names_a_coarser_reference() {
+    let (v, _) = json(&["buckling", "--tip", "clamped", "--order", "64"]);
+    assert_eq!(v["error_estimate"]["reference_order"], 32);
+    assert!(v["error_estimate"]["critical_load"].as_f64().unwrap() < 1e-9 && v["flagged"] == Value::Bool(false));
+}
+
+/// The unit cantilever of 1 kg/m: ω_n = (βL)², βL = 1.8751, 4.6941,
+/// 7.8548, 10.9955. At order 3 the third mode is 118.1 rad/s against 61.70
+/// (91 % high): flagged, warned by number, its estimate within 2 % of the
+/// true error; the first two meet 1 % and are not named. `--order auto`
+/// meets 1 % of βL on all four lowest modes (`--count 4` starts it at 4).
+#[test]
+fn the_cantilevers_third_mode_is_flagged_and_order_auto_meets_beta_l() {
+    let beta_l = [1.8751f64, 4.6941, 7.8548, 10.9955];
+    let (v, err) = json(&["modes", "--mass-per-length", "1"]);
+    let omega: Vec<f64> = v["omega"].as_array().unwrap().iter().map(|w| w.as_f64().unwrap()).collect();
+    let estimates = v["error_estimate"]["omega"].as_array().unwrap();
+    let truth = omega[2] / beta_l[2].powi(2) - 1.0;
+    let estimate = estimates[2].as_f64().unwrap();
+    assert!(truth > 0.9 && (estimate / truth - 1.0).abs() < 0.02, "estimate {estimate}, truth {truth}");
+    assert!(estimates[0].as_f64().unwrap() < 0.01 && estimates[1].as_f64().unwrap() < 0.01);
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert!(err.contains("modes: mode 3 (118.14") && !err.contains("mode 1 ") && !err.contains("mode 2 "), "{err}");
+    let (v, err) = json(&["modes", "--mass-per-length", "1", "--order", "auto", "--count", "4"]);
+    assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{err}");
+    assert!(v["order"].as_u64().unwrap() >= 4);
+    for (k, bl) in beta_l.iter().enumerate() {
+        let w = v["omega"][k].as_f64().unwrap();
+        assert!((w / bl.powi(2) - 1.0).abs() < 0.01, "mode {}: {w}", k + 1);
+    }
+}
+
+/// A compression of 2.48 N between order 2's free-tip buckling load (2.486)
+/// and Euler's (2.4674): the model still vibrates, the reference is
+/// unstable, so the mode has no estimate and must be flagged, listed in
+/// `unestimated`, and warned as untrustworthy.
+#[test]
+fn a_mode_past_the_references_buckling_load_is_flagged() {
+    let (v, err) = json(&["modes", "--mass-per-length", "1", "--order", "2", "--count", "1", "--fx", "-2.48"]);
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert_eq!(v["error_estimate"]["unestimated"], serde_json::json!([1]));
+    assert_eq!(v["error_estimate"]["reference_stable"], Value::Bool(false));
+    assert!(err.contains("mode 1") && err.contains("unstable"), "{err}");
+}
+
+/// The parallelogram stage buckles at 2π²EI/L² = 15.791 N (EI = 2e-3 N·m²,
+/// L = 0.05 m) under its 1 N push; order 3 says 16, 1.3 % high: flagged,
+/// with a warning naming the file. With `order = "auto"` on its flexures,
+/// within 1 % (in fact 1e-6) of the beam, and the orders used reported.
+#[test]
+fn buckle_is_flagged_and_order_auto_in_the_file_meets_the_beam() {
+    let exact = 2.0 * std::f64::consts::PI.powi(2) * 2e-3 / 0.05f64.powi(2);
+    let example = format!("{}/../../examples/parallelogram.toml", env!("CARGO_MANIFEST_DIR"));
+    let (v, err) = json(&["buckle", &example]);
+    let truth = v["load_factor"].as_f64().unwrap() / exact - 1.0;
+    let estimate = v["error_estimate"]["load_factor"].as_f64().unwrap();
+    assert!(truth > 0.01 && (estimate / truth - 1.0).abs() < 1e-3, "estimate {estimate}, truth {truth}");
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert_eq!(v["error_estimate"]["reference_order"]["left"], 6);
+    assert!(
+        err.contains("parallelogram.toml: buckle: the load factor 16.000000") && err.contains("order = \"auto\""),
+        "{err}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("auto.toml");
+    let text = std::fs::read_to_string(&example).unwrap();
+    std::fs::write(&path, text.replace("kind = \"flexure\"", "kind = \"flexure\"\norder = \"auto\"")).unwrap();
+    let (v, err) = json(&["buckle", path.to_str().unwrap()]);
+    assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{err}");
+    assert!((v["load_factor"].as_f64().unwrap() / exact - 1.0).abs() < 1e-6, "{v}");
+    assert!(v["order"]["left"].as_u64().unwrap() > 3 && v["order"]["right"].as_u64().unwrap() > 3);
+    // A bad order is placed at its key: line, column and the value.
+    std::fs::write(&path, text.replace("kind = \"flexure\"", "kind = \"flexure\"\norder = \"high\"")).unwrap();
+    let (code, _, err) = run(&["buckle", path.to_str().unwrap()]);
+    assert!(code == 2 && err.contains("line 8, column 9") && err.contains("order = \"high\""), "{err}");
+}
+
+/// A mechanism's modes carry per-mode estimates: one flexure of 1 kg/m is
+/// the cantilever, whose third mode at order 3 is flagged by number;
+/// `order = "auto"` meets 1 % of (βL)² = 61.70 for it.
+#[test]
+fn mechanism_modes_are_flagged_per_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("beam.toml");
+    let beam = |order: &str| {
+        format!(
+            "[[joint]]\nname = \"beam\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\nmass_per_length = 1.0\norder = {order}\n"
+        )
+    };
+    std::fs::write(&path, beam("3")).unwrap();
+    let (v, err) = json(&["modes", path.to_str().unwrap()]);
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert!(err.contains("beam.toml: modes: mode 3 (") && !err.contains("mode 2 "), "{err}");
+    assert_eq!(v["error_estimate"]["omega"].as_array().unwrap().len(), 3);
+    std::fs::write(&path, beam("\"auto\"")).unwrap();
+    let (v, err) = json(&["modes", path.to_str().unwrap()]);
+    assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{err}");
+    assert!((v["omega"][2].as_f64().unwrap() / 7.8548f64.powi(2) - 1.0).abs() < 0.01, "{v}");
+}

@@ -35,6 +35,18 @@ fn warned(stderr: &str) -> Vec<&str> {
     stderr.lines().filter(|l| !l.starts_with("note: ")).collect()
 }
 
+/// The answer to `args --json` whose estimate misses the default 1 %
+/// target: exit 0, `flagged`, and a warning saying so, nothing else.
+fn flagged_json(args: &[&str]) -> Value {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let (code, out, err) = run(&a);
+    assert!(code == 0 && err.contains("estimated error") && warned(&err).len() == 1, "{args:?}: exit {code}: {err}");
+    let v: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}: {out}"));
+    assert_eq!(v["flagged"], Value::Bool(true), "{args:?}");
+    v
+}
+
 /// An example's comments as one line of words: its header (the leading
 /// `#` lines), or all of them (with the closing "Running it" block).
 fn comments(name: &str, header_only: bool) -> String {
@@ -51,6 +63,9 @@ fn comments(name: &str, header_only: bool) -> String {
 #[derive(Clone, Copy, Debug)]
 enum Expect {
     Answers,
+    /// Answers, flagged with a warning: its estimate misses the 1 % target
+    /// (order 3's guided legs buckle 1.3 % above the beam's load).
+    Flagged,
     /// Exit 2, nothing on stdout, this on stderr, and the header saying it.
     Refused(&'static str),
 }
@@ -87,7 +102,7 @@ const EXAMPLES: [Example; 8] = [
         name: "four_leg_stage",
         sweep: "force.push.fx=0:2:3",
         compliance: ("stage", "0,-0.06"),
-        buckle: Expect::Answers,
+        buckle: Expect::Flagged,
     },
     // A pure moment adds no geometric stiffness: see the file's header.
     Example {
@@ -106,7 +121,7 @@ const EXAMPLES: [Example; 8] = [
         name: "parallelogram",
         sweep: "force.push.fy=0:-1:2",
         compliance: ("stage", "0,-0.02"),
-        buckle: Expect::Answers,
+        buckle: Expect::Flagged,
     },
     Example {
         name: "tapered_finger",
@@ -219,6 +234,16 @@ fn every_example_with_every_subcommand() {
                     assert!(found.is_empty(), "{} {what}: not finite: {found:?}", ex.name);
                     check_answer(what, ex, &v, written);
                 }
+                Expect::Flagged => {
+                    assert!(
+                        code == 0 && stderr.contains("estimated error"),
+                        "{} {what}: exit {code}: {stderr}",
+                        ex.name
+                    );
+                    let v: Value = serde_json::from_str(&stdout).unwrap();
+                    assert_eq!(v["flagged"], Value::Bool(true), "{} {what}", ex.name);
+                    check_answer(what, ex, &v, written);
+                }
                 Expect::Refused(reason) => {
                     assert_eq!(code, 2, "{} {what}: {stdout}", ex.name);
                     assert!(stdout.is_empty(), "{} {what}: {stdout}", ex.name);
@@ -285,7 +310,8 @@ fn parallelogram_stiffness_and_buckling() {
     // The centred push below buckling moves nothing: the legs are inextensible.
     let s = json(&["solve", &f]);
     assert!(s["bodies"]["stage"]["x"].as_f64().unwrap().abs() < 1e-12 && s["energy"].as_f64().unwrap() < 1e-20);
-    let b = json(&["buckle", &f])["load_factor"].as_f64().unwrap();
+    // 1.3 % above the beam's 2π² EI/L²: flagged.
+    let b = flagged_json(&["buckle", &f])["load_factor"].as_f64().unwrap();
     assert!((b / (2.0 * 10.0 * ei / (l * l)) - 1.0).abs() < 1e-9, "{b}");
 }
 
@@ -307,7 +333,8 @@ fn four_leg_stage_stiffness_and_buckling() {
     }
     let x = [0, 1, 2].map(|row| cell(&v, row, "stage.x"));
     assert!(x[0].abs() < 1e-12 && x[1] > 1e-4 && x[2] > x[1], "{x:?}");
-    let b = json(&["buckle", &f])["load_factor"].as_f64().unwrap();
+    // 1.3 % above the beam's 4π² EI/L²: flagged.
+    let b = flagged_json(&["buckle", &f])["load_factor"].as_f64().unwrap();
     assert!((b * 10.0 / (4.0 * 10.0 * ei / (l * l)) - 1.0).abs() < 1e-9, "{b}");
 }
 

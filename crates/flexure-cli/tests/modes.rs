@@ -172,7 +172,7 @@ fn refusals() {
     refused(&["--ei", "2", "--tip-mass", "1", "--count", "0"], &["--count"]);
     refused(&["--ei", "2", "--tip-mass", "1", "--count", "4"], &["--count = 4", "3 coordinates"]);
     refused(&["--ei", "2", "--tip-mass", "1", "--count", "99999999999999999999"], &["--count"]);
-    refused(&["--ei", "2", "--tip-mass", "1", "--order", "auto"], &["--order"]);
+    refused(&["--ei", "2", "--tip-mass", "1", "--order", "auto", "--count", "65"], &["--count = 65", "64"]);
     refused(&["--ei", "2", "--mass-per-length", "-0.3"], &["--mass-per-length"]);
     refused(&["--ei", "2"], &["mass", "--tip-mass"]);
     refused(&["--ei", "2", "--tip-mass", "0", "--tip-inertia", "0"], &["mass"]);

@@ -131,7 +131,59 @@ fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
             )));
         }
     }
-    Ok(Accuracy { position, angle, stress })
+    Ok(Accuracy { position, angle, stress, ..Default::default() })
+}
+
+/// Reads the `accuracy` of a buckling load or frequency: a fraction of the
+/// value (1 % when `None`).
+fn eigen_accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
+    let Some(v) = value.filter(|v| !v.is_none()) else {
+        return Ok(Accuracy::default());
+    };
+    let bad = || {
+        PyValueError::new_err(format!(
+            "accuracy must be one finite number greater than zero, the relative error a buckling load or frequency may have (0.01 is 1 %), got {}",
+            v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
+        ))
+    };
+    let x: f64 = v.extract().map_err(|_| bad())?;
+    if !(x.is_finite() && x > 0.0) {
+        return Err(bad());
+    }
+    Ok(Accuracy { eigenvalue: x, ..Default::default() })
+}
+
+/// Warns `AccuracyWarning` for each value of `e` that misses `target`:
+/// `name(k)` names the value, `reference` the reference model.
+#[allow(clippy::too_many_arguments)]
+fn warn_values(
+    py: Python<'_>,
+    what: &str,
+    e: &estimate::ValueEstimate,
+    target: &Accuracy,
+    name: impl Fn(usize) -> String,
+    reference: &str,
+    hint: &str,
+    stacklevel: i32,
+) -> PyResult<()> {
+    if !e.flagged {
+        return Ok(());
+    }
+    let goal = sig(100.0 * target.eigenvalue);
+    let parts: Vec<String> = e
+        .missed(target)
+        .into_iter()
+        .map(|k| match e.relative[k] {
+            Some(r) => format!("{}: estimated error {} % misses the target of {goal} %", name(k), sig(100.0 * r)),
+            None if !e.reference_stable => format!(
+                "{}: no estimate, the reference model is unstable under this load (it buckles below it), so the answer is not to be trusted",
+                name(k)
+            ),
+            None => format!("{}: no estimate, the reference model resolves no such mode", name(k)),
+        })
+        .collect();
+    let text = format!("{what}: {} (estimated against {reference}); {hint}", parts.join("; "));
+    warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
 
 /// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
@@ -807,7 +859,7 @@ impl Flexure {
     /// a massless flexure's, which have no frequency). count: the lowest modes wanted, 1 to
     /// order (default 3, or the order); fewer are returned if fewer are finite. ValueError
     /// naming `mass` without any mass; ConvergenceError past a buckling load.
-    #[pyo3(signature = (count=None, *, tip_mass=None, tip_inertia=None, tip_com=None, moment=0.0, fx=0.0, fy=0.0))]
+    #[pyo3(signature = (count=None, *, tip_mass=None, tip_inertia=None, tip_com=None, moment=0.0, fx=0.0, fy=0.0, accuracy=None))]
     #[allow(clippy::too_many_arguments)]
     fn modes<'py>(
         &self,
@@ -819,16 +871,33 @@ impl Flexure {
         moment: f64,
         fx: f64,
         fy: f64,
+        accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let body = modes::tip_body(tip_mass, tip_inertia, tip_com)?;
-        modes::flexure_modes(py, &self.inner, count, body, (moment, fx, fy))
+        let target = eigen_accuracy(accuracy)?;
+        modes::flexure_modes(py, &self.inner, count, body, (moment, fx, fy), &target)
     }
 
-    /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or "clamped".
-    #[pyo3(signature = (tip="free"))]
-    fn buckling_load(&self, tip: &str) -> PyResult<f64> {
+    /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or
+    /// "clamped", with its error estimated against a refined model (the same load at a higher
+    /// order): a miss of `accuracy` (a fraction of the load; default 0.01) warns `AccuracyWarning`.
+    #[pyo3(signature = (tip="free", *, accuracy=None))]
+    fn buckling_load(&self, py: Python<'_>, tip: &str, accuracy: Option<&Bound<'_, PyAny>>) -> PyResult<f64> {
         let t: TipConstraint = tip.parse().map_err(to_py)?;
-        Ok(buckling_load(&self.inner, t).map_err(to_py)?.critical_load)
+        let target = eigen_accuracy(accuracy)?;
+        let f = &self.inner;
+        let b = buckling_load(f, t).map_err(to_py)?;
+        match estimate::buckling_error(f, t, &b, &target) {
+            Ok(e) => {
+                let (order, points) = e.reference_orders[0];
+                let reference = format!("order {order} with {points} quadrature points");
+                let name = |_| format!("the critical load {} N", sig(b.critical_load));
+                let hint = "build the flexure with a higher order";
+                warn_values(py, &format!("buckling_load ({tip} tip)"), &e, &target, name, &reference, hint, 1)?;
+            }
+            Err(why) => warn_unestimated(py, "buckling_load", &why, 1)?,
+        }
+        Ok(b.critical_load)
     }
 
     fn __repr__(&self) -> String {
@@ -978,9 +1047,15 @@ impl Mechanism {
     /// Vibration modes about the loaded equilibrium, closures respected: a dict of omega
     /// (rad/s, ascending), frequency (Hz), shapes {joint: array (modes, joint coordinates)}
     /// and quasi_static, as `Mechanism.modes` documents.
-    #[pyo3(signature = (count=None))]
-    fn modes<'py>(&self, py: Python<'py>, count: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
-        modes::mechanism_modes(py, &self.inner, count)
+    #[pyo3(signature = (count=None, accuracy=None))]
+    fn modes<'py>(
+        &self,
+        py: Python<'py>,
+        count: Option<&Bound<'py, PyAny>>,
+        accuracy: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let target = eigen_accuracy(accuracy)?;
+        modes::mechanism_modes(py, &self.inner, count, &target)
     }
 
     /// Number of generalized coordinates.

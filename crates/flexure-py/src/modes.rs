@@ -2,8 +2,9 @@
 //! body (`Flexure.modes`), of a mechanism (`Mechanism.modes`), and the exact
 //! beam's frequencies (`flexure.exact.frequencies`).
 
-use crate::{Flexure, StabilityWarning, count, finite, interruptible, tip_load, warn};
+use crate::{Flexure, StabilityWarning, count, finite, interruptible, tip_load, warn, warn_values};
 use flexure::dynamics::{self, Body, Modes};
+use flexure::estimate::{self, Accuracy, ValueEstimate};
 use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use numpy::ndarray::Array2;
@@ -69,19 +70,61 @@ fn put_frequencies(py: Python<'_>, out: &Bound<'_, PyDict>, modes: &Modes) -> Py
     Ok(())
 }
 
-/// The modes of one flexure under a tip load, with an optional tip body.
+/// `error_estimate`: a dict of omega (each mode's estimated relative error,
+/// NaN where the reference pairs none), reference_omega, reference_order and
+/// reference_quadrature (ints for one flexure, {joint: int} for a mechanism
+/// of `names`), reference_stable and flagged; into `out`.
+fn put_estimate(py: Python<'_>, out: &Bound<'_, PyDict>, e: &ValueEstimate, names: Option<&[String]>) -> PyResult<()> {
+    let d = PyDict::new(py);
+    let relative: Vec<f64> = e.relative.iter().map(|r| r.unwrap_or(f64::NAN)).collect();
+    d.set_item("omega", PyArray1::from_vec(py, relative))?;
+    d.set_item("reference_omega", PyArray1::from_vec(py, e.reference.clone()))?;
+    match names {
+        None => {
+            let (order, points) = e.reference_orders.first().copied().unwrap_or((0, 0));
+            d.set_item("reference_order", order)?;
+            d.set_item("reference_quadrature", points)?;
+        }
+        Some(names) => {
+            let (orders, points) = (PyDict::new(py), PyDict::new(py));
+            for (name, (o, q)) in names.iter().zip(&e.reference_orders) {
+                orders.set_item(name, o)?;
+                points.set_item(name, q)?;
+            }
+            d.set_item("reference_order", orders)?;
+            d.set_item("reference_quadrature", points)?;
+        }
+    }
+    d.set_item("reference_stable", e.reference_stable)?;
+    d.set_item("flagged", e.flagged)?;
+    out.set_item("error_estimate", d)
+}
+
+/// The modes of one flexure under a tip load, with an optional tip body,
+/// and their estimate (a miss of `target` warns `AccuracyWarning`).
 pub fn flexure_modes<'py>(
     py: Python<'py>,
     f: &flexure::Flexure,
     count: Option<&Bound<'py, PyAny>>,
     body: Option<Body>,
     (moment, fx, fy): (f64, f64, f64),
+    target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
     let load = tip_load(moment, fx, fy)?;
     let asked = wanted(count, f.order(), "a flexure of this order")?;
-    let modes = interruptible(py, || dynamics::modes(f, &load, body.as_ref(), asked))?;
+    let (modes, e) = interruptible(py, || {
+        let modes = dynamics::modes(f, &load, body.as_ref(), asked)?;
+        let e = estimate::modes_error(f, &load, body.as_ref(), &modes, target)?;
+        Ok((modes, e))
+    })?;
     let out = PyDict::new(py);
     put_frequencies(py, &out, &modes)?;
+    put_estimate(py, &out, &e, None)?;
+    let (order, points) = e.reference_orders[0];
+    let reference = format!("order {order} with {points} quadrature points");
+    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
+    let hint = "build the flexure with a higher order, or ask fewer modes";
+    warn_values(py, "Flexure.modes", &e, target, name, &reference, hint, 1)?;
     let (n, k) = (modes.shapes.nrows(), modes.omega.len());
     out.set_item("shapes", Array2::from_shape_fn((k, n), |(m, i)| modes.shapes[(i, m)]).into_pyarray(py))?;
     Ok(out)
@@ -94,11 +137,30 @@ pub fn mechanism_modes<'py>(
     py: Python<'py>,
     m: &flexure::mechanism::Mechanism,
     count: Option<&Bound<'py, PyAny>>,
+    target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
     let asked = wanted(count, m.dof(), "the mechanism")?;
-    let modes = interruptible(py, || dynamics::mechanism::modes(m, &Settings::default(), asked))?;
+    let (m, modes, e) = interruptible(py, || estimate::mechanism_modes_auto(m, &Settings::default(), asked, target))?;
+    let m = &m;
     let out = PyDict::new(py);
     put_frequencies(py, &out, &modes)?;
+    let names: Vec<String> = m
+        .joints
+        .iter()
+        .filter(|j| matches!(j.kind, flexure::mechanism::JointKind::Flexure(_)))
+        .map(|j| j.name.clone())
+        .collect();
+    put_estimate(py, &out, &e, Some(&names))?;
+    let reference = if names.is_empty() {
+        "the same mechanism, which has no flexure to refine".to_string()
+    } else {
+        let parts: Vec<String> =
+            names.iter().zip(&e.reference_orders).map(|(n, (o, _))| format!("{n:?} at order {o}")).collect();
+        format!("the mechanism with {}", parts.join(", "))
+    };
+    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
+    let hint = "give its flexures order = \"auto\" (or a higher order) in the file, or ask fewer modes";
+    warn_values(py, "Mechanism.modes", &e, target, name, &reference, hint, 2)?;
     let shapes = PyDict::new(py);
     for j in m.joints.iter().filter(|j| j.kind.joint().dof() > 0) {
         let d = j.kind.joint().dof();

@@ -15,9 +15,14 @@
 //! distance between the two answers: the error of the answer, to within the
 //! reference's own error, which is far smaller wherever the basis converges.
 
+use crate::buckling::{Buckling, TipConstraint, buckling_load};
+use crate::dynamics::{self, Body, Modes};
 use crate::error::{Error, Result, positive};
 use crate::joint::{Basis, Flexure, MAX_ORDER};
 use crate::kinematics::{self, Pose, backbone};
+use crate::mechanism::{
+    self, Mechanism, buckling::Buckling as MechanismBuckling, statics::Settings as MechanismSettings,
+};
 use crate::quadrature::MAX_POINTS;
 use crate::statics::{Settings, Statics, TipLoad, deflect};
 use crate::stress::{peak_curvature, peak_stress};
@@ -25,8 +30,10 @@ use crate::tendon::{Tendon, TendonData, pull};
 
 /// The accuracy an answer must meet: tip position within `position` × L,
 /// tip angle within `angle` rad, and peak bending stress (or, for a section
-/// without thickness, peak curvature change) within `stress` of itself.
-/// The default is the paper's 1 % of L and 1°, and 1 % of the peak.
+/// without thickness, peak curvature change) within `stress` of itself;
+/// a buckling load or natural frequency within `eigenvalue` of itself.
+/// The default is the paper's 1 % of L and 1°, 1 % of the peak and 1 % of
+/// the value.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Accuracy {
     /// Position tolerance as a fraction of the flexure's length.
@@ -35,11 +42,14 @@ pub struct Accuracy {
     pub angle: f64,
     /// Peak stress tolerance as a fraction of the peak.
     pub stress: f64,
+    /// Tolerance of an eigenvalue answer (a buckling load or factor, a
+    /// natural frequency) as a fraction of itself.
+    pub eigenvalue: f64,
 }
 
 impl Default for Accuracy {
     fn default() -> Self {
-        Self { position: 0.01, angle: 1f64.to_radians(), stress: 0.01 }
+        Self { position: 0.01, angle: 1f64.to_radians(), stress: 0.01, eigenvalue: 0.01 }
     }
 }
 
@@ -49,6 +59,7 @@ impl Accuracy {
         positive("accuracy", self.position)?;
         positive("accuracy", self.angle)?;
         positive("accuracy", self.stress)?;
+        positive("accuracy", self.eigenvalue)?;
         Ok(())
     }
 }
@@ -307,19 +318,392 @@ fn auto(
     flexure: &Flexure,
     mut solve: impl FnMut(&Flexure) -> Result<(Vec<f64>, ErrorEstimate)>,
 ) -> Result<(Flexure, Vec<f64>, ErrorEstimate)> {
+    let (f, (alpha, e)) = raise(flexure, |f| {
+        let (alpha, e) = solve(f)?;
+        let next = (e.reference_order, e.reference_quadrature);
+        Ok(((alpha, e), e.flagged, next))
+    })?;
+    if e.flagged {
+        return Err(Error::invalid(
+            "order",
+            "auto",
+            "even order 64 misses the accuracy target: loosen --accuracy or reduce the load",
+        ));
+    }
+    Ok((f, alpha, e))
+}
+
+/// The one loop of every `*_auto`: solves at `flexure`'s order, and while
+/// the answer is flagged and the order below [`MAX_ORDER`], again at the
+/// (order, quadrature) `solve` names (its reference's). Returns the last
+/// flexure and answer, flagged or not: the caller says what a miss at the
+/// cap means.
+fn raise<T>(
+    flexure: &Flexure,
+    mut solve: impl FnMut(&Flexure) -> Result<(T, bool, (usize, usize))>,
+) -> Result<(Flexure, T)> {
     let mut f = flexure.clone();
     loop {
-        let (alpha, e) = solve(&f)?;
+        let (answer, flagged, (order, points)) = solve(&f)?;
+        if !flagged || f.order() >= MAX_ORDER {
+            return Ok((f, answer));
+        }
+        f = refined(&f, order.max(f.order() + 1).min(MAX_ORDER), points)?;
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Eigenvalue answers: buckling loads and natural frequencies.
+
+/// The estimated error of eigenvalue answers, buckling loads and natural
+/// frequencies, one entry per value (one for a buckling load, one per mode):
+/// the relative change of each value in the reference model, the same
+/// analysis repeated with every flexure refined ([`eigen_reference`]).
+///
+/// The model is a Rayleigh–Ritz discretization on a nested basis, so each
+/// value converges from above (the $k$-th value of the reference is at most
+/// the model's); the change is the model's error less the reference's own,
+/// which is far smaller where the basis converges. Values are paired by
+/// rank (lowest with lowest); a value the reference cannot pair (it
+/// resolves fewer modes, or its equilibrium is unstable: the load exceeds
+/// the reference's buckling load though not the model's) has no estimate,
+/// and is flagged, never reported as accurate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValueEstimate {
+    /// Per value, $\lvert v - v_r\rvert / v_r$ against the reference model's
+    /// value $v_r$; `None` where the reference has no counterpart.
+    pub relative: Vec<Option<f64>>,
+    /// The reference model's values, as many as it paired (N, a load
+    /// factor, or rad/s).
+    pub reference: Vec<f64>,
+    /// Whether the reference's equilibrium is stable (always for buckling,
+    /// which is about the unloaded state).
+    pub reference_stable: bool,
+    /// Whether any value misses [`Accuracy::eigenvalue`] or has no estimate.
+    pub flagged: bool,
+    /// Order and quadrature points of each flexure of the reference model:
+    /// one for a single joint; one per flexure joint, in joint order, for a
+    /// mechanism (none for a mechanism without flexures, whose model has no
+    /// discretization error: its estimate is 0).
+    pub reference_orders: Vec<(usize, usize)>,
+}
+
+impl ValueEstimate {
+    fn new(
+        values: &[f64],
+        reference: Vec<f64>,
+        reference_stable: bool,
+        reference_orders: Vec<(usize, usize)>,
+        target: &Accuracy,
+    ) -> Self {
+        let relative: Vec<Option<f64>> =
+            values.iter().enumerate().map(|(k, v)| reference.get(k).map(|r| ((v - r) / r).abs())).collect();
+        let flagged = relative.iter().any(|&e| misses(e, target));
+        Self { relative, reference, reference_stable, flagged, reference_orders }
+    }
+
+    /// The largest estimate; infinite when a value has none.
+    pub fn largest(&self) -> f64 {
+        self.relative.iter().fold(0.0, |m, e| m.max(e.unwrap_or(f64::INFINITY)))
+    }
+
+    /// The values (by index, from 0) that miss `target` or have no estimate.
+    pub fn missed(&self, target: &Accuracy) -> Vec<usize> {
+        (0..self.relative.len()).filter(|&k| misses(self.relative[k], target)).collect()
+    }
+}
+
+/// Whether a value's estimate `e` misses `target`: above it, not a number,
+/// or missing.
+fn misses(e: Option<f64>, target: &Accuracy) -> bool {
+    e.is_none_or(|e| e.is_nan() || e > target.eigenvalue)
+}
+
+/// The reference model for an eigenvalue answer of `flexure` about the
+/// shape `alpha`: [`reference()`] (order $\min(\max(2N, N + 3), 64)$), except
+/// at the cap $N = 64$, where more points alone would change a straight
+/// flexure's answer by nothing and report a false 0: there it is order 32
+/// (with the same rule for its points), whose change overstates the
+/// order-64 answer's error.
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 64).unwrap();
+/// let r = flexure::estimate::eigen_reference(&f, &[0.0; 64]).unwrap();
+/// assert_eq!(r.order(), 32);
+/// ```
+pub fn eigen_reference(flexure: &Flexure, alpha: &[f64]) -> Result<Flexure> {
+    if flexure.order() < MAX_ORDER {
+        return reference(flexure, alpha);
+    }
+    if flexure.basis() != Basis::Legendre {
+        return Err(Error::invalid("basis", "segments", "error estimates are made for the Legendre model"));
+    }
+    let order = MAX_ORDER / 2;
+    let points = (order as f64 + 6.0 + turning(alpha).ceil()).min(MAX_POINTS as f64) as usize;
+    let mut kappa = flexure.rest().to_vec();
+    kappa.truncate(order);
+    Flexure::with_points(flexure.length(), flexure.ei(), order, points)?
+        .with_rest(&kappa)?
+        .with_section(flexure.section().clone())
+}
+
+/// The error of a [`crate::buckling_load`] answer `b` of `flexure` under
+/// `tip`: the same load of the reference model about the rest shape.
+///
+/// # Example
+/// ```
+/// use flexure::{buckling_load, estimate, Flexure, TipConstraint};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let b = buckling_load(&f, TipConstraint::Clamped).unwrap();
+/// let e = estimate::buckling_error(&f, TipConstraint::Clamped, &b, &Default::default()).unwrap();
+/// // Order 3 says 42 EI/L², Euler 4π² = 39.48: 6.4 % high, and the estimate sees it.
+/// let truth = b.critical_load / (4.0 * std::f64::consts::PI.powi(2)) - 1.0;
+/// assert!(e.flagged && (e.relative[0].unwrap() / truth - 1.0).abs() < 0.01);
+/// ```
+pub fn buckling_error(flexure: &Flexure, tip: TipConstraint, b: &Buckling, target: &Accuracy) -> Result<ValueEstimate> {
+    target.validate()?;
+    let reference = eigen_reference(flexure, flexure.rest())?;
+    let exact = buckling_load(&reference, tip)?.critical_load;
+    let orders = vec![(reference.order(), reference.quadrature_points())];
+    Ok(ValueEstimate::new(&[b.critical_load], vec![exact], true, orders, target))
+}
+
+/// The lowest order (from `flexure`'s, each step the reference's order and
+/// quadrature) whose buckling load under `tip` meets `target`, with that
+/// flexure, the load and its estimate. At order 64 the answer is returned
+/// as it is, its estimate `flagged` if it still misses.
+///
+/// # Example
+/// ```
+/// use flexure::{estimate, Flexure, TipConstraint};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let (used, b, e) = estimate::buckling_auto(&f, TipConstraint::Clamped, &Default::default()).unwrap();
+/// let euler = 4.0 * std::f64::consts::PI.powi(2);
+/// assert!(!e.flagged && used.order() > 3 && (b.critical_load / euler - 1.0).abs() < 0.01);
+/// ```
+pub fn buckling_auto(
+    flexure: &Flexure,
+    tip: TipConstraint,
+    target: &Accuracy,
+) -> Result<(Flexure, Buckling, ValueEstimate)> {
+    let (f, (b, e)) = raise(flexure, |f| {
+        let b = buckling_load(f, tip)?;
+        let e = buckling_error(f, tip, &b, target)?;
+        let next = e.reference_orders[0];
+        let flagged = e.flagged;
+        Ok(((b, e), flagged, next))
+    })?;
+    Ok((f, b, e))
+}
+
+/// The error of the frequencies `modes` of `flexure` (with the tip `body`)
+/// about its equilibrium under `load` ([`dynamics::modes()`]): the same
+/// analysis (equilibrium, loaded stiffness, mass) in the reference model,
+/// whose frequencies are paired with the model's by rank.
+///
+/// # Example
+/// ```
+/// use flexure::{dynamics, estimate, section::{Profile, Section}, Flexure, TipLoad};
+/// let section = Section::uniform(1.0).unwrap().with_mass_per_length(Profile::Constant(1.0)).unwrap();
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap().with_section(section).unwrap();
+/// let m = dynamics::modes(&f, &TipLoad::default(), None, 3).unwrap();
+/// let e = estimate::modes_error(&f, &TipLoad::default(), None, &m, &Default::default()).unwrap();
+/// // The third mode of order 3 is 91 % above the beam's (βL)² = 61.70: the estimate flags it.
+/// assert!(e.flagged && e.relative[2].unwrap() > 0.5);
+/// ```
+pub fn modes_error(
+    flexure: &Flexure,
+    load: &TipLoad,
+    body: Option<&Body>,
+    modes: &Modes,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
+    target.validate()?;
+    let rest;
+    let alpha = if modes.coordinates.len() == flexure.order() {
+        &modes.coordinates
+    } else {
+        rest = flexure.rest().to_vec();
+        &rest
+    };
+    let reference = eigen_reference(flexure, alpha)?;
+    let orders = vec![(reference.order(), reference.quadrature_points())];
+    let (omega, stable) = reference_values(dynamics::modes(&reference, load, body, modes.omega.len().max(1)))?;
+    Ok(ValueEstimate::new(&modes.omega, omega, stable, orders, target))
+}
+
+/// The reference's frequencies, or none (unstable) when its equilibrium is
+/// not stable: then no mode can be estimated.
+fn reference_values(modes: Result<Modes>) -> Result<(Vec<f64>, bool)> {
+    match modes {
+        Ok(m) => Ok((m.omega, true)),
+        Err(Error::Unstable { .. }) => Ok((Vec::new(), false)),
+        Err(e) => Err(e),
+    }
+}
+
+/// The lowest order (from `flexure`'s, raised to `count` if lower, each
+/// step the reference's order and quadrature) whose lowest `count`
+/// frequencies all meet `target` ([`modes_error`]), with that flexure, the
+/// modes and their estimate; at order 64 returned as they are, `flagged` if
+/// they still miss.
+///
+/// # Example
+/// ```
+/// use flexure::{dynamics, estimate, section::{Profile, Section}, Flexure, TipLoad};
+/// let section = Section::uniform(1.0).unwrap().with_mass_per_length(Profile::Constant(1.0)).unwrap();
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap().with_section(section).unwrap();
+/// let (used, m, e) = estimate::modes_auto(&f, &TipLoad::default(), None, 3, &Default::default()).unwrap();
+/// // The cantilever's third mode: (βL)² with βL = 7.8548 (ω in rad/s for EI = m = L = 1).
+/// assert!(!e.flagged && used.order() > 3 && (m.omega[2] / 7.8548f64.powi(2) - 1.0).abs() < 0.01);
+/// ```
+pub fn modes_auto(
+    flexure: &Flexure,
+    load: &TipLoad,
+    body: Option<&Body>,
+    count: usize,
+    target: &Accuracy,
+) -> Result<(Flexure, Modes, ValueEstimate)> {
+    let start = if count > flexure.order() && count <= MAX_ORDER {
+        refined(flexure, count, flexure.quadrature_points().max(count + 2))?
+    } else {
+        flexure.clone()
+    };
+    let (f, (m, e)) = raise(&start, |f| {
+        let m = dynamics::modes(f, load, body, count)?;
+        let e = modes_error(f, load, body, &m, target)?;
+        let next = e.reference_orders[0];
+        let flagged = e.flagged;
+        Ok(((m, e), flagged, next))
+    })?;
+    Ok((f, m, e))
+}
+
+/// The reference mechanism: every flexure joint replaced by its
+/// [`eigen_reference`] about its coordinates in `q` (the rest shape when
+/// `q` is not the mechanism's), with their (order, quadrature).
+fn mechanism_reference(m: &Mechanism, q: &[f64]) -> Result<(Mechanism, Vec<(usize, usize)>)> {
+    let rest;
+    let q = if q.len() == m.dof() {
+        q
+    } else {
+        rest = m.rest();
+        &rest
+    };
+    let mut orders = Vec::new();
+    let reference = m.with_flexures(|j, f| {
+        let o = m.joints[j].offset;
+        let r = eigen_reference(f, &q[o..o + f.order()])?;
+        orders.push((r.order(), r.quadrature_points()));
+        Ok(Some(r))
+    })?;
+    Ok((reference, orders))
+}
+
+/// The next mechanism of an automatic order: each flexure joint of
+/// `order = "auto"` below the cap at its reference's (order, quadrature)
+/// from `orders`; `None` when no joint can be raised.
+fn raised(m: &Mechanism, orders: &[(usize, usize)]) -> Result<Option<Mechanism>> {
+    let (mut k, mut any) = (0, false);
+    let next = m.with_flexures(|j, f| {
+        let (order, points) = orders[k];
+        k += 1;
+        if !m.joints[j].auto_order || f.order() >= MAX_ORDER {
+            return Ok(None);
+        }
+        any = true;
+        refined(f, order.max(f.order() + 1).min(MAX_ORDER), points).map(Some)
+    })?;
+    Ok(any.then_some(next))
+}
+
+/// The error of a mechanism's [`mechanism::buckling::buckle`] answer `b`:
+/// the load factor of the reference mechanism, every flexure refined.
+///
+/// # Example
+/// ```
+/// use flexure::{estimate, mechanism::{buckling::buckle, file::from_toml, statics::Settings}};
+/// // A flexure column pushed along itself by 1 N: free-tip Euler load π²EI/(4L²) = 2.4674.
+/// let m = from_toml(
+///     "[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\n\
+///      [[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [-1.0, 0.0]\n",
+/// )
+/// .unwrap();
+/// let b = buckle(&m, &Settings::default()).unwrap();
+/// let e = estimate::buckle_error(&m, &b, &Settings::default(), &Default::default()).unwrap();
+/// assert!((e.reference[0] / 2.4674 - 1.0).abs() < 1e-4 && e.reference_orders == vec![(6, 12)]);
+/// ```
+pub fn buckle_error(
+    m: &Mechanism,
+    b: &MechanismBuckling,
+    settings: &MechanismSettings,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
+    target.validate()?;
+    let (reference, orders) = mechanism_reference(m, &[])?;
+    let exact = mechanism::buckling::buckle(&reference, settings)?.load_factor;
+    Ok(ValueEstimate::new(&[b.load_factor], vec![exact], true, orders, target))
+}
+
+/// [`mechanism::buckling::buckle`] with its estimate, the flexure joints of
+/// `order = "auto"` raised (each to its reference's order and quadrature)
+/// until the estimate meets `target`, or none can be raised further (then
+/// `flagged`). Returns the mechanism used, the answer and its estimate;
+/// without such joints, the mechanism as given.
+pub fn buckle_auto(
+    m: &Mechanism,
+    settings: &MechanismSettings,
+    target: &Accuracy,
+) -> Result<(Mechanism, MechanismBuckling, ValueEstimate)> {
+    let mut m = m.clone();
+    loop {
+        let b = mechanism::buckling::buckle(&m, settings)?;
+        let e = buckle_error(&m, &b, settings, target)?;
         if !e.flagged {
-            return Ok((f, alpha, e));
+            return Ok((m, b, e));
         }
-        if f.order() >= MAX_ORDER {
-            return Err(Error::invalid(
-                "order",
-                "auto",
-                "even order 64 misses the accuracy target: loosen --accuracy or reduce the load",
-            ));
+        match raised(&m, &e.reference_orders)? {
+            Some(next) => m = next,
+            None => return Ok((m, b, e)),
         }
-        f = refined(&f, e.reference_order, e.reference_quadrature)?;
+    }
+}
+
+/// The error of a mechanism's [`dynamics::mechanism::modes`] answer: the
+/// same analysis of the reference mechanism (every flexure refined about
+/// its coordinates at the equilibrium), frequencies paired by rank.
+pub fn mechanism_modes_error(
+    m: &Mechanism,
+    modes: &Modes,
+    settings: &MechanismSettings,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
+    target.validate()?;
+    let (reference, orders) = mechanism_reference(m, &modes.coordinates)?;
+    let count = modes.omega.len().max(1).min(reference.dof().max(1));
+    let (omega, stable) = reference_values(dynamics::mechanism::modes(&reference, settings, count))?;
+    Ok(ValueEstimate::new(&modes.omega, omega, stable, orders, target))
+}
+
+/// [`dynamics::mechanism::modes`] with its estimate, the flexure joints of
+/// `order = "auto"` raised as in [`buckle_auto`].
+pub fn mechanism_modes_auto(
+    m: &Mechanism,
+    settings: &MechanismSettings,
+    count: usize,
+    target: &Accuracy,
+) -> Result<(Mechanism, Modes, ValueEstimate)> {
+    let mut m = m.clone();
+    loop {
+        let modes = dynamics::mechanism::modes(&m, settings, count)?;
+        let e = mechanism_modes_error(&m, &modes, settings, target)?;
+        if !e.flagged {
+            return Ok((m, modes, e));
+        }
+        match raised(&m, &e.reference_orders)? {
+            Some(next) => m = next,
+            None => return Ok((m, modes, e)),
+        }
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! One search serves every problem that follows a load from rest (a tip
 //! load, a tendon's tension): it asks only for the path to a given factor
-//! ([`search`]'s `path_to`), so a tip load and a tendon get the same answer
+//! (the private `search`'s `path_to`), so a tip load and a tendon get the same answer
 //! for the same reason.
 
 use crate::error::{Error, Result};
@@ -104,6 +104,6 @@ pub(crate) fn search(max_factor: f64, mut path_to: impl FnMut(f64) -> Result<Equ
     Ok(StabilityLimit::Lost { factor: lo })
 }
 
-/// The most paths [`search`] follows: the first, a few to bracket, and the
+/// The most paths the search follows: the first, a few to bracket, and the
 /// bisection's (about 35 from a bracket of the estimate's width).
 pub const MAX_PROBES: usize = 100;

@@ -20,6 +20,7 @@ mod dynamics_mechanism_modes;
 mod dynamics_modes;
 mod dynamics_simulation;
 mod dynamics_vibration;
+mod eigen_estimate;
 mod elastica;
 mod elastica_path;
 mod energy;

@@ -90,7 +90,7 @@ fn tendon_estimate_matches_a_converged_model() {
 #[test]
 fn bad_accuracy_is_named() {
     let f = unit(3);
-    let bad = Accuracy { position: 0.0, angle: 0.01, stress: 0.01 };
+    let bad = Accuracy { position: 0.0, ..Default::default() };
     let err = deflect_error(&f, &TipLoad::default(), &[0.0; 3], &bad).unwrap_err();
     assert!(err.to_string().contains("accuracy"), "{err}");
 }

@@ -796,5 +796,6 @@ pub fn modes(m: &Mechanism, settings: &Settings, count: usize) -> Result<Modes> 
     let mut modes = finite_modes(&k, &reduced, count)?;
     modes.shapes = &z * &modes.shapes;
     modes.limit = s.limit;
+    modes.coordinates = s.q.clone();
     Ok(modes)
 }

@@ -34,6 +34,9 @@ pub struct Modes {
     /// (the equilibrium's `limit`); `None` from [`finite_modes`], which
     /// solves no equilibrium.
     pub limit: Option<f64>,
+    /// The equilibrium's coordinates the modes are taken about (a flexure's
+    /// $\alpha$, a mechanism's $q$); empty from [`finite_modes`].
+    pub coordinates: Vec<f64>,
 }
 
 /// The modes of `flexure` with an optional tip `body` about its equilibrium
@@ -82,7 +85,11 @@ pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usiz
     }
     let mut data = MassData::new(&model);
     update(&model, statics.alpha(), None, &mut data);
-    Ok(Modes { limit: eq.limit, ..finite_modes(&statics.stiffness, &data.mass_matrix, count)? })
+    Ok(Modes {
+        limit: eq.limit,
+        coordinates: statics.alpha().to_vec(),
+        ..finite_modes(&statics.stiffness, &data.mass_matrix, count)?
+    })
 }
 
 /// The finite modes of $Kv = \omega^2Mv$ for a symmetric stiffness $K$ and a
@@ -177,5 +184,5 @@ pub fn finite_modes(stiffness: &DMatrix<f64>, mass: &DMatrix<f64>, count: usize)
         shapes.set_column(c, &v);
     }
     let frequency = omega.iter().map(|w| w / std::f64::consts::TAU).collect();
-    Ok(Modes { omega, frequency, shapes, quasi_static: without.len(), limit: None })
+    Ok(Modes { omega, frequency, shapes, quasi_static: without.len(), limit: None, coordinates: Vec::new() })
 }

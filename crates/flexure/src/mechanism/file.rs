@@ -104,7 +104,8 @@ struct JointToml {
     mass_per_length: Option<Spanned<toml::Value>>,
     yield_strength: Option<Spanned<f64>>,
     shape: Option<Spanned<usize>>,
-    order: Option<Spanned<usize>>,
+    // A whole number, or `"auto"`: read by `flexure_order`.
+    order: Option<Spanned<toml::Value>>,
     quadrature: Option<Spanned<usize>>,
     kappa: Option<Spanned<Vec<f64>>>,
     stiffness: Option<Spanned<f64>>,
@@ -402,7 +403,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         let j = &file.joint[i];
         let owner = format!("joint {:?}: ", j.name.get_ref());
         let origin = src.array(&owner, "origin", &j.origin)?;
-        let (kind, stiffness_place) = joint_kind(&src, &owner, j)?;
+        let (kind, stiffness_place, auto_order) = joint_kind(&src, &owner, j)?;
         let damping = j.damping.as_ref().map_or(Ok(0.0), |d| src.number(&owner, "damping", d, Sign::NotNegative))?;
         let dof = kind.joint().dof();
         parent_joint[i + 1] = Some(joints.len());
@@ -414,6 +415,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
             origin: Pose { x: origin[0], y: origin[1], phi: origin[2] },
             offset,
             damping,
+            auto_order,
         });
         stiffness_places.push(stiffness_place);
         offset += dof;
@@ -761,8 +763,32 @@ fn foreign_keys(j: &JointToml, kind: &str) -> Option<(&'static str, Span)> {
     foreign.into_iter().find_map(|(k, s)| s.map(|s| (k, s)))
 }
 
-/// The joint's kind, and the place of the key that sets its stiffness.
-fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Span)> {
+/// A flexure's `order`: a whole number (3 when absent), or `"auto"`, which
+/// starts at 3 (the second value says so).
+fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, bool)> {
+    let Some(o) = &j.order else { return Ok((3, false)) };
+    match o.get_ref() {
+        toml::Value::Integer(n) if *n >= 0 => Ok((usize::try_from(*n).unwrap_or(usize::MAX), false)),
+        toml::Value::String(s) if s == "auto" => Ok((3, true)),
+        v => src.fail(
+            &o.span(),
+            format!(
+                "{owner}order = {}: must be a whole number from 1 to {} or \"auto\" (raised until an analysis's error estimate meets its target)",
+                match v {
+                    toml::Value::String(s) => format!("{s:?}"),
+                    toml::Value::Integer(i) => i.to_string(),
+                    toml::Value::Float(x) => format!("{x:?}"),
+                    other => format!("a {}", other.type_str()),
+                },
+                crate::joint::MAX_ORDER
+            ),
+        ),
+    }
+}
+
+/// The joint's kind, the place of the key that sets its stiffness, and
+/// whether it is a flexure of `order = "auto"`.
+fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Span, bool)> {
     let kind = j.kind.get_ref().as_str();
     if !matches!(kind, "flexure" | "revolute" | "prismatic" | "fixed") {
         return src.fail(
@@ -785,7 +811,7 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 .ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
             let l = src.number(owner, "length", length, Sign::Positive)?;
             let (ei, ei_span, mut section) = flexure_section(src, owner, j)?;
-            let order = j.order.as_ref().map_or(3, |o| *o.get_ref());
+            let (order, auto_order) = flexure_order(src, owner, j)?;
             let order_span = j.order.as_ref().map_or(j.name.span(), Spanned::span);
             let mut f = Flexure::new(l, ei, order).map_err(|x| {
                 let span = match &x {
@@ -817,7 +843,7 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 src.numbers(owner, "kappa", &k.span(), k.get_ref(), Sign::Any)?;
                 f = f.with_rest(k.get_ref()).map_err(|x| src.placed(owner, &k.span(), x))?;
             }
-            Ok((JointKind::Flexure(Box::new(f)), ei_span))
+            Ok((JointKind::Flexure(Box::new(f)), ei_span, auto_order))
         }
         "revolute" => Ok((
             JointKind::Revolute(Revolute {
@@ -825,6 +851,7 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 rest: spring("rest", &j.rest, Sign::Any)?,
             }),
             stiffness_place,
+            false,
         )),
         "prismatic" => Ok((
             JointKind::Prismatic(Prismatic {
@@ -832,8 +859,9 @@ fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Sp
                 rest: spring("rest", &j.rest, Sign::Any)?,
             }),
             stiffness_place,
+            false,
         )),
-        _ => Ok((JointKind::Fixed(Fixed), j.name.span())),
+        _ => Ok((JointKind::Fixed(Fixed), j.name.span(), false)),
     }
 }
 

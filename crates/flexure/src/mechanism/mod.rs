@@ -53,6 +53,10 @@ pub struct JointSpec {
     /// coefficient $\beta$ (s), $D = \beta K$; on a revolute or prismatic joint
     /// the viscous coefficient (N·m·s/rad or N·s/m); zero on a fixed joint.
     pub damping: f64,
+    /// A flexure given `order = "auto"`: its order (3 to start) is raised
+    /// until an analysis's error estimate meets its target
+    /// ([`crate::estimate::buckle_auto`], [`crate::estimate::mechanism_modes_auto`]).
+    pub auto_order: bool,
 }
 
 /// A tendon of constant tension through via points; potential tension × length.
@@ -340,5 +344,30 @@ impl Mechanism {
         }
         path.reverse();
         path
+    }
+
+    /// The same mechanism with flexure joint `j` replaced by `refine(j, flexure)`
+    /// where it returns one (another order or quadrature: the coordinates
+    /// are renumbered, and `[initial]` coordinates padded with zeros or cut).
+    pub fn with_flexures(
+        &self,
+        mut refine: impl FnMut(usize, &crate::joint::Flexure) -> crate::Result<Option<crate::joint::Flexure>>,
+    ) -> crate::Result<Mechanism> {
+        let mut m = self.clone();
+        let mut offset = 0;
+        for (j, spec) in m.joints.iter_mut().enumerate() {
+            if let JointKind::Flexure(f) = &spec.kind
+                && let Some(g) = refine(j, f)?
+            {
+                spec.kind = JointKind::Flexure(Box::new(g));
+            }
+            spec.offset = offset;
+            offset += spec.kind.joint().dof();
+        }
+        m.dof = offset;
+        for (j, q) in m.initial.iter_mut().chain(m.initial_velocity.iter_mut()) {
+            q.resize(m.joints[*j].kind.joint().dof(), 0.0);
+        }
+        Ok(m)
     }
 }
