@@ -519,6 +519,9 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
 fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     use crate::figures::{COLORS, Chart, Dash, Series, chart_figure, write_stack};
     let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
+    // simulate's warnings; of its answer, draw keeps the findings.
+    let mut checks = json!({});
+    crate::simulate::put_motion_checks(&mut checks, &m, &run, &args.file)?;
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &Settings::default()).map_err(err)?;
     let last = run.time.len() - 1;
@@ -600,6 +603,9 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     });
     if let Some(k) = per_newton {
         v["force_scale_m_per_n"] = json!(k);
+    }
+    if let Some(findings) = checks.get("findings") {
+        v["findings"] = findings.clone();
     }
     Ok(v)
 }

@@ -7,11 +7,36 @@ use std::fmt::Write;
 /// line, matrices as aligned rows.
 pub fn readable(value: &Value) -> String {
     let mut out = String::new();
-    write_value(&mut out, value, 0);
+    write_value(&mut out, value, 0, "");
     out
 }
 
-fn write_value(out: &mut String, value: &Value, indent: usize) {
+/// The unit (or meaning) shown after a number of the table form, by its
+/// key and the key of the object holding it; `None` for pure numbers
+/// (factors, counts, flags) and for matrices of mixed units.
+fn unit(parent: &str, key: &str) -> Option<&'static str> {
+    Some(match (parent, key) {
+        ("error_estimate", "omega" | "critical_load" | "load_factor") => "(relative)",
+        ("curvature_max", "max") | (_, "curvature") => "1/m",
+        ("stress", "max") | (_, "stress") => "Pa",
+        ("curvature_max" | "stress", "at") => "m along the flexure",
+        (_, "phi" | "angle" | "alpha" | "gap_rad") => "rad",
+        (_, "angle_degrees") => "°",
+        (_, "x" | "y" | "position" | "tendon_length" | "s" | "gap_m") => "m",
+        (_, "moment" | "root_moment" | "residual") => "N·m",
+        (_, "fx" | "fy" | "force" | "critical_load" | "reference_critical_load") => "N",
+        (_, "energy" | "model_energy") => "J",
+        (_, "omega" | "reference_omega") => "rad/s",
+        (_, "frequency") => "Hz",
+        (_, "time") => "s",
+        (_, "stability_limit" | "stable_up_to") => "times the load",
+        (_, "force_scale_m_per_n") => "m per N",
+        (_, "eta") => "(η = model energy / exact energy − 1: how much stiffer the model is, paper Sec. II-E)",
+        _ => return None,
+    })
+}
+
+fn write_value(out: &mut String, value: &Value, indent: usize, parent: &str) {
     let pad = " ".repeat(indent);
     match value {
         Value::Object(map) => {
@@ -19,7 +44,7 @@ fn write_value(out: &mut String, value: &Value, indent: usize) {
                 match v {
                     Value::Object(_) => {
                         let _ = writeln!(out, "{pad}{key}:");
-                        write_value(out, v, indent + 2);
+                        write_value(out, v, indent + 2, key);
                     }
                     Value::Array(rows) if rows.iter().all(|r| r.is_array()) && !rows.is_empty() => {
                         let _ = writeln!(out, "{pad}{key}:");
@@ -31,11 +56,16 @@ fn write_value(out: &mut String, value: &Value, indent: usize) {
                         let _ = writeln!(out, "{pad}{key}:");
                         for (i, item) in items.iter().enumerate() {
                             let _ = writeln!(out, "{pad}  [{i}]");
-                            write_value(out, item, indent + 4);
+                            write_value(out, item, indent + 4, key);
                         }
                     }
                     _ => {
-                        let _ = writeln!(out, "{pad}{key}: {}", inline(v));
+                        let numeric = v.is_number() || v.as_array().is_some_and(|a| a.iter().all(Value::is_number));
+                        let shown = match unit(parent, key) {
+                            Some(u) if numeric => format!("{} {u}", inline(v)),
+                            _ => inline(v),
+                        };
+                        let _ = writeln!(out, "{pad}{key}: {shown}");
                     }
                 }
             }
@@ -85,13 +115,22 @@ pub fn non_finite_message(path: &str) -> String {
     }
 }
 
+/// `x` in the shortest form that reads back to the same number: plain
+/// from 1e-4 up to 1e16 (`0.5`, `1`), with an exponent beyond (`1e-30`, not
+/// 30 zeros; `3.2048809982368066e-6`), as Python's `repr` writes floats.
+pub fn shortest(x: f64) -> String {
+    let magnitude = x.abs().log10().floor();
+    if x == 0.0 || (-4.0..16.0).contains(&magnitude) { x.to_string() } else { format!("{x:e}") }
+}
+
 /// The leaves of `value`, in order, as one CSV line (the `--input` table form).
 pub fn csv_line(value: &Value) -> String {
     fn leaves(v: &Value, out: &mut Vec<String>) {
         match v {
             Value::Array(items) => items.iter().for_each(|i| leaves(i, out)),
             Value::Object(map) => map.values().for_each(|i| leaves(i, out)),
-            Value::Number(n) => out.push(n.as_f64().map_or_else(|| n.to_string(), |x| x.to_string())),
+            Value::Number(n) if n.is_f64() => out.push(n.as_f64().map_or_else(|| n.to_string(), shortest)),
+            Value::Number(n) => out.push(n.to_string()),
             Value::String(s) => out.push(s.clone()),
             other => out.push(other.to_string()),
         }
@@ -99,4 +138,29 @@ pub fn csv_line(value: &Value) -> String {
     let mut out = Vec::new();
     leaves(value, &mut out);
     out.join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shortest;
+
+    /// Short forms, and every form reads back to the very same number
+    /// (seeded values across the whole range of magnitudes).
+    #[test]
+    fn shortest_reads_back_exactly() {
+        assert_eq!([shortest(1e-30), shortest(0.5), shortest(1.0), shortest(0.0)], ["1e-30", "0.5", "1", "0"]);
+        assert_eq!([shortest(-2.5e-5), shortest(1e16), shortest(123.25)], ["-2.5e-5", "1e16", "123.25"]);
+        let mut bits = 0x9E37_79B9_7F4A_7C15_u64;
+        for _ in 0..10_000 {
+            bits ^= bits << 13;
+            bits ^= bits >> 7;
+            bits ^= bits << 17;
+            let x = f64::from_bits(bits);
+            if x.is_finite() {
+                let s = shortest(x);
+                assert_eq!(s.parse::<f64>().unwrap(), x, "{s}");
+                assert!(s.len() <= 24, "{s}");
+            }
+        }
+    }
 }

@@ -131,17 +131,25 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
-    let mut findings = crate::findings::closures(&m, &args.file)?;
-    let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
-    findings.extend(crate::findings::along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
-    if !findings.is_empty() {
-        v["findings"] = json!(findings);
-    }
+    put_motion_checks(&mut v, &m, &run, &args.file)?;
     if let Some(path) = &args.out {
         std::fs::write(path, csv(&m, &run)).map_err(|e| format!("writing {}: {e}", path.display()))?;
         v["out"] = json!(path.display().to_string());
     }
     Ok(v)
+}
+
+/// The checks `simulate` makes of a run, shared by `draw --simulate`:
+/// closures open at rest, and parts that cross at a sample (`findings`,
+/// each told on stderr).
+pub fn put_motion_checks(v: &mut Value, m: &Mechanism, run: &Simulation, file: &Path) -> Result<(), String> {
+    let mut findings = crate::findings::closures(m, file)?;
+    let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
+    findings.extend(crate::findings::along(m, &samples, ("t (s)", "samples"), "time", file));
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
+    Ok(())
 }
 
 fn motion_json(m: &Mechanism, run: &Simulation) -> Value {
@@ -190,7 +198,7 @@ fn csv(m: &Mechanism, run: &Simulation) -> String {
         row.extend(run.v(k));
         row.push(run.energy[k]);
         for (i, x) in row.iter().enumerate() {
-            let _ = write!(text, "{}{x:e}", if i > 0 { "," } else { "" });
+            let _ = write!(text, "{}{}", if i > 0 { "," } else { "" }, crate::render::shortest(*x));
         }
         text.push('\n');
     }

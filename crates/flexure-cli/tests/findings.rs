@@ -151,4 +151,12 @@ post = [0.0, 0.0, 0.0]
         .collect();
     assert!(!times.is_empty() && times[0] > 0.0, "{times:?}");
     assert!(line.contains(&format!("t (s) = {} ", times[0])), "{line}");
+    // draw --simulate gives simulate's warnings on the same run.
+    let svg = dir.path().join("swing.svg").display().to_string();
+    let (code, out, drawn) =
+        crate::cli::run(&["draw", &path, "--simulate", "0.3", "--every", "0.01", "--out", &svg, "--json"]);
+    assert_eq!(code, 0, "{drawn}");
+    assert!(drawn.lines().any(|l| l == line), "{drawn}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["findings"].as_array().is_some_and(|f| !f.is_empty()), "{v}");
 }
