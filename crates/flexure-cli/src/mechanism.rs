@@ -522,6 +522,7 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     // simulate's warnings; of its answer, draw keeps the findings.
     let mut checks = json!({});
     crate::simulate::put_motion_checks(&mut checks, &m, &run, &args.file)?;
+    crate::simulate::put_stopped(&mut checks, &run, &args.file, duration);
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &Settings::default()).map_err(err)?;
     let last = run.time.len() - 1;
@@ -604,8 +605,10 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     if let Some(k) = per_newton {
         v["force_scale_m_per_n"] = json!(k);
     }
-    if let Some(findings) = checks.get("findings") {
-        v["findings"] = findings.clone();
+    for key in ["findings", "stopped"] {
+        if let Some(x) = checks.get(key) {
+            v[key] = x.clone();
+        }
     }
     Ok(v)
 }

@@ -118,6 +118,16 @@ pub fn iterations(s: &str) -> Result<usize, String> {
     count(s, 1, MAX_ITERATIONS)
 }
 
+/// A step budget: a whole number from 1 to 1e9 (`1e6` is accepted).
+pub fn steps(s: &str) -> Result<usize, String> {
+    let v = number(s)?;
+    if v.fract() == 0.0 && (1.0..=1e9).contains(&v) {
+        Ok(v as usize)
+    } else {
+        Err(format!("{s:?} must be a whole number from 1 to 1e9"))
+    }
+}
+
 /// A relative tolerance: a finite number in (0, 1).
 pub fn tolerance(s: &str) -> Result<f64, String> {
     let v = number(s)?;

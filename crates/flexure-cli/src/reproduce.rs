@@ -829,6 +829,9 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
     };
     let settings = flexure::dynamics::SimulationSettings { motion, ..Default::default() };
     let run = flexure::dynamics::simulate(&finger, &settings, flexure::dynamics::Start::Equilibrium).map_err(lib)?;
+    if let Some(e) = run.stopped.clone() {
+        return Err(lib(e));
+    }
     let distal = run.bodies.iter().find(|b| b.name == "distal").ok_or("finger_dynamics.toml has no distal body")?;
     // The quasi-static path: the equilibrium under the loads at each time.
     let statics_settings = flexure::mechanism::statics::Settings::default();

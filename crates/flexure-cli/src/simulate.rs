@@ -47,6 +47,9 @@ pub struct MotionOptions {
     /// Where the motion starts; the file's [initial] and [initial_velocity] override it.
     #[arg(long, value_enum, default_value = "equilibrium")]
     pub start: StartArg,
+    /// Steps the integrator may try, 1 to 1e9 [default: 1e6 plus 10 per sample].
+    #[arg(long, value_parser = crate::options::steps, allow_hyphen_values = true)]
+    pub max_steps: Option<usize>,
 }
 
 impl MotionOptions {
@@ -57,6 +60,7 @@ impl MotionOptions {
             every: self.every.unwrap_or(duration / 100.0),
             tolerance: self.tolerance,
             absolute: self.tolerance,
+            max_steps: self.max_steps,
             ..Default::default()
         };
         SimulationSettings { motion, ..Default::default() }
@@ -91,11 +95,38 @@ pub fn run_motion(
         e => crate::describe(e),
     })?;
     let m = load(file)?;
-    let run = with_progress_bar(duration, || simulate(&m, &settings, options.start())).map_err(|e| match e {
-        e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => format!("{}: {e}", file.display()),
-    })?;
+    let run = with_progress_bar(duration, || simulate(&m, &settings, options.start()))
+        .map_err(|e| format!("{}: {}", file.display(), said(e, duration)))?;
     Ok((m, run))
+}
+
+/// The library's error as `simulate` says it: options by their names, and
+/// an interrupt at its time, not at a fraction of a load.
+pub fn said(e: flexure::Error, duration: f64) -> String {
+    match e {
+        flexure::Error::Interrupted { load_fraction } => format!(
+            "interrupted at t = {:.6e} s of {duration:e} s ({:.2} % of the duration)",
+            load_fraction * duration,
+            100.0 * load_fraction
+        ),
+        e @ flexure::Error::InvalidParameter { .. } => crate::describe(e),
+        e => e.to_string(),
+    }
+}
+
+/// `stopped` for a run that ended early: its time and the error, which
+/// makes the command exit 2 after printing the samples it reached.
+pub fn put_stopped(v: &mut Value, run: &Simulation, file: &Path, duration: f64) {
+    if let Some(e) = &run.stopped {
+        let reached = run.time.last().copied().unwrap_or(0.0);
+        let error = format!(
+            "{}: the run stopped after {} samples (to t = {reached:e} s of {duration:e} s, each printed above): {}",
+            file.display(),
+            run.time.len(),
+            said(e.clone(), duration)
+        );
+        v["stopped"] = json!({ "time": reached, "error": error });
+    }
 }
 
 thread_local! {
@@ -129,13 +160,24 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
 /// `time`, `bodies` {name: {x, y, phi}}, `coordinates` {joint: one row per
 /// sample}, `energy`, `steps`, `rejected` and `violation`.
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
+    // The output file is opened before the run, so a path that cannot be
+    // written is said before the work, not after it.
+    let out = match &args.out {
+        Some(path) => Some((
+            path,
+            std::fs::File::create(path).map_err(|e| format!("--out {}: {e} (nothing was run)", path.display()))?,
+        )),
+        None => None,
+    };
     let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
     put_motion_checks(&mut v, &m, &run, &args.file)?;
-    if let Some(path) = &args.out {
-        std::fs::write(path, csv(&m, &run)).map_err(|e| format!("writing {}: {e}", path.display()))?;
+    if let Some((path, mut file)) = out {
+        use std::io::Write as _;
+        file.write_all(csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
         v["out"] = json!(path.display().to_string());
     }
+    put_stopped(&mut v, &run, &args.file, args.duration);
     Ok(v)
 }
 

@@ -222,3 +222,70 @@ fn a_closed_chain_reports_its_closure_violation() {
     let travel = y.iter().map(|y1| (y1 - y[0]).abs()).fold(0.0, f64::max);
     assert!(travel > 1e-5, "the coupler moves: {travel} m");
 }
+
+/// A run that stops early keeps its work (issue 21): every sample reached
+/// is printed and written to `--out`, then the error, exit 2. The budget is
+/// `--max-steps`; the arm from 0.3 rad takes about 30 steps per second at
+/// 1e-10, so 20 steps end it before 2 s.
+#[test]
+fn a_run_that_stops_keeps_its_samples() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[initial]\npin = 0.3\n");
+    let csv = dir.path().join("run.csv").display().to_string();
+    let args = ["simulate", &file, "--duration", "2", "--every", "0.1", "--tolerance", "1e-10", "--max-steps", "20"];
+    let (code, out, err) = run(&[&args[..], &["--json", "--out", &csv]].concat());
+    assert_eq!(code, 2, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let time = floats(&v["time"]);
+    assert!(time.len() >= 2 && *time.last().unwrap() < 2.0, "{time:?}");
+    assert_eq!(v["stopped"]["time"].as_f64(), time.last().copied());
+    assert!(
+        err.contains(&format!("the run stopped after {} samples", time.len())) && err.contains("20 steps"),
+        "{err}"
+    );
+    // The CSV has the same samples: a header and a row each.
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), time.len() + 1);
+    // Without the budget it runs to the end.
+    let (code, _, err) = run(&args[..8]);
+    assert_eq!(code, 0, "{err}");
+}
+
+/// A duration no step budget can cover is stopped as soon as its pace says
+/// so (after 1000 steps), with the reason, instead of failing at its end
+/// (issue 21: `--duration 1e6` failed at t = 0.1 s, `--duration 100 --every
+/// 1e-4` ran minutes to fail at 99.96 s). The finger steps about 1e-4 s.
+#[test]
+fn a_hopeless_duration_stops_early_with_the_reason() {
+    let finger = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger_dynamics.toml");
+    let (code, out, err) = run(&["simulate", finger, "--duration", "1e6", "--json"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("at the pace of the last 1000 steps") && err.contains("its budget of"), "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(floats(&v["time"]), [0.0]);
+}
+
+/// `--out` is checked before the run: a path that cannot be written is
+/// said at once, and nothing is run (it used to be found after the run).
+#[test]
+fn an_unwritable_out_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "");
+    let bad = dir.path().join("no/such/dir/run.csv").display().to_string();
+    let (code, out, err) = run(&["simulate", &file, "--duration", "1", "--out", &bad]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty() && err.contains("--out") && err.contains("nothing was run"), "{err}");
+}
+
+/// Initial coordinates are bounded like every coordinate (1e6), by name and
+/// place (issue 21: values beyond were accepted, and such starts ran for minutes).
+#[test]
+fn initial_coordinates_are_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[initial_velocity]\npin = 1e7\n");
+    let (code, _, err) = run(&["simulate", &file, "--duration", "1"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("initial_velocity: joint \"pin\": coordinates[0] = 1e7: must be at most 1e6 in magnitude"),
+        "{err}"
+    );
+}

@@ -37,7 +37,12 @@ pub fn motion<'py>(
     let settings = SimulationSettings { motion, ..Default::default() };
     let (run, open) = crate::interruptible(py, || {
         let open = flexure::mechanism::findings::open_closures(m, &settings.equilibrium)?;
-        Ok((simulate(m, &settings, start)?, open))
+        // Python raises on a run that stopped early, as before.
+        let run = simulate(m, &settings, start)?;
+        match &run.stopped {
+            Some(e) => Err(e.clone()),
+            None => Ok((run, open)),
+        }
     })?;
     let crossings: Vec<(Option<f64>, _)> =
         flexure::mechanism::findings::crossings_along(m, (0..run.time.len()).map(|k| run.q(k)))

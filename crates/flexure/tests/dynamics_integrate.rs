@@ -642,7 +642,7 @@ fn bad_settings_name_the_parameter() {
     assert_eq!(bad(Settings { absolute: 0.0, ..good }), "absolute");
     assert_eq!(bad(Settings { max_step: 0.0, ..good }), "max_step");
     assert_eq!(bad(Settings { max_rotation_per_step: -1.0, ..good }), "max_rotation_per_step");
-    assert_eq!(bad(Settings { max_steps: 0, ..good }), "max_steps");
+    assert_eq!(bad(Settings { max_steps: Some(0), ..good }), "max_steps");
     let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
     let e = integrate(&mut p, &[0.1, 0.2], &[0.0], &good).unwrap_err();
     assert!(matches!(e, Error::InvalidParameter { name: "initial", .. }), "{e}");

@@ -80,10 +80,12 @@
 //! iterations that run out, are accepted when the estimated distance to the
 //! solution is within 1 % of the tolerance; a refused step is retried shorter at most
 //! [`Settings::max_rejections`] times in a row, at most
-//! [`Settings::max_steps`] steps are tried in all, and no step is shorter
-//! than $10^{-12}$ of the duration: past any of these the run stops with
-//! [`Error::IntegrationStalled`], saying the time reached and why the last
-//! step failed. Every Newton iteration polls the hook of
+//! [`Settings::step_budget`] steps are tried in all (a run whose pace would
+//! need more than [`PACE_MARGIN`] times the budget left stops as soon as it
+//! knows, [`PACE_WINDOW`]), and no step falls to rounding's level: past any
+//! of these the run stops with [`Error::IntegrationStalled`], saying the
+//! time reached and why the last step failed; [`integrate_kept`] keeps the
+//! samples reached before it. Every Newton iteration polls the hook of
 //! [`crate::solver::with_interrupt`].
 
 use super::System;
@@ -108,8 +110,10 @@ pub struct Settings {
     pub max_step: f64,
     /// Largest rotation (rad) of any section or body in one step.
     pub max_rotation_per_step: f64,
-    /// Steps tried (accepted and rejected) before giving up.
-    pub max_steps: usize,
+    /// Steps tried (accepted and rejected) before giving up; `None` (the
+    /// default) follows the samples asked for: $10^6$ plus 10 per sample
+    /// ([`Settings::step_budget`]).
+    pub max_steps: Option<usize>,
     /// Successive rejections of one step before giving up.
     pub max_rejections: usize,
 }
@@ -123,7 +127,7 @@ impl Default for Settings {
             absolute: 1e-8,
             max_step: f64::INFINITY,
             max_rotation_per_step: 0.5,
-            max_steps: 1_000_000,
+            max_steps: None,
             max_rejections: 50,
         }
     }
@@ -169,6 +173,18 @@ pub fn with_progress<R>(report: fn(f64), work: impl FnOnce() -> R) -> R {
 /// The most samples a run may report.
 pub const MAX_SAMPLES: usize = 1_000_000;
 
+/// The largest step budget that may be set ([`Settings::max_steps`]).
+pub const MAX_STEPS: usize = 1_000_000_000;
+
+/// Every this many accepted steps, the run checks its pace: if the time
+/// left would take more than [`PACE_MARGIN`] times the steps left in the
+/// budget at the mean step of the last this many, it stops there, with the
+/// samples reached, rather than spend the budget to fail at its end.
+pub const PACE_WINDOW: usize = 1000;
+
+/// See [`PACE_WINDOW`].
+pub const PACE_MARGIN: f64 = 10.0;
+
 /// Simplified Newton iterations per step before the step is retried shorter.
 const NEWTON_ITERATIONS: usize = 7;
 
@@ -212,12 +228,30 @@ impl Settings {
             return Err(Error::invalid("max_step", self.max_step, "must be greater than zero (or infinite for none)"));
         }
         positive("max_rotation_per_step", self.max_rotation_per_step)?;
-        crate::error::count("max_steps", self.max_steps, crate::solver::MAX_COUNT, "must be from 1 to 1000000")?;
+        if let Some(k) = self.max_steps {
+            crate::error::count("max_steps", k, MAX_STEPS, "must be from 1 to 1000000000")?;
+        }
         crate::error::count("max_rejections", self.max_rejections, 1000, "must be from 1 to 1000")?;
         if self.duration / self.every > MAX_SAMPLES as f64 {
             return Err(Error::invalid("every", self.every, "gives more than 1000000 samples over the duration"));
         }
         Ok(())
+    }
+
+    /// The steps a run may try: [`Settings::max_steps`], or $10^6$ plus 10
+    /// per sample (a sample ends a step, so a run of $10^6$ samples is not
+    /// cut short by a budget of $10^6$ steps).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::dynamics::integrate::Settings;
+    /// let s = Settings { duration: 1.0, every: 1e-6, ..Default::default() };
+    /// assert_eq!(s.step_budget(), 1_000_000 + 10 * 1_000_001);
+    /// assert_eq!(Settings { max_steps: Some(500), ..s }.step_budget(), 500);
+    /// ```
+    pub fn step_budget(&self) -> usize {
+        let samples = (self.duration / self.every).ceil().min(MAX_SAMPLES as f64) as usize + 1;
+        self.max_steps.unwrap_or(1_000_000 + 10 * samples)
     }
 
     /// The sample times $0, \Delta t, 2\Delta t, \ldots, T$ (a last interval
@@ -641,8 +675,52 @@ pub fn integrate<S: System + ?Sized>(
     v0: &[f64],
     settings: &Settings,
 ) -> Result<Trajectory> {
+    let (run, stopped) = integrate_kept(system, q0, v0, settings)?;
+    stopped.map_or(Ok(run), Err)
+}
+
+/// [`integrate`] that keeps its work: a run that stops after its first
+/// sample (stalled, interrupted, or a state that cannot be evaluated) returns
+/// the samples it reached with the error that stopped it. Bad settings or
+/// states, and a start that cannot be made consistent, are still errors.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::integrate::{integrate_kept, Settings};
+/// use flexure::dynamics::System;
+/// use flexure::{Error, Result};
+/// /// A unit mass on a unit spring, which cannot be evaluated past t = 1.5 s.
+/// struct Brittle;
+/// impl System for Brittle {
+///     fn dim(&self) -> usize { 1 }
+///     fn closures(&self) -> usize { 0 }
+///     fn dynamics(&mut self, q: &[f64], _: &[f64], t: f64, m: &mut [f64], f: &mut [f64]) -> Result<()> {
+///         if t > 1.5 { return Err(Error::Singular { what: "past 1.5 s".into() }); }
+///         m[0] = 1.0;
+///         f[0] = -q[0];
+///         Ok(())
+///     }
+///     fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+///         k[0] = 1.0;
+///         d[0] = 0.0;
+///         Ok(())
+///     }
+///     fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> { Ok(0.5 * (q[0] * q[0] + v[0] * v[0])) }
+///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
+/// }
+/// let s = Settings { duration: 3.0, every: 0.5, ..Default::default() };
+/// let (run, stopped) = integrate_kept(&mut Brittle, &[1.0], &[0.0], &s).unwrap();
+/// assert_eq!(run.time, [0.0, 0.5, 1.0, 1.5]);
+/// assert!(matches!(stopped, Some(Error::IntegrationStalled { .. })));
+/// ```
+pub fn integrate_kept<S: System + ?Sized>(
+    system: &mut S,
+    q0: &[f64],
+    v0: &[f64],
+    settings: &Settings,
+) -> Result<(Trajectory, Option<Error>)> {
     settings.validate()?;
-    let (n, m) = (system.dim(), system.closures());
+    let n = system.dim();
     for (name, state) in [("initial", q0), ("initial_velocity", v0)] {
         if state.len() != n {
             return Err(Error::invalid(name, state.len(), "must have one entry per coordinate of the system"));
@@ -651,26 +729,43 @@ pub fn integrate<S: System + ?Sized>(
             return Err(Error::invalid(name, x, "must be finite numbers"));
         }
     }
-    let rk = Radau::new();
-    let mut w = Work::new(n, m);
-    let times = settings.times();
-    let duration = settings.duration;
+    let samples = settings.times().len();
     let mut run = Trajectory {
         dim: n,
-        time: Vec::with_capacity(times.len()),
-        coordinates: Vec::with_capacity(times.len() * n),
-        velocities: Vec::with_capacity(times.len() * n),
-        energy: Vec::with_capacity(times.len()),
+        time: Vec::with_capacity(samples),
+        coordinates: Vec::with_capacity(samples * n),
+        velocities: Vec::with_capacity(samples * n),
+        energy: Vec::with_capacity(samples),
         steps: 0,
         rejected: 0,
         violation: 0.0,
     };
+    match advance(system, q0, v0, settings, &mut run) {
+        Ok(()) => Ok((run, None)),
+        Err(e) if run.time.is_empty() => Err(e),
+        Err(e) => Ok((run, Some(e))),
+    }
+}
+
+/// The steps of [`integrate_kept`], from the consistent start, recording into `run`.
+fn advance<S: System + ?Sized>(
+    system: &mut S,
+    q0: &[f64],
+    v0: &[f64],
+    settings: &Settings,
+    run: &mut Trajectory,
+) -> Result<()> {
+    let (n, m) = (system.dim(), system.closures());
+    let rk = Radau::new();
+    let mut w = Work::new(n, m);
+    let times = settings.times();
+    let duration = settings.duration;
     let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
     consistent_start(system, &mut q, &v, settings)?;
     let (mut q1, mut v1) = (q.clone(), v.clone());
     let mut t = 0.0;
     run.violation = violation(system, &q, &mut w)?;
-    record(system, &mut run, 0.0, &q, &v)?;
+    record(system, run, 0.0, &q, &v)?;
     // A first step well inside the sample interval; the controller grows it
     // by up to 5 per step.
     let mut h = 1e-2 * settings.every.min(settings.max_step).min(duration);
@@ -682,6 +777,9 @@ pub fn integrate<S: System + ?Sized>(
     // The Newton matrix's data must be evaluated anew; it was at this step's start.
     let (mut stale, mut current) = (true, false);
     let jumps = system.jumps();
+    let budget = settings.step_budget();
+    // The time and accepted steps at the start of the pace window (PACE_WINDOW).
+    let (mut window_start, mut window_steps) = (0.0, 0);
     for &target in &times[1..] {
         while t < target {
             // The next jump of the loads up to this sample, landed on like a sample.
@@ -695,7 +793,7 @@ pub fn integrate<S: System + ?Sized>(
                 rejected: run.rejected,
                 step: h,
             };
-            if run.steps + run.rejected >= settings.max_steps {
+            if run.steps + run.rejected >= budget {
                 // Many short steps that each passed or nearly passed: the
                 // tolerance asks to resolve motion that fast, and lightly
                 // damped stiff modes are what usually moves that fast.
@@ -704,22 +802,41 @@ pub fn integrate<S: System + ?Sized>(
                         "{cause}; its limit of {} steps was reached, the steps near {h:.1e} s resolving \
                          motion that fast to the tolerance (lightly damped stiff modes, usually: material \
                          damping on the flexures lets the integrator step over them)",
-                        settings.max_steps
+                        budget
                     ),
                     h,
-                    &run,
+                    run,
                 ));
             }
+            if run.steps >= window_steps + PACE_WINDOW && run.rejected + run.steps < budget {
+                let pace = (t - window_start) / (run.steps - window_steps) as f64;
+                let needed = (duration - t) / pace;
+                let left = (budget - run.steps - run.rejected) as f64;
+                if needed > PACE_MARGIN * left {
+                    return Err(stalled(
+                        &format!(
+                            "at the pace of the last {PACE_WINDOW} steps ({pace:.3e} s each) the {:.6e} s left would take \
+                             about {needed:.2e} steps, more than {PACE_MARGIN} times the {left:.0} left of its budget of \
+                             {budget} steps; stopped early rather than at the budget's end (a larger budget, a looser \
+                             tolerance, damping on the flexures or a shorter duration)",
+                            duration - t
+                        ),
+                        h,
+                        run,
+                    ));
+                }
+                (window_start, window_steps) = (t, run.steps);
+            }
             if rejections > settings.max_rejections {
-                return Err(stalled(&format!("{cause}; {rejections} successive rejections"), h, &run));
+                return Err(stalled(&format!("{cause}; {rejections} successive rejections"), h, run));
             }
             let mut step = h.min(settings.max_step);
             let landing = t + 1.01 * step >= stop && stop - t <= settings.max_step;
             if landing {
                 step = stop - t;
             }
-            if step < 1e-12 * duration || t + step == t {
-                return Err(stalled(&format!("{cause}; the step fell below 1e-12 of the duration"), step, &run));
+            if step < 1e-14 * t.max(settings.every) || t + step == t {
+                return Err(stalled(&format!("{cause}; the step fell to rounding's level"), step, run));
             }
             // Whether the last state passed to `dynamics` is this step's start.
             let mut at_start = false;
@@ -828,16 +945,18 @@ pub fn integrate<S: System + ?Sized>(
                 last_rejected = true;
             }
         }
-        record(system, &mut run, target, &q, &v)?;
+        record(system, run, target, &q, &v)?;
     }
-    Ok(run)
+    Ok(())
 }
 
 fn record<S: System + ?Sized>(system: &mut S, run: &mut Trajectory, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
+    // The energy first: a sample that cannot be evaluated is not half recorded.
+    let energy = system.energy(q, v, t)?;
     run.time.push(t);
     run.coordinates.extend_from_slice(q);
     run.velocities.extend_from_slice(v);
-    run.energy.push(system.energy(q, v, t)?);
+    run.energy.push(energy);
     Ok(())
 }
 

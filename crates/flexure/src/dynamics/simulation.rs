@@ -16,7 +16,7 @@
 //! start is an equilibrium of the equations of motion, and a mechanism
 //! started there stays at rest.
 
-use super::integrate::{self, Trajectory, integrate};
+use super::integrate::{self, Trajectory, integrate_kept};
 use super::schedule::{ScheduledSystem, loads_at};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
@@ -69,6 +69,10 @@ pub struct Simulation {
     /// elastic and gravitational energy (J); the work of the other loads and
     /// of damping is not in it.
     pub trajectory: Trajectory,
+    /// Why the run ended before its duration, if it did (stalled,
+    /// interrupted, a state that cannot be evaluated): the samples above
+    /// are those reached ([`integrate::integrate_kept`]).
+    pub stopped: Option<Error>,
 }
 
 impl std::ops::Deref for Simulation {
@@ -112,8 +116,9 @@ pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) 
 ///
 /// Errors: `mass` when nothing has mass or inertia (no motion to
 /// simulate); a bad setting by name ([`integrate::Settings::validate`]);
-/// those of the start's static solve; [`Error::IntegrationStalled`] and
-/// [`Error::Interrupted`] from [`integrate()`].
+/// those of the start's static solve. A run that stops after its first
+/// sample ([`Error::IntegrationStalled`], [`Error::Interrupted`]) keeps the
+/// samples it reached, with the error in [`Simulation::stopped`].
 ///
 /// # Example
 /// ```
@@ -143,7 +148,7 @@ pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> R
         ));
     }
     let (q0, v0) = initial_state(m, &settings.equilibrium, start)?;
-    let run = integrate(&mut system, &q0, &v0, &settings.motion)?;
+    let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
     let mut bodies: Vec<BodyMotion> = m.bodies[1..]
         .iter()
         .map(|b| BodyMotion {
@@ -161,5 +166,5 @@ pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> R
             motion.phi.push(frame.angle);
         }
     }
-    Ok(Simulation { bodies, trajectory: run })
+    Ok(Simulation { bodies, trajectory: run, stopped })
 }

@@ -673,6 +673,14 @@ fn initial_state(
             return src.fail(&span, format!("{owner}the joint has {dof} coordinates and {} were given", values.len()));
         }
         src.numbers(&owner, "coordinates", &span, &values, Sign::Any)?;
+        // Bounded as every coordinate is (rad, m, and per second for rates).
+        let bound = crate::joint::MAX_COORDINATE;
+        if let Some((i, x)) = values.iter().enumerate().find(|(_, x)| x.abs() > bound) {
+            return src.fail(
+                &span,
+                format!("{owner}coordinates[{i}] = {}: must be at most {bound:e} in magnitude", self::number(*x)),
+            );
+        }
         out.push((j, values));
     }
     Ok(out)
