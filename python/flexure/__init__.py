@@ -57,6 +57,10 @@ __all__ = [
 ]
 
 
+# The most a mechanism file may hold (64 MiB), as in the library and the CLI.
+_MAX_FILE_BYTES = 64 << 20
+
+
 class Mechanism:
     """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository)."""
 
@@ -75,7 +79,12 @@ class Mechanism:
         if not isinstance(name, str):
             raise ValueError(f"path must name the file as text, got {type(name).__name__}")
         try:
-            text = Path(name).read_text(encoding="utf-8")
+            # Bounded, as the CLI reads files: /dev/zero or a runaway file is refused, not read forever.
+            with open(name, "rb") as f:
+                data = f.read(_MAX_FILE_BYTES + 1)
+            if len(data) > _MAX_FILE_BYTES:
+                raise ValueError(f"{name}: larger than {_MAX_FILE_BYTES >> 20} MiB, the most a mechanism file may hold")
+            text = data.decode("utf-8")
         except FileNotFoundError:
             where = f"no such mechanism file (relative paths start at {os.getcwd()})"
             raise FileNotFoundError(errno.ENOENT, where, name) from None

@@ -83,3 +83,9 @@ def test_path_of_the_wrong_type(path):
 def test_relative_paths_start_at_the_working_directory(monkeypatch):
     monkeypatch.chdir(ROOT)
     assert flexure.Mechanism.from_file(os.path.join("examples", "finger.toml")).dof > 0
+
+
+def test_a_file_is_read_to_a_bound():
+    # /dev/zero has no end: refused at 64 MiB, as the CLI refuses it, not read forever.
+    with pytest.raises(ValueError, match=r"/dev/zero: larger than 64 MiB"):
+        flexure.Mechanism.from_file("/dev/zero")

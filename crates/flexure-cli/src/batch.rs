@@ -32,7 +32,7 @@ struct Table {
 /// row only.
 fn read(path: &Path, allowed: &[&str]) -> Result<Table, String> {
     let file = path.display();
-    let text = std::fs::read_to_string(path).map_err(|e| format!("--input {file}: {e}"))?;
+    let text = crate::input::read_text(path, "--input ")?;
     let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     let (_, header) = lines.next().ok_or_else(|| format!("--input {file}: no header line"))?;
     let columns: Vec<String> = header.split(',').map(|c| c.trim().to_string()).collect();

@@ -11,6 +11,7 @@ mod batch;
 mod eigen;
 mod figures;
 mod findings;
+mod input;
 mod joint;
 mod mechanism;
 mod modes;

@@ -12,13 +12,13 @@ use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
 fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, "")?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The mechanism, and each flexure joint's `yield_strength` and `shape`.
 fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, "")?;
     let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok((m, reports))

@@ -179,7 +179,7 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
 }
 
 fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+    let text = crate::input::read_text(file, "")?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
             "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",

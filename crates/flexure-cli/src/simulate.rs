@@ -75,7 +75,7 @@ impl MotionOptions {
 }
 
 fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, "")?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -153,3 +153,40 @@ fn help_and_usage() {
     assert_eq!(code, 2);
     assert!(out.is_empty() && err.contains("no-such-command"), "{err}");
 }
+
+/// Every file option reads at most 64 MiB (issue 21: `solve /dev/zero` and
+/// `deflect --input /dev/zero` read forever, growing by 170 MB/s): each is
+/// refused with exit 2, naming the file and the limit, and prints nothing.
+#[test]
+fn every_file_option_is_bounded() {
+    let cases: [&[&str]; 8] = [
+        &["solve", "/dev/zero"],
+        &["buckle", "/dev/zero"],
+        &["draw", "/dev/zero", "--out", "/dev/null"],
+        &["draw", "/dev/zero", "--simulate", "1", "--out", "/dev/null"],
+        &["modes", "/dev/zero"],
+        &["simulate", "/dev/zero", "--duration", "1"],
+        &["deflect", "--input", "/dev/zero"],
+        &["kinematics", "--input", "/dev/zero"],
+    ];
+    for args in cases {
+        let (code, out, err) = run(args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(out.is_empty() && err.contains("/dev/zero: larger than 64 MiB"), "{args:?}: {err}");
+    }
+}
+
+/// Messages name what was given and what happened (issue 21): a duration
+/// too short to sample is blamed on `--duration` (it blamed `--every`,
+/// which was not given), a load beyond 1e30 is refused by name instead of
+/// stalling with "residual NaN", and long numbers are shown with an exponent.
+#[test]
+fn messages_name_what_was_given() {
+    let finger = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger_dynamics.toml");
+    let (code, _, err) = run(&["simulate", finger, "--duration", "5e-324"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--duration = 5e-324: must be at least 1e-12 s") && !err.contains("--every"), "{err}");
+    let (code, _, err) = run(&["deflect", "--moment", "1e308", "--fy", "1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--moment = 1e308: must be at most 1e30") && !err.contains("NaN"), "{err}");
+}

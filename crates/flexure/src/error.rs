@@ -36,8 +36,9 @@ pub enum Error {
     /// Load continuation could not advance: its step fell below the
     /// smallest allowed step, or it ran out of steps.
     #[error(
-        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps (residual {residual:.3e} {unit}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load",
-        pct = .load_fraction * 100.0
+        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps ({reached}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load",
+        pct = .load_fraction * 100.0,
+        reached = residual_reached(*.residual, .unit)
     )]
     ContinuationStalled {
         /// Why the last step failed: the corrector's non-convergence, a
@@ -108,13 +109,30 @@ pub enum Error {
     },
 }
 
+/// "residual R unit", or, when no state tried could be evaluated to a
+/// finite residual, that said in words (never "residual NaN").
+fn residual_reached(residual: f64, unit: &str) -> String {
+    if residual.is_finite() {
+        format!("residual {residual:.3e} {unit}")
+    } else {
+        "no state tried could be evaluated to a finite residual".into()
+    }
+}
+
 /// The library's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
     /// An [`Error::InvalidParameter`] for `name`, showing `value`.
     pub fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> Self {
-        Error::InvalidParameter { name, value: value.to_string(), reason }
+        // A number whose plain decimals run long (1e308, 5e-324) is shown
+        // with an exponent, in the shortest form that reads back to it.
+        let text = value.to_string();
+        let value = match text.parse::<f64>() {
+            Ok(x) if text.len() > 20 && x.is_finite() => format!("{x:e}"),
+            _ => text,
+        };
+        Error::InvalidParameter { name, value, reason }
     }
 
     /// The same error placed at a mechanism's joint: a [`Error::Singular`]

@@ -38,14 +38,23 @@ impl TipLoad<f64> {
 
     /// Checks that every component is finite.
     pub fn validate(&self) -> Result<()> {
-        finite("moment", self.moment)?;
-        finite("fx", self.fx)?;
-        finite("fy", self.fy)?;
+        for (name, v) in [("moment", self.moment), ("fx", self.fx), ("fy", self.fy)] {
+            finite(name, v)?;
+            // As a mechanism file bounds its loads: beyond, the products the
+            // model forms leave the range of floating point.
+            if v.abs() > MAX_LOAD {
+                return Err(Error::invalid(name, v, "must be at most 1e30 in magnitude (SI units)"));
+            }
+        }
         Ok(())
     }
 }
 
 pub use crate::solver::Settings;
+
+/// The largest magnitude of a tip load's component (N·m, N), as a
+/// mechanism file bounds every number.
+pub const MAX_LOAD: f64 = 1e30;
 
 /// Work buffers and results of [`deflect`] for one flexure (the Data).
 #[derive(Debug, Clone)]

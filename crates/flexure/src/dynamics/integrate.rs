@@ -211,6 +211,9 @@ impl Settings {
     pub fn validate(&self) -> Result<()> {
         use crate::error::positive;
         positive("duration", self.duration)?;
+        if self.duration < 1e-12 {
+            return Err(Error::invalid("duration", self.duration, "must be at least 1e-12 s"));
+        }
         positive("every", self.every)?;
         positive("tolerance", self.tolerance)?;
         positive("absolute", self.absolute)?;

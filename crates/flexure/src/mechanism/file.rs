@@ -319,7 +319,11 @@ impl Source<'_> {
     }
 }
 
-/// Parses and checks a mechanism file.
+/// The longest mechanism text [`from_toml`] reads (64 MiB, far beyond any
+/// mechanism): a longer one is refused with its length, not parsed.
+pub const MAX_TEXT_BYTES: usize = 64 << 20;
+
+/// Parses and checks a mechanism file (at most [`MAX_TEXT_BYTES`]).
 ///
 /// # Example
 /// ```
@@ -338,6 +342,16 @@ impl Source<'_> {
 /// assert!(e.unwrap_err().to_string().starts_with("line 6, column 13: joint \"a\": stiffness = 5e-324"));
 /// ```
 pub fn from_toml(text: &str) -> Result<Mechanism> {
+    if text.len() > MAX_TEXT_BYTES {
+        return Err(Error::File {
+            place: "the whole file".into(),
+            message: format!(
+                "{} bytes, more than the {} MiB a mechanism file may hold",
+                text.len(),
+                MAX_TEXT_BYTES >> 20
+            ),
+        });
+    }
     let src = Source { text };
     let file: FileToml = toml::from_str(text).map_err(|e| {
         // Errors without a span (rare) concern the file as a whole.
