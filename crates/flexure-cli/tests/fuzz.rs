@@ -11,6 +11,10 @@
 //! - `modes`: random single-joint `modes` command lines (their own family,
 //!   run with `argv`'s test);
 //! - `library`: library functions called directly with random values;
+//! - `motion`: the examples mutated, with random `[[schedule]]` tables
+//!   (ramps, steps, harmonics, edge values) and `[initial]` states
+//!   appended, through `simulate` and `draw --simulate` with a bounded
+//!   step budget;
 //! - `process`: a smaller sample of `argv` cases run as real processes, to
 //!   check the exit status end to end, killed if they outlive the bound.
 //!
@@ -58,6 +62,7 @@ const FILE_CASES: usize = 3000;
 const LIBRARY_CASES: usize = 5000;
 const PROCESS_CASES: usize = 300;
 const MODES_CASES: usize = 1000;
+const MOTION_CASES: usize = 300;
 
 // ---------------------------------------------------------------- random
 
@@ -242,6 +247,7 @@ fn commands() -> Vec<Subcommand> {
                 ("--segments", Kind::Segments),
                 ("--yield-strength", Kind::Positive),
                 ("--shape", Kind::Shape),
+                ("--limit", Kind::Flag),
             ]),
         ),
         (
@@ -254,6 +260,7 @@ fn commands() -> Vec<Subcommand> {
                 ("--sweep", Kind::TendonSweep),
                 ("--yield-strength", Kind::Positive),
                 ("--shape", Kind::Shape),
+                ("--limit", Kind::Flag),
             ]),
         ),
         ("solve", true, vec![("--compliance", Kind::Body), ("--at", Kind::Point), ("--sweep", Kind::MechanismSweep)]),
@@ -533,6 +540,61 @@ fn number_spans(line: &str) -> Vec<(usize, usize)> {
         }
     }
     spans
+}
+
+/// A random `[[schedule]]` for one of the examples' loads: points (a ramp,
+/// a step, out of order, a third point at one time) or a harmonic, with
+/// edge values now and then.
+fn schedule_table(r: &mut Rng) -> String {
+    let load = r.pick(&PARAMETERS);
+    let v =
+        |r: &mut Rng| if r.chance(0.9) { format!("{}", r.uniform(-5.0, 10.0)) } else { r.pick(&WILD_TOML).to_string() };
+    let body = match r.below(3) {
+        0 => {
+            let (t0, t1) = (r.uniform(0.0, 0.02), r.uniform(0.0, 0.03));
+            format!("points = [[{t0}, {}], [{t1}, {}]]", v(r), v(r))
+        }
+        1 => {
+            let t = r.uniform(0.0, 0.02);
+            let third = if r.chance(0.2) { format!(", [{t}, {}]", v(r)) } else { String::new() };
+            format!("points = [[{t}, {}], [{t}, {}]{third}]", v(r), v(r))
+        }
+        _ => format!("harmonic = {{ amplitude = {}, frequency = {}, offset = {} }}", v(r), v(r), v(r)),
+    };
+    format!("\n[[schedule]]\nload = \"{load}\"\n{body}\n")
+}
+
+/// TOML values no key should take quietly.
+const WILD_TOML: [&str; 8] = ["0", "-1", "1e300", "-1e300", "nan", "inf", "1e-300", "1e7"];
+
+/// Family `motion`: a mutated example with a schedule, run for a short time.
+fn motion_case(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
+    let (_, text) = r.pick(&scratch.examples);
+    let mut text = mutate(r, text);
+    if r.chance(0.7) {
+        text += &schedule_table(r);
+    }
+    let path = scratch.dir.join(format!("{tag}.toml"));
+    std::fs::write(&path, text).unwrap();
+    let file = path.display().to_string();
+    let duration = if r.chance(0.9) { format!("{}", r.uniform(0.001, 0.03)) } else { r.pick(&WILD).to_string() };
+    let mut args = if r.chance(0.8) {
+        vec!["simulate".into(), file, "--duration".into(), duration]
+    } else {
+        let svg = scratch.dir.join(format!("{tag}.svg")).display().to_string();
+        vec!["draw".into(), file, "--simulate".into(), duration, "--out".into(), svg]
+    };
+    args.extend(["--max-steps".into(), if r.chance(0.9) { "400".into() } else { r.pick(&WILD).to_string() }]);
+    if r.chance(0.3) {
+        args.extend(["--start".into(), "rest".into()]);
+    }
+    if r.chance(0.3) {
+        args.extend(["--tolerance".into(), r.pick(&["1e-4", "1e-6", "1e-12", "0", "2"]).to_string()]);
+    }
+    if r.chance(0.5) {
+        args.push("--json".into());
+    }
+    args
 }
 
 fn file_case(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
@@ -1070,8 +1132,21 @@ fn fuzz_mechanism_files() {
             (format!("{} (file: {text})", shown(&args)), verdict)
         }),
     );
+    let s = scratch.clone();
+    let motion = drive(
+        MOTION_CASES,
+        Arc::new(move |i| {
+            let tag = format!("motion{i}");
+            let args = motion_case(&mut Rng::for_case(6, i), &s, &tag);
+            let verdict = run_in_process(&args);
+            let toml = s.dir.join(format!("{tag}.toml"));
+            let text = std::fs::read_to_string(&toml).unwrap_or_default().replace('\n', "⏎");
+            let _ = std::fs::remove_file(toml);
+            (format!("{} (file: {text})", shown(&args)), verdict)
+        }),
+    );
     let _ = std::fs::remove_dir_all(&scratch.dir);
-    report("mechanism files", &[("files", tally)]);
+    report("mechanism files", &[("files", tally), ("motion", motion)]);
 }
 
 /// Family `library`: library functions called directly.
