@@ -15,7 +15,9 @@ pub enum StabilityLimit {
     /// The path loses stability at `factor` times the load (a buckling or
     /// limit load): stable up to `factor`, confirmed, and unstable within a
     /// relative $10^{-10}$ above it (less precisely if a probe near it
-    /// failed; then `factor` is still a confirmed-stable lower bound).
+    /// failed; then `factor` is still a confirmed-stable lower bound). If
+    /// every probe below the first path's estimate fails, that estimate is
+    /// kept: the first path was stable to within one of its steps of it.
     Lost {
         /// The largest factor confirmed stable.
         factor: f64,
@@ -96,6 +98,11 @@ pub(crate) fn search(max_factor: f64, mut path_to: impl FnMut(f64) -> Result<Equ
             break;
         }
         (lo, hi) = (hi, (2.0 * hi).min(max_factor));
+    }
+    if lo == 0.0 {
+        // No probe confirmed stability below the first path's estimate (each
+        // failed): keep the answer that path gave, stable to within a step of it.
+        return Ok(StabilityLimit::Lost { factor: estimate });
     }
     while hi - lo > 1e-10 * hi && probes.get() < MAX_PROBES {
         let mid = 0.5 * (lo + hi);
