@@ -4,6 +4,7 @@
 //! buckling load. `flexure.exact` wraps them.
 
 use crate::coordinates::vector;
+use crate::strict::Real;
 use crate::{Flexure, interruptible, section, shape_points, stress, tip_load, to_py, warn_unstable};
 use flexure::reference::{column, compliance, elastica, euler};
 use flexure::stress::Peak;
@@ -147,13 +148,13 @@ impl Elastica {
 /// unstable, and YieldWarning when the peak stress exceeds the flexure's yield strength;
 /// both at stack level 2, the line calling `flexure.exact`'s wrapper.
 #[pyfunction]
-#[pyo3(signature = (flexure, moment=0.0, fx=0.0, fy=0.0, *, what="exact.elastica"))]
+#[pyo3(signature = (flexure, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, what="exact.elastica"))]
 pub fn exact_elastica(
     py: Python<'_>,
     flexure: Bound<'_, Flexure>,
-    moment: f64,
-    fx: f64,
-    fy: f64,
+    moment: Real,
+    fx: Real,
+    fy: Real,
     what: &str,
 ) -> PyResult<Elastica> {
     let load = tip_load(moment, fx, fy)?;
@@ -208,9 +209,9 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
 /// (root, tip) or a table, as `Flexure`'s) and `rest` (1 to 64 rest curvature
 /// coefficients, any order; straight, order 3, without them).
 #[pyfunction]
-#[pyo3(signature = (length=1.0, ei=None, rest=None))]
+#[pyo3(signature = (length=Real(1.0), ei=None, rest=None))]
 pub fn exact_flexure(
-    length: f64,
+    length: Real,
     ei: Option<&Bound<'_, PyAny>>,
     rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
 ) -> PyResult<Flexure> {
@@ -236,7 +237,7 @@ pub fn exact_flexure(
             kappa.len()
         )));
     }
-    let mut f = flexure::Flexure::new(length, ei, kappa.len()).map_err(to_py)?;
+    let mut f = flexure::Flexure::new(length.0, ei, kappa.len()).map_err(to_py)?;
     if let Some(s) = section {
         f = f.with_section(s).map_err(to_py)?;
     }
