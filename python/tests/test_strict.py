@@ -85,6 +85,9 @@ def test_coordinates_at_the_bound_are_accepted():
         ("f.connect((0.0, True, 0.0))", "pose"),
         ("f.stability_limit(fx=-1.0, max_factor=True)", "max_factor"),
         ("flexure.exact.elastica(fy=True)", "fy"),
+        ("flexure.Flexure(rest=[True, 0.0, 0.0])", "rest"),
+        ("flexure.Flexure(rest=np.array([False, True, False]))", "rest"),
+        ("flexure.exact.compliance(rest=(0.0, True))", "rest"),
     ],
 )
 def test_booleans_are_refused_naming_the_argument(call, name):

@@ -185,6 +185,26 @@ pub fn single(n: usize, alpha: &Bound<'_, PyAny>) -> PyResult<Row> {
     }
 }
 
+/// `value` as a float64 array, converted by NumPy; booleans (items of a
+/// list or tuple, or a boolean array) are refused, naming `name`.
+pub fn array_like<'py>(name: &str, value: &Bound<'py, PyAny>) -> PyResult<PyArrayLikeDyn<'py, f64, AllowTypeChange>> {
+    crate::strict::no_bool(name, value)?;
+    if value
+        .getattr("dtype")
+        .and_then(|d| d.getattr("kind"))
+        .is_ok_and(|k| k.extract::<String>().is_ok_and(|k| k == "b"))
+    {
+        return Err(PyTypeError::new_err(format!("argument '{name}': must be real numbers, not a boolean array")));
+    }
+    value.extract().map_err(|e: PyErr| {
+        if e.is_instance_of::<PyTypeError>(value.py()) {
+            PyTypeError::new_err(format!("argument '{name}': {}", e.value(value.py())))
+        } else {
+            e
+        }
+    })
+}
+
 /// Reads `name` as a 1-D array of `expected` finite values (any count if `None`).
 pub fn vector(
     name: &str,

@@ -10,7 +10,7 @@ use flexure::reference::{column, compliance, elastica, euler};
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
 use numpy::ndarray::Array2;
-use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -166,6 +166,9 @@ pub fn exact_elastica(
         let peak = if strength.is_some() { Some(trace.peak_stress()?) } else { None };
         Ok((solution, peak))
     })?;
+    let p = solution.pose;
+    crate::strict::finite_slice(&format!("{what} pose"), &[p.phi, p.x, p.y])?;
+    crate::strict::finite_number(&format!("{what} root_moment"), solution.root_moment)?;
     if !solution.stable {
         warn_unstable(py, what, &load, "the elastica fails the Jacobi test", 2)?;
     }
@@ -184,6 +187,7 @@ pub fn exact_elastica(
 pub fn exact_compliance<'py>(py: Python<'py>, flexure: &Flexure) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let f = &flexure.inner;
     let c = interruptible(py, || compliance::compliance_tip(f, &Default::default()))?;
+    crate::strict::finite_slice("exact.compliance", c.as_slice())?;
     Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
 }
 
@@ -199,10 +203,12 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
         let rest = format!("{:?}", f.rest());
         return Err(to_py(Error::invalid("rest", rest, "the exact buckling load is for a straight flexure")));
     }
-    if f.section().is_uniform() {
-        return Ok(euler::buckling_load(tip, f.length(), f.ei()));
-    }
-    interruptible(py, || column::buckling_load(f, tip, &Default::default()))
+    let p = if f.section().is_uniform() {
+        euler::buckling_load(tip, f.length(), f.ei())
+    } else {
+        interruptible(py, || column::buckling_load(f, tip, &Default::default()))?
+    };
+    crate::strict::finite_number("exact.buckling_load", p)
 }
 
 /// The flexure `flexure.exact` builds from `length`, `ei` (a number, a pair
@@ -213,7 +219,7 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
 pub fn exact_flexure(
     length: Real,
     ei: Option<&Bound<'_, PyAny>>,
-    rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+    rest: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Flexure> {
     let given = section::Arguments {
         ei,
@@ -227,7 +233,7 @@ pub fn exact_flexure(
     };
     let (ei, section) = section::read(&given)?;
     let kappa = match rest {
-        Some(r) => vector("rest", &r, None)?,
+        Some(r) => vector("rest", &crate::coordinates::array_like("rest", r)?, None)?,
         None => vec![0.0; 3],
     };
     let max = flexure::joint::MAX_ORDER;

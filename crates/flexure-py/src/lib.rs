@@ -506,7 +506,7 @@ impl Flexure {
         ei: Option<&Bound<'_, PyAny>>,
         order: Option<&Bound<'_, PyAny>>,
         quadrature: Option<&Bound<'_, PyAny>>,
-        rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+        rest: Option<&Bound<'_, PyAny>>,
         modulus: Option<Real>,
         width: Option<&Bound<'_, PyAny>>,
         thickness: Option<&Bound<'_, PyAny>>,
@@ -536,7 +536,7 @@ impl Flexure {
             f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
         if let Some(r) = rest {
-            f = f.with_rest(&vector("rest", &r, Some(order))?).map_err(to_py)?;
+            f = f.with_rest(&vector("rest", &coordinates::array_like("rest", r)?, Some(order))?).map_err(to_py)?;
         }
         if let Some(s) = yield_strength {
             if !(s.is_finite() && s > 0.0) {

@@ -283,6 +283,15 @@ pub fn sweep<'py>(
         (Ok(found), Some(err)) if found.1.stopped.is_some() => {
             // Interrupted within the sweep: the rows before it are kept on the exception.
             let result = answer(py, m, parameter, &values, &found)?;
+            let err = if err.is_instance_of::<PyKeyboardInterrupt>(py) {
+                PyKeyboardInterrupt::new_err(format!(
+                    "Mechanism.sweep: interrupted after {} of {} values (kept in the exception's `result`)",
+                    found.1.rows.len(),
+                    values.len()
+                ))
+            } else {
+                err
+            };
             err.value(py).setattr("result", result)?;
             return Err(err);
         }
