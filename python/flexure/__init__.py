@@ -224,7 +224,14 @@ class Mechanism:
             self._named(e, ("body", "at"))
             raise
 
-    def sweep(self, parameter: str, values: _Sequence[float], accuracy: _Optional[_Tuple[float, float]] = None) -> dict:
+    def sweep(
+        self,
+        parameter: str,
+        values: _Sequence[float],
+        accuracy: _Optional[_Tuple[float, float]] = None,
+        compliance: _Optional[str] = None,
+        at: _Optional[_Tuple[float, float]] = None,
+    ) -> dict:
         """Equilibria along `values` of one load, each continued from the last, as
         `flexure solve FILE --sweep PARAMETER=...`. parameter: "tendon.NAME.tension",
         "force.NAME.fx", ".fy" or ".moment", "gravity.x" or "gravity.y"; values: 1 to 10000
@@ -236,16 +243,18 @@ class Mechanism:
         {value, fraction} where stability is first lost (found by bisection between the two
         values that bracket it, to a relative 1e-6; StabilityWarning): values past it with no
         stable equilibrium reachable by loading are left out, and rows past a snap-through are
-        kept; findings as `solve`'s (each crossing with the `value` it is found at).
+        kept; findings as `solve`'s (each crossing with the `value` it is found at). With
+        compliance=BODY and at=(x, y), compliance (n, 3, 3): each row's compliance of that
+        frame, as `--sweep ... --compliance BODY --at X,Y` adds to each row.
 
         A sweep that stops (a solve that fails before the last value) raises
         ConvergenceError, or KeyboardInterrupt for Ctrl-C, whose `result` attribute holds the
         answer with the rows reached and `stopped` {value, error}: the CLI prints the same
         rows and exits 2. Bad input raises ValueError naming it; errors name the file."""
         try:
-            return self._inner.sweep(parameter, values, accuracy)
+            return self._inner.sweep(parameter, values, accuracy, compliance, at)
         except (ValueError, ConvergenceError, KeyboardInterrupt) as e:
-            self._named(e, ("sweep", "values", "accuracy"))
+            self._named(e, ("parameter", "values", "accuracy", "compliance", "body", "at"))
             raise
 
     def modes(self, count: _Optional[int] = None, accuracy: _Optional[float] = None) -> dict:

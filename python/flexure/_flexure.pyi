@@ -262,7 +262,8 @@ class Mechanism:
         """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings]."""
     def compliance(self, body: str, at: ArrayLike) -> np.ndarray:
         """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`."""
-    def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None) -> dict:
+    def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None,
+              compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
         stability_limit, findings; a sweep that stops raises with the rows in `result`."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:

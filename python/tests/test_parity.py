@@ -155,6 +155,22 @@ def test_sweep_finds_eulers_load_and_leaves_out_the_values_past_it():
     assert len(r["flagged"]) == 0 and "stopped" not in r
 
 
+def test_a_sweep_reports_each_rows_compliance_as_the_closed_form():
+    # As `solve --sweep ... --compliance tip --at 0,0`: the unloaded row is the closed form
+    # L/EI, L^3/3EI; a loaded row is Mechanism.compliance under that load.
+    ei, length = 2.0, 0.5
+    m = column(ei=ei, length=length, push=0.0)
+    r = m.sweep("force.push.fx", [0.0, -1.0, -2.0], compliance="tip", at=(0.0, 0.0))
+    c = r["compliance"]
+    assert c.shape == (3, 3, 3)
+    assert close(c[0, 0, 0], length / ei, 1e-12) and close(c[0, 2, 2], length**3 / (3 * ei), 1e-12)
+    # Compression softens the column sideways: each row yields more than the last.
+    assert c[0, 2, 2] < c[1, 2, 2] < c[2, 2, 2]
+    assert np.allclose(c[2], column(ei=ei, length=length, push=-2.0).compliance("tip", (0.0, 0.0)), rtol=1e-9)
+    with pytest.raises(ValueError, match="compliance and at go together"):
+        m.sweep("force.push.fx", [0.0], compliance="tip")
+
+
 def test_a_sweep_that_stops_raises_carrying_its_rows():
     # As `flexure solve examples/paper_tendon.toml --sweep tendon.flexor.tension=0:70:8 --json`:
     # rows at 0 to 50 N, flagged at 40 and 50 N, and the continuation stalls at 60 N, where the

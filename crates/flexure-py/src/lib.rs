@@ -1224,16 +1224,27 @@ impl Mechanism {
     }
 
     /// Equilibria along `values` of one load, as `flexure solve --sweep`: see `flexure.Mechanism.sweep`.
-    #[pyo3(signature = (parameter, values, accuracy=None))]
+    #[pyo3(signature = (parameter, values, accuracy=None, compliance=None, at=None))]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
         parameter: &str,
         values: &Bound<'py, PyAny>,
         accuracy: Option<&Bound<'py, PyAny>>,
+        compliance: Option<&str>,
+        at: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let target = self::accuracy(accuracy)?;
-        mechanism::sweep(py, &self.inner, parameter, values, &target)
+        let frame = match (compliance, at) {
+            (Some(body), Some(at)) => Some((body, at)),
+            (None, None) => None,
+            _ => {
+                return Err(PyValueError::new_err(
+                    "compliance and at go together: the body, and the point (x, y) on it whose compliance each row reports",
+                ));
+            }
+        };
+        mechanism::sweep(py, &self.inner, parameter, values, &target, frame)
     }
 
     /// Number of generalized coordinates.

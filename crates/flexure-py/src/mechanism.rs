@@ -229,7 +229,10 @@ pub fn sweep<'py>(
     parameter: &str,
     values: &Bound<'py, PyAny>,
     target: &Accuracy,
+    frame: Option<(&str, &Bound<'py, PyAny>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // The compliance of a frame at every row, as `solve --sweep ... --compliance BODY --at X,Y`.
+    let frame = frame.map(|(body, at)| Ok::<_, PyErr>((body_named(m, body)?, point(at)?))).transpose()?;
     // The library names a sweep's parameter and values `sweep` (the CLI's option): Python's are
     // `parameter` and `values`.
     let p = Parameter::parse(m, parameter).map_err(|e| match e {
@@ -274,15 +277,30 @@ pub fn sweep<'py>(
                 }
                 estimated.push((*v, one));
             }
-            Ok((open, out, estimated))
+            let compliances = match frame {
+                Some((b, at)) => {
+                    Some(out.rows.iter().map(|(_, s)| compliance(m, s, b, at)).collect::<flexure::Result<Vec<_>>>()?)
+                }
+                None => None,
+            };
+            Ok((open, out, estimated, compliances))
         })
     });
     let raised = raised_during(py, || PyKeyboardInterrupt::new_err("Mechanism.sweep: interrupted"));
-    let (open, out, estimated) = match (out, raised) {
+    let put_compliance = |result: &Bound<'py, PyDict>, cs: &Option<Vec<nalgebra::Matrix3<f64>>>| match cs {
+        Some(cs) => {
+            let a = numpy::ndarray::Array3::from_shape_fn((cs.len(), 3, 3), |(k, i, j)| cs[k][(i, j)]);
+            result.set_item("compliance", a.into_pyarray(py))
+        }
+        None => Ok(()),
+    };
+    let (open, out, estimated, compliances) = match (out, raised) {
         (Ok(found), None) => found,
-        (Ok(found), Some(err)) if found.1.stopped.is_some() => {
+        (Ok((open, out, estimated, compliances)), Some(err)) if out.stopped.is_some() => {
             // Interrupted within the sweep: the rows before it are kept on the exception.
+            let found = (open, out, estimated);
             let result = answer(py, m, parameter, &values, &found)?;
+            put_compliance(&result, &compliances)?;
             let err = if err.is_instance_of::<PyKeyboardInterrupt>(py) {
                 PyKeyboardInterrupt::new_err(format!(
                     "Mechanism.sweep: interrupted after {} of {} values (kept in the exception's `result`)",
@@ -302,6 +320,7 @@ pub fn sweep<'py>(
         (Err(e), None) => return Err(to_py(e)),
     };
     let result = answer(py, m, parameter, &values, &(open, out.clone(), estimated))?;
+    put_compliance(&result, &compliances)?;
     if let Some((value, e)) = &out.stopped {
         let text = format!(
             "Mechanism.sweep: the sweep stopped at {parameter} = {value} after {} of {} values (kept in the exception's `result`): {e}",
