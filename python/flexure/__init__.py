@@ -26,11 +26,20 @@ solvers poll for it once they run on the library's interruptible solver core).
 0.94
 """
 
-import errno
-import os
-from os import PathLike, fspath
-from pathlib import Path
-from typing import Optional, Tuple, Union
+# Imported under private names: the package's namespace is its API (`__all__`) alone.
+import errno as _errno
+import os as _os
+from os import PathLike as _PathLike
+from os import fspath as _fspath
+from pathlib import Path as _Path
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Optional as _Optional
+from typing import Sequence as _Sequence
+from typing import Tuple as _Tuple
+from typing import Union as _Union
+
+if _TYPE_CHECKING:
+    import numpy as np
 
 from . import exact
 from ._flexure import (
@@ -64,18 +73,18 @@ _MAX_FILE_BYTES = 64 << 20
 class Mechanism:
     """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository)."""
 
-    def __init__(self, inner: _Mechanism, source: Optional[str] = None):
+    def __init__(self, inner: _Mechanism, source: _Optional[str] = None):
         self._inner = inner
         # The file it was read from, named in its errors.
         self._source = source
 
     @classmethod
-    def from_file(cls, path: Union[str, "PathLike[str]"]) -> "Mechanism":
+    def from_file(cls, path: _Union[str, "_PathLike[str]"]) -> "Mechanism":
         """Reads a mechanism file. A missing file raises FileNotFoundError naming `path`;
         an error in the file raises ValueError naming the file, line and column."""
-        if not isinstance(path, (str, PathLike)):
+        if not isinstance(path, (str, _PathLike)):
             raise ValueError(f"path must be a str or os.PathLike naming a mechanism file, got {type(path).__name__}")
-        name = fspath(path)
+        name = _fspath(path)
         if not isinstance(name, str):
             raise ValueError(f"path must name the file as text, got {type(name).__name__}")
         try:
@@ -86,8 +95,8 @@ class Mechanism:
                 raise ValueError(f"{name}: larger than {_MAX_FILE_BYTES >> 20} MiB, the most a mechanism file may hold")
             text = data.decode("utf-8")
         except FileNotFoundError:
-            where = f"no such mechanism file (relative paths start at {os.getcwd()})"
-            raise FileNotFoundError(errno.ENOENT, where, name) from None
+            where = f"no such mechanism file (relative paths start at {_os.getcwd()})"
+            raise FileNotFoundError(_errno.ENOENT, where, name) from None
         except UnicodeDecodeError as e:
             raise ValueError(f"{name}: not UTF-8 text ({e.reason} at byte {e.start})") from None
         try:
@@ -97,15 +106,15 @@ class Mechanism:
         return cls(inner, name)
 
     @classmethod
-    def from_toml(cls, text_or_path: Union[str, "PathLike[str]"]) -> "Mechanism":
+    def from_toml(cls, text_or_path: _Union[str, "_PathLike[str]"]) -> "Mechanism":
         """Parses TOML text, or reads a file as `from_file` does: a `Path`, a string naming an
         existing file, or a one-line string ending in ".toml" (a missing file then raises
         FileNotFoundError rather than being parsed as TOML)."""
-        if isinstance(text_or_path, PathLike) or (
+        if isinstance(text_or_path, _PathLike) or (
             isinstance(text_or_path, str)
             and "\n" not in text_or_path
             and (
-                Path(text_or_path).is_file()
+                _Path(text_or_path).is_file()
                 or (text_or_path.strip().endswith(".toml") and not any(c in text_or_path for c in "=#["))
             )
         ):
@@ -120,7 +129,7 @@ class Mechanism:
         return self._inner.dof
 
     def simulate(
-        self, duration: float, every: Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
+        self, duration: float, every: _Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
     ) -> dict:
         """Motion over [0, duration] (s), as `flexure simulate --json` gives it, in NumPy arrays:
         time (N,) at 0, every, 2 every, ... and duration (every defaults to duration/100);
@@ -149,10 +158,14 @@ class Mechanism:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
             raise
 
-    def solve(self, accuracy: Optional[Tuple[float, float]] = None) -> dict:
+    def solve(self, accuracy: _Optional[_Tuple[float, float]] = None) -> dict:
         """Static equilibrium: a dict shaped like `flexure solve --json`
         (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable), and
-        estimates {flexure joint: dict as `Flexure.error_estimate` returns, or None}.
+        estimates {flexure joint: dict as `Flexure.error_estimate` returns, or None}, and as
+        the CLI writes them, error_estimate {flexure joint: {position (m), angle (rad),
+        curvature (1/m), stress (Pa, with a thickness)}} (a joint whose error could not be
+        estimated left out) and flagged (True when any joint misses `accuracy` or could not
+        be estimated). An unstable answer warns StabilityWarning.
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
         naming it, as does one whose error could not be estimated. Errors name the
@@ -180,7 +193,80 @@ class Mechanism:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
             raise
 
-    def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
+    def _named(self, e: BaseException, arguments: _Tuple[str, ...]) -> None:
+        """Prefixes the error `e` with the mechanism's file, unless it is about one of `arguments`."""
+        if self._source is None or not e.args:
+            return
+        text = str(e.args[0])
+        if not text.removeprefix("invalid ").startswith(arguments):
+            e.args = (f"{self._source}: {text}",) + e.args[1:]
+
+    def buckle(self, accuracy: _Optional[float] = None) -> dict:
+        """Linear buckling about the unloaded configuration, as `flexure buckle FILE --json`:
+        load_factor, the factor on all loads (forces, tensions, gravity) at which the
+        constrained stiffness becomes singular; mode (dof,), the buckling mode in generalized
+        coordinates (unit length, largest entry positive); error_estimate, against the
+        mechanism with every flexure refined: load_factor (its relative error; left out,
+        with unestimated = [1] and reference_stable, when the reference has none),
+        reference_load_factor, reference_order and reference_quadrature {flexure joint: int};
+        flagged, whether it misses accuracy (a fraction, default 0.01; then AccuracyWarning).
+        Flexures of order = "auto" in the file are raised until it is met (order then lists
+        {joint: order}). findings lists closures open at rest (PreloadWarning). A mechanism
+        without coordinates, or without loads, raises ValueError; errors name the file."""
+        try:
+            return self._inner.buckle(accuracy)
+        except (ValueError, ConvergenceError) as e:
+            self._named(e, ("accuracy",))
+            raise
+
+    def compliance(self, body: str, at: _Tuple[float, float] = (0.0, 0.0)) -> "np.ndarray":
+        """Compliance (3, 3), order (phi, x, y), of the frame at point `at` (x, y, m, in the
+        body's frame) on `body` at the loaded equilibrium: its response d(pose)/d(M, Fx, Fy)
+        to a small extra load there, as `flexure solve FILE --compliance BODY --at X,Y`.
+        For one flexure of length L and stiffness EI clamped to the ground, at its tip and
+        unloaded: diag(L/EI, 0, L^3/3EI) with L^2/2EI coupling phi and y. An unknown body, or
+        an `at` that is not two finite numbers within 1e6 m, raises ValueError naming it; an
+        unstable equilibrium (or a free joint) raises ValueError; errors name the file."""
+        try:
+            return self._inner.compliance(body, at)
+        except (ValueError, ConvergenceError) as e:
+            self._named(e, ("body", "at"))
+            raise
+
+    def sweep(
+        self,
+        parameter: str,
+        values: _Sequence[float],
+        accuracy: _Optional[_Tuple[float, float]] = None,
+        compliance: _Optional[str] = None,
+        at: _Optional[_Tuple[float, float]] = None,
+    ) -> dict:
+        """Equilibria along `values` of one load, each continued from the last, as
+        `flexure solve FILE --sweep PARAMETER=...`. parameter: "tendon.NAME.tension",
+        "force.NAME.fx", ".fy" or ".moment", "gravity.x" or "gravity.y"; values: 1 to 10000
+        numbers (a tension not negative). The answer holds one entry per value reached stably:
+        values (n,), bodies {name: {x, y, phi}} of (n,) arrays (the ground left out),
+        coordinates {joint: (n, k)}, energy (n,), stress {flexure joint with a thickness:
+        (n,) peak stress, Pa}; flagged, the values at which a flexure joint's estimated error
+        misses `accuracy` (or could not be estimated; AccuracyWarning); stability_limit
+        {value, fraction} where stability is first lost (found by bisection between the two
+        values that bracket it, to a relative 1e-6; StabilityWarning): values past it with no
+        stable equilibrium reachable by loading are left out, and rows past a snap-through are
+        kept; findings as `solve`'s (each crossing with the `value` it is found at). With
+        compliance=BODY and at=(x, y), compliance (n, 3, 3): each row's compliance of that
+        frame, as `--sweep ... --compliance BODY --at X,Y` adds to each row.
+
+        A sweep that stops (a solve that fails before the last value) raises
+        ConvergenceError, or KeyboardInterrupt for Ctrl-C, whose `result` attribute holds the
+        answer with the rows reached and `stopped` {value, error}: the CLI prints the same
+        rows and exits 2. Bad input raises ValueError naming it; errors name the file."""
+        try:
+            return self._inner.sweep(parameter, values, accuracy, compliance, at)
+        except (ValueError, ConvergenceError, KeyboardInterrupt) as e:
+            self._named(e, ("parameter", "values", "accuracy", "compliance", "body", "at"))
+            raise
+
+    def modes(self, count: _Optional[int] = None, accuracy: _Optional[float] = None) -> dict:
         """Vibration modes about the loaded equilibrium (the loads' stiffness included, so a
         frequency falls to zero at a buckling load; closures respected): a dict of omega
         (rad/s, ascending), frequency (Hz), shapes {joint: array (modes, joint coordinates),

@@ -8,6 +8,8 @@ from numpy.typing import ArrayLike
 class ConvergenceError(RuntimeError):
     """A solver stopped before meeting its tolerance."""
     residual: float
+    # Mechanism.sweep: the answer with the rows reached and `stopped`.
+    result: dict
 
 class StabilityWarning(UserWarning):
     """An equilibrium was found but is unstable."""
@@ -69,6 +71,49 @@ class _Vibration(TypedDict):
     beta_l: np.ndarray
     # The reference mass per length of beta_l (kg/m).
     mass_per_length: float
+
+class _StabilityLimit(TypedDict, total=False):
+    """One of stability_limit (the factor where stability is lost) or stable_up_to (the bound it holds
+    to); stalled says why the path could not be followed further, when it stopped short of max_factor."""
+    stability_limit: float
+    stable_up_to: float
+    stalled: str
+
+class _Tendon(TypedDict, total=False):
+    alpha: np.ndarray
+    pose: np.ndarray  # [phi, x, y]
+    tendon_length: float  # m
+    stable: bool
+    error_estimate: Optional[_ErrorEstimate]
+    flagged: bool
+    stress: _Peak  # with a thickness
+    curvature_max: _Peak  # without one
+    safety_factor: float  # with a yield_strength, while stressed
+    order: int  # with order="auto"
+    quadrature: int  # with order="auto"
+    stability_limit: float  # with limit=True
+    stable_up_to: float  # with limit=True
+    stalled: str
+
+class _TipLoad(TypedDict):
+    moment: float
+    fx: float
+    fy: float
+
+class _Connection(TypedDict, total=False):
+    alpha: np.ndarray
+    energy: float  # J
+    load: _TipLoad  # the tip load that holds the shape
+    error_estimate: Optional[_ErrorEstimate]
+    flagged: bool
+    stress: _Peak
+    curvature_max: _Peak
+    safety_factor: float
+    order: int
+    quadrature: int
+    stability_limit: float
+    stable_up_to: float
+    stalled: str
 
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
@@ -170,6 +215,21 @@ class Flexure:
         m in the tip frame). count: 1 to order (default 3, or the order); fewer are returned if
         fewer are finite. ValueError naming mass without any mass; ConvergenceError past a
         buckling load."""
+    def tendon(self, force: float, root_offset: float, tip_offset: float, *, accuracy: _Accuracy = None,
+               order: Optional[Literal["auto"]] = None, limit: bool = False, max_factor: float = 1000.0) -> _Tendon:
+        """The tendon-driven joint under a tendon of tension `force` (N) attached root_offset and
+        tip_offset (m) from the neutral axis, as `flexure tendon --json` (pose an array [phi, x, y]).
+        Warns StabilityWarning when unstable, AccuracyWarning when flagged; order="auto" raises the
+        order until the target is met; limit=True adds stability_limit or stable_up_to."""
+    def connect(self, pose: ArrayLike, *, accuracy: _Accuracy = None, order: Optional[Literal["auto"]] = None,
+                limit: bool = False, max_factor: float = 1000.0) -> _Connection:
+        """The minimum-energy shape whose tip reaches pose (phi, x, y), as `flexure connect --json`
+        (without eta): alpha, energy, load {moment, fx, fy}, error_estimate, flagged, stress."""
+    def stability_limit(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, *,
+                        max_factor: float = 1000.0) -> _StabilityLimit:
+        """The factor on the tip load at which the path from rest loses stability
+        ({"stability_limit": factor}), or the bound it stays stable to ({"stable_up_to": factor},
+        with "stalled" when the path could not be followed to max_factor), as `deflect --limit`."""
     # Bending at alpha (N,), such as deflect's answer.
     def stress(self, alpha: ArrayLike) -> Optional[_Peak]:
         """Peak bending stress σ(s) = E' h(s)/2 |ω(s) - ω0(s)|: {max (Pa), at (m from the root)};
@@ -195,8 +255,17 @@ class Mechanism:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
         velocities {joint: (N, k) array}, energy, steps, rejected, violation."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
-        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, and per
+        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, error_estimate,
+        flagged, findings, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
+    def buckle(self, accuracy: Optional[float] = None) -> dict:
+        """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings]."""
+    def compliance(self, body: str, at: ArrayLike) -> np.ndarray:
+        """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`."""
+    def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None,
+              compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
+        """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
+        stability_limit, findings; a sweep that stops raises with the rows in `result`."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
         quasi_static, and limit_fraction after a snap-through."""

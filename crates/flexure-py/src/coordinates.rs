@@ -77,6 +77,15 @@ pub fn read<'py>(n: usize, alpha: &Bound<'py, PyAny>) -> PyResult<Coordinates<'p
         all_finite("alpha", &row)?;
         return Ok(Coordinates::One(row));
     }
+    // Booleans would become 0.0 and 1.0: refused, as for every float argument.
+    crate::strict::no_bool("alpha", alpha)?;
+    if alpha
+        .getattr("dtype")
+        .and_then(|d| d.getattr("kind"))
+        .is_ok_and(|k| k.extract::<String>().is_ok_and(|k| k == "b"))
+    {
+        return Err(PyTypeError::new_err("argument 'alpha': must be real numbers, not a boolean array"));
+    }
     let array: PyArrayLikeDyn<'py, f64, AllowTypeChange> = alpha.extract().map_err(|e: PyErr| {
         // As pyo3 reports a failed argument conversion.
         if e.is_instance_of::<PyTypeError>(alpha.py()) {
@@ -151,9 +160,16 @@ fn numbers<'py>(n: usize, len: usize, items: impl Iterator<Item = Bound<'py, PyA
     }
     let mut values = [0.0; INLINE];
     if n > INLINE {
-        return items.map(|item| item.extract::<f64>().ok()).collect::<Option<Vec<f64>>>().map(Row::Heap);
+        return items
+            .map(|item| if crate::strict::is_bool(&item) { None } else { item.extract::<f64>().ok() })
+            .collect::<Option<Vec<f64>>>()
+            .map(Row::Heap);
     }
     for (slot, item) in values.iter_mut().zip(items) {
+        // A boolean goes the general way, which refuses it.
+        if crate::strict::is_bool(&item) {
+            return None;
+        }
         *slot = item.extract::<f64>().ok()?;
     }
     Some(Row::Inline(values, n))
@@ -167,6 +183,26 @@ pub fn single(n: usize, alpha: &Bound<'_, PyAny>) -> PyResult<Row> {
             "alpha must have shape ({n},) here (one configuration), got shape ({count}, {n})"
         ))),
     }
+}
+
+/// `value` as a float64 array, converted by NumPy; booleans (items of a
+/// list or tuple, or a boolean array) are refused, naming `name`.
+pub fn array_like<'py>(name: &str, value: &Bound<'py, PyAny>) -> PyResult<PyArrayLikeDyn<'py, f64, AllowTypeChange>> {
+    crate::strict::no_bool(name, value)?;
+    if value
+        .getattr("dtype")
+        .and_then(|d| d.getattr("kind"))
+        .is_ok_and(|k| k.extract::<String>().is_ok_and(|k| k == "b"))
+    {
+        return Err(PyTypeError::new_err(format!("argument '{name}': must be real numbers, not a boolean array")));
+    }
+    value.extract().map_err(|e: PyErr| {
+        if e.is_instance_of::<PyTypeError>(value.py()) {
+            PyTypeError::new_err(format!("argument '{name}': {}", e.value(value.py())))
+        } else {
+            e
+        }
+    })
 }
 
 /// Reads `name` as a 1-D array of `expected` finite values (any count if `None`).
@@ -190,9 +226,17 @@ pub fn vector(
     Ok(values)
 }
 
+/// Refuses a value that is not finite, or (as the library and the CLI do)
+/// of magnitude above [`flexure::joint::MAX_COORDINATE`] (1e6 rad).
 fn all_finite(name: &str, values: &[f64]) -> PyResult<()> {
-    match values.iter().find(|v| !v.is_finite()) {
-        Some(v) => Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number"))),
+    let max = flexure::joint::MAX_COORDINATE;
+    match values.iter().find(|v| !v.is_finite() || v.abs() > max) {
+        Some(v) if !v.is_finite() => {
+            Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number")))
+        }
+        Some(v) => Err(PyValueError::new_err(format!(
+            "{name} contains {v:e}: every entry must be a finite number of magnitude at most {max:e} rad (the library's bound)"
+        ))),
         None => Ok(()),
     }
 }

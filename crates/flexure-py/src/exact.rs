@@ -4,12 +4,13 @@
 //! buckling load. `flexure.exact` wraps them.
 
 use crate::coordinates::vector;
+use crate::strict::Real;
 use crate::{Flexure, interruptible, section, shape_points, stress, tip_load, to_py, warn_unstable};
 use flexure::reference::{column, compliance, elastica, euler};
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
 use numpy::ndarray::Array2;
-use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -147,13 +148,13 @@ impl Elastica {
 /// unstable, and YieldWarning when the peak stress exceeds the flexure's yield strength;
 /// both at stack level 2, the line calling `flexure.exact`'s wrapper.
 #[pyfunction]
-#[pyo3(signature = (flexure, moment=0.0, fx=0.0, fy=0.0, *, what="exact.elastica"))]
+#[pyo3(signature = (flexure, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, what="exact.elastica"))]
 pub fn exact_elastica(
     py: Python<'_>,
     flexure: Bound<'_, Flexure>,
-    moment: f64,
-    fx: f64,
-    fy: f64,
+    moment: Real,
+    fx: Real,
+    fy: Real,
     what: &str,
 ) -> PyResult<Elastica> {
     let load = tip_load(moment, fx, fy)?;
@@ -165,6 +166,9 @@ pub fn exact_elastica(
         let peak = if strength.is_some() { Some(trace.peak_stress()?) } else { None };
         Ok((solution, peak))
     })?;
+    let p = solution.pose;
+    crate::strict::finite_slice(&format!("{what} pose"), &[p.phi, p.x, p.y])?;
+    crate::strict::finite_number(&format!("{what} root_moment"), solution.root_moment)?;
     if !solution.stable {
         warn_unstable(py, what, &load, "the elastica fails the Jacobi test", 2)?;
     }
@@ -183,6 +187,7 @@ pub fn exact_elastica(
 pub fn exact_compliance<'py>(py: Python<'py>, flexure: &Flexure) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let f = &flexure.inner;
     let c = interruptible(py, || compliance::compliance_tip(f, &Default::default()))?;
+    crate::strict::finite_slice("exact.compliance", c.as_slice())?;
     Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
 }
 
@@ -198,21 +203,23 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
         let rest = format!("{:?}", f.rest());
         return Err(to_py(Error::invalid("rest", rest, "the exact buckling load is for a straight flexure")));
     }
-    if f.section().is_uniform() {
-        return Ok(euler::buckling_load(tip, f.length(), f.ei()));
-    }
-    interruptible(py, || column::buckling_load(f, tip, &Default::default()))
+    let p = if f.section().is_uniform() {
+        euler::buckling_load(tip, f.length(), f.ei())
+    } else {
+        interruptible(py, || column::buckling_load(f, tip, &Default::default()))?
+    };
+    crate::strict::finite_number("exact.buckling_load", p)
 }
 
 /// The flexure `flexure.exact` builds from `length`, `ei` (a number, a pair
 /// (root, tip) or a table, as `Flexure`'s) and `rest` (1 to 64 rest curvature
 /// coefficients, any order; straight, order 3, without them).
 #[pyfunction]
-#[pyo3(signature = (length=1.0, ei=None, rest=None))]
+#[pyo3(signature = (length=Real(1.0), ei=None, rest=None))]
 pub fn exact_flexure(
-    length: f64,
+    length: Real,
     ei: Option<&Bound<'_, PyAny>>,
-    rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
+    rest: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Flexure> {
     let given = section::Arguments {
         ei,
@@ -226,7 +233,7 @@ pub fn exact_flexure(
     };
     let (ei, section) = section::read(&given)?;
     let kappa = match rest {
-        Some(r) => vector("rest", &r, None)?,
+        Some(r) => vector("rest", &crate::coordinates::array_like("rest", r)?, None)?,
         None => vec![0.0; 3],
     };
     let max = flexure::joint::MAX_ORDER;
@@ -236,7 +243,7 @@ pub fn exact_flexure(
             kappa.len()
         )));
     }
-    let mut f = flexure::Flexure::new(length, ei, kappa.len()).map_err(to_py)?;
+    let mut f = flexure::Flexure::new(length.0, ei, kappa.len()).map_err(to_py)?;
     if let Some(s) = section {
         f = f.with_section(s).map_err(to_py)?;
     }

@@ -46,6 +46,20 @@ pub fn report<'py>(
     crossings: &[(Option<f64>, Crossing)],
     stacklevel: i32,
 ) -> PyResult<Bound<'py, PyList>> {
+    report_along(py, what, open, crossings, ("time", "t", " s"), stacklevel)
+}
+
+/// [`report`], a crossing's place in the series under `key` and, in the
+/// warning, as `label = value unit` (a simulation's `time`, `t`, ` s`; a
+/// sweep's `value`, its parameter, no unit).
+pub fn report_along<'py>(
+    py: Python<'py>,
+    what: &str,
+    open: &[OpenClosure],
+    crossings: &[(Option<f64>, Crossing)],
+    (key, label, unit): (&str, &str, &str),
+    stacklevel: i32,
+) -> PyResult<Bound<'py, PyList>> {
     let list = PyList::empty(py);
     for c in open {
         if c.severity() == Severity::Warning {
@@ -57,12 +71,12 @@ pub fn report<'py>(
     for (time, c) in crossings {
         if !told.contains(&&c.names) {
             told.push(&c.names);
-            let when = time.map_or(String::new(), |t| format!(" (first at t = {t} s)"));
+            let when = time.map_or(String::new(), |t| format!(" (first at {label} = {t}{unit})"));
             warn(py, &py.get_type::<IntersectionWarning>(), format!("{what}{when}: {}", c.message()), stacklevel)?;
         }
         let d = crossing_dict(py, c)?;
         if let Some(t) = time {
-            d.set_item("time", t)?;
+            d.set_item(key, t)?;
         }
         list.append(d)?;
     }

@@ -14,8 +14,8 @@ use flexure::mechanism::JointKind;
 use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve};
 use flexure::{
-    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip, compliance_tip_rest,
-    deflect, energy, update_kinematics,
+    Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip,
+    compliance_tip_rest, deflect, energy, update_kinematics,
 };
 use numpy::ndarray::{Array1, Array2};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
@@ -25,14 +25,18 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt, PyTuple};
 use std::time::{Duration, Instant};
 
+mod analyses;
 mod coordinates;
 mod exact;
 mod findings;
+mod mechanism;
 mod modes;
 mod section;
 mod simulate;
 mod stress;
+mod strict;
 use coordinates::{Coordinates, single, vector};
+use strict::Real;
 
 create_exception!(
     _flexure,
@@ -116,6 +120,7 @@ fn accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
             v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
         ))
     };
+    strict::no_bool("accuracy", v)?;
     // A str is a sequence too, but never a pair of numbers: pyo3 refuses it as a Vec.
     let pair: Vec<f64> = v.extract().map_err(|_| shape())?;
     let (position, angle, stress) = match pair[..] {
@@ -146,6 +151,7 @@ fn eigen_accuracy(value: Option<&Bound<'_, PyAny>>) -> PyResult<Accuracy> {
             v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
         ))
     };
+    strict::no_bool("accuracy", v)?;
     let x: f64 = v.extract().map_err(|_| bad())?;
     if !(x.is_finite() && x > 0.0) {
         return Err(bad());
@@ -376,8 +382,8 @@ fn finite(name: &str, v: f64) -> PyResult<f64> {
 }
 
 /// A tip load of finite components.
-fn tip_load(moment: f64, fx: f64, fy: f64) -> PyResult<TipLoad> {
-    Ok(TipLoad { moment: finite("moment", moment)?, fx: finite("fx", fx)?, fy: finite("fy", fy)? })
+fn tip_load(moment: Real, fx: Real, fy: Real) -> PyResult<TipLoad> {
+    Ok(TipLoad { moment: finite("moment", moment.0)?, fx: finite("fx", fx.0)?, fy: finite("fy", fy.0)? })
 }
 
 /// A count such as `order` from any Python integer: one that does not fit a
@@ -469,38 +475,56 @@ fn loaded_stiffness(f: &flexure::Flexure, alpha: &[f64], load: &TipLoad) -> (Kin
     (k, stiffness)
 }
 
+/// Reads `order`: None for the flexure's own, or "auto" to raise it until the estimate meets the target.
+fn auto_order(order: Option<&Bound<'_, PyAny>>) -> PyResult<bool> {
+    match order.filter(|o| !o.is_none()) {
+        None => Ok(false),
+        Some(o) if o.extract::<String>().is_ok_and(|s| s == "auto") => Ok(true),
+        Some(o) => Err(PyValueError::new_err(format!(
+            "order must be None or \"auto\", got {}: a flexure's own order is set when it is built",
+            o.repr()?
+        ))),
+    }
+}
+
+/// A finite float argument named `name`.
+fn real(name: &str, v: Real) -> PyResult<f64> {
+    finite(name, v.0)
+}
+
 #[pymethods]
 impl Flexure {
     /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)
     #[new]
     #[pyo3(
-        signature = (length=1.0, ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None),
+        signature = (length=Real(1.0), ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None),
         text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        length: f64,
+        length: Real,
         ei: Option<&Bound<'_, PyAny>>,
         order: Option<&Bound<'_, PyAny>>,
         quadrature: Option<&Bound<'_, PyAny>>,
-        rest: Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>,
-        modulus: Option<f64>,
+        rest: Option<&Bound<'_, PyAny>>,
+        modulus: Option<Real>,
         width: Option<&Bound<'_, PyAny>>,
         thickness: Option<&Bound<'_, PyAny>>,
-        poisson: Option<f64>,
+        poisson: Option<Real>,
         notch: Option<&Bound<'_, PyAny>>,
-        density: Option<f64>,
+        density: Option<Real>,
         mass_per_length: Option<&Bound<'_, PyAny>>,
-        yield_strength: Option<f64>,
+        yield_strength: Option<Real>,
     ) -> PyResult<Self> {
+        let (length, yield_strength) = (length.0, yield_strength.map(|s| s.0));
         let (ei, section) = section::read(&section::Arguments {
             ei,
-            modulus,
+            modulus: modulus.map(|v| v.0),
             width,
             thickness,
-            poisson,
+            poisson: poisson.map(|v| v.0),
             notch,
-            density,
+            density: density.map(|v| v.0),
             mass_per_length,
         })?;
         let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
@@ -512,7 +536,7 @@ impl Flexure {
             f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
         if let Some(r) = rest {
-            f = f.with_rest(&vector("rest", &r, Some(order))?).map_err(to_py)?;
+            f = f.with_rest(&vector("rest", &coordinates::array_like("rest", r)?, Some(order))?).map_err(to_py)?;
         }
         if let Some(s) = yield_strength {
             if !(s.is_finite() && s > 0.0) {
@@ -606,13 +630,19 @@ impl Flexure {
     /// σ(s) = E′ h(s)/2 |ω̂(s) − ω̂₀(s)|; None for a flexure given by ei (no thickness).
     fn stress<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let a = single(self.inner.order(), alpha)?;
-        flexure::stress::peak_stress(&self.inner, &a).map(|p| stress::peak_dict(py, &p)).transpose()
+        let d = flexure::stress::peak_stress(&self.inner, &a).map(|p| stress::peak_dict(py, &p)).transpose()?;
+        if let Some(d) = &d {
+            strict::finite_answer("stress", d.as_any())?;
+        }
+        Ok(d)
     }
 
     /// Largest change of curvature from rest at alpha (N,): {"max": |ω̂ − ω̂₀| (1/m), "at": s (m)}.
     fn peak_curvature<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
         let a = single(self.inner.order(), alpha)?;
-        stress::peak_dict(py, &flexure::stress::peak_curvature(&self.inner, &a))
+        let d = stress::peak_dict(py, &flexure::stress::peak_curvature(&self.inner, &a))?;
+        strict::finite_answer("peak_curvature", d.as_any())?;
+        Ok(d)
     }
 
     /// Safety factor S/σmax at alpha (N,) against the yield strength (inf while unstressed);
@@ -637,7 +667,9 @@ impl Flexure {
         k: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let a = single(self.inner.order(), alpha)?;
-        stress::shape(py, &self.inner, &a, shape_points(k)?)
+        let out = stress::shape(py, &self.inner, &a, shape_points(k)?)?;
+        strict::finite_answer("shape", &out)?;
+        Ok(out)
     }
 
     /// Tip pose [phi, x, y] for alpha of shape (N,); (n, 3) for shape (n, N), computed in parallel without the GIL.
@@ -645,8 +677,9 @@ impl Flexure {
         let f = &self.inner;
         let (count, rows) = match coordinates::read(f.order(), alpha)? {
             Coordinates::One(a) => {
-                let p = flexure::pose_root_tip(f, &a);
-                return Ok(PyArray1::from_slice(py, &<[f64; 3]>::from(p)).into_any());
+                let p = <[f64; 3]>::from(flexure::pose_root_tip(f, &a));
+                strict::finite_slice("pose", &p)?;
+                return Ok(PyArray1::from_slice(py, &p).into_any());
             }
             Coordinates::Many { count, rows } => (count, rows),
         };
@@ -677,6 +710,7 @@ impl Flexure {
         if let Some(err) = raised_during(py, interrupted) {
             return Err(err);
         }
+        strict::finite_slice("pose", written.as_slice().unwrap_or(&[]))?;
         drop(written);
         Ok(out.into_any())
     }
@@ -686,6 +720,7 @@ impl Flexure {
         let a = single(self.inner.order(), alpha)?;
         let mut k = Kinematics::new(&self.inner);
         update_kinematics(&self.inner, &a, &mut k, Level::Jacobian);
+        strict::finite_slice("jacobian", k.jacobian_root_tip.as_slice())?;
         Ok(matrix(&k.jacobian_root_tip).into_pyarray(py))
     }
 
@@ -694,6 +729,8 @@ impl Flexure {
         let a = single(self.inner.order(), alpha)?;
         let mut k = Kinematics::new(&self.inner);
         update_kinematics(&self.inner, &a, &mut k, Level::Hessian);
+        strict::finite_slice("hessians", k.hessian_root_tip_x.as_slice())?;
+        strict::finite_slice("hessians", k.hessian_root_tip_y.as_slice())?;
         Ok((matrix(&k.hessian_root_tip_x).into_pyarray(py), matrix(&k.hessian_root_tip_y).into_pyarray(py)))
     }
 
@@ -701,12 +738,13 @@ impl Flexure {
     fn transform<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let a = single(self.inner.order(), alpha)?;
         let g = flexure::pose_root_tip(&self.inner, &a).transform();
+        strict::finite_slice("transform", g.as_slice())?;
         Ok(Array2::from_shape_fn((4, 4), |(i, j)| g[(i, j)]).into_pyarray(py))
     }
 
     /// Bending energy U(alpha) in joules (Eq. 9).
     fn energy(&self, alpha: &Bound<'_, PyAny>) -> PyResult<f64> {
-        Ok(energy(&self.inner, &single(self.inner.order(), alpha)?))
+        strict::finite_number("energy", energy(&self.inner, &single(self.inner.order(), alpha)?))
     }
 
     /// Equilibrium coordinates alpha (N,) under a tip moment and force in the root frame (Eq. 22),
@@ -714,13 +752,13 @@ impl Flexure {
     /// fraction of L, angle in rad; default 1 % and 1°) warns `AccuracyWarning`. With
     /// `order="auto"`, raises the order until the target is met and returns `(flexure_used, alpha)`.
     /// With a yield strength, a peak stress beyond it warns `YieldWarning`.
-    #[pyo3(signature = (moment=0.0, fx=0.0, fy=0.0, *, accuracy=None, order=None))]
+    #[pyo3(signature = (moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, accuracy=None, order=None))]
     fn deflect<'py>(
         &self,
         py: Python<'py>,
-        moment: f64,
-        fx: f64,
-        fy: f64,
+        moment: Real,
+        fx: Real,
+        fy: Real,
         accuracy: Option<&Bound<'py, PyAny>>,
         order: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -760,6 +798,7 @@ impl Flexure {
             if let Some(s) = self.yield_strength {
                 stress::safety_factor(py, &used, &alpha, s, "deflect", 1)?;
             }
+            strict::finite_slice("deflect", &alpha)?;
             let used = Py::new(py, Flexure { inner: used, yield_strength: self.yield_strength })?;
             let alpha = PyArray1::from_vec(py, alpha);
             return Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any());
@@ -786,20 +825,21 @@ impl Flexure {
         if let Some(s) = self.yield_strength {
             stress::safety_factor(py, f, &alpha, s, "deflect", 1)?;
         }
+        strict::finite_slice("deflect", &alpha)?;
         Ok(PyArray1::from_vec(py, alpha).into_any())
     }
 
     /// The estimated error of `alpha` as the equilibrium under a tip load, against a refined
     /// model: a dict of position (m), angle (rad), flagged (whether it misses `accuracy`),
     /// reference_order and reference_quadrature.
-    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0, accuracy=None))]
+    #[pyo3(signature = (alpha, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), accuracy=None))]
     fn error_estimate<'py>(
         &self,
         py: Python<'py>,
         alpha: &Bound<'py, PyAny>,
-        moment: f64,
-        fx: f64,
-        fy: f64,
+        moment: Real,
+        fx: Real,
+        fy: Real,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let a = single(self.inner.order(), alpha)?;
@@ -807,47 +847,52 @@ impl Flexure {
         let target = self::accuracy(accuracy)?;
         let f = &self.inner;
         let e = interruptible(py, || estimate::deflect_error(f, &load, &a, &target))?;
-        estimate_dict(py, &e)
+        let d = estimate_dict(py, &e)?;
+        strict::finite_answer("error_estimate", d.as_any())?;
+        Ok(d)
     }
 
     /// Generalized stiffness (N, N) at alpha under a tip load:
     /// K = ∇∇U − Fx∇∇x − Fy∇∇y (Eq. 32; the moment adds nothing, φ_tip being linear in alpha).
-    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
+    #[pyo3(signature = (alpha, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0)))]
     fn stiffness<'py>(
         &self,
         py: Python<'py>,
         alpha: &Bound<'py, PyAny>,
-        moment: f64,
-        fx: f64,
-        fy: f64,
+        moment: Real,
+        fx: Real,
+        fy: Real,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let load = tip_load(moment, fx, fy)?;
         let (_, k) = loaded_stiffness(&self.inner, &single(self.inner.order(), alpha)?, &load);
+        strict::finite_slice("stiffness", k.as_slice())?;
         Ok(matrix(&k).into_pyarray(py))
     }
 
     /// Tip compliance (3, 3), order (phi, x, y), at alpha under a tip load: C = J K⁻¹ Jᵀ with the
     /// loaded stiffness K of Eq. 32 (Eq. 36 at a loaded equilibrium). At an equilibrium alpha for
     /// that load (from `deflect`) it is the response d(pose)/d(moment, fx, fy) to a small extra load.
-    #[pyo3(signature = (alpha, moment=0.0, fx=0.0, fy=0.0))]
+    #[pyo3(signature = (alpha, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0)))]
     fn compliance<'py>(
         &self,
         py: Python<'py>,
         alpha: &Bound<'py, PyAny>,
-        moment: f64,
-        fx: f64,
-        fy: f64,
+        moment: Real,
+        fx: Real,
+        fy: Real,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let load = tip_load(moment, fx, fy)?;
         let (k, stiffness) = loaded_stiffness(&self.inner, &single(self.inner.order(), alpha)?, &load);
         let c = compliance_tip(&k, &stiffness).map_err(to_py)?;
+        strict::finite_slice("compliance", c.as_slice())?;
         Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
     }
 
     /// Tip compliance (3, 3) of the unloaded flexure at its rest shape (Eqs. 35–36).
-    fn rest_compliance<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn rest_compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let c = compliance_tip_rest(&self.inner);
-        Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py)
+        strict::finite_slice("rest_compliance", c.as_slice())?;
+        Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
     }
 
     /// Vibration modes about the equilibrium under a tip load (moment, fx, fy; Eq. 32's loaded
@@ -859,23 +904,23 @@ impl Flexure {
     /// a massless flexure's, which have no frequency). count: the lowest modes wanted, 1 to
     /// order (default 3, or the order); fewer are returned if fewer are finite. ValueError
     /// naming `mass` without any mass; ConvergenceError past a buckling load.
-    #[pyo3(signature = (count=None, *, tip_mass=None, tip_inertia=None, tip_com=None, moment=0.0, fx=0.0, fy=0.0, accuracy=None))]
+    #[pyo3(signature = (count=None, *, tip_mass=None, tip_inertia=None, tip_com=None, moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), accuracy=None))]
     #[allow(clippy::too_many_arguments)]
     fn modes<'py>(
         &self,
         py: Python<'py>,
         count: Option<&Bound<'py, PyAny>>,
-        tip_mass: Option<f64>,
-        tip_inertia: Option<f64>,
+        tip_mass: Option<Real>,
+        tip_inertia: Option<Real>,
         tip_com: Option<&Bound<'py, PyAny>>,
-        moment: f64,
-        fx: f64,
-        fy: f64,
+        moment: Real,
+        fx: Real,
+        fy: Real,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let body = modes::tip_body(tip_mass, tip_inertia, tip_com)?;
+        let body = modes::tip_body(tip_mass.map(|v| v.0), tip_inertia.map(|v| v.0), tip_com)?;
         let target = eigen_accuracy(accuracy)?;
-        modes::flexure_modes(py, &self.inner, count, body, (moment, fx, fy), &target)
+        modes::flexure_modes(py, &self.inner, count, body, tip_load(moment, fx, fy)?, &target)
     }
 
     /// Critical compressive tip load (N) under tip constraint "free", "guided", "pinned" or
@@ -897,7 +942,103 @@ impl Flexure {
             }
             Err(why) => warn_unestimated(py, "buckling_load", &why, 1)?,
         }
-        Ok(b.critical_load)
+        strict::finite_number("buckling_load", b.critical_load)
+    }
+
+    /// The tendon-driven joint (Sec. III-D, Eqs. 23–26) under a tendon of tension `force` (N, not
+    /// negative) attached `root_offset` and `tip_offset` (m) from the neutral axis at the root and
+    /// the tip, followed from rest: a dict as `flexure tendon --json` gives it: alpha (N,), pose
+    /// [phi, x, y] (an array, as `pose` returns), tendon_length (m), stable, error_estimate (a
+    /// dict as `error_estimate` returns, or None where it could not be made) and flagged, stress
+    /// {max, at} (or curvature_max for a flexure given by ei), safety_factor with a yield_strength
+    /// (left out while unstressed). An unstable answer warns StabilityWarning; a miss of
+    /// `accuracy` (as deflect's) warns AccuracyWarning; with `order="auto"` the order is raised
+    /// until it is met (order and quadrature then say which). With `limit=True`, also the factor
+    /// on the tension, up to `max_factor`, at which the path stops being stable: stability_limit,
+    /// or stable_up_to (with stalled, and a StabilityWarning, if the path could not be followed
+    /// that far), as `tendon --limit`.
+    #[pyo3(signature = (force, root_offset, tip_offset, *, accuracy=None, order=None, limit=false, max_factor=Real(analyses::MAX_FACTOR)))]
+    #[allow(clippy::too_many_arguments)]
+    fn tendon<'py>(
+        &self,
+        py: Python<'py>,
+        force: Real,
+        root_offset: Real,
+        tip_offset: Real,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        order: Option<&Bound<'py, PyAny>>,
+        limit: bool,
+        max_factor: Real,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let force = real("force", force)?;
+        if force < 0.0 {
+            return Err(PyValueError::new_err(format!(
+                "invalid force = {force}: a tendon's tension must not be negative (N)"
+            )));
+        }
+        let t = flexure::tendon::Tendon {
+            root_offset: real("root_offset", root_offset)?,
+            tip_offset: real("tip_offset", tip_offset)?,
+        };
+        let target = self::accuracy(accuracy)?;
+        let auto = auto_order(order)?;
+        let limit = limit.then_some(max_factor.0);
+        analyses::tendon(py, &self.inner, self.yield_strength, force, t, &target, auto, limit)
+    }
+
+    /// The minimum-energy shape whose tip reaches `pose` = (phi, x, y) in the root frame (rad,
+    /// m, m; Sec. II-E, Eq. 16): a dict as `flexure connect --json` gives it: alpha (N,),
+    /// energy (J), load {moment, fx, fy}, the tip load that holds the shape, error_estimate
+    /// (the largest distance between the answer's backbone and a refined model's) and flagged,
+    /// stress (or curvature_max) and safety_factor, as `tendon`'s. A pose out of reach raises
+    /// ValueError naming pose; `accuracy`, `order="auto"`, `limit` and `max_factor` as `tendon`'s
+    /// (the limit is that of the holding load applied from rest as a dead load). The CLI's
+    /// `eta` (the energy against the exact elastica's) is left out: see `flexure.exact`.
+    #[pyo3(signature = (pose, *, accuracy=None, order=None, limit=false, max_factor=Real(analyses::MAX_FACTOR)))]
+    fn connect<'py>(
+        &self,
+        py: Python<'py>,
+        pose: &Bound<'py, PyAny>,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        order: Option<&Bound<'py, PyAny>>,
+        limit: bool,
+        max_factor: Real,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let bad = || {
+            PyValueError::new_err(format!(
+                "invalid pose = {}: must be three finite numbers (phi, x, y), the tip pose in the root frame (rad, m, m)",
+                pose.repr().map(|r| r.to_string()).unwrap_or_default()
+            ))
+        };
+        strict::no_bool("pose", pose)?;
+        let v: Vec<f64> = pose.extract().map_err(|_| bad())?;
+        let [phi, x, y] = v[..] else { return Err(bad()) };
+        if !v.iter().all(|v| v.is_finite()) {
+            return Err(bad());
+        }
+        let target = self::accuracy(accuracy)?;
+        let auto = auto_order(order)?;
+        let limit = limit.then_some(max_factor.0);
+        analyses::connect(py, &self.inner, self.yield_strength, Pose { phi, x, y }, &target, auto, limit)
+    }
+
+    /// The factor on the tip load (moment, fx, fy) at which the equilibrium followed from rest
+    /// stops being stable (a buckling or limit load), as `flexure deflect --limit`: a dict of
+    /// stability_limit, that factor (stable up to it, unstable within a relative 1e-10 above),
+    /// or of stable_up_to, the bound it stays stable to: `max_factor` (default 1000), or as far
+    /// as the path could be followed, with stalled (why) and a StabilityWarning. For axial
+    /// compression fx = -1 the factor is the free column's buckling load, Euler's pi^2 EI/4L^2.
+    #[pyo3(signature = (moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, max_factor=Real(analyses::MAX_FACTOR)))]
+    fn stability_limit<'py>(
+        &self,
+        py: Python<'py>,
+        moment: Real,
+        fx: Real,
+        fy: Real,
+        max_factor: Real,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let load = tip_load(moment, fx, fy)?;
+        analyses::stability_limit(py, &self.inner, &load, max_factor.0)
     }
 
     fn __repr__(&self) -> String {
@@ -1008,6 +1149,9 @@ impl Mechanism {
         out.set_item("energy", s.energy)?;
         out.set_item("stable", s.stable)?;
         out.set_item("estimates", estimates)?;
+        let by_joint: Vec<(String, Option<&ErrorEstimate>)> =
+            estimated.iter().map(|(j, _, e)| (j.name.clone(), e.as_ref().ok())).collect();
+        mechanism::put_joint_estimates(py, &out, &by_joint)?;
         for (key, map) in keys.into_iter().zip(maps) {
             if !map.is_empty() {
                 out.set_item(key, map)?;
@@ -1028,20 +1172,27 @@ impl Mechanism {
             );
             warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
         }
+        if !s.stable {
+            let text = "Mechanism.solve: the equilibrium is unstable (`stable` is False): its constrained stiffness is not positive definite, so a small disturbance moves it away".to_string();
+            warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+        }
+        strict::finite_answer("Mechanism.solve", out.as_any())?;
         Ok(out)
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
-    #[pyo3(signature = (duration, every=None, tolerance=1e-8, start="equilibrium"))]
+    #[pyo3(signature = (duration, every=None, tolerance=Real(1e-8), start="equilibrium"))]
     fn simulate<'py>(
         &self,
         py: Python<'py>,
-        duration: f64,
-        every: Option<f64>,
-        tolerance: f64,
+        duration: Real,
+        every: Option<Real>,
+        tolerance: Real,
         start: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
-        simulate::motion(py, &self.inner, duration, every, tolerance, start)
+        let out = simulate::motion(py, &self.inner, duration.0, every.map(|v| v.0), tolerance.0, start)?;
+        strict::finite_answer("Mechanism.simulate", out.as_any())?;
+        Ok(out)
     }
 
     /// Vibration modes about the loaded equilibrium, closures respected: a dict of omega
@@ -1056,6 +1207,44 @@ impl Mechanism {
     ) -> PyResult<Bound<'py, PyDict>> {
         let target = eigen_accuracy(accuracy)?;
         modes::mechanism_modes(py, &self.inner, count, &target)
+    }
+
+    /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see
+    /// `flexure.Mechanism.buckle`.
+    #[pyo3(signature = (accuracy=None))]
+    fn buckle<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        let target = eigen_accuracy(accuracy)?;
+        mechanism::buckle(py, &self.inner, &target)
+    }
+
+    /// Compliance (3, 3), order (phi, x, y), of the frame at `at` (x, y) on `body` at the loaded
+    /// equilibrium, as `flexure solve --compliance BODY --at X,Y`.
+    fn compliance<'py>(&self, py: Python<'py>, body: &str, at: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        mechanism::compliance_at(py, &self.inner, body, at)
+    }
+
+    /// Equilibria along `values` of one load, as `flexure solve --sweep`: see `flexure.Mechanism.sweep`.
+    #[pyo3(signature = (parameter, values, accuracy=None, compliance=None, at=None))]
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        parameter: &str,
+        values: &Bound<'py, PyAny>,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        compliance: Option<&str>,
+        at: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let target = self::accuracy(accuracy)?;
+        let frame = match (compliance, at) {
+            (Some(body), Some(at)) => Some((body, at)),
+            (None, None) => None,
+            _ => {
+                return Err(PyValueError::new_err(
+                    "compliance and at go together: the body, and the point (x, y) on it whose compliance each row reports",
+                ));
+            }
+        };
+        mechanism::sweep(py, &self.inner, parameter, values, &target, frame)
     }
 
     /// Number of generalized coordinates.

@@ -2,7 +2,7 @@
 //! body (`Flexure.modes`), of a mechanism (`Mechanism.modes`), and the exact
 //! beam's frequencies (`flexure.exact.frequencies`).
 
-use crate::{Flexure, StabilityWarning, count, finite, interruptible, tip_load, warn, warn_values};
+use crate::{Flexure, StabilityWarning, count, finite, interruptible, warn, warn_values};
 use flexure::dynamics::{self, Body, Modes};
 use flexure::estimate::{self, Accuracy, ValueEstimate};
 use flexure::mechanism::statics::Settings;
@@ -107,10 +107,9 @@ pub fn flexure_modes<'py>(
     f: &flexure::Flexure,
     count: Option<&Bound<'py, PyAny>>,
     body: Option<Body>,
-    (moment, fx, fy): (f64, f64, f64),
+    load: flexure::TipLoad,
     target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let load = tip_load(moment, fx, fy)?;
     let asked = wanted(count, f.order(), "a flexure of this order")?;
     let (modes, e) = interruptible(py, || {
         let modes = dynamics::modes(f, &load, body.as_ref(), asked)?;
@@ -119,12 +118,16 @@ pub fn flexure_modes<'py>(
     })?;
     let out = PyDict::new(py);
     put_frequencies(py, &out, &modes)?;
+    // Checked before the estimate, whose omega holds NaN where the reference pairs no mode.
+    crate::strict::finite_answer("Flexure.modes", out.as_any())?;
+    crate::strict::finite_slice("Flexure.modes error_estimate reference_omega", &e.reference)?;
     put_estimate(py, &out, &e, None)?;
     let (order, points) = e.reference_orders[0];
     let reference = format!("order {order} with {points} quadrature points");
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
     let hint = "build the flexure with a higher order, or ask fewer modes";
     warn_values(py, "Flexure.modes", &e, target, name, &reference, hint, 1)?;
+    crate::strict::finite_slice("Flexure.modes shapes", modes.shapes.as_slice())?;
     let (n, k) = (modes.shapes.nrows(), modes.omega.len());
     out.set_item("shapes", Array2::from_shape_fn((k, n), |(m, i)| modes.shapes[(i, m)]).into_pyarray(py))?;
     Ok(out)
@@ -144,6 +147,8 @@ pub fn mechanism_modes<'py>(
     let m = &m;
     let out = PyDict::new(py);
     put_frequencies(py, &out, &modes)?;
+    crate::strict::finite_answer("Mechanism.modes", out.as_any())?;
+    crate::strict::finite_slice("Mechanism.modes error_estimate reference_omega", &e.reference)?;
     let names: Vec<String> = m
         .joints
         .iter()
@@ -161,6 +166,7 @@ pub fn mechanism_modes<'py>(
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
     let hint = "give its flexures order = \"auto\" (or a higher order) in the file, or ask fewer modes";
     warn_values(py, "Mechanism.modes", &e, target, name, &reference, hint, 2)?;
+    crate::strict::finite_slice("Mechanism.modes shapes", modes.shapes.as_slice())?;
     let shapes = PyDict::new(py);
     for j in m.joints.iter().filter(|j| j.kind.joint().dof() > 0) {
         let d = j.kind.joint().dof();

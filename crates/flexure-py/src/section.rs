@@ -30,6 +30,7 @@ pub fn profile(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Profile> {
             value.get_type().name()?
         )));
     }
+    crate::strict::no_bool(name, value)?;
     if let Ok(v) = value.extract::<f64>() {
         return Ok(Profile::Constant(finite(name, v)?));
     }
@@ -73,6 +74,7 @@ fn notch(value: &Bound<'_, PyAny>) -> PyResult<Notch> {
     if value.is_instance_of::<PyString>() || value.is_instance_of::<PyBytes>() {
         return Err(bad());
     }
+    crate::strict::no_bool("notch", value)?;
     let pair: Vec<f64> = value.extract().map_err(|_| bad())?;
     let [radius, min_thickness] = pair[..] else {
         return Err(bad());

@@ -236,7 +236,13 @@ impl Flexure {
     /// there, as for tapers and tables; adaptively to $10^{-13}$ of its
     /// largest entry for a notch.
     ///
-    /// Fails when $EI(s)$ leaves [`EI_RANGE`] anywhere, naming where.
+    /// Fails when $EI(s)$ leaves [`EI_RANGE`] anywhere, naming where, and
+    /// when a rectangle's thickness exceeds the length anywhere: a beam that
+    /// is thicker than it is long is no flexure (every front end, the CLI,
+    /// mechanism files and Python, builds its flexure here, so all refuse it).
+    /// A notch hinge is held to its thinnest section, `min_thickness`: its
+    /// ends are as thick as the blank it is cut into, which for a full
+    /// circular notch (length $2R$) is always more than the length.
     ///
     /// # Example
     /// ```
@@ -246,8 +252,33 @@ impl Flexure {
     /// let f = flexure::Flexure::new(0.5, 1.0, 3).unwrap().with_section(s).unwrap();
     /// let k = f.stiffness_matrix();
     /// assert!((k[0] - 3.0).abs() < 1e-14 && (k[1] + 1.0 / 3.0).abs() < 1e-14 && (f.ei() - 1.5).abs() < 1e-14);
+    /// // A rectangle 2 cm thick on a 1 cm flexure is refused, naming the thickness.
+    /// let thick = Section::rectangle(200e9, None, Profile::Constant(0.01), Profile::Constant(0.02)).unwrap();
+    /// let e = flexure::Flexure::new(0.01, 1.0, 3).unwrap().with_section(thick).unwrap_err();
+    /// assert!(e.to_string().contains("thickness") && e.to_string().contains("0.02"));
     /// ```
     pub fn with_section(mut self, section: Section) -> Result<Self> {
+        // A thickness is piecewise linear in t (a notch only thins it): its largest value is at
+        // an end or a breakpoint.
+        let l = self.length;
+        if let Some(n) = section.notch() {
+            if n.min_thickness > l {
+                return Err(Error::invalid(
+                    "notch.min_thickness",
+                    format!("{} m, on a flexure of length {l} m", n.min_thickness),
+                    "must not exceed the flexure's length: a hinge thicker than it is long is no flexure",
+                ));
+            }
+        } else {
+            let at = [0.0, 1.0].into_iter().chain(section.breakpoints(l));
+            if let Some((t, h)) = at.filter_map(|t| Some((t, section.thickness(t, l)?))).find(|&(_, h)| h > l) {
+                return Err(Error::invalid(
+                    "thickness",
+                    format!("{h} m at t = {t}, on a flexure of length {l} m"),
+                    "must not exceed the flexure's length: a beam thicker than it is long is no flexure",
+                ));
+            }
+        }
         let (stiffness, mean) = self.stiffness_matrix_of(&section)?;
         within("ei", mean, EI_RANGE)?;
         let n = self.order();

@@ -276,6 +276,23 @@ impl Section {
         }
     }
 
+    /// The circular notch cut into the rectangle, if any.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Notch, Profile, Section};
+    /// let plate = Section::rectangle(70e9, None, Profile::Constant(0.01), Profile::Constant(0.0105)).unwrap();
+    /// assert_eq!(plate.notch(), None);
+    /// let hinge = plate.with_notch(Notch { radius: 0.005, min_thickness: 5e-4 }).unwrap();
+    /// assert_eq!(hinge.notch().map(|n| n.min_thickness), Some(5e-4));
+    /// ```
+    pub fn notch(&self) -> Option<&Notch> {
+        match &self.stiffness {
+            Stiffness::Rectangle { notch, .. } => notch.as_ref(),
+            Stiffness::Given(_) => None,
+        }
+    }
+
     /// Width $b$ (m) at $t$; `None` for a section given by `ei`.
     pub fn width(&self, t: f64) -> Option<f64> {
         match &self.stiffness {

@@ -276,3 +276,36 @@ fn a_root_peak_is_reported_at_the_root() {
     assert_eq!(p.at, 0.0);
     assert_eq!(p.value, flexure::stress::curvature_change(&f, data.alpha(), 0.0).abs());
 }
+
+/// A rectangle thicker than its flexure is long is refused wherever it is
+/// thickest (a taper's tip, a table's point), naming the thickness, its
+/// value and the length; a thickness equal to the length is accepted, and a
+/// notch hinge is held to its neck.
+#[test]
+fn a_thickness_above_the_length_is_refused() {
+    let c = Profile::Constant;
+    let rect = |h: Profile| Section::rectangle(1e9, None, c(0.01), h).unwrap();
+    for (h, at) in [
+        (c(0.02), "0.02 m at t = 0"),
+        (Profile::Linear { root: 1e-3, tip: 0.015 }, "0.015 m at t = 1"),
+        (Profile::Table(vec![[0.0, 1e-3], [0.5, 0.03], [1.0, 1e-3]]), "0.03 m at t = 0.5"),
+    ] {
+        match Flexure::new(0.01, 1.0, 3).unwrap().with_section(rect(h)) {
+            Err(Error::InvalidParameter { name: "thickness", value, .. }) => {
+                assert!(value.contains(at) && value.contains("length 0.01 m"), "{value}")
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    assert!(Flexure::new(0.01, 1.0, 3).unwrap().with_section(rect(c(0.01))).is_ok());
+    // A notch hinge is held to its thinnest section: the Paros–Weisbord hinge cut into a
+    // 10.5 mm blank over its 10 mm length is accepted, a 6 mm neck on a 5 mm flexure is not.
+    let hinge = |h: f64, min: f64| rect(c(h)).with_notch(Notch { radius: 0.005, min_thickness: min }).unwrap();
+    assert!(Flexure::new(0.01, 1.0, 3).unwrap().with_section(hinge(0.0105, 5e-4)).is_ok());
+    match Flexure::new(0.005, 1.0, 3).unwrap().with_section(hinge(0.0105, 0.006)) {
+        Err(Error::InvalidParameter { name: "notch.min_thickness", value, .. }) => {
+            assert!(value.contains("0.006 m") && value.contains("length 0.005 m"), "{value}")
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -1,0 +1,209 @@
+//! The paper's analyses on one flexure, as the CLI answers them: the
+//! tendon-driven joint (`Flexure.tendon`, as `flexure tendon`), the
+//! minimum-energy shape reaching a tip pose (`Flexure.connect`, as
+//! `flexure connect`) and the factor on a tip load at which stability is
+//! lost (`Flexure.stability_limit`, as `deflect --limit`). Each answer
+//! carries its error estimate, warned about as `deflect`'s is.
+
+use crate::strict::finite_answer;
+use crate::{
+    StabilityWarning, estimate_dict, interrupted_or, interruptible, peak_item, stress, warn, warn_inaccurate,
+    warn_unestimated,
+};
+use flexure::connect::connect as connect_pose;
+use flexure::estimate::{self, Accuracy};
+use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
+use flexure::{Error, Pose, StabilityLimit, TipLoad};
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The largest factor `stability_limit` tries by default, as the CLI's `--limit`.
+pub const MAX_FACTOR: f64 = 1000.0;
+
+/// `max_factor`, finite and greater than zero.
+pub fn max_factor(v: f64) -> PyResult<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(PyValueError::new_err(format!("invalid max_factor = {v}: must be a finite number greater than zero")))
+    }
+}
+
+/// The pose [phi, x, y] as an array.
+fn pose_array<'py>(py: Python<'py>, p: &Pose) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_slice(py, &[p.phi, p.x, p.y])
+}
+
+/// A stability limit into `out` as the CLI writes it: `stability_limit`, the
+/// factor where stability is lost, or `stable_up_to`, the factor it holds to
+/// (with `stalled`, why the path could not be followed further, and a
+/// StabilityWarning, when that is short of `max_factor`).
+pub fn put_limit(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    l: &StabilityLimit,
+    what: &str,
+    stacklevel: i32,
+) -> PyResult<()> {
+    match l {
+        StabilityLimit::Lost { factor } => out.set_item("stability_limit", factor),
+        StabilityLimit::StableUpTo { factor, stalled } => {
+            out.set_item("stable_up_to", factor)?;
+            if let Some(why) = stalled {
+                out.set_item("stalled", why)?;
+                let text = format!(
+                    "{what}: the loading path stays stable up to {} times the load, as far as it could be followed; beyond it stability is unknown: {why}",
+                    crate::sig(*factor)
+                );
+                warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// The stability limit of a tip load on `f`: see `Flexure.stability_limit`.
+pub fn stability_limit<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    load: &TipLoad,
+    max: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let max = max_factor(max)?;
+    let l = interruptible(py, || flexure::statics::stability_limit(f, load, max))?;
+    let out = PyDict::new(py);
+    put_limit(py, &out, &l, "stability_limit", 1)?;
+    finite_answer("stability_limit", out.as_any())?;
+    Ok(out)
+}
+
+/// Bending and estimate of an answer `alpha` into `out`, with their warnings
+/// (`what` names the answer): `stress` or `curvature_max`, `safety_factor`
+/// with a yield strength, `error_estimate` and `flagged`.
+fn put_checks(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    (f, yield_strength): (&flexure::Flexure, Option<f64>),
+    alpha: &[f64],
+    estimated: &Result<estimate::ErrorEstimate, Error>,
+    (target, what, hint): (&Accuracy, &str, &str),
+) -> PyResult<()> {
+    match estimated {
+        Ok(e) => {
+            if e.flagged {
+                warn_inaccurate(py, what, f, e, target, hint, 1)?;
+            }
+            out.set_item("error_estimate", estimate_dict(py, e)?)?;
+            out.set_item("flagged", e.flagged)?;
+        }
+        Err(why) => {
+            warn_unestimated(py, what, why, 1)?;
+            out.set_item("error_estimate", py.None())?;
+            out.set_item("flagged", true)?;
+        }
+    }
+    let (key, peak) = peak_item(py, f, alpha)?;
+    out.set_item(key, peak)?;
+    if let Some(s) = yield_strength
+        && let Some((_, factor)) = stress::safety_factor(py, f, alpha, s, what, 1)?
+    {
+        out.set_item("safety_factor", factor)?;
+    }
+    Ok(())
+}
+
+/// The tendon-driven joint under `tension`: see `Flexure.tendon`.
+#[allow(clippy::too_many_arguments)]
+pub fn tendon<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    yield_strength: Option<f64>,
+    tension: f64,
+    t: Tendon,
+    target: &Accuracy,
+    auto: bool,
+    limit: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    t.validate().map_err(crate::to_py)?;
+    let limit = limit.map(max_factor).transpose()?;
+    let (used, alpha, stable, estimated, l) = interruptible(py, || {
+        let used = if auto { estimate::tendon_auto(f, &t, tension, target)?.0 } else { f.clone() };
+        let mut data = TendonData::new(&used);
+        let eq = pull(&used, &t, tension, &mut data)?;
+        let alpha = data.alpha().to_vec();
+        let estimated = interrupted_or(estimate::tendon_error(&used, &t, tension, &alpha, target))?;
+        let l = limit.map(|max| flexure::tendon::stability_limit(&used, &t, tension, max)).transpose()?;
+        Ok((used, alpha, eq.stable, estimated, l))
+    })?;
+    let out = PyDict::new(py);
+    out.set_item("alpha", PyArray1::from_slice(py, &alpha))?;
+    out.set_item("pose", pose_array(py, &flexure::pose_root_tip(&used, &alpha)))?;
+    out.set_item("tendon_length", tendon_length(&used, &t, &alpha))?;
+    out.set_item("stable", stable)?;
+    if !stable {
+        let text = format!(
+            "tendon: the equilibrium under a tension of {tension} N is unstable: its stiffness is not positive definite, so a small disturbance moves it away"
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, 1)?;
+    }
+    if auto {
+        out.set_item("order", used.order())?;
+        out.set_item("quadrature", used.quadrature_points())?;
+    }
+    let hint = if auto {
+        "even order 64 misses it: loosen accuracy or reduce the tension"
+    } else {
+        "use tendon(..., order=\"auto\") to raise the order until the target is met"
+    };
+    put_checks(py, &out, (&used, yield_strength), &alpha, &estimated, (target, "tendon", hint))?;
+    if let Some(l) = &l {
+        put_limit(py, &out, l, "tendon(limit=...)", 1)?;
+    }
+    finite_answer("tendon", out.as_any())?;
+    Ok(out)
+}
+
+/// The minimum-energy shape reaching `pose`: see `Flexure.connect`.
+pub fn connect<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    yield_strength: Option<f64>,
+    pose: Pose,
+    target: &Accuracy,
+    auto: bool,
+    limit: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let limit = limit.map(max_factor).transpose()?;
+    let (used, c, estimated, l) = interruptible(py, || {
+        let used = if auto { estimate::connect_auto(f, &pose, target)?.0 } else { f.clone() };
+        let c = connect_pose(&used, &pose)?;
+        let estimated = interrupted_or(estimate::connect_error(&used, &pose, &c.alpha, target))?;
+        let l = limit.map(|max| flexure::statics::stability_limit(&used, &c.load, max)).transpose()?;
+        Ok((used, c, estimated, l))
+    })?;
+    let out = PyDict::new(py);
+    out.set_item("alpha", PyArray1::from_slice(py, &c.alpha))?;
+    out.set_item("energy", c.energy)?;
+    let load = PyDict::new(py);
+    load.set_item("moment", c.load.moment)?;
+    load.set_item("fx", c.load.fx)?;
+    load.set_item("fy", c.load.fy)?;
+    out.set_item("load", load)?;
+    if auto {
+        out.set_item("order", used.order())?;
+        out.set_item("quadrature", used.quadrature_points())?;
+    }
+    let hint = if auto {
+        "even order 64 misses it: loosen accuracy"
+    } else {
+        "use connect(..., order=\"auto\") to raise the order until the target is met"
+    };
+    put_checks(py, &out, (&used, yield_strength), &c.alpha, &estimated, (target, "connect", hint))?;
+    if let Some(l) = &l {
+        put_limit(py, &out, l, "connect(limit=...)", 1)?;
+    }
+    finite_answer("connect", out.as_any())?;
+    Ok(out)
+}
