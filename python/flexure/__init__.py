@@ -129,7 +129,12 @@ class Mechanism:
         return self._inner.dof
 
     def simulate(
-        self, duration: float, every: _Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
+        self,
+        duration: float,
+        every: _Optional[float] = None,
+        tolerance: float = 1e-8,
+        start: str = "equilibrium",
+        max_steps: _Optional[int] = None,
     ) -> dict:
         """Motion over [0, duration] (s), as `flexure simulate --json` gives it, in NumPy arrays:
         time (N,) at 0, every, 2 every, ... and duration (every defaults to duration/100);
@@ -145,14 +150,16 @@ class Mechanism:
         findings (left out when empty) lists what `solve` lists: closures open at
         rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
         once per pair of parts; each sample's crossing listed with its time).
+        `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
         A duration, every or tolerance not above zero raises ValueError naming it; an
-        integration that stalls raises ConvergenceError saying where; Ctrl-C stops it
-        with KeyboardInterrupt. Runs without the GIL."""
+        integration that stalls (its budget included) raises ConvergenceError saying
+        where; Ctrl-C stops it with KeyboardInterrupt saying the time reached. Runs
+        without the GIL."""
         try:
-            return self._inner.simulate(duration, every, tolerance, start)
+            return self._inner.simulate(duration, every, tolerance, start, max_steps)
         except (ValueError, ConvergenceError) as e:
             # Name the file, unless the error is about an argument.
-            arguments = ("duration", "every", "tolerance", "start")
+            arguments = ("duration", "every", "tolerance", "start", "max_steps")
             about_argument = str(e.args[0]).removeprefix("invalid ").startswith(arguments) if e.args else False
             if self._source is not None and not about_argument:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]

@@ -250,7 +250,12 @@ class Mechanism:
     @property
     def dof(self) -> int: ...
     def simulate(
-        self, duration: float, every: Optional[float] = None, tolerance: float = 1e-8, start: str = "equilibrium"
+        self,
+        duration: float,
+        every: Optional[float] = None,
+        tolerance: float = 1e-8,
+        start: str = "equilibrium",
+        max_steps: Optional[int] = None,
     ) -> dict:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
         velocities {joint: (N, k) array}, energy, steps, rejected, violation."""

@@ -104,11 +104,12 @@ pub fn run_motion(
 /// an interrupt at its time, not at a fraction of a load.
 pub fn said(e: flexure::Error, duration: f64) -> String {
     match e {
-        flexure::Error::Interrupted { load_fraction } => format!(
-            "interrupted at t = {:.6e} s of {duration:e} s ({:.2} % of the duration)",
-            load_fraction * duration,
-            100.0 * load_fraction
-        ),
+        flexure::Error::InterruptedAt { time, .. } => {
+            format!(
+                "interrupted at t = {time:.6e} s of {duration:e} s ({:.2} % of the duration)",
+                100.0 * time / duration
+            )
+        }
         e @ flexure::Error::InvalidParameter { .. } => crate::describe(e),
         e => e.to_string(),
     }

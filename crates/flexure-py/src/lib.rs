@@ -276,7 +276,7 @@ fn to_py(e: Error) -> PyErr {
             });
             err
         }
-        Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::Interrupted { .. } | Error::InterruptedAt { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         other => PyValueError::new_err(other.to_string()),
     }
 }
@@ -334,7 +334,7 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> flexure::Result
     clear_raised();
     let out = py.detach(|| flexure::solver::with_interrupt(signalled, work));
     let message = match &out {
-        Err(e @ Error::Interrupted { .. }) => e.to_string(),
+        Err(e @ (Error::Interrupted { .. } | Error::InterruptedAt { .. })) => e.to_string(),
         _ => "interrupted".to_string(),
     };
     // A handler that raised wins even over a result: Python would have raised it.
@@ -1181,7 +1181,7 @@ impl Mechanism {
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
-    #[pyo3(signature = (duration, every=None, tolerance=Real(1e-8), start="equilibrium"))]
+    #[pyo3(signature = (duration, every=None, tolerance=Real(1e-8), start="equilibrium", max_steps=None))]
     fn simulate<'py>(
         &self,
         py: Python<'py>,
@@ -1189,8 +1189,9 @@ impl Mechanism {
         every: Option<Real>,
         tolerance: Real,
         start: &str,
+        max_steps: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let out = simulate::motion(py, &self.inner, duration.0, every.map(|v| v.0), tolerance.0, start)?;
+        let out = simulate::motion(py, &self.inner, (duration.0, every.map(|v| v.0)), tolerance.0, start, max_steps)?;
         strict::finite_answer("Mechanism.simulate", out.as_any())?;
         Ok(out)
     }

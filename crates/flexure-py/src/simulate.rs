@@ -11,14 +11,16 @@ use pyo3::types::PyDict;
 
 /// The motion of `m` over `duration` (s), sampled every `every` (default
 /// duration/100), at relative and absolute `tolerance`, from `start`
-/// ("equilibrium" or "rest"), as a dict of arrays; runs without the GIL.
+/// ("equilibrium" or "rest"), with a step budget of `max_steps` (default:
+/// the library's, 1e6 plus 10 per sample), as a dict of arrays; runs
+/// without the GIL.
 pub fn motion<'py>(
     py: Python<'py>,
     m: &Mechanism,
-    duration: f64,
-    every: Option<f64>,
+    (duration, every): (f64, Option<f64>),
     tolerance: f64,
     start: &str,
+    max_steps: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let start = match start {
         "equilibrium" => Start::Equilibrium,
@@ -32,6 +34,7 @@ pub fn motion<'py>(
         every: every.unwrap_or(duration / 100.0),
         tolerance,
         absolute: tolerance,
+        max_steps,
         ..Default::default()
     };
     let settings = SimulationSettings { motion, ..Default::default() };

@@ -74,6 +74,14 @@ pub enum Error {
         /// Fraction of the load reached.
         load_fraction: f64,
     },
+    /// The caller's interrupt check asked the time integration to stop.
+    #[error("interrupted at t = {time:.6e} s of {duration:.6e} s")]
+    InterruptedAt {
+        /// Time reached (s).
+        time: f64,
+        /// The duration asked for (s).
+        duration: f64,
+    },
     /// A mechanism file is malformed or inconsistent, at `place` (line and column).
     #[error("{place}: {message}")]
     File {

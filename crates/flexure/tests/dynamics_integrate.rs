@@ -734,7 +734,7 @@ fn failures_say_what_was_reached() {
     }
     let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
     let e = flexure::solver::with_interrupt(|| true, || integrate(&mut p, &[1.0], &[0.0], &settings(1.0, 0.1, 1e-6)));
-    assert!(matches!(e, Err(Error::Interrupted { load_fraction: 0.0 })), "{e:?}");
+    assert!(matches!(e, Err(Error::InterruptedAt { time: 0.0, duration: 1.0 })), "{e:?}");
 }
 
 /// With damping the energy only falls (sampled), and the run ends near rest.

@@ -460,7 +460,7 @@ impl Work {
 
 /// Errors that end the run at once rather than shortening the step.
 fn fatal(e: &Error) -> bool {
-    matches!(e, Error::Interrupted { .. } | Error::InvalidParameter { .. })
+    matches!(e, Error::InterruptedAt { .. } | Error::InvalidParameter { .. })
 }
 
 /// Largest $\lvert c_k(q)\rvert$.
@@ -638,7 +638,7 @@ fn start_step(
 /// `initial` / `initial_velocity` when a state has the wrong length or a
 /// non-finite entry; with [`Error::IntegrationStalled`] (the time reached,
 /// steps taken and the last cause) when the step falls to rounding or the
-/// step or rejection limit is reached; with [`Error::Interrupted`] (the
+/// step or rejection limit is reached; with [`Error::InterruptedAt`] (the
 /// fraction of the duration reached) when the hook of
 /// [`crate::solver::with_interrupt`] asks; and with a [`System`]'s own error
 /// when a sample's energy cannot be evaluated.
@@ -1053,7 +1053,7 @@ fn attempt<S: System + ?Sized>(
     w.theta = 0.0;
     for iteration in 0..NEWTON_ITERATIONS {
         if interrupted() {
-            return Err(Error::Interrupted { load_fraction: t0 / duration });
+            return Err(Error::InterruptedAt { time: t0, duration });
         }
         stages(rk, w, h, q0, v0);
         for i in 0..3 {

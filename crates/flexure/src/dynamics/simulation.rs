@@ -117,7 +117,7 @@ pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) 
 /// Errors: `mass` when nothing has mass or inertia (no motion to
 /// simulate); a bad setting by name ([`integrate::Settings::validate`]);
 /// those of the start's static solve. A run that stops after its first
-/// sample ([`Error::IntegrationStalled`], [`Error::Interrupted`]) keeps the
+/// sample ([`Error::IntegrationStalled`], [`Error::InterruptedAt`]) keeps the
 /// samples it reached, with the error in [`Simulation::stopped`].
 ///
 /// # Example
