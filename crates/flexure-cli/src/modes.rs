@@ -260,6 +260,10 @@ fn joint_error(e: Error) -> String {
         e @ Error::Unstable { .. } => {
             format!("unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)")
         }
+        // The exact reference's axial compression is −fx.
+        Error::InvalidParameter { name: "compression", value, reason } => {
+            format!("--fx: a compression of {value}: {reason}")
+        }
         e => crate::describe(e),
     }
 }
