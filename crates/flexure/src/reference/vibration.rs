@@ -41,8 +41,8 @@
 //! **Refining.** On a fixed mesh, $\det K(\omega)$ is analytic below every
 //! element's clamped–clamped frequency and changes sign at each simple natural
 //! frequency; once the count brackets exactly one frequency, Brent's method
-//! refines it on that determinant (kept as sign and logarithm, by LU with
-//! partial pivoting, on the coarsest mesh valid at the bracket's top) to a
+//! refines it on that determinant (kept as sign and logarithm, by banded LU
+//! with partial pivoting, on the coarsest mesh valid at the bracket's top) to a
 //! relative $10^{-12}$ in $\bar\beta$.
 //!
 //! **Element length.** For $w$ clamped at both ends of an element of length
@@ -196,6 +196,72 @@ pub fn frequencies(
     let omega: Vec<f64> = scaled.iter().map(|b| b * b * unit).collect();
     let frequency = omega.iter().map(|w| w / std::f64::consts::TAU).collect();
     Ok(Vibration { omega, frequency, scaled, mass_per_length: mu_ref })
+}
+
+/// Half-bandwidth of the assembled $K$: a node's two motions meet only its
+/// neighbours'.
+const KL: usize = 3;
+
+/// A square matrix of half-bandwidth [`KL`], stored by columns in LAPACK's
+/// band layout with room for the fill-in of partial pivoting (`gbtrf`):
+/// entry $(r, c)$ at row $2K_L + r - c$ of column $c$.
+struct Band {
+    n: usize,
+    data: Vec<f64>,
+}
+
+impl Band {
+    const ROWS: usize = 3 * KL + 1;
+
+    fn new(n: usize) -> Self {
+        Self { n, data: vec![0.0; Self::ROWS * n] }
+    }
+
+    /// Entry $(r, c)$, for $-2K_L \le r - c \le K_L$.
+    fn at(&mut self, r: usize, c: usize) -> &mut f64 {
+        &mut self.data[(2 * KL + r - c) + c * Self::ROWS]
+    }
+
+    /// The sign and $\ln\lvert\det\rvert$, by LU with partial pivoting in
+    /// place; `None` if a pivot is zero or not finite.
+    fn log_determinant(&mut self) -> Option<(f64, f64)> {
+        let n = self.n;
+        let (mut sign, mut log) = (1.0, 0.0);
+        // The last column the factors reach so far.
+        let mut reach = 0;
+        for j in 0..n {
+            let below = KL.min(n - 1 - j);
+            let p = (0..=below)
+                .fold(0, |best, i| if self.at(j + i, j).abs() > self.at(j + best, j).abs() { i } else { best });
+            let pivot = *self.at(j + p, j);
+            if pivot == 0.0 || !pivot.is_finite() {
+                return None;
+            }
+            reach = reach.max((j + KL + p).min(n - 1));
+            if p != 0 {
+                sign = -sign;
+                for c in j..=reach {
+                    let (x, y) = (*self.at(j, c), *self.at(j + p, c));
+                    (*self.at(j, c), *self.at(j + p, c)) = (y, x);
+                }
+            }
+            sign *= pivot.signum();
+            log += pivot.abs().ln();
+            for i in 1..=below {
+                *self.at(j + i, j) /= pivot;
+            }
+            for c in j + 1..=reach {
+                let u = *self.at(j, c);
+                if u != 0.0 {
+                    for i in 1..=below {
+                        let l = *self.at(j + i, j);
+                        *self.at(j + i, c) -= l * u;
+                    }
+                }
+            }
+        }
+        Some((sign, log))
+    }
 }
 
 /// The refusal of a compression at or past the buckling load `load`, naming both.
@@ -458,7 +524,7 @@ impl Beam<'_> {
     }
 
     /// The sign and $\ln\lvert\det K\rvert$ of the root-clamped $K$ at `beta` on
-    /// the mesh `nodes` (valid at `beta`), by dense LU with partial pivoting:
+    /// the mesh `nodes` (valid at `beta`), by banded LU with partial pivoting:
     /// the block elimination of [`Beam::inertia`] divides by whatever pivot
     /// comes, and one near a substructure's own frequency would cost digits.
     /// An exactly singular $K$ has sign 0.
@@ -466,34 +532,27 @@ impl Beam<'_> {
         let elements = self.elements(beta, nodes)?;
         let lambda = beta.powi(4);
         let n = 2 * elements.len();
-        let mut a = vec![0.0; n * n];
+        let mut band = Band::new(n);
         for (j, k) in elements.iter().enumerate() {
             // Element j joins node j (dofs 2j − 2, 2j − 1; none for the clamped root) and node j + 1.
             let dof = |local: usize| -> Option<usize> { (2 * j + local).checked_sub(2) };
             for (r, row) in k.iter().enumerate() {
                 for (c, x) in row.iter().enumerate() {
                     if let (Some(i), Some(l)) = (dof(r), dof(c)) {
-                        a[l * n + i] += x;
+                        *band.at(i, l) += x;
                     }
                 }
             }
         }
         let [m, mc, i] = self.body;
         let tip = n - 2;
-        a[tip * n + tip] -= lambda * m;
-        a[(tip + 1) * n + tip] -= lambda * mc;
-        a[tip * n + tip + 1] -= lambda * mc;
-        a[(tip + 1) * n + tip + 1] -= lambda * i;
-        let mut pivots = vec![0; n];
-        if !crate::linalg::lu(&mut a, n, &mut pivots) {
+        *band.at(tip, tip) -= lambda * m;
+        *band.at(tip, tip + 1) -= lambda * mc;
+        *band.at(tip + 1, tip) -= lambda * mc;
+        *band.at(tip + 1, tip + 1) -= lambda * i;
+        let Some((sign, log)) = band.log_determinant() else {
             return Ok((0.0, 0.0));
-        }
-        let (mut sign, mut log) = (1.0, 0.0);
-        for (k, &p) in pivots.iter().enumerate() {
-            let u = a[k * n + k];
-            sign *= u.signum() * if p != k { -1.0 } else { 1.0 };
-            log += u.abs().ln();
-        }
+        };
         if !log.is_finite() {
             return Err(Error::Singular {
                 what: format!("exact vibration: the dynamic stiffness is not finite at βL = {beta}"),
