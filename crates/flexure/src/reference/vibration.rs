@@ -629,11 +629,13 @@ impl Beam<'_> {
                     // Frequencies closer than the tolerance: each is this one.
                     break (0.5 * (lo.0 + hi.0), (hi.1 - k).min(self.want - k));
                 }
-                if lo.1 == k && hi.1 == k + 1 {
-                    if let Some(root) = self.refine(lo.0, hi.0)? {
-                        break (root, 1);
-                    }
-                    // An end too close to a root for the determinant's sign: narrow by the count.
+                // Exactly one in the bracket: refine it; unless an end is too close to
+                // a root for the determinant's sign, then narrow by the count.
+                if lo.1 == k
+                    && hi.1 == k + 1
+                    && let Some(root) = self.refine(lo.0, hi.0)?
+                {
+                    break (root, 1);
                 }
                 let mid = 0.5 * (lo.0 + hi.0);
                 let n = self.count(mid)?;
