@@ -356,3 +356,28 @@ fn interrupt_stops_the_search() {
         other => panic!("expected an interruption, got {other:?}"),
     }
 }
+
+/// A tapered column, EI from 2 at the root to 1 at the tip: the count at
+/// ω = 0 turns at the shooting reference's buckling load
+/// (`reference::column::buckling_load`, bisected to rounding): answered
+/// at 0.999 of it, with a first frequency below that of 0.99 of it, and refused
+/// at 1.001 of it, naming that load.
+#[test]
+fn tapered_column_refused_past_its_own_buckling_load() {
+    let s = Section::given(Profile::Linear { root: 2.0, tip: 1.0 })
+        .unwrap()
+        .with_mass_per_length(Profile::Constant(1.0))
+        .unwrap();
+    let f = Flexure::new(1.0, 1.5, 3).unwrap().with_section(s).unwrap();
+    let load =
+        flexure::reference::column::buckling_load(&f, flexure::TipConstraint::Free, &Default::default()).unwrap();
+    let at = |share: f64| frequencies(&f, None, share * load, 1, &Default::default()).map(|v| v.omega[0]);
+    let (softer, stiffer) = (at(0.999).unwrap(), at(0.99).unwrap());
+    assert!(0.0 < softer && softer < stiffer, "{softer} vs {stiffer}");
+    match at(1.001) {
+        Err(Error::InvalidParameter { name: "compression", value, .. }) => {
+            assert!(value.contains(&format!("{load}")), "{value}")
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
