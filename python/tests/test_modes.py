@@ -140,6 +140,26 @@ def test_bad_input():
         flexure.Mechanism.from_file(path).modes(7)
 
 
+def test_exact_frequencies_to_mode_30_and_past_buckling():
+    # L = EI = mu = 1: the cantilever's beta_l tends to (2n - 1) pi / 2, whose own error 2 e^-bL
+    # is 1e-7 relative at mode 5: within 1e-6 from mode 5 to 30 (the old single shot lost every
+    # mode past the 11th). Past the buckling load pi^2 EI / (4 L^2) = 2.4674 N the straight
+    # beam is unstable: ValueError naming compression and that load, however large the
+    # compression; just below it the first frequency has nearly vanished (sqrt(1 - P/P_cr) =
+    # 0.03 of the unloaded, by Galef's rule).
+    f = flexure.Flexure(length=1.0, ei=1.0, mass_per_length=1.0)
+    b = exact.frequencies(30, flexure=f)["beta_l"]
+    n = np.arange(5, 31)
+    assert len(b) == 30
+    np.testing.assert_allclose(b[4:], (2 * n - 1) * math.pi / 2, rtol=1e-6)
+    buckling = math.pi**2 / 4
+    for p in (1.01 * buckling, 1.4 * buckling, 1e6):
+        with pytest.raises(ValueError, match=r"compression.*buckling load 2\.4674"):
+            exact.frequencies(2, p, flexure=f)
+    near = exact.frequencies(1, 0.999 * buckling, flexure=f)["omega"][0]
+    assert near < 0.1 * exact.frequencies(1, flexure=f)["omega"][0]
+
+
 # The cantilever's third and fourth roots (Blevins, Table 8-1).
 BETA_L_3 = 7.854757438237613
 

@@ -66,8 +66,8 @@ pub struct ModesArgs {
     #[arg(long, value_parser = mode_count, allow_hyphen_values = true)]
     count: Option<usize>,
     /// Also the exact linear vibration of the straight beam (Euler–Bernoulli
-    /// with rotary inertia, EI(s), μ(s) and the tip body, by shooting on the
-    /// frequency), and the model's relative error. Only about a straight
+    /// with rotary inertia, EI(s), μ(s) and the tip body; every mode counted by
+    /// the Wittrick–Williams argument, none skipped), and the model's relative error. Only about a straight
     /// equilibrium: no --kappa, and no load but an axial --fx.
     #[arg(long)]
     exact: bool,
@@ -259,6 +259,10 @@ fn joint_error(e: Error) -> String {
         ),
         e @ Error::Unstable { .. } => {
             format!("unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)")
+        }
+        // The exact reference's axial compression is −fx.
+        Error::InvalidParameter { name: "compression", value, reason } => {
+            format!("--fx: a compression of {value}: {reason}")
         }
         e => crate::describe(e),
     }

@@ -44,7 +44,7 @@ const BETA_L: [f64; 2] = [1.875_104_068_711_961, 4.694_091_132_974_175];
 /// frequencies within 1e-6 of f = (βL)²/(2πL²)·√(EI/μ) (the library's
 /// convergence test measures the first within 1e-10 from order 8 and the
 /// second within 1e-6 at order 10); `--exact` within 1e-9 of the closed form
-/// (bisection to 1e-14 in βL, ODE to its default tolerance), and its
+/// (each root refined to 1e-12 in βL, ODE to its default tolerance), and its
 /// `error` is the model's relative error against it.
 #[test]
 fn distributed_mass_against_the_cantilever_roots() {
@@ -100,6 +100,40 @@ fn massless_flexure_with_a_tip_mass() {
     // The readable form says the same.
     let (code, out, _) = run(&["modes", "--ei", "2", "--length", "0.5", "--tip-mass", "0.1"]);
     assert!(code == 0 && out.contains("omega") && out.contains("quasi_static"), "{out}");
+}
+
+/// `--exact` to mode 30 (L = EI = μ = 1, order 30): the exact ω = (βL)²
+/// within 1e-9 of the first four published roots (Blevins, Table 8-1, to
+/// 1e-5 in βL, so these are checked against the closed form's bisection in
+/// the library's tests; here the two of [`BETA_L`]) and within 1e-6 of
+/// ((2n − 1)π/2)² from mode 5 on (the asymptote's own error there is 2e-7);
+/// `error.relative` is the model's ω over it less one, never below −1e-9
+/// (Rayleigh–Ritz: the model's frequencies lie above the exact ones), and
+/// `largest` is the largest of them. The old single shot put modes 13–30
+/// below 1420 rad/s, where these are 1542 to 8589.
+#[test]
+fn exact_frequencies_to_mode_30() {
+    let (code, out, _) =
+        run(&["modes", "--mass-per-length", "1", "--order", "30", "--count", "30", "--exact", "--json"]);
+    assert_eq!(code, 0, "{out}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let (model, exact) = (numbers(&v["omega"]), numbers(&v["exact"]["omega"]));
+    let (relative, beta) = (numbers(&v["error"]["relative"]), numbers(&v["exact"]["beta_l"]));
+    assert_eq!((model.len(), exact.len(), relative.len(), beta.len()), (30, 30, 30, 30));
+    for k in 0..2 {
+        assert!((exact[k] / BETA_L[k].powi(2) - 1.0).abs() < 1e-9, "mode {}: {}", k + 1, exact[k]);
+    }
+    for n in 5..=30 {
+        let closed = ((2 * n - 1) as f64 * PI / 2.0).powi(2);
+        assert!((exact[n - 1] / closed - 1.0).abs() < 1e-6, "mode {n}: exact ω = {} vs {closed}", exact[n - 1]);
+        assert!((beta[n - 1].powi(2) - exact[n - 1]).abs() < 1e-9 * exact[n - 1]);
+    }
+    for k in 0..30 {
+        assert!((relative[k] - (model[k] / exact[k] - 1.0)).abs() < 1e-12, "error of mode {}", k + 1);
+        assert!(relative[k] > -1e-9, "mode {}: the model below the exact beam by {:e}", k + 1, relative[k]);
+    }
+    let largest = relative.iter().fold(0.0_f64, |m, e| m.max(e.abs()));
+    assert_eq!(v["error"]["largest"].as_f64().unwrap(), largest);
 }
 
 /// A tip body with rotary inertia and an offset centre of mass, and an

@@ -9,7 +9,7 @@ use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -188,9 +188,12 @@ pub fn mechanism_modes<'py>(
 /// The exact natural frequencies of `flexure` as a straight Euler–Bernoulli
 /// beam with rotary inertia (EI(s), mass per length μ(s), ρI(s)), clamped at
 /// its root, carrying an optional tip body, under an axial `compression` (N;
-/// negative for tension), by shooting on the frequency: a dict of omega
-/// (rad/s), frequency (Hz), beta_l (the scaled frequency, βL for a uniform
-/// beam) and mass_per_length (the reference μ̄ of beta_l, kg/m).
+/// negative for tension), counted by Wittrick–Williams and refined on the
+/// dynamic stiffness: a dict of omega (rad/s), frequency (Hz), beta_l (the
+/// scaled frequency, βL for a uniform beam) and mass_per_length (the reference
+/// μ̄ of beta_l, kg/m). A compression at or past the buckling load raises
+/// ValueError naming it; Ctrl-C raises KeyboardInterrupt saying how many
+/// modes were found.
 #[pyfunction]
 #[pyo3(signature = (flexure, count=None, compression=0.0, tip_mass=None, tip_inertia=None, tip_com=None))]
 pub fn exact_frequencies<'py>(
@@ -217,7 +220,37 @@ pub fn exact_frequencies<'py>(
             k => return Err(PyValueError::new_err(format!("invalid count = {k}: must be from 1 to 64"))),
         },
     };
-    let v = interruptible(py, || vibration::frequencies(f, body.as_ref(), compression, asked, &Default::default()))?;
+    // How far an interrupted search got (the fraction of the modes found), and
+    // a panic kept from reaching Python (PanicException is no Exception).
+    let mut reached = None;
+    let search = std::panic::AssertUnwindSafe(|| {
+        interruptible(py, || {
+            let r = vibration::frequencies(f, body.as_ref(), compression, asked, &Default::default());
+            if let Err(flexure::Error::Interrupted { load_fraction }) = &r {
+                reached = Some(*load_fraction);
+            }
+            r
+        })
+    });
+    let v = match std::panic::catch_unwind(search) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            return Err(match reached {
+                Some(fraction) if e.is_instance_of::<PyKeyboardInterrupt>(py) => {
+                    let found = (fraction * asked as f64).round();
+                    PyKeyboardInterrupt::new_err(format!(
+                        "exact.frequencies: interrupted after {found} of {asked} modes"
+                    ))
+                }
+                _ => e,
+            });
+        }
+        Err(_) => {
+            return Err(PyRuntimeError::new_err(
+                "exact.frequencies: internal error (a panic in the exact vibration reference); please report it with the flexure and arguments",
+            ));
+        }
+    };
     let out = PyDict::new(py);
     out.set_item("omega", PyArray1::from_vec(py, v.omega))?;
     out.set_item("frequency", PyArray1::from_vec(py, v.frequency))?;
