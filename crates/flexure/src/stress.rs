@@ -37,13 +37,19 @@ pub struct Peak {
 /// assert!((flexure::stress::curvature_change(&f, &[1.5, 0.0], 0.3) - 0.5).abs() < 1e-15);
 /// ```
 pub fn curvature_change(flexure: &Flexure, alpha: &[f64], s: f64) -> f64 {
+    let d = change(flexure, alpha);
+    flexure.curvature(&d[..alpha.len()], s)
+}
+
+/// The coordinates of the change from rest, $\alpha - \kappa$, in the first
+/// [`Flexure::order`] entries: computed once for a whole scan.
+fn change(flexure: &Flexure, alpha: &[f64]) -> [f64; crate::joint::MAX_ORDER] {
     assert_coordinates(flexure, "alpha", alpha.len());
-    let n = alpha.len();
     let mut d = [0.0; crate::joint::MAX_ORDER];
     for ((d, a), k) in d.iter_mut().zip(alpha).zip(flexure.rest()) {
         *d = a - k;
     }
-    flexure.curvature(&d[..n], s)
+    d
 }
 
 /// Bending stress $\sigma(s)$ (Pa) at `s` (m); `None` for a section without thickness.
@@ -65,8 +71,12 @@ pub fn stress(flexure: &Flexure, alpha: &[f64], s: f64) -> Option<f64> {
 
 /// The peak bending stress along the flexure; `None` for a section without thickness.
 pub fn peak_stress(flexure: &Flexure, alpha: &[f64]) -> Option<Peak> {
-    flexure.section().modulus()?;
-    Some(peak(flexure, |s| stress(flexure, alpha, s).unwrap_or(0.0)))
+    let e = flexure.section().modulus()?;
+    let (section, l) = (flexure.section(), flexure.length());
+    let d = change(flexure, alpha);
+    let d = &d[..alpha.len()];
+    // `stress` at each point, the change from rest taken once.
+    Some(peak(flexure, |s| section.thickness(s / l, l).map_or(0.0, |h| e * 0.5 * h * flexure.curvature(d, s).abs())))
 }
 
 /// The largest change of curvature from rest, $\max_s\lvert\hat\omega - \hat\omega_0\rvert$ (1/m).
@@ -79,7 +89,9 @@ pub fn peak_stress(flexure: &Flexure, alpha: &[f64]) -> Option<Peak> {
 /// assert!((p.value - 2.0).abs() < 1e-12 && (p.at - 1.0).abs() < 1e-12);
 /// ```
 pub fn peak_curvature(flexure: &Flexure, alpha: &[f64]) -> Peak {
-    peak(flexure, |s| curvature_change(flexure, alpha, s).abs())
+    let d = change(flexure, alpha);
+    let d = &d[..alpha.len()];
+    peak(flexure, |s| flexure.curvature(d, s).abs())
 }
 
 /// The maximum of `g` on $[0, L]$: a scan of evenly spaced points, the
