@@ -14,6 +14,25 @@
 //! less than the continuation that produced the answer. The estimate is the
 //! distance between the two answers: the error of the answer, to within the
 //! reference's own error, which is far smaller wherever the basis converges.
+//!
+//! **At the order cap** ([`MAX_ORDER`] = 64) no model refines the answer's
+//! order, and more points alone would leave a smooth answer unchanged: the
+//! model against itself, an estimate of 0 whatever its true error (a steep
+//! taper of $EI$ converges slowly in the basis). So an estimate at the cap
+//! is never against order 64 itself. One rule: the reference is the most
+//! independent one the library has for that answer. A tip load's answer
+//! ([`deflect_error`], [`joint_error`], the last try of [`deflect_auto`])
+//! is estimated against the exact elastica with the flexure's $EI(s)$
+//! ([`crate::reference::elastica`], `ErrorEstimate::exact`), so the estimate
+//! is its true error; answers the elastica module does not solve as such
+//! (tendon joints, connections, buckling loads and frequencies,
+//! [`eigen_reference`]) against order 32, whose change overstates the
+//! order-64 answer's error where the basis converges, and flags it where it
+//! does not.
+//!
+//! [`Estimator`] keeps the reference model and its buffers between
+//! estimates of one flexure (Model and Data), so a repeated estimate costs
+//! the reference's Newton solve and the peaks, not the reference's tables.
 
 use crate::buckling::{Buckling, TipConstraint, buckling_load};
 use crate::dynamics::{self, Body, Modes};
@@ -25,7 +44,7 @@ use crate::mechanism::{
 };
 use crate::quadrature::MAX_POINTS;
 use crate::statics::{Settings, Statics, TipLoad, deflect};
-use crate::stress::{peak_curvature, peak_stress};
+use crate::stress::{peak_curvature_legendre, peak_stress};
 use crate::tendon::{Tendon, TendonData, pull};
 
 /// The accuracy an answer must meet: tip position within `position` × L,
@@ -101,7 +120,7 @@ impl ErrorEstimate {
         angle: f64,
         target: &Accuracy,
     ) -> Self {
-        let peaks = (peak_curvature(reference, exact).value, peak_stress(reference, exact).map(|p| p.value));
+        let peaks = (peak_curvature_legendre(reference, exact), peak_stress(reference, exact).map(|p| p.value));
         let size = (reference.order(), reference.quadrature_points());
         Self::from_peaks((flexure, alpha), peaks, position, angle, size, target)
     }
@@ -117,7 +136,7 @@ impl ErrorEstimate {
         size: (usize, usize),
         target: &Accuracy,
     ) -> Self {
-        let model_peak = peak_curvature(flexure, alpha).value;
+        let model_peak = peak_curvature_legendre(flexure, alpha);
         let curvature = (model_peak - exact_peak).abs();
         let stress = match (peak_stress(flexure, alpha), exact_stress) {
             (Some(a), Some(b)) => Some(((a.value - b).abs(), b)),

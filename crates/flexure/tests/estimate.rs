@@ -204,3 +204,31 @@ fn taper_sweep_is_met_or_flagged() {
     );
     assert_eq!(met + refused, 69);
 }
+
+/// The estimates' fast peak of the curvature change (scan, then Newton on
+/// $p^{\prime}$) against [`flexure::stress::peak_curvature`] (scan, then
+/// golden section), over seeded random coordinates of orders 1 to 64 with a
+/// rest shape: equal to 1e-12 of the peak (both find the same stationary
+/// point; golden section places it to about $\sqrt{\epsilon}$, which moves
+/// the value at a smooth maximum by rounding only).
+#[test]
+fn fast_peak_curvature_agrees_with_the_scan() {
+    use flexure::stress::{peak_curvature, peak_curvature_legendre};
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for order in [1, 2, 3, 4, 6, 9, 12, 24, 48, 64] {
+        for _ in 0..20 {
+            let rest: Vec<f64> = (0..order).map(|_| 0.1 * next()).collect();
+            // Coefficients falling with the order, as an answer's do.
+            let alpha: Vec<f64> = (0..order).map(|i| 3.0 * next() / (1.0 + i as f64)).collect();
+            let f = Flexure::new(0.7, 1.0, order).unwrap().with_rest(&rest).unwrap();
+            let (slow, fast) = (peak_curvature(&f, &alpha).value, peak_curvature_legendre(&f, &alpha));
+            assert!((fast - slow).abs() <= 1e-12 * slow, "order {order}: {fast} vs {slow}");
+        }
+    }
+}
