@@ -22,6 +22,7 @@ CRITERION = os.path.join(ROOT, "target", "criterion")
 RATIOS = [
     ("joint/pose_jacobian_hessian ÷ limit/sincos5", "joint/pose_jacobian_hessian", "limit/sincos5", "≤ 2"),
     ("statics/deflect_90 ÷ joint/pose_jacobian_hessian", "statics/deflect_90", "joint/pose_jacobian_hessian", "≤ 30"),
+    ("statics/deflect_90_estimated ÷ statics/deflect_90", "statics/deflect_90_estimated", "statics/deflect_90", "≤ 2"),
     ("reference/elastica_45…270, slowest ÷ fastest", "max/min", "reference/elastica_45,reference/elastica_90,reference/elastica_180,reference/elastica_270", "≤ 5"),
     ("reference/segments_22 ÷ statics/connect", "reference/segments_22", "statics/connect", "≥ 100"),
     ("mechanism/chain_100 ÷ mechanism/chain_10", "mechanism/chain_100", "mechanism/chain_10", "≤ 100"),
