@@ -198,9 +198,14 @@ fn warn_inaccurate(
     stacklevel: i32,
 ) -> PyResult<()> {
     let peak = if e.stress.is_some() { "peak stress" } else { "peak curvature" };
+    let reference = if e.exact {
+        "the exact elastica, order 64 being the highest".to_string()
+    } else {
+        format!("order {} with {} quadrature points", e.reference_order, e.reference_quadrature)
+    };
     let text = format!(
         "{what}: estimated error {} m ({} % of L) in position, {}° in angle and {} % in {peak} misses the target of \
-         {} % of L, {}° and {} % (estimated against order {} with {} quadrature points); {hint}",
+         {} % of L, {}° and {} % (estimated against {reference}); {hint}",
         sig(e.position),
         sig(100.0 * e.position / f.length()),
         sig(e.angle.to_degrees()),
@@ -208,8 +213,6 @@ fn warn_inaccurate(
         sig(100.0 * target.position),
         sig(target.angle.to_degrees()),
         sig(100.0 * target.stress),
-        e.reference_order,
-        e.reference_quadrature,
     );
     warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
@@ -233,6 +236,11 @@ fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py,
     d.set_item("reference_order", e.reference_order)?;
     d.set_item("reference_quadrature", e.reference_quadrature)?;
     Ok(d)
+}
+
+thread_local! {
+    /// The reusable estimator of `Flexure.deflect` (its reference model built once per flexure).
+    static ESTIMATOR: std::cell::RefCell<estimate::Estimator> = std::cell::RefCell::new(estimate::Estimator::new());
 }
 
 /// An estimate's result, with an interruption passed on as the solve's error
@@ -768,8 +776,9 @@ impl Flexure {
             let mut data = Statics::new(f);
             let eq = deflect(f, &load, &mut data, &Default::default())?;
             let alpha = data.alpha().to_vec();
-            let estimated = interrupted_or(estimate::deflect_error(f, &load, &alpha, &target))?;
-            Ok((alpha, eq.stable, estimated))
+            // One estimator per thread: its reference model is rebuilt only for another flexure.
+            let estimated = ESTIMATOR.with_borrow_mut(|est| est.deflect_error(f, &load, &alpha, &target));
+            Ok((alpha, eq.stable, interrupted_or(estimated)?))
         })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
