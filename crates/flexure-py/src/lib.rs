@@ -223,7 +223,8 @@ fn warn_unestimated(py: Python<'_>, what: &str, why: &Error, stacklevel: i32) ->
     warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
 
-/// An estimate as a dict: position (m), angle (rad), flagged, reference_order, reference_quadrature.
+/// An estimate as a dict: position (m), angle (rad), flagged, reference ("model", or "elastica" at
+/// order 64, where reference_order and reference_quadrature are 0), reference_order, reference_quadrature.
 fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("position", e.position)?;
@@ -233,6 +234,7 @@ fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py,
         d.set_item("stress", stress)?;
     }
     d.set_item("flagged", e.flagged)?;
+    d.set_item("reference", if e.exact { "elastica" } else { "model" })?;
     d.set_item("reference_order", e.reference_order)?;
     d.set_item("reference_quadrature", e.reference_quadrature)?;
     Ok(d)
