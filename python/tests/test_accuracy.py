@@ -268,3 +268,6 @@ def test_order_64_on_a_steep_taper_is_estimated_against_the_elastica():
     e = f.error_estimate(alpha, moment=1.0)
     assert e["reference"] == "elastica" and e["flagged"] is True
     assert abs(e["angle"] - abs(f.pose(alpha)[0] - exact)) < 1e-6 * exact
+    # order="auto" cannot do better than the cap: it refuses, saying by how much and against what.
+    with pytest.raises(ValueError, match=r"even order 64 misses .*tip angle.*against the exact elastica"):
+        flexure.Flexure(ei=(1.0, 1e-6)).deflect(moment=1.0, order="auto")

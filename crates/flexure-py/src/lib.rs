@@ -750,17 +750,22 @@ impl Flexure {
         if auto {
             // The library refuses `order` when even its highest order misses the target.
             let found = interruptible(py, || match estimate::deflect_auto(f, &load, &target) {
-                Ok((used, alpha, _)) => Ok(Some((used, alpha))),
-                Err(Error::InvalidParameter { name: "order", .. }) => Ok(None),
+                Ok((used, alpha, _)) => Ok(Ok((used, alpha))),
+                // Its value says by how much the last order misses, and against what.
+                Err(Error::InvalidParameter { name: "order", value, .. }) => Ok(Err(value)),
                 Err(e) => Err(e),
             })?;
-            let Some((used, alpha)) = found else {
-                return Err(PyValueError::new_err(format!(
-                    "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}): loosen accuracy or reduce the load",
-                    flexure::joint::MAX_ORDER,
-                    sig(100.0 * target.position),
-                    sig(target.angle.to_degrees())
-                )));
+            let (used, alpha) = match found {
+                Ok(found) => found,
+                Err(value) => {
+                    let by = value.strip_prefix("auto ").unwrap_or("");
+                    return Err(PyValueError::new_err(format!(
+                        "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}) {by}: loosen accuracy or reduce the load",
+                        flexure::joint::MAX_ORDER,
+                        sig(100.0 * target.position),
+                        sig(target.angle.to_degrees())
+                    )));
+                }
             };
             let (_, stiffness) = loaded_stiffness(&used, &alpha, &load);
             if !flexure::linalg::is_positive_definite(&stiffness) {

@@ -462,9 +462,23 @@ fn auto(
         Ok(((alpha, e), e.flagged, next))
     })?;
     if e.flagged {
+        // The value says by how much, and against what, so the refusal is not blind either.
+        let reference = if e.exact {
+            "the exact elastica".to_string()
+        } else {
+            format!("order {} with {} points", e.reference_order, e.reference_quadrature)
+        };
+        let value = format!(
+            "auto (order {} is estimated {:.3} % of L off in tip position, {:.3}° in tip angle and {:.3} % in \
+             the peak, against {reference})",
+            f.order(),
+            100.0 * e.position / f.length(),
+            e.angle.to_degrees(),
+            100.0 * e.peak,
+        );
         return Err(Error::invalid(
             "order",
-            "auto",
+            value,
             "even order 64 misses the accuracy target: loosen --accuracy or reduce the load",
         ));
     }
