@@ -37,12 +37,14 @@ class _Peak(TypedDict):
 _Profile = Union[float, Tuple[float, float], Sequence[Sequence[float]], ArrayLike]
 
 class _ErrorEstimate(TypedDict):
-    """An answer's error, estimated against a refined model of reference_order with reference_quadrature points."""
+    """An answer's error, estimated against a refined model of reference_order with reference_quadrature points,
+    or, at order 64 (reference "elastica", both then 0), against the exact elastica."""
     position: float  # m
     angle: float  # rad
     curvature: float  # 1/m, the peak curvature change's error
     stress: float  # Pa, the peak bending stress's error; present only for flexures with a thickness
     flagged: bool  # whether it misses the accuracy target
+    reference: str  # "model" (refined) or "elastica" (exact, at order 64)
     reference_order: int
     reference_quadrature: int
 

@@ -37,8 +37,8 @@ def test_coiling_moment_warns_with_the_true_error(length, ei):
     true_position = float(np.hypot(*(pose[1:] - circle_tip(20.0, length))))
     e = f.error_estimate(alpha, moment=moment)
     # A flexure given by ei alone has no thickness: the peak is curvature, not stress.
-    assert set(e) == {"position", "angle", "curvature", "flagged", "reference_order", "reference_quadrature"}
-    assert e["flagged"] is True
+    assert set(e) == {"position", "angle", "curvature", "flagged", "reference", "reference_order", "reference_quadrature"}
+    assert e["flagged"] is True and e["reference"] == "model"
     # The reference (order 6, 32 points here) integrates cos(20 t) to rounding, so the
     # estimate is the true error; 1e-6 relative as the task and the library's doc test ask.
     assert abs(e["position"] / true_position - 1) < 1e-6
@@ -254,3 +254,20 @@ def test_snap_through_of_a_mechanism_warns_and_names_the_limit():
         result = flexure.Mechanism.from_toml(text).solve()
     assert result["stable"]
     assert abs(result["limit_fraction"] - 0.4) < 1e-5
+
+
+def test_order_64_on_a_steep_taper_is_estimated_against_the_elastica():
+    # EI falls linearly from 1 to 1e-6 (issue 21): a tip moment M turns the tip by the closed
+    # form phi = M * integral of ds/EI = M ln(1e6)/(1 - 1e-6). Order 64, the cap, is 4.3 rad
+    # short; no model refines it, so its estimate is against the exact elastica, the true
+    # error to 1e-6 of phi (the elastica's tolerance), and deflect warns naming that reference.
+    f = flexure.Flexure(ei=(1.0, 1e-6), order=64)
+    exact = math.log(1e6) / (1 - 1e-6)
+    with pytest.warns(flexure.AccuracyWarning, match="against the exact elastica"):
+        alpha = f.deflect(moment=1.0)
+    e = f.error_estimate(alpha, moment=1.0)
+    assert e["reference"] == "elastica" and e["flagged"] is True
+    assert abs(e["angle"] - abs(f.pose(alpha)[0] - exact)) < 1e-6 * exact
+    # order="auto" cannot do better than the cap: it refuses, saying by how much and against what.
+    with pytest.raises(ValueError, match=r"even order 64 misses .*tip angle.*against the exact elastica"):
+        flexure.Flexure(ei=(1.0, 1e-6)).deflect(moment=1.0, order="auto")

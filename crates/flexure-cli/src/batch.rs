@@ -135,6 +135,8 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
         return Err(format!("--input {}: give force,angle or fx,fy, not both", path.display()));
     }
     let mut data = Statics::new(f);
+    // The rows share the flexure, so its reference model is built once.
+    let mut estimator = flexure::estimate::Estimator::new();
     let mut flagged = 0;
     let mut answers = Vec::with_capacity(table.rows.len());
     for row in &table.rows {
@@ -145,7 +147,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
                 TipLoad { moment: get(r, "moment"), fx: get(r, "fx"), fy: get(r, "fy") }
             };
             let solved = deflect(f, &load, &mut data, &Default::default()).and_then(|eq| {
-                let e = flexure::estimate::deflect_error(f, &load, data.alpha(), target)?;
+                let e = estimator.deflect_error(f, &load, data.alpha(), target)?;
                 Ok((eq, e))
             });
             match solved {

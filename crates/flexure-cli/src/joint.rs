@@ -19,15 +19,29 @@ use serde_json::{Value, json};
 /// when the estimate misses `target` (`what` names the answer).
 pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
     if e.flagged {
-        warn(format!("{what}: {}; try --order auto", misses(e, f.length(), target)));
+        // At the highest order no order is left to try: the estimate is against the exact elastica.
+        let hint = if e.exact {
+            format!(
+                "even order {} misses it (estimated against the exact elastica): loosen --accuracy or reduce the load",
+                f.order()
+            )
+        } else {
+            "try --order auto".into()
+        };
+        warn(format!("{what}: {}; {hint}", misses(e, f.length(), target)));
     }
-    answer["error_estimate"] = json!({
-        "position": e.position,
-        "angle": e.angle,
-        "curvature": e.curvature,
-        "reference_order": e.reference_order,
-        "reference_quadrature": e.reference_quadrature,
-    });
+    answer["error_estimate"] = if e.exact {
+        json!({ "position": e.position, "angle": e.angle, "curvature": e.curvature, "reference": "elastica" })
+    } else {
+        json!({
+            "position": e.position,
+            "angle": e.angle,
+            "curvature": e.curvature,
+            "reference": "model",
+            "reference_order": e.reference_order,
+            "reference_quadrature": e.reference_quadrature,
+        })
+    };
     if let Some(stress) = e.stress {
         answer["error_estimate"]["stress"] = json!(stress);
     }

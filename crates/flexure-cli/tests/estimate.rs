@@ -264,3 +264,24 @@ fn mechanism_modes_are_flagged_per_mode() {
     assert!(err.is_empty() && v["flagged"] == Value::Bool(false), "{err}");
     assert!((v["omega"][2].as_f64().unwrap() / 7.8548f64.powi(2) - 1.0).abs() < 0.01, "{v}");
 }
+
+/// The steep taper of issue 21: EI from 1 to 1e-6 along L = 1 under a tip
+/// moment of 1 N·m, whose exact tip angle is the closed form
+/// φ = M∫ds/EI = ln(1e6)/(1 − 1e-6) = 13.8155 rad. Order 64 gets 9.48 rad;
+/// its estimate, against the exact elastica (no model refines order 64), is
+/// that true error to 1e-6 of φ, flagged with a warning that no order is
+/// left, and `--order auto` refuses it rather than answer unflagged.
+#[test]
+fn a_taper_order_64_cannot_resolve_is_flagged_not_blind() {
+    let exact = 1e6f64.ln() / (1.0 - 1e-6);
+    let (v, err) = json(&["deflect", "--ei", "1,1e-6", "--moment", "1", "--order", "64"]);
+    let phi = v["pose"]["phi"].as_f64().unwrap();
+    let estimate = v["error_estimate"]["angle"].as_f64().unwrap();
+    assert!((estimate - (phi - exact).abs()).abs() < 1e-6 * exact, "estimate {estimate}, φ {phi} vs {exact}");
+    assert_eq!(v["error_estimate"]["reference"], "elastica");
+    assert_eq!(v["flagged"], Value::Bool(true));
+    assert!(err.contains("even order 64 misses it (estimated against the exact elastica)"), "{err}");
+    let (code, _, err) = run(&["deflect", "--ei", "1,1e-6", "--moment", "1", "--order", "auto"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("even order 64 misses the accuracy target"), "{err}");
+}

@@ -204,9 +204,14 @@ fn warn_inaccurate(
     stacklevel: i32,
 ) -> PyResult<()> {
     let peak = if e.stress.is_some() { "peak stress" } else { "peak curvature" };
+    let reference = if e.exact {
+        "the exact elastica, order 64 being the highest".to_string()
+    } else {
+        format!("order {} with {} quadrature points", e.reference_order, e.reference_quadrature)
+    };
     let text = format!(
         "{what}: estimated error {} m ({} % of L) in position, {}° in angle and {} % in {peak} misses the target of \
-         {} % of L, {}° and {} % (estimated against order {} with {} quadrature points); {hint}",
+         {} % of L, {}° and {} % (estimated against {reference}); {hint}",
         sig(e.position),
         sig(100.0 * e.position / f.length()),
         sig(e.angle.to_degrees()),
@@ -214,8 +219,6 @@ fn warn_inaccurate(
         sig(100.0 * target.position),
         sig(target.angle.to_degrees()),
         sig(100.0 * target.stress),
-        e.reference_order,
-        e.reference_quadrature,
     );
     warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
@@ -226,7 +229,8 @@ fn warn_unestimated(py: Python<'_>, what: &str, why: &Error, stacklevel: i32) ->
     warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
 
-/// An estimate as a dict: position (m), angle (rad), flagged, reference_order, reference_quadrature.
+/// An estimate as a dict: position (m), angle (rad), flagged, reference ("model", or "elastica" at
+/// order 64, where reference_order and reference_quadrature are 0), reference_order, reference_quadrature.
 fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("position", e.position)?;
@@ -236,9 +240,15 @@ fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py,
         d.set_item("stress", stress)?;
     }
     d.set_item("flagged", e.flagged)?;
+    d.set_item("reference", if e.exact { "elastica" } else { "model" })?;
     d.set_item("reference_order", e.reference_order)?;
     d.set_item("reference_quadrature", e.reference_quadrature)?;
     Ok(d)
+}
+
+thread_local! {
+    /// The reusable estimator of `Flexure.deflect` (its reference model built once per flexure).
+    static ESTIMATOR: std::cell::RefCell<estimate::Estimator> = std::cell::RefCell::new(estimate::Estimator::new());
 }
 
 /// An estimate's result, with an interruption passed on as the solve's error
@@ -778,17 +788,22 @@ impl Flexure {
         if auto {
             // The library refuses `order` when even its highest order misses the target.
             let found = interruptible(py, || match estimate::deflect_auto(f, &load, &target) {
-                Ok((used, alpha, _)) => Ok(Some((used, alpha))),
-                Err(Error::InvalidParameter { name: "order", .. }) => Ok(None),
+                Ok((used, alpha, _)) => Ok(Ok((used, alpha))),
+                // Its value says by how much the last order misses, and against what.
+                Err(Error::InvalidParameter { name: "order", value, .. }) => Ok(Err(value)),
                 Err(e) => Err(e),
             })?;
-            let Some((used, alpha)) = found else {
-                return Err(PyValueError::new_err(format!(
-                    "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}): loosen accuracy or reduce the load",
-                    flexure::joint::MAX_ORDER,
-                    sig(100.0 * target.position),
-                    sig(target.angle.to_degrees())
-                )));
+            let (used, alpha) = match found {
+                Ok(found) => found,
+                Err(value) => {
+                    let by = value.strip_prefix("auto ").unwrap_or("");
+                    return Err(PyValueError::new_err(format!(
+                        "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}) {by}: loosen accuracy or reduce the load",
+                        flexure::joint::MAX_ORDER,
+                        sig(100.0 * target.position),
+                        sig(target.angle.to_degrees())
+                    )));
+                }
             };
             let (_, stiffness) = loaded_stiffness(&used, &alpha, &load);
             if !flexure::linalg::is_positive_definite(&stiffness) {
@@ -807,8 +822,9 @@ impl Flexure {
             let mut data = Statics::new(f);
             let eq = deflect(f, &load, &mut data, &Default::default())?;
             let alpha = data.alpha().to_vec();
-            let estimated = interrupted_or(estimate::deflect_error(f, &load, &alpha, &target))?;
-            Ok((alpha, eq.stable, estimated))
+            // One estimator per thread: its reference model is rebuilt only for another flexure.
+            let estimated = ESTIMATOR.with_borrow_mut(|est| est.deflect_error(f, &load, &alpha, &target));
+            Ok((alpha, eq.stable, interrupted_or(estimated)?))
         })?;
         if !stable {
             let why = "its stiffness is not positive definite (the load is past a buckling load)";

@@ -150,3 +150,85 @@ fn peak_curvature_estimate_is_honest() {
         }
     }
 }
+
+/// The 69-case taper sweep (issue 21): a pure tip moment $M$ on a flexure
+/// of $L = 1$ whose $EI$ falls linearly from 1 at the root to $r$ at the tip,
+/// for 23 end ratios $r = 10^{-6k/22}$ ($k = 0\ldots22$, 1 down to $10^{-6}$)
+/// and $M \in \lbrace 0.1, 0.3, 1\rbrace$ N·m. Reference: the closed form
+/// $\phi = M\int_0^L ds/EI = ML\ln r/(r - 1)$ (the moment is the same in
+/// every section). Every answer of `--order auto` ([`deflect_auto`]) must
+/// either meet the angle target (1°, the default) against it, or be
+/// refused as missing it even at order 64; and order 64 itself, whose
+/// estimate is against the exact elastica, must be flagged wherever it is
+/// more than 1° off (never a false 0).
+#[test]
+fn taper_sweep_is_met_or_flagged() {
+    use flexure::section::{Profile, Section};
+    let target = Accuracy::default();
+    let (mut met, mut refused, mut cap_flagged, mut cap_off) = (0, 0, 0, 0);
+    for k in 0..23 {
+        let r = 10f64.powf(-6.0 * k as f64 / 22.0);
+        let section = Section::given(Profile::Linear { root: 1.0, tip: r }).unwrap();
+        let f = Flexure::new(1.0, 1.0, 3).unwrap().with_section(section).unwrap();
+        for m in [0.1, 0.3, 1.0] {
+            let exact = if k == 0 { m } else { m * r.ln() / (r - 1.0) };
+            let load = TipLoad { moment: m, fx: 0.0, fy: 0.0 };
+            let case = format!("EI 1 → {r:.3e}, M = {m}: φ = {exact:.6}");
+            match deflect_auto(&f, &load, &target) {
+                Ok((used, alpha, e)) => {
+                    let phi = flexure::pose_root_tip(&used, &alpha).phi;
+                    assert!(!e.flagged, "{case}");
+                    assert!((phi - exact).abs() <= target.angle, "{case}: order {} gives {phi:.6}", used.order());
+                    met += 1;
+                }
+                Err(flexure::Error::InvalidParameter { name: "order", .. }) => refused += 1,
+                Err(e) => panic!("{case}: {e}"),
+            }
+            // Order 64, estimated against the exact elastica: flagged wherever it misses.
+            let cap = Flexure::new(1.0, 1.0, 64).unwrap().with_section(f.section().clone()).unwrap();
+            let mut data = Statics::new(&cap);
+            deflect(&cap, &load, &mut data, &Default::default()).unwrap();
+            let e = deflect_error(&cap, &load, data.alpha(), &target).unwrap();
+            let miss = (data.pose_root_tip().phi - exact).abs();
+            assert!(e.exact, "{case}: order 64 is estimated against the elastica");
+            assert!(miss <= target.angle || e.flagged, "{case}: order 64 is {miss:.3e} rad off, unflagged");
+            // The elastica is the exact answer: its estimate is the true angle error.
+            assert!((e.angle - miss).abs() <= 1e-6 * exact, "{case}: estimate {:.6e}, truth {miss:.6e}", e.angle);
+            cap_flagged += usize::from(e.flagged);
+            cap_off += usize::from(miss > target.angle);
+        }
+    }
+    eprintln!(
+        "taper sweep: {met} met by --order auto, {refused} refused at order 64; \
+         order 64 more than 1° off in {cap_off}, flagged in {cap_flagged}"
+    );
+    assert_eq!(met + refused, 69);
+}
+
+/// The estimates' fast peak of the curvature change (scan, then Newton on
+/// $p^{\prime}$) against [`flexure::stress::peak_curvature`] (scan, then
+/// golden section), over seeded random coordinates of orders 1 to 64 with a
+/// rest shape: equal to 1e-12 of the peak (both find the same stationary
+/// point; golden section places it to about $\sqrt{\epsilon}$, which moves
+/// the value at a smooth maximum by rounding only).
+#[test]
+fn fast_peak_curvature_agrees_with_the_scan() {
+    use flexure::stress::{peak_curvature, peak_curvature_legendre};
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for order in [1, 2, 3, 4, 6, 9, 12, 24, 48, 64] {
+        for _ in 0..20 {
+            let rest: Vec<f64> = (0..order).map(|_| 0.1 * next()).collect();
+            // Coefficients falling with the order, as an answer's do.
+            let alpha: Vec<f64> = (0..order).map(|i| 3.0 * next() / (1.0 + i as f64)).collect();
+            let f = Flexure::new(0.7, 1.0, order).unwrap().with_rest(&rest).unwrap();
+            let (slow, fast) = (peak_curvature(&f, &alpha).value, peak_curvature_legendre(&f, &alpha));
+            assert!((fast - slow).abs() <= 1e-12 * slow, "order {order}: {fast} vs {slow}");
+        }
+    }
+}
