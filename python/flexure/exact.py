@@ -131,4 +131,10 @@ def frequencies(count: Optional[int] = None, compression: float = 0.0, *, flexur
     """
     if not isinstance(flexure, Flexure):
         raise ValueError(f"flexure must be a flexure.Flexure, got {type(flexure).__name__}")
+    # Booleans are not numbers, here as everywhere in the package.
+    given = {"count": count, "compression": compression, "tip_mass": tip_mass, "tip_inertia": tip_inertia}
+    given.update({f"tip_com[{i}]": c for i, c in enumerate(tip_com or ())})
+    for name, value in given.items():
+        if isinstance(value, bool):
+            raise ValueError(f"{name} = {value}: must be a number, not a boolean")
     return exact_frequencies(flexure, count, compression, tip_mass, tip_inertia, tip_com)

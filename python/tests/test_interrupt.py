@@ -123,3 +123,16 @@ def test_ctrl_c_stops_exact_frequencies():
     assert found and int(found.group(1)) < 64, str(error)
     # A call without Ctrl-C is not stopped.
     assert len(flexure.exact.frequencies(2, flexure=flexure.Flexure(mass_per_length=1.0))["omega"]) == 2
+
+
+def test_ctrl_c_stops_a_simulation():
+    # The tendon finger in motion for 20 s at the default tolerance: about 20 000 steps, seconds
+    # of work uninterrupted (its 1 s run takes about 1 000 steps). Stopped, it says the time it
+    # had reached, not a fraction of a load.
+    from pathlib import Path
+
+    m = flexure.Mechanism.from_file(Path(__file__).resolve().parents[2] / "examples" / "finger_dynamics.toml")
+    error = interrupted_after(lambda: m.simulate(20.0, every=0.01))
+    assert isinstance(error, KeyboardInterrupt)
+    found = re.search(r"interrupted at t = ([0-9.e+-]+) s of 2\.000000e1 s", str(error))
+    assert found and float(found.group(1)) < 20.0, str(error)

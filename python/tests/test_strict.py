@@ -150,3 +150,12 @@ def test_errors_are_value_errors_naming_the_parameter_and_value(call, match):
     with pytest.raises(ValueError, match=match), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         eval(call)
+
+
+def test_exact_frequencies_refuses_booleans():
+    # As every other call: True is not 1 here either.
+    f = flexure.Flexure(mass_per_length=1.0)
+    for kwargs in [{"count": True}, {"compression": True}, {"tip_mass": True}, {"tip_com": (True, 0.0)}]:
+        name = next(iter(kwargs))
+        with pytest.raises(ValueError, match=rf"^{name}(\[0\])? = True: must be a number, not a boolean"):
+            flexure.exact.frequencies(**{"count": 2, **kwargs}, flexure=f)

@@ -107,16 +107,25 @@ fn solution_json(m: &Mechanism, s: &Solution) -> Value {
 }
 
 /// The error estimate of every flexure joint at `s`, in joint order: the
-/// joint under the tip load it carries, against the refined model.
+/// joint under the tip load it carries, against the refined model. A
+/// failure names the joint and the file, and says it was the estimate's
+/// own solve that failed (not the mechanism's).
 fn joint_estimates(
     m: &Mechanism,
     s: &Solution,
     target: &Accuracy,
-) -> flexure::Result<Vec<(&'static str, String, ErrorEstimate, f64)>> {
+    file: &Path,
+) -> Result<Vec<(&'static str, String, ErrorEstimate, f64)>, String> {
     let mut out = Vec::new();
     for j in &m.joints {
         if let JointKind::Flexure(fl) = &j.kind {
-            let e = joint_error(fl, &s.q[j.offset..j.offset + fl.order()], target)?;
+            let e = joint_error(fl, &s.q[j.offset..j.offset + fl.order()], target).map_err(|e| {
+                format!(
+                    "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {e}",
+                    file.display(),
+                    j.name
+                )
+            })?;
             out.push(("flexure joint", j.name.clone(), e, fl.length()));
         }
     }
@@ -131,7 +140,7 @@ fn put_joint_estimates(
     target: &Accuracy,
     file: &Path,
 ) -> Result<(), String> {
-    let estimates = joint_estimates(m, s, target).map_err(|e| format!("{}: {e}", file.display()))?;
+    let estimates = joint_estimates(m, s, target, file)?;
     let mut map = serde_json::Map::new();
     for (what, name, e, length) in &estimates {
         if e.flagged {
@@ -271,7 +280,6 @@ fn put_sweep_checks(
     (target, file): (&Accuracy, &Path),
     (parameter, values): (&str, &[f64]),
 ) -> Result<(), String> {
-    let err = |e: flexure::Error| format!("{}: {e}", file.display());
     let mut findings = crate::findings::closures(m, file)?;
     let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
     findings.extend(crate::findings::along(m, &shapes, (parameter, "swept values"), "value", file));
@@ -286,7 +294,7 @@ fn put_sweep_checks(
     }
     let mut flagged = Vec::new();
     for (value, s) in &out.rows {
-        if joint_estimates(m, s, target).map_err(err)?.iter().any(|e| e.2.flagged) {
+        if joint_estimates(m, s, target, file)?.iter().any(|e| e.2.flagged) {
             flagged.push(*value);
         }
     }
