@@ -682,28 +682,10 @@ mod drawing {
         m.attachments(b)
     }
 
-    /// The convex hull, counter-clockwise (Andrew's monotone chain).
-    pub(super) fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
-        p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        p.dedup();
-        if p.len() < 3 {
-            return p;
-        }
-        let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
-        let chain = |pts: &mut dyn Iterator<Item = &(f64, f64)>| {
-            let mut h: Vec<(f64, f64)> = Vec::new();
-            for &q in pts {
-                while h.len() >= 2 && cross(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
-                    h.pop();
-                }
-                h.push(q);
-            }
-            h.pop();
-            h
-        };
-        let mut lower = chain(&mut p.iter());
-        lower.extend(chain(&mut p.iter().rev()));
-        lower
+    /// The convex hull, counter-clockwise: the library's, which the crossing test uses.
+    pub(super) fn hull(p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+        let points = p.into_iter().map(|(x, y)| [x, y]).collect();
+        flexure::mechanism::findings::hull(points).into_iter().map(|[x, y]| (x, y)).collect()
     }
 
     /// A rigid link: the hull of its points grown by `r`, so that two
