@@ -759,7 +759,8 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
          where a chain of many small elements adds the flexure's own vibration modes, \"orders of magnitude faster than \
          the dynamics of interest\". In numbers, for a joint the size of the finger's below: a steel strip \
          15 × 10 × 0.2 mm (ρ = 7850 kg/m³, {:.2} g) carrying a 5 g link, a rod 30 mm long, from its tip. \
-         The exact frequencies are Euler–Bernoulli linear vibration by shooting (with the link as a tip body): \
+         The exact frequencies are Euler–Bernoulli linear vibration (with rotary inertia; every root \
+         counted by Wittrick–Williams on short exact elements, with the link as a tip body): \
          **{:.4} Hz, {:.2} Hz and {:.1} Hz**. Each model's modes come from its mass and stiffness matrices at rest; \
          κ(M) is the inertia matrix's condition number there, and 2/ω_max the longest stable step of an explicit \
          (central-difference) integrator.\n\n\
