@@ -50,34 +50,11 @@ def test_a_closure_that_meets_has_no_findings():
 
 
 # A pendulum let go level swings down through a flexure post beside its pivot
-# (the post at x = 0.05 m, y from -0.3 to -0.02 m; the bob's link 0.2 m long).
-PENDULUM = """
-gravity = [0.0, -9.81]
-
-[[joint]]
-name = "pivot"
-kind = "revolute"
-parent = "ground"
-child = "bob"
-
-[[body]]
-name = "bob"
-mass = 0.1
-com = [0.2, 0.0]
-
-[[joint]]
-name = "post"
-kind = "flexure"
-parent = "ground"
-child = "post_tip"
-origin = [0.05, -0.3, 1.5707963267948966]
-length = 0.28
-ei = 1.0
-
-[initial]
-pivot = 0.0
-post = [0.0, 0.0, 0.0]
-"""
+# (the post at x = 0.05 m, y from -0.3 to -0.02 m; the bob's link 0.2 m long),
+# the file the library's and the CLI's crossing tests read too.
+PENDULUM = (
+    Path(__file__).resolve().parents[2] / "crates" / "flexure" / "tests" / "data" / "pendulum_through_post.toml"
+).read_text(encoding="utf-8")
 
 
 def test_a_simulation_that_crosses_warns_and_lists_the_samples():

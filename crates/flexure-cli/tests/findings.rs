@@ -114,29 +114,8 @@ fn the_examples_warn_of_nothing() {
 #[test]
 fn a_simulation_that_crosses_warns_at_a_sample() {
     let dir = tempfile::tempdir().unwrap();
-    let text = r#"
-gravity = [0.0, -9.81]
-[[joint]]
-name = "pivot"
-kind = "revolute"
-parent = "ground"
-child = "bob"
-[[body]]
-name = "bob"
-mass = 0.1
-com = [0.2, 0.0]
-[[joint]]
-name = "post"
-kind = "flexure"
-parent = "ground"
-child = "post_tip"
-origin = [0.05, -0.3, 1.5707963267948966]
-length = 0.28
-ei = 1.0
-[initial]
-pivot = 0.0
-post = [0.0, 0.0, 0.0]
-"#;
+    // The library's crossing tests read the same file.
+    let text = include_str!("../../flexure/tests/data/pendulum_through_post.toml");
     let path = write(dir.path(), "pendulum.toml", text);
     let (v, err) = answer(&["simulate", &path, "--duration", "0.3", "--every", "0.01"]);
     let line =

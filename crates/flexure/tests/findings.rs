@@ -219,33 +219,7 @@ fn the_parallelogram_past_buckling_crosses_its_stage() {
 /// beside its pivot: the bob's link (pivot to centre of mass, 0.2 m) meets
 /// the post (x = 0.05 m, y from −0.3 to −0.02 m) while its angle lies
 /// between −75.5° (cos θ = 0.05/0.2) and −21.8° (tan θ = −0.02/0.05).
-const PENDULUM: &str = r#"
-gravity = [0.0, -9.81]
-
-[[joint]]
-name = "pivot"
-kind = "revolute"
-parent = "ground"
-child = "bob"
-
-[[body]]
-name = "bob"
-mass = 0.1
-com = [0.2, 0.0]
-
-[[joint]]
-name = "post"
-kind = "flexure"
-parent = "ground"
-child = "post_tip"
-origin = [0.05, -0.3, 1.5707963267948966]
-length = 0.28
-ei = 1.0
-
-[initial]
-pivot = 0.0
-post = [0.0, 0.0, 0.0]
-"#;
+const PENDULUM: &str = include_str!("data/pendulum_through_post.toml");
 
 #[test]
 fn a_simulation_that_crosses_reports_it_at_its_samples() {
