@@ -9,6 +9,7 @@
 
 mod analyses;
 mod batch;
+mod characterization;
 mod cli;
 mod estimate;
 mod examples;

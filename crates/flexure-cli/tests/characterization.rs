@@ -1,0 +1,112 @@
+//! Characterization of every subcommand's answer, kept before the Seam
+//! issue moves code: each call's exit status and `--json` output on the
+//! examples and on a set of single-joint calls, against
+//! `tests/data/characterization.json`. A regression guard, not a check of
+//! correctness (the other tests check the numbers against closed forms and
+//! the exact references): it says that a refactoring changed no answer.
+//!
+//! Numbers must agree to 1e-12 relative (1e-14 absolute, for residuals at
+//! rounding's level); integers (step counts, orders) and everything else
+//! exactly. `scripts/characterize.sh` regenerates the file, after a change
+//! that is meant to change answers (say which in the commit).
+
+use crate::cli::run;
+use serde_json::{Value, json};
+
+const GOLDEN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/characterization.json");
+
+/// The calls: each example through the mechanism subcommands, then single joints.
+fn calls() -> Vec<Vec<String>> {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
+    let mut names: Vec<String> = std::fs::read_dir(root)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    let mut out: Vec<Vec<String>> = Vec::new();
+    let words = |s: &str| s.split_whitespace().map(String::from).collect::<Vec<_>>();
+    for name in &names {
+        let file = format!("{root}/{name}");
+        for rest in ["solve", "buckle", "modes --count 2", "simulate --duration 0.01 --every 0.005"] {
+            let mut call = words(rest);
+            call.insert(1, file.clone());
+            out.push(call);
+        }
+    }
+    for call in [
+        "kinematics --alpha 0.3,-0.2,0.1",
+        "deflect --moment 1 --fy 0.5",
+        "deflect --force 3.8477 --angle 45deg",
+        "deflect --fx -3",
+        "deflect --moment 1 --fx 0.5 --fy 0.3 --limit",
+        "deflect --moment 0.5 --fy 1 --exact",
+        "deflect --length 0.05 --modulus 200e9 --width 0.01 --thickness 4e-4,2e-4 --fy 0.5 --yield-strength 9e7 --shape 5",
+        "deflect --ei 1,0.5 --moment 2 --order auto",
+        "compliance",
+        "compliance --exact",
+        "buckling --tip free",
+        "buckling --tip pinned",
+        "buckling --tip clamped --order auto",
+        "connect --pose 0.5,0.9,0.3",
+        "connect --pose 0.5,0.9,0.3 --exact",
+        "connect --pose 0.5,0.9,0.3 --segments 8",
+        "tendon --force 5 --root-offset 0.1 --tip-offset 0.05",
+        "tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1",
+        "modes --mass-per-length 1 --count 4 --order 8 --exact",
+        "modes --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --density 7850 --tip-mass 0.005 --order 8 --count 2",
+    ] {
+        out.push(words(call));
+    }
+    out
+}
+
+/// Each call's status and answer, in order.
+fn answers() -> Vec<Value> {
+    calls()
+        .into_iter()
+        .map(|mut call| {
+            call.push("--json".into());
+            let args: Vec<&str> = call.iter().map(String::as_str).collect();
+            let (code, out, _) = run(&args);
+            // Paths are the machine's; the example's name is kept.
+            let shown = call.iter().map(|a| a.rsplit('/').next().unwrap_or(a)).collect::<Vec<_>>().join(" ");
+            let answer = serde_json::from_str::<Value>(&out).unwrap_or(Value::String(out));
+            json!({ "call": shown, "status": code, "answer": answer })
+        })
+        .collect()
+}
+
+/// Where `a` and `b` differ beyond the tolerance, if they do.
+fn differ(a: &Value, b: &Value, at: &str) -> Option<String> {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) if x.is_f64() || y.is_f64() => {
+            let (x, y) = (x.as_f64()?, y.as_f64()?);
+            let ok = (x - y).abs() <= 1e-12 * x.abs().max(y.abs()) || (x - y).abs() <= 1e-14;
+            (!ok).then(|| format!("{at}: {x:e} against {y:e}"))
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            x.iter().zip(y).enumerate().find_map(|(i, (x, y))| differ(x, y, &format!("{at}[{i}]")))
+        }
+        (Value::Object(x), Value::Object(y)) if x.len() == y.len() => x.iter().find_map(|(k, v)| match y.get(k) {
+            Some(w) => differ(v, w, &format!("{at}.{k}")),
+            None => Some(format!("{at}.{k}: missing from the golden file")),
+        }),
+        _ => (a != b).then(|| format!("{at}: {a} against {b}")),
+    }
+}
+
+#[test]
+fn no_answer_changes() {
+    let now = answers();
+    if std::env::var_os("FLEXURE_BLESS").is_some() {
+        std::fs::create_dir_all(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data")).unwrap();
+        std::fs::write(GOLDEN, serde_json::to_string_pretty(&now).unwrap() + "\n").unwrap();
+        return;
+    }
+    let golden: Vec<Value> = serde_json::from_str(&std::fs::read_to_string(GOLDEN).unwrap()).unwrap();
+    assert_eq!(now.len(), golden.len(), "the calls changed: regenerate with scripts/characterize.sh");
+    let changed: Vec<String> =
+        now.iter().zip(&golden).filter_map(|(n, g)| differ(n, g, n["call"].as_str().unwrap_or("?"))).collect();
+    assert!(changed.is_empty(), "{} of {} answers changed:\n{}", changed.len(), now.len(), changed.join("\n"));
+}
