@@ -6,13 +6,7 @@ use serde_json::Value;
 
 use crate::cli::run;
 
-fn json(args: &[&str]) -> (Value, String) {
-    let mut a = args.to_vec();
-    a.push("--json");
-    let (code, out, err) = run(&a);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    (serde_json::from_str(&out).unwrap(), err)
-}
+use crate::cli::answer as json;
 
 /// A moment of 20 N·m on L = EI = 1 winds the flexure into a circle of
 /// radius 1/20: tip (sin 20, 1 − cos 20)/20. Five points cannot integrate
