@@ -94,13 +94,7 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
     if let Some(r) = e.reference.first() {
         d.set_item("reference_load_factor", *r)?;
     }
-    let (orders, points) = (PyDict::new(py), PyDict::new(py));
-    for (name, (o, q)) in names.iter().zip(&e.reference_orders) {
-        orders.set_item(name, o)?;
-        points.set_item(name, q)?;
-    }
-    d.set_item("reference_order", orders)?;
-    d.set_item("reference_quadrature", points)?;
+    crate::modes::put_reference_orders(py, &d, &names, &e.reference_orders)?;
     out.set_item("error_estimate", d)?;
     out.set_item("flagged", e.flagged)?;
     let reference = if names.is_empty() {

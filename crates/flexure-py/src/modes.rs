@@ -70,6 +70,23 @@ fn put_frequencies(py: Python<'_>, out: &Bound<'_, PyDict>, modes: &Modes) -> Py
     Ok(())
 }
 
+/// `reference_order` and `reference_quadrature` into `d`, each {joint: int}
+/// for the flexure joints `names` of a mechanism's estimate.
+pub fn put_reference_orders(
+    py: Python<'_>,
+    d: &Bound<'_, PyDict>,
+    names: &[String],
+    reference_orders: &[(usize, usize)],
+) -> PyResult<()> {
+    let (orders, points) = (PyDict::new(py), PyDict::new(py));
+    for (name, (o, q)) in names.iter().zip(reference_orders) {
+        orders.set_item(name, o)?;
+        points.set_item(name, q)?;
+    }
+    d.set_item("reference_order", orders)?;
+    d.set_item("reference_quadrature", points)
+}
+
 /// `error_estimate`: a dict of omega (each mode's estimated relative error,
 /// NaN where the reference pairs none), reference_omega, reference_order and
 /// reference_quadrature (ints for one flexure, {joint: int} for a mechanism
@@ -85,15 +102,7 @@ fn put_estimate(py: Python<'_>, out: &Bound<'_, PyDict>, e: &ValueEstimate, name
             d.set_item("reference_order", order)?;
             d.set_item("reference_quadrature", points)?;
         }
-        Some(names) => {
-            let (orders, points) = (PyDict::new(py), PyDict::new(py));
-            for (name, (o, q)) in names.iter().zip(&e.reference_orders) {
-                orders.set_item(name, o)?;
-                points.set_item(name, q)?;
-            }
-            d.set_item("reference_order", orders)?;
-            d.set_item("reference_quadrature", points)?;
-        }
+        Some(names) => put_reference_orders(py, &d, names, &e.reference_orders)?,
     }
     d.set_item("reference_stable", e.reference_stable)?;
     d.set_item("flagged", e.flagged)?;
