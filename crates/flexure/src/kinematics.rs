@@ -3,41 +3,9 @@
 
 use crate::joint::Flexure;
 use crate::scalar::Scalar;
-use nalgebra::{DMatrix, Matrix4};
+use nalgebra::DMatrix;
 
-/// A planar pose $(\phi, x, y)$: the tip frame in the root frame.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Pose<T = f64> {
-    /// Rotation of the tip frame, radians.
-    pub phi: T,
-    /// Tip position along the root's x axis, metres.
-    pub x: T,
-    /// Tip position along the root's y axis, metres.
-    pub y: T,
-}
-
-impl<T: Scalar> Pose<T> {
-    /// The homogeneous transform $G$ of Eq. 7.
-    ///
-    /// # Example
-    /// ```
-    /// use flexure::Pose;
-    /// let g = Pose { phi: std::f64::consts::FRAC_PI_2, x: 1.0, y: 2.0 }.transform();
-    /// assert!((g[(0, 1)] + 1.0).abs() < 1e-15 && g[(1, 3)] == 2.0 && g[(3, 3)] == 1.0);
-    /// ```
-    pub fn transform(&self) -> Matrix4<T> {
-        let (s, c) = self.phi.sin_cos();
-        let (o, i) = (T::zero(), T::one());
-        Matrix4::new(c, -s, o, self.x, s, c, o, self.y, o, o, i, o, o, o, o, i)
-    }
-}
-
-impl<T> From<Pose<T>> for [T; 3] {
-    /// The pose as a row $[\phi, x, y]$, the order of the Jacobian's rows.
-    fn from(p: Pose<T>) -> Self {
-        [p.phi, p.x, p.y]
-    }
-}
+pub use crate::space::Pose;
 
 /// How far [`update`] goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]

@@ -78,6 +78,7 @@ pub mod scalar;
 pub mod section;
 pub mod sincos;
 pub mod solver;
+pub mod space;
 pub mod statics;
 pub mod stress;
 pub mod tendon;

@@ -41,6 +41,7 @@ mod seeded;
 mod segments;
 mod sincos;
 mod solver;
+mod space;
 mod stages;
 mod statics;
 mod tendon;
