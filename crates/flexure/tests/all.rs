@@ -27,6 +27,7 @@ mod energy;
 mod estimate;
 mod findings;
 mod format;
+mod joints;
 mod kinematics;
 mod mechanism;
 mod mechanism_derivatives;

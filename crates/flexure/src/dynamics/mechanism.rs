@@ -43,7 +43,7 @@ use crate::joint::{Basis, Flexure};
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::statics::{self, Settings};
-use crate::mechanism::{JointKind, Loads, Mechanism};
+use crate::mechanism::{Loads, Mechanism};
 use crate::quadrature::GaussLegendre;
 use crate::sincos::cos_sin;
 use nalgebra::{DMatrix, DVector};
@@ -281,21 +281,14 @@ impl MechanismSystem {
         let mut distributed = Vec::new();
         let mut damping = DMatrix::zeros(n, n);
         for (i, j) in m.joints.iter().enumerate() {
-            match &j.kind {
-                JointKind::Flexure(f) => {
-                    if let Some(d) = Distributed::new(m, i, f).map_err(|e| e.in_joint(&j.name))? {
-                        distributed.push(d);
-                    }
-                    let (k, o) = (f.order(), j.offset);
-                    for r in 0..k {
-                        for c in 0..k {
-                            damping[(o + r, o + c)] = j.damping * f.stiffness_matrix()[r * k + c];
-                        }
-                    }
-                }
-                JointKind::Revolute(_) | JointKind::Prismatic(_) => damping[(j.offset, j.offset)] = j.damping,
-                JointKind::Fixed(_) => {}
+            if let Some(f) = j.kind.flexure()
+                && let Some(d) = Distributed::new(m, i, f).map_err(|e| e.in_joint(&j.name))?
+            {
+                distributed.push(d);
             }
+            let joint = j.kind.joint();
+            let k = joint.dof();
+            joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
         }
         let bodies = (1..m.bodies.len())
             .filter(|&b| m.bodies[b].mass > 0.0 || m.bodies[b].inertia > 0.0)
@@ -427,8 +420,8 @@ impl MechanismSystem {
                 dp[0] += s.jacobian[(1, a)] * va;
                 dp[1] += s.jacobian[(2, a)] * va;
                 for (b, &vb) in rates.iter().enumerate() {
-                    ddp[0] += s.hessian_x[(a, b)] * va * vb;
-                    ddp[1] += s.hessian_y[(a, b)] * va * vb;
+                    ddp[0] += s.hessian[1][(a, b)] * va * vb;
+                    ddp[1] += s.hessian[2][(a, b)] * va * vb;
                 }
             }
             let p = [o_c[0] - root.origin[0], o_c[1] - root.origin[1]];

@@ -707,7 +707,7 @@ fn check_stiffness_ratio(src: &Source, m: &Mechanism, places: &[Span]) -> Result
     // (joint, stiffness in N·m)
     let mut all: Vec<(usize, f64)> = Vec::new();
     for (i, (j, s)) in m.joints.iter().zip(&rest.joints).enumerate() {
-        let unit = if let JointKind::Prismatic(_) = j.kind { length * length } else { 1.0 };
+        let unit = if j.kind.joint().is_translation() { length * length } else { 1.0 };
         all.extend((0..s.gradient.len()).map(|k| (i, s.stiffness[(k, k)] * unit)).filter(|&(_, k)| k > 0.0));
     }
     let (Some(stiff), Some(soft)) = (

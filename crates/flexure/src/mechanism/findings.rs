@@ -40,7 +40,7 @@
 
 use super::kinematics::{Frames, frames};
 use super::statics::{Settings, assemble_unloaded};
-use super::{Closure, JointKind, Mechanism};
+use super::{Closure, Mechanism};
 use crate::error::{Error, Result};
 use crate::kinematics::backbone;
 
@@ -511,7 +511,7 @@ fn groups(m: &Mechanism) -> Vec<usize> {
         Closure::Weld { a, b, .. } | Closure::Pin { a, b, .. } => (a, b),
     });
     // Rigid joints (revolute, prismatic, fixed) hold their bodies together at a point, as closures do.
-    let rigid = m.joints.iter().filter(|j| !matches!(j.kind, JointKind::Flexure(_))).map(|j| (j.parent, j.child));
+    let rigid = m.joints.iter().filter(|j| j.kind.flexure().is_none()).map(|j| (j.parent, j.child));
     for (a, b) in closed.chain(rigid) {
         let (ra, rb) = (root(&mut g, a), root(&mut g, b));
         g[ra.max(rb)] = ra.min(rb);
@@ -528,7 +528,7 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         })
     };
     for (ji, j) in m.joints.iter().enumerate() {
-        let JointKind::Flexure(fl) = &j.kind else { continue };
+        let Some(fl) = j.kind.flexure() else { continue };
         let alpha = &q[j.offset..j.offset + fl.order()];
         let samples = chords(alpha) + 1;
         let root = f.roots[ji];
@@ -560,7 +560,7 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         let mut ends: Vec<[f64; 2]> = m.attachments(b).iter().map(|&r| f.bodies[b].point(r)).collect();
         let mut points = hull(ends.clone());
         // Where a slider's carriage (or a pin's child) sits on this link.
-        let carried = m.joints.iter().filter(|j| j.parent == b && !matches!(j.kind, JointKind::Flexure(_)));
+        let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
         ends.extend(carried.map(|j| f.bodies[j.child].origin));
         if points.len() < 2 {
             continue;

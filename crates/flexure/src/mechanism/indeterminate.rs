@@ -6,7 +6,7 @@
 //! module fixes it by the least transmitted force.
 
 use super::kinematics::Frames;
-use super::{Closure, JointKind, Loads, Mechanism};
+use super::{Closure, Loads, Mechanism};
 use crate::linalg;
 use nalgebra::{DMatrix, DVector};
 
@@ -29,12 +29,8 @@ pub(super) fn settle(m: &Mechanism, f: &Frames, g: &DMatrix<f64>, mu: &[f64], lo
         return mu.to_vec();
     }
     // Transmitted force = e + B μ, two rows per flexure, weighted by √L.
-    let flexures: Vec<(usize, f64)> = m
-        .joints
-        .iter()
-        .enumerate()
-        .filter_map(|(j, spec)| if let JointKind::Flexure(fl) = &spec.kind { Some((j, fl.length())) } else { None })
-        .collect();
+    let flexures: Vec<(usize, f64)> =
+        m.joints.iter().enumerate().filter_map(|(j, spec)| spec.kind.flexure().map(|fl| (j, fl.length()))).collect();
     if flexures.is_empty() {
         return mu.to_vec();
     }

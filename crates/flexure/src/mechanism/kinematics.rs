@@ -12,7 +12,7 @@
 //! point's Jacobian costs one pass along its path: linear in the joints.
 
 use super::Mechanism;
-use super::joints::{JointKind, JointState};
+use super::joints::JointState;
 use nalgebra::DMatrix;
 
 /// A planar frame in the world: angle and origin.
@@ -92,13 +92,7 @@ impl Frames {
         self.turns.copy_from_slice(&other.turns);
         self.coordinates.copy_from_slice(&other.coordinates);
         for (s, o) in self.joints.iter_mut().zip(&other.joints) {
-            s.pose = o.pose;
-            s.jacobian.copy_from(&o.jacobian);
-            s.hessian_x.copy_from(&o.hessian_x);
-            s.hessian_y.copy_from(&o.hessian_y);
-            s.energy = o.energy;
-            s.gradient.copy_from(&o.gradient);
-            s.stiffness.copy_from(&o.stiffness);
+            s.copy_from(o);
         }
     }
 
@@ -240,7 +234,7 @@ pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f6
         let o = f.bodies[m.joints[ja].child].origin;
         let arm = [w[0] - o[0], w[1] - o[1]];
         let root = f.root_turn(ja);
-        let (hx, hy, local) = (s.hessian_x.as_slice(), s.hessian_y.as_slice(), s.jacobian.as_slice());
+        let (hx, hy, local) = (s.hessian[1].as_slice(), s.hessian[2].as_slice(), s.jacobian.as_slice());
         for a in 0..k {
             for b in a..k {
                 let turned = turn(root, [hx[b * k + a], hy[b * k + a]]);
@@ -293,11 +287,8 @@ pub fn distance(m: &Mechanism, a: &[f64], b: &[f64], length: f64, angles: &mut [
         body.resize(m.bodies.len(), 0.0);
         body.fill(0.0);
         for j in &m.joints {
-            let phi: f64 = match &j.kind {
-                JointKind::Flexure(f) => f.tip_angle_row().iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum(),
-                JointKind::Revolute(_) => q[j.offset],
-                _ => 0.0,
-            };
+            let row = j.kind.joint().angle_row().unwrap_or(&[]);
+            let phi: f64 = row.iter().zip(&q[j.offset..]).map(|(r, v)| r * v).sum();
             body[j.child] = body[j.parent] + j.origin.phi + phi;
         }
     };
@@ -305,19 +296,9 @@ pub fn distance(m: &Mechanism, a: &[f64], b: &[f64], length: f64, angles: &mut [
     fill(b, bb);
     let mut d = ba.iter().zip(bb.iter()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
     for j in &m.joints {
-        match &j.kind {
-            JointKind::Flexure(f) => {
-                // Each node's section turns by Σᵢ ψᵢ(t_k)(aᵢ − bᵢ) relative to the root.
-                let range = j.offset..j.offset + f.order();
-                let (a, b) = (&a[range.clone()], &b[range]);
-                for psi in f.psi_rows() {
-                    let turn: f64 = psi.iter().zip(a.iter().zip(b)).map(|(p, (a, b))| p * (a - b)).sum();
-                    d = d.max(turn.abs());
-                }
-            }
-            JointKind::Prismatic(_) => d = d.max((a[j.offset] - b[j.offset]).abs() / length),
-            _ => {}
-        }
+        let joint = j.kind.joint();
+        let range = j.offset..j.offset + joint.dof();
+        d = d.max(joint.distance(&a[range.clone()], &b[range], length));
     }
     d
 }

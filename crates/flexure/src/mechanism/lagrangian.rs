@@ -11,7 +11,7 @@
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
 use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
-use super::{Closure, JointKind, Loads, Mechanism};
+use super::{Closure, Loads, Mechanism};
 use crate::dynamics::mass::{MassModel, Weight, weight};
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix2};
@@ -132,9 +132,7 @@ impl Weights {
             .joints
             .iter()
             .enumerate()
-            .filter(|(_, j)| {
-                matches!(&j.kind, JointKind::Flexure(f) if f.section().mass_per_length(0.5, f.length()).is_some())
-            })
+            .filter(|(_, j)| j.kind.flexure().is_some_and(|f| f.section().mass_per_length(0.5, f.length()).is_some()))
             .map(|(i, _)| (i, None))
             .collect();
         Weights { flexures }
@@ -372,7 +370,7 @@ fn add_flexure_weights(
     for (j, tables) in &mut weights.flexures {
         let spec = &m.joints[*j];
         // `Weights::new` lists flexures only.
-        let JointKind::Flexure(flexure) = &spec.kind else { continue };
+        let Some(flexure) = spec.kind.flexure() else { continue };
         let built = tables.get_or_insert_with(|| {
             MassModel::new(flexure, None)
                 .map(|model| {

@@ -233,7 +233,7 @@ impl Mechanism {
         let length = self
             .joints
             .iter()
-            .map(|j| j.origin.x.hypot(j.origin.y) + if let JointKind::Flexure(f) = &j.kind { f.length() } else { 0.0 })
+            .map(|j| j.origin.x.hypot(j.origin.y) + j.kind.flexure().map_or(0.0, |f| f.length()))
             .sum::<f64>();
         if length > 0.0 && length.is_finite() { length } else { 1.0 }
     }
@@ -266,12 +266,8 @@ impl Mechanism {
     /// [`Mechanism::rest`] into `q` (one value per coordinate), without allocating.
     pub(crate) fn rest_into(&self, q: &mut [f64]) {
         for j in &self.joints {
-            match &j.kind {
-                JointKind::Flexure(f) => q[j.offset..j.offset + f.order()].copy_from_slice(f.rest()),
-                JointKind::Revolute(r) => q[j.offset] = r.rest,
-                JointKind::Prismatic(p) => q[j.offset] = p.rest,
-                JointKind::Fixed(_) => {}
-            }
+            let joint = j.kind.joint();
+            joint.rest_into(&mut q[j.offset..j.offset + joint.dof()]);
         }
     }
 
@@ -356,7 +352,7 @@ impl Mechanism {
         let mut m = self.clone();
         let mut offset = 0;
         for (j, spec) in m.joints.iter_mut().enumerate() {
-            if let JointKind::Flexure(f) = &spec.kind
+            if let Some(f) = spec.kind.flexure()
                 && let Some(g) = refine(j, f)?
             {
                 spec.kind = JointKind::Flexure(Box::new(g));

@@ -40,7 +40,7 @@ use super::indeterminate::{full_row_rank, settle};
 use super::kinematics::{Frames, frames, frames_into, point};
 use super::lagrangian::{Assembly, add_loads, assemble_into, check_sizes, closure_hessian, closures, lagrangian};
 use super::tree::Tree;
-use super::{Closure, JointKind, Loads, Mechanism};
+use super::{Closure, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::solver;
@@ -404,7 +404,7 @@ impl<'a> Kkt<'a> {
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
             }
-            if let JointKind::Prismatic(_) = j.kind {
+            if j.kind.joint().is_translation() {
                 unit[j.offset] = length * length;
             }
         }
@@ -462,7 +462,7 @@ impl<'a> Kkt<'a> {
             length,
             scale,
             margin: settings.tolerance.sqrt(),
-            tree: m.closures.is_empty() && m.tendons.is_empty(),
+            tree: m.closures.is_empty() && m.tendons.is_empty() && Tree::applies(m),
             work,
         })
     }

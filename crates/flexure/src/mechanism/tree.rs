@@ -28,7 +28,7 @@
 //! and its definiteness is tested here too (a sufficient test of stability,
 //! [`super::statics`]).
 
-use super::{JointKind, Mechanism};
+use super::Mechanism;
 use crate::linalg;
 
 /// The structure of a mechanism's tree and the buffers of one factorization
@@ -60,7 +60,14 @@ pub(super) struct Tree {
 }
 
 impl Tree {
-    /// The tree of `m`.
+    /// Whether the factorization applies to `m`'s joints: every joint's
+    /// rotation is linear in its coordinates ([`super::Joint::angle_row`]),
+    /// as for every planar kind.
+    pub fn applies(m: &Mechanism) -> bool {
+        m.joints.iter().all(|j| j.kind.joint().angle_row().is_some())
+    }
+
+    /// The tree of `m`, for which [`Tree::applies`].
     pub fn new(m: &Mechanism) -> Self {
         let joints = m.joints.len();
         let n = m.dof();
@@ -83,13 +90,11 @@ impl Tree {
         let mut size = 0;
         for (j, spec) in m.joints.iter().enumerate() {
             let k = t.dof[j];
-            let row: &[f64] = match &spec.kind {
-                JointKind::Flexure(f) => f.tip_angle_row(),
-                JointKind::Revolute(_) => &[1.0],
-                JointKind::Prismatic(_) => &[0.0],
-                JointKind::Fixed(_) => &[],
-            };
-            t.angle[spec.offset..spec.offset + k].copy_from_slice(row);
+            // A kind without a linear rotation leaves zeros: then the tree
+            // does not apply and is not used.
+            if let Some(row) = spec.kind.joint().angle_row() {
+                t.angle[spec.offset..spec.offset + k].copy_from_slice(row);
+            }
             t.block.push(size);
             size += k * k;
         }

@@ -1,0 +1,164 @@
+//! The joint interface (Pinocchio's joint model and data): every joint kind
+//! computes its placement, motion subspace and its derivative, its elastic
+//! energy with gradient and stiffness, its damping, and its rest, and the
+//! mechanism's algorithms only call it.
+//!
+//! A kind is a type implementing [`Joint`] in its own file; [`JointKind`]
+//! lists them, and its [`JointKind::joint`] is the one place that matches
+//! on the kind. Adding a kind touches its file, that enum, the file
+//! format's table of kinds (`file`) and its docs (`docs/mechanism-format.md`).
+
+mod fixed;
+mod flexure;
+mod prismatic;
+mod revolute;
+
+pub use fixed::Fixed;
+pub use prismatic::Prismatic;
+pub use revolute::Revolute;
+
+use crate::joint::Flexure;
+use crate::kinematics::{Kinematics, Pose};
+use nalgebra::{DMatrix, DVector};
+
+/// A joint's data at one configuration: placement, motion subspace and its
+/// derivative, and elastic energy (Pinocchio's `JointData`).
+#[derive(Debug, Clone)]
+pub struct JointState {
+    /// Placement: the output frame in the root frame.
+    pub pose: Pose,
+    /// Motion subspace $S = \partial g/\partial q$, $3\times k$: column $a$ is
+    /// the twist $(\partial_a\phi, \partial_a x, \partial_a y)$ of the output
+    /// frame in the root frame per unit of coordinate $a$.
+    pub jacobian: DMatrix<f64>,
+    /// Its derivative: the Hessians ($k\times k$) of the pose's components
+    /// $(\phi, x, y)$. A kind whose rotation is linear in its coordinates
+    /// ([`Joint::angle_row`]) leaves that of $\phi$ zero.
+    pub hessian: [DMatrix<f64>; 3],
+    /// Elastic energy $U$ (J).
+    pub energy: f64,
+    /// Its gradient $\nabla U$.
+    pub gradient: DVector<f64>,
+    /// Its Hessian, the stiffness $\nabla^2 U$.
+    pub stiffness: DMatrix<f64>,
+    /// A flexure's kinematics buffers, reused by [`Joint::evaluate_into`].
+    kinematics: Option<Box<Kinematics>>,
+}
+
+impl JointState {
+    /// Zeroed data for a joint of `k` coordinates.
+    pub fn zeros(k: usize) -> Self {
+        JointState {
+            pose: Pose::default(),
+            jacobian: DMatrix::zeros(3, k),
+            hessian: std::array::from_fn(|_| DMatrix::zeros(k, k)),
+            energy: 0.0,
+            gradient: DVector::zeros(k),
+            stiffness: DMatrix::zeros(k, k),
+            kinematics: None,
+        }
+    }
+
+    /// Copies `other` (data of the same joint) into these buffers, without allocating.
+    pub fn copy_from(&mut self, other: &JointState) {
+        self.pose = other.pose;
+        self.jacobian.copy_from(&other.jacobian);
+        for (h, o) in self.hessian.iter_mut().zip(&other.hessian) {
+            h.copy_from(o);
+        }
+        self.energy = other.energy;
+        self.gradient.copy_from(&other.gradient);
+        self.stiffness.copy_from(&other.stiffness);
+    }
+}
+
+/// The interface every joint kind implements (Pinocchio's `JointModel`).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{Joint, Revolute};
+/// let pin = Revolute { stiffness: 2.0, rest: 0.1 };
+/// let s = pin.evaluate(&[0.6]);
+/// assert_eq!((s.pose.phi, s.jacobian[(0, 0)]), (0.6, 1.0));
+/// assert!((s.energy - 0.25).abs() < 1e-15 && (s.gradient[0] - 1.0).abs() < 1e-15);
+/// ```
+pub trait Joint {
+    /// Number of coordinates $k$.
+    fn dof(&self) -> usize;
+    /// Coordinates of the unloaded joint, into `q` ($k$ values).
+    fn rest_into(&self, q: &mut [f64]);
+    /// Coordinates of the unloaded joint.
+    fn rest(&self) -> Vec<f64> {
+        let mut q = vec![0.0; self.dof()];
+        self.rest_into(&mut q);
+        q
+    }
+    /// Buffers for [`Joint::evaluate_into`] (the Data of this joint), with
+    /// what does not depend on the coordinates filled in.
+    fn state(&self) -> JointState {
+        JointState::zeros(self.dof())
+    }
+    /// Placement, motion subspace and its derivative, and energy at `q`,
+    /// written into `out` (made by [`Joint::state`]) without allocating.
+    fn evaluate_into(&self, q: &[f64], out: &mut JointState);
+    /// [`Joint::evaluate_into`] in fresh buffers.
+    fn evaluate(&self, q: &[f64]) -> JointState {
+        let mut s = self.state();
+        self.evaluate_into(q, &mut s);
+        s
+    }
+    /// The damping matrix ($k\times k$) for the joint's damping `coefficient`
+    /// (`damping` in the file), added into `out`: $\beta K$ on a flexure,
+    /// the viscous coefficient on a revolute or prismatic joint.
+    fn add_damping(&self, coefficient: f64, out: &mut nalgebra::DMatrixViewMut<'_, f64>);
+    /// The planar fast path: $d$ with the output frame's rotation
+    /// $\phi = d^Tq$, when it is linear in the coordinates (every planar
+    /// kind); the tree's $O(n)$ factorization needs it.
+    fn angle_row(&self) -> Option<&[f64]>;
+    /// Whether the coordinates are lengths (m), not angles (rad): a slider's
+    /// stiffness is then N/m, compared with the others' N·m/rad through the
+    /// mechanism's size squared.
+    fn is_translation(&self) -> bool {
+        false
+    }
+    /// The largest rotation (rad) inside the joint between configurations
+    /// `a` and `b` (a flexure's cross-sections relative to its root), and a
+    /// slider's travel over `length`: with the bodies' rotations, what bounds
+    /// a continuation or integration step.
+    fn distance(&self, a: &[f64], b: &[f64], length: f64) -> f64;
+    /// The Smooth Curvature flexure, for the analyses only a flexure has
+    /// (its mass distribution, error estimate, stress and backbone).
+    fn flexure(&self) -> Option<&Flexure> {
+        None
+    }
+}
+
+/// One of the joint kinds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JointKind {
+    /// The Smooth Curvature flexure (boxed: it carries its tables).
+    Flexure(Box<Flexure>),
+    /// Pin joint.
+    Revolute(Revolute),
+    /// Slider.
+    Prismatic(Prismatic),
+    /// Weld of child to parent.
+    Fixed(Fixed),
+}
+
+impl JointKind {
+    /// The kind as its interface: the one match on the kind.
+    pub fn joint(&self) -> &dyn Joint {
+        match self {
+            JointKind::Flexure(f) => f.as_ref(),
+            JointKind::Revolute(r) => r,
+            JointKind::Prismatic(p) => p,
+            JointKind::Fixed(f) => f,
+        }
+    }
+
+    /// [`Joint::flexure`] of the kind.
+    pub fn flexure(&self) -> Option<&Flexure> {
+        self.joint().flexure()
+    }
+}
