@@ -5,11 +5,12 @@
 //! lost (`Flexure.stability_limit`, as `deflect --limit`). Each answer
 //! carries its error estimate, warned about as `deflect`'s is.
 
+use crate::error_estimate::{estimate_dict, interrupted_or};
+use crate::errors::StabilityWarning;
+use crate::interrupt::interruptible;
+use crate::stress::{self, peak_item};
 use crate::strict::finite_answer;
-use crate::{
-    StabilityWarning, estimate_dict, interrupted_or, interruptible, peak_item, stress, warn, warn_inaccurate,
-    warn_unestimated,
-};
+use crate::warnings::{sig, warn, warn_inaccurate, warn_unestimated};
 use flexure::connect::connect as connect_pose;
 use flexure::estimate::{self, Accuracy};
 use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
@@ -55,7 +56,7 @@ pub fn put_limit(
                 out.set_item("stalled", why)?;
                 let text = format!(
                     "{what}: the loading path stays stable up to {} times the load, as far as it could be followed; beyond it stability is unknown: {why}",
-                    crate::sig(*factor)
+                    sig(*factor)
                 );
                 warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
             }
@@ -126,7 +127,7 @@ pub fn tendon<'py>(
     auto: bool,
     limit: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    t.validate().map_err(crate::to_py)?;
+    t.validate().map_err(crate::errors::to_py)?;
     let limit = limit.map(max_factor).transpose()?;
     let (used, alpha, stable, estimated, l) = interruptible(py, || {
         let used = if auto { estimate::tendon_auto(f, &t, tension, target)?.0 } else { f.clone() };

@@ -3,9 +3,14 @@
 //! curvature and shape along it), the compliance ODE and the column's
 //! buckling load. `flexure.exact` wraps them.
 
+use crate::convert::{shape_points, tip_load};
 use crate::coordinates::vector;
+use crate::errors::to_py;
+use crate::interrupt::interruptible;
+use crate::joint::Flexure;
 use crate::strict::Real;
-use crate::{Flexure, interruptible, section, shape_points, stress, tip_load, to_py, warn_unstable};
+use crate::warnings::warn_unstable;
+use crate::{section, stress};
 use flexure::reference::{column, compliance, elastica, euler};
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};

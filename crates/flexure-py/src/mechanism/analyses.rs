@@ -6,11 +6,11 @@
 //! are the library's; the stack level of every warning is 2, the line that
 //! called `flexure.Mechanism`'s Python wrapper.
 
+use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
+use crate::findings;
+use crate::interrupt::{clear_raised, interruptible, raised_during, signalled};
 use crate::strict::finite_answer;
-use crate::{
-    AccuracyWarning, ConvergenceError, clear_raised, findings, interruptible, raised_during, signalled, to_py, warn,
-    warn_values,
-};
+use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
@@ -112,7 +112,7 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
     } else {
         "give the flexures order = \"auto\" (or a higher order) in the file"
     };
-    let name = |_| format!("the load factor {}", crate::sig(b.load_factor));
+    let name = |_| format!("the load factor {}", sig(b.load_factor));
     warn_values(py, "Mechanism.buckle", &e, target, name, &reference, hint, 2)?;
     let listed = findings::report(py, "Mechanism.buckle", &open, &[], 2)?;
     if !listed.is_empty() {
@@ -368,7 +368,7 @@ fn answer<'py>(
             l.value,
             100.0 * l.fraction
         );
-        warn(py, &py.get_type::<crate::StabilityWarning>(), text, 2)?;
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
     }
     let flagged: Vec<f64> = estimated
         .iter()
