@@ -3,6 +3,7 @@
 
 use crate::stress;
 use crate::strict::Real;
+use crate::warnings::deprecated;
 use flexure::TipLoad;
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArray2, PyArrayLikeDyn};
@@ -91,4 +92,25 @@ pub fn along<'py>(
 /// A finite float argument named `name`.
 pub fn real(name: &str, v: Real) -> PyResult<f64> {
     finite(name, v.0)
+}
+
+/// The rest curvature coefficients κ given as `kappa`, or as `rest`, its deprecated
+/// name (which warns `DeprecationWarning`), with the keyword the caller used, for
+/// messages; both at once is a `ValueError`.
+pub fn kappa<'a, 'py>(
+    py: Python<'py>,
+    kappa: Option<&'a Bound<'py, PyAny>>,
+    rest: Option<&'a Bound<'py, PyAny>>,
+    stacklevel: i32,
+) -> PyResult<Option<(&'static str, &'a Bound<'py, PyAny>)>> {
+    match (kappa, rest) {
+        (Some(_), Some(_)) => Err(PyValueError::new_err(
+            "kappa and rest given together: rest is kappa's deprecated name, the rest curvature coefficients; give kappa alone",
+        )),
+        (None, Some(r)) => {
+            deprecated(py, "rest", "kappa", stacklevel)?;
+            Ok(Some(("rest", r)))
+        }
+        (k, None) => Ok(k.map(|k| ("kappa", k))),
+    }
 }

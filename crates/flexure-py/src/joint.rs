@@ -10,7 +10,7 @@ use crate::errors::to_py;
 use crate::interrupt::interruptible;
 use crate::statics::loaded_stiffness;
 use crate::strict::{self, Real};
-use crate::{analyses, kinematics, modes, section, statics, stress};
+use crate::{analyses, convert, kinematics, modes, section, statics, stress};
 use flexure::estimate;
 use flexure::{Kinematics, Level, Pose, compliance_tip, compliance_tip_rest, energy, update_kinematics};
 use numpy::ndarray::Array2;
@@ -21,8 +21,10 @@ use pyo3::types::PyDict;
 
 /// A planar flexure joint of the Smooth Curvature Model (SI units, radians).
 ///
-/// Flexure(length, ei, order, quadrature, rest, *, modulus, width, thickness, poisson,
-/// notch, density, mass_per_length, yield_strength). Give `ei` (N·m²), or `modulus` (Pa)
+/// Flexure(length, ei, order, quadrature, kappa, *, modulus, width, thickness, poisson,
+/// notch, density, mass_per_length, yield_strength). `kappa` holds the rest curvature
+/// coefficients κ (`rest`, its deprecated name, warns `DeprecationWarning`; both at once
+/// raise `ValueError`). Give `ei` (N·m²), or `modulus` (Pa)
 /// with `width` and `thickness` (m) and an optional `poisson`. `ei`, `width`, `thickness`
 /// and `mass_per_length` may vary along the flexure, over t = s/L from the root (0) to the
 /// tip (1): a number; a pair (root, tip), a linear taper; or a table of [t, value] rows
@@ -33,7 +35,7 @@ use pyo3::types::PyDict;
 /// thickness) gives `safety_factor` S/σmax, and `deflect` warns `YieldWarning` below 1.
 ///
 /// Read-only: `length`, `ei` (the mean for a non-uniform section), `order`, `quadrature`,
-/// `rest`, `modulus` (E′, None without a thickness), `yield_strength`, `uniform`; along
+/// `kappa`, `modulus` (E′, None without a thickness), `yield_strength`, `uniform`; along
 /// the flexure at s (m, a number or an array): `ei_at`, `thickness_at`, `width_at`,
 /// `mass_per_length_at`. At coordinates alpha: `stress` {max, at} (None without a
 /// thickness), `peak_curvature` {max, at}, `safety_factor`, and `shape(alpha, k)`, a
@@ -47,19 +49,20 @@ pub struct Flexure {
 
 #[pymethods]
 impl Flexure {
-    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)
+    /// Flexure(length=1.0, ei=None, order=3, quadrature=None, kappa=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None, rest=None)
     #[new]
     #[pyo3(
-        signature = (length=Real(1.0), ei=None, order=None, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None),
-        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, rest=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None)"
+        signature = (length=Real(1.0), ei=None, order=None, quadrature=None, kappa=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None, rest=None),
+        text_signature = "(length=1.0, ei=None, order=3, quadrature=None, kappa=None, *, modulus=None, width=None, thickness=None, poisson=None, notch=None, density=None, mass_per_length=None, yield_strength=None, rest=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn new(
+        py: Python<'_>,
         length: Real,
         ei: Option<&Bound<'_, PyAny>>,
         order: Option<&Bound<'_, PyAny>>,
         quadrature: Option<&Bound<'_, PyAny>>,
-        rest: Option<&Bound<'_, PyAny>>,
+        kappa: Option<&Bound<'_, PyAny>>,
         modulus: Option<Real>,
         width: Option<&Bound<'_, PyAny>>,
         thickness: Option<&Bound<'_, PyAny>>,
@@ -68,7 +71,9 @@ impl Flexure {
         density: Option<Real>,
         mass_per_length: Option<&Bound<'_, PyAny>>,
         yield_strength: Option<Real>,
+        rest: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        let kappa = convert::kappa(py, kappa, rest, 1)?;
         let (length, yield_strength) = (length.0, yield_strength.map(|s| s.0));
         let (ei, section) = section::read(&section::Arguments {
             ei,
@@ -88,8 +93,8 @@ impl Flexure {
         if let Some(q) = quadrature {
             f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
         }
-        if let Some(r) = rest {
-            f = f.with_rest(&vector("rest", &coordinates::array_like("rest", r)?, Some(order))?).map_err(to_py)?;
+        if let Some((name, k)) = kappa {
+            f = f.with_rest(&vector(name, &coordinates::array_like(name, k)?, Some(order))?).map_err(to_py)?;
         }
         if let Some(s) = yield_strength {
             if !(s.is_finite() && s > 0.0) {
@@ -126,10 +131,16 @@ impl Flexure {
     fn quadrature(&self) -> usize {
         self.inner.quadrature_points()
     }
-    /// Rest coefficients κ, shape (N,).
+    /// Rest curvature coefficients κ, shape (N,).
     #[getter]
-    fn rest<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+    fn kappa<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.inner.rest().to_vec())
+    }
+    /// Rest curvature coefficients κ, shape (N,): `kappa`'s deprecated name.
+    #[getter]
+    fn rest<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        crate::warnings::deprecated(py, "Flexure.rest", "Flexure.kappa", 1)?;
+        Ok(self.kappa(py))
     }
     /// Effective modulus E′ (Pa; E/(1−ν²) with a Poisson ratio), or None for a flexure given by ei (no stress).
     #[getter]
@@ -382,8 +393,8 @@ impl Flexure {
         statics::buckling_load(py, self, tip, accuracy)
     }
 
-    /// The tendon-driven joint (Sec. III-D, Eqs. 23–26) under a tendon of tension `force` (N, not
-    /// negative) attached `root_offset` and `tip_offset` (m) from the neutral axis at the root and
+    /// The tendon-driven joint (Sec. III-D, Eqs. 23–26) under a tendon of `tension` (N, not
+    /// negative; `force`, its deprecated name, warns `DeprecationWarning`) attached `root_offset` and `tip_offset` (m) from the neutral axis at the root and
     /// the tip, followed from rest: a dict as `flexure tendon --json` gives it: alpha (N,), pose
     /// [phi, x, y] (an array, as `pose` returns), tendon_length (m), stable, error_estimate (a
     /// dict as `error_estimate` returns, or None where it could not be made) and flagged, stress
@@ -391,36 +402,51 @@ impl Flexure {
     /// (left out while unstressed). An unstable answer warns StabilityWarning; a miss of
     /// `accuracy` (as deflect's) warns AccuracyWarning; with `order="auto"` the order is raised
     /// until it is met (order and quadrature then say which). With `limit=True`, also the factor
-    /// on the tension, up to `max_factor`, at which the path stops being stable: stability_limit,
-    /// or stable_up_to (with stalled, and a StabilityWarning, if the path could not be followed
-    /// that far), as `tendon --limit`.
-    #[pyo3(signature = (force, root_offset, tip_offset, *, accuracy=None, order=None, limit=false, max_factor=Real(analyses::MAX_FACTOR)))]
+    /// on the tension, up to `max_factor`, at which the path stops being stable: stability_limit
+    /// {factor, status, stalled} (stalled, and a StabilityWarning, if the path could not be
+    /// followed that far), as `tendon --limit`.
+    #[pyo3(signature = (tension=None, root_offset=None, tip_offset=None, *, accuracy=None, order=None, limit=false, max_factor=Real(analyses::MAX_FACTOR), force=None))]
     #[allow(clippy::too_many_arguments)]
     fn tendon<'py>(
         &self,
         py: Python<'py>,
-        force: Real,
-        root_offset: Real,
-        tip_offset: Real,
+        tension: Option<Real>,
+        root_offset: Option<Real>,
+        tip_offset: Option<Real>,
         accuracy: Option<&Bound<'py, PyAny>>,
         order: Option<&Bound<'py, PyAny>>,
         limit: bool,
         max_factor: Real,
+        force: Option<Real>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let force = real("force", force)?;
-        if force < 0.0 {
+        // `tension` is optional only so that `force`, its deprecated name, can stand in for it.
+        let (name, tension) = match (tension, force) {
+            (Some(_), Some(_)) => {
+                return Err(PyValueError::new_err(
+                    "tension and force given together: force is tension's deprecated name; give tension alone",
+                ));
+            }
+            (Some(t), None) => ("tension", t),
+            (None, Some(f)) => {
+                crate::warnings::deprecated(py, "force", "tension", 1)?;
+                ("force", f)
+            }
+            (None, None) => return Err(missing("tension")),
+        };
+        let tension = real(name, tension)?;
+        if tension < 0.0 {
             return Err(PyValueError::new_err(format!(
-                "invalid force = {force}: a tendon's tension must not be negative (N)"
+                "invalid {name} = {tension}: a tendon's tension must not be negative (N)"
             )));
         }
         let t = flexure::tendon::Tendon {
-            root_offset: real("root_offset", root_offset)?,
-            tip_offset: real("tip_offset", tip_offset)?,
+            root_offset: real("root_offset", root_offset.ok_or_else(|| missing("root_offset"))?)?,
+            tip_offset: real("tip_offset", tip_offset.ok_or_else(|| missing("tip_offset"))?)?,
         };
         let target = crate::accuracy::accuracy(accuracy)?;
         let auto = auto_order(order)?;
         let limit = limit.then_some(max_factor.0);
-        analyses::tendon(py, &self.inner, self.yield_strength, force, t, &target, auto, limit)
+        analyses::tendon(py, &self.inner, self.yield_strength, tension, t, &target, auto, limit)
     }
 
     /// The minimum-energy shape whose tip reaches `pose` = (phi, x, y) in the root frame (rad,
@@ -460,10 +486,11 @@ impl Flexure {
     }
 
     /// The factor on the tip load (moment, fx, fy) at which the equilibrium followed from rest
-    /// stops being stable (a buckling or limit load), as `flexure deflect --limit`: a dict of
-    /// stability_limit, that factor (stable up to it, unstable within a relative 1e-10 above),
-    /// or of stable_up_to, the bound it stays stable to: `max_factor` (default 1000), or as far
-    /// as the path could be followed, with stalled (why) and a StabilityWarning. For axial
+    /// stops being stable (a buckling or limit load), as `flexure deflect --limit`'s
+    /// stability_limit: {"factor", "status": "lost"}, that factor (stable up to it, unstable
+    /// within a relative 1e-10 above), or {"factor", "status": "stable_up_to"}, the bound it
+    /// stays stable to: `max_factor` (default 1000), or as far as the path could be followed,
+    /// with stalled (why) and a StabilityWarning. For axial
     /// compression fx = -1 the factor is the free column's buckling load, Euler's pi^2 EI/4L^2.
     #[pyo3(signature = (moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, max_factor=Real(analyses::MAX_FACTOR)))]
     fn stability_limit<'py>(
@@ -487,4 +514,10 @@ impl Flexure {
             self.inner.quadrature_points()
         )
     }
+}
+
+/// The `TypeError` Python raises for a required argument left out, for those
+/// optional only so that a deprecated name can stand in for them.
+fn missing(name: &str) -> PyErr {
+    pyo3::exceptions::PyTypeError::new_err(format!("tendon() missing required argument '{name}'"))
 }

@@ -221,7 +221,7 @@ pub fn exact_frequencies<'py>(
     let f = &flexure.inner;
     if let Some(k) = f.rest().iter().find(|&&k| k != 0.0) {
         return Err(PyValueError::new_err(format!(
-            "invalid rest: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
+            "invalid kappa: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
         )));
     }
     let compression = finite("compression", compression)?;

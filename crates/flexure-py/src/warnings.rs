@@ -4,6 +4,7 @@
 use crate::errors::{AccuracyWarning, StabilityWarning};
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::{Error, TipLoad};
+use pyo3::exceptions::PyDeprecationWarning;
 use pyo3::prelude::*;
 
 /// Warns `text` as `category` (`stacklevel` 1: the Python line that called the binding).
@@ -11,6 +12,13 @@ pub fn warn(py: Python<'_>, category: &Bound<'_, pyo3::types::PyType>, text: Str
     // Built from fixed text, numbers and names; a NUL in a name is dropped rather than losing the warning.
     let message = std::ffi::CString::new(text.replace('\0', "")).unwrap_or_default();
     PyErr::warn(py, category.as_any(), &message, stacklevel)
+}
+
+/// Warns `DeprecationWarning` that the keyword or attribute `old` is deprecated for `new`,
+/// the package's one word for it.
+pub fn deprecated(py: Python<'_>, old: &str, new: &str, stacklevel: i32) -> PyResult<()> {
+    let text = format!("{old} is deprecated: use {new}, its name across the package (the same value)");
+    warn(py, &py.get_type::<PyDeprecationWarning>(), text, stacklevel)
 }
 
 /// Warns that the equilibrium `solver` found under `load` is unstable, and `why`.

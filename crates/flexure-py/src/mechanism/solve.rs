@@ -9,7 +9,7 @@ use crate::interrupt::interruptible;
 use crate::stress::{self, peak_item};
 use crate::strict;
 use crate::warnings::{warn, warn_inaccurate, warn_unestimated};
-use flexure::estimate::{self, Accuracy, ErrorEstimate};
+use flexure::estimate::{self, Accuracy};
 use flexure::mechanism::file::Report;
 use flexure::mechanism::statics::{Settings as MechanismSettings, body_frames, solve as equilibrium};
 use flexure::mechanism::{JointKind, Mechanism};
@@ -53,7 +53,10 @@ pub fn solve<'py>(
         let q = Array1::from_vec(s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec());
         coordinates.set_item(&j.name, q.into_pyarray(py))?;
     }
+    // `error_estimate` {flexure joint: estimate, or None where it could not be made}, and
+    // `flagged`, which an unknown accuracy sets too.
     let estimates = PyDict::new(py);
+    let mut flagged = false;
     // Stack level 2: the line calling `flexure.Mechanism.solve`, past its Python wrapper.
     for (j, f, e) in &estimated {
         let what = format!("Mechanism.solve, flexure joint '{}'", j.name);
@@ -64,8 +67,10 @@ pub fn solve<'py>(
                     warn_inaccurate(py, &what, f, e, target, hint, 2)?;
                 }
                 estimates.set_item(&j.name, estimate_dict(py, e)?)?;
+                flagged |= e.flagged;
             }
             Err(why) => {
+                flagged = true;
                 warn_unestimated(py, &what, why, 2)?;
                 estimates.set_item(&j.name, py.None())?;
             }
@@ -94,10 +99,8 @@ pub fn solve<'py>(
     out.set_item("coordinates", coordinates)?;
     out.set_item("energy", s.energy)?;
     out.set_item("stable", s.stable)?;
-    out.set_item("estimates", estimates)?;
-    let by_joint: Vec<(String, Option<&ErrorEstimate>)> =
-        estimated.iter().map(|(j, _, e)| (j.name.clone(), e.as_ref().ok())).collect();
-    super::analyses::put_joint_estimates(py, &out, &by_joint)?;
+    out.set_item("error_estimate", estimates)?;
+    out.set_item("flagged", flagged)?;
     for (key, map) in keys.into_iter().zip(maps) {
         if !map.is_empty() {
             out.set_item(key, map)?;
