@@ -1,12 +1,17 @@
-//! An answer's estimated error as Python sees it.
+//! An answer's estimated error as Python sees it: one dict shape, built here
+//! alone, for every answer that carries one (`Flexure.error_estimate`,
+//! `deflect`'s warnings aside, `tendon`, `connect`, and each flexure joint of
+//! `Mechanism.solve`).
 
 use flexure::Error;
 use flexure::estimate::{self, ErrorEstimate};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// An estimate as a dict: position (m), angle (rad), flagged, reference ("model", or "elastica" at
-/// order 64, where reference_order and reference_quadrature are 0), reference_order, reference_quadrature.
+/// An estimate as a dict: position (m), angle (rad), curvature (1/m, the peak curvature
+/// change's), stress (Pa, the peak stress's; only with a thickness), flagged, reference ("model",
+/// or "elastica" at order 64, where reference_order and reference_quadrature are 0),
+/// reference_order, reference_quadrature.
 pub fn estimate_dict<'py>(py: Python<'py>, e: &ErrorEstimate) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("position", e.position)?;
