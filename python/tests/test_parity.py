@@ -46,13 +46,13 @@ def close(a, b, rel):
 
 
 def test_solve_has_the_clis_error_estimate_and_flagged():
-    # The CLI's keys: error_estimate {joint: {position, angle, curvature[, stress]}}, flagged.
+    # The CLI's keys, error_estimate {joint: {position, angle, curvature[, stress]}} and flagged,
+    # in the package's one estimate dict, which adds flagged and the reference.
     m = flexure.Mechanism.from_file(TENDON)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", flexure.AccuracyWarning)
         r = m.solve()
     e = r["error_estimate"]["hinge"]
-    # The one estimate shape, `Flexure.error_estimate`'s, with the CLI's keys among it.
     assert set(e) == {"position", "angle", "curvature", "stress", "flagged", "reference", "reference_order",
                       "reference_quadrature"}
     assert r["flagged"] == e["flagged"]
