@@ -6,7 +6,7 @@ rows and compliance rows/columns are ordered (phi, x, y); tip loads are a
 moment M (counter-clockwise) and a force (Fx, Fy) in the root frame.
 Bad input raises ValueError naming the parameter. Every model answer
 carries its error, estimated against a refined model (`Flexure.error_estimate`,
-the `estimates` of `Mechanism.solve`); one that misses its accuracy target
+the `error_estimate` of `Mechanism.solve`); one that misses its accuracy target
 (by default 1 % of L and 1 degree) warns AccuracyWarning, and
 `Flexure.deflect(..., order="auto")` raises the order until it is met.
 A flexure's section may vary along it (`width=(0.01, 0.005)`, tables of
@@ -167,12 +167,12 @@ class Mechanism:
 
     def solve(self, accuracy: _Optional[_Tuple[float, float]] = None) -> dict:
         """Static equilibrium: a dict shaped like `flexure solve --json`
-        (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable), and
-        estimates {flexure joint: dict as `Flexure.error_estimate` returns, or None}, and as
-        the CLI writes them, error_estimate {flexure joint: {position (m), angle (rad),
-        curvature (1/m), stress (Pa, with a thickness)}} (a joint whose error could not be
-        estimated left out) and flagged (True when any joint misses `accuracy` or could not
-        be estimated). An unstable answer warns StabilityWarning.
+        (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable),
+        error_estimate {flexure joint: dict as `Flexure.error_estimate` returns (position (m),
+        angle (rad), curvature (1/m), stress (Pa, with a thickness), flagged, reference,
+        reference_order, reference_quadrature), or None where it could not be estimated}
+        and flagged (True when any joint misses `accuracy` or could not be estimated).
+        An unstable answer warns StabilityWarning.
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
         naming it, as does one whose error could not be estimated. Errors name the

@@ -75,10 +75,11 @@ class _Vibration(TypedDict):
     mass_per_length: float
 
 class _StabilityLimit(TypedDict, total=False):
-    """One of stability_limit (the factor where stability is lost) or stable_up_to (the bound it holds
-    to); stalled says why the path could not be followed further, when it stopped short of max_factor."""
-    stability_limit: float
-    stable_up_to: float
+    """The factor on the load where stability is lost (status "lost"), or the bound it holds to (status
+    "stable_up_to"); stalled says why the path could not be followed further, when it stopped short of
+    max_factor."""
+    factor: float
+    status: Literal["lost", "stable_up_to"]
     stalled: str
 
 class _Tendon(TypedDict, total=False):
@@ -93,9 +94,7 @@ class _Tendon(TypedDict, total=False):
     safety_factor: float  # with a yield_strength, while stressed
     order: int  # with order="auto"
     quadrature: int  # with order="auto"
-    stability_limit: float  # with limit=True
-    stable_up_to: float  # with limit=True
-    stalled: str
+    stability_limit: _StabilityLimit  # with limit=True
 
 class _TipLoad(TypedDict):
     moment: float
@@ -113,16 +112,15 @@ class _Connection(TypedDict, total=False):
     safety_factor: float
     order: int
     quadrature: int
-    stability_limit: float
-    stable_up_to: float
-    stalled: str
+    stability_limit: _StabilityLimit  # with limit=True
 
 class Flexure:
     """A planar flexure joint of the Smooth Curvature Model.
 
     length (m), ei (N*m^2) or modulus (Pa) with width and thickness (m) and optional poisson;
     order N (1 to 64) of the shifted-Legendre curvature basis; quadrature points
-    (1 to 1024, default N + 2); rest curvature coefficients (N,).
+    (1 to 1024, default N + 2); kappa, the rest curvature coefficients (N,) (`rest`, its deprecated
+    name, warns DeprecationWarning; both at once raise ValueError).
     ei, width and thickness may each vary along the flexure (see _Profile): a number, a pair
     (root, tip), or a table of [t, value] rows over t = s/L. notch=(R, h) cuts two circular
     cut-outs of radius R centred on the flexure, leaving thickness h at its middle.
@@ -133,12 +131,13 @@ class Flexure:
     would be ignored (width, thickness, poisson or notch without modulus; ei with modulus).
     """
     def __init__(self, length: float = 1.0, ei: Optional[_Profile] = None, order: int = 3,
-                 quadrature: Optional[int] = None, rest: Optional[ArrayLike] = None, *,
+                 quadrature: Optional[int] = None, kappa: Optional[ArrayLike] = None, *,
                  modulus: Optional[float] = None, width: Optional[_Profile] = None,
                  thickness: Optional[_Profile] = None, poisson: Optional[float] = None,
                  notch: Optional[Tuple[float, float]] = None, density: Optional[float] = None,
                  mass_per_length: Optional[_Profile] = None,
-                 yield_strength: Optional[float] = None) -> None: ...
+                 yield_strength: Optional[float] = None,
+                 rest: Optional[ArrayLike] = None) -> None: ...
     @property
     def length(self) -> float: ...
     @property
@@ -149,7 +148,11 @@ class Flexure:
     @property
     def quadrature(self) -> int: ...
     @property
-    def rest(self) -> np.ndarray: ...
+    def kappa(self) -> np.ndarray:
+        """Rest curvature coefficients κ, shape (N,)."""
+    @property
+    def rest(self) -> np.ndarray:
+        """Deprecated name of kappa (warns DeprecationWarning)."""
     @property
     def modulus(self) -> Optional[float]:
         """Effective modulus E' (Pa; E/(1-ν²) with poisson), or None for a flexure given by ei (no stress)."""
@@ -217,12 +220,14 @@ class Flexure:
         m in the tip frame). count: 1 to order (default 3, or the order); fewer are returned if
         fewer are finite. ValueError naming mass without any mass; ConvergenceError past a
         buckling load."""
-    def tendon(self, force: float, root_offset: float, tip_offset: float, *, accuracy: _Accuracy = None,
-               order: Optional[Literal["auto"]] = None, limit: bool = False, max_factor: float = 1000.0) -> _Tendon:
-        """The tendon-driven joint under a tendon of tension `force` (N) attached root_offset and
+    def tendon(self, tension: float, root_offset: float, tip_offset: float, *, accuracy: _Accuracy = None,
+               order: Optional[Literal["auto"]] = None, limit: bool = False, max_factor: float = 1000.0,
+               force: Optional[float] = None) -> _Tendon:
+        """The tendon-driven joint under a tendon of `tension` (N; `force`, its deprecated name, warns
+        DeprecationWarning) attached root_offset and
         tip_offset (m) from the neutral axis, as `flexure tendon --json` (pose an array [phi, x, y]).
         Warns StabilityWarning when unstable, AccuracyWarning when flagged; order="auto" raises the
-        order until the target is met; limit=True adds stability_limit or stable_up_to."""
+        order until the target is met; limit=True adds stability_limit {factor, status[, stalled]}."""
     def connect(self, pose: ArrayLike, *, accuracy: _Accuracy = None, order: Optional[Literal["auto"]] = None,
                 limit: bool = False, max_factor: float = 1000.0) -> _Connection:
         """The minimum-energy shape whose tip reaches pose (phi, x, y), as `flexure connect --json`
@@ -230,8 +235,9 @@ class Flexure:
     def stability_limit(self, moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, *,
                         max_factor: float = 1000.0) -> _StabilityLimit:
         """The factor on the tip load at which the path from rest loses stability
-        ({"stability_limit": factor}), or the bound it stays stable to ({"stable_up_to": factor},
-        with "stalled" when the path could not be followed to max_factor), as `deflect --limit`."""
+        ({"factor": f, "status": "lost"}), or the bound it stays stable to ({"factor": f,
+        "status": "stable_up_to"}, with "stalled" when the path could not be followed to
+        max_factor), as `deflect --limit`'s stability_limit."""
     # Bending at alpha (N,), such as deflect's answer.
     def stress(self, alpha: ArrayLike) -> Optional[_Peak]:
         """Peak bending stress σ(s) = E' h(s)/2 |ω(s) - ω0(s)|: {max (Pa), at (m from the root)};
@@ -262,8 +268,8 @@ class Mechanism:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
         velocities {joint: (N, k) array}, energy, steps, rejected, violation."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
-        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, estimates, error_estimate,
-        flagged, findings, and per
+        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, error_estimate
+        {flexure joint: _ErrorEstimate or None}, flagged, findings, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings]."""
@@ -291,8 +297,11 @@ class Elastica:
     def stable(self) -> bool:
         """Whether the shape is a minimum of the potential energy (Jacobi test)."""
     @property
-    def limit(self) -> Optional[float]:
+    def limit_fraction(self) -> Optional[float]:
         """The load fraction where the loading path first lost stability (snap-through), or None."""
+    @property
+    def limit(self) -> Optional[float]:
+        """Deprecated name of limit_fraction (warns DeprecationWarning)."""
     @property
     def load(self) -> Tuple[float, float, float]:
         """(moment, fx, fy) in the root frame."""
@@ -319,5 +328,5 @@ def exact_buckling_load(flexure: Flexure, tip: str = "free") -> float: ...
 def exact_frequencies(flexure: Flexure, count: Optional[int] = None, compression: float = 0.0,
                       tip_mass: Optional[float] = None, tip_inertia: Optional[float] = None,
                       tip_com: Optional[Tuple[float, float]] = None) -> _Vibration: ...
-def exact_flexure(length: float = 1.0, ei: Optional[_Profile] = None,
-                  rest: Optional[ArrayLike] = None) -> Flexure: ...
+def exact_flexure(length: float = 1.0, ei: Optional[_Profile] = None, kappa: Optional[ArrayLike] = None,
+                  rest: Optional[ArrayLike] = None, stacklevel: int = 1) -> Flexure: ...

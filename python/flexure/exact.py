@@ -7,9 +7,10 @@ Give the beam either as `flexure=` a `flexure.Flexure`, whose length, section
 (EI(s) from `ei`, or `modulus`, `width`, `thickness` and `notch`), rest curvature
 and `yield_strength` are used (its order and quadrature are not: the references
 are exact), or as `length`, `ei` (a number, a pair (root, tip) or a table of
-[t, value] rows, as `Flexure`'s) and `rest` (1 to 64 rest curvature coefficients
-in the model's basis), by default a straight flexure of length 1 and EI 1. Not
-both: `length`, `ei` or `rest` beside `flexure` raises ValueError.
+[t, value] rows, as `Flexure`'s) and `kappa` (1 to 64 rest curvature coefficients
+in the model's basis; `rest`, its deprecated name, warns DeprecationWarning), by
+default a straight flexure of length 1 and EI 1. Not both: `length`, `ei` or
+`kappa` beside `flexure` raises ValueError.
 
 `elastica` returns an `Elastica`: the tip pose, root moment and stability, and
 the exact `stress()`, `peak_curvature()`, `safety_factor()` and `shape(k)`, the
@@ -50,13 +51,18 @@ _Profile = Union[float, Tuple[float, float], ArrayLike]
 
 
 def _beam(flexure: Optional[Flexure], length: Optional[float], ei: Optional[_Profile],
-          rest: Optional[ArrayLike]) -> Flexure:
-    """The flexure to solve: `flexure`, or one built from `length`, `ei` and `rest`."""
+          kappa: Optional[ArrayLike], rest: Optional[ArrayLike] = None) -> Flexure:
+    """The flexure to solve: `flexure`, or one built from `length`, `ei` and `kappa` (or
+    `rest`, its deprecated name, warned about at the line that called `flexure.exact`)."""
     if flexure is None:
-        return exact_flexure(1.0 if length is None else length, ei, rest)
+        return exact_flexure(1.0 if length is None else length, ei, kappa, rest, stacklevel=3)
     if not isinstance(flexure, Flexure):
         raise ValueError(f"flexure must be a flexure.Flexure, got {type(flexure).__name__}")
-    given = [name for name, value in (("length", length), ("ei", ei), ("rest", rest)) if value is not None]
+    given = [
+        name
+        for name, value in (("length", length), ("ei", ei), ("kappa", kappa), ("rest", rest))
+        if value is not None
+    ]
     if given:
         raise ValueError(
             f"{' and '.join(given)} given with flexure would be ignored: the exact references use the "
@@ -66,33 +72,33 @@ def _beam(flexure: Optional[Flexure], length: Optional[float], ei: Optional[_Pro
 
 
 def elastica(moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, length: Optional[float] = None,
-             ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
-             flexure: Optional[Flexure] = None) -> Elastica:
+             ei: Optional[_Profile] = None, kappa: Optional[ArrayLike] = None, *,
+             flexure: Optional[Flexure] = None, rest: Optional[ArrayLike] = None) -> Elastica:
     """The exact elastica under a tip moment (N*m) and force (N) in the root frame, with EI(s):
-    an `Elastica` (pose, root_moment, stable, limit; stress(), peak_curvature(), safety_factor(),
+    an `Elastica` (pose, root_moment, stable, limit_fraction; stress(), peak_curvature(), safety_factor(),
     shape(k)). Warns StabilityWarning if the shape is unstable (Jacobi test), and YieldWarning if
     the flexure has a yield_strength that its peak stress exceeds. Raises ConvergenceError if the
     load continuation stalls, ValueError for a force beyond what shooting can follow
     (integral of sqrt(|F|/EI(s)) ds above 100). Runs without the GIL; Ctrl-C stops it."""
-    f = _beam(flexure, length, ei, rest)
+    f = _beam(flexure, length, ei, kappa, rest)
     return exact_elastica(f, moment, fx, fy, what="exact.elastica")
 
 
 def deflect(moment: float = 0.0, fx: float = 0.0, fy: float = 0.0, length: Optional[float] = None,
-            ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
-            flexure: Optional[Flexure] = None) -> np.ndarray:
+            ei: Optional[_Profile] = None, kappa: Optional[ArrayLike] = None, *,
+            flexure: Optional[Flexure] = None, rest: Optional[ArrayLike] = None) -> np.ndarray:
     """Tip pose [phi, x, y] of the exact elastica (Eq. 3) under a tip moment and force:
-    `elastica(...).pose`, with the same warnings. `rest`: 1 to 64 rest curvature coefficients
-    in the model's basis (straight by default)."""
-    f = _beam(flexure, length, ei, rest)
+    `elastica(...).pose`, with the same warnings. `kappa`: 1 to 64 rest curvature coefficients
+    in the model's basis (straight by default; `rest` is its deprecated name)."""
+    f = _beam(flexure, length, ei, kappa, rest)
     return exact_elastica(f, moment, fx, fy, what="exact.deflect").pose
 
 
-def compliance(length: Optional[float] = None, ei: Optional[_Profile] = None, rest: Optional[ArrayLike] = None, *,
-               flexure: Optional[Flexure] = None) -> np.ndarray:
+def compliance(length: Optional[float] = None, ei: Optional[_Profile] = None, kappa: Optional[ArrayLike] = None, *,
+               flexure: Optional[Flexure] = None, rest: Optional[ArrayLike] = None) -> np.ndarray:
     """Exact small-load tip compliance (3, 3), order (phi, x, y), from the compliance ODE
     (Eq. 34) with EI(s), integrated to 1e-12 relative."""
-    return exact_compliance(_beam(flexure, length, ei, rest))
+    return exact_compliance(_beam(flexure, length, ei, kappa, rest))
 
 
 def buckling_load(tip: str = "free", length: Optional[float] = None, ei: Optional[_Profile] = None, *,

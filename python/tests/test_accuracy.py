@@ -187,7 +187,7 @@ def test_mechanism_flexure_joint_warns_naming_it():
     with pytest.warns(flexure.AccuracyWarning, match="flexure joint 'hinge'.*% of L") as caught:
         result = m.solve()
     assert caught[0].filename == __file__
-    e = result["estimates"]["hinge"]
+    e = result["error_estimate"]["hinge"]
     link = result["bodies"]["link"]
     true_position = np.hypot(link["x"] - circle_tip(20.0, 1.0)[0], link["y"] - circle_tip(20.0, 1.0)[1])
     # As for the flexure alone (the joint's tip load is recovered by least squares: 1e-6).
@@ -204,8 +204,8 @@ def test_mechanism_examples_carry_estimates_without_warning():
         with warnings.catch_warnings():
             warnings.simplefilter("error")
             result = flexure.Mechanism.from_toml(root / name).solve()
-        assert set(result["estimates"]) == joints, name
-        assert all(not e["flagged"] for e in result["estimates"].values()), name
+        assert set(result["error_estimate"]) == joints, name
+        assert all(not e["flagged"] for e in result["error_estimate"].values()), name
 
 
 def test_unloaded_mechanism_has_zero_error():
@@ -214,7 +214,7 @@ def test_unloaded_mechanism_has_zero_error():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         result = flexure.Mechanism.from_toml(ONE_JOINT).solve()
-    assert result["estimates"]["hinge"]["position"] < 1e-15
+    assert result["error_estimate"]["hinge"]["position"] < 1e-15
 
 
 def stub_methods(cls_name):

@@ -20,7 +20,7 @@ LOADED = [
     # (flexure, (moment, fx, fy)): the unit flexure of the issue, compressed near buckling
     # (free buckling at 2.4677) with a side force; and a curved order-5 flexure under mixed load.
     (dict(), (0.0, -2.0, 0.3)),
-    (dict(length=0.5, ei=2.0, order=5, rest=[0.3, 0.1, 0.0, 0.0, 0.0]), (0.4, 1.0, -3.0)),
+    (dict(length=0.5, ei=2.0, order=5, kappa=[0.3, 0.1, 0.0, 0.0, 0.0]), (0.4, 1.0, -3.0)),
     (dict(order=4), (0.8, 1.5, 1.0)),
 ]
 

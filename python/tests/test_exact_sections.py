@@ -242,18 +242,18 @@ def test_yield_strength_gives_the_exact_safety_factor():
 BAD = [
     ("exact.elastica(fy=1.0, flexure='steel')", r"flexure must be a flexure.Flexure, got str"),
     ("exact.deflect(fy=1.0, length=2.0, flexure=f)", r"length given with flexure would be ignored"),
-    ("exact.compliance(ei=1.0, rest=[0.0], flexure=f)", r"ei and rest given with flexure would be ignored"),
+    ("exact.compliance(ei=1.0, kappa=[0.0], flexure=f)", r"ei and kappa given with flexure would be ignored"),
     ("exact.buckling_load('free', ei=2.0, flexure=f)", r"ei given with flexure would be ignored"),
     ("exact.elastica(moment=float('nan'), flexure=f)", r"moment = NaN"),
     ("exact.elastica(fx=-1e9, flexure=f)", r"force"),
     ("exact.buckling_load('hinged', flexure=f)", r"tip"),
-    ("exact.buckling_load(flexure=flexure.Flexure(rest=[0.5, 0.0, 0.0]))", r"rest = \[0.5, 0.0, 0.0\].*straight"),
+    ("exact.buckling_load(flexure=flexure.Flexure(kappa=[0.5, 0.0, 0.0]))", r"kappa = \[0.5, 0.0, 0.0\].*straight"),
     ("exact.elastica(fy=1.0, flexure=f).shape(1)", r"k = 1: must be from 2 to"),
     ("exact.elastica(fy=1.0, flexure=f).safety_factor()", r"yield_strength"),
     ("exact.compliance(ei=(1.0, -1.0))", r"ei"),
     ("exact.compliance(ei=(1.0, 2.0, 3.0))", r"ei must be"),
     ("exact.elastica(fy=1.0, length=-1.0, ei=(1.0, 2.0))", r"length = -1"),
-    ("exact.deflect(fy=1.0, rest=[])", r"rest must have from 1 to 64 entries .*got 0"),
+    ("exact.deflect(fy=1.0, kappa=[])", r"kappa must have from 1 to 64 entries .*got 0"),
 ]
 
 

@@ -28,10 +28,10 @@ def test_table_i_buckling_loads():
 def test_eq_37_compliance():
     # Eq. 37: the ODE's compliance for constant rest curvature pi (printed to 4 decimals).
     printed = np.array([[1.0000, -0.3183, -0.2026], [-0.3183, 0.1520, 0.0645], [-0.2026, 0.0645, 0.0507]])
-    exact = flexure.exact.compliance(rest=[math.pi, 0.0, 0.0])
+    exact = flexure.exact.compliance(kappa=[math.pi, 0.0, 0.0])
     assert np.max(np.abs(exact - printed)) < 5e-5
     # Fig. 13: the model within 7.33e-4 (printed to 3 digits: 5e-7).
-    model = flexure.Flexure(rest=[math.pi, 0, 0]).rest_compliance()
+    model = flexure.Flexure(kappa=[math.pi, 0, 0]).rest_compliance()
     assert abs(np.max(np.abs(model - exact)) - 7.33e-4) < 5e-7
     assert model.shape == (3, 3) and model.dtype == np.float64
 
@@ -199,7 +199,7 @@ def test_material_options():
         (lambda: flexure.Flexure(length=float("nan")), "length"),
         (lambda: flexure.Flexure(order=0), "order"),
         (lambda: flexure.Flexure(quadrature=0), "quadrature"),
-        (lambda: flexure.Flexure(rest=[1.0, 2.0]), "rest"),
+        (lambda: flexure.Flexure(kappa=[1.0, 2.0]), "kappa"),
         (lambda: flexure.Flexure().pose([1.0, 2.0]), "alpha"),
         (lambda: flexure.Flexure().pose([1.0, float("nan"), 0.0]), "alpha"),
         (lambda: flexure.Flexure().jacobian([[0, 0, 0]]), "alpha"),
@@ -226,7 +226,7 @@ def test_mechanism_from_path_and_text():
     for source in (path, str(path), path.read_text()):
         result = flexure.Mechanism.from_toml(source).solve()
         # Its flexures are given by ei (no thickness): curvature_max, as `flexure solve --json`.
-        assert set(result) == {"bodies", "coordinates", "energy", "stable", "estimates", "error_estimate", "flagged", "curvature_max"}
+        assert set(result) == {"bodies", "coordinates", "energy", "stable", "error_estimate", "flagged", "curvature_max"}
         # Closed form: the shoulder spring turns M/k = 0.01/2.
         assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
         assert result["stable"] is True
@@ -241,3 +241,36 @@ def test_docstring_example():
 
     result = doctest.testmod(flexure)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_old_names_warn_and_mean_the_same():
+    # One vocabulary (CHANGELOG.md): kappa, tension and limit_fraction; the old names still work, warning.
+    with pytest.warns(DeprecationWarning, match="rest is deprecated: use kappa") as caught:
+        f = flexure.Flexure(rest=[0.5, 0.0, 0.0])
+    assert caught[0].filename == __file__
+    assert list(f.kappa) == [0.5, 0.0, 0.0]
+    with pytest.warns(DeprecationWarning, match="Flexure.rest is deprecated: use Flexure.kappa"):
+        assert list(f.rest) == [0.5, 0.0, 0.0]
+    with pytest.raises(ValueError, match="kappa and rest given together"):
+        flexure.Flexure(kappa=[0.5, 0.0, 0.0], rest=[0.5, 0.0, 0.0])
+    with pytest.warns(DeprecationWarning, match="rest is deprecated: use kappa") as caught:
+        old = flexure.exact.compliance(rest=[0.5, 0.0, 0.0])
+    assert caught[0].filename == __file__
+    assert np.array_equal(old, flexure.exact.compliance(kappa=[0.5, 0.0, 0.0]))
+    with pytest.raises(ValueError, match="kappa and rest given together"):
+        flexure.exact.compliance(kappa=[0.5], rest=[0.5])
+    g = flexure.Flexure()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", flexure.AccuracyWarning)
+        with pytest.warns(DeprecationWarning, match="force is deprecated: use tension"):
+            old = g.tendon(force=1.0, root_offset=0.005, tip_offset=0.005)
+        assert np.array_equal(old["alpha"], g.tendon(tension=1.0, root_offset=0.005, tip_offset=0.005)["alpha"])
+    with pytest.raises(ValueError, match="tension and force given together"):
+        g.tendon(1.0, 0.005, 0.005, force=1.0)
+    with pytest.raises(TypeError, match="missing required argument 'tension'"):
+        g.tendon(root_offset=0.005, tip_offset=0.005)
+    with pytest.raises(ValueError, match="invalid tension = -1"):
+        g.tendon(-1.0, 0.005, 0.005)
+    e = flexure.exact.elastica(fy=1.0)
+    with pytest.warns(DeprecationWarning, match="Elastica.limit is deprecated: use Elastica.limit_fraction"):
+        assert e.limit == e.limit_fraction

@@ -127,8 +127,8 @@ def test_bad_input():
         f.modes(tip_mass=1.0, fx=-25.0)
     with pytest.raises(ValueError, match="mass"):
         exact.frequencies(flexure=f)
-    with pytest.raises(ValueError, match="rest"):
-        exact.frequencies(flexure=flexure.Flexure(ei=2.0, mass_per_length=1.0, rest=[0.1, 0, 0]))
+    with pytest.raises(ValueError, match="kappa"):
+        exact.frequencies(flexure=flexure.Flexure(ei=2.0, mass_per_length=1.0, kappa=[0.1, 0, 0]))
     with pytest.raises(ValueError, match="count"):
         exact.frequencies(0, flexure=flexure.Flexure(mass_per_length=1.0))
     with pytest.raises(ValueError, match="flexure"):

@@ -46,17 +46,16 @@ def close(a, b, rel):
 
 
 def test_solve_has_the_clis_error_estimate_and_flagged():
-    # The CLI's keys: error_estimate {joint: {position, angle, curvature[, stress]}}, flagged.
+    # The CLI's keys, error_estimate {joint: {position, angle, curvature[, stress]}} and flagged,
+    # in the package's one estimate dict, which adds flagged and the reference.
     m = flexure.Mechanism.from_file(TENDON)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", flexure.AccuracyWarning)
         r = m.solve()
     e = r["error_estimate"]["hinge"]
-    assert set(e) == {"position", "angle", "curvature", "stress"}
-    # The same numbers as the bindings' own `estimates`.
-    for key in e:
-        assert e[key] == r["estimates"]["hinge"][key]
-    assert r["flagged"] == r["estimates"]["hinge"]["flagged"]
+    assert set(e) == {"position", "angle", "curvature", "stress", "flagged", "reference", "reference_order",
+                      "reference_quadrature"}
+    assert r["flagged"] == e["flagged"]
 
 
 def test_solve_flags_a_joint_that_misses_its_target():
@@ -233,7 +232,8 @@ def test_tendon_limit_and_its_warning_are_the_clis():
     # that crosses the flexure snaps it at 22.893 N; the order-3 peak curvature misses 1 %.
     with pytest.warns(flexure.AccuracyWarning, match='tendon.*peak curvature.*order="auto"'):
         r = flexure.Flexure().tendon(1.0, 0.1, -0.05, limit=True)
-    assert close(r["stability_limit"], 22.893157988551955, 1e-9)
+    assert r["stability_limit"]["status"] == "lost"
+    assert close(r["stability_limit"]["factor"], 22.893157988551955, 1e-9)
     assert r["flagged"] is True and "curvature_max" in r
     assert close(r["tendon_length"], 1.008594647054488, 1e-9)
 
@@ -248,7 +248,7 @@ def test_tendon_auto_raises_the_order_until_the_target_is_met():
 @pytest.mark.parametrize(
     "call, error, match",
     [
-        ("f.tendon(-1.0, 0.005, 0.005)", ValueError, r"invalid force = -1"),
+        ("f.tendon(-1.0, 0.005, 0.005)", ValueError, r"invalid tension = -1"),
         ("f.tendon(1.0, float('nan'), 0.005)", ValueError, r"root_offset = NaN"),
         ("f.tendon(1.0, 0.005, float('inf'))", ValueError, r"tip_offset = inf"),
         ("f.tendon(1.0, 0.005, 0.005, order=5)", ValueError, r'order must be None or "auto"'),
@@ -292,15 +292,15 @@ def test_connect_refuses_a_pose_out_of_reach():
 def test_stability_limit_of_a_free_column_is_eulers():
     # Euler: pi^2 EI / (4 L^2) for a clamped-free column; order 6 is within 1e-10 of it.
     r = flexure.Flexure(order=6).stability_limit(fx=-1.0)
-    assert set(r) == {"stability_limit"}
-    assert close(r["stability_limit"], math.pi**2 / 4, 1e-9)
+    assert set(r) == {"factor", "status"} and r["status"] == "lost"
+    assert close(r["factor"], math.pi**2 / 4, 1e-9)
     # Order 3, as `flexure deflect --fx -1 --limit --json`: 2.4677381624149675.
-    assert close(flexure.Flexure().stability_limit(fx=-1.0)["stability_limit"], 2.4677381624149675, 1e-9)
+    assert close(flexure.Flexure().stability_limit(fx=-1.0)["factor"], 2.4677381624149675, 1e-9)
 
 
 def test_a_moment_stays_stable_up_to_max_factor():
     # A pure tip moment bends the flexure into arcs, each stable: the bound is returned.
-    assert flexure.Flexure().stability_limit(moment=1.0, max_factor=10.0) == {"stable_up_to": 10.0}
+    assert flexure.Flexure().stability_limit(moment=1.0, max_factor=10.0) == {"factor": 10.0, "status": "stable_up_to"}
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, float("inf"), float("nan")])

@@ -42,13 +42,13 @@ def test_energy_beyond_the_coordinate_bound_is_refused():
         "f.jacobian([0.0, 0.0, 1e6 * (1 + 1e-15)])",
         "f.compliance([2e6, 0.0, 0.0])",
         "f.stress([0.0, 1e7, 0.0])",
-        "flexure.Flexure(rest=[0.0, 0.0, 1e7])",
+        "flexure.Flexure(kappa=[0.0, 0.0, 1e7])",
     ],
 )
 def test_coordinates_above_the_librarys_bound_are_refused(call):
     # The CLI refuses |alpha| > 1e6 (`kinematics --alpha`); Python accepted them.
     f = flexure.Flexure(modulus=2e11, width=0.01, thickness=2e-4)
-    with pytest.raises(ValueError, match=r"(alpha|rest) contains .*at most 1e6 rad"):
+    with pytest.raises(ValueError, match=r"(alpha|kappa) contains .*at most 1e6 rad"):
         eval(call)
 
 
@@ -81,13 +81,13 @@ def test_coordinates_at_the_bound_are_accepted():
         ("f.modes(tip_mass=True)", "tip_mass"),
         ("f.pose([True, 0.0, 0.0])", "alpha"),
         ("f.pose(np.array([True, False, True]))", "alpha"),
-        ("f.tendon(True, 0.005, 0.005)", "force"),
+        ("f.tendon(True, 0.005, 0.005)", "tension"),
         ("f.connect((0.0, True, 0.0))", "pose"),
         ("f.stability_limit(fx=-1.0, max_factor=True)", "max_factor"),
         ("flexure.exact.elastica(fy=True)", "fy"),
-        ("flexure.Flexure(rest=[True, 0.0, 0.0])", "rest"),
-        ("flexure.Flexure(rest=np.array([False, True, False]))", "rest"),
-        ("flexure.exact.compliance(rest=(0.0, True))", "rest"),
+        ("flexure.Flexure(kappa=[True, 0.0, 0.0])", "kappa"),
+        ("flexure.Flexure(kappa=np.array([False, True, False]))", "kappa"),
+        ("flexure.exact.compliance(kappa=(0.0, True))", "kappa"),
     ],
 )
 def test_booleans_are_refused_naming_the_argument(call, name):

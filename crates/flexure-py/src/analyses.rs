@@ -5,11 +5,12 @@
 //! lost (`Flexure.stability_limit`, as `deflect --limit`). Each answer
 //! carries its error estimate, warned about as `deflect`'s is.
 
+use crate::error_estimate::{estimate_dict, interrupted_or};
+use crate::errors::StabilityWarning;
+use crate::interrupt::interruptible;
+use crate::stress::{self, peak_item};
 use crate::strict::finite_answer;
-use crate::{
-    StabilityWarning, estimate_dict, interrupted_or, interruptible, peak_item, stress, warn, warn_inaccurate,
-    warn_unestimated,
-};
+use crate::warnings::{sig, warn, warn_inaccurate, warn_unestimated};
 use flexure::connect::connect as connect_pose;
 use flexure::estimate::{self, Accuracy};
 use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
@@ -36,32 +37,37 @@ fn pose_array<'py>(py: Python<'py>, p: &Pose) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, &[p.phi, p.x, p.y])
 }
 
-/// A stability limit into `out` as the CLI writes it: `stability_limit`, the
-/// factor where stability is lost, or `stable_up_to`, the factor it holds to
-/// (with `stalled`, why the path could not be followed further, and a
-/// StabilityWarning, when that is short of `max_factor`).
-pub fn put_limit(
-    py: Python<'_>,
-    out: &Bound<'_, PyDict>,
+/// A stability limit as one object, the same wherever it is answered:
+/// `{"factor", "status": "lost"}`, the factor where stability is lost, or
+/// `{"factor", "status": "stable_up_to"}`, the factor it holds to, with
+/// `stalled`, why the path could not be followed further, and a
+/// StabilityWarning, when that is short of `max_factor`.
+pub fn limit_dict<'py>(
+    py: Python<'py>,
     l: &StabilityLimit,
     what: &str,
     stacklevel: i32,
-) -> PyResult<()> {
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
     match l {
-        StabilityLimit::Lost { factor } => out.set_item("stability_limit", factor),
+        StabilityLimit::Lost { factor } => {
+            d.set_item("factor", factor)?;
+            d.set_item("status", "lost")?;
+        }
         StabilityLimit::StableUpTo { factor, stalled } => {
-            out.set_item("stable_up_to", factor)?;
+            d.set_item("factor", factor)?;
+            d.set_item("status", "stable_up_to")?;
             if let Some(why) = stalled {
-                out.set_item("stalled", why)?;
+                d.set_item("stalled", why)?;
                 let text = format!(
                     "{what}: the loading path stays stable up to {} times the load, as far as it could be followed; beyond it stability is unknown: {why}",
-                    crate::sig(*factor)
+                    sig(*factor)
                 );
                 warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
             }
-            Ok(())
         }
     }
+    Ok(d)
 }
 
 /// The stability limit of a tip load on `f`: see `Flexure.stability_limit`.
@@ -73,8 +79,7 @@ pub fn stability_limit<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let max = max_factor(max)?;
     let l = interruptible(py, || flexure::statics::stability_limit(f, load, max))?;
-    let out = PyDict::new(py);
-    put_limit(py, &out, &l, "stability_limit", 1)?;
+    let out = limit_dict(py, &l, "stability_limit", 1)?;
     finite_answer("stability_limit", out.as_any())?;
     Ok(out)
 }
@@ -126,7 +131,7 @@ pub fn tendon<'py>(
     auto: bool,
     limit: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    t.validate().map_err(crate::to_py)?;
+    t.validate().map_err(crate::errors::to_py)?;
     let limit = limit.map(max_factor).transpose()?;
     let (used, alpha, stable, estimated, l) = interruptible(py, || {
         let used = if auto { estimate::tendon_auto(f, &t, tension, target)?.0 } else { f.clone() };
@@ -159,7 +164,7 @@ pub fn tendon<'py>(
     };
     put_checks(py, &out, (&used, yield_strength), &alpha, &estimated, (target, "tendon", hint))?;
     if let Some(l) = &l {
-        put_limit(py, &out, l, "tendon(limit=...)", 1)?;
+        out.set_item("stability_limit", limit_dict(py, l, "tendon(limit=...)", 1)?)?;
     }
     finite_answer("tendon", out.as_any())?;
     Ok(out)
@@ -202,7 +207,7 @@ pub fn connect<'py>(
     };
     put_checks(py, &out, (&used, yield_strength), &c.alpha, &estimated, (target, "connect", hint))?;
     if let Some(l) = &l {
-        put_limit(py, &out, l, "connect(limit=...)", 1)?;
+        out.set_item("stability_limit", limit_dict(py, l, "connect(limit=...)", 1)?)?;
     }
     finite_answer("connect", out.as_any())?;
     Ok(out)

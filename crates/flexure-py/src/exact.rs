@@ -3,9 +3,14 @@
 //! curvature and shape along it), the compliance ODE and the column's
 //! buckling load. `flexure.exact` wraps them.
 
+use crate::convert::{shape_points, tip_load};
 use crate::coordinates::vector;
+use crate::errors::to_py;
+use crate::interrupt::interruptible;
+use crate::joint::Flexure;
 use crate::strict::Real;
-use crate::{Flexure, interruptible, section, shape_points, stress, tip_load, to_py, warn_unstable};
+use crate::warnings::warn_unstable;
+use crate::{section, stress};
 use flexure::reference::{column, compliance, elastica, euler};
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
@@ -73,8 +78,14 @@ impl Elastica {
     }
     /// The load fraction where the loading path first lost stability (snap-through), or None.
     #[getter]
-    fn limit(&self) -> Option<f64> {
+    fn limit_fraction(&self) -> Option<f64> {
         self.solution.limit
+    }
+    /// `limit_fraction`'s deprecated name.
+    #[getter]
+    fn limit(&self, py: Python<'_>) -> PyResult<Option<f64>> {
+        crate::warnings::deprecated(py, "Elastica.limit", "Elastica.limit_fraction", 1)?;
+        Ok(self.solution.limit)
     }
     /// The tip load (moment, fx, fy) in the root frame.
     #[getter]
@@ -200,8 +211,8 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
     let f = &flexure.inner;
     let tip: TipConstraint = tip.parse().map_err(to_py)?;
     if f.rest().iter().any(|&k| k != 0.0) {
-        let rest = format!("{:?}", f.rest());
-        return Err(to_py(Error::invalid("rest", rest, "the exact buckling load is for a straight flexure")));
+        let kappa = format!("{:?}", f.rest());
+        return Err(to_py(Error::invalid("kappa", kappa, "the exact buckling load is for a straight flexure")));
     }
     let p = if f.section().is_uniform() {
         euler::buckling_load(tip, f.length(), f.ei())
@@ -212,15 +223,20 @@ pub fn exact_buckling_load(py: Python<'_>, flexure: &Flexure, tip: &str) -> PyRe
 }
 
 /// The flexure `flexure.exact` builds from `length`, `ei` (a number, a pair
-/// (root, tip) or a table, as `Flexure`'s) and `rest` (1 to 64 rest curvature
-/// coefficients, any order; straight, order 3, without them).
+/// (root, tip) or a table, as `Flexure`'s) and `kappa` (1 to 64 rest curvature
+/// coefficients, any order; straight, order 3, without them), or `rest`, its
+/// deprecated name, warned about at `stacklevel` (the caller of `flexure.exact`).
 #[pyfunction]
-#[pyo3(signature = (length=Real(1.0), ei=None, rest=None))]
+#[pyo3(signature = (length=Real(1.0), ei=None, kappa=None, rest=None, stacklevel=1))]
 pub fn exact_flexure(
+    py: Python<'_>,
     length: Real,
     ei: Option<&Bound<'_, PyAny>>,
+    kappa: Option<&Bound<'_, PyAny>>,
     rest: Option<&Bound<'_, PyAny>>,
+    stacklevel: i32,
 ) -> PyResult<Flexure> {
+    let given_kappa = crate::convert::kappa(py, kappa, rest, stacklevel)?;
     let given = section::Arguments {
         ei,
         modulus: None,
@@ -232,14 +248,14 @@ pub fn exact_flexure(
         mass_per_length: None,
     };
     let (ei, section) = section::read(&given)?;
-    let kappa = match rest {
-        Some(r) => vector("rest", &crate::coordinates::array_like("rest", r)?, None)?,
-        None => vec![0.0; 3],
+    let (name, kappa) = match given_kappa {
+        Some((name, k)) => (name, vector(name, &crate::coordinates::array_like(name, k)?, None)?),
+        None => ("kappa", vec![0.0; 3]),
     };
     let max = flexure::joint::MAX_ORDER;
     if !(1..=max).contains(&kappa.len()) {
         return Err(PyValueError::new_err(format!(
-            "rest must have from 1 to {max} entries (rest curvature coefficients), got {}",
+            "{name} must have from 1 to {max} entries (rest curvature coefficients), got {}",
             kappa.len()
         )));
     }

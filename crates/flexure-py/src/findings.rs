@@ -3,7 +3,8 @@
 //! (a closure open at rest) or `IntersectionWarning` (parts that cross);
 //! a closure with `preload = true` is listed as a note, without a warning.
 
-use crate::{IntersectionWarning, PreloadWarning, warn};
+use crate::errors::{IntersectionWarning, PreloadWarning};
+use crate::warnings::warn;
 use flexure::mechanism::findings::{Crossing, OpenClosure, Severity};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};

@@ -2,7 +2,11 @@
 //! body (`Flexure.modes`), of a mechanism (`Mechanism.modes`), and the exact
 //! beam's frequencies (`flexure.exact.frequencies`).
 
-use crate::{Flexure, StabilityWarning, count, finite, interruptible, warn, warn_values};
+use crate::convert::{count, finite};
+use crate::errors::StabilityWarning;
+use crate::interrupt::interruptible;
+use crate::joint::Flexure;
+use crate::warnings::{sig, warn, warn_values};
 use flexure::dynamics::{self, Body, Modes};
 use flexure::estimate::{self, Accuracy, ValueEstimate};
 use flexure::mechanism::statics::Settings;
@@ -133,7 +137,7 @@ pub fn flexure_modes<'py>(
     put_estimate(py, &out, &e, None)?;
     let (order, points) = e.reference_orders[0];
     let reference = format!("order {order} with {points} quadrature points");
-    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
+    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
     let hint = "build the flexure with a higher order, or ask fewer modes";
     warn_values(py, "Flexure.modes", &e, target, name, &reference, hint, 1)?;
     crate::strict::finite_slice("Flexure.modes shapes", modes.shapes.as_slice())?;
@@ -172,7 +176,7 @@ pub fn mechanism_modes<'py>(
             names.iter().zip(&e.reference_orders).map(|(n, (o, _))| format!("{n:?} at order {o}")).collect();
         format!("the mechanism with {}", parts.join(", "))
     };
-    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, crate::sig(modes.omega[k]));
+    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
     let hint = "give its flexures order = \"auto\" (or a higher order) in the file, or ask fewer modes";
     warn_values(py, "Mechanism.modes", &e, target, name, &reference, hint, 2)?;
     crate::strict::finite_slice("Mechanism.modes shapes", modes.shapes.as_slice())?;
@@ -217,14 +221,14 @@ pub fn exact_frequencies<'py>(
     let f = &flexure.inner;
     if let Some(k) = f.rest().iter().find(|&&k| k != 0.0) {
         return Err(PyValueError::new_err(format!(
-            "invalid rest: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
+            "invalid kappa: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
         )));
     }
     let compression = finite("compression", compression)?;
     let body = tip_body(tip_mass, tip_inertia, tip_com)?;
     let asked = match count.filter(|c| !c.is_none()) {
         None => DEFAULT_COUNT,
-        Some(c) => match crate::count("count", c, 64)? {
+        Some(c) => match crate::convert::count("count", c, 64)? {
             k @ 1..=64 => k,
             k => return Err(PyValueError::new_err(format!("invalid count = {k}: must be from 1 to 64"))),
         },

@@ -38,7 +38,7 @@ pub fn motion<'py>(
         ..Default::default()
     };
     let settings = SimulationSettings { motion, ..Default::default() };
-    let (run, open) = crate::interruptible(py, || {
+    let (run, open) = crate::interrupt::interruptible(py, || {
         let open = flexure::mechanism::findings::open_closures(m, &settings.equilibrium)?;
         // Python raises on a run that stopped early, as before.
         let run = simulate(m, &settings, start)?;

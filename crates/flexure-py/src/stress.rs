@@ -56,7 +56,7 @@ pub fn safety_factor_of(
             "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
             p.value, p.at
         );
-        crate::warn(py, &py.get_type::<crate::YieldWarning>(), text, stacklevel)?;
+        crate::warnings::warn(py, &py.get_type::<crate::errors::YieldWarning>(), text, stacklevel)?;
     }
     Ok(Some((p, factor)))
 }
@@ -113,4 +113,17 @@ fn table<'py>(py: Python<'py>, n: usize, columns: Vec<(&str, Vec<f64>)>) -> PyRe
         out.set_item(name, PyArray1::from_vec(py, values))?;
     }
     Ok(out)
+}
+
+/// A peak stress or curvature of `f` at `alpha`, as a dict, when it has one:
+/// `stress` with a thickness, else `curvature_max`.
+pub fn peak_item<'py>(
+    py: Python<'py>,
+    f: &flexure::Flexure,
+    alpha: &[f64],
+) -> PyResult<(&'static str, Bound<'py, PyDict>)> {
+    match flexure::stress::peak_stress(f, alpha) {
+        Some(p) => Ok(("stress", peak_dict(py, &p)?)),
+        None => Ok(("curvature_max", peak_dict(py, &flexure::stress::peak_curvature(f, alpha))?)),
+    }
 }

@@ -1,16 +1,15 @@
 //! What `flexure solve` and `flexure buckle` answer on a mechanism file, in
-//! Python: the joints' `error_estimate` and `flagged` of a solve, linear
-//! buckling (`Mechanism.buckle`), the compliance of a frame on a body
+//! Python, beside the solve itself (`solve.rs`): linear buckling (`Mechanism.buckle`), the compliance of a frame on a body
 //! (`Mechanism.compliance`, as `solve --compliance BODY --at X,Y`) and
 //! sweeps of one load (`Mechanism.sweep`, as `solve --sweep`). The numbers
 //! are the library's; the stack level of every warning is 2, the line that
 //! called `flexure.Mechanism`'s Python wrapper.
 
+use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
+use crate::findings;
+use crate::interrupt::{clear_raised, interruptible, raised_during, signalled};
 use crate::strict::finite_answer;
-use crate::{
-    AccuracyWarning, ConvergenceError, clear_raised, findings, interruptible, raised_during, signalled, to_py, warn,
-    warn_values,
-};
+use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
@@ -26,37 +25,6 @@ use pyo3::types::PyDict;
 /// per-flexure lists, such as an estimate's reference orders).
 fn flexure_names(m: &Mechanism) -> Vec<String> {
     m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_))).map(|j| j.name.clone()).collect()
-}
-
-/// `error_estimate` {flexure joint: {position, angle, curvature[, stress]}}
-/// and `flagged` into `out`, as `flexure solve --json` writes them: each
-/// joint whose error was estimated (`estimated[k]` is `None` for one whose
-/// estimate failed, which the caller has warned about; it counts as
-/// flagged, since its accuracy is unknown).
-pub fn put_joint_estimates(
-    py: Python<'_>,
-    out: &Bound<'_, PyDict>,
-    estimated: &[(String, Option<&ErrorEstimate>)],
-) -> PyResult<()> {
-    let map = PyDict::new(py);
-    let mut flagged = false;
-    for (name, e) in estimated {
-        let Some(e) = e else {
-            flagged = true;
-            continue;
-        };
-        let d = PyDict::new(py);
-        d.set_item("position", e.position)?;
-        d.set_item("angle", e.angle)?;
-        d.set_item("curvature", e.curvature)?;
-        if let Some(stress) = e.stress {
-            d.set_item("stress", stress)?;
-        }
-        map.set_item(name, d)?;
-        flagged |= e.flagged;
-    }
-    out.set_item("error_estimate", map)?;
-    out.set_item("flagged", flagged)
 }
 
 /// Linear buckling about the unloaded configuration, as `flexure buckle --json`:
@@ -112,7 +80,7 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
     } else {
         "give the flexures order = \"auto\" (or a higher order) in the file"
     };
-    let name = |_| format!("the load factor {}", crate::sig(b.load_factor));
+    let name = |_| format!("the load factor {}", sig(b.load_factor));
     warn_values(py, "Mechanism.buckle", &e, target, name, &reference, hint, 2)?;
     let listed = findings::report(py, "Mechanism.buckle", &open, &[], 2)?;
     if !listed.is_empty() {
@@ -368,7 +336,7 @@ fn answer<'py>(
             l.value,
             100.0 * l.fraction
         );
-        warn(py, &py.get_type::<crate::StabilityWarning>(), text, 2)?;
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
     }
     let flagged: Vec<f64> = estimated
         .iter()
