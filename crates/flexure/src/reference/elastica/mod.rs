@@ -99,7 +99,7 @@ pub fn shoot<T: Scalar>(
     tol: &Tolerance,
     observe: impl FnMut(f64, &[T; 3]),
 ) -> Result<[T; 3]> {
-    let (l, stops) = (flexure.length(), super::stops(flexure));
+    let (l, stops) = (flexure.length(), crate::reference::stops(flexure));
     integrate_through(rhs(flexure, root_moment, fx, fy), 0.0, l, &stops, [T::zero(); 3], tol, &mut 0.0, observe)
 }
 
@@ -214,7 +214,7 @@ impl<'a> Chain<'a> {
     fn new(flexure: &'a Flexure, load: TipLoad, ode: Tolerance) -> Result<Self> {
         let l = flexure.length();
         let scale = flexure.ei() / l + load.moment.abs() + l * (load.fx.abs() + load.fy.abs());
-        let stretch = super::Stretch::of(flexure)?;
+        let stretch = crate::reference::Stretch::of(flexure)?;
         let uniform = flexure.section().is_uniform();
         let growth = if uniform {
             l * (load.fx.hypot(load.fy) / flexure.ei()).sqrt()
@@ -241,7 +241,7 @@ impl<'a> Chain<'a> {
         let load_moment = load.moment.abs() + l * load.fx.hypot(load.fy);
         let reach = load_moment / stiffness;
         let turn = if uniform { reach } else { load_moment * stretch.flexibility };
-        let stops = super::stops(flexure);
+        let stops = crate::reference::stops(flexure);
         let mut chain = Self {
             flexure,
             load,
@@ -733,9 +733,9 @@ pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Set
     for (name, g) in ["guess[0]", "guess[1]", "guess[2]"].into_iter().zip(guess) {
         crate::error::finite(name, g)?;
     }
-    let s = super::Stretch::of(flexure)?;
+    let s = crate::reference::Stretch::of(flexure)?;
     let (flexibility, stretch) = (s.flexibility, s.total());
-    let stops = super::stops(flexure);
+    let stops = crate::reference::stops(flexure);
     let mut problem = Through { flexure, target: *target, ode: settings.ode, stops, flexibility, stretch };
     let mut ws = solver::Workspace::new(3);
     ws.x.copy_from_slice(&guess);
@@ -808,7 +808,7 @@ impl<'a> Trace<'a> {
         TipLoad { moment: root_moment, fx, fy }.validate()?;
         tol.validate()?;
         let l = flexure.length();
-        let mut trace = Self { flexure, fx, fy, stops: super::stops(flexure), nodes: Vec::new(), ode: *tol };
+        let mut trace = Self { flexure, fx, fy, stops: crate::reference::stops(flexure), nodes: Vec::new(), ode: *tol };
         let mut node = (0.0, [0.0, root_moment, 0.0, 0.0]);
         trace.nodes.push(node);
         for j in 1..=SHOT_NODES {
