@@ -179,10 +179,11 @@
 //!
 //! In the repository: `README.md` (the two commands, and a tour of the
 //! command line and Python), `docs/cli.md` (every subcommand and option),
-//! `docs/mechanism-format.md` (the mechanism file), `ARCHITECTURE.md` (the
-//! layers, the solver's policies, where each equation lives),
-//! `VALIDATION.md` (the error estimates against the exact elastica),
-//! `BENCHMARKS.md` (speed), `ERRATA.md` (the paper's misprints).
+//! `docs/mechanism-format.md` (the mechanism file), `docs/python.md` (the
+//! Python package), `ARCHITECTURE.md` (the layers, the solver's policies,
+//! where each equation lives), `VALIDATION.md` (the error estimates against
+//! the exact elastica), `BENCHMARKS.md` (speed), `ERRATA.md` (the paper's
+//! misprints), `CHANGELOG.md` (what changed for users).
 
 pub mod basis;
 pub mod buckling;
