@@ -125,12 +125,26 @@ function textNodes(html, where) {
 }
 
 // Formulas written in the doc comments (`///`, `//!`, and files pulled in by
-// `#![doc = include_str!(…)]`), outside code blocks and code spans.
+// `#![doc = include_str!(…)]`), outside code blocks, code spans and test
+// modules.
 function docBlocks(file) {
   const blocks = [];
   let current = null;
   const lines = readFileSync(file, "utf8").split("\n");
+  // A `#[cfg(test)]` module's docs are never rendered: skip it, to its
+  // closing brace at the module's own indentation.
+  let skipUntil = null;
   lines.forEach((line, i) => {
+    if (skipUntil !== null) {
+      if (line === skipUntil) skipUntil = null;
+      return;
+    }
+    const test = line.match(/^(\s*)#\[cfg\(test\)\]\s*$/);
+    if (test && /^\s*(pub(\([^)]*\))?\s+)?mod\s+\w+\s*\{\s*$/.test(lines[i + 1] ?? "")) {
+      skipUntil = `${test[1]}}`;
+      current = null;
+      return;
+    }
     const include = line.match(/^\s*#!?\[doc\s*=\s*include_str!\("([^"]+)"\)\]/);
     if (include) {
       blocks.push({ line: i + 1, text: readFileSync(join(dirname(file), include[1]), "utf8") });

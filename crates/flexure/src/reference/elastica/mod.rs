@@ -1,0 +1,92 @@
+//! The exact large-deflection elastica (paper Eq. 3), solved by shooting on
+//! the shared solver core ([`crate::solver`]).
+//!
+//! One concept a file:
+//!
+//! - `shot.rs`: one shot of Eq. 3 from the clamped root ([`shoot`]);
+//! - `chain.rs`: the tip-load elastica by multiple shooting, the solver
+//!   core's problem ([`MAX_FORCE_GROWTH`] bounds the force it follows);
+//! - `deflection.rs`: the load followed from rest ([`deflect`],
+//!   [`deflect_traced`], [`Solution`]);
+//! - `jacobi.rs`: its stability, the Jacobi (conjugate-point) test ([`is_stable`]);
+//! - `connection.rs`: the exact minimum-energy shape through a pose (Eq. 16,
+//!   [`connect`](fn@connect), [`Connection`]);
+//! - `trace.rs`: cross-sections, bending moment and stress along a solved
+//!   shape ([`Trace`], [`Point`]).
+//!
+//! [`Settings`] here serve them all.
+
+mod chain;
+mod connection;
+mod deflection;
+mod jacobi;
+mod shot;
+mod trace;
+
+pub use chain::MAX_FORCE_GROWTH;
+pub use connection::{Connection, connect};
+pub use deflection::{Solution, deflect, deflect_traced};
+pub use jacobi::is_stable;
+pub use shot::shoot;
+pub use trace::{Point, Trace};
+
+use crate::error::{Error, Result};
+use crate::ode::Tolerance;
+use crate::solver;
+
+/// Settings of [`deflect`] and [`connect`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Integrator tolerance.
+    pub ode: Tolerance,
+    /// Newton and load-continuation settings. The residual is the tip-moment
+    /// mismatch, relative to $EI/L + |M| + L(|F_x| + |F_y|)$ ([`deflect`]),
+    /// or the tip-pose mismatch relative to $L$ ([`connect`]).
+    pub solver: solver::Settings,
+    /// The integrator's tolerance (relative and absolute) while [`deflect`]
+    /// follows the loading path; the end state is then refined to `ode`.
+    /// The path only has to keep to its branch and tell where it loses
+    /// stability, and a looser integration takes far fewer steps, the more
+    /// so the more the beam bends. Zero (or anything below `ode`'s
+    /// tolerances) follows the path at `ode` itself.
+    pub path_tolerance: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self { ode: Tolerance::default(), solver: solver::Settings::default(), path_tolerance: PATH_TOLERANCE }
+    }
+}
+
+/// The default [`Settings::path_tolerance`]: where the loading path still
+/// costs a few times less than the refinement of its end (a tip angle of
+/// 45° to 270°), while its states and stability stay those of the exact
+/// elastica to about that tolerance.
+pub const PATH_TOLERANCE: f64 = 1e-6;
+
+impl Settings {
+    /// Checks the integrator and solver settings, naming the first bad one.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::reference::elastica::Settings;
+    /// let mut s = Settings::default();
+    /// s.ode.relative = f64::NAN;
+    /// assert!(s.validate().is_err());
+    /// ```
+    pub fn validate(&self) -> Result<()> {
+        self.ode.validate()?;
+        self.solver.validate()?;
+        let p = self.path_tolerance;
+        if !(p.is_finite() && (0.0..=1e-4).contains(&p)) {
+            return Err(Error::invalid("path_tolerance", p, "must be a finite number from 0 to 1e-4"));
+        }
+        Ok(())
+    }
+
+    /// The integrator's tolerance along the loading path.
+    pub(super) fn path_ode(&self) -> Tolerance {
+        let p = self.path_tolerance;
+        Tolerance { relative: self.ode.relative.max(p), absolute: self.ode.absolute.max(p), ..self.ode }
+    }
+}
