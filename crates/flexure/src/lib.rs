@@ -59,6 +59,7 @@
 //! each of the paper's equations lives, and the solver's policies.
 
 pub mod basis;
+pub mod body;
 pub mod buckling;
 pub mod compliance;
 pub mod connect;
@@ -70,6 +71,7 @@ pub mod joint;
 pub mod kinematics;
 pub mod limit;
 pub mod linalg;
+pub mod mass;
 pub mod mechanism;
 pub mod ode;
 pub mod quadrature;

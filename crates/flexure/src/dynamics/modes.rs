@@ -1,9 +1,9 @@
 //! Vibration modes of one flexure joint about its loaded equilibrium.
 
-use super::body::Body;
-use super::mass::{MassData, MassModel, update};
+use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
+use crate::mass::{MassData, MassModel, update};
 use crate::statics::{Statics, TipLoad, deflect};
 use nalgebra::DMatrix;
 

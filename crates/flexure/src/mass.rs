@@ -29,7 +29,7 @@
 //! same accuracy as the tip. The discrete $h$ is the exact derivative of the
 //! discrete $M$ (the same nodes), not an approximation of it.
 
-use super::body::Body;
+use crate::body::Body;
 use crate::error::{Error, Result};
 use crate::joint::{Basis, Flexure};
 use crate::quadrature::GaussLegendre;
