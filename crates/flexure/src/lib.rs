@@ -59,7 +59,6 @@
 //! each of the paper's equations lives, and the solver's policies.
 
 pub mod basis;
-pub mod body;
 pub mod buckling;
 pub mod compliance;
 pub mod connect;
@@ -67,6 +66,7 @@ pub mod dynamics;
 pub mod energy;
 pub mod error;
 pub mod estimate;
+pub mod inertia;
 pub mod joint;
 pub mod kinematics;
 pub mod limit;

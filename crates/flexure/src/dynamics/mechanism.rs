@@ -298,7 +298,7 @@ impl MechanismSystem {
             }
         }
         let bodies = (1..m.bodies.len())
-            .filter(|&b| m.bodies[b].mass > 0.0 || m.bodies[b].inertia > 0.0)
+            .filter(|&b| m.bodies[b].rigid_inertia().has_inertia())
             .map(|b| (b, path_columns(m, b)))
             .collect();
         let length = m.size();

@@ -1,4 +1,5 @@
-//! Dynamics of one flexure joint carrying an optional rigid tip [`Body`]:
+//! Dynamics of one flexure joint carrying an optional rigid tip body
+//! ([`RigidInertia`](crate::inertia::RigidInertia)):
 //! the generalized mass matrix and velocity-product terms of its
 //! coordinates ([`crate::mass`]), and its vibration modes about a loaded
 //! equilibrium ([`mod@modes`]); and the [`System`] interface between
@@ -25,7 +26,10 @@ pub mod simulation;
 pub mod system;
 
 // The mass models sit beside the section they integrate; their old paths stay.
-pub use crate::body::{self, Body};
+/// The old name of [`RigidInertia`](crate::inertia::RigidInertia), the inertia of
+/// a flexure's tip body: a mechanism's [`Body`](crate::mechanism::Body) is the
+/// one body type.
+pub use crate::inertia::RigidInertia as Body;
 pub use crate::mass::{self, MassData, MassModel, update as update_mass};
 pub use modes::{Modes, modes};
 pub use simulation::{Simulation, SimulationSettings, Start, simulate};

@@ -1,7 +1,7 @@
 //! Vibration modes of one flexure joint about its loaded equilibrium.
 
-use crate::body::Body;
 use crate::error::{Error, Result};
+use crate::inertia::RigidInertia;
 use crate::joint::Flexure;
 use crate::mass::{MassData, MassModel, update};
 use crate::statics::{Statics, TipLoad, deflect};
@@ -56,17 +56,18 @@ pub struct Modes {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{modes, Body};
+/// use flexure::dynamics::modes;
+/// use flexure::inertia::RigidInertia;
 /// use flexure::{Flexure, TipLoad};
 /// // A massless cantilever with a point mass: ω = √(3EI/(mL³)) exactly (the
 /// // model's tip compliance is exact from order 2).
 /// let f = Flexure::new(0.5, 2.0, 3).unwrap();
-/// let body = Body::new(0.1, 0.0, [0.0, 0.0]).unwrap();
+/// let body = RigidInertia::new(0.1, 0.0, [0.0, 0.0]).unwrap();
 /// let m = modes(&f, &TipLoad::default(), Some(&body), 3).unwrap();
 /// assert_eq!(m.omega.len(), 1);
 /// assert!((m.omega[0] - (3.0 * 2.0 / (0.1 * 0.125f64)).sqrt()).abs() < 1e-9 * m.omega[0]);
 /// ```
-pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usize) -> Result<Modes> {
+pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&RigidInertia>, count: usize) -> Result<Modes> {
     if count == 0 {
         return Err(Error::invalid("count", count, "must be at least 1"));
     }
