@@ -229,7 +229,7 @@ pub struct Mechanism {
     /// Gravity (m/s²), zero if absent.
     pub gravity: [f64; 2],
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
-    pub schedules: Vec<crate::dynamics::schedule::Schedule>,
+    pub schedules: Vec<schedule::Schedule>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
