@@ -20,7 +20,7 @@ use crate::error::{Error, Result};
 /// let e = RigidInertia::new(-1.0, 0.0, [0.0, 0.0]).unwrap_err();
 /// assert!(e.to_string().contains("mass"));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct RigidInertia {
     /// Mass $m$ (kg), zero or more.
     pub mass: f64,

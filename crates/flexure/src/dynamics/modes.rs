@@ -17,7 +17,10 @@ const MASSLESS: f64 = 1e-12;
 const RESOLVED: f64 = 1e-12;
 
 /// Natural frequencies and mode shapes, lowest first.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// It serializes with its fields' names, `shapes` as one list of
+/// amplitudes per mode.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Modes {
     /// Angular frequencies $\omega$ (rad/s), ascending.
     pub omega: Vec<f64>,
@@ -25,6 +28,7 @@ pub struct Modes {
     pub frequency: Vec<f64>,
     /// One column per mode: the coordinates' amplitudes $v$, normalized to
     /// $v^TMv = 1$, with the entry of largest magnitude positive.
+    #[serde(serialize_with = "columns")]
     pub shapes: DMatrix<f64>,
     /// How many directions carry no inertia and were condensed out as
     /// quasi-static (zero for a flexure with mass).
@@ -37,6 +41,11 @@ pub struct Modes {
     /// The equilibrium's coordinates the modes are taken about (a flexure's
     /// $\alpha$, a mechanism's $q$); empty from [`finite_modes`].
     pub coordinates: Vec<f64>,
+}
+
+/// A matrix as the list of its columns (nalgebra serializes none here).
+fn columns<S: serde::Serializer>(m: &DMatrix<f64>, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_seq(m.column_iter().map(|c| c.iter().copied().collect::<Vec<f64>>()))
 }
 
 /// The modes of `flexure` with an optional tip `body` about its equilibrium

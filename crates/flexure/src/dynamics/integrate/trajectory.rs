@@ -4,7 +4,10 @@ use crate::dynamics::System;
 use crate::error::Result;
 
 /// A simulated motion, sampled at [`Settings::times`](super::Settings::times).
-#[derive(Debug, Clone, PartialEq)]
+///
+/// It serializes with its fields' names; `coordinates` and `velocities`
+/// stay flat, `dim` per sample.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Trajectory {
     /// Number of coordinates $n$.
     pub dim: usize,
