@@ -330,7 +330,7 @@ fn energy_balance_at_random_states() {
 }
 
 /// One flexure from the ground with a tip body: M and h equal the
-/// single-flexure model's (`dynamics::mass`, itself checked against closed
+/// single-flexure model's (`flexure::mass`, itself checked against closed
 /// forms) to rounding, 1e-12 relative. The mechanism places the body at the
 /// tip of the flexure's kinematics (its own Gauss rule, as the statics do),
 /// the single-flexure model at the tip of its nested rule; `quadrature = 24`
