@@ -183,7 +183,8 @@ fn connect_with_allocates_only_its_answer() {
 /// mass matrix with its velocity-product terms (`dynamics::update_mass`).
 #[test]
 fn sections_and_mass_do_not_allocate() {
-    use flexure::dynamics::{Body, MassData, MassModel, update_mass};
+    use flexure::inertia::RigidInertia;
+    use flexure::mass::{MassData, MassModel, update as update_mass};
     use flexure::section::{Notch, Profile, Section};
     let taper = Section::rectangle(200e9, None, Profile::Constant(0.01), Profile::Linear { root: 4e-4, tip: 2e-4 })
         .unwrap()
@@ -201,7 +202,7 @@ fn sections_and_mass_do_not_allocate() {
         let mut g = vec![0.0; order];
         let mut data = Statics::new(&f);
         let load = TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * f.ei() / (0.01 * 0.01) };
-        let body = Body::new(0.005, 1e-7, [0.002, 0.0]).unwrap();
+        let body = RigidInertia::new(0.005, 1e-7, [0.002, 0.0]).unwrap();
         let model = MassModel::new(&f, Some(&body)).unwrap();
         let mut mass = MassData::new(&model);
         deflect(&f, &load, &mut data, &Default::default()).unwrap();

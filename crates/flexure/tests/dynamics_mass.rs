@@ -1,10 +1,11 @@
 //! The generalized mass matrix M(α) and velocity-product terms h(α, α̇) of
-//! one flexure with a tip body (`flexure::dynamics::mass`), against closed
+//! one flexure with a tip body (`flexure::mass`), against closed
 //! forms (the straight uniform beam, the constant-curvature arc), a much
 //! finer nested rule, num-dual, central differences and the energy balance.
 
 use crate::seeded::Rng;
-use flexure::dynamics::{Body, MassData, MassModel, update_mass};
+use flexure::inertia::RigidInertia;
+use flexure::mass::{MassData, MassModel, update as update_mass};
 use flexure::section::{Profile, Section};
 use flexure::{Error, Flexure};
 use nalgebra::DMatrix;
@@ -85,7 +86,7 @@ mod poly {
 fn straight_uniform_beam_matches_its_closed_form() {
     let (length, h) = (0.03, 0.002);
     for n in 1..=6 {
-        for body in [None, Some(Body::new(0.004, 3e-7, [0.01, -0.004]).unwrap())] {
+        for body in [None, Some(RigidInertia::new(0.004, 3e-7, [0.01, -0.004]).unwrap())] {
             let f = steel(n, length, Profile::Constant(h));
             let mu = 7850.0 * 0.01 * h;
             let rho_i = mu * h * h / 12.0;
@@ -124,7 +125,7 @@ fn bent_arc_kinetic_energy_matches_its_closed_form() {
     let (length, h) = (0.05, 0.004);
     let mu = 7850.0 * 0.01 * h;
     let rho_i = mu * h * h / 12.0;
-    let body = Body::new(0.01, 2e-6, [0.02, 0.005]).unwrap();
+    let body = RigidInertia::new(0.01, 2e-6, [0.02, 0.005]).unwrap();
     for a in [0.3, 1.5, 3.0, 5.0] {
         let dr = |t: f64| {
             let (s, c) = (a * t).sin_cos();
@@ -167,7 +168,7 @@ fn bent_arc_kinetic_energy_matches_its_closed_form() {
 #[test]
 fn nested_quadrature_converges() {
     let mut rng = Rng(7);
-    let body = Body::new(0.02, 1e-6, [0.01, 0.003]).unwrap();
+    let body = RigidInertia::new(0.02, 1e-6, [0.01, 0.003]).unwrap();
     for n in [3, 6, 10] {
         for taper in [false, true] {
             let h = if taper { Profile::Linear { root: 4e-4, tip: 1e-4 } } else { Profile::Constant(2e-4) };
@@ -224,7 +225,7 @@ fn notch_mass_is_refined() {
 #[test]
 fn velocity_products_match_num_dual() {
     let mut rng = Rng(11);
-    let body = Body::new(0.03, 2e-6, [0.015, -0.004]).unwrap();
+    let body = RigidInertia::new(0.03, 2e-6, [0.015, -0.004]).unwrap();
     let flexures = varied();
     for f in &flexures {
         let n = f.order();
@@ -265,7 +266,7 @@ fn velocity_products_match_num_dual() {
 #[test]
 fn velocity_products_match_central_differences() {
     let mut rng = Rng(3);
-    let body = Body::new(0.01, 1e-6, [0.01, 0.002]).unwrap();
+    let body = RigidInertia::new(0.01, 1e-6, [0.01, 0.002]).unwrap();
     let f = steel(5, 0.03, Profile::Constant(3e-4));
     let model = MassModel::new(&f, Some(&body)).unwrap();
     let mut data = MassData::new(&model);
@@ -299,7 +300,7 @@ fn velocity_products_match_central_differences() {
 /// breaks the balance at the percent level.
 #[test]
 fn free_motion_conserves_energy() {
-    let body = Body::new(0.002, 2e-8, [0.005, 0.001]).unwrap();
+    let body = RigidInertia::new(0.002, 2e-8, [0.005, 0.001]).unwrap();
     let f = steel(3, 0.02, Profile::Constant(2e-4));
     let model = MassModel::new(&f, Some(&body)).unwrap();
     let k = DMatrix::from_row_slice(3, 3, f.stiffness_matrix());
@@ -331,11 +332,11 @@ fn free_motion_conserves_energy() {
 #[test]
 fn body_fields_are_validated_by_name() {
     let cases = [
-        (Body::new(-1.0, 0.0, [0.0, 0.0]), "mass"),
-        (Body::new(f64::NAN, 0.0, [0.0, 0.0]), "mass"),
-        (Body::new(1.0, -1e-9, [0.0, 0.0]), "inertia"),
-        (Body::new(1.0, f64::INFINITY, [0.0, 0.0]), "inertia"),
-        (Body::new(1.0, 0.0, [f64::NAN, 0.0]), "com"),
+        (RigidInertia::new(-1.0, 0.0, [0.0, 0.0]), "mass"),
+        (RigidInertia::new(f64::NAN, 0.0, [0.0, 0.0]), "mass"),
+        (RigidInertia::new(1.0, -1e-9, [0.0, 0.0]), "inertia"),
+        (RigidInertia::new(1.0, f64::INFINITY, [0.0, 0.0]), "inertia"),
+        (RigidInertia::new(1.0, 0.0, [f64::NAN, 0.0]), "com"),
     ];
     for (result, name) in cases {
         match result {
@@ -343,10 +344,10 @@ fn body_fields_are_validated_by_name() {
             other => panic!("expected an error naming {name}, got {other:?}"),
         }
     }
-    assert!(Body::new(0.0, 0.0, [0.0, 0.0]).is_ok());
+    assert!(RigidInertia::new(0.0, 0.0, [0.0, 0.0]).is_ok());
     // An invalid body built field by field is refused by the model too.
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
-    let bad = Body { mass: 1.0, inertia: -1.0, com: [0.0, 0.0] };
+    let bad = RigidInertia { mass: 1.0, inertia: -1.0, com: [0.0, 0.0] };
     assert!(matches!(MassModel::new(&f, Some(&bad)), Err(Error::InvalidParameter { name: "inertia", .. })));
     let _ = massive(3, 1.0, 1.0, 1.0);
 }
@@ -359,7 +360,7 @@ fn body_fields_are_validated_by_name() {
 /// (exact: ψᵢψⱼ = ψⱼψᵢ node by node). The mass is ∫μ ds by the outer rule.
 #[test]
 fn weight_moments_match_num_dual_and_central_differences() {
-    use flexure::dynamics::mass::{Weight, weight};
+    use flexure::mass::{Weight, weight};
     let mut rng = Rng(17);
     let flexures = varied();
     let h = 1e-5;

@@ -330,7 +330,7 @@ fn energy_balance_at_random_states() {
 }
 
 /// One flexure from the ground with a tip body: M and h equal the
-/// single-flexure model's (`dynamics::mass`, itself checked against closed
+/// single-flexure model's (`flexure::mass`, itself checked against closed
 /// forms) to rounding, 1e-12 relative. The mechanism places the body at the
 /// tip of the flexure's kinematics (its own Gauss rule, as the statics do),
 /// the single-flexure model at the tip of its nested rule; `quadrature = 24`
@@ -343,7 +343,7 @@ fn one_flexure_matches_the_flexure_mass_model() {
                 [[body]]\nname = \"tip\"\nmass = 0.004\ninertia = 2e-7\ncom = [0.005, -0.002]\n";
     let m = from_toml(text).unwrap();
     let JointKind::Flexure(f) = &m.joints[0].kind else { unreachable!() };
-    let body = flexure::dynamics::Body::new(0.004, 2e-7, [0.005, -0.002]).unwrap();
+    let body = flexure::inertia::RigidInertia::new(0.004, 2e-7, [0.005, -0.002]).unwrap();
     let model = MassModel::new(f, Some(&body)).unwrap();
     let mut data = MassData::new(&model);
     let mut sys = MechanismSystem::new(&m).unwrap();

@@ -105,7 +105,7 @@ fn frequency_falls_to_zero_at_the_buckling_load() {
     let m1 = cantilever(keys, body, &push(1.0));
     let critical = buckle(&m1, &Settings::default()).unwrap().load_factor;
     let JointKind::Flexure(f) = &m1.joints[0].kind else { unreachable!() };
-    let tip = flexure::dynamics::Body::new(0.05, 1e-6, [0.0, 0.0]).unwrap();
+    let tip = flexure::inertia::RigidInertia::new(0.05, 1e-6, [0.0, 0.0]).unwrap();
     let omega2 = |p: f64| {
         let m = cantilever(keys, body, &push(p));
         modes(&m, &Settings::default(), 1).unwrap().omega[0].powi(2)

@@ -4,7 +4,9 @@
 //! massless flexure carrying a rigid body (its exact tip compliance), rotary
 //! inertia, bent equilibria, and frequencies that fall to zero at buckling.
 
-use flexure::dynamics::{Body, MassData, MassModel, modes, update_mass};
+use flexure::dynamics::modes;
+use flexure::inertia::RigidInertia;
+use flexure::mass::{MassData, MassModel, update as update_mass};
 use flexure::reference::vibration::frequencies;
 use flexure::section::{Profile, Section};
 use flexure::{Error, Flexure, TipConstraint, TipLoad, buckling_load};
@@ -63,7 +65,7 @@ fn distributed_mass_converges_in_order_to_the_cantilever() {
 #[test]
 fn tip_mass_on_a_distributed_beam() {
     for r in [0.5, 1.0, 10.0] {
-        let body = Body::new(r, 0.0, [0.0, 0.0]).unwrap();
+        let body = RigidInertia::new(r, 0.0, [0.0, 0.0]).unwrap();
         let exact = frequencies(&uniform(3, Some(1.0)), Some(&body), 0.0, 3, &Default::default()).unwrap().omega;
         let m = modes(&uniform(12, Some(1.0)), &TipLoad::default(), Some(&body), 3).unwrap();
         for (w, e) in m.omega.iter().zip(&exact) {
@@ -77,7 +79,7 @@ fn tip_mass_on_a_distributed_beam() {
 /// The exact 2×2 answer for a massless flexure carrying a body: K_tip = C⁻¹ with
 /// C the exact tip compliance in (w, θ), C = ∫₀ᴸ [[(L−s)², L−s], [L−s, 1]]/EI ds,
 /// and M_b = [[m, m c_x], [m c_x, I_c + m|c|²]]; ω² the eigenvalues of M_b⁻¹K_tip.
-fn two_by_two(flexure: &Flexure, body: &Body) -> Vec<f64> {
+fn two_by_two(flexure: &Flexure, body: &RigidInertia) -> Vec<f64> {
     let l = flexure.length();
     let c = flexure::quadrature::integrate(&[], 16, true, 0.0, 3, |t, out| {
         let (arm, ei) = (l * (1.0 - t), flexure.ei_at(t * l));
@@ -104,9 +106,9 @@ fn two_by_two(flexure: &Flexure, body: &Body) -> Vec<f64> {
 #[test]
 fn massless_flexure_with_a_rigid_body() {
     let bodies = [
-        Body::new(0.3, 0.0, [0.0, 0.0]).unwrap(),
-        Body::new(0.3, 0.01, [0.0, 0.0]).unwrap(),
-        Body::new(0.3, 0.002, [0.4, -0.1]).unwrap(),
+        RigidInertia::new(0.3, 0.0, [0.0, 0.0]).unwrap(),
+        RigidInertia::new(0.3, 0.01, [0.0, 0.0]).unwrap(),
+        RigidInertia::new(0.3, 0.002, [0.4, -0.1]).unwrap(),
     ];
     for body in &bodies {
         let exact = two_by_two(&uniform(3, None), body);
@@ -135,7 +137,7 @@ fn massless_flexure_with_a_rigid_body() {
 /// N = 9, and within 1e-12 of the 2×2 answer at N = 10.
 #[test]
 fn massless_tapered_flexure_converges() {
-    let body = Body::new(0.3, 0.002, [0.2, 0.0]).unwrap();
+    let body = RigidInertia::new(0.3, 0.002, [0.2, 0.0]).unwrap();
     let ei = Profile::Linear { root: 2.0, tip: 1.0 };
     let exact = two_by_two(&beam(3, ei.clone(), None), &body);
     let error = |n: usize| {
@@ -186,7 +188,7 @@ fn rotary_inertia_matches_the_rayleigh_beam() {
 fn bent_equilibrium_against_the_exact_arc_compliance() {
     let a = 1.5;
     let m = 0.4;
-    let body = Body::new(m, 0.0, [0.0, 0.0]).unwrap();
+    let body = RigidInertia::new(m, 0.0, [0.0, 0.0]).unwrap();
     let arc = Flexure::new(1.0, 1.0, 10).unwrap().with_rest(&[a, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
     let c = flexure::reference::compliance::compliance_tip(&arc, &Default::default()).unwrap();
     let ct = Matrix2::new(c[(1, 1)], c[(1, 2)], c[(2, 1)], c[(2, 2)]);
@@ -238,7 +240,7 @@ fn frequency_falls_to_zero_at_buckling() {
 /// 1e-12 at N = 8, while N = 3 is off by more than 1e-6 (so the test can tell).
 #[test]
 fn massless_column_frequency_under_compression() {
-    let body = Body::new(0.2, 0.0, [0.0, 0.0]).unwrap();
+    let body = RigidInertia::new(0.2, 0.0, [0.0, 0.0]).unwrap();
     for share in [0.3, 0.9, 0.99] {
         let p = share * std::f64::consts::PI.powi(2) / 4.0;
         let x = p.sqrt();
@@ -259,9 +261,9 @@ fn bad_input_is_named() {
     };
     let none = TipLoad::default();
     assert_eq!(name(modes(&uniform(3, None), &none, None, 2)), "mass");
-    assert_eq!(name(modes(&uniform(3, None), &none, Some(&Body::default()), 2)), "mass");
+    assert_eq!(name(modes(&uniform(3, None), &none, Some(&RigidInertia::default()), 2)), "mass");
     assert_eq!(name(modes(&uniform(3, Some(1.0)), &none, None, 0)), "count");
-    let bad = Body { mass: 1.0, inertia: 0.0, com: [f64::INFINITY, 0.0] };
+    let bad = RigidInertia { mass: 1.0, inertia: 0.0, com: [f64::INFINITY, 0.0] };
     assert_eq!(name(modes(&uniform(3, Some(1.0)), &none, Some(&bad), 1)), "com");
     assert_eq!(name(modes(&uniform(3, Some(1.0)), &compression(f64::NAN), None, 1)), "fx");
 }

@@ -460,3 +460,13 @@ fn a_harmonic_load_meets_its_closed_form() {
     .unwrap();
     assert!((loads_at(&m, 0.0).force[0][2] - 0.4).abs() < 1e-15);
 }
+
+/// The dynamics' results are data the CLI and Python print as they are.
+#[test]
+fn results_serialize() {
+    fn serialize<T: serde::Serialize>() {}
+    serialize::<flexure::dynamics::Simulation>();
+    serialize::<flexure::dynamics::integrate::Trajectory>();
+    serialize::<flexure::dynamics::Modes>();
+    serialize::<flexure::inertia::RigidInertia>();
+}

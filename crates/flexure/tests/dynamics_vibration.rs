@@ -7,7 +7,7 @@
 //! massless column with a point mass and the massive beam-column under
 //! compression or tension, the refusal past buckling, and the interrupt.
 
-use flexure::dynamics::Body;
+use flexure::inertia::RigidInertia;
 use flexure::reference::vibration::frequencies;
 use flexure::section::{Profile, Section};
 use flexure::{Error, Flexure};
@@ -75,7 +75,7 @@ fn tip_mass_frequency_equation() {
     let f = beam(1.0, 1.0, Some(1.0));
     for r in [0.01, 0.2, 1.0, 10.0] {
         let own = roots(tip_mass_equation(r), 0.01, 9.0, 0.005);
-        let body = Body::new(r, 0.0, [0.0, 0.0]).unwrap();
+        let body = RigidInertia::new(r, 0.0, [0.0, 0.0]).unwrap();
         let v = frequencies(&f, Some(&body), 0.0, 3, &Default::default()).unwrap();
         for k in 0..3 {
             assert!((v.scaled[k] - own[k]).abs() < 1e-9, "m/μL = {r}, mode {k}: {} vs {}", v.scaled[k], own[k]);
@@ -99,9 +99,9 @@ fn massless_beam_with_rigid_body() {
     let (l, ei) = (0.03, 2e-3);
     let f = beam(l, ei, None);
     for body in [
-        Body::new(0.01, 2e-6, [0.0, 0.0]).unwrap(),
-        Body::new(0.01, 1e-7, [0.015, 0.004]).unwrap(),
-        Body::new(0.0, 3e-7, [0.0, 0.0]).unwrap(),
+        RigidInertia::new(0.01, 2e-6, [0.0, 0.0]).unwrap(),
+        RigidInertia::new(0.01, 1e-7, [0.015, 0.004]).unwrap(),
+        RigidInertia::new(0.0, 3e-7, [0.0, 0.0]).unwrap(),
     ] {
         let c = [l.powi(3) / (3.0 * ei), l * l / (2.0 * ei), l / ei];
         let det_c = c[0] * c[2] - c[1] * c[1];
@@ -124,7 +124,7 @@ fn massless_beam_with_rigid_body() {
             assert!((w - e).abs() < 1e-9 * e, "{body:?}: ω = {w} vs {e}");
         }
     }
-    let point = Body::new(0.02, 0.0, [0.0, 0.0]).unwrap();
+    let point = RigidInertia::new(0.02, 0.0, [0.0, 0.0]).unwrap();
     let v = frequencies(&f, Some(&point), 0.0, 3, &Default::default()).unwrap();
     let exact = (3.0 * ei / (0.02 * l.powi(3))).sqrt();
     assert!(v.omega.len() == 1 && (v.omega[0] - exact).abs() < 1e-9 * exact);
@@ -138,7 +138,7 @@ fn massless_beam_with_rigid_body() {
 fn massless_column_under_axial_load() {
     let (l, ei, m) = (0.5, 3.0, 0.2);
     let f = beam(l, ei, None);
-    let body = Body::new(m, 0.0, [0.0, 0.0]).unwrap();
+    let body = RigidInertia::new(m, 0.0, [0.0, 0.0]).unwrap();
     let euler = std::f64::consts::PI.powi(2) * ei / (4.0 * l * l);
     for share in [-2.0, -0.3, 0.3, 0.8, 0.99] {
         let p = share * euler;
@@ -160,9 +160,9 @@ fn bad_input_is_named() {
     assert_eq!(name(frequencies(&f, None, 0.0, 0, &Default::default())), "count");
     assert_eq!(name(frequencies(&f, None, f64::NAN, 1, &Default::default())), "compression");
     assert_eq!(name(frequencies(&beam(1.0, 1.0, None), None, 0.0, 1, &Default::default())), "mass");
-    let bad = Body { mass: -1.0, inertia: 0.0, com: [0.0, 0.0] };
+    let bad = RigidInertia { mass: -1.0, inertia: 0.0, com: [0.0, 0.0] };
     assert_eq!(name(frequencies(&f, Some(&bad), 0.0, 1, &Default::default())), "mass");
-    let zero = Body::default();
+    let zero = RigidInertia::default();
     assert_eq!(name(frequencies(&beam(1.0, 1.0, None), Some(&zero), 0.0, 1, &Default::default())), "mass");
 }
 
@@ -198,7 +198,7 @@ fn tip_mass_to_mode_30() {
     let f = beam(1.0, 1.0, Some(1.0));
     for r in [0.2, 10.0] {
         let own = roots(tip_mass_equation(r), 0.01, 95.0, 0.005);
-        let body = Body::new(r, 0.0, [0.0, 0.0]).unwrap();
+        let body = RigidInertia::new(r, 0.0, [0.0, 0.0]).unwrap();
         let v = frequencies(&f, Some(&body), 0.0, 30, &Default::default()).unwrap();
         for k in 0..30 {
             assert!(
@@ -225,7 +225,8 @@ fn clamped_and_pinned_tips() {
     let f = beam(1.0, 1.0, Some(1.0));
     let big = 1e8;
     let clamped = roots(|x: f64| 1.0 / x.cosh() - x.cos(), 1.0, 40.0, 0.01);
-    let v = frequencies(&f, Some(&Body::new(big, big, [0.0, 0.0]).unwrap()), 0.0, 12, &Default::default()).unwrap();
+    let v =
+        frequencies(&f, Some(&RigidInertia::new(big, big, [0.0, 0.0]).unwrap()), 0.0, 12, &Default::default()).unwrap();
     // det(K − ω²m I) for K = [[12, −6], [−6, 4]], M_b = big·I.
     let (tr, det) = (16.0 / big, (48.0 - 36.0) / (big * big));
     let body = [0.5 * (tr - (tr * tr - 4.0 * det).sqrt()), 0.5 * (tr + (tr * tr - 4.0 * det).sqrt())];
@@ -246,7 +247,8 @@ fn clamped_and_pinned_tips() {
         .into_iter()
         .filter(|x| (x.tan() - x.tanh()).abs() < 1e-6) // not tan's poles
         .collect::<Vec<_>>();
-    let v = frequencies(&f, Some(&Body::new(big, 0.0, [0.0, 0.0]).unwrap()), 0.0, 11, &Default::default()).unwrap();
+    let v =
+        frequencies(&f, Some(&RigidInertia::new(big, 0.0, [0.0, 0.0]).unwrap()), 0.0, 11, &Default::default()).unwrap();
     let w0 = (3.0 / big).sqrt();
     assert!((v.omega[0] / w0 - 1.0).abs() < 1e-6, "{} vs {w0}", v.omega[0]);
     for k in 1..11 {
@@ -331,7 +333,7 @@ fn beam_column_under_axial_load() {
 fn compression_past_buckling_is_refused() {
     let (l, ei) = (0.5, 3.0);
     let euler = std::f64::consts::PI.powi(2) * ei / (4.0 * l * l);
-    for (mu, body) in [(Some(1.0), None), (None, Some(Body::new(0.2, 0.0, [0.0, 0.0]).unwrap()))] {
+    for (mu, body) in [(Some(1.0), None), (None, Some(RigidInertia::new(0.2, 0.0, [0.0, 0.0]).unwrap()))] {
         let f = beam(l, ei, mu);
         for p in [1.0001 * euler, 1.4 * euler, 1e6, 1e12] {
             match frequencies(&f, body.as_ref(), p, 2, &Default::default()) {

@@ -35,11 +35,11 @@
 //! element (bodies and flexure sections), and the damping
 //! $D = \operatorname{diag}(\beta_jK_j, c_k)$ of the joints.
 
-use super::mass::MassModel;
 use super::modes::{Modes, finite_modes};
 use super::system::System;
 use crate::error::{Error, Result};
 use crate::joint::{Basis, Flexure};
+use crate::mass::MassModel;
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::statics::{self, Settings};
@@ -291,7 +291,7 @@ impl MechanismSystem {
             joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
         }
         let bodies = (1..m.bodies.len())
-            .filter(|&b| m.bodies[b].mass > 0.0 || m.bodies[b].inertia > 0.0)
+            .filter(|&b| m.bodies[b].rigid_inertia().has_inertia())
             .map(|b| (b, path_columns(m, b)))
             .collect();
         let length = m.size();

@@ -1,6 +1,7 @@
-//! Dynamics of one flexure joint carrying an optional rigid tip [`Body`]:
+//! Dynamics of one flexure joint carrying an optional rigid tip body
+//! ([`RigidInertia`](crate::inertia::RigidInertia)):
 //! the generalized mass matrix and velocity-product terms of its
-//! coordinates ([`mass`]), and its vibration modes about a loaded
+//! coordinates ([`crate::mass`]), and its vibration modes about a loaded
 //! equilibrium ([`mod@modes`]); and the [`System`] interface between
 //! equations of motion and a time integrator.
 //!
@@ -17,17 +18,19 @@
 //! $M(\alpha)\ddot\alpha + h(\alpha,\dot\alpha) + \nabla U = Q$ with
 //! $h = \dot M\dot\alpha - \frac12\nabla_\alpha(\dot\alpha^TM\dot\alpha)$.
 
-pub mod body;
 pub mod integrate;
-pub mod mass;
 pub mod mechanism;
 pub mod modes;
 pub mod schedule;
 pub mod simulation;
 pub mod system;
 
-pub use body::Body;
-pub use mass::{MassData, MassModel, update as update_mass};
+// The mass models sit beside the section they integrate; their old paths stay.
+/// The old name of [`RigidInertia`](crate::inertia::RigidInertia), the inertia of
+/// a flexure's tip body: a mechanism's [`Body`](crate::mechanism::Body) is the
+/// one body type.
+pub use crate::inertia::RigidInertia as Body;
+pub use crate::mass::{self, MassData, MassModel, update as update_mass};
 pub use modes::{Modes, modes};
 pub use simulation::{Simulation, SimulationSettings, Start, simulate};
 pub use system::System;

@@ -1,9 +1,9 @@
 //! Vibration modes of one flexure joint about its loaded equilibrium.
 
-use super::body::Body;
-use super::mass::{MassData, MassModel, update};
 use crate::error::{Error, Result};
+use crate::inertia::RigidInertia;
 use crate::joint::Flexure;
+use crate::mass::{MassData, MassModel, update};
 use crate::statics::{Statics, TipLoad, deflect};
 use nalgebra::DMatrix;
 
@@ -17,7 +17,10 @@ const MASSLESS: f64 = 1e-12;
 const RESOLVED: f64 = 1e-12;
 
 /// Natural frequencies and mode shapes, lowest first.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// It serializes with its fields' names, `shapes` as one list of
+/// amplitudes per mode.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Modes {
     /// Angular frequencies $\omega$ (rad/s), ascending.
     pub omega: Vec<f64>,
@@ -25,6 +28,7 @@ pub struct Modes {
     pub frequency: Vec<f64>,
     /// One column per mode: the coordinates' amplitudes $v$, normalized to
     /// $v^TMv = 1$, with the entry of largest magnitude positive.
+    #[serde(serialize_with = "columns")]
     pub shapes: DMatrix<f64>,
     /// How many directions carry no inertia and were condensed out as
     /// quasi-static (zero for a flexure with mass).
@@ -37,6 +41,11 @@ pub struct Modes {
     /// The equilibrium's coordinates the modes are taken about (a flexure's
     /// $\alpha$, a mechanism's $q$); empty from [`finite_modes`].
     pub coordinates: Vec<f64>,
+}
+
+/// A matrix as the list of its columns (nalgebra serializes none here).
+fn columns<S: serde::Serializer>(m: &DMatrix<f64>, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_seq(m.column_iter().map(|c| c.iter().copied().collect::<Vec<f64>>()))
 }
 
 /// The modes of `flexure` with an optional tip `body` about its equilibrium
@@ -56,17 +65,18 @@ pub struct Modes {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{modes, Body};
+/// use flexure::dynamics::modes;
+/// use flexure::inertia::RigidInertia;
 /// use flexure::{Flexure, TipLoad};
 /// // A massless cantilever with a point mass: ω = √(3EI/(mL³)) exactly (the
 /// // model's tip compliance is exact from order 2).
 /// let f = Flexure::new(0.5, 2.0, 3).unwrap();
-/// let body = Body::new(0.1, 0.0, [0.0, 0.0]).unwrap();
+/// let body = RigidInertia::new(0.1, 0.0, [0.0, 0.0]).unwrap();
 /// let m = modes(&f, &TipLoad::default(), Some(&body), 3).unwrap();
 /// assert_eq!(m.omega.len(), 1);
 /// assert!((m.omega[0] - (3.0 * 2.0 / (0.1 * 0.125f64)).sqrt()).abs() < 1e-9 * m.omega[0]);
 /// ```
-pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&Body>, count: usize) -> Result<Modes> {
+pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&RigidInertia>, count: usize) -> Result<Modes> {
     if count == 0 {
         return Err(Error::invalid("count", count, "must be at least 1"));
     }

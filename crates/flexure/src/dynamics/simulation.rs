@@ -45,7 +45,7 @@ pub struct SimulationSettings {
 }
 
 /// One body's motion: its frame in the ground frame at each sample.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BodyMotion {
     /// The body's name.
     pub name: String,
@@ -61,18 +61,31 @@ pub struct BodyMotion {
 /// integrator's [`Trajectory`] (times, coordinates, rates, energy, steps,
 /// closure violation; read through it directly, `simulation.time`), and
 /// every moving body's frame at each sample.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// It serializes as the trajectory's fields beside `bodies`, and `stopped`
+/// as the error's message when the run stopped early.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Simulation {
     /// Every moving body (not the ground), in the mechanism's order.
     pub bodies: Vec<BodyMotion>,
     /// The integrator's samples and counts. Its energy is the kinetic,
     /// elastic and gravitational energy (J); the work of the other loads and
     /// of damping is not in it.
+    #[serde(flatten)]
     pub trajectory: Trajectory,
     /// Why the run ended before its duration, if it did (stalled,
     /// interrupted, a state that cannot be evaluated): the samples above
     /// are those reached ([`integrate::integrate_kept`]).
+    #[serde(serialize_with = "message", skip_serializing_if = "Option::is_none")]
     pub stopped: Option<Error>,
+}
+
+/// An error as its message: the library's [`Error`] is not data.
+fn message<S: serde::Serializer>(error: &Option<Error>, s: S) -> std::result::Result<S::Ok, S::Error> {
+    match error {
+        Some(e) => s.collect_str(e),
+        None => s.serialize_none(),
+    }
 }
 
 impl std::ops::Deref for Simulation {

@@ -8,9 +8,9 @@
 
 use super::joints::{Fixed, Prismatic, Revolute};
 use super::kinematics::frames;
+use super::schedule::{Schedule, Waveform};
 use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
-use crate::dynamics::schedule::{Schedule, Waveform};
 use crate::error::{Error, Result};
 use crate::joint::{Flexure, bending_stiffness};
 use crate::kinematics::Pose;

@@ -12,8 +12,8 @@
 
 use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
 use super::{Closure, Loads, Mechanism};
-use crate::dynamics::mass::{MassModel, Weight, weight};
 use crate::error::{Error, Result};
+use crate::mass::{MassModel, Weight, weight};
 use nalgebra::{DMatrix, DVector, Matrix2};
 
 /// The potential, its derivatives and the closures at one configuration.

@@ -14,6 +14,7 @@ mod indeterminate;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
+pub mod schedule;
 pub mod statics;
 pub mod sweep;
 mod tree;
@@ -21,7 +22,7 @@ mod tree;
 use crate::kinematics::Pose;
 pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
 
-/// A rigid body.
+/// A rigid body: a name and its inertia ([`Body::rigid_inertia`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     /// Its name.
@@ -32,6 +33,23 @@ pub struct Body {
     pub inertia: f64,
     /// Centre of mass in the body frame (m).
     pub com: [f64; 2],
+}
+
+impl Body {
+    /// Its mass, rotary inertia and centre of mass: the
+    /// [`RigidInertia`](crate::inertia::RigidInertia) that gravity and the
+    /// dynamics use, as a flexure's tip body is.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::Body;
+    /// let arm = Body { name: "arm".into(), mass: 0.2, inertia: 1e-4, com: [0.05, 0.0] };
+    /// // About the body frame's origin: I_c + m|c|².
+    /// assert!((arm.rigid_inertia().inertia_about_tip() - (1e-4 + 0.2 * 0.05 * 0.05)).abs() < 1e-15);
+    /// ```
+    pub fn rigid_inertia(&self) -> crate::inertia::RigidInertia {
+        crate::inertia::RigidInertia { mass: self.mass, inertia: self.inertia, com: self.com }
+    }
 }
 
 /// A joint between two bodies.
@@ -211,7 +229,7 @@ pub struct Mechanism {
     /// Gravity (m/s²), zero if absent.
     pub gravity: [f64; 2],
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
-    pub schedules: Vec<crate::dynamics::schedule::Schedule>,
+    pub schedules: Vec<schedule::Schedule>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.

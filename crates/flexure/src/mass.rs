@@ -29,8 +29,8 @@
 //! same accuracy as the tip. The discrete $h$ is the exact derivative of the
 //! discrete $M$ (the same nodes), not an approximation of it.
 
-use super::body::Body;
 use crate::error::{Error, Result};
+use crate::inertia::RigidInertia;
 use crate::joint::{Basis, Flexure};
 use crate::quadrature::GaussLegendre;
 use crate::scalar::Scalar;
@@ -49,13 +49,13 @@ const MOMENT_ACCURACY: f64 = 1e-11;
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{update_mass, Body, MassData, MassModel};
+/// use flexure::mass::{update, MassData, MassModel};
 /// use flexure::section::{Profile, Section};
 /// let s = Section::given(Profile::Constant(1.0)).unwrap().with_mass_per_length(Profile::Constant(2.0)).unwrap();
 /// let f = flexure::Flexure::new(1.0, 1.0, 1).unwrap().with_section(s).unwrap();
 /// let model = MassModel::new(&f, None).unwrap();
 /// let mut data = MassData::new(&model);
-/// update_mass(&model, &[0.0], None, &mut data);
+/// update(&model, &[0.0], None, &mut data);
 /// // A straight uniform beam in constant-curvature motion: y = α s²/2L, so M = μL³/20.
 /// assert!((data.mass_matrix[(0, 0)] - 2.0 / 20.0).abs() < 1e-14);
 /// ```
@@ -75,7 +75,7 @@ pub struct MassModel {
     /// the sections and of the body (row-major, symmetric).
     constant: Vec<f64>,
     tip_row: Vec<f64>,
-    body: Option<Body>,
+    body: Option<RigidInertia>,
     distributed: bool,
     outer_points: usize,
     inner_points: usize,
@@ -111,7 +111,7 @@ impl MassModel {
     /// The model of `flexure` (its section's mass per length and rotary
     /// inertia, none without a density or mass per length) with an optional
     /// tip `body`, with the default rules. Fails on an invalid body.
-    pub fn new(flexure: &Flexure, body: Option<&Body>) -> Result<Self> {
+    pub fn new(flexure: &Flexure, body: Option<&RigidInertia>) -> Result<Self> {
         Self::with_points(flexure, body, Self::default_outer_points(flexure), Self::default_inner_points(flexure))
     }
 
@@ -122,7 +122,7 @@ impl MassModel {
     /// 2, 4, … up to 64 sub-pieces until the mass moments
     /// $\int\mu\thinspace t^e dt$, $e \le 2N + 2$, agree with an adaptive
     /// integral to $10^{-11}$; beyond that it fails, saying what was reached.
-    pub fn with_points(flexure: &Flexure, body: Option<&Body>, outer: usize, inner: usize) -> Result<Self> {
+    pub fn with_points(flexure: &Flexure, body: Option<&RigidInertia>, outer: usize, inner: usize) -> Result<Self> {
         if let Some(b) = body {
             b.validate()?;
         }
@@ -162,7 +162,7 @@ impl MassModel {
     }
 
     /// The tip body, if any.
-    pub fn body(&self) -> Option<&Body> {
+    pub fn body(&self) -> Option<&RigidInertia> {
         self.body.as_ref()
     }
 
@@ -216,7 +216,7 @@ fn pieces(breaks: &[f64], sub: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
 
 fn build(
     flexure: &Flexure,
-    body: Option<&Body>,
+    body: Option<&RigidInertia>,
     outer: &GaussLegendre,
     inner: &GaussLegendre,
     breaks: &[f64],
@@ -385,13 +385,14 @@ impl<T: Scalar> MassData<T> {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{update_mass, Body, MassData, MassModel};
+/// use flexure::inertia::RigidInertia;
+/// use flexure::mass::{update, MassData, MassModel};
 /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
 /// // A massless flexure with a point mass of 2 kg at the tip.
-/// let body = Body::new(2.0, 0.0, [0.0, 0.0]).unwrap();
+/// let body = RigidInertia::new(2.0, 0.0, [0.0, 0.0]).unwrap();
 /// let model = MassModel::new(&f, Some(&body)).unwrap();
 /// let mut data = MassData::new(&model);
-/// update_mass(&model, &[0.0; 3], Some(&[1.0, 0.0, 0.0]), &mut data);
+/// update(&model, &[0.0; 3], Some(&[1.0, 0.0, 0.0]), &mut data);
 /// // Straight: the tip moves sideways by ∂y/∂α₁ = L/2 per radian.
 /// assert!((data.mass_matrix[(0, 0)] - 2.0 * 0.25).abs() < 1e-14);
 /// // Bending at 1 rad/s: the velocity-product acceleration −L∫t²dt·(1, 0) lies along
@@ -535,7 +536,7 @@ impl<T: Scalar> Weight<T> {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{mass::{weight, Weight}, MassModel};
+/// use flexure::mass::{weight, MassModel, Weight};
 /// use flexure::section::{Profile, Section};
 /// let s = Section::given(Profile::Constant(1.0)).unwrap().with_mass_per_length(Profile::Constant(2.0)).unwrap();
 /// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap().with_section(s).unwrap();

@@ -1,23 +1,27 @@
-//! A rigid body carried at a flexure's tip.
+//! The inertia of a rigid body: what dynamics and gravity need of it.
 
 use crate::error::{Error, Result};
 
-/// A rigid body fixed to the flexure's tip frame: mass $m$ (kg), rotary
-/// inertia $I_c$ (kg·m²) about its centre of mass, and that centre of mass
-/// $c = (c_x, c_y)$ (m) in the tip frame (x along the tip's tangent).
+/// The inertia of a rigid body (Pinocchio's `Inertia`): mass $m$ (kg),
+/// rotary inertia $I_c$ (kg·m²) about its centre of mass, and that centre of
+/// mass $c = (c_x, c_y)$ (m) in the body's frame; for a body carried at a
+/// flexure's tip, the tip frame (x along the tip's tangent). A mechanism's
+/// [`Body`](crate::mechanism::Body) is a named one
+/// ([`Body::rigid_inertia`](crate::mechanism::Body::rigid_inertia)).
 ///
-/// Its inertia about the tip point is $I_{tip} = I_c + m\lvert c\rvert^2$.
+/// Its inertia about the frame's origin (the tip point) is
+/// $I_{tip} = I_c + m\lvert c\rvert^2$.
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::Body;
-/// let b = Body::new(0.005, 1e-7, [0.01, 0.0]).unwrap();
+/// use flexure::inertia::RigidInertia;
+/// let b = RigidInertia::new(0.005, 1e-7, [0.01, 0.0]).unwrap();
 /// assert!((b.inertia_about_tip() - (1e-7 + 0.005 * 1e-4)).abs() < 1e-18);
-/// let e = Body::new(-1.0, 0.0, [0.0, 0.0]).unwrap_err();
+/// let e = RigidInertia::new(-1.0, 0.0, [0.0, 0.0]).unwrap_err();
 /// assert!(e.to_string().contains("mass"));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Body {
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct RigidInertia {
     /// Mass $m$ (kg), zero or more.
     pub mass: f64,
     /// Rotary inertia $I_c$ (kg·m²) about the centre of mass, zero or more.
@@ -26,8 +30,8 @@ pub struct Body {
     pub com: [f64; 2],
 }
 
-impl Body {
-    /// A validated body ([`Body::validate`]).
+impl RigidInertia {
+    /// A validated inertia ([`RigidInertia::validate`]).
     pub fn new(mass: f64, inertia: f64, com: [f64; 2]) -> Result<Self> {
         let b = Self { mass, inertia, com };
         b.validate()?;
