@@ -3,7 +3,7 @@
 //! `flexure solve` reports of it.
 
 use super::document::{Sign, Source, Span};
-use super::{Error, Flexure, JointToml, MAX_SHAPE, Notch, Profile, Result, Section, Spanned, bending_stiffness};
+use super::{Error, Flexure, FlexureSpec, JointToml, MAX_SHAPE, Notch, Profile, Result, SectionSpec, Spanned};
 
 impl Source<'_> {
     /// A quantity along a flexure, `key`: a number, `[root, tip]` (a linear
@@ -75,7 +75,7 @@ impl Source<'_> {
 
 /// A flexure's `order`: a whole number (3 when absent), or `"auto"`, which
 /// starts at 3 (the second value says so).
-pub(super) fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, bool)> {
+fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, bool)> {
     let Some(o) = &j.order else { return Ok((3, false)) };
     match o.get_ref() {
         toml::Value::Integer(n) if *n >= 0 => Ok((usize::try_from(*n).unwrap_or(usize::MAX), false)),
@@ -96,10 +96,53 @@ pub(super) fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<
     }
 }
 
-/// A flexure joint's bending stiffness: the uniform $EI$ to build it with,
-/// the place of the key that sets it, and the [`Section`] that replaces it
-/// when $EI$ varies, a thickness gives stress, or a density gives mass.
-pub(super) fn flexure_section(src: &Source, owner: &str, j: &JointToml) -> Result<(f64, Span, Option<Section>)> {
+/// A flexure joint: its keys read into a [`FlexureSpec`] and built by the
+/// library, which names the parameter of an error; the error is placed at
+/// that parameter's key. Also the place of the key that sets the stiffness,
+/// and whether `order = "auto"`.
+pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexure, Span, bool)> {
+    let length =
+        j.length.as_ref().ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
+    let length_value = src.number(owner, "length", length, Sign::Positive)?;
+    let (section, ei_span) = section(src, owner, j)?;
+    let (order, auto_order) = flexure_order(src, owner, j)?;
+    if let Some(k) = &j.kappa {
+        src.numbers(owner, "kappa", &k.span(), k.get_ref(), Sign::Any)?;
+    }
+    let spec = FlexureSpec {
+        length: length_value,
+        section,
+        order,
+        quadrature: j.quadrature.as_ref().map(|q| *q.get_ref()),
+        kappa: j.kappa.as_ref().map(|k| k.get_ref().clone()),
+    };
+    let f = spec.build().map_err(|x| {
+        let given = |key: Option<Span>| key.unwrap_or(ei_span.clone());
+        let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
+        let span = match &x {
+            Error::InvalidParameter { name: "length", .. } => length.span(),
+            Error::InvalidParameter { name: "order", .. } => j.order.as_ref().map_or(j.name.span(), Spanned::span),
+            Error::InvalidParameter { name: "quadrature", .. } => given(j.quadrature.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "kappa", .. } => given(j.kappa.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "poisson", .. } => given(j.poisson.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "width", .. } => given(span_of(&j.width)),
+            Error::InvalidParameter { name: "thickness", .. } => given(span_of(&j.thickness)),
+            Error::InvalidParameter { name, .. } if name.starts_with("notch") => given(span_of(&j.notch)),
+            Error::InvalidParameter { name: "density", .. } => given(j.density.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "mass_per_length", .. } => given(span_of(&j.mass_per_length)),
+            _ => ei_span.clone(),
+        };
+        src.placed(owner, &span, x)
+    })?;
+    report(src, owner, j, &f)?;
+    Ok((f, ei_span, auto_order))
+}
+
+/// A flexure joint's section keys, each checked where it is written: `ei`,
+/// or `modulus` with `width` and `thickness` (and `poisson`, `notch`,
+/// `density`); `mass_per_length` with either. Also the place of the key
+/// that sets the stiffness (`ei` or `modulus`).
+fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Span)> {
     let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
     let rectangle_keys = [
         ("width", span_of(&j.width)),
@@ -108,72 +151,51 @@ pub(super) fn flexure_section(src: &Source, owner: &str, j: &JointToml) -> Resul
         ("notch", span_of(&j.notch)),
         ("density", j.density.as_ref().map(Spanned::span)),
     ];
-    match (&j.ei, &j.modulus) {
+    let (mut spec, span) = match (&j.ei, &j.modulus) {
         (Some(ei), None) => {
             if let Some((key, Some(span))) = rectangle_keys.iter().find(|(_, v)| v.is_some()) {
                 let hint = if *key == "density" { "; give mass_per_length with ei" } else { "" };
                 return src.fail(span, format!("{owner}`{key}` goes with modulus, not with ei{hint}"));
             }
-            match src.profile(owner, "ei", ei)? {
-                Profile::Constant(v) => Ok((v, ei.span(), None)),
-                p => {
-                    let s = Section::given(p).map_err(|x| src.placed(owner, &ei.span(), x))?;
-                    Ok((1.0, ei.span(), Some(s)))
-                }
-            }
+            (SectionSpec { ei: Some(src.profile(owner, "ei", ei)?), ..Default::default() }, ei.span())
         }
         (None, Some(e)) => {
-            let e_value = src.number(owner, "modulus", e, Sign::Positive)?;
-            let part = |key: &'static str, v: &Option<Spanned<toml::Value>>| -> Result<(Profile, Span)> {
+            let modulus = src.number(owner, "modulus", e, Sign::Positive)?;
+            let part = |key: &'static str, v: &Option<Spanned<toml::Value>>| -> Result<Profile> {
                 let v = v.as_ref().ok_or_else(|| {
                     src.error(&e.span(), format!("{owner}modulus needs width and thickness; {key} is missing"))
                 })?;
-                Ok((src.profile(owner, key, v)?, v.span()))
+                src.profile(owner, key, v)
             };
-            let ((w, w_span), (h, h_span)) = (part("width", &j.width)?, part("thickness", &j.thickness)?);
-            let nu = match &j.poisson {
-                Some(p) => Some(src.number(owner, "poisson", p, Sign::Any)?),
-                None => None,
+            let (width, thickness) = (part("width", &j.width)?, part("thickness", &j.thickness)?);
+            let poisson = j.poisson.as_ref().map(|p| src.number(owner, "poisson", p, Sign::Any)).transpose()?;
+            let notch = j.notch.as_ref().map(|n| src.notch(owner, n)).transpose()?;
+            let density = j.density.as_ref().map(|d| src.number(owner, "density", d, Sign::Positive)).transpose()?;
+            let spec = SectionSpec {
+                modulus: Some(modulus),
+                width: Some(width),
+                thickness: Some(thickness),
+                poisson,
+                notch,
+                density,
+                ..Default::default()
             };
-            let place = |x: Error| {
-                let span = match &x {
-                    Error::InvalidParameter { name: "poisson", .. } => {
-                        j.poisson.as_ref().map_or(e.span(), Spanned::span)
-                    }
-                    Error::InvalidParameter { name: "width", .. } => w_span.clone(),
-                    Error::InvalidParameter { name: "thickness", .. } => h_span.clone(),
-                    Error::InvalidParameter { name, .. } if name.starts_with("notch") => {
-                        span_of(&j.notch).unwrap_or(e.span())
-                    }
-                    Error::InvalidParameter { name: "density", .. } => {
-                        j.density.as_ref().map_or(e.span(), Spanned::span)
-                    }
-                    _ => e.span(),
-                };
-                src.placed(owner, &span, x)
-            };
-            // A uniform rectangle keeps Eq. 25, and its product's magnitude check.
-            let ei = match (&w, &h) {
-                (Profile::Constant(b), Profile::Constant(t)) => {
-                    let ei = bending_stiffness(e_value, *b, *t, nu).map_err(place)?;
-                    // The product may leave the magnitudes its parts kept.
-                    src.numbers(owner, "ei (from modulus, width, thickness)", &e.span(), &[ei], Sign::Positive)?;
-                    ei
-                }
-                _ => 1.0,
-            };
-            let mut section = Section::rectangle(e_value, nu, w, h).map_err(place)?;
-            if let Some(n) = &j.notch {
-                section = section.with_notch(src.notch(owner, n)?).map_err(place)?;
-            }
-            if let Some(rho) = &j.density {
-                section = section.with_density(src.number(owner, "density", rho, Sign::Positive)?).map_err(place)?;
-            }
-            Ok((ei, e.span(), Some(section)))
+            (spec, e.span())
         }
-        (Some(ei), Some(_)) => src.fail(&ei.span(), format!("{owner}give ei or modulus, width, thickness, not both")),
-        (None, None) => src.fail(&j.name.span(), format!("{owner}a flexure needs ei, or modulus, width and thickness")),
+        (Some(ei), Some(_)) => {
+            return src.fail(&ei.span(), format!("{owner}give ei or modulus, width, thickness, not both"));
+        }
+        (None, None) => {
+            return src.fail(&j.name.span(), format!("{owner}a flexure needs ei, or modulus, width and thickness"));
+        }
+    };
+    if let Some(mu) = &j.mass_per_length {
+        if j.density.is_some() {
+            return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+        }
+        spec.mass_per_length = Some(src.profile(owner, "mass_per_length", mu)?);
     }
+    Ok((spec, span))
 }
 
 /// What `flexure solve` reports of a flexure joint beyond its coordinates.
@@ -187,7 +209,7 @@ pub struct Report {
 
 /// Checks a flexure joint's `yield_strength` (greater than zero, and only
 /// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]).
-pub(super) fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Report> {
+fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Report> {
     let yield_strength = match &j.yield_strength {
         Some(v) => {
             let s = src.number(owner, "yield_strength", v, Sign::Positive)?;

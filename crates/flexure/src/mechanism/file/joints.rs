@@ -1,8 +1,8 @@
 //! Joints: the one place that maps a `kind` to a joint, and the tree they form from the ground.
 
 use super::document::{Sign, Source, Span};
-use super::flexures::{flexure_order, flexure_section, report};
-use super::{Deserialize, Error, Flexure, JointKind, JointSpec, Pose, Result, Section, Spanned};
+use super::flexures::flexure;
+use super::{Deserialize, JointKind, JointSpec, Pose, Result, Spanned};
 use super::{Fixed, Prismatic, Revolute};
 
 #[derive(Deserialize)]
@@ -85,45 +85,8 @@ pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(Jo
     let stiffness_place = j.stiffness.as_ref().map_or(j.name.span(), Spanned::span);
     match kind {
         "flexure" => {
-            let length = j
-                .length
-                .as_ref()
-                .ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
-            let l = src.number(owner, "length", length, Sign::Positive)?;
-            let (ei, ei_span, mut section) = flexure_section(src, owner, j)?;
-            let (order, auto_order) = flexure_order(src, owner, j)?;
-            let order_span = j.order.as_ref().map_or(j.name.span(), Spanned::span);
-            let mut f = Flexure::new(l, ei, order).map_err(|x| {
-                let span = match &x {
-                    Error::InvalidParameter { name: "length", .. } => length.span(),
-                    Error::InvalidParameter { name: "ei", .. } => ei_span.clone(),
-                    _ => order_span.clone(),
-                };
-                src.placed(owner, &span, x)
-            })?;
-            if let Some(mu) = &j.mass_per_length {
-                if j.density.is_some() {
-                    return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
-                }
-                let p = src.profile(owner, "mass_per_length", mu)?;
-                let s = section
-                    .take()
-                    .map_or_else(|| Section::uniform(ei), Ok)
-                    .map_err(|x| src.placed(owner, &ei_span, x))?;
-                section = Some(s.with_mass_per_length(p).map_err(|x| src.placed(owner, &mu.span(), x))?);
-            }
-            if let Some(s) = section {
-                f = f.with_section(s).map_err(|x| src.placed(owner, &ei_span, x))?;
-            }
-            report(src, owner, j, &f)?;
-            if let Some(q) = &j.quadrature {
-                f = f.with_quadrature(*q.get_ref()).map_err(|x| src.placed(owner, &q.span(), x))?;
-            }
-            if let Some(k) = &j.kappa {
-                src.numbers(owner, "kappa", &k.span(), k.get_ref(), Sign::Any)?;
-                f = f.with_rest(k.get_ref()).map_err(|x| src.placed(owner, &k.span(), x))?;
-            }
-            Ok((JointKind::Flexure(Box::new(f)), ei_span, auto_order))
+            let (f, stiffness_place, auto_order) = flexure(src, owner, j)?;
+            Ok((JointKind::Flexure(Box::new(f)), stiffness_place, auto_order))
         }
         "revolute" => Ok((
             JointKind::Revolute(Revolute {
