@@ -1,8 +1,8 @@
 //! Options shared by every subcommand, and the parsers that reject bad numbers.
 
 use clap::Args;
-use flexure::section::{Notch, Profile, Section};
-use flexure::{Flexure, bending_stiffness};
+use flexure::Flexure;
+use flexure::section::{FlexureSpec, Notch, Profile, SectionSpec};
 
 /// Parses a finite number.
 pub fn number(s: &str) -> Result<f64, String> {
@@ -285,64 +285,34 @@ impl FlexureOptions {
         self.order == Order::Auto
     }
 
-    /// The section the options describe, or `None` for a uniform `--ei` (or
-    /// the default) without mass, which needs none.
-    fn section(&self) -> flexure::Result<Option<Section>> {
-        let mut section = match (self.modulus, &self.ei) {
-            (Some(e), _) => {
-                let (w, h) = (self.width.as_ref().map(|p| &p.0), self.thickness.as_ref().map(|p| &p.0));
-                let nan = Profile::Constant(f64::NAN);
-                let s = Section::rectangle(e, self.poisson, w.unwrap_or(&nan).clone(), h.unwrap_or(&nan).clone())?;
-                match self.notch {
-                    Some(n) => s.with_notch(n)?,
-                    None => s,
-                }
-            }
-            (None, Some(ProfileArg(p @ Profile::Linear { .. }))) => Section::given(p.clone())?,
-            (None, ei) if self.density.is_some() || self.mass_per_length.is_some() => {
-                Section::given(ei.as_ref().map_or(Profile::Constant(1.0), |p| p.0.clone()))?
-            }
-            _ => return Ok(None),
-        };
-        if let Some(rho) = self.density {
-            section = section.with_density(rho)?;
+    /// The flexure the options describe, for the library to build.
+    pub fn spec(&self) -> FlexureSpec {
+        let profile = |p: &Option<ProfileArg>| p.as_ref().map(|p| p.0.clone());
+        FlexureSpec {
+            length: self.length,
+            section: SectionSpec {
+                ei: profile(&self.ei),
+                modulus: self.modulus,
+                width: profile(&self.width),
+                thickness: profile(&self.thickness),
+                poisson: self.poisson,
+                notch: self.notch,
+                density: self.density,
+                mass_per_length: profile(&self.mass_per_length),
+            },
+            // `--order auto` starts from 3.
+            order: match self.order {
+                Order::Fixed(n) => n,
+                Order::Auto => 3,
+            },
+            quadrature: self.quadrature,
+            kappa: self.kappa.as_ref().map(|k| k.0.clone()),
         }
-        if let Some(mu) = &self.mass_per_length {
-            section = section.with_mass_per_length(mu.0.clone())?;
-        }
-        Ok(Some(section))
     }
 
     /// Builds and validates the flexure (order 3 to start from, for `--order auto`).
     pub fn build(&self) -> flexure::Result<Flexure> {
-        // A uniform EI keeps the path it always had (Eq. 25 for a rectangle),
-        // so its stiffness is the same to the last bit.
-        let ei = match (self.modulus, &self.ei) {
-            (Some(e), _) => match (&self.width, &self.thickness) {
-                (Some(ProfileArg(Profile::Constant(b))), Some(ProfileArg(Profile::Constant(h)))) => {
-                    bending_stiffness(e, *b, *h, self.poisson)?
-                }
-                _ => 1.0,
-            },
-            (None, Some(ProfileArg(Profile::Constant(ei)))) => *ei,
-            (None, _) => 1.0,
-        };
-        let order = match self.order {
-            Order::Fixed(n) => n,
-            Order::Auto => 3,
-        };
-        let section = self.section()?;
-        let mut f = Flexure::new(self.length, ei, order)?;
-        if let Some(s) = section {
-            f = f.with_section(s)?;
-        }
-        if let Some(q) = self.quadrature {
-            f = f.with_quadrature(q)?;
-        }
-        if let Some(k) = &self.kappa {
-            f = f.with_rest(&k.0)?;
-        }
-        Ok(f)
+        self.spec().build()
     }
 }
 

@@ -2,10 +2,11 @@
 //! `thickness` and `mass_per_length` as a number, a pair `(root, tip)` or a
 //! table of `[t, value]` rows over $t = s/L$; `notch` as `(radius,
 //! min_thickness)`. Every error names the Python parameter and the value it
-//! got; the library checks signs, tables and notch depths ([`Profile::check`],
-//! [`Section::with_notch`]) and names them the same way.
+//! got; the library builds the section from them ([`SectionSpec`], as for
+//! the CLI and mechanism files), checking signs, tables and notch depths,
+//! and names them the same way.
 
-use flexure::section::{Notch, Profile, Section};
+use flexure::section::{Notch, Profile, Section, SectionSpec};
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -98,19 +99,16 @@ pub struct Arguments<'a, 'py> {
     pub mass_per_length: Option<&'a Bound<'py, PyAny>>,
 }
 
-/// The uniform $EI$ to build the flexure with, and the [`Section`] to give
-/// it (`None` for a uniform `ei` without mass, which needs none), as the CLI
-/// builds them: a uniform rectangle keeps Eq. 25's $EI$, and its section
-/// gives the stress.
-pub fn read(a: &Arguments<'_, '_>) -> PyResult<(f64, Option<Section>)> {
-    let lib = crate::to_py;
-    let (ei, section) = match (a.ei, a.modulus) {
+/// The section arguments read into the library's [`SectionSpec`], after the
+/// checks whose messages speak Python (which arguments go together).
+pub fn spec(a: &Arguments<'_, '_>) -> PyResult<SectionSpec> {
+    match (a.ei, a.modulus) {
         (Some(_), Some(_)) => {
             return Err(PyValueError::new_err(
                 "ei and modulus were both given: give ei, or modulus with width and thickness, not both",
             ));
         }
-        (ei, None) => {
+        (_, None) => {
             // Section options only count with a modulus: refuse them rather than ignore them.
             let unused: Vec<&str> = [
                 ("width", a.width.is_some()),
@@ -127,52 +125,41 @@ pub fn read(a: &Arguments<'_, '_>) -> PyResult<(f64, Option<Section>)> {
                     unused.join(", ")
                 )));
             }
-            let ei = ei.map(|v| profile("ei", v)).transpose()?;
-            let massive = a.density.is_some() || a.mass_per_length.is_some();
-            match ei {
-                Some(Profile::Constant(v)) if !massive => (v, None),
-                Some(Profile::Constant(v)) => (v, Some(Section::uniform(v).map_err(lib)?)),
-                Some(p) => (1.0, Some(Section::given(p).map_err(lib)?)),
-                None if massive => (1.0, Some(Section::uniform(1.0).map_err(lib)?)),
-                None => (1.0, None),
-            }
         }
-        (None, Some(e)) => {
-            let (Some(w), Some(h)) = (a.width, a.thickness) else {
+        (None, Some(_)) => {
+            if a.width.is_none() || a.thickness.is_none() {
                 let missing = match (a.width, a.thickness) {
                     (None, None) => "width and thickness",
                     (None, _) => "width",
                     _ => "thickness",
                 };
                 return Err(PyValueError::new_err(format!("modulus needs width and thickness: {missing} missing")));
-            };
-            let (w, h) = (profile("width", w)?, profile("thickness", h)?);
-            let ei = match (&w, &h) {
-                (Profile::Constant(b), Profile::Constant(t)) => {
-                    flexure::bending_stiffness(e, *b, *t, a.poisson).map_err(lib)?
-                }
-                _ => 1.0,
-            };
-            let mut s = Section::rectangle(e, a.poisson, w, h).map_err(lib)?;
-            if let Some(n) = a.notch {
-                s = s.with_notch(notch(n)?).map_err(lib)?;
             }
-            (ei, Some(s))
         }
-    };
-    let Some(mut section) = section else {
-        return Ok((ei, None));
-    };
-    if let Some(rho) = a.density {
-        if a.mass_per_length.is_some() {
-            return Err(PyValueError::new_err(format!(
-                "density = {rho} and mass_per_length were both given: give one (density with width and thickness, or mass_per_length)"
-            )));
-        }
-        section = section.with_density(rho).map_err(lib)?;
     }
-    if let Some(mu) = a.mass_per_length {
-        section = section.with_mass_per_length(profile("mass_per_length", mu)?).map_err(lib)?;
+    if let (Some(rho), Some(_)) = (a.density, a.mass_per_length) {
+        return Err(PyValueError::new_err(format!(
+            "density = {rho} and mass_per_length were both given: give one (density with width and thickness, or mass_per_length)"
+        )));
     }
-    Ok((ei, Some(section)))
+    let read = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
+    Ok(SectionSpec {
+        ei: read("ei", a.ei)?,
+        modulus: a.modulus,
+        width: read("width", a.width)?,
+        thickness: read("thickness", a.thickness)?,
+        poisson: a.poisson,
+        notch: a.notch.map(notch).transpose()?,
+        density: a.density,
+        mass_per_length: read("mass_per_length", a.mass_per_length)?,
+    })
+}
+
+/// The uniform $EI$ to build the flexure with, and the [`Section`] to give
+/// it (`None` for a uniform `ei` without mass, which needs none), as the
+/// library's [`SectionSpec`] builds them for every front end.
+pub fn read(a: &Arguments<'_, '_>) -> PyResult<(f64, Option<Section>)> {
+    let spec = spec(a)?;
+    let lib = crate::to_py;
+    Ok((spec.uniform_ei().map_err(lib)?, spec.section().map_err(lib)?))
 }

@@ -1,7 +1,7 @@
 //! `docs/mechanism-format.md` against the parser it documents.
 //!
 //! The keys the parser accepts are read from its source,
-//! `src/mechanism/file.rs`: the fields of its `serde` structs, all of which
+//! `src/mechanism/file/`: the fields of its `serde` structs, all of which
 //! deny unknown fields. The page's key tables must name exactly those keys,
 //! table by table; its examples must parse and solve; and what it says of
 //! frames, signs and defaults is checked here against closed forms.
@@ -14,7 +14,18 @@ use flexure::mechanism::{JointKind, Mechanism};
 use std::collections::BTreeSet;
 use std::f64::consts::FRAC_PI_2;
 
-const PARSER: &str = include_str!("../src/mechanism/file.rs");
+/// The parser's files, one per part of the document (checked to be all of them).
+const PARSER_FILES: [(&str, &str); 9] = [
+    ("bodies.rs", include_str!("../src/mechanism/file/bodies.rs")),
+    ("closures.rs", include_str!("../src/mechanism/file/closures.rs")),
+    ("document.rs", include_str!("../src/mechanism/file/document.rs")),
+    ("flexures.rs", include_str!("../src/mechanism/file/flexures.rs")),
+    ("joints.rs", include_str!("../src/mechanism/file/joints.rs")),
+    ("loads.rs", include_str!("../src/mechanism/file/loads.rs")),
+    ("mod.rs", include_str!("../src/mechanism/file/mod.rs")),
+    ("schedules.rs", include_str!("../src/mechanism/file/schedules.rs")),
+    ("validation.rs", include_str!("../src/mechanism/file/validation.rs")),
+];
 const PAGE: &str = include_str!("../../../docs/mechanism-format.md");
 
 /// A `serde` struct of the parser: its name and its fields (key, type).
@@ -27,13 +38,20 @@ struct Table {
 /// attribute that could change which keys are accepted (rename, alias,
 /// flatten, …) or let unknown keys through: this reading would miss them.
 fn parser_tables() -> Vec<Table> {
-    for line in PARSER.lines().map(str::trim).filter(|l| l.starts_with("#[serde(")) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mechanism/file");
+    let mut files: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    files.sort();
+    let listed: Vec<&str> = PARSER_FILES.iter().map(|(name, _)| *name).collect();
+    assert_eq!(files, listed, "tests/format.rs must read every file of the parser");
+    let parser = parser();
+    for line in parser.lines().map(str::trim).filter(|l| l.starts_with("#[serde(")) {
         assert!(
             line == "#[serde(deny_unknown_fields)]" || line == "#[serde(default)]",
-            "file.rs uses `{line}`: teach tests/format.rs what it does to the accepted keys"
+            "the parser uses `{line}`: teach tests/format.rs what it does to the accepted keys"
         );
     }
-    let lines: Vec<&str> = PARSER.lines().map(str::trim).collect();
+    let lines: Vec<&str> = parser.lines().map(str::trim).collect();
     let mut tables = Vec::new();
     for (i, _) in lines.iter().enumerate().filter(|(_, l)| l.contains("Deserialize)]")) {
         assert_eq!(
@@ -58,6 +76,12 @@ fn parser_tables() -> Vec<Table> {
         tables.push(Table { name: name.to_string(), fields });
     }
     tables
+}
+
+/// The parser's source, its files one after the other, without the
+/// `pub(super)` that lets the parts share their structs.
+fn parser() -> String {
+    PARSER_FILES.iter().map(|(_, text)| *text).collect::<String>().replace("pub(super) ", "")
 }
 
 /// The file's tables, by the name they have in TOML (`""` for the top
@@ -90,7 +114,7 @@ fn parser_keys() -> Vec<(String, BTreeSet<String>)> {
         }
     }
     let all: BTreeSet<String> = tables.iter().map(|t| t.name.clone()).collect();
-    assert_eq!(reached, all, "a Deserialize struct of file.rs that no table of the file reaches");
+    assert_eq!(reached, all, "a Deserialize struct of the parser that no table of the file reaches");
     out
 }
 
@@ -154,7 +178,8 @@ fn every_parser_key_is_documented() {
         }
     }
     // The joint kinds: the string literals the parser matches `kind` on.
-    let line = PARSER.lines().find(|l| l.contains("matches!(kind,")).expect("the parser's list of kinds");
+    let parser = parser();
+    let line = parser.lines().find(|l| l.contains("matches!(kind,")).expect("the parser's list of kinds");
     let kinds: Vec<&str> = line.split('"').skip(1).step_by(2).collect();
     assert_eq!(kinds, ["flexure", "revolute", "prismatic", "fixed"]);
     let joint = section_of("joint");

@@ -297,6 +297,8 @@ fn bad_sections_name_key_line_and_column() {
             "notch.radius must be a number",
         ),
         (with_notch("0.005"), "line 10, column 9", "notch must be { radius = R, min_thickness = h }"),
+        // Thicker than the flexure is long (the library names the thickness, so it is placed there).
+        (rectangle("width = 0.01\nthickness = 0.02\n"), "line 9, column 13", "thickness = 0.02 m at t = 0"),
         (rectangle(&format!("width = 0.01\n{thick}density = 0.0\n")), "line 10, column 11", "density = 0"),
         (
             rectangle(&format!("width = 0.01\n{thick}mass_per_length = [0.1, -0.1]\n")),

@@ -309,3 +309,45 @@ fn a_thickness_above_the_length_is_refused() {
         other => panic!("{other:?}"),
     }
 }
+
+/// `FlexureSpec::build` is the hand-built flexure to the last bit (a
+/// uniform rectangle through Eq. 25, a taper through its section, mass and
+/// rest curvature), and its errors name the parameter that does not fit.
+#[test]
+fn a_spec_builds_what_the_steps_build() {
+    use flexure::section::{FlexureSpec, SectionSpec};
+    let c = Profile::Constant;
+    let rect = SectionSpec {
+        modulus: Some(200e9),
+        width: Some(c(0.01)),
+        thickness: Some(c(2e-4)),
+        poisson: Some(0.29),
+        density: Some(7850.0),
+        ..Default::default()
+    };
+    let spec = FlexureSpec { length: 0.02, section: rect, order: 4, quadrature: Some(9), kappa: Some(vec![0.1; 4]) };
+    let section = Section::rectangle(200e9, Some(0.29), c(0.01), c(2e-4)).unwrap().with_density(7850.0).unwrap();
+    let by_hand = Flexure::new(0.02, flexure::bending_stiffness(200e9, 0.01, 2e-4, Some(0.29)).unwrap(), 4)
+        .unwrap()
+        .with_section(section)
+        .unwrap()
+        .with_quadrature(9)
+        .unwrap()
+        .with_rest(&[0.1; 4])
+        .unwrap();
+    assert_eq!(spec.build().unwrap(), by_hand);
+    let taper = SectionSpec { ei: Some(Profile::Linear { root: 2.0, tip: 1.0 }), ..Default::default() };
+    let by_hand = Flexure::new(0.5, 1.0, 3).unwrap().with_section(Section::given(taper.ei.clone().unwrap()).unwrap());
+    assert_eq!(FlexureSpec { length: 0.5, section: taper, ..Default::default() }.build().unwrap(), by_hand.unwrap());
+    let name = |section: SectionSpec| match (FlexureSpec { section, ..Default::default() }).build() {
+        Err(Error::InvalidParameter { name, .. }) => name,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(name(SectionSpec { ei: Some(c(1.0)), modulus: Some(1e9), ..Default::default() }), "modulus");
+    assert_eq!(name(SectionSpec { width: Some(c(0.01)), ..Default::default() }), "width");
+    assert_eq!(name(SectionSpec { modulus: Some(1e9), width: Some(c(0.01)), ..Default::default() }), "thickness");
+    assert_eq!(name(SectionSpec { ei: Some(c(1.0)), density: Some(1.0), ..Default::default() }), "density");
+    let both = SectionSpec { density: Some(1.0), mass_per_length: Some(c(1.0)), ..Default::default() };
+    assert_eq!(name(both), "mass_per_length");
+    assert_eq!(name(SectionSpec { ei: Some(c(-1.0)), ..Default::default() }), "ei");
+}

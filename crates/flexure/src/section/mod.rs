@@ -4,8 +4,12 @@
 //! Every quantity is a [`Profile`] over $t = s/L \in [0, 1]$: a constant, a
 //! linear taper from root to tip, or a table linear between its points. A
 //! circular [`Notch`] cuts the thickness of a rectangular section.
+//! [`FlexureSpec`] is a flexure as a front end gives it, built in one place.
 
 use crate::error::{Error, Result};
+
+mod spec;
+pub use spec::{FlexureSpec, SectionSpec};
 
 /// A positive quantity along the flexure, a function of $t = s/L$.
 #[derive(Debug, Clone, PartialEq)]

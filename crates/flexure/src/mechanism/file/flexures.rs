@@ -1,0 +1,236 @@
+//! A flexure joint's keys: its section (`ei`, or `modulus`, `width`,
+//! `thickness` with `poisson`, `notch`, `density`), `order`, and what
+//! `flexure solve` reports of it.
+
+use super::document::{Sign, Source, Span};
+use super::{Error, Flexure, FlexureSpec, JointToml, MAX_SHAPE, Notch, Profile, Result, SectionSpec, Spanned};
+
+impl Source<'_> {
+    /// A quantity along a flexure, `key`: a number, `[root, tip]` (a linear
+    /// taper) or a table `[[t, value], …]` over $t = s/L$; every value
+    /// greater than zero, a table's $t$ from 0 to 1, increasing strictly.
+    pub(super) fn profile(&self, owner: &str, key: &'static str, value: &Spanned<toml::Value>) -> Result<Profile> {
+        let span = value.span();
+        let number = |v: &toml::Value| match v {
+            toml::Value::Float(x) => Some(*x),
+            toml::Value::Integer(i) => Some(*i as f64),
+            _ => None,
+        };
+        let pair = |v: &toml::Value| match v.as_array().map(Vec::as_slice) {
+            Some([a, b]) => Some([number(a)?, number(b)?]),
+            _ => None,
+        };
+        let items = value.get_ref().as_array();
+        let profile = if let Some(v) = number(value.get_ref()) {
+            Profile::Constant(v)
+        } else if let Some([root, tip]) = pair(value.get_ref()) {
+            Profile::Linear { root, tip }
+        } else if let Some(points) = items.and_then(|a| a.iter().map(pair).collect::<Option<Vec<_>>>()) {
+            Profile::Table(points)
+        } else {
+            return self.fail(
+                &span,
+                format!(
+                    "{owner}{key} must be a number, [root, tip] or a table [[t, value], …] with t = s/L from 0 to 1"
+                ),
+            );
+        };
+        match &profile {
+            Profile::Constant(v) => self.numbers(owner, key, &span, &[*v], Sign::Positive)?,
+            Profile::Linear { root, tip } => self.numbers(owner, key, &span, &[*root, *tip], Sign::Positive)?,
+            Profile::Table(points) => {
+                for (k, [t, v]) in points.iter().enumerate() {
+                    self.numbers(owner, &format!("{key}[{k}][0]"), &span, &[*t], Sign::NotNegative)?;
+                    self.numbers(owner, &format!("{key}[{k}][1]"), &span, &[*v], Sign::Positive)?;
+                }
+            }
+        }
+        profile.check(key).map_err(|e| self.placed(owner, &span, e))?;
+        Ok(profile)
+    }
+
+    /// A circular notch, `{ radius = R, min_thickness = h }` (m, each greater than zero).
+    pub(super) fn notch(&self, owner: &str, value: &Spanned<toml::Value>) -> Result<Notch> {
+        let span = value.span();
+        let expected = "notch must be { radius = R, min_thickness = h } (m)";
+        let Some(table) = value.get_ref().as_table() else {
+            return self.fail(&span, format!("{owner}{expected}"));
+        };
+        if let Some(key) = table.keys().find(|k| !matches!(k.as_str(), "radius" | "min_thickness")) {
+            return self.fail(&span, format!("{owner}unknown key `{key}` in notch: {expected}"));
+        }
+        let part = |key: &str| -> Result<f64> {
+            let v = match table.get(key) {
+                Some(toml::Value::Float(x)) => *x,
+                Some(toml::Value::Integer(i)) => *i as f64,
+                Some(_) => return self.fail(&span, format!("{owner}notch.{key} must be a number")),
+                None => return self.fail(&span, format!("{owner}notch.{key} is missing: {expected}")),
+            };
+            self.numbers(owner, &format!("notch.{key}"), &span, &[v], Sign::Positive)?;
+            Ok(v)
+        };
+        Ok(Notch { radius: part("radius")?, min_thickness: part("min_thickness")? })
+    }
+}
+
+/// A flexure's `order`: a whole number (3 when absent), or `"auto"`, which
+/// starts at 3 (the second value says so).
+fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, bool)> {
+    let Some(o) = &j.order else { return Ok((3, false)) };
+    match o.get_ref() {
+        toml::Value::Integer(n) if *n >= 0 => Ok((usize::try_from(*n).unwrap_or(usize::MAX), false)),
+        toml::Value::String(s) if s == "auto" => Ok((3, true)),
+        v => src.fail(
+            &o.span(),
+            format!(
+                "{owner}order = {}: must be a whole number from 1 to {} or \"auto\" (raised until an analysis's error estimate meets its target)",
+                match v {
+                    toml::Value::String(s) => format!("{s:?}"),
+                    toml::Value::Integer(i) => i.to_string(),
+                    toml::Value::Float(x) => format!("{x:?}"),
+                    other => format!("a {}", other.type_str()),
+                },
+                crate::joint::MAX_ORDER
+            ),
+        ),
+    }
+}
+
+/// A flexure joint: its keys read into a [`FlexureSpec`] and built by the
+/// library, which names the parameter of an error; the error is placed at
+/// that parameter's key. Also the place of the key that sets the stiffness,
+/// and whether `order = "auto"`.
+pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexure, Span, bool)> {
+    let length =
+        j.length.as_ref().ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
+    let length_value = src.number(owner, "length", length, Sign::Positive)?;
+    let (section, ei_span) = section(src, owner, j)?;
+    let (order, auto_order) = flexure_order(src, owner, j)?;
+    if let Some(k) = &j.kappa {
+        src.numbers(owner, "kappa", &k.span(), k.get_ref(), Sign::Any)?;
+    }
+    let spec = FlexureSpec {
+        length: length_value,
+        section,
+        order,
+        quadrature: j.quadrature.as_ref().map(|q| *q.get_ref()),
+        kappa: j.kappa.as_ref().map(|k| k.get_ref().clone()),
+    };
+    let f = spec.build().map_err(|x| {
+        let given = |key: Option<Span>| key.unwrap_or(ei_span.clone());
+        let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
+        let span = match &x {
+            Error::InvalidParameter { name: "length", .. } => length.span(),
+            Error::InvalidParameter { name: "order", .. } => j.order.as_ref().map_or(j.name.span(), Spanned::span),
+            Error::InvalidParameter { name: "quadrature", .. } => given(j.quadrature.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "kappa", .. } => given(j.kappa.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "poisson", .. } => given(j.poisson.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "width", .. } => given(span_of(&j.width)),
+            Error::InvalidParameter { name: "thickness", .. } => given(span_of(&j.thickness)),
+            Error::InvalidParameter { name, .. } if name.starts_with("notch") => given(span_of(&j.notch)),
+            Error::InvalidParameter { name: "density", .. } => given(j.density.as_ref().map(Spanned::span)),
+            Error::InvalidParameter { name: "mass_per_length", .. } => given(span_of(&j.mass_per_length)),
+            _ => ei_span.clone(),
+        };
+        src.placed(owner, &span, x)
+    })?;
+    report(src, owner, j, &f)?;
+    Ok((f, ei_span, auto_order))
+}
+
+/// A flexure joint's section keys, each checked where it is written: `ei`,
+/// or `modulus` with `width` and `thickness` (and `poisson`, `notch`,
+/// `density`); `mass_per_length` with either. Also the place of the key
+/// that sets the stiffness (`ei` or `modulus`).
+fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Span)> {
+    let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
+    let rectangle_keys = [
+        ("width", span_of(&j.width)),
+        ("thickness", span_of(&j.thickness)),
+        ("poisson", j.poisson.as_ref().map(Spanned::span)),
+        ("notch", span_of(&j.notch)),
+        ("density", j.density.as_ref().map(Spanned::span)),
+    ];
+    let (mut spec, span) = match (&j.ei, &j.modulus) {
+        (Some(ei), None) => {
+            if let Some((key, Some(span))) = rectangle_keys.iter().find(|(_, v)| v.is_some()) {
+                let hint = if *key == "density" { "; give mass_per_length with ei" } else { "" };
+                return src.fail(span, format!("{owner}`{key}` goes with modulus, not with ei{hint}"));
+            }
+            (SectionSpec { ei: Some(src.profile(owner, "ei", ei)?), ..Default::default() }, ei.span())
+        }
+        (None, Some(e)) => {
+            let modulus = src.number(owner, "modulus", e, Sign::Positive)?;
+            let part = |key: &'static str, v: &Option<Spanned<toml::Value>>| -> Result<Profile> {
+                let v = v.as_ref().ok_or_else(|| {
+                    src.error(&e.span(), format!("{owner}modulus needs width and thickness; {key} is missing"))
+                })?;
+                src.profile(owner, key, v)
+            };
+            let (width, thickness) = (part("width", &j.width)?, part("thickness", &j.thickness)?);
+            let poisson = j.poisson.as_ref().map(|p| src.number(owner, "poisson", p, Sign::Any)).transpose()?;
+            let notch = j.notch.as_ref().map(|n| src.notch(owner, n)).transpose()?;
+            let density = j.density.as_ref().map(|d| src.number(owner, "density", d, Sign::Positive)).transpose()?;
+            let spec = SectionSpec {
+                modulus: Some(modulus),
+                width: Some(width),
+                thickness: Some(thickness),
+                poisson,
+                notch,
+                density,
+                ..Default::default()
+            };
+            (spec, e.span())
+        }
+        (Some(ei), Some(_)) => {
+            return src.fail(&ei.span(), format!("{owner}give ei or modulus, width, thickness, not both"));
+        }
+        (None, None) => {
+            return src.fail(&j.name.span(), format!("{owner}a flexure needs ei, or modulus, width and thickness"));
+        }
+    };
+    if let Some(mu) = &j.mass_per_length {
+        if j.density.is_some() {
+            return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+        }
+        spec.mass_per_length = Some(src.profile(owner, "mass_per_length", mu)?);
+    }
+    Ok((spec, span))
+}
+
+/// What `flexure solve` reports of a flexure joint beyond its coordinates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Report {
+    /// `yield_strength` (Pa): the safety factor is this over the peak stress.
+    pub yield_strength: Option<f64>,
+    /// `shape`: the number of points, evenly spaced in arc length, at which to print the deformed flexure.
+    pub shape: Option<usize>,
+}
+
+/// Checks a flexure joint's `yield_strength` (greater than zero, and only
+/// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]).
+fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Report> {
+    let yield_strength = match &j.yield_strength {
+        Some(v) => {
+            let s = src.number(owner, "yield_strength", v, Sign::Positive)?;
+            if f.section().modulus().is_none() {
+                return src.fail(
+                    &v.span(),
+                    format!(
+                        "{owner}yield_strength needs a thickness to give a stress: give modulus, width and thickness (a flexure given by ei alone has no stress)"
+                    ),
+                );
+            }
+            Some(s)
+        }
+        None => None,
+    };
+    let shape = match &j.shape {
+        Some(k) if !(2..=MAX_SHAPE).contains(k.get_ref()) => {
+            return src
+                .fail(&k.span(), format!("{owner}shape = {}: must be from 2 to {MAX_SHAPE} points", k.get_ref()));
+        }
+        k => k.as_ref().map(|k| *k.get_ref()),
+    };
+    Ok(Report { yield_strength, shape })
+}
