@@ -3,7 +3,6 @@
 //! results.json holding every number in the report.
 
 use crate::analyses::exact_connection;
-use crate::figures::{COLORS, Chart, Color, Dash, Marker, Series, draw};
 use clap::Args;
 use flexure::connect::connect;
 use flexure::kinematics::backbone;
@@ -13,6 +12,7 @@ use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{
     Flexure, Pose, Statics, TipConstraint, TipLoad, bending_stiffness, buckling_load, compliance_tip_rest, deflect,
 };
+use flexure_chart::{COLORS, Chart, Color, Dash, Marker, Series, draw};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
 use std::f64::consts::{FRAC_PI_2, PI};

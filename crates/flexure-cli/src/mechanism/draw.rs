@@ -80,7 +80,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     };
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded, &marks);
-    crate::figures::write(&args.out, &figure)?;
+    flexure_chart::write(&args.out, &figure)?;
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
     for key in ["findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {
         if let Some(x) = checks.get(key) {
@@ -96,7 +96,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
 /// Snapshots of a simulated motion over the rest shape, then the bodies'
 /// angles and positions against time, as one SVG.
 fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
-    use crate::figures::{COLORS, Chart, Dash, Series, chart_figure, write_stack};
+    use flexure_chart::{COLORS, Chart, Dash, Series, chart_figure, write_stack};
     let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
     // simulate's warnings; of its answer, draw keeps the findings.
     let mut checks = json!({});
@@ -170,7 +170,7 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
             .map_err(|e| format!("drawing {}: {e}; nothing was written", args.out.display()))?;
         fig.width = 1200.0;
         fig.height = 420.0;
-        fig.place = crate::figures::Place::Outside;
+        fig.place = flexure_chart::Place::Outside;
         figures.push(fig);
     }
     write_stack(&args.out, &figures)?;

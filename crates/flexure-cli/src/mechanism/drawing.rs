@@ -4,12 +4,12 @@
 //! via points, its loads arrows (forces, weights, drawn to a stated scale)
 //! and turning arrows (moments).
 
-use crate::figures::{
-    Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
-};
 use flexure::kinematics::backbone;
 use flexure::mechanism::statics::{Solution, body_frames};
 use flexure::mechanism::{Closure, JointKind, Mechanism};
+use flexure_chart::{
+    Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
+};
 use std::f64::consts::TAU;
 
 /// The colour of legend keys that stand for every shape.

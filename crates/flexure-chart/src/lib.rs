@@ -1,11 +1,48 @@
-//! Figures as SVG: line charts with linear or logarithmic axes for the
-//! report, and same-scale drawings of mechanisms.
+//! Figures as SVG: line charts with linear or logarithmic axes (the
+//! paper's figures that `flexure reproduce` regenerates) and same-scale
+//! drawings of mechanisms (`flexure draw`). It knows nothing of flexures:
+//! the command builds a [`Figure`] of [`Mark`]s and legend [`Entry`]s, and
+//! [`render`] lays it out and writes the SVG text.
 //!
-//! The SVG is written here rather than by a plotting crate so that what a
-//! reader needs stays under our control: ticks at round values (`10⁻⁶`,
-//! never `9.999999999999999e-6`), margins measured from the labels they
-//! hold, text of at least [`MIN_TEXT`] px, a legend placed where it hides
-//! no data, and curves told apart by dashes and markers as well as colour.
+//! # Why a crate of its own, not `plotters`
+//!
+//! Issue 22 asked for `plotters`' SVG backend or a crate of its own with a
+//! stated reason. The figures need what `plotters` leaves to its caller or
+//! does otherwise:
+//!
+//! - **Layout measured from the text it holds.** Margins are sized from the
+//!   tick and axis labels, the legend goes right of the plot or under it
+//!   (whichever draws the plot larger) or into the plot's emptiest corner,
+//!   and a shape's height is fitted to its aspect. `plotters` takes fixed
+//!   label areas in whole pixels from its caller, and measuring its text
+//!   needs its `ttf` feature, which loads system fonts: the same command
+//!   would lay out differently on two machines.
+//! - **Deterministic text.** The SVG here depends on its input alone (the
+//!   characterization and figure tests read it), with coordinates to 0.1 px;
+//!   `plotters`' backend API is in integer pixels (`BackendCoord = (i32, i32)`).
+//! - **Round ticks and readable labels** (`10⁻⁶`, never `9.999999999999999e-6`;
+//!   a true minus; a shared factor `×10⁻⁴`), text of at least [`MIN_TEXT`] px.
+//! - **Marks that are not chart series**: filled hulls of links, turning
+//!   arrows for moments, force arrows, labels offset in pixels, a colour bar
+//!   with marks (yield strengths) inside the legend, stacked figures in one
+//!   SVG (a drawing above its time charts), and curves told apart by dash and
+//!   marker as well as colour. With `plotters` each would be a custom element
+//!   drawn by hand, as here, plus its coordinate system and layout.
+//!
+//! So the chart stays hand-written, but in a crate with no dependencies,
+//! tested on its own (`tests/chart.rs`), which the command line only uses.
+//!
+//! # Example
+//!
+//! ```
+//! use flexure_chart::{COLORS, Chart, Series, chart_figure, render};
+//!
+//! let chart = Chart { title: "A line", x_label: "x", y_label: "y", log_y: false, equal_aspect: false };
+//! let fig = chart_figure(&chart, &[Series::line("y = x²", vec![(0.0, 0.0), (1.0, 1.0), (2.0, 4.0)], COLORS[0])])?;
+//! let svg = render(&fig)?;
+//! assert!(svg.starts_with("<svg") && svg.contains("A line") && svg.contains("y = x²"));
+//! # Ok::<(), String>(())
+//! ```
 
 use std::fmt::Write as _;
 use std::path::Path;
