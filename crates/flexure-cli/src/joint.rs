@@ -15,6 +15,13 @@ use flexure::{
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
 
+/// The one JSON shape of an error estimate, batch rows and mechanism joints
+/// included: the library's serialization of it.
+pub fn estimate(e: &ErrorEstimate) -> Value {
+    // Its keys are names and its numbers map to JSON (a NaN to null, which `emit` refuses).
+    serde_json::to_value(e).unwrap_or(Value::Null)
+}
+
 /// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
 /// when the estimate misses `target` (`what` names the answer).
 pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
@@ -30,21 +37,7 @@ pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: 
         };
         warn(format!("{what}: {}; {hint}", misses(e, f.length(), target)));
     }
-    answer["error_estimate"] = if e.exact {
-        json!({ "position": e.position, "angle": e.angle, "curvature": e.curvature, "reference": "elastica" })
-    } else {
-        json!({
-            "position": e.position,
-            "angle": e.angle,
-            "curvature": e.curvature,
-            "reference": "model",
-            "reference_order": e.reference_order,
-            "reference_quadrature": e.reference_quadrature,
-        })
-    };
-    if let Some(stress) = e.stress {
-        answer["error_estimate"]["stress"] = json!(stress);
-    }
+    answer["error_estimate"] = estimate(e);
     answer["flagged"] = json!(e.flagged);
 }
 

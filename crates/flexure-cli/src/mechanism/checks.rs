@@ -63,7 +63,7 @@ fn joint_estimates(
     Ok(out)
 }
 
-/// `error_estimate` {joint: {position, angle}} and `flagged` for a solution, warning per flagged joint.
+/// `error_estimate` {joint: estimate} and `flagged` for a solution, warning per flagged joint.
 fn put_joint_estimates(
     v: &mut Value,
     m: &Mechanism,
@@ -81,11 +81,7 @@ fn put_joint_estimates(
                 crate::joint::misses(e, *length, target),
             ));
         }
-        let mut entry = json!({ "position": e.position, "angle": e.angle, "curvature": e.curvature });
-        if let Some(stress) = e.stress {
-            entry["stress"] = json!(stress);
-        }
-        map.insert(name.clone(), entry);
+        map.insert(name.clone(), crate::joint::estimate(e));
     }
     v["error_estimate"] = Value::Object(map);
     v["flagged"] = json!(estimates.iter().any(|e| e.2.flagged));
