@@ -3,89 +3,60 @@
 //! and stress, snap-throughs, stability, and a sweep that stopped.
 
 use super::flexures;
-use flexure::estimate::{Accuracy, ErrorEstimate, joint_error};
+use crate::options::warn;
+use flexure::estimate::Accuracy;
 use flexure::mechanism::file::Report;
+use flexure::mechanism::report::{SolveReport, solve_report};
 use flexure::mechanism::statics::Solution;
 use flexure::mechanism::sweep::{StabilityLimit, Sweep};
 use flexure::mechanism::{JointKind, Mechanism};
 use serde_json::{Value, json};
 use std::path::Path;
 
-/// Per flexure joint, by name: `stress` {max, at} (or `curvature_max` for
-/// one given by ei alone), `safety_factor` with a `yield_strength`, and
-/// `shape` with a `shape` key; each map left out when empty.
-fn put_flexure_stress(v: &mut Value, m: &Mechanism, s: &Solution, reports: &[(String, Report)], file: &Path) {
-    let mut maps: [(&str, serde_json::Map<String, Value>); 4] =
-        ["stress", "curvature_max", "safety_factor", "shape"].map(|k| (k, serde_json::Map::new()));
-    for (name, f, q, r) in flexures(m, s, reports) {
-        let mut one = json!({});
-        let what = format!("{}: flexure joint {name:?}", file.display());
-        crate::stress::peak(&mut one, f, q, r.yield_strength, &what);
-        if let Some(k) = r.shape {
-            one["shape"] = crate::stress::shape(f, q, k);
-        }
-        for (key, map) in &mut maps {
-            if let Some(x) = one.get(*key) {
-                map.insert(name.to_string(), x.clone());
-            }
-        }
-    }
-    for (key, map) in maps {
-        if !map.is_empty() {
-            v[key] = Value::Object(map);
-        }
-    }
-}
-
-/// The error estimate of every flexure joint at `s`, in joint order: the
-/// joint under the tip load it carries, against the refined model. A
-/// failure names the joint and the file, and says it was the estimate's
-/// own solve that failed (not the mechanism's).
-fn joint_estimates(
+/// The library's report of `s` ([`solve_report`]). A failed estimate names
+/// the joint and the file, and says it was the estimate's own solve that
+/// failed (not the mechanism's).
+fn report(
     m: &Mechanism,
     s: &Solution,
+    reports: &[(String, Report)],
     target: &Accuracy,
     file: &Path,
-) -> Result<Vec<(&'static str, String, ErrorEstimate, f64)>, String> {
-    let mut out = Vec::new();
-    for j in &m.joints {
-        if let JointKind::Flexure(fl) = &j.kind {
-            let e = joint_error(fl, &s.q[j.offset..j.offset + fl.order()], target).map_err(|e| {
-                format!(
-                    "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {e}",
-                    file.display(),
-                    j.name
-                )
-            })?;
-            out.push(("flexure joint", j.name.clone(), e, fl.length()));
-        }
-    }
-    Ok(out)
+) -> Result<SolveReport, String> {
+    solve_report(m, s, reports, target).map_err(|f| {
+        format!(
+            "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {}",
+            file.display(),
+            f.joint,
+            f.error
+        )
+    })
 }
 
-/// `error_estimate` {joint: estimate} and `flagged` for a solution, warning per flagged joint.
-fn put_joint_estimates(
-    v: &mut Value,
-    m: &Mechanism,
-    s: &Solution,
-    target: &Accuracy,
-    file: &Path,
-) -> Result<(), String> {
-    let estimates = joint_estimates(m, s, target, file)?;
-    let mut map = serde_json::Map::new();
-    for (what, name, e, length) in &estimates {
-        if e.flagged {
-            crate::options::warn(format!(
-                "{}: {what} {name:?}: {}; raise its order",
+/// Warns of each flexure joint whose estimate misses `target`, then of each
+/// stressed past its yield strength.
+fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], target: &Accuracy, file: &Path) {
+    let length = |name: &str| {
+        m.joints.iter().find(|j| j.name == name).map_or(0.0, |j| match &j.kind {
+            JointKind::Flexure(f) => f.length(),
+            _ => 0.0,
+        })
+    };
+    for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
+        let misses = crate::joint::misses(e, length(name), target);
+        warn(format!("{}: flexure joint {name:?}: {misses}; raise its order", file.display()));
+    }
+    for (name, factor) in r.safety_factor.0.iter().filter(|(_, factor)| *factor < 1.0) {
+        let strength = reports.iter().find(|k| k.0 == *name).and_then(|k| k.1.yield_strength);
+        if let (Some(p), Some(strength)) = (r.stress.get(name), strength) {
+            warn(format!(
+                "{}: flexure joint {name:?}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {strength:e} Pa: safety factor {factor:.3}",
                 file.display(),
-                crate::joint::misses(e, *length, target),
+                p.max,
+                p.at
             ));
         }
-        map.insert(name.clone(), crate::joint::estimate(e));
     }
-    v["error_estimate"] = Value::Object(map);
-    v["flagged"] = json!(estimates.iter().any(|e| e.2.flagged));
-    Ok(())
 }
 
 fn limit_json(l: &StabilityLimit) -> Value {
@@ -112,40 +83,40 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
     ))
 }
 
-/// The checks `solve` makes of one solution, shared by `draw`: closures
-/// open at rest and parts that cross (`findings`), each flexure joint's
-/// estimate (a warning per flagged joint), its stress (a warning past its
-/// yield strength), a snap-through on the way, and an unstable answer.
-pub(super) fn put_solution_checks(
-    v: &mut Value,
+/// `solve`'s answer on one solution, shared by `draw`: the library's report
+/// ([`solve_report`]) with the closures open at rest and the parts that
+/// cross (`findings`); each told on stderr, as are each flagged estimate, a
+/// stress past its yield strength, a snap-through on the way, and an
+/// unstable answer.
+pub(super) fn solution_answer(
     m: &Mechanism,
     s: &Solution,
     reports: &[(String, Report)],
     target: &Accuracy,
     file: &Path,
-) -> Result<(), String> {
+) -> Result<Value, String> {
     let mut findings = crate::findings::closures(m, file)?;
     findings.extend(crate::findings::shape(m, &s.q, file));
+    let r = report(m, s, reports, target, file)?;
+    warn_joints(&r, m, reports, target, file);
+    let mut v = serde_json::to_value(&r).map_err(|e| format!("{}: {e}", file.display()))?;
     if !findings.is_empty() {
         v["findings"] = json!(findings);
     }
-    put_joint_estimates(v, m, s, target, file)?;
-    put_flexure_stress(v, m, s, reports, file);
     if let Some(limit) = s.limit {
-        v["limit_fraction"] = json!(limit);
-        crate::options::warn(format!(
+        warn(format!(
             "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
             file.display(),
             100.0 * limit
         ));
     }
     if !s.stable {
-        crate::options::warn(format!(
+        warn(format!(
             "{}: the equilibrium is unstable (`stable: false`): its constrained stiffness is not positive definite, so a small disturbance moves it away",
             file.display()
         ));
     }
-    Ok(())
+    Ok(v)
 }
 
 /// The checks `solve --sweep` makes of a sweep, shared by `draw --sweep`:
@@ -171,17 +142,17 @@ pub(super) fn put_sweep_checks(
         v["stability_limit"] = limit_json(l);
     }
     if let Some(w) = sweep_warning(file, parameter, out, values) {
-        crate::options::warn(w);
+        warn(w);
     }
     let mut flagged = Vec::new();
     for (value, s) in &out.rows {
-        if joint_estimates(m, s, target, file)?.iter().any(|e| e.2.flagged) {
+        if report(m, s, reports, target, file)?.flagged {
             flagged.push(*value);
         }
     }
     if !flagged.is_empty() {
         v["flagged"] = json!(flagged);
-        crate::options::warn(format!(
+        warn(format!(
             "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
             file.display(),
             flagged.len()
@@ -195,7 +166,7 @@ pub(super) fn put_sweep_checks(
             (p.value > strength).then_some((*value, p.value))
         });
         if let Some((value, sigma)) = over {
-            crate::options::warn(format!(
+            warn(format!(
                 "{}: flexure joint {:?}: from {parameter} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
                 file.display(),
                 r.0,

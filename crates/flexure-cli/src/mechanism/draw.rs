@@ -1,7 +1,7 @@
 //! `flexure draw`: a mechanism's unloaded and loaded shapes (or a
 //! simulated motion) as one SVG, with the warnings `solve` gives.
 
-use super::checks::{put_solution_checks, put_sweep_checks};
+use super::checks::{put_sweep_checks, solution_answer};
 use super::drawing;
 use super::load_with_reports;
 use crate::analyses::{SweepSpec, sweep_values};
@@ -74,7 +74,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
-            put_solution_checks(&mut checks, &m, &s, &reports, &target, &args.file)?;
+            checks = solution_answer(&m, &s, &reports, &target, &args.file)?;
             vec![("loaded".into(), s)]
         }
     };

@@ -1,7 +1,7 @@
 //! `flexure solve`: a mechanism's equilibrium, optionally with the
 //! compliance of a frame or a sweep of one load.
 
-use super::checks::{put_solution_checks, put_sweep_checks};
+use super::checks::{put_sweep_checks, solution_answer};
 use super::{load_with_reports, point_arg};
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
@@ -28,19 +28,6 @@ pub struct SolveArgs {
     sweep: Option<SweepSpec>,
     #[command(flatten)]
     accuracy: crate::options::AccuracyOptions,
-}
-
-fn solution_json(m: &Mechanism, s: &Solution) -> Value {
-    let f = body_frames(m, s);
-    let bodies: serde_json::Map<String, Value> = m
-        .bodies
-        .iter()
-        .zip(&f.bodies)
-        .map(|(b, fr)| (b.name.clone(), json!({ "x": fr.origin[0], "y": fr.origin[1], "phi": fr.angle })))
-        .collect();
-    let coordinates: serde_json::Map<String, Value> =
-        m.joints.iter().map(|j| (j.name.clone(), json!(s.q[j.offset..j.offset + j.kind.joint().dof()]))).collect();
-    json!({ "bodies": bodies, "coordinates": coordinates, "energy": s.energy, "stable": s.stable })
 }
 
 /// A sweep as a table: the column names, then one row of numbers per
@@ -124,11 +111,11 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
-            let mut v = solution_json(&m, &s);
-            if let Some((b, at)) = compliance_at {
-                v["compliance"] = crate::joint::matrix(&compliance(&m, &s, b, at).map_err(err)?);
+            let c = compliance_at.map(|(b, at)| compliance(&m, &s, b, at)).transpose().map_err(err)?;
+            let mut v = solution_answer(&m, &s, &reports, &target, &args.file)?;
+            if let Some(c) = c {
+                v["compliance"] = crate::joint::matrix(&c);
             }
-            put_solution_checks(&mut v, &m, &s, &reports, &target, &args.file)?;
             Ok(v)
         }
     }
