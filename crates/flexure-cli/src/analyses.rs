@@ -1,7 +1,7 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
 use crate::joint::{MAX_FACTOR, chosen, pose as pose_json, put_estimate, put_limit, warn_unstable};
-use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments};
+use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments, warn};
 use clap::Args;
 use flexure::connect::{Connection, connect};
 use flexure::estimate::Accuracy;
@@ -41,8 +41,8 @@ pub struct ConnectArgs {
     stress: StressOptions,
     /// Also find the factor on the tip load that holds the pose (`load`),
     /// applied from rest as a dead load, up to 1000, at which its equilibrium
-    /// stops being stable (`stability_limit`), or up to which it stays stable
-    /// (`stable_up_to`).
+    /// stops being stable, or up to which it stays stable: `stability_limit`
+    /// {factor, status: lost | stable_up_to}.
     #[arg(long, conflicts_with_all = ["exact", "segments"])]
     limit: bool,
 }
@@ -168,7 +168,10 @@ pub struct TendonArgs {
     #[command(flatten)]
     flexure: FlexureOptions,
     /// Tendon tension f in N.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, required_unless_present = "sweep")]
+    #[arg(long, value_parser = number, allow_hyphen_values = true, required_unless_present_any = ["sweep", "force"])]
+    tension: Option<f64>,
+    /// Deprecated: the old name of --tension (warns).
+    #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with = "tension")]
     force: Option<f64>,
     /// Tendon offset from the neutral axis at the root, m (T1 = translation (0, D1)).
     #[arg(long, value_parser = number, allow_hyphen_values = true)]
@@ -177,39 +180,49 @@ pub struct TendonArgs {
     #[arg(long, value_parser = number, allow_hyphen_values = true)]
     tip_offset: f64,
     /// Sweep the tension F0:F1:COUNT, following the loading path.
-    #[arg(long, value_parser = sweep_arg, allow_hyphen_values = true, conflicts_with = "force")]
+    #[arg(long, value_parser = sweep_arg, allow_hyphen_values = true, conflicts_with_all = ["tension", "force"])]
     sweep: Option<Sweep>,
     #[command(flatten)]
     accuracy: AccuracyOptions,
     #[command(flatten)]
     stress: StressOptions,
     /// Also find the factor on the tension, up to 1000, at which the joint's
-    /// equilibrium followed from rest stops being stable (`stability_limit`),
-    /// or up to which it stays stable (`stable_up_to`).
+    /// equilibrium followed from rest stops being stable, or up to which it
+    /// stays stable: `stability_limit` {factor, status: lost | stable_up_to}.
     #[arg(long, conflicts_with = "sweep")]
     limit: bool,
+}
+
+impl TendonArgs {
+    /// The tension given by `--tension`, or by the deprecated `--force` (with a warning).
+    fn tension(&self) -> Option<f64> {
+        if self.force.is_some() {
+            warn("--force is deprecated for tendon; use --tension".into());
+        }
+        self.tension.or(self.force)
+    }
 }
 
 fn tendon_row(
     f: &Flexure,
     t: &Tendon,
-    force: f64,
+    tension: f64,
     data: &mut TendonData,
     target: &Accuracy,
     stress: &StressOptions,
 ) -> flexure::Result<Value> {
-    let eq = pull(f, t, force, data)?;
+    let eq = pull(f, t, tension, data)?;
     let mut row = json!({
-        "force": force,
+        "tension": tension,
         "alpha": data.alpha(),
         "pose": pose_json(&data.kinematics.pose_root_tip),
         "tendon_length": tendon_length(f, t, data.alpha()),
         "stable": eq.stable,
     });
-    warn_unstable(eq.stable, &format!("tendon at {force} N"));
-    let e = flexure::estimate::tendon_error(f, t, force, data.alpha(), target)?;
-    put_estimate(&mut row, &e, f, target, &format!("tendon at {force} N"));
-    crate::stress::put(&mut row, f, data.alpha(), stress, &format!("tendon at {force} N"));
+    warn_unstable(eq.stable, &format!("tendon at {tension} N"));
+    let e = flexure::estimate::tendon_error(f, t, tension, data.alpha(), target)?;
+    put_estimate(&mut row, &e, f, target, &format!("tendon at {tension} N"));
+    crate::stress::put(&mut row, f, data.alpha(), stress, &format!("tendon at {tension} N"));
     Ok(row)
 }
 
@@ -220,49 +233,53 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
     if args.sweep.is_some() && args.flexure.auto() {
         return Err(Error::invalid("order", "auto", "a sweep's rows share one order: give a number with --sweep"));
     }
-    let f = chosen(&args.flexure, |f| match args.force {
-        Some(force) => Ok(flexure::estimate::tendon_auto(f, &t, force, &target)?.0),
+    let tension = args.tension();
+    if let Some(bad) = tension.filter(|t| !(t.is_finite() && *t >= 0.0)) {
+        return Err(Error::invalid("tension", bad, "a tendon's tension must be finite and not negative"));
+    }
+    let f = chosen(&args.flexure, |f| match tension {
+        Some(tension) => Ok(flexure::estimate::tendon_auto(f, &t, tension, &target)?.0),
         None => Ok(f.clone()),
     })?;
     crate::stress::check(&f, &args.stress)?;
     let mut data = TendonData::new(&f);
-    match (args.sweep, args.force) {
+    match (args.sweep, tension) {
         (Some(s), _) => {
             // Every row reached is printed; a failure ends the sweep in its
             // place (each value is continued from the last, so none after it is tried).
             let mut rows = Vec::new();
-            for force in sweep_values(&s) {
-                match tendon_row(&f, &t, force, &mut data, &target, &args.stress) {
+            for tension in sweep_values(&s) {
+                match tendon_row(&f, &t, tension, &mut data, &target, &args.stress) {
                     Ok(row) => rows.push(row),
                     Err(e) => {
                         let reached = rows.len();
                         let error = format!(
-                            "tendon --sweep: stopped at force = {force} N after {reached} of {} values: {}",
+                            "tendon --sweep: stopped at tension = {tension} N after {reached} of {} values: {}",
                             s.count,
                             crate::describe(e)
                         );
-                        return Ok(json!({ "rows": rows, "stopped": { "force": force, "error": error } }));
+                        return Ok(json!({ "rows": rows, "stopped": { "tension": tension, "error": error } }));
                     }
                 }
             }
             Ok(json!({ "rows": rows }))
         }
-        (None, Some(force)) => {
-            let mut row = tendon_row(&f, &t, force, &mut data, &target, &args.stress)?;
+        (None, Some(tension)) => {
+            let mut row = tendon_row(&f, &t, tension, &mut data, &target, &args.stress)?;
             if args.flexure.auto() {
                 row["order"] = json!(f.order());
                 row["quadrature"] = json!(f.quadrature_points());
             }
             if let Some(map) = row.as_object_mut() {
-                map.remove("force");
+                map.remove("tension");
             }
             if args.limit {
-                let limit = flexure::tendon::stability_limit(&f, &t, force, MAX_FACTOR)?;
+                let limit = flexure::tendon::stability_limit(&f, &t, tension, MAX_FACTOR)?;
                 put_limit(&mut row, &limit, "tendon --limit");
             }
             Ok(row)
         }
-        (None, None) => Err(Error::invalid("force", "nothing", "give --force or --sweep")),
+        (None, None) => Err(Error::invalid("tension", "nothing", "give --tension or --sweep")),
     }
 }
 

@@ -156,7 +156,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
                     Ok(json!({
                         "load": { "moment": load.moment, "fx": load.fx, "fy": load.fy },
                         "alpha": data.alpha(), "pose": pose_json(&data.pose_root_tip()), "stable": eq.stable,
-                        "error_estimate": { "position": e.position, "angle": e.angle }, "flagged": e.flagged,
+                        "error_estimate": crate::joint::estimate(&e), "flagged": e.flagged,
                     }))
                 }
                 Err(e) => {
@@ -177,7 +177,18 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
     let a: Vec<String> = (1..=f.order()).map(|i| format!("a{i}")).collect();
     Ok(Rows {
         source: format!("--input {}", path.display()),
-        header: format!("moment,fx,fy,{},phi,x,y,stable,error_position,error_angle,flagged", a.join(",")),
+        header: format!("moment,fx,fy,{},phi,x,y,stable,{},flagged", a.join(","), estimate_columns(f).join(",")),
         answers,
     })
+}
+
+/// The table form's columns of a row's `error_estimate`, in its order
+/// (`stress` only for a flexure with a thickness, as the estimate has it).
+fn estimate_columns(f: &Flexure) -> Vec<&'static str> {
+    let stress = f.section().modulus().is_some();
+    ["error_position", "error_angle", "error_stress", "error_curvature"]
+        .into_iter()
+        .filter(|c| stress || *c != "error_stress")
+        .chain(["error_reference_order", "error_reference_quadrature", "error_reference"])
+        .collect()
 }

@@ -15,6 +15,13 @@ use flexure::{
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
 
+/// The one JSON shape of an error estimate, batch rows and mechanism joints
+/// included: the library's serialization of it.
+pub fn estimate(e: &ErrorEstimate) -> Value {
+    // Its keys are names and its numbers map to JSON (a NaN to null, which `emit` refuses).
+    serde_json::to_value(e).unwrap_or(Value::Null)
+}
+
 /// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
 /// when the estimate misses `target` (`what` names the answer).
 pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
@@ -30,43 +37,32 @@ pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: 
         };
         warn(format!("{what}: {}; {hint}", misses(e, f.length(), target)));
     }
-    answer["error_estimate"] = if e.exact {
-        json!({ "position": e.position, "angle": e.angle, "curvature": e.curvature, "reference": "elastica" })
-    } else {
-        json!({
-            "position": e.position,
-            "angle": e.angle,
-            "curvature": e.curvature,
-            "reference": "model",
-            "reference_order": e.reference_order,
-            "reference_quadrature": e.reference_quadrature,
-        })
-    };
-    if let Some(stress) = e.stress {
-        answer["error_estimate"]["stress"] = json!(stress);
-    }
+    answer["error_estimate"] = estimate(e);
     answer["flagged"] = json!(e.flagged);
 }
 
 /// The largest factor `--limit` tries on a load.
 pub const MAX_FACTOR: f64 = 1000.0;
 
-/// Writes `--limit`'s one number into `answer`: `stability_limit`, the
-/// factor on the load where stability is lost, or `stable_up_to`, the
-/// factor it holds to; a path that could not be followed that far says so
-/// on stderr (`what` names the answer).
+/// Writes `--limit`'s answer into `answer`: `stability_limit`, the object
+/// `{factor, status}` with `status` "lost" (stability is lost at `factor`
+/// times the load) or "stable_up_to" (the path holds to `factor`, and
+/// `stalled` says why it could not be followed further, if it could not);
+/// such a stall is also said on stderr (`what` names the answer).
 pub fn put_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
-    match limit {
-        flexure::StabilityLimit::Lost { factor } => answer["stability_limit"] = json!(factor),
+    answer["stability_limit"] = match limit {
+        flexure::StabilityLimit::Lost { factor } => json!({ "factor": factor, "status": "lost" }),
         flexure::StabilityLimit::StableUpTo { factor, stalled } => {
-            answer["stable_up_to"] = json!(factor);
+            let mut v = json!({ "factor": factor, "status": "stable_up_to" });
             if let Some(why) = stalled {
+                v["stalled"] = json!(why.to_string());
                 warn(format!(
                     "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
                 ));
             }
+            v
         }
-    }
+    };
 }
 
 /// Warns that an answer is not a stable equilibrium (`what` names it).
@@ -202,9 +198,9 @@ pub struct DeflectArgs {
     #[arg(long)]
     exact: bool,
     /// Also find the factor on the load, up to 1000, at which the equilibrium
-    /// followed from rest stops being stable (`stability_limit`), or the
-    /// factor up to which it stays stable (`stable_up_to`: 1000, or as far as
-    /// the path could be followed, with a warning).
+    /// followed from rest stops being stable, or up to which it stays stable
+    /// (1000, or as far as the path could be followed, with a warning):
+    /// `stability_limit` {factor, status: lost | stable_up_to}.
     #[arg(long)]
     limit: bool,
     /// Relative tolerance on the generalized-force residual, in (0, 1).
@@ -247,7 +243,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     });
     // With --limit, its refined factor is the one number printed.
     if let Some(limit) = eq.limit.filter(|_| !args.limit) {
-        model["limit_load_fraction"] = json!(limit);
+        model["limit_fraction"] = json!(limit);
     }
     warn_unstable(eq.stable, "deflect");
     crate::stress::put(&mut model, &f, data.alpha(), &args.stress, "deflect");

@@ -9,7 +9,6 @@
 mod analyses;
 mod batch;
 mod eigen;
-mod figures;
 mod findings;
 mod input;
 mod joint;

@@ -3,7 +3,6 @@
 //! results.json holding every number in the report.
 
 use crate::analyses::exact_connection;
-use crate::figures::{COLORS, Chart, Color, Dash, Marker, Series, draw};
 use clap::Args;
 use flexure::connect::connect;
 use flexure::kinematics::backbone;
@@ -13,6 +12,7 @@ use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{
     Flexure, Pose, Statics, TipConstraint, TipLoad, bending_stiffness, buckling_load, compliance_tip_rest, deflect,
 };
+use flexure_chart::{COLORS, Chart, Color, Dash, Marker, Series, draw};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -93,7 +93,7 @@ pub fn run(args: &ReproduceArgs) -> Result<Value, String> {
         "table1_max_error_percent": results["table1"]["rows"].as_array().map(|r| r.iter().filter_map(|x| x["error_percent"].as_f64()).fold(0.0, f64::max)),
         "fig13_max_error": results["fig12_13"]["max_error"],
         "fig7_8_max_position_error": results["fig7_8"]["max_position_error"],
-        "fig10_force_at_90": results["fig10"]["force_at_90"],
+        "fig10_tension_at_90": results["fig10"]["tension_at_90"],
         "notch_compliance_ode_error": results["sections"]["notch"]["ode_relative_error"],
     }))
 }
@@ -341,9 +341,9 @@ fn fig10(out: &Path, md: &mut String) -> Run<Value> {
     let mut data = TendonData::new(&f);
     let mut rows = Vec::new();
     for i in 0..=40 {
-        let force = i as f64;
-        pull(&f, &t, force, &mut data).map_err(lib)?;
-        rows.push((force, data.alpha()[0].to_degrees()));
+        let tension = i as f64;
+        pull(&f, &t, tension, &mut data).map_err(lib)?;
+        rows.push((tension, data.alpha()[0].to_degrees()));
     }
     let (mut lo, mut hi) = (0.0, 40.0);
     for _ in 0..60 {
@@ -352,13 +352,13 @@ fn fig10(out: &Path, md: &mut String) -> Run<Value> {
         pull(&f, &t, mid, &mut d).map_err(lib)?;
         if d.alpha()[0] < FRAC_PI_2 { lo = mid } else { hi = mid }
     }
-    let force90 = 0.5 * (lo + hi);
+    let tension90 = 0.5 * (lo + hi);
     let mut text = String::from("## Fig. 10: tendon-driven joint\n\n");
     let _ = write!(
         text,
         "Steel flexure 15 × 10 × 0.2 mm, E = 200 GPa, ν = 0.29, EI = {ei:.4e} N·m² (Eq. 25; the paper rounds to 1.46e-3), \
          tendon 5 mm from the neutral axis at both ends. Potential U + f·|Δx| (errata: the paper prints −). \
-         90° needs **{force90:.2} N**; the paper reads about 28 N off Fig. 10. \
+         90° needs **{tension90:.2} N**; the paper reads about 28 N off Fig. 10. \
          For scale, this flexure's Euler load is π²EI/4L² = {:.2} N (errata: 15.97, printed 15.76).\n\n",
         euler::buckling_load(TipConstraint::Free, 0.015, ei)
     );
@@ -376,7 +376,7 @@ fn fig10(out: &Path, md: &mut String) -> Run<Value> {
     )?;
     md.push_str(&text);
     Ok(
-        json!({ "ei": ei, "rows": rows.iter().map(|(f, a)| json!({ "force": f, "rotation_degrees": a })).collect::<Vec<_>>(), "force_at_90": force90, "paper": { "force_at_90": 28.0 } }),
+        json!({ "ei": ei, "rows": rows.iter().map(|(f, a)| json!({ "tension": f, "rotation_degrees": a })).collect::<Vec<_>>(), "tension_at_90": tension90, "paper": { "tension_at_90": 28.0 } }),
     )
 }
 

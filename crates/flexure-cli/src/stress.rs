@@ -3,8 +3,7 @@
 //! factor against a yield strength, and the deformed shape.
 
 use crate::options::{StressOptions, warn};
-use flexure::kinematics::backbone;
-use flexure::stress::{Peak, peak_curvature, peak_stress, stress};
+use flexure::stress::{Peak, peak_curvature, peak_stress};
 use flexure::{Error, Flexure};
 use serde_json::{Value, json};
 
@@ -76,22 +75,7 @@ pub fn put_peak<E>(
 /// included, in its root frame: `{s, x, y, phi, curvature, stress}` with the
 /// total curvature (1/m) and, with a thickness, the bending stress (Pa).
 pub fn shape(f: &Flexure, alpha: &[f64], count: usize) -> Value {
-    let poses = backbone(f, alpha, count);
-    let step = f.length() / (poses.len() - 1) as f64;
-    let points: Vec<Value> = poses
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            // The last point exactly at the tip, not at a rounded multiple.
-            let s = if i + 1 == poses.len() { f.length() } else { i as f64 * step };
-            let mut point = json!({ "s": s, "x": p.x, "y": p.y, "phi": p.phi, "curvature": f.curvature(alpha, s) });
-            if let Some(sigma) = stress(f, alpha, s) {
-                point["stress"] = json!(sigma);
-            }
-            point
-        })
-        .collect();
-    json!(points)
+    json!(flexure::mechanism::report::shape(f, alpha, count))
 }
 
 /// [`peak`], and [`shape`] when asked for: everything `options` asks of `f` at `alpha`.

@@ -57,13 +57,13 @@ fn connect_energy_ordering() {
 #[test]
 fn tendon_paper_joint() {
     let steel = "--length 0.015 --modulus 200e9 --width 0.01 --thickness 0.0002 --poisson 0.29";
-    let v = json(&format!("tendon {steel} --force 28 --root-offset 0.005 --tip-offset 0.005"));
+    let v = json(&format!("tendon {steel} --tension 28 --root-offset 0.005 --tip-offset 0.005"));
     assert!((f(&v["pose"]["phi"]).to_degrees() - 90.0).abs() < 2.0, "{}", f(&v["pose"]["phi"]).to_degrees());
     assert!(f(&v["tendon_length"]) < 0.015, "tension shortens the tendon");
     let s = json(&format!("tendon {steel} --sweep 0:40:9 --root-offset 0.005 --tip-offset 0.005"));
     let rows = s["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 9);
-    assert_eq!(f(&rows[0]["force"]), 0.0);
+    assert_eq!(f(&rows[0]["tension"]), 0.0);
     let angles: Vec<f64> = rows.iter().map(|r| f(&r["pose"]["phi"])).collect();
     assert!(angles.windows(2).all(|w| w[1] > w[0]), "rotation grows with tension");
     for key in ["alpha", "pose", "tendon_length"] {
@@ -79,10 +79,10 @@ fn bad_input_exits_2() {
         ("connect --pose 1,0.5", "--pose"),
         ("connect --pose 1,0.5,0.5 --segments 0", "--segments"),
         ("connect --pose 1,0.5,0.5 --segments 5 --kappa 1,0,0", "--kappa"),
-        ("tendon --force -1 --root-offset 0 --tip-offset 0", "--force"),
+        ("tendon --tension -1 --root-offset 0 --tip-offset 0", "--tension"),
         ("tendon --sweep 0:1:1 --root-offset 0 --tip-offset 0", "--sweep"),
         ("tendon --sweep -1:1:3 --root-offset 0 --tip-offset 0", "--sweep"),
-        ("tendon --force 1 --root-offset nan --tip-offset 0", "--root-offset"),
+        ("tendon --tension 1 --root-offset nan --tip-offset 0", "--root-offset"),
     ] {
         let (code, out, err) = run(&format!("{args} --json"));
         assert_eq!(code, 2, "{args}");
@@ -105,27 +105,28 @@ fn exact_connection_of_a_curved_flexure_is_the_same_at_any_order() {
     assert!((five - seven).abs() < 1e-9 * five, "{five} vs {seven}");
 }
 
-/// `--limit` answers with one number on loads where it used to fail (issue
-/// 20: `deflect --moment 1 --fx 0.5 --fy 0.3 --limit` and `--moment 2
-/// --limit` exited 2 with a stalled probe), and never with the path's own
-/// cruder `limit_load_fraction` beside it.
+/// `--limit` answers with one `stability_limit` on loads where it used to
+/// fail (issue 20: `deflect --moment 1 --fx 0.5 --fy 0.3 --limit` and
+/// `--moment 2 --limit` exited 2 with a stalled probe), and never with the
+/// path's own cruder `limit_fraction` beside it.
 #[test]
 fn limit_answers_once_on_ordinary_loads() {
     for load in ["--moment 1 --fx 0.5 --fy 0.3", "--moment 2", "--moment 0.2 --fx -1", "--fx -1 --fy 0.3"] {
         let v = json(&format!("deflect {load} --limit"));
-        let shown: Vec<&str> = ["stability_limit", "stable_up_to", "limit_load_fraction"]
-            .into_iter()
-            .filter(|k| v.get(k).is_some())
-            .collect();
-        assert!(shown == ["stability_limit"] || shown == ["stable_up_to"], "{load}: {v}");
+        assert!(v.get("limit_fraction").is_none(), "{load}: {v}");
+        let status = v["stability_limit"]["status"].as_str();
+        assert!(status == Some("lost") || status == Some("stable_up_to"), "{load}: {v}");
+        assert!(v["stability_limit"]["factor"].as_f64().is_some(), "{load}: {v}");
     }
     // A pure moment of 2 is followed, stable, to 734 times itself (the
     // continuation's 1000 steps), said on stderr as a bound, not an instability.
     let (code, out, err) = run("deflect --moment 2 --limit --json");
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
-    let bound = v["stable_up_to"].as_f64().unwrap();
+    let bound = v["stability_limit"]["factor"].as_f64().unwrap();
     assert!(bound > 1.0 && bound < 1000.0, "{v}");
+    assert_eq!(v["stability_limit"]["status"], "stable_up_to");
+    assert!(v["stability_limit"]["stalled"].as_str().is_some_and(|why| !why.is_empty()), "{v}");
     assert!(err.contains("as far as it could be followed") && !err.contains("max_steps"), "{err}");
 }
 
@@ -135,16 +136,16 @@ fn limit_answers_once_on_ordinary_loads() {
 /// `deflect --limit` under the load that holds the pose.
 #[test]
 fn tendon_and_connect_limits() {
-    let a = json("tendon --force 1 --root-offset 0.1 --tip-offset -0.05 --limit");
-    let b = json("tendon --force 1 --root-offset -0.1 --tip-offset 0.05 --limit");
-    let (a, b) = (a["stability_limit"].as_f64().unwrap(), b["stability_limit"].as_f64().unwrap());
+    let a = json("tendon --tension 1 --root-offset 0.1 --tip-offset -0.05 --limit");
+    let b = json("tendon --tension 1 --root-offset -0.1 --tip-offset 0.05 --limit");
+    assert_eq!((&a["stability_limit"]["status"], &b["stability_limit"]["status"]), (&"lost".into(), &"lost".into()));
+    let (a, b) = (a["stability_limit"]["factor"].as_f64().unwrap(), b["stability_limit"]["factor"].as_f64().unwrap());
     assert!((a - 22.893).abs() < 1e-3 && (a / b - 1.0).abs() < 1e-9, "{a} {b}");
     let c = json("connect --pose 0.5,0.9,0.3 --limit");
     let load = &c["load"];
     let d = json(&format!("deflect --moment {} --fx {} --fy {} --limit", load["moment"], load["fx"], load["fy"]));
-    for key in ["stability_limit", "stable_up_to"] {
-        assert_eq!(c.get(key).map(|x| x.as_f64().unwrap()), d.get(key).map(|x| x.as_f64().unwrap()), "{key}: {c} {d}");
-    }
+    assert_eq!(c["stability_limit"]["status"], d["stability_limit"]["status"], "{c} {d}");
+    assert_eq!(c["stability_limit"]["factor"].as_f64(), d["stability_limit"]["factor"].as_f64(), "{c} {d}");
 }
 
 /// A sweep that stops prints every row it reached, then the failure in its
@@ -156,10 +157,10 @@ fn a_stopped_tendon_sweep_keeps_its_rows() {
     let (code, out, err) = run("tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1 --json");
     assert_eq!(code, 2, "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
-    let forces: Vec<f64> = v["rows"].as_array().unwrap().iter().map(|r| r["force"].as_f64().unwrap()).collect();
-    assert_eq!(forces, [0.0, 5.0, 10.0, 15.0]);
-    assert_eq!(v["stopped"]["force"], 20.0);
-    assert!(err.contains("error: tendon --sweep: stopped at force = 20 N after 4 of 5 values"), "{err}");
+    let tensions: Vec<f64> = v["rows"].as_array().unwrap().iter().map(|r| r["tension"].as_f64().unwrap()).collect();
+    assert_eq!(tensions, [0.0, 5.0, 10.0, 15.0]);
+    assert_eq!(v["stopped"]["tension"], 20.0);
+    assert!(err.contains("error: tendon --sweep: stopped at tension = 20 N after 4 of 5 values"), "{err}");
     // The table form prints the same rows first.
     let (code, out, _) = run("tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1");
     assert_eq!(code, 2);
@@ -177,4 +178,19 @@ fn unstable_answers_warn() {
     assert!(err.contains("warning: deflect: the equilibrium is unstable"), "{err}");
     let (_, _, err) = run("deflect --fx -2 --json");
     assert!(!err.contains("unstable"), "{err}");
+}
+
+/// `tendon --force` is the old name of `--tension`: the same answer, and a
+/// warning naming the new option.
+#[test]
+fn tendon_force_is_a_deprecated_alias_of_tension() {
+    let args = "--root-offset 0.1 --tip-offset 0.05 --json";
+    let (code, old, err) = run(&format!("tendon --force 5 {args}"));
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning: --force is deprecated for tendon; use --tension"), "{err}");
+    let (code, new, err) = run(&format!("tendon --tension 5 {args}"));
+    assert!(code == 0 && !err.contains("deprecated"), "{err}");
+    assert_eq!(old, new);
+    let (code, _, err) = run(&format!("tendon --tension 5 --force 5 {args}"));
+    assert_eq!(code, 2, "{err}");
 }

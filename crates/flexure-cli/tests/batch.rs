@@ -181,3 +181,26 @@ fn a_file_without_rows_is_refused() {
         assert!(out.is_empty() && err.contains("no rows"), "{command}: {err}");
     }
 }
+
+/// A batch row carries the whole error estimate, the single call's very
+/// object (curvature, and stress with a thickness, included), and its
+/// table form one column per leaf, under a header naming each.
+#[test]
+fn rows_carry_the_single_calls_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "loads.csv", "moment,fx,fy\n0.5,0,0.2\n");
+    let steel = ["--length", "0.05", "--modulus", "200e9", "--width", "0.01", "--thickness", "4e-4"];
+    for section in [&steel[..], &[]] {
+        let (code, out, err) = run(&[&["deflect", "--json", "--input", &path], section].concat());
+        assert_eq!(code, 0, "{err}");
+        let row: Value = serde_json::from_str(out.lines().next().unwrap()).unwrap();
+        let one = single(&[&["deflect", "--moment", "0.5", "--fy", "0.2"], section].concat());
+        assert_eq!(row["error_estimate"], one["error_estimate"], "{section:?}");
+        assert!(row["error_estimate"]["curvature"].is_f64());
+        assert_eq!(row["error_estimate"].get("stress").is_some(), !section.is_empty());
+        let (_, table, _) = run(&[&["deflect", "--input", &path], section].concat());
+        let lines: Vec<&str> = table.lines().collect();
+        assert_eq!(lines[0].split(',').count(), lines[1].split(',').count(), "{table}");
+        assert_eq!(lines[0].contains("error_stress"), !section.is_empty());
+    }
+}

@@ -52,7 +52,7 @@ fn accuracy_sets_the_target() {
 /// Tendon, connect and batch rows carry estimates too.
 #[test]
 fn every_answer_carries_an_estimate() {
-    let tendon = ["tendon", "--force", "28", "--root-offset", "0.005", "--tip-offset", "0.005"];
+    let tendon = ["tendon", "--tension", "28", "--root-offset", "0.005", "--tip-offset", "0.005"];
     let (v, _) = json(&[&tendon[..], &["--length", "0.015", "--ei", "1.4558e-3"]].concat());
     assert!(v["error_estimate"]["position"].as_f64().unwrap() >= 0.0 && v["flagged"].is_boolean());
     let (v, _) = json(&["connect", "--pose", "90deg,0.55,0.65"]);

@@ -254,7 +254,7 @@ fn commands() -> Vec<Subcommand> {
             "tendon",
             false,
             with_flexure(&[
-                ("--force", Kind::Number),
+                ("--tension", Kind::Number),
                 ("--root-offset", Kind::Small),
                 ("--tip-offset", Kind::Small),
                 ("--sweep", Kind::TendonSweep),
@@ -393,7 +393,7 @@ fn argv(r: &mut Rng, scratch: &Scratch, tag: &str) -> Vec<String> {
         "kinematics" => &["--alpha"],
         "buckling" => &["--tip"],
         "connect" => &["--pose"],
-        "tendon" => &["--force", "--root-offset", "--tip-offset"],
+        "tendon" => &["--tension", "--root-offset", "--tip-offset"],
         "draw" => &["--out"],
         _ => &[],
     };

@@ -19,7 +19,7 @@ fn reproduce_writes_a_checked_report() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert!(summary["fig10_force_at_90"].is_number());
+    assert!(summary["fig10_tension_at_90"].is_number());
     let r: Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
 
     // Table I: model column as printed (±5e-5); Euler from closed forms,
@@ -54,7 +54,7 @@ fn reproduce_writes_a_checked_report() {
     assert!(f(&r["fig7_8"]["cases"][0]["position_error"]) < 1e-9, "case A: the arc is in the model");
 
     // Fig. 10: about 28 N for 90° (read off the figure, ±0.5 N); rotation grows with tension.
-    assert!((f(&r["fig10"]["force_at_90"]) - 28.0).abs() < 0.5);
+    assert!((f(&r["fig10"]["tension_at_90"]) - 28.0).abs() < 0.5);
     let rows = r["fig10"]["rows"].as_array().unwrap();
     assert!(rows.windows(2).all(|w| f(&w[1]["rotation_degrees"]) > f(&w[0]["rotation_degrees"])));
 

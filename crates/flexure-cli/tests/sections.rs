@@ -299,7 +299,7 @@ fn bad_sections_name_the_option() {
         (with(rect("0.01", "0.004"), &["--yield-strength", "inf"]), "--yield-strength"),
         (vec!["deflect", "--force", "1", "--yield-strength", "1e8"], "--yield-strength"),
         (
-            vec!["tendon", "--force", "1", "--root-offset", "0", "--tip-offset", "0.01", "--yield-strength", "1e8"],
+            vec!["tendon", "--tension", "1", "--root-offset", "0", "--tip-offset", "0.01", "--yield-strength", "1e8"],
             "--yield-strength",
         ),
         (vec!["connect", "--pose", "0.5,0.9,0.2", "--yield-strength", "1e8"], "--yield-strength"),

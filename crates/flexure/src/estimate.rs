@@ -84,7 +84,32 @@ impl Accuracy {
 }
 
 /// An answer's estimated error, and whether it misses the [`Accuracy`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// It serializes as the one shape every answer prints (the CLI's
+/// `error_estimate`, batch rows included): `position`, `angle`, `stress`
+/// (only with a thickness), `curvature`, `reference_order`,
+/// `reference_quadrature` and `reference` (`"model"` or `"elastica"`, from
+/// [`exact`](Self::exact)); `peak` and `flagged` are verdicts, printed
+/// beside it.
+///
+/// # Example
+///
+/// ```
+/// use flexure::estimate::{Accuracy, deflect_error};
+/// use flexure::{Flexure, Statics, TipLoad, deflect};
+///
+/// let f = Flexure::new(1.0, 1.0, 3)?;
+/// let load = TipLoad { moment: 0.5, fx: 0.0, fy: 0.2 };
+/// let mut data = Statics::new(&f);
+/// deflect(&f, &load, &mut data, &Default::default())?;
+/// let e = deflect_error(&f, &load, data.alpha(), &Accuracy::default())?;
+/// // Against the refined model, without a thickness: no stress is printed.
+/// assert!(!e.exact && e.reference_order > 3 && e.stress.is_none());
+/// fn printable(_: &impl serde::Serialize) {}
+/// printable(&e);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ErrorEstimate {
     /// Estimated position error (m).
     pub position: f64,
@@ -92,13 +117,16 @@ pub struct ErrorEstimate {
     pub angle: f64,
     /// Estimated error of the peak bending stress (Pa); `None` for a
     /// section without thickness.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<f64>,
     /// Estimated error of the peak curvature change (1/m).
     pub curvature: f64,
     /// The reported peak's estimated error as a fraction of the peak:
     /// stress with a thickness, curvature change without (0 when unbent).
+    #[serde(skip)]
     pub peak: f64,
     /// Whether the estimate exceeds the accuracy target.
+    #[serde(skip)]
     pub flagged: bool,
     /// Order of the reference model (0 when the reference is the exact elastica).
     pub reference_order: usize,
@@ -106,7 +134,13 @@ pub struct ErrorEstimate {
     pub reference_quadrature: usize,
     /// Whether the reference is the exact elastica ([`crate::reference::elastica`]) rather than
     /// a refined model: so at order [`MAX_ORDER`], which no model refines (see the module docs).
+    #[serde(rename = "reference", serialize_with = "reference_name")]
     pub exact: bool,
+}
+
+/// What an estimate was made against, as it is printed.
+fn reference_name<S: serde::Serializer>(exact: &bool, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.serialize_str(if *exact { "elastica" } else { "model" })
 }
 
 impl ErrorEstimate {

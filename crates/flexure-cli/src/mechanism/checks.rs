@@ -1,0 +1,187 @@
+//! What `solve` checks of a solution or a sweep, and `draw` repeats:
+//! closures and crossings (`findings`), each flexure joint's error estimate
+//! and stress, snap-throughs, stability, and a sweep that stopped.
+
+use super::flexures;
+use crate::options::warn;
+use flexure::estimate::Accuracy;
+use flexure::mechanism::file::Report;
+use flexure::mechanism::report::{SolveReport, solve_report};
+use flexure::mechanism::statics::Solution;
+use flexure::mechanism::sweep::{StabilityLimit, Sweep};
+use flexure::mechanism::{JointKind, Mechanism};
+use serde_json::{Value, json};
+use std::path::Path;
+
+/// The library's report of `s` ([`solve_report`]). A failed estimate names
+/// the joint and the file, and says it was the estimate's own solve that
+/// failed (not the mechanism's).
+fn report(
+    m: &Mechanism,
+    s: &Solution,
+    reports: &[(String, Report)],
+    target: &Accuracy,
+    file: &Path,
+) -> Result<SolveReport, String> {
+    solve_report(m, s, reports, target).map_err(|f| {
+        format!(
+            "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {}",
+            file.display(),
+            f.joint,
+            f.error
+        )
+    })
+}
+
+/// Warns of each flexure joint whose estimate misses `target`, then of each
+/// stressed past its yield strength.
+fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], target: &Accuracy, file: &Path) {
+    let length = |name: &str| {
+        m.joints.iter().find(|j| j.name == name).map_or(0.0, |j| match &j.kind {
+            JointKind::Flexure(f) => f.length(),
+            _ => 0.0,
+        })
+    };
+    for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
+        let misses = crate::joint::misses(e, length(name), target);
+        warn(format!("{}: flexure joint {name:?}: {misses}; raise its order", file.display()));
+    }
+    for (name, factor) in r.safety_factor.0.iter().filter(|(_, factor)| *factor < 1.0) {
+        let strength = reports.iter().find(|k| k.0 == *name).and_then(|k| k.1.yield_strength);
+        if let (Some(p), Some(strength)) = (r.stress.get(name), strength) {
+            warn(format!(
+                "{}: flexure joint {name:?}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {strength:e} Pa: safety factor {factor:.3}",
+                file.display(),
+                p.max,
+                p.at
+            ));
+        }
+    }
+}
+
+fn limit_json(l: &StabilityLimit) -> Value {
+    json!({ "value": l.value, "fraction": l.fraction })
+}
+
+/// The warning for a sweep that lost stability, or `None`.
+fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> Option<String> {
+    let l = out.stability_limit?;
+    let beyond = match values.len() - out.rows.len() {
+        0 => "the path snapped through to stable states beyond it".to_string(),
+        1 => "the last value has no stable equilibrium reachable by loading and is not printed".to_string(),
+        k => format!("the last {k} values have no stable equilibrium reachable by loading and are not printed"),
+    };
+    // Seven significant digits: the limit is found to a relative 1e-6.
+    let magnitude = if l.value != 0.0 { l.value.abs().log10().floor().clamp(-300.0, 300.0) as i64 } else { 0 };
+    let digits = (6 - magnitude).clamp(0, 17) as usize;
+    Some(format!(
+        "{}: stability is lost at {parameter} = {:.*} ({:.4} % along the sweep); {beyond}",
+        file.display(),
+        digits,
+        l.value,
+        100.0 * l.fraction
+    ))
+}
+
+/// `solve`'s answer on one solution, shared by `draw`: the library's report
+/// ([`solve_report`]) with the closures open at rest and the parts that
+/// cross (`findings`); each told on stderr, as are each flagged estimate, a
+/// stress past its yield strength, a snap-through on the way, and an
+/// unstable answer.
+pub(super) fn solution_answer(
+    m: &Mechanism,
+    s: &Solution,
+    reports: &[(String, Report)],
+    target: &Accuracy,
+    file: &Path,
+) -> Result<Value, String> {
+    let mut findings = crate::findings::closures(m, file)?;
+    findings.extend(crate::findings::shape(m, &s.q, file));
+    let r = report(m, s, reports, target, file)?;
+    warn_joints(&r, m, reports, target, file);
+    let mut v = serde_json::to_value(&r).map_err(|e| format!("{}: {e}", file.display()))?;
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
+    if let Some(limit) = s.limit {
+        warn(format!(
+            "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+            file.display(),
+            100.0 * limit
+        ));
+    }
+    if !s.stable {
+        warn(format!(
+            "{}: the equilibrium is unstable (`stable: false`): its constrained stiffness is not positive definite, so a small disturbance moves it away",
+            file.display()
+        ));
+    }
+    Ok(v)
+}
+
+/// The checks `solve --sweep` makes of a sweep, shared by `draw --sweep`:
+/// closures open at rest and rows whose parts cross (`findings`), where
+/// stability is lost, the rows whose estimate is flagged, the first row past
+/// each yield strength, and a sweep that stopped (`stopped`, which makes the
+/// command exit 2 after printing its rows).
+pub(super) fn put_sweep_checks(
+    v: &mut Value,
+    m: &Mechanism,
+    out: &Sweep,
+    reports: &[(String, Report)],
+    (target, file): (&Accuracy, &Path),
+    (parameter, values): (&str, &[f64]),
+) -> Result<(), String> {
+    let mut findings = crate::findings::closures(m, file)?;
+    let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
+    findings.extend(crate::findings::along(m, &shapes, (parameter, "swept values"), "value", file));
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
+    }
+    if let Some(l) = &out.stability_limit {
+        v["stability_limit"] = limit_json(l);
+    }
+    if let Some(w) = sweep_warning(file, parameter, out, values) {
+        warn(w);
+    }
+    let mut flagged = Vec::new();
+    for (value, s) in &out.rows {
+        if report(m, s, reports, target, file)?.flagged {
+            flagged.push(*value);
+        }
+    }
+    if !flagged.is_empty() {
+        v["flagged"] = json!(flagged);
+        warn(format!(
+            "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
+            file.display(),
+            flagged.len()
+        ));
+    }
+    for (k, r) in reports.iter().enumerate() {
+        let Some(strength) = r.1.yield_strength else { continue };
+        let over = out.rows.iter().find_map(|(value, s)| {
+            let (_, f, q, _) = flexures(m, s, reports).nth(k)?;
+            let p = flexure::stress::peak_stress(f, q)?;
+            (p.value > strength).then_some((*value, p.value))
+        });
+        if let Some((value, sigma)) = over {
+            warn(format!(
+                "{}: flexure joint {:?}: from {parameter} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
+                file.display(),
+                r.0,
+                r.0
+            ));
+        }
+    }
+    if let Some((value, e)) = &out.stopped {
+        let error = format!(
+            "{}: the sweep stopped at {parameter} = {value} after {} of {} values (each printed above): {e}",
+            file.display(),
+            out.rows.len(),
+            values.len()
+        );
+        v["stopped"] = json!({ "value": value, "error": error });
+    }
+    Ok(())
+}

@@ -1,0 +1,75 @@
+//! Subcommands on mechanism files: `solve` (with its compliance and
+//! sweeps), `buckle` and `draw`, and the checks `solve` and `draw` share.
+
+mod buckle;
+mod checks;
+mod draw;
+mod drawing;
+mod solve;
+
+pub use buckle::{BuckleArgs, buckle_cmd};
+pub use draw::{DrawArgs, draw_cmd};
+pub use solve::{SolveArgs, solve_cmd};
+
+use crate::options::number;
+use flexure::mechanism::file::{Report, from_toml, reports};
+use flexure::mechanism::statics::Solution;
+use flexure::mechanism::{JointKind, Mechanism};
+use serde_json::{Value, json};
+use std::path::Path;
+
+fn load(path: &Path) -> Result<Mechanism, String> {
+    let text = crate::input::read_text(path, "")?;
+    from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The mechanism, and each flexure joint's `yield_strength` and `shape`.
+fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), String> {
+    let text = crate::input::read_text(path, "")?;
+    let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((m, reports))
+}
+
+/// Each flexure joint of `m` with its coordinates in `s` and its report keys.
+fn flexures<'a>(
+    m: &'a Mechanism,
+    s: &'a Solution,
+    reports: &'a [(String, Report)],
+) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], Report)> {
+    m.joints.iter().filter_map(move |j| match &j.kind {
+        JointKind::Flexure(f) => {
+            let r = reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
+            Some((j.name.as_str(), &**f, &s.q[j.offset..j.offset + f.order()], r))
+        }
+        _ => None,
+    })
+}
+
+/// A point `X,Y`.
+pub fn point_arg(s: &str) -> Result<[f64; 2], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 2 {
+        return Err(format!("{s:?} must be two values X,Y"));
+    }
+    Ok([number(parts[0])?, number(parts[1])?])
+}
+
+/// The flexure joints' names, in joint order (the order of the library's
+/// per-flexure lists, such as an estimate's reference orders).
+pub fn flexure_names(m: &Mechanism) -> Vec<String> {
+    m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_))).map(|j| j.name.clone()).collect()
+}
+
+/// {joint: order} of the flexure joints.
+pub fn flexure_orders(m: &Mechanism) -> Value {
+    Value::Object(
+        m.joints
+            .iter()
+            .filter_map(|j| match &j.kind {
+                JointKind::Flexure(f) => Some((j.name.clone(), json!(f.order()))),
+                _ => None,
+            })
+            .collect(),
+    )
+}
