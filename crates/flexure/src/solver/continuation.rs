@@ -4,7 +4,7 @@
 use super::interrupt::interrupted;
 use super::newton::{Mode, check_dim, correct};
 use super::structured::structured_solve;
-use super::{Problem, Settings, Workspace, newton};
+use super::{NewtonReport, Problem, Settings, Workspace, newton};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::scalar::Scalar;
@@ -20,10 +20,43 @@ const FOLD_ROTATION: f64 = 0.35;
 /// step on its branch.
 pub const FAR_STEP: f64 = 4.0;
 
-/// What [`continuation`] reached.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Why a continuation stopped, as argmin's `TerminationReason` says why
+/// an optimizer did: one value with the path ([`Path::stop`]) rather than
+/// state left behind for the caller to read.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stop {
+    /// It reached $\lambda = 1$.
+    Reached,
+    /// It stopped where stability was first lost, as asked
+    /// ([`Path::limit`]; only a run that stops there ends so).
+    Lost,
+    /// After losing stability it turned back below $\lambda = 0$.
+    TurnedBack,
+    /// No step down to [`Settings::min_step`] was accepted: `cause` says
+    /// why the last one failed, `residual` is its corrector's.
+    Stalled {
+        /// Why the last step was rejected.
+        cause: String,
+        /// The last residual reached, in the problem's unit.
+        residual: f64,
+    },
+    /// It took [`Settings::max_steps`] steps without reaching $\lambda = 1$.
+    StepCap {
+        /// The last residual reached, in the problem's unit.
+        residual: f64,
+    },
+    /// The hook set by [`super::with_interrupt`] asked it to stop.
+    Interrupted,
+}
+
+/// What a continuation reached, and why it stopped there.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Path {
-    /// Whether the end state is stable ([`Problem::stable`]).
+    /// Why it stopped: [`Stop::Reached`] for every `Ok` of [`continuation`].
+    pub stop: Stop,
+    /// The load fraction $\lambda$ of the last accepted state (`ws.x`).
+    pub load_fraction: f64,
+    /// Whether the last accepted state is stable ([`Problem::stable`]).
     pub stable: bool,
     /// The load fraction where stability was first lost along the path (a
     /// limit or bifurcation load), if it was.
@@ -32,8 +65,59 @@ pub struct Path {
     pub steps: usize,
     /// Newton iterations over all steps.
     pub iterations: usize,
-    /// Final residual, in the problem's unit.
+    /// Residual of the last accepted state, in the problem's unit.
     pub residual: f64,
+}
+
+impl Path {
+    /// A path of no steps: a start converged by [`newton`] as `report`
+    /// says, whose stability is `stable`, for a problem whose load does not
+    /// change (the assembly of a mechanism).
+    pub fn at_start(report: NewtonReport, stable: bool) -> Self {
+        Self {
+            stop: Stop::Reached,
+            load_fraction: 0.0,
+            stable,
+            limit: None,
+            steps: 0,
+            iterations: report.iterations,
+            residual: report.residual,
+        }
+    }
+
+    /// Whether the path reached $\lambda = 1$.
+    pub fn reached(&self) -> bool {
+        self.stop == Stop::Reached
+    }
+
+    /// The path if it reached $\lambda = 1$, else the [`Error`] its stop
+    /// stands for ([`Path::error`]).
+    pub fn into_result<T: Scalar, P: Problem<T>>(self, problem: &P) -> Result<Path> {
+        match self.error(problem) {
+            None => Ok(self),
+            Some(e) => Err(e),
+        }
+    }
+
+    /// The [`Error`] that [`continuation`] returns for this path, `None` if
+    /// it reached $\lambda = 1$: [`Error::Unstable`] at [`Path::limit`] for
+    /// a path that lost stability and did not come back,
+    /// [`Error::ContinuationStalled`], [`Error::Interrupted`].
+    pub fn error<T: Scalar, P: Problem<T>>(&self, problem: &P) -> Option<Error> {
+        let unstable = |load_fraction| Some(Error::Unstable { what: problem.name(), load_fraction });
+        match &self.stop {
+            Stop::Reached => None,
+            Stop::Lost => unstable(self.limit.unwrap_or(self.load_fraction)),
+            Stop::TurnedBack => unstable(self.limit.unwrap_or(0.0)),
+            Stop::Interrupted => Some(Error::Interrupted { load_fraction: self.load_fraction }),
+            Stop::StepCap { .. } if self.limit.is_some() && !self.stable => unstable(self.limit.unwrap_or(0.0)),
+            Stop::StepCap { residual } => {
+                let cause = format!("its limit of {} steps was reached", self.steps);
+                Some(stalled(problem, self, *residual, &cause))
+            }
+            Stop::Stalled { cause, residual } => Some(stalled(problem, self, *residual, cause)),
+        }
+    }
 }
 
 /// Follows the solution of $r(x, \lambda) = 0$ from `ws.x` at $\lambda = 0$
@@ -43,13 +127,14 @@ pub struct Path {
 /// Errors: [`Error::ContinuationStalled`] when the step falls below
 /// `min_step` or the steps run out (with the load fraction reached);
 /// [`Error::Unstable`] when the path loses stability at a limit load and
-/// does not come back to $\lambda = 1$; [`Error::Interrupted`].
+/// does not come back to $\lambda = 1$; [`Error::Interrupted`]. [`trace`]
+/// returns the same runs as a [`Path`] that says where they stopped.
 pub fn continuation<T: Scalar, P: Problem<T>>(
     problem: &mut P,
     ws: &mut Workspace<T>,
     settings: &Settings,
 ) -> Result<Path> {
-    follow(problem, ws, settings, false)
+    trace(problem, ws, settings)?.into_result(problem)
 }
 
 /// [`continuation`] that stops with [`Error::Unstable`] as soon as the path
@@ -59,7 +144,40 @@ pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
     ws: &mut Workspace<T>,
     settings: &Settings,
 ) -> Result<Path> {
-    follow(problem, ws, settings, true)
+    follow(problem, ws, settings, true)?.into_result(problem)
+}
+
+/// [`continuation`] whose partial runs are answers too: the path, however
+/// it ended ([`Path::stop`]), with the last accepted state in `ws.x`.
+/// `Err` only where no path starts: invalid settings or workspace, a start
+/// that does not converge or has a zero-stiffness mode along the load, or
+/// a problem that rejects its parameters.
+///
+/// # Example
+/// ```
+/// use flexure::solver::{trace, Problem, Stop, Workspace};
+/// /// $r = x - 2\lambda$.
+/// struct Line;
+/// impl Problem<f64> for Line {
+///     fn dim(&self) -> usize { 1 }
+///     fn evaluate(&mut self, x: &[f64], l: f64, r: &mut [f64], j: Option<&mut [f64]>, d: Option<&mut [f64]>) -> flexure::Result<()> {
+///         r[0] = x[0] - 2.0 * l;
+///         if let Some(j) = j { j[0] = 1.0 }
+///         if let Some(d) = d { d[0] = -2.0 }
+///         Ok(())
+///     }
+///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
+///     fn scale(&self) -> f64 { 1.0 }
+///     fn unit(&self) -> &'static str { "" }
+///     fn name(&self) -> &'static str { "line" }
+/// }
+/// let mut ws = Workspace::new(1);
+/// let path = trace(&mut Line, &mut ws, &Default::default()).unwrap();
+/// assert_eq!(path.stop, Stop::Reached);
+/// assert!(path.load_fraction == 1.0 && (ws.x[0] - 2.0).abs() < 1e-12);
+/// ```
+pub fn trace<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>, settings: &Settings) -> Result<Path> {
+    follow(problem, ws, settings, false)
 }
 
 fn follow<T: Scalar, P: Problem<T>>(
@@ -71,8 +189,15 @@ fn follow<T: Scalar, P: Problem<T>>(
     settings.validate()?;
     check_dim(problem, ws)?;
     let n = ws.n;
-    let mut path = Path { stable: true, limit: None, steps: 0, iterations: 0, residual: 0.0 };
-    ws.limit = None;
+    let mut path = Path {
+        stop: Stop::Reached,
+        load_fraction: 0.0,
+        stable: true,
+        limit: None,
+        steps: 0,
+        iterations: 0,
+        residual: 0.0,
+    };
     // The start: converge at λ = 0 (the rest state, or the assembled one),
     // unless the caller just did and says how stable it is.
     let known = ws.start_stable.take().zip(ws.start.take());
@@ -116,7 +241,7 @@ fn follow<T: Scalar, P: Problem<T>>(
     let mut cause = Cause::Corrector;
     while path.steps < settings.max_steps {
         if interrupted() {
-            return Err(Error::Interrupted { load_fraction: lambda });
+            return Ok(Path { stop: Stop::Interrupted, load_fraction: lambda, ..path });
         }
         // Step length: at most double the last, turning no section by more
         // than 70 % of the bound; the last step lands on λ = 1.
@@ -128,7 +253,8 @@ fn follow<T: Scalar, P: Problem<T>>(
         }
         if !h.is_finite() {
             // Only an overflowing tangent gets here; halving would never end.
-            return Err(stalled(problem, lambda, &path, last_residual, "the step length overflowed"));
+            let cause = "the step length overflowed".to_string();
+            return Ok(Path { stop: Stop::Stalled { cause, residual: last_residual }, load_fraction: lambda, ..path });
         }
         let t_lambda = ws.tangent[n].re();
         let landing = t_lambda > 0.0 && lambda + h * t_lambda >= 1.0 - 1e-12;
@@ -153,7 +279,9 @@ fn follow<T: Scalar, P: Problem<T>>(
                 .map(|r| (r, ws.trial[n].re()))
         };
         let outcome = match found {
-            Err(Error::Interrupted { .. }) => return Err(Error::Interrupted { load_fraction: lambda }),
+            Err(Error::Interrupted { .. }) => {
+                return Ok(Path { stop: Stop::Interrupted, load_fraction: lambda, ..path });
+            }
             Err(Error::NoConvergence { iterations, residual, .. }) => {
                 path.iterations += iterations;
                 last_residual = residual;
@@ -179,7 +307,8 @@ fn follow<T: Scalar, P: Problem<T>>(
         let Some((report, new_lambda)) = outcome else {
             h *= 0.5;
             if h < min_step {
-                return Err(stalled(problem, lambda, &path, last_residual, &cause.to_string()));
+                let stop = Stop::Stalled { cause: cause.to_string(), residual: last_residual };
+                return Ok(Path { stop, load_fraction: lambda, ..path });
             }
             continue;
         };
@@ -201,7 +330,7 @@ fn follow<T: Scalar, P: Problem<T>>(
             path.steps += 1;
             path.residual = report.residual;
             ws.lambda = 1.0;
-            return Ok(path);
+            return Ok(Path { load_fraction: 1.0, ..path });
         }
         let old_tangent_lambda = ws.tangent[n].re();
         ws.previous_tangent.copy_from_slice(&ws.tangent);
@@ -234,9 +363,8 @@ fn follow<T: Scalar, P: Problem<T>>(
             } else {
                 lambda
             });
-            ws.limit = path.limit;
             if stop_when_unstable {
-                return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(lambda) });
+                return Ok(Path { stop: Stop::Lost, load_fraction: lambda, ..path });
             }
         }
         ws.x.copy_from_slice(&ws.trial[..n]);
@@ -247,23 +375,18 @@ fn follow<T: Scalar, P: Problem<T>>(
         path.residual = report.residual;
         last_residual = report.residual;
         ws.lambda = lambda;
+        path.load_fraction = lambda;
         if landing {
             return Ok(path);
         }
         if lambda < -1e-9 {
-            return Err(Error::Unstable { what: problem.name(), load_fraction: path.limit.unwrap_or(0.0) });
+            return Ok(Path { stop: Stop::TurnedBack, ..path });
         }
         rotation_rate = unit_rotation(problem, ws);
         // Grow the step; the rotation bound above keeps it on the branch.
         h *= 2.0;
     }
-    match path.limit {
-        Some(limit) if !path.stable => Err(Error::Unstable { what: problem.name(), load_fraction: limit }),
-        _ => {
-            let cause = format!("its limit of {} steps was reached", settings.max_steps);
-            Err(stalled(problem, lambda, &path, last_residual, &cause))
-        }
-    }
+    Ok(Path { stop: Stop::StepCap { residual: last_residual }, load_fraction: lambda, ..path })
 }
 
 /// The largest $\lambda$ between two points of a path that turns back
@@ -309,11 +432,11 @@ impl std::fmt::Display for Cause {
     }
 }
 
-fn stalled<T: Scalar, P: Problem<T>>(problem: &P, lambda: f64, path: &Path, residual: f64, cause: &str) -> Error {
+fn stalled<T: Scalar, P: Problem<T>>(problem: &P, path: &Path, residual: f64, cause: &str) -> Error {
     Error::ContinuationStalled {
         cause: cause.to_string(),
         solver: problem.name(),
-        load_fraction: lambda.clamp(0.0, 1.0),
+        load_fraction: path.load_fraction.clamp(0.0, 1.0),
         steps: path.steps,
         residual,
         unit: problem.unit(),

@@ -29,8 +29,10 @@
 //!   last state's without a fold between them (a jump to another branch) is
 //!   retried shorter. Only when no step down to `min_step` avoids it is the
 //!   change accepted: a bifurcation on the path itself.
-//! - **Honest**: the result says whether the end state is stable and the
-//!   load fraction where stability was first lost ([`Path::limit`]).
+//! - **Honest**: the result says why the run stopped ([`Stop`]), how far
+//!   it got, whether its last state is stable and the load fraction where
+//!   stability was first lost ([`Path::limit`]): one value, [`Path`], for
+//!   finished and partial runs alike ([`trace`]).
 //! - **Interruptible**: every step and iteration polls the hook set by
 //!   [`with_interrupt`].
 
@@ -43,7 +45,7 @@ mod structured;
 mod workspace;
 
 pub(crate) use continuation::continuation_while_stable;
-pub use continuation::{FAR_STEP, Path, continuation};
+pub use continuation::{FAR_STEP, Path, Stop, continuation, trace};
 pub(crate) use interrupt::interrupted;
 pub use interrupt::with_interrupt;
 pub use newton::{NewtonReport, newton};

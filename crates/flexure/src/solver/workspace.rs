@@ -14,10 +14,6 @@ pub struct Workspace<T: Scalar> {
     pub x: Vec<T>,
     /// $\lambda$ of the current state.
     pub lambda: f64,
-    /// Where the last [`continuation`] first lost stability ([`Path::limit`]),
-    /// kept when it stops with an error, so a caller can tell a path that
-    /// failed after losing stability from one that failed before.
-    pub limit: Option<f64>,
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
     /// Set by a caller that has just converged `x` at $\lambda = 0$ by
@@ -61,7 +57,6 @@ impl<T: Scalar> Workspace<T> {
             n,
             x: vec![z; n],
             lambda: 0.0,
-            limit: None,
             jacobian: vec![z; n * n],
             start_stable: None,
             start: None,

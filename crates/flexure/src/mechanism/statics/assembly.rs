@@ -50,7 +50,7 @@ pub(super) fn assembled(
     match solver::newton(problem, ws, 0.0, settings) {
         Ok(report) => {
             let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
-            Ok(solver::Path { stable, limit: None, steps: 0, iterations: report.iterations, residual: report.residual })
+            Ok(solver::Path::at_start(report, stable))
         }
         Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
         Err(e) => Err(e),
@@ -68,13 +68,6 @@ pub(super) fn assembled_kept(
     let m = problem.mechanism;
     // The tolerance of solver::newton.
     let tolerance = settings.tolerance * solver::Problem::scale(problem);
-    let path = |report: solver::NewtonReport, stable: bool| solver::Path {
-        stable,
-        limit: None,
-        steps: 0,
-        iterations: report.iterations,
-        residual: report.residual,
-    };
     if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
         let Workspace { start, assembled, .. } = &mut *problem.work;
         ws.x.copy_from_slice(&start.x);
@@ -83,13 +76,13 @@ pub(super) fn assembled_kept(
         *assembled = false;
         problem.load_derivative(ws.dlambda_mut(), true)?;
         ws.restore_start(report, stable);
-        return Ok(path(report, stable));
+        return Ok(solver::Path::at_start(report, stable));
     }
     let found = assembled(problem, ws, settings)?;
     let report = solver::NewtonReport { iterations: found.iterations, residual: found.residual };
     let Workspace { start, frames, .. } = &mut *problem.work;
     start.keep(m, settings, tolerance, report, found.stable, &ws.x, &ws.jacobian, frames);
-    Ok(path(report, found.stable))
+    Ok(solver::Path::at_start(report, found.stable))
 }
 
 /// The error for closures that Newton could not close from rest: placed at

@@ -160,29 +160,34 @@ pub(super) fn follow_path(
 ) -> Result<Solution> {
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
-    match solver::continuation(problem, ws, settings) {
-        Ok(path) if path.stable => solution(problem, &ws.x, true, &path),
-        Ok(path) => Err(unstable(path.limit)),
-        Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
-        // The start has a zero-stiffness motion along the load: name it.
-        Err(Error::Singular { what }) if ws.limit.is_none() => Err(Error::Singular {
-            what: match match start {
+    let path = match solver::trace(problem, ws, settings) {
+        Ok(path) => path,
+        // No path starts: the start has a zero-stiffness motion along the load; name it.
+        Err(Error::Singular { what }) => {
+            let joints = match start {
                 Start::Given(s) => free_motion(m, s),
                 Start::Assembled(path) => {
                     let x0 = problem.work.start_x.clone();
                     solution(problem, &x0, false, path).ok().and_then(|s| free_motion(m, &s))
                 }
-            } {
-                Some(joints) => format!(
-                    "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
-                ),
-                None => what,
-            },
-        }),
-        Err(e) => match ws.limit {
-            Some(limit) => Err(unstable(Some(limit))),
-            None => Err(e),
-        },
+            };
+            return Err(Error::Singular {
+                what: match joints {
+                    Some(joints) => format!(
+                        "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
+                    ),
+                    None => what,
+                },
+            });
+        }
+        Err(e) => return Err(e),
+    };
+    match path.error(&*problem) {
+        None if path.stable => solution(problem, &ws.x, true, &path),
+        None => Err(unstable(path.limit)),
+        Some(e @ Error::Interrupted { .. }) => Err(e),
+        // A path that stopped after losing stability: it is the loss that counts.
+        Some(e) => Err(path.limit.map_or(e, |limit| unstable(Some(limit)))),
     }
 }
 
