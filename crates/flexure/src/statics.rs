@@ -90,13 +90,15 @@ impl<T: Scalar> Statics<T> {
     }
 }
 
-/// What [`deflect`] found, beside the data left in [`Statics`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What [`deflect`] found, beside the data left in [`Statics`];
+/// serialized with `limit` as `limit_fraction`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Equilibrium {
     /// Whether $K$ is positive definite: a stable equilibrium.
     pub stable: bool,
     /// The load fraction at which the loading path first lost stability
     /// (a limit load passed by snap-through, or a bifurcation), if it did.
+    #[serde(rename = "limit_fraction")]
     pub limit: Option<f64>,
     /// Final generalized-force residual (N·m).
     pub residual: f64,

@@ -23,7 +23,8 @@ pub const FAR_STEP: f64 = 4.0;
 /// Why a continuation stopped, as argmin's `TerminationReason` says why
 /// an optimizer did: one value with the path ([`Path::stop`]) rather than
 /// state left behind for the caller to read.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "reason", rename_all = "snake_case")]
 pub enum Stop {
     /// It reached $\lambda = 1$.
     Reached,
@@ -49,8 +50,9 @@ pub enum Stop {
     Interrupted,
 }
 
-/// What a continuation reached, and why it stopped there.
-#[derive(Debug, Clone, PartialEq)]
+/// What a continuation reached, and why it stopped there (serialized with
+/// `limit` as `limit_fraction`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Path {
     /// Why it stopped: [`Stop::Reached`] for every `Ok` of [`continuation`].
     pub stop: Stop,
@@ -60,6 +62,7 @@ pub struct Path {
     pub stable: bool,
     /// The load fraction where stability was first lost along the path (a
     /// limit or bifurcation load), if it was.
+    #[serde(rename = "limit_fraction")]
     pub limit: Option<f64>,
     /// Accepted continuation steps.
     pub steps: usize,

@@ -58,8 +58,9 @@ use crate::{linalg, solver};
 
 pub use crate::solver::Settings;
 
-/// An equilibrium.
-#[derive(Debug, Clone, PartialEq)]
+/// An equilibrium; serialized without its loads (the caller's input) and
+/// with `limit` as `limit_fraction`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Solution {
     /// Generalized coordinates.
     pub q: Vec<f64>,
@@ -72,6 +73,7 @@ pub struct Solution {
     /// model's own compatibility approaches as deflection vanishes.
     pub multipliers: Vec<f64>,
     /// The loads it carries.
+    #[serde(skip)]
     pub loads: Loads,
     /// Elastic energy stored in the joints (J).
     pub energy: f64,
@@ -79,6 +81,7 @@ pub struct Solution {
     pub stable: bool,
     /// Where the loading path to it lost stability before snapping through
     /// to this stable state: the fraction of the load change, if it did.
+    #[serde(rename = "limit_fraction")]
     pub limit: Option<f64>,
     /// Final KKT residual, relative ([`Kkt`]).
     pub residual: f64,
