@@ -153,8 +153,9 @@ pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
 /// [`continuation`] whose partial runs are answers too: the path, however
 /// it ended ([`Path::stop`]), with the last accepted state in `ws.x`.
 /// `Err` only where no path starts: invalid settings or workspace, a start
-/// that does not converge or has a zero-stiffness mode along the load, or
-/// a problem that rejects its parameters.
+/// that does not converge (or is interrupted before it does) or has a
+/// zero-stiffness mode along the load, or a problem that rejects its
+/// parameters.
 ///
 /// # Example
 /// ```
