@@ -54,13 +54,19 @@ impl FromStr for TipConstraint {
     }
 }
 
-/// The critical load and its mode.
-#[derive(Debug, Clone, PartialEq)]
+/// The critical load and its mode (the mode serialized as a list).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Buckling {
     /// Smallest compressive tip load $P$ (N) at which the constrained stiffness is singular.
     pub critical_load: f64,
     /// Buckling mode in joint coordinates, unit length, largest entry positive.
+    #[serde(serialize_with = "as_list")]
     pub mode: DVector<f64>,
+}
+
+/// A vector as a plain list of numbers.
+fn as_list<S: serde::Serializer>(v: &DVector<f64>, s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_seq(v.iter())
 }
 
 /// Smallest positive $P$ with $\det\big(Z^T(\nabla\nabla U + P\thinspace\nabla\nabla x)Z\big) = 0$,

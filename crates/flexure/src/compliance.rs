@@ -34,7 +34,8 @@ pub fn compliance_tip_rest(flexure: &Flexure) -> Matrix3<f64> {
 
 /// Tip compliance at any configuration, $C = \mathcal J K^{-1}\mathcal J^T$,
 /// for the Jacobian in `kinematics` and a generalized stiffness such as
-/// [`crate::Statics::stiffness`] (Eq. 32): the response to a small extra load
+/// [`crate::Statics::stiffness`] or [`crate::statics::loaded_stiffness`]
+/// (Eq. 32): the response to a small extra load
 /// about a loaded equilibrium.
 ///
 /// Fails when $K$ is not positive definite (the equilibrium is unstable).

@@ -5,7 +5,7 @@ use crate::error::{Error, Result, finite};
 use crate::joint::{Basis, Flexure};
 use crate::kinematics::{self, Kinematics, Level, Pose};
 use crate::solver;
-use crate::statics::{Settings, TipLoad, rotation};
+use crate::statics::{self, Settings, TipLoad, rotation};
 use nalgebra::DVector;
 
 /// A minimum-energy shape.
@@ -218,16 +218,11 @@ impl solver::Problem<f64> for ConnectProblem<'_> {
         if let Some(jac) = jacobian {
             // Column c: (K − Fx∇∇x − Fy∇∇y)/scale over 𝒥 with its x, y rows over L;
             // the multipliers' columns: −𝒥ᵀ/scale over zeros.
-            let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
-            let stiffness = f.stiffness_matrix();
             let (coordinates, multipliers) = jac[..m * m].split_at_mut(n * m);
-            for (c, (column, jc)) in coordinates.chunks_exact_mut(m).zip(j.chunks_exact(3)).enumerate() {
+            statics::loaded_stiffness_into(f, k, [fx, fy], 1.0, coordinates, m);
+            for (column, jc) in coordinates.chunks_exact_mut(m).zip(j.chunks_exact(3)) {
                 let (top, bottom) = column.split_at_mut(n);
-                let (hx, hy) = (&hx[c * n..(c + 1) * n], &hy[c * n..(c + 1) * n]);
-                for (row, t) in top.iter_mut().enumerate() {
-                    // K is symmetric; entry (row, c) as energy::stiffness reads it.
-                    *t = -(fx * hx[row] + fy * hy[row]) / scale + stiffness[row * n + c] / scale;
-                }
+                top.iter_mut().for_each(|t| *t /= scale);
                 bottom.copy_from_slice(&[jc[0], jc[1] / l, jc[2] / l]);
             }
             for (a, column) in multipliers.chunks_exact_mut(m).enumerate() {

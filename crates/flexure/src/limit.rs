@@ -8,6 +8,7 @@
 
 use crate::error::{Error, Result};
 use crate::statics::Equilibrium;
+use serde::ser::{Serialize, SerializeMap, Serializer};
 
 /// How far a load can be scaled from rest before stability is lost.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,6 +32,26 @@ pub enum StabilityLimit {
         /// stability further on is unknown.
         stalled: Option<String>,
     },
+}
+
+/// One shape wherever a stability limit is printed:
+/// `{"factor": f, "status": "lost" | "stable_up_to"}`, with `"stalled"`
+/// (the reason, or null when `max_factor` was reached) only for
+/// `stable_up_to`.
+impl Serialize for StabilityLimit {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        let stalled = match self {
+            StabilityLimit::Lost { .. } => None,
+            StabilityLimit::StableUpTo { stalled, .. } => Some(stalled),
+        };
+        let mut map = serializer.serialize_map(Some(if stalled.is_some() { 3 } else { 2 }))?;
+        map.serialize_entry("factor", &self.factor())?;
+        map.serialize_entry("status", if stalled.is_some() { "stable_up_to" } else { "lost" })?;
+        if let Some(stalled) = stalled {
+            map.serialize_entry("stalled", stalled)?;
+        }
+        map.end()
+    }
 }
 
 impl StabilityLimit {

@@ -90,13 +90,15 @@ impl<T: Scalar> Statics<T> {
     }
 }
 
-/// What [`deflect`] found, beside the data left in [`Statics`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What [`deflect`] found, beside the data left in [`Statics`];
+/// serialized with `limit` as `limit_fraction`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Equilibrium {
     /// Whether $K$ is positive definite: a stable equilibrium.
     pub stable: bool,
     /// The load fraction at which the loading path first lost stability
     /// (a limit load passed by snap-through, or a bifurcation), if it did.
+    #[serde(rename = "limit_fraction")]
     pub limit: Option<f64>,
     /// Final generalized-force residual (N·m).
     pub residual: f64,
@@ -159,13 +161,7 @@ impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
             }
         }
         if let Some(h) = jacobian {
-            let (hx, hy) = (k.hessian_root_tip_x.as_slice(), k.hessian_root_tip_y.as_slice());
-            for (idx, h) in h.iter_mut().enumerate() {
-                *h = -l * (w[1] * hx[idx] + w[2] * hy[idx]);
-            }
-            for (h, &k) in h.iter_mut().zip(f.stiffness_matrix()) {
-                *h += T::c(k);
-            }
+            loaded_stiffness_into(f, k, [w[1], w[2]], l, h, f.order());
         }
         if residual.iter().all(|r| r.re().is_finite()) {
             Ok(())
@@ -197,6 +193,76 @@ impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
     fn name(&self) -> &'static str {
         "deflect"
     }
+}
+
+/// The loaded stiffness of the flexure under a tip force $\lambda(F_x, F_y)$
+/// (paper Eq. 32),
+/// $$K = \nabla\nabla U - \lambda\left(F_x\nabla\nabla x + F_y\nabla\nabla y\right),$$
+/// the Hessian of the potential $U - \lambda(M\phi + F_x x + F_y y)$ (the
+/// moment drops out: $\nabla\nabla\phi = 0$), from the Hessians in
+/// `kinematics` (filled to [`Level::Hessian`]). Written into the leading
+/// $N\times N$ block of the column-major `out` of leading dimension `ld`
+/// ($K_{rc}$ at `out[c * ld + r]`), so a bordered system takes it in place;
+/// allocates nothing. The one assembly of Eq. 32: the tip-load solve, the
+/// minimum-energy connection and [`loaded_stiffness`] call it.
+///
+/// # Panics
+/// If `ld` < $N$ or `out` is shorter than $(N - 1)\,$`ld` + $N$.
+///
+/// # Example
+/// ```
+/// use flexure::kinematics::{self, Kinematics, Level};
+/// use flexure::{statics::loaded_stiffness_into, Flexure};
+/// let f = Flexure::new(1.0, 2.0, 2).unwrap();
+/// let mut k = Kinematics::new(&f);
+/// kinematics::update(&f, f.rest(), &mut k, Level::Hessian);
+/// // Unloaded, K is the bending stiffness ∇∇U: EI/L on the diagonal (Eq. 28).
+/// let mut out = [0.0; 4];
+/// loaded_stiffness_into(&f, &k, [3.0, -1.0], 0.0, &mut out, 2);
+/// assert_eq!(out, [2.0, 0.0, 0.0, 2.0 / 3.0]);
+/// ```
+pub fn loaded_stiffness_into<T: Scalar>(
+    flexure: &Flexure,
+    kinematics: &Kinematics<T>,
+    [fx, fy]: [T; 2],
+    lambda: T,
+    out: &mut [T],
+    ld: usize,
+) {
+    let n = flexure.order();
+    assert!(ld >= n, "leading dimension {ld} is less than the order {n}");
+    let (hx, hy) = (kinematics.hessian_root_tip_x.as_slice(), kinematics.hessian_root_tip_y.as_slice());
+    let elastic = flexure.stiffness_matrix();
+    for c in 0..n {
+        let column = &mut out[c * ld..c * ld + n];
+        for (r, o) in column.iter_mut().enumerate() {
+            let idx = c * n + r;
+            *o = -lambda * (fx * hx[idx] + fy * hy[idx]) + T::c(elastic[idx]);
+        }
+    }
+}
+
+/// [`loaded_stiffness_into`] under the full `load` ($\lambda = 1$), as a
+/// matrix: the stiffness about an equilibrium under `load` (the moment
+/// does not enter), for [`crate::compliance_tip`].
+///
+/// # Example
+/// ```
+/// use flexure::kinematics::{self, Kinematics, Level};
+/// use flexure::{statics::loaded_stiffness, Flexure, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 3).unwrap();
+/// let mut k = Kinematics::new(&f);
+/// kinematics::update(&f, f.rest(), &mut k, Level::Hessian);
+/// // A compressive end force softens the straight flexure (Euler buckling, Eq. 39).
+/// let unloaded = loaded_stiffness(&f, &k, &TipLoad::default());
+/// let pushed = loaded_stiffness(&f, &k, &TipLoad { moment: 5.0, fx: -1.0, fy: 0.0 });
+/// assert!(pushed[(0, 0)] < unloaded[(0, 0)]);
+/// ```
+pub fn loaded_stiffness(flexure: &Flexure, kinematics: &Kinematics<f64>, load: &TipLoad) -> DMatrix<f64> {
+    let n = flexure.order();
+    let mut k = DMatrix::zeros(n, n);
+    loaded_stiffness_into(flexure, kinematics, [load.fx, load.fy], 1.0, k.as_mut_slice(), n);
+    k
 }
 
 /// Equilibrium of the flexure under `load`: the $\alpha$ where

@@ -1,7 +1,7 @@
 //! The shared solver core on problems with closed-form answers.
 
 use flexure::Error;
-use flexure::solver::{Problem, Settings, Workspace, continuation, newton, with_interrupt};
+use flexure::solver::{Problem, Settings, Stop, Workspace, continuation, newton, trace, with_interrupt};
 
 /// $r(x, \lambda) = x^3 - 3x + 3 - 8\lambda$: the gradient of a one-degree
 /// potential with a fold at $x = -1$, $\lambda = 5/8$ (the limit load) and
@@ -109,4 +109,41 @@ fn an_interrupt_stops_the_solver() {
 fn a_workspace_of_another_size_is_refused() {
     let mut ws = Workspace::new(2);
     assert!(matches!(newton(&mut Snap, &mut ws, 0.0, &Settings::default()), Err(Error::InvalidParameter { .. })));
+}
+
+/// [`trace`] returns partial runs as paths that say why they stopped, and
+/// [`continuation`]'s error is the one the path stands for.
+#[test]
+fn a_traced_path_says_why_it_stopped() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let mut ws = Workspace::new(1);
+    ws.x[0] = cardano(-3.0, 3.0);
+    let path = trace(&mut Snap, &mut ws, &Settings::default()).unwrap();
+    assert!(path.reached() && path.load_fraction == 1.0 && path.stable, "{path:?}");
+    assert!(path.limit.is_some_and(|l| (l - 0.625).abs() < 1e-4), "{path:?}");
+    // A step cap: the path so far, with the load fraction it reached.
+    ws.x[0] = cardano(-3.0, 3.0);
+    let few = Settings { max_steps: 2, ..Default::default() };
+    let path = trace(&mut Snap, &mut ws, &few).unwrap();
+    assert!(matches!(path.stop, Stop::StepCap { .. }) && path.steps == 2, "{path:?}");
+    assert!(path.load_fraction > 0.0 && path.load_fraction < 1.0 && ws.lambda == path.load_fraction);
+    match path.error(&Snap) {
+        Some(Error::ContinuationStalled { steps: 2, load_fraction, .. }) => {
+            assert_eq!(load_fraction, path.load_fraction)
+        }
+        other => panic!("expected ContinuationStalled after two steps, got {other:?}"),
+    }
+    // An interrupt after the start: a path, stopped where it was.
+    static POLLS: AtomicUsize = AtomicUsize::new(0);
+    POLLS.store(0, Ordering::SeqCst);
+    ws.x[0] = cardano(-3.0, 3.0);
+    let path = with_interrupt(
+        || POLLS.fetch_add(1, Ordering::SeqCst) > 20,
+        || trace(&mut Snap, &mut ws, &Settings::default()),
+    )
+    .unwrap();
+    assert_eq!(path.stop, Stop::Interrupted, "{path:?}");
+    assert!(
+        matches!(path.error(&Snap), Some(Error::Interrupted { load_fraction }) if load_fraction == path.load_fraction)
+    );
 }

@@ -11,7 +11,7 @@ use crate::linalg;
 use nalgebra::DVector;
 
 /// Result of [`buckle`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Buckling {
     /// Factor on all forces, tensions and gravity at which the constrained stiffness becomes singular.
     pub load_factor: f64,

@@ -59,7 +59,7 @@ impl Parameter {
 }
 
 /// Where a sweep lost stability.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StabilityLimit {
     /// The swept quantity's value there, in its units.
     pub value: f64,
@@ -67,11 +67,14 @@ pub struct StabilityLimit {
     pub fraction: f64,
 }
 
-/// What [`sweep`] reached.
-#[derive(Debug, Clone, PartialEq)]
+/// What [`sweep`] reached; serialized with each row as
+/// `{"value", "solution"}` and `stopped` as `{"value", "error"}` (the
+/// error's message).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Sweep {
     /// The values solved, each with its stable equilibrium: every value up
     /// to where stability was lost beyond recovery.
+    #[serde(serialize_with = "rows")]
     pub rows: Vec<(f64, Solution)>,
     /// The first loss of stability along the sweep, if any.
     pub stability_limit: Option<StabilityLimit>,
@@ -79,7 +82,29 @@ pub struct Sweep {
     /// stalled continuation, an interrupt): the value, and the error. The
     /// rows before it are kept; the values after it are not tried, since
     /// each is continued from the last.
+    #[serde(serialize_with = "stopped")]
     pub stopped: Option<(f64, Error)>,
+}
+
+/// [`Sweep::rows`] as `[{"value", "solution"}, ...]`.
+fn rows<S: serde::Serializer>(rows: &[(f64, Solution)], s: S) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(serde::Serialize)]
+    struct Row<'a> {
+        value: f64,
+        solution: &'a Solution,
+    }
+    s.collect_seq(rows.iter().map(|(value, solution)| Row { value: *value, solution }))
+}
+
+/// [`Sweep::stopped`] as `{"value", "error"}`, the error by its message.
+fn stopped<S: serde::Serializer>(stopped: &Option<(f64, Error)>, s: S) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(serde::Serialize)]
+    struct Stopped {
+        value: f64,
+        error: String,
+    }
+    let stopped = stopped.as_ref().map(|(value, e)| Stopped { value: *value, error: e.to_string() });
+    serde::Serialize::serialize(&stopped, s)
 }
 
 /// Equilibria along `values` of one load, each continued from the last.

@@ -1,0 +1,117 @@
+//! The unloaded, assembled configuration: the start of every path.
+
+use super::kkt::Kkt;
+use super::path::solution;
+use super::workspace::{Buffers, Workspace};
+use super::{Settings, Solution};
+use crate::error::{Error, Result};
+use crate::mechanism::kinematics::frames;
+use crate::mechanism::lagrangian::closures;
+use crate::mechanism::{Closure, Mechanism};
+use crate::solver;
+
+/// The unloaded, assembled configuration: the rest coordinates moved, if
+/// the closures require it, to the nearest configuration that closes them.
+pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution> {
+    assemble_in(m, settings, &mut Workspace::new(m))
+}
+
+/// [`assemble_unloaded`] in the buffers `work` (made for `m`).
+pub(super) fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Result<Solution> {
+    let zero = m.loads().zero_like();
+    if !work.fits(m) {
+        return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
+    }
+    let mut problem = Kkt::fitted(m, &zero, &zero, settings, Buffers::Borrowed(work))?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = problem.work.solver(dim);
+    let found = assemble(&mut problem, &mut ws, settings);
+    let mut work = problem.release();
+    work.solver = Some(ws);
+    found
+}
+
+/// The unloaded, assembled configuration, by Newton from rest on the
+/// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
+pub(super) fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+    let path = assembled(problem, ws, settings)?;
+    solution(problem, &ws.x, false, &path)
+}
+
+/// [`assemble`] without the solution: how the path to it went.
+pub(super) fn assembled(
+    problem: &mut Kkt,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<solver::Path> {
+    let m = problem.mechanism;
+    ws.x.fill(0.0);
+    m.rest_into(&mut ws.x[..m.dof()]);
+    match solver::newton(problem, ws, 0.0, settings) {
+        Ok(report) => {
+            let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
+            Ok(solver::Path::at_start(report, stable))
+        }
+        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`assembled`] for [`solve_with`]: the start the workspace keeps if it
+/// is this problem's ([`StartCache::holds`]), with the load derivative of
+/// this problem's loads; else solved, and kept.
+pub(super) fn assembled_kept(
+    problem: &mut Kkt,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<solver::Path> {
+    let m = problem.mechanism;
+    // The tolerance of solver::newton.
+    let tolerance = settings.tolerance * solver::Problem::scale(problem);
+    if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
+        let Workspace { start, assembled, .. } = &mut *problem.work;
+        ws.x.copy_from_slice(&start.x);
+        ws.jacobian.copy_from_slice(&start.jacobian);
+        // The workspace's frames are not the start's: the next evaluation makes them.
+        *assembled = false;
+        problem.load_derivative(ws.dlambda_mut(), true)?;
+        ws.restore_start(report, stable);
+        return Ok(solver::Path::at_start(report, stable));
+    }
+    let found = assembled(problem, ws, settings)?;
+    let report = solver::NewtonReport { iterations: found.iterations, residual: found.residual };
+    let Workspace { start, frames, .. } = &mut *problem.work;
+    start.keep(m, settings, tolerance, report, found.stable, &ws.x, &ws.jacobian, frames);
+    Ok(solver::Path::at_start(report, found.stable))
+}
+
+/// The error for closures that Newton could not close from rest: placed at
+/// the closure open widest at rest (position gap over the mechanism's
+/// `length`, plus angle gap), or `e` itself if all are closed there.
+pub(super) fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
+    let rest = frames(m, &m.rest());
+    let (c, _) = closures(m, &rest);
+    let mut row = 0;
+    let mut widest: Option<(usize, f64, f64, f64)> = None;
+    for (i, closure) in m.closures.iter().enumerate() {
+        let gap = c[row].hypot(c[row + 1]);
+        let turn = if closure.equations() == 3 { c[row + 2].abs() } else { 0.0 };
+        let size = gap / length + turn;
+        if size > widest.map_or(1e-9, |w| w.1) {
+            widest = Some((i, size, gap, turn));
+        }
+        row += closure.equations();
+    }
+    let Some((i, _, gap, turn)) = widest else { return e };
+    let name = |b: usize| &m.bodies[b].name;
+    let what = match m.closures[i] {
+        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
+        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
+    };
+    Error::File {
+        place: m.closure_place(i).to_string(),
+        message: format!(
+            "{what}: the closures cannot be assembled; at rest this one is open widest ({gap:.3e} m, {turn:.3e} rad), and from there {e}"
+        ),
+    }
+}

@@ -1,0 +1,242 @@
+//! Following the equilibrium path between two loads, and bisecting for where it first loses stability.
+
+use super::kkt::Kkt;
+use super::stiffness::stiffness;
+use super::workspace::{Buffers, Workspace};
+use super::{LIMIT_PRECISION, PROBE_STEPS, Settings, Solution};
+use crate::error::{Error, Result};
+use crate::linalg;
+use crate::mechanism::indeterminate::settle;
+use crate::mechanism::kinematics::frames_into;
+use crate::mechanism::lagrangian::check_sizes;
+use crate::mechanism::{Loads, Mechanism};
+use crate::solver;
+
+/// The solution at the unknowns `x`, under the problem's loads at the
+/// end of its path (`end`) or at its start, computed in the problem's
+/// buffers: the frames and $G$ of the last evaluation if it was at `x`.
+pub(super) fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Result<Solution> {
+    let m = problem.mechanism;
+    let n = m.dof();
+    let (q, mu) = (&x[..n], problem.multipliers(x));
+    let loads = if end { problem.to.clone() } else { problem.from.clone() };
+    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut *problem.work;
+    if !(*assembled && assembled_at[..] == *q) {
+        *assembled = false;
+        frames_into(m, q, f);
+        a.closures_at(m, f);
+    }
+    // settle changes nothing where G has independent rows: it need not be called.
+    let g = &a.closure_jacobian;
+    let rows = g.nrows();
+    for i in 0..rows {
+        for c in 0..n {
+            closure_t[i * n + c] = g[(i, c)];
+        }
+    }
+    let multipliers =
+        if linalg::columns_independent(closure_t, n, rows, gram) { mu } else { settle(m, f, g, &mu, &loads) };
+    // + 0.0: an empty sum is −0.
+    let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
+    if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
+        return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
+    }
+    Ok(Solution {
+        q: q.to_vec(),
+        multipliers,
+        loads,
+        energy,
+        stable: path.stable,
+        limit: path.limit,
+        residual: path.residual,
+        load_steps: path.steps,
+        iterations: path.iterations,
+    })
+}
+
+/// Equilibrium under `to`, continued from `start` (an equilibrium under
+/// `start.loads`) by the shared continuation.
+///
+/// A snap-through that ends in a stable state is an answer, with
+/// [`Solution::limit`] the fraction of the load change where stability was
+/// first lost. A path that loses stability and does not reach a stable
+/// state at the full load (it ends unstable, or stops after the loss) is
+/// [`Error::Unstable`] at that fraction. The fraction is the continuation's
+/// ([`solver::Path::limit`]) refined by bisection to a relative
+/// [`LIMIT_PRECISION`] (as [`crate::mechanism::sweep::sweep`] does between two values).
+pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
+    solve_between_in(m, start, to, settings, &mut Workspace::new(m))
+}
+
+pub(super) fn solve_between_in(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    work: &mut Workspace,
+) -> Result<Solution> {
+    let found = follow_in(m, start, to, settings, work);
+    refine_limit(m, start, to, settings, found)
+}
+
+/// The path from `start` to `to` as [`solve_between`] reports it, from
+/// what [`follow`] `found`: a lost stability's load fraction refined by bisection.
+pub(super) fn refine_limit(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    found: Result<Solution>,
+) -> Result<Solution> {
+    if !lost(&found, start.stable) {
+        return found;
+    }
+    let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= LIMIT_PRECISION * hi)?;
+    match found {
+        Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
+        Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
+    }
+}
+
+/// Whether the path that `found` ends lost stability on the way (from a
+/// start that was `stable`), so that its limit is refined.
+pub(super) fn lost(found: &Result<Solution>, stable: bool) -> bool {
+    match found {
+        Ok(s) => s.limit.is_some(),
+        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || stable,
+        Err(_) => false,
+    }
+}
+
+/// Where a path starts: a solution, or the assembled state at $\lambda = 0$
+/// of the problem itself (its unknowns in [`Workspace::start_x`], reached by `path`).
+pub(super) enum Start<'s> {
+    Given(&'s Solution),
+    Assembled(&'s solver::Path),
+}
+
+/// [`solve_between`] with the continuation's own limit, unrefined.
+pub(in crate::mechanism) fn follow(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+) -> Result<Solution> {
+    follow_in(m, start, to, settings, &mut Workspace::new(m))
+}
+
+/// [`follow`] in the buffers `work` (made for `m`).
+pub(super) fn follow_in(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    work: &mut Workspace,
+) -> Result<Solution> {
+    check_sizes(m, &start.q, &start.multipliers, &start.loads)?;
+    if !work.fits(m) {
+        return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
+    }
+    let mut problem = Kkt::fitted(m, &start.loads, to, settings, Buffers::Borrowed(work))?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = problem.work.solver(dim);
+    ws.x.iter_mut().zip(&start.q).for_each(|(x, q)| *x = *q);
+    let n = m.dof();
+    for ((x, mu), s) in ws.x[n..].iter_mut().zip(&start.multipliers).zip(&problem.multiplier_scale) {
+        *x = mu / s;
+    }
+    let found = follow_path(m, Start::Given(start), &mut problem, &mut ws, settings);
+    let mut work = problem.release();
+    work.solver = Some(ws);
+    found
+}
+
+pub(super) fn follow_path(
+    m: &Mechanism,
+    start: Start,
+    problem: &mut Kkt,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<Solution> {
+    let unstable =
+        |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
+    let path = match solver::trace(problem, ws, settings) {
+        Ok(path) => path,
+        // No path starts: the start has a zero-stiffness motion along the load; name it.
+        Err(Error::Singular { what }) => {
+            let joints = match start {
+                Start::Given(s) => free_motion(m, s),
+                Start::Assembled(path) => {
+                    let x0 = problem.work.start_x.clone();
+                    solution(problem, &x0, false, path).ok().and_then(|s| free_motion(m, &s))
+                }
+            };
+            return Err(Error::Singular {
+                what: match joints {
+                    Some(joints) => format!(
+                        "mechanism equilibrium: the mechanism moves freely at the start ({joints}) and the load drives that motion: no equilibrium can be followed; give a joint on it a stiffness, or hold it with a closure"
+                    ),
+                    None => what,
+                },
+            });
+        }
+        Err(e) => return Err(e),
+    };
+    match path.error(&*problem) {
+        None if path.stable => solution(problem, &ws.x, true, &path),
+        None => Err(unstable(path.limit)),
+        Some(e @ Error::Interrupted { .. }) => Err(e),
+        // A path that stopped after losing stability: it is the loss that counts.
+        Some(e) => Err(path.limit.map_or(e, |limit| unstable(Some(limit)))),
+    }
+}
+
+/// The joints that move in a zero-stiffness motion of `s` (the constrained
+/// stiffness's softest mode, if it is singular), as "joint \"a\" and joint \"b\"".
+pub(in crate::mechanism) fn free_motion(m: &Mechanism, s: &Solution) -> Option<String> {
+    let (z, k) = stiffness(m, s).ok()?;
+    if k.nrows() == 0 || linalg::is_positive_definite(&k) {
+        return None;
+    }
+    let (_, soft) = linalg::softest_mode(&k)?;
+    let motion = &z * soft;
+    let largest = motion.amax();
+    let names: Vec<String> = m
+        .joints
+        .iter()
+        .filter(|j| (0..j.kind.joint().dof()).any(|i| motion[j.offset + i].abs() > 0.1 * largest))
+        .map(|j| format!("joint {:?}", j.name))
+        .collect();
+    (!names.is_empty()).then(|| names.join(" and "))
+}
+
+/// The fraction of the load change from `start.loads` to `to` where the
+/// path from `start` first loses stability, by bisection until
+/// `precise(lo, hi)`: each probe continues from the last stable state, for
+/// at most [`PROBE_STEPS`] steps, and at most 64 probes are made.
+pub(in crate::mechanism) fn first_loss(
+    m: &Mechanism,
+    start: &Solution,
+    to: &Loads,
+    settings: &Settings,
+    precise: impl Fn(f64, f64) -> bool,
+) -> Result<f64> {
+    let settings = Settings { max_steps: settings.max_steps.min(PROBE_STEPS), ..*settings };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut at = start.clone();
+    for _ in 0..64 {
+        if precise(lo, hi) {
+            break;
+        }
+        let mid = 0.5 * (lo + hi);
+        match follow(m, &at, &start.loads.lerp(to, mid), &settings) {
+            Ok(s) if s.limit.is_none() => {
+                lo = mid;
+                at = s;
+            }
+            Ok(_) | Err(Error::Unstable { .. }) => hi = mid,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
