@@ -94,10 +94,10 @@ pub enum Basis {
 /// rest coefficients $\kappa$ (Eq. 5) and the tables every evaluation
 /// shares. In either [`Basis`] the tangent angle is linear in the
 /// coordinates, $\phi(\alpha, s) = \sum_i \alpha_i\psi_i(s/L)$, and so is the
-/// curvature, $\hat\omega = \frac1L\sum_i\alpha_i\psi_i'(s/L)$; the energy
+/// curvature, $\hat\omega = \frac1L\sum_i\alpha_i\psi_i^{\prime}(s/L)$; the energy
 /// $U = \frac12\int_0^L EI(s)(\hat\omega - \hat\omega_0)^2 ds$ is the quadratic form
 /// $U = \frac12(\alpha-\kappa)^T K(\alpha-\kappa)$ with the stiffness matrix
-/// $K_{ij} = \frac1L\int_0^1 EI(t)\thinspace\psi_i'(t)\psi_j'(t)\thinspace dt$, so one
+/// $K_{ij} = \frac1L\int_0^1 EI(t)\thinspace\psi_i^{\prime}(t)\psi_j^{\prime}(t)\thinspace dt$, so one
 /// kinematics kernel serves both. For a uniform section $K$ is diagonal,
 /// $\frac{EI}{L}\mathrm{diag}(1, \frac13, \frac15, \dots)$ (Eq. 28 as corrected). Build it with [`Flexure::new`] (or
 /// [`Flexure::segments`]) and the `with_*` methods; all input is validated there.

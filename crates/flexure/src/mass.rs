@@ -2,13 +2,13 @@
 //! and the velocity-product terms $h(\alpha, \dot\alpha)$, by nested
 //! Gauss–Legendre quadrature.
 //!
-//! A point of the backbone is $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds'$
+//! A point of the backbone is $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds^{\prime}$
 //! with $\phi(s) = \sum_i\alpha_i\psi_i(s/L)$, so its velocity is $\dot r(s) = J_r(s)\dot\alpha$ with
 //!
-//! $$J_r(s) = \frac{\partial r}{\partial\alpha} = \int_0^s\begin{pmatrix}-\sin\phi\cr\cos\phi\end{pmatrix}\psi^T ds',$$
+//! $$J_r(s) = \frac{\partial r}{\partial\alpha} = \int_0^s\begin{pmatrix}-\sin\phi\cr\cos\phi\end{pmatrix}\psi^T ds^{\prime},$$
 //!
 //! and its velocity-product acceleration is
-//! $\dot J_r\dot\alpha = \dot\alpha^T\nabla\nabla r\thinspace\dot\alpha = -\int_0^s\dot\phi^2\begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds'$,
+//! $\dot J_r\dot\alpha = \dot\alpha^T\nabla\nabla r\thinspace\dot\alpha = -\int_0^s\dot\phi^2\begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds^{\prime}$,
 //! $\dot\phi = \psi^T\dot\alpha$. The kinetic energy $T = \frac12\dot\alpha^TM\dot\alpha$ gives
 //!
 //! $$M = \int_0^L \mu J_r^TJ_r\thinspace ds + \int_0^L\rho I\thinspace\psi\psi^T ds +
@@ -492,7 +492,7 @@ pub fn update<T: Scalar>(model: &MassModel, alpha: &[T], alpha_dot: Option<&[T]>
 /// $$c = \int_0^L\mu\thinspace r\thinspace ds,\quad
 /// \frac{\partial c}{\partial\alpha_i} = \int_0^L\mu\thinspace J_{r,i}\thinspace ds,\quad
 /// \frac{\partial^2c}{\partial\alpha_i\partial\alpha_j} = -\int_0^L\mu\int_0^s\psi_i\psi_j
-/// \begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds'\thinspace ds,$$
+/// \begin{pmatrix}\cos\phi\cr\sin\phi\end{pmatrix}ds^{\prime}\thinspace ds,$$
 ///
 /// on the nested quadrature of [`update`] (the tip body is not included).
 #[derive(Debug, Clone, PartialEq)]

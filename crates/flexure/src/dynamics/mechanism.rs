@@ -22,10 +22,10 @@
 //!
 //! and a point $w$ of a body moves with $a_w = a_b - \omega_b^2(w - o_b)$
 //! ($\mathrm E$ the quarter turn). A flexure's sections are points in its root
-//! frame at $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds'$, integrated by the
+//! frame at $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds^{\prime}$, integrated by the
 //! nested Gauss–Legendre rule of [`super::mass`] (the rule and refinement
 //! its [`MassModel`] chooses), so each section is as accurate as the tip;
-//! their local acceleration $\dot J_r\dot\alpha = -\int_0^s\dot\phi^2(\cos\phi, \sin\phi)ds'$
+//! their local acceleration $\dot J_r\dot\alpha = -\int_0^s\dot\phi^2(\cos\phi, \sin\phi)ds^{\prime}$
 //! enters $a_w$ as $\ddot p$ does $a_C$. The discrete $h$ is the exact
 //! derivative of the discrete $M$.
 //!

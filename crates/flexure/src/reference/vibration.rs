@@ -6,16 +6,16 @@
 //!
 //! The lateral deflection $w(s)\cos\omega t$ obeys
 //!
-//! $$(EI\thinspace w'')'' + P w'' = \mu\omega^2 w - (\rho I\thinspace\omega^2 w')',$$
+//! $$(EI\thinspace w^{\prime\prime})^{\prime\prime} + P w^{\prime\prime} = \mu\omega^2 w - (\rho I\thinspace\omega^2 w^{\prime})^{\prime},$$
 //!
-//! written as four first-order equations in $w$, $\theta = w'$, the bending
-//! moment $\mathcal M = EI\thinspace w''$ and the shear
-//! $S = \mathcal M' + (P + \rho I\omega^2)\theta$:
-//! $w' = \theta$, $\theta' = \mathcal M/EI$, $\mathcal M' = S - (P + \rho I\omega^2)\theta$,
-//! $S' = \mu\omega^2 w$. It is the stationarity condition of
+//! written as four first-order equations in $w$, $\theta = w^{\prime}$, the bending
+//! moment $\mathcal M = EI\thinspace w^{\prime\prime}$ and the shear
+//! $S = \mathcal M^{\prime} + (P + \rho I\omega^2)\theta$:
+//! $w^{\prime} = \theta$, $\theta^{\prime} = \mathcal M/EI$, $\mathcal M^{\prime} = S - (P + \rho I\omega^2)\theta$,
+//! $S^{\prime} = \mu\omega^2 w$. It is the stationarity condition of
 //!
-//! $$\Pi = \tfrac12\int_0^L \big(EI\thinspace w''^2 - (P + \rho I\omega^2)w'^2 - \mu\omega^2 w^2\big)ds
-//! - \tfrac12\omega^2 u_L^T M_b u_L,$$
+//! $$\Pi = \tfrac12\int_0^L \big(EI\thinspace w^{\prime\prime 2} - (P + \rho I\omega^2)w^{\prime 2} - \mu\omega^2 w^2\big)ds -
+//! \tfrac12\omega^2 u_L^T M_b u_L,$$
 //!
 //! with $u_L = (w, \theta)(L)$ and the body's mass matrix about the tip
 //! $M_b = [m, mc_x; mc_x, I_{tip}]$ ($I_{tip} = I_c + m\lvert c\rvert^2$, the
@@ -46,7 +46,7 @@
 //! relative $10^{-12}$ in $\bar\beta$.
 //!
 //! **Element length.** For $w$ clamped at both ends of an element of length
-//! $h$, $\int w''^2 \ge (4.7300/h)^4\int w^2$ and $\int w''^2 \ge (2\pi/h)^2\int w'^2$
+//! $h$, $\int w^{\prime\prime 2} \ge (4.7300/h)^4\int w^2$ and $\int w^{\prime\prime 2} \ge (2\pi/h)^2\int w^{\prime 2}$
 //! (the clamped–clamped beam's first frequency and first buckling load), so the
 //! element's lowest clamped–clamped $\omega^2$ is at least
 //! $(EI_{min} - P^+h^2/4\pi^2)/(\mu_{max}h^4/500.56 + \rho I_{max}h^2/4\pi^2)$

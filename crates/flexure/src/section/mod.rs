@@ -117,8 +117,8 @@ pub struct Notch {
 enum Stiffness {
     /// $EI(t)$ given directly (N·m²).
     Given(Profile),
-    /// A rectangle $b(t) \times h(t)$ of effective modulus $E'$:
-    /// $EI = E' b h^3/12$.
+    /// A rectangle $b(t) \times h(t)$ of effective modulus $E^{\prime}$:
+    /// $EI = E^{\prime} b h^3/12$.
     Rectangle { modulus: f64, width: Profile, thickness: Profile, notch: Option<Notch> },
 }
 
@@ -164,7 +164,7 @@ impl Section {
     }
 
     /// A rectangle of `width` $b(t)$ and `thickness` $h(t)$ (m), modulus `modulus`
-    /// $E$ (Pa); with `poisson` $\nu$ the plate modulus $E' = E/(1-\nu^2)$ is used
+    /// $E$ (Pa); with `poisson` $\nu$ the plate modulus $E^{\prime} = E/(1-\nu^2)$ is used
     /// (as in [`crate::bending_stiffness`]).
     pub fn rectangle(modulus: f64, poisson: Option<f64>, width: Profile, thickness: Profile) -> Result<Self> {
         let e = crate::error::positive("modulus", modulus)?;
@@ -305,7 +305,7 @@ impl Section {
         }
     }
 
-    /// Effective modulus $E'$ (Pa); `None` for a section given by `ei`.
+    /// Effective modulus $E^{\prime}$ (Pa); `None` for a section given by `ei`.
     pub fn modulus(&self) -> Option<f64> {
         match &self.stiffness {
             Stiffness::Given(_) => None,

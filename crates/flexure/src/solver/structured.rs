@@ -16,8 +16,8 @@ const STRUCTURED_ERROR: f64 = 1e-11;
 /// the problem: directly when $m = n$; when $m = n + 1$ by block
 /// elimination of the border,
 /// $$\begin{bmatrix} J & c\cr b^T & e\end{bmatrix}\begin{bmatrix} x\cr y_\lambda\end{bmatrix}
-/// = \begin{bmatrix} f\cr g\end{bmatrix}:\quad J a = f,\ J w = c,\
-/// y_\lambda = \frac{g - b^Ta}{e - b^Tw},\ x = a - y_\lambda w.$$
+/// = \begin{bmatrix} f\cr g\end{bmatrix}:\quad J a = f,\ J w = c,
+/// \ y_\lambda = \frac{g - b^Ta}{e - b^Tw},\ x = a - y_\lambda w.$$
 /// Block elimination loses accuracy near a fold, where $J$ is nearly
 /// singular: the answer is checked against `matrix`, refined once if
 /// needed, and refused (`false`, `y` unspecified) unless its

@@ -31,14 +31,14 @@
 //! multipliers $\Lambda_i$ ($i = 1, 2, 3$); the stage velocities and
 //! positions follow as
 //! $$\dot Q_i = \dot q_0 + h\textstyle\sum_j a_{ij}\ddot Q_j,\qquad
-//! Q_i = q_0 + c_ih\dot q_0 + h^2\sum_j (A^2)_{ij}\ddot Q_j,$$
+//! Q_i = q_0 + c_ih\dot q_0 + h^2\sum_j (A^2)_ {ij}\ddot Q_j,$$
 //! and the equations are
 //! $$M(Q_i)\ddot Q_i - f(Q_i, \dot Q_i, t_0 + c_ih) + G(Q_i)^T\Lambda_i = 0,
 //! \qquad c(Q_i)/h^2 = 0.$$
 //! A simplified Newton method solves them with the matrix frozen at the
 //! start of a step, whose $(i, j)$ block is
-//! $$\delta_{ij}M + h\thinspace a_{ij}D_t + h^2(A^2)_{ij}K_t\quad\text{with
-//! closure rows } (A^2)_{ij}G \text{ and columns } \delta_{ij}G^T,$$
+//! $$\delta_{ij}M + h\thinspace a_{ij}D_t + h^2(A^2)_ {ij}K_t\quad\text{with
+//! closure rows } (A^2)_ {ij}G \text{ and columns } \delta_{ij}G^T,$$
 //! ($K_t = -\partial f/\partial q$, $D_t = -\partial f/\partial\dot q$):
 //! regular when $M$ is singular as long as the stiffness holds the
 //! massless directions, and at any step size. The new state is
@@ -64,7 +64,7 @@
 //! them exactly), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
 //! are closures: they are index-2 variables there), must be at most 1; the
-//! step then changes by $0.9\,\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
+//! step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
 //! In the first two steps only positions are weighed: the velocities of
 //! massless directions at the start are not consistent with their motion
 //! (and if the start could not be made consistent, the first step projects

@@ -132,7 +132,7 @@ fn massless_directions(n: usize, mass: &[f64], damping: &[f64]) -> nalgebra::DMa
 /// One Newton step of [`consistent_start`] by the null-space method, for
 /// the stiffness $A = N^TK_tN$, $B = GN$, the residual $r$ and closures
 /// $c$: $\delta y_p = -B^+c$ (least norm), then with $Z$ spanning the null
-/// space of $B$, $Z^TAZ\,b = -Z^T(r + A\delta y_p)$,
+/// space of $B$, $Z^TAZ\thinspace b = -Z^T(r + A\delta y_p)$,
 /// $\delta y = \delta y_p + Zb$, and $\delta\lambda$ from
 /// $B^T\delta\lambda = -(r + A\delta y)$ in least squares. Only redundant closures are cut off; $Z^TAZ$ is solved
 /// down to $10^{-14}$ of its largest singular value, so a soft massless

@@ -12,9 +12,9 @@
 
 use super::joints::{Fixed, Prismatic, Revolute};
 use super::kinematics::frames;
+use super::schedule::{Schedule, Waveform};
 use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
-use super::schedule::{Schedule, Waveform};
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::Pose;
