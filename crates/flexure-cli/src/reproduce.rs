@@ -844,7 +844,7 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
         let loads = flexure::dynamics::schedule::loads_at(&finger, t);
         let q =
             flexure::mechanism::statics::solve_between(&finger, &unloaded, &loads, &statics_settings).map_err(lib)?.q;
-        quasi.push((t, flexure::mechanism::kinematics::frames(&finger, &q).bodies[distal_index].angle));
+        quasi.push((t, flexure::mechanism::kinematics::frames(&finger, &q).bodies[distal_index].phi));
     }
     let quasi_end = quasi.last().map(|p| p.1);
     let _ = write!(

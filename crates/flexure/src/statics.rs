@@ -1,7 +1,7 @@
 //! Equilibrium under tip loads (paper Eqs. 22 and 32).
 
 use crate::energy::energy_gradient;
-use crate::error::{Error, Result, finite};
+use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
 use crate::limit::{self, StabilityLimit};
@@ -10,51 +10,14 @@ use crate::scalar::Scalar;
 use crate::solver;
 use nalgebra::DMatrix;
 
-/// A load at the tip, in the root frame: moment $M$ (N·m) and force $(F_x, F_y)$ (N).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct TipLoad<T = f64> {
-    /// Moment about the tip, counter-clockwise positive.
-    pub moment: T,
-    /// Force along the root's x axis.
-    pub fx: T,
-    /// Force along the root's y axis.
-    pub fy: T,
-}
-
-impl TipLoad<f64> {
-    /// The paper's load (Sec. III-C): force of magnitude $P$ at angle $\theta$,
-    /// $F_x = -P\sin\theta$, $F_y = P\cos\theta$, with moment $M$.
-    ///
-    /// # Example
-    /// ```
-    /// let l = flexure::TipLoad::polar(0.0, 2.0, std::f64::consts::FRAC_PI_2);
-    /// assert!((l.fx + 2.0).abs() < 1e-15 && l.fy.abs() < 1e-15);
-    /// ```
-    pub fn polar(moment: f64, force: f64, angle: f64) -> Self {
-        let (s, c) = angle.sin_cos();
-        // + 0.0 turns the −0 of a zero angle into 0.
-        Self { moment, fx: -force * s + 0.0, fy: force * c }
-    }
-
-    /// Checks that every component is finite.
-    pub fn validate(&self) -> Result<()> {
-        for (name, v) in [("moment", self.moment), ("fx", self.fx), ("fy", self.fy)] {
-            finite(name, v)?;
-            // As a mechanism file bounds its loads: beyond, the products the
-            // model forms leave the range of floating point.
-            if v.abs() > MAX_LOAD {
-                return Err(Error::invalid(name, v, "must be at most 1e30 in magnitude (SI units)"));
-            }
-        }
-        Ok(())
-    }
-}
+/// A load at the tip, in the root frame: moment $M$ (N·m) and force
+/// $(F_x, F_y)$ (N). The one planar [`Wrench`](crate::space::Wrench),
+/// named for where it acts.
+pub type TipLoad<T = f64> = crate::space::Wrench<T>;
 
 pub use crate::solver::Settings;
 
-/// The largest magnitude of a tip load's component (N·m, N), as a
-/// mechanism file bounds every number.
-pub const MAX_LOAD: f64 = 1e30;
+pub use crate::space::MAX_LOAD;
 
 /// Work buffers and results of [`deflect`] for one flexure (the Data).
 #[derive(Debug, Clone)]

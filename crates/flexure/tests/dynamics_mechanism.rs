@@ -124,7 +124,7 @@ fn state(m: &Mechanism, rng: &mut Rng) -> (Vec<f64>, Vec<f64>) {
 }
 
 fn weightless(m: &Mechanism) -> Loads {
-    Loads { gravity: [0.0; 2], ..m.loads() }
+    Loads { gravity: nalgebra::Vector2::zeros(), ..m.loads() }
 }
 
 /// The potential of the point loads and tendons (constant magnitudes).
@@ -165,7 +165,7 @@ fn elements(m: &Mechanism, q: &[f64]) -> Vec<(f64, f64, [f64; 2], f64)> {
     let f = frames(m, q);
     let mut out = Vec::new();
     for (b, body) in m.bodies.iter().enumerate() {
-        out.push((body.mass, body.inertia, f.bodies[b].point(body.com), f.bodies[b].angle));
+        out.push((body.mass, body.inertia, world(&f.bodies[b], body.com), f.bodies[b].phi));
     }
     let rule = |k: usize| {
         let r = gauss_quad::GaussLegendre::new(std::num::NonZeroUsize::new(k).unwrap());
@@ -198,7 +198,7 @@ fn elements(m: &Mechanism, q: &[f64]) -> Vec<(f64, f64, [f64; 2], f64)> {
                 let section = flex.section();
                 let mu = section.mass_per_length(t, l).unwrap_or(0.0);
                 let rho_i = section.rotary_inertia_per_length(t, l).unwrap_or(0.0);
-                out.push((mu * ds, rho_i * ds, root.point(r), root.angle + phi(t)));
+                out.push((mu * ds, rho_i * ds, world(&root, r), root.phi + phi(t)));
             }
         }
     }
@@ -369,7 +369,10 @@ fn one_flexure_matches_the_flexure_mass_model() {
 fn file_keys_for_dynamics() {
     let m = from_toml(TREE).unwrap();
     let b = m.body("a").unwrap();
-    assert_eq!((m.bodies[b].mass, m.bodies[b].inertia, m.bodies[b].com), (0.02, 3e-6, [0.01, 0.003]));
+    assert_eq!(
+        (m.bodies[b].mass, m.bodies[b].inertia, m.bodies[b].com),
+        (0.02, 3e-6, nalgebra::Point2::new(0.01, 0.003))
+    );
     let damping: Vec<f64> = m.joints.iter().map(|j| j.damping).collect();
     assert_eq!(damping, [2e-3, 1e-4, 0.0, 0.1]);
     // The damping matrix: β K on a flexure, the viscous coefficient on a pin.
@@ -460,4 +463,10 @@ fn tangents_and_closures() {
     let (a, mut b) = (m.rest(), m.rest());
     b[3] += 0.25;
     assert!((sys.distance(&a, &b) - 0.25).abs() < 1e-15 && sys.distance(&a, &a) == 0.0);
+}
+
+/// A point given in a frame, in the world, as components.
+fn world(frame: &flexure::Pose, r: impl Into<nalgebra::Point2<f64>>) -> [f64; 2] {
+    let w = frame.act(&r.into());
+    [w.x, w.y]
 }

@@ -106,7 +106,7 @@ fn slow_loading_ends_at_the_static_equilibrium() {
     let s = solve(&m, &statics::Settings::default()).unwrap();
     let unloaded = assemble_unloaded(&m, &statics::Settings::default()).unwrap();
     let last = run.time.len() - 1;
-    let phi_static = flexure::mechanism::kinematics::frames(&m, &s.q).bodies[1].angle;
+    let phi_static = flexure::mechanism::kinematics::frames(&m, &s.q).bodies[1].phi;
     assert!(phi_static > 0.05, "the tendon bends the flexure: {phi_static}");
     assert!(run.q(0).iter().zip(&unloaded.q).all(|(a, b)| (a - b).abs() < 1e-12));
     let phi = run.bodies[0].phi[last];
@@ -325,7 +325,7 @@ fn the_four_bar_keeps_its_pin_closed_while_it_swings() {
     let mut travel: f64 = 0.0;
     for k in 0..run.time.len() {
         let f = frames(&m, run.q(k));
-        let (a, b) = (f.bodies[coupler].point([0.04, 0.0]), f.bodies[output].point([0.04, 0.0]));
+        let (a, b) = (world(&f.bodies[coupler], [0.04, 0.0]), world(&f.bodies[output], [0.04, 0.0]));
         let gap = (a[0] - b[0]).hypot(a[1] - b[1]);
         assert!(gap < 1e-9 * size, "t = {}: the pin opens by {gap:.3e} m", run.time[k]);
         travel = travel.max((run.bodies[coupler - 1].y[k] - run.bodies[coupler - 1].y[0]).abs());
@@ -458,7 +458,7 @@ fn a_harmonic_load_meets_its_closed_form() {
         "harmonic = { amplitude = 0.3, frequency = 0.5, phase = 1.5707963267948966, offset = 0.1 }",
     ))
     .unwrap();
-    assert!((loads_at(&m, 0.0).force[0][2] - 0.4).abs() < 1e-15);
+    assert!((loads_at(&m, 0.0).force[0].moment - 0.4).abs() < 1e-15);
 }
 
 /// The dynamics' results are data the CLI and Python print as they are.
@@ -469,4 +469,10 @@ fn results_serialize() {
     serialize::<flexure::dynamics::integrate::Trajectory>();
     serialize::<flexure::dynamics::Modes>();
     serialize::<flexure::inertia::RigidInertia>();
+}
+
+/// A point given in a frame, in the world, as components.
+fn world(frame: &flexure::Pose, r: impl Into<nalgebra::Point2<f64>>) -> [f64; 2] {
+    let w = frame.act(&r.into());
+    [w.x, w.y]
 }

@@ -204,7 +204,7 @@ fn examples_parse_and_solve() {
     let angle = |text: &str, body: &str| {
         let m = from_toml(text).unwrap();
         let s = solve(&m, &Settings::default()).unwrap();
-        frames(&m, &s.q).bodies[m.body(body).unwrap()].angle
+        frames(&m, &s.q).bodies[m.body(body).unwrap()].phi
     };
     assert!((angle(&blocks[0], "arm") - -0.078267).abs() < 5e-7);
     assert!(PAGE.contains("`phi: -0.078267`"));
@@ -281,14 +281,12 @@ fn child_frames() {
     let f = frames(&m, &m.rest());
     let body = |name: &str| f.bodies[m.body(name).unwrap()];
     let (a, b, c) = (body("a"), body("b"), body("c"));
-    assert!((a.angle - 0.75).abs() < 1e-15 && (a.origin[0] - 1.0).abs() < 1e-15 && (a.origin[1] - 2.0).abs() < 1e-15);
+    assert!((a.phi - 0.75).abs() < 1e-15 && (a.x - 1.0).abs() < 1e-15 && (a.y - 2.0).abs() < 1e-15);
     let (s, co) = 0.75f64.sin_cos();
-    assert!((b.origin[0] - (1.0 + 0.1 * co)).abs() < 1e-15 && (b.origin[1] - (2.0 + 0.1 * s)).abs() < 1e-15);
+    assert!((b.x - (1.0 + 0.1 * co)).abs() < 1e-15 && (b.y - (2.0 + 0.1 * s)).abs() < 1e-15);
     let (s, co) = 1.75f64.sin_cos();
-    assert!((c.angle - 1.75).abs() < 1e-15);
-    assert!(
-        (c.origin[0] - (b.origin[0] + 0.3 * co)).abs() < 1e-14 && (c.origin[1] - (b.origin[1] + 0.3 * s)).abs() < 1e-14
-    );
+    assert!((c.phi - 1.75).abs() < 1e-15);
+    assert!((c.x - (b.x + 0.3 * co)).abs() < 1e-14 && (c.y - (b.y + 0.3 * s)).abs() < 1e-14);
     // The default quadrature is order + 2.
     let JointKind::Flexure(flex) = &m.joints[2].kind else { panic!("joint f is a flexure") };
     assert_eq!(flex.quadrature_points(), 7);
@@ -300,5 +298,5 @@ fn unnamed_forces_are_numbered() {
     let m = arm("", "[[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\n[[force]]\nbody = \"arm\"\nat = [0.1, 0.0]\n");
     let names: Vec<&str> = m.forces.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(names, ["0", "1"]);
-    assert_eq!(Parameter::parse(&m, "force.1.fy").unwrap(), Parameter::Force(1, 1));
+    assert_eq!(Parameter::parse(&m, "force.1.fy").unwrap(), Parameter::Force(1, 2));
 }

@@ -39,7 +39,7 @@ fn parallelogram_stage() {
     let (l, ei): (f64, f64) = (0.05, 2.0e-3);
     let stage = m.body("stage").unwrap();
     let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
-    let c = compliance(&m, &unloaded, stage, [0.0, -0.02]).unwrap();
+    let c = compliance(&m, &unloaded, stage, [0.0, -0.02].into()).unwrap();
     assert!((1.0 / c[(1, 1)] - 24.0 * ei / l.powi(3)).abs() < 1e-8 * 24.0 * ei / l.powi(3));
     let b = buckle(&m, &Settings::default()).unwrap();
     let critical = b.load_factor * 1.0;
@@ -47,7 +47,7 @@ fn parallelogram_stage() {
     // Euler: 2π²EI/L², 1.3 % below the model (Table I's guided error).
     assert!((critical / (2.0 * std::f64::consts::PI.powi(2) * ei / (l * l)) - 1.0 - 0.01321).abs() < 1e-4);
     let loaded = solve(&m, &Settings::default()).unwrap();
-    let cl = compliance(&m, &loaded, stage, [0.0, -0.02]).unwrap();
+    let cl = compliance(&m, &loaded, stage, [0.0, -0.02].into()).unwrap();
     assert!((c[(1, 1)] / cl[(1, 1)] - (1.0 - 1.0 / critical)).abs() < 1e-8);
     // The sway mode moves both flexures alike.
     assert!((b.mode[1] - b.mode[4]).abs() < 1e-6);
@@ -81,9 +81,8 @@ fn parallelogram_in_a_kept_workspace() {
         assert_eq!(format!("{s:?}"), format!("{:?}", solve(m, &settings)), "kept and fresh workspaces differ");
         s
     };
-    let sway = |m: &Mechanism, s: &flexure::mechanism::statics::Solution| {
-        body_frames(m, s).bodies[m.body("stage").unwrap()].origin[0]
-    };
+    let sway =
+        |m: &Mechanism, s: &flexure::mechanism::statics::Solution| body_frames(m, s).bodies[m.body("stage").unwrap()].x;
     for push in [0.0, 1.0] {
         let m = with(1e-3, -push);
         let s = solve_kept(&m).unwrap();
@@ -137,9 +136,8 @@ fn kept_start_is_the_mechanisms_own() {
         assert_eq!(format!("{s:?}"), format!("{:?}", solve(m, settings).unwrap()), "kept and fresh workspaces differ");
         s
     };
-    let sway = |m: &Mechanism, s: &flexure::mechanism::statics::Solution| {
-        body_frames(m, s).bodies[m.body("stage").unwrap()].origin[0]
-    };
+    let sway =
+        |m: &Mechanism, s: &flexure::mechanism::statics::Solution| body_frames(m, s).bodies[m.body("stage").unwrap()].x;
     for (right_ei, settings) in
         [(2.0e-3, &default), (2.0e-3, &default), (6.0e-3, &default), (2.0e-3, &default), (2.0e-3, &loose)]
     {
@@ -170,7 +168,7 @@ fn mixed_chain_closed_form() {
     // The hand's angle is the sum of the joint rotations.
     let f = body_frames(&m, &s);
     let hand = m.body("hand").unwrap();
-    assert!((f.bodies[hand].angle - (s.q[0] + s.q[1] + s.q[5])).abs() < 1e-12);
+    assert!((f.bodies[hand].phi - (s.q[0] + s.q[1] + s.q[5])).abs() < 1e-12);
 }
 
 /// Composed by hand: cut each flexure, sum the loads on everything beyond
@@ -191,32 +189,32 @@ fn against_the_exact_elastica(m: &Mechanism, gravity: bool) {
         let mut add = |p: [f64; 2], force: [f64; 2], moment: f64| {
             fx += force[0];
             fy += force[1];
-            mz += (p[0] - tip.origin[0]) * force[1] - (p[1] - tip.origin[1]) * force[0] + moment;
+            mz += (p[0] - tip.x) * force[1] - (p[1] - tip.y) * force[0] + moment;
         };
         for load in &m.forces {
             if beyond.contains(&load.body) {
-                add(f.bodies[load.body].point(load.at), load.force, load.moment);
+                add(world(&f.bodies[load.body], load.at), [load.wrench.fx, load.wrench.fy], load.wrench.moment);
             }
         }
         for &b in &beyond {
             if gravity {
                 let body = &m.bodies[b];
-                add(f.bodies[b].point(body.com), [body.mass * m.gravity[0], body.mass * m.gravity[1]], 0.0);
+                add(world(&f.bodies[b], body.com), [body.mass * m.gravity[0], body.mass * m.gravity[1]], 0.0);
             }
         }
         // The tendon pulls each via point toward its neighbours; count the
         // pulls on via points that ride on bodies beyond the cut.
         for tendon in &m.tendons {
-            let world: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+            let via: Vec<[f64; 2]> = tendon.path.iter().map(|&(b, r)| world(&f.bodies[b], r)).collect();
             for (i, &(b, _)) in tendon.path.iter().enumerate() {
                 if !beyond.contains(&b) {
                     continue;
                 }
                 for k in [i.wrapping_sub(1), i + 1] {
-                    if let Some(q) = world.get(k) {
-                        let d = [q[0] - world[i][0], q[1] - world[i][1]];
+                    if let Some(q) = via.get(k) {
+                        let d = [q[0] - via[i][0], q[1] - via[i][1]];
                         let n = d[0].hypot(d[1]);
-                        add(world[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n], 0.0);
+                        add(via[i], [tendon.tension * d[0] / n, tendon.tension * d[1] / n], 0.0);
                     }
                 }
             }
@@ -225,22 +223,22 @@ fn against_the_exact_elastica(m: &Mechanism, gravity: bool) {
         for c in &m.closures {
             let (a, a_at, b, b_at, moment) = match *c {
                 Closure::Weld { a, a_origin, b, b_origin } => {
-                    (a, [a_origin.x, a_origin.y], b, [b_origin.x, b_origin.y], Some(s.multipliers[row + 2]))
+                    (a, a_origin.origin(), b, b_origin.origin(), Some(s.multipliers[row + 2]))
                 }
                 Closure::Pin { a, a_at, b, b_at } => (a, a_at, b, b_at, None),
             };
             let mu = [s.multipliers[row], s.multipliers[row + 1]];
             if beyond.contains(&a) {
-                add(f.bodies[a].point(a_at), [-mu[0], -mu[1]], -moment.unwrap_or(0.0));
+                add(world(&f.bodies[a], a_at), [-mu[0], -mu[1]], -moment.unwrap_or(0.0));
             }
             if beyond.contains(&b) {
-                add(f.bodies[b].point(b_at), mu, moment.unwrap_or(0.0));
+                add(world(&f.bodies[b], b_at), mu, moment.unwrap_or(0.0));
             }
             row += c.equations();
         }
         // Into the flexure's root frame.
         let root = f.roots[ji];
-        let (sn, cs) = root.angle.sin_cos();
+        let (sn, cs) = root.phi.sin_cos();
         let load = TipLoad { moment: mz, fx: cs * fx + sn * fy, fy: -sn * fx + cs * fy };
         let JointKind::Flexure(flex) = &j.kind else { panic!("flexures only") };
         let exact = elastica::deflect(flex, &load, &Default::default()).unwrap().pose;
@@ -274,7 +272,7 @@ fn four_leg_stage_example() {
     let m = example("four_leg_stage");
     let (l, ei): (f64, f64) = (0.05, 2.0e-3);
     let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
-    let c = compliance(&m, &unloaded, m.body("stage").unwrap(), [0.0, -0.06]).unwrap();
+    let c = compliance(&m, &unloaded, m.body("stage").unwrap(), [0.0, -0.06].into()).unwrap();
     assert!((1.0 / c[(1, 1)] - 48.0 * ei / l.powi(3)).abs() < 1e-9 * 48.0 * ei / l.powi(3));
     let b = buckle(&m, &Settings::default()).unwrap();
     // The file pushes with 10 N.
@@ -323,7 +321,7 @@ fn instability_is_reported() {
     let limit = match solve(&heavy, &Settings::default()) {
         Ok(s) => {
             assert!(s.stable);
-            let sway = body_frames(&heavy, &s).bodies[heavy.body("stage").unwrap()].origin[0];
+            let sway = body_frames(&heavy, &s).bodies[heavy.body("stage").unwrap()].x;
             assert!(sway.abs() > 0.01, "buckled sideways: {sway}");
             s.limit.unwrap()
         }
@@ -666,4 +664,10 @@ fn tree_factorization_follows_the_dense_path() {
             }
         }
     }
+}
+
+/// A point given in a frame, in the world, as components.
+fn world(frame: &flexure::Pose, r: impl Into<nalgebra::Point2<f64>>) -> [f64; 2] {
+    let w = frame.act(&r.into());
+    [w.x, w.y]
 }

@@ -19,6 +19,7 @@ use flexure::mechanism::lagrangian::lagrangian;
 use flexure::mechanism::statics::{Kkt, Settings};
 use flexure::mechanism::{JointKind, Loads, Mechanism};
 use flexure::solver::Problem;
+use flexure::space::Wrench;
 use nalgebra::{DMatrix, DVector};
 
 const H: f64 = 1e-5;
@@ -59,7 +60,7 @@ fn examples(rng: &mut Rng) -> Vec<(String, Mechanism)> {
             let mut m = from_toml(&std::fs::read_to_string(&p).unwrap()).unwrap();
             for b in m.bodies.iter_mut().skip(1) {
                 b.mass = 0.01 + 0.1 * rng.next();
-                b.com = [rng.within(0.05), rng.within(0.05)];
+                b.com = nalgebra::Point2::new(rng.within(0.05), rng.within(0.05));
             }
             (p.file_name().unwrap().to_string_lossy().into_owned(), m)
         })
@@ -82,8 +83,12 @@ fn state(m: &Mechanism, rng: &mut Rng) -> Vec<f64> {
 fn loads(m: &Mechanism, rng: &mut Rng) -> Loads {
     Loads {
         tension: m.tendons.iter().map(|_| 5.0 * rng.next()).collect(),
-        force: m.forces.iter().map(|_| [rng.within(3.0), rng.within(3.0), rng.within(0.05)]).collect(),
-        gravity: [rng.within(10.0), rng.within(10.0)],
+        force: m
+            .forces
+            .iter()
+            .map(|_| Wrench { fx: rng.within(3.0), fy: rng.within(3.0), moment: rng.within(0.05) })
+            .collect(),
+        gravity: nalgebra::Vector2::new(rng.within(10.0), rng.within(10.0)),
     }
 }
 
@@ -116,12 +121,12 @@ fn point_jacobians_and_hessians() {
         for _ in 0..3 {
             let q = state(&m, &mut rng);
             for body in 0..m.bodies.len() {
-                let r = [rng.within(0.05), rng.within(0.05)];
+                let r = nalgebra::Point2::new(rng.within(0.05), rng.within(0.05));
                 let p = point(&m, &frames(&m, &q), body, r, true);
                 let pose = |q: &[f64]| {
                     let f = frames(&m, q);
-                    let w = f.bodies[body].point(r);
-                    DVector::from_vec(vec![f.bodies[body].angle, w[0], w[1]])
+                    let w = world(&f.bodies[body], r);
+                    DVector::from_vec(vec![f.bodies[body].phi, w[0], w[1]])
                 };
                 agree(
                     &format!("{name}: body {body} Jacobian"),
@@ -283,7 +288,7 @@ fn branched_tree(rng: &mut Rng) -> Mechanism {
     let mut m = from_toml(text).unwrap();
     for b in m.bodies.iter_mut().skip(1) {
         b.mass = 0.01 + 0.1 * rng.next();
-        b.com = [rng.within(0.05), rng.within(0.05)];
+        b.com = nalgebra::Point2::new(rng.within(0.05), rng.within(0.05));
     }
     m
 }
@@ -312,7 +317,7 @@ fn tree_factorization_against_dense_lu() {
             let scale = 10f64.powf(-3.0 + 3.5 * rng.next());
             let loads = |rng: &mut Rng| {
                 let mut l = loads(&m, rng);
-                l.force.iter_mut().flatten().for_each(|v| *v *= scale);
+                l.force.iter_mut().for_each(|w| (0..3).for_each(|i| w[i] *= scale));
                 l
             };
             let (from, to) = (loads(&mut rng), loads(&mut rng));
@@ -356,4 +361,10 @@ fn tree_factorization_against_dense_lu() {
         }
     }
     assert!(stable >= 3 && unstable >= 3, "both verdicts tested: {stable} stable, {unstable} unstable");
+}
+
+/// A point given in a frame, in the world, as components.
+fn world(frame: &flexure::Pose, r: impl Into<nalgebra::Point2<f64>>) -> [f64; 2] {
+    let w = frame.act(&r.into());
+    [w.x, w.y]
 }

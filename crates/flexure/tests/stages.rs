@@ -57,7 +57,7 @@ fn lateral_stiffness_is_n_guided_legs() {
     for n in 2..=8 {
         let m = stage(n, 3, [0.0, -1.0]);
         let unloaded = assemble_unloaded(&m, &Settings::default()).unwrap();
-        let c = compliance(&m, &unloaded, m.body("stage").unwrap(), centre(n)).unwrap();
+        let c = compliance(&m, &unloaded, m.body("stage").unwrap(), centre(n).into()).unwrap();
         let expected = n as f64 * 12.0 * EI / LENGTH.powi(3);
         // World x is across the legs.
         assert!((1.0 / c[(1, 1)] / expected - 1.0).abs() < 1e-10, "n = {n}: {} vs {expected}", 1.0 / c[(1, 1)]);
@@ -100,7 +100,7 @@ fn lateral_and_axial_load() {
         let s = solve(&m, &Settings::default()).unwrap();
         assert!(s.stable && s.limit.is_none(), "n = {n}");
         let f = flexure::mechanism::statics::body_frames(&m, &s);
-        let sway = f.bodies[m.body("stage").unwrap()].origin[0];
+        let sway = f.bodies[m.body("stage").unwrap()].x;
         assert!((sway / (lateral / soft) - 1.0).abs() < 1e-5, "n = {n}: sway {sway} vs {}", lateral / soft);
     }
 }

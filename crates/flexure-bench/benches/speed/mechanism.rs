@@ -60,7 +60,11 @@ pub fn run(c: &mut Criterion) {
     // examples/parallelogram.toml's axial 1 N push, plus a lateral 0.5 N.
     let parallelogram =
         from_toml(&example("parallelogram.toml").replace("force = [0.0, -1.0]", "force = [0.5, -1.0]")).unwrap();
-    assert_eq!(parallelogram.loads().force, vec![[0.5, -1.0, 0.0]], "the example's push line changed");
+    assert_eq!(
+        parallelogram.loads().force,
+        vec![flexure::space::Wrench { moment: 0.0, fx: 0.5, fy: -1.0 }],
+        "the example's push line changed"
+    );
     let cases = [
         ("finger_equilibrium", finger),
         ("chain_10", chain(10)),

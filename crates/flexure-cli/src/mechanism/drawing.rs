@@ -10,6 +10,7 @@ use flexure::mechanism::{Closure, JointKind, Mechanism};
 use flexure_chart::{
     Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
 };
+use nalgebra::Point2;
 use std::f64::consts::TAU;
 
 /// The colour of legend keys that stand for every shape.
@@ -55,7 +56,7 @@ pub fn swept(parameter: &str, value: f64) -> String {
 
 /// Every point attached to body `b`, in its frame ([`Mechanism::attachments`]:
 /// the library's crossing test takes the same points as the link).
-pub(super) fn attachments(m: &Mechanism, b: usize) -> Vec<[f64; 2]> {
+pub(super) fn attachments(m: &Mechanism, b: usize) -> Vec<Point2<f64>> {
     m.attachments(b)
 }
 
@@ -82,7 +83,7 @@ fn round_down(x: f64) -> f64 {
 fn force_vectors(m: &Mechanism, s: &Solution) -> Vec<[f64; 2]> {
     let g = s.loads.gravity;
     let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| [b.mass * g[0], b.mass * g[1]]);
-    s.loads.force.iter().map(|l| [l[0], l[1]]).chain(weights).collect()
+    s.loads.force.iter().map(|l| [l.fx, l.fy]).chain(weights).collect()
 }
 
 /// How a load reads in the legend: one value, or the range over the shapes.
@@ -130,12 +131,12 @@ pub fn stress_max(m: &Mechanism, shapes: &[(String, Solution)]) -> Option<f64> {
 /// One shape's marks.
 fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64, loads: Loads) {
     let f = body_frames(m, s);
-    let at = |b: usize, r: [f64; 2]| {
-        let p = f.bodies[b].point(r);
-        (p[0], p[1])
+    let at = |b: usize, r: Point2<f64>| {
+        let p = f.bodies[b].act(&r);
+        (p.x, p.y)
     };
     for b in 1..m.bodies.len() {
-        let pts: Vec<[f64; 2]> = attachments(m, b).iter().map(|&r| f.bodies[b].point(r)).collect();
+        let pts: Vec<[f64; 2]> = attachments(m, b).iter().map(|r| f.bodies[b].act(r)).map(|p| [p.x, p.y]).collect();
         fig.marks.push(Mark::Path {
             points: slab(&pts, thick),
             stroke: Some(Stroke::solid(color, 1.5)),
@@ -145,14 +146,14 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
     }
     for (ji, j) in m.joints.iter().enumerate() {
         let root = f.roots[ji];
-        let origin = (root.origin[0], root.origin[1]);
+        let origin = (root.x, root.y);
         match &j.kind {
             JointKind::Flexure(fl) => {
                 let q = &s.q[j.offset..j.offset + fl.order()];
                 let points: Vec<(f64, f64)> = backbone(fl, q, FLEXURE_SAMPLES)
                     .iter()
-                    .map(|p| root.point([p.x, p.y]))
-                    .map(|p| (p[0], p[1]))
+                    .map(|p| root.act(&Point2::new(p.x, p.y)))
+                    .map(|p| (p.x, p.y))
                     .collect();
                 let top = match loads {
                     Loads::Drawn { stress_top: Some(top), .. } if fl.section().modulus().is_some() => top,
@@ -174,7 +175,7 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
                 fig.marks.push(Mark::Dot { at: origin, shape: Marker::Circle, radius: 6.0, color, filled: false });
             }
             JointKind::Prismatic(_) => {
-                let points = vec![origin, at(j.child, [0.0, 0.0])];
+                let points = vec![origin, at(j.child, Point2::origin())];
                 let stroke = Some(Stroke { color, width: 2.0, dash: Dash::Dashed });
                 fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
                 fig.marks.push(Mark::Dot { at: origin, shape: Marker::Square, radius: 6.0, color, filled: false });
@@ -204,14 +205,14 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
         }
     }
     for (p, l) in m.forces.iter().zip(&s.loads.force) {
-        if l[2] != 0.0 {
-            fig.marks.push(Mark::Turn { at: at(p.body, p.at), radius: 18.0, ccw: l[2] > 0.0, color, width: 2.0 });
+        if l.moment != 0.0 {
+            fig.marks.push(Mark::Turn { at: at(p.body, p.at), radius: 18.0, ccw: l.moment > 0.0, color, width: 2.0 });
         }
     }
 }
 
 /// Where each load of [`force_vectors`] acts: (body, point in its frame).
-fn load_places(m: &Mechanism) -> Vec<(usize, [f64; 2])> {
+fn load_places(m: &Mechanism) -> Vec<(usize, Point2<f64>)> {
     let heavy = m.bodies.iter().enumerate().filter(|(_, b)| b.mass > 0.0).map(|(i, b)| (i, b.com));
     m.forces.iter().map(|p| (p.body, p.at)).chain(heavy).collect()
 }
@@ -224,9 +225,9 @@ fn load_names(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, per_n
         .iter()
         .map(|p| p.name.clone())
         .chain(m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| format!("weight of {}", b.name)));
-    let moments = s.loads.force.iter().map(|l| l[2]).chain(std::iter::repeat(0.0));
+    let moments = s.loads.force.iter().map(|l| l.moment).chain(std::iter::repeat(0.0));
     for ((((b, r), name), v), moment) in load_places(m).into_iter().zip(names).zip(force_vectors(m, s)).zip(moments) {
-        let p = f.bodies[b].point(r);
+        let p = f.bodies[b].act(&r);
         let n = v[0].hypot(v[1]);
         let k = per_newton.unwrap_or(0.0);
         if n == 0.0 && moment == 0.0 {
@@ -275,10 +276,11 @@ pub fn figure(
     let f0 = body_frames(m, unloaded);
     let mut pts: Vec<[f64; 2]> = (0..m.bodies.len())
         .flat_map(|b| attachments(m, b).into_iter().map(move |r| (b, r)))
-        .map(|(b, r)| f0.bodies[b].point(r))
+        .map(|(b, r)| f0.bodies[b].act(&r))
+        .map(|p| [p.x, p.y])
         .collect();
-    pts.extend(m.joints.iter().zip(&f0.roots).map(|(_, r)| r.origin));
-    pts.extend(f0.bodies.iter().map(|b| b.origin));
+    pts.extend(m.joints.iter().zip(&f0.roots).map(|(_, r)| [r.x, r.y]));
+    pts.extend(f0.bodies.iter().map(|b| [b.x, b.y]));
     let span = |i: usize| {
         let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
         if hi > lo { hi - lo } else { 0.0 }
@@ -295,7 +297,7 @@ pub fn figure(
         stress_max(m, loaded).map(|top| if top > 0.0 { top } else { 1e6 }).map(|top| top.max(1.05 * highest_yield));
 
     // The ground, once: it does not move.
-    let ground = attachments(m, 0);
+    let ground: Vec<[f64; 2]> = attachments(m, 0).iter().map(|p| [p.x, p.y]).collect();
     let (fill, stroke) = (Fill { color: GROUND.tint(0.4), opacity: 0.8 }, Stroke::solid(GROUND, 1.5));
     if !ground.is_empty() {
         let points = slab(&ground, thick);
@@ -347,7 +349,8 @@ pub fn figure(
     }
     for (i, p) in m.forces.iter().enumerate() {
         let body = &m.bodies[p.body].name;
-        let loads: Vec<[f64; 3]> = loaded.iter().map(|(_, s)| s.loads.force[i]).collect();
+        let loads: Vec<[f64; 3]> =
+            loaded.iter().map(|(_, s)| s.loads.force[i]).map(|l| [l.fx, l.fy, l.moment]).collect();
         let moments: Vec<f64> = loads.iter().map(|l| l[2]).collect();
         let pushes = loads.iter().any(|l| l[0] != 0.0 || l[1] != 0.0);
         if pushes || moments.iter().all(|&x| x == 0.0) {
@@ -371,7 +374,7 @@ pub fn figure(
             fig.legend.push(Entry { swatch: Swatch::Turn(KEY), label });
         }
     }
-    if loaded.iter().any(|(_, s)| s.loads.gravity != [0.0, 0.0]) {
+    if loaded.iter().any(|(_, s)| s.loads.gravity != nalgebra::Vector2::zeros()) {
         for b in m.bodies.iter().filter(|b| b.mass > 0.0) {
             let w: Vec<f64> =
                 loaded.iter().map(|(_, s)| b.mass * s.loads.gravity[0].hypot(s.loads.gravity[1])).collect();
@@ -431,7 +434,8 @@ mod tests {
         let s = assemble_unloaded(&m, &Settings::default()).unwrap();
         let f = body_frames(&m, &s);
         let stage = m.body("stage").unwrap();
-        let pts: Vec<[f64; 2]> = attachments(&m, stage).iter().map(|&r| f.bodies[stage].point(r)).collect();
+        let pts: Vec<[f64; 2]> =
+            attachments(&m, stage).iter().map(|r| f.bodies[stage].act(r)).map(|p| [p.x, p.y]).collect();
         let r = 1e-3;
         let xs: Vec<f64> = slab(&pts, r).iter().map(|p| p.0).collect();
         let (lo, hi) = xs.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));

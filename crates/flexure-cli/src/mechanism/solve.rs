@@ -60,7 +60,7 @@ fn sweep_table(m: &Mechanism, parameter: &str, with_compliance: bool) -> Vec<Str
 fn sweep_row(m: &Mechanism, value: f64, s: &Solution, compliance: Option<&nalgebra::Matrix3<f64>>) -> Vec<f64> {
     let f = body_frames(m, s);
     let mut row = vec![value];
-    row.extend(f.bodies[1..].iter().flat_map(|b| [b.origin[0], b.origin[1], b.angle]));
+    row.extend(f.bodies[1..].iter().flat_map(|b| [b.x, b.y, b.phi]));
     row.extend(&s.q);
     row.push(s.energy);
     for j in &m.joints {
@@ -98,7 +98,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
                 .rows
                 .iter()
                 .map(|(v, s)| {
-                    let c = compliance_at.map(|(b, at)| compliance(&m, s, b, at)).transpose().map_err(err)?;
+                    let c = compliance_at.map(|(b, at)| compliance(&m, s, b, at.into())).transpose().map_err(err)?;
                     Ok(json!(sweep_row(&m, *v, s, c.as_ref())))
                 })
                 .collect::<Result<_, String>>()?;
@@ -111,7 +111,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         }
         None => {
             let s = solve(&m, &settings).map_err(err)?;
-            let c = compliance_at.map(|(b, at)| compliance(&m, &s, b, at)).transpose().map_err(err)?;
+            let c = compliance_at.map(|(b, at)| compliance(&m, &s, b, at.into())).transpose().map_err(err)?;
             let mut v = solution_answer(&m, &s, &reports, &target, &args.file)?;
             if let Some(c) = c {
                 v["compliance"] = crate::joint::matrix(&c);

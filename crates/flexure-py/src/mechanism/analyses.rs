@@ -132,7 +132,7 @@ pub fn compliance_at<'py>(
     let at = point(at)?;
     let c = interruptible(py, || {
         let s = solve(m, &Settings::default())?;
-        compliance(m, &s, b, at)
+        compliance(m, &s, b, at.into())
     })?;
     let out = Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py).into_any();
     finite_answer("Mechanism.compliance", &out)?;
@@ -150,9 +150,9 @@ fn rows_dict<'py>(py: Python<'py>, m: &Mechanism, rows: &[(f64, Solution)]) -> P
     let bodies = PyDict::new(py);
     for (k, b) in m.bodies.iter().enumerate().skip(1) {
         let d = PyDict::new(py);
-        d.set_item("x", Array1::from_iter(frames.iter().map(|f| f.bodies[k].origin[0])).into_pyarray(py))?;
-        d.set_item("y", Array1::from_iter(frames.iter().map(|f| f.bodies[k].origin[1])).into_pyarray(py))?;
-        d.set_item("phi", Array1::from_iter(frames.iter().map(|f| f.bodies[k].angle)).into_pyarray(py))?;
+        d.set_item("x", Array1::from_iter(frames.iter().map(|f| f.bodies[k].x)).into_pyarray(py))?;
+        d.set_item("y", Array1::from_iter(frames.iter().map(|f| f.bodies[k].y)).into_pyarray(py))?;
+        d.set_item("phi", Array1::from_iter(frames.iter().map(|f| f.bodies[k].phi)).into_pyarray(py))?;
         bodies.set_item(&b.name, d)?;
     }
     out.set_item("bodies", bodies)?;
@@ -240,9 +240,12 @@ pub fn sweep<'py>(
                 estimated.push((*v, one));
             }
             let compliances = match frame {
-                Some((b, at)) => {
-                    Some(out.rows.iter().map(|(_, s)| compliance(m, s, b, at)).collect::<flexure::Result<Vec<_>>>()?)
-                }
+                Some((b, at)) => Some(
+                    out.rows
+                        .iter()
+                        .map(|(_, s)| compliance(m, s, b, at.into()))
+                        .collect::<flexure::Result<Vec<_>>>()?,
+                ),
                 None => None,
             };
             Ok((open, out, estimated, compliances))

@@ -43,9 +43,9 @@ pub fn solve<'py>(
     let bodies = PyDict::new(py);
     for (b, f) in m.bodies.iter().zip(&frames.bodies) {
         let d = PyDict::new(py);
-        d.set_item("x", f.origin[0])?;
-        d.set_item("y", f.origin[1])?;
-        d.set_item("phi", f.angle)?;
+        d.set_item("x", f.x)?;
+        d.set_item("y", f.y)?;
+        d.set_item("phi", f.phi)?;
         bodies.set_item(&b.name, d)?;
     }
     let coordinates = PyDict::new(py);

@@ -297,7 +297,7 @@ impl MechanismSystem {
         let length = m.size();
         let loads = m.loads();
         let mut loads_weightless = loads.clone();
-        loads_weightless.gravity = [0.0; 2];
+        loads_weightless.gravity = nalgebra::Vector2::zeros();
         let largest = m.joints.iter().map(|j| j.kind.joint().dof()).max().unwrap_or(0);
         let nodes = distributed.iter().map(|d: &Distributed| d.inner_weight.len()).max().unwrap_or(0);
         Ok(MechanismSystem {
@@ -340,7 +340,7 @@ impl MechanismSystem {
     /// Replaces the loads (validated against the mechanism: [`Loads::validate`]).
     pub fn set_loads(&mut self, loads: Loads) -> Result<()> {
         loads.validate(&self.mechanism)?;
-        self.loads_weightless = Loads { gravity: [0.0; 2], ..loads.clone() };
+        self.loads_weightless = Loads { gravity: nalgebra::Vector2::zeros(), ..loads.clone() };
         self.loads = loads;
         Ok(())
     }
@@ -406,9 +406,9 @@ impl MechanismSystem {
         for (ji, j) in m.joints.iter().enumerate() {
             let s = &f.joints[ji];
             let parent = self.rates[j.parent];
-            let (root, o_p, o_c) = (f.roots[ji], f.bodies[j.parent].origin, f.bodies[j.child].origin);
+            let (root, o_p, o_c) = (f.roots[ji], f.bodies[j.parent].origin(), f.bodies[j.child].origin());
             let w = parent.omega;
-            let arm = [root.origin[0] - o_p[0], root.origin[1] - o_p[1]];
+            let arm = [root.x - o_p[0], root.y - o_p[1]];
             let turn = quarter(arm);
             let v_a = [parent.velocity[0] + w * turn[0], parent.velocity[1] + w * turn[1]];
             let a_a = [parent.acceleration[0] - w * w * arm[0], parent.acceleration[1] - w * w * arm[1]];
@@ -424,8 +424,8 @@ impl MechanismSystem {
                     ddp[1] += s.hessian[2][(a, b)] * va * vb;
                 }
             }
-            let p = [o_c[0] - root.origin[0], o_c[1] - root.origin[1]];
-            let (rdp, rddp) = (root.rotate(dp), root.rotate(ddp));
+            let p = [o_c[0] - root.x, o_c[1] - root.y];
+            let (rdp, rddp) = (root.rotate_components(dp), root.rotate_components(ddp));
             let (tp, tdp) = (quarter(p), quarter(rdp));
             self.rates[j.child] = Rate {
                 omega: w + dphi,
@@ -466,7 +466,7 @@ impl MechanismSystem {
         for (b, cols) in &self.bodies {
             let body = &m.bodies[*b];
             point_into(m, f, *b, body.com, &mut self.point);
-            let (w, o) = (self.point.position, f.bodies[*b].origin);
+            let (w, o) = (self.point.position, f.bodies[*b].origin());
             let r = self.rates[*b];
             let d = [w[0] - o[0], w[1] - o[1]];
             let a = [r.acceleration[0] - r.omega * r.omega * d[0], r.acceleration[1] - r.omega * r.omega * d[1]];
@@ -481,11 +481,10 @@ impl MechanismSystem {
         for d in &self.distributed {
             let spec = &m.joints[d.joint];
             let (off, k) = (spec.offset, d.order);
-            point_into(m, f, spec.parent, [spec.origin.x, spec.origin.y], &mut self.point);
+            point_into(m, f, spec.parent, spec.origin.origin(), &mut self.point);
             let root = f.roots[d.joint];
             let rate = self.rates[spec.parent];
-            let arm =
-                [root.origin[0] - f.bodies[spec.parent].origin[0], root.origin[1] - f.bodies[spec.parent].origin[1]];
+            let arm = [root.x - f.bodies[spec.parent].x, root.y - f.bodies[spec.parent].y];
             let w = rate.omega;
             let a_root = [rate.acceleration[0] - w * w * arm[0], rate.acceleration[1] - w * w * arm[1]];
             let (alpha, alpha_dot) = (&q[off..off + k], &v[off..off + k]);
@@ -571,9 +570,9 @@ impl MechanismSystem {
                 continue;
             }
             // World forms: R S, its quarter turn, and Σ μ a over the sections.
-            let rs = root.rotate(c.first);
+            let rs = root.rotate_components(c.first);
             let ers = quarter(rs);
-            let (ru, racc) = (quarter(root.rotate(c.velocity)), root.rotate(c.acceleration));
+            let (ru, racc) = (quarter(root.rotate_components(c.velocity)), root.rotate_components(c.acceleration));
             let sum_a = [
                 c.mass * a_root[0] - w * w * rs[0] + 2.0 * w * ru[0] + racc[0],
                 c.mass * a_root[1] - w * w * rs[1] + 2.0 * w * ru[1] + racc[1],
@@ -586,7 +585,7 @@ impl MechanismSystem {
                 jy[col] = self.point.jacobian[(2, col)];
             }
             for i in 0..k {
-                let ra = root.rotate(c.along[i]);
+                let ra = root.rotate_components(c.along[i]);
                 jx[off + i] = ra[0];
                 jy[off + i] = ra[1];
             }
@@ -630,7 +629,7 @@ impl MechanismSystem {
                 h[off + i] += ra[0] * a_root[0] + ra[1] * a_root[1] + c.product[i];
                 gravity_force[off + i] += ra[0] * g[0] + ra[1] * g[1];
             }
-            gravity_potential -= c.mass * (g[0] * root.origin[0] + g[1] * root.origin[1]) + g[0] * rs[0] + g[1] * rs[1];
+            gravity_potential -= c.mass * (g[0] * root.x + g[1] * root.y) + g[0] * rs[0] + g[1] * rs[1];
         }
         Pass { gravity_force, gravity_potential }
     }

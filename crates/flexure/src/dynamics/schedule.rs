@@ -22,8 +22,9 @@ use crate::mechanism::{Loads, Mechanism};
 ///      [[schedule]]\nload = \"force.push.moment\"\npoints = [[0.0, 0.0], [0.1, 2.0]]\n",
 /// )
 /// .unwrap();
-/// assert_eq!(loads_at(&m, 0.05).force, [[0.0, 5.0, 1.0]]);
-/// assert_eq!(loads_at(&m, 1.0).force, [[0.0, 5.0, 2.0]]);
+/// use flexure::space::Wrench;
+/// assert_eq!(loads_at(&m, 0.05).force, [Wrench { moment: 1.0, fx: 0.0, fy: 5.0 }]);
+/// assert_eq!(loads_at(&m, 1.0).force, [Wrench { moment: 2.0, fx: 0.0, fy: 5.0 }]);
 /// ```
 pub fn loads_at(m: &Mechanism, t: f64) -> Loads {
     let mut loads = m.loads();

@@ -174,9 +174,9 @@ pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> R
     for k in 0..run.time.len() {
         let f = frames(m, run.q(k));
         for (motion, frame) in bodies.iter_mut().zip(&f.bodies[1..]) {
-            motion.x.push(frame.origin[0]);
-            motion.y.push(frame.origin[1]);
-            motion.phi.push(frame.angle);
+            motion.x.push(frame.x);
+            motion.y.push(frame.y);
+            motion.phi.push(frame.phi);
         }
     }
     Ok(Simulation { bodies, trajectory: run, stopped })

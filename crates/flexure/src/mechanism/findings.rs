@@ -143,14 +143,14 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
         .iter()
         .map(|c| match *c {
             Closure::Weld { a, a_origin, b, b_origin } => {
-                let (fa, fb) = (
-                    f.bodies[a].then(a_origin.x, a_origin.y, a_origin.phi),
-                    f.bodies[b].then(b_origin.x, b_origin.y, b_origin.phi),
-                );
-                let turn = super::lagrangian::wrap(fa.angle - fb.angle);
-                (distance(fa.origin, fb.origin), Some(turn))
+                let (fa, fb) = (f.bodies[a].compose(&a_origin), f.bodies[b].compose(&b_origin));
+                let turn = super::lagrangian::wrap(fa.phi - fb.phi);
+                (distance([fa.x, fa.y], [fb.x, fb.y]), Some(turn))
             }
-            Closure::Pin { a, a_at, b, b_at } => (distance(f.bodies[a].point(a_at), f.bodies[b].point(b_at)), None),
+            Closure::Pin { a, a_at, b, b_at } => (
+                distance(f.bodies[a].act_components([a_at.x, a_at.y]), f.bodies[b].act_components([b_at.x, b_at.y])),
+                None,
+            ),
         })
         .collect()
 }
@@ -532,19 +532,20 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         let alpha = &q[j.offset..j.offset + fl.order()];
         let samples = chords(alpha) + 1;
         let root = f.roots[ji];
-        let mut points: Vec<[f64; 2]> = backbone(fl, alpha, samples).iter().map(|p| root.point([p.x, p.y])).collect();
+        let mut points: Vec<[f64; 2]> =
+            backbone(fl, alpha, samples).iter().map(|p| root.act_components([p.x, p.y])).collect();
         // The backbone integrates its own way: it ends within its quadrature
         // error of the model's tip, the child's origin, where the child is
         // drawn. Its points are moved by that error in proportion to arc
         // length, so that it ends there exactly.
-        let tip = f.bodies[j.child].origin;
+        let tip = [f.bodies[j.child].x, f.bodies[j.child].y];
         let miss = sub(tip, points[samples - 1]);
         for (i, p) in points.iter_mut().enumerate() {
             let t = i as f64 / (samples - 1) as f64;
             *p = [p[0] + t * miss[0], p[1] + t * miss[1]];
         }
         let arc = (0..samples).map(|i| fl.length() * i as f64 / (samples - 1) as f64).collect();
-        let ends = vec![points[0], points[samples - 1], f.bodies[j.child].origin];
+        let ends = vec![points[0], points[samples - 1], tip];
         let (lo, hi) = bounds(&points);
         parts.push(Drawn {
             part: Part::Flexure(ji),
@@ -557,11 +558,11 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         });
     }
     for b in 0..m.bodies.len() {
-        let mut ends: Vec<[f64; 2]> = m.attachments(b).iter().map(|&r| f.bodies[b].point(r)).collect();
+        let mut ends: Vec<[f64; 2]> = m.attachments(b).iter().map(|r| f.bodies[b].act_components([r.x, r.y])).collect();
         let mut points = hull(ends.clone());
         // Where a slider's carriage (or a pin's child) sits on this link.
         let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
-        ends.extend(carried.map(|j| f.bodies[j.child].origin));
+        ends.extend(carried.map(|j| [f.bodies[j.child].x, f.bodies[j.child].y]));
         if points.len() < 2 {
             continue;
         }

@@ -40,13 +40,13 @@ pub(super) fn settle(m: &Mechanism, f: &Frames, g: &DMatrix<f64>, mu: &[f64], lo
     // Body loads: point forces, weights, and tendons pulling each via point toward its neighbours.
     let mut body_forces: Vec<(usize, [f64; 2])> = Vec::new();
     for (p, l) in m.forces.iter().zip(&loads.force) {
-        body_forces.push((p.body, [l[0], l[1]]));
+        body_forces.push((p.body, [l.fx, l.fy]));
     }
     for (i, body) in m.bodies.iter().enumerate() {
         body_forces.push((i, [body.mass * loads.gravity[0], body.mass * loads.gravity[1]]));
     }
     for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
-        let w: Vec<[f64; 2]> = t.path.iter().map(|&(b, r)| f.bodies[b].point(r)).collect();
+        let w: Vec<[f64; 2]> = t.path.iter().map(|(b, r)| f.bodies[*b].act_components([r.x, r.y])).collect();
         for (i, pair) in w.windows(2).enumerate() {
             let d = [pair[1][0] - pair[0][0], pair[1][1] - pair[0][1]];
             let len = d[0].hypot(d[1]);

@@ -13,56 +13,17 @@
 
 use super::Mechanism;
 use super::joints::JointState;
-use nalgebra::DMatrix;
-
-/// A planar frame in the world: angle and origin.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Frame {
-    /// Rotation (rad).
-    pub angle: f64,
-    /// Origin (m).
-    pub origin: [f64; 2],
-}
-
-impl Frame {
-    /// A point given in this frame, in the world.
-    pub fn point(&self, r: [f64; 2]) -> [f64; 2] {
-        self.point_turned(self.angle.sin_cos(), r)
-    }
-
-    /// A direction given in this frame, in the world.
-    pub fn rotate(&self, v: [f64; 2]) -> [f64; 2] {
-        turn(self.angle.sin_cos(), v)
-    }
-
-    /// The frame `(x, y, phi)` relative to this one.
-    pub fn then(&self, x: f64, y: f64, phi: f64) -> Frame {
-        self.then_turned(self.angle.sin_cos(), x, y, phi)
-    }
-
-    /// [`Frame::point`] with `sin_cos` of the angle known.
-    fn point_turned(&self, (s, c): (f64, f64), r: [f64; 2]) -> [f64; 2] {
-        [self.origin[0] + c * r[0] - s * r[1], self.origin[1] + s * r[0] + c * r[1]]
-    }
-
-    /// [`Frame::then`] with `sin_cos` of the angle known.
-    fn then_turned(&self, sin_cos: (f64, f64), x: f64, y: f64, phi: f64) -> Frame {
-        Frame { angle: self.angle + phi, origin: self.point_turned(sin_cos, [x, y]) }
-    }
-}
-
-/// `v` turned by the angle of `(sin, cos)`.
-fn turn((s, c): (f64, f64), v: [f64; 2]) -> [f64; 2] {
-    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
-}
+use crate::space::Pose;
+use crate::space::rotate_turned as turn;
+use nalgebra::{DMatrix, Point2, Vector2};
 
 /// Every frame of the mechanism at one configuration (the Data).
 #[derive(Debug, Clone, Default)]
 pub struct Frames {
-    /// Body frames in the world; index 0 is the ground.
-    pub bodies: Vec<Frame>,
+    /// Body frames in the world (`pose_world_body`); index 0 is the ground.
+    pub bodies: Vec<Pose>,
     /// Each joint's root frame in the world.
-    pub roots: Vec<Frame>,
+    pub roots: Vec<Pose>,
     /// Each joint's pose, derivatives and energy.
     pub joints: Vec<JointState>,
     /// The coordinates $q$ these frames were evaluated at.
@@ -76,8 +37,8 @@ impl Frames {
     /// Buffers for the frames of `m` (each joint's from [`super::Joint::state`]).
     pub fn new(m: &Mechanism) -> Self {
         Frames {
-            bodies: vec![Frame::default(); m.bodies.len()],
-            roots: vec![Frame::default(); m.joints.len()],
+            bodies: vec![Pose::default(); m.bodies.len()],
+            roots: vec![Pose::default(); m.joints.len()],
             joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
             coordinates: vec![0.0; m.dof()],
             turns: vec![(0.0, 1.0); m.bodies.len() + m.joints.len()],
@@ -115,31 +76,31 @@ pub fn frames(m: &Mechanism, q: &[f64]) -> Frames {
 /// [`frames`] into the buffers `f` (made by [`Frames::new`] for `m`), without allocating.
 pub fn frames_into(m: &Mechanism, q: &[f64], f: &mut Frames) {
     f.coordinates.copy_from_slice(q);
-    f.bodies[0] = Frame::default();
-    f.turns[0] = f.bodies[0].angle.sin_cos();
+    f.bodies[0] = Pose::default();
+    f.turns[0] = f.bodies[0].turn();
     let bodies = f.bodies.len();
     for (i, j) in m.joints.iter().enumerate() {
         let joint = j.kind.joint();
         let state = &mut f.joints[i];
         joint.evaluate_into(&q[j.offset..j.offset + joint.dof()], state);
-        let root = f.bodies[j.parent].then_turned(f.turns[j.parent], j.origin.x, j.origin.y, j.origin.phi);
-        let root_turn = root.angle.sin_cos();
-        let child = root.then_turned(root_turn, state.pose.x, state.pose.y, state.pose.phi);
+        let root = f.bodies[j.parent].compose_turned(f.turns[j.parent], &j.origin);
+        let root_turn = root.turn();
+        let child = root.compose_turned(root_turn, &state.pose);
         f.turns[bodies + i] = root_turn;
-        f.turns[j.child] = child.angle.sin_cos();
+        f.turns[j.child] = child.turn();
         f.bodies[j.child] = child;
         f.roots[i] = root;
     }
 }
 
-/// A point's world position and angle with derivatives in $q$.
+/// A point's world position and its body's rotation, with derivatives in $q$.
 #[derive(Debug, Clone)]
 pub struct PointDerivatives {
-    /// Angle of the body (rad).
-    pub angle: f64,
+    /// Rotation of the body (rad).
+    pub phi: f64,
     /// World position (m).
-    pub position: [f64; 2],
-    /// $3\times n$: rows $(\theta, x, y)$.
+    pub position: Point2<f64>,
+    /// $3\times n$: rows $(\phi, x, y)$.
     pub jacobian: DMatrix<f64>,
     /// Hessians of $x$ and $y$ ($n\times n$), if asked for.
     pub hessian: Option<[DMatrix<f64>; 2]>,
@@ -153,11 +114,11 @@ fn quarter(v: [f64; 2]) -> [f64; 2] {
 /// reused from one evaluation to the next (the Data of [`point_into`]).
 #[derive(Debug, Clone, Default)]
 pub struct PointBuffer {
-    /// Angle of the body (rad).
-    pub angle: f64,
+    /// Rotation of the body (rad).
+    pub phi: f64,
     /// World position (m).
-    pub position: [f64; 2],
-    /// $3\times n$: rows $(\theta, x, y)$; zero off the path.
+    pub position: Point2<f64>,
+    /// $3\times n$: rows $(\phi, x, y)$; zero off the path.
     pub jacobian: DMatrix<f64>,
     /// The joints on the path, from the body down to the ground.
     path: Vec<usize>,
@@ -167,8 +128,8 @@ impl PointBuffer {
     /// Buffers for a point of `m`.
     pub fn new(m: &Mechanism) -> Self {
         PointBuffer {
-            angle: 0.0,
-            position: [0.0; 2],
+            phi: 0.0,
+            position: Point2::origin(),
             jacobian: DMatrix::zeros(3, m.dof()),
             path: Vec::with_capacity(m.joints.len()),
         }
@@ -178,8 +139,8 @@ impl PointBuffer {
 /// Position, angle and Jacobian of point `r` (in the frame of `body`) into
 /// `out`, in one pass from the body down to the ground; allocates nothing
 /// once `out` has held a path this long.
-pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut PointBuffer) {
-    let w = f.bodies[body].point_turned(f.body_turn(body), r);
+pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: Point2<f64>, out: &mut PointBuffer) {
+    let w = f.bodies[body].act_turned(f.body_turn(body), [r.x, r.y]);
     // Column-major 3 × n: coordinate c's column is [3c, 3c + 3).
     let jacobian = out.jacobian.as_mut_slice();
     for &ji in &out.path {
@@ -192,8 +153,8 @@ pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut
         let j = &m.joints[ji];
         let s = &f.joints[ji];
         let root = f.root_turn(ji);
-        let o = f.bodies[j.child].origin;
-        let arm = quarter([w[0] - o[0], w[1] - o[1]]);
+        let o = &f.bodies[j.child];
+        let arm = quarter([w[0] - o.x, w[1] - o.y]);
         let k = s.gradient.len();
         let columns = jacobian[3 * j.offset..3 * (j.offset + k)].chunks_exact_mut(3);
         for (column, local) in columns.zip(s.jacobian.as_slice().chunks_exact(3)) {
@@ -206,14 +167,14 @@ pub fn point_into(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], out: &mut
         out.path.push(ji);
         b = j.parent;
     }
-    out.angle = f.bodies[body].angle;
-    out.position = w;
+    out.phi = f.bodies[body].phi;
+    out.position = Point2::new(w[0], w[1]);
 }
 
 /// Adds $w_x\nabla^2 x + w_y\nabla^2 y$ of the point in `p` (from
 /// [`point_into`]) to `h`, entries on its path only (see the module docs).
-pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f64; 2], h: &mut DMatrix<f64>) {
-    if weight == [0.0; 2] {
+pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: Vector2<f64>, h: &mut DMatrix<f64>) {
+    if weight == Vector2::zeros() {
         return;
     }
     let w = p.position;
@@ -231,8 +192,8 @@ pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f6
         let (oa, s) = (m.joints[ja].offset, &f.joints[ja]);
         let k = s.gradient.len();
         // Within the joint: R_A ∂_ab p − ∂_a φ ∂_b φ (w − o).
-        let o = f.bodies[m.joints[ja].child].origin;
-        let arm = [w[0] - o[0], w[1] - o[1]];
+        let o = &f.bodies[m.joints[ja].child];
+        let arm = [w.x - o.x, w.y - o.y];
         let root = f.root_turn(ja);
         let (hx, hy, local) = (s.hessian[1].as_slice(), s.hessian[2].as_slice(), s.jacobian.as_slice());
         for a in 0..k {
@@ -261,17 +222,17 @@ pub fn add_point_hessian(m: &Mechanism, f: &Frames, p: &PointBuffer, weight: [f6
 }
 
 /// Derivatives of point `r` (in the frame of `body`), in fresh buffers.
-pub fn point(m: &Mechanism, f: &Frames, body: usize, r: [f64; 2], hessian: bool) -> PointDerivatives {
+pub fn point(m: &Mechanism, f: &Frames, body: usize, r: Point2<f64>, hessian: bool) -> PointDerivatives {
     let n = m.dof();
     let mut p = PointBuffer::new(m);
     point_into(m, f, body, r, &mut p);
     let hessian = hessian.then(|| {
         let (mut hx, mut hy) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-        add_point_hessian(m, f, &p, [1.0, 0.0], &mut hx);
-        add_point_hessian(m, f, &p, [0.0, 1.0], &mut hy);
+        add_point_hessian(m, f, &p, Vector2::x(), &mut hx);
+        add_point_hessian(m, f, &p, Vector2::y(), &mut hy);
         [hx, hy]
     });
-    PointDerivatives { angle: p.angle, position: p.position, jacobian: p.jacobian, hessian }
+    PointDerivatives { phi: p.phi, position: p.position, jacobian: p.jacobian, hessian }
 }
 
 /// The largest rotation (rad) between configurations `a` and `b` of any

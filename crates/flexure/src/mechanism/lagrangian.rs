@@ -14,7 +14,8 @@ use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_in
 use super::{Closure, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::mass::{MassModel, Weight, weight};
-use nalgebra::{DMatrix, DVector, Matrix2};
+use crate::space::Wrench;
+use nalgebra::{DMatrix, DVector, Matrix2, Point2, Vector2};
 
 /// The potential, its derivatives and the closures at one configuration.
 #[derive(Debug, Clone, PartialEq)]
@@ -203,7 +204,7 @@ pub(super) fn add_closures(
     for c in &m.closures {
         let (a, ar, aphi, b, br, bphi, angle) = match *c {
             Closure::Weld { a, a_origin, b, b_origin } => {
-                (a, [a_origin.x, a_origin.y], a_origin.phi, b, [b_origin.x, b_origin.y], b_origin.phi, true)
+                (a, a_origin.origin(), a_origin.phi, b, b_origin.origin(), b_origin.phi, true)
             }
             Closure::Pin { a, a_at, b, b_at } => (a, a_at, 0.0, b, b_at, 0.0, false),
         };
@@ -225,11 +226,11 @@ pub(super) fn add_closures(
         }
         // The angle is linear in q for every joint kind: no Hessian term.
         if let Some(h) = hessian.as_deref_mut() {
-            add_point_hessian(m, f, pa, [mu[row], mu[row + 1]], h);
-            add_point_hessian(m, f, pb, [-mu[row], -mu[row + 1]], h);
+            add_point_hessian(m, f, pa, Vector2::new(mu[row], mu[row + 1]), h);
+            add_point_hessian(m, f, pb, Vector2::new(-mu[row], -mu[row + 1]), h);
         }
         if angle {
-            closure[row + 2] = wrap(pa.angle + aphi - pb.angle - bphi);
+            closure[row + 2] = wrap(pa.phi + aphi - pb.phi - bphi);
         }
         row += c.equations();
     }
@@ -258,17 +259,15 @@ pub(super) fn add_loads(
     let n = m.dof();
     let mut potential = 0.0;
     for (p, l) in m.forces.iter().zip(&loads.force) {
-        if l != &[0.0; 3] {
+        if l != &Wrench::default() {
             let point = (p.body, p.at);
-            potential +=
-                add_point_load(m, f, point, [l[0], l[1]], l[2], gradient, hessian.as_deref_mut(), &mut points[0]);
+            potential += add_point_load(m, f, point, l, gradient, hessian.as_deref_mut(), &mut points[0]);
         }
     }
     for (b, body) in m.bodies.iter().enumerate() {
-        let weight = [body.mass * loads.gravity[0], body.mass * loads.gravity[1]];
-        if body.mass > 0.0 && weight != [0.0; 2] {
-            potential +=
-                add_point_load(m, f, (b, body.com), weight, 0.0, gradient, hessian.as_deref_mut(), &mut points[0]);
+        let weight = Wrench { moment: 0.0, fx: body.mass * loads.gravity[0], fy: body.mass * loads.gravity[1] };
+        if body.mass > 0.0 && weight != Wrench::default() {
+            potential += add_point_load(m, f, (b, body.com), &weight, gradient, hessian.as_deref_mut(), &mut points[0]);
         }
     }
     // A tendon: V = T Σ|w_{i+1} − w_i|, its via points taken two at a time.
@@ -285,7 +284,7 @@ pub(super) fn add_loads(
             let d = [b.position[0] - a.position[0], b.position[1] - a.position[1]];
             let len = d[0].hypot(d[1]);
             // Coincident to rounding: the direction u is undefined.
-            let size = a.position.iter().chain(&b.position).map(|v| v.abs()).sum::<f64>();
+            let size = a.position.coords.iter().chain(b.position.coords.iter()).map(|v| v.abs()).sum::<f64>();
             if len.is_nan() || len <= 1e-14 * size {
                 return Err(Error::Singular {
                     what: format!("tendon {:?}: via points {} and {} coincide", t.name, i + 1, i + 2),
@@ -310,42 +309,41 @@ pub(super) fn add_loads(
                         h[(r, c)] += (jd(0, r) * pc[0] + jd(1, r) * pc[1]) * tension;
                     }
                 }
-                add_point_hessian(m, f, b, [u[0] * tension, u[1] * tension], h);
-                add_point_hessian(m, f, a, [-u[0] * tension, -u[1] * tension], h);
+                add_point_hessian(m, f, b, Vector2::new(u[0] * tension, u[1] * tension), h);
+                add_point_hessian(m, f, a, Vector2::new(-u[0] * tension, -u[1] * tension), h);
             }
             std::mem::swap(&mut a, &mut b);
         }
     }
-    if loads.gravity != [0.0; 2] {
+    if loads.gravity != Vector2::zeros() {
         potential += add_flexure_weights(m, f, loads.gravity, gradient, hessian, &mut points[0], weights)?;
     }
     Ok(potential)
 }
 
-/// A force and moment at the point `at` of a body, `(body, at)`:
-/// $V = -F\cdot w - M\theta$, its gradient added to `gradient` and its
+/// A wrench (moment and force) at the point `at` of a body, `(body, at)`:
+/// $V = -F\cdot w - M\phi$, its gradient added to `gradient` and its
 /// Hessian to `hessian` if given; `p` is left holding the point and its
 /// derivatives. Returns $V$.
 #[allow(clippy::too_many_arguments)]
 fn add_point_load(
     m: &Mechanism,
     f: &Frames,
-    (body, at): (usize, [f64; 2]),
-    force: [f64; 2],
-    moment: f64,
+    (body, at): (usize, Point2<f64>),
+    w: &Wrench,
     gradient: &mut DVector<f64>,
     hessian: Option<&mut DMatrix<f64>>,
     p: &mut PointBuffer,
 ) -> f64 {
     point_into(m, f, body, at, p);
-    // Column-major 3 × n: coordinate c's (θ, x, y).
+    // Column-major 3 × n: coordinate c's (φ, x, y).
     for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
-        *g -= force[0] * j[1] + force[1] * j[2] + moment * j[0];
+        *g -= w.fx * j[1] + w.fy * j[2] + w.moment * j[0];
     }
     if let Some(h) = hessian {
-        add_point_hessian(m, f, p, [-force[0], -force[1]], h);
+        add_point_hessian(m, f, p, Vector2::new(-w.fx, -w.fy), h);
     }
-    -(force[0] * p.position[0] + force[1] * p.position[1] + moment * p.angle)
+    -(w.fx * p.position[0] + w.fy * p.position[1] + w.moment * p.phi)
 }
 
 /// The flexures' weight: with the first moment $c(\alpha)$ of a flexure's
@@ -359,7 +357,7 @@ fn add_point_load(
 fn add_flexure_weights(
     m: &Mechanism,
     f: &Frames,
-    g: [f64; 2],
+    g: Vector2<f64>,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
     p: &mut PointBuffer,
@@ -390,13 +388,16 @@ fn add_flexure_weights(
         }
         let centre = [w.first_moment[0] / w.mass, w.first_moment[1] / w.mass];
         let (s0, c0) = spec.origin.phi.sin_cos();
-        let at = [spec.origin.x + c0 * centre[0] - s0 * centre[1], spec.origin.y + s0 * centre[0] + c0 * centre[1]];
-        let force = [w.mass * g[0], w.mass * g[1]];
-        potential += add_point_load(m, f, (spec.parent, at), force, 0.0, gradient, hessian.as_deref_mut(), p);
+        let at = Point2::new(
+            spec.origin.x + c0 * centre[0] - s0 * centre[1],
+            spec.origin.y + s0 * centre[0] + c0 * centre[1],
+        );
+        let weight = Wrench { moment: 0.0, fx: w.mass * g[0], fy: w.mass * g[1] };
+        potential += add_point_load(m, f, (spec.parent, at), &weight, gradient, hessian.as_deref_mut(), p);
         let root = f.roots[*j];
         // g·R v for v in the root frame, and g·E R v.
         let along = |v: [f64; 2]| {
-            let world = root.rotate(v);
+            let world = root.rotate(&Vector2::new(v[0], v[1]));
             (g[0] * world[0] + g[1] * world[1], g[1] * world[0] - g[0] * world[1])
         };
         for (i, di) in w.jacobian.iter().enumerate() {

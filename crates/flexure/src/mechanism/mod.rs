@@ -20,8 +20,9 @@ pub mod statics;
 pub mod sweep;
 mod tree;
 
-use crate::kinematics::Pose;
+use crate::space::{Pose, Wrench};
 pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
+use nalgebra::{Point2, Vector2};
 
 /// A rigid body: a name and its inertia ([`Body::rigid_inertia`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -33,7 +34,7 @@ pub struct Body {
     /// Rotary inertia (kg·m²) about the centre of mass, for dynamics.
     pub inertia: f64,
     /// Centre of mass in the body frame (m).
-    pub com: [f64; 2],
+    pub com: Point2<f64>,
 }
 
 impl Body {
@@ -44,12 +45,12 @@ impl Body {
     /// # Example
     /// ```
     /// use flexure::mechanism::Body;
-    /// let arm = Body { name: "arm".into(), mass: 0.2, inertia: 1e-4, com: [0.05, 0.0] };
+    /// let arm = Body { name: "arm".into(), mass: 0.2, inertia: 1e-4, com: nalgebra::Point2::new(0.05, 0.0) };
     /// // About the body frame's origin: I_c + m|c|².
     /// assert!((arm.rigid_inertia().inertia_about_tip() - (1e-4 + 0.2 * 0.05 * 0.05)).abs() < 1e-15);
     /// ```
     pub fn rigid_inertia(&self) -> crate::inertia::RigidInertia {
-        crate::inertia::RigidInertia { mass: self.mass, inertia: self.inertia, com: self.com }
+        crate::inertia::RigidInertia { mass: self.mass, inertia: self.inertia, com: [self.com.x, self.com.y] }
     }
 }
 
@@ -86,7 +87,7 @@ pub struct Tendon {
     /// Tension (N), not negative.
     pub tension: f64,
     /// Via points: (body, position in the body frame).
-    pub path: Vec<(usize, [f64; 2])>,
+    pub path: Vec<(usize, Point2<f64>)>,
 }
 
 /// A force and moment applied to a point of a body.
@@ -97,11 +98,9 @@ pub struct PointLoad {
     /// The body.
     pub body: usize,
     /// Point of application in the body frame (m).
-    pub at: [f64; 2],
-    /// Force in the ground frame (N).
-    pub force: [f64; 2],
-    /// Moment (N·m).
-    pub moment: f64,
+    pub at: Point2<f64>,
+    /// Moment (N·m) and force (N, in the ground frame).
+    pub wrench: Wrench,
 }
 
 /// A loop closure.
@@ -123,11 +122,11 @@ pub enum Closure {
         /// First body.
         a: usize,
         /// Point on it.
-        a_at: [f64; 2],
+        a_at: Point2<f64>,
         /// Second body.
         b: usize,
         /// Point on it.
-        b_at: [f64; 2],
+        b_at: Point2<f64>,
     },
 }
 
@@ -146,10 +145,16 @@ impl Closure {
 pub struct Loads {
     /// Tendon tensions, in the order of [`Mechanism::tendons`].
     pub tension: Vec<f64>,
-    /// (Fx, Fy, M) of each point load.
-    pub force: Vec<[f64; 3]>,
+    /// The wrench of each point load, in the order of [`Mechanism::forces`].
+    pub force: Vec<Wrench>,
     /// Gravity (m/s²).
-    pub gravity: [f64; 2],
+    pub gravity: Vector2<f64>,
+}
+
+/// `(1 − s)·a + s·b`, each component.
+fn mix_wrench(a: &Wrench, b: &Wrench, s: f64) -> Wrench {
+    let (a, b) = (a.to_array(), b.to_array());
+    Wrench::from_array(std::array::from_fn(|i| a[i] + s * (b[i] - a[i])))
 }
 
 impl Loads {
@@ -158,8 +163,8 @@ impl Loads {
         let mix = |a: f64, b: f64| a + s * (b - a);
         Loads {
             tension: self.tension.iter().zip(&other.tension).map(|(a, b)| mix(*a, *b)).collect(),
-            force: self.force.iter().zip(&other.force).map(|(a, b)| std::array::from_fn(|i| mix(a[i], b[i]))).collect(),
-            gravity: std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i])),
+            force: self.force.iter().zip(&other.force).map(|(a, b)| mix_wrench(a, b, s)).collect(),
+            gravity: Vector2::from_fn(|i, _| mix(self.gravity[i], other.gravity[i])),
         }
     }
 
@@ -170,9 +175,9 @@ impl Loads {
             *o = mix(*a, *b);
         }
         for ((o, a), b) in out.force.iter_mut().zip(&self.force).zip(&other.force) {
-            *o = std::array::from_fn(|i| mix(a[i], b[i]));
+            *o = mix_wrench(a, b, s);
         }
-        out.gravity = std::array::from_fn(|i| mix(self.gravity[i], other.gravity[i]));
+        out.gravity = Vector2::from_fn(|i, _| mix(self.gravity[i], other.gravity[i]));
     }
 
     /// Checks that the loads fit `m` (a tension per tendon, a triple per
@@ -183,10 +188,11 @@ impl Loads {
             return Err(Error::invalid(
                 "loads",
                 format!("{} tensions and {} forces", self.tension.len(), self.force.len()),
-                "must have one tension per tendon and one (Fx, Fy, M) per force of the mechanism",
+                "must have one tension per tendon and one wrench per force of the mechanism",
             ));
         }
-        let all = self.tension.iter().chain(self.force.iter().flatten()).chain(&self.gravity);
+        let wrenches = self.force.iter().flat_map(|w| w.to_array());
+        let all = self.tension.iter().copied().chain(wrenches).chain(self.gravity.iter().copied());
         if let Some(v) = all.into_iter().find(|v| !(v.is_finite() && v.abs() <= file::MAX_MAGNITUDE)) {
             return Err(Error::invalid("loads", v, "must be finite and at most 1e30 in magnitude"));
         }
@@ -209,7 +215,7 @@ impl Loads {
     /// Every load times `s`, in place.
     pub(crate) fn scale(&mut self, s: f64) {
         self.tension.iter_mut().for_each(|t| *t *= s);
-        self.force.iter_mut().for_each(|f| f.iter_mut().for_each(|v| *v *= s));
+        self.force.iter_mut().for_each(|f| (0..3).for_each(|i| f[i] *= s));
         self.gravity.iter_mut().for_each(|g| *g *= s);
     }
 }
@@ -228,7 +234,7 @@ pub struct Mechanism {
     /// Loop closures.
     pub closures: Vec<Closure>,
     /// Gravity (m/s²), zero if absent.
-    pub gravity: [f64; 2],
+    pub gravity: Vector2<f64>,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
     pub schedules: Vec<schedule::Schedule>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
@@ -295,7 +301,7 @@ impl Mechanism {
         out.tension.clear();
         out.tension.extend(self.tendons.iter().map(|t| t.tension));
         out.force.clear();
-        out.force.extend(self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]));
+        out.force.extend(self.forces.iter().map(|f| f.wrench));
         out.gravity = self.gravity;
     }
 
@@ -303,7 +309,7 @@ impl Mechanism {
     pub fn loads(&self) -> Loads {
         Loads {
             tension: self.tendons.iter().map(|t| t.tension).collect(),
-            force: self.forces.iter().map(|f| [f.force[0], f.force[1], f.moment]).collect(),
+            force: self.forces.iter().map(|f| f.wrench).collect(),
             gravity: self.gravity,
         }
     }
@@ -326,19 +332,17 @@ impl Mechanism {
     /// has a mass, its centre of mass. `flexure draw` draws a rigid link as
     /// their hull, and [`findings::crossings`] takes that hull's edges as
     /// the link's segments.
-    pub fn attachments(&self, b: usize) -> Vec<[f64; 2]> {
+    pub fn attachments(&self, b: usize) -> Vec<Point2<f64>> {
         let mut pts = Vec::new();
         if b != 0 {
-            pts.push([0.0, 0.0]);
+            pts.push(Point2::origin());
         }
-        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| [j.origin.x, j.origin.y]));
+        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| j.origin.origin()));
         pts.extend(self.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
         pts.extend(self.forces.iter().filter(|f| f.body == b).map(|f| f.at));
         for c in &self.closures {
             let (a, ra, other, rb) = match c {
-                Closure::Weld { a, a_origin, b, b_origin } => {
-                    (*a, [a_origin.x, a_origin.y], *b, [b_origin.x, b_origin.y])
-                }
+                Closure::Weld { a, a_origin, b, b_origin } => (*a, a_origin.origin(), *b, b_origin.origin()),
                 Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
             };
             pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));

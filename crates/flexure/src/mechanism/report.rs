@@ -178,7 +178,7 @@ pub fn solve_report(
         .bodies
         .iter()
         .zip(&frames.bodies)
-        .map(|(b, f)| (b.name.clone(), BodyPose { x: f.origin[0], y: f.origin[1], phi: f.angle }))
+        .map(|(b, f)| (b.name.clone(), BodyPose { x: f.x, y: f.y, phi: f.phi }))
         .collect();
     let coordinates =
         m.joints.iter().map(|j| (j.name.clone(), s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec())).collect();

@@ -9,7 +9,8 @@ use crate::error::{Error, Result};
 pub enum Parameter {
     /// `tendon.NAME.tension`
     Tension(usize),
-    /// `force.NAME.fx`, `.fy` or `.moment` (component 0, 1, 2).
+    /// `force.NAME.moment`, `.fx` or `.fy`: the component of its [`crate::space::Wrench`]
+    /// (0, 1, 2, in the wrench's order $(M, F_x, F_y)$).
     Force(usize, usize),
     /// `gravity.x` or `gravity.y`.
     Gravity(usize),
@@ -32,9 +33,9 @@ impl Parameter {
             let k =
                 m.forces.iter().position(|f| f.name == name).ok_or_else(|| bad("names no force of the mechanism"))?;
             let c = match comp {
-                "fx" => 0,
-                "fy" => 1,
-                "moment" => 2,
+                "moment" => 0,
+                "fx" => 1,
+                "fy" => 2,
                 _ => return Err(bad("a force's component is fx, fy or moment")),
             };
             return Ok(Parameter::Force(k, c));

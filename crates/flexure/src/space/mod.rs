@@ -26,8 +26,9 @@ mod wrench;
 
 pub use planar::Planar;
 pub use pose::Pose;
+pub(crate) use pose::rotate_turned;
 pub use twist::Twist;
-pub use wrench::Wrench;
+pub use wrench::{MAX_LOAD, Wrench};
 
 use std::fmt::Debug;
 

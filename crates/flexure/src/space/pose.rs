@@ -104,6 +104,16 @@ impl Pose<f64> {
         Vector2::new(w[0], w[1])
     }
 
+    /// [`Pose::act`] on components: the inner loops' form.
+    pub(crate) fn act_components(&self, r: [f64; 2]) -> [f64; 2] {
+        self.act_turned(self.turn(), r)
+    }
+
+    /// [`Pose::rotate`] on components: the inner loops' form.
+    pub(crate) fn rotate_components(&self, v: [f64; 2]) -> [f64; 2] {
+        rotate_turned(self.turn(), v)
+    }
+
     /// $\mathrm{Ad}_g$ in the order $(\omega, v_x, v_y)$:
     /// $\omega^{\prime} = \omega$, $v^{\prime} = R v + \omega\thinspace(y, -x)$.
     ///
@@ -121,7 +131,7 @@ impl Pose<f64> {
 }
 
 /// `v` turned by the angle whose `(sin, cos)` is given.
-pub fn rotate_turned((s, c): (f64, f64), v: [f64; 2]) -> [f64; 2] {
+pub(crate) fn rotate_turned((s, c): (f64, f64), v: [f64; 2]) -> [f64; 2] {
     [c * v[0] - s * v[1], s * v[0] + c * v[1]]
 }
 

@@ -16,7 +16,7 @@ pub(super) struct BodyToml {
 /// The ground and the joints' children, in file order: each body is created
 /// by the one joint that names it as child.
 pub(super) fn from_joints(src: &Source, joints: &[super::JointToml]) -> Result<Vec<Body>> {
-    let mut bodies = vec![Body { name: "ground".into(), mass: 0.0, inertia: 0.0, com: [0.0; 2] }];
+    let mut bodies = vec![Body { name: "ground".into(), mass: 0.0, inertia: 0.0, com: nalgebra::Point2::origin() }];
     for j in joints {
         let name = j.child.get_ref();
         if name == "ground" {
@@ -25,7 +25,7 @@ pub(super) fn from_joints(src: &Source, joints: &[super::JointToml]) -> Result<V
         if bodies.iter().any(|b| &b.name == name) {
             return src.fail(&j.child.span(), format!("body {name:?} is reached by two joints"));
         }
-        bodies.push(Body { name: name.clone(), mass: 0.0, inertia: 0.0, com: [0.0; 2] });
+        bodies.push(Body { name: name.clone(), mass: 0.0, inertia: 0.0, com: nalgebra::Point2::origin() });
     }
     Ok(bodies)
 }
@@ -62,7 +62,7 @@ pub(super) fn describe(src: &Source, find: &Find, bodies: &mut [Body], tables: &
         if let Some(inertia) = &b.inertia {
             bodies[idx].inertia = src.number(&owner, "inertia", inertia, Sign::NotNegative)?;
         }
-        bodies[idx].com = src.array(&owner, "com", &b.com)?;
+        bodies[idx].com = src.array(&owner, "com", &b.com)?.into();
     }
     Ok(())
 }

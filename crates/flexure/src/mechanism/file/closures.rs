@@ -46,7 +46,7 @@ pub(super) fn closures(src: &Source, find: &Find, welds: &[WeldToml], pins: &[Pi
         let (a_at, b_at) = (src.array(&owner, "a_at", &p.a_at)?, src.array(&owner, "b_at", &p.b_at)?);
         let a = find(&p.a)?;
         distinct(a, &p.b, "pin")?;
-        closures.push(Closure::Pin { a, a_at, b: find(&p.b)?, b_at });
+        closures.push(Closure::Pin { a, a_at: a_at.into(), b: find(&p.b)?, b_at: b_at.into() });
     }
     Ok(closures)
 }

@@ -3,6 +3,7 @@
 use super::bodies::Find;
 use super::document::{Sign, Source, Span};
 use super::{Deserialize, PointLoad, Result, Spanned, Tendon};
+use crate::space::Wrench;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -44,7 +45,7 @@ pub(super) fn tendons(src: &Source, find: &Find, tables: &[TendonToml]) -> Resul
         for (k, via) in t.path.get_ref().iter().enumerate() {
             let (body, x, y) = via.get_ref();
             src.numbers(&owner, &format!("path[{k}]"), &via.span(), &[*x, *y], Sign::Any)?;
-            path.push((find(body)?, [*x, *y]));
+            path.push((find(body)?, nalgebra::Point2::new(*x, *y)));
             places.push(via.span());
         }
         tendons.push(Tendon { name: t.name.get_ref().clone(), tension, path });
@@ -70,7 +71,8 @@ pub(super) fn forces(src: &Source, find: &Find, tables: &[ForceToml]) -> Result<
             Some(v) => src.number(&owner, "moment", v, Sign::Any)?,
             None => 0.0,
         };
-        forces.push(PointLoad { name, body: find(&f.body)?, at, force, moment });
+        let wrench = Wrench { moment, fx: force[0], fy: force[1] };
+        forces.push(PointLoad { name, body: find(&f.body)?, at: at.into(), wrench });
     }
     Ok(forces)
 }

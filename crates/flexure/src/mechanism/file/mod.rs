@@ -112,7 +112,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         tendons,
         forces,
         closures,
-        gravity,
+        gravity: gravity.into(),
         parent_joint: tree.parent_joint,
         dof: tree.dof,
         closure_places: closures::places(text, &file.weld, &file.pin),

@@ -40,7 +40,7 @@ pub(super) fn check_stiffness_ratio(src: &Source, m: &Mechanism, places: &[Span]
 pub(super) fn check_tendon_directions(src: &Source, m: &Mechanism, places: &[Vec<Span>]) -> Result<()> {
     let rest = frames(m, &m.rest());
     for (t, spans) in m.tendons.iter().zip(places) {
-        let w: Vec<[f64; 2]> = t.path.iter().map(|&(b, r)| rest.bodies[b].point(r)).collect();
+        let w: Vec<[f64; 2]> = t.path.iter().map(|(b, r)| rest.bodies[*b].act_components([r.x, r.y])).collect();
         for (k, pair) in w.windows(2).enumerate() {
             let size = pair.iter().flatten().map(|v| v.abs()).sum::<f64>();
             if (pair[1][0] - pair[0][0]).hypot(pair[1][1] - pair[0][1]) <= 1e-12 * size {

@@ -134,7 +134,7 @@ impl<'a> Kkt<'a> {
         }
         // Largest load, as a moment, in radians of the softest joint.
         let magnitude = |l: &Loads| {
-            let forces: f64 = l.force.iter().map(|f| f[0].hypot(f[1]) * length + f[2].abs()).sum();
+            let forces: f64 = l.force.iter().map(|f| f.fx.hypot(f.fy) * length + f.moment.abs()).sum();
             let tendons: f64 = l.tension.iter().map(|t| t * length).sum();
             let mass: f64 = m.bodies.iter().map(|b| b.mass).sum();
             forces + tendons + mass * l.gravity[0].hypot(l.gravity[1]) * length
@@ -152,7 +152,7 @@ impl<'a> Kkt<'a> {
         copy_loads(to, &mut change);
         change.tension.iter_mut().zip(&from.tension).for_each(|(b, a)| *b -= a);
         change.force.iter_mut().zip(&from.force).for_each(|(b, a)| (0..3).for_each(|i| b[i] -= a[i]));
-        change.gravity = std::array::from_fn(|i| to.gravity[i] - from.gravity[i]);
+        change.gravity = to.gravity - from.gravity;
         Ok(Self {
             mechanism: m,
             from: from_,

@@ -32,10 +32,10 @@ pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f
 /// // A sprung arm (k = 2 N·m/rad): its tip, 0.1 m out, yields l²/k sideways.
 /// let m = from_toml("[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n").unwrap();
 /// let s = assemble_unloaded(&m, &Settings::default()).unwrap();
-/// let c = compliance(&m, &s, m.body("arm").unwrap(), [0.1, 0.0]).unwrap();
+/// let c = compliance(&m, &s, m.body("arm").unwrap(), [0.1, 0.0].into()).unwrap();
 /// assert!((c[(0, 0)] - 0.5).abs() < 1e-15 && (c[(2, 2)] - 0.005).abs() < 1e-15);
 /// ```
-pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: [f64; 2]) -> Result<Matrix3<f64>> {
+pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: nalgebra::Point2<f64>) -> Result<Matrix3<f64>> {
     if body >= m.bodies.len() {
         return Err(Error::invalid("body", body, "names no body of the mechanism"));
     }
