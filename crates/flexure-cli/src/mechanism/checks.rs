@@ -56,10 +56,6 @@ fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], tar
     }
 }
 
-fn limit_json(l: &StabilityLimit) -> Value {
-    json!({ "value": l.value, "fraction": l.fraction })
-}
-
 /// The warning for a sweep that lost stability, or `None`.
 fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> Option<String> {
     let l = out.stability_limit?;
@@ -136,7 +132,7 @@ pub(super) fn put_sweep_checks(
         v["findings"] = json!(findings);
     }
     if let Some(l) = &out.stability_limit {
-        v["stability_limit"] = limit_json(l);
+        v["stability_limit"] = json!(l);
     }
     if let Some(w) = sweep_warning(file, parameter, out, values) {
         warn(w);
