@@ -9,7 +9,7 @@ use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::Report;
 use flexure::mechanism::report::{SolveReport, solve_report};
 use flexure::mechanism::statics::Solution;
-use flexure::mechanism::sweep::{StabilityLimit, Sweep};
+use flexure::mechanism::sweep::Sweep;
 use serde_json::{Value, json};
 use std::path::Path;
 
