@@ -44,11 +44,11 @@ pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: 
 /// The largest factor `--limit` tries on a load.
 pub const MAX_FACTOR: f64 = 1000.0;
 
-/// Writes `--limit`'s answer into `answer`: `stability_limit`, the object
-/// library's `{factor, status}` with `status` "lost" (stability is lost at
-/// `factor` times the load) or "stable_up_to" (the path holds to `factor`,
-/// and `stalled` says why it could not be followed further, if it could not);
-/// such a stall is also said on stderr (`what` names the answer).
+/// Writes `--limit`'s answer into `answer`: `stability_limit`, the
+/// library's serialization `{factor, status}`, `status` "lost" (stability is
+/// lost at `factor` times the load) or "stable_up_to" (the path holds to
+/// `factor`, and `stalled` says why it could not be followed further, if it
+/// could not); such a stall is also said on stderr (`what` names the answer).
 pub fn put_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
     if let flexure::StabilityLimit::StableUpTo { factor, stalled: Some(why) } = limit {
         warn(format!(
