@@ -44,25 +44,24 @@ pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: 
 /// The largest factor `--limit` tries on a load.
 pub const MAX_FACTOR: f64 = 1000.0;
 
-/// Writes `--limit`'s answer into `answer`: `stability_limit`, the object
-/// `{factor, status}` with `status` "lost" (stability is lost at `factor`
-/// times the load) or "stable_up_to" (the path holds to `factor`, and
-/// `stalled` says why it could not be followed further, if it could not);
-/// such a stall is also said on stderr (`what` names the answer).
+/// Writes `--limit`'s answer into `answer`: `stability_limit`, the
+/// library's serialization `{factor, status}`, `status` "lost" (stability is
+/// lost at `factor` times the load) or "stable_up_to" (the path holds to
+/// `factor`, and `stalled` says why it could not be followed further, if it
+/// could not); such a stall is also said on stderr (`what` names the answer).
 pub fn put_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
-    answer["stability_limit"] = match limit {
-        flexure::StabilityLimit::Lost { factor } => json!({ "factor": factor, "status": "lost" }),
-        flexure::StabilityLimit::StableUpTo { factor, stalled } => {
-            let mut v = json!({ "factor": factor, "status": "stable_up_to" });
-            if let Some(why) = stalled {
-                v["stalled"] = json!(why.to_string());
-                warn(format!(
-                    "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
-                ));
-            }
-            v
-        }
-    };
+    if let flexure::StabilityLimit::StableUpTo { factor, stalled: Some(why) } = limit {
+        warn(format!(
+            "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
+        ));
+    }
+    let mut v = json!(limit);
+    // The library writes `stalled: null` when `max_factor` was reached; a
+    // null in an answer reads as a non-finite number, so the key is left out.
+    if let Some(o) = v.as_object_mut().filter(|o| o.get("stalled").is_some_and(Value::is_null)) {
+        o.remove("stalled");
+    }
+    answer["stability_limit"] = v;
 }
 
 /// Warns that an answer is not a stable equilibrium (`what` names it).

@@ -6,8 +6,9 @@ use crate::joint::LoadOptions;
 use crate::mechanism::point_arg;
 use crate::options::{FlexureOptions, count, number};
 use clap::Args;
-use flexure::dynamics::{self, Body, Modes};
+use flexure::dynamics::{self, Modes};
 use flexure::estimate::{Accuracy, ValueEstimate};
+use flexure::inertia::RigidInertia;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
@@ -112,11 +113,11 @@ impl ModesArgs {
     }
 
     /// The tip body, if any of its options is given.
-    fn body(&self) -> Option<Body> {
+    fn body(&self) -> Option<RigidInertia> {
         if self.tip_mass.is_none() && self.tip_inertia.is_none() && self.tip_com.is_none() {
             return None;
         }
-        Some(Body {
+        Some(RigidInertia {
             mass: self.tip_mass.unwrap_or(0.0),
             inertia: self.tip_inertia.unwrap_or(0.0),
             com: self.tip_com.unwrap_or([0.0, 0.0]),

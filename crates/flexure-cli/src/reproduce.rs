@@ -738,10 +738,12 @@ fn steel_strip(model: Build, order: usize) -> Run<Flexure> {
 /// Beyond the paper: Sec. II's case for few parameters (a well-conditioned
 /// inertia matrix, no fast flexure modes) in numbers, and a finger in motion.
 fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
-    use flexure::dynamics::{Body, MassData, MassModel, modes, update_mass};
+    use flexure::dynamics::modes;
+    use flexure::inertia::RigidInertia;
+    use flexure::mass::{self, MassData, MassModel};
     use nalgebra::SymmetricEigen;
     // A 5 g link, a slender rod 30 mm long, from the strip's tip.
-    let link = Body::new(0.005, 0.005 * 0.03 * 0.03 / 12.0, [0.015, 0.0]).map_err(lib)?;
+    let link = RigidInertia::new(0.005, 0.005 * 0.03 * 0.03 / 12.0, [0.015, 0.0]).map_err(lib)?;
     let exact =
         reference::vibration::frequencies(&steel_strip(Flexure::new, 3)?, Some(&link), 0.0, 3, &Default::default())
             .map_err(lib)?;
@@ -776,7 +778,7 @@ fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
             let w = modes(&f, &TipLoad::default(), Some(&link), n).map_err(lib)?;
             let model = MassModel::new(&f, Some(&link)).map_err(lib)?;
             let mut data = MassData::new(&model);
-            update_mass(&model, &vec![0.0; n], None, &mut data);
+            mass::update(&model, &vec![0.0; n], None, &mut data);
             let eig = SymmetricEigen::new(data.mass_matrix.clone()).eigenvalues;
             let condition = eig.max() / eig.min();
             let error = |k: usize| w.frequency.get(k).map(|x| x / exact.frequency[k] - 1.0);

@@ -11,6 +11,7 @@ mod analyses;
 mod batch;
 mod characterization;
 mod cli;
+mod docs;
 mod estimate;
 mod examples;
 mod figures;

@@ -23,7 +23,7 @@ pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let target = args.accuracy.target();
     let (m, b, e) = flexure::estimate::buckle_auto(&m, &Settings::default(), &target)
         .map_err(|e| format!("{}: {e}", args.file.display()))?;
-    let mut answer = json!({ "load_factor": b.load_factor, "mode": b.mode });
+    let mut answer = json!(b);
     let flexures = flexure_names(&m);
     let auto = m.joints.iter().any(|j| j.auto_order);
     if auto {

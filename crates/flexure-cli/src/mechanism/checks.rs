@@ -5,11 +5,11 @@
 use super::flexures;
 use crate::options::warn;
 use flexure::estimate::Accuracy;
+use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::Report;
 use flexure::mechanism::report::{SolveReport, solve_report};
 use flexure::mechanism::statics::Solution;
-use flexure::mechanism::sweep::{StabilityLimit, Sweep};
-use flexure::mechanism::{JointKind, Mechanism};
+use flexure::mechanism::sweep::Sweep;
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -37,10 +37,7 @@ fn report(
 /// stressed past its yield strength.
 fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], target: &Accuracy, file: &Path) {
     let length = |name: &str| {
-        m.joints.iter().find(|j| j.name == name).map_or(0.0, |j| match &j.kind {
-            JointKind::Flexure(f) => f.length(),
-            _ => 0.0,
-        })
+        m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map_or(0.0, |f| f.length())
     };
     for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
         let misses = crate::joint::misses(e, length(name), target);
@@ -57,10 +54,6 @@ fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], tar
             ));
         }
     }
-}
-
-fn limit_json(l: &StabilityLimit) -> Value {
-    json!({ "value": l.value, "fraction": l.fraction })
 }
 
 /// The warning for a sweep that lost stability, or `None`.
@@ -139,7 +132,7 @@ pub(super) fn put_sweep_checks(
         v["findings"] = json!(findings);
     }
     if let Some(l) = &out.stability_limit {
-        v["stability_limit"] = limit_json(l);
+        v["stability_limit"] = json!(l);
     }
     if let Some(w) = sweep_warning(file, parameter, out, values) {
         warn(w);

@@ -5,8 +5,9 @@
 //! and turning arrows (moments).
 
 use flexure::kinematics::backbone;
+use flexure::mechanism::joints::Joint;
 use flexure::mechanism::statics::{Solution, body_frames};
-use flexure::mechanism::{Closure, JointKind, Mechanism};
+use flexure::mechanism::{Closure, Mechanism};
 use flexure_chart::{
     Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
 };
@@ -112,13 +113,35 @@ enum Loads {
 /// Points along each drawn flexure.
 const FLEXURE_SAMPLES: usize = 41;
 
+/// The mark of a rigid joint at its root.
+#[derive(Clone, Copy, PartialEq)]
+enum Symbol {
+    /// A circle: a rotation.
+    Pin,
+    /// A square and the travel dashed: a translation.
+    Slider,
+}
+
+/// The symbol of a rigid joint with coordinates, read from the joint
+/// interface (so a new kind is drawn without a case here); `None` for a
+/// flexure (drawn as its backbone) and for a weld.
+fn symbol(j: &dyn Joint) -> Option<Symbol> {
+    if j.flexure().is_some() || j.dof() == 0 {
+        None
+    } else if j.is_translation() {
+        Some(Symbol::Slider)
+    } else {
+        Some(Symbol::Pin)
+    }
+}
+
 /// The largest bending stress (Pa) of any flexure with a thickness in
 /// any of the shapes, or `None` if no flexure has a thickness.
 pub fn stress_max(m: &Mechanism, shapes: &[(String, Solution)]) -> Option<f64> {
     let mut top = None;
     for (_, s) in shapes {
         for j in &m.joints {
-            if let JointKind::Flexure(fl) = &j.kind
+            if let Some(fl) = j.kind.flexure()
                 && let Some(p) = flexure::stress::peak_stress(fl, &s.q[j.offset..j.offset + fl.order()])
             {
                 top = Some(p.value.max(top.unwrap_or(0.0)));
@@ -147,8 +170,8 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
     for (ji, j) in m.joints.iter().enumerate() {
         let root = f.roots[ji];
         let origin = (root.x, root.y);
-        match &j.kind {
-            JointKind::Flexure(fl) => {
+        match (j.kind.flexure(), symbol(j.kind.joint())) {
+            (Some(fl), _) => {
                 let q = &s.q[j.offset..j.offset + fl.order()];
                 let points: Vec<(f64, f64)> = backbone(fl, q, FLEXURE_SAMPLES)
                     .iter()
@@ -171,16 +194,16 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
                     fig.marks.push(Mark::Path { points: pair.to_vec(), stroke, fill: None, closed: false });
                 }
             }
-            JointKind::Revolute(_) => {
+            (None, Some(Symbol::Pin)) => {
                 fig.marks.push(Mark::Dot { at: origin, shape: Marker::Circle, radius: 6.0, color, filled: false });
             }
-            JointKind::Prismatic(_) => {
+            (None, Some(Symbol::Slider)) => {
                 let points = vec![origin, at(j.child, Point2::origin())];
                 let stroke = Some(Stroke { color, width: 2.0, dash: Dash::Dashed });
                 fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
                 fig.marks.push(Mark::Dot { at: origin, shape: Marker::Square, radius: 6.0, color, filled: false });
             }
-            JointKind::Fixed(_) => {}
+            (None, None) => {}
         }
     }
     for c in &m.closures {
@@ -285,7 +308,7 @@ pub fn figure(
         let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
         if hi > lo { hi - lo } else { 0.0 }
     };
-    let lengths = m.joints.iter().map(|j| if let JointKind::Flexure(fl) = &j.kind { fl.length() } else { 0.0 });
+    let lengths = m.joints.iter().map(|j| j.kind.flexure().map_or(0.0, |fl| fl.length()));
     let extent = span(0).max(span(1)).max(lengths.fold(0.0, f64::max)).max(1e-9);
     let thick = 0.012 * extent;
     let largest = loaded.iter().flat_map(|(_, s)| force_vectors(m, s)).map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
@@ -317,11 +340,12 @@ pub fn figure(
     }
 
     // Keys for what every shape shows.
-    if m.joints.iter().any(|j| matches!(j.kind, JointKind::Flexure(_))) {
+    if m.joints.iter().any(|j| j.kind.flexure().is_some()) {
         let swatch = Swatch::Line(Some(Stroke::solid(KEY, FLEXURE_WIDTH)), None);
         fig.legend.push(Entry { swatch, label: "flexure".into() });
     }
-    let revolute = m.joints.iter().any(|j| matches!(j.kind, JointKind::Revolute(_)));
+    let drawn = |want: Symbol| m.joints.iter().any(|j| symbol(j.kind.joint()) == Some(want));
+    let revolute = drawn(Symbol::Pin);
     let pin = m.closures.iter().any(|c| matches!(c, Closure::Pin { .. }));
     if revolute || pin {
         let swatch = Swatch::Line(None, Some((Marker::Circle, KEY, false)));
@@ -332,7 +356,7 @@ pub fn figure(
         };
         fig.legend.push(Entry { swatch, label: label.into() });
     }
-    if m.joints.iter().any(|j| matches!(j.kind, JointKind::Prismatic(_))) {
+    if drawn(Symbol::Slider) {
         let swatch = Swatch::Line(
             Some(Stroke { color: KEY, width: 2.0, dash: Dash::Dashed }),
             Some((Marker::Square, KEY, false)),
@@ -399,10 +423,7 @@ pub fn figure(
         }
         let bar_marks = marks.yields.iter().map(|y| y.1 / 1e6).collect();
         fig.color_bar = Some(ColorBar { label, lo: 0.0, hi: top / 1e6, marks: bar_marks });
-        let plain = m.joints.iter().any(|j| match &j.kind {
-            JointKind::Flexure(fl) => fl.section().modulus().is_none(),
-            _ => false,
-        });
+        let plain = m.joints.iter().filter_map(|j| j.kind.flexure()).any(|fl| fl.section().modulus().is_none());
         let label = if plain {
             "loaded flexures coloured by stress; those given by ei alone (no thickness) in their shape's colour"
         } else {

@@ -12,9 +12,9 @@ pub use draw::{DrawArgs, draw_cmd};
 pub use solve::{SolveArgs, solve_cmd};
 
 use crate::options::number;
+use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::{Report, from_toml, reports};
 use flexure::mechanism::statics::Solution;
-use flexure::mechanism::{JointKind, Mechanism};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -37,12 +37,10 @@ fn flexures<'a>(
     s: &'a Solution,
     reports: &'a [(String, Report)],
 ) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], Report)> {
-    m.joints.iter().filter_map(move |j| match &j.kind {
-        JointKind::Flexure(f) => {
-            let r = reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
-            Some((j.name.as_str(), &**f, &s.q[j.offset..j.offset + f.order()], r))
-        }
-        _ => None,
+    m.joints.iter().filter_map(move |j| {
+        let f = j.kind.flexure()?;
+        let r = reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
+        Some((j.name.as_str(), f, &s.q[j.offset..j.offset + f.order()], r))
     })
 }
 
@@ -58,18 +56,10 @@ pub fn point_arg(s: &str) -> Result<[f64; 2], String> {
 /// The flexure joints' names, in joint order (the order of the library's
 /// per-flexure lists, such as an estimate's reference orders).
 pub fn flexure_names(m: &Mechanism) -> Vec<String> {
-    m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_))).map(|j| j.name.clone()).collect()
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
 }
 
 /// {joint: order} of the flexure joints.
 pub fn flexure_orders(m: &Mechanism) -> Value {
-    Value::Object(
-        m.joints
-            .iter()
-            .filter_map(|j| match &j.kind {
-                JointKind::Flexure(f) => Some((j.name.clone(), json!(f.order()))),
-                _ => None,
-            })
-            .collect(),
-    )
+    Value::Object(m.joints.iter().filter_map(|j| Some((j.name.clone(), json!(j.kind.flexure()?.order())))).collect())
 }

@@ -5,9 +5,9 @@ use super::checks::{put_sweep_checks, solution_answer};
 use super::{load_with_reports, point_arg};
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
+use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, sweep};
-use flexure::mechanism::{JointKind, Mechanism};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -44,7 +44,7 @@ fn sweep_table(m: &Mechanism, parameter: &str, with_compliance: bool) -> Vec<Str
     columns.push("energy".into());
     // The peak stress of each flexure joint that has a thickness (Pa).
     for j in &m.joints {
-        if let JointKind::Flexure(f) = &j.kind
+        if let Some(f) = j.kind.flexure()
             && f.section().modulus().is_some()
         {
             columns.push(format!("{}.stress", j.name));
@@ -64,7 +64,7 @@ fn sweep_row(m: &Mechanism, value: f64, s: &Solution, compliance: Option<&nalgeb
     row.extend(&s.q);
     row.push(s.energy);
     for j in &m.joints {
-        if let JointKind::Flexure(f) = &j.kind
+        if let Some(f) = j.kind.flexure()
             && let Some(p) = flexure::stress::peak_stress(f, &s.q[j.offset..j.offset + f.order()])
         {
             row.push(p.value);
