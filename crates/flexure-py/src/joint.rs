@@ -88,8 +88,7 @@ impl Flexure {
         })?;
         let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
         let quadrature = quadrature.map(|q| count("quadrature", q, flexure::quadrature::MAX_POINTS)).transpose()?;
-        let kappa =
-            kappa.map(|(name, k)| vector(name, &coordinates::array_like(name, k)?, Some(order))).transpose()?;
+        let kappa = kappa.map(|(name, k)| vector(name, &coordinates::array_like(name, k)?, Some(order))).transpose()?;
         // The library builds it, as for the CLI and mechanism files, and names what it refuses.
         let f = FlexureSpec { length, section, order, quadrature, kappa }.build().map_err(to_py)?;
         if let Some(s) = yield_strength {
@@ -484,9 +483,9 @@ impl Flexure {
     /// The factor on the tip load (moment, fx, fy) at which the equilibrium followed from rest
     /// stops being stable (a buckling or limit load), as `flexure deflect --limit`'s
     /// stability_limit: {"factor", "status": "lost"}, that factor (stable up to it, unstable
-    /// within a relative 1e-10 above), or {"factor", "status": "stable_up_to"}, the bound it
-    /// stays stable to: `max_factor` (default 1000), or as far as the path could be followed,
-    /// with stalled (why) and a StabilityWarning. For axial
+    /// within a relative 1e-10 above), or {"factor", "status": "stable_up_to", "stalled"}, the
+    /// bound it stays stable to: `max_factor` (default 1000, stalled None), or as far as the
+    /// path could be followed, with stalled (why) and a StabilityWarning. For axial
     /// compression fx = -1 the factor is the free column's buckling load, Euler's pi^2 EI/4L^2.
     #[pyo3(signature = (moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, max_factor=Real(analyses::MAX_FACTOR)))]
     fn stability_limit<'py>(

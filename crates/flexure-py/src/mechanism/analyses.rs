@@ -12,9 +12,9 @@ use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
+use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, sweep as run_sweep};
-use flexure::mechanism::Mechanism;
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -322,10 +322,7 @@ fn answer<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let result = rows_dict(py, m, &out.rows)?;
     if let Some(l) = &out.stability_limit {
-        let d = PyDict::new(py);
-        d.set_item("value", l.value)?;
-        d.set_item("fraction", l.fraction)?;
-        result.set_item("stability_limit", d)?;
+        result.set_item("stability_limit", crate::serialize::to_dict(py, l)?)?;
         let beyond = match values.len() - out.rows.len() {
             0 => "the path snapped through to stable states beyond it".to_string(),
             1 => "the last value has no stable equilibrium reachable by loading and is left out".to_string(),
