@@ -88,18 +88,11 @@ pub fn shape_table<'py>(py: Python<'py>, points: &[ShapePoint], stressed: bool) 
 /// [`shape`] makes of the model's: fields `s, x, y, phi, curvature` and,
 /// when `stressed` (the section has a thickness), `stress`.
 pub fn exact_shape<'py>(py: Python<'py>, points: &[Point], stressed: bool) -> PyResult<Bound<'py, PyAny>> {
-    let column = |g: fn(&Point) -> f64| points.iter().map(g).collect::<Vec<f64>>();
-    let mut columns: Vec<(&str, Vec<f64>)> = vec![
-        ("s", column(|p| p.s)),
-        ("x", column(|p| p.x)),
-        ("y", column(|p| p.y)),
-        ("phi", column(|p| p.phi)),
-        ("curvature", column(|p| p.curvature)),
-    ];
-    if stressed {
-        columns.push(("stress", column(|p| p.stress.unwrap_or(0.0))));
-    }
-    table(py, points.len(), columns)
+    let points: Vec<ShapePoint> = points
+        .iter()
+        .map(|p| ShapePoint { s: p.s, x: p.x, y: p.y, phi: p.phi, curvature: p.curvature, stress: p.stress })
+        .collect();
+    shape_table(py, &points, stressed)
 }
 
 /// A NumPy structured array of `n` rows, one float64 field per column.
