@@ -10,8 +10,9 @@ use pyo3::types::{PyDict, PyList};
 use serde_json::Value;
 
 /// `value` serialized, as a Python object (see the module docs). JSON has
-/// no infinity or NaN: the library's results write none (a non-finite
-/// number becomes `None`), so [`crate::strict::finite_answer`] need not see them.
+/// no infinity or NaN: `serde_json` writes one as null, which arrives here
+/// as `None`, past [`crate::strict::finite_answer`]; the library's results
+/// are finite or an error, as the CLI's JSON relies on too.
 pub fn to_python<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
     let v = serde_json::to_value(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
     from_json(py, &v)
