@@ -169,13 +169,13 @@ class Mechanism:
         """Static equilibrium: a dict shaped like `flexure solve --json`
         (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable),
         error_estimate {flexure joint: dict as `Flexure.error_estimate` returns (position (m),
-        angle (rad), curvature (1/m), stress (Pa, with a thickness), flagged, reference,
-        reference_order, reference_quadrature), or None where it could not be estimated}
-        and flagged (True when any joint misses `accuracy` or could not be estimated).
-        An unstable answer warns StabilityWarning.
+        angle (rad), stress (Pa, with a thickness), curvature (1/m), reference_order,
+        reference_quadrature, reference, flagged)} and flagged (True when any joint misses
+        `accuracy`). An unstable answer warns StabilityWarning.
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
-        naming it, as does one whose error could not be estimated. Errors name the
+        naming it; one whose error could not be estimated warns so and raises the
+        library's error, as `flexure solve` fails. Errors name the
         mechanism's file, if it was read from one.
 
         Per flexure joint, in maps by joint name (each left out when empty):

@@ -41,12 +41,12 @@ class _ErrorEstimate(TypedDict):
     or, at order 64 (reference "elastica", both then 0), against the exact elastica."""
     position: float  # m
     angle: float  # rad
-    curvature: float  # 1/m, the peak curvature change's error
     stress: float  # Pa, the peak bending stress's error; present only for flexures with a thickness
-    flagged: bool  # whether it misses the accuracy target
-    reference: str  # "model" (refined) or "elastica" (exact, at order 64)
+    curvature: float  # 1/m, the peak curvature change's error
     reference_order: int
     reference_quadrature: int
+    reference: str  # "model" (refined) or "elastica" (exact, at order 64)
+    flagged: bool  # whether it misses the accuracy target (Python's; the CLI's answer says it once)
 
 # Stub-only names. accuracy: (position as a fraction of L, angle in rad[, peak stress or curvature as a
 # fraction of the peak]), each finite and > 0; None means (0.01, 1 degree, 0.01).
@@ -76,11 +76,11 @@ class _Vibration(TypedDict):
 
 class _StabilityLimit(TypedDict, total=False):
     """The factor on the load where stability is lost (status "lost"), or the bound it holds to (status
-    "stable_up_to"); stalled says why the path could not be followed further, when it stopped short of
-    max_factor."""
+    "stable_up_to", with stalled: None when that is max_factor, else why the path could not be followed
+    further), as the CLI prints it."""
     factor: float
     status: Literal["lost", "stable_up_to"]
-    stalled: str
+    stalled: Optional[str]
 
 class _Tendon(TypedDict, total=False):
     alpha: np.ndarray
@@ -227,7 +227,7 @@ class Flexure:
         DeprecationWarning) attached root_offset and
         tip_offset (m) from the neutral axis, as `flexure tendon --json` (pose an array [phi, x, y]).
         Warns StabilityWarning when unstable, AccuracyWarning when flagged; order="auto" raises the
-        order until the target is met; limit=True adds stability_limit {factor, status[, stalled]}."""
+        order until the target is met; limit=True adds stability_limit {factor, status[, stalled]} (stalled with stable_up_to)."""
     def connect(self, pose: ArrayLike, *, accuracy: _Accuracy = None, order: Optional[Literal["auto"]] = None,
                 limit: bool = False, max_factor: float = 1000.0) -> _Connection:
         """The minimum-energy shape whose tip reaches pose (phi, x, y), as `flexure connect --json`
@@ -236,8 +236,8 @@ class Flexure:
                         max_factor: float = 1000.0) -> _StabilityLimit:
         """The factor on the tip load at which the path from rest loses stability
         ({"factor": f, "status": "lost"}), or the bound it stays stable to ({"factor": f,
-        "status": "stable_up_to"}, with "stalled" when the path could not be followed to
-        max_factor), as `deflect --limit`'s stability_limit."""
+        "status": "stable_up_to", "stalled": None when that is max_factor, else why the path could not
+        be followed further), as `deflect --limit`'s stability_limit."""
     # Bending at alpha (N,), such as deflect's answer.
     def stress(self, alpha: ArrayLike) -> Optional[_Peak]:
         """Peak bending stress σ(s) = E' h(s)/2 |ω(s) - ω0(s)|: {max (Pa), at (m from the root)};
@@ -269,7 +269,7 @@ class Mechanism:
         velocities {joint: (N, k) array}, energy, steps, rejected, violation."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, error_estimate
-        {flexure joint: _ErrorEstimate or None}, flagged, findings, and per
+        {flexure joint: _ErrorEstimate}, flagged, findings, and per
         flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings]."""

@@ -37,37 +37,25 @@ fn pose_array<'py>(py: Python<'py>, p: &Pose) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, &[p.phi, p.x, p.y])
 }
 
-/// A stability limit as one object, the same wherever it is answered:
-/// `{"factor", "status": "lost"}`, the factor where stability is lost, or
-/// `{"factor", "status": "stable_up_to"}`, the factor it holds to, with
-/// `stalled`, why the path could not be followed further, and a
-/// StabilityWarning, when that is short of `max_factor`.
+/// A stability limit as one object, the library's serialization, the same
+/// wherever it is answered: `{"factor", "status": "lost"}`, the factor where
+/// stability is lost, or `{"factor", "status": "stable_up_to", "stalled"}`, the
+/// factor it holds to, with `stalled` None when that is `max_factor` and
+/// otherwise why the path could not be followed further (and a StabilityWarning).
 pub fn limit_dict<'py>(
     py: Python<'py>,
     l: &StabilityLimit,
     what: &str,
     stacklevel: i32,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    match l {
-        StabilityLimit::Lost { factor } => {
-            d.set_item("factor", factor)?;
-            d.set_item("status", "lost")?;
-        }
-        StabilityLimit::StableUpTo { factor, stalled } => {
-            d.set_item("factor", factor)?;
-            d.set_item("status", "stable_up_to")?;
-            if let Some(why) = stalled {
-                d.set_item("stalled", why)?;
-                let text = format!(
-                    "{what}: the loading path stays stable up to {} times the load, as far as it could be followed; beyond it stability is unknown: {why}",
-                    sig(*factor)
-                );
-                warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
-            }
-        }
+    if let StabilityLimit::StableUpTo { factor, stalled: Some(why) } = l {
+        let text = format!(
+            "{what}: the loading path stays stable up to {} times the load, as far as it could be followed; beyond it stability is unknown: {why}",
+            sig(*factor)
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
     }
-    Ok(d)
+    crate::serialize::to_dict(py, l)
 }
 
 /// The stability limit of a tip load on `f`: see `Flexure.stability_limit`.

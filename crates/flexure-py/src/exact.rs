@@ -12,6 +12,7 @@ use crate::strict::Real;
 use crate::warnings::warn_unstable;
 use crate::{section, stress};
 use flexure::reference::{column, compliance, elastica, euler};
+use flexure::section::FlexureSpec;
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
 use numpy::ndarray::Array2;
@@ -247,7 +248,7 @@ pub fn exact_flexure(
         density: None,
         mass_per_length: None,
     };
-    let (ei, section) = section::read(&given)?;
+    let section = section::spec(&given)?;
     let (name, kappa) = match given_kappa {
         Some((name, k)) => (name, vector(name, &crate::coordinates::array_like(name, k)?, None)?),
         None => ("kappa", vec![0.0; 3]),
@@ -259,9 +260,6 @@ pub fn exact_flexure(
             kappa.len()
         )));
     }
-    let mut f = flexure::Flexure::new(length.0, ei, kappa.len()).map_err(to_py)?;
-    if let Some(s) = section {
-        f = f.with_section(s).map_err(to_py)?;
-    }
-    Ok(Flexure { inner: f.with_rest(&kappa).map_err(to_py)?, yield_strength: None })
+    let spec = FlexureSpec { length: length.0, section, order: kappa.len(), quadrature: None, kappa: Some(kappa) };
+    Ok(Flexure { inner: spec.build().map_err(to_py)?, yield_strength: None })
 }

@@ -12,6 +12,7 @@ use crate::statics::loaded_stiffness;
 use crate::strict::{self, Real};
 use crate::{analyses, convert, kinematics, modes, section, statics, stress};
 use flexure::estimate;
+use flexure::section::FlexureSpec;
 use flexure::{Kinematics, Level, Pose, compliance_tip, compliance_tip_rest, energy, update_kinematics};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -75,7 +76,7 @@ impl Flexure {
     ) -> PyResult<Self> {
         let kappa = convert::kappa(py, kappa, rest, 1)?;
         let (length, yield_strength) = (length.0, yield_strength.map(|s| s.0));
-        let (ei, section) = section::read(&section::Arguments {
+        let section = section::spec(&section::Arguments {
             ei,
             modulus: modulus.map(|v| v.0),
             width,
@@ -86,16 +87,10 @@ impl Flexure {
             mass_per_length,
         })?;
         let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
-        let mut f = flexure::Flexure::new(length, ei, order).map_err(to_py)?;
-        if let Some(s) = section {
-            f = f.with_section(s).map_err(to_py)?;
-        }
-        if let Some(q) = quadrature {
-            f = f.with_quadrature(count("quadrature", q, flexure::quadrature::MAX_POINTS)?).map_err(to_py)?;
-        }
-        if let Some((name, k)) = kappa {
-            f = f.with_rest(&vector(name, &coordinates::array_like(name, k)?, Some(order))?).map_err(to_py)?;
-        }
+        let quadrature = quadrature.map(|q| count("quadrature", q, flexure::quadrature::MAX_POINTS)).transpose()?;
+        let kappa = kappa.map(|(name, k)| vector(name, &coordinates::array_like(name, k)?, Some(order))).transpose()?;
+        // The library builds it, as for the CLI and mechanism files, and names what it refuses.
+        let f = FlexureSpec { length, section, order, quadrature, kappa }.build().map_err(to_py)?;
         if let Some(s) = yield_strength {
             if !(s.is_finite() && s > 0.0) {
                 return Err(PyValueError::new_err(format!(
@@ -488,9 +483,9 @@ impl Flexure {
     /// The factor on the tip load (moment, fx, fy) at which the equilibrium followed from rest
     /// stops being stable (a buckling or limit load), as `flexure deflect --limit`'s
     /// stability_limit: {"factor", "status": "lost"}, that factor (stable up to it, unstable
-    /// within a relative 1e-10 above), or {"factor", "status": "stable_up_to"}, the bound it
-    /// stays stable to: `max_factor` (default 1000), or as far as the path could be followed,
-    /// with stalled (why) and a StabilityWarning. For axial
+    /// within a relative 1e-10 above), or {"factor", "status": "stable_up_to", "stalled"}, the
+    /// bound it stays stable to: `max_factor` (default 1000, stalled None), or as far as the
+    /// path could be followed, with stalled (why) and a StabilityWarning. For axial
     /// compression fx = -1 the factor is the free column's buckling load, Euler's pi^2 EI/4L^2.
     #[pyo3(signature = (moment=Real(0.0), fx=Real(0.0), fy=Real(0.0), *, max_factor=Real(analyses::MAX_FACTOR)))]
     fn stability_limit<'py>(

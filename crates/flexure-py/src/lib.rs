@@ -12,7 +12,8 @@
 //! queries; its `kinematics` and `statics`) and `Mechanism` (`mechanism/`);
 //! the analyses, modes, exact references, stresses and simulations they
 //! answer; and beneath them the exceptions (`errors`), warnings, accuracy
-//! targets, error estimates, interruption and conversions they share.
+//! targets, error estimates, interruption and conversions they share
+//! (`serialize`: the library's `Serialize` results as Python objects).
 
 mod accuracy;
 mod analyses;
@@ -28,6 +29,7 @@ mod kinematics;
 mod mechanism;
 mod modes;
 mod section;
+mod serialize;
 mod simulate;
 mod statics;
 mod stress;
@@ -35,8 +37,6 @@ mod strict;
 mod warnings;
 
 use errors::{AccuracyWarning, ConvergenceError, IntersectionWarning, PreloadWarning, StabilityWarning, YieldWarning};
-// `section.rs` reads the library's error conversion at the crate root.
-use errors::to_py;
 use pyo3::prelude::*;
 
 #[pymodule]

@@ -7,8 +7,9 @@ use crate::errors::StabilityWarning;
 use crate::interrupt::interruptible;
 use crate::joint::Flexure;
 use crate::warnings::{sig, warn, warn_values};
-use flexure::dynamics::{self, Body, Modes};
+use flexure::dynamics::{self, Modes};
 use flexure::estimate::{self, Accuracy, ValueEstimate};
+use flexure::inertia::RigidInertia;
 use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use numpy::ndarray::Array2;
@@ -22,7 +23,11 @@ const DEFAULT_COUNT: usize = 3;
 
 /// The tip body from `tip_mass`, `tip_inertia` and `tip_com`, each checked
 /// by its own name; None when none is given.
-pub fn tip_body(mass: Option<f64>, inertia: Option<f64>, com: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Body>> {
+pub fn tip_body(
+    mass: Option<f64>,
+    inertia: Option<f64>,
+    com: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<RigidInertia>> {
     let com = com.filter(|c| !c.is_none());
     if mass.is_none() && inertia.is_none() && com.is_none() {
         return Ok(None);
@@ -50,7 +55,7 @@ pub fn tip_body(mass: Option<f64>, inertia: Option<f64>, com: Option<&Bound<'_, 
     };
     finite("tip_com[0]", x)?;
     finite("tip_com[1]", y)?;
-    Ok(Some(Body { mass: mass.unwrap_or(0.0), inertia: inertia.unwrap_or(0.0), com: [x, y] }))
+    Ok(Some(RigidInertia { mass: mass.unwrap_or(0.0), inertia: inertia.unwrap_or(0.0), com: [x, y] }))
 }
 
 /// `count` (None: at most [`DEFAULT_COUNT`]) held to `coordinates`.
@@ -119,7 +124,7 @@ pub fn flexure_modes<'py>(
     py: Python<'py>,
     f: &flexure::Flexure,
     count: Option<&Bound<'py, PyAny>>,
-    body: Option<Body>,
+    body: Option<RigidInertia>,
     load: flexure::TipLoad,
     target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -162,12 +167,7 @@ pub fn mechanism_modes<'py>(
     put_frequencies(py, &out, &modes)?;
     crate::strict::finite_answer("Mechanism.modes", out.as_any())?;
     crate::strict::finite_slice("Mechanism.modes error_estimate reference_omega", &e.reference)?;
-    let names: Vec<String> = m
-        .joints
-        .iter()
-        .filter(|j| matches!(j.kind, flexure::mechanism::JointKind::Flexure(_)))
-        .map(|j| j.name.clone())
-        .collect();
+    let names: Vec<String> = m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect();
     put_estimate(py, &out, &e, Some(&names))?;
     let reference = if names.is_empty() {
         "the same mechanism, which has no flexure to refine".to_string()

@@ -2,11 +2,12 @@
 //! `thickness` and `mass_per_length` as a number, a pair `(root, tip)` or a
 //! table of `[t, value]` rows over $t = s/L$; `notch` as `(radius,
 //! min_thickness)`. Every error names the Python parameter and the value it
-//! got; the library builds the section from them ([`SectionSpec`], as for
-//! the CLI and mechanism files), checking signs, tables and notch depths,
-//! and names them the same way.
+//! got; the library builds the section and the flexure from them
+//! ([`SectionSpec`], [`flexure::section::FlexureSpec::build`], as for the
+//! CLI and mechanism files), checking signs, tables and notch depths, and
+//! names them the same way.
 
-use flexure::section::{Notch, Profile, Section, SectionSpec};
+use flexure::section::{Notch, Profile, SectionSpec};
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -153,13 +154,4 @@ pub fn spec(a: &Arguments<'_, '_>) -> PyResult<SectionSpec> {
         density: a.density,
         mass_per_length: read("mass_per_length", a.mass_per_length)?,
     })
-}
-
-/// The uniform $EI$ to build the flexure with, and the [`Section`] to give
-/// it (`None` for a uniform `ei` without mass, which needs none), as the
-/// library's [`SectionSpec`] builds them for every front end.
-pub fn read(a: &Arguments<'_, '_>) -> PyResult<(f64, Option<Section>)> {
-    let spec = spec(a)?;
-    let lib = crate::to_py;
-    Ok((spec.uniform_ei().map_err(lib)?, spec.section().map_err(lib)?))
 }

@@ -22,7 +22,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 /// The stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$
-/// (Eq. 32) at `alpha`, with the kinematics there (Hessian level).
+/// (Eq. 32) at `alpha`, the library's ([`flexure::statics::loaded_stiffness`]),
+/// with the kinematics there (Hessian level), which callers also read.
 pub fn loaded_stiffness(
     f: &flexure::Flexure,
     alpha: &[f64],
@@ -30,12 +31,7 @@ pub fn loaded_stiffness(
 ) -> (Kinematics<f64>, nalgebra::DMatrix<f64>) {
     let mut k = Kinematics::new(f);
     update_kinematics(f, alpha, &mut k, Level::Hessian);
-    let mut stiffness = -(&k.hessian_root_tip_x * load.fx + &k.hessian_root_tip_y * load.fy);
-    for i in 0..f.order() {
-        for j in 0..f.order() {
-            stiffness[(i, j)] += flexure::energy::stiffness(f, i, j);
-        }
-    }
+    let stiffness = flexure::statics::loaded_stiffness(f, &k, load);
     (k, stiffness)
 }
 

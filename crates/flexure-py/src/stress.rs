@@ -5,9 +5,9 @@
 //! of the model at coordinates alpha, or of the exact elastica from its trace.
 
 use flexure::Flexure;
-use flexure::kinematics::backbone;
+use flexure::mechanism::report::{self, MaxAt, ShapePoint};
 use flexure::reference::elastica::Point;
-use flexure::stress::{Peak, peak_stress, stress};
+use flexure::stress::{Peak, peak_stress};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -15,12 +15,9 @@ use pyo3::types::{PyDict, PyList};
 /// Most points of a shape: the mechanism files' bound, shared with the CLI.
 pub const MAX_SHAPE: usize = flexure::mechanism::file::MAX_SHAPE;
 
-/// A peak as `{"max": value, "at": s}`.
+/// A peak as `{"max": value, "at": s}`: the library's [`MaxAt`], as the CLI prints it.
 pub fn peak_dict<'py>(py: Python<'py>, p: &Peak) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("max", p.value)?;
-    d.set_item("at", p.at)?;
-    Ok(d)
+    crate::serialize::to_dict(py, &MaxAt::from(*p))
 }
 
 /// The safety factor $S/\sigma_{max}$ of `f` at `alpha` against the yield
@@ -63,32 +60,17 @@ pub fn safety_factor_of(
 
 /// The deformed flexure at `count` (2 to [`MAX_SHAPE`], checked by the
 /// caller) points evenly spaced in arc length, ends included, in its root
-/// frame: a NumPy structured array of fields `s, x, y, phi, curvature` (m,
-/// m, m, rad, 1/m; the total curvature) and, with a thickness, `stress` (Pa).
+/// frame, as the library gives it ([`flexure::mechanism::report::shape`]):
+/// see [`shape_table`].
 pub fn shape<'py>(py: Python<'py>, f: &Flexure, alpha: &[f64], count: usize) -> PyResult<Bound<'py, PyAny>> {
-    let poses = backbone(f, alpha, count);
-    let n = poses.len();
-    let step = f.length() / (n - 1) as f64;
-    // The last point exactly at the tip, not at a rounded multiple.
-    let s: Vec<f64> = (0..n).map(|i| if i + 1 == n { f.length() } else { i as f64 * step }).collect();
-    let mut columns: Vec<(&str, Vec<f64>)> = vec![
-        ("x", poses.iter().map(|p| p.x).collect()),
-        ("y", poses.iter().map(|p| p.y).collect()),
-        ("phi", poses.iter().map(|p| p.phi).collect()),
-        ("curvature", s.iter().map(|&s| f.curvature(alpha, s)).collect()),
-    ];
-    if f.section().modulus().is_some() {
-        columns.push(("stress", s.iter().map(|&s| stress(f, alpha, s).unwrap_or(0.0)).collect()));
-    }
-    columns.insert(0, ("s", s));
-    table(py, n, columns)
+    shape_table(py, &report::shape(f, alpha, count), f.section().modulus().is_some())
 }
 
-/// The exact elastica's cross-sections `points` as the structured array
-/// [`shape`] makes of the model's: fields `s, x, y, phi, curvature` and,
-/// when `stressed` (the section has a thickness), `stress`.
-pub fn exact_shape<'py>(py: Python<'py>, points: &[Point], stressed: bool) -> PyResult<Bound<'py, PyAny>> {
-    let column = |g: fn(&Point) -> f64| points.iter().map(g).collect::<Vec<f64>>();
+/// A deformed shape as a NumPy structured array of fields `s, x, y, phi,
+/// curvature` (m, m, m, rad, 1/m; the total curvature) and, when `stressed`
+/// (the flexure has a thickness), `stress` (Pa).
+pub fn shape_table<'py>(py: Python<'py>, points: &[ShapePoint], stressed: bool) -> PyResult<Bound<'py, PyAny>> {
+    let column = |g: fn(&ShapePoint) -> f64| points.iter().map(g).collect::<Vec<f64>>();
     let mut columns: Vec<(&str, Vec<f64>)> = vec![
         ("s", column(|p| p.s)),
         ("x", column(|p| p.x)),
@@ -100,6 +82,17 @@ pub fn exact_shape<'py>(py: Python<'py>, points: &[Point], stressed: bool) -> Py
         columns.push(("stress", column(|p| p.stress.unwrap_or(0.0))));
     }
     table(py, points.len(), columns)
+}
+
+/// The exact elastica's cross-sections `points` as the structured array
+/// [`shape`] makes of the model's: fields `s, x, y, phi, curvature` and,
+/// when `stressed` (the section has a thickness), `stress`.
+pub fn exact_shape<'py>(py: Python<'py>, points: &[Point], stressed: bool) -> PyResult<Bound<'py, PyAny>> {
+    let points: Vec<ShapePoint> = points
+        .iter()
+        .map(|p| ShapePoint { s: p.s, x: p.x, y: p.y, phi: p.phi, curvature: p.curvature, stress: p.stress })
+        .collect();
+    shape_table(py, &points, stressed)
 }
 
 /// A NumPy structured array of `n` rows, one float64 field per column.

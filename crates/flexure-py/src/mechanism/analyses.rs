@@ -12,9 +12,9 @@ use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
+use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, sweep as run_sweep};
-use flexure::mechanism::{JointKind, Mechanism};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -24,7 +24,7 @@ use pyo3::types::PyDict;
 /// The flexure joints' names, in joint order (the order of the library's
 /// per-flexure lists, such as an estimate's reference orders).
 fn flexure_names(m: &Mechanism) -> Vec<String> {
-    m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_))).map(|j| j.name.clone()).collect()
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
 }
 
 /// Linear buckling about the unloaded configuration, as `flexure buckle --json`:
@@ -44,7 +44,7 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
     if auto {
         let orders = PyDict::new(py);
         for j in &m.joints {
-            if let JointKind::Flexure(f) = &j.kind {
+            if let Some(f) = j.kind.flexure() {
                 orders.set_item(&j.name, f.order())?;
             }
         }
@@ -166,7 +166,7 @@ fn rows_dict<'py>(py: Python<'py>, m: &Mechanism, rows: &[(f64, Solution)]) -> P
     out.set_item("energy", PyArray1::from_vec(py, rows.iter().map(|r| r.1.energy).collect()))?;
     let stress = PyDict::new(py);
     for j in &m.joints {
-        if let JointKind::Flexure(f) = &j.kind
+        if let Some(f) = j.kind.flexure()
             && f.section().modulus().is_some()
         {
             let peaks = rows.iter().map(|(_, s)| {
@@ -229,7 +229,7 @@ pub fn sweep<'py>(
             for (v, s) in &out.rows {
                 let mut one = Vec::new();
                 for j in &m.joints {
-                    if let JointKind::Flexure(f) = &j.kind {
+                    if let Some(f) = j.kind.flexure() {
                         let alpha = &s.q[j.offset..j.offset + f.order()];
                         one.push(match estimate::joint_error(f, alpha, target) {
                             Err(e @ Error::Interrupted { .. }) => return Err(e),
@@ -325,10 +325,7 @@ fn answer<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let result = rows_dict(py, m, &out.rows)?;
     if let Some(l) = &out.stability_limit {
-        let d = PyDict::new(py);
-        d.set_item("value", l.value)?;
-        d.set_item("fraction", l.fraction)?;
-        result.set_item("stability_limit", d)?;
+        result.set_item("stability_limit", crate::serialize::to_dict(py, l)?)?;
         let beyond = match values.len() - out.rows.len() {
             0 => "the path snapped through to stable states beyond it".to_string(),
             1 => "the last value has no stable equilibrium reachable by loading and is left out".to_string(),

@@ -30,9 +30,10 @@ impl Mechanism {
         Ok(Self { inner, reports: reports(text).map_err(to_py)? })
     }
 
-    /// Equilibrium as a dict shaped like `flexure solve --json`, with `estimates`: the
-    /// estimated error of each flexure joint (a dict as `Flexure.error_estimate` returns, or
-    /// None where it could not be made). A joint that misses `accuracy` warns `AccuracyWarning`.
+    /// Equilibrium as a dict: the library's solve report, as `flexure solve --json` prints it,
+    /// with `error_estimate`: the estimated error of each flexure joint (a dict as
+    /// `Flexure.error_estimate` returns). A joint that misses `accuracy` warns `AccuracyWarning`;
+    /// one whose error could not be estimated warns so and raises, as the CLI fails.
     /// Per flexure joint, by name: `stress` {max, at} (or `curvature_max` for one given by ei),
     /// `safety_factor` for one with `yield_strength` (left out while unstressed; below 1 it warns
     /// `YieldWarning`) and `shape` (a structured array, as `Flexure.shape`) for one with `shape`;
