@@ -75,7 +75,7 @@ pub fn put_peak<E>(
 /// included, in its root frame: `{s, x, y, phi, curvature, stress}` with the
 /// total curvature (1/m) and, with a thickness, the bending stress (Pa).
 pub fn shape(f: &Flexure, alpha: &[f64], count: usize) -> Value {
-    json!(flexure::mechanism::report::shape(f, alpha, count))
+    json!(flexure::report::shape(f, alpha, count))
 }
 
 /// [`peak`], and [`shape`] when asked for: everything `options` asks of `f` at `alpha`.

@@ -5,8 +5,8 @@
 //! of the model at coordinates alpha, or of the exact elastica from its trace.
 
 use flexure::Flexure;
-use flexure::mechanism::report::{self, MaxAt, ShapePoint};
 use flexure::reference::elastica::Point;
+use flexure::report::{self, MaxAt, ShapePoint};
 use flexure::stress::{Peak, peak_stress};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -60,7 +60,7 @@ pub fn safety_factor_of(
 
 /// The deformed flexure at `count` (2 to [`MAX_SHAPE`], checked by the
 /// caller) points evenly spaced in arc length, ends included, in its root
-/// frame, as the library gives it ([`flexure::mechanism::report::shape`]):
+/// frame, as the library gives it ([`flexure::report::shape`]):
 /// see [`shape_table`].
 pub fn shape<'py>(py: Python<'py>, f: &Flexure, alpha: &[f64], count: usize) -> PyResult<Bound<'py, PyAny>> {
     shape_table(py, &report::shape(f, alpha, count), f.section().modulus().is_some())

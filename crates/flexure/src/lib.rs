@@ -203,6 +203,7 @@ pub mod mechanism;
 pub mod ode;
 pub mod quadrature;
 pub mod reference;
+pub mod report;
 pub mod scalar;
 pub mod section;
 pub mod sincos;

@@ -7,9 +7,9 @@ use crate::options::warn;
 use flexure::estimate::Accuracy;
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::Report;
-use flexure::mechanism::report::{SolveReport, solve_report};
 use flexure::mechanism::statics::Solution;
 use flexure::mechanism::sweep::Sweep;
+use flexure::report::{SolveReport, solve_report};
 use serde_json::{Value, json};
 use std::path::Path;
 

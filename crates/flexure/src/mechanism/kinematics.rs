@@ -239,7 +239,7 @@ pub fn point(m: &Mechanism, f: &Frames, body: usize, r: Point2<f64>, hessian: bo
 /// body or of a flexure's cross-section relative to its root, and a
 /// slider's travel over `length` (the mechanism's size): what bounds a
 /// continuation step ([`crate::solver::Problem::distance`]) and an
-/// integration step ([`crate::dynamics::System::distance`]). `angles` holds
+/// integration step (the dynamics' `System::distance`). `angles` holds
 /// two buffers of one entry per body.
 pub fn distance(m: &Mechanism, a: &[f64], b: &[f64], length: f64, angles: &mut [Vec<f64>; 2]) -> f64 {
     let [ba, bb] = angles;

@@ -14,7 +14,6 @@ mod indeterminate;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
-pub mod report;
 pub mod schedule;
 pub mod statics;
 pub mod sweep;

@@ -54,8 +54,8 @@
 //! is at least twice the largest $\omega^2$ asked about.
 
 use crate::buckling::TipConstraint;
-use crate::dynamics::Body;
 use crate::error::{Error, Result};
+use crate::inertia::RigidInertia as Body;
 use crate::joint::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 use crate::solver::interrupted;

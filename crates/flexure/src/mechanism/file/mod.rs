@@ -144,7 +144,7 @@ pub fn reports(text: &str) -> Result<Vec<(String, Report)>> {
     let m = from_toml(text)?;
     let file: FileToml = toml::from_str(text)
         .map_err(|e| Error::File { place: place(text, 0), message: e.message().trim().to_string() })?;
-    let flexures = m.joints.iter().filter(|j| matches!(j.kind, JointKind::Flexure(_)));
+    let flexures = m.joints.iter().filter(|j| j.kind.flexure().is_some());
     Ok(flexures
         .map(|spec| {
             let j = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);

@@ -15,9 +15,9 @@ use crate::Error;
 use crate::Flexure;
 use crate::estimate::{Accuracy, ErrorEstimate, joint_error};
 use crate::kinematics::backbone;
+use crate::mechanism::Mechanism;
 use crate::mechanism::file::Report;
 use crate::mechanism::statics::{Solution, body_frames};
-use crate::mechanism::{JointKind, Mechanism};
 use crate::stress::{Peak, peak_curvature, peak_stress, stress};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
@@ -142,7 +142,7 @@ pub struct EstimateFailed {
 /// ```
 /// use flexure::estimate::Accuracy;
 /// use flexure::mechanism::file::{from_toml, reports};
-/// use flexure::mechanism::report::solve_report;
+/// use flexure::report::solve_report;
 /// use flexure::mechanism::statics::{Settings, solve};
 ///
 /// let text = r#"
@@ -196,7 +196,7 @@ pub fn solve_report(
         limit_fraction: s.limit,
     };
     for j in &m.joints {
-        let JointKind::Flexure(f) = &j.kind else { continue };
+        let Some(f) = j.kind.flexure() else { continue };
         let q = &s.q[j.offset..j.offset + f.order()];
         let name = j.name.clone();
         let e = joint_error(f, q, target).map_err(|error| EstimateFailed { joint: name.clone(), error })?;
@@ -225,7 +225,7 @@ pub fn solve_report(
 ///
 /// ```
 /// use flexure::Flexure;
-/// use flexure::mechanism::report::shape;
+/// use flexure::report::shape;
 ///
 /// let f = Flexure::new(2.0, 1.0, 3)?;
 /// let points = shape(&f, &[0.5, 0.0, 0.0], 5);
