@@ -59,9 +59,10 @@ impl Parameter {
     }
 }
 
-/// Where a sweep lost stability.
+/// Where a sweep lost stability, in the swept quantity (serialized as a
+/// sweep's `stability_limit`; [`crate::StabilityLimit`] is the factor on a load).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct StabilityLimit {
+pub struct SweepLimit {
     /// The swept quantity's value there, in its units.
     pub value: f64,
     /// Its position along the sweep's range, `(value − first)/(last − first)`.
@@ -78,7 +79,7 @@ pub struct Sweep {
     #[serde(serialize_with = "rows")]
     pub rows: Vec<(f64, Solution)>,
     /// The first loss of stability along the sweep, if any.
-    pub stability_limit: Option<StabilityLimit>,
+    pub stability_limit: Option<SweepLimit>,
     /// Why the sweep ended before its last value, if a solve failed (a
     /// stalled continuation, an interrupt): the value, and the error. The
     /// rows before it are kept; the values after it are not tried, since
@@ -184,7 +185,7 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
             };
             limit = Some(s);
             if out.stability_limit.is_none() {
-                out.stability_limit = Some(StabilityLimit { value: value(s), fraction: fraction(value(s)) });
+                out.stability_limit = Some(SweepLimit { value: value(s), fraction: fraction(value(s)) });
             }
         }
         match found {
