@@ -72,6 +72,21 @@ impl JointState {
     }
 }
 
+/// The data of a joint with one coordinate moving its output frame along
+/// pose component `row` ($\phi$, $x$ or $y$), with a spring of `stiffness`.
+fn one_coordinate(row: usize, stiffness: f64) -> JointState {
+    let mut s = JointState::zeros(1);
+    s.jacobian[(row, 0)] = 1.0;
+    s.stiffness[(0, 0)] = stiffness;
+    s
+}
+
+/// A linear spring's energy $\frac12k(q - q_0)^2$ and its gradient into `s`.
+fn spring(stiffness: f64, rest: f64, q: f64, s: &mut JointState) {
+    s.energy = 0.5 * stiffness * (q - rest).powi(2);
+    s.gradient[0] = stiffness * (q - rest);
+}
+
 /// The interface every joint kind implements (Pinocchio's `JointModel`).
 ///
 /// # Example

@@ -1,6 +1,6 @@
 //! The pin joint.
 
-use super::{Joint, JointState};
+use super::{Joint, JointState, one_coordinate, spring};
 use crate::kinematics::Pose;
 
 /// A pin joint about the root frame's origin, rotation $\phi$, with an
@@ -23,16 +23,12 @@ impl Joint for Revolute {
     }
 
     fn state(&self) -> JointState {
-        let mut s = JointState::zeros(1);
-        s.jacobian[(0, 0)] = 1.0;
-        s.stiffness[(0, 0)] = self.stiffness;
-        s
+        one_coordinate(0, self.stiffness)
     }
 
     fn evaluate_into(&self, q: &[f64], s: &mut JointState) {
         s.pose = Pose { phi: q[0], x: 0.0, y: 0.0 };
-        s.energy = 0.5 * self.stiffness * (q[0] - self.rest).powi(2);
-        s.gradient[0] = self.stiffness * (q[0] - self.rest);
+        spring(self.stiffness, self.rest, q[0], s);
     }
 
     /// Viscous: N·m·s/rad.
