@@ -54,7 +54,7 @@ pub enum Stop {
 /// `limit` as `limit_fraction`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Path {
-    /// Why it stopped: [`Stop::Reached`] for every `Ok` of [`continuation`].
+    /// Why it stopped: [`Stop::Reached`] for every `Ok` of [`continuation`](fn@continuation).
     pub stop: Stop,
     /// The load fraction $\lambda$ of the last accepted state (`ws.x`).
     pub load_fraction: f64,
@@ -73,7 +73,7 @@ pub struct Path {
 }
 
 impl Path {
-    /// A path of no steps: a start converged by [`newton`] as `report`
+    /// A path of no steps: a start converged by [`newton`](fn@newton) as `report`
     /// says, whose stability is `stable`, for a problem whose load does not
     /// change (the assembly of a mechanism).
     pub fn at_start(report: NewtonReport, stable: bool) -> Self {
@@ -102,7 +102,7 @@ impl Path {
         }
     }
 
-    /// The [`Error`] that [`continuation`] returns for this path, `None` if
+    /// The [`Error`] that [`continuation`](fn@continuation) returns for this path, `None` if
     /// it reached $\lambda = 1$: [`Error::Unstable`] at [`Path::limit`] for
     /// a path that lost stability and did not come back,
     /// [`Error::ContinuationStalled`], [`Error::Interrupted`].
@@ -140,7 +140,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
     trace(problem, ws, settings)?.into_result(problem)
 }
 
-/// [`continuation`] that stops with [`Error::Unstable`] as soon as the path
+/// [`continuation`](fn@continuation) that stops with [`Error::Unstable`] as soon as the path
 /// loses stability, for callers that only ask whether it stays stable.
 pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
     problem: &mut P,
@@ -150,7 +150,7 @@ pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
     follow(problem, ws, settings, true)?.into_result(problem)
 }
 
-/// [`continuation`] whose partial runs are answers too: the path, however
+/// [`continuation`](fn@continuation) whose partial runs are answers too: the path, however
 /// it ended ([`Path::stop`]), with the last accepted state in `ws.x`.
 /// `Err` only where no path starts: invalid settings or workspace, a start
 /// that does not converge (or is interrupted before it does) or has a

@@ -4,7 +4,7 @@
 //!
 //! A problem is a family of square systems $r(x, \lambda) = 0$ in the load
 //! factor $\lambda \in [0, 1]$, with $r(x_0, 0) = 0$ at the rest state.
-//! [`continuation`] follows the solution path from $(x_0, 0)$ to
+//! [`continuation`](fn@continuation) follows the solution path from $(x_0, 0)$ to
 //! $\lambda = 1$ in the arc length of $(x, \lambda)$, so it passes limit
 //! points (snap-through): at a fold, where the path turns back in
 //! $\lambda$, the tangent comes from the bordered system

@@ -1,10 +1,10 @@
-//! The settings of [`super::newton`] and [`super::continuation`]: tolerance and bounds.
+//! The settings of [`super::newton`](fn@super::newton) and [`super::continuation`](fn@super::continuation): tolerance and bounds.
 
 #[cfg(doc)]
 use super::{Problem, continuation, newton};
 use crate::error::{Error, Result};
 
-/// Settings of [`newton`] and [`continuation`], validated by [`Settings::validate`].
+/// Settings of [`newton`](fn@newton) and [`continuation`](fn@continuation), validated by [`Settings::validate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// Relative tolerance: converged when $\max_i|r_i| \le$ tolerance × [`Problem::scale`].

@@ -5,7 +5,7 @@ use super::NewtonReport;
 use super::{Path, Problem, continuation, newton};
 use crate::scalar::Scalar;
 
-/// Buffers for [`newton`] and [`continuation`] on an $n$-unknown problem;
+/// Buffers for [`newton`](fn@newton) and [`continuation`](fn@continuation) on an $n$-unknown problem;
 /// nothing is allocated once they exist.
 #[derive(Debug, Clone)]
 pub struct Workspace<T: Scalar> {
@@ -17,13 +17,13 @@ pub struct Workspace<T: Scalar> {
     /// Jacobian $\partial_x r$ at the solution (column-major $n\times n$).
     pub jacobian: Vec<T>,
     /// Set by a caller that has just converged `x` at $\lambda = 0$ by
-    /// [`newton`] on the same problem and tested its stability (the value):
-    /// the next [`continuation`] then starts from `x` as it stands, with the
+    /// [`newton`](fn@newton) on the same problem and tested its stability (the value):
+    /// the next [`continuation`](fn@continuation) then starts from `x` as it stands, with the
     /// Jacobian and load derivative that solve left, instead of solving and
     /// testing again. Every continuation resets it; it is ignored unless
-    /// the last call on this workspace was that [`newton`] at $\lambda = 0$.
+    /// the last call on this workspace was that [`newton`](fn@newton) at $\lambda = 0$.
     pub start_stable: Option<bool>,
-    /// What the last [`newton`] reached, if it was at $\lambda = 0$.
+    /// What the last [`newton`](fn@newton) reached, if it was at $\lambda = 0$.
     pub(super) start: Option<NewtonReport>,
     pub(super) dlambda: Vec<T>,
     /// Augmented $(n+1)$ system and its factors.
@@ -89,7 +89,7 @@ impl<T: Scalar> Workspace<T> {
         &mut self.dlambda
     }
 
-    /// Declares `x` a start at $\lambda = 0$ that [`newton`] on the same
+    /// Declares `x` a start at $\lambda = 0$ that [`newton`](fn@newton) on the same
     /// problem reached as `report` says, with stability `stable`: what
     /// [`Workspace::start_stable`] does after that solve, for a caller that
     /// kept the solve's result and has put back `x`, [`Workspace::jacobian`]

@@ -57,8 +57,8 @@ pub(super) fn assembled(
     }
 }
 
-/// [`assembled`] for [`solve_with`]: the start the workspace keeps if it
-/// is this problem's ([`StartCache::holds`]), with the load derivative of
+/// [`assembled`] for [`solve_with`](super::solve_with): the start the workspace keeps if it
+/// is this problem's (`StartCache::holds`), with the load derivative of
 /// this problem's loads; else solved, and kept.
 pub(super) fn assembled_kept(
     problem: &mut Kkt,

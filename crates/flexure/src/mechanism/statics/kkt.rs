@@ -204,7 +204,7 @@ impl<'a> Kkt<'a> {
     }
 
     /// $\partial_\lambda r$ into `d`, at the frames last evaluated, or at
-    /// the kept start's ([`StartCache`]) if `at_start`: the gradient of the
+    /// the kept start's (`StartCache`) if `at_start`: the gradient of the
     /// load change's potential, scaled as the residual.
     pub(super) fn load_derivative(&mut self, d: &mut [f64], at_start: bool) -> Result<()> {
         let m = self.mechanism;

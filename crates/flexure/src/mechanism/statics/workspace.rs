@@ -52,19 +52,19 @@ pub struct Workspace {
     pub(super) joints: Vec<crate::mechanism::JointSpec>,
     /// The last problem's scales and loads.
     pub(super) spare: Spare,
-    /// The loads of a [`solve_with`]: none, and the mechanism's.
+    /// The loads of a [`solve_with`](super::solve_with): none, and the mechanism's.
     pub(super) given: [Loads; 2],
-    /// The unknowns of the assembled start of a [`solve_with`].
+    /// The unknowns of the assembled start of a [`solve_with`](super::solve_with).
     pub(super) start_x: Vec<f64>,
     /// The coordinates at which `frames` and the assembly's $c$ and $G$
     /// were last evaluated, if `assembled`.
     pub(super) assembled_at: Vec<f64>,
     pub(super) assembled: bool,
-    /// The assembled start of the last [`solve_with`], for the next one.
+    /// The assembled start of the last [`solve_with`](super::solve_with), for the next one.
     pub(super) start: StartCache,
 }
 
-/// The assembled, unloaded start of a [`solve_with`] and what made it: it
+/// The assembled, unloaded start of a [`solve_with`](super::solve_with) and what made it: it
 /// depends on the joints, the closures and the settings, and on the loads
 /// only through the Newton tolerance (tolerance × [`solver::Problem::scale`]),
 /// since every load is zero at $\lambda = 0$.
