@@ -170,7 +170,7 @@ impl<T: Scalar> solver::Problem<T> for TipLoadProblem<'_, T> {
 /// minimum-energy connection and [`loaded_stiffness`] call it.
 ///
 /// # Panics
-/// If `ld` < $N$ or `out` is shorter than $(N - 1)\,$`ld` + $N$.
+/// If `ld` < $N$ or `out` is shorter than $(N - 1)\thinspace\ell_d + N$ (with $\ell_d$ = `ld`).
 ///
 /// # Example
 /// ```
