@@ -8,7 +8,9 @@
 
 use crate::error::{Error, Result};
 
+mod spatial;
 mod spec;
+pub use spatial::SpatialSection;
 pub use spec::{FlexureSpec, SectionSpec};
 
 /// A positive quantity along the flexure, a function of $t = s/L$.
