@@ -71,14 +71,12 @@ struct Distributed {
 }
 
 impl Distributed {
-    fn new(m: &Mechanism, joint: usize, f: &Flexure) -> Result<Option<Self>> {
+    /// The distributed inertia of flexure `f`, joint `joint` of `m`, with the
+    /// rule and refinement its [`MassModel`] (from [`crate::mechanism::Joint::inertia`]) settled on.
+    fn new(m: &Mechanism, joint: usize, f: &Flexure, model: &MassModel) -> Result<Self> {
         let (n, l) = (f.order(), f.length());
         let section = f.section();
-        if section.mass_per_length(0.5, l).is_none() {
-            return Ok(None);
-        }
-        // The rule and refinement the single-flexure model settles on.
-        let (outer, inner, sub) = MassModel::new(f, None)?.rule();
+        let (outer, inner, sub) = model.rule();
         let (outer, inner) = (GaussLegendre::new(outer)?, GaussLegendre::new(inner)?);
         let mut breaks = section.breakpoints(l);
         if f.basis() == Basis::Segments {
@@ -130,7 +128,7 @@ impl Distributed {
         }
         d.columns = path_columns(m, m.joints[joint].parent);
         d.columns.extend((0..n).map(|i| m.joints[joint].offset + i));
-        Ok(Some(d))
+        Ok(d)
     }
 }
 
@@ -281,12 +279,12 @@ impl MechanismSystem {
         let mut distributed = Vec::new();
         let mut damping = DMatrix::zeros(n, n);
         for (i, j) in m.joints.iter().enumerate() {
-            if let Some(f) = j.kind.flexure()
-                && let Some(d) = Distributed::new(m, i, f).map_err(|e| e.in_joint(&j.name))?
-            {
-                distributed.push(d);
-            }
             let joint = j.kind.joint();
+            // A joint's own mass moves with its shape: a flexure's, by its angle shapes.
+            if let (Some(model), Some(f)) = (joint.inertia(), joint.flexure()) {
+                let d = model.and_then(|model| Distributed::new(m, i, f, &model));
+                distributed.push(d.map_err(|e| e.in_joint(&j.name))?);
+            }
             let k = joint.dof();
             joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
         }

@@ -112,31 +112,26 @@ impl Assembly {
     }
 }
 
-/// The distributed mass of a mechanism's flexures, for their weight: per
-/// flexure with a density or mass per length, the nested quadrature tables
-/// of [`MassModel`] and a buffer for its [`Weight`], built the first time
-/// gravity acts (so a weightless assembly costs nothing more).
+/// The joints' own distributed mass, for their weight: per joint with an
+/// inertia ([`super::Joint::inertia`]: a flexure with a density or mass per
+/// length), the nested quadrature tables of [`MassModel`] and a buffer for
+/// its [`Weight`], asked for the first time gravity acts (so a weightless
+/// assembly costs nothing more).
 #[derive(Debug, Clone, Default)]
 pub struct Weights {
-    /// (joint, its tables and buffer once built); the tables are an error
-    /// where its mass integrals cannot be made accurate.
-    flexures: Vec<(usize, Option<Tables>)>,
+    /// (joint, what it answered once asked: `None` for a joint without
+    /// inertia; the tables are an error where its mass integrals cannot be
+    /// made accurate).
+    joints: Vec<(usize, Option<Option<Tables>>)>,
 }
 
 /// A flexure's mass tables and weight buffer, or why they could not be built.
 type Tables = std::result::Result<(MassModel, Weight), Error>;
 
 impl Weights {
-    /// Every flexure of `m` that has mass, its tables not yet built.
+    /// Every joint of `m`, not yet asked for its inertia.
     pub fn new(m: &Mechanism) -> Self {
-        let flexures = m
-            .joints
-            .iter()
-            .enumerate()
-            .filter(|(_, j)| j.kind.flexure().is_some_and(|f| f.section().mass_per_length(0.5, f.length()).is_some()))
-            .map(|(i, _)| (i, None))
-            .collect();
-        Weights { flexures }
+        Weights { joints: (0..m.joints.len()).map(|i| (i, None)).collect() }
     }
 }
 
@@ -365,21 +360,23 @@ fn add_flexure_weights(
 ) -> Result<f64> {
     let n = m.dof();
     let mut potential = 0.0;
-    for (j, tables) in &mut weights.flexures {
+    for (j, tables) in &mut weights.joints {
         let spec = &m.joints[*j];
-        // `Weights::new` lists flexures only.
-        let Some(flexure) = spec.kind.flexure() else { continue };
         let built = tables.get_or_insert_with(|| {
-            MassModel::new(flexure, None)
-                .map(|model| {
-                    let w = Weight::new(&model);
-                    (model, w)
-                })
-                .map_err(|e| e.in_joint(&spec.name))
+            let model = spec.kind.joint().inertia()?;
+            Some(
+                model
+                    .map(|model| {
+                        let w = Weight::new(&model);
+                        (model, w)
+                    })
+                    .map_err(|e| e.in_joint(&spec.name)),
+            )
         });
         let (model, w) = match built {
-            Ok((model, w)) => (&*model, w),
-            Err(e) => return Err(e.clone()),
+            None => continue,
+            Some(Ok((model, w))) => (&*model, w),
+            Some(Err(e)) => return Err(e.clone()),
         };
         let (o, k) = (spec.offset, model.order());
         weight(model, &f.coordinates[o..o + k], w);

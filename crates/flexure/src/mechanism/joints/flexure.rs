@@ -2,8 +2,10 @@
 
 use super::{Joint, JointState};
 use crate::energy::{energy_gradient, stiffness};
+use crate::error::Result;
 use crate::joint::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
+use crate::mass::MassModel;
 
 impl Joint for Flexure {
     fn dof(&self) -> usize {
@@ -67,6 +69,11 @@ impl Joint for Flexure {
             d = d.max(turn.abs());
         }
         d
+    }
+
+    fn inertia(&self) -> Option<Result<MassModel>> {
+        self.section().mass_per_length(0.5, self.length())?;
+        Some(MassModel::new(self, None))
     }
 
     fn flexure(&self) -> Option<&Flexure> {

@@ -17,8 +17,10 @@ pub use fixed::Fixed;
 pub use prismatic::Prismatic;
 pub use revolute::Revolute;
 
+use crate::error::Result;
 use crate::joint::Flexure;
 use crate::kinematics::{Kinematics, Pose};
+use crate::mass::MassModel;
 use nalgebra::{DMatrix, DVector};
 
 /// A joint's data at one configuration: placement, motion subspace and its
@@ -96,6 +98,8 @@ fn spring(stiffness: f64, rest: f64, q: f64, s: &mut JointState) {
 /// let s = pin.evaluate(&[0.6]);
 /// assert_eq!((s.pose.phi, s.jacobian[(0, 0)]), (0.6, 1.0));
 /// assert!((s.energy - 0.25).abs() < 1e-15 && (s.gradient[0] - 1.0).abs() < 1e-15);
+/// // A pin carries no mass of its own; a flexure with a density does.
+/// assert!(pin.inertia().is_none());
 /// ```
 pub trait Joint {
     /// Number of coordinates $k$.
@@ -141,8 +145,17 @@ pub trait Joint {
     /// slider's travel over `length`: with the bodies' rotations, what bounds
     /// a continuation or integration step.
     fn distance(&self, a: &[f64], b: &[f64], length: f64) -> f64;
+    /// The joint's own inertia, distributed along it: a flexure's sections'
+    /// mass per length $\mu(s)$ and rotary inertia $\rho I(s)$, tabulated as
+    /// a [`MassModel`]. `None` where the joint carries no mass of its own: a
+    /// pin, a slider or a weld (their bodies carry it), or a flexure without
+    /// a density. The call builds the tables, so an algorithm asks once and
+    /// keeps them; it fails where the mass integrals cannot be made accurate.
+    fn inertia(&self) -> Option<Result<MassModel>> {
+        None
+    }
     /// The Smooth Curvature flexure, for the analyses only a flexure has
-    /// (its mass distribution, error estimate, stress and backbone).
+    /// (its mode shapes, error estimate, stress and backbone).
     fn flexure(&self) -> Option<&Flexure> {
         None
     }
