@@ -1,6 +1,6 @@
 //! The Smooth Curvature flexure as a joint: its tip frame is the output.
 
-use super::{Joint, JointState};
+use super::{Buffers, Joint, JointState};
 use crate::energy::{energy_gradient, stiffness};
 use crate::error::Result;
 use crate::joint::Flexure;
@@ -19,7 +19,7 @@ impl Joint for Flexure {
     fn state(&self) -> JointState {
         let n = self.order();
         let mut s = JointState::zeros(n);
-        s.kinematics = Some(Box::new(Kinematics::new(self)));
+        s.buffers = Buffers::Flexure(Box::new(Kinematics::new(self)));
         for i in 0..n {
             for j in 0..n {
                 s.stiffness[(i, j)] = stiffness(self, i, j);
@@ -29,7 +29,10 @@ impl Joint for Flexure {
     }
 
     fn evaluate_into(&self, q: &[f64], s: &mut JointState) {
-        let k = s.kinematics.get_or_insert_with(|| Box::new(Kinematics::new(self)));
+        if !matches!(s.buffers, Buffers::Flexure(_)) {
+            s.buffers = Buffers::Flexure(Box::new(Kinematics::new(self)));
+        }
+        let Buffers::Flexure(k) = &mut s.buffers else { unreachable!("made just above") };
         kinematics::update(self, q, k, Level::Hessian);
         s.pose = k.pose_root_tip;
         // The update writes every entry of these (same-shaped) buffers:

@@ -19,50 +19,66 @@ pub use revolute::Revolute;
 
 use crate::error::Result;
 use crate::joint::Flexure;
-use crate::kinematics::{Kinematics, Pose};
+use crate::kinematics::Kinematics;
 use crate::mass::MassModel;
+use crate::space::{Planar, Space};
 use nalgebra::{DMatrix, DVector};
 
 /// A joint's data at one configuration: placement, motion subspace and its
-/// derivative, and elastic energy (Pinocchio's `JointData`).
+/// derivative, and elastic energy (Pinocchio's `JointData`), in the
+/// dimension `S` ([`Planar`] by default; [`crate::space::Space`] names the
+/// types).
 #[derive(Debug, Clone)]
-pub struct JointState {
+pub struct JointState<S: Space = Planar> {
     /// Placement: the output frame in the root frame.
-    pub pose: Pose,
-    /// Motion subspace $S = \partial g/\partial q$, $3\times k$: column $a$ is
-    /// the twist $(\partial_a\phi, \partial_a x, \partial_a y)$ of the output
-    /// frame in the root frame per unit of coordinate $a$.
+    pub pose: S::Pose,
+    /// Motion subspace $S = \partial g/\partial q$, `TWIST_DIM` $\times k$:
+    /// column $a$ is the output frame's twist per unit of coordinate $a$; in
+    /// the plane, $(\partial_a\phi, \partial_a x, \partial_a y)$ in the root frame.
     pub jacobian: DMatrix<f64>,
-    /// Its derivative: the Hessians ($k\times k$) of the pose's components
-    /// $(\phi, x, y)$. A kind whose rotation is linear in its coordinates
-    /// ([`Joint::angle_row`]) leaves that of $\phi$ zero.
-    pub hessian: [DMatrix<f64>; 3],
+    /// Its derivative: `TWIST_DIM` matrices ($k\times k$), entry $(a, b)$ of
+    /// matrix $c$ being component $c$ of $\partial_b S_a$; in the plane, the
+    /// Hessians of the pose's components $(\phi, x, y)$. A kind whose
+    /// rotation is linear in its coordinates ([`Joint::angle_row`]) leaves
+    /// that of $\phi$ zero.
+    pub hessian: Vec<DMatrix<f64>>,
     /// Elastic energy $U$ (J).
     pub energy: f64,
     /// Its gradient $\nabla U$.
     pub gradient: DVector<f64>,
     /// Its Hessian, the stiffness $\nabla^2 U$.
     pub stiffness: DMatrix<f64>,
-    /// A flexure's kinematics buffers, reused by [`Joint::evaluate_into`].
-    kinematics: Option<Box<Kinematics>>,
+    /// The kind's own buffers, reused by [`Joint::evaluate_into`].
+    buffers: Buffers,
 }
 
-impl JointState {
+/// Buffers a kind keeps between evaluations (Pinocchio keeps each kind's
+/// data in a variant the same way); only the kind that made them reads them.
+#[derive(Debug, Clone, Default)]
+enum Buffers {
+    /// None: the rigid kinds compute in place.
+    #[default]
+    None,
+    /// A planar flexure's kinematics.
+    Flexure(Box<Kinematics>),
+}
+
+impl<S: Space> JointState<S> {
     /// Zeroed data for a joint of `k` coordinates.
     pub fn zeros(k: usize) -> Self {
         JointState {
-            pose: Pose::default(),
-            jacobian: DMatrix::zeros(3, k),
-            hessian: std::array::from_fn(|_| DMatrix::zeros(k, k)),
+            pose: S::Pose::default(),
+            jacobian: DMatrix::zeros(S::TWIST_DIM, k),
+            hessian: (0..S::TWIST_DIM).map(|_| DMatrix::zeros(k, k)).collect(),
             energy: 0.0,
             gradient: DVector::zeros(k),
             stiffness: DMatrix::zeros(k, k),
-            kinematics: None,
+            buffers: Buffers::None,
         }
     }
 
     /// Copies `other` (data of the same joint) into these buffers, without allocating.
-    pub fn copy_from(&mut self, other: &JointState) {
+    pub fn copy_from(&mut self, other: &JointState<S>) {
         self.pose = other.pose;
         self.jacobian.copy_from(&other.jacobian);
         for (h, o) in self.hessian.iter_mut().zip(&other.hessian) {
@@ -101,7 +117,7 @@ fn spring(stiffness: f64, rest: f64, q: f64, s: &mut JointState) {
 /// // A pin carries no mass of its own; a flexure with a density does.
 /// assert!(pin.inertia().is_none());
 /// ```
-pub trait Joint {
+pub trait Joint<S: Space = Planar> {
     /// Number of coordinates $k$.
     fn dof(&self) -> usize;
     /// Coordinates of the unloaded joint, into `q` ($k$ values).
@@ -114,14 +130,14 @@ pub trait Joint {
     }
     /// Buffers for [`Joint::evaluate_into`] (the Data of this joint), with
     /// what does not depend on the coordinates filled in.
-    fn state(&self) -> JointState {
+    fn state(&self) -> JointState<S> {
         JointState::zeros(self.dof())
     }
     /// Placement, motion subspace and its derivative, and energy at `q`,
     /// written into `out` (made by [`Joint::state`]) without allocating.
-    fn evaluate_into(&self, q: &[f64], out: &mut JointState);
+    fn evaluate_into(&self, q: &[f64], out: &mut JointState<S>);
     /// [`Joint::evaluate_into`] in fresh buffers.
-    fn evaluate(&self, q: &[f64]) -> JointState {
+    fn evaluate(&self, q: &[f64]) -> JointState<S> {
         let mut s = self.state();
         self.evaluate_into(q, &mut s);
         s
