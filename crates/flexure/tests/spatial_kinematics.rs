@@ -48,22 +48,32 @@ fn shifted(alpha: &[f64], a: usize, h: f64) -> Vec<f64> {
 /// The body Jacobian against central differences of the pose (step 1e-5:
 /// truncation ~1e-10, rounding ~1e-11; tolerance 1e-8) and against
 /// num-dual's dual numbers through the same pose code (tolerance 1e-13).
+///
+/// Also with 2 subintervals at 4 × `ALPHA`, where each step turns by more
+/// than 2 rad and the exponential's coefficients take their closed forms
+/// instead of their series.
 #[test]
 fn jacobian_matches_central_differences_and_dual_numbers() {
-    let f = flexure([3, 3, 3]);
-    let k = kinematics(&f, &ALPHA, Level::Jacobian);
+    jacobian_check(&flexure([3, 3, 3]), &ALPHA);
+    let strong: Vec<f64> = ALPHA.iter().map(|a| 4.0 * a).collect();
+    jacobian_check(&flexure([3, 3, 3]).with_subintervals(2).unwrap(), &strong);
+}
+
+fn jacobian_check(f: &SpatialFlexure, alpha: &[f64]) {
+    let scale = alpha.iter().fold(1.0f64, |m, a| m.max(a.abs()));
+    let k = kinematics(f, alpha, Level::Jacobian);
     let h = 1e-5;
     for a in 0..9 {
-        let (rp, pp) = pose_root_tip(&f, &shifted(&ALPHA, a, h));
-        let (rm, pm) = pose_root_tip(&f, &shifted(&ALPHA, a, -h));
+        let (rp, pp) = pose_root_tip(f, &shifted(alpha, a, h));
+        let (rm, pm) = pose_root_tip(f, &shifted(alpha, a, -h));
         let fd = body(&k.rotation, &((rp - rm) / (2.0 * h)), &((pp - pm) / (2.0 * h)));
         let col = column(&k, a);
-        assert!((col - fd).abs().max() < 1e-8, "column {a}: {col} against {fd}");
+        assert!((col - fd).abs().max() < 1e-8 * scale * scale, "column {a}: {col} against {fd}");
 
-        let x: Vec<Dual64> = (0..9).map(|i| Dual64::new(ALPHA[i], if i == a { 1.0 } else { 0.0 })).collect();
-        let (r, p) = pose_root_tip(&f, &x);
+        let x: Vec<Dual64> = (0..9).map(|i| Dual64::new(alpha[i], if i == a { 1.0 } else { 0.0 })).collect();
+        let (r, p) = pose_root_tip(f, &x);
         let dual = body(&k.rotation, &r.map(|v| v.eps), &p.map(|v| v.eps));
-        assert!((col - dual).abs().max() < 1e-13, "column {a}: {col} against num-dual {dual}");
+        assert!((col - dual).abs().max() < 1e-13 * scale, "column {a}: {col} against num-dual {dual}");
     }
 }
 
@@ -72,30 +82,38 @@ fn jacobian_matches_central_differences_and_dual_numbers() {
 /// pose code, $\partial_b(R^T\partial_aR) = \partial_bR^T\partial_aR + R^T\partial_{ab}R$
 /// (tolerance 1e-12); the position's Hessian against the hyper-duals'
 /// $\partial_{ab}p$ (tolerance 1e-12).
+/// Also at 2 subintervals and 4 × `ALPHA`, the coefficients' closed forms
+/// (tolerances times the largest coefficient's square and cube).
 #[test]
 fn hessians_match_central_differences_and_hyper_duals() {
-    let f = flexure([3, 3, 3]);
-    let k = kinematics(&f, &ALPHA, Level::Hessian);
+    hessian_check(&flexure([3, 3, 3]), &ALPHA);
+    let strong: Vec<f64> = ALPHA.iter().map(|a| 4.0 * a).collect();
+    hessian_check(&flexure([3, 3, 3]).with_subintervals(2).unwrap(), &strong);
+}
+
+fn hessian_check(f: &SpatialFlexure, alpha: &[f64]) {
+    let scale = alpha.iter().fold(1.0f64, |m, a| m.max(a.abs()));
+    let k = kinematics(f, alpha, Level::Hessian);
     let h = 1e-5;
     for b in 0..9 {
-        let kp = kinematics(&f, &shifted(&ALPHA, b, h), Level::Jacobian);
-        let km = kinematics(&f, &shifted(&ALPHA, b, -h), Level::Jacobian);
+        let kp = kinematics(f, &shifted(alpha, b, h), Level::Jacobian);
+        let km = kinematics(f, &shifted(alpha, b, -h), Level::Jacobian);
         for a in 0..9 {
             let fd = (column(&kp, a) - column(&km, a)) / (2.0 * h);
             let hab = k.hessian(a, b);
-            assert!((hab - fd).abs().max() < 1e-8, "H[{a}][{b}] = {hab} against {fd}");
+            assert!((hab - fd).abs().max() < 1e-8 * scale.powi(3), "H[{a}][{b}] = {hab} against {fd}");
 
             let x: Vec<HyperDual64> =
-                (0..9).map(|i| HyperDual64::new(ALPHA[i], (i == a) as u8 as f64, (i == b) as u8 as f64, 0.0)).collect();
-            let (r, p) = pose_root_tip(&f, &x);
+                (0..9).map(|i| HyperDual64::new(alpha[i], (i == a) as u8 as f64, (i == b) as u8 as f64, 0.0)).collect();
+            let (r, p) = pose_root_tip(f, &x);
             let (r0, ra, rb, rab) = (r.map(|v| v.re), r.map(|v| v.eps1), r.map(|v| v.eps2), r.map(|v| v.eps1eps2));
             let (pa, pab) = (p.map(|v| v.eps1), p.map(|v| v.eps1eps2));
             let w = vee(&(rb.transpose() * ra + r0.transpose() * rab));
             let v = rb.transpose() * pa + r0.transpose() * pab;
             let dual = Vector6::new(w[0], w[1], w[2], v[0], v[1], v[2]);
-            assert!((hab - dual).abs().max() < 1e-12, "H[{a}][{b}] = {hab} against hyper-dual {dual}");
+            assert!((hab - dual).abs().max() < 1e-12 * scale.powi(2), "H[{a}][{b}] = {hab} against hyper-dual {dual}");
             let hp = k.hessian_position(a, b);
-            assert!((hp - pab).abs().max() < 1e-12, "∂²p[{a}][{b}] = {hp} against hyper-dual {pab}");
+            assert!((hp - pab).abs().max() < 1e-12 * scale.powi(2), "∂²p[{a}][{b}] = {hp} against hyper-dual {pab}");
         }
     }
 }

@@ -49,8 +49,7 @@ pub struct SpatialKinematics<T: Scalar = f64> {
     moved: Vec<Vector6<T>>,
     /// The step's tangents, one per coordinate.
     tangents: Vec<Tangent<T>>,
-    /// $\partial_a\Omega$ of the step, one per coordinate, and $\partial_a\partial_b\Omega$ at `[a * n + b]`.
-    exponent_first: Vec<Vector6<T>>,
+    /// $\partial_a\partial_b\Omega$ of the step at `[a * n + b]`.
     exponent_second: Vec<Vector6<T>>,
 }
 
@@ -75,7 +74,6 @@ impl<T: Scalar> SpatialKinematics<T> {
             columns: vec![Vector6::zeros(); n],
             moved: vec![Vector6::zeros(); n],
             tangents: vec![Tangent::default(); n],
-            exponent_first: vec![Vector6::zeros(); n],
             exponent_second: vec![Vector6::zeros(); n * n],
         }
     }
@@ -237,7 +235,6 @@ pub fn update<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], level: Level, da
                 let da = node_derivatives(flexure, k, a);
                 let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
                 let d = exponent(&jets, h).d;
-                data.exponent_first[a] = d;
                 let (dw, dv) = parts(&d);
                 data.tangents[a] = step.tangent(dw, dv);
                 data.moved[a] = adjoint_inverse(&step.r, &step.p, &data.columns[a]);

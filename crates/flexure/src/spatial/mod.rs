@@ -14,7 +14,7 @@
 //! $\tau$-coefficients, then $\kappa_y$'s, then $\kappa_z$'s.
 //!
 //! - [`SpatialFlexure`]: the immutable model, its Gram (stiffness) matrix,
-//!   [`energy`], [`energy_gradient`];
+//!   [`energy()`], [`energy_gradient`];
 //! - [`SpatialKinematics`] and [`update`]: the tip pose in SE(3), its body
 //!   Jacobian and Hessians, by 6th-order Magnus over Gauss subintervals.
 
