@@ -209,6 +209,7 @@ pub mod section;
 pub mod sincos;
 pub mod solver;
 pub mod space;
+pub mod spatial;
 pub mod statics;
 pub mod stress;
 pub mod tendon;

@@ -7,8 +7,9 @@
 //! [`Space::adjoint`], [`Space::exp`] and [`Space::log`], and the pairing of
 //! a wrench with a twist. [`Planar`] implements it for the plane, SE(2),
 //! with [`Pose`] $(\phi, x, y)$, [`Twist`] $(\omega, v_x, v_y)$ and [`Wrench`]
-//! $(M, F_x, F_y)$; a spatial implementation (SE(3)) is a second `impl Space`,
-//! as parry's `math` aliases are one set of names for 2-D and 3-D.
+//! $(M, F_x, F_y)$; [`Spatial`] is the second `impl Space`, SE(3), with
+//! `Isometry3` poses and (angular, linear) 6-vector twists and wrenches, as
+//! parry's `math` aliases are one set of names for 2-D and 3-D.
 //!
 //! **Ordering** (the crate's *Conventions*): rotation first. A pose, a
 //! Jacobian row, a twist and a wrench list their angular part, then their
@@ -21,12 +22,15 @@
 
 mod planar;
 mod pose;
+mod spatial;
 mod twist;
 mod wrench;
 
 pub use planar::Planar;
 pub use pose::Pose;
 pub(crate) use pose::rotate_turned;
+pub use spatial::Spatial;
+pub(crate) use spatial::{ExpCoefficients, bracket, exp_coefficients, exp_parts, isometry};
 pub use twist::Twist;
 pub use wrench::{MAX_LOAD, Wrench};
 

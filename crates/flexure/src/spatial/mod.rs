@@ -1,0 +1,29 @@
+//! The spatial flexure: a Kirchhoff rod (inextensible, unshearable) whose
+//! body-frame curvature is a short shifted-Legendre series per component
+//! (issue 23).
+//!
+//! Frames are the planar flexure's: the root frame has $x$ along the rest
+//! tangent, $y$ the in-plane normal and $z$ out of the plane. The curvature
+//! in the body frame is $u(s) = (\tau, \kappa_y, \kappa_z)$, twist about $x$
+//! then bending about $y$ and $z$, each component a series of its own order
+//! $n_c$ (Eq. 8 per component),
+//! $$u_c(s) = \frac1L\sum_{i=0}^{n_c-1}\alpha_{c,i}\thinspace\tilde P_i(s/L),$$
+//! so that $\alpha_{c,0}$ is the total rotation of component $c$ and, for
+//! $\kappa_z$ alone, the coefficients are the planar flexure's (its
+//! $\alpha_1$ is the tip angle, Eq. 11). The coordinates are ordered the
+//! $\tau$-coefficients, then $\kappa_y$'s, then $\kappa_z$'s.
+//!
+//! - [`SpatialFlexure`]: the immutable model, its Gram (stiffness) matrix,
+//!   [`energy()`], [`energy_gradient`];
+//! - [`SpatialKinematics`] and [`update`]: the tip pose in SE(3), its body
+//!   Jacobian and Hessians, by 6th-order Magnus over Gauss subintervals.
+
+mod energy;
+mod flexure;
+mod kinematics;
+mod magnus;
+mod step;
+
+pub use energy::{energy, energy_gradient};
+pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
+pub use kinematics::{SpatialKinematics, pose_root_tip, update};
