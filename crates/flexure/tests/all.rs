@@ -46,6 +46,7 @@ mod space;
 mod space_spatial;
 mod spatial_energy;
 mod spatial_kinematics;
+mod spatial_statics;
 mod stages;
 mod statics;
 mod tendon;

@@ -16,14 +16,25 @@
 //! - [`SpatialFlexure`]: the immutable model, its Gram (stiffness) matrix,
 //!   [`energy()`], [`energy_gradient`];
 //! - [`SpatialKinematics`] and [`update`]: the tip pose in SE(3), its body
-//!   Jacobian and Hessians, by 6th-order Magnus over Gauss subintervals.
+//!   Jacobian and Hessians, by 6th-order Magnus over Gauss subintervals;
+//! - [`deflect`], [`stability_limit`], [`compliance`]: equilibrium under a
+//!   dead tip wrench [`SpatialLoad`], its stability (lateral-torsional
+//!   buckling included) and the tip's 6 × 6 compliance;
+//! - [`deflect_error`] and [`deflect_auto`]: the error estimate against a
+//!   refined model, and the orders that meet an accuracy target.
 
 mod energy;
+mod estimate;
 mod flexure;
 mod kinematics;
 mod magnus;
+mod statics;
 mod step;
 
 pub use energy::{energy, energy_gradient};
+pub use estimate::{MAX_AUTO_ORDER, deflect_auto, deflect_error, padded, reference};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
+pub use statics::{
+    SpatialLoad, SpatialStatics, compliance, correct, deflect, rotation_between, stability_limit, tip_stiffness,
+};

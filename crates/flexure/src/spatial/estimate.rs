@@ -1,0 +1,175 @@
+//! The spatial flexure's error estimate: its answer against a refined
+//! model's, as [`crate::estimate`] does for the planar flexure.
+//!
+//! The reference raises each component's order to $\max(2n_c, n_c + 3)$
+//! (at most [`MAX_ORDER`]) and doubles the Magnus subintervals, at least
+//! one per radian of total turning, so its own error is far below the
+//! answer's; the answer, padded with zeros, starts the reference's Newton
+//! solve at the full load (continuation from rest if that fails).
+
+use super::{SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
+use crate::error::Result;
+use crate::estimate::{Accuracy, ErrorEstimate};
+use crate::joint::MAX_ORDER;
+use nalgebra::{Matrix3, Vector3};
+
+/// The reference model for the answer `alpha` of `flexure`: orders raised,
+/// subintervals doubled (and at least the total turning in radians, twice).
+///
+/// # Example
+/// ```
+/// use flexure::{section::SpatialSection, spatial::{SpatialFlexure, reference}};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 2, 3]).unwrap();
+/// let r = reference(&f, &[0.0; 8]).unwrap();
+/// assert_eq!((r.orders(), r.subintervals()), ([6, 5, 6], 2 * f.subintervals()));
+/// ```
+pub fn reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexure> {
+    flexure.check_coordinates("alpha", alpha)?;
+    let orders = flexure.orders().map(|n| (2 * n).max(n + 3).min(MAX_ORDER));
+    let turning: f64 = alpha.iter().map(|a| a.abs()).sum();
+    let subintervals = (2 * flexure.subintervals()).max((2.0 * turning).ceil() as usize).min(super::MAX_SUBINTERVALS);
+    SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
+        .with_rest(&padded(flexure, flexure.rest(), orders))?
+        .with_subintervals(subintervals)
+}
+
+/// Coordinates of `flexure` padded with zeros, per component, to `orders`.
+pub fn padded(flexure: &SpatialFlexure, alpha: &[f64], orders: [usize; 3]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(orders.iter().sum());
+    let mut start = 0;
+    for (n, m) in flexure.orders().into_iter().zip(orders) {
+        out.extend_from_slice(&alpha[start..start + n.min(m)]);
+        out.resize(out.len() + m.saturating_sub(n), 0.0);
+        start += n;
+    }
+    out
+}
+
+/// The rotation angle (rad) between two rotations, $\lvert\log(R_a^TR_b)\rvert$.
+fn angle_between(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
+    let r = a.tr_mul(b);
+    // Robust for angles near 0 and π: atan2 of |axis part| and the cosine.
+    let axis = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    (0.5 * axis.norm()).atan2(0.5 * (r.trace() - 1.0))
+}
+
+/// The largest change of the body curvature from rest, $\max_s\lvert u(s) - u_0(s)\rvert$ (1/m), sampled.
+fn peak_curvature(flexure: &SpatialFlexure, alpha: &[f64]) -> f64 {
+    const SAMPLES: usize = 65;
+    let change: Vec<f64> = alpha.iter().zip(flexure.rest()).map(|(a, k)| a - k).collect();
+    (0..SAMPLES)
+        .map(|k| {
+            let u = flexure.curvature(&change, flexure.length() * k as f64 / (SAMPLES - 1) as f64);
+            (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The error of a [`deflect`] answer `alpha` under `load`: the tip's
+/// position and rotation against the reference model's equilibrium
+/// ([`reference`]), in the one shape every estimate has
+/// ([`ErrorEstimate`]; its `curvature` is that of the curvature vector's
+/// peak change, and no stress is estimated yet).
+///
+/// # Example
+/// ```
+/// use flexure::section::SpatialSection;
+/// use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, deflect, deflect_error};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
+/// let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.5, 0.5] };
+/// let mut data = SpatialStatics::new(&f);
+/// deflect(&f, &load, &mut data, &Default::default()).unwrap();
+/// let e = deflect_error(&f, &load, data.alpha(), &Default::default()).unwrap();
+/// assert!(e.position < 1e-3 && !e.flagged && e.reference_order == 6);
+/// ```
+pub fn deflect_error(
+    flexure: &SpatialFlexure,
+    load: &SpatialLoad,
+    alpha: &[f64],
+    target: &Accuracy,
+) -> Result<ErrorEstimate> {
+    target.validate()?;
+    let reference = reference(flexure, alpha)?;
+    let mut data = SpatialStatics::new(&reference);
+    let start = padded(flexure, alpha, reference.orders());
+    let settings = Default::default();
+    if correct(&reference, load, &start, &mut data, &settings).is_err() {
+        deflect(&reference, load, &mut data, &settings)?;
+    }
+    let exact = data.alpha().to_vec();
+    let (ra, pa) = super::pose_root_tip(flexure, alpha);
+    let (rb, pb) = super::pose_root_tip(&reference, &exact);
+    let position = (pa - pb).norm();
+    let angle = angle_between(&ra, &rb);
+    let (model_peak, exact_peak) = (peak_curvature(flexure, alpha), peak_curvature(&reference, &exact));
+    let curvature = (model_peak - exact_peak).abs();
+    Ok(ErrorEstimate {
+        position,
+        angle,
+        stress: None,
+        curvature,
+        peak: if exact_peak > 0.0 { curvature / exact_peak } else { 0.0 },
+        flagged: position > target.position * flexure.length()
+            || angle > target.angle
+            || curvature > target.stress * exact_peak,
+        reference_order: reference.orders().into_iter().max().unwrap_or(0),
+        reference_quadrature: reference.subintervals(),
+        exact: false,
+    })
+}
+
+/// The highest order `--order auto` raises a spatial component to: 32
+/// each, 96 coordinates, whose Hessian pass is already some thousand times
+/// the default's.
+pub const MAX_AUTO_ORDER: usize = 32;
+
+/// The lowest orders (from `flexure`'s, each raised to its
+/// [`reference`]'s) whose [`deflect`] answer under `load` meets `target`,
+/// with that answer's flexure, coordinates and estimate; as
+/// [`crate::estimate::deflect_auto`] for the planar flexure. Errors, saying
+/// how far off it still was, if orders [`MAX_AUTO_ORDER`] miss it.
+///
+/// # Example
+/// ```
+/// use flexure::section::SpatialSection;
+/// use flexure::spatial::{SpatialFlexure, SpatialLoad, deflect_auto};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
+/// let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 2.0, 2.0] };
+/// let (used, _, e) = deflect_auto(&f, &load, &Default::default()).unwrap();
+/// assert!(!e.flagged && used.orders()[2] > 2);
+/// ```
+pub fn deflect_auto(
+    flexure: &SpatialFlexure,
+    load: &SpatialLoad,
+    target: &Accuracy,
+) -> Result<(SpatialFlexure, Vec<f64>, ErrorEstimate)> {
+    let mut f = flexure.clone();
+    // Bounded: every pass raises each order by at least 3 until the cap.
+    loop {
+        let mut data = SpatialStatics::new(&f);
+        deflect(&f, load, &mut data, &Default::default())?;
+        let alpha = data.alpha().to_vec();
+        let e = deflect_error(&f, load, &alpha, target)?;
+        if !e.flagged {
+            return Ok((f, alpha, e));
+        }
+        if f.orders().iter().all(|&n| n >= MAX_AUTO_ORDER) {
+            let value = format!(
+                "auto (orders {:?} are estimated {:.3} % of L off in tip position and {:.3}° in tip rotation)",
+                f.orders(),
+                100.0 * e.position / f.length(),
+                e.angle.to_degrees()
+            );
+            return Err(crate::Error::invalid(
+                "order",
+                value,
+                "even orders 32 miss the accuracy target: loosen --accuracy or reduce the load",
+            ));
+        }
+        let raised = reference(&f, &alpha)?;
+        let orders = raised.orders().map(|n| n.min(MAX_AUTO_ORDER));
+        f = SpatialFlexure::new(f.length(), f.section().clone(), orders)?
+            .with_rest(&padded(&f, f.rest(), orders))?
+            .with_subintervals(raised.subintervals())?;
+    }
+}
