@@ -122,3 +122,53 @@ fn inertia_is_the_joints_own_distributed_mass() {
         }
     }
 }
+
+/// The second dimension behind the same interface. Reference: central
+/// differences (step 1e-6) of the spatial flexure's placement: column a of
+/// the motion subspace is (vee(∂_aR Rᵀ), ∂_a p), the root frame's angular
+/// velocity and origin velocity; the derivative matrices are the columns'
+/// differences; the gradient and stiffness those of the energy. 1e-7
+/// absolute on quantities of order one.
+#[test]
+fn a_spatial_flexure_keeps_the_joint_contract() {
+    use flexure::mechanism::JointState;
+    use flexure::section::SpatialSection;
+    use flexure::space::Spatial;
+    use flexure::spatial::SpatialFlexure;
+    let f = SpatialFlexure::new(0.7, SpatialSection::uniform(0.5, 1.5, 1.0).unwrap(), [3, 2, 3])
+        .unwrap()
+        .with_rest(&[0.1, 0.0, 0.0, 0.2, 0.0, 0.3, -0.1, 0.05])
+        .unwrap();
+    let q = [0.4, -0.2, 0.1, 0.6, -0.3, 0.9, 0.2, -0.1];
+    let n = q.len();
+    let at = |x: &[f64]| -> JointState<Spatial> { Joint::<Spatial>::evaluate(&f, x) };
+    let s = at(&q);
+    assert_eq!((s.jacobian.shape(), s.hessian.len()), ((6, n), 6));
+    let h = 1e-6;
+    for a in 0..n {
+        let (mut up, mut down) = (q.to_vec(), q.to_vec());
+        up[a] += h;
+        down[a] -= h;
+        let (su, sd) = (at(&up), at(&down));
+        let (ru, rd) = (su.pose.rotation.to_rotation_matrix(), sd.pose.rotation.to_rotation_matrix());
+        let spin = (ru.matrix() - rd.matrix()) / (2.0 * h) * s.pose.rotation.to_rotation_matrix().matrix().transpose();
+        let dp = (su.pose.translation.vector - sd.pose.translation.vector) / (2.0 * h);
+        let column = [spin[(2, 1)], spin[(0, 2)], spin[(1, 0)], dp.x, dp.y, dp.z];
+        for (i, c) in column.iter().enumerate() {
+            assert!((s.jacobian[(i, a)] - c).abs() < 1e-7, "S[{i},{a}] {} vs {c}", s.jacobian[(i, a)]);
+        }
+        // Column b's derivative along a is matrix i's entry (b, a).
+        for b in 0..n {
+            for i in 0..6 {
+                let fd = (su.jacobian[(i, b)] - sd.jacobian[(i, b)]) / (2.0 * h);
+                assert!((s.hessian[i][(b, a)] - fd).abs() < 1e-7, "dS[{i}][{b},{a}] {} vs {fd}", s.hessian[i][(b, a)]);
+            }
+            let k = (su.gradient[b] - sd.gradient[b]) / (2.0 * h);
+            assert!((s.stiffness[(b, a)] - k).abs() < 1e-7);
+        }
+        let g = (su.energy - sd.energy) / (2.0 * h);
+        assert!((s.gradient[a] - g).abs() < 1e-7, "∇U[{a}] {} vs {g}", s.gradient[a]);
+    }
+    // Rotations do not add in space: no planar fast path, no planar flexure.
+    assert!(Joint::<Spatial>::angle_row(&f).is_none() && Joint::<Spatial>::flexure(&f).is_none());
+}

@@ -20,7 +20,7 @@ pub mod sweep;
 mod tree;
 
 use crate::space::{Pose, Wrench};
-pub use joints::{Fixed, Joint, JointKind, Prismatic, Revolute};
+pub use joints::{Fixed, Joint, JointKind, JointState, Prismatic, Revolute};
 use nalgebra::{Point2, Vector2};
 
 /// A rigid body: a name and its inertia ([`Body::rigid_inertia`]).

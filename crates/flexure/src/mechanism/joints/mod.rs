@@ -12,6 +12,7 @@ mod fixed;
 mod flexure;
 mod prismatic;
 mod revolute;
+mod spatial_flexure;
 
 pub use fixed::Fixed;
 pub use prismatic::Prismatic;
@@ -22,6 +23,7 @@ use crate::joint::Flexure;
 use crate::kinematics::Kinematics;
 use crate::mass::MassModel;
 use crate::space::{Planar, Space};
+use crate::spatial::SpatialKinematics;
 use nalgebra::{DMatrix, DVector};
 
 /// A joint's data at one configuration: placement, motion subspace and its
@@ -61,6 +63,8 @@ enum Buffers {
     None,
     /// A planar flexure's kinematics.
     Flexure(Box<Kinematics>),
+    /// A spatial flexure's kinematics.
+    SpatialFlexure(Box<SpatialKinematics>),
 }
 
 impl<S: Space> JointState<S> {
