@@ -67,7 +67,7 @@ fn peak_curvature(flexure: &SpatialFlexure, alpha: &[f64]) -> f64 {
 
 /// The error of a [`deflect`] answer `alpha` under `load`: the tip's
 /// position and rotation against the reference model's equilibrium
-/// ([`reference`]), in the one shape every estimate has
+/// ([`reference()`]), in the one shape every estimate has
 /// ([`ErrorEstimate`]; its `curvature` is that of the curvature vector's
 /// peak change, and no stress is estimated yet).
 ///
@@ -124,7 +124,7 @@ pub fn deflect_error(
 pub const MAX_AUTO_ORDER: usize = 32;
 
 /// The lowest orders (from `flexure`'s, each raised to its
-/// [`reference`]'s) whose [`deflect`] answer under `load` meets `target`,
+/// [`reference()`]'s) whose [`deflect`] answer under `load` meets `target`,
 /// with that answer's flexure, coordinates and estimate; as
 /// [`crate::estimate::deflect_auto`] for the planar flexure. Errors, saying
 /// how far off it still was, if orders [`MAX_AUTO_ORDER`] miss it.

@@ -263,8 +263,9 @@ fn rotation<T: Scalar>(flexure: &SpatialFlexure, shapes: &[f64], a: &[T], b: &[T
     largest
 }
 
-/// [`rotation`] with its table of angle shapes made here: the largest
-/// rotation (rad) of a sampled cross-section between coordinates `a` and `b`.
+/// The largest rotation (rad) of a sampled cross-section between
+/// coordinates `a` and `b` (the continuation's step bound, with its table
+/// of angle shapes made here).
 pub fn rotation_between(flexure: &SpatialFlexure, a: &[f64], b: &[f64]) -> f64 {
     rotation(flexure, &angle_shapes(flexure), a, b)
 }
