@@ -38,6 +38,7 @@ mod quadrature;
 mod reference;
 mod section;
 mod section_exact;
+mod section_spatial;
 mod seeded;
 mod segments;
 mod sincos;
