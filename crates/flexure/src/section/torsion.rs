@@ -27,17 +27,17 @@ use std::f64::consts::PI;
 pub const MAX_TERMS: usize = 64;
 
 /// $\sum_{n\ \mathrm{odd}} n^{-5} = (1 - 2^{-5})\zeta(5)$.
-const ODD_ZETA5: f64 = 31.0 / 32.0 * 1.036_927_755_143_369_9;
+const ODD_ZETA5: f64 = 31.0 / 32.0 * 1.036_927_755_143_37;
 
 /// Catalan's constant $\sum_{n\ \mathrm{odd}}(-1)^{(n-1)/2}n^{-2}$.
-const CATALAN: f64 = 0.915_965_594_177_219_0;
+const CATALAN: f64 = 0.915_965_594_177_219;
 
 /// $1 - \tanh x = 2/(e^{2x} + 1)$, without cancellation.
 fn one_minus_tanh(x: f64) -> f64 {
     2.0 / ((2.0 * x).exp() + 1.0)
 }
 
-/// $\sum_{k < }$ `MAX_TERMS` of `term(n)` over odd $n$, stopping when a term no
+/// The sum of `term(n)` over the first [`MAX_TERMS`] odd $n$, stopping when a term no
 /// longer changes the sum.
 fn odd_sum(term: impl Fn(f64) -> f64) -> f64 {
     let mut sum = 0.0;
@@ -91,7 +91,7 @@ pub fn long_side_shear(r: f64) -> f64 {
 pub fn short_side_shear(r: f64) -> f64 {
     // Σ(−1)^k tanh/n² = Catalan − Σ(−1)^k (1 − tanh)/n².
     let tail = odd_sum(|n| {
-        let sign = if (n as usize / 2) % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if (n as usize / 2).is_multiple_of(2) { 1.0 } else { -1.0 };
         sign * one_minus_tanh(n * PI * r / 2.0) / (n * n)
     });
     8.0 / (PI * PI) * (CATALAN - tail)
