@@ -36,6 +36,7 @@ mod mechanism_weight;
 mod ode;
 mod quadrature;
 mod reference;
+mod rod;
 mod section;
 mod section_exact;
 mod section_spatial;

@@ -49,8 +49,8 @@ fn parts(x: Dual8) -> [f64; 8] {
 struct Conjugate {
     x: Vec<f64>,
     lambda: f64,
-    /// $\det\thinspace\partial m(L)/\partial m(0)$, up to a positive factor.
-    det: f64,
+    /// Whether every real eigenvalue of $\partial m(L)/\partial m(0)$ is positive.
+    positive: bool,
 }
 
 /// The rod by multiple shooting, as a [`Problem`].
@@ -63,6 +63,9 @@ struct Conjugate {
 /// state, and at the tip $k\mu(L) - \lambda M$. The Jacobian comes from
 /// dual numbers carried through the integrator: each segment's
 /// sensitivities are the variational equations' solution.
+///
+/// A last unknown $z$ with residual $k(z - \lambda\Phi)$ carries the load
+/// factor into the steps' distance ([`Chain::phase`]).
 ///
 /// The quaternion needs no chart: the node's four components are unknowns
 /// and the mismatch of four components is its residual, so no rotation
@@ -166,6 +169,15 @@ impl<'a> Chain<'a> {
         (self.load, self.last) = (load, Conjugate::default());
     }
 
+    /// $\Phi = \omega L$: the most the Jacobi fields' phase can change from
+    /// rest to the full load; the unknown $z = \lambda\Phi$ carries it, so that
+    /// no continuation step changes it by more than a section may turn, and
+    /// no step passes two conjugate points at once where the shape itself
+    /// hardly changes (a straight column).
+    fn phase(&self) -> f64 {
+        self.rate * self.rod.length
+    }
+
     /// The number of segments.
     pub(super) fn segments(&self) -> usize {
         self.segments
@@ -243,6 +255,7 @@ impl<'a> Chain<'a> {
     pub(super) fn shot(&mut self, mu0: [f64; 3], lambda: f64) -> Result<Vec<f64>> {
         let mut x = vec![0.0; self.dim()];
         x[..3].copy_from_slice(&mu0);
+        x[self.dim() - 1] = lambda * self.phase();
         self.step = FIRST_STEP * (self.nodes[1] - self.nodes[0]);
         let f = self.force(lambda);
         for j in 0..self.segments - 1 {
@@ -362,9 +375,20 @@ impl<'a> Chain<'a> {
                 sens = if size > 0.0 && size.is_finite() { next.map(|r| r.map(|v| v / size)) } else { next };
             }
             let c = Matrix3::from_fn(|r, col| sens[4 + r][col]);
+            let size = c.amax();
+            let positive = c.complex_eigenvalues().iter().all(|e| e.im.abs() > 1e-9 * size || e.re > 0.0);
             self.last.x.clear();
             self.last.x.extend_from_slice(x);
-            (self.last.lambda, self.last.det) = (lambda, c.determinant());
+            (self.last.lambda, self.last.positive) = (lambda, positive);
+        }
+        // The load's phase: z = λΦ.
+        let z = self.dim() - 1;
+        residual[z] = k * (x[z] - lambda * self.phase());
+        if let Some(jac) = jacobian {
+            jac[z * n + z] = k;
+        }
+        if let Some(dl) = dlambda {
+            dl[z] = -k * self.phase();
         }
         if residual.iter().all(|r| r.is_finite()) {
             Ok(())
@@ -405,7 +429,7 @@ fn frame(s: f64, y: &[f64; STATE], l: f64, k: f64) -> Frame {
 
 impl Problem<f64> for Chain<'_> {
     fn dim(&self) -> usize {
-        3 + STATE * (self.segments - 1)
+        3 + STATE * (self.segments - 1) + 1
     }
 
     fn evaluate(
@@ -424,7 +448,9 @@ impl Problem<f64> for Chain<'_> {
         self.sweep(x, lambda, residual, jacobian, dlambda)
     }
 
-    /// The conjugate-point test: $\det\thinspace\partial m(L)/\partial m(0) > 0$.
+    /// The conjugate-point test: no real eigenvalue of $\partial m(L)/\partial m(0)$
+    /// is zero or negative (its determinant then keeps the sign it has at
+    /// rest, and a double conjugate point, as a round column's, is seen).
     fn stable(&mut self, x: &[f64], lambda: f64, _jacobian: &[f64]) -> bool {
         if !(self.last.lambda == lambda && self.last.x == x) {
             let (mut r, mut d) = (vec![0.0; x.len()], vec![0.0; x.len()]);
@@ -432,7 +458,7 @@ impl Problem<f64> for Chain<'_> {
                 return false;
             }
         }
-        self.last.det > 0.0
+        self.last.positive
     }
 
     /// The largest rotation between the two states of a node's section,
@@ -452,7 +478,8 @@ impl Problem<f64> for Chain<'_> {
                 most = most.max(2.0 * (dot.abs() / (na * nb)).min(1.0).acos());
             }
         }
-        most
+        let z = self.dim() - 1;
+        most.max((a[z] - b[z]).abs())
     }
 
     fn scale(&self) -> f64 {

@@ -16,7 +16,7 @@ use nalgebra::{Matrix3, Matrix6, Vector3};
 /// $\delta m = \delta M + r\times\delta F$ with $r = p_0(L) - p_0(s)$, the
 /// sections turn by $\delta\theta^{\prime} = R_0 K^{-1}R_0^T\delta m$ and move by
 /// $\delta p^{\prime} = \delta\theta\times R_0 e_1$, and integrating by parts,
-/// $$C = \int_0^L A^T R_0 K^{-1} R_0^T A\thinspace ds, \qquad A = \begin{bmatrix} I & [r]_\times\end{bmatrix},$$
+/// $$C = \int_0^L A^T R_0 K^{-1} R_0^T A\thinspace ds, \qquad A = \begin{bmatrix} I & \lbrack r\rbrack_\times\end{bmatrix},$$
 /// symmetric and positive semi-definite (an inextensible rod does not
 /// stretch: $C$ is singular along the tip tangent's force). Integrated by the
 /// rod's own integrator to `tol` across the section's breakpoints, after a

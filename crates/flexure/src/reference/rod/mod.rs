@@ -330,12 +330,13 @@ pub const MAX_BISECTIONS: usize = 60;
 /// conjugate point, searched up to `max_factor`.
 ///
 /// One path to `max_factor` ([`solver::continuation`], stopping where
-/// stability is lost) places the loss within a step, $\lambda^*$; a second
+/// stability is lost, its steps down to $10^{-3}$ at least) places the loss within a step, $\lambda^*$; a second
 /// path to $0.98\lambda^*$ gives a stable state just below it, and
 /// bisection on the load, each probe a Newton solve from the last state
 /// confirmed stable (so it stays on the path's branch; a probe that does
 /// not converge, past a fold, counts as lost), brackets the first sign
-/// change of $\det\thinspace\partial m(L)/\partial m(0)$ to $10^{-10}$ relative, in at most
+/// change of $\det\thinspace\partial m(L)/\partial m(0)$ (a real eigenvalue through zero) to the
+/// integrator's relative tolerance (at least $10^{-10}$), in at most
 /// [`MAX_BISECTIONS`] probes. The answer, as
 /// [`StabilityLimit::Lost`], is the largest factor confirmed stable.
 /// Errors name `max_factor`; a first path that stalls answers
@@ -359,9 +360,12 @@ pub fn stability_limit(rod: &Rod, load: &TipWrench, max_factor: f64, settings: &
     crate::error::positive("max_factor", max_factor)?;
     let scaled = TipWrench { moment: load.moment * max_factor, force: load.force * max_factor };
     let mut chain = Chain::new(rod, scaled, settings.ode)?;
+    // The paths only place the loss for the bisection, which starts 2 %
+    // either side of it: steps need not shrink below a thousandth.
+    let coarse = solver::Settings { min_step: settings.solver.min_step.max(1e-3), ..settings.solver };
     let follow = |chain: &mut Chain, ws: &mut solver::Workspace<f64>| -> Result<solver::Path> {
         ws.x = chain.shot([0.0; 3], 0.0)?;
-        solver::continuation_while_stable(chain, ws, &settings.solver)
+        solver::continuation_while_stable(chain, ws, &coarse)
     };
     let mut ws = solver::Workspace::new(chain.dim());
     let first = match follow(&mut chain, &mut ws) {
@@ -384,8 +388,10 @@ pub fn stability_limit(rod: &Rod, load: &TipWrench, max_factor: f64, settings: &
     chain.set_load(scaled);
     let (mut lo, mut hi) = (below, (1.02 * first).min(1.0));
     let mut x_lo = ws.x.clone();
+    // No finer than the integration can tell.
+    let precision = settings.ode.relative.max(1e-10);
     for _ in 0..MAX_BISECTIONS {
-        if hi - lo <= 1e-10 * hi {
+        if hi - lo <= precision * hi {
             break;
         }
         let mid = 0.5 * (lo + hi);
