@@ -8,12 +8,14 @@
 //! - [`compliance`]: the compliance ODE (Eq. 34);
 //! - [`mod@column`]: the linearized buckling load of a straight column by shooting;
 //! - [`euler`]: Euler's closed-form buckling loads (uniform columns);
-//! - [`vibration`]: linear vibration of the straight beam by shooting on the frequency.
+//! - [`vibration`]: linear vibration of the straight beam by shooting on the frequency;
+//! - [`rod`]: the spatial Kirchhoff rod under a tip wrench by multiple shooting, with conjugate points.
 
 pub mod column;
 pub mod compliance;
 pub mod elastica;
 pub mod euler;
+pub mod rod;
 pub mod vibration;
 
 use crate::error::Result;

@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 
 mod spatial;
 mod spec;
-pub use spatial::SpatialSection;
+pub mod torsion;
+pub use spatial::{Shear, SpatialSection, SpatialStress, StressPoint};
 pub use spec::{FlexureSpec, SectionSpec};
 
 /// A positive quantity along the flexure, a function of $t = s/L$.

@@ -10,7 +10,8 @@
 //! that order. $EI_z$ is the planar model's $EI$: in-plane bending.
 
 use super::Profile;
-use crate::error::Result;
+use super::torsion;
+use crate::error::{Error, Result};
 
 /// The three stiffnesses of a spatial flexure's section along its length.
 ///
@@ -32,6 +33,92 @@ pub struct SpatialSection {
 enum Stiffness {
     /// $GJ$, $EI_y$, $EI_z$ as profiles (N·m²).
     Given { gj: Profile, ei_y: Profile, ei_z: Profile },
+    /// A solid rectangle of modulus $E$ and shear modulus $G$ (Pa), `width`
+    /// along $z$ and `thickness` along $y$ (m).
+    Rectangle { modulus: f64, shear: f64, width: Profile, thickness: Profile },
+    /// A solid circle of modulus $E$ and shear modulus $G$ (Pa), `diameter` (m).
+    Circle { modulus: f64, shear: f64, diameter: Profile },
+}
+
+/// How the shear modulus $G$ of a section is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shear {
+    /// Poisson's ratio $\nu \in (-1, 0.5]$ of an isotropic material: $G = E/(2(1 + \nu))$.
+    Poisson(f64),
+    /// The shear modulus $G$ itself (Pa).
+    Modulus(f64),
+}
+
+impl Shear {
+    /// $G$ (Pa) for the Young's modulus `modulus`; errors name `poisson` or `shear_modulus`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::Shear;
+    /// assert_eq!(Shear::Poisson(0.25).modulus(200e9).unwrap(), 80e9);
+    /// assert!(Shear::Poisson(0.6).modulus(200e9).is_err());
+    /// assert!(Shear::Modulus(-1.0).modulus(200e9).is_err());
+    /// ```
+    pub fn modulus(self, modulus: f64) -> Result<f64> {
+        match self {
+            Shear::Poisson(nu) if nu.is_finite() && nu > -1.0 && nu <= 0.5 => Ok(modulus / (2.0 * (1.0 + nu))),
+            Shear::Poisson(nu) => Err(Error::invalid("poisson", nu, "must lie in (-1, 0.5]")),
+            Shear::Modulus(g) => crate::error::positive("shear_modulus", g),
+        }
+    }
+}
+
+/// Where over a section its peak von Mises stress sits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StressPoint {
+    /// A corner of a rectangle: both bending stresses, no torsional shear.
+    Corner,
+    /// The middle of a side of length `width` ($y = \pm t/2$, $z = 0$): the
+    /// bending stress about $z$ and that side's torsional shear.
+    WidthSide,
+    /// The middle of a side of length `thickness` ($z = \pm w/2$, $y = 0$):
+    /// the bending stress about $y$ and that side's torsional shear.
+    ThicknessSide,
+    /// The rim of a circle where the resultant bending stress peaks (the
+    /// torsional shear is the same all round).
+    Rim,
+}
+
+/// The peak stresses over one cross-section (Pa, never negative).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SpatialStress {
+    /// The largest normal stress of bending about $y$, $E\lvert\Delta\kappa_y\rvert w/2$
+    /// (rectangle) or $E\lvert\Delta\kappa_y\rvert d/2$ (circle).
+    pub bending_y: f64,
+    /// The largest normal stress of bending about $z$, $E\lvert\Delta\kappa_z\rvert t/2$ or $E\lvert\Delta\kappa_z\rvert d/2$.
+    pub bending_z: f64,
+    /// The largest torsional shear: $k(r)\thinspace G\lvert\Delta\tau\rvert c$ at the middle of a
+    /// rectangle's long sides ([`torsion::long_side_shear`]), $G\lvert\Delta\tau\rvert d/2$ on a circle's rim.
+    pub shear: f64,
+    /// The peak von Mises stress $\sqrt{\sigma^2 + 3\tau^2}$ over the candidate points ([`StressPoint`]).
+    pub von_mises: f64,
+    /// Where `von_mises` peaks.
+    pub at: StressPoint,
+}
+
+impl SpatialStress {
+    /// `yield_strength` (Pa) over the peak von Mises stress (infinite at no stress).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, Shear, SpatialSection};
+    /// let s = SpatialSection::circle(200e9, 0.3, Profile::Constant(1e-3)).unwrap();
+    /// // Bending alone: σ = E κ d/2 = 200e9 · 1 · 5e-4 = 100 MPa.
+    /// let stress = s.stress(0.5, [0.0, 1.0, 0.0]).unwrap();
+    /// assert!((stress.safety_factor(250e6).unwrap() - 2.5).abs() < 1e-12);
+    /// assert!(stress.safety_factor(0.0).is_err());
+    /// # let _ = Shear::Poisson(0.3);
+    /// ```
+    pub fn safety_factor(&self, yield_strength: f64) -> Result<f64> {
+        let y = crate::error::positive("yield_strength", yield_strength)?;
+        Ok(if self.von_mises > 0.0 { y / self.von_mises } else { f64::INFINITY })
+    }
 }
 
 impl SpatialSection {
@@ -50,18 +137,165 @@ impl SpatialSection {
         Self::given(Profile::Constant(gj), Profile::Constant(ei_y), Profile::Constant(ei_z))
     }
 
+    /// A solid rectangle of Young's modulus `modulus` $E$ (Pa), shear
+    /// modulus from `shear`, `width` $w(t)$ along $z$ and `thickness` $h(t)$
+    /// along $y$ (m):
+    /// $$EI_z = \frac{E w h^3}{12}, \qquad EI_y = \frac{E h w^3}{12}, \qquad
+    /// GJ = G\thinspace\beta(r)\thinspace b c^3,$$
+    /// with $b = \max(w, h)$, $c = \min(w, h)$, $r = b/c$ and $\beta$ of
+    /// Timoshenko and Goodier's series ([`torsion::beta`]). $E$ is the beam's,
+    /// not the plate modulus $E/(1 - \nu^2)$ of the planar [`super::Section`]:
+    /// a strip that twists and bends both ways is a beam. Errors name
+    /// `modulus`, `poisson` or `shear_modulus`, `width` and `thickness`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, Shear, SpatialSection};
+    /// // A steel strip 10 mm × 0.2 mm (r = 50): GJ ≈ G w h³/3 (1 − 0.630/r).
+    /// let s = SpatialSection::rectangle(200e9, Shear::Poisson(0.25), Profile::Constant(0.01), Profile::Constant(2e-4))
+    ///     .unwrap();
+    /// let [gj, ei_y, ei_z] = s.stiffness(0.0);
+    /// let thin = 80e9 * 0.01 * 2e-4f64.powi(3) / 3.0 * (1.0 - 0.630_25 / 50.0);
+    /// assert!((gj - thin).abs() < 1e-6 * thin);
+    /// assert!((ei_z - 200e9 * 0.01 * 2e-4f64.powi(3) / 12.0).abs() < 1e-20);
+    /// assert!((ei_y / ei_z - 2500.0).abs() < 1e-9);
+    /// ```
+    pub fn rectangle(modulus: f64, shear: Shear, width: Profile, thickness: Profile) -> Result<Self> {
+        let e = crate::error::positive("modulus", modulus)?;
+        let g = shear.modulus(e)?;
+        width.check("width")?;
+        thickness.check("thickness")?;
+        Ok(Self { stiffness: Stiffness::Rectangle { modulus: e, shear: g, width, thickness } })
+    }
+
+    /// A solid circle of Young's modulus `modulus` $E$ (Pa), Poisson's ratio
+    /// `poisson` $\nu$ ($G = E/(2(1 + \nu))$) and `diameter` $d(t)$ (m):
+    /// $EI_y = EI_z = E\pi d^4/64$ and $GJ = G\pi d^4/32$. Errors name
+    /// `modulus`, `poisson` and `diameter`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// let s = SpatialSection::circle(200e9, 0.25, Profile::Constant(1e-3)).unwrap();
+    /// let [gj, ei_y, ei_z] = s.stiffness(0.5);
+    /// let i = std::f64::consts::PI * 1e-12 / 64.0;
+    /// assert!((ei_y - 200e9 * i).abs() < 1e-15 && ei_y == ei_z);
+    /// assert!((gj - 80e9 * 2.0 * i).abs() < 1e-15);
+    /// ```
+    pub fn circle(modulus: f64, poisson: f64, diameter: Profile) -> Result<Self> {
+        let e = crate::error::positive("modulus", modulus)?;
+        let g = Shear::Poisson(poisson).modulus(e)?;
+        diameter.check("diameter")?;
+        Ok(Self { stiffness: Stiffness::Circle { modulus: e, shear: g, diameter } })
+    }
+
     /// $(GJ, EI_y, EI_z)$ (N·m²) at $t = s/L$: the weights of the twist and
     /// the two bending curvatures in the energy.
     pub fn stiffness(&self, t: f64) -> [f64; 3] {
         match &self.stiffness {
             Stiffness::Given { gj, ei_y, ei_z } => [gj.at(t), ei_y.at(t), ei_z.at(t)],
+            Stiffness::Rectangle { modulus, shear, width, thickness } => {
+                let (w, h) = (width.at(t), thickness.at(t));
+                let (b, c) = (w.max(h), w.min(h));
+                [
+                    shear * torsion::beta(b / c) * b * c * c * c,
+                    modulus * h * w * w * w / 12.0,
+                    modulus * w * h * h * h / 12.0,
+                ]
+            }
+            Stiffness::Circle { modulus, shear, diameter } => {
+                let i = std::f64::consts::PI * diameter.at(t).powi(4) / 64.0;
+                [2.0 * shear * i, modulus * i, modulus * i]
+            }
+        }
+    }
+
+    /// The peak stresses over the cross-section at $t = s/L$ under the
+    /// curvature change `u` $= u - u^0 = (\Delta\tau, \Delta\kappa_y, \Delta\kappa_z)$ (1/m):
+    /// the bending stresses $\sigma_y = E\lvert\Delta\kappa_y\rvert\thinspace w/2$ (largest at
+    /// $z = \pm w/2$) and $\sigma_z = E\lvert\Delta\kappa_z\rvert\thinspace h/2$ (at $y = \pm h/2$), the
+    /// torsional shears at the middles of the sides ([`torsion`]), and the
+    /// von Mises stress $\sqrt{\sigma^2 + 3\tau^2}$ at the candidates where it
+    /// can peak:
+    ///
+    /// - the corners: $\sigma_y + \sigma_z$, no shear;
+    /// - the middle of the sides of length $w$: $\sqrt{\sigma_z^2 + 3\tau_w^2}$;
+    /// - the middle of the sides of length $h$: $\sqrt{\sigma_y^2 + 3\tau_h^2}$.
+    ///
+    /// Points between them are not searched: along a side the shear falls
+    /// from its middle to zero at the corner as the other bending stress
+    /// grows, and the engineering rule (Roark, §10.3) takes the larger of
+    /// the two ends; [`SpatialStress::at`] says which governs. A circle's
+    /// peak is on the rim where the resultant bending stress
+    /// $E\sqrt{\Delta\kappa_y^2 + \Delta\kappa_z^2}\thinspace d/2$ peaks, with the
+    /// shear $G\lvert\Delta\tau\rvert d/2$ that is the same all round.
+    ///
+    /// Errors: a section given by its stiffnesses alone has no geometry
+    /// (`section`), and a non-finite `u` or `t` outside $[0, 1]$ names it.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, Shear, SpatialSection, StressPoint};
+    /// let s = SpatialSection::rectangle(200e9, Shear::Poisson(0.25), Profile::Constant(0.01), Profile::Constant(1e-3))
+    ///     .unwrap();
+    /// // Bending both ways: the corner carries σ_y + σ_z.
+    /// let b = s.stress(0.0, [0.0, 0.01, 0.1]).unwrap();
+    /// assert!((b.von_mises - (200e9 * 0.01 * 5e-3 + 200e9 * 0.1 * 5e-4)).abs() < 1e-3);
+    /// assert_eq!(b.at, StressPoint::Corner);
+    /// // Twist alone: the thin strip's shear Gθc at the middle of its wide faces.
+    /// let t = s.stress(0.0, [0.1, 0.0, 0.0]).unwrap();
+    /// assert_eq!(t.at, StressPoint::WidthSide);
+    /// assert!((t.shear - 80e9 * 0.1 * 1e-3).abs() < 1e-6 * t.shear);
+    /// ```
+    pub fn stress(&self, t: f64, u: [f64; 3]) -> Result<SpatialStress> {
+        if !(0.0..=1.0).contains(&t) {
+            return Err(Error::invalid("t", t, "must lie in [0, 1] (s/L)"));
+        }
+        for (name, v) in ["twist", "kappa_y", "kappa_z"].into_iter().zip(u) {
+            crate::error::finite(name, v)?;
+        }
+        let [twist, ky, kz] = u.map(f64::abs);
+        match &self.stiffness {
+            Stiffness::Given { .. } => Err(Error::invalid(
+                "section",
+                "stiffnesses given directly",
+                "has no geometry for stress: give a rectangle or a circle",
+            )),
+            Stiffness::Rectangle { modulus, shear, width, thickness } => {
+                let (w, h) = (width.at(t), thickness.at(t));
+                let (sy, sz) = (modulus * ky * w / 2.0, modulus * kz * h / 2.0);
+                let (c, r) = (w.min(h), w.max(h) / w.min(h));
+                let (long, short) =
+                    (shear * twist * c * torsion::long_side_shear(r), shear * twist * c * torsion::short_side_shear(r));
+                // The sides of length w are the long ones when w ≥ h.
+                let (tau_w, tau_h) = if w >= h { (long, short) } else { (short, long) };
+                let candidates = [
+                    (sy + sz, StressPoint::Corner),
+                    ((sz * sz + 3.0 * tau_w * tau_w).sqrt(), StressPoint::WidthSide),
+                    ((sy * sy + 3.0 * tau_h * tau_h).sqrt(), StressPoint::ThicknessSide),
+                ];
+                let (von_mises, at) = candidates
+                    .into_iter()
+                    .fold((0.0, StressPoint::Corner), |best, c| if c.0 > best.0 { c } else { best });
+                Ok(SpatialStress { bending_y: sy, bending_z: sz, shear: long, von_mises, at })
+            }
+            Stiffness::Circle { modulus, shear, diameter } => {
+                let d = diameter.at(t);
+                let (sy, sz, tau) = (modulus * ky * d / 2.0, modulus * kz * d / 2.0, shear * twist * d / 2.0);
+                let sigma = sy.hypot(sz);
+                let von_mises = (sigma * sigma + 3.0 * tau * tau).sqrt();
+                Ok(SpatialStress { bending_y: sy, bending_z: sz, shear: tau, von_mises, at: StressPoint::Rim })
+            }
         }
     }
 
     /// Whether all three are the same all along (the Gram matrices are then diagonal).
     pub fn is_uniform(&self) -> bool {
+        let constant = |p: &Profile| matches!(p, Profile::Constant(_));
         match &self.stiffness {
-            Stiffness::Given { gj, ei_y, ei_z } => [gj, ei_y, ei_z].iter().all(|p| matches!(p, Profile::Constant(_))),
+            Stiffness::Given { gj, ei_y, ei_z } => [gj, ei_y, ei_z].into_iter().all(constant),
+            Stiffness::Rectangle { width, thickness, .. } => constant(width) && constant(thickness),
+            Stiffness::Circle { diameter, .. } => constant(diameter),
         }
     }
 
@@ -69,12 +303,13 @@ impl SpatialSection {
     /// points), increasing; integrals split there.
     pub fn breakpoints(&self) -> Vec<f64> {
         let mut out: Vec<f64> = Vec::new();
-        match &self.stiffness {
-            Stiffness::Given { gj, ei_y, ei_z } => {
-                for p in [gj, ei_y, ei_z] {
-                    out.extend(p.kinks().iter().map(|k| k[0]));
-                }
-            }
+        let profiles: Vec<&Profile> = match &self.stiffness {
+            Stiffness::Given { gj, ei_y, ei_z } => vec![gj, ei_y, ei_z],
+            Stiffness::Rectangle { width, thickness, .. } => vec![width, thickness],
+            Stiffness::Circle { diameter, .. } => vec![diameter],
+        };
+        for p in profiles {
+            out.extend(p.kinks().iter().map(|k| k[0]));
         }
         out.retain(|t| *t > 0.0 && *t < 1.0);
         out.sort_by(f64::total_cmp);
