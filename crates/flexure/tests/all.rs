@@ -49,6 +49,7 @@ mod space_spatial;
 mod spatial_energy;
 mod spatial_kinematics;
 mod spatial_statics;
+mod spatial_validation;
 mod stages;
 mod statics;
 mod tendon;
