@@ -21,7 +21,8 @@
 //!   dead tip wrench [`SpatialLoad`], its stability (lateral-torsional
 //!   buckling included) and the tip's 6 × 6 compliance;
 //! - [`deflect_error`] and [`deflect_auto`]: the error estimate against a
-//!   refined model, and the orders that meet an accuracy target.
+//!   refined model, and the orders that meet an accuracy target;
+//! - [`peak_stress`]: the peak von Mises stress along it.
 
 mod energy;
 mod estimate;
@@ -30,6 +31,7 @@ mod kinematics;
 mod magnus;
 mod statics;
 mod step;
+mod stress;
 
 pub use energy::{energy, energy_gradient};
 pub use estimate::{MAX_AUTO_ORDER, deflect_auto, deflect_error, padded, reference};
@@ -38,3 +40,4 @@ pub use kinematics::{SpatialKinematics, pose_root_tip, update};
 pub use statics::{
     SpatialLoad, SpatialStatics, compliance, correct, deflect, rotation_between, stability_limit, tip_stiffness,
 };
+pub use stress::{SpatialPeak, peak_stress, stress};
