@@ -201,6 +201,7 @@ pub mod linalg;
 pub mod mass;
 pub mod mechanism;
 pub mod ode;
+pub mod prb;
 pub mod quadrature;
 pub mod reference;
 pub mod report;

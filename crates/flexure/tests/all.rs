@@ -34,6 +34,7 @@ mod mechanism_derivatives;
 mod mechanism_files;
 mod mechanism_weight;
 mod ode;
+mod prb;
 mod quadrature;
 mod reference;
 mod rod;
