@@ -11,6 +11,7 @@ mod dynamics;
 mod joint;
 mod mechanism;
 mod reference;
+mod rod;
 mod statics;
 
 /// Seeded inputs, cycled so each call sees different arguments.
@@ -26,5 +27,14 @@ pub fn inputs(count: usize, width: usize) -> Vec<f64> {
         .collect()
 }
 
-criterion_group!(benches, joint::run, statics::run, batch::run, mechanism::run, reference::run, dynamics::run);
+criterion_group!(
+    benches,
+    joint::run,
+    statics::run,
+    batch::run,
+    mechanism::run,
+    reference::run,
+    rod::run,
+    dynamics::run
+);
 criterion_main!(benches);
