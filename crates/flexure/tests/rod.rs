@@ -281,3 +281,14 @@ fn bad_input_and_stalls_are_reported() {
         other => panic!("expected a stall, got {other:?}"),
     }
 }
+
+/// Under a dead moment alone m ≡ M and ∂m(L)/∂m(0) = I: no conjugate point
+/// at any factor (Ziegler: the clamped rod under a dead twisting moment has
+/// no static buckling load), so the search answers stable up to its bound.
+#[test]
+fn dead_moment_alone_has_no_conjugate_point() {
+    let rod = Rod::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.2).unwrap()).unwrap();
+    let load = wrench([1.5, 0.3, -0.2], [0.0; 3]);
+    let limit = rod::stability_limit(&rod, &load, 2.0, &Settings::with_tolerance(1e-6)).unwrap();
+    assert_eq!(limit, StabilityLimit::StableUpTo { factor: 2.0, stalled: None });
+}

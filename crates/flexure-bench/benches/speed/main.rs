@@ -11,6 +11,7 @@ mod dynamics;
 mod joint;
 mod mechanism;
 mod reference;
+mod rod;
 mod spatial;
 mod statics;
 
@@ -34,6 +35,7 @@ criterion_group!(
     batch::run,
     mechanism::run,
     reference::run,
+    rod::run,
     dynamics::run,
     spatial::run
 );

@@ -36,15 +36,26 @@
 //! **Stability by conjugate points.** The Jacobi fields of the clamped
 //! rod, $\delta R(0) = 0$, $\delta p(0) = 0$, $\delta m(0) = e_i$, are the
 //! dual parts the shooting carries; their tip moments form
-//! $\partial m(L)/\partial m(0)$. Its determinant is 1 at rest, and it
-//! vanishes exactly where the linearized clamped–loaded problem
-//! $\delta R(0) = 0$, $\delta m(L) = 0$ has a solution: a conjugate point
-//! at the tip. Under a dead force (a conservative load, energy
-//! $\int W\thinspace ds - F\cdot p(L)$) that is where the second variation of
-//! the energy first stops being positive along a path from rest, so the
-//! loading path is stable until the first load factor where the determinant
-//! changes sign, and stays unstable after it (a second change does not
-//! restore stability: [`Solution::stable`] reads the whole path).
+//! $N = \partial m(L)/\partial m(0)$, the identity at rest. $N$ is singular
+//! exactly where the linearized clamped–loaded problem $\delta R(0) = 0$,
+//! $\delta m(L) = 0$ has a solution: a conjugate point at the tip. Under a
+//! dead force (a conservative load, energy $\int W\thinspace ds - F\cdot p(L)$)
+//! that is where the second variation of the energy first stops being
+//! positive along a path from rest. A state counts as stable while no real
+//! eigenvalue of $N$ is zero or negative: the determinant's sign change
+//! where one real eigenvalue passes zero, and also a double conjugate
+//! point (a round column's two bending planes at once), where the
+//! determinant touches zero without changing sign. The loading path is
+//! stable until the first load factor where that fails, and stays
+//! unstable after it ([`Solution::stable`] reads the whole path). So that
+//! no continuation step passes two conjugate points where the shape
+//! itself hardly changes (a straight column), the shooting carries the
+//! load's phase $z = \lambda\omega L$ as an unknown, $\omega$ the fastest rate
+//! of the Jacobi fields, $\max(\sqrt{|F|/EI_{min}}, (|M| + L|F|)/EI_{min})$,
+//! and no step changes it by more than a section may turn. This is the
+//! test at the tip along the path, not a count of conjugate points along
+//! $s$ (Manning's Dirichlet–Neumann index): a state reached in one jump
+//! past several conjugate points would not be judged by it.
 //!
 //! **Dead moments.** A moment of fixed direction is not conservative for
 //! finite rotations in space (its work depends on the rotation's path, not
@@ -330,8 +341,8 @@ pub const MAX_BISECTIONS: usize = 60;
 /// conjugate point, searched up to `max_factor`.
 ///
 /// One path to `max_factor` ([`solver::continuation`], stopping where
-/// stability is lost, its steps down to $10^{-3}$ at least) places the loss within a step, $\lambda^*$; a second
-/// path to $0.98\lambda^*$ gives a stable state just below it, and
+/// stability is lost, its steps down to $10^{-3}$ at least) places the loss within a step, $\lambda^{\ast}$; a second
+/// path to $0.98\lambda^{\ast}$ gives a stable state just below it, and
 /// bisection on the load, each probe a Newton solve from the last state
 /// confirmed stable (so it stays on the path's branch; a probe that does
 /// not converge, past a fold, counts as lost), brackets the first sign
