@@ -171,7 +171,8 @@ fn rest_compliance_is_the_cantilevers_closed_forms() {
 /// bending raises the load by the factor 1/√((1 − EI_z/EI_y)(1 − GJ/EI_y))
 /// = 1.000115; the model meets Michell to 2e-4 at orders 6 (measured:
 /// 1.00014 at 6 and 8, 1.0095 at 3, 1.0011 at 4). With EI_y only 10·EI_z
-/// the pre-buckling bending raises the load further (1.188 measured).
+/// the pre-buckling bending raises the load further (1.188 measured, the
+/// exact rod's conjugate point to 2e-6: tests/spatial_validation.rs).
 #[test]
 fn a_narrow_strip_buckles_sideways_at_michells_load() {
     let (l, gj, ei_z): (f64, f64, f64) = (1.0, 1.3, 1.0);

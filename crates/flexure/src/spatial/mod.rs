@@ -29,6 +29,7 @@ mod estimate;
 mod flexure;
 mod kinematics;
 mod magnus;
+mod spec;
 mod statics;
 mod step;
 mod stress;
@@ -37,6 +38,7 @@ pub use energy::{energy, energy_gradient};
 pub use estimate::{MAX_AUTO_ORDER, deflect_auto, deflect_error, padded, reference};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
+pub use spec::{DEFAULT_POISSON, SpatialSpec};
 pub use statics::{
     SpatialLoad, SpatialStatics, compliance, correct, deflect, rotation_between, stability_limit, tip_stiffness,
 };
