@@ -8,7 +8,7 @@
 //! $$C_1 = [\alpha_1, \alpha_2]^{\prime},\quad C_2 = -\tfrac1{60}[\alpha_1, 2\alpha_3 + C_1]^{\prime},\quad
 //!   \Omega = \alpha_1 + \tfrac1{12}\alpha_3 + \tfrac1{240}[-20\alpha_1 - \alpha_3 + C_1,\ \alpha_2 + C_2]^{\prime}$$
 //! (Blanes, Casas and Ros, BIT 40, 2000; Blanes, Casas, Oteo and Ros,
-//! Physics Reports 470, 2009, Eq. 4.?; Iserles et al., Acta Numerica 9,
+//! Physics Reports 470, 2009, Sec. 4; Iserles et al., Acta Numerica 9,
 //! 2000, Sec. 4). Those papers integrate $Y^{\prime} = A Y$; the flexure's
 //! $g^{\prime} = g\hat\xi$ multiplies on the right, which is the same equation in
 //! the opposite Lie algebra, so each bracket is taken reversed,
