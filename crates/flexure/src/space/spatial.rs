@@ -69,8 +69,41 @@ const SERIES: [[f64; TERMS]; 3] = {
 const TERMS_SMALL: usize = 9;
 const TERMS_UNIT: usize = 12;
 
+/// $f_1, f_2, f_3$ alone below $x = 4$: $f_2$ and $f_3$ by their series split
+/// into even and odd powers (Estrin's scheme: four short chains of
+/// multiply-adds instead of two long ones), with as many terms as $x$ needs
+/// (the first left out below $10^{-17}$ of the value), and $f_1 = 1 - x f_3$
+/// (no cancellation below $x = 4$).
+#[inline(always)]
+fn values<T: Scalar>(x: T) -> [T; 3] {
+    let terms = if x.re() < 0.0625 {
+        6
+    } else if x.re() < 0.25 {
+        8
+    } else if x.re() < 1.0 {
+        TERMS_UNIT
+    } else {
+        TERMS
+    };
+    let x2 = x * x;
+    // P(x) = E(x²) + x·O(x²), with E and O by Horner's rule in x².
+    let half = |c: &[f64; TERMS], parity: usize| {
+        let mut k = (terms - 1 - parity) / 2 * 2 + parity;
+        let mut v = T::c(c[k]);
+        while k >= 2 {
+            k -= 2;
+            v = v * x2 + T::c(c[k]);
+        }
+        v
+    };
+    let f2 = half(&SERIES[1], 0) + x * half(&SERIES[1], 1);
+    let f3 = half(&SERIES[2], 0) + x * half(&SERIES[2], 1);
+    [T::one() - x * f3, f2, f3]
+}
+
 /// The coefficients at $x = \theta^2$, with derivatives to `order` (0, 1 or
 /// 2; the others are left zero).
+#[inline(always)]
 pub(crate) fn exp_coefficients<T: Scalar>(x: T, order: usize) -> ExpCoefficients<T> {
     let zero = T::zero();
     let mut out = ExpCoefficients { f: [zero; 3], d: [zero; 2], dd: [zero; 2] };
@@ -83,16 +116,7 @@ pub(crate) fn exp_coefficients<T: Scalar>(x: T, order: usize) -> ExpCoefficients
             TERMS
         };
         if order == 0 {
-            // The three chains of Horner's rule side by side, so their
-            // multiply-adds overlap.
-            let mut v = [T::c(SERIES[0][terms - 1]), T::c(SERIES[1][terms - 1]), T::c(SERIES[2][terms - 1])];
-            for k in (0..terms - 1).rev() {
-                for m in 0..3 {
-                    v[m] = v[m] * x + T::c(SERIES[m][k]);
-                }
-            }
-            out.f = v;
-            return out;
+            return ExpCoefficients { f: values(x), ..out };
         }
         // Horner's rule on value, first and second derivative together.
         for m in 0..3 {
@@ -135,6 +159,7 @@ pub(crate) fn exp_coefficients<T: Scalar>(x: T, order: usize) -> ExpCoefficients
 /// $\exp$ of the twist $(\omega, v)$ as $(R, p)$, generic over [`Scalar`]:
 /// $R = I + f_1\hat\omega + f_2\hat\omega^2$, $p = v + f_2\thinspace\omega\times v + f_3\thinspace\omega\times(\omega\times v)$
 /// (Murray–Li–Sastry Eq. 2.36, with $V = I + f_2\hat\omega + f_3\hat\omega^2$).
+#[inline(always)]
 pub(crate) fn exp_parts<T: Scalar>(omega: &Vector3<T>, v: &Vector3<T>, f: &[T; 3]) -> (Matrix3<T>, Vector3<T>) {
     // ω̂² = ωωᵀ − θ²I.
     let x = omega.norm_squared();

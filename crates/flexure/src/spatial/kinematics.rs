@@ -22,11 +22,11 @@
 //! $\partial_a\partial_bp = R\thinspace(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$, symmetric.
 
 use super::SpatialFlexure;
-use super::magnus::{Jet1, Jet2, exponent};
+use super::magnus::{Jet1, Jet2, exponent, exponent_value};
 use super::step::{Step, Tangent};
 use crate::kinematics::Level;
 use crate::scalar::Scalar;
-use crate::space::bracket;
+use crate::space::{bracket, exp_coefficients, exp_parts};
 use nalgebra::{DMatrix, Isometry3, Matrix3, Vector3, Vector6};
 
 /// The kinematics of one spatial flexure, reused across evaluations (the Data).
@@ -174,14 +174,46 @@ fn six<T: Scalar>(a: &Vector3<T>, b: &Vector3<T>) -> Vector6<T> {
 /// ```
 pub fn pose_root_tip<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T]) -> (Matrix3<T>, Vector3<T>) {
     assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
+    // Fixed sizes for equal orders 2 to 4: the nodal sums unroll.
+    match (flexure.orders(), flexure.width()) {
+        ([2, 2, 2], 2) => pose_with(flexure, alpha, fixed_curvatures::<T, 2>),
+        ([3, 3, 3], 3) => pose_with(flexure, alpha, fixed_curvatures::<T, 3>),
+        ([4, 4, 4], 4) => pose_with(flexure, alpha, fixed_curvatures::<T, 4>),
+        _ => pose_with(flexure, alpha, |f, a, k| node_twists(f, a, k).map(|x| parts(&x).0)),
+    }
+}
+
+/// The nodal curvatures of subinterval `k` for orders `[N, N, N]`.
+#[inline(always)]
+fn fixed_curvatures<T: Scalar, const N: usize>(flexure: &SpatialFlexure, alpha: &[T], k: usize) -> [Vector3<T>; 3] {
+    let shapes = &flexure.shapes(k)[..3 * N];
+    std::array::from_fn(|j| {
+        let row = &shapes[j * N..(j + 1) * N];
+        Vector3::from_fn(|c, _| {
+            let mut sum = T::zero();
+            for i in 0..N {
+                sum += T::c(row[i]) * alpha[c * N + i];
+            }
+            sum
+        })
+    })
+}
+
+#[inline(always)]
+fn pose_with<T: Scalar>(
+    flexure: &SpatialFlexure,
+    alpha: &[T],
+    curvatures: impl Fn(&SpatialFlexure, &[T], usize) -> [Vector3<T>; 3],
+) -> (Matrix3<T>, Vector3<T>) {
     let h = flexure.length() / flexure.subintervals() as f64;
     let mut r = Matrix3::identity();
     let mut p = Vector3::zeros();
     for k in 0..flexure.subintervals() {
-        let (w, v) = parts(&exponent(&node_twists(flexure, alpha, k), h));
-        let step = Step::new(w, v, 0);
-        p += r * step.p;
-        r *= step.r;
+        let (w, v) = exponent_value(&curvatures(flexure, alpha, k), h);
+        let c = exp_coefficients(w.norm_squared(), 0);
+        let (rk, pk) = exp_parts(&w, &v, &c.f);
+        p += r * pk;
+        r *= rk;
     }
     (r, p)
 }
@@ -228,7 +260,7 @@ pub fn update<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], level: Level, da
     }
     for k in 0..m {
         let xi = node_twists(flexure, alpha, k);
-        let (w, v) = parts(&exponent(&xi, h));
+        let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
         let step = Step::new(w, v, order);
         if level >= Level::Jacobian {
             for a in 0..n {
