@@ -3,6 +3,7 @@
 use crate::options::{
     AccuracyOptions, FlexureOptions, List, StressOptions, angle, iterations, number, numbers, tolerance, warn,
 };
+use crate::spatial::{SpatialLoadOptions, SpatialOptions};
 use clap::{Args, ValueEnum};
 use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
@@ -117,10 +118,12 @@ pub fn matrix<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(m: &Matrix<f64, R, C, S>
 #[derive(Debug, Args)]
 pub struct KinematicsArgs {
     #[command(flatten)]
-    flexure: FlexureOptions,
-    /// Joint coordinates α1,α2,… (one per order).
+    pub(crate) flexure: FlexureOptions,
+    #[command(flatten)]
+    pub(crate) spatial: SpatialOptions,
+    /// Joint coordinates α1,α2,… (one per order; with --spatial the twist's, then κ_y's, then κ_z's).
     #[arg(long, value_parser = numbers, allow_hyphen_values = true, required_unless_present = "input")]
-    alpha: Option<List>,
+    pub(crate) alpha: Option<List>,
     /// A CSV of α rows with header a1,a2,…: one output line per row.
     #[arg(long, conflicts_with = "alpha")]
     pub input: Option<std::path::PathBuf>,
@@ -128,12 +131,18 @@ pub struct KinematicsArgs {
 
 impl KinematicsArgs {
     pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
+        if self.spatial.spatial {
+            return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
+        }
         self.flexure.build_fixed("kinematics")
     }
 }
 
 /// Pose, transform, Jacobian, Hessians, energy and gradient at α.
 pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
+    if args.spatial.spatial {
+        return crate::spatial::kinematics(args, &args.spatial);
+    }
     let f = args.flexure.build_fixed("kinematics")?;
     let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
     f.check_coordinates("alpha", &alpha)?;
@@ -185,29 +194,33 @@ impl LoadOptions {
 #[derive(Debug, Args)]
 pub struct DeflectArgs {
     #[command(flatten)]
-    flexure: FlexureOptions,
+    pub(crate) flexure: FlexureOptions,
     #[command(flatten)]
-    load: LoadOptions,
+    pub(crate) spatial: SpatialOptions,
+    #[command(flatten)]
+    pub(crate) load: LoadOptions,
+    #[command(flatten)]
+    pub(crate) spatial_load: SpatialLoadOptions,
     #[command(flatten)]
     pub accuracy: AccuracyOptions,
     #[command(flatten)]
-    stress: StressOptions,
+    pub(crate) stress: StressOptions,
     /// Also solve the exact elastica (shooting); `pose` is then the exact one,
     /// and the model's stress and shape sit under `model`.
     #[arg(long)]
-    exact: bool,
+    pub(crate) exact: bool,
     /// Also find the factor on the load, up to 1000, at which the equilibrium
     /// followed from rest stops being stable, or up to which it stays stable
     /// (1000, or as far as the path could be followed, with a warning):
     /// `stability_limit` {factor, status: lost | stable_up_to}.
     #[arg(long)]
-    limit: bool,
+    pub(crate) limit: bool,
     /// Relative tolerance on the generalized-force residual, in (0, 1).
     #[arg(long, default_value = "1e-12", value_parser = tolerance, allow_hyphen_values = true)]
-    tolerance: f64,
+    pub(crate) tolerance: f64,
     /// Newton iterations allowed per load step, 1 to 10000.
     #[arg(long, default_value = "50", value_parser = iterations, allow_hyphen_values = true)]
-    max_iterations: usize,
+    pub(crate) max_iterations: usize,
     /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
     #[arg(
         long,
@@ -219,12 +232,18 @@ pub struct DeflectArgs {
 impl DeflectArgs {
     /// The flexure for `--input` rows, which share one order.
     pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
+        if self.spatial.spatial {
+            return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
+        }
         self.flexure.build_fixed("deflect --input")
     }
 }
 
 /// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
 pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
+    if args.spatial.spatial {
+        return crate::spatial::deflect(args);
+    }
     let load = args.load.load();
     let target = args.accuracy.target();
     let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
@@ -303,6 +322,8 @@ pub fn put_exact_stress(answer: &mut Value, trace: &Trace, options: &StressOptio
 pub struct ComplianceArgs {
     #[command(flatten)]
     flexure: FlexureOptions,
+    #[command(flatten)]
+    spatial: SpatialOptions,
     /// Integrate the compliance ODE (Eq. 34, with EI(s)) instead of the model's J K⁻¹ Jᵀ.
     #[arg(long)]
     exact: bool,
@@ -310,6 +331,9 @@ pub struct ComplianceArgs {
 
 /// Small-load tip compliance at the rest shape, order (φ, x, y).
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
+    if args.spatial.spatial {
+        return crate::spatial::compliance(&args.flexure, &args.spatial, args.exact);
+    }
     let f = args.flexure.build_fixed("compliance")?;
     let c = if args.exact {
         reference::compliance::compliance_tip(&f, &Default::default())?

@@ -18,6 +18,7 @@ mod options;
 mod render;
 mod reproduce;
 mod simulate;
+mod spatial;
 mod stress;
 
 use clap::{Parser, Subcommand};
@@ -250,6 +251,9 @@ fn option(name: &str) -> String {
     match name {
         "notch.radius" => "--notch R".into(),
         "notch.min_thickness" => "--notch H".into(),
+        // A spatial flexure's in-plane parts are the planar options.
+        "ei_z" => "--ei".into(),
+        "kappa_z" => "--kappa".into(),
         // The mechanism's or flexure's masses, set by several options or keys.
         "mass" => "mass".into(),
         _ => format!("--{}", name.replace('_', "-")),

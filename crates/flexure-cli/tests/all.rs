@@ -24,6 +24,7 @@ mod options;
 mod reproduce;
 mod sections;
 mod simulate;
+mod spatial;
 
 /// Every `tests/*.rs` file is a module here or a `[[test]]` target of
 /// Cargo.toml: with auto-discovery off, a file named in neither would

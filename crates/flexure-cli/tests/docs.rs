@@ -1,7 +1,8 @@
 //! `docs/cli.md` against the command itself, so the page cannot fall
 //! behind: every subcommand has its section, with its usage line, and every
 //! option its `--help` lists is in that section (or, for the flexure
-//! options and `--json`, in the section every subcommand shares); every
+//! options, the spatial options and `--json`, in the sections every
+//! subcommand shares); every
 //! option a section's table lists still exists.
 
 use crate::cli::run;
@@ -61,7 +62,12 @@ fn names(text: &str, option: &str) -> bool {
 
 #[test]
 fn every_option_of_every_subcommand_is_on_the_page() {
-    let shared = [section("## What every subcommand shares"), section("### The flexure options")].concat();
+    let shared = [
+        section("## What every subcommand shares"),
+        section("### The flexure options"),
+        section("### The spatial options"),
+    ]
+    .concat();
     let commands = subcommands();
     assert!(commands.len() >= 12, "{commands:?}");
     let mut missing = Vec::new();

@@ -4,7 +4,7 @@
 use serde_json::Value;
 use std::process::Command;
 
-fn run(args: &str) -> (i32, String, String) {
+pub fn run(args: &str) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_flexure")).args(args.split_whitespace()).output().unwrap();
     (
         out.status.code().unwrap_or(-1),
@@ -13,13 +13,13 @@ fn run(args: &str) -> (i32, String, String) {
     )
 }
 
-fn json(args: &str) -> Value {
+pub fn json(args: &str) -> Value {
     let (code, out, err) = run(&format!("{args} --json"));
     assert_eq!(code, 0, "{args}: {err}");
     serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args}: not one JSON object ({e}): {out}"))
 }
 
-fn f(v: &Value) -> f64 {
+pub fn f(v: &Value) -> f64 {
     v.as_f64().unwrap()
 }
 

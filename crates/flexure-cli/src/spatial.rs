@@ -1,0 +1,262 @@
+//! `--spatial`: the joint subcommands (deflect, compliance, kinematics) on a
+//! spatial flexure, two bendings and a twist in SE(3) (issue 23).
+//!
+//! The planar options keep their meaning: `--ei` is EI_z, `--kappa` the
+//! in-plane rest curvature, `--moment`, `--fx` and `--fy` are M_z, F_x and
+//! F_y. `--ei-y`, `--gj`, `--kappa-y`, `--twist`, `--mx`, `--my` and `--fz`
+//! add the rest; `--modulus` with `--width --thickness` (a strip) or
+//! `--diameter` (a round rod) gives all three stiffnesses, `G` from
+//! `--poisson` (0.3 if not given) or `--shear-modulus`.
+
+use crate::joint::{KinematicsArgs, MAX_FACTOR, matrix, put_limit, warn_unstable};
+use crate::options::{FlexureOptions, List, Order, ProfileArg, number, numbers, profile, warn};
+use clap::Args;
+use flexure::Error;
+use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::reference::rod::{self, Rod, TipWrench};
+use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialSpec, SpatialStatics};
+use nalgebra::{Matrix3, Vector3};
+use serde_json::{Value, json};
+
+/// The spatial flexure's own options (each needs `--spatial`).
+#[derive(Debug, Clone, Args)]
+pub struct SpatialOptions {
+    /// Make the joint spatial: two bendings and a twist (curvature
+    /// components twist, κ_y, κ_z, each of order --order), pose in SE(3).
+    #[arg(long)]
+    pub spatial: bool,
+    /// Bending stiffness about y, EI_y in N·m²: V, or ROOT,TIP [default: --ei].
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "spatial", conflicts_with = "modulus")]
+    pub ei_y: Option<ProfileArg>,
+    /// Torsional stiffness GJ in N·m²: V, or ROOT,TIP [default: --ei].
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "spatial", conflicts_with = "modulus")]
+    pub gj: Option<ProfileArg>,
+    /// A round rod's diameter d in metres (with --modulus), in place of --width and --thickness.
+    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires_all = ["spatial", "modulus"])]
+    pub diameter: Option<ProfileArg>,
+    /// Shear modulus G in Pa (with --modulus), in place of --poisson.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial", conflicts_with = "poisson")]
+    pub shear_modulus: Option<f64>,
+    /// Rest curvature coefficients of the bending about y (one per order) [default: straight].
+    #[arg(long, value_parser = numbers, allow_hyphen_values = true, requires = "spatial")]
+    pub kappa_y: Option<List>,
+    /// Rest twist coefficients (one per order) [default: untwisted].
+    #[arg(long, value_parser = numbers, allow_hyphen_values = true, requires = "spatial")]
+    pub twist: Option<List>,
+}
+
+/// The out-of-plane load components (each needs `--spatial`).
+#[derive(Debug, Clone, Args)]
+pub struct SpatialLoadOptions {
+    /// Tip moment about the root's x axis (a twist), N·m.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
+    pub mx: Option<f64>,
+    /// Tip moment about the root's y axis, N·m.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
+    pub my: Option<f64>,
+    /// Tip force along the root's z axis, N.
+    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
+    pub fz: Option<f64>,
+}
+
+/// The spatial flexure the options describe, built by the library
+/// ([`SpatialSpec`]); planar-only options are refused by name.
+pub fn build(f: &FlexureOptions, s: &SpatialOptions) -> flexure::Result<SpatialFlexure> {
+    let planar_only = [
+        ("notch", f.notch.is_some()),
+        ("quadrature", f.quadrature.is_some()),
+        ("density", f.density.is_some()),
+        ("mass_per_length", f.mass_per_length.is_some()),
+    ];
+    if let Some((name, _)) = planar_only.iter().find(|(_, given)| *given) {
+        return Err(Error::invalid(name, "given with --spatial", "is for planar flexures only"));
+    }
+    let profile = |p: &Option<ProfileArg>| p.as_ref().map(|p| p.0.clone());
+    let list = |l: &Option<List>| l.as_ref().map(|l| l.0.clone());
+    let n = match f.order {
+        Order::Fixed(n) => n,
+        Order::Auto => 3,
+    };
+    SpatialSpec {
+        length: f.length,
+        gj: profile(&s.gj),
+        ei_y: profile(&s.ei_y),
+        ei_z: profile(&f.ei),
+        modulus: f.modulus,
+        width: profile(&f.width),
+        thickness: profile(&f.thickness),
+        diameter: profile(&s.diameter),
+        poisson: f.poisson,
+        shear_modulus: s.shear_modulus,
+        orders: [n; 3],
+        twist: list(&s.twist),
+        kappa_y: list(&s.kappa_y),
+        kappa_z: list(&f.kappa),
+    }
+    .build()
+}
+
+/// `pose: {position: [x, y, z], rotation: [[…], […], […]]}`: the rotation's
+/// columns are the tip frame's axes in the root frame.
+pub fn pose(r: &Matrix3<f64>, p: &Vector3<f64>) -> Value {
+    json!({ "position": [p.x, p.y, p.z], "rotation": matrix(r) })
+}
+
+/// The coordinates by component.
+fn alpha(f: &SpatialFlexure, alpha: &[f64]) -> Value {
+    let [a, b, _] = f.orders();
+    json!({ "twist": &alpha[..a], "kappa_y": &alpha[a..a + b], "kappa_z": &alpha[a + b..] })
+}
+
+/// `error_estimate` and `flagged`, with a warning when it misses `target`.
+fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, target: &Accuracy, what: &str) {
+    if e.flagged {
+        let hint = if f.orders().iter().all(|&n| n >= spatial::MAX_AUTO_ORDER) { "" } else { "; try --order auto" };
+        warn(format!("{what}: {}{hint}", crate::joint::misses(e, f.length(), target)));
+    }
+    answer["error_estimate"] = crate::joint::estimate(e);
+    answer["flagged"] = json!(e.flagged);
+}
+
+/// The peak stress, with `safety_factor` from `--yield-strength`, for a section with geometry.
+fn put_stress(
+    answer: &mut Value,
+    f: &SpatialFlexure,
+    alpha: &[f64],
+    yield_strength: Option<f64>,
+    what: &str,
+) -> flexure::Result<()> {
+    let Ok(p) = spatial::peak_stress(f, alpha) else {
+        if let Some(s) = yield_strength {
+            return Err(Error::invalid(
+                "yield_strength",
+                s,
+                "needs a section with a shape to give a stress: give --modulus with --width and --thickness, or --diameter",
+            ));
+        }
+        return Ok(());
+    };
+    answer["stress"] = json!({
+        "max": p.stress.von_mises, "at": p.at, "bending_y": p.stress.bending_y,
+        "bending_z": p.stress.bending_z, "shear": p.stress.shear, "point": p.stress.at,
+    });
+    if let Some(s) = yield_strength
+        && p.stress.von_mises > 0.0
+    {
+        let factor = p.stress.safety_factor(s)?;
+        answer["safety_factor"] = json!(factor);
+        if factor < 1.0 {
+            warn(format!(
+                "{what}: the peak von Mises stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
+                p.stress.von_mises, p.at
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `deflect --spatial`.
+pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
+    if args.input.is_some() {
+        return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
+    }
+    if let Some(k) = args.stress.shape {
+        return Err(Error::invalid("shape", k, "is not printed for a spatial flexure yet"));
+    }
+    let planar = args.load.load();
+    let extra = &args.spatial_load;
+    let load = SpatialLoad {
+        moment: [extra.mx.unwrap_or(0.0), extra.my.unwrap_or(0.0), planar.moment],
+        force: [planar.fx, planar.fy, extra.fz.unwrap_or(0.0)],
+    };
+    let target = args.accuracy.target();
+    let given = build(&args.flexure, &args.spatial)?;
+    let f = if args.flexure.auto() { spatial::deflect_auto(&given, &load, &target)?.0 } else { given };
+    let settings =
+        flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
+    let mut data = SpatialStatics::new(&f);
+    let eq = spatial::deflect(&f, &load, &mut data, &settings)?;
+    let (r, p) = spatial::pose_root_tip(&f, data.alpha());
+    let mut model = json!({
+        "alpha": alpha(&f, data.alpha()),
+        "pose": pose(&r, &p),
+        "stiffness": matrix(&data.stiffness),
+        "stable": eq.stable,
+        "residual": eq.residual,
+    });
+    if let Some(limit) = eq.limit.filter(|_| !args.limit) {
+        model["limit_fraction"] = json!(limit);
+    }
+    warn_unstable(eq.stable, "deflect");
+    put_stress(&mut model, &f, data.alpha(), args.stress.yield_strength, "deflect")?;
+    if args.flexure.auto() {
+        model["orders"] = json!(f.orders());
+        model["subintervals"] = json!(f.subintervals());
+    }
+    let e = spatial::deflect_error(&f, &load, data.alpha(), &target)?;
+    put_estimate(&mut model, &e, &f, &target, "deflect");
+    if args.limit {
+        put_limit(&mut model, &spatial::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
+    }
+    if !args.exact {
+        return Ok(model);
+    }
+    let (fl, rest) = (f.clone(), f.rest().to_vec());
+    let exact_rod = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| fl.curvature(&rest, s))?;
+    let w = TipWrench { moment: Vector3::from(load.moment), force: Vector3::from(load.force) };
+    let exact = rod::deflect(&exact_rod, &w, &Default::default())?;
+    let turn = r.tr_mul(&exact.rotation);
+    let angle = (0.5
+        * Vector3::new(turn[(2, 1)] - turn[(1, 2)], turn[(0, 2)] - turn[(2, 0)], turn[(1, 0)] - turn[(0, 1)]).norm())
+    .atan2(0.5 * (turn.trace() - 1.0));
+    let off = (p - exact.position).norm();
+    Ok(json!({
+        "pose": pose(&exact.rotation, &exact.position),
+        "root_moment": [exact.root_moment.x, exact.root_moment.y, exact.root_moment.z],
+        "stable": exact.stable,
+        "model": model,
+        "error": {
+            "position": off,
+            "position_over_length": off / f.length(),
+            "angle": angle,
+            "angle_degrees": angle.to_degrees(),
+        },
+    }))
+}
+
+/// `compliance --spatial`: the 6 × 6 at rest, order (rx, ry, rz, x, y, z);
+/// with `--exact` the linearized rod's.
+pub fn compliance(flexure: &FlexureOptions, s: &SpatialOptions, exact: bool) -> flexure::Result<Value> {
+    let f = build(flexure, s)?;
+    let c = if exact {
+        let (fl, rest) = (f.clone(), f.rest().to_vec());
+        let r = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| fl.curvature(&rest, s))?;
+        rod::compliance_rest(&r, &Default::default())?
+    } else {
+        let mut data = SpatialStatics::new(&f);
+        spatial::correct(&f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default())?;
+        spatial::compliance(&f, &data)?
+    };
+    Ok(json!({ "compliance": matrix(&c), "order": ["rx", "ry", "rz", "x", "y", "z"] }))
+}
+
+/// `kinematics --spatial`: the tip pose, the body Jacobian (6 × n, rows rx,
+/// ry, rz, x, y, z in the tip frame), energy and gradient at α.
+pub fn kinematics(args: &KinematicsArgs, s: &SpatialOptions) -> flexure::Result<Value> {
+    if args.flexure.auto() {
+        return Err(Error::invalid("order", "auto", "kinematics takes coordinates of a given order: give a number"));
+    }
+    let f = build(&args.flexure, s)?;
+    let a = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
+    f.check_coordinates("alpha", &a)?;
+    let mut k = spatial::SpatialKinematics::new(&f);
+    spatial::update(&f, &a, flexure::Level::Jacobian, &mut k);
+    let mut gradient = vec![0.0; f.coordinates()];
+    spatial::energy_gradient(&f, &a, &mut gradient);
+    Ok(json!({
+        "pose": pose(&k.rotation, &k.position),
+        "jacobian": matrix(&k.jacobian),
+        "energy": spatial::energy(&f, &a),
+        "gradient": gradient,
+    }))
+}
