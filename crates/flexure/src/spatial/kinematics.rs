@@ -9,12 +9,12 @@
 //! Armanini, Boyer and Renda, *SoRoSim*, IEEE RA-M 2022, which uses Zanna
 //! collocation over Gauss subintervals). The tip is the product
 //! $g = \exp\Omega_1\cdots\exp\Omega_M$, and the derivatives ride along
-//! the same product: with $g_k = \exp\Omega_k$ and its body tangent
-//! $J^{(k)}_a = g_k^{-1}\partial_a g_k$,
-//! $$J_a \leftarrow \mathrm{Ad}_{g_k^{-1}}J_a + J^{(k)}_a,\qquad
-//!   H_{ab} \leftarrow \mathrm{Ad}_{g_k^{-1}}H_{ab} - \big[J^{(k)}_b,\ \mathrm{Ad}_{g_k^{-1}}J_a\big] + \partial_bJ^{(k)}_a,$$
+//! the same product: with $g_k = \exp\Omega_k$, $A_k = \mathrm{Ad}(g_k^{-1})$ and
+//! the step's body tangent $J_a^{(k)} = g_k^{-1}\partial_a g_k$,
+//! $$J_a \leftarrow A_k J_a + J_a^{(k)},\qquad
+//!   H_{ab} \leftarrow A_k H_{ab} - \big[J_b^{(k)},\ A_k J_a\big] + \partial_b J_a^{(k)},$$
 //! where $J_a = g^{-1}\partial_a g$ is the body twist of the tip per unit
-//! $\alpha_a$ and $H_{ab} = \partial_bJ_a$ (as $\partial_b\mathrm{Ad}_{g_k^{-1}}X = -[J^{(k)}_b, \mathrm{Ad}_{g_k^{-1}}X]$).
+//! $\alpha_a$ and $H_{ab} = \partial_bJ_a$ (as $\partial_b A_k X = -[J_b^{(k)}, A_k X]$).
 //! Every pair is propagated, so that the Maurer–Cartan identity
 //! $\partial_aJ_b = \partial_bJ_a - [J_a, J_b]$ and the symmetry of the
 //! position's Hessian check the pass instead of being built into it. The tip position's
