@@ -12,7 +12,7 @@ use crate::joint::{KinematicsArgs, MAX_FACTOR, matrix, put_limit, warn_unstable}
 use crate::options::{FlexureOptions, List, Order, ProfileArg, number, numbers, profile, warn};
 use clap::Args;
 use flexure::Error;
-use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::reference::rod::{self, Rod, TipWrench};
 use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialSpec, SpatialStatics};
 use nalgebra::{Matrix3, Vector3};
@@ -111,7 +111,8 @@ fn alpha(f: &SpatialFlexure, alpha: &[f64]) -> Value {
 /// `error_estimate` and `flagged`, with a warning when it misses `target`.
 fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, target: &Accuracy, what: &str) {
     if e.flagged {
-        let hint = if f.orders().iter().all(|&n| n >= spatial::MAX_AUTO_ORDER) { "" } else { "; try --order auto" };
+        let hint =
+            if f.orders().iter().all(|&n| n >= estimate::spatial::MAX_AUTO_ORDER) { "" } else { "; try --order auto" };
         warn(format!("{what}: {}{hint}", crate::joint::misses(e, f.length(), target)));
     }
     answer["error_estimate"] = crate::joint::estimate(e);
@@ -171,7 +172,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
     };
     let target = args.accuracy.target();
     let given = build(&args.flexure, &args.spatial)?;
-    let f = if args.flexure.auto() { spatial::deflect_auto(&given, &load, &target)?.0 } else { given };
+    let f = if args.flexure.auto() { estimate::spatial::deflect_auto(&given, &load, &target)?.0 } else { given };
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
     let mut data = SpatialStatics::new(&f);
@@ -193,7 +194,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         model["orders"] = json!(f.orders());
         model["subintervals"] = json!(f.subintervals());
     }
-    let e = spatial::deflect_error(&f, &load, data.alpha(), &target)?;
+    let e = estimate::spatial::deflect_error(&f, &load, data.alpha(), &target)?;
     put_estimate(&mut model, &e, &f, &target, "deflect");
     if args.limit {
         put_limit(&mut model, &spatial::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");

@@ -2,10 +2,11 @@
 //! dead tip wrench, its stiffness, stability and compliance, each test
 //! against its named reference.
 
+use flexure::estimate::spatial::deflect_error;
 use flexure::section::SpatialSection;
 use flexure::spatial::{
-    SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics, compliance, correct, deflect, deflect_error,
-    energy_gradient, pose_root_tip, update,
+    SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics, compliance, correct, deflect, energy_gradient,
+    pose_root_tip, update,
 };
 use flexure::{Flexure, Level, Statics, TipLoad};
 use nalgebra::{Matrix3, Vector3};

@@ -20,12 +20,11 @@
 //! - [`deflect`], [`stability_limit`], [`compliance`]: equilibrium under a
 //!   dead tip wrench [`SpatialLoad`], its stability (lateral-torsional
 //!   buckling included) and the tip's 6 × 6 compliance;
-//! - [`deflect_error`] and [`deflect_auto`]: the error estimate against a
-//!   refined model, and the orders that meet an accuracy target;
+//! - its error estimate against a refined model, and the orders that meet
+//!   an accuracy target, are [`crate::estimate::spatial`]'s;
 //! - [`peak_stress`]: the peak von Mises stress along it.
 
 mod energy;
-mod estimate;
 mod flexure;
 mod kinematics;
 mod magnus;
@@ -35,7 +34,6 @@ mod step;
 mod stress;
 
 pub use energy::{energy, energy_gradient};
-pub use estimate::{MAX_AUTO_ORDER, deflect_auto, deflect_error, padded, reference};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
 pub use spec::{DEFAULT_POISSON, SpatialSpec};

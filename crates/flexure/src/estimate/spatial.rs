@@ -1,5 +1,6 @@
-//! The spatial flexure's error estimate: its answer against a refined
-//! model's, as [`crate::estimate`] does for the planar flexure.
+//! The spatial flexure's error estimate ([`crate::spatial`]): its answer
+//! against a refined model's, as the rest of [`crate::estimate`] does for
+//! the planar flexure.
 //!
 //! The reference raises each component's order to $\max(2n_c, n_c + 3)$
 //! (at most [`MAX_ORDER`]) and doubles the Magnus subintervals, at least
@@ -7,10 +8,10 @@
 //! answer's; the answer, padded with zeros, starts the reference's Newton
 //! solve at the full load (continuation from rest if that fails).
 
-use super::{SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
+use super::{Accuracy, ErrorEstimate};
 use crate::error::Result;
-use crate::estimate::{Accuracy, ErrorEstimate};
 use crate::joint::MAX_ORDER;
+use crate::spatial::{self as spatial_flexure, SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
 use nalgebra::{Matrix3, Vector3};
 
 /// The reference model for the answer `alpha` of `flexure`: orders raised,
@@ -18,7 +19,8 @@ use nalgebra::{Matrix3, Vector3};
 ///
 /// # Example
 /// ```
-/// use flexure::{section::SpatialSection, spatial::{SpatialFlexure, reference}};
+/// use flexure::estimate::spatial::reference;
+/// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 2, 3]).unwrap();
 /// let r = reference(&f, &[0.0; 8]).unwrap();
 /// assert_eq!((r.orders(), r.subintervals()), ([6, 5, 6], 2 * f.subintervals()));
@@ -27,7 +29,8 @@ pub fn reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexu
     flexure.check_coordinates("alpha", alpha)?;
     let orders = flexure.orders().map(|n| (2 * n).max(n + 3).min(MAX_ORDER));
     let turning: f64 = alpha.iter().map(|a| a.abs()).sum();
-    let subintervals = (2 * flexure.subintervals()).max((2.0 * turning).ceil() as usize).min(super::MAX_SUBINTERVALS);
+    let subintervals =
+        (2 * flexure.subintervals()).max((2.0 * turning).ceil() as usize).min(spatial_flexure::MAX_SUBINTERVALS);
     SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
         .with_rest(&padded(flexure, flexure.rest(), orders))?
         .with_subintervals(subintervals)
@@ -74,7 +77,8 @@ fn peak_curvature(flexure: &SpatialFlexure, alpha: &[f64]) -> f64 {
 /// # Example
 /// ```
 /// use flexure::section::SpatialSection;
-/// use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, deflect, deflect_error};
+/// use flexure::estimate::spatial::deflect_error;
+/// use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, deflect};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
 /// let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.5, 0.5] };
 /// let mut data = SpatialStatics::new(&f);
@@ -97,8 +101,8 @@ pub fn deflect_error(
         deflect(&reference, load, &mut data, &settings)?;
     }
     let exact = data.alpha().to_vec();
-    let (ra, pa) = super::pose_root_tip(flexure, alpha);
-    let (rb, pb) = super::pose_root_tip(&reference, &exact);
+    let (ra, pa) = spatial_flexure::pose_root_tip(flexure, alpha);
+    let (rb, pb) = spatial_flexure::pose_root_tip(&reference, &exact);
     let position = (pa - pb).norm();
     let angle = angle_between(&ra, &rb);
     let (model_peak, exact_peak) = (peak_curvature(flexure, alpha), peak_curvature(&reference, &exact));
@@ -132,7 +136,8 @@ pub const MAX_AUTO_ORDER: usize = 32;
 /// # Example
 /// ```
 /// use flexure::section::SpatialSection;
-/// use flexure::spatial::{SpatialFlexure, SpatialLoad, deflect_auto};
+/// use flexure::estimate::spatial::deflect_auto;
+/// use flexure::spatial::{SpatialFlexure, SpatialLoad};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
 /// let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 2.0, 2.0] };
 /// let (used, _, e) = deflect_auto(&f, &load, &Default::default()).unwrap();

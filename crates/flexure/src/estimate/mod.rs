@@ -34,6 +34,8 @@
 //! estimates of one flexure (Model and Data), so a repeated estimate costs
 //! the reference's Newton solve and the peaks, not the reference's tables.
 
+pub mod spatial;
+
 use crate::buckling::{Buckling, TipConstraint, buckling_load};
 use crate::dynamics::{self, Body, Modes};
 use crate::error::{Error, Result, positive};
