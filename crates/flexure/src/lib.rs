@@ -99,6 +99,9 @@
 //! | exact references | [`mod@reference`] |
 //! | mechanisms: file, statics, buckling, sweeps, findings | [`mechanism`] |
 //! | modes and motion | [`dynamics`] |
+//! | a spatial flexure: two bendings and a twist in SE(3), its statics, stability, compliance, stress | [`mod@spatial`], [`section::SpatialSection`], [`estimate::spatial`] |
+//! | the exact Kirchhoff rod | [`reference::rod`] |
+//! | pseudo-rigid-body fits | [`prb`] |
 //! | the solver core every model solve shares | [`solver`] |
 //!
 //! An immutable [`Flexure`] (the model) and reusable buffers ([`Kinematics`],
