@@ -1,11 +1,16 @@
 //! The spatial flexure's SE(3) kinematics (6th-order Magnus over the
 //! default subintervals), order 3 per component, against the planar
-//! `joint/pose` of the same run.
+//! `joint/pose` of the same run; its `deflect` under a 3-D tip wrench
+//! against `pose_jacobian_hessian`; and the Bathe–Bolourchi bend at the
+//! rod's parameters (GJ = EI), orders 3 (the tip within 2.4e-4 of L of the
+//! rod, tests/spatial_validation.rs), against `rod/bathe_bolourchi_tol_1e-3`.
 
 use criterion::Criterion;
 use flexure::Level;
 use flexure::section::SpatialSection;
-use flexure::spatial::{SpatialFlexure, SpatialKinematics, pose_root_tip, update};
+use flexure::spatial::{
+    SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics, deflect, pose_root_tip, update,
+};
 use std::hint::black_box;
 
 use crate::inputs;
@@ -35,6 +40,24 @@ pub fn run(c: &mut Criterion) {
             update(&f, black_box(&alphas[i..i + 9]), Level::Hessian, &mut k);
             k.hessian_position(8, 8).x
         })
+    });
+    let load = SpatialLoad { moment: [0.1, 0.2, 0.3], force: [0.2, 0.5, 0.4] };
+    let mut data = SpatialStatics::new(&f);
+    g.bench_function("deflect", |b| {
+        b.iter(|| deflect(&f, black_box(&load), &mut data, &Default::default()).unwrap().iterations)
+    });
+    let (r, ei) = (100.0, 1e7 / 12.0);
+    let mut rest = vec![0.0; 9];
+    rest[6] = std::f64::consts::FRAC_PI_4;
+    let bend =
+        SpatialFlexure::new(std::f64::consts::PI * r / 4.0, SpatialSection::uniform(ei, ei, ei).unwrap(), [3, 3, 3])
+            .unwrap()
+            .with_rest(&rest)
+            .unwrap();
+    let out_of_plane = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, 600.0] };
+    let mut bent = SpatialStatics::new(&bend);
+    g.bench_function("bathe_bolourchi", |b| {
+        b.iter(|| deflect(&bend, black_box(&out_of_plane), &mut bent, &Default::default()).unwrap().iterations)
     });
     g.finish();
 }
