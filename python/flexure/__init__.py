@@ -48,6 +48,7 @@ from ._flexure import (
     Flexure,
     IntersectionWarning,
     PreloadWarning,
+    SpatialFlexure,
     StabilityWarning,
     YieldWarning,
 )
@@ -55,6 +56,7 @@ from ._flexure import Mechanism as _Mechanism
 
 __all__ = [
     "Flexure",
+    "SpatialFlexure",
     "Mechanism",
     "ConvergenceError",
     "StabilityWarning",

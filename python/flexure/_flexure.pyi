@@ -1,6 +1,6 @@
 """Type stubs for the compiled module. Units SI, angles in radians; order (phi, x, y)."""
 
-from typing import Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -251,6 +251,41 @@ class Flexure:
         """The deformed flexure at k (2 to 10000) points evenly spaced in arc length, ends included,
         in its root frame: a structured array of fields s, x, y (m), phi (rad), curvature (1/m, total)
         and, with a thickness, stress (Pa). shape["x"], shape["y"] plot it."""
+
+class SpatialFlexure:
+    """A spatial flexure: two bendings and a twist (curvature components twist, κ_y, κ_z), pose in SE(3)."""
+
+    def __init__(
+        self,
+        length: float = 1.0,
+        ei: Optional[_Profile] = None,
+        order: Optional[int] = None,
+        *,
+        ei_y: Optional[_Profile] = None,
+        gj: Optional[_Profile] = None,
+        modulus: Optional[float] = None,
+        width: Optional[_Profile] = None,
+        thickness: Optional[_Profile] = None,
+        diameter: Optional[_Profile] = None,
+        poisson: Optional[float] = None,
+        shear_modulus: Optional[float] = None,
+        kappa: Optional[ArrayLike] = None,
+        kappa_y: Optional[ArrayLike] = None,
+        twist: Optional[ArrayLike] = None,
+    ) -> None: ...
+    @property
+    def length(self) -> float: ...
+    @property
+    def orders(self) -> Tuple[int, int, int]: ...
+    @property
+    def coordinates(self) -> int: ...
+    def pose(self, alpha: ArrayLike) -> np.ndarray: ...
+    def jacobian(self, alpha: ArrayLike) -> np.ndarray: ...
+    def deflect(
+        self, force: Optional[ArrayLike] = None, moment: Optional[ArrayLike] = None, *, accuracy: Optional[Any] = None
+    ) -> Dict[str, Any]: ...
+    def compliance(self) -> np.ndarray: ...
+    def stress(self, alpha: ArrayLike) -> Optional[Dict[str, Any]]: ...
 
 class Mechanism:
     @staticmethod

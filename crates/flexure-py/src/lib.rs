@@ -31,6 +31,7 @@ mod modes;
 mod section;
 mod serialize;
 mod simulate;
+mod spatial;
 mod statics;
 mod stress;
 mod strict;
@@ -42,6 +43,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<joint::Flexure>()?;
+    m.add_class::<spatial::SpatialFlexure>()?;
     m.add_class::<mechanism::Mechanism>()?;
     m.add_class::<exact::Elastica>()?;
     m.add_function(wrap_pyfunction!(exact::exact_elastica, m)?)?;

@@ -1,0 +1,242 @@
+//! The `SpatialFlexure` class: a spatial flexure joint, two bendings and a
+//! twist in SE(3) (issue 23), built by the library's `SpatialSpec` as the
+//! CLI's `--spatial` builds it.
+
+use crate::convert::count;
+use crate::coordinates::{self, Coordinates, single, vector};
+use crate::error_estimate::estimate_dict;
+use crate::errors::{AccuracyWarning, StabilityWarning, to_py};
+use crate::section::profile;
+use crate::strict::{self, Real};
+use crate::warnings::{sig, warn};
+use flexure::estimate::{self, Accuracy};
+use flexure::spatial::{self, SpatialLoad, SpatialSpec, SpatialStatics};
+use nalgebra::{Matrix3, Vector3};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray2, PyArray3};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// A spatial flexure joint: a Kirchhoff rod (inextensible, unshearable) whose body-frame
+/// curvature (twist, κ_y, κ_z) is a shifted-Legendre series per component (SI units, radians).
+///
+/// SpatialFlexure(length, ei, order, *, ei_y, gj, modulus, width, thickness, diameter,
+/// poisson, shear_modulus, kappa, kappa_y, twist). Give the stiffnesses `ei` (EI_z, the planar
+/// flexure's in-plane bending), `ei_y` and `gj` (N·m², each a number, a (root, tip) pair or
+/// an (m, 2) table over t = s/L; `ei_y` and `gj` default to `ei`), or `modulus` (Pa) with a
+/// strip's `width` (along z) and `thickness` (along y) or a rod's `diameter`, and `poisson`
+/// (default 0.3) or `shear_modulus` for G. `order` is each component's number of
+/// coefficients (default 3); coordinates are listed twist's, then κ_y's, then κ_z's.
+/// `kappa`, `kappa_y` and `twist` are the rest coefficients of each component.
+#[pyclass(frozen, module = "flexure")]
+pub struct SpatialFlexure {
+    inner: flexure::spatial::SpatialFlexure,
+}
+
+/// A rotation and position as a 4 × 4 homogeneous transform.
+fn transform(r: &Matrix3<f64>, p: &Vector3<f64>) -> [[f64; 4]; 4] {
+    let mut g = [[0.0; 4]; 4];
+    for i in 0..3 {
+        for j in 0..3 {
+            g[i][j] = r[(i, j)];
+        }
+        g[i][3] = p[i];
+    }
+    g[3][3] = 1.0;
+    g
+}
+
+/// A 3-vector argument (`force`, `moment`): three finite numbers.
+fn triple(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<[f64; 3]> {
+    let Some(v) = value else { return Ok([0.0; 3]) };
+    let values = vector(name, &coordinates::array_like(name, v)?, None)?;
+    <[f64; 3]>::try_from(values.as_slice()).map_err(|_| {
+        pyo3::exceptions::PyValueError::new_err(format!("{name} must have 3 entries (x, y, z), got {}", values.len()))
+    })
+}
+
+#[pymethods]
+impl SpatialFlexure {
+    /// SpatialFlexure(length=1.0, ei=None, order=3, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None)
+    #[new]
+    #[pyo3(signature = (length=Real(1.0), ei=None, order=None, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        length: Real,
+        ei: Option<&Bound<'_, PyAny>>,
+        order: Option<&Bound<'_, PyAny>>,
+        ei_y: Option<&Bound<'_, PyAny>>,
+        gj: Option<&Bound<'_, PyAny>>,
+        modulus: Option<Real>,
+        width: Option<&Bound<'_, PyAny>>,
+        thickness: Option<&Bound<'_, PyAny>>,
+        diameter: Option<&Bound<'_, PyAny>>,
+        poisson: Option<Real>,
+        shear_modulus: Option<Real>,
+        kappa: Option<&Bound<'_, PyAny>>,
+        kappa_y: Option<&Bound<'_, PyAny>>,
+        twist: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let p = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
+        let n = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
+        let rest = |name: &str, v: Option<&Bound<'_, PyAny>>| {
+            v.map(|v| vector(name, &coordinates::array_like(name, v)?, Some(n))).transpose()
+        };
+        let spec = SpatialSpec {
+            length: length.0,
+            gj: p("gj", gj)?,
+            ei_y: p("ei_y", ei_y)?,
+            ei_z: p("ei", ei)?,
+            modulus: modulus.map(|v| v.0),
+            width: p("width", width)?,
+            thickness: p("thickness", thickness)?,
+            diameter: p("diameter", diameter)?,
+            poisson: poisson.map(|v| v.0),
+            shear_modulus: shear_modulus.map(|v| v.0),
+            orders: [n; 3],
+            twist: rest("twist", twist)?,
+            kappa_y: rest("kappa_y", kappa_y)?,
+            kappa_z: rest("kappa", kappa)?,
+        };
+        Ok(Self { inner: spec.build().map_err(to_py)? })
+    }
+
+    /// Length L (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length()
+    }
+
+    /// The orders (n_twist, n_y, n_z).
+    #[getter]
+    fn orders(&self) -> [usize; 3] {
+        self.inner.orders()
+    }
+
+    /// Number of coordinates, n_twist + n_y + n_z.
+    #[getter]
+    fn coordinates(&self) -> usize {
+        self.inner.coordinates()
+    }
+
+    /// The tip's 4 × 4 transform in the root frame for alpha of shape (n,) (its rotation's
+    /// columns are the tip frame's axes); (m, 4, 4) for shape (m, n), computed without the GIL.
+    fn pose<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.inner.coordinates();
+        match coordinates::read(n, alpha)? {
+            Coordinates::One(a) => {
+                let (r, p) = spatial::pose_root_tip(&self.inner, &a);
+                let g = transform(&r, &p);
+                strict::finite_slice("pose", g.as_flattened())?;
+                Ok(Array2::from_shape_fn((4, 4), |(i, j)| g[i][j]).into_pyarray(py).into_any())
+            }
+            Coordinates::Many { count, rows } => {
+                let alphas = rows.as_slice();
+                let f = &self.inner;
+                let poses: Vec<[[f64; 4]; 4]> = py.detach(|| {
+                    alphas
+                        .chunks_exact(n)
+                        .map(|a| {
+                            let (r, p) = spatial::pose_root_tip(f, a);
+                            transform(&r, &p)
+                        })
+                        .collect()
+                });
+                let flat: Vec<f64> = poses.iter().flat_map(|g| g.as_flattened().iter().copied()).collect();
+                strict::finite_slice("pose", &flat)?;
+                let out: Bound<'py, PyArray3<f64>> = Array3::from_shape_vec((count, 4, 4), flat)
+                    .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("pose: {e}")))?
+                    .into_pyarray(py);
+                Ok(out.into_any())
+            }
+        }
+    }
+
+    /// The body Jacobian (6, n): column a is the tip's twist per unit alpha_a, rows
+    /// (rx, ry, rz, x, y, z) in the tip frame.
+    fn jacobian<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let a = single(self.inner.coordinates(), alpha)?;
+        let mut k = spatial::SpatialKinematics::new(&self.inner);
+        spatial::update(&self.inner, &a, flexure::Level::Jacobian, &mut k);
+        strict::finite_slice("jacobian", k.jacobian.as_slice())?;
+        Ok(crate::convert::matrix(&k.jacobian).into_pyarray(py))
+    }
+
+    /// Equilibrium under a dead tip force (fx, fy, fz) and moment (mx, my, mz) in the root frame,
+    /// followed from rest: a dict of alpha (n,), pose (4, 4), stable, stiffness (n, n), residual,
+    /// limit_fraction (where the path lost stability, if it did), error_estimate and flagged
+    /// (against `accuracy`, default 1 % of L and 1°; a miss warns `AccuracyWarning`).
+    #[pyo3(signature = (force=None, moment=None, *, accuracy=None))]
+    fn deflect<'py>(
+        &self,
+        py: Python<'py>,
+        force: Option<&Bound<'py, PyAny>>,
+        moment: Option<&Bound<'py, PyAny>>,
+        accuracy: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let load = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
+        let target: Accuracy = crate::accuracy::accuracy(accuracy)?;
+        let f = &self.inner;
+        let (eq, alpha, stiffness, e) = py
+            .detach(|| -> flexure::Result<_> {
+                let mut data = SpatialStatics::new(f);
+                let eq = spatial::deflect(f, &load, &mut data, &Default::default())?;
+                let e = estimate::spatial::deflect_error(f, &load, data.alpha(), &target)?;
+                Ok((eq, data.alpha().to_vec(), data.stiffness.clone(), e))
+            })
+            .map_err(to_py)?;
+        let (r, p) = spatial::pose_root_tip(f, &alpha);
+        let g = transform(&r, &p);
+        strict::finite_slice("deflect", &alpha)?;
+        let d = PyDict::new(py);
+        d.set_item("alpha", numpy::PyArray1::from_slice(py, &alpha))?;
+        d.set_item("pose", Array2::from_shape_fn((4, 4), |(i, j)| g[i][j]).into_pyarray(py))?;
+        d.set_item("stable", eq.stable)?;
+        d.set_item("stiffness", crate::convert::matrix(&stiffness).into_pyarray(py))?;
+        d.set_item("residual", eq.residual)?;
+        if let Some(l) = eq.limit {
+            d.set_item("limit_fraction", l)?;
+        }
+        d.set_item("error_estimate", estimate_dict(py, &e)?)?;
+        d.set_item("flagged", e.flagged)?;
+        if !eq.stable {
+            let text = format!(
+                "SpatialFlexure.deflect: the equilibrium under force {:?} and moment {:?} is unstable: the stiffness is not positive definite",
+                load.force, load.moment
+            );
+            warn(py, &py.get_type::<StabilityWarning>(), text, 1)?;
+        }
+        if e.flagged {
+            let text = format!(
+                "SpatialFlexure.deflect: the estimated error exceeds the accuracy target: tip position {} % of L (target {} %), tip rotation {}° (target {}°)",
+                sig(100.0 * e.position / f.length()),
+                sig(100.0 * target.position),
+                sig(e.angle.to_degrees()),
+                sig(target.angle.to_degrees())
+            );
+            warn(py, &py.get_type::<AccuracyWarning>(), text, 1)?;
+        }
+        Ok(d)
+    }
+
+    /// The tip's 6 × 6 compliance at rest, order (rx, ry, rz, x, y, z) in the root frame.
+    fn compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let f = &self.inner;
+        let mut data = SpatialStatics::new(f);
+        spatial::correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default()).map_err(to_py)?;
+        let c = spatial::compliance(f, &data).map_err(to_py)?;
+        strict::finite_slice("compliance", c.as_slice())?;
+        Ok(Array2::from_shape_fn((6, 6), |(i, j)| c[(i, j)]).into_pyarray(py))
+    }
+
+    /// The peak von Mises stress along the flexure at alpha: a dict of max (Pa), at (m),
+    /// bending_y, bending_z, shear and point; None for a section given by its stiffnesses.
+    fn stress<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let a = single(self.inner.coordinates(), alpha)?;
+        let Ok(p) = spatial::peak_stress(&self.inner, &a) else { return Ok(None) };
+        let d = crate::serialize::to_dict(py, &p.stress)?;
+        d.set_item("max", p.stress.von_mises)?;
+        d.set_item("at", p.at)?;
+        Ok(Some(d))
+    }
+}

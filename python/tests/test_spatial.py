@@ -1,0 +1,61 @@
+"""flexure.SpatialFlexure: the spatial flexure from Python, against closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+
+import flexure
+
+
+def test_pose_of_an_arc_and_a_batch():
+    # Reference: a circular arc of 1 rad about z: tip (sin 1, 1 - cos 1, 0), 1e-13.
+    f = flexure.SpatialFlexure()
+    alpha = [0, 0, 0, 0, 0, 0, 1, 0, 0]
+    g = f.pose(alpha)
+    assert g.shape == (4, 4)
+    assert abs(g[0, 3] - math.sin(1)) < 1e-13 and abs(g[1, 3] - (1 - math.cos(1))) < 1e-13
+    batch = f.pose(np.array([alpha, [0.0] * 9]))
+    assert batch.shape == (2, 4, 4)
+    assert np.allclose(batch[0], g, atol=1e-15) and np.allclose(batch[1], np.eye(4), atol=1e-15)
+    assert f.jacobian(alpha).shape == (6, 9)
+
+
+def test_deflect_pure_twist():
+    # Reference: pure twist, angle TL/GJ (closed form, 1e-10).
+    f = flexure.SpatialFlexure(length=0.8, gj=0.25)
+    d = f.deflect(moment=(0.4, 0.0, 0.0))
+    r = d["pose"][:3, :3]
+    assert abs(math.atan2(r[2, 1], r[1, 1]) - 0.4 * 0.8 / 0.25) < 1e-10
+    assert d["stable"] and not d["flagged"] and d["error_estimate"]["position"] >= 0
+
+
+def test_compliance_closed_forms():
+    # Reference: L/GJ, L/EI_y, L^3/3EI_z (closed forms, 1e-12 relative).
+    c = flexure.SpatialFlexure(length=2.0, ei=1.0, ei_y=4.0, gj=0.5).compliance()
+    assert c.shape == (6, 6)
+    assert abs(c[0, 0] - 4.0) < 1e-12 and abs(c[1, 1] - 0.5) < 1e-12 and abs(c[4, 4] - 8.0 / 3.0) < 1e-12
+
+
+def test_lateral_torsional_buckling_warns():
+    # Reference: Michell, P = 4.013 sqrt(EI_z GJ)/L^2 = 2.64 N for a 10 x 0.2 x 50 mm steel strip;
+    # 20 N along z is beyond it, so the equilibrium followed from rest is unstable.
+    f = flexure.SpatialFlexure(length=0.05, modulus=200e9, width=0.01, thickness=2e-4)
+    with pytest.warns(flexure.StabilityWarning):
+        d = f.deflect(force=(0.0, 0.0, 20.0))
+    assert not d["stable"] and 0.12 < d["limit_fraction"] < 0.14
+    s = f.stress(d["alpha"])
+    assert s["max"] > 0 and s["point"] in ("corner", "width_side", "thickness_side")
+
+
+def test_bad_input_raises_value_error_naming_it():
+    with pytest.raises(ValueError, match="gj"):
+        flexure.SpatialFlexure(gj=-1.0)
+    with pytest.raises(ValueError, match="force"):
+        flexure.SpatialFlexure().deflect(force=(0.0, 1.0))
+    with pytest.raises(ValueError, match="force"):
+        flexure.SpatialFlexure().deflect(force=(0.0, float("nan"), 0.0))
+    with pytest.raises(TypeError):
+        flexure.SpatialFlexure(length=True)
+    with pytest.raises(ValueError, match="kappa_y"):
+        flexure.SpatialFlexure(kappa_y=[1.0, 0.0])
