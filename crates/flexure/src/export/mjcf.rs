@@ -24,7 +24,7 @@ fn placed(mut e: Element, p: &Pose) -> Element {
     if p.phi != 0.0 { e.attr("quat", quat(p.phi)) } else { e }
 }
 
-/// The model as MJCF (MuJoCo 3.3 or later: polynomial joint stiffness, site
+/// The model as MJCF (MuJoCo 3.8 or later, for polynomial joint stiffness; checked with 4.0), site
 /// constraints), with the fit summary `comment` at its top.
 ///
 /// What is written where, for a MuJoCo user:
