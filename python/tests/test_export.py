@@ -252,13 +252,9 @@ CASES = [
     for prb in ("1R", "3R")
 ]
 # Known failures of prb's 3R fit, each an export that fails naming it (strict: a fix makes
-# these fail until they are taken off the list): the paper's tendon joint to 90 degrees (the
-# chain's equilibrium continuation stalls at 99 % of the load), and the parallelogram's legs
-# (the chain's equilibrium under their axial tip loads is refused as unstable).
-KNOWN = {
-    "paper_tendon.toml-3R": "prb 3R equilibrium stalls at 99 % of the paper's tendon load",
-    "parallelogram.toml-3R": "prb 3R equilibrium refuses the parallelogram legs' tip loads as unstable",
-}
+# this fail until it is taken off the list): the paper's tendon joint to 90 degrees (the
+# chain's equilibrium continuation stalls at 99 % of the load).
+KNOWN = {"paper_tendon.toml-3R": "prb 3R equilibrium stalls at 99 % of the paper's tendon load"}
 CASES = [
     pytest.param(*c.values, id=c.id, marks=pytest.mark.xfail(strict=True, raises=flexure.ConvergenceError, reason=KNOWN[c.id]))
     if c.id in KNOWN
