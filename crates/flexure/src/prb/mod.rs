@@ -61,6 +61,7 @@
 
 mod chain;
 mod fitting;
+pub mod howell;
 mod model;
 mod statics;
 
