@@ -76,6 +76,13 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
         crate::options::note(n.clone());
     }
     let mut report = json!(e.report);
+    if !json {
+        // The table form: warnings and notes are on stderr already, one a line.
+        if let Some(r) = report.as_object_mut() {
+            r.remove("warnings");
+            r.remove("notes");
+        }
+    }
     match &args.out {
         Some(path) => {
             std::fs::write(path, &e.xml).map_err(|err| format!("--out {}: {err}", path.display()))?;
