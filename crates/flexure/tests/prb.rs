@@ -170,19 +170,27 @@ fn small_loads_give_the_beams_linear_compliance() {
     assert!((5e-3 / theta[0] / 1.5 - 1.0).abs() < 1e-5, "c_θ = {}", 5e-3 / theta[0]);
 }
 
-/// Su's 3R chain matches the tip pose far better than 1R on the same loads
-/// (vertical forces to PL²/EI = 5, a tip angle of about 70°): smaller
-/// position and angle errors. 1R's angle error is Howell's c_θ mismatch.
+/// The fitted 3R chain matches the tip pose far better than 1R on the same
+/// loads (vertical forces to PL²/EI = 5, a tip angle of about 70°): both
+/// its position and angle errors are below 5 % of 1R's (measured 1.1 % and
+/// 0.7 %). 1R's angle error is Howell's c_θ mismatch (about 0.22 rad here).
+/// The length search only improves on Su's lengths.
 #[test]
 fn three_r_is_closer_than_one_r() {
     let f = unit(6);
     let loads = vertical(5.0, 16);
     let one = prb::fit(&f, &loads, PrbKind::OneR).unwrap();
     let three = prb::fit(&f, &loads, PrbKind::ThreeR).unwrap();
-    assert!(three.error.position < one.error.position, "{:?} vs {:?}", three.error, one.error);
-    assert!(three.error.angle < 0.2 * one.error.angle, "{:?} vs {:?}", three.error, one.error);
+    assert!(three.error.position < 0.05 * one.error.position, "{:?} vs {:?}", three.error, one.error);
+    assert!(three.error.angle < 0.05 * one.error.angle, "{:?} vs {:?}", three.error, one.error);
+    assert!(one.error.angle > 0.15, "{:?}", one.error);
     assert_eq!(three.joints.len(), 3);
-    assert!((three.gamma.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+    assert!((three.gamma.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    let su = prb::fit_three_r(&f, &loads, prb::SU_GAMMA).unwrap();
+    assert!(three.error.position <= su.error.position, "{:?} vs {:?}", three.error, su.error);
+    // Bad lengths are named.
+    let e = prb::fit_three_r(&f, &loads, [0.5, 0.5, 0.5, -0.5]).unwrap_err();
+    assert!(matches!(e, Error::InvalidParameter { name: "gamma", .. }), "{e}");
 }
 
 /// Bad input: no loads, a NaN or an infinite load → an error naming `loads`.
@@ -273,7 +281,7 @@ fn howell_n_against_his_fits() {
 #[test]
 fn three_r_small_forces_give_sus_constants() {
     let f = unit(8);
-    let fit = prb::fit(&f, &vertical(0.03, 10), PrbKind::ThreeR).unwrap();
+    let fit = prb::fit_three_r(&f, &vertical(0.03, 10), prb::SU_GAMMA).unwrap();
     assert_eq!(fit.gamma, prb::SU_GAMMA.to_vec());
     for (k, su) in fit.k_theta.iter().zip([3.71591, 2.87128, 2.26417]) {
         assert!((k / su - 1.0).abs() < 3e-3, "{:?}", fit.k_theta);

@@ -2,6 +2,7 @@
 
 use super::chain::{rest_pose_at, tip_pose};
 use super::model::{FitError, PrbFit, PrbJoint, PrbKind};
+use super::simplex;
 use super::statics::equilibrium;
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
@@ -20,9 +21,9 @@ pub const HOWELL_GAMMA: f64 = 0.8517;
 /// do not deflect the flexure.
 pub const HOWELL_K_THETA: f64 = 2.676;
 
-/// Su's 3R length fractions $\gamma_0, \dots, \gamma_3$ (Su 2009), the 3R fit's lengths.
+/// Su's 3R length fractions $\gamma_0, \dots, \gamma_3$ (Su 2009, Eq. 24), where the 3R length search starts.
 pub const SU_GAMMA: [f64; 4] = [0.1, 0.35, 0.40, 0.15];
-/// Su's 3R stiffness coefficients $K_{\Theta 1}, K_{\Theta 2}, K_{\Theta 3}$ (Su 2009),
+/// Su's 3R stiffness coefficients $K_{\Theta 1}, K_{\Theta 2}, K_{\Theta 3}$ (Su 2009, Table 1, averaged over load directions),
 /// the 3R springs when the loads do not deflect the flexure.
 pub const SU_K_THETA: [f64; 3] = [3.51, 2.99, 2.58];
 
@@ -30,6 +31,14 @@ pub const SU_K_THETA: [f64; 3] = [3.51, 2.99, 2.58];
 const GRID: usize = 40;
 /// Golden-section iterations refining $\gamma$.
 const GOLDEN_ITERATIONS: usize = 60;
+/// The shortest 3R link the length search accepts (fraction of $L$).
+const MIN_LINK: f64 = 0.02;
+/// The length search's first simplex: Su's lengths and steps of this size.
+const SIMPLEX_STEP: f64 = 0.03;
+/// The length search's iteration cap.
+const SIMPLEX_ITERATIONS: usize = 120;
+/// The length search stops when its vertices' errors agree to this fraction of $L$.
+const LENGTH_TOLERANCE: f64 = 1e-7;
 /// Points at which a fitted spring's tangent stiffness is checked.
 const SPRING_CHECKS: usize = 64;
 /// The range searched for the 1R $\gamma$.
@@ -54,11 +63,14 @@ const GAMMA_RANGE: (f64, f64) = (0.05, 1.0);
 ///   $\tau_k = M + (r^{\prime}_k - p)\times F$, is fitted by least squares
 ///   with $\tau = k_1\Theta + k_2\Theta^2 + k_3\Theta^3$ (as many terms as
 ///   there are deflected samples, up to three).
-/// - **3R**: Su's lengths $\gamma_i$ ([`SU_GAMMA`]); each sample's joint
-///   angles put the chain's tip exactly on $g_k$ (the two-link inverse
-///   kinematics between the first and last pivots, on the branch that turns
-///   least), and each joint's torque $\tau_{ik} = M + (r_k - q_i)\times F$
-///   is fitted by least squares with its own cubic.
+/// - **3R**: for lengths $\gamma_i$, each sample's joint angles put the
+///   chain's tip exactly on $g_k$ (the two-link inverse kinematics between
+///   the first and last pivots, on the branch that turns least), and each
+///   joint's torque $\tau_{ik} = M + (r_k - q_i)\times F$ is fitted by least
+///   squares with its own cubic ([`fit_three_r`]). The lengths are then
+///   searched from Su's ([`SU_GAMMA`]) by Nelder–Mead (at most 120 steps,
+///   links at least 2 % of $L$) for the smallest largest position error at
+///   the chain's equilibria; Su's lengths are kept if nothing beats them.
 ///
 /// The reported [`PrbFit::error`] is that of the fitted chain at its own
 /// [`equilibrium`] under each load against $g_k$: the largest tip distance
@@ -87,11 +99,67 @@ const GAMMA_RANGE: (f64, f64) = (0.05, 1.0);
 pub fn fit(f: &Flexure, loads: &[TipLoad], kind: PrbKind) -> Result<PrbFit> {
     let targets = model_tips(f, loads)?;
     let rest = pose_root_tip(f, f.rest());
-    let mut fit = match kind {
-        PrbKind::OneR => one_r(f, loads, &targets, &rest),
-        PrbKind::ThreeR => three_r(f, loads, &targets, &rest, &SU_GAMMA),
-    };
-    fit.error = fit_error(&fit, f, loads, &targets)?;
+    match kind {
+        PrbKind::OneR => finish(one_r(f, loads, &targets, &rest), f, loads, &targets),
+        PrbKind::ThreeR => {
+            let su = finish(three_r(f, loads, &targets, &rest, &SU_GAMMA), f, loads, &targets)?;
+            let mut objective = |x: &[f64]| match lengths(x) {
+                Some(g) => finish(three_r(f, loads, &targets, &rest, &g), f, loads, &targets)
+                    .map_or(f64::INFINITY, |fit| fit.error.position),
+                None => f64::INFINITY,
+            };
+            let tolerance = LENGTH_TOLERANCE * f.length();
+            let (x, best) =
+                simplex::minimize(&mut objective, &SU_GAMMA[..3], SIMPLEX_STEP, SIMPLEX_ITERATIONS, tolerance);
+            match lengths(&x) {
+                Some(g) if best < su.error.position => {
+                    finish(three_r(f, loads, &targets, &rest, &g), f, loads, &targets)
+                }
+                _ => Ok(su),
+            }
+        }
+    }
+}
+
+/// Fits Su's 3R chain with the given link lengths $\gamma_0, \dots, \gamma_3$
+/// (fractions of $L$, positive, summing to 1) to the flexure `f` under
+/// `loads`: the springs alone, as [`fit`] fits them (each joint's cubic
+/// from the torques of the chain posed on the model's tips), and the
+/// errors at the chain's equilibria. [`fit`] with [`PrbKind::ThreeR`]
+/// searches the lengths too, from Su's ([`SU_GAMMA`]).
+///
+/// Errors: `gamma` not positive or not summing to 1 (within 1e-9); those of [`fit`].
+///
+/// # Example
+/// ```
+/// use flexure::prb::{self, SU_GAMMA};
+/// use flexure::{Flexure, TipLoad};
+/// let f = Flexure::new(1.0, 1.0, 6)?;
+/// let loads: Vec<TipLoad> = (1..=8).map(|i| TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * i as f64 }).collect();
+/// let fit = prb::fit_three_r(&f, &loads, SU_GAMMA)?;
+/// assert_eq!(fit.gamma, SU_GAMMA.to_vec());
+/// assert!(fit.error.position < 1e-3 && fit.joints.len() == 3);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn fit_three_r(f: &Flexure, loads: &[TipLoad], gamma: [f64; 4]) -> Result<PrbFit> {
+    if !gamma.iter().all(|g| g.is_finite() && *g > 0.0) || (gamma.iter().sum::<f64>() - 1.0).abs() > 1e-9 {
+        return Err(Error::invalid("gamma", format!("{gamma:?}"), "must be four positive fractions summing to 1"));
+    }
+    let targets = model_tips(f, loads)?;
+    let rest = pose_root_tip(f, f.rest());
+    finish(three_r(f, loads, &targets, &rest, &gamma), f, loads, &targets)
+}
+
+/// The 3R lengths $(\gamma_0, \gamma_1, \gamma_2, 1 - \sum)$ of the search
+/// point `x`, if every link is at least [`MIN_LINK`] long.
+fn lengths(x: &[f64]) -> Option<[f64; 4]> {
+    let g = [x[0], x[1], x[2], 1.0 - x[0] - x[1] - x[2]];
+    g.iter().all(|v| *v >= MIN_LINK).then_some(g)
+}
+
+/// The fit with its errors measured and flagged.
+fn finish(mut fit: PrbFit, f: &Flexure, loads: &[TipLoad], targets: &[Pose]) -> Result<PrbFit> {
+    fit.error = fit_error(&fit, f, loads, targets)?;
     fit.flagged = fit.error.position > FLAG_FRACTION * f.length();
     Ok(fit)
 }

@@ -39,10 +39,23 @@
 //!
 //! **Fit.** [`fit()`] solves the Smooth Curvature Model under each given
 //! load from rest ([`crate::deflect`]), then fits the chain to those tip
-//! poses and reports the largest error of the PRB model *at its own
-//! equilibrium* ([`equilibrium()`]) under the same loads: tip position (m)
-//! and tip angle (rad). A fit whose position error exceeds 1 % of $L$ is
-//! [`PrbFit::flagged`].
+//! poses: for 1R the $\gamma$ whose circle passes closest to the model's
+//! tips (in the largest distance) and a cubic spring; for 3R the springs
+//! of the chain posed exactly on the model's tips, with the link lengths
+//! searched from Su's. It reports the largest error of the PRB model *at
+//! its own equilibrium* ([`equilibrium()`]) under the same loads: tip
+//! position (m) and tip angle (rad). A fit whose position error exceeds
+//! 1 % of $L$ is [`PrbFit::flagged`]. The 1R angle error is Howell's
+//! parametric angle mismatch (the tip turns $c_\theta \approx 1.24$ times the
+//! PRB angle under an end force, 1.5 under a moment), which no choice of
+//! constants removes; 3R reduces it by one to two orders of magnitude.
+//!
+//! **Howell's procedure** ([`howell`]) is the other fit: his constants for a
+//! cantilever under an end force of one direction, with $\gamma$ maximizing
+//! the PRB angle $\Theta_{max}$ up to which the tip stays within 0.5 % *of
+//! its deflection*. It reproduces Howell's $\gamma = 0.8517$,
+//! $\Theta_{max} = 64.3°$ and $K_\Theta = 2.676$ for a vertical force
+//! (`VALIDATION.md`, *PRB*).
 //!
 //! # Example
 //! ```
@@ -63,9 +76,10 @@ mod chain;
 mod fitting;
 pub mod howell;
 mod model;
+mod simplex;
 mod statics;
 
 pub use chain::{rest_pose_at, tip_pose};
-pub use fitting::{FLAG_FRACTION, HOWELL_GAMMA, HOWELL_K_THETA, SU_GAMMA, SU_K_THETA, fit};
+pub use fitting::{FLAG_FRACTION, HOWELL_GAMMA, HOWELL_K_THETA, SU_GAMMA, SU_K_THETA, fit, fit_three_r};
 pub use model::{FitError, PrbFit, PrbJoint, PrbKind};
 pub use statics::{equilibrium, gradient, potential};
