@@ -275,6 +275,33 @@ class Mechanism:
             self._named(e, ("parameter", "values", "accuracy", "compliance", "body", "at"))
             raise
 
+    def export(
+        self,
+        to: str = "mjcf",
+        prb: str = "1R",
+        range: _Union[None, str, _Sequence[float]] = None,
+        armature: float = 0.0,
+        name: _Optional[str] = None,
+    ) -> _Tuple[str, dict]:
+        """The mechanism as a rigid-body model for a simulator, as `flexure export`: returns
+        (xml, report). to: "mjcf" (MuJoCo), "sdf" (SDFormat 1.9, Gazebo) or "urdf" (ROS).
+        Each flexure becomes a pseudo-rigid-body chain, prb "1R" (Howell's characteristic
+        pivot) or "3R" (Su's), fitted to the Smooth Curvature Model over the file's loads
+        times each fraction of range ("F0:F1:N" or (F0, F1, N); default 0 to 1 at 12).
+        armature (kg m^2) is added to every pseudo-rigid hinge; name is the model's (default
+        the file's stem). report: format, prb, range, joints {flexure joint: {prb, gamma,
+        k_theta, stiffness, pivots, error {position, angle}, flagged, samples, length}},
+        warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
+        notes. Bad arguments raise ValueError naming them (docs/export.md in the repository)."""
+        if name is None:
+            name = _Path(self._source).stem if self._source else "mechanism"
+        try:
+            return self._inner.export(to, prb, range, armature, name)
+        except (ValueError, ConvergenceError) as e:
+            if self._source is not None and e.args and not str(e.args[0]).startswith("invalid"):
+                e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
+            raise
+
     def modes(self, count: _Optional[int] = None, accuracy: _Optional[float] = None) -> dict:
         """Vibration modes about the loaded equilibrium (the loads' stiffness included, so a
         frequency falls to zero at a buckling load; closures respected): a dict of omega

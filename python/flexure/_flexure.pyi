@@ -314,6 +314,9 @@ class Mechanism:
               compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
         stability_limit, findings; a sweep that stops raises with the rows in `result`."""
+    def export(self, to: str = "mjcf", prb: str = "1R", range: Union[None, str, Sequence[float]] = None,
+               armature: float = 0.0, name: str = "mechanism") -> Tuple[str, dict]:
+        """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, warnings, notes})."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
         quasi_static, and limit_fraction after a snap-through."""

@@ -9,6 +9,7 @@
 mod analyses;
 mod batch;
 mod eigen;
+mod export;
 mod findings;
 mod input;
 mod joint;
@@ -72,12 +73,17 @@ enum Command {
     /// Natural frequencies and mode shapes about the loaded equilibrium: of a
     /// mechanism file, or of one flexure joint with a tip body (--exact: beside exact beam theory).
     Modes(modes::ModesArgs),
+    /// A mechanism file as a rigid-body model for MuJoCo (MJCF), Gazebo (SDFormat) or ROS (URDF), each
+    /// flexure a pseudo-rigid-body chain fitted to the model over the file's loads.
+    Export(export::ExportArgs),
 }
 
 /// What a subcommand answers: one object, or one answer per `--input` row.
 enum Answer {
     One(Value),
     Rows(batch::Rows),
+    /// A model's text for stdout (`export` without `--out`).
+    Text(String),
 }
 
 /// Runs the command line `args` (program name first), writing the answer to
@@ -109,7 +115,7 @@ where
     for w in options::take_warnings() {
         let _ = writeln!(stderr, "warning: {w}");
     }
-    let answer = answer(&cli.command);
+    let answer = answer(&cli.command, cli.json);
     // Warnings raised while answering (e.g. by an --input file's cells).
     for w in options::take_warnings() {
         let _ = writeln!(stderr, "warning: {w}");
@@ -126,7 +132,7 @@ where
     }
 }
 
-fn answer(command: &Command) -> Result<Answer, String> {
+fn answer(command: &Command, json: bool) -> Result<Answer, String> {
     let one = |v: Result<Value, String>| v.map(Answer::One);
     match command {
         // --input: one answer per CSV row.
@@ -150,6 +156,7 @@ fn answer(command: &Command) -> Result<Answer, String> {
         Command::Draw(a) => one(mechanism::draw_cmd(a)),
         Command::Simulate(a) => one(simulate::simulate_cmd(a)),
         Command::Modes(a) => one(modes::modes_cmd(a)),
+        Command::Export(a) => export::export_cmd(a, json).map(|e| e.model.map_or(Answer::One(e.report), Answer::Text)),
     }
 }
 
@@ -162,6 +169,10 @@ fn emit(answer: Answer, as_json: bool, stdout: &mut dyn Write, stderr: &mut dyn 
         None => Ok(value),
     };
     match answer {
+        Answer::Text(text) => match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
+            Ok(()) => SUCCESS,
+            Err(e) => write_failed(e, stderr),
+        },
         Answer::One(value) => {
             let value = match checked(value) {
                 Ok(value) => value,

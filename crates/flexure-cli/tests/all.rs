@@ -14,6 +14,7 @@ mod cli;
 mod docs;
 mod estimate;
 mod examples;
+mod export;
 mod figures;
 mod findings;
 mod fuzz;

@@ -22,6 +22,7 @@ mod coordinates;
 mod error_estimate;
 mod errors;
 mod exact;
+mod export;
 mod findings;
 mod interrupt;
 mod joint;

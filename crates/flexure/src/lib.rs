@@ -196,6 +196,7 @@ pub mod dynamics;
 pub mod energy;
 pub mod error;
 pub mod estimate;
+pub mod export;
 pub mod inertia;
 pub mod joint;
 pub mod kinematics;

@@ -25,6 +25,7 @@ mod elastica;
 mod elastica_path;
 mod energy;
 mod estimate;
+mod export;
 mod findings;
 mod format;
 mod joints;

@@ -74,6 +74,20 @@ impl Mechanism {
         modes::mechanism_modes(py, &self.inner, count, &target)
     }
 
+    /// The mechanism as MJCF, SDFormat or URDF text with its fit report: see `flexure.Mechanism.export`.
+    #[pyo3(signature = (to="mjcf", prb="1R", range=None, armature=Real(0.0), name="mechanism"))]
+    fn export<'py>(
+        &self,
+        py: Python<'py>,
+        to: &str,
+        prb: &str,
+        range: Option<&Bound<'py, PyAny>>,
+        armature: Real,
+        name: &str,
+    ) -> PyResult<(String, Bound<'py, PyDict>)> {
+        crate::export::export(py, &self.inner, to, prb, range, armature, name)
+    }
+
     /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see
     /// `flexure.Mechanism.buckle`.
     #[pyo3(signature = (accuracy=None))]

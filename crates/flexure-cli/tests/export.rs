@@ -1,0 +1,98 @@
+//! `flexure export`: the model to stdout or `--out`, the fit report, the
+//! warnings of what a format cannot hold, and bad options refused by name.
+
+use crate::cli::{answer, run};
+
+const FINGER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml");
+const FOUR_BAR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/four_bar.toml");
+
+#[test]
+fn the_model_goes_to_stdout_and_the_fits_to_stderr() {
+    let (code, out, err) = run(&["export", FINGER, "--to", "mjcf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("<?xml") && out.contains(r#"<mujoco model="finger">"#), "{out}");
+    assert!(out.contains(r#"<body name="proximal""#) && out.contains(r#"<body name="distal""#));
+    // Each fit told on stderr, by joint, with its error.
+    for joint in ["mcp", "pip"] {
+        assert!(
+            err.lines().any(|l| l.starts_with(&format!("note: {joint}: 1R gamma")) && l.contains("% of L")),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn the_json_report_has_every_flexures_fit() {
+    let dir = std::env::temp_dir().join(format!("flexure-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("finger.xml");
+    let (v, err) =
+        answer(&["export", FINGER, "--to", "mjcf", "--prb", "3R", "--range", "0:1:6", "--out", path.to_str().unwrap()]);
+    let xml = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(xml.contains(r#"<body name="mcp_prb1""#) && xml.contains(r#"<joint name="pip_3""#), "{xml}");
+    assert_eq!(v["out"], path.display().to_string());
+    assert_eq!((v["format"].as_str(), v["prb"].as_str()), (Some("mjcf"), Some("3R")));
+    assert_eq!(v["range"]["count"], 6);
+    for joint in ["mcp", "pip"] {
+        let j = &v["joints"][joint];
+        assert_eq!(j["prb"], "3R");
+        assert_eq!(j["stiffness"].as_array().unwrap().len(), 3);
+        assert_eq!(j["samples"], 6);
+        for key in ["gamma", "k_theta", "pivots"] {
+            assert!(j[key].is_array(), "{joint}.{key}");
+        }
+        // The finger's fits are within 1 % of L: not flagged, no warning.
+        let e = j["error"]["position"].as_f64().unwrap();
+        assert!(e < 0.01 * j["length"].as_f64().unwrap() && j["flagged"] == false, "{joint}: {e}");
+        assert!(j["error"]["angle"].as_f64().unwrap() >= 0.0);
+    }
+    assert!(!err.contains("warning:"), "{err}");
+    // With --json and no --out, the model is in the report.
+    let (v, _) = answer(&["export", FINGER, "--to", "sdf"]);
+    assert!(v["model"].as_str().unwrap().contains(r#"<sdf version="1.9">"#));
+}
+
+/// URDF holds the tree only: each loss is a warning on stderr naming it.
+#[test]
+fn urdf_warns_of_each_loss_by_name() {
+    let (code, out, err) = run(&["export", FOUR_BAR, "--to", "urdf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("<robot name=\"four_bar\">"));
+    for s in [
+        "warning: joint \"input_hinge\": URDF has no springs",
+        "warning: tendon \"pull\"",
+        "warning: force \"push\"",
+        "warning: gravity",
+        "warning: pin \"coupler\"–\"output\"",
+    ] {
+        assert!(err.contains(s), "{s} not in {err}");
+    }
+}
+
+/// A 1R fit of the paper's tendon joint to 90° is more than 1 % of L off:
+/// flagged in the report, and a warning naming the joint.
+#[test]
+fn a_poor_fit_is_flagged_and_warned_of() {
+    let tendon = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/paper_tendon.toml");
+    let (v, err) = answer(&["export", tendon, "--to", "mjcf", "--out", "/dev/null"]);
+    assert_eq!(v["joints"]["hinge"]["flagged"], true);
+    assert!(err.contains("warning: joint \"hinge\": the 1R fit's tip is up to"), "{err}");
+}
+
+#[test]
+fn bad_options_exit_2_naming_them() {
+    for (args, word) in [
+        (vec!["--to", "xml"], "--to"),
+        (vec!["--to", "mjcf", "--prb", "2R"], "--prb"),
+        (vec!["--to", "mjcf", "--range", "0:1"], "--range"),
+        (vec!["--to", "mjcf", "--range", "0:1:100"], "--range"),
+        (vec!["--to", "mjcf", "--armature=-1"], "--armature"),
+    ] {
+        let mut a = vec!["export", FINGER];
+        a.extend(args);
+        let (code, out, err) = run(&a);
+        assert_eq!(code, 2, "{a:?}: {out}");
+        assert!(err.contains(word), "{a:?}: {err}");
+    }
+}

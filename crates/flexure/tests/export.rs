@@ -1,0 +1,284 @@
+//! The exporter: load ranges, tip wrenches, the rigid-body model against the
+//! PRB chain's own kinematics, lumped masses against closed forms, and what
+//! each format writes and warns of. The checks in a real simulator (MuJoCo)
+//! are `python/tests/test_export.py`.
+
+use flexure::export::model::{Chain, Model, Motion, build};
+use flexure::export::{Format, LoadRange, Options, chain, export, fits, lump, wrench};
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::Settings;
+use flexure::prb::{self, PrbKind};
+use flexure::space::Pose;
+use nalgebra::Point2;
+
+const FINGER: &str = include_str!("../../../examples/finger.toml");
+const FOUR_BAR: &str = include_str!("../../../examples/four_bar.toml");
+
+/// The rotation by `theta` about `p`: $(\theta, p - R(\theta)p)$.
+fn about(p: Point2<f64>, theta: f64) -> Pose {
+    let (s, c) = theta.sin_cos();
+    Pose { phi: theta, x: p.x - (c * p.x - s * p.y), y: p.y - (s * p.x + c * p.y) }
+}
+
+/// Each link's world pose with its hinge at `theta[k]` (the k-th moving joint), by composing
+/// the model's link poses: the forward kinematics any simulator does with the file's tree.
+fn world(model: &Model, theta: &[f64]) -> Vec<Pose> {
+    let mut out: Vec<Pose> = Vec::with_capacity(model.links.len());
+    let mut k = 0;
+    for (i, l) in model.links.iter().enumerate() {
+        if i == 0 {
+            out.push(Pose::default());
+            continue;
+        }
+        let mut p = out[l.parent].compose(&l.pose);
+        if let Some(j) = &l.joint {
+            assert_eq!(j.motion, Motion::Hinge);
+            p = p.compose(&about(j.at, theta[k]));
+            k += 1;
+        }
+        out.push(p);
+    }
+    out
+}
+
+#[test]
+fn load_ranges_parse_and_refuse_by_name() {
+    let r: LoadRange = "0.5:1:3".parse().unwrap();
+    assert_eq!(r.fractions(), vec![0.5, 0.75, 1.0]);
+    assert_eq!(LoadRange::default().fractions().len(), 12);
+    for bad in ["0:1", "0:1:1", "0:1:65", "1:1:4", "a:1:4", "0:nan:4", "0:1e4:4"] {
+        let e = bad.parse::<LoadRange>().unwrap_err().to_string();
+        assert!(e.contains("range"), "{bad}: {e}");
+    }
+    let e = "xml".parse::<Format>().unwrap_err().to_string();
+    assert!(e.contains("to") && e.contains("xml"), "{e}");
+}
+
+/// A single flexure turned by its origin, holding an arm with a force 30 mm
+/// out: the tip wrench in the root frame is the force turned into it and
+/// its moment about the tip, $M = r \times F$ (statics by hand), to 1e-9
+/// relative (the least squares of a converged equilibrium).
+#[test]
+fn tip_wrenches_are_the_loads_the_bodies_pass_on() {
+    let m = from_toml(
+        "[[joint]]\nname = \"h\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.0, 0.0, 0.5]\nlength = 0.02\nei = 1e-3\n\
+         [[force]]\nname = \"f\"\nbody = \"arm\"\nat = [0.03, 0.0]\nforce = [0.1, -0.2]\n",
+    )
+    .unwrap();
+    let range = LoadRange { from: 0.0, to: 1.0, count: 3 };
+    let sols = wrench::equilibria(&m, &range, &Settings::default()).unwrap();
+    for (lambda, s) in range.fractions().iter().zip(&sols) {
+        let w = wrench::tip_wrench(&m, 0, s).unwrap().unwrap();
+        // The arm's frame in the ground: the root (turned 0.5) then the tip.
+        let tip = flexure::pose_root_tip(m.joints[0].kind.flexure().unwrap(), &s.q);
+        let arm_phi = 0.5 + tip.phi;
+        let (fx, fy) = (0.1 * lambda, -0.2 * lambda);
+        // Force in the root frame, and its moment about the tip point.
+        let (sr, cr) = 0.5f64.sin_cos();
+        let (rx, ry) = (cr * fx + sr * fy, -sr * fx + cr * fy);
+        let (dx, dy) = (0.03 * arm_phi.cos(), 0.03 * arm_phi.sin());
+        let moment = dx * fy - dy * fx;
+        let scale = 1e-9 * 0.2;
+        assert!((w.fx - rx).abs() < scale && (w.fy - ry).abs() < scale, "λ = {lambda}: {w:?}");
+        assert!((w.moment - moment).abs() < scale * 0.03, "λ = {lambda}: {} against {moment}", w.moment);
+    }
+    assert!(!wrench::weighs_itself(&m, 0));
+}
+
+/// The model's links, with their hinges turned, put each flexure's child
+/// where the PRB chain's own kinematics ([`prb::tip_pose`]) puts its tip,
+/// for 1R and 3R and a rest-curved flexure: to 1e-15 m (rounding of
+/// composed poses).
+#[test]
+fn the_links_move_as_the_chain() {
+    let f = flexure::Flexure::new(0.02, 1e-3, 4).unwrap().with_rest(&[0.3, -0.1, 0.05, 0.0]).unwrap();
+    let toml = "[[joint]]\nname = \"h\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.01, 0.02, 0.7]\n\
+                length = 0.02\nei = 1e-3\norder = 4\nkappa = [0.3, -0.1, 0.05, 0.0]\n\
+                [[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\nforce = [0.0, -0.3]\n";
+    let m = from_toml(toml).unwrap();
+    for kind in [PrbKind::OneR, PrbKind::ThreeR] {
+        let fit = fits(&m, kind, &LoadRange::default(), &Settings::default()).unwrap().remove(0).unwrap();
+        let model = build(&m, &[Some(chain(&fit, f.length()))], 0.0).unwrap();
+        let n = fit.joints.len();
+        assert_eq!(model.joints().count(), n);
+        for theta in [vec![0.0; n], vec![0.4; n], (0..n).map(|i| -0.3 + 0.2 * i as f64).collect()] {
+            let tip = prb::tip_pose(&fit, &f, &theta);
+            let expected = m.joints[0].origin.compose(&tip);
+            let got = world(&model, &theta)[model.body_link[1]];
+            let d = (got.x - expected.x).hypot(got.y - expected.y);
+            assert!(
+                d < 1e-15 && (got.phi - expected.phi).abs() < 1e-15,
+                "{kind} at {theta:?}: {got:?} against {expected:?}"
+            );
+        }
+    }
+}
+
+/// A uniform strip's pieces against the closed forms of a rod: mass
+/// $\mu\ell$, centre at its middle, $I = \mu\ell^3/12 + \rho I\ell$ (with
+/// $\rho I = \mu h^2/12$), to 1e-13 relative; and a taper's mass against
+/// $\int\rho b h\thinspace ds$ of a linear thickness, exact for Gauss.
+#[test]
+fn lumped_pieces_are_the_rods_closed_forms() {
+    use flexure::section::{Profile, Section};
+    let (l, b, h, rho) = (0.02, 0.01, 2e-4, 7850.0);
+    let s =
+        Section::rectangle(2e11, None, Profile::Constant(b), Profile::Constant(h)).unwrap().with_density(rho).unwrap();
+    let f = flexure::Flexure::new(l, 1.0, 3).unwrap().with_section(s).unwrap();
+    let mu = rho * b * h;
+    let (a, e) = (0.003, 0.017);
+    let p = lump::segment(&f, a, e).unwrap().unwrap();
+    let len = e - a;
+    assert!((p.mass - mu * len).abs() < 1e-13 * p.mass);
+    assert!((p.com[0] - 0.01).abs() < 1e-15 && p.com[1].abs() < 1e-18);
+    let inertia = mu * len.powi(3) / 12.0 + mu * h * h / 12.0 * len;
+    assert!((p.inertia - inertia).abs() < 1e-12 * inertia, "{} against {inertia}", p.inertia);
+    let taper = Section::rectangle(2e11, None, Profile::Constant(b), Profile::Linear { root: 4e-4, tip: 2e-4 })
+        .unwrap()
+        .with_density(rho)
+        .unwrap();
+    let f = flexure::Flexure::new(l, 1.0, 3).unwrap().with_section(taper).unwrap();
+    let whole = lump::segment(&f, 0.0, l).unwrap().unwrap();
+    let exact = rho * b * l * (4e-4 + 2e-4) / 2.0;
+    assert!((whole.mass - exact).abs() < 1e-13 * exact);
+    // Cut anywhere, the pieces add back to the whole (mass, centre, inertia).
+    let (p1, p2) = (lump::segment(&f, 0.0, 0.007).unwrap().unwrap(), lump::segment(&f, 0.007, l).unwrap().unwrap());
+    let sum = lump::add(&p1, &p2);
+    assert!((sum.mass - whole.mass).abs() < 1e-13 * whole.mass && (sum.com[0] - whole.com[0]).abs() < 1e-15);
+    assert!((sum.inertia - whole.inertia).abs() < 1e-12 * whole.inertia);
+}
+
+/// The finger with steel flexures: the model's total mass and its centre
+/// of mass at rest equal the file's bodies plus each whole flexure
+/// ([`lump::segment`] over its length) but the piece of one on the ground
+/// before its first pivot (the ground does not move), to 1e-12 relative;
+/// links get the least mass only where they have none of their own.
+#[test]
+fn the_model_keeps_every_mass() {
+    let m = from_toml(include_str!("../../../examples/finger_dynamics.toml")).unwrap();
+    let e = export(&m, &Options { format: Format::Mjcf, prb: PrbKind::ThreeR, ..Default::default() }).unwrap();
+    let (mut mass, mut moment) = (0.0, [0.0, 0.0]);
+    for l in e.model.links.iter().skip(1) {
+        let c = l.world.act(&Point2::new(l.inertia.com[0], l.inertia.com[1]));
+        mass += l.inertia.mass;
+        moment[0] += l.inertia.mass * c.x;
+        moment[1] += l.inertia.mass * c.y;
+    }
+    let frames = flexure::mechanism::kinematics::frames(&m, &m.rest());
+    let (mut m0, mut m1) = (0.0, [0.0, 0.0]);
+    for (b, body) in m.bodies.iter().enumerate().skip(1) {
+        let c = frames.bodies[b].act(&body.com);
+        m0 += body.mass;
+        m1[0] += body.mass * c.x;
+        m1[1] += body.mass * c.y;
+    }
+    for (j, (_, fit)) in m.joints.iter().zip(&e.report.joints) {
+        let f = j.kind.flexure().unwrap();
+        let from = if j.parent == 0 { fit.gamma[0] * f.length() } else { 0.0 };
+        let p = lump::segment(f, from, f.length()).unwrap().unwrap();
+        let c = frames.bodies[j.parent].compose(&j.origin).act(&Point2::new(p.com[0], p.com[1]));
+        m0 += p.mass;
+        m1[0] += p.mass * c.x;
+        m1[1] += p.mass * c.y;
+    }
+    assert!(e.model.links.iter().skip(1).all(|l| !l.floored), "every link of this finger has mass");
+    assert!((mass - m0).abs() < 1e-12 * m0, "{mass} against {m0}");
+    for i in 0..2 {
+        assert!((moment[i] / mass - m1[i] / m0).abs() < 1e-12 * 0.05, "centre of mass {i}");
+    }
+}
+
+#[test]
+fn mjcf_writes_every_load_and_closure() {
+    let m = from_toml(FOUR_BAR).unwrap();
+    let e = export(&m, &Options { format: Format::Mjcf, name: "four_bar".into(), ..Default::default() }).unwrap();
+    assert!(e.warnings.is_empty(), "MJCF holds all of the four-bar: {:?}", e.warnings);
+    for part in [
+        r#"<option gravity="0 -9.81 0"/>"#,
+        r#"<spatial name="pull">"#,
+        r#"<motor name="tendon_pull" tendon="pull" gear="-1"/>"#,
+        r#"refsite="world_frame" gear="0.3 0 0 0 0 0""#,
+        r#"<connect name="pin_0" site1="pin_0_a" site2="pin_0_b"/>"#,
+        r#"<key name="loads" ctrl="1.5 1"/>"#,
+        r#"<body name="coupler""#,
+    ] {
+        assert!(e.xml.contains(part), "{part} missing from\n{}", e.xml);
+    }
+    // One hinge per flexure; its stiffness is the fit's polynomial, as written.
+    for (name, fit) in &e.report.joints {
+        let k = fit.joints[0].stiffness;
+        let written = format!(r#"<joint name="{name}" type="hinge""#);
+        assert!(e.xml.contains(&written), "{name}");
+        let poly = flexure::export::xml::numbers(&k);
+        assert!(e.xml.contains(&format!(r#"stiffness="{poly}""#)), "{name}: {poly}");
+    }
+}
+
+/// URDF holds the tree only: every spring, the tendon, the force, gravity
+/// and the pin are named in a warning, none dropped silently.
+#[test]
+fn urdf_and_sdf_name_what_they_cannot_hold() {
+    let m = from_toml(FOUR_BAR).unwrap();
+    let e = export(&m, &Options { format: Format::Urdf, ..Default::default() }).unwrap();
+    let has = |w: &[String], s: &str| w.iter().any(|x| x.contains(s));
+    for s in [
+        "\"input_hinge\"",
+        "\"coupler_hinge\"",
+        "\"output_hinge\"",
+        "tendon \"pull\"",
+        "force \"push\"",
+        "gravity",
+        "pin \"coupler\"–\"output\"",
+    ] {
+        assert!(has(&e.warnings, s), "URDF: no warning names {s}: {:?}", e.warnings);
+    }
+    assert!(e.xml.contains(r#"<link name="world"/>"#) && e.xml.contains(r#"type="continuous""#));
+    assert_eq!(e.report.warnings, e.warnings);
+    let e = export(&m, &Options { format: Format::Sdf, ..Default::default() }).unwrap();
+    for s in ["tendon \"pull\"", "force \"push\"", "open at rest"] {
+        assert!(has(&e.warnings, s), "SDF: no warning names {s}: {:?}", e.warnings);
+    }
+    assert!(e.xml.contains("<gravity>0 -9.81 0</gravity>") && e.xml.contains(r#"<sdf version="1.9">"#));
+}
+
+/// Revolute and prismatic joints keep their springs and rest values
+/// (`ref`, `springref`), and a fixed joint's child is a body without a joint.
+#[test]
+fn rigid_joints_are_written_as_they_are() {
+    let m = from_toml(
+        "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 2.0\nrest = 0.1\n\
+         [[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"a\"\nchild = \"b\"\nstiffness = 50.0\nrest = 0.01\n\
+         [[joint]]\nname = \"weld\"\nkind = \"fixed\"\nparent = \"b\"\nchild = \"c\"\norigin = [0.1, 0.0, 0.5]\n",
+    )
+    .unwrap();
+    let e = export(&m, &Options::default()).unwrap();
+    assert!(
+        e.xml.contains(
+            r#"<joint name="pin" type="hinge" pos="0 0 0" axis="0 0 1" ref="0.1" springref="0.1" stiffness="2"/>"#
+        ),
+        "{}",
+        e.xml
+    );
+    assert!(
+        e.xml.contains(r#"<joint name="slide" type="slide" axis="1 0 0" ref="0.01" springref="0.01" stiffness="50"/>"#)
+    );
+    assert_eq!(e.model.links[3].joint, None);
+    assert!(e.report.joints.is_empty());
+    // Massless bodies get the least mass simulators accept, and say so.
+    assert_eq!(e.report.notes.len(), 3);
+}
+
+#[test]
+fn generated_names_do_not_take_a_files() {
+    let toml =
+        format!("{FINGER}\n[[joint]]\nname = \"x\"\nkind = \"fixed\"\nparent = \"distal\"\nchild = \"mcp_prb1\"\n");
+    let m = from_toml(&toml).unwrap();
+    let e = export(&m, &Options { prb: PrbKind::ThreeR, ..Default::default() }).unwrap_err().to_string();
+    assert!(e.contains("mcp_prb1"), "{e}");
+    let bad = Chain { pivots: vec![Point2::origin()], stiffness: vec![], arcs: vec![0.0] };
+    let m = from_toml(FINGER).unwrap();
+    assert!(build(&m, &[Some(bad), None], 0.0).is_err());
+    assert!(build(&m, &[None, None], 0.0).unwrap_err().to_string().contains("mcp"));
+    let e = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
+    assert!(e.contains("armature"), "{e}");
+}

@@ -1,0 +1,359 @@
+"""Mechanism.export checked in real clients: every exported MJCF is loaded in MuJoCo,
+brought to static balance there and compared with the library's own solve and modes;
+SDFormat and URDF exports are parsed with published parsers (python-sdformat, yourdfpy).
+
+The static balance is solved on MuJoCo's own forces, not by stepping: at zero velocity
+and acceleration the generalized force qfrc_passive + qfrc_actuator - qfrc_bias (springs,
+the keyframe's tendon and force actuators, gravity) plus J^T mu of the equality
+constraints (welds, pins) must vanish with the constraints closed, J and their residual
+being MuJoCo's efc_J and efc_pos. Newton on those equations, its Jacobian by central
+differences of MuJoCo's forces, loads ramped in 10 steps, at most 60 iterations a step.
+Small-motion frequencies: MuJoCo's mass matrix (mj_fullM) and the stiffness by central
+differences of the same forces at the balance, restricted to the null space of J.
+"""
+
+import io
+import warnings
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pysdf
+import pytest
+import yourdfpy
+
+import flexure
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+# A mechanism of rigid joints only: springs with rest values, a slider, a fixed joint,
+# masses off their frames' origins, gravity off the axes, a tendon through three bodies,
+# a force with a moment, and a pin open at rest (closed by a preload). Its export has no
+# fitted part, so MuJoCo must agree with the library to rounding.
+RIGID = """
+gravity = [0.3, -9.81]
+[[joint]]
+name = "shoulder"
+kind = "revolute"
+parent = "ground"
+child = "upper"
+origin = [0.0, 0.0, 0.2]
+stiffness = 2.0
+rest = 0.1
+[[joint]]
+name = "slider"
+kind = "prismatic"
+parent = "upper"
+child = "carriage"
+origin = [0.1, 0.0, 0.3]
+stiffness = 50.0
+rest = 0.01
+[[joint]]
+name = "elbow"
+kind = "revolute"
+parent = "carriage"
+child = "hand"
+origin = [0.02, 0.0, -0.2]
+stiffness = 1.0
+rest = -0.1
+[[joint]]
+name = "mount"
+kind = "fixed"
+parent = "hand"
+child = "finger"
+origin = [0.08, 0.0, 0.5]
+[[joint]]
+name = "strut"
+kind = "revolute"
+parent = "ground"
+child = "prop"
+origin = [0.15, -0.05, 1.2]
+stiffness = 0.5
+[[body]]
+name = "upper"
+mass = 0.1
+inertia = 1e-3
+com = [0.05, 0.01]
+[[body]]
+name = "carriage"
+mass = 0.05
+inertia = 2e-4
+[[body]]
+name = "hand"
+mass = 0.03
+inertia = 1e-4
+com = [0.04, 0.0]
+[[body]]
+name = "finger"
+mass = 0.01
+inertia = 1e-5
+com = [0.01, 0.005]
+[[body]]
+name = "prop"
+mass = 0.02
+inertia = 5e-5
+com = [0.05, 0.0]
+[[tendon]]
+name = "pull"
+tension = 2.0
+path = [["ground", 0.0, 0.05], ["upper", 0.05, 0.02], ["hand", 0.03, 0.01]]
+[[force]]
+name = "push"
+body = "finger"
+at = [0.02, 0.0]
+force = [0.5, -1.0]
+moment = 0.05
+[[pin]]
+a = "prop"
+a_at = [0.12, 0.0]
+b = "hand"
+b_at = [0.06, 0.0]
+preload = true
+"""
+
+
+def load(xml):
+    m = mujoco.MjModel.from_xml_string(xml)
+    m.opt.jacobian = mujoco.mjtJacobian.mjJAC_DENSE
+    return m
+
+
+def forces(m, d, q, ctrl):
+    """MuJoCo's generalized force at rest at q, and its equality constraints' J and residual."""
+    d.qpos[:] = q
+    d.qvel[:] = 0
+    d.ctrl[:] = ctrl
+    mujoco.mj_forward(m, d)
+    f = d.qfrc_passive + d.qfrc_actuator - d.qfrc_bias
+    eq = d.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    J = d.efc_J.reshape(d.nefc, m.nv)[eq].copy() if d.nefc else np.zeros((0, m.nv))
+    c = d.efc_pos[eq].copy() if d.nefc else np.zeros(0)
+    return f.copy(), J, c
+
+
+def balance(m, steps=10, iterations=60, tol=1e-11, h=1e-7):
+    """Static balance under the keyframe's controls and the model's gravity, loads ramped in
+    `steps`; raises naming the load fraction and residual if Newton does not converge."""
+    d = mujoco.MjData(m)
+    ctrl = m.key_ctrl[0].copy() if m.nkey else np.zeros(m.nu)
+    gravity = m.opt.gravity.copy()
+    q, mu = m.qpos0.copy(), None
+    try:
+        for k in range(steps + 1):
+            lam = k / steps
+            m.opt.gravity[:] = lam * gravity
+            for _ in range(iterations):
+                f, J, c = forces(m, d, q, lam * ctrl)
+                mu = np.zeros(len(c)) if mu is None else mu
+                r = np.concatenate([f + J.T @ mu, c])
+                if np.linalg.norm(r) < tol:
+                    break
+                K = np.zeros((m.nv, m.nv))
+                G = np.zeros((len(c), m.nv))
+                for i in range(m.nv):
+                    a, b = q.copy(), q.copy()
+                    a[i] += h
+                    b[i] -= h
+                    fa, Ja, ca = forces(m, d, a, lam * ctrl)
+                    fb, Jb, cb = forces(m, d, b, lam * ctrl)
+                    K[:, i] = (fa + Ja.T @ mu - fb - Jb.T @ mu) / (2 * h)
+                    G[:, i] = (ca - cb) / (2 * h)
+                A = np.block([[K, J.T], [G, np.zeros((len(c), len(c)))]])
+                step = np.linalg.lstsq(A, -r, rcond=1e-12)[0]
+                q, mu = q + step[: m.nv], mu + step[m.nv :]
+            else:
+                raise AssertionError(f"MuJoCo balance: no convergence at load fraction {lam}, residual {np.linalg.norm(r):.3e}")
+    finally:
+        m.opt.gravity[:] = gravity
+    forces(m, d, q, ctrl)
+    return q, mu, d
+
+
+def poses(m, d):
+    out = {}
+    for b in range(1, m.nbody):
+        w, _, _, z = d.xquat[b]
+        out[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, b)] = (d.xpos[b][0], d.xpos[b][1], 2 * np.arctan2(z, w))
+    return out
+
+
+def frequencies(m, q, mu, h=1e-7):
+    """Small-motion frequencies (rad/s) about the balance q, closures respected."""
+    d = mujoco.MjData(m)
+    ctrl = m.key_ctrl[0].copy() if m.nkey else np.zeros(m.nu)
+
+    def force(q):
+        f, J, c = forces(m, d, q, ctrl)
+        return (f + J.T @ mu if len(c) else f), J
+
+    K = np.zeros((m.nv, m.nv))
+    for i in range(m.nv):
+        a, b = q.copy(), q.copy()
+        a[i] += h
+        b[i] -= h
+        K[:, i] = -(force(a)[0] - force(b)[0]) / (2 * h)
+    K = 0.5 * (K + K.T)
+    _, J = force(q)
+    M = np.zeros((m.nv, m.nv))
+    mujoco.mj_fullM(m, d, M)
+    Z = np.eye(m.nv)
+    if J.shape[0]:
+        _, s, vt = np.linalg.svd(J)
+        Z = vt[int((s > 1e-9 * max(s.max(), 1.0)).sum()) :].T
+    L = np.linalg.inv(np.linalg.cholesky(Z.T @ M @ Z))
+    return np.sqrt(np.clip(np.linalg.eigvalsh(L @ (Z.T @ K @ Z) @ L.T), 0, None))
+
+
+def exported(path, to="mjcf", prb="1R"):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        xml, report = flexure.Mechanism.from_file(path).export(to=to, prb=prb)
+    return xml, report, [str(w.message) for w in caught]
+
+
+def test_rigid_mechanism_balances_and_rings_in_mujoco_as_in_the_library(tmp_path):
+    # No fit: the writer alone. MuJoCo's balance against the library's solve, to 1e-12 m
+    # and rad (measured 3e-17: rounding); frequencies to 1e-6 relative (measured 1e-10,
+    # the central differences of the stiffness).
+    path = tmp_path / "rigid.toml"
+    path.write_text(RIGID)
+    xml, report, caught = exported(path)
+    assert caught == [] and report["joints"] == {}
+    m = load(xml)
+    q, mu, d = balance(m)
+    mech = flexure.Mechanism.from_file(path)
+    solved = mech.solve()["bodies"]
+    for name, (x, y, phi) in poses(m, d).items():
+        s = solved[name]
+        assert np.hypot(x - s["x"], y - s["y"]) < 1e-12 and abs(phi - s["phi"]) < 1e-12, name
+    omega = mech.modes(count=2)["omega"]
+    np.testing.assert_allclose(frequencies(m, q, mu), omega, rtol=1e-6)
+
+
+@pytest.mark.parametrize("prb", ["1R", "3R"])
+def test_mujoco_springs_are_the_fits_torque(prb):
+    # MuJoCo's spring force on each hinge, qfrc_spring = -(k1 x + k2 x^2 + k3 x^3) with the
+    # fit's stiffness, at angles across the fit's range: to 1e-12 relative (rounding).
+    xml, report, _ = exported(EXAMPLES / "finger.toml", prb=prb)
+    m = load(xml)
+    d = mujoco.MjData(m)
+    k = np.array([s for j in report["joints"].values() for s in j["stiffness"]])
+    for theta in (-0.6, -0.1, 0.25, 0.8):
+        d.qpos[:] = theta * np.linspace(0.5, 1.0, m.nq)
+        mujoco.mj_forward(m, d)
+        x = d.qpos
+        expected = -(k[:, 0] * x + k[:, 1] * x**2 + k[:, 2] * x**3)
+        np.testing.assert_allclose(d.qfrc_spring, expected, rtol=1e-12, atol=1e-15)
+
+
+CASES = [
+    pytest.param(f, prb, id=f"{f}-{prb}")
+    for f in sorted(p.name for p in EXAMPLES.glob("*.toml"))
+    for prb in ("1R", "3R")
+]
+# Known failures of prb's 3R fit, each an export that fails naming it (strict: a fix makes
+# this fail until it is taken off the list): the paper's tendon joint to 90 degrees (the
+# chain's equilibrium continuation stalls at 99 % of the load).
+KNOWN = {"paper_tendon.toml-3R": "prb 3R equilibrium stalls at 99 % of the paper's tendon load"}
+CASES = [
+    pytest.param(*c.values, id=c.id, marks=pytest.mark.xfail(strict=True, raises=flexure.ConvergenceError, reason=KNOWN[c.id]))
+    if c.id in KNOWN
+    else c
+    for c in CASES
+]
+
+
+@pytest.mark.parametrize("name, prb", CASES)
+def test_examples_balance_in_mujoco_within_the_fit_error(name, prb):
+    # Each body's pose at MuJoCo's balance against the library's solve. The tolerance is the
+    # fit errors carried through lever arms: position sum over flexures of (e_pos + e_angle *
+    # span), angle sum of e_angle, span the largest distance between two bodies plus the
+    # longest flexure; times a margin of 1.1 for a tree (measured ratios up to 1.00, the mixed
+    # chain's angle, exact to first order there) and 2 for closed loops (measured up to 1.29:
+    # the four-leg stage's 3R stage, whose redundant welds hold the legs' tips level). A fit
+    # error is of one flexure under its own tip loads; in a mechanism the loads follow the
+    # pose and closures turn angle errors into positions, so a body's error is not bounded by
+    # its own flexure's alone (the four-leg stage's 1R stage is 3.8 mm off with fit position
+    # errors of 2e-9 m: its legs' tips cannot translate without turning).
+    path = EXAMPLES / name
+    xml, report, caught = exported(path, prb=prb)
+    fits = report["joints"]
+    flagged = [j for j, f in fits.items() if f["flagged"]]
+    if flagged:
+        # A fit more than 1 % of L off is flagged, and warned of by name.
+        for j in flagged:
+            assert fits[j]["error"]["position"] > 0.01 * fits[j]["length"]
+            assert any(f'"{j}"' in w and "1 % of L" in w for w in caught), caught
+        return
+    m = load(xml)
+    _, _, d = balance(m)
+    margin = 2.0 if m.neq else 1.1
+    solved = flexure.Mechanism.from_file(path).solve()["bodies"]
+    points = np.array([[b["x"], b["y"]] for b in solved.values()])
+    span = max(np.hypot(*(p - r)) for p in points for r in points) + max([f["length"] for f in fits.values()] + [0])
+    e_pos = sum(f["error"]["position"] + f["error"]["angle"] * span for f in fits.values())
+    e_ang = sum(f["error"]["angle"] for f in fits.values())
+    for body, (x, y, phi) in poses(m, d).items():
+        if body not in solved:
+            continue  # a pseudo-rigid link
+        s = solved[body]
+        dp, da = np.hypot(x - s["x"], y - s["y"]), abs(phi - s["phi"])
+        assert dp <= margin * e_pos + 1e-9 * span, f"{body}: {dp:.3e} m against {e_pos:.3e}"
+        assert da <= margin * e_ang + 1e-9, f"{body}: {da:.3e} rad against {e_ang:.3e}"
+
+
+# Lowest frequencies against `modes`: the PRB springs are fitted over the load range (a
+# secant, not the tangent at the balance) and the flexures' mass lumped on rigid links.
+# Measured (lowest mode): finger_dynamics 1R +23.4 %, 3R -0.3 %; four_bar 1R +16.7 %,
+# 3R -4.3 %; tapered_finger 1R -8.2 %, 3R -3.4 %. Bands: 1R 30 %, 3R 5 %.
+@pytest.mark.parametrize("name", ["finger_dynamics.toml", "four_bar.toml", "tapered_finger.toml"])
+@pytest.mark.parametrize("prb, band", [("1R", 0.30), ("3R", 0.05)])
+def test_examples_ring_in_mujoco_as_modes(name, prb, band):
+    path = EXAMPLES / name
+    xml, _, _ = exported(path, prb=prb)
+    m = load(xml)
+    q, mu, _ = balance(m)
+    got = frequencies(m, q, mu)[0]
+    want = flexure.Mechanism.from_file(path).modes(count=1)["omega"][0]
+    assert abs(got / want - 1) < band, f"{got:.4g} rad/s against {want:.4g}"
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in EXAMPLES.glob("*.toml")))
+def test_sdf_and_urdf_parse_and_name_every_loss(name):
+    path = EXAMPLES / name
+    spec = flexure.Mechanism.from_file(path)
+    bodies = set(spec.solve()["bodies"]) - {"ground"}
+    sdf, report, caught = exported(path, to="sdf")
+    model = pysdf.SDF.from_xml(sdf)
+    assert model.version == "1.9"
+    assert bodies <= {link.name for link in model.iter("link")}
+    for j in report["joints"]:
+        assert j in {joint.name for joint in model.iter("joint")}
+    urdf, report, caught = exported(path, to="urdf")
+    robot = yourdfpy.URDF.load(io.StringIO(urdf), build_scene_graph=True, load_meshes=False)
+    assert bodies <= set(robot.link_map) and "world" in robot.link_map
+    text = path.read_text()
+    # Every spring (each fitted hinge), tendon, force and closure is named in a warning.
+    for j, fit in report["joints"].items():
+        assert any(f'"{j}"' in w and "no springs" in w for w in caught), (j, caught)
+    for kind in ("tendon", "force"):
+        for line in text.splitlines():
+            if line.startswith(f"[[{kind}]]"):
+                assert any(w.startswith(f"{kind} ") and "not written" in w for w in caught), (kind, caught)
+    closures = text.count("[[weld]]") + text.count("[[pin]]")
+    assert sum("no loops" in w for w in caught) == closures
+    assert report["warnings"] == caught
+
+
+def test_bad_arguments_raise_value_error_naming_them():
+    m = flexure.Mechanism.from_file(EXAMPLES / "finger.toml")
+    for kwargs, word in [
+        ({"to": "xml"}, "to"),
+        ({"prb": "2R"}, "prb"),
+        ({"range": "0:1"}, "range"),
+        ({"range": (0, 1, 1)}, "range"),
+        ({"range": (0, 1, True)}, "range"),
+        ({"armature": -1.0}, "armature"),
+    ]:
+        with pytest.raises(ValueError, match=word):
+            m.export(**kwargs)
