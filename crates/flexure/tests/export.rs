@@ -264,8 +264,9 @@ fn rigid_joints_are_written_as_they_are() {
     );
     assert_eq!(e.model.links[3].joint, None);
     assert!(e.report.joints.is_empty());
-    // Massless bodies get the least mass simulators accept, and say so.
-    assert_eq!(e.report.notes.len(), 3);
+    // Massless bodies get the least mass simulators accept, and say so; no
+    // armature is offered, for there is no pseudo-rigid hinge.
+    assert_eq!(e.report.notes.len(), 3, "{:?}", e.report.notes);
 }
 
 #[test]
@@ -281,4 +282,21 @@ fn generated_names_do_not_take_a_files() {
     assert!(build(&m, &[None, None], 0.0).unwrap_err().to_string().contains("mcp"));
     let e = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
     assert!(e.contains("armature"), "{e}");
+}
+
+/// Reference: a hinge of stiffness k on a link of inertia I rings at
+/// √(k/I), so a massless link (floored at 1e-14 kg·m²) rings far faster than
+/// MuJoCo's 2 ms step; the export offers the armature k₁(20Δt/2π)² of its
+/// stiffest hinge (a period of 20 steps), and given it says no more.
+#[test]
+fn light_links_are_offered_an_armature() {
+    let m = from_toml(FINGER).unwrap();
+    let e = export(&m, &Options::default()).unwrap();
+    let offer = e.report.notes.iter().find(|w| w.contains("--armature")).expect("an offer for the massless finger");
+    let value: f64 = offer.split("--armature ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    let stiffest = e.model.links.iter().filter_map(|l| l.joint.as_ref()).map(|j| j.stiffness[0]).fold(0.0, f64::max);
+    let bound = stiffest * (20.0 * 0.002 / std::f64::consts::TAU).powi(2);
+    assert!(value >= bound && value < 1.1 * bound, "{value} against {bound}");
+    let given = export(&m, &Options { armature: value, ..Default::default() }).unwrap();
+    assert!(!given.report.notes.iter().any(|w| w.contains("--armature")), "{:?}", given.report.notes);
 }

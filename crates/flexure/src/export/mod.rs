@@ -340,6 +340,26 @@ fn check_finite(model: &model::Model) -> Result<()> {
     Ok(())
 }
 
+/// The armature (kg·m²) that slows the stiffest pseudo-rigid hinge (the
+/// ones `--armature` applies to) of a model with links at the mass floor to
+/// a period of 20 of MuJoCo's default 2 ms steps, $k_1(20\thinspace\Delta t/2\pi)^2$;
+/// `None` when no link is at the floor or no flexure became hinges.
+fn offered_armature(m: &Mechanism, model: &model::Model) -> Option<f64> {
+    const STEP: f64 = 0.002;
+    const STEPS_PER_PERIOD: f64 = 20.0;
+    if !model.links.iter().any(|l| l.floored) {
+        return None;
+    }
+    let stiffest = model
+        .links
+        .iter()
+        .filter_map(|l| l.joint.as_ref())
+        .filter(|j| m.joints[j.source].kind.flexure().is_some())
+        .map(|j| j.stiffness[0].abs())
+        .fold(0.0, f64::max);
+    (stiffest > 0.0).then(|| stiffest * (STEPS_PER_PERIOD * STEP / std::f64::consts::TAU).powi(2))
+}
+
 /// Exports `m` as `options` say: fits every flexure's chain over the load
 /// range ([`fits`]), builds the rigid-body model ([`model::build`]) and
 /// writes it ([`mjcf::write`], [`sdf::write`], [`urdf::write`]).
@@ -395,6 +415,15 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
             l.name,
             xml::number(model::MIN_MASS),
             xml::number(model::MIN_INERTIA)
+        ));
+    }
+    if let Some(offer) = offered_armature(m, &model).filter(|a| options.armature < *a) {
+        notes.push(format!(
+            "links at the mass floor ring on their springs far faster than a simulator steps (the model's statics are \
+             right, its motion is not): for MuJoCo's default 2 ms step give --armature {} (k1·(20·Δt/2π)², the stiffest \
+             hinge then ringing over 20 steps), which changes the dynamics but not the balance",
+            // Two digits, rounded up, so the value given back meets the bound.
+            format!("{:.1e}", offer * 1.05)
         ));
     }
     let (xml, lost) = match options.format {
