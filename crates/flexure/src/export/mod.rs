@@ -418,12 +418,12 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
         ));
     }
     if let Some(offer) = offered_armature(m, &model).filter(|a| options.armature < *a) {
+        // Two digits, rounded up, so the value given back meets the bound.
+        let offer = format!("{:.1e}", offer * 1.05);
         notes.push(format!(
             "links at the mass floor ring on their springs far faster than a simulator steps (the model's statics are \
-             right, its motion is not): for MuJoCo's default 2 ms step give --armature {} (k1·(20·Δt/2π)², the stiffest \
-             hinge then ringing over 20 steps), which changes the dynamics but not the balance",
-            // Two digits, rounded up, so the value given back meets the bound.
-            format!("{:.1e}", offer * 1.05)
+             right, its motion is not): for MuJoCo's default 2 ms step give --armature {offer} (k1·(20·Δt/2π)², the stiffest \
+             hinge then ringing over 20 steps), which changes the dynamics but not the balance"
         ));
     }
     let (xml, lost) = match options.format {
