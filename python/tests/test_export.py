@@ -251,10 +251,10 @@ CASES = [
     for f in sorted(p.name for p in EXAMPLES.glob("*.toml"))
     for prb in ("1R", "3R")
 ]
-# Known failures of prb's 3R fit, each an export that fails naming it (strict: a fix makes
-# this fail until it is taken off the list): the paper's tendon joint to 90 degrees (the
-# chain's equilibrium continuation stalls at 99 % of the load).
-KNOWN = {"paper_tendon.toml-3R": "prb 3R equilibrium stalls at 99 % of the paper's tendon load"}
+# Known failures, each an export that fails naming it (strict: a fix makes this fail until it
+# is taken off the list). None now: the paper's tendon joint, whose 3R chain stalled when its
+# fit followed each tendon wrench held dead from rest, is fitted to the shapes the tendon holds.
+KNOWN: dict = {}
 CASES = [
     pytest.param(*c.values, id=c.id, marks=pytest.mark.xfail(strict=True, raises=flexure.ConvergenceError, reason=KNOWN[c.id]))
     if c.id in KNOWN

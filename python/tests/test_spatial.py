@@ -17,7 +17,10 @@ def test_pose_of_an_arc_and_a_batch():
     assert abs(g[0, 3] - math.sin(1)) < 1e-13 and abs(g[1, 3] - (1 - math.cos(1))) < 1e-13
     batch = f.pose(np.array([alpha, [0.0] * 9]))
     assert batch.shape == (2, 4, 4)
-    assert np.allclose(batch[0], g, atol=1e-15) and np.allclose(batch[1], np.eye(4), atol=1e-15)
+    # Straight: the tip frame is the root's, moved by L along x.
+    straight = np.eye(4)
+    straight[0, 3] = 1.0
+    assert np.allclose(batch[0], g, atol=1e-15) and np.allclose(batch[1], straight, atol=1e-15)
     assert f.jacobian(alpha).shape == (6, 9)
 
 

@@ -230,11 +230,14 @@ impl SpatialFlexure {
     }
 
     /// The peak von Mises stress along the flexure at alpha: a dict of max (Pa), at (m),
-    /// bending_y, bending_z, shear and point; None for a section given by its stiffnesses.
+    /// bending_y, bending_z, shear, von_mises and point (where on the section); None for a
+    /// section given by its stiffnesses.
     fn stress<'py>(&self, py: Python<'py>, alpha: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let a = single(self.inner.coordinates(), alpha)?;
         let Ok(p) = spatial::peak_stress(&self.inner, &a) else { return Ok(None) };
         let d = crate::serialize::to_dict(py, &p.stress)?;
+        // The section's point is `point`, as the CLI prints it; `at` is where along the flexure.
+        d.set_item("point", d.get_item("at")?)?;
         d.set_item("max", p.stress.von_mises)?;
         d.set_item("at", p.at)?;
         Ok(Some(d))

@@ -271,13 +271,16 @@ pub fn fits(m: &Mechanism, kind: PrbKind, range: &LoadRange, settings: &Settings
             out.push(None);
             continue;
         };
-        let mut loads = Vec::with_capacity(solutions.len());
+        let (mut loads, mut shapes) = (Vec::with_capacity(solutions.len()), Vec::with_capacity(solutions.len()));
         for s in &solutions {
             if let Some(w) = wrench::tip_wrench(m, j, s) {
                 loads.push(w?);
+                shapes.push(s.q[spec.offset..spec.offset + f.order()].to_vec());
             }
         }
-        let fit = prb::fit(f, &loads, kind).map_err(|e| match e {
+        // To the shapes the mechanism reaches, not each wrench held dead from
+        // rest: a tendon's or a closure's pull turns with the bodies.
+        let fit = prb::fit_along(f, &loads, &shapes, kind).map_err(|e| match e {
             Error::Singular { what } => Error::Singular { what: format!("joint {:?}: {what}", spec.name) },
             other => other,
         })?;

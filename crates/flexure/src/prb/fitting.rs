@@ -3,7 +3,7 @@
 use super::chain::{rest_pose_at, tip_pose};
 use super::model::{FitError, PrbFit, PrbJoint, PrbKind};
 use super::simplex;
-use super::statics::equilibrium;
+use super::statics::{equilibrium, equilibrium_near};
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::{Pose, pose_root_tip};
@@ -73,7 +73,9 @@ const GAMMA_RANGE: (f64, f64) = (0.05, 1.0);
 ///   the chain's equilibria; Su's lengths are kept if nothing beats them.
 ///
 /// The reported [`PrbFit::error`] is that of the fitted chain at its own
-/// [`equilibrium`] under each load against $g_k$: the largest tip distance
+/// equilibrium under each load against $g_k$, the loads taken in their
+/// order, each from the last one's angles ([`equilibrium_near`]; from rest,
+/// [`equilibrium`], where that does not converge): the largest tip distance
 /// (m) and the largest tip-angle difference (rad), which for 1R keeps
 /// Howell's parametric angle mismatch ($\phi - \phi_0 \approx c_\theta\Theta$,
 /// $c_\theta \approx 1.24$).
@@ -98,13 +100,61 @@ const GAMMA_RANGE: (f64, f64) = (0.05, 1.0);
 /// ```
 pub fn fit(f: &Flexure, loads: &[TipLoad], kind: PrbKind) -> Result<PrbFit> {
     let targets = model_tips(f, loads)?;
+    fit_targets(f, loads, &targets, kind)
+}
+
+/// [`fit`] to the model's shapes `alphas` under `loads` as they were
+/// reached (one coordinate vector per load: a mechanism's equilibria along
+/// its load range), instead of solving each load from rest. A flexure
+/// loaded by a tendon is the case: the tendon's pull turns with the link
+/// and holds the flexure, while the same wrench held dead from rest would
+/// buckle it another way. The chain's equilibria follow the loads in their
+/// order, each from the last ([`super::equilibrium_near`]).
+///
+/// Errors: `alphas` not one finite coordinate vector per load (`alphas`);
+/// those of [`fit`].
+///
+/// # Example
+/// ```
+/// use flexure::{deflect, Flexure, Statics, TipLoad, prb};
+/// let f = Flexure::new(1.0, 1.0, 4)?;
+/// let loads: Vec<TipLoad> = (1..=6).map(|i| TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * i as f64 }).collect();
+/// let mut data = Statics::new(&f);
+/// let alphas: Vec<Vec<f64>> = loads
+///     .iter()
+///     .map(|l| deflect(&f, l, &mut data, &Default::default()).map(|_| data.alpha().to_vec()))
+///     .collect::<Result<_, _>>()?;
+/// // The same shapes as `fit` solves for itself: the same fit.
+/// let along = prb::fit_along(&f, &loads, &alphas, prb::PrbKind::OneR)?;
+/// assert_eq!(along, prb::fit(&f, &loads, prb::PrbKind::OneR)?);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn fit_along(f: &Flexure, loads: &[TipLoad], alphas: &[Vec<f64>], kind: PrbKind) -> Result<PrbFit> {
+    check_loads(loads)?;
+    if alphas.len() != loads.len() {
+        return Err(Error::invalid(
+            "alphas",
+            format!("{} shapes for {} loads", alphas.len(), loads.len()),
+            "must hold one shape per load",
+        ));
+    }
+    let mut targets = Vec::with_capacity(alphas.len());
+    for a in alphas {
+        f.check_coordinates("alphas", a)?;
+        targets.push(pose_root_tip(f, a));
+    }
+    fit_targets(f, loads, &targets, kind)
+}
+
+/// [`fit`] to the model's tip poses `targets` under `loads`.
+fn fit_targets(f: &Flexure, loads: &[TipLoad], targets: &[Pose], kind: PrbKind) -> Result<PrbFit> {
     let rest = pose_root_tip(f, f.rest());
     match kind {
-        PrbKind::OneR => finish(one_r(f, loads, &targets, &rest), f, loads, &targets),
+        PrbKind::OneR => finish(one_r(f, loads, targets, &rest), f, loads, targets),
         PrbKind::ThreeR => {
-            let su = finish(three_r(f, loads, &targets, &rest, &SU_GAMMA), f, loads, &targets)?;
+            let su = finish(three_r(f, loads, targets, &rest, &SU_GAMMA), f, loads, targets)?;
             let mut objective = |x: &[f64]| match lengths(x) {
-                Some(g) => finish(three_r(f, loads, &targets, &rest, &g), f, loads, &targets)
+                Some(g) => finish(three_r(f, loads, targets, &rest, &g), f, loads, targets)
                     .map_or(f64::INFINITY, |fit| fit.error.position),
                 None => f64::INFINITY,
             };
@@ -112,9 +162,7 @@ pub fn fit(f: &Flexure, loads: &[TipLoad], kind: PrbKind) -> Result<PrbFit> {
             let (x, best) =
                 simplex::minimize(&mut objective, &SU_GAMMA[..3], SIMPLEX_STEP, SIMPLEX_ITERATIONS, tolerance);
             match lengths(&x) {
-                Some(g) if best < su.error.position => {
-                    finish(three_r(f, loads, &targets, &rest, &g), f, loads, &targets)
-                }
+                Some(g) if best < su.error.position => finish(three_r(f, loads, targets, &rest, &g), f, loads, targets),
                 _ => Ok(su),
             }
         }
@@ -166,18 +214,7 @@ fn finish(mut fit: PrbFit, f: &Flexure, loads: &[TipLoad], targets: &[Pose]) -> 
 
 /// The model's tip poses under each load, followed from rest.
 fn model_tips(f: &Flexure, loads: &[TipLoad]) -> Result<Vec<Pose>> {
-    if loads.is_empty() {
-        return Err(Error::invalid("loads", "[]", "must hold at least one tip load"));
-    }
-    for (k, l) in loads.iter().enumerate() {
-        if ![l.moment, l.fx, l.fy].iter().all(|v| v.is_finite() && v.abs() <= MAX_LOAD) {
-            return Err(Error::invalid(
-                "loads",
-                format!("load {k} = (M {}, Fx {}, Fy {})", l.moment, l.fx, l.fy),
-                "must be finite and at most 1e30 in magnitude (N·m, N, N)",
-            ));
-        }
-    }
+    check_loads(loads)?;
     let mut data = Statics::new(f);
     let settings = Settings::default();
     loads
@@ -197,11 +234,36 @@ fn model_tips(f: &Flexure, loads: &[TipLoad]) -> Result<Vec<Pose>> {
         .collect()
 }
 
-/// The largest error of the chain's equilibria against the model's tips.
+/// At least one load, each finite and at most [`MAX_LOAD`]; errors name `loads`.
+fn check_loads(loads: &[TipLoad]) -> Result<()> {
+    if loads.is_empty() {
+        return Err(Error::invalid("loads", "[]", "must hold at least one tip load"));
+    }
+    for (k, l) in loads.iter().enumerate() {
+        if ![l.moment, l.fx, l.fy].iter().all(|v| v.is_finite() && v.abs() <= MAX_LOAD) {
+            return Err(Error::invalid(
+                "loads",
+                format!("load {k} = (M {}, Fx {}, Fy {})", l.moment, l.fx, l.fy),
+                "must be finite and at most 1e30 in magnitude (N·m, N, N)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The largest error of the chain's equilibria against the model's tips:
+/// each load's equilibrium nearest the last one's ([`equilibrium_near`],
+/// so loads in sequence are followed as they go), or else followed from
+/// rest ([`equilibrium`]).
 fn fit_error(fit: &PrbFit, f: &Flexure, loads: &[TipLoad], targets: &[Pose]) -> Result<FitError> {
     let mut e = FitError::default();
+    let mut last = vec![0.0; fit.joints.len()];
     for (l, t) in loads.iter().zip(targets) {
-        let theta = equilibrium(fit, f, l)?;
+        let theta = match equilibrium_near(fit, f, l, &last) {
+            Some(theta) => theta,
+            None => equilibrium(fit, f, l)?,
+        };
+        last.clone_from(&theta);
         let g = tip_pose(fit, f, &theta);
         e.position = e.position.max((g.x - t.x).hypot(g.y - t.y));
         e.angle = e.angle.max((g.phi - t.phi).abs());

@@ -80,6 +80,6 @@ mod simplex;
 mod statics;
 
 pub use chain::{rest_pose_at, tip_pose};
-pub use fitting::{FLAG_FRACTION, HOWELL_GAMMA, HOWELL_K_THETA, SU_GAMMA, SU_K_THETA, fit, fit_three_r};
+pub use fitting::{FLAG_FRACTION, HOWELL_GAMMA, HOWELL_K_THETA, SU_GAMMA, SU_K_THETA, fit, fit_along, fit_three_r};
 pub use model::{FitError, PrbFit, PrbJoint, PrbKind};
-pub use statics::{equilibrium, gradient, potential};
+pub use statics::{equilibrium, equilibrium_near, gradient, potential};

@@ -216,6 +216,27 @@ pub fn equilibrium(fit: &PrbFit, f: &Flexure, load: &TipLoad) -> Result<Vec<f64>
 }
 
 /// Buffers of one solve.
+/// The equilibrium under the full `load` nearest to `start`, by Newton's
+/// method alone (bounded as in [`equilibrium`]); `None` if it does not
+/// converge there. With `start` the chain's angles under the last of a
+/// sequence of loads, this follows the loads' own path. It is a stationary
+/// point, stable or not under the wrench held dead: a wrench that turns with
+/// the links (a tendon's pull) holds states its dead copy would not, and
+/// whether the mechanism holds them is the mechanism's question.
+pub fn equilibrium_near(fit: &PrbFit, f: &Flexure, load: &TipLoad, start: &[f64]) -> Option<Vec<f64>> {
+    let n = fit.joints.len();
+    if n == 0 || start.len() != n || load.validate().is_err() {
+        return None;
+    }
+    let rest = pose_root_tip(f, f.rest());
+    let k_max = fit.joints.iter().map(|j| j.stiffness[0].abs()).fold(0.0, f64::max);
+    let scale = k_max + load.moment.abs() + f.length() * (load.fx.abs() + load.fy.abs());
+    let mut work = Work::new(n);
+    let mut theta = start.to_vec();
+    newton(fit, &rest, load, 1.0, &mut theta, scale, &mut work).ok()?;
+    Some(theta)
+}
+
 struct Work {
     pivots: Vec<Point2<f64>>,
     g: Vec<f64>,
