@@ -13,9 +13,10 @@
 //!    $j$'s tip, in its root frame, is the least-squares solution of
 //!    $\nabla U_j(\alpha_j) = \mathcal J_j(\alpha_j)^T w_j$ (exact unless the
 //!    flexure weighs itself, which is then warned of).
-//! 2. **The fit** ([`crate::prb::fit`]): each flexure's chain (1R: Howell's
+//! 2. **The fit** ([`crate::prb::fit_along`]): each flexure's chain (1R: Howell's
 //!    characteristic pivot $\gamma L$ and spring $K_\Theta$; 3R: Su's) is
-//!    fitted to the model's tip poses under those wrenches, with the
+//!    fitted to the model's tip poses at those equilibria (the shapes the
+//!    mechanism reaches, not each wrench held dead from rest), with the
 //!    largest tip position and angle error of the chain against the model;
 //!    a fit more than 1 % of $L$ off is flagged, with a warning.
 //! 3. **The rigid-body model** ([`model::build`]): bodies keep their names,
