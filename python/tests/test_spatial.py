@@ -62,3 +62,19 @@ def test_bad_input_raises_value_error_naming_it():
         flexure.SpatialFlexure(length=True)
     with pytest.raises(ValueError, match="kappa_y"):
         flexure.SpatialFlexure(kappa_y=[1.0, 0.0])
+
+
+def test_exact_rod_meets_the_model():
+    # Reference: the exact Kirchhoff rod (flexure.exact.rod); the model at orders 6 within
+    # 1e-6 of L of it under a 3-D load, and pure twist TL/GJ (closed form, 1e-10).
+    from flexure import exact
+
+    f = flexure.SpatialFlexure(order=6, ei_y=2.0, gj=0.7)
+    force, moment = (0.1, 0.4, 0.3), (0.05, 0.1, 0.2)
+    model = f.deflect(force=force, moment=moment)["pose"]
+    e = exact.rod(f, force=force, moment=moment)
+    assert e["stable"] and np.linalg.norm(model[:3, 3] - e["pose"][:3, 3]) < 1e-6
+    twist = exact.rod(flexure.SpatialFlexure(length=0.8, gj=0.25), moment=(0.1, 0.0, 0.0))
+    assert abs(twist["pose"][2, 1] - math.sin(0.32)) < 1e-10
+    with pytest.raises(ValueError, match="flexure"):
+        exact.rod(flexure.Flexure())

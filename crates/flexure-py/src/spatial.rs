@@ -242,4 +242,42 @@ impl SpatialFlexure {
         d.set_item("at", p.at)?;
         Ok(Some(d))
     }
+
+    /// The exact Kirchhoff rod of this flexure's length, section and rest shape under the dead
+    /// tip force and moment (root frame), followed from rest by multiple shooting (what
+    /// `flexure.exact.rod` calls): a dict of pose (4, 4), root_moment (3,), stable (its
+    /// conjugate-point test) and limit_fraction (where the path lost stability, if it did).
+    #[pyo3(signature = (force=None, moment=None))]
+    fn exact_rod<'py>(
+        &self,
+        py: Python<'py>,
+        force: Option<&Bound<'py, PyAny>>,
+        moment: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use flexure::reference::rod::{self, Rod, TipWrench};
+        let w = TipWrench {
+            moment: Vector3::from(triple("moment", moment)?),
+            force: Vector3::from(triple("force", force)?),
+        };
+        let f = self.inner.clone();
+        let solution = py
+            .detach(|| -> flexure::Result<_> {
+                let rest = f.rest().to_vec();
+                let shape = f.clone();
+                let r = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| shape.curvature(&rest, s))?;
+                rod::deflect(&r, &w, &Default::default())
+            })
+            .map_err(to_py)?;
+        let g = transform(&solution.rotation, &solution.position);
+        strict::finite_slice("exact_rod", g.as_flattened())?;
+        let d = PyDict::new(py);
+        d.set_item("pose", Array2::from_shape_fn((4, 4), |(i, j)| g[i][j]).into_pyarray(py))?;
+        let m = solution.root_moment;
+        d.set_item("root_moment", numpy::PyArray1::from_slice(py, &[m.x, m.y, m.z]))?;
+        d.set_item("stable", solution.stable)?;
+        if let Some(l) = solution.limit {
+            d.set_item("limit_fraction", l)?;
+        }
+        Ok(d)
+    }
 }
