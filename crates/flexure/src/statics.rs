@@ -315,7 +315,7 @@ pub fn correct<T: Scalar>(
 
 /// How much of the elastic stiffness a load may take away, in every
 /// direction, for a state to count as far from instability.
-const MARGIN: f64 = 0.5;
+pub(crate) const MARGIN: f64 = 0.5;
 
 /// Whether $\nabla\nabla E - \frac12 K$ is positive definite (`scratch`: $N^2$):
 /// the load softens no direction by half its elastic stiffness $K$, so no

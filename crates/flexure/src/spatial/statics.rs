@@ -217,7 +217,7 @@ impl<T: Scalar> solver::Problem<T> for WrenchProblem<'_, T> {
     }
 
     fn far_from_instability(&mut self, _alpha: &[T], _lambda: f64, jacobian: &[T]) -> bool {
-        self.definite(jacobian, MARGIN)
+        self.definite(jacobian, crate::statics::MARGIN)
     }
 
     fn distance(&self, a: &[T], b: &[T]) -> f64 {
@@ -236,11 +236,6 @@ impl<T: Scalar> solver::Problem<T> for WrenchProblem<'_, T> {
         "deflect"
     }
 }
-
-/// How much of the elastic stiffness a load may take away, in every
-/// direction, for a state to count as far from instability (as for the
-/// planar flexure).
-const MARGIN: f64 = 0.5;
 
 /// The largest rotation between `a` and `b` of the sampled cross-sections
 /// relative to the root, each component's $\sum_i\psi_i(t)\Delta\alpha_{c,i}$
@@ -287,6 +282,21 @@ fn scale(flexure: &SpatialFlexure, load: &SpatialLoad) -> f64 {
     k / l + load.moment.iter().map(|m| m.abs()).sum::<f64>() + l * load.force.iter().map(|f| f.abs()).sum::<f64>()
 }
 
+/// The tip-wrench problem on `data`'s buffers, with the solver's workspace
+/// beside it, once `load` and the buffers are checked.
+fn problem<'a, T: Scalar>(
+    flexure: &'a SpatialFlexure,
+    load: &SpatialLoad,
+    data: &'a mut SpatialStatics<T>,
+) -> Result<(WrenchProblem<'a, T>, &'a mut solver::Workspace<T>)> {
+    load.validate()?;
+    data.fits(flexure)?;
+    let SpatialStatics { kinematics, solver, scratch, shapes, .. } = data;
+    let problem =
+        WrenchProblem { flexure, kinematics, scratch, shapes, load: load.lift(), scale: scale(flexure, load) };
+    Ok((problem, solver))
+}
+
 /// Equilibrium of the spatial flexure under the dead tip `load` (root
 /// frame), followed from the rest shape by the shared continuation
 /// ([`crate::solver`]), so the answer lies on the loading path and
@@ -321,23 +331,14 @@ fn follow<T: Scalar>(
     settings: &Settings,
     while_stable: bool,
 ) -> Result<Equilibrium> {
-    load.validate()?;
-    data.fits(flexure)?;
-    for (a, &k) in data.solver.x.iter_mut().zip(flexure.rest()) {
+    let (mut problem, ws) = problem(flexure, load, data)?;
+    for (a, &k) in ws.x.iter_mut().zip(flexure.rest()) {
         *a = T::c(k);
     }
-    let mut problem = WrenchProblem {
-        flexure,
-        kinematics: &mut data.kinematics,
-        scratch: &mut data.scratch,
-        shapes: &data.shapes,
-        load: load.lift(),
-        scale: scale(flexure, load),
-    };
     let path = if while_stable {
-        solver::continuation_while_stable(&mut problem, &mut data.solver, settings)?
+        solver::continuation_while_stable(&mut problem, ws, settings)?
     } else {
-        solver::continuation(&mut problem, &mut data.solver, settings)?
+        solver::continuation(&mut problem, ws, settings)?
     };
     data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
     Ok(Equilibrium::from_path(&path))
@@ -352,20 +353,11 @@ pub fn correct(
     data: &mut SpatialStatics,
     settings: &Settings,
 ) -> Result<Equilibrium> {
-    load.validate()?;
     flexure.check_coordinates("alpha", alpha)?;
-    data.fits(flexure)?;
-    data.solver.x.copy_from_slice(alpha);
-    let mut problem = WrenchProblem {
-        flexure,
-        kinematics: &mut data.kinematics,
-        scratch: &mut data.scratch,
-        shapes: &data.shapes,
-        load: load.lift(),
-        scale: scale(flexure, load),
-    };
-    let report = solver::newton(&mut problem, &mut data.solver, 1.0, settings)?;
-    let stable = solver::Problem::stable(&mut problem, &data.solver.x, 1.0, &data.solver.jacobian);
+    let (mut problem, ws) = problem(flexure, load, data)?;
+    ws.x.copy_from_slice(alpha);
+    let report = solver::newton(&mut problem, ws, 1.0, settings)?;
+    let stable = solver::Problem::stable(&mut problem, &ws.x, 1.0, &ws.jacobian);
     data.stiffness.as_mut_slice().copy_from_slice(&data.solver.jacobian);
     Ok(Equilibrium { stable, limit: None, residual: report.residual, iterations: report.iterations, load_steps: 0 })
 }
