@@ -32,6 +32,7 @@ mod spec;
 mod statics;
 mod step;
 mod stress;
+mod work;
 
 pub use energy::{energy, energy_gradient};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
@@ -41,3 +42,4 @@ pub use statics::{
     SpatialLoad, SpatialStatics, compliance, correct, deflect, rotation_between, stability_limit, tip_stiffness,
 };
 pub use stress::{SpatialPeak, peak_stress, stress};
+pub use work::generalized_force;
