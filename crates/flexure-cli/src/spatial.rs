@@ -156,13 +156,36 @@ fn put_stress(
     Ok(())
 }
 
+/// `shape: [{s, position, rotation, curvature: {twist, kappa_y, kappa_z}, stress}]`:
+/// the deformed flexure at `count` sections evenly spaced in arc length, ends
+/// included ([`spatial::shape`]); `stress`, the peak von Mises stress over
+/// the section, only for a section with a shape, as the planar `--shape`.
+fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> flexure::Result<Value> {
+    let points = spatial::shape(f, alpha, count)?;
+    Ok(Value::Array(
+        points
+            .iter()
+            .map(|p| {
+                let [twist, kappa_y, kappa_z] = p.curvature;
+                let mut point = json!({
+                    "s": p.s,
+                    "position": p.position,
+                    "rotation": p.rotation,
+                    "curvature": { "twist": twist, "kappa_y": kappa_y, "kappa_z": kappa_z },
+                });
+                if let Some(sigma) = p.stress {
+                    point["stress"] = json!(sigma);
+                }
+                point
+            })
+            .collect(),
+    ))
+}
+
 /// `deflect --spatial`.
 pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
     if args.input.is_some() {
         return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
-    }
-    if let Some(k) = args.stress.shape {
-        return Err(Error::invalid("shape", k, "is not printed for a spatial flexure yet"));
     }
     let planar = args.load.load();
     let extra = &args.spatial_load;
@@ -190,6 +213,9 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
     }
     warn_unstable(eq.stable, "deflect");
     put_stress(&mut model, &f, data.alpha(), args.stress.yield_strength, "deflect")?;
+    if let Some(k) = args.stress.shape {
+        model["shape"] = shape(&f, data.alpha(), k)?;
+    }
     if args.flexure.auto() {
         model["orders"] = json!(f.orders());
         model["subintervals"] = json!(f.subintervals());

@@ -74,8 +74,49 @@ fn kinematics_arc() {
     assert_eq!(v["jacobian"].as_array().unwrap().len(), 6);
 }
 
+/// Reference: the printed tip pose (`pose`, `pose_root_tip`): `--shape 9`
+/// prints 9 sections evenly spaced from the root frame to the tip, the
+/// last equal to the printed pose within 1e-12 of L (the same Magnus steps;
+/// measured 0), the total curvature by component, and with a shaped
+/// section the von Mises stress at each, whose largest is the printed peak
+/// within 1e-9 (the peak of this load is at the root, a printed section).
+#[test]
+fn deflect_shape_ends_at_the_pose() {
+    let strip =
+        "deflect --spatial --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --fy 0.2 --fz 0.05 --mx 1e-3";
+    let v = json(&format!("{strip} --shape 9"));
+    let shape = v["shape"].as_array().unwrap();
+    assert_eq!(shape.len(), 9);
+    let (first, last) = (&shape[0], &shape[8]);
+    assert!(f(&first["s"]) == 0.0 && f(&last["s"]) == 0.05 && (f(&shape[4]["s"]) - 0.025).abs() < 1e-15);
+    for i in 0..3 {
+        assert!((f(&last["position"][i]) - f(&v["pose"]["position"][i])).abs() < 1e-12 * 0.05, "{last}");
+        assert_eq!(f(&first["position"][i]), 0.0);
+        for j in 0..3 {
+            let (r, want) = (&last["rotation"][i][j], &v["pose"]["rotation"][i][j]);
+            assert!((f(r) - f(want)).abs() < 1e-12, "{last}");
+            assert_eq!(f(&first["rotation"][i][j]), if i == j { 1.0 } else { 0.0 });
+        }
+    }
+    for key in ["twist", "kappa_y", "kappa_z"] {
+        assert!(first["curvature"][key].is_number(), "{first}");
+    }
+    let most = shape.iter().map(|p| f(&p["stress"])).fold(0.0, f64::max);
+    let peak = f(&v["stress"]["max"]);
+    assert_eq!(f(&v["stress"]["at"]), 0.0, "{}", v["stress"]);
+    assert!((most - peak).abs() < 1e-9 * peak, "{most} against the peak {peak}");
+    // Without a section's shape there is no stress, as for the planar --shape.
+    let plain = json("deflect --spatial --fz 0.3 --shape 3");
+    assert!(plain["shape"].as_array().unwrap().iter().all(|p| p.get("stress").is_none() && p["position"].is_array()));
+    // With --exact the model's shape sits under `model`, beside its pose.
+    let v = json("deflect --spatial --fz 0.3 --exact --shape 5");
+    let last = &v["model"]["shape"][4];
+    assert!((f(&last["position"][2]) - f(&v["model"]["pose"]["position"][2])).abs() < 1e-12, "{last}");
+}
+
 /// Bad input exits 2 naming the option: a non-positive --gj or --ei-y, a
-/// non-finite component, a planar-only option, a spatial option without --spatial.
+/// non-finite component, a planar-only option, a spatial option without
+/// --spatial, a --shape of fewer than 2 or more than 10000 sections.
 #[test]
 fn bad_input_names_the_option() {
     for (args, name) in [
@@ -86,6 +127,8 @@ fn bad_input_names_the_option() {
         ("deflect --fz 1", "--spatial"),
         ("kinematics --spatial --alpha 1,0", "--alpha"),
         ("deflect --spatial --kappa-y 1,0", "--kappa-y"),
+        ("deflect --spatial --fz 1 --shape 1", "--shape"),
+        ("deflect --spatial --fz 1 --shape 10001", "--shape"),
     ] {
         let (code, out, err) = run(args);
         assert_eq!(code, 2, "{args}: {out}");

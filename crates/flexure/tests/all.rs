@@ -50,6 +50,7 @@ mod space;
 mod space_spatial;
 mod spatial_energy;
 mod spatial_kinematics;
+mod spatial_shape;
 mod spatial_statics;
 mod spatial_validation;
 mod stages;

@@ -28,6 +28,7 @@ mod energy;
 mod flexure;
 mod kinematics;
 mod magnus;
+mod shape;
 mod spec;
 mod statics;
 mod step;
@@ -37,6 +38,7 @@ mod work;
 pub use energy::{energy, energy_gradient};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
+pub use shape::{MAX_SHAPE_POINTS, SpatialPoint, shape, shape_at};
 pub use spec::{DEFAULT_POISSON, SpatialSpec};
 pub use statics::{
     SpatialLoad, SpatialStatics, compliance, correct, deflect, rotation_between, stability_limit, tip_stiffness,
