@@ -261,17 +261,37 @@ fn howell_n0_on_the_model_is_the_elasticas() {
 /// Table 5.1, as transcribed in several independent public scripts):
 /// γ(n) = 0.841655 − 0.0067807 n + 0.000438 n² (0.5 ≤ n ≤ 10) within 0.7 %
 /// (measured up to 0.56 %), and c_θ(n) from Table 5.1 within 0.3 %
-/// (measured 0.09 % or less). Howell's K_Θ(n) fit is not reproduced (see VALIDATION.md).
+/// (measured 0.09 % or less). n = 4 takes the axial part past the buckling
+/// load, where a path solved from rest at each load left the branch. Howell's
+/// K_Θ(n) fit is not reproduced by any rule measured (see VALIDATION.md).
 #[test]
 fn howell_n_against_his_fits() {
     let f = unit(10);
-    for (n, c_theta) in [(0.5, 1.2430), (1.0, 1.2467), (2.0, 1.2511), (5.0, 1.2557), (10.0, 1.2578)] {
+    for (n, c_theta) in [(0.5, 1.2430), (1.0, 1.2467), (2.0, 1.2511), (4.0, 1.2548), (5.0, 1.2557), (10.0, 1.2578)] {
         let path = howell::path(&f, n, 15.0 / (1.0 + n), 160).unwrap();
         let h = howell::fit(&f, &path, 0.005, ErrorMeasure::Deflection).unwrap();
         let gamma = 0.841655 - 0.0067807 * n + 0.000438 * n * n;
         assert!((h.gamma / gamma - 1.0).abs() < 7e-3, "n = {n}: γ = {} vs {gamma}", h.gamma);
         assert!((h.c_theta / c_theta - 1.0).abs() < 3e-3, "n = {n}: c_θ = {} vs {c_theta}", h.c_theta);
     }
+}
+
+/// The loading path stays on its branch past the axial buckling load
+/// (n = 4, axial force up to 12 EI/L², 4.9× π²EI/4L²): the PRB angle grows
+/// monotonically and stays in (0, 180°). Each load solved from rest instead
+/// lands, at the 23rd of these 40 loads (PL²/EI = 0.99), on a stable
+/// equilibrium bent the other way (tip angle below 0).
+#[test]
+fn howell_path_follows_its_branch_past_buckling() {
+    let f = unit(10);
+    let path = howell::path(&f, 4.0, 3.0, 40).unwrap();
+    let mut last = 0.0;
+    for (k, p) in path.iter().enumerate() {
+        let theta = p.tip.y.atan2(p.tip.x - (1.0 - 0.82));
+        assert!(p.tip.phi > 0.0 && theta > last, "point {k}: φ = {}, Θ = {theta} after {last}", p.tip.phi);
+        last = theta;
+    }
+    assert!(last.to_degrees() > 120.0, "Θ reached {}°", last.to_degrees());
 }
 
 /// Su's 3R lengths (γ = 0.1, 0.35, 0.40, 0.15; Su 2009, Eq. 24) under small

@@ -5,7 +5,7 @@
 use crate::error::{Error, Result};
 use crate::joint::Flexure;
 use crate::kinematics::Pose;
-use crate::statics::{Settings, Statics, TipLoad, deflect};
+use crate::statics::{Settings, Statics, TipLoad, correct, deflect};
 
 /// What Howell's relative error is measured against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -36,6 +36,10 @@ pub struct HowellFit {
     /// The stiffness coefficient $K_\Theta$: the least-squares slope through
     /// the origin of $\alpha_t^2 = F_tL^2/EI$ against $\Theta$ on $[0, \Theta_{max}]$,
     /// $K_\Theta = \int\Theta\alpha_t^2\thinspace d\Theta / \int\Theta^2\thinspace d\Theta$.
+    /// At $n = 0$ this is Howell's 2.67617 within 0.8 %; for $n \ne 0$ it is
+    /// not Howell and Midha's fit $K_\Theta(n)$, which falls with $n$ while this
+    /// grows (+11.9 % at $n = 10$): no rule measured reproduces theirs within
+    /// 1 % (VALIDATION.md, section PRB).
     pub k_theta: f64,
     /// The parametric angle coefficient $c_\theta$: the least-squares slope
     /// through the origin of the tip angle $\theta_0$ against $\Theta$ on $[0, \Theta_{max}]$,
@@ -53,11 +57,16 @@ const BISECTIONS: usize = 60;
 /// The loading path of Howell's cantilever: end forces
 /// $F = P(-n, 1)$ (a transverse force $P$ and an axial one $nP$, $n > 0$
 /// compressive), with $PL^2/EI$ from 0 to `top` in `count` steps (quadratic
-/// in the step index, so small deflections are sampled finely), each solved
-/// by the Smooth Curvature Model from rest ([`deflect`]).
+/// in the step index, so small deflections are sampled finely), solved by
+/// the Smooth Curvature Model along the loading path: the first load by
+/// continuation from rest ([`deflect`]), each next one by Newton from the
+/// previous equilibrium ([`correct`]). Solving each load from rest instead
+/// can land on another stable branch once the axial part $nP$ passes the
+/// buckling load $\pi^2EI/4L^2$ (measured: at $n = 4$ and 5 the tip swung
+/// to $\Theta \approx -78°$, which moved Howell's $\gamma$ from 0.821 to 0.809).
 ///
-/// Errors: non-finite or non-positive `top`, fewer than 2 points; the
-/// model's solver errors; a load past a buckling or limit load.
+/// Errors: non-finite `n`, non-finite or non-positive `top`, fewer than 2
+/// points; the model's solver errors; a load past a buckling or limit load.
 ///
 /// # Example
 /// ```
@@ -77,14 +86,21 @@ pub fn path(f: &Flexure, n: f64, top: f64, count: usize) -> Result<Vec<PathPoint
     let scale = f.ei() / (f.length() * f.length());
     let mut data = Statics::new(f);
     let settings = Settings::default();
+    let mut alpha = Vec::new();
     (1..=count)
         .map(|k| {
             let p = top * scale * (k as f64 / count as f64).powi(2);
             let load = TipLoad { moment: 0.0, fx: -n * p, fy: p };
-            let eq = deflect(f, &load, &mut data, &settings)?;
+            let eq = if k == 1 {
+                deflect(f, &load, &mut data, &settings)?
+            } else {
+                correct(f, &load, &alpha, &mut data, &settings)?
+            };
             if !eq.stable || eq.limit.is_some() {
                 return Err(Error::invalid("top", top, "takes the path past a buckling or limit load"));
             }
+            alpha.clear();
+            alpha.extend_from_slice(data.alpha());
             Ok(PathPoint { load, tip: data.pose_root_tip() })
         })
         .collect()
