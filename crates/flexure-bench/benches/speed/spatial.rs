@@ -3,7 +3,8 @@
 //! `joint/pose` of the same run; its `deflect` under a 3-D tip wrench
 //! against `pose_jacobian_hessian`; and the Bathe–Bolourchi bend at the
 //! rod's parameters (GJ = EI), orders 3 (the tip within 2.4e-4 of L of the
-//! rod, tests/spatial_validation.rs), against `rod/bathe_bolourchi_tol_1e-3`.
+//! rod, tests/spatial_validation.rs), at the default subintervals and at
+//! the two that suffice for 1e-3 of L, against `rod/bathe_bolourchi_tol_1e-3`.
 
 use criterion::Criterion;
 use flexure::Level;
@@ -58,6 +59,12 @@ pub fn run(c: &mut Criterion) {
     let mut bent = SpatialStatics::new(&bend);
     g.bench_function("bathe_bolourchi", |b| {
         b.iter(|| deflect(&bend, black_box(&out_of_plane), &mut bent, &Default::default()).unwrap().iterations)
+    });
+    // The fewest subintervals for 1e-3 of L: two put the tip 5e-6 L from eight's.
+    let coarse = bend.clone().with_subintervals(2).unwrap();
+    let mut data = SpatialStatics::new(&coarse);
+    g.bench_function("bathe_bolourchi_1e-3", |b| {
+        b.iter(|| deflect(&coarse, black_box(&out_of_plane), &mut data, &Default::default()).unwrap().iterations)
     });
     g.finish();
 }

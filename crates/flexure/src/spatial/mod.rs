@@ -19,7 +19,9 @@
 //!   Jacobian and Hessians, by 6th-order Magnus over Gauss subintervals;
 //! - [`deflect`], [`stability_limit`], [`compliance`]: equilibrium under a
 //!   dead tip wrench [`SpatialLoad`], its stability (lateral-torsional
-//!   buckling included) and the tip's 6 × 6 compliance;
+//!   buckling included) and the tip's 6 × 6 compliance, with the load's
+//!   [`generalized_force`] taken by quadrature of the section moments;
+//! - [`shape()`]: the sections along the deformed flexure;
 //! - its error estimate against a refined model, and the orders that meet
 //!   an accuracy target, are [`crate::estimate::spatial`]'s;
 //! - [`peak_stress`]: the peak von Mises stress along it.

@@ -52,6 +52,8 @@ pub(crate) struct Quadrature {
     running: [[f64; POINTS]; 3],
     /// Each coordinate's (component, Legendre index).
     components: Vec<(usize, usize)>,
+    /// Each component's coordinates, (first, count): the coordinates are in component order.
+    blocks: [(usize, usize); 3],
 }
 
 impl Quadrature {
@@ -75,7 +77,9 @@ impl Quadrature {
             }
         }
         let components = (0..flexure.coordinates()).map(|a| flexure.component(a)).collect();
-        Quadrature { width, points, partial, running: running(at), components }
+        let orders = flexure.orders();
+        let blocks = [(0, orders[0]), (orders[0], orders[1]), (orders[0] + orders[1], orders[2])];
+        Quadrature { width, points, partial, running: running(at), components, blocks }
     }
 
     fn fits(&self, flexure: &SpatialFlexure) -> bool {
@@ -179,8 +183,11 @@ pub(crate) fn evaluate<T: Scalar>(
             let load = moment + (tip - work.positions[point]).cross(&force);
             let turned = work.rotations[point].tr_mul(&load);
             let row = &quadrature.points[point * w..(point + 1) * w];
-            for (q, &(c, i)) in work.force.iter_mut().zip(&quadrature.components) {
-                *q += weight * T::c(row[i]) * turned[c];
+            for (c, &(start, len)) in quadrature.blocks.iter().enumerate() {
+                let per = weight * turned[c];
+                for (q, &p) in work.force[start..start + len].iter_mut().zip(&row[..len]) {
+                    *q += T::c(p) * per;
+                }
             }
         }
     }
@@ -270,8 +277,10 @@ fn load_derivative<T: Scalar>(
                 let moved = work.displacement[last * n + b] - work.displacement[point * n + b];
                 let per: [T; 3] = std::array::from_fn(|c| weight * (omega.dot(&turning[c]) + moved.dot(&pulling[c])));
                 let column = &mut work.derivative[b * n..(b + 1) * n];
-                for (dq, &(c, i)) in column.iter_mut().zip(&quadrature.components) {
-                    *dq += T::c(row[i]) * per[c];
+                for (c, &(start, len)) in quadrature.blocks.iter().enumerate() {
+                    for (dq, &p) in column[start..start + len].iter_mut().zip(&row[..len]) {
+                        *dq += T::c(p) * per[c];
+                    }
                 }
             }
         }
@@ -301,8 +310,9 @@ pub fn generalized_force(flexure: &SpatialFlexure, load: &super::SpatialLoad, al
     Ok(work.force)
 }
 
+/// Whether `quadrature` and `work` were made for `flexure` (its coordinates and subintervals).
 pub(crate) fn fits<T: Scalar>(flexure: &SpatialFlexure, quadrature: &Quadrature, work: &Work<T>) -> bool {
     quadrature.fits(flexure)
         && work.force.len() == flexure.coordinates()
-        && work.rotations.len() == quadrature.points.len() / quadrature.width.max(1)
+        && work.rotations.len() == flexure.subintervals() * POINTS
 }
