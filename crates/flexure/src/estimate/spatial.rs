@@ -19,10 +19,10 @@ use crate::spatial::{self as spatial_flexure, SpatialFlexure, SpatialLoad, Spati
 use nalgebra::{Matrix3, Vector3};
 
 /// The reference model for the answer `alpha` of `flexure`: orders raised
-/// to $n_c' = \max(2n_c, n_c + 3)$, and subintervals
-/// $$M' = \max\big(2M,\thinspace M_0(n'),\thinspace \lceil 2\textstyle\sum_a\lvert\alpha_a\rvert\rceil\big)$$
+/// to $\bar n_c = \max(2n_c, n_c + 3)$, and subintervals
+/// $$\bar M = \max\big(2M,\thinspace M_0(\bar n),\thinspace \lceil 2\textstyle\sum_a\lvert\alpha_a\rvert\rceil\big)$$
 /// (at most [`MAX_SUBINTERVALS`](spatial_flexure::MAX_SUBINTERVALS)), with
-/// $M_0(n')$ the default for the raised orders
+/// $M_0(\bar n)$ the default for the raised orders
 /// ([`SpatialFlexure::default_subintervals`]): twice the answer's, so that
 /// its discretization error shows, and resolved for its own orders.
 ///
@@ -175,7 +175,7 @@ fn configured(flexure: &SpatialFlexure, orders: [usize; 3], subintervals: usize)
 /// that gained (at fixed $M$ the discretization error grows with the order).
 /// A solve that fails below the last $M$ counts as a miss; at the last its
 /// error is returned. At most 5 orders and 9 subinterval counts each (1 to
-/// 256 at orders 32).
+/// 256 at orders 32); `flexure`'s own subintervals are not used.
 /// Errors, saying how far off it still was, if orders [`MAX_AUTO_ORDER`]
 /// miss it.
 ///
