@@ -156,8 +156,9 @@ fn configured(flexure: &SpatialFlexure, orders: [usize; 3], subintervals: usize)
         .with_subintervals(subintervals)
 }
 
-/// The cheapest orders and Magnus subintervals whose [`deflect`] answer
-/// under `load` meets `target`, discretization included, with that answer's
+/// The lowest orders, and at them the fewest Magnus subintervals, whose
+/// [`deflect`] answer under `load` meets `target`, discretization included
+/// (the cheapest configuration along the orders tried), with that answer's
 /// flexure (its [`SpatialFlexure::orders`] and
 /// [`SpatialFlexure::subintervals`] are the configuration picked), its
 /// coordinates and its estimate; as [`crate::estimate::deflect_auto`] for
