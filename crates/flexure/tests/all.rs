@@ -49,6 +49,7 @@ mod solver;
 mod space;
 mod space_spatial;
 mod spatial_energy;
+mod spatial_estimate;
 mod spatial_kinematics;
 mod spatial_shape;
 mod spatial_statics;

@@ -36,8 +36,9 @@ fn both(
 /// 53.60) to 0.02: tests/rod.rs). The Bathe–Bolourchi 45° bend (R = 100,
 /// unit square, E = 1e7, ν = 0, P = 600 along z): the model's tip error
 /// against the rod falls with order, and from orders 3 is within 1e-3 of L
-/// (L = 78.54; measured 6.2e-3 L at orders 2, 2.4e-4 at 3, 2.6e-5 at 4 and
-/// 6.6e-8 at 6, where the model's tip is (46.8928, 15.5581, 53.6011)).
+/// (L = 78.54; at the default subintervals, 8, 8, 12 and 20: measured
+/// 6.2e-3 L at orders 2, 2.4e-4 at 3, 2.6e-5 at 4 and 9.0e-8 at 6, where
+/// the model's tip is (46.8928, 15.5581, 53.6011)).
 #[test]
 fn bathe_bolourchi_bend_converges_to_the_rod() {
     let (r, e) = (100.0, 1e7);
@@ -60,8 +61,10 @@ fn bathe_bolourchi_bend_converges_to_the_rod() {
 /// Reference: the exact rod under 3-D tip wrenches (a seeded set turning
 /// the tip by up to about a radian, on an anisotropic strip with a rest
 /// bend): the model's largest tip error over the set falls with order and
-/// is below 1e-7 of L at orders 6 (measured 7.8e-4 L at orders 2, 3.8e-5
-/// at 3, 9.7e-7 at 4, 2.5e-9 at 6).
+/// is below 1e-9 of L at orders 6 (at the default subintervals, 8, 8, 12
+/// and 20: measured 7.8e-4 L at orders 2, 3.8e-5 at 3, 9.8e-7 at 4,
+/// 6.1e-11 at 6; at 8 subintervals orders 6 were 5.6e-10, nearly all of
+/// it discretization).
 #[test]
 fn random_3d_loads_converge_to_the_rod_with_order() {
     let section = SpatialSection::uniform(0.6, 2.0, 1.0).unwrap();
@@ -90,14 +93,15 @@ fn random_3d_loads_converge_to_the_rod_with_order() {
         assert!(worst < last, "orders {n}: {worst} after {last}");
         last = worst;
     }
-    assert!(last < 1e-7, "{last}");
+    assert!(last < 1e-9, "{last}");
 }
 
 /// Reference: the exact rod's conjugate point (`reference::rod`) for a
 /// strip whose bending about y is not rigid (EI_y = 10·EI_z, GJ = 1.3·EI_z),
 /// loaded along z past lateral-torsional buckling: Michell's load is raised
 /// by the pre-buckling bending to 1.1878 times, and the model at orders 6
-/// loses stability at the rod's load to 1e-5 relative (measured 2e-6).
+/// loses stability at the rod's load to 1e-5 relative (measured 6.1e-6 at
+/// its default 20 subintervals, the same at 8).
 #[test]
 fn lateral_torsional_buckling_meets_the_rods_conjugate_point() {
     let (gj, ei_y, ei_z) = (1.3, 10.0, 1.0);

@@ -3,10 +3,14 @@
 //! the planar flexure.
 //!
 //! The reference raises each component's order to $\max(2n_c, n_c + 3)$
-//! (at most [`MAX_ORDER`]) and doubles the Magnus subintervals, at least
-//! one per radian of total turning, so its own error is far below the
-//! answer's; the answer, padded with zeros, starts the reference's Newton
-//! solve at the full load (continuation from rest if that fails).
+//! (at most [`MAX_ORDER`]) and takes at least twice the answer's Magnus
+//! subintervals, at least the default for its own orders
+//! ([`SpatialFlexure::default_subintervals`]) and at least two per radian of
+//! total turning, so that its own truncation and discretization errors are
+//! both far below the answer's, and the estimate includes the answer's
+//! discretization error; the answer, padded with zeros, starts the
+//! reference's Newton solve at the full load (continuation from rest if
+//! that fails).
 
 use super::{Accuracy, ErrorEstimate};
 use crate::error::Result;
@@ -14,8 +18,13 @@ use crate::joint::MAX_ORDER;
 use crate::spatial::{self as spatial_flexure, SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
 use nalgebra::{Matrix3, Vector3};
 
-/// The reference model for the answer `alpha` of `flexure`: orders raised,
-/// subintervals doubled (and at least the total turning in radians, twice).
+/// The reference model for the answer `alpha` of `flexure`: orders raised
+/// to $\bar n_c = \max(2n_c, n_c + 3)$, and subintervals
+/// $$\bar M = \max\big(2M,\thinspace M_0(\bar n),\thinspace \lceil 2\textstyle\sum_a\lvert\alpha_a\rvert\rceil\big)$$
+/// (at most [`MAX_SUBINTERVALS`](spatial_flexure::MAX_SUBINTERVALS)), with
+/// $M_0(\bar n)$ the default for the raised orders
+/// ([`SpatialFlexure::default_subintervals`]): twice the answer's, so that
+/// its discretization error shows, and resolved for its own orders.
 ///
 /// # Example
 /// ```
@@ -23,14 +32,19 @@ use nalgebra::{Matrix3, Vector3};
 /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 2, 3]).unwrap();
 /// let r = reference(&f, &[0.0; 8]).unwrap();
-/// assert_eq!((r.orders(), r.subintervals()), ([6, 5, 6], 2 * f.subintervals()));
+/// // Orders 6 take 4·(6 − 1) = 20 subintervals, more than twice the answer's 8.
+/// assert_eq!((r.orders(), r.subintervals()), ([6, 5, 6], 20));
+/// let fine = reference(&f.clone().with_subintervals(32).unwrap(), &[0.0; 8]).unwrap();
+/// assert_eq!(fine.subintervals(), 64);
 /// ```
 pub fn reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexure> {
     flexure.check_coordinates("alpha", alpha)?;
     let orders = flexure.orders().map(|n| (2 * n).max(n + 3).min(MAX_ORDER));
     let turning: f64 = alpha.iter().map(|a| a.abs()).sum();
-    let subintervals =
-        (2 * flexure.subintervals()).max((2.0 * turning).ceil() as usize).min(spatial_flexure::MAX_SUBINTERVALS);
+    let subintervals = (2 * flexure.subintervals())
+        .max(SpatialFlexure::default_subintervals(orders))
+        .max((2.0 * turning).ceil() as usize)
+        .min(spatial_flexure::MAX_SUBINTERVALS);
     SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
         .with_rest(&padded(flexure, flexure.rest(), orders))?
         .with_subintervals(subintervals)
@@ -127,41 +141,103 @@ pub fn deflect_error(
 /// the default's.
 pub const MAX_AUTO_ORDER: usize = 32;
 
-/// The lowest orders (from `flexure`'s, each raised to its
-/// [`reference()`]'s) whose [`deflect`] answer under `load` meets `target`,
-/// with that answer's flexure, coordinates and estimate; as
-/// [`crate::estimate::deflect_auto`] for the planar flexure. Errors, saying
-/// how far off it still was, if orders [`MAX_AUTO_ORDER`] miss it.
+/// How far `e` is from `target`, as the largest of its ratios: position
+/// over `target.position`·`length`, angle over `target.angle`, the peak
+/// curvature's relative change over `target.stress`; above 1 is flagged.
+fn miss(e: &ErrorEstimate, target: &Accuracy, length: f64) -> f64 {
+    (e.position / (target.position * length)).max(e.angle / target.angle).max(e.peak / target.stress)
+}
+
+/// The flexure of `flexure`'s length, section and rest shape (padded with
+/// zeros) at `orders` and `subintervals`.
+fn configured(flexure: &SpatialFlexure, orders: [usize; 3], subintervals: usize) -> Result<SpatialFlexure> {
+    SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
+        .with_rest(&padded(flexure, flexure.rest(), orders))?
+        .with_subintervals(subintervals)
+}
+
+/// The lowest orders, and at them the fewest Magnus subintervals, whose
+/// [`deflect`] answer under `load` meets `target`, discretization included
+/// (the cheapest configuration along the orders tried), with that answer's
+/// flexure (its [`SpatialFlexure::orders`] and
+/// [`SpatialFlexure::subintervals`] are the configuration picked), its
+/// coordinates and its estimate; as [`crate::estimate::deflect_auto`] for
+/// the planar flexure.
+///
+/// From `flexure`'s orders $n$, raised as its [`reference()`]'s,
+/// $n \to \min(\max(2n, n + 3), 32)$, each order tries the subintervals
+/// $M = 1, 2, 4, 8, \dots$ up to the power of two at or above its default
+/// $M_0(n)$ ([`SpatialFlexure::default_subintervals`]), and answers the
+/// first whose estimate ([`deflect_error`], against a model of raised
+/// orders and at least $2M$ subintervals, so the answer's discretization
+/// error shows in it) is within `target`. An order stops doubling $M$ once
+/// a doubling gains less than a factor 2 in the estimate (the order's
+/// truncation then dominates), and the next order starts at the last $M$
+/// that gained (at fixed $M$ the discretization error grows with the order).
+/// A solve that fails below the last $M$ counts as a miss; at the last its
+/// error is returned. At most 5 orders and 9 subinterval counts each (1 to
+/// 256 at orders 32); `flexure`'s own subintervals are not used.
+/// Errors, saying how far off it still was, if orders [`MAX_AUTO_ORDER`]
+/// miss it.
 ///
 /// # Example
 /// ```
 /// use flexure::section::SpatialSection;
-/// use flexure::estimate::spatial::deflect_auto;
+/// use flexure::estimate::{Accuracy, spatial::deflect_auto};
 /// use flexure::spatial::{SpatialFlexure, SpatialLoad};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
 /// let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 2.0, 2.0] };
 /// let (used, _, e) = deflect_auto(&f, &load, &Default::default()).unwrap();
 /// assert!(!e.flagged && used.orders()[2] > 2);
+/// // A tighter target takes more subintervals as well as a higher order.
+/// let tight = Accuracy { position: 1e-7, angle: 1e-7, stress: 1e-4, ..Default::default() };
+/// let (finer, _, e) = deflect_auto(&f, &load, &tight).unwrap();
+/// assert!(!e.flagged && e.position < 1e-7 && finer.subintervals() > used.subintervals());
 /// ```
 pub fn deflect_auto(
     flexure: &SpatialFlexure,
     load: &SpatialLoad,
     target: &Accuracy,
 ) -> Result<(SpatialFlexure, Vec<f64>, ErrorEstimate)> {
-    let mut f = flexure.clone();
-    // Bounded: every pass raises each order by at least 3 until the cap.
+    target.validate()?;
+    let mut orders = flexure.orders();
+    let mut start = 1;
+    // Bounded: every pass raises each order by at least 3 until the cap, and
+    // each pass doubles M at most up to its default's power of two.
     loop {
-        let mut data = SpatialStatics::new(&f);
-        deflect(&f, load, &mut data, &Default::default())?;
-        let alpha = data.alpha().to_vec();
-        let e = deflect_error(&f, load, &alpha, target)?;
-        if !e.flagged {
-            return Ok((f, alpha, e));
-        }
-        if f.orders().iter().all(|&n| n >= MAX_AUTO_ORDER) {
+        let last = SpatialFlexure::default_subintervals(orders).next_power_of_two();
+        let mut m = start.min(last);
+        // The last answer tried at these orders and how far it missed.
+        let mut tried: Option<(SpatialFlexure, ErrorEstimate, f64)> = None;
+        let (f, e) = loop {
+            let f = configured(flexure, orders, m)?;
+            let mut data = SpatialStatics::new(&f);
+            match deflect(&f, load, &mut data, &Default::default()) {
+                Ok(_) => {
+                    let alpha = data.alpha().to_vec();
+                    let e = deflect_error(&f, load, &alpha, target)?;
+                    if !e.flagged {
+                        return Ok((f, alpha, e));
+                    }
+                    let now = miss(&e, target, f.length());
+                    let stalled = tried.as_ref().is_some_and(|(_, _, before)| now > before / 2.0);
+                    if stalled || m >= last {
+                        // The next orders start where these last gained.
+                        start = if stalled { m / 2 } else { m };
+                        break (f, e);
+                    }
+                    tried = Some((f, e, now));
+                }
+                Err(error) if m >= last => return Err(error),
+                Err(_) => {}
+            }
+            m *= 2;
+        };
+        if orders.iter().all(|&n| n >= MAX_AUTO_ORDER) {
             let value = format!(
-                "auto (orders {:?} are estimated {:.3} % of L off in tip position and {:.3}° in tip rotation)",
+                "auto (orders {:?} at {} subintervals are estimated {:.3} % of L off in tip position and {:.3}° in tip rotation)",
                 f.orders(),
+                f.subintervals(),
                 100.0 * e.position / f.length(),
                 e.angle.to_degrees()
             );
@@ -171,10 +247,6 @@ pub fn deflect_auto(
                 "even orders 32 miss the accuracy target: loosen --accuracy or reduce the load",
             ));
         }
-        let raised = reference(&f, &alpha)?;
-        let orders = raised.orders().map(|n| n.min(MAX_AUTO_ORDER));
-        f = SpatialFlexure::new(f.length(), f.section().clone(), orders)?
-            .with_rest(&padded(&f, f.rest(), orders))?
-            .with_subintervals(raised.subintervals())?;
+        orders = orders.map(|n| (2 * n).max(n + 3).min(MAX_ORDER).min(MAX_AUTO_ORDER.max(n)));
     }
 }

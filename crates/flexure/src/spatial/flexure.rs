@@ -6,18 +6,19 @@ use crate::error::{Error, Result};
 use crate::joint::{EI_RANGE, LENGTH_RANGE, MAX_COORDINATE, MAX_ORDER};
 use crate::section::SpatialSection;
 
-/// The default number of Magnus subintervals $M$. With 6th-order Magnus
-/// the tip pose's error falls as $M^{-6}$. At 8 subintervals and order 3
-/// per component (`tests/spatial_kinematics.rs` measures it) it is
-/// $7\times10^{-11}L$ for coefficients up to 0.3 rad, $6\times10^{-10}L$ up
-/// to 0.55 rad and $9\times10^{-9}L$ at about a radian each (tip rotations
-/// of 0.7–1.1 rad per component, curvature varying along the length); the
-/// planar model's default 5-point rule is $10^{-7}L$ from its converged
-/// answer at such a shape. 16 subintervals take the last to $1.5\times10^{-10}L$
-/// at twice the cost ([`SpatialFlexure::with_subintervals`]). The cost is
-/// linear in $M$: at 8, order 3, a pose took 340 ns, 8.7 times the planar
-/// `joint/pose` (the least of 200 interleaved runs of 1000 poses each, on a
-/// loaded machine; criterion's `spatial/pose` there).
+/// The fewest Magnus subintervals $M$ a flexure gets by default
+/// ([`SpatialFlexure::default_subintervals`] raises it with the order). With
+/// 6th-order Magnus the tip pose's error falls as $M^{-6}$. At 8 subintervals
+/// and order 3 per component (`tests/spatial_kinematics.rs` measures it) it
+/// is $7\times10^{-11}L$ for coefficients up to 0.3 rad, $6\times10^{-10}L$
+/// up to 0.55 rad and $9\times10^{-9}L$ at about a radian each (tip
+/// rotations of 0.7–1.1 rad per component, curvature varying along the
+/// length); the planar model's default 5-point rule is $10^{-7}L$ from its
+/// converged answer at such a shape. 16 subintervals take the last to
+/// $1.5\times10^{-10}L$ at twice the cost ([`SpatialFlexure::with_subintervals`]).
+/// The cost is linear in $M$: at 8, order 3, a pose took 340 ns, 8.7 times
+/// the planar `joint/pose` (the least of 200 interleaved runs of 1000 poses
+/// each, on a loaded machine; criterion's `spatial/pose` there).
 pub const DEFAULT_SUBINTERVALS: usize = 8;
 
 /// The most subintervals: 4096 take the pose's error to rounding for
@@ -67,8 +68,8 @@ pub struct SpatialFlexure {
 impl SpatialFlexure {
     /// A straight flexure of `length` (m), `section` and `orders`
     /// $[n_\tau, n_y, n_z]$ (each from 1 to 64), with
-    /// [`DEFAULT_SUBINTERVALS`]. Errors name `length`, `order`, `gj`,
-    /// `ei_y` or `ei_z`.
+    /// [`SpatialFlexure::default_subintervals`] of its orders. Errors name
+    /// `length`, `order`, `gj`, `ei_y` or `ei_z`.
     pub fn new(length: f64, section: SpatialSection, orders: [usize; 3]) -> Result<Self> {
         if !(length.is_finite() && (LENGTH_RANGE.0..=LENGTH_RANGE.1).contains(&length)) {
             return Err(Error::invalid("length", length, "must lie in [1e-9, 1e6] m"));
@@ -99,7 +100,7 @@ impl SpatialFlexure {
         let n: usize = orders.iter().sum();
         let stiffness = gram(length, &section, orders)?;
         let mut f = Self { length, section, orders, rest: vec![0.0; n], stiffness, subintervals: 0, shapes: vec![] };
-        f.set_subintervals(DEFAULT_SUBINTERVALS);
+        f.set_subintervals(Self::default_subintervals(orders));
         Ok(f)
     }
 
@@ -128,6 +129,49 @@ impl SpatialFlexure {
         }
         self.rest = rest.to_vec();
         Ok(self)
+    }
+
+    /// The default number of Magnus subintervals for `orders`,
+    /// $$M = \max\big(8,\thinspace 4(n - 1),\thinspace \lfloor n(n - 1)/4\rfloor\big),\qquad n = \max(n_\tau, n_y, n_z)$$
+    /// (at most [`MAX_SUBINTERVALS`]): 8 ([`DEFAULT_SUBINTERVALS`]) up to
+    /// orders 3, then four more per order, and from orders 16 on a quarter
+    /// of $n(n-1)$, so that the discretization error stays well below the
+    /// truncation error of the order. The highest shifted Legendre
+    /// polynomial $\tilde P_{n-1}$ oscillates $n - 1$ times along the
+    /// length, and both the Magnus steps and the statics' Gauss quadrature
+    /// of the generalized force resolve it only with a few subintervals per
+    /// oscillation: at 8 subintervals orders 10 and 12 put the
+    /// Bathe–Bolourchi tip $2.6\times10^{-7}L$ and $1.1\times10^{-5}L$ from
+    /// the exact rod, worse than order 8's $2.7\times10^{-8}L$. Measured
+    /// against the same order at 256 subintervals, on the Bathe–Bolourchi
+    /// bend and four random 3-D tip wrenches turning the tip by about a
+    /// radian (VALIDATION.md, *Spatial: the model against the rod*), this
+    /// $M$ keeps the discretization error below a tenth of the truncation
+    /// error wherever that exceeds $10^{-9}L$ (at most 7 %), and below
+    /// $5\times10^{-11}L$ where the truncation error is smaller (orders 9 and
+    /// up there, where the total error is then at most $1.5\times10^{-11}L$
+    /// at about a radian); the same holds with the loads tripled (about 3 rad
+    /// of turning; measured up to orders 16). With $4n$ instead the
+    /// discretization error is 2–3 times smaller, at 1.5 times the cost for
+    /// orders 3. Beyond orders 16, $4(n-1)$ left the Bathe–Bolourchi tip
+    /// $2\times10^{-12}$–$1.5\times10^{-9}L$ off at orders 20–40, all of it
+    /// discretization; $n(n-1)/4$ takes it to $2\times10^{-13}L$ or less. [`crate::estimate::spatial::deflect_auto`]
+    /// picks the fewest subintervals that meet an accuracy target instead.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
+    /// assert_eq!(SpatialFlexure::default_subintervals([3, 3, 3]), 8);
+    /// assert_eq!(SpatialFlexure::default_subintervals([2, 12, 4]), 44);
+    /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [10, 10, 10]).unwrap();
+    /// assert_eq!(f.subintervals(), 36);
+    /// assert_eq!(f.with_subintervals(8).unwrap().subintervals(), 8);
+    /// assert_eq!(SpatialFlexure::default_subintervals([32, 1, 1]), 248);
+    /// ```
+    pub fn default_subintervals(orders: [usize; 3]) -> usize {
+        let n = orders.iter().copied().max().unwrap_or(1);
+        let n1 = n.saturating_sub(1);
+        (4 * n1).max(n * n1 / 4).clamp(DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS)
     }
 
     /// The same flexure integrated over `subintervals` Magnus steps (1 to
