@@ -78,3 +78,38 @@ def test_exact_rod_meets_the_model():
     assert abs(twist["pose"][2, 1] - math.sin(0.32)) < 1e-10
     with pytest.raises(ValueError, match="flexure"):
         exact.rod(flexure.Flexure())
+
+
+def test_shape_of_a_helix_and_its_tip():
+    # Reference: constant body curvature u = (tau, 0, kappa) with GJ = EI is a helix whose
+    # frame is R(s) = exp(s [u]x), p(s) = integral of R e1 (closed form, 1e-12 of L); the
+    # last section is pose(alpha)'s tip to rounding.
+    f = flexure.SpatialFlexure(length=1.0, modulus=2e9, diameter=0.01, order=1)
+    tau, kappa = 0.7, 1.3
+    alpha = [tau, 0.0, kappa]
+    line = f.shape(alpha, 5)
+    assert line.shape == (5,) and line["position"].shape == (5, 3) and line["rotation"].shape == (5, 3, 3)
+    w = np.array([tau, 0.0, kappa])
+    theta = np.linalg.norm(w)
+    k = w / theta
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    e1 = np.array([1.0, 0.0, 0.0])
+    for row in line:
+        s = row["s"]
+        a = theta * s
+        r = np.eye(3) + math.sin(a) * kx + (1 - math.cos(a)) * kx @ kx
+        p = s * k * k.dot(e1) + (math.sin(a) / theta) * (e1 - k * k.dot(e1)) + ((1 - math.cos(a)) / theta) * np.cross(k, e1)
+        assert np.allclose(row["rotation"], r, atol=1e-12) and np.allclose(row["position"], p, atol=1e-12)
+        assert np.allclose(row["curvature"], w, atol=1e-12)
+    g = f.pose(alpha)
+    assert np.allclose(line["position"][-1], g[:3, 3], atol=1e-14) and np.allclose(line["rotation"][-1], g[:3, :3], atol=1e-14)
+    # A round rod has a shape: every section carries its peak stress, largest where the curvature is.
+    assert "stress" in line.dtype.names and np.all(line["stress"] > 0)
+    # A section given by its stiffnesses alone has none.
+    assert "stress" not in flexure.SpatialFlexure(order=1).shape(alpha, 3).dtype.names
+
+
+def test_shape_bad_points_raise_value_error():
+    f = flexure.SpatialFlexure()
+    with pytest.raises(ValueError, match="k|points"):
+        f.shape([0.0] * 9, 1)

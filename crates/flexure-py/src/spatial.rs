@@ -243,6 +243,43 @@ impl SpatialFlexure {
         Ok(Some(d))
     }
 
+    /// The deformed flexure at `k` sections evenly spaced in arc length, ends included (2 to
+    /// 10000): a NumPy structured array of fields `s` (m), `position` (3,) (m), `rotation`
+    /// (3, 3) (its columns the section's axes in the root frame, as `pose`'s), `curvature` (3,)
+    /// (twist, κ_y, κ_z, 1/m) and, for a section with a shape, `stress` (the peak von Mises over
+    /// the section, Pa). The last row is the tip of `pose(alpha)`.
+    fn shape<'py>(
+        &self,
+        py: Python<'py>,
+        alpha: &Bound<'py, PyAny>,
+        k: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let a = single(self.inner.coordinates(), alpha)?;
+        let count = crate::convert::shape_points(k)?;
+        let points = spatial::shape(&self.inner, &a, count).map_err(to_py)?;
+        let stressed = points.iter().all(|p| p.stress.is_some());
+        let dtype = pyo3::types::PyList::empty(py);
+        dtype.append(("s", "f8"))?;
+        dtype.append(("position", "f8", (3,)))?;
+        dtype.append(("rotation", "f8", (3, 3)))?;
+        dtype.append(("curvature", "f8", (3,)))?;
+        if stressed {
+            dtype.append(("stress", "f8"))?;
+        }
+        let n = points.len();
+        let out = py.import("numpy")?.getattr("empty")?.call1((n, dtype))?;
+        out.set_item("s", numpy::PyArray1::from_iter(py, points.iter().map(|p| p.s)))?;
+        out.set_item("position", Array2::from_shape_fn((n, 3), |(i, j)| points[i].position[j]).into_pyarray(py))?;
+        let rotation = Array3::from_shape_fn((n, 3, 3), |(i, r, c)| points[i].rotation[r][c]);
+        out.set_item("rotation", rotation.into_pyarray(py))?;
+        out.set_item("curvature", Array2::from_shape_fn((n, 3), |(i, j)| points[i].curvature[j]).into_pyarray(py))?;
+        if stressed {
+            out.set_item("stress", numpy::PyArray1::from_iter(py, points.iter().map(|p| p.stress.unwrap_or(0.0))))?;
+        }
+        strict::finite_slice("shape", &points.iter().flat_map(|p| p.position).collect::<Vec<f64>>())?;
+        Ok(out)
+    }
+
     /// The exact Kirchhoff rod of this flexure's length, section and rest shape under the dead
     /// tip force and moment (root frame), followed from rest by multiple shooting (what
     /// `flexure.exact.rod` calls): a dict of pose (4, 4), root_moment (3,), stable (its
