@@ -976,7 +976,7 @@ fn prb_fits(out: &Path, md: &mut String) -> Run<Value> {
 /// bend beside the published tips and the exact rod, lateral-torsional
 /// buckling beside Michell, and a picture of the bend.
 fn spatial(out: &Path, md: &mut String) -> Run<Value> {
-    use flexure::reference::rod::{self, Rod, TipWrench};
+    use flexure::reference::rod::{self, Rod};
     use flexure::section::{Shear, SpatialSection};
     use flexure::spatial::{self as sp, SpatialFlexure, SpatialLoad, SpatialStatics};
     use nalgebra::Vector3;
@@ -985,10 +985,8 @@ fn spatial(out: &Path, md: &mut String) -> Run<Value> {
     let square = SpatialSection::rectangle(1e7, Shear::Poisson(0.0), Profile::Constant(1.0), Profile::Constant(1.0))
         .map_err(lib)?;
     let bend = Rod::new(l, square.clone()).map_err(lib)?.with_rest(move |_| [0.0, 0.0, 1.0 / r]).map_err(lib)?;
-    let push = Vector3::new(0.0, 0.0, 600.0);
-    let exact =
-        rod::deflect(&bend, &TipWrench { moment: Vector3::zeros(), force: push }, &Default::default()).map_err(lib)?;
     let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, 600.0] };
+    let exact = rod::deflect(&bend, &load, &Default::default()).map_err(lib)?;
     let mut table = String::from("| orders | model tip (x, y, z) | off the rod (of L) |\n|---|---|---|\n");
     let mut rows = Vec::new();
     for n in [2, 3, 4, 6] {

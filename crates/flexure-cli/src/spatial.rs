@@ -13,7 +13,7 @@ use crate::options::{FlexureOptions, List, Order, ProfileArg, number, numbers, p
 use clap::Args;
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
-use flexure::reference::rod::{self, Rod, TipWrench};
+use flexure::reference::rod::{self, Rod};
 use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialSpec, SpatialStatics};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{Value, json};
@@ -230,8 +230,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
     }
     let (fl, rest) = (f.clone(), f.rest().to_vec());
     let exact_rod = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| fl.curvature(&rest, s))?;
-    let w = TipWrench { moment: Vector3::from(load.moment), force: Vector3::from(load.force) };
-    let exact = rod::deflect(&exact_rod, &w, &Default::default())?;
+    let exact = rod::deflect(&exact_rod, &load, &Default::default())?;
     let turn = r.tr_mul(&exact.rotation);
     let angle = (0.5
         * Vector3::new(turn[(2, 1)] - turn[(1, 2)], turn[(0, 2)] - turn[(2, 0)], turn[(1, 0)] - turn[(0, 1)]).norm())

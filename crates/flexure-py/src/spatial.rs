@@ -291,11 +291,8 @@ impl SpatialFlexure {
         force: Option<&Bound<'py, PyAny>>,
         moment: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        use flexure::reference::rod::{self, Rod, TipWrench};
-        let w = TipWrench {
-            moment: Vector3::from(triple("moment", moment)?),
-            force: Vector3::from(triple("force", force)?),
-        };
+        use flexure::reference::rod::{self, Rod};
+        let w = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
         let f = self.inner.clone();
         let solution = py
             .detach(|| -> flexure::Result<_> {

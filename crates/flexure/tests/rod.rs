@@ -4,14 +4,15 @@
 //! buckling loads, and the Bathe–Bolourchi 45° bend; and bad input.
 
 use flexure::reference::elastica;
-use flexure::reference::rod::{self, Rod, Settings, TipWrench, compliance_rest};
+use flexure::reference::rod::{self, Rod, Settings, compliance_rest};
 use flexure::section::{Profile, Section, Shear, SpatialSection};
+use flexure::spatial::SpatialLoad;
 use flexure::{Error, Flexure, StabilityLimit, TipLoad};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::f64::consts::PI;
 
-fn wrench(moment: [f64; 3], force: [f64; 3]) -> TipWrench {
-    TipWrench { moment: Vector3::from(moment), force: Vector3::from(force) }
+fn wrench(moment: [f64; 3], force: [f64; 3]) -> SpatialLoad {
+    SpatialLoad { moment, force }
 }
 
 /// The planar elastica is the rod's special case: in-plane rest curvature
@@ -263,9 +264,10 @@ fn bad_input_and_stalls_are_reported() {
         "rest_curvature"
     );
     let rod = Rod::new(1.0, section()).unwrap();
-    let d = |load: TipWrench, settings: &Settings| rod::deflect(&rod, &load, settings);
-    assert_eq!(name_of(d(wrench([0.0; 3], [f64::NAN, 0.0, 0.0]), &Default::default()).unwrap_err()), "force");
-    assert_eq!(name_of(d(wrench([0.0, f64::INFINITY, 0.0], [0.0; 3]), &Default::default()).unwrap_err()), "moment");
+    let d = |load: SpatialLoad, settings: &Settings| rod::deflect(&rod, &load, settings);
+    // The load is a SpatialLoad: its errors name the component.
+    assert_eq!(name_of(d(wrench([0.0; 3], [f64::NAN, 0.0, 0.0]), &Default::default()).unwrap_err()), "fx");
+    assert_eq!(name_of(d(wrench([0.0, f64::INFINITY, 0.0], [0.0; 3]), &Default::default()).unwrap_err()), "my");
     assert_eq!(name_of(d(wrench([0.0; 3], [0.0, 1e4, 0.0]), &Default::default()).unwrap_err()), "force");
     let bad = Settings { path_tolerance: 1.0, ..Default::default() };
     assert_eq!(name_of(d(wrench([0.0; 3], [0.0; 3]), &bad).unwrap_err()), "path_tolerance");

@@ -6,7 +6,7 @@
 
 use flexure::estimate::Accuracy;
 use flexure::estimate::spatial::{deflect_auto, deflect_error, reference};
-use flexure::reference::rod::{self, Rod, TipWrench};
+use flexure::reference::rod::{self, Rod};
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, deflect, pose_root_tip};
 use nalgebra::Vector3;
@@ -33,7 +33,7 @@ fn bend(n: usize) -> SpatialFlexure {
 fn exact() -> Vector3<f64> {
     let l = length();
     let r = Rod::new(l, section()).unwrap().with_rest(move |_| [0.0, 0.0, PI / 4.0 / l]).unwrap();
-    let w = TipWrench { moment: Vector3::zeros(), force: Vector3::from(LOAD.force) };
+    let w = SpatialLoad { moment: [0.0; 3], force: LOAD.force };
     rod::deflect(&r, &w, &rod::Settings::with_tolerance(1e-12)).unwrap().position
 }
 
@@ -118,7 +118,7 @@ fn auto_with_the_curvature_target() {
     assert!(!e.flagged && e.peak < 1e-3 && truth < 1e-3, "true {truth:e} L, peak {:e}", e.peak);
     let l = length();
     let r = Rod::new(l, section()).unwrap().with_rest(move |_| [0.0, 0.0, PI / 4.0 / l]).unwrap();
-    let w = TipWrench { moment: Vector3::zeros(), force: Vector3::from(LOAD.force) };
+    let w = SpatialLoad { moment: [0.0; 3], force: LOAD.force };
     let m = rod::deflect(&r, &w, &rod::Settings::with_tolerance(1e-12)).unwrap().root_moment;
     let k = section().stiffness(0.0);
     let rod_root = Vector3::new(m.x / k[0], m.y / k[1], m.z / k[2]).norm();

@@ -2,7 +2,7 @@
 //! helix's closed form, its own tip pose, a refined integration and the
 //! exact rod's shape under the Bathe–Bolourchi load.
 
-use flexure::reference::rod::{self, Rod, TipWrench};
+use flexure::reference::rod::{self, Rod};
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{
     SpatialFlexure, SpatialLoad, SpatialPoint, SpatialStatics, deflect, pose_root_tip, shape, shape_at,
@@ -124,7 +124,7 @@ fn bathe_bolourchi_shape_converges_to_the_rod() {
     let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, 600.0] };
     let bend = 1.0 / r;
     let rod = Rod::new(l, section.clone()).unwrap().with_rest(move |_| [0.0, 0.0, bend]).unwrap();
-    let w = TipWrench { moment: Vector3::from(load.moment), force: Vector3::from(load.force) };
+    let w = load;
     let exact = rod::deflect(&rod, &w, &Default::default()).unwrap();
     let at: Vec<f64> = exact.shape.iter().map(|frame| frame.s.min(l)).collect();
     assert!(at.len() >= 100 && at[at.len() - 1] == l, "{} frames", at.len());

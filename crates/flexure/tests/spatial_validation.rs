@@ -2,7 +2,7 @@
 //! (`reference::rod`), and both against published values: the
 //! Bathe–Bolourchi bend, and the model's convergence with order on 3-D loads.
 
-use flexure::reference::rod::{self, Rod, TipWrench};
+use flexure::reference::rod::{self, Rod};
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, deflect, pose_root_tip};
 use nalgebra::Vector3;
@@ -26,7 +26,7 @@ fn both(
     assert!(eq.stable);
     let (_, model) = pose_root_tip(&f, data.alpha());
     let r = Rod::new(l, section.clone()).unwrap().with_rest(move |_| [0.0, 0.0, bend / l]).unwrap();
-    let w = TipWrench { moment: Vector3::from(load.moment), force: Vector3::from(load.force) };
+    let w = *load;
     let exact = rod::deflect(&r, &w, &Default::default()).unwrap();
     (model, exact.position)
 }
@@ -111,7 +111,7 @@ fn lateral_torsional_buckling_meets_the_rods_conjugate_point() {
     let mut data = SpatialStatics::new(&f);
     let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, p] };
     let model = deflect(&f, &load, &mut data, &Default::default()).unwrap().limit.expect("the model buckles");
-    let w = TipWrench { moment: Vector3::zeros(), force: Vector3::new(0.0, 0.0, p) };
+    let w = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, p] };
     let rod = rod::deflect(&Rod::new(1.0, section).unwrap(), &w, &Default::default()).unwrap();
     let exact = rod.limit.expect("the rod buckles");
     assert!((model / exact - 1.0).abs() < 1e-5, "model {model}, rod {exact}");

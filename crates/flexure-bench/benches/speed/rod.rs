@@ -5,9 +5,9 @@
 //! reference the spatial model is timed against.
 
 use criterion::Criterion;
-use flexure::reference::rod::{self, Rod, Settings, TipWrench};
+use flexure::reference::rod::{self, Rod, Settings};
 use flexure::section::SpatialSection;
-use nalgebra::Vector3;
+use flexure::spatial::SpatialLoad;
 use std::hint::black_box;
 
 pub fn run(c: &mut Criterion) {
@@ -16,7 +16,7 @@ pub fn run(c: &mut Criterion) {
         .unwrap()
         .with_rest(move |_| [0.0, 0.0, 1.0 / r])
         .unwrap();
-    let load = TipWrench { moment: Vector3::zeros(), force: Vector3::new(0.0, 0.0, 600.0) };
+    let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, 600.0] };
     let mut g = c.benchmark_group("rod");
     g.sample_size(10);
     let loose = Settings::with_tolerance(1e-3);

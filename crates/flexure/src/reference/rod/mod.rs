@@ -81,6 +81,7 @@ use crate::limit::StabilityLimit;
 use crate::ode::Tolerance;
 use crate::section::SpatialSection;
 use crate::solver::{self, Problem};
+use crate::spatial::SpatialLoad;
 use chain::Chain;
 use nalgebra::{Matrix3, Vector3};
 use std::sync::Arc;
@@ -167,9 +168,9 @@ impl Rod {
     }
 }
 
-/// A dead tip wrench in the root frame: moment then force.
+/// The tip wrench as the chain works with it: moment then force, root frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TipWrench {
+pub(super) struct TipWrench {
     /// $M$ (N·m).
     pub moment: Vector3<f64>,
     /// $F$ (N).
@@ -177,14 +178,10 @@ pub struct TipWrench {
 }
 
 impl TipWrench {
-    /// Checks that every component is finite, naming `moment` or `force`.
-    pub fn validate(&self) -> Result<()> {
-        for (name, v) in [("moment", self.moment), ("force", self.force)] {
-            if let Some(c) = v.iter().find(|c| !c.is_finite()) {
-                return Err(Error::invalid(name, c, "must have finite components"));
-            }
-        }
-        Ok(())
+    /// The load `l` (checked: every component finite, named `mx` … `fz`), times `factor`.
+    fn of(l: &SpatialLoad, factor: f64) -> Result<Self> {
+        l.validate()?;
+        Ok(TipWrench { moment: Vector3::from(l.moment) * factor, force: Vector3::from(l.force) * factor })
     }
 }
 
@@ -299,20 +296,21 @@ pub struct Solution {
 ///
 /// # Example
 /// ```
-/// use flexure::reference::rod::{self, Rod, TipWrench};
+/// use flexure::reference::rod::{self, Rod};
 /// use flexure::section::SpatialSection;
+/// use flexure::spatial::SpatialLoad;
 /// use nalgebra::Vector3;
 /// // Pure twist: the tip turns by TL/GJ about x and stays at (L, 0, 0).
 /// let rod = Rod::new(2.0, SpatialSection::uniform(0.5, 1.0, 1.0).unwrap()).unwrap();
-/// let load = TipWrench { moment: Vector3::new(0.1, 0.0, 0.0), force: Vector3::zeros() };
+/// let load = SpatialLoad { moment: [0.1, 0.0, 0.0], force: [0.0; 3] };
 /// let s = rod::deflect(&rod, &load, &Default::default()).unwrap();
 /// assert!((s.rotation[(2, 1)] - (0.4f64).sin()).abs() < 1e-10);
 /// assert!((s.position - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-10 && s.stable);
 /// ```
-pub fn deflect(rod: &Rod, load: &TipWrench, settings: &Settings) -> Result<Solution> {
-    load.validate()?;
+pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &Settings) -> Result<Solution> {
+    let load = TipWrench::of(load, 1.0)?;
     settings.validate()?;
-    let mut chain = Chain::new(rod, *load, settings.path_ode())?;
+    let mut chain = Chain::new(rod, load, settings.path_ode())?;
     let mut ws = solver::Workspace::new(chain.dim());
     ws.x = chain.shot([0.0; 3], 0.0)?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
@@ -355,21 +353,21 @@ pub const MAX_BISECTIONS: usize = 60;
 ///
 /// # Example
 /// ```
-/// use flexure::reference::rod::{self, Rod, Settings, TipWrench};
+/// use flexure::reference::rod::{self, Rod, Settings};
 /// use flexure::section::SpatialSection;
-/// use nalgebra::Vector3;
+/// use flexure::spatial::SpatialLoad;
 /// // Euler's column, clamped and free, about its softer axis: π²EI_z/4L².
 /// let rod = Rod::new(1.0, SpatialSection::uniform(1.0, 2.0, 1.0).unwrap()).unwrap();
-/// let load = TipWrench { moment: Vector3::zeros(), force: Vector3::new(-1.0, 0.0, 0.0) };
+/// let load = SpatialLoad { moment: [0.0; 3], force: [-1.0, 0.0, 0.0] };
 /// let limit = rod::stability_limit(&rod, &load, 4.0, &Settings::with_tolerance(1e-9)).unwrap();
 /// let euler = std::f64::consts::PI.powi(2) / 4.0;
 /// assert!((limit.factor() - euler).abs() < 1e-8 * euler);
 /// ```
-pub fn stability_limit(rod: &Rod, load: &TipWrench, max_factor: f64, settings: &Settings) -> Result<StabilityLimit> {
+pub fn stability_limit(rod: &Rod, load: &SpatialLoad, max_factor: f64, settings: &Settings) -> Result<StabilityLimit> {
     load.validate()?;
     settings.validate()?;
     crate::error::positive("max_factor", max_factor)?;
-    let scaled = TipWrench { moment: load.moment * max_factor, force: load.force * max_factor };
+    let scaled = TipWrench::of(load, max_factor)?;
     let mut chain = Chain::new(rod, scaled, settings.ode)?;
     // The paths only place the loss for the bisection, which starts 2 %
     // either side of it: steps need not shrink below a thousandth.
