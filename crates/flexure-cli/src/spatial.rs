@@ -14,7 +14,7 @@ use clap::Args;
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::reference::rod::{self, Rod};
-use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialSpec, SpatialStatics};
+use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialPoint, SpatialSpec, SpatialStatics};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{Value, json};
 
@@ -161,8 +161,40 @@ fn put_stress(
 /// included ([`spatial::shape`]); `stress`, the peak von Mises stress over
 /// the section, only for a section with a shape, as the planar `--shape`.
 fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> flexure::Result<Value> {
-    let points = spatial::shape(f, alpha, count)?;
-    Ok(Value::Array(
+    Ok(points(&spatial::shape(f, alpha, count)?))
+}
+
+/// The exact rod's sections at the arc lengths of the model's `shape` (as
+/// [`shape`] prints them): each carried from the rod's nearest frame
+/// ([`rod::sections`]), its curvature $K^{-1}R^Tm + u^0$ from its moment,
+/// and its stress that of the change $K^{-1}R^Tm$.
+fn rod_shape(rod: &Rod, load: &SpatialLoad, exact: &rod::Solution, model: &Value) -> flexure::Result<Value> {
+    let at: Vec<f64> = model.as_array().into_iter().flatten().filter_map(|p| p["s"].as_f64()).collect();
+    let (l, section) = (rod.length(), rod.section());
+    let sections = rod::sections(rod, load, exact, &at, &Default::default())?;
+    let out: Vec<SpatialPoint> = sections
+        .iter()
+        .map(|q| {
+            let t = (q.s / l).clamp(0.0, 1.0);
+            let k = section.stiffness(t);
+            let body = q.rotation.tr_mul(&q.moment);
+            let change: [f64; 3] = std::array::from_fn(|c| body[c] / k[c]);
+            let rest = rod.rest_at(q.s);
+            SpatialPoint {
+                s: q.s,
+                position: q.position.into(),
+                rotation: std::array::from_fn(|i| std::array::from_fn(|j| q.rotation[(i, j)])),
+                curvature: std::array::from_fn(|c| change[c] + rest[c]),
+                stress: section.stress(t, change).ok().map(|x| x.von_mises),
+            }
+        })
+        .collect();
+    Ok(points(&out))
+}
+
+/// Sections as `shape` prints them.
+fn points(points: &[SpatialPoint]) -> Value {
+    Value::Array(
         points
             .iter()
             .map(|p| {
@@ -179,7 +211,7 @@ fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> flexure::Result<Val
                 point
             })
             .collect(),
-    ))
+    )
 }
 
 /// `deflect --spatial`.
@@ -236,7 +268,11 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         * Vector3::new(turn[(2, 1)] - turn[(1, 2)], turn[(0, 2)] - turn[(2, 0)], turn[(1, 0)] - turn[(0, 1)]).norm())
     .atan2(0.5 * (turn.trace() - 1.0));
     let off = (p - exact.position).norm();
-    Ok(json!({
+    let exact_shape = match model.get("shape") {
+        Some(m) => Some(rod_shape(&exact_rod, &load, &exact, m)?),
+        None => None,
+    };
+    let mut answer = json!({
         "pose": pose(&exact.rotation, &exact.position),
         "root_moment": [exact.root_moment.x, exact.root_moment.y, exact.root_moment.z],
         "stable": exact.stable,
@@ -247,7 +283,11 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
             "angle": angle,
             "angle_degrees": angle.to_degrees(),
         },
-    }))
+    });
+    if let Some(sections) = exact_shape {
+        answer["shape"] = sections;
+    }
+    Ok(answer)
 }
 
 /// `compliance --spatial`: the 6 × 6 at rest, order (rx, ry, rz, x, y, z);

@@ -108,10 +108,23 @@ fn deflect_shape_ends_at_the_pose() {
     // Without a section's shape there is no stress, as for the planar --shape.
     let plain = json("deflect --spatial --fz 0.3 --shape 3");
     assert!(plain["shape"].as_array().unwrap().iter().all(|p| p.get("stress").is_none() && p["position"].is_array()));
-    // With --exact the model's shape sits under `model`, beside its pose.
-    let v = json("deflect --spatial --fz 0.3 --exact --shape 5");
+    // With --exact the model's shape sits under `model`, beside its pose, and
+    // `shape` is the exact rod's at the same arc lengths: its last section is
+    // the rod's pose (1e-12), and at orders 6 the model's sections lie within
+    // 1e-6 of L of the rod's (measured 2.7e-11 L).
+    let v = json("deflect --spatial --fz 0.3 --order 6 --exact --shape 5");
     let last = &v["model"]["shape"][4];
     assert!((f(&last["position"][2]) - f(&v["model"]["pose"]["position"][2])).abs() < 1e-12, "{last}");
+    let rod = v["shape"].as_array().unwrap();
+    assert_eq!(rod.len(), 5);
+    assert!((f(&rod[4]["position"][2]) - f(&v["pose"]["position"][2])).abs() < 1e-12, "{}", rod[4]);
+    for (a, b) in rod.iter().zip(v["model"]["shape"].as_array().unwrap()) {
+        assert_eq!(f(&a["s"]), f(&b["s"]));
+        for i in 0..3 {
+            let d = (f(&a["position"][i]) - f(&b["position"][i])).abs();
+            assert!(d < 1e-6, "section at s = {}: {d}", a["s"]);
+        }
+    }
 }
 
 /// Bad input exits 2 naming the option: a non-positive --gj or --ei-y, a

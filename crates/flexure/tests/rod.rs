@@ -294,3 +294,39 @@ fn dead_moment_alone_has_no_conjugate_point() {
     let limit = rod::stability_limit(&rod, &load, 2.0, &Settings::with_tolerance(1e-6)).unwrap();
     assert_eq!(limit, StabilityLimit::StableUpTo { factor: 2.0, stalled: None });
 }
+
+/// Reference: the planar elastica's own shape (`elastica::deflect_traced`,
+/// `Trace::shape`): under an in-plane load the rod's sections at 9 evenly
+/// spaced arc lengths (`rod::sections`) lie on it, positions and angles to
+/// 1e-8 of L (both integrate to 1e-12; measured 9.1e-13 L), with zero z;
+/// a section at a stored frame's arc length is that frame, and the last is
+/// the tip. Bad arc lengths are refused by name.
+#[test]
+fn sections_lie_on_the_planar_elastica() {
+    let f = Flexure::new(1.2, 1.0, 3).unwrap().with_rest(&[0.4, -0.2, 0.1]).unwrap();
+    let (m, fx, fy) = (0.3, -1.0, 2.0);
+    let (_, trace) = elastica::deflect_traced(&f, &TipLoad { moment: m, fx, fy }, &Default::default()).unwrap();
+    let planar = trace.shape(9).unwrap();
+    let flex = f.clone();
+    let section = SpatialSection::uniform(0.7, 1.6, 1.0).unwrap();
+    let rod = Rod::new(1.2, section).unwrap().with_rest(move |s| [0.0, 0.0, flex.curvature(flex.rest(), s)]).unwrap();
+    let load = wrench([0.0, 0.0, m], [fx, fy, 0.0]);
+    let s = rod::deflect(&rod, &load, &Default::default()).unwrap();
+    let at: Vec<f64> = planar.iter().map(|p| p.s).collect();
+    let sections = rod::sections(&rod, &load, &s, &at, &Default::default()).unwrap();
+    for (q, p) in sections.iter().zip(&planar) {
+        let phi = q.rotation[(1, 0)].atan2(q.rotation[(0, 0)]);
+        assert!((q.position.x - p.x).abs() < 1.2e-8 && (q.position.y - p.y).abs() < 1.2e-8, "{q:?} vs {p:?}");
+        assert!((phi - p.phi).abs() < 1e-8 && q.position.z.abs() < 1e-12, "{phi} vs {}", p.phi);
+        assert!((q.moment.z - p.moment).abs() < 1e-8 * (1.0 + p.moment.abs()), "{} vs {}", q.moment.z, p.moment);
+    }
+    let stored = s.shape[s.shape.len() / 2];
+    assert_eq!(rod::sections(&rod, &load, &s, &[stored.s], &Default::default()).unwrap()[0], stored);
+    assert!((sections[8].position - s.position).norm() < 1e-12);
+    for bad in [-0.1, 1.3, f64::NAN] {
+        match rod::sections(&rod, &load, &s, &[bad], &Default::default()) {
+            Err(Error::InvalidParameter { name, .. }) => assert_eq!(name, "at"),
+            other => panic!("expected an error naming at, got {other:?}"),
+        }
+    }
+}

@@ -417,7 +417,7 @@ impl<'a> Chain<'a> {
 }
 
 /// The frame of the state `y` at `s`.
-fn frame(s: f64, y: &[f64; STATE], l: f64, k: f64) -> Frame {
+pub(super) fn frame(s: f64, y: &[f64; STATE], l: f64, k: f64) -> Frame {
     let r = rotation(&y[..4]);
     Frame {
         s,

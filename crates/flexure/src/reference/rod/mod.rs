@@ -22,6 +22,7 @@
 //! - `chain.rs`: multiple shooting, the solver core's problem, with its
 //!   conjugate-point test;
 //! - `compliance.rs`: the rest compliance by the linearized rod ([`compliance_rest`]).
+//! - `sections.rs`: a solution's sections at arc lengths of one's choosing ([`sections()`]).
 //!
 //! **Multiple shooting.** The rod is cut into $N$ equal segments with
 //! $N = \max\big(4, \lceil\int_0^L\sqrt{|F|/EI_{min}}\thinspace ds\rceil, \lceil\Theta/(\pi/2)\rceil\big)$,
@@ -71,10 +72,12 @@
 
 mod chain;
 mod compliance;
+mod sections;
 mod shot;
 
 pub use chain::{MAX_FORCE_GROWTH, MAX_SEGMENTS};
 pub use compliance::compliance_rest;
+pub use sections::sections;
 
 use crate::error::{Error, Result};
 use crate::limit::StabilityLimit;
