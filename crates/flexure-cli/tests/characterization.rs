@@ -99,7 +99,8 @@ fn today(entry: &Value) -> Value {
 }
 
 /// The calls: each example through the mechanism subcommands, then single
-/// joints. New calls go at the end: the file's entries are compared in order.
+/// joints, then exports and the spatial joint. New calls go at the end: the
+/// file's entries are compared in order.
 fn calls() -> Vec<Vec<String>> {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
     let mut names: Vec<String> = std::fs::read_dir(root)
@@ -139,6 +140,23 @@ fn calls() -> Vec<Vec<String>> {
         "tendon --sweep 0:20:5 --root-offset 0.1 --tip-offset 0.1",
         "modes --mass-per-length 1 --count 4 --order 8 --exact",
         "modes --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --density 7850 --tip-mass 0.005 --order 8 --count 2",
+    ] {
+        out.push(words(call));
+    }
+    // The export's fit report, with the MJCF itself as `model`, and a 3R
+    // SDFormat export of a closed mechanism (its losses in `warnings`);
+    // mixed_chain.toml has every rigid kind (pin, slider, weld).
+    for (name, rest) in
+        [("finger.toml", "--to mjcf"), ("four_bar.toml", "--to sdf --prb 3R"), ("mixed_chain.toml", "--to urdf")]
+    {
+        let mut call = vec!["export".to_string(), format!("{root}/{name}")];
+        call.extend(words(rest));
+        out.push(call);
+    }
+    for call in [
+        "kinematics --spatial --order 2 --alpha 0.1,0.05,-0.2,0.1,0.3,-0.1",
+        "deflect --spatial --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --fy 0.2 --fz 0.05 --mx 1e-3",
+        "compliance --spatial --ei 1,0.5 --gj 0.8",
     ] {
         out.push(words(call));
     }
