@@ -18,6 +18,31 @@ use crate::scalar::Scalar;
 /// or (in a continuation step) on a corrector that does not contract;
 /// [`Error::Singular`] when no diagonal shift lets the Newton matrix factor;
 /// [`Error::Interrupted`] when the hook of [`super::with_interrupt`] asks.
+///
+/// # Example
+/// ```
+/// use flexure::solver::{newton, NewtonStop, Problem, Settings, Workspace};
+/// /// $r(x, \lambda) = x^2 - 2 - \lambda$: root $\sqrt{2 + \lambda}$.
+/// struct Root;
+/// impl Problem<f64> for Root {
+///     fn dim(&self) -> usize { 1 }
+///     fn evaluate(&mut self, x: &[f64], l: f64, r: &mut [f64], j: Option<&mut [f64]>, _: Option<&mut [f64]>)
+///         -> flexure::Result<()> {
+///         r[0] = x[0] * x[0] - 2.0 - l;
+///         if let Some(j) = j { j[0] = 2.0 * x[0]; }
+///         Ok(())
+///     }
+///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
+///     fn scale(&self) -> f64 { 1.0 }
+///     fn unit(&self) -> &'static str { "1" }
+///     fn name(&self) -> &'static str { "root" }
+/// }
+/// let mut ws = Workspace::new(1);
+/// ws.x[0] = 1.0;
+/// let report = newton(&mut Root, &mut ws, 0.0, &Settings::default()).unwrap();
+/// assert_eq!(report.stop, NewtonStop::Converged);
+/// assert!(report.residual <= 1e-12 && (ws.x[0] - 2f64.sqrt()).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NewtonStop {
     /// $\max_i|r_i| \le$ [`Settings::tolerance`] $\times$ [`Problem::scale`]
