@@ -7,8 +7,11 @@
 //!
 //! Numbers must agree to 1e-12 relative (1e-14 absolute, for residuals at
 //! rounding's level); integers (step counts, orders) and everything else
-//! exactly. `scripts/characterize.sh` regenerates the file, after a change
-//! that is meant to change answers (say which in the commit).
+//! exactly. `scripts/characterize.sh` adds the answers of calls appended to
+//! [`calls`] and keeps every answer the file holds byte for byte
+//! (`FLEXURE_BLESS=new`); `scripts/characterize.sh --all` rewrites them all,
+//! after a change that is meant to change answers (say which in the commit;
+//! `FLEXURE_BLESS=all`).
 //!
 //! Keys renamed since the file was written (`CHANGELOG.md`, *Changed*) are
 //! mapped in the golden answers before comparing, by [`RENAMES`], [`CALLS`]
@@ -95,7 +98,9 @@ fn today(entry: &Value) -> Value {
     json!({ "call": call, "status": entry["status"], "answer": renamed(&call, &entry["answer"]) })
 }
 
-/// The calls: each example through the mechanism subcommands, then single joints.
+/// The calls: each example through the mechanism subcommands, then single
+/// joints, then exports and the spatial joint. New calls go at the end: the
+/// file's entries are compared in order.
 fn calls() -> Vec<Vec<String>> {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples");
     let mut names: Vec<String> = std::fs::read_dir(root)
@@ -138,6 +143,23 @@ fn calls() -> Vec<Vec<String>> {
     ] {
         out.push(words(call));
     }
+    // The export's fit report, with the MJCF itself as `model`, and a 3R
+    // SDFormat export of a closed mechanism (its losses in `warnings`);
+    // mixed_chain.toml has every rigid kind (pin, slider, weld).
+    for (name, rest) in
+        [("finger.toml", "--to mjcf"), ("four_bar.toml", "--to sdf --prb 3R"), ("mixed_chain.toml", "--to urdf")]
+    {
+        let mut call = vec!["export".to_string(), format!("{root}/{name}")];
+        call.extend(words(rest));
+        out.push(call);
+    }
+    for call in [
+        "kinematics --spatial --order 2 --alpha 0.1,0.05,-0.2,0.1,0.3,-0.1",
+        "deflect --spatial --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --fy 0.2 --fz 0.05 --mx 1e-3",
+        "compliance --spatial --ei 1,0.5 --gj 0.8",
+    ] {
+        out.push(words(call));
+    }
     out
 }
 
@@ -176,12 +198,38 @@ fn differ(a: &Value, b: &Value, at: &str) -> Option<String> {
     }
 }
 
+/// The golden file's `text` with the answers of the calls it lacks
+/// appended: `now` must begin with its calls, in order (in today's
+/// options), and its entries are kept byte for byte.
+fn appended(text: &str, now: &[Value]) -> String {
+    let golden: Vec<Value> = serde_json::from_str(text).unwrap();
+    assert!(now.len() >= golden.len(), "calls were removed: regenerate all with scripts/characterize.sh --all");
+    for (n, g) in now.iter().zip(&golden) {
+        let kept = today(g);
+        assert_eq!(n["call"], kept["call"], "a kept call changed: regenerate all with scripts/characterize.sh --all");
+    }
+    let new = &now[golden.len()..];
+    if new.is_empty() {
+        return text.to_string();
+    }
+    // A pretty-printed array's elements, as they sit inside the file's.
+    let list = serde_json::to_string_pretty(new).unwrap();
+    let inner = list.strip_prefix("[\n").and_then(|l| l.strip_suffix("\n]")).unwrap();
+    let open = text.trim_end().strip_suffix(']').unwrap().trim_end();
+    format!("{open},\n{inner}\n]\n")
+}
+
 #[test]
 fn no_answer_changes() {
     let now = answers();
-    if std::env::var_os("FLEXURE_BLESS").is_some() {
+    if let Some(mode) = std::env::var_os("FLEXURE_BLESS") {
         std::fs::create_dir_all(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data")).unwrap();
-        std::fs::write(GOLDEN, serde_json::to_string_pretty(&now).unwrap() + "\n").unwrap();
+        let text = match (mode.to_str(), std::fs::read_to_string(GOLDEN)) {
+            (Some("new"), Ok(text)) => appended(&text, &now),
+            (Some("all"), _) | (Some("new"), Err(_)) => serde_json::to_string_pretty(&now).unwrap() + "\n",
+            (mode, _) => panic!("FLEXURE_BLESS={mode:?}: `new` (append new calls' answers) or `all`"),
+        };
+        std::fs::write(GOLDEN, text).unwrap();
         return;
     }
     let golden: Vec<Value> = serde_json::from_str(&std::fs::read_to_string(GOLDEN).unwrap()).unwrap();

@@ -56,6 +56,7 @@ mod spatial_statics;
 mod spatial_validation;
 mod stages;
 mod statics;
+mod stops;
 mod tendon;
 
 /// Every `tests/*.rs` file is a module here or a `[[test]]` target of

@@ -5,7 +5,7 @@
 use super::lump;
 use crate::error::{Error, Result};
 use crate::inertia::RigidInertia;
-use crate::mechanism::{Closure, JointKind, Mechanism};
+use crate::mechanism::{Closure, Mechanism};
 use crate::space::{Pose, Wrench};
 use nalgebra::{Point2, Vector2};
 
@@ -191,19 +191,35 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<M
             armature: 0.0,
             source: ji,
         };
-        let child = match &spec.kind {
-            JointKind::Fixed(_) => link(body.name.clone(), parent, spec.origin, None, spec.name.clone()),
-            JointKind::Revolute(r) => {
-                let pose = spec.origin.compose(&Pose { phi: r.rest, x: 0.0, y: 0.0 });
-                let j = one(Motion::Hinge, Point2::origin(), Vector2::x(), r.rest, r.stiffness, spec.damping);
+        // Read from the joint interface, as the drawing does, so a new kind
+        // is exported without a case here: a flexure by its pseudo-rigid
+        // chain, a weld (no coordinates) as an attachment, and a rigid joint
+        // of one coordinate as a hinge, or a slide if that coordinate is a
+        // length, with its spring and rest read from its data at rest.
+        let joint = spec.kind.joint();
+        let child = match joint.flexure() {
+            None if joint.dof() == 0 => link(body.name.clone(), parent, spec.origin, None, spec.name.clone()),
+            None if joint.dof() == 1 => {
+                let rest = joint.rest();
+                let at_rest = joint.evaluate(&rest);
+                let (motion, axis) = if joint.is_translation() {
+                    let column = Vector2::new(at_rest.jacobian[(1, 0)], at_rest.jacobian[(2, 0)]);
+                    (Motion::Slide, column)
+                } else {
+                    (Motion::Hinge, Vector2::x())
+                };
+                let pose = spec.origin.compose(&at_rest.pose);
+                let j = one(motion, Point2::origin(), axis, rest[0], at_rest.stiffness[(0, 0)], spec.damping);
                 link(body.name.clone(), parent, pose, Some(j), spec.name.clone())
             }
-            JointKind::Prismatic(p) => {
-                let pose = spec.origin.compose(&Pose { phi: 0.0, x: p.rest, y: 0.0 });
-                let j = one(Motion::Slide, Point2::origin(), Vector2::x(), p.rest, p.stiffness, spec.damping);
-                link(body.name.clone(), parent, pose, Some(j), spec.name.clone())
+            None => {
+                return Err(Error::invalid(
+                    "joint",
+                    &spec.name,
+                    "is rigid with more than one coordinate: the export models rigid joints of one",
+                ));
             }
-            JointKind::Flexure(f) => {
+            Some(f) => {
                 let chain = chains.get(ji).and_then(Option::as_ref).ok_or(Error::Singular {
                     what: format!("flexure joint {:?} has no pseudo-rigid-body chain", spec.name),
                 })?;
@@ -213,7 +229,7 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<M
                         what: format!("flexure joint {:?}: a chain needs one stiffness per pivot", spec.name),
                     });
                 }
-                let tip = crate::kinematics::pose_root_tip(f.as_ref(), f.rest());
+                let tip = crate::kinematics::pose_root_tip(f, f.rest());
                 let hinge = |i: usize, at: Point2<f64>| ModelJoint {
                     name: if k == 1 { spec.name.clone() } else { format!("{}_{}", spec.name, i + 1) },
                     motion: Motion::Hinge,

@@ -48,7 +48,7 @@ pub(crate) use continuation::continuation_while_stable;
 pub use continuation::{FAR_STEP, Path, Stop, continuation, trace};
 pub(crate) use interrupt::interrupted;
 pub use interrupt::with_interrupt;
-pub use newton::{NewtonReport, newton};
+pub use newton::{NewtonReport, NewtonStop, newton};
 pub use problem::Problem;
 pub use settings::{MAX_COUNT, Settings};
 pub use workspace::Workspace;

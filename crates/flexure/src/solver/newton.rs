@@ -8,9 +8,54 @@ use crate::error::{Error, Result};
 use crate::linalg;
 use crate::scalar::Scalar;
 
+/// Why a Newton solve stopped, as argmin's `TerminationReason` says why an
+/// optimizer did ([`NewtonReport::stop`]).
+///
+/// A solve that returns stopped one way: its residual met the tolerance.
+/// Every other end is an error saying what was reached:
+/// [`Error::NoConvergence`] at [`Settings::max_iterations`], on a residual
+/// that is not finite, on a line search that could not decrease the residual
+/// or (in a continuation step) on a corrector that does not contract;
+/// [`Error::Singular`] when no diagonal shift lets the Newton matrix factor;
+/// [`Error::Interrupted`] when the hook of [`super::with_interrupt`] asks.
+///
+/// # Example
+/// ```
+/// use flexure::solver::{newton, NewtonStop, Problem, Settings, Workspace};
+/// /// $r(x, \lambda) = x^2 - 2 - \lambda$: root $\sqrt{2 + \lambda}$.
+/// struct Root;
+/// impl Problem<f64> for Root {
+///     fn dim(&self) -> usize { 1 }
+///     fn evaluate(&mut self, x: &[f64], l: f64, r: &mut [f64], j: Option<&mut [f64]>, _: Option<&mut [f64]>)
+///         -> flexure::Result<()> {
+///         r[0] = x[0] * x[0] - 2.0 - l;
+///         if let Some(j) = j { j[0] = 2.0 * x[0]; }
+///         Ok(())
+///     }
+///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
+///     fn scale(&self) -> f64 { 1.0 }
+///     fn unit(&self) -> &'static str { "1" }
+///     fn name(&self) -> &'static str { "root" }
+/// }
+/// let mut ws = Workspace::new(1);
+/// ws.x[0] = 1.0;
+/// let report = newton(&mut Root, &mut ws, 0.0, &Settings::default()).unwrap();
+/// assert_eq!(report.stop, NewtonStop::Converged);
+/// assert!(report.residual <= 1e-12 && (ws.x[0] - 2f64.sqrt()).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NewtonStop {
+    /// $\max_i|r_i| \le$ [`Settings::tolerance`] $\times$ [`Problem::scale`]
+    /// after at least the iterations asked (one for dual numbers, so their
+    /// derivative parts pass through a Newton step).
+    Converged,
+}
+
 /// What a Newton solve achieved.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonReport {
+    /// Why it stopped.
+    pub stop: NewtonStop,
     /// Iterations taken.
     pub iterations: usize,
     /// Final $\max_i|r_i|$, in the problem's unit.
@@ -120,7 +165,7 @@ pub(super) fn correct<T: Scalar, P: Problem<T>>(
             return Err(Error::Interrupted { load_fraction: lambda });
         }
         if residual <= tolerance && iteration >= min_iterations {
-            return Ok(NewtonReport { iterations: iteration, residual });
+            return Ok(NewtonReport { stop: NewtonStop::Converged, iterations: iteration, residual });
         }
         let fail = |iterations| Error::NoConvergence { solver: name, iterations, residual, unit };
         if iteration == settings.max_iterations || !residual.is_finite() {

@@ -106,7 +106,7 @@ mod work;
 pub use progress::with_progress;
 pub use settings::{MAX_SAMPLES, MAX_STEPS, Settings};
 pub use step::{PACE_MARGIN, PACE_WINDOW};
-pub use trajectory::Trajectory;
+pub use trajectory::{Stop, Trajectory};
 
 use super::System;
 use crate::error::{Error, Result};
@@ -159,6 +159,7 @@ pub(super) fn largest(x: &[f64]) -> f64 {
 /// let s = Settings { duration: 3.0, every: 1.0, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
 /// let run = integrate(&mut Spring, &[1.0], &[0.0], &s).unwrap();
 /// assert_eq!(run.time, [0.0, 1.0, 2.0, 3.0]);
+/// assert_eq!(run.stop, flexure::dynamics::integrate::Stop::Reached);
 /// for (k, t) in run.time.iter().enumerate() {
 ///     assert!((run.q(k)[0] - t.cos()).abs() < 1e-8);
 /// }
@@ -175,7 +176,8 @@ pub fn integrate<S: System + ?Sized>(
 
 /// [`integrate`] that keeps its work: a run that stops after its first
 /// sample (stalled, interrupted, or a state that cannot be evaluated) returns
-/// the samples it reached with the error that stopped it. Bad settings or
+/// the samples it reached with the error that stopped it, and says which
+/// of these ended it in [`Trajectory::stop`]. Bad settings or
 /// states, and a start that cannot be made consistent, are still errors.
 ///
 /// # Example
@@ -206,6 +208,7 @@ pub fn integrate<S: System + ?Sized>(
 /// let (run, stopped) = integrate_kept(&mut Brittle, &[1.0], &[0.0], &s).unwrap();
 /// assert_eq!(run.time, [0.0, 0.5, 1.0, 1.5]);
 /// assert!(matches!(stopped, Some(Error::IntegrationStalled { .. })));
+/// assert_eq!(run.stop, flexure::dynamics::integrate::Stop::Stalled);
 /// ```
 pub fn integrate_kept<S: System + ?Sized>(
     system: &mut S,
@@ -233,10 +236,14 @@ pub fn integrate_kept<S: System + ?Sized>(
         steps: 0,
         rejected: 0,
         violation: 0.0,
+        stop: Stop::Reached,
     };
     match step::advance(system, q0, v0, settings, &mut run) {
         Ok(()) => Ok((run, None)),
         Err(e) if run.time.is_empty() => Err(e),
-        Err(e) => Ok((run, Some(e))),
+        Err(e) => {
+            run.stop = Stop::of(&e);
+            Ok((run, Some(e)))
+        }
     }
 }

@@ -1,7 +1,41 @@
 //! The result of a run: the states and energy at the sample times.
 
 use crate::dynamics::System;
-use crate::error::Result;
+use crate::error::{Error, Result};
+
+/// Why a run ended, as argmin's `TerminationReason` says why an optimizer
+/// did ([`Trajectory::stop`]); serialized as `{"reason": "reached"}` and so on.
+///
+/// [`integrate`](super::integrate) returns only runs that reached their
+/// duration; [`integrate_kept`](super::integrate_kept) also returns the
+/// samples of a run that ended early, with the error that ended it, which
+/// this names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(tag = "reason", rename_all = "snake_case")]
+pub enum Stop {
+    /// It recorded every sample up to [`Settings::duration`](super::Settings::duration).
+    Reached,
+    /// The step fell to rounding, or a rejection, step or pace limit was
+    /// reached: [`Error::IntegrationStalled`].
+    Stalled,
+    /// The hook of [`crate::solver::with_interrupt`] asked it to stop:
+    /// [`Error::InterruptedAt`].
+    Interrupted,
+    /// The system could not evaluate a state it reached (its dynamics at a
+    /// step's start, or a sample's energy): the system's own error.
+    Failed,
+}
+
+impl Stop {
+    /// The way a run ends with `error`.
+    pub(super) fn of(error: &Error) -> Self {
+        match error {
+            Error::IntegrationStalled { .. } => Self::Stalled,
+            Error::InterruptedAt { .. } => Self::Interrupted,
+            _ => Self::Failed,
+        }
+    }
+}
 
 /// A simulated motion, sampled at [`Settings::times`](super::Settings::times).
 ///
@@ -26,6 +60,8 @@ pub struct Trajectory {
     /// Largest closure violation $\max_k\lvert c_k(q)\rvert$ over the
     /// start and every accepted step (0 without closures).
     pub violation: f64,
+    /// Why it ended: [`Stop::Reached`] unless it ended before its duration.
+    pub stop: Stop,
 }
 
 impl Trajectory {

@@ -79,7 +79,12 @@ pub(super) fn assembled_kept(
         return Ok(solver::Path::at_start(report, stable));
     }
     let found = assembled(problem, ws, settings)?;
-    let report = solver::NewtonReport { iterations: found.iterations, residual: found.residual };
+    // `assembled` returns only what solver::newton converged.
+    let report = solver::NewtonReport {
+        stop: solver::NewtonStop::Converged,
+        iterations: found.iterations,
+        residual: found.residual,
+    };
     let Workspace { start, frames, .. } = &mut *problem.work;
     start.keep(m, settings, tolerance, report, found.stable, &ws.x, &ws.jacobian, frames);
     Ok(solver::Path::at_start(report, found.stable))
