@@ -85,7 +85,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
             "energy": e.energy,
             "loads": TipLoad { moment: e.root_moment, fx: e.fx, fy: e.fy },
             "model_energy": c.energy,
-            "eta": c.energy / e.energy - 1.0,
+            "eta": c.eta(e.energy),
             "model": reported,
         });
         let trace = e.trace(&model, &Default::default())?;
@@ -107,7 +107,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
         crate::stress::put(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
         if let Ok(e) = exact_connection(&model, &target) {
-            out["eta"] = json!(c.energy / e.energy - 1.0);
+            out["eta"] = json!(c.eta(e.energy));
         }
         return Ok(out);
     }
@@ -124,7 +124,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         put_limit(&mut out, &flexure::statics::stability_limit(&model, &c.load, MAX_FACTOR)?, "connect --limit");
     }
     if let Ok(e) = exact_connection(&model, &target) {
-        out["eta"] = json!(c.energy / e.energy - 1.0);
+        out["eta"] = json!(c.eta(e.energy));
     }
     Ok(out)
 }

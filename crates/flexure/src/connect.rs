@@ -40,6 +40,27 @@ pub struct Connection {
     pub iterations: usize,
 }
 
+impl Connection {
+    /// The energy error of Eq. 16 against the exact minimum energy $U^*$
+    /// through the same pose: $\eta = U(\alpha^*)/U^* - 1$, not negative
+    /// when $U^*$ is the true minimum (the model's shapes are a subset of
+    /// the elastica's).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{connect::connect, Flexure, Pose};
+    /// let f = Flexure::new(1.0, 1.0, 3)?;
+    /// // An arc of angle 0.5 is in the model's basis: its energy is the exact
+    /// // EI·φ²/(2L) = 0.125 J, so η vanishes to rounding.
+    /// let arc = Pose { phi: 0.5, x: 0.5f64.sin() / 0.5, y: (1.0 - 0.5f64.cos()) / 0.5 };
+    /// assert!(connect(&f, &arc)?.eta(0.125).abs() < 1e-12);
+    /// # Ok::<(), flexure::Error>(())
+    /// ```
+    pub fn eta(&self, exact_energy: f64) -> f64 {
+        self.energy / exact_energy - 1.0
+    }
+}
+
 /// Checks that a tip pose is finite and within reach of an inextensible flexure.
 pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
     finite("pose", target.phi)?;
