@@ -97,6 +97,10 @@ impl<T: Scalar> Kinematics<T> {
 /// // ∂y/∂α₁ = L∫t = 1/2 and ∂²x/∂α₁² = −L∫t² = −1/3 (Eqs. 20, 30).
 /// assert_eq!((k.pose.x, k.transform[0][3], k.jacobian.phi.as_slice()), (1.0, 1.0, &[1.0, 0.0, 0.0][..]));
 /// assert!((k.jacobian.y[0] - 0.5).abs() < 1e-14 && (k.hessian.x[0][0] + 1.0 / 3.0).abs() < 1e-14);
+/// // Printed as the CLI's `kinematics` prints them.
+/// let v = serde_json::to_value(&k).unwrap();
+/// assert_eq!(v["jacobian"]["phi"], serde_json::json!([1.0, 0.0, 0.0]));
+/// assert_eq!(v["pose"], serde_json::json!({ "phi": 0.0, "x": 1.0, "y": 0.0 }));
 /// # Ok::<(), flexure::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]

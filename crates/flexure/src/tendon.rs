@@ -288,6 +288,11 @@ pub struct TendonEquilibrium {
 /// assert_eq!(answer.pose, flexure::pose_root_tip(&f, data.alpha()));
 /// assert_eq!(answer.tendon_length, tendon_length(&f, &t, data.alpha()));
 /// assert!(answer.stable && eq.stable && answer.tension == 5.0);
+/// // Printed with the CLI's keys, in its order.
+/// let v = serde_json::to_value(&answer).unwrap();
+/// let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+/// assert_eq!(keys, ["tension", "alpha", "pose", "tendon_length", "stable"]);
+/// assert_eq!(v["pose"]["phi"].as_f64(), Some(answer.pose.phi));
 /// # Ok::<(), flexure::Error>(())
 /// ```
 pub fn equilibrium(
