@@ -1,13 +1,13 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
-use crate::joint::{MAX_FACTOR, chosen, pose as pose_json, put_estimate, put_limit, warn_unstable};
+use crate::joint::{MAX_FACTOR, chosen, put_estimate, put_limit, serialized, warn_unstable};
 use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments, warn};
 use clap::Args;
 use flexure::connect::{Connection, connect};
 use flexure::estimate::Accuracy;
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
-use flexure::{Error, Flexure, Pose};
+use flexure::tendon::{Tendon, TendonData, equilibrium};
+use flexure::{Error, Flexure, Pose, TipLoad};
 use serde_json::{Value, json};
 
 /// A tip pose `PHI,X,Y`; PHI may end in `deg`.
@@ -83,9 +83,9 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         crate::stress::put(&mut reported, &model, &c.alpha, &args.stress, "connect (model)");
         let mut answer = json!({
             "energy": e.energy,
-            "loads": { "moment": e.root_moment, "fx": e.fx, "fy": e.fy },
+            "loads": TipLoad { moment: e.root_moment, fx: e.fx, fy: e.fy },
             "model_energy": c.energy,
-            "eta": c.energy / e.energy - 1.0,
+            "eta": c.eta(e.energy),
             "model": reported,
         });
         let trace = e.trace(&model, &Default::default())?;
@@ -107,17 +107,13 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
         crate::stress::put(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
         if let Ok(e) = exact_connection(&model, &target) {
-            out["eta"] = json!(c.energy / e.energy - 1.0);
+            out["eta"] = json!(c.eta(e.energy));
         }
         return Ok(out);
     }
     let c = connect(&model, &target)?;
     let e = flexure::estimate::connect_error(&model, &target, &c.alpha, &accuracy)?;
-    let mut out = json!({
-        "alpha": c.alpha,
-        "energy": c.energy,
-        "load": { "moment": c.load.moment, "fx": c.load.fx, "fy": c.load.fy },
-    });
+    let mut out = serialized(&c);
     if args.flexure.auto() {
         out["order"] = json!(model.order());
         out["quadrature"] = json!(model.quadrature_points());
@@ -128,7 +124,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         put_limit(&mut out, &flexure::statics::stability_limit(&model, &c.load, MAX_FACTOR)?, "connect --limit");
     }
     if let Ok(e) = exact_connection(&model, &target) {
-        out["eta"] = json!(c.energy / e.energy - 1.0);
+        out["eta"] = json!(c.eta(e.energy));
     }
     Ok(out)
 }
@@ -211,18 +207,12 @@ fn tendon_row(
     target: &Accuracy,
     stress: &StressOptions,
 ) -> flexure::Result<Value> {
-    let eq = pull(f, t, tension, data)?;
-    let mut row = json!({
-        "tension": tension,
-        "alpha": data.alpha(),
-        "pose": pose_json(&data.kinematics.pose_root_tip),
-        "tendon_length": tendon_length(f, t, data.alpha()),
-        "stable": eq.stable,
-    });
+    let eq = equilibrium(f, t, tension, data)?;
+    let mut row = serialized(&eq);
     warn_unstable(eq.stable, &format!("tendon at {tension} N"));
-    let e = flexure::estimate::tendon_error(f, t, tension, data.alpha(), target)?;
+    let e = flexure::estimate::tendon_error(f, t, tension, &eq.alpha, target)?;
     put_estimate(&mut row, &e, f, target, &format!("tendon at {tension} N"));
-    crate::stress::put(&mut row, f, data.alpha(), stress, &format!("tendon at {tension} N"));
+    crate::stress::put(&mut row, f, &eq.alpha, stress, &format!("tendon at {tension} N"));
     Ok(row)
 }
 

@@ -7,20 +7,27 @@ use crate::spatial::{SpatialLoadOptions, SpatialOptions};
 use clap::{Args, ValueEnum};
 use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::kinematics::TipKinematics;
 use flexure::reference::elastica::Trace;
 use flexure::reference::{self, elastica};
 use flexure::{
-    Error, Kinematics, Level, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect,
-    energy, energy_gradient, update_kinematics,
+    Error, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
 };
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
 
+/// A library result as JSON: its `serde::Serialize` output, so the keys
+/// the command prints are the library's field names.
+pub fn serialized(result: &impl serde::Serialize) -> Value {
+    // The results' keys are names and their numbers map to JSON (a NaN to
+    // null, which `emit` refuses), so serializing them cannot fail.
+    serde_json::to_value(result).unwrap_or(Value::Null)
+}
+
 /// The one JSON shape of an error estimate, batch rows and mechanism joints
 /// included: the library's serialization of it.
 pub fn estimate(e: &ErrorEstimate) -> Value {
-    // Its keys are names and its numbers map to JSON (a NaN to null, which `emit` refuses).
-    serde_json::to_value(e).unwrap_or(Value::Null)
+    serialized(e)
 }
 
 /// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
@@ -106,8 +113,9 @@ pub fn chosen(
     if options.auto() { auto(&f) } else { Ok(f) }
 }
 
+/// A pose as JSON, `{phi, x, y}`: the library's serialization of it.
 pub fn pose(p: &Pose) -> Value {
-    json!({ "phi": p.phi, "x": p.x, "y": p.y })
+    serialized(p)
 }
 
 /// Any matrix as JSON rows.
@@ -145,21 +153,12 @@ pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
     }
     let f = args.flexure.build_fixed("kinematics")?;
     let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
-    f.check_coordinates("alpha", &alpha)?;
-    let mut k = Kinematics::new(&f);
-    update_kinematics(&f, &alpha, &mut k, Level::Hessian);
+    let mut out = serialized(&TipKinematics::at(&f, &alpha)?);
     let mut gradient = vec![0.0; f.order()];
     energy_gradient(&f, &alpha, &mut gradient);
-    let j = &k.jacobian_root_tip;
-    let row = |r: usize| j.row(r).iter().copied().collect::<Vec<_>>();
-    Ok(json!({
-        "pose": pose(&k.pose_root_tip),
-        "transform": matrix(&k.pose_root_tip.transform()),
-        "jacobian": { "phi": row(0), "x": row(1), "y": row(2) },
-        "hessian": { "x": matrix(&k.hessian_root_tip_x), "y": matrix(&k.hessian_root_tip_y) },
-        "energy": energy(&f, &alpha),
-        "gradient": gradient,
-    }))
+    out["energy"] = json!(energy(&f, &alpha));
+    out["gradient"] = json!(gradient);
+    Ok(out)
 }
 
 /// A tip load: `--moment`, and `--force P --angle θ` or `--fx --fy`.
@@ -254,7 +253,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let eq = deflect(&f, &load, &mut data, &settings)?;
     let mut model = json!({
         "alpha": data.alpha(),
-        "pose": pose(&data.pose_root_tip()),
+        "pose": data.pose_root_tip(),
         "stiffness": matrix(&data.stiffness),
         "stable": eq.stable,
         "residual": eq.residual,
@@ -280,7 +279,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let (exact, trace) = elastica::deflect_traced(&f, &load, &Default::default())?;
     let (m, e) = (data.pose_root_tip(), exact.pose);
     let mut answer = json!({
-        "pose": pose(&e),
+        "pose": e,
         "root_moment": exact.root_moment,
         "stable": exact.stable,
         "model": model,
@@ -406,7 +405,8 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
         let e = flexure::estimate::buckling_error(&given, tip, &b, &target)?;
         (given, b, e)
     };
-    let mut answer = json!({ "critical_load": b.critical_load, "mode": b.mode.as_slice(), "tip": tip.name() });
+    let mut answer = serialized(&b);
+    answer["tip"] = json!(tip.name());
     if args.flexure.auto() {
         answer["order"] = json!(f.order());
         answer["quadrature"] = json!(f.quadrature_points());

@@ -8,12 +8,13 @@
 use crate::error_estimate::{estimate_dict, interrupted_or};
 use crate::errors::StabilityWarning;
 use crate::interrupt::interruptible;
+use crate::serialize::to_dict;
 use crate::stress::{self, peak_item};
 use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_inaccurate, warn_unestimated};
 use flexure::connect::connect as connect_pose;
 use flexure::estimate::{self, Accuracy};
-use flexure::tendon::{Tendon, TendonData, pull, tendon_length};
+use flexure::tendon::{Tendon, TendonData, equilibrium};
 use flexure::{Error, Pose, StabilityLimit, TipLoad};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -55,7 +56,7 @@ pub fn limit_dict<'py>(
         );
         warn(py, &py.get_type::<StabilityWarning>(), text, stacklevel)?;
     }
-    crate::serialize::to_dict(py, l)
+    to_dict(py, l)
 }
 
 /// The stability limit of a tip load on `f`: see `Flexure.stability_limit`.
@@ -121,20 +122,19 @@ pub fn tendon<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     t.validate().map_err(crate::errors::to_py)?;
     let limit = limit.map(max_factor).transpose()?;
-    let (used, alpha, stable, estimated, l) = interruptible(py, || {
+    let (used, eq, estimated, l) = interruptible(py, || {
         let used = if auto { estimate::tendon_auto(f, &t, tension, target)?.0 } else { f.clone() };
-        let mut data = TendonData::new(&used);
-        let eq = pull(&used, &t, tension, &mut data)?;
-        let alpha = data.alpha().to_vec();
-        let estimated = interrupted_or(estimate::tendon_error(&used, &t, tension, &alpha, target))?;
+        let eq = equilibrium(&used, &t, tension, &mut TendonData::new(&used))?;
+        let estimated = interrupted_or(estimate::tendon_error(&used, &t, tension, &eq.alpha, target))?;
         let l = limit.map(|max| flexure::tendon::stability_limit(&used, &t, tension, max)).transpose()?;
-        Ok((used, alpha, eq.stable, estimated, l))
+        Ok((used, eq, estimated, l))
     })?;
-    let out = PyDict::new(py);
-    out.set_item("alpha", PyArray1::from_slice(py, &alpha))?;
-    out.set_item("pose", pose_array(py, &flexure::pose_root_tip(&used, &alpha)))?;
-    out.set_item("tendon_length", tendon_length(&used, &t, &alpha))?;
-    out.set_item("stable", stable)?;
+    // The library's answer, less the tension the caller gave; coordinates and pose as arrays.
+    let out = to_dict(py, &eq)?;
+    out.del_item("tension")?;
+    out.set_item("alpha", PyArray1::from_slice(py, &eq.alpha))?;
+    out.set_item("pose", pose_array(py, &eq.pose))?;
+    let (alpha, stable) = (eq.alpha, eq.stable);
     if !stable {
         let text = format!(
             "tendon: the equilibrium under a tension of {tension} N is unstable: its stiffness is not positive definite, so a small disturbance moves it away"
@@ -176,14 +176,9 @@ pub fn connect<'py>(
         let l = limit.map(|max| flexure::statics::stability_limit(&used, &c.load, max)).transpose()?;
         Ok((used, c, estimated, l))
     })?;
-    let out = PyDict::new(py);
+    // The library's answer {alpha, energy, load}, the coordinates as an array.
+    let out = to_dict(py, &c)?;
     out.set_item("alpha", PyArray1::from_slice(py, &c.alpha))?;
-    out.set_item("energy", c.energy)?;
-    let load = PyDict::new(py);
-    load.set_item("moment", c.load.moment)?;
-    load.set_item("fx", c.load.fx)?;
-    load.set_item("fy", c.load.fy)?;
-    out.set_item("load", load)?;
     if auto {
         out.set_item("order", used.order())?;
         out.set_item("quadrature", used.quadrature_points())?;

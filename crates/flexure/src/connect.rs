@@ -8,8 +8,25 @@ use crate::solver;
 use crate::statics::{self, Settings, TipLoad, rotation};
 use nalgebra::DVector;
 
-/// A minimum-energy shape.
-#[derive(Debug, Clone, PartialEq)]
+/// A minimum-energy shape. Serialized as the CLI prints it and Python
+/// returns it: `{alpha, energy, load: {moment, fx, fy}}` (the iteration
+/// count is the solver's, not part of the answer).
+///
+/// # Example
+/// ```
+/// use flexure::{connect::connect, Flexure, Pose};
+/// let f = Flexure::new(1.0, 1.0, 3)?;
+/// // A constant-curvature arc of angle 0.5: x = sin(0.5)/0.5, y = (1 − cos 0.5)/0.5.
+/// let arc = Pose { phi: 0.5, x: 0.5f64.sin() / 0.5, y: (1.0 - 0.5f64.cos()) / 0.5 };
+/// let c = connect(&f, &arc)?;
+/// let v = serde_json::to_value(&c).unwrap();
+/// let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+/// assert_eq!(keys, ["alpha", "energy", "load"]);
+/// // The arc is held by a pure moment EI·φ/L = 0.5 N·m.
+/// assert!((v["load"]["moment"].as_f64().unwrap() - 0.5).abs() < 1e-9);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Connection {
     /// Joint coordinates.
     pub alpha: Vec<f64>,
@@ -19,7 +36,29 @@ pub struct Connection {
     /// three tip constraints, $\nabla U = \mathcal J^T (M, F_x, F_y)$.
     pub load: TipLoad,
     /// Newton iterations.
+    #[serde(skip)]
     pub iterations: usize,
+}
+
+impl Connection {
+    /// The energy error of Eq. 16 against the exact minimum energy $U^*$
+    /// through the same pose: $\eta = U(\alpha^*)/U^* - 1$, not negative
+    /// when $U^*$ is the true minimum (the model's shapes are a subset of
+    /// the elastica's).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::{connect::connect, Flexure, Pose};
+    /// let f = Flexure::new(1.0, 1.0, 3)?;
+    /// // An arc of angle 0.5 is in the model's basis: its energy is the exact
+    /// // EI·φ²/(2L) = 0.125 J, so η vanishes to rounding.
+    /// let arc = Pose { phi: 0.5, x: 0.5f64.sin() / 0.5, y: (1.0 - 0.5f64.cos()) / 0.5 };
+    /// assert!(connect(&f, &arc)?.eta(0.125).abs() < 1e-12);
+    /// # Ok::<(), flexure::Error>(())
+    /// ```
+    pub fn eta(&self, exact_energy: f64) -> f64 {
+        self.energy / exact_energy - 1.0
+    }
 }
 
 /// Checks that a tip pose is finite and within reach of an inextensible flexure.

@@ -83,6 +83,79 @@ impl<T: Scalar> Kinematics<T> {
     }
 }
 
+/// The tip's kinematics at one $\alpha$, as the CLI's `kinematics` prints
+/// them: the pose $(\phi, x, y)$, the homogeneous transform $G$ of Eq. 7 by
+/// rows, the Jacobian's rows $\partial(\phi, x, y)/\partial\alpha$ (Eqs. 19–21)
+/// and the Hessians of $x$ and $y$ (Eqs. 30–31) by rows.
+///
+/// # Example
+/// ```
+/// use flexure::{kinematics::TipKinematics, Flexure};
+/// let f = Flexure::new(1.0, 1.0, 3)?;
+/// let k = TipKinematics::at(&f, &[0.0, 0.0, 0.0])?;
+/// // Straight: the tip at (L, 0); φ = α₁, so the Jacobian's first row is (1, 0, 0);
+/// // ∂y/∂α₁ = L∫t = 1/2 and ∂²x/∂α₁² = −L∫t² = −1/3 (Eqs. 20, 30).
+/// assert_eq!((k.pose.x, k.transform[0][3], k.jacobian.phi.as_slice()), (1.0, 1.0, &[1.0, 0.0, 0.0][..]));
+/// assert!((k.jacobian.y[0] - 0.5).abs() < 1e-14 && (k.hessian.x[0][0] + 1.0 / 3.0).abs() < 1e-14);
+/// // Printed as the CLI's `kinematics` prints them.
+/// let v = serde_json::to_value(&k).unwrap();
+/// assert_eq!(v["jacobian"]["phi"], serde_json::json!([1.0, 0.0, 0.0]));
+/// assert_eq!(v["pose"], serde_json::json!({ "phi": 0.0, "x": 1.0, "y": 0.0 }));
+/// # Ok::<(), flexure::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TipKinematics {
+    /// Tip pose in the root frame.
+    pub pose: Pose,
+    /// The transform $G$ (Eq. 7), row by row.
+    pub transform: [[f64; 4]; 4],
+    /// The Jacobian's rows (Eqs. 19–21).
+    pub jacobian: JacobianRows,
+    /// The Hessians of the tip's $x$ and $y$ (Eqs. 30–31), row by row.
+    pub hessian: TipHessians,
+}
+
+/// A $3 \times N$ Jacobian by its rows $(\phi, x, y)$, each of $N$ entries.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct JacobianRows {
+    /// $\partial\phi/\partial\alpha$.
+    pub phi: Vec<f64>,
+    /// $\partial x/\partial\alpha$.
+    pub x: Vec<f64>,
+    /// $\partial y/\partial\alpha$.
+    pub y: Vec<f64>,
+}
+
+/// The $N \times N$ Hessians of the tip's $x$ and $y$, row by row.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TipHessians {
+    /// $\partial^2 x/\partial\alpha_i\partial\alpha_j$ (Eq. 30).
+    pub x: Vec<Vec<f64>>,
+    /// $\partial^2 y/\partial\alpha_i\partial\alpha_j$ (Eq. 31).
+    pub y: Vec<Vec<f64>>,
+}
+
+impl TipKinematics {
+    /// The kinematics of `flexure` at `alpha`, by [`update`] to
+    /// [`Level::Hessian`]; an error naming `alpha` unless it has one finite
+    /// value per coordinate ([`Flexure::check_coordinates`]).
+    pub fn at(flexure: &Flexure, alpha: &[f64]) -> crate::Result<Self> {
+        flexure.check_coordinates("alpha", alpha)?;
+        let mut k = Kinematics::new(flexure);
+        update(flexure, alpha, &mut k, Level::Hessian);
+        let rows = |m: &DMatrix<f64>| m.row_iter().map(|r| r.iter().copied().collect()).collect::<Vec<Vec<f64>>>();
+        let g = k.pose_root_tip.transform();
+        let mut jacobian = rows(&k.jacobian_root_tip).into_iter();
+        let mut row = || jacobian.next().unwrap_or_default();
+        Ok(Self {
+            pose: k.pose_root_tip,
+            transform: std::array::from_fn(|i| std::array::from_fn(|j| g[(i, j)])),
+            jacobian: JacobianRows { phi: row(), x: row(), y: row() },
+            hessian: TipHessians { x: rows(&k.hessian_root_tip_x), y: rows(&k.hessian_root_tip_y) },
+        })
+    }
+}
+
 /// Panics unless a coordinate slice called `name` has `len` =
 /// [`Flexure::order`] entries: the kernels' precondition, checked once per
 /// call so that no kernel ever zips a short or long slice into a silently

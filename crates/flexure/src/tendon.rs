@@ -3,7 +3,7 @@
 use crate::energy::{energy, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
 use crate::joint::Flexure;
-use crate::kinematics::{self, Kinematics, Level};
+use crate::kinematics::{self, Kinematics, Level, Pose};
 use crate::limit::{self, StabilityLimit};
 use crate::linalg;
 use crate::scalar::Scalar;
@@ -251,6 +251,65 @@ impl solver::Problem<f64> for TendonProblem<'_> {
 /// ```
 pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonData) -> Result<Equilibrium> {
     follow(flexure, tendon, tension, data, false)
+}
+
+/// The tendon-driven joint at an equilibrium: the answer of [`equilibrium`],
+/// serialized as the CLI prints it (a sweep's row; a single answer leaves
+/// `tension` out) and Python returns it: `{tension, alpha, pose: {phi, x, y},
+/// tendon_length, stable}`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TendonEquilibrium {
+    /// The tendon's tension $f$ (N).
+    pub tension: f64,
+    /// Joint coordinates $\alpha$ at the equilibrium.
+    pub alpha: Vec<f64>,
+    /// Tip pose $(\phi, x, y)$ in the root frame at $\alpha$ (Eq. 7).
+    pub pose: Pose,
+    /// The tendon's length $\lvert\Delta x(\alpha)\rvert$ (m), as [`tendon_length`].
+    pub tendon_length: f64,
+    /// Whether $\nabla\nabla E$ is positive definite there (see [`Equilibrium::stable`]).
+    pub stable: bool,
+}
+
+/// [`pull`] to `tension`, and the answer at the equilibrium reached: its
+/// coordinates, tip pose, tendon length and stability, taken once from the
+/// solution in `data` (which keeps it, for the next value of a sweep).
+///
+/// # Example
+/// ```
+/// use flexure::{tendon::{equilibrium, pull, tendon_length, Tendon, TendonData}, Flexure};
+/// let f = Flexure::new(1.0, 1.0, 3)?;
+/// let t = Tendon { root_offset: 0.1, tip_offset: 0.05 };
+/// let answer = equilibrium(&f, &t, 5.0, &mut TendonData::new(&f))?;
+/// // The same equilibrium as `pull`'s, described at its own α.
+/// let mut data = TendonData::new(&f);
+/// let eq = pull(&f, &t, 5.0, &mut data)?;
+/// assert_eq!(answer.alpha, data.alpha());
+/// assert_eq!(answer.pose, flexure::pose_root_tip(&f, data.alpha()));
+/// assert_eq!(answer.tendon_length, tendon_length(&f, &t, data.alpha()));
+/// assert!(answer.stable && eq.stable && answer.tension == 5.0);
+/// // Printed with the CLI's keys, in its order.
+/// let v = serde_json::to_value(&answer).unwrap();
+/// let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+/// assert_eq!(keys, ["tension", "alpha", "pose", "tendon_length", "stable"]);
+/// assert_eq!(v["pose"]["phi"].as_f64(), Some(answer.pose.phi));
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn equilibrium(
+    flexure: &Flexure,
+    tendon: &Tendon,
+    tension: f64,
+    data: &mut TendonData,
+) -> Result<TendonEquilibrium> {
+    let eq = pull(flexure, tendon, tension, data)?;
+    let alpha = data.alpha().to_vec();
+    Ok(TendonEquilibrium {
+        tension,
+        pose: kinematics::pose_root_tip(flexure, &alpha),
+        tendon_length: tendon_length(flexure, tendon, &alpha),
+        alpha,
+        stable: eq.stable,
+    })
 }
 
 /// The smallest factor on `tension` at which the joint's equilibrium,

@@ -36,8 +36,8 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
         let open = flexure::mechanism::findings::open_closures(m, &settings)?;
         Ok((open, estimate::buckle_auto(m, &settings, target)?))
     })?;
-    let out = PyDict::new(py);
-    out.set_item("load_factor", b.load_factor)?;
+    // The library's answer {load_factor, mode}, the mode as an array.
+    let out = crate::serialize::to_dict(py, &b)?;
     out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
     let names = flexure_names(&m);
     let auto = m.joints.iter().any(|j| j.auto_order);

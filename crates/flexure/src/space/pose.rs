@@ -7,7 +7,7 @@ use nalgebra::{Matrix3, Matrix4, Point2, Vector2};
 /// $(x, y)$ in its parent. The flexure's tip in its root frame
 /// (`pose_root_tip`), a body in the world, a joint's root frame in its
 /// parent body: one type for all.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct Pose<T = f64> {
     /// Rotation of the frame, radians, counter-clockwise.
     pub phi: T,

@@ -7,7 +7,7 @@ use crate::error::{Error, Result, finite};
 /// (in the ground frame), a closure's reaction: one type for all, ordered
 /// as the Jacobian's rows $(\phi, x, y)$ so that its generalized force is
 /// $J^T w$.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct Wrench<T = f64> {
     /// Moment, counter-clockwise positive.
     pub moment: T,
