@@ -1,52 +1,11 @@
-//! What is not an error but must not pass without a word: closures open at
-//! rest, whose closing preloads the mechanism, and parts that cross each
-//! other in a solved shape (self-intersection; the model has no contact).
-//!
-//! The library prints nothing: each finding has a [`Severity`] and a
-//! message, and the callers (the command line, Python) report them.
-//!
-//! **Open closures** ([`open_closures`]). A weld or pin *meets at rest*
-//! when, with every joint at its rest coordinates, its two points are at
-//! most [`GAP_TOLERANCE`] × [`Mechanism::size`] apart and (a weld) its two
-//! frames' angles differ by at most [`GAP_TOLERANCE`] rad, the angle taken
-//! to $(-\pi, \pi]$ as the closure equation takes it. One that does not
-//! meet is closed by force before any load acts: the finding gives the gap
-//! and the preload, the closure's multiplier (force in N, and moment in
-//! N·m for a weld) in the unloaded, assembled configuration, that is, the
-//! force the weld or pin carries with no external load. It is a warning,
-//! or a note when the closure says `preload = true`.
-//!
-//! **Crossings** ([`crossings`]). Each flexure is its backbone
-//! ([`crate::kinematics::backbone`]) as a polyline of chords; each body,
-//! the ground included, the edges of the hull of its attachment points
-//! ([`Mechanism::attachments`]: what `flexure draw` fills as the link).
-//! The backbone's curvature is at most $V/L$ everywhere, with
-//! $V = \sum_i\lvert\alpha_i\rvert$ (each angle shape's slope is a shifted
-//! Legendre polynomial, at most 1 in magnitude), so with
-//! $\lceil V/\theta\rceil$ chords or more each chord turns by at most
-//! $\theta$ = [`CHORD_TURN`] and stays within $h\theta/2$ of its arc, $h$ its
-//! length (at least [`MIN_CHORDS`] chords, at most [`MAX_CHORDS`]): only a
-//! crossing shallower than that is missed. Two segments cross when they
-//! share a point (within [`TOUCH_TOLERANCE`] × the mechanism's size), a
-//! collinear overlap included. Parts that a joint or a closure connects
-//! meet at their ends (a flexure's root on its parent link, its tip on its
-//! child, two legs on a stage welded to one of them, links on either side
-//! of a revolute joint, a slider's carriage on its rail): a contact there,
-//! at a point that is an end of both parts (a link's attachment points or
-//! the origin of a body it carries by a revolute, prismatic or fixed joint;
-//! a flexure's root and tip), is not a crossing, unless it is a collinear
-//! overlap that runs on from there. A flexure's
-//! non-consecutive chords are tested against each other too (a loop).
+//! Crossings: the parts of a solved shape (each flexure's backbone as
+//! chords, each link as the hull of its attachment points) that cross
+//! another part, or themselves ([`crossings`]).
 
-use super::kinematics::{Frames, frames};
-use super::statics::{Settings, assemble_unloaded};
-use super::{Closure, Mechanism};
-use crate::error::{Error, Result};
+use super::geometry::{distance, dot, hull, segments_meet, sub};
 use crate::kinematics::backbone;
-
-/// A closure meets at rest when its gap is at most this: relative to the
-/// mechanism's size for positions, in rad for a weld's angle.
-pub const GAP_TOLERANCE: f64 = 1e-9;
+use crate::mechanism::kinematics::{Frames, frames};
+use crate::mechanism::{Closure, Mechanism};
 
 /// The most a flexure's backbone turns (rad) along one of the chords that
 /// stand for it in [`crossings`].
@@ -63,142 +22,6 @@ pub const MAX_CHORDS: usize = 4096;
 /// mechanism's size; and a contact this close to an end of both parts is
 /// where they are joined.
 pub const TOUCH_TOLERANCE: f64 = 1e-7;
-
-/// How much a finding matters.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Severity {
-    /// Something is likely wrong with the answer or the file.
-    Warning,
-    /// Something the file says is meant (a closure with `preload = true`).
-    Note,
-}
-
-/// A weld or pin whose two sides do not meet in the unloaded mechanism.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OpenClosure {
-    /// Its index in [`Mechanism::closures`].
-    pub closure: usize,
-    /// What it is: `weld of "stage" and "b_tip"`.
-    pub what: String,
-    /// Where it is given in the file ("line L, column C").
-    pub place: String,
-    /// Distance between its two points at rest (m).
-    pub gap: f64,
-    /// A weld's angle between its two frames at rest (rad, in $(-\pi, \pi]$,
-    /// frame `a`'s angle minus frame `b`'s); `None` for a pin.
-    pub turn: Option<f64>,
-    /// The magnitude of the force it carries when assembled with no load
-    /// (N); `None` if the unloaded mechanism cannot be assembled (from rest,
-    /// by Newton: then every solve of it fails, saying so).
-    pub force: Option<f64>,
-    /// A weld's moment when assembled with no load (N·m); `None` for a pin,
-    /// or if the unloaded mechanism cannot be assembled.
-    pub moment: Option<f64>,
-    /// Whether the file says `preload = true`.
-    pub preload: bool,
-}
-
-impl OpenClosure {
-    /// A warning, or a note with `preload = true`.
-    pub fn severity(&self) -> Severity {
-        if self.preload { Severity::Note } else { Severity::Warning }
-    }
-
-    /// The finding in words, with its place in the file.
-    pub fn message(&self) -> String {
-        let gap = match self.turn {
-            Some(t) => format!("{:.6e} m and {t:.6} rad", self.gap),
-            None => format!("{:.6e} m", self.gap),
-        };
-        let preload = match (self.force, self.moment) {
-            (Some(force), Some(moment)) => format!("with no load it carries {force:.6e} N and {moment:.6e} N·m"),
-            (Some(force), None) => format!("with no load it carries {force:.6e} N"),
-            (None, _) => "the unloaded mechanism cannot be assembled, so how much is not known".to_string(),
-        };
-        let what = format!(
-            "{}: {} is open at rest by {gap}; closing it preloads the mechanism: {preload}",
-            self.place, self.what
-        );
-        if self.preload {
-            format!("{what} (preload = true)")
-        } else {
-            format!("{what}; if that is meant, say `preload = true` in it, else make its frames meet at rest")
-        }
-    }
-}
-
-/// `weld of "a" and "b"` or `pin of "a" and "b"`.
-pub fn closure_name(m: &Mechanism, i: usize) -> String {
-    let name = |b: usize| &m.bodies[b].name;
-    match m.closures[i] {
-        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
-        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
-    }
-}
-
-/// Each closure's gap at rest: (distance in m, a weld's angle in rad).
-pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
-    let f = frames(m, &m.rest());
-    m.closures
-        .iter()
-        .map(|c| match *c {
-            Closure::Weld { a, a_origin, b, b_origin } => {
-                let (fa, fb) = (f.bodies[a].compose(&a_origin), f.bodies[b].compose(&b_origin));
-                let turn = super::lagrangian::wrap(fa.phi - fb.phi);
-                (distance([fa.x, fa.y], [fb.x, fb.y]), Some(turn))
-            }
-            Closure::Pin { a, a_at, b, b_at } => (
-                distance(f.bodies[a].act_components([a_at.x, a_at.y]), f.bodies[b].act_components([b_at.x, b_at.y])),
-                None,
-            ),
-        })
-        .collect()
-}
-
-/// The closures of `m` that do not meet at rest (see the module docs),
-/// each with the preload that closes it: the unloaded mechanism is
-/// assembled (with `settings`) only if one is open. If that assembly
-/// fails, as every static solve of `m` then does, the preload is `None`
-/// (a simulation from an `[initial]` state may still run); an error only
-/// if it is interrupted.
-pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
-    let length = m.size();
-    let open: Vec<(usize, (f64, Option<f64>))> = rest_gaps(m)
-        .into_iter()
-        .enumerate()
-        .filter(|(_, (gap, turn))| *gap > GAP_TOLERANCE * length || turn.is_some_and(|t| t.abs() > GAP_TOLERANCE))
-        .collect();
-    if open.is_empty() {
-        return Ok(Vec::new());
-    }
-    let unloaded = match assemble_unloaded(m, settings) {
-        Ok(s) => Some(s),
-        Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
-        Err(e) => return Err(e),
-    };
-    let mut rows = Vec::with_capacity(m.closures.len());
-    let mut row = 0;
-    for c in &m.closures {
-        rows.push(row);
-        row += c.equations();
-    }
-    Ok(open
-        .into_iter()
-        .map(|(i, (gap, turn))| {
-            let mu = unloaded.as_ref().map(|s| &s.multipliers[rows[i]..rows[i] + m.closures[i].equations()]);
-            OpenClosure {
-                closure: i,
-                what: closure_name(m, i),
-                place: m.closure_place(i).to_string(),
-                gap,
-                turn,
-                force: mu.map(|mu| mu[0].hypot(mu[1])),
-                moment: mu.zip(turn).map(|(mu, _)| mu[2].abs()),
-                preload: m.closure_preload(i),
-            }
-        })
-        .collect())
-}
 
 /// A part of a drawn mechanism.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -263,83 +86,6 @@ impl Crossing {
     }
 }
 
-/// How two segments meet.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
-    /// The point (the start of the overlap, along the first segment, for collinear ones).
-    pub at: [f64; 2],
-    /// Where it is along each segment, from 0 at its start to 1 at its end.
-    pub t: [f64; 2],
-    /// Whether they are collinear and overlap (more than at a point, or at one).
-    pub collinear: bool,
-}
-
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// Where segment `p0`–`p1` meets segment `q0`–`q1`, if they come within
-/// `tolerance` (m) of each other at a crossing, a touch or a collinear
-/// overlap; `None` if they do not, or if either has no length.
-///
-/// # Example
-/// ```
-/// use flexure::mechanism::findings::segments_meet;
-/// let c = segments_meet([0.0, 0.0], [2.0, 2.0], [0.0, 2.0], [2.0, 0.0], 1e-12).unwrap();
-/// assert_eq!(c.at, [1.0, 1.0]);
-/// assert!(segments_meet([0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], 1e-12).is_none());
-/// ```
-pub fn segments_meet(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2], tolerance: f64) -> Option<Contact> {
-    let (r, s) = (sub(p1, p0), sub(q1, q0));
-    let (lr, ls) = (r[0].hypot(r[1]), s[0].hypot(s[1]));
-    if lr == 0.0 || ls == 0.0 {
-        return None;
-    }
-    let qp = sub(q0, p0);
-    let denom = cross(r, s);
-    // The sine of the angle between them, against the tolerance over the shorter one.
-    if denom.abs() > (tolerance / lr.min(ls)).min(1e-9) * lr * ls {
-        let t = cross(qp, s) / denom;
-        let u = cross(qp, r) / denom;
-        let (et, eu) = (tolerance / lr, tolerance / ls);
-        if (-et..=1.0 + et).contains(&t) && (-eu..=1.0 + eu).contains(&u) {
-            let t = t.clamp(0.0, 1.0);
-            return Some(Contact {
-                at: [p0[0] + t * r[0], p0[1] + t * r[1]],
-                t: [t, u.clamp(0.0, 1.0)],
-                collinear: false,
-            });
-        }
-        return None;
-    }
-    // Parallel: they meet only if collinear, where their projections overlap.
-    if cross(qp, r).abs() / lr > tolerance {
-        return None;
-    }
-    let along = |p: [f64; 2]| dot(sub(p, p0), r) / (lr * lr);
-    let (t0, t1) = (along(q0), along(q1));
-    let (lo, hi) = (t0.min(t1).max(0.0), t0.max(t1).min(1.0));
-    if lo > hi + tolerance / lr {
-        return None;
-    }
-    let t = lo.min(1.0);
-    let at = [p0[0] + t * r[0], p0[1] + t * r[1]];
-    let u = (dot(sub(at, q0), s) / (ls * ls)).clamp(0.0, 1.0);
-    Some(Contact { at, t: [t, u], collinear: true })
-}
-
 /// A part as segments: its polyline, the arc length at each point (a
 /// flexure), the points where it is joined to others, and the bodies it
 /// belongs to (a closure's two bodies count as one, see [`crossings`]).
@@ -358,31 +104,6 @@ pub fn chords(alpha: &[f64]) -> usize {
     let turning: f64 = alpha.iter().map(|a| a.abs()).sum();
     let wanted = (turning / CHORD_TURN).ceil();
     if wanted.is_finite() { (wanted as usize).clamp(MIN_CHORDS, MAX_CHORDS) } else { MAX_CHORDS }
-}
-
-/// The convex hull of `p`, counter-clockwise (Andrew's monotone chain),
-/// collinear points left out.
-pub fn hull(mut p: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
-    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| cross(sub(a, o), sub(b, o));
-    let chain = |pts: &mut dyn Iterator<Item = &[f64; 2]>| {
-        let mut h: Vec<[f64; 2]> = Vec::new();
-        for &q in pts {
-            while h.len() >= 2 && turn(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
-                h.pop();
-            }
-            h.push(q);
-        }
-        h.pop();
-        h
-    };
-    let mut lower = chain(&mut p.iter());
-    lower.extend(chain(&mut p.iter().rev()));
-    lower
 }
 
 /// Every part of `m` at coordinates `q` that crosses another, or itself
