@@ -85,12 +85,9 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
             Closure::Weld { a, a_origin, b, b_origin } => {
                 let (fa, fb) = (f.bodies[a].compose(&a_origin), f.bodies[b].compose(&b_origin));
                 let turn = crate::mechanism::lagrangian::wrap(fa.phi - fb.phi);
-                (distance([fa.x, fa.y], [fb.x, fb.y]), Some(turn))
+                (distance(&fa.origin(), &fb.origin()), Some(turn))
             }
-            Closure::Pin { a, a_at, b, b_at } => (
-                distance(f.bodies[a].act_components([a_at.x, a_at.y]), f.bodies[b].act_components([b_at.x, b_at.y])),
-                None,
-            ),
+            Closure::Pin { a, a_at, b, b_at } => (distance(&f.bodies[a].act(&a_at), &f.bodies[b].act(&b_at)), None),
         })
         .collect()
 }

@@ -2,10 +2,11 @@
 //! chords, each link as the hull of its attachment points) that cross
 //! another part, or themselves ([`crossings`]).
 
-use super::geometry::{distance, dot, hull, segments_meet, sub};
+use super::geometry::{convex_hull, distance, meet};
 use crate::kinematics::backbone;
 use crate::mechanism::kinematics::{Frames, frames};
 use crate::mechanism::{Closure, Mechanism};
+use nalgebra::Point2;
 
 /// The most a flexure's backbone turns (rad) along one of the chords that
 /// stand for it in [`crossings`].
@@ -91,12 +92,12 @@ impl Crossing {
 /// belongs to (a closure's two bodies count as one, see [`crossings`]).
 struct Drawn {
     part: Part,
-    points: Vec<[f64; 2]>,
+    points: Vec<Point2<f64>>,
     arc: Option<Vec<f64>>,
-    ends: Vec<[f64; 2]>,
+    ends: Vec<Point2<f64>>,
     groups: Vec<usize>,
-    lo: [f64; 2],
-    hi: [f64; 2],
+    lo: Point2<f64>,
+    hi: Point2<f64>,
 }
 
 /// The chords that stand for a flexure with coordinates `alpha` (see the module docs).
@@ -124,27 +125,28 @@ pub fn crossings(m: &Mechanism, q: &[f64]) -> Vec<Crossing> {
             out.push(named(m, c));
         }
         for b in &parts[i + 1..] {
-            if a.hi[0] + tolerance < b.lo[0]
-                || b.hi[0] + tolerance < a.lo[0]
-                || a.hi[1] + tolerance < b.lo[1]
-                || b.hi[1] + tolerance < a.lo[1]
+            if a.hi.x + tolerance < b.lo.x
+                || b.hi.x + tolerance < a.lo.x
+                || a.hi.y + tolerance < b.lo.y
+                || b.hi.y + tolerance < a.lo.y
             {
                 continue;
             }
             let joined = a.groups.iter().any(|g| b.groups.contains(g));
-            let at_end = |d: &Drawn, p: [f64; 2]| d.ends.iter().any(|e| distance(*e, p) <= tolerance);
+            let at_end = |d: &Drawn, p: &Point2<f64>| d.ends.iter().any(|e| distance(e, p) <= tolerance);
             let mut first: Option<Crossing> = None;
-            let mut contacts: Vec<[f64; 2]> = Vec::new();
+            let mut contacts: Vec<Point2<f64>> = Vec::new();
             for (k, sa) in a.points.windows(2).enumerate() {
                 for (l, sb) in b.points.windows(2).enumerate() {
-                    let Some(c) = segments_meet(sa[0], sa[1], sb[0], sb[1], tolerance) else { continue };
-                    if joined && at_end(a, c.at) && at_end(b, c.at) {
+                    let Some(c) = meet(&sa[0], &sa[1], &sb[0], &sb[1], tolerance) else { continue };
+                    let at = Point2::from(c.at);
+                    if joined && at_end(a, &at) && at_end(b, &at) {
                         // A collinear overlap running on from the joint is a crossing.
                         if !c.collinear || overlap_is_point(sa, sb, tolerance) {
                             continue;
                         }
                     }
-                    add_contact(&mut contacts, c.at, tolerance);
+                    add_contact(&mut contacts, at, tolerance);
                     if first.is_none() {
                         first = Some(Crossing {
                             a: a.part,
@@ -168,18 +170,18 @@ pub fn crossings(m: &Mechanism, q: &[f64]) -> Vec<Crossing> {
 
 /// Counts the contact at `p` unless one already counted is within `tolerance`
 /// (a crossing through a chord's end is met by both chords there).
-fn add_contact(contacts: &mut Vec<[f64; 2]>, p: [f64; 2], tolerance: f64) {
-    if contacts.iter().all(|c| distance(*c, p) > tolerance) {
+fn add_contact(contacts: &mut Vec<Point2<f64>>, p: Point2<f64>, tolerance: f64) {
+    if contacts.iter().all(|c| distance(c, &p) > tolerance) {
         contacts.push(p);
     }
 }
 
 /// Whether two collinear segments share no more than a point.
-fn overlap_is_point(sa: &[[f64; 2]], sb: &[[f64; 2]], tolerance: f64) -> bool {
-    let r = sub(sa[1], sa[0]);
-    let lr = r[0].hypot(r[1]);
-    let along = |p: [f64; 2]| dot(sub(p, sa[0]), r) / lr;
-    let (t0, t1) = (along(sb[0]), along(sb[1]));
+fn overlap_is_point(sa: &[Point2<f64>], sb: &[Point2<f64>], tolerance: f64) -> bool {
+    let r = sa[1] - sa[0];
+    let lr = r.x.hypot(r.y);
+    let along = |p: &Point2<f64>| (p - sa[0]).dot(&r) / lr;
+    let (t0, t1) = (along(&sb[0]), along(&sb[1]));
     t0.max(t1).min(lr) - t0.min(t1).max(0.0) <= tolerance
 }
 
@@ -197,13 +199,13 @@ fn arc(d: &Drawn, k: usize, t: f64) -> Option<f64> {
 fn self_crossing(d: &Drawn, tolerance: f64) -> Option<Crossing> {
     let Part::Flexure(_) = d.part else { return None };
     let mut first: Option<Crossing> = None;
-    let mut contacts: Vec<[f64; 2]> = Vec::new();
+    let mut contacts: Vec<Point2<f64>> = Vec::new();
     let n = d.points.len() - 1;
     for k in 0..n {
         for l in k + 2..n {
             let (sa, sb) = (&d.points[k..k + 2], &d.points[l..l + 2]);
-            if let Some(c) = segments_meet(sa[0], sa[1], sb[0], sb[1], tolerance) {
-                add_contact(&mut contacts, c.at, tolerance);
+            if let Some(c) = meet(&sa[0], &sa[1], &sb[0], &sb[1], tolerance) {
+                add_contact(&mut contacts, Point2::from(c.at), tolerance);
                 if first.is_none() {
                     let s = [arc(d, k, c.t[0]), arc(d, l, c.t[1])];
                     first =
@@ -243,9 +245,10 @@ fn groups(m: &Mechanism) -> Vec<usize> {
 /// The parts of `m` at `q` as segments: flexures first, in joint order, then links.
 fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
     let mut parts = Vec::new();
-    let bounds = |points: &[[f64; 2]]| {
-        points.iter().fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
-            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    let bounds = |points: &[Point2<f64>]| {
+        let (lo, hi) = (Point2::new(f64::MAX, f64::MAX), Point2::new(f64::MIN, f64::MIN));
+        points.iter().fold((lo, hi), |(lo, hi), p| {
+            (Point2::new(lo.x.min(p.x), lo.y.min(p.y)), Point2::new(hi.x.max(p.x), hi.y.max(p.y)))
         })
     };
     for (ji, j) in m.joints.iter().enumerate() {
@@ -253,17 +256,16 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         let alpha = &q[j.offset..j.offset + fl.order()];
         let samples = chords(alpha) + 1;
         let root = f.roots[ji];
-        let mut points: Vec<[f64; 2]> =
-            backbone(fl, alpha, samples).iter().map(|p| root.act_components([p.x, p.y])).collect();
+        let mut points: Vec<Point2<f64>> = backbone(fl, alpha, samples).iter().map(|p| root.act(&p.origin())).collect();
         // The backbone integrates its own way: it ends within its quadrature
         // error of the model's tip, the child's origin, where the child is
         // drawn. Its points are moved by that error in proportion to arc
         // length, so that it ends there exactly.
-        let tip = [f.bodies[j.child].x, f.bodies[j.child].y];
-        let miss = sub(tip, points[samples - 1]);
+        let tip = f.bodies[j.child].origin();
+        let miss = tip - points[samples - 1];
         for (i, p) in points.iter_mut().enumerate() {
             let t = i as f64 / (samples - 1) as f64;
-            *p = [p[0] + t * miss[0], p[1] + t * miss[1]];
+            *p += miss * t;
         }
         let arc = (0..samples).map(|i| fl.length() * i as f64 / (samples - 1) as f64).collect();
         let ends = vec![points[0], points[samples - 1], tip];
@@ -279,11 +281,11 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         });
     }
     for b in 0..m.bodies.len() {
-        let mut ends: Vec<[f64; 2]> = m.attachments(b).iter().map(|r| f.bodies[b].act_components([r.x, r.y])).collect();
-        let mut points = hull(ends.clone());
+        let mut ends: Vec<Point2<f64>> = m.attachments(b).iter().map(|r| f.bodies[b].act(r)).collect();
+        let mut points = convex_hull(ends.clone());
         // Where a slider's carriage (or a pin's child) sits on this link.
         let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
-        ends.extend(carried.map(|j| [f.bodies[j.child].x, f.bodies[j.child].y]));
+        ends.extend(carried.map(|j| f.bodies[j.child].origin()));
         if points.len() < 2 {
             continue;
         }
