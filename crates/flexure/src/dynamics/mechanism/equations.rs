@@ -1,144 +1,16 @@
-//! The equations of motion of a [`Mechanism`] and its vibration modes.
-//!
-//! Every mass element of the mechanism (a body's mass $m$ at its centre of
-//! mass, its inertia $I_c$; a flexure section's mass $\mu\thinspace ds$ and
-//! rotary inertia $\rho I\thinspace ds$) sits at a world point $w(q)$ on a frame
-//! of angle $\theta(q)$, so the kinetic energy is
-//!
-//! $$T = \tfrac12\sum_e m_e\lvert\dot w_e\rvert^2 + I_e\dot\theta_e^2 = \tfrac12\dot q^TM(q)\dot q,\qquad
-//! M = \sum_e m_e J_e^TJ_e + I_e\thinspace g_e^Tg_e,$$
-//!
-//! with $J_e = \partial w_e/\partial q$ and $g_e = \partial\theta_e/\partial q$. Every
-//! joint's angle is linear in its coordinates, so $g_e$ is constant and
-//! Lagrange's velocity-product terms are
-//! $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q) = \sum_e m_eJ_e^T(\dot J_e\dot q)$,
-//! where $\dot J_e\dot q = \dot q^T\nabla\nabla w_e\thinspace\dot q$ is the
-//! acceleration of the point when $\ddot q = 0$. It is carried down the tree
-//! with the angular velocity $\omega$ and velocity $v$ of each frame: a joint
-//! whose root frame $A$ (origin $o_A$, rotation $R_A$) carries its output at
-//! $p(q_j)$ gives its child's origin
-//!
-//! $$a_C = a_A - \omega_A^2R_Ap + 2\omega_A\mathrm E R_A\dot p + R_A\thinspace\dot q_j^T\nabla\nabla p\thinspace\dot q_j,$$
-//!
-//! and a point $w$ of a body moves with $a_w = a_b - \omega_b^2(w - o_b)$
-//! ($\mathrm E$ the quarter turn). A flexure's sections are points in its root
-//! frame at $r(s) = \int_0^s(\cos\phi, \sin\phi)\thinspace ds^{\prime}$, integrated by the
-//! nested Gauss–Legendre rule of [`super::mass`] (the rule and refinement
-//! its [`MassModel`] chooses), so each section is as accurate as the tip;
-//! their local acceleration $\dot J_r\dot\alpha = -\int_0^s\dot\phi^2(\cos\phi, \sin\phi)ds^{\prime}$
-//! enters $a_w$ as $\ddot p$ does $a_C$. The discrete $h$ is the exact
-//! derivative of the discrete $M$.
-//!
-//! The generalized force of [`System`] is $f = -\nabla V_{loads} - \nabla U + Q_g - h - D\dot q$:
-//! the point loads and tendons of [`crate::mechanism::lagrangian`] at
-//! constant magnitudes, the joints' elastic forces, gravity on every mass
-//! element (bodies and flexure sections), and the damping
-//! $D = \operatorname{diag}(\beta_jK_j, c_k)$ of the joints.
+//! The equations of motion of a mechanism as a [`System`]:
+//! [`MechanismSystem`], its mass matrix, velocity-product terms, gravity
+//! and damping (the parent module's docs give the equations).
 
-use super::modes::{Modes, finite_modes};
-use super::system::System;
+use super::distributed::{Distributed, path_columns};
+use super::moments::{Moments, quarter};
+use crate::dynamics::system::System;
 use crate::error::{Error, Result};
-use crate::joint::{Basis, Flexure};
-use crate::mass::MassModel;
 use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
-use crate::mechanism::statics::{self, Settings};
 use crate::mechanism::{Loads, Mechanism};
-use crate::quadrature::GaussLegendre;
 use crate::sincos::cos_sin;
 use nalgebra::{DMatrix, DVector};
-
-/// One flexure's distributed mass: the nested quadrature tables of
-/// [`super::mass`], with the positions of the sections kept (they turn
-/// with everything upstream).
-#[derive(Debug, Clone)]
-struct Distributed {
-    joint: usize,
-    order: usize,
-    per_panel: usize,
-    /// $\psi$ at the inner nodes, `[node * order + i]`.
-    inner_psi: Vec<f64>,
-    /// $L\Delta\tau$ of the inner nodes.
-    inner_weight: Vec<f64>,
-    /// $L\Delta_k\mu(t_k)$ of the node ending each panel (0 at a piece's end).
-    mass: Vec<f64>,
-    /// $L\Delta_k\rho I(t_k)$ of the node ending each panel.
-    rotary: Vec<f64>,
-    /// $\psi(t_k)$ of the node ending each panel.
-    outer_psi: Vec<f64>,
-    /// The coordinates its sections' positions depend on: the path to its parent, then its own.
-    columns: Vec<usize>,
-}
-
-impl Distributed {
-    /// The distributed inertia of flexure `f`, joint `joint` of `m`, with the
-    /// rule and refinement its [`MassModel`] (from [`crate::mechanism::Joint::inertia`]) settled on.
-    fn new(m: &Mechanism, joint: usize, f: &Flexure, model: &MassModel) -> Result<Self> {
-        let (n, l) = (f.order(), f.length());
-        let section = f.section();
-        let (outer, inner, sub) = model.rule();
-        let (outer, inner) = (GaussLegendre::new(outer)?, GaussLegendre::new(inner)?);
-        let mut breaks = section.breakpoints(l);
-        if f.basis() == Basis::Segments {
-            breaks.extend((1..n).map(|j| j as f64 / n as f64));
-            breaks.sort_by(f64::total_cmp);
-            breaks.dedup();
-        }
-        let ends: Vec<f64> = std::iter::once(0.0).chain(breaks.iter().copied()).chain(std::iter::once(1.0)).collect();
-        // (t, μ weight, ρI weight) of every point that ends a panel.
-        let mut points: Vec<(f64, f64, f64)> = Vec::new();
-        for p in 0..ends.len() - 1 {
-            for q in 0..sub {
-                let a = ends[p] + (ends[p + 1] - ends[p]) * q as f64 / sub as f64;
-                let b = ends[p] + (ends[p + 1] - ends[p]) * (q + 1) as f64 / sub as f64;
-                for (&x, &w) in outer.nodes().iter().zip(outer.weights()) {
-                    let t = a + (b - a) * x;
-                    let weight = l * (b - a) * w;
-                    let mu = section.mass_per_length(t, l).unwrap_or(0.0);
-                    let rho_i = section.rotary_inertia_per_length(t, l).unwrap_or(0.0);
-                    points.push((t, weight * mu, weight * rho_i));
-                }
-                points.push((b, 0.0, 0.0));
-            }
-        }
-        let mut psi = vec![0.0; n];
-        let mut d = Distributed {
-            joint,
-            order: n,
-            per_panel: inner.len(),
-            inner_psi: Vec::with_capacity(points.len() * inner.len() * n),
-            inner_weight: Vec::with_capacity(points.len() * inner.len()),
-            mass: Vec::with_capacity(points.len()),
-            rotary: Vec::with_capacity(points.len()),
-            outer_psi: Vec::with_capacity(points.len() * n),
-            columns: Vec::new(),
-        };
-        let mut start = 0.0;
-        for &(end, mass, rotary) in &points {
-            for (&x, &w) in inner.nodes().iter().zip(inner.weights()) {
-                f.angle_shapes(start + (end - start) * x, &mut psi);
-                d.inner_psi.extend_from_slice(&psi);
-                d.inner_weight.push(l * (end - start) * w);
-            }
-            f.angle_shapes(end, &mut psi);
-            d.outer_psi.extend_from_slice(&psi);
-            d.mass.push(mass);
-            d.rotary.push(rotary);
-            start = end;
-        }
-        d.columns = path_columns(m, m.joints[joint].parent);
-        d.columns.extend((0..n).map(|i| m.joints[joint].offset + i));
-        Ok(d)
-    }
-}
-
-/// The coordinates of the joints from the ground to `body`.
-fn path_columns(m: &Mechanism, body: usize) -> Vec<usize> {
-    m.path(body)
-        .into_iter()
-        .flat_map(|j| (0..m.joints[j].kind.joint().dof()).map(move |i| m.joints[j].offset + i))
-        .collect()
-}
 
 /// The angular velocity (rad/s), velocity and velocity-product
 /// acceleration ($\ddot q = 0$) of a frame's origin, in the world.
@@ -147,61 +19,6 @@ struct Rate {
     omega: f64,
     velocity: [f64; 2],
     acceleration: [f64; 2],
-}
-
-/// One flexure's mass moments in its root frame, summed over its sections
-/// $p$ (mass $m_p$, rotary inertia $i_p$, position $r_p$, $J_{r,p}$, local
-/// velocity $u_p = J_{r,p}\dot\alpha$ and velocity-product acceleration
-/// $a_p$; $E$ the quarter turn, $\omega$ the root's angular velocity): the
-/// terms of $M$, $h$ and $Q_g$ ([`MechanismSystem`]'s pass).
-#[derive(Debug, Clone, Default)]
-struct Moments {
-    /// $\sum m_p$.
-    mass: f64,
-    /// $S = \sum m_pr_p$.
-    first: [f64; 2],
-    /// $\sum m_p\lvert r_p\rvert^2 + i_p$.
-    second: f64,
-    /// $\sum m_pu_p$ and $\sum m_pa_p$.
-    velocity: [f64; 2],
-    acceleration: [f64; 2],
-    /// $\sum m_p\thinspace r_p\cdot u_p$ and $\sum m_p\thinspace Er_p\cdot a_p$.
-    turning: f64,
-    swinging: f64,
-    /// Per coordinate $i$: $A_i = \sum m_pJ_{r,p,i}$;
-    /// $\sum m_p\thinspace Er_p\cdot J_{r,p,i} + i_p\psi_i$;
-    /// $\sum m_pJ_{r,p,i}\cdot(-\omega^2r_p + 2\omega Eu_p + a_p)$.
-    along: Vec<[f64; 2]>,
-    across: Vec<f64>,
-    product: Vec<f64>,
-    /// $\sum m_pJ_{r,p,i}\cdot J_{r,p,j} + i_p\psi_i\psi_j$, upper triangle, `[i * k + j]`.
-    inertia: Vec<f64>,
-}
-
-impl Moments {
-    fn new(k: usize) -> Self {
-        Moments {
-            along: vec![[0.0; 2]; k],
-            across: vec![0.0; k],
-            product: vec![0.0; k],
-            inertia: vec![0.0; k * k],
-            ..Default::default()
-        }
-    }
-
-    /// Zeroes the moments of a flexure of order `k`.
-    fn clear(&mut self, k: usize) {
-        (self.mass, self.second, self.turning, self.swinging) = (0.0, 0.0, 0.0, 0.0);
-        (self.first, self.velocity, self.acceleration) = ([0.0; 2], [0.0; 2], [0.0; 2]);
-        self.along[..k].fill([0.0; 2]);
-        self.across[..k].fill(0.0);
-        self.product[..k].fill(0.0);
-        self.inertia[..k * k].fill(0.0);
-    }
-}
-
-fn quarter(v: [f64; 2]) -> [f64; 2] {
-    [-v[1], v[0]]
 }
 
 /// The equations of motion of a [`Mechanism`] as a [`System`] (module docs):
@@ -273,7 +90,7 @@ struct Pass {
 
 impl MechanismSystem {
     /// The system of `m`, with the joints' damping and its loads. Fails if a
-    /// flexure's mass integrals cannot be made accurate ([`MassModel::new`]).
+    /// flexure's mass integrals cannot be made accurate ([`MassModel::new`](crate::mass::MassModel::new)).
     pub fn new(m: &Mechanism) -> Result<Self> {
         let n = m.dof();
         let mut distributed = Vec::new();
@@ -721,71 +538,4 @@ impl System for MechanismSystem {
         let mut buffers = [vec![0.0; self.mechanism.bodies.len()], vec![0.0; self.mechanism.bodies.len()]];
         crate::mechanism::kinematics::distance(&self.mechanism, a, b, self.length, &mut buffers)
     }
-}
-
-/// The vibration modes of `m` about its equilibrium under its loads
-/// ([`statics::solve`] with `settings`): the finite solutions of
-///
-/// $$Z^T\nabla^2L\thinspace Z\thinspace a = \omega^2Z^TM Z\thinspace a,\qquad v = Za,$$
-///
-/// where $\nabla^2L$ is the loaded stiffness with the closure forces' part
-/// and the columns of $Z$ span the motions the closures allow
-/// ([`statics::stiffness`]), so a frequency falls to zero as the loads
-/// reach a buckling load. Directions without inertia are condensed out
-/// as quasi-static ([`finite_modes`]); at most `count` modes are returned.
-/// Shapes are in the coordinates $q$, normalized to $v^TMv = 1$.
-/// [`Modes::limit`] is the load fraction where the loading path snapped
-/// through a limit, if it did: the modes are then about the stable
-/// equilibrium beyond it.
-///
-/// The equilibrium weighs the bodies; a flexure's own weight, which the
-/// statics do not model, is left out of it (the dynamics include it).
-///
-/// Errors: `count` when zero; `mass` when nothing has mass or inertia;
-/// [`Error::Unstable`] when the equilibrium is not stable; those of the
-/// equilibrium solve.
-///
-/// # Example
-/// ```
-/// use flexure::dynamics::mechanism::modes;
-/// use flexure::mechanism::{file::from_toml, statics::Settings};
-/// // A sprung arm (k = 2 N·m/rad) carrying 0.5 kg at 0.1 m: ω = √(k / m l²) = 20 rad/s.
-/// let m = from_toml(
-///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
-///      [[body]]\nname = \"arm\"\nmass = 0.5\ncom = [0.1, 0.0]\n",
-/// )
-/// .unwrap();
-/// let w = modes(&m, &Settings::default(), 4).unwrap().omega;
-/// assert!(w.len() == 1 && (w[0] - 20.0).abs() < 1e-12);
-/// ```
-pub fn modes(m: &Mechanism, settings: &Settings, count: usize) -> Result<Modes> {
-    if count == 0 {
-        return Err(Error::invalid("count", count, "must be at least 1"));
-    }
-    let mut sys = MechanismSystem::new(m)?;
-    if !sys.has_inertia() {
-        return Err(Error::invalid(
-            "mass",
-            "none",
-            "no body has mass or inertia and no flexure has a density or mass per length",
-        ));
-    }
-    if m.dof() == 0 {
-        return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can vibrate".into() });
-    }
-    let s = statics::solve(m, settings)?;
-    if !s.stable {
-        return Err(Error::Unstable { what: "modes", load_fraction: s.limit.unwrap_or(1.0) });
-    }
-    let (z, k) = statics::stiffness(m, &s)?;
-    if z.ncols() == 0 {
-        return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can vibrate".into() });
-    }
-    let mass = sys.mass_matrix(&s.q)?;
-    let reduced = z.transpose() * &mass * &z;
-    let mut modes = finite_modes(&k, &reduced, count)?;
-    modes.shapes = &z * &modes.shapes;
-    modes.limit = s.limit;
-    modes.coordinates = s.q.clone();
-    Ok(modes)
 }
