@@ -109,11 +109,6 @@ impl Pose<f64> {
         self.act_turned(self.turn(), r)
     }
 
-    /// [`Pose::rotate`] on components: the inner loops' form.
-    pub(crate) fn rotate_components(&self, v: [f64; 2]) -> [f64; 2] {
-        rotate_turned(self.turn(), v)
-    }
-
     /// $\mathrm{Ad}_g$ in the order $(\omega, v_x, v_y)$:
     /// $\omega^{\prime} = \omega$, $v^{\prime} = R v + \omega\thinspace(y, -x)$.
     ///

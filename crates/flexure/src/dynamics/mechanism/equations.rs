@@ -10,15 +10,15 @@ use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into}
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::{Loads, Mechanism};
 use crate::sincos::cos_sin;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector2};
 
 /// The angular velocity (rad/s), velocity and velocity-product
 /// acceleration ($\ddot q = 0$) of a frame's origin, in the world.
 #[derive(Debug, Clone, Copy, Default)]
 struct Rate {
     omega: f64,
-    velocity: [f64; 2],
-    acceleration: [f64; 2],
+    velocity: Vector2<f64>,
+    acceleration: Vector2<f64>,
 }
 
 /// The equations of motion of a [`Mechanism`] as a [`System`] (module docs):
@@ -63,7 +63,7 @@ pub struct MechanismSystem {
     jt: Vec<f64>,
     zeros: Vec<f64>,
     /// $J_r$ of the flexure being integrated.
-    jr: Vec<[f64; 2]>,
+    jr: Vec<Vector2<f64>>,
     /// The angle, its rate and $(\cos, \sin)$ at every inner node of the
     /// flexure being integrated (the sines and cosines taken four at a time).
     angles: Vec<f64>,
@@ -130,7 +130,7 @@ impl MechanismSystem {
             jy: vec![0.0; n],
             jt: vec![0.0; n],
             zeros: vec![0.0; m.constraints()],
-            jr: vec![[0.0; 2]; largest],
+            jr: vec![Vector2::zeros(); largest],
             angles: vec![0.0; nodes],
             spins: vec![0.0; nodes],
             trig: vec![[0.0; 2]; nodes],
@@ -223,32 +223,29 @@ impl MechanismSystem {
             let parent = self.rates[j.parent];
             let (root, o_p, o_c) = (f.roots[ji], f.bodies[j.parent].origin(), f.bodies[j.child].origin());
             let w = parent.omega;
-            let arm = [root.x - o_p[0], root.y - o_p[1]];
+            let arm = root.origin() - o_p;
             let turn = quarter(arm);
-            let v_a = [parent.velocity[0] + w * turn[0], parent.velocity[1] + w * turn[1]];
-            let a_a = [parent.acceleration[0] - w * w * arm[0], parent.acceleration[1] - w * w * arm[1]];
+            let v_a = parent.velocity + turn * w;
+            let a_a = parent.acceleration - arm * (w * w);
             let k = s.gradient.len();
             let rates = &v[j.offset..j.offset + k];
-            let (mut dphi, mut dp, mut ddp) = (0.0, [0.0; 2], [0.0; 2]);
+            let (mut dphi, mut dp, mut ddp) = (0.0, Vector2::zeros(), Vector2::zeros());
             for (a, &va) in rates.iter().enumerate() {
                 dphi += s.jacobian[(0, a)] * va;
-                dp[0] += s.jacobian[(1, a)] * va;
-                dp[1] += s.jacobian[(2, a)] * va;
+                dp.x += s.jacobian[(1, a)] * va;
+                dp.y += s.jacobian[(2, a)] * va;
                 for (b, &vb) in rates.iter().enumerate() {
-                    ddp[0] += s.hessian[1][(a, b)] * va * vb;
-                    ddp[1] += s.hessian[2][(a, b)] * va * vb;
+                    ddp.x += s.hessian[1][(a, b)] * va * vb;
+                    ddp.y += s.hessian[2][(a, b)] * va * vb;
                 }
             }
-            let p = [o_c[0] - root.x, o_c[1] - root.y];
-            let (rdp, rddp) = (root.rotate_components(dp), root.rotate_components(ddp));
+            let p = o_c - root.origin();
+            let (rdp, rddp) = (root.rotate(&dp), root.rotate(&ddp));
             let (tp, tdp) = (quarter(p), quarter(rdp));
             self.rates[j.child] = Rate {
                 omega: w + dphi,
-                velocity: [v_a[0] + w * tp[0] + rdp[0], v_a[1] + w * tp[1] + rdp[1]],
-                acceleration: [
-                    a_a[0] - w * w * p[0] + 2.0 * w * tdp[0] + rddp[0],
-                    a_a[1] - w * w * p[1] + 2.0 * w * tdp[1] + rddp[1],
-                ],
+                velocity: v_a + tp * w + rdp,
+                acceleration: a_a - p * (w * w) + tdp * (2.0 * w) + rddp,
             };
         }
         let n = m.dof();
@@ -263,7 +260,7 @@ impl MechanismSystem {
                        jt: &[f64],
                        mw: f64,
                        iw: f64,
-                       a: [f64; 2],
+                       a: Vector2<f64>,
                        mass: Option<&mut DMatrix<f64>>| {
             if let Some(mm) = mass {
                 for &c in cols {
@@ -274,7 +271,7 @@ impl MechanismSystem {
                 }
             }
             for &c in cols {
-                h[c] += mw * (jx[c] * a[0] + jy[c] * a[1]);
+                h[c] += mw * (jx[c] * a.x + jy[c] * a.y);
                 gravity_force[c] += mw * (jx[c] * g[0] + jy[c] * g[1]);
             }
         };
@@ -283,15 +280,15 @@ impl MechanismSystem {
             point_into(m, f, *b, body.com, &mut self.point);
             let (w, o) = (self.point.position, f.bodies[*b].origin());
             let r = self.rates[*b];
-            let d = [w[0] - o[0], w[1] - o[1]];
-            let a = [r.acceleration[0] - r.omega * r.omega * d[0], r.acceleration[1] - r.omega * r.omega * d[1]];
+            let d = w - o;
+            let a = r.acceleration - d * (r.omega * r.omega);
             for &c in cols {
                 jt[c] = self.point.jacobian[(0, c)];
                 jx[c] = self.point.jacobian[(1, c)];
                 jy[c] = self.point.jacobian[(2, c)];
             }
             add(cols, jx, jy, jt, body.mass, body.inertia, a, mass.as_deref_mut());
-            gravity_potential -= body.mass * (g[0] * w[0] + g[1] * w[1]);
+            gravity_potential -= body.mass * g.dot(&w.coords);
         }
         for d in &self.distributed {
             let spec = &m.joints[d.joint];
@@ -299,13 +296,13 @@ impl MechanismSystem {
             point_into(m, f, spec.parent, spec.origin.origin(), &mut self.point);
             let root = f.roots[d.joint];
             let rate = self.rates[spec.parent];
-            let arm = [root.x - f.bodies[spec.parent].x, root.y - f.bodies[spec.parent].y];
+            let arm = root.origin() - f.bodies[spec.parent].origin();
             let w = rate.omega;
-            let a_root = [rate.acceleration[0] - w * w * arm[0], rate.acceleration[1] - w * w * arm[1]];
+            let a_root = rate.acceleration - arm * (w * w);
             let (alpha, alpha_dot) = (&q[off..off + k], &v[off..off + k]);
             let jr = &mut self.jr[..k];
-            jr.fill([0.0; 2]);
-            let (mut r, mut acc) = ([0.0; 2], [0.0; 2]);
+            jr.fill(Vector2::zeros());
+            let (mut r, mut acc) = (Vector2::zeros(), Vector2::zeros());
             let nodes = d.inner_weight.len();
             for (node, psi) in d.inner_psi.chunks_exact(k).enumerate() {
                 let (mut phi, mut dphi) = (0.0, 0.0);
@@ -334,50 +331,40 @@ impl MechanismSystem {
                 for (e, (psi, &wt)) in psis.chunks_exact(k).zip(weights).enumerate() {
                     let node = p * d.per_panel + e;
                     let (dphi, [cs, sn]) = (self.spins[node], self.trig[node]);
-                    r[0] += wt * cs;
-                    r[1] += wt * sn;
+                    r.x += wt * cs;
+                    r.y += wt * sn;
                     for (j, &ps) in jr.iter_mut().zip(psi) {
-                        j[0] -= wt * ps * sn;
-                        j[1] += wt * ps * cs;
+                        j.x -= wt * ps * sn;
+                        j.y += wt * ps * cs;
                     }
-                    acc[0] -= wt * dphi * dphi * cs;
-                    acc[1] -= wt * dphi * dphi * sn;
+                    acc.x -= wt * dphi * dphi * cs;
+                    acc.y -= wt * dphi * dphi * sn;
                 }
                 let (mw, iw) = (d.mass[p], d.rotary[p]);
                 if mw == 0.0 && iw == 0.0 {
                     continue;
                 }
-                let mut u = [0.0; 2];
+                let mut u = Vector2::zeros();
                 for (j, &ad) in jr.iter().zip(alpha_dot) {
-                    u[0] += j[0] * ad;
-                    u[1] += j[1] * ad;
+                    u += j * ad;
                 }
                 let er = quarter(r);
                 let eu = quarter(u);
                 c.mass += mw;
-                c.first[0] += mw * r[0];
-                c.first[1] += mw * r[1];
-                c.second += mw * (r[0] * r[0] + r[1] * r[1]) + iw;
-                c.velocity[0] += mw * u[0];
-                c.velocity[1] += mw * u[1];
-                c.acceleration[0] += mw * acc[0];
-                c.acceleration[1] += mw * acc[1];
-                c.turning += mw * (r[0] * u[0] + r[1] * u[1]);
-                c.swinging += mw * (er[0] * acc[0] + er[1] * acc[1]);
+                c.first += r * mw;
+                c.second += mw * r.dot(&r) + iw;
+                c.velocity += u * mw;
+                c.acceleration += acc * mw;
+                c.turning += mw * r.dot(&u);
+                c.swinging += mw * er.dot(&acc);
                 let psi_end = &d.outer_psi[p * k..(p + 1) * k];
                 for i in 0..k {
                     let ji = jr[i];
-                    c.along[i][0] += mw * ji[0];
-                    c.along[i][1] += mw * ji[1];
-                    c.across[i] += mw * (er[0] * ji[0] + er[1] * ji[1]) + iw * psi_end[i];
-                    c.product[i] += mw
-                        * (-w * w * (ji[0] * r[0] + ji[1] * r[1])
-                            + 2.0 * w * (ji[0] * eu[0] + ji[1] * eu[1])
-                            + ji[0] * acc[0]
-                            + ji[1] * acc[1]);
+                    c.along[i] += ji * mw;
+                    c.across[i] += mw * er.dot(&ji) + iw * psi_end[i];
+                    c.product[i] += mw * (-w * w * ji.dot(&r) + 2.0 * w * ji.dot(&eu) + ji.x * acc.x + ji.y * acc.y);
                     for j in i..k {
-                        c.inertia[i * k + j] +=
-                            mw * (ji[0] * jr[j][0] + ji[1] * jr[j][1]) + iw * psi_end[i] * psi_end[j];
+                        c.inertia[i * k + j] += mw * ji.dot(&jr[j]) + iw * psi_end[i] * psi_end[j];
                     }
                 }
             }
@@ -385,14 +372,11 @@ impl MechanismSystem {
                 continue;
             }
             // World forms: R S, its quarter turn, and Σ μ a over the sections.
-            let rs = root.rotate_components(c.first);
+            let rs = root.rotate(&c.first);
             let ers = quarter(rs);
-            let (ru, racc) = (quarter(root.rotate_components(c.velocity)), root.rotate_components(c.acceleration));
-            let sum_a = [
-                c.mass * a_root[0] - w * w * rs[0] + 2.0 * w * ru[0] + racc[0],
-                c.mass * a_root[1] - w * w * rs[1] + 2.0 * w * ru[1] + racc[1],
-            ];
-            let sum_turn_a = ers[0] * a_root[0] + ers[1] * a_root[1] + 2.0 * w * c.turning + c.swinging;
+            let (ru, racc) = (quarter(root.rotate(&c.velocity)), root.rotate(&c.acceleration));
+            let sum_a = a_root * c.mass - rs * (w * w) + ru * (2.0 * w) + racc;
+            let sum_turn_a = ers.dot(&a_root) + 2.0 * w * c.turning + c.swinging;
             let upstream = &d.columns[..d.columns.len() - k];
             for &col in upstream {
                 jt[col] = self.point.jacobian[(0, col)];
@@ -400,26 +384,23 @@ impl MechanismSystem {
                 jy[col] = self.point.jacobian[(2, col)];
             }
             for i in 0..k {
-                let ra = root.rotate_components(c.along[i]);
-                jx[off + i] = ra[0];
-                jy[off + i] = ra[1];
+                let ra = root.rotate(&c.along[i]);
+                jx[off + i] = ra.x;
+                jy[off + i] = ra.y;
             }
             if let Some(mm) = mass.as_deref_mut() {
                 for (b, &cv) in upstream.iter().enumerate() {
-                    let (ov, tv) = ([jx[cv], jy[cv]], jt[cv]);
+                    let (ov, tv) = (Vector2::new(jx[cv], jy[cv]), jt[cv]);
                     for &cu in &upstream[..=b] {
-                        let (ou, tu) = ([jx[cu], jy[cu]], jt[cu]);
-                        let value = c.mass * (ou[0] * ov[0] + ou[1] * ov[1])
-                            + tu * (ers[0] * ov[0] + ers[1] * ov[1])
-                            + tv * (ers[0] * ou[0] + ers[1] * ou[1])
-                            + tu * tv * c.second;
+                        let (ou, tu) = (Vector2::new(jx[cu], jy[cu]), jt[cu]);
+                        let value = c.mass * ou.dot(&ov) + tu * ers.dot(&ov) + tv * ers.dot(&ou) + tu * tv * c.second;
                         mm[(cu, cv)] += value;
                         if cu != cv {
                             mm[(cv, cu)] += value;
                         }
                     }
                     for i in 0..k {
-                        let value = ov[0] * jx[off + i] + ov[1] * jy[off + i] + tv * c.across[i];
+                        let value = ov.x * jx[off + i] + ov.y * jy[off + i] + tv * c.across[i];
                         mm[(cv, off + i)] += value;
                         mm[(off + i, cv)] += value;
                     }
@@ -435,16 +416,15 @@ impl MechanismSystem {
                 }
             }
             for &col in upstream {
-                h[col] += jx[col] * sum_a[0] + jy[col] * sum_a[1] + jt[col] * sum_turn_a;
-                gravity_force[col] +=
-                    c.mass * (jx[col] * g[0] + jy[col] * g[1]) + jt[col] * (ers[0] * g[0] + ers[1] * g[1]);
+                h[col] += jx[col] * sum_a.x + jy[col] * sum_a.y + jt[col] * sum_turn_a;
+                gravity_force[col] += c.mass * (jx[col] * g.x + jy[col] * g.y) + jt[col] * ers.dot(&g);
             }
             for i in 0..k {
-                let ra = [jx[off + i], jy[off + i]];
-                h[off + i] += ra[0] * a_root[0] + ra[1] * a_root[1] + c.product[i];
-                gravity_force[off + i] += ra[0] * g[0] + ra[1] * g[1];
+                let ra = Vector2::new(jx[off + i], jy[off + i]);
+                h[off + i] += ra.dot(&a_root) + c.product[i];
+                gravity_force[off + i] += ra.dot(&g);
             }
-            gravity_potential -= c.mass * (g[0] * root.x + g[1] * root.y) + g[0] * rs[0] + g[1] * rs[1];
+            gravity_potential -= c.mass * g.dot(&root.origin().coords) + g.x * rs.x + g.y * rs.y;
         }
         Pass { gravity_force, gravity_potential }
     }
