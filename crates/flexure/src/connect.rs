@@ -41,9 +41,9 @@ pub struct Connection {
 }
 
 impl Connection {
-    /// The energy error of Eq. 16 against the exact minimum energy $U^*$
-    /// through the same pose: $\eta = U(\alpha^*)/U^* - 1$, not negative
-    /// when $U^*$ is the true minimum (the model's shapes are a subset of
+    /// The energy error of Eq. 16 against the exact minimum energy $U^{\ast}$
+    /// through the same pose: $\eta = U(\alpha^{\ast})/U^{\ast} - 1$, not negative
+    /// when $U^{\ast}$ is the true minimum (the model's shapes are a subset of
     /// the elastica's).
     ///
     /// # Example
