@@ -84,8 +84,24 @@ impl Settings {
         Ok(())
     }
 
+    /// Settings of one tolerance: the integrator's relative and absolute
+    /// tolerance `tolerance` for the answer and the path alike (a speed
+    /// knob: for the rod, $10^{-6}$ puts the tip within about $10^{-6}L$),
+    /// and the solver's defaults.
+    ///
+    /// # Example
+    /// ```
+    /// let s = flexure::reference::elastica::Settings::with_tolerance(1e-6);
+    /// assert_eq!(s.ode.relative, 1e-6);
+    /// assert!(flexure::reference::rod::Settings::with_tolerance(0.0).validate().is_err());
+    /// ```
+    pub fn with_tolerance(tolerance: f64) -> Self {
+        let ode = Tolerance { relative: tolerance, absolute: tolerance, ..Tolerance::default() };
+        Self { ode, solver: solver::Settings::default(), path_tolerance: 0.0 }
+    }
+
     /// The integrator's tolerance along the loading path.
-    pub(super) fn path_ode(&self) -> Tolerance {
+    pub(crate) fn path_ode(&self) -> Tolerance {
         let p = self.path_tolerance;
         Tolerance { relative: self.ode.relative.max(p), absolute: self.ode.absolute.max(p), ..self.ode }
     }

@@ -81,7 +81,6 @@ pub use sections::sections;
 
 use crate::error::{Error, Result};
 use crate::limit::StabilityLimit;
-use crate::ode::Tolerance;
 use crate::section::SpatialSection;
 use crate::solver::{self, Problem};
 use crate::spatial::SpatialLoad;
@@ -188,64 +187,12 @@ impl TipWrench {
     }
 }
 
-/// Settings of [`deflect`] and [`stability_limit`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// The integrator's tolerance of the answer (the end state is refined to it).
-    pub ode: Tolerance,
-    /// Newton and continuation settings. The residual is the moment
-    /// mismatch at the nodes and the tip, relative to $k + |M| + L|F|$ with
-    /// $k = \min(GJ, EI_y, EI_z)/L$ at mid-length.
-    pub solver: solver::Settings,
-    /// The integrator's tolerance (relative and absolute) along the loading
-    /// path, as for the elastica ([`crate::reference::elastica::Settings::path_tolerance`]);
-    /// zero follows the path at `ode`.
-    pub path_tolerance: f64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Self {
-            ode: Tolerance::default(),
-            solver: solver::Settings::default(),
-            path_tolerance: crate::reference::elastica::PATH_TOLERANCE,
-        }
-    }
-}
-
-impl Settings {
-    /// Settings of one tolerance: the integrator's relative and absolute
-    /// tolerance `tolerance` for the answer and the path alike (a speed
-    /// knob: $10^{-6}$ puts the tip within about $10^{-6}L$), and the
-    /// solver's defaults.
-    ///
-    /// # Example
-    /// ```
-    /// let s = flexure::reference::rod::Settings::with_tolerance(1e-6);
-    /// assert_eq!(s.ode.relative, 1e-6);
-    /// assert!(flexure::reference::rod::Settings::with_tolerance(0.0).validate().is_err());
-    /// ```
-    pub fn with_tolerance(tolerance: f64) -> Self {
-        let ode = Tolerance { relative: tolerance, absolute: tolerance, ..Tolerance::default() };
-        Self { ode, solver: solver::Settings::default(), path_tolerance: 0.0 }
-    }
-
-    /// Checks every setting, naming the first bad one.
-    pub fn validate(&self) -> Result<()> {
-        self.ode.validate()?;
-        self.solver.validate()?;
-        let p = self.path_tolerance;
-        if !(p.is_finite() && (0.0..=1e-4).contains(&p)) {
-            return Err(Error::invalid("path_tolerance", p, "must be a finite number from 0 to 1e-4"));
-        }
-        Ok(())
-    }
-
-    fn path_ode(&self) -> Tolerance {
-        let p = self.path_tolerance;
-        Tolerance { relative: self.ode.relative.max(p), absolute: self.ode.absolute.max(p), ..self.ode }
-    }
-}
+/// Settings of [`deflect`] and [`stability_limit`]: the elastica's
+/// ([`crate::reference::elastica::Settings`]), one type for both exact
+/// references. The residual is the moment mismatch at the nodes and the
+/// tip, relative to $k + |M| + L|F|$ with $k = \min(GJ, EI_y, EI_z)/L$ at
+/// mid-length.
+pub use crate::reference::elastica::Settings;
 
 /// One cross-section of a solved rod.
 #[derive(Debug, Clone, Copy, PartialEq)]
