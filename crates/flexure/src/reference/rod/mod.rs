@@ -187,11 +187,7 @@ impl TipWrench {
     }
 }
 
-/// Settings of [`deflect`] and [`stability_limit`]: the elastica's
-/// ([`crate::reference::elastica::Settings`]), one type for both exact
-/// references. The residual is the moment mismatch at the nodes and the
-/// tip, relative to $k + |M| + L|F|$ with $k = \min(GJ, EI_y, EI_z)/L$ at
-/// mid-length.
+// Settings of `deflect` and `stability_limit`: the elastica's, one type for both exact references.
 pub use crate::reference::elastica::Settings;
 
 /// One cross-section of a solved rod.
@@ -232,6 +228,10 @@ pub struct Solution {
 }
 
 /// The exact rod under the dead tip wrench `load`, followed from rest.
+///
+/// The solver's residual is the moment mismatch at the nodes and the tip,
+/// relative to $k + |M| + L|F|$ with $k = \min(GJ, EI_y, EI_z)/L$ at
+/// mid-length; `settings` are the elastica's ([`Settings`]).
 ///
 /// Pseudo-arclength continuation in the load factor ([`solver::continuation`])
 /// from the rest shape, integrated to `settings.path_tolerance`, and the end
