@@ -22,11 +22,11 @@
 //! $\partial_a\partial_bp = R\thinspace(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$, symmetric.
 
 use super::SpatialFlexure;
-use super::magnus::{Jet1, Jet2, exponent, exponent_value};
+use super::magnus::{Jet1, Jet2, exponent, exponent_value, exponential};
 use super::step::{Step, Tangent};
 use crate::kinematics::Level;
 use crate::scalar::Scalar;
-use crate::space::{bracket, exp_coefficients, exp_parts};
+use crate::space::bracket;
 use nalgebra::{DMatrix, Isometry3, Matrix3, Vector3, Vector6};
 
 /// The kinematics of one spatial flexure, reused across evaluations (the Data).
@@ -112,19 +112,25 @@ fn node_twists<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], k: usize) -> [V
     let orders = flexure.orders();
     let mut xi = [Vector6::zeros(); 3];
     for (j, x) in xi.iter_mut().enumerate() {
-        let row = &shapes[j * w..(j + 1) * w];
-        let mut start = 0;
-        for c in 0..3 {
-            let mut sum = T::zero();
-            for (&p, &a) in row[..orders[c]].iter().zip(&alpha[start..start + orders[c]]) {
-                sum += T::c(p) * a;
-            }
-            x[c] = sum;
-            start += orders[c];
-        }
+        let u = row_curvature(&shapes[j * w..(j + 1) * w], orders, alpha);
+        x.fixed_rows_mut::<3>(0).copy_from(&u);
         x[3] = T::one();
     }
     xi
+}
+
+/// The curvature $u$ of `alpha` at a point whose shape values $\tilde P_i/L$ are `row`.
+#[inline(always)]
+pub(super) fn row_curvature<T: Scalar>(row: &[f64], orders: [usize; 3], alpha: &[T]) -> Vector3<T> {
+    let mut start = 0;
+    Vector3::from_fn(|c, _| {
+        let mut sum = T::zero();
+        for (&p, &a) in row[..orders[c]].iter().zip(&alpha[start..start + orders[c]]) {
+            sum += T::c(p) * a;
+        }
+        start += orders[c];
+        sum
+    })
 }
 
 /// The nodal twists' derivatives along coordinate `a`: $(\partial_a u(s_j), 0)$.
@@ -209,9 +215,7 @@ fn pose_with<T: Scalar>(
     let mut r = Matrix3::identity();
     let mut p = Vector3::zeros();
     for k in 0..flexure.subintervals() {
-        let (w, v) = exponent_value(&curvatures(flexure, alpha, k), h);
-        let c = exp_coefficients(w.norm_squared(), 0);
-        let (rk, pk) = exp_parts(&w, &v, &c.f);
+        let (rk, pk) = exponential(&curvatures(flexure, alpha, k), h);
         p += r * pk;
         r *= rk;
     }

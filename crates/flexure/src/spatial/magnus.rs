@@ -22,8 +22,8 @@
 //! value alone, written out.
 
 use crate::scalar::Scalar;
-use crate::space::bracket;
-use nalgebra::{Vector3, Vector6};
+use crate::space::{bracket, exp_coefficients, exp_parts};
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// The Gauss nodes on $[0, 1]$: $\frac12 \mp \frac{\sqrt{15}}{10}$ and $\frac12$.
 pub(crate) const NODES: [f64; 3] = [0.5 - 0.387_298_334_620_741_7, 0.5, 0.5 + 0.387_298_334_620_741_7];
@@ -134,4 +134,12 @@ pub(crate) fn exponent_value<T: Scalar>(u: &[Vector3<T>; 3], h: f64) -> (Vector3
     let omega = w1 + w3 * T::c(1.0 / 12.0) + rw.cross(&lw) * k;
     let v = Vector3::new(ht, T::zero(), T::zero()) + (rw.cross(&lv) - lw.cross(&c2v)) * k;
     (omega, v)
+}
+
+/// One Magnus step of length `h` from the nodal curvatures `u`: $\exp\Omega$ as $(R, p)$.
+#[inline(always)]
+pub(crate) fn exponential<T: Scalar>(u: &[Vector3<T>; 3], h: f64) -> (Matrix3<T>, Vector3<T>) {
+    let (w, v) = exponent_value(u, h);
+    let c = exp_coefficients(w.norm_squared(), 0);
+    exp_parts(&w, &v, &c.f)
 }

@@ -15,9 +15,8 @@
 //! accurate as the tip.
 
 use super::SpatialFlexure;
-use super::magnus::{NODES, exponent_value};
+use super::magnus::{NODES, exponential};
 use crate::error::{Error, Result};
-use crate::space::{exp_coefficients, exp_parts};
 use nalgebra::{Matrix3, Vector3};
 
 /// The most sections [`shape`] and [`shape_at`] give: as many as a
@@ -140,10 +139,7 @@ pub fn shape_at(flexure: &SpatialFlexure, alpha: &[f64], at: &[f64]) -> Result<V
 /// One Magnus step from `start` over `length` (m): $\exp\Omega$ as $(R, p)$,
 /// with the curvature at the step's three Gauss nodes.
 fn step(flexure: &SpatialFlexure, alpha: &[f64], start: f64, length: f64) -> (Matrix3<f64>, Vector3<f64>) {
-    let u = NODES.map(|t| Vector3::from(flexure.curvature(alpha, start + t * length)));
-    let (w, v) = exponent_value(&u, length);
-    let c = exp_coefficients(w.norm_squared(), 0);
-    exp_parts(&w, &v, &c.f)
+    exponential(&NODES.map(|t| Vector3::from(flexure.curvature(alpha, start + t * length))), length)
 }
 
 /// Checks that `at` holds 1 to [`MAX_SHAPE_POINTS`] finite arc lengths in

@@ -26,11 +26,11 @@
 //! (`tests/spatial_statics.rs` measures it).
 
 use super::SpatialFlexure;
-use super::magnus::{NODES, exponent_value};
+use super::kinematics::row_curvature as curvature;
+use super::magnus::{NODES, exponential as step};
 use crate::basis;
 use crate::error::Result;
 use crate::scalar::Scalar;
-use crate::space::{exp_coefficients, exp_parts};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
 /// The three-point Gauss weights on $[0, 1]$, for [`NODES`].
@@ -104,6 +104,8 @@ fn running(at: [f64; POINTS]) -> [[f64; POINTS]; 3] {
 pub(crate) struct Work<T: Scalar> {
     rotations: Vec<Matrix3<T>>,
     positions: Vec<Vector3<T>>,
+    /// The section moment $m$ (root frame) at each point; kept at the Gauss nodes.
+    loads: Vec<Vector3<T>>,
     /// $\omega_b$ and $\partial_bp$ at each point, `[point * n + b]`.
     omega: Vec<Vector3<T>>,
     displacement: Vec<Vector3<T>>,
@@ -118,26 +120,13 @@ impl<T: Scalar> Work<T> {
         Work {
             rotations: vec![Matrix3::identity(); p],
             positions: vec![Vector3::zeros(); p],
+            loads: vec![Vector3::zeros(); p],
             omega: vec![Vector3::zeros(); p * n],
             displacement: vec![Vector3::zeros(); p * n],
             force: vec![T::zero(); n],
             derivative: vec![T::zero(); n * n],
         }
     }
-}
-
-/// The curvature $u$ of `alpha` from a row of shape values.
-#[inline(always)]
-fn curvature<T: Scalar>(row: &[f64], orders: [usize; 3], alpha: &[T]) -> Vector3<T> {
-    let mut start = 0;
-    Vector3::from_fn(|c, _| {
-        let mut sum = T::zero();
-        for (&p, &a) in row[..orders[c]].iter().zip(&alpha[start..start + orders[c]]) {
-            sum += T::c(p) * a;
-        }
-        start += orders[c];
-        sum
-    })
 }
 
 /// Fills `work.force` with $Q$ (module docs) of the tip wrench
@@ -151,7 +140,7 @@ pub(crate) fn evaluate<T: Scalar>(
     derivative: bool,
     work: &mut Work<T>,
 ) {
-    let (m, n, w) = (flexure.subintervals(), flexure.coordinates(), quadrature.width);
+    let (m, w) = (flexure.subintervals(), quadrature.width);
     let orders = flexure.orders();
     let h = flexure.length() / m as f64;
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
@@ -181,6 +170,7 @@ pub(crate) fn evaluate<T: Scalar>(
             let point = k * POINTS + 1 + j;
             let weight = T::c(WEIGHTS[j] * h);
             let load = moment + (tip - work.positions[point]).cross(&force);
+            work.loads[point] = load;
             let turned = work.rotations[point].tr_mul(&load);
             let row = &quadrature.points[point * w..(point + 1) * w];
             for (c, &(start, len)) in quadrature.blocks.iter().enumerate() {
@@ -193,17 +183,8 @@ pub(crate) fn evaluate<T: Scalar>(
     }
     if derivative {
         running_integrals(flexure, quadrature, work);
-        load_derivative(flexure, quadrature, (moment, force), work);
+        load_derivative(flexure, quadrature, force, work);
     }
-    debug_assert_eq!(work.force.len(), n);
-}
-
-/// One Magnus step of length `h` from the nodal curvatures `u`: its $(R, p)$.
-#[inline(always)]
-fn step<T: Scalar>(u: &[Vector3<T>; 3], h: f64) -> (Matrix3<T>, Vector3<T>) {
-    let (w, v) = exponent_value(u, h);
-    let c = exp_coefficients(w.norm_squared(), 0);
-    exp_parts(&w, &v, &c.f)
 }
 
 /// $\omega_b$ and $\partial_bp$ at every point, from the frames in `work`.
@@ -223,15 +204,14 @@ fn running_integrals<T: Scalar>(flexure: &SpatialFlexure, quadrature: &Quadratur
             for j in 0..3 {
                 omegas[1 + j] = omega + weighted(&quadrature.running[j], &turn);
             }
-            omegas[4] = omega + (turn[1] * T::c(WEIGHTS[0]) + turn[2] * T::c(WEIGHTS[1]) + turn[3] * T::c(WEIGHTS[2]));
+            omegas[4] = omega + gauss(&turn);
             let along: [Vector3<T>; POINTS] =
                 std::array::from_fn(|q| omegas[q].cross(&work.rotations[base + q].column(0).into_owned()) * T::c(h));
             let mut moves = [moved; POINTS];
             for j in 0..3 {
                 moves[1 + j] = moved + weighted(&quadrature.running[j], &along);
             }
-            moves[4] =
-                moved + (along[1] * T::c(WEIGHTS[0]) + along[2] * T::c(WEIGHTS[1]) + along[3] * T::c(WEIGHTS[2]));
+            moves[4] = moved + gauss(&along);
             for q in 0..POINTS {
                 work.omega[(base + q) * n + b] = omegas[q];
                 work.displacement[(base + q) * n + b] = moves[q];
@@ -239,6 +219,12 @@ fn running_integrals<T: Scalar>(flexure: &SpatialFlexure, quadrature: &Quadratur
             (omega, moved) = (omegas[4], moves[4]);
         }
     }
+}
+
+/// The three-point Gauss rule on a subinterval of the five `values` (its nodes are the middle three).
+#[inline(always)]
+fn gauss<T: Scalar>(values: &[Vector3<T>; POINTS]) -> Vector3<T> {
+    values[1] * T::c(WEIGHTS[0]) + values[2] * T::c(WEIGHTS[1]) + values[3] * T::c(WEIGHTS[2])
 }
 
 #[inline(always)]
@@ -250,23 +236,23 @@ fn weighted<T: Scalar>(weights: &[f64; POINTS], values: &[Vector3<T>; POINTS]) -
     sum
 }
 
-/// $\partial_bQ_a$ (module docs) into `work.derivative`, from the running integrals.
+/// $\partial_bQ_a$ (module docs) into `work.derivative`, from the section
+/// moments and running integrals in `work` and the tip `force`.
 fn load_derivative<T: Scalar>(
     flexure: &SpatialFlexure,
     quadrature: &Quadrature,
-    (moment, force): (Vector3<T>, Vector3<T>),
+    force: Vector3<T>,
     work: &mut Work<T>,
 ) {
     let (m, n, w) = (flexure.subintervals(), flexure.coordinates(), quadrature.width);
     let h = flexure.length() / m as f64;
     let last = m * POINTS - 1;
-    let tip = work.positions[last];
     work.derivative.fill(T::zero());
     for k in 0..m {
         for j in 0..3 {
             let point = k * POINTS + 1 + j;
             let weight = T::c(WEIGHTS[j] * h);
-            let load = moment + (tip - work.positions[point]).cross(&force);
+            let load = work.loads[point];
             let rot = &work.rotations[point];
             let d: [Vector3<T>; 3] = std::array::from_fn(|c| rot.column(c).into_owned());
             let turning: [Vector3<T>; 3] = std::array::from_fn(|c| d[c].cross(&load));
