@@ -263,10 +263,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
     let (fl, rest) = (f.clone(), f.rest().to_vec());
     let exact_rod = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| fl.curvature(&rest, s))?;
     let exact = rod::deflect(&exact_rod, &load, &Default::default())?;
-    let turn = r.tr_mul(&exact.rotation);
-    let angle = (0.5
-        * Vector3::new(turn[(2, 1)] - turn[(1, 2)], turn[(0, 2)] - turn[(2, 0)], turn[(1, 0)] - turn[(0, 1)]).norm())
-    .atan2(0.5 * (turn.trace() - 1.0));
+    let angle = flexure::space::rotation_angle(&r, &exact.rotation);
     let off = (p - exact.position).norm();
     let exact_shape = match model.get("shape") {
         Some(m) => Some(rod_shape(&exact_rod, &load, &exact, m)?),

@@ -15,8 +15,8 @@
 use super::{Accuracy, ErrorEstimate};
 use crate::error::Result;
 use crate::joint::MAX_ORDER;
+use crate::space::rotation_angle;
 use crate::spatial::{self as spatial_flexure, SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
-use nalgebra::{Matrix3, Vector3};
 
 /// The reference model for the answer `alpha` of `flexure`: orders raised
 /// to $\bar n_c = \max(2n_c, n_c + 3)$, and subintervals
@@ -60,14 +60,6 @@ pub fn padded(flexure: &SpatialFlexure, alpha: &[f64], orders: [usize; 3]) -> Ve
         start += n;
     }
     out
-}
-
-/// The rotation angle (rad) between two rotations, $\lvert\log(R_a^TR_b)\rvert$.
-fn angle_between(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
-    let r = a.tr_mul(b);
-    // Robust for angles near 0 and π: atan2 of |axis part| and the cosine.
-    let axis = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
-    (0.5 * axis.norm()).atan2(0.5 * (r.trace() - 1.0))
 }
 
 /// The largest change of the body curvature from rest, $\max_s\lvert u(s) - u_0(s)\rvert$ (1/m), sampled.
@@ -118,7 +110,7 @@ pub fn deflect_error(
     let (ra, pa) = spatial_flexure::pose_root_tip(flexure, alpha);
     let (rb, pb) = spatial_flexure::pose_root_tip(&reference, &exact);
     let position = (pa - pb).norm();
-    let angle = angle_between(&ra, &rb);
+    let angle = rotation_angle(&ra, &rb);
     let (model_peak, exact_peak) = (peak_curvature(flexure, alpha), peak_curvature(&reference, &exact));
     let curvature = (model_peak - exact_peak).abs();
     Ok(ErrorEstimate {

@@ -29,8 +29,8 @@ mod wrench;
 pub use planar::Planar;
 pub use pose::Pose;
 pub(crate) use pose::rotate_turned;
-pub use spatial::Spatial;
 pub(crate) use spatial::{ExpCoefficients, bracket, exp_coefficients, exp_parts, isometry};
+pub use spatial::{Spatial, rotation_angle};
 pub use twist::Twist;
 pub use wrench::{MAX_LOAD, Wrench};
 

@@ -322,6 +322,22 @@ impl Space for Spatial {
     }
 }
 
+/// The angle (rad) between two rotations, $\lvert\log(R_a^TR_b)\rvert$ in $[0, \pi]$.
+///
+/// # Example
+/// ```
+/// use nalgebra::{Rotation3, Vector3};
+/// let a = Rotation3::from_axis_angle(&Vector3::z_axis(), 0.3).into_inner();
+/// let b = Rotation3::from_axis_angle(&Vector3::z_axis(), -2.9).into_inner();
+/// assert!((flexure::space::rotation_angle(&a, &b) - 3.2f64.min(2.0 * std::f64::consts::PI - 3.2)).abs() < 1e-14);
+/// ```
+pub fn rotation_angle(a: &Matrix3<f64>, b: &Matrix3<f64>) -> f64 {
+    let r = a.tr_mul(b);
+    // Robust for angles near 0 and π: atan2 of |axis part| and the cosine.
+    let axis = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    (0.5 * axis.norm()).atan2(0.5 * (r.trace() - 1.0))
+}
+
 /// The rotation matrix and translation of an isometry, and back.
 pub(crate) fn isometry(r: &Matrix3<f64>, p: &Vector3<f64>) -> Isometry3<f64> {
     Isometry3::from_parts(Translation3::from(*p), quaternion(r))
