@@ -59,10 +59,17 @@ pub fn energy_gradient<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [T])
 /// a gradient of their own without a scratch buffer.
 #[inline]
 pub fn energy_gradient_entry<T: Scalar>(flexure: &Flexure, alpha: &[T], i: usize) -> T {
+    offset_row(flexure.stiffness_matrix(), flexure.rest(), alpha, i)
+}
+
+/// Row $i$ of $K(\alpha-\kappa)$ for the row-major $n\times n$ `stiffness`
+/// and the rest `rest`, skipping zeros (the spatial flexure's blocks).
+#[inline]
+pub(crate) fn offset_row<T: Scalar>(stiffness: &[f64], rest: &[f64], alpha: &[T], i: usize) -> T {
     let n = alpha.len();
-    let row = &flexure.stiffness_matrix()[i * n..(i + 1) * n];
+    let row = &stiffness[i * n..(i + 1) * n];
     let mut g = T::zero();
-    for ((&k, &a), &r) in row.iter().zip(alpha).zip(flexure.rest()) {
+    for ((&k, &a), &r) in row.iter().zip(alpha).zip(rest) {
         if k != 0.0 {
             g += T::c(k) * (a - T::c(r));
         }

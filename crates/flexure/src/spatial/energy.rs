@@ -51,13 +51,5 @@ pub fn energy_gradient<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], out: &m
 
 /// Row $i$ of $K(\alpha-\kappa)$, skipping the block-diagonal zeros.
 fn gradient_entry<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], i: usize) -> T {
-    let n = alpha.len();
-    let row = &flexure.stiffness_matrix()[i * n..(i + 1) * n];
-    let mut g = T::zero();
-    for ((&k, &a), &r) in row.iter().zip(alpha).zip(flexure.rest()) {
-        if k != 0.0 {
-            g += T::c(k) * (a - T::c(r));
-        }
-    }
-    g
+    crate::energy::offset_row(flexure.stiffness_matrix(), flexure.rest(), alpha, i)
 }
