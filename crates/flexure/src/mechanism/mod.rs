@@ -15,6 +15,7 @@ pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
 pub mod schedule;
+pub mod spatial;
 pub mod statics;
 pub mod sweep;
 mod tree;

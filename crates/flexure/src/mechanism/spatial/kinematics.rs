@@ -1,0 +1,271 @@
+//! Body frames, and Jacobians and Hessians of points and directions fixed
+//! in bodies, chained through the tree in SE(3).
+//!
+//! Coordinate $a$ of joint $j$ moves everything beyond the joint by the
+//! world twist $(\omega_a, v_a)$: $\omega_a = R_A\thinspace S^{\omega}_a$ and
+//! $v_a = R_A\thinspace S^{p}_a$, the joint's motion subspace
+//! ([`crate::mechanism::JointState::jacobian`]) turned by its root frame $A$,
+//! $v_a$ the velocity of its output origin $o_j$. A vector $x$ fixed in a
+//! body beyond the joint, a point ($\epsilon = 1$) or a direction
+//! ($\epsilon = 0$), moves by
+//! $$\partial_a x = \epsilon\thinspace v_a + \omega_a\times r,\qquad r = x - \epsilon\thinspace o_j .$$
+//! Its second derivatives: for $b$ in a joint upstream of $a$'s,
+//! $\partial_{ab}x = \omega_b\times\partial_a x$ (the whole of joint $j$'s
+//! motion turns with $b$; the Jacobi identity folds the terms); within one
+//! joint,
+//! $$\partial_{ab}x = \epsilon R_A H^{p}_{ab} + (R_A H^{\omega}_{ab})\times r + \omega_a\times(\omega_b\times r),$$
+//! with $H$ the derivative of the motion subspace
+//! ([`crate::mechanism::JointState::hessian`]). A body's rotation moves by
+//! $\partial_a R = \hat\omega_a R$, and $\partial_b\omega_a$ is $\omega_b\times\omega_a$
+//! upstream, $R_A H^{\omega}_{ab}$ within the joint and zero downstream. As in
+//! the plane, one point costs one pass along its path.
+
+use super::SpatialMechanism;
+use crate::mechanism::joints::JointState;
+use crate::space::Spatial;
+use nalgebra::{DMatrix, Isometry3, Matrix3, Matrix3xX, Point3, Vector3};
+
+/// Every frame of the mechanism at one configuration (the Data).
+#[derive(Debug, Clone)]
+pub struct SpatialFrames {
+    /// Body frames in the world (`pose_world_body`); index 0 is the ground.
+    pub bodies: Vec<Isometry3<f64>>,
+    /// Each joint's root frame in the world (`pose_world_root`).
+    pub roots: Vec<Isometry3<f64>>,
+    /// Each joint's pose, derivatives and energy.
+    pub joints: Vec<JointState<Spatial>>,
+    /// The coordinates $q$ these frames were evaluated at.
+    pub coordinates: Vec<f64>,
+    /// $\omega_a$ of every coordinate, in the world ($3\times n$).
+    pub omega: Matrix3xX<f64>,
+    /// $v_a$ of every coordinate: its joint's output origin's velocity ($3\times n$).
+    pub velocity: Matrix3xX<f64>,
+    /// The rotation matrix of each body frame, then of each joint's root frame.
+    rotations: Vec<Matrix3<f64>>,
+}
+
+impl SpatialFrames {
+    /// Buffers for the frames of `m`.
+    pub fn new(m: &SpatialMechanism) -> Self {
+        let n = m.dof();
+        SpatialFrames {
+            bodies: vec![Isometry3::identity(); m.bodies.len()],
+            roots: vec![Isometry3::identity(); m.joints.len()],
+            joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
+            coordinates: vec![0.0; n],
+            omega: Matrix3xX::zeros(n),
+            velocity: Matrix3xX::zeros(n),
+            rotations: vec![Matrix3::identity(); m.bodies.len() + m.joints.len()],
+        }
+    }
+
+    /// The rotation matrix of body `b` in the world.
+    pub fn body_rotation(&self, b: usize) -> &Matrix3<f64> {
+        &self.rotations[b]
+    }
+
+    fn root_rotation(&self, j: usize) -> &Matrix3<f64> {
+        &self.rotations[self.bodies.len() + j]
+    }
+
+    /// Where joint `j`'s output origin is: the origin of its child body.
+    fn output_origin(&self, m: &SpatialMechanism, j: usize) -> Vector3<f64> {
+        self.bodies[m.joints[j].child].translation.vector
+    }
+}
+
+/// Frames at coordinates `q`, parents before children.
+pub fn frames(m: &SpatialMechanism, q: &[f64]) -> SpatialFrames {
+    let mut f = SpatialFrames::new(m);
+    frames_into(m, q, &mut f);
+    f
+}
+
+/// [`frames`] into the buffers `f` (made by [`SpatialFrames::new`] for `m`), without allocating.
+pub fn frames_into(m: &SpatialMechanism, q: &[f64], f: &mut SpatialFrames) {
+    f.coordinates.copy_from_slice(q);
+    let nb = m.bodies.len();
+    for (i, j) in m.joints.iter().enumerate() {
+        let joint = j.kind.joint();
+        let k = joint.dof();
+        let state = &mut f.joints[i];
+        joint.evaluate_into(&q[j.offset..j.offset + k], state);
+        let root = f.bodies[j.parent] * j.origin;
+        let rotation = root.rotation.to_rotation_matrix().into_inner();
+        let child = root * state.pose;
+        for a in 0..k {
+            let s = &state.jacobian;
+            let w = rotation * Vector3::new(s[(0, a)], s[(1, a)], s[(2, a)]);
+            let v = rotation * Vector3::new(s[(3, a)], s[(4, a)], s[(5, a)]);
+            f.omega.set_column(j.offset + a, &w);
+            f.velocity.set_column(j.offset + a, &v);
+        }
+        f.rotations[nb + i] = rotation;
+        f.rotations[j.child] = child.rotation.to_rotation_matrix().into_inner();
+        f.bodies[j.child] = child;
+        f.roots[i] = root;
+    }
+}
+
+/// A point or a direction fixed in a body: its world value and Jacobian,
+/// with the joints on its path (the Data of [`attach_into`]).
+#[derive(Debug, Clone)]
+pub struct Attached {
+    /// The world position (a point) or direction.
+    pub value: Vector3<f64>,
+    /// $\partial x/\partial q$, $3\times n$; zero off the path.
+    pub jacobian: Matrix3xX<f64>,
+    /// A point (it translates with the body), or a direction (it only turns).
+    pub point: bool,
+    /// The joints on the path, from the body down to the ground.
+    path: Vec<usize>,
+}
+
+impl Attached {
+    /// Buffers for a point or direction of `m`.
+    pub fn new(m: &SpatialMechanism) -> Self {
+        Attached {
+            value: Vector3::zeros(),
+            jacobian: Matrix3xX::zeros(m.dof()),
+            point: true,
+            path: Vec::with_capacity(m.joints.len()),
+        }
+    }
+
+    /// The joints on its path, from the body down to the ground.
+    pub fn path(&self) -> &[usize] {
+        &self.path
+    }
+}
+
+/// World value and Jacobian of `local` (in the frame of `body`; a point
+/// when `point`, else a direction) into `out`, in one pass from the body
+/// down to the ground.
+pub fn attach_into(m: &SpatialMechanism, f: &SpatialFrames, body: usize, local: Vector3<f64>, point: bool, out: &mut Attached) {
+    let value = if point { f.bodies[body] * Point3::from(local) } else { Point3::from(f.body_rotation(body) * local) };
+    for &j in &out.path {
+        let (o, k) = (m.joints[j].offset, f.joints[j].gradient.len());
+        out.jacobian.columns_mut(o, k).fill(0.0);
+    }
+    out.path.clear();
+    out.value = value.coords;
+    out.point = point;
+    let mut b = body;
+    while let Some(j) = m.parent_joint(b) {
+        let spec = &m.joints[j];
+        let r = if point { out.value - f.output_origin(m, j) } else { out.value };
+        for c in spec.offset..spec.offset + f.joints[j].gradient.len() {
+            let mut d = f.omega.column(c).cross(&r);
+            if point {
+                d += f.velocity.column(c);
+            }
+            out.jacobian.set_column(c, &d);
+        }
+        out.path.push(j);
+        b = spec.parent;
+    }
+}
+
+/// [`attach_into`] in fresh buffers.
+pub fn attach(m: &SpatialMechanism, f: &SpatialFrames, body: usize, local: Vector3<f64>, point: bool) -> Attached {
+    let mut out = Attached::new(m);
+    attach_into(m, f, body, local, point, &mut out);
+    out
+}
+
+/// Component $c$ of $\partial_b S_a$ of joint `j` turned into the world:
+/// $R_A H_{ab}$ for the angular ($c < 3$) or the linear part.
+fn turned_hessian(f: &SpatialFrames, j: usize, linear: bool, a: usize, b: usize) -> Vector3<f64> {
+    let h = &f.joints[j].hessian;
+    let o = if linear { 3 } else { 0 };
+    f.root_rotation(j) * Vector3::new(h[o][(a, b)], h[o + 1][(a, b)], h[o + 2][(a, b)])
+}
+
+/// Adds $\sum_c u_c\nabla^2 x_c$ of the vector in `x` (from [`attach_into`])
+/// to `h`, entries on its path only (see the module docs).
+pub fn add_attached_hessian(m: &SpatialMechanism, f: &SpatialFrames, x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>) {
+    if *u == Vector3::zeros() {
+        return;
+    }
+    let mut add = |r: usize, c: usize, v: f64| {
+        h[(r, c)] += v;
+        if r != c {
+            h[(c, r)] += v;
+        }
+    };
+    for (down, &ja) in x.path.iter().enumerate() {
+        let oa = m.joints[ja].offset;
+        let k = f.joints[ja].gradient.len();
+        let r = if x.point { x.value - f.output_origin(m, ja) } else { x.value };
+        for a in 0..k {
+            let wa = f.omega.column(oa + a).into_owned();
+            for b in a..k {
+                let wb = f.omega.column(oa + b);
+                let mut d = turned_hessian(f, ja, false, a, b).cross(&r) + wa.cross(&wb.cross(&r));
+                if x.point {
+                    d += turned_hessian(f, ja, true, a, b);
+                }
+                add(oa + a, oa + b, u.dot(&d));
+            }
+        }
+        // With each joint upstream: ω_b × ∂_a x.
+        for &jb in &x.path[down + 1..] {
+            let ob = m.joints[jb].offset;
+            for b in 0..f.joints[jb].gradient.len() {
+                let uxw = f.omega.column(ob + b).cross(u);
+                for a in 0..k {
+                    // u·(ω_b × J_a) = J_a·(u × ω_b) = −J_a·(ω_b × u).
+                    add(oa + a, ob + b, -x.jacobian.column(oa + a).dot(&uxw));
+                }
+            }
+        }
+    }
+}
+
+/// Adds $\partial_b(\mu\cdot\omega_a)$ at $(a, b)$ to `k`, for body `body`'s
+/// angular velocity $\sum_a\omega_a\dot q_a$ and a vector $\mu$ fixed in the
+/// world (a dead moment's generalized force $Q_a = \mu\cdot\omega_a$): not
+/// symmetric, since a moment fixed in space has no potential.
+pub fn add_rotation_derivative(m: &SpatialMechanism, f: &SpatialFrames, body: usize, mu: &Vector3<f64>, k: &mut DMatrix<f64>) {
+    if *mu == Vector3::zeros() {
+        return;
+    }
+    let path = m.path(body);
+    for (i, &ja) in path.iter().enumerate() {
+        let oa = m.joints[ja].offset;
+        let na = f.joints[ja].gradient.len();
+        for a in 0..na {
+            for b in 0..na {
+                k[(oa + a, oa + b)] += mu.dot(&turned_hessian(f, ja, false, a, b));
+            }
+            let wa = f.omega.column(oa + a);
+            for &jb in &path[..i] {
+                let ob = m.joints[jb].offset;
+                for b in 0..f.joints[jb].gradient.len() {
+                    k[(oa + a, ob + b)] += mu.dot(&f.omega.column(ob + b).cross(&wa));
+                }
+            }
+        }
+    }
+}
+
+/// The largest rotation (rad) between configurations `a` and `b` of any
+/// body, or inside a joint (a flexure's sections relative to its root),
+/// and a slider's travel over the mechanism's size: what bounds a
+/// continuation or integration step. `buffers` holds the frames at `a` and `b`.
+pub fn distance(m: &SpatialMechanism, a: &[f64], b: &[f64], buffers: &mut [SpatialFrames; 2]) -> f64 {
+    let [fa, fb] = buffers;
+    frames_into(m, a, fa);
+    frames_into(m, b, fb);
+    let mut d: f64 = 0.0;
+    for i in 1..m.bodies.len() {
+        d = d.max(crate::space::rotation_angle(fa.body_rotation(i), fb.body_rotation(i)));
+    }
+    let length = m.size();
+    for j in &m.joints {
+        let joint = j.kind.joint();
+        let range = j.offset..j.offset + joint.dof();
+        d = d.max(joint.distance(&a[range.clone()], &b[range], length));
+    }
+    d
+}

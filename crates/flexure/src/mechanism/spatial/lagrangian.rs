@@ -1,0 +1,278 @@
+//! The potential of a spatial mechanism, its gradient and Hessian, and the
+//! closure equations with their Jacobian and the Hessian of $\mu^Tc$: what
+//! the statics' KKT conditions and the dynamics' forces are made of.
+//!
+//! $$V(q) = \sum_j U_j(q_j) + \sum_t T_t\thinspace\ell_t(q) - \sum_b m_b\thinspace g\cdot c_b(q) - \sum_i f_i\cdot x_i(q),$$
+//! with the tendons' lengths $\ell_t$ through their via points, the bodies'
+//! centres of mass $c_b$ and the load points $x_i$; a point load's moment
+//! $m_i$, fixed in space, adds the generalized force $Q_a = m_i\cdot\omega_a$,
+//! which has no potential (its derivative is not symmetric). The
+//! "gradient" below is $\nabla V - Q_m$ and its "Hessian" the derivative of
+//! that, so that equilibrium is gradient $+\thinspace G^T\mu = 0$ in every case.
+//! Point derivatives come from [`super::kinematics`].
+
+use super::kinematics::{Attached, SpatialFrames, add_attached_hessian, add_rotation_derivative, attach};
+use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+/// The assembled forces of one configuration.
+#[derive(Debug, Clone)]
+pub struct SpatialAssembly {
+    /// $V$ (J): elastic, tendon, gravity and force potentials (moments have none).
+    pub potential: f64,
+    /// $\nabla V - Q_m$ ($n$).
+    pub gradient: DVector<f64>,
+    /// Its derivative plus $\sum_i\mu_i\nabla^2c_i$ ($n\times n$), when asked for.
+    pub hessian: DMatrix<f64>,
+    /// $c(q)$ ($m$).
+    pub closure: DVector<f64>,
+    /// $G = \partial c/\partial q$ ($m\times n$).
+    pub closure_jacobian: DMatrix<f64>,
+}
+
+impl SpatialAssembly {
+    /// Buffers for `m`.
+    pub fn new(m: &SpatialMechanism) -> Self {
+        let (n, r) = (m.dof(), m.constraints());
+        SpatialAssembly {
+            potential: 0.0,
+            gradient: DVector::zeros(n),
+            hessian: DMatrix::zeros(n, n),
+            closure: DVector::zeros(r),
+            closure_jacobian: DMatrix::zeros(r, n),
+        }
+    }
+}
+
+/// Assembles everything at the frames `f` (of [`super::kinematics::frames_into`]),
+/// with multipliers `mu` (one per closure equation) and `loads`.
+pub fn assemble_into(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    mu: &[f64],
+    loads: &SpatialLoads,
+    with_hessian: bool,
+    out: &mut SpatialAssembly,
+) {
+    out.gradient.fill(0.0);
+    out.potential = 0.0;
+    if with_hessian {
+        out.hessian.fill(0.0);
+    }
+    for (j, s) in m.joints.iter().zip(&f.joints) {
+        let k = s.gradient.len();
+        out.potential += s.energy;
+        out.gradient.rows_mut(j.offset, k).copy_from(&s.gradient);
+        if with_hessian {
+            out.hessian.view_mut((j.offset, j.offset), (k, k)).copy_from(&s.stiffness);
+        }
+    }
+    let hessian = with_hessian.then_some(&mut out.hessian);
+    out.potential += add_loads(m, f, loads, &mut out.gradient, hessian);
+    closures_into(m, f, &mut out.closure, &mut out.closure_jacobian);
+    if with_hessian {
+        add_closure_hessian(m, f, mu, &mut out.hessian);
+    }
+}
+
+/// Adds the loads' part of the gradient (and of its derivative, when asked
+/// for) and returns their potential. Linear in `loads`: with a change of
+/// loads it gives the load derivative of the equilibrium equations.
+pub fn add_loads(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    loads: &SpatialLoads,
+    gradient: &mut DVector<f64>,
+    mut hessian: Option<&mut DMatrix<f64>>,
+) -> f64 {
+    let mut potential = 0.0;
+    // A force u at a point: V = −u·x, ∇V = −Jᵀu, ∇²V = −Σ u_c ∇²x_c.
+    let push = |x: &Attached, u: Vector3<f64>, gradient: &mut DVector<f64>, hessian: &mut Option<&mut DMatrix<f64>>| {
+        gradient.gemv_tr(-1.0, &x.jacobian, &u, 1.0);
+        if let Some(h) = hessian.as_deref_mut() {
+            add_attached_hessian(m, f, x, &(-u), h);
+        }
+        -u.dot(&x.value)
+    };
+    if loads.gravity != Vector3::zeros() {
+        for (b, body) in m.bodies.iter().enumerate().skip(1) {
+            if body.mass > 0.0 {
+                let x = attach(m, f, b, body.com.coords, true);
+                potential += push(&x, loads.gravity * body.mass, gradient, &mut hessian);
+            }
+        }
+    }
+    for (load, w) in m.forces.iter().zip(&loads.force) {
+        let force = Vector3::new(w[3], w[4], w[5]);
+        let moment = Vector3::new(w[0], w[1], w[2]);
+        if force != Vector3::zeros() {
+            let x = attach(m, f, load.body, load.at.coords, true);
+            potential += push(&x, force, gradient, &mut hessian);
+        }
+        if moment != Vector3::zeros() {
+            for j in m.path(load.body) {
+                let o = m.joints[j].offset;
+                for c in o..o + f.joints[j].gradient.len() {
+                    gradient[c] -= moment.dot(&f.omega.column(c));
+                }
+            }
+            if let Some(h) = hessian.as_deref_mut() {
+                add_rotation_derivative(m, f, load.body, &(-moment), h);
+            }
+        }
+    }
+    for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
+        if tension == 0.0 {
+            continue;
+        }
+        let points: Vec<Attached> = t.path.iter().map(|(b, r)| attach(m, f, *b, r.coords, true)).collect();
+        for pair in points.windows(2) {
+            let (x0, x1) = (&pair[0], &pair[1]);
+            let d = x1.value - x0.value;
+            let l = d.norm();
+            if l == 0.0 {
+                continue;
+            }
+            let u = d / l;
+            potential += tension * l;
+            let dj = &x1.jacobian - &x0.jacobian;
+            gradient.gemv_tr(tension, &dj, &u, 1.0);
+            if let Some(h) = hessian.as_deref_mut() {
+                let projector = (Matrix3::identity() - u * u.transpose()) * (tension / l);
+                *h += dj.transpose() * (projector * &dj);
+                add_attached_hessian(m, f, x1, &(u * tension), h);
+                add_attached_hessian(m, f, x0, &(-u * tension), h);
+            }
+        }
+    }
+    potential
+}
+
+/// The vectors a closure is made of: its two points, and the directions
+/// its rotation equations compare.
+struct ClosureVectors {
+    points: [Attached; 2],
+    /// Weld: the three axes of each frame; pin: the axis on `a` and the two normals on `b`.
+    a_directions: Vec<Attached>,
+    b_directions: Vec<Attached>,
+}
+
+fn closure_vectors(m: &SpatialMechanism, f: &SpatialFrames, c: &SpatialClosure) -> ClosureVectors {
+    let point = |b: usize, r: Vector3<f64>| attach(m, f, b, r, true);
+    let direction = |b: usize, r: Vector3<f64>| attach(m, f, b, r, false);
+    match c {
+        SpatialClosure::Weld { a, a_origin, b, b_origin } => {
+            let (ra, rb) = (a_origin.rotation.to_rotation_matrix(), b_origin.rotation.to_rotation_matrix());
+            ClosureVectors {
+                points: [point(*a, a_origin.translation.vector), point(*b, b_origin.translation.vector)],
+                a_directions: (0..3).map(|i| direction(*a, ra.matrix().column(i).into_owned())).collect(),
+                b_directions: (0..3).map(|i| direction(*b, rb.matrix().column(i).into_owned())).collect(),
+            }
+        }
+        SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_normals, .. } => ClosureVectors {
+            points: [point(*a, a_at.coords), point(*b, b_at.coords)],
+            a_directions: vec![direction(*a, *a_axis)],
+            b_directions: b_normals.iter().map(|n| direction(*b, *n)).collect(),
+        },
+        SpatialClosure::Ball { a, a_at, b, b_at } => ClosureVectors {
+            points: [point(*a, a_at.coords), point(*b, b_at.coords)],
+            a_directions: vec![],
+            b_directions: vec![],
+        },
+    }
+}
+
+/// $c(q)$ and $G$ into `c` ($m$) and `g` ($m\times n$).
+pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f64>, g: &mut DMatrix<f64>) {
+    let mut row = 0;
+    for closure in &m.closures {
+        let v = closure_vectors(m, f, closure);
+        let [pa, pb] = &v.points;
+        for i in 0..3 {
+            c[row + i] = pa.value[i] - pb.value[i];
+            for k in 0..g.ncols() {
+                g[(row + i, k)] = pa.jacobian[(i, k)] - pb.jacobian[(i, k)];
+            }
+        }
+        row += 3;
+        match closure {
+            SpatialClosure::Weld { .. } => {
+                // e = ½ Σ b_i × a_i.
+                let mut e = Vector3::zeros();
+                for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
+                    e += b.value.cross(&a.value) * 0.5;
+                }
+                for k in 0..g.ncols() {
+                    let mut d = Vector3::zeros();
+                    for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
+                        d += (b.jacobian.column(k).cross(&a.value) + b.value.cross(&a.jacobian.column(k))) * 0.5;
+                    }
+                    for i in 0..3 {
+                        g[(row + i, k)] = d[i];
+                    }
+                }
+                for i in 0..3 {
+                    c[row + i] = e[i];
+                }
+                row += 3;
+            }
+            SpatialClosure::Pin { .. } => {
+                // c_k = n_k · z.
+                let z = &v.a_directions[0];
+                for (i, n) in v.b_directions.iter().enumerate() {
+                    c[row + i] = n.value.dot(&z.value);
+                    for k in 0..g.ncols() {
+                        g[(row + i, k)] = n.jacobian.column(k).dot(&z.value) + n.value.dot(&z.jacobian.column(k));
+                    }
+                }
+                row += 2;
+            }
+            SpatialClosure::Ball { .. } => {}
+        }
+    }
+}
+
+/// Adds $\mu\cdot(x\times y)$'s Hessian's cross terms, $C + C^T$ with
+/// $C_{cd} = \mu\cdot(\partial_cx\times\partial_dy)$, to `h`.
+fn add_cross_terms(x: &Attached, y: &Attached, mu: &Vector3<f64>, h: &mut DMatrix<f64>) {
+    // μ·(X_c × Y_d) = X_c · (Y_d × μ).
+    let ymu = DMatrix::from_fn(3, y.jacobian.ncols(), |i, d| y.jacobian.column(d).cross(mu)[i]);
+    let c = x.jacobian.transpose() * ymu;
+    *h += &c + c.transpose();
+}
+
+/// Adds $\sum_i\mu_i\nabla^2c_i$ to `h`.
+pub fn add_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], h: &mut DMatrix<f64>) {
+    let mut row = 0;
+    for closure in &m.closures {
+        let v = closure_vectors(m, f, closure);
+        let w = Vector3::new(mu[row], mu[row + 1], mu[row + 2]);
+        add_attached_hessian(m, f, &v.points[0], &w, h);
+        add_attached_hessian(m, f, &v.points[1], &(-w), h);
+        row += 3;
+        match closure {
+            SpatialClosure::Weld { .. } => {
+                let w = Vector3::new(mu[row], mu[row + 1], mu[row + 2]) * 0.5;
+                for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
+                    // μ·(b × a): b's Hessian weighted a × μ, a's weighted μ × b.
+                    add_attached_hessian(m, f, b, &a.value.cross(&w), h);
+                    add_attached_hessian(m, f, a, &w.cross(&b.value), h);
+                    add_cross_terms(b, a, &w, h);
+                }
+                row += 3;
+            }
+            SpatialClosure::Pin { .. } => {
+                let z = &v.a_directions[0];
+                for (i, n) in v.b_directions.iter().enumerate() {
+                    let weight = mu[row + i];
+                    add_attached_hessian(m, f, z, &(n.value * weight), h);
+                    add_attached_hessian(m, f, n, &(z.value * weight), h);
+                    let c = n.jacobian.transpose() * &z.jacobian * weight;
+                    *h += &c + c.transpose();
+                }
+                row += 2;
+            }
+            SpatialClosure::Ball { .. } => {}
+        }
+    }
+}
