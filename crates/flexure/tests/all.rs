@@ -51,6 +51,7 @@ mod space_spatial;
 mod spatial_energy;
 mod spatial_estimate;
 mod spatial_kinematics;
+mod spatial_mechanism;
 mod spatial_mechanism_derivatives;
 mod spatial_shape;
 mod spatial_statics;

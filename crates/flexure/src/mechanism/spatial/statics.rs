@@ -1,0 +1,416 @@
+//! Static equilibrium, stiffness and compliance of a spatial mechanism.
+//!
+//! As in the plane ([`crate::mechanism::statics`]): equilibrium is
+//! $$\nabla V - Q_m + G^T\mu = 0,\qquad c(q) = 0,$$
+//! ([`super::lagrangian`]) with the KKT matrix $\begin{bmatrix}H & G^T\cr G & 0\end{bmatrix}$
+//! as Jacobian, followed by the shared continuation ([`crate::solver`])
+//! from the unloaded, assembled configuration in the load factor
+//! $\lambda$, through folds, reporting where stability was lost.
+//! Stability is the constrained stiffness $Z^THZ$ (symmetrized: a dead
+//! moment's part is not symmetric) positive definite with the planar
+//! margin, $Z$ spanning the null space of $G$, in coordinates scaled to
+//! each joint's own stiffness. Scaling of rows and multipliers is the
+//! planar [`crate::mechanism::statics::Kkt`]'s.
+
+use super::kinematics::{SpatialFrames, attach, distance, frames, frames_into};
+use super::lagrangian::{SpatialAssembly, add_loads, assemble_into};
+use super::{SpatialLoads, SpatialMechanism};
+use crate::error::{Error, Result};
+use crate::linalg;
+use crate::solver::{self, Settings};
+use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3};
+use std::cell::RefCell;
+
+/// An equilibrium of a spatial mechanism.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SpatialSolution {
+    /// Generalized coordinates.
+    pub q: Vec<f64>,
+    /// Closure multipliers: $\mu^T c$ is their potential, so a closure
+    /// pushes body `a` with $-\mu$ (force, then the misalignment's moment) and `b` with $+\mu$.
+    pub multipliers: Vec<f64>,
+    /// The loads it carries.
+    #[serde(skip)]
+    pub loads: SpatialLoads,
+    /// Elastic energy stored in the joints (J).
+    pub energy: f64,
+    /// Whether the constrained stiffness is positive definite.
+    pub stable: bool,
+    /// Where the loading path lost stability before reaching this stable
+    /// state: the fraction of the load change, if it did.
+    #[serde(rename = "limit_fraction")]
+    pub limit: Option<f64>,
+    /// Final KKT residual, relative.
+    pub residual: f64,
+    /// Load-continuation steps.
+    pub load_steps: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
+}
+
+/// The KKT conditions of a spatial mechanism under the loads
+/// $\text{from} + \lambda(\text{to} - \text{from})$, as a [`solver::Problem`]
+/// (unknowns $(q, \nu)$, $\mu_i = s_i\nu_i$, rows scaled as the planar `Kkt`'s).
+#[derive(Debug)]
+pub struct SpatialKkt<'a> {
+    mechanism: &'a SpatialMechanism,
+    from: SpatialLoads,
+    to: SpatialLoads,
+    change: SpatialLoads,
+    row_scale: Vec<f64>,
+    closure_scale: Vec<f64>,
+    multiplier_scale: Vec<f64>,
+    weight: Vec<f64>,
+    scale: f64,
+    margin: f64,
+    frames: SpatialFrames,
+    assembly: SpatialAssembly,
+    loads: SpatialLoads,
+    mu: Vec<f64>,
+    pair: RefCell<[SpatialFrames; 2]>,
+}
+
+impl<'a> SpatialKkt<'a> {
+    /// The problem of moving `m` from `from` to `to`, for a solver run with
+    /// `settings` (whose tolerance sets the stability margin).
+    pub fn new(m: &'a SpatialMechanism, from: &SpatialLoads, to: &SpatialLoads, settings: &Settings) -> Result<Self> {
+        settings.validate()?;
+        from.validate(m)?;
+        to.validate(m)?;
+        let n = m.dof();
+        let length = m.size();
+        let f = frames(m, &m.rest());
+        let mut stiffness = vec![0.0; n];
+        let mut unit = vec![1.0; n];
+        for (j, s) in m.joints.iter().zip(&f.joints) {
+            let joint = j.kind.joint();
+            for i in 0..joint.dof() {
+                stiffness[j.offset + i] = s.stiffness[(i, i)];
+                if joint.is_translation() {
+                    unit[j.offset + i] = length * length;
+                }
+            }
+        }
+        let moments = || stiffness.iter().zip(&unit).map(|(k, u)| k * u);
+        let k_max = moments().fold(0.0, f64::max);
+        let k_max = if k_max > 0.0 { k_max } else { 1.0 };
+        let k_min = moments().filter(|&k| k > 0.0).fold(k_max, f64::min);
+        let row_scale: Vec<f64> =
+            stiffness.iter().zip(&unit).map(|(k, u)| if *k > 0.0 { 1.0 / k } else { u / k_max }).collect();
+        let weight = unit.iter().map(|u| 1.0 / u.sqrt()).collect();
+        let (mut closure_scale, mut multiplier_scale) = (Vec::new(), Vec::new());
+        for c in &m.closures {
+            for row in 0..c.equations() {
+                let position = row < 3;
+                closure_scale.push(if position { 1.0 / length } else { 1.0 });
+                multiplier_scale.push(if position { k_max / length } else { k_max });
+            }
+        }
+        let magnitude = |l: &SpatialLoads| {
+            let forces: f64 = l
+                .force
+                .iter()
+                .map(|w| w.fixed_rows::<3>(3).norm() * length + w.fixed_rows::<3>(0).norm())
+                .sum();
+            let tendons: f64 = l.tension.iter().map(|t| t * length).sum();
+            let mass: f64 = m.bodies.iter().map(|b| b.mass).sum();
+            forces + tendons + mass * l.gravity.norm() * length
+        };
+        let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
+        if !scale.is_finite() {
+            return Err(Error::invalid(
+                "loads",
+                format!("{:.3e}", scale - 1.0),
+                "are too large for the joints' stiffness to be represented",
+            ));
+        }
+        Ok(SpatialKkt {
+            mechanism: m,
+            from: from.clone(),
+            to: to.clone(),
+            change: from.difference(to),
+            row_scale,
+            closure_scale,
+            multiplier_scale,
+            weight,
+            scale,
+            margin: settings.tolerance.sqrt(),
+            frames: f,
+            assembly: SpatialAssembly::new(m),
+            loads: from.clone(),
+            mu: vec![0.0; m.constraints()],
+            pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
+        })
+    }
+
+    /// The unknowns $(q, \nu)$ of coordinates `q` and multipliers `mu`.
+    pub fn state(&self, q: &[f64], mu: &[f64]) -> Vec<f64> {
+        q.iter().copied().chain(mu.iter().zip(&self.multiplier_scale).map(|(m, s)| m / s)).collect()
+    }
+
+    /// The multipliers $\mu$ of the unknowns `x`.
+    pub fn multipliers(&self, x: &[f64]) -> Vec<f64> {
+        x[self.mechanism.dof()..].iter().zip(&self.multiplier_scale).map(|(v, s)| v * s).collect()
+    }
+
+    /// The solution at unknowns `x`, at the end of `path` (`end`) or its start.
+    fn solution(&mut self, x: &[f64], end: bool, path: &solver::Path) -> Result<SpatialSolution> {
+        let m = self.mechanism;
+        let n = m.dof();
+        frames_into(m, &x[..n], &mut self.frames);
+        let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
+        let multipliers = self.multipliers(x);
+        if !(energy.is_finite() && x.iter().chain(&multipliers).all(|v| v.is_finite())) {
+            return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
+        }
+        Ok(SpatialSolution {
+            q: x[..n].to_vec(),
+            multipliers,
+            loads: if end { self.to.clone() } else { self.from.clone() },
+            energy,
+            stable: path.stable,
+            limit: path.limit,
+            residual: path.residual,
+            load_steps: path.steps,
+            iterations: path.iterations,
+        })
+    }
+}
+
+impl solver::Problem<f64> for SpatialKkt<'_> {
+    fn dim(&self) -> usize {
+        self.mechanism.dof() + self.mechanism.constraints()
+    }
+
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        residual: &mut [f64],
+        jacobian: Option<&mut [f64]>,
+        dlambda: Option<&mut [f64]>,
+    ) -> Result<()> {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        for ((mu, v), s) in self.mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
+            *mu = v * s;
+        }
+        frames_into(m, &x[..n], &mut self.frames);
+        self.from.lerp_into(&self.to, lambda, &mut self.loads);
+        let a = &mut self.assembly;
+        assemble_into(m, &self.frames, &self.mu, &self.loads, jacobian.is_some(), a);
+        let g = &a.closure_jacobian;
+        for i in 0..n {
+            let mut force = a.gradient[i];
+            for (k, mu) in self.mu.iter().enumerate() {
+                force += g[(k, i)] * mu;
+            }
+            residual[i] = force * self.row_scale[i];
+        }
+        for i in 0..rows {
+            residual[n + i] = a.closure[i] * self.closure_scale[i];
+        }
+        if !residual.iter().all(|r| r.is_finite()) {
+            return Err(Error::Singular { what: "mechanism equilibrium: a non-finite generalized force".into() });
+        }
+        if let Some(jac) = jacobian {
+            for c in 0..n {
+                for r in 0..n {
+                    jac[c * size + r] = a.hessian[(r, c)] * self.row_scale[r];
+                }
+                for i in 0..rows {
+                    jac[c * size + n + i] = g[(i, c)] * self.closure_scale[i];
+                }
+            }
+            for i in 0..rows {
+                let column = &mut jac[(n + i) * size..(n + i + 1) * size];
+                for r in 0..n {
+                    column[r] = g[(i, r)] * self.multiplier_scale[i] * self.row_scale[r];
+                }
+                column[n..].fill(0.0);
+                column[n + i] = -1e-10;
+            }
+        }
+        if let Some(d) = dlambda {
+            let mut gradient = DVector::zeros(n);
+            add_loads(m, &self.frames, &self.change, &mut gradient, None);
+            for i in 0..n {
+                d[i] = gradient[i] * self.row_scale[i];
+            }
+            d[n..].fill(0.0);
+        }
+        Ok(())
+    }
+
+    /// $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\thinspace I$ positive
+    /// definite, in coordinates scaled to each joint's stiffness, $H$ symmetrized.
+    fn stable(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        if n == 0 {
+            return true;
+        }
+        let size = n + rows;
+        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
+        let h = DMatrix::from_fn(n, n, |r, c| {
+            let entry = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r];
+            0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c]
+        });
+        let mut k = if rows == 0 {
+            h
+        } else {
+            let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i] * s[c]);
+            let z = linalg::null_space(&g);
+            let k = z.transpose() * h * &z;
+            (&k + k.transpose()) * 0.5
+        };
+        for i in 0..k.nrows() {
+            k[(i, i)] -= self.margin;
+        }
+        linalg::is_positive_definite(&k)
+    }
+
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        let n = self.mechanism.dof();
+        distance(self.mechanism, &a[..n], &b[..n], &mut self.pair.borrow_mut())
+    }
+
+    fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    fn unit(&self) -> &'static str {
+        "relative"
+    }
+
+    fn name(&self) -> &'static str {
+        "mechanism equilibrium"
+    }
+
+    fn weight(&self, i: usize) -> f64 {
+        self.weight.get(i).copied().unwrap_or(0.0)
+    }
+}
+
+/// Equilibrium under the mechanism's own loads, by continuation from the
+/// unloaded, assembled configuration.
+///
+/// A path that loses stability and ends in a stable state is an answer
+/// with its [`SpatialSolution::limit`]; one that does not reach a stable
+/// state at the full load is [`Error::Unstable`] at the fraction where it
+/// lost stability.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::mechanism::spatial::statics::solve;
+/// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+/// let hinge = SpatialJointSpec {
+///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::x_axis(), stiffness: 2.0, rest: 0.0 }),
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0,
+/// };
+/// let push = SpatialPointLoad { name: "m".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.5, 0.0, 0.0, 0.0, 0.0, 0.0) };
+/// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];
+/// let m = SpatialMechanism::new(bodies, vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
+/// let s = solve(&m, &Default::default()).unwrap();
+/// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
+/// ```
+pub fn solve(m: &SpatialMechanism, settings: &Settings) -> Result<SpatialSolution> {
+    let to = m.loads();
+    let zero = to.zero_like();
+    let start = assemble_unloaded(m, &zero, settings)?;
+    solve_between(m, &start, &to, settings)
+}
+
+/// The unloaded, assembled configuration under `loads` (no load: the
+/// closures closed from rest by Newton).
+pub fn assemble_unloaded(m: &SpatialMechanism, loads: &SpatialLoads, settings: &Settings) -> Result<SpatialSolution> {
+    let mut problem = SpatialKkt::new(m, loads, loads, settings)?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = solver::Workspace::new(dim);
+    ws.x[..m.dof()].copy_from_slice(&m.rest());
+    let report = solver::newton(&mut problem, &mut ws, 0.0, settings).map_err(|e| match e {
+        Error::NoConvergence { .. } | Error::Singular { .. } => Error::Singular {
+            what: format!("mechanism assembly: the closures could not be closed from the joints' rest ({e})"),
+        },
+        e => e,
+    })?;
+    let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
+    let x = ws.x.clone();
+    problem.solution(&x, false, &solver::Path::at_start(report, stable))
+}
+
+/// Equilibrium under `to`, continued from `start` (an equilibrium under `start.loads`).
+pub fn solve_between(m: &SpatialMechanism, start: &SpatialSolution, to: &SpatialLoads, settings: &Settings) -> Result<SpatialSolution> {
+    if start.q.len() != m.dof() || start.multipliers.len() != m.constraints() {
+        return Err(Error::invalid("start", start.q.len(), "was solved for another mechanism"));
+    }
+    let mut problem = SpatialKkt::new(m, &start.loads, to, settings)?;
+    let dim = solver::Problem::dim(&problem);
+    let mut ws = solver::Workspace::new(dim);
+    let x0 = problem.state(&start.q, &start.multipliers);
+    ws.x.copy_from_slice(&x0);
+    let path = solver::trace(&mut problem, &mut ws, settings)?;
+    let unstable = |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
+    match path.error(&problem) {
+        None if path.stable => {
+            let x = ws.x.clone();
+            problem.solution(&x, true, &path)
+        }
+        None => Err(unstable(path.limit)),
+        Some(e @ Error::Interrupted { .. }) => Err(e),
+        Some(e) => Err(path.limit.map_or(e, |limit| unstable(Some(limit)))),
+    }
+}
+
+/// The body frames of a solution (`pose_world_body`).
+pub fn body_frames(m: &SpatialMechanism, s: &SpatialSolution) -> Vec<Isometry3<f64>> {
+    frames(m, &s.q).bodies
+}
+
+/// The constrained stiffness at a solution: $Z$ (a basis of the admissible
+/// motions, $GZ = 0$) and $Z^THZ$, $H$ the Lagrangian Hessian with the
+/// solution's multipliers.
+pub fn stiffness(m: &SpatialMechanism, s: &SpatialSolution) -> (DMatrix<f64>, DMatrix<f64>) {
+    let f = frames(m, &s.q);
+    let mut a = SpatialAssembly::new(m);
+    assemble_into(m, &f, &s.multipliers, &s.loads, true, &mut a);
+    let z = if m.constraints() == 0 { DMatrix::identity(m.dof(), m.dof()) } else { linalg::null_space(&a.closure_jacobian) };
+    let k = z.transpose() * &a.hessian * &z;
+    (z, k)
+}
+
+/// The $6\times6$ compliance at point `at` of `body` (in its frame): the
+/// small rotation and displacement $(\delta\theta, \delta x)$ of that point,
+/// in the ground frame, per unit moment and force $(m, f)$ applied there,
+/// $C = J Z (Z^THZ)^{-1} Z^TJ^T$, $J$ the point's $6\times n$ Jacobian (rotation rows first).
+///
+/// Errors: [`Error::Singular`] where the constrained stiffness is singular
+/// (a free motion).
+pub fn compliance(m: &SpatialMechanism, s: &SpatialSolution, body: usize, at: Point3<f64>) -> Result<Matrix6<f64>> {
+    let (z, k) = stiffness(m, s);
+    let f = frames(m, &s.q);
+    let point = attach(m, &f, body, at.coords, true);
+    let mut j = DMatrix::zeros(6, m.dof());
+    for jt in m.path(body) {
+        let o = m.joints[jt].offset;
+        for c in o..o + m.joints[jt].kind.joint().dof() {
+            for i in 0..3 {
+                j[(i, c)] = f.omega[(i, c)];
+            }
+        }
+    }
+    for c in 0..m.dof() {
+        for i in 0..3 {
+            j[(3 + i, c)] = point.jacobian[(i, c)];
+        }
+    }
+    let jz = j * z;
+    // Not symmetrized: under a dead moment the tangent stiffness is not symmetric, nor is the compliance.
+    let solved = k.lu().solve(&jz.transpose()).filter(|x| x.iter().all(|v| v.is_finite())).ok_or_else(|| {
+        Error::Singular { what: "mechanism compliance: the constrained stiffness is singular (a free motion)".into() }
+    })?;
+    let c = &jz * solved;
+    Ok(Matrix6::from_fn(|r, col| c[(r, col)]))
+}

@@ -1,0 +1,172 @@
+//! Spatial mechanisms' statics (`mechanism::spatial::statics`): equilibria,
+//! stability and compliances, each test against its named reference.
+
+use flexure::mechanism::Fixed;
+use flexure::mechanism::spatial::statics::{body_frames, compliance, solve};
+use flexure::mechanism::spatial::{
+    Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
+    Spherical,
+};
+use flexure::section::SpatialSection;
+use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, correct};
+use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
+
+fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
+    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0 }
+}
+
+fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
+    Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]))
+}
+
+fn flexure(l: f64, [gj, ei_y, ei_z]: [f64; 3], orders: [usize; 3]) -> SpatialFlexure {
+    SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), orders).unwrap()
+}
+
+fn bodies(names: &[&str]) -> Vec<SpatialBody> {
+    names.iter().map(|n| SpatialBody::massless(n)).collect()
+}
+
+fn load(name: &str, body: usize, at: [f64; 3], moment: [f64; 3], force: [f64; 3]) -> SpatialPointLoad {
+    SpatialPointLoad {
+        name: name.into(),
+        body,
+        at: Point3::from(at),
+        wrench: Vector6::new(moment[0], moment[1], moment[2], force[0], force[1], force[2]),
+    }
+}
+
+/// Reference: the moment balance of a ball joint's isotropic spring
+/// against a weight on a horizontal arm, $k\theta = mgl\cos\theta$ (solved by
+/// bisection here), the arm turning about the axis normal to it and to gravity.
+#[test]
+fn a_weight_on_a_ball_joint_turns_it_as_the_moment_balance_says() {
+    let (k, mass, l, g) = (3.0, 0.5, 0.4, 9.81);
+    let mut b = bodies(&["ground", "arm"]);
+    b[1].mass = mass;
+    b[1].com = Point3::new(l, 0.0, 0.0);
+    let ball = spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: k, rest: [0.0; 3] }), 0, 1, Isometry3::identity());
+    let m = SpatialMechanism::new(b, vec![ball], vec![], vec![], vec![], Vector3::new(0.0, 0.0, -g)).unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    let (mut lo, mut hi) = (0.0, std::f64::consts::FRAC_PI_2);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if k * mid < mass * g * l * f64::cos(mid) { lo = mid } else { hi = mid }
+    }
+    // Gravity −z on an arm along x turns it about +y (down).
+    assert!(s.stable);
+    assert!((s.q[1] - lo).abs() < 1e-10 && s.q[0].abs() < 1e-12 && s.q[2].abs() < 1e-12, "{:?} against {lo}", s.q);
+}
+
+/// The compliance of a point $r$ from the origin of a frame whose
+/// compliance (at its origin, world axes) is `c`: $A C A^T$ with
+/// $A = \begin{pmatrix}I & 0\cr -\hat r & I\end{pmatrix}$ (the adjoint map of a small twist).
+fn moved(c: &Matrix6<f64>, r: Vector3<f64>) -> Matrix6<f64> {
+    let mut a = Matrix6::identity();
+    a.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-r.cross_matrix()));
+    a * c * a.transpose()
+}
+
+fn turned(c: &Matrix6<f64>, r: &Matrix3<f64>) -> Matrix6<f64> {
+    let mut b = Matrix6::zeros();
+    b.fixed_view_mut::<3, 3>(0, 0).copy_from(r);
+    b.fixed_view_mut::<3, 3>(3, 3).copy_from(r);
+    b * c * b.transpose()
+}
+
+/// Reference: the serial composition of the two flexures' own 6 × 6 tip
+/// compliances (`spatial::compliance`, each in its root frame), turned
+/// into the world and moved to the tip by the adjoint maps,
+/// $C = A_1 C_1 A_1^T + A_2 C_2 A_2^T$; tolerance 1e-10 of the largest entry.
+#[test]
+fn two_flexures_in_perpendicular_planes_compose_their_compliances() {
+    let f1 = flexure(0.05, [0.8, 2.0, 1.0], [3, 3, 3]);
+    let f2 = flexure(0.03, [0.5, 0.7, 1.5], [3, 3, 3]);
+    // The second flexure's root turned a quarter about x: it bends in the other plane.
+    let origin2 = placed([0.01, 0.0, 0.0], [std::f64::consts::FRAC_PI_2, 0.0, 0.3]);
+    let joints = vec![
+        spec("one", SpatialJointKind::Flexure(Box::new(f1.clone())), 0, 1, Isometry3::identity()),
+        spec("two", SpatialJointKind::Flexure(Box::new(f2.clone())), 1, 2, origin2),
+    ];
+    let m = SpatialMechanism::new(bodies(&["ground", "mid", "tip"]), joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    let c = compliance(&m, &s, 2, Point3::origin()).unwrap();
+    let own = |f: &SpatialFlexure| {
+        let mut data = SpatialStatics::new(f);
+        correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default()).unwrap();
+        flexure::spatial::compliance(f, &data).unwrap()
+    };
+    let frames = body_frames(&m, &s);
+    let tip = frames[2].translation.vector;
+    // Flexure one: root = world, compliance at its tip (mid's origin).
+    let c1 = moved(&own(&f1), tip - frames[1].translation.vector);
+    // Flexure two: its root frame is mid ∘ origin2.
+    let root2 = frames[1] * origin2;
+    let r2 = root2.rotation.to_rotation_matrix().into_inner();
+    let c2 = turned(&own(&f2), &r2);
+    let expected = c1 + c2;
+    let scale = expected.amax();
+    assert!((c - expected).amax() < 1e-10 * scale, "{c}\nagainst\n{expected}");
+    // Each flexure matters: the answer is neither one's alone.
+    assert!((c - c1).amax() > 0.1 * scale && (c - c2).amax() > 0.1 * scale);
+}
+
+/// Reference: the planar mechanism (`mechanism::statics`) of
+/// `examples/parallelogram.toml`, the same stage built in space with
+/// spatial flexures bending about z: the stage's pose and its in-plane
+/// compliance agree to 1e-8 (the planar and spatial flexures integrate the
+/// same curvature by different rules, agreeing to about 1e-9).
+#[test]
+fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml")).unwrap();
+    let mut planar = flexure::mechanism::file::from_toml(&text).unwrap();
+    // A lateral push as well as the axial one, so the stage moves.
+    planar.forces[0].wrench.fx = 0.3;
+    let ps = flexure::mechanism::statics::solve(&planar, &Default::default()).unwrap();
+    let pc = flexure::mechanism::statics::compliance(&planar, &ps, 1, nalgebra::Point2::new(0.0, -0.02)).unwrap();
+    let pframes = flexure::mechanism::statics::body_frames(&planar, &ps);
+    let quarter = [0.0, 0.0, std::f64::consts::FRAC_PI_2];
+    let leg = || SpatialJointKind::Flexure(Box::new(flexure(0.05, [2.0e-3; 3], [3, 3, 3]).with_subintervals(16).unwrap()));
+    let joints = vec![spec("left", leg(), 0, 1, placed([0.0; 3], quarter)), spec("right", leg(), 0, 2, placed([0.04, 0.0, 0.0], quarter))];
+    let weld = SpatialClosure::Weld { a: 1, a_origin: placed([0.0, -0.04, 0.0], [0.0; 3]), b: 2, b_origin: Isometry3::identity() };
+    let push = load("push", 1, [0.0, -0.02, 0.0], [0.0; 3], [0.3, -1.0, 0.0]);
+    let m = SpatialMechanism::new(bodies(&["ground", "stage", "b_tip"]), joints, vec![], vec![push], vec![weld], Vector3::zeros()).unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    assert!(s.stable);
+    let stage = body_frames(&m, &s)[1];
+    let p = pframes.bodies[1];
+    let (angle, axis) = (stage.rotation.angle(), stage.rotation.axis().unwrap());
+    assert!((angle * axis.z - p.phi).abs() < 1e-8 && (stage.translation.x - p.x).abs() < 1e-10 && (stage.translation.y - p.y).abs() < 1e-10);
+    assert!(stage.translation.z.abs() < 1e-14);
+    let c = compliance(&m, &s, 1, Point3::new(0.0, -0.02, 0.0)).unwrap();
+    // Planar rows (φ, x, y) are spatial rows (θz, x, y) = (2, 3, 4).
+    let map = [2, 3, 4];
+    for r in 0..3 {
+        for k in 0..3 {
+            let (a, b) = (c[(map[r], map[k])], pc[(r, k)]);
+            assert!((a - b).abs() < 1e-8 * pc.amax(), "({r}, {k}): {a} against {b}");
+        }
+    }
+}
+
+/// Reference: a hinge's spring against a dead moment about its axis,
+/// $q = M_a/k$, with the moment's other components carried by the weld
+/// of a second, rigid link.
+#[test]
+fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
+    let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 2.0));
+    let hinge = spec("h", SpatialJointKind::Revolute(Revolute { axis, stiffness: 4.0, rest: 0.0 }), 0, 1, placed([0.1, 0.0, 0.0], [0.0; 3]));
+    let weld = spec("w", SpatialJointKind::Fixed(Fixed), 1, 2, placed([0.0, 0.2, 0.0], [0.5, 0.0, 0.0]));
+    let moment = Vector3::new(0.3, -0.6, 0.9);
+    let m = SpatialMechanism::new(
+        bodies(&["ground", "a", "b"]),
+        vec![hinge, weld],
+        vec![],
+        vec![load("m", 2, [0.0, 0.0, 0.1], moment.into(), [0.0; 3])],
+        vec![],
+        Vector3::zeros(),
+    )
+    .unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    assert!((s.q[0] - moment.dot(&axis) / 4.0).abs() < 1e-12);
+}
