@@ -50,6 +50,7 @@ mod space;
 mod space_spatial;
 mod spatial_energy;
 mod spatial_estimate;
+mod spatial_dynamics;
 mod spatial_kinematics;
 mod spatial_mechanism;
 mod spatial_mechanism_derivatives;

@@ -23,6 +23,7 @@ pub mod mechanism;
 pub mod modes;
 pub mod schedule;
 pub mod simulation;
+pub mod spatial;
 pub mod system;
 
 // The mass models sit beside the section they integrate; their old paths stay.

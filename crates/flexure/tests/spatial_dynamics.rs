@@ -1,0 +1,138 @@
+//! Spatial mechanisms' dynamics (`dynamics::spatial`): the mass matrix and
+//! velocity products against Lagrange's equations by finite differences,
+//! modes against closed forms, and motion against a conical pendulum.
+
+use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::spatial::{SpatialSystem, modes, simulate};
+use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::spatial::{
+    Prismatic, Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
+};
+use flexure::section::SpatialSection;
+use flexure::spatial::SpatialFlexure;
+use nalgebra::{DMatrix, DVector, Isometry3, Matrix2, Matrix3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
+
+fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
+    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0 }
+}
+
+fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
+    Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]))
+}
+
+fn body(name: &str, mass: f64, com: [f64; 3], inertia: [f64; 3]) -> SpatialBody {
+    SpatialBody { name: name.into(), mass, com: Point3::from(com), inertia: Matrix3::from_diagonal(&Vector3::from(inertia)) }
+}
+
+/// Reference: Lagrange's velocity-product terms $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$
+/// from central differences of the mass matrix (step 1e-6; tolerance 1e-6 of the scale).
+#[test]
+fn velocity_products_are_lagranges_from_the_mass_matrix() {
+    let axis = Unit::new_normalize(Vector3::new(0.2, 1.0, 0.4));
+    let flexure = SpatialFlexure::new(0.08, SpatialSection::uniform(0.3, 0.5, 0.4).unwrap(), [2, 2, 2]).unwrap();
+    let joints = vec![
+        spec("flex", SpatialJointKind::Flexure(Box::new(flexure)), 0, 1, placed([0.0; 3], [0.2, 0.1, 0.0])),
+        spec("hinge", SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }), 1, 2, placed([0.02, 0.0, 0.0], [0.0, 0.3, 0.1])),
+        spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] }), 2, 3, placed([0.05, 0.01, 0.0], [0.0; 3])),
+        spec("slide", SpatialJointKind::Prismatic(Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 }), 3, 4, placed([0.0, 0.02, 0.0], [0.4, 0.0, 0.0])),
+    ];
+    let bodies = vec![
+        SpatialBody::massless("ground"),
+        body("a", 0.1, [0.01, 0.0, 0.0], [1e-4, 2e-4, 3e-4]),
+        body("b", 0.2, [0.02, 0.01, -0.01], [2e-4, 1e-4, 1e-4]),
+        body("c", 0.3, [0.0, 0.03, 0.01], [3e-4, 2e-4, 4e-4]),
+        body("d", 0.1, [0.01, 0.01, 0.01], [1e-4, 1e-4, 2e-4]),
+    ];
+    let m = SpatialMechanism::new(bodies, joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let n = m.dof();
+    let q: Vec<f64> = (0..n).map(|i| 0.3 * (1.3 * i as f64 + 0.2).sin()).collect();
+    let v = DVector::from_fn(n, |i, _| (0.7 * i as f64 + 1.0).cos());
+    let mut sys = SpatialSystem::new(&m).unwrap();
+    let h = sys.velocity_product(&q, v.as_slice());
+    let step = 1e-6;
+    let mass_at = |sys: &mut SpatialSystem, i: usize, e: f64| {
+        let mut p = q.clone();
+        p[i] += e;
+        sys.mass_matrix(&p)
+    };
+    let mut expected = DVector::zeros(n);
+    for i in 0..n {
+        let dm: DMatrix<f64> = (mass_at(&mut sys, i, step) - mass_at(&mut sys, i, -step)) / (2.0 * step);
+        // Ṁq̇ = Σ_i ∂_iM q̇_i q̇, and ∂_i(q̇ᵀMq̇)/2.
+        expected += &dm * &v * v[i];
+        expected[i] -= 0.5 * v.dot(&(&dm * &v));
+    }
+    let scale = expected.amax();
+    assert!((&h - &expected).amax() < 1e-6 * scale, "{h}\nagainst\n{expected}");
+}
+
+/// Reference: a massless rod with a rigid disc at its tip. Torsion:
+/// $\omega = \sqrt{GJ/(L I_x)}$. Bending out of the plane, the disc's
+/// deflection and slope against the cantilever's tip stiffness
+/// $\frac{EI}{L^3}\begin{pmatrix}12 & -6L\cr -6L & 4L^2\end{pmatrix}$ and its mass
+/// and inertia: the two roots of $\det(K - \omega^2M) = 0$. The model's
+/// compliance is exact for a uniform beam from order 2, so tolerance 1e-8.
+#[test]
+fn a_rod_with_a_tip_disc_rings_as_its_closed_forms() {
+    let (l, gj, ei_y, ei_z) = (0.2, 0.8, 1.5, 2.5);
+    let (mass, ix, iy) = (0.3, 2e-4, 1e-4);
+    let rod = SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), [3, 3, 3]).unwrap();
+    let joints = vec![spec("rod", SpatialJointKind::Flexure(Box::new(rod)), 0, 1, Isometry3::identity())];
+    let disc = body("disc", mass, [0.0; 3], [ix, iy, iy]);
+    let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), disc], joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let found = modes(&m, &Default::default(), 9).unwrap();
+    let close = |w: f64| found.omega.iter().map(|o| (o - w).abs() / w).fold(f64::INFINITY, f64::min);
+    let torsion = (gj / (l * ix)).sqrt();
+    assert!(close(torsion) < 1e-8, "torsion {torsion} not among {:?}", found.omega);
+    for (ei, inertia) in [(ei_y, iy), (ei_z, iy)] {
+        let k = Matrix2::new(12.0, -6.0 * l, -6.0 * l, 4.0 * l * l) * (ei / l.powi(3));
+        // det(K − w M) = 0 for M = diag(m, I): a quadratic in w = ω².
+        let (a, b, c) = (mass * inertia, -(k[(0, 0)] * inertia + k[(1, 1)] * mass), k.determinant());
+        let disc = (b * b - 4.0 * a * c).sqrt();
+        for w2 in [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)] {
+            assert!(close(w2.sqrt()) < 1e-8, "bending {} not among {:?}", w2.sqrt(), found.omega);
+        }
+    }
+    // Torsion, two bendings of two modes each; no stretch in the model.
+    assert_eq!(found.omega.len(), 5);
+}
+
+/// Reference: a conical pendulum, a point mass at $l$ on a ball joint
+/// swinging at $\Omega^2 = g/(l\cos\beta)$ about the vertical, keeps its
+/// cone (its height $-l\cos\beta$) and its energy (an isotropic bob's spin
+/// about the rod does not change the cone: $\omega\times I\omega$ has no part from it); tolerance 1e-6 of $l$ and of the energy
+/// for an integrator tolerance of 1e-9 over two turns.
+#[test]
+fn a_conical_pendulum_keeps_its_cone_and_its_energy() {
+    let (l, g, beta): (f64, f64, f64) = (0.5, 9.81, 0.6);
+    // A small sphere (isotropic inertia 2/5 m r², which leaves the cone as it is):
+    // a point mass would leave the turn about the rod free and massless.
+    let i = 0.4 * 0.2 * 0.05f64.powi(2);
+    let bob = body("bob", 0.2, [0.0, 0.0, -l], [i; 3]);
+    let ball = spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }), 0, 1, Isometry3::identity());
+    let mut m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::new(0.0, 0.0, -g)).unwrap();
+    let omega = (g / (l * beta.cos())).sqrt();
+    // Tilted by β about x; spinning at Ω about the world's z: θ̇ = J(θ)⁻¹ (0, 0, Ω).
+    let theta = [beta, 0.0, 0.0];
+    let state = Joint::evaluate(&Spherical { stiffness: 0.0, rest: [0.0; 3] }, &theta);
+    let j = Matrix3::from_fn(|r, c| state.jacobian[(r, c)]);
+    let rate = j.try_inverse().unwrap() * Vector3::new(0.0, 0.0, omega);
+    m.initial = vec![(0, theta.to_vec())];
+    m.initial_velocity = vec![(0, rate.as_slice().to_vec())];
+    let period = 2.0 * std::f64::consts::PI / omega;
+    let motion = Motion { duration: 2.0 * period, every: period / 8.0, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
+    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    assert!(run.stopped.is_none(), "{:?} after {} samples", run.stopped, run.time.len());
+    let e0 = run.energy[0];
+    for k in 0..run.time.len() {
+        let c = frames(&m, run.q(k)).bodies[1] * Point3::new(0.0, 0.0, -l);
+        assert!((c.z + l * beta.cos()).abs() < 1e-6 * l, "height {} at t = {}", c.z, run.time[k]);
+        assert!((run.energy[k] - e0).abs() < 1e-6 * e0.abs(), "energy {} against {e0}", run.energy[k]);
+    }
+    // And it went round: from +y (tilted about x), a quarter turn about +z puts it on −x.
+    let c = frames(&m, run.q(2)).bodies[1] * Point3::new(0.0, 0.0, -l);
+    let r = l * beta.sin();
+    assert!((c.x + r).abs() < 1e-5 * l && c.y.abs() < 1e-5 * l, "{c}");
+}
+
+use flexure::mechanism::Joint;
