@@ -17,11 +17,19 @@ fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin:
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
-    Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]))
+    Isometry3::from_parts(
+        Translation3::new(p[0], p[1], p[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
 }
 
 fn body(name: &str, mass: f64, com: [f64; 3], inertia: [f64; 3]) -> SpatialBody {
-    SpatialBody { name: name.into(), mass, com: Point3::from(com), inertia: Matrix3::from_diagonal(&Vector3::from(inertia)) }
+    SpatialBody {
+        name: name.into(),
+        mass,
+        com: Point3::from(com),
+        inertia: Matrix3::from_diagonal(&Vector3::from(inertia)),
+    }
 }
 
 /// Reference: Lagrange's velocity-product terms $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$
@@ -32,9 +40,27 @@ fn velocity_products_are_lagranges_from_the_mass_matrix() {
     let flexure = SpatialFlexure::new(0.08, SpatialSection::uniform(0.3, 0.5, 0.4).unwrap(), [2, 2, 2]).unwrap();
     let joints = vec![
         spec("flex", SpatialJointKind::Flexure(Box::new(flexure)), 0, 1, placed([0.0; 3], [0.2, 0.1, 0.0])),
-        spec("hinge", SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }), 1, 2, placed([0.02, 0.0, 0.0], [0.0, 0.3, 0.1])),
-        spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] }), 2, 3, placed([0.05, 0.01, 0.0], [0.0; 3])),
-        spec("slide", SpatialJointKind::Prismatic(Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 }), 3, 4, placed([0.0, 0.02, 0.0], [0.4, 0.0, 0.0])),
+        spec(
+            "hinge",
+            SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+            1,
+            2,
+            placed([0.02, 0.0, 0.0], [0.0, 0.3, 0.1]),
+        ),
+        spec(
+            "ball",
+            SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] }),
+            2,
+            3,
+            placed([0.05, 0.01, 0.0], [0.0; 3]),
+        ),
+        spec(
+            "slide",
+            SpatialJointKind::Prismatic(Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 }),
+            3,
+            4,
+            placed([0.0, 0.02, 0.0], [0.4, 0.0, 0.0]),
+        ),
     ];
     let bodies = vec![
         SpatialBody::massless("ground"),
@@ -79,7 +105,15 @@ fn a_rod_with_a_tip_disc_rings_as_its_closed_forms() {
     let rod = SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), [3, 3, 3]).unwrap();
     let joints = vec![spec("rod", SpatialJointKind::Flexure(Box::new(rod)), 0, 1, Isometry3::identity())];
     let disc = body("disc", mass, [0.0; 3], [ix, iy, iy]);
-    let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), disc], joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let m = SpatialMechanism::new(
+        vec![SpatialBody::massless("ground"), disc],
+        joints,
+        vec![],
+        vec![],
+        vec![],
+        Vector3::zeros(),
+    )
+    .unwrap();
     let found = modes(&m, &Default::default(), 9).unwrap();
     let close = |w: f64| found.omega.iter().map(|o| (o - w).abs() / w).fold(f64::INFINITY, f64::min);
     let torsion = (gj / (l * ix)).sqrt();
@@ -109,8 +143,22 @@ fn a_conical_pendulum_keeps_its_cone_and_its_energy() {
     // a point mass would leave the turn about the rod free and massless.
     let i = 0.4 * 0.2 * 0.05f64.powi(2);
     let bob = body("bob", 0.2, [0.0, 0.0, -l], [i; 3]);
-    let ball = spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }), 0, 1, Isometry3::identity());
-    let mut m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::new(0.0, 0.0, -g)).unwrap();
+    let ball = spec(
+        "ball",
+        SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
+    let mut m = SpatialMechanism::new(
+        vec![SpatialBody::massless("ground"), bob],
+        vec![ball],
+        vec![],
+        vec![],
+        vec![],
+        Vector3::new(0.0, 0.0, -g),
+    )
+    .unwrap();
     let omega = (g / (l * beta.cos())).sqrt();
     // Tilted by β about x; spinning at Ω about the world's z: θ̇ = J(θ)⁻¹ (0, 0, Ω).
     let theta = [beta, 0.0, 0.0];
@@ -120,7 +168,8 @@ fn a_conical_pendulum_keeps_its_cone_and_its_energy() {
     m.initial = vec![(0, theta.to_vec())];
     m.initial_velocity = vec![(0, rate.as_slice().to_vec())];
     let period = 2.0 * std::f64::consts::PI / omega;
-    let motion = Motion { duration: 2.0 * period, every: period / 8.0, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
+    let motion =
+        Motion { duration: 2.0 * period, every: period / 8.0, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
     let run = simulate(&m, &motion, &Default::default(), false).unwrap();
     assert!(run.stopped.is_none(), "{:?} after {} samples", run.stopped, run.time.len());
     let e0 = run.energy[0];

@@ -16,7 +16,10 @@ fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin:
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
-    Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]))
+    Isometry3::from_parts(
+        Translation3::new(p[0], p[1], p[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
 }
 
 fn flexure(l: f64, [gj, ei_y, ei_z]: [f64; 3], orders: [usize; 3]) -> SpatialFlexure {
@@ -45,7 +48,13 @@ fn a_weight_on_a_ball_joint_turns_it_as_the_moment_balance_says() {
     let mut b = bodies(&["ground", "arm"]);
     b[1].mass = mass;
     b[1].com = Point3::new(l, 0.0, 0.0);
-    let ball = spec("ball", SpatialJointKind::Spherical(Spherical { stiffness: k, rest: [0.0; 3] }), 0, 1, Isometry3::identity());
+    let ball = spec(
+        "ball",
+        SpatialJointKind::Spherical(Spherical { stiffness: k, rest: [0.0; 3] }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
     let m = SpatialMechanism::new(b, vec![ball], vec![], vec![], vec![], Vector3::new(0.0, 0.0, -g)).unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     let (mut lo, mut hi) = (0.0, std::f64::consts::FRAC_PI_2);
@@ -88,7 +97,8 @@ fn two_flexures_in_perpendicular_planes_compose_their_compliances() {
         spec("one", SpatialJointKind::Flexure(Box::new(f1.clone())), 0, 1, Isometry3::identity()),
         spec("two", SpatialJointKind::Flexure(Box::new(f2.clone())), 1, 2, origin2),
     ];
-    let m = SpatialMechanism::new(bodies(&["ground", "mid", "tip"]), joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let m = SpatialMechanism::new(bodies(&["ground", "mid", "tip"]), joints, vec![], vec![], vec![], Vector3::zeros())
+        .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     let c = compliance(&m, &s, 2, Point3::origin()).unwrap();
     let own = |f: &SpatialFlexure| {
@@ -118,7 +128,8 @@ fn two_flexures_in_perpendicular_planes_compose_their_compliances() {
 /// same curvature by different rules, agreeing to about 1e-9).
 #[test]
 fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml")).unwrap();
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/parallelogram.toml")).unwrap();
     let mut planar = flexure::mechanism::file::from_toml(&text).unwrap();
     // A lateral push as well as the axial one, so the stage moves.
     planar.forces[0].wrench.fx = 0.3;
@@ -126,17 +137,38 @@ fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
     let pc = flexure::mechanism::statics::compliance(&planar, &ps, 1, nalgebra::Point2::new(0.0, -0.02)).unwrap();
     let pframes = flexure::mechanism::statics::body_frames(&planar, &ps);
     let quarter = [0.0, 0.0, std::f64::consts::FRAC_PI_2];
-    let leg = || SpatialJointKind::Flexure(Box::new(flexure(0.05, [2.0e-3; 3], [3, 3, 3]).with_subintervals(16).unwrap()));
-    let joints = vec![spec("left", leg(), 0, 1, placed([0.0; 3], quarter)), spec("right", leg(), 0, 2, placed([0.04, 0.0, 0.0], quarter))];
-    let weld = SpatialClosure::Weld { a: 1, a_origin: placed([0.0, -0.04, 0.0], [0.0; 3]), b: 2, b_origin: Isometry3::identity() };
+    let leg =
+        || SpatialJointKind::Flexure(Box::new(flexure(0.05, [2.0e-3; 3], [3, 3, 3]).with_subintervals(16).unwrap()));
+    let joints = vec![
+        spec("left", leg(), 0, 1, placed([0.0; 3], quarter)),
+        spec("right", leg(), 0, 2, placed([0.04, 0.0, 0.0], quarter)),
+    ];
+    let weld = SpatialClosure::Weld {
+        a: 1,
+        a_origin: placed([0.0, -0.04, 0.0], [0.0; 3]),
+        b: 2,
+        b_origin: Isometry3::identity(),
+    };
     let push = load("push", 1, [0.0, -0.02, 0.0], [0.0; 3], [0.3, -1.0, 0.0]);
-    let m = SpatialMechanism::new(bodies(&["ground", "stage", "b_tip"]), joints, vec![], vec![push], vec![weld], Vector3::zeros()).unwrap();
+    let m = SpatialMechanism::new(
+        bodies(&["ground", "stage", "b_tip"]),
+        joints,
+        vec![],
+        vec![push],
+        vec![weld],
+        Vector3::zeros(),
+    )
+    .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     assert!(s.stable);
     let stage = body_frames(&m, &s)[1];
     let p = pframes.bodies[1];
     let (angle, axis) = (stage.rotation.angle(), stage.rotation.axis().unwrap());
-    assert!((angle * axis.z - p.phi).abs() < 1e-8 && (stage.translation.x - p.x).abs() < 1e-10 && (stage.translation.y - p.y).abs() < 1e-10);
+    assert!(
+        (angle * axis.z - p.phi).abs() < 1e-8
+            && (stage.translation.x - p.x).abs() < 1e-10
+            && (stage.translation.y - p.y).abs() < 1e-10
+    );
     assert!(stage.translation.z.abs() < 1e-14);
     let c = compliance(&m, &s, 1, Point3::new(0.0, -0.02, 0.0)).unwrap();
     // Planar rows (φ, x, y) are spatial rows (θz, x, y) = (2, 3, 4).
@@ -155,7 +187,13 @@ fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
 #[test]
 fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
     let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 2.0));
-    let hinge = spec("h", SpatialJointKind::Revolute(Revolute { axis, stiffness: 4.0, rest: 0.0 }), 0, 1, placed([0.1, 0.0, 0.0], [0.0; 3]));
+    let hinge = spec(
+        "h",
+        SpatialJointKind::Revolute(Revolute { axis, stiffness: 4.0, rest: 0.0 }),
+        0,
+        1,
+        placed([0.1, 0.0, 0.0], [0.0; 3]),
+    );
     let weld = spec("w", SpatialJointKind::Fixed(Fixed), 1, 2, placed([0.0, 0.2, 0.0], [0.5, 0.0, 0.0]));
     let moment = Vector3::new(0.3, -0.6, 0.9);
     let m = SpatialMechanism::new(
@@ -169,4 +207,114 @@ fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     assert!((s.q[0] - moment.dot(&axis) / 4.0).abs() < 1e-12);
+}
+
+/// Reference: the flexure's own stability limit (`spatial::stability_limit`,
+/// the nonlinear path followed from rest) under the same tip load; the
+/// mechanism's linear buckling about the unloaded state meets it to 1e-4
+/// for axial compression (no pre-buckling deformation), and to 2e-2 for a
+/// strip's lateral-torsional buckling under a tip force along its stiff
+/// direction ($EI_z = 400\thinspace EI_y$: a small in-plane bend before it
+/// buckles), which is also Prandtl's $P L^2/\sqrt{EI_yGJ} = 4.013$ to 2e-2.
+#[test]
+fn linear_buckling_meets_the_flexures_own_stability_limit() {
+    use flexure::mechanism::spatial::buckling::buckle;
+    for (stiffness, moment, force, tol) in
+        [([1.0, 1.0, 1.5], [0.0; 3], [-1.0, 0.0, 0.0], 1e-4), ([0.6, 0.5, 200.0], [0.0; 3], [0.0, 1.0, 0.0], 2e-2)]
+    {
+        let f = flexure(1.0, stiffness, [4, 4, 4]);
+        let joint = spec("f", SpatialJointKind::Flexure(Box::new(f.clone())), 0, 1, Isometry3::identity());
+        let m = SpatialMechanism::new(
+            bodies(&["ground", "tip"]),
+            vec![joint],
+            vec![],
+            vec![load("p", 1, [0.0; 3], moment, force)],
+            vec![],
+            Vector3::zeros(),
+        )
+        .unwrap();
+        let linear =
+            buckle(&m, &Default::default()).unwrap_or_else(|e| panic!("{moment:?} {force:?}: {e}")).load_factor;
+        let own = flexure::spatial::stability_limit(&f, &SpatialLoad { moment, force }, 100.0).unwrap().factor();
+        assert!((linear - own).abs() < tol * own, "linear {linear} against the path's {own}");
+        if force[1] != 0.0 {
+            let prandtl = 4.013 * (stiffness[0] * stiffness[1]).sqrt();
+            assert!((linear - prandtl).abs() < tol * prandtl, "linear {linear} against Prandtl's {prandtl}");
+        }
+    }
+}
+
+/// Reference: statics of the rigid lever beyond the flexure: a force $F$
+/// at a point $r$ from the tip reaches the tip as $(R^T(r\times F), R^TF)$
+/// in the flexure's root frame (tolerance 1e-7 of the load: the axial part
+/// is ill-conditioned, see below).
+#[test]
+fn a_flexure_carries_the_wrench_of_the_loads_beyond_it() {
+    use flexure::mechanism::spatial::statics::flexure_loads;
+    let root = placed([0.0, 0.0, 0.0], [0.3, -0.2, 0.5]);
+    let joints = vec![
+        spec("f", SpatialJointKind::Flexure(Box::new(flexure(0.05, [0.5, 0.6, 0.7], [3, 3, 3]))), 0, 1, root),
+        spec("arm", SpatialJointKind::Fixed(Fixed), 1, 2, placed([0.02, 0.01, 0.0], [0.0; 3])),
+    ];
+    let force = Vector3::new(0.3, -0.5, 0.8);
+    let m = SpatialMechanism::new(
+        bodies(&["ground", "tip", "arm"]),
+        joints,
+        vec![],
+        vec![load("p", 2, [0.0, 0.0, 0.01], [0.0; 3], force.into())],
+        vec![],
+        Vector3::zeros(),
+    )
+    .unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    let w = flexure_loads(&m, &s)[0].clone().unwrap();
+    let frames = body_frames(&m, &s);
+    let arm = frames[2] * Point3::new(0.0, 0.0, 0.01) - frames[1].translation.vector;
+    let r = root.rotation.to_rotation_matrix();
+    let expected_moment = r.transpose() * arm.coords.cross(&force);
+    let expected_force = r.transpose() * force;
+    // The axial force reaches the flexure's equations only through its
+    // small axial lever, so it is known to about the residual over that lever.
+    for i in 0..3 {
+        assert!(
+            (w.moment[i] - expected_moment[i]).abs() < 1e-7 * force.norm() * 0.05,
+            "{w:?} against {expected_moment}"
+        );
+        assert!((w.force[i] - expected_force[i]).abs() < 1e-7 * force.norm(), "{w:?} against {expected_force}");
+    }
+    assert!(flexure_loads(&m, &s)[1].is_none());
+}
+
+/// Reference: the same chain solved with every flexure at order 8 (its
+/// tip position the "exact" one): each flexure's estimated position error
+/// bounds the true tip error of a one-flexure chain within a factor of 3.
+#[test]
+fn each_flexures_error_estimate_is_the_size_of_its_true_error() {
+    use flexure::estimate::spatial_mechanism::flexure_errors;
+    let at = |orders: [usize; 3]| {
+        let joint = spec(
+            "f",
+            SpatialJointKind::Flexure(Box::new(flexure(1.0, [0.8, 1.0, 1.2], orders))),
+            0,
+            1,
+            Isometry3::identity(),
+        );
+        let m = SpatialMechanism::new(
+            bodies(&["ground", "tip"]),
+            vec![joint],
+            vec![],
+            vec![load("p", 1, [0.0; 3], [0.1, 0.0, 0.0], [0.0, 0.9, 0.7])],
+            vec![],
+            Vector3::zeros(),
+        )
+        .unwrap();
+        let s = solve(&m, &Default::default()).unwrap();
+        (body_frames(&m, &s)[1].translation.vector, flexure_errors(&m, &s, &Default::default()).unwrap())
+    };
+    let (exact, _) = at([8, 8, 8]);
+    let (model, errors) = at([2, 2, 2]);
+    let truth = (model - exact).norm();
+    let estimate = errors[0].as_ref().unwrap().position;
+    assert!(truth > 1e-4, "the load should strain order 2: {truth}");
+    assert!(estimate / truth < 3.0 && truth / estimate < 3.0, "estimate {estimate} against {truth}");
 }

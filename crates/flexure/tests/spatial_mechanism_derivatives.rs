@@ -23,7 +23,10 @@ fn joint(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
-    Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]))
+    Isometry3::from_parts(
+        Translation3::new(p[0], p[1], p[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
 }
 
 /// A tree of every kind (flexure, hinge, ball, slider, weld), loaded by
@@ -51,15 +54,38 @@ fn mechanism() -> SpatialMechanism {
     ];
     let joints = vec![
         joint("flex", SpatialJointKind::Flexure(Box::new(flexure)), 0, 1, placed([0.0, 0.01, 0.0], [0.1, -0.2, 0.3])),
-        joint("hinge", SpatialJointKind::Revolute(Revolute { axis, stiffness: 0.4, rest: 0.1 }), 1, 2, placed([0.02, 0.0, 0.01], [0.0, 0.4, 0.0])),
-        joint("ball", SpatialJointKind::Spherical(Spherical { stiffness: 0.3, rest: [0.0; 3] }), 2, 3, placed([0.05, 0.0, 0.0], [0.2, 0.0, -0.1])),
-        joint("slide", SpatialJointKind::Prismatic(Prismatic { axis: Vector3::y_axis(), stiffness: 5.0, rest: 0.0 }), 3, 4, placed([0.0, 0.03, 0.0], [0.0, 0.0, 0.7])),
+        joint(
+            "hinge",
+            SpatialJointKind::Revolute(Revolute { axis, stiffness: 0.4, rest: 0.1 }),
+            1,
+            2,
+            placed([0.02, 0.0, 0.01], [0.0, 0.4, 0.0]),
+        ),
+        joint(
+            "ball",
+            SpatialJointKind::Spherical(Spherical { stiffness: 0.3, rest: [0.0; 3] }),
+            2,
+            3,
+            placed([0.05, 0.0, 0.0], [0.2, 0.0, -0.1]),
+        ),
+        joint(
+            "slide",
+            SpatialJointKind::Prismatic(Prismatic { axis: Vector3::y_axis(), stiffness: 5.0, rest: 0.0 }),
+            3,
+            4,
+            placed([0.0, 0.03, 0.0], [0.0, 0.0, 0.7]),
+        ),
         joint("weld", SpatialJointKind::Fixed(Fixed), 4, 5, placed([0.01, 0.0, 0.02], [0.3, 0.2, 0.1])),
     ];
     let tendons = vec![SpatialTendon {
         name: "t".into(),
         tension: 2.0,
-        path: vec![(0, Point3::new(0.0, 0.02, 0.0)), (1, Point3::new(0.01, 0.01, 0.0)), (3, Point3::new(0.0, 0.01, 0.02)), (5, Point3::new(0.0, 0.0, 0.01))],
+        path: vec![
+            (0, Point3::new(0.0, 0.02, 0.0)),
+            (1, Point3::new(0.01, 0.01, 0.0)),
+            (3, Point3::new(0.0, 0.01, 0.02)),
+            (5, Point3::new(0.0, 0.0, 0.01)),
+        ],
     }];
     let forces = vec![SpatialPointLoad {
         name: "push".into(),
@@ -69,8 +95,21 @@ fn mechanism() -> SpatialMechanism {
     }];
     let closures = vec![
         SpatialClosure::Ball { a: 3, a_at: Point3::new(0.01, 0.0, 0.0), b: 0, b_at: Point3::new(0.1, 0.1, 0.0) },
-        SpatialClosure::Weld { a: 5, a_origin: placed([0.0, 0.01, 0.0], [0.2, 0.1, 0.0]), b: 0, b_origin: placed([0.1, 0.0, 0.05], [0.0, 0.3, 0.2]) },
-        SpatialClosure::pin(4, Point3::new(0.0, 0.0, 0.01), Vector3::new(0.0, 1.0, 0.2), 2, Point3::new(0.01, 0.0, 0.0), Vector3::new(0.3, 0.0, 1.0)).unwrap(),
+        SpatialClosure::Weld {
+            a: 5,
+            a_origin: placed([0.0, 0.01, 0.0], [0.2, 0.1, 0.0]),
+            b: 0,
+            b_origin: placed([0.1, 0.0, 0.05], [0.0, 0.3, 0.2]),
+        },
+        SpatialClosure::pin(
+            4,
+            Point3::new(0.0, 0.0, 0.01),
+            Vector3::new(0.0, 1.0, 0.2),
+            2,
+            Point3::new(0.01, 0.0, 0.0),
+            Vector3::new(0.3, 0.0, 1.0),
+        )
+        .unwrap(),
     ];
     SpatialMechanism::new(bodies, joints, tendons, forces, closures, Vector3::new(0.3, -9.81, 1.0)).unwrap()
 }
@@ -220,7 +259,10 @@ fn a_weld_closure_is_zero_and_has_full_rank_where_its_frames_coincide() {
     let omega = f.omega.clone();
     for col in 0..m.dof() {
         for i in 0..3 {
-            let on_path = m.path(5).iter().any(|&j| (m.joints[j].offset..m.joints[j].offset + m.joints[j].kind.joint().dof()).contains(&col));
+            let on_path = m
+                .path(5)
+                .iter()
+                .any(|&j| (m.joints[j].offset..m.joints[j].offset + m.joints[j].kind.joint().dof()).contains(&col));
             let expected = if on_path { omega[(i, col)] } else { 0.0 };
             close(g[(3 + i, col)], expected, 1.0, 1e-14, "weld rotation rows");
         }

@@ -40,6 +40,7 @@ mod eigen;
 mod mechanism;
 mod refinement;
 pub mod spatial;
+pub mod spatial_mechanism;
 mod statics;
 mod value;
 

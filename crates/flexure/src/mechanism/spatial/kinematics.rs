@@ -141,7 +141,14 @@ impl Attached {
 /// World value and Jacobian of `local` (in the frame of `body`; a point
 /// when `point`, else a direction) into `out`, in one pass from the body
 /// down to the ground.
-pub fn attach_into(m: &SpatialMechanism, f: &SpatialFrames, body: usize, local: Vector3<f64>, point: bool, out: &mut Attached) {
+pub fn attach_into(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    body: usize,
+    local: Vector3<f64>,
+    point: bool,
+    out: &mut Attached,
+) {
     let value = if point { f.bodies[body] * Point3::from(local) } else { Point3::from(f.body_rotation(body) * local) };
     for &j in &out.path {
         let (o, k) = (m.joints[j].offset, f.joints[j].gradient.len());
@@ -183,7 +190,13 @@ fn turned_hessian(f: &SpatialFrames, j: usize, linear: bool, a: usize, b: usize)
 
 /// Adds $\sum_c u_c\nabla^2 x_c$ of the vector in `x` (from [`attach_into`])
 /// to `h`, entries on its path only (see the module docs).
-pub fn add_attached_hessian(m: &SpatialMechanism, f: &SpatialFrames, x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>) {
+pub fn add_attached_hessian(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    x: &Attached,
+    u: &Vector3<f64>,
+    h: &mut DMatrix<f64>,
+) {
     if *u == Vector3::zeros() {
         return;
     }
@@ -226,7 +239,13 @@ pub fn add_attached_hessian(m: &SpatialMechanism, f: &SpatialFrames, x: &Attache
 /// angular velocity $\sum_a\omega_a\dot q_a$ and a vector $\mu$ fixed in the
 /// world (a dead moment's generalized force $Q_a = \mu\cdot\omega_a$): not
 /// symmetric, since a moment fixed in space has no potential.
-pub fn add_rotation_derivative(m: &SpatialMechanism, f: &SpatialFrames, body: usize, mu: &Vector3<f64>, k: &mut DMatrix<f64>) {
+pub fn add_rotation_derivative(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    body: usize,
+    mu: &Vector3<f64>,
+    k: &mut DMatrix<f64>,
+) {
     if *mu == Vector3::zeros() {
         return;
     }

@@ -13,12 +13,13 @@
 //! any joint kind; the planar mechanism keeps its own, with the planar fast
 //! paths (rotations that add, the tree's $O(n)$ factorization).
 
+pub mod buckling;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
 pub mod statics;
 
-pub use joints::{Prismatic, Revolute, Spherical, SpatialJointKind};
+pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
 
 use crate::error::{Error, Result};
 #[cfg(doc)]
@@ -155,15 +156,22 @@ impl SpatialClosure {
     /// The two bodies it joins.
     pub fn bodies(&self) -> [usize; 2] {
         match self {
-            SpatialClosure::Weld { a, b, .. } | SpatialClosure::Pin { a, b, .. } | SpatialClosure::Ball { a, b, .. } => {
-                [*a, *b]
-            }
+            SpatialClosure::Weld { a, b, .. }
+            | SpatialClosure::Pin { a, b, .. }
+            | SpatialClosure::Ball { a, b, .. } => [*a, *b],
         }
     }
 
     /// A pin whose axes are `a_axis` in `a`'s frame and `b_axis` in `b`'s,
     /// with `b`'s normals made from `b_axis`.
-    pub fn pin(a: usize, a_at: Point3<f64>, a_axis: Vector3<f64>, b: usize, b_at: Point3<f64>, b_axis: Vector3<f64>) -> Result<Self> {
+    pub fn pin(
+        a: usize,
+        a_at: Point3<f64>,
+        a_axis: Vector3<f64>,
+        b: usize,
+        b_at: Point3<f64>,
+        b_axis: Vector3<f64>,
+    ) -> Result<Self> {
         let a_axis = joints::unit_axis("axis", a_axis)?.into_inner();
         let b_axis = joints::unit_axis("axis", b_axis)?.into_inner();
         let helper = if b_axis.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
@@ -293,7 +301,11 @@ impl SpatialMechanism {
         let mut offset = 0;
         for (i, j) in joints.iter_mut().enumerate() {
             if j.parent >= nb || j.child >= nb || j.child == 0 {
-                return Err(Error::invalid("joint", &j.name, "names a body that is not there (or the ground as child)"));
+                return Err(Error::invalid(
+                    "joint",
+                    &j.name,
+                    "names a body that is not there (or the ground as child)",
+                ));
             }
             if !placed[j.parent] {
                 return Err(Error::invalid("joint", &j.name, "comes before the joint that places its parent"));
@@ -312,7 +324,11 @@ impl SpatialMechanism {
         let within = |b: usize| b < nb;
         for t in &tendons {
             if t.path.len() < 2 || !t.path.iter().all(|p| within(p.0)) {
-                return Err(Error::invalid("tendon", &t.name, "needs two or more via points on bodies of the mechanism"));
+                return Err(Error::invalid(
+                    "tendon",
+                    &t.name,
+                    "needs two or more via points on bodies of the mechanism",
+                ));
             }
         }
         if let Some(f) = forces.iter().find(|f| !within(f.body)) {

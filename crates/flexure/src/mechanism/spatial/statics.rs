@@ -107,11 +107,8 @@ impl<'a> SpatialKkt<'a> {
             }
         }
         let magnitude = |l: &SpatialLoads| {
-            let forces: f64 = l
-                .force
-                .iter()
-                .map(|w| w.fixed_rows::<3>(3).norm() * length + w.fixed_rows::<3>(0).norm())
-                .sum();
+            let forces: f64 =
+                l.force.iter().map(|w| w.fixed_rows::<3>(3).norm() * length + w.fixed_rows::<3>(0).norm()).sum();
             let tendons: f64 = l.tension.iter().map(|t| t * length).sum();
             let mass: f64 = m.bodies.iter().map(|b| b.mass).sum();
             forces + tendons + mass * l.gravity.norm() * length
@@ -342,7 +339,12 @@ pub fn assemble_unloaded(m: &SpatialMechanism, loads: &SpatialLoads, settings: &
 }
 
 /// Equilibrium under `to`, continued from `start` (an equilibrium under `start.loads`).
-pub fn solve_between(m: &SpatialMechanism, start: &SpatialSolution, to: &SpatialLoads, settings: &Settings) -> Result<SpatialSolution> {
+pub fn solve_between(
+    m: &SpatialMechanism,
+    start: &SpatialSolution,
+    to: &SpatialLoads,
+    settings: &Settings,
+) -> Result<SpatialSolution> {
     if start.q.len() != m.dof() || start.multipliers.len() != m.constraints() {
         return Err(Error::invalid("start", start.q.len(), "was solved for another mechanism"));
     }
@@ -352,7 +354,8 @@ pub fn solve_between(m: &SpatialMechanism, start: &SpatialSolution, to: &Spatial
     let x0 = problem.state(&start.q, &start.multipliers);
     ws.x.copy_from_slice(&x0);
     let path = solver::trace(&mut problem, &mut ws, settings)?;
-    let unstable = |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
+    let unstable =
+        |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     match path.error(&problem) {
         None if path.stable => {
             let x = ws.x.clone();
@@ -376,7 +379,11 @@ pub fn stiffness(m: &SpatialMechanism, s: &SpatialSolution) -> (DMatrix<f64>, DM
     let f = frames(m, &s.q);
     let mut a = SpatialAssembly::new(m);
     assemble_into(m, &f, &s.multipliers, &s.loads, true, &mut a);
-    let z = if m.constraints() == 0 { DMatrix::identity(m.dof(), m.dof()) } else { linalg::null_space(&a.closure_jacobian) };
+    let z = if m.constraints() == 0 {
+        DMatrix::identity(m.dof(), m.dof())
+    } else {
+        linalg::null_space(&a.closure_jacobian)
+    };
     let k = z.transpose() * &a.hessian * &z;
     (z, k)
 }
@@ -413,4 +420,23 @@ pub fn compliance(m: &SpatialMechanism, s: &SpatialSolution, body: usize, at: Po
     })?;
     let c = &jz * solved;
     Ok(Matrix6::from_fn(|r, col| c[(r, col)]))
+}
+
+/// The wrench each flexure joint carries at a solution: for joint `j`, the
+/// tip load $w$ (moment and force in its root frame, at its tip) with which
+/// the flexure alone is in equilibrium at its coordinates,
+/// $S_j^Tw = \nabla U_j$, $S_j$ its motion subspace (least squares: every
+/// load beyond the joint reaches it through its tip, so the equations are
+/// consistent at an equilibrium). `None` for the other kinds.
+pub fn flexure_loads(m: &SpatialMechanism, s: &SpatialSolution) -> Vec<Option<crate::spatial::SpatialLoad>> {
+    let f = frames(m, &s.q);
+    m.joints
+        .iter()
+        .zip(&f.joints)
+        .map(|(j, state)| {
+            j.kind.flexure()?;
+            let w = linalg::least_squares(&state.jacobian.transpose(), &state.gradient);
+            Some(crate::spatial::SpatialLoad { moment: [w[0], w[1], w[2]], force: [w[3], w[4], w[5]] })
+        })
+        .collect()
 }
