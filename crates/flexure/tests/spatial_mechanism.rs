@@ -318,3 +318,67 @@ fn each_flexures_error_estimate_is_the_size_of_its_true_error() {
     assert!(truth > 1e-4, "the load should strain order 2: {truth}");
     assert!(estimate / truth < 3.0 && truth / estimate < 3.0, "estimate {estimate} against {truth}");
 }
+
+/// A chain of `count` flexures of length `l` joined by spacer bodies, with a
+/// tendon through a hole at `offset` (in each body's frame) on every body,
+/// anchored on the ground at the same offset.
+fn tendon_chain(count: usize, offset: [f64; 3], tension: f64) -> SpatialMechanism {
+    let (l, ei) = (0.02, 0.004);
+    let mut names = vec!["ground".to_string()];
+    names.extend((1..=count).map(|i| format!("disc{i}")));
+    let joints = (0..count)
+        .map(|i| {
+            let leg = flexure(l, [ei; 3], [3, 3, 3]).with_subintervals(16).unwrap();
+            spec(&format!("f{i}"), SpatialJointKind::Flexure(Box::new(leg)), i, i + 1, placed([if i > 0 { 0.005 } else { 0.0 }, 0.0, 0.0], [0.0; 3]))
+        })
+        .collect();
+    let mut path = vec![(0, Point3::from(offset))];
+    path.extend((1..=count).map(|b| (b, Point3::from(offset))));
+    let tendon = flexure::mechanism::spatial::SpatialTendon { name: "t".into(), tension, path };
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    SpatialMechanism::new(bodies(&refs), joints, vec![tendon], vec![], vec![], Vector3::zeros()).unwrap()
+}
+
+/// Reference: the planar mechanism (`mechanism::statics`) of the same chain
+/// with its tendon in the plane, and the symmetry of a round section: a
+/// tendon offset along z bends the chain out of the plane as the same
+/// tendon offset along y bends it in the plane, the tip at $(x, 0, y)$
+/// where it was at $(x, y, 0)$ (tolerance 1e-9 of the chain's length; the
+/// planar one to 1e-8, the two flexures' rules).
+#[test]
+fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
+    let (count, tension, h) = (3, 12.0, 0.004);
+    let solve_tip = |m: &SpatialMechanism| {
+        let s = solve(m, &Default::default()).unwrap();
+        assert!(s.stable);
+        let f = body_frames(m, &s);
+        (f[count].translation.vector, f[count].rotation.to_rotation_matrix().into_inner())
+    };
+    let (in_plane, r_in) = solve_tip(&tendon_chain(count, [0.0, h, 0.0], tension));
+    let (out, r_out) = solve_tip(&tendon_chain(count, [0.0, 0.0, h], tension));
+    let size = 0.075;
+    assert!(in_plane.y > 0.1 * size, "it bends: {in_plane}");
+    assert!((out.x - in_plane.x).abs() < 1e-9 * size && (out.z - in_plane.y).abs() < 1e-9 * size && out.y.abs() < 1e-9 * size);
+    assert!(in_plane.z.abs() < 1e-12);
+    // The tip turned about −y by the angle it turned about z in the plane.
+    let angle_in = r_in[(1, 0)].atan2(r_in[(0, 0)]);
+    let angle_out = r_out[(2, 0)].atan2(r_out[(0, 0)]);
+    assert!((angle_in - angle_out).abs() < 1e-9);
+    // The planar chain with the same tendon.
+    let mut text = String::new();
+    for i in 0..count {
+        let parent = if i == 0 { "ground".to_string() } else { format!("disc{i}") };
+        let x = if i == 0 { 0.0 } else { 0.005 };
+        text += &format!(
+            "[[joint]]\nname = \"f{i}\"\nkind = \"flexure\"\nparent = \"{parent}\"\nchild = \"disc{}\"\norigin = [{x}, 0.0, 0.0]\nlength = 0.02\nei = 0.004\nquadrature = 24\n",
+            i + 1
+        );
+    }
+    let via: Vec<String> = std::iter::once("[\"ground\", 0.0, 0.004]".to_string()).chain((1..=count).map(|b| format!("[\"disc{b}\", 0.0, 0.004]"))).collect();
+    text += &format!("[[tendon]]\nname = \"t\"\ntension = {tension}\npath = [{}]\n", via.join(", "));
+    let planar = flexure::mechanism::file::from_toml(&text).unwrap();
+    let ps = flexure::mechanism::statics::solve(&planar, &Default::default()).unwrap();
+    let tip = flexure::mechanism::statics::body_frames(&planar, &ps).bodies[count];
+    assert!((tip.x - in_plane.x).abs() < 1e-8 * size && (tip.y - in_plane.y).abs() < 1e-8 * size, "{tip:?} against {in_plane}");
+    assert!((tip.phi - angle_in).abs() < 1e-8);
+}
