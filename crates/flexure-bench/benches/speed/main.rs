@@ -13,6 +13,7 @@ mod mechanism;
 mod reference;
 mod rod;
 mod spatial;
+mod spatial_mechanism;
 mod statics;
 
 /// Seeded inputs, cycled so each call sees different arguments.
@@ -37,6 +38,7 @@ criterion_group!(
     reference::run,
     rod::run,
     dynamics::run,
-    spatial::run
+    spatial::run,
+    spatial_mechanism::run
 );
 criterion_main!(benches);
