@@ -382,3 +382,20 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
     assert!((tip.x - in_plane.x).abs() < 1e-8 * size && (tip.y - in_plane.y).abs() < 1e-8 * size, "{tip:?} against {in_plane}");
     assert!((tip.phi - angle_in).abs() < 1e-8);
 }
+
+/// Reference: a sprung hinge (k = 1 N·m/rad) with an arm of 0.1 m pushed
+/// along itself loses stability at $P = k/l$ = 10 N, found by the sweep's
+/// bisection between the rows at 8 and 12 N to 1e-5 of the load (the
+/// planar sweep's example, in space about an axis out of the plane).
+#[test]
+fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
+    use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep};
+    let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
+    let hinge = spec("pivot", SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }), 0, 1, Isometry3::identity());
+    let m = SpatialMechanism::new(bodies(&["ground", "arm"]), vec![hinge], vec![], vec![load("push", 1, [0.1, 0.0, 0.0], [0.0; 3], [0.0; 3])], vec![], Vector3::zeros()).unwrap();
+    let p = SpatialParameter::parse(&m, "force.push.fx").unwrap();
+    let out = sweep(&m, &p, &[0.0, -4.0, -8.0, -12.0, -16.0], &Default::default()).unwrap();
+    assert_eq!(out.rows.len(), 3);
+    let limit = out.stability_limit.unwrap();
+    assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5, "{limit:?}");
+}

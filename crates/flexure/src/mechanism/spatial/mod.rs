@@ -18,6 +18,7 @@ pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
 pub mod statics;
+pub mod sweep;
 
 pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
 
