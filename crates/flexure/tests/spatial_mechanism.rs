@@ -329,7 +329,13 @@ fn tendon_chain(count: usize, offset: [f64; 3], tension: f64) -> SpatialMechanis
     let joints = (0..count)
         .map(|i| {
             let leg = flexure(l, [ei; 3], [3, 3, 3]).with_subintervals(16).unwrap();
-            spec(&format!("f{i}"), SpatialJointKind::Flexure(Box::new(leg)), i, i + 1, placed([if i > 0 { 0.005 } else { 0.0 }, 0.0, 0.0], [0.0; 3]))
+            spec(
+                &format!("f{i}"),
+                SpatialJointKind::Flexure(Box::new(leg)),
+                i,
+                i + 1,
+                placed([if i > 0 { 0.005 } else { 0.0 }, 0.0, 0.0], [0.0; 3]),
+            )
         })
         .collect();
     let mut path = vec![(0, Point3::from(offset))];
@@ -358,7 +364,11 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
     let (out, r_out) = solve_tip(&tendon_chain(count, [0.0, 0.0, h], tension));
     let size = 0.075;
     assert!(in_plane.y > 0.1 * size, "it bends: {in_plane}");
-    assert!((out.x - in_plane.x).abs() < 1e-9 * size && (out.z - in_plane.y).abs() < 1e-9 * size && out.y.abs() < 1e-9 * size);
+    assert!(
+        (out.x - in_plane.x).abs() < 1e-9 * size
+            && (out.z - in_plane.y).abs() < 1e-9 * size
+            && out.y.abs() < 1e-9 * size
+    );
     assert!(in_plane.z.abs() < 1e-12);
     // The tip turned about −y by the angle it turned about z in the plane.
     let angle_in = r_in[(1, 0)].atan2(r_in[(0, 0)]);
@@ -374,12 +384,17 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
             i + 1
         );
     }
-    let via: Vec<String> = std::iter::once("[\"ground\", 0.0, 0.004]".to_string()).chain((1..=count).map(|b| format!("[\"disc{b}\", 0.0, 0.004]"))).collect();
+    let via: Vec<String> = std::iter::once("[\"ground\", 0.0, 0.004]".to_string())
+        .chain((1..=count).map(|b| format!("[\"disc{b}\", 0.0, 0.004]")))
+        .collect();
     text += &format!("[[tendon]]\nname = \"t\"\ntension = {tension}\npath = [{}]\n", via.join(", "));
     let planar = flexure::mechanism::file::from_toml(&text).unwrap();
     let ps = flexure::mechanism::statics::solve(&planar, &Default::default()).unwrap();
     let tip = flexure::mechanism::statics::body_frames(&planar, &ps).bodies[count];
-    assert!((tip.x - in_plane.x).abs() < 1e-8 * size && (tip.y - in_plane.y).abs() < 1e-8 * size, "{tip:?} against {in_plane}");
+    assert!(
+        (tip.x - in_plane.x).abs() < 1e-8 * size && (tip.y - in_plane.y).abs() < 1e-8 * size,
+        "{tip:?} against {in_plane}"
+    );
     assert!((tip.phi - angle_in).abs() < 1e-8);
 }
 
@@ -391,8 +406,22 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
 fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
     use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep};
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
-    let hinge = spec("pivot", SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }), 0, 1, Isometry3::identity());
-    let m = SpatialMechanism::new(bodies(&["ground", "arm"]), vec![hinge], vec![], vec![load("push", 1, [0.1, 0.0, 0.0], [0.0; 3], [0.0; 3])], vec![], Vector3::zeros()).unwrap();
+    let hinge = spec(
+        "pivot",
+        SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
+    let m = SpatialMechanism::new(
+        bodies(&["ground", "arm"]),
+        vec![hinge],
+        vec![],
+        vec![load("push", 1, [0.1, 0.0, 0.0], [0.0; 3], [0.0; 3])],
+        vec![],
+        Vector3::zeros(),
+    )
+    .unwrap();
     let p = SpatialParameter::parse(&m, "force.push.fx").unwrap();
     let out = sweep(&m, &p, &[0.0, -4.0, -8.0, -12.0, -16.0], &Default::default()).unwrap();
     assert_eq!(out.rows.len(), 3);

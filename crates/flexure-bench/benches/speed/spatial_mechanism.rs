@@ -6,7 +6,9 @@
 
 use criterion::Criterion;
 use flexure::mechanism::spatial::statics::solve;
-use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+use flexure::mechanism::spatial::{
+    SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
+};
 use flexure::section::SpatialSection;
 use flexure::spatial::SpatialFlexure;
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};

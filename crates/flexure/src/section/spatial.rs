@@ -289,6 +289,12 @@ impl SpatialSection {
         }
     }
 
+    /// Whether it has a shape and material (a rectangle or a circle), and
+    /// so stresses; stiffnesses given directly have none.
+    pub fn has_geometry(&self) -> bool {
+        !matches!(self.stiffness, Stiffness::Given { .. })
+    }
+
     /// Whether all three are the same all along (the Gram matrices are then diagonal).
     pub fn is_uniform(&self) -> bool {
         let constant = |p: &Profile| matches!(p, Profile::Constant(_));

@@ -20,7 +20,7 @@ pub use revolute::Revolute;
 
 use crate::error::Result;
 use crate::joint::Flexure;
-use crate::kinematics::Kinematics;
+use crate::kinematics::{Kinematics, Level};
 use crate::mass::MassModel;
 use crate::space::{Planar, Space};
 use crate::spatial::SpatialKinematics;
@@ -140,6 +140,16 @@ pub trait Joint<S: Space = Planar> {
     /// Placement, motion subspace and its derivative, and energy at `q`,
     /// written into `out` (made by [`Joint::state`]) without allocating.
     fn evaluate_into(&self, q: &[f64], out: &mut JointState<S>);
+    /// [`Joint::evaluate_into`] only up to `level`: the pose (and energy) at
+    /// [`Level::Pose`], with the motion subspace and the gradient at
+    /// [`Level::Jacobian`], everything at [`Level::Hessian`]; what a lower
+    /// level leaves out keeps its last values. For kinds whose derivatives
+    /// cost much more than their pose (the spatial flexure), so that a
+    /// residual or a step's size need not pay for them. The default
+    /// evaluates everything.
+    fn evaluate_level_into(&self, q: &[f64], _level: Level, out: &mut JointState<S>) {
+        self.evaluate_into(q, out);
+    }
     /// [`Joint::evaluate_into`] in fresh buffers.
     fn evaluate(&self, q: &[f64]) -> JointState<S> {
         let mut s = self.state();

@@ -31,13 +31,29 @@ impl Joint<Spatial> for SpatialFlexure {
     /// $\partial_b(R\omega_a) = R(\omega_b\times\omega_a + H^{\omega}_{ab})$
     /// and $\partial_a\partial_bp$.
     fn evaluate_into(&self, q: &[f64], s: &mut JointState<Spatial>) {
+        self.evaluate_level_into(q, Level::Hessian, s);
+    }
+
+    /// At [`Level::Pose`] the tip pose and energy alone (the Magnus product,
+    /// 7 × a planar pose), at [`Level::Jacobian`] with the motion subspace
+    /// and gradient (the Hessians of every Magnus step are what cost most).
+    fn evaluate_level_into(&self, q: &[f64], level: Level, s: &mut JointState<Spatial>) {
         if !matches!(s.buffers, Buffers::SpatialFlexure(_)) {
             s.buffers = Buffers::SpatialFlexure(Box::new(SpatialKinematics::new(self)));
         }
         let Buffers::SpatialFlexure(k) = &mut s.buffers else { unreachable!("made just above") };
-        spatial::update(self, q, Level::Hessian, k);
+        spatial::update(self, q, level, k);
         s.pose = k.pose();
         let n = self.coordinates();
+        spatial::energy_gradient(self, q, s.gradient.as_mut_slice());
+        let mut u = 0.0;
+        for ((a, k), g) in q.iter().zip(self.rest()).zip(s.gradient.iter()) {
+            u += (a - k) * g;
+        }
+        s.energy = 0.5 * u;
+        if level == Level::Pose {
+            return;
+        }
         let r = k.rotation;
         let omega = |a: usize| Vector3::new(k.jacobian[(0, a)], k.jacobian[(1, a)], k.jacobian[(2, a)]);
         for a in 0..n {
@@ -46,6 +62,9 @@ impl Joint<Spatial> for SpatialFlexure {
             for i in 0..3 {
                 s.jacobian[(i, a)] = w[i];
                 s.jacobian[(i + 3, a)] = v[i];
+            }
+            if level < Level::Hessian {
+                continue;
             }
             for b in 0..n {
                 let h = k.hessian(a, b);
@@ -57,12 +76,6 @@ impl Joint<Spatial> for SpatialFlexure {
                 }
             }
         }
-        spatial::energy_gradient(self, q, s.gradient.as_mut_slice());
-        let mut u = 0.0;
-        for ((a, k), g) in q.iter().zip(self.rest()).zip(s.gradient.iter()) {
-            u += (a - k) * g;
-        }
-        s.energy = 0.5 * u;
     }
 
     /// $\beta K$: stiffness-proportional damping, as the planar flexure's.

@@ -21,6 +21,7 @@
 //! the plane, one point costs one pass along its path.
 
 use super::SpatialMechanism;
+use crate::kinematics::Level;
 use crate::mechanism::joints::JointState;
 use crate::space::Spatial;
 use nalgebra::{DMatrix, Isometry3, Matrix3, Matrix3xX, Point3, Vector3};
@@ -83,17 +84,26 @@ pub fn frames(m: &SpatialMechanism, q: &[f64]) -> SpatialFrames {
 
 /// [`frames`] into the buffers `f` (made by [`SpatialFrames::new`] for `m`), without allocating.
 pub fn frames_into(m: &SpatialMechanism, q: &[f64], f: &mut SpatialFrames) {
+    frames_level_into(m, q, Level::Hessian, f);
+}
+
+/// [`frames_into`] with each joint evaluated only up to `level`
+/// ([`crate::mechanism::Joint::evaluate_level_into`]): the frames alone at
+/// [`Level::Pose`], with every coordinate's twist at [`Level::Jacobian`]
+/// (enough for residuals and point Jacobians), and the joints' second
+/// derivatives too at [`Level::Hessian`] (for point Hessians).
+pub fn frames_level_into(m: &SpatialMechanism, q: &[f64], level: Level, f: &mut SpatialFrames) {
     f.coordinates.copy_from_slice(q);
     let nb = m.bodies.len();
     for (i, j) in m.joints.iter().enumerate() {
         let joint = j.kind.joint();
         let k = joint.dof();
         let state = &mut f.joints[i];
-        joint.evaluate_into(&q[j.offset..j.offset + k], state);
+        joint.evaluate_level_into(&q[j.offset..j.offset + k], level, state);
         let root = f.bodies[j.parent] * j.origin;
         let rotation = root.rotation.to_rotation_matrix().into_inner();
         let child = root * state.pose;
-        for a in 0..k {
+        for a in (0..k).filter(|_| level >= Level::Jacobian) {
             let s = &state.jacobian;
             let w = rotation * Vector3::new(s[(0, a)], s[(1, a)], s[(2, a)]);
             let v = rotation * Vector3::new(s[(3, a)], s[(4, a)], s[(5, a)]);
@@ -274,8 +284,8 @@ pub fn add_rotation_derivative(
 /// continuation or integration step. `buffers` holds the frames at `a` and `b`.
 pub fn distance(m: &SpatialMechanism, a: &[f64], b: &[f64], buffers: &mut [SpatialFrames; 2]) -> f64 {
     let [fa, fb] = buffers;
-    frames_into(m, a, fa);
-    frames_into(m, b, fb);
+    frames_level_into(m, a, Level::Pose, fa);
+    frames_level_into(m, b, Level::Pose, fb);
     let mut d: f64 = 0.0;
     for i in 1..m.bodies.len() {
         d = d.max(crate::space::rotation_angle(fa.body_rotation(i), fb.body_rotation(i)));

@@ -17,6 +17,7 @@ pub mod buckling;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
+pub mod report;
 pub mod statics;
 pub mod sweep;
 

@@ -12,10 +12,11 @@
 //! each joint's own stiffness. Scaling of rows and multipliers is the
 //! planar [`crate::mechanism::statics::Kkt`]'s.
 
-use super::kinematics::{SpatialFrames, attach, distance, frames, frames_into};
+use super::kinematics::{SpatialFrames, attach, distance, frames, frames_into, frames_level_into};
 use super::lagrangian::{SpatialAssembly, add_loads, assemble_into};
 use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
+use crate::kinematics::Level;
 use crate::linalg;
 use crate::solver::{self, Settings};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3};
@@ -193,7 +194,8 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
         for ((mu, v), s) in self.mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *mu = v * s;
         }
-        frames_into(m, &x[..n], &mut self.frames);
+        let level = if jacobian.is_some() { Level::Hessian } else { Level::Jacobian };
+        frames_level_into(m, &x[..n], level, &mut self.frames);
         self.from.lerp_into(&self.to, lambda, &mut self.loads);
         let a = &mut self.assembly;
         assemble_into(m, &self.frames, &self.mu, &self.loads, jacobian.is_some(), a);
@@ -264,6 +266,25 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
         };
         for i in 0..k.nrows() {
             k[(i, i)] -= self.margin;
+        }
+        linalg::is_positive_definite(&k)
+    }
+
+    /// Without closures: the symmetrized $H - \tfrac12 K$ positive definite,
+    /// $K$ the joints' elastic stiffness, as the planar mechanism tests it.
+    fn far_from_instability(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let n = m.dof();
+        if m.constraints() > 0 || n == 0 {
+            return false;
+        }
+        let mut k = DMatrix::from_fn(n, n, |r, c| {
+            0.5 * (jacobian[c * n + r] / self.row_scale[r] + jacobian[r * n + c] / self.row_scale[c])
+        });
+        for (j, s) in m.joints.iter().zip(&self.frames.joints) {
+            let d = s.gradient.len();
+            let mut block = k.view_mut((j.offset, j.offset), (d, d));
+            block -= &s.stiffness * crate::mechanism::statics::FAR_MARGIN;
         }
         linalg::is_positive_definite(&k)
     }

@@ -38,16 +38,29 @@ impl SpatialParameter {
         let bad = |why: &'static str| Error::invalid("sweep", text, why);
         let parts: Vec<&str> = text.split('.').collect();
         match parts.as_slice() {
-            ["gravity", axis] => {
-                ["x", "y", "z"].iter().position(|a| a == axis).map(SpatialParameter::Gravity).ok_or_else(|| bad("gravity's component must be x, y or z"))
-            }
+            ["gravity", axis] => ["x", "y", "z"]
+                .iter()
+                .position(|a| a == axis)
+                .map(SpatialParameter::Gravity)
+                .ok_or_else(|| bad("gravity's component must be x, y or z")),
             ["force", name, component] => {
-                let i = m.forces.iter().position(|f| f.name == *name).ok_or_else(|| bad("names no force of the mechanism"))?;
-                let c = WRENCH_COMPONENTS.iter().position(|c| c == component).ok_or_else(|| bad("a force's component must be mx, my, mz, fx, fy or fz"))?;
+                let i = m
+                    .forces
+                    .iter()
+                    .position(|f| f.name == *name)
+                    .ok_or_else(|| bad("names no force of the mechanism"))?;
+                let c = WRENCH_COMPONENTS
+                    .iter()
+                    .position(|c| c == component)
+                    .ok_or_else(|| bad("a force's component must be mx, my, mz, fx, fy or fz"))?;
                 Ok(SpatialParameter::Force(i, c))
             }
             ["tendon", name, "tension"] => {
-                let i = m.tendons.iter().position(|t| t.name == *name).ok_or_else(|| bad("names no tendon of the mechanism"))?;
+                let i = m
+                    .tendons
+                    .iter()
+                    .position(|t| t.name == *name)
+                    .ok_or_else(|| bad("names no tendon of the mechanism"))?;
                 Ok(SpatialParameter::Tension(i))
             }
             _ => Err(bad("must be force.NAME.mx|my|mz|fx|fy|fz, tendon.NAME.tension or gravity.x|y|z")),
@@ -112,7 +125,12 @@ fn first_loss(
 /// Equilibria along `values` of one load, each continued from the last,
 /// with the first loss of stability between two values found by bisection
 /// to a relative [`LIMIT_PRECISION`]; as the planar [`crate::mechanism::sweep::sweep`].
-pub fn sweep(m: &SpatialMechanism, parameter: &SpatialParameter, values: &[f64], settings: &Settings) -> Result<SpatialSweep> {
+pub fn sweep(
+    m: &SpatialMechanism,
+    parameter: &SpatialParameter,
+    values: &[f64],
+    settings: &Settings,
+) -> Result<SpatialSweep> {
     settings.validate()?;
     if values.is_empty() {
         return Err(Error::invalid("sweep", "no values", "a sweep needs at least one value"));
@@ -143,8 +161,9 @@ pub fn sweep(m: &SpatialMechanism, parameter: &SpatialParameter, values: &[f64],
         if lost {
             let previous = values[i - 1];
             let value = |s: f64| previous + s * (v - previous);
-            let precise =
-                |lo: f64, hi: f64| (value(hi) - value(lo)).abs() <= LIMIT_PRECISION * value(lo).abs().max(value(hi).abs());
+            let precise = |lo: f64, hi: f64| {
+                (value(hi) - value(lo)).abs() <= LIMIT_PRECISION * value(lo).abs().max(value(hi).abs())
+            };
             let s = match first_loss(m, &start, &target, settings, precise) {
                 Ok(s) => s,
                 Err(e) => {

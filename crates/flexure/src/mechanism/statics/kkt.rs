@@ -18,7 +18,7 @@ pub(super) const MULTIPLIER_SHIFT: f64 = 1e-10;
 
 /// The share of the joints' elastic stiffness a state must keep to count
 /// as far from instability ([`solver::Problem::far_from_instability`]).
-pub(super) const FAR_MARGIN: f64 = 0.5;
+pub(crate) const FAR_MARGIN: f64 = 0.5;
 
 /// The KKT conditions of a mechanism under the loads
 /// $\text{from} + \lambda(\text{to} - \text{from})$, as a [`solver::Problem`].

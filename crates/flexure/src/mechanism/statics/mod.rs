@@ -44,6 +44,7 @@ mod stiffness;
 mod workspace;
 
 pub use assembly::assemble_unloaded;
+pub(crate) use kkt::FAR_MARGIN;
 pub use kkt::Kkt;
 pub(super) use kkt::constrained;
 pub use path::solve_between;
