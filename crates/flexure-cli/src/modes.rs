@@ -173,6 +173,9 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
                     if given.len() == 1 { "it" } else { "them" }
                 ));
             }
+            if let Some(m) = crate::mechanism::spatial::read(file)? {
+                return crate::mechanism::spatial::modes_cmd(&m, file, args.count);
+            }
             mechanism_modes(file, args.count, &args.accuracy.target())
         }
         None => joint_modes(args),

@@ -170,6 +170,23 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         )),
         None => None,
     };
+    if let Some(m) = crate::mechanism::spatial::read(&args.file)? {
+        if out.is_some() {
+            return Err(format!(
+                "--out: {} is a spatial mechanism: its samples are in the JSON answer (no CSV yet)",
+                args.file.display()
+            ));
+        }
+        let run = with_progress_bar(args.duration, || {
+            crate::mechanism::spatial::simulate(&m, &args.file, args.duration, &args.motion)
+        })?;
+        let mut v = crate::mechanism::spatial::motion_json(&m, &run);
+        if let Some(e) = &run.stopped {
+            let reached = run.time.last().copied().unwrap_or(0.0);
+            v["stopped"] = json!({ "time": reached, "error": format!("{}: the run stopped after {} samples (to t = {reached:e} s of {:e} s, each printed above): {}", args.file.display(), run.time.len(), args.duration, said(e.clone(), args.duration)) });
+        }
+        return Ok(v);
+    }
     let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
     put_motion_checks(&mut v, &m, &run, &args.file)?;

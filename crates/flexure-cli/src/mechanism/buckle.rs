@@ -17,6 +17,9 @@ pub struct BuckleArgs {
 /// Linear buckling factor on all loads, and the mode, with its error
 /// estimate; flexures of `order = "auto"` raised until it meets the target.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
+    if let Some(m) = super::spatial::read(&args.file)? {
+        return super::spatial::buckle_cmd(&m, &args.file);
+    }
     let m = load(&args.file)?;
     // Buckling about a preloaded assembly: the preload is told.
     let findings = crate::findings::closures(&m, &args.file)?;

@@ -6,6 +6,7 @@ mod checks;
 mod draw;
 mod drawing;
 mod solve;
+pub mod spatial;
 
 pub use buckle::{BuckleArgs, buckle_cmd};
 pub use draw::{DrawArgs, draw_cmd};
@@ -43,6 +44,19 @@ fn flexures<'a>(
         Some((j.name.as_str(), f, &s.q[j.offset..j.offset + f.order()], r))
     })
 }
+
+/// A point `X,Y` (a planar file) or `X,Y,Z` (a spatial one).
+pub fn point_any(s: &str) -> Result<Point, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if !(2..=3).contains(&parts.len()) {
+        return Err(format!("{s:?} must be X,Y (a planar mechanism) or X,Y,Z (a spatial one)"));
+    }
+    parts.into_iter().map(number).collect::<Result<_, _>>().map(Point)
+}
+
+/// A point of two or three coordinates (one value to clap, not a list).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point(pub Vec<f64>);
 
 /// A point `X,Y`.
 pub fn point_arg(s: &str) -> Result<[f64; 2], String> {

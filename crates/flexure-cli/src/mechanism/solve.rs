@@ -2,7 +2,7 @@
 //! compliance of a frame or a sweep of one load.
 
 use super::checks::{put_sweep_checks, solution_answer};
-use super::{load_with_reports, point_arg};
+use super::{load_with_reports, point_any};
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
 use flexure::mechanism::Mechanism;
@@ -18,9 +18,9 @@ pub struct SolveArgs {
     /// Report the compliance of a frame on this body…
     #[arg(long, requires = "at")]
     compliance: Option<String>,
-    /// …at this point X,Y of the body's frame (m).
-    #[arg(long, value_parser = point_arg, allow_hyphen_values = true, requires = "compliance")]
-    at: Option<[f64; 2]>,
+    /// …at this point X,Y of the body's frame (m); X,Y,Z on a spatial file (its 6 × 6 compliance).
+    #[arg(long, value_parser = point_any, allow_hyphen_values = true, requires = "compliance")]
+    at: Option<super::Point>,
     /// Sweep one load, e.g. tendon.flexor.tension=0:30:31 (or force.NAME.fx|fy|moment, gravity.x|y):
     /// a table with one row per value reached stably, then `stability_limit` (value, fraction) if
     /// stability is lost between two values (found by bisection; a warning on stderr, exit 0).
@@ -78,6 +78,10 @@ fn sweep_row(m: &Mechanism, value: f64, s: &Solution, compliance: Option<&nalgeb
 
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
+    if let Some(m) = super::spatial::read(&args.file)? {
+        let at = args.compliance.as_deref().zip(args.at.as_ref().map(|p| p.0.as_slice()));
+        return super::spatial::solve_cmd(&m, &args.file, at, args.sweep.as_ref(), &args.accuracy.target());
+    }
     let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
     let target = args.accuracy.target();
@@ -88,7 +92,12 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         ),
         None => None,
     };
-    let compliance_at = body.zip(args.at);
+    let at = match args.at.as_ref().map(|p| p.0.as_slice()) {
+        Some([x, y]) => Some([*x, *y]),
+        Some(_) => return Err(format!("--at: {} is a planar mechanism: give the point as X,Y", args.file.display())),
+        None => None,
+    };
+    let compliance_at = body.zip(at);
     match &args.sweep {
         Some(spec) => {
             let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;

@@ -10,6 +10,9 @@ pub(super) type Span = Range<usize>;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct FileToml {
+    /// 2 (checked by `spatial::dimension` before the tables are read).
+    #[allow(dead_code)]
+    pub(super) dimension: Option<Spanned<toml::Value>>,
     #[serde(default)]
     pub(super) joint: Vec<JointToml>,
     #[serde(default)]

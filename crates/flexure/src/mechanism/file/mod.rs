@@ -31,6 +31,7 @@ mod flexures;
 mod joints;
 mod loads;
 mod schedules;
+mod spatial;
 mod validation;
 
 use bodies::{BodyToml, Find};
@@ -40,6 +41,7 @@ pub use flexures::Report;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
 use schedules::ScheduleToml;
+pub use spatial::spatial_from_toml;
 
 /// The largest magnitude of a number in a file. The model forms products of
 /// a few of them ($L^3/EI$, $F L^2$, …); 1e30 keeps any product of ten
@@ -93,6 +95,13 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         });
     }
     let src = Source { text };
+    if spatial::dimension(text)? == 3 {
+        return Err(Error::File {
+            place: "the whole file".into(),
+            message: "dimension = 3: a spatial mechanism; read it with `model_from_toml` (or `spatial_from_toml`)"
+                .into(),
+        });
+    }
     let file = document::parse(text)?;
     let mut bodies = bodies::from_joints(&src, &file.joint)?;
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
@@ -127,6 +136,31 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
     m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
+}
+
+/// A mechanism of either dimension, as its file's `dimension` says.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Model {
+    /// A planar mechanism (no `dimension`, or `dimension = 2`).
+    Planar(Mechanism),
+    /// A spatial mechanism (`dimension = 3`).
+    Spatial(crate::mechanism::spatial::SpatialMechanism),
+}
+
+/// Parses a mechanism file of either dimension: [`from_toml`] or [`spatial_from_toml`].
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::file::{Model, model_from_toml};
+/// let m = model_from_toml("dimension = 3\n[[joint]]\nname = \"ball\"\nkind = \"spherical\"\nparent = \"ground\"\nchild = \"bob\"\n").unwrap();
+/// assert!(matches!(m, Model::Spatial(ref s) if s.dof() == 3));
+/// assert!(model_from_toml("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
+/// ```
+pub fn model_from_toml(text: &str) -> Result<Model> {
+    if text.len() <= MAX_TEXT_BYTES && spatial::dimension(text)? == 3 {
+        return spatial_from_toml(text).map(Model::Spatial);
+    }
+    from_toml(text).map(Model::Planar)
 }
 
 /// Each flexure joint's [`Report`] keys, by joint name in file order. The

@@ -44,6 +44,7 @@ pub struct FlexureAnswer {
     /// Its error estimate against its own refined reference.
     pub error_estimate: ErrorEstimate,
     /// Its peak stress, for a section with a shape and material.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<SpatialPeak>,
 }
 

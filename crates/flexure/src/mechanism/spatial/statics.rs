@@ -39,7 +39,7 @@ pub struct SpatialSolution {
     pub stable: bool,
     /// Where the loading path lost stability before reaching this stable
     /// state: the fraction of the load change, if it did.
-    #[serde(rename = "limit_fraction")]
+    #[serde(rename = "limit_fraction", skip_serializing_if = "Option::is_none")]
     pub limit: Option<f64>,
     /// Final KKT residual, relative.
     pub residual: f64,
