@@ -39,12 +39,26 @@ struct Table {
 /// flatten, …) or let unknown keys through: this reading would miss them.
 fn parser_tables() -> Vec<Table> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mechanism/file");
-    let mut files: Vec<String> =
-        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "spatial")
+        .collect();
     files.sort();
     let listed: Vec<&str> = PARSER_FILES.iter().map(|(name, _)| *name).collect();
     assert_eq!(files, listed, "tests/format.rs must read every file of the parser");
-    let parser = parser();
+    tables_in(&parser())
+}
+
+/// The spatial parser's files (`src/mechanism/file/spatial/`).
+const SPATIAL_FILES: [(&str, &str); 3] = [
+    ("joints.rs", include_str!("../src/mechanism/file/spatial/joints.rs")),
+    ("mod.rs", include_str!("../src/mechanism/file/spatial/mod.rs")),
+    ("parts.rs", include_str!("../src/mechanism/file/spatial/parts.rs")),
+];
+
+/// The `Deserialize` structs of a parser's source (see [`parser_tables`]).
+fn tables_in(parser: &str) -> Vec<Table> {
     for line in parser.lines().map(str::trim).filter(|l| l.starts_with("#[serde(")) {
         assert!(
             line == "#[serde(deny_unknown_fields)]" || line == "#[serde(default)]",
@@ -87,7 +101,11 @@ fn parser() -> String {
 /// The file's tables, by the name they have in TOML (`""` for the top
 /// level), each with the keys the parser accepts in it.
 fn parser_keys() -> Vec<(String, BTreeSet<String>)> {
-    let tables = parser_tables();
+    keys_of(parser_tables())
+}
+
+/// [`parser_keys`] of a parser's structs.
+fn keys_of(tables: Vec<Table>) -> Vec<(String, BTreeSet<String>)> {
     let find = |name: &str| tables.iter().find(|t| t.name == name).unwrap_or_else(|| panic!("no struct {name}"));
     let top = find("FileToml");
     let mut out = vec![(String::new(), BTreeSet::new())];
@@ -192,8 +210,12 @@ fn every_parser_key_is_documented() {
 /// numbers the page quotes from `flexure solve` are what they give.
 #[test]
 fn examples_parse_and_solve() {
-    let blocks: Vec<String> =
-        PAGE.split("```toml\n").skip(1).map(|b| b.split("```").next().unwrap().to_string()).collect();
+    let blocks: Vec<String> = PAGE
+        .split("```toml\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap().to_string())
+        .filter(|b| !b.contains("dimension = 3"))
+        .collect();
     assert!(blocks.len() >= 2, "the page's examples");
     for (i, text) in blocks.iter().enumerate() {
         let m = from_toml(text).unwrap_or_else(|e| panic!("example {}: {e}", i + 1));
@@ -299,4 +321,116 @@ fn unnamed_forces_are_numbered() {
     let names: Vec<&str> = m.forces.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(names, ["0", "1"]);
     assert_eq!(Parameter::parse(&m, "force.1.fy").unwrap(), Parameter::Force(1, 2));
+}
+
+/// The keys named in the first cell of a section's table rows, every one
+/// of them (a row may name several: "| `a`, `b` |").
+fn all_documented_keys(body: &str) -> BTreeSet<String> {
+    body.lines()
+        .filter_map(|l| l.strip_prefix("| "))
+        .filter_map(|l| l.split(" |").next())
+        .flat_map(|cell| cell.split(", ").filter_map(|k| k.strip_prefix('`')?.strip_suffix('`')).map(str::to_string))
+        .collect()
+}
+
+/// The page's `### ` subsections of its spatial section: (heading, body).
+fn spatial_sections() -> Vec<(String, String)> {
+    let (_, spatial) = sections().into_iter().find(|(h, _)| h.contains("dimension = 3")).expect("a spatial section");
+    let mut out: Vec<(String, String)> = Vec::new();
+    for line in spatial.lines() {
+        if let Some(heading) = line.strip_prefix("### ") {
+            out.push((heading.to_string(), String::new()));
+        } else if let Some((_, body)) = out.last_mut() {
+            body.push_str(line);
+            body.push('\n');
+        }
+    }
+    out
+}
+
+/// The spatial file (`dimension = 3`): every key its parser accepts is in
+/// the spatial section's table for it, and every key a table names is
+/// accepted by one of the parser's tables that section documents.
+#[test]
+fn every_spatial_parser_key_is_documented() {
+    let source = SPATIAL_FILES.iter().map(|(_, t)| *t).collect::<String>().replace("pub(super) ", "");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mechanism/file/spatial");
+    let mut files: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    files.sort();
+    assert_eq!(
+        files,
+        SPATIAL_FILES.map(|(n, _)| n.to_string()),
+        "tests/format.rs must read every file of the spatial parser"
+    );
+    let tables = keys_of(tables_in(&source));
+    assert_eq!(tables.len(), 8, "the top level and seven tables");
+    let subsections = spatial_sections();
+    let section = |table: &str| -> &(String, String) {
+        let found: Vec<&(String, String)> = subsections
+            .iter()
+            .filter(
+                |(h, _)| if table.is_empty() { h.contains("top level") } else { h.contains(&format!("`[[{table}]]`")) },
+            )
+            .collect();
+        assert_eq!(found.len(), 1, "one spatial subsection for [[{table}]] (or the top level)");
+        found[0]
+    };
+    for (table, accepted) in &tables {
+        let (heading, body) = section(table);
+        let documented = all_documented_keys(body);
+        let missing: Vec<_> = accepted.difference(&documented).collect();
+        assert!(
+            missing.is_empty(),
+            "[[{table}]] in space: the parser accepts {missing:?}, which the page does not document"
+        );
+        // The keys of every table this subsection covers.
+        let covered: BTreeSet<String> =
+            tables
+                .iter()
+                .filter(|(t, _)| {
+                    if t.is_empty() { heading.contains("top level") } else { heading.contains(&format!("`[[{t}]]`")) }
+                })
+                .flat_map(|(_, k)| k.iter().cloned())
+                .collect();
+        let extra: Vec<_> = documented.difference(&covered).collect();
+        assert!(extra.is_empty(), "{heading}: the page documents {extra:?}, which the parser refuses");
+        if !table.is_empty() {
+            assert!(
+                section("").1.contains(&format!("`[[{table}]]`")),
+                "the spatial top level does not name [[{table}]]"
+            );
+        }
+    }
+    let line = source.lines().find(|l| l.contains("matches!(kind,")).expect("the spatial parser's list of kinds");
+    let kinds: Vec<&str> = line.split('"').skip(1).step_by(2).collect();
+    assert_eq!(kinds, ["flexure", "revolute", "prismatic", "spherical", "fixed"]);
+    for kind in kinds {
+        assert!(section("joint").1.contains(&format!("`\"{kind}\"`")), "spatial kind {kind:?} is not documented");
+    }
+}
+
+/// The page's spatial example parses and solves to the numbers it quotes:
+/// the tip's y against the closed form $FL^3/3EI_z$ (1e-3: the large
+/// deflection and the twist move it that little), and the numbers quoted
+/// from `flexure solve` to their printed digits.
+#[test]
+fn the_spatial_example_solves_as_the_page_says() {
+    use flexure::mechanism::spatial::report::placements;
+    let text = PAGE
+        .split("```toml\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .find(|b| b.contains("dimension = 3"))
+        .unwrap();
+    let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+    let s = flexure::mechanism::spatial::statics::solve(&m, &Settings::default()).unwrap();
+    assert!(s.stable);
+    let tip = &placements(&m, &s.q)[0];
+    let ei_z = 200e9 * 0.01 * 0.0005f64.powi(3) / 12.0;
+    let linear = 0.5 * 0.05f64.powi(3) / (3.0 * ei_z);
+    assert!((tip.position[1] - linear).abs() < 1e-3 * linear, "{:?} against {linear}", tip.position);
+    assert!((tip.position[1] - 0.001001).abs() < 5e-7 && (tip.position[0] - 0.049988).abs() < 5e-7);
+    assert!((tip.rpy[0] - -0.004242).abs() < 5e-7);
+    assert!(PAGE.contains("position: 0.049988 0.001001") && PAGE.contains("rpy: -0.004242"));
 }

@@ -13,13 +13,13 @@
 //! planar [`crate::mechanism::statics::Kkt`]'s.
 
 use super::kinematics::{SpatialFrames, attach, distance, frames, frames_into, frames_level_into};
-use super::lagrangian::{SpatialAssembly, add_loads, assemble_into};
+use super::lagrangian::{SpatialAssembly, add_closure_hessian, add_loads, assemble_into};
 use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::solver::{self, Settings};
-use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3};
+use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3, Vector3};
 use std::cell::RefCell;
 
 /// An equilibrium of a spatial mechanism.
@@ -157,7 +157,10 @@ impl<'a> SpatialKkt<'a> {
         let n = m.dof();
         frames_into(m, &x[..n], &mut self.frames);
         let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
-        let multipliers = self.multipliers(x);
+        let mu = self.multipliers(x);
+        let loads = if end { &self.to } else { &self.from };
+        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
+        let multipliers = settled(m, &self.frames, &self.assembly, &mu, loads);
         if !(energy.is_finite() && x.iter().chain(&multipliers).all(|v| v.is_finite())) {
             return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
         }
@@ -256,6 +259,18 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
             let entry = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r];
             0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c]
         });
+        let mut h = h;
+        if rows > 0 {
+            // Redundant closures: their indeterminate part of μ taken least (see `settled`).
+            let mu = self.mu.clone();
+            let best = settled(m, &self.frames, &self.assembly, &mu, &self.loads);
+            if best != mu {
+                let change: Vec<f64> = best.iter().zip(&mu).map(|(a, b)| a - b).collect();
+                let mut extra = DMatrix::zeros(n, n);
+                add_closure_hessian(m, &self.frames, &change, &mut extra);
+                h += DMatrix::from_fn(n, n, |r, c| extra[(r, c)] * s[r] * s[c]);
+            }
+        }
         let mut k = if rows == 0 {
             h
         } else {
@@ -309,6 +324,76 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
     fn weight(&self, i: usize) -> f64 {
         self.weight.get(i).copied().unwrap_or(0.0)
     }
+}
+
+/// The multipliers `mu` with the part that redundant closures leave
+/// statically indeterminate (the left null space of $G$, as with several
+/// legs welded to one stage) chosen as the planar mechanism chooses it
+/// (`mechanism::indeterminate`): the least transmitted force
+/// $\sum_j L_j\lvert F_j\rvert^2$ over the flexures, $F_j$ the force the bodies
+/// beyond flexure $j$ pass through it (the point loads, weights and tendon
+/// pulls on them, and the closures' $-\mu$ on `a` and $+\mu$ on `b`).
+/// Otherwise the free part is whatever the continuation left, and the
+/// self-stress it carries through the closures' curvature makes a stable
+/// mechanism look unstable. `mu` itself where $G$ has full row rank.
+fn settled(m: &SpatialMechanism, f: &SpatialFrames, a: &SpatialAssembly, mu: &[f64], loads: &SpatialLoads) -> Vec<f64> {
+    let g = &a.closure_jacobian;
+    let rows = g.nrows();
+    if rows == 0 || g.clone().svd(false, false).rank(1e-10 * g.amax().max(f64::MIN_POSITIVE)) == rows {
+        return mu.to_vec();
+    }
+    let free = linalg::null_space(&g.transpose());
+    let flexures: Vec<(usize, f64)> =
+        m.joints.iter().enumerate().filter_map(|(j, spec)| spec.kind.flexure().map(|fl| (j, fl.length()))).collect();
+    if free.ncols() == 0 || flexures.is_empty() {
+        return mu.to_vec();
+    }
+    let mut body_forces: Vec<(usize, Vector3<f64>)> = Vec::new();
+    for (p, w) in m.forces.iter().zip(&loads.force) {
+        body_forces.push((p.body, Vector3::new(w[3], w[4], w[5])));
+    }
+    for (i, body) in m.bodies.iter().enumerate() {
+        body_forces.push((i, loads.gravity * body.mass));
+    }
+    for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
+        let w: Vec<Vector3<f64>> = t.path.iter().map(|(b, r)| (f.bodies[*b] * r).coords).collect();
+        for (i, pair) in w.windows(2).enumerate() {
+            let d = pair[1] - pair[0];
+            if d.norm() > 0.0 {
+                let pull = d * (tension / d.norm());
+                body_forces.push((t.path[i].0, pull));
+                body_forces.push((t.path[i + 1].0, -pull));
+            }
+        }
+    }
+    let (mut e, mut b) = (DVector::zeros(3 * flexures.len()), DMatrix::zeros(3 * flexures.len(), rows));
+    for (k, &(j, length)) in flexures.iter().enumerate() {
+        let inside: Vec<bool> = (0..m.bodies.len()).map(|body| m.path(body).contains(&j)).collect();
+        let w = length.sqrt();
+        for (body, force) in &body_forces {
+            if inside[*body] {
+                for i in 0..3 {
+                    e[3 * k + i] += w * force[i];
+                }
+            }
+        }
+        let mut row = 0;
+        for c in &m.closures {
+            let [ca, cb] = c.bodies();
+            let sign = match (inside[ca], inside[cb]) {
+                (true, false) => -1.0,
+                (false, true) => 1.0,
+                _ => 0.0,
+            };
+            for i in 0..3 {
+                b[(3 * k + i, row + i)] = sign * w;
+            }
+            row += c.equations();
+        }
+    }
+    let mu0 = DVector::from_column_slice(mu);
+    let y = linalg::least_squares(&(&b * &free), &-(e + &b * &mu0));
+    if y.iter().all(|v| v.is_finite()) { (mu0 + &free * y).iter().copied().collect() } else { mu.to_vec() }
 }
 
 /// Equilibrium under the mechanism's own loads, by continuation from the

@@ -72,15 +72,12 @@ impl Source<'_> {
 
 /// The file's `dimension`: 2 when absent; an error naming it unless 2 or 3.
 pub(super) fn dimension(text: &str) -> Result<u8> {
-    #[derive(Deserialize)]
-    struct Probe {
-        dimension: Option<Spanned<toml::Value>>,
-    }
-    let probe: Probe = toml::from_str(text).map_err(|e| Error::File {
+    // Every top-level value with its place: only `dimension` is read here.
+    let top: BTreeMap<String, Spanned<toml::Value>> = toml::from_str(text).map_err(|e| Error::File {
         place: place(text, e.span().map_or(0, |s| s.start)),
         message: e.message().trim().to_string(),
     })?;
-    match probe.dimension {
+    match top.get("dimension") {
         None => Ok(2),
         Some(d) => match d.get_ref() {
             toml::Value::Integer(2) => Ok(2),
