@@ -51,6 +51,7 @@ mod space_spatial;
 mod spatial_dynamics;
 mod spatial_energy;
 mod spatial_estimate;
+mod spatial_examples;
 mod spatial_files;
 mod spatial_kinematics;
 mod spatial_mechanism;
