@@ -26,6 +26,7 @@ mod reproduce;
 mod sections;
 mod simulate;
 mod spatial;
+mod spatial_mechanism;
 
 /// Every `tests/*.rs` file is a module here or a `[[test]]` target of
 /// Cargo.toml: with auto-discovery off, a file named in neither would

@@ -109,6 +109,9 @@ fn calls() -> Vec<Vec<String>> {
         .filter(|n| n.ends_with(".toml"))
         .collect();
     names.sort();
+    // The spatial examples' calls come after every earlier call (below).
+    let spatial = |n: &String| std::fs::read_to_string(format!("{root}/{n}")).unwrap().contains("dimension = 3");
+    let (spatial_names, names): (Vec<String>, Vec<String>) = names.into_iter().partition(spatial);
     let mut out: Vec<Vec<String>> = Vec::new();
     let words = |s: &str| s.split_whitespace().map(String::from).collect::<Vec<_>>();
     for name in &names {
@@ -159,6 +162,15 @@ fn calls() -> Vec<Vec<String>> {
         "compliance --spatial --ei 1,0.5 --gj 0.8",
     ] {
         out.push(words(call));
+    }
+    // The spatial mechanisms (`dimension = 3`).
+    for name in &spatial_names {
+        let file = format!("{root}/{name}");
+        for rest in ["solve", "buckle", "modes --count 2"] {
+            let mut call = words(rest);
+            call.insert(1, file.clone());
+            out.push(call);
+        }
     }
     out
 }

@@ -1,0 +1,136 @@
+//! The mechanism subcommands on spatial files (`dimension = 3`): each
+//! prints the library's answer (checked against the library itself and a
+//! closed form), and bad input exits 2 naming the key, line and column.
+
+use crate::cli::{answer, run};
+use serde_json::Value;
+
+fn example(name: &str) -> String {
+    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every number in `v`, in order.
+fn numbers(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Number(n) => vec![n.as_f64().unwrap()],
+        Value::Array(a) => a.iter().flat_map(numbers).collect(),
+        Value::Object(o) => o.values().flat_map(numbers).collect(),
+        _ => vec![],
+    }
+}
+
+/// A file written for the test.
+fn written(dir: &tempfile::TempDir, text: &str) -> String {
+    let path = dir.path().join("m.toml");
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+const PENDULUM: &str = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n\
+    [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\naxis = [0.0, 1.0, 0.0]\nstiffness = 2.0\n\
+    [[body]]\nname = \"arm\"\nmass = 0.5\ncom = [0.1, 0.0, 0.0]\n";
+
+/// Reference: the spatial examples through every subcommand that applies
+/// to them (`solve`, `solve --sweep`, `solve --compliance X,Y,Z`,
+/// `buckle`), each exiting 0 with a finite answer and no warning, the
+/// solve's bodies being the library's report.
+#[test]
+fn the_spatial_examples_answer_every_mechanism_subcommand() {
+    let cases = [
+        ("finger3d.toml", "force.contact.fz=0:0.1:3", ("fingertip", "0,0,0.003")),
+        ("continuum_robot.toml", "tendon.side.tension=0:0.6:4", ("disc5", "0,0,0")),
+        ("stage3d.toml", "force.load.fz=0:2:3", ("stage", "0,-0.02,0")),
+    ];
+    for (name, sweep, (body, at)) in cases {
+        let file = example(name);
+        let text = std::fs::read_to_string(&file).unwrap();
+        // The comments show the commands run here.
+        assert!(
+            text.contains(&format!("--compliance {body} --at {at}")),
+            "{name}: the comments do not show the compliance call"
+        );
+        let (v, err) = answer(&["solve", &file]);
+        assert!(err.is_empty(), "{name}: {err}");
+        assert_eq!(v["dimension"], 3);
+        let m = flexure::mechanism::file::spatial_from_toml(&text).unwrap();
+        let s = flexure::mechanism::spatial::statics::solve(&m, &Default::default()).unwrap();
+        let library =
+            serde_json::to_value(flexure::mechanism::spatial::report::report(&m, &s, &Default::default()).unwrap())
+                .unwrap();
+        // The same numbers (to the last bits that JSON's text round trip may move).
+        let (a, b) = (numbers(&v["bodies"]), numbers(&library["bodies"]));
+        assert_eq!(a.len(), b.len(), "{name}");
+        assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-15 * x.abs().max(1e-3)), "{name}");
+        let (v, err) = answer(&["solve", &file, "--sweep", sweep]);
+        assert!(err.is_empty(), "{name} --sweep: {err}");
+        assert!(v["rows"].as_array().unwrap().len() >= 3, "{name}: {v}");
+        let (v, err) = answer(&["solve", &file, "--compliance", body, "--at", at]);
+        assert!(err.is_empty(), "{name} --compliance: {err}");
+        let c = v["compliance"].as_array().unwrap();
+        assert_eq!((c.len(), c[0].as_array().unwrap().len()), (6, 6), "{name}");
+        let (v, _) = answer(&["buckle", &file]);
+        assert!(v["load_factor"].as_f64().unwrap() > 1.0, "{name}: {v}");
+    }
+}
+
+/// Reference: a sprung hinge about y carrying 0.5 kg at 0.1 m: gravity turns
+/// it by $k\theta = mgl\cos\theta$ (a turn about +y takes +x down), its one
+/// mode is $\omega^2 = (k + mgl\sin\theta)/(ml^2)$ about that state ($V^{\prime\prime}$
+/// of $V = \frac12k\theta^2 - mgl\sin\theta$), and a
+/// simulation from the equilibrium stays there.
+#[test]
+fn a_sprung_arm_solves_rings_and_rests() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = written(&dir, PENDULUM);
+    let (k, m, g, l) = (2.0f64, 0.5, 9.81, 0.1);
+    let (mut lo, mut hi) = (0.0, 1.5);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if k * mid < m * g * l * f64::cos(mid) { lo = mid } else { hi = mid }
+    }
+    let (v, _) = answer(&["solve", &file]);
+    let theta = v["joints"][0]["coordinates"][0].as_f64().unwrap();
+    assert!((theta - lo).abs() < 1e-10, "{theta} against {lo}");
+    let (v, _) = answer(&["modes", &file]);
+    let omega = v["omega"][0].as_f64().unwrap();
+    let expected = ((k + m * g * l * lo.sin()) / (m * l * l)).sqrt();
+    assert!((omega - expected).abs() < 1e-8 * expected, "{omega} against {expected}");
+    let (v, _) = answer(&["simulate", &file, "--duration", "0.2", "--every", "0.1"]);
+    let rows = v["coordinates"]["hinge"].as_array().unwrap();
+    assert_eq!(rows.len(), 3);
+    for r in rows {
+        assert!((r[0].as_f64().unwrap() - lo).abs() < 1e-7, "{v}");
+    }
+    let rotation = &v["bodies"]["arm"]["rotation"][2];
+    assert_eq!(rotation.as_array().unwrap().len(), 3);
+}
+
+/// Reference: the file's text: every bad value is refused with exit 2,
+/// nothing on stdout, and its key, line and column on stderr.
+#[test]
+fn bad_spatial_input_names_its_key_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str, &[&str]); 4] = [
+        (
+            &PENDULUM.replace("axis = [0.0, 1.0, 0.0]", "axis = [0.0, 0.0, 0.0]"),
+            "line 8, column 8: joint \"hinge\": axis",
+            &["solve"],
+        ),
+        (&PENDULUM.replace("dimension = 3", "dimension = 5"), "line 1, column 13: dimension = 5", &["buckle"]),
+        (&PENDULUM.replace("com = [0.1, 0.0, 0.0]", "com = [0.1, 0.0]"), "line 13, column 7", &["modes"]),
+        (PENDULUM, "--at: ", &["solve", "--compliance", "arm", "--at", "0.1,0"]),
+    ];
+    for (text, expected, args) in cases {
+        let file = written(&dir, text);
+        let mut all = vec![args[0], file.as_str()];
+        all.extend(&args[1..]);
+        let (code, out, err) = run(&all);
+        assert_eq!(code, 2, "{all:?}: {out}");
+        assert!(out.is_empty() && err.contains(expected), "{all:?}: {err:?} should contain {expected:?}");
+    }
+    // And a planar command's key on a spatial file says what to give.
+    let file = written(&dir, PENDULUM);
+    let (code, _, err) = run(&["solve", &file, "--sweep", "force.none.fx=0:1:2"]);
+    assert!(code == 2 && err.contains("sweep"), "{err}");
+    let _ = Value::Null;
+}
