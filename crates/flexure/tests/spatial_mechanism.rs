@@ -267,7 +267,7 @@ fn a_flexure_carries_the_wrench_of_the_loads_beyond_it() {
     )
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
-    let w = flexure_loads(&m, &s)[0].clone().unwrap();
+    let w = flexure_loads(&m, &s)[0].unwrap();
     let frames = body_frames(&m, &s);
     let arm = frames[2] * Point3::new(0.0, 0.0, 0.01) - frames[1].translation.vector;
     let r = root.rotation.to_rotation_matrix();

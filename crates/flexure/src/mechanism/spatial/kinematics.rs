@@ -2,8 +2,8 @@
 //! in bodies, chained through the tree in SE(3).
 //!
 //! Coordinate $a$ of joint $j$ moves everything beyond the joint by the
-//! world twist $(\omega_a, v_a)$: $\omega_a = R_A\thinspace S^{\omega}_a$ and
-//! $v_a = R_A\thinspace S^{p}_a$, the joint's motion subspace
+//! world twist $(\omega_a, v_a)$: $\omega_a = R_A\thinspace S_a^{\omega}$ and
+//! $v_a = R_A\thinspace S_a^{p}$, the joint's motion subspace
 //! ([`crate::mechanism::JointState::jacobian`]) turned by its root frame $A$,
 //! $v_a$ the velocity of its output origin $o_j$. A vector $x$ fixed in a
 //! body beyond the joint, a point ($\epsilon = 1$) or a direction
@@ -13,11 +13,11 @@
 //! $\partial_{ab}x = \omega_b\times\partial_a x$ (the whole of joint $j$'s
 //! motion turns with $b$; the Jacobi identity folds the terms); within one
 //! joint,
-//! $$\partial_{ab}x = \epsilon R_A H^{p}_{ab} + (R_A H^{\omega}_{ab})\times r + \omega_a\times(\omega_b\times r),$$
+//! $$\partial_{ab}x = \epsilon R_A H_{ab}^{p} + (R_A H_{ab}^{\omega})\times r + \omega_a\times(\omega_b\times r),$$
 //! with $H$ the derivative of the motion subspace
 //! ([`crate::mechanism::JointState::hessian`]). A body's rotation moves by
 //! $\partial_a R = \hat\omega_a R$, and $\partial_b\omega_a$ is $\omega_b\times\omega_a$
-//! upstream, $R_A H^{\omega}_{ab}$ within the joint and zero downstream. As in
+//! upstream, $R_A H_{ab}^{\omega}$ within the joint and zero downstream. As in
 //! the plane, one point costs one pass along its path.
 
 use super::SpatialMechanism;

@@ -24,12 +24,15 @@ pub(super) struct BodyToml {
     iyz: Option<Spanned<f64>>,
 }
 
+/// A via point: `[body, x, y, z]`.
+type ViaToml = (Spanned<String>, f64, f64, f64);
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct TendonToml {
     name: Spanned<String>,
     tension: Spanned<f64>,
-    path: Spanned<Vec<Spanned<(Spanned<String>, f64, f64, f64)>>>,
+    path: Spanned<Vec<Spanned<ViaToml>>>,
 }
 
 #[derive(Deserialize)]
