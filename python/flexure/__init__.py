@@ -73,7 +73,10 @@ _MAX_FILE_BYTES = 64 << 20
 
 
 class Mechanism:
-    """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository)."""
+    """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository):
+    planar, or spatial for a file with `dimension = 3` (`dimension` says which). A spatial
+    mechanism answers solve, compliance, sweep, modes, simulate and buckle, each documented
+    with its spatial form; export raises ValueError saying it is planar only for now."""
 
     def __init__(self, inner: _Mechanism, source: _Optional[str] = None):
         self._inner = inner
@@ -130,6 +133,11 @@ class Mechanism:
         """Number of generalized coordinates."""
         return self._inner.dof
 
+    @property
+    def dimension(self) -> int:
+        """2 for a planar mechanism, 3 for a spatial one (its file says `dimension = 3`)."""
+        return self._inner.dimension
+
     def simulate(
         self,
         duration: float,
@@ -156,7 +164,11 @@ class Mechanism:
         A duration, every or tolerance not above zero raises ValueError naming it; an
         integration that stalls (its budget included) raises ConvergenceError saying
         where; Ctrl-C stops it with KeyboardInterrupt saying the time reached. Runs
-        without the GIL."""
+        without the GIL.
+
+        Spatial (dimension = 3): bodies {name: {position (N, 3), rotation (N, 3, 3)}}, each
+        body's origin and rotation matrix in the ground frame at each sample; the rest as
+        above (the loads are constant: a spatial file has no [[schedule]]; no findings)."""
         try:
             return self._inner.simulate(duration, every, tolerance, start, max_steps)
         except (ValueError, ConvergenceError) as e:
@@ -193,7 +205,20 @@ class Mechanism:
         preload_force_n and preload_moment_n_m, that it carries with no load) warns
         PreloadWarning, unless the file says `preload = true` in it (severity
         "note", no warning). Two parts that cross in the answer (kind "crossing":
-        parts, at, s_a and s_b along flexures, contacts) warn IntersectionWarning."""
+        parts, at, s_a and s_b along flexures, contacts) warn IntersectionWarning.
+
+        Spatial (dimension = 3): the library's report, as `flexure solve --json` prints it:
+        dimension (3), q and multipliers (arrays), energy, stable, limit_fraction (a
+        snap-through, StabilityWarning; left out without one), residual, load_steps,
+        iterations; bodies {name: {position (3,), rotation (3, 3), rpy (3,)}} (origin,
+        rotation matrix and URDF roll, pitch, yaw in the ground frame; the ground left out);
+        coordinates {joint: array} (a flexure's twist series, then its bendings about y and z;
+        a hinge's angle, a slider's travel, a ball's rotation vector); flexures {flexure joint:
+        {load {moment (3,), force (3,)}, the tip wrench it carries in its root frame, and stress
+        (a dict, for a section with geometry)}}; error_estimate {flexure joint: dict as
+        `SpatialFlexure.deflect`'s}; flagged. Each flagged flexure joint warns AccuracyWarning
+        naming it; an unstable answer warns StabilityWarning. No findings, safety_factor or
+        shape yet."""
         try:
             return self._inner.solve(accuracy)
         except (ValueError, ConvergenceError) as e:
@@ -221,21 +246,31 @@ class Mechanism:
         flagged, whether it misses accuracy (a fraction, default 0.01; then AccuracyWarning).
         Flexures of order = "auto" in the file are raised until it is met (order then lists
         {joint: order}). findings lists closures open at rest (PreloadWarning). A mechanism
-        without coordinates, or without loads, raises ValueError; errors name the file."""
+        without coordinates, or without loads, raises ValueError; errors name the file.
+
+        Spatial (dimension = 3): load_factor and mode (dof,) alone, as `flexure buckle --json`
+        prints them (dimension 3): no error estimate yet, so an `accuracy` raises ValueError."""
         try:
             return self._inner.buckle(accuracy)
         except (ValueError, ConvergenceError) as e:
             self._named(e, ("accuracy",))
             raise
 
-    def compliance(self, body: str, at: _Tuple[float, float] = (0.0, 0.0)) -> "np.ndarray":
+    def compliance(self, body: str, at: _Optional[_Sequence[float]] = None) -> "np.ndarray":
         """Compliance (3, 3), order (phi, x, y), of the frame at point `at` (x, y, m, in the
         body's frame) on `body` at the loaded equilibrium: its response d(pose)/d(M, Fx, Fy)
         to a small extra load there, as `flexure solve FILE --compliance BODY --at X,Y`.
         For one flexure of length L and stiffness EI clamped to the ground, at its tip and
         unloaded: diag(L/EI, 0, L^3/3EI) with L^2/2EI coupling phi and y. An unknown body, or
         an `at` that is not two finite numbers within 1e6 m, raises ValueError naming it; an
-        unstable equilibrium (or a free joint) raises ValueError; errors name the file."""
+        unstable equilibrium (or a free joint) raises ValueError; errors name the file.
+        `at` defaults to the body's origin.
+
+        Spatial (dimension = 3): (6, 6), rows and columns (rx, ry, rz, x, y, z), small
+        rotations then displacements per unit moment then force, in the ground frame, of the
+        point `at` (x, y, z) on `body`, as `flexure solve FILE --compliance BODY --at X,Y,Z`.
+        For one flexure clamped to the ground, unloaded, at its tip: diag(L/GJ, L/EI_y, L/EI_z,
+        0, L^3/3EI_z, L^3/3EI_y) with the bending couplings L^2/2EI."""
         try:
             return self._inner.compliance(body, at)
         except (ValueError, ConvergenceError) as e:
@@ -268,7 +303,12 @@ class Mechanism:
         A sweep that stops (a solve that fails before the last value) raises
         ConvergenceError, or KeyboardInterrupt for Ctrl-C, whose `result` attribute holds the
         answer with the rows reached and `stopped` {value, error}: the CLI prints the same
-        rows and exits 2. Bad input raises ValueError naming it; errors name the file."""
+        rows and exits 2. Bad input raises ValueError naming it; errors name the file.
+
+        Spatial (dimension = 3): parameter "tendon.NAME.tension", "force.NAME.fx" (".fy", ".fz",
+        ".mx", ".my", ".mz") or "gravity.x" (".y", ".z"); bodies {name: {position (n, 3),
+        rotation (n, 3, 3), rpy (n, 3)}}; no stress or findings; with compliance=BODY (at=(x, y,
+        z), default the body's origin), compliance (n, 6, 6) as `compliance` gives it."""
         try:
             return self._inner.sweep(parameter, values, accuracy, compliance, at)
         except (ValueError, ConvergenceError, KeyboardInterrupt) as e:
@@ -317,7 +357,12 @@ class Mechanism:
         reference pairs none; reference_omega; reference_order and reference_quadrature by
         flexure joint; reference_stable; flagged); a mode that misses accuracy (a fraction,
         default 0.01) warns AccuracyWarning. Flexures of order = "auto" in the file are raised
-        until every mode meets it. Errors name the mechanism's file."""
+        until every mode meets it. Errors name the mechanism's file.
+
+        Spatial (dimension = 3): omega, frequency, shapes {joint: (modes, k)}, quasi_static and
+        limit_fraction as above, without error_estimate (the library estimates none for a
+        spatial mechanism yet: an `accuracy` raises ValueError). Spatial flexures are massless:
+        the bodies' mass and inertia carry it."""
         try:
             return self._inner.modes(count, accuracy)
         except (ValueError, ConvergenceError) as e:

@@ -290,10 +290,15 @@ class SpatialFlexure:
     def exact_rod(self, force: Optional[ArrayLike] = None, moment: Optional[ArrayLike] = None) -> Dict[str, Any]: ...
 
 class Mechanism:
+    """A mechanism file's model, planar or spatial (dimension = 3); the spatial forms of each
+    answer are flexure.Mechanism's."""
     @staticmethod
     def from_text(text: str) -> "Mechanism": ...
     @property
     def dof(self) -> int: ...
+    @property
+    def dimension(self) -> int:
+        """2 (planar) or 3 (spatial)."""
     def simulate(
         self,
         duration: float,
@@ -303,25 +308,31 @@ class Mechanism:
         max_steps: Optional[int] = None,
     ) -> dict:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
-        velocities {joint: (N, k) array}, energy, steps, rejected, violation."""
+        velocities {joint: (N, k) array}, energy, steps, rejected, violation; spatial: bodies
+        {name: {position (N, 3), rotation (N, 3, 3)}}."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, error_estimate
         {flexure joint: _ErrorEstimate}, flagged, findings, and per
-        flexure joint stress (or curvature_max), safety_factor and shape where they apply."""
+        flexure joint stress (or curvature_max), safety_factor and shape where they apply;
+        spatial: dimension, q, multipliers, bodies {name: {position, rotation, rpy}},
+        coordinates, energy, stable, flexures {joint: {load, stress}}, error_estimate, flagged."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
-        """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings]."""
-    def compliance(self, body: str, at: ArrayLike) -> np.ndarray:
-        """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`."""
+        """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings];
+        spatial: load_factor, mode, dimension."""
+    def compliance(self, body: str, at: Optional[ArrayLike] = None) -> np.ndarray:
+        """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`;
+        spatial: (6, 6), order (rx, ry, rz, x, y, z), at `at` (x, y, z)."""
     def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None,
               compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
-        stability_limit, findings; a sweep that stops raises with the rows in `result`."""
+        stability_limit, findings; a sweep that stops raises with the rows in `result`; spatial:
+        bodies {name: {position, rotation, rpy}} and compliance (n, 6, 6)."""
     def export(self, to: str = "mjcf", prb: str = "1R", range: Union[None, str, Sequence[float]] = None,
                armature: float = 0.0, name: str = "mechanism") -> Tuple[str, dict]:
         """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, warnings, notes})."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
-        quasi_static, and limit_fraction after a snap-through."""
+        quasi_static, and limit_fraction after a snap-through; spatial: without error_estimate."""
 
 class Elastica:
     """The exact elastica of a flexure under a tip load (flexure.exact.elastica): Eq. 3 with EI(s),

@@ -1,33 +1,66 @@
-//! The `Mechanism` class: a mechanism read from its file, and the analyses
-//! it answers; its solve report is `solve.rs`, the others `analyses.rs`.
+//! The `Mechanism` class: a mechanism read from its file, planar or spatial
+//! (`dimension = 3`), and the analyses it answers; a planar one's solve
+//! report is `solve.rs`, its others `analyses.rs`; a spatial one's are
+//! `spatial.rs`.
 
 mod analyses;
 mod solve;
+mod spatial;
 
 use crate::accuracy::eigen_accuracy;
 use crate::errors::to_py;
 use crate::strict::{self, Real};
 use crate::{modes, simulate};
-use flexure::mechanism::file::{Report, from_toml, reports};
+use flexure::mechanism::file::{Model, Report, model_from_toml, reports};
+use flexure::mechanism::spatial::SpatialMechanism;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// A mechanism read from a TOML description.
+/// What a file describes: a planar mechanism, with each flexure joint's
+/// `yield_strength` and `shape` by name, or a spatial one.
+enum Described {
+    Planar { inner: flexure::mechanism::Mechanism, reports: Vec<(String, Report)> },
+    Spatial(SpatialMechanism),
+}
+
+/// A mechanism read from a TOML description, planar or spatial (`dimension = 3`).
 #[pyclass(frozen, module = "flexure")]
 pub struct Mechanism {
-    inner: flexure::mechanism::Mechanism,
-    /// Each flexure joint's `yield_strength` and `shape`, by name.
-    reports: Vec<(String, Report)>,
+    described: Described,
+}
+
+impl Mechanism {
+    /// The planar mechanism, or a ValueError saying that `what` answers
+    /// planar files only for now.
+    fn planar(&self, what: &str) -> PyResult<(&flexure::mechanism::Mechanism, &[(String, Report)])> {
+        match &self.described {
+            Described::Planar { inner, reports } => Ok((inner, reports)),
+            Described::Spatial(_) => Err(PyValueError::new_err(format!(
+                "Mechanism.{what}: a spatial mechanism (dimension = 3) has no {what} yet; it answers solve, compliance, sweep, modes, simulate and buckle"
+            ))),
+        }
+    }
+
+    /// The spatial mechanism, if it is one.
+    fn spatial(&self) -> Option<&SpatialMechanism> {
+        match &self.described {
+            Described::Spatial(m) => Some(m),
+            Described::Planar { .. } => None,
+        }
+    }
 }
 
 #[pymethods]
 impl Mechanism {
-    /// Parses mechanism TOML text.
+    /// Parses mechanism TOML text, planar or spatial (`dimension = 3`).
     #[staticmethod]
     fn from_text(text: &str) -> PyResult<Self> {
-        let inner = from_toml(text).map_err(to_py)?;
-        Ok(Self { inner, reports: reports(text).map_err(to_py)? })
+        let described = match model_from_toml(text).map_err(to_py)? {
+            Model::Planar(inner) => Described::Planar { inner, reports: reports(text).map_err(to_py)? },
+            Model::Spatial(m) => Described::Spatial(m),
+        };
+        Ok(Self { described })
     }
 
     /// Equilibrium as a dict: the library's solve report, as `flexure solve --json` prints it,
@@ -41,7 +74,11 @@ impl Mechanism {
     #[pyo3(signature = (accuracy=None))]
     fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let target = crate::accuracy::accuracy(accuracy)?;
-        solve::solve(py, &self.inner, &self.reports, &target)
+        if let Some(m) = self.spatial() {
+            return spatial::solve(py, m, &target);
+        }
+        let (inner, reports) = self.planar("solve")?;
+        solve::solve(py, inner, reports, &target)
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
@@ -55,7 +92,11 @@ impl Mechanism {
         start: &str,
         max_steps: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let out = simulate::motion(py, &self.inner, (duration.0, every.map(|v| v.0)), tolerance.0, start, max_steps)?;
+        let times = (duration.0, every.map(|v| v.0));
+        let out = match self.spatial() {
+            Some(m) => spatial::simulate(py, m, times, tolerance.0, start, max_steps)?,
+            None => simulate::motion(py, self.planar("simulate")?.0, times, tolerance.0, start, max_steps)?,
+        };
         strict::finite_answer("Mechanism.simulate", out.as_any())?;
         Ok(out)
     }
@@ -70,8 +111,12 @@ impl Mechanism {
         count: Option<&Bound<'py, PyAny>>,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        if let Some(m) = self.spatial() {
+            spatial::no_accuracy("modes", accuracy)?;
+            return spatial::modes(py, m, count);
+        }
         let target = eigen_accuracy(accuracy)?;
-        modes::mechanism_modes(py, &self.inner, count, &target)
+        modes::mechanism_modes(py, self.planar("modes")?.0, count, &target)
     }
 
     /// The mechanism as MJCF, SDFormat or URDF text with its fit report: see `flexure.Mechanism.export`.
@@ -85,21 +130,37 @@ impl Mechanism {
         armature: Real,
         name: &str,
     ) -> PyResult<(String, Bound<'py, PyDict>)> {
-        crate::export::export(py, &self.inner, to, prb, range, armature, name)
+        crate::export::export(py, self.planar("export")?.0, to, prb, range, armature, name)
     }
 
     /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see
     /// `flexure.Mechanism.buckle`.
     #[pyo3(signature = (accuracy=None))]
     fn buckle<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        if let Some(m) = self.spatial() {
+            spatial::no_accuracy("buckle", accuracy)?;
+            return spatial::buckle(py, m);
+        }
         let target = eigen_accuracy(accuracy)?;
-        analyses::buckle(py, &self.inner, &target)
+        analyses::buckle(py, self.planar("buckle")?.0, &target)
     }
 
-    /// Compliance (3, 3), order (phi, x, y), of the frame at `at` (x, y) on `body` at the loaded
-    /// equilibrium, as `flexure solve --compliance BODY --at X,Y`.
-    fn compliance<'py>(&self, py: Python<'py>, body: &str, at: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        analyses::compliance_at(py, &self.inner, body, at)
+    /// Compliance (3, 3), order (phi, x, y), of the frame at `at` (x, y; default the origin) on
+    /// `body` at the loaded equilibrium, as `flexure solve --compliance BODY --at X,Y`; of a
+    /// spatial mechanism (6, 6), order (rx, ry, rz, x, y, z), at `at` (x, y, z).
+    #[pyo3(signature = (body, at=None))]
+    fn compliance<'py>(
+        &self,
+        py: Python<'py>,
+        body: &str,
+        at: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let at = at.filter(|a| !a.is_none());
+        if let Some(m) = self.spatial() {
+            return spatial::compliance_at(py, m, body, at);
+        }
+        let origin = pyo3::types::PyTuple::new(py, [0.0, 0.0])?.into_any();
+        analyses::compliance_at(py, self.planar("compliance")?.0, body, at.unwrap_or(&origin))
     }
 
     /// Equilibria along `values` of one load, as `flexure solve --sweep`: see `flexure.Mechanism.sweep`.
@@ -114,6 +175,18 @@ impl Mechanism {
         at: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let target = crate::accuracy::accuracy(accuracy)?;
+        if let Some(m) = self.spatial() {
+            let frame = match (compliance, at) {
+                (Some(body), at) => Some((body, at.filter(|a| !a.is_none()))),
+                (None, None) => None,
+                (None, Some(_)) => {
+                    return Err(PyValueError::new_err(
+                        "at is given without compliance: at is the point (x, y, z) on the body named by compliance whose compliance each row reports",
+                    ));
+                }
+            };
+            return spatial::sweep(py, m, parameter, values, &target, frame);
+        }
         let frame = match (compliance, at) {
             (Some(body), Some(at)) => Some((body, at)),
             (None, None) => None,
@@ -123,12 +196,24 @@ impl Mechanism {
                 ));
             }
         };
-        analyses::sweep(py, &self.inner, parameter, values, &target, frame)
+        analyses::sweep(py, self.planar("sweep")?.0, parameter, values, &target, frame)
     }
 
     /// Number of generalized coordinates.
     #[getter]
     fn dof(&self) -> usize {
-        self.inner.dof()
+        match &self.described {
+            Described::Planar { inner, .. } => inner.dof(),
+            Described::Spatial(m) => m.dof(),
+        }
+    }
+
+    /// 2 for a planar mechanism, 3 for a spatial one (`dimension = 3` in its file).
+    #[getter]
+    fn dimension(&self) -> u8 {
+        match &self.described {
+            Described::Planar { .. } => 2,
+            Described::Spatial(_) => 3,
+        }
     }
 }

@@ -1,0 +1,447 @@
+//! A spatial mechanism's analyses (a file with `dimension = 3`), in the
+//! shape of the planar ones: `solve` (the library's
+//! [`report`](flexure::mechanism::spatial::report::report), what
+//! `flexure solve --json` prints), `compliance` (6 × 6), `sweep`, `modes`,
+//! `simulate` and `buckle`. Bodies' placements are NumPy arrays: a position
+//! (3,), a rotation matrix (3, 3) and URDF's roll, pitch, yaw (3,). The
+//! numbers are the library's; the stack level of every warning is 2, the
+//! line that called `flexure.Mechanism`'s Python wrapper.
+
+use crate::error_estimate::estimate_dict;
+use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
+use crate::interrupt::interruptible;
+use crate::strict::finite_answer;
+use crate::warnings::{sig, warn};
+use flexure::Error;
+use flexure::dynamics::integrate;
+use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::mechanism::spatial::SpatialMechanism;
+use flexure::mechanism::spatial::report::{Placement, placements, report};
+use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
+use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
+use flexure::solver::Settings;
+use nalgebra::Point3;
+use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// A ValueError unless `accuracy` is None: the library estimates no error
+/// of a spatial mechanism's `what` (modes, buckling) yet.
+pub fn no_accuracy(what: &str, accuracy: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+    match accuracy.filter(|a| !a.is_none()) {
+        None => Ok(()),
+        Some(a) => Err(PyValueError::new_err(format!(
+            "invalid accuracy = {}: a spatial mechanism's {what} carries no error estimate yet, so there is no accuracy to meet; leave accuracy out",
+            a.repr().map(|r| r.to_string()).unwrap_or_default()
+        ))),
+    }
+}
+
+/// The body named `name` of `m`, or a ValueError listing the bodies.
+fn body_named(m: &SpatialMechanism, name: &str) -> PyResult<usize> {
+    m.body(name).ok_or_else(|| {
+        let names: Vec<String> = m.bodies.iter().map(|b| format!("{:?}", b.name)).collect();
+        PyValueError::new_err(format!(
+            "body = {name:?}: names no body of the mechanism (its bodies: {})",
+            names.join(", ")
+        ))
+    })
+}
+
+/// A point (x, y, z) in a body's frame (m; None: its origin), each
+/// coordinate finite and within 1e6 m, else a ValueError naming `at`.
+fn point3(at: Option<&Bound<'_, PyAny>>) -> PyResult<Point3<f64>> {
+    let Some(at) = at else { return Ok(Point3::origin()) };
+    let bad = |why: &str| {
+        PyValueError::new_err(format!(
+            "invalid at = {}: {why}",
+            at.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
+        ))
+    };
+    let three =
+        "must be three numbers (x, y, z), a point in the body's frame (m): the mechanism is spatial (dimension = 3)";
+    crate::strict::no_bool("at", at)?;
+    let v: Vec<f64> = at.extract().map_err(|_| bad(three))?;
+    let [x, y, z] = v[..] else { return Err(bad(three)) };
+    let max = flexure::joint::LENGTH_RANGE.1;
+    if ![x, y, z].iter().all(|c| c.is_finite() && c.abs() <= max) {
+        return Err(bad(&format!("each coordinate must be a finite number of magnitude at most {max:e} m")));
+    }
+    Ok(Point3::new(x, y, z))
+}
+
+/// A rotation matrix given by rows as a (3, 3) array.
+fn rotation_array(r: &[[f64; 3]; 3]) -> Array2<f64> {
+    Array2::from_shape_fn((3, 3), |(i, j)| r[i][j])
+}
+
+/// `{name: {position (3,), rotation (3, 3), rpy (3,)}}` of every moving body.
+fn bodies_dict<'py>(py: Python<'py>, placed: &[Placement]) -> PyResult<Bound<'py, PyDict>> {
+    let bodies = PyDict::new(py);
+    for p in placed {
+        let d = PyDict::new(py);
+        d.set_item("position", PyArray1::from_slice(py, &p.position))?;
+        d.set_item("rotation", rotation_array(&p.rotation).into_pyarray(py))?;
+        d.set_item("rpy", PyArray1::from_slice(py, &p.rpy))?;
+        bodies.set_item(&p.name, d)?;
+    }
+    Ok(bodies)
+}
+
+/// The length of flexure joint `name` of `m` (m), for messages.
+fn flexure_length(m: &SpatialMechanism, name: &str) -> f64 {
+    m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map_or(f64::NAN, |f| f.length())
+}
+
+/// Warns `AccuracyWarning` that flexure joint `joint` of length `length`
+/// misses `target` by the estimate `e`.
+fn warn_flagged(
+    py: Python<'_>,
+    what: &str,
+    joint: &str,
+    length: f64,
+    e: &ErrorEstimate,
+    target: &Accuracy,
+) -> PyResult<()> {
+    let text = format!(
+        "{what}, flexure joint {joint:?}: estimated error {} m ({} % of L) in position and {}° in angle misses the target of {} % of L and {}° (estimated against orders {} with {} quadrature points); raise the joint's orders in the mechanism file",
+        sig(e.position),
+        sig(100.0 * e.position / length),
+        sig(e.angle.to_degrees()),
+        sig(100.0 * target.position),
+        sig(target.angle.to_degrees()),
+        e.reference_order,
+        e.reference_quadrature,
+    );
+    warn(py, &py.get_type::<AccuracyWarning>(), text, 2)
+}
+
+/// Warns `StabilityWarning` for a snap-through (`limit`) and an unstable answer.
+fn warn_stability(py: Python<'_>, what: &str, limit: Option<f64>, stable: bool) -> PyResult<()> {
+    if let Some(limit) = limit {
+        let text = format!(
+            "{what}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
+            100.0 * limit
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+    }
+    if !stable {
+        let text = format!(
+            "{what}: the equilibrium is unstable (`stable` is False): its constrained stiffness is not positive definite, so a small disturbance moves it away"
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+    }
+    Ok(())
+}
+
+/// The equilibrium of `m` as `Mechanism.solve` documents it for a spatial
+/// file: the library's report (what `flexure solve --json` prints) with
+/// `bodies` {name: {position, rotation, rpy}}, `coordinates` {joint: array},
+/// `flexures` {flexure joint: {load {moment, force}, stress}} and
+/// `error_estimate` {flexure joint: dict}.
+pub fn solve<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
+    let r = interruptible(py, || {
+        let s = equilibrium(m, &Settings::default())?;
+        report(m, &s, target)
+    })?;
+    let out = crate::serialize::to_dict(py, &r)?;
+    out.set_item("q", PyArray1::from_slice(py, &r.solution.q))?;
+    out.set_item("multipliers", PyArray1::from_slice(py, &r.solution.multipliers))?;
+    out.set_item("bodies", bodies_dict(py, &r.bodies)?)?;
+    out.del_item("joints")?;
+    let coordinates = PyDict::new(py);
+    for j in &r.joints {
+        coordinates.set_item(&j.name, PyArray1::from_slice(py, &j.coordinates))?;
+    }
+    out.set_item("coordinates", coordinates)?;
+    let (flexures, estimates) = (PyDict::new(py), PyDict::new(py));
+    for f in &r.flexures {
+        let d = PyDict::new(py);
+        let load = PyDict::new(py);
+        load.set_item("moment", PyArray1::from_slice(py, &f.load.moment))?;
+        load.set_item("force", PyArray1::from_slice(py, &f.load.force))?;
+        d.set_item("load", load)?;
+        if let Some(s) = &f.stress {
+            d.set_item("stress", crate::serialize::to_dict(py, s)?)?;
+        }
+        flexures.set_item(&f.name, d)?;
+        estimates.set_item(&f.name, estimate_dict(py, &f.error_estimate)?)?;
+        if f.error_estimate.flagged {
+            warn_flagged(py, "Mechanism.solve", &f.name, flexure_length(m, &f.name), &f.error_estimate, target)?;
+        }
+    }
+    out.set_item("flexures", flexures)?;
+    out.set_item("error_estimate", estimates)?;
+    warn_stability(py, "Mechanism.solve", r.solution.limit, r.solution.stable)?;
+    finite_answer("Mechanism.solve", out.as_any())?;
+    Ok(out)
+}
+
+/// The compliance (6, 6), order (rx, ry, rz, x, y, z), of the frame at
+/// `at` on `body` at the loaded equilibrium, as
+/// `flexure solve --compliance BODY --at X,Y,Z` on a spatial file.
+pub fn compliance_at<'py>(
+    py: Python<'py>,
+    m: &SpatialMechanism,
+    body: &str,
+    at: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let b = body_named(m, body)?;
+    let at = point3(at)?;
+    let c = interruptible(py, || {
+        let s = equilibrium(m, &Settings::default())?;
+        compliance(m, &s, b, at)
+    })?;
+    let out = Array2::from_shape_fn((6, 6), |(i, j)| c[(i, j)]).into_pyarray(py).into_any();
+    finite_answer("Mechanism.compliance", &out)?;
+    Ok(out)
+}
+
+/// A sweep's rows as arrays: values (n,), bodies {name: {position (n, 3),
+/// rotation (n, 3, 3), rpy (n, 3)}}, coordinates {joint: (n, k)}, energy (n,).
+fn rows_dict<'py>(
+    py: Python<'py>,
+    m: &SpatialMechanism,
+    rows: &[(f64, SpatialSolution)],
+) -> PyResult<Bound<'py, PyDict>> {
+    let n = rows.len();
+    let out = PyDict::new(py);
+    out.set_item("dimension", 3)?;
+    out.set_item("values", PyArray1::from_vec(py, rows.iter().map(|r| r.0).collect()))?;
+    let placed: Vec<Vec<Placement>> = rows.iter().map(|(_, s)| placements(m, &s.q)).collect();
+    let bodies = PyDict::new(py);
+    for (k, b) in m.bodies.iter().enumerate().skip(1) {
+        let d = PyDict::new(py);
+        let at = |r: usize| &placed[r][k - 1];
+        d.set_item("position", Array2::from_shape_fn((n, 3), |(r, i)| at(r).position[i]).into_pyarray(py))?;
+        d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(r, i, j)| at(r).rotation[i][j]).into_pyarray(py))?;
+        d.set_item("rpy", Array2::from_shape_fn((n, 3), |(r, i)| at(r).rpy[i]).into_pyarray(py))?;
+        bodies.set_item(&b.name, d)?;
+    }
+    out.set_item("bodies", bodies)?;
+    let coordinates = PyDict::new(py);
+    for j in &m.joints {
+        let d = j.kind.joint().dof();
+        let a = Array2::from_shape_fn((n, d), |(r, i)| rows[r].1.q[j.offset + i]);
+        coordinates.set_item(&j.name, a.into_pyarray(py))?;
+    }
+    out.set_item("coordinates", coordinates)?;
+    out.set_item("energy", PyArray1::from_vec(py, rows.iter().map(|r| r.1.energy).collect()))?;
+    Ok(out)
+}
+
+/// Equilibria along `values` of one load of a spatial mechanism, as
+/// `flexure solve --sweep` on a spatial file: see `flexure.Mechanism.sweep`.
+/// With `frame` (a body, and a point on it), each row's 6 × 6 compliance there.
+pub fn sweep<'py>(
+    py: Python<'py>,
+    m: &SpatialMechanism,
+    parameter: &str,
+    values: &Bound<'py, PyAny>,
+    target: &Accuracy,
+    frame: Option<(&str, Option<&Bound<'py, PyAny>>)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let frame = frame.map(|(body, at)| Ok::<_, PyErr>((body_named(m, body)?, point3(at)?))).transpose()?;
+    let p = SpatialParameter::parse(m, parameter).map_err(|e| match e {
+        Error::InvalidParameter { value, reason, .. } => {
+            PyValueError::new_err(format!("invalid parameter = {value}: {reason}"))
+        }
+        other => to_py(other),
+    })?;
+    crate::strict::no_bool("values", values)?;
+    let values: Vec<f64> = values.extract().map_err(|_| {
+        PyValueError::new_err(format!(
+            "invalid values = {}: must be a sequence of numbers, the values of {parameter} to solve at in turn",
+            values.repr().map(|r| r.to_string()).unwrap_or_default()
+        ))
+    })?;
+    let max = 10_000;
+    if values.is_empty() || values.len() > max {
+        return Err(PyValueError::new_err(format!(
+            "invalid values: {} given, a sweep takes from 1 to {max} values",
+            values.len()
+        )));
+    }
+    let (out, estimated, compliances) = interruptible(py, || {
+        let out = match run_sweep(m, &p, &values, &Settings::default()) {
+            Err(Error::InvalidParameter { name: "sweep", value, reason }) => {
+                return Err(Error::InvalidParameter { name: "values", value, reason });
+            }
+            other => other?,
+        };
+        let mut estimated = Vec::with_capacity(out.rows.len());
+        for (v, s) in &out.rows {
+            let errors = match flexure::estimate::spatial_mechanism::flexure_errors(m, s, target) {
+                Err(e @ Error::Interrupted { .. }) => return Err(e),
+                other => other.ok(),
+            };
+            // A row is flagged when an estimate misses the target or could not be made.
+            let flagged = errors.is_none_or(|es| es.iter().flatten().any(|e| e.flagged));
+            estimated.push((*v, flagged));
+        }
+        let compliances = match frame {
+            Some((b, at)) => {
+                Some(out.rows.iter().map(|(_, s)| compliance(m, s, b, at)).collect::<flexure::Result<Vec<_>>>()?)
+            }
+            None => None,
+        };
+        Ok((out, estimated, compliances))
+    })?;
+    let result = rows_dict(py, m, &out.rows)?;
+    if let Some(cs) = &compliances {
+        let a = Array3::from_shape_fn((cs.len(), 6, 6), |(k, i, j)| cs[k][(i, j)]);
+        result.set_item("compliance", a.into_pyarray(py))?;
+    }
+    if let Some(l) = &out.stability_limit {
+        result.set_item("stability_limit", crate::serialize::to_dict(py, l)?)?;
+        let text = format!(
+            "Mechanism.sweep: stability is lost at {parameter} = {} ({:.4} % along the sweep)",
+            l.value,
+            100.0 * l.fraction
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+    }
+    let flagged: Vec<f64> = estimated.iter().filter(|(_, f)| *f).map(|(v, _)| *v).collect();
+    if !flagged.is_empty() {
+        let text = format!(
+            "Mechanism.sweep: at {} of the swept values a flexure joint's estimated error misses the accuracy target (or could not be estimated; listed in `flagged`); raise its orders",
+            flagged.len()
+        );
+        warn(py, &py.get_type::<AccuracyWarning>(), text, 2)?;
+    }
+    result.set_item("flagged", PyArray1::from_vec(py, flagged))?;
+    finite_answer("Mechanism.sweep", result.as_any())?;
+    if let Some((value, e)) = &out.stopped {
+        let text = format!(
+            "the sweep stopped at {parameter} = {value} after {} of {} values: {e}",
+            out.rows.len(),
+            values.len()
+        );
+        let d = PyDict::new(py);
+        d.set_item("value", value)?;
+        d.set_item("error", &text)?;
+        result.set_item("stopped", d)?;
+        let err = match e {
+            Error::Interrupted { .. } | Error::InterruptedAt { .. } => {
+                pyo3::exceptions::PyKeyboardInterrupt::new_err(format!("Mechanism.sweep: {text}"))
+            }
+            _ => ConvergenceError::new_err(format!("Mechanism.sweep: {text} (kept in the exception's `result`)")),
+        };
+        err.value(py).setattr("result", &result)?;
+        return Err(err);
+    }
+    Ok(result)
+}
+
+/// Vibration modes about the loaded equilibrium: omega, frequency,
+/// quasi_static, shapes {joint: (modes, k)} and limit_fraction, as the
+/// planar `Mechanism.modes` (without its error estimate).
+pub fn modes<'py>(
+    py: Python<'py>,
+    m: &SpatialMechanism,
+    count: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    // With no coordinates the library says so (count 0 would be refused by its name instead).
+    let asked = crate::modes::wanted(count, m.dof(), "the mechanism")?.max(1);
+    let modes = interruptible(py, || flexure::dynamics::spatial::modes(m, &Settings::default(), asked))?;
+    let out = PyDict::new(py);
+    out.set_item("dimension", 3)?;
+    out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
+    out.set_item("frequency", PyArray1::from_vec(py, modes.frequency.clone()))?;
+    out.set_item("quasi_static", modes.quasi_static)?;
+    let shapes = PyDict::new(py);
+    for j in m.joints.iter().filter(|j| j.kind.joint().dof() > 0) {
+        let d = j.kind.joint().dof();
+        let a = Array2::from_shape_fn((modes.omega.len(), d), |(k, i)| modes.shapes[(j.offset + i, k)]);
+        shapes.set_item(&j.name, a.into_pyarray(py))?;
+    }
+    out.set_item("shapes", shapes)?;
+    if let Some(limit) = modes.limit {
+        out.set_item("limit_fraction", limit)?;
+        let text = format!(
+            "Mechanism.modes: the loading path lost stability at {:.4} % of the load and snapped through: these are the modes about the stable equilibrium beyond it",
+            100.0 * limit
+        );
+        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
+    }
+    finite_answer("Mechanism.modes", out.as_any())?;
+    Ok(out)
+}
+
+/// The motion over `duration` (s), sampled every `every` (default
+/// duration/100), at relative and absolute `tolerance`, from `start`
+/// ("equilibrium" or "rest"), with a step budget of `max_steps`: time (N,),
+/// bodies {name: {position (N, 3), rotation (N, 3, 3)}}, coordinates and
+/// velocities {joint: (N, k)}, energy (N,), steps, rejected, violation.
+pub fn simulate<'py>(
+    py: Python<'py>,
+    m: &SpatialMechanism,
+    (duration, every): (f64, Option<f64>),
+    tolerance: f64,
+    start: &str,
+    max_steps: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let equilibrium = match start {
+        "equilibrium" => true,
+        "rest" => false,
+        other => {
+            return Err(PyValueError::new_err(format!("start = {other:?}: must be \"equilibrium\" or \"rest\"")));
+        }
+    };
+    let motion = integrate::Settings {
+        duration,
+        every: every.unwrap_or(duration / 100.0),
+        tolerance,
+        absolute: tolerance,
+        max_steps,
+        ..Default::default()
+    };
+    let run = interruptible(py, || {
+        let run = flexure::dynamics::spatial::simulate(m, &motion, &Settings::default(), equilibrium)?;
+        // Python raises on a run that stopped early, as for a planar one.
+        match &run.stopped {
+            Some(e) => Err(e.clone()),
+            None => Ok(run),
+        }
+    })?;
+    let n = run.time.len();
+    let bodies = PyDict::new(py);
+    for b in &run.bodies {
+        let d = PyDict::new(py);
+        d.set_item("position", Array2::from_shape_fn((n, 3), |(s, i)| b.position[s][i]).into_pyarray(py))?;
+        d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(s, i, j)| b.rotation[s][i][j]).into_pyarray(py))?;
+        bodies.set_item(&b.name, d)?;
+    }
+    let (coordinates, velocities) = (PyDict::new(py), PyDict::new(py));
+    for j in &m.joints {
+        let k = j.kind.joint().dof();
+        let q = Array2::from_shape_fn((n, k), |(s, i)| run.q(s)[j.offset + i]);
+        let v = Array2::from_shape_fn((n, k), |(s, i)| run.v(s)[j.offset + i]);
+        coordinates.set_item(&j.name, q.into_pyarray(py))?;
+        velocities.set_item(&j.name, v.into_pyarray(py))?;
+    }
+    let out = PyDict::new(py);
+    out.set_item("dimension", 3)?;
+    out.set_item("time", Array1::from_vec(run.trajectory.time.clone()).into_pyarray(py))?;
+    out.set_item("bodies", bodies)?;
+    out.set_item("coordinates", coordinates)?;
+    out.set_item("velocities", velocities)?;
+    out.set_item("energy", Array1::from_vec(run.trajectory.energy.clone()).into_pyarray(py))?;
+    out.set_item("steps", run.trajectory.steps)?;
+    out.set_item("rejected", run.trajectory.rejected)?;
+    out.set_item("violation", run.trajectory.violation)?;
+    Ok(out)
+}
+
+/// Linear buckling about the unloaded configuration, as `flexure buckle
+/// --json` on a spatial file: load_factor and mode (dof,).
+pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism) -> PyResult<Bound<'py, PyDict>> {
+    let b = interruptible(py, || flexure::mechanism::spatial::buckling::buckle(m, &Settings::default()))?;
+    let out = crate::serialize::to_dict(py, &b)?;
+    out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
+    out.set_item("dimension", 3)?;
+    finite_answer("Mechanism.buckle", out.as_any())?;
+    Ok(out)
+}
