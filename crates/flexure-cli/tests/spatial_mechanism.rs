@@ -128,6 +128,14 @@ fn bad_spatial_input_names_its_key_line_and_column() {
         assert_eq!(code, 2, "{all:?}: {out}");
         assert!(out.is_empty() && err.contains(expected), "{all:?}: {err:?} should contain {expected:?}");
     }
+    // What spatial files do not have yet says so.
+    for args in [&["draw", "--out", "/tmp/never.svg"][..], &["export", "--to", "mjcf"][..]] {
+        let file = example("stage3d.toml");
+        let mut all = vec![args[0], file.as_str()];
+        all.extend(&args[1..]);
+        let (code, out, err) = run(&all);
+        assert!(code == 2 && out.is_empty() && err.contains("a spatial mechanism (dimension = 3)"), "{all:?}: {err}");
+    }
     // And a planar command's key on a spatial file says what to give.
     let file = written(&dir, PENDULUM);
     let (code, _, err) = run(&["solve", &file, "--sweep", "force.none.fx=0:1:2"]);

@@ -35,6 +35,12 @@ pub struct DrawArgs {
 /// An SVG of the unloaded and loaded shapes, to one scale on both axes,
 /// with the warnings `solve` gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
+    if super::spatial::read(&args.file)?.is_some() {
+        return Err(format!(
+            "{}: a spatial mechanism (dimension = 3): draw renders planar mechanisms only for now; `solve --json` gives every body's position and rotation",
+            args.file.display()
+        ));
+    }
     if let Some(duration) = args.simulate {
         return draw_motion(args, duration);
     }
