@@ -5,7 +5,9 @@ mod buckle;
 mod checks;
 mod draw;
 mod drawing;
+pub mod projection;
 mod solve;
+pub mod spatial_drawing;
 
 pub use buckle::{BuckleArgs, buckle_cmd};
 pub use draw::{DrawArgs, draw_cmd};
