@@ -34,8 +34,13 @@
 //! # Depth
 //!
 //! Within each shape, the bodies, the flexures' segments and the tendons'
-//! segments are painted in increasing depth $p\cdot t$ (their points'
-//! mean; [`View::project`]), so near parts cover far ones. Joint symbols,
+//! segments are painted in increasing depth $p\cdot t$ ([`View::project`]),
+//! so near parts cover far ones: a segment at the mean depth of its ends, a
+//! body at the depth of its back (its farthest point less its half
+//! thickness), so that a link covers what
+//! lies wholly behind it but not the flexures and tendons it carries
+//! (which end inside its hull, as the planar drawing draws them over
+//! their links). Joint symbols,
 //! via points and loads go on top of their shape, as annotations. Shapes are
 //! layered as the planar drawing layers them: the unloaded shape first, then
 //! each loaded one in order.
@@ -301,8 +306,12 @@ fn draw_shape(
     for b in 1..m.bodies.len() {
         let pts: Vec<Vector3<f64>> = attachments(m, b).iter().map(|r| world(b, r)).collect();
         let flat: Vec<[f64; 2]> = pts.iter().map(|p| pic(view, p)).map(|(a, c)| [a, c]).collect();
+        // At its back, its farthest point less its half thickness: a link is
+        // drawn over what lies wholly behind it, and the flexures and tendons
+        // it carries over it.
+        let far = pts.iter().map(|p| depth(view, p)).fold(f64::INFINITY, f64::min);
         parts.push(Part {
-            depth: mean_depth(view, &pts),
+            depth: if far.is_finite() { far - sizes.thick } else { 0.0 },
             marks: vec![Mark::Path {
                 points: slab(&flat, sizes.thick),
                 stroke: Some(Stroke::solid(color, 1.5)),
@@ -460,11 +469,17 @@ fn ground(m: &SpatialMechanism, f0: &SpatialFrames, view: View, sizes: &Sizes) -
         out.extend(anchor(view, &root, picture_direction(view, &leaving).unwrap_or(up), sizes));
         placed.push(root);
     }
+    // Other points of the ground (tendon via points, closures, loads): an
+    // anchor of their own unless one is drawn within a bar's length in the picture.
     for r in attachments(m, 0) {
-        let p = r.coords;
-        if placed.iter().all(|q| (q - p).norm() > 1e-9 * sizes.extent) {
-            out.extend(anchor(view, &p, up, sizes));
-            placed.push(p);
+        let p = pic(view, &r.coords);
+        let apart = |q: &Vector3<f64>| {
+            let q = pic(view, q);
+            (q.0 - p.0).hypot(q.1 - p.1) > 6.0 * sizes.thick
+        };
+        if placed.iter().all(apart) {
+            out.extend(anchor(view, &r.coords, up, sizes));
+            placed.push(r.coords);
         }
     }
     out
@@ -496,7 +511,7 @@ fn triad(view: View, marks: &[Mark]) -> Vec<Mark> {
     let lo_v = tips.iter().fold(0.0_f64, |l, t| l.min(t.0.1));
     // The triad's right edge half an arrow left of the drawing, its bottom level with the drawing's.
     let o = (u0 - 0.5 * a - a * hi_u, v0 - a * lo_v);
-    let mut out = Vec::new();
+    let (mut out, mut sight) = (Vec::new(), Vec::new());
     let others = |skip: usize| {
         tips.iter().enumerate().filter(|(i, _)| *i != skip).fold((0.0, 0.0), |s, (_, t)| (s.0 + t.0.0, s.1 + t.0.1))
     };
@@ -516,20 +531,21 @@ fn triad(view: View, marks: &[Mark]) -> Vec<Mark> {
             let offset = (8.0 * ux, -12.0 * uy + 6.0);
             out.push(Mark::Label { at: to, offset, text: (*name).into(), color: KEY, anchor });
         } else {
-            // Along the line of sight: ⊙ toward the viewer, ⊗ away.
-            out.push(Mark::Dot { at: o, shape: Marker::Circle, radius: 7.0, color: KEY, filled: false });
+            // Along the line of sight: ⊙ toward the viewer, ⊗ away, over the
+            // other arrows' tails (a hollow marker is white inside).
+            sight.push(Mark::Dot { at: o, shape: Marker::Circle, radius: 9.0, color: KEY, filled: false });
             if *toward > 0.0 {
-                out.push(Mark::Dot { at: o, shape: Marker::Circle, radius: 2.0, color: KEY, filled: true });
+                sight.push(Mark::Dot { at: o, shape: Marker::Circle, radius: 2.5, color: KEY, filled: true });
             } else {
                 let cross =
                     Mark::Label { at: o, offset: (0.0, 5.5), text: "×".into(), color: KEY, anchor: Anchor::Middle };
-                out.push(cross);
+                sight.push(cross);
             }
             // Its name opposite the other two arrows.
             let (su, sv) = others(i);
             let n = su.hypot(sv).max(1e-9);
             let (ux, uy) = (-su / n, -sv / n);
-            let offset = (16.0 * ux, -16.0 * uy + 6.0);
+            let offset = (18.0 * ux, -18.0 * uy + 6.0);
             let anchor = if ux > 0.3 {
                 Anchor::Start
             } else if ux < -0.3 {
@@ -537,9 +553,10 @@ fn triad(view: View, marks: &[Mark]) -> Vec<Mark> {
             } else {
                 Anchor::Middle
             };
-            out.push(Mark::Label { at: o, offset, text: (*name).into(), color: KEY, anchor });
+            sight.push(Mark::Label { at: o, offset, text: (*name).into(), color: KEY, anchor });
         }
     }
+    out.extend(sight);
     out
 }
 
