@@ -1,12 +1,12 @@
 //! `flexure draw` of a spatial mechanism: its shapes projected onto a
 //! picture plane ([`View`], [`super::projection`]) and drawn as siblings of
-//! the planar drawing ([`super::drawing`]): the same colours, legend,
+//! the planar drawing (`mechanism/drawing.rs`): the same colours, legend,
 //! stress colour bar, unloaded (grey) and loaded styles, load arrows and
 //! names.
 //!
 //! # What is drawn
 //!
-//! - **Flexures**: the centreline through [`FLEXURE_SAMPLES`] sections
+//! - **Flexures**: the centreline through 41 sections (the planar drawing's count)
 //!   ([`flexure::spatial::shape`], in the joint's root frame, turned into
 //!   the world by the root frame $A$: $p_{world} = A\thinspace p(s)$), thick.
 //! - **Rigid bodies**: the projected convex hull of every point attached to
@@ -608,7 +608,7 @@ fn triple(v: &Vector3<f64>) -> String {
 /// from `view`, and the force arrows' scale (m per N) if any force is drawn.
 /// With `stress`, loaded flexures with a shaped section are coloured by
 /// their von Mises stress (the module docs). As the planar
-/// [`super::drawing::figure`]: the same sizes, colours, legend and marks
+/// `drawing::figure`: the same sizes, colours, legend and marks
 /// (`marks`: yield strengths on the colour bar, a stability note).
 ///
 /// Errors name the shape whose coordinates or loads do not fit `m`, or the
