@@ -22,6 +22,10 @@ mod simulate;
 mod spatial;
 mod stress;
 
+/// The spatial drawing's views and figures (`draw` of a `dimension = 3`
+/// file), public for the tests of `tests/draw3d.rs`.
+pub use mechanism::{projection, spatial_drawing};
+
 use clap::{Parser, Subcommand};
 use serde_json::Value;
 use std::ffi::OsString;

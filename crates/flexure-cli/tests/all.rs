@@ -12,6 +12,7 @@ mod batch;
 mod characterization;
 mod cli;
 mod docs;
+mod draw3d;
 mod estimate;
 mod examples;
 mod export;

@@ -129,12 +129,16 @@ fn bad_spatial_input_names_its_key_line_and_column() {
         assert!(out.is_empty() && err.contains(expected), "{all:?}: {err:?} should contain {expected:?}");
     }
     // What spatial files do not have yet says so.
-    for args in [&["draw", "--out", "/tmp/never.svg"][..], &["export", "--to", "mjcf"][..]] {
-        let file = example("stage3d.toml");
-        let mut all = vec![args[0], file.as_str()];
-        all.extend(&args[1..]);
-        let (code, out, err) = run(&all);
-        assert!(code == 2 && out.is_empty() && err.contains("a spatial mechanism (dimension = 3)"), "{all:?}: {err}");
+    let file = example("stage3d.toml");
+    let (code, out, err) = run(&["export", &file, "--to", "mjcf"]);
+    assert!(code == 2 && out.is_empty() && err.contains("a spatial mechanism (dimension = 3)"), "{err}");
+    // Draw renders it, from each view.
+    for view in ["iso", "front", "top", "side"] {
+        let out = dir.path().join(format!("{view}.svg"));
+        let file = example("finger3d.toml");
+        let (v, _) = answer(&["draw", &file, "--out", out.to_str().unwrap(), "--view", view]);
+        assert_eq!(v["shapes"], 2);
+        assert!(std::fs::read_to_string(&out).unwrap().starts_with("<svg"), "{view}");
     }
     // And a planar command's key on a spatial file says what to give.
     let file = written(&dir, PENDULUM);

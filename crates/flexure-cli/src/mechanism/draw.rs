@@ -30,16 +30,49 @@ pub struct DrawArgs {
     motion: crate::simulate::MotionOptions,
     #[command(flatten)]
     accuracy: crate::options::AccuracyOptions,
+    /// Spatial files (dimension = 3): where the picture is seen from.
+    #[arg(long, value_enum, default_value_t = super::projection::View::Iso)]
+    view: super::projection::View,
+}
+
+/// `draw` of a spatial file: its unloaded and loaded shapes (or a
+/// simulation's snapshots) projected from `--view`, flexures coloured by stress.
+fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechanism) -> Result<Value, String> {
+    use super::spatial_drawing as sd;
+    if args.sweep.is_some() {
+        return Err(format!(
+            "--sweep: {}: draw does not sweep spatial mechanisms yet; `solve --sweep` does",
+            args.file.display()
+        ));
+    }
+    let settings = Settings::default();
+    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
+    let unloaded =
+        flexure::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
+    if let Some(duration) = args.simulate {
+        let sim = crate::mechanism::spatial::simulate(m, &args.file, duration, &args.motion)?;
+        let drawn = sd::spatial_motion_figures(m, &title, &unloaded, &sim, args.view, true)?;
+        flexure_chart::write_stack(&args.out, &drawn.figures)?;
+        return Ok(json!({ "out": args.out.display().to_string(), "shapes": drawn.snapshots.len() + 1,
+                          "snapshots": drawn.snapshots, "force_scale_m_per_n": drawn.per_newton }));
+    }
+    let s = flexure::mechanism::spatial::statics::solve(m, &settings).map_err(err)?;
+    let (fig, k) =
+        sd::spatial_figure(m, &title, &unloaded, &[("loaded".into(), s)], &drawing::Marks::default(), args.view, true)?;
+    flexure_chart::write(&args.out, &fig)?;
+    let mut v = json!({ "out": args.out.display().to_string(), "shapes": 2 });
+    if let Some(k) = k {
+        v["force_scale_m_per_n"] = json!(k);
+    }
+    Ok(v)
 }
 
 /// An SVG of the unloaded and loaded shapes, to one scale on both axes,
 /// with the warnings `solve` gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
-    if super::spatial::read(&args.file)?.is_some() {
-        return Err(format!(
-            "{}: a spatial mechanism (dimension = 3): draw renders planar mechanisms only for now; `solve --json` gives every body's position and rotation",
-            args.file.display()
-        ));
+    if let Some(m) = super::spatial::read(&args.file)? {
+        return draw_spatial(args, &m);
     }
     if let Some(duration) = args.simulate {
         return draw_motion(args, duration);

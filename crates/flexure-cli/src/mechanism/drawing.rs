@@ -15,14 +15,14 @@ use nalgebra::Point2;
 use std::f64::consts::TAU;
 
 /// The colour of legend keys that stand for every shape.
-const KEY: Color = Color(60, 60, 60);
-const GROUND: Color = Color(90, 90, 90);
+pub(super) const KEY: Color = Color(60, 60, 60);
+pub(super) const GROUND: Color = Color(90, 90, 90);
 /// The loaded shapes' colours, in order.
-const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4]];
+pub(super) const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4]];
 /// Tendons are told apart by dash and via-point marker, not colour.
-const TENDON_DASH: [Dash; 3] = [Dash::Solid, Dash::Dashed, Dash::Chain];
-const VIA: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
-const FLEXURE_WIDTH: f64 = 5.0;
+pub(super) const TENDON_DASH: [Dash; 3] = [Dash::Solid, Dash::Dashed, Dash::Chain];
+pub(super) const VIA: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
+pub(super) const FLEXURE_WIDTH: f64 = 5.0;
 
 /// `x` to four significant digits, without trailing zeros, with a true minus sign.
 pub fn short(x: f64) -> String {
@@ -75,7 +75,7 @@ pub(super) fn slab(pts: &[[f64; 2]], r: f64) -> Vec<(f64, f64)> {
 }
 
 /// The largest 1, 2 or 5 × 10ᵏ not above `x`.
-fn round_down(x: f64) -> f64 {
+pub(super) fn round_down(x: f64) -> f64 {
     let base = 10f64.powf(x.log10().floor());
     [5.0, 2.0, 1.0].into_iter().map(|m| m * base).find(|s| *s <= x * (1.0 + 1e-9)).unwrap_or(base)
 }
@@ -88,7 +88,7 @@ fn force_vectors(m: &Mechanism, s: &Solution) -> Vec<[f64; 2]> {
 }
 
 /// How a load reads in the legend: one value, or the range over the shapes.
-fn values(v: &[f64], unit: &str) -> String {
+pub(super) fn values(v: &[f64], unit: &str) -> String {
     let (lo, hi) = v.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
     if v.is_empty() || lo == hi {
         format!("{} {unit}", short(v.first().copied().unwrap_or(0.0)))
@@ -111,7 +111,7 @@ enum Loads {
 }
 
 /// Points along each drawn flexure.
-const FLEXURE_SAMPLES: usize = 41;
+pub(super) const FLEXURE_SAMPLES: usize = 41;
 
 /// The mark of a rigid joint at its root.
 #[derive(Clone, Copy, PartialEq)]

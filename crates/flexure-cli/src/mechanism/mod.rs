@@ -5,8 +5,10 @@ mod buckle;
 mod checks;
 mod draw;
 mod drawing;
+pub mod projection;
 mod solve;
 pub mod spatial;
+pub mod spatial_drawing;
 
 pub use buckle::{BuckleArgs, buckle_cmd};
 pub use draw::{DrawArgs, draw_cmd};

@@ -1,0 +1,347 @@
+//! Pictures of spatial mechanisms (`flexure_cli::spatial_drawing`): the
+//! views' projections, the SVG as XML with one centreline per flexure, the
+//! stress colour bar against the library's own peak stress, painting in
+//! depth, and the snapshots of a simulated motion. The mechanisms are
+//! built in code: a finger of three phalanges on spatial flexures bent out
+//! of its plane by a tip load, a parallelogram stage loaded out of its
+//! plane, and a chain of two flexures in perpendicular planes.
+//!
+//! With `FLEXURE_PICTURES=DIR` set, `pictures_of_the_finger_and_the_stage`
+//! and `a_motion_draws_five_snapshots_over_the_rest_shape` also write their
+//! SVGs into DIR, to be looked at.
+
+use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::spatial::simulate;
+use flexure::mechanism::Fixed;
+use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::spatial::statics::{SpatialSolution, assemble_unloaded, solve};
+use flexure::mechanism::spatial::{
+    SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad, SpatialTendon,
+};
+use flexure::section::{Profile, Shear, SpatialSection};
+use flexure::spatial::SpatialFlexure;
+use flexure_chart::{Figure, Mark};
+use flexure_cli::projection::View;
+use flexure_cli::spatial_drawing::{Marks, spatial_figure, spatial_motion_figures};
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
+
+fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
+    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0 }
+}
+
+fn bodies(names: &[&str]) -> Vec<SpatialBody> {
+    names.iter().map(|n| SpatialBody::massless(n)).collect()
+}
+
+fn flexure_joint(f: SpatialFlexure) -> SpatialJointKind {
+    SpatialJointKind::Flexure(Box::new(f))
+}
+
+fn load(name: &str, body: usize, at: [f64; 3], moment: [f64; 3], force: [f64; 3]) -> SpatialPointLoad {
+    SpatialPointLoad {
+        name: name.into(),
+        body,
+        at: Point3::from(at),
+        wrench: Vector6::new(moment[0], moment[1], moment[2], force[0], force[1], force[2]),
+    }
+}
+
+/// A steel wire flexure, 0.8 mm across.
+fn wire(length: f64) -> SpatialFlexure {
+    let section = SpatialSection::circle(200e9, 0.3, Profile::Constant(0.8e-3)).unwrap();
+    SpatialFlexure::new(length, section, [3, 3, 3]).unwrap()
+}
+
+/// A finger of three phalanges (45, 30 and 25 mm) on 15 mm steel wire
+/// flexures, each joint curled 0.3 rad in the x–y plane, a flexor tendon
+/// along its palm side at 1 N, and a tip load of 0.2 N along −z (out of the
+/// finger's plane) with 0.05 N along −y.
+fn finger() -> SpatialMechanism {
+    let curl = |p: [f64; 3]| {
+        Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), UnitQuaternion::from_euler_angles(0.0, 0.0, -0.3))
+    };
+    let joints = vec![
+        spec("mcp", flexure_joint(wire(0.015)), 0, 1, Isometry3::identity()),
+        spec("pip", flexure_joint(wire(0.015)), 1, 2, curl([0.045, 0.0, 0.0])),
+        spec("dip", flexure_joint(wire(0.015)), 2, 3, curl([0.03, 0.0, 0.0])),
+    ];
+    let flexor = SpatialTendon {
+        name: "flexor".into(),
+        tension: 1.0,
+        path: vec![
+            (0, Point3::new(0.0, -0.006, 0.0)),
+            (1, Point3::new(0.005, -0.006, 0.0)),
+            (1, Point3::new(0.04, -0.006, 0.0)),
+            (2, Point3::new(0.005, -0.006, 0.0)),
+            (2, Point3::new(0.025, -0.006, 0.0)),
+            (3, Point3::new(0.005, -0.006, 0.0)),
+        ],
+    };
+    let tip = load("tip", 3, [0.025, 0.0, 0.0], [0.0; 3], [0.0, -0.05, -0.2]);
+    let names = ["ground", "proximal", "middle", "distal"];
+    SpatialMechanism::new(bodies(&names), joints, vec![flexor], vec![tip], vec![], Vector3::zeros()).unwrap()
+}
+
+/// A parallelogram stage: two 60 mm steel strips (0.4 mm thick along x,
+/// 0.6 mm wide along y) standing up along z from the ground 40 mm apart, the
+/// stage welded across their tips, pushed at its middle by 0.2 N along x
+/// (in the parallelogram's x–z plane) and 0.25 N along y (out of it).
+fn stage() -> SpatialMechanism {
+    let strip = || {
+        let s =
+            SpatialSection::rectangle(200e9, Shear::Poisson(0.3), Profile::Constant(0.6e-3), Profile::Constant(0.4e-3))
+                .unwrap();
+        flexure_joint(SpatialFlexure::new(0.06, s, [3, 3, 3]).unwrap())
+    };
+    // Root frames with x (the strip) along z, y (its thickness) along x, z (its width) along y.
+    let up = |x: f64| {
+        let r = Rotation3::from_matrix_unchecked(Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0));
+        Isometry3::from_parts(Translation3::new(x, 0.0, 0.0), UnitQuaternion::from_rotation_matrix(&r))
+    };
+    let joints = vec![spec("left", strip(), 0, 1, up(0.0)), spec("right", strip(), 0, 2, up(0.04))];
+    // In the stage's frame (the left tip's, rest axes as the root's) the right tip is 0.04 along y.
+    let weld = SpatialClosure::Weld {
+        a: 1,
+        a_origin: Isometry3::translation(0.0, 0.04, 0.0),
+        b: 2,
+        b_origin: Isometry3::identity(),
+    };
+    let push = load("push", 1, [0.0, 0.02, 0.0], [0.0; 3], [0.2, 0.25, 0.0]);
+    SpatialMechanism::new(
+        bodies(&["ground", "stage", "right tip"]),
+        joints,
+        vec![],
+        vec![push],
+        vec![weld],
+        Vector3::zeros(),
+    )
+    .unwrap()
+}
+
+/// Two flexures in perpendicular planes (the second's root turned a
+/// quarter about x), given by their stiffnesses alone, with a tip load.
+fn chain() -> SpatialMechanism {
+    let f = |l: f64| SpatialFlexure::new(l, SpatialSection::uniform(0.8, 2.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
+    let turned = Isometry3::from_parts(
+        Translation3::new(0.01, 0.0, 0.0),
+        UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0),
+    );
+    let joints = vec![
+        spec("one", flexure_joint(f(0.05)), 0, 1, Isometry3::identity()),
+        spec("two", flexure_joint(f(0.03)), 1, 2, turned),
+    ];
+    let tip = load("tip", 2, [0.0; 3], [0.0, 0.0, 0.01], [0.0, 2.0, 3.0]);
+    SpatialMechanism::new(bodies(&["ground", "mid", "tip"]), joints, vec![], vec![tip], vec![], Vector3::zeros())
+        .unwrap()
+}
+
+fn unloaded(m: &SpatialMechanism) -> SpatialSolution {
+    assemble_unloaded(m, &m.loads().zero_like(), &Default::default()).unwrap()
+}
+
+fn picture(m: &SpatialMechanism, view: View, stress: bool) -> (Figure, SpatialSolution) {
+    let s = solve(m, &Default::default()).unwrap();
+    let (fig, _) =
+        spatial_figure(m, "test", &unloaded(m), &[("loaded".into(), s.clone())], &Marks::default(), view, stress)
+            .unwrap();
+    (fig, s)
+}
+
+/// Reference: the conventions of `docs/cli.md` (`draw --view`), exactly
+/// (1e-15 for the isometric's square roots): a point on +z is up in the
+/// front, side and isometric views and all depth in the top view; x is
+/// right in front and top, y right in the side view; isometric x lower
+/// left, y lower right.
+#[test]
+fn each_view_maps_known_points_where_the_conventions_say() {
+    let z = Vector3::new(0.0, 0.0, 2.0);
+    for view in [View::Front, View::Side] {
+        assert_eq!(view.project(&z), ((0.0, 2.0), 0.0), "{view:?}");
+    }
+    let ((a, b), d) = View::Iso.project(&z);
+    assert!(a.abs() < 1e-15 && (b - 4.0 / 6f64.sqrt()).abs() < 1e-15 && (d - 2.0 / 3f64.sqrt()).abs() < 1e-15);
+    assert_eq!(View::Top.project(&z), ((0.0, 0.0), 2.0));
+    let p = Vector3::new(1.0, 2.0, 3.0);
+    assert_eq!(View::Front.project(&p), ((1.0, 3.0), -2.0));
+    assert_eq!(View::Side.project(&p), ((2.0, 3.0), 1.0));
+    assert_eq!(View::Top.project(&p), ((1.0, 2.0), 3.0));
+    let ((xa, xb), _) = View::Iso.project(&Vector3::x());
+    let ((ya, yb), _) = View::Iso.project(&Vector3::y());
+    assert!(xa < 0.0 && xb < 0.0 && ya > 0.0 && yb < 0.0 && (xb - yb).abs() < 1e-15 && (xa + ya).abs() < 1e-15);
+}
+
+/// The `<polyline>`s of an SVG drawn `width` px wide.
+fn polylines(svg: &roxmltree::Document, width: &str) -> usize {
+    svg.descendants().filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some(width)).count()
+}
+
+/// The SVG of the two-flexure chain, from every view, is XML (parsed by
+/// roxmltree) and holds one centreline per flexure per shape: the only
+/// polylines drawn at the flexure width of 5 px, 2 flexures × 2 shapes
+/// (unloaded and loaded); without stress colouring each is one path.
+#[test]
+fn the_chain_is_xml_with_one_path_per_flexure() {
+    let m = chain();
+    for view in View::ALL {
+        let (fig, _) = picture(&m, view, false);
+        let svg = flexure_chart::render(&fig).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("{view:?}: {e}"));
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        assert_eq!(polylines(&doc, "5.00"), 4, "{view:?}");
+        // Each centreline has its 41 sections, ends at the joints' roots and tips.
+        let lines: Vec<&Mark> = fig
+            .marks
+            .iter()
+            .filter(|mk| matches!(mk, Mark::Path { stroke: Some(s), closed: false, .. } if s.width == 5.0))
+            .collect();
+        assert!(lines.iter().all(|mk| matches!(mk, Mark::Path { points, .. } if points.len() == 41)));
+    }
+}
+
+/// Reference: `flexure::spatial::peak_stress` of every flexure of the
+/// loaded finger, computed here: the colour bar's top is the largest of
+/// them (MPa, to 1e-12 relative), and every segment's colour is from the
+/// ramp (no flexure drawn in its shape's plain colour: all are shaped).
+#[test]
+fn the_stress_bar_tops_at_the_largest_peak_stress() {
+    let m = finger();
+    let (fig, s) = picture(&m, View::Iso, true);
+    let mut largest: f64 = 0.0;
+    for j in &m.joints {
+        let fl = j.kind.flexure().unwrap();
+        let peak = flexure::spatial::peak_stress(fl, &s.q[j.offset..j.offset + fl.coordinates()]).unwrap();
+        largest = largest.max(peak.stress.von_mises);
+    }
+    assert!(largest > 10e6, "a loaded finger is stressed: {largest}");
+    let bar = fig.color_bar.as_ref().expect("a colour bar");
+    assert!((bar.hi - largest / 1e6).abs() < 1e-12 * bar.hi && bar.lo == 0.0, "{} against {}", bar.hi, largest / 1e6);
+    assert!(bar.label.contains("von Mises"));
+    // Loaded: 3 flexures × 40 segments; unloaded: 3 centrelines.
+    let svg = flexure_chart::render(&fig).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    assert_eq!(polylines(&doc, "5.00"), 3 * 40 + 3);
+    // Without stress: no bar.
+    assert!(picture(&m, View::Iso, false).0.color_bar.is_none());
+}
+
+/// The centres of the links' hulls (fill opacity 0.55), in the order drawn.
+fn hull_order(fig: &Figure) -> Vec<(f64, f64)> {
+    fig.marks
+        .iter()
+        .filter_map(|mk| match mk {
+            Mark::Path { points, closed: true, fill: Some(f), .. } if f.opacity == 0.55 => {
+                let n = points.len() as f64;
+                Some((points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// Painting in depth: two links welded to the ground, `a` at y = −0.1,
+/// z = 0 and `b` at y = +0.1, z = 0.02. The front view looks along +y, so
+/// `a` is near and `b` far: `b` is drawn first, against the joints'
+/// order. The top view looks down −z, so `b` (higher) is near: drawn last.
+#[test]
+fn near_parts_are_painted_over_far_ones() {
+    let joints = vec![
+        spec("a", SpatialJointKind::Fixed(Fixed), 0, 1, Isometry3::translation(0.05, -0.1, 0.0)),
+        spec("b", SpatialJointKind::Fixed(Fixed), 0, 2, Isometry3::translation(0.05, 0.1, 0.02)),
+    ];
+    let mut b = bodies(&["ground", "a", "b"]);
+    for body in &mut b[1..] {
+        body.mass = 1.0;
+        body.com = Point3::new(0.05, 0.0, 0.0);
+    }
+    let m = SpatialMechanism::new(b, joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let s = unloaded(&m);
+    // The loaded shape's two hulls are the last two (the unloaded grey ones come first).
+    let order = |view: View| {
+        let (fig, _) =
+            spatial_figure(&m, "links", &s, &[("same".into(), s.clone())], &Marks::default(), view, false).unwrap();
+        let h = hull_order(&fig);
+        assert_eq!(h.len(), 4);
+        h[2..].to_vec()
+    };
+    // Front: picture y is z; b (z = 0.02) first, then a (z = 0).
+    let front = order(View::Front);
+    assert!((front[0].1 - 0.02).abs() < 1e-12 && front[1].1.abs() < 1e-12, "{front:?}");
+    // Top: picture y is y; a (y = −0.1) first, then b (y = 0.1).
+    let top = order(View::Top);
+    assert!((top[0].1 + 0.1).abs() < 1e-12 && (top[1].1 - 0.1).abs() < 1e-12, "{top:?}");
+    let f = frames(&m, &s.q);
+    assert!(f.bodies[2].translation.z > f.bodies[1].translation.z);
+}
+
+/// The snapshots of a simulated motion: a steel wire cantilever with a
+/// 5 g tip mass, starting at rest unloaded under gravity, drawn at five
+/// evenly spaced samples as the planar `draw --simulate` picks them, each
+/// labelled by its time; then the bodies' rotations and origins against
+/// time, stacked into one SVG that parses as XML.
+#[test]
+fn a_motion_draws_five_snapshots_over_the_rest_shape() {
+    let mut b = bodies(&["ground", "bob"]);
+    b[1].mass = 0.005;
+    b[1].com = Point3::new(0.005, 0.0, 0.0);
+    b[1].inertia = Matrix3::identity() * 1e-8;
+    let m = SpatialMechanism::new(
+        b,
+        vec![spec("wire", flexure_joint(wire(0.04)), 0, 1, Isometry3::identity())],
+        vec![],
+        vec![],
+        vec![],
+        Vector3::new(0.0, 0.0, -9.81),
+    )
+    .unwrap();
+    let motion = Motion { duration: 0.05, every: 0.005, ..Default::default() };
+    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    assert!(run.stopped.is_none());
+    let drawn = spatial_motion_figures(&m, "bob", &unloaded(&m), &run, View::Front, true).unwrap();
+    // Eleven samples, 0 to 10: the planar picks (k · 10 + 2)/4 for k = 0…4.
+    assert_eq!(run.time.len(), 11);
+    assert_eq!(drawn.snapshots, [0, 3, 5, 8, 10].map(|k| run.time[k]));
+    assert_eq!(drawn.figures.len(), 3);
+    let labels: Vec<&str> = drawn.figures[0].legend.iter().map(|e| e.label.as_str()).collect();
+    for t in ["t = 0 s", "t = 0.025 s", "t = 0.05 s", "weight of bob: 0.04905 N"] {
+        assert!(labels.contains(&t), "{t} not in {labels:?}");
+    }
+    let svg = flexure_chart::stack(&drawn.figures).unwrap();
+    roxmltree::Document::parse(&svg).unwrap();
+    if let Some(dir) = std::env::var_os("FLEXURE_PICTURES") {
+        std::fs::write(std::path::Path::new(&dir).join("bob-motion-front.svg"), svg).unwrap();
+    }
+}
+
+/// Pictures of the finger and the stage from iso, front, top and side:
+/// each renders, and each legend names the view, the loads and the arrow
+/// scale. With `FLEXURE_PICTURES` set, the SVGs are written there.
+#[test]
+fn pictures_of_the_finger_and_the_stage() {
+    let out = std::env::var_os("FLEXURE_PICTURES").map(std::path::PathBuf::from);
+    for (name, m) in [("finger", finger()), ("stage", stage())] {
+        let s = solve(&m, &Default::default()).unwrap();
+        assert!(s.stable, "{name}");
+        for view in View::ALL {
+            let marks = Marks { yields: vec![], limit: None };
+            let (fig, per_newton) = spatial_figure(
+                &m,
+                &format!("{name} ({} view)", view.name()),
+                &unloaded(&m),
+                &[("loaded".into(), s.clone())],
+                &marks,
+                view,
+                true,
+            )
+            .unwrap();
+            assert!(per_newton.is_some());
+            let labels: Vec<&str> = fig.legend.iter().map(|e| e.label.as_str()).collect();
+            assert!(labels.contains(&view.description()), "{labels:?}");
+            assert!(labels.iter().any(|l| l.starts_with("force arrows:")), "{labels:?}");
+            let svg = flexure_chart::render(&fig).unwrap();
+            roxmltree::Document::parse(&svg).unwrap();
+            if let Some(dir) = &out {
+                std::fs::write(dir.join(format!("{name}-{}.svg", view.name())), svg).unwrap();
+            }
+        }
+    }
+}
