@@ -252,11 +252,8 @@ fn every_kind_and_table_parses_with_its_numbers() {
 
     let tendon = &m.tendons[0];
     assert_eq!((tendon.name.as_str(), tendon.tension), ("t", 2.0));
-    let path: Vec<(usize, Point3<f64>)> = vec![
-        (0, Point3::new(0.0, 0.0, 0.002)),
-        (1, Point3::new(0.0, 0.003, -0.001)),
-        (7, Point3::new(0.0, 0.0, 0.0)),
-    ];
+    let path: Vec<(usize, Point3<f64>)> =
+        vec![(0, Point3::new(0.0, 0.0, 0.002)), (1, Point3::new(0.0, 0.003, -0.001)), (7, Point3::new(0.0, 0.0, 0.0))];
     assert_eq!(tendon.path, path);
     // A wrench is (moment, force), both in the ground frame.
     let force = &m.forces[0];
@@ -279,8 +276,7 @@ fn every_kind_and_table_parses_with_its_numbers() {
     }
     let SpatialClosure::Ball { a, a_at, b, b_at } = &m.closures[2] else { panic!("a ball") };
     assert_eq!((*a, *a_at, *b, *b_at), (3, Point3::new(0.001, 0.0, 0.0), 6, Point3::new(0.0, -0.001, 0.0)));
-    let places: Vec<String> =
-        ["[[weld]]", "[[pin]]", "[[ball]]"].iter().map(|t| place_of(ALL_KINDS, t, "a")).collect();
+    let places: Vec<String> = ["[[weld]]", "[[pin]]", "[[ball]]"].iter().map(|t| place_of(ALL_KINDS, t, "a")).collect();
     assert_eq!(m.closure_places, places);
     assert_eq!(m.closure_places[0], "line 96, column 5");
 
@@ -537,7 +533,9 @@ fn bad_values_name_their_key_line_and_column() {
             "line 7, column 8: joint \"j\": axis[0] = NaN: must be a finite number",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\nb_axis = [0.0, 0.0, 0.0]\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\nb_axis = [0.0, 0.0, 0.0]\n"
+            ),
             "line 11, column 10: pin of \"a\" and \"ground\": b_axis = [0, 0, 0]: must be a finite, non-zero direction",
         ),
         // Placements.
@@ -546,7 +544,9 @@ fn bad_values_name_their_key_line_and_column() {
             "line 8, column 11: joint \"j\": give rpy (rad) or rpy_deg (degrees), not both",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[weld]]\na = \"a\"\nb = \"ground\"\na_rpy = [0.0, 0.0, 0.0]\na_rpy_deg = [0.0, 0.0, 0.0]\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[weld]]\na = \"a\"\nb = \"ground\"\na_rpy = [0.0, 0.0, 0.0]\na_rpy_deg = [0.0, 0.0, 0.0]\n"
+            ),
             "line 11, column 13: weld of \"a\" and \"ground\": give a_rpy (rad) or a_rpy_deg (degrees), not both",
         ),
         (
@@ -568,7 +568,9 @@ fn bad_values_name_their_key_line_and_column() {
             "line 8, column 9: joint \"j\": kappa = 2 values: must have one rest coefficient per order",
         ),
         (
-            format!("{HEAD}kind = \"flexure\"\nlength = 0.1\nei = 1.0\nmodulus = 2e11\nwidth = 0.01\nthickness = 0.001\n"),
+            format!(
+                "{HEAD}kind = \"flexure\"\nlength = 0.1\nei = 1.0\nmodulus = 2e11\nwidth = 0.01\nthickness = 0.001\n"
+            ),
             "line 8, column 6: joint \"j\": ei = given with modulus",
         ),
         (
@@ -597,7 +599,9 @@ fn bad_values_name_their_key_line_and_column() {
             "line 9, column 7: body \"a\": ixx … iyz: its principal moments 1.0000e0, 1.0000e0, 3.0000e0 break the triangle inequality",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 3.0]]\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 3.0]]\n"
+            ),
             "line 9, column 11: body \"a\": inertia: its principal moments 1.0000e0, 1.0000e0, 3.0000e0 break the triangle inequality",
         ),
         (
@@ -605,11 +609,15 @@ fn bad_values_name_their_key_line_and_column() {
             "line 9, column 7: body \"a\": ixx … iyz must be positive semi-definite",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\n"
+            ),
             "line 9, column 11: body \"a\": inertia must be symmetric",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\nizz = 1.0\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[body]]\nname = \"a\"\ninertia = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\nizz = 1.0\n"
+            ),
             "line 10, column 7: body \"a\": give inertia (3 × 3) or izz and the other components, not both",
         ),
         // Names, loads and closures.
@@ -622,7 +630,9 @@ fn bad_values_name_their_key_line_and_column() {
             "line 9, column 10: moment: invalid type: floating point `1.0`, expected an array of length 3",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[tendon]]\nname = \"t\"\ntension = 1.0\npath = [[\"a\", 0.0, 0.0], [\"ground\", 0.0, 0.0]]\n"),
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[tendon]]\nname = \"t\"\ntension = 1.0\npath = [[\"a\", 0.0, 0.0], [\"ground\", 0.0, 0.0]]\n"
+            ),
             "line 10, column 9: path: invalid length 3, expected a tuple of size 4",
         ),
         (
@@ -630,8 +640,25 @@ fn bad_values_name_their_key_line_and_column() {
             "line 9, column 5: a ball joins body \"a\" to itself",
         ),
         (
-            format!("{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\npreload = true\n"),
-            "line 11, column 1: unknown field `preload`",
+            format!(
+                "{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\npreload = true\n"
+            ),
+            "line 11, column 1: `preload` (a closure's assembly preload) is for planar mechanisms only for now",
+        ),
+        // Planar keys not taken yet in space.
+        (
+            format!(
+                "{HEAD}kind = \"flexure\"\nlength = 0.01\nmodulus = 2e11\nwidth = 0.01\nthickness = 0.001\nnotch = {{ radius = 0.002, min_thickness = 0.0002 }}\n"
+            ),
+            "line 11, column 1: `notch` (a circular notch hinge) is for planar mechanisms only for now",
+        ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = \"auto\"\n"),
+            "line 9, column 9: order = \"auto\" is for planar mechanisms only for now",
+        ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\norder = -1\n"),
+            "line 8, column 9: order: invalid value: integer `-1`",
         ),
         (
             format!("{HEAD}kind = \"spherical\"\n[initial]\nj = [0.1, 0.2]\n"),
@@ -669,7 +696,10 @@ fn each_reader_takes_its_dimension() {
     assert_eq!(two, from_toml(planar).unwrap());
     assert!(matches!(model_from_toml(planar).unwrap(), Model::Planar(p) if p == two));
     let e = from_toml("gravity = [0.0, 0.0, -9.81]\ndimension = 3\n").unwrap_err().to_string();
-    assert!(e.starts_with("line 2, column 13: dimension = 3: a spatial mechanism; read it with `model_from_toml`"), "{e}");
+    assert!(
+        e.starts_with("line 2, column 13: dimension = 3: a spatial mechanism; read it with `model_from_toml`"),
+        "{e}"
+    );
     let e = spatial_from_toml(planar).unwrap_err().to_string();
     assert!(e.contains("a planar mechanism") && e.contains("model_from_toml"), "{e}");
 }

@@ -70,9 +70,21 @@ impl Source<'_> {
     }
 }
 
+/// The planar file's keys that a spatial file does not take yet, with what they are.
+const PLANAR_ONLY: [(&str, &str); 7] = [
+    ("notch", "a circular notch hinge"),
+    ("density", "a flexure's own mass"),
+    ("mass_per_length", "a flexure's own mass"),
+    ("yield_strength", "the stress report's safety factor"),
+    ("shape", "the deflection line's points"),
+    ("quadrature", "the planar flexure's Gauss rule"),
+    ("preload", "a closure's assembly preload"),
+];
+
 /// A TOML or serde error of `text`, placed. A message that names no key
 /// (a wrong type, an array's length) is given the key its line starts
-/// with: `at: invalid length 2, expected an array of length 3`.
+/// with (`at: invalid length 2, expected an array of length 3`), and a
+/// planar key the spatial file does not take yet is said to be one.
 fn toml_error(text: &str, e: toml::de::Error) -> Error {
     let at = e.span().map_or(0, |s| s.start).min(text.len());
     let message = e.message().trim().to_string();
@@ -82,13 +94,16 @@ fn toml_error(text: &str, e: toml::de::Error) -> Error {
             && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
             && !["unknown field", "missing field", "duplicate"].iter().any(|p| message.starts_with(p))
     });
-    Error::File {
-        place: place(text, at),
-        message: match key {
-            Some(k) => format!("{k}: {message}"),
-            None => message,
-        },
-    }
+    let unknown = message.strip_prefix("unknown field `").and_then(|m| m.split('`').next());
+    let message = match (key, unknown.and_then(|u| PLANAR_ONLY.iter().find(|(k, _)| *k == u))) {
+        (_, Some((k, what))) => format!("`{k}` ({what}) is for planar mechanisms only for now"),
+        (Some("order"), None) if message.contains("\"auto\"") => {
+            "order = \"auto\" is for planar mechanisms only for now: give a whole number, or `orders`".into()
+        }
+        (Some(k), None) => format!("{k}: {message}"),
+        (None, None) => message,
+    };
+    Error::File { place: place(text, at), message }
 }
 
 /// The file's `dimension` and the offset of its value (0 when absent): 2
