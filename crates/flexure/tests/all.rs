@@ -26,6 +26,7 @@ mod elastica_path;
 mod energy;
 mod estimate;
 mod export;
+mod file_spatial;
 mod findings;
 mod format;
 mod joints;

@@ -95,9 +95,9 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
         });
     }
     let src = Source { text };
-    if spatial::dimension(text)? == 3 {
+    if let (3, at) = spatial::dimension(text)? {
         return Err(Error::File {
-            place: "the whole file".into(),
+            place: place(text, at),
             message: "dimension = 3: a spatial mechanism; read it with `model_from_toml` (or `spatial_from_toml`)"
                 .into(),
         });
@@ -157,7 +157,7 @@ pub enum Model {
 /// assert!(model_from_toml("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
 /// ```
 pub fn model_from_toml(text: &str) -> Result<Model> {
-    if text.len() <= MAX_TEXT_BYTES && spatial::dimension(text)? == 3 {
+    if text.len() <= MAX_TEXT_BYTES && spatial::dimension(text)?.0 == 3 {
         return spatial_from_toml(text).map(Model::Spatial);
     }
     from_toml(text).map(Model::Planar)

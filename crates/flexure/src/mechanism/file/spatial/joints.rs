@@ -142,7 +142,8 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
         let given = match name {
             "gj" => span_of(&j.gj),
             "ei_y" => span_of(&j.ei_y),
-            "ei_z" => span_of(&j.ei_z).or(span_of(&j.ei)),
+            "ei_z" => span_of(&j.ei_z),
+            "ei" => span_of(&j.ei),
             "modulus" => span_of(&j.modulus),
             "width" => span_of(&j.width),
             "thickness" => span_of(&j.thickness),
@@ -151,16 +152,32 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
             "shear_modulus" => span_of(&j.shear_modulus),
             "twist" => span_of(&j.twist),
             "kappa_y" => span_of(&j.kappa_y),
-            "kappa_z" => span_of(&j.kappa_z).or(span_of(&j.kappa)),
+            "kappa_z" => span_of(&j.kappa_z),
+            "kappa" => span_of(&j.kappa),
             "subintervals" => span_of(&j.subintervals),
-            "orders" | "order" => span_of(&j.orders).or(span_of(&j.order)),
+            "orders" => span_of(&j.orders),
+            "order" => span_of(&j.order),
             _ => None,
         };
         given.unwrap_or(j.name.span())
     };
-    let placed = |e: Error| match &e {
-        Error::InvalidParameter { name, .. } => src.placed(owner, &key_span(name), e.clone()),
-        _ => src.placed(owner, &j.name.span(), e),
+    // The library names `ei_z`, `kappa_z` and `order` (the three orders);
+    // the error names the key as the file writes it, and its value so.
+    let placed = |e: Error| match e {
+        Error::InvalidParameter { name, value, reason } => {
+            let (name, value) = match name {
+                "ei_z" if j.ei.is_some() => ("ei", value),
+                "kappa_z" if j.kappa.is_some() => ("kappa", value),
+                "order" | "orders" => match (&j.order, &j.orders) {
+                    (Some(n), _) => ("order", n.get_ref().to_string()),
+                    (None, Some(o)) => ("orders", format!("{:?}", o.get_ref())),
+                    (None, None) => (name, value),
+                },
+                _ => (name, value),
+            };
+            src.placed(owner, &key_span(name), Error::InvalidParameter { name, value, reason })
+        }
+        e => src.placed(owner, &j.name.span(), e),
     };
     let mut f = spec.build().map_err(placed)?;
     if let Some(m) = &j.subintervals {

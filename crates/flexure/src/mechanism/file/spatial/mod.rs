@@ -70,18 +70,56 @@ impl Source<'_> {
     }
 }
 
-/// The file's `dimension`: 2 when absent; an error naming it unless 2 or 3.
-pub(super) fn dimension(text: &str) -> Result<u8> {
+/// The planar file's keys that a spatial file does not take yet, with what they are.
+const PLANAR_ONLY: [(&str, &str); 7] = [
+    ("notch", "a circular notch hinge"),
+    ("density", "a flexure's own mass"),
+    ("mass_per_length", "a flexure's own mass"),
+    ("yield_strength", "the stress report's safety factor"),
+    ("shape", "the deflection line's points"),
+    ("quadrature", "the planar flexure's Gauss rule"),
+    ("preload", "a closure's assembly preload"),
+];
+
+/// A TOML or serde error of `text`, placed. A message that names no key
+/// (a wrong type, an array's length) is given the key its line starts
+/// with (`at: invalid length 2, expected an array of length 3`), and a
+/// planar key the spatial file does not take yet is said to be one.
+fn toml_error(text: &str, e: toml::de::Error) -> Error {
+    let at = e.span().map_or(0, |s| s.start).min(text.len());
+    let message = e.message().trim().to_string();
+    let line = &text[text[..at].rfind('\n').map_or(0, |n| n + 1)..at];
+    let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| {
+        !k.is_empty()
+            && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !["unknown field", "missing field", "duplicate"].iter().any(|p| message.starts_with(p))
+    });
+    let unknown = message.strip_prefix("unknown field `").and_then(|m| m.split('`').next());
+    let message = match (key, unknown.and_then(|u| PLANAR_ONLY.iter().find(|(k, _)| *k == u))) {
+        (_, Some((k, what))) => format!("`{k}` ({what}) is for planar mechanisms only for now"),
+        (Some("order"), None) if message.contains("\"auto\"") => {
+            "order = \"auto\" is for planar mechanisms only for now: give a whole number, or `orders`".into()
+        }
+        (Some(k), None) => format!("{k}: {message}"),
+        (None, None) => message,
+    };
+    Error::File { place: place(text, at), message }
+}
+
+/// The file's `dimension` and the offset of its value (0 when absent): 2
+/// when absent; an error naming it unless 2 or 3.
+pub(super) fn dimension(text: &str) -> Result<(u8, usize)> {
     // Every top-level value with its place: only `dimension` is read here.
+    // (Placed as the planar parser places its own errors: a planar file reads as before.)
     let top: BTreeMap<String, Spanned<toml::Value>> = toml::from_str(text).map_err(|e| Error::File {
         place: place(text, e.span().map_or(0, |s| s.start)),
         message: e.message().trim().to_string(),
     })?;
     match top.get("dimension") {
-        None => Ok(2),
+        None => Ok((2, 0)),
         Some(d) => match d.get_ref() {
-            toml::Value::Integer(2) => Ok(2),
-            toml::Value::Integer(3) => Ok(3),
+            toml::Value::Integer(2) => Ok((2, d.span().start)),
+            toml::Value::Integer(3) => Ok((3, d.span().start)),
             v => Err(Error::File {
                 place: place(text, d.span().start),
                 message: format!(
@@ -135,7 +173,7 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
             ),
         });
     }
-    if dimension(text)? != 3 {
+    if dimension(text)?.0 != 3 {
         return Err(Error::File {
             place: place(text, 0),
             message:
@@ -144,10 +182,7 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
         });
     }
     let src = Source { text };
-    let file: FileToml = toml::from_str(text).map_err(|e| Error::File {
-        place: place(text, e.span().map_or(0, |s| s.start)),
-        message: e.message().trim().to_string(),
-    })?;
+    let file: FileToml = toml::from_str(text).map_err(|e| toml_error(text, e))?;
     if let Some(s) = &file.schedule {
         return src.fail(
             &s.span(),

@@ -3,6 +3,7 @@
 
 use super::{Result, Sign, Source, Spanned};
 use crate::mechanism::file::document::place;
+use crate::mechanism::spatial::joints::unit_axis;
 use crate::mechanism::spatial::{SpatialBody, SpatialClosure, SpatialPointLoad, SpatialTendon};
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3, Vector6};
 use serde::Deserialize;
@@ -100,7 +101,7 @@ pub(super) fn describe(src: &Source, find: &Find, bodies: &mut [SpatialBody], ta
         bodies[idx].com = Point3::from(src.array(&owner, "com", &b.com)?);
         let parts = [&b.ixx, &b.iyy, &b.izz, &b.ixy, &b.ixz, &b.iyz];
         let names = ["ixx", "iyy", "izz", "ixy", "ixz", "iyz"];
-        let (inertia, span) = match (&b.inertia, parts.iter().zip(names).find(|(p, _)| p.is_some())) {
+        let (inertia, span, key) = match (&b.inertia, parts.iter().zip(names).find(|(p, _)| p.is_some())) {
             (Some(_), Some((p, key))) => {
                 let span = p.as_ref().map(|p| p.span()).unwrap_or(b.name.span());
                 return src
@@ -115,7 +116,7 @@ pub(super) fn describe(src: &Source, find: &Find, bodies: &mut [SpatialBody], ta
                 if (m - m.transpose()).amax() > 1e-12 * m.amax() {
                     return src.fail(&i.span(), format!("{owner}inertia must be symmetric"));
                 }
-                (m, i.span())
+                (m, i.span(), "inertia")
             }
             (None, Some(_)) => {
                 let mut v = [0.0; 6];
@@ -131,9 +132,9 @@ pub(super) fn describe(src: &Source, find: &Find, bodies: &mut [SpatialBody], ta
                 }
                 let [xx, yy, zz, xy, xz, yz] = v;
                 let span = parts.iter().find_map(|p| p.as_ref().map(|p| p.span())).unwrap_or(b.name.span());
-                (Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz), span)
+                (Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz), span, "ixx … iyz")
             }
-            (None, None) => (Matrix3::zeros(), b.name.span()),
+            (None, None) => (Matrix3::zeros(), b.name.span(), "inertia"),
         };
         let eig = inertia.symmetric_eigenvalues();
         let scale = eig.amax();
@@ -141,14 +142,14 @@ pub(super) fn describe(src: &Source, find: &Find, bodies: &mut [SpatialBody], ta
             return src.fail(
                 &span,
                 format!(
-                    "{owner}inertia must be positive semi-definite (its principal moments are {:.4e}, {:.4e}, {:.4e})",
+                    "{owner}{key} must be positive semi-definite (its principal moments are {:.4e}, {:.4e}, {:.4e})",
                     eig[0], eig[1], eig[2]
                 ),
             );
         }
         let (a, b2, c) = (eig[0], eig[1], eig[2]);
         if a + b2 < c * (1.0 - 1e-9) || a + c < b2 * (1.0 - 1e-9) || b2 + c < a * (1.0 - 1e-9) {
-            return src.fail(&span, format!("{owner}inertia's principal moments {a:.4e}, {b2:.4e}, {c:.4e} break the triangle inequality (no rigid body has them)"));
+            return src.fail(&span, format!("{owner}{key}: its principal moments {a:.4e}, {b2:.4e}, {c:.4e} break the triangle inequality (no rigid body has them)"));
         }
         bodies[idx].inertia = inertia;
     }
@@ -245,17 +246,20 @@ pub(super) fn closures(
             .as_ref()
             .ok_or_else(|| src.error(&p.a.span(), format!("{owner}a pin needs its axis (in a's frame)")))?;
         src.numbers(&owner, "axis", &axis.span(), axis.get_ref(), Sign::Any)?;
-        let a_axis = Vector3::from(*axis.get_ref());
+        let a_axis = unit_axis("axis", Vector3::from(*axis.get_ref()))
+            .map_err(|e| src.placed(&owner, &axis.span(), e))?
+            .into_inner();
         let b_axis = match &p.b_axis {
             Some(v) => {
                 src.numbers(&owner, "b_axis", &v.span(), v.get_ref(), Sign::Any)?;
-                Vector3::from(*v.get_ref())
+                unit_axis("b_axis", Vector3::from(*v.get_ref()))
+                    .map_err(|e| src.placed(&owner, &v.span(), e))?
+                    .into_inner()
             }
             None => rest[b].rotation.inverse() * (rest[a].rotation * a_axis),
         };
-        let span = p.b_axis.as_ref().map_or(axis.span(), |v| v.span());
         let c = SpatialClosure::pin(a, Point3::from(a_at), a_axis, b, Point3::from(b_at), b_axis)
-            .map_err(|e| src.placed(&owner, &span, e))?;
+            .map_err(|e| src.placed(&owner, &axis.span(), e))?;
         closures.push(c);
         places.push(place(src.text, p.a.span().start));
     }
