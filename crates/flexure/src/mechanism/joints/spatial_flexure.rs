@@ -7,26 +7,22 @@ use crate::space::Spatial;
 use crate::spatial::work::{self, Quadrature, Work};
 use crate::spatial::{self, SpatialFlexure, SpatialKinematics};
 use nalgebra::Vector3;
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 
 /// A spatial flexure's buffers in its [`JointState`]: its kinematics, and
 /// the tables and scratch of the virtual work's quadrature
-/// ([`Joint::add_wrench_hessian`]), which reads the state and so keeps its
-/// scratch behind a cell.
+/// ([`Joint::add_wrench_hessian`]), made on its first call (frames that only
+/// bound a step never need them); that call reads the state, so they sit
+/// behind cells.
 #[derive(Debug, Clone)]
 pub(super) struct Data {
     kinematics: SpatialKinematics,
-    quadrature: Quadrature,
-    work: RefCell<Work<f64>>,
+    contraction: OnceCell<(Quadrature, RefCell<Work<f64>>)>,
 }
 
 impl Data {
     fn new(flexure: &SpatialFlexure) -> Self {
-        Data {
-            kinematics: SpatialKinematics::new(flexure),
-            quadrature: Quadrature::new(flexure),
-            work: RefCell::new(Work::new(flexure)),
-        }
+        Data { kinematics: SpatialKinematics::new(flexure), contraction: OnceCell::new() }
     }
 }
 
@@ -141,9 +137,11 @@ impl Joint<Spatial> for SpatialFlexure {
                 }
             }
         };
-        let mut cell = data.work.try_borrow_mut().ok();
+        let (quadrature, work) =
+            data.contraction.get_or_init(|| (Quadrature::new(self), RefCell::new(Work::new(self))));
+        let mut cell = work.try_borrow_mut().ok();
         match cell.as_deref_mut() {
-            Some(w) if work::fits(self, &data.quadrature, w) => add(&data.quadrature, w),
+            Some(w) if work::fits(self, quadrature, w) => add(quadrature, w),
             // Buffers of another flexure (or in use): fresh ones.
             _ => add(&Quadrature::new(self), &mut Work::new(self)),
         }
