@@ -11,7 +11,9 @@
 //! that, so that equilibrium is gradient $+\thinspace G^T\mu = 0$ in every case.
 //! Point derivatives come from [`super::kinematics`].
 
-use super::kinematics::{Attached, JointWrenches, SpatialFrames, attach, gather_attached_hessian, gather_rotation_derivative};
+use super::kinematics::{
+    Attached, JointWrenches, SpatialFrames, attach, gather_attached_hessian, gather_rotation_derivative,
+};
 use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
@@ -280,8 +282,15 @@ pub fn add_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], 
 }
 
 /// [`add_closure_hessian`] with the same-joint parts gathered into `w`, not yet added.
-fn gather_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], h: &mut DMatrix<f64>, sums: &mut JointWrenches) {
-    let mut add = |x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>| gather_attached_hessian(m, f, x, u, h, Some(sums));
+fn gather_closure_hessian(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    mu: &[f64],
+    h: &mut DMatrix<f64>,
+    sums: &mut JointWrenches,
+) {
+    let mut add =
+        |x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>| gather_attached_hessian(m, f, x, u, h, Some(sums));
     let mut row = 0;
     for closure in &m.closures {
         let v = closure_vectors(m, f, closure);
