@@ -19,6 +19,22 @@
 //! $\partial_a R = \hat\omega_a R$, and $\partial_b\omega_a$ is $\omega_b\times\omega_a$
 //! upstream, $R_A H_{ab}^{\omega}$ within the joint and zero downstream. As in
 //! the plane, one point costs one pass along its path.
+//!
+//! Within a joint, a weight $u$ on $x$ meets $H$ only through
+//! $$u\cdot\partial_{ab}x - u\cdot(\omega_a\times(\omega_b\times r)) = (R_A^Tu_\epsilon)\cdot H^{p}_{ab} + (R_A^T(r\times u))\cdot H^{\omega}_{ab},$$
+//! ($u_\epsilon = \epsilon u$), a wrench on $S$'s derivative, and a dead moment
+//! $\mu$ through $(R_A^T\mu)\cdot H^{\omega}_{ab}$. So the Lagrangian
+//! ([`super::lagrangian`]) sums, per joint, the root-frame wrench $W_j$ of
+//! everything whose path passes through it, and the joint adds
+//! $\sum_cW_{j,c}\thinspace\partial_bS^c_a$ once
+//! ([`crate::mechanism::Joint::add_wrench_hessian`]). From frames evaluated
+//! at [`Level::Hessian`] that contraction reads the joints' Hessians
+//! (exact); from [`Level::Jacobian`] frames each joint makes it from its
+//! Jacobian-level data, which for the spatial flexure is the virtual work's
+//! quadrature (within $h^6$ of the exact one; about a tenth of the cost of
+//! its Hessian). The statics' Newton matrix takes the latter; stiffness,
+//! compliance, modes, buckling and dynamics evaluate frames with
+//! [`frames`] or [`frames_into`], at [`Level::Hessian`], and so the former.
 
 use super::SpatialMechanism;
 use crate::kinematics::Level;
