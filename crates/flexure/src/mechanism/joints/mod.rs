@@ -180,6 +180,11 @@ pub trait Joint<S: Space = Planar> {
     /// that leaves its Hessian out below [`Level::Hessian`] (the spatial
     /// flexure) overrides this with what its Jacobian-level data allows.
     ///
+    /// # Panics
+    /// If `q`, `wrench` or `out` do not have the joint's sizes ($k$,
+    /// `TWIST_DIM`, $k\times k$), as [`Joint::evaluate_into`] with a `q` of
+    /// another length.
+    ///
     /// # Example
     /// ```
     /// use flexure::mechanism::{Joint, Revolute};
