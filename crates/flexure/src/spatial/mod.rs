@@ -35,7 +35,7 @@ mod spec;
 mod statics;
 mod step;
 mod stress;
-mod work;
+pub(crate) mod work;
 
 pub use energy::{energy, energy_gradient};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};

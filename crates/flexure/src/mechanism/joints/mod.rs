@@ -23,7 +23,6 @@ use crate::joint::Flexure;
 use crate::kinematics::{Kinematics, Level};
 use crate::mass::MassModel;
 use crate::space::{Planar, Space};
-use crate::spatial::SpatialKinematics;
 use nalgebra::{DMatrix, DVector};
 
 /// A joint's data at one configuration: placement, motion subspace and its
@@ -63,8 +62,8 @@ enum Buffers {
     None,
     /// A planar flexure's kinematics.
     Flexure(Box<Kinematics>),
-    /// A spatial flexure's kinematics.
-    SpatialFlexure(Box<SpatialKinematics>),
+    /// A spatial flexure's kinematics, and its contracted Hessian's quadrature.
+    SpatialFlexure(Box<spatial_flexure::Data>),
 }
 
 impl<S: Space> JointState<S> {
@@ -109,6 +108,21 @@ fn spring(stiffness: f64, rest: f64, q: f64, s: &mut JointState) {
     s.gradient[0] = stiffness * (q - rest);
 }
 
+/// $\sum_c w_c\thinspace\partial_bS^c_a$ from the Hessian in `state`
+/// (filled at [`Level::Hessian`]) added into `out`: the exact contraction,
+/// [`Joint::add_wrench_hessian`]'s default.
+pub(crate) fn add_contracted_hessian<S: Space>(
+    state: &JointState<S>,
+    wrench: &[f64],
+    out: &mut nalgebra::DMatrixViewMut<'_, f64>,
+) {
+    for (h, &w) in state.hessian.iter().zip(wrench) {
+        if w != 0.0 {
+            out.zip_apply(h, |o, h| *o += w * h);
+        }
+    }
+}
+
 /// The interface every joint kind implements (Pinocchio's `JointModel`).
 ///
 /// # Example
@@ -149,6 +163,47 @@ pub trait Joint<S: Space = Planar> {
     /// evaluates everything.
     fn evaluate_level_into(&self, q: &[f64], _level: Level, out: &mut JointState<S>) {
         self.evaluate_into(q, out);
+    }
+    /// Adds the motion subspace's derivative contracted with a wrench,
+    /// $$D_{ab} = \sum_c w_c\thinspace\partial_bS^c_a,$$
+    /// into the $k\times k$ block `out`: the derivative of the generalized
+    /// force $w\cdot S_a$ of a wrench $w$ fixed in the joint's root frame
+    /// (`wrench`, `TWIST_DIM` components in the twist's order, the moment
+    /// about the output origin; in the plane $(M, F_x, F_y)$). Every
+    /// same-joint part of a mechanism's Hessian is one such contraction, so
+    /// the mechanism calls this once per joint with the wrench of everything
+    /// beyond it.
+    ///
+    /// `state` is this joint's data at `q`, evaluated at least to
+    /// [`Level::Jacobian`]. The default reads [`JointState::hessian`], which
+    /// [`Joint::evaluate_level_into`]'s default fills at every level; a kind
+    /// that leaves its Hessian out below [`Level::Hessian`] (the spatial
+    /// flexure) overrides this with what its Jacobian-level data allows.
+    ///
+    /// # Panics
+    /// If `q`, `wrench` or `out` do not have the joint's sizes ($k$,
+    /// `TWIST_DIM`, $k\times k$), as [`Joint::evaluate_into`] with a `q` of
+    /// another length.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::{Joint, Revolute};
+    /// use nalgebra::DMatrix;
+    /// // A pin's motion subspace is constant: the contraction is zero.
+    /// let pin = Revolute { stiffness: 2.0, rest: 0.0 };
+    /// let s = pin.evaluate(&[0.3]);
+    /// let mut d = DMatrix::zeros(1, 1);
+    /// pin.add_wrench_hessian(&[0.3], &s, &[1.0, 2.0, 3.0], &mut d.view_mut((0, 0), (1, 1)));
+    /// assert_eq!(d[(0, 0)], 0.0);
+    /// ```
+    fn add_wrench_hessian(
+        &self,
+        _q: &[f64],
+        state: &JointState<S>,
+        wrench: &[f64],
+        out: &mut nalgebra::DMatrixViewMut<'_, f64>,
+    ) {
+        add_contracted_hessian(state, wrench, out);
     }
     /// [`Joint::evaluate_into`] in fresh buffers.
     fn evaluate(&self, q: &[f64]) -> JointState<S> {

@@ -1,11 +1,30 @@
 //! The spatial flexure as a joint: the second dimension behind the joint
 //! interface, its tip frame the output, in SE(3).
 
-use super::{Buffers, Joint, JointState};
+use super::{Buffers, Joint, JointState, add_contracted_hessian};
 use crate::kinematics::Level;
 use crate::space::Spatial;
+use crate::spatial::work::{self, Quadrature, Work};
 use crate::spatial::{self, SpatialFlexure, SpatialKinematics};
 use nalgebra::Vector3;
+use std::cell::{OnceCell, RefCell};
+
+/// A spatial flexure's buffers in its [`JointState`]: its kinematics, and
+/// the tables and scratch of the virtual work's quadrature
+/// ([`Joint::add_wrench_hessian`]), made on its first call (frames that only
+/// bound a step never need them); that call reads the state, so they sit
+/// behind cells.
+#[derive(Debug, Clone)]
+pub(super) struct Data {
+    kinematics: SpatialKinematics,
+    contraction: OnceCell<(Quadrature, RefCell<Work<f64>>)>,
+}
+
+impl Data {
+    fn new(flexure: &SpatialFlexure) -> Self {
+        Data { kinematics: SpatialKinematics::new(flexure), contraction: OnceCell::new() }
+    }
+}
 
 impl Joint<Spatial> for SpatialFlexure {
     fn dof(&self) -> usize {
@@ -19,7 +38,7 @@ impl Joint<Spatial> for SpatialFlexure {
     fn state(&self) -> JointState<Spatial> {
         let n = self.coordinates();
         let mut s = JointState::zeros(n);
-        s.buffers = Buffers::SpatialFlexure(Box::new(SpatialKinematics::new(self)));
+        s.buffers = Buffers::SpatialFlexure(Box::new(Data::new(self)));
         s.stiffness.copy_from_slice(self.stiffness_matrix());
         s
     }
@@ -38,10 +57,11 @@ impl Joint<Spatial> for SpatialFlexure {
     /// 7 × a planar pose), at [`Level::Jacobian`] with the motion subspace
     /// and gradient (the Hessians of every Magnus step are what cost most).
     fn evaluate_level_into(&self, q: &[f64], level: Level, s: &mut JointState<Spatial>) {
-        if !matches!(s.buffers, Buffers::SpatialFlexure(_)) {
-            s.buffers = Buffers::SpatialFlexure(Box::new(SpatialKinematics::new(self)));
+        if !matches!(&s.buffers, Buffers::SpatialFlexure(d) if d.kinematics.fits(self)) {
+            s.buffers = Buffers::SpatialFlexure(Box::new(Data::new(self)));
         }
-        let Buffers::SpatialFlexure(k) = &mut s.buffers else { unreachable!("made just above") };
+        let Buffers::SpatialFlexure(data) = &mut s.buffers else { unreachable!("made just above") };
+        let k = &mut data.kinematics;
         spatial::update(self, q, level, k);
         s.pose = k.pose();
         let n = self.coordinates();
@@ -75,6 +95,55 @@ impl Joint<Spatial> for SpatialFlexure {
                     s.hessian[i + 3][(a, b)] = p[i];
                 }
             }
+        }
+    }
+
+    /// The contraction by quadrature of the virtual work (`spatial::work`,
+    /// as [`crate::spatial::deflect`] takes its Newton matrix), from the
+    /// Jacobian-level data alone. $D_{ab} = \partial_b(w\cdot S_a)$ is
+    /// $\partial_bQ_a$ of the dead tip wrench $w = (M, F)$; its symmetric part
+    /// is taken from the quadrature (which meets the Magnus product's exact
+    /// derivative to the rule's $h^6$) and its skew part exactly, from the
+    /// motion subspace: for any joint,
+    /// $\partial_bS^{\omega}_a - \partial_aS^{\omega}_b = S^{\omega}_b\times S^{\omega}_a$
+    /// and the position's Hessian is symmetric, so
+    /// $$D_{ab} = \tfrac12\big(\partial_bQ_a + \partial_aQ_b\big) + \tfrac12\thinspace M\cdot\big(S^{\omega}_b\times S^{\omega}_a\big).$$
+    /// Costs about one Jacobian-level evaluation, against the Magnus
+    /// product's second derivatives at [`Level::Hessian`] (about ten).
+    fn add_wrench_hessian(
+        &self,
+        q: &[f64],
+        state: &JointState<Spatial>,
+        wrench: &[f64],
+        out: &mut nalgebra::DMatrixViewMut<'_, f64>,
+    ) {
+        let n = self.coordinates();
+        let Buffers::SpatialFlexure(data) = &state.buffers else {
+            // Data not made by this kind holds no quadrature: the exact contraction.
+            return add_contracted_hessian(state, wrench, out);
+        };
+        let moment = Vector3::new(wrench[0], wrench[1], wrench[2]);
+        let force = Vector3::new(wrench[3], wrench[4], wrench[5]);
+        let mut add = |quadrature: &Quadrature, w: &mut Work<f64>| {
+            work::evaluate(self, quadrature, q, (moment, force), true, w);
+            let s = &state.jacobian;
+            let turn = |a: usize| Vector3::new(s[(0, a)], s[(1, a)], s[(2, a)]);
+            for b in 0..n {
+                let wb = turn(b);
+                for a in 0..n {
+                    // ∂_b Q_a is at [b n + a].
+                    let symmetric = 0.5 * (w.derivative[b * n + a] + w.derivative[a * n + b]);
+                    out[(a, b)] += symmetric + 0.5 * moment.dot(&wb.cross(&turn(a)));
+                }
+            }
+        };
+        let (quadrature, work) =
+            data.contraction.get_or_init(|| (Quadrature::new(self), RefCell::new(Work::new(self))));
+        let mut cell = work.try_borrow_mut().ok();
+        match cell.as_deref_mut() {
+            Some(w) if work::fits(self, quadrature, w) => add(quadrature, w),
+            // Buffers of another flexure (or in use): fresh ones.
+            _ => add(&Quadrature::new(self), &mut Work::new(self)),
         }
     }
 

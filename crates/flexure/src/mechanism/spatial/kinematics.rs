@@ -19,10 +19,26 @@
 //! $\partial_a R = \hat\omega_a R$, and $\partial_b\omega_a$ is $\omega_b\times\omega_a$
 //! upstream, $R_A H_{ab}^{\omega}$ within the joint and zero downstream. As in
 //! the plane, one point costs one pass along its path.
+//!
+//! Within a joint, a weight $u$ on $x$ meets $H$ only through
+//! $$u\cdot\partial_{ab}x - u\cdot(\omega_a\times(\omega_b\times r)) = (R_A^Tu_\epsilon)\cdot H^{p}_{ab} + (R_A^T(r\times u))\cdot H^{\omega}_{ab},$$
+//! ($u_\epsilon = \epsilon u$), a wrench on $S$'s derivative, and a dead moment
+//! $\mu$ through $(R_A^T\mu)\cdot H^{\omega}_{ab}$. So the Lagrangian
+//! ([`super::lagrangian`]) sums, per joint, the root-frame wrench $W_j$ of
+//! everything whose path passes through it, and the joint adds
+//! $\sum_cW_{j,c}\thinspace\partial_bS^c_a$ once
+//! ([`crate::mechanism::Joint::add_wrench_hessian`]). From frames evaluated
+//! at [`Level::Hessian`] that contraction reads the joints' Hessians
+//! (exact); from [`Level::Jacobian`] frames each joint makes it from its
+//! Jacobian-level data, which for the spatial flexure is the virtual work's
+//! quadrature (within $h^6$ of the exact one; about a tenth of the cost of
+//! its Hessian). The statics' Newton matrix takes the latter; stiffness,
+//! compliance, modes, buckling and dynamics evaluate frames with
+//! [`frames`] or [`frames_into`], at [`Level::Hessian`], and so the former.
 
 use super::SpatialMechanism;
 use crate::kinematics::Level;
-use crate::mechanism::joints::JointState;
+use crate::mechanism::joints::{JointState, add_contracted_hessian};
 use crate::space::Spatial;
 use nalgebra::{DMatrix, Isometry3, Matrix3, Matrix3xX, Point3, Vector3};
 
@@ -43,6 +59,8 @@ pub struct SpatialFrames {
     pub velocity: Matrix3xX<f64>,
     /// The rotation matrix of each body frame, then of each joint's root frame.
     rotations: Vec<Matrix3<f64>>,
+    /// The level the joints were evaluated to.
+    level: Level,
 }
 
 impl SpatialFrames {
@@ -57,7 +75,16 @@ impl SpatialFrames {
             omega: Matrix3xX::zeros(n),
             velocity: Matrix3xX::zeros(n),
             rotations: vec![Matrix3::identity(); m.bodies.len() + m.joints.len()],
+            level: Level::Pose,
         }
+    }
+
+    /// The level the joints were last evaluated to ([`frames_level_into`]):
+    /// at [`Level::Hessian`] the second derivatives of points read the
+    /// joints' Hessians, below it each joint's contraction
+    /// ([`crate::mechanism::Joint::add_wrench_hessian`]).
+    pub fn level(&self) -> Level {
+        self.level
     }
 
     /// The rotation matrix of body `b` in the world.
@@ -94,6 +121,7 @@ pub fn frames_into(m: &SpatialMechanism, q: &[f64], f: &mut SpatialFrames) {
 /// derivatives too at [`Level::Hessian`] (for point Hessians).
 pub fn frames_level_into(m: &SpatialMechanism, q: &[f64], level: Level, f: &mut SpatialFrames) {
     f.coordinates.copy_from_slice(q);
+    f.level = level;
     let nb = m.bodies.len();
     for (i, j) in m.joints.iter().enumerate() {
         let joint = j.kind.joint();
@@ -190,16 +218,126 @@ pub fn attach(m: &SpatialMechanism, f: &SpatialFrames, body: usize, local: Vecto
     out
 }
 
-/// Component $c$ of $\partial_b S_a$ of joint `j` turned into the world:
-/// $R_A H_{ab}$ for the angular ($c < 3$) or the linear part.
-fn turned_hessian(f: &SpatialFrames, j: usize, linear: bool, a: usize, b: usize) -> Vector3<f64> {
-    let h = &f.joints[j].hessian;
-    let o = if linear { 3 } else { 0 };
-    f.root_rotation(j) * Vector3::new(h[o][(a, b)], h[o + 1][(a, b)], h[o + 2][(a, b)])
+/// The joints from the one moving `body` down to the ground.
+fn chain(m: &SpatialMechanism, body: usize) -> impl Iterator<Item = usize> + '_ {
+    std::iter::successors(m.parent_joint(body), |&j| m.parent_joint(m.joints[j].parent))
+}
+
+/// The same-joint parts of weighted second derivatives, gathered per joint
+/// (the module docs' "within one joint"): for joint $j$, the world wrench
+/// $W_j = (M_j, F_j)$, moment about its output origin $o_j$, and the matrix
+/// $N_j$ of the turn of the turn, summed over every weighted vector whose
+/// path passes through $j$,
+/// $$M_j = \sum r\times u + \sum\mu,\qquad F_j = \sum\epsilon\thinspace u,\qquad N_j = \sum r\thinspace u^T - (u\cdot r)\thinspace I,$$
+/// ($\mu$ a dead moment's weight, [`add_rotation_derivative`]). Joint $j$'s
+/// block of the Hessian is then
+/// $\sum_c W_{j,c}\thinspace\partial_bS^c_a$ with $W_j$ turned into its root frame
+/// ([`crate::mechanism::Joint::add_wrench_hessian`], one call per joint)
+/// plus $\omega_a^TN_j\thinspace\omega_b$, which is
+/// $u\cdot(\omega_a\times(\omega_b\times r))$ summed.
+#[derive(Debug, Clone)]
+pub(crate) struct JointWrenches {
+    moment: Vec<Vector3<f64>>,
+    force: Vec<Vector3<f64>>,
+    turn: Vec<Matrix3<f64>>,
+    touched: Vec<bool>,
+}
+
+impl JointWrenches {
+    /// Empty sums for the joints of `m`.
+    pub(crate) fn new(m: &SpatialMechanism) -> Self {
+        let n = m.joints.len();
+        JointWrenches {
+            moment: vec![Vector3::zeros(); n],
+            force: vec![Vector3::zeros(); n],
+            turn: vec![Matrix3::zeros(); n],
+            touched: vec![false; n],
+        }
+    }
+
+    /// Adds every joint's gathered block to `h` and empties the sums.
+    pub(crate) fn flush(&mut self, m: &SpatialMechanism, f: &SpatialFrames, h: &mut DMatrix<f64>) {
+        for j in 0..self.touched.len() {
+            if std::mem::take(&mut self.touched[j]) {
+                add_same_joint(m, f, j, &self.moment[j], &self.force[j], &self.turn[j], h);
+                self.moment[j] = Vector3::zeros();
+                self.force[j] = Vector3::zeros();
+                self.turn[j] = Matrix3::zeros();
+            }
+        }
+    }
+}
+
+/// Where the same-joint parts go: gathered per joint, or (`None`) added
+/// to the Hessian at once, one joint at a time.
+type Sink<'a> = Option<&'a mut JointWrenches>;
+
+/// Adds the world wrench `(moment, force)` and turn matrix of joint `j` to `sink`, or straight into `h`.
+fn same_joint(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    j: usize,
+    (moment, force, turn): (Vector3<f64>, Vector3<f64>, Matrix3<f64>),
+    sink: &mut Sink<'_>,
+    h: &mut DMatrix<f64>,
+) {
+    match sink {
+        Some(w) => {
+            w.moment[j] += moment;
+            w.force[j] += force;
+            w.turn[j] += turn;
+            w.touched[j] = true;
+        }
+        None => add_same_joint(m, f, j, &moment, &force, &turn, h),
+    }
+}
+
+/// Adds joint `j`'s block for the world wrench `(moment, force)` and turn
+/// matrix `turn` ([`JointWrenches`]) to `h`: from the joint's Hessian when
+/// the frames carry it ([`Level::Hessian`]), else by the joint's own
+/// contraction.
+fn add_same_joint(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    j: usize,
+    moment: &Vector3<f64>,
+    force: &Vector3<f64>,
+    turn: &Matrix3<f64>,
+    h: &mut DMatrix<f64>,
+) {
+    let spec = &m.joints[j];
+    let state = &f.joints[j];
+    let (o, k) = (spec.offset, state.gradient.len());
+    let rotation = f.root_rotation(j);
+    let (mr, fr) = (rotation.tr_mul(moment), rotation.tr_mul(force));
+    let wrench = [mr.x, mr.y, mr.z, fr.x, fr.y, fr.z];
+    {
+        let mut block = h.view_mut((o, o), (k, k));
+        if f.level >= Level::Hessian {
+            add_contracted_hessian(state, &wrench, &mut block);
+        } else {
+            spec.kind.joint().add_wrench_hessian(&f.coordinates[o..o + k], state, &wrench, &mut block);
+        }
+    }
+    if *turn != Matrix3::zeros() {
+        for b in 0..k {
+            let nb = turn * f.omega.column(o + b);
+            for a in 0..k {
+                h[(o + a, o + b)] += f.omega.column(o + a).dot(&nb);
+            }
+        }
+    }
 }
 
 /// Adds $\sum_c u_c\nabla^2 x_c$ of the vector in `x` (from [`attach_into`])
 /// to `h`, entries on its path only (see the module docs).
+///
+/// Within a joint it reads the joints' Hessians when `f` was evaluated at
+/// [`Level::Hessian`], and otherwise asks each joint for its contraction
+/// ([`crate::mechanism::Joint::add_wrench_hessian`]; for the spatial
+/// flexure, a quadrature that meets the exact Hessian to its $h^6$): a
+/// Newton matrix assembled from Jacobian-level frames does not pay for the
+/// flexures' second derivatives.
 pub fn add_attached_hessian(
     m: &SpatialMechanism,
     f: &SpatialFrames,
@@ -207,38 +345,39 @@ pub fn add_attached_hessian(
     u: &Vector3<f64>,
     h: &mut DMatrix<f64>,
 ) {
+    gather_attached_hessian(m, f, x, u, h, None);
+}
+
+/// [`add_attached_hessian`] with the same-joint parts gathered into `sink`
+/// (added by its [`JointWrenches::flush`]) when given.
+pub(crate) fn gather_attached_hessian(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    x: &Attached,
+    u: &Vector3<f64>,
+    h: &mut DMatrix<f64>,
+    mut sink: Sink<'_>,
+) {
     if *u == Vector3::zeros() {
         return;
     }
-    let mut add = |r: usize, c: usize, v: f64| {
-        h[(r, c)] += v;
-        if r != c {
-            h[(c, r)] += v;
-        }
-    };
     for (down, &ja) in x.path.iter().enumerate() {
         let oa = m.joints[ja].offset;
         let k = f.joints[ja].gradient.len();
         let r = if x.point { x.value - f.output_origin(m, ja) } else { x.value };
-        for a in 0..k {
-            let wa = f.omega.column(oa + a).into_owned();
-            for b in a..k {
-                let wb = f.omega.column(oa + b);
-                let mut d = turned_hessian(f, ja, false, a, b).cross(&r) + wa.cross(&wb.cross(&r));
-                if x.point {
-                    d += turned_hessian(f, ja, true, a, b);
-                }
-                add(oa + a, oa + b, u.dot(&d));
-            }
-        }
-        // With each joint upstream: ω_b × ∂_a x.
+        let force = if x.point { *u } else { Vector3::zeros() };
+        let turn = r * u.transpose() - Matrix3::from_diagonal_element(u.dot(&r));
+        same_joint(m, f, ja, (r.cross(u), force, turn), &mut sink, h);
+        // With each joint upstream: ω_b × ∂_a x, at (a, b) and (b, a).
         for &jb in &x.path[down + 1..] {
             let ob = m.joints[jb].offset;
             for b in 0..f.joints[jb].gradient.len() {
                 let uxw = f.omega.column(ob + b).cross(u);
                 for a in 0..k {
                     // u·(ω_b × J_a) = J_a·(u × ω_b) = −J_a·(ω_b × u).
-                    add(oa + a, ob + b, -x.jacobian.column(oa + a).dot(&uxw));
+                    let v = -x.jacobian.column(oa + a).dot(&uxw);
+                    h[(oa + a, ob + b)] += v;
+                    h[(ob + b, oa + a)] += v;
                 }
             }
         }
@@ -248,7 +387,8 @@ pub fn add_attached_hessian(
 /// Adds $\partial_b(\mu\cdot\omega_a)$ at $(a, b)$ to `k`, for body `body`'s
 /// angular velocity $\sum_a\omega_a\dot q_a$ and a vector $\mu$ fixed in the
 /// world (a dead moment's generalized force $Q_a = \mu\cdot\omega_a$): not
-/// symmetric, since a moment fixed in space has no potential.
+/// symmetric, since a moment fixed in space has no potential. Within a
+/// joint as [`add_attached_hessian`].
 pub fn add_rotation_derivative(
     m: &SpatialMechanism,
     f: &SpatialFrames,
@@ -256,22 +396,32 @@ pub fn add_rotation_derivative(
     mu: &Vector3<f64>,
     k: &mut DMatrix<f64>,
 ) {
+    gather_rotation_derivative(m, f, body, mu, k, None);
+}
+
+/// [`add_rotation_derivative`] with the same-joint parts gathered into `sink` when given.
+pub(crate) fn gather_rotation_derivative(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    body: usize,
+    mu: &Vector3<f64>,
+    k: &mut DMatrix<f64>,
+    mut sink: Sink<'_>,
+) {
     if *mu == Vector3::zeros() {
         return;
     }
-    let path = m.path(body);
-    for (i, &ja) in path.iter().enumerate() {
+    for ja in chain(m, body) {
         let oa = m.joints[ja].offset;
-        let na = f.joints[ja].gradient.len();
-        for a in 0..na {
-            for b in 0..na {
-                k[(oa + a, oa + b)] += mu.dot(&turned_hessian(f, ja, false, a, b));
-            }
-            let wa = f.omega.column(oa + a);
-            for &jb in &path[..i] {
-                let ob = m.joints[jb].offset;
-                for b in 0..f.joints[jb].gradient.len() {
-                    k[(oa + a, ob + b)] += mu.dot(&f.omega.column(ob + b).cross(&wa));
+        same_joint(m, f, ja, (*mu, Vector3::zeros(), Matrix3::zeros()), &mut sink, k);
+        // ∂_b ω_a = ω_b × ω_a for b in a joint upstream.
+        for jb in chain(m, m.joints[ja].parent) {
+            let ob = m.joints[jb].offset;
+            for b in 0..f.joints[jb].gradient.len() {
+                let mxw = mu.cross(&f.omega.column(ob + b));
+                for a in 0..f.joints[ja].gradient.len() {
+                    // μ·(ω_b × ω_a) = ω_a·(μ × ω_b).
+                    k[(oa + a, ob + b)] += f.omega.column(oa + a).dot(&mxw);
                 }
             }
         }

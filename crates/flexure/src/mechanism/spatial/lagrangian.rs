@@ -11,7 +11,9 @@
 //! that, so that equilibrium is gradient $+\thinspace G^T\mu = 0$ in every case.
 //! Point derivatives come from [`super::kinematics`].
 
-use super::kinematics::{Attached, SpatialFrames, add_attached_hessian, add_rotation_derivative, attach};
+use super::kinematics::{
+    Attached, JointWrenches, SpatialFrames, attach, gather_attached_hessian, gather_rotation_derivative,
+};
 use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
@@ -28,6 +30,8 @@ pub struct SpatialAssembly {
     pub closure: DVector<f64>,
     /// $G = \partial c/\partial q$ ($m\times n$).
     pub closure_jacobian: DMatrix<f64>,
+    /// The Hessian's same-joint parts, gathered per joint.
+    wrenches: JointWrenches,
 }
 
 impl SpatialAssembly {
@@ -40,6 +44,7 @@ impl SpatialAssembly {
             hessian: DMatrix::zeros(n, n),
             closure: DVector::zeros(r),
             closure_jacobian: DMatrix::zeros(r, n),
+            wrenches: JointWrenches::new(m),
         }
     }
 }
@@ -67,11 +72,13 @@ pub fn assemble_into(
             out.hessian.view_mut((j.offset, j.offset), (k, k)).copy_from(&s.stiffness);
         }
     }
-    let hessian = with_hessian.then_some(&mut out.hessian);
-    out.potential += add_loads(m, f, loads, &mut out.gradient, hessian);
+    let w = &mut out.wrenches;
+    let hessian = with_hessian.then_some((&mut out.hessian, &mut *w));
+    out.potential += gather_loads(m, f, loads, &mut out.gradient, hessian);
     closures_into(m, f, &mut out.closure, &mut out.closure_jacobian);
     if with_hessian {
-        add_closure_hessian(m, f, mu, &mut out.hessian);
+        gather_closure_hessian(m, f, mu, &mut out.hessian, w);
+        w.flush(m, f, &mut out.hessian);
     }
 }
 
@@ -83,14 +90,37 @@ pub fn add_loads(
     f: &SpatialFrames,
     loads: &SpatialLoads,
     gradient: &mut DVector<f64>,
-    mut hessian: Option<&mut DMatrix<f64>>,
+    hessian: Option<&mut DMatrix<f64>>,
+) -> f64 {
+    match hessian {
+        None => gather_loads(m, f, loads, gradient, None),
+        Some(h) => {
+            let mut w = JointWrenches::new(m);
+            let potential = gather_loads(m, f, loads, gradient, Some((&mut *h, &mut w)));
+            w.flush(m, f, h);
+            potential
+        }
+    }
+}
+
+/// The Hessian and the sums its same-joint parts are gathered in.
+type Gathered<'a> = Option<(&'a mut DMatrix<f64>, &'a mut JointWrenches)>;
+
+/// [`add_loads`] with the Hessian's same-joint parts gathered into the
+/// given [`JointWrenches`], not yet added.
+fn gather_loads(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    loads: &SpatialLoads,
+    gradient: &mut DVector<f64>,
+    mut hessian: Gathered<'_>,
 ) -> f64 {
     let mut potential = 0.0;
     // A force u at a point: V = −u·x, ∇V = −Jᵀu, ∇²V = −Σ u_c ∇²x_c.
-    let push = |x: &Attached, u: Vector3<f64>, gradient: &mut DVector<f64>, hessian: &mut Option<&mut DMatrix<f64>>| {
+    let push = |x: &Attached, u: Vector3<f64>, gradient: &mut DVector<f64>, hessian: &mut Gathered<'_>| {
         gradient.gemv_tr(-1.0, &x.jacobian, &u, 1.0);
-        if let Some(h) = hessian.as_deref_mut() {
-            add_attached_hessian(m, f, x, &(-u), h);
+        if let Some((h, w)) = hessian {
+            gather_attached_hessian(m, f, x, &(-u), h, Some(w));
         }
         -u.dot(&x.value)
     };
@@ -110,14 +140,16 @@ pub fn add_loads(
             potential += push(&x, force, gradient, &mut hessian);
         }
         if moment != Vector3::zeros() {
-            for j in m.path(load.body) {
+            let mut b = load.body;
+            while let Some(j) = m.parent_joint(b) {
                 let o = m.joints[j].offset;
                 for c in o..o + f.joints[j].gradient.len() {
                     gradient[c] -= moment.dot(&f.omega.column(c));
                 }
+                b = m.joints[j].parent;
             }
-            if let Some(h) = hessian.as_deref_mut() {
-                add_rotation_derivative(m, f, load.body, &(-moment), h);
+            if let Some((h, w)) = &mut hessian {
+                gather_rotation_derivative(m, f, load.body, &(-moment), h, Some(w));
             }
         }
     }
@@ -137,11 +169,11 @@ pub fn add_loads(
             potential += tension * l;
             let dj = &x1.jacobian - &x0.jacobian;
             gradient.gemv_tr(tension, &dj, &u, 1.0);
-            if let Some(h) = hessian.as_deref_mut() {
+            if let Some((h, w)) = &mut hessian {
                 let projector = (Matrix3::identity() - u * u.transpose()) * (tension / l);
-                *h += dj.transpose() * (projector * &dj);
-                add_attached_hessian(m, f, x1, &(u * tension), h);
-                add_attached_hessian(m, f, x0, &(-u * tension), h);
+                **h += dj.transpose() * (projector * &dj);
+                gather_attached_hessian(m, f, x1, &(u * tension), h, Some(w));
+                gather_attached_hessian(m, f, x0, &(-u * tension), h, Some(w));
             }
         }
     }
@@ -241,22 +273,38 @@ fn add_cross_terms(x: &Attached, y: &Attached, mu: &Vector3<f64>, h: &mut DMatri
     *h += &c + c.transpose();
 }
 
-/// Adds $\sum_i\mu_i\nabla^2c_i$ to `h`.
+/// Adds $\sum_i\mu_i\nabla^2c_i$ to `h` (within each joint as
+/// [`super::kinematics::add_attached_hessian`]).
 pub fn add_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], h: &mut DMatrix<f64>) {
+    let mut w = JointWrenches::new(m);
+    gather_closure_hessian(m, f, mu, h, &mut w);
+    w.flush(m, f, h);
+}
+
+/// [`add_closure_hessian`] with the same-joint parts gathered into `w`, not yet added.
+fn gather_closure_hessian(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    mu: &[f64],
+    h: &mut DMatrix<f64>,
+    sums: &mut JointWrenches,
+) {
+    let mut add =
+        |x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>| gather_attached_hessian(m, f, x, u, h, Some(sums));
     let mut row = 0;
     for closure in &m.closures {
         let v = closure_vectors(m, f, closure);
         let w = Vector3::new(mu[row], mu[row + 1], mu[row + 2]);
-        add_attached_hessian(m, f, &v.points[0], &w, h);
-        add_attached_hessian(m, f, &v.points[1], &(-w), h);
+        add(&v.points[0], &w, h);
+        add(&v.points[1], &(-w), h);
         row += 3;
         match closure {
             SpatialClosure::Weld { .. } => {
                 let w = Vector3::new(mu[row], mu[row + 1], mu[row + 2]) * 0.5;
                 for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
                     // μ·(b × a): b's Hessian weighted a × μ, a's weighted μ × b.
-                    add_attached_hessian(m, f, b, &a.value.cross(&w), h);
-                    add_attached_hessian(m, f, a, &w.cross(&b.value), h);
+                    add(b, &a.value.cross(&w), h);
+                    add(a, &w.cross(&b.value), h);
                     add_cross_terms(b, a, &w, h);
                 }
                 row += 3;
@@ -265,8 +313,8 @@ pub fn add_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], 
                 let z = &v.a_directions[0];
                 for (i, n) in v.b_directions.iter().enumerate() {
                     let weight = mu[row + i];
-                    add_attached_hessian(m, f, z, &(n.value * weight), h);
-                    add_attached_hessian(m, f, n, &(z.value * weight), h);
+                    add(z, &(n.value * weight), h);
+                    add(n, &(z.value * weight), h);
                     let c = n.jacobian.transpose() * &z.jacobian * weight;
                     *h += &c + c.transpose();
                 }

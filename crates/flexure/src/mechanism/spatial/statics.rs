@@ -11,8 +11,17 @@
 //! margin, $Z$ spanning the null space of $G$, in coordinates scaled to
 //! each joint's own stiffness. Scaling of rows and multipliers is the
 //! planar [`crate::mechanism::statics::Kkt`]'s.
+//!
+//! The Newton matrix is assembled from frames at [`Level::Jacobian`]: each
+//! joint's part of $H$ is its motion subspace's derivative contracted with
+//! the wrench it carries ([`crate::mechanism::Joint::add_wrench_hessian`];
+//! for a spatial flexure by quadrature of the virtual work, within the
+//! Magnus rule's $h^6$ of the exact Hessian: about $10^{-8}$ of the load
+//! stiffness at a bend of a radian per flexure). The residual is exact, so
+//! only Newton's rate and the stability tests' matrix see the difference;
+//! [`stiffness`] and [`compliance`] take the exact Hessian.
 
-use super::kinematics::{SpatialFrames, attach, distance, frames, frames_into, frames_level_into};
+use super::kinematics::{SpatialFrames, attach, distance, frames_level_into};
 use super::lagrangian::{SpatialAssembly, add_closure_hessian, add_loads, assemble_into};
 use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
@@ -80,7 +89,8 @@ impl<'a> SpatialKkt<'a> {
         to.validate(m)?;
         let n = m.dof();
         let length = m.size();
-        let f = frames(m, &m.rest());
+        // The joints' stiffness is there at every level.
+        let f = frames_at(m, &m.rest(), Level::Pose);
         let mut stiffness = vec![0.0; n];
         let mut unit = vec![1.0; n];
         for (j, s) in m.joints.iter().zip(&f.joints) {
@@ -155,7 +165,7 @@ impl<'a> SpatialKkt<'a> {
     fn solution(&mut self, x: &[f64], end: bool, path: &solver::Path) -> Result<SpatialSolution> {
         let m = self.mechanism;
         let n = m.dof();
-        frames_into(m, &x[..n], &mut self.frames);
+        frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
         let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
         let mu = self.multipliers(x);
         let loads = if end { &self.to } else { &self.from };
@@ -197,8 +207,10 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
         for ((mu, v), s) in self.mu.iter_mut().zip(&x[n..]).zip(&self.multiplier_scale) {
             *mu = v * s;
         }
-        let level = if jacobian.is_some() { Level::Hessian } else { Level::Jacobian };
-        frames_level_into(m, &x[..n], level, &mut self.frames);
+        // Jacobian-level frames even for the Newton matrix: each joint's
+        // second derivatives enter contracted with the wrench it carries
+        // (`Joint::add_wrench_hessian`; module docs).
+        frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
         self.from.lerp_into(&self.to, lambda, &mut self.loads);
         let a = &mut self.assembly;
         assemble_into(m, &self.frames, &self.mu, &self.loads, jacobian.is_some(), a);
@@ -475,14 +487,23 @@ pub fn solve_between(
 
 /// The body frames of a solution (`pose_world_body`).
 pub fn body_frames(m: &SpatialMechanism, s: &SpatialSolution) -> Vec<Isometry3<f64>> {
-    frames(m, &s.q).bodies
+    frames_at(m, &s.q, Level::Pose).bodies
+}
+
+/// The frames of `m` at `q`, with the joints evaluated to `level`.
+fn frames_at(m: &SpatialMechanism, q: &[f64], level: Level) -> SpatialFrames {
+    let mut f = SpatialFrames::new(m);
+    frames_level_into(m, q, level, &mut f);
+    f
 }
 
 /// The constrained stiffness at a solution: $Z$ (a basis of the admissible
 /// motions, $GZ = 0$) and $Z^THZ$, $H$ the Lagrangian Hessian with the
 /// solution's multipliers.
 pub fn stiffness(m: &SpatialMechanism, s: &SpatialSolution) -> (DMatrix<f64>, DMatrix<f64>) {
-    let f = frames(m, &s.q);
+    // The exact Hessian (the joints' own second derivatives, not their
+    // quadrature): compliance and the stability of a solution read it.
+    let f = frames_at(m, &s.q, Level::Hessian);
     let mut a = SpatialAssembly::new(m);
     assemble_into(m, &f, &s.multipliers, &s.loads, true, &mut a);
     let z = if m.constraints() == 0 {
@@ -503,7 +524,7 @@ pub fn stiffness(m: &SpatialMechanism, s: &SpatialSolution) -> (DMatrix<f64>, DM
 /// (a free motion).
 pub fn compliance(m: &SpatialMechanism, s: &SpatialSolution, body: usize, at: Point3<f64>) -> Result<Matrix6<f64>> {
     let (z, k) = stiffness(m, s);
-    let f = frames(m, &s.q);
+    let f = frames_at(m, &s.q, Level::Jacobian);
     let point = attach(m, &f, body, at.coords, true);
     let mut j = DMatrix::zeros(6, m.dof());
     for jt in m.path(body) {
@@ -535,7 +556,7 @@ pub fn compliance(m: &SpatialMechanism, s: &SpatialSolution, body: usize, at: Po
 /// load beyond the joint reaches it through its tip, so the equations are
 /// consistent at an equilibrium). `None` for the other kinds.
 pub fn flexure_loads(m: &SpatialMechanism, s: &SpatialSolution) -> Vec<Option<crate::spatial::SpatialLoad>> {
-    let f = frames(m, &s.q);
+    let f = frames_at(m, &s.q, Level::Jacobian);
     m.joints
         .iter()
         .zip(&f.joints)
