@@ -1,6 +1,7 @@
 //! Spatial mechanisms' statics (`mechanism::spatial::statics`): equilibria,
 //! stability and compliances, each test against its named reference.
 
+use flexure::Error;
 use flexure::mechanism::Fixed;
 use flexure::mechanism::spatial::statics::{body_frames, compliance, solve};
 use flexure::mechanism::spatial::{
@@ -427,4 +428,38 @@ fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
     assert_eq!(out.rows.len(), 3);
     let limit = out.stability_limit.unwrap();
     assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5, "{limit:?}");
+}
+
+/// Reference: the pushed arm above, solved at once at P = 16 N: the
+/// straight path stays an equilibrium but loses stability at
+/// $P = k/l$ = 10 N, a load fraction of 10/16 = 0.625, which the solve
+/// refines by bisection to the planar solve's relative 1e-6
+/// (`LIMIT_PRECISION`), held here to 1e-6 (the stability test's margin
+/// moves the bracket by about as much). The continuation's own limit,
+/// unrefined, is 1.9e-6 off.
+#[test]
+fn a_solve_refines_where_a_pushed_arm_loses_stability() {
+    let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
+    let hinge = spec(
+        "pivot",
+        SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
+    let m = SpatialMechanism::new(
+        bodies(&["ground", "arm"]),
+        vec![hinge],
+        vec![],
+        vec![load("push", 1, [0.1, 0.0, 0.0], [0.0; 3], [-16.0, 0.0, 0.0])],
+        vec![],
+        Vector3::zeros(),
+    )
+    .unwrap();
+    match solve(&m, &Default::default()) {
+        Err(Error::Unstable { load_fraction, .. }) => {
+            assert!((load_fraction - 0.625).abs() < 1e-6, "{load_fraction}");
+        }
+        other => panic!("expected the loss of stability at 0.625, got {other:?}"),
+    }
 }

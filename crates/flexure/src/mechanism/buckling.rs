@@ -4,11 +4,10 @@ use super::Mechanism;
 use super::indeterminate::settle;
 use super::kinematics::frames;
 use super::lagrangian::lagrangian;
+use super::pencil::{pre_buckling_forces, smallest_load_factor};
 use super::statics::{Settings, assemble_unloaded, constrained, free_motion};
-use crate::buckling::normalized;
 use crate::error::{Error, Result};
 use crate::linalg;
-use nalgebra::DVector;
 
 /// Result of [`buckle`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -62,36 +61,16 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
     if !linalg::is_positive_definite(&k0) {
         return Err(free());
     }
-    // Linear pre-buckling state: admissible motion δq = Z y with
-    // (ZᵀK₀Z) y = −Zᵀf, then the closure forces Gᵀδμ = −(f + K₀δq), least-norm.
+    // Linear pre-buckling state and its closure forces (least norm).
     let load_gradient = &a1.gradient - &a0.gradient;
-    let y = k0.clone().cholesky().ok_or_else(free)?.solve(&-(z.transpose() * &load_gradient));
-    let dq = &z * y;
-    let rhs = -(&load_gradient + &a0.hessian * &dq);
-    let dmu = if g.nrows() == 0 { DVector::zeros(0) } else { linalg::least_squares(&g.transpose(), &rhs) };
+    let dmu = pre_buckling_forces(&k0, &z, &a0.hessian, &load_gradient, g, free)?;
     // The indeterminate part of δμ: least transmitted force under the base loads.
     let f0 = frames(m, &s0.q);
     let dmu = settle(m, &f0, g, dmu.as_slice(), &base);
     let mu1: Vec<f64> = s0.multipliers.iter().zip(&dmu).map(|(a, b)| a + b).collect();
     let closure_part = lagrangian(m, &s0.q, &mu1, zero)?.hessian - &a0.hessian;
     let geometric = &a1.hessian - &a0.hessian + closure_part;
-    let b = constrained(&geometric, &z);
-    let (mus, modes) = linalg::generalized_symmetric(&k0, &b).ok_or_else(free)?;
-    // det(A + λB) = 0 ⇔ λ = −1/μ for eigenvalues μ of B v = μ A v; the smallest positive λ comes from the most negative μ.
-    let (best, &mu) = mus
-        .iter()
-        .enumerate()
-        .min_by(|x, y| x.1.total_cmp(y.1))
-        .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
-    if mu.is_nan() || mu >= -1e-14 * mus.amax() {
-        return Err(Error::Singular {
-            what: "these loads do not soften the mechanism (a pure moment, or only tension): no buckling load".into(),
-        });
-    }
-    let mode = normalized(&z * modes.column(best));
-    let load_factor = -1.0 / mu;
-    if !(load_factor.is_finite() && mode.iter().all(|v| v.is_finite())) {
-        return Err(Error::Singular { what: "the buckling load is not finite".into() });
-    }
-    Ok(Buckling { load_factor, mode: mode.iter().copied().collect() })
+    let b = z.transpose() * &geometric * &z;
+    let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, "a pure moment, or only tension")?;
+    Ok(Buckling { load_factor, mode })
 }

@@ -8,12 +8,14 @@
 //! frame (for a flexure, the tip frame of Eq. 7).
 
 pub mod buckling;
+pub mod equilibria;
 pub mod file;
 pub mod findings;
 mod indeterminate;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
+mod pencil;
 pub mod schedule;
 pub mod spatial;
 pub mod statics;

@@ -1,6 +1,7 @@
 //! Sweeps of one load, with the stability limit found between two values.
 
-use super::statics::{LIMIT_PRECISION, Settings, Solution, assemble_unloaded, first_loss, follow, solve_between};
+use super::equilibria::{Equilibria, first_loss, refine_limit};
+use super::statics::{LIMIT_PRECISION, Settings, Solution};
 use super::{Loads, Mechanism};
 use crate::error::{Error, Result};
 
@@ -72,12 +73,15 @@ pub struct SweepLimit {
 /// What [`sweep`] reached; serialized with each row as
 /// `{"value", "solution"}` and `stopped` as `{"value", "error"}` (the
 /// error's message).
+/// Written over [`Equilibria`], for either dimension: `Sweep<SpatialSolution>`
+/// is a spatial mechanism's.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Sweep {
+#[serde(bound = "S: serde::Serialize")]
+pub struct Sweep<S = Solution> {
     /// The values solved, each with its stable equilibrium: every value up
     /// to where stability was lost beyond recovery.
     #[serde(serialize_with = "rows")]
-    pub rows: Vec<(f64, Solution)>,
+    pub rows: Vec<(f64, S)>,
     /// The first loss of stability along the sweep, if any.
     pub stability_limit: Option<SweepLimit>,
     /// Why the sweep ended before its last value, if a solve failed (a
@@ -89,11 +93,11 @@ pub struct Sweep {
 }
 
 /// [`Sweep::rows`] as `[{"value", "solution"}, ...]`.
-fn rows<S: serde::Serializer>(rows: &[(f64, Solution)], s: S) -> std::result::Result<S::Ok, S::Error> {
+fn rows<T: serde::Serialize, S: serde::Serializer>(rows: &[(f64, T)], s: S) -> std::result::Result<S::Ok, S::Error> {
     #[derive(serde::Serialize)]
-    struct Row<'a> {
+    struct Row<'a, T> {
         value: f64,
-        solution: &'a Solution,
+        solution: &'a T,
     }
     s.collect_seq(rows.iter().map(|(value, solution)| Row { value: *value, solution }))
 }
@@ -139,7 +143,12 @@ fn stopped<S: serde::Serializer>(stopped: &Option<(f64, Error)>, s: S) -> std::r
 /// let limit = out.stability_limit.unwrap();
 /// assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5);
 /// ```
-pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Settings) -> Result<Sweep> {
+pub fn sweep<M: Equilibria>(
+    m: &M,
+    parameter: &M::Parameter,
+    values: &[f64],
+    settings: &Settings,
+) -> Result<Sweep<M::Solution>> {
     settings.validate()?;
     if values.is_empty() {
         return Err(Error::invalid("sweep", "no values", "a sweep needs at least one value"));
@@ -147,7 +156,7 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
     if let Some(v) = values.iter().find(|v| !v.is_finite()) {
         return Err(Error::invalid("sweep", v, "values must be finite"));
     }
-    if let Parameter::Tension(_) = parameter
+    if M::is_tension(parameter)
         && let Some(v) = values.iter().find(|v| **v < 0.0)
     {
         return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
@@ -156,16 +165,16 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
     let (first, last) = (values[0], values[values.len() - 1]);
     let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
-    let mut start = assemble_unloaded(m, settings)?;
+    let mut start = m.unloaded(settings)?;
     for (i, &v) in values.iter().enumerate() {
-        let target = parameter.apply(&base, v);
+        let target = m.apply(parameter, &base, v);
         // The first value is reached from the unloaded state with every load
-        // ramped together: a loss there is solve_between's error.
-        let found =
-            if i == 0 { solve_between(m, &start, &target, settings) } else { follow(m, &start, &target, settings) };
+        // ramped together: a loss there is refined as a solve's.
+        let found = m.follow(&start, &target, settings);
+        let found = if i == 0 { refine_limit(m, &start, &target, settings, found) } else { found };
         let lost = i > 0
             && match &found {
-                Ok(s) => s.limit.is_some(),
+                Ok(s) => M::limit_of(s).is_some(),
                 Err(Error::Unstable { .. }) => true,
                 Err(_) => false,
             };
@@ -190,7 +199,8 @@ pub fn sweep(m: &Mechanism, parameter: &Parameter, values: &[f64], settings: &Se
         }
         match found {
             Ok(s) => {
-                let s = Solution { limit: limit.or(s.limit), ..s };
+                let own = M::limit_of(&s);
+                let s = M::with_limit(s, limit.or(own));
                 start = s.clone();
                 out.rows.push((v, s));
             }

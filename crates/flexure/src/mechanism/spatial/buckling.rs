@@ -5,12 +5,12 @@ use super::kinematics::frames;
 use super::lagrangian::{SpatialAssembly, assemble_into};
 use super::statics::assemble_unloaded;
 use super::{SpatialLoads, SpatialMechanism};
-use crate::buckling::normalized;
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::mechanism::buckling::Buckling;
+use crate::mechanism::pencil::{pre_buckling_forces, smallest_load_factor};
 use crate::solver::Settings;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 fn hessian(m: &SpatialMechanism, q: &[f64], mu: &[f64], loads: &SpatialLoads) -> SpatialAssembly {
     let mut a = SpatialAssembly::new(m);
@@ -65,58 +65,11 @@ pub fn buckle(m: &SpatialMechanism, settings: &Settings) -> Result<Buckling> {
     }
     // Linear pre-buckling state and its closure forces (least norm).
     let load_gradient = &a1.gradient - &a0.gradient;
-    let y = k0.clone().cholesky().ok_or_else(free)?.solve(&-(z.transpose() * &load_gradient));
-    let dq = &z * y;
-    let rhs = -(&load_gradient + &a0.hessian * &dq);
-    let dmu = if g.nrows() == 0 { DVector::zeros(0) } else { linalg::least_squares(&g.transpose(), &rhs) };
+    let dmu = pre_buckling_forces(&k0, &z, &a0.hessian, &load_gradient, g, free)?;
     let mu1: Vec<f64> = s0.multipliers.iter().zip(dmu.iter()).map(|(a, b)| a + b).collect();
     let closure_part = hessian(m, &s0.q, &mu1, &zero).hessian - &a0.hessian;
     let geometric = &a1.hessian - &a0.hessian + closure_part;
     let b = z.transpose() * &geometric * &z;
-    let symmetric = (&b - b.transpose()).amax() <= 1e-12 * b.amax().max(f64::MIN_POSITIVE);
-    let (load_factor, reduced) = if symmetric {
-        let b = (&b + b.transpose()) * 0.5;
-        let (mus, modes) = linalg::generalized_symmetric(&k0, &b).ok_or_else(free)?;
-        let (best, &mu) = mus
-            .iter()
-            .enumerate()
-            .min_by(|x, y| x.1.total_cmp(y.1))
-            .ok_or_else(|| Error::Singular { what: "no admissible motion to buckle".into() })?;
-        if mu.is_nan() || mu >= -1e-14 * mus.amax() {
-            return Err(no_buckling());
-        }
-        (-1.0 / mu, modes.column(best).into_owned())
-    } else {
-        // det(K₀ + λB) = 0 ⇔ −1/λ is an eigenvalue of K₀⁻¹B.
-        let a = k0.clone().lu().solve(&b).ok_or_else(free)?;
-        let eig = a.complex_eigenvalues();
-        let top = eig.iter().map(|e| e.norm()).fold(0.0, f64::max);
-        let lambda = eig
-            .iter()
-            .filter(|e| e.im.abs() <= 1e-9 * top && e.re < -1e-14 * top)
-            .map(|e| -1.0 / e.re)
-            .fold(f64::INFINITY, f64::min);
-        if !lambda.is_finite() {
-            return Err(Error::Singular {
-                what: "no load factor makes the stiffness singular: a dead moment, whose stiffness is not symmetric, may destabilize the mechanism by flutter rather than by buckling (Ziegler), which a static analysis cannot find".into(),
-            });
-        }
-        let pencil = &k0 + &b * lambda;
-        let svd = pencil.svd(false, true);
-        let v_t = svd.v_t.ok_or_else(free)?;
-        let smallest = svd.singular_values.imin();
-        (lambda, v_t.row(smallest).transpose())
-    };
-    let mode = normalized(&z * reduced);
-    if !(load_factor.is_finite() && mode.iter().all(|v| v.is_finite())) {
-        return Err(Error::Singular { what: "the buckling load is not finite".into() });
-    }
-    Ok(Buckling { load_factor, mode: mode.iter().copied().collect() })
-}
-
-fn no_buckling() -> Error {
-    Error::Singular {
-        what: "these loads do not soften the mechanism (only tension, or loads that stiffen it): no buckling load"
-            .into(),
-    }
+    let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, "only tension, or loads that stiffen it")?;
+    Ok(Buckling { load_factor, mode })
 }

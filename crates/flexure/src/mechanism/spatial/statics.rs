@@ -27,6 +27,7 @@ use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
+use crate::mechanism::equilibria::refine_limit;
 use crate::solver::{self, Settings};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3, Vector3};
 use std::cell::RefCell;
@@ -456,8 +457,25 @@ pub fn assemble_unloaded(m: &SpatialMechanism, loads: &SpatialLoads, settings: &
     problem.solution(&x, false, &solver::Path::at_start(report, stable))
 }
 
-/// Equilibrium under `to`, continued from `start` (an equilibrium under `start.loads`).
+/// Equilibrium under `to`, continued from `start` (an equilibrium under
+/// `start.loads`), as the planar [`crate::mechanism::statics::solve_between`]:
+/// a snap-through that ends in a stable state is an answer whose
+/// [`SpatialSolution::limit`] is the load fraction where stability was
+/// first lost, refined by bisection to a relative
+/// [`crate::mechanism::statics::LIMIT_PRECISION`]; a path that ends
+/// unstable is [`Error::Unstable`] at that fraction.
 pub fn solve_between(
+    m: &SpatialMechanism,
+    start: &SpatialSolution,
+    to: &SpatialLoads,
+    settings: &Settings,
+) -> Result<SpatialSolution> {
+    let found = follow(m, start, to, settings);
+    refine_limit(m, start, to, settings, found)
+}
+
+/// [`solve_between`] with the continuation's own limit, unrefined.
+pub(in crate::mechanism) fn follow(
     m: &SpatialMechanism,
     start: &SpatialSolution,
     to: &SpatialLoads,

@@ -3,9 +3,10 @@
 use super::kkt::Kkt;
 use super::stiffness::stiffness;
 use super::workspace::{Buffers, Workspace};
-use super::{LIMIT_PRECISION, PROBE_STEPS, Settings, Solution};
+use super::{Settings, Solution};
 use crate::error::{Error, Result};
 use crate::linalg;
+use crate::mechanism::equilibria::refine_limit;
 use crate::mechanism::indeterminate::settle;
 use crate::mechanism::kinematics::frames_into;
 use crate::mechanism::lagrangian::check_sizes;
@@ -63,7 +64,7 @@ pub(super) fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::P
 /// state at the full load (it ends unstable, or stops after the loss) is
 /// [`Error::Unstable`] at that fraction. The fraction is the continuation's
 /// ([`solver::Path::limit`]) refined by bisection to a relative
-/// [`LIMIT_PRECISION`] (as [`crate::mechanism::sweep::sweep`] does between two values).
+/// [`super::LIMIT_PRECISION`] (as [`crate::mechanism::sweep::sweep`] does between two values).
 pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
     solve_between_in(m, start, to, settings, &mut Workspace::new(m))
 }
@@ -77,35 +78,6 @@ pub(super) fn solve_between_in(
 ) -> Result<Solution> {
     let found = follow_in(m, start, to, settings, work);
     refine_limit(m, start, to, settings, found)
-}
-
-/// The path from `start` to `to` as [`solve_between`] reports it, from
-/// what [`follow`] `found`: a lost stability's load fraction refined by bisection.
-pub(super) fn refine_limit(
-    m: &Mechanism,
-    start: &Solution,
-    to: &Loads,
-    settings: &Settings,
-    found: Result<Solution>,
-) -> Result<Solution> {
-    if !lost(&found, start.stable) {
-        return found;
-    }
-    let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= LIMIT_PRECISION * hi)?;
-    match found {
-        Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
-        Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
-    }
-}
-
-/// Whether the path that `found` ends lost stability on the way (from a
-/// start that was `stable`), so that its limit is refined.
-pub(super) fn lost(found: &Result<Solution>, stable: bool) -> bool {
-    match found {
-        Ok(s) => s.limit.is_some(),
-        Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || stable,
-        Err(_) => false,
-    }
 }
 
 /// Where a path starts: a solution, or the assembled state at $\lambda = 0$
@@ -208,35 +180,4 @@ pub(in crate::mechanism) fn free_motion(m: &Mechanism, s: &Solution) -> Option<S
         .map(|j| format!("joint {:?}", j.name))
         .collect();
     (!names.is_empty()).then(|| names.join(" and "))
-}
-
-/// The fraction of the load change from `start.loads` to `to` where the
-/// path from `start` first loses stability, by bisection until
-/// `precise(lo, hi)`: each probe continues from the last stable state, for
-/// at most [`PROBE_STEPS`] steps, and at most 64 probes are made.
-pub(in crate::mechanism) fn first_loss(
-    m: &Mechanism,
-    start: &Solution,
-    to: &Loads,
-    settings: &Settings,
-    precise: impl Fn(f64, f64) -> bool,
-) -> Result<f64> {
-    let settings = Settings { max_steps: settings.max_steps.min(PROBE_STEPS), ..*settings };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let mut at = start.clone();
-    for _ in 0..64 {
-        if precise(lo, hi) {
-            break;
-        }
-        let mid = 0.5 * (lo + hi);
-        match follow(m, &at, &start.loads.lerp(to, mid), &settings) {
-            Ok(s) if s.limit.is_none() => {
-                lo = mid;
-                at = s;
-            }
-            Ok(_) | Err(Error::Unstable { .. }) => hi = mid,
-            Err(e) => return Err(e),
-        }
-    }
-    Ok(0.5 * (lo + hi))
 }

@@ -2,13 +2,14 @@
 
 use super::assembly::assembled_kept;
 use super::kkt::Kkt;
-use super::path::{Start, follow_path, lost, refine_limit, solution};
+use super::path::{Start, follow_path, solution};
 #[cfg(doc)]
 use super::solve_between;
 use super::workspace::{Buffers, Workspace, copy_loads};
 use super::{Settings, Solution};
 use crate::error::Result;
 use crate::mechanism::Mechanism;
+use crate::mechanism::equilibria::{lost, refine_limit};
 use crate::solver;
 
 /// Equilibrium under the mechanism's loads, by continuation from the
@@ -67,7 +68,7 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
         problem.work.start_x.copy_from_slice(&ws.x);
         ws.start_stable = Some(path.stable);
         let found = follow_path(m, Start::Assembled(&path), &mut problem, &mut ws, settings);
-        if !lost(&found, path.stable) {
+        if !lost::<Mechanism>(&found, path.stable) {
             return Ok((None, found));
         }
         let x0 = problem.work.start_x.clone();
