@@ -140,7 +140,9 @@ pub fn reference_mechanism(m: &SpatialMechanism, q: &[f64]) -> Result<(SpatialMe
 /// let b = buckle(&m, &Default::default()).unwrap();
 /// let e = buckle_error(&m, &b, &Default::default(), &Default::default()).unwrap();
 /// let euler = std::f64::consts::PI.powi(2) / 4.0;
-/// assert!((e.reference[0] / euler - 1.0).abs() < 1e-4 && e.relative[0].unwrap() >= (b.load_factor / euler - 1.0).abs());
+/// // Orders 3 are 1.4e-4 high; the estimate is that error to within the reference's own (0.03 % of it).
+/// let truth = b.load_factor / euler - 1.0;
+/// assert!((e.reference[0] / euler - 1.0).abs() < 1e-4 && (e.relative[0].unwrap() / truth - 1.0).abs() < 1e-3 && !e.flagged);
 /// ```
 pub fn buckle_error(
     m: &SpatialMechanism,
