@@ -248,8 +248,10 @@ class Mechanism:
         {joint: order}). findings lists closures open at rest (PreloadWarning). A mechanism
         without coordinates, or without loads, raises ValueError; errors name the file.
 
-        Spatial (dimension = 3): load_factor and mode (dof,) alone, as `flexure buckle --json`
-        prints them (dimension 3): no error estimate yet, so an `accuracy` raises ValueError."""
+        Spatial (dimension = 3): load_factor, mode (dof,), error_estimate and flagged as above
+        (the reference refines every spatial flexure; reference_order is its largest order and
+        reference_quadrature its Magnus subintervals, by flexure joint), as `flexure buckle
+        --json` prints them (dimension 3); order = "auto" is planar only."""
         try:
             return self._inner.buckle(accuracy)
         except (ValueError, ConvergenceError) as e:
@@ -359,10 +361,11 @@ class Mechanism:
         default 0.01) warns AccuracyWarning. Flexures of order = "auto" in the file are raised
         until every mode meets it. Errors name the mechanism's file.
 
-        Spatial (dimension = 3): omega, frequency, shapes {joint: (modes, k)}, quasi_static and
-        limit_fraction as above, without error_estimate (the library estimates none for a
-        spatial mechanism yet: an `accuracy` raises ValueError). Spatial flexures are massless:
-        the bodies' mass and inertia carry it."""
+        Spatial (dimension = 3): omega, frequency, shapes {joint: (modes, k)}, quasi_static,
+        limit_fraction and error_estimate as above (the reference refines every spatial flexure
+        about the equilibrium; reference_order is its largest order and reference_quadrature
+        its Magnus subintervals, by flexure joint); order = "auto" is planar only. Spatial
+        flexures are massless: the bodies' mass and inertia carry it."""
         try:
             return self._inner.modes(count, accuracy)
         except (ValueError, ConvergenceError) as e:

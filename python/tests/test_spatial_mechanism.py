@@ -283,6 +283,66 @@ def test_cantilever_buckles_at_eulers_load():
     assert r["dimension"] == 3
 
 
+def test_cantilever_buckle_carries_its_estimate_in_the_planar_keys():
+    # Euler: pi^2 EI / 4L^2 with EI = 1 (about z). Orders 3 are 1.4e-4 high; the estimate,
+    # against orders 6, is that error to within the reference's own (1e-3 of it, measured
+    # 3e-7). Within the default 1 % it is not flagged; against 1e-5 it is, with AccuracyWarning.
+    euler = math.pi**2 / 4
+    m = cantilever(force=(-1.0, 0.0, 0.0), order=3)
+    r = m.buckle()
+    e = r["error_estimate"]
+    truth = r["load_factor"] / euler - 1.0
+    assert set(e) == {"load_factor", "reference_load_factor", "reference_order", "reference_quadrature"}
+    assert abs(e["load_factor"] / truth - 1.0) < 1e-3
+    assert abs(e["reference_load_factor"] / euler - 1.0) < 1e-6
+    assert e["reference_order"] == {"rod": 6} and e["reference_quadrature"] == {"rod": 20}
+    assert r["flagged"] is False
+    with pytest.warns(flexure.AccuracyWarning, match=r"Mechanism\.buckle: the load factor"):
+        tight = m.buckle(accuracy=1e-5)
+    assert tight["flagged"] is True
+
+
+# A massless round rod (EI_z = 1, EI_y = 2, GJ = 0.7, L = 1) carrying a 0.3 kg point mass at its tip.
+ROD = """
+dimension = 3
+[[joint]]
+name = "rod"
+kind = "flexure"
+parent = "ground"
+child = "tip"
+length = 1.0
+ei = 1.0
+ei_y = 2.0
+gj = 0.7
+order = {order}
+
+[[body]]
+name = "tip"
+mass = 0.3
+"""
+
+
+def test_rod_modes_carry_their_estimate_and_a_coarse_rod_is_flagged():
+    # Closed form: the tip mass bends at omega = sqrt(3 EI / (m L^3)) about each axis (EI = 1
+    # and 2), exact from order 2 (the tip compliance is), so each estimate is rounding (1e-8).
+    # At order 1 (constant curvature: k = 4 EI / L^3, 15 % high) the estimate is that error to
+    # 1e-9 (the reference is exact), flagged with AccuracyWarning.
+    exact = np.sqrt(3.0 * np.array([1.0, 2.0]) / 0.3)
+    r = flexure.Mechanism.from_toml(ROD.format(order=3)).modes()
+    e = r["error_estimate"]
+    keys = {"omega", "reference_omega", "reference_order", "reference_quadrature", "reference_stable", "flagged"}
+    assert set(e) == keys
+    assert np.all(np.abs(r["omega"] / exact - 1.0) < 1e-8)
+    assert np.all(e["omega"] < 1e-8) and e["flagged"] is False
+    assert e["reference_order"] == {"rod": 6} and e["reference_quadrature"] == {"rod": 20}
+    with pytest.warns(flexure.AccuracyWarning, match=r"Mechanism\.modes: mode 1"):
+        coarse = flexure.Mechanism.from_toml(ROD.format(order=1)).modes()
+    e = coarse["error_estimate"]
+    truth = np.abs(coarse["omega"] / exact - 1.0)
+    assert np.all(truth > 0.1) and np.all(np.abs(e["omega"] - truth) < 1e-9)
+    assert e["flagged"] is True
+
+
 BALL = """
 dimension = 3
 gravity = [0.0, 0.0, -9.81]
@@ -485,10 +545,6 @@ def test_what_spatial_files_do_not_have_yet_is_refused_by_name():
     m = hinges()
     with pytest.raises(ValueError, match=r"Mechanism\.export: a spatial mechanism \(dimension = 3\) has no export"):
         m.export()
-    with pytest.raises(ValueError, match="accuracy"):
-        m.modes(accuracy=0.01)
-    with pytest.raises(ValueError, match="accuracy"):
-        m.buckle(accuracy=0.01)
 
 
 @pytest.mark.parametrize(
@@ -499,6 +555,8 @@ def test_what_spatial_files_do_not_have_yet_is_refused_by_name():
         (lambda m: m.compliance("hand", (0.0, float("nan"), 0.0)), "at"),
         (lambda m: m.solve(accuracy=(-1.0, 0.1)), "accuracy"),
         (lambda m: m.modes(count=5), "count"),
+        (lambda m: m.modes(accuracy=-1.0), "accuracy"),
+        (lambda m: m.buckle(accuracy=0.0), "accuracy"),
         (lambda m: m.simulate(1.0, start="moving"), "start"),
         (lambda m: m.simulate(-1.0), "duration"),
         (lambda m: m.simulate(1.0, every=0.0), "every"),

@@ -174,7 +174,7 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
                 ));
             }
             if let Some(m) = crate::mechanism::spatial::read(file)? {
-                return crate::mechanism::spatial::modes_cmd(&m, file, args.count);
+                return crate::mechanism::spatial::modes_cmd(&m, file, args.count, &args.accuracy.target());
             }
             mechanism_modes(file, args.count, &args.accuracy.target())
         }

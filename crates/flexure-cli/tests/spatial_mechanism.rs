@@ -146,3 +146,106 @@ fn bad_spatial_input_names_its_key_line_and_column() {
     assert!(code == 2 && err.contains("sweep"), "{err}");
     let _ = Value::Null;
 }
+
+/// Whether `v` holds a JSON null anywhere.
+fn has_null(v: &Value) -> bool {
+    match v {
+        Value::Null => true,
+        Value::Array(a) => a.iter().any(has_null),
+        Value::Object(o) => o.values().any(has_null),
+        _ => false,
+    }
+}
+
+/// The continuum robot with 0.5 g discs, so that it vibrates (the example's
+/// discs are massless).
+fn massive_robot() -> String {
+    let mut text = std::fs::read_to_string(example("continuum_robot.toml")).unwrap();
+    for k in 1..=5 {
+        text.push_str(&format!(
+            "\n[[body]]\nname = \"disc{k}\"\nmass = 0.0005\ncom = [0.001, 0.0, 0.0]\nixx = 2e-8\niyy = 1e-8\nizz = 1e-8\n"
+        ));
+    }
+    text
+}
+
+/// Reference: the library's `estimate::spatial_mechanism` estimates of the
+/// same mechanism (to the last bits JSON's text round trip may move, 1e-15
+/// relative): `buckle` and `modes` of the continuum robot carry
+/// `error_estimate` {load_factor or omega, reference_load_factor or
+/// reference_omega, reference_order and reference_quadrature by spatial
+/// flexure joint} and `flagged`, in the planar answers' keys, with no null;
+/// at the default 1 % neither is flagged nor warns.
+#[test]
+fn spatial_buckle_and_modes_carry_their_error_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let joints = ["s1", "s2", "s3", "s4", "s5"];
+    let file = example("continuum_robot.toml");
+    let (v, err) = answer(&["buckle", &file]);
+    assert!(err.is_empty() && !has_null(&v), "{err}\n{v}");
+    let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    let settings = Default::default();
+    let b = flexure::mechanism::spatial::buckling::buckle(&m, &settings).unwrap();
+    let e = flexure::estimate::spatial_mechanism::buckle_error(&m, &b, &settings, &Default::default()).unwrap();
+    let estimate = &v["error_estimate"];
+    let close = |a: &Value, b: f64| (a.as_f64().unwrap() - b).abs() <= 1e-15 * b.abs();
+    assert!(close(&estimate["load_factor"], e.relative[0].unwrap()), "{estimate}");
+    assert!(close(&estimate["reference_load_factor"], e.reference[0]), "{estimate}");
+    for (k, j) in joints.iter().enumerate() {
+        assert_eq!(estimate["reference_order"][j], e.reference_orders[k].0, "{estimate}");
+        assert_eq!(estimate["reference_quadrature"][j], e.reference_orders[k].1, "{estimate}");
+    }
+    assert_eq!(v["flagged"], false);
+    let massive = written(&dir, &massive_robot());
+    let (v, err) = answer(&["modes", &massive, "--count", "4"]);
+    assert!(err.is_empty() && !has_null(&v), "{err}\n{v}");
+    let m = flexure::mechanism::file::spatial_from_toml(&massive_robot()).unwrap();
+    let found = flexure::dynamics::spatial::modes(&m, &settings, 4).unwrap();
+    let e = flexure::estimate::spatial_mechanism::modes_error(&m, &found, &settings, &Default::default()).unwrap();
+    let estimate = &v["error_estimate"];
+    let (omega, reference) = (estimate["omega"].as_array().unwrap(), estimate["reference_omega"].as_array().unwrap());
+    assert_eq!((omega.len(), reference.len()), (4, 4), "{estimate}");
+    for k in 0..4 {
+        assert!(close(&omega[k], e.relative[k].unwrap()) && close(&reference[k], e.reference[k]), "{estimate}");
+    }
+    assert_eq!(estimate["reference_order"].as_object().unwrap().len(), 5, "{estimate}");
+    assert_eq!(v["flagged"], false);
+}
+
+/// A column of orders [1, 1, 1] (constant curvature) along x, EI = 1 and 2,
+/// pushed by 1 N along itself, with a disc at its tip.
+const COARSE_COLUMN: &str = "dimension = 3\n\
+    [[joint]]\nname = \"column\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+    gj = 0.8\nei_y = 1.0\nei_z = 2.0\norders = [1, 1, 1]\n\
+    [[body]]\nname = \"tip\"\nmass = 0.3\nixx = 2e-4\niyy = 1e-4\nizz = 1e-4\n\
+    [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [-1.0, 0.0, 0.0]\n";
+
+/// Reference: Euler's free-tip load $\pi^2EI/(4L^2)$ = 2.4674: constant
+/// curvature says 3, 21.6 % high, so `buckle` is flagged and warns on
+/// stderr with its estimate and what to do; the same at a loose `--accuracy
+/// 0.5` is not; its bending modes (constant curvature ties the disc's slope
+/// to its deflection: each is 15 % or more high against the cantilever's)
+/// are flagged and warned per mode.
+#[test]
+fn a_coarse_spatial_column_is_flagged_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = written(&dir, COARSE_COLUMN);
+    let (v, err) = answer(&["buckle", &file]);
+    assert_eq!(v["flagged"], true, "{v}");
+    let truth = v["load_factor"].as_f64().unwrap() / (std::f64::consts::PI.powi(2) / 4.0) - 1.0;
+    let estimate = v["error_estimate"]["load_factor"].as_f64().unwrap();
+    assert!(truth > 0.2 && (estimate / truth - 1.0).abs() < 1e-3, "estimate {estimate}, truth {truth}");
+    assert!(
+        err.contains("buckle: the load factor")
+            && err.contains("target 1 %")
+            && err.contains("\"column\" at orders up to 4"),
+        "{err}"
+    );
+    let (v, err) = answer(&["buckle", &file, "--accuracy", "0.5"]);
+    assert!(v["flagged"] == false && err.is_empty(), "{err}");
+    let (v, err) = answer(&["modes", &file]);
+    assert_eq!(v["flagged"], true, "{v}");
+    assert!(!has_null(&v), "{v}");
+    assert!(err.contains("modes: mode 1 (") && err.contains("estimated error"), "{err}");
+    assert_eq!(err.lines().count(), 1, "one warning, naming each mode that misses: {err}");
+}

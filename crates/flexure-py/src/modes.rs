@@ -100,7 +100,12 @@ pub fn put_reference_orders(
 /// NaN where the reference pairs none), reference_omega, reference_order and
 /// reference_quadrature (ints for one flexure, {joint: int} for a mechanism
 /// of `names`), reference_stable and flagged; into `out`.
-fn put_estimate(py: Python<'_>, out: &Bound<'_, PyDict>, e: &ValueEstimate, names: Option<&[String]>) -> PyResult<()> {
+pub(crate) fn put_estimate(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    e: &ValueEstimate,
+    names: Option<&[String]>,
+) -> PyResult<()> {
     let d = PyDict::new(py);
     let relative: Vec<f64> = e.relative.iter().map(|r| r.unwrap_or(f64::NAN)).collect();
     d.set_item("omega", PyArray1::from_vec(py, relative))?;

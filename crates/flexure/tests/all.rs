@@ -50,6 +50,7 @@ mod solver;
 mod space;
 mod space_spatial;
 mod spatial_dynamics;
+mod spatial_eigen_estimates;
 mod spatial_energy;
 mod spatial_estimate;
 mod spatial_examples;

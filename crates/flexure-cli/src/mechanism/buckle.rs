@@ -18,7 +18,7 @@ pub struct BuckleArgs {
 /// estimate; flexures of `order = "auto"` raised until it meets the target.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     if let Some(m) = super::spatial::read(&args.file)? {
-        return super::spatial::buckle_cmd(&m, &args.file);
+        return super::spatial::buckle_cmd(&m, &args.file, &args.accuracy.target());
     }
     let m = load(&args.file)?;
     // Buckling about a preloaded assembly: the preload is told.

@@ -5,7 +5,8 @@
 use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::warn;
 use flexure::dynamics::spatial::SpatialSimulation;
-use flexure::estimate::Accuracy;
+use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
+use flexure::estimate::{Accuracy, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::report::{placements, report};
 use flexure::mechanism::spatial::statics::{compliance, solve};
@@ -138,11 +139,49 @@ pub fn solve_cmd(
     Ok(v)
 }
 
-/// `buckle` on a spatial file: the linear buckling factor on all loads and its mode.
-pub fn buckle_cmd(m: &SpatialMechanism, file: &Path) -> Result<Value, String> {
-    let b = flexure::mechanism::spatial::buckling::buckle(m, &Settings::default()).map_err(said(file))?;
+/// The spatial flexure joints' names, in joint order (the order of an
+/// eigenvalue estimate's reference orders).
+fn flexure_names(m: &SpatialMechanism) -> Vec<String> {
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
+}
+
+/// The reference mechanism of an eigenvalue estimate, for warnings: each
+/// spatial flexure at its largest order and its Magnus subintervals.
+fn reference_of(e: &ValueEstimate, flexures: &[String]) -> String {
+    if e.reference_orders.is_empty() {
+        return "the same mechanism: it has no flexure to refine".into();
+    }
+    let parts: Vec<String> = flexures
+        .iter()
+        .zip(&e.reference_orders)
+        .map(|(n, (o, q))| format!("{n:?} at orders up to {o} with {q} subintervals"))
+        .collect();
+    format!("the mechanism with {}", parts.join(", "))
+}
+
+/// What to do about a spatial eigenvalue answer that misses its target.
+const RAISE: &str = "raise the spatial flexures' orders (`order` or `orders`) in the file";
+
+/// `buckle` on a spatial file: the linear buckling factor on all loads and
+/// its mode, with its error estimate against the mechanism with every
+/// spatial flexure refined (`error_estimate`, `flagged`, as the planar
+/// answer's), warning when it misses `target`.
+pub fn buckle_cmd(m: &SpatialMechanism, file: &Path, target: &Accuracy) -> Result<Value, String> {
+    let settings = Settings::default();
+    let b = flexure::mechanism::spatial::buckling::buckle(m, &settings).map_err(said(file))?;
+    let e = buckle_error(m, &b, &settings, target).map_err(said(file))?;
     let mut v = json!(b);
     v["dimension"] = json!(3);
+    let flexures = flexure_names(m);
+    crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures });
+    crate::eigen::warn_missed(
+        &e,
+        target,
+        &format!("{}: buckle", file.display()),
+        |_| format!("the load factor {:.6}", b.load_factor),
+        &reference_of(&e, &flexures),
+        RAISE,
+    );
     Ok(v)
 }
 
@@ -158,17 +197,33 @@ fn by_joint(m: &SpatialMechanism, v: &[f64]) -> Value {
 }
 
 /// `modes` on a spatial file: frequencies and shapes about the loaded equilibrium.
-pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>) -> Result<Value, String> {
+/// Each mode's error estimate is against the mechanism with every spatial
+/// flexure refined about the equilibrium (`error_estimate`, `flagged`, as
+/// the planar answer's), warning per mode that misses `target`.
+pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
     let asked = count.unwrap_or(m.dof().max(1));
-    let modes = flexure::dynamics::spatial::modes(m, &Settings::default(), asked).map_err(|e| match e {
+    let settings = Settings::default();
+    let unstable = |e| match e {
         flexure::Error::Unstable { .. } => format!(
             "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
             file.display()
         ),
         e => said(file)(e),
-    })?;
+    };
+    let modes = flexure::dynamics::spatial::modes(m, &settings, asked).map_err(unstable)?;
+    let e = modes_error(m, &modes, &settings, target).map_err(said(file))?;
     let shapes: Vec<Value> = (0..modes.omega.len()).map(|k| by_joint(m, modes.shapes.column(k).as_slice())).collect();
     let mut v = json!({ "dimension": 3, "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
+    let flexures = flexure_names(m);
+    crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures });
+    crate::eigen::warn_missed(
+        &e,
+        target,
+        &format!("{}: modes", file.display()),
+        |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
+        &reference_of(&e, &flexures),
+        &format!("{RAISE}, or ask fewer --count"),
+    );
     if modes.quasi_static > 0 {
         v["quasi_static"] = json!(modes.quasi_static);
     }

@@ -111,11 +111,10 @@ impl Mechanism {
         count: Option<&Bound<'py, PyAny>>,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        if let Some(m) = self.spatial() {
-            spatial::no_accuracy("modes", accuracy)?;
-            return spatial::modes(py, m, count);
-        }
         let target = eigen_accuracy(accuracy)?;
+        if let Some(m) = self.spatial() {
+            return spatial::modes(py, m, count, &target);
+        }
         modes::mechanism_modes(py, self.planar("modes")?.0, count, &target)
     }
 
@@ -137,11 +136,10 @@ impl Mechanism {
     /// `flexure.Mechanism.buckle`.
     #[pyo3(signature = (accuracy=None))]
     fn buckle<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
-        if let Some(m) = self.spatial() {
-            spatial::no_accuracy("buckle", accuracy)?;
-            return spatial::buckle(py, m);
-        }
         let target = eigen_accuracy(accuracy)?;
+        if let Some(m) = self.spatial() {
+            return spatial::buckle(py, m, &target);
+        }
         analyses::buckle(py, self.planar("buckle")?.0, &target)
     }
 

@@ -11,10 +11,11 @@ use crate::error_estimate::estimate_dict;
 use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
 use crate::interrupt::interruptible;
 use crate::strict::finite_answer;
-use crate::warnings::{sig, warn};
+use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::dynamics::integrate;
-use flexure::estimate::{Accuracy, ErrorEstimate};
+use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
+use flexure::estimate::{Accuracy, ErrorEstimate, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::report::{Placement, placements, report};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
@@ -26,18 +27,6 @@ use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// A ValueError unless `accuracy` is None: the library estimates no error
-/// of a spatial mechanism's `what` (modes, buckling) yet.
-pub fn no_accuracy(what: &str, accuracy: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
-    match accuracy.filter(|a| !a.is_none()) {
-        None => Ok(()),
-        Some(a) => Err(PyValueError::new_err(format!(
-            "invalid accuracy = {}: a spatial mechanism's {what} carries no error estimate yet, so there is no accuracy to meet; leave accuracy out",
-            a.repr().map(|r| r.to_string()).unwrap_or_default()
-        ))),
-    }
-}
 
 /// The body named `name` of `m`, or a ValueError listing the bodies.
 fn body_named(m: &SpatialMechanism, name: &str) -> PyResult<usize> {
@@ -335,17 +324,47 @@ pub fn sweep<'py>(
     Ok(result)
 }
 
+/// The spatial flexure joints' names, in joint order (the order of an
+/// eigenvalue estimate's reference orders).
+fn flexure_names(m: &SpatialMechanism) -> Vec<String> {
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
+}
+
+/// The reference mechanism of an eigenvalue estimate, for warnings.
+fn reference_of(e: &ValueEstimate, names: &[String]) -> String {
+    if names.is_empty() {
+        return "the same mechanism, which has no flexure to refine".into();
+    }
+    let parts: Vec<String> = names
+        .iter()
+        .zip(&e.reference_orders)
+        .map(|(n, (o, q))| format!("{n:?} at orders up to {o} with {q} subintervals"))
+        .collect();
+    format!("the mechanism with {}", parts.join(", "))
+}
+
+/// What to do about a spatial eigenvalue answer that misses its target.
+const RAISE: &str = "raise the spatial flexures' orders (`order` or `orders`) in the mechanism file";
+
 /// Vibration modes about the loaded equilibrium: omega, frequency,
-/// quasi_static, shapes {joint: (modes, k)} and limit_fraction, as the
-/// planar `Mechanism.modes` (without its error estimate).
+/// quasi_static, shapes {joint: (modes, k)}, limit_fraction and
+/// error_estimate (each mode's, against the mechanism with every spatial
+/// flexure refined; a mode that misses `target` warns AccuracyWarning), as
+/// the planar `Mechanism.modes`.
 pub fn modes<'py>(
     py: Python<'py>,
     m: &SpatialMechanism,
     count: Option<&Bound<'py, PyAny>>,
+    target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
     // With no coordinates the library says so (count 0 would be refused by its name instead).
     let asked = crate::modes::wanted(count, m.dof(), "the mechanism")?.max(1);
-    let modes = interruptible(py, || flexure::dynamics::spatial::modes(m, &Settings::default(), asked))?;
+    let settings = Settings::default();
+    let (modes, e) = interruptible(py, || {
+        let modes = flexure::dynamics::spatial::modes(m, &settings, asked)?;
+        let e = modes_error(m, &modes, &settings, target)?;
+        Ok((modes, e))
+    })?;
     let out = PyDict::new(py);
     out.set_item("dimension", 3)?;
     out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
@@ -367,6 +386,13 @@ pub fn modes<'py>(
         warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
     }
     finite_answer("Mechanism.modes", out.as_any())?;
+    // After the check: the estimate's omega holds NaN where the reference pairs no mode.
+    crate::strict::finite_slice("Mechanism.modes error_estimate reference_omega", &e.reference)?;
+    let names = flexure_names(m);
+    crate::modes::put_estimate(py, &out, &e, Some(&names))?;
+    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
+    let hint = format!("{RAISE}, or ask fewer modes");
+    warn_values(py, "Mechanism.modes", &e, target, name, &reference_of(&e, &names), &hint, 2)?;
     Ok(out)
 }
 
@@ -436,12 +462,37 @@ pub fn simulate<'py>(
 }
 
 /// Linear buckling about the unloaded configuration, as `flexure buckle
-/// --json` on a spatial file: load_factor and mode (dof,).
-pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism) -> PyResult<Bound<'py, PyDict>> {
-    let b = interruptible(py, || flexure::mechanism::spatial::buckling::buckle(m, &Settings::default()))?;
+/// --json` on a spatial file: load_factor, mode (dof,), error_estimate
+/// (against the mechanism with every spatial flexure refined; a miss of
+/// `target` warns AccuracyWarning) and flagged, in the planar answer's keys.
+pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
+    let settings = Settings::default();
+    let (b, e) = interruptible(py, || {
+        let b = flexure::mechanism::spatial::buckling::buckle(m, &settings)?;
+        let e = buckle_error(m, &b, &settings, target)?;
+        Ok((b, e))
+    })?;
     let out = crate::serialize::to_dict(py, &b)?;
     out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
     out.set_item("dimension", 3)?;
+    // As the planar answer's: the relative error, reference_load_factor, the reference orders by
+    // joint, and where there is no estimate, `unestimated` and `reference_stable`.
+    let d = PyDict::new(py);
+    if let Some(Some(r)) = e.relative.first() {
+        d.set_item("load_factor", *r)?;
+    } else {
+        d.set_item("unestimated", vec![1])?;
+        d.set_item("reference_stable", e.reference_stable)?;
+    }
+    if let Some(r) = e.reference.first() {
+        d.set_item("reference_load_factor", *r)?;
+    }
+    let names = flexure_names(m);
+    crate::modes::put_reference_orders(py, &d, &names, &e.reference_orders)?;
+    out.set_item("error_estimate", d)?;
+    out.set_item("flagged", e.flagged)?;
+    let name = |_| format!("the load factor {}", sig(b.load_factor));
+    warn_values(py, "Mechanism.buckle", &e, target, name, &reference_of(&e, &names), RAISE, 2)?;
     finite_answer("Mechanism.buckle", out.as_any())?;
     Ok(out)
 }

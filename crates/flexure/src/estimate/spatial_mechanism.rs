@@ -1,9 +1,22 @@
-//! Error estimates and stresses of every flexure of a spatial mechanism.
+//! Error estimates of a spatial mechanism: every flexure's at a solution
+//! ([`flexure_errors`]), and its eigenvalue answers, the buckling load
+//! factor ([`buckle_error`]) and the natural frequencies ([`modes_error`]),
+//! as the planar mechanism's: the same analysis of the reference mechanism,
+//! every spatial flexure joint refined ([`reference_mechanism`]).
 
+use super::eigen::reference_values;
+use super::spatial::{padded, reference};
+use super::value::ValueEstimate;
 use super::{Accuracy, ErrorEstimate, spatial::deflect_error};
+use crate::dynamics::{Modes, spatial as spatial_dynamics};
 use crate::error::Result;
+use crate::joint::MAX_ORDER;
+use crate::mechanism::buckling::Buckling;
 use crate::mechanism::spatial::SpatialMechanism;
+use crate::mechanism::spatial::buckling::buckle;
 use crate::mechanism::spatial::statics::{SpatialSolution, flexure_loads};
+use crate::solver::Settings;
+use crate::spatial::SpatialFlexure;
 
 /// Each spatial flexure joint's error estimate at a solution: the flexure
 /// under the tip wrench it carries ([`flexure_loads`]) against its own
@@ -44,4 +57,140 @@ pub fn flexure_errors(
             _ => Ok(None),
         })
         .collect()
+}
+
+/// The reference for an eigenvalue answer of `flexure` about the shape
+/// `alpha`: [`reference()`] (each order $n_c \to \min(\max(2n_c, n_c + 3), 64)$,
+/// at least twice the subintervals), except that a component at the cap
+/// $n_c = 64$ goes to order 32, as the planar
+/// [`eigen_reference`](super::eigen_reference) does: more subintervals alone
+/// would leave a straight flexure's answer unchanged and report a false 0.
+fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexure> {
+    let r = reference(flexure, alpha)?;
+    let capped = flexure.orders().map(|n| n >= MAX_ORDER);
+    if !capped.contains(&true) {
+        return Ok(r);
+    }
+    let mut orders = r.orders();
+    for (o, c) in orders.iter_mut().zip(capped) {
+        if c {
+            *o = MAX_ORDER / 2;
+        }
+    }
+    SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
+        .with_rest(&padded(flexure, flexure.rest(), orders))?
+        .with_subintervals(r.subintervals())
+}
+
+/// The reference spatial mechanism: every spatial flexure joint replaced by
+/// its refined reference ([`reference()`], at the cap as the planar
+/// [`eigen_reference`](super::eigen_reference)) about its coordinates in `q`
+/// (the rest shape when `q` is not the mechanism's), with, per flexure joint
+/// in joint order, the reference's (largest order, subintervals).
+///
+/// # Example
+/// ```
+/// use flexure::estimate::spatial_mechanism::reference_mechanism;
+/// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+/// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 2, 3]).unwrap();
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0 };
+/// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![], vec![], nalgebra::Vector3::zeros()).unwrap();
+/// let (r, orders) = reference_mechanism(&m, &[]).unwrap();
+/// // Orders [6, 5, 6] with 4·(6 − 1) = 20 subintervals: 17 coordinates.
+/// assert_eq!((r.dof(), orders), (17, vec![(6, 20)]));
+/// ```
+pub fn reference_mechanism(m: &SpatialMechanism, q: &[f64]) -> Result<(SpatialMechanism, Vec<(usize, usize)>)> {
+    let rest;
+    let q = if q.len() == m.dof() {
+        q
+    } else {
+        rest = m.rest();
+        &rest
+    };
+    let mut orders = Vec::new();
+    let reference = m.with_flexures(|j, f| {
+        let o = m.joints[j].offset;
+        let r = eigen_reference(f, &q[o..o + f.coordinates()])?;
+        orders.push((r.orders().into_iter().max().unwrap_or(0), r.subintervals()));
+        Ok(Some(r))
+    })?;
+    Ok((reference, orders))
+}
+
+/// The error of a spatial mechanism's [`buckle`] answer `b`: the load
+/// factor $\lambda_r$ of the reference mechanism ([`reference_mechanism`]
+/// about the rest shape, where buckling is taken), as the relative change
+/// $\lvert\lambda - \lambda_r\rvert/\lambda_r$, flagged against
+/// [`Accuracy::eigenvalue`], as the planar [`buckle_error`](super::buckle_error).
+///
+/// # Example
+/// ```
+/// use flexure::estimate::spatial_mechanism::buckle_error;
+/// use flexure::mechanism::spatial::buckling::buckle;
+/// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
+/// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+/// // A column (L = 1, EI = 1 about both axes) pushed along itself by 1 N:
+/// // the free tip's Euler load π²EI/(4L²) = 2.4674.
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0 };
+/// let push = SpatialPointLoad { name: "p".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.0, 0.0, 0.0, -1.0, 0.0, 0.0) };
+/// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
+/// let b = buckle(&m, &Default::default()).unwrap();
+/// let e = buckle_error(&m, &b, &Default::default(), &Default::default()).unwrap();
+/// let euler = std::f64::consts::PI.powi(2) / 4.0;
+/// // Orders 3 are 1.4e-4 high; the estimate is that error to within the reference's own (0.03 % of it).
+/// let truth = b.load_factor / euler - 1.0;
+/// assert!((e.reference[0] / euler - 1.0).abs() < 1e-4 && (e.relative[0].unwrap() / truth - 1.0).abs() < 1e-3 && !e.flagged);
+/// ```
+pub fn buckle_error(
+    m: &SpatialMechanism,
+    b: &Buckling,
+    settings: &Settings,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
+    target.validate()?;
+    let (reference, orders) = reference_mechanism(m, &[])?;
+    let exact = buckle(&reference, settings)?.load_factor;
+    Ok(ValueEstimate::new(&[b.load_factor], vec![exact], true, orders, target))
+}
+
+/// The error of a spatial mechanism's [`modes`](spatial_dynamics::modes)
+/// answer: the same analysis (equilibrium under the loads, loaded
+/// stiffness, mass) of the reference mechanism, every spatial flexure
+/// refined about its coordinates at the equilibrium
+/// ([`reference_mechanism`]), frequencies paired by rank, each as
+/// $\lvert\omega_k - \omega_{r,k}\rvert/\omega_{r,k}$; as the planar
+/// [`mechanism_modes_error`](super::mechanism_modes_error). A reference
+/// that is unstable under the loads pairs no mode (then `flagged`).
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::spatial::modes;
+/// use flexure::estimate::spatial_mechanism::modes_error;
+/// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+/// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
+/// use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
+/// // A massless rod (L = 0.2 m, GJ = 0.8 N·m²) carrying a disc of 2e-4 kg·m² about
+/// // its axis twists at ω = √(GJ/(L·I)) = 141.42 rad/s; the model is exact.
+/// let rod = SpatialFlexure::new(0.2, SpatialSection::uniform(0.8, 1.5, 2.5).unwrap(), [3, 3, 3]).unwrap();
+/// let joint = SpatialJointSpec { name: "rod".into(), kind: SpatialJointKind::Flexure(Box::new(rod)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0 };
+/// let disc = SpatialBody { name: "disc".into(), mass: 0.3, com: Point3::origin(), inertia: Matrix3::from_diagonal(&Vector3::new(2e-4, 1e-4, 1e-4)) };
+/// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), disc], vec![joint], vec![], vec![], vec![], Vector3::zeros()).unwrap();
+/// let found = modes(&m, &Default::default(), 5).unwrap();
+/// let e = modes_error(&m, &found, &Default::default(), &Default::default()).unwrap();
+/// assert!(!e.flagged && e.reference.iter().any(|w| (w / (0.8f64 / (0.2 * 2e-4)).sqrt() - 1.0).abs() < 1e-8));
+/// ```
+pub fn modes_error(
+    m: &SpatialMechanism,
+    modes: &Modes,
+    settings: &Settings,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
+    target.validate()?;
+    let (reference, orders) = reference_mechanism(m, &modes.coordinates)?;
+    let count = modes.omega.len().max(1).min(reference.dof().max(1));
+    let (omega, stable) = reference_values(spatial_dynamics::modes(&reference, settings, count))?;
+    Ok(ValueEstimate::new(&modes.omega, omega, stable, orders, target))
 }

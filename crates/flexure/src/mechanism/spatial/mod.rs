@@ -28,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::mechanism::Joint;
 #[cfg(doc)]
 use crate::space::Spatial;
+use crate::spatial::SpatialFlexure;
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3, Vector6};
 
 /// A rigid body: its name, mass, centre of mass and inertia.
@@ -415,5 +416,55 @@ impl SpatialMechanism {
         }
         path.reverse();
         path
+    }
+
+    /// The same mechanism with spatial flexure joint `j` replaced by
+    /// `refine(j, flexure)` where it returns one (other orders or
+    /// subintervals), as the planar
+    /// [`Mechanism::with_flexures`](crate::mechanism::Mechanism::with_flexures):
+    /// the coordinates are renumbered, and `[initial]` coordinates of a
+    /// replaced joint padded with zeros or cut, component by component.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+    /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
+    /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
+    /// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0 };
+    /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![], vec![], nalgebra::Vector3::zeros()).unwrap();
+    /// let finer = m.with_flexures(|_, f| Ok(Some(SpatialFlexure::new(f.length(), f.section().clone(), [4, 4, 4])?))).unwrap();
+    /// assert_eq!((m.dof(), finer.dof()), (6, 12));
+    /// ```
+    pub fn with_flexures(
+        &self,
+        mut refine: impl FnMut(usize, &SpatialFlexure) -> Result<Option<SpatialFlexure>>,
+    ) -> Result<SpatialMechanism> {
+        let mut m = self.clone();
+        let mut offset = 0;
+        let mut before = vec![None; m.joints.len()];
+        for (j, spec) in m.joints.iter_mut().enumerate() {
+            if let Some(f) = spec.kind.flexure()
+                && let Some(g) = refine(j, f)?
+            {
+                before[j] = Some(f.orders());
+                spec.kind = SpatialJointKind::Flexure(Box::new(g));
+            }
+            spec.offset = offset;
+            offset += spec.kind.joint().dof();
+        }
+        m.dof = offset;
+        for (j, q) in m.initial.iter_mut().chain(m.initial_velocity.iter_mut()) {
+            if let (Some(old), Some(f)) = (before[*j], m.joints[*j].kind.flexure()) {
+                let mut out = Vec::with_capacity(f.coordinates());
+                let mut start = 0;
+                for (n, k) in old.into_iter().zip(f.orders()) {
+                    out.extend(q.iter().skip(start).take(n.min(k)));
+                    out.resize(out.len() + k.saturating_sub(n), 0.0);
+                    start += n;
+                }
+                *q = out;
+            }
+        }
+        Ok(m)
     }
 }
