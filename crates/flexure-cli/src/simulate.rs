@@ -30,7 +30,8 @@ pub struct SimulateArgs {
     duration: f64,
     #[command(flatten)]
     motion: MotionOptions,
-    /// Write one CSV row per sample: time, each moving body's x, y, phi, each joint's coordinates and rates, energy.
+    /// Write one CSV row per sample: time, each moving body's x, y, phi (a spatial file's: x, y, z and its
+    /// rotation's unit quaternion qw, qx, qy, qz, MuJoCo's order), each joint's coordinates and rates, energy.
     #[arg(long)]
     out: Option<PathBuf>,
 }
@@ -171,16 +172,15 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         None => None,
     };
     if let Some(m) = crate::mechanism::spatial::read(&args.file)? {
-        if out.is_some() {
-            return Err(format!(
-                "--out: {} is a spatial mechanism: its samples are in the JSON answer (no CSV yet)",
-                args.file.display()
-            ));
-        }
         let run = with_progress_bar(args.duration, || {
             crate::mechanism::spatial::simulate(&m, &args.file, args.duration, &args.motion)
         })?;
         let mut v = crate::mechanism::spatial::motion_json(&m, &run);
+        if let Some((path, mut file)) = out {
+            use std::io::Write as _;
+            file.write_all(spatial_csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
+            v["out"] = json!(path.display().to_string());
+        }
         if let Some(e) = &run.stopped {
             let reached = run.time.last().copied().unwrap_or(0.0);
             v["stopped"] = json!({ "time": reached, "error": format!("{}: the run stopped after {} samples (to t = {reached:e} s of {:e} s, each printed above): {}", args.file.display(), run.time.len(), args.duration, said(e.clone(), args.duration)) });
@@ -237,23 +237,61 @@ fn motion_json(m: &Mechanism, run: &Simulation) -> Value {
 
 /// One row per sample, under a header naming each column.
 fn csv(m: &Mechanism, run: &Simulation) -> String {
-    let mut columns = vec!["time".to_string()];
-    for b in &run.bodies {
-        columns.extend(["x", "y", "phi"].map(|c| format!("{}.{c}", b.name)));
-    }
-    for suffix in ["", ".rate"] {
-        for j in &m.joints {
-            columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]{suffix}", j.name)));
-        }
-    }
-    columns.push("energy".into());
-    let mut text = columns.join(",");
-    text.push('\n');
-    for k in 0..run.time.len() {
-        let mut row = vec![run.time[k]];
+    let joints: Vec<(&str, usize)> = m.joints.iter().map(|j| (j.name.as_str(), j.kind.joint().dof())).collect();
+    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.name.as_str()).collect();
+    table(&bodies, &["x", "y", "phi"], &joints, run, |k, row| {
         for b in &run.bodies {
             row.extend([b.x[k], b.y[k], b.phi[k]]);
         }
+    })
+}
+
+/// A spatial run's CSV: each body's origin and its rotation as a unit
+/// quaternion, scalar first (MuJoCo's `qpos` order), sign chosen with
+/// $q_w \ge 0$.
+fn spatial_csv(
+    m: &flexure::mechanism::spatial::SpatialMechanism,
+    run: &flexure::dynamics::spatial::SpatialSimulation,
+) -> String {
+    let joints: Vec<(&str, usize)> = m.joints.iter().map(|j| (j.name.as_str(), j.kind.joint().dof())).collect();
+    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.name.as_str()).collect();
+    table(&bodies, &["x", "y", "z", "qw", "qx", "qy", "qz"], &joints, run, |k, row| {
+        for b in &run.bodies {
+            let r = nalgebra::Matrix3::from_fn(|i, j| b.rotation[k][i][j]);
+            let q = nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(r));
+            let q = if q.w < 0.0 { -q.into_inner() } else { q.into_inner() };
+            row.extend(b.position[k]);
+            row.extend([q.w, q.i, q.j, q.k]);
+        }
+    })
+}
+
+/// The CSV of a run: time, each body's `columns` (filled by `bodies_at`
+/// for sample k), each joint's coordinates then their rates, energy.
+fn table(
+    bodies: &[&str],
+    columns: &[&str],
+    joints: &[(&str, usize)],
+    run: &flexure::dynamics::integrate::Trajectory,
+    bodies_at: impl Fn(usize, &mut Vec<f64>),
+) -> String {
+    let mut header = vec!["time".to_string()];
+    for b in bodies {
+        header.extend(columns.iter().map(|c| format!("{b}.{c}")));
+    }
+    for suffix in ["", ".rate"] {
+        for (name, dof) in joints {
+            header.extend((0..*dof).map(|i| format!("{name}[{i}]{suffix}")));
+        }
+    }
+    header.push("energy".into());
+    let mut text = header.join(",");
+    text.push('\n');
+    let mut row = Vec::new();
+    for k in 0..run.time.len() {
+        row.clear();
+        row.push(run.time[k]);
+        bodies_at(k, &mut row);
         row.extend(run.q(k));
         row.extend(run.v(k));
         row.push(run.energy[k]);

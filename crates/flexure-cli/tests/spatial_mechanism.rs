@@ -235,3 +235,72 @@ fn a_coarse_spatial_column_is_flagged_with_a_warning() {
     assert!(err.contains("modes: mode 1 (") && err.contains("estimated error"), "{err}");
     assert_eq!(err.lines().count(), 1, "one warning, naming each mode that misses: {err}");
 }
+
+/// Reference: the JSON answer of the same run and the rotation matrix of a
+/// unit quaternion, $R = I + 2q_w[v]_\times + 2[v]_\times^2$ with
+/// $v = (q_x, q_y, q_z)$: `simulate --out` on a spatial file writes one CSV
+/// row per sample (time, each body's x, y, z, qw, qx, qy, qz, each joint's
+/// coordinates and rates, energy) whose numbers are the answer's (to 1e-15
+/// relative, JSON's parse) and whose quaternions rebuild its rotations to 1e-14.
+#[test]
+fn simulate_writes_a_spatial_runs_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    // A ball joint started tilted about a skew axis, so every quaternion component moves.
+    let text = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n\
+        [[joint]]\nname = \"ball\"\nkind = \"spherical\"\nparent = \"ground\"\nchild = \"bob\"\n\
+        [[body]]\nname = \"bob\"\nmass = 1.0\ncom = [0.0, 0.0, -1.0]\nixx = 0.01\niyy = 0.02\nizz = 0.03\n\
+        [initial]\nball = [0.3, -0.2, 0.4]\n";
+    let file = written(&dir, text);
+    let out = dir.path().join("run.csv");
+    let (v, err) = answer(&["simulate", &file, "--duration", "0.5", "--every", "0.05", "--out", out.to_str().unwrap()]);
+    assert!(err.is_empty(), "{err}");
+    assert_eq!(v["out"], out.display().to_string());
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "time",
+            "bob.x",
+            "bob.y",
+            "bob.z",
+            "bob.qw",
+            "bob.qx",
+            "bob.qy",
+            "bob.qz",
+            "ball[0]",
+            "ball[1]",
+            "ball[2]",
+            "ball[0].rate",
+            "ball[1].rate",
+            "ball[2].rate",
+            "energy"
+        ]
+    );
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    let time = v["time"].as_array().unwrap();
+    assert_eq!(rows.len(), time.len());
+    assert!(rows.len() >= 11);
+    // serde_json's parse of the answer may be an ulp off (no float_roundtrip).
+    let same =
+        |a: &[f64], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-15 * x.abs());
+    for (k, row) in rows.iter().enumerate() {
+        assert!(same(&row[..1], &[time[k].as_f64().unwrap()]), "{row:?}");
+        let position = numbers(&v["bodies"]["bob"]["position"][k]);
+        assert!(same(&row[1..4], &position), "{row:?}");
+        let (w, x, y, z) = (row[4], row[5], row[6], row[7]);
+        assert!(w >= 0.0 && (w * w + x * x + y * y + z * z - 1.0).abs() < 1e-14, "{row:?}");
+        let r = [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        ];
+        let rotation = numbers(&v["bodies"]["bob"]["rotation"][k]);
+        for (a, b) in r.iter().flatten().zip(&rotation) {
+            assert!((a - b).abs() < 1e-14, "sample {k}: {r:?} against {rotation:?}");
+        }
+        assert!(same(&row[8..11], &numbers(&v["coordinates"]["ball"][k])), "{row:?}");
+        assert!(same(&row[14..], &[v["energy"][k].as_f64().unwrap()]), "{row:?}");
+    }
+}
