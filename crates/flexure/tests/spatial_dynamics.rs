@@ -185,3 +185,68 @@ fn a_conical_pendulum_keeps_its_cone_and_its_energy() {
 }
 
 use flexure::mechanism::Joint;
+
+/// Reference: a free hinge about z carrying a disc of $I_{zz}$ = 2 kg·m²,
+/// turned by a scheduled moment $M_z$:
+/// - a ramp $M = 4t$ (points (0, 0), (1, 4)) gives $\theta = 4t^3/(6I) = t^3/3$ up to t = 1;
+/// - a step of 1 N·m at t = 0.5 (two points at one time), in the same
+///   file's `force.kick.mz`, adds $(t - 0.5)^2/(2I)$ after it, which the
+///   integrator meets exactly by landing on the step;
+///
+/// held to 1e-8 rad (integrator tolerance 1e-10). It starts at rest (a free
+/// hinge has no equilibrium to start from).
+#[test]
+fn scheduled_moments_turn_a_free_hinge_as_their_integrals() {
+    let text = "dimension = 3\n\
+        [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"disc\"\naxis = [0.0, 0.0, 1.0]\n\
+        [[body]]\nname = \"disc\"\nmass = 1.0\nizz = 2.0\nixx = 1.0\niyy = 1.0\n\
+        [[force]]\nname = \"drive\"\nbody = \"disc\"\nat = [0.0, 0.0, 0.0]\nmoment = [0.0, 0.0, 7.0]\n\
+        [[force]]\nname = \"kick\"\nbody = \"disc\"\nat = [0.0, 0.0, 0.0]\n\
+        [[schedule]]\nload = \"force.drive.mz\"\npoints = [[0.0, 0.0], [1.0, 4.0]]\n\
+        [[schedule]]\nload = \"force.kick.mz\"\npoints = [[0.5, 0.0], [0.5, 1.0]]\n";
+    let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+    assert_eq!(m.schedules.len(), 2);
+    let loads = flexure::dynamics::schedule::spatial_loads_at(&m, 0.25);
+    assert_eq!((loads.force[0][2], loads.force[1][2]), (1.0, 0.0));
+    let motion = Motion { duration: 1.0, every: 0.125, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
+    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    assert_eq!(run.time.len(), 9);
+    for k in 0..run.time.len() {
+        let t = run.time[k];
+        let expected = t.powi(3) / 3.0 + if t > 0.5 { (t - 0.5).powi(2) / 4.0 } else { 0.0 };
+        assert!((run.q(k)[0] - expected).abs() < 1e-8, "t = {t}: {} against {expected}", run.q(k)[0]);
+    }
+}
+
+/// Reference: the file's text: a spatial schedule names a spatial load
+/// (`force.NAME.mx|my|mz|fx|fy|fz`, `tendon.NAME.tension`,
+/// `gravity.x|y|z`); a planar name, an unknown force, a load scheduled twice
+/// and a negative tension are refused at the load's line and column.
+#[test]
+fn spatial_schedules_refuse_what_they_cannot_set() {
+    let base = "dimension = 3\n\
+        [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"disc\"\n\
+        [[body]]\nname = \"disc\"\nixx = 1.0\niyy = 1.0\nizz = 2.0\n\
+        [[force]]\nname = \"drive\"\nbody = \"disc\"\nat = [0.0, 0.0, 0.0]\n\
+        [[tendon]]\nname = \"pull\"\ntension = 1.0\npath = [[\"ground\", 0.0, 0.1, 0.0], [\"disc\", 0.1, 0.0, 0.0]]\n";
+    let cases = [
+        (
+            "[[schedule]]\nload = \"force.drive.moment\"\npoints = [[0.0, 1.0]]\n",
+            "line 21, column 8",
+            "mx, my, mz, fx, fy or fz",
+        ),
+        ("[[schedule]]\nload = \"force.other.fx\"\npoints = [[0.0, 1.0]]\n", "line 21, column 8", "names no force"),
+        (
+            "[[schedule]]\nload = \"gravity.z\"\npoints = [[0.0, 1.0]]\n[[schedule]]\nload = \"gravity.z\"\npoints = [[0.0, 2.0]]\n",
+            "line 24, column 8",
+            "scheduled twice",
+        ),
+        ("[[schedule]]\nload = \"tendon.pull.tension\"\npoints = [[0.0, -1.0]]\n", "line 22", "negative"),
+    ];
+    for (schedule, place, why) in cases {
+        let text = format!("{base}{schedule}");
+        let e = flexure::mechanism::file::spatial_from_toml(&text).unwrap_err().to_string();
+        assert!(e.contains(place) && e.contains(why), "{schedule:?}: {e}");
+    }
+}

@@ -103,8 +103,8 @@ fn converted(text: &str) -> String {
 }
 
 /// Reference: the planar mechanism (`mechanism::statics::solve`) of each
-/// shipped example without a notch, a density or a schedule (which spatial
-/// files do not have yet), rewritten with `dimension = 3`: every body's
+/// shipped example without a notch or a density (which spatial files do
+/// not have yet), rewritten with `dimension = 3`: every body's
 /// position within 1e-7 of the mechanism's size and its rotation within
 /// 1e-7 rad of the planar angle about z, nothing out of the plane. The
 /// planar flexure's Gauss rule (24 points here: at its default of order + 2
@@ -212,8 +212,8 @@ fn every_bad_value_names_its_key_line_and_column() {
             "line 8, column 5: [initial] j: must be 1 number",
         ),
         (
-            &format!("{head}kind = \"fixed\"\n[[schedule]]\nload = \"x\"\n"),
-            "[[schedule]]: loads in time are for planar mechanisms only",
+            &format!("{head}kind = \"fixed\"\n[[schedule]]\nload = \"x\"\npoints = [[0.0, 1.0]]\n"),
+            "line 8, column 8: schedule \"x\": load \"x\" must be force.NAME.mx|my|mz|fx|fy|fz",
         ),
     ];
     for (text, expected) in cases {

@@ -872,7 +872,8 @@ pub fn spatial_motion_figures(
             let s = SpatialSolution {
                 q: sim.q(k).to_vec(),
                 multipliers: Vec::new(),
-                loads: m.loads(),
+                // The loads then, as the planar snapshots take them.
+                loads: flexure::dynamics::schedule::spatial_loads_at(m, sim.time[k]),
                 energy: sim.energy[k],
                 stable: true,
                 limit: None,

@@ -21,6 +21,7 @@
 
 use super::integrate::{self, Trajectory, integrate_kept};
 use super::modes::{Modes, finite_modes};
+use super::schedule::{Scheduled, spatial_loads_at};
 use super::system::System;
 use crate::error::{Error, Result};
 use crate::mechanism::spatial::kinematics::{
@@ -73,6 +74,13 @@ impl<'a> SpatialSystem<'a> {
             assembly: SpatialAssembly::new(m),
             pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
         })
+    }
+
+    /// Takes `loads` from now on (a schedule's, at the time evaluated).
+    pub fn set_loads(&mut self, loads: SpatialLoads) -> Result<()> {
+        loads.validate(self.mechanism)?;
+        self.loads = loads;
+        Ok(())
     }
 
     /// Whether any body has mass or inertia.
@@ -341,14 +349,14 @@ fn message<S: serde::Serializer>(error: &Option<Error>, s: S) -> std::result::Re
 }
 
 /// The state $(q, \dot q)$ a simulation starts from: the equilibrium under
-/// the loads (`equilibrium`) or the assembled rest, then the file's
+/// the loads at $t = 0$ (`equilibrium`) or the assembled rest, then the file's
 /// `[initial]` and `[initial_velocity]`.
 pub fn initial_state(m: &SpatialMechanism, settings: &Settings, equilibrium: bool) -> Result<(Vec<f64>, Vec<f64>)> {
     let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
     let mut q = if (0..m.joints.len()).all(given) {
         m.rest()
     } else {
-        let loads = m.loads();
+        let loads = spatial_loads_at(m, 0.0);
         let unloaded = assemble_unloaded(m, &loads.zero_like(), settings)?;
         if equilibrium { solve_between(m, &unloaded, &loads, settings)?.q } else { unloaded.q }
     };
@@ -363,7 +371,7 @@ pub fn initial_state(m: &SpatialMechanism, settings: &Settings, equilibrium: boo
 }
 
 /// Simulates `m` from its equilibrium (or rest, `equilibrium = false`), with
-/// `[initial]` and `[initial_velocity]`, under its constant loads.
+/// `[initial]` and `[initial_velocity]`, under its loads and their `[[schedule]]`s.
 ///
 /// Errors: `mass` when nothing has mass or inertia; a bad setting by name;
 /// those of the start's static solve. A run that stops early keeps its
@@ -376,10 +384,11 @@ pub fn simulate(
 ) -> Result<SpatialSimulation> {
     motion.validate()?;
     settings.validate()?;
-    let mut system = SpatialSystem::new(m)?;
+    let system = SpatialSystem::new(m)?;
     if !system.has_inertia() {
         return Err(Error::invalid("mass", "none", "no body has mass or inertia: nothing moves"));
     }
+    let mut system = Scheduled::with(system, m.schedules.clone(), m.loads())?;
     let (q0, v0) = initial_state(m, settings, equilibrium)?;
     let (run, stopped) = integrate_kept(&mut system, &q0, &v0, motion)?;
     let mut bodies: Vec<SpatialBodyMotion> = m.bodies[1..]

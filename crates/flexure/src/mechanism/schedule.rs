@@ -2,7 +2,8 @@
 //! data that the file parser builds and the time integration evaluates.
 //!
 //! A schedule gives one load (named as sweeps name them:
-//! `tendon.NAME.tension`, `force.NAME.fx|fy|moment`, `gravity.x|y`) in
+//! `tendon.NAME.tension`, `force.NAME.fx|fy|moment`, `gravity.x|y`; in a
+//! spatial file `force.NAME.mx|my|mz|fx|fy|fz` and `gravity.x|y|z`) in
 //! time, by one of two [`Waveform`]s.
 //!
 //! **Points** $(t_k, v_k)$ with $t_0 \le t_1 \le \dots$: between two points
@@ -44,18 +45,20 @@ pub enum Waveform {
     },
 }
 
-/// One load given in time (module docs), checked by the file parser.
+/// One load given in time (module docs), checked by the file parser; its
+/// `parameter` is a planar [`Parameter`] or, in a spatial mechanism, a
+/// [`crate::mechanism::spatial::sweep::SpatialParameter`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Schedule {
+pub struct Schedule<P = Parameter> {
     /// The load's name, as in the file (`tendon.flexor.tension`).
     pub load: String,
     /// The load it sets.
-    pub parameter: Parameter,
+    pub parameter: P,
     /// Its values in time.
     pub waveform: Waveform,
 }
 
-impl Schedule {
+impl<P> Schedule<P> {
     /// The load's value at time `t` (s): linear between points (the later
     /// value at a step's time), constant outside them; or the harmonic.
     ///

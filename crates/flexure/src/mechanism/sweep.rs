@@ -51,12 +51,17 @@ impl Parameter {
     /// `loads` with this parameter set to `value`.
     pub fn apply(&self, loads: &Loads, value: f64) -> Loads {
         let mut l = loads.clone();
-        match *self {
-            Parameter::Tension(t) => l.tension[t] = value,
-            Parameter::Force(k, c) => l.force[k][c] = value,
-            Parameter::Gravity(c) => l.gravity[c] = value,
-        }
+        self.set(&mut l, value);
         l
+    }
+
+    /// Sets this parameter of `loads` to `value`, in place.
+    pub fn set(&self, loads: &mut Loads, value: f64) {
+        match *self {
+            Parameter::Tension(t) => loads.tension[t] = value,
+            Parameter::Force(k, c) => loads.force[k][c] = value,
+            Parameter::Gravity(c) => loads.gravity[c] = value,
+        }
     }
 }
 

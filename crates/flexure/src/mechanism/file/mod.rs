@@ -132,7 +132,12 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
     };
     validation::check_stiffness_ratio(&src, &m, &tree.stiffness_places)?;
     validation::check_tendon_directions(&src, &m, &via_places)?;
-    m.schedules = schedules::schedules(&src, &m, &file.schedule)?;
+    m.schedules = schedules::schedules(
+        &src,
+        &file.schedule,
+        |load| Parameter::parse(&m, load),
+        |p| matches!(p, Parameter::Tension(_)),
+    )?;
     m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)

@@ -1,7 +1,7 @@
 //! Schedules of loads over time, and the initial state of a simulation.
 
 use super::document::{Sign, Source, number};
-use super::{BTreeMap, Deserialize, Error, Mechanism, Parameter, Result, Schedule, Spanned, Waveform};
+use super::{BTreeMap, Deserialize, Error, Mechanism, Result, Schedule, Spanned, Waveform};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -24,12 +24,19 @@ pub(super) struct HarmonicToml {
 /// sweeps do) at most once, with either points `[t, value]` of finite
 /// numbers whose times do not decrease, at most two at one time (a step),
 /// or a `harmonic` (amplitude, frequency in Hz, phase in rad, offset).
-pub(super) fn schedules(src: &Source, m: &Mechanism, tables: &[ScheduleToml]) -> Result<Vec<Schedule>> {
-    let mut out: Vec<Schedule> = Vec::new();
+/// `parse` reads a load's name (a planar or a spatial mechanism's
+/// parameter), `is_tension` says whether it cannot be negative.
+pub(super) fn schedules<P: PartialEq>(
+    src: &Source,
+    tables: &[ScheduleToml],
+    parse: impl Fn(&str) -> Result<P>,
+    is_tension: impl Fn(&P) -> bool,
+) -> Result<Vec<Schedule<P>>> {
+    let mut out: Vec<Schedule<P>> = Vec::new();
     for s in tables {
         let load = s.load.get_ref();
         let owner = format!("schedule {load:?}: ");
-        let parameter = Parameter::parse(m, load).map_err(|e| match e {
+        let parameter = parse(load).map_err(|e| match e {
             Error::InvalidParameter { reason, .. } => {
                 src.error(&s.load.span(), format!("{owner}load {load:?} {reason}"))
             }
@@ -38,7 +45,7 @@ pub(super) fn schedules(src: &Source, m: &Mechanism, tables: &[ScheduleToml]) ->
         if out.iter().any(|o| o.parameter == parameter) {
             return src.fail(&s.load.span(), format!("{owner}load {load:?} is scheduled twice"));
         }
-        let tension = matches!(parameter, Parameter::Tension(_));
+        let tension = is_tension(&parameter);
         let waveform = match (&s.points, &s.harmonic) {
             (Some(points), None) => Waveform::Points(schedule_points(src, &owner, points, tension)?),
             (None, Some(h)) => schedule_harmonic(src, &owner, h, tension)?,

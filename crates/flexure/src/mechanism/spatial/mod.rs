@@ -263,6 +263,9 @@ pub struct SpatialMechanism {
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
     pub initial_velocity: Vec<(usize, Vec<f64>)>,
+    /// `[[schedule]]`: loads given in time, for simulations
+    /// ([`crate::mechanism::schedule`]); the other analyses take the loads as given.
+    pub schedules: Vec<crate::mechanism::schedule::Schedule<sweep::SpatialParameter>>,
     /// "line L, column C" of each closure in its file, for errors (empty if built in code).
     pub closure_places: Vec<String>,
     /// `parent_joint[b]`: the joint whose child is body `b`.
@@ -349,6 +352,7 @@ impl SpatialMechanism {
             gravity,
             initial: Vec::new(),
             initial_velocity: Vec::new(),
+            schedules: Vec::new(),
             closure_places: Vec::new(),
             parent_joint,
             dof: offset,

@@ -69,12 +69,17 @@ impl SpatialParameter {
     /// `loads` with this parameter set to `value`.
     pub fn apply(&self, loads: &SpatialLoads, value: f64) -> SpatialLoads {
         let mut out = loads.clone();
-        match *self {
-            SpatialParameter::Force(i, c) => out.force[i][c] = value,
-            SpatialParameter::Tension(i) => out.tension[i] = value,
-            SpatialParameter::Gravity(c) => out.gravity[c] = value,
-        }
+        self.set(&mut out, value);
         out
+    }
+
+    /// Sets this parameter of `loads` to `value`, in place.
+    pub fn set(&self, loads: &mut SpatialLoads, value: f64) {
+        match *self {
+            SpatialParameter::Force(i, c) => loads.force[i][c] = value,
+            SpatialParameter::Tension(i) => loads.tension[i] = value,
+            SpatialParameter::Gravity(c) => loads.gravity[c] = value,
+        }
     }
 }
 

@@ -1,14 +1,17 @@
 //! The spatial mechanism file (`dimension = 3`): the same tables as the
 //! planar file, with 3-D points, URDF placements (`origin`, `rpy` or
 //! `rpy_deg`), 3 × 3 inertias, hinge and slider axes, ball joints,
-//! spatial flexures, and `[[ball]]` closures beside `[[weld]]` and `[[pin]]`.
+//! spatial flexures, `[[ball]]` closures beside `[[weld]]` and `[[pin]]`,
+//! and the planar `[[schedule]]` tables with the spatial loads' names.
 //! One part of the document per module, as for the planar file.
 
 mod joints;
 mod parts;
 
 use super::document::{Sign, Source, Span, place};
+use super::schedules::ScheduleToml;
 use super::{Error, Result, Spanned};
+use crate::mechanism::spatial::sweep::SpatialParameter;
 use crate::mechanism::spatial::{SpatialBody, SpatialMechanism};
 use joints::JointToml;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -36,7 +39,8 @@ struct FileToml {
     #[serde(default)]
     ball: Vec<BallToml>,
     gravity: Option<Spanned<[f64; 3]>>,
-    schedule: Option<Spanned<toml::Value>>,
+    #[serde(default)]
+    schedule: Vec<ScheduleToml>,
     initial: Option<BTreeMap<String, Spanned<toml::Value>>>,
     initial_velocity: Option<BTreeMap<String, Spanned<toml::Value>>>,
 }
@@ -183,13 +187,6 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
     }
     let src = Source { text };
     let file: FileToml = toml::from_str(text).map_err(|e| toml_error(text, e))?;
-    if let Some(s) = &file.schedule {
-        return src.fail(
-            &s.span(),
-            "[[schedule]]: loads in time are for planar mechanisms only for now; a spatial file's loads are constant"
-                .into(),
-        );
-    }
     // Bodies: the ground and each joint's child, in file order.
     let mut names = vec!["ground".to_string()];
     for j in &file.joint {
@@ -227,6 +224,12 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
         (m, places)
     };
     m.closure_places = places;
+    m.schedules = super::schedules::schedules(
+        &src,
+        &file.schedule,
+        |load| SpatialParameter::parse(&m, load),
+        |p| matches!(p, SpatialParameter::Tension(_)),
+    )?;
     m.initial = initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
