@@ -10,7 +10,7 @@ use crate::linalg;
 use nalgebra::{DMatrix, DVector};
 
 /// The closure forces $\delta\mu$ of the linear pre-buckling state: the
-/// admissible motion $\delta q = Zy$ with $(Z^TK_0Z)\,y = -Z^Tf$, $f$ the
+/// admissible motion $\delta q = Zy$ with $(Z^TK_0Z)y = -Z^Tf$, $f$ the
 /// loads' gradient `load_gradient`, then $G^T\delta\mu = -(f + K_0\delta q)$
 /// in least norm. `k0` is $Z^TK_0Z$, positive definite (else `free`).
 pub(in crate::mechanism) fn pre_buckling_forces(

@@ -105,9 +105,9 @@ impl Joint<Spatial> for SpatialFlexure {
     /// is taken from the quadrature (which meets the Magnus product's exact
     /// derivative to the rule's $h^6$) and its skew part exactly, from the
     /// motion subspace: for any joint,
-    /// $\partial_bS^{\omega}_a - \partial_aS^{\omega}_b = S^{\omega}_b\times S^{\omega}_a$
+    /// $\partial_b S_a^{\omega} - \partial_a S_b^{\omega} = S_b^{\omega}\times S_a^{\omega}$
     /// and the position's Hessian is symmetric, so
-    /// $$D_{ab} = \tfrac12\big(\partial_bQ_a + \partial_aQ_b\big) + \tfrac12\thinspace M\cdot\big(S^{\omega}_b\times S^{\omega}_a\big).$$
+    /// $$D_{ab} = \tfrac12\big(\partial_bQ_a + \partial_aQ_b\big) + \tfrac12\thinspace M\cdot\big(S_b^{\omega}\times S_a^{\omega}\big).$$
     /// Costs about one Jacobian-level evaluation, against the Magnus
     /// product's second derivatives at [`Level::Hessian`] (about ten).
     fn add_wrench_hessian(

@@ -21,12 +21,12 @@
 //! the plane, one point costs one pass along its path.
 //!
 //! Within a joint, a weight $u$ on $x$ meets $H$ only through
-//! $$u\cdot\partial_{ab}x - u\cdot(\omega_a\times(\omega_b\times r)) = (R_A^Tu_\epsilon)\cdot H^{p}_{ab} + (R_A^T(r\times u))\cdot H^{\omega}_{ab},$$
-//! ($u_\epsilon = \epsilon u$), a wrench on $S$'s derivative, and a dead moment
-//! $\mu$ through $(R_A^T\mu)\cdot H^{\omega}_{ab}$. So the Lagrangian
+//! $$u\cdot\partial_{ab}x - u\cdot(\omega_a\times(\omega_b\times r)) = (R_A^T\tilde u)\cdot H_{ab}^{p} + (R_A^T(r\times u))\cdot H_{ab}^{\omega},$$
+//! ($\tilde u = \epsilon u$), a wrench on $S$'s derivative, and a dead moment
+//! $\mu$ through $(R_A^T\mu)\cdot H_{ab}^{\omega}$. So the Lagrangian
 //! ([`super::lagrangian`]) sums, per joint, the root-frame wrench $W_j$ of
 //! everything whose path passes through it, and the joint adds
-//! $\sum_cW_{j,c}\thinspace\partial_bS^c_a$ once
+//! $\sum_c W_{j,c}\thinspace\partial_b S_a^{c}$ once
 //! ([`crate::mechanism::Joint::add_wrench_hessian`]). From frames evaluated
 //! at [`Level::Hessian`] that contraction reads the joints' Hessians
 //! (exact); from [`Level::Jacobian`] frames each joint makes it from its
