@@ -302,6 +302,17 @@ def test_cantilever_buckle_carries_its_estimate_in_the_planar_keys():
     assert tight["flagged"] is True
 
 
+def test_order_auto_raises_a_spatial_flexure_until_buckle_meets_its_accuracy():
+    # Euler: pi^2 EI / 4L^2 with EI = 1. order = "auto" starts at 3 (1.4e-4 high) and is raised
+    # until the estimate meets 1e-7; the answer is then Euler's to 1e-7, with the orders used.
+    euler = math.pi**2 / 4
+    r = cantilever(force=(-1.0, 0.0, 0.0), order='"auto"').buckle(accuracy=1e-7)
+    assert r["flagged"] is False and abs(r["load_factor"] / euler - 1.0) < 1e-7
+    orders = r["order"]["rod"]
+    assert len(orders) == 3 and all(n > 3 for n in orders)
+    assert "order" not in cantilever(force=(-1.0, 0.0, 0.0), order=3).buckle()
+
+
 # A massless round rod (EI_z = 1, EI_y = 2, GJ = 0.7, L = 1) carrying a 0.3 kg point mass at its tip.
 ROD = """
 dimension = 3

@@ -304,3 +304,23 @@ fn simulate_writes_a_spatial_runs_csv() {
         assert!(same(&row[14..], &[v["energy"][k].as_f64().unwrap()]), "{row:?}");
     }
 }
+
+/// Reference: Euler's free-tip load π²EI/(4L²) = 2.4674 (EI = 1 about the
+/// weak axis): the coarse column with `order = "auto"` in place of its
+/// orders [1, 1, 1] is raised by `buckle --accuracy 1e-6` until its
+/// estimate meets that, answers within 1e-6 of Euler, says the orders it
+/// used under `order`, and warns of nothing; `modes` names them too.
+#[test]
+fn order_auto_raises_a_spatial_flexure_until_the_estimate_meets_accuracy() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = written(&dir, &COARSE_COLUMN.replace("orders = [1, 1, 1]", "order = \"auto\""));
+    let (v, err) = answer(&["buckle", &file, "--accuracy", "1e-6"]);
+    assert!(err.is_empty(), "{err}");
+    let euler = std::f64::consts::PI.powi(2) / 4.0;
+    assert!((v["load_factor"].as_f64().unwrap() / euler - 1.0).abs() < 1e-6, "{v}");
+    assert_eq!(v["flagged"], false);
+    let orders = numbers(&v["order"]["column"]);
+    assert!(orders.len() == 3 && orders.iter().all(|n| *n > 1.0), "{v}");
+    let (v, err) = answer(&["modes", &file, "--count", "2"]);
+    assert!(err.is_empty() && v["order"]["column"].is_array(), "{err}\n{v}");
+}

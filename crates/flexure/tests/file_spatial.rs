@@ -653,12 +653,20 @@ fn bad_values_name_their_key_line_and_column() {
             "line 11, column 1: `notch` (a circular notch hinge) is for planar mechanisms only for now",
         ),
         (
-            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = \"auto\"\n"),
-            "line 9, column 9: order = \"auto\" is for planar mechanisms only for now",
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = \"six\"\n"),
+            "line 9, column 9: joint \"j\": order = \"six\": must be a whole number from 1 to 64 or \"auto\"",
         ),
         (
             format!("{HEAD}kind = \"flexure\"\nlength = 0.01\norder = -1\n"),
-            "line 8, column 9: order: invalid value: integer `-1`",
+            "line 8, column 9: joint \"j\": order = -1: must be a whole number from 1 to 64 or \"auto\"",
+        ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = 2.5\n"),
+            "line 9, column 9: joint \"j\": order = 2.5: must be a whole number",
+        ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = \"auto\"\norders = [3, 3, 3]\n"),
+            "line 10, column 10: joint \"j\": give order (all three) or orders, not both",
         ),
         (
             format!("{HEAD}kind = \"spherical\"\n[initial]\nj = [0.1, 0.2]\n"),
@@ -670,8 +678,8 @@ fn bad_values_name_their_key_line_and_column() {
         ("gravity = [0.0, 0.0, -9.81]\ndimension = 1\n".into(), "line 2, column 13: dimension = 1: must be 2"),
         ("dimension = 3\ngravity = [0.0, -9.81]\n".into(), "line 2, column 11: gravity: invalid length 2"),
         (
-            "dimension = 3\n[[schedule]]\nload = \"x\"\n".into(),
-            "line 2, column 1: [[schedule]]: loads in time are for planar mechanisms only for now",
+            "dimension = 3\n[[schedule]]\nload = \"gravity.w\"\npoints = [[0.0, 1.0]]\n".into(),
+            "line 3, column 8: schedule \"gravity.w\": load \"gravity.w\" gravity's component must be x, y or z",
         ),
     ];
     let mut seen = std::collections::BTreeSet::new();

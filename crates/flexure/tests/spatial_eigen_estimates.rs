@@ -188,3 +188,35 @@ fn with_flexures_pads_initial_coordinates_per_component() {
     let same = m.with_flexures(|_, _| Ok(None)).unwrap();
     assert_eq!(same, m);
 }
+
+/// Reference: Euler's load and the rod's closed-form frequencies, reached by
+/// `order = "auto"` ([`SpatialMechanism::auto_order`]) from orders 1, where
+/// the column is 22 % high and the rod's bending modes 15 %: `buckle_auto`
+/// and `modes_auto` raise the automatic joint (each pass to its reference's
+/// orders) until the estimate meets a 1e-6 target, and the answer is then
+/// within 1e-6 of the closed form (the estimate being the true error, above).
+/// A joint without `order = "auto"` is left at its orders and stays flagged.
+#[test]
+fn automatic_orders_are_raised_until_the_estimate_meets_its_target() {
+    use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
+    let tight = Accuracy { eigenvalue: 1e-6, ..Default::default() };
+    let euler = PI * PI * EI_WEAK / (4.0 * LENGTH * LENGTH);
+    let mut m = column([1, 1, 1]);
+    let (kept, b, e) = buckle_auto(&m, &Default::default(), &tight).unwrap();
+    assert!(e.flagged && (b.load_factor / euler - 1.0) > 0.2, "not automatic: left as given");
+    assert_eq!(kept.joints[0].kind.flexure().unwrap().orders(), [1, 1, 1]);
+    m.auto_order = vec![true];
+    let (used, b, e) = buckle_auto(&m, &Default::default(), &tight).unwrap();
+    assert!(!e.flagged && (b.load_factor / euler - 1.0).abs() < 1e-6, "{e:?}: {}", b.load_factor);
+    let orders = used.joints[0].kind.flexure().unwrap().orders();
+    assert!(orders.iter().all(|n| *n > 1 && *n < 64), "{orders:?}");
+
+    let mut r = rod([1, 1, 1]);
+    r.auto_order = vec![true];
+    let (used, found, e) = modes_auto(&r, &Default::default(), 5, &tight).unwrap();
+    assert!(!e.flagged, "{e:?}");
+    for (w, exact) in found.omega.iter().zip(rod_frequencies()) {
+        assert!((w / exact - 1.0).abs() < 1e-6, "{w} against {exact}");
+    }
+    assert!(used.joints[0].kind.flexure().unwrap().orders()[0] > 1);
+}

@@ -5,7 +5,7 @@
 use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::warn;
 use flexure::dynamics::spatial::SpatialSimulation;
-use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
+use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
 use flexure::estimate::{Accuracy, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::report::{placements, report};
@@ -160,7 +160,23 @@ fn reference_of(e: &ValueEstimate, flexures: &[String]) -> String {
 }
 
 /// What to do about a spatial eigenvalue answer that misses its target.
-const RAISE: &str = "raise the spatial flexures' orders (`order` or `orders`) in the file";
+fn raise(m: &SpatialMechanism) -> &'static str {
+    if m.auto_order.contains(&true) {
+        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
+    } else {
+        "give the spatial flexures order = \"auto\", or raise their orders (`order` or `orders`) in the file"
+    }
+}
+
+/// `order` {joint: [n_twist, n_y, n_z], as the file's `orders`} when a
+/// spatial flexure has `order = "auto"`: the orders the answer was found at.
+fn put_orders(v: &mut Value, m: &SpatialMechanism) {
+    if m.auto_order.contains(&true) {
+        v["order"] = Value::Object(
+            m.joints.iter().filter_map(|j| Some((j.name.clone(), json!(j.kind.flexure()?.orders())))).collect(),
+        );
+    }
+}
 
 /// `buckle` on a spatial file: the linear buckling factor on all loads and
 /// its mode, with its error estimate against the mechanism with every
@@ -168,19 +184,19 @@ const RAISE: &str = "raise the spatial flexures' orders (`order` or `orders`) in
 /// answer's), warning when it misses `target`.
 pub fn buckle_cmd(m: &SpatialMechanism, file: &Path, target: &Accuracy) -> Result<Value, String> {
     let settings = Settings::default();
-    let b = flexure::mechanism::spatial::buckling::buckle(m, &settings).map_err(said(file))?;
-    let e = buckle_error(m, &b, &settings, target).map_err(said(file))?;
+    let (m, b, e) = buckle_auto(m, &settings, target).map_err(said(file))?;
     let mut v = json!(b);
     v["dimension"] = json!(3);
-    let flexures = flexure_names(m);
+    let flexures = flexure_names(&m);
     crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures });
+    put_orders(&mut v, &m);
     crate::eigen::warn_missed(
         &e,
         target,
         &format!("{}: buckle", file.display()),
         |_| format!("the load factor {:.6}", b.load_factor),
         &reference_of(&e, &flexures),
-        RAISE,
+        raise(&m),
     );
     Ok(v)
 }
@@ -210,19 +226,19 @@ pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target
         ),
         e => said(file)(e),
     };
-    let modes = flexure::dynamics::spatial::modes(m, &settings, asked).map_err(unstable)?;
-    let e = modes_error(m, &modes, &settings, target).map_err(said(file))?;
-    let shapes: Vec<Value> = (0..modes.omega.len()).map(|k| by_joint(m, modes.shapes.column(k).as_slice())).collect();
+    let (m, modes, e) = modes_auto(m, &settings, asked, target).map_err(unstable)?;
+    let shapes: Vec<Value> = (0..modes.omega.len()).map(|k| by_joint(&m, modes.shapes.column(k).as_slice())).collect();
     let mut v = json!({ "dimension": 3, "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
-    let flexures = flexure_names(m);
+    let flexures = flexure_names(&m);
     crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures });
+    put_orders(&mut v, &m);
     crate::eigen::warn_missed(
         &e,
         target,
         &format!("{}: modes", file.display()),
         |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
         &reference_of(&e, &flexures),
-        &format!("{RAISE}, or ask fewer --count"),
+        &format!("{}, or ask fewer --count", raise(&m)),
     );
     if modes.quasi_static > 0 {
         v["quasi_static"] = json!(modes.quasi_static);

@@ -14,7 +14,7 @@ use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::dynamics::integrate;
-use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
+use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
 use flexure::estimate::{Accuracy, ErrorEstimate, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::report::{Placement, placements, report};
@@ -344,7 +344,29 @@ fn reference_of(e: &ValueEstimate, names: &[String]) -> String {
 }
 
 /// What to do about a spatial eigenvalue answer that misses its target.
-const RAISE: &str = "raise the spatial flexures' orders (`order` or `orders`) in the mechanism file";
+/// What to do about a spatial eigenvalue answer that misses its target.
+fn raise(m: &SpatialMechanism) -> &'static str {
+    if m.auto_order.contains(&true) {
+        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
+    } else {
+        "give the spatial flexures order = \"auto\", or raise their orders (`order` or `orders`) in the mechanism file"
+    }
+}
+
+/// `order` {joint: [n_twist, n_y, n_z]} when a spatial flexure has
+/// `order = "auto"`: the orders the answer was found at, as the CLI's.
+fn put_orders(py: Python<'_>, out: &Bound<'_, PyDict>, m: &SpatialMechanism) -> PyResult<()> {
+    if m.auto_order.contains(&true) {
+        let orders = PyDict::new(py);
+        for j in &m.joints {
+            if let Some(f) = j.kind.flexure() {
+                orders.set_item(&j.name, f.orders().to_vec())?;
+            }
+        }
+        out.set_item("order", orders)?;
+    }
+    Ok(())
+}
 
 /// Vibration modes about the loaded equilibrium: omega, frequency,
 /// quasi_static, shapes {joint: (modes, k)}, limit_fraction and
@@ -360,11 +382,8 @@ pub fn modes<'py>(
     // With no coordinates the library says so (count 0 would be refused by its name instead).
     let asked = crate::modes::wanted(count, m.dof(), "the mechanism")?.max(1);
     let settings = Settings::default();
-    let (modes, e) = interruptible(py, || {
-        let modes = flexure::dynamics::spatial::modes(m, &settings, asked)?;
-        let e = modes_error(m, &modes, &settings, target)?;
-        Ok((modes, e))
-    })?;
+    let (m, modes, e) = interruptible(py, || modes_auto(m, &settings, asked, target))?;
+    let m = &m;
     let out = PyDict::new(py);
     out.set_item("dimension", 3)?;
     out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
@@ -391,7 +410,8 @@ pub fn modes<'py>(
     let names = flexure_names(m);
     crate::modes::put_estimate(py, &out, &e, Some(&names))?;
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
-    let hint = format!("{RAISE}, or ask fewer modes");
+    put_orders(py, &out, m)?;
+    let hint = format!("{}, or ask fewer modes", raise(m));
     warn_values(py, "Mechanism.modes", &e, target, name, &reference_of(&e, &names), &hint, 2)?;
     Ok(out)
 }
@@ -467,11 +487,8 @@ pub fn simulate<'py>(
 /// `target` warns AccuracyWarning) and flagged, in the planar answer's keys.
 pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
     let settings = Settings::default();
-    let (b, e) = interruptible(py, || {
-        let b = flexure::mechanism::spatial::buckling::buckle(m, &settings)?;
-        let e = buckle_error(m, &b, &settings, target)?;
-        Ok((b, e))
-    })?;
+    let (m, b, e) = interruptible(py, || buckle_auto(m, &settings, target))?;
+    let m = &m;
     let out = crate::serialize::to_dict(py, &b)?;
     out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
     out.set_item("dimension", 3)?;
@@ -492,7 +509,8 @@ pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> 
     out.set_item("error_estimate", d)?;
     out.set_item("flagged", e.flagged)?;
     let name = |_| format!("the load factor {}", sig(b.load_factor));
-    warn_values(py, "Mechanism.buckle", &e, target, name, &reference_of(&e, &names), RAISE, 2)?;
+    put_orders(py, &out, m)?;
+    warn_values(py, "Mechanism.buckle", &e, target, name, &reference_of(&e, &names), raise(m), 2)?;
     finite_answer("Mechanism.buckle", out.as_any())?;
     Ok(out)
 }

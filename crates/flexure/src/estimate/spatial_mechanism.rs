@@ -194,3 +194,92 @@ pub fn modes_error(
     let (omega, stable) = reference_values(spatial_dynamics::modes(&reference, settings, count))?;
     Ok(ValueEstimate::new(&modes.omega, omega, stable, orders, target))
 }
+
+/// The next mechanism of an automatic order: each spatial flexure joint of
+/// `order = "auto"` ([`SpatialMechanism::auto_order`]) with a component
+/// below the cap replaced by its reference about its coordinates in `q`
+/// (the rest shape when `q` is not the mechanism's), as the planar
+/// mechanism raises its own; `None` when no joint can be raised.
+fn raised(m: &SpatialMechanism, q: &[f64]) -> Result<Option<SpatialMechanism>> {
+    let rest;
+    let q = if q.len() == m.dof() {
+        q
+    } else {
+        rest = m.rest();
+        &rest
+    };
+    let mut any = false;
+    let next = m.with_flexures(|j, f| {
+        if !m.auto_order.get(j).copied().unwrap_or(false) || f.orders().iter().all(|n| *n >= MAX_ORDER) {
+            return Ok(None);
+        }
+        any = true;
+        let o = m.joints[j].offset;
+        reference(f, &q[o..o + f.coordinates()]).map(Some)
+    })?;
+    Ok(any.then_some(next))
+}
+
+/// [`buckle`] with its estimate ([`buckle_error`]), the spatial flexure
+/// joints of `order = "auto"` raised (each to its reference's orders and
+/// subintervals) until the estimate meets `target`, or none can be raised
+/// further (then `flagged`), as the planar
+/// [`buckle_auto`](super::buckle_auto). Returns the mechanism used, the
+/// answer and its estimate; without such joints, the mechanism as given.
+/// Bounded: each pass raises every automatic component by at least 3, up to 64.
+///
+/// # Example
+/// ```
+/// use flexure::estimate::{Accuracy, spatial_mechanism::buckle_auto};
+/// use flexure::mechanism::file::spatial_from_toml;
+/// // A column (L = 1, EI = 1) pushed along itself by 1 N: Euler's π²/4.
+/// let m = spatial_from_toml("dimension = 3\n[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\n\
+///     child = \"tip\"\nlength = 1.0\nei = 1.0\norder = \"auto\"\n\
+///     [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [-1.0, 0.0, 0.0]\n").unwrap();
+/// let tight = Accuracy { eigenvalue: 1e-6, ..Default::default() };
+/// let (used, b, e) = buckle_auto(&m, &Default::default(), &tight).unwrap();
+/// let euler = std::f64::consts::PI.powi(2) / 4.0;
+/// assert!(!e.flagged && (b.load_factor / euler - 1.0).abs() < 1e-6);
+/// assert!(used.joints[0].kind.flexure().unwrap().orders()[0] > 3);
+/// ```
+pub fn buckle_auto(
+    m: &SpatialMechanism,
+    settings: &Settings,
+    target: &Accuracy,
+) -> Result<(SpatialMechanism, Buckling, ValueEstimate)> {
+    let mut m = m.clone();
+    loop {
+        let b = buckle(&m, settings)?;
+        let e = buckle_error(&m, &b, settings, target)?;
+        if !e.flagged {
+            return Ok((m, b, e));
+        }
+        match raised(&m, &[])? {
+            Some(next) => m = next,
+            None => return Ok((m, b, e)),
+        }
+    }
+}
+
+/// [`modes`](spatial_dynamics::modes) with its estimate ([`modes_error`]),
+/// the spatial flexure joints of `order = "auto"` raised as in
+/// [`buckle_auto`], each about its coordinates at the equilibrium.
+pub fn modes_auto(
+    m: &SpatialMechanism,
+    settings: &Settings,
+    count: usize,
+    target: &Accuracy,
+) -> Result<(SpatialMechanism, Modes, ValueEstimate)> {
+    let mut m = m.clone();
+    loop {
+        let modes = spatial_dynamics::modes(&m, settings, count)?;
+        let e = modes_error(&m, &modes, settings, target)?;
+        if !e.flagged {
+            return Ok((m, modes, e));
+        }
+        match raised(&m, &modes.coordinates)? {
+            Some(next) => m = next,
+            None => return Ok((m, modes, e)),
+        }
+    }
+}

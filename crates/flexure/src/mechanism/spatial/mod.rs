@@ -263,6 +263,12 @@ pub struct SpatialMechanism {
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
     pub initial_velocity: Vec<(usize, Vec<f64>)>,
+    /// Per joint, whether its spatial flexure's orders are automatic
+    /// (`order = "auto"`): `buckle` and `modes` raise them until their
+    /// error estimate meets its target
+    /// ([`crate::estimate::spatial_mechanism::buckle_auto`]); other
+    /// analyses take them as they are (3). Empty when none is.
+    pub auto_order: Vec<bool>,
     /// `[[schedule]]`: loads given in time, for simulations
     /// ([`crate::mechanism::schedule`]); the other analyses take the loads as given.
     pub schedules: Vec<crate::mechanism::schedule::Schedule<sweep::SpatialParameter>>,
@@ -353,6 +359,7 @@ impl SpatialMechanism {
             initial: Vec::new(),
             initial_velocity: Vec::new(),
             schedules: Vec::new(),
+            auto_order: Vec::new(),
             closure_places: Vec::new(),
             parent_joint,
             dof: offset,

@@ -33,7 +33,8 @@ pub(super) struct JointToml {
     diameter: Option<Spanned<toml::Value>>,
     poisson: Option<Spanned<f64>>,
     shear_modulus: Option<Spanned<f64>>,
-    order: Option<Spanned<usize>>,
+    // A whole number, or `"auto"`: read by `orders_of`.
+    order: Option<Spanned<toml::Value>>,
     orders: Option<Spanned<[usize; 3]>>,
     subintervals: Option<Spanned<usize>>,
     twist: Option<Spanned<Vec<f64>>>,
@@ -101,12 +102,7 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
     if let (Some(_), Some(z)) = (&j.kappa, &j.kappa_z) {
         return src.fail(&z.span(), format!("{owner}give kappa (the planar spelling) or kappa_z, not both"));
     }
-    let orders = match (&j.order, &j.orders) {
-        (Some(_), Some(o)) => return src.fail(&o.span(), format!("{owner}give order (all three) or orders, not both")),
-        (Some(n), None) => [*n.get_ref(); 3],
-        (None, Some(o)) => *o.get_ref(),
-        (None, None) => [3; 3],
-    };
+    let orders = orders_of(src, owner, j)?.0;
     let rest = |key: &str, v: &Option<Spanned<Vec<f64>>>| -> Result<Option<Vec<f64>>> {
         match v {
             Some(v) => {
@@ -169,7 +165,7 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
                 "ei_z" if j.ei.is_some() => ("ei", value),
                 "kappa_z" if j.kappa.is_some() => ("kappa", value),
                 "order" | "orders" => match (&j.order, &j.orders) {
-                    (Some(n), _) => ("order", n.get_ref().to_string()),
+                    (Some(n), _) => ("order", written(n.get_ref())),
                     (None, Some(o)) => ("orders", format!("{:?}", o.get_ref())),
                     (None, None) => (name, value),
                 },
@@ -184,6 +180,39 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
         f = f.with_subintervals(*m.get_ref()).map_err(|e| src.placed(owner, &m.span(), e))?;
     }
     Ok(SpatialJointKind::Flexure(Box::new(f)))
+}
+
+/// A flexure's three orders: `order` (all three: a whole number, or
+/// `"auto"`, which starts at 3 and says so in the second value) or
+/// `orders`, [3, 3, 3] when neither is given.
+pub(super) fn orders_of(src: &Source, owner: &str, j: &JointToml) -> Result<([usize; 3], bool)> {
+    match (&j.order, &j.orders) {
+        (Some(_), Some(o)) => src.fail(&o.span(), format!("{owner}give order (all three) or orders, not both")),
+        (Some(n), None) => match n.get_ref() {
+            toml::Value::Integer(k) if *k >= 0 => Ok(([usize::try_from(*k).unwrap_or(usize::MAX); 3], false)),
+            toml::Value::String(s) if s == "auto" => Ok(([3; 3], true)),
+            v => src.fail(
+                &n.span(),
+                format!(
+                    "{owner}order = {}: must be a whole number from 1 to {} or \"auto\" (raised by buckle and modes until their error estimate meets its target)",
+                    written(v),
+                    crate::joint::MAX_ORDER
+                ),
+            ),
+        },
+        (None, Some(o)) => Ok((*o.get_ref(), false)),
+        (None, None) => Ok(([3; 3], false)),
+    }
+}
+
+/// A value as the file writes it: `3`, `2.5`, `"six"`, or its type.
+fn written(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(x) => format!("{x:?}"),
+        toml::Value::String(s) => format!("{s:?}"),
+        other => format!("a {}", other.type_str()),
+    }
 }
 
 /// The joint's kind from its keys.

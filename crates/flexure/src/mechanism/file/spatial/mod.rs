@@ -101,9 +101,6 @@ fn toml_error(text: &str, e: toml::de::Error) -> Error {
     let unknown = message.strip_prefix("unknown field `").and_then(|m| m.split('`').next());
     let message = match (key, unknown.and_then(|u| PLANAR_ONLY.iter().find(|(k, _)| *k == u))) {
         (_, Some((k, what))) => format!("`{k}` ({what}) is for planar mechanisms only for now"),
-        (Some("order"), None) if message.contains("\"auto\"") => {
-            "order = \"auto\" is for planar mechanisms only for now: give a whole number, or `orders`".into()
-        }
         (Some(k), None) => format!("{k}: {message}"),
         (None, None) => message,
     };
@@ -224,6 +221,19 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
         (m, places)
     };
     m.closure_places = places;
+    // Joints are in parents-first order, the file's tables in file order: matched by name.
+    m.auto_order = m
+        .joints
+        .iter()
+        .map(|spec| {
+            let table = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);
+            // Only a flexure takes `order` (the others refuse it): read it so.
+            Ok(match table {
+                Some(j) => joints::orders_of(&src, "", j)?.1,
+                None => false,
+            })
+        })
+        .collect::<Result<_>>()?;
     m.schedules = super::schedules::schedules(
         &src,
         &file.schedule,
