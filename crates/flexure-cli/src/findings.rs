@@ -69,6 +69,21 @@ pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
     Ok(open.iter().map(closure_json).collect())
 }
 
+/// The closures of a spatial mechanism open at rest, told and listed as
+/// [`closures`] tells the planar ones'.
+pub fn spatial_closures(m: &flexure::mechanism::spatial::SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
+    let open = flexure::mechanism::spatial::findings::open_closures(m, &Settings::default())
+        .map_err(|e| format!("{}: {e}", file.display()))?;
+    for c in &open {
+        let text = format!("{}: {}", file.display(), c.message());
+        match c.severity() {
+            Severity::Warning => warn(text),
+            Severity::Note => note(text),
+        }
+    }
+    Ok(open.iter().map(closure_json).collect())
+}
+
 /// The parts of `m` that cross at coordinates `q`, told and listed.
 pub fn shape(m: &Mechanism, q: &[f64], file: &Path) -> Vec<Value> {
     let found = crossings(m, q);

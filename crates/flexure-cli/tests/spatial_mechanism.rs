@@ -324,3 +324,46 @@ fn order_auto_raises_a_spatial_flexure_until_the_estimate_meets_accuracy() {
     let (v, err) = answer(&["modes", &file, "--count", "2"]);
     assert!(err.is_empty() && v["order"]["column"].is_array(), "{err}\n{v}");
 }
+
+/// Reference: the library's `mechanism::spatial::findings::open_closures`
+/// (whose numbers `tests/spatial_mechanism.rs` checks against small
+/// rotations): a ball open 1 mm at rest is told on stderr with its place in
+/// the file and listed under `findings` by `solve` (and told by `buckle`
+/// and `modes`, which this locked mechanism then refuses), as a warning;
+/// with `preload = true`, as a note. (`simulate` tells it by the same call;
+/// this mechanism's ball has dependent equations, its motion being planar,
+/// which the integrator does not take.)
+#[test]
+fn spatial_open_closures_are_told_and_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "dimension = 3\n\
+        [[joint]]\nname = \"l\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 1.0\n\
+        [[joint]]\nname = \"r\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\norigin = [0.1, -0.1, 0.0]\nstiffness = 1.0\n\
+        [[body]]\nname = \"a\"\nmass = 0.1\nizz = 1e-4\nixx = 1e-4\niyy = 1e-4\n\
+        [[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.001, 0.1, 0.0]\n";
+    let file = written(&dir, text);
+    for args in [vec!["solve"], vec!["buckle"], vec!["modes"]] {
+        // buckle and modes: the ball leaves no motion, an error after the finding was told.
+        let mut all = vec![args[0], file.as_str()];
+        all.extend(&args[1..]);
+        let err = if matches!(args[0], "buckle" | "modes") {
+            let (code, _, err) = run(&all);
+            assert!(code == 2 && err.contains("no motion"), "{all:?}: {err}");
+            err
+        } else {
+            let (v, err) = answer(&all);
+            let f = &v["findings"][0];
+            assert_eq!((f["kind"].as_str(), f["severity"].as_str()), (Some("open_closure"), Some("warning")), "{v}");
+            assert!((f["gap_m"].as_f64().unwrap() - 1e-3).abs() < 1e-12, "{f}");
+            err
+        };
+        assert!(
+            err.contains("line 22, column 5: ball of \"a\" and \"b\" is open at rest by 1.000000e-3 m"),
+            "{all:?}: {err}"
+        );
+    }
+    let file = written(&dir, &format!("{text}preload = true\n"));
+    let (v, err) = answer(&["solve", &file]);
+    assert!(err.contains("note:") && !err.contains("warning:"), "{err}");
+    assert_eq!(v["findings"][0]["severity"], "note", "{v}");
+}

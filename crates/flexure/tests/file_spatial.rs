@@ -356,8 +356,7 @@ b = "p"
 
 /// A planar file rewritten as the page says, by text alone: `dimension = 3`
 /// first, a zero z on every point, force and gravity, an origin's angle as
-/// rpy's yaw, a moment about z, `inertia` as `izz`, a pin's axis along z,
-/// `preload` (planar only) dropped.
+/// rpy's yaw, a moment about z, `inertia` as `izz`, a pin's axis along z.
 fn to_3d(text: &str) -> String {
     let mut out = String::from("dimension = 3\n");
     for line in text.lines().filter(|l| !l.starts_with('#')) {
@@ -380,7 +379,6 @@ fn to_3d(text: &str) -> String {
             "path" => format!("path = [{}]", z(&value[1..value.len() - 1])),
             "moment" => format!("moment = [0.0, 0.0, {value}]"),
             "inertia" => format!("izz = {value}"),
-            "preload" => continue,
             _ => line.to_string(),
         };
         out.push_str(&line);
@@ -641,9 +639,9 @@ fn bad_values_name_their_key_line_and_column() {
         ),
         (
             format!(
-                "{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\npreload = true\n"
+                "{HEAD}kind = \"fixed\"\n[[pin]]\na = \"a\"\nb = \"ground\"\naxis = [0.0, 0.0, 1.0]\npreload = 1\n"
             ),
-            "line 11, column 1: `preload` (a closure's assembly preload) is for planar mechanisms only for now",
+            "line 11, column 11: preload: invalid type: integer `1`, expected a boolean",
         ),
         // Planar keys not taken yet in space.
         (

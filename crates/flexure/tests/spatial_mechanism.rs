@@ -463,3 +463,47 @@ fn a_solve_refines_where_a_pushed_arm_loses_stability() {
         other => panic!("expected the loss of stability at 0.625, got {other:?}"),
     }
 }
+
+/// Reference: small rotations. Two sprung hinges about z (k = 1 N·m/rad),
+/// their arms (0.1 m) at right angles, the tips 1 mm apart along the first
+/// arm: a ball closing them turns the second hinge by $\delta/l$ = 0.01 rad
+/// (the first one hardly: the gap lies along its arm), so it carries
+/// $F = k\delta/l^2$ = 0.1 N (to the rotation's second order, 1e-4 here). A weld given a 0.01 rad twist about x between its frames,
+/// and a pin whose axes differ by 0.02 rad, are open by those angles; with
+/// `preload = true` each is a note, not a warning; a closed closure is not
+/// listed.
+#[test]
+fn open_closures_say_their_gap_and_the_preload_that_closes_them() {
+    use flexure::mechanism::file::spatial_from_toml;
+    use flexure::mechanism::findings::Severity;
+    use flexure::mechanism::spatial::findings::open_closures;
+    let hinges = "dimension = 3\n\
+        [[joint]]\nname = \"l\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 1.0\n\
+        [[joint]]\nname = \"r\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\norigin = [0.1, -0.1, 0.0]\nstiffness = 1.0\n";
+    let ball = format!("{hinges}[[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.001, 0.1, 0.0]\n");
+    let open = open_closures(&spatial_from_toml(&ball).unwrap(), &Default::default()).unwrap();
+    assert_eq!(open.len(), 1);
+    let c = &open[0];
+    assert!((c.gap - 1e-3).abs() < 1e-15 && c.turn.is_none() && c.moment.is_none(), "{c:?}");
+    let force = c.force.unwrap();
+    assert!((force / 0.1 - 1.0).abs() < 1e-3, "{force}");
+    assert_eq!(c.severity(), Severity::Warning);
+    assert_eq!(c.place, "line 16, column 5");
+
+    let weld = format!(
+        "{hinges}[[weld]]\na = \"a\"\na_origin = [0.1, 0.0, 0.0]\nb = \"b\"\nb_origin = [0.0, 0.1, 0.0]\nb_rpy = [0.01, 0.0, 0.0]\npreload = true\n"
+    );
+    let open = open_closures(&spatial_from_toml(&weld).unwrap(), &Default::default()).unwrap();
+    assert_eq!(open.len(), 1);
+    assert!(open[0].gap < 1e-15 && (open[0].turn.unwrap() - 0.01).abs() < 1e-12, "{:?}", open[0]);
+    assert_eq!(open[0].severity(), Severity::Note);
+
+    let pin = format!("{hinges}[[pin]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nb = \"b\"\nb_at = [0.0, 0.1, 0.0]\nb_axis = [0.0, 0.02f64.sin(), 0.02f64.cos()]\n")
+        .replace("0.02f64.sin()", &0.02f64.sin().to_string())
+        .replace("0.02f64.cos()", &0.02f64.cos().to_string());
+    let open = open_closures(&spatial_from_toml(&pin).unwrap(), &Default::default()).unwrap();
+    assert!(open.len() == 1 && (open[0].turn.unwrap() - 0.02).abs() < 1e-12, "{open:?}");
+
+    let closed = format!("{hinges}[[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.0, 0.1, 0.0]\n");
+    assert!(open_closures(&spatial_from_toml(&closed).unwrap(), &Default::default()).unwrap().is_empty());
+}

@@ -66,6 +66,7 @@ pub fn solve_cmd(
 ) -> Result<Value, String> {
     let settings = Settings::default();
     let err = said(file);
+    let findings = crate::findings::spatial_closures(m, file)?;
     let at = match compliance_at {
         Some((name, at)) => {
             let b =
@@ -120,6 +121,7 @@ pub fn solve_cmd(
         if let Some((value, e)) = &out.stopped {
             v["stopped"] = json!({ "value": value, "error": format!("{}: {e}", file.display()) });
         }
+        put_findings(&mut v, findings);
         return Ok(v);
     }
     let s = solve(m, &settings).map_err(&err)?;
@@ -136,7 +138,15 @@ pub fn solve_cmd(
     if let Some((b, point)) = at {
         v["compliance"] = crate::joint::matrix(&compliance(m, &s, b, point).map_err(&err)?);
     }
+    put_findings(&mut v, findings);
     Ok(v)
+}
+
+/// `findings`, when there are any (each already told on stderr).
+pub fn put_findings(v: &mut Value, findings: Vec<Value>) {
+    if !findings.is_empty() {
+        v["findings"] = Value::Array(findings);
+    }
 }
 
 /// The spatial flexure joints' names, in joint order (the order of an
@@ -184,6 +194,7 @@ fn put_orders(v: &mut Value, m: &SpatialMechanism) {
 /// answer's), warning when it misses `target`.
 pub fn buckle_cmd(m: &SpatialMechanism, file: &Path, target: &Accuracy) -> Result<Value, String> {
     let settings = Settings::default();
+    let findings = crate::findings::spatial_closures(m, file)?;
     let (m, b, e) = buckle_auto(m, &settings, target).map_err(said(file))?;
     let mut v = json!(b);
     v["dimension"] = json!(3);
@@ -198,6 +209,7 @@ pub fn buckle_cmd(m: &SpatialMechanism, file: &Path, target: &Accuracy) -> Resul
         &reference_of(&e, &flexures),
         raise(&m),
     );
+    put_findings(&mut v, findings);
     Ok(v)
 }
 
@@ -219,6 +231,7 @@ fn by_joint(m: &SpatialMechanism, v: &[f64]) -> Value {
 pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
     let asked = count.unwrap_or(m.dof().max(1));
     let settings = Settings::default();
+    let findings = crate::findings::spatial_closures(m, file)?;
     let unstable = |e| match e {
         flexure::Error::Unstable { .. } => format!(
             "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
@@ -246,6 +259,7 @@ pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target
     if let Some(limit) = modes.limit {
         v["limit_fraction"] = json!(limit);
     }
+    put_findings(&mut v, findings);
     Ok(v)
 }
 

@@ -303,6 +303,9 @@ pub fn modes(m: &SpatialMechanism, settings: &Settings, count: usize) -> Result<
         return Err(Error::Unstable { what: "modes", load_fraction: s.limit.unwrap_or(1.0) });
     }
     let (z, k) = statics::stiffness(m, &s);
+    if z.ncols() == 0 {
+        return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can vibrate".into() });
+    }
     let mass = sys.mass_matrix(&s.q);
     let mz = z.transpose() * mass * &z;
     let found = finite_modes(&k, &mz, count)?;

@@ -150,11 +150,17 @@ fn start_step(
     } else {
         (linalg::least_squares(b, &(-c)), linalg::null_space(b))
     };
-    let reduced = z.transpose() * a * &z;
-    let rhs = -(z.transpose() * (r + a * &particular));
-    let svd = nalgebra::SVD::new(reduced, true, true);
-    let cutoff = 1e-14 * svd.singular_values.amax();
-    let coefficients = svd.solve(&rhs, cutoff).ok()?;
+    // Closures that leave no motion: the particular step is the whole step
+    // (nalgebra's SVD refuses an empty matrix).
+    let coefficients = if z.ncols() == 0 {
+        nalgebra::DVector::zeros(0)
+    } else {
+        let reduced = z.transpose() * a * &z;
+        let rhs = -(z.transpose() * (r + a * &particular));
+        let svd = nalgebra::SVD::new(reduced, true, true);
+        let cutoff = 1e-14 * svd.singular_values.amax();
+        svd.solve(&rhs, cutoff).ok()?
+    };
     let dy = particular + z * coefficients;
     let dlambda = if b.nrows() == 0 {
         nalgebra::DVector::zeros(0)

@@ -14,6 +14,7 @@
 //! paths (rotations that add, the tree's $O(n)$ factorization).
 
 pub mod buckling;
+pub mod findings;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
@@ -274,6 +275,9 @@ pub struct SpatialMechanism {
     pub schedules: Vec<crate::mechanism::schedule::Schedule<sweep::SpatialParameter>>,
     /// "line L, column C" of each closure in its file, for errors (empty if built in code).
     pub closure_places: Vec<String>,
+    /// Per closure, whether the file says `preload = true`: open at rest on
+    /// purpose ([`findings::open_closures`] then notes it instead of warning).
+    pub closure_preloads: Vec<bool>,
     /// `parent_joint[b]`: the joint whose child is body `b`.
     parent_joint: Vec<Option<usize>>,
     dof: usize,
@@ -360,6 +364,7 @@ impl SpatialMechanism {
             initial_velocity: Vec::new(),
             schedules: Vec::new(),
             auto_order: Vec::new(),
+            closure_preloads: Vec::new(),
             closure_places: Vec::new(),
             parent_joint,
             dof: offset,

@@ -75,14 +75,13 @@ impl Source<'_> {
 }
 
 /// The planar file's keys that a spatial file does not take yet, with what they are.
-const PLANAR_ONLY: [(&str, &str); 7] = [
+const PLANAR_ONLY: [(&str, &str); 6] = [
     ("notch", "a circular notch hinge"),
     ("density", "a flexure's own mass"),
     ("mass_per_length", "a flexure's own mass"),
     ("yield_strength", "the stress report's safety factor"),
     ("shape", "the deflection line's points"),
     ("quadrature", "the planar flexure's Gauss rule"),
-    ("preload", "a closure's assembly preload"),
 ];
 
 /// A TOML or serde error of `text`, placed. A message that names no key
@@ -220,7 +219,7 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
             .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
         (m, places)
     };
-    m.closure_places = places;
+    (m.closure_places, m.closure_preloads) = places.into_iter().unzip();
     // Joints are in parents-first order, the file's tables in file order: matched by name.
     m.auto_order = m
         .joints

@@ -57,6 +57,7 @@ pub(super) struct WeldToml {
     b_origin: Option<Spanned<[f64; 3]>>,
     b_rpy: Option<Spanned<[f64; 3]>>,
     b_rpy_deg: Option<Spanned<[f64; 3]>>,
+    preload: Option<Spanned<bool>>,
 }
 
 #[derive(Deserialize)]
@@ -68,6 +69,7 @@ pub(super) struct PinToml {
     b: Spanned<String>,
     b_at: Option<Spanned<[f64; 3]>>,
     b_axis: Option<Spanned<[f64; 3]>>,
+    preload: Option<Spanned<bool>>,
 }
 
 #[derive(Deserialize)]
@@ -77,6 +79,7 @@ pub(super) struct BallToml {
     a_at: Option<Spanned<[f64; 3]>>,
     b: Spanned<String>,
     b_at: Option<Spanned<[f64; 3]>>,
+    preload: Option<Spanned<bool>>,
 }
 
 /// Each `[[body]]` table's mass, centre of mass and inertia about it: a
@@ -217,9 +220,11 @@ pub(super) fn closures(
     find: &Find,
     rest: &[Isometry3<f64>],
     (welds, pins, balls): (&[WeldToml], &[PinToml], &[BallToml]),
-) -> Result<(Vec<SpatialClosure>, Vec<String>)> {
+) -> Result<(Vec<SpatialClosure>, Vec<(String, bool)>)> {
     let mut closures = Vec::new();
+    // Each closure's place in the file, and whether it says `preload = true`.
     let mut places = Vec::new();
+    let preload = |p: &Option<Spanned<bool>>| p.as_ref().is_some_and(|p| *p.get_ref());
     let distinct = |a: &Spanned<String>, b: &Spanned<String>, what: &str| -> Result<(usize, usize)> {
         let (ia, ib) = (find(a)?, find(b)?);
         if ia == ib {
@@ -235,7 +240,7 @@ pub(super) fn closures(
         let b_origin =
             src.placement(&owner, ["b_origin", "b_rpy", "b_rpy_deg"], &w.b_origin, &w.b_rpy, &w.b_rpy_deg)?;
         closures.push(SpatialClosure::Weld { a, a_origin, b, b_origin });
-        places.push(place(src.text, w.a.span().start));
+        places.push((place(src.text, w.a.span().start), preload(&w.preload)));
     }
     for p in pins {
         let owner = format!("pin of {:?} and {:?}: ", p.a.get_ref(), p.b.get_ref());
@@ -261,14 +266,14 @@ pub(super) fn closures(
         let c = SpatialClosure::pin(a, Point3::from(a_at), a_axis, b, Point3::from(b_at), b_axis)
             .map_err(|e| src.placed(&owner, &axis.span(), e))?;
         closures.push(c);
-        places.push(place(src.text, p.a.span().start));
+        places.push((place(src.text, p.a.span().start), preload(&p.preload)));
     }
     for ball in balls {
         let owner = format!("ball of {:?} and {:?}: ", ball.a.get_ref(), ball.b.get_ref());
         let (a, b) = distinct(&ball.a, &ball.b, "ball")?;
         let (a_at, b_at) = (src.array(&owner, "a_at", &ball.a_at)?, src.array(&owner, "b_at", &ball.b_at)?);
         closures.push(SpatialClosure::Ball { a, a_at: Point3::from(a_at), b, b_at: Point3::from(b_at) });
-        places.push(place(src.text, ball.a.span().start));
+        places.push((place(src.text, ball.a.span().start), preload(&ball.preload)));
     }
     Ok((closures, places))
 }

@@ -1,0 +1,110 @@
+//! Open closures of a spatial mechanism: a weld, pin or ball whose two
+//! sides do not meet with every joint at rest, and the preload that closing
+//! it puts into the unloaded mechanism, as the planar
+//! [`crate::mechanism::findings::open_closures`] finds them (the same
+//! [`OpenClosure`], and the same [`GAP_TOLERANCE`]).
+
+use super::kinematics::frames;
+use super::statics::assemble_unloaded;
+use super::{SpatialClosure, SpatialMechanism};
+use crate::error::{Error, Result};
+use crate::mechanism::findings::{GAP_TOLERANCE, OpenClosure};
+use crate::solver::Settings;
+use nalgebra::UnitQuaternion;
+
+/// `weld of "a" and "b"`, `pin of …` or `ball of …`.
+pub fn closure_name(m: &SpatialMechanism, i: usize) -> String {
+    let kind = match m.closures[i] {
+        SpatialClosure::Weld { .. } => "weld",
+        SpatialClosure::Pin { .. } => "pin",
+        SpatialClosure::Ball { .. } => "ball",
+    };
+    let [a, b] = m.closures[i].bodies();
+    format!("{kind} of {:?} and {:?}", m.bodies[a].name, m.bodies[b].name)
+}
+
+/// Each closure's gap at rest: the distance between its two points (m),
+/// and for a weld the angle between its two frames, for a pin that between
+/// its two axes (rad, in $[0, \pi]$).
+pub fn rest_gaps(m: &SpatialMechanism) -> Vec<(f64, Option<f64>)> {
+    let f = frames(m, &m.rest());
+    m.closures
+        .iter()
+        .map(|c| match *c {
+            SpatialClosure::Weld { a, a_origin, b, b_origin } => {
+                let (fa, fb) = (f.bodies[a] * a_origin, f.bodies[b] * b_origin);
+                let gap = (fa.translation.vector - fb.translation.vector).norm();
+                let turn: UnitQuaternion<f64> = fa.rotation.inverse() * fb.rotation;
+                (gap, Some(turn.angle()))
+            }
+            SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_axis, .. } => {
+                let gap = (f.bodies[a] * a_at - f.bodies[b] * b_at).norm();
+                let (za, zb) = (f.bodies[a].rotation * a_axis, f.bodies[b].rotation * b_axis);
+                (gap, Some(za.angle(&zb)))
+            }
+            SpatialClosure::Ball { a, a_at, b, b_at } => ((f.bodies[a] * a_at - f.bodies[b] * b_at).norm(), None),
+        })
+        .collect()
+}
+
+/// The closures of `m` that do not meet at rest (by more than
+/// [`GAP_TOLERANCE`] of [`SpatialMechanism::size`], or of a radian), each
+/// with the force and moment it carries in the unloaded, assembled
+/// mechanism (`None` if that cannot be assembled from rest, as every solve
+/// of it then says): a warning, or a note where the file says
+/// `preload = true`. An error only if the assembly is interrupted.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::file::spatial_from_toml;
+/// use flexure::mechanism::spatial::findings::open_closures;
+/// // Two sprung hinges about z whose arms' tips meet 1 mm apart at rest: a ball closes them.
+/// let m = spatial_from_toml("dimension = 3\n\
+///     [[joint]]\nname = \"l\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 1.0\n\
+///     [[joint]]\nname = \"r\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\norigin = [0.2, 0.0, 0.0]\nstiffness = 1.0\n\
+///     [[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [-0.099, 0.0, 0.0]\n").unwrap();
+/// let open = open_closures(&m, &Default::default()).unwrap();
+/// assert_eq!(open.len(), 1);
+/// assert!((open[0].gap - 1e-3).abs() < 1e-12 && open[0].turn.is_none());
+/// assert!(open[0].message().contains("ball of \"a\" and \"b\" is open at rest by 1.0"));
+/// ```
+pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
+    let length = m.size();
+    let open: Vec<(usize, (f64, Option<f64>))> = rest_gaps(m)
+        .into_iter()
+        .enumerate()
+        .filter(|(_, (gap, turn))| *gap > GAP_TOLERANCE * length || turn.is_some_and(|t| t.abs() > GAP_TOLERANCE))
+        .collect();
+    if open.is_empty() {
+        return Ok(Vec::new());
+    }
+    let unloaded = match assemble_unloaded(m, &m.loads().zero_like(), settings) {
+        Ok(s) => Some(s),
+        Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
+        Err(e) => return Err(e),
+    };
+    let mut rows = Vec::with_capacity(m.closures.len());
+    let mut row = 0;
+    for c in &m.closures {
+        rows.push(row);
+        row += c.equations();
+    }
+    Ok(open
+        .into_iter()
+        .map(|(i, (gap, turn))| {
+            // Multipliers: the force (3), then a weld's or pin's misalignment moment.
+            let mu = unloaded.as_ref().map(|s| &s.multipliers[rows[i]..rows[i] + m.closures[i].equations()]);
+            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            OpenClosure {
+                closure: i,
+                what: closure_name(m, i),
+                place: m.closure_places.get(i).cloned().unwrap_or_default(),
+                gap,
+                turn,
+                force: mu.map(|mu| norm(&mu[..3])),
+                moment: mu.filter(|mu| mu.len() > 3).map(|mu| norm(&mu[3..])),
+                preload: m.closure_preloads.get(i).copied().unwrap_or(false),
+            }
+        })
+        .collect())
+}
