@@ -212,6 +212,9 @@ pub(super) fn forces(src: &Source, find: &Find, tables: &[ForceToml]) -> Result<
     Ok(forces)
 }
 
+/// A closure's place in the file, and whether it says `preload = true`.
+pub(super) type Placed = (String, bool);
+
 /// The closures (welds, then pins, then balls) and where each is written.
 /// A pin's axis on `b` is, unless `b_axis` gives it, where its `axis` (in
 /// `a`'s frame) lies at rest (`rest`: the bodies' frames at the joints' rest).
@@ -220,7 +223,7 @@ pub(super) fn closures(
     find: &Find,
     rest: &[Isometry3<f64>],
     (welds, pins, balls): (&[WeldToml], &[PinToml], &[BallToml]),
-) -> Result<(Vec<SpatialClosure>, Vec<(String, bool)>)> {
+) -> Result<(Vec<SpatialClosure>, Vec<Placed>)> {
     let mut closures = Vec::new();
     // Each closure's place in the file, and whether it says `preload = true`.
     let mut places = Vec::new();
