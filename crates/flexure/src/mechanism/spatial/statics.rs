@@ -21,7 +21,7 @@
 //! only Newton's rate and the stability tests' matrix see the difference;
 //! [`stiffness`] and [`compliance`] take the exact Hessian.
 
-use super::kinematics::{SpatialFrames, attach, distance, frames_level_into};
+use super::kinematics::{SpatialFrames, attach, distance_of, frames_level_into};
 use super::lagrangian::{SpatialAssembly, add_closure_hessian, add_loads, assemble_into};
 use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
@@ -83,7 +83,10 @@ pub struct SpatialKkt<'a> {
     assembly: SpatialAssembly,
     loads: SpatialLoads,
     mu: Vec<f64>,
-    pair: RefCell<[SpatialFrames; 2]>,
+    /// Pose-level frames for [`solver::Problem::distance`], each with
+    /// whether it holds its coordinates' frames yet: a continuation asks
+    /// for the distance from the same state several times.
+    pair: RefCell<([SpatialFrames; 2], [bool; 2])>,
     /// The stability tests' matrix and Cholesky scratch ($n^2$ each).
     definite: Vec<f64>,
     scratch: Vec<f64>,
@@ -158,7 +161,7 @@ impl<'a> SpatialKkt<'a> {
             assembly: SpatialAssembly::new(m),
             loads: from.clone(),
             mu: vec![0.0; m.constraints()],
-            pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
+            pair: RefCell::new(([SpatialFrames::new(m), SpatialFrames::new(m)], [false; 2])),
             definite: vec![0.0; n * n],
             scratch: vec![0.0; n * n],
             row_scale,
@@ -179,12 +182,22 @@ impl<'a> SpatialKkt<'a> {
     fn solution(&mut self, x: &[f64], end: bool, path: &solver::Path) -> Result<SpatialSolution> {
         let m = self.mechanism;
         let n = m.dof();
-        frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
-        let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
         let mu = self.multipliers(x);
         let loads = if end { &self.to } else { &self.from };
-        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
-        let multipliers = settled(m, &self.frames, &self.assembly, &mu, loads);
+        let multipliers = if mu.is_empty() {
+            // The energy alone: the joints' at their coordinates, at any
+            // level, so from the last evaluation if that was at `x`.
+            let at_x = self.frames.coordinates.iter().zip(&x[..n]).all(|(a, b)| a.to_bits() == b.to_bits());
+            if !at_x {
+                frames_level_into(m, &x[..n], Level::Pose, &mut self.frames);
+            }
+            mu
+        } else {
+            frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
+            assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
+            settled(m, &self.frames, &self.assembly, &mu, loads)
+        };
+        let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
         if !(energy.is_finite() && x.iter().chain(&multipliers).all(|v| v.is_finite())) {
             return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
         }
@@ -339,9 +352,29 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
         linalg::positive_definite(k, n, &mut self.scratch)
     }
 
+    /// [`super::kinematics::distance`], with the frames at a configuration
+    /// of the last call kept (the same coordinates, bit for bit, give the
+    /// same frames).
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        let n = self.mechanism.dof();
-        distance(self.mechanism, &a[..n], &b[..n], &mut self.pair.borrow_mut())
+        let m = self.mechanism;
+        let n = m.dof();
+        let (a, b) = (&a[..n], &b[..n]);
+        let (frames, held) = &mut *self.pair.borrow_mut();
+        let holds = |f: &SpatialFrames, held: bool, q: &[f64]| {
+            held && f.coordinates.iter().zip(q).all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        // Frames for `b` (slot 1 unless slot 0 already holds them), then for `a` in the other.
+        let ib = usize::from(!holds(&frames[0], held[0], b));
+        if !holds(&frames[ib], held[ib], b) {
+            frames_level_into(m, b, Level::Pose, &mut frames[ib]);
+            held[ib] = true;
+        }
+        let ia = 1 - ib;
+        if !holds(&frames[ia], held[ia], a) {
+            frames_level_into(m, a, Level::Pose, &mut frames[ia]);
+            held[ia] = true;
+        }
+        distance_of(m, &frames[ia], &frames[ib])
     }
 
     fn scale(&self) -> f64 {
