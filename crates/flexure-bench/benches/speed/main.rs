@@ -9,6 +9,7 @@ use criterion::{criterion_group, criterion_main};
 mod batch;
 mod dynamics;
 mod joint;
+mod linalg;
 mod mechanism;
 mod reference;
 mod rod;
@@ -39,6 +40,7 @@ criterion_group!(
     rod::run,
     dynamics::run,
     spatial::run,
-    spatial_mechanism::run
+    spatial_mechanism::run,
+    linalg::run
 );
 criterion_main!(benches);

@@ -436,6 +436,13 @@ pub fn distance(m: &SpatialMechanism, a: &[f64], b: &[f64], buffers: &mut [Spati
     let [fa, fb] = buffers;
     frames_level_into(m, a, Level::Pose, fa);
     frames_level_into(m, b, Level::Pose, fb);
+    distance_of(m, fa, fb)
+}
+
+/// [`distance`] between the frames `fa` and `fb`, evaluated (to any
+/// level) at the configurations it compares.
+pub(crate) fn distance_of(m: &SpatialMechanism, fa: &SpatialFrames, fb: &SpatialFrames) -> f64 {
+    let (a, b) = (&fa.coordinates, &fb.coordinates);
     let mut d: f64 = 0.0;
     for i in 1..m.bodies.len() {
         d = d.max(crate::space::rotation_angle(fa.body_rotation(i), fb.body_rotation(i)));

@@ -21,13 +21,13 @@
 //! only Newton's rate and the stability tests' matrix see the difference;
 //! [`stiffness`] and [`compliance`] take the exact Hessian.
 
-use super::kinematics::{SpatialFrames, attach, distance, frames_level_into};
+use super::kinematics::{SpatialFrames, attach, distance_of, frames_level_into};
 use super::lagrangian::{SpatialAssembly, add_closure_hessian, add_loads, assemble_into};
 use super::{SpatialLoads, SpatialMechanism};
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
-use crate::mechanism::equilibria::refine_limit;
+use crate::mechanism::equilibria::{lost, refine_limit};
 use crate::solver::{self, Settings};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3, Vector3};
 use std::cell::RefCell;
@@ -72,13 +72,24 @@ pub struct SpatialKkt<'a> {
     closure_scale: Vec<f64>,
     multiplier_scale: Vec<f64>,
     weight: Vec<f64>,
+    /// $\sqrt{s_i}$ of the row scales: the stability tests' coordinates.
+    root_scale: Vec<f64>,
     scale: f64,
+    /// The scale of the assembly alone (the loads at $\lambda = 0$ both
+    /// ends), whose tolerance [`assemble`] converges to.
+    start_scale: f64,
     margin: f64,
     frames: SpatialFrames,
     assembly: SpatialAssembly,
     loads: SpatialLoads,
     mu: Vec<f64>,
-    pair: RefCell<[SpatialFrames; 2]>,
+    /// Pose-level frames for [`solver::Problem::distance`], each with
+    /// whether it holds its coordinates' frames yet: a continuation asks
+    /// for the distance from the same state several times.
+    pair: RefCell<([SpatialFrames; 2], [bool; 2])>,
+    /// The stability tests' matrix and Cholesky scratch ($n^2$ each).
+    definite: Vec<f64>,
+    scratch: Vec<f64>,
 }
 
 impl<'a> SpatialKkt<'a> {
@@ -126,6 +137,7 @@ impl<'a> SpatialKkt<'a> {
             forces + tendons + mass * l.gravity.norm() * length
         };
         let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
+        let start_scale = 1.0 + (magnitude(from) + magnitude(from)) / k_min;
         if !scale.is_finite() {
             return Err(Error::invalid(
                 "loads",
@@ -138,17 +150,21 @@ impl<'a> SpatialKkt<'a> {
             from: from.clone(),
             to: to.clone(),
             change: from.difference(to),
-            row_scale,
             closure_scale,
             multiplier_scale,
             weight,
+            root_scale: row_scale.iter().map(|r| r.sqrt()).collect(),
             scale,
+            start_scale,
             margin: settings.tolerance.sqrt(),
             frames: f,
             assembly: SpatialAssembly::new(m),
             loads: from.clone(),
             mu: vec![0.0; m.constraints()],
-            pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
+            pair: RefCell::new(([SpatialFrames::new(m), SpatialFrames::new(m)], [false; 2])),
+            definite: vec![0.0; n * n],
+            scratch: vec![0.0; n * n],
+            row_scale,
         })
     }
 
@@ -166,12 +182,22 @@ impl<'a> SpatialKkt<'a> {
     fn solution(&mut self, x: &[f64], end: bool, path: &solver::Path) -> Result<SpatialSolution> {
         let m = self.mechanism;
         let n = m.dof();
-        frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
-        let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
         let mu = self.multipliers(x);
         let loads = if end { &self.to } else { &self.from };
-        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
-        let multipliers = settled(m, &self.frames, &self.assembly, &mu, loads);
+        let multipliers = if mu.is_empty() {
+            // The energy alone: the joints' at their coordinates, at any
+            // level, so from the last evaluation if that was at `x`.
+            let at_x = self.frames.coordinates.iter().zip(&x[..n]).all(|(a, b)| a.to_bits() == b.to_bits());
+            if !at_x {
+                frames_level_into(m, &x[..n], Level::Pose, &mut self.frames);
+            }
+            mu
+        } else {
+            frames_level_into(m, &x[..n], Level::Jacobian, &mut self.frames);
+            assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
+            settled(m, &self.frames, &self.assembly, &mu, loads)
+        };
+        let energy = self.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
         if !(energy.is_finite() && x.iter().chain(&multipliers).all(|v| v.is_finite())) {
             return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
         }
@@ -267,31 +293,33 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
             return true;
         }
         let size = n + rows;
-        let s: Vec<f64> = self.row_scale.iter().map(|r| r.sqrt()).collect();
-        let h = DMatrix::from_fn(n, n, |r, c| {
-            let entry = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r];
-            0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c]
-        });
-        let mut h = h;
-        if rows > 0 {
-            // Redundant closures: their indeterminate part of μ taken least (see `settled`).
-            let mu = self.mu.clone();
-            let best = settled(m, &self.frames, &self.assembly, &mu, &self.loads);
-            if best != mu {
-                let change: Vec<f64> = best.iter().zip(&mu).map(|(a, b)| a - b).collect();
-                let mut extra = DMatrix::zeros(n, n);
-                add_closure_hessian(m, &self.frames, &change, &mut extra);
-                h += DMatrix::from_fn(n, n, |r, c| extra[(r, c)] * s[r] * s[c]);
+        let s = &self.root_scale;
+        let entry = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r];
+        if rows == 0 {
+            // In the buffers: no allocation on the continuation's every step.
+            let k = &mut self.definite;
+            for c in 0..n {
+                for r in 0..n {
+                    k[c * n + r] = 0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c];
+                }
+                k[c * n + c] -= self.margin;
             }
+            return linalg::positive_definite(k, n, &mut self.scratch);
         }
-        let mut k = if rows == 0 {
-            h
-        } else {
-            let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i] * s[c]);
-            let z = linalg::null_space(&g);
-            let k = z.transpose() * h * &z;
-            (&k + k.transpose()) * 0.5
-        };
+        let mut h = DMatrix::from_fn(n, n, |r, c| 0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c]);
+        // Redundant closures: their indeterminate part of μ taken least (see `settled`).
+        let mu = &self.mu;
+        let best = settled(m, &self.frames, &self.assembly, mu, &self.loads);
+        if best != *mu {
+            let change: Vec<f64> = best.iter().zip(mu).map(|(a, b)| a - b).collect();
+            let mut extra = DMatrix::zeros(n, n);
+            add_closure_hessian(m, &self.frames, &change, &mut extra);
+            h += DMatrix::from_fn(n, n, |r, c| extra[(r, c)] * s[r] * s[c]);
+        }
+        let g = DMatrix::from_fn(rows, n, |i, c| jacobian[c * size + n + i] / self.closure_scale[i] * s[c]);
+        let z = linalg::null_space(&g);
+        let k = z.transpose() * h * &z;
+        let mut k = (&k + k.transpose()) * 0.5;
         for i in 0..k.nrows() {
             k[(i, i)] -= self.margin;
         }
@@ -306,20 +334,47 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
         if m.constraints() > 0 || n == 0 {
             return false;
         }
-        let mut k = DMatrix::from_fn(n, n, |r, c| {
-            0.5 * (jacobian[c * n + r] / self.row_scale[r] + jacobian[r * n + c] / self.row_scale[c])
-        });
-        for (j, s) in m.joints.iter().zip(&self.frames.joints) {
-            let d = s.gradient.len();
-            let mut block = k.view_mut((j.offset, j.offset), (d, d));
-            block -= &s.stiffness * crate::mechanism::statics::FAR_MARGIN;
+        let k = &mut self.definite;
+        for c in 0..n {
+            for r in 0..n {
+                k[c * n + r] =
+                    0.5 * (jacobian[c * n + r] / self.row_scale[r] + jacobian[r * n + c] / self.row_scale[c]);
+            }
         }
-        linalg::is_positive_definite(&k)
+        for (j, s) in m.joints.iter().zip(&self.frames.joints) {
+            let (o, d) = (j.offset, s.gradient.len());
+            for c in 0..d {
+                for r in 0..d {
+                    k[(o + c) * n + o + r] -= s.stiffness[(r, c)] * crate::mechanism::statics::FAR_MARGIN;
+                }
+            }
+        }
+        linalg::positive_definite(k, n, &mut self.scratch)
     }
 
+    /// [`super::kinematics::distance`], with the frames at a configuration
+    /// of the last call kept (the same coordinates, bit for bit, give the
+    /// same frames).
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        let n = self.mechanism.dof();
-        distance(self.mechanism, &a[..n], &b[..n], &mut self.pair.borrow_mut())
+        let m = self.mechanism;
+        let n = m.dof();
+        let (a, b) = (&a[..n], &b[..n]);
+        let (frames, held) = &mut *self.pair.borrow_mut();
+        let holds = |f: &SpatialFrames, held: bool, q: &[f64]| {
+            held && f.coordinates.iter().zip(q).all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        // Frames for `b` (slot 1 unless slot 0 already holds them), then for `a` in the other.
+        let ib = usize::from(!holds(&frames[0], held[0], b));
+        if !holds(&frames[ib], held[ib], b) {
+            frames_level_into(m, b, Level::Pose, &mut frames[ib]);
+            held[ib] = true;
+        }
+        let ia = 1 - ib;
+        if !holds(&frames[ia], held[ia], a) {
+            frames_level_into(m, a, Level::Pose, &mut frames[ia]);
+            held[ia] = true;
+        }
+        distance_of(m, &frames[ia], &frames[ib])
     }
 
     fn scale(&self) -> f64 {
@@ -352,7 +407,15 @@ impl solver::Problem<f64> for SpatialKkt<'_> {
 fn settled(m: &SpatialMechanism, f: &SpatialFrames, a: &SpatialAssembly, mu: &[f64], loads: &SpatialLoads) -> Vec<f64> {
     let g = &a.closure_jacobian;
     let rows = g.nrows();
-    if rows == 0 || g.clone().svd(false, false).rank(1e-10 * g.amax().max(f64::MIN_POSITIVE)) == rows {
+    if rows == 0 {
+        return mu.to_vec();
+    }
+    // Full row rank by a wide margin (a Cholesky of $GG^T$) is full rank to
+    // the singular values too; only a doubtful case pays for them.
+    let mut gram = vec![0.0; rows * rows];
+    if linalg::columns_independent(g.transpose().as_slice(), g.ncols(), rows, &mut gram)
+        || g.clone().svd(false, false).rank(1e-10 * g.amax().max(f64::MIN_POSITIVE)) == rows
+    {
         return mu.to_vec();
     }
     let free = linalg::null_space(&g.transpose());
@@ -435,26 +498,64 @@ fn settled(m: &SpatialMechanism, f: &SpatialFrames, a: &SpatialAssembly, mu: &[f
 pub fn solve(m: &SpatialMechanism, settings: &Settings) -> Result<SpatialSolution> {
     let to = m.loads();
     let zero = to.zero_like();
-    let start = assemble_unloaded(m, &zero, settings)?;
-    solve_between(m, &start, &to, settings)
+    // One problem from no load to the full load, as the planar solve:
+    // assembled at λ = 0, then continued from there without a second
+    // solve or stability test.
+    let mut problem = SpatialKkt::new(m, &zero, &to, settings)?;
+    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
+    let path = assemble(&mut problem, &mut ws, settings)?;
+    let x0 = ws.x.clone();
+    if m.constraints() > 0 {
+        // Redundant closures: `solve_between` continues from the settled
+        // multipliers, at which this Jacobian was not evaluated.
+        let p = &problem;
+        if settled(m, &p.frames, &p.assembly, &p.mu, &p.loads) != p.mu {
+            let start = problem.solution(&x0, false, &path)?;
+            return solve_between(m, &start, &to, settings);
+        }
+    }
+    // The continuation's own count, as from a start solved elsewhere: the
+    // assembly's iterations are not the path's.
+    let report = solver::NewtonReport { stop: solver::NewtonStop::Converged, iterations: 0, residual: path.residual };
+    ws.restore_start(report, path.stable);
+    let found = continued(&mut problem, &mut ws, settings);
+    if !lost::<SpatialMechanism>(&found, path.stable) {
+        return found;
+    }
+    let start = problem.solution(&x0, false, &path)?;
+    refine_limit(m, &start, &to, settings, found)
 }
 
 /// The unloaded, assembled configuration under `loads` (no load: the
 /// closures closed from rest by Newton).
 pub fn assemble_unloaded(m: &SpatialMechanism, loads: &SpatialLoads, settings: &Settings) -> Result<SpatialSolution> {
     let mut problem = SpatialKkt::new(m, loads, loads, settings)?;
-    let dim = solver::Problem::dim(&problem);
-    let mut ws = solver::Workspace::new(dim);
+    let mut ws = solver::Workspace::new(solver::Problem::dim(&problem));
+    let path = assemble(&mut problem, &mut ws, settings)?;
+    let x = ws.x.clone();
+    problem.solution(&x, false, &path)
+}
+
+/// Newton from the joints' rest at $\lambda = 0$ into `ws`, to the
+/// tolerance of the assembly alone (the problem's loads at $\lambda = 0$
+/// at both ends, whatever they are at $\lambda = 1$), and the stability
+/// there: the path of no steps. `ws` is left as [`solver::newton`] leaves
+/// it, a start for [`solver::Workspace::start_stable`].
+fn assemble(problem: &mut SpatialKkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<solver::Path> {
+    let m = problem.mechanism;
+    ws.x.fill(0.0);
     ws.x[..m.dof()].copy_from_slice(&m.rest());
-    let report = solver::newton(&mut problem, &mut ws, 0.0, settings).map_err(|e| match e {
+    let full = std::mem::replace(&mut problem.scale, problem.start_scale);
+    let report = solver::newton(problem, ws, 0.0, settings);
+    problem.scale = full;
+    let report = report.map_err(|e| match e {
         Error::NoConvergence { .. } | Error::Singular { .. } => Error::Singular {
             what: format!("mechanism assembly: the closures could not be closed from the joints' rest ({e})"),
         },
         e => e,
     })?;
-    let stable = solver::Problem::stable(&mut problem, &ws.x, 0.0, &ws.jacobian);
-    let x = ws.x.clone();
-    problem.solution(&x, false, &solver::Path::at_start(report, stable))
+    let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
+    Ok(solver::Path::at_start(report, stable))
 }
 
 /// Equilibrium under `to`, continued from `start` (an equilibrium under
@@ -489,10 +590,20 @@ pub(in crate::mechanism) fn follow(
     let mut ws = solver::Workspace::new(dim);
     let x0 = problem.state(&start.q, &start.multipliers);
     ws.x.copy_from_slice(&x0);
-    let path = solver::trace(&mut problem, &mut ws, settings)?;
+    continued(&mut problem, &mut ws, settings)
+}
+
+/// The continuation of `problem` from the start in `ws` to $\lambda = 1$,
+/// as [`follow`] reports it.
+fn continued(
+    problem: &mut SpatialKkt,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<SpatialSolution> {
+    let path = solver::trace(problem, ws, settings)?;
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
-    match path.error(&problem) {
+    match path.error(&*problem) {
         None if path.stable => {
             let x = ws.x.clone();
             problem.solution(&x, true, &path)
