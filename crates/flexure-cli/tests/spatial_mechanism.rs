@@ -328,11 +328,9 @@ fn order_auto_raises_a_spatial_flexure_until_the_estimate_meets_accuracy() {
 /// Reference: the library's `mechanism::spatial::findings::open_closures`
 /// (whose numbers `tests/spatial_mechanism.rs` checks against small
 /// rotations): a ball open 1 mm at rest is told on stderr with its place in
-/// the file and listed under `findings` by `solve` (and told by `buckle`
-/// and `modes`, which this locked mechanism then refuses), as a warning;
-/// with `preload = true`, as a note. (`simulate` tells it by the same call;
-/// this mechanism's ball has dependent equations, its motion being planar,
-/// which the integrator does not take.)
+/// the file and listed under `findings` by `solve` and `simulate` (and
+/// told by `buckle` and `modes`, which this locked mechanism then refuses),
+/// as a warning; with `preload = true`, as a note.
 #[test]
 fn spatial_open_closures_are_told_and_listed() {
     let dir = tempfile::tempdir().unwrap();
@@ -342,7 +340,7 @@ fn spatial_open_closures_are_told_and_listed() {
         [[body]]\nname = \"a\"\nmass = 0.1\nizz = 1e-4\nixx = 1e-4\niyy = 1e-4\n\
         [[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.001, 0.1, 0.0]\n";
     let file = written(&dir, text);
-    for args in [vec!["solve"], vec!["buckle"], vec!["modes"]] {
+    for args in [vec!["solve"], vec!["buckle"], vec!["modes"], vec!["simulate", "--duration", "0.01"]] {
         // buckle and modes: the ball leaves no motion, an error after the finding was told.
         let mut all = vec![args[0], file.as_str()];
         all.extend(&args[1..]);

@@ -43,6 +43,12 @@ pub struct SpatialSystem<'a> {
     frames: SpatialFrames,
     assembly: SpatialAssembly,
     pair: RefCell<[SpatialFrames; 2]>,
+    /// An orthonormal basis $U^T$ ($r\times m$) of the closure equations'
+    /// independent combinations, where they are dependent at rest (a
+    /// planar linkage's pins in space: their out-of-plane rows vanish), so
+    /// that the integrator's Newton matrix is not singular; `None` when
+    /// all $m$ are independent.
+    independent: Option<DMatrix<f64>>,
 }
 
 /// A body's mass terms at one configuration: its centre of mass's
@@ -73,6 +79,7 @@ impl<'a> SpatialSystem<'a> {
             frames: SpatialFrames::new(m),
             assembly: SpatialAssembly::new(m),
             pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
+            independent: independent_closures(m),
         })
     }
 
@@ -181,7 +188,7 @@ impl System for SpatialSystem<'_> {
     }
 
     fn closures(&self) -> usize {
-        self.mechanism.constraints()
+        self.independent.as_ref().map_or(self.mechanism.constraints(), |u| u.nrows())
     }
 
     fn dynamics(&mut self, q: &[f64], v: &[f64], _t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
@@ -250,8 +257,16 @@ impl System for SpatialSystem<'_> {
         frames_into(m, q, &mut self.frames);
         let (mut cv, mut gm) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
         closures_into(m, &self.frames, &mut cv, &mut gm);
-        c.copy_from_slice(cv.as_slice());
-        g.copy_from_slice(gm.as_slice());
+        match &self.independent {
+            None => {
+                c.copy_from_slice(cv.as_slice());
+                g.copy_from_slice(gm.as_slice());
+            }
+            Some(u) => {
+                c.copy_from_slice((u * cv).as_slice());
+                g.copy_from_slice((u * gm).as_slice());
+            }
+        }
         Ok(())
     }
 
@@ -310,6 +325,29 @@ pub fn modes(m: &SpatialMechanism, settings: &Settings, count: usize) -> Result<
     let mz = z.transpose() * mass * &z;
     let found = finite_modes(&k, &mz, count)?;
     Ok(Modes { shapes: &z * &found.shapes, limit: s.limit, coordinates: s.q.clone(), ..found })
+}
+
+/// $U^T$ for [`SpatialSystem`]'s closures: the left singular vectors of
+/// $G$ at the joints' rest whose singular values exceed $10^{-10}$ of the
+/// largest, as rows; `None` when $G$ has full row rank there (or no rows).
+fn independent_closures(m: &SpatialMechanism) -> Option<DMatrix<f64>> {
+    let rows = m.constraints();
+    if rows == 0 {
+        return None;
+    }
+    let mut f = SpatialFrames::new(m);
+    frames_into(m, &m.rest(), &mut f);
+    let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
+    closures_into(m, &f, &mut c, &mut g);
+    let svd = g.svd(true, false);
+    let top = svd.singular_values.amax();
+    let rank = svd.singular_values.iter().filter(|s| **s > 1e-10 * top).count();
+    if rank == rows {
+        return None;
+    }
+    let u = svd.u?;
+    let kept: Vec<usize> = (0..svd.singular_values.len()).filter(|&k| svd.singular_values[k] > 1e-10 * top).collect();
+    Some(DMatrix::from_fn(kept.len(), rows, |r, c| u[(c, kept[r])]))
 }
 
 /// One body's motion: its frame in the ground frame at each sample.
