@@ -280,7 +280,7 @@ fn a_planar_linkage_in_space_swings_as_in_the_plane() {
     let s = flexure::mechanism::file::spatial_from_toml(spatial).unwrap();
     let reference = flexure::dynamics::simulation::simulate(
         &p,
-        &flexure::dynamics::simulation::SimulationSettings { motion: motion.clone(), ..Default::default() },
+        &flexure::dynamics::simulation::SimulationSettings { motion, ..Default::default() },
         flexure::dynamics::simulation::Start::Rest,
     )
     .unwrap();
