@@ -365,3 +365,38 @@ fn spatial_open_closures_are_told_and_listed() {
     assert!(err.contains("note:") && !err.contains("warning:"), "{err}");
     assert_eq!(v["findings"][0]["severity"], "note", "{v}");
 }
+
+/// Reference: the library's spatial sweep of the same load: `draw --sweep`
+/// on a spatial file draws the unloaded shape and one shape per value the
+/// sweep reached, each named in the legend by its value, and answers the
+/// number of shapes; a bad parameter is refused naming it.
+#[test]
+fn draw_sweeps_a_spatial_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep.svg");
+    let file = example("continuum_robot.toml");
+    let (v, err) = answer(&[
+        "draw",
+        &file,
+        "--sweep",
+        "tendon.side.tension=0:0.6:4",
+        "--view",
+        "front",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(err.is_empty(), "{err}");
+    let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    let p = flexure::mechanism::spatial::sweep::SpatialParameter::parse(&m, "tendon.side.tension").unwrap();
+    let rows = flexure::mechanism::spatial::sweep::sweep(&m, &p, &[0.0, 0.2, 0.4, 0.6], &Default::default())
+        .unwrap()
+        .rows
+        .len();
+    assert_eq!((rows, v["shapes"].as_u64()), (4, Some(5)), "{v}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    for value in ["0 N", "0.2 N", "0.4 N", "0.6 N"] {
+        assert!(svg.contains(&format!("tendon.side.tension = {value}")), "no shape labelled {value}");
+    }
+    let (code, _, err) = run(&["draw", &file, "--sweep", "tendon.none.tension=0:1:2", "--out", out.to_str().unwrap()]);
+    assert!(code == 2 && err.contains("tendon.none.tension"), "{err}");
+}

@@ -5,7 +5,7 @@ use super::checks::{put_sweep_checks, solution_answer};
 use super::drawing;
 use super::load_with_reports;
 use crate::analyses::{SweepSpec, sweep_values};
-use crate::options::number;
+use crate::options::{number, warn};
 use clap::Args;
 use flexure::mechanism::statics::{Settings, Solution, solve};
 use flexure::mechanism::sweep::{Parameter, sweep};
@@ -39,17 +39,56 @@ pub struct DrawArgs {
 /// simulation's snapshots) projected from `--view`, flexures coloured by stress.
 fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechanism) -> Result<Value, String> {
     use super::spatial_drawing as sd;
-    if args.sweep.is_some() {
-        return Err(format!(
-            "--sweep: {}: draw does not sweep spatial mechanisms yet; `solve --sweep` does",
-            args.file.display()
-        ));
-    }
     let settings = Settings::default();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let unloaded =
         flexure::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
+    if let Some(spec) = &args.sweep {
+        let p =
+            flexure::mechanism::spatial::sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
+        let values = sweep_values(&spec.range);
+        let out = flexure::mechanism::spatial::sweep::sweep(m, &p, &values, &settings).map_err(err)?;
+        if out.rows.is_empty() {
+            let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
+            return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
+        }
+        // Shapes past the limit (on its far side from the first value) are labelled so, as in the plane.
+        let past = |value: f64| out.stability_limit.is_some_and(|l| (value - l.value) * (values[0] - l.value) < 0.0);
+        let marks = drawing::Marks {
+            yields: Vec::new(),
+            limit: out.stability_limit.map(|l| {
+                warn(format!(
+                    "{}: the sweep of {} lost stability at {} = {:.6e} ({:.4} % of the way)",
+                    args.file.display(),
+                    spec.parameter,
+                    spec.parameter,
+                    l.value,
+                    100.0 * l.fraction
+                ));
+                format!("stability lost at {} = {}", spec.parameter, drawing::short(l.value))
+            }),
+        };
+        let label = |v: f64| match past(v) {
+            true => format!("{} (past the stability limit)", drawing::swept(&spec.parameter, v)),
+            false => drawing::swept(&spec.parameter, v),
+        };
+        let loaded: Vec<(String, flexure::mechanism::spatial::statics::SpatialSolution)> =
+            out.rows.iter().map(|(v, s)| (label(*v), s.clone())).collect();
+        let (fig, k) = sd::spatial_figure(m, &title, &unloaded, &loaded, &marks, args.view, true)?;
+        flexure_chart::write(&args.out, &fig)?;
+        let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
+        if let Some(l) = &out.stability_limit {
+            v["stability_limit"] = json!(l);
+        }
+        if let Some((value, e)) = &out.stopped {
+            v["stopped"] = json!({ "value": value, "error": format!("{}: {e}", args.file.display()) });
+        }
+        if let Some(k) = k {
+            v["force_scale_m_per_n"] = json!(k);
+        }
+        return Ok(v);
+    }
     if let Some(duration) = args.simulate {
         let sim = crate::mechanism::spatial::simulate(m, &args.file, duration, &args.motion)?;
         let drawn = sd::spatial_motion_figures(m, &title, &unloaded, &sim, args.view, true)?;

@@ -849,8 +849,8 @@ pub struct MotionFigures {
 /// seen from `view`, flexures coloured by stress with `stress`), then two
 /// charts against time: each body's rotation vector $\theta = \varphi\thinspace\hat n$
 /// (its rotation from the ground frame, angle times unit axis; rad) and its
-/// origin (mm), x solid, y dashed, z dotted, each body in its colour. The
-/// loads are the mechanism's own at every time (a spatial run's loads are constant).
+/// origin (mm), x solid, y dashed, z dotted, each body in its colour. Each
+/// snapshot's loads (for its stresses) are its time's, schedules applied.
 ///
 /// Errors name an empty run or a shape that does not fit `m`.
 pub fn spatial_motion_figures(
