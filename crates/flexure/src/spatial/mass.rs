@@ -68,7 +68,7 @@ impl MassQuadrature {
     /// use flexure::spatial::{MassQuadrature, SpatialFlexure};
     /// let f = SpatialFlexure::new(2.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
     /// assert!(MassQuadrature::new(&f).is_none());
-    /// let q = MassQuadrature::new(&f.with_mass_per_length(Profile::Linear(1.0, 3.0)).unwrap()).unwrap();
+    /// let q = MassQuadrature::new(&f.with_mass_per_length(Profile::Linear { root: 1.0, tip: 3.0 }).unwrap()).unwrap();
     /// assert_eq!(q.stations().len(), 3 * 8);
     /// // μ = 1 + s: the rule is exact for it, ∫₀² (1 + s) ds = 4 kg.
     /// assert!((q.mass() - 4.0).abs() < 1e-14);
