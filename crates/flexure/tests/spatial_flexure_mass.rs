@@ -31,17 +31,27 @@ fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
     )
 }
 
-fn flexure_joint(name: &str, f: SpatialFlexure, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
+fn flexure_joint(
+    name: &str,
+    f: SpatialFlexure,
+    parent: usize,
+    child: usize,
+    origin: Isometry3<f64>,
+) -> SpatialJointSpec {
     spec(name, SpatialJointKind::Flexure(Box::new(f)), parent, child, origin)
 }
 
 /// A tapered rectangle with a density: mass and rotary inertia varying along it.
 fn massive(orders: [usize; 3]) -> SpatialFlexure {
-    let section =
-        SpatialSection::rectangle(2e9, Shear::Poisson(0.3), Profile::Linear { root: 0.012, tip: 0.008 }, Profile::Linear { root: 0.004, tip: 0.003 })
-            .unwrap()
-            .with_density(1200.0)
-            .unwrap();
+    let section = SpatialSection::rectangle(
+        2e9,
+        Shear::Poisson(0.3),
+        Profile::Linear { root: 0.012, tip: 0.008 },
+        Profile::Linear { root: 0.004, tip: 0.003 },
+    )
+    .unwrap()
+    .with_density(1200.0)
+    .unwrap();
     SpatialFlexure::new(0.1, section, orders).unwrap()
 }
 
@@ -105,7 +115,12 @@ fn tree() -> SpatialMechanism {
     let bodies = vec![
         SpatialBody::massless("ground"),
         SpatialBody::massless("a"),
-        SpatialBody { name: "b".into(), mass: 0.02, com: Point3::new(0.01, 0.0, 0.0), inertia: Matrix3::identity() * 1e-6 },
+        SpatialBody {
+            name: "b".into(),
+            mass: 0.02,
+            com: Point3::new(0.01, 0.0, 0.0),
+            inertia: Matrix3::identity() * 1e-6,
+        },
         SpatialBody::massless("c"),
         SpatialBody::massless("d"),
     ];
@@ -192,7 +207,11 @@ fn the_flexures_weight_has_the_gradient_and_hessian_of_its_potential() {
         for r in 0..m.dof() {
             assert!((a.hessian[(r, i)] - fd[r]).abs() < 1e-6 * a.hessian.amax(), "Hessian ({r}, {i})");
             let w = fd[r] - fdw[r];
-            assert!((weight[(r, i)] - w).abs() < 1e-6 * hscale, "weight's Hessian ({r}, {i}): {} against {w}", weight[(r, i)]);
+            assert!(
+                (weight[(r, i)] - w).abs() < 1e-6 * hscale,
+                "weight's Hessian ({r}, {i}): {} against {w}",
+                weight[(r, i)]
+            );
         }
     }
     assert!(scale > 0.0 && (&weight - weight.transpose()).amax() < 1e-12 * hscale);
@@ -263,10 +282,8 @@ fn a_cantilevers_first_bending_frequencies_are_euler_bernoullis() {
     let mut errors = Vec::new();
     for order in [2, 3, 4, 6] {
         let section = SpatialSection::uniform(0.02, ei_y, ei_z).unwrap();
-        let f = SpatialFlexure::new(l, section, [order; 3])
-            .unwrap()
-            .with_mass_per_length(Profile::Constant(mu))
-            .unwrap();
+        let f =
+            SpatialFlexure::new(l, section, [order; 3]).unwrap().with_mass_per_length(Profile::Constant(mu)).unwrap();
         let w = modes(&cantilever(f, Vector3::zeros()), &Default::default(), 2).unwrap().omega;
         let (ez, ey) = (w[0] / exact(ei_z) - 1.0, w[1] / exact(ei_y) - 1.0);
         println!("order {order}: about z {ez:.3e}, about y {ey:.3e}");
@@ -287,14 +304,15 @@ fn a_cantilevers_first_bending_frequencies_are_euler_bernoullis() {
 /// and $\rho I_p = \rho\pi d^4/32$, so $\omega = \frac{\pi}{2L}\sqrt{G/\rho}$. The
 /// mode is the one whose shape lies in the twist coordinates. A Ritz
 /// approximation again: measured 10.3 % high at twist order 1 (θ linear,
-/// $\sqrt3$ for $\pi/2$), 4.8e-4 at 2... each below the bound asserted, falling.
+/// $\sqrt3$ for $\pi/2$), 3.8e-3 at 2, 6.8e-5 at 3 and 4.3e-9 at 5, each
+/// asserted within a factor 2, falling.
 #[test]
 fn a_rods_first_torsion_frequency_is_the_closed_forms() {
     let (l, d, e, nu, rho): (f64, f64, f64, f64, f64) = (0.1, 0.004, 2e9, 0.3, 1200.0);
     let g = e / (2.0 * (1.0 + nu));
     let exact = std::f64::consts::FRAC_PI_2 / l * (g / rho).sqrt();
     let mut last = f64::INFINITY;
-    for (order, bound) in [(1, 0.11), (2, 8e-3), (3, 1.0), (5, 1.0)] {
+    for (order, bound) in [(1, 0.11), (2, 8e-3), (3, 1.4e-4), (5, 9e-9)] {
         let section = SpatialSection::circle(e, nu, Profile::Constant(d)).unwrap().with_density(rho).unwrap();
         let f = SpatialFlexure::new(l, section, [order, 3, 3]).unwrap();
         let m = cantilever(f, Vector3::zeros());
@@ -349,8 +367,8 @@ fn a_flexure_in_a_plane_sags_as_the_planar_mechanism_with_the_same_density() {
         "[[joint]]\nname = \"beam\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = {l:?}\n\
          modulus = {modulus:?}\nwidth = {width:?}\nthickness = {thickness:?}\ndensity = {rho:?}\norder = 8\n"
     );
-    let planar = from_toml(&format!("gravity = [0.0, {:?}]\n[[body]]\nname = \"tip\"\n{joint}quadrature = 24\n", -g))
-        .unwrap();
+    let planar =
+        from_toml(&format!("gravity = [0.0, {:?}]\n[[body]]\nname = \"tip\"\n{joint}quadrature = 24\n", -g)).unwrap();
     let ps = flexure::mechanism::statics::solve(&planar, &Default::default()).unwrap();
     let frame = flexure::mechanism::statics::body_frames(&planar, &ps).bodies[1];
     let spatial = spatial_from_toml(&format!(
@@ -361,7 +379,10 @@ fn a_flexure_in_a_plane_sags_as_the_planar_mechanism_with_the_same_density() {
     let s = flexure::mechanism::spatial::statics::solve(&spatial, &Default::default()).unwrap();
     let tip = placements(&spatial, &s.q).into_iter().find(|p| p.name == "tip").unwrap();
     let angle = tip.rotation[1][0].atan2(tip.rotation[0][0]);
-    println!("planar ({}, {}, {}), spatial ({}, {}, {angle})", frame.x, frame.y, frame.phi, tip.position[0], tip.position[1]);
+    println!(
+        "planar ({}, {}, {}), spatial ({}, {}, {angle})",
+        frame.x, frame.y, frame.phi, tip.position[0], tip.position[1]
+    );
     assert!(frame.phi < -0.25, "a large sag: {}", frame.phi);
     assert!((tip.position[0] - frame.x).abs() < 1e-8 * l && (tip.position[1] - frame.y).abs() < 1e-8 * l);
     assert!((angle - frame.phi).abs() < 1e-8 && tip.position[2].abs() < 1e-14);
@@ -375,7 +396,7 @@ fn a_flexure_in_a_plane_sags_as_the_planar_mechanism_with_the_same_density() {
 #[test]
 fn a_massive_rod_swinging_free_keeps_its_energy() {
     let section = SpatialSection::circle(2e7, 0.3, Profile::Constant(0.004)).unwrap().with_density(1200.0).unwrap();
-    let rod = SpatialFlexure::new(0.1, section, [2, 2, 2]).unwrap();
+    let rod = SpatialFlexure::new(0.1, section, [1, 2, 1]).unwrap();
     let weight = 1200.0 * std::f64::consts::PI * 4e-6 * 0.1 * 9.81;
     let mut m = SpatialMechanism::new(
         vec![SpatialBody::massless("ground"), SpatialBody::massless("link"), SpatialBody::massless("tip")],
@@ -395,9 +416,9 @@ fn a_massive_rod_swinging_free_keeps_its_energy() {
         Vector3::new(0.0, 0.0, -9.81),
     )
     .unwrap();
-    m.initial = vec![(0, vec![0.0]), (1, vec![0.0; 6])];
+    m.initial = vec![(0, vec![0.0]), (1, vec![0.0; 4])];
     m.initial_velocity = vec![(0, vec![0.5])];
-    let motion = Motion { duration: 0.3, every: 0.01, tolerance: 1e-9, absolute: 1e-12, ..Default::default() };
+    let motion = Motion { duration: 0.1, every: 0.01, tolerance: 1e-9, absolute: 1e-12, ..Default::default() };
     let run = simulate(&m, &motion, &Default::default(), false).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     let scale = weight * 0.05;
@@ -405,11 +426,16 @@ fn a_massive_rod_swinging_free_keeps_its_energy() {
     let worst = run.energy.iter().fold(0.0_f64, |a, e| a.max((e - e0).abs()));
     println!("energy {e0:.6e} J, largest change {worst:.3e} J over {} samples", run.time.len());
     for k in 0..run.time.len() {
-        assert!((run.energy[k] - e0).abs() < 1e-6 * scale, "energy {} against {e0} at t = {}", run.energy[k], run.time[k]);
+        assert!(
+            (run.energy[k] - e0).abs() < 1e-6 * scale,
+            "energy {} against {e0} at t = {}",
+            run.energy[k],
+            run.time[k]
+        );
     }
     // It swung: the hinge turned down (about y, positive turns x towards −z).
     let last = run.q(run.time.len() - 1)[0];
-    assert!(last > 0.5, "the hinge turned {last} rad");
+    assert!(last > 0.3, "the hinge turned {last} rad");
 }
 
 fn error(text: &str) -> String {

@@ -21,10 +21,10 @@
 //! upstream $\omega_c$ and $R_A\omega_{k,a}$, so
 //! $$M_f = \sum_k \mu_kw_k J_{v,k}^TJ_{v,k} + J_{\omega,k}^T\big(R\rho I_kR^T\big)J_{\omega,k}.$$
 //! Its velocity products are Lagrange's from $M_f$ itself,
-//! $h_f = \dot M_f\dot q - \frac12\nabla(\dot q^TM_f\dot q)$, by central
-//! differences: of $M_f\dot q$ along $\dot q$ and of $\dot q^TM_f\dot q$ along
-//! each coordinate that moves a station (steps $10^{-5}$ of the configuration's
-//! scale, truncation about $10^{-10}$ relative). Being Lagrange's equations of
+//! $h_f = \dot M_f\dot q - \frac12\nabla(\dot q^TM_f\dot q)$, from central
+//! differences of $M_f$ along each coordinate that moves a station (steps
+//! $10^{-5}(1 + \lvert q_i\rvert)$, truncation about $10^{-10}$ relative), kept
+//! for the configuration they were taken at. Being Lagrange's equations of
 //! the same $T$, they keep $T + V$ to the differences' error, which a free
 //! swing checks (`tests/spatial_flexure_mass.rs`).
 //!
@@ -36,14 +36,12 @@ use super::integrate::{self, Trajectory, integrate_kept};
 use super::modes::{Modes, finite_modes};
 use super::system::System;
 use crate::error::{Error, Result};
+use crate::kinematics::Level;
+use crate::mechanism::spatial::kinematics::frames_level_into;
 use crate::mechanism::spatial::kinematics::{
     SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames, frames_into,
 };
-use crate::kinematics::Level;
-use crate::mechanism::spatial::kinematics::frames_level_into;
-use crate::mechanism::spatial::lagrangian::{
-    SpatialAssembly, assemble_into, closures_into, flexure_weight_potential,
-};
+use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::statics::{self, assemble_unloaded, solve_between};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::solver::Settings;
@@ -66,6 +64,10 @@ pub struct SpatialSystem<'a> {
     moving: Vec<usize>,
     /// Frames for the velocity products' differences.
     shifted: RefCell<SpatialFrames>,
+    /// $\partial_iM_f$ for each coordinate in `moving`, at the coordinates
+    /// they were taken at: $h_f$ is quadratic in $\dot q$ through them, so
+    /// every $\dot q$ at one $q$ (the tangent's differences in $\dot q$) reuses them.
+    derivatives: RefCell<(Vec<f64>, Vec<DMatrix<f64>>)>,
 }
 
 /// A body's mass terms at one configuration: its centre of mass's
@@ -111,6 +113,7 @@ impl<'a> SpatialSystem<'a> {
             flexures,
             moving: (0..n).filter(|&i| moving[i]).collect(),
             shifted: RefCell::new(SpatialFrames::new(m)),
+            derivatives: RefCell::new((Vec::new(), Vec::new())),
         })
     }
 
@@ -168,47 +171,45 @@ impl<'a> SpatialSystem<'a> {
         }
     }
 
-    /// $M_f\dot q$ and $\dot q^TM_f\dot q$ at `q`, frames in `f`.
-    fn flexure_momentum(&self, q: &[f64], v: &DVector<f64>, f: &mut SpatialFrames) -> (DVector<f64>, f64) {
+    /// $M_f$ at `q`, frames in `f`.
+    fn flexure_mass(&self, q: &[f64], f: &mut SpatialFrames) -> DMatrix<f64> {
         let n = self.mechanism.dof();
         frames_level_into(self.mechanism, q, Level::Jacobian, f);
         let mut mass = DMatrix::zeros(n, n);
         self.add_flexure_mass(f, &mut mass);
-        let p = mass * v;
-        let twice = v.dot(&p);
-        (p, twice)
+        mass
     }
 
-    /// The flexures' velocity products $h_f$ (module docs) at `q`, `v`.
+    /// The flexures' velocity products $h_f$ (module docs) at `q`, `v`:
+    /// with $D_i = \partial_iM_f$ (central differences, step $10^{-5}(1 + \lvert q_i\rvert)$),
+    /// $h_f = \sum_i\dot q_iD_i\dot q - \frac12\big(\dot q^TD_i\dot q\big)_i$.
     fn flexure_velocity_product(&self, q: &[f64], v: &[f64]) -> DVector<f64> {
         let n = self.mechanism.dof();
-        let qd = DVector::from_column_slice(v);
-        let speed = v.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        if self.flexures.is_empty() || speed == 0.0 {
+        if self.flexures.is_empty() || v.iter().all(|x| *x == 0.0) {
             return DVector::zeros(n);
         }
-        let f = &mut *self.shifted.borrow_mut();
-        let scale = 1.0 + q.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        let mut shifted = q.to_vec();
-        // Ṁ q̇ along q̇.
-        let e = 1e-5 * scale / speed;
-        let mut along = |sign: f64| {
-            for (s, (x, d)) in shifted.iter_mut().zip(q.iter().zip(v)) {
-                *s = x + sign * e * d;
+        let mut cache = self.derivatives.borrow_mut();
+        if cache.0 != q {
+            let f = &mut *self.shifted.borrow_mut();
+            let mut shifted = q.to_vec();
+            cache.1.clear();
+            for &i in &self.moving {
+                let e = 1e-5 * (1.0 + q[i].abs());
+                shifted[i] = q[i] + e;
+                let up = self.flexure_mass(&shifted, f);
+                shifted[i] = q[i] - e;
+                let down = self.flexure_mass(&shifted, f);
+                shifted[i] = q[i];
+                cache.1.push((up - down) / (2.0 * e));
             }
-            self.flexure_momentum(&shifted, &qd, f).0
-        };
-        let mut h = (along(1.0) - along(-1.0)) / (2.0 * e);
-        // −½ ∇(q̇ᵀ M q̇).
-        shifted.copy_from_slice(q);
-        for &i in &self.moving {
-            let e = 1e-5 * (1.0 + q[i].abs());
-            shifted[i] = q[i] + e;
-            let up = self.flexure_momentum(&shifted, &qd, f).1;
-            shifted[i] = q[i] - e;
-            let down = self.flexure_momentum(&shifted, &qd, f).1;
-            shifted[i] = q[i];
-            h[i] -= 0.5 * (up - down) / (2.0 * e);
+            cache.0 = q.to_vec();
+        }
+        let qd = DVector::from_column_slice(v);
+        let mut h = DVector::zeros(n);
+        for (&i, d) in self.moving.iter().zip(&cache.1) {
+            let dv = d * &qd;
+            h.axpy(v[i], &dv, 1.0);
+            h[i] -= 0.5 * qd.dot(&dv);
         }
         h
     }
