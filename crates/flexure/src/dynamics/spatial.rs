@@ -12,8 +12,21 @@
 //! accelerations at $\ddot q = 0$, $\dot J_c\dot q = \dot q^T\nabla^2c\thinspace\dot q$
 //! and $\dot J_\omega\dot q = \sum_{ab}\partial_b\omega_a\dot q_a\dot q_b$, come from
 //! the tree's second derivatives ([`crate::mechanism::spatial::kinematics`]).
-//! The spatial flexures carry no mass of their own here: the bodies
-//! carry it (a flexure's distributed inertia is planar only for now).
+//!
+//! A spatial flexure with a density or mass per length adds its stations
+//! ([`crate::spatial::MassQuadrature`]) as bodies: station $k$ of joint $j$,
+//! at $x_k = o_A + R_Ap_k$ with axes $R_AR_k$ ($A$ the joint's root frame),
+//! has $J_{v,k}$ of a point fixed in the parent body for the coordinates
+//! upstream and $R_A\partial_ap_k$ for the joint's own, $J_{\omega,k}$ the
+//! upstream $\omega_c$ and $R_A\omega_{k,a}$, so
+//! $$M_f = \sum_k \mu_kw_k J_{v,k}^TJ_{v,k} + J_{\omega,k}^T\big(R\rho I_kR^T\big)J_{\omega,k}.$$
+//! Its velocity products are Lagrange's from $M_f$ itself,
+//! $h_f = \dot M_f\dot q - \frac12\nabla(\dot q^TM_f\dot q)$, from central
+//! differences of $M_f$ along each coordinate that moves a station (steps
+//! $10^{-5}(1 + \lvert q_i\rvert)$, truncation about $10^{-10}$ relative), kept
+//! for the configuration they were taken at. Being Lagrange's equations of
+//! the same $T$, they keep $T + V$ to the differences' error, which a free
+//! swing checks (`tests/spatial_flexure_mass.rs`).
 //!
 //! The generalized force is $f = -(\nabla V - Q_m) - h - D\dot q$, with the
 //! potential and dead moments of [`crate::mechanism::spatial::lagrangian`]
@@ -24,13 +37,16 @@ use super::modes::{Modes, finite_modes};
 use super::schedule::{Scheduled, spatial_loads_at};
 use super::system::System;
 use crate::error::{Error, Result};
+use crate::kinematics::Level;
+use crate::mechanism::spatial::kinematics::frames_level_into;
 use crate::mechanism::spatial::kinematics::{
     SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames, frames_into,
 };
-use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into};
+use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::statics::{self, assemble_unloaded, solve_between};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::solver::Settings;
+use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 use std::cell::RefCell;
 
@@ -49,6 +65,16 @@ pub struct SpatialSystem<'a> {
     /// that the integrator's Newton matrix is not singular; `None` when
     /// all $m$ are independent.
     independent: Option<DMatrix<f64>>,
+    /// The spatial flexures with mass: joint, stations and their buffers.
+    flexures: Vec<(usize, MassQuadrature, RefCell<StationKinematics>)>,
+    /// The coordinates that move a station (the flexures' own and upstream), ascending.
+    moving: Vec<usize>,
+    /// Frames for the velocity products' differences.
+    shifted: RefCell<SpatialFrames>,
+    /// $\partial_iM_f$ for each coordinate in `moving`, at the coordinates
+    /// they were taken at: $h_f$ is quadratic in $\dot q$ through them, so
+    /// every $\dot q$ at one $q$ (the tangent's differences in $\dot q$) reuses them.
+    derivatives: RefCell<(Vec<f64>, Vec<DMatrix<f64>>)>,
 }
 
 /// A body's mass terms at one configuration: its centre of mass's
@@ -72,6 +98,18 @@ impl<'a> SpatialSystem<'a> {
                 joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
             }
         }
+        let mut flexures = Vec::new();
+        let mut moving = vec![false; n];
+        for (j, spec) in m.joints.iter().enumerate() {
+            let Some(flexure) = spec.kind.flexure() else { continue };
+            let Some(quadrature) = MassQuadrature::new(flexure) else { continue };
+            let buffers = RefCell::new(StationKinematics::new(flexure, &quadrature));
+            for i in m.path(spec.child) {
+                let o = m.joints[i].offset;
+                moving[o..o + m.joints[i].kind.joint().dof()].fill(true);
+            }
+            flexures.push((j, quadrature, buffers));
+        }
         Ok(SpatialSystem {
             mechanism: m,
             loads: m.loads(),
@@ -80,6 +118,10 @@ impl<'a> SpatialSystem<'a> {
             assembly: SpatialAssembly::new(m),
             pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
             independent: independent_closures(m),
+            flexures,
+            moving: (0..n).filter(|&i| moving[i]).collect(),
+            shifted: RefCell::new(SpatialFrames::new(m)),
+            derivatives: RefCell::new((Vec::new(), Vec::new())),
         })
     }
 
@@ -90,9 +132,101 @@ impl<'a> SpatialSystem<'a> {
         Ok(())
     }
 
-    /// Whether any body has mass or inertia.
+    /// Whether any body has mass or inertia, or any spatial flexure a
+    /// density or mass per length.
     pub fn has_inertia(&self) -> bool {
         self.mechanism.bodies.iter().skip(1).any(|b| b.mass > 0.0 || b.inertia != Matrix3::zeros())
+            || !self.flexures.is_empty()
+    }
+
+    /// Adds the flexures' stations' $M_f$ (module docs) at the frames `f` to `mass`.
+    fn add_flexure_mass(&self, f: &SpatialFrames, mass: &mut DMatrix<f64>) {
+        let m = self.mechanism;
+        for (j, quadrature, buffers) in &self.flexures {
+            let spec = &m.joints[*j];
+            let Some(flexure) = spec.kind.flexure() else { continue };
+            let (o, n) = (spec.offset, flexure.coordinates());
+            let mut k = buffers.borrow_mut();
+            stations_update(flexure, quadrature, &f.coordinates[o..o + n], Level::Jacobian, &mut k);
+            let root = &f.roots[*j];
+            let ra = root.rotation.to_rotation_matrix().into_inner();
+            // The columns a station moves with: upstream, then the joint's own.
+            let upstream: Vec<(usize, usize)> = m
+                .path(spec.parent)
+                .into_iter()
+                .flat_map(|i| {
+                    let oi = m.joints[i].offset;
+                    (oi..oi + m.joints[i].kind.joint().dof()).map(move |c| (c, i))
+                })
+                .collect();
+            let columns: Vec<usize> = upstream.iter().map(|&(c, _)| c).chain(o..o + n).collect();
+            let width = columns.len();
+            let (mut jv, mut jw) = (Matrix3xX::zeros(width), Matrix3xX::zeros(width));
+            for (i, st) in quadrature.stations().iter().enumerate() {
+                let x = root * nalgebra::Point3::from(k.position[i]);
+                for (col, &(c, joint)) in upstream.iter().enumerate() {
+                    let origin = f.bodies[m.joints[joint].child].translation.vector;
+                    let w = f.omega.column(c).into_owned();
+                    jv.set_column(col, &(f.velocity.column(c) + w.cross(&(x.coords - origin))));
+                    jw.set_column(col, &w);
+                }
+                for a in 0..n {
+                    jv.set_column(upstream.len() + a, &(ra * k.velocity[i * n + a]));
+                    jw.set_column(upstream.len() + a, &(ra * k.omega[i * n + a]));
+                }
+                let r = ra * k.rotation[i];
+                let inertia = r * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * r.transpose();
+                let block = jv.transpose() * &jv * st.mass + jw.transpose() * (inertia * &jw);
+                for (a, &ca) in columns.iter().enumerate() {
+                    for (b, &cb) in columns.iter().enumerate() {
+                        mass[(ca, cb)] += block[(a, b)];
+                    }
+                }
+            }
+        }
+    }
+
+    /// $M_f$ at `q`, frames in `f`.
+    fn flexure_mass(&self, q: &[f64], f: &mut SpatialFrames) -> DMatrix<f64> {
+        let n = self.mechanism.dof();
+        frames_level_into(self.mechanism, q, Level::Jacobian, f);
+        let mut mass = DMatrix::zeros(n, n);
+        self.add_flexure_mass(f, &mut mass);
+        mass
+    }
+
+    /// The flexures' velocity products $h_f$ (module docs) at `q`, `v`:
+    /// with $D_i = \partial_iM_f$ (central differences, step $10^{-5}(1 + \lvert q_i\rvert)$),
+    /// $h_f = \sum_i\dot q_iD_i\dot q - \frac12\big(\dot q^TD_i\dot q\big)_i$.
+    fn flexure_velocity_product(&self, q: &[f64], v: &[f64]) -> DVector<f64> {
+        let n = self.mechanism.dof();
+        if self.flexures.is_empty() || v.iter().all(|x| *x == 0.0) {
+            return DVector::zeros(n);
+        }
+        let mut cache = self.derivatives.borrow_mut();
+        if cache.0 != q {
+            let f = &mut *self.shifted.borrow_mut();
+            let mut shifted = q.to_vec();
+            cache.1.clear();
+            for &i in &self.moving {
+                let e = 1e-5 * (1.0 + q[i].abs());
+                shifted[i] = q[i] + e;
+                let up = self.flexure_mass(&shifted, f);
+                shifted[i] = q[i] - e;
+                let down = self.flexure_mass(&shifted, f);
+                shifted[i] = q[i];
+                cache.1.push((up - down) / (2.0 * e));
+            }
+            cache.0 = q.to_vec();
+        }
+        let qd = DVector::from_column_slice(v);
+        let mut h = DVector::zeros(n);
+        for (&i, d) in self.moving.iter().zip(&cache.1) {
+            let dv = d * &qd;
+            h.axpy(v[i], &dv, 1.0);
+            h[i] -= 0.5 * qd.dot(&dv);
+        }
+        h
     }
 
     fn bodies(&self, f: &SpatialFrames) -> Vec<(usize, BodyTerms)> {
@@ -122,6 +256,7 @@ impl<'a> SpatialSystem<'a> {
         for (_, t) in self.bodies(f) {
             mass += t.com.transpose() * &t.com * t.mass + t.rotation.transpose() * (t.inertia * &t.rotation);
         }
+        self.add_flexure_mass(f, &mut mass);
         mass
     }
 
@@ -158,7 +293,7 @@ impl<'a> SpatialSystem<'a> {
             let moment = t.inertia * turn + omega.cross(&(t.inertia * omega));
             h += t.com.transpose() * (bias * t.mass) + t.rotation.transpose() * moment;
         }
-        h
+        h + self.flexure_velocity_product(&f.coordinates, v)
     }
 
     /// The velocity-product terms $h(q, \dot q)$.
@@ -178,7 +313,7 @@ impl<'a> SpatialSystem<'a> {
             .skip(1)
             .map(|(b, body)| -body.mass * self.loads.gravity.dot(&(f.bodies[b] * body.com).coords))
             .sum();
-        elastic + gravity
+        elastic + gravity + flexure_weight_potential(m, f, self.loads.gravity)
     }
 }
 
@@ -308,7 +443,11 @@ pub fn modes(m: &SpatialMechanism, settings: &Settings, count: usize) -> Result<
     }
     let mut sys = SpatialSystem::new(m)?;
     if !sys.has_inertia() {
-        return Err(Error::invalid("mass", "none", "no body has mass or inertia"));
+        return Err(Error::invalid(
+            "mass",
+            "none",
+            "no body has mass or inertia and no flexure has a density or mass per length",
+        ));
     }
     if m.dof() == 0 {
         return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can vibrate".into() });
@@ -427,7 +566,11 @@ pub fn simulate(
     settings.validate()?;
     let system = SpatialSystem::new(m)?;
     if !system.has_inertia() {
-        return Err(Error::invalid("mass", "none", "no body has mass or inertia: nothing moves"));
+        return Err(Error::invalid(
+            "mass",
+            "none",
+            "no body has mass or inertia and no flexure has a density or mass per length: nothing moves",
+        ));
     }
     let mut system = Scheduled::with(system, m.schedules.clone(), m.loads())?;
     let (q0, v0) = initial_state(m, settings, equilibrium)?;

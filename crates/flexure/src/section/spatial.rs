@@ -26,6 +26,18 @@ use crate::error::{Error, Result};
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpatialSection {
     stiffness: Stiffness,
+    mass: Mass,
+}
+
+/// How a section's mass is given.
+#[derive(Debug, Clone, PartialEq)]
+enum Mass {
+    /// None: the flexure is massless.
+    None,
+    /// A density $\rho$ (kg/m³), with the section's geometry.
+    Density(f64),
+    /// A mass per length $\mu(t)$ (kg/m) given directly.
+    PerLength(Profile),
 }
 
 /// How the stiffnesses are given.
@@ -128,7 +140,7 @@ impl SpatialSection {
         gj.check("gj")?;
         ei_y.check("ei_y")?;
         ei_z.check("ei_z")?;
-        Ok(Self { stiffness: Stiffness::Given { gj, ei_y, ei_z } })
+        Ok(Self { stiffness: Stiffness::Given { gj, ei_y, ei_z }, mass: Mass::None })
     }
 
     /// A uniform section of torsional stiffness `gj` and bending
@@ -165,7 +177,7 @@ impl SpatialSection {
         let g = shear.modulus(e)?;
         width.check("width")?;
         thickness.check("thickness")?;
-        Ok(Self { stiffness: Stiffness::Rectangle { modulus: e, shear: g, width, thickness } })
+        Ok(Self { stiffness: Stiffness::Rectangle { modulus: e, shear: g, width, thickness }, mass: Mass::None })
     }
 
     /// A solid circle of Young's modulus `modulus` $E$ (Pa), Poisson's ratio
@@ -186,7 +198,7 @@ impl SpatialSection {
         let e = crate::error::positive("modulus", modulus)?;
         let g = Shear::Poisson(poisson).modulus(e)?;
         diameter.check("diameter")?;
-        Ok(Self { stiffness: Stiffness::Circle { modulus: e, shear: g, diameter } })
+        Ok(Self { stiffness: Stiffness::Circle { modulus: e, shear: g, diameter }, mass: Mass::None })
     }
 
     /// $(GJ, EI_y, EI_z)$ (N·m²) at $t = s/L$: the weights of the twist and
@@ -287,6 +299,123 @@ impl SpatialSection {
                 Ok(SpatialStress { bending_y: sy, bending_z: sz, shear: tau, von_mises, at: StressPoint::Rim })
             }
         }
+    }
+
+    /// The same section with mass from `density` $\rho$ (kg/m³):
+    /// $\mu = \rho A$ and rotary inertia $\rho\thinspace\mathrm{diag}(I_y + I_z, I_y, I_z)$
+    /// per length ([`SpatialSection::rotary_inertia_per_length`]). Fails,
+    /// naming `density`, for a section given by its stiffnesses alone (it
+    /// has no area) or a density that is not positive and finite.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// let s = SpatialSection::circle(200e9, 0.3, Profile::Constant(2e-3)).unwrap().with_density(7850.0).unwrap();
+    /// let area = std::f64::consts::PI * 1e-6;
+    /// assert!((s.mass_per_length(0.5).unwrap() - 7850.0 * area).abs() < 1e-15);
+    /// assert!(SpatialSection::uniform(1.0, 1.0, 1.0).unwrap().with_density(7850.0).is_err());
+    /// ```
+    pub fn with_density(mut self, density: f64) -> Result<Self> {
+        crate::error::positive("density", density)?;
+        if !self.has_geometry() {
+            return Err(Error::invalid(
+                "density",
+                density,
+                "needs a rectangle's width and thickness or a circle's diameter; give mass_per_length with gj, ei_y, ei_z",
+            ));
+        }
+        self.mass = Mass::Density(density);
+        Ok(self)
+    }
+
+    /// The same section with mass per length $\mu(t)$ (kg/m) given
+    /// directly; errors name `mass_per_length`. Its rotary inertia is
+    /// $\mu/A$ times the geometry's second moments when the section has a
+    /// geometry, and zero when it is given by its stiffnesses alone.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// let s = SpatialSection::uniform(1.0, 1.0, 1.0).unwrap().with_mass_per_length(Profile::Constant(0.2)).unwrap();
+    /// assert_eq!((s.mass_per_length(0.3), s.rotary_inertia_per_length(0.3)), (Some(0.2), Some([0.0; 3])));
+    /// assert!(SpatialSection::uniform(1.0, 1.0, 1.0).unwrap().with_mass_per_length(Profile::Constant(-1.0)).is_err());
+    /// ```
+    pub fn with_mass_per_length(mut self, mass_per_length: Profile) -> Result<Self> {
+        mass_per_length.check("mass_per_length")?;
+        self.mass = Mass::PerLength(mass_per_length);
+        Ok(self)
+    }
+
+    /// Whether it has mass (a density or a mass per length).
+    pub fn has_mass(&self) -> bool {
+        !matches!(self.mass, Mass::None)
+    }
+
+    /// The area $A$ (m²) at $t = s/L$: $wh$ for a rectangle, $\pi d^2/4$ for
+    /// a circle; `None` for stiffnesses given directly.
+    pub fn area(&self, t: f64) -> Option<f64> {
+        match &self.stiffness {
+            Stiffness::Given { .. } => None,
+            Stiffness::Rectangle { width, thickness, .. } => Some(width.at(t) * thickness.at(t)),
+            Stiffness::Circle { diameter, .. } => Some(std::f64::consts::PI * diameter.at(t).powi(2) / 4.0),
+        }
+    }
+
+    /// The area's second moments $(I_y, I_z)$ (m⁴) at $t$ about the
+    /// section's axes: $(hw^3/12,\ wh^3/12)$ for a rectangle of width $w$
+    /// along $z$ and thickness $h$ along $y$, $\pi d^4/64$ both for a
+    /// circle; `None` for stiffnesses given directly.
+    pub fn second_moments(&self, t: f64) -> Option<[f64; 2]> {
+        match &self.stiffness {
+            Stiffness::Given { .. } => None,
+            Stiffness::Rectangle { width, thickness, .. } => {
+                let (w, h) = (width.at(t), thickness.at(t));
+                Some([h * w * w * w / 12.0, w * h * h * h / 12.0])
+            }
+            Stiffness::Circle { diameter, .. } => {
+                let i = std::f64::consts::PI * diameter.at(t).powi(4) / 64.0;
+                Some([i, i])
+            }
+        }
+    }
+
+    /// The mass per length $\mu$ (kg/m) at $t = s/L$: $\rho A$ or the one
+    /// given; `None` without mass.
+    pub fn mass_per_length(&self, t: f64) -> Option<f64> {
+        match &self.mass {
+            Mass::None => None,
+            Mass::Density(rho) => self.area(t).map(|a| rho * a),
+            Mass::PerLength(p) => Some(p.at(t)),
+        }
+    }
+
+    /// The rotary inertia per length (kg·m) at $t$, in the section frame
+    /// $(x, y, z)$: $\rho\thinspace(I_y + I_z, I_y, I_z)$, the polar moment
+    /// about the axis first, with $\rho = \mu/A$ when the mass per length is
+    /// given. Zero for a mass per length on stiffnesses given directly (no
+    /// geometry: a string of point masses); `None` without mass.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, Shear, SpatialSection};
+    /// let s = SpatialSection::rectangle(1e9, Shear::Poisson(0.3), Profile::Constant(0.02), Profile::Constant(0.01))
+    ///     .unwrap()
+    ///     .with_density(1000.0)
+    ///     .unwrap();
+    /// let [p, iy, iz] = s.rotary_inertia_per_length(0.0).unwrap();
+    /// // ρ h w³/12 about y (w = 0.02 along z), ρ w h³/12 about z.
+    /// assert!((iy - 1000.0 * 0.01 * 8e-6 / 12.0).abs() < 1e-15 && (iz - 1000.0 * 0.02 * 1e-6 / 12.0).abs() < 1e-15);
+    /// assert!((p - iy - iz).abs() < 1e-18);
+    /// ```
+    pub fn rotary_inertia_per_length(&self, t: f64) -> Option<[f64; 3]> {
+        let mu = self.mass_per_length(t)?;
+        Some(match (self.area(t), self.second_moments(t)) {
+            (Some(a), Some([iy, iz])) => {
+                let rho = mu / a;
+                [rho * (iy + iz), rho * iy, rho * iz]
+            }
+            _ => [0.0; 3],
+        })
     }
 
     /// Whether it has a shape and material (a rectangle or a circle), and

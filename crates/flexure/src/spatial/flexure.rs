@@ -131,6 +131,38 @@ impl SpatialFlexure {
         Ok(self)
     }
 
+    /// The same flexure with its own mass from a `density` (kg/m³) and its
+    /// section's geometry ([`SpatialSection::with_density`]); errors name `density`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// use flexure::spatial::SpatialFlexure;
+    /// let s = SpatialSection::circle(200e9, 0.3, Profile::Constant(1e-3)).unwrap();
+    /// let f = SpatialFlexure::new(0.1, s, [3, 3, 3]).unwrap().with_density(7850.0).unwrap();
+    /// assert!(f.section().has_mass());
+    /// ```
+    pub fn with_density(mut self, density: f64) -> Result<Self> {
+        self.section = self.section.with_density(density)?;
+        Ok(self)
+    }
+
+    /// The same flexure with its own mass per length $\mu(t)$ (kg/m)
+    /// ([`SpatialSection::with_mass_per_length`]); errors name `mass_per_length`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// use flexure::spatial::SpatialFlexure;
+    /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
+    /// let f = f.with_mass_per_length(Profile::Constant(0.5)).unwrap();
+    /// assert_eq!(f.section().mass_per_length(0.2), Some(0.5));
+    /// ```
+    pub fn with_mass_per_length(mut self, mass_per_length: crate::section::Profile) -> Result<Self> {
+        self.section = self.section.with_mass_per_length(mass_per_length)?;
+        Ok(self)
+    }
+
     /// The default number of Magnus subintervals for `orders`,
     /// $$M = \max\big(8,\thinspace 4(n - 1),\thinspace \lfloor n(n - 1)/4\rfloor\big),\qquad n = \max(n_\tau, n_y, n_z)$$
     /// (at most [`MAX_SUBINTERVALS`]): 8 ([`DEFAULT_SUBINTERVALS`]) up to

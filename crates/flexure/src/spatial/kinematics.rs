@@ -40,11 +40,11 @@ pub struct SpatialKinematics<T: Scalar = f64> {
     /// $g^{-1}\partial g/\partial\alpha_a$, rows $(r_x, r_y, r_z, x, y, z)$ in the tip frame.
     pub jacobian: DMatrix<T>,
     /// $\partial_bJ_a$ at `[a * n + b]`, 6-vectors (angular, linear) in the tip frame.
-    hessian: Vec<Vector6<T>>,
+    pub(super) hessian: Vec<Vector6<T>>,
     /// $\partial_a\partial_b p$ in the root frame at `[a * n + b]` (m), symmetric.
     hessian_position: Vec<Vector3<T>>,
     /// The body Jacobian's columns during the pass.
-    columns: Vec<Vector6<T>>,
+    pub(super) columns: Vec<Vector6<T>>,
     /// $\mathrm{Ad}_{g_k^{-1}}J_a$ of the step being taken.
     moved: Vec<Vector6<T>>,
     /// The step's tangents, one per coordinate.
@@ -264,45 +264,7 @@ pub fn update<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], level: Level, da
     }
     for k in 0..m {
         let xi = node_twists(flexure, alpha, k);
-        let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
-        let step = Step::new(w, v, order);
-        if level >= Level::Jacobian {
-            for a in 0..n {
-                let da = node_derivatives(flexure, k, a);
-                let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
-                let d = exponent(&jets, h).d;
-                let (dw, dv) = parts(&d);
-                data.tangents[a] = step.tangent(dw, dv);
-                data.moved[a] = adjoint_inverse(&step.r, &step.p, &data.columns[a]);
-            }
-            if level >= Level::Hessian {
-                for a in 0..n {
-                    let da = node_derivatives(flexure, k, a);
-                    for b in a..n {
-                        let db = node_derivatives(flexure, k, b);
-                        let jets: [Jet2<T>; 3] =
-                            std::array::from_fn(|j| Jet2 { v: xi[j], a: da[j], b: db[j], ab: Vector6::zeros() });
-                        let ab = exponent(&jets, h).ab;
-                        data.exponent_second[a * n + b] = ab;
-                        data.exponent_second[b * n + a] = ab;
-                    }
-                }
-                for a in 0..n {
-                    for b in 0..n {
-                        let (ta, tb) = (&data.tangents[a], &data.tangents[b]);
-                        let (dwab, dvab) = parts(&data.exponent_second[a * n + b]);
-                        let (wa, va) = step.second(ta, tb, dwab, dvab);
-                        let jb = six(&tb.angular, &tb.linear);
-                        let hab = &mut data.hessian[a * n + b];
-                        *hab = adjoint_inverse(&step.r, &step.p, hab) - bracket(&jb, &data.moved[a]) + six(&wa, &va);
-                    }
-                }
-            }
-            for a in 0..n {
-                let t = &data.tangents[a];
-                data.columns[a] = data.moved[a] + six(&t.angular, &t.linear);
-            }
-        }
+        let step = advance(data, &xi, |a| node_derivatives(flexure, k, a), h, order);
         p += r * step.p;
         r *= step.r;
     }
@@ -324,4 +286,61 @@ pub fn update<T: Scalar>(flexure: &SpatialFlexure, alpha: &[T], level: Level, da
             }
         }
     }
+}
+
+/// One Magnus step of length `h` from the nodal twists `xi`, whose
+/// derivatives along coordinate `a` are `derivative(a)`: carries the body
+/// Jacobian's columns (at `order` 1 and up) and their derivatives (at 2)
+/// in `data` from the step's start to its end (the module docs'
+/// recursion), and returns the step. [`update`] takes every subinterval
+/// by it; [`super::mass`] takes the partial steps to the stations by it.
+#[inline(always)]
+pub(super) fn advance<T: Scalar>(
+    data: &mut SpatialKinematics<T>,
+    xi: &[Vector6<T>; 3],
+    derivative: impl Fn(usize) -> [Vector6<T>; 3],
+    h: f64,
+    order: usize,
+) -> Step<T> {
+    let n = data.columns.len();
+    let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
+    let step = Step::new(w, v, order);
+    if order >= 1 {
+        for a in 0..n {
+            let da = derivative(a);
+            let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
+            let d = exponent(&jets, h).d;
+            let (dw, dv) = parts(&d);
+            data.tangents[a] = step.tangent(dw, dv);
+            data.moved[a] = adjoint_inverse(&step.r, &step.p, &data.columns[a]);
+        }
+        if order >= 2 {
+            for a in 0..n {
+                let da = derivative(a);
+                for b in a..n {
+                    let db = derivative(b);
+                    let jets: [Jet2<T>; 3] =
+                        std::array::from_fn(|j| Jet2 { v: xi[j], a: da[j], b: db[j], ab: Vector6::zeros() });
+                    let ab = exponent(&jets, h).ab;
+                    data.exponent_second[a * n + b] = ab;
+                    data.exponent_second[b * n + a] = ab;
+                }
+            }
+            for a in 0..n {
+                for b in 0..n {
+                    let (ta, tb) = (&data.tangents[a], &data.tangents[b]);
+                    let (dwab, dvab) = parts(&data.exponent_second[a * n + b]);
+                    let (wa, va) = step.second(ta, tb, dwab, dvab);
+                    let jb = six(&tb.angular, &tb.linear);
+                    let hab = &mut data.hessian[a * n + b];
+                    *hab = adjoint_inverse(&step.r, &step.p, hab) - bracket(&jb, &data.moved[a]) + six(&wa, &va);
+                }
+            }
+        }
+        for a in 0..n {
+            let t = &data.tangents[a];
+            data.columns[a] = data.moved[a] + six(&t.angular, &t.linear);
+        }
+    }
+    step
 }

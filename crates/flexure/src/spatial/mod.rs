@@ -22,6 +22,8 @@
 //!   buckling included) and the tip's 6 × 6 compliance, with the load's
 //!   [`generalized_force`] taken by quadrature of the section moments;
 //! - [`shape()`]: the sections along the deformed flexure;
+//! - [`MassQuadrature`] and [`stations_update`]: its own mass's stations,
+//!   their frames and Jacobians (for the spatial mechanism's dynamics and weight);
 //! - its error estimate against a refined model, and the orders that meet
 //!   an accuracy target, are [`crate::estimate::spatial`]'s;
 //! - [`peak_stress`]: the peak von Mises stress along it.
@@ -30,6 +32,7 @@ mod energy;
 mod flexure;
 mod kinematics;
 mod magnus;
+mod mass;
 mod shape;
 mod spec;
 mod statics;
@@ -40,6 +43,7 @@ pub(crate) mod work;
 pub use energy::{energy, energy_gradient};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
+pub use mass::{MassQuadrature, MassStation, StationKinematics, stations_update};
 pub use shape::{MAX_SHAPE_POINTS, SpatialPoint, shape, shape_at};
 pub use spec::{DEFAULT_POISSON, SpatialSpec};
 pub use statics::{

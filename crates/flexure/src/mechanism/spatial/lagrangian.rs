@@ -2,9 +2,11 @@
 //! closure equations with their Jacobian and the Hessian of $\mu^Tc$: what
 //! the statics' KKT conditions and the dynamics' forces are made of.
 //!
-//! $$V(q) = \sum_j U_j(q_j) + \sum_t T_t\thinspace\ell_t(q) - \sum_b m_b\thinspace g\cdot c_b(q) - \sum_i f_i\cdot x_i(q),$$
+//! $$V(q) = \sum_j U_j(q_j) + \sum_t T_t\thinspace\ell_t(q) - \sum_b m_b\thinspace g\cdot c_b(q) - \sum_k \mu_kw_k\thinspace g\cdot x_k(q) - \sum_i f_i\cdot x_i(q),$$
 //! with the tendons' lengths $\ell_t$ through their via points, the bodies'
-//! centres of mass $c_b$ and the load points $x_i$; a point load's moment
+//! centres of mass $c_b$, the stations $x_k$ of the spatial flexures' own
+//! mass ([`crate::spatial::MassQuadrature`], a dead load $\mu_kw_kg$ at each)
+//! and the load points $x_i$; a point load's moment
 //! $m_i$, fixed in space, adds the generalized force $Q_a = m_i\cdot\omega_a$,
 //! which has no potential (its derivative is not symmetric). The
 //! "gradient" below is $\nabla V - Q_m$ and its "Hessian" the derivative of
@@ -15,7 +17,9 @@ use super::kinematics::{
     Attached, JointWrenches, SpatialFrames, attach, gather_attached_hessian, gather_rotation_derivative,
 };
 use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use crate::kinematics::Level;
+use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
+use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
 /// The assembled forces of one configuration.
 #[derive(Debug, Clone)]
@@ -132,6 +136,14 @@ fn gather_loads(
             }
         }
     }
+    if loads.gravity != Vector3::zeros() {
+        for (j, spec) in m.joints.iter().enumerate() {
+            let Some(flexure) = spec.kind.flexure() else { continue };
+            if let Some(quadrature) = MassQuadrature::new(flexure) {
+                potential += flexure_weight(m, f, j, &quadrature, loads.gravity, gradient, &mut hessian);
+            }
+        }
+    }
     for (load, w) in m.forces.iter().zip(&loads.force) {
         let force = Vector3::new(w[3], w[4], w[5]);
         let moment = Vector3::new(w[0], w[1], w[2]);
@@ -176,6 +188,99 @@ fn gather_loads(
                 gather_attached_hessian(m, f, x0, &(-u * tension), h, Some(w));
             }
         }
+    }
+    potential
+}
+
+/// The weight of spatial flexure joint `j`'s own mass under `gravity`:
+/// adds its gradient (and derivative, when asked for) and returns its
+/// potential $-g\cdot\sum_k\mu_kw_kx_k$.
+///
+/// With $A$ the joint's root frame $(R_A, o_A)$ and $S(q_j) = \sum_k\mu_kw_kp_k$
+/// the first moment in it ([`stations_update`]), $\sum_k\mu_kw_kx_k = m\thinspace o_A + R_AS$:
+/// upstream of the joint the stations move with the parent body, so their
+/// weight is the whole mass $m$ at their centroid $\bar x$ fixed in it (a
+/// body's weight, gradient and Hessian as [`attach`] and
+/// [`gather_attached_hessian`] give them); within the joint the gradient is
+/// $-g\cdot R_A\partial_aS$ and the Hessian $-g\cdot R_A\partial_a\partial_bS$;
+/// across, $\partial_c(R_A\partial_aS) = \omega_c\times R_A\partial_aS$ for a
+/// coordinate $c$ upstream gives $-g\cdot(\omega_c\times R_A\partial_aS)$.
+fn flexure_weight(
+    m: &SpatialMechanism,
+    f: &SpatialFrames,
+    j: usize,
+    quadrature: &MassQuadrature,
+    gravity: Vector3<f64>,
+    gradient: &mut DVector<f64>,
+    hessian: &mut Gathered<'_>,
+) -> f64 {
+    let spec = &m.joints[j];
+    let Some(flexure) = spec.kind.flexure() else { return 0.0 };
+    let (o, n) = (spec.offset, flexure.coordinates());
+    let level = if hessian.is_some() { Level::Hessian } else { Level::Jacobian };
+    let mut k = StationKinematics::new(flexure, quadrature);
+    stations_update(flexure, quadrature, &f.coordinates[o..o + n], level, &mut k);
+    let total = quadrature.mass();
+    let root = &f.roots[j];
+    let ra = root.rotation.to_rotation_matrix().into_inner();
+    let first = root.translation.vector * total + ra * k.moment;
+    // R_A ∂_a S, world directions.
+    let turned: Vec<Vector3<f64>> = (0..n)
+        .map(|a| {
+            let d: Vector3<f64> =
+                quadrature.stations().iter().enumerate().map(|(i, st)| k.velocity[i * n + a] * st.mass).sum();
+            ra * d
+        })
+        .collect();
+    for (a, d) in turned.iter().enumerate() {
+        gradient[o + a] -= gravity.dot(d);
+    }
+    if total <= 0.0 {
+        return -gravity.dot(&first);
+    }
+    let centroid = f.bodies[spec.parent].inverse() * Point3::from(first / total);
+    let x = attach(m, f, spec.parent, centroid.coords, true);
+    let weight = gravity * total;
+    gradient.gemv_tr(-1.0, &x.jacobian, &weight, 1.0);
+    if let Some((h, w)) = hessian {
+        gather_attached_hessian(m, f, &x, &(-weight), h, Some(w));
+        for &up in x.path() {
+            let ou = m.joints[up].offset;
+            for c in ou..ou + f.joints[up].gradient.len() {
+                let omega = f.omega.column(c).into_owned();
+                for (a, d) in turned.iter().enumerate() {
+                    let v = -gravity.dot(&omega.cross(d));
+                    h[(o + a, c)] += v;
+                    h[(c, o + a)] += v;
+                }
+            }
+        }
+        let local = ra.tr_mul(&gravity);
+        for a in 0..n {
+            for b in 0..n {
+                h[(o + a, o + b)] -= local.dot(&k.moment_hessian[a * n + b]);
+            }
+        }
+    }
+    -gravity.dot(&first)
+}
+
+/// The potential $-g\cdot\sum_k\mu_kw_kx_k$ of every spatial flexure's own
+/// mass under `gravity` at the frames `f` (their poses alone).
+pub(crate) fn flexure_weight_potential(m: &SpatialMechanism, f: &SpatialFrames, gravity: Vector3<f64>) -> f64 {
+    if gravity == Vector3::zeros() {
+        return 0.0;
+    }
+    let mut potential = 0.0;
+    for (j, spec) in m.joints.iter().enumerate() {
+        let Some(flexure) = spec.kind.flexure() else { continue };
+        let Some(quadrature) = MassQuadrature::new(flexure) else { continue };
+        let mut k = StationKinematics::new(flexure, &quadrature);
+        let o = spec.offset;
+        stations_update(flexure, &quadrature, &f.coordinates[o..o + flexure.coordinates()], Level::Pose, &mut k);
+        let root = &f.roots[j];
+        let first = root.translation.vector * quadrature.mass() + root.rotation * k.moment;
+        potential -= gravity.dot(&first);
     }
     potential
 }

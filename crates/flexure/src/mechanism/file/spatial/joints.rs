@@ -41,6 +41,9 @@ pub(super) struct JointToml {
     kappa_y: Option<Spanned<Vec<f64>>>,
     kappa_z: Option<Spanned<Vec<f64>>>,
     kappa: Option<Spanned<Vec<f64>>>,
+    // The flexure's own mass: a density with the geometry, or a mass per length.
+    density: Option<Spanned<f64>>,
+    mass_per_length: Option<Spanned<toml::Value>>,
     // Hinges, sliders and balls.
     axis: Option<Spanned<[f64; 3]>>,
     stiffness: Option<Spanned<f64>>,
@@ -73,6 +76,8 @@ impl JointToml {
             ("kappa_y", span_of(&self.kappa_y)),
             ("kappa_z", span_of(&self.kappa_z)),
             ("kappa", span_of(&self.kappa)),
+            ("density", span_of(&self.density)),
+            ("mass_per_length", span_of(&self.mass_per_length)),
         ];
         let axis = [("axis", span_of(&self.axis))];
         let spring = [("stiffness", span_of(&self.stiffness)), ("rest", span_of(&self.rest))];
@@ -178,6 +183,20 @@ fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<SpatialJointKind>
     let mut f = spec.build().map_err(placed)?;
     if let Some(m) = &j.subintervals {
         f = f.with_subintervals(*m.get_ref()).map_err(|e| src.placed(owner, &m.span(), e))?;
+    }
+    match (&j.density, &j.mass_per_length) {
+        (Some(_), Some(mu)) => {
+            return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+        }
+        (Some(rho), None) => {
+            let value = src.number(owner, "density", rho, Sign::Positive)?;
+            f = f.with_density(value).map_err(|e| src.placed(owner, &rho.span(), e))?;
+        }
+        (None, Some(mu)) => {
+            let value = src.profile(owner, "mass_per_length", mu)?;
+            f = f.with_mass_per_length(value).map_err(|e| src.placed(owner, &mu.span(), e))?;
+        }
+        (None, None) => {}
     }
     Ok(SpatialJointKind::Flexure(Box::new(f)))
 }

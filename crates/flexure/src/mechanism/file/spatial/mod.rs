@@ -75,10 +75,8 @@ impl Source<'_> {
 }
 
 /// The planar file's keys that a spatial file does not take yet, with what they are.
-const PLANAR_ONLY: [(&str, &str); 6] = [
+const PLANAR_ONLY: [(&str, &str); 4] = [
     ("notch", "a circular notch hinge"),
-    ("density", "a flexure's own mass"),
-    ("mass_per_length", "a flexure's own mass"),
     ("yield_strength", "the stress report's safety factor"),
     ("shape", "the deflection line's points"),
     ("quadrature", "the planar flexure's Gauss rule"),

@@ -1,0 +1,274 @@
+//! A spatial flexure's own mass: its stations (a quadrature along the rod)
+//! and their frames and Jacobians from the tip's own Magnus pass.
+//!
+//! A section of mass per length $\mu(s)$ and rotary inertia per length
+//! $\rho I(s) = \rho\thinspace\mathrm{diag}(I_y + I_z, I_y, I_z)$ (section
+//! frame, [`crate::section::SpatialSection::rotary_inertia_per_length`])
+//! moving with the centre velocity $\dot p(s)$ and angular velocity
+//! $\omega(s)$ has the kinetic energy
+//! $$T = \tfrac12\int_0^L \big(\mu\lvert\dot p\rvert^2 + \omega\cdot R\rho IR^T\omega\big)\thinspace ds
+//!   \approx \tfrac12\sum_k w_k\big(\mu_k\lvert J_{v,k}\dot\alpha\rvert^2 + (J_{\omega,k}\dot\alpha)\cdot R_k\rho I_kR_k^T(J_{\omega,k}\dot\alpha)\big),$$
+//! and under gravity $g$ the potential $-\int_0^L\mu\thinspace g\cdot p\thinspace ds$.
+//! The stations $s_k$ are the three Gauss points of each of the flexure's
+//! $M$ Magnus subintervals (weights $\frac5{18}, \frac8{18}, \frac5{18}$ of
+//! its length $h$): exact for integrands of degree 5 on each, so the
+//! quadrature's error falls as $h^6$, as the Magnus pose's does.
+//!
+//! A station's frame is the one [`super::shape_at`] gives, one more
+//! Magnus step from the start $s_j$ of its subinterval over $d = s_k - s_j$:
+//! $g(s_k) = g(s_j)\exp\Omega(s_j, d)$, with the curvature at that step's own
+//! three Gauss nodes. Its Jacobian rides along the tip's recursion
+//! ([`super::kinematics`]): the body Jacobian at $s_j$ is carried through the
+//! partial step as through a whole one, so it is the exact derivative of the
+//! station's pose (`tests/spatial_flexure_mass.rs` checks it against central
+//! differences). At [`Level::Hessian`] the pass also gives the first moment
+//! $S = \sum_k w_k\mu_kp_k$ with its exact Hessian, what the weight's
+//! stiffness needs.
+
+use super::SpatialFlexure;
+use super::kinematics::{SpatialKinematics, advance, row_curvature};
+use super::magnus::NODES;
+use crate::basis;
+use crate::kinematics::Level;
+use nalgebra::{Matrix3, Vector3, Vector6};
+
+/// The Gauss weights on $[0, 1]$ of the stations in a subinterval.
+const WEIGHTS: [f64; 3] = [5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0];
+
+/// One station of a flexure's mass quadrature.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassStation {
+    /// Arc length $s_k$ from the root (m).
+    pub s: f64,
+    /// Its share of the mass, $w_k\mu(s_k)$ (kg).
+    pub mass: f64,
+    /// Its share of the rotary inertia, $w_k\rho\thinspace(I_y + I_z, I_y, I_z)$
+    /// at $s_k$ (kg·m²), the diagonal in the section frame.
+    pub rotary: [f64; 3],
+}
+
+/// A flexure's mass stations, and the shape values of the partial Magnus
+/// steps that reach them (the Model's tables; made once per flexure).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MassQuadrature {
+    stations: Vec<MassStation>,
+    width: usize,
+    /// $\tilde P_i(t)/L$ at the Gauss node $g$ of the partial step to
+    /// station $k$, `[(k * 3 + g) * width + i]`.
+    partial: Vec<f64>,
+}
+
+impl MassQuadrature {
+    /// The stations of `flexure`: three per Magnus subinterval (module
+    /// docs); `None` for a massless flexure.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// use flexure::spatial::{MassQuadrature, SpatialFlexure};
+    /// let f = SpatialFlexure::new(2.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
+    /// assert!(MassQuadrature::new(&f).is_none());
+    /// let q = MassQuadrature::new(&f.with_mass_per_length(Profile::Linear { root: 1.0, tip: 3.0 }).unwrap()).unwrap();
+    /// assert_eq!(q.stations().len(), 3 * 8);
+    /// // μ = 1 + s: the rule is exact for it, ∫₀² (1 + s) ds = 4 kg.
+    /// assert!((q.mass() - 4.0).abs() < 1e-14);
+    /// ```
+    pub fn new(flexure: &SpatialFlexure) -> Option<Self> {
+        let section = flexure.section();
+        if !section.has_mass() {
+            return None;
+        }
+        let (m, width, l) = (flexure.subintervals(), flexure.width(), flexure.length());
+        let h = l / m as f64;
+        let mut stations = Vec::with_capacity(3 * m);
+        let mut partial = Vec::with_capacity(9 * m * width);
+        let mut row = vec![0.0; width];
+        for k in 0..m {
+            for (tau, w) in NODES.iter().zip(WEIGHTS) {
+                let t = (k as f64 + tau) / m as f64;
+                let weight = w * h;
+                let mu = section.mass_per_length(t).unwrap_or(0.0);
+                let rotary = section.rotary_inertia_per_length(t).unwrap_or([0.0; 3]).map(|i| weight * i);
+                stations.push(MassStation { s: t * l, mass: weight * mu, rotary });
+                for g in NODES {
+                    basis::shifted_legendre((k as f64 + tau * g) / m as f64, &mut row);
+                    partial.extend(row.iter().map(|v| v / l));
+                }
+            }
+        }
+        Some(MassQuadrature { stations, width, partial })
+    }
+
+    /// The stations, root to tip.
+    pub fn stations(&self) -> &[MassStation] {
+        &self.stations
+    }
+
+    /// The flexure's mass $\sum_kw_k\mu_k$ (kg).
+    pub fn mass(&self) -> f64 {
+        self.stations.iter().map(|s| s.mass).sum()
+    }
+
+    /// Whether it was made for `flexure` (its subintervals and orders).
+    pub fn fits(&self, flexure: &SpatialFlexure) -> bool {
+        self.stations.len() == 3 * flexure.subintervals() && self.width == flexure.width()
+    }
+}
+
+/// The stations' frames and derivatives at one configuration, in the
+/// flexure's root frame (the Data of [`stations_update`]).
+#[derive(Debug, Clone)]
+pub struct StationKinematics {
+    /// $R_k$: the section axes at each station.
+    pub rotation: Vec<Matrix3<f64>>,
+    /// $p_k$ (m).
+    pub position: Vec<Vector3<f64>>,
+    /// $\partial_a(R_k)R_k^T$'s axial vector, the section's rotation per
+    /// unit $\alpha_a$, at `[k * n + a]` (at [`Level::Jacobian`] and up).
+    pub omega: Vec<Vector3<f64>>,
+    /// $\partial_ap_k$ at `[k * n + a]` (m; at [`Level::Jacobian`] and up).
+    pub velocity: Vec<Vector3<f64>>,
+    /// The first moment $S = \sum_kw_k\mu_kp_k$ (kg·m).
+    pub moment: Vector3<f64>,
+    /// $\partial_a\partial_bS$ at `[a * n + b]` (kg·m; at [`Level::Hessian`]).
+    pub moment_hessian: Vec<Vector3<f64>>,
+    main: SpatialKinematics,
+    scratch: SpatialKinematics,
+}
+
+impl StationKinematics {
+    /// Buffers for `flexure` and its `quadrature`.
+    pub fn new(flexure: &SpatialFlexure, quadrature: &MassQuadrature) -> Self {
+        let (k, n) = (quadrature.stations.len(), flexure.coordinates());
+        StationKinematics {
+            rotation: vec![Matrix3::identity(); k],
+            position: vec![Vector3::zeros(); k],
+            omega: vec![Vector3::zeros(); k * n],
+            velocity: vec![Vector3::zeros(); k * n],
+            moment: Vector3::zeros(),
+            moment_hessian: vec![Vector3::zeros(); n * n],
+            main: SpatialKinematics::new(flexure),
+            scratch: SpatialKinematics::new(flexure),
+        }
+    }
+
+    /// Whether these buffers fit `flexure` and `quadrature`.
+    pub fn fits(&self, flexure: &SpatialFlexure, quadrature: &MassQuadrature) -> bool {
+        self.position.len() == quadrature.stations.len() && self.main.fits(flexure)
+    }
+}
+
+/// Fills `out` with the stations' frames at `alpha`, and to `level` their
+/// Jacobians and the first moment's Hessian (module docs), in one pass
+/// over the subintervals. Does not allocate.
+///
+/// # Panics
+/// If `alpha` does not have one entry per coordinate, or `quadrature` or
+/// `out` were made for another flexure.
+///
+/// # Example
+/// ```
+/// use flexure::kinematics::Level;
+/// use flexure::section::{Profile, SpatialSection};
+/// use flexure::spatial::{MassQuadrature, SpatialFlexure, StationKinematics, stations_update};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [1, 1, 1]).unwrap()
+///     .with_mass_per_length(Profile::Constant(1.0)).unwrap();
+/// let q = MassQuadrature::new(&f).unwrap();
+/// let mut k = StationKinematics::new(&f, &q);
+/// // A circle's arc of κ_z = 1: each station on it, x = sin s, y = 1 − cos s.
+/// stations_update(&f, &q, &[0.0, 0.0, 1.0], Level::Jacobian, &mut k);
+/// for (st, p) in q.stations().iter().zip(&k.position) {
+///     assert!((p.x - st.s.sin()).abs() < 1e-15 && (p.y - (1.0 - st.s.cos())).abs() < 1e-15);
+/// }
+/// // ∂p/∂α_z at the station s: the arc's growth, ((s cos s − sin s)/1, …) for α_z = 1.
+/// let (s, v) = (q.stations()[5].s, k.velocity[5 * 3 + 2]);
+/// assert!((v.x - (s * s.cos() - s.sin())).abs() < 1e-14);
+/// ```
+pub fn stations_update(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    alpha: &[f64],
+    level: Level,
+    out: &mut StationKinematics,
+) {
+    assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
+    assert!(quadrature.fits(flexure) && out.fits(flexure, quadrature), "mass buffers made for another flexure");
+    let (n, m, w) = (flexure.coordinates(), flexure.subintervals(), quadrature.width);
+    let h = flexure.length() / m as f64;
+    let order = match level {
+        Level::Pose => 0,
+        Level::Jacobian => 1,
+        Level::Hessian => 2,
+    };
+    let orders = flexure.orders();
+    let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
+    out.main.columns.fill(Vector6::zeros());
+    if order >= 2 {
+        out.main.hessian.fill(Vector6::zeros());
+        out.moment_hessian.fill(Vector3::zeros());
+    }
+    out.moment = Vector3::zeros();
+    let twist = |row: &[f64]| {
+        let u = row_curvature(row, orders, alpha);
+        Vector6::new(u[0], u[1], u[2], 1.0, 0.0, 0.0)
+    };
+    for k in 0..m {
+        for (j, tau) in NODES.iter().enumerate() {
+            let station = 3 * k + j;
+            let rows = &quadrature.partial[station * 3 * w..(station + 1) * 3 * w];
+            let xi: [Vector6<f64>; 3] = std::array::from_fn(|g| twist(&rows[g * w..(g + 1) * w]));
+            let scratch = &mut out.scratch;
+            if order >= 1 {
+                scratch.columns.copy_from_slice(&out.main.columns);
+            }
+            if order >= 2 {
+                scratch.hessian.copy_from_slice(&out.main.hessian);
+            }
+            let derivative = |a: usize| {
+                let (c, i) = flexure.component(a);
+                std::array::from_fn(|g| {
+                    let mut d = Vector6::zeros();
+                    d[c] = rows[g * w + i];
+                    d
+                })
+            };
+            let step = advance(scratch, &xi, derivative, tau * h, order);
+            let (rs, ps) = (r * step.r, p + r * step.p);
+            out.rotation[station] = rs;
+            out.position[station] = ps;
+            let mass = quadrature.stations[station].mass;
+            out.moment += ps * mass;
+            let part = |x: &Vector6<f64>| (Vector3::new(x[0], x[1], x[2]), Vector3::new(x[3], x[4], x[5]));
+            if order >= 1 {
+                for a in 0..n {
+                    let (wa, va) = part(&scratch.columns[a]);
+                    out.omega[station * n + a] = rs * wa;
+                    out.velocity[station * n + a] = rs * va;
+                }
+            }
+            if order >= 2 && mass != 0.0 {
+                for a in 0..n {
+                    let va = part(&scratch.columns[a]).1;
+                    for b in 0..n {
+                        let wb = part(&scratch.columns[b]).0;
+                        let hab = part(&scratch.hessian[a * n + b]).1;
+                        out.moment_hessian[a * n + b] += rs * (wb.cross(&va) + hab) * mass;
+                    }
+                }
+            }
+        }
+        let rows = flexure.shapes(k);
+        let xi: [Vector6<f64>; 3] = std::array::from_fn(|g| twist(&rows[g * w..(g + 1) * w]));
+        let derivative = |a: usize| {
+            let (c, i) = flexure.component(a);
+            std::array::from_fn(|g| {
+                let mut d = Vector6::zeros();
+                d[c] = rows[g * w + i];
+                d
+            })
+        };
+        let step = advance(&mut out.main, &xi, derivative, h, order);
+        p += r * step.p;
+        r *= step.r;
+    }
+}
