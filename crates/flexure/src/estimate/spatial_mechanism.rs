@@ -82,6 +82,11 @@ fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFle
         .with_subintervals(r.subintervals())
 }
 
+/// `q` if it is `m`'s coordinates, else the rest shape.
+fn coordinates_or_rest<'a>(m: &SpatialMechanism, q: &'a [f64]) -> std::borrow::Cow<'a, [f64]> {
+    if q.len() == m.dof() { q.into() } else { m.rest().into() }
+}
+
 /// The reference spatial mechanism: every spatial flexure joint replaced by
 /// its refined reference ([`reference()`], at the cap as the planar
 /// [`eigen_reference`](super::eigen_reference)) about its coordinates in `q`
@@ -101,13 +106,8 @@ fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFle
 /// assert_eq!((r.dof(), orders), (17, vec![(6, 20)]));
 /// ```
 pub fn reference_mechanism(m: &SpatialMechanism, q: &[f64]) -> Result<(SpatialMechanism, Vec<(usize, usize)>)> {
-    let rest;
-    let q = if q.len() == m.dof() {
-        q
-    } else {
-        rest = m.rest();
-        &rest
-    };
+    let q = coordinates_or_rest(m, q);
+    let q = &q[..];
     let mut orders = Vec::new();
     let reference = m.with_flexures(|j, f| {
         let o = m.joints[j].offset;
@@ -201,13 +201,8 @@ pub fn modes_error(
 /// (the rest shape when `q` is not the mechanism's), as the planar
 /// mechanism raises its own; `None` when no joint can be raised.
 fn raised(m: &SpatialMechanism, q: &[f64]) -> Result<Option<SpatialMechanism>> {
-    let rest;
-    let q = if q.len() == m.dof() {
-        q
-    } else {
-        rest = m.rest();
-        &rest
-    };
+    let q = coordinates_or_rest(m, q);
+    let q = &q[..];
     let mut any = false;
     let next = m.with_flexures(|j, f| {
         if !m.auto_order.get(j).copied().unwrap_or(false) || f.orders().iter().all(|n| *n >= MAX_ORDER) {

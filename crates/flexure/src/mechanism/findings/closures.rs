@@ -92,6 +92,27 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
         .collect()
 }
 
+/// The closures whose gaps at rest (as [`rest_gaps`] gives them) exceed
+/// [`GAP_TOLERANCE`] of `length` or of a radian, with their index: the
+/// planar and the spatial mechanism's test.
+pub(in crate::mechanism) fn open_gaps(gaps: Vec<(f64, Option<f64>)>, length: f64) -> Vec<(usize, (f64, Option<f64>))> {
+    gaps.into_iter()
+        .enumerate()
+        .filter(|(_, (gap, turn))| *gap > GAP_TOLERANCE * length || turn.is_some_and(|t| t.abs() > GAP_TOLERANCE))
+        .collect()
+}
+
+/// Each closure's first multiplier row, from the closures' equation counts.
+pub(in crate::mechanism) fn first_rows(equations: impl Iterator<Item = usize>) -> Vec<usize> {
+    equations
+        .scan(0, |row, n| {
+            let first = *row;
+            *row += n;
+            Some(first)
+        })
+        .collect()
+}
+
 /// The closures of `m` that do not meet at rest (see the module docs),
 /// each with the preload that closes it: the unloaded mechanism is
 /// assembled (with `settings`) only if one is open. If that assembly
@@ -99,12 +120,7 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
 /// (a simulation from an `[initial]` state may still run); an error only
 /// if it is interrupted.
 pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
-    let length = m.size();
-    let open: Vec<(usize, (f64, Option<f64>))> = rest_gaps(m)
-        .into_iter()
-        .enumerate()
-        .filter(|(_, (gap, turn))| *gap > GAP_TOLERANCE * length || turn.is_some_and(|t| t.abs() > GAP_TOLERANCE))
-        .collect();
+    let open = open_gaps(rest_gaps(m), m.size());
     if open.is_empty() {
         return Ok(Vec::new());
     }
@@ -113,12 +129,7 @@ pub fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosu
         Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
         Err(e) => return Err(e),
     };
-    let mut rows = Vec::with_capacity(m.closures.len());
-    let mut row = 0;
-    for c in &m.closures {
-        rows.push(row);
-        row += c.equations();
-    }
+    let rows = first_rows(m.closures.iter().map(Closure::equations));
     Ok(open
         .into_iter()
         .map(|(i, (gap, turn))| {

@@ -38,7 +38,7 @@
 //! overlap that runs on from there. A flexure's
 //! non-consecutive chords are tested against each other too (a loop).
 
-mod closures;
+pub(in crate::mechanism) mod closures;
 mod crossing;
 mod geometry;
 

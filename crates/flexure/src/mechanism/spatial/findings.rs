@@ -2,13 +2,14 @@
 //! sides do not meet with every joint at rest, and the preload that closing
 //! it puts into the unloaded mechanism, as the planar
 //! [`crate::mechanism::findings::open_closures`] finds them (the same
-//! [`OpenClosure`], and the same [`GAP_TOLERANCE`]).
+//! [`OpenClosure`], and the same [`GAP_TOLERANCE`](crate::mechanism::findings::GAP_TOLERANCE)).
 
 use super::kinematics::frames;
 use super::statics::assemble_unloaded;
 use super::{SpatialClosure, SpatialMechanism};
 use crate::error::{Error, Result};
-use crate::mechanism::findings::{GAP_TOLERANCE, OpenClosure};
+use crate::mechanism::findings::OpenClosure;
+use crate::mechanism::findings::closures::{first_rows, open_gaps};
 use crate::solver::Settings;
 use nalgebra::UnitQuaternion;
 
@@ -48,7 +49,7 @@ pub fn rest_gaps(m: &SpatialMechanism) -> Vec<(f64, Option<f64>)> {
 }
 
 /// The closures of `m` that do not meet at rest (by more than
-/// [`GAP_TOLERANCE`] of [`SpatialMechanism::size`], or of a radian), each
+/// [`GAP_TOLERANCE`](crate::mechanism::findings::GAP_TOLERANCE) of [`SpatialMechanism::size`], or of a radian), each
 /// with the force and moment it carries in the unloaded, assembled
 /// mechanism (`None` if that cannot be assembled from rest, as every solve
 /// of it then says): a warning, or a note where the file says
@@ -69,12 +70,7 @@ pub fn rest_gaps(m: &SpatialMechanism) -> Vec<(f64, Option<f64>)> {
 /// assert!(open[0].message().contains("ball of \"a\" and \"b\" is open at rest by 1.0"));
 /// ```
 pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
-    let length = m.size();
-    let open: Vec<(usize, (f64, Option<f64>))> = rest_gaps(m)
-        .into_iter()
-        .enumerate()
-        .filter(|(_, (gap, turn))| *gap > GAP_TOLERANCE * length || turn.is_some_and(|t| t.abs() > GAP_TOLERANCE))
-        .collect();
+    let open = open_gaps(rest_gaps(m), m.size());
     if open.is_empty() {
         return Ok(Vec::new());
     }
@@ -83,12 +79,7 @@ pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<Op
         Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
         Err(e) => return Err(e),
     };
-    let mut rows = Vec::with_capacity(m.closures.len());
-    let mut row = 0;
-    for c in &m.closures {
-        rows.push(row);
-        row += c.equations();
-    }
+    let rows = first_rows(m.closures.iter().map(SpatialClosure::equations));
     Ok(open
         .into_iter()
         .map(|(i, (gap, turn))| {
