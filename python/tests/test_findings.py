@@ -67,3 +67,41 @@ def test_a_simulation_that_crosses_warns_and_lists_the_samples():
         k = int(round(t / 0.01))
         theta = float(run["coordinates"]["pivot"][k][0])
         assert math.radians(-75.6) < theta < math.radians(-21.7), (t, theta)
+
+
+# The same pendulum and post in space, the post a blade 10 mm thick: the
+# window where the bob's link meets the post's solid widens to -77.0 deg ..
+# -19.98 deg (the file's comment derives it).
+PENDULUM3D = (
+    Path(__file__).resolve().parents[2] / "crates" / "flexure" / "tests" / "data" / "pendulum_through_post3d.toml"
+).read_text(encoding="utf-8")
+
+
+def test_a_spatial_simulation_that_crosses_warns_and_lists_the_samples():
+    with pytest.warns(flexure.IntersectionWarning, match='flexure "post" crosses link "bob"'):
+        run = flexure.Mechanism.from_toml(PENDULUM3D).simulate(0.3, every=0.01, start="rest")
+    found = [f for f in run["findings"] if f["parts"] == ('flexure "post"', 'link "bob"')]
+    assert found and min(f["time"] for f in found) > 0.0
+    for f in found:
+        assert len(f["at"]) == 3 and f["s_b"] is None and 0.0 < f["s_a"] <= 0.28
+        k = int(round(f["time"] / 0.01))
+        theta = float(run["coordinates"]["pivot"][k][0])
+        assert math.radians(-77.01) < theta < math.radians(-19.97), (f["time"], theta)
+
+
+def test_spatial_rods_pushed_together_cross_in_a_sweep():
+    # Two round rods 2 mm thick, axes 4 mm apart: a tip push of F moves rod a by
+    # F L^3/(3 E I), 2 mm (touching) at 7.54 N; crossings at 10 and 15 N only.
+    rod = lambda name, z: (
+        f'[[joint]]\nname = "{name}"\nkind = "flexure"\nparent = "ground"\nchild = "{name}_tip"\n'
+        f"origin = [0.0, 0.0, {z}]\nlength = 0.05\nmodulus = 2e11\npoisson = 0.3\ndiameter = 2e-3\n"
+    )
+    text = "dimension = 3\n" + rod("a", 0.0) + rod("b", 4e-3)
+    text += '[[force]]\nname = "push"\nbody = "a_tip"\nforce = [0.0, 0.0, 10.0]\n'
+    m = flexure.Mechanism.from_toml(text)
+    with pytest.warns(flexure.IntersectionWarning, match='flexure "a" crosses flexure "b"'):
+        out = m.sweep("force.push.fz", [0.0, 5.0, 10.0, 15.0])
+    assert [f["value"] for f in out["findings"]] == [10.0, 15.0]
+    with pytest.warns(flexure.IntersectionWarning):
+        solved = m.solve()
+    assert solved["findings"][0]["parts"] == ('flexure "a"', 'flexure "b"')

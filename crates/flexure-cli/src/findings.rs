@@ -6,6 +6,7 @@
 use crate::options::{note, warn};
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::findings::{Crossing, OpenClosure, Severity, crossings, crossings_along, open_closures};
+use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::statics::Settings;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -39,12 +40,12 @@ fn closure_json(c: &OpenClosure) -> Value {
     v
 }
 
-fn crossing_json(c: &Crossing) -> Value {
+fn crossing_json<P: AsRef<[f64]>>(c: &Crossing<P>) -> Value {
     let mut v = json!({
         "kind": "crossing",
         "severity": "warning",
         "parts": c.names,
-        "at": c.at,
+        "at": c.at.as_ref(),
         "contacts": c.contacts,
         "message": c.message(),
     });
@@ -71,7 +72,7 @@ pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
 
 /// The closures of a spatial mechanism open at rest, told and listed as
 /// [`closures`] tells the planar ones'.
-pub fn spatial_closures(m: &flexure::mechanism::spatial::SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
+pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
     let open = flexure::mechanism::spatial::findings::open_closures(m, &Settings::default())
         .map_err(|e| format!("{}: {e}", file.display()))?;
     for c in &open {
@@ -86,7 +87,16 @@ pub fn spatial_closures(m: &flexure::mechanism::spatial::SpatialMechanism, file:
 
 /// The parts of `m` that cross at coordinates `q`, told and listed.
 pub fn shape(m: &Mechanism, q: &[f64], file: &Path) -> Vec<Value> {
-    let found = crossings(m, q);
+    told(crossings(m, q), file)
+}
+
+/// The parts of a spatial mechanism that cross at coordinates `q`, told and
+/// listed as [`shape`] tells the planar ones.
+pub fn spatial_shape(m: &SpatialMechanism, q: &[f64], file: &Path) -> Vec<Value> {
+    told(flexure::mechanism::spatial::findings::crossings(m, q), file)
+}
+
+fn told<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
     for c in &found {
         warn(format!("{}: {}", file.display(), c.message()));
     }
@@ -105,7 +115,28 @@ pub fn along(
     key: &str,
     file: &Path,
 ) -> Vec<Value> {
-    let found = crossings_along(m, shapes.iter().map(|s| s.1));
+    told_along(crossings_along(m, shapes.iter().map(|s| s.1)), shapes, (what, shapes_are), key, file)
+}
+
+/// [`along`] for a spatial mechanism.
+pub fn spatial_along(
+    m: &SpatialMechanism,
+    shapes: &[(f64, &[f64])],
+    (what, shapes_are): (&str, &str),
+    key: &str,
+    file: &Path,
+) -> Vec<Value> {
+    let found = flexure::mechanism::spatial::findings::crossings_along(m, shapes.iter().map(|s| s.1));
+    told_along(found, shapes, (what, shapes_are), key, file)
+}
+
+fn told_along<P: AsRef<[f64]>>(
+    found: Vec<(usize, Vec<Crossing<P>>)>,
+    shapes: &[(f64, &[f64])],
+    (what, shapes_are): (&str, &str),
+    key: &str,
+    file: &Path,
+) -> Vec<Value> {
     let mut told: Vec<(&[String; 2], usize)> = Vec::new();
     for (_, cs) in &found {
         for c in cs {

@@ -172,10 +172,12 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         None => None,
     };
     if let Some(m) = crate::mechanism::spatial::read(&args.file)? {
-        let findings = crate::findings::spatial_closures(&m, &args.file)?;
+        let mut findings = crate::findings::spatial_closures(&m, &args.file)?;
         let run = with_progress_bar(args.duration, || {
             crate::mechanism::spatial::simulate(&m, &args.file, args.duration, &args.motion)
         })?;
+        let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
+        findings.extend(crate::findings::spatial_along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
         let mut v = crate::mechanism::spatial::motion_json(&m, &run);
         crate::mechanism::spatial::put_findings(&mut v, findings);
         if let Some((path, mut file)) = out {

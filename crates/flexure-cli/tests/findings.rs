@@ -133,3 +133,70 @@ fn a_simulation_that_crosses_warns_at_a_sample() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!(v["findings"].as_array().is_some_and(|f| !f.is_empty()), "{v}");
 }
+
+/// The planar pendulum and post in space, the post a 10 mm blade
+/// (`pendulum_through_post3d.toml`): `simulate` warns at the first sample
+/// where the bob's link meets the post's solid and lists every such sample
+/// with its time, each where the bob's angle lies in the window the file's
+/// comment derives (−77.0° to −19.98°); `draw --simulate` warns alike.
+#[test]
+fn a_spatial_simulation_that_crosses_warns_at_a_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = include_str!("../../flexure/tests/data/pendulum_through_post3d.toml");
+    let path = write(dir.path(), "pendulum3d.toml", text);
+    let (v, err) = answer(&["simulate", &path, "--duration", "0.3", "--every", "0.01"]);
+    let line =
+        err.lines().find(|l| l.contains("flexure \"post\" crosses link \"bob\"")).unwrap_or_else(|| panic!("{err}"));
+    assert!(line.starts_with(&format!("warning: {path}: at t (s) = ")), "{line}");
+    let found: Vec<&Value> = v["findings"].as_array().unwrap().iter().collect();
+    assert!(!found.is_empty() && found.iter().all(|f| f["parts"][0] == "flexure \"post\""), "{v}");
+    let times: Vec<f64> = found.iter().map(|f| f["time"].as_f64().unwrap()).collect();
+    assert!(times[0] > 0.0 && line.contains(&format!("t (s) = {} ", times[0])), "{line}");
+    let time: Vec<f64> = v["time"].as_array().unwrap().iter().map(|t| t.as_f64().unwrap()).collect();
+    let pivot: Vec<f64> =
+        v["coordinates"]["pivot"].as_array().unwrap().iter().map(|r| r[0].as_f64().unwrap()).collect();
+    for t in &times {
+        let k = time.iter().position(|s| s == t).unwrap();
+        assert!(pivot[k] > (-77.01f64).to_radians() && pivot[k] < (-19.97f64).to_radians(), "t = {t}: {}", pivot[k]);
+        assert_eq!(found[0]["at"].as_array().unwrap().len(), 3);
+    }
+    let svg = dir.path().join("swing.svg").display().to_string();
+    let (code, out, drawn) =
+        crate::cli::run(&["draw", &path, "--simulate", "0.3", "--every", "0.01", "--out", &svg, "--json"]);
+    assert_eq!(code, 0, "{drawn}");
+    assert!(drawn.lines().any(|l| l == line), "{drawn}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["findings"].as_array().map(Vec::len), Some(found.len()), "{v}");
+}
+
+/// Two round rods 2 mm thick, their axes 4 mm apart along z, one pushed
+/// toward the other at its tip: they touch when its tip has moved 2 mm, at
+/// F = 3EIδ/L³ = 7.54 N by the cantilever's closed form (E = 200 GPa,
+/// I = πd⁴/64, L = 50 mm; the tip turns 0.06 rad there, so the linear
+/// theory holds to a fraction of a percent). `solve --sweep` lists the
+/// crossing at 10 and 15 N, not at 0 or 5 N; `solve` at 10 N lists it too.
+#[test]
+fn a_spatial_sweep_lists_the_values_where_parts_cross() {
+    let dir = tempfile::tempdir().unwrap();
+    let rod = |name: &str, z: f64| {
+        format!(
+            "[[joint]]\nname = \"{name}\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"{name}_tip\"\n\
+             origin = [0.0, 0.0, {z}]\nlength = 0.05\nmodulus = 2e11\npoisson = 0.3\ndiameter = 2e-3\n"
+        )
+    };
+    let text = format!(
+        "dimension = 3\n{}{}[[force]]\nname = \"push\"\nbody = \"a_tip\"\nforce = [0.0, 0.0, 10.0]\n",
+        rod("a", 0.0),
+        rod("b", 4e-3)
+    );
+    let path = write(dir.path(), "rods.toml", &text);
+    let (v, err) = answer(&["solve", &path, "--sweep", "force.push.fz=0:15:4"]);
+    let values: Vec<f64> = v["findings"].as_array().unwrap().iter().map(|f| f["value"].as_f64().unwrap()).collect();
+    assert_eq!(values, [10.0, 15.0], "{v}");
+    let line = err.lines().find(|l| l.contains("crosses")).unwrap_or_else(|| panic!("{err}"));
+    assert!(line.contains("at force.push.fz = 10 and at 1 more of the swept values"), "{line}");
+    assert!(line.contains("flexure \"a\" crosses flexure \"b\""), "{line}");
+    let (v, err) = answer(&["solve", &path]);
+    assert_eq!(v["findings"][0]["parts"], serde_json::json!(["flexure \"a\"", "flexure \"b\""]), "{v}");
+    assert!(err.contains("warning: ") && err.contains("crosses flexure \"b\""), "{err}");
+}

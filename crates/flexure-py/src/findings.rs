@@ -7,7 +7,7 @@ use crate::errors::{IntersectionWarning, PreloadWarning};
 use crate::warnings::warn;
 use flexure::mechanism::findings::{Crossing, OpenClosure, Severity};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 fn closure_dict<'py>(py: Python<'py>, c: &OpenClosure) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -24,12 +24,12 @@ fn closure_dict<'py>(py: Python<'py>, c: &OpenClosure) -> PyResult<Bound<'py, Py
     Ok(d)
 }
 
-fn crossing_dict<'py>(py: Python<'py>, c: &Crossing) -> PyResult<Bound<'py, PyDict>> {
+fn crossing_dict<'py, P: AsRef<[f64]>>(py: Python<'py>, c: &Crossing<P>) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("kind", "crossing")?;
     d.set_item("severity", "warning")?;
     d.set_item("parts", (c.names[0].as_str(), c.names[1].as_str()))?;
-    d.set_item("at", (c.at[0], c.at[1]))?;
+    d.set_item("at", PyTuple::new(py, c.at.as_ref())?)?;
     d.set_item("s_a", c.s[0])?;
     d.set_item("s_b", c.s[1])?;
     d.set_item("contacts", c.contacts)?;
@@ -37,14 +37,17 @@ fn crossing_dict<'py>(py: Python<'py>, c: &Crossing) -> PyResult<Bound<'py, PyDi
     Ok(d)
 }
 
+/// No crossings (for an analysis that has no shapes to look at: buckling, modes).
+pub const NO_CROSSINGS: [(Option<f64>, Crossing); 0] = [];
+
 /// The open closures and crossings as a list, each warning raised
 /// (`what` names the call, `stacklevel` as [`warn`]); a crossing found at
 /// a sample of a series carries its `time`, warned once per pair of parts.
-pub fn report<'py>(
+pub fn report<'py, P: AsRef<[f64]>>(
     py: Python<'py>,
     what: &str,
     open: &[OpenClosure],
-    crossings: &[(Option<f64>, Crossing)],
+    crossings: &[(Option<f64>, Crossing<P>)],
     stacklevel: i32,
 ) -> PyResult<Bound<'py, PyList>> {
     report_along(py, what, open, crossings, ("time", "t", " s"), stacklevel)
@@ -53,11 +56,11 @@ pub fn report<'py>(
 /// [`report`], a crossing's place in the series under `key` and, in the
 /// warning, as `label = value unit` (a simulation's `time`, `t`, ` s`; a
 /// sweep's `value`, its parameter, no unit).
-pub fn report_along<'py>(
+pub fn report_along<'py, P: AsRef<[f64]>>(
     py: Python<'py>,
     what: &str,
     open: &[OpenClosure],
-    crossings: &[(Option<f64>, Crossing)],
+    crossings: &[(Option<f64>, Crossing<P>)],
     (key, label, unit): (&str, &str, &str),
     stacklevel: i32,
 ) -> PyResult<Bound<'py, PyList>> {

@@ -55,6 +55,7 @@ mod spatial_energy;
 mod spatial_estimate;
 mod spatial_examples;
 mod spatial_files;
+mod spatial_findings;
 mod spatial_flexure_mass;
 mod spatial_kinematics;
 mod spatial_mechanism;

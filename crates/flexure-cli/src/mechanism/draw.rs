@@ -44,6 +44,8 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let unloaded =
         flexure::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
+    // solve's and simulate's findings, told on stderr and kept in the answer.
+    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
     if let Some(spec) = &args.sweep {
         let p =
             flexure::mechanism::spatial::sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
@@ -73,6 +75,14 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
             true => format!("{} (past the stability limit)", drawing::swept(&spec.parameter, v)),
             false => drawing::swept(&spec.parameter, v),
         };
+        let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
+        findings.extend(crate::findings::spatial_along(
+            m,
+            &shapes,
+            (&spec.parameter, "swept values"),
+            "value",
+            &args.file,
+        ));
         let loaded: Vec<(String, flexure::mechanism::spatial::statics::SpatialSolution)> =
             out.rows.iter().map(|(v, s)| (label(*v), s.clone())).collect();
         let (fig, k) = sd::spatial_figure(m, &title, &unloaded, &loaded, &marks, args.view, true)?;
@@ -87,16 +97,22 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
         if let Some(k) = k {
             v["force_scale_m_per_n"] = json!(k);
         }
+        super::spatial::put_findings(&mut v, findings);
         return Ok(v);
     }
     if let Some(duration) = args.simulate {
         let sim = crate::mechanism::spatial::simulate(m, &args.file, duration, &args.motion)?;
+        let samples: Vec<(f64, &[f64])> = (0..sim.time.len()).map(|k| (sim.time[k], sim.q(k))).collect();
+        findings.extend(crate::findings::spatial_along(m, &samples, ("t (s)", "samples"), "time", &args.file));
         let drawn = sd::spatial_motion_figures(m, &title, &unloaded, &sim, args.view, true)?;
         flexure_chart::write_stack(&args.out, &drawn.figures)?;
-        return Ok(json!({ "out": args.out.display().to_string(), "shapes": drawn.snapshots.len() + 1,
-                          "snapshots": drawn.snapshots, "force_scale_m_per_n": drawn.per_newton }));
+        let mut v = json!({ "out": args.out.display().to_string(), "shapes": drawn.snapshots.len() + 1,
+                          "snapshots": drawn.snapshots, "force_scale_m_per_n": drawn.per_newton });
+        super::spatial::put_findings(&mut v, findings);
+        return Ok(v);
     }
     let s = flexure::mechanism::spatial::statics::solve(m, &settings).map_err(err)?;
+    findings.extend(crate::findings::spatial_shape(m, &s.q, &args.file));
     let (fig, k) =
         sd::spatial_figure(m, &title, &unloaded, &[("loaded".into(), s)], &drawing::Marks::default(), args.view, true)?;
     flexure_chart::write(&args.out, &fig)?;
@@ -104,6 +120,7 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
     if let Some(k) = k {
         v["force_scale_m_per_n"] = json!(k);
     }
+    super::spatial::put_findings(&mut v, findings);
     Ok(v)
 }
 

@@ -66,7 +66,7 @@ pub fn solve_cmd(
 ) -> Result<Value, String> {
     let settings = Settings::default();
     let err = said(file);
-    let findings = crate::findings::spatial_closures(m, file)?;
+    let mut findings = crate::findings::spatial_closures(m, file)?;
     let at = match compliance_at {
         Some((name, at)) => {
             let b =
@@ -79,6 +79,8 @@ pub fn solve_cmd(
         let p = SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
         let values = sweep_values(&spec.range);
         let out = sweep(m, &p, &values, &settings).map_err(&err)?;
+        let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
+        findings.extend(crate::findings::spatial_along(m, &shapes, (&spec.parameter, "swept values"), "value", file));
         let mut columns = vec![spec.parameter.clone()];
         for b in &m.bodies[1..] {
             columns.extend(["x", "y", "z", "roll", "pitch", "yaw"].map(|c| format!("{}.{c}", b.name)));
@@ -132,6 +134,7 @@ pub fn solve_cmd(
             100.0 * limit
         ));
     }
+    findings.extend(crate::findings::spatial_shape(m, &s.q, file));
     let answer = report(m, &s, target).map_err(&err)?;
     warn_flagged(&answer, m, target, file);
     let mut v = json!(answer);

@@ -72,48 +72,10 @@ use flexure_chart::{
 use flexure_chart::{Chart, Color, Series, chart_figure};
 use nalgebra::{Point3, Rotation3, Vector3};
 
-/// Every point attached to body `b`, in its frame: its origin (not for the
-/// ground), the root of each joint it carries, its tendon via points, load
-/// points and closure points, and its centre of mass if it has mass (the
-/// planar [`flexure::mechanism::Mechanism::attachments`] in space).
-///
-/// # Example
-/// ```
-/// use flexure_cli::spatial_drawing::attachments;
-/// use flexure::mechanism::spatial::{Spherical, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
-/// use nalgebra::{Isometry3, Point3, Vector3};
-/// let bob = SpatialBody { mass: 1.0, com: Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
-/// let ball = SpatialJointSpec {
-///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
-///     parent: 0, child: 1, origin: Isometry3::translation(0.0, 0.0, 2.0), offset: 0, damping: 0.0,
-/// };
-/// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::zeros()).unwrap();
-/// assert_eq!(attachments(&m, 0), [Point3::new(0.0, 0.0, 2.0)]);
-/// assert_eq!(attachments(&m, 1), [Point3::origin(), Point3::new(0.0, 0.0, -1.0)]);
-/// ```
+/// Every point attached to body `b`, in its frame
+/// ([`SpatialMechanism::attachments`]).
 pub fn attachments(m: &SpatialMechanism, b: usize) -> Vec<Point3<f64>> {
-    let mut pts = Vec::new();
-    if b != 0 {
-        pts.push(Point3::origin());
-    }
-    pts.extend(m.joints.iter().filter(|j| j.parent == b).map(|j| Point3::from(j.origin.translation.vector)));
-    pts.extend(m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
-    pts.extend(m.forces.iter().filter(|f| f.body == b).map(|f| f.at));
-    for c in &m.closures {
-        let (a, ra, other, rb) = match c {
-            SpatialClosure::Weld { a, a_origin, b, b_origin } => {
-                (*a, Point3::from(a_origin.translation.vector), *b, Point3::from(b_origin.translation.vector))
-            }
-            SpatialClosure::Pin { a, a_at, b, b_at, .. } | SpatialClosure::Ball { a, a_at, b, b_at } => {
-                (*a, *a_at, *b, *b_at)
-            }
-        };
-        pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
-    }
-    if m.bodies[b].mass > 0.0 {
-        pts.push(m.bodies[b].com);
-    }
-    pts
+    m.attachments(b)
 }
 
 /// A part of one shape, painted at its depth (larger: nearer).

@@ -82,7 +82,7 @@ pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResul
     };
     let name = |_| format!("the load factor {}", sig(b.load_factor));
     warn_values(py, "Mechanism.buckle", &e, target, name, &reference, hint, 2)?;
-    let listed = findings::report(py, "Mechanism.buckle", &open, &[], 2)?;
+    let listed = findings::report(py, "Mechanism.buckle", &open, &findings::NO_CROSSINGS, 2)?;
     if !listed.is_empty() {
         out.set_item("findings", listed)?;
     }

@@ -9,6 +9,7 @@
 
 use crate::error_estimate::estimate_dict;
 use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
+use crate::findings;
 use crate::interrupt::interruptible;
 use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_values};
@@ -17,6 +18,7 @@ use flexure::dynamics::integrate;
 use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
 use flexure::estimate::{Accuracy, ErrorEstimate, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
+use flexure::mechanism::spatial::findings::{crossings, crossings_along, open_closures};
 use flexure::mechanism::spatial::report::{Placement, placements, report};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
@@ -131,11 +133,17 @@ fn warn_stability(py: Python<'_>, what: &str, limit: Option<f64>, stable: bool) 
 /// `flexures` {flexure joint: {load {moment, force}, stress}} and
 /// `error_estimate` {flexure joint: dict}.
 pub fn solve<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
-    let r = interruptible(py, || {
+    let (r, open) = interruptible(py, || {
+        let open = open_closures(m, &Settings::default())?;
         let s = equilibrium(m, &Settings::default())?;
-        report(m, &s, target)
+        Ok((report(m, &s, target)?, open))
     })?;
+    let crossings: Vec<_> = crossings(m, &r.solution.q).into_iter().map(|c| (None, c)).collect();
+    let listed = findings::report(py, "Mechanism.solve", &open, &crossings, 2)?;
     let out = crate::serialize::to_dict(py, &r)?;
+    if !listed.is_empty() {
+        out.set_item("findings", listed)?;
+    }
     out.set_item("q", PyArray1::from_slice(py, &r.solution.q))?;
     out.set_item("multipliers", PyArray1::from_slice(py, &r.solution.multipliers))?;
     out.set_item("bodies", bodies_dict(py, &r.bodies)?)?;
@@ -253,7 +261,8 @@ pub fn sweep<'py>(
             values.len()
         )));
     }
-    let (out, estimated, compliances) = interruptible(py, || {
+    let (out, estimated, compliances, open) = interruptible(py, || {
+        let open = open_closures(m, &Settings::default())?;
         let out = match run_sweep(m, &p, &values, &Settings::default()) {
             Err(Error::InvalidParameter { name: "sweep", value, reason }) => {
                 return Err(Error::InvalidParameter { name: "values", value, reason });
@@ -276,9 +285,18 @@ pub fn sweep<'py>(
             }
             None => None,
         };
-        Ok((out, estimated, compliances))
+        Ok((out, estimated, compliances, open))
     })?;
     let result = rows_dict(py, m, &out.rows)?;
+    let crossings: Vec<_> = crossings_along(m, out.rows.iter().map(|r| r.1.q.as_slice()))
+        .into_iter()
+        .flat_map(|(k, cs)| cs.into_iter().map(move |c| (Some(k), c)))
+        .map(|(k, c)| (k.map(|k| out.rows[k].0), c))
+        .collect();
+    let listed = findings::report_along(py, "Mechanism.sweep", &open, &crossings, ("value", parameter, ""), 2)?;
+    if !listed.is_empty() {
+        result.set_item("findings", listed)?;
+    }
     if let Some(cs) = &compliances {
         let a = Array3::from_shape_fn((cs.len(), 6, 6), |(k, i, j)| cs[k][(i, j)]);
         result.set_item("compliance", a.into_pyarray(py))?;
@@ -382,9 +400,14 @@ pub fn modes<'py>(
     // With no coordinates the library says so (count 0 would be refused by its name instead).
     let asked = crate::modes::wanted(count, m.dof(), "the mechanism")?.max(1);
     let settings = Settings::default();
-    let (m, modes, e) = interruptible(py, || modes_auto(m, &settings, asked, target))?;
+    let (open, (m, modes, e)) =
+        interruptible(py, || Ok((open_closures(m, &settings)?, modes_auto(m, &settings, asked, target)?)))?;
     let m = &m;
     let out = PyDict::new(py);
+    let listed = findings::report(py, "Mechanism.modes", &open, &findings::NO_CROSSINGS, 2)?;
+    if !listed.is_empty() {
+        out.set_item("findings", listed)?;
+    }
     out.set_item("dimension", 3)?;
     out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
     out.set_item("frequency", PyArray1::from_vec(py, modes.frequency.clone()))?;
@@ -444,14 +467,23 @@ pub fn simulate<'py>(
         max_steps,
         ..Default::default()
     };
-    let run = interruptible(py, || {
+    let (run, open) = interruptible(py, || {
+        let open = open_closures(m, &Settings::default())?;
         let run = flexure::dynamics::spatial::simulate(m, &motion, &Settings::default(), equilibrium)?;
         // Python raises on a run that stopped early, as for a planar one.
         match &run.stopped {
             Some(e) => Err(e.clone()),
-            None => Ok(run),
+            None => Ok((run, open)),
         }
     })?;
+    let crossings: Vec<_> = crossings_along(m, (0..run.time.len()).map(|k| run.q(k)))
+        .into_iter()
+        .flat_map(|(k, cs)| {
+            let t = run.time[k];
+            cs.into_iter().map(move |c| (Some(t), c))
+        })
+        .collect();
+    let listed = findings::report(py, "Mechanism.simulate", &open, &crossings, 2)?;
     let n = run.time.len();
     let bodies = PyDict::new(py);
     for b in &run.bodies {
@@ -478,6 +510,9 @@ pub fn simulate<'py>(
     out.set_item("steps", run.trajectory.steps)?;
     out.set_item("rejected", run.trajectory.rejected)?;
     out.set_item("violation", run.trajectory.violation)?;
+    if !listed.is_empty() {
+        out.set_item("findings", listed)?;
+    }
     Ok(out)
 }
 
@@ -487,9 +522,14 @@ pub fn simulate<'py>(
 /// `target` warns AccuracyWarning) and flagged, in the planar answer's keys.
 pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
     let settings = Settings::default();
-    let (m, b, e) = interruptible(py, || buckle_auto(m, &settings, target))?;
+    let (open, (m, b, e)) =
+        interruptible(py, || Ok((open_closures(m, &settings)?, buckle_auto(m, &settings, target)?)))?;
     let m = &m;
     let out = crate::serialize::to_dict(py, &b)?;
+    let listed = findings::report(py, "Mechanism.buckle", &open, &findings::NO_CROSSINGS, 2)?;
+    if !listed.is_empty() {
+        out.set_item("findings", listed)?;
+    }
     out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
     out.set_item("dimension", 3)?;
     // As the planar answer's: the relative error, reference_load_factor, the reference orders by

@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 mod spatial;
 mod spec;
 pub mod torsion;
-pub use spatial::{Shear, SpatialSection, SpatialStress, StressPoint};
+pub use spatial::{Outline, Shear, SpatialSection, SpatialStress, StressPoint};
 pub use spec::{FlexureSpec, SectionSpec};
 
 /// A positive quantity along the flexure, a function of $t = s/L$.

@@ -52,6 +52,23 @@ enum Stiffness {
     Circle { modulus: f64, shear: f64, diameter: Profile },
 }
 
+/// The outline of a section with a shape ([`SpatialSection::outline`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outline {
+    /// A rectangle, `width` along the section's $z$ and `thickness` along its $y$ (m).
+    Rectangle {
+        /// Along $z$ (m).
+        width: f64,
+        /// Along $y$ (m).
+        thickness: f64,
+    },
+    /// A circle of this diameter (m).
+    Circle {
+        /// The diameter (m).
+        diameter: f64,
+    },
+}
+
 /// How the shear modulus $G$ of a section is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shear {
@@ -416,6 +433,27 @@ impl SpatialSection {
             }
             _ => [0.0; 3],
         })
+    }
+
+    /// The section's outline at $t = s/L$ (m): its width along $z$ and
+    /// thickness along $y$, or its diameter; `None` for stiffnesses given
+    /// directly, which have no geometry.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Outline, Profile, Shear, SpatialSection};
+    /// let s = SpatialSection::rectangle(1e9, Shear::Poisson(0.3), Profile::Constant(0.02), Profile::Constant(0.01)).unwrap();
+    /// assert_eq!(s.outline(0.5), Some(Outline::Rectangle { width: 0.02, thickness: 0.01 }));
+    /// assert_eq!(SpatialSection::uniform(1.0, 1.0, 1.0).unwrap().outline(0.5), None);
+    /// ```
+    pub fn outline(&self, t: f64) -> Option<Outline> {
+        match &self.stiffness {
+            Stiffness::Given { .. } => None,
+            Stiffness::Rectangle { width, thickness, .. } => {
+                Some(Outline::Rectangle { width: width.at(t), thickness: thickness.at(t) })
+            }
+            Stiffness::Circle { diameter, .. } => Some(Outline::Circle { diameter: diameter.at(t) }),
+        }
     }
 
     /// Whether it has a shape and material (a rectangle or a circle), and

@@ -43,9 +43,11 @@ impl Part {
     }
 }
 
-/// Two parts that cross.
+/// Two parts that cross, meeting at `at`: a point of the plane (`[f64; 2]`,
+/// the planar [`crossings`]) or of space (`[f64; 3]`,
+/// [`crate::mechanism::spatial::findings::crossings`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Crossing {
+pub struct Crossing<P = [f64; 2]> {
     /// The first part (the earlier flexure, or a flexure before a link).
     pub a: Part,
     /// The second part (equal to `a` for a flexure that crosses itself).
@@ -53,7 +55,7 @@ pub struct Crossing {
     /// `a` and `b` as [`Part::describe`] gives them.
     pub names: [String; 2],
     /// The first point where they meet (ground frame, m), first along `a`.
-    pub at: [f64; 2],
+    pub at: P,
     /// The arc length (m from its root) where each part meets the other
     /// there, for a flexure; `None` for a link.
     pub s: [Option<f64>; 2],
@@ -61,12 +63,13 @@ pub struct Crossing {
     pub contacts: usize,
 }
 
-impl Crossing {
+impl<P: AsRef<[f64]>> Crossing<P> {
     /// The finding in words.
     pub fn message(&self) -> String {
         let along: Vec<String> =
             (0..2).filter_map(|k| self.s[k].map(|s| format!("{s:.6e} m along {}", self.names[k]))).collect();
-        let mut where_ = format!("at ({:.6e}, {:.6e}) m", self.at[0], self.at[1]);
+        let at: Vec<String> = self.at.as_ref().iter().map(|x| format!("{x:.6e}")).collect();
+        let mut where_ = format!("at ({}) m", at.join(", "));
         if self.a == self.b {
             if let (Some(s0), Some(s1)) = (self.s[0], self.s[1]) {
                 where_ += &format!(" ({s0:.6e} and {s1:.6e} m along it)");

@@ -39,10 +39,12 @@
 //! non-consecutive chords are tested against each other too (a loop).
 
 pub(in crate::mechanism) mod closures;
+mod convex;
 mod crossing;
 mod geometry;
 
 pub use closures::{GAP_TOLERANCE, OpenClosure, closure_name, open_closures, rest_gaps};
+pub use convex::{Convex, MAX_ITERATIONS, within};
 pub use crossing::{
     CHORD_TURN, Crossing, MAX_CHORDS, MIN_CHORDS, Part, TOUCH_TOLERANCE, chords, crossings, crossings_along,
 };

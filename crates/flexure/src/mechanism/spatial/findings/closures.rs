@@ -4,12 +4,12 @@
 //! [`crate::mechanism::findings::open_closures`] finds them (the same
 //! [`OpenClosure`], and the same [`GAP_TOLERANCE`](crate::mechanism::findings::GAP_TOLERANCE)).
 
-use super::kinematics::frames;
-use super::statics::assemble_unloaded;
-use super::{SpatialClosure, SpatialMechanism};
 use crate::error::{Error, Result};
 use crate::mechanism::findings::OpenClosure;
 use crate::mechanism::findings::closures::{first_rows, open_gaps};
+use crate::mechanism::spatial::kinematics::frames;
+use crate::mechanism::spatial::statics::assemble_unloaded;
+use crate::mechanism::spatial::{SpatialClosure, SpatialMechanism};
 use crate::solver::Settings;
 use nalgebra::UnitQuaternion;
 
