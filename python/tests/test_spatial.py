@@ -113,3 +113,81 @@ def test_shape_bad_points_raise_value_error():
     f = flexure.SpatialFlexure()
     with pytest.raises(ValueError, match="k|points"):
         f.shape([0.0] * 9, 1)
+
+
+def test_mass_of_a_strip_and_a_tapered_rod_is_the_closed_form():
+    # Reference: mass = ρ·w·h·L for a strip, and for a rod tapering linearly from d0 to d1
+    # ρ·π/4·L·(d0² + d0·d1 + d1²)/3; the quadrature is exact for these (μ at most quadratic
+    # in s), so 1e-13 relative.
+    rho, l, w, h = 7850.0, 0.05, 0.01, 2e-4
+    strip = flexure.SpatialFlexure(length=l, modulus=200e9, width=w, thickness=h, density=rho)
+    assert strip.density == rho and strip.mass_per_length is None
+    assert abs(strip.mass() / (rho * w * h * l) - 1) < 1e-13
+    assert abs(strip.mass_per_length_at(0.02) / (rho * w * h) - 1) < 1e-13
+    d0, d1 = 2e-3, 1e-3
+    rod = flexure.SpatialFlexure(length=l, modulus=200e9, diameter=(d0, d1), density=rho)
+    exact = rho * math.pi / 4 * l * (d0 * d0 + d0 * d1 + d1 * d1) / 3
+    assert abs(rod.mass() / exact - 1) < 1e-13
+    at = rod.mass_per_length_at(np.array([0.0, l]))
+    assert np.allclose(at, [rho * math.pi * d0 * d0 / 4, rho * math.pi * d1 * d1 / 4], rtol=1e-13, atol=0)
+    # Without mass: None, as the planar Flexure's mass_per_length_at.
+    bare = flexure.SpatialFlexure()
+    assert bare.mass() is None and bare.mass_per_length_at(0.5) is None and bare.density is None
+
+
+def test_mass_per_length_as_given_and_its_mass():
+    # Reference: a taper μ = (root, tip) has mass (root + tip)/2·L; a table's piecewise-linear
+    # μ whose kink lies on a Magnus subinterval's end (t = 1/2, of 8) integrates exactly:
+    # L·(μ0 + 2μ½ + μ1)/4. Both 1e-13 relative.
+    f = flexure.SpatialFlexure(length=0.2, ei=0.01, mass_per_length=(0.05, 0.03))
+    assert f.mass_per_length == (0.05, 0.03) and f.density is None
+    assert abs(f.mass() / (0.04 * 0.2) - 1) < 1e-13
+    assert abs(f.mass_per_length_at(0.1) / 0.04 - 1) < 1e-13
+    table = [[0.0, 0.05], [0.5, 0.02], [1.0, 0.04]]
+    g = flexure.SpatialFlexure(length=0.2, ei=0.01, mass_per_length=table)
+    assert np.array_equal(g.mass_per_length, np.array(table))
+    assert abs(g.mass() / (0.2 * (0.05 + 2 * 0.02 + 0.04) / 4) - 1) < 1e-13
+    # A number reads back as a float.
+    assert flexure.SpatialFlexure(mass_per_length=0.5).mass_per_length == 0.5
+
+
+SPATIAL_BEAM = """dimension = 3
+[[joint]]
+name = "beam"
+kind = "flexure"
+parent = "ground"
+child = "tip"
+length = 0.05
+{section}
+"""
+
+
+def test_bad_mass_raises_value_error_naming_it_as_the_file_does():
+    # Each refusal names the argument and its value, with the file's reason for the same keys.
+    strip = dict(length=0.05, modulus=200e9, width=0.01, thickness=2e-4)
+    with pytest.raises(ValueError, match=r"density = 7850(\.0)? and mass_per_length") as both:
+        flexure.SpatialFlexure(**strip, density=7850.0, mass_per_length=0.01)
+    with pytest.raises(ValueError, match="give density or mass_per_length, not both"):
+        flexure.Mechanism.from_toml(
+            SPATIAL_BEAM.format(section="modulus = 200e9\nwidth = 0.01\nthickness = 2e-4\ndensity = 7850.0\nmass_per_length = 0.01")
+        )
+    assert "give density or mass_per_length, not both" in str(both.value)
+    # density on a section given by its stiffnesses: no area.
+    with pytest.raises(ValueError, match=r"invalid density = 7850: needs a rectangle's width and thickness") as ei:
+        flexure.SpatialFlexure(ei=0.01, density=7850.0)
+    with pytest.raises(ValueError) as file_ei:
+        flexure.Mechanism.from_toml(SPATIAL_BEAM.format(section="ei = 0.01\ndensity = 7850.0"))
+    assert str(ei.value).split(": ", 1)[1] in str(file_ei.value)
+    for bad in (-1.0, 0.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="density"):
+            flexure.SpatialFlexure(**strip, density=bad)
+    with pytest.raises(ValueError, match=r"mass_per_length.*-0\.01"):
+        flexure.SpatialFlexure(ei=0.01, mass_per_length=(0.02, -0.01))
+    with pytest.raises(ValueError, match="mass_per_length"):
+        flexure.SpatialFlexure(ei=0.01, mass_per_length=[[0.0, 0.02], [0.7, 0.01]])
+    with pytest.raises(TypeError):
+        flexure.SpatialFlexure(ei=0.01, mass_per_length="0.01")
+    # The properties are read-only.
+    f = flexure.SpatialFlexure(**strip, density=7850.0)
+    with pytest.raises(AttributeError):
+        f.density = 1.0

@@ -129,7 +129,8 @@ pub struct Entry {
 pub enum Place {
     /// In the corner of the plot where it hides no data, else right of the plot.
     Inside,
-    /// Right of the plot.
+    /// Right of the plot, in columns (up to three) where one would run past
+    /// the figure's foot; the figure grows where three would.
     Right,
     /// Under the plot, in columns.
     Below,

@@ -55,14 +55,41 @@ pub(crate) const BAR_HEIGHT: f64 = 16.0;
 /// The least width of a legend holding a colour bar (px), for its ticks to read.
 pub(crate) const BAR_WIDTH: f64 = 300.0;
 
+/// The most columns a legend takes.
+pub(crate) const MOST_COLUMNS: usize = 3;
+
+/// Room (px) kept under a legend beside the plot, to the figure's foot.
+pub(crate) const LEGEND_FOOT: f64 = 10.0;
+
+/// The columns a legend of `entries` may take in `room` px of width: as
+/// many as fit, one to [`MOST_COLUMNS`], no more than its entries.
+fn columns_in(entries: &[Entry], room: f64) -> usize {
+    let column = legend_column(entries) + 24.0;
+    ((room / column).floor() as usize).clamp(1, MOST_COLUMNS).min(entries.len().max(1))
+}
+
+/// A legend's size (px) and rows per column in `columns` columns; a colour
+/// bar adds a block under the entries.
+fn legend_box(entries: &[Entry], bar: bool, columns: usize) -> (f64, f64, usize) {
+    let column = legend_column(entries) + 24.0;
+    let rows = entries.len().div_ceil(columns.max(1));
+    let (w, h) = (columns as f64 * column, rows as f64 * LEGEND_ROW + 14.0);
+    if bar { (w.max(BAR_WIDTH), h + BAR_BLOCK, rows) } else { (w, h, rows) }
+}
+
 /// A legend's size (px) and rows per column, in as many columns (at most
 /// three) as fit in `room` px; a colour bar adds a block under the entries.
 pub(crate) fn legend_size(entries: &[Entry], bar: bool, room: f64) -> (f64, f64, usize) {
-    let column = legend_column(entries) + 24.0;
-    let columns = ((room / column).floor() as usize).clamp(1, 3).min(entries.len().max(1));
-    let rows = entries.len().div_ceil(columns);
-    let (w, h) = (columns as f64 * column, rows as f64 * LEGEND_ROW + 14.0);
-    if bar { (w.max(BAR_WIDTH), h + BAR_BLOCK, rows) } else { (w, h, rows) }
+    legend_box(entries, bar, columns_in(entries, room))
+}
+
+/// A legend beside the plot: one column if it is no taller than `height`
+/// px, else the fewest columns (at most three, and no wider together than
+/// `width` px) that are; as many as `width` allows if none is, and the
+/// figure then grows to hold it ([`crate::render`]).
+pub(crate) fn legend_beside(entries: &[Entry], bar: bool, height: f64, width: f64) -> (f64, f64, usize) {
+    let most = columns_in(entries, width);
+    (1..=most).map(|c| legend_box(entries, bar, c)).find(|b| b.1 <= height).unwrap_or(legend_box(entries, bar, most))
 }
 
 /// Data range in axis units, padded: linear axes by 4 % a side, log axes
@@ -109,7 +136,12 @@ pub(crate) fn layout(fig: &Figure, place: Place) -> Layout {
         let bar = fig.color_bar.is_some();
         legend = (!fig.legend.is_empty() || bar).then(|| match place {
             Place::Below => legend_size(&fig.legend, bar, fig.width - left - right),
-            _ => legend_size(&fig.legend, bar, 0.0),
+            // Beside the plot, in columns rather than past the figure's foot,
+            // leaving the plot at least half the width.
+            Place::Right | Place::Outside => {
+                legend_beside(&fig.legend, bar, fig.height - top - LEGEND_FOOT, 0.5 * fig.width)
+            }
+            Place::Inside => legend_size(&fig.legend, bar, 0.0),
         });
         let beside = if place == Place::Right { legend.map_or(0.0, |l| l.0 + 20.0) } else { 0.0 };
         let under = if place == Place::Below { legend.map_or(0.0, |l| l.1 + 12.0) } else { 0.0 };

@@ -13,7 +13,9 @@
 //! - **Layout measured from the text it holds.** Margins are sized from the
 //!   tick and axis labels, the legend goes right of the plot or under it
 //!   (whichever draws the plot larger) or into the plot's emptiest corner,
-//!   and a shape's height is fitted to its aspect. `plotters` takes fixed
+//!   a legend beside the plot takes columns (and the figure grows) rather
+//!   than run past the figure's foot, and a shape's height is fitted to its
+//!   aspect. `plotters` takes fixed
 //!   label areas in whole pixels from its caller, and measuring its text
 //!   needs its `ttf` feature, which loads system fonts: the same command
 //!   would lay out differently on two machines.

@@ -4,8 +4,8 @@ use crate::axis::{Axis, linear_axis};
 use crate::color::{Color, ramp};
 use crate::figure::{Anchor, ColorBar, Entry, Figure, Mark, Marker, Place, Stroke, Swatch};
 use crate::layout::{
-    BAR_BLOCK, BAR_HEIGHT, LEGEND_ROW, Layout, SWATCH, drawn_pixels, fit_height, head, layout, legend_column,
-    mark_points, text_width,
+    BAR_BLOCK, BAR_HEIGHT, LEGEND_FOOT, LEGEND_ROW, Layout, SWATCH, drawn_pixels, fit_height, head, layout,
+    legend_column, mark_points, text_width,
 };
 use crate::{LABEL_SIZE, LEGEND_SIZE, NOTE_SIZE, TICK_SIZE, TITLE_SIZE};
 use std::fmt::Write as _;
@@ -172,6 +172,9 @@ pub(crate) fn turn(svg: &mut String, c: (f64, f64), r: f64, ccw: bool, color: Co
     let _ = writeln!(svg, r#"<polygon points="{}" fill="{}"/>"#, points_attr(&pts), color.hex());
 }
 
+/// The largest figure side (px).
+const MAX_SIZE: f64 = 10_000.0;
+
 /// Every position finite, or the first that is not.
 pub(crate) fn check_finite(fig: &Figure) -> Result<(), String> {
     for (i, mark) in fig.marks.iter().enumerate() {
@@ -179,7 +182,7 @@ pub(crate) fn check_finite(fig: &Figure) -> Result<(), String> {
             return Err(format!("mark {i} has the point ({}, {}), not finite", p.0, p.1));
         }
     }
-    if !(fig.width >= 200.0 && fig.height >= 200.0 && fig.width <= 10_000.0 && fig.height <= 10_000.0) {
+    if !(fig.width >= 200.0 && fig.height >= 200.0 && fig.width <= MAX_SIZE && fig.height <= MAX_SIZE) {
         return Err(format!("the figure size {} × {} px is outside 200…10000", fig.width, fig.height));
     }
     Ok(())
@@ -196,15 +199,27 @@ pub fn render(fig: &Figure) -> Result<String, String> {
         fig
     };
     let mut l = layout(fig, if fig.place == Place::Outside { Place::Right } else { fig.place });
-    // A legend that would hide data moves out beside the plot.
+    // A legend that would hide data, or is larger than the plot, moves out beside it.
     if fig.place == Place::Inside
         && let Some((x, y, w, h)) = l.legend
     {
         let pts = drawn_pixels(fig, &l);
-        if pts.iter().any(|p| p.0 >= x - 6.0 && p.0 <= x + w + 6.0 && p.1 >= y - 6.0 && p.1 <= y + h + 6.0) {
+        let hides = pts.iter().any(|p| p.0 >= x - 6.0 && p.0 <= x + w + 6.0 && p.1 >= y - 6.0 && p.1 <= y + h + 6.0);
+        if hides || w + 20.0 > l.w || h + 20.0 > l.h {
             l = layout(fig, Place::Right);
         }
     }
+    // A legend beside the plot that its columns cannot fit into the height
+    // grows the figure (and the plot with it) to hold every entry.
+    let grown;
+    let fig = match l.legend {
+        Some((x, y, _, h)) if x >= l.left + l.w && y + h + LEGEND_FOOT > fig.height => {
+            grown = Figure { height: (y + h + LEGEND_FOOT).ceil().min(MAX_SIZE), ..fig.clone() };
+            l = layout(&grown, Place::Right);
+            &grown
+        }
+        _ => fig,
+    };
     let (w, h) = (fig.width, fig.height);
     let mut svg = String::new();
     let _ = writeln!(

@@ -98,3 +98,68 @@ fn the_ramp_runs_dark_to_light_and_clamps() {
     assert!((0..10).all(|k| light(ramp(f64::from(k) / 10.0)) <= light(ramp(f64::from(k + 1) / 10.0))));
     assert_eq!(Color(0, 0, 0).tint(1.0), Color(255, 255, 255));
 }
+
+/// Each `<text … class="legend">`'s label, x and baseline y (px), and the
+/// SVG's width and height.
+fn legend_texts(svg: &str) -> (Vec<(String, f64, f64)>, f64, f64) {
+    let attr = |tag: &str, name: &str| -> f64 {
+        tag.split(&format!(" {name}=\"")).nth(1).and_then(|r| r.split('"').next()?.parse().ok()).unwrap_or(f64::NAN)
+    };
+    let head = svg.lines().next().unwrap_or_default();
+    let texts = svg
+        .split("<text ")
+        .skip(1)
+        .filter(|t| t.contains(r#"class="legend""#))
+        .map(|t| {
+            let (tag, rest) = t.split_once('>').unwrap_or_default();
+            let label = rest.split("</text>").next().unwrap_or_default().to_string();
+            let tag = format!(" {tag}");
+            (label, attr(&tag, "x"), attr(&tag, "y"))
+        })
+        .collect();
+    (texts, attr(head, "width"), attr(head, "height"))
+}
+
+/// A legend beside the plot with more entries than one column holds (60
+/// series in a 1200 × 420 chart, as a motion chart of 20 bodies' three
+/// components): every entry is drawn, and every one inside the figure (its
+/// baseline at least the text's descent, 0.3 of the 16 px size, above the
+/// foot; its start inside the width; measured here by a generous 0.72 em a
+/// character, the widest letter's width). The legend takes columns, and the
+/// figure grows when three are not enough. A short legend stays in one
+/// column, so a figure whose legend fitted is unchanged.
+#[test]
+fn a_long_legend_beside_the_plot_stays_inside_the_figure() {
+    let series: Vec<Series> = (0..60)
+        .map(|i| {
+            let points = (0..20).map(|k| (f64::from(k), f64::from(k * (i + 1)).sin())).collect();
+            Series::line(
+                &format!("body_{} θ{}", i / 3, ["x", "y", "z"][i as usize % 3]),
+                points,
+                COLORS[i as usize % 6],
+            )
+        })
+        .collect();
+    for count in [4, 20, 40, 60] {
+        let mut fig = chart_figure(&chart(false), &series[..count]).unwrap();
+        (fig.width, fig.height, fig.place) = (1200.0, 420.0, Place::Outside);
+        let svg = render(&fig).unwrap();
+        let (texts, width, height) = legend_texts(&svg);
+        assert_eq!(texts.len(), count, "every entry is drawn");
+        for (label, x, y) in &texts {
+            let right = x + 0.72 * 16.0 * label.chars().count() as f64;
+            assert!(*y + 0.3 * 16.0 <= height && *y >= 16.0, "{count} entries: {label} at y = {y} in {height}");
+            assert!(*x >= 0.0 && right <= width, "{count} entries: {label} from x = {x} to {right} in {width}");
+        }
+        let columns = {
+            let mut xs: Vec<f64> = texts.iter().map(|t| t.1).collect();
+            xs.dedup();
+            xs.len()
+        };
+        match count {
+            4 => assert!(columns == 1 && height == 420.0, "{columns} columns, {height} px"),
+            20 | 40 => assert!(columns > 1 && height == 420.0, "{count}: {columns} columns, {height} px"),
+            _ => assert!(columns == 3 && height > 420.0, "{columns} columns, {height} px"),
+        }
+    }
+}

@@ -345,3 +345,63 @@ fn pictures_of_the_finger_and_the_stage() {
         }
     }
 }
+
+/// A motion of many bodies: a chain of 20 links on hinges about y and z in
+/// turn, swinging under gravity. Each motion chart lists every body once
+/// (and its three components' dashes once), and every legend entry lies
+/// inside its figure: the text's baseline at least its descent (0.3 of
+/// its size) above the foot and below its size from the top, and its start
+/// plus a generous 0.72 em a character within the width. Before the legend
+/// was laid out in columns the entries past the 14th fell off the foot.
+#[test]
+fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
+    use flexure::mechanism::spatial::Revolute;
+    let count = 20;
+    let names: Vec<String> =
+        std::iter::once("ground".to_string()).chain((1..=count).map(|i| format!("link_{i}"))).collect();
+    let mut b = bodies(&names.iter().map(String::as_str).collect::<Vec<_>>());
+    for body in &mut b[1..] {
+        body.mass = 0.002;
+        body.com = Point3::new(0.005, 0.0, 0.0);
+        body.inertia = Matrix3::identity() * 1e-8;
+    }
+    let joints = (1..=count)
+        .map(|i| {
+            let axis = if i % 2 == 0 { Vector3::y_axis() } else { Vector3::z_axis() };
+            let origin = if i == 1 { Isometry3::identity() } else { Isometry3::translation(0.01, 0.0, 0.0) };
+            let hinge = SpatialJointKind::Revolute(Revolute { axis, stiffness: 0.02, rest: 0.0 });
+            spec(&format!("hinge_{i}"), hinge, i - 1, i, origin)
+        })
+        .collect();
+    let m = SpatialMechanism::new(b, joints, vec![], vec![], vec![], Vector3::new(0.0, -9.81, -9.81)).unwrap();
+    let motion = Motion { duration: 0.01, every: 0.002, ..Default::default() };
+    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let drawn = spatial_motion_figures(&m, "chain", &unloaded(&m), &run, View::Iso, true).unwrap();
+    let svg = flexure_chart::stack(&drawn.figures).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let number = |n: roxmltree::Node, a: &str| n.attribute(a).and_then(|v| v.parse::<f64>().ok()).unwrap();
+    // The nested figures: the drawing, then the two charts.
+    let figures: Vec<roxmltree::Node> = doc.root_element().children().filter(|n| n.has_tag_name("svg")).collect();
+    assert_eq!(figures.len(), 3);
+    for (k, fig) in figures.iter().enumerate().skip(1) {
+        let (width, height) = (number(*fig, "width"), number(*fig, "height"));
+        let legend: Vec<(String, f64, f64, f64)> = fig
+            .descendants()
+            .filter(|n| n.has_tag_name("text") && n.attribute("class") == Some("legend"))
+            .map(|n| (n.text().unwrap_or_default().to_string(), number(n, "x"), number(n, "y"), number(n, "font-size")))
+            .collect();
+        for (label, x, y, size) in &legend {
+            let right = x + 0.72 * size * label.chars().count() as f64;
+            assert!(*y + 0.3 * size <= height && *y >= *size, "chart {k}: {label} at y = {y}, figure {height} px high");
+            assert!(*x >= 0.0 && right <= width, "chart {k}: {label} from x = {x} to {right}, figure {width} px wide");
+        }
+        let labels: Vec<&str> = legend.iter().map(|e| e.0.as_str()).collect();
+        for name in &names[1..] {
+            assert!(labels.contains(&name.as_str()), "chart {k}: {name} not in the legend {labels:?}");
+        }
+        assert_eq!(legend.len(), count + 3, "chart {k}: one entry a body and one a component: {labels:?}");
+    }
+    if let Some(dir) = std::env::var_os("FLEXURE_PICTURES") {
+        std::fs::write(std::path::Path::new(&dir).join("chain-motion-iso.svg"), svg).unwrap();
+    }
+}

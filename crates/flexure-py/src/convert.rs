@@ -56,15 +56,15 @@ pub fn shape_points(value: &Bound<'_, PyAny>) -> PyResult<usize> {
     }
 }
 
-/// Evaluates `g` at arc length `s` (m) on `f`: a float for a number, an
-/// array of the same shape for an array; every `s` must lie in [0, L].
+/// Evaluates `g` at arc length `s` (m) on a flexure of length `l`: a float
+/// for a number, an array of the same shape for an array; every `s` must lie
+/// in [0, L].
 pub fn along<'py>(
     py: Python<'py>,
-    f: &flexure::Flexure,
+    l: f64,
     s: &Bound<'py, PyAny>,
     g: impl Fn(f64) -> f64,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let l = f.length();
     let check = |v: f64| {
         if v.is_finite() && (0.0..=l).contains(&v) {
             Ok(v)

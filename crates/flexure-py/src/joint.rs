@@ -155,7 +155,7 @@ impl Flexure {
 
     /// Bending stiffness EI(s) (N·m²) at arc length s (m) from the root: a float, or an array like s.
     fn ei_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        along(py, &self.inner, s, |s| self.inner.ei_at(s))
+        along(py, self.inner.length(), s, |s| self.inner.ei_at(s))
     }
     /// Thickness h(s) (m), notch included, at arc length s (m); None for a flexure given by ei.
     fn thickness_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
@@ -164,7 +164,7 @@ impl Flexure {
         if section.thickness(0.0, l).is_none() {
             return Ok(None);
         }
-        along(py, f, s, |s| section.thickness(s / l, l).unwrap_or(0.0)).map(Some)
+        along(py, l, s, |s| section.thickness(s / l, l).unwrap_or(0.0)).map(Some)
     }
     /// Width b(s) (m) at arc length s (m); None for a flexure given by ei.
     fn width_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
@@ -173,7 +173,7 @@ impl Flexure {
         if section.width(0.0).is_none() {
             return Ok(None);
         }
-        along(py, f, s, |s| section.width(s / l).unwrap_or(0.0)).map(Some)
+        along(py, l, s, |s| section.width(s / l).unwrap_or(0.0)).map(Some)
     }
     /// Mass per length μ(s) (kg/m) at arc length s (m); None without density or mass_per_length.
     fn mass_per_length_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
@@ -182,7 +182,7 @@ impl Flexure {
         if section.mass_per_length(0.0, l).is_none() {
             return Ok(None);
         }
-        along(py, f, s, |s| section.mass_per_length(s / l, l).unwrap_or(0.0)).map(Some)
+        along(py, l, s, |s| section.mass_per_length(s / l, l).unwrap_or(0.0)).map(Some)
     }
 
     /// Peak bending stress at alpha (N,): {"max": σmax (Pa), "at": s (m from the root)},

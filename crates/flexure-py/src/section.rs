@@ -64,6 +64,19 @@ pub fn profile(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Profile> {
     }
 }
 
+/// `p` as [`profile`] reads it: a float, a tuple `(root, tip)` or an
+/// (m, 2) array of `[t, value]` rows.
+pub fn profile_object<'py>(py: Python<'py>, p: &Profile) -> PyResult<Bound<'py, PyAny>> {
+    match p {
+        Profile::Constant(v) => Ok(v.into_pyobject(py)?.into_any()),
+        Profile::Linear { root, tip } => Ok((*root, *tip).into_pyobject(py)?.into_any()),
+        Profile::Table(rows) => {
+            let table = numpy::ndarray::Array2::from_shape_fn((rows.len(), 2), |(i, j)| rows[i][j]);
+            Ok(numpy::IntoPyArray::into_pyarray(table, py).into_any())
+        }
+    }
+}
+
 /// Reads `notch` as `(radius, min_thickness)` in metres.
 fn notch(value: &Bound<'_, PyAny>) -> PyResult<Notch> {
     let bad = || {

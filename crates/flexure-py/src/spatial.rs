@@ -6,11 +6,12 @@ use crate::convert::count;
 use crate::coordinates::{self, Coordinates, single, vector};
 use crate::error_estimate::estimate_dict;
 use crate::errors::{AccuracyWarning, StabilityWarning, to_py};
-use crate::section::profile;
+use crate::section::{profile, profile_object};
 use crate::strict::{self, Real};
 use crate::warnings::{sig, warn};
 use flexure::estimate::{self, Accuracy};
-use flexure::spatial::{self, SpatialLoad, SpatialSpec, SpatialStatics};
+use flexure::section::Profile;
+use flexure::spatial::{self, MassQuadrature, SpatialLoad, SpatialSpec, SpatialStatics};
 use nalgebra::{Matrix3, Vector3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
@@ -28,9 +29,16 @@ use pyo3::types::PyDict;
 /// (default 0.3) or `shear_modulus` for G. `order` is each component's number of
 /// coefficients (default 3); coordinates are listed twist's, then κ_y's, then κ_z's.
 /// `kappa`, `kappa_y` and `twist` are the rest coefficients of each component.
+/// The flexure's own mass, as a mechanism file's keys give it: `density` (kg/m³, with a
+/// rectangle's or circle's geometry: μ = ρA) or `mass_per_length` (kg/m, a number, pair or
+/// table as `ei`), not both; `mass()` is its total.
 #[pyclass(frozen, module = "flexure")]
 pub struct SpatialFlexure {
     inner: flexure::spatial::SpatialFlexure,
+    /// The `density` given (kg/m³), for its property.
+    density: Option<f64>,
+    /// The `mass_per_length` given (kg/m), for its property.
+    mass_per_length: Option<Profile>,
 }
 
 /// A rotation and position as a 4 × 4 homogeneous transform.
@@ -57,9 +65,9 @@ fn triple(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<[f64; 3]> {
 
 #[pymethods]
 impl SpatialFlexure {
-    /// SpatialFlexure(length=1.0, ei=None, order=3, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None)
+    /// SpatialFlexure(length=1.0, ei=None, order=3, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None)
     #[new]
-    #[pyo3(signature = (length=Real(1.0), ei=None, order=None, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None))]
+    #[pyo3(signature = (length=Real(1.0), ei=None, order=None, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         length: Real,
@@ -76,6 +84,8 @@ impl SpatialFlexure {
         kappa: Option<&Bound<'_, PyAny>>,
         kappa_y: Option<&Bound<'_, PyAny>>,
         twist: Option<&Bound<'_, PyAny>>,
+        density: Option<Real>,
+        mass_per_length: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let p = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
         let n = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
@@ -98,7 +108,51 @@ impl SpatialFlexure {
             kappa_y: rest("kappa_y", kappa_y)?,
             kappa_z: rest("kappa", kappa)?,
         };
-        Ok(Self { inner: spec.build().map_err(to_py)? })
+        let mut inner = spec.build().map_err(to_py)?;
+        let density = density.map(|v| v.0);
+        let mass_per_length = p("mass_per_length", mass_per_length)?;
+        // As a mechanism file's flexure: one of the two, each checked by the library.
+        match (density, &mass_per_length) {
+            (Some(rho), Some(_)) => {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "density = {rho} and mass_per_length were both given: give density or mass_per_length, not both"
+                )));
+            }
+            (Some(rho), None) => inner = inner.with_density(rho).map_err(to_py)?,
+            (None, Some(mu)) => inner = inner.with_mass_per_length(mu.clone()).map_err(to_py)?,
+            (None, None) => {}
+        }
+        Ok(Self { inner, density, mass_per_length })
+    }
+
+    /// The `density` given (kg/m³), or None.
+    #[getter]
+    fn density(&self) -> Option<f64> {
+        self.density
+    }
+
+    /// The `mass_per_length` given (kg/m) as read: a float, a (root, tip) tuple or an (m, 2)
+    /// table; None when not given (a `density` gives μ = ρA, see `mass_per_length_at`).
+    #[getter]
+    fn mass_per_length<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.mass_per_length.as_ref().map(|p| profile_object(py, p)).transpose()
+    }
+
+    /// Mass per length μ(s) (kg/m) at arc length s (m): ρA(s) or the one given; a float, or an
+    /// array like s. None without density or mass_per_length.
+    fn mass_per_length_at<'py>(&self, py: Python<'py>, s: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let (section, l) = (self.inner.section(), self.inner.length());
+        if !section.has_mass() {
+            return Ok(None);
+        }
+        crate::convert::along(py, l, s, |s| section.mass_per_length(s / l).unwrap_or(0.0)).map(Some)
+    }
+
+    /// The flexure's mass (kg), ∫₀ᴸ μ ds by the quadrature its inertia and weight are carried
+    /// with in a mechanism's modes and simulate (three Gauss points per Magnus subinterval:
+    /// exact for a constant or tapered strip or rod); None without density or mass_per_length.
+    fn mass(&self) -> Option<f64> {
+        MassQuadrature::new(&self.inner).map(|q| q.mass())
     }
 
     /// Length L (m).

@@ -856,7 +856,18 @@ pub fn spatial_motion_figures(
         view,
         stress,
     )?;
+    // Each body by colour, each component by dash: the legend lists the
+    // bodies once and the three dashes once, not every body's components.
+    // Past the six colours, each round of them adds a marker shape, so that
+    // no two bodies look alike.
     let color = |i: usize| COLORS[i % COLORS.len()];
+    let rounds = [None, Some(Marker::Circle), Some(Marker::Square), Some(Marker::Triangle), Some(Marker::Diamond)];
+    let marker = |i: usize| rounds[(i / COLORS.len()) % rounds.len()];
+    let every = samples.div_ceil(8).max(1);
+    let styled = |s: Series, i: usize| match marker(i) {
+        Some(shape) => s.marked(shape, every, (i % COLORS.len()) * every / COLORS.len()),
+        None => s,
+    };
     let dashes = [Dash::Solid, Dash::Dashed, Dash::Dotted];
     let mut rotations = Vec::new();
     let mut positions = Vec::new();
@@ -866,13 +877,24 @@ pub fn spatial_motion_figures(
             .iter()
             .map(|r| Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_fn(|i, j| r[i][j])).scaled_axis())
             .collect();
-        for (c, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        for (c, dash) in dashes.into_iter().enumerate() {
             let along_theta = sim.time.iter().zip(&theta).map(|(t, v)| (*t, v[c])).collect();
             let along_p = sim.time.iter().zip(&b.position).map(|(t, p)| (*t, p[c] * 1e3)).collect();
-            rotations.push(Series::line(&format!("{} θ{axis}", b.name), along_theta, color(i)).dashed(dashes[c]));
-            positions.push(Series::line(&format!("{} {axis}", b.name), along_p, color(i)).dashed(dashes[c]));
+            rotations.push(styled(Series::line("", along_theta, color(i)).dashed(dash), i));
+            positions.push(styled(Series::line("", along_p, color(i)).dashed(dash), i));
         }
     }
+    let legend = |components: [&str; 3]| -> Vec<Entry> {
+        let bodies = sim.bodies.iter().enumerate().map(|(i, b)| Entry {
+            swatch: Swatch::Line(Some(Stroke::solid(color(i), 2.0)), marker(i).map(|m| (m, color(i), true))),
+            label: b.name.clone(),
+        });
+        let key = components.into_iter().zip(dashes).map(|(label, dash)| Entry {
+            swatch: Swatch::Line(Some(Stroke { color: GRAY, width: 2.0, dash }), None),
+            label: label.to_string(),
+        });
+        bodies.chain(key).collect()
+    };
     let chart = |title: &'static str, y: &'static str| Chart {
         title,
         x_label: "time (s)",
@@ -881,11 +903,12 @@ pub fn spatial_motion_figures(
         equal_aspect: false,
     };
     let mut figures = vec![shapes];
-    for (c, series) in [
-        (chart("Body rotations", "θ = angle × axis (rad), ground frame"), rotations),
-        (chart("Body origins", "x, y, z (mm), ground frame"), positions),
+    for (c, series, key) in [
+        (chart("Body rotations", "θ = angle × axis (rad), ground frame"), rotations, ["θx", "θy", "θz"]),
+        (chart("Body origins", "x, y, z (mm), ground frame"), positions, ["x", "y", "z"]),
     ] {
         let mut fig = chart_figure(&c, &series)?;
+        fig.legend = legend(key);
         fig.width = 1200.0;
         fig.height = 420.0;
         fig.place = Place::Outside;
