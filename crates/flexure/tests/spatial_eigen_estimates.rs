@@ -33,6 +33,7 @@ fn one_joint(f: SpatialFlexure, tip: SpatialBody, forces: Vec<SpatialPointLoad>)
         origin: Isometry3::identity(),
         offset: 0,
         damping: 0.0,
+        auto_order: false,
     };
     SpatialMechanism::new(
         vec![SpatialBody::massless("ground"), tip],
@@ -190,7 +191,7 @@ fn with_flexures_pads_initial_coordinates_per_component() {
 }
 
 /// Reference: Euler's load and the rod's closed-form frequencies, reached by
-/// `order = "auto"` ([`SpatialMechanism::auto_order`]) from orders 1, where
+/// `order = "auto"` ([`flexure::mechanism::JointSpec::auto_order`]) from orders 1, where
 /// the column is 22 % high and the rod's bending modes 15 %: `buckle_auto`
 /// and `modes_auto` raise the automatic joint (each pass to its reference's
 /// orders) until the estimate meets a 1e-6 target, and the answer is then
@@ -205,14 +206,14 @@ fn automatic_orders_are_raised_until_the_estimate_meets_its_target() {
     let (kept, b, e) = buckle_auto(&m, &Default::default(), &tight).unwrap();
     assert!(e.flagged && (b.load_factor / euler - 1.0) > 0.2, "not automatic: left as given");
     assert_eq!(kept.joints[0].kind.flexure().unwrap().orders(), [1, 1, 1]);
-    m.auto_order = vec![true];
+    m.joints[0].auto_order = true;
     let (used, b, e) = buckle_auto(&m, &Default::default(), &tight).unwrap();
     assert!(!e.flagged && (b.load_factor / euler - 1.0).abs() < 1e-6, "{e:?}: {}", b.load_factor);
     let orders = used.joints[0].kind.flexure().unwrap().orders();
     assert!(orders.iter().all(|n| *n > 1 && *n < 64), "{orders:?}");
 
     let mut r = rod([1, 1, 1]);
-    r.auto_order = vec![true];
+    r.joints[0].auto_order = true;
     let (used, found, e) = modes_auto(&r, &Default::default(), 5, &tight).unwrap();
     assert!(!e.flagged, "{e:?}");
     for (w, exact) in found.omega.iter().zip(rod_frequencies()) {

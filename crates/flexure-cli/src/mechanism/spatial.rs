@@ -174,7 +174,7 @@ fn reference_of(e: &ValueEstimate, flexures: &[String]) -> String {
 
 /// What to do about a spatial eigenvalue answer that misses its target.
 fn raise(m: &SpatialMechanism) -> &'static str {
-    if m.auto_order.contains(&true) {
+    if m.joints.iter().any(|j| j.auto_order) {
         "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
     } else {
         "give the spatial flexures order = \"auto\", or raise their orders (`order` or `orders`) in the file"
@@ -184,7 +184,7 @@ fn raise(m: &SpatialMechanism) -> &'static str {
 /// `order` {joint: [n_twist, n_y, n_z], as the file's `orders`} when a
 /// spatial flexure has `order = "auto"`: the orders the answer was found at.
 fn put_orders(v: &mut Value, m: &SpatialMechanism) {
-    if m.auto_order.contains(&true) {
+    if m.joints.iter().any(|j| j.auto_order) {
         v["order"] = Value::Object(
             m.joints.iter().filter_map(|j| Some((j.name.clone(), json!(j.kind.flexure()?.orders())))).collect(),
         );

@@ -935,7 +935,7 @@ mod tests {
         child: usize,
         origin: Isometry3<f64>,
     ) -> SpatialJointSpec {
-        SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0 }
+        SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
     }
 
     fn bodies(names: &[&str]) -> Vec<SpatialBody> {

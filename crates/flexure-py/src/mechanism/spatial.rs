@@ -364,7 +364,7 @@ fn reference_of(e: &ValueEstimate, names: &[String]) -> String {
 /// What to do about a spatial eigenvalue answer that misses its target.
 /// What to do about a spatial eigenvalue answer that misses its target.
 fn raise(m: &SpatialMechanism) -> &'static str {
-    if m.auto_order.contains(&true) {
+    if m.joints.iter().any(|j| j.auto_order) {
         "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
     } else {
         "give the spatial flexures order = \"auto\", or raise their orders (`order` or `orders`) in the mechanism file"
@@ -374,7 +374,7 @@ fn raise(m: &SpatialMechanism) -> &'static str {
 /// `order` {joint: [n_twist, n_y, n_z]} when a spatial flexure has
 /// `order = "auto"`: the orders the answer was found at, as the CLI's.
 fn put_orders(py: Python<'_>, out: &Bound<'_, PyDict>, m: &SpatialMechanism) -> PyResult<()> {
-    if m.auto_order.contains(&true) {
+    if m.joints.iter().any(|j| j.auto_order) {
         let orders = PyDict::new(py);
         for j in &m.joints {
             if let Some(f) = j.kind.flexure() {

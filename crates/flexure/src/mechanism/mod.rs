@@ -8,6 +8,7 @@
 //! frame (for a flexure, the tip frame of Eq. 7).
 
 pub mod buckling;
+mod dimension;
 pub mod equilibria;
 pub mod file;
 pub mod findings;
@@ -22,24 +23,41 @@ pub mod statics;
 pub mod sweep;
 mod tree;
 
-use crate::space::{Pose, Wrench};
+use crate::space::{Planar, Pose, Wrench};
+pub use dimension::Dimension;
 pub use joints::{Fixed, Joint, JointKind, JointState, Prismatic, Revolute};
 use nalgebra::{Point2, Vector2};
 
-/// A rigid body: a name and its inertia ([`Body::rigid_inertia`]).
+/// A rigid body: a name and its inertia ([`Body::rigid_inertia`]), in
+/// the dimension `D` ([`Planar`] by default).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Body {
+pub struct Body<D: Dimension = Planar> {
     /// Its name.
     pub name: String,
     /// Mass (kg), for gravity and dynamics.
     pub mass: f64,
-    /// Rotary inertia (kg·m²) about the centre of mass, for dynamics.
-    pub inertia: f64,
+    /// Rotary inertia about the centre of mass, for dynamics: kg·m² in the
+    /// plane, the 3 × 3 matrix in the body frame's axes in space.
+    pub inertia: D::AngularInertia,
     /// Centre of mass in the body frame (m).
-    pub com: Point2<f64>,
+    pub com: D::Point,
 }
 
-impl Body {
+impl<D: Dimension> Body<D> {
+    /// A massless body.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::Body;
+    /// let b: Body = Body::massless("arm");
+    /// assert_eq!((b.mass, b.inertia), (0.0, 0.0));
+    /// ```
+    pub fn massless(name: &str) -> Self {
+        Body { name: name.into(), mass: 0.0, inertia: D::AngularInertia::default(), com: D::origin(&D::identity()) }
+    }
+}
+
+impl Body<Planar> {
     /// Its mass, rotary inertia and centre of mass: the
     /// [`RigidInertia`](crate::inertia::RigidInertia) that gravity and the
     /// dynamics use, as a flexure's tip body is.
@@ -58,51 +76,54 @@ impl Body {
 
 /// A joint between two bodies.
 #[derive(Debug, Clone, PartialEq)]
-pub struct JointSpec {
+pub struct JointSpec<D: Dimension = Planar> {
     /// Its name.
     pub name: String,
     /// What it is.
-    pub kind: JointKind,
+    pub kind: D::JointKind,
     /// Parent body index.
     pub parent: usize,
     /// Child body index.
     pub child: usize,
-    /// Root frame in the parent body's frame.
-    pub origin: Pose,
+    /// Root frame in the parent body's frame (`pose_parent_root`).
+    pub origin: D::Pose,
     /// Index of its first coordinate in $q$.
     pub offset: usize,
     /// Damping, for dynamics: on a flexure the stiffness-proportional
-    /// coefficient $\beta$ (s), $D = \beta K$; on a revolute or prismatic joint
+    /// coefficient $\beta$ (s), $D = \beta K$; on a hinge, slider or ball
     /// the viscous coefficient (N·m·s/rad or N·s/m); zero on a fixed joint.
     pub damping: f64,
-    /// A flexure given `order = "auto"`: its order (3 to start) is raised
-    /// until an analysis's error estimate meets its target
-    /// ([`crate::estimate::buckle_auto`], [`crate::estimate::mechanism_modes_auto`]).
+    /// A flexure given `order = "auto"`: its order (3 to start; in space
+    /// each of its three) is raised until an analysis's error estimate
+    /// meets its target ([`crate::estimate::buckle_auto`],
+    /// [`crate::estimate::mechanism_modes_auto`] and their spatial twins);
+    /// other analyses take it as it is.
     pub auto_order: bool,
 }
 
 /// A tendon of constant tension through via points; potential tension × length.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Tendon {
+pub struct Tendon<D: Dimension = Planar> {
     /// Its name.
     pub name: String,
     /// Tension (N), not negative.
     pub tension: f64,
     /// Via points: (body, position in the body frame).
-    pub path: Vec<(usize, Point2<f64>)>,
+    pub path: Vec<(usize, D::Point)>,
 }
 
-/// A force and moment applied to a point of a body.
+/// A force and moment applied to a point of a body, both fixed in the
+/// ground frame (dead loads).
 #[derive(Debug, Clone, PartialEq)]
-pub struct PointLoad {
+pub struct PointLoad<D: Dimension = Planar> {
     /// Its name (or its index, as text).
     pub name: String,
     /// The body.
     pub body: usize,
     /// Point of application in the body frame (m).
-    pub at: Point2<f64>,
-    /// Moment (N·m) and force (N, in the ground frame).
-    pub wrench: Wrench,
+    pub at: D::Point,
+    /// Moment (N·m) and force (N, in the ground frame), moment first.
+    pub wrench: D::Wrench,
 }
 
 /// A loop closure.
@@ -143,14 +164,20 @@ impl Closure {
 }
 
 /// The magnitudes of every load, which continuation and sweeps scale.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Loads {
+#[derive(Debug, Clone, PartialEq)]
+pub struct Loads<D: Dimension = Planar> {
     /// Tendon tensions, in the order of [`Mechanism::tendons`].
     pub tension: Vec<f64>,
     /// The wrench of each point load, in the order of [`Mechanism::forces`].
-    pub force: Vec<Wrench>,
+    pub force: Vec<D::Wrench>,
     /// Gravity (m/s²).
-    pub gravity: Vector2<f64>,
+    pub gravity: D::Vector,
+}
+
+impl<D: Dimension> Default for Loads<D> {
+    fn default() -> Self {
+        Loads { tension: Vec::new(), force: Vec::new(), gravity: D::Vector::default() }
+    }
 }
 
 /// `(1 − s)·a + s·b`, each component.
@@ -159,7 +186,7 @@ fn mix_wrench(a: &Wrench, b: &Wrench, s: f64) -> Wrench {
     Wrench::from_array(std::array::from_fn(|i| a[i] + s * (b[i] - a[i])))
 }
 
-impl Loads {
+impl Loads<Planar> {
     /// `(1 − s)·self + s·other`.
     pub fn lerp(&self, other: &Loads, s: f64) -> Loads {
         let mix = |a: f64, b: f64| a + s * (b - a);
@@ -222,23 +249,25 @@ impl Loads {
     }
 }
 
-/// An immutable mechanism (the Model): build it with [`file::from_toml`].
+/// An immutable mechanism (the Model), in the dimension `D` ([`Planar`]
+/// by default, [`Spatial`](crate::space::Spatial) for a spatial one): build
+/// it with [`file::from_toml`] or [`Mechanism::new`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Mechanism {
+pub struct Mechanism<D: Dimension = Planar> {
     /// Bodies; index 0 is `ground`.
-    pub bodies: Vec<Body>,
+    pub bodies: Vec<Body<D>>,
     /// Joints in an order where every parent comes before its children.
-    pub joints: Vec<JointSpec>,
+    pub joints: Vec<JointSpec<D>>,
     /// Tendons.
-    pub tendons: Vec<Tendon>,
+    pub tendons: Vec<Tendon<D>>,
     /// Point loads.
-    pub forces: Vec<PointLoad>,
+    pub forces: Vec<PointLoad<D>>,
     /// Loop closures.
-    pub closures: Vec<Closure>,
+    pub closures: Vec<D::Closure>,
     /// Gravity (m/s²), zero if absent.
-    pub gravity: Vector2<f64>,
+    pub gravity: D::Vector,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
-    pub schedules: Vec<schedule::Schedule>,
+    pub schedules: Vec<schedule::Schedule<D::Parameter>>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
@@ -246,13 +275,108 @@ pub struct Mechanism {
     /// `parent_joint[b]`: the joint whose child is body `b`.
     parent_joint: Vec<Option<usize>>,
     dof: usize,
-    /// "line L, column C" of each closure in the file, for errors.
+    /// "line L, column C" of each closure in the file, for errors (empty if built in code).
     closure_places: Vec<String>,
     /// `preload = true` of each closure: its gap at rest is meant.
     closure_preloads: Vec<bool>,
 }
 
-impl Mechanism {
+impl<D: Dimension> Mechanism<D> {
+    /// The mechanism of these parts: numbers each joint's coordinates and
+    /// checks that every body but the ground is the child of exactly one
+    /// joint whose parent comes before it, and that every index is a body.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::spatial::{Spherical, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+    /// let bob = SpatialBody { mass: 1.0, com: nalgebra::Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
+    /// let ball = SpatialJointSpec {
+    ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
+    ///     parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+    /// };
+    /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], nalgebra::Vector3::new(0.0, 0.0, -9.81)).unwrap();
+    /// assert_eq!((m.dof(), m.constraints()), (3, 0));
+    /// ```
+    pub fn new(
+        bodies: Vec<Body<D>>,
+        mut joints: Vec<JointSpec<D>>,
+        tendons: Vec<Tendon<D>>,
+        forces: Vec<PointLoad<D>>,
+        closures: Vec<D::Closure>,
+        gravity: D::Vector,
+    ) -> crate::Result<Self> {
+        use crate::Error;
+        let nb = bodies.len();
+        if nb == 0 {
+            return Err(Error::invalid("bodies", 0, "a mechanism needs its ground, body 0"));
+        }
+        let mut parent_joint = vec![None; nb];
+        let mut placed = vec![false; nb];
+        placed[0] = true;
+        let mut offset = 0;
+        for (i, j) in joints.iter_mut().enumerate() {
+            if j.parent >= nb || j.child >= nb || j.child == 0 {
+                return Err(Error::invalid(
+                    "joint",
+                    &j.name,
+                    "names a body that is not there (or the ground as child)",
+                ));
+            }
+            if !placed[j.parent] {
+                return Err(Error::invalid("joint", &j.name, "comes before the joint that places its parent"));
+            }
+            if placed[j.child] {
+                return Err(Error::invalid("joint", &j.name, "places a body that another joint places already"));
+            }
+            placed[j.child] = true;
+            parent_joint[j.child] = Some(i);
+            j.offset = offset;
+            offset += D::joint(&j.kind).dof();
+        }
+        if let Some(b) = placed.iter().position(|p| !p) {
+            return Err(Error::invalid("body", &bodies[b].name, "is not the child of any joint"));
+        }
+        let within = |b: usize| b < nb;
+        for t in &tendons {
+            if t.path.len() < 2 || !t.path.iter().all(|p| within(p.0)) {
+                return Err(Error::invalid(
+                    "tendon",
+                    &t.name,
+                    "needs two or more via points on bodies of the mechanism",
+                ));
+            }
+        }
+        if let Some(f) = forces.iter().find(|f| !within(f.body)) {
+            return Err(Error::invalid("force", &f.name, "names a body that is not there"));
+        }
+        if closures.iter().any(|c| !D::closure_points(c).iter().all(|p| within(p.0))) {
+            return Err(Error::invalid("closure", "a body index", "names a body that is not there"));
+        }
+        Ok(Mechanism {
+            bodies,
+            joints,
+            tendons,
+            forces,
+            closures,
+            gravity,
+            schedules: Vec::new(),
+            initial: Vec::new(),
+            initial_velocity: Vec::new(),
+            parent_joint,
+            dof: offset,
+            closure_places: Vec::new(),
+            closure_preloads: Vec::new(),
+        })
+    }
+
+    /// The same mechanism with the file's places (`"line L, column C"`)
+    /// and `preload` flags of its closures, in their order.
+    pub fn with_closure_places(mut self, places: Vec<String>, preloads: Vec<bool>) -> Self {
+        self.closure_places = places;
+        self.closure_preloads = preloads;
+        self
+    }
+
     /// The mechanism's size (m): the sum of its joints' offsets and flexure
     /// lengths (1 m for a mechanism of points). Slider travel is measured
     /// against it, to compare with rotations.
@@ -260,7 +384,7 @@ impl Mechanism {
         let length = self
             .joints
             .iter()
-            .map(|j| j.origin.x.hypot(j.origin.y) + j.kind.flexure().map_or(0.0, |f| f.length()))
+            .map(|j| D::reach(&j.origin) + D::flexure(&j.kind).map_or(0.0, D::flexure_length))
             .sum::<f64>();
         if length > 0.0 && length.is_finite() { length } else { 1.0 }
     }
@@ -272,7 +396,7 @@ impl Mechanism {
 
     /// Number of closure equations.
     pub fn constraints(&self) -> usize {
-        self.closures.iter().map(Closure::equations).sum()
+        self.closures.iter().map(D::closure_equations).sum()
     }
 
     /// The body's index by name.
@@ -287,19 +411,21 @@ impl Mechanism {
 
     /// Coordinates of the unloaded joints.
     pub fn rest(&self) -> Vec<f64> {
-        self.joints.iter().flat_map(|j| j.kind.joint().rest()).collect()
+        let mut q = vec![0.0; self.dof];
+        self.rest_into(&mut q);
+        q
     }
 
     /// [`Mechanism::rest`] into `q` (one value per coordinate), without allocating.
     pub(crate) fn rest_into(&self, q: &mut [f64]) {
         for j in &self.joints {
-            let joint = j.kind.joint();
+            let joint = D::joint(&j.kind);
             joint.rest_into(&mut q[j.offset..j.offset + joint.dof()]);
         }
     }
 
     /// [`Mechanism::loads`] into `out`, in its buffers.
-    pub(crate) fn loads_into(&self, out: &mut Loads) {
+    pub(crate) fn loads_into(&self, out: &mut Loads<D>) {
         out.tension.clear();
         out.tension.extend(self.tendons.iter().map(|t| t.tension));
         out.force.clear();
@@ -308,7 +434,7 @@ impl Mechanism {
     }
 
     /// The loads as given.
-    pub fn loads(&self) -> Loads {
+    pub fn loads(&self) -> Loads<D> {
         Loads {
             tension: self.tendons.iter().map(|t| t.tension).collect(),
             force: self.forces.iter().map(|f| f.wrench).collect(),
@@ -334,20 +460,30 @@ impl Mechanism {
     /// has a mass, its centre of mass. `flexure draw` draws a rigid link as
     /// their hull, and [`findings::crossings`] takes that hull's edges as
     /// the link's segments.
-    pub fn attachments(&self, b: usize) -> Vec<Point2<f64>> {
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::spatial::{Spherical, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+    /// use nalgebra::{Isometry3, Point3, Vector3};
+    /// let bob = SpatialBody { mass: 1.0, com: Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
+    /// let ball = SpatialJointSpec {
+    ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
+    ///     parent: 0, child: 1, origin: Isometry3::translation(0.0, 0.0, 2.0), offset: 0, damping: 0.0, auto_order: false,
+    /// };
+    /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    /// assert_eq!(m.attachments(0), [Point3::new(0.0, 0.0, 2.0)]);
+    /// assert_eq!(m.attachments(1), [Point3::origin(), Point3::new(0.0, 0.0, -1.0)]);
+    /// ```
+    pub fn attachments(&self, b: usize) -> Vec<D::Point> {
         let mut pts = Vec::new();
         if b != 0 {
-            pts.push(Point2::origin());
+            pts.push(D::origin(&D::identity()));
         }
-        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| j.origin.origin()));
+        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| D::origin(&j.origin)));
         pts.extend(self.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
         pts.extend(self.forces.iter().filter(|f| f.body == b).map(|f| f.at));
         for c in &self.closures {
-            let (a, ra, other, rb) = match c {
-                Closure::Weld { a, a_origin, b, b_origin } => (*a, a_origin.origin(), *b, b_origin.origin()),
-                Closure::Pin { a, a_at, b, b_at } => (*a, *a_at, *b, *b_at),
-            };
-            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
+            pts.extend(D::closure_points(c).into_iter().filter(|p| p.0 == b).map(|p| p.1));
         }
         if self.bodies[b].mass > 0.0 {
             pts.push(self.bodies[b].com);
@@ -366,7 +502,9 @@ impl Mechanism {
         path.reverse();
         path
     }
+}
 
+impl Mechanism<Planar> {
     /// The same mechanism with flexure joint `j` replaced by `refine(j, flexure)`
     /// where it returns one (another order or quadrature: the coordinates
     /// are renumbered, and `[initial]` coordinates padded with zeros or cut).

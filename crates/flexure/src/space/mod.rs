@@ -65,7 +65,7 @@ pub trait Space: Copy + Debug + Default + 'static {
     /// A position.
     type Point: Copy + Debug + PartialEq;
     /// A direction or displacement.
-    type Vector: Copy + Debug + PartialEq;
+    type Vector: Copy + Debug + PartialEq + Default;
     /// A velocity of a frame (angular, then linear).
     type Twist: Copy + Debug + PartialEq + Default;
     /// A force and moment on a frame (moment, then force).
@@ -81,6 +81,10 @@ pub trait Space: Copy + Debug + Default + 'static {
     fn inverse(a: &Self::Pose) -> Self::Pose;
     /// $a\cdot r = R r + p$: a point given in the frame, in its parent.
     fn act(a: &Self::Pose, r: &Self::Point) -> Self::Point;
+    /// $p$: the frame's origin, in its parent.
+    fn origin(a: &Self::Pose) -> Self::Point;
+    /// $\lvert p\rvert$: how far the frame's origin is from its parent's.
+    fn reach(a: &Self::Pose) -> f64;
     /// $R v$: a direction given in the frame, in its parent.
     fn rotate(a: &Self::Pose, v: &Self::Vector) -> Self::Vector;
     /// $\mathrm{Ad}_a$: a twist in the frame, in its parent.

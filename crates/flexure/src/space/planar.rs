@@ -45,6 +45,14 @@ impl Space for Planar {
         a.act(r)
     }
 
+    fn origin(a: &Pose) -> Point2<f64> {
+        a.origin()
+    }
+
+    fn reach(a: &Pose) -> f64 {
+        a.x.hypot(a.y)
+    }
+
     fn rotate(a: &Pose, v: &Vector2<f64>) -> Vector2<f64> {
         a.rotate(v)
     }

@@ -257,6 +257,14 @@ impl Space for Spatial {
         a * r
     }
 
+    fn origin(a: &Isometry3<f64>) -> Point3<f64> {
+        Point3::from(a.translation.vector)
+    }
+
+    fn reach(a: &Isometry3<f64>) -> f64 {
+        a.translation.vector.norm()
+    }
+
     fn rotate(a: &Isometry3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
         a.rotation * v
     }

@@ -27,75 +27,23 @@ pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
 use crate::error::{Error, Result};
 #[cfg(doc)]
 use crate::mechanism::Joint;
-#[cfg(doc)]
+use crate::mechanism::{Body, JointSpec, Loads, Mechanism, PointLoad, Tendon};
 use crate::space::Spatial;
 use crate::spatial::SpatialFlexure;
-use nalgebra::{Isometry3, Matrix3, Point3, Vector3, Vector6};
+use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 
-/// A rigid body: its name, mass, centre of mass and inertia.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialBody {
-    /// Its name.
-    pub name: String,
-    /// Mass (kg).
-    pub mass: f64,
-    /// Centre of mass in the body frame (m).
-    pub com: Point3<f64>,
-    /// Inertia about the centre of mass, in the body frame's axes (kg·m²).
-    pub inertia: Matrix3<f64>,
-}
-
-impl SpatialBody {
-    /// A massless body.
-    pub fn massless(name: &str) -> Self {
-        SpatialBody { name: name.into(), mass: 0.0, com: Point3::origin(), inertia: Matrix3::zeros() }
-    }
-}
-
-/// A joint between two bodies.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialJointSpec {
-    /// Its name.
-    pub name: String,
-    /// What it is.
-    pub kind: SpatialJointKind,
-    /// Parent body index.
-    pub parent: usize,
-    /// Child body index.
-    pub child: usize,
-    /// Root frame in the parent body's frame (`pose_parent_root`).
-    pub origin: Isometry3<f64>,
-    /// Index of its first coordinate in $q$.
-    pub offset: usize,
-    /// Damping, for dynamics: $\beta$ (s) of $D = \beta K$ on a flexure,
-    /// the viscous coefficient on a hinge, slider or ball.
-    pub damping: f64,
-}
-
-/// A tendon of constant tension through via points; potential tension × length.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialTendon {
-    /// Its name.
-    pub name: String,
-    /// Tension (N), not negative.
-    pub tension: f64,
-    /// Via points: (body, position in the body frame).
-    pub path: Vec<(usize, Point3<f64>)>,
-}
-
-/// A force and moment applied at a point of a body, both fixed in the
-/// ground frame (dead loads).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialPointLoad {
-    /// Its name (or its index, as text).
-    pub name: String,
-    /// The body.
-    pub body: usize,
-    /// Point of application in the body frame (m).
-    pub at: Point3<f64>,
-    /// Moment (N·m) and force (N) in the ground frame: $(m, f)$.
-    pub wrench: Vector6<f64>,
-}
+/// A rigid body in space ([`Body`]).
+pub type SpatialBody = Body<Spatial>;
+/// A joint between two bodies in space ([`JointSpec`]).
+pub type SpatialJointSpec = JointSpec<Spatial>;
+/// A tendon in space ([`Tendon`]).
+pub type SpatialTendon = Tendon<Spatial>;
+/// A force and moment at a point of a body, in space ([`PointLoad`]).
+pub type SpatialPointLoad = PointLoad<Spatial>;
+/// The loads of a spatial mechanism ([`Loads`]).
+pub type SpatialLoads = Loads<Spatial>;
+/// A spatial mechanism ([`Mechanism`]).
+pub type SpatialMechanism = Mechanism<Spatial>;
 
 /// A loop closure.
 #[derive(Debug, Clone, PartialEq)]
@@ -185,18 +133,7 @@ impl SpatialClosure {
     }
 }
 
-/// The magnitudes of every load, which continuation and sweeps scale.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct SpatialLoads {
-    /// Tendon tensions, in the order of [`SpatialMechanism::tendons`].
-    pub tension: Vec<f64>,
-    /// The wrench $(m, f)$ of each point load, in the order of [`SpatialMechanism::forces`].
-    pub force: Vec<Vector6<f64>>,
-    /// Gravity (m/s²).
-    pub gravity: Vector3<f64>,
-}
-
-impl SpatialLoads {
+impl Loads<Spatial> {
     /// `(1 − s)·self + s·other`, into `out` (shaped like `self`).
     pub fn lerp_into(&self, other: &SpatialLoads, s: f64, out: &mut SpatialLoads) {
         out.tension.clear();
@@ -245,240 +182,7 @@ impl SpatialLoads {
     }
 }
 
-/// An immutable spatial mechanism (the Model).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialMechanism {
-    /// Bodies; index 0 is `ground`.
-    pub bodies: Vec<SpatialBody>,
-    /// Joints in an order where every parent comes before its children.
-    pub joints: Vec<SpatialJointSpec>,
-    /// Tendons.
-    pub tendons: Vec<SpatialTendon>,
-    /// Point loads.
-    pub forces: Vec<SpatialPointLoad>,
-    /// Loop closures.
-    pub closures: Vec<SpatialClosure>,
-    /// Gravity (m/s²), zero if absent.
-    pub gravity: Vector3<f64>,
-    /// `[initial]`: (joint, coordinates) that override a simulation's start.
-    pub initial: Vec<(usize, Vec<f64>)>,
-    /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
-    pub initial_velocity: Vec<(usize, Vec<f64>)>,
-    /// Per joint, whether its spatial flexure's orders are automatic
-    /// (`order = "auto"`): `buckle` and `modes` raise them until their
-    /// error estimate meets its target
-    /// ([`crate::estimate::spatial_mechanism::buckle_auto`]); other
-    /// analyses take them as they are (3). Empty when none is.
-    pub auto_order: Vec<bool>,
-    /// `[[schedule]]`: loads given in time, for simulations
-    /// ([`crate::mechanism::schedule`]); the other analyses take the loads as given.
-    pub schedules: Vec<crate::mechanism::schedule::Schedule<sweep::SpatialParameter>>,
-    /// "line L, column C" of each closure in its file, for errors (empty if built in code).
-    pub closure_places: Vec<String>,
-    /// Per closure, whether the file says `preload = true`: open at rest on
-    /// purpose ([`findings::open_closures`] then notes it instead of warning).
-    pub closure_preloads: Vec<bool>,
-    /// `parent_joint[b]`: the joint whose child is body `b`.
-    parent_joint: Vec<Option<usize>>,
-    dof: usize,
-}
-
-impl SpatialMechanism {
-    /// The mechanism of these parts: numbers each joint's coordinates and
-    /// checks that every body but the ground is the child of exactly one
-    /// joint whose parent comes before it, and that every index is a body.
-    ///
-    /// # Example
-    /// ```
-    /// use flexure::mechanism::spatial::{Spherical, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
-    /// let bob = SpatialBody { mass: 1.0, com: nalgebra::Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
-    /// let ball = SpatialJointSpec {
-    ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
-    ///     parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0,
-    /// };
-    /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], nalgebra::Vector3::new(0.0, 0.0, -9.81)).unwrap();
-    /// assert_eq!((m.dof(), m.constraints()), (3, 0));
-    /// ```
-    pub fn new(
-        bodies: Vec<SpatialBody>,
-        mut joints: Vec<SpatialJointSpec>,
-        tendons: Vec<SpatialTendon>,
-        forces: Vec<SpatialPointLoad>,
-        closures: Vec<SpatialClosure>,
-        gravity: Vector3<f64>,
-    ) -> Result<Self> {
-        let nb = bodies.len();
-        if nb == 0 {
-            return Err(Error::invalid("bodies", 0, "a mechanism needs its ground, body 0"));
-        }
-        let mut parent_joint = vec![None; nb];
-        let mut placed = vec![false; nb];
-        placed[0] = true;
-        let mut offset = 0;
-        for (i, j) in joints.iter_mut().enumerate() {
-            if j.parent >= nb || j.child >= nb || j.child == 0 {
-                return Err(Error::invalid(
-                    "joint",
-                    &j.name,
-                    "names a body that is not there (or the ground as child)",
-                ));
-            }
-            if !placed[j.parent] {
-                return Err(Error::invalid("joint", &j.name, "comes before the joint that places its parent"));
-            }
-            if placed[j.child] {
-                return Err(Error::invalid("joint", &j.name, "places a body that another joint places already"));
-            }
-            placed[j.child] = true;
-            parent_joint[j.child] = Some(i);
-            j.offset = offset;
-            offset += j.kind.joint().dof();
-        }
-        if let Some(b) = placed.iter().position(|p| !p) {
-            return Err(Error::invalid("body", &bodies[b].name, "is not the child of any joint"));
-        }
-        let within = |b: usize| b < nb;
-        for t in &tendons {
-            if t.path.len() < 2 || !t.path.iter().all(|p| within(p.0)) {
-                return Err(Error::invalid(
-                    "tendon",
-                    &t.name,
-                    "needs two or more via points on bodies of the mechanism",
-                ));
-            }
-        }
-        if let Some(f) = forces.iter().find(|f| !within(f.body)) {
-            return Err(Error::invalid("force", &f.name, "names a body that is not there"));
-        }
-        if closures.iter().any(|c| !c.bodies().into_iter().all(within)) {
-            return Err(Error::invalid("closure", "a body index", "names a body that is not there"));
-        }
-        Ok(SpatialMechanism {
-            bodies,
-            joints,
-            tendons,
-            forces,
-            closures,
-            gravity,
-            initial: Vec::new(),
-            initial_velocity: Vec::new(),
-            schedules: Vec::new(),
-            auto_order: Vec::new(),
-            closure_preloads: Vec::new(),
-            closure_places: Vec::new(),
-            parent_joint,
-            dof: offset,
-        })
-    }
-
-    /// Number of generalized coordinates.
-    pub fn dof(&self) -> usize {
-        self.dof
-    }
-
-    /// Number of closure equations.
-    pub fn constraints(&self) -> usize {
-        self.closures.iter().map(SpatialClosure::equations).sum()
-    }
-
-    /// The body's index by name.
-    pub fn body(&self, name: &str) -> Option<usize> {
-        self.bodies.iter().position(|b| b.name == name)
-    }
-
-    /// The joint with `body` as its child.
-    pub fn parent_joint(&self, body: usize) -> Option<usize> {
-        self.parent_joint[body]
-    }
-
-    /// Coordinates of the unloaded joints.
-    pub fn rest(&self) -> Vec<f64> {
-        let mut q = vec![0.0; self.dof];
-        for j in &self.joints {
-            let joint = j.kind.joint();
-            joint.rest_into(&mut q[j.offset..j.offset + joint.dof()]);
-        }
-        q
-    }
-
-    /// The loads as given.
-    pub fn loads(&self) -> SpatialLoads {
-        SpatialLoads {
-            tension: self.tendons.iter().map(|t| t.tension).collect(),
-            force: self.forces.iter().map(|f| f.wrench).collect(),
-            gravity: self.gravity,
-        }
-    }
-
-    /// Every point attached to body `b`, in its frame: its origin (not for
-    /// the ground), the root of each joint it carries, its tendon via
-    /// points, load points and closure points, and its centre of mass if it
-    /// has mass (the planar [`crate::mechanism::Mechanism::attachments`] in
-    /// space). `flexure draw` draws a rigid body as their hull, and
-    /// [`findings::crossings`] takes that hull's edges as the link.
-    ///
-    /// # Example
-    /// ```
-    /// use flexure::mechanism::spatial::{Spherical, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
-    /// use nalgebra::{Isometry3, Point3, Vector3};
-    /// let bob = SpatialBody { mass: 1.0, com: Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
-    /// let ball = SpatialJointSpec {
-    ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
-    ///     parent: 0, child: 1, origin: Isometry3::translation(0.0, 0.0, 2.0), offset: 0, damping: 0.0,
-    /// };
-    /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::zeros()).unwrap();
-    /// assert_eq!(m.attachments(0), [Point3::new(0.0, 0.0, 2.0)]);
-    /// assert_eq!(m.attachments(1), [Point3::origin(), Point3::new(0.0, 0.0, -1.0)]);
-    /// ```
-    pub fn attachments(&self, b: usize) -> Vec<Point3<f64>> {
-        let mut pts = Vec::new();
-        if b != 0 {
-            pts.push(Point3::origin());
-        }
-        pts.extend(self.joints.iter().filter(|j| j.parent == b).map(|j| Point3::from(j.origin.translation.vector)));
-        pts.extend(self.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
-        pts.extend(self.forces.iter().filter(|f| f.body == b).map(|f| f.at));
-        for c in &self.closures {
-            let (a, ra, other, rb) = match c {
-                SpatialClosure::Weld { a, a_origin, b, b_origin } => {
-                    (*a, Point3::from(a_origin.translation.vector), *b, Point3::from(b_origin.translation.vector))
-                }
-                SpatialClosure::Pin { a, a_at, b, b_at, .. } | SpatialClosure::Ball { a, a_at, b, b_at } => {
-                    (*a, *a_at, *b, *b_at)
-                }
-            };
-            pts.extend([(a, ra), (other, rb)].into_iter().filter(|p| p.0 == b).map(|p| p.1));
-        }
-        if self.bodies[b].mass > 0.0 {
-            pts.push(self.bodies[b].com);
-        }
-        pts
-    }
-
-    /// The mechanism's size (m): the sum of its joints' offsets and flexure
-    /// lengths (1 m for a mechanism of points). Slider travel is measured
-    /// against it, to compare with rotations.
-    pub fn size(&self) -> f64 {
-        let length: f64 = self
-            .joints
-            .iter()
-            .map(|j| j.origin.translation.vector.norm() + j.kind.flexure().map_or(0.0, |f| f.length()))
-            .sum();
-        if length > 0.0 && length.is_finite() { length } else { 1.0 }
-    }
-
-    /// Joints from the ground to `body`, root first.
-    pub fn path(&self, body: usize) -> Vec<usize> {
-        let mut path = Vec::new();
-        let mut b = body;
-        while let Some(j) = self.parent_joint[b] {
-            path.push(j);
-            b = self.joints[j].parent;
-        }
-        path.reverse();
-        path
-    }
-
+impl Mechanism<Spatial> {
     /// The same mechanism with spatial flexure joint `j` replaced by
     /// `refine(j, flexure)` where it returns one (other orders or
     /// subintervals), as the planar
@@ -491,7 +195,7 @@ impl SpatialMechanism {
     /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
     /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
     /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
-    /// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0 };
+    /// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
     /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![], vec![], nalgebra::Vector3::zeros()).unwrap();
     /// let finer = m.with_flexures(|_, f| Ok(Some(SpatialFlexure::new(f.length(), f.section().clone(), [4, 4, 4])?))).unwrap();
     /// assert_eq!((m.dof(), finer.dof()), (6, 12));

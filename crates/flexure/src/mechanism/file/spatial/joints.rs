@@ -318,10 +318,19 @@ pub(super) fn joints(
         let kind = kind(src, &owner, j)?;
         let origin = src.placement(&owner, ["origin", "rpy", "rpy_deg"], &j.origin, &j.rpy, &j.rpy_deg)?;
         let damping = j.damping.as_ref().map_or(Ok(0.0), |d| src.number(&owner, "damping", d, Sign::NotNegative))?;
-        specs.push((
-            SpatialJointSpec { name: j.name.get_ref().clone(), kind, parent, child: i + 1, origin, offset: 0, damping },
-            j,
-        ));
+        // Only a flexure takes `order` (the others refuse it): read it so.
+        let auto_order = orders_of(src, "", j)?.1;
+        let spec = SpatialJointSpec {
+            name: j.name.get_ref().clone(),
+            kind,
+            parent,
+            child: i + 1,
+            origin,
+            offset: 0,
+            damping,
+            auto_order,
+        };
+        specs.push((spec, j));
     }
     // Parents first: place each joint once its parent body is placed (at most n passes).
     let mut placed = vec![false; tables.len() + 1];

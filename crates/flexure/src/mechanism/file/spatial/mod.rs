@@ -217,20 +217,8 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
             .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
         (m, places)
     };
-    (m.closure_places, m.closure_preloads) = places.into_iter().unzip();
-    // Joints are in parents-first order, the file's tables in file order: matched by name.
-    m.auto_order = m
-        .joints
-        .iter()
-        .map(|spec| {
-            let table = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);
-            // Only a flexure takes `order` (the others refuse it): read it so.
-            Ok(match table {
-                Some(j) => joints::orders_of(&src, "", j)?.1,
-                None => false,
-            })
-        })
-        .collect::<Result<_>>()?;
+    let (places, preloads) = places.into_iter().unzip();
+    m = m.with_closure_places(places, preloads);
     m.schedules = super::schedules::schedules(
         &src,
         &file.schedule,

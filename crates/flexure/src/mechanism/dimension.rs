@@ -1,0 +1,116 @@
+//! What a mechanism needs of its dimension beyond the group operations of
+//! [`Space`]: its joint kinds, its flexure, a body's rotary inertia, its
+//! closures and its load parameters. The plane and space implement it here,
+//! side by side, so that [`Mechanism<D>`](super::Mechanism) and its parts
+//! are one model for both dimensions (Pinocchio's one model; parry's one set
+//! of dimension aliases).
+
+use super::joints::{Joint, JointKind};
+use super::spatial::{SpatialClosure, SpatialJointKind, sweep::SpatialParameter};
+use super::{Closure, sweep::Parameter};
+use crate::joint::Flexure;
+use crate::space::{Planar, Space, Spatial};
+use crate::spatial::SpatialFlexure;
+use nalgebra::Matrix3;
+use std::fmt::Debug;
+
+/// A dimension a mechanism lives in: [`Planar`] or [`Spatial`].
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{Dimension, JointKind, Revolute};
+/// use flexure::space::Planar;
+/// let pin = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
+/// assert_eq!(Planar::joint(&pin).dof(), 1);
+/// assert!(Planar::flexure(&pin).is_none());
+/// ```
+pub trait Dimension: Space {
+    /// A body's rotary inertia about its centre of mass: kg·m² in the plane,
+    /// a 3 × 3 matrix (kg·m²) in the body frame's axes in space.
+    type AngularInertia: Copy + Debug + PartialEq + Default;
+    /// The joint kinds of this dimension.
+    type JointKind: Clone + Debug + PartialEq;
+    /// The Smooth Curvature flexure of this dimension.
+    type Flexure: Clone + Debug + PartialEq;
+    /// A loop closure.
+    type Closure: Clone + Debug + PartialEq;
+    /// A load that a sweep or a schedule sets.
+    type Parameter: Clone + Debug + PartialEq;
+
+    /// The kind as its interface: the one match on the kind.
+    fn joint(kind: &Self::JointKind) -> &dyn Joint<Self>;
+    /// The flexure, where the kind is one.
+    fn flexure(kind: &Self::JointKind) -> Option<&Self::Flexure>;
+    /// A flexure's length (m).
+    fn flexure_length(f: &Self::Flexure) -> f64;
+    /// A closure's number of scalar equations.
+    fn closure_equations(c: &Self::Closure) -> usize;
+    /// A closure's two bodies, each with the point on it that the closure holds.
+    fn closure_points(c: &Self::Closure) -> [(usize, Self::Point); 2];
+}
+
+impl Dimension for Planar {
+    type AngularInertia = f64;
+    type JointKind = JointKind;
+    type Flexure = Flexure;
+    type Closure = Closure;
+    type Parameter = Parameter;
+
+    fn joint(kind: &JointKind) -> &dyn Joint<Planar> {
+        kind.joint()
+    }
+
+    fn flexure(kind: &JointKind) -> Option<&Flexure> {
+        kind.flexure()
+    }
+
+    fn flexure_length(f: &Flexure) -> f64 {
+        f.length()
+    }
+
+    fn closure_equations(c: &Closure) -> usize {
+        c.equations()
+    }
+
+    fn closure_points(c: &Closure) -> [(usize, nalgebra::Point2<f64>); 2] {
+        match c {
+            Closure::Weld { a, a_origin, b, b_origin } => [(*a, a_origin.origin()), (*b, b_origin.origin())],
+            Closure::Pin { a, a_at, b, b_at } => [(*a, *a_at), (*b, *b_at)],
+        }
+    }
+}
+
+impl Dimension for Spatial {
+    type AngularInertia = Matrix3<f64>;
+    type JointKind = SpatialJointKind;
+    type Flexure = SpatialFlexure;
+    type Closure = SpatialClosure;
+    type Parameter = SpatialParameter;
+
+    fn joint(kind: &SpatialJointKind) -> &dyn Joint<Spatial> {
+        kind.joint()
+    }
+
+    fn flexure(kind: &SpatialJointKind) -> Option<&SpatialFlexure> {
+        kind.flexure()
+    }
+
+    fn flexure_length(f: &SpatialFlexure) -> f64 {
+        f.length()
+    }
+
+    fn closure_equations(c: &SpatialClosure) -> usize {
+        c.equations()
+    }
+
+    fn closure_points(c: &SpatialClosure) -> [(usize, nalgebra::Point3<f64>); 2] {
+        match c {
+            SpatialClosure::Weld { a, a_origin, b, b_origin } => {
+                [(*a, Spatial::origin(a_origin)), (*b, Spatial::origin(b_origin))]
+            }
+            SpatialClosure::Pin { a, a_at, b, b_at, .. } | SpatialClosure::Ball { a, a_at, b, b_at } => {
+                [(*a, *a_at), (*b, *b_at)]
+            }
+        }
+    }
+}
