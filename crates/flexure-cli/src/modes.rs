@@ -300,7 +300,7 @@ fn joint_modes(args: &ModesArgs) -> Result<Value, String> {
     let auto = args.flexure.auto();
     // With --order auto the order rises to at least the count.
     let (limit, what) = if auto {
-        (flexure::joint::MAX_ORDER, "a flexure of the highest order, 64,")
+        (flexure::flexure::MAX_ORDER, "a flexure of the highest order, 64,")
     } else {
         (given.order(), "a flexure of this order")
     };

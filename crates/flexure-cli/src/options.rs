@@ -2,7 +2,8 @@
 
 use clap::Args;
 use flexure::Flexure;
-use flexure::section::{FlexureSpec, Notch, Profile, SectionSpec};
+use flexure::FlexureSpec;
+use flexure::section::{Notch, Profile, SectionSpec};
 
 /// Parses a finite number.
 pub fn number(s: &str) -> Result<f64, String> {
@@ -44,7 +45,7 @@ pub fn count(s: &str, min: usize, max: usize) -> Result<usize, String> {
     }
 }
 
-/// `--order`: from 1 to [`flexure::joint::MAX_ORDER`], or `auto`.
+/// `--order`: from 1 to [`flexure::flexure::MAX_ORDER`], or `auto`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Order {
     /// A given order.
@@ -58,7 +59,7 @@ pub fn order(s: &str) -> Result<Order, String> {
     if s.trim() == "auto" {
         return Ok(Order::Auto);
     }
-    count(s, 1, flexure::joint::MAX_ORDER).map(Order::Fixed).map_err(|e| format!("{e}, or auto"))
+    count(s, 1, flexure::flexure::MAX_ORDER).map(Order::Fixed).map_err(|e| format!("{e}, or auto"))
 }
 
 /// Parses `--accuracy POS,ANGLE[,STRESS]`: the position tolerance as a
@@ -104,9 +105,9 @@ pub fn quadrature(s: &str) -> Result<usize, String> {
     count(s, 1, flexure::quadrature::MAX_POINTS)
 }
 
-/// `--segments`: from 1 to [`flexure::joint::MAX_SEGMENTS`].
+/// `--segments`: from 1 to [`flexure::flexure::MAX_SEGMENTS`].
 pub fn segments(s: &str) -> Result<usize, String> {
-    count(s, 1, flexure::joint::MAX_SEGMENTS)
+    count(s, 1, flexure::flexure::MAX_SEGMENTS)
 }
 
 /// Most Newton iterations one load step may take: enough for any problem

@@ -55,8 +55,7 @@ fn the_spatial_examples_answer_every_mechanism_subcommand() {
         let m = flexure::mechanism::file::spatial_from_toml(&text).unwrap();
         let s = flexure::mechanism::spatial::statics::solve(&m, &Default::default()).unwrap();
         let library =
-            serde_json::to_value(flexure::mechanism::spatial::report::report(&m, &s, &Default::default()).unwrap())
-                .unwrap();
+            serde_json::to_value(flexure::report::spatial::report(&m, &s, &Default::default()).unwrap()).unwrap();
         // The same numbers (to the last bits that JSON's text round trip may move).
         let (a, b) = (numbers(&v["bodies"]), numbers(&library["bodies"]));
         assert_eq!(a.len(), b.len(), "{name}");

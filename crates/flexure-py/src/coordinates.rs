@@ -227,9 +227,9 @@ pub fn vector(
 }
 
 /// Refuses a value that is not finite, or (as the library and the CLI do)
-/// of magnitude above [`flexure::joint::MAX_COORDINATE`] (1e6 rad).
+/// of magnitude above [`flexure::flexure::MAX_COORDINATE`] (1e6 rad).
 fn all_finite(name: &str, values: &[f64]) -> PyResult<()> {
-    let max = flexure::joint::MAX_COORDINATE;
+    let max = flexure::flexure::MAX_COORDINATE;
     match values.iter().find(|v| !v.is_finite() || v.abs() > max) {
         Some(v) if !v.is_finite() => {
             Err(PyValueError::new_err(format!("{name} contains {v}: every entry must be a finite number")))

@@ -11,8 +11,8 @@ use crate::joint::Flexure;
 use crate::strict::Real;
 use crate::warnings::warn_unstable;
 use crate::{section, stress};
+use flexure::FlexureSpec;
 use flexure::reference::{column, compliance, elastica, euler};
-use flexure::section::FlexureSpec;
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
 use numpy::ndarray::Array2;
@@ -253,7 +253,7 @@ pub fn exact_flexure(
         Some((name, k)) => (name, vector(name, &crate::coordinates::array_like(name, k)?, None)?),
         None => ("kappa", vec![0.0; 3]),
     };
-    let max = flexure::joint::MAX_ORDER;
+    let max = flexure::flexure::MAX_ORDER;
     if !(1..=max).contains(&kappa.len()) {
         return Err(PyValueError::new_err(format!(
             "{name} must have from 1 to {max} entries (rest curvature coefficients), got {}",

@@ -11,8 +11,8 @@ use crate::interrupt::interruptible;
 use crate::statics::loaded_stiffness;
 use crate::strict::{self, Real};
 use crate::{analyses, convert, kinematics, modes, section, statics, stress};
+use flexure::FlexureSpec;
 use flexure::estimate;
-use flexure::section::FlexureSpec;
 use flexure::{Kinematics, Level, Pose, compliance_tip, compliance_tip_rest, energy, update_kinematics};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -86,7 +86,7 @@ impl Flexure {
             density: density.map(|v| v.0),
             mass_per_length,
         })?;
-        let order = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
+        let order = order.map(|o| count("order", o, flexure::flexure::MAX_ORDER)).transpose()?.unwrap_or(3);
         let quadrature = quadrature.map(|q| count("quadrature", q, flexure::quadrature::MAX_POINTS)).transpose()?;
         let kappa = kappa.map(|(name, k)| vector(name, &coordinates::array_like(name, k)?, Some(order))).transpose()?;
         // The library builds it, as for the CLI and mechanism files, and names what it refuses.

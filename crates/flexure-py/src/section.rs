@@ -3,7 +3,7 @@
 //! table of `[t, value]` rows over $t = s/L$; `notch` as `(radius,
 //! min_thickness)`. Every error names the Python parameter and the value it
 //! got; the library builds the section and the flexure from them
-//! ([`SectionSpec`], [`flexure::section::FlexureSpec::build`], as for the
+//! ([`SectionSpec`], [`flexure::FlexureSpec::build`], as for the
 //! CLI and mechanism files), checking signs, tables and notch depths, and
 //! names them the same way.
 

@@ -88,7 +88,7 @@ impl SpatialFlexure {
         mass_per_length: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let p = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
-        let n = order.map(|o| count("order", o, flexure::joint::MAX_ORDER)).transpose()?.unwrap_or(3);
+        let n = order.map(|o| count("order", o, flexure::flexure::MAX_ORDER)).transpose()?.unwrap_or(3);
         let rest = |name: &str, v: Option<&Bound<'_, PyAny>>| {
             v.map(|v| vector(name, &coordinates::array_like(name, v)?, Some(n))).transpose()
         };

@@ -62,7 +62,7 @@ pub fn deflect<'py>(
                 let by = value.strip_prefix("auto ").unwrap_or("");
                 return Err(PyValueError::new_err(format!(
                     "order=\"auto\": even order {} misses the target of {} % of L and {}° under (moment, fx, fy) = ({moment}, {fx}, {fy}) {by}: loosen accuracy or reduce the load",
-                    flexure::joint::MAX_ORDER,
+                    flexure::flexure::MAX_ORDER,
                     sig(100.0 * target.position),
                     sig(target.angle.to_degrees())
                 )));

@@ -1,7 +1,7 @@
 //! Buckling of a flexure in compression under tip constraints (paper Sec. IV-D, Eqs. 39–44).
 
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
 use nalgebra::{DMatrix, DVector};
 use std::str::FromStr;

@@ -1,7 +1,7 @@
 //! Small-load tip compliance (paper Eqs. 33–36).
 
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
 use nalgebra::{DMatrix, Matrix3};
 

@@ -2,7 +2,7 @@
 
 use crate::energy::{energy, energy_gradient, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
-use crate::joint::{Basis, Flexure};
+use crate::flexure::{Basis, Flexure};
 use crate::kinematics::{self, Kinematics, Level, Pose};
 use crate::solver;
 use crate::statics::{self, Settings, TipLoad, rotation};

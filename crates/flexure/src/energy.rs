@@ -5,8 +5,8 @@
 //! integrated once when the flexure is built. The shifted-Legendre basis is
 //! $L^2$-orthogonal on $[0, L]$, so for a uniform section $K$ is diagonal.
 
-use crate::joint::Flexure;
-use crate::kinematics::assert_coordinates;
+use crate::flexure::Flexure;
+use crate::flexure::assert_coordinates;
 use crate::scalar::Scalar;
 
 /// $U(\alpha) = \frac12(\alpha-\kappa)^TK(\alpha-\kappa)$, in joules; for a uniform

@@ -1,7 +1,7 @@
 //! Tip pose, transform, Jacobian and Hessians in one pass over the
 //! quadrature points (paper Eqs. 7, 11, 14–15, 19–21, 29–31).
 
-use crate::joint::Flexure;
+use crate::flexure::{Flexure, assert_coordinates};
 use crate::scalar::Scalar;
 use nalgebra::DMatrix;
 
@@ -156,18 +156,6 @@ impl TipKinematics {
     }
 }
 
-/// Panics unless a coordinate slice called `name` has `len` =
-/// [`Flexure::order`] entries: the kernels' precondition, checked once per
-/// call so that no kernel ever zips a short or long slice into a silently
-/// truncated result. User-facing entries validate first with
-/// [`Flexure::check_coordinates`], which returns an error instead.
-#[inline]
-#[track_caller]
-pub(crate) fn assert_coordinates(flexure: &Flexure, name: &str, len: usize) {
-    let order = flexure.order();
-    assert!(len == order, "{name} must have {order} entries (one per coordinate, the flexure's order), got {len}");
-}
-
 /// The tip pose alone: $\phi = \alpha_1$, $x = L\sum_k \Delta_k\cos\phi(t_k)$,
 /// $y = L\sum_k \Delta_k\sin\phi(t_k)$ (Eqs. 11, 14, 15).
 ///
@@ -282,8 +270,8 @@ fn any_cos_sin<T: Scalar>(flexure: &Flexure, alpha: &[T], out: &mut [[T; 2]]) {
 fn tip_angle<T: Scalar>(flexure: &Flexure, alpha: &[T]) -> T {
     match flexure.basis() {
         // Eq. 11: exactly α₁, with no rounding from the other coordinates.
-        crate::joint::Basis::Legendre => alpha[0],
-        crate::joint::Basis::Segments => node_angle(flexure.tip_angle_row(), alpha),
+        crate::flexure::Basis::Legendre => alpha[0],
+        crate::flexure::Basis::Segments => node_angle(flexure.tip_angle_row(), alpha),
     }
 }
 

@@ -7,7 +7,6 @@
 //! for the same reason.
 
 use crate::error::{Error, Result};
-use crate::statics::Equilibrium;
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
 /// How far a load can be scaled from rest before stability is lost.
@@ -63,6 +62,15 @@ impl StabilityLimit {
     }
 }
 
+/// The end of a loading path followed from rest, as [`search`] reads it
+/// (a flexure's [`crate::statics::Equilibrium`]).
+pub(crate) trait PathEnd {
+    /// Whether the end is stable.
+    fn ended_stable(&self) -> bool;
+    /// The load fraction where the path first lost stability, if it did.
+    fn lost_at(&self) -> Option<f64>;
+}
+
 /// The stability limit of the paths `path_to(factor)` (each followed from
 /// rest to `factor` times the load, stopping where stability is lost), for
 /// factors up to `max_factor`.
@@ -75,15 +83,15 @@ impl StabilityLimit {
 /// the factor it reached, and a bisection probe that fails leaves its
 /// factor unconfirmed (the answer stays a confirmed-stable lower bound).
 /// Only an interrupt or invalid input is returned as an error.
-pub(crate) fn search(max_factor: f64, mut path_to: impl FnMut(f64) -> Result<Equilibrium>) -> Result<StabilityLimit> {
+pub(crate) fn search<E: PathEnd>(max_factor: f64, mut path_to: impl FnMut(f64) -> Result<E>) -> Result<StabilityLimit> {
     if !(max_factor.is_finite() && max_factor > 0.0) {
         return Err(Error::invalid("max_factor", max_factor, "must be a finite number greater than zero"));
     }
     let first = match path_to(max_factor) {
-        Ok(e) if e.stable && e.limit.is_none() => {
+        Ok(e) if e.ended_stable() && e.lost_at().is_none() => {
             return Ok(StabilityLimit::StableUpTo { factor: max_factor, stalled: None });
         }
-        Ok(e) => e.limit.unwrap_or(1.0),
+        Ok(e) => e.lost_at().unwrap_or(1.0),
         Err(Error::Unstable { load_fraction, .. }) => load_fraction,
         Err(e @ Error::ContinuationStalled { load_fraction, .. }) => {
             return Ok(StabilityLimit::StableUpTo { factor: load_fraction * max_factor, stalled: Some(e.to_string()) });
@@ -96,7 +104,7 @@ pub(crate) fn search(max_factor: f64, mut path_to: impl FnMut(f64) -> Result<Equ
     let mut probe = |factor: f64| -> Result<Option<bool>> {
         probes.set(probes.get() + 1);
         match path_to(factor) {
-            Ok(e) => Ok(Some(e.stable && e.limit.is_none())),
+            Ok(e) => Ok(Some(e.ended_stable() && e.lost_at().is_none())),
             Err(Error::Unstable { .. }) => Ok(Some(false)),
             Err(e @ (Error::Interrupted { .. } | Error::InvalidParameter { .. })) => Err(e),
             Err(_) => Ok(None),

@@ -30,8 +30,8 @@
 //! discrete $M$ (the same nodes), not an approximation of it.
 
 use crate::error::{Error, Result};
+use crate::flexure::{Basis, Flexure};
 use crate::inertia::RigidInertia;
-use crate::joint::{Basis, Flexure};
 use crate::quadrature::GaussLegendre;
 use crate::scalar::Scalar;
 use nalgebra::{DMatrix, DVector};

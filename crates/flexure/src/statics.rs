@@ -2,9 +2,9 @@
 
 use crate::energy::energy_gradient;
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
-use crate::limit::{self, StabilityLimit};
+use crate::limit::{self, PathEnd, StabilityLimit};
 use crate::linalg;
 use crate::scalar::Scalar;
 use crate::solver;
@@ -81,6 +81,16 @@ impl Equilibrium {
             iterations: path.iterations,
             load_steps: path.steps,
         }
+    }
+}
+
+impl PathEnd for Equilibrium {
+    fn ended_stable(&self) -> bool {
+        self.stable
+    }
+
+    fn lost_at(&self) -> Option<f64> {
+        self.limit
     }
 }
 

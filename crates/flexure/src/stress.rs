@@ -7,8 +7,8 @@
 //! A section given by $EI$ alone has no thickness, so no stress: its
 //! answers report the largest change of curvature instead.
 
-use crate::joint::Flexure;
-use crate::kinematics::assert_coordinates;
+use crate::flexure::Flexure;
+use crate::flexure::assert_coordinates;
 
 /// Samples of the coarse scan that brackets a peak, per coordinate (at least 64 in all).
 const SAMPLES_PER_ORDER: usize = 16;
@@ -43,9 +43,9 @@ pub fn curvature_change(flexure: &Flexure, alpha: &[f64], s: f64) -> f64 {
 
 /// The coordinates of the change from rest, $\alpha - \kappa$, in the first
 /// [`Flexure::order`] entries: computed once for a whole scan.
-fn change(flexure: &Flexure, alpha: &[f64]) -> [f64; crate::joint::MAX_ORDER] {
+fn change(flexure: &Flexure, alpha: &[f64]) -> [f64; crate::flexure::MAX_ORDER] {
     assert_coordinates(flexure, "alpha", alpha.len());
-    let mut d = [0.0; crate::joint::MAX_ORDER];
+    let mut d = [0.0; crate::flexure::MAX_ORDER];
     for ((d, a), k) in d.iter_mut().zip(alpha).zip(flexure.rest()) {
         *d = a - k;
     }
@@ -102,7 +102,7 @@ fn peak(flexure: &Flexure, g: impl Fn(f64) -> f64) -> Peak {
     let count = (SAMPLES_PER_ORDER * flexure.order()).max(64);
     let mut points: Vec<f64> = (0..=count).map(|k| k as f64 / count as f64).collect();
     points.extend(flexure.section().breakpoints(l));
-    if flexure.basis() == crate::joint::Basis::Segments {
+    if flexure.basis() == crate::flexure::Basis::Segments {
         // Curvature jumps at each boundary: take both sides.
         let n = flexure.order() as f64;
         for j in 1..flexure.order() {
@@ -178,8 +178,8 @@ pub fn peak_curvature_legendre(flexure: &Flexure, alpha: &[f64]) -> f64 {
     let n = d.len();
     let l = flexure.length();
     // Bonnet's recurrence P_{k+1} = a_k x P_k − b_k P_{k−1}, its factors once.
-    let mut a = [0.0; crate::joint::MAX_ORDER];
-    let mut b = [0.0; crate::joint::MAX_ORDER];
+    let mut a = [0.0; crate::flexure::MAX_ORDER];
+    let mut b = [0.0; crate::flexure::MAX_ORDER];
     for k in 1..n {
         a[k] = (2 * k + 1) as f64 / (k + 1) as f64;
         b[k] = k as f64 / (k + 1) as f64;

@@ -2,7 +2,7 @@
 
 use crate::energy::{energy, energy_gradient_entry};
 use crate::error::{Error, Result, finite};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{self, Kinematics, Level, Pose};
 use crate::limit::{self, StabilityLimit};
 use crate::linalg;

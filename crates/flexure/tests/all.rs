@@ -31,6 +31,7 @@ mod findings;
 mod format;
 mod joints;
 mod kinematics;
+mod layers;
 mod mechanism;
 mod mechanism_derivatives;
 mod mechanism_files;

@@ -418,7 +418,7 @@ fn every_spatial_parser_key_is_documented() {
 /// from `flexure solve` to their printed digits.
 #[test]
 fn the_spatial_example_solves_as_the_page_says() {
-    use flexure::mechanism::spatial::report::placements;
+    use flexure::report::spatial::placements;
     let text = PAGE
         .split("```toml\n")
         .skip(1)

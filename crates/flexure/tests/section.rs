@@ -315,7 +315,8 @@ fn a_thickness_above_the_length_is_refused() {
 /// rest curvature), and its errors name the parameter that does not fit.
 #[test]
 fn a_spec_builds_what_the_steps_build() {
-    use flexure::section::{FlexureSpec, SectionSpec};
+    use flexure::FlexureSpec;
+    use flexure::section::SectionSpec;
     let c = Profile::Constant;
     let rect = SectionSpec {
         modulus: Some(200e9),

@@ -5,8 +5,8 @@
 use flexure::estimate::Accuracy;
 use flexure::mechanism::file::spatial_from_toml;
 use flexure::mechanism::spatial::SpatialMechanism;
-use flexure::mechanism::spatial::report::{SpatialReport, report};
 use flexure::mechanism::spatial::statics::solve;
+use flexure::report::spatial::{SpatialReport, report};
 
 fn example(name: &str) -> (SpatialMechanism, SpatialReport) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name);
@@ -18,7 +18,7 @@ fn example(name: &str) -> (SpatialMechanism, SpatialReport) {
     (m, r)
 }
 
-fn body<'a>(r: &'a SpatialReport, name: &str) -> &'a flexure::mechanism::spatial::report::Placement {
+fn body<'a>(r: &'a SpatialReport, name: &str) -> &'a flexure::report::spatial::Placement {
     r.bodies.iter().find(|b| b.name == name).unwrap()
 }
 

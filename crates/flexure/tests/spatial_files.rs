@@ -3,7 +3,7 @@
 //! every bad value is an error naming its key, line and column.
 
 use flexure::mechanism::file::{Model, from_toml, model_from_toml, spatial_from_toml};
-use flexure::mechanism::spatial::report::placements;
+use flexure::report::spatial::placements;
 use toml::Value;
 
 fn examples_dir() -> std::path::PathBuf {

@@ -12,10 +12,10 @@ use flexure::dynamics::spatial::{SpatialSystem, modes, simulate};
 use flexure::mechanism::file::{from_toml, spatial_from_toml};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
-use flexure::mechanism::spatial::report::placements;
 use flexure::mechanism::spatial::{
     Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
+use flexure::report::spatial::placements;
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{MassQuadrature, SpatialFlexure, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};

@@ -29,6 +29,7 @@ fn chain(n: usize, force: [f64; 3]) -> SpatialMechanism {
             origin: Isometry3::identity(),
             offset: 0,
             damping: 0.0,
+            auto_order: false,
         });
     }
     let tip = SpatialPointLoad {

@@ -8,9 +8,9 @@ use flexure::dynamics::spatial::SpatialSimulation;
 use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
 use flexure::estimate::{Accuracy, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
-use flexure::mechanism::spatial::report::{placements, report};
 use flexure::mechanism::spatial::statics::{compliance, solve};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep};
+use flexure::report::spatial::{placements, report};
 use flexure::solver::Settings;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -42,7 +42,7 @@ fn point3(at: &[f64], file: &Path) -> Result<nalgebra::Point3<f64>, String> {
 
 /// Warns of each flexure whose error estimate misses `target`.
 fn warn_flagged(
-    answer: &flexure::mechanism::spatial::report::SpatialReport,
+    answer: &flexure::report::spatial::SpatialReport,
     m: &SpatialMechanism,
     target: &Accuracy,
     file: &Path,

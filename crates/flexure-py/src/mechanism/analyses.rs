@@ -113,7 +113,7 @@ pub fn point(at: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
     crate::strict::no_bool("at", at)?;
     let v: Vec<f64> = at.extract().map_err(|_| bad("must be two numbers (x, y), a point in the body's frame (m)"))?;
     let [x, y] = v[..] else { return Err(bad("must be two numbers (x, y), a point in the body's frame (m)")) };
-    let max = flexure::joint::LENGTH_RANGE.1;
+    let max = flexure::flexure::LENGTH_RANGE.1;
     if !(x.is_finite() && y.is_finite() && x.abs() <= max && y.abs() <= max) {
         return Err(bad(&format!("each coordinate must be a finite number of magnitude at most {max:e} m")));
     }

@@ -1,6 +1,6 @@
 //! A spatial mechanism's analyses (a file with `dimension = 3`), in the
 //! shape of the planar ones: `solve` (the library's
-//! [`report`](flexure::mechanism::spatial::report::report), what
+//! [`report`](flexure::report::spatial::report), what
 //! `flexure solve --json` prints), `compliance` (6 × 6), `sweep`, `modes`,
 //! `simulate` and `buckle`. Bodies' placements are NumPy arrays: a position
 //! (3,), a rotation matrix (3, 3) and URDF's roll, pitch, yaw (3,). The
@@ -19,9 +19,9 @@ use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
 use flexure::estimate::{Accuracy, ErrorEstimate, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::findings::{crossings, crossings_along, open_closures};
-use flexure::mechanism::spatial::report::{Placement, placements, report};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
+use flexure::report::spatial::{Placement, placements, report};
 use flexure::solver::Settings;
 use nalgebra::Point3;
 use numpy::ndarray::{Array1, Array2, Array3};
@@ -56,7 +56,7 @@ fn point3(at: Option<&Bound<'_, PyAny>>) -> PyResult<Point3<f64>> {
     crate::strict::no_bool("at", at)?;
     let v: Vec<f64> = at.extract().map_err(|_| bad(three))?;
     let [x, y, z] = v[..] else { return Err(bad(three)) };
-    let max = flexure::joint::LENGTH_RANGE.1;
+    let max = flexure::flexure::LENGTH_RANGE.1;
     if ![x, y, z].iter().all(|c| c.is_finite() && c.abs() <= max) {
         return Err(bad(&format!("each coordinate must be a finite number of magnitude at most {max:e} m")));
     }

@@ -1,8 +1,8 @@
 //! Vibration modes of one flexure joint about its loaded equilibrium.
 
 use crate::error::{Error, Result};
+use crate::flexure::Flexure;
 use crate::inertia::RigidInertia;
-use crate::joint::Flexure;
 use crate::mass::{MassData, MassModel, update};
 use crate::statics::{Statics, TipLoad, deflect};
 use nalgebra::DMatrix;

@@ -2,7 +2,7 @@
 //! [`Accuracy`] target and the [`ErrorEstimate`] of a statics answer.
 
 use crate::error::{Result, positive};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::stress::{peak_curvature_legendre, peak_stress};
 
 /// The accuracy an answer must meet: tip position within `position` × L,
@@ -91,7 +91,7 @@ pub struct ErrorEstimate {
     /// Quadrature points of the reference model (0 when the reference is the exact elastica).
     pub reference_quadrature: usize,
     /// Whether the reference is the exact elastica ([`crate::reference::elastica`]) rather than
-    /// a refined model: so at order [`MAX_ORDER`](crate::joint::MAX_ORDER), which no model refines (see the module docs).
+    /// a refined model: so at order [`MAX_ORDER`](crate::flexure::MAX_ORDER), which no model refines (see the module docs).
     #[serde(rename = "reference", serialize_with = "reference_name")]
     pub exact: bool,
 }

@@ -7,7 +7,7 @@ use super::accuracy::{Accuracy, ErrorEstimate};
 use super::refinement::refined;
 use super::statics::{connect_error, deflect_error, tendon_error};
 use crate::error::{Error, Result};
-use crate::joint::{Flexure, MAX_ORDER};
+use crate::flexure::{Flexure, MAX_ORDER};
 use crate::kinematics::Pose;
 use crate::statics::{Settings, Statics, TipLoad, deflect};
 use crate::tendon::{Tendon, TendonData, pull};

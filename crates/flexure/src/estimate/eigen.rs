@@ -9,7 +9,7 @@ use super::value::ValueEstimate;
 use crate::buckling::{Buckling, TipConstraint, buckling_load};
 use crate::dynamics::{self, Body, Modes};
 use crate::error::{Error, Result};
-use crate::joint::{Flexure, MAX_ORDER};
+use crate::flexure::{Flexure, MAX_ORDER};
 use crate::statics::TipLoad;
 
 /// The error of a [`crate::buckling_load`] answer `b` of `flexure` under

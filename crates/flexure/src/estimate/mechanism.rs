@@ -9,7 +9,7 @@ use super::refinement::{eigen_reference, refined};
 use super::value::ValueEstimate;
 use crate::dynamics::{self, Modes};
 use crate::error::Result;
-use crate::joint::MAX_ORDER;
+use crate::flexure::MAX_ORDER;
 use crate::mechanism::{
     self, Mechanism, buckling::Buckling as MechanismBuckling, statics::Settings as MechanismSettings,
 };

@@ -15,7 +15,7 @@
 //! distance between the two answers: the error of the answer, to within the
 //! reference's own error, which is far smaller wherever the basis converges.
 //!
-//! **At the order cap** ([`MAX_ORDER`](crate::joint::MAX_ORDER) = 64) no model refines the answer's
+//! **At the order cap** ([`MAX_ORDER`](crate::flexure::MAX_ORDER) = 64) no model refines the answer's
 //! order, and more points alone would leave a smooth answer unchanged: the
 //! model against itself, an estimate of 0 whatever its true error (a steep
 //! taper of $EI$ converges slowly in the basis). So an estimate at the cap

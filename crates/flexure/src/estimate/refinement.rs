@@ -3,7 +3,7 @@
 //! answers at the order cap, coarsened to order 32 ([`eigen_reference`]).
 
 use crate::error::{Error, Result};
-use crate::joint::{Basis, Flexure, MAX_ORDER};
+use crate::flexure::{Basis, Flexure, MAX_ORDER};
 use crate::quadrature::MAX_POINTS;
 
 /// A bound on the total turning $\int_0^1|\partial_t\phi|\thinspace dt$

@@ -14,7 +14,7 @@
 
 use super::{Accuracy, ErrorEstimate};
 use crate::error::Result;
-use crate::joint::MAX_ORDER;
+use crate::flexure::MAX_ORDER;
 use crate::space::rotation_angle;
 use crate::spatial::{self as spatial_flexure, SpatialFlexure, SpatialLoad, SpatialStatics, correct, deflect};
 

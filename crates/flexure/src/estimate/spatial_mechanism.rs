@@ -10,7 +10,7 @@ use super::value::ValueEstimate;
 use super::{Accuracy, ErrorEstimate, spatial::deflect_error};
 use crate::dynamics::{Modes, spatial as spatial_dynamics};
 use crate::error::Result;
-use crate::joint::MAX_ORDER;
+use crate::flexure::MAX_ORDER;
 use crate::mechanism::buckling::Buckling;
 use crate::mechanism::spatial::SpatialMechanism;
 use crate::mechanism::spatial::buckling::buckle;

@@ -6,7 +6,7 @@
 use super::accuracy::{Accuracy, ErrorEstimate};
 use super::refinement::{eigen_reference, legendre, reference_size, refined};
 use crate::error::Result;
-use crate::joint::{Flexure, MAX_ORDER};
+use crate::flexure::{Flexure, MAX_ORDER};
 use crate::kinematics::{self, Pose, backbone};
 use crate::statics::{Settings, Statics, TipLoad, deflect};
 use crate::tendon::{Tendon, TendonData, pull};

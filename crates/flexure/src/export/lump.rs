@@ -2,8 +2,8 @@
 //! pseudo-rigid-body model, and rigid inertias added together.
 
 use crate::error::Result;
+use crate::flexure::Flexure;
 use crate::inertia::RigidInertia;
-use crate::joint::Flexure;
 use crate::quadrature::GaussLegendre;
 use crate::space::Pose;
 

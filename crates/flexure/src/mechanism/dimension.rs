@@ -8,7 +8,7 @@
 use super::joints::{Joint, JointKind};
 use super::spatial::{SpatialClosure, SpatialJointKind, sweep::SpatialParameter};
 use super::{Closure, sweep::Parameter};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::space::{Planar, Space, Spatial};
 use crate::spatial::SpatialFlexure;
 use nalgebra::Matrix3;

@@ -510,7 +510,7 @@ impl Mechanism<Planar> {
     /// are renumbered, and `[initial]` coordinates padded with zeros or cut).
     pub fn with_flexures(
         &self,
-        mut refine: impl FnMut(usize, &crate::joint::Flexure) -> crate::Result<Option<crate::joint::Flexure>>,
+        mut refine: impl FnMut(usize, &crate::flexure::Flexure) -> crate::Result<Option<crate::flexure::Flexure>>,
     ) -> crate::Result<Mechanism> {
         let mut m = self.clone();
         let mut offset = 0;

@@ -2,7 +2,7 @@
 //! (product of exponentials).
 
 use super::model::PrbFit;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{Pose, pose_root_tip};
 use crate::quadrature::GaussLegendre;
 use nalgebra::Point2;

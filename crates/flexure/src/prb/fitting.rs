@@ -5,7 +5,7 @@ use super::model::{FitError, PrbFit, PrbJoint, PrbKind};
 use super::simplex;
 use super::statics::{equilibrium, equilibrium_near};
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{Pose, pose_root_tip};
 use crate::space::MAX_LOAD;
 use crate::statics::{Settings, Statics, TipLoad, deflect};

@@ -3,7 +3,7 @@
 //! Mechanisms*, 2001, Sec. 5.3 and Table 5.1).
 
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::Pose;
 use crate::statics::{Settings, Statics, TipLoad, correct, deflect};
 

@@ -3,7 +3,7 @@
 use super::chain::configuration;
 use super::model::PrbFit;
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{Pose, pose_root_tip};
 use crate::statics::TipLoad;
 use nalgebra::{DMatrix, DVector, Point2};

@@ -3,7 +3,7 @@
 
 use crate::buckling::TipConstraint;
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 
 /// Ratio of one load to the next in the scan that brackets the critical

@@ -1,7 +1,7 @@
 //! The compliance ODE of a curved beam (paper Eq. 34).
 
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 use nalgebra::Matrix3;
 

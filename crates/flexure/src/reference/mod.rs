@@ -19,7 +19,7 @@ pub mod rod;
 pub mod vibration;
 
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 
 /// The section's breakpoints as arc lengths (m), increasing, inside $(0, L)$.

@@ -55,8 +55,8 @@
 
 use crate::buckling::TipConstraint;
 use crate::error::{Error, Result};
+use crate::flexure::Flexure;
 use crate::inertia::RigidInertia as Body;
-use crate::joint::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 use crate::solver::interrupted;
 

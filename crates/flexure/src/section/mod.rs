@@ -4,15 +4,57 @@
 //! Every quantity is a [`Profile`] over $t = s/L \in [0, 1]$: a constant, a
 //! linear taper from root to tip, or a table linear between its points. A
 //! circular [`Notch`] cuts the thickness of a rectangular section.
-//! [`FlexureSpec`] is a flexure as a front end gives it, built in one place.
+//! [`SectionSpec`] is a section as a front end gives it, built in one place.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, positive};
 
 mod spatial;
 mod spec;
 pub mod torsion;
 pub use spatial::{Outline, Shear, SpatialSection, SpatialStress, StressPoint};
-pub use spec::{FlexureSpec, SectionSpec};
+pub use spec::SectionSpec;
+
+/// Bending stiffnesses a flexure may have (N·m²): from a nanowire's to a bridge girder's and beyond.
+pub const EI_RANGE: (f64, f64) = (1e-30, 1e15);
+
+pub(crate) fn within(name: &'static str, v: f64, (lo, hi): (f64, f64)) -> Result<f64> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(Error::invalid(
+            name,
+            v,
+            if name == "length" { "must lie in [1e-9, 1e6] m" } else { "must lie in [1e-30, 1e15] N·m²" },
+        ))
+    }
+}
+
+/// Bending stiffness $EI = \frac{E}{1-\nu^2}\thinspace\frac{b h^3}{12}$ of a
+/// rectangular section (Eq. 25); without `poisson`, $EI = E b h^3 / 12$.
+///
+/// The $1/(1-\nu^2)$ factor is the plate (wide flexure) modulus.
+///
+/// # Example
+/// ```
+/// // The paper's steel flexure, Eq. 25 (errata: 1.4558e-3 N·m²).
+/// let ei = flexure::bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap();
+/// assert!((ei - 1.4558e-3).abs() < 1e-7);
+/// ```
+pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Option<f64>) -> Result<f64> {
+    let e = positive("modulus", modulus)?;
+    let b = positive("width", width)?;
+    let h = positive("thickness", thickness)?;
+    let plate = match poisson {
+        None => 1.0,
+        Some(nu) => {
+            if !(nu.is_finite() && nu > -1.0 && nu <= 0.5) {
+                return Err(Error::invalid("poisson", nu, "must lie in (-1, 0.5]"));
+            }
+            1.0 / (1.0 - nu * nu)
+        }
+    };
+    within("ei", e * plate * b * h.powi(3) / 12.0, EI_RANGE)
+}
 
 /// A positive quantity along the flexure, a function of $t = s/L$.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,7 +3,7 @@
 
 use crate::basis;
 use crate::error::{Error, Result};
-use crate::joint::{EI_RANGE, LENGTH_RANGE, MAX_COORDINATE, MAX_ORDER};
+use crate::flexure::{EI_RANGE, LENGTH_RANGE, MAX_COORDINATE, MAX_ORDER};
 use crate::section::SpatialSection;
 
 /// The fewest Magnus subintervals $M$ a flexure gets by default

@@ -1,5 +1,5 @@
 //! A spatial flexure as a front end gives it, built in one place (as
-//! [`crate::section::FlexureSpec`] is for the planar flexure): the CLI's
+//! [`crate::flexure::FlexureSpec`] is for the planar flexure): the CLI's
 //! `--spatial` options and Python's `SpatialFlexure` fill it.
 
 use super::SpatialFlexure;

@@ -3,7 +3,7 @@
 //! section moves with ([`path_columns`]).
 
 use crate::error::Result;
-use crate::joint::{Basis, Flexure};
+use crate::flexure::{Basis, Flexure};
 use crate::mass::MassModel;
 use crate::mechanism::Mechanism;
 use crate::quadrature::GaussLegendre;

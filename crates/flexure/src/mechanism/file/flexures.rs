@@ -90,7 +90,7 @@ fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, boo
                     toml::Value::Float(x) => format!("{x:?}"),
                     other => format!("a {}", other.type_str()),
                 },
-                crate::joint::MAX_ORDER
+                crate::flexure::MAX_ORDER
             ),
         ),
     }

@@ -169,7 +169,7 @@ pub(super) fn initial_state(
         }
         src.numbers(&owner, "coordinates", &span, &values, Sign::Any)?;
         // Bounded as every coordinate is (rad, m, and per second for rates).
-        let bound = crate::joint::MAX_COORDINATE;
+        let bound = crate::flexure::MAX_COORDINATE;
         if let Some((i, x)) = values.iter().enumerate().find(|(_, x)| x.abs() > bound) {
             return src.fail(
                 &span,

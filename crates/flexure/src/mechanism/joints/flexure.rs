@@ -3,7 +3,7 @@
 use super::{Buffers, Joint, JointState};
 use crate::energy::{energy_gradient, stiffness};
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{self, Kinematics, Level};
 use crate::mass::MassModel;
 

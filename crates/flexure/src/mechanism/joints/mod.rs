@@ -19,7 +19,7 @@ pub use prismatic::Prismatic;
 pub use revolute::Revolute;
 
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::{Kinematics, Level};
 use crate::mass::MassModel;
 use crate::space::{Planar, Space};

@@ -18,7 +18,6 @@ pub mod findings;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
-pub mod report;
 pub mod statics;
 pub mod sweep;
 

@@ -3,7 +3,7 @@
 
 use super::jacobi::Jacobi;
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 use crate::scalar::Scalar;
 use crate::solver::Problem;

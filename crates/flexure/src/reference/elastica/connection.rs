@@ -4,7 +4,7 @@ use super::Settings;
 use super::chain::MAX_FORCE_GROWTH;
 use super::trace::Trace;
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::Pose;
 use crate::ode::{Tolerance, integrate_through};
 use crate::scalar::Scalar;

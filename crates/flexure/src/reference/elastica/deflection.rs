@@ -4,7 +4,7 @@ use super::Settings;
 use super::chain::Chain;
 use super::trace::Trace;
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::Pose;
 use crate::solver::{self, Problem};
 use crate::statics::TipLoad;

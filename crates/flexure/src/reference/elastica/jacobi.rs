@@ -2,7 +2,7 @@
 
 use super::chain::Chain;
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::Tolerance;
 use crate::solver::Problem;
 use crate::statics::TipLoad;

@@ -1,7 +1,7 @@
 //! One shot of Eq. 3 from the clamped root.
 
 use crate::error::Result;
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::ode::{Tolerance, integrate_through};
 use crate::scalar::Scalar;
 

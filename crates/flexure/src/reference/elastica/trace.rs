@@ -2,7 +2,7 @@
 //! and stress anywhere, from the states at a few nodes.
 
 use crate::error::{Error, Result};
-use crate::joint::Flexure;
+use crate::flexure::Flexure;
 use crate::kinematics::Pose;
 use crate::ode::{Tolerance, integrate_through};
 use crate::statics::TipLoad;

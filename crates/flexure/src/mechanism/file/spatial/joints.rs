@@ -215,7 +215,7 @@ pub(super) fn orders_of(src: &Source, owner: &str, j: &JointToml) -> Result<([us
                 format!(
                     "{owner}order = {}: must be a whole number from 1 to {} or \"auto\" (raised by buckle and modes until their error estimate meets its target)",
                     written(v),
-                    crate::joint::MAX_ORDER
+                    crate::flexure::MAX_ORDER
                 ),
             ),
         },

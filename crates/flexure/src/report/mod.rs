@@ -11,6 +11,8 @@
 //! mechanism's order. Findings (closures open at rest, crossings) and
 //! compliances are separate analyses, which the caller adds.
 
+pub mod spatial;
+
 use crate::Error;
 use crate::Flexure;
 use crate::estimate::{Accuracy, ErrorEstimate, joint_error};

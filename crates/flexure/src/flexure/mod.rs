@@ -1,36 +1,17 @@
-//! The flexure joint model: geometry, stiffness, rest shape and precomputed tables.
+//! The flexure joint model of the Smooth Curvature Model: geometry,
+//! stiffness, rest shape and precomputed tables ([`Flexure`]), and the
+//! flexure as a front end gives it ([`FlexureSpec`]).
+
+mod spec;
+
+use crate::section::within;
+pub use crate::section::{EI_RANGE, bending_stiffness};
+pub use spec::FlexureSpec;
 
 use crate::basis;
-use crate::error::{Error, Result, positive};
+use crate::error::{Error, Result};
 use crate::quadrature::GaussLegendre;
 use crate::section::Section;
-
-/// Bending stiffness $EI = \frac{E}{1-\nu^2}\thinspace\frac{b h^3}{12}$ of a
-/// rectangular section (Eq. 25); without `poisson`, $EI = E b h^3 / 12$.
-///
-/// The $1/(1-\nu^2)$ factor is the plate (wide flexure) modulus.
-///
-/// # Example
-/// ```
-/// // The paper's steel flexure, Eq. 25 (errata: 1.4558e-3 N·m²).
-/// let ei = flexure::bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap();
-/// assert!((ei - 1.4558e-3).abs() < 1e-7);
-/// ```
-pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Option<f64>) -> Result<f64> {
-    let e = positive("modulus", modulus)?;
-    let b = positive("width", width)?;
-    let h = positive("thickness", thickness)?;
-    let plate = match poisson {
-        None => 1.0,
-        Some(nu) => {
-            if !(nu.is_finite() && nu > -1.0 && nu <= 0.5) {
-                return Err(Error::invalid("poisson", nu, "must lie in (-1, 0.5]"));
-            }
-            1.0 / (1.0 - nu * nu)
-        }
-    };
-    within("ei", e * plate * b * h.powi(3) / 12.0, EI_RANGE)
-}
 
 /// Lengths a flexure may have (m): a nanometre to a thousand kilometres.
 /// With [`EI_RANGE`] every derived scale ($EI/L$, $L^3/EI$, energies at
@@ -38,24 +19,9 @@ pub fn bending_stiffness(modulus: f64, width: f64, thickness: f64, poisson: Opti
 /// overflows to infinity or underflows to zero.
 pub const LENGTH_RANGE: (f64, f64) = (1e-9, 1e6);
 
-/// Bending stiffnesses a flexure may have (N·m²): from a nanowire's to a bridge girder's and beyond.
-pub const EI_RANGE: (f64, f64) = (1e-30, 1e15);
-
 /// The largest magnitude of a coordinate (rad): a flexure wound 160 000
 /// times round. Beyond it, angles lose their precision in `f64`.
 pub const MAX_COORDINATE: f64 = 1e6;
-
-fn within(name: &'static str, v: f64, (lo, hi): (f64, f64)) -> Result<f64> {
-    if v.is_finite() && (lo..=hi).contains(&v) {
-        Ok(v)
-    } else {
-        Err(Error::invalid(
-            name,
-            v,
-            if name == "length" { "must lie in [1e-9, 1e6] m" } else { "must lie in [1e-30, 1e15] N·m²" },
-        ))
-    }
-}
 
 fn within_magnitude(name: &'static str, v: f64, max: f64) -> Result<f64> {
     if v.is_finite() && v.abs() <= max {
@@ -431,7 +397,7 @@ impl Flexure {
     /// # Panics
     /// If `c` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn curvature(&self, c: &[f64], s: f64) -> f64 {
-        crate::kinematics::assert_coordinates(self, "c", c.len());
+        assert_coordinates(self, "c", c.len());
         match self.basis {
             Basis::Legendre => basis::curvature(c, self.length, s),
             Basis::Segments => {
@@ -447,7 +413,7 @@ impl Flexure {
     /// # Panics
     /// If `out` does not have one entry per coordinate ([`Flexure::order`]).
     pub fn angle_shapes(&self, t: f64, out: &mut [f64]) {
-        crate::kinematics::assert_coordinates(self, "out", out.len());
+        assert_coordinates(self, "out", out.len());
         match self.basis {
             Basis::Legendre => basis::angle_shapes(t, out),
             Basis::Segments => {
@@ -575,4 +541,16 @@ impl Flexure {
         }
         Ok(())
     }
+}
+
+/// Panics unless a coordinate slice called `name` has `len` =
+/// [`Flexure::order`] entries: the kernels' precondition, checked once per
+/// call so that no kernel ever zips a short or long slice into a silently
+/// truncated result. User-facing entries validate first with
+/// [`Flexure::check_coordinates`], which returns an error instead.
+#[inline]
+#[track_caller]
+pub(crate) fn assert_coordinates(flexure: &Flexure, name: &str, len: usize) {
+    let order = flexure.order();
+    assert!(len == order, "{name} must have {order} entries (one per coordinate, the flexure's order), got {len}");
 }

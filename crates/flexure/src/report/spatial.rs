@@ -2,12 +2,12 @@
 //! it: the solution, every body's placement, each joint's coordinates, and
 //! each flexure's carried wrench, error estimate and peak stress.
 
-use super::SpatialMechanism;
-use super::kinematics::frames;
-use super::statics::{SpatialSolution, flexure_loads};
 use crate::error::Result;
 use crate::estimate::spatial_mechanism::flexure_errors;
 use crate::estimate::{Accuracy, ErrorEstimate};
+use crate::mechanism::spatial::SpatialMechanism;
+use crate::mechanism::spatial::kinematics::frames;
+use crate::mechanism::spatial::statics::{SpatialSolution, flexure_loads};
 use crate::spatial::{SpatialLoad, SpatialPeak, peak_stress};
 
 /// A body's placement in the ground frame.

@@ -1,0 +1,218 @@
+//! The library's layers: every `crate::…` path of every source file checked
+//! against the layer table of ARCHITECTURE.md ("Module graph"). Reference:
+//! that table, read as written; no tolerance. A module imports only from
+//! its own layer and those below, and the top-level modules' imports form
+//! no cycle.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+}
+
+/// The table's rows `| N | `a` `b` | … |`: module → layer.
+fn table(architecture: &str) -> BTreeMap<String, usize> {
+    let start = architecture.find("## Module graph").expect("ARCHITECTURE.md has a Module graph section");
+    let section = &architecture[start..];
+    let end = section[3..].find("\n## ").map_or(section.len(), |e| e + 3);
+    let mut layers = BTreeMap::new();
+    for line in section[..end].lines() {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let (Some(layer), Some(modules)) = (cells.get(1).and_then(|c| c.parse::<usize>().ok()), cells.get(2)) else {
+            continue;
+        };
+        for m in modules.split('`').skip(1).step_by(2) {
+            assert!(layers.insert(m.to_string(), layer).is_none(), "{m} is listed twice");
+        }
+    }
+    layers
+}
+
+/// The library's top-level modules, from lib.rs's `pub mod` lines.
+fn modules(lib: &str) -> Vec<String> {
+    lib.lines()
+        .filter_map(|l| l.strip_prefix("pub mod ").or_else(|| l.strip_prefix("mod ")))
+        .map(|m| m.trim_end_matches(';').to_string())
+        .collect()
+}
+
+/// lib.rs's `pub use m::{a, b};` and `pub use m::a;`: a name at the root → its module.
+fn root_names(lib: &str) -> BTreeMap<String, String> {
+    let mut names = BTreeMap::new();
+    for l in lib.lines() {
+        let Some(rest) = l.strip_prefix("pub use ") else { continue };
+        let Some((module, items)) = rest.trim_end_matches(';').split_once("::") else { continue };
+        for item in items.trim_matches(|c| c == '{' || c == '}').split(',') {
+            names.insert(item.trim().to_string(), module.to_string());
+        }
+    }
+    names
+}
+
+/// The source without comments and without `#[cfg(doc)]` imports (a doc
+/// link is not a dependency).
+fn code(text: &str) -> String {
+    let mut out = String::new();
+    let mut doc_only = false;
+    for line in text.lines() {
+        let line = line.split("//").next().unwrap_or("");
+        let t = line.trim();
+        if t == "#[cfg(doc)]" {
+            doc_only = true;
+            continue;
+        }
+        if doc_only {
+            doc_only = !t.ends_with(';');
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
+}
+
+/// The first path segment of every `crate::…` path, including each item
+/// of a `crate::{a::x, b}` group.
+fn crate_paths(code: &str) -> BTreeSet<String> {
+    let mut found = BTreeSet::new();
+    let bytes = code.as_bytes();
+    let mut at = 0;
+    while let Some(i) = code[at..].find("crate::") {
+        let start = at + i + "crate::".len();
+        // Not `$crate::` or `my_crate::`.
+        let before = (at + i).checked_sub(1).map(|b| bytes[b]);
+        at = start;
+        if before.is_some_and(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'$') {
+            continue;
+        }
+        if bytes.get(start) == Some(&b'{') {
+            // The group's items, split at its own commas.
+            let mut depth = 0;
+            let mut item_start = start + 1;
+            for (k, &c) in bytes.iter().enumerate().skip(start) {
+                match c {
+                    b'{' => depth += 1,
+                    b'}' if depth == 1 => {
+                        found.insert(ident(&code[item_start..k]));
+                        break;
+                    }
+                    b'}' => depth -= 1,
+                    b',' if depth == 1 => {
+                        found.insert(ident(&code[item_start..k]));
+                        item_start = k + 1;
+                    }
+                    _ => {}
+                }
+            }
+        } else {
+            found.insert(ident(&code[start..]));
+        }
+    }
+    found.remove("");
+    found
+}
+
+/// The identifier `text` starts with (after white space).
+fn ident(text: &str) -> String {
+    text.trim_start().chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect()
+}
+
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// Every top-level module's imports of other top-level modules, with the file that makes each.
+fn graph() -> BTreeMap<String, BTreeMap<String, String>> {
+    let src = root().join("src");
+    let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
+    let modules = modules(&lib);
+    let root_names = root_names(&lib);
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    let mut graph: BTreeMap<String, BTreeMap<String, String>> = BTreeMap::new();
+    for file in files {
+        let rel = file.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        if rel == "lib.rs" {
+            continue;
+        }
+        let top = rel.split('/').next().unwrap().trim_end_matches(".rs").to_string();
+        let text = std::fs::read_to_string(&file).unwrap();
+        for name in crate_paths(&code(&text)) {
+            let target = if modules.contains(&name) { Some(name.clone()) } else { root_names.get(&name).cloned() };
+            if let Some(t) = target.filter(|t| *t != top) {
+                graph.entry(top.clone()).or_default().entry(t).or_insert_with(|| rel.clone());
+            }
+        }
+    }
+    graph
+}
+
+#[test]
+fn the_parser_reads_groups_and_paths() {
+    let found = crate_paths("use crate::{a::{X, Y}, b, c::d::E};\nlet v = crate::e::f(); // crate::g\n");
+    assert_eq!(found, ["a", "b", "c", "e", "g"].map(String::from).into());
+    let code = code("use crate::a; // crate::b\n#[cfg(doc)]\nuse crate::c::{\n    D,\n};\n");
+    assert_eq!(crate_paths(&code), ["a"].map(String::from).into());
+}
+
+#[test]
+fn every_module_is_in_the_layer_table() {
+    let architecture = std::fs::read_to_string(root().join("../../ARCHITECTURE.md")).unwrap();
+    let layers = table(&architecture);
+    let lib = std::fs::read_to_string(root().join("src/lib.rs")).unwrap();
+    let modules: BTreeSet<String> = modules(&lib).into_iter().collect();
+    let listed: BTreeSet<String> = layers.keys().cloned().collect();
+    assert_eq!(listed, modules, "ARCHITECTURE.md's layer table against lib.rs's modules");
+}
+
+#[test]
+fn no_module_imports_from_a_layer_above_its_own() {
+    let architecture = std::fs::read_to_string(root().join("../../ARCHITECTURE.md")).unwrap();
+    let layers = table(&architecture);
+    let mut above = Vec::new();
+    for (from, targets) in graph() {
+        for (to, file) in targets {
+            let (a, b) = (layers[&from], layers[&to]);
+            if b > a {
+                above.push(format!("{file}: {from} (layer {a}) imports {to} (layer {b})"));
+            }
+        }
+    }
+    assert!(above.is_empty(), "imports from a layer above:\n{}", above.join("\n"));
+}
+
+#[test]
+fn no_two_modules_import_each_other() {
+    let graph = graph();
+    // A cycle passes through an edge a → b with a path b →* a.
+    let reaches = |from: &str, to: &str| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![from.to_string()];
+        while let Some(m) = stack.pop() {
+            if m == to {
+                return true;
+            }
+            if seen.insert(m.clone()) {
+                stack.extend(graph.get(&m).into_iter().flat_map(|t| t.keys().cloned()));
+            }
+        }
+        false
+    };
+    let mut cycles = Vec::new();
+    for (from, targets) in &graph {
+        for (to, file) in targets {
+            if reaches(to, from) {
+                cycles.push(format!("{file}: {from} imports {to}, which leads back to {from}"));
+            }
+        }
+    }
+    assert!(cycles.is_empty(), "cycles:\n{}", cycles.join("\n"));
+}
