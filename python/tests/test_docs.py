@@ -1,5 +1,6 @@
-"""Every ```python snippet of docs/python.md, run as written, with the outputs
-the page shows checked, so that the page cannot drift from the package.
+"""Every ```python snippet of docs/python.md (and of docs/export.md), run as
+written, with the outputs the page shows checked, so that the page cannot
+drift from the package.
 
 Each snippet runs on its own (a reader copies one at a time), from the
 repository's root, so that its `examples/...` paths resolve as they do for
@@ -37,7 +38,8 @@ import pytest
 import flexure
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGE = ROOT / "docs" / "python.md"
+# The pages whose snippets are run: python.md is the package's; export.md has one.
+PAGES = ("python.md", "export.md")
 
 _WARNINGS = (
     flexure.AccuracyWarning,
@@ -48,16 +50,16 @@ _WARNINGS = (
 )
 
 
-def snippets():
-    """The page's ```python blocks: (line of the fence, code)."""
+def snippets(page):
+    """The ```python blocks of docs/`page`: (page, line of the fence, code)."""
     blocks = []
-    lines = PAGE.read_text(encoding="utf-8").splitlines()
+    lines = (ROOT / "docs" / page).read_text(encoding="utf-8").splitlines()
     i = 0
     while i < len(lines):
         if lines[i].strip() == "```python":
             start = i + 1
             end = next(j for j in range(start, len(lines)) if lines[j].strip() == "```")
-            blocks.append((start, "\n".join(lines[start:end]) + "\n"))
+            blocks.append((page, start, "\n".join(lines[start:end]) + "\n"))
             i = end
         i += 1
     return blocks
@@ -159,12 +161,12 @@ def _expect(kind, claim):
     return cls, text.split("…")[0].strip()
 
 
-def run_snippet(code, first_line):
+def run_snippet(code, first_line, page="python.md"):
     comments = _comments(code)
     tree = ast.parse(code)
     namespace = {"__name__": "__doc_snippet__"}
     for stmt in tree.body:
-        where = f"docs/python.md line {first_line + stmt.lineno}"
+        where = f"docs/{page} line {first_line + stmt.lineno}"
         claims = [c for n in range(stmt.lineno, stmt.end_lineno + 1) for c in comments.get(n, [])]
         value_claim = next((c[2:].strip() for c in claims if c.startswith("->")), None)
         warns = next((c[5:].strip() for c in claims if c.startswith("warns ")), None)
@@ -176,15 +178,15 @@ def run_snippet(code, first_line):
         if raises is not None:
             cls, text = _expect("raises", raises)
             with pytest.raises(cls) as info:
-                exec(compile(module, PAGE.name, "exec"), namespace)
+                exec(compile(module, "<" + page + ">", "exec"), namespace)
             assert text in str(info.value), f"{where}: {cls.__name__} says {str(info.value)!r}, not {text!r}"
             continue
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             if is_expr:
-                value = eval(compile(ast.Expression(stmt.value), PAGE.name, "eval"), namespace)
+                value = eval(compile(ast.Expression(stmt.value), "<" + page + ">", "eval"), namespace)
             else:
-                exec(compile(module, PAGE.name, "exec"), namespace)
+                exec(compile(module, "<" + page + ">", "exec"), namespace)
         ours = [w for w in caught if issubclass(w.category, _WARNINGS)]
         if warns is not None:
             cls, text = _expect("warns", warns)
@@ -197,18 +199,22 @@ def run_snippet(code, first_line):
             _check_value(value, value_claim, where)
 
 
-SNIPPETS = snippets()
+SNIPPETS = [block for page in PAGES for block in snippets(page)]
 
 
-def test_the_page_has_its_snippets():
-    # Eight blocks at the time of writing: fewer would mean the extraction lost some.
-    assert len(SNIPPETS) >= 8, [line for line, _ in SNIPPETS]
+def test_the_pages_have_their_snippets():
+    # Eight blocks on python.md and one on export.md at the time of writing: fewer would
+    # mean the extraction lost some.
+    found = {page: sum(1 for p, _, _ in SNIPPETS if p == page) for page in PAGES}
+    assert found["python.md"] >= 8 and found["export.md"] >= 1, found
 
 
-@pytest.mark.parametrize("first_line,code", SNIPPETS, ids=[f"line{line}" for line, _ in SNIPPETS])
-def test_snippet_runs_as_the_page_shows(first_line, code, monkeypatch):
+@pytest.mark.parametrize(
+    "page,first_line,code", SNIPPETS, ids=[f"{page}:{line}" for page, line, _ in SNIPPETS]
+)
+def test_snippet_runs_as_the_page_shows(page, first_line, code, monkeypatch):
     monkeypatch.chdir(ROOT)
-    run_snippet(code, first_line)
+    run_snippet(code, first_line, page)
 
 
 def test_the_checker_holds_numbers_to_their_digits():
