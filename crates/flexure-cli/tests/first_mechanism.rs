@@ -131,6 +131,25 @@ fn the_cantilever_bends_as_beam_theory_says() {
     assert!(near(f(&arm["y"]), y, 1e-3) && near(f(&arm["phi"]), phi, 1e-3), "{arm}");
     quoted("puts the tip at", &[f(&arm["y"]), f(&arm["phi"])]);
     assert!(says("5.0\\times10^{-4}") && (y - 5.0e-4).abs() < 1e-12 && (phi - 0.016875).abs() < 1e-12);
+
+    // 100 times the load at the tip: far from the small-load PL³/3EI (more than 20 %
+    // below it), and within the default 1 % of L of the exact elastica, whose
+    // command the page gives.
+    let hard = text.replace("force = [0.0, 0.01] ", "force = [0.0, 1.0] ");
+    assert_ne!(hard, text, "the page's force line changed");
+    let v = solve(&saved(&dir, "hard.toml", &hard));
+    let arm = body(&v, "arm");
+    let small = 1.0 * L.powi(3) / (3.0 * ei());
+    assert!(f(&arm["y"]) < 0.8 * small, "{arm}");
+    quoted("the tip rises to", &[f(&arm["y"])]);
+    quoted("for as it turns", &[f(&arm["phi"])]);
+    let command = "flexure deflect --length 0.05 --modulus 200e9 --width 0.01 --thickness 2e-4 --fy 1 --exact";
+    assert!(says(&format!("`{command}`")), "the page's command");
+    let (exact, err) = answer(&command.split_whitespace().skip(1).collect::<Vec<_>>());
+    assert!(err.trim().is_empty(), "{err}");
+    let pose = &exact["pose"];
+    assert!((f(&pose["y"]) - f(&arm["y"])).abs() < 0.01 * L && (f(&pose["x"]) - f(&arm["x"])).abs() < 0.01 * L);
+    quoted("puts its tip at y =", &[f(&pose["y"])]);
 }
 
 #[test]
