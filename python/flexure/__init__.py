@@ -168,7 +168,9 @@ class Mechanism:
 
         Spatial (dimension = 3): bodies {name: {position (N, 3), rotation (N, 3, 3)}}, each
         body's origin and rotation matrix in the ground frame at each sample; the rest as
-        above (the loads are constant: a spatial file has no [[schedule]]; no findings)."""
+        above: the file's [[schedule]] tables (force.NAME.mx ... fz, tendon.NAME.tension,
+        gravity.x ... z) give the loads in time, and findings lists closures open at rest
+        and parts that cross, with the thickness of their sections (each with a 3-vector `at`)."""
         try:
             return self._inner.simulate(duration, every, tolerance, start, max_steps)
         except (ValueError, ConvergenceError) as e:
@@ -217,8 +219,10 @@ class Mechanism:
         {load {moment (3,), force (3,)}, the tip wrench it carries in its root frame, and stress
         (a dict, for a section with geometry)}}; error_estimate {flexure joint: dict as
         `SpatialFlexure.deflect`'s}; flagged. Each flagged flexure joint warns AccuracyWarning
-        naming it; an unstable answer warns StabilityWarning. No findings, safety_factor or
-        shape yet."""
+        naming it; an unstable answer warns StabilityWarning. findings as above: closures
+        open at rest (PreloadWarning) and parts that cross, with the thickness of their
+        sections (IntersectionWarning; `at` a 3-vector). No safety_factor or shape: a spatial
+        file refuses `yield_strength` and `shape`."""
         try:
             return self._inner.solve(accuracy)
         except (ValueError, ConvergenceError) as e:
@@ -251,7 +255,8 @@ class Mechanism:
         Spatial (dimension = 3): load_factor, mode (dof,), error_estimate and flagged as above
         (the reference refines every spatial flexure; reference_order is its largest order and
         reference_quadrature its Magnus subintervals, by flexure joint), as `flexure buckle
-        --json` prints them (dimension 3); order = "auto" is planar only."""
+        --json` prints them (dimension 3); flexures of order = "auto" are raised as above
+        (order then lists {joint: [n_twist, n_y, n_z]}); findings lists closures open at rest."""
         try:
             return self._inner.buckle(accuracy)
         except (ValueError, ConvergenceError) as e:
@@ -309,8 +314,9 @@ class Mechanism:
 
         Spatial (dimension = 3): parameter "tendon.NAME.tension", "force.NAME.fx" (".fy", ".fz",
         ".mx", ".my", ".mz") or "gravity.x" (".y", ".z"); bodies {name: {position (n, 3),
-        rotation (n, 3, 3), rpy (n, 3)}}; no stress or findings; with compliance=BODY (at=(x, y,
-        z), default the body's origin), compliance (n, 6, 6) as `compliance` gives it."""
+        rotation (n, 3, 3), rpy (n, 3)}}; no stress; findings as `solve`'s (each crossing with
+        the `value` it is found at); with compliance=BODY (at=(x, y, z), default the body's
+        origin), compliance (n, 6, 6) as `compliance` gives it."""
         try:
             return self._inner.sweep(parameter, values, accuracy, compliance, at)
         except (ValueError, ConvergenceError, KeyboardInterrupt) as e:
@@ -364,8 +370,10 @@ class Mechanism:
         Spatial (dimension = 3): omega, frequency, shapes {joint: (modes, k)}, quasi_static,
         limit_fraction and error_estimate as above (the reference refines every spatial flexure
         about the equilibrium; reference_order is its largest order and reference_quadrature
-        its Magnus subintervals, by flexure joint); order = "auto" is planar only. Spatial
-        flexures are massless: the bodies' mass and inertia carry it."""
+        its Magnus subintervals, by flexure joint); flexures of order = "auto" are raised as
+        above (order lists {joint: [n_twist, n_y, n_z]}); findings lists closures open at rest.
+        The mass is the bodies' and the spatial flexures' own (their density or
+        mass_per_length), as in the plane."""
         try:
             return self._inner.modes(count, accuracy)
         except (ValueError, ConvergenceError) as e:

@@ -40,7 +40,7 @@ const EXACT: Color = Color(170, 170, 170);
 const DASHES: [Dash; 4] = [Dash::Solid, Dash::Dashed, Dash::Chain, Dash::Dotted];
 const MARKERS: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
 
-/// The stand-in for Fig. 4's pose, which the paper does not print.
+/// A stand-in for Fig. 4's pose, which the paper does not print.
 const FIG4_POSE: Pose = Pose { phi: FRAC_PI_2, x: 0.55, y: 0.65 };
 
 type Run<T> = Result<T, String>;

@@ -1,4 +1,4 @@
-//! Beyond the paper (issue 25): the pseudo-rigid-body chains that `flexure
+//! Beyond the paper: the pseudo-rigid-body chains that `flexure
 //! export` fits, against the model and the exact elastica.
 
 use super::{DASHES, MARKERS, Run, lib, svg, unit};
@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// Issue 25: the pseudo-rigid-body chains that `flexure export` fits, their
+/// The pseudo-rigid-body chains that `flexure export` fits, their
 /// tip errors against the model along a growing end force, beside the
 /// model's own error against the exact elastica.
 pub(super) fn prb_fits(out: &Path, md: &mut String) -> Run<Value> {
@@ -69,7 +69,7 @@ pub(super) fn prb_fits(out: &Path, md: &mut String) -> Run<Value> {
         );
     }
     let scm_max = scm_pos.iter().map(|p| p.1 / 100.0).fold(0.0, f64::max);
-    let mut text = String::from("## Pseudo-rigid-body chains (issue 25)\n\n");
+    let mut text = String::from("## Pseudo-rigid-body chains\n\n");
     text += "The chains `flexure export` puts in place of a flexure, fitted here to the unit strip under a vertical \
              end force PL²/EI = 0.5 to 6, and their tip errors at their own equilibria against the Smooth Curvature \
              Model, beside that model's own error against the exact elastica (Howell's tabulated 1R chain for \

@@ -1,4 +1,4 @@
-//! Beyond the paper (issue 23): the spatial flexure's Bathe–Bolourchi bend,
+//! Beyond the paper: the spatial flexure's Bathe–Bolourchi bend,
 //! lateral-torsional buckling beside Michell, and a picture of the bend.
 
 use super::{Run, lib, svg};
