@@ -28,36 +28,14 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::equilibria::{lost, refine_limit};
+use crate::mechanism::statics::Solution;
 use crate::solver::{self, Settings};
+use crate::space::Spatial;
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Point3, Vector3};
 use std::cell::RefCell;
 
-/// An equilibrium of a spatial mechanism.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct SpatialSolution {
-    /// Generalized coordinates.
-    pub q: Vec<f64>,
-    /// Closure multipliers: $\mu^T c$ is their potential, so a closure
-    /// pushes body `a` with $-\mu$ (force, then the misalignment's moment) and `b` with $+\mu$.
-    pub multipliers: Vec<f64>,
-    /// The loads it carries.
-    #[serde(skip)]
-    pub loads: SpatialLoads,
-    /// Elastic energy stored in the joints (J).
-    pub energy: f64,
-    /// Whether the constrained stiffness is positive definite.
-    pub stable: bool,
-    /// Where the loading path lost stability before reaching this stable
-    /// state: the fraction of the load change, if it did.
-    #[serde(rename = "limit_fraction", skip_serializing_if = "Option::is_none")]
-    pub limit: Option<f64>,
-    /// Final KKT residual, relative.
-    pub residual: f64,
-    /// Load-continuation steps.
-    pub load_steps: usize,
-    /// Newton iterations over all steps.
-    pub iterations: usize,
-}
+/// An equilibrium of a spatial mechanism ([`Solution`]).
+pub type SpatialSolution = Solution<Spatial>;
 
 /// The KKT conditions of a spatial mechanism under the loads
 /// $\text{from} + \lambda(\text{to} - \text{from})$, as a [`solver::Problem`]

@@ -53,16 +53,19 @@ pub use solve::{solve, solve_with};
 pub use stiffness::{body_frames, compliance, stiffness};
 pub use workspace::Workspace;
 
-use crate::mechanism::Loads;
+use crate::mechanism::{Dimension, Loads};
+use crate::space::Planar;
 #[cfg(doc)]
 use crate::{linalg, solver};
 
 pub use crate::solver::Settings;
 
-/// An equilibrium; serialized without its loads (the caller's input) and
-/// with `limit` as `limit_fraction`.
+/// An equilibrium of a mechanism in the dimension `D`; serialized without
+/// its loads (the caller's input) and with `limit` as `limit_fraction` (absent when
+/// stability was never lost).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Solution {
+#[serde(bound = "")]
+pub struct Solution<D: Dimension = Planar> {
     /// Generalized coordinates.
     pub q: Vec<f64>,
     /// Closure multipliers (constraint forces in N and moments in N·m):
@@ -75,14 +78,14 @@ pub struct Solution {
     pub multipliers: Vec<f64>,
     /// The loads it carries.
     #[serde(skip)]
-    pub loads: Loads,
+    pub loads: Loads<D>,
     /// Elastic energy stored in the joints (J).
     pub energy: f64,
     /// Whether the constrained stiffness is positive definite.
     pub stable: bool,
     /// Where the loading path to it lost stability before snapping through
     /// to this stable state: the fraction of the load change, if it did.
-    #[serde(rename = "limit_fraction")]
+    #[serde(rename = "limit_fraction", skip_serializing_if = "Option::is_none")]
     pub limit: Option<f64>,
     /// Final KKT residual, relative ([`Kkt`]).
     pub residual: f64,
