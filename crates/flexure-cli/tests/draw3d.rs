@@ -13,6 +13,7 @@
 use flexure::dynamics::integrate::Settings as Motion;
 use flexure::dynamics::spatial::simulate;
 use flexure::mechanism::Fixed;
+use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::statics::{SpatialSolution, assemble_unloaded, solve};
 use flexure::mechanism::spatial::{
@@ -100,7 +101,8 @@ fn stage() -> SpatialMechanism {
     };
     let joints = vec![spec("left", strip(), 0, 1, up(0.0)), spec("right", strip(), 0, 2, up(0.04))];
     // In the stage's frame (the left tip's, rest axes as the root's) the right tip is 0.04 along y.
-    let weld = SpatialClosure::Weld {
+    let weld = SpatialClosure {
+        holds: Holds::Weld,
         a: 1,
         a_origin: Isometry3::translation(0.0, 0.04, 0.0),
         b: 2,

@@ -8,7 +8,7 @@
 use flexure::mechanism::file::{Model, from_toml, model_from_toml, spatial_from_toml};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::{SpatialClosure, SpatialJointKind, SpatialMechanism};
-use flexure::mechanism::{Closure, JointKind};
+use flexure::mechanism::{Holds, JointKind};
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use std::f64::consts::PI;
 
@@ -262,20 +262,25 @@ fn every_kind_and_table_parses_with_its_numbers() {
 
     // Closures: welds, then pins, then balls, each placed where its `a` is written.
     assert_eq!(m.closures.len(), 3);
-    let SpatialClosure::Weld { a, a_origin, b, b_origin } = &m.closures[0] else { panic!("a weld") };
-    assert_eq!((*a, *b), (7, 0));
+    let SpatialClosure { holds, a, a_origin, b, b_origin } = &m.closures[0];
+    assert_eq!((*holds, *a, *b), (Holds::Weld, 7, 0));
     assert_eq!(a_origin.translation.vector, Vector3::new(0.01, 0.0, 0.0));
     assert!((rotation(&a_origin.rotation) - rz(PI / 2.0)).amax() < 1e-15);
     assert_eq!(b_origin.translation.vector, Vector3::new(0.0, 0.1, 0.0));
     assert!((rotation(&b_origin.rotation) - rx(0.3)).amax() < 1e-15);
-    let SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_axis, b_normals } = &m.closures[1] else { panic!("a pin") };
-    assert_eq!((*a, *a_at, *a_axis), (0, Point3::new(0.0, 0.0, 0.1), Vector3::z()));
-    assert_eq!((*b, *b_at, *b_axis), (4, Point3::origin(), Vector3::y()));
-    for n in b_normals {
-        assert!(n.dot(b_axis).abs() < 1e-15 && (n.norm() - 1.0).abs() < 1e-15);
+    // A pin's frames: z along its axes (to rounding, as unit quaternions), b's x and y normal to it.
+    let pin = &m.closures[1];
+    let at = |p: &nalgebra::Isometry3<f64>| Point3::from(p.translation.vector);
+    assert_eq!((pin.holds, pin.a, at(&pin.a_origin)), (Holds::Pin, 0, Point3::new(0.0, 0.0, 0.1)));
+    assert_eq!((pin.b, at(&pin.b_origin)), (4, Point3::origin()));
+    let axes = pin.axes();
+    assert!((axes[2] - Vector3::z()).amax() < 1e-15 && (axes[5] - Vector3::y()).amax() < 1e-15, "{axes:?}");
+    for n in &axes[3..5] {
+        assert!(n.dot(&axes[5]).abs() < 1e-15 && (n.norm() - 1.0).abs() < 1e-15);
     }
-    let SpatialClosure::Ball { a, a_at, b, b_at } = &m.closures[2] else { panic!("a ball") };
-    assert_eq!((*a, *a_at, *b, *b_at), (3, Point3::new(0.001, 0.0, 0.0), 6, Point3::new(0.0, -0.001, 0.0)));
+    let ball = &m.closures[2];
+    assert_eq!((ball.holds, ball.a, at(&ball.a_origin)), (Holds::Ball, 3, Point3::new(0.001, 0.0, 0.0)));
+    assert_eq!((ball.b, at(&ball.b_origin)), (6, Point3::new(0.0, -0.001, 0.0)));
     let places: Vec<String> = ["[[weld]]", "[[pin]]", "[[ball]]"].iter().map(|t| place_of(ALL_KINDS, t, "a")).collect();
     assert_eq!((0..3).map(|i| m.closure_place(i)).collect::<Vec<_>>(), places);
     assert_eq!(m.closure_place(0), "line 96, column 5");
@@ -337,9 +342,9 @@ b = "p"
     let axes: Vec<(Vector3<f64>, Vector3<f64>)> = m
         .closures
         .iter()
-        .map(|c| match c {
-            SpatialClosure::Pin { a_axis, b_axis, .. } => (*a_axis, *b_axis),
-            _ => panic!("a pin"),
+        .map(|c| {
+            assert_eq!(c.holds, Holds::Pin);
+            (c.axes()[2], c.axes()[5])
         })
         .collect();
     // q's frame: pitch −90° turns x to +z and z to −x, and keeps y. Its
@@ -459,27 +464,27 @@ fn planar_examples_keep_their_structure_in_space() {
         }
         assert_eq!(m.closures.len(), planar.closures.len(), "{name}");
         for (pc, sc) in planar.closures.iter().zip(&m.closures) {
-            match (pc, sc) {
-                (
-                    Closure::Weld { a, a_origin, b, b_origin },
-                    SpatialClosure::Weld { a: sa, a_origin: sao, b: sb, b_origin: sbo },
-                ) => {
+            let (a, a_origin, b, b_origin) = (&pc.a, &pc.a_origin, &pc.b, &pc.b_origin);
+            let (sa, sao, sb, sbo) = (&sc.a, &sc.a_origin, &sc.b, &sc.b_origin);
+            assert_eq!(pc.holds, sc.holds, "{name}");
+            match pc.holds {
+                Holds::Weld => {
                     assert_eq!((sa, sb), (a, b), "{name}");
                     for (p, s) in [(a_origin, sao), (b_origin, sbo)] {
                         assert_eq!(s.translation.vector, Vector3::new(p.x, p.y, 0.0), "{name}");
                         assert!((rotation(&s.rotation) - rz(p.phi)).amax() < 1e-15, "{name}");
                     }
                 }
-                (
-                    Closure::Pin { a, a_at, b, b_at },
-                    SpatialClosure::Pin { a: sa, a_at: saa, a_axis, b: sb, b_at: sba, b_axis, .. },
-                ) => {
+                Holds::Pin => {
                     assert_eq!((sa, sb), (a, b), "{name}");
-                    assert_eq!((*saa, *sba), (Point3::new(a_at.x, a_at.y, 0.0), Point3::new(b_at.x, b_at.y, 0.0)));
+                    let (a_at, b_at) = (a_origin.origin(), b_origin.origin());
+                    assert_eq!(sao.translation.vector, Vector3::new(a_at.x, a_at.y, 0.0), "{name}");
+                    assert_eq!(sbo.translation.vector, Vector3::new(b_at.x, b_at.y, 0.0), "{name}");
                     // Every rest frame turns about z, so z stays z.
-                    assert!((a_axis - Vector3::z()).amax() < 1e-15 && (b_axis - Vector3::z()).amax() < 1e-15);
+                    let axes = sc.axes();
+                    assert!((axes[2] - Vector3::z()).amax() < 1e-15 && (axes[5] - Vector3::z()).amax() < 1e-15);
                 }
-                (p, s) => panic!("{name}: {p:?} became {s:?}"),
+                Holds::Ball => panic!("{name}: a planar file has no ball"),
             }
         }
         // The equations: a weld's 3 become 6, a pin's 2 become 5.

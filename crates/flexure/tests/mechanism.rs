@@ -5,7 +5,7 @@ use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames, compliance, solve};
 use flexure::mechanism::sweep::{Parameter, sweep};
-use flexure::mechanism::{Closure, JointKind, Mechanism};
+use flexure::mechanism::{Holds, JointKind, Mechanism};
 use flexure::reference::elastica;
 use flexure::tendon::{Tendon, TendonData, pull};
 use flexure::{Error, Flexure, TipLoad, bending_stiffness};
@@ -221,12 +221,8 @@ fn against_the_exact_elastica(m: &Mechanism, gravity: bool) {
         }
         let mut row = 0;
         for c in &m.closures {
-            let (a, a_at, b, b_at, moment) = match *c {
-                Closure::Weld { a, a_origin, b, b_origin } => {
-                    (a, a_origin.origin(), b, b_origin.origin(), Some(s.multipliers[row + 2]))
-                }
-                Closure::Pin { a, a_at, b, b_at } => (a, a_at, b, b_at, None),
-            };
+            let (a, a_at, b, b_at) = (c.a, c.a_origin.origin(), c.b, c.b_origin.origin());
+            let moment = (c.holds == Holds::Weld).then(|| s.multipliers[row + 2]);
             let mu = [s.multipliers[row], s.multipliers[row + 1]];
             if beyond.contains(&a) {
                 add(world(&f.bodies[a], a_at), [-mu[0], -mu[1]], -moment.unwrap_or(0.0));

@@ -3,6 +3,7 @@
 
 use flexure::Error;
 use flexure::mechanism::Fixed;
+use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::statics::{body_frames, compliance, solve};
 use flexure::mechanism::spatial::{
     Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
@@ -144,7 +145,8 @@ fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
         spec("left", leg(), 0, 1, placed([0.0; 3], quarter)),
         spec("right", leg(), 0, 2, placed([0.04, 0.0, 0.0], quarter)),
     ];
-    let weld = SpatialClosure::Weld {
+    let weld = SpatialClosure {
+        holds: Holds::Weld,
         a: 1,
         a_origin: placed([0.0, -0.04, 0.0], [0.0; 3]),
         b: 2,

@@ -7,6 +7,7 @@
 //! full-Hessian path, each to its stated tolerance.
 
 use flexure::Level;
+use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::{SpatialFrames, attach, frames, frames_level_into};
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve};
@@ -100,8 +101,9 @@ fn mechanism() -> SpatialMechanism {
         wrench: Vector6::new(0.03, -0.02, 0.05, 1.0, -2.0, 0.5),
     }];
     let closures = vec![
-        SpatialClosure::Ball { a: 3, a_at: Point3::new(0.01, 0.0, 0.0), b: 0, b_at: Point3::new(0.1, 0.1, 0.0) },
-        SpatialClosure::Weld {
+        SpatialClosure::at_points(Holds::Ball, 3, Point3::new(0.01, 0.0, 0.0), 0, Point3::new(0.1, 0.1, 0.0)),
+        SpatialClosure {
+            holds: Holds::Weld,
             a: 5,
             a_origin: placed([0.0, 0.01, 0.0], [0.2, 0.1, 0.0]),
             b: 0,
@@ -258,7 +260,8 @@ fn a_weld_closure_is_zero_and_has_full_rank_where_its_frames_coincide() {
     let q = configuration(&m);
     let f = frames(&m, &q);
     let here = f.bodies[5];
-    m.closures = vec![SpatialClosure::Weld { a: 5, a_origin: Isometry3::identity(), b: 0, b_origin: here }];
+    m.closures =
+        vec![SpatialClosure { holds: Holds::Weld, a: 5, a_origin: Isometry3::identity(), b: 0, b_origin: here }];
     let (mut c, mut g) = (DVector::zeros(6), DMatrix::zeros(6, m.dof()));
     closures_into(&m, &f, &mut c, &mut g);
     assert!(c.amax() < 1e-15, "{c}");

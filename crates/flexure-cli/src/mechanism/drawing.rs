@@ -7,7 +7,7 @@
 use flexure::kinematics::backbone;
 use flexure::mechanism::joints::Joint;
 use flexure::mechanism::statics::{Solution, body_frames};
-use flexure::mechanism::{Closure, Mechanism};
+use flexure::mechanism::{Holds, Mechanism};
 use flexure_chart::{
     Anchor, COLORS, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
 };
@@ -207,8 +207,9 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
         }
     }
     for c in &m.closures {
-        if let Closure::Pin { a, a_at, .. } = c {
-            fig.marks.push(Mark::Dot { at: at(*a, *a_at), shape: Marker::Circle, radius: 5.0, color, filled: false });
+        if c.holds == Holds::Pin {
+            let a_at = c.a_origin.origin();
+            fig.marks.push(Mark::Dot { at: at(c.a, a_at), shape: Marker::Circle, radius: 5.0, color, filled: false });
         }
     }
     for (k, t) in m.tendons.iter().enumerate() {
@@ -346,7 +347,7 @@ pub fn figure(
     }
     let drawn = |want: Symbol| m.joints.iter().any(|j| symbol(j.kind.joint()) == Some(want));
     let revolute = drawn(Symbol::Pin);
-    let pin = m.closures.iter().any(|c| matches!(c, Closure::Pin { .. }));
+    let pin = m.closures.iter().any(|c| c.holds == Holds::Pin);
     if revolute || pin {
         let swatch = Swatch::Line(None, Some((Marker::Circle, KEY, false)));
         let label = match (revolute, pin) {

@@ -62,9 +62,10 @@ use super::drawing::{
 };
 pub use super::projection::View;
 use flexure::dynamics::spatial::SpatialSimulation;
+use flexure::mechanism::Holds;
+use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::kinematics::{SpatialFrames, frames};
 use flexure::mechanism::spatial::statics::SpatialSolution;
-use flexure::mechanism::spatial::{SpatialClosure, SpatialMechanism};
 use flexure::spatial::SpatialFlexure;
 use flexure_chart::{
     Anchor, COLORS, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Stroke, Swatch, ramp,
@@ -379,16 +380,14 @@ fn symbols(m: &SpatialMechanism, f: &SpatialFrames, view: View, color: Color, si
         }
     }
     for c in &m.closures {
-        match c {
-            SpatialClosure::Pin { a, a_at, a_axis, .. } => {
-                let at = (f.bodies[*a] * a_at).coords;
-                hinge(&mut out, at, f.body_rotation(*a) * a_axis);
-            }
-            SpatialClosure::Ball { a, a_at, .. } => {
-                let at = pic(view, &(f.bodies[*a] * a_at).coords);
+        let at = f.bodies[c.a] * c.a_origin;
+        match c.holds {
+            Holds::Pin => hinge(&mut out, at.translation.vector, at.rotation * Vector3::z()),
+            Holds::Ball => {
+                let at = pic(view, &at.translation.vector);
                 out.push(Mark::Dot { at, shape: Marker::Circle, radius: 5.0, color, filled: true });
             }
-            SpatialClosure::Weld { .. } => {}
+            Holds::Weld => {}
         }
     }
     out
@@ -672,7 +671,7 @@ pub fn spatial_figure(
         fig.legend.push(Entry { swatch, label: "flexure".into() });
     }
     let drawn = |want: Symbol| (0..m.joints.len()).any(|j| joint_symbol(m, j) == Some(want));
-    let (hinge, pin) = (drawn(Symbol::Hinge), m.closures.iter().any(|c| matches!(c, SpatialClosure::Pin { .. })));
+    let (hinge, pin) = (drawn(Symbol::Hinge), m.closures.iter().any(|c| c.holds == Holds::Pin));
     if hinge || pin {
         let swatch = Swatch::Line(Some(Stroke::solid(KEY, 2.0)), Some((Marker::Circle, KEY, false)));
         let what = match (hinge, pin) {
@@ -682,8 +681,7 @@ pub fn spatial_figure(
         };
         fig.legend.push(Entry { swatch, label: format!("{what} (line along its axis)") });
     }
-    let (ball, ball_closure) =
-        (drawn(Symbol::Ball), m.closures.iter().any(|c| matches!(c, SpatialClosure::Ball { .. })));
+    let (ball, ball_closure) = (drawn(Symbol::Ball), m.closures.iter().any(|c| c.holds == Holds::Ball));
     if ball || ball_closure {
         let swatch = Swatch::Line(None, Some((Marker::Circle, KEY, true)));
         let label = if ball { "ball joint" } else { "ball closure" };

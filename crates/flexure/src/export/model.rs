@@ -5,7 +5,7 @@
 use super::lump;
 use crate::error::{Error, Result};
 use crate::inertia::RigidInertia;
-use crate::mechanism::{Closure, Mechanism};
+use crate::mechanism::{Holds, Mechanism};
 use crate::space::{Pose, Wrench};
 use nalgebra::{Point2, Vector2};
 
@@ -326,25 +326,23 @@ fn attach(m: &Mechanism, model: &mut Model) {
     }
     let gap = 1e-9 * m.size();
     for (i, c) in m.closures.iter().enumerate() {
-        let (kind, a, b) = match c {
-            Closure::Weld { a, b, .. } => ("weld", *a, *b),
-            Closure::Pin { a, b, .. } => ("pin", *a, *b),
-        };
-        let label = format!("{kind} {:?}–{:?} ({})", m.bodies[a].name, m.bodies[b].name, m.closure_place(i));
-        match c {
-            Closure::Weld { a, a_origin, b, b_origin } => {
+        let (a, b) = (c.a, c.b);
+        let label =
+            format!("{} {:?}–{:?} ({})", c.holds.name(), m.bodies[a].name, m.bodies[b].name, m.closure_place(i));
+        match c.holds {
+            Holds::Weld => {
                 let name = format!("weld_{i}");
-                let sa = site(model, format!("{name}_a"), *a, *a_origin);
-                let sb = site(model, format!("{name}_b"), *b, *b_origin);
+                let sa = site(model, format!("{name}_a"), a, c.a_origin);
+                let sb = site(model, format!("{name}_b"), b, c.b_origin);
                 let (wa, wb) = (model.world(sa), model.world(sb));
                 let turn = (wa.phi - wb.phi).sin().atan2((wa.phi - wb.phi).cos());
                 let open = (wa.x - wb.x).hypot(wa.y - wb.y) > gap || turn.abs() > 1e-9;
                 model.attachments.push(Attachment::Weld { name, label, a: sa, b: sb, open });
             }
-            Closure::Pin { a, a_at, b, b_at } => {
+            Holds::Pin | Holds::Ball => {
                 let name = format!("pin_{i}");
-                let sa = site(model, format!("{name}_a"), *a, Pose::new(0.0, *a_at));
-                let sb = site(model, format!("{name}_b"), *b, Pose::new(0.0, *b_at));
+                let sa = site(model, format!("{name}_a"), a, Pose::new(0.0, c.a_origin.origin()));
+                let sb = site(model, format!("{name}_b"), b, Pose::new(0.0, c.b_origin.origin()));
                 let (wa, wb) = (model.world(sa), model.world(sb));
                 let open = (wa.x - wb.x).hypot(wa.y - wb.y) > gap;
                 model.attachments.push(Attachment::Pin { name, label, a: sa, b: sb, open });

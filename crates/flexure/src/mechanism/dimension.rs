@@ -1,13 +1,13 @@
 //! What a mechanism needs of its dimension beyond the group operations of
-//! [`Space`]: its joint kinds, its flexure, a body's rotary inertia, its
-//! closures and its load parameters. The plane and space implement it here,
-//! side by side, so that [`Mechanism<D>`](super::Mechanism) and its parts
-//! are one model for both dimensions (Pinocchio's one model; parry's one set
-//! of dimension aliases).
+//! [`Space`]: its joint kinds, its flexure, a body's rotary inertia and its
+//! load parameters. The plane and space implement it here, side by side, so
+//! that [`Mechanism<D>`](super::Mechanism) and its parts (bodies, joints,
+//! tendons, point loads, closures, loads, solutions) are one model for both
+//! dimensions (Pinocchio's one model; parry's one set of dimension aliases).
 
 use super::joints::{Joint, JointKind};
-use super::spatial::{SpatialClosure, SpatialJointKind, sweep::SpatialParameter};
-use super::{Closure, sweep::Parameter};
+use super::spatial::{SpatialJointKind, sweep::SpatialParameter};
+use super::sweep::Parameter;
 use crate::flexure::Flexure;
 use crate::space::{Planar, Space, Spatial};
 use crate::spatial::SpatialFlexure;
@@ -32,8 +32,6 @@ pub trait Dimension: Space {
     type JointKind: Clone + Debug + PartialEq;
     /// The Smooth Curvature flexure of this dimension.
     type Flexure: Clone + Debug + PartialEq;
-    /// A loop closure.
-    type Closure: Clone + Debug + PartialEq;
     /// A load that a sweep or a schedule sets.
     type Parameter: Clone + Debug + PartialEq;
 
@@ -43,17 +41,12 @@ pub trait Dimension: Space {
     fn flexure(kind: &Self::JointKind) -> Option<&Self::Flexure>;
     /// A flexure's length (m).
     fn flexure_length(f: &Self::Flexure) -> f64;
-    /// A closure's number of scalar equations.
-    fn closure_equations(c: &Self::Closure) -> usize;
-    /// A closure's two bodies, each with the point on it that the closure holds.
-    fn closure_points(c: &Self::Closure) -> [(usize, Self::Point); 2];
 }
 
 impl Dimension for Planar {
     type AngularInertia = f64;
     type JointKind = JointKind;
     type Flexure = Flexure;
-    type Closure = Closure;
     type Parameter = Parameter;
 
     fn joint(kind: &JointKind) -> &dyn Joint<Planar> {
@@ -67,24 +60,12 @@ impl Dimension for Planar {
     fn flexure_length(f: &Flexure) -> f64 {
         f.length()
     }
-
-    fn closure_equations(c: &Closure) -> usize {
-        c.equations()
-    }
-
-    fn closure_points(c: &Closure) -> [(usize, nalgebra::Point2<f64>); 2] {
-        match c {
-            Closure::Weld { a, a_origin, b, b_origin } => [(*a, a_origin.origin()), (*b, b_origin.origin())],
-            Closure::Pin { a, a_at, b, b_at } => [(*a, *a_at), (*b, *b_at)],
-        }
-    }
 }
 
 impl Dimension for Spatial {
     type AngularInertia = Matrix3<f64>;
     type JointKind = SpatialJointKind;
     type Flexure = SpatialFlexure;
-    type Closure = SpatialClosure;
     type Parameter = SpatialParameter;
 
     fn joint(kind: &SpatialJointKind) -> &dyn Joint<Spatial> {
@@ -97,20 +78,5 @@ impl Dimension for Spatial {
 
     fn flexure_length(f: &SpatialFlexure) -> f64 {
         f.length()
-    }
-
-    fn closure_equations(c: &SpatialClosure) -> usize {
-        c.equations()
-    }
-
-    fn closure_points(c: &SpatialClosure) -> [(usize, nalgebra::Point3<f64>); 2] {
-        match c {
-            SpatialClosure::Weld { a, a_origin, b, b_origin } => {
-                [(*a, Spatial::origin(a_origin)), (*b, Spatial::origin(b_origin))]
-            }
-            SpatialClosure::Pin { a, a_at, b, b_at, .. } | SpatialClosure::Ball { a, a_at, b, b_at } => {
-                [(*a, *a_at), (*b, *b_at)]
-            }
-        }
     }
 }

@@ -6,7 +6,7 @@
 //! module fixes it by the least transmitted force.
 
 use super::kinematics::Frames;
-use super::{Closure, Loads, Mechanism};
+use super::{Loads, Mechanism};
 use crate::linalg;
 use nalgebra::{DMatrix, DVector};
 
@@ -68,9 +68,7 @@ pub(super) fn settle(m: &Mechanism, f: &Frames, g: &DMatrix<f64>, mu: &[f64], lo
         // The closure term μᵀ(w_a − w_b) pushes a by −μ and b by +μ.
         let mut row = 0;
         for c in &m.closures {
-            let (a, bb) = match *c {
-                Closure::Weld { a, b, .. } | Closure::Pin { a, b, .. } => (a, b),
-            };
+            let (a, bb) = (c.a, c.b);
             let sign = match (inside[a], inside[bb]) {
                 (true, false) => -1.0,
                 (false, true) => 1.0,

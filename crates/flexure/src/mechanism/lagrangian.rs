@@ -11,7 +11,7 @@
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
 use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
-use super::{Closure, Loads, Mechanism};
+use super::{Holds, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::mass::{MassModel, Weight, weight};
 use crate::space::Wrench;
@@ -197,12 +197,9 @@ pub(super) fn add_closures(
     let mut row = 0;
     let [pa, pb] = points;
     for c in &m.closures {
-        let (a, ar, aphi, b, br, bphi, angle) = match *c {
-            Closure::Weld { a, a_origin, b, b_origin } => {
-                (a, a_origin.origin(), a_origin.phi, b, b_origin.origin(), b_origin.phi, true)
-            }
-            Closure::Pin { a, a_at, b, b_at } => (a, a_at, 0.0, b, b_at, 0.0, false),
-        };
+        let (a, ar, aphi, b, br, bphi) =
+            (c.a, c.a_origin.origin(), c.a_origin.phi, c.b, c.b_origin.origin(), c.b_origin.phi);
+        let angle = c.holds == Holds::Weld;
         point_into(m, f, a, ar, pa);
         point_into(m, f, b, br, pb);
         for k in 0..2 {

@@ -23,10 +23,10 @@ pub mod statics;
 pub mod sweep;
 mod tree;
 
-use crate::space::{Planar, Pose, Wrench};
+use crate::space::{Planar, Wrench};
 pub use dimension::Dimension;
 pub use joints::{Fixed, Joint, JointKind, JointState, Prismatic, Revolute};
-use nalgebra::{Point2, Vector2};
+use nalgebra::Vector2;
 
 /// A rigid body: a name and its inertia ([`Body::rigid_inertia`]), in
 /// the dimension `D` ([`Planar`] by default).
@@ -126,40 +126,94 @@ pub struct PointLoad<D: Dimension = Planar> {
     pub wrench: D::Wrench,
 }
 
-/// A loop closure.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Closure {
-    /// Frame `a_origin` on body `a` coincides with frame `b_origin` on body `b` (3 equations).
-    Weld {
-        /// First body.
-        a: usize,
-        /// Frame on it.
-        a_origin: Pose,
-        /// Second body.
-        b: usize,
-        /// Frame on it.
-        b_origin: Pose,
-    },
-    /// Point `a_at` on body `a` coincides with point `b_at` on body `b` (2 equations).
-    Pin {
-        /// First body.
-        a: usize,
-        /// Point on it.
-        a_at: Point2<f64>,
-        /// Second body.
-        b: usize,
-        /// Point on it.
-        b_at: Point2<f64>,
-    },
+/// What a closure holds of its two frames' relative motion (rapier's
+/// locked axes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Holds {
+    /// Everything: the two frames coincide.
+    Weld,
+    /// The origins and the z axes: a hinge about z. In the plane, where
+    /// every rotation is about z, the origins alone.
+    Pin,
+    /// The origins alone: a ball joint.
+    Ball,
 }
 
-impl Closure {
-    /// Number of scalar equations.
-    pub fn equations(&self) -> usize {
+impl Holds {
+    /// Its name in the file: `weld`, `pin` or `ball`.
+    pub fn name(self) -> &'static str {
         match self {
-            Closure::Weld { .. } => 3,
-            Closure::Pin { .. } => 2,
+            Holds::Weld => "weld",
+            Holds::Pin => "pin",
+            Holds::Ball => "ball",
         }
+    }
+}
+
+/// A loop closure: frame `a_origin` on body `a` and frame `b_origin` on
+/// body `b`, of whose relative motion it holds what `holds` says: a weld
+/// all of it, a pin the origins and the axis (the frames' z), a ball the
+/// origins. The planar pin is the spatial pin about z.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{Closure, Holds};
+/// use flexure::space::Spatial;
+/// use nalgebra::{Point2, Point3, Vector3};
+/// let pin: Closure = Closure::at_points(Holds::Pin, 0, Point2::new(1.0, 0.0), 1, Point2::origin());
+/// assert_eq!((pin.equations(), pin.bodies()), (2, [0, 1]));
+/// let hinge = Closure::<Spatial>::pin(0, Point3::origin(), Vector3::y(), 1, Point3::origin(), Vector3::y()).unwrap();
+/// assert_eq!(hinge.equations(), 5);
+/// // Each frame's z is its axis: a's third, b's sixth.
+/// assert!((hinge.axes()[2] - Vector3::y()).norm() < 1e-15 && (hinge.axes()[5] - Vector3::y()).norm() < 1e-15);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Closure<D: Dimension = Planar> {
+    /// What it holds.
+    pub holds: Holds,
+    /// First body.
+    pub a: usize,
+    /// The frame on it (`pose_a_closure`).
+    pub a_origin: D::Pose,
+    /// Second body.
+    pub b: usize,
+    /// The frame on it (`pose_b_closure`).
+    pub b_origin: D::Pose,
+}
+
+impl<D: Dimension> Closure<D> {
+    /// A closure of frames at points `a_at` on `a` and `b_at` on `b`,
+    /// with the bodies' axes (a planar pin, or a ball).
+    pub fn at_points(holds: Holds, a: usize, a_at: D::Point, b: usize, b_at: D::Point) -> Self {
+        Closure { holds, a, a_origin: D::at(&a_at), b, b_origin: D::at(&b_at) }
+    }
+
+    /// Number of scalar equations: a weld holds every component of the
+    /// relative motion ([`Space::TWIST_DIM`](crate::space::Space::TWIST_DIM)),
+    /// a pin all but the turn about its axis, a ball the origins
+    /// ([`Space::POINT_DIM`](crate::space::Space::POINT_DIM)).
+    pub fn equations(&self) -> usize {
+        match self.holds {
+            Holds::Weld => D::TWIST_DIM,
+            Holds::Pin => D::TWIST_DIM - 1,
+            Holds::Ball => D::POINT_DIM,
+        }
+    }
+
+    /// `weld of "a" and "b"`, `pin of …` or `ball of …`, with the bodies'
+    /// names in `m`.
+    pub fn name(&self, m: &Mechanism<D>) -> String {
+        format!("{} of {:?} and {:?}", self.holds.name(), m.bodies[self.a].name, m.bodies[self.b].name)
+    }
+
+    /// The two bodies it joins.
+    pub fn bodies(&self) -> [usize; 2] {
+        [self.a, self.b]
+    }
+
+    /// Each body with the point on it that the closure holds.
+    pub fn points(&self) -> [(usize, D::Point); 2] {
+        [(self.a, D::origin(&self.a_origin)), (self.b, D::origin(&self.b_origin))]
     }
 }
 
@@ -263,7 +317,7 @@ pub struct Mechanism<D: Dimension = Planar> {
     /// Point loads.
     pub forces: Vec<PointLoad<D>>,
     /// Loop closures.
-    pub closures: Vec<D::Closure>,
+    pub closures: Vec<Closure<D>>,
     /// Gravity (m/s²), zero if absent.
     pub gravity: D::Vector,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
@@ -302,7 +356,7 @@ impl<D: Dimension> Mechanism<D> {
         mut joints: Vec<JointSpec<D>>,
         tendons: Vec<Tendon<D>>,
         forces: Vec<PointLoad<D>>,
-        closures: Vec<D::Closure>,
+        closures: Vec<Closure<D>>,
         gravity: D::Vector,
     ) -> crate::Result<Self> {
         use crate::Error;
@@ -349,7 +403,7 @@ impl<D: Dimension> Mechanism<D> {
         if let Some(f) = forces.iter().find(|f| !within(f.body)) {
             return Err(Error::invalid("force", &f.name, "names a body that is not there"));
         }
-        if closures.iter().any(|c| !D::closure_points(c).iter().all(|p| within(p.0))) {
+        if closures.iter().any(|c| !c.bodies().into_iter().all(within)) {
             return Err(Error::invalid("closure", "a body index", "names a body that is not there"));
         }
         Ok(Mechanism {
@@ -396,7 +450,7 @@ impl<D: Dimension> Mechanism<D> {
 
     /// Number of closure equations.
     pub fn constraints(&self) -> usize {
-        self.closures.iter().map(D::closure_equations).sum()
+        self.closures.iter().map(Closure::equations).sum()
     }
 
     /// The body's index by name.
@@ -483,7 +537,7 @@ impl<D: Dimension> Mechanism<D> {
         pts.extend(self.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1));
         pts.extend(self.forces.iter().filter(|f| f.body == b).map(|f| f.at));
         for c in &self.closures {
-            pts.extend(D::closure_points(c).into_iter().filter(|p| p.0 == b).map(|p| p.1));
+            pts.extend(c.points().into_iter().filter(|p| p.0 == b).map(|p| p.1));
         }
         if self.bodies[b].mass > 0.0 {
             pts.push(self.bodies[b].com);

@@ -81,6 +81,8 @@ pub trait Space: Copy + Debug + Default + 'static {
     fn inverse(a: &Self::Pose) -> Self::Pose;
     /// $a\cdot r = R r + p$: a point given in the frame, in its parent.
     fn act(a: &Self::Pose, r: &Self::Point) -> Self::Point;
+    /// The frame at point `p` with its parent's axes.
+    fn at(p: &Self::Point) -> Self::Pose;
     /// $p$: the frame's origin, in its parent.
     fn origin(a: &Self::Pose) -> Self::Point;
     /// $\lvert p\rvert$: how far the frame's origin is from its parent's.

@@ -45,6 +45,10 @@ impl Space for Planar {
         a.act(r)
     }
 
+    fn at(p: &Point2<f64>) -> Pose {
+        Pose { phi: 0.0, x: p.x, y: p.y }
+    }
+
     fn origin(a: &Pose) -> Point2<f64> {
         a.origin()
     }

@@ -257,6 +257,10 @@ impl Space for Spatial {
         a * r
     }
 
+    fn at(p: &Point3<f64>) -> Isometry3<f64> {
+        Isometry3::translation(p.x, p.y, p.z)
+    }
+
     fn origin(a: &Isometry3<f64>) -> Point3<f64> {
         Point3::from(a.translation.vector)
     }

@@ -3,6 +3,7 @@
 use super::bodies::Find;
 use super::document::{Source, place};
 use super::{Closure, Deserialize, Pose, Result, Spanned};
+use crate::mechanism::Holds;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -39,14 +40,14 @@ pub(super) fn closures(src: &Source, find: &Find, welds: &[WeldToml], pins: &[Pi
         let a = find(&w.a)?;
         distinct(a, &w.b, "weld")?;
         let pose = |o: [f64; 3]| Pose { x: o[0], y: o[1], phi: o[2] };
-        closures.push(Closure::Weld { a, a_origin: pose(ao), b: find(&w.b)?, b_origin: pose(bo) });
+        closures.push(Closure { holds: Holds::Weld, a, a_origin: pose(ao), b: find(&w.b)?, b_origin: pose(bo) });
     }
     for p in pins {
         let owner = format!("pin of {:?} and {:?}: ", p.a.get_ref(), p.b.get_ref());
         let (a_at, b_at) = (src.array(&owner, "a_at", &p.a_at)?, src.array(&owner, "b_at", &p.b_at)?);
         let a = find(&p.a)?;
         distinct(a, &p.b, "pin")?;
-        closures.push(Closure::Pin { a, a_at: a_at.into(), b: find(&p.b)?, b_at: b_at.into() });
+        closures.push(Closure::at_points(Holds::Pin, a, a_at.into(), find(&p.b)?, b_at.into()));
     }
     Ok(closures)
 }

@@ -7,7 +7,7 @@ use super::geometry::distance;
 use crate::error::{Error, Result};
 use crate::mechanism::kinematics::frames;
 use crate::mechanism::statics::{Settings, assemble_unloaded};
-use crate::mechanism::{Closure, Mechanism};
+use crate::mechanism::{Closure, Holds, Mechanism};
 
 /// A closure meets at rest when its gap is at most this: relative to the
 /// mechanism's size for positions, in rad for a weld's angle.
@@ -69,11 +69,7 @@ impl OpenClosure {
 
 /// `weld of "a" and "b"` or `pin of "a" and "b"`.
 pub fn closure_name(m: &Mechanism, i: usize) -> String {
-    let name = |b: usize| &m.bodies[b].name;
-    match m.closures[i] {
-        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
-        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
-    }
+    m.closures[i].name(m)
 }
 
 /// Each closure's gap at rest: (distance in m, a weld's angle in rad).
@@ -81,13 +77,16 @@ pub fn rest_gaps(m: &Mechanism) -> Vec<(f64, Option<f64>)> {
     let f = frames(m, &m.rest());
     m.closures
         .iter()
-        .map(|c| match *c {
-            Closure::Weld { a, a_origin, b, b_origin } => {
-                let (fa, fb) = (f.bodies[a].compose(&a_origin), f.bodies[b].compose(&b_origin));
+        .map(|c| match c.holds {
+            Holds::Weld => {
+                let (fa, fb) = (f.bodies[c.a].compose(&c.a_origin), f.bodies[c.b].compose(&c.b_origin));
                 let turn = crate::mechanism::lagrangian::wrap(fa.phi - fb.phi);
                 (distance(&fa.origin(), &fb.origin()), Some(turn))
             }
-            Closure::Pin { a, a_at, b, b_at } => (distance(&f.bodies[a].act(&a_at), &f.bodies[b].act(&b_at)), None),
+            Holds::Pin | Holds::Ball => {
+                let (pa, pb) = (c.a_origin.origin(), c.b_origin.origin());
+                (distance(&f.bodies[c.a].act(&pa), &f.bodies[c.b].act(&pb)), None)
+            }
         })
         .collect()
 }

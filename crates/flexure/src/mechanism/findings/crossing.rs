@@ -4,8 +4,8 @@
 
 use super::geometry::{convex_hull, distance, meet};
 use crate::kinematics::backbone;
+use crate::mechanism::Mechanism;
 use crate::mechanism::kinematics::{Frames, frames};
-use crate::mechanism::{Closure, Mechanism};
 use nalgebra::Point2;
 
 /// The most a flexure's backbone turns (rad) along one of the chords that
@@ -233,9 +233,7 @@ fn groups(m: &Mechanism) -> Vec<usize> {
         }
         i
     }
-    let closed = m.closures.iter().map(|c| match *c {
-        Closure::Weld { a, b, .. } | Closure::Pin { a, b, .. } => (a, b),
-    });
+    let closed = m.closures.iter().map(|c| (c.a, c.b));
     // Rigid joints (revolute, prismatic, fixed) hold their bodies together at a point, as closures do.
     let rigid = m.joints.iter().filter(|j| j.kind.flexure().is_none()).map(|j| (j.parent, j.child));
     for (a, b) in closed.chain(rigid) {

@@ -18,6 +18,7 @@ use super::kinematics::{
 };
 use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
+use crate::mechanism::Holds;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
@@ -297,25 +298,22 @@ struct ClosureVectors {
 fn closure_vectors(m: &SpatialMechanism, f: &SpatialFrames, c: &SpatialClosure) -> ClosureVectors {
     let point = |b: usize, r: Vector3<f64>| attach(m, f, b, r, true);
     let direction = |b: usize, r: Vector3<f64>| attach(m, f, b, r, false);
-    match c {
-        SpatialClosure::Weld { a, a_origin, b, b_origin } => {
-            let (ra, rb) = (a_origin.rotation.to_rotation_matrix(), b_origin.rotation.to_rotation_matrix());
-            ClosureVectors {
-                points: [point(*a, a_origin.translation.vector), point(*b, b_origin.translation.vector)],
-                a_directions: (0..3).map(|i| direction(*a, ra.matrix().column(i).into_owned())).collect(),
-                b_directions: (0..3).map(|i| direction(*b, rb.matrix().column(i).into_owned())).collect(),
-            }
-        }
-        SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_normals, .. } => ClosureVectors {
-            points: [point(*a, a_at.coords), point(*b, b_at.coords)],
-            a_directions: vec![direction(*a, *a_axis)],
-            b_directions: b_normals.iter().map(|n| direction(*b, *n)).collect(),
+    let points = [point(c.a, c.a_origin.translation.vector), point(c.b, c.b_origin.translation.vector)];
+    let axes = c.axes();
+    match c.holds {
+        // Each frame's three axes.
+        Holds::Weld => ClosureVectors {
+            points,
+            a_directions: axes[..3].iter().map(|x| direction(c.a, *x)).collect(),
+            b_directions: axes[3..].iter().map(|x| direction(c.b, *x)).collect(),
         },
-        SpatialClosure::Ball { a, a_at, b, b_at } => ClosureVectors {
-            points: [point(*a, a_at.coords), point(*b, b_at.coords)],
-            a_directions: vec![],
-            b_directions: vec![],
+        // a's axis, and b's two normals to its own.
+        Holds::Pin => ClosureVectors {
+            points,
+            a_directions: vec![direction(c.a, axes[2])],
+            b_directions: axes[3..5].iter().map(|x| direction(c.b, *x)).collect(),
         },
+        Holds::Ball => ClosureVectors { points, a_directions: vec![], b_directions: vec![] },
     }
 }
 
@@ -332,8 +330,8 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
             }
         }
         row += 3;
-        match closure {
-            SpatialClosure::Weld { .. } => {
+        match closure.holds {
+            Holds::Weld => {
                 // e = ½ Σ b_i × a_i.
                 let mut e = Vector3::zeros();
                 for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
@@ -353,7 +351,7 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
                 }
                 row += 3;
             }
-            SpatialClosure::Pin { .. } => {
+            Holds::Pin => {
                 // c_k = n_k · z.
                 let z = &v.a_directions[0];
                 for (i, n) in v.b_directions.iter().enumerate() {
@@ -364,7 +362,7 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
                 }
                 row += 2;
             }
-            SpatialClosure::Ball { .. } => {}
+            Holds::Ball => {}
         }
     }
 }
@@ -403,8 +401,8 @@ fn gather_closure_hessian(
         add(&v.points[0], &w, h);
         add(&v.points[1], &(-w), h);
         row += 3;
-        match closure {
-            SpatialClosure::Weld { .. } => {
+        match closure.holds {
+            Holds::Weld => {
                 let w = Vector3::new(mu[row], mu[row + 1], mu[row + 2]) * 0.5;
                 for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
                     // μ·(b × a): b's Hessian weighted a × μ, a's weighted μ × b.
@@ -414,7 +412,7 @@ fn gather_closure_hessian(
                 }
                 row += 3;
             }
-            SpatialClosure::Pin { .. } => {
+            Holds::Pin => {
                 let z = &v.a_directions[0];
                 for (i, n) in v.b_directions.iter().enumerate() {
                     let weight = mu[row + i];
@@ -425,7 +423,7 @@ fn gather_closure_hessian(
                 }
                 row += 2;
             }
-            SpatialClosure::Ball { .. } => {}
+            Holds::Ball => {}
         }
     }
 }

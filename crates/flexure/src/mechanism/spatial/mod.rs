@@ -26,10 +26,10 @@ pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
 use crate::error::{Error, Result};
 #[cfg(doc)]
 use crate::mechanism::Joint;
-use crate::mechanism::{Body, JointSpec, Loads, Mechanism, PointLoad, Tendon};
+use crate::mechanism::{Body, Closure, Holds, JointSpec, Loads, Mechanism, PointLoad, Tendon};
 use crate::space::Spatial;
 use crate::spatial::SpatialFlexure;
-use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 /// A rigid body in space ([`Body`]).
 pub type SpatialBody = Body<Spatial>;
@@ -44,77 +44,15 @@ pub type SpatialLoads = Loads<Spatial>;
 /// A spatial mechanism ([`Mechanism`]).
 pub type SpatialMechanism = Mechanism<Spatial>;
 
-/// A loop closure.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SpatialClosure {
-    /// Frame `a_origin` on body `a` coincides with frame `b_origin` on body
-    /// `b`: 6 equations, the origins' difference and the frames' misalignment
-    /// $\frac12\sum_i \hat b_i\times\hat a_i$ (zero when the axes coincide,
-    /// with Jacobian $\omega_a - \omega_b$ there).
-    Weld {
-        /// First body.
-        a: usize,
-        /// Frame on it.
-        a_origin: Isometry3<f64>,
-        /// Second body.
-        b: usize,
-        /// Frame on it.
-        b_origin: Isometry3<f64>,
-    },
-    /// A hinge: point `a_at` on body `a` coincides with `b_at` on `b` and
-    /// axis `a_axis` (in `a`'s frame) stays along `b_axis` (in `b`'s): 5
-    /// equations, the points' difference and the components of $a$'s axis
-    /// along the two directions of `b_normals` normal to `b_axis`.
-    Pin {
-        /// First body.
-        a: usize,
-        /// Point on it.
-        a_at: Point3<f64>,
-        /// The hinge's axis in its frame (unit).
-        a_axis: Vector3<f64>,
-        /// Second body.
-        b: usize,
-        /// Point on it.
-        b_at: Point3<f64>,
-        /// The hinge's axis in its frame (unit).
-        b_axis: Vector3<f64>,
-        /// Two unit directions in `b`'s frame normal to `b_axis` and to each other.
-        b_normals: [Vector3<f64>; 2],
-    },
-    /// Point `a_at` on body `a` coincides with `b_at` on `b`: 3 equations.
-    Ball {
-        /// First body.
-        a: usize,
-        /// Point on it.
-        a_at: Point3<f64>,
-        /// Second body.
-        b: usize,
-        /// Point on it.
-        b_at: Point3<f64>,
-    },
-}
+/// A loop closure in space ([`Closure`]).
+pub type SpatialClosure = Closure<Spatial>;
 
-impl SpatialClosure {
-    /// Number of scalar equations.
-    pub fn equations(&self) -> usize {
-        match self {
-            SpatialClosure::Weld { .. } => 6,
-            SpatialClosure::Pin { .. } => 5,
-            SpatialClosure::Ball { .. } => 3,
-        }
-    }
-
-    /// The two bodies it joins.
-    pub fn bodies(&self) -> [usize; 2] {
-        match self {
-            SpatialClosure::Weld { a, b, .. }
-            | SpatialClosure::Pin { a, b, .. }
-            | SpatialClosure::Ball { a, b, .. } => [*a, *b],
-        }
-    }
-
-    /// A pin whose axes are `a_axis` in `a`'s frame and `b_axis` in `b`'s,
-    /// with `b`'s normals made from `b_axis`.
+impl Closure<Spatial> {
+    /// A pin (hinge) whose axis is `a_axis` in `a`'s frame at `a_at` and
+    /// `b_axis` in `b`'s at `b_at`: each frame's z is its axis, and `b`'s
+    /// x and y are the two normals whose components of `a`'s axis the pin
+    /// holds at zero ($x = \hat z_b\times h$ normalized, $h$ the first of
+    /// $\hat x, \hat y$ not along the axis; $y = z\times x$).
     pub fn pin(
         a: usize,
         a_at: Point3<f64>,
@@ -123,12 +61,28 @@ impl SpatialClosure {
         b_at: Point3<f64>,
         b_axis: Vector3<f64>,
     ) -> Result<Self> {
-        let a_axis = joints::unit_axis("axis", a_axis)?.into_inner();
-        let b_axis = joints::unit_axis("axis", b_axis)?.into_inner();
-        let helper = if b_axis.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
-        let u = b_axis.cross(&helper).normalize();
-        let v = b_axis.cross(&u);
-        Ok(SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_axis, b_normals: [u, v] })
+        let frame = |at: Point3<f64>, axis: Vector3<f64>| -> Result<Isometry3<f64>> {
+            let z = joints::unit_axis("axis", axis)?.into_inner();
+            let helper = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+            let x = z.cross(&helper).normalize();
+            let y = z.cross(&x);
+            let r = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, y, z]));
+            Ok(Isometry3::from_parts(Translation3::from(at.coords), UnitQuaternion::from_rotation_matrix(&r)))
+        };
+        Ok(Closure { holds: Holds::Pin, a, a_origin: frame(a_at, a_axis)?, b, b_origin: frame(b_at, b_axis)? })
+    }
+
+    /// The frames' axes $\hat x, \hat y, \hat z$ on `a` (in its frame), then on `b`.
+    pub fn axes(&self) -> [Vector3<f64>; 6] {
+        let (ra, rb) = (self.a_origin.rotation, self.b_origin.rotation);
+        [
+            ra * Vector3::x(),
+            ra * Vector3::y(),
+            ra * Vector3::z(),
+            rb * Vector3::x(),
+            rb * Vector3::y(),
+            rb * Vector3::z(),
+        ]
     }
 }
 

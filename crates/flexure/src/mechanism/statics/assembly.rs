@@ -5,9 +5,9 @@ use super::path::solution;
 use super::workspace::{Buffers, Workspace};
 use super::{Settings, Solution};
 use crate::error::{Error, Result};
+use crate::mechanism::Mechanism;
 use crate::mechanism::kinematics::frames;
 use crate::mechanism::lagrangian::closures;
-use crate::mechanism::{Closure, Mechanism};
 use crate::solver;
 
 /// The unloaded, assembled configuration: the rest coordinates moved, if
@@ -108,11 +108,7 @@ pub(super) fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
         row += closure.equations();
     }
     let Some((i, _, gap, turn)) = widest else { return e };
-    let name = |b: usize| &m.bodies[b].name;
-    let what = match m.closures[i] {
-        Closure::Weld { a, b, .. } => format!("weld of {:?} and {:?}", name(a), name(b)),
-        Closure::Pin { a, b, .. } => format!("pin of {:?} and {:?}", name(a), name(b)),
-    };
+    let what = m.closures[i].name(m);
     Error::File {
         place: m.closure_place(i).to_string(),
         message: format!(

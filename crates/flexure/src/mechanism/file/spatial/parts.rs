@@ -2,6 +2,7 @@
 //! moments, and the weld, pin and ball closures.
 
 use super::{Result, Sign, Source, Spanned};
+use crate::mechanism::Holds;
 use crate::mechanism::file::document::place;
 use crate::mechanism::spatial::joints::unit_axis;
 use crate::mechanism::spatial::{SpatialBody, SpatialClosure, SpatialPointLoad, SpatialTendon};
@@ -242,7 +243,7 @@ pub(super) fn closures(
             src.placement(&owner, ["a_origin", "a_rpy", "a_rpy_deg"], &w.a_origin, &w.a_rpy, &w.a_rpy_deg)?;
         let b_origin =
             src.placement(&owner, ["b_origin", "b_rpy", "b_rpy_deg"], &w.b_origin, &w.b_rpy, &w.b_rpy_deg)?;
-        closures.push(SpatialClosure::Weld { a, a_origin, b, b_origin });
+        closures.push(SpatialClosure { holds: Holds::Weld, a, a_origin, b, b_origin });
         places.push((place(src.text, w.a.span().start), preload(&w.preload)));
     }
     for p in pins {
@@ -275,7 +276,7 @@ pub(super) fn closures(
         let owner = format!("ball of {:?} and {:?}: ", ball.a.get_ref(), ball.b.get_ref());
         let (a, b) = distinct(&ball.a, &ball.b, "ball")?;
         let (a_at, b_at) = (src.array(&owner, "a_at", &ball.a_at)?, src.array(&owner, "b_at", &ball.b_at)?);
-        closures.push(SpatialClosure::Ball { a, a_at: Point3::from(a_at), b, b_at: Point3::from(b_at) });
+        closures.push(SpatialClosure::at_points(Holds::Ball, a, Point3::from(a_at), b, Point3::from(b_at)));
         places.push((place(src.text, ball.a.span().start), preload(&ball.preload)));
     }
     Ok((closures, places))

@@ -7,21 +7,16 @@
 use crate::error::{Error, Result};
 use crate::mechanism::findings::OpenClosure;
 use crate::mechanism::findings::closures::{first_rows, open_gaps};
+use crate::mechanism::spatial::SpatialMechanism;
 use crate::mechanism::spatial::kinematics::frames;
 use crate::mechanism::spatial::statics::assemble_unloaded;
-use crate::mechanism::spatial::{SpatialClosure, SpatialMechanism};
+use crate::mechanism::{Closure, Holds};
 use crate::solver::Settings;
-use nalgebra::UnitQuaternion;
+use nalgebra::{UnitQuaternion, Vector3};
 
 /// `weld of "a" and "b"`, `pin of …` or `ball of …`.
 pub fn closure_name(m: &SpatialMechanism, i: usize) -> String {
-    let kind = match m.closures[i] {
-        SpatialClosure::Weld { .. } => "weld",
-        SpatialClosure::Pin { .. } => "pin",
-        SpatialClosure::Ball { .. } => "ball",
-    };
-    let [a, b] = m.closures[i].bodies();
-    format!("{kind} of {:?} and {:?}", m.bodies[a].name, m.bodies[b].name)
+    m.closures[i].name(m)
 }
 
 /// Each closure's gap at rest: the distance between its two points (m),
@@ -31,19 +26,21 @@ pub fn rest_gaps(m: &SpatialMechanism) -> Vec<(f64, Option<f64>)> {
     let f = frames(m, &m.rest());
     m.closures
         .iter()
-        .map(|c| match *c {
-            SpatialClosure::Weld { a, a_origin, b, b_origin } => {
-                let (fa, fb) = (f.bodies[a] * a_origin, f.bodies[b] * b_origin);
-                let gap = (fa.translation.vector - fb.translation.vector).norm();
-                let turn: UnitQuaternion<f64> = fa.rotation.inverse() * fb.rotation;
-                (gap, Some(turn.angle()))
+        .map(|c| {
+            let (fa, fb) = (f.bodies[c.a] * c.a_origin, f.bodies[c.b] * c.b_origin);
+            let gap = (fa.translation.vector - fb.translation.vector).norm();
+            match c.holds {
+                Holds::Weld => {
+                    let turn: UnitQuaternion<f64> = fa.rotation.inverse() * fb.rotation;
+                    (gap, Some(turn.angle()))
+                }
+                Holds::Pin => {
+                    // atan2 of sine and cosine: exact near 0, where acos loses half the digits.
+                    let (za, zb) = (fa.rotation * Vector3::z(), fb.rotation * Vector3::z());
+                    (gap, Some(za.cross(&zb).norm().atan2(za.dot(&zb))))
+                }
+                Holds::Ball => (gap, None),
             }
-            SpatialClosure::Pin { a, a_at, a_axis, b, b_at, b_axis, .. } => {
-                let gap = (f.bodies[a] * a_at - f.bodies[b] * b_at).norm();
-                let (za, zb) = (f.bodies[a].rotation * a_axis, f.bodies[b].rotation * b_axis);
-                (gap, Some(za.angle(&zb)))
-            }
-            SpatialClosure::Ball { a, a_at, b, b_at } => ((f.bodies[a] * a_at - f.bodies[b] * b_at).norm(), None),
         })
         .collect()
 }
@@ -79,7 +76,7 @@ pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<Op
         Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
         Err(e) => return Err(e),
     };
-    let rows = first_rows(m.closures.iter().map(SpatialClosure::equations));
+    let rows = first_rows(m.closures.iter().map(Closure::equations));
     Ok(open
         .into_iter()
         .map(|(i, (gap, turn))| {
@@ -89,12 +86,12 @@ pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<Op
             OpenClosure {
                 closure: i,
                 what: closure_name(m, i),
-                place: m.closure_places.get(i).cloned().unwrap_or_default(),
+                place: m.closure_place(i).to_string(),
                 gap,
                 turn,
                 force: mu.map(|mu| norm(&mu[..3])),
                 moment: mu.filter(|mu| mu.len() > 3).map(|mu| norm(&mu[3..])),
-                preload: m.closure_preloads.get(i).copied().unwrap_or(false),
+                preload: m.closure_preload(i),
             }
         })
         .collect())
