@@ -6,7 +6,7 @@ use super::flexures;
 use crate::options::warn;
 use flexure::estimate::Accuracy;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::Report;
+use flexure::mechanism::file::ReportOptions;
 use flexure::mechanism::statics::Solution;
 use flexure::mechanism::sweep::Sweep;
 use flexure::report::{SolveReport, solve_report};
@@ -19,7 +19,7 @@ use std::path::Path;
 fn report(
     m: &Mechanism,
     s: &Solution,
-    reports: &[(String, Report)],
+    reports: &[(String, ReportOptions)],
     target: &Accuracy,
     file: &Path,
 ) -> Result<SolveReport, String> {
@@ -35,7 +35,7 @@ fn report(
 
 /// Warns of each flexure joint whose estimate misses `target`, then of each
 /// stressed past its yield strength.
-fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, Report)], target: &Accuracy, file: &Path) {
+fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, ReportOptions)], target: &Accuracy, file: &Path) {
     let length = |name: &str| {
         m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map_or(0.0, |f| f.length())
     };
@@ -84,7 +84,7 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
 pub(super) fn solution_answer(
     m: &Mechanism,
     s: &Solution,
-    reports: &[(String, Report)],
+    reports: &[(String, ReportOptions)],
     target: &Accuracy,
     file: &Path,
 ) -> Result<Value, String> {
@@ -121,7 +121,7 @@ pub(super) fn put_sweep_checks(
     v: &mut Value,
     m: &Mechanism,
     out: &Sweep,
-    reports: &[(String, Report)],
+    reports: &[(String, ReportOptions)],
     (target, file): (&Accuracy, &Path),
     (parameter, values): (&str, &[f64]),
 ) -> Result<(), String> {

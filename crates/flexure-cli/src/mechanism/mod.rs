@@ -16,7 +16,7 @@ pub use solve::{SolveArgs, solve_cmd};
 
 use crate::options::number;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::{Report, from_toml, reports};
+use flexure::mechanism::file::{ReportOptions, from_toml, reports};
 use flexure::mechanism::statics::Solution;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -27,7 +27,7 @@ fn load(path: &Path) -> Result<Mechanism, String> {
 }
 
 /// The mechanism, and each flexure joint's `yield_strength` and `shape`.
-fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), String> {
+fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, ReportOptions)>), String> {
     let text = crate::input::read_text(path, "")?;
     let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -38,11 +38,11 @@ fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), 
 fn flexures<'a>(
     m: &'a Mechanism,
     s: &'a Solution,
-    reports: &'a [(String, Report)],
-) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], Report)> {
+    reports: &'a [(String, ReportOptions)],
+) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], ReportOptions)> {
     m.joints.iter().filter_map(move |j| {
         let f = j.kind.flexure()?;
-        let r = reports.iter().find(|r| r.0 == j.name).map_or_else(Report::default, |r| r.1);
+        let r = reports.iter().find(|r| r.0 == j.name).map_or_else(ReportOptions::default, |r| r.1);
         Some((j.name.as_str(), f, &s.q[j.offset..j.offset + f.order()], r))
     })
 }

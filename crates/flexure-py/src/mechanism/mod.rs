@@ -11,7 +11,7 @@ use crate::accuracy::eigen_accuracy;
 use crate::errors::to_py;
 use crate::strict::{self, Real};
 use crate::{modes, simulate};
-use flexure::mechanism::file::{Model, Report, model_from_toml, reports};
+use flexure::mechanism::file::{Model, ReportOptions, model_from_toml, reports};
 use flexure::mechanism::spatial::SpatialMechanism;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -20,7 +20,7 @@ use pyo3::types::PyDict;
 /// What a file describes: a planar mechanism, with each flexure joint's
 /// `yield_strength` and `shape` by name, or a spatial one.
 enum Described {
-    Planar { inner: flexure::mechanism::Mechanism, reports: Vec<(String, Report)> },
+    Planar { inner: flexure::mechanism::Mechanism, reports: Vec<(String, ReportOptions)> },
     Spatial(SpatialMechanism),
 }
 
@@ -33,7 +33,7 @@ pub struct Mechanism {
 impl Mechanism {
     /// The planar mechanism, or a ValueError saying that `what` answers
     /// planar files only for now.
-    fn planar(&self, what: &str) -> PyResult<(&flexure::mechanism::Mechanism, &[(String, Report)])> {
+    fn planar(&self, what: &str) -> PyResult<(&flexure::mechanism::Mechanism, &[(String, ReportOptions)])> {
         match &self.described {
             Described::Planar { inner, reports } => Ok((inner, reports)),
             Described::Spatial(_) => Err(PyValueError::new_err(format!(

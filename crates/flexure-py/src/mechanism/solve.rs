@@ -14,7 +14,7 @@ use crate::warnings::{warn, warn_inaccurate, warn_unestimated};
 use flexure::Error;
 use flexure::estimate::Accuracy;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::Report;
+use flexure::mechanism::file::ReportOptions;
 use flexure::mechanism::statics::{Settings as MechanismSettings, solve as equilibrium};
 use flexure::report::{EstimateFailed, solve_report};
 use flexure::stress::Peak;
@@ -27,7 +27,7 @@ use pyo3::types::PyDict;
 pub fn solve<'py>(
     py: Python<'py>,
     m: &Mechanism,
-    reports: &[(String, Report)],
+    reports: &[(String, ReportOptions)],
     target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (s, report, open) = interruptible(py, || {

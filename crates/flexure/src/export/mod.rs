@@ -167,7 +167,7 @@ impl std::ops::Deref for JointFit {
 /// "error": {"position", "angle"}, "flagged", "samples", "length"}},
 /// "warnings": [...], "notes": [...]}`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Report {
+pub struct FitReport {
     /// The format written.
     pub format: Format,
     /// The chain.
@@ -216,7 +216,7 @@ impl serde::Serialize for JointEntry<'_> {
     }
 }
 
-impl serde::Serialize for Report {
+impl serde::Serialize for FitReport {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         #[derive(serde::Serialize)]
         struct Range {
@@ -224,7 +224,7 @@ impl serde::Serialize for Report {
             to: f64,
             count: usize,
         }
-        let mut m = s.serialize_struct("Report", 6)?;
+        let mut m = s.serialize_struct("FitReport", 6)?;
         m.serialize_field("format", self.format.name())?;
         m.serialize_field("prb", &self.prb)?;
         m.serialize_field("range", &Range { from: self.range.from, to: self.range.to, count: self.range.count })?;
@@ -241,7 +241,7 @@ pub struct Export {
     /// The model, in the format asked for.
     pub xml: String,
     /// The fits and what was lost.
-    pub report: Report,
+    pub report: FitReport,
     /// Every warning: flagged fits, and what the format cannot hold, each naming it.
     pub warnings: Vec<String>,
     /// The rigid-body model the XML writes.
@@ -436,7 +436,7 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
         Format::Urdf => urdf::write(&model, &options.name, &comment, m.size()),
     };
     warnings.extend(lost);
-    let report = Report {
+    let report = FitReport {
         format: options.format,
         prb: options.prb,
         range: options.range,

@@ -18,7 +18,7 @@ use crate::Flexure;
 use crate::estimate::{Accuracy, ErrorEstimate, joint_error};
 use crate::kinematics::backbone;
 use crate::mechanism::Mechanism;
-use crate::mechanism::file::Report;
+use crate::mechanism::file::ReportOptions;
 use crate::mechanism::statics::{Solution, body_frames};
 use crate::stress::{Peak, peak_curvature, peak_stress, stress};
 use serde::ser::SerializeMap;
@@ -172,7 +172,7 @@ pub struct EstimateFailed {
 pub fn solve_report(
     m: &Mechanism,
     s: &Solution,
-    reports: &[(String, Report)],
+    reports: &[(String, ReportOptions)],
     target: &Accuracy,
 ) -> std::result::Result<SolveReport, EstimateFailed> {
     let frames = body_frames(m, s);
@@ -204,7 +204,7 @@ pub fn solve_report(
         let e = joint_error(f, q, target).map_err(|error| EstimateFailed { joint: name.clone(), error })?;
         r.flagged |= e.flagged;
         r.error_estimate.0.push((name.clone(), e));
-        let keys = reports.iter().find(|k| k.0 == j.name).map_or_else(Report::default, |k| k.1);
+        let keys = reports.iter().find(|k| k.0 == j.name).map_or_else(ReportOptions::default, |k| k.1);
         match peak_stress(f, q) {
             Some(p) => {
                 r.stress.0.push((name.clone(), p.into()));

@@ -200,7 +200,7 @@ fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Spa
 
 /// What `flexure solve` reports of a flexure joint beyond its coordinates.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Report {
+pub struct ReportOptions {
     /// `yield_strength` (Pa): the safety factor is this over the peak stress.
     pub yield_strength: Option<f64>,
     /// `shape`: the number of points, evenly spaced in arc length, at which to print the deformed flexure.
@@ -209,7 +209,7 @@ pub struct Report {
 
 /// Checks a flexure joint's `yield_strength` (greater than zero, and only
 /// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]).
-fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Report> {
+fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<ReportOptions> {
     let yield_strength = match &j.yield_strength {
         Some(v) => {
             let s = src.number(owner, "yield_strength", v, Sign::Positive)?;
@@ -232,5 +232,5 @@ fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Repor
         }
         k => k.as_ref().map(|k| *k.get_ref()),
     };
-    Ok(Report { yield_strength, shape })
+    Ok(ReportOptions { yield_strength, shape })
 }

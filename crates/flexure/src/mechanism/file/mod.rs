@@ -38,7 +38,7 @@ mod validation;
 use bodies::{BodyToml, Find};
 use closures::{PinToml, WeldToml};
 use document::{FileToml, Source, place};
-pub use flexures::Report;
+pub use flexures::ReportOptions;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
 use schedules::ScheduleToml;
@@ -169,7 +169,7 @@ pub fn model_from_toml(text: &str) -> Result<Model> {
     from_toml(text).map(Model::Planar)
 }
 
-/// Each flexure joint's [`Report`] keys, by joint name in file order. The
+/// Each flexure joint's [`ReportOptions`] keys, by joint name in file order. The
 /// file is checked first, as by [`from_toml`].
 ///
 /// # Example
@@ -180,7 +180,7 @@ pub fn model_from_toml(text: &str) -> Result<Model> {
 /// assert_eq!(r[0].0, "hinge");
 /// assert_eq!((r[0].1.yield_strength, r[0].1.shape), (Some(5e8), Some(11)));
 /// ```
-pub fn reports(text: &str) -> Result<Vec<(String, Report)>> {
+pub fn reports(text: &str) -> Result<Vec<(String, ReportOptions)>> {
     let m = from_toml(text)?;
     let file: FileToml = toml::from_str(text)
         .map_err(|e| Error::File { place: place(text, 0), message: e.message().trim().to_string() })?;
@@ -188,7 +188,7 @@ pub fn reports(text: &str) -> Result<Vec<(String, Report)>> {
     Ok(flexures
         .map(|spec| {
             let j = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);
-            let r = j.map_or_else(Report::default, |j| Report {
+            let r = j.map_or_else(ReportOptions::default, |j| ReportOptions {
                 yield_strength: j.yield_strength.as_ref().map(|v| *v.get_ref()),
                 shape: j.shape.as_ref().map(|v| *v.get_ref()),
             });
