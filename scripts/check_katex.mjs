@@ -1,4 +1,7 @@
-// Usage: cargo doc -p flexure --no-deps --document-private-items && NODE_PATH=<dir holding katex, e.g. from `npm install --prefix /tmp/k katex@0.16.22`: /tmp/k/node_modules> node scripts/check_katex.mjs
+// Usage: cargo doc -p flexure --no-deps --document-private-items && node scripts/check_katex.mjs
+// with KaTeX at the version scripts/package.json pins: `npm ci --prefix scripts` installs it
+// beside this script (scripts/node_modules, ignored by git), or point NODE_PATH at a
+// node_modules elsewhere (CI: `npm ci` in a temporary copy of scripts/package*.json).
 //
 // Checks the maths of flexure's rustdoc the way the KaTeX header
 // (crates/flexure/katex-header.html) renders it: every `$…$`/`$$…$$` that

@@ -359,3 +359,17 @@ def test_bad_arguments_raise_value_error_naming_them():
     ]:
         with pytest.raises(ValueError, match=word):
             m.export(**kwargs)
+
+
+def test_mujocos_log_is_written_in_the_tests_directory_not_the_tree(tmp_path):
+    # MuJoCo writes MUJOCO_LOG.TXT to the working directory at its first warning (here an
+    # infinite applied force: "Nan, Inf or huge value in QACC"); conftest.py runs every test in
+    # its own tmp_path, so the log lands there and never in the source tree.
+    m = mujoco.MjModel.from_xml_string(
+        '<mujoco><worldbody><body><joint type="slide"/><geom size="0.1"/></body></worldbody></mujoco>'
+    )
+    d = mujoco.MjData(m)
+    d.qfrc_applied[0] = np.inf
+    mujoco.mj_step(m, d)
+    assert Path.cwd() == tmp_path
+    assert "QACC" in (tmp_path / "MUJOCO_LOG.TXT").read_text()

@@ -1,30 +1,26 @@
 """Ctrl-C stops a long call: KeyboardInterrupt, saying how far the call got.
 
-The interrupt comes from `_thread.interrupt_main`, which simulates SIGINT
-arriving at the main thread, fired by a timer 0.2 s into a call that runs
-for seconds otherwise (measured uninterrupted on the development machine:
-deflect 1.3 to 1.8 s, the batch about 2 s; a loaded machine only makes them
-longer). The call releases the GIL, so the timer thread runs, and the solver
-polls Python's signal handlers at every Newton iteration and continuation
-step. The messages checked below come only from the bindings' interrupt
+The interrupt is Ctrl-C simulated (`_thread.interrupt_main`: SIGINT arriving
+at the main thread, its Python handler run) from inside the call, at a
+given solver poll (`flexure._flexure._ctrl_c_at_poll`, a hook for these
+tests): the solvers poll at every Newton iteration, continuation step,
+integrator step, batch chunk and element, and the bindings run Python's
+signal handlers there. The trigger is counted in the call's own iterations,
+never in seconds, so no machine, fast or loaded, finishes the call before
+it fires. The messages checked below come only from the bindings' interrupt
 path, so a KeyboardInterrupt raised anywhere else (before or after the call)
 fails the tests. What is asserted is the work the call had not yet done when
-it stopped (the load fraction, the rows), never the seconds it took, so the
-verdict does not depend on the machine's speed or load.
+it stopped (the load fraction, the rows, the modes, the time).
 """
 
 import re
-
-import _thread
 import signal
-import threading
 
 import numpy as np
 import pytest
 
 import flexure
-
-DELAY = 0.2
+from flexure import _flexure
 
 
 @pytest.fixture(autouse=True)
@@ -37,25 +33,17 @@ def python_handles_sigint():
     signal.signal(signal.SIGINT, previous)
 
 
-def interrupted_after(call, delay=DELAY):
-    """Runs `call` with SIGINT simulated `delay` s in; the exception it raised."""
-    timer = threading.Timer(delay, _thread.interrupt_main)
-    outcome, finished = None, False
-    timer.start()
+def interrupted_at(call, poll):
+    """Runs `call` with Ctrl-C simulated at its `poll`-th solver poll; the exception it raised."""
+    _flexure._ctrl_c_at_poll(poll)
     try:
-        try:
-            call()
-            finished = True
-        except BaseException as e:  # KeyboardInterrupt is what is tested
-            outcome = e
-        # An interrupt the call did not honour lands here, not in the next test.
-        timer.join()
-        threading.Event().wait(0.05)
-    except BaseException:
-        pass
-    if outcome is None:
-        pytest.fail("the call was not interrupted" + (": it ran to its end" if finished else ""))
-    return outcome
+        call()
+    except BaseException as e:  # KeyboardInterrupt is what is tested
+        return e
+    finally:
+        # A trigger the call never reached does not fire in the next test.
+        _flexure._ctrl_c_at_poll(0)
+    pytest.fail(f"the call ran to its end before its solver poll {poll}")
 
 
 def load_fraction(error):
@@ -67,14 +55,14 @@ def load_fraction(error):
 
 def long_deflect():
     # A moment that would coil the order-64 flexure 1600 turns: continuation runs its
-    # 1000 steps at 1 to 2 ms each before reporting that it stalled.
+    # 1000 steps (each a poll, and its Newton iterations more) before reporting that it stalled.
     f = flexure.Flexure(order=64, quadrature=1024)
     return lambda: f.deflect(moment=1e4)
 
 
 def test_ctrl_c_stops_deflect():
     call = long_deflect()
-    error = interrupted_after(call)
+    error = interrupted_at(call, 50)
     assert isinstance(error, KeyboardInterrupt)
     # Stopped on the way: uninterrupted, the call stalls at 14 % of this load after its 1000 steps.
     assert load_fraction(error) < 14.0, str(error)
@@ -93,31 +81,30 @@ def test_another_handlers_exception_propagates():
     call = long_deflect()
     previous = signal.signal(signal.SIGINT, handler)
     try:
-        error = interrupted_after(call)
+        error = interrupted_at(call, 50)
     finally:
         signal.signal(signal.SIGINT, previous)
     assert isinstance(error, Stop)
 
 
 def test_ctrl_c_stops_a_batch():
-    # 60 000 poses at order 64 with 1024 points: about 2 s of kernel work, polled between chunks.
+    # 60 000 poses at order 64 with 1024 points, polled before each chunk of rows: stopped at
+    # the second poll, after the first chunk.
     f = flexure.Flexure(order=64, quadrature=1024)
     alphas = np.random.default_rng(5).uniform(-1.0, 1.0, (60_000, 64))
-    error = interrupted_after(lambda: f.pose(alphas))
+    error = interrupted_at(lambda: f.pose(alphas), 2)
     assert isinstance(error, KeyboardInterrupt)
     found = re.search(r"pose: interrupted after ([0-9]+) of 60000 rows", str(error))
-    assert found and int(found.group(1)) < 60000, str(error)
+    assert found and 0 < int(found.group(1)) < 60000, str(error)
 
 
 def test_ctrl_c_stops_exact_frequencies():
     # 64 modes of a flexure whose EI is a table of 2000 rows: every row is an element boundary,
-    # so each trial frequency integrates at least 2000 elements, and the whole call takes
-    # about 17 s uninterrupted (measured on the development machine; 3 s for its first 8
-    # modes). The search polls at every element; stopped, it says how many of the 64 modes it
-    # had found.
+    # so each trial frequency integrates at least 2000 elements, polling at each. Stopped a
+    # few trial frequencies in, it says how many of the 64 modes it had found.
     t = np.linspace(0.0, 1.0, 2000)
     f = flexure.Flexure(ei=np.column_stack([t, 1.0 + 0.5 * np.sin(7.0 * t)]), mass_per_length=1.0)
-    error = interrupted_after(lambda: flexure.exact.frequencies(64, flexure=f))
+    error = interrupted_at(lambda: flexure.exact.frequencies(64, flexure=f), 10_000)
     assert isinstance(error, KeyboardInterrupt)
     found = re.search(r"exact\.frequencies: interrupted after ([0-9]+) of 64 modes", str(error))
     assert found and int(found.group(1)) < 64, str(error)
@@ -126,13 +113,13 @@ def test_ctrl_c_stops_exact_frequencies():
 
 
 def test_ctrl_c_stops_a_simulation():
-    # The tendon finger in motion for 20 s at the default tolerance: about 20 000 steps, seconds
-    # of work uninterrupted (its 1 s run takes about 1 000 steps). Stopped, it says the time it
-    # had reached, not a fraction of a load.
+    # The tendon finger in motion for 20 s at the default tolerance: about 20 000 steps, each
+    # polled (its 1 s run takes about 1 000 steps). Stopped, it says the time it had reached,
+    # not a fraction of a load.
     from pathlib import Path
 
     m = flexure.Mechanism.from_file(Path(__file__).resolve().parents[2] / "examples" / "finger_dynamics.toml")
-    error = interrupted_after(lambda: m.simulate(20.0, every=0.01))
+    error = interrupted_at(lambda: m.simulate(20.0, every=0.01), 200)
     assert isinstance(error, KeyboardInterrupt)
     found = re.search(r"interrupted at t = ([0-9.e+-]+) s of 2\.000000e1 s", str(error))
     assert found and float(found.group(1)) < 20.0, str(error)

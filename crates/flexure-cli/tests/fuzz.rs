@@ -26,7 +26,8 @@
 //! with 0 or 2, a failure carrying a message on stderr; print only finite
 //! numbers (no `null`, `NaN` or `inf`), and a library `Ok` holds only
 //! finite numbers. Each test prints a summary line (`cargo test -p
-//! flexure-cli --test all fuzz:: -- --nocapture`): the cases per family and
+//! flexure-cli --test all fuzz:: -- --include-ignored --nocapture`: the two
+//! long ones are `#[ignore]`d, run by `.ci/run`): the cases per family and
 //! the failures, grouped by kind with a reproducing case each.
 
 use flexure::kinematics::{Level, backbone, par_poses_root_tip};
@@ -1081,6 +1082,7 @@ fn report(test: &str, families: &[(&str, Tally)]) {
 
 /// Families `argv` (in-process) and `process` (real processes): the CLI's contract.
 #[test]
+#[ignore = "long: 9 300 fuzzed command lines, minutes; run by .ci/run (cargo test -- --ignored)"]
 fn fuzz_command_lines() {
     let scratch = Arc::new(Scratch::new("argv"));
     let s = scratch.clone();
@@ -1117,6 +1119,7 @@ fn fuzz_command_lines() {
 
 /// Family `files`: mutated mechanism files through solve, buckle, draw and modes.
 #[test]
+#[ignore = "long: 3 300 fuzzed mechanism files and motions, minutes; run by .ci/run (cargo test -- --ignored)"]
 fn fuzz_mechanism_files() {
     let scratch = Arc::new(Scratch::new("files"));
     let s = scratch.clone();

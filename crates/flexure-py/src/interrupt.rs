@@ -11,6 +11,19 @@ thread_local! {
     static RAISED: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
     /// When the interrupt check next runs Python's handlers.
     static NEXT_POLL: std::cell::Cell<Option<Instant>> = const { std::cell::Cell::new(None) };
+    /// The tests' trigger: polls left until [`signalled`] simulates Ctrl-C (0: none).
+    static CTRL_C_AT_POLL: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// For the tests (`flexure._flexure._ctrl_c_at_poll`): simulates Ctrl-C
+/// (`_thread.interrupt_main`, SIGINT's Python handler) at the `polls`-th
+/// solver poll of the interruptible calls that follow on this thread, and
+/// runs the handlers at once; 0 disarms. A trigger counted in the solvers'
+/// own iterations, which no machine outruns, where a timer fires only after
+/// a fast machine has finished the call.
+#[pyfunction(name = "_ctrl_c_at_poll")]
+pub fn ctrl_c_at_poll(polls: u64) {
+    CTRL_C_AT_POLL.with(|n| n.set(polls));
 }
 
 /// How often a running solve hands control to Python's signal handlers:
@@ -23,15 +36,27 @@ pub const POLL: Duration = Duration::from_millis(10);
 /// and keeps what they raised for [`interruptible`] to raise.
 pub fn signalled() -> bool {
     let now = Instant::now();
-    if NEXT_POLL.with(|t| t.get()).is_some_and(|next| now < next) {
+    let ctrl_c = CTRL_C_AT_POLL.with(|n| {
+        let left = n.get();
+        n.set(left.saturating_sub(1));
+        left == 1
+    });
+    if !ctrl_c && NEXT_POLL.with(|t| t.get()).is_some_and(|next| now < next) {
         return false;
     }
     NEXT_POLL.with(|t| t.set(Some(now + POLL)));
-    Python::attach(|py| match py.check_signals() {
-        Ok(()) => false,
-        Err(e) => {
-            RAISED.with(|r| *r.borrow_mut() = Some(e));
-            true
+    Python::attach(|py| {
+        let checked = if ctrl_c {
+            py.import("_thread").and_then(|t| t.call_method0("interrupt_main")).and_then(|_| py.check_signals())
+        } else {
+            py.check_signals()
+        };
+        match checked {
+            Ok(()) => false,
+            Err(e) => {
+                RAISED.with(|r| *r.borrow_mut() = Some(e));
+                true
+            }
         }
     })
 }

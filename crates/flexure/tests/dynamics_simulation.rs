@@ -461,14 +461,66 @@ fn a_harmonic_load_meets_its_closed_form() {
     assert!((loads_at(&m, 0.0).force[0].moment - 0.4).abs() < 1e-15);
 }
 
-/// The dynamics' results are data the CLI and Python print as they are.
+/// The dynamics' results are data the CLI and Python print as they are:
+/// each serializes to JSON whose keys are its fields and whose values are
+/// its own, exactly (serde_json writes the shortest text that reads back
+/// to the same f64). The modes are those of $K = \mathrm{diag}(9, 4)$,
+/// $M = I$: $\omega = (2, 3)$, shapes the unit vectors, one per column.
 #[test]
 fn results_serialize() {
-    fn serialize<T: serde::Serialize>() {}
-    serialize::<flexure::dynamics::Simulation>();
-    serialize::<flexure::dynamics::integrate::Trajectory>();
-    serialize::<flexure::dynamics::Modes>();
-    serialize::<flexure::inertia::RigidInertia>();
+    use serde_json::{Value, json, to_value};
+    let floats = |v: &Value| -> Vec<f64> { v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
+    let keys = |v: &Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
+    let m = from_toml(&pendulum(0.25, 2.0)).unwrap();
+    let motion = settings(0.2, 0.1, 1e-8);
+    let run = simulate(&m, &motion, Start::Equilibrium).unwrap();
+    let v = to_value(&run).unwrap();
+    // The trajectory flattened beside the bodies; no `stopped` when the run reached its end.
+    let trajectory = ["dim", "time", "coordinates", "velocities", "energy", "steps", "rejected", "violation", "stop"];
+    assert_eq!(keys(&v), [&["bodies"][..], &trajectory].concat());
+    assert_eq!(v["dim"], run.dim);
+    assert_eq!(run.time.len(), 3);
+    assert_eq!(floats(&v["time"]), run.time);
+    assert_eq!(floats(&v["coordinates"]), run.coordinates);
+    assert_eq!(floats(&v["velocities"]), run.velocities);
+    assert_eq!(floats(&v["energy"]), run.energy);
+    assert_eq!((v["steps"].clone(), v["rejected"].clone()), (json!(run.steps), json!(run.rejected)));
+    assert!(run.steps > 0);
+    assert_eq!(v["violation"].as_f64(), Some(run.violation));
+    assert_eq!(v["stop"], json!({ "reason": "reached" }));
+    assert_eq!(v["bodies"].as_array().unwrap().len(), run.bodies.len());
+    for (b, body) in v["bodies"].as_array().unwrap().iter().zip(&run.bodies) {
+        assert_eq!(keys(b), ["name", "x", "y", "phi"]);
+        assert_eq!(b["name"], body.name.as_str());
+        assert_eq!((floats(&b["x"]), floats(&b["y"])), (body.x.clone(), body.y.clone()));
+        assert_eq!(floats(&b["phi"]), body.phi);
+    }
+    // A run stopped on the way says why, as its error's message.
+    let cut = flexure::solver::with_interrupt(|| true, || simulate(&m, &motion, Start::Equilibrium)).unwrap();
+    let v = to_value(&cut).unwrap();
+    assert_eq!(v["stop"], json!({ "reason": "interrupted" }));
+    assert_eq!(v["stopped"], cut.stopped.as_ref().unwrap().to_string());
+    assert_eq!(floats(&v["time"]), cut.time);
+
+    let k = nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![9.0, 4.0]));
+    let modes = flexure::dynamics::modes::finite_modes(&k, &nalgebra::DMatrix::identity(2, 2), 2).unwrap();
+    let v = to_value(&modes).unwrap();
+    assert_eq!(keys(&v), ["omega", "frequency", "shapes", "quasi_static", "limit", "coordinates"]);
+    assert_eq!(floats(&v["omega"]), modes.omega);
+    assert!((modes.omega[0] - 2.0).abs() < 1e-12 && (modes.omega[1] - 3.0).abs() < 1e-12, "{:?}", modes.omega);
+    assert_eq!(floats(&v["frequency"]), modes.frequency);
+    let shapes = v["shapes"].as_array().unwrap();
+    assert_eq!(shapes.len(), 2);
+    for (j, column) in shapes.iter().enumerate() {
+        assert_eq!(floats(column), modes.shapes.column(j).iter().copied().collect::<Vec<f64>>());
+    }
+    assert_eq!(floats(&shapes[0]), [0.0, 1.0]);
+    assert_eq!(floats(&shapes[1]), [1.0, 0.0]);
+    assert_eq!((v["quasi_static"].clone(), v["limit"].clone()), (json!(0), Value::Null));
+    assert_eq!(v["coordinates"], json!([]));
+
+    let body = flexure::inertia::RigidInertia::new(0.1, 1e-4, [0.25, -0.5]).unwrap();
+    assert_eq!(to_value(body).unwrap(), json!({ "mass": 0.1, "inertia": 1e-4, "com": [0.25, -0.5] }));
 }
 
 /// A point given in a frame, in the world, as components.
