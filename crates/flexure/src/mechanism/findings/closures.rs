@@ -7,7 +7,7 @@ use super::geometry::distance;
 use crate::error::{Error, Result};
 use crate::mechanism::kinematics::frames;
 use crate::mechanism::statics::{Settings, assemble_unloaded};
-use crate::mechanism::{Closure, Holds, Mechanism};
+use crate::mechanism::{Closure, Dimension, Holds, Mechanism};
 
 /// A closure meets at rest when its gap is at most this: relative to the
 /// mechanism's size for positions, in rad for a weld's angle.
@@ -67,8 +67,8 @@ impl OpenClosure {
     }
 }
 
-/// `weld of "a" and "b"` or `pin of "a" and "b"`.
-pub fn closure_name(m: &Mechanism, i: usize) -> String {
+/// `weld of "a" and "b"`, `pin of …` or `ball of …`, in either dimension.
+pub fn closure_name<D: Dimension>(m: &Mechanism<D>, i: usize) -> String {
     m.closures[i].name(m)
 }
 

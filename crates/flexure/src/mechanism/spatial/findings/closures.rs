@@ -6,18 +6,13 @@
 
 use crate::error::{Error, Result};
 use crate::mechanism::findings::OpenClosure;
-use crate::mechanism::findings::closures::{first_rows, open_gaps};
+use crate::mechanism::findings::closures::{closure_name, first_rows, open_gaps};
 use crate::mechanism::spatial::SpatialMechanism;
 use crate::mechanism::spatial::kinematics::frames;
 use crate::mechanism::spatial::statics::assemble_unloaded;
 use crate::mechanism::{Closure, Holds};
 use crate::solver::Settings;
 use nalgebra::{UnitQuaternion, Vector3};
-
-/// `weld of "a" and "b"`, `pin of …` or `ball of …`.
-pub fn closure_name(m: &SpatialMechanism, i: usize) -> String {
-    m.closures[i].name(m)
-}
 
 /// Each closure's gap at rest: the distance between its two points (m),
 /// and for a weld the angle between its two frames, for a pin that between

@@ -41,5 +41,6 @@
 mod closures;
 mod crossing;
 
-pub use closures::{closure_name, open_closures, rest_gaps};
+pub use crate::mechanism::findings::closure_name;
+pub use closures::{open_closures, rest_gaps};
 pub use crossing::{SpatialCrossing, crossings, crossings_along, describe};
