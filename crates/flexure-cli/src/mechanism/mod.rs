@@ -22,13 +22,13 @@ use serde_json::{Value, json};
 use std::path::Path;
 
 fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The mechanism, and each flexure joint's `yield_strength` and `shape`.
 fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, Report)>), String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok((m, reports))
