@@ -18,6 +18,7 @@ mod examples;
 mod export;
 mod figures;
 mod findings;
+mod first_hour;
 mod fuzz;
 mod joint;
 mod mechanism;

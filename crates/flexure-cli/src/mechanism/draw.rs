@@ -42,10 +42,11 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
     let settings = Settings::default();
     let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
+    // solve's and simulate's findings, told on stderr and kept in the answer;
+    // first, so that an open closure that keeps the mechanism from assembling is told.
+    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
     let unloaded =
         flexure::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
-    // solve's and simulate's findings, told on stderr and kept in the answer.
-    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
     if let Some(spec) = &args.sweep {
         let p =
             flexure::mechanism::spatial::sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;

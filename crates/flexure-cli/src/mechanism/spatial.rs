@@ -17,7 +17,7 @@ use std::path::Path;
 
 /// The file's mechanism if it says `dimension = 3`, else `None` (planar).
 pub fn read(path: &Path) -> Result<Option<SpatialMechanism>, String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     match flexure::mechanism::file::model_from_toml(&text) {
         Ok(flexure::mechanism::file::Model::Spatial(m)) => Ok(Some(m)),
         Ok(flexure::mechanism::file::Model::Planar(_)) => Ok(None),
@@ -232,7 +232,10 @@ fn by_joint(m: &SpatialMechanism, v: &[f64]) -> Value {
 /// flexure refined about the equilibrium (`error_estimate`, `flagged`, as
 /// the planar answer's), warning per mode that misses `target`.
 pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let asked = count.unwrap_or(m.dof().max(1));
+    if m.dof() == 0 {
+        return Err(format!("{}: {}", file.display(), crate::modes::nothing_moves("the mechanism")));
+    }
+    let asked = count.unwrap_or(m.dof());
     let settings = Settings::default();
     let findings = crate::findings::spatial_closures(m, file)?;
     let unstable = |e| match e {

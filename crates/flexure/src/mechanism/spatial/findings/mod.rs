@@ -22,8 +22,11 @@
 //!
 //! Two pieces touch when they come within
 //! [`TOUCH_TOLERANCE`](crate::mechanism::findings::TOUCH_TOLERANCE) × the
-//! mechanism's size of each other ([`within`](crate::mechanism::findings::within),
-//! the Gilbert–Johnson–Keerthi distance test). Touching pieces that are
+//! mechanism's size of each other (the size held to 10⁴ of its shortest
+//! flexure's length; [`within`](crate::mechanism::findings::within),
+//! the Gilbert–Johnson–Keerthi distance test). A part so far from the
+//! origin that rounding there exceeds that tolerance (an origin of 1e30 m)
+//! cannot be told touching from apart, and is not tested. Touching pieces that are
 //! neighbours on both parts are one contact. Parts that a joint or a
 //! closure connects (a flexure and the bodies at its ends, two flexures on
 //! one body, bodies on either side of a hinge, slider, ball or weld) meet
