@@ -26,6 +26,14 @@ pub const MAX_FORCE_GROWTH: f64 = MAX_SEGMENTS as f64;
 /// rotation the rod can reach ([`Chain::new`]).
 const TURN_PER_SEGMENT: f64 = std::f64::consts::FRAC_PI_2;
 
+/// The most segment integrations one [`Chain`] may take before its
+/// evaluations are refused ([`Chain::evaluate`]): the bound on the work of a
+/// continuation (each of its steps integrates every segment a few times),
+/// which the steps' own cap bounds only loosely when each takes many
+/// segments and iterations. The rod's deflection stops there, naming it,
+/// with the load fraction reached.
+pub const MAX_SEGMENT_INTEGRATIONS: usize = 30_000;
+
 /// Points of the midpoint rules that size the segments (a few digits suffice).
 const SIZING_POINTS: usize = 256;
 
@@ -95,6 +103,8 @@ pub(super) struct Chain<'a> {
     softest: f64,
     step: f64,
     last: Conjugate,
+    /// Segment integrations so far, held to [`MAX_SEGMENT_INTEGRATIONS`].
+    pub(super) integrations: usize,
 }
 
 /// The least of the three stiffnesses at `t`.
@@ -156,6 +166,7 @@ impl<'a> Chain<'a> {
             softest: stiff,
             step: 0.0,
             last: Conjugate::default(),
+            integrations: 0,
         })
     }
 
@@ -293,6 +304,7 @@ impl<'a> Chain<'a> {
         mut dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
         let (k, n, last) = (self.k, self.dim(), self.segments - 1);
+        self.integrations += self.segments;
         self.step = FIRST_STEP * (self.nodes[1] - self.nodes[0]);
         let tip = self.load.moment * lambda;
         if jacobian.is_none() && dlambda.is_none() {
@@ -440,6 +452,14 @@ impl Problem<f64> for Chain<'_> {
         jacobian: Option<&mut [f64]>,
         dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
+        if self.integrations >= MAX_SEGMENT_INTEGRATIONS {
+            return Err(Error::Singular {
+                what: format!(
+                    "exact rod: its limit of {MAX_SEGMENT_INTEGRATIONS} segment integrations was reached ({} segments)",
+                    self.segments
+                ),
+            });
+        }
         if !self.within_reach(x, lambda) {
             return Err(Error::Singular {
                 what: "exact rod: a Newton iterate beyond the moment of any equilibrium".into(),
@@ -547,5 +567,34 @@ mod tests {
             let fd = (rp[row] - rm[row]) / (2.0 * h);
             assert!((dl[row] - fd).abs() < 1e-6, "∂r{row}/∂λ {} vs {fd}", dl[row]);
         }
+    }
+
+    /// The work bound: a continuation that runs out of segment integrations
+    /// ([`MAX_SEGMENT_INTEGRATIONS`]) stops with the load fraction it
+    /// reached and names the bound, rather than running on. Reference: the
+    /// same twist, TL/GJ = 2.6 rad, is followed to the full load when the
+    /// allowance is whole (its exact twist, checked to 1e-9).
+    #[test]
+    fn a_continuation_past_its_integrations_stops_naming_the_bound() {
+        let rod = Rod::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap()).unwrap();
+        let load = TipWrench { moment: Vector3::new(2.6, 0.0, 0.0), force: Vector3::zeros() };
+        let follow = |used: usize| {
+            let mut chain = Chain::new(&rod, load, Tolerance::default()).unwrap();
+            let mut ws = crate::solver::Workspace::new(chain.dim());
+            ws.x = chain.shot([0.0; 3], 0.0).unwrap();
+            chain.integrations = used;
+            crate::solver::continuation(&mut chain, &mut ws, &Default::default()).map(|_| ws.x[..3].to_vec())
+        };
+        let mu = follow(0).unwrap();
+        assert!((mu[0] - 2.6).abs() < 1e-9, "the root moment's twist part is the load's: {mu:?}");
+        // Two sweeps' worth left: the start and one step, then no more.
+        let e = follow(MAX_SEGMENT_INTEGRATIONS - 2 * MIN_SEGMENTS).unwrap_err();
+        match &e {
+            Error::ContinuationStalled { load_fraction, .. } => assert!(*load_fraction < 1.0, "{e}"),
+            other => panic!("expected a stall, got {other}"),
+        }
+        let text = e.to_string();
+        assert!(text.contains("its limit of 30000 segment integrations was reached"), "{text}");
+        assert!(text.contains("% of the load"), "{text}");
     }
 }

@@ -75,7 +75,7 @@ mod compliance;
 mod sections;
 mod shot;
 
-pub use chain::{MAX_FORCE_GROWTH, MAX_SEGMENTS};
+pub use chain::{MAX_FORCE_GROWTH, MAX_SEGMENT_INTEGRATIONS, MAX_SEGMENTS};
 pub use compliance::compliance_rest;
 pub use sections::sections;
 
@@ -264,6 +264,8 @@ pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &Settings) -> Result<Sol
     let mut ws = solver::Workspace::new(chain.dim());
     ws.x = chain.shot([0.0; 3], 0.0)?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
+    // The refinement is bounded by its own iterations: a fresh allowance.
+    chain.integrations = 0;
     chain.ode = settings.ode;
     let report = solver::newton(&mut chain, &mut ws, 1.0, &settings.solver)?;
     let stable = path.limit.is_none() && chain.stable(&ws.x, 1.0, &ws.jacobian);
