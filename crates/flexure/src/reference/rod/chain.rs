@@ -26,13 +26,15 @@ pub const MAX_FORCE_GROWTH: f64 = MAX_SEGMENTS as f64;
 /// rotation the rod can reach ([`Chain::new`]).
 const TURN_PER_SEGMENT: f64 = std::f64::consts::FRAC_PI_2;
 
-/// The most segment integrations one [`Chain`] may take before its
-/// evaluations are refused ([`Chain::evaluate`]): the bound on the work of a
-/// continuation (each of its steps integrates every segment a few times),
-/// which the steps' own cap bounds only loosely when each takes many
-/// segments and iterations. The rod's deflection stops there, naming it,
+/// The most integration pieces (the stretches between [`Chain::stops_in`]'s
+/// restarts, each integrated on its own) one [`Chain`] may take before its
+/// integrations are refused: the bound on the work of a continuation, which
+/// the steps' own cap bounds only loosely when each step integrates many
+/// segments, each in many pieces (a large moment's fast-turning Jacobi
+/// fields take a piece every $\epsilon^{1/5}/\omega$). A million pieces
+/// take some ten seconds. The rod's deflection stops there, naming it,
 /// with the load fraction reached.
-pub const MAX_SEGMENT_INTEGRATIONS: usize = 30_000;
+pub const MAX_INTEGRATION_PIECES: usize = 1_000_000;
 
 /// Points of the midpoint rules that size the segments (a few digits suffice).
 const SIZING_POINTS: usize = 256;
@@ -103,7 +105,7 @@ pub(super) struct Chain<'a> {
     softest: f64,
     step: f64,
     last: Conjugate,
-    /// Segment integrations so far, held to [`MAX_SEGMENT_INTEGRATIONS`].
+    /// Integration pieces so far, held to [`MAX_INTEGRATION_PIECES`].
     pub(super) integrations: usize,
 }
 
@@ -233,6 +235,16 @@ impl<'a> Chain<'a> {
         let field = rhs(self.rod, self.k, f);
         let (s0, s1) = (self.nodes[j], self.nodes[j + 1]);
         let stops = self.stops_in(s0, s1);
+        self.integrations += stops.len() + 1;
+        if self.integrations > MAX_INTEGRATION_PIECES {
+            return Err(Error::Singular {
+                what: format!(
+                    "exact rod: its limit of {MAX_INTEGRATION_PIECES} integration pieces was reached ({} segments of {} pieces each)",
+                    self.segments,
+                    stops.len() + 1
+                ),
+            });
+        }
         integrate_through(field, s0, s1, &stops, y, &self.ode, &mut self.step, observe)
     }
 
@@ -304,7 +316,6 @@ impl<'a> Chain<'a> {
         mut dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
         let (k, n, last) = (self.k, self.dim(), self.segments - 1);
-        self.integrations += self.segments;
         self.step = FIRST_STEP * (self.nodes[1] - self.nodes[0]);
         let tip = self.load.moment * lambda;
         if jacobian.is_none() && dlambda.is_none() {
@@ -452,14 +463,6 @@ impl Problem<f64> for Chain<'_> {
         jacobian: Option<&mut [f64]>,
         dlambda: Option<&mut [f64]>,
     ) -> Result<()> {
-        if self.integrations >= MAX_SEGMENT_INTEGRATIONS {
-            return Err(Error::Singular {
-                what: format!(
-                    "exact rod: its limit of {MAX_SEGMENT_INTEGRATIONS} segment integrations was reached ({} segments)",
-                    self.segments
-                ),
-            });
-        }
         if !self.within_reach(x, lambda) {
             return Err(Error::Singular {
                 what: "exact rod: a Newton iterate beyond the moment of any equilibrium".into(),
@@ -474,7 +477,11 @@ impl Problem<f64> for Chain<'_> {
     fn stable(&mut self, x: &[f64], lambda: f64, _jacobian: &[f64]) -> bool {
         if !(self.last.lambda == lambda && self.last.x == x) {
             let (mut r, mut d) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-            if self.sweep(x, lambda, &mut r, None, Some(&mut d)).is_err() {
+            // Not from the allowance: a sweep refused for it would read as unstable.
+            let used = std::mem::take(&mut self.integrations);
+            let swept = self.sweep(x, lambda, &mut r, None, Some(&mut d));
+            self.integrations = used;
+            if swept.is_err() {
                 return false;
             }
         }
@@ -569,8 +576,14 @@ mod tests {
         }
     }
 
-    /// The work bound: a continuation that runs out of segment integrations
-    /// ([`MAX_SEGMENT_INTEGRATIONS`]) stops with the load fraction it
+    /// The pieces one sweep of the chain for `load` integrates.
+    fn chain_pieces(rod: &Rod, load: TipWrench) -> usize {
+        let chain = Chain::new(rod, load, Tolerance::default()).unwrap();
+        (0..chain.segments).map(|j| chain.stops_in(chain.nodes[j], chain.nodes[j + 1]).len() + 1).sum()
+    }
+
+    /// The work bound: a continuation that runs out of integration pieces
+    /// ([`MAX_INTEGRATION_PIECES`]) stops with the load fraction it
     /// reached and names the bound, rather than running on. Reference: the
     /// same twist, TL/GJ = 2.6 rad, is followed to the full load when the
     /// allowance is whole (its exact twist, checked to 1e-9).
@@ -587,14 +600,14 @@ mod tests {
         };
         let mu = follow(0).unwrap();
         assert!((mu[0] - 2.6).abs() < 1e-9, "the root moment's twist part is the load's: {mu:?}");
-        // Two sweeps' worth left: the start and one step, then no more.
-        let e = follow(MAX_SEGMENT_INTEGRATIONS - 2 * MIN_SEGMENTS).unwrap_err();
+        // A few sweeps' worth left: the start and a step or two, then no more.
+        let e = follow(MAX_INTEGRATION_PIECES - 3 * chain_pieces(&rod, load)).unwrap_err();
         match &e {
             Error::ContinuationStalled { load_fraction, .. } => assert!(*load_fraction < 1.0, "{e}"),
             other => panic!("expected a stall, got {other}"),
         }
         let text = e.to_string();
-        assert!(text.contains("its limit of 30000 segment integrations was reached"), "{text}");
+        assert!(text.contains("its limit of 1000000 integration pieces was reached"), "{text}");
         assert!(text.contains("% of the load"), "{text}");
     }
 }

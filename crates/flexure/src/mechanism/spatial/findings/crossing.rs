@@ -359,7 +359,9 @@ fn drawn(m: &SpatialMechanism, q: &[f64], f: &SpatialFrames, group: &[usize], to
         });
     }
     for b in 0..m.bodies.len() {
-        let points: Vec<Point3<f64>> = m.attachments(b).iter().map(|r| f.bodies[b] * r).collect();
+        let anchors = m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1);
+        let points = crate::mechanism::findings::hull_points(m.attachments(b), b, anchors);
+        let points: Vec<Point3<f64>> = points.iter().map(|r| f.bodies[b] * r).collect();
         let points = distinct(points, tolerance);
         let edges = hull_edges(&points, tolerance);
         if edges.is_empty() {

@@ -16,7 +16,8 @@
 //!   stiffnesses alone has no section, and is its centreline;
 //! - a rigid body, the ground included, is the edges of the hull of its
 //!   attachment points ([`SpatialMechanism::attachments`], what `flexure
-//!   draw` fills as the link), with no thickness: for flat points the sides
+//!   draw` fills as the link; the ground's without its tendon anchors,
+//!   separate points of the world), with no thickness: for flat points the sides
 //!   of their polygon, as the planar links' outline, otherwise the edges of
 //!   their polytope.
 //!
