@@ -190,3 +190,16 @@ fn tables_carry_units_label_long_vectors_and_omit_empty_rows() {
     assert!(out.lines().any(|l| l.trim().starts_with("von_mises:") && l.ends_with(" Pa")), "{out}");
     assert!(out.lines().any(|l| l.trim().starts_with("rpy:") && l.ends_with(" rad")), "{out}");
 }
+
+/// A tendon anchored on the ground beside the finger, below it: the anchor
+/// is a point of the world, not a corner of a ground hull that the bending
+/// finger would cross at every swept tension (it did, at 2, 4 and 6 N).
+#[test]
+fn a_ground_anchor_beside_the_mechanism_is_no_hull_to_cross() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = example("finger").replacen("[\"ground\", -0.01, 0.005]", "[\"ground\", 0.04, -0.012]", 1);
+    let path = write(dir.path(), "anchor.toml", &text);
+    let (code, _, err) = run(&["solve", &path, "--sweep", "tendon.flexor.tension=0:6:4"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("crosses"), "{err}");
+}
