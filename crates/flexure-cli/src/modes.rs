@@ -195,11 +195,12 @@ fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Resu
     let text = crate::input::read_mechanism(file)?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
-            "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
-            file.display()
+            "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
+            file.display(),
+            crate::mechanism::loads_named(file, &e)
         ),
         e @ Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => format!("{}: {e}", file.display()),
+        e => crate::mechanism::file_error(file, e),
     };
     let m = from_toml(&text).map_err(err)?;
     let asked = wanted(count, m.dof(), "the mechanism").map_err(|e| format!("{}: {e}", file.display()))?;

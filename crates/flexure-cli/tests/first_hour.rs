@@ -203,3 +203,22 @@ fn a_ground_anchor_beside_the_mechanism_is_no_hull_to_cross() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("crosses"), "{err}");
 }
+
+/// "loses stability at 0.0000 % of the load" names which load: the file's
+/// loads, all at once, each where the file writes it (the finger's middle
+/// link 1e30 m long, under its fingertip force).
+#[test]
+fn a_path_that_loses_stability_names_the_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = example("finger3d").replacen("origin = [0.025, 0.0, 0.0]", "origin = [1e30, 0.0, 0.0]", 1);
+    let path = write(dir.path(), "far.toml", &text);
+    for command in ["solve", "modes"] {
+        let (code, _, err) = run(&[command, &path]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("loses stability at"), "{err}");
+        assert!(
+            err.contains("the load is the file's, all at once: force \"contact\" (line 93, column 8)"),
+            "{command}: {err}"
+        );
+    }
+}

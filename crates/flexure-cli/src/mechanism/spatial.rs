@@ -28,7 +28,7 @@ pub fn read(path: &Path) -> Result<Option<SpatialMechanism>, String> {
 fn said(file: &Path) -> impl Fn(flexure::Error) -> String + '_ {
     move |e| match e {
         e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => format!("{}: {e}", file.display()),
+        e => crate::mechanism::file_error(file, e),
     }
 }
 
@@ -240,8 +240,9 @@ pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target
     let findings = crate::findings::spatial_closures(m, file)?;
     let unstable = |e| match e {
         flexure::Error::Unstable { .. } => format!(
-            "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
-            file.display()
+            "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
+            file.display(),
+            crate::mechanism::loads_named(file, &e)
         ),
         e => said(file)(e),
     };

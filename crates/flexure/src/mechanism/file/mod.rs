@@ -31,6 +31,7 @@ mod flexures;
 mod habits;
 mod joints;
 mod loads;
+mod places;
 mod schedules;
 mod spatial;
 mod validation;
@@ -42,6 +43,7 @@ pub use flexures::Report;
 pub use habits::habits;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
+pub use places::loads_placed;
 use schedules::ScheduleToml;
 pub use spatial::spatial_from_toml;
 
