@@ -26,8 +26,8 @@ pub const MAX_FORCE_GROWTH: f64 = MAX_SEGMENTS as f64;
 /// rotation the rod can reach ([`Chain::new`]).
 const TURN_PER_SEGMENT: f64 = std::f64::consts::FRAC_PI_2;
 
-/// The most integration pieces (the stretches between [`Chain::stops_in`]'s
-/// restarts, each integrated on its own) one [`Chain`] may take before its
+/// The most integration pieces (the stretches between the integrator's
+/// restarts, each integrated on its own) one exact rod may take before its
 /// integrations are refused: the bound on the work of a continuation, which
 /// the steps' own cap bounds only loosely when each step integrates many
 /// segments, each in many pieces (a large moment's fast-turning Jacobi
