@@ -222,3 +222,36 @@ fn a_path_that_loses_stability_names_the_load() {
         );
     }
 }
+
+/// Three forces at the finger's tip: "tip" (0, −0.5) N, "push" (0, −0.3) N
+/// in the same direction, and "nudge" (0, 5e-4) N, 1/1000 of the longest.
+/// The two downward arrows are drawn side by side (tails apart, each its
+/// own name); the nudge, an arrow of no length, is not drawn nor named on
+/// the picture (the legend still gives it).
+#[test]
+fn coincident_forces_are_drawn_side_by_side_and_a_null_arrow_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let forces = "\n[[force]]\nname = \"nudge\"\nbody = \"distal\"\nat = [0.025, 0.0]\nforce = [0.0, 0.0005]\n\
+                  \n[[force]]\nname = \"push\"\nbody = \"distal\"\nat = [0.025, 0.0]\nforce = [0.0, -0.3]\n";
+    let path = write(dir.path(), "three.toml", &(example("finger") + forces));
+    let svg = dir.path().join("three.svg");
+    let (code, _, err) = run(&["draw", &path, "--out", &svg.display().to_string()]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(svg).unwrap();
+    let label = |name: &str| svg.contains(&format!(r#"paint-order="stroke">{name}</text>"#));
+    assert!(label("tip") && label("push") && !label("nudge"), "{svg}");
+    assert!(svg.contains("force nudge on distal"), "the legend keeps it");
+    // The loaded shape's force arrows (2.5 px wide): two, with tails apart.
+    let tails: Vec<(f64, f64)> = svg
+        .lines()
+        .filter(|l| l.starts_with("<line ") && l.contains(r#"stroke-width="2.50""#))
+        .map(|l| {
+            let attr = |n: &str| -> f64 {
+                l.split(&format!(" {n}=\"")).nth(1).unwrap().split('"').next().unwrap().parse().unwrap()
+            };
+            (attr("x1"), attr("y1"))
+        })
+        .collect();
+    assert_eq!(tails.len(), 2, "{tails:?}");
+    assert!((tails[0].0 - tails[1].0).hypot(tails[0].1 - tails[1].1) > 3.0, "side by side: {tails:?}");
+}

@@ -11,6 +11,7 @@ pub mod buckling;
 pub mod equilibria;
 pub mod file;
 pub mod findings;
+mod hints;
 mod indeterminate;
 pub mod joints;
 pub mod kinematics;

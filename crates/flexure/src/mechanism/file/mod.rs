@@ -28,22 +28,20 @@ mod bodies;
 mod closures;
 mod document;
 mod flexures;
-mod habits;
 mod joints;
 mod loads;
-mod places;
 mod schedules;
 mod spatial;
 mod validation;
 
+pub use super::hints::{habits, loads_placed};
 use bodies::{BodyToml, Find};
 use closures::{PinToml, WeldToml};
-use document::{FileToml, Source, place};
+pub(super) use document::place;
+use document::{FileToml, Source};
 pub use flexures::Report;
-pub use habits::habits;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
-pub use places::loads_placed;
 use schedules::ScheduleToml;
 pub use spatial::spatial_from_toml;
 
