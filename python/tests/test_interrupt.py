@@ -123,3 +123,19 @@ def test_ctrl_c_stops_a_simulation():
     assert isinstance(error, KeyboardInterrupt)
     found = re.search(r"interrupted at t = ([0-9.e+-]+) s of 2\.000000e1 s", str(error))
     assert found and float(found.group(1)) < 20.0, str(error)
+
+
+def test_ctrl_c_stops_an_exact_rod():
+    # A twist of 100 N·m on the default rod (260 rad): its exact rod runs some ten
+    # seconds to its bound of integration pieces; Ctrl-C stops it on the way.
+    f = flexure.SpatialFlexure()
+    error = interrupted_after(lambda: f.exact_rod(moment=(100.0, 0.0, 0.0)))
+    assert isinstance(error, KeyboardInterrupt)
+    assert load_fraction(error) < 100.0, str(error)
+
+
+def test_an_exact_rod_past_its_bound_stops_naming_it():
+    # A moment of 1e6 N·m about z would need 16 million pieces a sweep: refused at once, naming the bound.
+    f = flexure.SpatialFlexure()
+    with pytest.raises(flexure.ConvergenceError, match="its limit of 1000000 integration pieces was reached"):
+        f.exact_rod(moment=(0.0, 0.0, 1e6))

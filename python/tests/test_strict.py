@@ -159,3 +159,69 @@ def test_exact_frequencies_refuses_booleans():
         name = next(iter(kwargs))
         with pytest.raises(ValueError, match=rf"^{name}(\[0\])? = True: must be a number, not a boolean"):
             flexure.exact.frequencies(**{"count": 2, **kwargs}, flexure=f)
+
+
+# --- in space as in the plane (issue "robust", item 6) -----------------------------
+
+
+FINGER3D = (
+    "dimension = 3\n[[joint]]\nname = \"mcp\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n"
+    "length = 0.01\nmodulus = 2e11\nwidth = 0.006\nthickness = 3e-4\n"
+    "[[body]]\nname = \"tip\"\nmass = 0.002\ncom = [0.01, 0.0, 0.0]\nixx = 1e-8\niyy = 1e-8\nizz = 1e-8\n"
+)
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        ("flexure.SpatialFlexure(order=True)", "order"),
+        ("flexure.Flexure(order=True)", "order"),
+        ("m.modes(count=True)", "count"),
+        ("m.simulate(0.01, max_steps=True)", "max_steps"),
+    ],
+)
+def test_counts_refuse_booleans_in_space_as_in_the_plane(call, name):
+    # True would be read as 1: orders [1, 1, 1], one mode, a budget of one step.
+    m = flexure.Mechanism.from_toml(FINGER3D)
+    with pytest.raises(TypeError) as caught:
+        eval(call)
+    assert "boolean" in str(caught.value), str(caught.value)
+    assert named(caught.value, name), str(caught.value)
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"diameter": 1e-3}, "diameter"),
+        ({"width": 0.01}, "width"),
+        ({"thickness": 2e-4}, "thickness"),
+        ({"poisson": 0.3}, "poisson"),
+        ({"shear_modulus": 8e10}, "shear_modulus"),
+    ],
+)
+def test_a_spatial_section_without_a_modulus_is_refused_naming_it(kwargs, name):
+    # Ignored before: SpatialFlexure(diameter=1e-3) was the default EI = 1 N·m² rod.
+    with pytest.raises(ValueError, match=rf"invalid {name} = given: goes with modulus"):
+        flexure.SpatialFlexure(**kwargs)
+
+
+def test_a_spatial_section_thicker_than_long_is_refused_as_the_planar_one():
+    with pytest.raises(ValueError, match=r"invalid thickness = 0.02 m at t = 0, on a flexure of length 0.01 m"):
+        flexure.SpatialFlexure(length=0.01, modulus=1e9, width=0.01, thickness=0.02)
+    with pytest.raises(ValueError, match=r"invalid diameter = 0.02 m at t = 0"):
+        flexure.SpatialFlexure(length=0.01, modulus=1e9, diameter=0.02)
+
+
+@pytest.mark.parametrize(
+    "value, what",
+    [
+        (np.array([0.0, 0.0, 1.0 + 2.0j]), "complex"),
+        (np.array([0.0, 0.0, 1.0], dtype=object), "object"),
+        (memoryview(np.array([0.0, 0.0, 1.0])), "memoryview"),
+    ],
+)
+def test_complex_object_and_memoryview_arrays_are_refused_not_cast(value, what):
+    # NumPy would drop the imaginary part, convert each object, or reinterpret the buffer.
+    for call in [lambda: flexure.SpatialFlexure().deflect(force=value), lambda: flexure.Flexure().pose(value)]:
+        with pytest.raises(TypeError, match=what):
+            call()

@@ -69,27 +69,32 @@ fn columns_in(entries: &[Entry], room: f64) -> usize {
 }
 
 /// A legend's size (px) and rows per column in `columns` columns; a colour
-/// bar adds a block under the entries.
-fn legend_box(entries: &[Entry], bar: bool, columns: usize) -> (f64, f64, usize) {
+/// bar (`bar`: its title's width, px) adds a block under the entries, as
+/// wide as its title where `room` allows (the title is set smaller past it).
+fn legend_box(entries: &[Entry], bar: Option<f64>, columns: usize, room: f64) -> (f64, f64, usize) {
     let column = legend_column(entries) + 24.0;
     let rows = entries.len().div_ceil(columns.max(1));
     let (w, h) = (columns as f64 * column, rows as f64 * LEGEND_ROW + 14.0);
-    if bar { (w.max(BAR_WIDTH), h + BAR_BLOCK, rows) } else { (w, h, rows) }
+    match bar {
+        Some(title) => (w.max(BAR_WIDTH).max((title + 36.0).min(room)), h + BAR_BLOCK, rows),
+        None => (w, h, rows),
+    }
 }
 
 /// A legend's size (px) and rows per column, in as many columns (at most
 /// three) as fit in `room` px; a colour bar adds a block under the entries.
-pub(crate) fn legend_size(entries: &[Entry], bar: bool, room: f64) -> (f64, f64, usize) {
-    legend_box(entries, bar, columns_in(entries, room))
+pub(crate) fn legend_size(entries: &[Entry], bar: Option<f64>, room: f64) -> (f64, f64, usize) {
+    legend_box(entries, bar, columns_in(entries, room), room)
 }
 
 /// A legend beside the plot: one column if it is no taller than `height`
 /// px, else the fewest columns (at most three, and no wider together than
 /// `width` px) that are; as many as `width` allows if none is, and the
 /// figure then grows to hold it ([`crate::render`]).
-pub(crate) fn legend_beside(entries: &[Entry], bar: bool, height: f64, width: f64) -> (f64, f64, usize) {
+pub(crate) fn legend_beside(entries: &[Entry], bar: Option<f64>, height: f64, width: f64) -> (f64, f64, usize) {
     let most = columns_in(entries, width);
-    (1..=most).map(|c| legend_box(entries, bar, c)).find(|b| b.1 <= height).unwrap_or(legend_box(entries, bar, most))
+    let at = |c| legend_box(entries, bar, c, width);
+    (1..=most).map(at).find(|b| b.1 <= height).unwrap_or(at(most))
 }
 
 /// Data range in axis units, padded: linear axes by 4 % a side, log axes
@@ -133,8 +138,8 @@ pub(crate) fn layout(fig: &Figure, place: Place) -> Layout {
     let mut l = None;
     let mut legend = None;
     for _ in 0..8 {
-        let bar = fig.color_bar.is_some();
-        legend = (!fig.legend.is_empty() || bar).then(|| match place {
+        let bar = fig.color_bar.as_ref().map(|b| text_width(&b.label, LEGEND_SIZE));
+        legend = (!fig.legend.is_empty() || bar.is_some()).then(|| match place {
             Place::Below => legend_size(&fig.legend, bar, fig.width - left - right),
             // Beside the plot, in columns rather than past the figure's foot,
             // leaving the plot at least half the width.
@@ -201,10 +206,14 @@ pub(crate) fn layout(fig: &Figure, place: Place) -> Layout {
         content: (x1 - x0, y1 - y0),
     });
     if let Some((lw, lh, rows)) = legend {
+        let bar_title = fig.color_bar.as_ref();
         l.rows = rows;
+        // A colour bar's block widened for its title ends inside the figure
+        // (the margins were measured after the legend was sized).
+        let fit = |x: f64| if bar_title.is_some() { lw.min(fig.width - x - 10.0) } else { lw };
         l.legend = Some(match place {
-            Place::Right | Place::Outside => (l.left + l.w + 20.0, top, lw, lh),
-            Place::Below => (l.left, top + l.h + axis_room + 4.0, lw, lh),
+            Place::Right | Place::Outside => (l.left + l.w + 20.0, top, fit(l.left + l.w + 20.0), lh),
+            Place::Below => (l.left, top + l.h + axis_room + 4.0, fit(l.left), lh),
             Place::Inside => best_corner(fig, &l, lw, lh),
         });
     }

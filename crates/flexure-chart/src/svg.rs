@@ -413,14 +413,10 @@ pub(crate) fn draw_legend(svg: &mut String, entries: &[Entry], (x, y, w, h): (f6
 /// label, the ramp as a gradient, and ticks at round values under it.
 pub(crate) fn draw_color_bar(svg: &mut String, bar: &ColorBar, (x, y, w): (f64, f64, f64)) {
     let (x0, x1) = (x + 12.0, x + w - 24.0);
-    text(
-        svg,
-        (x0, y + 0.5 * LEGEND_ROW + 0.36 * LEGEND_SIZE),
-        LEGEND_SIZE,
-        Anchor::Start,
-        r#" class="bar-label""#,
-        &bar.label,
-    );
+    // A label longer than the bar is set smaller, so that it stays inside
+    // the legend's block (and the figure) rather than run past it.
+    let size = LEGEND_SIZE * ((x1 - x0) / text_width(&bar.label, LEGEND_SIZE)).min(1.0);
+    text(svg, (x0, y + 0.5 * LEGEND_ROW + 0.36 * size), size, Anchor::Start, r#" class="bar-label""#, &bar.label);
     let stops: String = (0..=8)
         .map(|i| {
             let t = f64::from(i) / 8.0;

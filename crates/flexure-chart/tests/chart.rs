@@ -163,3 +163,46 @@ fn a_long_legend_beside_the_plot_stays_inside_the_figure() {
         }
     }
 }
+
+/// A colour bar's title longer than its bar (a drawing's yield strengths of
+/// many flexures) stays inside the legend block and the figure, below and
+/// beside the plot: set smaller, at the chart's own measure of its text
+/// (0.6 em a lowercase letter); a title that fits keeps the legend's size.
+#[test]
+fn a_long_colour_bar_title_stays_inside_the_figure() {
+    let bar_label = |svg: &str| -> (f64, f64) {
+        let tag = svg.split("<text ").find(|t| t.contains(r#"class="bar-label""#)).expect("a bar label");
+        let attr = |name: &str| -> f64 {
+            tag.split(&format!("{name}=\"")).nth(1).and_then(|r| r.split('"').next()?.parse().ok()).unwrap()
+        };
+        (attr("x"), attr("font-size"))
+    };
+    for (label, long) in [("abcdeghkno".repeat(20), true), ("stress".to_string(), false)] {
+        for place in [Place::Below, Place::Outside] {
+            let mut fig = Figure::new("stress", "x (m)", "y (m)");
+            fig.marks.push(Mark::Dot {
+                at: (0.0, 0.0),
+                shape: Marker::Circle,
+                radius: 3.0,
+                color: COLORS[0],
+                filled: true,
+            });
+            fig.marks.push(Mark::Dot {
+                at: (1.0, 1.0),
+                shape: Marker::Circle,
+                radius: 3.0,
+                color: COLORS[0],
+                filled: true,
+            });
+            fig.legend.push(Entry { swatch: Swatch::Note, label: "a note".into() });
+            fig.color_bar = Some(flexure_chart::ColorBar { label: label.clone(), lo: 0.0, hi: 1.0, marks: vec![] });
+            (fig.width, fig.height, fig.place) = (800.0, 420.0, place);
+            let svg = render(&fig).unwrap();
+            let width: f64 = svg.split(" width=\"").nth(1).and_then(|r| r.split('"').next()?.parse().ok()).unwrap();
+            let (x, size) = bar_label(&svg);
+            let right = x + 0.6 * size * label.chars().count() as f64;
+            assert!(right <= width, "{place:?}: the title runs to {right} px in a {width} px figure");
+            assert_eq!(size < 16.0, long, "{place:?}: set at {size} px");
+        }
+    }
+}

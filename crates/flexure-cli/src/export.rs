@@ -54,7 +54,7 @@ pub struct Exported {
 /// Fits, builds and writes the model; warnings (flagged fits, what the
 /// format cannot hold) and notes are queued for stderr.
 pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
-    let text = crate::input::read_text(&args.file, "")?;
+    let text = crate::input::read_mechanism(&args.file)?;
     if let flexure::mechanism::file::Model::Spatial(_) =
         flexure::mechanism::file::model_from_toml(&text).map_err(|e| format!("{}: {e}", args.file.display()))?
     {

@@ -128,6 +128,9 @@ impl ModesArgs {
 /// `--count`, held to the model's `coordinates`: the default is at most
 /// [`DEFAULT_COUNT`]; a larger explicit count is refused.
 fn wanted(count: Option<usize>, coordinates: usize, what: &str) -> Result<usize, String> {
+    if coordinates == 0 {
+        return Err(nothing_moves(what));
+    }
     match count {
         None => Ok(DEFAULT_COUNT.min(coordinates)),
         Some(k) if k > coordinates => Err(format!(
@@ -135,6 +138,12 @@ fn wanted(count: Option<usize>, coordinates: usize, what: &str) -> Result<usize,
         )),
         Some(k) => Ok(k),
     }
+}
+
+/// The error for a model with no coordinate: nothing to vibrate, whatever
+/// `--count` (given or not) asked.
+pub fn nothing_moves(what: &str) -> String {
+    format!("{what} has no coordinates (no flexure or moving joint), so it has no vibration modes")
 }
 
 /// `quasi_static` and, when there is something to explain, a `note`: the
@@ -183,17 +192,18 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
 }
 
 fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let text = crate::input::read_text(file, "")?;
+    let text = crate::input::read_mechanism(file)?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
-            "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
-            file.display()
+            "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
+            file.display(),
+            crate::mechanism::loads_named(file, &e)
         ),
         e @ Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => format!("{}: {e}", file.display()),
+        e => crate::mechanism::file_error(file, e),
     };
     let m = from_toml(&text).map_err(err)?;
-    let asked = wanted(count, m.dof(), "the mechanism")?;
+    let asked = wanted(count, m.dof(), "the mechanism").map_err(|e| format!("{}: {e}", file.display()))?;
     let (m, modes, estimate) =
         flexure::estimate::mechanism_modes_auto(&m, &Settings::default(), asked, target).map_err(err)?;
     let shapes: Vec<Value> = (0..modes.omega.len())

@@ -140,9 +140,16 @@ thread_local! {
     static WARNINGS: std::cell::RefCell<Vec<String>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
-/// Queues a warning; value parsers have no stream of their own to write it to.
+/// Queues a warning; value parsers have no stream of their own to write it
+/// to. A warning already queued is not queued twice (a file read twice, a
+/// flexure built again at a higher order, says it once).
 pub fn warn(message: String) {
-    WARNINGS.with(|w| w.borrow_mut().push(message));
+    WARNINGS.with(|w| {
+        let mut w = w.borrow_mut();
+        if !w.contains(&message) {
+            w.push(message);
+        }
+    });
 }
 
 thread_local! {
@@ -226,8 +233,9 @@ pub struct FlexureOptions {
     /// answers report curvature_max instead of stress.
     #[arg(long, value_parser = profile, allow_hyphen_values = true, conflicts_with = "modulus")]
     pub ei: Option<ProfileArg>,
-    /// Young's modulus E in Pa (with --width and --thickness, in place of --ei).
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires_all = ["width", "thickness"])]
+    /// Young's modulus E in Pa (with --width and --thickness, or a spatial
+    /// rod's --diameter, in place of --ei; the library names what is missing).
+    #[arg(long, value_parser = number, allow_hyphen_values = true)]
     pub modulus: Option<f64>,
     /// Width b in metres: V, or ROOT,TIP for a linear taper.
     #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "modulus")]
@@ -313,7 +321,19 @@ impl FlexureOptions {
 
     /// Builds and validates the flexure (order 3 to start from, for `--order auto`).
     pub fn build(&self) -> flexure::Result<Flexure> {
+        self.hint_units(None);
         self.spec().build()
+    }
+
+    /// Warns of a `--modulus` or `--length` implausible as given, with what
+    /// was probably meant ([`flexure::section::unit_hints`]); `diameter` is a
+    /// spatial rod's, in place of `--thickness`.
+    pub fn hint_units(&self, diameter: Option<&ProfileArg>) {
+        let largest = |p: &ProfileArg| p.0.at(0.0).max(p.0.at(1.0));
+        let thickness = self.thickness.as_ref().or(diameter).map(largest);
+        for h in flexure::section::unit_hints(self.length, self.modulus, thickness) {
+            warn(format!("--{} {}", h.name, h.message));
+        }
     }
 }
 

@@ -18,9 +18,9 @@ fn unit(parent: &str, key: &str) -> Option<&'static str> {
     Some(match (parent, key) {
         ("error_estimate", "omega" | "critical_load" | "load_factor") => "(relative)",
         ("curvature_max", "max") | (_, "curvature") => "1/m",
-        ("stress", "max") | (_, "stress") => "Pa",
+        ("stress", "max") | (_, "stress" | "bending_y" | "bending_z" | "shear" | "von_mises") => "Pa",
         ("curvature_max" | "stress", "at") => "m along the flexure",
-        (_, "phi" | "angle" | "alpha" | "gap_rad") => "rad",
+        (_, "phi" | "angle" | "alpha" | "gap_rad" | "rpy") => "rad",
         (_, "angle_degrees") => "°",
         (_, "x" | "y" | "position" | "tendon_length" | "s" | "gap_m") => "m",
         (_, "moment" | "root_moment" | "residual") => "N·m",
@@ -36,15 +36,39 @@ fn unit(parent: &str, key: &str) -> Option<&'static str> {
     })
 }
 
+/// A long vector `q` labelled by joint, when `map` lists the joints with
+/// their `name` and `coordinates` (a spatial answer): one line a joint.
+fn by_joint(map: &serde_json::Map<String, Value>, q: &Value) -> Option<Vec<(String, Value)>> {
+    let joints = map.get("joints")?.as_array()?;
+    let rows: Vec<(String, Value)> = joints
+        .iter()
+        .map(|j| Some((j.get("name")?.as_str()?.to_string(), j.get("coordinates")?.clone())))
+        .collect::<Option<_>>()?;
+    let rows: Vec<(String, Value)> =
+        rows.into_iter().filter(|(_, c)| c.as_array().is_some_and(|c| !c.is_empty())).collect();
+    let count: usize = rows.iter().map(|(_, c)| c.as_array().map_or(0, Vec::len)).sum();
+    (q.as_array().map(Vec::len) == Some(count)).then_some(rows)
+}
+
 fn write_value(out: &mut String, value: &Value, indent: usize, parent: &str) {
     let pad = " ".repeat(indent);
     match value {
         Value::Object(map) => {
             for (key, v) in map {
                 match v {
+                    // An empty list is no row.
+                    Value::Array(items) if items.is_empty() => {}
+                    Value::Array(_) if key == "q" && by_joint(map, v).is_some() => {
+                        let _ = writeln!(out, "{pad}{key}:");
+                        for (name, c) in by_joint(map, v).unwrap_or_default() {
+                            let _ = writeln!(out, "{pad}  {name}: {}", inline(&c));
+                        }
+                    }
                     Value::Object(_) => {
                         let _ = writeln!(out, "{pad}{key}:");
-                        write_value(out, v, indent + 2, key);
+                        // Per-flexure maps of a quantity keep its name, for units.
+                        let context = if matches!(parent, "curvature_max" | "stress") { parent } else { key };
+                        write_value(out, v, indent + 2, context);
                     }
                     Value::Array(rows) if rows.iter().all(|r| r.is_array()) && !rows.is_empty() => {
                         let _ = writeln!(out, "{pad}{key}:");

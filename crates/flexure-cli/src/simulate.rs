@@ -76,7 +76,7 @@ impl MotionOptions {
 }
 
 fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -71,6 +71,7 @@ pub fn build(f: &FlexureOptions, s: &SpatialOptions) -> flexure::Result<SpatialF
     if let Some((name, _)) = planar_only.iter().find(|(_, given)| *given) {
         return Err(Error::invalid(name, "given with --spatial", "is for planar flexures only"));
     }
+    f.hint_units(s.diameter.as_ref());
     let profile = |p: &Option<ProfileArg>| p.as_ref().map(|p| p.0.clone());
     let list = |l: &Option<List>| l.as_ref().map(|l| l.0.clone());
     let n = match f.order {

@@ -18,6 +18,7 @@ mod examples;
 mod export;
 mod figures;
 mod findings;
+mod first_hour;
 mod first_mechanism;
 mod fuzz;
 mod joint;

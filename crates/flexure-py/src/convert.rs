@@ -31,6 +31,13 @@ pub fn tip_load(moment: Real, fx: Real, fy: Real) -> PyResult<TipLoad> {
 /// `usize` (negative, or past 2^64) is a `ValueError` naming `name` and the
 /// bound, not an `OverflowError`. The library checks the bound itself.
 pub fn count(name: &str, value: &Bound<'_, PyAny>, max: usize) -> PyResult<usize> {
+    // True and False are Python integers, but no count.
+    if crate::strict::is_bool(value) {
+        return Err(PyTypeError::new_err(format!(
+            "argument '{name}': must be a whole number, not a boolean ({})",
+            value.repr()?
+        )));
+    }
     match value.extract::<usize>() {
         Ok(v) => Ok(v),
         // Integers (also NumPy's, through __index__) out of usize's range.

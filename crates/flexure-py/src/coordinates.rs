@@ -79,13 +79,7 @@ pub fn read<'py>(n: usize, alpha: &Bound<'py, PyAny>) -> PyResult<Coordinates<'p
     }
     // Booleans would become 0.0 and 1.0: refused, as for every float argument.
     crate::strict::no_bool("alpha", alpha)?;
-    if alpha
-        .getattr("dtype")
-        .and_then(|d| d.getattr("kind"))
-        .is_ok_and(|k| k.extract::<String>().is_ok_and(|k| k == "b"))
-    {
-        return Err(PyTypeError::new_err("argument 'alpha': must be real numbers, not a boolean array"));
-    }
+    crate::strict::real_array("alpha", alpha)?;
     let array: PyArrayLikeDyn<'py, f64, AllowTypeChange> = alpha.extract().map_err(|e: PyErr| {
         // As pyo3 reports a failed argument conversion.
         if e.is_instance_of::<PyTypeError>(alpha.py()) {
@@ -189,13 +183,7 @@ pub fn single(n: usize, alpha: &Bound<'_, PyAny>) -> PyResult<Row> {
 /// list or tuple, or a boolean array) are refused, naming `name`.
 pub fn array_like<'py>(name: &str, value: &Bound<'py, PyAny>) -> PyResult<PyArrayLikeDyn<'py, f64, AllowTypeChange>> {
     crate::strict::no_bool(name, value)?;
-    if value
-        .getattr("dtype")
-        .and_then(|d| d.getattr("kind"))
-        .is_ok_and(|k| k.extract::<String>().is_ok_and(|k| k == "b"))
-    {
-        return Err(PyTypeError::new_err(format!("argument '{name}': must be real numbers, not a boolean array")));
-    }
+    crate::strict::real_array(name, value)?;
     value.extract().map_err(|e: PyErr| {
         if e.is_instance_of::<PyTypeError>(value.py()) {
             PyTypeError::new_err(format!("argument '{name}': {}", e.value(value.py())))

@@ -231,14 +231,13 @@ impl SpatialFlexure {
         let load = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
         let target: Accuracy = crate::accuracy::accuracy(accuracy)?;
         let f = &self.inner;
-        let (eq, alpha, stiffness, e) = py
-            .detach(|| -> flexure::Result<_> {
-                let mut data = SpatialStatics::new(f);
-                let eq = spatial::deflect(f, &load, &mut data, &Default::default())?;
-                let e = estimate::spatial::deflect_error(f, &load, data.alpha(), &target)?;
-                Ok((eq, data.alpha().to_vec(), data.stiffness.clone(), e))
-            })
-            .map_err(to_py)?;
+        // Ctrl-C stops it, saying how far it got.
+        let (eq, alpha, stiffness, e) = crate::interrupt::interruptible(py, || -> flexure::Result<_> {
+            let mut data = SpatialStatics::new(f);
+            let eq = spatial::deflect(f, &load, &mut data, &Default::default())?;
+            let e = estimate::spatial::deflect_error(f, &load, data.alpha(), &target)?;
+            Ok((eq, data.alpha().to_vec(), data.stiffness.clone(), e))
+        })?;
         let (r, p) = spatial::pose_root_tip(f, &alpha);
         let g = transform(&r, &p);
         strict::finite_slice("deflect", &alpha)?;
@@ -348,14 +347,13 @@ impl SpatialFlexure {
         use flexure::reference::rod::{self, Rod};
         let w = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
         let f = self.inner.clone();
-        let solution = py
-            .detach(|| -> flexure::Result<_> {
-                let rest = f.rest().to_vec();
-                let shape = f.clone();
-                let r = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| shape.curvature(&rest, s))?;
-                rod::deflect(&r, &w, &Default::default())
-            })
-            .map_err(to_py)?;
+        // Bounded by its segment integrations; Ctrl-C stops it, saying how far it got.
+        let solution = crate::interrupt::interruptible(py, || -> flexure::Result<_> {
+            let rest = f.rest().to_vec();
+            let shape = f.clone();
+            let r = Rod::new(f.length(), f.section().clone())?.with_rest(move |s| shape.curvature(&rest, s))?;
+            rod::deflect(&r, &w, &Default::default())
+        })?;
         let g = transform(&solution.rotation, &solution.position);
         strict::finite_slice("exact_rod", g.as_flattened())?;
         let d = PyDict::new(py);

@@ -54,6 +54,51 @@ pub fn no_bool(name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
     Ok(())
 }
 
+/// Refuses what NumPy would cast to float64 by dropping or inventing
+/// meaning: a boolean array (0.0 and 1.0), a complex array (its imaginary
+/// part dropped), an object array (whatever each object converts to), any
+/// array of a kind other than integers and floats, and a `memoryview`
+/// (whose format NumPy reinterprets), naming `name`.
+pub fn real_array(name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+    if value.is_instance_of::<pyo3::types::PyMemoryView>() {
+        return Err(PyTypeError::new_err(format!(
+            "argument '{name}': must be real numbers (a list, tuple or NumPy array), not a memoryview"
+        )));
+    }
+    let kind = value.getattr("dtype").and_then(|d| d.getattr("kind")).and_then(|k| k.extract::<String>());
+    match kind.as_deref() {
+        Ok("b") => Err(PyTypeError::new_err(format!("argument '{name}': must be real numbers, not a boolean array"))),
+        Ok("f" | "i" | "u") | Err(_) => Ok(()),
+        Ok(k) => {
+            let what = match k {
+                "c" => "a complex array (its imaginary parts would be dropped)",
+                "O" => "an object array",
+                _ => "an array of that kind",
+            };
+            Err(PyTypeError::new_err(format!(
+                "argument '{name}': must be real numbers (an integer or float array), not {what}; dtype {}",
+                value.getattr("dtype")?.str()?
+            )))
+        }
+    }
+}
+
+/// A whole-number argument (`count`, `max_steps`) that refuses `True` and
+/// `False`, which Python would read as 1 and 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Whole(pub usize);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Whole {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> Result<Self, Self::Error> {
+        if is_bool(&obj) {
+            return Err(PyTypeError::new_err(format!("must be a whole number, not a boolean ({})", obj.repr()?)));
+        }
+        Ok(Whole(obj.extract::<usize>()?))
+    }
+}
+
 /// The path of the first number in `value` that is not finite (".key",
 /// "[i]", "[i, j]" and "['field']" for a structured array's field), if any.
 fn non_finite(value: &Bound<'_, PyAny>) -> PyResult<Option<String>> {

@@ -34,17 +34,25 @@ pub enum Error {
         unit: &'static str,
     },
     /// Load continuation could not advance: its step fell below the
-    /// smallest allowed step, or it ran out of steps.
+    /// smallest allowed step, or it ran out of steps. When the last step's
+    /// corrector stopped at rounding (`rounding`), the state reached is an
+    /// equilibrium and the message says so: it is the step that could not
+    /// advance, not a residual that would not fall.
     #[error(
-        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps ({reached}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load",
+        "{solver}: load continuation stalled at {pct:.4} % of the load after {steps} steps {how}",
         pct = .load_fraction * 100.0,
-        reached = residual_reached(*.residual, .unit)
+        how = stalled_how(.cause, *.residual, .unit, *.rounding)
     )]
     ContinuationStalled {
         /// Why the last step failed: the corrector's non-convergence, a
         /// state that cannot be evaluated (for example a tendon of zero
         /// length), a step that turned too far, or the step limit.
         cause: String,
+        /// Whether the last step's corrector came to within rounding of its
+        /// tolerance (10 times it) and could get no closer: the load is
+        /// then many orders beyond what the stiffness carries at this scale
+        /// (often a unit slip), or the path turns there.
+        rounding: bool,
         /// Which problem.
         solver: &'static str,
         /// Fraction of the load reached (0 to 1).
@@ -115,6 +123,21 @@ pub enum Error {
         /// The last step tried (s).
         step: f64,
     },
+}
+
+/// The rest of a [`Error::ContinuationStalled`] message: what was reached,
+/// why the last step failed, and the advice that fits.
+fn stalled_how(cause: &str, residual: f64, unit: &str, rounding: bool) -> String {
+    if rounding {
+        format!(
+            "(last: {cause}): the state reached is in equilibrium, but no load step beyond it could be taken at double precision; the load is far beyond what the stiffness carries, or the path turns back there (a limit point): check the units (a modulus in Pa, lengths in metres), or try a smaller load"
+        )
+    } else {
+        format!(
+            "({}; last: {cause}); the load may be beyond what the solver can follow; try a smaller load",
+            residual_reached(residual, unit)
+        )
+    }
 }
 
 /// "residual R unit", or, when no state tried could be evaluated to a

@@ -37,6 +37,7 @@ mod mechanism_derivatives;
 mod mechanism_files;
 mod mechanism_weight;
 mod ode;
+mod plausible;
 mod prb;
 mod quadrature;
 mod reference;

@@ -25,7 +25,7 @@ pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     let findings = crate::findings::closures(&m, &args.file)?;
     let target = args.accuracy.target();
     let (m, b, e) = flexure::estimate::buckle_auto(&m, &Settings::default(), &target)
-        .map_err(|e| format!("{}: {e}", args.file.display()))?;
+        .map_err(|e| super::file_error(&args.file, e))?;
     let mut answer = json!(b);
     let flexures = flexure_names(&m);
     let auto = m.joints.iter().any(|j| j.auto_order);

@@ -40,12 +40,13 @@ pub struct DrawArgs {
 fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechanism) -> Result<Value, String> {
     use super::spatial_drawing as sd;
     let settings = Settings::default();
-    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let err = |e: flexure::Error| super::file_error(&args.file, e);
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
+    // solve's and simulate's findings, told on stderr and kept in the answer;
+    // first, so that an open closure that keeps the mechanism from assembling is told.
+    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
     let unloaded =
         flexure::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
-    // solve's and simulate's findings, told on stderr and kept in the answer.
-    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
     if let Some(spec) = &args.sweep {
         let p =
             flexure::mechanism::spatial::sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
@@ -136,7 +137,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
     let target = args.accuracy.target();
-    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let err = |e: flexure::Error| super::file_error(&args.file, e);
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
     let mut marks = drawing::Marks {
         yields: reports.iter().filter_map(|(name, r)| Some((name.clone(), r.yield_strength?))).collect(),
@@ -197,7 +198,7 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     let mut checks = json!({});
     crate::simulate::put_motion_checks(&mut checks, &m, &run, &args.file)?;
     crate::simulate::put_stopped(&mut checks, &run, &args.file, duration);
-    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let err = |e: flexure::Error| super::file_error(&args.file, e);
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &Settings::default()).map_err(err)?;
     let last = run.time.len() - 1;
     let mut picked: Vec<usize> = (0..5).map(|k| (k * last + 2) / 4).collect();

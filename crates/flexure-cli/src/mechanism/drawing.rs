@@ -221,18 +221,53 @@ fn shape(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, thick: f64
         fig.marks.push(Mark::Path { points, stroke, fill: None, closed: false });
     }
     let Loads::Drawn { per_newton, .. } = loads else { return };
-    for ((b, r), v) in load_places(m).into_iter().zip(force_vectors(m, s)) {
-        let from = at(b, r);
-        if let (Some(k), true) = (per_newton, v != [0.0, 0.0]) {
-            let to = (from.0 + k * v[0], from.1 + k * v[1]);
-            fig.marks.push(Mark::Arrow { from, to, color, width: 2.5 });
-        }
+    for (from, to) in arrows(m, s, per_newton).into_iter().flatten() {
+        fig.marks.push(Mark::Arrow { from, to, color, width: 2.5 });
     }
     for (p, l) in m.forces.iter().zip(&s.loads.force) {
         if l.moment != 0.0 {
             fig.marks.push(Mark::Turn { at: at(p.body, p.at), radius: 18.0, ccw: l.moment > 0.0, color, width: 2.0 });
         }
     }
+}
+
+/// A force's arrow: its tail and head (m).
+type Arrow = ((f64, f64), (f64, f64));
+
+/// The fewest of the longest arrow's length an arrow is drawn at: a force
+/// far smaller than the others would be an arrow of no length, its head
+/// and name on its tail (the legend still gives its value).
+const LEAST_ARROW: f64 = 0.02;
+
+/// Each load of [`force_vectors`] as the arrow drawn for it, tail and head
+/// (m), at `per_newton` m per N; `None` where none is drawn (no scale, or
+/// an arrow shorter than [`LEAST_ARROW`] of the longest). Arrows from one
+/// point in one direction are drawn side by side, each moved across its
+/// direction by a twentieth of the longest arrow from the one before.
+fn arrows(m: &Mechanism, s: &Solution, per_newton: Option<f64>) -> Vec<Option<Arrow>> {
+    let f = body_frames(m, s);
+    let vectors = force_vectors(m, s);
+    let Some(k) = per_newton else { return vec![None; vectors.len()] };
+    let longest = vectors.iter().map(|v| k * v[0].hypot(v[1])).fold(0.0, f64::max);
+    let mut drawn: Vec<Option<Arrow>> = Vec::new();
+    for ((b, r), v) in load_places(m).into_iter().zip(vectors) {
+        let p = f.bodies[b].act(&r);
+        let length = k * v[0].hypot(v[1]);
+        if length == 0.0 || length < LEAST_ARROW * longest {
+            drawn.push(None);
+            continue;
+        }
+        let (ux, uy) = (k * v[0] / length, k * v[1] / length);
+        let along = |a: &Arrow| {
+            let (d, e) = (a.1.0 - a.0.0, a.1.1 - a.0.1);
+            let n = d.hypot(e);
+            (a.0.0 - p.x).hypot(a.0.1 - p.y) <= 0.2 * longest && (d * ux + e * uy) > 0.99 * n
+        };
+        let beside = drawn.iter().flatten().filter(|a| along(a)).count() as f64;
+        let from = (p.x - uy * 0.05 * longest * beside, p.y + ux * 0.05 * longest * beside);
+        drawn.push(Some((from, (from.0 + k * v[0], from.1 + k * v[1]))));
+    }
+    drawn
 }
 
 /// Where each load of [`force_vectors`] acts: (body, point in its frame).
@@ -250,15 +285,22 @@ fn load_names(fig: &mut Figure, m: &Mechanism, s: &Solution, color: Color, per_n
         .map(|p| p.name.clone())
         .chain(m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| format!("weight of {}", b.name)));
     let moments = s.loads.force.iter().map(|l| l.moment).chain(std::iter::repeat(0.0));
-    for ((((b, r), name), v), moment) in load_places(m).into_iter().zip(names).zip(force_vectors(m, s)).zip(moments) {
+    let drawn = arrows(m, s, per_newton);
+    for ((((b, r), name), arrow), moment) in load_places(m).into_iter().zip(names).zip(drawn).zip(moments) {
         let p = f.bodies[b].act(&r);
-        let n = v[0].hypot(v[1]);
-        let k = per_newton.unwrap_or(0.0);
-        if n == 0.0 && moment == 0.0 {
+        // A force with no arrow and no moment has no mark to name.
+        if arrow.is_none() && moment == 0.0 {
             continue;
         }
-        let (ux, uy) = if n > 0.0 { (v[0] / n, v[1] / n) } else { (0.7, 0.7) };
-        let at = (p[0] + k * v[0], p[1] + k * v[1]);
+        let (ux, uy) = match arrow {
+            Some((from, to)) => {
+                let n = (to.0 - from.0).hypot(to.1 - from.1);
+                ((to.0 - from.0) / n, (to.1 - from.1) / n)
+            }
+            None => (0.7, 0.7),
+        };
+        let n = if arrow.is_some() { 1.0 } else { 0.0 };
+        let at = arrow.map_or((p[0], p[1]), |a| a.1);
         let anchor = if ux > 0.3 {
             Anchor::Start
         } else if ux < -0.3 {

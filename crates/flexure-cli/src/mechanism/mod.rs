@@ -21,14 +21,37 @@ use flexure::mechanism::statics::Solution;
 use serde_json::{Value, json};
 use std::path::Path;
 
+/// A solver's error on mechanism file `file`, after the file's name, with
+/// the loads named where it is about the load as a whole ([`loads_named`]).
+pub fn file_error(file: &Path, e: flexure::Error) -> String {
+    let loads = loads_named(file, &e);
+    format!("{}: {e}{loads}", file.display())
+}
+
+/// Where `e` is about the load as a whole (a path that loses stability or
+/// stalls at a fraction of it), "; the load is the file's, all at once: "
+/// and the loads that make it up, each where the file writes it; else "".
+pub fn loads_named(file: &Path, e: &flexure::Error) -> String {
+    if !matches!(e, flexure::Error::Unstable { .. } | flexure::Error::ContinuationStalled { .. }) {
+        return String::new();
+    }
+    let loads =
+        crate::input::read_text(file, "").map(|t| flexure::mechanism::file::loads_placed(&t)).unwrap_or_default();
+    if loads.is_empty() {
+        String::new()
+    } else {
+        format!("; the load is the file's, all at once: {}", loads.join(", "))
+    }
+}
+
 fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The mechanism, and each flexure joint's `yield_strength` and `shape`.
 fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, ReportOptions)>), String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok((m, reports))

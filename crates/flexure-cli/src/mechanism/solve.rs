@@ -85,7 +85,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
     let target = args.accuracy.target();
-    let err = |e: flexure::Error| format!("{}: {e}", args.file.display());
+    let err = |e: flexure::Error| super::file_error(&args.file, e);
     let body = match &args.compliance {
         Some(name) => Some(
             m.body(name).ok_or_else(|| format!("--compliance: no body named {name:?} in {}", args.file.display()))?,

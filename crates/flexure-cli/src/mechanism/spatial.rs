@@ -17,7 +17,7 @@ use std::path::Path;
 
 /// The file's mechanism if it says `dimension = 3`, else `None` (planar).
 pub fn read(path: &Path) -> Result<Option<SpatialMechanism>, String> {
-    let text = crate::input::read_text(path, "")?;
+    let text = crate::input::read_mechanism(path)?;
     match flexure::mechanism::file::model_from_toml(&text) {
         Ok(flexure::mechanism::file::Model::Spatial(m)) => Ok(Some(m)),
         Ok(flexure::mechanism::file::Model::Planar(_)) => Ok(None),
@@ -28,7 +28,7 @@ pub fn read(path: &Path) -> Result<Option<SpatialMechanism>, String> {
 fn said(file: &Path) -> impl Fn(flexure::Error) -> String + '_ {
     move |e| match e {
         e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => format!("{}: {e}", file.display()),
+        e => crate::mechanism::file_error(file, e),
     }
 }
 
@@ -232,13 +232,17 @@ fn by_joint(m: &SpatialMechanism, v: &[f64]) -> Value {
 /// flexure refined about the equilibrium (`error_estimate`, `flagged`, as
 /// the planar answer's), warning per mode that misses `target`.
 pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let asked = count.unwrap_or(m.dof().max(1));
+    if m.dof() == 0 {
+        return Err(format!("{}: {}", file.display(), crate::modes::nothing_moves("the mechanism")));
+    }
+    let asked = count.unwrap_or(m.dof());
     let settings = Settings::default();
     let findings = crate::findings::spatial_closures(m, file)?;
     let unstable = |e| match e {
         flexure::Error::Unstable { .. } => format!(
-            "{}: unstable: {e}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
-            file.display()
+            "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
+            file.display(),
+            crate::mechanism::loads_named(file, &e)
         ),
         e => said(file)(e),
     };

@@ -90,9 +90,10 @@ impl Mechanism {
         every: Option<Real>,
         tolerance: Real,
         start: &str,
-        max_steps: Option<usize>,
+        max_steps: Option<strict::Whole>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let times = (duration.0, every.map(|v| v.0));
+        let max_steps = max_steps.map(|m| m.0);
         let out = match self.spatial() {
             Some(m) => spatial::simulate(py, m, times, tolerance.0, start, max_steps)?,
             None => simulate::motion(py, self.planar("simulate")?.0, times, tolerance.0, start, max_steps)?,

@@ -237,13 +237,7 @@ impl Flexure {
             }
         } else {
             let at = [0.0, 1.0].into_iter().chain(section.breakpoints(l));
-            if let Some((t, h)) = at.filter_map(|t| Some((t, section.thickness(t, l)?))).find(|&(_, h)| h > l) {
-                return Err(Error::invalid(
-                    "thickness",
-                    format!("{h} m at t = {t}, on a flexure of length {l} m"),
-                    "must not exceed the flexure's length: a beam thicker than it is long is no flexure",
-                ));
-            }
+            crate::section::thinner_than_long("thickness", l, at.filter_map(|t| Some((t, section.thickness(t, l)?))))?;
         }
         let (stiffness, mean) = self.stiffness_matrix_of(&section)?;
         within("ei", mean, EI_RANGE)?;

@@ -12,6 +12,7 @@ mod dimension;
 pub mod equilibria;
 pub mod file;
 pub mod findings;
+mod hints;
 mod indeterminate;
 pub mod joints;
 pub mod kinematics;

@@ -194,6 +194,7 @@ pub fn equilibrium(fit: &PrbFit, f: &Flexure, load: &TipLoad) -> Result<Vec<f64>
         if step < MIN_STEP {
             return Err(Error::ContinuationStalled {
                 cause,
+                rounding: false,
                 solver: "prb equilibrium",
                 load_fraction: lambda,
                 steps,
@@ -207,6 +208,7 @@ pub fn equilibrium(fit: &PrbFit, f: &Flexure, load: &TipLoad) -> Result<Vec<f64>
     }
     Err(Error::ContinuationStalled {
         cause: format!("{MAX_STEPS} load steps ({cause})"),
+        rounding: false,
         solver: "prb equilibrium",
         load_fraction: lambda,
         steps: MAX_STEPS,

@@ -8,9 +8,11 @@
 
 use crate::error::{Error, Result, positive};
 
+mod plausible;
 mod spatial;
 mod spec;
 pub mod torsion;
+pub use plausible::{Hint, LEAST_MODULUS, MM_SECTION, QUESTIONED_LENGTH, thinner_than_long, unit_hints};
 pub use spatial::{Outline, Shear, SpatialSection, SpatialStress, StressPoint};
 pub use spec::SectionSpec;
 

@@ -40,6 +40,10 @@ pub enum Stop {
         cause: String,
         /// The last residual reached, in the problem's unit.
         residual: f64,
+        /// Whether the last corrector stopped within rounding of its
+        /// tolerance ([`Error::ContinuationStalled`]'s `rounding`).
+        #[serde(skip)]
+        rounding: bool,
     },
     /// It took [`Settings::max_steps`] steps without reaching $\lambda = 1$.
     StepCap {
@@ -118,7 +122,13 @@ impl Path {
                 let cause = format!("its limit of {} steps was reached", self.steps);
                 Some(stalled(problem, self, *residual, &cause))
             }
-            Stop::Stalled { cause, residual } => Some(stalled(problem, self, *residual, cause)),
+            Stop::Stalled { cause, residual, rounding } => {
+                let mut e = stalled(problem, self, *residual, cause);
+                if let Error::ContinuationStalled { rounding: r, .. } = &mut e {
+                    *r = *rounding;
+                }
+                Some(e)
+            }
         }
     }
 }
@@ -258,7 +268,8 @@ fn follow<T: Scalar, P: Problem<T>>(
         if !h.is_finite() {
             // Only an overflowing tangent gets here; halving would never end.
             let cause = "the step length overflowed".to_string();
-            return Ok(Path { stop: Stop::Stalled { cause, residual: last_residual }, load_fraction: lambda, ..path });
+            let stop = Stop::Stalled { cause, residual: last_residual, rounding: false };
+            return Ok(Path { stop, load_fraction: lambda, ..path });
         }
         let t_lambda = ws.tangent[n].re();
         let landing = t_lambda > 0.0 && lambda + h * t_lambda >= 1.0 - 1e-12;
@@ -286,10 +297,17 @@ fn follow<T: Scalar, P: Problem<T>>(
             Err(Error::Interrupted { .. }) => {
                 return Ok(Path { stop: Stop::Interrupted, load_fraction: lambda, ..path });
             }
-            Err(Error::NoConvergence { iterations, residual, .. }) => {
+            Err(Error::NoConvergence { iterations, residual, unit, .. }) => {
                 path.iterations += iterations;
                 last_residual = residual;
-                cause = Cause::Corrector;
+                // A residual within rounding of the tolerance that would go no
+                // lower is no failure to converge: the step cannot advance.
+                let tolerance = settings.tolerance * problem.scale();
+                cause = if residual <= ROUNDING * tolerance {
+                    Cause::Rounding { residual, tolerance, unit }
+                } else {
+                    Cause::Corrector
+                };
                 None
             }
             Err(e @ Error::InvalidParameter { .. }) => return Err(e),
@@ -311,7 +329,8 @@ fn follow<T: Scalar, P: Problem<T>>(
         let Some((report, new_lambda)) = outcome else {
             h *= 0.5;
             if h < min_step {
-                let stop = Stop::Stalled { cause: cause.to_string(), residual: last_residual };
+                let rounding = matches!(cause, Cause::Rounding { .. });
+                let stop = Stop::Stalled { cause: cause.to_string(), residual: last_residual, rounding };
                 return Ok(Path { stop, load_fraction: lambda, ..path });
             }
             continue;
@@ -416,10 +435,24 @@ fn fold_peak(l0: f64, l1: f64, d0: f64, d1: f64, h: f64) -> f64 {
     roots.iter().filter(|t| (0.0..=1.0).contains(*t)).map(|&t| hermite(t)).fold(l0.max(l1), f64::max)
 }
 
+/// A corrector's residual at most this many times its tolerance, that would
+/// fall no further, stopped at rounding (double precision's limit on the
+/// problem's scale), not short of convergence.
+const ROUNDING: f64 = 10.0;
+
 /// Why a continuation step was rejected (formatted only when the continuation stalls).
 enum Cause {
     /// Newton did not converge on the step.
     Corrector,
+    /// Newton stopped within [`ROUNDING`] times its tolerance and got no closer.
+    Rounding {
+        /// Its last residual.
+        residual: f64,
+        /// Its tolerance.
+        tolerance: f64,
+        /// Their unit.
+        unit: &'static str,
+    },
     /// The corrected state turned a section by more than the bound.
     Turned,
     /// The problem could not be evaluated there.
@@ -430,6 +463,10 @@ impl std::fmt::Display for Cause {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Cause::Corrector => write!(f, "the Newton corrector did not converge"),
+            Cause::Rounding { residual, tolerance, unit } => write!(
+                f,
+                "the next step could not advance: its corrector stopped at rounding, residual {residual:.3e} {unit} against a tolerance of {tolerance:.3e} {unit}"
+            ),
             Cause::Turned => write!(f, "every shorter step turned a section too far"),
             Cause::Failed(e) => write!(f, "{e}"),
         }
@@ -439,6 +476,7 @@ impl std::fmt::Display for Cause {
 fn stalled<T: Scalar, P: Problem<T>>(problem: &P, path: &Path, residual: f64, cause: &str) -> Error {
     Error::ContinuationStalled {
         cause: cause.to_string(),
+        rounding: false,
         solver: problem.name(),
         load_fraction: path.load_fraction.clamp(0.0, 1.0),
         steps: path.steps,

@@ -4,7 +4,7 @@
 use crate::basis;
 use crate::error::{Error, Result};
 use crate::flexure::{EI_RANGE, LENGTH_RANGE, MAX_COORDINATE, MAX_ORDER};
-use crate::section::SpatialSection;
+use crate::section::{Outline, SpatialSection};
 
 /// The fewest Magnus subintervals $M$ a flexure gets by default
 /// ([`SpatialFlexure::default_subintervals`] raises it with the order). With
@@ -69,7 +69,10 @@ impl SpatialFlexure {
     /// A straight flexure of `length` (m), `section` and `orders`
     /// $[n_\tau, n_y, n_z]$ (each from 1 to 64), with
     /// [`SpatialFlexure::default_subintervals`] of its orders. Errors name
-    /// `length`, `order`, `gj`, `ei_y` or `ei_z`.
+    /// `length`, `order`, `thickness` or `diameter` (a section thicker than
+    /// the flexure is long, refused as the planar flexure refuses it:
+    /// [`thinner_than_long`](crate::section::thinner_than_long)), `gj`,
+    /// `ei_y` or `ei_z`.
     pub fn new(length: f64, section: SpatialSection, orders: [usize; 3]) -> Result<Self> {
         if !(length.is_finite() && (LENGTH_RANGE.0..=LENGTH_RANGE.1).contains(&length)) {
             return Err(Error::invalid("length", length, "must lie in [1e-9, 1e6] m"));
@@ -86,6 +89,18 @@ impl SpatialFlexure {
         let names = ["gj", "ei_y", "ei_z"];
         let mut at: Vec<f64> = vec![0.0, 1.0];
         at.extend(section.breakpoints());
+        // As the planar flexure: no section thicker than the flexure is long
+        // (a rectangle's thickness along y or a rod's diameter; the width is
+        // a wide blade's, as in the plane).
+        let thickness = at.iter().filter_map(|&t| match section.outline(t)? {
+            Outline::Rectangle { thickness, .. } => Some((t, thickness)),
+            Outline::Circle { diameter } => Some((t, diameter)),
+        });
+        let name = match section.outline(0.0) {
+            Some(Outline::Circle { .. }) => "diameter",
+            _ => "thickness",
+        };
+        crate::section::thinner_than_long(name, length, thickness)?;
         for &t in &at {
             for (k, name) in section.stiffness(t).into_iter().zip(names) {
                 if !(k.is_finite() && (EI_RANGE.0..=EI_RANGE.1).contains(&k)) {

@@ -26,6 +26,9 @@ pub const DEFAULT_POISSON: f64 = 0.3;
 /// assert_eq!(f.rest()[6], 0.5);
 /// let bad = SpatialSpec { gj: Some(Profile::Constant(-1.0)), ..Default::default() };
 /// assert!(bad.build().unwrap_err().to_string().contains("gj"));
+/// // A diameter without a modulus is refused, not ignored.
+/// let bad = SpatialSpec { diameter: Some(Profile::Constant(1e-3)), ..Default::default() };
+/// assert!(bad.build().unwrap_err().to_string().starts_with("invalid diameter = given: goes with modulus"));
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpatialSpec {
@@ -83,6 +86,24 @@ impl Default for SpatialSpec {
 impl SpatialSpec {
     /// The section the spec describes; errors name the field.
     pub fn section(&self) -> Result<SpatialSection> {
+        if self.modulus.is_none() {
+            // As the planar SectionSpec: a shape or material without a modulus
+            // is refused, not ignored.
+            let shape = [
+                ("width", self.width.is_some()),
+                ("thickness", self.thickness.is_some()),
+                ("diameter", self.diameter.is_some()),
+                ("poisson", self.poisson.is_some()),
+                ("shear_modulus", self.shear_modulus.is_some()),
+            ];
+            if let Some((name, _)) = shape.into_iter().find(|(_, given)| *given) {
+                return Err(Error::invalid(
+                    name,
+                    "given",
+                    "goes with modulus (and width and thickness, or diameter), not with the stiffnesses gj, ei_y, ei_z",
+                ));
+            }
+        }
         let Some(e) = self.modulus else {
             let ei_z = self.ei_z.clone().unwrap_or(Profile::Constant(1.0));
             let gj = self.gj.clone().unwrap_or_else(|| ei_z.clone());

@@ -44,7 +44,7 @@ pub(super) fn parse(text: &str) -> Result<FileToml> {
 }
 
 /// "line L, column C" of a byte offset.
-pub(super) fn place(text: &str, offset: usize) -> String {
+pub(in crate::mechanism) fn place(text: &str, offset: usize) -> String {
     let mut offset = offset.min(text.len());
     while !text.is_char_boundary(offset) {
         offset -= 1;

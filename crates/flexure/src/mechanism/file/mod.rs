@@ -35,9 +35,11 @@ mod schedules;
 mod spatial;
 mod validation;
 
+pub use super::hints::{habits, loads_placed};
 use bodies::{BodyToml, Find};
 use closures::{PinToml, WeldToml};
-use document::{FileToml, Source, place};
+pub(super) use document::place;
+use document::{FileToml, Source};
 pub use flexures::ReportOptions;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};

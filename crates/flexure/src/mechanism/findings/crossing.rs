@@ -282,7 +282,9 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         });
     }
     for b in 0..m.bodies.len() {
-        let mut ends: Vec<Point2<f64>> = m.attachments(b).iter().map(|r| f.bodies[b].act(r)).collect();
+        let anchors = m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1);
+        let mut ends: Vec<Point2<f64>> =
+            hull_points(m.attachments(b), b, anchors).iter().map(|r| f.bodies[b].act(r)).collect();
         let mut points = convex_hull(ends.clone());
         // Where a slider's carriage (or a pin's child) sits on this link.
         let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
@@ -297,6 +299,22 @@ fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
         parts.push(Drawn { part: Part::Link(b), points, arc: None, ends, groups: vec![group[b]], lo, hi });
     }
     parts
+}
+
+/// The points of body `b` whose hull is its solid: its attachment points,
+/// but for the ground without the tendons' anchors in it (`anchors`, each
+/// taken out once), which are separate points of the world, not corners of
+/// one part: a tendon anchored beside the mechanism does not make the
+/// ground a hull that its parts cross.
+pub(crate) fn hull_points<P: PartialEq>(mut attachments: Vec<P>, b: usize, anchors: impl Iterator<Item = P>) -> Vec<P> {
+    if b == 0 {
+        for a in anchors {
+            if let Some(i) = attachments.iter().position(|p| *p == a) {
+                attachments.remove(i);
+            }
+        }
+    }
+    attachments
 }
 
 /// [`crossings`] at each of a series of shapes (a sweep's rows, a

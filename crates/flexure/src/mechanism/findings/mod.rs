@@ -19,7 +19,9 @@
 //! **Crossings** ([`crossings`]). Each flexure is its backbone
 //! ([`crate::kinematics::backbone`]) as a polyline of chords; each body,
 //! the ground included, the edges of the hull of its attachment points
-//! ([`Mechanism::attachments`](crate::mechanism::Mechanism::attachments): what `flexure draw` fills as the link).
+//! ([`Mechanism::attachments`](crate::mechanism::Mechanism::attachments): what `flexure draw` fills as the link),
+//! the ground's without its tendon anchors, which are separate points of
+//! the world rather than corners of one part.
 //! The backbone's curvature is at most $V/L$ everywhere, with
 //! $V = \sum_i\lvert\alpha_i\rvert$ (each angle shape's slope is a shifted
 //! Legendre polynomial, at most 1 in magnitude), so with
@@ -45,6 +47,7 @@ mod geometry;
 
 pub use closures::{GAP_TOLERANCE, OpenClosure, closure_name, open_closures, rest_gaps};
 pub use convex::{Convex, MAX_ITERATIONS, within};
+pub(crate) use crossing::hull_points;
 pub use crossing::{
     CHORD_TURN, Crossing, MAX_CHORDS, MIN_CHORDS, Part, TOUCH_TOLERANCE, chords, crossings, crossings_along,
 };

@@ -61,7 +61,13 @@ pub fn buckle(m: &SpatialMechanism, settings: &Settings) -> Result<Buckling> {
     let k0 = z.transpose() * &a0.hessian * &z;
     let k0 = (&k0 + k0.transpose()) * 0.5;
     if !linalg::is_positive_definite(&k0) {
-        return Err(free());
+        // As the planar buckle: the joints that move in it are named.
+        let moving = moving(m, &z, &k0).map_or(String::new(), |j| format!(" ({j})"));
+        return Err(Error::Singular {
+            what: format!(
+                "the unloaded mechanism has a zero-stiffness motion{moving}: linear buckling is undefined; give a joint on it a stiffness, or hold it with a closure"
+            ),
+        });
     }
     // Linear pre-buckling state and its closure forces (least norm).
     let load_gradient = &a1.gradient - &a0.gradient;
@@ -72,4 +78,12 @@ pub fn buckle(m: &SpatialMechanism, settings: &Settings) -> Result<Buckling> {
     let b = z.transpose() * &geometric * &z;
     let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, "only tension, or loads that stiffen it")?;
     Ok(Buckling { load_factor, mode })
+}
+
+/// The joints that move in the softest mode of the constrained stiffness
+/// `k` (on the closures' null space `z`).
+fn moving(m: &SpatialMechanism, z: &DMatrix<f64>, k: &DMatrix<f64>) -> Option<String> {
+    let (_, soft) = linalg::softest_mode(k)?;
+    let joints = m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof()));
+    crate::mechanism::statics::moving_joints(joints, &(z * soft))
 }

@@ -48,7 +48,7 @@ pub(crate) use kkt::FAR_MARGIN;
 pub use kkt::Kkt;
 pub(super) use kkt::constrained;
 pub use path::solve_between;
-pub(super) use path::{follow, free_motion};
+pub(super) use path::{follow, free_motion, moving_joints};
 pub use solve::{solve, solve_with};
 pub use stiffness::{body_frames, compliance, stiffness};
 pub use workspace::Workspace;

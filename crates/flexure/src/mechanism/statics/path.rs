@@ -171,13 +171,19 @@ pub(in crate::mechanism) fn free_motion(m: &Mechanism, s: &Solution) -> Option<S
         return None;
     }
     let (_, soft) = linalg::softest_mode(&k)?;
-    let motion = &z * soft;
+    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof())), &(&z * soft))
+}
+
+/// The joints, given as (name, offset, coordinates), whose coordinates move
+/// by more than a tenth of the largest in `motion`, as "joint \"a\" and joint \"b\"".
+pub(in crate::mechanism) fn moving_joints<'a>(
+    joints: impl Iterator<Item = (&'a str, usize, usize)>,
+    motion: &nalgebra::DVector<f64>,
+) -> Option<String> {
     let largest = motion.amax();
-    let names: Vec<String> = m
-        .joints
-        .iter()
-        .filter(|j| (0..j.kind.joint().dof()).any(|i| motion[j.offset + i].abs() > 0.1 * largest))
-        .map(|j| format!("joint {:?}", j.name))
+    let names: Vec<String> = joints
+        .filter(|&(_, offset, dof)| (0..dof).any(|i| motion[offset + i].abs() > 0.1 * largest))
+        .map(|(name, ..)| format!("joint {name:?}"))
         .collect();
     (!names.is_empty()).then(|| names.join(" and "))
 }

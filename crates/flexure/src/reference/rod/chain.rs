@@ -26,6 +26,16 @@ pub const MAX_FORCE_GROWTH: f64 = MAX_SEGMENTS as f64;
 /// rotation the rod can reach ([`Chain::new`]).
 const TURN_PER_SEGMENT: f64 = std::f64::consts::FRAC_PI_2;
 
+/// The most integration pieces (the stretches between the integrator's
+/// restarts, each integrated on its own) one exact rod may take before its
+/// integrations are refused: the bound on the work of a continuation, which
+/// the steps' own cap bounds only loosely when each step integrates many
+/// segments, each in many pieces (a large moment's fast-turning Jacobi
+/// fields take a piece every $\epsilon^{1/5}/\omega$). A million pieces
+/// take some ten seconds. The rod's deflection stops there, naming it,
+/// with the load fraction reached.
+pub const MAX_INTEGRATION_PIECES: usize = 1_000_000;
+
 /// Points of the midpoint rules that size the segments (a few digits suffice).
 const SIZING_POINTS: usize = 256;
 
@@ -95,6 +105,8 @@ pub(super) struct Chain<'a> {
     softest: f64,
     step: f64,
     last: Conjugate,
+    /// Integration pieces so far, held to [`MAX_INTEGRATION_PIECES`].
+    pub(super) integrations: usize,
 }
 
 /// The least of the three stiffnesses at `t`.
@@ -156,6 +168,7 @@ impl<'a> Chain<'a> {
             softest: stiff,
             step: 0.0,
             last: Conjugate::default(),
+            integrations: 0,
         })
     }
 
@@ -222,6 +235,16 @@ impl<'a> Chain<'a> {
         let field = rhs(self.rod, self.k, f);
         let (s0, s1) = (self.nodes[j], self.nodes[j + 1]);
         let stops = self.stops_in(s0, s1);
+        self.integrations += stops.len() + 1;
+        if self.integrations > MAX_INTEGRATION_PIECES {
+            return Err(Error::Singular {
+                what: format!(
+                    "exact rod: its limit of {MAX_INTEGRATION_PIECES} integration pieces was reached ({} segments of {} pieces each)",
+                    self.segments,
+                    stops.len() + 1
+                ),
+            });
+        }
         integrate_through(field, s0, s1, &stops, y, &self.ode, &mut self.step, observe)
     }
 
@@ -454,7 +477,11 @@ impl Problem<f64> for Chain<'_> {
     fn stable(&mut self, x: &[f64], lambda: f64, _jacobian: &[f64]) -> bool {
         if !(self.last.lambda == lambda && self.last.x == x) {
             let (mut r, mut d) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-            if self.sweep(x, lambda, &mut r, None, Some(&mut d)).is_err() {
+            // Not from the allowance: a sweep refused for it would read as unstable.
+            let used = std::mem::take(&mut self.integrations);
+            let swept = self.sweep(x, lambda, &mut r, None, Some(&mut d));
+            self.integrations = used;
+            if swept.is_err() {
                 return false;
             }
         }
@@ -547,5 +574,40 @@ mod tests {
             let fd = (rp[row] - rm[row]) / (2.0 * h);
             assert!((dl[row] - fd).abs() < 1e-6, "∂r{row}/∂λ {} vs {fd}", dl[row]);
         }
+    }
+
+    /// The pieces one sweep of the chain for `load` integrates.
+    fn chain_pieces(rod: &Rod, load: TipWrench) -> usize {
+        let chain = Chain::new(rod, load, Tolerance::default()).unwrap();
+        (0..chain.segments).map(|j| chain.stops_in(chain.nodes[j], chain.nodes[j + 1]).len() + 1).sum()
+    }
+
+    /// The work bound: a continuation that runs out of integration pieces
+    /// ([`MAX_INTEGRATION_PIECES`]) stops with the load fraction it
+    /// reached and names the bound, rather than running on. Reference: the
+    /// same twist, TL/GJ = 2.6 rad, is followed to the full load when the
+    /// allowance is whole (its exact twist, checked to 1e-9).
+    #[test]
+    fn a_continuation_past_its_integrations_stops_naming_the_bound() {
+        let rod = Rod::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap()).unwrap();
+        let load = TipWrench { moment: Vector3::new(2.6, 0.0, 0.0), force: Vector3::zeros() };
+        let follow = |used: usize| {
+            let mut chain = Chain::new(&rod, load, Tolerance::default()).unwrap();
+            let mut ws = crate::solver::Workspace::new(chain.dim());
+            ws.x = chain.shot([0.0; 3], 0.0).unwrap();
+            chain.integrations = used;
+            crate::solver::continuation(&mut chain, &mut ws, &Default::default()).map(|_| ws.x[..3].to_vec())
+        };
+        let mu = follow(0).unwrap();
+        assert!((mu[0] - 2.6).abs() < 1e-9, "the root moment's twist part is the load's: {mu:?}");
+        // A few sweeps' worth left: the start and a step or two, then no more.
+        let e = follow(MAX_INTEGRATION_PIECES - 3 * chain_pieces(&rod, load)).unwrap_err();
+        match &e {
+            Error::ContinuationStalled { load_fraction, .. } => assert!(*load_fraction < 1.0, "{e}"),
+            other => panic!("expected a stall, got {other}"),
+        }
+        let text = e.to_string();
+        assert!(text.contains("its limit of 1000000 integration pieces was reached"), "{text}");
+        assert!(text.contains("% of the load"), "{text}");
     }
 }

@@ -75,7 +75,7 @@ mod compliance;
 mod sections;
 mod shot;
 
-pub use chain::{MAX_FORCE_GROWTH, MAX_SEGMENTS};
+pub use chain::{MAX_FORCE_GROWTH, MAX_INTEGRATION_PIECES, MAX_SEGMENTS};
 pub use compliance::compliance_rest;
 pub use sections::sections;
 
@@ -240,7 +240,9 @@ pub struct Solution {
 ///
 /// Errors: [`Error::InvalidParameter`] for a non-finite load, bad settings
 /// or too large a force ([`MAX_FORCE_GROWTH`]); [`Error::ContinuationStalled`]
-/// with the load fraction reached; [`Error::Unstable`] when the path loses
+/// with the load fraction reached, also when the path's work passes
+/// [`MAX_INTEGRATION_PIECES`] (the refinement of its end has an allowance
+/// of its own), which is named; [`Error::Unstable`] when the path loses
 /// stability at a limit load and does not come back to the full load;
 /// integrator failures.
 ///
@@ -262,8 +264,22 @@ pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &Settings) -> Result<Sol
     settings.validate()?;
     let mut chain = Chain::new(rod, load, settings.path_ode())?;
     let mut ws = solver::Workspace::new(chain.dim());
-    ws.x = chain.shot([0.0; 3], 0.0)?;
+    // A rest shape that cannot even be shot (past the bound on its work) is a path that did not start.
+    ws.x = chain.shot([0.0; 3], 0.0).map_err(|e| match e {
+        Error::Singular { what } => Error::ContinuationStalled {
+            cause: what,
+            rounding: false,
+            solver: solver::Problem::name(&chain),
+            load_fraction: 0.0,
+            steps: 0,
+            residual: f64::NAN,
+            unit: "N·m",
+        },
+        e => e,
+    })?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
+    // The refinement is bounded by its own iterations: a fresh allowance.
+    chain.integrations = 0;
     chain.ode = settings.ode;
     let report = solver::newton(&mut chain, &mut ws, 1.0, &settings.solver)?;
     let stable = path.limit.is_none() && chain.stable(&ws.x, 1.0, &ws.jacobian);

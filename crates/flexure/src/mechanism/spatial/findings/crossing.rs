@@ -91,15 +91,21 @@ pub fn crossings(m: &SpatialMechanism, q: &[f64]) -> Vec<SpatialCrossing> {
     assert_eq!(q.len(), m.dof(), "crossings: q must have one entry per coordinate");
     let mut f = SpatialFrames::new(m);
     frames_level_into(m, q, Level::Pose, &mut f);
-    let tolerance = TOUCH_TOLERANCE * m.size();
+    let tolerance = touch_tolerance(m);
     let parts = drawn(m, q, &f, &groups(m), tolerance);
+    // A part so far out that rounding there exceeds the tolerance cannot be
+    // told touching from apart (an origin of 1e30 m): it is not tested.
+    let resolved = |d: &Drawn| (0..3).all(|i| d.lo[i].abs().max(d.hi[i].abs()) * RESOLUTION <= tolerance);
     let mut out = Vec::new();
     for (i, a) in parts.iter().enumerate() {
+        if !resolved(a) {
+            continue;
+        }
         if let Some(c) = self_crossing(a, tolerance) {
             out.push(named(m, c));
         }
         for b in &parts[i + 1..] {
-            if apart(&a.lo, &a.hi, &b.lo, &b.hi, tolerance) {
+            if !resolved(b) || apart(&a.lo, &a.hi, &b.lo, &b.hi, tolerance) {
                 continue;
             }
             let mut touching = Vec::new();
@@ -134,6 +140,20 @@ pub fn crossings(m: &SpatialMechanism, q: &[f64]) -> Vec<SpatialCrossing> {
         }
     }
     out
+}
+
+/// The relative rounding of a solved position (m per m of distance from
+/// the origin): a few hundred times double precision's, for the frames
+/// composed along a chain and the flexure shapes integrated there.
+const RESOLUTION: f64 = 1e-13;
+
+/// How near two parts must come to touch: [`TOUCH_TOLERANCE`] × the
+/// mechanism's size, but no more than that × 10⁴ shortest flexure lengths,
+/// so that one far offset (an origin of 1e30 m) does not make every part
+/// touch every other.
+fn touch_tolerance(m: &SpatialMechanism) -> f64 {
+    let shortest = m.joints.iter().filter_map(|j| Some(j.kind.flexure()?.length())).fold(f64::INFINITY, f64::min);
+    TOUCH_TOLERANCE * m.size().min(1e4 * shortest)
 }
 
 /// The crossing of `a` and `b` at their pieces' pair `(k, l)`: the midpoint
@@ -339,7 +359,9 @@ fn drawn(m: &SpatialMechanism, q: &[f64], f: &SpatialFrames, group: &[usize], to
         });
     }
     for b in 0..m.bodies.len() {
-        let points: Vec<Point3<f64>> = m.attachments(b).iter().map(|r| f.bodies[b] * r).collect();
+        let anchors = m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1);
+        let points = crate::mechanism::findings::hull_points(m.attachments(b), b, anchors);
+        let points: Vec<Point3<f64>> = points.iter().map(|r| f.bodies[b] * r).collect();
         let points = distinct(points, tolerance);
         let edges = hull_edges(&points, tolerance);
         if edges.is_empty() {

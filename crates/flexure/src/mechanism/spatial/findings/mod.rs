@@ -16,14 +16,18 @@
 //!   stiffnesses alone has no section, and is its centreline;
 //! - a rigid body, the ground included, is the edges of the hull of its
 //!   attachment points ([`SpatialMechanism::attachments`], what `flexure
-//!   draw` fills as the link), with no thickness: for flat points the sides
+//!   draw` fills as the link; the ground's without its tendon anchors,
+//!   separate points of the world), with no thickness: for flat points the sides
 //!   of their polygon, as the planar links' outline, otherwise the edges of
 //!   their polytope.
 //!
 //! Two pieces touch when they come within
 //! [`TOUCH_TOLERANCE`](crate::mechanism::findings::TOUCH_TOLERANCE) × the
-//! mechanism's size of each other ([`within`](crate::mechanism::findings::within),
-//! the Gilbert–Johnson–Keerthi distance test). Touching pieces that are
+//! mechanism's size of each other (the size held to 10⁴ of its shortest
+//! flexure's length; [`within`](crate::mechanism::findings::within),
+//! the Gilbert–Johnson–Keerthi distance test). A part so far from the
+//! origin that rounding there exceeds that tolerance (an origin of 1e30 m)
+//! cannot be told touching from apart, and is not tested. Touching pieces that are
 //! neighbours on both parts are one contact. Parts that a joint or a
 //! closure connects (a flexure and the bodies at its ends, two flexures on
 //! one body, bodies on either side of a hinge, slider, ball or weld) meet
