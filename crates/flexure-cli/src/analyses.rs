@@ -1,6 +1,6 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
-use crate::joint::{MAX_FACTOR, chosen, put_estimate, put_limit, serialized, warn_unstable};
+use crate::joint::{MAX_FACTOR, chosen, insert_estimate, insert_limit, serialized, warn_unstable};
 use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments, warn};
 use clap::Args;
 use flexure::connect::{Connection, connect};
@@ -80,7 +80,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         let e = exact_connection(&model, &target)?;
         let c = connect(&model, &target)?;
         let mut reported = json!({});
-        crate::stress::put(&mut reported, &model, &c.alpha, &args.stress, "connect (model)");
+        crate::stress::insert_stress(&mut reported, &model, &c.alpha, &args.stress, "connect (model)");
         let mut answer = json!({
             "energy": e.energy,
             "loads": TipLoad { moment: e.root_moment, fx: e.fx, fy: e.fy },
@@ -89,7 +89,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
             "model": reported,
         });
         let trace = e.trace(&model, &Default::default())?;
-        crate::joint::put_exact_stress(&mut answer, &trace, &args.stress, "connect (exact)")?;
+        crate::joint::insert_exact_stress(&mut answer, &trace, &args.stress, "connect (exact)")?;
         return Ok(answer);
     }
     if let Some(k) = args.segments {
@@ -105,7 +105,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         let c = connect(&chain, &target)?;
         let curvatures: Vec<f64> = c.alpha.iter().map(|a| a * k as f64 / model.length()).collect();
         let mut out = json!({ "energy": c.energy, "curvatures": curvatures });
-        crate::stress::put(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
+        crate::stress::insert_stress(&mut out, &chain, &c.alpha, &args.stress, "connect (segments)");
         if let Ok(e) = exact_connection(&model, &target) {
             out["eta"] = json!(c.eta(e.energy));
         }
@@ -118,10 +118,10 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
         out["order"] = json!(model.order());
         out["quadrature"] = json!(model.quadrature_points());
     }
-    put_estimate(&mut out, &e, &model, &accuracy, "connect");
-    crate::stress::put(&mut out, &model, &c.alpha, &args.stress, "connect");
+    insert_estimate(&mut out, &e, &model, &accuracy, "connect");
+    crate::stress::insert_stress(&mut out, &model, &c.alpha, &args.stress, "connect");
     if args.limit {
-        put_limit(&mut out, &flexure::statics::stability_limit(&model, &c.load, MAX_FACTOR)?, "connect --limit");
+        insert_limit(&mut out, &flexure::statics::stability_limit(&model, &c.load, MAX_FACTOR)?, "connect --limit");
     }
     if let Ok(e) = exact_connection(&model, &target) {
         out["eta"] = json!(c.eta(e.energy));
@@ -211,8 +211,8 @@ fn tendon_row(
     let mut row = serialized(&eq);
     warn_unstable(eq.stable, &format!("tendon at {tension} N"));
     let e = flexure::estimate::tendon_error(f, t, tension, &eq.alpha, target)?;
-    put_estimate(&mut row, &e, f, target, &format!("tendon at {tension} N"));
-    crate::stress::put(&mut row, f, &eq.alpha, stress, &format!("tendon at {tension} N"));
+    insert_estimate(&mut row, &e, f, target, &format!("tendon at {tension} N"));
+    crate::stress::insert_stress(&mut row, f, &eq.alpha, stress, &format!("tendon at {tension} N"));
     Ok(row)
 }
 
@@ -265,7 +265,7 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
             }
             if args.limit {
                 let limit = flexure::tendon::stability_limit(&f, &t, tension, MAX_FACTOR)?;
-                put_limit(&mut row, &limit, "tendon --limit");
+                insert_limit(&mut row, &limit, "tendon --limit");
             }
             Ok(row)
         }

@@ -53,7 +53,7 @@ pub struct Shape<'a> {
 /// reference_quadrature (numbers for one joint, {joint: n} for a
 /// mechanism), and where some value has no estimate, `unestimated` (their
 /// numbers from 1) and `reference_stable`}.
-pub fn put(answer: &mut Value, e: &ValueEstimate, shape: &Shape) {
+pub fn insert_eigen_estimate(answer: &mut Value, e: &ValueEstimate, shape: &Shape) {
     let paired: Vec<f64> = e.relative.iter().map_while(|r| *r).collect();
     let mut out = Map::new();
     let relative = if shape.one { paired.first().map_or(Value::Null, |r| json!(r)) } else { json!(paired) };

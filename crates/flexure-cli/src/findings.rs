@@ -57,7 +57,7 @@ fn crossing_json<P: AsRef<[f64]>>(c: &Crossing<P>) -> Value {
     v
 }
 
-/// The closures of `m` open at rest, told (warnings, or notes with `preload = true`) and listed.
+/// The closures of `m` open at rest, crossing_answers (warnings, or notes with `preload = true`) and listed.
 pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
     let open = open_closures(m, &Settings::default()).map_err(|e| format!("{}: {e}", file.display()))?;
     for c in &open {
@@ -87,16 +87,16 @@ pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>,
 
 /// The parts of `m` that cross at coordinates `q`, told and listed.
 pub fn shape(m: &Mechanism, q: &[f64], file: &Path) -> Vec<Value> {
-    told(crossings(m, q), file)
+    crossing_answers(crossings(m, q), file)
 }
 
 /// The parts of a spatial mechanism that cross at coordinates `q`, told and
 /// listed as [`shape`] tells the planar ones.
 pub fn spatial_shape(m: &SpatialMechanism, q: &[f64], file: &Path) -> Vec<Value> {
-    told(flexure::mechanism::spatial::findings::crossings(m, q), file)
+    crossing_answers(flexure::mechanism::spatial::findings::crossings(m, q), file)
 }
 
-fn told<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
+fn crossing_answers<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
     for c in &found {
         warn(format!("{}: {}", file.display(), c.message()));
     }
@@ -115,7 +115,7 @@ pub fn along(
     key: &str,
     file: &Path,
 ) -> Vec<Value> {
-    told_along(crossings_along(m, shapes.iter().map(|s| s.1)), shapes, (what, shapes_are), key, file)
+    crossing_answers_along(crossings_along(m, shapes.iter().map(|s| s.1)), shapes, (what, shapes_are), key, file)
 }
 
 /// [`along`] for a spatial mechanism.
@@ -127,10 +127,10 @@ pub fn spatial_along(
     file: &Path,
 ) -> Vec<Value> {
     let found = flexure::mechanism::spatial::findings::crossings_along(m, shapes.iter().map(|s| s.1));
-    told_along(found, shapes, (what, shapes_are), key, file)
+    crossing_answers_along(found, shapes, (what, shapes_are), key, file)
 }
 
-fn told_along<P: AsRef<[f64]>>(
+fn crossing_answers_along<P: AsRef<[f64]>>(
     found: Vec<(usize, Vec<Crossing<P>>)>,
     shapes: &[(f64, &[f64])],
     (what, shapes_are): (&str, &str),

@@ -32,7 +32,7 @@ pub fn estimate(e: &ErrorEstimate) -> Value {
 
 /// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
 /// when the estimate misses `target` (`what` names the answer).
-pub fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
+pub fn insert_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
     if e.flagged {
         // At the highest order no order is left to try: the estimate is against the exact elastica.
         let hint = if e.exact {
@@ -57,7 +57,7 @@ pub const MAX_FACTOR: f64 = 1000.0;
 /// lost at `factor` times the load) or "stable_up_to" (the path holds to
 /// `factor`, and `stalled` says why it could not be followed further, if it
 /// could not); such a stall is also said on stderr (`what` names the answer).
-pub fn put_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
+pub fn insert_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
     if let flexure::StabilityLimit::StableUpTo { factor, stalled: Some(why) } = limit {
         warn(format!(
             "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
@@ -263,15 +263,15 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
         model["limit_fraction"] = json!(limit);
     }
     warn_unstable(eq.stable, "deflect");
-    crate::stress::put(&mut model, &f, data.alpha(), &args.stress, "deflect");
+    crate::stress::insert_stress(&mut model, &f, data.alpha(), &args.stress, "deflect");
     if args.flexure.auto() {
         model["order"] = json!(f.order());
         model["quadrature"] = json!(f.quadrature_points());
     }
     let e = flexure::estimate::deflect_error(&f, &load, data.alpha(), &target)?;
-    put_estimate(&mut model, &e, &f, &target, "deflect");
+    insert_estimate(&mut model, &e, &f, &target, "deflect");
     if args.limit {
-        put_limit(&mut model, &flexure::statics::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
+        insert_limit(&mut model, &flexure::statics::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
     }
     if !args.exact {
         return Ok(model);
@@ -290,16 +290,21 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
             "angle_degrees": (m.phi - e.phi).abs().to_degrees(),
         },
     });
-    put_exact_stress(&mut answer, &trace, &args.stress, "deflect (exact)")?;
+    insert_exact_stress(&mut answer, &trace, &args.stress, "deflect (exact)")?;
     Ok(answer)
 }
 
 /// The exact answer's bending, from its [`Trace`], as
-/// [`crate::stress::put`] writes the model's: `stress: {max, at}` (or,
+/// [`crate::stress::insert_stress`] writes the model's: `stress: {max, at}` (or,
 /// without a thickness, `curvature_max`), `safety_factor` with a warning
 /// naming `what` below 1, and `shape` when asked for.
-pub fn put_exact_stress(answer: &mut Value, trace: &Trace, options: &StressOptions, what: &str) -> flexure::Result<()> {
-    crate::stress::put_peak(answer, trace.peak_stress()?, || trace.peak_curvature(), options.yield_strength, what)?;
+pub fn insert_exact_stress(
+    answer: &mut Value,
+    trace: &Trace,
+    options: &StressOptions,
+    what: &str,
+) -> flexure::Result<()> {
+    crate::stress::insert_peak(answer, trace.peak_stress()?, || trace.peak_curvature(), options.yield_strength, what)?;
     if let Some(k) = options.shape {
         let points: Vec<Value> = trace
             .shape(k)?
@@ -411,7 +416,11 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
         answer["order"] = json!(f.order());
         answer["quadrature"] = json!(f.quadrature_points());
     }
-    crate::eigen::put(&mut answer, &e, &crate::eigen::Shape { key: "critical_load", one: true, flexures: &[] });
+    crate::eigen::insert_eigen_estimate(
+        &mut answer,
+        &e,
+        &crate::eigen::Shape { key: "critical_load", one: true, flexures: &[] },
+    );
     let hint = if !args.flexure.auto() {
         "try --order auto".to_string()
     } else {

@@ -148,7 +148,7 @@ pub fn nothing_moves(what: &str) -> String {
 
 /// `quasi_static` and, when there is something to explain, a `note`: the
 /// directions without inertia, and fewer finite modes than `--count` asked for.
-fn put_note(answer: &mut Value, modes: &Modes, asked: usize, explicit: bool) {
+fn insert_note(answer: &mut Value, modes: &Modes, asked: usize, explicit: bool) {
     answer["quasi_static"] = json!(modes.quasi_static);
     let mut notes = Vec::new();
     if modes.quasi_static > 0 {
@@ -219,8 +219,8 @@ fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Resu
         })
         .collect();
     let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
-    put_note(&mut answer, &modes, asked, count.is_some());
-    put_mechanism_estimate(&mut answer, &m, &modes, &estimate, target, file);
+    insert_note(&mut answer, &modes, asked, count.is_some());
+    insert_mechanism_estimate(&mut answer, &m, &modes, &estimate, target, file);
     // A loading path that snapped through a limit load is said, as `solve` says it.
     if let Some(limit) = modes.limit {
         answer["limit_fraction"] = json!(limit);
@@ -235,7 +235,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Resu
 
 /// `error_estimate` and `flagged` of a mechanism's modes (with `order`,
 /// {joint: N}, when a flexure has `order = "auto"`), warning per mode that misses.
-fn put_mechanism_estimate(
+fn insert_mechanism_estimate(
     answer: &mut Value,
     m: &flexure::mechanism::Mechanism,
     modes: &Modes,
@@ -244,7 +244,11 @@ fn put_mechanism_estimate(
     file: &Path,
 ) {
     let flexures = crate::mechanism::flexure_names(m);
-    crate::eigen::put(answer, e, &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures });
+    crate::eigen::insert_eigen_estimate(
+        answer,
+        e,
+        &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures },
+    );
     let auto = m.joints.iter().any(|j| j.auto_order);
     if auto {
         answer["order"] = crate::mechanism::flexure_orders(m);
@@ -337,12 +341,16 @@ fn joint_modes(args: &ModesArgs) -> Result<Value, String> {
     let shapes: Vec<Vec<f64>> =
         (0..modes.omega.len()).map(|k| modes.shapes.column(k).iter().copied().collect()).collect();
     let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
-    put_note(&mut answer, &modes, asked, args.count.is_some());
+    insert_note(&mut answer, &modes, asked, args.count.is_some());
     if auto {
         answer["order"] = json!(f.order());
         answer["quadrature"] = json!(f.quadrature_points());
     }
-    crate::eigen::put(&mut answer, &estimate, &crate::eigen::Shape { key: "omega", one: false, flexures: &[] });
+    crate::eigen::insert_eigen_estimate(
+        &mut answer,
+        &estimate,
+        &crate::eigen::Shape { key: "omega", one: false, flexures: &[] },
+    );
     let hint = if !auto {
         "try --order auto, or fewer --count".to_string()
     } else {

@@ -97,13 +97,13 @@ pub fn run_motion(
     })?;
     let m = load(file)?;
     let run = with_progress_bar(duration, || simulate(&m, &settings, options.start()))
-        .map_err(|e| format!("{}: {}", file.display(), said(e, duration)))?;
+        .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))?;
     Ok((m, run))
 }
 
 /// The library's error as `simulate` says it: options by their names, and
 /// an interrupt at its time, not at a fraction of a load.
-pub fn said(e: flexure::Error, duration: f64) -> String {
+pub fn simulation_error(e: flexure::Error, duration: f64) -> String {
     match e {
         flexure::Error::InterruptedAt { time, .. } => {
             format!(
@@ -118,14 +118,14 @@ pub fn said(e: flexure::Error, duration: f64) -> String {
 
 /// `stopped` for a run that ended early: its time and the error, which
 /// makes the command exit 2 after printing the samples it reached.
-pub fn put_stopped(v: &mut Value, run: &Simulation, file: &Path, duration: f64) {
+pub fn insert_stopped(v: &mut Value, run: &Simulation, file: &Path, duration: f64) {
     if let Some(e) = &run.stopped {
         let reached = run.time.last().copied().unwrap_or(0.0);
         let error = format!(
             "{}: the run stopped after {} samples (to t = {reached:e} s of {duration:e} s, each printed above): {}",
             file.display(),
             run.time.len(),
-            said(e.clone(), duration)
+            simulation_error(e.clone(), duration)
         );
         v["stopped"] = json!({ "time": reached, "error": error });
     }
@@ -179,7 +179,7 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
         findings.extend(crate::findings::spatial_along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
         let mut v = crate::mechanism::spatial::motion_json(&m, &run);
-        crate::mechanism::spatial::put_findings(&mut v, findings);
+        crate::mechanism::spatial::insert_findings(&mut v, findings);
         if let Some((path, mut file)) = out {
             use std::io::Write as _;
             file.write_all(spatial_csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
@@ -187,26 +187,26 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         }
         if let Some(e) = &run.stopped {
             let reached = run.time.last().copied().unwrap_or(0.0);
-            v["stopped"] = json!({ "time": reached, "error": format!("{}: the run stopped after {} samples (to t = {reached:e} s of {:e} s, each printed above): {}", args.file.display(), run.time.len(), args.duration, said(e.clone(), args.duration)) });
+            v["stopped"] = json!({ "time": reached, "error": format!("{}: the run stopped after {} samples (to t = {reached:e} s of {:e} s, each printed above): {}", args.file.display(), run.time.len(), args.duration, simulation_error(e.clone(), args.duration)) });
         }
         return Ok(v);
     }
     let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
     let mut v = motion_json(&m, &run);
-    put_motion_checks(&mut v, &m, &run, &args.file)?;
+    insert_motion_checks(&mut v, &m, &run, &args.file)?;
     if let Some((path, mut file)) = out {
         use std::io::Write as _;
         file.write_all(csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
         v["out"] = json!(path.display().to_string());
     }
-    put_stopped(&mut v, &run, &args.file, args.duration);
+    insert_stopped(&mut v, &run, &args.file, args.duration);
     Ok(v)
 }
 
 /// The checks `simulate` makes of a run, shared by `draw --simulate`:
 /// closures open at rest, and parts that cross at a sample (`findings`,
 /// each told on stderr).
-pub fn put_motion_checks(v: &mut Value, m: &Mechanism, run: &Simulation, file: &Path) -> Result<(), String> {
+pub fn insert_motion_checks(v: &mut Value, m: &Mechanism, run: &Simulation, file: &Path) -> Result<(), String> {
     let mut findings = crate::findings::closures(m, file)?;
     let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
     findings.extend(crate::findings::along(m, &samples, ("t (s)", "samples"), "time", file));

@@ -8,7 +8,7 @@
 //! `--diameter` (a round rod) gives all three stiffnesses, `G` from
 //! `--poisson` (0.3 if not given) or `--shear-modulus`.
 
-use crate::joint::{KinematicsArgs, MAX_FACTOR, matrix, put_limit, warn_unstable};
+use crate::joint::{KinematicsArgs, MAX_FACTOR, insert_limit, matrix, warn_unstable};
 use crate::options::{FlexureOptions, List, Order, ProfileArg, number, numbers, profile, warn};
 use clap::Args;
 use flexure::Error;
@@ -110,7 +110,7 @@ fn alpha(f: &SpatialFlexure, alpha: &[f64]) -> Value {
 }
 
 /// `error_estimate` and `flagged`, with a warning when it misses `target`.
-fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, target: &Accuracy, what: &str) {
+fn insert_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, target: &Accuracy, what: &str) {
     if e.flagged {
         let hint =
             if f.orders().iter().all(|&n| n >= estimate::spatial::MAX_AUTO_ORDER) { "" } else { "; try --order auto" };
@@ -121,7 +121,7 @@ fn put_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, targe
 }
 
 /// The peak stress, with `safety_factor` from `--yield-strength`, for a section with geometry.
-fn put_stress(
+fn insert_stress(
     answer: &mut Value,
     f: &SpatialFlexure,
     alpha: &[f64],
@@ -245,7 +245,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         model["limit_fraction"] = json!(limit);
     }
     warn_unstable(eq.stable, "deflect");
-    put_stress(&mut model, &f, data.alpha(), args.stress.yield_strength, "deflect")?;
+    insert_stress(&mut model, &f, data.alpha(), args.stress.yield_strength, "deflect")?;
     if let Some(k) = args.stress.shape {
         model["shape"] = shape(&f, data.alpha(), k)?;
     }
@@ -254,9 +254,9 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         model["subintervals"] = json!(f.subintervals());
     }
     let e = estimate::spatial::deflect_error(&f, &load, data.alpha(), &target)?;
-    put_estimate(&mut model, &e, &f, &target, "deflect");
+    insert_estimate(&mut model, &e, &f, &target, "deflect");
     if args.limit {
-        put_limit(&mut model, &spatial::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
+        insert_limit(&mut model, &spatial::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
     }
     if !args.exact {
         return Ok(model);

@@ -26,7 +26,7 @@ pub fn check(f: &Flexure, options: &StressOptions) -> flexure::Result<()> {
 /// the flexure is unstressed: it would be infinite), and a warning naming
 /// `what` below 1.
 pub fn peak(answer: &mut Value, f: &Flexure, alpha: &[f64], yield_strength: Option<f64>, what: &str) {
-    let never = put_peak(
+    let never = insert_peak(
         answer,
         peak_stress(f, alpha),
         || Ok::<_, std::convert::Infallible>(peak_curvature(f, alpha)),
@@ -40,7 +40,7 @@ pub fn peak(answer: &mut Value, f: &Flexure, alpha: &[f64], yield_strength: Opti
 
 /// Writes `stress` (and `safety_factor`) from `stress`, or without one
 /// `curvature_max` from `curvature`: shared by the model's and the exact answers.
-pub fn put_peak<E>(
+pub fn insert_peak<E>(
     answer: &mut Value,
     stress: Option<Peak>,
     curvature: impl FnOnce() -> Result<Peak, E>,
@@ -79,7 +79,7 @@ pub fn shape(f: &Flexure, alpha: &[f64], count: usize) -> Value {
 }
 
 /// [`peak`], and [`shape`] when asked for: everything `options` asks of `f` at `alpha`.
-pub fn put(answer: &mut Value, f: &Flexure, alpha: &[f64], options: &StressOptions, what: &str) {
+pub fn insert_stress(answer: &mut Value, f: &Flexure, alpha: &[f64], options: &StressOptions, what: &str) {
     peak(answer, f, alpha, options.yield_strength, what);
     if let Some(k) = options.shape {
         answer["shape"] = shape(f, alpha, k);

@@ -32,7 +32,11 @@ pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
     if auto {
         answer["order"] = flexure_orders(&m);
     }
-    crate::eigen::put(&mut answer, &e, &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures });
+    crate::eigen::insert_eigen_estimate(
+        &mut answer,
+        &e,
+        &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures },
+    );
     let hint = if auto {
         "the flexures of order = \"auto\" are at the cap of 64: give the others order = \"auto\" too"
     } else {

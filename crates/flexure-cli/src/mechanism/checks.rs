@@ -117,7 +117,7 @@ pub(super) fn solution_answer(
 /// stability is lost, the rows whose estimate is flagged, the first row past
 /// each yield strength, and a sweep that stopped (`stopped`, which makes the
 /// command exit 2 after printing its rows).
-pub(super) fn put_sweep_checks(
+pub(super) fn insert_sweep_checks(
     v: &mut Value,
     m: &Mechanism,
     out: &Sweep,

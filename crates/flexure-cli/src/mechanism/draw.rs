@@ -1,7 +1,7 @@
 //! `flexure draw`: a mechanism's unloaded and loaded shapes (or a
 //! simulated motion) as one SVG, with the warnings `solve` gives.
 
-use super::checks::{put_sweep_checks, solution_answer};
+use super::checks::{insert_sweep_checks, solution_answer};
 use super::drawing;
 use super::load_with_reports;
 use crate::analyses::{SweepSpec, sweep_values};
@@ -98,7 +98,7 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
         if let Some(k) = k {
             v["force_scale_m_per_n"] = json!(k);
         }
-        super::spatial::put_findings(&mut v, findings);
+        super::spatial::insert_findings(&mut v, findings);
         return Ok(v);
     }
     if let Some(duration) = args.simulate {
@@ -109,7 +109,7 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
         flexure_chart::write_stack(&args.out, &drawn.figures)?;
         let mut v = json!({ "out": args.out.display().to_string(), "shapes": drawn.snapshots.len() + 1,
                           "snapshots": drawn.snapshots, "force_scale_m_per_n": drawn.per_newton });
-        super::spatial::put_findings(&mut v, findings);
+        super::spatial::insert_findings(&mut v, findings);
         return Ok(v);
     }
     let s = flexure::mechanism::spatial::statics::solve(m, &settings).map_err(err)?;
@@ -121,7 +121,7 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
     if let Some(k) = k {
         v["force_scale_m_per_n"] = json!(k);
     }
-    super::spatial::put_findings(&mut v, findings);
+    super::spatial::insert_findings(&mut v, findings);
     Ok(v)
 }
 
@@ -150,7 +150,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
             let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
             let out = sweep(&m, &p, &values, &settings).map_err(err)?;
-            put_sweep_checks(&mut checks, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
+            insert_sweep_checks(&mut checks, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
             // Shapes past the limit (on its far side from the first value) are labelled so.
             let past =
                 |value: f64| out.stability_limit.is_some_and(|l| (value - l.value) * (values[0] - l.value) < 0.0);
@@ -196,8 +196,8 @@ fn draw_motion(args: &DrawArgs, duration: f64) -> Result<Value, String> {
     let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
     // simulate's warnings; of its answer, draw keeps the findings.
     let mut checks = json!({});
-    crate::simulate::put_motion_checks(&mut checks, &m, &run, &args.file)?;
-    crate::simulate::put_stopped(&mut checks, &run, &args.file, duration);
+    crate::simulate::insert_motion_checks(&mut checks, &m, &run, &args.file)?;
+    crate::simulate::insert_stopped(&mut checks, &run, &args.file, duration);
     let err = |e: flexure::Error| super::file_error(&args.file, e);
     let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &Settings::default()).map_err(err)?;
     let last = run.time.len() - 1;

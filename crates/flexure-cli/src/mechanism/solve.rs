@@ -1,7 +1,7 @@
 //! `flexure solve`: a mechanism's equilibrium, optionally with the
 //! compliance of a frame or a sweep of one load.
 
-use super::checks::{put_sweep_checks, solution_answer};
+use super::checks::{insert_sweep_checks, solution_answer};
 use super::{load_with_reports, point_any};
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
@@ -115,7 +115,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
                 "columns": sweep_table(&m, &spec.parameter, compliance_at.is_some()),
                 "rows": rows,
             });
-            put_sweep_checks(&mut v, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
+            insert_sweep_checks(&mut v, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
             Ok(v)
         }
         None => {

@@ -25,7 +25,7 @@ pub fn read(path: &Path) -> Result<Option<SpatialMechanism>, String> {
     }
 }
 
-fn said(file: &Path) -> impl Fn(flexure::Error) -> String + '_ {
+fn file_error(file: &Path) -> impl Fn(flexure::Error) -> String + '_ {
     move |e| match e {
         e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
         e => crate::mechanism::file_error(file, e),
@@ -65,7 +65,7 @@ pub fn solve_cmd(
     target: &Accuracy,
 ) -> Result<Value, String> {
     let settings = Settings::default();
-    let err = said(file);
+    let err = file_error(file);
     let mut findings = crate::findings::spatial_closures(m, file)?;
     let at = match compliance_at {
         Some((name, at)) => {
@@ -123,7 +123,7 @@ pub fn solve_cmd(
         if let Some((value, e)) = &out.stopped {
             v["stopped"] = json!({ "value": value, "error": format!("{}: {e}", file.display()) });
         }
-        put_findings(&mut v, findings);
+        insert_findings(&mut v, findings);
         return Ok(v);
     }
     let s = solve(m, &settings).map_err(&err)?;
@@ -141,12 +141,12 @@ pub fn solve_cmd(
     if let Some((b, point)) = at {
         v["compliance"] = crate::joint::matrix(&compliance(m, &s, b, point).map_err(&err)?);
     }
-    put_findings(&mut v, findings);
+    insert_findings(&mut v, findings);
     Ok(v)
 }
 
 /// `findings`, when there are any (each already told on stderr).
-pub fn put_findings(v: &mut Value, findings: Vec<Value>) {
+pub fn insert_findings(v: &mut Value, findings: Vec<Value>) {
     if !findings.is_empty() {
         v["findings"] = Value::Array(findings);
     }
@@ -173,7 +173,7 @@ fn reference_of(e: &ValueEstimate, flexures: &[String]) -> String {
 }
 
 /// What to do about a spatial eigenvalue answer that misses its target.
-fn raise(m: &SpatialMechanism) -> &'static str {
+fn advice_for_orders(m: &SpatialMechanism) -> &'static str {
     if m.joints.iter().any(|j| j.auto_order) {
         "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
     } else {
@@ -183,7 +183,7 @@ fn raise(m: &SpatialMechanism) -> &'static str {
 
 /// `order` {joint: [n_twist, n_y, n_z], as the file's `orders`} when a
 /// spatial flexure has `order = "auto"`: the orders the answer was found at.
-fn put_orders(v: &mut Value, m: &SpatialMechanism) {
+fn insert_orders(v: &mut Value, m: &SpatialMechanism) {
     if m.joints.iter().any(|j| j.auto_order) {
         v["order"] = Value::Object(
             m.joints.iter().filter_map(|j| Some((j.name.clone(), json!(j.kind.flexure()?.orders())))).collect(),
@@ -198,21 +198,25 @@ fn put_orders(v: &mut Value, m: &SpatialMechanism) {
 pub fn buckle_cmd(m: &SpatialMechanism, file: &Path, target: &Accuracy) -> Result<Value, String> {
     let settings = Settings::default();
     let findings = crate::findings::spatial_closures(m, file)?;
-    let (m, b, e) = buckle_auto(m, &settings, target).map_err(said(file))?;
+    let (m, b, e) = buckle_auto(m, &settings, target).map_err(file_error(file))?;
     let mut v = json!(b);
     v["dimension"] = json!(3);
     let flexures = flexure_names(&m);
-    crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures });
-    put_orders(&mut v, &m);
+    crate::eigen::insert_eigen_estimate(
+        &mut v,
+        &e,
+        &crate::eigen::Shape { key: "load_factor", one: true, flexures: &flexures },
+    );
+    insert_orders(&mut v, &m);
     crate::eigen::warn_missed(
         &e,
         target,
         &format!("{}: buckle", file.display()),
         |_| format!("the load factor {:.6}", b.load_factor),
         &reference_of(&e, &flexures),
-        raise(&m),
+        advice_for_orders(&m),
     );
-    put_findings(&mut v, findings);
+    insert_findings(&mut v, findings);
     Ok(v)
 }
 
@@ -244,21 +248,25 @@ pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target
             file.display(),
             crate::mechanism::loads_named(file, &e)
         ),
-        e => said(file)(e),
+        e => file_error(file)(e),
     };
     let (m, modes, e) = modes_auto(m, &settings, asked, target).map_err(unstable)?;
     let shapes: Vec<Value> = (0..modes.omega.len()).map(|k| by_joint(&m, modes.shapes.column(k).as_slice())).collect();
     let mut v = json!({ "dimension": 3, "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
     let flexures = flexure_names(&m);
-    crate::eigen::put(&mut v, &e, &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures });
-    put_orders(&mut v, &m);
+    crate::eigen::insert_eigen_estimate(
+        &mut v,
+        &e,
+        &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures },
+    );
+    insert_orders(&mut v, &m);
     crate::eigen::warn_missed(
         &e,
         target,
         &format!("{}: modes", file.display()),
         |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
         &reference_of(&e, &flexures),
-        &format!("{}, or ask fewer --count", raise(&m)),
+        &format!("{}, or ask fewer --count", advice_for_orders(&m)),
     );
     if modes.quasi_static > 0 {
         v["quasi_static"] = json!(modes.quasi_static);
@@ -266,7 +274,7 @@ pub fn modes_cmd(m: &SpatialMechanism, file: &Path, count: Option<usize>, target
     if let Some(limit) = modes.limit {
         v["limit_fraction"] = json!(limit);
     }
-    put_findings(&mut v, findings);
+    insert_findings(&mut v, findings);
     Ok(v)
 }
 
@@ -309,5 +317,5 @@ pub fn simulate(
     let settings = options.settings(duration);
     let equilibrium = options.start() == flexure::dynamics::simulation::Start::Equilibrium;
     flexure::dynamics::spatial::simulate(m, &settings.motion, &settings.equilibrium, equilibrium)
-        .map_err(|e| format!("{}: {}", file.display(), crate::simulate::said(e, duration)))
+        .map_err(|e| format!("{}: {}", file.display(), crate::simulate::simulation_error(e, duration)))
 }
