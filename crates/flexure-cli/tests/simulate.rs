@@ -289,3 +289,49 @@ fn initial_coordinates_are_bounded() {
         "{err}"
     );
 }
+
+/// Ctrl-C (SIGINT) during `simulate` keeps the work (issue 39 item 1: the
+/// process used to die with 130, nothing on stdout and an empty `--out`):
+/// the binary prints every sample reached, `stopped` with "interrupted at
+/// t = …", writes the same samples to the CSV, and exits 2. The arm is
+/// started from `[initial]` (no static solve, so the t = 0 sample is taken
+/// at once) over 10⁶ s, which would take minutes; the signal is sent once
+/// the `--out` file exists (it is created after the handler is installed)
+/// and the integrator has run a while.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_keeps_the_samples_reached() {
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let file = arm(dir.path(), "[initial]\npin = 0.3\n");
+    let csv = dir.path().join("run.csv");
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexure"))
+        .args(["simulate", &file, "--duration", "1e6", "--every", "1e3", "--max-steps", "1e9", "--json", "--out"])
+        .arg(&csv)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !csv.exists() {
+        assert!(start.elapsed() < Duration::from_secs(60), "the run never opened its --out file");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    let sent = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(sent.success());
+    let out = child.wait_with_output().unwrap();
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    let v: Value = serde_json::from_str(&stdout).unwrap();
+    let time = floats(&v["time"]);
+    let error = v["stopped"]["error"].as_str().unwrap();
+    assert!(error.contains("interrupted at t = ") && stderr.contains(error), "{error}\n{stderr}");
+    assert_eq!(v["stopped"]["time"].as_f64(), time.last().copied());
+    assert!(!time.is_empty() && *time.last().unwrap() < 1e6, "{time:?}");
+    // The CSV holds the header and one row per sample printed, same times.
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<f64> = text.lines().skip(1).map(|l| l.split(',').next().unwrap().parse().unwrap()).collect();
+    assert_eq!(rows, time);
+}

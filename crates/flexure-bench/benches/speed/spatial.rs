@@ -4,7 +4,8 @@
 //! against `pose_jacobian_hessian`; and the Bathe–Bolourchi bend at the
 //! rod's parameters (GJ = EI), orders 3 (the tip within 2.4e-4 of L of the
 //! rod, tests/spatial_validation.rs), at the default subintervals and at
-//! the two that suffice for 1e-3 of L, against `rod/bathe_bolourchi_tol_1e-3`.
+//! the two that suffice for 1e-3 of L, against `rod/bathe_bolourchi_tol_1e-3`;
+//! and the Hessian at the order cap, [64, 64, 64].
 
 use criterion::Criterion;
 use flexure::Level;
@@ -40,6 +41,17 @@ pub fn run(c: &mut Criterion) {
             i = (i + 9) % alphas.len();
             update(&f, black_box(&alphas[i..i + 9]), Level::Hessian, &mut k);
             k.hessian_position(8, 8).x
+        })
+    });
+    // The order cap, [64, 64, 64] (n = 192): the Hessian's cost is that of
+    // a solve's Newton iteration at the cap (issue 39: 16-45 s to solve).
+    let cap = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.2, 1.0).unwrap(), [64, 64, 64]).unwrap();
+    let alpha_cap: Vec<f64> = (0..192).map(|a| 0.3 * alphas[a % alphas.len()] / (1 + a / 3) as f64).collect();
+    let mut k_cap = SpatialKinematics::new(&cap);
+    g.bench_function("pose_jacobian_hessian_order_64", |b| {
+        b.iter(|| {
+            update(&cap, black_box(&alpha_cap), Level::Hessian, &mut k_cap);
+            k_cap.hessian_position(191, 191).x
         })
     });
     let load = SpatialLoad { moment: [0.1, 0.2, 0.3], force: [0.2, 0.5, 0.4] };

@@ -51,6 +51,12 @@ pub struct SpatialKinematics<T: Scalar = f64> {
     tangents: Vec<Tangent<T>>,
     /// $\partial_a\partial_b\Omega$ of the step at `[a * n + b]`.
     exponent_second: Vec<Vector6<T>>,
+    /// Each coordinate's nodal twist derivatives, for the step's second derivatives.
+    derivatives: Vec<[Vector6<T>; 3]>,
+    /// The exponent's second derivative along pairs of unit nodal directions.
+    bilinear: Vec<Vector6<T>>,
+    /// That bilinear form applied to each coordinate's derivative: $n\times 18$.
+    contracted: Vec<Vector6<T>>,
 }
 
 impl<T: Scalar> SpatialKinematics<T> {
@@ -75,6 +81,9 @@ impl<T: Scalar> SpatialKinematics<T> {
             moved: vec![Vector6::zeros(); n],
             tangents: vec![Tangent::default(); n],
             exponent_second: vec![Vector6::zeros(); n * n],
+            derivatives: vec![[Vector6::zeros(); 3]; n],
+            bilinear: vec![Vector6::zeros(); SLOTS * SLOTS],
+            contracted: vec![Vector6::zeros(); n * SLOTS],
         }
     }
 
@@ -148,6 +157,86 @@ fn node_derivatives<T: Scalar>(flexure: &SpatialFlexure, k: usize, a: usize) -> 
 
 fn parts<T: Scalar>(x: &Vector6<T>) -> (Vector3<T>, Vector3<T>) {
     (Vector3::new(x[0], x[1], x[2]), Vector3::new(x[3], x[4], x[5]))
+}
+
+/// The nodal twists' entries, 3 nodes of 6: the unit directions a
+/// coordinate's derivative is a combination of.
+const SLOTS: usize = 18;
+
+/// The Magnus exponent's second derivatives $D^2\Omega[\partial_a\xi, \partial_b\xi]$
+/// of one step, for every pair of coordinates, into `data.exponent_second`.
+/// $D^2\Omega$ is bilinear in the nodal derivatives, which span at most
+/// [`SLOTS`] unit directions (9 for a flexure: 3 nodes, 3 curvatures):
+/// it is taken on the pairs of directions the coordinates use and
+/// combined, $\sum_{pq}c_{a,p}c_{b,q}D^2\Omega[e_p, e_q]$, rather than
+/// taken for each of the $n(n+1)/2$ pairs; at orders [64, 64, 64]
+/// ($n = 192$) that is 45 jets a step rather than 18 528 (issue 39). Taken
+/// above `2 * SLOTS` coordinates; below, the combining costs more than it saves.
+fn exponent_second<T: Scalar>(
+    data: &mut SpatialKinematics<T>,
+    xi: &[Vector6<T>; 3],
+    derivative: &impl Fn(usize) -> [Vector6<T>; 3],
+    h: f64,
+) {
+    let n = data.columns.len();
+    for a in 0..n {
+        data.derivatives[a] = derivative(a);
+    }
+    let zero = T::zero();
+    let used = |p: usize| data.derivatives.iter().any(|d| d[p / 6][p % 6] != zero);
+    let mut slots = [0usize; SLOTS];
+    let mut s = 0;
+    for p in 0..SLOTS {
+        if used(p) {
+            slots[s] = p;
+            s += 1;
+        }
+    }
+    let unit = |p: usize, j: usize| {
+        let mut u = Vector6::zeros();
+        if p / 6 == j {
+            u[p % 6] = T::one();
+        }
+        u
+    };
+    for i in 0..s {
+        for k in i..s {
+            let (p, q) = (slots[i], slots[k]);
+            let jets: [Jet2<T>; 3] =
+                std::array::from_fn(|j| Jet2 { v: xi[j], a: unit(p, j), b: unit(q, j), ab: Vector6::zeros() });
+            let ab = exponent(&jets, h).ab;
+            data.bilinear[i * SLOTS + k] = ab;
+            data.bilinear[k * SLOTS + i] = ab;
+        }
+    }
+    let used = &slots[..s];
+    for a in 0..n {
+        for k in 0..s {
+            // The form is symmetric: its row k is its column k.
+            let row = &data.bilinear[k * SLOTS..k * SLOTS + s];
+            data.contracted[a * SLOTS + k] = combined(&data.derivatives[a], used, row);
+        }
+    }
+    for a in 0..n {
+        for b in a..n {
+            let ab = combined(&data.derivatives[b], used, &data.contracted[a * SLOTS..a * SLOTS + s]);
+            data.exponent_second[a * n + b] = ab;
+            data.exponent_second[b * n + a] = ab;
+        }
+    }
+}
+
+/// $\sum_k d_{p_k}\thinspace x_k$: the nodal derivative `d`'s entries at the
+/// directions `slots` weighing `x`.
+fn combined<T: Scalar>(d: &[Vector6<T>; 3], slots: &[usize], x: &[Vector6<T>]) -> Vector6<T> {
+    let mut sum = Vector6::zeros();
+    for (&p, x) in slots.iter().zip(x) {
+        let c = d[p / 6][p % 6];
+        if c != T::zero() {
+            sum += x * c;
+        }
+    }
+    sum
 }
 
 /// $\mathrm{Ad}_{g^{-1}}\xi = (R^T\omega,\ R^T(v - p\times\omega))$ for $g = (R, p)$.
@@ -314,7 +403,11 @@ pub(super) fn advance<T: Scalar>(
             data.tangents[a] = step.tangent(dw, dv);
             data.moved[a] = adjoint_inverse(&step.r, &step.p, &data.columns[a]);
         }
-        if order >= 2 {
+        if order >= 2 && n > 2 * SLOTS {
+            exponent_second(data, xi, &derivative, h);
+        } else if order >= 2 {
+            // Few coordinates: a jet for each pair costs no more than one
+            // for each pair of directions, without the combining.
             for a in 0..n {
                 let da = derivative(a);
                 for b in a..n {
@@ -326,6 +419,8 @@ pub(super) fn advance<T: Scalar>(
                     data.exponent_second[b * n + a] = ab;
                 }
             }
+        }
+        if order >= 2 {
             for a in 0..n {
                 for b in 0..n {
                     let (ta, tb) = (&data.tangents[a], &data.tangents[b]);

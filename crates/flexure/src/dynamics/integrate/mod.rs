@@ -63,7 +63,8 @@
 //! missing from $f$ lie in its row space and its multipliers must absorb
 //! them exactly), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
 //! `absolute` + `tolerance` × its size (velocities times $h$ when there
-//! are closures: they are index-2 variables there), must be at most 1; the
+//! are closures or directions without inertia: they are index-2 variables
+//! there), must be at most 1; the
 //! step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
 //! In the first two steps only positions are weighed: the velocities of
 //! massless directions at the start are not consistent with their motion

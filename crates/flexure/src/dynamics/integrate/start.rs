@@ -29,13 +29,13 @@ const START_ITERATIONS: usize = 30;
 /// $r$ has fallen below $10^{-8}$ of its start's (or rounding's level) and
 /// the closure violation is no larger than the start's (or `absolute`).
 /// Otherwise, or after [`START_ITERATIONS`], `q` is left as it was and the
-/// first step projects it.
+/// first step projects it. Returns whether there are such directions.
 pub(super) fn consistent_start<S: System + ?Sized>(
     system: &mut S,
     q: &mut [f64],
     v: &[f64],
     settings: &Settings,
-) -> Result<()> {
+) -> Result<bool> {
     use nalgebra::{DMatrix, DVector};
     let (n, m) = (system.dim(), system.closures());
     let (mut mass, mut force) = (vec![0.0; n * n], vec![0.0; n]);
@@ -45,7 +45,7 @@ pub(super) fn consistent_start<S: System + ?Sized>(
     system.tangent(q, v, 0.0, &mut k, &mut d)?;
     let basis = massless_directions(n, &mass, &d);
     if basis.ncols() == 0 {
-        return Ok(());
+        return Ok(false);
     }
     let start = q.to_vec();
     let (mut start_violation, mut start_residual) = (0.0, 0.0);
@@ -79,7 +79,7 @@ pub(super) fn consistent_start<S: System + ?Sized>(
             if largest(&c) <= start_violation.max(settings.absolute)
                 && residual.amax() <= (1e-8 * start_residual).max(noise)
             {
-                return Ok(());
+                return Ok(true);
             }
             break;
         }
@@ -103,7 +103,7 @@ pub(super) fn consistent_start<S: System + ?Sized>(
         converged = (size <= 1e-3 || floor) && q.iter().all(|x| x.is_finite());
     }
     q.copy_from_slice(&start);
-    Ok(())
+    Ok(true)
 }
 
 /// A basis (columns) of the directions with neither inertia nor damping:

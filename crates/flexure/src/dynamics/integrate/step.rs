@@ -56,7 +56,7 @@ pub(super) fn advance<S: System + ?Sized>(
     let times = settings.times();
     let duration = settings.duration;
     let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
-    consistent_start(system, &mut q, &v, settings)?;
+    let massless = consistent_start(system, &mut q, &v, settings)?;
     let (mut q1, mut v1) = (q.clone(), v.clone());
     let mut t = 0.0;
     run.violation = violation(system, &q, &mut w)?;
@@ -168,7 +168,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 (&q, &v),
                 settings,
                 &mut eta,
-                (last_rejected || run.steps == 0, run.steps < 2),
+                (last_rejected || run.steps == 0, run.steps < 2, m > 0 || massless),
             );
             let refusal = match attempt {
                 Err(e) => return Err(e),
@@ -255,12 +255,17 @@ fn attempt<S: System + ?Sized>(
     (q0, v0): (&[f64], &[f64]),
     settings: &Settings,
     eta: &mut f64,
-    (refine, start): (bool, bool),
+    (refine, start, index2): (bool, bool, bool),
 ) -> Result<std::result::Result<f64, Refusal>> {
-    let (n, m) = (w.n, w.m);
+    let n = w.n;
     let (rtol, atol) = (settings.tolerance, settings.absolute);
-    // Velocities are index-2 variables of a constrained system: their
-    // error is weighed by h (RADAU5's scaling). In the first two steps it
+    // Velocities are index-2 variables of a constrained system, and so are
+    // those of directions without inertia (derivatives of coordinates that
+    // obey algebraic equations): their error is weighed by h (RADAU5's
+    // scaling). Weighed as states, a massless direction's velocity, which
+    // the stage equations leave accurate only to O(h^2), holds the step
+    // down as its inertia grows from zero with the deflection (a spatial
+    // flexure's: issue 39, finger3d stalled at 12 us). In the first two steps it
     // is not weighed at all: where a start off the quasi-static equilibrium
     // of a massless direction is projected onto it, that direction's
     // velocity jumps (by the jump over h), in the first step's estimate and
@@ -268,7 +273,7 @@ fn attempt<S: System + ?Sized>(
     // the third step the velocities derive from consistent positions.
     let vw = if start {
         0.0
-    } else if m > 0 {
+    } else if index2 {
         h
     } else {
         1.0
