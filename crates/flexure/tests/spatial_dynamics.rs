@@ -317,6 +317,7 @@ fn finger3d_with(top: &str, loads: &str) -> SpatialMechanism {
 /// $T + V - F\cdot(p(t) - p(0))$ constant, $p$ the contact point, within
 /// $10^{-6}$ of the largest elastic-plus-kinetic energy reached.
 #[test]
+#[ignore = "long: a spatial motion of 0.05 s at about 20 ms a step; run by .ci/run (cargo test -- --ignored)"]
 fn a_spatial_finger_with_massless_flexures_moves_from_rest() {
     let force = Vector3::new(0.0, -0.4, 0.1);
     let at = Point3::new(0.0, 0.0, 0.003);
