@@ -11,49 +11,46 @@
 use super::spatial::statics::{SpatialSolution, assemble_unloaded as spatial_unloaded};
 use super::spatial::{SpatialLoads, SpatialMechanism};
 use super::statics::{PROBE_STEPS, Solution, assemble_unloaded, follow};
-use super::{Loads, Mechanism};
+use super::{Dimension, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::solver::Settings;
+use crate::space::{Planar, Spatial};
 
 /// A mechanism's statics as load paths see them: its loads, its unloaded
 /// state, and a continuation between two loads.
 pub trait Equilibria {
-    /// The loads it carries.
-    type Loads: Clone;
-    /// An equilibrium, with the loads it carries.
-    type Solution: Clone;
-    /// The one load a sweep varies.
-    type Parameter;
+    /// The dimension: the loads, solutions and parameters are its.
+    type Dim: Dimension;
 
     /// The loads as given (the file's, at full value).
-    fn loads(&self) -> Self::Loads;
+    fn loads(&self) -> Loads<Self::Dim>;
     /// The assembled state with no load.
-    fn unloaded(&self, settings: &Settings) -> Result<Self::Solution>;
+    fn unloaded(&self, settings: &Settings) -> Result<Solution<Self::Dim>>;
     /// The continuation from `start` to `to`, with its own (unrefined)
     /// limit: a stable end is `Ok` (its limit set if stability was lost on
     /// the way), an unstable one [`Error::Unstable`].
-    fn follow(&self, start: &Self::Solution, to: &Self::Loads, settings: &Settings) -> Result<Self::Solution>;
+    fn follow(
+        &self,
+        start: &Solution<Self::Dim>,
+        to: &Loads<Self::Dim>,
+        settings: &Settings,
+    ) -> Result<Solution<Self::Dim>>;
     /// `loads` with `parameter` set to `value`.
-    fn apply(&self, parameter: &Self::Parameter, loads: &Self::Loads, value: f64) -> Self::Loads;
+    fn apply(&self, parameter: &ParameterOf<Self>, loads: &Loads<Self::Dim>, value: f64) -> Loads<Self::Dim>;
     /// Whether `parameter` is a tendon's tension (which cannot be negative).
-    fn is_tension(parameter: &Self::Parameter) -> bool;
+    fn is_tension(parameter: &ParameterOf<Self>) -> bool;
     /// $L(\lambda)$ between `from` and `to`.
-    fn lerp(from: &Self::Loads, to: &Self::Loads, lambda: f64) -> Self::Loads;
-    /// The loads a solution carries.
-    fn loads_of(s: &Self::Solution) -> &Self::Loads;
-    /// Where a solution's path first lost stability, as a load fraction.
-    fn limit_of(s: &Self::Solution) -> Option<f64>;
-    /// `s` with its limit set to `limit`.
-    fn with_limit(s: Self::Solution, limit: Option<f64>) -> Self::Solution;
-    /// Whether a solution is stable.
-    fn stable_of(s: &Self::Solution) -> bool;
+    fn lerp(from: &Loads<Self::Dim>, to: &Loads<Self::Dim>, lambda: f64) -> Loads<Self::Dim>;
 }
+
+/// The load parameter of `M`'s dimension.
+pub type ParameterOf<M> = <<M as Equilibria>::Dim as Dimension>::Parameter;
 
 /// Whether the path that `found` ends lost stability on the way (from a
 /// start that was `stable`), so that its limit is refined.
-pub(in crate::mechanism) fn lost<M: Equilibria>(found: &Result<M::Solution>, stable: bool) -> bool {
+pub(in crate::mechanism) fn lost<D: Dimension>(found: &Result<Solution<D>>, stable: bool) -> bool {
     match found {
-        Ok(s) => M::limit_of(s).is_some(),
+        Ok(s) => s.limit.is_some(),
         Err(Error::Unstable { load_fraction, .. }) => *load_fraction > 0.0 || stable,
         Err(_) => false,
     }
@@ -65,8 +62,8 @@ pub(in crate::mechanism) fn lost<M: Equilibria>(found: &Result<M::Solution>, sta
 /// at most [`PROBE_STEPS`] steps, and at most 64 probes are made.
 pub fn first_loss<M: Equilibria>(
     m: &M,
-    start: &M::Solution,
-    to: &M::Loads,
+    start: &Solution<M::Dim>,
+    to: &Loads<M::Dim>,
     settings: &Settings,
     precise: impl Fn(f64, f64) -> bool,
 ) -> Result<f64> {
@@ -78,8 +75,8 @@ pub fn first_loss<M: Equilibria>(
             break;
         }
         let mid = 0.5 * (lo + hi);
-        match m.follow(&at, &M::lerp(M::loads_of(start), to, mid), &settings) {
-            Ok(s) if M::limit_of(&s).is_none() => {
+        match m.follow(&at, &M::lerp(&start.loads, to, mid), &settings) {
+            Ok(s) if s.limit.is_none() => {
                 lo = mid;
                 at = s;
             }
@@ -96,26 +93,24 @@ pub fn first_loss<M: Equilibria>(
 /// ends unstable is [`Error::Unstable`] at that fraction.
 pub fn refine_limit<M: Equilibria>(
     m: &M,
-    start: &M::Solution,
-    to: &M::Loads,
+    start: &Solution<M::Dim>,
+    to: &Loads<M::Dim>,
     settings: &Settings,
-    found: Result<M::Solution>,
-) -> Result<M::Solution> {
-    if !lost::<M>(&found, M::stable_of(start)) {
+    found: Result<Solution<M::Dim>>,
+) -> Result<Solution<M::Dim>> {
+    if !lost(&found, start.stable) {
         return found;
     }
     let precision = super::statics::LIMIT_PRECISION;
     let limit = first_loss(m, start, to, settings, |lo, hi| hi - lo <= precision * hi)?;
     match found {
-        Ok(s) => Ok(M::with_limit(s, Some(limit))),
+        Ok(s) => Ok(Solution { limit: Some(limit), ..s }),
         Err(_) => Err(Error::Unstable { what: "mechanism equilibrium", load_fraction: limit }),
     }
 }
 
 impl Equilibria for Mechanism {
-    type Loads = Loads;
-    type Solution = Solution;
-    type Parameter = super::sweep::Parameter;
+    type Dim = Planar;
 
     fn loads(&self) -> Loads {
         Mechanism::loads(self)
@@ -126,33 +121,19 @@ impl Equilibria for Mechanism {
     fn follow(&self, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
         follow(self, start, to, settings)
     }
-    fn apply(&self, parameter: &Self::Parameter, loads: &Loads, value: f64) -> Loads {
+    fn apply(&self, parameter: &ParameterOf<Self>, loads: &Loads, value: f64) -> Loads {
         parameter.apply(loads, value)
     }
-    fn is_tension(parameter: &Self::Parameter) -> bool {
+    fn is_tension(parameter: &ParameterOf<Self>) -> bool {
         matches!(parameter, super::sweep::Parameter::Tension(_))
     }
     fn lerp(from: &Loads, to: &Loads, lambda: f64) -> Loads {
         from.lerp(to, lambda)
     }
-    fn loads_of(s: &Solution) -> &Loads {
-        &s.loads
-    }
-    fn limit_of(s: &Solution) -> Option<f64> {
-        s.limit
-    }
-    fn with_limit(s: Solution, limit: Option<f64>) -> Solution {
-        Solution { limit, ..s }
-    }
-    fn stable_of(s: &Solution) -> bool {
-        s.stable
-    }
 }
 
 impl Equilibria for SpatialMechanism {
-    type Loads = SpatialLoads;
-    type Solution = SpatialSolution;
-    type Parameter = super::spatial::sweep::SpatialParameter;
+    type Dim = Spatial;
 
     fn loads(&self) -> SpatialLoads {
         SpatialMechanism::loads(self)
@@ -163,27 +144,15 @@ impl Equilibria for SpatialMechanism {
     fn follow(&self, start: &SpatialSolution, to: &SpatialLoads, settings: &Settings) -> Result<SpatialSolution> {
         super::spatial::statics::follow(self, start, to, settings)
     }
-    fn apply(&self, parameter: &Self::Parameter, loads: &SpatialLoads, value: f64) -> SpatialLoads {
+    fn apply(&self, parameter: &ParameterOf<Self>, loads: &SpatialLoads, value: f64) -> SpatialLoads {
         parameter.apply(loads, value)
     }
-    fn is_tension(parameter: &Self::Parameter) -> bool {
+    fn is_tension(parameter: &ParameterOf<Self>) -> bool {
         matches!(parameter, super::spatial::sweep::SpatialParameter::Tension(_))
     }
     fn lerp(from: &SpatialLoads, to: &SpatialLoads, lambda: f64) -> SpatialLoads {
         let mut out = from.clone();
         from.lerp_into(to, lambda, &mut out);
         out
-    }
-    fn loads_of(s: &SpatialSolution) -> &SpatialLoads {
-        &s.loads
-    }
-    fn limit_of(s: &SpatialSolution) -> Option<f64> {
-        s.limit
-    }
-    fn with_limit(s: SpatialSolution, limit: Option<f64>) -> SpatialSolution {
-        SpatialSolution { limit, ..s }
-    }
-    fn stable_of(s: &SpatialSolution) -> bool {
-        s.stable
     }
 }

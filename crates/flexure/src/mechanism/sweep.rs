@@ -1,6 +1,6 @@
 //! Sweeps of one load, with the stability limit found between two values.
 
-use super::equilibria::{Equilibria, first_loss, refine_limit};
+use super::equilibria::{Equilibria, ParameterOf, first_loss, refine_limit};
 use super::statics::{LIMIT_PRECISION, Settings, Solution};
 use super::{Loads, Mechanism};
 use crate::error::{Error, Result};
@@ -150,10 +150,10 @@ fn stopped<S: serde::Serializer>(stopped: &Option<(f64, Error)>, s: S) -> std::r
 /// ```
 pub fn sweep<M: Equilibria>(
     m: &M,
-    parameter: &M::Parameter,
+    parameter: &ParameterOf<M>,
     values: &[f64],
     settings: &Settings,
-) -> Result<Sweep<M::Solution>> {
+) -> Result<Sweep<Solution<M::Dim>>> {
     settings.validate()?;
     if values.is_empty() {
         return Err(Error::invalid("sweep", "no values", "a sweep needs at least one value"));
@@ -179,7 +179,7 @@ pub fn sweep<M: Equilibria>(
         let found = if i == 0 { refine_limit(m, &start, &target, settings, found) } else { found };
         let lost = i > 0
             && match &found {
-                Ok(s) => M::limit_of(s).is_some(),
+                Ok(s) => s.limit.is_some(),
                 Err(Error::Unstable { .. }) => true,
                 Err(_) => false,
             };
@@ -204,8 +204,8 @@ pub fn sweep<M: Equilibria>(
         }
         match found {
             Ok(s) => {
-                let own = M::limit_of(&s);
-                let s = M::with_limit(s, limit.or(own));
+                let own = s.limit;
+                let s = Solution { limit: limit.or(own), ..s };
                 start = s.clone();
                 out.rows.push((v, s));
             }

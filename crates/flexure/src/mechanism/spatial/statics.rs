@@ -497,7 +497,7 @@ pub fn solve(m: &SpatialMechanism, settings: &Settings) -> Result<SpatialSolutio
     let report = solver::NewtonReport { stop: solver::NewtonStop::Converged, iterations: 0, residual: path.residual };
     ws.restore_start(report, path.stable);
     let found = continued(&mut problem, &mut ws, settings);
-    if !lost::<SpatialMechanism>(&found, path.stable) {
+    if !lost(&found, path.stable) {
         return found;
     }
     let start = problem.solution(&x0, false, &path)?;

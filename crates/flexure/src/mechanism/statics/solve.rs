@@ -68,7 +68,7 @@ pub fn solve_with(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> R
         problem.work.start_x.copy_from_slice(&ws.x);
         ws.start_stable = Some(path.stable);
         let found = follow_path(m, Start::Assembled(&path), &mut problem, &mut ws, settings);
-        if !lost::<Mechanism>(&found, path.stable) {
+        if !lost(&found, path.stable) {
             return Ok((None, found));
         }
         let x0 = problem.work.start_x.clone();
