@@ -326,7 +326,7 @@ class Mechanism:
         coordinates, energy, stable, flexures {joint: {load, stress}}, error_estimate, flagged."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings];
-        spatial: load_factor, mode, dimension."""
+        spatial: load_factor, mode, error_estimate, flagged, dimension[, order, findings]."""
     def compliance(self, body: str, at: Optional[ArrayLike] = None) -> np.ndarray:
         """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`;
         spatial: (6, 6), order (rx, ry, rz, x, y, z), at `at` (x, y, z)."""
@@ -340,7 +340,8 @@ class Mechanism:
         """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, warnings, notes})."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
-        quasi_static, and limit_fraction after a snap-through; spatial: without error_estimate."""
+        quasi_static, and limit_fraction after a snap-through; spatial: the same keys, with
+        error_estimate and dimension."""
 
 class Elastica:
     """The exact elastica of a flexure under a tip load (flexure.exact.elastica): Eq. 3 with EI(s),
