@@ -299,20 +299,25 @@ fn closure_vectors(m: &SpatialMechanism, f: &SpatialFrames, c: &SpatialClosure) 
     let point = |b: usize, r: Vector3<f64>| attach(m, f, b, r, true);
     let direction = |b: usize, r: Vector3<f64>| attach(m, f, b, r, false);
     let points = [point(c.a, c.a_origin.translation.vector), point(c.b, c.b_origin.translation.vector)];
-    let axes = c.axes();
     match c.holds {
         // Each frame's three axes.
-        Holds::Weld => ClosureVectors {
-            points,
-            a_directions: axes[..3].iter().map(|x| direction(c.a, *x)).collect(),
-            b_directions: axes[3..].iter().map(|x| direction(c.b, *x)).collect(),
-        },
+        Holds::Weld => {
+            let axes = c.axes();
+            ClosureVectors {
+                points,
+                a_directions: axes[..3].iter().map(|x| direction(c.a, *x)).collect(),
+                b_directions: axes[3..].iter().map(|x| direction(c.b, *x)).collect(),
+            }
+        }
         // a's axis, and b's two normals to its own.
-        Holds::Pin => ClosureVectors {
-            points,
-            a_directions: vec![direction(c.a, axes[2])],
-            b_directions: axes[3..5].iter().map(|x| direction(c.b, *x)).collect(),
-        },
+        Holds::Pin => {
+            let axes = c.axes();
+            ClosureVectors {
+                points,
+                a_directions: vec![direction(c.a, axes[2])],
+                b_directions: axes[3..5].iter().map(|x| direction(c.b, *x)).collect(),
+            }
+        }
         Holds::Ball => ClosureVectors { points, a_directions: vec![], b_directions: vec![] },
     }
 }

@@ -72,17 +72,12 @@ impl Closure<Spatial> {
         Ok(Closure { holds: Holds::Pin, a, a_origin: frame(a_at, a_axis)?, b, b_origin: frame(b_at, b_axis)? })
     }
 
-    /// The frames' axes $\hat x, \hat y, \hat z$ on `a` (in its frame), then on `b`.
+    /// The frames' axes $\hat x, \hat y, \hat z$ on `a` (in its frame), then on `b`:
+    /// the columns of their rotation matrices (one conversion from the
+    /// quaternion each, as the weld's residual always took them).
     pub fn axes(&self) -> [Vector3<f64>; 6] {
-        let (ra, rb) = (self.a_origin.rotation, self.b_origin.rotation);
-        [
-            ra * Vector3::x(),
-            ra * Vector3::y(),
-            ra * Vector3::z(),
-            rb * Vector3::x(),
-            rb * Vector3::y(),
-            rb * Vector3::z(),
-        ]
+        let (ra, rb) = (self.a_origin.rotation.to_rotation_matrix(), self.b_origin.rotation.to_rotation_matrix());
+        std::array::from_fn(|k| if k < 3 { ra.matrix().column(k) } else { rb.matrix().column(k - 3) }.into_owned())
     }
 }
 
