@@ -6,6 +6,7 @@
 use crate::options::{number, warn};
 use clap::Args;
 use flexure::estimate::{Accuracy, ValueEstimate};
+use flexure::model::Model;
 use serde_json::{Map, Value, json};
 
 /// Parses `--accuracy REL` of a buckling load or frequency: a fraction of the value.
@@ -124,15 +125,26 @@ pub fn reference_of_joint(e: &ValueEstimate) -> String {
     e.reference_orders.first().map_or("the refined model".into(), |(n, q)| format!("order {n} with {q} points"))
 }
 
-/// The reference of a mechanism, for warnings: "each flexure at order …".
-pub fn reference_of_mechanism(e: &ValueEstimate, flexures: &[String]) -> String {
-    if e.reference_orders.is_empty() {
-        return "the same mechanism: it has no flexure to refine".into();
+/// `error_estimate` and `flagged` of a mechanism's eigenvalue answer, the
+/// estimated values under `key` (with `order`, {joint: its order(s)}, when a
+/// flexure has `order = "auto"`: the orders the answer was found at).
+pub fn insert_mechanism_estimate(answer: &mut Value, used: &Model, e: &ValueEstimate, key: &'static str) {
+    let flexures = used.flexure_names();
+    insert_eigen_estimate(answer, e, &Shape { key, one: key == "load_factor", flexures: &flexures });
+    if used.auto_order() {
+        let orders = used.orders().0.into_iter().map(|(name, o)| match o.as_slice() {
+            [one] => (name, json!(one)),
+            all => (name, json!(all)),
+        });
+        answer["order"] = Value::Object(orders.collect());
     }
-    let parts: Vec<String> = flexures
-        .iter()
-        .zip(&e.reference_orders)
-        .map(|(n, (o, q))| format!("{n:?} at order {o} with {q} points"))
-        .collect();
-    format!("the mechanism with {}", parts.join(", "))
+}
+
+/// What to do about a mechanism's eigenvalue answer that misses its target.
+pub fn advice(used: &Model) -> &'static str {
+    if used.auto_order() {
+        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\""
+    } else {
+        "give the flexures order = \"auto\" (or a higher order)"
+    }
 }

@@ -55,8 +55,8 @@ pub struct Exported {
 /// format cannot hold) and notes are queued for stderr.
 pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
     let text = crate::input::read_mechanism(&args.file)?;
-    if let flexure::mechanism::file::Model::Spatial(_) =
-        flexure::mechanism::file::model_from_toml(&text).map_err(|e| format!("{}: {e}", args.file.display()))?
+    if let flexure::model::Model::Spatial(_) =
+        flexure::model::Model::from_toml(&text).map_err(|e| format!("{}: {e}", args.file.display()))?
     {
         return Err(format!(
             "{}: a spatial mechanism (dimension = 3): export fits pseudo-rigid-body joints to planar flexures only for now",

@@ -5,7 +5,7 @@
 
 use crate::options::{note, warn};
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::findings::{Crossing, OpenClosure, Severity, crossings, crossings_along, open_closures};
+use flexure::mechanism::findings::{Crossing, OpenClosure, Severity, crossings_along, open_closures};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::statics::Settings;
 use serde_json::{Value, json};
@@ -57,17 +57,22 @@ fn crossing_json<P: AsRef<[f64]>>(c: &Crossing<P>) -> Value {
     v
 }
 
-/// The closures of `m` open at rest, crossing_answers (warnings, or notes with `preload = true`) and listed.
+/// The closures of `m` open at rest, told (warnings, or notes with `preload = true`) and listed.
 pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
     let open = open_closures(m, &Settings::default()).map_err(|e| format!("{}: {e}", file.display()))?;
-    for c in &open {
+    Ok(open_answers(&open, file))
+}
+
+/// Closures open at rest, told (warnings, or notes with `preload = true`) and listed.
+pub fn open_answers(open: &[OpenClosure], file: &Path) -> Vec<Value> {
+    for c in open {
         let text = format!("{}: {}", file.display(), c.message());
         match c.severity() {
             Severity::Warning => warn(text),
             Severity::Note => note(text),
         }
     }
-    Ok(open.iter().map(closure_json).collect())
+    open.iter().map(closure_json).collect()
 }
 
 /// The closures of a spatial mechanism open at rest, told and listed as
@@ -75,19 +80,7 @@ pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
 pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
     let open = flexure::mechanism::spatial::findings::open_closures(m, &Settings::default())
         .map_err(|e| format!("{}: {e}", file.display()))?;
-    for c in &open {
-        let text = format!("{}: {}", file.display(), c.message());
-        match c.severity() {
-            Severity::Warning => warn(text),
-            Severity::Note => note(text),
-        }
-    }
-    Ok(open.iter().map(closure_json).collect())
-}
-
-/// The parts of `m` that cross at coordinates `q`, told and listed.
-pub fn shape(m: &Mechanism, q: &[f64], file: &Path) -> Vec<Value> {
-    crossing_answers(crossings(m, q), file)
+    Ok(open_answers(&open, file))
 }
 
 /// The parts of a spatial mechanism that cross at coordinates `q`, told and
@@ -96,7 +89,8 @@ pub fn spatial_shape(m: &SpatialMechanism, q: &[f64], file: &Path) -> Vec<Value>
     crossing_answers(flexure::mechanism::spatial::findings::crossings(m, q), file)
 }
 
-fn crossing_answers<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
+/// Parts that cross, each told and listed.
+pub fn crossing_answers<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
     for c in &found {
         warn(format!("{}: {}", file.display(), c.message()));
     }

@@ -7,10 +7,8 @@ use crate::mechanism::point_arg;
 use crate::options::{FlexureOptions, count, number};
 use clap::Args;
 use flexure::dynamics::{self, Modes};
-use flexure::estimate::{Accuracy, ValueEstimate};
+use flexure::estimate::Accuracy;
 use flexure::inertia::RigidInertia;
-use flexure::mechanism::file::from_toml;
-use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use flexure::{Error, TipLoad};
 use serde_json::{Value, json};
@@ -182,9 +180,6 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
                     if given.len() == 1 { "it" } else { "them" }
                 ));
             }
-            if let Some(m) = crate::mechanism::spatial::read(file)? {
-                return crate::mechanism::spatial::modes_cmd(&m, file, args.count, &args.accuracy.target());
-            }
             mechanism_modes(file, args.count, &args.accuracy.target())
         }
         None => joint_modes(args),
@@ -192,35 +187,43 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
 }
 
 fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let text = crate::input::read_mechanism(file)?;
+    let model = crate::mechanism::read_model(file)?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
             "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
             file.display(),
             crate::mechanism::loads_named(file, &e)
         ),
-        e @ Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
-        e => crate::mechanism::file_error(file, e),
+        e => crate::mechanism::solver_error(file)(e),
     };
-    let m = from_toml(&text).map_err(err)?;
-    let asked = wanted(count, m.dof(), "the mechanism").map_err(|e| format!("{}: {e}", file.display()))?;
-    let (m, modes, estimate) =
-        flexure::estimate::mechanism_modes_auto(&m, &Settings::default(), asked, target).map_err(err)?;
+    let asked = wanted(count, model.dof(), "the mechanism").map_err(|e| format!("{}: {e}", file.display()))?;
+    let findings = crate::mechanism::told_closures(&model, file)?;
+    let found = model.modes(asked, target).map_err(err)?;
+    let (modes, used) = (&found.answer, &found.model);
     let shapes: Vec<Value> = (0..modes.omega.len())
         .map(|k| {
             let v = modes.shapes.column(k);
-            let by_joint: serde_json::Map<String, Value> = m
-                .joints
-                .iter()
-                .filter(|j| j.kind.joint().dof() > 0)
-                .map(|j| (j.name.clone(), json!(v.rows(j.offset, j.kind.joint().dof()).iter().collect::<Vec<_>>())))
-                .collect();
+            let by_joint: serde_json::Map<String, Value> =
+                used.coordinates().into_iter().map(|(name, range)| (name, json!(v.as_slice()[range]))).collect();
             Value::Object(by_joint)
         })
         .collect();
-    let mut answer = json!({ "omega": modes.omega, "frequency": modes.frequency, "shapes": shapes });
-    insert_note(&mut answer, &modes, asked, count.is_some());
-    insert_mechanism_estimate(&mut answer, &m, &modes, &estimate, target, file);
+    let mut answer = json!({
+        "dimension": model.dimension(),
+        "omega": modes.omega,
+        "frequency": modes.frequency,
+        "shapes": shapes,
+    });
+    insert_note(&mut answer, modes, asked, count.is_some());
+    crate::eigen::insert_mechanism_estimate(&mut answer, used, &found.estimate, "omega");
+    crate::eigen::warn_missed(
+        &found.estimate,
+        target,
+        &format!("{}: modes", file.display()),
+        |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
+        &used.reference_of(&found.estimate),
+        &format!("{}, or ask fewer --count", crate::eigen::advice(used)),
+    );
     // A loading path that snapped through a limit load is said, as `solve` says it.
     if let Some(limit) = modes.limit {
         answer["limit_fraction"] = json!(limit);
@@ -230,42 +233,10 @@ fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Resu
             100.0 * limit
         ));
     }
-    Ok(answer)
-}
-
-/// `error_estimate` and `flagged` of a mechanism's modes (with `order`,
-/// {joint: N}, when a flexure has `order = "auto"`), warning per mode that misses.
-fn insert_mechanism_estimate(
-    answer: &mut Value,
-    m: &flexure::mechanism::Mechanism,
-    modes: &Modes,
-    e: &ValueEstimate,
-    target: &Accuracy,
-    file: &Path,
-) {
-    let flexures = crate::mechanism::flexure_names(m);
-    crate::eigen::insert_eigen_estimate(
-        answer,
-        e,
-        &crate::eigen::Shape { key: "omega", one: false, flexures: &flexures },
-    );
-    let auto = m.joints.iter().any(|j| j.auto_order);
-    if auto {
-        answer["order"] = crate::mechanism::flexure_orders(m);
+    if !findings.is_empty() {
+        answer["findings"] = json!(findings);
     }
-    let hint = if auto {
-        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\", or ask fewer --count"
-    } else {
-        "give the flexures order = \"auto\" (or a higher order), or ask fewer --count"
-    };
-    crate::eigen::warn_missed(
-        e,
-        target,
-        &format!("{}: modes", file.display()),
-        |k| format!("mode {} ({:.6} rad/s)", k + 1, modes.omega[k]),
-        &crate::eigen::reference_of_mechanism(e, &flexures),
-        hint,
-    );
+    Ok(answer)
 }
 
 /// The library's error with the option that set it: the mass options for

@@ -39,6 +39,86 @@ const CALLS: &[(&str, &str)] = &[("tendon --force ", "tendon --tension ")];
 const ADDED: &[(&str, &str)] =
     &[("solve", "reference"), ("solve", "reference_order"), ("solve", "reference_quadrature")];
 
+/// Keys added since the file was written at the top of an answer
+/// (`CHANGELOG.md`, *Changed*: one solve report for both dimensions, and the
+/// same keys in every mechanism answer): (the calls, by the start of their
+/// text; the key). Left out of today's answer where the golden one lacks them.
+const ADDED_TOP: &[(&str, &str)] = &[
+    ("solve", "dimension"),
+    ("solve", "load"),
+    ("solve", "multipliers"),
+    ("solve", "residual"),
+    ("solve", "load_steps"),
+    ("solve", "iterations"),
+    ("buckle", "dimension"),
+    ("modes", "dimension"),
+    ("modes", "findings"),
+    ("modes", "quasi_static"),
+    ("modes", "note"),
+];
+
+/// `now` without the [`ADDED_TOP`] keys that `golden` lacks.
+fn without_added_top(call: &str, now: &Value, golden: &Value) -> Value {
+    match (now, golden) {
+        (Value::Object(n), Value::Object(g)) => Value::Object(
+            n.iter()
+                .filter(|(k, _)| g.contains_key(*k) || !ADDED_TOP.iter().any(|(c, a)| call.starts_with(c) && a == k))
+                .map(|(k, v)| (k.clone(), v.clone()))
+                .collect(),
+        ),
+        _ => now.clone(),
+    }
+}
+
+/// A spatial solve's golden answer in today's shape, the planar one's
+/// (`CHANGELOG.md`, *Changed*): `bodies` a map by name, the ground
+/// included, of x, y, z, roll, pitch, yaw and rotation; `coordinates` by
+/// joint; per flexure joint `error_estimate`, `load` and `stress` (its
+/// von Mises peak as `max`, the section's `point`, beside its parts);
+/// `q` and the list of flexures gone. Every number it held is compared.
+fn reshaped(answer: &Value) -> Value {
+    let Some(old) = answer.as_object().filter(|a| a.contains_key("flexures") && a.contains_key("joints")) else {
+        return answer.clone();
+    };
+    let mut new = old.clone();
+    for key in ["q", "joints", "flexures", "bodies"] {
+        new.remove(key);
+    }
+    let identity = json!([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    let mut bodies = serde_json::Map::new();
+    let ground = json!({ "x": 0.0, "y": 0.0, "z": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0, "rotation": identity });
+    bodies.insert("ground".into(), ground);
+    for b in old["bodies"].as_array().into_iter().flatten() {
+        let (p, r) = (&b["position"], &b["rpy"]);
+        let pose = json!({ "x": p[0], "y": p[1], "z": p[2], "roll": r[0], "pitch": r[1], "yaw": r[2], "rotation": b["rotation"] });
+        bodies.insert(b["name"].as_str().unwrap_or_default().into(), pose);
+    }
+    new.insert("bodies".into(), Value::Object(bodies));
+    let by_name = |list: &Value, f: &dyn Fn(&Value) -> Option<Value>| -> Value {
+        Value::Object(
+            list.as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|x| Some((x["name"].as_str()?.to_string(), f(x)?)))
+                .collect(),
+        )
+    };
+    new.insert("coordinates".into(), by_name(&old["joints"], &|j| Some(j["coordinates"].clone())));
+    new.insert("error_estimate".into(), by_name(&old["flexures"], &|f| Some(f["error_estimate"].clone())));
+    new.insert("load".into(), by_name(&old["flexures"], &|f| Some(f["load"].clone())));
+    let stress = by_name(&old["flexures"], &|f| {
+        let (s, at) = (&f["stress"]["stress"], &f["stress"]["at"]);
+        (!s.is_null()).then(|| {
+            json!({ "max": s["von_mises"], "at": at, "point": s["at"], "bending_y": s["bending_y"],
+                    "bending_z": s["bending_z"], "shear": s["shear"] })
+        })
+    });
+    if stress.as_object().is_some_and(|s| !s.is_empty()) {
+        new.insert("stress".into(), stress);
+    }
+    Value::Object(new)
+}
+
 /// `now` without the [`ADDED`] keys that `golden` lacks, inside an `error_estimate` of `call`.
 fn without_added(call: &str, now: &Value, golden: &Value, in_estimate: bool) -> Value {
     match (now, golden) {
@@ -95,7 +175,7 @@ fn today(entry: &Value) -> Value {
     for (old, new) in CALLS {
         call = call.replacen(old, new, 1);
     }
-    json!({ "call": call, "status": entry["status"], "answer": renamed(&call, &entry["answer"]) })
+    json!({ "call": call, "status": entry["status"], "answer": reshaped(&renamed(&call, &entry["answer"])) })
 }
 
 /// The calls: each example through the mechanism subcommands, then single
@@ -252,7 +332,9 @@ fn no_answer_changes() {
         .zip(&golden)
         .filter_map(|(n, g)| {
             let call = n["call"].as_str().unwrap_or("?");
-            differ(&without_added(call, n, g, false), g, call)
+            let answer = without_added_top(call, &n["answer"], &g["answer"]);
+            let now = json!({ "call": n["call"], "status": n["status"], "answer": answer });
+            differ(&without_added(call, &now, g, false), g, call)
         })
         .collect();
     assert!(changed.is_empty(), "{} of {} answers changed:\n{}", changed.len(), now.len(), changed.join("\n"));

@@ -27,7 +27,7 @@ use flexure_cli::spatial_drawing::{Marks, spatial_figure, spatial_motion_figures
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
-    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+    SpatialJointSpec::new(name, kind, parent, child, origin)
 }
 
 fn bodies(names: &[&str]) -> Vec<SpatialBody> {

@@ -156,8 +156,8 @@ fn a_far_origin_gives_no_false_crossing() {
 
 /// Table rows carry units and empty rows are omitted: the planar solve's
 /// `curvature_max` in 1/m and along the flexure in m; the spatial solve's
-/// 27-number `q` labelled by joint, no empty `multipliers:` or
-/// `coordinates:` row, and the stress components in Pa.
+/// 27 coordinates labelled by joint, no empty `multipliers:` row, the
+/// bodies' z in m and angles in rad, and the stress and its parts in Pa.
 #[test]
 fn tables_carry_units_label_long_vectors_and_omit_empty_rows() {
     let dir = tempfile::tempdir().unwrap();
@@ -180,15 +180,19 @@ fn tables_carry_units_label_long_vectors_and_omit_empty_rows() {
     let (code, out, err) = run(&["solve", &path]);
     assert_eq!(code, 0, "{err}");
     let lines: Vec<&str> = out.lines().collect();
-    let q = lines.iter().position(|l| *l == "q:").expect("q labelled, on rows of its own");
+    let q = lines.iter().position(|l| *l == "coordinates:").expect("coordinates labelled, on rows of their own");
     for (row, joint) in lines[q + 1..q + 4].iter().zip(["mcp", "pip", "dip"]) {
         let numbers = row.trim().strip_prefix(&format!("{joint}:")).unwrap_or_else(|| panic!("{row}"));
         assert_eq!(numbers.split_whitespace().count(), 9, "{row}");
     }
     assert!(!lines[q + 4].starts_with("  "), "three flexures, three rows: {out}");
-    assert!(!out.contains("multipliers:") && !out.lines().any(|l| l.trim() == "coordinates:"), "{out}");
-    assert!(out.lines().any(|l| l.trim().starts_with("von_mises:") && l.ends_with(" Pa")), "{out}");
-    assert!(out.lines().any(|l| l.trim().starts_with("rpy:") && l.ends_with(" rad")), "{out}");
+    assert!(!out.contains("multipliers:") && !out.lines().any(|l| l.trim() == "q:"), "{out}");
+    for part in ["max:", "bending_z:", "shear:"] {
+        assert!(out.lines().any(|l| l.trim().starts_with(part) && l.ends_with(" Pa")), "{part} {out}");
+    }
+    for (part, unit) in [("z:", " m"), ("yaw:", " rad")] {
+        assert!(out.lines().any(|l| l.trim().starts_with(part) && l.ends_with(unit)), "{part} {out}");
+    }
 }
 
 /// A tendon anchored on the ground beside the finger, below it: the anchor

@@ -5,7 +5,7 @@
 //! form for small loads, to the tolerance each test names.
 
 use crate::cli::{answer, run};
-use serde_json::Value;
+use serde_json::{Value, json};
 use std::path::PathBuf;
 
 const PAGE: &str = include_str!("../../../docs/first-mechanism.md");
@@ -34,13 +34,14 @@ fn page_file(dir: &tempfile::TempDir, name: &str) -> (String, Value) {
     (text, v)
 }
 
-/// Body `name` of an answer: planar answers map bodies by name, spatial ones list them.
+/// Body `name` of an answer: both dimensions map bodies by name.
 fn body<'a>(v: &'a Value, name: &str) -> &'a Value {
-    match &v["bodies"] {
-        Value::Array(list) => list.iter().find(|b| b["name"] == name),
-        map => map.get(name),
-    }
-    .unwrap_or_else(|| panic!("no body {name} in {v}"))
+    v["bodies"].get(name).unwrap_or_else(|| panic!("no body {name} in {v}"))
+}
+
+/// A spatial body's position and its roll, pitch and yaw.
+fn placement(b: &Value) -> (Value, Value) {
+    (json!([b["x"], b["y"], b["z"]]), json!([b["roll"], b["pitch"], b["yaw"]]))
 }
 
 /// Whether `value` is within the relative `tolerance` of `expected`.
@@ -182,7 +183,7 @@ fn the_spatial_cantilever_bends_as_the_planar_one_and_twists() {
     let dir = tempfile::tempdir().unwrap();
     let (_, v) = page_file(&dir, "cantilever3d.toml");
     let arm = body(&v, "arm");
-    let (position, rpy) = (&arm["position"], &arm["rpy"]);
+    let (position, rpy) = placement(arm);
     let p = 0.01;
     // In the plane, as the planar file (within 1e-3, as there).
     assert!(near(f(&position[1]), p * L.powi(3) / (3.0 * ei()), 1e-3), "{position}");
@@ -197,7 +198,8 @@ fn the_spatial_cantilever_bends_as_the_planar_one_and_twists() {
     assert!(near(f(&rpy[0]), twist, 1e-3), "roll {} against {twist}", rpy[0]);
     assert!(says("2.0254\\times10^{-3}") && (gj - 2.0254e-3).abs() < 5e-8, "GJ {gj}");
     let values: Vec<f64> = (0..3).map(|i| f(&position[i])).chain((0..3).map(|i| f(&rpy[i]))).collect();
-    quoted("puts the arm at", &values);
+    quoted("puts the arm at", &values[..3]);
+    quoted("turns it by", &values[3..]);
 }
 
 #[test]
@@ -209,7 +211,7 @@ fn the_spatial_stage_is_stiff_out_of_its_plane() {
     // half the load: F L³/6EI_y (the load is 1e-5 of EI_y/L²: tolerance 1e-6 relative).
     let ei_y = E * H * W.powi(3) / 12.0;
     let z = 0.1 * L.powi(3) / (6.0 * ei_y);
-    let position = &stage["position"];
+    let (position, _) = placement(stage);
     assert!(near(f(&position[2]), z, 1e-6), "{position}");
     quoted("lifts the stage by", &[f(&position[2])]);
     assert!(says("3.3333") && (ei_y - 3.3333).abs() < 5e-5);
@@ -220,7 +222,7 @@ fn the_spatial_stage_is_stiff_out_of_its_plane() {
     assert_ne!(planar, text, "the page's force line changed");
     let v = solve(&saved(&dir, "planar.toml", &planar));
     let stage = body(&v, "stage");
-    quoted("gives the planar answer,", &[f(&stage["position"][0])]);
+    quoted("gives the planar answer,", &[f(&stage["x"])]);
 
     // The page says stage3d.toml is stage.toml with these changes: check that it is.
     let converted = block("stage.toml")
@@ -255,7 +257,7 @@ fn spatial_rest_coefficients_are_angles() {
                  child = \"tip\"\nlength = {length}\nei = 0.01\n{key} = [0.5, 0.0, 0.0]\n"
             );
             let v = solve(&saved(&dir, "rest.toml", &text));
-            let rpy = &v["bodies"][0]["rpy"];
+            let (_, rpy) = placement(body(&v, "tip"));
             for i in 0..3 {
                 let expected = if i == axis { 0.5 } else { 0.0 };
                 assert!((f(&rpy[i]) - expected).abs() < 1e-12, "{key} over {length} m: rpy {rpy}");

@@ -87,7 +87,7 @@ fn put_checks(
     match estimated {
         Ok(e) => {
             if e.flagged {
-                warn_inaccurate(py, what, f, e, target, hint, 1)?;
+                warn_inaccurate(py, what, f.length(), e, target, hint, 1)?;
             }
             out.set_item("error_estimate", estimate_dict(py, e)?)?;
             out.set_item("flagged", e.flagged)?;

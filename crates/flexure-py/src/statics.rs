@@ -96,7 +96,7 @@ pub fn deflect<'py>(
     match estimated {
         Ok(e) if e.flagged => {
             let hint = "use deflect(..., order=\"auto\") to raise the order until the target is met";
-            warn_inaccurate(py, "deflect", f, &e, &target, hint, 1)?
+            warn_inaccurate(py, "deflect", f.length(), &e, &target, hint, 1)?
         }
         Ok(_) => {}
         Err(why) => warn_unestimated(py, "deflect", &why, 1)?,

@@ -74,12 +74,13 @@ pub fn warn_values(
     warn(py, &py.get_type::<AccuracyWarning>(), text, stacklevel)
 }
 
-/// Warns that an answer of `f` misses `target` by the estimate `e`; `what`
-/// names the answer, `hint` says what to do about it.
+/// Warns that an answer of a flexure of length `length` (m) misses
+/// `target` by the estimate `e`; `what` names the answer, `hint` says what
+/// to do about it.
 pub fn warn_inaccurate(
     py: Python<'_>,
     what: &str,
-    f: &flexure::Flexure,
+    length: f64,
     e: &ErrorEstimate,
     target: &Accuracy,
     hint: &str,
@@ -95,7 +96,7 @@ pub fn warn_inaccurate(
         "{what}: estimated error {} m ({} % of L) in position, {}° in angle and {} % in {peak} misses the target of \
          {} % of L, {}° and {} % (estimated against {reference}); {hint}",
         sig(e.position),
-        sig(100.0 * e.position / f.length()),
+        sig(100.0 * e.position / length),
         sig(e.angle.to_degrees()),
         sig(100.0 * e.peak),
         sig(100.0 * target.position),

@@ -204,6 +204,7 @@ pub mod limit;
 pub mod linalg;
 pub mod mass;
 pub mod mechanism;
+pub mod model;
 pub mod ode;
 pub mod prb;
 pub mod quadrature;

@@ -5,10 +5,11 @@
 //! (`tests/spatial_files.rs` solves rewritten examples against the planar
 //! answers; `tests/format.rs` keeps the page's key tables and the parser in step.)
 
-use flexure::mechanism::file::{Model, from_toml, model_from_toml, spatial_from_toml};
+use flexure::mechanism::file::{from_toml, spatial_from_toml};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::{SpatialClosure, SpatialJointKind, SpatialMechanism};
 use flexure::mechanism::{Holds, JointKind};
+use flexure::model::Model;
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use std::f64::consts::PI;
 
@@ -297,8 +298,8 @@ fn every_kind_and_table_parses_with_its_numbers() {
     expected.sort_by_key(|(j, _)| *j);
     assert_eq!(initial, expected);
     assert_eq!(m.initial_velocity, [(index("slide"), vec![0.1])]);
-    // The same file through `model_from_toml`.
-    assert!(matches!(model_from_toml(ALL_KINDS).unwrap(), Model::Spatial(s) if s == m));
+    // The same file through `Model::from_toml`.
+    assert!(matches!(Model::from_toml(ALL_KINDS).unwrap(), Model::Spatial(s) if s == m));
 }
 
 /// Reference: a pin's axis on `b`, when not given, is where `axis` (in `a`'s
@@ -405,7 +406,7 @@ fn planar_examples_keep_their_structure_in_space() {
         let text = std::fs::read_to_string(dir.join(name)).unwrap();
         let planar = from_toml(&text).unwrap();
         let converted = to_3d(&text);
-        let Model::Spatial(m) = model_from_toml(&converted).unwrap_or_else(|e| panic!("{name}: {e}\n{converted}"))
+        let Model::Spatial(m) = Model::from_toml(&converted).unwrap_or_else(|e| panic!("{name}: {e}\n{converted}"))
         else {
             panic!("{name}: not spatial")
         };
@@ -648,13 +649,27 @@ fn bad_values_name_their_key_line_and_column() {
             ),
             "line 11, column 11: preload: invalid type: integer `1`, expected a boolean",
         ),
-        // Planar keys not taken yet in space.
+        // Planar keys a spatial flexure does not take, with why.
         (
             format!(
                 "{HEAD}kind = \"flexure\"\nlength = 0.01\nmodulus = 2e11\nwidth = 0.01\nthickness = 0.001\nnotch = {{ radius = 0.002, min_thickness = 0.0002 }}\n"
             ),
-            "line 11, column 1: `notch` (a circular notch hinge) is for planar mechanisms only for now",
+            "line 11, column 1: `notch` is for planar mechanisms: a circular notch hinge",
         ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\nquadrature = 8\n"),
+            "line 9, column 1: `quadrature` is for planar mechanisms: the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps",
+        ),
+        // The report's keys, read as in the plane.
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\nyield_strength = 5e8\n"),
+            "line 9, column 18: joint \"j\": yield_strength needs a section to give a stress",
+        ),
+        (
+            format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\nshape = 1\n"),
+            "line 9, column 9: joint \"j\": shape = 1: must be from 2 to 10000 points",
+        ),
+        (format!("{HEAD}kind = \"fixed\"\nshape = 5\n"), "line 7, column 9: joint \"j\": `shape` does not apply"),
         (
             format!("{HEAD}kind = \"flexure\"\nlength = 0.01\nei = 1e-3\norder = \"six\"\n"),
             "line 9, column 9: joint \"j\": order = \"six\": must be a whole number from 1 to 64 or \"auto\"",
@@ -690,7 +705,7 @@ fn bad_values_name_their_key_line_and_column() {
         let e = spatial_from_toml(text).unwrap_err().to_string();
         assert!(e.starts_with(expected), "{e:?} should start with {expected:?} for\n{text}");
         // Through either reader the same error.
-        assert_eq!(model_from_toml(text).unwrap_err().to_string(), e);
+        assert_eq!(Model::from_toml(text).unwrap_err().to_string(), e);
         assert!(seen.insert(e), "two cases give one error");
     }
     assert!(cases.len() >= 10);
@@ -705,12 +720,12 @@ fn each_reader_takes_its_dimension() {
     let planar = "[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n";
     let two = from_toml(&format!("dimension = 2\n{planar}")).unwrap();
     assert_eq!(two, from_toml(planar).unwrap());
-    assert!(matches!(model_from_toml(planar).unwrap(), Model::Planar(p) if p == two));
+    assert!(matches!(Model::from_toml(planar).unwrap(), Model::Planar(p) if p == two));
     let e = from_toml("gravity = [0.0, 0.0, -9.81]\ndimension = 3\n").unwrap_err().to_string();
     assert!(
-        e.starts_with("line 2, column 13: dimension = 3: a spatial mechanism; read it with `model_from_toml`"),
+        e.starts_with("line 2, column 13: dimension = 3: a spatial mechanism; read it with `Model::from_toml`"),
         "{e}"
     );
     let e = spatial_from_toml(planar).unwrap_err().to_string();
-    assert!(e.contains("a planar mechanism") && e.contains("model_from_toml"), "{e}");
+    assert!(e.contains("a planar mechanism") && e.contains("Model::from_toml"), "{e}");
 }

@@ -418,7 +418,7 @@ fn every_spatial_parser_key_is_documented() {
 /// from `flexure solve` to their printed digits.
 #[test]
 fn the_spatial_example_solves_as_the_page_says() {
-    use flexure::report::spatial::placements;
+    use flexure::report::placements;
     let text = PAGE
         .split("```toml\n")
         .skip(1)

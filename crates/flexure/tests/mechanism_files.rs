@@ -323,7 +323,7 @@ fn bad_sections_name_key_line_and_column() {
         (rectangle("width = 0.01\n"), "line 7, column 11", "thickness is missing"),
         (joint("notch = { radius = 0.005, min_thickness = 0.001 }\n"), "line 8, column 9", "`notch` goes with modulus"),
         (joint("density = 7850.0\n"), "line 8, column 11", "give mass_per_length with ei"),
-        (joint("yield_strength = 1e8\n"), "line 8, column 18", "yield_strength needs a thickness"),
+        (joint("yield_strength = 1e8\n"), "line 8, column 18", "yield_strength needs a section to give a stress"),
         (joint("").replace("ei = 1e-3", "ei = [1e-3, 0.0]"), "line 7, column 6", "ei[1] = 0: must be greater"),
         (joint("").replace("ei = 1e-3", "ei = [[0.0, 1e-3], [1.0, inf]]"), "line 7, column 6", "ei[1][1] = inf"),
         (joint("").replace("ei = 1e-3", "ei = [1e-3, 1e20]"), "line 7, column 6", "ei = "),
@@ -343,11 +343,10 @@ fn bad_sections_name_key_line_and_column() {
 /// The section forms read as the library builds them: a table through the
 /// ends equals the linear taper, `[root, tip]` is `Profile::Linear`, a
 /// notch leaves its least thickness at the middle, `density` gives ρ b h,
-/// and `reports` returns `yield_strength` and `shape` by joint.
+/// and the joint keeps `yield_strength` and `shape` for the report.
 #[test]
 fn section_forms_read_as_the_library_builds_them() {
     use flexure::mechanism::JointKind;
-    use flexure::mechanism::file::reports;
     use flexure::section::{Profile, Section};
     let flexure = |text: &str| match from_toml(text).unwrap().joints.remove(0).kind {
         JointKind::Flexure(f) => *f,
@@ -372,8 +371,7 @@ fn section_forms_read_as_the_library_builds_them() {
     let notched = flexure(&text);
     assert_eq!(notched.section().thickness(0.5, 0.01), Some(5e-4));
     assert!((notched.section().mass_per_length(0.5, 0.01).unwrap() - 2700.0 * 0.008 * 5e-4).abs() < 1e-15);
-    let r = reports(&text).unwrap();
-    assert_eq!(r.len(), 1);
-    assert_eq!((r[0].0.as_str(), r[0].1.yield_strength, r[0].1.shape), ("a", Some(2.5e8), Some(7)));
-    assert!(reports(&rectangle("width = 0.0\nthickness = 0.004\n")).is_err());
+    let r = from_toml(&text).unwrap().joints[0].report;
+    assert_eq!((r.yield_strength, r.shape), (Some(2.5e8), Some(7)));
+    assert!(from_toml(&rectangle("width = 0.0\nthickness = 0.004\n")).is_err());
 }

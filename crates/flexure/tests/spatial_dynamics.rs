@@ -13,7 +13,7 @@ use flexure::spatial::SpatialFlexure;
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix2, Matrix3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
-    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+    SpatialJointSpec::new(name, kind, parent, child, origin)
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {

@@ -34,6 +34,7 @@ fn one_joint(f: SpatialFlexure, tip: SpatialBody, forces: Vec<SpatialPointLoad>)
         offset: 0,
         damping: 0.0,
         auto_order: false,
+        report: Default::default(),
     };
     SpatialMechanism::new(
         vec![SpatialBody::massless("ground"), tip],

@@ -6,19 +6,26 @@ use flexure::estimate::Accuracy;
 use flexure::mechanism::file::spatial_from_toml;
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::statics::solve;
-use flexure::report::spatial::{SpatialReport, report};
+use flexure::report::{Placement, SolveReport, placements, solve_report};
 
-fn example(name: &str) -> (SpatialMechanism, SpatialReport) {
+fn example(name: &str) -> (SpatialMechanism, Report) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name);
     let m = spatial_from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     assert!(s.stable, "{name}");
-    let r = report(&m, &s, &Accuracy::default()).unwrap();
+    let r = solve_report(&m, &s, &Accuracy::default()).unwrap();
     assert!(!r.flagged, "{name}: a flexure misses the default accuracy");
-    (m, r)
+    let bodies = placements(&m, &s.q);
+    (m, Report { report: r, bodies })
 }
 
-fn body<'a>(r: &'a SpatialReport, name: &str) -> &'a flexure::report::spatial::Placement {
+/// The solve report, and every moving body's placement.
+struct Report {
+    report: SolveReport,
+    bodies: Vec<Placement>,
+}
+
+fn body<'a>(r: &'a Report, name: &str) -> &'a Placement {
     r.bodies.iter().find(|b| b.name == name).unwrap()
 }
 
@@ -68,10 +75,7 @@ fn the_continuum_robot_bends_toward_both_tendons() {
 #[test]
 fn the_off_centre_fingertip_load_twists_the_finger() {
     let (m, r) = example("finger3d.toml");
-    let twist = |name: &str| {
-        let j = r.joints.iter().find(|j| j.name == name).unwrap();
-        j.coordinates[0]
-    };
+    let twist = |name: &str| r.report.coordinates.get(name).unwrap()[0];
     let (mcp, pip, dip) = (twist("mcp"), twist("pip"), twist("dip"));
     assert!(mcp.abs() > 1e-4 && pip.abs() > 1e-4 && dip.abs() > 1e-5, "{mcp} {pip} {dip}");
     let tip = body(&r, "fingertip");

@@ -2,8 +2,9 @@
 //! examples rewritten with `dimension = 3` give the planar answers, and
 //! every bad value is an error naming its key, line and column.
 
-use flexure::mechanism::file::{Model, from_toml, model_from_toml, spatial_from_toml};
-use flexure::report::spatial::placements;
+use flexure::mechanism::file::{from_toml, spatial_from_toml};
+use flexure::model::Model;
+use flexure::report::placements;
 use toml::Value;
 
 fn examples_dir() -> std::path::PathBuf {
@@ -221,8 +222,8 @@ fn every_bad_value_names_its_key_line_and_column() {
         assert!(e.contains(expected), "{e:?} should contain {expected:?} for\n{text}");
     }
     // A planar reader refuses a spatial file, naming the reader that takes it.
-    assert!(from_toml("dimension = 3\n").unwrap_err().to_string().contains("model_from_toml"));
-    assert!(matches!(model_from_toml("gravity = [0.0, -9.81]\n").unwrap(), Model::Planar(_)));
+    assert!(from_toml("dimension = 3\n").unwrap_err().to_string().contains("Model::from_toml"));
+    assert!(matches!(Model::from_toml("gravity = [0.0, -9.81]\n").unwrap(), Model::Planar(_)));
 }
 
 /// Reference: URDF's rpy, $R = R_z(y)R_y(p)R_x(r)$ multiplied out by hand;

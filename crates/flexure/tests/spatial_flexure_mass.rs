@@ -15,13 +15,13 @@ use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
 use flexure::mechanism::spatial::{
     Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
-use flexure::report::spatial::placements;
+use flexure::report::placements;
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{MassQuadrature, SpatialFlexure, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
-    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+    SpatialJointSpec::new(name, kind, parent, child, origin)
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {

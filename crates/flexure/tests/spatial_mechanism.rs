@@ -14,7 +14,7 @@ use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, correct};
 use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
-    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+    SpatialJointSpec::new(name, kind, parent, child, origin)
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {

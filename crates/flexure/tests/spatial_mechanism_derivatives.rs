@@ -26,7 +26,7 @@ fn body(name: &str, mass: f64, com: [f64; 3]) -> SpatialBody {
 }
 
 fn joint(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
-    SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+    SpatialJointSpec::new(name, kind, parent, child, origin)
 }
 
 fn placed(p: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {

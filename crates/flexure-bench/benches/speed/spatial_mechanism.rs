@@ -30,6 +30,7 @@ fn chain(n: usize, force: [f64; 3]) -> SpatialMechanism {
             offset: 0,
             damping: 0.0,
             auto_order: false,
+            report: Default::default(),
         });
     }
     let tip = SpatialPointLoad {

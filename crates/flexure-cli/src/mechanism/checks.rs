@@ -2,52 +2,38 @@
 //! closures and crossings (`findings`), each flexure joint's error estimate
 //! and stress, snap-throughs, stability, and a sweep that stopped.
 
-use super::flexures;
 use crate::options::warn;
 use flexure::estimate::Accuracy;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::ReportOptions;
-use flexure::mechanism::statics::Solution;
 use flexure::mechanism::sweep::Sweep;
-use flexure::report::{SolveReport, solve_report};
+use flexure::model::{Model, Solved};
+use flexure::report::{EstimateFailed, SolveReport, solve_report};
 use serde_json::{Value, json};
 use std::path::Path;
 
-/// The library's report of `s` ([`solve_report`]). A failed estimate names
-/// the joint and the file, and says it was the estimate's own solve that
-/// failed (not the mechanism's).
-fn report(
-    m: &Mechanism,
-    s: &Solution,
-    reports: &[(String, ReportOptions)],
-    target: &Accuracy,
-    file: &Path,
-) -> Result<SolveReport, String> {
-    solve_report(m, s, reports, target).map_err(|f| {
-        format!(
-            "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {}",
-            file.display(),
-            f.joint,
-            f.error
-        )
-    })
+/// Why a solve report has no answer: the flexure joint whose error
+/// estimate failed, and that it was the estimate's own solve that failed
+/// (not the mechanism's).
+fn estimate_failed(file: &Path, f: EstimateFailed) -> String {
+    format!(
+        "{}: flexure joint {:?}: its error estimate (the joint alone under the tip load it carries, against the refined model) failed: {}",
+        file.display(),
+        f.joint,
+        f.error
+    )
 }
 
 /// Warns of each flexure joint whose estimate misses `target`, then of each
 /// stressed past its yield strength.
-fn warn_joints(r: &SolveReport, m: &Mechanism, reports: &[(String, ReportOptions)], target: &Accuracy, file: &Path) {
-    let length = |name: &str| {
-        m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map_or(0.0, |f| f.length())
-    };
+fn warn_joints(r: &SolveReport, model: &Model, target: &Accuracy, file: &Path) {
     for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
-        let misses = crate::joint::misses(e, length(name), target);
+        let misses = crate::joint::misses(e, model.flexure_length(name).unwrap_or(0.0), target);
         warn(format!("{}: flexure joint {name:?}: {misses}; raise its order", file.display()));
     }
     for (name, factor) in r.safety_factor.0.iter().filter(|(_, factor)| *factor < 1.0) {
-        let strength = reports.iter().find(|k| k.0 == *name).and_then(|k| k.1.yield_strength);
-        if let (Some(p), Some(strength)) = (r.stress.get(name), strength) {
+        if let (Some(p), Some(strength)) = (r.stress.get(name), model.yield_strength(name)) {
             warn(format!(
-                "{}: flexure joint {name:?}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {strength:e} Pa: safety factor {factor:.3}",
+                "{}: flexure joint {name:?}: the peak stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {strength:e} Pa: safety factor {factor:.3}",
                 file.display(),
                 p.max,
                 p.at
@@ -76,34 +62,37 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> O
     ))
 }
 
-/// `solve`'s answer on one solution, shared by `draw`: the library's report
-/// ([`solve_report`]) with the closures open at rest and the parts that
-/// cross (`findings`); each told on stderr, as are each flagged estimate, a
-/// stress past its yield strength, a snap-through on the way, and an
-/// unstable answer.
-pub(super) fn solution_answer(
-    m: &Mechanism,
-    s: &Solution,
-    reports: &[(String, ReportOptions)],
+/// `solve`'s answer, shared by `draw`: the library's report
+/// ([`flexure::report::solve_report`]) with the compliance asked for, and
+/// after the `findings` told before the solve (the closures open at rest)
+/// the parts that cross; each told
+/// on stderr, as are each flagged estimate, a stress past its yield
+/// strength, a snap-through on the way, and an unstable answer.
+pub(super) fn solved_answer(
+    model: &Model,
+    mut findings: Vec<Value>,
+    solved: Solved,
     target: &Accuracy,
     file: &Path,
 ) -> Result<Value, String> {
-    let mut findings = crate::findings::closures(m, file)?;
-    findings.extend(crate::findings::shape(m, &s.q, file));
-    let r = report(m, s, reports, target, file)?;
-    warn_joints(&r, m, reports, target, file);
+    findings.extend(crate::findings::crossing_answers(solved.crossings, file));
+    let r = solved.report.map_err(|f| estimate_failed(file, f))?;
+    warn_joints(&r, model, target, file);
     let mut v = serde_json::to_value(&r).map_err(|e| format!("{}: {e}", file.display()))?;
+    if let Some(c) = &solved.compliance {
+        v["compliance"] = crate::joint::matrix(c);
+    }
     if !findings.is_empty() {
         v["findings"] = json!(findings);
     }
-    if let Some(limit) = s.limit {
+    if let Some(limit) = r.limit_fraction {
         warn(format!(
             "{}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
             file.display(),
             100.0 * limit
         ));
     }
-    if !s.stable {
+    if !r.stable {
         warn(format!(
             "{}: the equilibrium is unstable (`stable: false`): its constrained stiffness is not positive definite, so a small disturbance moves it away",
             file.display()
@@ -121,7 +110,6 @@ pub(super) fn insert_sweep_checks(
     v: &mut Value,
     m: &Mechanism,
     out: &Sweep,
-    reports: &[(String, ReportOptions)],
     (target, file): (&Accuracy, &Path),
     (parameter, values): (&str, &[f64]),
 ) -> Result<(), String> {
@@ -139,7 +127,7 @@ pub(super) fn insert_sweep_checks(
     }
     let mut flagged = Vec::new();
     for (value, s) in &out.rows {
-        if report(m, s, reports, target, file)?.flagged {
+        if solve_report(m, s, target).map_err(|f| estimate_failed(file, f))?.flagged {
             flagged.push(*value);
         }
     }
@@ -151,19 +139,18 @@ pub(super) fn insert_sweep_checks(
             flagged.len()
         ));
     }
-    for (k, r) in reports.iter().enumerate() {
-        let Some(strength) = r.1.yield_strength else { continue };
+    for j in &m.joints {
+        let (Some(f), Some(strength)) = (j.kind.flexure(), j.report.yield_strength) else { continue };
         let over = out.rows.iter().find_map(|(value, s)| {
-            let (_, f, q, _) = flexures(m, s, reports).nth(k)?;
-            let p = flexure::stress::peak_stress(f, q)?;
+            let p = flexure::stress::peak_stress(f, &s.q[j.offset..j.offset + f.order()])?;
             (p.value > strength).then_some((*value, p.value))
         });
         if let Some((value, sigma)) = over {
             warn(format!(
                 "{}: flexure joint {:?}: from {parameter} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
                 file.display(),
-                r.0,
-                r.0
+                j.name,
+                j.name
             ));
         }
     }

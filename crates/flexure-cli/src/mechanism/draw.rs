@@ -1,9 +1,8 @@
 //! `flexure draw`: a mechanism's unloaded and loaded shapes (or a
 //! simulated motion) as one SVG, with the warnings `solve` gives.
 
-use super::checks::{insert_sweep_checks, solution_answer};
+use super::checks::{insert_sweep_checks, solved_answer};
 use super::drawing;
-use super::load_with_reports;
 use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::{number, warn};
 use clap::Args;
@@ -128,29 +127,30 @@ fn draw_spatial(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechani
 /// An SVG of the unloaded and loaded shapes, to one scale on both axes,
 /// with the warnings `solve` gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
-    if let Some(m) = super::spatial::read(&args.file)? {
-        return draw_spatial(args, &m);
-    }
+    let model = super::read_model(&args.file)?;
+    let m = match &model {
+        flexure::model::Model::Planar(m) => m,
+        flexure::model::Model::Spatial(m) => return draw_spatial(args, m),
+    };
     if let Some(duration) = args.simulate {
         return draw_motion(args, duration);
     }
-    let (m, reports) = load_with_reports(&args.file)?;
     let settings = Settings::default();
     let target = args.accuracy.target();
     let err = |e: flexure::Error| super::file_error(&args.file, e);
-    let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
+    let unloaded = flexure::mechanism::statics::assemble_unloaded(m, &settings).map_err(err)?;
     let mut marks = drawing::Marks {
-        yields: reports.iter().filter_map(|(name, r)| Some((name.clone(), r.yield_strength?))).collect(),
+        yields: m.joints.iter().filter_map(|j| Some((j.name.clone(), j.report.yield_strength?))).collect(),
         limit: None,
     };
     // The checks' warnings are solve's; of their answer, draw keeps only the verdicts.
     let mut checks = json!({});
     let loaded: Vec<(String, Solution)> = match &args.sweep {
         Some(spec) => {
-            let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
+            let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
-            let out = sweep(&m, &p, &values, &settings).map_err(err)?;
-            insert_sweep_checks(&mut checks, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
+            let out = sweep(m, &p, &values, &settings).map_err(err)?;
+            insert_sweep_checks(&mut checks, m, &out, (&target, &args.file), (&spec.parameter, &values))?;
             // Shapes past the limit (on its far side from the first value) are labelled so.
             let past =
                 |value: f64| out.stability_limit.is_some_and(|l| (value - l.value) * (values[0] - l.value) < 0.0);
@@ -169,13 +169,16 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
             out.rows.iter().map(|(v, s)| (label(*v), s.clone())).collect()
         }
         None => {
-            let s = solve(&m, &settings).map_err(err)?;
-            checks = solution_answer(&m, &s, &reports, &target, &args.file)?;
+            let s = solve(m, &settings).map_err(err)?;
+            // TODO(draw): the drawing's own solve, until it draws from the door's.
+            let findings = super::told_closures(&model, &args.file)?;
+            let solved = model.solve(&target, None).map_err(err)?;
+            checks = solved_answer(&model, findings, solved, &target, &args.file)?;
             vec![("loaded".into(), s)]
         }
     };
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
-    let (figure, per_newton) = drawing::figure(&m, &title, &unloaded, &loaded, &marks);
+    let (figure, per_newton) = drawing::figure(m, &title, &unloaded, &loaded, &marks);
     flexure_chart::write(&args.out, &figure)?;
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": loaded.len() + 1 });
     for key in ["findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {

@@ -15,10 +15,8 @@ pub use draw::{DrawArgs, draw_cmd};
 pub use solve::{SolveArgs, solve_cmd};
 
 use crate::options::number;
-use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::{ReportOptions, from_toml, reports};
-use flexure::mechanism::statics::Solution;
-use serde_json::{Value, json};
+use flexure::model::Model;
+
 use std::path::Path;
 
 /// A solver's error on mechanism file `file`, after the file's name, with
@@ -44,30 +42,40 @@ pub fn loads_named(file: &Path, e: &flexure::Error) -> String {
     }
 }
 
-fn load(path: &Path) -> Result<Mechanism, String> {
+/// The mechanism of either dimension that the file at `path` describes,
+/// read, parsed and built once.
+pub fn read_model(path: &Path) -> Result<Model, String> {
     let text = crate::input::read_mechanism(path)?;
-    from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+    Model::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// The mechanism, and each flexure joint's `yield_strength` and `shape`.
-fn load_with_reports(path: &Path) -> Result<(Mechanism, Vec<(String, ReportOptions)>), String> {
-    let text = crate::input::read_mechanism(path)?;
-    let m = from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let reports = reports(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok((m, reports))
+/// The closures of `model` open at rest, told (before any analysis, which
+/// may fail because of them) and listed.
+pub fn told_closures(model: &Model, file: &Path) -> Result<Vec<serde_json::Value>, String> {
+    let open = model.open_closures().map_err(|e| format!("{}: {e}", file.display()))?;
+    Ok(crate::findings::open_answers(&open, file))
 }
 
-/// Each flexure joint of `m` with its coordinates in `s` and its report keys.
-fn flexures<'a>(
-    m: &'a Mechanism,
-    s: &'a Solution,
-    reports: &'a [(String, ReportOptions)],
-) -> impl Iterator<Item = (&'a str, &'a flexure::Flexure, &'a [f64], ReportOptions)> {
-    m.joints.iter().filter_map(move |j| {
-        let f = j.kind.flexure()?;
-        let r = reports.iter().find(|r| r.0 == j.name).map_or_else(ReportOptions::default, |r| r.1);
-        Some((j.name.as_str(), f, &s.q[j.offset..j.offset + f.order()], r))
-    })
+/// A solver's error on mechanism file `file`, a bad parameter described
+/// as the command line writes it ([`crate::describe`]).
+pub fn solver_error(file: &Path) -> impl Fn(flexure::Error) -> String + '_ {
+    move |e| match e {
+        e @ flexure::Error::InvalidParameter { .. } => format!("{}: {}", file.display(), crate::describe(e)),
+        e => file_error(file, e),
+    }
+}
+
+/// Checks `--compliance NAME --at POINT` against the model: a body of that
+/// name, and a point of the model's dimension.
+fn check_frame(model: &Model, name: &str, point: &[f64], file: &Path) -> Result<(), String> {
+    if model.body(name).is_none() {
+        return Err(format!("--compliance: no body named {name:?} in {}", file.display()));
+    }
+    match (model.dimension(), point.len()) {
+        (2, 2) | (3, 3) => Ok(()),
+        (2, _) => Err(format!("--at: {} is a planar mechanism: give the point as X,Y", file.display())),
+        _ => Err(format!("--at: {} is a spatial mechanism (dimension = 3): give the point as X,Y,Z", file.display())),
+    }
 }
 
 /// A point `X,Y` (a planar file) or `X,Y,Z` (a spatial one).
@@ -90,15 +98,4 @@ pub fn point_arg(s: &str) -> Result<[f64; 2], String> {
         return Err(format!("{s:?} must be two values X,Y"));
     }
     Ok([number(parts[0])?, number(parts[1])?])
-}
-
-/// The flexure joints' names, in joint order (the order of the library's
-/// per-flexure lists, such as an estimate's reference orders).
-pub fn flexure_names(m: &Mechanism) -> Vec<String> {
-    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
-}
-
-/// {joint: order} of the flexure joints.
-pub fn flexure_orders(m: &Mechanism) -> Value {
-    Value::Object(m.joints.iter().filter_map(|j| Some((j.name.clone(), json!(j.kind.flexure()?.order())))).collect())
 }

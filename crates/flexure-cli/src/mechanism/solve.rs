@@ -1,15 +1,16 @@
 //! `flexure solve`: a mechanism's equilibrium, optionally with the
 //! compliance of a frame or a sweep of one load.
 
-use super::checks::{insert_sweep_checks, solution_answer};
-use super::{load_with_reports, point_any};
+use super::checks::{insert_sweep_checks, solved_answer};
+use super::point_any;
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
+use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance};
 use flexure::mechanism::sweep::{Parameter, sweep};
+use flexure::model::Model;
 use serde_json::{Value, json};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct SolveArgs {
@@ -78,54 +79,49 @@ fn sweep_row(m: &Mechanism, value: f64, s: &Solution, compliance: Option<&nalgeb
 
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
-    if let Some(m) = super::spatial::read(&args.file)? {
-        let at = args.compliance.as_deref().zip(args.at.as_ref().map(|p| p.0.as_slice()));
-        return super::spatial::solve_cmd(&m, &args.file, at, args.sweep.as_ref(), &args.accuracy.target());
-    }
-    let (m, reports) = load_with_reports(&args.file)?;
-    let settings = Settings::default();
+    let model = super::read_model(&args.file)?;
     let target = args.accuracy.target();
-    let err = |e: flexure::Error| super::file_error(&args.file, e);
-    let body = match &args.compliance {
-        Some(name) => Some(
-            m.body(name).ok_or_else(|| format!("--compliance: no body named {name:?} in {}", args.file.display()))?,
-        ),
-        None => None,
-    };
-    let at = match args.at.as_ref().map(|p| p.0.as_slice()) {
-        Some([x, y]) => Some([*x, *y]),
-        Some(_) => return Err(format!("--at: {} is a planar mechanism: give the point as X,Y", args.file.display())),
-        None => None,
-    };
-    let compliance_at = body.zip(at);
-    match &args.sweep {
-        Some(spec) => {
-            let p = Parameter::parse(&m, &spec.parameter).map_err(crate::describe)?;
-            let values = sweep_values(&spec.range);
-            let out = sweep(&m, &p, &values, &settings).map_err(err)?;
-            let rows: Vec<Value> = out
-                .rows
-                .iter()
-                .map(|(v, s)| {
-                    let c = compliance_at.map(|(b, at)| compliance(&m, s, b, at.into())).transpose().map_err(err)?;
-                    Ok(json!(sweep_row(&m, *v, s, c.as_ref())))
-                })
-                .collect::<Result<_, String>>()?;
-            let mut v = json!({
-                "columns": sweep_table(&m, &spec.parameter, compliance_at.is_some()),
-                "rows": rows,
-            });
-            insert_sweep_checks(&mut v, &m, &out, &reports, (&target, &args.file), (&spec.parameter, &values))?;
-            Ok(v)
-        }
-        None => {
-            let s = solve(&m, &settings).map_err(err)?;
-            let c = compliance_at.map(|(b, at)| compliance(&m, &s, b, at.into())).transpose().map_err(err)?;
-            let mut v = solution_answer(&m, &s, &reports, &target, &args.file)?;
-            if let Some(c) = c {
-                v["compliance"] = crate::joint::matrix(&c);
-            }
-            Ok(v)
-        }
+    let at = args.compliance.as_deref().zip(args.at.as_ref().map(|p| p.0.as_slice()));
+    if let Some((name, point)) = at {
+        super::check_frame(&model, name, point, &args.file)?;
     }
+    if let Some(spec) = &args.sweep {
+        return match &model {
+            Model::Planar(m) => planar_sweep(m, spec, at, &target, &args.file),
+            Model::Spatial(m) => super::spatial::sweep_cmd(m, &args.file, at, spec),
+        };
+    }
+    let findings = super::told_closures(&model, &args.file)?;
+    let solved = model.solve(&target, at).map_err(super::solver_error(&args.file))?;
+    solved_answer(&model, findings, solved, &target, &args.file)
+}
+
+/// `solve --sweep` on a planar file.
+fn planar_sweep(
+    m: &Mechanism,
+    spec: &SweepSpec,
+    at: Option<(&str, &[f64])>,
+    target: &flexure::estimate::Accuracy,
+    file: &Path,
+) -> Result<Value, String> {
+    let settings = Settings::default();
+    let err = |e: flexure::Error| super::file_error(file, e);
+    let compliance_at = at.and_then(|(name, at)| Some((m.body(name)?, [*at.first()?, *at.get(1)?])));
+    let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
+    let values = sweep_values(&spec.range);
+    let out = sweep(m, &p, &values, &settings).map_err(err)?;
+    let rows: Vec<Value> = out
+        .rows
+        .iter()
+        .map(|(v, s)| {
+            let c = compliance_at.map(|(b, at)| compliance(m, s, b, at.into())).transpose().map_err(err)?;
+            Ok(json!(sweep_row(m, *v, s, c.as_ref())))
+        })
+        .collect::<Result<_, String>>()?;
+    let mut v = json!({
+        "columns": sweep_table(m, &spec.parameter, compliance_at.is_some()),
+        "rows": rows,
+    });
+    insert_sweep_checks(&mut v, m, &out, (target, file), (&spec.parameter, &values))?;
+    Ok(v)
 }

@@ -177,7 +177,7 @@ fn shaped(fl: &SpatialFlexure) -> bool {
 /// let rod = SpatialFlexure::new(0.02, SpatialSection::circle(200e9, 0.3, Profile::Constant(1e-3)).unwrap(), [1, 1, 1]).unwrap();
 /// let spec = SpatialJointSpec {
 ///     name: "rod".into(), kind: SpatialJointKind::Flexure(Box::new(rod)),
-///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")];
 /// let m = SpatialMechanism::new(bodies, vec![spec], vec![], vec![], vec![], Vector3::zeros()).unwrap();
@@ -583,7 +583,7 @@ fn triple(v: &Vector3<f64>) -> String {
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// let hinge = SpatialJointSpec {
 ///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
-///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let push = SpatialPointLoad { name: "push".into(), body: 1, at: Point3::new(0.1, 0.0, 0.0), wrench: Vector6::new(0.0, 0.0, 0.0, 0.0, 1.0, 0.0) };
 /// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];
@@ -933,7 +933,17 @@ mod tests {
         child: usize,
         origin: Isometry3<f64>,
     ) -> SpatialJointSpec {
-        SpatialJointSpec { name: name.into(), kind, parent, child, origin, offset: 0, damping: 0.0, auto_order: false }
+        SpatialJointSpec {
+            name: name.into(),
+            kind,
+            parent,
+            child,
+            origin,
+            offset: 0,
+            damping: 0.0,
+            auto_order: false,
+            report: Default::default(),
+        }
     }
 
     fn bodies(names: &[&str]) -> Vec<SpatialBody> {

@@ -11,32 +11,25 @@ use crate::accuracy::eigen_accuracy;
 use crate::errors::to_py;
 use crate::strict::{self, Real};
 use crate::{modes, simulate};
-use flexure::mechanism::file::{Model, ReportOptions, model_from_toml, reports};
 use flexure::mechanism::spatial::SpatialMechanism;
+use flexure::model::Model;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// What a file describes: a planar mechanism, with each flexure joint's
-/// `yield_strength` and `shape` by name, or a spatial one.
-enum Described {
-    Planar { inner: flexure::mechanism::Mechanism, reports: Vec<(String, ReportOptions)> },
-    Spatial(SpatialMechanism),
-}
-
 /// A mechanism read from a TOML description, planar or spatial (`dimension = 3`).
 #[pyclass(frozen, module = "flexure")]
 pub struct Mechanism {
-    described: Described,
+    model: Model,
 }
 
 impl Mechanism {
     /// The planar mechanism, or a ValueError saying that `what` answers
     /// planar files only for now.
-    fn planar(&self, what: &str) -> PyResult<(&flexure::mechanism::Mechanism, &[(String, ReportOptions)])> {
-        match &self.described {
-            Described::Planar { inner, reports } => Ok((inner, reports)),
-            Described::Spatial(_) => Err(PyValueError::new_err(format!(
+    fn planar(&self, what: &str) -> PyResult<&flexure::mechanism::Mechanism> {
+        match &self.model {
+            Model::Planar(m) => Ok(m),
+            Model::Spatial(_) => Err(PyValueError::new_err(format!(
                 "Mechanism.{what}: a spatial mechanism (dimension = 3) has no {what} yet; it answers solve, compliance, sweep, modes, simulate and buckle"
             ))),
         }
@@ -44,9 +37,9 @@ impl Mechanism {
 
     /// The spatial mechanism, if it is one.
     fn spatial(&self) -> Option<&SpatialMechanism> {
-        match &self.described {
-            Described::Spatial(m) => Some(m),
-            Described::Planar { .. } => None,
+        match &self.model {
+            Model::Spatial(m) => Some(m),
+            Model::Planar(_) => None,
         }
     }
 }
@@ -56,11 +49,7 @@ impl Mechanism {
     /// Parses mechanism TOML text, planar or spatial (`dimension = 3`).
     #[staticmethod]
     fn from_text(text: &str) -> PyResult<Self> {
-        let described = match model_from_toml(text).map_err(to_py)? {
-            Model::Planar(inner) => Described::Planar { inner, reports: reports(text).map_err(to_py)? },
-            Model::Spatial(m) => Described::Spatial(m),
-        };
-        Ok(Self { described })
+        Ok(Self { model: Model::from_toml(text).map_err(to_py)? })
     }
 
     /// Equilibrium as a dict: the library's solve report, as `flexure solve --json` prints it,
@@ -74,11 +63,7 @@ impl Mechanism {
     #[pyo3(signature = (accuracy=None))]
     fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let target = crate::accuracy::accuracy(accuracy)?;
-        if let Some(m) = self.spatial() {
-            return spatial::solve(py, m, &target);
-        }
-        let (inner, reports) = self.planar("solve")?;
-        solve::solve(py, inner, reports, &target)
+        solve::solve(py, &self.model, &target)
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
@@ -96,7 +81,7 @@ impl Mechanism {
         let max_steps = max_steps.map(|m| m.0);
         let out = match self.spatial() {
             Some(m) => spatial::simulate(py, m, times, tolerance.0, start, max_steps)?,
-            None => simulate::motion(py, self.planar("simulate")?.0, times, tolerance.0, start, max_steps)?,
+            None => simulate::motion(py, self.planar("simulate")?, times, tolerance.0, start, max_steps)?,
         };
         strict::finite_answer("Mechanism.simulate", out.as_any())?;
         Ok(out)
@@ -116,7 +101,7 @@ impl Mechanism {
         if let Some(m) = self.spatial() {
             return spatial::modes(py, m, count, &target);
         }
-        modes::mechanism_modes(py, self.planar("modes")?.0, count, &target)
+        modes::mechanism_modes(py, self.planar("modes")?, count, &target)
     }
 
     /// The mechanism as MJCF, SDFormat or URDF text with its fit report: see `flexure.Mechanism.export`.
@@ -130,7 +115,7 @@ impl Mechanism {
         armature: Real,
         name: &str,
     ) -> PyResult<(String, Bound<'py, PyDict>)> {
-        crate::export::export(py, self.planar("export")?.0, to, prb, range, armature, name)
+        crate::export::export(py, self.planar("export")?, to, prb, range, armature, name)
     }
 
     /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see
@@ -141,7 +126,7 @@ impl Mechanism {
         if let Some(m) = self.spatial() {
             return spatial::buckle(py, m, &target);
         }
-        analyses::buckle(py, self.planar("buckle")?.0, &target)
+        analyses::buckle(py, self.planar("buckle")?, &target)
     }
 
     /// Compliance (3, 3), order (phi, x, y), of the frame at `at` (x, y; default the origin) on
@@ -159,7 +144,7 @@ impl Mechanism {
             return spatial::compliance_at(py, m, body, at);
         }
         let origin = pyo3::types::PyTuple::new(py, [0.0, 0.0])?.into_any();
-        analyses::compliance_at(py, self.planar("compliance")?.0, body, at.unwrap_or(&origin))
+        analyses::compliance_at(py, self.planar("compliance")?, body, at.unwrap_or(&origin))
     }
 
     /// Equilibria along `values` of one load, as `flexure solve --sweep`: see `flexure.Mechanism.sweep`.
@@ -195,24 +180,18 @@ impl Mechanism {
                 ));
             }
         };
-        analyses::sweep(py, self.planar("sweep")?.0, parameter, values, &target, frame)
+        analyses::sweep(py, self.planar("sweep")?, parameter, values, &target, frame)
     }
 
     /// Number of generalized coordinates.
     #[getter]
     fn dof(&self) -> usize {
-        match &self.described {
-            Described::Planar { inner, .. } => inner.dof(),
-            Described::Spatial(m) => m.dof(),
-        }
+        self.model.dof()
     }
 
     /// 2 for a planar mechanism, 3 for a spatial one (`dimension = 3` in its file).
     #[getter]
     fn dimension(&self) -> u8 {
-        match &self.described {
-            Described::Planar { .. } => 2,
-            Described::Spatial(_) => 3,
-        }
+        self.model.dimension()
     }
 }

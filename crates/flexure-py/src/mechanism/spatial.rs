@@ -7,7 +7,6 @@
 //! numbers are the library's; the stack level of every warning is 2, the
 //! line that called `flexure.Mechanism`'s Python wrapper.
 
-use crate::error_estimate::estimate_dict;
 use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
 use crate::findings;
 use crate::interrupt::interruptible;
@@ -16,13 +15,14 @@ use crate::warnings::{sig, warn, warn_values};
 use flexure::Error;
 use flexure::dynamics::integrate;
 use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
-use flexure::estimate::{Accuracy, ErrorEstimate, ValueEstimate};
+use flexure::estimate::{Accuracy, ValueEstimate};
 use flexure::mechanism::spatial::SpatialMechanism;
-use flexure::mechanism::spatial::findings::{crossings, crossings_along, open_closures};
+use flexure::mechanism::spatial::findings::{crossings_along, open_closures};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
-use flexure::report::spatial::{Placement, placements, report};
+use flexure::report::{BodyPose, Reported};
 use flexure::solver::Settings;
+use flexure::space::Spatial;
 use nalgebra::Point3;
 use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{IntoPyArray, PyArray1};
@@ -63,117 +63,21 @@ fn point3(at: Option<&Bound<'_, PyAny>>) -> PyResult<Point3<f64>> {
     Ok(Point3::new(x, y, z))
 }
 
-/// A rotation matrix given by rows as a (3, 3) array.
-fn rotation_array(r: &[[f64; 3]; 3]) -> Array2<f64> {
-    Array2::from_shape_fn((3, 3), |(i, j)| r[i][j])
-}
+/// Each moving body's placement at `q`: position, rotation by rows, and roll, pitch, yaw.
+type Placement = ([f64; 3], [[f64; 3]; 3], [f64; 3]);
 
-/// `{name: {position (3,), rotation (3, 3), rpy (3,)}}` of every moving body.
-fn bodies_dict<'py>(py: Python<'py>, placed: &[Placement]) -> PyResult<Bound<'py, PyDict>> {
-    let bodies = PyDict::new(py);
-    for p in placed {
-        let d = PyDict::new(py);
-        d.set_item("position", PyArray1::from_slice(py, &p.position))?;
-        d.set_item("rotation", rotation_array(&p.rotation).into_pyarray(py))?;
-        d.set_item("rpy", PyArray1::from_slice(py, &p.rpy))?;
-        bodies.set_item(&p.name, d)?;
-    }
-    Ok(bodies)
-}
-
-/// The length of flexure joint `name` of `m` (m), for messages.
-fn flexure_length(m: &SpatialMechanism, name: &str) -> f64 {
-    m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map_or(f64::NAN, |f| f.length())
-}
-
-/// Warns `AccuracyWarning` that flexure joint `joint` of length `length`
-/// misses `target` by the estimate `e`.
-fn warn_flagged(
-    py: Python<'_>,
-    what: &str,
-    joint: &str,
-    length: f64,
-    e: &ErrorEstimate,
-    target: &Accuracy,
-) -> PyResult<()> {
-    let text = format!(
-        "{what}, flexure joint {joint:?}: estimated error {} m ({} % of L) in position and {}° in angle misses the target of {} % of L and {}° (estimated against orders {} with {} quadrature points); raise the joint's orders in the mechanism file",
-        sig(e.position),
-        sig(100.0 * e.position / length),
-        sig(e.angle.to_degrees()),
-        sig(100.0 * target.position),
-        sig(target.angle.to_degrees()),
-        e.reference_order,
-        e.reference_quadrature,
-    );
-    warn(py, &py.get_type::<AccuracyWarning>(), text, 2)
-}
-
-/// Warns `StabilityWarning` for a snap-through (`limit`) and an unstable answer.
-fn warn_stability(py: Python<'_>, what: &str, limit: Option<f64>, stable: bool) -> PyResult<()> {
-    if let Some(limit) = limit {
-        let text = format!(
-            "{what}: the loading path lost stability at {:.4} % of the load and snapped through to this stable equilibrium",
-            100.0 * limit
-        );
-        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
-    }
-    if !stable {
-        let text = format!(
-            "{what}: the equilibrium is unstable (`stable` is False): its constrained stiffness is not positive definite, so a small disturbance moves it away"
-        );
-        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
-    }
-    Ok(())
-}
-
-/// The equilibrium of `m` as `Mechanism.solve` documents it for a spatial
-/// file: the library's report (what `flexure solve --json` prints) with
-/// `bodies` {name: {position, rotation, rpy}}, `coordinates` {joint: array},
-/// `flexures` {flexure joint: {load {moment, force}, stress}} and
-/// `error_estimate` {flexure joint: dict}.
-pub fn solve<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
-    let (r, open) = interruptible(py, || {
-        let open = open_closures(m, &Settings::default())?;
-        let s = equilibrium(m, &Settings::default())?;
-        Ok((report(m, &s, target)?, open))
-    })?;
-    let crossings: Vec<_> = crossings(m, &r.solution.q).into_iter().map(|c| (None, c)).collect();
-    let listed = findings::report(py, "Mechanism.solve", &open, &crossings, 2)?;
-    let out = crate::serialize::to_dict(py, &r)?;
-    if !listed.is_empty() {
-        out.set_item("findings", listed)?;
-    }
-    out.set_item("q", PyArray1::from_slice(py, &r.solution.q))?;
-    out.set_item("multipliers", PyArray1::from_slice(py, &r.solution.multipliers))?;
-    out.set_item("bodies", bodies_dict(py, &r.bodies)?)?;
-    out.del_item("joints")?;
-    let coordinates = PyDict::new(py);
-    for j in &r.joints {
-        coordinates.set_item(&j.name, PyArray1::from_slice(py, &j.coordinates))?;
-    }
-    out.set_item("coordinates", coordinates)?;
-    let (flexures, estimates) = (PyDict::new(py), PyDict::new(py));
-    for f in &r.flexures {
-        let d = PyDict::new(py);
-        let load = PyDict::new(py);
-        load.set_item("moment", PyArray1::from_slice(py, &f.load.moment))?;
-        load.set_item("force", PyArray1::from_slice(py, &f.load.force))?;
-        d.set_item("load", load)?;
-        if let Some(s) = &f.stress {
-            d.set_item("stress", crate::serialize::to_dict(py, s)?)?;
-        }
-        flexures.set_item(&f.name, d)?;
-        estimates.set_item(&f.name, estimate_dict(py, &f.error_estimate)?)?;
-        if f.error_estimate.flagged {
-            warn_flagged(py, "Mechanism.solve", &f.name, flexure_length(m, &f.name), &f.error_estimate, target)?;
-        }
-    }
-    out.set_item("flexures", flexures)?;
-    out.set_item("error_estimate", estimates)?;
-    warn_stability(py, "Mechanism.solve", r.solution.limit, r.solution.stable)?;
-    finite_answer("Mechanism.solve", out.as_any())?;
-    Ok(out)
+fn placements(m: &SpatialMechanism, q: &[f64]) -> Vec<Placement> {
+    let poses = <Spatial as Reported>::poses(m, q);
+    poses
+        .into_iter()
+        .skip(1)
+        .filter_map(|p| match p {
+            BodyPose::Spatial { x, y, z, roll, pitch, yaw, rotation } => {
+                Some(([x, y, z], rotation, [roll, pitch, yaw]))
+            }
+            BodyPose::Planar { .. } => None,
+        })
+        .collect()
 }
 
 /// The compliance (6, 6), order (rx, ry, rz, x, y, z), of the frame at
@@ -212,9 +116,9 @@ fn rows_dict<'py>(
     for (k, b) in m.bodies.iter().enumerate().skip(1) {
         let d = PyDict::new(py);
         let at = |r: usize| &placed[r][k - 1];
-        d.set_item("position", Array2::from_shape_fn((n, 3), |(r, i)| at(r).position[i]).into_pyarray(py))?;
-        d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(r, i, j)| at(r).rotation[i][j]).into_pyarray(py))?;
-        d.set_item("rpy", Array2::from_shape_fn((n, 3), |(r, i)| at(r).rpy[i]).into_pyarray(py))?;
+        d.set_item("position", Array2::from_shape_fn((n, 3), |(r, i)| at(r).0[i]).into_pyarray(py))?;
+        d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(r, i, j)| at(r).1[i][j]).into_pyarray(py))?;
+        d.set_item("rpy", Array2::from_shape_fn((n, 3), |(r, i)| at(r).2[i]).into_pyarray(py))?;
         bodies.set_item(&b.name, d)?;
     }
     out.set_item("bodies", bodies)?;

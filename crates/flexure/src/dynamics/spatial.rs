@@ -430,7 +430,7 @@ impl System for SpatialSystem<'_> {
 /// // A sprung hinge about z (k = 2 N·m/rad) carrying 0.5 kg at 0.1 m: ω = √(k / m l²) = 20 rad/s.
 /// let hinge = SpatialJointSpec {
 ///     name: "pin".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
-///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let arm = SpatialBody { name: "arm".into(), mass: 0.5, com: Point3::new(0.1, 0.0, 0.0), inertia: Matrix3::zeros() };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), arm], vec![hinge], vec![], vec![], vec![], Vector3::zeros()).unwrap();

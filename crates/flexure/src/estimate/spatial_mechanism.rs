@@ -33,7 +33,7 @@ use crate::spatial::SpatialFlexure;
 /// use flexure::spatial::SpatialFlexure;
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
-/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
 /// let push = SpatialPointLoad { name: "p".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.0, 0.0, 0.0, 0.0, 0.5, 0.5) };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
 /// let s = solve(&m, &Default::default()).unwrap();
@@ -99,7 +99,7 @@ fn coordinates_or_rest<'a>(m: &SpatialMechanism, q: &'a [f64]) -> std::borrow::C
 /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
 /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 2, 3]).unwrap();
-/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![], vec![], nalgebra::Vector3::zeros()).unwrap();
 /// let (r, orders) = reference_mechanism(&m, &[]).unwrap();
 /// // Orders [6, 5, 6] with 4·(6 − 1) = 20 subintervals: 17 coordinates.
@@ -134,7 +134,7 @@ pub fn reference_mechanism(m: &SpatialMechanism, q: &[f64]) -> Result<(SpatialMe
 /// // A column (L = 1, EI = 1 about both axes) pushed along itself by 1 N:
 /// // the free tip's Euler load π²EI/(4L²) = 2.4674.
 /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
-/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
 /// let push = SpatialPointLoad { name: "p".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.0, 0.0, 0.0, -1.0, 0.0, 0.0) };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
 /// let b = buckle(&m, &Default::default()).unwrap();
@@ -175,7 +175,7 @@ pub fn buckle_error(
 /// // A massless rod (L = 0.2 m, GJ = 0.8 N·m²) carrying a disc of 2e-4 kg·m² about
 /// // its axis twists at ω = √(GJ/(L·I)) = 141.42 rad/s; the model is exact.
 /// let rod = SpatialFlexure::new(0.2, SpatialSection::uniform(0.8, 1.5, 2.5).unwrap(), [3, 3, 3]).unwrap();
-/// let joint = SpatialJointSpec { name: "rod".into(), kind: SpatialJointKind::Flexure(Box::new(rod)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
+/// let joint = SpatialJointSpec { name: "rod".into(), kind: SpatialJointKind::Flexure(Box::new(rod)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
 /// let disc = SpatialBody { name: "disc".into(), mass: 0.3, com: Point3::origin(), inertia: Matrix3::from_diagonal(&Vector3::new(2e-4, 1e-4, 1e-4)) };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), disc], vec![joint], vec![], vec![], vec![], Vector3::zeros()).unwrap();
 /// let found = modes(&m, &Default::default(), 5).unwrap();

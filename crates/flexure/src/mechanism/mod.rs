@@ -100,6 +100,37 @@ pub struct JointSpec<D: Dimension = Planar> {
     /// [`crate::estimate::mechanism_modes_auto`] and their spatial twins);
     /// other analyses take it as it is.
     pub auto_order: bool,
+    /// What the solve report adds about a flexure joint (its file's
+    /// `yield_strength` and `shape`); the default for the other kinds.
+    pub report: ReportOptions,
+}
+
+impl<D: Dimension> JointSpec<D> {
+    /// A joint of `kind` from body `parent` to body `child`, its root frame
+    /// at `origin` in the parent's: no damping, its order as given, the
+    /// report's defaults, and its `offset` set by [`Mechanism::new`].
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::{JointKind, JointSpec, Revolute};
+    /// use flexure::kinematics::Pose;
+    /// let pin = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
+    /// let j = JointSpec::new("pin", pin, 0, 1, Pose { x: 0.1, y: 0.0, phi: 0.0 });
+    /// assert_eq!((j.offset, j.damping, j.auto_order), (0, 0.0, false));
+    /// ```
+    pub fn new(name: &str, kind: D::JointKind, parent: usize, child: usize, origin: D::Pose) -> Self {
+        let (offset, damping, auto_order, report) = (0, 0.0, false, ReportOptions::default());
+        Self { name: name.into(), kind, parent, child, origin, offset, damping, auto_order, report }
+    }
+}
+
+/// What the solve report gives of a flexure joint beyond its coordinates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ReportOptions {
+    /// `yield_strength` (Pa): the safety factor is this over the peak stress.
+    pub yield_strength: Option<f64>,
+    /// `shape`: the number of points, evenly spaced in arc length, at which to give the deformed flexure.
+    pub shape: Option<usize>,
 }
 
 /// A tendon of constant tension through via points; potential tension × length.
@@ -347,7 +378,7 @@ impl<D: Dimension> Mechanism<D> {
     /// let bob = SpatialBody { mass: 1.0, com: nalgebra::Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
     /// let ball = SpatialJointSpec {
     ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
-    ///     parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+    ///     parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
     /// };
     /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], nalgebra::Vector3::new(0.0, 0.0, -9.81)).unwrap();
     /// assert_eq!((m.dof(), m.constraints()), (3, 0));
@@ -523,7 +554,7 @@ impl<D: Dimension> Mechanism<D> {
     /// let bob = SpatialBody { mass: 1.0, com: Point3::new(0.0, 0.0, -1.0), ..SpatialBody::massless("bob") };
     /// let ball = SpatialJointSpec {
     ///     name: "ball".into(), kind: SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] }),
-    ///     parent: 0, child: 1, origin: Isometry3::translation(0.0, 0.0, 2.0), offset: 0, damping: 0.0, auto_order: false,
+    ///     parent: 0, child: 1, origin: Isometry3::translation(0.0, 0.0, 2.0), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
     /// };
     /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), bob], vec![ball], vec![], vec![], vec![], Vector3::zeros()).unwrap();
     /// assert_eq!(m.attachments(0), [Point3::new(0.0, 0.0, 2.0)]);

@@ -1,26 +1,34 @@
 //! The answer of a mechanism solve, built once from the library's
-//! [`Solution`] so that the command line (`flexure solve`) and Python
-//! (`Mechanism.solve`) print the same thing without re-deriving it: the
-//! bodies' poses, the joints' coordinates, the energy and stability, where
-//! the loading path snapped through, each flexure joint's error estimate
-//! and its peak stress (or, given by $EI$ alone, its peak change of
-//! curvature $\max_s\lvert\hat\omega(\alpha, s) - \hat\omega_0(s)\rvert$),
+//! [`Solution`] for both dimensions, so that the command line (`flexure
+//! solve`) and Python (`Mechanism.solve`) print the same thing in the same
+//! shape without re-deriving it: the bodies' poses, the joints'
+//! coordinates, the energy and stability, where the loading path snapped
+//! through, and each flexure joint's carried load, error estimate and peak
+//! stress (or, given by its stiffness alone, its peak change of curvature
+//! $\max_s\lvert\hat\omega(\alpha, s) - \hat\omega_0(s)\rvert$, planar),
 //! with the safety factor and deformed shape its file asks for.
 //!
-//! It derives `serde::Serialize`: maps by name (bodies, joints) keep the
-//! mechanism's order. Findings (closures open at rest, crossings) and
-//! compliances are separate analyses, which the caller adds.
+//! What differs by dimension is a leaf's coordinates (a pose, a load, a
+//! shape's points, a stress's components), each an untagged enum, and the
+//! few functions of [`Reported`]. It derives `serde::Serialize`: maps by
+//! name (bodies, joints) keep the mechanism's order. Findings (closures
+//! open at rest, crossings) and compliances are separate analyses, which
+//! the caller adds.
 
-pub mod spatial;
+mod dimension;
+
+pub use dimension::Reported;
 
 use crate::Error;
 use crate::Flexure;
-use crate::estimate::{Accuracy, ErrorEstimate, joint_error};
+use crate::estimate::{Accuracy, ErrorEstimate};
 use crate::kinematics::backbone;
 use crate::mechanism::Mechanism;
-use crate::mechanism::file::ReportOptions;
-use crate::mechanism::statics::{Solution, body_frames};
-use crate::stress::{Peak, peak_curvature, peak_stress, stress};
+use crate::mechanism::statics::Solution;
+use crate::section::StressPoint;
+use crate::space::Wrench;
+use crate::spatial::{SpatialLoad, SpatialPoint};
+use crate::stress::{Peak, stress};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 
@@ -56,12 +64,92 @@ impl<T: Serialize> Serialize for Named<T> {
     }
 }
 
-/// A body's frame in the ground frame: origin (m) and rotation $\varphi$ (rad).
+/// A body's frame in the ground frame, in its dimension's coordinates (the
+/// columns a sweep prints, [`BodyPose::columns`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct BodyPose {
-    pub x: f64,
-    pub y: f64,
-    pub phi: f64,
+#[serde(untagged)]
+pub enum BodyPose {
+    /// Origin (m) and rotation $\varphi$ (rad).
+    Planar { x: f64, y: f64, phi: f64 },
+    /// Origin (m), rotation as URDF's roll, pitch, yaw (rad),
+    /// $R = R_z(\text{yaw})R_y(\text{pitch})R_x(\text{roll})$, and as its matrix, by rows.
+    Spatial { x: f64, y: f64, z: f64, roll: f64, pitch: f64, yaw: f64, rotation: [[f64; 3]; 3] },
+}
+
+impl BodyPose {
+    /// The names of [`BodyPose::coordinates`].
+    pub fn columns(&self) -> &'static [&'static str] {
+        match self {
+            Self::Planar { .. } => &["x", "y", "phi"],
+            Self::Spatial { .. } => &["x", "y", "z", "roll", "pitch", "yaw"],
+        }
+    }
+
+    /// The origin in space (m): the plane is $z = 0$.
+    pub fn position(&self) -> [f64; 3] {
+        match *self {
+            Self::Planar { x, y, .. } => [x, y, 0.0],
+            Self::Spatial { x, y, z, .. } => [x, y, z],
+        }
+    }
+
+    /// The rotation in space, by rows: the plane's turns about $z$.
+    pub fn rotation(&self) -> [[f64; 3]; 3] {
+        match *self {
+            Self::Planar { phi, .. } => {
+                let (s, c) = phi.sin_cos();
+                [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
+            }
+            Self::Spatial { rotation, .. } => rotation,
+        }
+    }
+
+    /// Roll, pitch and yaw (rad): the plane's $\varphi$ is the yaw.
+    pub fn rpy(&self) -> [f64; 3] {
+        match *self {
+            Self::Planar { phi, .. } => [0.0, 0.0, phi],
+            Self::Spatial { roll, pitch, yaw, .. } => [roll, pitch, yaw],
+        }
+    }
+
+    /// The pose's coordinates: $(x, y, \varphi)$, or $(x, y, z)$ and roll, pitch, yaw.
+    pub fn coordinates(&self) -> Vec<f64> {
+        match *self {
+            Self::Planar { x, y, phi } => vec![x, y, phi],
+            Self::Spatial { x, y, z, roll, pitch, yaw, .. } => vec![x, y, z, roll, pitch, yaw],
+        }
+    }
+}
+
+/// A moving body's placement in the ground frame, in space (the plane at $z = 0$).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Placement {
+    /// The body's name.
+    pub name: String,
+    /// Its origin (m).
+    pub position: [f64; 3],
+    /// Its rotation matrix, by rows.
+    pub rotation: [[f64; 3]; 3],
+    /// The same rotation as URDF's roll, pitch, yaw (rad).
+    pub rpy: [f64; 3],
+}
+
+/// The placement of every moving body (the ground left out) at coordinates `q`.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::file::from_toml;
+/// use flexure::report::placements;
+/// let m = from_toml("[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.1, 0.0, 0.0]\n")?;
+/// let p = placements(&m, &[0.5]);
+/// assert_eq!((p[0].name.as_str(), p[0].position, p[0].rpy), ("arm", [0.1, 0.0, 0.0], [0.0, 0.0, 0.5]));
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn placements<D: Reported>(m: &Mechanism<D>, q: &[f64]) -> Vec<Placement> {
+    let poses = D::poses(m, q);
+    (m.bodies.iter().zip(poses).skip(1))
+        .map(|(b, p)| Placement { name: b.name.clone(), position: p.position(), rotation: p.rotation(), rpy: p.rpy() })
+        .collect()
 }
 
 /// The largest value of a quantity along a flexure, `max`, and the arc
@@ -78,6 +166,39 @@ impl From<Peak> for MaxAt {
     }
 }
 
+/// A flexure's peak stress: the largest von Mises stress `max` (Pa; in the
+/// plane, where it is the bending stress, $\sigma = M c / I$) at arc length
+/// `at` (m); in space also the section's point where it sits and its parts
+/// there, each a peak over the section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PeakStress {
+    pub max: f64,
+    pub at: f64,
+    /// Where over the section (space).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<StressPoint>,
+    /// The normal stress of bending about $y$ (Pa; space).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bending_y: Option<f64>,
+    /// The normal stress of bending about $z$ (Pa; space).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bending_z: Option<f64>,
+    /// The torsional shear stress (Pa; space).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear: Option<f64>,
+}
+
+/// The tip load a flexure joint carries, in its root frame: the wrench
+/// with which the flexure alone is in equilibrium at its coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum CarriedLoad {
+    /// Moment (N·m) and force $(F_x, F_y)$ (N).
+    Planar(Wrench),
+    /// Moment and force (N·m, N), each about or along $x$, $y$, $z$.
+    Spatial(SpatialLoad),
+}
+
 /// One point of a deformed flexure in its root frame: arc length `s` (m),
 /// pose, total curvature $\hat\omega(\alpha, s)$ (1/m) and, with a
 /// thickness, the bending stress (Pa).
@@ -92,12 +213,24 @@ pub struct ShapePoint {
     pub stress: Option<f64>,
 }
 
+/// A deformed flexure's points, evenly spaced in arc length, ends included.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Shape {
+    /// In the plane ([`shape`]).
+    Planar(Vec<ShapePoint>),
+    /// In space ([`crate::spatial::shape`]).
+    Spatial(Vec<SpatialPoint>),
+}
+
 /// The answer of a mechanism solve; see the module docs. Maps left empty
-/// (no flexure with a thickness, no `yield_strength`, no `shape`) are not
+/// (no flexure with a section, no `yield_strength`, no `shape`) are not
 /// serialized, nor `limit_fraction` without a snap-through.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolveReport {
-    /// Each body's frame, by name.
+    /// 2 or 3.
+    pub dimension: u8,
+    /// Each body's frame, by name, the ground first.
     pub bodies: Named<BodyPose>,
     /// Each joint's coordinates, by name.
     pub coordinates: Named<Vec<f64>>,
@@ -105,14 +238,15 @@ pub struct SolveReport {
     pub energy: f64,
     /// Whether the equilibrium is stable.
     pub stable: bool,
-    /// Each flexure joint's error estimate ([`joint_error`]), by name.
+    /// Each flexure joint's error estimate, by name: the joint alone under
+    /// the tip load it carries, against its refined reference.
     pub error_estimate: Named<ErrorEstimate>,
     /// Whether any of them misses the accuracy target.
     pub flagged: bool,
-    /// The peak bending stress (Pa) of each flexure joint with a thickness.
+    /// The peak stress of each flexure joint with a section.
     #[serde(skip_serializing_if = "Named::is_empty")]
-    pub stress: Named<MaxAt>,
-    /// The peak change of curvature (1/m) of each flexure joint given by $EI$ alone.
+    pub stress: Named<PeakStress>,
+    /// The peak change of curvature (1/m) of each planar flexure joint given by $EI$ alone.
     #[serde(skip_serializing_if = "Named::is_empty")]
     pub curvature_max: Named<MaxAt>,
     /// Yield strength over peak stress, of each flexure joint whose file
@@ -121,11 +255,21 @@ pub struct SolveReport {
     pub safety_factor: Named<f64>,
     /// The deformed shape of each flexure joint whose file asks for one (`shape`).
     #[serde(skip_serializing_if = "Named::is_empty")]
-    pub shape: Named<Vec<ShapePoint>>,
+    pub shape: Named<Shape>,
     /// Where the loading path lost stability and snapped through, as a
     /// fraction of the load ([`Solution::limit`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limit_fraction: Option<f64>,
+    /// The tip load each flexure joint carries, by name.
+    pub load: Named<CarriedLoad>,
+    /// The closures' multipliers ([`Solution::multipliers`]).
+    pub multipliers: Vec<f64>,
+    /// The final KKT residual, relative.
+    pub residual: f64,
+    /// Load-continuation steps.
+    pub load_steps: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
 }
 
 /// A flexure joint whose error estimate (the joint alone under the tip
@@ -136,14 +280,14 @@ pub struct EstimateFailed {
     pub error: Error,
 }
 
-/// The report of `s`, a solution of `m`; `reports` are the file's report
-/// keys of its flexure joints ([`crate::mechanism::file::reports`]), by name.
+/// The report of `s`, a solution of `m`, with each flexure joint's
+/// report keys ([`crate::mechanism::ReportOptions`]).
 ///
 /// # Example
 ///
 /// ```
 /// use flexure::estimate::Accuracy;
-/// use flexure::mechanism::file::{from_toml, reports};
+/// use flexure::mechanism::file::from_toml;
 /// use flexure::report::solve_report;
 /// use flexure::mechanism::statics::{Settings, solve};
 ///
@@ -163,28 +307,25 @@ pub struct EstimateFailed {
 /// "#;
 /// let m = from_toml(&text)?;
 /// let s = solve(&m, &Settings::default())?;
-/// let r = solve_report(&m, &s, &reports(&text)?, &Accuracy::default()).map_err(|f| f.error)?;
+/// let r = solve_report(&m, &s, &Accuracy::default()).map_err(|f| f.error)?;
 /// assert_eq!(r.coordinates.get("hinge").map(Vec::len), Some(3));
-/// assert!(r.stable && r.bodies.get("link").is_some_and(|b| b.phi > 0.0));
+/// assert!(r.stable && r.bodies.get("link").is_some_and(|b| b.coordinates()[2] > 0.0));
 /// assert!(r.curvature_max.get("hinge").is_some() && r.stress.is_empty());
+/// // The joint carries the tip force: 0.1 N along y, and no moment at the tip.
+/// let json = serde_json::to_value(&r.load.get("hinge").unwrap()).unwrap();
+/// assert!((json["fy"].as_f64().unwrap() - 0.1).abs() < 1e-9);
 /// # Ok::<(), flexure::Error>(())
 /// ```
-pub fn solve_report(
-    m: &Mechanism,
-    s: &Solution,
-    reports: &[(String, ReportOptions)],
+pub fn solve_report<D: Reported>(
+    m: &Mechanism<D>,
+    s: &Solution<D>,
     target: &Accuracy,
 ) -> std::result::Result<SolveReport, EstimateFailed> {
-    let frames = body_frames(m, s);
-    let bodies = m
-        .bodies
-        .iter()
-        .zip(&frames.bodies)
-        .map(|(b, f)| (b.name.clone(), BodyPose { x: f.x, y: f.y, phi: f.phi }))
-        .collect();
+    let bodies = m.bodies.iter().map(|b| b.name.clone()).zip(D::poses(m, &s.q)).collect();
     let coordinates =
-        m.joints.iter().map(|j| (j.name.clone(), s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec())).collect();
+        m.joints.iter().map(|j| (j.name.clone(), s.q[j.offset..j.offset + D::joint(&j.kind).dof()].to_vec())).collect();
     let mut r = SolveReport {
+        dimension: D::POINT_DIM as u8,
         bodies: Named(bodies),
         coordinates: Named(coordinates),
         energy: s.energy,
@@ -196,26 +337,32 @@ pub fn solve_report(
         safety_factor: Named::default(),
         shape: Named::default(),
         limit_fraction: s.limit,
+        load: Named::default(),
+        multipliers: s.multipliers.clone(),
+        residual: s.residual,
+        load_steps: s.load_steps,
+        iterations: s.iterations,
     };
-    for j in &m.joints {
-        let Some(f) = j.kind.flexure() else { continue };
-        let q = &s.q[j.offset..j.offset + f.order()];
+    let flexures = m.joints.iter().filter_map(|j| Some((j, D::flexure(&j.kind)?)));
+    for ((j, f), estimate) in flexures.zip(D::estimates(m, s, target)) {
+        let q = &s.q[j.offset..j.offset + D::joint(&j.kind).dof()];
         let name = j.name.clone();
-        let e = joint_error(f, q, target).map_err(|error| EstimateFailed { joint: name.clone(), error })?;
+        let failed = |error| EstimateFailed { joint: name.clone(), error };
+        let (e, load) = estimate.map_err(failed)?;
         r.flagged |= e.flagged;
         r.error_estimate.0.push((name.clone(), e));
-        let keys = reports.iter().find(|k| k.0 == j.name).map_or_else(ReportOptions::default, |k| k.1);
-        match peak_stress(f, q) {
+        r.load.0.push((name.clone(), load));
+        match D::peak_stress(f, q).map_err(failed)? {
             Some(p) => {
-                r.stress.0.push((name.clone(), p.into()));
-                if let Some(strength) = keys.yield_strength.filter(|_| p.value > 0.0) {
-                    r.safety_factor.0.push((name.clone(), strength / p.value));
+                r.stress.0.push((name.clone(), p));
+                if let Some(strength) = j.report.yield_strength.filter(|_| p.max > 0.0) {
+                    r.safety_factor.0.push((name.clone(), strength / p.max));
                 }
             }
-            None => r.curvature_max.0.push((name.clone(), peak_curvature(f, q).into())),
+            None => r.curvature_max.0.extend(D::peak_curvature(f, q).map(|c| (name.clone(), c))),
         }
-        if let Some(count) = keys.shape {
-            r.shape.0.push((name, shape(f, q, count)));
+        if let Some(count) = j.report.shape {
+            r.shape.0.push((name.clone(), D::shape(f, q, count).map_err(failed)?));
         }
     }
     Ok(r)

@@ -3,7 +3,9 @@
 //! `flexure solve` reports of it.
 
 use super::document::{Sign, Source, Span};
-use super::{Error, Flexure, FlexureSpec, JointToml, MAX_SHAPE, Notch, Profile, Result, SectionSpec, Spanned};
+use super::{
+    Error, Flexure, FlexureSpec, JointToml, MAX_SHAPE, Notch, Profile, ReportOptions, Result, SectionSpec, Spanned,
+};
 
 impl Source<'_> {
     /// A quantity along a flexure, `key`: a number, `[root, tip]` (a linear
@@ -100,7 +102,7 @@ fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, boo
 /// library, which names the parameter of an error; the error is placed at
 /// that parameter's key. Also the place of the key that sets the stiffness,
 /// and whether `order = "auto"`.
-pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexure, Span, bool)> {
+pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexure, Span, bool, ReportOptions)> {
     let length =
         j.length.as_ref().ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
     let length_value = src.number(owner, "length", length, Sign::Positive)?;
@@ -134,8 +136,8 @@ pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexu
         };
         src.placed(owner, &span, x)
     })?;
-    report(src, owner, j, &f)?;
-    Ok((f, ei_span, auto_order))
+    let report = report_keys(src, owner, (&j.yield_strength, &j.shape), f.section().modulus().is_some())?;
+    Ok((f, ei_span, auto_order, report))
 }
 
 /// A flexure joint's section keys, each checked where it is written: `ei`,
@@ -198,26 +200,24 @@ fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Spa
     Ok((spec, span))
 }
 
-/// What `flexure solve` reports of a flexure joint beyond its coordinates.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ReportOptions {
-    /// `yield_strength` (Pa): the safety factor is this over the peak stress.
-    pub yield_strength: Option<f64>,
-    /// `shape`: the number of points, evenly spaced in arc length, at which to print the deformed flexure.
-    pub shape: Option<usize>,
-}
-
 /// Checks a flexure joint's `yield_strength` (greater than zero, and only
-/// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]).
-fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<ReportOptions> {
-    let yield_strength = match &j.yield_strength {
+/// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]), in a
+/// file of either dimension; `stressed`: whether its section has the
+/// geometry and material that give a stress.
+pub(super) fn report_keys(
+    src: &Source,
+    owner: &str,
+    (yield_strength, shape): (&Option<Spanned<f64>>, &Option<Spanned<usize>>),
+    stressed: bool,
+) -> Result<ReportOptions> {
+    let yield_strength = match yield_strength {
         Some(v) => {
             let s = src.number(owner, "yield_strength", v, Sign::Positive)?;
-            if f.section().modulus().is_none() {
+            if !stressed {
                 return src.fail(
                     &v.span(),
                     format!(
-                        "{owner}yield_strength needs a thickness to give a stress: give modulus, width and thickness (a flexure given by ei alone has no stress)"
+                        "{owner}yield_strength needs a section to give a stress: give modulus with its width and thickness (or diameter) (a flexure given by its stiffnesses alone has no stress)"
                     ),
                 );
             }
@@ -225,7 +225,7 @@ fn report(src: &Source, owner: &str, j: &JointToml, f: &Flexure) -> Result<Repor
         }
         None => None,
     };
-    let shape = match &j.shape {
+    let shape = match shape {
         Some(k) if !(2..=MAX_SHAPE).contains(k.get_ref()) => {
             return src
                 .fail(&k.span(), format!("{owner}shape = {}: must be from 2 to {MAX_SHAPE} points", k.get_ref()));

@@ -2,7 +2,7 @@
 
 use super::document::{Sign, Source, Span};
 use super::flexures::flexure;
-use super::{Deserialize, JointKind, JointSpec, Pose, Result, Spanned};
+use super::{Deserialize, JointKind, JointSpec, Pose, ReportOptions, Result, Spanned};
 use super::{Fixed, Prismatic, Revolute};
 
 #[derive(Deserialize)]
@@ -68,7 +68,11 @@ pub(super) fn foreign_keys(j: &JointToml, kind: &str) -> Option<(&'static str, S
 
 /// The joint's kind, the place of the key that sets its stiffness, and
 /// whether it is a flexure of `order = "auto"`.
-pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(JointKind, Span, bool)> {
+/// A joint's kind, where its stiffness is given, whether its order is
+/// `"auto"`, and (a flexure's) report keys.
+type Kind = (JointKind, Span, bool, ReportOptions);
+
+pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<Kind> {
     let kind = j.kind.get_ref().as_str();
     if !matches!(kind, "flexure" | "revolute" | "prismatic" | "fixed") {
         return src.fail(
@@ -85,8 +89,8 @@ pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(Jo
     let stiffness_place = j.stiffness.as_ref().map_or(j.name.span(), Spanned::span);
     match kind {
         "flexure" => {
-            let (f, stiffness_place, auto_order) = flexure(src, owner, j)?;
-            Ok((JointKind::Flexure(Box::new(f)), stiffness_place, auto_order))
+            let (f, stiffness_place, auto_order, report) = flexure(src, owner, j)?;
+            Ok((JointKind::Flexure(Box::new(f)), stiffness_place, auto_order, report))
         }
         "revolute" => Ok((
             JointKind::Revolute(Revolute {
@@ -95,6 +99,7 @@ pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(Jo
             }),
             stiffness_place,
             false,
+            ReportOptions::default(),
         )),
         "prismatic" => Ok((
             JointKind::Prismatic(Prismatic {
@@ -103,8 +108,9 @@ pub(super) fn joint_kind(src: &Source, owner: &str, j: &JointToml) -> Result<(Jo
             }),
             stiffness_place,
             false,
+            ReportOptions::default(),
         )),
-        _ => Ok((JointKind::Fixed(Fixed), j.name.span(), false)),
+        _ => Ok((JointKind::Fixed(Fixed), j.name.span(), false, ReportOptions::default())),
     }
 }
 
@@ -167,7 +173,7 @@ pub(super) fn tree(src: &Source, joints: &[JointToml], parents: &[usize], order:
         let j = &joints[i];
         let owner = format!("joint {:?}: ", j.name.get_ref());
         let origin = src.array(&owner, "origin", &j.origin)?;
-        let (kind, stiffness_place, auto_order) = joint_kind(src, &owner, j)?;
+        let (kind, stiffness_place, auto_order, report) = joint_kind(src, &owner, j)?;
         let damping = j.damping.as_ref().map_or(Ok(0.0), |d| src.number(&owner, "damping", d, Sign::NotNegative))?;
         let dof = kind.joint().dof();
         parent_joint[i + 1] = Some(specs.len());
@@ -180,6 +186,7 @@ pub(super) fn tree(src: &Source, joints: &[JointToml], parents: &[usize], order:
             offset,
             damping,
             auto_order,
+            report,
         });
         stiffness_places.push(stiffness_place);
         offset += dof;

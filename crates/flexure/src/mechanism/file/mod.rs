@@ -14,7 +14,7 @@ use super::joints::{Fixed, Prismatic, Revolute};
 use super::kinematics::frames;
 use super::schedule::{Schedule, Waveform};
 use super::sweep::Parameter;
-use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, Tendon};
+use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, ReportOptions, Tendon};
 use crate::error::{Error, Result};
 use crate::flexure::Flexure;
 use crate::flexure::FlexureSpec;
@@ -38,9 +38,8 @@ mod validation;
 pub use super::hints::{habits, loads_placed};
 use bodies::{BodyToml, Find};
 use closures::{PinToml, WeldToml};
+use document::Source;
 pub(super) use document::place;
-use document::{FileToml, Source};
-pub use flexures::ReportOptions;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
 use schedules::ScheduleToml;
@@ -101,7 +100,7 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
     if let (3, at) = spatial::dimension(text)? {
         return Err(Error::File {
             place: place(text, at),
-            message: "dimension = 3: a spatial mechanism; read it with `model_from_toml` (or `spatial_from_toml`)"
+            message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
                 .into(),
         });
     }
@@ -146,55 +145,16 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
     Ok(m)
 }
 
-/// A mechanism of either dimension, as its file's `dimension` says.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Model {
-    /// A planar mechanism (no `dimension`, or `dimension = 2`).
-    Planar(Mechanism),
-    /// A spatial mechanism (`dimension = 3`).
-    Spatial(crate::mechanism::spatial::SpatialMechanism),
-}
-
-/// Parses a mechanism file of either dimension: [`from_toml`] or [`spatial_from_toml`].
+/// The file's `dimension`: 2 (a planar mechanism, also when absent) or 3
+/// (a spatial one); any other value is an error at its place. The
+/// mechanism of either is read by [`crate::model::Model::from_toml`].
 ///
 /// # Example
 /// ```
-/// use flexure::mechanism::file::{Model, model_from_toml};
-/// let m = model_from_toml("dimension = 3\n[[joint]]\nname = \"ball\"\nkind = \"spherical\"\nparent = \"ground\"\nchild = \"bob\"\n").unwrap();
-/// assert!(matches!(m, Model::Spatial(ref s) if s.dof() == 3));
-/// assert!(model_from_toml("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
+/// use flexure::mechanism::file::dimension;
+/// assert_eq!((dimension("").unwrap(), dimension("dimension = 3").unwrap()), (2, 3));
+/// assert!(dimension("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
 /// ```
-pub fn model_from_toml(text: &str) -> Result<Model> {
-    if text.len() <= MAX_TEXT_BYTES && spatial::dimension(text)?.0 == 3 {
-        return spatial_from_toml(text).map(Model::Spatial);
-    }
-    from_toml(text).map(Model::Planar)
-}
-
-/// Each flexure joint's [`ReportOptions`] keys, by joint name in file order. The
-/// file is checked first, as by [`from_toml`].
-///
-/// # Example
-/// ```
-/// let text = "[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\n\
-///             length = 0.02\nmodulus = 2e11\nwidth = 0.01\nthickness = [4e-4, 2e-4]\nyield_strength = 5e8\nshape = 11\n";
-/// let r = flexure::mechanism::file::reports(text).unwrap();
-/// assert_eq!(r[0].0, "hinge");
-/// assert_eq!((r[0].1.yield_strength, r[0].1.shape), (Some(5e8), Some(11)));
-/// ```
-pub fn reports(text: &str) -> Result<Vec<(String, ReportOptions)>> {
-    let m = from_toml(text)?;
-    let file: FileToml = toml::from_str(text)
-        .map_err(|e| Error::File { place: place(text, 0), message: e.message().trim().to_string() })?;
-    let flexures = m.joints.iter().filter(|j| j.kind.flexure().is_some());
-    Ok(flexures
-        .map(|spec| {
-            let j = file.joint.iter().find(|j| j.name.get_ref() == &spec.name);
-            let r = j.map_or_else(ReportOptions::default, |j| ReportOptions {
-                yield_strength: j.yield_strength.as_ref().map(|v| *v.get_ref()),
-                shape: j.shape.as_ref().map(|v| *v.get_ref()),
-            });
-            (spec.name.clone(), r)
-        })
-        .collect())
+pub fn dimension(text: &str) -> Result<u8> {
+    spatial::dimension(text).map(|d| d.0)
 }

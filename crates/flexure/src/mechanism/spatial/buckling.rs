@@ -36,7 +36,7 @@ fn hessian(m: &SpatialMechanism, q: &[f64], mu: &[f64], loads: &SpatialLoads) ->
 /// // A sprung hinge about z (k = 1 N·m/rad) with an arm of 0.1 m pushed along itself by 2 N: P = k/l = 10 N.
 /// let hinge = SpatialJointSpec {
 ///     name: "pivot".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 }),
-///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let push = SpatialPointLoad { name: "p".into(), body: 1, at: Point3::new(0.1, 0.0, 0.0), wrench: Vector6::new(0.0, 0.0, 0.0, -2.0, 0.0, 0.0) };
 /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")], vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();

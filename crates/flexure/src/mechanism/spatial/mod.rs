@@ -143,7 +143,7 @@ impl Mechanism<Spatial> {
     /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
     /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
     /// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
-    /// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false };
+    /// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: nalgebra::Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
     /// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![], vec![], nalgebra::Vector3::zeros()).unwrap();
     /// let finer = m.with_flexures(|_, f| Ok(Some(SpatialFlexure::new(f.length(), f.section().clone(), [4, 4, 4])?))).unwrap();
     /// assert_eq!((m.dof(), finer.dof()), (6, 12));

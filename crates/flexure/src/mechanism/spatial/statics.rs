@@ -465,7 +465,7 @@ fn settled(m: &SpatialMechanism, f: &SpatialFrames, a: &SpatialAssembly, mu: &[f
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// let hinge = SpatialJointSpec {
 ///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::x_axis(), stiffness: 2.0, rest: 0.0 }),
-///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let push = SpatialPointLoad { name: "m".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.5, 0.0, 0.0, 0.0, 0.0, 0.0) };
 /// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];

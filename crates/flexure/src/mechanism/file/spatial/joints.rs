@@ -2,9 +2,10 @@
 //! joint, and the tree they form from the ground.
 
 use super::{Error, Result, Sign, Source, Span, Spanned};
-use crate::mechanism::Fixed;
+use crate::mechanism::file::flexures::report_keys;
 use crate::mechanism::spatial::joints::unit_axis;
 use crate::mechanism::spatial::{Prismatic, Revolute, SpatialJointKind, SpatialJointSpec, Spherical};
+use crate::mechanism::{Fixed, ReportOptions};
 use crate::spatial::SpatialSpec;
 use nalgebra::Vector3;
 use serde::Deserialize;
@@ -44,6 +45,9 @@ pub(super) struct JointToml {
     // The flexure's own mass: a density with the geometry, or a mass per length.
     density: Option<Spanned<f64>>,
     mass_per_length: Option<Spanned<toml::Value>>,
+    // What the solve report adds (crate::mechanism::ReportOptions).
+    yield_strength: Option<Spanned<f64>>,
+    shape: Option<Spanned<usize>>,
     // Hinges, sliders and balls.
     axis: Option<Spanned<[f64; 3]>>,
     stiffness: Option<Spanned<f64>>,
@@ -78,6 +82,8 @@ impl JointToml {
             ("kappa", span_of(&self.kappa)),
             ("density", span_of(&self.density)),
             ("mass_per_length", span_of(&self.mass_per_length)),
+            ("yield_strength", span_of(&self.yield_strength)),
+            ("shape", span_of(&self.shape)),
         ];
         let axis = [("axis", span_of(&self.axis))];
         let spring = [("stiffness", span_of(&self.stiffness)), ("rest", span_of(&self.rest))];
@@ -320,6 +326,13 @@ pub(super) fn joints(
         let damping = j.damping.as_ref().map_or(Ok(0.0), |d| src.number(&owner, "damping", d, Sign::NotNegative))?;
         // Only a flexure takes `order` (the others refuse it): read it so.
         let auto_order = orders_of(src, "", j)?.1;
+        let report = match &kind {
+            SpatialJointKind::Flexure(f) => {
+                let keys = (&j.yield_strength, &j.shape);
+                report_keys(src, &owner, keys, f.section().has_geometry())?
+            }
+            _ => ReportOptions::default(),
+        };
         let spec = SpatialJointSpec {
             name: j.name.get_ref().clone(),
             kind,
@@ -329,6 +342,7 @@ pub(super) fn joints(
             offset: 0,
             damping,
             auto_order,
+            report,
         };
         specs.push((spec, j));
     }

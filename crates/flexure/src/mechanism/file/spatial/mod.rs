@@ -74,12 +74,17 @@ impl Source<'_> {
     }
 }
 
-/// The planar file's keys that a spatial file does not take yet, with what they are.
-const PLANAR_ONLY: [(&str, &str); 4] = [
-    ("notch", "a circular notch hinge"),
-    ("yield_strength", "the stress report's safety factor"),
-    ("shape", "the deflection line's points"),
-    ("quadrature", "the planar flexure's Gauss rule"),
+/// The planar file's keys that a spatial file does not take, each with why
+/// and what to write instead.
+const PLANAR_ONLY: [(&str, &str); 2] = [
+    (
+        "notch",
+        "a circular notch hinge: the spatial section's thickness is constant, linear or a table, not yet a circle's arc; give `thickness` as a table of points along the notch",
+    ),
+    (
+        "quadrature",
+        "the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
+    ),
 ];
 
 /// A TOML or serde error of `text`, placed. A message that names no key
@@ -97,7 +102,7 @@ fn toml_error(text: &str, e: toml::de::Error) -> Error {
     });
     let unknown = message.strip_prefix("unknown field `").and_then(|m| m.split('`').next());
     let message = match (key, unknown.and_then(|u| PLANAR_ONLY.iter().find(|(k, _)| *k == u))) {
-        (_, Some((k, what))) => format!("`{k}` ({what}) is for planar mechanisms only for now"),
+        (_, Some((k, why))) => format!("`{k}` is for planar mechanisms: {why}"),
         (Some(k), None) => format!("{k}: {message}"),
         (None, None) => message,
     };
@@ -175,7 +180,7 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
         return Err(Error::File {
             place: place(text, 0),
             message:
-                "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `model_from_toml` for either"
+                "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `Model::from_toml` for either"
                     .into(),
         });
     }

@@ -1,0 +1,142 @@
+//! What the door needs of a dimension beyond its report ([`Reported`]):
+//! each analysis, by the dimension's own algorithm. The plane and space
+//! implement it here, side by side; [`super::Model`] is written once over it.
+
+use crate::dynamics::modes::Modes;
+use crate::error::{Error, Result};
+use crate::estimate::{Accuracy, ValueEstimate};
+use crate::mechanism::buckling::Buckling;
+use crate::mechanism::findings::{Crossing, OpenClosure};
+use crate::mechanism::statics::{Settings, Solution};
+use crate::mechanism::{Mechanism, spatial};
+use crate::report::Reported;
+use crate::space::{Planar, Spatial};
+use nalgebra::DMatrix;
+
+/// A dimension whose mechanisms the door ([`super::Model`]) analyses.
+pub trait Analyses: Reported {
+    /// How a refined reference's (order, count) reads: "order 6 with 13
+    /// points" (Gauss points) in the plane, "orders up to 6 with 20
+    /// subintervals" (Magnus steps) in space.
+    const REFINED: [&'static str; 2];
+    /// The equilibrium under the mechanism's loads.
+    fn solve(m: &Mechanism<Self>, settings: &Settings) -> Result<Solution<Self>>;
+    /// The compliance of the frame at point `at` (its body's frame; `POINT_DIM` numbers) of `body`.
+    fn compliance(m: &Mechanism<Self>, s: &Solution<Self>, body: usize, at: &[f64]) -> Result<DMatrix<f64>>;
+    /// The closures open at rest.
+    fn open_closures(m: &Mechanism<Self>, settings: &Settings) -> Result<Vec<OpenClosure>>;
+    /// The parts that cross at coordinates `q`.
+    fn crossings(m: &Mechanism<Self>, q: &[f64]) -> Vec<Crossing<Vec<f64>>>;
+    /// Linear buckling with its estimate, flexures of `order = "auto"` raised.
+    fn buckle(
+        m: &Mechanism<Self>,
+        settings: &Settings,
+        target: &Accuracy,
+    ) -> Result<(Mechanism<Self>, Buckling, ValueEstimate)>;
+    /// Vibration modes with their estimate, flexures of `order = "auto"` raised.
+    fn modes(
+        m: &Mechanism<Self>,
+        settings: &Settings,
+        count: usize,
+        target: &Accuracy,
+    ) -> Result<(Mechanism<Self>, Modes, ValueEstimate)>;
+    /// A flexure's orders: one number in the plane, the three of twist and bendings in space.
+    fn orders(f: &Self::Flexure) -> Vec<usize>;
+}
+
+/// `at` as a point of `N` coordinates (the dimension's), or an error naming it.
+fn point<const N: usize>(at: &[f64]) -> Result<[f64; N]> {
+    let reason = if N == 2 {
+        "must be two numbers X,Y: a planar mechanism's point"
+    } else {
+        "must be three numbers X,Y,Z: a spatial mechanism's point"
+    };
+    let shown: Vec<String> = at.iter().map(f64::to_string).collect();
+    at.try_into().map_err(|_| Error::invalid("at", shown.join(","), reason))
+}
+
+fn crossing_at<P: AsRef<[f64]>>(c: Crossing<P>) -> Crossing<Vec<f64>> {
+    Crossing { a: c.a, b: c.b, names: c.names, at: c.at.as_ref().to_vec(), s: c.s, contacts: c.contacts }
+}
+
+impl Analyses for Planar {
+    const REFINED: [&'static str; 2] = ["order", "points"];
+
+    fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
+        crate::mechanism::statics::solve(m, settings)
+    }
+
+    fn compliance(m: &Mechanism, s: &Solution, body: usize, at: &[f64]) -> Result<DMatrix<f64>> {
+        let [x, y] = point(at)?;
+        let c = crate::mechanism::statics::compliance(m, s, body, nalgebra::Point2::new(x, y))?;
+        Ok(DMatrix::from_fn(3, 3, |i, j| c[(i, j)]))
+    }
+
+    fn open_closures(m: &Mechanism, settings: &Settings) -> Result<Vec<OpenClosure>> {
+        crate::mechanism::findings::open_closures(m, settings)
+    }
+
+    fn crossings(m: &Mechanism, q: &[f64]) -> Vec<Crossing<Vec<f64>>> {
+        crate::mechanism::findings::crossings(m, q).into_iter().map(crossing_at).collect()
+    }
+
+    fn buckle(m: &Mechanism, settings: &Settings, target: &Accuracy) -> Result<(Mechanism, Buckling, ValueEstimate)> {
+        crate::estimate::buckle_auto(m, settings, target)
+    }
+
+    fn modes(
+        m: &Mechanism,
+        settings: &Settings,
+        count: usize,
+        target: &Accuracy,
+    ) -> Result<(Mechanism, Modes, ValueEstimate)> {
+        crate::estimate::mechanism_modes_auto(m, settings, count, target)
+    }
+
+    fn orders(f: &crate::Flexure) -> Vec<usize> {
+        vec![f.order()]
+    }
+}
+
+impl Analyses for Spatial {
+    const REFINED: [&'static str; 2] = ["orders up to", "subintervals"];
+
+    fn solve(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Solution<Spatial>> {
+        spatial::statics::solve(m, settings)
+    }
+
+    fn compliance(m: &Mechanism<Spatial>, s: &Solution<Spatial>, body: usize, at: &[f64]) -> Result<DMatrix<f64>> {
+        let [x, y, z] = point(at)?;
+        let c = spatial::statics::compliance(m, s, body, nalgebra::Point3::new(x, y, z))?;
+        Ok(DMatrix::from_fn(6, 6, |i, j| c[(i, j)]))
+    }
+
+    fn open_closures(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Vec<OpenClosure>> {
+        spatial::findings::open_closures(m, settings)
+    }
+
+    fn crossings(m: &Mechanism<Spatial>, q: &[f64]) -> Vec<Crossing<Vec<f64>>> {
+        spatial::findings::crossings(m, q).into_iter().map(crossing_at).collect()
+    }
+
+    fn buckle(
+        m: &Mechanism<Spatial>,
+        settings: &Settings,
+        target: &Accuracy,
+    ) -> Result<(Mechanism<Spatial>, Buckling, ValueEstimate)> {
+        crate::estimate::spatial_mechanism::buckle_auto(m, settings, target)
+    }
+
+    fn modes(
+        m: &Mechanism<Spatial>,
+        settings: &Settings,
+        count: usize,
+        target: &Accuracy,
+    ) -> Result<(Mechanism<Spatial>, Modes, ValueEstimate)> {
+        crate::estimate::spatial_mechanism::modes_auto(m, settings, count, target)
+    }
+
+    fn orders(f: &crate::spatial::SpatialFlexure) -> Vec<usize> {
+        f.orders().to_vec()
+    }
+}
