@@ -1,4 +1,4 @@
-//! Pictures of spatial mechanisms (`flexure_cli::spatial_drawing`): the
+//! Pictures of spatial mechanisms (`flexure_cli::drawing`): the
 //! views' projections, the SVG as XML with one centreline per flexure, the
 //! stress colour bar against the library's own peak stress, painting in
 //! depth, and the snapshots of a simulated motion. The mechanisms are
@@ -22,8 +22,9 @@ use flexure::mechanism::spatial::{
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::SpatialFlexure;
 use flexure_chart::{Figure, Mark};
+use flexure_cli::drawing::Marks;
 use flexure_cli::projection::View;
-use flexure_cli::spatial_drawing::{Marks, spatial_figure, spatial_motion_figures};
+use flexure_cli::scene::{spatial_figure, spatial_motion_figures};
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
