@@ -65,6 +65,10 @@ pub const FLEXURE_SAMPLES: usize = 41;
 /// far smaller than the others would be an arrow of no length, its head
 /// and name on its tail (the legend still gives its value).
 const LEAST_ARROW: f64 = 0.02;
+/// How far apart arrows from one point in one direction are drawn, as a
+/// fraction of the longest arrow: their heads (about 12 px across) apart
+/// once the longest is 80 px or more.
+const BESIDE: f64 = 0.15;
 /// How far apart (px) the names of arrows drawn side by side are stacked.
 const NAME_STEP: f64 = 18.0;
 
@@ -219,7 +223,7 @@ enum Drawn {
 /// How each load's force of `pose` is drawn at `per_newton` m per N: `None`
 /// where none is (no scale, a zero force, or one under [`LEAST_ARROW`] of the
 /// longest). Arrows from one point in one direction (within 25°) go side
-/// by side, each moved across its direction by a twentieth of the longest
+/// by side, each moved across its direction by [`BESIDE`] of the longest
 /// arrow from the one before.
 fn forces(pose: &Pose, view: View, per_newton: Option<f64>) -> Vec<Option<Drawn>> {
     let Some(k) = per_newton else { return vec![None; pose.loads.len()] };
@@ -246,7 +250,7 @@ fn forces(pose: &Pose, view: View, per_newton: Option<f64>) -> Vec<Option<Drawn>
             Drawn::Sight(..) => false,
         };
         let beside = drawn.iter().flatten().filter(|d| along(d)).count();
-        let shift = 0.05 * longest * beside as f64;
+        let shift = BESIDE * longest * beside as f64;
         let from = (p.0 - uy * shift, p.1 + ux * shift);
         drawn.push(Some(Drawn::Arrow(from, (from.0 + a, from.1 + b), beside)));
     }
@@ -363,8 +367,11 @@ fn symbols(pose: &Pose, view: View, color: Color, sizes: &Sizes) -> Vec<Mark> {
         let root = pic(view, &j.at);
         match j.symbol {
             Symbol::Hinge => {
-                let points = vec![pic(view, &(j.at - j.axis * reach)), pic(view, &(j.at + j.axis * reach))];
-                out.push(line(points, Stroke::solid(color, 2.0)));
+                // Its axis a line, unless seen end-on.
+                if picture_direction(view, &j.axis).is_some() {
+                    let points = vec![pic(view, &(j.at - j.axis * reach)), pic(view, &(j.at + j.axis * reach))];
+                    out.push(line(points, Stroke::solid(color, 2.0)));
+                }
                 out.push(Mark::Dot { at: root, shape: Marker::Circle, radius: 6.0, color, filled: false });
             }
             Symbol::Ball => out.push(Mark::Dot { at: root, shape: Marker::Circle, radius: 5.0, color, filled: true }),
