@@ -625,3 +625,88 @@ fn a_shape_that_does_not_fit_is_refused_by_name() {
     let e = draw(&bad, "nan");
     assert!(e.contains("\"nan\"") && e.contains(&format!("q[{}]", m.dof() - 1)), "{e}");
 }
+
+/// A flexure from the ground along x, 0.1 m, given by stiffnesses alone
+/// (EI = 1 N·m² about both axes), and a tip force of 2 N along +z.
+fn plain_rod() -> SpatialMechanism {
+    let fl = SpatialFlexure::new(0.1, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
+    let joint = spec("rod", flexure_joint(fl), 0, 1, Isometry3::identity());
+    let lift = load("lift", 1, [0.0; 3], [0.0; 3], [0.0, 0.0, 2.0]);
+    SpatialMechanism::new(bodies(&["ground", "tip"]), vec![joint], vec![], vec![lift], vec![], Vector3::zeros())
+        .unwrap()
+}
+
+/// Reference: a tip force along +z bends the rod up by the cantilever's
+/// $FL^3/(3EI)$ (1e-3 relative; the large-deflection correction is of
+/// order $(FL^2/EI)^2$ = 4e-4): the loaded tip is that high in the front
+/// view. The arrow: 2 N at the round scale of a quarter of 0.1 m, 0.01 m
+/// per N, is 0.02 m long and points straight up in the front view (1e-15).
+/// Given by stiffnesses alone: no colour bar, and a note says why.
+#[test]
+fn a_lifted_tip_is_up_in_the_front_view() {
+    let m = plain_rod();
+    let s = solve(&m, &Default::default()).unwrap();
+    let tip = frames(&m, &s.q).bodies[1].translation.vector;
+    let beam = 2.0 * 0.1f64.powi(3) / 3.0;
+    assert!((tip.z - beam).abs() < 1e-3 * beam && tip.y.abs() < 1e-12, "{tip}");
+    let (fig, per_newton) =
+        spatial_figure(&m, "rod", &unloaded(&m), &[("loaded".into(), s)], &Marks::default(), View::Front, true)
+            .unwrap();
+    assert_eq!(per_newton, Some(0.01));
+    let arrows = force_arrows(&fig);
+    assert_eq!(arrows.len(), 1);
+    let (from, to) = arrows[0];
+    assert!((to.1 - from.1 - 0.02).abs() < 1e-15 && (to.0 - from.0).abs() < 1e-15, "{from:?} {to:?}");
+    assert!(fig.color_bar.is_none());
+    assert!(fig.legend.iter().any(|e| e.label.starts_with("no flexure has a section geometry")));
+}
+
+/// The joint interface's symbols, read into the scene: a hinge (its axis
+/// the world z), a ball joint, a slider (its axis the world x), and
+/// nothing for a weld; drawn from the front, the hinge's axis line is
+/// vertical, 2 × 2.5 link half thicknesses long (1e-15), and from the top
+/// (seen end-on) there is no line, only its circle.
+#[test]
+fn each_rigid_joint_has_its_symbol() {
+    use flexure::mechanism::spatial::{Prismatic, Revolute, Spherical};
+    use flexure_cli::scene::{Symbol, spatial};
+    let hinge = Revolute { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 };
+    let slide = Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 };
+    let step = Isometry3::translation(0.1, 0.0, 0.0);
+    let ball = SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] });
+    let joints = vec![
+        spec("h", SpatialJointKind::Revolute(hinge), 0, 1, step),
+        spec("b", ball, 1, 2, step),
+        spec("s", SpatialJointKind::Prismatic(slide), 2, 3, step),
+        spec("w", SpatialJointKind::Fixed(Fixed), 3, 4, step),
+    ];
+    let names = ["ground", "a", "b", "c", "d"];
+    let m = SpatialMechanism::new(bodies(&names), joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let rest = unloaded(&m);
+    let pose = spatial(&m, "rest", &rest.q, &rest.loads).unwrap();
+    let got: Vec<Symbol> = pose.joints.iter().map(|j| j.symbol).collect();
+    assert_eq!(got, [Symbol::Hinge, Symbol::Ball, Symbol::Slider]);
+    assert!((pose.joints[0].axis - Vector3::z()).norm() < 1e-15 && (pose.joints[2].axis - Vector3::x()).norm() < 1e-15);
+    // Hinge axis lines: 2 px wide, solid, two points, the first symbol drawn of the loaded shape.
+    let axis_lines = |view: View| -> Vec<(f64, f64)> {
+        let (fig, _) =
+            spatial_figure(&m, "j", &rest, &[("same".into(), rest.clone())], &Marks::default(), view, false).unwrap();
+        fig.marks
+            .iter()
+            .filter_map(|mk| match mk {
+                Mark::Path { points, stroke: Some(s), closed: false, .. }
+                    if s.width == 2.0 && s.dash == flexure_chart::Dash::Solid && points.len() == 2 =>
+                {
+                    Some((points[1].0 - points[0].0, points[1].1 - points[0].1))
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    // The extent is 0.4 m (four steps of 0.1), so the links' half thickness 0.0048 m.
+    let front = axis_lines(View::Front);
+    assert!(front.iter().any(|(dx, dz)| *dx == 0.0 && (dz - 5.0 * 0.0048).abs() < 1e-15), "{front:?}");
+    // From the top the slider's double line (along x) remains, the hinge's none.
+    let top = axis_lines(View::Top);
+    assert!(!top.is_empty() && top.iter().all(|(dx, dy)| *dy == 0.0 && *dx != 0.0), "{top:?}");
+}
