@@ -58,7 +58,7 @@ const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4
 /// Tendons are told apart by dash and via-point marker, not colour.
 const TENDON_DASH: [Dash; 3] = [Dash::Solid, Dash::Dashed, Dash::Chain];
 const VIA: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
-pub(super) const FLEXURE_WIDTH: f64 = 5.0;
+const FLEXURE_WIDTH: f64 = 5.0;
 /// Points along each drawn flexure.
 pub const FLEXURE_SAMPLES: usize = 41;
 /// The fewest of the longest arrow's length an arrow is drawn at: a force
