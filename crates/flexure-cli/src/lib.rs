@@ -22,9 +22,9 @@ mod simulate;
 mod spatial;
 mod stress;
 
-/// The spatial drawing's views and figures (`draw` of a `dimension = 3`
-/// file), public for the tests of `tests/draw3d.rs`.
-pub use mechanism::{projection, spatial_drawing};
+/// The drawing (`draw`): its views, the scene each dimension makes of a
+/// mechanism, and the figures; public for the tests of `tests/draw3d.rs`.
+pub use mechanism::{drawing, projection, scene};
 
 use clap::{Parser, Subcommand};
 use serde_json::Value;

@@ -1,4 +1,5 @@
-//! Pictures of spatial mechanisms (`flexure_cli::spatial_drawing`): the
+//! Pictures of mechanisms (`flexure_cli::drawing`, one drawing for both
+//! dimensions), most of them spatial: the
 //! views' projections, the SVG as XML with one centreline per flexure, the
 //! stress colour bar against the library's own peak stress, painting in
 //! depth, and the snapshots of a simulated motion. The mechanisms are
@@ -22,8 +23,9 @@ use flexure::mechanism::spatial::{
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::SpatialFlexure;
 use flexure_chart::{Figure, Mark};
+use flexure_cli::drawing::Marks;
 use flexure_cli::projection::View;
-use flexure_cli::spatial_drawing::{Marks, spatial_figure, spatial_motion_figures};
+use flexure_cli::scene::{spatial_figure, spatial_motion_figures};
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
@@ -409,4 +411,302 @@ fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
     if let Some(dir) = std::env::var_os("FLEXURE_PICTURES") {
         std::fs::write(std::path::Path::new(&dir).join("chain-motion-iso.svg"), svg).unwrap();
     }
+}
+
+/// The `<text>` elements of an SVG: (class, text, x, y, font size), in px.
+fn texts(svg: &str) -> Vec<(String, String, f64, f64, f64)> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let number = |n: roxmltree::Node, a: &str| n.attribute(a).and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| {
+            let class = n.attribute("class").unwrap_or_default().to_string();
+            (class, n.text().unwrap_or_default().to_string(), number(n, "x"), number(n, "y"), number(n, "font-size"))
+        })
+        .collect()
+}
+
+/// A label's box (px), at the chart's own measure of text: 0.6 em a
+/// character wide (the widest it sets a lowercase letter), one em high,
+/// placed by its anchor.
+fn label_box(svg: &str, text: &str) -> Option<[f64; 4]> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let n = doc.descendants().find(|n| n.has_tag_name("text") && n.text() == Some(text))?;
+    let number = |a: &str| n.attribute(a).and_then(|v| v.parse::<f64>().ok()).unwrap();
+    let (x, y, size) = (number("x"), number("y"), number("font-size"));
+    let width = 0.6 * size * text.chars().count() as f64;
+    let left = match n.attribute("text-anchor") {
+        Some("end") => x - width,
+        Some("middle") => x - 0.5 * width,
+        _ => x,
+    };
+    Some([left, y - size, left + width, y])
+}
+
+fn overlap(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
+/// The force arrows (2.5 px wide) of a figure, tail and head in picture units.
+fn force_arrows(fig: &Figure) -> Vec<((f64, f64), (f64, f64))> {
+    fig.marks
+        .iter()
+        .filter_map(|mk| match mk {
+            Mark::Arrow { from, to, width, .. } if *width == 2.5 => Some((*from, *to)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A steel wire along x from the ground to a tip, with `loads` at the tip.
+fn rod(loads: Vec<SpatialPointLoad>) -> SpatialMechanism {
+    let joint = spec("rod", flexure_joint(wire(0.05)), 0, 1, Isometry3::identity());
+    SpatialMechanism::new(bodies(&["ground", "tip"]), vec![joint], vec![], loads, vec![], Vector3::zeros()).unwrap()
+}
+
+/// Issue 35 item 6, in space: two equal forces at the rod's tip ("a" and
+/// "b", 0.2 N along −y) are two arrows side by side, tails apart by 0.15
+/// of the longest arrow (the drawing's rule, to 1e-12), each named
+/// at its own head with the names' boxes apart in the SVG; a zero force
+/// ("idle") and one along the line of sight ("lift", +z seen from the top)
+/// draw no arrow of no length: "idle" nothing on the picture (the legend
+/// keeps it), "lift" a ⊙ named beside it.
+#[test]
+fn coincident_forces_in_space_are_side_by_side_and_no_arrow_is_of_no_length() {
+    let tip = [0.0; 3];
+    let m = rod(vec![
+        load("a", 1, tip, [0.0; 3], [0.0, -0.2, 0.0]),
+        load("b", 1, tip, [0.0; 3], [0.0, -0.2, 0.0]),
+        load("idle", 1, tip, [0.0; 3], [0.0; 3]),
+        load("lift", 1, tip, [0.0; 3], [0.0, 0.0, 0.1]),
+    ]);
+    let (fig, s) = picture(&m, View::Top, false);
+    assert!(s.stable);
+    let arrows = force_arrows(&fig);
+    assert_eq!(arrows.len(), 2, "a and b, not idle nor lift: {arrows:?}");
+    let length = |a: &((f64, f64), (f64, f64))| (a.1.0 - a.0.0).hypot(a.1.1 - a.0.1);
+    let apart = (arrows[0].0.0 - arrows[1].0.0).hypot(arrows[0].0.1 - arrows[1].0.1);
+    assert!((apart - 0.15 * length(&arrows[0])).abs() < 1e-12 * length(&arrows[0]), "tails {apart} apart");
+    // No arrow anywhere (forces, moments, triad) is of no length.
+    for view in View::ALL {
+        let (fig, _) = picture(&m, view, false);
+        for mk in &fig.marks {
+            if let Mark::Arrow { from, to, .. } = mk {
+                assert!((to.0 - from.0).hypot(to.1 - from.1) > 0.0, "{view:?}: an arrow of no length at {from:?}");
+            }
+        }
+    }
+    // ⊙ at the tip: a hollow circle and a filled dot, 7 px and a quarter of it.
+    let sight = fig.marks.iter().filter(|mk| matches!(mk, Mark::Dot { radius, .. } if *radius == 7.0)).count();
+    assert_eq!(sight, 1);
+    let svg = flexure_chart::render(&fig).unwrap();
+    let (a, b) = (label_box(&svg, "a").unwrap(), label_box(&svg, "b").unwrap());
+    assert!(!overlap(a, b), "the names cover one another: {a:?} {b:?}");
+    assert!(label_box(&svg, "lift").is_some());
+    assert!(label_box(&svg, "idle").is_none(), "a zero force is not named on the picture");
+    let legend: Vec<&str> = fig.legend.iter().map(|e| e.label.as_str()).collect();
+    assert!(legend.contains(&"force idle on tip: (0, 0, 0) N"), "{legend:?}");
+}
+
+/// Issue 35 item 6, in the plane: the finger example with a second force
+/// "push" equal to its "tip" (0, −0.5) N at the same point, and a zero one
+/// ("idle"): two arrows, tails apart, the two names' boxes apart in the
+/// SVG (before, the equal arrows' names were drawn on one another), and
+/// no arrow of no length.
+#[test]
+fn coincident_planar_forces_are_named_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/");
+    let extra = "\n[[force]]\nname = \"push\"\nbody = \"distal\"\nat = [0.025, 0.0]\nforce = [0.0, -0.5]\n\
+                 \n[[force]]\nname = \"idle\"\nbody = \"distal\"\nat = [0.025, 0.0]\nforce = [0.0, 0.0]\n";
+    let file = dir.path().join("two.toml");
+    std::fs::write(&file, std::fs::read_to_string(format!("{examples}finger.toml")).unwrap() + extra).unwrap();
+    let out = dir.path().join("two.svg");
+    let svg = draw(&[file.to_str().unwrap(), "--out", out.to_str().unwrap()], &out);
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let lines: Vec<[f64; 4]> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("line") && n.attribute("stroke-width") == Some("2.50"))
+        .map(|n| ["x1", "y1", "x2", "y2"].map(|a| n.attribute(a).unwrap().parse().unwrap()))
+        .collect();
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    assert!((lines[0][0] - lines[1][0]).hypot(lines[0][1] - lines[1][1]) > 3.0, "tails apart: {lines:?}");
+    assert!(lines.iter().all(|l| (l[2] - l[0]).hypot(l[3] - l[1]) > 0.0));
+    let (tip, push) = (label_box(&svg, "tip").unwrap(), label_box(&svg, "push").unwrap());
+    assert!(!overlap(tip, push), "the names cover one another: {tip:?} {push:?}");
+    assert!(label_box(&svg, "idle").is_none());
+}
+
+/// Runs `draw` in-process and returns the SVG it wrote to `out`.
+fn draw(args: &[&str], out: &std::path::Path) -> String {
+    let (mut o, mut e) = (Vec::new(), Vec::new());
+    let code = flexure_cli::run(["flexure", "draw"].into_iter().chain(args.iter().copied()), &mut o, &mut e);
+    assert_eq!(code, 0, "{}", String::from_utf8_lossy(&e));
+    std::fs::read_to_string(out).unwrap()
+}
+
+/// Issue 35 item 6: the colour bar's title stays inside the figure in both
+/// dimensions: its right end (0.6 em a character, the chart's measure)
+/// within the SVG's width, and its font at least the chart's smallest text
+/// (14 px), for the planar tapered finger (its title naming two yield
+/// strengths) and the spatial finger, each from every view.
+#[test]
+fn colour_bar_titles_stay_inside_the_figure_in_both_dimensions() {
+    let dir = tempfile::tempdir().unwrap();
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/");
+    for name in ["tapered_finger", "finger3d"] {
+        for view in View::ALL {
+            let out = dir.path().join(format!("{name}-{}.svg", view.name()));
+            let file = format!("{examples}{name}.toml");
+            let svg = draw(&[&file, "--out", out.to_str().unwrap(), "--view", view.name()], &out);
+            let doc = roxmltree::Document::parse(&svg).unwrap();
+            let width: f64 = doc.root_element().attribute("width").unwrap().parse().unwrap();
+            let (_, title, x, _, size) =
+                texts(&svg).into_iter().find(|t| t.0 == "bar-label").unwrap_or_else(|| panic!("{name}: no bar"));
+            let right = x + 0.6 * size * title.chars().count() as f64;
+            assert!(x >= 0.0 && right <= width, "{name} {view:?}: {title:?} runs to {right} px of {width}");
+            assert!(size >= flexure_chart::MIN_TEXT, "{name} {view:?}: {size} px");
+        }
+    }
+}
+
+/// One drawing: a planar file is the spatial picture of its mechanism
+/// lying at z = 0. Reference: the projection table (docs/cli.md): seen from
+/// the front (x right, z up) every point of the planar finger's flexures
+/// is at height 0 exactly, and seen from the top (x right, y up) the same
+/// points are at the planar backbone's (x, y): the front and top pictures
+/// share their x to the last bit, and the top picture spans the finger's
+/// curl in y.
+#[test]
+fn a_planar_file_is_the_spatial_picture_seen_from_the_top() {
+    use flexure_cli::drawing::figure;
+    use flexure_cli::scene::{planar, planar_scene};
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml")).unwrap();
+    let m = flexure::mechanism::file::from_toml(&text).unwrap();
+    let settings = flexure::mechanism::statics::Settings::default();
+    let rest = flexure::mechanism::statics::assemble_unloaded(&m, &settings).unwrap();
+    let s = flexure::mechanism::statics::solve(&m, &settings).unwrap();
+    let scene = planar_scene(&m);
+    let shapes = [("loaded".to_string(), planar(&m, &s.q, &s.loads))];
+    let centrelines = |view: View| -> Vec<(f64, f64)> {
+        let (fig, _) =
+            figure(&scene, "finger", &planar(&m, &rest.q, &rest.loads), &shapes, &Marks::default(), view, false);
+        fig.marks
+            .iter()
+            .filter_map(|mk| match mk {
+                Mark::Path { points, stroke: Some(st), closed: false, .. } if st.width == 5.0 => Some(points.clone()),
+                _ => None,
+            })
+            .flatten()
+            .collect()
+    };
+    let (front, top) = (centrelines(View::Front), centrelines(View::Top));
+    assert_eq!(front.len(), top.len());
+    assert!(!front.is_empty() && front.iter().all(|p| p.1 == 0.0), "a planar shape lies at z = 0");
+    assert!(front.iter().zip(&top).all(|(f, t)| f.0 == t.0));
+    let (lo, hi) = top.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    assert!(hi - lo > 1e-3, "the loaded finger curls in y: {lo} to {hi}");
+}
+
+/// Errors name the shape: a q of the wrong length, and one not finite.
+#[test]
+fn a_shape_that_does_not_fit_is_refused_by_name() {
+    let m = rod(vec![]);
+    let mut bad = unloaded(&m);
+    bad.q.pop();
+    let draw = |s: &SpatialSolution, label: &str| {
+        spatial_figure(&m, "rod", &unloaded(&m), &[(label.into(), s.clone())], &Marks::default(), View::Iso, true)
+            .err()
+            .unwrap()
+    };
+    let e = draw(&bad, "short");
+    assert!(e.contains("\"short\"") && e.contains(&format!("{} coordinates", m.dof() - 1)), "{e}");
+    bad.q.push(f64::NAN);
+    let e = draw(&bad, "nan");
+    assert!(e.contains("\"nan\"") && e.contains(&format!("q[{}]", m.dof() - 1)), "{e}");
+}
+
+/// A flexure from the ground along x, 0.1 m, given by stiffnesses alone
+/// (EI = 1 N·m² about both axes), and a tip force of 2 N along +z.
+fn plain_rod() -> SpatialMechanism {
+    let fl = SpatialFlexure::new(0.1, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [2, 2, 2]).unwrap();
+    let joint = spec("rod", flexure_joint(fl), 0, 1, Isometry3::identity());
+    let lift = load("lift", 1, [0.0; 3], [0.0; 3], [0.0, 0.0, 2.0]);
+    SpatialMechanism::new(bodies(&["ground", "tip"]), vec![joint], vec![], vec![lift], vec![], Vector3::zeros())
+        .unwrap()
+}
+
+/// Reference: a tip force along +z bends the rod up by the cantilever's
+/// $FL^3/(3EI)$ (1e-3 relative; the large-deflection correction is of
+/// order $(FL^2/EI)^2$ = 4e-4): the loaded tip is that high in the front
+/// view. The arrow: 2 N at the round scale of a quarter of 0.1 m, 0.01 m
+/// per N, is 0.02 m long and points straight up in the front view (1e-15).
+/// Given by stiffnesses alone: no colour bar, and a note says why.
+#[test]
+fn a_lifted_tip_is_up_in_the_front_view() {
+    let m = plain_rod();
+    let s = solve(&m, &Default::default()).unwrap();
+    let tip = frames(&m, &s.q).bodies[1].translation.vector;
+    let beam = 2.0 * 0.1f64.powi(3) / 3.0;
+    assert!((tip.z - beam).abs() < 1e-3 * beam && tip.y.abs() < 1e-12, "{tip}");
+    let (fig, per_newton) =
+        spatial_figure(&m, "rod", &unloaded(&m), &[("loaded".into(), s)], &Marks::default(), View::Front, true)
+            .unwrap();
+    assert_eq!(per_newton, Some(0.01));
+    let arrows = force_arrows(&fig);
+    assert_eq!(arrows.len(), 1);
+    let (from, to) = arrows[0];
+    assert!((to.1 - from.1 - 0.02).abs() < 1e-15 && (to.0 - from.0).abs() < 1e-15, "{from:?} {to:?}");
+    assert!(fig.color_bar.is_none());
+    assert!(fig.legend.iter().any(|e| e.label.starts_with("no flexure has a section geometry")));
+}
+
+/// The joint interface's symbols, read into the scene: a hinge (its axis
+/// the world z), a ball joint, a slider (its axis the world x), and
+/// nothing for a weld; drawn from the front, the hinge's axis line is
+/// vertical, 2 × 2.5 link half thicknesses long (1e-15), and from the top
+/// (seen end-on) there is no line, only its circle.
+#[test]
+fn each_rigid_joint_has_its_symbol() {
+    use flexure::mechanism::spatial::{Prismatic, Revolute, Spherical};
+    use flexure_cli::scene::{Symbol, spatial};
+    let hinge = Revolute { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 };
+    let slide = Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 };
+    let step = Isometry3::translation(0.1, 0.0, 0.0);
+    let ball = SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] });
+    let joints = vec![
+        spec("h", SpatialJointKind::Revolute(hinge), 0, 1, step),
+        spec("b", ball, 1, 2, step),
+        spec("s", SpatialJointKind::Prismatic(slide), 2, 3, step),
+        spec("w", SpatialJointKind::Fixed(Fixed), 3, 4, step),
+    ];
+    let names = ["ground", "a", "b", "c", "d"];
+    let m = SpatialMechanism::new(bodies(&names), joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
+    let rest = unloaded(&m);
+    let pose = spatial(&m, "rest", &rest.q, &rest.loads).unwrap();
+    let got: Vec<Symbol> = pose.joints.iter().map(|j| j.symbol).collect();
+    assert_eq!(got, [Symbol::Hinge, Symbol::Ball, Symbol::Slider]);
+    assert!((pose.joints[0].axis - Vector3::z()).norm() < 1e-15 && (pose.joints[2].axis - Vector3::x()).norm() < 1e-15);
+    // Hinge axis lines: 2 px wide, solid, two points, the first symbol drawn of the loaded shape.
+    let axis_lines = |view: View| -> Vec<(f64, f64)> {
+        let (fig, _) =
+            spatial_figure(&m, "j", &rest, &[("same".into(), rest.clone())], &Marks::default(), view, false).unwrap();
+        fig.marks
+            .iter()
+            .filter_map(|mk| match mk {
+                Mark::Path { points, stroke: Some(s), closed: false, .. }
+                    if s.width == 2.0 && s.dash == flexure_chart::Dash::Solid && points.len() == 2 =>
+                {
+                    Some((points[1].0 - points[0].0, points[1].1 - points[0].1))
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    // The extent is 0.4 m (four steps of 0.1), so the links' half thickness 0.0048 m.
+    let front = axis_lines(View::Front);
+    assert!(front.iter().any(|(dx, dz)| *dx == 0.0 && (dz - 5.0 * 0.0048).abs() < 1e-15), "{front:?}");
+    // From the top the slider's double line (along x) remains, the hinge's none.
+    let top = axis_lines(View::Top);
+    assert!(!top.is_empty() && top.iter().all(|(dx, dy)| *dy == 0.0 && *dx != 0.0), "{top:?}");
 }

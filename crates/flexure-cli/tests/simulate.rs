@@ -175,9 +175,13 @@ fn draw_simulate_writes_snapshots_and_charts() {
         assert_eq!(svg.matches(&format!("id=\"plot-{k}\"")).count(), 1);
         assert!(svg.contains(&format!("url(#plot-{k})")));
     }
-    for label in ["t = 0.5 s", "Body angles", "arm φ", "arm x", "time (s)"] {
+    // The arm's angle (its rotation about z, θz, the one component a planar
+    // run turns) and its origin's x and y, each against time.
+    for label in ["t = 0.5 s", "Body rotations", ">arm<", ">θz<", "θz (rad), ground frame", ">x<", ">y<", "time (s)"]
+    {
         assert!(svg.contains(label), "{label}");
     }
+    assert!(!svg.contains(">θx<") && !svg.contains(">z<"), "a planar body turns about z and moves in x and y alone");
     let (code, _, err) = run(&["draw", &file, "--simulate", "0", "--out", &out_s]);
     assert!(code == 2 && err.contains("--simulate = 0"), "{err}");
 }

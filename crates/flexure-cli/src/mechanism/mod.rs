@@ -4,11 +4,11 @@
 mod buckle;
 mod checks;
 mod draw;
-mod drawing;
+pub mod drawing;
 pub mod projection;
+pub mod scene;
 mod solve;
 pub mod spatial;
-pub mod spatial_drawing;
 
 pub use buckle::{BuckleArgs, buckle_cmd};
 pub use draw::{DrawArgs, draw_cmd};

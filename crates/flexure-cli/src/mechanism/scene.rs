@@ -1,0 +1,413 @@
+//! What `draw` draws of a mechanism, in the world (m): the one block of the
+//! drawing that knows the dimension. A planar mechanism is drawn as the
+//! spatial one lying in the plane z = 0, its rotations about z ([`planar`]);
+//! a spatial one as it is ([`spatial`]). The drawing
+//! ([`super::drawing`]) reads only a [`Scene`] and its [`Pose`]s, so the
+//! planar picture is the spatial one seen from the top.
+
+use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
+use flexure::mechanism::kinematics::frames;
+use flexure::mechanism::spatial::kinematics::frames as spatial_frames;
+use flexure::mechanism::spatial::statics::SpatialSolution;
+use flexure::mechanism::spatial::{SpatialLoads, SpatialMechanism};
+use flexure::mechanism::{Holds, Loads, Mechanism};
+use flexure_chart::Figure;
+use nalgebra::{Point2, Point3, Rotation3, Vector3};
+
+type V = Vector3<f64>;
+
+/// What every shape of one mechanism shares: its names and its words.
+pub struct Scene {
+    /// Every point attached to the ground (world).
+    pub ground: Vec<V>,
+    /// Each tendon's name.
+    pub tendons: Vec<String>,
+    /// Each load of [`Pose::loads`]: its name and the body it acts on
+    /// (`None`: the weight of the body named).
+    pub loads: Vec<(String, Option<String>)>,
+    /// The components a load or a position is written with: 2 in the plane (x, y), 3 in space.
+    pub components: usize,
+    /// The components of a rotation vector a body turns in: z in the plane.
+    pub rotations: &'static [usize],
+    /// The stress the colour bar shows ("bending", "von Mises").
+    pub stress: &'static str,
+    /// How a flexure without a stress (no section geometry) is given.
+    pub plain: &'static str,
+}
+
+/// The mark of a rigid joint or a closure.
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub enum Symbol {
+    /// One rotation: a hinge about [`Joint::axis`].
+    Hinge,
+    /// Rotations about more than one axis: a ball joint.
+    Ball,
+    /// A translation along [`Joint::axis`]: a slider.
+    Slider,
+}
+
+/// A rigid joint or closure, where it is.
+pub struct Joint {
+    pub symbol: Symbol,
+    /// Its root (a joint's) or its frame on body `a` (a closure's).
+    pub at: V,
+    /// The axis of a hinge or a slider (unit, world).
+    pub axis: V,
+    /// The child's origin: a slider's travel ends there.
+    pub child: V,
+    /// A closure's, not a joint's.
+    pub closure: bool,
+}
+
+/// A flexure's centreline through [`FLEXURE_SAMPLES`] sections.
+pub struct Centreline {
+    pub points: Vec<V>,
+    /// The stress (Pa) at each section, if its section has a geometry.
+    pub stress: Option<Vec<f64>>,
+    /// The largest stress (Pa) along it (finer than the sections), if any.
+    pub peak: Option<f64>,
+    pub length: f64,
+}
+
+/// Shapes, each with its name.
+pub type Shapes = Vec<(String, Pose)>;
+
+/// A load: a force (N) and a moment (N·m) at a point (world).
+pub struct Load {
+    pub at: V,
+    pub force: V,
+    pub moment: V,
+}
+
+/// One shape of the mechanism, in the world.
+pub struct Pose {
+    /// Every point attached to each body but the ground.
+    pub links: Vec<Vec<V>>,
+    /// Every body's origin.
+    pub origins: Vec<V>,
+    /// Every joint's root.
+    pub roots: Vec<V>,
+    /// Each joint leaving the ground: its root and the direction it leaves in.
+    pub leaving: Vec<(V, V)>,
+    pub flexures: Vec<Centreline>,
+    pub joints: Vec<Joint>,
+    /// Each tendon's via points.
+    pub tendons: Vec<Vec<V>>,
+    pub tensions: Vec<f64>,
+    /// The loads of [`Scene::loads`], in its order.
+    pub loads: Vec<Load>,
+}
+
+fn flat(p: Point2<f64>) -> V {
+    V::new(p.x, p.y, 0.0)
+}
+
+/// A planar mechanism's scene.
+pub fn planar_scene(m: &Mechanism) -> Scene {
+    let forces = m.forces.iter().map(|p| (p.name.clone(), Some(m.bodies[p.body].name.clone())));
+    let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| (format!("weight of {}", b.name), None));
+    Scene {
+        ground: m.attachments(0).into_iter().map(flat).collect(),
+        tendons: m.tendons.iter().map(|t| t.name.clone()).collect(),
+        loads: forces.chain(weights).collect(),
+        components: 2,
+        rotations: &[2],
+        stress: "bending",
+        plain: "ei alone",
+    }
+}
+
+/// A planar shape (coordinates `q` under `loads`) at z = 0: hinges about z, moments along z.
+pub fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
+    let f = frames(m, q);
+    let at = |b: usize, r: &Point2<f64>| flat(f.bodies[b].act(r));
+    let turn = |phi: f64, (x, y): (f64, f64)| V::new(phi.cos() * x - phi.sin() * y, phi.sin() * x + phi.cos() * y, 0.0);
+    let mut pose = Pose {
+        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
+        origins: f.bodies.iter().map(|b| V::new(b.x, b.y, 0.0)).collect(),
+        roots: f.roots.iter().map(|r| V::new(r.x, r.y, 0.0)).collect(),
+        leaving: Vec::new(),
+        flexures: Vec::new(),
+        joints: Vec::new(),
+        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
+        tensions: loads.tension.clone(),
+        loads: Vec::new(),
+    };
+    for (ji, j) in m.joints.iter().enumerate() {
+        let (root, kind) = (f.roots[ji], j.kind.joint());
+        let origin = pose.roots[ji];
+        let child = pose.origins[j.child];
+        if let Some(fl) = j.kind.flexure() {
+            let q = &q[j.offset..j.offset + fl.order()];
+            let points = flexure::kinematics::backbone(fl, q, FLEXURE_SAMPLES);
+            let ds = fl.length() / (FLEXURE_SAMPLES - 1) as f64;
+            let stress = fl.section().modulus().map(|_| {
+                (0..FLEXURE_SAMPLES).map(|i| flexure::stress::stress(fl, q, i as f64 * ds).unwrap_or(0.0)).collect()
+            });
+            pose.flexures.push(Centreline {
+                points: points.iter().map(|p| flat(root.act(&Point2::new(p.x, p.y)))).collect(),
+                stress,
+                peak: flexure::stress::peak_stress(fl, q).map(|p| p.value),
+                length: fl.length(),
+            });
+        }
+        if j.parent == 0 {
+            let away = if j.kind.flexure().is_some() { turn(root.phi, (1.0, 0.0)) } else { child - origin };
+            pose.leaving.push((origin, away));
+        }
+        if j.kind.flexure().is_none() && kind.dof() > 0 {
+            let (symbol, axis) = if kind.is_translation() {
+                let s = &f.joints[ji].jacobian;
+                (Symbol::Slider, turn(root.phi, (s[(1, 0)], s[(2, 0)])).normalize())
+            } else {
+                (Symbol::Hinge, V::z())
+            };
+            pose.joints.push(Joint { symbol, at: origin, axis, child, closure: false });
+        }
+    }
+    for c in m.closures.iter().filter(|c| c.holds == Holds::Pin) {
+        let p = at(c.a, &c.a_origin.origin());
+        pose.joints.push(Joint { symbol: Symbol::Hinge, at: p, axis: V::z(), child: p, closure: true });
+    }
+    let g = loads.gravity;
+    let forces = m.forces.iter().zip(&loads.force).map(|(p, l)| Load {
+        at: at(p.body, &p.at),
+        force: V::new(l.fx, l.fy, 0.0),
+        moment: V::new(0.0, 0.0, l.moment),
+    });
+    let weights = m.bodies.iter().enumerate().filter(|(_, b)| b.mass > 0.0).map(|(i, b)| Load {
+        at: at(i, &b.com),
+        force: V::new(b.mass * g[0], b.mass * g[1], 0.0),
+        moment: V::zeros(),
+    });
+    pose.loads = forces.chain(weights).collect();
+    pose
+}
+
+/// A spatial mechanism's scene.
+pub fn spatial_scene(m: &SpatialMechanism) -> Scene {
+    let forces = m.forces.iter().map(|p| (p.name.clone(), Some(m.bodies[p.body].name.clone())));
+    let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| (format!("weight of {}", b.name), None));
+    Scene {
+        ground: m.attachments(0).into_iter().map(|p| p.coords).collect(),
+        tendons: m.tendons.iter().map(|t| t.name.clone()).collect(),
+        loads: forces.chain(weights).collect(),
+        components: 3,
+        rotations: &[0, 1, 2],
+        stress: "von Mises",
+        plain: "stiffnesses alone",
+    }
+}
+
+/// Checks that a shape has one finite coordinate per coordinate of `m`.
+fn check_shape(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<(), String> {
+    if q.len() != m.dof() {
+        return Err(format!("shape {label:?}: q has {} coordinates, the mechanism {}", q.len(), m.dof()));
+    }
+    if let Some((i, v)) = q.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(format!("shape {label:?}: q[{i}] = {v}, not finite"));
+    }
+    if loads.validate(m).is_err() {
+        return Err(format!(
+            "shape {label:?}: its loads do not fit the mechanism (one tension per tendon, one wrench per force)"
+        ));
+    }
+    Ok(())
+}
+
+/// A spatial shape, named `label` in its errors: a shape that does not fit
+/// `m`, or a flexure whose coordinates the library refuses.
+pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
+    check_shape(m, label, q, loads)?;
+    let f = spatial_frames(m, q);
+    let at = |b: usize, r: &Point3<f64>| (f.bodies[b] * r).coords;
+    let mut pose = Pose {
+        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
+        origins: f.bodies.iter().map(|b| b.translation.vector).collect(),
+        roots: f.roots.iter().map(|r| r.translation.vector).collect(),
+        leaving: Vec::new(),
+        flexures: Vec::new(),
+        joints: Vec::new(),
+        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
+        tensions: loads.tension.clone(),
+        loads: Vec::new(),
+    };
+    let named = |name: &str, e: flexure::Error| format!("shape {label:?}, flexure {name}: {}", crate::describe(e));
+    for (ji, j) in m.joints.iter().enumerate() {
+        let (root, kind) = (f.roots[ji], j.kind.joint());
+        let child = pose.origins[j.child];
+        if let Some(fl) = j.kind.flexure() {
+            let q = &q[j.offset..j.offset + fl.coordinates()];
+            let sections = flexure::spatial::shape(fl, q, FLEXURE_SAMPLES).map_err(|e| named(&j.name, e))?;
+            let shaped = fl.section().stress(0.0, [0.0; 3]).is_ok();
+            let peak = match shaped {
+                true => Some(flexure::spatial::peak_stress(fl, q).map_err(|e| named(&j.name, e))?.stress.von_mises),
+                false => None,
+            };
+            pose.flexures.push(Centreline {
+                points: sections.iter().map(|p| (root * Point3::from(p.position)).coords).collect(),
+                stress: sections.iter().map(|p| p.stress).collect(),
+                peak,
+                length: fl.length(),
+            });
+        }
+        if j.parent == 0 {
+            let away = if j.kind.flexure().is_some() { root.rotation * V::x() } else { child - pose.roots[ji] };
+            pose.leaving.push((pose.roots[ji], away));
+        }
+        if j.kind.flexure().is_none() && kind.dof() > 0 {
+            let (symbol, axis) = if kind.is_translation() {
+                (Symbol::Slider, f.velocity.column(j.offset).into_owned())
+            } else if kind.dof() == 1 {
+                (Symbol::Hinge, f.omega.column(j.offset).into_owned())
+            } else {
+                (Symbol::Ball, V::z())
+            };
+            pose.joints.push(Joint { symbol, at: pose.roots[ji], axis, child, closure: false });
+        }
+    }
+    for c in &m.closures {
+        let frame = f.bodies[c.a] * c.a_origin;
+        let p = frame.translation.vector;
+        let symbol = match c.holds {
+            Holds::Pin => Symbol::Hinge,
+            Holds::Ball => Symbol::Ball,
+            Holds::Weld => continue,
+        };
+        pose.joints.push(Joint { symbol, at: p, axis: frame.rotation * V::z(), child: p, closure: true });
+    }
+    let g = loads.gravity;
+    let forces = m.forces.iter().zip(&loads.force).map(|(p, w)| Load {
+        at: at(p.body, &p.at),
+        force: w.fixed_rows::<3>(3).into_owned(),
+        moment: w.fixed_rows::<3>(0).into_owned(),
+    });
+    let weights = m.bodies.iter().enumerate().filter(|(_, b)| b.mass > 0.0).map(|(i, b)| Load {
+        at: at(i, &b.com),
+        force: g * b.mass,
+        moment: V::zeros(),
+    });
+    pose.loads = forces.chain(weights).collect();
+    Ok(pose)
+}
+
+/// The figure of a spatial mechanism's unloaded and loaded shapes seen
+/// from `view` ([`figure`]), and the force arrows' scale (m per N) if any
+/// force is drawn. Errors name the shape whose coordinates or loads do not
+/// fit `m`, or the flexure whose coordinates the library refuses.
+///
+/// # Example
+/// ```
+/// use flexure_cli::drawing::{Marks, View};
+/// use flexure_cli::scene::spatial_figure;
+/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::mechanism::spatial::statics::{assemble_unloaded, solve};
+/// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+/// let hinge = SpatialJointSpec {
+///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false,
+/// };
+/// let push = SpatialPointLoad { name: "push".into(), body: 1, at: Point3::new(0.1, 0.0, 0.0), wrench: Vector6::new(0.0, 0.0, 0.0, 0.0, 1.0, 0.0) };
+/// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];
+/// let m = SpatialMechanism::new(bodies, vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
+/// let s = solve(&m, &Default::default()).unwrap();
+/// let unloaded = assemble_unloaded(&m, &m.loads().zero_like(), &Default::default()).unwrap();
+/// let (fig, per_newton) = spatial_figure(&m, "arm", &unloaded, &[("loaded".into(), s)], &Marks::default(), View::Top, true).unwrap();
+/// // The largest force drawn a quarter of the arm's 0.1 m, at a round scale: 0.02 m per N.
+/// assert_eq!(per_newton, Some(0.02));
+/// assert!(fig.legend.iter().any(|e| e.label == "force push on arm: (0, 1, 0) N"));
+/// assert!(flexure_chart::render(&fig).unwrap().starts_with("<svg"));
+/// ```
+pub fn spatial_figure(
+    m: &SpatialMechanism,
+    title: &str,
+    unloaded: &SpatialSolution,
+    loaded: &[(String, SpatialSolution)],
+    marks: &Marks,
+    view: View,
+    stress: bool,
+) -> Result<(Figure, Option<f64>), String> {
+    let rest = spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
+    let shapes = loaded
+        .iter()
+        .map(|(l, s)| Ok((l.clone(), spatial(m, l, &s.q, &s.loads)?)))
+        .collect::<Result<Shapes, String>>()?;
+    Ok(figure(&spatial_scene(m), title, &rest, &shapes, marks, view, stress))
+}
+
+/// The snapshots (their loads, schedules applied, at their times) of a
+/// planar run, and each moving body's track: its rotation about z and its
+/// origin at z = 0.
+pub fn planar_motion(
+    m: &Mechanism,
+    run: &flexure::dynamics::simulation::Simulation,
+    picked: &[usize],
+) -> (Shapes, Vec<Track>) {
+    let snapshots = picked
+        .iter()
+        .map(|&k| {
+            let loads = flexure::dynamics::schedule::loads_at(m, run.time[k]);
+            (format!("t = {} s", short(run.time[k])), planar(m, run.q(k), &loads))
+        })
+        .collect();
+    let tracks = run
+        .bodies
+        .iter()
+        .map(|b| Track {
+            name: b.name.clone(),
+            rotation: b.phi.iter().map(|&phi| V::new(0.0, 0.0, phi)).collect(),
+            position: b.x.iter().zip(&b.y).map(|(x, y)| V::new(*x, *y, 0.0)).collect(),
+        })
+        .collect();
+    (snapshots, tracks)
+}
+
+/// The same of a spatial run: each body's rotation as its rotation vector
+/// $\theta = \varphi\thinspace\hat n$ (angle times unit axis, rad).
+pub fn spatial_motion(
+    m: &SpatialMechanism,
+    sim: &flexure::dynamics::spatial::SpatialSimulation,
+    picked: &[usize],
+) -> Result<(Shapes, Vec<Track>), String> {
+    let snapshots = picked
+        .iter()
+        .map(|&k| {
+            let loads = flexure::dynamics::schedule::spatial_loads_at(m, sim.time[k]);
+            let label = format!("t = {} s", short(sim.time[k]));
+            Ok((label.clone(), spatial(m, &label, sim.q(k), &loads)?))
+        })
+        .collect::<Result<Shapes, String>>()?;
+    let rotation =
+        |r: &[[f64; 3]; 3]| Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_fn(|i, j| r[i][j])).scaled_axis();
+    let tracks = sim
+        .bodies
+        .iter()
+        .map(|b| Track {
+            name: b.name.clone(),
+            rotation: b.rotation.iter().map(rotation).collect(),
+            position: b.position.iter().map(|p| V::from(*p)).collect(),
+        })
+        .collect();
+    Ok((snapshots, tracks))
+}
+
+/// `draw --simulate` of a spatial run ([`motion_figures`]).
+///
+/// Errors name an empty run or a shape that does not fit `m`.
+pub fn spatial_motion_figures(
+    m: &SpatialMechanism,
+    title: &str,
+    unloaded: &SpatialSolution,
+    sim: &flexure::dynamics::spatial::SpatialSimulation,
+    view: View,
+    stress: bool,
+) -> Result<MotionFigures, String> {
+    let samples = sim.time.len();
+    if samples == 0 || sim.coordinates.len() != samples * m.dof() {
+        return Err(format!("the run has {samples} samples of {} coordinates: nothing to draw", sim.dim));
+    }
+    let picked = super::drawing::snapshot_samples(samples);
+    let (snapshots, tracks) = spatial_motion(m, sim, &picked)?;
+    let rest = spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
+    motion_figures(&spatial_scene(m), title, (&rest, &snapshots), (&sim.time, &tracks), &picked, view, stress)
+}
