@@ -187,7 +187,9 @@ class Mechanism:
         error_estimate {flexure joint: dict as `Flexure.error_estimate` returns (position (m),
         angle (rad), stress (Pa, with a thickness), curvature (1/m), reference_order,
         reference_quadrature, reference, flagged)} and flagged (True when any joint misses
-        `accuracy`). An unstable answer warns StabilityWarning.
+        `accuracy`), with dimension (2), load {flexure joint: {moment, fx, fy}} (the tip load it
+        carries, in its root frame), multipliers (array), residual, load_steps and iterations.
+        An unstable answer warns StabilityWarning.
         A flexure joint whose estimated error misses `accuracy` (position as a fraction
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
         naming it; one whose error could not be estimated warns so and raises the
@@ -209,20 +211,14 @@ class Mechanism:
         "note", no warning). Two parts that cross in the answer (kind "crossing":
         parts, at, s_a and s_b along flexures, contacts) warn IntersectionWarning.
 
-        Spatial (dimension = 3): the library's report, as `flexure solve --json` prints it:
-        dimension (3), q and multipliers (arrays), energy, stable, limit_fraction (a
-        snap-through, StabilityWarning; left out without one), residual, load_steps,
-        iterations; bodies {name: {position (3,), rotation (3, 3), rpy (3,)}} (origin,
-        rotation matrix and URDF roll, pitch, yaw in the ground frame; the ground left out);
-        coordinates {joint: array} (a flexure's twist series, then its bendings about y and z;
-        a hinge's angle, a slider's travel, a ball's rotation vector); flexures {flexure joint:
-        {load {moment (3,), force (3,)}, the tip wrench it carries in its root frame, and stress
-        (a dict, for a section with geometry)}}; error_estimate {flexure joint: dict as
-        `SpatialFlexure.deflect`'s}; flagged. Each flagged flexure joint warns AccuracyWarning
-        naming it; an unstable answer warns StabilityWarning. findings as above: closures
-        open at rest (PreloadWarning) and parts that cross, with the thickness of their
-        sections (IntersectionWarning; `at` a 3-vector). No safety_factor or shape: a spatial
-        file refuses `yield_strength` and `shape`."""
+        Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
+        {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and
+        rotation matrix in the ground frame); coordinates {joint: array} (a flexure's twist
+        series, then its bendings about y and z; a hinge's angle, a slider's travel, a ball's
+        rotation vector); load {flexure joint: {moment (3,), force (3,)}}, the tip wrench it
+        carries in its root frame; stress {flexure joint: {max (the peak von Mises stress, Pa),
+        at, point, bending_y, bending_z, shear}}; safety_factor and shape (a list of sections
+        {s, position, rotation, curvature, stress}) as in the plane."""
         try:
             return self._inner.solve(accuracy)
         except (ValueError, ConvergenceError) as e:

@@ -226,7 +226,8 @@ def test_mechanism_from_path_and_text():
     for source in (path, str(path), path.read_text()):
         result = flexure.Mechanism.from_toml(source).solve()
         # Its flexures are given by ei (no thickness): curvature_max, as `flexure solve --json`.
-        assert set(result) == {"bodies", "coordinates", "energy", "stable", "error_estimate", "flagged", "curvature_max"}
+        assert set(result) == {"dimension", "bodies", "coordinates", "energy", "stable", "error_estimate", "flagged",
+                               "curvature_max", "load", "multipliers", "residual", "load_steps", "iterations"}
         # Closed form: the shoulder spring turns M/k = 0.01/2.
         assert abs(result["coordinates"]["shoulder"][0] - 0.005) < 1e-10
         assert result["stable"] is True

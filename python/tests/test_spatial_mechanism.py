@@ -92,6 +92,11 @@ def test_dimension_and_dof():
     assert planar.dimension == 2
 
 
+def position(body):
+    """A spatial body's origin (x, y, z) as an array."""
+    return np.array([body["x"], body["y"], body["z"]])
+
+
 def test_hinge_chain_solve_is_the_closed_form():
     # Closed form: a dead moment M = (Mx, 0, Mz) on the hand. The yaw hinge (axis z) carries Mz,
     # q1 = Mz/k1; the roll hinge's axis is Rz(q1) x, so it carries Mx cos q1: q2 = Mx cos(q1)/k2.
@@ -102,16 +107,17 @@ def test_hinge_chain_solve_is_the_closed_form():
     q1, q2 = mz / k1, mx * math.cos(mz / k1) / k2
     assert abs(s["coordinates"]["yaw"][0] - q1) < 1e-12 and abs(s["coordinates"]["roll"][0] - q2) < 1e-12
     hand = s["bodies"]["hand"]
-    assert hand["position"].shape == (3,) and hand["rotation"].shape == (3, 3) and hand["rpy"].shape == (3,)
-    assert np.abs(hand["position"] - rz(q1) @ [0.1, 0.0, 0.0]).max() < 1e-12
+    assert hand["rotation"].shape == (3, 3)
+    assert np.abs(position(hand) - rz(q1) @ [0.1, 0.0, 0.0]).max() < 1e-12
     assert np.abs(hand["rotation"] - rz(q1) @ rx(q2)).max() < 1e-12
     # URDF's roll, pitch, yaw of Rz(q1) Rx(q2): (q2, 0, q1).
-    assert np.abs(hand["rpy"] - [q2, 0.0, q1]).max() < 1e-12
+    assert np.abs(np.array([hand["roll"], hand["pitch"], hand["yaw"]]) - [q2, 0.0, q1]).max() < 1e-12
     assert orthonormal(s["bodies"]["arm"]["rotation"]) and orthonormal(hand["rotation"])
     assert abs(s["energy"] - 0.5 * (k1 * q1**2 + k2 * q2**2)) < 1e-12
     assert s["dimension"] == 3 and s["stable"] is True and s["flagged"] is False
-    assert "ground" not in s["bodies"] and s["flexures"] == {} and s["error_estimate"] == {}
-    assert isinstance(s["q"], np.ndarray) and s["q"].shape == (2,)
+    # The planar answer's shape: the ground among the bodies, no flexure to estimate or load.
+    assert "ground" in s["bodies"] and s["load"] == {} and s["error_estimate"] == {}
+    assert "q" not in s and set(s["coordinates"]) == {"yaw", "roll"}
 
 
 def test_cantilever_solve_is_the_single_spatial_flexures_deflection():
@@ -124,13 +130,13 @@ def test_cantilever_solve_is_the_single_spatial_flexures_deflection():
     f = flexure.SpatialFlexure(length=1.0, ei=1.0, ei_y=2.0, gj=0.7, order=5)
     d = f.deflect(force=force, moment=moment)
     tip = s["bodies"]["tip"]
-    assert np.abs(tip["position"] - d["pose"][:3, 3]).max() < 1e-10
+    assert np.abs(position(tip) - d["pose"][:3, 3]).max() < 1e-10
     assert np.abs(tip["rotation"] - d["pose"][:3, :3]).max() < 1e-10
     assert np.abs(s["coordinates"]["rod"] - d["alpha"]).max() < 1e-9
     assert orthonormal(tip["rotation"])
     # The wrench it carries, in its root frame: the tip load itself, moved to the root would
     # add r x F; at the tip it is the load (the library's report; here checked at the force).
-    load = s["flexures"]["rod"]["load"]
+    load = s["load"]["rod"]
     assert np.abs(load["force"] - np.array(force)).max() < 1e-10
     e = s["error_estimate"]["rod"]
     assert e["flagged"] is False and e["position"] < 1e-3 and e["reference_order"] > 5
@@ -139,7 +145,7 @@ def test_cantilever_solve_is_the_single_spatial_flexures_deflection():
 
 def test_a_flagged_flexure_warns_accuracy_naming_it():
     # Order 1 bends at constant curvature: under a tip force its error is far beyond 1e-9 of L.
-    with pytest.warns(flexure.AccuracyWarning, match='flexure joint "rod"'):
+    with pytest.warns(flexure.AccuracyWarning, match="flexure joint 'rod'"):
         s = cantilever(force=(0.0, 0.5, 0.0), order=1).solve(accuracy=(1e-9, 1e-9))
     assert s["flagged"] is True and s["error_estimate"]["rod"]["flagged"] is True
 
@@ -190,13 +196,13 @@ at = [0.025, 0.0, 0.0]
 force = [0.0, -0.5, 0.0]
 """
     ).solve()
-    assert set(spatial["bodies"]) == {"proximal", "distal"}
+    assert set(spatial["bodies"]) == {"ground", "proximal", "distal"}
     for name, b in spatial["bodies"].items():
         p = planar["bodies"][name]
         r = b["rotation"]
-        assert abs(b["position"][0] - p["x"]) < 1e-8 and abs(b["position"][1] - p["y"]) < 1e-8, name
-        assert abs(math.atan2(r[1, 0], r[0, 0]) - p["phi"]) < 1e-8, name
-        assert abs(b["position"][2]) < 1e-14 and abs(r[2, 2] - 1.0) < 1e-14, name
+        assert abs(b["x"] - p["x"]) < 1e-8 and abs(b["y"] - p["y"]) < 1e-8, name
+        assert abs(math.atan2(r[1, 0], r[0, 0]) - p["phi"]) < 1e-8 and abs(b["yaw"] - p["phi"]) < 1e-8, name
+        assert abs(b["z"]) < 1e-14 and abs(r[2, 2] - 1.0) < 1e-14, name
         assert orthonormal(r)
     assert spatial["stable"] == planar["stable"]
     # The rotation about z is each flexure's bending alone (kappa_z's series, last), the planar alpha.

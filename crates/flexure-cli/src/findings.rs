@@ -124,7 +124,8 @@ pub fn spatial_along(
     crossing_answers_along(found, shapes, (what, shapes_are), key, file)
 }
 
-fn crossing_answers_along<P: AsRef<[f64]>>(
+/// Crossings found along a series of shapes (see [`along`]), told and listed.
+pub fn crossing_answers_along<P: AsRef<[f64]>>(
     found: Vec<(usize, Vec<Crossing<P>>)>,
     shapes: &[(f64, &[f64])],
     (what, shapes_are): (&str, &str),

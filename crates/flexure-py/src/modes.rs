@@ -3,14 +3,12 @@
 //! beam's frequencies (`flexure.exact.frequencies`).
 
 use crate::convert::{count, finite};
-use crate::errors::StabilityWarning;
 use crate::interrupt::interruptible;
 use crate::joint::Flexure;
-use crate::warnings::{sig, warn, warn_values};
+use crate::warnings::{sig, warn_values};
 use flexure::dynamics::{self, Modes};
 use flexure::estimate::{self, Accuracy, ValueEstimate};
 use flexure::inertia::RigidInertia;
-use flexure::mechanism::statics::Settings;
 use flexure::reference::vibration;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
@@ -153,53 +151,6 @@ pub fn flexure_modes<'py>(
     crate::strict::finite_slice("Flexure.modes shapes", modes.shapes.as_slice())?;
     let (n, k) = (modes.shapes.nrows(), modes.omega.len());
     out.set_item("shapes", Array2::from_shape_fn((k, n), |(m, i)| modes.shapes[(i, m)]).into_pyarray(py))?;
-    Ok(out)
-}
-
-/// The modes of a mechanism about its loaded equilibrium; a loading path
-/// that snapped through warns StabilityWarning (stack level 2: past the
-/// Python wrapper).
-pub fn mechanism_modes<'py>(
-    py: Python<'py>,
-    m: &flexure::mechanism::Mechanism,
-    count: Option<&Bound<'py, PyAny>>,
-    target: &Accuracy,
-) -> PyResult<Bound<'py, PyDict>> {
-    let asked = wanted(count, m.dof(), "the mechanism")?;
-    let (m, modes, e) = interruptible(py, || estimate::mechanism_modes_auto(m, &Settings::default(), asked, target))?;
-    let m = &m;
-    let out = PyDict::new(py);
-    put_frequencies(py, &out, &modes)?;
-    crate::strict::finite_answer("Mechanism.modes", out.as_any())?;
-    crate::strict::finite_slice("Mechanism.modes error_estimate reference_omega", &e.reference)?;
-    let names: Vec<String> = m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect();
-    put_estimate(py, &out, &e, Some(&names))?;
-    let reference = if names.is_empty() {
-        "the same mechanism, which has no flexure to refine".to_string()
-    } else {
-        let parts: Vec<String> =
-            names.iter().zip(&e.reference_orders).map(|(n, (o, _))| format!("{n:?} at order {o}")).collect();
-        format!("the mechanism with {}", parts.join(", "))
-    };
-    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
-    let hint = "give its flexures order = \"auto\" (or a higher order) in the file, or ask fewer modes";
-    warn_values(py, "Mechanism.modes", &e, target, name, &reference, hint, 2)?;
-    crate::strict::finite_slice("Mechanism.modes shapes", modes.shapes.as_slice())?;
-    let shapes = PyDict::new(py);
-    for j in m.joints.iter().filter(|j| j.kind.joint().dof() > 0) {
-        let d = j.kind.joint().dof();
-        let a = Array2::from_shape_fn((modes.omega.len(), d), |(k, i)| modes.shapes[(j.offset + i, k)]);
-        shapes.set_item(&j.name, a.into_pyarray(py))?;
-    }
-    out.set_item("shapes", shapes)?;
-    if let Some(limit) = modes.limit {
-        out.set_item("limit_fraction", limit)?;
-        let text = format!(
-            "Mechanism.modes: the loading path lost stability at {:.4} % of the load and snapped through: these are the modes about the stable equilibrium beyond it",
-            100.0 * limit
-        );
-        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
-    }
     Ok(out)
 }
 

@@ -4,10 +4,8 @@
 
 use crate::options::warn;
 use flexure::estimate::Accuracy;
-use flexure::mechanism::Mechanism;
-use flexure::mechanism::sweep::Sweep;
-use flexure::model::{Model, Solved};
-use flexure::report::{EstimateFailed, SolveReport, solve_report};
+use flexure::model::{Model, Solved, Swept};
+use flexure::report::{EstimateFailed, SolveReport};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -43,7 +41,7 @@ fn warn_joints(r: &SolveReport, model: &Model, target: &Accuracy, file: &Path) {
 }
 
 /// The warning for a sweep that lost stability, or `None`.
-fn sweep_warning(file: &Path, parameter: &str, out: &Sweep, values: &[f64]) -> Option<String> {
+fn sweep_warning(file: &Path, parameter: &str, out: &Swept, values: &[f64]) -> Option<String> {
     let l = out.stability_limit?;
     let beyond = match values.len() - out.rows.len() {
         0 => "the path snapped through to stable states beyond it".to_string(),
@@ -101,21 +99,29 @@ pub(super) fn solved_answer(
     Ok(v)
 }
 
-/// The checks `solve --sweep` makes of a sweep, shared by `draw --sweep`:
-/// closures open at rest and rows whose parts cross (`findings`), where
-/// stability is lost, the rows whose estimate is flagged, the first row past
-/// each yield strength, and a sweep that stopped (`stopped`, which makes the
-/// command exit 2 after printing its rows).
-pub(super) fn insert_sweep_checks(
-    v: &mut Value,
-    m: &Mechanism,
-    out: &Sweep,
-    (target, file): (&Accuracy, &Path),
+/// `solve --sweep`'s answer, shared by `draw --sweep`: the table, with
+/// after the `findings` told before the sweep (the closures open at rest)
+/// the rows whose parts cross; where stability is lost, the rows whose
+/// estimate is flagged, the first row past each yield strength, each told
+/// on stderr; and a sweep that stopped (`stopped`, which makes the command
+/// exit 2 after printing its rows).
+pub(super) fn swept_answer(
+    model: &Model,
+    mut findings: Vec<Value>,
+    out: &Swept,
+    file: &Path,
     (parameter, values): (&str, &[f64]),
-) -> Result<(), String> {
-    let mut findings = crate::findings::closures(m, file)?;
-    let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
-    findings.extend(crate::findings::along(m, &shapes, (parameter, "swept values"), "value", file));
+) -> Value {
+    let mut v = json!({ "dimension": model.dimension(), "columns": out.columns, "rows": out.rows });
+    let shapes: Vec<(f64, &[f64])> = out.rows.iter().zip(&out.q).map(|(r, q)| (r[0], q.as_slice())).collect();
+    let found = out.crossings.clone();
+    findings.extend(crate::findings::crossing_answers_along(
+        found,
+        &shapes,
+        (parameter, "swept values"),
+        "value",
+        file,
+    ));
     if !findings.is_empty() {
         v["findings"] = json!(findings);
     }
@@ -125,34 +131,20 @@ pub(super) fn insert_sweep_checks(
     if let Some(w) = sweep_warning(file, parameter, out, values) {
         warn(w);
     }
-    let mut flagged = Vec::new();
-    for (value, s) in &out.rows {
-        if solve_report(m, s, target).map_err(|f| estimate_failed(file, f))?.flagged {
-            flagged.push(*value);
-        }
-    }
-    if !flagged.is_empty() {
-        v["flagged"] = json!(flagged);
+    if !out.flagged.is_empty() {
+        v["flagged"] = json!(out.flagged);
         warn(format!(
             "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
             file.display(),
-            flagged.len()
+            out.flagged.len()
         ));
     }
-    for j in &m.joints {
-        let (Some(f), Some(strength)) = (j.kind.flexure(), j.report.yield_strength) else { continue };
-        let over = out.rows.iter().find_map(|(value, s)| {
-            let p = flexure::stress::peak_stress(f, &s.q[j.offset..j.offset + f.order()])?;
-            (p.value > strength).then_some((*value, p.value))
-        });
-        if let Some((value, sigma)) = over {
-            warn(format!(
-                "{}: flexure joint {:?}: from {parameter} = {value} on, the peak bending stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {}.stress)",
-                file.display(),
-                j.name,
-                j.name
-            ));
-        }
+    for (joint, value, sigma) in &out.yielded {
+        let strength = model.yield_strength(joint).unwrap_or(f64::NAN);
+        warn(format!(
+            "{}: flexure joint {joint:?}: from {parameter} = {value} on, the peak stress ({sigma:.4e} Pa there) exceeds the yield strength {strength:e} Pa (column {joint}.stress)",
+            file.display(),
+        ));
     }
     if let Some((value, e)) = &out.stopped {
         let error = format!(
@@ -163,5 +155,25 @@ pub(super) fn insert_sweep_checks(
         );
         v["stopped"] = json!({ "value": value, "error": error });
     }
-    Ok(())
+    v
+}
+
+/// The sweep of `parameter` over `values` on `model`, with the compliance
+/// of a frame in each row if asked for: the table and its checks ([`swept_answer`]).
+pub(super) fn sweep_answer(
+    model: &Model,
+    (parameter, values): (&str, &[f64]),
+    compliance: Option<(&str, &[f64])>,
+    target: &Accuracy,
+    file: &Path,
+) -> Result<(Value, Swept), String> {
+    let findings = super::told_closures(model, file)?;
+    let out = model
+        .sweep(parameter, values, target, compliance)
+        .map_err(|e| match e {
+            e @ flexure::Error::InvalidParameter { name: "sweep", .. } => crate::describe(e),
+            e => super::solver_error(file)(e),
+        })?
+        .map_err(|f| estimate_failed(file, f))?;
+    Ok((swept_answer(model, findings, &out, file, (parameter, values)), out))
 }

@@ -1,15 +1,15 @@
 //! `flexure draw`: a mechanism's unloaded and loaded shapes (or a
 //! simulated motion) as one SVG, with the warnings `solve` gives.
 
-use super::checks::{insert_sweep_checks, solved_answer};
+use super::checks::solved_answer;
 use super::drawing::{self, Marks, Track, View, snapshot_samples, swept};
 use super::scene::{self, Pose, Scene};
 use crate::analyses::{SweepSpec, sweep_values};
-use crate::options::{number, warn};
+use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, Solution};
-use flexure::mechanism::sweep::{Parameter, sweep};
+use flexure::mechanism::sweep::Parameter;
 use flexure::model::Model;
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -62,7 +62,11 @@ fn sweep_label(parameter: &str, limit: Option<f64>, first: f64) -> impl Fn(f64) 
 }
 
 /// `draw` of a spatial file: its shapes, with the findings solve and simulate give.
-fn spatial_picture(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMechanism) -> Result<Picture, String> {
+fn spatial_picture(
+    args: &DrawArgs,
+    model: &Model,
+    m: &flexure::mechanism::spatial::SpatialMechanism,
+) -> Result<Picture, String> {
     use flexure::mechanism::spatial::{statics, sweep};
     let settings = Settings::default();
     let err = |e: flexure::Error| super::file_error(&args.file, e);
@@ -73,40 +77,29 @@ fn spatial_picture(args: &DrawArgs, m: &flexure::mechanism::spatial::SpatialMech
     let mut marks = Marks::default();
     let mut motion = None;
     let shapes: Vec<(String, Pose)> = if let Some(spec) = &args.sweep {
-        let p = sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
         let values = sweep_values(&spec.range);
-        let out = sweep::sweep(m, &p, &values, &settings).map_err(err)?;
+        let target = args.accuracy.target();
+        let (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
+        let none = Vec::new();
         if out.rows.is_empty() {
             let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
             return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
         }
+        findings = checks.get("findings").and_then(Value::as_array).unwrap_or(&none).clone();
+        for key in ["flagged", "stability_limit", "stopped"] {
+            if let Some(x) = checks.get(key) {
+                answer[key] = x.clone();
+            }
+        }
         if let Some(l) = &out.stability_limit {
-            warn(format!(
-                "{}: the sweep of {} lost stability at {} = {:.6e} ({:.4} % of the way)",
-                args.file.display(),
-                spec.parameter,
-                spec.parameter,
-                l.value,
-                100.0 * l.fraction
-            ));
             marks.limit = Some(format!("stability lost at {} = {}", spec.parameter, drawing::short(l.value)));
-            answer["stability_limit"] = json!(l);
         }
-        if let Some((value, e)) = &out.stopped {
-            answer["stopped"] = json!({ "value": value, "error": format!("{}: {e}", args.file.display()) });
-        }
-        let shapes: Vec<(f64, &[f64])> = out.rows.iter().map(|(v, s)| (*v, s.q.as_slice())).collect();
-        findings.extend(crate::findings::spatial_along(
-            m,
-            &shapes,
-            (&spec.parameter, "swept values"),
-            "value",
-            &args.file,
-        ));
+        let p = sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
         let label = sweep_label(&spec.parameter, out.stability_limit.map(|l| l.value), values[0]);
         out.rows
             .iter()
-            .map(|(v, s)| Ok((label(*v), scene::spatial(m, &label(*v), &s.q, &s.loads)?)))
+            .zip(&out.q)
+            .map(|(r, q)| Ok((label(r[0]), scene::spatial(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
             .collect::<Result<_, String>>()?
     } else if let Some(duration) = args.simulate {
         let sim = crate::mechanism::spatial::simulate(m, &args.file, duration, &args.motion)?;
@@ -156,16 +149,16 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
         yields: m.joints.iter().filter_map(|j| Some((j.name.clone(), j.report.yield_strength?))).collect(),
         limit: None,
     };
-    let loaded: Vec<(String, Solution)> = match &args.sweep {
+    let loaded: Vec<(String, (Vec<f64>, flexure::mechanism::Loads))> = match &args.sweep {
         Some(spec) => {
-            let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
             let values = sweep_values(&spec.range);
-            let out = sweep(m, &p, &values, &settings).map_err(err)?;
-            insert_sweep_checks(&mut checks, m, &out, (&target, &args.file), (&spec.parameter, &values))?;
+            let out;
+            (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
+            let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
             let limit = out.stability_limit.map(|l| l.value);
             let past = |value: f64| limit.is_some_and(|l| (value - l) * (values[0] - l) < 0.0);
             marks.limit = limit.map(|l| {
-                let shapes = match out.rows.iter().filter(|(value, _)| past(*value)).count() {
+                let shapes = match out.rows.iter().filter(|r| past(r[0])).count() {
                     0 => "no shape is drawn past it",
                     1 => "the last shape is past it, reached by snap-through",
                     _ => "the shapes marked past it were reached by snap-through",
@@ -173,17 +166,16 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
                 format!("stability lost at {} = {}: {shapes}", spec.parameter, drawing::short(l))
             });
             let label = sweep_label(&spec.parameter, limit, values[0]);
-            out.rows.iter().map(|(v, s)| (label(*v), s.clone())).collect()
+            out.rows.iter().zip(out.q).map(|(r, q)| (label(r[0]), (q, p.apply(&m.loads(), r[0])))).collect()
         }
         None => {
             let findings = super::told_closures(model, &args.file)?;
             let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
             let q = solved.q.clone();
             checks = solved_answer(model, findings, solved, &target, &args.file)?;
-            return Ok(planar_shapes(m, &unloaded, vec![("loaded".into(), (q, m.loads()))], marks, &checks));
+            vec![("loaded".into(), (q, m.loads()))]
         }
     };
-    let loaded = loaded.into_iter().map(|(label, s)| (label, (s.q, s.loads))).collect();
     Ok(planar_shapes(m, &unloaded, loaded, marks, &checks))
 }
 
@@ -214,7 +206,7 @@ pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let model = super::read_model(&args.file)?;
     let p = match &model {
         Model::Planar(m) => planar_picture(args, &model, m)?,
-        Model::Spatial(m) => spatial_picture(args, m)?,
+        Model::Spatial(m) => spatial_picture(args, &model, m)?,
     };
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let view = args.view.unwrap_or(p.view);

@@ -9,7 +9,7 @@ use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
 use crate::findings;
 use crate::interrupt::{clear_raised, interruptible, raised_during, signalled};
 use crate::strict::finite_answer;
-use crate::warnings::{sig, warn, warn_values};
+use crate::warnings::warn;
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::mechanism::Mechanism;
@@ -20,75 +20,6 @@ use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// The flexure joints' names, in joint order (the order of the library's
-/// per-flexure lists, such as an estimate's reference orders).
-fn flexure_names(m: &Mechanism) -> Vec<String> {
-    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
-}
-
-/// Linear buckling about the unloaded configuration, as `flexure buckle --json`:
-/// load_factor, mode, error_estimate, flagged, order (with `order = "auto"`
-/// joints), findings.
-pub fn buckle<'py>(py: Python<'py>, m: &Mechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
-    let settings = Settings::default();
-    let (open, (m, b, e)) = interruptible(py, || {
-        let open = flexure::mechanism::findings::open_closures(m, &settings)?;
-        Ok((open, estimate::buckle_auto(m, &settings, target)?))
-    })?;
-    // The library's answer {load_factor, mode}, the mode as an array.
-    let out = crate::serialize::to_dict(py, &b)?;
-    out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
-    let names = flexure_names(&m);
-    let auto = m.joints.iter().any(|j| j.auto_order);
-    if auto {
-        let orders = PyDict::new(py);
-        for j in &m.joints {
-            if let Some(f) = j.kind.flexure() {
-                orders.set_item(&j.name, f.order())?;
-            }
-        }
-        out.set_item("order", orders)?;
-    }
-    // As the CLI's: the relative error, reference_load_factor, the reference orders by joint,
-    // and where there is no estimate, `unestimated` and `reference_stable`.
-    let d = PyDict::new(py);
-    if let Some(Some(r)) = e.relative.first() {
-        d.set_item("load_factor", *r)?;
-    } else {
-        d.set_item("unestimated", vec![1])?;
-        d.set_item("reference_stable", e.reference_stable)?;
-    }
-    if let Some(r) = e.reference.first() {
-        d.set_item("reference_load_factor", *r)?;
-    }
-    crate::modes::put_reference_orders(py, &d, &names, &e.reference_orders)?;
-    out.set_item("error_estimate", d)?;
-    out.set_item("flagged", e.flagged)?;
-    let reference = if names.is_empty() {
-        "the same mechanism, which has no flexure to refine".to_string()
-    } else {
-        let parts: Vec<String> = names
-            .iter()
-            .zip(&e.reference_orders)
-            .map(|(n, (o, q))| format!("{n:?} at order {o} with {q} points"))
-            .collect();
-        format!("the mechanism with {}", parts.join(", "))
-    };
-    let hint = if auto {
-        "the flexures of order = \"auto\" are at the cap of 64: give the others order = \"auto\" too"
-    } else {
-        "give the flexures order = \"auto\" (or a higher order) in the file"
-    };
-    let name = |_| format!("the load factor {}", sig(b.load_factor));
-    warn_values(py, "Mechanism.buckle", &e, target, name, &reference, hint, 2)?;
-    let listed = findings::report(py, "Mechanism.buckle", &open, &findings::NO_CROSSINGS, 2)?;
-    if !listed.is_empty() {
-        out.set_item("findings", listed)?;
-    }
-    finite_answer("Mechanism.buckle", out.as_any())?;
-    Ok(out)
-}
 
 /// The body named `name` of `m`, or a ValueError listing the bodies.
 fn body_named(m: &Mechanism, name: &str) -> PyResult<usize> {

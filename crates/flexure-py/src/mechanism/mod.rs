@@ -1,16 +1,18 @@
 //! The `Mechanism` class: a mechanism read from its file, planar or spatial
-//! (`dimension = 3`), and the analyses it answers; a planar one's solve
-//! report is `solve.rs`, its others `analyses.rs`; a spatial one's are
-//! `spatial.rs`.
+//! (`dimension = 3`), as the door `flexure::model::Model`, and the analyses
+//! it answers. `solve.rs`, `buckle` and `modes` (`eigen.rs`) are written
+//! once for both dimensions through the door; `compliance`, `sweep` and
+//! `simulate` are still one per dimension (`analyses.rs`, `spatial.rs`).
 
 mod analyses;
+mod eigen;
 mod solve;
 mod spatial;
 
 use crate::accuracy::eigen_accuracy;
 use crate::errors::to_py;
+use crate::simulate;
 use crate::strict::{self, Real};
-use crate::{modes, simulate};
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::model::Model;
 use pyo3::exceptions::PyValueError;
@@ -97,11 +99,7 @@ impl Mechanism {
         count: Option<&Bound<'py, PyAny>>,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let target = eigen_accuracy(accuracy)?;
-        if let Some(m) = self.spatial() {
-            return spatial::modes(py, m, count, &target);
-        }
-        modes::mechanism_modes(py, self.planar("modes")?, count, &target)
+        eigen::modes(py, &self.model, count, &eigen_accuracy(accuracy)?)
     }
 
     /// The mechanism as MJCF, SDFormat or URDF text with its fit report: see `flexure.Mechanism.export`.
@@ -122,11 +120,7 @@ impl Mechanism {
     /// `flexure.Mechanism.buckle`.
     #[pyo3(signature = (accuracy=None))]
     fn buckle<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
-        let target = eigen_accuracy(accuracy)?;
-        if let Some(m) = self.spatial() {
-            return spatial::buckle(py, m, &target);
-        }
-        analyses::buckle(py, self.planar("buckle")?, &target)
+        eigen::buckle(py, &self.model, &eigen_accuracy(accuracy)?)
     }
 
     /// Compliance (3, 3), order (phi, x, y), of the frame at `at` (x, y; default the origin) on

@@ -15,9 +15,10 @@ use crate::warnings::{warn, warn_inaccurate, warn_unestimated};
 use flexure::Error;
 use flexure::estimate::Accuracy;
 use flexure::model::Model;
-use flexure::report::{CarriedLoad, EstimateFailed, Shape};
+use flexure::report::{BodyPose, CarriedLoad, EstimateFailed, Shape};
 use flexure::stress::Peak;
-use numpy::PyArray1;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -51,6 +52,16 @@ pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult
         Ok(d)
     };
     out.set_item("coordinates", arrays(&r.coordinates.0)?)?;
+    // A spatial body's rotation matrix as an array (3, 3).
+    let bodies = PyDict::new(py);
+    for (name, pose) in &r.bodies.0 {
+        let d = to_dict(py, pose)?;
+        if let BodyPose::Spatial { rotation, .. } = pose {
+            d.set_item("rotation", Array2::from_shape_fn((3, 3), |(i, j)| rotation[i][j]).into_pyarray(py))?;
+        }
+        bodies.set_item(name, d)?;
+    }
+    out.set_item("bodies", bodies)?;
     out.set_item("multipliers", PyArray1::from_slice(py, &r.multipliers))?;
     let loads = PyDict::new(py);
     for (name, load) in &r.load.0 {

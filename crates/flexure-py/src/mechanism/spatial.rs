@@ -1,21 +1,18 @@
-//! A spatial mechanism's analyses (a file with `dimension = 3`), in the
-//! shape of the planar ones: `solve` (the library's
-//! [`report`](flexure::report::spatial::report), what
-//! `flexure solve --json` prints), `compliance` (6 × 6), `sweep`, `modes`,
-//! `simulate` and `buckle`. Bodies' placements are NumPy arrays: a position
-//! (3,), a rotation matrix (3, 3) and URDF's roll, pitch, yaw (3,). The
-//! numbers are the library's; the stack level of every warning is 2, the
-//! line that called `flexure.Mechanism`'s Python wrapper.
+//! The analyses of a spatial mechanism (a file with `dimension = 3`) that
+//! the door does not answer yet, in the shape of the planar ones:
+//! `compliance` (6 × 6), `sweep` and `simulate`. Bodies' placements are
+//! NumPy arrays: a position (3,), a rotation matrix (3, 3) and URDF's roll,
+//! pitch, yaw (3,). The numbers are the library's; the stack level of every
+//! warning is 2, the line that called `flexure.Mechanism`'s Python wrapper.
 
 use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
 use crate::findings;
 use crate::interrupt::interruptible;
 use crate::strict::finite_answer;
-use crate::warnings::{sig, warn, warn_values};
+use crate::warnings::warn;
 use flexure::Error;
 use flexure::dynamics::integrate;
-use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
-use flexure::estimate::{Accuracy, ValueEstimate};
+use flexure::estimate::Accuracy;
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::findings::{crossings_along, open_closures};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
@@ -246,103 +243,6 @@ pub fn sweep<'py>(
     Ok(result)
 }
 
-/// The spatial flexure joints' names, in joint order (the order of an
-/// eigenvalue estimate's reference orders).
-fn flexure_names(m: &SpatialMechanism) -> Vec<String> {
-    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
-}
-
-/// The reference mechanism of an eigenvalue estimate, for warnings.
-fn reference_of(e: &ValueEstimate, names: &[String]) -> String {
-    if names.is_empty() {
-        return "the same mechanism, which has no flexure to refine".into();
-    }
-    let parts: Vec<String> = names
-        .iter()
-        .zip(&e.reference_orders)
-        .map(|(n, (o, q))| format!("{n:?} at orders up to {o} with {q} subintervals"))
-        .collect();
-    format!("the mechanism with {}", parts.join(", "))
-}
-
-/// What to do about a spatial eigenvalue answer that misses its target.
-/// What to do about a spatial eigenvalue answer that misses its target.
-fn raise(m: &SpatialMechanism) -> &'static str {
-    if m.joints.iter().any(|j| j.auto_order) {
-        "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\" (or higher orders)"
-    } else {
-        "give the spatial flexures order = \"auto\", or raise their orders (`order` or `orders`) in the mechanism file"
-    }
-}
-
-/// `order` {joint: [n_twist, n_y, n_z]} when a spatial flexure has
-/// `order = "auto"`: the orders the answer was found at, as the CLI's.
-fn put_orders(py: Python<'_>, out: &Bound<'_, PyDict>, m: &SpatialMechanism) -> PyResult<()> {
-    if m.joints.iter().any(|j| j.auto_order) {
-        let orders = PyDict::new(py);
-        for j in &m.joints {
-            if let Some(f) = j.kind.flexure() {
-                orders.set_item(&j.name, f.orders().to_vec())?;
-            }
-        }
-        out.set_item("order", orders)?;
-    }
-    Ok(())
-}
-
-/// Vibration modes about the loaded equilibrium: omega, frequency,
-/// quasi_static, shapes {joint: (modes, k)}, limit_fraction and
-/// error_estimate (each mode's, against the mechanism with every spatial
-/// flexure refined; a mode that misses `target` warns AccuracyWarning), as
-/// the planar `Mechanism.modes`.
-pub fn modes<'py>(
-    py: Python<'py>,
-    m: &SpatialMechanism,
-    count: Option<&Bound<'py, PyAny>>,
-    target: &Accuracy,
-) -> PyResult<Bound<'py, PyDict>> {
-    // With no coordinates the library says so (count 0 would be refused by its name instead).
-    let asked = crate::modes::wanted(count, m.dof(), "the mechanism")?.max(1);
-    let settings = Settings::default();
-    let (open, (m, modes, e)) =
-        interruptible(py, || Ok((open_closures(m, &settings)?, modes_auto(m, &settings, asked, target)?)))?;
-    let m = &m;
-    let out = PyDict::new(py);
-    let listed = findings::report(py, "Mechanism.modes", &open, &findings::NO_CROSSINGS, 2)?;
-    if !listed.is_empty() {
-        out.set_item("findings", listed)?;
-    }
-    out.set_item("dimension", 3)?;
-    out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
-    out.set_item("frequency", PyArray1::from_vec(py, modes.frequency.clone()))?;
-    out.set_item("quasi_static", modes.quasi_static)?;
-    let shapes = PyDict::new(py);
-    for j in m.joints.iter().filter(|j| j.kind.joint().dof() > 0) {
-        let d = j.kind.joint().dof();
-        let a = Array2::from_shape_fn((modes.omega.len(), d), |(k, i)| modes.shapes[(j.offset + i, k)]);
-        shapes.set_item(&j.name, a.into_pyarray(py))?;
-    }
-    out.set_item("shapes", shapes)?;
-    if let Some(limit) = modes.limit {
-        out.set_item("limit_fraction", limit)?;
-        let text = format!(
-            "Mechanism.modes: the loading path lost stability at {:.4} % of the load and snapped through: these are the modes about the stable equilibrium beyond it",
-            100.0 * limit
-        );
-        warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
-    }
-    finite_answer("Mechanism.modes", out.as_any())?;
-    // After the check: the estimate's omega holds NaN where the reference pairs no mode.
-    crate::strict::finite_slice("Mechanism.modes error_estimate reference_omega", &e.reference)?;
-    let names = flexure_names(m);
-    crate::modes::put_estimate(py, &out, &e, Some(&names))?;
-    let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
-    put_orders(py, &out, m)?;
-    let hint = format!("{}, or ask fewer modes", raise(m));
-    warn_values(py, "Mechanism.modes", &e, target, name, &reference_of(&e, &names), &hint, 2)?;
-    Ok(out)
-}
-
 /// The motion over `duration` (s), sampled every `every` (default
 /// duration/100), at relative and absolute `tolerance`, from `start`
 /// ("equilibrium" or "rest"), with a step budget of `max_steps`: time (N,),
@@ -417,44 +317,5 @@ pub fn simulate<'py>(
     if !listed.is_empty() {
         out.set_item("findings", listed)?;
     }
-    Ok(out)
-}
-
-/// Linear buckling about the unloaded configuration, as `flexure buckle
-/// --json` on a spatial file: load_factor, mode (dof,), error_estimate
-/// (against the mechanism with every spatial flexure refined; a miss of
-/// `target` warns AccuracyWarning) and flagged, in the planar answer's keys.
-pub fn buckle<'py>(py: Python<'py>, m: &SpatialMechanism, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
-    let settings = Settings::default();
-    let (open, (m, b, e)) =
-        interruptible(py, || Ok((open_closures(m, &settings)?, buckle_auto(m, &settings, target)?)))?;
-    let m = &m;
-    let out = crate::serialize::to_dict(py, &b)?;
-    let listed = findings::report(py, "Mechanism.buckle", &open, &findings::NO_CROSSINGS, 2)?;
-    if !listed.is_empty() {
-        out.set_item("findings", listed)?;
-    }
-    out.set_item("mode", PyArray1::from_vec(py, b.mode.clone()))?;
-    out.set_item("dimension", 3)?;
-    // As the planar answer's: the relative error, reference_load_factor, the reference orders by
-    // joint, and where there is no estimate, `unestimated` and `reference_stable`.
-    let d = PyDict::new(py);
-    if let Some(Some(r)) = e.relative.first() {
-        d.set_item("load_factor", *r)?;
-    } else {
-        d.set_item("unestimated", vec![1])?;
-        d.set_item("reference_stable", e.reference_stable)?;
-    }
-    if let Some(r) = e.reference.first() {
-        d.set_item("reference_load_factor", *r)?;
-    }
-    let names = flexure_names(m);
-    crate::modes::put_reference_orders(py, &d, &names, &e.reference_orders)?;
-    out.set_item("error_estimate", d)?;
-    out.set_item("flagged", e.flagged)?;
-    let name = |_| format!("the load factor {}", sig(b.load_factor));
-    put_orders(py, &out, m)?;
-    warn_values(py, "Mechanism.buckle", &e, target, name, &reference_of(&e, &names), raise(m), 2)?;
-    finite_answer("Mechanism.buckle", out.as_any())?;
     Ok(out)
 }

@@ -8,6 +8,7 @@ use crate::estimate::{Accuracy, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
 use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::{Settings, Solution};
+use crate::mechanism::sweep::Sweep;
 use crate::mechanism::{Mechanism, spatial};
 use crate::report::Reported;
 use crate::space::{Planar, Spatial};
@@ -19,6 +20,8 @@ pub trait Analyses: Reported {
     /// points" (Gauss points) in the plane, "orders up to 6 with 20
     /// subintervals" (Magnus steps) in space.
     const REFINED: [&'static str; 2];
+    /// The rows and columns of a compliance: the twist's parts, rotations first.
+    const COMPLIANCE_AXES: &'static [&'static str];
     /// The equilibrium under the mechanism's loads.
     fn solve(m: &Mechanism<Self>, settings: &Settings) -> Result<Solution<Self>>;
     /// The compliance of the frame at point `at` (its body's frame; `POINT_DIM` numbers) of `body`.
@@ -27,6 +30,15 @@ pub trait Analyses: Reported {
     fn open_closures(m: &Mechanism<Self>, settings: &Settings) -> Result<Vec<OpenClosure>>;
     /// The parts that cross at coordinates `q`.
     fn crossings(m: &Mechanism<Self>, q: &[f64]) -> Vec<Crossing<Vec<f64>>>;
+    /// Equilibria along `values` of the load named `parameter` ([`crate::mechanism::sweep::sweep`]).
+    fn sweep(
+        m: &Mechanism<Self>,
+        parameter: &str,
+        values: &[f64],
+        settings: &Settings,
+    ) -> Result<Sweep<Solution<Self>>>;
+    /// The parts that cross at each of `shapes`, by index, where any do.
+    fn crossings_along(m: &Mechanism<Self>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)>;
     /// Linear buckling with its estimate, flexures of `order = "auto"` raised.
     fn buckle(
         m: &Mechanism<Self>,
@@ -61,6 +73,17 @@ fn crossing_at<P: AsRef<[f64]>>(c: Crossing<P>) -> Crossing<Vec<f64>> {
 
 impl Analyses for Planar {
     const REFINED: [&'static str; 2] = ["order", "points"];
+    const COMPLIANCE_AXES: &'static [&'static str] = &["phi", "x", "y"];
+
+    fn sweep(m: &Mechanism, parameter: &str, values: &[f64], settings: &Settings) -> Result<Sweep> {
+        let p = crate::mechanism::sweep::Parameter::parse(m, parameter)?;
+        crate::mechanism::sweep::sweep(m, &p, values, settings)
+    }
+
+    fn crossings_along(m: &Mechanism, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {
+        let found = crate::mechanism::findings::crossings_along(m, shapes.iter().copied());
+        found.into_iter().map(|(k, c)| (k, c.into_iter().map(crossing_at).collect())).collect()
+    }
 
     fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
         crate::mechanism::statics::solve(m, settings)
@@ -100,6 +123,22 @@ impl Analyses for Planar {
 
 impl Analyses for Spatial {
     const REFINED: [&'static str; 2] = ["orders up to", "subintervals"];
+    const COMPLIANCE_AXES: &'static [&'static str] = &["rx", "ry", "rz", "x", "y", "z"];
+
+    fn sweep(
+        m: &Mechanism<Spatial>,
+        parameter: &str,
+        values: &[f64],
+        settings: &Settings,
+    ) -> Result<Sweep<Solution<Spatial>>> {
+        let p = spatial::sweep::SpatialParameter::parse(m, parameter)?;
+        crate::mechanism::sweep::sweep(m, &p, values, settings)
+    }
+
+    fn crossings_along(m: &Mechanism<Spatial>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {
+        let found = spatial::findings::crossings_along(m, shapes.iter().copied());
+        found.into_iter().map(|(k, c)| (k, c.into_iter().map(crossing_at).collect())).collect()
+    }
 
     fn solve(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Solution<Spatial>> {
         spatial::statics::solve(m, settings)

@@ -14,6 +14,7 @@ use crate::estimate::{Accuracy, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
 use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::Settings;
+use crate::mechanism::sweep::SweepLimit;
 use crate::mechanism::{Mechanism, file};
 use crate::report::{EstimateFailed, Named, SolveReport, solve_report};
 use crate::space::{Planar, Spatial};
@@ -49,6 +50,32 @@ pub struct Solved {
     pub compliance: Option<DMatrix<f64>>,
     /// The parts that cross in the answer.
     pub crossings: Vec<Crossing<Vec<f64>>>,
+}
+
+/// What [`Model::sweep`] answers: a table of one row per value reached
+/// stably, and what the rows say.
+#[derive(Debug)]
+pub struct Swept {
+    /// The columns: the swept load, each moving body's pose coordinates
+    /// (`NAME.x`, …), each joint's coordinates (`JOINT[i]`), `energy`, the
+    /// peak stress of each flexure with a section (`JOINT.stress`, Pa), and
+    /// the compliance's entries if asked for (`compliance.RC`).
+    pub columns: Vec<String>,
+    /// One row of numbers per value reached, in the columns' order.
+    pub rows: Vec<Vec<f64>>,
+    /// Each row's coordinates (what a picture draws).
+    pub q: Vec<Vec<f64>>,
+    /// The parts that cross, by row, where any do.
+    pub crossings: Vec<(usize, Vec<Crossing<Vec<f64>>>)>,
+    /// Where stability was first lost, if it was.
+    pub stability_limit: Option<SweepLimit>,
+    /// The value at which a solve failed and ended the sweep, and why.
+    pub stopped: Option<(f64, Error)>,
+    /// The values at which a flexure's error estimate misses the target.
+    pub flagged: Vec<f64>,
+    /// Each flexure joint with a `yield_strength` that a row stresses past
+    /// it: the joint, the first such value, and its peak stress there (Pa).
+    pub yielded: Vec<(String, f64, f64)>,
 }
 
 /// What [`Model::buckle`] and [`Model::modes`] answer: the analysis on the
@@ -153,6 +180,35 @@ impl Model {
         each!(self, m => solve(m, target, compliance))
     }
 
+    /// Equilibria along `values` of the load named `parameter` (as
+    /// `tendon.NAME.tension`, `force.NAME.fx`, `gravity.y`: the dimension's
+    /// names), each row with its estimate against `target` and, with
+    /// `compliance`, the compliance of that frame ([`Model::solve`]). The
+    /// outer error is the sweep's (bad input); the inner, a flexure joint
+    /// whose error estimate failed at a row.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::model::Model;
+    /// let text = "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+    ///             [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0]\n";
+    /// let m = Model::from_toml(text).unwrap();
+    /// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself loses stability at P = k/l = 10 N.
+    /// let s = m.sweep("force.push.fx", &[0.0, -4.0, -8.0, -12.0], &Default::default(), None).unwrap().unwrap();
+    /// assert_eq!(s.columns[..4], ["force.push.fx", "arm.x", "arm.y", "arm.phi"]);
+    /// assert_eq!(s.rows.len(), 3);
+    /// assert!((s.stability_limit.unwrap().value + 10.0).abs() < 1e-4);
+    /// ```
+    pub fn sweep(
+        &self,
+        parameter: &str,
+        values: &[f64],
+        target: &Accuracy,
+        compliance: Option<(&str, &[f64])>,
+    ) -> Result<std::result::Result<Swept, EstimateFailed>> {
+        each!(self, m => sweep(m, (parameter, values), target, compliance))
+    }
+
     /// Linear buckling on all loads, with its estimate ([`Analyses::buckle`]).
     pub fn buckle(&self, target: &Accuracy) -> Result<Eigen<Buckling>> {
         each!(self, m => {
@@ -235,6 +291,66 @@ fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&
     let report = solve_report(m, &s, target);
     let compliance = body.map(|(b, at)| D::compliance(m, &s, b, at)).transpose()?;
     Ok(Solved { q: s.q, report, compliance, crossings })
+}
+
+fn sweep<D: Analyses>(
+    m: &Mechanism<D>,
+    (parameter, values): (&str, &[f64]),
+    target: &Accuracy,
+    compliance: Option<(&str, &[f64])>,
+) -> Result<std::result::Result<Swept, EstimateFailed>> {
+    let frame = match compliance {
+        Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
+        None => None,
+    };
+    let out = D::sweep(m, parameter, values, &Settings::default())?;
+    let mut columns = vec![parameter.to_string()];
+    let poses = D::poses(m, &m.rest());
+    for (b, pose) in m.bodies.iter().zip(&poses).skip(1) {
+        columns.extend(pose.columns().iter().map(|c| format!("{}.{c}", b.name)));
+    }
+    for j in &m.joints {
+        columns.extend((0..D::joint(&j.kind).dof()).map(|i| format!("{}[{i}]", j.name)));
+    }
+    columns.push("energy".into());
+    let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());
+    for (k, (value, s)) in out.rows.iter().enumerate() {
+        let report = match solve_report(m, s, target) {
+            Ok(r) => r,
+            Err(failed) => return Ok(Err(failed)),
+        };
+        if k == 0 {
+            columns.extend(report.stress.0.iter().map(|(name, _)| format!("{name}.stress")));
+        }
+        let mut row = vec![*value];
+        row.extend(D::poses(m, &s.q).iter().skip(1).flat_map(|p| p.coordinates()));
+        row.extend(&s.q);
+        row.push(s.energy);
+        row.extend(report.stress.0.iter().map(|(_, p)| p.max));
+        if let Some((b, at)) = frame {
+            let c = D::compliance(m, s, b, at)?;
+            row.extend(c.row_iter().flat_map(|r| r.iter().copied().collect::<Vec<_>>()));
+        }
+        rows.push(row);
+        if report.flagged {
+            flagged.push(*value);
+        }
+        for (name, p) in &report.stress.0 {
+            let strength = m.joints.iter().find(|j| &j.name == name).and_then(|j| j.report.yield_strength);
+            if strength.is_some_and(|y| p.max > y) && !yielded.iter().any(|(n, ..)| n == name) {
+                yielded.push((name.clone(), *value, p.max));
+            }
+        }
+    }
+    if frame.is_some() {
+        let axes = D::COMPLIANCE_AXES;
+        columns.extend(axes.iter().flat_map(|r| axes.iter().map(move |c| format!("compliance.{r}{c}"))));
+    }
+    let shapes: Vec<&[f64]> = out.rows.iter().map(|(_, s)| s.q.as_slice()).collect();
+    let crossings = D::crossings_along(m, &shapes);
+    let q = shapes.iter().map(|q| q.to_vec()).collect();
+    let (stability_limit, stopped) = (out.stability_limit, out.stopped);
+    Ok(Ok(Swept { columns, rows, q, crossings, stability_limit, stopped, flagged, yielded }))
 }
 
 fn no_body(name: &str) -> Error {
