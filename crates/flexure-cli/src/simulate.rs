@@ -3,9 +3,12 @@
 use crate::options::number;
 use clap::{Args, ValueEnum};
 use flexure::dynamics::integrate;
+use flexure::dynamics::integrate::Trajectory;
 use flexure::dynamics::simulation::{Simulation, SimulationSettings, Start, simulate};
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::file::from_toml;
+use flexure::model::{Model, Motion};
+use flexure::report::BodyPose;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
 use std::fmt::Write;
@@ -80,6 +83,22 @@ fn load(path: &Path) -> Result<Mechanism, String> {
     from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The library's settings of `options` over `duration` (set by the option
+/// `duration_option`), checked first: a bad one is named before any solve.
+fn checked_settings(
+    options: &MotionOptions,
+    (duration, duration_option): (f64, &str),
+) -> Result<SimulationSettings, String> {
+    let settings = options.settings(duration);
+    settings.motion.validate().map_err(|e| match e {
+        flexure::Error::InvalidParameter { name: "duration", value, reason } => {
+            format!("{duration_option} = {value}: {reason}")
+        }
+        e => crate::describe(e),
+    })?;
+    Ok(settings)
+}
+
 /// The motion of `file` over `duration` (set by the option `duration_option`)
 /// with `options`; a bad setting is named as its option.
 pub fn run_motion(
@@ -87,14 +106,7 @@ pub fn run_motion(
     (duration, duration_option): (f64, &str),
     options: &MotionOptions,
 ) -> Result<(Mechanism, Simulation), String> {
-    let settings = options.settings(duration);
-    // Settings first: a bad one is named before any solve.
-    settings.motion.validate().map_err(|e| match e {
-        flexure::Error::InvalidParameter { name: "duration", value, reason } => {
-            format!("{duration_option} = {value}: {reason}")
-        }
-        e => crate::describe(e),
-    })?;
+    let settings = checked_settings(options, (duration, duration_option))?;
     let m = load(file)?;
     let run = with_progress_bar(duration, || simulate(&m, &settings, options.start()))
         .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))?;
@@ -118,8 +130,13 @@ pub fn simulation_error(e: flexure::Error, duration: f64) -> String {
 
 /// `stopped` for a run that ended early: its time and the error, which
 /// makes the command exit 2 after printing the samples it reached.
-pub fn insert_stopped(v: &mut Value, run: &Simulation, file: &Path, duration: f64) {
-    if let Some(e) = &run.stopped {
+pub fn insert_stopped(
+    v: &mut Value,
+    (run, stopped): (&Trajectory, &Option<flexure::Error>),
+    file: &Path,
+    duration: f64,
+) {
+    if let Some(e) = stopped {
         let reached = run.time.last().copied().unwrap_or(0.0);
         let error = format!(
             "{}: the run stopped after {} samples (to t = {reached:e} s of {duration:e} s, each printed above): {}",
@@ -159,8 +176,11 @@ fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
     result
 }
 
-/// `time`, `bodies` {name: {x, y, phi}}, `coordinates` {joint: one row per
-/// sample}, `energy`, `steps`, `rejected` and `violation`.
+/// `dimension`, `time`, `bodies` {name: {each pose key: one value per
+/// sample}} (planar x, y, phi; spatial x, y, z, roll, pitch, yaw and
+/// rotation), `coordinates` {joint: one row per sample}, `energy`, `steps`,
+/// `rejected` and `violation`; with `findings`, and `stopped` after a run
+/// that ended early.
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     // The output file is opened before the run, so a path that cannot be
     // written is said before the work, not after it.
@@ -171,35 +191,31 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         )),
         None => None,
     };
-    if let Some(m) = crate::mechanism::spatial::read(&args.file)? {
-        let mut findings = crate::findings::spatial_closures(&m, &args.file)?;
-        let run = with_progress_bar(args.duration, || {
-            crate::mechanism::spatial::simulate(&m, &args.file, args.duration, &args.motion)
-        })?;
-        let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
-        findings.extend(crate::findings::spatial_along(&m, &samples, ("t (s)", "samples"), "time", &args.file));
-        let mut v = crate::mechanism::spatial::motion_json(&m, &run);
-        crate::mechanism::spatial::insert_findings(&mut v, findings);
-        if let Some((path, mut file)) = out {
-            use std::io::Write as _;
-            file.write_all(spatial_csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
-            v["out"] = json!(path.display().to_string());
-        }
-        if let Some(e) = &run.stopped {
-            let reached = run.time.last().copied().unwrap_or(0.0);
-            v["stopped"] = json!({ "time": reached, "error": format!("{}: the run stopped after {} samples (to t = {reached:e} s of {:e} s, each printed above): {}", args.file.display(), run.time.len(), args.duration, simulation_error(e.clone(), args.duration)) });
-        }
-        return Ok(v);
+    let settings = checked_settings(&args.motion, (args.duration, "--duration"))?;
+    let model = crate::mechanism::read_model(&args.file)?;
+    let mut findings = crate::mechanism::told_closures(&model, &args.file)?;
+    let run = with_progress_bar(args.duration, || model.simulate(&settings, args.motion.start()))
+        .map_err(|e| format!("{}: {}", args.file.display(), simulation_error(e, args.duration)))?;
+    let samples: Vec<(f64, &[f64])> =
+        (0..run.trajectory.time.len()).map(|k| (run.trajectory.time[k], run.trajectory.q(k))).collect();
+    let crossings = run.crossings.clone();
+    findings.extend(crate::findings::crossing_answers_along(
+        crossings,
+        &samples,
+        ("t (s)", "samples"),
+        "time",
+        &args.file,
+    ));
+    let mut v = motion_json(&model, &run);
+    if !findings.is_empty() {
+        v["findings"] = json!(findings);
     }
-    let (m, run) = run_motion(&args.file, (args.duration, "--duration"), &args.motion)?;
-    let mut v = motion_json(&m, &run);
-    insert_motion_checks(&mut v, &m, &run, &args.file)?;
     if let Some((path, mut file)) = out {
         use std::io::Write as _;
-        file.write_all(csv(&m, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
+        file.write_all(csv(&model, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
         v["out"] = json!(path.display().to_string());
     }
-    insert_stopped(&mut v, &run, &args.file, args.duration);
+    insert_stopped(&mut v, (&run.trajectory, &run.stopped), &args.file, args.duration);
     Ok(v)
 }
 
@@ -216,56 +232,69 @@ pub fn insert_motion_checks(v: &mut Value, m: &Mechanism, run: &Simulation, file
     Ok(())
 }
 
-fn motion_json(m: &Mechanism, run: &Simulation) -> Value {
-    let bodies: serde_json::Map<String, Value> =
-        run.bodies.iter().map(|b| (b.name.clone(), json!({ "x": b.x, "y": b.y, "phi": b.phi }))).collect();
-    let coordinates: serde_json::Map<String, Value> = m
-        .joints
+fn motion_json(model: &Model, run: &Motion) -> Value {
+    // Each body's pose keys, each one value per sample.
+    let bodies: serde_json::Map<String, Value> = run
+        .bodies
         .iter()
-        .map(|j| {
-            let k = j.kind.joint().dof();
-            let rows: Vec<&[f64]> = (0..run.time.len()).map(|s| &run.q(s)[j.offset..j.offset + k]).collect();
-            (j.name.clone(), json!(rows))
+        .map(|(name, poses)| {
+            let mut series = serde_json::Map::new();
+            for pose in poses {
+                if let Ok(Value::Object(keys)) = serde_json::to_value(pose) {
+                    for (key, x) in keys {
+                        if let Value::Array(list) = series.entry(key).or_insert_with(|| json!([])) {
+                            list.push(x);
+                        }
+                    }
+                }
+            }
+            (name.clone(), Value::Object(series))
+        })
+        .collect();
+    let t = &run.trajectory;
+    let coordinates: serde_json::Map<String, Value> = model
+        .joints()
+        .into_iter()
+        .map(|(name, range)| {
+            let rows: Vec<&[f64]> = (0..t.time.len()).map(|s| &t.q(s)[range.clone()]).collect();
+            (name, json!(rows))
         })
         .collect();
     json!({
-        "time": run.time,
+        "dimension": model.dimension(),
+        "time": t.time,
         "bodies": bodies,
         "coordinates": coordinates,
-        "energy": run.energy,
-        "steps": run.steps,
-        "rejected": run.rejected,
-        "violation": run.violation,
+        "energy": t.energy,
+        "steps": t.steps,
+        "rejected": t.rejected,
+        "violation": t.violation,
     })
 }
 
-/// One row per sample, under a header naming each column.
-fn csv(m: &Mechanism, run: &Simulation) -> String {
-    let joints: Vec<(&str, usize)> = m.joints.iter().map(|j| (j.name.as_str(), j.kind.joint().dof())).collect();
-    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.name.as_str()).collect();
-    table(&bodies, &["x", "y", "phi"], &joints, run, |k, row| {
-        for b in &run.bodies {
-            row.extend([b.x[k], b.y[k], b.phi[k]]);
-        }
-    })
-}
-
-/// A spatial run's CSV: each body's origin and its rotation as a unit
-/// quaternion, scalar first (MuJoCo's `qpos` order), sign chosen with
-/// $q_w \ge 0$.
-fn spatial_csv(
-    m: &flexure::mechanism::spatial::SpatialMechanism,
-    run: &flexure::dynamics::spatial::SpatialSimulation,
-) -> String {
-    let joints: Vec<(&str, usize)> = m.joints.iter().map(|j| (j.name.as_str(), j.kind.joint().dof())).collect();
-    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.name.as_str()).collect();
-    table(&bodies, &["x", "y", "z", "qw", "qx", "qy", "qz"], &joints, run, |k, row| {
-        for b in &run.bodies {
-            let r = nalgebra::Matrix3::from_fn(|i, j| b.rotation[k][i][j]);
-            let q = nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(r));
-            let q = if q.w < 0.0 { -q.into_inner() } else { q.into_inner() };
-            row.extend(b.position[k]);
-            row.extend([q.w, q.i, q.j, q.k]);
+/// One row per sample, under a header naming each column: each moving
+/// body's pose, a spatial one's rotation as a unit quaternion, scalar first
+/// (MuJoCo's `qpos` order), sign chosen with $q_w \ge 0$.
+fn csv(model: &Model, run: &Motion) -> String {
+    let joints: Vec<(String, usize)> = model.joints().into_iter().map(|(n, r)| (n, r.len())).collect();
+    let joints: Vec<(&str, usize)> = joints.iter().map(|(n, k)| (n.as_str(), *k)).collect();
+    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.0.as_str()).collect();
+    let columns: &[&str] = match model.dimension() {
+        2 => &["x", "y", "phi"],
+        _ => &["x", "y", "z", "qw", "qx", "qy", "qz"],
+    };
+    table(&bodies, columns, &joints, &run.trajectory, |k, row| {
+        for (_, poses) in &run.bodies {
+            match poses[k] {
+                BodyPose::Planar { x, y, phi } => row.extend([x, y, phi]),
+                BodyPose::Spatial { x, y, z, rotation, .. } => {
+                    let r = nalgebra::Matrix3::from_fn(|i, j| rotation[i][j]);
+                    let q =
+                        nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(r));
+                    let q = if q.w < 0.0 { -q.into_inner() } else { q.into_inner() };
+                    row.extend([x, y, z, q.w, q.i, q.j, q.k]);
+                }
+            }
         }
     })
 }

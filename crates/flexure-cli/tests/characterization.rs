@@ -55,6 +55,7 @@ const ADDED_TOP: &[(&str, &str)] = &[
     ("modes", "findings"),
     ("modes", "quasi_static"),
     ("modes", "note"),
+    ("simulate", "dimension"),
 ];
 
 /// `now` without the [`ADDED_TOP`] keys that `golden` lacks.

@@ -102,7 +102,10 @@ fn spatial_picture(
             .map(|(r, q)| Ok((label(r[0]), scene::spatial(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
             .collect::<Result<_, String>>()?
     } else if let Some(duration) = args.simulate {
-        let sim = crate::mechanism::spatial::simulate(m, &args.file, duration, &args.motion)?;
+        let settings = args.motion.settings(duration);
+        let equilibrium = args.motion.start() == flexure::dynamics::simulation::Start::Equilibrium;
+        let sim = flexure::dynamics::spatial::simulate(m, &settings.motion, &settings.equilibrium, equilibrium)
+            .map_err(|e| format!("{}: {}", args.file.display(), crate::simulate::simulation_error(e, duration)))?;
         let samples: Vec<(f64, &[f64])> = (0..sim.time.len()).map(|k| (sim.time[k], sim.q(k))).collect();
         findings.extend(crate::findings::spatial_along(m, &samples, ("t (s)", "samples"), "time", &args.file));
         let picked = snapshot_samples(sim.time.len());
@@ -115,7 +118,9 @@ fn spatial_picture(
         findings.extend(crate::findings::spatial_shape(m, &s.q, &args.file));
         vec![("loaded".into(), scene::spatial(m, "loaded", &s.q, &s.loads)?)]
     };
-    super::spatial::insert_findings(&mut answer, findings);
+    if !findings.is_empty() {
+        answer["findings"] = Value::Array(findings);
+    }
     let rest = scene::spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     Ok(Picture { scene: scene::spatial_scene(m), rest, shapes, marks, motion, answer, view: View::Iso })
 }
@@ -129,7 +134,7 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
     if let Some(duration) = args.simulate {
         let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
         crate::simulate::insert_motion_checks(&mut checks, &m, &run, &args.file)?;
-        crate::simulate::insert_stopped(&mut checks, &run, &args.file, duration);
+        crate::simulate::insert_stopped(&mut checks, (&run.trajectory, &run.stopped), &args.file, duration);
         let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
         let picked = snapshot_samples(run.time.len());
         let (shapes, tracks) = scene::planar_motion(&m, &run, &picked);

@@ -8,7 +8,6 @@ pub mod drawing;
 pub mod projection;
 pub mod scene;
 mod solve;
-pub mod spatial;
 
 pub use buckle::{BuckleArgs, buckle_cmd};
 pub use draw::{DrawArgs, draw_cmd};

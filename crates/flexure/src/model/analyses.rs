@@ -2,7 +2,9 @@
 //! each analysis, by the dimension's own algorithm. The plane and space
 //! implement it here, side by side; [`super::Model`] is written once over it.
 
+use crate::dynamics::integrate::Trajectory;
 use crate::dynamics::modes::Modes;
+use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
@@ -39,6 +41,13 @@ pub trait Analyses: Reported {
     ) -> Result<Sweep<Solution<Self>>>;
     /// The parts that cross at each of `shapes`, by index, where any do.
     fn crossings_along(m: &Mechanism<Self>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)>;
+    /// The motion from `start` under the loads and their schedules: the
+    /// samples reached, and why the run stopped early if it did.
+    fn simulate(
+        m: &Mechanism<Self>,
+        settings: &SimulationSettings,
+        start: Start,
+    ) -> Result<(Trajectory, Option<Error>)>;
     /// Linear buckling with its estimate, flexures of `order = "auto"` raised.
     fn buckle(
         m: &Mechanism<Self>,
@@ -78,6 +87,11 @@ impl Analyses for Planar {
     fn sweep(m: &Mechanism, parameter: &str, values: &[f64], settings: &Settings) -> Result<Sweep> {
         let p = crate::mechanism::sweep::Parameter::parse(m, parameter)?;
         crate::mechanism::sweep::sweep(m, &p, values, settings)
+    }
+
+    fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> Result<(Trajectory, Option<Error>)> {
+        let run = crate::dynamics::simulation::simulate(m, settings, start)?;
+        Ok((run.trajectory, run.stopped))
     }
 
     fn crossings_along(m: &Mechanism, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {
@@ -133,6 +147,16 @@ impl Analyses for Spatial {
     ) -> Result<Sweep<Solution<Spatial>>> {
         let p = spatial::sweep::SpatialParameter::parse(m, parameter)?;
         crate::mechanism::sweep::sweep(m, &p, values, settings)
+    }
+
+    fn simulate(
+        m: &Mechanism<Spatial>,
+        settings: &SimulationSettings,
+        start: Start,
+    ) -> Result<(Trajectory, Option<Error>)> {
+        let equilibrium = start == Start::Equilibrium;
+        let run = crate::dynamics::spatial::simulate(m, &settings.motion, &settings.equilibrium, equilibrium)?;
+        Ok((run.trajectory, run.stopped))
     }
 
     fn crossings_along(m: &Mechanism<Spatial>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {

@@ -9,6 +9,8 @@ mod analyses;
 
 pub use analyses::Analyses;
 
+use crate::dynamics::integrate::Trajectory;
+use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
@@ -16,7 +18,7 @@ use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::Settings;
 use crate::mechanism::sweep::SweepLimit;
 use crate::mechanism::{Mechanism, file};
-use crate::report::{EstimateFailed, Named, SolveReport, solve_report};
+use crate::report::{BodyPose, EstimateFailed, Named, SolveReport, solve_report};
 use crate::space::{Planar, Spatial};
 use nalgebra::DMatrix;
 
@@ -76,6 +78,20 @@ pub struct Swept {
     /// Each flexure joint with a `yield_strength` that a row stresses past
     /// it: the joint, the first such value, and its peak stress there (Pa).
     pub yielded: Vec<(String, f64, f64)>,
+}
+
+/// What [`Model::simulate`] answers: the integrator's samples, every
+/// moving body's pose at each, and the parts that cross.
+#[derive(Debug)]
+pub struct Motion {
+    /// The samples: times, coordinates, rates, energy, counts.
+    pub trajectory: Trajectory,
+    /// Why the run ended before its duration, if it did; the samples are those reached.
+    pub stopped: Option<Error>,
+    /// Each moving body (the ground left out) by name, with its pose at each sample.
+    pub bodies: Vec<(String, Vec<BodyPose>)>,
+    /// The parts that cross, by sample, where any do.
+    pub crossings: Vec<(usize, Vec<Crossing<Vec<f64>>>)>,
 }
 
 /// What [`Model::buckle`] and [`Model::modes`] answer: the analysis on the
@@ -209,6 +225,29 @@ impl Model {
         each!(self, m => sweep(m, (parameter, values), target, compliance))
     }
 
+    /// The motion under the loads and their schedules from `start` (the
+    /// file's `[initial]` and `[initial_velocity]` override it), with every
+    /// moving body's pose and the parts that cross at each sample.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::dynamics::integrate;
+    /// use flexure::dynamics::simulation::{SimulationSettings, Start};
+    /// use flexure::model::Model;
+    /// // A sprung arm (k = 1 N·m/rad) carrying 0.1 kg at 0.1 m, let go from 0.1 rad:
+    /// // it swings about its rest with ω² = k/(m l²) = 1000 rad²/s².
+    /// let m = Model::from_toml("[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+    ///     [[body]]\nname = \"arm\"\nmass = 0.1\ncom = [0.1, 0.0]\n[initial]\npivot = [0.1]\n").unwrap();
+    /// let half = std::f64::consts::PI / 1000f64.sqrt();
+    /// let motion = integrate::Settings { duration: half, every: half, ..Default::default() };
+    /// let run = m.simulate(&SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
+    /// assert!((run.trajectory.q(1)[0] + 0.1).abs() < 1e-5 && run.stopped.is_none());
+    /// assert_eq!((run.bodies[0].0.as_str(), run.bodies[0].1.len()), ("arm", 2));
+    /// ```
+    pub fn simulate(&self, settings: &SimulationSettings, start: Start) -> Result<Motion> {
+        each!(self, m => simulate(m, settings, start))
+    }
+
     /// Linear buckling on all loads, with its estimate ([`Analyses::buckle`]).
     pub fn buckle(&self, target: &Accuracy) -> Result<Eigen<Buckling>> {
         each!(self, m => {
@@ -240,7 +279,12 @@ impl Model {
 
     /// Each joint with coordinates: its name and its coordinates' range in `q`.
     pub fn coordinates(&self) -> Vec<(String, std::ops::Range<usize>)> {
-        each!(self, m => coordinates(m))
+        self.joints().into_iter().filter(|(_, r)| !r.is_empty()).collect()
+    }
+
+    /// Every joint, in joint order: its name and its coordinates' range in `q` (empty for a fixed joint).
+    pub fn joints(&self) -> Vec<(String, std::ops::Range<usize>)> {
+        each!(self, m => joints(m))
     }
 }
 
@@ -256,9 +300,8 @@ impl From<Mechanism<Spatial>> for Model {
     }
 }
 
-fn coordinates<D: Analyses>(m: &Mechanism<D>) -> Vec<(String, std::ops::Range<usize>)> {
-    let dof = |j: &crate::mechanism::JointSpec<D>| D::joint(&j.kind).dof();
-    m.joints.iter().filter(|j| dof(j) > 0).map(|j| (j.name.clone(), j.offset..j.offset + dof(j))).collect()
+fn joints<D: Analyses>(m: &Mechanism<D>) -> Vec<(String, std::ops::Range<usize>)> {
+    m.joints.iter().map(|j| (j.name.clone(), j.offset..j.offset + D::joint(&j.kind).dof())).collect()
 }
 
 fn refined<D: Analyses>(_: &Mechanism<D>) -> [&'static str; 2] {
@@ -351,6 +394,19 @@ fn sweep<D: Analyses>(
     let q = shapes.iter().map(|q| q.to_vec()).collect();
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
     Ok(Ok(Swept { columns, rows, q, crossings, stability_limit, stopped, flagged, yielded }))
+}
+
+fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Motion> {
+    let (trajectory, stopped) = D::simulate(m, settings, start)?;
+    let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
+    let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
+    for q in &samples {
+        for (body, pose) in bodies.iter_mut().zip(D::poses(m, q).into_iter().skip(1)) {
+            body.1.push(pose);
+        }
+    }
+    let crossings = D::crossings_along(m, &samples);
+    Ok(Motion { trajectory, stopped, bodies, crossings })
 }
 
 fn no_body(name: &str) -> Error {
