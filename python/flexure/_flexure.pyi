@@ -319,14 +319,14 @@ class Mechanism:
         velocities {joint: (N, k) array}, energy, steps, rejected, violation; spatial: bodies
         {name: {position (N, 3), rotation (N, 3, 3)}}."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
-        """As flexure.Mechanism.solve: bodies, coordinates, energy, stable, error_estimate
-        {flexure joint: _ErrorEstimate}, flagged, findings, and per
-        flexure joint stress (or curvature_max), safety_factor and shape where they apply;
-        spatial: dimension, q, multipliers, bodies {name: {position, rotation, rpy}},
-        coordinates, energy, stable, flexures {joint: {load, stress}}, error_estimate, flagged."""
+        """As flexure.Mechanism.solve, one shape in both dimensions: dimension, bodies (planar
+        {x, y, phi}; spatial {x, y, z, roll, pitch, yaw, rotation (3, 3)}), coordinates, energy,
+        stable, error_estimate {flexure joint: _ErrorEstimate}, flagged, findings, and per flexure
+        joint stress (or curvature_max), safety_factor and shape where they apply, load,
+        multipliers, residual, load_steps, iterations."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
-        """As flexure.Mechanism.buckle: load_factor, mode, error_estimate, flagged[, order, findings];
-        spatial: load_factor, mode, error_estimate, flagged, dimension[, order, findings]."""
+        """As flexure.Mechanism.buckle, in both dimensions: load_factor, mode, dimension,
+        error_estimate, flagged[, order, findings]."""
     def compliance(self, body: str, at: Optional[ArrayLike] = None) -> np.ndarray:
         """As flexure.Mechanism.compliance: (3, 3), order (phi, x, y), of the frame at `at` on `body`;
         spatial: (6, 6), order (rx, ry, rz, x, y, z), at `at` (x, y, z)."""
