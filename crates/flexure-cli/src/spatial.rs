@@ -239,7 +239,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         "pose": pose(&r, &p),
         "stiffness": matrix(&data.stiffness),
         "stable": eq.stable,
-        "stability_test": load.stability_test(),
+        "stability_test": load.stability_test().name(),
         "residual": eq.residual,
     });
     if let Some(limit) = eq.limit.filter(|_| !args.limit) {
@@ -281,7 +281,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         "pose": pose(&exact.rotation, &exact.position),
         "root_moment": [exact.root_moment.x, exact.root_moment.y, exact.root_moment.z],
         "stable": exact.stable,
-        "stability_test": load.stability_test(),
+        "stability_test": load.stability_test().name(),
         "model": model,
         "error": {
             "position": off,

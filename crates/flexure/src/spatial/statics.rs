@@ -136,6 +136,22 @@ pub enum StabilityTest {
     Static,
 }
 
+impl StabilityTest {
+    /// Its name in answers: `energy` or `static` (the JSON's and Python's `stability_test`).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::spatial::StabilityTest;
+    /// assert_eq!(StabilityTest::Static.name(), "static");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            StabilityTest::Energy => "energy",
+            StabilityTest::Static => "static",
+        }
+    }
+}
+
 /// Sample points $t = s/L$ at which cross-sections' rotations bound a
 /// continuation step (and the stress is not: see [`SpatialStatics`]).
 const ROTATION_SAMPLES: usize = 17;
