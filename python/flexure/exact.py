@@ -151,7 +151,8 @@ def rod(flexure: SpatialFlexure, force: Optional[ArrayLike] = None, moment: Opti
     """The exact Kirchhoff rod (inextensible, unshearable) of a `flexure.SpatialFlexure`'s length,
     section and rest shape, clamped at its root, under a dead tip force (fx, fy, fz) and moment
     (mx, my, mz) in the root frame, followed from rest by multiple shooting: a dict of pose (the
-    tip's 4 x 4 transform), root_moment, stable (no conjugate point on the way) and limit_fraction
+    tip's 4 x 4 transform), root_moment, stable (no conjugate point on the way), stability_test
+    ("energy" without a moment, "static" with one, as `SpatialFlexure.deflect`'s) and limit_fraction
     where the path lost stability, if it did. The reference `SpatialFlexure.deflect` is measured
     against; the planar elastica is its special case.
 

@@ -1,6 +1,7 @@
 """flexure.SpatialFlexure: the spatial flexure from Python, against closed forms."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -191,3 +192,21 @@ def test_bad_mass_raises_value_error_naming_it_as_the_file_does():
     f = flexure.SpatialFlexure(**strip, density=7850.0)
     with pytest.raises(AttributeError):
         f.density = 1.0
+
+
+def test_a_dead_twisting_moment_is_judged_by_the_static_test():
+    # Reference: a clamped-free rod under a dead axial torque T has no neighbouring equilibrium at
+    # any T (EI w'' = iT w', w(0) = w'(0) = 0 has only w = 0: Ziegler), so past Greenhill's
+    # 2 pi EI/L, at 10 EI/L (issue 39 item 4), the model and the exact rod both answer stable, with
+    # no StabilityWarning, and say which question: stability_test "static". Without a moment the
+    # test is the energy's.
+    from flexure import exact
+
+    f = flexure.SpatialFlexure()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", flexure.StabilityWarning)
+        d = f.deflect(moment=(10.0, 0.0, 0.0))
+    e = exact.rod(f, moment=(10.0, 0.0, 0.0))
+    assert d["stable"] and e["stable"] and "limit_fraction" not in d
+    assert d["stability_test"] == "static" and e["stability_test"] == "static"
+    assert f.deflect(force=(-1.0, 0.0, 0.1))["stability_test"] == "energy"

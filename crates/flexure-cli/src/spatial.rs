@@ -14,7 +14,7 @@ use clap::Args;
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::reference::rod::{self, Rod};
-use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialPoint, SpatialSpec, SpatialStatics};
+use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialPoint, SpatialSpec, SpatialStatics, StabilityTest};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{Value, json};
 
@@ -239,12 +239,19 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         "pose": pose(&r, &p),
         "stiffness": matrix(&data.stiffness),
         "stable": eq.stable,
+        "stability_test": load.stability_test().name(),
         "residual": eq.residual,
     });
     if let Some(limit) = eq.limit.filter(|_| !args.limit) {
         model["limit_fraction"] = json!(limit);
     }
-    warn_unstable(eq.stable, "deflect");
+    match load.stability_test() {
+        StabilityTest::Energy => warn_unstable(eq.stable, "deflect"),
+        StabilityTest::Static if !eq.stable => warn(
+            "deflect: the equilibrium is unstable (`stable: false`, `stability_test: static`): a neighbouring equilibrium branched off the loading path (a dead moment has no potential, so this is Euler's static test, not an energy minimum)".into(),
+        ),
+        StabilityTest::Static => {}
+    }
     insert_stress(&mut model, &f, data.alpha(), args.stress.yield_strength, "deflect")?;
     if let Some(k) = args.stress.shape {
         model["shape"] = shape(&f, data.alpha(), k)?;
@@ -274,6 +281,7 @@ pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
         "pose": pose(&exact.rotation, &exact.position),
         "root_moment": [exact.root_moment.x, exact.root_moment.y, exact.root_moment.z],
         "stable": exact.stable,
+        "stability_test": load.stability_test().name(),
         "model": model,
         "error": {
             "position": off,

@@ -29,6 +29,30 @@ fn deflect_exact_puts_the_model_under_model() {
     assert!(v["model"]["stiffness"].as_array().unwrap().len() == 9);
 }
 
+/// Reference: the clamped–free rod under a dead axial torque has no static
+/// critical value (EI w″ = iT w′, w(0) = w′(0) = 0 has only w = 0:
+/// Ziegler), so past Greenhill's 2πEI/L, at 10 EI/L, the model and the
+/// exact rod both answer stable, with no `limit_fraction` and no warning,
+/// and say which question: `stability_test: static` (a dead moment has no
+/// potential). Issue 39 item 4: the model said `stable: false`, the rod
+/// `stable: true`. Without a moment the test is the energy's.
+#[test]
+fn deflect_under_a_dead_twisting_moment_says_which_stability() {
+    let (code, out, err) = run("deflect --spatial --mx 10 --exact --json");
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["stable"], true);
+    assert_eq!(v["model"]["stable"], true);
+    assert_eq!(v["stability_test"], "static");
+    assert_eq!(v["model"]["stability_test"], "static");
+    assert!(v["model"].get("limit_fraction").is_none(), "{out}");
+    assert!(!err.contains("unstable"), "{err}");
+    let r = &v["pose"]["rotation"];
+    assert!((f(&r[2][1]).atan2(f(&r[1][1])) - (10.0f64 - 4.0 * std::f64::consts::PI)).abs() < 1e-9, "{r}");
+    let thrust = json("deflect --spatial --fx -1 --fz 0.1");
+    assert_eq!(thrust["stability_test"], "energy");
+}
+
 /// Reference: Michell's lateral-torsional buckling of a steel strip (10 mm ×
 /// 0.2 mm × 50 mm): P = 4.013·√(EI_z·GJ)/L² = 2.64 N. 20 N along z is
 /// beyond it: the answer says unstable, warns, and `--limit` gives the

@@ -11,7 +11,7 @@ use crate::strict::{self, Real};
 use crate::warnings::{sig, warn};
 use flexure::estimate::{self, Accuracy};
 use flexure::section::Profile;
-use flexure::spatial::{self, MassQuadrature, SpatialLoad, SpatialSpec, SpatialStatics};
+use flexure::spatial::{self, MassQuadrature, SpatialLoad, SpatialSpec, SpatialStatics, StabilityTest};
 use nalgebra::{Matrix3, Vector3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
@@ -217,9 +217,11 @@ impl SpatialFlexure {
     }
 
     /// Equilibrium under a dead tip force (fx, fy, fz) and moment (mx, my, mz) in the root frame,
-    /// followed from rest: a dict of alpha (n,), pose (4, 4), stable, stiffness (n, n), residual,
-    /// limit_fraction (where the path lost stability, if it did), error_estimate and flagged
-    /// (against `accuracy`, default 1 % of L and 1°; a miss warns `AccuracyWarning`).
+    /// followed from rest: a dict of alpha (n,), pose (4, 4), stable, stability_test ("energy"
+    /// without a moment; "static" with one, which has no potential: no neighbouring equilibrium
+    /// branched off the path, flutter not judged), stiffness (n, n), residual, limit_fraction
+    /// (where the path lost stability, if it did), error_estimate and flagged (against
+    /// `accuracy`, default 1 % of L and 1°; a miss warns `AccuracyWarning`).
     #[pyo3(signature = (force=None, moment=None, *, accuracy=None))]
     fn deflect<'py>(
         &self,
@@ -245,6 +247,7 @@ impl SpatialFlexure {
         d.set_item("alpha", numpy::PyArray1::from_slice(py, &alpha))?;
         d.set_item("pose", Array2::from_shape_fn((4, 4), |(i, j)| g[i][j]).into_pyarray(py))?;
         d.set_item("stable", eq.stable)?;
+        d.set_item("stability_test", load.stability_test().name())?;
         d.set_item("stiffness", crate::convert::matrix(&stiffness).into_pyarray(py))?;
         d.set_item("residual", eq.residual)?;
         if let Some(l) = eq.limit {
@@ -253,8 +256,14 @@ impl SpatialFlexure {
         d.set_item("error_estimate", estimate_dict(py, &e)?)?;
         d.set_item("flagged", e.flagged)?;
         if !eq.stable {
+            let why = match load.stability_test() {
+                StabilityTest::Energy => "the stiffness is not positive definite",
+                StabilityTest::Static => {
+                    "a neighbouring equilibrium branched off the loading path (a dead moment has no potential: Euler's static test)"
+                }
+            };
             let text = format!(
-                "SpatialFlexure.deflect: the equilibrium under force {:?} and moment {:?} is unstable: the stiffness is not positive definite",
+                "SpatialFlexure.deflect: the equilibrium under force {:?} and moment {:?} is unstable: {why}",
                 load.force, load.moment
             );
             warn(py, &py.get_type::<StabilityWarning>(), text, 1)?;
@@ -336,7 +345,8 @@ impl SpatialFlexure {
     /// The exact Kirchhoff rod of this flexure's length, section and rest shape under the dead
     /// tip force and moment (root frame), followed from rest by multiple shooting (what
     /// `flexure.exact.rod` calls): a dict of pose (4, 4), root_moment (3,), stable (its
-    /// conjugate-point test) and limit_fraction (where the path lost stability, if it did).
+    /// conjugate-point test), stability_test (as `deflect`'s) and limit_fraction (where the path
+    /// lost stability, if it did).
     #[pyo3(signature = (force=None, moment=None))]
     fn exact_rod<'py>(
         &self,
@@ -361,6 +371,7 @@ impl SpatialFlexure {
         let m = solution.root_moment;
         d.set_item("root_moment", numpy::PyArray1::from_slice(py, &[m.x, m.y, m.z]))?;
         d.set_item("stable", solution.stable)?;
+        d.set_item("stability_test", w.stability_test().name())?;
         if let Some(l) = solution.limit {
             d.set_item("limit_fraction", l)?;
         }

@@ -296,3 +296,39 @@ fn a_round_rods_peak_stress_is_the_closed_form() {
     let bare = flexure(0.05, [1.0, 1.0, 1.0], [3, 3, 3]);
     assert!(peak_stress(&bare, bare.rest()).unwrap_err().to_string().contains("section"));
 }
+
+/// Why `stable` under a dead moment is Euler's static test and not the
+/// sign of the real parts of the eigenvalues of ∂r (issue 39 item 4).
+/// Reference: a change of coordinates α = Pβ turns ∂r into Pᵀ∂r P and the
+/// elastic stiffness K into PᵀKP, so K⁻¹∂r becomes P⁻¹K⁻¹∂r P, of the same
+/// eigenvalues, while those of ∂r itself move. Under the issue's twisting
+/// moment 10 EI/L (GJ = EI, orders 6) the Legendre coordinates' ∂r has an
+/// eigenvalue of real part −0.23 and the orthonormal ones' (P = diag √(2i+1))
+/// none below 0.38: the old test called one equilibrium both unstable and
+/// stable. K⁻¹∂r has the same spectrum in both, to 1e-9 of its largest
+/// eigenvalue, with no real eigenvalue at or below zero, and the model
+/// reports it stable.
+#[test]
+fn the_static_test_does_not_depend_on_the_coordinates() {
+    use nalgebra::{Complex, DMatrix};
+    let f = flexure(1.0, [1.0, 1.0, 1.0], [6, 6, 6]);
+    let n = f.coordinates();
+    let mut data = SpatialStatics::new(&f);
+    let eq = deflect(&f, &load([10.0, 0.0, 0.0], [0.0; 3]), &mut data, &Default::default()).unwrap();
+    assert!(eq.stable && eq.limit.is_none(), "{eq:?}");
+    let j = data.stiffness.clone();
+    let k = DMatrix::from_row_slice(n, n, f.stiffness_matrix());
+    let p = DMatrix::from_fn(n, n, |a, b| if a == b { ((2 * (a % 6) + 1) as f64).sqrt() } else { 0.0 });
+    let least = |m: &DMatrix<f64>| m.complex_eigenvalues().iter().map(|e| e.re).fold(f64::INFINITY, f64::min);
+    let (jp, kp) = (p.transpose() * &j * &p, p.transpose() * &k * &p);
+    assert!(least(&j) < -0.2 && least(&jp) > 0.3, "{} and {}", least(&j), least(&jp));
+    let spectrum = |k: &DMatrix<f64>, j: &DMatrix<f64>| {
+        let mut e: Vec<Complex<f64>> = k.clone().lu().solve(j).unwrap().complex_eigenvalues().iter().copied().collect();
+        e.sort_by(|a, b| a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im)));
+        e
+    };
+    let (a, b) = (spectrum(&k, &j), spectrum(&kp, &jp));
+    let size = a.iter().map(|e| e.norm()).fold(0.0, f64::max);
+    assert!(a.iter().zip(&b).all(|(x, y)| (x - y).norm() < 1e-9 * size), "{a:?} vs {b:?}");
+    assert!(a.iter().all(|e| e.im.abs() > 1e-9 * size || e.re > 0.0), "{a:?}");
+}

@@ -18,10 +18,30 @@
 //! (the quadrature's skew part, the rule's error alone, is dropped).
 //! A dead moment has no potential once rotations do not commute (Ziegler's
 //! non-conservative moment; Argyris, 1979), and its part is not symmetric.
-//! Stability is therefore that of the linearized statics: with no moment,
-//! the Hessian of the total potential $U - F\cdot p$ is positive definite;
-//! with one, every eigenvalue of $\partial r$ has a positive real part (no
-//! divergence; flutter is a question of dynamics).
+//!
+//! **Stability.** With no moment, the energy test: the Hessian of the total
+//! potential $U - F\cdot p$ is positive definite. With one there is no
+//! energy to be a minimum of, and `stable` is Euler's static test, the
+//! exact rod's (`reference::rod`): no real eigenvalue of
+//! $K^{-1}\partial r$ ($K$ the elastic stiffness; the identity at rest) has
+//! reached zero along the path, so no neighbouring equilibrium branched
+//! off. Flutter under the moment is a question of dynamics and is not
+//! judged. The real parts of the eigenvalues of $\partial r$ itself are
+//! no test: $\partial r$ maps coordinates to generalized forces, and with
+//! the coordinates scaled ($\alpha = P\beta$, $P^T\partial r P$) they
+//! change sign. Under a twisting moment $10\thinspace EI/L$ alone (orders 6) the
+//! Legendre coordinates gave one at $-0.23$ and orthonormal ones none
+//! below $+0.38$, of the same equilibrium (`tests/spatial_statics.rs`).
+//! The closed form the static test meets: a straight clamped–free rod
+//! under a dead axial torque $T$ and a dead thrust $P$ has the neighbouring
+//! equilibria $w = y + iz$ of $EI\thinspace w^{\prime\prime} - iT w^{\prime} + Pw = Pw(L)$,
+//! $w(0) = w^{\prime}(0) = 0$; with $a_{1,2} = \big(T \pm \sqrt{T^2 + 4EIP}\big)/2EI$
+//! one exists only where $a_2/a_1 = e^{i(a_2 - a_1)L}$, so never for
+//! $T \ne 0$ (no critical torque, and Euler's $\pi^2EI/4L^2$ is gone:
+//! Ziegler, *Principles of Structural Stability*, 1968, the static method
+//! failing for the non-conservative axial torque). Greenhill's
+//! $T = 2\pi EI/L$ needs both ends held (a pinned shaft), which a tip
+//! wrench cannot model.
 
 use super::work::{self, Quadrature, Work};
 use super::{SpatialFlexure, SpatialKinematics, energy_gradient, update};
@@ -79,8 +99,56 @@ impl SpatialLoad {
         SpatialLoad { moment: self.moment.map(|m| m * factor), force: self.force.map(|f| f * factor) }
     }
 
+    /// Which question `stable` answers under this load (module docs):
+    /// [`StabilityTest::Energy`] without a moment, [`StabilityTest::Static`]
+    /// with one, which has no potential.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::spatial::{SpatialLoad, StabilityTest};
+    /// let thrust = SpatialLoad { moment: [0.0; 3], force: [-1.0, 0.0, 0.0] };
+    /// assert_eq!(thrust.stability_test(), StabilityTest::Energy);
+    /// let twist = SpatialLoad { moment: [10.0, 0.0, 0.0], force: [0.0; 3] };
+    /// assert_eq!(twist.stability_test(), StabilityTest::Static);
+    /// ```
+    pub fn stability_test(&self) -> StabilityTest {
+        if self.moment.iter().any(|&m| m != 0.0) { StabilityTest::Static } else { StabilityTest::Energy }
+    }
+
     fn lift<T: Scalar>(&self) -> SpatialLoad<T> {
         SpatialLoad { moment: self.moment.map(T::c), force: self.force.map(T::c) }
+    }
+}
+
+/// The question a spatial equilibrium's `stable` answers, which the load
+/// decides ([`SpatialLoad::stability_test`]); the exact rod
+/// (`reference::rod`) answers the same one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StabilityTest {
+    /// A conservative load (dead forces): the total potential's Hessian is
+    /// positive definite, a minimum of the energy.
+    Energy,
+    /// A dead moment, which has no potential: Euler's static test, no
+    /// neighbouring equilibrium has branched off the loading path. It is not
+    /// an energy minimum, and flutter is not judged: a dead thrust past
+    /// Euler's load with any twisting moment passes it.
+    Static,
+}
+
+impl StabilityTest {
+    /// Its name in answers: `energy` or `static` (the JSON's and Python's `stability_test`).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::spatial::StabilityTest;
+    /// assert_eq!(StabilityTest::Static.name(), "static");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            StabilityTest::Energy => "energy",
+            StabilityTest::Static => "static",
+        }
     }
 }
 
@@ -230,10 +298,9 @@ impl<T: Scalar> solver::Problem<T> for WrenchProblem<'_, T> {
         if !self.has_moment() {
             return self.definite(jacobian, 0.0);
         }
-        // No potential: the linearized statics' eigenvalues.
         let n = self.flexure.coordinates();
         let j = DMatrix::from_iterator(n, n, jacobian.iter().map(|v| v.re()));
-        j.complex_eigenvalues().iter().all(|e| e.re > 0.0)
+        static_test(self.flexure.stiffness_matrix(), j)
     }
 
     fn far_from_instability(&mut self, _alpha: &[T], _lambda: f64, jacobian: &[T]) -> bool {
@@ -256,6 +323,43 @@ impl<T: Scalar> solver::Problem<T> for WrenchProblem<'_, T> {
         "deflect"
     }
 }
+
+/// Euler's static test under a load with no potential (module docs): no
+/// real eigenvalue of $K^{-1}\partial r$ is zero or negative, $K$ the
+/// elastic stiffness. It is the identity at rest, its eigenvalues do not
+/// depend on the coordinates ($\alpha = P\beta$ makes it
+/// $P^{-1}K^{-1}\partial r\thinspace P$), and a real one through zero is a
+/// neighbouring equilibrium: the exact rod's conjugate-point test, with an
+/// eigenvalue within $10^{-9}$ of the largest of being real counted as real
+/// as the rod counts it. The eigenvalues are those of the similar, better
+/// scaled $L^{-1}\partial r\thinspace L^{-T}$ ($K = LL^T$), by a Schur
+/// decomposition of at most [`SCHUR_SWEEPS`] sweeps per coordinate; one
+/// that does not converge (met on a round rod wound into a helix by a skew
+/// moment, `tests/spatial_statics.rs`, whose eigenvalues cluster) falls
+/// back on the sign of the determinant, the test of a single real
+/// eigenvalue through zero.
+fn static_test(elastic: &[f64], jacobian: DMatrix<f64>) -> bool {
+    let n = jacobian.nrows();
+    // K is symmetric positive definite (a validated section).
+    let Some(k) = DMatrix::from_column_slice(n, n, elastic).cholesky() else {
+        return false;
+    };
+    let l = k.l();
+    let mut scaled = jacobian;
+    l.solve_lower_triangular_mut(&mut scaled);
+    // L⁻¹(L⁻¹∂r)ᵀ is the transpose of L⁻¹∂r L⁻ᵀ: the same eigenvalues.
+    let mut scaled = scaled.transpose();
+    l.solve_lower_triangular_mut(&mut scaled);
+    let Some(schur) = nalgebra::linalg::Schur::try_new(scaled.clone(), f64::EPSILON, SCHUR_SWEEPS * n) else {
+        return scaled.determinant() > 0.0;
+    };
+    let eigenvalues = schur.complex_eigenvalues();
+    let size = eigenvalues.iter().map(|e| e.norm()).fold(0.0, f64::max);
+    eigenvalues.iter().all(|e| e.im.abs() > 1e-9 * size || e.re > 0.0)
+}
+
+/// The most Schur sweeps per coordinate of [`static_test`] (LAPACK allows 30).
+const SCHUR_SWEEPS: usize = 30;
 
 /// The largest rotation between `a` and `b` of the sampled cross-sections
 /// relative to the root, each component's $\sum_i\psi_i(t)\Delta\alpha_{c,i}$

@@ -68,7 +68,12 @@
 //! $m \equiv M$ and $\partial m(L)/\partial m(0) = I$: the equilibrium is
 //! unique at every moment (the clamped rod under a dead twisting moment has
 //! no static buckling load: Ziegler, *Principles of Structural Stability*,
-//! 1968, §2.8), and the rod is reported stable.
+//! 1968, §2.8), and the rod is reported stable. The spatial model answers
+//! the same question under a dead moment ([`crate::spatial::StabilityTest`]),
+//! and the two agree; with a dead thrust as well, no conjugate point
+//! appears for any twisting moment, even past Euler's load (the closed
+//! form is in [`crate::spatial`]'s statics docs): the static test sees no
+//! branching there, which is not a verdict on flutter.
 
 mod chain;
 mod compliance;
