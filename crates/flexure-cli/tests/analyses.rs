@@ -131,14 +131,17 @@ fn limit_answers_once_on_ordinary_loads() {
 }
 
 /// `tendon --limit` and `connect --limit` answer as `deflect --limit` does.
-/// The crossing tendon snaps at 22.893 N (its mirror image, root offset
-/// −0.1 and tip offset 0.05, at the same tension); `connect`'s limit is
-/// `deflect --limit` under the load that holds the pose.
+/// The crossing tendon stays stable up to 22.893 N, where its tip
+/// attachment meets its root attachment and the path ends (its mirror
+/// image, root offset −0.1 and tip offset 0.05, at the same tension; it was
+/// reported lost there, from a corrector that had jumped, issue 39);
+/// `connect`'s limit is `deflect --limit` under the load that holds the pose.
 #[test]
 fn tendon_and_connect_limits() {
     let a = json("tendon --tension 1 --root-offset 0.1 --tip-offset -0.05 --limit");
     let b = json("tendon --tension 1 --root-offset -0.1 --tip-offset 0.05 --limit");
-    assert_eq!((&a["stability_limit"]["status"], &b["stability_limit"]["status"]), (&"lost".into(), &"lost".into()));
+    let stable_up_to = || "stable_up_to".into();
+    assert_eq!((&a["stability_limit"]["status"], &b["stability_limit"]["status"]), (&stable_up_to(), &stable_up_to()));
     let (a, b) = (a["stability_limit"]["factor"].as_f64().unwrap(), b["stability_limit"]["factor"].as_f64().unwrap());
     assert!((a - 22.893).abs() < 1e-3 && (a / b - 1.0).abs() < 1e-9, "{a} {b}");
     let c = json("connect --pose 0.5,0.9,0.3 --limit");

@@ -234,19 +234,32 @@ fn fast_peak_curvature_agrees_with_the_scan() {
     }
 }
 
-/// The estimate's reference follows the loading path (issue 39 item 3): at
-/// order 6, under $M = -6.2589$, $F = (-15.501, 5.0180)$ (unit length and
-/// stiffness), the model's path ends at $\varphi = 0.744$, while the exact
-/// elastica's (and order 12's) reaches $\varphi = -4.971$. The reference
-/// corrected from the answer landed on the answer's branch and estimated
-/// 2e-5, unflagged; now the estimate is the distance to the path's end,
-/// within 1 % of the true error against the exact elastica (0.99 L), and flagged.
+/// The estimate's reference follows the loading path (issue 39 item 3).
+/// At order 6, under $M = -6.2589$, $F = (-15.501, 5.0180)$ (unit length
+/// and stiffness), `deflect` reaches the exact elastica's branch
+/// ($\varphi = -4.971$), and its estimate is the true error against the
+/// exact elastica within 1 % (both 4.7e-5 L), unflagged. An answer on
+/// another branch, as `deflect` used to give (Newton from its coefficients,
+/// rounded: $\varphi = 0.744$, stable), is not estimated against itself
+/// (the reference corrected from it lands on its branch, 2e-5): the
+/// estimate is the distance to the reference's path end, within 1 % of the
+/// true error (0.99 L), and flagged.
 #[test]
 fn an_answer_off_the_loading_path_is_flagged() {
     let load = TipLoad { moment: -6.258888285291928, fx: -15.501008696246453, fy: 5.017976184775733 };
-    let (estimate, truth, flagged) = estimate_and_truth(&unit(6), &load);
-    let exact = elastica::deflect(&unit(6), &load, &Default::default()).unwrap().pose;
+    let f = unit(6);
+    let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
     assert!((exact.phi + 4.971).abs() < 1e-3, "{exact:?}");
-    assert!(truth > 0.9, "the answer is on the exact path's branch: {truth}");
-    assert!(flagged && (estimate / truth - 1.0).abs() < 0.01, "estimate {estimate} against {truth}");
+    let (estimate, truth, flagged) = estimate_and_truth(&f, &load);
+    assert!(truth < 1e-3, "the answer is on the exact path's branch: {truth}");
+    assert!(!flagged && (estimate / truth - 1.0).abs() < 0.01, "estimate {estimate} against {truth}");
+    let mut data = Statics::new(&f);
+    let start = [0.744, -6.750, 0.066, -0.319, -0.256, 0.255];
+    let eq = flexure::statics::correct(&f, &load, &start, &mut data, &Default::default()).unwrap();
+    let p = data.pose_root_tip();
+    assert!(eq.stable && (p.phi - 0.744).abs() < 1e-3, "{eq:?}, {p:?}");
+    let e = deflect_error(&f, &load, data.alpha(), &Accuracy::default()).unwrap();
+    let truth = (p.x - exact.x).hypot(p.y - exact.y);
+    assert!(truth > 0.9, "the answer is on another branch: {truth}");
+    assert!(e.flagged && (e.position / truth - 1.0).abs() < 0.01, "estimate {} against {truth}", e.position);
 }

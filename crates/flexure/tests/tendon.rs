@@ -139,25 +139,24 @@ fn agrees_with_the_exact_elastica() {
 }
 
 /// The tendon's stability limit against its definition, checked by `pull`
-/// alone: stable at 0.999 of the factor, and not at 1.01 of it (lost
-/// stability, or no stable path); and a bound that the path holds to. The
-/// crossing tendon snaps; a tendon on one side pulls the tip onto the root
-/// until the continuation stops, which is reported as a bound, not as a loss.
+/// alone: a bound that the path holds to, stable at 0.999 of it. A tendon
+/// on one side, or crossing the flexure, pulls its tip attachment onto its
+/// root attachment (the tendon 0.06 % of L long at 0.999 of the bound, under
+/// 0.1 %), where $f\lvert\Delta x\rvert$ has a kink and the continuation
+/// stops, which is reported as a bound, not as a loss. (The crossing one
+/// used to be reported lost at 99.94 % of 22.9: a corrector had jumped from
+/// $\lambda = 0.9994$ to $-1.2$ on a step of 0.0024, issue 39.)
 #[test]
 fn stability_limit_meets_its_definition() {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
-    let stable_at = |t: &Tendon, tension: f64| {
+    for tendon in [Tendon { root_offset: 0.1, tip_offset: -0.05 }, Tendon { root_offset: 0.1, tip_offset: 0.05 }] {
+        let l = stability_limit(&f, &tendon, 1.0, 1000.0).unwrap();
+        let StabilityLimit::StableUpTo { factor, stalled: Some(_) } = l else { panic!("{tendon:?}: {l:?}") };
+        assert!(factor > 1.0 && factor < 1000.0, "{tendon:?}: {factor}");
         let mut data = TendonData::new(&f);
-        pull(&f, t, tension, &mut data).map(|e| e.stable && e.limit.is_none())
-    };
-    let crossing = Tendon { root_offset: 0.1, tip_offset: -0.05 };
-    let l = stability_limit(&f, &crossing, 1.0, 1000.0).unwrap();
-    let StabilityLimit::Lost { factor } = l else { panic!("{l:?}") };
-    assert_eq!(stable_at(&crossing, 0.999 * factor), Ok(true));
-    assert_ne!(stable_at(&crossing, 1.01 * factor), Ok(true));
-    let one_side = Tendon { root_offset: 0.1, tip_offset: 0.05 };
-    let l = stability_limit(&f, &one_side, 1.0, 1000.0).unwrap();
-    let StabilityLimit::StableUpTo { factor, stalled: Some(_) } = l else { panic!("{l:?}") };
-    assert!(factor > 1.0 && factor < 1000.0, "{factor}");
-    assert_eq!(stable_at(&one_side, 0.999 * factor), Ok(true));
+        let eq = pull(&f, &tendon, 0.999 * factor, &mut data).unwrap();
+        assert!(eq.stable && eq.limit.is_none(), "{tendon:?}: {eq:?}");
+        let length = flexure::tendon::tendon_length(&f, &tendon, data.alpha());
+        assert!(length < 1e-3, "{tendon:?}: the tendon is {length} long at 0.999 of {factor}");
+    }
 }

@@ -147,12 +147,13 @@ impl Estimator {
 /// ([`deflect`]), when they differ: a [`deflect`] answer is the end of that
 /// path, and Newton from an answer on another branch corrects it on that
 /// branch, so an answer whose model followed a path the finer model does
-/// not would be estimated against itself (issue 39: at order 6, $M =
-/// -6.26$, $F = (-15.5, 5.02)$ answers $\varphi = 0.744$ with an estimate
-/// of $2\times10^{-5}$, while the exact elastica and order 12 reach
-/// $\varphi = -4.97$, 0.99 L away). Equilibria of one model on one branch
-/// agree to the solver's tolerance; $10^{-6}$ of the length or radian tells
-/// them apart. Where the path cannot be followed, the corrected reference stays.
+/// not would be estimated against itself (issue 39: at order 6, under $M =
+/// -6.26$, $F = (-15.5, 5.02)$, an answer at $\varphi = 0.744$, where a
+/// continuation step once strayed, was estimated at $2\times10^{-5}$,
+/// while the exact elastica and order 12 reach $\varphi = -4.97$, 0.99 L
+/// away). Equilibria of one model on one branch agree to the solver's
+/// tolerance; $10^{-6}$ of the length or radian tells them apart. Where the
+/// path cannot be followed, the corrected reference stays.
 fn on_the_loading_path(reference: &Flexure, load: &TipLoad, data: &mut Statics, settings: &Settings) {
     let mut path = Statics::new(reference);
     if deflect(reference, load, &mut path, settings).is_err() {

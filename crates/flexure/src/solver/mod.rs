@@ -23,7 +23,10 @@
 //!   [`Problem::distance`]), or [`FAR_STEP`] times that while the problem
 //!   reports its state far from instability; its corrector must contract
 //!   (the second Newton step at most half the first, no damping: Deuflhard's
-//!   test that it stays in the branch's quadratic basin) and a step across
+//!   test that it stays in the branch's quadratic basin), and from a state
+//!   far from instability it may move the step's prediction no further than
+//!   the step is long (one that does has replaced the prediction, perhaps by
+//!   a state of another branch); a step across
 //!   a fold may turn sections by at most 0.35 rad, so the limit load is read
 //!   off close points. A step whose stability differs from the
 //!   last state's without a fold between them (a jump to another branch) is
