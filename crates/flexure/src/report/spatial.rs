@@ -2,11 +2,12 @@
 //! it: the solution, every body's placement, each joint's coordinates, and
 //! each flexure's carried wrench, error estimate and peak stress.
 
+use crate::Level;
 use crate::error::Result;
 use crate::estimate::spatial_mechanism::flexure_errors;
 use crate::estimate::{Accuracy, ErrorEstimate};
 use crate::mechanism::spatial::SpatialMechanism;
-use crate::mechanism::spatial::kinematics::frames;
+use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
 use crate::mechanism::spatial::statics::{SpatialSolution, flexure_loads};
 use crate::spatial::{SpatialLoad, SpatialPeak, peak_stress};
 
@@ -68,7 +69,9 @@ pub struct SpatialReport {
 
 /// The placement of every moving body at coordinates `q`.
 pub fn placements(m: &SpatialMechanism, q: &[f64]) -> Vec<Placement> {
-    let f = frames(m, q);
+    // Poses alone: the Hessians of flexures at high orders cost most.
+    let mut f = SpatialFrames::new(m);
+    frames_level_into(m, q, Level::Pose, &mut f);
     (1..m.bodies.len())
         .map(|b| {
             let p = f.bodies[b].translation.vector;
