@@ -41,10 +41,11 @@ fn within_magnitude(name: &'static str, v: f64, max: f64) -> Result<f64> {
 /// subintervals ([`crate::spatial::SpatialFlexure::default_subintervals`]),
 /// and each Newton evaluation's load stiffness costs $O(Mn^2)$. A blade at
 /// the cap under a load its orders resolve solves in 0.19 s (criterion's
-/// `spatial_mechanism/blade_order_64`, half its time before the quadrature
-/// became a matrix product and the step tangents were combined from the
-/// nodal directions); what needs the exact Hessians ($O(Mn^2)$ second
-/// derivatives of every Magnus step, about 2.7 s each:
+/// `spatial_mechanism/blade_order_64`, 0.50 of its time before the
+/// quadrature became a matrix product and the step tangents were combined
+/// from the nodal directions); what needs the exact Hessians ($O(Mn^2)$
+/// second derivatives of every Magnus step, 0.49 s each, 0.33 of their
+/// time before they too were combined from the nodal directions:
 /// `spatial/pose_jacobian_hessian_order_64`), such as `buckle`, `modes`
 /// and `simulate`, takes seconds to minutes. A load no order resolves (1e12
 /// N on a 30 mm blade: a boundary layer of $\sqrt{EI/F} \approx 10^{-7}$ m)
