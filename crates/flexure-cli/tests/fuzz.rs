@@ -864,6 +864,8 @@ fn library_case(r: &mut Rng, call: &mut String) -> Result<(), String> {
                 max_steps: if r.chance(0.8) { 1000 } else { count(r, 1, 2000) },
                 min_step: if r.chance(0.8) { 1e-6 } else { wild_f64(r) },
                 max_rotation_per_step: if r.chance(0.8) { 0.5 } else { num(r, 0.01, 2.0) },
+                // The default: no draw, so the seeds' sequences stay as they were.
+                max_evaluations: flexure::Settings::default().max_evaluations,
             };
             let l = load(r);
             let c = set(format!("deflect(&f, &{l:?}, &mut Statics::new(&f), &{settings:?})"));

@@ -111,6 +111,28 @@ fn a_workspace_of_another_size_is_refused() {
     assert!(matches!(newton(&mut Snap, &mut ws, 0.0, &Settings::default()), Err(Error::InvalidParameter { .. })));
 }
 
+/// [`Settings::max_evaluations`] bounds a continuation's work whatever its
+/// steps: the snap-through cubic, whose full path takes more evaluations
+/// than the bound allows, stops with the path reached (a load fraction
+/// between 0 and 1, the state there in `ws`) and an error that names the
+/// bound; the same run with the default bound reaches the load.
+#[test]
+fn a_work_bound_stops_the_continuation_and_names_itself() {
+    let mut ws = Workspace::new(1);
+    ws.x[0] = cardano(-3.0, 3.0);
+    let few = Settings { max_evaluations: 6, ..Default::default() };
+    let path = trace(&mut Snap, &mut ws, &few).unwrap();
+    assert!(matches!(path.stop, Stop::WorkCap { evaluations: 6, .. }), "{path:?}");
+    assert!(path.load_fraction > 0.0 && path.load_fraction < 1.0 && ws.lambda == path.load_fraction, "{path:?}");
+    let e = path.error(&Snap).expect("a path stopped by its bound is an error").to_string();
+    assert!(e.contains("its limit of 6 Newton evaluations (max_evaluations)") && e.contains("orders"), "{e}");
+    ws.x[0] = cardano(-3.0, 3.0);
+    assert!(trace(&mut Snap, &mut ws, &Settings::default()).unwrap().reached());
+    // Zero is refused, by name.
+    let zero = Settings { max_evaluations: 0, ..Default::default() };
+    assert!(matches!(zero.validate(), Err(Error::InvalidParameter { name: "max_evaluations", .. })));
+}
+
 /// [`trace`] returns partial runs as paths that say why they stopped, and
 /// [`continuation`]'s error is the one the path stands for.
 #[test]

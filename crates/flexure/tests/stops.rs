@@ -147,3 +147,32 @@ fn a_trajectory_says_why_it_ended() {
     assert!(!run.time.is_empty() && run.time.len() < 7, "{:?}", run.time);
     assert!(matches!(e, Some(Error::InterruptedAt { .. })), "{e:?}");
 }
+
+/// Issue 35 item 3 and issue 39 item 8, with the load given there: a
+/// 30 mm blade at the order cap, orders [64, 64, 64], under a tip force of
+/// 1e12 N. Its curvature concentrates in a boundary layer of
+/// $\sqrt{EI/F} \approx 7\times10^{-8}$ m that no order resolves, and
+/// the solve (its path, then the refinement of the limit it reports) ran
+/// for minutes. Bounded by [`flexure::solver::Settings::max_evaluations`]
+/// (here 12, so the test is cheap; the default bounds it the same way,
+/// later), it stops at the fraction of the load it reached, with an error
+/// that names the bound and says how to avoid it: lower orders.
+#[test]
+fn a_spatial_file_at_the_order_cap_under_1e12_n_stops_at_its_work_bound() {
+    use flexure::mechanism::spatial::statics::solve;
+    let text = "dimension = 3\n\
+        [[joint]]\nname = \"blade\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
+        length = 0.03\nmodulus = 200e9\nwidth = 0.01\nthickness = 0.0003\npoisson = 0.3\norders = [64, 64, 64]\n\
+        [[force]]\nname = \"push\"\nbody = \"tip\"\nforce = [0.0, 1e12, 0.0]\n";
+    let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+    let settings = flexure::solver::Settings { max_evaluations: 12, ..Default::default() };
+    match solve(&m, &settings) {
+        Err(e @ Error::ContinuationStalled { load_fraction, .. }) => {
+            assert!(load_fraction > 0.0 && load_fraction < 1.0, "{e}");
+            let message = e.to_string();
+            assert!(message.contains("its limit of 12 Newton evaluations (max_evaluations)"), "{message}");
+            assert!(message.contains("lower the flexures' orders"), "{message}");
+        }
+        other => panic!("expected the work bound, got {other:?}"),
+    }
+}

@@ -5,7 +5,7 @@
 //! rod's parameters (GJ = EI), orders 3 (the tip within 2.4e-4 of L of the
 //! rod, tests/spatial_validation.rs), at the default subintervals and at
 //! the two that suffice for 1e-3 of L, against `rod/bathe_bolourchi_tol_1e-3`;
-//! and the Hessian at the order cap, [64, 64, 64].
+//! and the Jacobian and Hessian at the order cap, [64, 64, 64].
 
 use criterion::Criterion;
 use flexure::Level;
@@ -48,6 +48,13 @@ pub fn run(c: &mut Criterion) {
     let cap = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.2, 1.0).unwrap(), [64, 64, 64]).unwrap();
     let alpha_cap: Vec<f64> = (0..192).map(|a| 0.3 * alphas[a % alphas.len()] / (1 + a / 3) as f64).collect();
     let mut k_cap = SpatialKinematics::new(&cap);
+    // The Jacobian at the cap: what each of a solve's Newton evaluations takes.
+    g.bench_function("pose_jacobian_order_64", |b| {
+        b.iter(|| {
+            update(&cap, black_box(&alpha_cap), Level::Jacobian, &mut k_cap);
+            k_cap.jacobian[(5, 191)]
+        })
+    });
     g.bench_function("pose_jacobian_hessian_order_64", |b| {
         b.iter(|| {
             update(&cap, black_box(&alpha_cap), Level::Hessian, &mut k_cap);

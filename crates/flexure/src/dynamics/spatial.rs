@@ -40,7 +40,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::spatial::kinematics::frames_level_into;
 use crate::mechanism::spatial::kinematics::{
-    SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames, frames_into,
+    SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames_into,
 };
 use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::statics::{self, assemble_unloaded, solve_between};
@@ -475,7 +475,8 @@ fn independent_closures(m: &SpatialMechanism) -> Option<DMatrix<f64>> {
         return None;
     }
     let mut f = SpatialFrames::new(m);
-    frames_into(m, &m.rest(), &mut f);
+    // G needs the joints' motion subspaces, not their Hessians.
+    frames_level_into(m, &m.rest(), Level::Jacobian, &mut f);
     let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
     closures_into(m, &f, &mut c, &mut g);
     let svd = g.svd(true, false);
@@ -579,8 +580,10 @@ pub fn simulate(
         .iter()
         .map(|b| SpatialBodyMotion { name: b.name.clone(), position: Vec::new(), rotation: Vec::new() })
         .collect();
+    let mut f = SpatialFrames::new(m);
     for k in 0..run.time.len() {
-        let f = frames(m, run.q(k));
+        // The bodies' poses alone (the flexures' Hessians cost most at high orders).
+        frames_level_into(m, run.q(k), Level::Pose, &mut f);
         for (i, motion) in bodies.iter_mut().enumerate() {
             let b = i + 1;
             let p = f.bodies[b].translation.vector;

@@ -35,6 +35,24 @@ fn within_magnitude(name: &'static str, v: f64, max: f64) -> Result<f64> {
 /// to a polynomial of degree 63, far past where the model converges to
 /// rounding for any load a flexure survives; beyond it the Hessian tables
 /// ($N^2Q/2$ entries) and the $O(N^3)$ solves stop paying for themselves.
+///
+/// In space the cap is costly, and bounded rather than made cheap: orders
+/// [64, 64, 64] are $n = 192$ coordinates on $M = 1008$ Magnus
+/// subintervals ([`crate::spatial::SpatialFlexure::default_subintervals`]),
+/// and each Newton evaluation's load stiffness costs $O(Mn^2)$. A blade at
+/// the cap under a load its orders resolve solves in 0.19 s (criterion's
+/// `spatial_mechanism/blade_order_64`, 0.50 of its time before the
+/// quadrature became a matrix product and the step tangents were combined
+/// from the nodal directions); what needs the exact Hessians ($O(Mn^2)$
+/// second derivatives of every Magnus step, 0.49 s each, 0.33 of their
+/// time before they too were combined from the nodal directions:
+/// `spatial/pose_jacobian_hessian_order_64`), such as `buckle`, `modes`
+/// and `simulate`, takes seconds to minutes. A load no order resolves (1e12
+/// N on a 30 mm blade: a boundary layer of $\sqrt{EI/F} \approx 10^{-7}$ m)
+/// takes every path it needs, each a few hundred evaluations, and each
+/// path is stopped past [`crate::solver::Settings::max_evaluations`] with
+/// an error that names that bound; lower orders answer such a load sooner
+/// and as well.
 pub const MAX_ORDER: usize = 64;
 
 /// The most constant-curvature segments in a chain (the paper's finite

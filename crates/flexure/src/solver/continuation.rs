@@ -50,6 +50,16 @@ pub enum Stop {
         /// The last residual reached, in the problem's unit.
         residual: f64,
     },
+    /// It evaluated the problem's Jacobian [`Settings::max_evaluations`]
+    /// times, over its steps tried and their Newton iterations, without
+    /// reaching $\lambda = 1$: the bound on its work, whatever the steps'
+    /// lengths and however costly each evaluation.
+    WorkCap {
+        /// The last residual reached, in the problem's unit.
+        residual: f64,
+        /// The bound reached.
+        evaluations: usize,
+    },
     /// The hook set by [`super::with_interrupt`] asked it to stop.
     Interrupted,
 }
@@ -117,9 +127,17 @@ impl Path {
             Stop::Lost => unstable(self.limit.unwrap_or(self.load_fraction)),
             Stop::TurnedBack => unstable(self.limit.unwrap_or(0.0)),
             Stop::Interrupted => Some(Error::Interrupted { load_fraction: self.load_fraction }),
-            Stop::StepCap { .. } if self.limit.is_some() && !self.stable => unstable(self.limit.unwrap_or(0.0)),
+            Stop::StepCap { .. } | Stop::WorkCap { .. } if self.limit.is_some() && !self.stable => {
+                unstable(self.limit.unwrap_or(0.0))
+            }
             Stop::StepCap { residual } => {
                 let cause = format!("its limit of {} steps was reached", self.steps);
+                Some(stalled(problem, self, *residual, &cause))
+            }
+            Stop::WorkCap { residual, evaluations } => {
+                let cause = format!(
+                    "its limit of {evaluations} Newton evaluations (max_evaluations) was reached; each costs more the more coordinates the joints have: lower the flexures' orders, or raise max_evaluations"
+                );
                 Some(stalled(problem, self, *residual, &cause))
             }
             Stop::Stalled { cause, residual, rounding } => {
@@ -215,6 +233,8 @@ fn follow<T: Scalar, P: Problem<T>>(
     // The start: converge at λ = 0 (the rest state, or the assembled one),
     // unless the caller just did and says how stable it is.
     let known = ws.start_stable.take().zip(ws.start.take());
+    let known_start = known.is_some();
+    let before = ws.evaluations;
     let start = match known {
         Some((stable, report)) => {
             path.stable = stable;
@@ -227,6 +247,8 @@ fn follow<T: Scalar, P: Problem<T>>(
         }
     };
     ws.start = None;
+    // The work bound counts from here (with the start's own solve, if it was made here).
+    let spent = if known_start { ws.evaluations } else { before };
     path.iterations += start.iterations;
     path.residual = start.residual;
     let mut lambda = 0.0_f64;
@@ -256,6 +278,10 @@ fn follow<T: Scalar, P: Problem<T>>(
     while path.steps < settings.max_steps {
         if interrupted() {
             return Ok(Path { stop: Stop::Interrupted, load_fraction: lambda, ..path });
+        }
+        if ws.evaluations - spent >= settings.max_evaluations {
+            let stop = Stop::WorkCap { residual: last_residual, evaluations: settings.max_evaluations };
+            return Ok(Path { stop, load_fraction: lambda, ..path });
         }
         // Step length: at most double the last, turning no section by more
         // than 70 % of the bound; the last step lands on λ = 1.
@@ -604,7 +630,8 @@ fn tangent_along_load<T: Scalar>(ws: &mut Workspace<T>) -> bool {
 /// ($\lambda = 1$) again, with the load derivative; false if that fails.
 fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>) -> bool {
     let n = ws.n;
-    let Workspace { trial, trial_residual, jacobian, dlambda, .. } = ws;
+    let Workspace { trial, trial_residual, jacobian, dlambda, evaluations, .. } = ws;
+    *evaluations += 1;
     problem.evaluate(&trial[..n], 1.0, &mut trial_residual[..n], Some(jacobian), Some(dlambda)).is_ok()
 }
 

@@ -150,12 +150,25 @@ pub(super) fn correct<T: Scalar, P: Problem<T>>(
     let tolerance = settings.tolerance * problem.scale();
     let (name, unit) = (problem.name(), problem.unit());
     let Workspace {
-        trial, trial_residual, jacobian, dlambda, matrix, pivots, step, tangent, anchor, scratch, aux, ..
+        trial,
+        trial_residual,
+        jacobian,
+        dlambda,
+        matrix,
+        pivots,
+        step,
+        tangent,
+        anchor,
+        scratch,
+        aux,
+        evaluations,
+        ..
     } = ws;
     let matrix = &mut matrix[..m * m];
     let sys = |problem: &mut P, z: &[T], r: &mut [T], jac: Option<(&mut [T], &mut [T], &mut [T])>| {
         system(problem, mode, z, lambda, tangent, anchor, lambda_weight, load_derivative, r, jac)
     };
+    *evaluations += 1;
     sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix)))?;
     let mut residual = amax(&trial_residual[..m]);
     // Size of the first Newton step, for the contraction test.
@@ -235,6 +248,7 @@ pub(super) fn correct<T: Scalar, P: Problem<T>>(
             }
             // The trial is evaluated with its Jacobian: accepted trials (most)
             // then need no second evaluation.
+            *evaluations += 1;
             let ok = sys(problem, &trial[..m], trial_residual, Some((jacobian, dlambda, matrix))).is_ok();
             let rt = amax(&trial_residual[..m]);
             if ok

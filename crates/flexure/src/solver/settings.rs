@@ -13,6 +13,18 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Continuation steps before giving up.
     pub max_steps: usize,
+    /// Evaluations of the problem with its Jacobian that one continuation
+    /// may make, over every step it tries (accepted or rejected) and their
+    /// Newton iterations: the bound on its work, whatever its steps'
+    /// lengths. Past it the continuation stops where it got
+    /// ([`super::Stop::WorkCap`]). One evaluation of a spatial flexure
+    /// costs about $Mn^2$, $n$ its coordinates and $M$ its subintervals: at
+    /// orders [64, 64, 64] ($n = 192$, $M = 1008$) some ten thousand times
+    /// one at orders [3, 3, 3], so there the default bound is reached only
+    /// after minutes; a solve that needs that many evaluations at such
+    /// orders asks for a resolution its load does not allow (a boundary
+    /// layer thinner than the orders resolve), and lower orders answer it.
+    pub max_evaluations: usize,
     /// Smallest continuation step, in the scaled arc length of $(x, \lambda)$
     /// (where a step carrying the whole load without turning measures 1).
     pub min_step: f64,
@@ -22,7 +34,14 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { tolerance: 1e-12, max_iterations: 50, max_steps: 1000, min_step: 1e-6, max_rotation_per_step: 0.5 }
+        Self {
+            tolerance: 1e-12,
+            max_iterations: 50,
+            max_steps: 1000,
+            max_evaluations: 20_000,
+            min_step: 1e-6,
+            max_rotation_per_step: 0.5,
+        }
     }
 }
 
@@ -59,6 +78,7 @@ impl Settings {
         positive("max_rotation_per_step", self.max_rotation_per_step, f64::MAX)?;
         crate::error::count("max_iterations", self.max_iterations, MAX_COUNT, "must be from 1 to 1000000")?;
         crate::error::count("max_steps", self.max_steps, MAX_COUNT, "must be from 1 to 1000000")?;
+        crate::error::count("max_evaluations", self.max_evaluations, MAX_COUNT, "must be from 1 to 1000000")?;
         Ok(())
     }
 }

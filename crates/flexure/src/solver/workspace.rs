@@ -2,7 +2,7 @@
 
 use super::NewtonReport;
 #[cfg(doc)]
-use super::{Path, Problem, continuation, newton};
+use super::{Path, Problem, Settings, continuation, newton};
 use crate::scalar::Scalar;
 
 /// Buffers for [`newton`](fn@newton) and [`continuation`](fn@continuation) on an $n$-unknown problem;
@@ -46,6 +46,9 @@ pub struct Workspace<T: Scalar> {
     pub(super) factors: Vec<T>,
     pub(super) factor_pivots: Vec<usize>,
     pub(super) factors_valid: bool,
+    /// Evaluations of the problem with its Jacobian made on these buffers
+    /// so far: the work count that [`Settings::max_evaluations`] bounds.
+    pub(super) evaluations: usize,
 }
 
 impl<T: Scalar> Workspace<T> {
@@ -75,6 +78,7 @@ impl<T: Scalar> Workspace<T> {
             factors: vec![z; n * n],
             factor_pivots: vec![0; n],
             factors_valid: false,
+            evaluations: 0,
         }
     }
 

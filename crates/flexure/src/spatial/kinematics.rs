@@ -53,10 +53,15 @@ pub struct SpatialKinematics<T: Scalar = f64> {
     exponent_second: Vec<Vector6<T>>,
     /// Each coordinate's nodal twist derivatives, for the step's second derivatives.
     derivatives: Vec<[Vector6<T>; 3]>,
-    /// The exponent's second derivative along pairs of unit nodal directions.
+    /// The step's tangents along the unit nodal directions, and which are used.
+    along: [Tangent<T>; SLOTS],
+    used: [bool; SLOTS],
+    /// The step's second derivative (`Step::second`) along pairs of used unit nodal directions.
     bilinear: Vec<Vector6<T>>,
-    /// That bilinear form applied to each coordinate's derivative: $n\times 18$.
-    contracted: Vec<Vector6<T>>,
+    /// Each coordinate's nonzero nodal coefficients, (used direction, coefficient), `[a * SLOTS + k]`,
+    /// and how many it has.
+    coefficients: Vec<(usize, T)>,
+    counts: Vec<usize>,
 }
 
 impl<T: Scalar> SpatialKinematics<T> {
@@ -82,8 +87,11 @@ impl<T: Scalar> SpatialKinematics<T> {
             tangents: vec![Tangent::default(); n],
             exponent_second: vec![Vector6::zeros(); n * n],
             derivatives: vec![[Vector6::zeros(); 3]; n],
+            along: [Tangent::default(); SLOTS],
+            used: [false; SLOTS],
             bilinear: vec![Vector6::zeros(); SLOTS * SLOTS],
-            contracted: vec![Vector6::zeros(); n * SLOTS],
+            coefficients: vec![(0, T::zero()); n * SLOTS],
+            counts: vec![0; n],
         }
     }
 
@@ -163,31 +171,25 @@ fn parts<T: Scalar>(x: &Vector6<T>) -> (Vector3<T>, Vector3<T>) {
 /// coordinate's derivative is a combination of.
 const SLOTS: usize = 18;
 
-/// The Magnus exponent's second derivatives $D^2\Omega[\partial_a\xi, \partial_b\xi]$
-/// of one step, for every pair of coordinates, into `data.exponent_second`.
-/// $D^2\Omega$ is bilinear in the nodal derivatives, which span at most
-/// [`SLOTS`] unit directions (9 for a flexure: 3 nodes, 3 curvatures):
-/// it is taken on the pairs of directions the coordinates use and
-/// combined, $\sum_{pq}c_{a,p}c_{b,q}D^2\Omega[e_p, e_q]$, rather than
-/// taken for each of the $n(n+1)/2$ pairs; at orders [64, 64, 64]
-/// ($n = 192$) that is 45 jets a step rather than 18 528 (issue 39). Taken
-/// above `2 * SLOTS` coordinates; below, the combining costs more than it saves.
-fn exponent_second<T: Scalar>(
-    data: &mut SpatialKinematics<T>,
-    xi: &[Vector6<T>; 3],
-    derivative: &impl Fn(usize) -> [Vector6<T>; 3],
-    h: f64,
-) {
+/// The step's contribution to every $H_{ab}$ (the module docs' recursion),
+/// for many coordinates. The step's second derivative
+/// $\partial_b(g_k^{-1}\partial_ag_k)$ (`Step::second`, with the exponent's
+/// $D^2\Omega[\partial_a\xi, \partial_b\xi]$) is bilinear in the two
+/// coordinates' nodal derivatives, which span at most [`SLOTS`] unit
+/// directions (9 for a flexure: 3 nodes, 3 curvatures): it is taken on the
+/// pairs of directions the coordinates use (with the tangents along them,
+/// [`tangents_by_directions`]) and combined,
+/// $\sum_{pq}c_{a,p}c_{b,q}S[e_p, e_q]$, rather than taken for each of the
+/// $n^2$ pairs: at orders [64, 64, 64] ($n = 192$) 45 jets and 81 second
+/// derivatives a step rather than 18 528 jets and 36 864 second derivatives.
+/// Taken above `2 * SLOTS` coordinates; below, the combining costs more than it saves.
+fn hessians_by_directions<T: Scalar>(data: &mut SpatialKinematics<T>, xi: &[Vector6<T>; 3], h: f64, step: &Step<T>) {
     let n = data.columns.len();
-    for a in 0..n {
-        data.derivatives[a] = derivative(a);
-    }
     let zero = T::zero();
-    let used = |p: usize| data.derivatives.iter().any(|d| d[p / 6][p % 6] != zero);
     let mut slots = [0usize; SLOTS];
     let mut s = 0;
     for p in 0..SLOTS {
-        if used(p) {
+        if data.used[p] {
             slots[s] = p;
             s += 1;
         }
@@ -204,39 +206,90 @@ fn exponent_second<T: Scalar>(
             let (p, q) = (slots[i], slots[k]);
             let jets: [Jet2<T>; 3] =
                 std::array::from_fn(|j| Jet2 { v: xi[j], a: unit(p, j), b: unit(q, j), ab: Vector6::zeros() });
-            let ab = exponent(&jets, h).ab;
-            data.bilinear[i * SLOTS + k] = ab;
-            data.bilinear[k * SLOTS + i] = ab;
-        }
-    }
-    let used = &slots[..s];
-    for a in 0..n {
-        for k in 0..s {
-            // The form is symmetric: its row k is its column k.
-            let row = &data.bilinear[k * SLOTS..k * SLOTS + s];
-            data.contracted[a * SLOTS + k] = combined(&data.derivatives[a], used, row);
+            let (dw, dv) = parts(&exponent(&jets, h).ab);
+            // D²Ω is symmetric, the step's second derivative is not.
+            let (w, v) = step.second(&data.along[p], &data.along[q], dw, dv);
+            data.bilinear[i * SLOTS + k] = six(&w, &v);
+            let (w, v) = step.second(&data.along[q], &data.along[p], dw, dv);
+            data.bilinear[k * SLOTS + i] = six(&w, &v);
         }
     }
     for a in 0..n {
-        for b in a..n {
-            let ab = combined(&data.derivatives[b], used, &data.contracted[a * SLOTS..a * SLOTS + s]);
-            data.exponent_second[a * n + b] = ab;
-            data.exponent_second[b * n + a] = ab;
+        let mut count = 0;
+        for (i, &p) in slots[..s].iter().enumerate() {
+            let c = data.derivatives[a][p / 6][p % 6];
+            if c != zero {
+                data.coefficients[a * SLOTS + count] = (i, c);
+                count += 1;
+            }
+        }
+        data.counts[a] = count;
+    }
+    for a in 0..n {
+        let ca = &data.coefficients[a * SLOTS..a * SLOTS + data.counts[a]];
+        for b in 0..n {
+            let cb = &data.coefficients[b * SLOTS..b * SLOTS + data.counts[b]];
+            let mut second = Vector6::zeros();
+            for &(i, x) in ca {
+                for &(k, y) in cb {
+                    second += data.bilinear[i * SLOTS + k] * (x * y);
+                }
+            }
+            let tb = &data.tangents[b];
+            let jb = six(&tb.angular, &tb.linear);
+            let hab = &mut data.hessian[a * n + b];
+            *hab = adjoint_inverse(&step.r, &step.p, hab) - bracket(&jb, &data.moved[a]) + second;
         }
     }
 }
 
-/// $\sum_k d_{p_k}\thinspace x_k$: the nodal derivative `d`'s entries at the
-/// directions `slots` weighing `x`.
-fn combined<T: Scalar>(d: &[Vector6<T>; 3], slots: &[usize], x: &[Vector6<T>]) -> Vector6<T> {
-    let mut sum = Vector6::zeros();
-    for (&p, x) in slots.iter().zip(x) {
-        let c = d[p / 6][p % 6];
-        if c != T::zero() {
-            sum += x * c;
+/// The step's tangents along every coordinate into `data.tangents`, as
+/// [`hessians_by_directions`] takes the second derivatives: the exponent's
+/// derivative $D\Omega[\partial_a\xi]$ and the tangent built on it are
+/// linear in the nodal derivatives, which span at most [`SLOTS`] unit
+/// directions (9 for a flexure), so they are taken along those and
+/// combined, $\sum_p c_{a,p}T[e_p]$, rather than taken for each of the $n$
+/// coordinates: at orders [64, 64, 64] 9 jets a step rather than 192.
+/// Taken above [`SLOTS`] coordinates; below, each coordinate's own jet
+/// costs no more.
+fn tangents_by_directions<T: Scalar>(
+    data: &mut SpatialKinematics<T>,
+    xi: &[Vector6<T>; 3],
+    derivative: &impl Fn(usize) -> [Vector6<T>; 3],
+    h: f64,
+    step: &Step<T>,
+) {
+    let n = data.columns.len();
+    for a in 0..n {
+        data.derivatives[a] = derivative(a);
+    }
+    let zero = T::zero();
+    let (mut along, mut used) = ([Tangent::default(); SLOTS], [false; SLOTS]);
+    for p in 0..SLOTS {
+        used[p] = data.derivatives.iter().any(|d| d[p / 6][p % 6] != zero);
+        if used[p] {
+            let jets: [Jet1<T>; 3] = std::array::from_fn(|j| {
+                let mut d = Vector6::zeros();
+                if p / 6 == j {
+                    d[p % 6] = T::one();
+                }
+                Jet1 { v: xi[j], d }
+            });
+            let (dw, dv) = parts(&exponent(&jets, h).d);
+            along[p] = step.tangent(dw, dv);
         }
     }
-    sum
+    for a in 0..n {
+        let mut t = Tangent::default();
+        for p in (0..SLOTS).filter(|&p| used[p]) {
+            let c = data.derivatives[a][p / 6][p % 6];
+            if c != zero {
+                t.add_scaled(&along[p], c);
+            }
+        }
+        data.tangents[a] = t;
+    }
+    (data.along, data.used) = (along, used);
 }
 
 /// $\mathrm{Ad}_{g^{-1}}\xi = (R^T\omega,\ R^T(v - p\times\omega))$ for $g = (R, p)$.
@@ -395,16 +448,22 @@ pub(super) fn advance<T: Scalar>(
     let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
     let step = Step::new(w, v, order);
     if order >= 1 {
+        if n > SLOTS {
+            tangents_by_directions(data, xi, &derivative, h, &step);
+        } else {
+            for a in 0..n {
+                let da = derivative(a);
+                let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
+                let d = exponent(&jets, h).d;
+                let (dw, dv) = parts(&d);
+                data.tangents[a] = step.tangent(dw, dv);
+            }
+        }
         for a in 0..n {
-            let da = derivative(a);
-            let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
-            let d = exponent(&jets, h).d;
-            let (dw, dv) = parts(&d);
-            data.tangents[a] = step.tangent(dw, dv);
             data.moved[a] = adjoint_inverse(&step.r, &step.p, &data.columns[a]);
         }
         if order >= 2 && n > 2 * SLOTS {
-            exponent_second(data, xi, &derivative, h);
+            hessians_by_directions(data, xi, h, &step);
         } else if order >= 2 {
             // Few coordinates: a jet for each pair costs no more than one
             // for each pair of directions, without the combining.
@@ -420,7 +479,7 @@ pub(super) fn advance<T: Scalar>(
                 }
             }
         }
-        if order >= 2 {
+        if order >= 2 && n <= 2 * SLOTS {
             for a in 0..n {
                 for b in 0..n {
                     let (ta, tb) = (&data.tangents[a], &data.tangents[b]);

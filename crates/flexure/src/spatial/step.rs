@@ -55,6 +55,21 @@ impl<T: Scalar> Default for Tangent<T> {
     }
 }
 
+impl<T: Scalar> Tangent<T> {
+    /// `self + k * other`: a tangent is linear in $(\partial_a\omega, \partial_a v)$,
+    /// so that along a combination of directions is the same combination of theirs.
+    #[inline(always)]
+    pub fn add_scaled(&mut self, other: &Self, k: T) {
+        self.dw += other.dw * k;
+        self.dv += other.dv * k;
+        self.wdw += other.wdw * k;
+        self.ds += other.ds * k;
+        self.dt += other.dt * k;
+        self.angular += other.angular * k;
+        self.linear += other.linear * k;
+    }
+}
+
 impl<T: Scalar> Step<T> {
     /// The step $\exp(\omega, v)$, its coefficients with derivatives to `order`.
     #[inline(always)]

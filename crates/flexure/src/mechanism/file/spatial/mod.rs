@@ -216,7 +216,10 @@ pub fn spatial_from_toml(text: &str) -> Result<SpatialMechanism> {
         // The pins' axes on `b` are where they lie at rest: the tree's rest frames first.
         let tree = SpatialMechanism::new(bodies.clone(), joints.clone(), vec![], vec![], vec![], gravity)
             .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
-        let rest = crate::mechanism::spatial::kinematics::frames(&tree, &tree.rest());
+        // At the pose level: the bodies' frames are the same at every level,
+        // and the Hessians cost most at high orders.
+        let mut rest = crate::mechanism::spatial::kinematics::SpatialFrames::new(&tree);
+        crate::mechanism::spatial::kinematics::frames_level_into(&tree, &tree.rest(), crate::Level::Pose, &mut rest);
         let (closures, places) = parts::closures(&src, &find, &rest.bodies, (&file.weld, &file.pin, &file.ball))?;
         let m = SpatialMechanism::new(bodies, joints, tendons, forces, closures, gravity)
             .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;

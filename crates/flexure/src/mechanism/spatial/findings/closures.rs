@@ -4,11 +4,12 @@
 //! [`crate::mechanism::findings::open_closures`] finds them (the same
 //! [`OpenClosure`], and the same [`GAP_TOLERANCE`](crate::mechanism::findings::GAP_TOLERANCE)).
 
+use crate::Level;
 use crate::error::{Error, Result};
 use crate::mechanism::findings::OpenClosure;
 use crate::mechanism::findings::closures::{closure_name, first_rows, open_gaps};
 use crate::mechanism::spatial::SpatialMechanism;
-use crate::mechanism::spatial::kinematics::frames;
+use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
 use crate::mechanism::spatial::statics::assemble_unloaded;
 use crate::mechanism::{Closure, Holds};
 use crate::solver::Settings;
@@ -18,7 +19,9 @@ use nalgebra::{UnitQuaternion, Vector3};
 /// and for a weld the angle between its two frames, for a pin that between
 /// its two axes (rad, in $[0, \pi]$).
 pub fn rest_gaps(m: &SpatialMechanism) -> Vec<(f64, Option<f64>)> {
-    let f = frames(m, &m.rest());
+    // Poses alone: the bodies' frames are the same at every level.
+    let mut f = SpatialFrames::new(m);
+    frames_level_into(m, &m.rest(), Level::Pose, &mut f);
     m.closures
         .iter()
         .map(|c| {
