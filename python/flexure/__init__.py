@@ -166,8 +166,9 @@ class Mechanism:
         where; Ctrl-C stops it with KeyboardInterrupt saying the time reached. Runs
         without the GIL.
 
-        Spatial (dimension = 3): bodies {name: {position (N, 3), rotation (N, 3, 3)}}, each
-        body's origin and rotation matrix in the ground frame at each sample; the rest as
+        Spatial (dimension = 3): bodies {name: {x, y, z, roll, pitch, yaw (each (N,)), rotation
+        (N, 3, 3)}}, each body's origin, URDF angles and rotation matrix in the ground frame at
+        each sample, as `flexure simulate --json`; dimension is 2 or 3; the rest as
         above: the file's [[schedule]] tables (force.NAME.mx ... fz, tendon.NAME.tension,
         gravity.x ... z) give the loads in time, and findings lists closures open at rest
         and parts that cross, with the thickness of their sections (each with a 3-vector `at`)."""

@@ -316,8 +316,8 @@ class Mechanism:
         max_steps: Optional[int] = None,
     ) -> dict:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
-        velocities {joint: (N, k) array}, energy, steps, rejected, violation; spatial: bodies
-        {name: {position (N, 3), rotation (N, 3, 3)}}."""
+        velocities {joint: (N, k) array}, energy, steps, rejected, violation, dimension; spatial:
+        bodies {name: {x, y, z, roll, pitch, yaw (N,), rotation (N, 3, 3)}}."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve, one shape in both dimensions: dimension, bodies (planar
         {x, y, phi}; spatial {x, y, z, roll, pitch, yaw, rotation (3, 3)}), coordinates, energy,

@@ -93,7 +93,7 @@ def test_dimension_and_dof():
 
 
 def position(body):
-    """A spatial body's origin (x, y, z) as an array."""
+    """A spatial body's origin (x, y, z) as an array (3,), or (3, N) over a motion's samples."""
     return np.array([body["x"], body["y"], body["z"]])
 
 
@@ -406,7 +406,7 @@ def test_ball_pendulum_swings_as_the_planar_pendulum():
     assert np.abs(q[:, 0] - ref["coordinates"]["pin"][:, 0]).max() < 1e-7
     assert np.abs(q[:, 1:]).max() < 1e-12
     bob = run["bodies"]["bob"]
-    assert bob["position"].shape == (11, 3) and bob["rotation"].shape == (11, 3, 3)
+    assert position(bob).shape == (3, 11) and bob["rotation"].shape == (11, 3, 3)
     assert orthonormal(bob["rotation"])
     # The bob's centre, R (0, 0, -l), on the circle of radius l in the y-z plane.
     centre = bob["rotation"] @ np.array([0.0, 0.0, -0.5])
@@ -547,7 +547,7 @@ def test_mujoco_agrees_on_a_rigid_3d_chain():
     assert np.abs(ours - angles).max() < 1e-7
     for k, (*_, body, _mass, _com, _inertia) in enumerate(CHAIN, start=1):
         b = run["bodies"][body]
-        assert np.abs(b["position"][-1] - data.xpos[k]).max() < 1e-7
+        assert np.abs(position(b)[:, -1] - data.xpos[k]).max() < 1e-7
         assert np.abs(b["rotation"][-1] - data.xmat[k].reshape(3, 3)).max() < 1e-7
         assert orthonormal(b["rotation"])
     assert abs(run["energy"][0] - energy[0]) < 1e-12

@@ -7,68 +7,19 @@
 
 use crate::errors::{AccuracyWarning, ConvergenceError, StabilityWarning, to_py};
 use crate::findings;
-use crate::interrupt::{clear_raised, interruptible, raised_during, signalled};
+use crate::interrupt::{clear_raised, raised_during, signalled};
 use crate::strict::finite_answer;
 use crate::warnings::warn;
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance, solve};
+use flexure::mechanism::statics::{Settings, Solution, body_frames, compliance};
 use flexure::mechanism::sweep::{Parameter, sweep as run_sweep};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// The body named `name` of `m`, or a ValueError listing the bodies.
-fn body_named(m: &Mechanism, name: &str) -> PyResult<usize> {
-    m.body(name).ok_or_else(|| {
-        let names: Vec<String> = m.bodies.iter().map(|b| format!("{:?}", b.name)).collect();
-        PyValueError::new_err(format!(
-            "body = {name:?}: names no body of the mechanism (its bodies: {})",
-            names.join(", ")
-        ))
-    })
-}
-
-/// A point (x, y) in a body's frame (m), each coordinate finite and within
-/// 1e6 m (the library's bound on lengths), else a ValueError naming `at`.
-pub fn point(at: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
-    let bad = |why: &str| {
-        PyValueError::new_err(format!(
-            "invalid at = {}: {why}",
-            at.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
-        ))
-    };
-    crate::strict::no_bool("at", at)?;
-    let v: Vec<f64> = at.extract().map_err(|_| bad("must be two numbers (x, y), a point in the body's frame (m)"))?;
-    let [x, y] = v[..] else { return Err(bad("must be two numbers (x, y), a point in the body's frame (m)")) };
-    let max = flexure::flexure::LENGTH_RANGE.1;
-    if !(x.is_finite() && y.is_finite() && x.abs() <= max && y.abs() <= max) {
-        return Err(bad(&format!("each coordinate must be a finite number of magnitude at most {max:e} m")));
-    }
-    Ok([x, y])
-}
-
-/// The compliance (3, 3), order (phi, x, y), of the frame at `at` on `body`
-/// at the loaded equilibrium, as `solve --compliance BODY --at X,Y`.
-pub fn compliance_at<'py>(
-    py: Python<'py>,
-    m: &Mechanism,
-    body: &str,
-    at: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let b = body_named(m, body)?;
-    let at = point(at)?;
-    let c = interruptible(py, || {
-        let s = solve(m, &Settings::default())?;
-        compliance(m, &s, b, at.into())
-    })?;
-    let out = Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py).into_any();
-    finite_answer("Mechanism.compliance", &out)?;
-    Ok(out)
-}
 
 /// A sweep's rows as arrays: values (n,), bodies {name: {x, y, phi}} (the
 /// ground left out), coordinates {joint: (n, k)}, energy (n,) and stress
@@ -125,7 +76,13 @@ pub fn sweep<'py>(
     frame: Option<(&str, &Bound<'py, PyAny>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // The compliance of a frame at every row, as `solve --sweep ... --compliance BODY --at X,Y`.
-    let frame = frame.map(|(body, at)| Ok::<_, PyErr>((body_named(m, body)?, point(at)?))).transpose()?;
+    let frame = frame
+        .map(|(body, at)| {
+            let model = flexure::model::Model::Planar(m.clone());
+            let p = super::frame::point(Some(at), 2)?;
+            Ok::<_, PyErr>((super::frame::body_named(&model, body)?, [p[0], p[1]]))
+        })
+        .transpose()?;
     // The library names a sweep's parameter and values `sweep` (the CLI's option): Python's are
     // `parameter` and `values`.
     let p = Parameter::parse(m, parameter).map_err(|e| match e {

@@ -6,6 +6,7 @@
 
 mod analyses;
 mod eigen;
+mod frame;
 mod solve;
 mod spatial;
 
@@ -81,10 +82,7 @@ impl Mechanism {
     ) -> PyResult<Bound<'py, PyDict>> {
         let times = (duration.0, every.map(|v| v.0));
         let max_steps = max_steps.map(|m| m.0);
-        let out = match self.spatial() {
-            Some(m) => spatial::simulate(py, m, times, tolerance.0, start, max_steps)?,
-            None => simulate::motion(py, self.planar("simulate")?, times, tolerance.0, start, max_steps)?,
-        };
+        let out = simulate::motion(py, &self.model, times, tolerance.0, start, max_steps)?;
         strict::finite_answer("Mechanism.simulate", out.as_any())?;
         Ok(out)
     }
@@ -133,12 +131,13 @@ impl Mechanism {
         body: &str,
         at: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let at = at.filter(|a| !a.is_none());
-        if let Some(m) = self.spatial() {
-            return spatial::compliance_at(py, m, body, at);
-        }
-        let origin = pyo3::types::PyTuple::new(py, [0.0, 0.0])?.into_any();
-        analyses::compliance_at(py, self.planar("compliance")?, body, at.unwrap_or(&origin))
+        frame::body_named(&self.model, body)?;
+        let at = frame::point(at, self.model.dimension())?;
+        let c = crate::interrupt::interruptible(py, || self.model.compliance(body, &at))?;
+        let out = numpy::ndarray::Array2::from_shape_fn((c.nrows(), c.ncols()), |(i, j)| c[(i, j)]);
+        let out = numpy::IntoPyArray::into_pyarray(out, py).into_any();
+        crate::strict::finite_answer("Mechanism.compliance", &out)?;
+        Ok(out)
     }
 
     /// Equilibria along `values` of one load, as `flexure solve --sweep`: see `flexure.Mechanism.sweep`.

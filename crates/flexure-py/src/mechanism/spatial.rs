@@ -11,54 +11,21 @@ use crate::interrupt::interruptible;
 use crate::strict::finite_answer;
 use crate::warnings::warn;
 use flexure::Error;
-use flexure::dynamics::integrate;
+
 use flexure::estimate::Accuracy;
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::findings::{crossings_along, open_closures};
-use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve as equilibrium};
+use flexure::mechanism::spatial::statics::{SpatialSolution, compliance};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
 use flexure::report::{BodyPose, Reported};
 use flexure::solver::Settings;
 use flexure::space::Spatial;
 use nalgebra::Point3;
-use numpy::ndarray::{Array1, Array2, Array3};
+use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-
-/// The body named `name` of `m`, or a ValueError listing the bodies.
-fn body_named(m: &SpatialMechanism, name: &str) -> PyResult<usize> {
-    m.body(name).ok_or_else(|| {
-        let names: Vec<String> = m.bodies.iter().map(|b| format!("{:?}", b.name)).collect();
-        PyValueError::new_err(format!(
-            "body = {name:?}: names no body of the mechanism (its bodies: {})",
-            names.join(", ")
-        ))
-    })
-}
-
-/// A point (x, y, z) in a body's frame (m; None: its origin), each
-/// coordinate finite and within 1e6 m, else a ValueError naming `at`.
-fn point3(at: Option<&Bound<'_, PyAny>>) -> PyResult<Point3<f64>> {
-    let Some(at) = at else { return Ok(Point3::origin()) };
-    let bad = |why: &str| {
-        PyValueError::new_err(format!(
-            "invalid at = {}: {why}",
-            at.repr().map(|r| r.to_string()).unwrap_or_else(|_| "an object without repr".into())
-        ))
-    };
-    let three =
-        "must be three numbers (x, y, z), a point in the body's frame (m): the mechanism is spatial (dimension = 3)";
-    crate::strict::no_bool("at", at)?;
-    let v: Vec<f64> = at.extract().map_err(|_| bad(three))?;
-    let [x, y, z] = v[..] else { return Err(bad(three)) };
-    let max = flexure::flexure::LENGTH_RANGE.1;
-    if ![x, y, z].iter().all(|c| c.is_finite() && c.abs() <= max) {
-        return Err(bad(&format!("each coordinate must be a finite number of magnitude at most {max:e} m")));
-    }
-    Ok(Point3::new(x, y, z))
-}
 
 /// Each moving body's placement at `q`: position, rotation by rows, and roll, pitch, yaw.
 type Placement = ([f64; 3], [[f64; 3]; 3], [f64; 3]);
@@ -75,26 +42,6 @@ fn placements(m: &SpatialMechanism, q: &[f64]) -> Vec<Placement> {
             BodyPose::Planar { .. } => None,
         })
         .collect()
-}
-
-/// The compliance (6, 6), order (rx, ry, rz, x, y, z), of the frame at
-/// `at` on `body` at the loaded equilibrium, as
-/// `flexure solve --compliance BODY --at X,Y,Z` on a spatial file.
-pub fn compliance_at<'py>(
-    py: Python<'py>,
-    m: &SpatialMechanism,
-    body: &str,
-    at: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let b = body_named(m, body)?;
-    let at = point3(at)?;
-    let c = interruptible(py, || {
-        let s = equilibrium(m, &Settings::default())?;
-        compliance(m, &s, b, at)
-    })?;
-    let out = Array2::from_shape_fn((6, 6), |(i, j)| c[(i, j)]).into_pyarray(py).into_any();
-    finite_answer("Mechanism.compliance", &out)?;
-    Ok(out)
 }
 
 /// A sweep's rows as arrays: values (n,), bodies {name: {position (n, 3),
@@ -141,7 +88,13 @@ pub fn sweep<'py>(
     target: &Accuracy,
     frame: Option<(&str, Option<&Bound<'py, PyAny>>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let frame = frame.map(|(body, at)| Ok::<_, PyErr>((body_named(m, body)?, point3(at)?))).transpose()?;
+    let frame = frame
+        .map(|(body, at)| {
+            let model = flexure::model::Model::Spatial(m.clone());
+            let p = super::frame::point(at, 3)?;
+            Ok::<_, PyErr>((super::frame::body_named(&model, body)?, Point3::new(p[0], p[1], p[2])))
+        })
+        .transpose()?;
     let p = SpatialParameter::parse(m, parameter).map_err(|e| match e {
         Error::InvalidParameter { value, reason, .. } => {
             PyValueError::new_err(format!("invalid parameter = {value}: {reason}"))
@@ -241,81 +194,4 @@ pub fn sweep<'py>(
         return Err(err);
     }
     Ok(result)
-}
-
-/// The motion over `duration` (s), sampled every `every` (default
-/// duration/100), at relative and absolute `tolerance`, from `start`
-/// ("equilibrium" or "rest"), with a step budget of `max_steps`: time (N,),
-/// bodies {name: {position (N, 3), rotation (N, 3, 3)}}, coordinates and
-/// velocities {joint: (N, k)}, energy (N,), steps, rejected, violation.
-pub fn simulate<'py>(
-    py: Python<'py>,
-    m: &SpatialMechanism,
-    (duration, every): (f64, Option<f64>),
-    tolerance: f64,
-    start: &str,
-    max_steps: Option<usize>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let equilibrium = match start {
-        "equilibrium" => true,
-        "rest" => false,
-        other => {
-            return Err(PyValueError::new_err(format!("start = {other:?}: must be \"equilibrium\" or \"rest\"")));
-        }
-    };
-    let motion = integrate::Settings {
-        duration,
-        every: every.unwrap_or(duration / 100.0),
-        tolerance,
-        absolute: tolerance,
-        max_steps,
-        ..Default::default()
-    };
-    let (run, open) = interruptible(py, || {
-        let open = open_closures(m, &Settings::default())?;
-        let run = flexure::dynamics::spatial::simulate(m, &motion, &Settings::default(), equilibrium)?;
-        // Python raises on a run that stopped early, as for a planar one.
-        match &run.stopped {
-            Some(e) => Err(e.clone()),
-            None => Ok((run, open)),
-        }
-    })?;
-    let crossings: Vec<_> = crossings_along(m, (0..run.time.len()).map(|k| run.q(k)))
-        .into_iter()
-        .flat_map(|(k, cs)| {
-            let t = run.time[k];
-            cs.into_iter().map(move |c| (Some(t), c))
-        })
-        .collect();
-    let listed = findings::report(py, "Mechanism.simulate", &open, &crossings, 2)?;
-    let n = run.time.len();
-    let bodies = PyDict::new(py);
-    for b in &run.bodies {
-        let d = PyDict::new(py);
-        d.set_item("position", Array2::from_shape_fn((n, 3), |(s, i)| b.position[s][i]).into_pyarray(py))?;
-        d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(s, i, j)| b.rotation[s][i][j]).into_pyarray(py))?;
-        bodies.set_item(&b.name, d)?;
-    }
-    let (coordinates, velocities) = (PyDict::new(py), PyDict::new(py));
-    for j in &m.joints {
-        let k = j.kind.joint().dof();
-        let q = Array2::from_shape_fn((n, k), |(s, i)| run.q(s)[j.offset + i]);
-        let v = Array2::from_shape_fn((n, k), |(s, i)| run.v(s)[j.offset + i]);
-        coordinates.set_item(&j.name, q.into_pyarray(py))?;
-        velocities.set_item(&j.name, v.into_pyarray(py))?;
-    }
-    let out = PyDict::new(py);
-    out.set_item("dimension", 3)?;
-    out.set_item("time", Array1::from_vec(run.trajectory.time.clone()).into_pyarray(py))?;
-    out.set_item("bodies", bodies)?;
-    out.set_item("coordinates", coordinates)?;
-    out.set_item("velocities", velocities)?;
-    out.set_item("energy", Array1::from_vec(run.trajectory.energy.clone()).into_pyarray(py))?;
-    out.set_item("steps", run.trajectory.steps)?;
-    out.set_item("rejected", run.trajectory.rejected)?;
-    out.set_item("violation", run.trajectory.violation)?;
-    if !listed.is_empty() {
-        out.set_item("findings", listed)?;
-    }
-    Ok(out)
 }

@@ -171,6 +171,22 @@ impl Model {
         each!(self, m => m.body(name))
     }
 
+    /// The bodies' names, the ground first.
+    pub fn body_names(&self) -> Vec<String> {
+        each!(self, m => m.bodies.iter().map(|b| b.name.clone()).collect())
+    }
+
+    /// The compliance of the frame at point `at` (2 or 3 numbers, as the
+    /// dimension) of body `body` at the loaded equilibrium, as
+    /// [`Model::solve`] gives it, without the report.
+    pub fn compliance(&self, body: &str, at: &[f64]) -> Result<DMatrix<f64>> {
+        each!(self, m => {
+            let b = m.body(body).ok_or_else(|| no_body(body))?;
+            let s = Analyses::solve(m, &Settings::default())?;
+            Analyses::compliance(m, &s, b, at)
+        })
+    }
+
     /// The closures open at rest ([`crate::mechanism::findings::open_closures`]).
     pub fn open_closures(&self) -> Result<Vec<OpenClosure>> {
         each!(self, m => open_closures(m))
