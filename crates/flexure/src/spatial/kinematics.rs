@@ -248,7 +248,7 @@ fn hessians_by_directions<T: Scalar>(data: &mut SpatialKinematics<T>, xi: &[Vect
 /// derivative $D\Omega[\partial_a\xi]$ and the tangent built on it are
 /// linear in the nodal derivatives, which span at most [`SLOTS`] unit
 /// directions (9 for a flexure), so they are taken along those and
-/// combined, $\sum_p c_{a,p}\,T(e_p)$, rather than taken for each of the $n$
+/// combined, $\sum_p c_{a,p}\thinspace T(e_p)$, rather than taken for each of the $n$
 /// coordinates: at orders [64, 64, 64] 9 jets a step rather than 192.
 /// Taken above [`SLOTS`] coordinates; below, each coordinate's own jet
 /// costs no more.

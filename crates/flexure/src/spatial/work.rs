@@ -298,9 +298,9 @@ fn factors<T: Scalar>(work: &Work<T>, point: usize, force: &Vector3<T>) -> ([Vec
 const PRODUCT: usize = 18;
 
 /// [`load_derivative`] as three matrix products, one per component $c$:
-/// $\partial_bQ_a = \sum_g \tilde P_{i(a)}(t_g)\thinspace G^{(c)}_{gb}$ over the
+/// $\partial_bQ_a = \sum_g \tilde P_{i(a)}(t_g)\thinspace G_{gb}^{(c)}$ over the
 /// Gauss nodes $g$, with
-/// $G^{(c)}_{gb} = w_g\big(\omega_b\cdot(d_c\times m) + (\partial_bp(L) - \partial_bp)\cdot(F\times d_c)\big)$,
+/// $G_{gb}^{(c)} = w_g\big(\omega_b\cdot(d_c\times m) + (\partial_bp(L) - \partial_bp)\cdot(F\times d_c)\big)$,
 /// the same sum as the point-by-point loop ($O(Mn^2)$ either way), in a
 /// blocked product: at orders [64, 64, 64] ($n = 192$, 3024 nodes) the loop
 /// was two fifths of a solve's time.
