@@ -115,7 +115,7 @@ impl<D: Dimension> JointSpec<D> {
     /// use flexure::mechanism::{JointKind, JointSpec, Revolute};
     /// use flexure::kinematics::Pose;
     /// let pin = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
-    /// let j = JointSpec::new("pin", pin, 0, 1, Pose { x: 0.1, y: 0.0, phi: 0.0 });
+    /// let j: JointSpec = JointSpec::new("pin", pin, 0, 1, Pose { x: 0.1, y: 0.0, phi: 0.0 });
     /// assert_eq!((j.offset, j.damping, j.auto_order), (0, 0.0, false));
     /// ```
     pub fn new(name: &str, kind: D::JointKind, parent: usize, child: usize, origin: D::Pose) -> Self {
