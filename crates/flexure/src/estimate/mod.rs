@@ -49,5 +49,5 @@ pub use auto::{connect_auto, deflect_auto, tendon_auto};
 pub use eigen::{buckling_auto, buckling_error, modes_auto, modes_error};
 pub use mechanism::{buckle_auto, buckle_error, mechanism_modes_auto, mechanism_modes_error};
 pub use refinement::{eigen_reference, reference, turning};
-pub use statics::{Estimator, connect_error, deflect_error, joint_error, tendon_error};
+pub use statics::{Estimator, connect_error, deflect_error, joint_error, joint_error_and_load, tendon_error};
 pub use value::ValueEstimate;

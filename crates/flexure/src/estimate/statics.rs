@@ -236,9 +236,15 @@ pub fn connect_error(flexure: &Flexure, target_pose: &Pose, alpha: &[f64], targe
 /// assert!((joint.position - direct.position).abs() < 1e-9 * direct.position);
 /// ```
 pub fn joint_error(flexure: &Flexure, alpha: &[f64], target: &Accuracy) -> Result<ErrorEstimate> {
+    joint_error_and_load(flexure, alpha, target).map(|(e, _)| e)
+}
+
+/// [`joint_error`] with the tip load the joint carries, which it finds on
+/// the way ([`crate::connect::tip_load`]): what a mechanism's report gives of each flexure joint.
+pub fn joint_error_and_load(flexure: &Flexure, alpha: &[f64], target: &Accuracy) -> Result<(ErrorEstimate, TipLoad)> {
     flexure.check_coordinates("alpha", alpha)?;
     let mut k = crate::kinematics::Kinematics::new(flexure);
     crate::kinematics::update(flexure, alpha, &mut k, crate::kinematics::Level::Jacobian);
     let load = crate::connect::tip_load(flexure, alpha, &k)?;
-    Estimator::new().estimate(flexure, &load, alpha, target, false)
+    Ok((Estimator::new().estimate(flexure, &load, alpha, target, false)?, load))
 }

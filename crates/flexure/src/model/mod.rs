@@ -382,7 +382,7 @@ fn sweep<D: Analyses>(
             columns.extend(report.stress.0.iter().map(|(name, _)| format!("{name}.stress")));
         }
         let mut row = vec![*value];
-        row.extend(D::poses(m, &s.q).iter().skip(1).flat_map(|p| p.coordinates()));
+        row.extend(report.bodies.0.iter().skip(1).flat_map(|(_, p)| p.coordinates()));
         row.extend(&s.q);
         row.push(s.energy);
         row.extend(report.stress.0.iter().map(|(_, p)| p.max));

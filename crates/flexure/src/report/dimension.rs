@@ -5,9 +5,8 @@
 
 use super::{BodyPose, CarriedLoad, MaxAt, PeakStress, Shape};
 use crate::error::Result;
-use crate::estimate::{Accuracy, ErrorEstimate, joint_error, spatial::deflect_error};
+use crate::estimate::{Accuracy, ErrorEstimate, joint_error_and_load, spatial::deflect_error};
 use crate::flexure::Flexure;
-use crate::kinematics::{Kinematics, Level, update};
 use crate::mechanism::statics::Solution;
 use crate::mechanism::{Dimension, Mechanism};
 use crate::space::{Planar, Spatial};
@@ -44,13 +43,7 @@ impl Reported for Planar {
         let flexures =
             m.joints.iter().filter_map(|j| Some((j.kind.flexure()?, &s.q[j.offset..j.offset + j.kind.joint().dof()])));
         flexures
-            .map(|(f, alpha)| {
-                // The estimate finds the carried load itself ([`joint_error`]); the report gives it too.
-                let e = joint_error(f, alpha, target)?;
-                let mut k = Kinematics::new(f);
-                update(f, alpha, &mut k, Level::Jacobian);
-                Ok((e, CarriedLoad::Planar(crate::connect::tip_load(f, alpha, &k)?)))
-            })
+            .map(|(f, alpha)| joint_error_and_load(f, alpha, target).map(|(e, load)| (e, CarriedLoad::Planar(load))))
             .collect()
     }
 
