@@ -6,7 +6,6 @@ use flexure::dynamics::integrate;
 use flexure::dynamics::integrate::Trajectory;
 use flexure::dynamics::simulation::{Simulation, SimulationSettings, Start, simulate};
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::file::from_toml;
 use flexure::model::{Model, Motion};
 use flexure::report::BodyPose;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -78,11 +77,6 @@ impl MotionOptions {
     }
 }
 
-fn load(path: &Path) -> Result<Mechanism, String> {
-    let text = crate::input::read_mechanism(path)?;
-    from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
-}
-
 /// The library's settings of `options` over `duration` (set by the option
 /// `duration_option`), checked first: a bad one is named before any solve.
 fn checked_settings(
@@ -99,18 +93,17 @@ fn checked_settings(
     Ok(settings)
 }
 
-/// The motion of `file` over `duration` (set by the option `duration_option`)
-/// with `options`; a bad setting is named as its option.
+/// The motion of `m` (read from `file`) over `duration` (set by the option
+/// `duration_option`) with `options`; a bad setting is named as its option.
 pub fn run_motion(
+    m: &Mechanism,
     file: &Path,
     (duration, duration_option): (f64, &str),
     options: &MotionOptions,
-) -> Result<(Mechanism, Simulation), String> {
+) -> Result<Simulation, String> {
     let settings = checked_settings(options, (duration, duration_option))?;
-    let m = load(file)?;
-    let run = with_progress_bar(duration, || simulate(&m, &settings, options.start()))
-        .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))?;
-    Ok((m, run))
+    with_progress_bar(duration, || simulate(m, &settings, options.start()))
+        .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))
 }
 
 /// The library's error as `simulate` says it: options by their names, and

@@ -132,12 +132,12 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
     // The checks' warnings are solve's (simulate's); of their answer, draw keeps only the verdicts.
     let mut checks = json!({});
     if let Some(duration) = args.simulate {
-        let (m, run) = crate::simulate::run_motion(&args.file, (duration, "--simulate"), &args.motion)?;
-        crate::simulate::insert_motion_checks(&mut checks, &m, &run, &args.file)?;
+        let run = crate::simulate::run_motion(m, &args.file, (duration, "--simulate"), &args.motion)?;
+        crate::simulate::insert_motion_checks(&mut checks, m, &run, &args.file)?;
         crate::simulate::insert_stopped(&mut checks, (&run.trajectory, &run.stopped), &args.file, duration);
-        let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).map_err(err)?;
+        let unloaded = flexure::mechanism::statics::assemble_unloaded(m, &settings).map_err(err)?;
         let picked = snapshot_samples(run.time.len());
-        let (shapes, tracks) = scene::planar_motion(&m, &run, &picked);
+        let (shapes, tracks) = scene::planar_motion(m, &run, &picked);
         let mut answer = json!({ "steps": run.steps, "rejected": run.rejected });
         for key in ["findings", "stopped"] {
             if let Some(x) = checks.get(key) {
@@ -145,7 +145,7 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
             }
         }
         let motion = Some((run.time.clone(), tracks, picked));
-        let (scene, rest) = (scene::planar_scene(&m), scene::planar(&m, &unloaded.q, &unloaded.loads));
+        let (scene, rest) = (scene::planar_scene(m), scene::planar(m, &unloaded.q, &unloaded.loads));
         return Ok(Picture { scene, rest, shapes, marks: Marks::default(), motion, answer, view: View::Top });
     }
     let target = args.accuracy.target();
