@@ -73,16 +73,10 @@ pub fn sweep<'py>(
     parameter: &str,
     values: &Bound<'py, PyAny>,
     target: &Accuracy,
-    frame: Option<(&str, &Bound<'py, PyAny>)>,
+    frame: Option<(usize, Vec<f64>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // The compliance of a frame at every row, as `solve --sweep ... --compliance BODY --at X,Y`.
-    let frame = frame
-        .map(|(body, at)| {
-            let model = flexure::model::Model::Planar(m.clone());
-            let p = super::frame::point(Some(at), 2)?;
-            Ok::<_, PyErr>((super::frame::body_named(&model, body)?, [p[0], p[1]]))
-        })
-        .transpose()?;
+    let frame = frame.map(|(body, p)| (body, [p[0], p[1]]));
     // The library names a sweep's parameter and values `sweep` (the CLI's option): Python's are
     // `parameter` and `values`.
     let p = Parameter::parse(m, parameter).map_err(|e| match e {

@@ -38,6 +38,12 @@ impl Mechanism {
         }
     }
 
+    /// The frame named by `body` and the point `at` on it (its origin when
+    /// `None`), of the mechanism's dimension ([`frame::point`]).
+    fn frame(&self, body: &str, at: Option<&Bound<'_, PyAny>>) -> PyResult<(usize, Vec<f64>)> {
+        Ok((frame::body_named(&self.model, body)?, frame::point(at, self.model.dimension())?))
+    }
+
     /// The spatial mechanism, if it is one.
     fn spatial(&self) -> Option<&SpatialMechanism> {
         match &self.model {
@@ -162,6 +168,7 @@ impl Mechanism {
                     ));
                 }
             };
+            let frame = frame.map(|(body, at)| self.frame(body, at)).transpose()?;
             return spatial::sweep(py, m, parameter, values, &target, frame);
         }
         let frame = match (compliance, at) {
@@ -173,6 +180,7 @@ impl Mechanism {
                 ));
             }
         };
+        let frame = frame.map(|(body, at)| self.frame(body, Some(at))).transpose()?;
         analyses::sweep(py, self.planar("sweep")?, parameter, values, &target, frame)
     }
 

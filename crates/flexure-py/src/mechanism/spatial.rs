@@ -86,15 +86,9 @@ pub fn sweep<'py>(
     parameter: &str,
     values: &Bound<'py, PyAny>,
     target: &Accuracy,
-    frame: Option<(&str, Option<&Bound<'py, PyAny>>)>,
+    frame: Option<(usize, Vec<f64>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let frame = frame
-        .map(|(body, at)| {
-            let model = flexure::model::Model::Spatial(m.clone());
-            let p = super::frame::point(at, 3)?;
-            Ok::<_, PyErr>((super::frame::body_named(&model, body)?, Point3::new(p[0], p[1], p[2])))
-        })
-        .transpose()?;
+    let frame = frame.map(|(body, p)| (body, Point3::new(p[0], p[1], p[2])));
     let p = SpatialParameter::parse(m, parameter).map_err(|e| match e {
         Error::InvalidParameter { value, reason, .. } => {
             PyValueError::new_err(format!("invalid parameter = {value}: {reason}"))
