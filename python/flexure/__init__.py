@@ -293,27 +293,27 @@ class Mechanism:
         `flexure solve FILE --sweep PARAMETER=...`. parameter: "tendon.NAME.tension",
         "force.NAME.fx", ".fy" or ".moment", "gravity.x" or "gravity.y"; values: 1 to 10000
         numbers (a tension not negative). The answer holds one entry per value reached stably:
-        values (n,), bodies {name: {x, y, phi}} of (n,) arrays (the ground left out),
-        coordinates {joint: (n, k)}, energy (n,), stress {flexure joint with a thickness:
-        (n,) peak stress, Pa}; flagged, the values at which a flexure joint's estimated error
-        misses `accuracy` (or could not be estimated; AccuracyWarning); stability_limit
-        {value, fraction} where stability is first lost (found by bisection between the two
-        values that bracket it, to a relative 1e-6; StabilityWarning): values past it with no
-        stable equilibrium reachable by loading are left out, and rows past a snap-through are
-        kept; findings as `solve`'s (each crossing with the `value` it is found at). With
-        compliance=BODY and at=(x, y), compliance (n, 3, 3): each row's compliance of that
-        frame, as `--sweep ... --compliance BODY --at X,Y` adds to each row.
+        dimension; values (n,); bodies {name: {key: (n,)}} (the ground left out), keyed as
+        `simulate`'s: x, y, phi in the plane; x, y, z, roll, pitch, yaw and rotation (n, 3, 3)
+        in space; coordinates {joint: (n, k)}; energy (n,); stress {flexure joint with a
+        section: (n,) peak stress, Pa; in space the von Mises peak}; flagged, the values at
+        which a flexure joint's estimated error misses `accuracy` (AccuracyWarning);
+        stability_limit {value, fraction} where stability is first lost (found by bisection
+        between the two values that bracket it, to a relative 1e-6; StabilityWarning): values
+        past it with no stable equilibrium reachable by loading are left out, and rows past a
+        snap-through are kept; findings as `solve`'s (each crossing with the `value` it is
+        found at). With compliance=BODY (and at, a point on it; default its origin),
+        compliance (n, 3, 3) in the plane or (n, 6, 6) in space: each row's compliance of
+        that frame, as `--sweep ... --compliance BODY --at X,Y` adds to each row.
 
         A sweep that stops (a solve that fails before the last value) raises
         ConvergenceError, or KeyboardInterrupt for Ctrl-C, whose `result` attribute holds the
         answer with the rows reached and `stopped` {value, error}: the CLI prints the same
         rows and exits 2. Bad input raises ValueError naming it; errors name the file.
 
-        Spatial (dimension = 3): parameter "tendon.NAME.tension", "force.NAME.fx" (".fy", ".fz",
-        ".mx", ".my", ".mz") or "gravity.x" (".y", ".z"); bodies {name: {position (n, 3),
-        rotation (n, 3, 3), rpy (n, 3)}}; no stress; findings as `solve`'s (each crossing with
-        the `value` it is found at); with compliance=BODY (at=(x, y, z), default the body's
-        origin), compliance (n, 6, 6) as `compliance` gives it."""
+        Parameters in the plane: "tendon.NAME.tension", "force.NAME.fx", ".fy" or ".moment",
+        "gravity.x" or "gravity.y"; in space (dimension = 3): "tendon.NAME.tension",
+        "force.NAME.fx" (".fy", ".fz", ".mx", ".my", ".mz") or "gravity.x" (".y", ".z")."""
         try:
             return self._inner.sweep(parameter, values, accuracy, compliance, at)
         except (ValueError, ConvergenceError, KeyboardInterrupt) as e:

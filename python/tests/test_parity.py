@@ -166,8 +166,11 @@ def test_a_sweep_reports_each_rows_compliance_as_the_closed_form():
     # Compression softens the column sideways: each row yields more than the last.
     assert c[0, 2, 2] < c[1, 2, 2] < c[2, 2, 2]
     assert np.allclose(c[2], column(ei=ei, length=length, push=-2.0).compliance("tip", (0.0, 0.0)), rtol=1e-9)
-    with pytest.raises(ValueError, match="compliance and at go together"):
-        m.sweep("force.push.fx", [0.0], compliance="tip")
+    # Without `at`, the body frame's origin, as Mechanism.compliance takes it.
+    origin = m.sweep("force.push.fx", [0.0], compliance="tip")["compliance"]
+    assert np.array_equal(origin[0], c[0])
+    with pytest.raises(ValueError, match="at is given without compliance"):
+        m.sweep("force.push.fx", [0.0], at=(0.0, 0.0))
 
 
 def test_a_sweep_that_stops_raises_carrying_its_rows():

@@ -55,21 +55,7 @@ pub fn motion<'py>(
         run.crossings.iter().flat_map(|(k, cs)| cs.iter().map(move |c| (Some(t.time[*k]), c.clone()))).collect();
     let findings = crate::findings::report(py, "Mechanism.simulate", &open, &crossings, 2)?;
     let n = t.time.len();
-    let bodies = PyDict::new(py);
-    for (name, poses) in &run.bodies {
-        let d = PyDict::new(py);
-        if let Some(first) = poses.first() {
-            let values: Vec<Vec<f64>> = poses.iter().map(BodyPose::coordinates).collect();
-            for (c, key) in first.columns().iter().enumerate() {
-                d.set_item(*key, Array1::from_iter(values.iter().map(|v| v[c])).into_pyarray(py))?;
-            }
-            if let BodyPose::Spatial { .. } = first {
-                let r: Vec<[[f64; 3]; 3]> = poses.iter().map(BodyPose::rotation).collect();
-                d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(s, i, j)| r[s][i][j]).into_pyarray(py))?;
-            }
-        }
-        bodies.set_item(name, d)?;
-    }
+    let bodies = bodies_dict(py, &run.bodies)?;
     let (coordinates, velocities) = (PyDict::new(py), PyDict::new(py));
     for (name, range) in model.joints() {
         let q = Array2::from_shape_fn((n, range.len()), |(s, i)| t.q(s)[range.start + i]);
@@ -89,6 +75,29 @@ pub fn motion<'py>(
     out.set_item("energy", Array1::from_vec(t.energy.clone()).into_pyarray(py))?;
     if !findings.is_empty() {
         out.set_item("findings", findings)?;
+    }
+    Ok(out)
+}
+
+/// Each body's poses as arrays, one per pose key (planar x, y, phi; spatial
+/// x, y, z, roll, pitch, yaw, and rotation (N, 3, 3)): what `simulate` and
+/// `sweep` answer for their samples or rows, as the CLI's columns name them.
+pub fn bodies_dict<'py>(py: Python<'py>, bodies: &[(String, Vec<BodyPose>)]) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    for (name, poses) in bodies {
+        let d = PyDict::new(py);
+        if let Some(first) = poses.first() {
+            let values: Vec<Vec<f64>> = poses.iter().map(BodyPose::coordinates).collect();
+            for (c, key) in first.columns().iter().enumerate() {
+                d.set_item(*key, Array1::from_iter(values.iter().map(|v| v[c])).into_pyarray(py))?;
+            }
+            if let BodyPose::Spatial { .. } = first {
+                let r: Vec<[[f64; 3]; 3]> = poses.iter().map(BodyPose::rotation).collect();
+                let n = r.len();
+                d.set_item("rotation", Array3::from_shape_fn((n, 3, 3), |(s, i, j)| r[s][i][j]).into_pyarray(py))?;
+            }
+        }
+        out.set_item(name, d)?;
     }
     Ok(out)
 }

@@ -1,20 +1,19 @@
 //! The `Mechanism` class: a mechanism read from its file, planar or spatial
 //! (`dimension = 3`), as the door `flexure::model::Model`, and the analyses
-//! it answers. `solve.rs`, `buckle` and `modes` (`eigen.rs`) are written
-//! once for both dimensions through the door; `compliance`, `sweep` and
-//! `simulate` are still one per dimension (`analyses.rs`, `spatial.rs`).
+//! it answers, each written once for both dimensions through the door:
+//! `solve.rs`, `sweep.rs`, `buckle` and `modes` (`eigen.rs`), `compliance`
+//! (`frame.rs`) and `simulate` (`crate::simulate`). Only `export` is planar
+//! for now (issue 36: spatial export).
 
-mod analyses;
 mod eigen;
 mod frame;
 mod solve;
-mod spatial;
+mod sweep;
 
 use crate::accuracy::eigen_accuracy;
 use crate::errors::to_py;
 use crate::simulate;
 use crate::strict::{self, Real};
-use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::model::Model;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -42,14 +41,6 @@ impl Mechanism {
     /// `None`), of the mechanism's dimension ([`frame::point`]).
     fn frame(&self, body: &str, at: Option<&Bound<'_, PyAny>>) -> PyResult<(usize, Vec<f64>)> {
         Ok((frame::body_named(&self.model, body)?, frame::point(at, self.model.dimension())?))
-    }
-
-    /// The spatial mechanism, if it is one.
-    fn spatial(&self) -> Option<&SpatialMechanism> {
-        match &self.model {
-            Model::Spatial(m) => Some(m),
-            Model::Planar(_) => None,
-        }
     }
 }
 
@@ -158,30 +149,16 @@ impl Mechanism {
         at: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let target = crate::accuracy::accuracy(accuracy)?;
-        if let Some(m) = self.spatial() {
-            let frame = match (compliance, at) {
-                (Some(body), at) => Some((body, at.filter(|a| !a.is_none()))),
-                (None, None) => None,
-                (None, Some(_)) => {
-                    return Err(PyValueError::new_err(
-                        "at is given without compliance: at is the point (x, y, z) on the body named by compliance whose compliance each row reports",
-                    ));
-                }
-            };
-            let frame = frame.map(|(body, at)| self.frame(body, at)).transpose()?;
-            return spatial::sweep(py, m, parameter, values, &target, frame);
-        }
         let frame = match (compliance, at) {
-            (Some(body), Some(at)) => Some((body, at)),
+            (Some(body), at) => Some((body, self.frame(body, at)?.1)),
             (None, None) => None,
-            _ => {
+            (None, Some(_)) => {
                 return Err(PyValueError::new_err(
-                    "compliance and at go together: the body, and the point (x, y) on it whose compliance each row reports",
+                    "at is given without compliance: at is the point on the body named by compliance whose compliance each row reports",
                 ));
             }
         };
-        let frame = frame.map(|(body, at)| self.frame(body, Some(at))).transpose()?;
-        analyses::sweep(py, self.planar("sweep")?, parameter, values, &target, frame)
+        sweep::sweep(py, &self.model, parameter, values, &target, frame)
     }
 
     /// Number of generalized coordinates.

@@ -67,6 +67,8 @@ pub struct Swept {
     pub rows: Vec<Vec<f64>>,
     /// Each row's coordinates (what a picture draws).
     pub q: Vec<Vec<f64>>,
+    /// Each moving body (the ground left out) by name, with its pose at each row.
+    pub bodies: Vec<(String, Vec<BodyPose>)>,
     /// The parts that cross, by row, where any do.
     pub crossings: Vec<(usize, Vec<Crossing<Vec<f64>>>)>,
     /// Where stability was first lost, if it was.
@@ -373,6 +375,7 @@ fn sweep<D: Analyses>(
     }
     columns.push("energy".into());
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());
+    let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
     for (k, (value, s)) in out.rows.iter().enumerate() {
         let report = match solve_report(m, s, target) {
             Ok(r) => r,
@@ -383,6 +386,9 @@ fn sweep<D: Analyses>(
         }
         let mut row = vec![*value];
         row.extend(report.bodies.0.iter().skip(1).flat_map(|(_, p)| p.coordinates()));
+        for (body, (_, pose)) in bodies.iter_mut().zip(report.bodies.0.iter().skip(1)) {
+            body.1.push(*pose);
+        }
         row.extend(&s.q);
         row.push(s.energy);
         row.extend(report.stress.0.iter().map(|(_, p)| p.max));
@@ -409,7 +415,7 @@ fn sweep<D: Analyses>(
     let crossings = D::crossings_along(m, &shapes);
     let q = shapes.iter().map(|q| q.to_vec()).collect();
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
-    Ok(Ok(Swept { columns, rows, q, crossings, stability_limit, stopped, flagged, yielded }))
+    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded }))
 }
 
 fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Motion> {
