@@ -1,6 +1,7 @@
 //! Subcommands for the paper's analyses: connect and tendon.
 
-use crate::joint::{MAX_FACTOR, chosen, insert_estimate, insert_limit, serialized, warn_unstable};
+use crate::answer::{MAX_FACTOR, insert_limit, serialized, warn_unstable};
+use crate::joint::{chosen, insert_estimate};
 use crate::options::{AccuracyOptions, FlexureOptions, StressOptions, angle_of, count, number, segments, warn};
 use clap::Args;
 use flexure::connect::{Connection, connect};

@@ -156,7 +156,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
                     Ok(json!({
                         "load": { "moment": load.moment, "fx": load.fx, "fy": load.fy },
                         "alpha": data.alpha(), "pose": pose_json(&data.pose_root_tip()), "stable": eq.stable,
-                        "error_estimate": crate::joint::estimate(&e), "flagged": e.flagged,
+                        "error_estimate": crate::answer::estimate(&e), "flagged": e.flagged,
                     }))
                 }
                 Err(e) => {

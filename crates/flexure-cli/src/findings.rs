@@ -168,3 +168,10 @@ pub fn crossing_answers_along<P: AsRef<[f64]>>(
         })
         .collect()
 }
+
+/// The closures of `model` open at rest, told (before any analysis, which
+/// may fail because of them) and listed.
+pub fn open_at_rest(model: &flexure::model::Model, file: &Path) -> Result<Vec<serde_json::Value>, String> {
+    let open = model.open_closures().map_err(|e| format!("{}: {e}", file.display()))?;
+    Ok(open_answers(&open, file))
+}

@@ -37,3 +37,10 @@ pub fn read_text(path: &Path, what: &str) -> Result<String, String> {
     String::from_utf8(bytes)
         .map_err(|e| format!("{what}{shown}: not UTF-8 text (invalid byte at {})", e.utf8_error().valid_up_to()))
 }
+
+/// The mechanism of either dimension that the file at `path` describes,
+/// read, parsed and built once.
+pub fn read_model(path: &Path) -> Result<flexure::model::Model, String> {
+    let text = read_mechanism(path)?;
+    flexure::model::Model::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}

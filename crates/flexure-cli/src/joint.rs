@@ -1,34 +1,17 @@
 //! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
 
-use crate::options::{
-    AccuracyOptions, FlexureOptions, List, StressOptions, angle, iterations, number, numbers, tolerance, warn,
-};
-use crate::spatial::{SpatialLoadOptions, SpatialOptions};
-use clap::{Args, ValueEnum};
+use crate::answer::{MAX_FACTOR, estimate, insert_limit, matrix, misses, serialized, warn_unstable};
+use crate::joint_options::{BucklingArgs, ComplianceArgs, DeflectArgs, KinematicsArgs};
+use crate::options::{FlexureOptions, StressOptions, warn};
 use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
 use flexure::kinematics::TipKinematics;
 use flexure::reference::elastica::Trace;
 use flexure::reference::{self, elastica};
 use flexure::{
-    Error, Pose, Statics, TipConstraint, TipLoad, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
+    Error, Pose, Statics, TipConstraint, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
 };
-use nalgebra::{Dim, Matrix, RawStorage};
 use serde_json::{Value, json};
-
-/// A library result as JSON: its `serde::Serialize` output, so the keys
-/// the command prints are the library's field names.
-pub fn serialized(result: &impl serde::Serialize) -> Value {
-    // The results' keys are names and their numbers map to JSON (a NaN to
-    // null, which `emit` refuses), so serializing them cannot fail.
-    serde_json::to_value(result).unwrap_or(Value::Null)
-}
-
-/// The one JSON shape of an error estimate, batch rows and mechanism joints
-/// included: the library's serialization of it.
-pub fn estimate(e: &ErrorEstimate) -> Value {
-    serialized(e)
-}
 
 /// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
 /// when the estimate misses `target` (`what` names the answer).
@@ -49,60 +32,6 @@ pub fn insert_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, targe
     answer["flagged"] = json!(e.flagged);
 }
 
-/// The largest factor `--limit` tries on a load.
-pub const MAX_FACTOR: f64 = 1000.0;
-
-/// Writes `--limit`'s answer into `answer`: `stability_limit`, the
-/// library's serialization `{factor, status}`, `status` "lost" (stability is
-/// lost at `factor` times the load) or "stable_up_to" (the path holds to
-/// `factor`, and `stalled` says why it could not be followed further, if it
-/// could not); such a stall is also said on stderr (`what` names the answer).
-pub fn insert_limit(answer: &mut Value, limit: &flexure::StabilityLimit, what: &str) {
-    if let flexure::StabilityLimit::StableUpTo { factor, stalled: Some(why) } = limit {
-        warn(format!(
-            "{what}: the loading path stays stable up to {factor:.6} times the load, as far as it could be followed (of the {MAX_FACTOR} tried); beyond it stability is unknown: {why}"
-        ));
-    }
-    let mut v = json!(limit);
-    // The library writes `stalled: null` when `max_factor` was reached; a
-    // null in an answer reads as a non-finite number, so the key is left out.
-    if let Some(o) = v.as_object_mut().filter(|o| o.get("stalled").is_some_and(Value::is_null)) {
-        o.remove("stalled");
-    }
-    answer["stability_limit"] = v;
-}
-
-/// Warns that an answer is not a stable equilibrium (`what` names it).
-pub fn warn_unstable(stable: bool, what: &str) {
-    if !stable {
-        warn(format!(
-            "{what}: the equilibrium is unstable (`stable: false`): the stiffness is not positive definite, so a small disturbance moves it away; it is not a state the joint can rest in"
-        ));
-    }
-}
-
-/// Which parts of a flagged estimate miss `target`, and by how much, with
-/// the parts that meet it: for warnings.
-pub fn misses(e: &ErrorEstimate, length: f64, target: &Accuracy) -> String {
-    let peak = if e.stress.is_some() { "peak stress" } else { "peak curvature" };
-    let parts = [
-        ("tip position", 100.0 * e.position / length, 100.0 * target.position, "% of L"),
-        ("tip angle", e.angle.to_degrees(), target.angle.to_degrees(), "°"),
-        (peak, 100.0 * e.peak, 100.0 * target.stress, "%"),
-    ];
-    let show =
-        |(name, value, goal, unit): &(&str, f64, f64, &str)| format!("{name} {value:.3}{unit} (target {goal}{unit})");
-    let (miss, meet): (Vec<_>, Vec<_>) = parts.iter().partition(|p| p.1 > p.2);
-    let mut text = format!(
-        "the estimated error exceeds the accuracy target: {}",
-        miss.into_iter().map(show).collect::<Vec<_>>().join(", ")
-    );
-    if !meet.is_empty() {
-        text += &format!("; within it: {}", meet.into_iter().map(show).collect::<Vec<_>>().join(", "));
-    }
-    text
-}
-
 /// The flexure to answer with: as given, or with `--order auto` the lowest
 /// order meeting the target, found by `auto` (which returns it).
 pub fn chosen(
@@ -118,34 +47,6 @@ pub fn pose(p: &Pose) -> Value {
     serialized(p)
 }
 
-/// Any matrix as JSON rows.
-pub fn matrix<R: Dim, C: Dim, S: RawStorage<f64, R, C>>(m: &Matrix<f64, R, C, S>) -> Value {
-    json!(m.row_iter().map(|r| r.iter().copied().collect::<Vec<_>>()).collect::<Vec<_>>())
-}
-
-#[derive(Debug, Args)]
-pub struct KinematicsArgs {
-    #[command(flatten)]
-    pub(crate) flexure: FlexureOptions,
-    #[command(flatten)]
-    pub(crate) spatial: SpatialOptions,
-    /// Joint coordinates α1,α2,… (one per order; with --spatial the twist's, then κ_y's, then κ_z's).
-    #[arg(long, value_parser = numbers, allow_hyphen_values = true, required_unless_present = "input")]
-    pub(crate) alpha: Option<List>,
-    /// A CSV of α rows with header a1,a2,…: one output line per row.
-    #[arg(long, conflicts_with = "alpha")]
-    pub input: Option<std::path::PathBuf>,
-}
-
-impl KinematicsArgs {
-    pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
-        if self.spatial.spatial {
-            return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
-        }
-        self.flexure.build_fixed("kinematics")
-    }
-}
-
 /// Pose, transform, Jacobian, Hessians, energy and gradient at α.
 pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
     if args.spatial.spatial {
@@ -159,83 +60,6 @@ pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
     out["energy"] = json!(energy(&f, &alpha));
     out["gradient"] = json!(gradient);
     Ok(out)
-}
-
-/// A tip load: `--moment`, and `--force P --angle θ` or `--fx --fy`.
-#[derive(Debug, Clone, Args)]
-pub struct LoadOptions {
-    /// Tip moment M in N·m (counter-clockwise positive).
-    #[arg(long, default_value = "0", value_parser = number, allow_hyphen_values = true)]
-    pub moment: f64,
-    /// Tip force magnitude P in N, at --angle θ: Fx = −P sin θ, Fy = P cos θ (paper Sec. III-C).
-    #[arg(long, value_parser = number, allow_hyphen_values = true, conflicts_with_all = ["fx", "fy"])]
-    pub force: Option<f64>,
-    /// Angle θ of --force, radians or e.g. 45deg [default: 0, across the flexure].
-    #[arg(long, value_parser = angle, allow_hyphen_values = true, requires = "force")]
-    pub angle: Option<f64>,
-    /// Tip force along the root's x axis, N.
-    #[arg(long, value_parser = number, allow_hyphen_values = true)]
-    pub fx: Option<f64>,
-    /// Tip force along the root's y axis, N.
-    #[arg(long, value_parser = number, allow_hyphen_values = true)]
-    pub fy: Option<f64>,
-}
-
-impl LoadOptions {
-    pub fn load(&self) -> TipLoad {
-        match self.force {
-            Some(p) => TipLoad::polar(self.moment, p, self.angle.unwrap_or(0.0)),
-            None => TipLoad { moment: self.moment, fx: self.fx.unwrap_or(0.0), fy: self.fy.unwrap_or(0.0) },
-        }
-    }
-}
-
-#[derive(Debug, Args)]
-pub struct DeflectArgs {
-    #[command(flatten)]
-    pub(crate) flexure: FlexureOptions,
-    #[command(flatten)]
-    pub(crate) spatial: SpatialOptions,
-    #[command(flatten)]
-    pub(crate) load: LoadOptions,
-    #[command(flatten)]
-    pub(crate) spatial_load: SpatialLoadOptions,
-    #[command(flatten)]
-    pub accuracy: AccuracyOptions,
-    #[command(flatten)]
-    pub(crate) stress: StressOptions,
-    /// Also solve the exact elastica (shooting); `pose` is then the exact one,
-    /// and the model's stress and shape sit under `model`.
-    #[arg(long)]
-    pub(crate) exact: bool,
-    /// Also find the factor on the load, up to 1000, at which the equilibrium
-    /// followed from rest stops being stable, or up to which it stays stable
-    /// (1000, or as far as the path could be followed, with a warning):
-    /// `stability_limit` {factor, status: lost | stable_up_to}.
-    #[arg(long)]
-    pub(crate) limit: bool,
-    /// Relative tolerance on the generalized-force residual, in (0, 1).
-    #[arg(long, default_value = "1e-12", value_parser = tolerance, allow_hyphen_values = true)]
-    pub(crate) tolerance: f64,
-    /// Newton iterations allowed per load step, 1 to 10000.
-    #[arg(long, default_value = "50", value_parser = iterations, allow_hyphen_values = true)]
-    pub(crate) max_iterations: usize,
-    /// A CSV of loads with header among moment,fx,fy (or moment,force,angle): one line per row.
-    #[arg(
-        long,
-        conflicts_with_all = ["moment", "force", "angle", "fx", "fy", "exact", "limit", "yield_strength", "shape"]
-    )]
-    pub input: Option<std::path::PathBuf>,
-}
-
-impl DeflectArgs {
-    /// The flexure for `--input` rows, which share one order.
-    pub fn flexure(&self) -> flexure::Result<flexure::Flexure> {
-        if self.spatial.spatial {
-            return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
-        }
-        self.flexure.build_fixed("deflect --input")
-    }
 }
 
 /// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
@@ -322,17 +146,6 @@ pub fn insert_exact_stress(
     Ok(())
 }
 
-#[derive(Debug, Args)]
-pub struct ComplianceArgs {
-    #[command(flatten)]
-    flexure: FlexureOptions,
-    #[command(flatten)]
-    spatial: SpatialOptions,
-    /// Integrate the compliance ODE (Eq. 34, with EI(s)) instead of the model's J K⁻¹ Jᵀ.
-    #[arg(long)]
-    exact: bool,
-}
-
 /// Small-load tip compliance at the rest shape, order (φ, x, y).
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
     if args.spatial.spatial {
@@ -345,40 +158,6 @@ pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
         compliance_tip_rest(&f)
     };
     Ok(json!({ "compliance": matrix(&c) }))
-}
-
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum Tip {
-    Free,
-    Guided,
-    Pinned,
-    Clamped,
-}
-
-impl From<Tip> for TipConstraint {
-    fn from(t: Tip) -> Self {
-        match t {
-            Tip::Free => TipConstraint::Free,
-            Tip::Guided => TipConstraint::Guided,
-            Tip::Pinned => TipConstraint::Pinned,
-            Tip::Clamped => TipConstraint::Clamped,
-        }
-    }
-}
-
-#[derive(Debug, Args)]
-pub struct BucklingArgs {
-    #[command(flatten)]
-    flexure: FlexureOptions,
-    /// How the tip is held.
-    #[arg(long, value_enum)]
-    tip: Tip,
-    /// The exact load of a straight column instead of the model: Euler's
-    /// closed form for a uniform one, shooting on the load for EI(s).
-    #[arg(long)]
-    exact: bool,
-    #[command(flatten)]
-    accuracy: crate::eigen::EigenAccuracyOptions,
 }
 
 /// Critical compressive tip load under a tip constraint, with its error

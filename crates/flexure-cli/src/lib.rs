@@ -7,12 +7,14 @@
 //! with its streams passed in, so it can also run in-process.
 
 mod analyses;
+mod answer;
 mod batch;
 mod eigen;
 mod export;
 mod findings;
 mod input;
 mod joint;
+mod joint_options;
 mod mechanism;
 mod modes;
 mod options;
@@ -53,13 +55,13 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Tip pose, transform, Jacobian, Hessians and energy at joint coordinates α.
-    Kinematics(joint::KinematicsArgs),
+    Kinematics(joint_options::KinematicsArgs),
     /// Equilibrium under a tip load, with its stiffness and stability.
-    Deflect(joint::DeflectArgs),
+    Deflect(joint_options::DeflectArgs),
     /// Small-load tip compliance at the rest shape, order (φ, x, y).
-    Compliance(joint::ComplianceArgs),
+    Compliance(joint_options::ComplianceArgs),
     /// Critical compressive load under a tip constraint, with its error estimate.
-    Buckling(joint::BucklingArgs),
+    Buckling(joint_options::BucklingArgs),
     /// Minimum-energy shape reaching a tip pose (model, exact, or segment chain).
     Connect(analyses::ConnectArgs),
     /// Tendon-driven joint: equilibrium under tendon tension, or a sweep.

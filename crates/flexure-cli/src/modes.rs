@@ -2,7 +2,7 @@
 //! equilibrium, of a mechanism file or of one flexure joint carrying an
 //! optional tip body, with the exact beam's frequencies beside the model's.
 
-use crate::joint::LoadOptions;
+use crate::joint_options::LoadOptions;
 use crate::mechanism::point_arg;
 use crate::options::{FlexureOptions, count, number};
 use clap::Args;
@@ -187,7 +187,7 @@ pub fn modes_cmd(args: &ModesArgs) -> Result<Value, String> {
 }
 
 fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Result<Value, String> {
-    let model = crate::mechanism::read_model(file)?;
+    let model = crate::input::read_model(file)?;
     let err = |e: Error| match e {
         Error::Unstable { .. } => format!(
             "{}: unstable: {e}{}; an unstable equilibrium has no vibration modes (a frequency would be imaginary)",
@@ -197,7 +197,7 @@ fn mechanism_modes(file: &Path, count: Option<usize>, target: &Accuracy) -> Resu
         e => crate::mechanism::solver_error(file)(e),
     };
     let asked = wanted(count, model.dof(), "the mechanism").map_err(|e| format!("{}: {e}", file.display()))?;
-    let findings = crate::mechanism::told_closures(&model, file)?;
+    let findings = crate::findings::open_at_rest(&model, file)?;
     let found = model.modes(asked, target).map_err(err)?;
     let (modes, used) = (&found.answer, &found.model);
     let shapes: Vec<Value> = (0..modes.omega.len())

@@ -185,8 +185,8 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
         None => None,
     };
     let settings = checked_settings(&args.motion, (args.duration, "--duration"))?;
-    let model = crate::mechanism::read_model(&args.file)?;
-    let mut findings = crate::mechanism::told_closures(&model, &args.file)?;
+    let model = crate::input::read_model(&args.file)?;
+    let mut findings = crate::findings::open_at_rest(&model, &args.file)?;
     let run = with_progress_bar(args.duration, || model.simulate(&settings, args.motion.start()))
         .map_err(|e| format!("{}: {}", args.file.display(), simulation_error(e, args.duration)))?;
     let samples: Vec<(f64, &[f64])> =

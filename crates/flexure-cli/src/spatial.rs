@@ -8,56 +8,15 @@
 //! `--diameter` (a round rod) gives all three stiffnesses, `G` from
 //! `--poisson` (0.3 if not given) or `--shear-modulus`.
 
-use crate::joint::{KinematicsArgs, MAX_FACTOR, insert_limit, matrix, warn_unstable};
-use crate::options::{FlexureOptions, List, Order, ProfileArg, number, numbers, profile, warn};
-use clap::Args;
+use crate::answer::{MAX_FACTOR, insert_limit, matrix, warn_unstable};
+use crate::joint_options::{DeflectArgs, KinematicsArgs, SpatialOptions};
+use crate::options::{FlexureOptions, List, Order, ProfileArg, warn};
 use flexure::Error;
 use flexure::estimate::{self, Accuracy, ErrorEstimate};
 use flexure::reference::rod::{self, Rod};
 use flexure::spatial::{self, SpatialFlexure, SpatialLoad, SpatialPoint, SpatialSpec, SpatialStatics, StabilityTest};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::{Value, json};
-
-/// The spatial flexure's own options (each needs `--spatial`).
-#[derive(Debug, Clone, Args)]
-pub struct SpatialOptions {
-    /// Make the joint spatial: two bendings and a twist (curvature
-    /// components twist, κ_y, κ_z, each of order --order), pose in SE(3).
-    #[arg(long)]
-    pub spatial: bool,
-    /// Bending stiffness about y, EI_y in N·m²: V, or ROOT,TIP [default: --ei].
-    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "spatial", conflicts_with = "modulus")]
-    pub ei_y: Option<ProfileArg>,
-    /// Torsional stiffness GJ in N·m²: V, or ROOT,TIP [default: --ei].
-    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires = "spatial", conflicts_with = "modulus")]
-    pub gj: Option<ProfileArg>,
-    /// A round rod's diameter d in metres (with --modulus), in place of --width and --thickness.
-    #[arg(long, value_parser = profile, allow_hyphen_values = true, requires_all = ["spatial", "modulus"])]
-    pub diameter: Option<ProfileArg>,
-    /// Shear modulus G in Pa (with --modulus), in place of --poisson.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial", conflicts_with = "poisson")]
-    pub shear_modulus: Option<f64>,
-    /// Rest curvature coefficients of the bending about y (one per order) [default: straight].
-    #[arg(long, value_parser = numbers, allow_hyphen_values = true, requires = "spatial")]
-    pub kappa_y: Option<List>,
-    /// Rest twist coefficients (one per order) [default: untwisted].
-    #[arg(long, value_parser = numbers, allow_hyphen_values = true, requires = "spatial")]
-    pub twist: Option<List>,
-}
-
-/// The out-of-plane load components (each needs `--spatial`).
-#[derive(Debug, Clone, Args)]
-pub struct SpatialLoadOptions {
-    /// Tip moment about the root's x axis (a twist), N·m.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
-    pub mx: Option<f64>,
-    /// Tip moment about the root's y axis, N·m.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
-    pub my: Option<f64>,
-    /// Tip force along the root's z axis, N.
-    #[arg(long, value_parser = number, allow_hyphen_values = true, requires = "spatial")]
-    pub fz: Option<f64>,
-}
 
 /// The spatial flexure the options describe, built by the library
 /// ([`SpatialSpec`]); planar-only options are refused by name.
@@ -114,9 +73,9 @@ fn insert_estimate(answer: &mut Value, e: &ErrorEstimate, f: &SpatialFlexure, ta
     if e.flagged {
         let hint =
             if f.orders().iter().all(|&n| n >= estimate::spatial::MAX_AUTO_ORDER) { "" } else { "; try --order auto" };
-        warn(format!("{what}: {}{hint}", crate::joint::misses(e, f.length(), target)));
+        warn(format!("{what}: {}{hint}", crate::answer::misses(e, f.length(), target)));
     }
-    answer["error_estimate"] = crate::joint::estimate(e);
+    answer["error_estimate"] = crate::answer::estimate(e);
     answer["flagged"] = json!(e.flagged);
 }
 
@@ -216,7 +175,7 @@ fn points(points: &[SpatialPoint]) -> Value {
 }
 
 /// `deflect --spatial`.
-pub fn deflect(args: &crate::joint::DeflectArgs) -> flexure::Result<Value> {
+pub fn deflect(args: &DeflectArgs) -> flexure::Result<Value> {
     if args.input.is_some() {
         return Err(Error::invalid("input", "given with --spatial", "batches are for planar flexures only"));
     }

@@ -3,21 +3,22 @@
 //! curvature and shape along it), the compliance ODE and the column's
 //! buckling load. `flexure.exact` wraps them.
 
-use crate::convert::{shape_points, tip_load};
+use crate::convert::{finite, shape_points, tip_load};
 use crate::coordinates::vector;
 use crate::errors::to_py;
 use crate::interrupt::interruptible;
 use crate::joint::Flexure;
+use crate::modes::{DEFAULT_COUNT, tip_body};
 use crate::strict::Real;
 use crate::warnings::warn_unstable;
 use crate::{section, stress};
 use flexure::FlexureSpec;
-use flexure::reference::{column, compliance, elastica, euler};
+use flexure::reference::{column, compliance, elastica, euler, vibration};
 use flexure::stress::Peak;
 use flexure::{Error, TipConstraint, TipLoad};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::OnceLock;
@@ -262,4 +263,78 @@ pub fn exact_flexure(
     }
     let spec = FlexureSpec { length: length.0, section, order: kappa.len(), quadrature: None, kappa: Some(kappa) };
     Ok(Flexure { inner: spec.build().map_err(to_py)?, yield_strength: None })
+}
+
+/// The exact natural frequencies of `flexure` as a straight Euler–Bernoulli
+/// beam with rotary inertia (EI(s), mass per length μ(s), ρI(s)), clamped at
+/// its root, carrying an optional tip body, under an axial `compression` (N;
+/// negative for tension), counted by Wittrick–Williams and refined on the
+/// dynamic stiffness: a dict of omega (rad/s), frequency (Hz), beta_l (the
+/// scaled frequency, βL for a uniform beam) and mass_per_length (the reference
+/// μ̄ of beta_l, kg/m). A compression at or past the buckling load raises
+/// ValueError naming it; Ctrl-C raises KeyboardInterrupt saying how many
+/// modes were found.
+#[pyfunction]
+#[pyo3(signature = (flexure, count=None, compression=0.0, tip_mass=None, tip_inertia=None, tip_com=None))]
+pub fn exact_frequencies<'py>(
+    py: Python<'py>,
+    flexure: &Flexure,
+    count: Option<&Bound<'py, PyAny>>,
+    compression: f64,
+    tip_mass: Option<f64>,
+    tip_inertia: Option<f64>,
+    tip_com: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let f = &flexure.inner;
+    if let Some(k) = f.rest().iter().find(|&&k| k != 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "invalid kappa: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
+        )));
+    }
+    let compression = finite("compression", compression)?;
+    let body = tip_body(tip_mass, tip_inertia, tip_com)?;
+    let asked = match count.filter(|c| !c.is_none()) {
+        None => DEFAULT_COUNT,
+        Some(c) => match crate::convert::count("count", c, 64)? {
+            k @ 1..=64 => k,
+            k => return Err(PyValueError::new_err(format!("invalid count = {k}: must be from 1 to 64"))),
+        },
+    };
+    // How far an interrupted search got (the fraction of the modes found), and
+    // a panic kept from reaching Python (PanicException is no Exception).
+    let mut reached = None;
+    let search = std::panic::AssertUnwindSafe(|| {
+        interruptible(py, || {
+            let r = vibration::frequencies(f, body.as_ref(), compression, asked, &Default::default());
+            if let Err(flexure::Error::Interrupted { load_fraction }) = &r {
+                reached = Some(*load_fraction);
+            }
+            r
+        })
+    });
+    let v = match std::panic::catch_unwind(search) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            return Err(match reached {
+                Some(fraction) if e.is_instance_of::<PyKeyboardInterrupt>(py) => {
+                    let found = (fraction * asked as f64).round();
+                    PyKeyboardInterrupt::new_err(format!(
+                        "exact.frequencies: interrupted after {found} of {asked} modes"
+                    ))
+                }
+                _ => e,
+            });
+        }
+        Err(_) => {
+            return Err(PyRuntimeError::new_err(
+                "exact.frequencies: internal error (a panic in the exact vibration reference); please report it with the flexure and arguments",
+            ));
+        }
+    };
+    let out = PyDict::new(py);
+    out.set_item("omega", PyArray1::from_vec(py, v.omega))?;
+    out.set_item("frequency", PyArray1::from_vec(py, v.frequency))?;
+    out.set_item("beta_l", PyArray1::from_vec(py, v.scaled))?;
+    out.set_item("mass_per_length", v.mass_per_length)?;
+    Ok(out)
 }

@@ -18,7 +18,7 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 
 /// A planar flexure joint of the Smooth Curvature Model (SI units, radians).
 ///
@@ -283,7 +283,15 @@ impl Flexure {
         accuracy: Option<&Bound<'py, PyAny>>,
         order: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        statics::deflect(py, self, (moment, fx, fy), accuracy, order)
+        let (used, alpha) =
+            statics::deflect(py, (&self.inner, self.yield_strength), (moment, fx, fy), accuracy, order)?;
+        match used {
+            Some(inner) => {
+                let used = Py::new(py, Flexure { inner, yield_strength: self.yield_strength })?;
+                Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any())
+            }
+            None => Ok(alpha.into_any()),
+        }
     }
 
     /// The estimated error of `alpha` as the equilibrium under a tip load, against a refined
@@ -385,7 +393,7 @@ impl Flexure {
     /// order): a miss of `accuracy` (a fraction of the load; default 0.01) warns `AccuracyWarning`.
     #[pyo3(signature = (tip="free", *, accuracy=None))]
     fn buckling_load(&self, py: Python<'_>, tip: &str, accuracy: Option<&Bound<'_, PyAny>>) -> PyResult<f64> {
-        statics::buckling_load(py, self, tip, accuracy)
+        statics::buckling_load(py, &self.inner, tip, accuracy)
     }
 
     /// The tendon-driven joint (Sec. III-D, Eqs. 23–26) under a tendon of `tension` (N, not

@@ -51,7 +51,7 @@ fn _flexure(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exact::exact_compliance, m)?)?;
     m.add_function(wrap_pyfunction!(exact::exact_buckling_load, m)?)?;
     m.add_function(wrap_pyfunction!(exact::exact_flexure, m)?)?;
-    m.add_function(wrap_pyfunction!(modes::exact_frequencies, m)?)?;
+    m.add_function(wrap_pyfunction!(exact::exact_frequencies, m)?)?;
     m.add_function(wrap_pyfunction!(interrupt::ctrl_c_at_poll, m)?)?;
     m.add("ConvergenceError", m.py().get_type::<ConvergenceError>())?;
     m.add("StabilityWarning", m.py().get_type::<StabilityWarning>())?;

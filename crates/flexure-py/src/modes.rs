@@ -4,20 +4,18 @@
 
 use crate::convert::{count, finite};
 use crate::interrupt::interruptible;
-use crate::joint::Flexure;
 use crate::warnings::{sig, warn_values};
 use flexure::dynamics::{self, Modes};
 use flexure::estimate::{self, Accuracy, ValueEstimate};
 use flexure::inertia::RigidInertia;
-use flexure::reference::vibration;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Modes returned when `count` is None (fewer if the model has fewer coordinates).
-const DEFAULT_COUNT: usize = 3;
+pub const DEFAULT_COUNT: usize = 3;
 
 /// The tip body from `tip_mass`, `tip_inertia` and `tip_com`, each checked
 /// by its own name; None when none is given.
@@ -151,79 +149,5 @@ pub fn flexure_modes<'py>(
     crate::strict::finite_slice("Flexure.modes shapes", modes.shapes.as_slice())?;
     let (n, k) = (modes.shapes.nrows(), modes.omega.len());
     out.set_item("shapes", Array2::from_shape_fn((k, n), |(m, i)| modes.shapes[(i, m)]).into_pyarray(py))?;
-    Ok(out)
-}
-
-/// The exact natural frequencies of `flexure` as a straight Euler–Bernoulli
-/// beam with rotary inertia (EI(s), mass per length μ(s), ρI(s)), clamped at
-/// its root, carrying an optional tip body, under an axial `compression` (N;
-/// negative for tension), counted by Wittrick–Williams and refined on the
-/// dynamic stiffness: a dict of omega (rad/s), frequency (Hz), beta_l (the
-/// scaled frequency, βL for a uniform beam) and mass_per_length (the reference
-/// μ̄ of beta_l, kg/m). A compression at or past the buckling load raises
-/// ValueError naming it; Ctrl-C raises KeyboardInterrupt saying how many
-/// modes were found.
-#[pyfunction]
-#[pyo3(signature = (flexure, count=None, compression=0.0, tip_mass=None, tip_inertia=None, tip_com=None))]
-pub fn exact_frequencies<'py>(
-    py: Python<'py>,
-    flexure: &Flexure,
-    count: Option<&Bound<'py, PyAny>>,
-    compression: f64,
-    tip_mass: Option<f64>,
-    tip_inertia: Option<f64>,
-    tip_com: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let f = &flexure.inner;
-    if let Some(k) = f.rest().iter().find(|&&k| k != 0.0) {
-        return Err(PyValueError::new_err(format!(
-            "invalid kappa: a rest curvature coefficient is {k}: the exact frequencies are those of a straight beam"
-        )));
-    }
-    let compression = finite("compression", compression)?;
-    let body = tip_body(tip_mass, tip_inertia, tip_com)?;
-    let asked = match count.filter(|c| !c.is_none()) {
-        None => DEFAULT_COUNT,
-        Some(c) => match crate::convert::count("count", c, 64)? {
-            k @ 1..=64 => k,
-            k => return Err(PyValueError::new_err(format!("invalid count = {k}: must be from 1 to 64"))),
-        },
-    };
-    // How far an interrupted search got (the fraction of the modes found), and
-    // a panic kept from reaching Python (PanicException is no Exception).
-    let mut reached = None;
-    let search = std::panic::AssertUnwindSafe(|| {
-        interruptible(py, || {
-            let r = vibration::frequencies(f, body.as_ref(), compression, asked, &Default::default());
-            if let Err(flexure::Error::Interrupted { load_fraction }) = &r {
-                reached = Some(*load_fraction);
-            }
-            r
-        })
-    });
-    let v = match std::panic::catch_unwind(search) {
-        Ok(Ok(v)) => v,
-        Ok(Err(e)) => {
-            return Err(match reached {
-                Some(fraction) if e.is_instance_of::<PyKeyboardInterrupt>(py) => {
-                    let found = (fraction * asked as f64).round();
-                    PyKeyboardInterrupt::new_err(format!(
-                        "exact.frequencies: interrupted after {found} of {asked} modes"
-                    ))
-                }
-                _ => e,
-            });
-        }
-        Err(_) => {
-            return Err(PyRuntimeError::new_err(
-                "exact.frequencies: internal error (a panic in the exact vibration reference); please report it with the flexure and arguments",
-            ));
-        }
-    };
-    let out = PyDict::new(py);
-    out.set_item("omega", PyArray1::from_vec(py, v.omega))?;
-    out.set_item("frequency", PyArray1::from_vec(py, v.frequency))?;
-    out.set_item("beta_l", PyArray1::from_vec(py, v.scaled))?;
-    out.set_item("mass_per_length", v.mass_per_length)?;
     Ok(out)
 }

@@ -7,7 +7,6 @@ use crate::convert::tip_load;
 use crate::error_estimate::{ESTIMATOR, interrupted_or};
 use crate::errors::to_py;
 use crate::interrupt::interruptible;
-use crate::joint::Flexure;
 use crate::stress;
 use crate::strict::{self, Real};
 use crate::warnings::{sig, warn_inaccurate, warn_unestimated, warn_unstable, warn_values};
@@ -19,7 +18,6 @@ use flexure::{
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
 
 /// The stiffness $K = \nabla\nabla U - F_x\nabla\nabla x - F_y\nabla\nabla y$
 /// (Eq. 32) at `alpha`, the library's ([`flexure::statics::loaded_stiffness`]),
@@ -36,18 +34,18 @@ pub fn loaded_stiffness(
 }
 
 /// `Flexure.deflect`: the equilibrium under the tip load (moment, fx, fy), warned about
-/// as its docstring says; with `order="auto"`, `(flexure_used, alpha)`.
+/// as its docstring says; with `order="auto"`, also the flexure used (which
+/// `Flexure.deflect` returns beside alpha).
 pub fn deflect<'py>(
     py: Python<'py>,
-    this: &Flexure,
+    (f, yield_strength): (&flexure::Flexure, Option<f64>),
     (moment, fx, fy): (Real, Real, Real),
     accuracy: Option<&Bound<'py, PyAny>>,
     order: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<(Option<flexure::Flexure>, Bound<'py, PyArray1<f64>>)> {
     let load = tip_load(moment, fx, fy)?;
     let target = crate::accuracy::accuracy(accuracy)?;
     let auto = auto_order(order)?;
-    let f = &this.inner;
     if auto {
         // The library refuses `order` when even its highest order misses the target.
         let found = interruptible(py, || match estimate::deflect_auto(f, &load, &target) {
@@ -73,13 +71,11 @@ pub fn deflect<'py>(
             let why = "its stiffness is not positive definite (the load is past a buckling load)";
             warn_unstable(py, "deflect", &load, why, 1)?;
         }
-        if let Some(s) = this.yield_strength {
+        if let Some(s) = yield_strength {
             stress::safety_factor(py, &used, &alpha, s, "deflect", 1)?;
         }
         strict::finite_slice("deflect", &alpha)?;
-        let used = Py::new(py, Flexure { inner: used, yield_strength: this.yield_strength })?;
-        let alpha = PyArray1::from_vec(py, alpha);
-        return Ok(PyTuple::new(py, [used.into_any(), alpha.into_any().unbind()])?.into_any());
+        return Ok((Some(used), PyArray1::from_vec(py, alpha)));
     }
     let (alpha, stable, estimated) = interruptible(py, || {
         let mut data = Statics::new(f);
@@ -101,19 +97,23 @@ pub fn deflect<'py>(
         Ok(_) => {}
         Err(why) => warn_unestimated(py, "deflect", &why, 1)?,
     }
-    if let Some(s) = this.yield_strength {
+    if let Some(s) = yield_strength {
         stress::safety_factor(py, f, &alpha, s, "deflect", 1)?;
     }
     strict::finite_slice("deflect", &alpha)?;
-    Ok(PyArray1::from_vec(py, alpha).into_any())
+    Ok((None, PyArray1::from_vec(py, alpha)))
 }
 
 /// `Flexure.buckling_load`: the critical load under tip constraint `tip`, warned about
 /// when its estimate misses `accuracy`.
-pub fn buckling_load(py: Python<'_>, this: &Flexure, tip: &str, accuracy: Option<&Bound<'_, PyAny>>) -> PyResult<f64> {
+pub fn buckling_load(
+    py: Python<'_>,
+    f: &flexure::Flexure,
+    tip: &str,
+    accuracy: Option<&Bound<'_, PyAny>>,
+) -> PyResult<f64> {
     let t: TipConstraint = tip.parse().map_err(to_py)?;
     let target = eigen_accuracy(accuracy)?;
-    let f = &this.inner;
     let b = buckling(f, t).map_err(to_py)?;
     match estimate::buckling_error(f, t, &b, &target) {
         Ok(e) => {

@@ -129,17 +129,17 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Every top-level module's imports of other top-level modules, with the file that makes each.
-fn graph() -> BTreeMap<String, BTreeMap<String, String>> {
-    let src = root().join("src");
+/// Every top-level module's imports of other top-level modules of the
+/// crate at `src`, with the file that makes each.
+fn graph_of(src: &Path) -> BTreeMap<String, BTreeMap<String, String>> {
     let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
     let modules = modules(&lib);
     let root_names = root_names(&lib);
     let mut files = Vec::new();
-    sources(&src, &mut files);
+    sources(src, &mut files);
     let mut graph: BTreeMap<String, BTreeMap<String, String>> = BTreeMap::new();
     for file in files {
-        let rel = file.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        let rel = file.strip_prefix(src).unwrap().to_string_lossy().replace('\\', "/");
         if rel == "lib.rs" {
             continue;
         }
@@ -153,6 +153,11 @@ fn graph() -> BTreeMap<String, BTreeMap<String, String>> {
         }
     }
     graph
+}
+
+/// The library's module graph.
+fn graph() -> BTreeMap<String, BTreeMap<String, String>> {
+    graph_of(&root().join("src"))
 }
 
 #[test]
@@ -189,9 +194,8 @@ fn no_module_imports_from_a_layer_above_its_own() {
     assert!(above.is_empty(), "imports from a layer above:\n{}", above.join("\n"));
 }
 
-#[test]
-fn no_two_modules_import_each_other() {
-    let graph = graph();
+/// The imports of `graph` that lead back to where they start.
+fn cycles(graph: &BTreeMap<String, BTreeMap<String, String>>) -> Vec<String> {
     // A cycle passes through an edge a → b with a path b →* a.
     let reaches = |from: &str, to: &str| {
         let mut seen = BTreeSet::new();
@@ -207,12 +211,35 @@ fn no_two_modules_import_each_other() {
         false
     };
     let mut cycles = Vec::new();
-    for (from, targets) in &graph {
+    for (from, targets) in graph {
         for (to, file) in targets {
             if reaches(to, from) {
                 cycles.push(format!("{file}: {from} imports {to}, which leads back to {from}"));
             }
         }
     }
+    cycles
+}
+
+#[test]
+fn no_two_modules_import_each_other() {
+    let cycles = cycles(&graph());
     assert!(cycles.is_empty(), "cycles:\n{}", cycles.join("\n"));
+}
+
+#[test]
+fn the_command_line_and_python_modules_form_no_cycle() {
+    for krate in ["flexure-cli", "flexure-py"] {
+        let graph = graph_of(&root().join("..").join(krate).join("src"));
+        assert!(graph.len() > 5, "{krate}: the graph was read ({} modules import others)", graph.len());
+        let cycles = cycles(&graph);
+        assert!(cycles.is_empty(), "{krate}: cycles:\n{}", cycles.join("\n"));
+    }
+}
+
+#[test]
+fn a_cycle_is_found() {
+    let edge = |a: &str, b: &str| (a.to_string(), BTreeMap::from([(b.to_string(), format!("{a}.rs"))]));
+    let graph = BTreeMap::from([edge("a", "b"), edge("b", "c"), edge("c", "a"), edge("d", "a")]);
+    assert_eq!(cycles(&graph).len(), 3);
 }

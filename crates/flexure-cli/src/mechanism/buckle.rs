@@ -15,10 +15,10 @@ pub struct BuckleArgs {
 /// Linear buckling factor on all loads, and the mode, with its error
 /// estimate; flexures of `order = "auto"` raised until it meets the target.
 pub fn buckle_cmd(args: &BuckleArgs) -> Result<Value, String> {
-    let model = super::read_model(&args.file)?;
+    let model = crate::input::read_model(&args.file)?;
     let target = args.accuracy.target();
     // Buckling about a preloaded assembly: the preload is told.
-    let findings = super::told_closures(&model, &args.file)?;
+    let findings = crate::findings::open_at_rest(&model, &args.file)?;
     let found = model.buckle(&target).map_err(super::solver_error(&args.file))?;
     let b = &found.answer;
     let mut answer = json!({ "dimension": model.dimension(), "load_factor": b.load_factor, "mode": b.mode });

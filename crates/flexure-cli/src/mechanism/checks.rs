@@ -25,7 +25,7 @@ fn estimate_failed(file: &Path, f: EstimateFailed) -> String {
 /// stressed past its yield strength.
 fn warn_joints(r: &SolveReport, model: &Model, target: &Accuracy, file: &Path) {
     for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
-        let misses = crate::joint::misses(e, model.flexure_length(name).unwrap_or(0.0), target);
+        let misses = crate::answer::misses(e, model.flexure_length(name).unwrap_or(0.0), target);
         warn(format!("{}: flexure joint {name:?}: {misses}; raise its order", file.display()));
     }
     for (name, factor) in r.safety_factor.0.iter().filter(|(_, factor)| *factor < 1.0) {
@@ -78,7 +78,7 @@ pub(super) fn solved_answer(
     warn_joints(&r, model, target, file);
     let mut v = serde_json::to_value(&r).map_err(|e| format!("{}: {e}", file.display()))?;
     if let Some(c) = &solved.compliance {
-        v["compliance"] = crate::joint::matrix(c);
+        v["compliance"] = crate::answer::matrix(c);
     }
     if !findings.is_empty() {
         v["findings"] = json!(findings);
@@ -167,7 +167,7 @@ pub(super) fn sweep_answer(
     target: &Accuracy,
     file: &Path,
 ) -> Result<(Value, Swept), String> {
-    let findings = super::told_closures(model, file)?;
+    let findings = crate::findings::open_at_rest(model, file)?;
     let out = model
         .sweep(parameter, values, target, compliance)
         .map_err(|e| match e {

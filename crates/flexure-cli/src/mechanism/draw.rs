@@ -174,7 +174,7 @@ fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Pictu
             out.rows.iter().zip(out.q).map(|(r, q)| (label(r[0]), (q, p.apply(&m.loads(), r[0])))).collect()
         }
         None => {
-            let findings = super::told_closures(model, &args.file)?;
+            let findings = crate::findings::open_at_rest(model, &args.file)?;
             let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
             let q = solved.q.clone();
             checks = solved_answer(model, findings, solved, &target, &args.file)?;
@@ -208,7 +208,7 @@ fn planar_shapes(
 /// charts), to one scale on both axes, with the warnings `solve` (or
 /// `simulate`) gives on the same file. The one place that asks the dimension.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
-    let model = super::read_model(&args.file)?;
+    let model = crate::input::read_model(&args.file)?;
     let p = match &model {
         Model::Planar(m) => planar_picture(args, &model, m)?,
         Model::Spatial(m) => spatial_picture(args, &model, m)?,

@@ -15,7 +15,6 @@ pub use solve::{SolveArgs, solve_cmd};
 
 use crate::options::number;
 use flexure::model::Model;
-
 use std::path::Path;
 
 /// A solver's error on mechanism file `file`, after the file's name, with
@@ -39,20 +38,6 @@ pub fn loads_named(file: &Path, e: &flexure::Error) -> String {
     } else {
         format!("; the load is the file's, all at once: {}", loads.join(", "))
     }
-}
-
-/// The mechanism of either dimension that the file at `path` describes,
-/// read, parsed and built once.
-pub fn read_model(path: &Path) -> Result<Model, String> {
-    let text = crate::input::read_mechanism(path)?;
-    Model::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
-}
-
-/// The closures of `model` open at rest, told (before any analysis, which
-/// may fail because of them) and listed.
-pub fn told_closures(model: &Model, file: &Path) -> Result<Vec<serde_json::Value>, String> {
-    let open = model.open_closures().map_err(|e| format!("{}: {e}", file.display()))?;
-    Ok(crate::findings::open_answers(&open, file))
 }
 
 /// A solver's error on mechanism file `file`, a bad parameter described

@@ -29,7 +29,7 @@ pub struct SolveArgs {
 
 /// Equilibrium of a mechanism file, optionally with a compliance or a sweep.
 pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
-    let model = super::read_model(&args.file)?;
+    let model = crate::input::read_model(&args.file)?;
     let target = args.accuracy.target();
     let at = args.compliance.as_deref().zip(args.at.as_ref().map(|p| p.0.as_slice()));
     if let Some((name, point)) = at {
@@ -39,7 +39,7 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
         let values = sweep_values(&spec.range);
         return Ok(sweep_answer(&model, (&spec.parameter, &values), at, &target, &args.file)?.0);
     }
-    let findings = super::told_closures(&model, &args.file)?;
+    let findings = crate::findings::open_at_rest(&model, &args.file)?;
     let solved = model.solve(&target, at).map_err(super::solver_error(&args.file))?;
     solved_answer(&model, findings, solved, &target, &args.file)
 }
