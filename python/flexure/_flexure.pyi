@@ -333,8 +333,8 @@ class Mechanism:
     def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None,
               compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
-        stability_limit, findings; a sweep that stops raises with the rows in `result`; spatial:
-        bodies {name: {position, rotation, rpy}} and compliance (n, 6, 6)."""
+        stability_limit, findings; a sweep that stops raises with the rows in `result`; bodies
+        keyed as simulate's (spatial: x, y, z, roll, pitch, yaw, rotation) and compliance (n, 6, 6)."""
     def export(self, to: str = "mjcf", prb: str = "1R", range: Union[None, str, Sequence[float]] = None,
                armature: float = 0.0, name: str = "mechanism") -> Tuple[str, dict]:
         """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, warnings, notes})."""
