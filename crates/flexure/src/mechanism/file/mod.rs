@@ -10,16 +10,14 @@
 //! bodies, joints (and a flexure joint's keys), closures, loads, schedules
 //! and the initial state, and the checks of the assembled mechanism.
 
-use super::joints::{Fixed, Prismatic, Revolute};
-use super::kinematics::frames;
+use super::joints::{Fixed, JointState, Prismatic, Revolute};
 use super::schedule::{Schedule, Waveform};
-use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, ReportOptions, Tendon};
 use crate::error::{Error, Result};
-use crate::flexure::Flexure;
 use crate::flexure::FlexureSpec;
-use crate::kinematics::Pose;
 use crate::section::{Notch, Profile, SectionSpec};
+use crate::space::{Planar, Spatial};
+use dimension::FileDimension;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -27,23 +25,21 @@ use toml::Spanned;
 
 mod bodies;
 mod closures;
+mod dimension;
 mod document;
 mod flexures;
 mod joints;
 mod loads;
 mod schedules;
-mod spatial;
 mod validation;
 
 pub use super::hints::{habits, loads_placed};
 use bodies::{BodyToml, Find};
-use closures::{PinToml, WeldToml};
 use document::Source;
 pub(super) use document::place;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
 use schedules::ScheduleToml;
-pub use spatial::spatial_from_toml;
 
 /// The largest magnitude of a number in a file. The model forms products of
 /// a few of them ($L^3/EI$, $F L^2$, …); 1e30 keeps any product of ten
@@ -67,6 +63,69 @@ pub const MAX_SHAPE: usize = 10_000;
 /// mechanism): a longer one is refused with its length, not parsed.
 pub const MAX_TEXT_BYTES: usize = 64 << 20;
 
+/// The keys only a spatial file takes, each refused in a planar one with
+/// why: (table, `""` for the top level; key; why).
+pub const SPATIAL_ONLY: &[(&str, &str, &str)] = &[
+    ("", "ball", "is for spatial mechanisms (dimension = 3): in the plane a [[pin]] holds what a ball would"),
+    ("joint", "rpy", ROTATION),
+    ("joint", "rpy_deg", ROTATION),
+    ("joint", "axis", AXIS),
+    ("joint", "gj", OUT_OF_PLANE),
+    ("joint", "ei_y", OUT_OF_PLANE),
+    ("joint", "twist", OUT_OF_PLANE),
+    ("joint", "kappa_y", OUT_OF_PLANE),
+    ("joint", "shear_modulus", OUT_OF_PLANE),
+    ("joint", "ei_z", "is for spatial mechanisms (dimension = 3): in the plane the one bending stiffness is `ei`"),
+    ("joint", "kappa_z", "is for spatial mechanisms (dimension = 3): in the plane the rest curvature is `kappa`"),
+    ("joint", "orders", "is for spatial mechanisms (dimension = 3): a planar flexure has one `order`"),
+    (
+        "joint",
+        "subintervals",
+        "is for spatial mechanisms (dimension = 3): a planar flexure integrates by its Gauss rule, whose points `quadrature` sets",
+    ),
+    (
+        "joint",
+        "diameter",
+        "is for spatial mechanisms (dimension = 3): a planar flexure's section is a rectangle of `width` and `thickness`",
+    ),
+    ("body", "ixx", INERTIA),
+    ("body", "iyy", INERTIA),
+    ("body", "izz", INERTIA),
+    ("body", "ixy", INERTIA),
+    ("body", "ixz", INERTIA),
+    ("body", "iyz", INERTIA),
+    ("weld", "a_rpy", WELD_ROTATION),
+    ("weld", "a_rpy_deg", WELD_ROTATION),
+    ("weld", "b_rpy", WELD_ROTATION),
+    ("weld", "b_rpy_deg", WELD_ROTATION),
+    ("pin", "axis", "is for spatial mechanisms (dimension = 3): a planar pin turns about z"),
+    ("pin", "b_axis", "is for spatial mechanisms (dimension = 3): a planar pin turns about z"),
+];
+
+const ROTATION: &str =
+    "is for spatial mechanisms (dimension = 3): a planar origin's angle is its third number, origin = [x, y, phi]";
+const AXIS: &str = "is for spatial mechanisms (dimension = 3): a planar hinge turns about z and a slider moves along its origin's x; turn the origin's phi to aim it";
+const OUT_OF_PLANE: &str =
+    "is for spatial mechanisms (dimension = 3): a planar flexure bends in its plane only, with no twist";
+const INERTIA: &str = "is for spatial mechanisms (dimension = 3): a planar body's inertia is one number, about z";
+const WELD_ROTATION: &str =
+    "is for spatial mechanisms (dimension = 3): a planar weld's frame is [x, y, phi], its angle the third number";
+
+/// The keys only a planar file takes, each refused in a spatial one with why
+/// (as [`SPATIAL_ONLY`]).
+pub const PLANAR_ONLY: &[(&str, &str, &str)] = &[
+    (
+        "joint",
+        "notch",
+        "is for planar mechanisms: a circular notch hinge: the spatial section's thickness is constant, linear or a table, not yet a circle's arc; give `thickness` as a table of points along the notch",
+    ),
+    (
+        "joint",
+        "quadrature",
+        "is for planar mechanisms: the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
+    ),
+];
+
 /// Parses and checks a mechanism file (at most [`MAX_TEXT_BYTES`]).
 ///
 /// # Example
@@ -86,6 +145,39 @@ pub const MAX_TEXT_BYTES: usize = 64 << 20;
 /// assert!(e.unwrap_err().to_string().starts_with("line 6, column 13: joint \"a\": stiffness = 5e-324"));
 /// ```
 pub fn from_toml(text: &str) -> Result<Mechanism> {
+    read::<Planar>(text)
+}
+
+/// Parses and checks a spatial mechanism file (one with `dimension = 3`),
+/// as [`from_toml`] a planar one.
+///
+/// # Example
+/// ```
+/// let m = flexure::mechanism::file::spatial_from_toml(r#"
+/// dimension = 3
+/// gravity = [0.0, 0.0, -9.81]
+/// [[joint]]
+/// name = "ball"
+/// kind = "spherical"
+/// parent = "ground"
+/// child = "bob"
+/// [[body]]
+/// name = "bob"
+/// mass = 0.1
+/// com = [0.0, 0.0, -0.5]
+/// "#).unwrap();
+/// assert_eq!((m.dof(), m.bodies[1].mass), (3, 0.1));
+/// let e = flexure::mechanism::file::spatial_from_toml("dimension = 3\n[[joint]]\nname = \"h\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\naxis = [0.0, 0.0, 0.0]\n");
+/// assert!(e.unwrap_err().to_string().starts_with("line 7, column 8: joint \"h\": axis"));
+/// ```
+pub fn spatial_from_toml(text: &str) -> Result<Mechanism<Spatial>> {
+    read::<Spatial>(text)
+}
+
+/// The mechanism of a file of dimension `D`: the tree of joints and its
+/// bodies, the loads, the closures, the checks of the whole, the schedules
+/// and the initial state.
+fn read<D: FileDimension>(text: &str) -> Result<Mechanism<D>> {
     if text.len() > MAX_TEXT_BYTES {
         return Err(Error::File {
             place: "the whole file".into(),
@@ -96,50 +188,46 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
             ),
         });
     }
-    let src = Source { text };
-    if let (3, at) = spatial::dimension(text)? {
-        return Err(Error::File {
-            place: place(text, at),
-            message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
-                .into(),
-        });
+    match document::dimension(text)? {
+        (d, _) if d == D::DIMENSION => {}
+        (3, at) => {
+            return Err(Error::File {
+                place: place(text, at),
+                message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
+                    .into(),
+            });
+        }
+        _ => {
+            return Err(Error::File {
+                place: place(text, 0),
+                message: "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `Model::from_toml` for either"
+                    .into(),
+            });
+        }
     }
-    let file = document::parse(text)?;
+    let src = Source { text };
+    let file = document::parse::<D>(text)?;
     let mut bodies = bodies::from_joints(&src, &file.joint)?;
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
     let find: &Find = &|name| bodies::find(&src, &names, name);
     joints::check_names(&src, &file.joint)?;
     let parents: Vec<usize> = file.joint.iter().map(|j| find(&j.parent)).collect::<Result<_>>()?;
     let order = joints::tree_order(&src, &file.joint, &parents)?;
-    let tree = joints::tree(&src, &file.joint, &parents, &order)?;
+    let (joints, stiffness_places) = joints::tree::<D>(&src, &file.joint, &parents, &order)?;
     bodies::describe(&src, find, &mut bodies, &file.body)?;
     let (tendons, via_places) = loads::tendons(&src, find, &file.tendon)?;
     let forces = loads::forces(&src, find, &file.force)?;
-    let closures = closures::closures(&src, find, &file.weld, &file.pin)?;
-    let gravity = loads::gravity(&src, &file.gravity)?;
-    let mut m = Mechanism {
-        bodies,
-        joints: tree.joints,
-        tendons,
-        forces,
-        closures,
-        gravity: gravity.into(),
-        parent_joint: tree.parent_joint,
-        dof: tree.dof,
-        closure_places: closures::places(text, &file.weld, &file.pin),
-        closure_preloads: closures::preloads(&file.weld, &file.pin),
-        schedules: Vec::new(),
-        initial: Vec::new(),
-        initial_velocity: Vec::new(),
-    };
-    validation::check_stiffness_ratio(&src, &m, &tree.stiffness_places)?;
-    validation::check_tendon_directions(&src, &m, &via_places)?;
-    m.schedules = schedules::schedules(
-        &src,
-        &file.schedule,
-        |load| Parameter::parse(&m, load),
-        |p| matches!(p, Parameter::Tension(_)),
-    )?;
+    let gravity = D::vector(src.array("", "gravity", &file.gravity)?);
+    let mut m = Mechanism::new(bodies, joints, tendons, forces, Vec::new(), gravity)
+        .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
+    let (rest, states) = D::rest(&m);
+    let (closures, written) = closures::closures(&src, find, &rest, (&file.weld, &file.pin, &file.ball))?;
+    let (places, preloads) = closures::places(text, &written);
+    m.closures = closures;
+    m = m.with_closure_places(places, preloads);
+    validation::check_stiffness_ratio(&src, &m, &states, &stiffness_places)?;
+    validation::check_tendon_directions(&src, &m, &rest, &via_places)?;
+    m.schedules = schedules::schedules(&src, &m, &file.schedule)?;
     m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
@@ -156,5 +244,5 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
 /// assert!(dimension("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
 /// ```
 pub fn dimension(text: &str) -> Result<u8> {
-    spatial::dimension(text).map(|d| d.0)
+    document::dimension(text).map(|d| d.0)
 }
