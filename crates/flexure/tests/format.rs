@@ -97,14 +97,12 @@ fn parser() -> String {
 /// The file's tables, by the name they have in TOML (`""` for the top
 /// level), each with the keys the parser accepts in it in a file of one
 /// dimension: all its structs' keys but those `refused` (table, key, why).
-fn parser_keys(refused: &[(&str, &str, &str)]) -> Vec<(String, BTreeSet<String>)> {
+fn parser_keys(refused: &[(&str, &[&str], &str)]) -> Vec<(String, BTreeSet<String>)> {
     let mut tables = keys_of(parser_tables());
     for (table, keys) in &mut tables {
-        keys.retain(|k| !refused.iter().any(|(t, r, _)| t == table && r == k));
+        keys.retain(|k| !refused.iter().any(|(t, r, _)| t == table && r.contains(&k.as_str())));
     }
-    tables.retain(|(table, keys)| {
-        table.is_empty() || !keys.is_empty() && !refused.iter().any(|(t, r, _)| t.is_empty() && r == table)
-    });
+    tables.retain(|(table, _)| !refused.iter().any(|(t, r, _)| t.is_empty() && r.contains(&table.as_str())));
     tables
 }
 

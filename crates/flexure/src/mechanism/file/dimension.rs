@@ -47,8 +47,10 @@ pub(super) type Via<C> = (Spanned<String>, C);
 pub(super) trait FileDimension: Dimension {
     /// Its `dimension`.
     const DIMENSION: u8;
-    /// The keys of the other dimension's file it refuses: (table, key, why).
-    const REFUSED: &'static [(&'static str, &'static str, &'static str)];
+    /// The keys of the other dimension's file it refuses: (table, keys, why).
+    const REFUSED: &'static [(&'static str, &'static [&'static str], &'static str)];
+    /// The other dimension's mechanisms, as its refusals name them.
+    const OTHER: &'static str;
     /// A point's or a vector's numbers.
     type Coords: Numbers + DeserializeOwned;
     /// A moment's numbers.
@@ -88,7 +90,8 @@ pub(super) trait FileDimension: Dimension {
 
 impl FileDimension for Planar {
     const DIMENSION: u8 = 2;
-    const REFUSED: &'static [(&'static str, &'static str, &'static str)] = SPATIAL_ONLY;
+    const REFUSED: &'static [(&'static str, &'static [&'static str], &'static str)] = SPATIAL_ONLY;
+    const OTHER: &'static str = "spatial mechanisms (dimension = 3)";
     type Coords = [f64; 2];
     type Moment = f64;
     type Via = (Spanned<String>, f64, f64);
@@ -155,7 +158,8 @@ impl FileDimension for Planar {
 
 impl FileDimension for Spatial {
     const DIMENSION: u8 = 3;
-    const REFUSED: &'static [(&'static str, &'static str, &'static str)] = PLANAR_ONLY;
+    const REFUSED: &'static [(&'static str, &'static [&'static str], &'static str)] = PLANAR_ONLY;
+    const OTHER: &'static str = "planar mechanisms";
     type Coords = [f64; 3];
     type Moment = [f64; 3];
     type Via = (Spanned<String>, f64, f64, f64);

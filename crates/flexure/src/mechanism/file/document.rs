@@ -52,14 +52,15 @@ pub(super) fn parse<D: FileDimension>(text: &str) -> Result<FileToml<D>> {
 /// The first key (in the file's order) of a table that only the other
 /// dimension's file takes ([`FileDimension::REFUSED`]), refused with why.
 fn refused<D: FileDimension>(text: &str, doc: &DeTable) -> Result<()> {
-    let mut found: Option<(usize, &str, &str)> = None;
+    let mut found: Option<(usize, String, &str)> = None;
     let mut check = |table: &str, keys: &DeTable| {
         for key in keys.keys() {
-            let hit = D::REFUSED.iter().find(|(t, k, _)| *t == table && *k == key.get_ref().as_ref());
-            if let Some((_, k, why)) = hit
-                && found.is_none_or(|f| key.span().start < f.0)
+            let k: &str = key.get_ref();
+            let hit = D::REFUSED.iter().find(|(t, ks, _)| *t == table && ks.contains(&k));
+            if let Some((_, _, why)) = hit
+                && found.as_ref().is_none_or(|f| key.span().start < f.0)
             {
-                found = Some((key.span().start, k, why));
+                found = Some((key.span().start, k.to_string(), why));
             }
         }
     };
@@ -74,7 +75,9 @@ fn refused<D: FileDimension>(text: &str, doc: &DeTable) -> Result<()> {
         }
     }
     match found {
-        Some((at, key, why)) => Err(Error::File { place: place(text, at), message: format!("`{key}` {why}") }),
+        Some((at, key, why)) => {
+            Err(Error::File { place: place(text, at), message: format!("`{key}` is for {}: {why}", D::OTHER) })
+        }
         None => Ok(()),
     }
 }
@@ -106,7 +109,7 @@ fn toml_error<D: FileDimension>(text: &str, e: toml::de::Error) -> Error {
 fn unknown_field<D: FileDimension>(rest: &str) -> Option<String> {
     let (key, expected) = rest.split_once("`, expected ")?;
     let expected: Vec<&str> =
-        expected.split('`').skip(1).step_by(2).filter(|k| !D::REFUSED.iter().any(|(_, r, _)| r == k)).collect();
+        expected.split('`').skip(1).step_by(2).filter(|k| !D::REFUSED.iter().any(|(_, r, _)| r.contains(k))).collect();
     let list = match expected.as_slice() {
         [] => return Some(format!("unknown field `{key}`, there are no fields")),
         [one] => format!("`{one}`"),

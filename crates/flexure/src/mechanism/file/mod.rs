@@ -63,66 +63,46 @@ pub const MAX_SHAPE: usize = 10_000;
 /// mechanism): a longer one is refused with its length, not parsed.
 pub const MAX_TEXT_BYTES: usize = 64 << 20;
 
-/// The keys only a spatial file takes, each refused in a planar one with
-/// why: (table, `""` for the top level; key; why).
-pub const SPATIAL_ONLY: &[(&str, &str, &str)] = &[
-    ("", "ball", "is for spatial mechanisms (dimension = 3): in the plane a [[pin]] holds what a ball would"),
-    ("joint", "rpy", ROTATION),
-    ("joint", "rpy_deg", ROTATION),
-    ("joint", "axis", AXIS),
-    ("joint", "gj", OUT_OF_PLANE),
-    ("joint", "ei_y", OUT_OF_PLANE),
-    ("joint", "twist", OUT_OF_PLANE),
-    ("joint", "kappa_y", OUT_OF_PLANE),
-    ("joint", "shear_modulus", OUT_OF_PLANE),
-    ("joint", "ei_z", "is for spatial mechanisms (dimension = 3): in the plane the one bending stiffness is `ei`"),
-    ("joint", "kappa_z", "is for spatial mechanisms (dimension = 3): in the plane the rest curvature is `kappa`"),
-    ("joint", "orders", "is for spatial mechanisms (dimension = 3): a planar flexure has one `order`"),
+/// The keys only a spatial file takes, which a planar one refuses, naming
+/// the key and saying why: (table, `""` for the top level; keys; why).
+pub const SPATIAL_ONLY: &[(&str, &[&str], &str)] = &[
+    ("", &["ball"], "in the plane a [[pin]] holds what a ball would"),
+    ("joint", &["rpy", "rpy_deg"], "a planar origin's angle is its third number, origin = [x, y, phi]"),
     (
         "joint",
-        "subintervals",
-        "is for spatial mechanisms (dimension = 3): a planar flexure integrates by its Gauss rule, whose points `quadrature` sets",
+        &["axis"],
+        "a planar hinge turns about z and a slider moves along its origin's x; turn the origin's phi to aim it",
     ),
     (
         "joint",
-        "diameter",
-        "is for spatial mechanisms (dimension = 3): a planar flexure's section is a rectangle of `width` and `thickness`",
+        &["gj", "ei_y", "twist", "kappa_y", "shear_modulus"],
+        "a planar flexure bends in its plane only, with no twist",
     ),
-    ("body", "ixx", INERTIA),
-    ("body", "iyy", INERTIA),
-    ("body", "izz", INERTIA),
-    ("body", "ixy", INERTIA),
-    ("body", "ixz", INERTIA),
-    ("body", "iyz", INERTIA),
-    ("weld", "a_rpy", WELD_ROTATION),
-    ("weld", "a_rpy_deg", WELD_ROTATION),
-    ("weld", "b_rpy", WELD_ROTATION),
-    ("weld", "b_rpy_deg", WELD_ROTATION),
-    ("pin", "axis", "is for spatial mechanisms (dimension = 3): a planar pin turns about z"),
-    ("pin", "b_axis", "is for spatial mechanisms (dimension = 3): a planar pin turns about z"),
+    ("joint", &["ei_z"], "in the plane the one bending stiffness is `ei`"),
+    ("joint", &["kappa_z"], "in the plane the rest curvature is `kappa`"),
+    ("joint", &["orders"], "a planar flexure has one `order`"),
+    ("joint", &["subintervals"], "a planar flexure integrates by its Gauss rule, whose points `quadrature` sets"),
+    ("joint", &["diameter"], "a planar flexure's section is a rectangle of `width` and `thickness`"),
+    ("body", &["ixx", "iyy", "izz", "ixy", "ixz", "iyz"], "a planar body's inertia is one number, about z"),
+    (
+        "weld",
+        &["a_rpy", "a_rpy_deg", "b_rpy", "b_rpy_deg"],
+        "a planar weld's frame is [x, y, phi], its angle the third number",
+    ),
+    ("pin", &["axis", "b_axis"], "a planar pin turns about z"),
 ];
 
-const ROTATION: &str =
-    "is for spatial mechanisms (dimension = 3): a planar origin's angle is its third number, origin = [x, y, phi]";
-const AXIS: &str = "is for spatial mechanisms (dimension = 3): a planar hinge turns about z and a slider moves along its origin's x; turn the origin's phi to aim it";
-const OUT_OF_PLANE: &str =
-    "is for spatial mechanisms (dimension = 3): a planar flexure bends in its plane only, with no twist";
-const INERTIA: &str = "is for spatial mechanisms (dimension = 3): a planar body's inertia is one number, about z";
-const WELD_ROTATION: &str =
-    "is for spatial mechanisms (dimension = 3): a planar weld's frame is [x, y, phi], its angle the third number";
-
-/// The keys only a planar file takes, each refused in a spatial one with why
-/// (as [`SPATIAL_ONLY`]).
-pub const PLANAR_ONLY: &[(&str, &str, &str)] = &[
+/// The keys only a planar file takes, which a spatial one refuses (as [`SPATIAL_ONLY`]).
+pub const PLANAR_ONLY: &[(&str, &[&str], &str)] = &[
     (
         "joint",
-        "notch",
-        "is for planar mechanisms: a circular notch hinge: the spatial section's thickness is constant, linear or a table, not yet a circle's arc; give `thickness` as a table of points along the notch",
+        &["notch"],
+        "a circular notch hinge: the spatial section's thickness is constant, linear or a table, not yet a circle's arc; give `thickness` as a table of points along the notch",
     ),
     (
         "joint",
-        "quadrature",
-        "is for planar mechanisms: the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
+        &["quadrature"],
+        "the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
     ),
 ];
 
