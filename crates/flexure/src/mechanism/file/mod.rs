@@ -4,11 +4,18 @@
 //! and connection; every error names the key (or the entry) and its place,
 //! line and column. Numbers must be finite and either zero or between
 //! [`MIN_MAGNITUDE`] and [`MAX_MAGNITUDE`] in magnitude; keys that do not
-//! apply to a joint's kind are refused rather than ignored.
+//! apply to a joint's kind are refused rather than ignored, and so, with
+//! why, are the keys only the other dimension takes ([`SPATIAL_ONLY`],
+//! [`PLANAR_ONLY`]).
 //!
-//! One part of the document per module: the document and its placed errors,
-//! bodies, joints (and a flexure joint's keys), closures, loads, schedules
-//! and the initial state, and the checks of the assembled mechanism.
+//! One reader for both dimensions: `dimension` (2, the default, or 3)
+//! picks the space, and what differs between the plane and space (a
+//! point's numbers, a frame's keys, the joint kinds' tables, a body's
+//! inertia, a pin's axis) is one small trait, implemented for both side by
+//! side in `dimension.rs`. One part of the document per module: the
+//! document and its placed errors, bodies, joints (and a flexure joint's
+//! keys), closures, loads, schedules and the initial state, and the checks
+//! of the assembled mechanism.
 
 use super::joints::{Fixed, JointState, Prismatic, Revolute};
 use super::schedule::{Schedule, Waveform};
