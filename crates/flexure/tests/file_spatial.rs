@@ -688,7 +688,7 @@ fn bad_values_name_their_key_line_and_column() {
         ),
         (
             format!("{HEAD}kind = \"spherical\"\n[initial]\nj = [0.1, 0.2]\n"),
-            "line 8, column 5: [initial] j: must be 3 number(s), one per coordinate of the joint",
+            "line 8, column 5: initial: joint \"j\": the joint has 3 coordinates and 2 were given",
         ),
         // The top level.
         ("dimension = \"3\"\n".into(), "line 1, column 13: dimension = \"3\": must be 2"),
@@ -728,4 +728,78 @@ fn each_reader_takes_its_dimension() {
     );
     let e = spatial_from_toml(planar).unwrap_err().to_string();
     assert!(e.contains("a planar mechanism") && e.contains("Model::from_toml"), "{e}");
+}
+
+/// Reference: the format page's two key tables. One reader reads both
+/// dimensions, so a key only the other dimension takes is refused with
+/// why, placed at the key; an unknown key's list names only the keys of
+/// the file's own dimension.
+#[test]
+fn a_key_of_the_other_dimension_is_refused_with_why() {
+    let planar = |extra: &str| {
+        format!("[[joint]]\nname = \"j\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\n{extra}")
+    };
+    let cases = [
+        (
+            planar("rpy = [0.0, 0.0, 1.0]\n"),
+            "line 6, column 1: `rpy` is for spatial mechanisms (dimension = 3): a planar origin's angle is its third number",
+        ),
+        (
+            planar("axis = [0.0, 0.0, 1.0]\n"),
+            "line 6, column 1: `axis` is for spatial mechanisms (dimension = 3): a planar hinge turns about z",
+        ),
+        (
+            planar("[[body]]\nname = \"a\"\nizz = 1.0\n"),
+            "line 8, column 1: `izz` is for spatial mechanisms (dimension = 3): a planar body's inertia is one number",
+        ),
+        (
+            planar("[[ball]]\na = \"a\"\nb = \"ground\"\n"),
+            "line 6, column 3: `ball` is for spatial mechanisms (dimension = 3): in the plane a [[pin]] holds",
+        ),
+        (
+            planar("[[weld]]\na = \"a\"\nb = \"ground\"\nb_rpy_deg = [0.0, 0.0, 9.0]\n"),
+            "line 9, column 1: `b_rpy_deg` is for spatial mechanisms",
+        ),
+    ];
+    for (text, expected) in &cases {
+        let e = from_toml(text).unwrap_err().to_string();
+        assert!(e.starts_with(expected), "{e:?} should start with {expected:?} for\n{text}");
+    }
+    // Two refused keys: the first in the file is named.
+    let e = from_toml(&planar("axis = [0.0, 0.0, 1.0]\nrpy = [0.0, 0.0, 1.0]\n")).unwrap_err().to_string();
+    assert!(e.starts_with("line 6, column 1: `axis`"), "{e}");
+    // An unknown key lists the keys of its own dimension only.
+    let e = from_toml(&planar("colour = 1\n")).unwrap_err().to_string();
+    assert!(e.starts_with("line 6, column 1: unknown field `colour`, expected one of `name`, `kind`"), "{e}");
+    assert!(e.contains("`notch`") && !e.contains("`rpy`") && !e.contains("`axis`"), "{e}");
+    let e = spatial_from_toml(&format!("{HEAD}kind = \"fixed\"\ncolour = 1\n")).unwrap_err().to_string();
+    assert!(e.contains("`rpy`") && e.contains("`axis`") && !e.contains("`notch`"), "{e}");
+    let e = spatial_from_toml(&format!("{HEAD}kind = \"fixed\"\n[[ball]]\na = \"a\"\nb = \"ground\"\nc = 1\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("unknown field `c`, expected one of `a`, `a_at`, `b`, `b_at`, `preload`"), "{e}");
+}
+
+/// Reference: the checks of the whole mechanism, read once for both
+/// dimensions (formerly the planar reader's alone): a tendon whose
+/// consecutive via points coincide at rest, on two bodies, has no
+/// direction there; joints whose stiffnesses differ by more than 1e12
+/// cannot be weighed together; an initial coordinate beyond 1e6 is refused.
+#[test]
+fn the_whole_mechanisms_checks_hold_in_space() {
+    let e = spatial_from_toml(&format!(
+        "{HEAD}kind = \"revolute\"\norigin = [0.1, 0.0, 0.0]\n[[tendon]]\nname = \"t\"\ntension = 1.0\n\
+         path = [[\"ground\", 0.0, 0.0, 0.0], [\"ground\", 0.1, 0.0, 0.0], [\"a\", 0.0, 0.0, 0.0]]\n"
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("line 11, column 63: tendon \"t\": via points 2 and 3 coincide at rest"), "{e}");
+    let e = spatial_from_toml(&format!(
+        "{HEAD}kind = \"revolute\"\nstiffness = 1e6\n[[joint]]\nname = \"s\"\nkind = \"spherical\"\nparent = \"a\"\nchild = \"b\"\nstiffness = 1e-7\n"
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("line 13, column 13: joint \"s\": stiffness 1.000e-7 N·m is 1.0e13 times softer"), "{e}");
+    let e = spatial_from_toml(&format!("{HEAD}kind = \"revolute\"\n[initial]\nj = 1e7\n")).unwrap_err().to_string();
+    assert!(e.starts_with("line 8, column 5: initial: joint \"j\": coordinates[0] = 1e7: must be at most 1e6"), "{e}");
 }

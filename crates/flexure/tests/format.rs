@@ -2,11 +2,13 @@
 //!
 //! The keys the parser accepts are read from its source,
 //! `src/mechanism/file/`: the fields of its `serde` structs, all of which
-//! deny unknown fields. The page's key tables must name exactly those keys,
-//! table by table; its examples must parse and solve; and what it says of
-//! frames, signs and defaults is checked here against closed forms.
+//! deny unknown fields, less the keys only the other dimension takes
+//! (`SPATIAL_ONLY`, `PLANAR_ONLY`). The page's key tables must name exactly
+//! those keys, table by table and dimension by dimension; its examples must
+//! parse and solve; and what it says of frames, signs and defaults is
+//! checked here against closed forms.
 
-use flexure::mechanism::file::from_toml;
+use flexure::mechanism::file::{PLANAR_ONLY, SPATIAL_ONLY, from_toml};
 use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::statics::{Settings, solve};
 use flexure::mechanism::sweep::Parameter;
@@ -15,9 +17,10 @@ use std::collections::BTreeSet;
 use std::f64::consts::FRAC_PI_2;
 
 /// The parser's files, one per part of the document (checked to be all of them).
-const PARSER_FILES: [(&str, &str); 9] = [
+const PARSER_FILES: [(&str, &str); 10] = [
     ("bodies.rs", include_str!("../src/mechanism/file/bodies.rs")),
     ("closures.rs", include_str!("../src/mechanism/file/closures.rs")),
+    ("dimension.rs", include_str!("../src/mechanism/file/dimension.rs")),
     ("document.rs", include_str!("../src/mechanism/file/document.rs")),
     ("flexures.rs", include_str!("../src/mechanism/file/flexures.rs")),
     ("joints.rs", include_str!("../src/mechanism/file/joints.rs")),
@@ -39,29 +42,19 @@ struct Table {
 /// flatten, …) or let unknown keys through: this reading would miss them.
 fn parser_tables() -> Vec<Table> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mechanism/file");
-    let mut files: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n != "spatial")
-        .collect();
+    let mut files: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     files.sort();
     let listed: Vec<&str> = PARSER_FILES.iter().map(|(name, _)| *name).collect();
     assert_eq!(files, listed, "tests/format.rs must read every file of the parser");
     tables_in(&parser())
 }
 
-/// The spatial parser's files (`src/mechanism/file/spatial/`).
-const SPATIAL_FILES: [(&str, &str); 3] = [
-    ("joints.rs", include_str!("../src/mechanism/file/spatial/joints.rs")),
-    ("mod.rs", include_str!("../src/mechanism/file/spatial/mod.rs")),
-    ("parts.rs", include_str!("../src/mechanism/file/spatial/parts.rs")),
-];
-
 /// The `Deserialize` structs of a parser's source (see [`parser_tables`]).
 fn tables_in(parser: &str) -> Vec<Table> {
     for line in parser.lines().map(str::trim).filter(|l| l.starts_with("#[serde(")) {
         assert!(
-            line == "#[serde(deny_unknown_fields)]" || line == "#[serde(default)]",
+            line == "#[serde(deny_unknown_fields)]" || line == "#[serde(default)]" || line == "#[serde(bound = \"\")]",
             "the parser uses `{line}`: teach tests/format.rs what it does to the accepted keys"
         );
     }
@@ -74,12 +67,15 @@ fn tables_in(parser: &str) -> Vec<Table> {
             "line {}: a Deserialize struct must deny unknown keys",
             i + 2
         );
-        let name = lines[i + 2]
+        // The struct, after its attributes: `struct Name {` or `struct Name<D: …> {`.
+        let at = (i + 2..lines.len()).find(|&k| !lines[k].starts_with("#[")).unwrap();
+        let name = lines[at]
             .strip_prefix("struct ")
             .and_then(|s| s.strip_suffix(" {"))
-            .unwrap_or_else(|| panic!("line {}: expected `struct Name {{`, got {:?}", i + 3, lines[i + 2]));
+            .map(|s| s.split('<').next().unwrap())
+            .unwrap_or_else(|| panic!("line {}: expected `struct Name {{`, got {:?}", at + 1, lines[at]));
         let mut fields = Vec::new();
-        for field in lines[i + 3..].iter().take_while(|l| **l != "}") {
+        for field in lines[at + 1..].iter().take_while(|l| **l != "}") {
             if field.is_empty() || field.starts_with("//") || field.starts_with("#[") {
                 continue;
             }
@@ -99,9 +95,15 @@ fn parser() -> String {
 }
 
 /// The file's tables, by the name they have in TOML (`""` for the top
-/// level), each with the keys the parser accepts in it.
-fn parser_keys() -> Vec<(String, BTreeSet<String>)> {
-    keys_of(parser_tables())
+/// level), each with the keys the parser accepts in it in a file of one
+/// dimension: all its structs' keys but those `refused` (table, key, why).
+fn parser_keys(refused: &[(&str, &[&str], &str)]) -> Vec<(String, BTreeSet<String>)> {
+    let mut tables = keys_of(parser_tables());
+    for (table, keys) in &mut tables {
+        keys.retain(|k| !refused.iter().any(|(t, r, _)| t == table && r.contains(&k.as_str())));
+    }
+    tables.retain(|(table, _)| !refused.iter().any(|(t, r, _)| t.is_empty() && r.contains(&table.as_str())));
+    tables
 }
 
 /// [`parser_keys`] of a parser's structs.
@@ -111,7 +113,7 @@ fn keys_of(tables: Vec<Table>) -> Vec<(String, BTreeSet<String>)> {
     let mut out = vec![(String::new(), BTreeSet::new())];
     let mut reached = BTreeSet::from([top.name.clone()]);
     for (key, ty) in &top.fields {
-        match ty.strip_prefix("Vec<").and_then(|t| t.strip_suffix('>')) {
+        match ty.strip_prefix("Vec<").and_then(|t| t.strip_suffix('>')).map(|t| t.split('<').next().unwrap()) {
             // An array of tables, `[[key]]`, read by its own struct.
             Some(inner) => {
                 let table = find(inner);
@@ -178,7 +180,7 @@ fn section_of(table: &str) -> String {
 /// key a section names is accepted: the page and the parser agree.
 #[test]
 fn every_parser_key_is_documented() {
-    let tables = parser_keys();
+    let tables = parser_keys(SPATIAL_ONLY);
     assert!(tables.len() >= 7, "expected the top level and six tables, read {}", tables.len());
     for (table, accepted) in &tables {
         let documented = documented_keys(&section_of(table));
@@ -197,7 +199,10 @@ fn every_parser_key_is_documented() {
     }
     // The joint kinds: the string literals the parser matches `kind` on.
     let parser = parser();
-    let line = parser.lines().find(|l| l.contains("matches!(kind,")).expect("the parser's list of kinds");
+    let line = parser
+        .lines()
+        .find(|l| l.contains("checked_kind(") && !l.contains("spherical") && l.contains("&["))
+        .expect("the planar parser's list of kinds");
     let kinds: Vec<&str> = line.split('"').skip(1).step_by(2).collect();
     assert_eq!(kinds, ["flexure", "revolute", "prismatic", "fixed"]);
     let joint = section_of("joint");
@@ -353,19 +358,7 @@ fn spatial_sections() -> Vec<(String, String)> {
 /// accepted by one of the parser's tables that section documents.
 #[test]
 fn every_spatial_parser_key_is_documented() {
-    // A spatial file's [[schedule]] is the planar parser's table.
-    let source =
-        SPATIAL_FILES.iter().map(|(_, t)| *t).chain([PARSER_FILES[7].1]).collect::<String>().replace("pub(super) ", "");
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mechanism/file/spatial");
-    let mut files: Vec<String> =
-        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    files.sort();
-    assert_eq!(
-        files,
-        SPATIAL_FILES.map(|(n, _)| n.to_string()),
-        "tests/format.rs must read every file of the spatial parser"
-    );
-    let tables = keys_of(tables_in(&source));
+    let tables = parser_keys(PLANAR_ONLY);
     assert_eq!(tables.len(), 9, "the top level and eight tables");
     let subsections = spatial_sections();
     let section = |table: &str| -> &(String, String) {
@@ -404,7 +397,11 @@ fn every_spatial_parser_key_is_documented() {
             );
         }
     }
-    let line = source.lines().find(|l| l.contains("matches!(kind,")).expect("the spatial parser's list of kinds");
+    let parser = parser();
+    let line = parser
+        .lines()
+        .find(|l| l.contains("checked_kind(") && l.contains("spherical"))
+        .expect("the spatial parser's list of kinds");
     let kinds: Vec<&str> = line.split('"').skip(1).step_by(2).collect();
     assert_eq!(kinds, ["flexure", "revolute", "prismatic", "spherical", "fixed"]);
     for kind in kinds {

@@ -375,3 +375,19 @@ fn section_forms_read_as_the_library_builds_them() {
     assert_eq!((r.yield_strength, r.shape), (Some(2.5e8), Some(7)));
     assert!(from_toml(&rectangle("width = 0.0\nthickness = 0.004\n")).is_err());
 }
+
+/// Reference: statics, $M = F\thinspace y$ about the pin. A planar force
+/// may leave out `at`, as a spatial one may: it then acts at the body
+/// frame's origin, the same as `at = [0.0, 0.0]`.
+#[test]
+fn a_force_without_at_acts_at_the_body_origin() {
+    let arm = "[[joint]]\nname = \"a\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 1.0\n\
+               [[joint]]\nname = \"c\"\nkind = \"fixed\"\nparent = \"b\"\nchild = \"d\"\norigin = [0.1, 0.0, 0.0]\n\
+               [[force]]\nbody = \"d\"\nforce = [0.0, 0.01]\n";
+    let without = from_toml(arm).unwrap();
+    let with = from_toml(&format!("{arm}at = [0.0, 0.0]\n")).unwrap();
+    assert_eq!(without, with);
+    let s = solve(&without, &Settings::default()).unwrap();
+    // Small rotation: k θ = F L cos θ, so θ ≈ 1e-3 to 1e-6.
+    assert!((s.q[0] - 1e-3).abs() < 1e-6, "{}", s.q[0]);
+}

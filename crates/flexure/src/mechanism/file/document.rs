@@ -1,31 +1,37 @@
-//! The TOML document: its top-level tables, read with their spans, and the
-//! checks of numbers that place every error at a line and column.
+//! The TOML document: its top-level tables, read with their spans, the
+//! keys only the other dimension takes, and the checks of numbers that
+//! place every error at a line and column.
 
-use super::{BTreeMap, Deserialize};
-use super::{BodyToml, ForceToml, PinToml, ScheduleToml, TendonToml, WeldToml};
-use super::{Error, JointToml, MAX_MAGNITUDE, MIN_MAGNITUDE, Range, Result, Spanned};
+use super::closures::{BallToml, PinToml, WeldToml};
+use super::dimension::FileDimension;
+use super::{BTreeMap, Deserialize, Error, Range, Result, Spanned};
+use super::{BodyToml, ForceToml, JointToml, MAX_MAGNITUDE, MIN_MAGNITUDE, ScheduleToml, TendonToml};
+use toml::de::{DeTable, DeValue};
 
 pub(super) type Span = Range<usize>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct FileToml {
-    /// 2 (checked by `spatial::dimension` before the tables are read).
+#[serde(bound = "")]
+pub(super) struct FileToml<D: FileDimension> {
+    /// 2 or 3 (checked by `dimension` before the tables are read).
     #[allow(dead_code)]
     pub(super) dimension: Option<Spanned<toml::Value>>,
     #[serde(default)]
     pub(super) joint: Vec<JointToml>,
     #[serde(default)]
-    pub(super) body: Vec<BodyToml>,
+    pub(super) body: Vec<BodyToml<D>>,
     #[serde(default)]
-    pub(super) tendon: Vec<TendonToml>,
+    pub(super) tendon: Vec<TendonToml<D>>,
     #[serde(default)]
-    pub(super) force: Vec<ForceToml>,
+    pub(super) force: Vec<ForceToml<D>>,
     #[serde(default)]
     pub(super) weld: Vec<WeldToml>,
     #[serde(default)]
-    pub(super) pin: Vec<PinToml>,
-    pub(super) gravity: Option<Spanned<[f64; 2]>>,
+    pub(super) pin: Vec<PinToml<D>>,
+    #[serde(default)]
+    pub(super) ball: Vec<BallToml<D>>,
+    pub(super) gravity: Option<Spanned<D::Coords>>,
     #[serde(default)]
     pub(super) schedule: Vec<ScheduleToml>,
     // `[initial]` and `[initial_velocity]`: joint name → coordinates (a
@@ -34,13 +40,117 @@ pub(super) struct FileToml {
     pub(super) initial_velocity: Option<BTreeMap<String, Spanned<toml::Value>>>,
 }
 
-/// The document's tables, or the TOML error placed where it is.
-pub(super) fn parse(text: &str) -> Result<FileToml> {
-    toml::from_str(text).map_err(|e| {
-        // Errors without a span (rare) concern the file as a whole.
-        let at = place(text, e.span().map_or(0, |s| s.start));
-        Error::File { place: at, message: e.message().trim().to_string() }
-    })
+/// The document's tables, in the dimension `D`, or the first error placed
+/// where it is: a TOML or serde error, or a key that only the other
+/// dimension's file takes (with why).
+pub(super) fn parse<D: FileDimension>(text: &str) -> Result<FileToml<D>> {
+    let doc = DeTable::parse(text).map_err(|e| toml_error::<D>(text, e))?;
+    refused::<D>(text, doc.get_ref())?;
+    FileToml::deserialize(toml::de::Deserializer::from(doc)).map_err(|e| toml_error::<D>(text, e))
+}
+
+/// The first key (in the file's order) of a table that only the other
+/// dimension's file takes ([`FileDimension::REFUSED`]), refused with why.
+fn refused<D: FileDimension>(text: &str, doc: &DeTable) -> Result<()> {
+    let mut found: Option<(usize, String, &str)> = None;
+    let mut check = |table: &str, keys: &DeTable| {
+        for key in keys.keys() {
+            let k: &str = key.get_ref();
+            let hit = D::REFUSED.iter().find(|(t, ks, _)| *t == table && ks.contains(&k));
+            if let Some((_, _, why)) = hit
+                && found.as_ref().is_none_or(|f| key.span().start < f.0)
+            {
+                found = Some((key.span().start, k.to_string(), why));
+            }
+        }
+    };
+    check("", doc);
+    for (name, value) in doc {
+        if let DeValue::Array(tables) = value.get_ref() {
+            for t in tables.iter() {
+                if let DeValue::Table(keys) = t.get_ref() {
+                    check(name.get_ref(), keys);
+                }
+            }
+        }
+    }
+    match found {
+        Some((at, key, why)) => {
+            Err(Error::File { place: place(text, at), message: format!("`{key}` is for {}: {why}", D::OTHER) })
+        }
+        None => Ok(()),
+    }
+}
+
+/// A TOML or serde error of `text`, placed. A message that names no key
+/// (a wrong type, an array's length) is given the key its line starts
+/// with (`at: invalid length 2, expected an array of length 3`); an
+/// unknown key's list of the keys expected leaves out those only the
+/// other dimension takes.
+fn toml_error<D: FileDimension>(text: &str, e: toml::de::Error) -> Error {
+    let at = e.span().map_or(0, |s| s.start).min(text.len());
+    let message = e.message().trim().to_string();
+    let line = &text[text[..at].rfind('\n').map_or(0, |n| n + 1)..at];
+    let key = line.split_once('=').map(|(k, _)| k.trim()).filter(|k| {
+        !k.is_empty()
+            && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !["unknown field", "missing field", "duplicate"].iter().any(|p| message.starts_with(p))
+    });
+    let message = match (key, message.strip_prefix("unknown field `")) {
+        (_, Some(rest)) => unknown_field::<D>(rest).unwrap_or(message),
+        (Some(k), None) => format!("{k}: {message}"),
+        (None, None) => message,
+    };
+    Error::File { place: place(text, at), message }
+}
+
+/// serde's "unknown field `k`, expected …" (given from after its first
+/// backtick) with only the keys of `D`'s file, as serde words it.
+fn unknown_field<D: FileDimension>(rest: &str) -> Option<String> {
+    let (key, expected) = rest.split_once("`, expected ")?;
+    let expected: Vec<&str> =
+        expected.split('`').skip(1).step_by(2).filter(|k| !D::REFUSED.iter().any(|(_, r, _)| r.contains(k))).collect();
+    let list = match expected.as_slice() {
+        [] => return Some(format!("unknown field `{key}`, there are no fields")),
+        [one] => format!("`{one}`"),
+        [a, b] => format!("`{a}` or `{b}`"),
+        many => format!("one of {}", many.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")),
+    };
+    Some(format!("unknown field `{key}`, expected {list}"))
+}
+
+/// The file's `dimension` and the offset of its value (0 when absent): 2
+/// when absent; an error naming it unless 2 or 3.
+pub(super) fn dimension(text: &str) -> Result<(u8, usize)> {
+    // Every top-level value with its place: only `dimension` is read here.
+    let top: BTreeMap<String, Spanned<toml::Value>> = toml::from_str(text).map_err(|e| Error::File {
+        place: place(text, e.span().map_or(0, |s| s.start)),
+        message: e.message().trim().to_string(),
+    })?;
+    match top.get("dimension") {
+        None => Ok((2, 0)),
+        Some(d) => match d.get_ref() {
+            toml::Value::Integer(2) => Ok((2, d.span().start)),
+            toml::Value::Integer(3) => Ok((3, d.span().start)),
+            v => Err(Error::File {
+                place: place(text, d.span().start),
+                message: format!(
+                    "dimension = {}: must be 2 (a planar mechanism, the default) or 3 (a spatial one)",
+                    written(v)
+                ),
+            }),
+        },
+    }
+}
+
+/// A value as the file writes it: `3`, `2.5`, `"six"`, or its type.
+pub(super) fn written(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(x) => format!("{x:?}"),
+        toml::Value::String(s) => format!("{s:?}"),
+        other => format!("a {}", other.type_str()),
+    }
 }
 
 /// "line L, column C" of a byte offset.
@@ -68,6 +178,27 @@ pub(super) enum Sign {
     Positive,
     /// Zero or greater.
     NotNegative,
+}
+
+/// The numbers of a value the file gives: one (a moment in the plane) or
+/// several (a point, a vector).
+pub(super) trait Numbers: Copy + Default {
+    fn numbers(&self) -> &[f64];
+}
+
+impl Numbers for f64 {
+    fn numbers(&self) -> &[f64] {
+        std::slice::from_ref(self)
+    }
+}
+
+impl<const N: usize> Numbers for [f64; N]
+where
+    [f64; N]: Default,
+{
+    fn numbers(&self) -> &[f64] {
+        self
+    }
 }
 
 /// Checks against the text they came from.
@@ -113,18 +244,14 @@ impl Source<'_> {
         Ok(*value.get_ref())
     }
 
-    pub(super) fn array<const N: usize>(
-        &self,
-        owner: &str,
-        key: &str,
-        value: &Option<Spanned<[f64; N]>>,
-    ) -> Result<[f64; N]> {
+    /// The numbers of `key` (zero when absent), each checked.
+    pub(super) fn array<T: Numbers>(&self, owner: &str, key: &str, value: &Option<Spanned<T>>) -> Result<T> {
         match value {
             Some(v) => {
-                self.numbers(owner, key, &v.span(), v.get_ref(), Sign::Any)?;
+                self.numbers(owner, key, &v.span(), v.get_ref().numbers(), Sign::Any)?;
                 Ok(*v.get_ref())
             }
-            None => Ok([0.0; N]),
+            None => Ok(T::default()),
         }
     }
 

@@ -1,11 +1,18 @@
 //! A flexure joint's keys: its section (`ei`, or `modulus`, `width`,
-//! `thickness` with `poisson`, `notch`, `density`), `order`, and what
-//! `flexure solve` reports of it.
+//! `thickness` with `poisson`, `notch`, `density`; in space also `gj`,
+//! `ei_y`, `ei_z`, `diameter`, `shear_modulus`), `order`, and what
+//! `flexure solve` reports of it: the planar flexure's and the spatial
+//! flexure's, each read into its spec and built by the library.
 
-use super::document::{Sign, Source, Span};
+use super::dimension::Kind;
+use super::document::{Sign, Source, Span, written};
+use super::joints::span_of;
 use super::{
-    Error, Flexure, FlexureSpec, JointToml, MAX_SHAPE, Notch, Profile, ReportOptions, Result, SectionSpec, Spanned,
+    Error, FlexureSpec, JointKind, JointToml, MAX_SHAPE, Notch, Profile, ReportOptions, Result, SectionSpec, Spanned,
 };
+use crate::mechanism::spatial::SpatialJointKind;
+use crate::space::{Planar, Spatial};
+use crate::spatial::SpatialSpec;
 
 impl Source<'_> {
     /// A quantity along a flexure, `key`: a number, `[root, tip]` (a linear
@@ -86,23 +93,17 @@ fn flexure_order(src: &Source, owner: &str, j: &JointToml) -> Result<(usize, boo
             &o.span(),
             format!(
                 "{owner}order = {}: must be a whole number from 1 to {} or \"auto\" (raised until an analysis's error estimate meets its target)",
-                match v {
-                    toml::Value::String(s) => format!("{s:?}"),
-                    toml::Value::Integer(i) => i.to_string(),
-                    toml::Value::Float(x) => format!("{x:?}"),
-                    other => format!("a {}", other.type_str()),
-                },
+                written(v),
                 crate::flexure::MAX_ORDER
             ),
         ),
     }
 }
 
-/// A flexure joint: its keys read into a [`FlexureSpec`] and built by the
-/// library, which names the parameter of an error; the error is placed at
-/// that parameter's key. Also the place of the key that sets the stiffness,
-/// and whether `order = "auto"`.
-pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexure, Span, bool, ReportOptions)> {
+/// A planar flexure joint: its keys read into a [`FlexureSpec`] and built
+/// by the library, which names the parameter of an error; the error is
+/// placed at that parameter's key. Its stiffness is given at `ei` or `modulus`.
+pub(super) fn planar_flexure(src: &Source, owner: &str, j: &JointToml) -> Result<Kind<Planar>> {
     let length =
         j.length.as_ref().ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
     let length_value = src.number(owner, "length", length, Sign::Positive)?;
@@ -118,26 +119,18 @@ pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexu
         quadrature: j.quadrature.as_ref().map(|q| *q.get_ref()),
         kappa: j.kappa.as_ref().map(|k| k.get_ref().clone()),
     };
+    // The library names the parameter of an error: placed at its key (the
+    // section's `notch.radius` at `notch`), or where the stiffness is given.
     let f = spec.build().map_err(|x| {
-        let given = |key: Option<Span>| key.unwrap_or(ei_span.clone());
-        let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
         let span = match &x {
-            Error::InvalidParameter { name: "length", .. } => length.span(),
-            Error::InvalidParameter { name: "order", .. } => j.order.as_ref().map_or(j.name.span(), Spanned::span),
-            Error::InvalidParameter { name: "quadrature", .. } => given(j.quadrature.as_ref().map(Spanned::span)),
-            Error::InvalidParameter { name: "kappa", .. } => given(j.kappa.as_ref().map(Spanned::span)),
-            Error::InvalidParameter { name: "poisson", .. } => given(j.poisson.as_ref().map(Spanned::span)),
-            Error::InvalidParameter { name: "width", .. } => given(span_of(&j.width)),
-            Error::InvalidParameter { name: "thickness", .. } => given(span_of(&j.thickness)),
-            Error::InvalidParameter { name, .. } if name.starts_with("notch") => given(span_of(&j.notch)),
-            Error::InvalidParameter { name: "density", .. } => given(j.density.as_ref().map(Spanned::span)),
-            Error::InvalidParameter { name: "mass_per_length", .. } => given(span_of(&j.mass_per_length)),
-            _ => ei_span.clone(),
+            Error::InvalidParameter { name: "order", .. } => Some(j.span("order").unwrap_or(j.name.span())),
+            Error::InvalidParameter { name, .. } => j.span(name.split('.').next().unwrap_or(name)),
+            _ => None,
         };
-        src.placed(owner, &span, x)
+        src.placed(owner, &span.unwrap_or(ei_span.clone()), x)
     })?;
     let report = report_keys(src, owner, (&j.yield_strength, &j.shape), f.section().modulus().is_some())?;
-    Ok((f, ei_span, auto_order, report))
+    Ok(Kind { kind: JointKind::Flexure(Box::new(f)), stiffness_place: ei_span, auto_order, report })
 }
 
 /// A flexure joint's section keys, each checked where it is written: `ei`,
@@ -145,13 +138,12 @@ pub(super) fn flexure(src: &Source, owner: &str, j: &JointToml) -> Result<(Flexu
 /// `density`); `mass_per_length` with either. Also the place of the key
 /// that sets the stiffness (`ei` or `modulus`).
 fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Span)> {
-    let span_of = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
     let rectangle_keys = [
         ("width", span_of(&j.width)),
         ("thickness", span_of(&j.thickness)),
-        ("poisson", j.poisson.as_ref().map(Spanned::span)),
+        ("poisson", span_of(&j.poisson)),
         ("notch", span_of(&j.notch)),
-        ("density", j.density.as_ref().map(Spanned::span)),
+        ("density", span_of(&j.density)),
     ];
     let (mut spec, span) = match (&j.ei, &j.modulus) {
         (Some(ei), None) => {
@@ -204,7 +196,7 @@ fn section(src: &Source, owner: &str, j: &JointToml) -> Result<(SectionSpec, Spa
 /// with a thickness, for a stress) and `shape` (2 to [`MAX_SHAPE`]), in a
 /// file of either dimension; `stressed`: whether its section has the
 /// geometry and material that give a stress.
-pub(super) fn report_keys(
+fn report_keys(
     src: &Source,
     owner: &str,
     (yield_strength, shape): (&Option<Spanned<f64>>, &Option<Spanned<usize>>),
@@ -233,4 +225,93 @@ pub(super) fn report_keys(
         k => k.as_ref().map(|k| *k.get_ref()),
     };
     Ok(ReportOptions { yield_strength, shape })
+}
+
+/// A spatial flexure joint: its keys read into a [`SpatialSpec`] (with the
+/// planar spellings `ei` = `ei_z` and `kappa` = `kappa_z`) and built by
+/// the library; an error is placed at the key it names, as the file writes
+/// it. Its stiffness is given at the first of `ei`, `ei_z`, `ei_y`, `gj`
+/// and `modulus`.
+pub(super) fn spatial_flexure(src: &Source, owner: &str, j: &JointToml) -> Result<Kind<Spatial>> {
+    let length =
+        j.length.as_ref().ok_or_else(|| src.error(&j.name.span(), format!("{owner}a flexure needs a length")))?;
+    let length = src.number(owner, "length", length, Sign::Positive)?;
+    let profile = |key: &'static str, v: &Option<Spanned<toml::Value>>| {
+        v.as_ref().map(|v| src.profile(owner, key, v)).transpose()
+    };
+    if let (Some(_), Some(z)) = (&j.ei, &j.ei_z) {
+        return src.fail(&z.span(), format!("{owner}give ei (the planar spelling) or ei_z, not both"));
+    }
+    if let (Some(_), Some(z)) = (&j.kappa, &j.kappa_z) {
+        return src.fail(&z.span(), format!("{owner}give kappa (the planar spelling) or kappa_z, not both"));
+    }
+    let (orders, auto_order) = match (&j.order, &j.orders) {
+        (Some(_), Some(o)) => return src.fail(&o.span(), format!("{owner}give order (all three) or orders, not both")),
+        (None, Some(o)) => (*o.get_ref(), false),
+        _ => flexure_order(src, owner, j).map(|(n, auto)| ([n; 3], auto))?,
+    };
+    let rest = |key: &str, v: &Option<Spanned<Vec<f64>>>| -> Result<Option<Vec<f64>>> {
+        let Some(v) = v else { return Ok(None) };
+        src.numbers(owner, key, &v.span(), v.get_ref(), Sign::Any)?;
+        Ok(Some(v.get_ref().clone()))
+    };
+    let number =
+        |key: &str, v: &Option<Spanned<f64>>, sign| v.as_ref().map(|v| src.number(owner, key, v, sign)).transpose();
+    let spec = SpatialSpec {
+        length,
+        gj: profile("gj", &j.gj)?,
+        ei_y: profile("ei_y", &j.ei_y)?,
+        ei_z: if j.ei.is_some() { profile("ei", &j.ei)? } else { profile("ei_z", &j.ei_z)? },
+        modulus: number("modulus", &j.modulus, Sign::Positive)?,
+        width: profile("width", &j.width)?,
+        thickness: profile("thickness", &j.thickness)?,
+        diameter: profile("diameter", &j.diameter)?,
+        poisson: number("poisson", &j.poisson, Sign::Any)?,
+        shear_modulus: number("shear_modulus", &j.shear_modulus, Sign::Positive)?,
+        orders,
+        twist: rest("twist", &j.twist)?,
+        kappa_y: rest("kappa_y", &j.kappa_y)?,
+        kappa_z: if j.kappa.is_some() { rest("kappa", &j.kappa)? } else { rest("kappa_z", &j.kappa_z)? },
+    };
+    // The library names `ei_z`, `kappa_z` and `order` (the three orders);
+    // the error names the key as the file writes it, and its value so.
+    let placed = |e: Error| match e {
+        Error::InvalidParameter { name, value, reason } => {
+            let (name, value) = match name {
+                "ei_z" if j.ei.is_some() => ("ei", value),
+                "kappa_z" if j.kappa.is_some() => ("kappa", value),
+                "order" | "orders" => match (&j.order, &j.orders) {
+                    (Some(n), _) => ("order", written(n.get_ref())),
+                    (None, Some(o)) => ("orders", format!("{:?}", o.get_ref())),
+                    (None, None) => (name, value),
+                },
+                _ => (name, value),
+            };
+            let span = j.span(name).unwrap_or(j.name.span());
+            src.placed(owner, &span, Error::InvalidParameter { name, value, reason })
+        }
+        e => src.placed(owner, &j.name.span(), e),
+    };
+    let mut f = spec.build().map_err(placed)?;
+    if let Some(m) = &j.subintervals {
+        f = f.with_subintervals(*m.get_ref()).map_err(|e| src.placed(owner, &m.span(), e))?;
+    }
+    match (&j.density, &j.mass_per_length) {
+        (Some(_), Some(mu)) => {
+            return src.fail(&mu.span(), format!("{owner}give density or mass_per_length, not both"));
+        }
+        (Some(rho), None) => {
+            let value = src.number(owner, "density", rho, Sign::Positive)?;
+            f = f.with_density(value).map_err(|e| src.placed(owner, &rho.span(), e))?;
+        }
+        (None, Some(mu)) => {
+            let value = src.profile(owner, "mass_per_length", mu)?;
+            f = f.with_mass_per_length(value).map_err(|e| src.placed(owner, &mu.span(), e))?;
+        }
+        (None, None) => {}
+    }
+    let report = report_keys(src, owner, (&j.yield_strength, &j.shape), f.section().has_geometry())?;
+    let stiffness_place =
+        ["ei", "ei_z", "ei_y", "gj", "modulus"].iter().find_map(|k| j.span(k)).unwrap_or(j.name.span());
+    Ok(Kind { kind: SpatialJointKind::Flexure(Box::new(f)), stiffness_place, auto_order, report })
 }

@@ -1,39 +1,46 @@
 //! Loads: tendons along via points, forces and moments on bodies, and gravity.
 
 use super::bodies::Find;
-use super::document::{Sign, Source, Span};
+use super::dimension::FileDimension;
+use super::document::{Numbers, Sign, Source, Span};
 use super::{Deserialize, PointLoad, Result, Spanned, Tendon};
-use crate::space::Wrench;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct TendonToml {
+#[serde(bound = "")]
+pub(super) struct TendonToml<D: FileDimension> {
     pub(super) name: Spanned<String>,
     pub(super) tension: Spanned<f64>,
-    pub(super) path: Spanned<Vec<Spanned<ViaToml>>>,
+    // Via points: `[body, x, y]`, in space `[body, x, y, z]`.
+    pub(super) path: Spanned<Vec<Spanned<D::Via>>>,
 }
-
-/// A via point: `[body, x, y]`.
-pub(super) type ViaToml = (Spanned<String>, f64, f64);
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ForceToml {
+#[serde(bound = "")]
+pub(super) struct ForceToml<D: FileDimension> {
     pub(super) name: Option<Spanned<String>>,
     pub(super) body: Spanned<String>,
-    pub(super) at: Spanned<[f64; 2]>,
-    pub(super) force: Option<Spanned<[f64; 2]>>,
-    pub(super) moment: Option<Spanned<f64>>,
+    pub(super) at: Option<Spanned<D::Coords>>,
+    pub(super) force: Option<Spanned<D::Coords>>,
+    pub(super) moment: Option<Spanned<D::Moment>>,
 }
 
+/// Each tendon's via points' places in the file.
+pub(super) type ViaPlaces = Vec<Vec<Span>>;
+
 /// The `[[tendon]]` tables, and the place of each via point (for the check
-/// that consecutive ones do not coincide).
-pub(super) fn tendons(src: &Source, find: &Find, tables: &[TendonToml]) -> Result<(Vec<Tendon>, Vec<Vec<Span>>)> {
-    let mut tendons = Vec::new();
-    let mut via_places: Vec<Vec<Span>> = Vec::new();
+/// that consecutive ones do not coincide at rest).
+pub(super) fn tendons<D: FileDimension>(
+    src: &Source,
+    find: &Find,
+    tables: &[TendonToml<D>],
+) -> Result<(Vec<Tendon<D>>, ViaPlaces)> {
+    let mut tendons: Vec<Tendon<D>> = Vec::new();
+    let mut via_places: ViaPlaces = Vec::new();
     for t in tables {
         let owner = format!("tendon {:?}: ", t.name.get_ref());
-        if tendons.iter().any(|u: &Tendon| &u.name == t.name.get_ref()) {
+        if tendons.iter().any(|u| &u.name == t.name.get_ref()) {
             return src.fail(&t.name.span(), format!("duplicate tendon name {:?}", t.name.get_ref()));
         }
         let tension = src.number(&owner, "tension", &t.tension, Sign::NotNegative)?;
@@ -43,9 +50,9 @@ pub(super) fn tendons(src: &Source, find: &Find, tables: &[TendonToml]) -> Resul
         let mut path = Vec::new();
         let mut places = Vec::new();
         for (k, via) in t.path.get_ref().iter().enumerate() {
-            let (body, x, y) = via.get_ref();
-            src.numbers(&owner, &format!("path[{k}]"), &via.span(), &[*x, *y], Sign::Any)?;
-            path.push((find(body)?, nalgebra::Point2::new(*x, *y)));
+            let (body, at) = D::via(via.get_ref());
+            src.numbers(&owner, &format!("path[{k}]"), &via.span(), at.numbers(), Sign::Any)?;
+            path.push((find(&body)?, D::point(at)));
             places.push(via.span());
         }
         tendons.push(Tendon { name: t.name.get_ref().clone(), tension, path });
@@ -54,30 +61,25 @@ pub(super) fn tendons(src: &Source, find: &Find, tables: &[TendonToml]) -> Resul
     Ok((tendons, via_places))
 }
 
-/// The `[[force]]` tables: a force and a moment at a point of a body, named
-/// (by their index when unnamed) once each.
-pub(super) fn forces(src: &Source, find: &Find, tables: &[ForceToml]) -> Result<Vec<PointLoad>> {
-    let mut forces = Vec::new();
+/// The `[[force]]` tables: a force and a moment (in the ground frame) at a
+/// point of a body, named (by their index when unnamed) once each.
+pub(super) fn forces<D: FileDimension>(
+    src: &Source,
+    find: &Find,
+    tables: &[ForceToml<D>],
+) -> Result<Vec<PointLoad<D>>> {
+    let mut forces: Vec<PointLoad<D>> = Vec::new();
     for (i, f) in tables.iter().enumerate() {
         let name = f.name.as_ref().map_or(i.to_string(), |n| n.get_ref().clone());
         let owner = format!("force {name:?}: ");
-        if forces.iter().any(|g: &PointLoad| g.name == name) {
+        if forces.iter().any(|g| g.name == name) {
             let span = f.name.as_ref().map_or(f.body.span(), |n| n.span());
             return src.fail(&span, format!("duplicate force name {name:?}"));
         }
-        let at = src.array(&owner, "at", &Some(f.at.clone()))?;
+        let at = src.array(&owner, "at", &f.at)?;
         let force = src.array(&owner, "force", &f.force)?;
-        let moment = match &f.moment {
-            Some(v) => src.number(&owner, "moment", v, Sign::Any)?,
-            None => 0.0,
-        };
-        let wrench = Wrench { moment, fx: force[0], fy: force[1] };
-        forces.push(PointLoad { name, body: find(&f.body)?, at: at.into(), wrench });
+        let moment = src.array(&owner, "moment", &f.moment)?;
+        forces.push(PointLoad { name, body: find(&f.body)?, at: D::point(at), wrench: D::wrench(force, moment) });
     }
     Ok(forces)
-}
-
-/// `gravity = [gx, gy]` (m/s²; none when absent).
-pub(super) fn gravity(src: &Source, value: &Option<Spanned<[f64; 2]>>) -> Result<[f64; 2]> {
-    src.array("", "gravity", value)
 }

@@ -4,22 +4,27 @@
 //! and connection; every error names the key (or the entry) and its place,
 //! line and column. Numbers must be finite and either zero or between
 //! [`MIN_MAGNITUDE`] and [`MAX_MAGNITUDE`] in magnitude; keys that do not
-//! apply to a joint's kind are refused rather than ignored.
+//! apply to a joint's kind are refused rather than ignored, and so, with
+//! why, are the keys only the other dimension takes ([`SPATIAL_ONLY`],
+//! [`PLANAR_ONLY`]).
 //!
-//! One part of the document per module: the document and its placed errors,
-//! bodies, joints (and a flexure joint's keys), closures, loads, schedules
-//! and the initial state, and the checks of the assembled mechanism.
+//! One reader for both dimensions: `dimension` (2, the default, or 3)
+//! picks the space, and what differs between the plane and space (a
+//! point's numbers, a frame's keys, the joint kinds' tables, a body's
+//! inertia, a pin's axis) is one small trait, implemented for both side by
+//! side in `dimension.rs`. One part of the document per module: the
+//! document and its placed errors, bodies, joints (and a flexure joint's
+//! keys), closures, loads, schedules and the initial state, and the checks
+//! of the assembled mechanism.
 
-use super::joints::{Fixed, Prismatic, Revolute};
-use super::kinematics::frames;
+use super::joints::{Fixed, JointState, Prismatic, Revolute};
 use super::schedule::{Schedule, Waveform};
-use super::sweep::Parameter;
 use super::{Body, Closure, JointKind, JointSpec, Mechanism, PointLoad, ReportOptions, Tendon};
 use crate::error::{Error, Result};
-use crate::flexure::Flexure;
 use crate::flexure::FlexureSpec;
-use crate::kinematics::Pose;
 use crate::section::{Notch, Profile, SectionSpec};
+use crate::space::{Planar, Spatial};
+use dimension::FileDimension;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -27,23 +32,21 @@ use toml::Spanned;
 
 mod bodies;
 mod closures;
+mod dimension;
 mod document;
 mod flexures;
 mod joints;
 mod loads;
 mod schedules;
-mod spatial;
 mod validation;
 
 pub use super::hints::{habits, loads_placed};
 use bodies::{BodyToml, Find};
-use closures::{PinToml, WeldToml};
 use document::Source;
 pub(super) use document::place;
 use joints::JointToml;
 use loads::{ForceToml, TendonToml};
 use schedules::ScheduleToml;
-pub use spatial::spatial_from_toml;
 
 /// The largest magnitude of a number in a file. The model forms products of
 /// a few of them ($L^3/EI$, $F L^2$, …); 1e30 keeps any product of ten
@@ -67,6 +70,49 @@ pub const MAX_SHAPE: usize = 10_000;
 /// mechanism): a longer one is refused with its length, not parsed.
 pub const MAX_TEXT_BYTES: usize = 64 << 20;
 
+/// The keys only a spatial file takes, which a planar one refuses, naming
+/// the key and saying why: (table, `""` for the top level; keys; why).
+pub const SPATIAL_ONLY: &[(&str, &[&str], &str)] = &[
+    ("", &["ball"], "in the plane a [[pin]] holds what a ball would"),
+    ("joint", &["rpy", "rpy_deg"], "a planar origin's angle is its third number, origin = [x, y, phi]"),
+    (
+        "joint",
+        &["axis"],
+        "a planar hinge turns about z and a slider moves along its origin's x; turn the origin's phi to aim it",
+    ),
+    (
+        "joint",
+        &["gj", "ei_y", "twist", "kappa_y", "shear_modulus"],
+        "a planar flexure bends in its plane only, with no twist",
+    ),
+    ("joint", &["ei_z"], "in the plane the one bending stiffness is `ei`"),
+    ("joint", &["kappa_z"], "in the plane the rest curvature is `kappa`"),
+    ("joint", &["orders"], "a planar flexure has one `order`"),
+    ("joint", &["subintervals"], "a planar flexure integrates by its Gauss rule, whose points `quadrature` sets"),
+    ("joint", &["diameter"], "a planar flexure's section is a rectangle of `width` and `thickness`"),
+    ("body", &["ixx", "iyy", "izz", "ixy", "ixz", "iyz"], "a planar body's inertia is one number, about z"),
+    (
+        "weld",
+        &["a_rpy", "a_rpy_deg", "b_rpy", "b_rpy_deg"],
+        "a planar weld's frame is [x, y, phi], its angle the third number",
+    ),
+    ("pin", &["axis", "b_axis"], "a planar pin turns about z"),
+];
+
+/// The keys only a planar file takes, which a spatial one refuses (as [`SPATIAL_ONLY`]).
+pub const PLANAR_ONLY: &[(&str, &[&str], &str)] = &[
+    (
+        "joint",
+        &["notch"],
+        "a circular notch hinge: the spatial section's thickness is constant, linear or a table, not yet a circle's arc; give `thickness` as a table of points along the notch",
+    ),
+    (
+        "joint",
+        &["quadrature"],
+        "the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
+    ),
+];
+
 /// Parses and checks a mechanism file (at most [`MAX_TEXT_BYTES`]).
 ///
 /// # Example
@@ -86,6 +132,39 @@ pub const MAX_TEXT_BYTES: usize = 64 << 20;
 /// assert!(e.unwrap_err().to_string().starts_with("line 6, column 13: joint \"a\": stiffness = 5e-324"));
 /// ```
 pub fn from_toml(text: &str) -> Result<Mechanism> {
+    read::<Planar>(text)
+}
+
+/// Parses and checks a spatial mechanism file (one with `dimension = 3`),
+/// as [`from_toml`] a planar one.
+///
+/// # Example
+/// ```
+/// let m = flexure::mechanism::file::spatial_from_toml(r#"
+/// dimension = 3
+/// gravity = [0.0, 0.0, -9.81]
+/// [[joint]]
+/// name = "ball"
+/// kind = "spherical"
+/// parent = "ground"
+/// child = "bob"
+/// [[body]]
+/// name = "bob"
+/// mass = 0.1
+/// com = [0.0, 0.0, -0.5]
+/// "#).unwrap();
+/// assert_eq!((m.dof(), m.bodies[1].mass), (3, 0.1));
+/// let e = flexure::mechanism::file::spatial_from_toml("dimension = 3\n[[joint]]\nname = \"h\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\naxis = [0.0, 0.0, 0.0]\n");
+/// assert!(e.unwrap_err().to_string().starts_with("line 7, column 8: joint \"h\": axis"));
+/// ```
+pub fn spatial_from_toml(text: &str) -> Result<Mechanism<Spatial>> {
+    read::<Spatial>(text)
+}
+
+/// The mechanism of a file of dimension `D`: the tree of joints and its
+/// bodies, the loads, the closures, the checks of the whole, the schedules
+/// and the initial state.
+fn read<D: FileDimension>(text: &str) -> Result<Mechanism<D>> {
     if text.len() > MAX_TEXT_BYTES {
         return Err(Error::File {
             place: "the whole file".into(),
@@ -96,50 +175,46 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
             ),
         });
     }
-    let src = Source { text };
-    if let (3, at) = spatial::dimension(text)? {
-        return Err(Error::File {
-            place: place(text, at),
-            message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
-                .into(),
-        });
+    match document::dimension(text)? {
+        (d, _) if d == D::DIMENSION => {}
+        (3, at) => {
+            return Err(Error::File {
+                place: place(text, at),
+                message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
+                    .into(),
+            });
+        }
+        _ => {
+            return Err(Error::File {
+                place: place(text, 0),
+                message: "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `Model::from_toml` for either"
+                    .into(),
+            });
+        }
     }
-    let file = document::parse(text)?;
+    let src = Source { text };
+    let file = document::parse::<D>(text)?;
     let mut bodies = bodies::from_joints(&src, &file.joint)?;
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
     let find: &Find = &|name| bodies::find(&src, &names, name);
     joints::check_names(&src, &file.joint)?;
     let parents: Vec<usize> = file.joint.iter().map(|j| find(&j.parent)).collect::<Result<_>>()?;
     let order = joints::tree_order(&src, &file.joint, &parents)?;
-    let tree = joints::tree(&src, &file.joint, &parents, &order)?;
+    let (joints, stiffness_places) = joints::tree::<D>(&src, &file.joint, &parents, &order)?;
     bodies::describe(&src, find, &mut bodies, &file.body)?;
     let (tendons, via_places) = loads::tendons(&src, find, &file.tendon)?;
     let forces = loads::forces(&src, find, &file.force)?;
-    let closures = closures::closures(&src, find, &file.weld, &file.pin)?;
-    let gravity = loads::gravity(&src, &file.gravity)?;
-    let mut m = Mechanism {
-        bodies,
-        joints: tree.joints,
-        tendons,
-        forces,
-        closures,
-        gravity: gravity.into(),
-        parent_joint: tree.parent_joint,
-        dof: tree.dof,
-        closure_places: closures::places(text, &file.weld, &file.pin),
-        closure_preloads: closures::preloads(&file.weld, &file.pin),
-        schedules: Vec::new(),
-        initial: Vec::new(),
-        initial_velocity: Vec::new(),
-    };
-    validation::check_stiffness_ratio(&src, &m, &tree.stiffness_places)?;
-    validation::check_tendon_directions(&src, &m, &via_places)?;
-    m.schedules = schedules::schedules(
-        &src,
-        &file.schedule,
-        |load| Parameter::parse(&m, load),
-        |p| matches!(p, Parameter::Tension(_)),
-    )?;
+    let gravity = D::vector(src.array("", "gravity", &file.gravity)?);
+    let mut m = Mechanism::new(bodies, joints, tendons, forces, Vec::new(), gravity)
+        .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
+    let (rest, states) = D::rest(&m);
+    let (closures, written) = closures::closures(&src, find, &rest, (&file.weld, &file.pin, &file.ball))?;
+    let (places, preloads) = closures::places(text, &written);
+    m.closures = closures;
+    m = m.with_closure_places(places, preloads);
+    validation::check_stiffness_ratio(&src, &m, &states, &stiffness_places)?;
+    validation::check_tendon_directions(&src, &m, &rest, &via_places)?;
+    m.schedules = schedules::schedules(&src, &m, &file.schedule)?;
     m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
@@ -156,5 +231,5 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
 /// assert!(dimension("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
 /// ```
 pub fn dimension(text: &str) -> Result<u8> {
-    spatial::dimension(text).map(|d| d.0)
+    document::dimension(text).map(|d| d.0)
 }

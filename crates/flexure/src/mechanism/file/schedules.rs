@@ -1,5 +1,6 @@
 //! Schedules of loads over time, and the initial state of a simulation.
 
+use super::dimension::FileDimension;
 use super::document::{Sign, Source, number};
 use super::{BTreeMap, Deserialize, Error, Mechanism, Result, Schedule, Spanned, Waveform};
 
@@ -24,19 +25,16 @@ pub(super) struct HarmonicToml {
 /// sweeps do) at most once, with either points `[t, value]` of finite
 /// numbers whose times do not decrease, at most two at one time (a step),
 /// or a `harmonic` (amplitude, frequency in Hz, phase in rad, offset).
-/// `parse` reads a load's name (a planar or a spatial mechanism's
-/// parameter), `is_tension` says whether it cannot be negative.
-pub(super) fn schedules<P: PartialEq>(
+pub(super) fn schedules<D: FileDimension>(
     src: &Source,
+    m: &Mechanism<D>,
     tables: &[ScheduleToml],
-    parse: impl Fn(&str) -> Result<P>,
-    is_tension: impl Fn(&P) -> bool,
-) -> Result<Vec<Schedule<P>>> {
-    let mut out: Vec<Schedule<P>> = Vec::new();
+) -> Result<Vec<Schedule<D::Parameter>>> {
+    let mut out: Vec<Schedule<D::Parameter>> = Vec::new();
     for s in tables {
         let load = s.load.get_ref();
         let owner = format!("schedule {load:?}: ");
-        let parameter = parse(load).map_err(|e| match e {
+        let (parameter, tension) = D::parameter(m, load).map_err(|e| match e {
             Error::InvalidParameter { reason, .. } => {
                 src.error(&s.load.span(), format!("{owner}load {load:?} {reason}"))
             }
@@ -45,7 +43,6 @@ pub(super) fn schedules<P: PartialEq>(
         if out.iter().any(|o| o.parameter == parameter) {
             return src.fail(&s.load.span(), format!("{owner}load {load:?} is scheduled twice"));
         }
-        let tension = is_tension(&parameter);
         let waveform = match (&s.points, &s.harmonic) {
             (Some(points), None) => Waveform::Points(schedule_points(src, &owner, points, tension)?),
             (None, Some(h)) => schedule_harmonic(src, &owner, h, tension)?,
@@ -138,9 +135,9 @@ pub(super) fn schedule_harmonic(
 /// `[initial]` or `[initial_velocity]` (`key`): joint name → its
 /// coordinates, a number for a joint of one coordinate or an array of as
 /// many numbers as the joint has coordinates.
-pub(super) fn initial_state(
+pub(super) fn initial_state<D: FileDimension>(
     src: &Source,
-    m: &Mechanism,
+    m: &Mechanism<D>,
     key: &str,
     table: Option<&BTreeMap<String, Spanned<toml::Value>>>,
 ) -> Result<Vec<(usize, Vec<f64>)>> {
@@ -160,7 +157,7 @@ pub(super) fn initial_state(
             toml::Value::Array(items) => items.iter().map(number).collect::<Option<Vec<f64>>>(),
             v => number(v).map(|x| vec![x]),
         };
-        let dof = m.joints[j].kind.joint().dof();
+        let dof = D::joint(&m.joints[j].kind).dof();
         let Some(values) = values else {
             return src.fail(&span, format!("{owner}must be a number or an array of {dof} numbers"));
         };

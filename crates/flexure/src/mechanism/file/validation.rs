@@ -1,16 +1,21 @@
 //! Checks of the assembled mechanism that no single table shows.
 
-use super::document::{Source, Span};
-use super::{MAX_STIFFNESS_RATIO, Mechanism, Result, frames};
+use super::dimension::FileDimension;
+use super::document::{Numbers, Source, Span};
+use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
 
-/// The joints' diagonal stiffnesses span at most [`MAX_STIFFNESS_RATIO`].
-pub(super) fn check_stiffness_ratio(src: &Source, m: &Mechanism, places: &[Span]) -> Result<()> {
-    let rest = frames(m, &m.rest());
+/// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
+pub(super) fn check_stiffness_ratio<D: FileDimension>(
+    src: &Source,
+    m: &Mechanism<D>,
+    joints: &[JointState<D>],
+    places: &[Span],
+) -> Result<()> {
     let length = m.size();
     // (joint, stiffness in N·m)
     let mut all: Vec<(usize, f64)> = Vec::new();
-    for (i, (j, s)) in m.joints.iter().zip(&rest.joints).enumerate() {
-        let unit = if j.kind.joint().is_translation() { length * length } else { 1.0 };
+    for (i, (j, s)) in m.joints.iter().zip(joints).enumerate() {
+        let unit = if D::joint(&j.kind).is_translation() { length * length } else { 1.0 };
         all.extend((0..s.gradient.len()).map(|k| (i, s.stiffness[(k, k)] * unit)).filter(|&(_, k)| k > 0.0));
     }
     let (Some(stiff), Some(soft)) = (
@@ -35,15 +40,21 @@ pub(super) fn check_stiffness_ratio(src: &Source, m: &Mechanism, places: &[Span]
     Ok(())
 }
 
-/// No two consecutive via points of a tendon coincide at rest: the tendon
-/// would have no direction there.
-pub(super) fn check_tendon_directions(src: &Source, m: &Mechanism, places: &[Vec<Span>]) -> Result<()> {
-    let rest = frames(m, &m.rest());
+/// No two consecutive via points of a tendon coincide at rest (`bodies`:
+/// the bodies' frames there): the tendon would have no direction there.
+pub(super) fn check_tendon_directions<D: FileDimension>(
+    src: &Source,
+    m: &Mechanism<D>,
+    bodies: &[D::Pose],
+    places: &[Vec<Span>],
+) -> Result<()> {
     for (t, spans) in m.tendons.iter().zip(places) {
-        let w: Vec<[f64; 2]> = t.path.iter().map(|(b, r)| rest.bodies[*b].act_components([r.x, r.y])).collect();
+        let w: Vec<D::Coords> = t.path.iter().map(|(b, r)| D::coords(&D::act(&bodies[*b], r))).collect();
         for (k, pair) in w.windows(2).enumerate() {
-            let size = pair.iter().flatten().map(|v| v.abs()).sum::<f64>();
-            if (pair[1][0] - pair[0][0]).hypot(pair[1][1] - pair[0][1]) <= 1e-12 * size {
+            let (p, q) = (pair[0].numbers(), pair[1].numbers());
+            let size = p.iter().chain(q).map(|v| v.abs()).sum::<f64>();
+            let gap = p.iter().zip(q).map(|(a, b)| (b - a) * (b - a)).sum::<f64>().sqrt();
+            if gap <= 1e-12 * size {
                 return src.fail(
                     &spans[k + 1],
                     format!(
