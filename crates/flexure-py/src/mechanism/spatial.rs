@@ -13,8 +13,8 @@ use crate::warnings::warn;
 use flexure::Error;
 
 use flexure::estimate::Accuracy;
+use flexure::mechanism::findings::{crossings_along, open_closures};
 use flexure::mechanism::spatial::SpatialMechanism;
-use flexure::mechanism::spatial::findings::{crossings_along, open_closures};
 use flexure::mechanism::spatial::statics::{SpatialSolution, compliance};
 use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
 use flexure::report::{BodyPose, Reported};
@@ -119,7 +119,7 @@ pub fn sweep<'py>(
         };
         let mut estimated = Vec::with_capacity(out.rows.len());
         for (v, s) in &out.rows {
-            let errors = match flexure::estimate::spatial_mechanism::flexure_errors(m, s, target) {
+            let errors = match flexure::estimate::spatial::flexure_errors(m, s, target) {
                 Err(e @ Error::Interrupted { .. }) => return Err(e),
                 other => other.ok(),
             };
