@@ -78,7 +78,7 @@ pub fn open_answers(open: &[OpenClosure], file: &Path) -> Vec<Value> {
 /// The closures of a spatial mechanism open at rest, told and listed as
 /// [`closures`] tells the planar ones'.
 pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
-    let open = flexure::mechanism::spatial::findings::open_closures(m, &Settings::default())
+    let open = flexure::mechanism::findings::open_closures(m, &Settings::default())
         .map_err(|e| format!("{}: {e}", file.display()))?;
     Ok(open_answers(&open, file))
 }
@@ -86,7 +86,7 @@ pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>,
 /// The parts of a spatial mechanism that cross at coordinates `q`, told and
 /// listed as [`shape`] tells the planar ones.
 pub fn spatial_shape(m: &SpatialMechanism, q: &[f64], file: &Path) -> Vec<Value> {
-    crossing_answers(flexure::mechanism::spatial::findings::crossings(m, q), file)
+    crossing_answers(flexure::mechanism::findings::crossings(m, q), file)
 }
 
 /// Parts that cross, each told and listed.
@@ -120,7 +120,7 @@ pub fn spatial_along(
     key: &str,
     file: &Path,
 ) -> Vec<Value> {
-    let found = flexure::mechanism::spatial::findings::crossings_along(m, shapes.iter().map(|s| s.1));
+    let found = flexure::mechanism::findings::crossings_along(m, shapes.iter().map(|s| s.1));
     crossing_answers_along(found, shapes, (what, shapes_are), key, file)
 }
 

@@ -172,7 +172,7 @@ fn spatial_buckle_and_modes_carry_their_error_estimate() {
     let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
     let settings = Default::default();
     let b = flexure::mechanism::spatial::buckling::buckle(&m, &settings).unwrap();
-    let e = flexure::estimate::spatial_mechanism::buckle_error(&m, &b, &settings, &Default::default()).unwrap();
+    let e = flexure::estimate::buckle_error(&m, &b, &settings, &Default::default()).unwrap();
     let estimate = &v["error_estimate"];
     let close = |a: &Value, b: f64| (a.as_f64().unwrap() - b).abs() <= 1e-15 * b.abs();
     assert!(close(&estimate["load_factor"], e.relative[0].unwrap()), "{estimate}");
@@ -186,7 +186,7 @@ fn spatial_buckle_and_modes_carry_their_error_estimate() {
     let (v, err) = answer(&["modes", &file, "--count", "4"]);
     assert!(err.is_empty() && !has_null(&v), "{err}\n{v}");
     let found = flexure::dynamics::spatial::modes(&m, &settings, 4).unwrap();
-    let e = flexure::estimate::spatial_mechanism::modes_error(&m, &found, &settings, &Default::default()).unwrap();
+    let e = flexure::estimate::mechanism_modes_error(&m, &found, &settings, &Default::default()).unwrap();
     let estimate = &v["error_estimate"];
     let (omega, reference) = (estimate["omega"].as_array().unwrap(), estimate["reference_omega"].as_array().unwrap());
     assert_eq!((omega.len(), reference.len()), (4, 4), "{estimate}");
@@ -325,7 +325,7 @@ fn order_auto_raises_a_spatial_flexure_until_the_estimate_meets_accuracy() {
     assert!(err.is_empty() && v["order"]["column"].is_array(), "{err}\n{v}");
 }
 
-/// Reference: the library's `mechanism::spatial::findings::open_closures`
+/// Reference: the library's `mechanism::findings::open_closures`
 /// (whose numbers `tests/spatial_mechanism.rs` checks against small
 /// rotations): a ball open 1 mm at rest is told on stderr with its place in
 /// the file and listed under `findings` by `solve` and `simulate` (and

@@ -1,5 +1,5 @@
 //! Error estimates of a spatial mechanism's eigenvalue answers
-//! (`estimate::spatial_mechanism::{buckle_error, modes_error}`), against
+//! (`estimate::{buckle_error, mechanism_modes_error}`), against
 //! closed forms: a spatial flexure column's free-tip Euler load
 //! $\pi^2EI/(4L^2)$ about its weaker axis, and a massless rod carrying a
 //! tip disc, whose frequencies are those of `spatial_dynamics.rs` (torsion
@@ -9,7 +9,7 @@
 
 use flexure::dynamics::spatial::modes;
 use flexure::estimate::Accuracy;
-use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
+use flexure::estimate::{buckle_error, mechanism_modes_error as modes_error};
 use flexure::mechanism::spatial::buckling::buckle;
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
@@ -200,7 +200,7 @@ fn with_flexures_pads_initial_coordinates_per_component() {
 /// A joint without `order = "auto"` is left at its orders and stays flagged.
 #[test]
 fn automatic_orders_are_raised_until_the_estimate_meets_its_target() {
-    use flexure::estimate::spatial_mechanism::{buckle_auto, modes_auto};
+    use flexure::estimate::{buckle_auto, mechanism_modes_auto as modes_auto};
     let tight = Accuracy { eigenvalue: 1e-6, ..Default::default() };
     let euler = PI * PI * EI_WEAK / (4.0 * LENGTH * LENGTH);
     let mut m = column([1, 1, 1]);

@@ -293,7 +293,7 @@ fn a_flexure_carries_the_wrench_of_the_loads_beyond_it() {
 /// bounds the true tip error of a one-flexure chain within a factor of 3.
 #[test]
 fn each_flexures_error_estimate_is_the_size_of_its_true_error() {
-    use flexure::estimate::spatial_mechanism::flexure_errors;
+    use flexure::estimate::spatial::flexure_errors;
     let at = |orders: [usize; 3]| {
         let joint = spec(
             "f",
@@ -478,7 +478,7 @@ fn a_solve_refines_where_a_pushed_arm_loses_stability() {
 fn open_closures_say_their_gap_and_the_preload_that_closes_them() {
     use flexure::mechanism::file::spatial_from_toml;
     use flexure::mechanism::findings::Severity;
-    use flexure::mechanism::spatial::findings::open_closures;
+    use flexure::mechanism::findings::open_closures;
     let hinges = "dimension = 3\n\
         [[joint]]\nname = \"l\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 1.0\n\
         [[joint]]\nname = \"r\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"b\"\norigin = [0.1, -0.1, 0.0]\nstiffness = 1.0\n";

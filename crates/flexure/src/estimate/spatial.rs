@@ -50,6 +50,72 @@ pub fn reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexu
         .with_subintervals(subintervals)
 }
 
+/// The reference for an eigenvalue answer of `flexure` about the shape
+/// `alpha`: [`reference()`] (each order $n_c \to \min(\max(2n_c, n_c + 3), 64)$,
+/// at least twice the subintervals), except that a component at the cap
+/// $n_c = 64$ goes to order 32, as the planar
+/// [`eigen_reference`](super::eigen_reference) does: more subintervals alone
+/// would leave a straight flexure's answer unchanged and report a false 0.
+pub(super) fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialFlexure> {
+    let r = reference(flexure, alpha)?;
+    let capped = flexure.orders().map(|n| n >= MAX_ORDER);
+    if !capped.contains(&true) {
+        return Ok(r);
+    }
+    let mut orders = r.orders();
+    for (o, c) in orders.iter_mut().zip(capped) {
+        if c {
+            *o = MAX_ORDER / 2;
+        }
+    }
+    SpatialFlexure::new(flexure.length(), flexure.section().clone(), orders)?
+        .with_rest(&padded(flexure, flexure.rest(), orders))?
+        .with_subintervals(r.subintervals())
+}
+
+/// Each spatial flexure joint's error estimate at a solution: the flexure
+/// under the tip wrench it carries ([`flexure_loads`]) against its own
+/// refined reference ([`deflect_error`]), flagged against `target`, as the
+/// planar mechanism's per-flexure estimates are. One entry per joint,
+/// `None` for the other kinds.
+///
+/// # Example
+/// ```
+/// use flexure::estimate::spatial::flexure_errors;
+/// use flexure::mechanism::spatial::statics::solve;
+/// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::section::SpatialSection;
+/// use flexure::spatial::SpatialFlexure;
+/// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+/// let f = SpatialFlexure::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
+/// let joint = SpatialJointSpec { name: "f".into(), kind: SpatialJointKind::Flexure(Box::new(f)), parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default() };
+/// let push = SpatialPointLoad { name: "p".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.0, 0.0, 0.0, 0.0, 0.5, 0.5) };
+/// let m = SpatialMechanism::new(vec![SpatialBody::massless("ground"), SpatialBody::massless("tip")], vec![joint], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
+/// let s = solve(&m, &Default::default()).unwrap();
+/// let e = flexure_errors(&m, &s, &Default::default()).unwrap();
+/// assert!(e[0].as_ref().unwrap().position < 1e-3);
+/// ```
+///
+/// [`flexure_loads`]: crate::mechanism::spatial::statics::flexure_loads
+pub fn flexure_errors(
+    m: &crate::mechanism::spatial::SpatialMechanism,
+    s: &crate::mechanism::spatial::statics::SpatialSolution,
+    target: &Accuracy,
+) -> Result<Vec<Option<ErrorEstimate>>> {
+    let loads = crate::mechanism::spatial::statics::flexure_loads(m, s);
+    m.joints
+        .iter()
+        .zip(loads)
+        .map(|(j, load)| match (j.kind.flexure(), load) {
+            (Some(f), Some(load)) => {
+                let alpha = &s.q[j.offset..j.offset + f.coordinates()];
+                deflect_error(f, &load, alpha, target).map(Some)
+            }
+            _ => Ok(None),
+        })
+        .collect()
+}
+
 /// Coordinates of `flexure` padded with zeros, per component, to `orders`.
 pub fn padded(flexure: &SpatialFlexure, alpha: &[f64], orders: [usize; 3]) -> Vec<f64> {
     let mut out = Vec::with_capacity(orders.iter().sum());

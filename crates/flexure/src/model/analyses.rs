@@ -160,7 +160,7 @@ impl Analyses for Spatial {
     }
 
     fn crossings_along(m: &Mechanism<Spatial>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {
-        let found = spatial::findings::crossings_along(m, shapes.iter().copied());
+        let found = crate::mechanism::findings::crossings_along(m, shapes.iter().copied());
         found.into_iter().map(|(k, c)| (k, c.into_iter().map(crossing_at).collect())).collect()
     }
 
@@ -175,11 +175,11 @@ impl Analyses for Spatial {
     }
 
     fn open_closures(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Vec<OpenClosure>> {
-        spatial::findings::open_closures(m, settings)
+        crate::mechanism::findings::open_closures(m, settings)
     }
 
     fn crossings(m: &Mechanism<Spatial>, q: &[f64]) -> Vec<Crossing<Vec<f64>>> {
-        spatial::findings::crossings(m, q).into_iter().map(crossing_at).collect()
+        crate::mechanism::findings::crossings(m, q).into_iter().map(crossing_at).collect()
     }
 
     fn buckle(
@@ -187,7 +187,7 @@ impl Analyses for Spatial {
         settings: &Settings,
         target: &Accuracy,
     ) -> Result<(Mechanism<Spatial>, Buckling, ValueEstimate)> {
-        crate::estimate::spatial_mechanism::buckle_auto(m, settings, target)
+        crate::estimate::buckle_auto(m, settings, target)
     }
 
     fn modes(
@@ -196,7 +196,7 @@ impl Analyses for Spatial {
         count: usize,
         target: &Accuracy,
     ) -> Result<(Mechanism<Spatial>, Modes, ValueEstimate)> {
-        crate::estimate::spatial_mechanism::modes_auto(m, settings, count, target)
+        crate::estimate::mechanism_modes_auto(m, settings, count, target)
     }
 
     fn orders(f: &crate::spatial::SpatialFlexure) -> Vec<usize> {

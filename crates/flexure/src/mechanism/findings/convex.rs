@@ -7,7 +7,9 @@
 //! and $\lvert v\rvert$ is the distance once $\lvert v\rvert^2 - v\cdot w$ is
 //! negligible. At every step $v\cdot w/\lvert v\rvert$ is a lower bound of
 //! the distance and $\lvert v\rvert$ an upper one, so [`within`] stops as
-//! soon as either settles the question.
+//! soon as either settles the question. Besides: the nearest points of two
+//! segments ([`nearest_on_segments`]) and the edges of the hull of a few points
+//! ([`hull_edges`]), which make a link in space.
 
 use nalgebra::{Point3, Vector3};
 
@@ -218,6 +220,113 @@ fn tetrahedron(
         .min_by(|x, y| x.0.norm_squared().total_cmp(&y.0.norm_squared()))
 }
 
+/// The parameters $(s, t) \in [0, 1]^2$ of the nearest points of two
+/// segments (Ericson, *Real-Time Collision Detection*, §5.1.9).
+pub(super) fn nearest_on_segments(p: &[Point3<f64>; 2], q: &[Point3<f64>; 2]) -> (f64, f64) {
+    let (d1, d2, r) = (p[1] - p[0], q[1] - q[0], p[0] - q[0]);
+    let (a, e, f) = (d1.norm_squared(), d2.norm_squared(), d2.dot(&r));
+    if a <= f64::MIN_POSITIVE && e <= f64::MIN_POSITIVE {
+        return (0.0, 0.0);
+    }
+    if a <= f64::MIN_POSITIVE {
+        return (0.0, (f / e).clamp(0.0, 1.0));
+    }
+    let c = d1.dot(&r);
+    if e <= f64::MIN_POSITIVE {
+        return ((-c / a).clamp(0.0, 1.0), 0.0);
+    }
+    let b = d1.dot(&d2);
+    let denominator = a * e - b * b;
+    let mut s = if denominator > 0.0 { ((b * f - c * e) / denominator).clamp(0.0, 1.0) } else { 0.0 };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    (s, t)
+}
+
+/// The points, each once (within `tolerance`).
+pub(super) fn distinct(points: Vec<Point3<f64>>, tolerance: f64) -> Vec<Point3<f64>> {
+    let mut out: Vec<Point3<f64>> = Vec::with_capacity(points.len());
+    for p in points {
+        if out.iter().all(|o| (o - p).norm() > tolerance) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The edges of the convex hull of distinct `points`, as index pairs: the
+/// segment of the two farthest points if all are collinear; otherwise each
+/// pair $(i, k)$ such that, seen along $p_k - p_i$, the two make a corner
+/// of the hull of the others' projections (every other point within a
+/// half-plane of it, strictly): for flat points, the sides of their
+/// polygon; for others, the edges of their polytope, not its faces'
+/// diagonals.
+pub(super) fn hull_edges(points: &[Point3<f64>], tolerance: f64) -> Vec<(usize, usize)> {
+    let n = points.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let mut edges = Vec::new();
+    let mut collinear = true;
+    let (mut far, mut longest) = ((0, 1), 0.0);
+    for i in 0..n {
+        for k in i + 1..n {
+            let e = points[k] - points[i];
+            let len = e.norm();
+            if len > longest {
+                (far, longest) = ((i, k), len);
+            }
+            let axis = e / len;
+            let (u, v) = plane(&axis);
+            let mut angles = Vec::with_capacity(n);
+            let mut beyond = false;
+            for (j, p) in points.iter().enumerate() {
+                if j == i || j == k {
+                    continue;
+                }
+                let r = p - points[i];
+                let along = r.dot(&axis);
+                let across = r - axis * along;
+                if across.norm() <= tolerance {
+                    // On the line: outside the segment, the segment is not a whole edge.
+                    beyond |= along < 0.0 || along > len;
+                } else {
+                    angles.push(across.dot(&v).atan2(across.dot(&u)));
+                }
+            }
+            if !angles.is_empty() {
+                collinear = false;
+            }
+            if beyond {
+                continue;
+            }
+            angles.sort_by(f64::total_cmp);
+            let gap = angles
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .chain(angles.first().zip(angles.last()).map(|(a, b)| a + std::f64::consts::TAU - b))
+                .fold(0.0, f64::max);
+            if !angles.is_empty() && gap > std::f64::consts::PI + 1e-9 {
+                edges.push((i, k));
+            }
+        }
+    }
+    if collinear { vec![far] } else { edges }
+}
+
+/// Two unit vectors completing `axis` to an orthonormal basis.
+fn plane(axis: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let helper = if axis.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let u = axis.cross(&helper).normalize();
+    (u, axis.cross(&u))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,5 +401,34 @@ mod tests {
             assert!(within(&a, &b, best + 1e-12), "{p:?}: {best}");
             assert!(!within(&a, &b, best - 0.02), "{p:?}: {best}");
         }
+    }
+
+    // Reference: a unit cube has 12 edges (its faces' 6 diagonals are not edges).
+    #[test]
+    fn a_cube_has_twelve_edges() {
+        let v: Vec<Point3<f64>> =
+            (0..8).map(|i| Point3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64)).collect();
+        let e = hull_edges(&v, 1e-9);
+        assert_eq!(e.len(), 12);
+        assert!(e.iter().all(|&(i, k)| ((v[i] - v[k]).norm() - 1.0).abs() < 1e-15));
+    }
+
+    // Reference: a flat square with its centre has its 4 sides as edges;
+    // three collinear points, the one segment of the outer two.
+    #[test]
+    fn flat_and_collinear_points() {
+        let sq = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]].map(|[x, y]| Point3::new(x, y, 0.3 * x));
+        let e = hull_edges(&sq, 1e-9);
+        assert_eq!(e, [(0, 1), (0, 3), (1, 2), (2, 3)]);
+        let line = [0.0, 2.0, 1.0].map(|x| Point3::new(x, 2.0 * x, -x));
+        assert_eq!(hull_edges(&line, 1e-9), [(0, 1)]);
+    }
+
+    // Reference: the nearest points of the lines x-axis and (t, 1, 1)… (the closed form s = t = ½).
+    #[test]
+    fn nearest_points_of_crossed_segments() {
+        let p = [Point3::new(0.0, 0.0, 0.0), Point3::new(2.0, 0.0, 0.0)];
+        let q = [Point3::new(1.0, -1.0, 1.0), Point3::new(1.0, 1.0, 1.0)];
+        assert_eq!(nearest_on_segments(&p, &q), (0.5, 0.5));
     }
 }

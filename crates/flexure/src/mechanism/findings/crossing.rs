@@ -1,12 +1,13 @@
-//! Crossings: the parts of a solved shape (each flexure's backbone as
-//! chords, each link as the hull of its attachment points) that cross
-//! another part, or themselves ([`crossings`]).
+//! Crossings: the parts of a solved shape that cross another part, or
+//! themselves ([`crossings`]), written once over the dimension
+//! ([`Findings`]); see the module docs of [`super`] for the parts and the rules.
 
-use super::geometry::{convex_hull, distance, meet};
-use crate::kinematics::backbone;
-use crate::mechanism::Mechanism;
-use crate::mechanism::kinematics::{Frames, frames};
-use nalgebra::Point2;
+use super::convex::{nearest_on_segments, within};
+use super::dimension::Findings;
+use super::geometry::{distance, meet};
+use crate::mechanism::{Dimension, Mechanism};
+use crate::space::{Planar, Spatial};
+use nalgebra::{Point, Point2, Point3};
 
 /// The most a flexure's backbone turns (rad) along one of the chords that
 /// stand for it in [`crossings`].
@@ -35,7 +36,7 @@ pub enum Part {
 
 impl Part {
     /// `flexure "left"` or `link "stage"`.
-    pub fn describe(&self, m: &Mechanism) -> String {
+    pub fn describe<D: Dimension>(&self, m: &Mechanism<D>) -> String {
         match *self {
             Part::Flexure(j) => format!("flexure {:?}", m.joints[j].name),
             Part::Link(b) => format!("link {:?}", m.bodies[b].name),
@@ -43,9 +44,8 @@ impl Part {
     }
 }
 
-/// Two parts that cross, meeting at `at`: a point of the plane (`[f64; 2]`,
-/// the planar [`crossings`]) or of space (`[f64; 3]`,
-/// [`crate::mechanism::spatial::findings::crossings`]).
+/// Two parts that cross, meeting at `at`: a point of the plane (`[f64; 2]`)
+/// or of space (`[f64; 3]`), as [`crossings`] finds them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Crossing<P = [f64; 2]> {
     /// The first part (the earlier flexure, or a flexure before a link).
@@ -90,17 +90,78 @@ impl<P: AsRef<[f64]>> Crossing<P> {
     }
 }
 
-/// A part as segments: its polyline, the arc length at each point (a
-/// flexure), the points where it is joined to others, and the bodies it
-/// belongs to (a closure's two bodies count as one, see [`crossings`]).
-struct Drawn {
-    part: Part,
-    points: Vec<Point2<f64>>,
-    arc: Option<Vec<f64>>,
-    ends: Vec<Point2<f64>>,
-    groups: Vec<usize>,
-    lo: Point2<f64>,
-    hi: Point2<f64>,
+/// A crossing in the dimension `D`.
+pub type CrossingAt<D> = Crossing<<D as Findings>::At>;
+
+/// One piece of a part: its solid (in space), its centreline (a flexure's
+/// chord, or a link's edge), its ends' indices along the part (a chord's
+/// samples, an edge's points: pieces sharing one are neighbours), the arc
+/// length at its ends (a flexure), and its bounding box (the plane's at
+/// z = 0).
+pub struct Piece<D: Findings> {
+    pub(super) solid: D::Solid,
+    pub(super) line: [D::Point; 2],
+    pub(super) ends: [usize; 2],
+    pub(super) arc: Option<[f64; 2]>,
+    pub(super) lo: [f64; 3],
+    pub(super) hi: [f64; 3],
+}
+
+impl<D: Findings> Piece<D> {
+    /// A piece whose bounding box is its centreline's.
+    pub(super) fn new(solid: D::Solid, line: [D::Point; 2], ends: [usize; 2], arc: Option<[f64; 2]>) -> Self {
+        let (lo, hi) = bounds(line.iter().map(D::coordinates), 0.0);
+        Piece { solid, line, ends, arc, lo, hi }
+    }
+
+    /// The arc length at `t` along it (0 at its start, 1 at its end), for a flexure.
+    fn arc_at(&self, t: f64) -> Option<f64> {
+        self.arc.map(|r| r[0] + t * (r[1] - r[0]))
+    }
+}
+
+/// A part's geometry: its pieces, the points where it is joined to others,
+/// its largest section half-diagonal (0 without a section), and its
+/// bounding box.
+pub struct Shape<D: Findings> {
+    pub(super) pieces: Vec<Piece<D>>,
+    pub(super) ends: Vec<D::Point>,
+    pub(super) reach: f64,
+    pub(super) lo: [f64; 3],
+    pub(super) hi: [f64; 3],
+}
+
+impl<D: Findings> Shape<D> {
+    /// A shape whose bounding box is its pieces'.
+    pub(super) fn new(pieces: Vec<Piece<D>>, ends: Vec<D::Point>, reach: f64) -> Self {
+        let (lo, hi) = bounds(pieces.iter().flat_map(|p| [p.lo, p.hi]), 0.0);
+        Shape { pieces, ends, reach, lo, hi }
+    }
+}
+
+/// A part as drawn: which it is, the bodies it belongs to (a closure's or a
+/// rigid joint's bodies count as one, see [`crossings`]), and its shape.
+pub struct Drawn<D: Findings> {
+    pub(super) part: Part,
+    pub(super) groups: Vec<usize>,
+    pub(super) shape: Shape<D>,
+}
+
+/// The box of `corners`, each grown by `grow`.
+pub(super) fn bounds(corners: impl IntoIterator<Item = [f64; 3]>, grow: f64) -> ([f64; 3], [f64; 3]) {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in corners {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i] - grow);
+            hi[i] = hi[i].max(p[i] + grow);
+        }
+    }
+    (lo, hi)
+}
+
+/// Whether two boxes are more than `gap` apart along an axis.
+fn apart(lo_a: &[f64; 3], hi_a: &[f64; 3], lo_b: &[f64; 3], hi_b: &[f64; 3], gap: f64) -> bool {
+    (0..3).any(|i| hi_a[i] + gap < lo_b[i] || hi_b[i] + gap < lo_a[i])
 }
 
 /// The chords that stand for a flexure with coordinates `alpha` (see the module docs).
@@ -116,54 +177,42 @@ pub fn chords(alpha: &[f64]) -> usize {
 ///
 /// # Panics
 /// If `q` does not have [`Mechanism::dof`] entries.
-pub fn crossings(m: &Mechanism, q: &[f64]) -> Vec<Crossing> {
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::file::spatial_from_toml;
+/// use flexure::mechanism::findings::crossings;
+/// // Two round rods 2 mm thick side by side, their axes 1.9 mm apart: they overlap.
+/// let rods = |gap: f64| format!(
+///     "dimension = 3\n[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"ta\"\n\
+///      length = 0.05\ndiameter = 2e-3\nmodulus = 2e11\npoisson = 0.3\n\
+///      [[joint]]\nname = \"b\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tb\"\n\
+///      origin = [0.0, {gap}, 0.0]\nlength = 0.05\ndiameter = 2e-3\nmodulus = 2e11\npoisson = 0.3\n");
+/// let m = spatial_from_toml(&rods(1.9e-3)).unwrap();
+/// let found = crossings(&m, &m.rest());
+/// assert_eq!(found.len(), 1);
+/// assert!(found[0].message().starts_with("flexure \"a\" crosses flexure \"b\""));
+/// let m = spatial_from_toml(&rods(2.1e-3)).unwrap();
+/// assert!(crossings(&m, &m.rest()).is_empty());
+/// ```
+pub fn crossings<D: Findings>(m: &Mechanism<D>, q: &[f64]) -> Vec<CrossingAt<D>> {
     assert_eq!(q.len(), m.dof(), "crossings: q must have one entry per coordinate");
-    let f = frames(m, q);
-    let tolerance = TOUCH_TOLERANCE * m.size();
-    let group = groups(m);
-    let parts = drawn(m, q, &f, &group);
+    let (bodies, roots) = D::poses(m, q);
+    let tolerance = D::touch_tolerance(m);
+    let parts = drawn(m, q, &bodies, &roots, &groups(m), tolerance);
     let mut out = Vec::new();
     for (i, a) in parts.iter().enumerate() {
-        if let Some(c) = self_crossing(a, tolerance) {
+        if let Part::Flexure(_) = a.part
+            && let Some(c) = D::cross(a, a, false, tolerance)
+        {
             out.push(named(m, c));
         }
         for b in &parts[i + 1..] {
-            if a.hi.x + tolerance < b.lo.x
-                || b.hi.x + tolerance < a.lo.x
-                || a.hi.y + tolerance < b.lo.y
-                || b.hi.y + tolerance < a.lo.y
-            {
+            if apart(&a.shape.lo, &a.shape.hi, &b.shape.lo, &b.shape.hi, tolerance) {
                 continue;
             }
             let joined = a.groups.iter().any(|g| b.groups.contains(g));
-            let at_end = |d: &Drawn, p: &Point2<f64>| d.ends.iter().any(|e| distance(e, p) <= tolerance);
-            let mut first: Option<Crossing> = None;
-            let mut contacts: Vec<Point2<f64>> = Vec::new();
-            for (k, sa) in a.points.windows(2).enumerate() {
-                for (l, sb) in b.points.windows(2).enumerate() {
-                    let Some(c) = meet(&sa[0], &sa[1], &sb[0], &sb[1], tolerance) else { continue };
-                    let at = Point2::from(c.at);
-                    if joined && at_end(a, &at) && at_end(b, &at) {
-                        // A collinear overlap running on from the joint is a crossing.
-                        if !c.collinear || overlap_is_point(sa, sb, tolerance) {
-                            continue;
-                        }
-                    }
-                    add_contact(&mut contacts, at, tolerance);
-                    if first.is_none() {
-                        first = Some(Crossing {
-                            a: a.part,
-                            b: b.part,
-                            names: [String::new(), String::new()],
-                            at: c.at,
-                            s: [arc(a, k, c.t[0]), arc(b, l, c.t[1])],
-                            contacts: 0,
-                        });
-                    }
-                }
-            }
-            if let Some(mut c) = first {
-                c.contacts = contacts.len();
+            if let Some(c) = D::cross(a, b, joined, tolerance) {
                 out.push(named(m, c));
             }
         }
@@ -171,60 +220,13 @@ pub fn crossings(m: &Mechanism, q: &[f64]) -> Vec<Crossing> {
     out
 }
 
-/// Counts the contact at `p` unless one already counted is within `tolerance`
-/// (a crossing through a chord's end is met by both chords there).
-fn add_contact(contacts: &mut Vec<Point2<f64>>, p: Point2<f64>, tolerance: f64) {
-    if contacts.iter().all(|c| distance(c, &p) > tolerance) {
-        contacts.push(p);
-    }
-}
-
-/// Whether two collinear segments share no more than a point.
-fn overlap_is_point(sa: &[Point2<f64>], sb: &[Point2<f64>], tolerance: f64) -> bool {
-    let r = sa[1] - sa[0];
-    let lr = r.x.hypot(r.y);
-    let along = |p: &Point2<f64>| (p - sa[0]).dot(&r) / lr;
-    let (t0, t1) = (along(&sb[0]), along(&sb[1]));
-    t0.max(t1).min(lr) - t0.min(t1).max(0.0) <= tolerance
-}
-
-fn named(m: &Mechanism, mut c: Crossing) -> Crossing {
+fn named<D: Findings>(m: &Mechanism<D>, mut c: CrossingAt<D>) -> CrossingAt<D> {
     c.names = [c.a.describe(m), c.b.describe(m)];
     c
 }
 
-/// The arc length at `t` along segment `k` of a flexure.
-fn arc(d: &Drawn, k: usize, t: f64) -> Option<f64> {
-    d.arc.as_ref().map(|s| s[k] + t * (s[k + 1] - s[k]))
-}
-
-/// A flexure's chords that meet, other than consecutive ones at their shared point.
-fn self_crossing(d: &Drawn, tolerance: f64) -> Option<Crossing> {
-    let Part::Flexure(_) = d.part else { return None };
-    let mut first: Option<Crossing> = None;
-    let mut contacts: Vec<Point2<f64>> = Vec::new();
-    let n = d.points.len() - 1;
-    for k in 0..n {
-        for l in k + 2..n {
-            let (sa, sb) = (&d.points[k..k + 2], &d.points[l..l + 2]);
-            if let Some(c) = meet(&sa[0], &sa[1], &sb[0], &sb[1], tolerance) {
-                add_contact(&mut contacts, Point2::from(c.at), tolerance);
-                if first.is_none() {
-                    let s = [arc(d, k, c.t[0]), arc(d, l, c.t[1])];
-                    first =
-                        Some(Crossing { a: d.part, b: d.part, names: Default::default(), at: c.at, s, contacts: 0 });
-                }
-            }
-        }
-    }
-    first.map(|mut c| {
-        c.contacts = contacts.len();
-        c
-    })
-}
-
 /// Each body's group: bodies joined by a closure, or by a joint other than a flexure, are one group.
-fn groups(m: &Mechanism) -> Vec<usize> {
+fn groups<D: Dimension>(m: &Mechanism<D>) -> Vec<usize> {
     let mut g: Vec<usize> = (0..m.bodies.len()).collect();
     fn root(g: &mut [usize], mut i: usize) -> usize {
         while g[i] != i {
@@ -234,8 +236,8 @@ fn groups(m: &Mechanism) -> Vec<usize> {
         i
     }
     let closed = m.closures.iter().map(|c| (c.a, c.b));
-    // Rigid joints (revolute, prismatic, fixed) hold their bodies together at a point, as closures do.
-    let rigid = m.joints.iter().filter(|j| j.kind.flexure().is_none()).map(|j| (j.parent, j.child));
+    // Rigid joints (revolute, prismatic, fixed, ball) hold their bodies together at a point, as closures do.
+    let rigid = m.joints.iter().filter(|j| D::flexure(&j.kind).is_none()).map(|j| (j.parent, j.child));
     for (a, b) in closed.chain(rigid) {
         let (ra, rb) = (root(&mut g, a), root(&mut g, b));
         g[ra.max(rb)] = ra.min(rb);
@@ -243,62 +245,52 @@ fn groups(m: &Mechanism) -> Vec<usize> {
     (0..g.len()).map(|i| root(&mut g, i)).collect()
 }
 
-/// The parts of `m` at `q` as segments: flexures first, in joint order, then links.
-fn drawn(m: &Mechanism, q: &[f64], f: &Frames, group: &[usize]) -> Vec<Drawn> {
+/// The parts of `m` at `q`, the bodies' and joints' root frames given:
+/// flexures first, in joint order, then links.
+fn drawn<D: Findings>(
+    m: &Mechanism<D>,
+    q: &[f64],
+    bodies: &[D::Pose],
+    roots: &[D::Pose],
+    group: &[usize],
+    tolerance: f64,
+) -> Vec<Drawn<D>> {
     let mut parts = Vec::new();
-    let bounds = |points: &[Point2<f64>]| {
-        let (lo, hi) = (Point2::new(f64::MAX, f64::MAX), Point2::new(f64::MIN, f64::MIN));
-        points.iter().fold((lo, hi), |(lo, hi), p| {
-            (Point2::new(lo.x.min(p.x), lo.y.min(p.y)), Point2::new(hi.x.max(p.x), hi.y.max(p.y)))
-        })
-    };
     for (ji, j) in m.joints.iter().enumerate() {
-        let Some(fl) = j.kind.flexure() else { continue };
-        let alpha = &q[j.offset..j.offset + fl.order()];
-        let samples = chords(alpha) + 1;
-        let root = f.roots[ji];
-        let mut points: Vec<Point2<f64>> = backbone(fl, alpha, samples).iter().map(|p| root.act(&p.origin())).collect();
-        // The backbone integrates its own way: it ends within its quadrature
-        // error of the model's tip, the child's origin, where the child is
-        // drawn. Its points are moved by that error in proportion to arc
-        // length, so that it ends there exactly.
-        let tip = f.bodies[j.child].origin();
-        let miss = tip - points[samples - 1];
-        for (i, p) in points.iter_mut().enumerate() {
-            let t = i as f64 / (samples - 1) as f64;
-            *p += miss * t;
-        }
-        let arc = (0..samples).map(|i| fl.length() * i as f64 / (samples - 1) as f64).collect();
-        let ends = vec![points[0], points[samples - 1], tip];
-        let (lo, hi) = bounds(&points);
-        parts.push(Drawn {
-            part: Part::Flexure(ji),
-            points,
-            arc: Some(arc),
-            ends,
-            groups: vec![group[j.parent], group[j.child]],
-            lo,
-            hi,
-        });
+        let Some(f) = D::flexure(&j.kind) else { continue };
+        let alpha = &q[j.offset..j.offset + D::joint(&j.kind).dof()];
+        let tip = D::origin(&bodies[j.child]);
+        let Some(shape) = D::flexure_shape(f, alpha, chords(alpha) + 1, &roots[ji], tip) else { continue };
+        parts.push(Drawn { part: Part::Flexure(ji), groups: vec![group[j.parent], group[j.child]], shape });
     }
     for b in 0..m.bodies.len() {
         let anchors = m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1);
-        let mut ends: Vec<Point2<f64>> =
-            hull_points(m.attachments(b), b, anchors).iter().map(|r| f.bodies[b].act(r)).collect();
-        let mut points = convex_hull(ends.clone());
-        // Where a slider's carriage (or a pin's child) sits on this link.
-        let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
-        ends.extend(carried.map(|j| f.bodies[j.child].origin()));
-        if points.len() < 2 {
-            continue;
-        }
-        if points.len() > 2 {
-            points.push(points[0]);
-        }
-        let (lo, hi) = bounds(&points);
-        parts.push(Drawn { part: Part::Link(b), points, arc: None, ends, groups: vec![group[b]], lo, hi });
+        let points = hull_points(m.attachments(b), b, anchors).iter().map(|r| D::act(&bodies[b], r)).collect();
+        let Some(mut shape) = D::link_shape(points, tolerance) else { continue };
+        // Where a body it carries by a rigid joint (a slider's carriage, a hinge's child) is held.
+        let carried = m.joints.iter().filter(|j| j.parent == b && D::flexure(&j.kind).is_none());
+        shape.ends.extend(carried.map(|j| D::origin(&bodies[j.child])));
+        parts.push(Drawn { part: Part::Link(b), groups: vec![group[b]], shape });
     }
     parts
+}
+
+/// A flexure's centreline through `points` (as its own integration gives
+/// them, ending within that integration's error of the model's tip),
+/// moved in proportion to arc length so that it ends at `tip`, where the
+/// child is drawn.
+pub(super) fn ending_at<const N: usize>(mut points: Vec<Point<f64, N>>, tip: Point<f64, N>) -> Vec<Point<f64, N>> {
+    let last = points.len() - 1;
+    let miss = tip - points[last];
+    for (i, p) in points.iter_mut().enumerate() {
+        *p += miss * (i as f64 / last as f64);
+    }
+    points
+}
+
+/// The arc lengths at the ends of chord `i` of `chords` along a flexure of `length`.
+pub(super) fn arc(length: f64, i: usize, chords: usize) -> Option<[f64; 2]> {
+    Some([length * i as f64 / chords as f64, length * (i + 1) as f64 / chords as f64])
 }
 
 /// The points of body `b` whose hull is its solid: its attachment points,
@@ -320,6 +312,200 @@ pub(crate) fn hull_points<P: PartialEq>(mut attachments: Vec<P>, b: usize, ancho
 /// [`crossings`] at each of a series of shapes (a sweep's rows, a
 /// simulation's samples): (index in the series, its crossings), for the
 /// shapes that have any.
-pub fn crossings_along<'a>(m: &Mechanism, shapes: impl IntoIterator<Item = &'a [f64]>) -> Vec<(usize, Vec<Crossing>)> {
+pub fn crossings_along<'a, D: Findings>(
+    m: &Mechanism<D>,
+    shapes: impl IntoIterator<Item = &'a [f64]>,
+) -> Vec<(usize, Vec<CrossingAt<D>>)> {
     shapes.into_iter().map(|q| crossings(m, q)).enumerate().filter(|(_, c)| !c.is_empty()).collect()
+}
+
+// The plane: a flexure is its backbone's chords, and parts cross where
+// their segments meet.
+
+/// A planar flexure's chords through `points`, a flexure of `length`.
+pub(super) fn chords_in_plane(points: &[Point2<f64>], length: f64) -> Vec<Piece<Planar>> {
+    let n = points.len() - 1;
+    (0..n).map(|k| Piece::new((), [points[k], points[k + 1]], [k, k + 1], arc(length, k, n))).collect()
+}
+
+/// Where two planar parts' segments first meet, with the number of distinct
+/// points where they do; a contact at an end of both parts that `joined`
+/// connects is their joint, unless it is a collinear overlap that runs on
+/// from there. A flexure against itself: its chords other than consecutive
+/// ones at their shared point.
+pub(super) fn segments_cross(
+    a: &Drawn<Planar>,
+    b: &Drawn<Planar>,
+    joined: bool,
+    tolerance: f64,
+) -> Option<CrossingAt<Planar>> {
+    let itself = a.part == b.part;
+    let at_end = |d: &Drawn<Planar>, p: &Point2<f64>| d.shape.ends.iter().any(|e| distance(e, p) <= tolerance);
+    let mut first: Option<CrossingAt<Planar>> = None;
+    let mut contacts: Vec<Point2<f64>> = Vec::new();
+    for (k, pa) in a.shape.pieces.iter().enumerate() {
+        for pb in &b.shape.pieces[if itself { (k + 2).min(b.shape.pieces.len()) } else { 0 }..] {
+            let (sa, sb) = (&pa.line, &pb.line);
+            let Some(c) = meet(&sa[0], &sa[1], &sb[0], &sb[1], tolerance) else { continue };
+            let at = Point2::from(c.at);
+            if joined && at_end(a, &at) && at_end(b, &at) {
+                // A collinear overlap running on from the joint is a crossing.
+                if !c.collinear || overlap_is_point(sa, sb, tolerance) {
+                    continue;
+                }
+            }
+            add_contact(&mut contacts, at, tolerance);
+            if first.is_none() {
+                let s = [pa.arc_at(c.t[0]), pb.arc_at(c.t[1])];
+                first = Some(Crossing { a: a.part, b: b.part, names: Default::default(), at: c.at, s, contacts: 0 });
+            }
+        }
+    }
+    first.map(|c| Crossing { contacts: contacts.len(), ..c })
+}
+
+/// Counts the contact at `p` unless one already counted is within `tolerance`
+/// (a crossing through a chord's end is met by both chords there).
+fn add_contact(contacts: &mut Vec<Point2<f64>>, p: Point2<f64>, tolerance: f64) {
+    if contacts.iter().all(|c| distance(c, &p) > tolerance) {
+        contacts.push(p);
+    }
+}
+
+/// Whether two collinear segments share no more than a point.
+fn overlap_is_point(sa: &[Point2<f64>; 2], sb: &[Point2<f64>; 2], tolerance: f64) -> bool {
+    let r = sa[1] - sa[0];
+    let lr = r.x.hypot(r.y);
+    let along = |p: &Point2<f64>| (p - sa[0]).dot(&r) / lr;
+    let (t0, t1) = (along(&sb[0]), along(&sb[1]));
+    t0.max(t1).min(lr) - t0.min(t1).max(0.0) <= tolerance
+}
+
+// Space: parts are solids, and cross where their pieces come within the
+// tolerance (GJK), neighbouring touches counted as one contact.
+
+/// The relative rounding of a solved position (m per m of distance from
+/// the origin): a few hundred times double precision's, for the frames
+/// composed along a chain and the flexure shapes integrated there.
+const RESOLUTION: f64 = 1e-13;
+
+/// Whether a part is near enough the origin that rounding there is below
+/// `tolerance`: one farther out (an origin of 1e30 m) cannot be told
+/// touching from apart, and is not tested.
+fn resolved(d: &Drawn<Spatial>, tolerance: f64) -> bool {
+    (0..3).all(|i| d.shape.lo[i].abs().max(d.shape.hi[i].abs()) * RESOLUTION <= tolerance)
+}
+
+/// Where two spatial parts' pieces first touch (the least pair of pieces),
+/// with the number of separate contacts: touching pairs grouped by
+/// neighbourhood ([`clusters`]), less those at a joint, if `joined`: a
+/// contact holding a piece of each whose centreline passes through a point
+/// that is an end of both, however far it runs on from there. A flexure
+/// against itself: its pieces farther apart along it than twice its
+/// section's half-diagonal (which only a bend tighter than the section
+/// could make meet).
+pub(super) fn solids_cross(
+    a: &Drawn<Spatial>,
+    b: &Drawn<Spatial>,
+    joined: bool,
+    tolerance: f64,
+) -> Option<CrossingAt<Spatial>> {
+    if !resolved(a, tolerance) || !resolved(b, tolerance) {
+        return None;
+    }
+    let itself = a.part == b.part;
+    let apart_along = |pk: &Piece<Spatial>, pl: &Piece<Spatial>| {
+        let (ak, al) = (pk.arc.expect("a flexure's piece"), pl.arc.expect("a flexure's piece"));
+        al[0] - ak[1] > 2.0 * a.shape.reach + tolerance
+    };
+    let mut touching = Vec::new();
+    for (k, pa) in a.shape.pieces.iter().enumerate() {
+        if apart(&pa.lo, &pa.hi, &b.shape.lo, &b.shape.hi, tolerance) {
+            continue;
+        }
+        for (l, pb) in b.shape.pieces.iter().enumerate().skip(if itself { k + 2 } else { 0 }) {
+            if (!itself || apart_along(pa, pb))
+                && !apart(&pa.lo, &pa.hi, &pb.lo, &pb.hi, tolerance)
+                && within(&pa.solid, &pb.solid, tolerance)
+            {
+                touching.push((k, l));
+            }
+        }
+    }
+    if touching.is_empty() {
+        return None;
+    }
+    let shared: Vec<Point3<f64>> = if joined {
+        let near = |p: &Point3<f64>| b.shape.ends.iter().any(|e| (e - p).norm() <= tolerance);
+        a.shape.ends.iter().filter(|p| near(p)).copied().collect()
+    } else {
+        Vec::new()
+    };
+    // The contact at a joint, however far it runs on from there, is the joint.
+    let (pa, pb) = (&a.shape.pieces, &b.shape.pieces);
+    let at_joint =
+        |k: usize, l: usize| shared.iter().any(|p| passes(&pa[k], p, tolerance) && passes(&pb[l], p, tolerance));
+    let clusters = clusters(&touching, a, b);
+    let kept: Vec<&Vec<(usize, usize)>> = clusters.iter().filter(|c| !c.iter().any(|&(k, l)| at_joint(k, l))).collect();
+    let first = kept.iter().flat_map(|c| c.iter()).min()?;
+    Some(crossing(a, b, *first, kept.len()))
+}
+
+/// The crossing of `a` and `b` at their pieces' pair `(k, l)`: the midpoint
+/// of the nearest points of the two centrelines, and the arc lengths there.
+fn crossing(a: &Drawn<Spatial>, b: &Drawn<Spatial>, (k, l): (usize, usize), contacts: usize) -> CrossingAt<Spatial> {
+    let (pa, pb) = (&a.shape.pieces[k], &b.shape.pieces[l]);
+    let (s, t) = nearest_on_segments(&pa.line, &pb.line);
+    let (xa, xb) = (pa.line[0] + (pa.line[1] - pa.line[0]) * s, pb.line[0] + (pb.line[1] - pb.line[0]) * t);
+    let at = nalgebra::center(&xa, &xb);
+    Crossing {
+        a: a.part,
+        b: b.part,
+        names: Default::default(),
+        at: at.into(),
+        s: [pa.arc_at(s), pb.arc_at(t)],
+        contacts,
+    }
+}
+
+/// Whether a piece's centreline passes within `tolerance` of `p`.
+fn passes(piece: &Piece<Spatial>, p: &Point3<f64>, tolerance: f64) -> bool {
+    let [a, b] = piece.line;
+    let ab = b - a;
+    let len = ab.norm_squared();
+    let t = if len > 0.0 { ((p - a).dot(&ab) / len).clamp(0.0, 1.0) } else { 0.0 };
+    (a + ab * t - p).norm() <= tolerance
+}
+
+/// The touching pairs of pieces grouped into contacts: two pairs are one
+/// contact when each side's pieces are the same or neighbours.
+fn clusters(pairs: &[(usize, usize)], a: &Drawn<Spatial>, b: &Drawn<Spatial>) -> Vec<Vec<(usize, usize)>> {
+    let near = |d: &Drawn<Spatial>, i: usize, j: usize| {
+        i == j || d.shape.pieces[i].ends.iter().any(|e| d.shape.pieces[j].ends.contains(e))
+    };
+    let mut root: Vec<usize> = (0..pairs.len()).collect();
+    fn find(root: &mut [usize], mut i: usize) -> usize {
+        while root[i] != i {
+            root[i] = root[root[i]];
+            i = root[i];
+        }
+        i
+    }
+    for i in 0..pairs.len() {
+        for j in i + 1..pairs.len() {
+            if near(a, pairs[i].0, pairs[j].0) && near(b, pairs[i].1, pairs[j].1) {
+                let (ri, rj) = (find(&mut root, i), find(&mut root, j));
+                root[ri.max(rj)] = ri.min(rj);
+            }
+        }
+    }
+    let mut out: Vec<(usize, Vec<(usize, usize)>)> = Vec::new();
+    for (i, pair) in pairs.iter().enumerate() {
+        let r = find(&mut root, i);
+        match out.iter_mut().find(|c| c.0 == r) {
+            Some(c) => c.1.push(*pair),
+            None => out.push((r, vec![*pair])),
+        }
+    }
+    out.into_iter().map(|c| c.1).collect()
 }

@@ -14,7 +14,6 @@
 //! paths (rotations that add, the tree's $O(n)$ factorization).
 
 pub mod buckling;
-pub mod findings;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
