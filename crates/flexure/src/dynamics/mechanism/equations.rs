@@ -3,7 +3,7 @@
 //! terms, loads and damping (the parent module's docs give the equations),
 //! with the dimension's mass elements from [`Dynamics`].
 
-use super::dimension::Dynamics;
+use super::dimension::{Dynamics, MassElements};
 use crate::dynamics::system::System;
 use crate::error::{Error, Result};
 use crate::mechanism::{Loads, Mechanism};
@@ -53,8 +53,8 @@ impl<D: Dynamics> MechanismSystem<D> {
             joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
         }
         let loads = m.loads();
-        let mut masses = D::masses(m)?;
-        D::set_loads(&mut masses, &loads);
+        let mut masses = D::Masses::new(m)?;
+        masses.set_loads(&loads);
         Ok(MechanismSystem { mechanism: m.clone(), loads, damping, masses })
     }
 
@@ -71,14 +71,14 @@ impl<D: Dynamics> MechanismSystem<D> {
     /// Replaces the loads (validated against the mechanism: [`Loads::validate`]).
     pub fn set_loads(&mut self, loads: Loads<D>) -> Result<()> {
         D::validate(&loads, &self.mechanism)?;
-        D::set_loads(&mut self.masses, &loads);
+        self.masses.set_loads(&loads);
         self.loads = loads;
         Ok(())
     }
 
     /// Whether anything carries inertia: a body's mass or inertia, or a flexure's distributed mass.
     pub fn has_inertia(&self) -> bool {
-        D::has_inertia(&self.masses, &self.mechanism)
+        self.masses.has_inertia(&self.mechanism)
     }
 
     /// The damping matrix $D$ ($n\times n$, constant).
@@ -107,7 +107,7 @@ impl<D: Dynamics> MechanismSystem<D> {
     /// If `q` does not have one finite value per coordinate.
     pub fn mass_matrix(&mut self, q: &[f64]) -> Result<DMatrix<f64>> {
         self.check(q, &vec![0.0; self.mechanism.dof()])?;
-        Ok(D::mass_matrix(&mut self.masses, &self.mechanism, &self.loads, q))
+        Ok(self.masses.mass_matrix(&self.mechanism, &self.loads, q))
     }
 
     /// $h(q, \dot q) = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$ (module docs).
@@ -116,7 +116,7 @@ impl<D: Dynamics> MechanismSystem<D> {
     /// If `q` or `v` does not have one finite value per coordinate.
     pub fn velocity_product(&mut self, q: &[f64], v: &[f64]) -> Result<DVector<f64>> {
         self.check(q, v)?;
-        Ok(D::velocity_product(&mut self.masses, &self.mechanism, &self.loads, [q, v]))
+        Ok(self.masses.velocity_product(&self.mechanism, &self.loads, q, v))
     }
 }
 
@@ -126,13 +126,13 @@ impl<D: Dynamics> System for MechanismSystem<D> {
     }
 
     fn closures(&self) -> usize {
-        D::closures(&self.masses, &self.mechanism)
+        self.masses.closures(&self.mechanism)
     }
 
     fn dynamics(&mut self, q: &[f64], v: &[f64], _t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
-        D::forces(&mut self.masses, &self.mechanism, &self.loads, [q, v], mass, force)?;
+        self.masses.forces(&self.mechanism, &self.loads, q, v, mass, force)?;
         for (r, f) in force.iter_mut().enumerate() {
             let damping: f64 = (0..n).map(|c| self.damping[(r, c)] * v[c]).sum();
             *f -= damping;
@@ -143,23 +143,23 @@ impl<D: Dynamics> System for MechanismSystem<D> {
         Ok(())
     }
 
-    /// The stiffness is the dimension's ([`Dynamics::stiffness`]: the
+    /// The stiffness is the dimension's ([`MassElements::stiffness`]: the
     /// Hessian of the potential, in space with the change of $h$ with $q$)
     /// and the damping is $D + \partial h/\partial\dot q$ (exact: $h$ is
     /// quadratic in $\dot q$).
     fn tangent(&mut self, q: &[f64], v: &[f64], _t: f64, stiffness: &mut [f64], damping: &mut [f64]) -> Result<()> {
         self.check(q, v)?;
         let n = self.dim();
-        D::stiffness(&mut self.masses, &self.mechanism, &self.loads, [q, v], stiffness)?;
+        self.masses.stiffness(&self.mechanism, &self.loads, q, v, stiffness)?;
         let mut d = self.damping.clone();
         // h is quadratic in v: ∂h/∂v e = (h(v + e) − h(v − e))/2 exactly.
         let mut shifted = v.to_vec();
         for c in 0..n {
-            let step = D::rate_step(v, c);
+            let step = D::Masses::rate_step(v, c);
             shifted[c] = v[c] + step;
-            let plus = D::velocity_product(&mut self.masses, &self.mechanism, &self.loads, [q, &shifted]);
+            let plus = self.masses.velocity_product(&self.mechanism, &self.loads, q, &shifted);
             shifted[c] = v[c] - step;
-            let minus = D::velocity_product(&mut self.masses, &self.mechanism, &self.loads, [q, &shifted]);
+            let minus = self.masses.velocity_product(&self.mechanism, &self.loads, q, &shifted);
             shifted[c] = v[c];
             for r in 0..n {
                 d[(r, c)] += (plus[r] - minus[r]) / (2.0 * step);
@@ -170,16 +170,16 @@ impl<D: Dynamics> System for MechanismSystem<D> {
     }
 
     fn closure(&mut self, q: &[f64], c: &mut [f64], g: &mut [f64]) -> Result<()> {
-        D::closure(&mut self.masses, &self.mechanism, q, c, g);
+        self.masses.closure(&self.mechanism, q, c, g);
         Ok(())
     }
 
     fn energy(&mut self, q: &[f64], v: &[f64], _t: f64) -> Result<f64> {
         self.check(q, v)?;
-        D::energy(&mut self.masses, &self.mechanism, &self.loads, [q, v])
+        self.masses.energy(&self.mechanism, &self.loads, q, v)
     }
 
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        D::distance(&self.masses, &self.mechanism, a, b)
+        self.masses.distance(&self.mechanism, a, b)
     }
 }

@@ -81,6 +81,6 @@ mod planar;
 mod spatial;
 mod vibration;
 
-pub use dimension::Dynamics;
+pub use dimension::{Dynamics, MassElements};
 pub use equations::MechanismSystem;
 pub use vibration::modes;

@@ -3,6 +3,7 @@
 //! the tree, with a flexure's sections summed into its mass moments
 //! (the parent module's docs give the equations).
 
+use super::dimension::MassElements;
 use super::distributed::{Distributed, path_columns};
 use super::moments::{Moments, quarter};
 use crate::error::Result;
@@ -10,6 +11,7 @@ use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into}
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::{Loads, Mechanism};
 use crate::sincos::cos_sin;
+use crate::space::Planar;
 use nalgebra::{DMatrix, DVector, Vector2};
 
 /// The angular velocity (rad/s), velocity and velocity-product
@@ -48,7 +50,7 @@ pub struct Masses {
     moments: Moments,
     /// The potential's assembly for the tangent (its flexure weight tables built once).
     assembly: Assembly,
-    /// $M$, $h$ and $\nabla V$ of [`Masses::forces`].
+    /// $M$, $h$ and $\nabla V$ of the forces.
     mass: DMatrix<f64>,
     product: DVector<f64>,
     gradient: GradientWork,
@@ -62,10 +64,8 @@ struct Pass {
     gravity_potential: f64,
 }
 
-impl Masses {
-    /// The mass elements of `m`. Fails if a flexure's mass integrals cannot
-    /// be made accurate ([`MassModel::new`](crate::mass::MassModel::new)).
-    pub(super) fn new(m: &Mechanism) -> Result<Self> {
+impl MassElements<Planar> for Masses {
+    fn new(m: &Mechanism) -> Result<Self> {
         let n = m.dof();
         let mut distributed = Vec::new();
         for (i, j) in m.joints.iter().enumerate() {
@@ -106,18 +106,16 @@ impl Masses {
         })
     }
 
-    /// Whether anything carries inertia: a body's mass or inertia, or a flexure's distributed mass.
-    pub(super) fn has_inertia(&self) -> bool {
+    fn has_inertia(&self, _: &Mechanism) -> bool {
         !self.bodies.is_empty() || !self.distributed.is_empty()
     }
 
-    /// Takes `loads`: the pass weighs every mass element itself, the potential the rest.
-    pub(super) fn set_loads(&mut self, loads: &Loads) {
+    fn set_loads(&mut self, loads: &Loads) {
+        // The pass weighs every mass element itself, the potential the rest.
         self.loads_weightless = Loads { gravity: Vector2::zeros(), ..loads.clone() };
     }
 
-    /// Writes $M$ and $f = Q_g - \nabla V - h$ (no damping).
-    pub(super) fn forces(
+    fn forces(
         &mut self,
         m: &Mechanism,
         loads: &Loads,
@@ -140,8 +138,7 @@ impl Masses {
         Ok(())
     }
 
-    /// $M(q)$.
-    pub(super) fn mass_matrix(&mut self, m: &Mechanism, loads: &Loads, q: &[f64]) -> DMatrix<f64> {
+    fn mass_matrix(&mut self, m: &Mechanism, loads: &Loads, q: &[f64]) -> DMatrix<f64> {
         let n = m.dof();
         let mut mass = DMatrix::zeros(n, n);
         let mut h = DVector::zeros(n);
@@ -149,26 +146,27 @@ impl Masses {
         mass
     }
 
-    /// $h(q, \dot q)$.
-    pub(super) fn velocity_product(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], v: &[f64]) -> DVector<f64> {
+    fn velocity_product(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], v: &[f64]) -> DVector<f64> {
         let mut h = DVector::zeros(m.dof());
         self.pass(m, loads.gravity, q, v, None, &mut h);
         h
     }
 
-    /// The Hessian of the potential (elastic, point loads, tendons, the
-    /// weight of bodies and flexure sections). Left out: the change of $h$
-    /// with $q$, second order in the rates and small beside the elastic
-    /// stiffness of a flexure.
-    pub(super) fn stiffness(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], out: &mut [f64]) -> Result<()> {
+    fn stiffness(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], _: &[f64], out: &mut [f64]) -> Result<()> {
+        // The potential's Hessian (elastic, point loads, tendons, the weight of
+        // bodies and flexure sections). Left out: the change of h with q,
+        // second order in the rates and small beside a flexure's stiffness.
         frames_into(m, q, &mut self.frames);
         assemble_into(m, &self.frames, &self.zeros, loads, true, &mut self.assembly)?;
         out.copy_from_slice(self.assembly.hessian.as_slice());
         Ok(())
     }
 
-    /// $c(q)$ and $G(q)$ of the welds and pins.
-    pub(super) fn closure(&mut self, m: &Mechanism, q: &[f64], c: &mut [f64], g: &mut [f64]) {
+    fn rate_step(v: &[f64], c: usize) -> f64 {
+        1.0 + v[c].abs()
+    }
+
+    fn closure(&mut self, m: &Mechanism, q: &[f64], c: &mut [f64], g: &mut [f64]) {
         if m.constraints() == 0 {
             return;
         }
@@ -178,8 +176,7 @@ impl Masses {
         g.copy_from_slice(self.assembly.closure_jacobian.as_slice());
     }
 
-    /// $T + V$: kinetic, elastic and gravitational (J).
-    pub(super) fn energy(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], v: &[f64]) -> Result<f64> {
+    fn energy(&mut self, m: &Mechanism, loads: &Loads, q: &[f64], v: &[f64]) -> Result<f64> {
         let n = m.dof();
         let mut mm = DMatrix::zeros(n, n);
         let mut h = DVector::zeros(n);
@@ -189,12 +186,13 @@ impl Masses {
         Ok(0.5 * rate.dot(&(&mm * &rate)) + lag.elastic + pass.gravity_potential)
     }
 
-    /// The largest rotation between two configurations.
-    pub(super) fn distance(&self, m: &Mechanism, a: &[f64], b: &[f64]) -> f64 {
+    fn distance(&self, m: &Mechanism, a: &[f64], b: &[f64]) -> f64 {
         let mut buffers = [vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]];
         crate::mechanism::kinematics::distance(m, a, b, self.length, &mut buffers)
     }
+}
 
+impl Masses {
     /// One pass over the mass elements at $(q, \dot q)$ under gravity `g`:
     /// adds $M$ (if asked) and $h$, and returns gravity's force and potential.
     fn pass(

@@ -3,12 +3,15 @@
 //! mass matrix from its differences (the parent module's docs give the
 //! equations).
 
+use super::dimension::MassElements;
+use crate::error::Result;
 use crate::kinematics::Level;
 use crate::mechanism::spatial::kinematics::{
     SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames_into, frames_level_into,
 };
 use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
+use crate::space::Spatial;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 use std::cell::RefCell;
@@ -46,9 +49,8 @@ struct BodyTerms {
     inertia: Matrix3<f64>,
 }
 
-impl Masses {
-    /// The mass elements of `m`.
-    pub(super) fn new(m: &SpatialMechanism) -> Self {
+impl MassElements<Spatial> for Masses {
+    fn new(m: &SpatialMechanism) -> Result<Self> {
         let n = m.dof();
         let mut flexures = Vec::new();
         let mut moving = vec![false; n];
@@ -62,7 +64,7 @@ impl Masses {
             }
             flexures.push((j, quadrature, buffers));
         }
-        Masses {
+        Ok(Masses {
             frames: SpatialFrames::new(m),
             assembly: SpatialAssembly::new(m),
             pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
@@ -71,17 +73,14 @@ impl Masses {
             moving: (0..n).filter(|&i| moving[i]).collect(),
             shifted: RefCell::new(SpatialFrames::new(m)),
             derivatives: RefCell::new((Vec::new(), Vec::new())),
-        }
+        })
     }
 
-    /// Whether any body has mass or inertia, or any spatial flexure a
-    /// density or mass per length.
-    pub(super) fn has_inertia(&self, m: &SpatialMechanism) -> bool {
+    fn has_inertia(&self, m: &SpatialMechanism) -> bool {
         m.bodies.iter().skip(1).any(|b| b.mass > 0.0 || b.inertia != Matrix3::zeros()) || !self.flexures.is_empty()
     }
 
-    /// Writes $M$ and $f = -(\nabla V - Q_m) - h$ (no damping).
-    pub(super) fn forces(
+    fn forces(
         &mut self,
         m: &SpatialMechanism,
         loads: &SpatialLoads,
@@ -89,7 +88,7 @@ impl Masses {
         v: &[f64],
         mass: &mut [f64],
         force: &mut [f64],
-    ) {
+    ) -> Result<()> {
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
         assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
@@ -99,17 +98,18 @@ impl Masses {
             *f = -self.assembly.gradient[i] - h[i];
         }
         mass.copy_from_slice(mm.as_slice());
+        Ok(())
     }
 
-    /// The static Hessian and $\partial h/\partial q$ (central differences).
-    pub(super) fn stiffness(
+    fn stiffness(
         &mut self,
         m: &SpatialMechanism,
         loads: &SpatialLoads,
         q: &[f64],
         v: &[f64],
         out: &mut [f64],
-    ) {
+    ) -> Result<()> {
+        // The static Hessian and ∂h/∂q (central differences).
         let n = m.dof();
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
@@ -131,15 +131,18 @@ impl Masses {
             }
         }
         out.copy_from_slice(k.as_slice());
+        Ok(())
     }
 
-    /// The number of independent closure equations.
-    pub(super) fn closures(&self, m: &SpatialMechanism) -> usize {
+    fn rate_step(v: &[f64], _: usize) -> f64 {
+        1e-3 * v.iter().fold(0.0_f64, |a, x| a.max(x.abs())).max(1.0)
+    }
+
+    fn closures(&self, m: &SpatialMechanism) -> usize {
         self.independent.as_ref().map_or(m.constraints(), |u| u.nrows())
     }
 
-    /// $c(q)$ and $G(q)$, of the independent combinations where they are dependent.
-    pub(super) fn closure(&mut self, m: &SpatialMechanism, q: &[f64], c: &mut [f64], g: &mut [f64]) {
+    fn closure(&mut self, m: &SpatialMechanism, q: &[f64], c: &mut [f64], g: &mut [f64]) {
         let rows = m.constraints();
         frames_into(m, q, &mut self.frames);
         let (mut cv, mut gm) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));
@@ -156,19 +159,32 @@ impl Masses {
         }
     }
 
-    /// $T + V$: kinetic, elastic and gravitational (J).
-    pub(super) fn energy(&mut self, m: &SpatialMechanism, loads: &SpatialLoads, q: &[f64], v: &[f64]) -> f64 {
+    fn energy(&mut self, m: &SpatialMechanism, loads: &SpatialLoads, q: &[f64], v: &[f64]) -> Result<f64> {
         frames_into(m, q, &mut self.frames);
         let mm = self.mass_at(m, &self.frames);
         let qd = DVector::from_column_slice(v);
-        0.5 * qd.dot(&(mm * &qd)) + Self::potential_at(m, loads, &self.frames)
+        Ok(0.5 * qd.dot(&(mm * &qd)) + Self::potential_at(m, loads, &self.frames))
     }
 
-    /// The largest rotation between two configurations.
-    pub(super) fn distance(&self, m: &SpatialMechanism, a: &[f64], b: &[f64]) -> f64 {
+    fn distance(&self, m: &SpatialMechanism, a: &[f64], b: &[f64]) -> f64 {
         distance(m, a, b, &mut self.pair.borrow_mut())
     }
 
+    fn mass_matrix(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64]) -> DMatrix<f64> {
+        frames_into(m, q, &mut self.frames);
+        self.mass_at(m, &self.frames)
+    }
+
+    fn velocity_product(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64], v: &[f64]) -> DVector<f64> {
+        // The tangent asks for h at one q and many rates: the frames are kept.
+        if self.frames.level() != Level::Hessian || self.frames.coordinates != q {
+            frames_into(m, q, &mut self.frames);
+        }
+        self.velocity_product_at(m, &self.frames, v)
+    }
+}
+
+impl Masses {
     /// Adds the flexures' stations' $M_f$ (module docs) at the frames `f` to `mass`.
     fn add_flexure_mass(&self, m: &SpatialMechanism, f: &SpatialFrames, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {
@@ -288,12 +304,6 @@ impl Masses {
         mass
     }
 
-    /// The mass matrix $M(q)$.
-    pub(super) fn mass_matrix(&mut self, m: &SpatialMechanism, q: &[f64]) -> DMatrix<f64> {
-        frames_into(m, q, &mut self.frames);
-        self.mass_at(m, &self.frames)
-    }
-
     /// $h(q, \dot q)$ at the frames `f` (of $q$).
     fn velocity_product_at(&self, m: &SpatialMechanism, f: &SpatialFrames, v: &[f64]) -> DVector<f64> {
         let n = m.dof();
@@ -321,15 +331,6 @@ impl Masses {
             h += t.com.transpose() * (bias * t.mass) + t.rotation.transpose() * moment;
         }
         h + self.flexure_velocity_product(m, &f.coordinates, v)
-    }
-
-    /// The velocity-product terms $h(q, \dot q)$.
-    pub(super) fn velocity_product(&mut self, m: &SpatialMechanism, q: &[f64], v: &[f64]) -> DVector<f64> {
-        // The tangent asks for h at one q and many rates: the frames are kept.
-        if self.frames.level() != Level::Hessian || self.frames.coordinates != q {
-            frames_into(m, q, &mut self.frames);
-        }
-        self.velocity_product_at(m, &self.frames, v)
     }
 
     /// The elastic and gravitational energy (J) at the frames `f`.
