@@ -260,6 +260,17 @@ fn calls() -> Vec<Vec<String>> {
             out.push(call);
         }
     }
+    // The spatial mechanisms' motion (after every earlier call).
+    for name in &spatial_names {
+        out.push(vec![
+            "simulate".into(),
+            format!("{root}/{name}"),
+            "--duration".into(),
+            "0.01".into(),
+            "--every".into(),
+            "0.005".into(),
+        ]);
+    }
     out
 }
 

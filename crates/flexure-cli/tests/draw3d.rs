@@ -12,7 +12,7 @@
 //! SVGs into DIR, to be looked at.
 
 use flexure::dynamics::integrate::Settings as Motion;
-use flexure::dynamics::spatial::simulate;
+use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::frames;
@@ -301,7 +301,7 @@ fn a_motion_draws_five_snapshots_over_the_rest_shape() {
     )
     .unwrap();
     let motion = Motion { duration: 0.05, every: 0.005, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none());
     let drawn = spatial_motion_figures(&m, "bob", &unloaded(&m), &run, View::Front, true).unwrap();
     // Eleven samples, 0 to 10: the planar picks (k · 10 + 2)/4 for k = 0…4.
@@ -382,7 +382,7 @@ fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
         .collect();
     let m = SpatialMechanism::new(b, joints, vec![], vec![], vec![], Vector3::new(0.0, -9.81, -9.81)).unwrap();
     let motion = Motion { duration: 0.01, every: 0.002, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     let drawn = spatial_motion_figures(&m, "chain", &unloaded(&m), &run, View::Iso, true).unwrap();
     let svg = flexure_chart::stack(&drawn.figures).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();

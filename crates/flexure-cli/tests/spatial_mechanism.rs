@@ -185,7 +185,7 @@ fn spatial_buckle_and_modes_carry_their_error_estimate() {
     // The example's discs carry mass, so it vibrates.
     let (v, err) = answer(&["modes", &file, "--count", "4"]);
     assert!(err.is_empty() && !has_null(&v), "{err}\n{v}");
-    let found = flexure::dynamics::spatial::modes(&m, &settings, 4).unwrap();
+    let found = flexure::dynamics::mechanism::modes(&m, &settings, 4).unwrap();
     let e = flexure::estimate::mechanism_modes_error(&m, &found, &settings, &Default::default()).unwrap();
     let estimate = &v["error_estimate"];
     let (omega, reference) = (estimate["omega"].as_array().unwrap(), estimate["reference_omega"].as_array().unwrap());

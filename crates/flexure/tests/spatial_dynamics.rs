@@ -1,14 +1,16 @@
-//! Spatial mechanisms' dynamics (`dynamics::spatial`): the mass matrix and
+//! Spatial mechanisms' dynamics (`dynamics::mechanism` in space): the mass matrix and
 //! velocity products against Lagrange's equations by finite differences,
 //! modes against closed forms, and motion against a conical pendulum.
 
 use flexure::dynamics::integrate::Settings as Motion;
-use flexure::dynamics::spatial::{SpatialSystem, modes, simulate};
+use flexure::dynamics::mechanism::{MechanismSystem, modes};
+use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::{
     Prismatic, Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
 use flexure::section::SpatialSection;
+use flexure::space::Spatial;
 use flexure::spatial::SpatialFlexure;
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix2, Matrix3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 
@@ -73,13 +75,13 @@ fn velocity_products_are_lagranges_from_the_mass_matrix() {
     let n = m.dof();
     let q: Vec<f64> = (0..n).map(|i| 0.3 * (1.3 * i as f64 + 0.2).sin()).collect();
     let v = DVector::from_fn(n, |i, _| (0.7 * i as f64 + 1.0).cos());
-    let mut sys = SpatialSystem::new(&m).unwrap();
-    let h = sys.velocity_product(&q, v.as_slice());
+    let mut sys = MechanismSystem::<Spatial>::new(&m).unwrap();
+    let h = sys.velocity_product(&q, v.as_slice()).unwrap();
     let step = 1e-6;
-    let mass_at = |sys: &mut SpatialSystem, i: usize, e: f64| {
+    let mass_at = |sys: &mut MechanismSystem<Spatial>, i: usize, e: f64| {
         let mut p = q.clone();
         p[i] += e;
-        sys.mass_matrix(&p)
+        sys.mass_matrix(&p).unwrap()
     };
     let mut expected = DVector::zeros(n);
     for i in 0..n {
@@ -170,7 +172,7 @@ fn a_conical_pendulum_keeps_its_cone_and_its_energy() {
     let period = 2.0 * std::f64::consts::PI / omega;
     let motion =
         Motion { duration: 2.0 * period, every: period / 8.0, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?} after {} samples", run.stopped, run.time.len());
     let e0 = run.energy[0];
     for k in 0..run.time.len() {
@@ -206,10 +208,10 @@ fn scheduled_moments_turn_a_free_hinge_as_their_integrals() {
         [[schedule]]\nload = \"force.kick.mz\"\npoints = [[0.5, 0.0], [0.5, 1.0]]\n";
     let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
     assert_eq!(m.schedules.len(), 2);
-    let loads = flexure::dynamics::schedule::spatial_loads_at(&m, 0.25);
+    let loads = flexure::dynamics::schedule::loads_at(&m, 0.25);
     assert_eq!((loads.force[0][2], loads.force[1][2]), (1.0, 0.0));
     let motion = Motion { duration: 1.0, every: 0.125, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     assert_eq!(run.time.len(), 9);
     for k in 0..run.time.len() {
@@ -284,7 +286,7 @@ fn a_planar_linkage_in_space_swings_as_in_the_plane() {
         flexure::dynamics::simulation::Start::Rest,
     )
     .unwrap();
-    let run = simulate(&s, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&s, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none() && reference.stopped.is_none(), "{:?} {:?}", run.stopped, reference.stopped);
     assert_eq!(run.time.len(), reference.time.len());
     for k in 0..run.time.len() {
@@ -329,7 +331,7 @@ fn a_spatial_finger_with_massless_flexures_moves_from_rest() {
         ),
     );
     let motion = Motion { duration: 0.05, every: 0.005, tolerance: 1e-8, absolute: 1e-8, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     assert_eq!(run.time.last(), Some(&0.05));
     let tip = m.bodies.iter().position(|b| b.name == "fingertip").unwrap();
@@ -352,13 +354,13 @@ fn a_spatial_finger_with_massless_flexures_moves_from_rest() {
 fn a_free_spatial_finger_moves_keeping_its_energy() {
     let m = finger3d_with("", "[initial_velocity]\nmcp = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0]\n");
     let motion = Motion { duration: 0.02, every: 0.002, tolerance: 1e-8, absolute: 1e-8, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
-    let mut sys = SpatialSystem::new(&m).unwrap();
+    let mut sys = MechanismSystem::<Spatial>::new(&m).unwrap();
     let kinetic = (0..run.time.len())
         .map(|k| {
             let v = DVector::from_column_slice(run.v(k));
-            0.5 * v.dot(&(sys.mass_matrix(run.q(k)) * &v))
+            0.5 * v.dot(&(sys.mass_matrix(run.q(k)).unwrap() * &v))
         })
         .fold(0.0, f64::max);
     let drift = run.energy.iter().map(|e| (e - run.energy[0]).abs()).fold(0.0, f64::max);

@@ -7,7 +7,7 @@
 //! the cantilever's tip stiffness). The constants are typed here, not
 //! taken from the library.
 
-use flexure::dynamics::spatial::modes;
+use flexure::dynamics::mechanism::modes;
 use flexure::estimate::Accuracy;
 use flexure::estimate::{buckle_error, mechanism_modes_error as modes_error};
 use flexure::mechanism::spatial::buckling::buckle;

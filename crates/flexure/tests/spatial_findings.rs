@@ -169,9 +169,10 @@ fn a_pendulum_meets_a_thick_post_in_the_window_its_thickness_widens() {
 #[test]
 fn a_swing_through_the_post_crosses_it_at_its_samples() {
     use flexure::dynamics::integrate::Settings as Motion;
+    use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
     let m = spatial_from_toml(PENDULUM).unwrap();
     let motion = Motion { duration: 0.3, every: 0.01, ..Default::default() };
-    let run = flexure::dynamics::spatial::simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     let found = crossings_along(&m, (0..run.time.len()).map(|k| run.q(k)));
     let (low, high) = window();

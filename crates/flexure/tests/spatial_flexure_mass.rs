@@ -1,5 +1,5 @@
 //! A spatial flexure's own mass (`spatial::mass`, its weight in
-//! `mechanism::spatial::lagrangian` and its inertia in `dynamics::spatial`):
+//! `mechanism::spatial::lagrangian` and its inertia in `dynamics::mechanism`):
 //! the stations' Jacobians against central differences, the weight's
 //! gradient and Hessian against differences of the potential and gradient,
 //! Euler–Bernoulli's bending and the rod's torsion frequencies, the
@@ -8,7 +8,8 @@
 
 use flexure::Level;
 use flexure::dynamics::integrate::Settings as Motion;
-use flexure::dynamics::spatial::{SpatialSystem, modes, simulate};
+use flexure::dynamics::mechanism::{MechanismSystem, modes};
+use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::file::{from_toml, spatial_from_toml};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
@@ -17,6 +18,7 @@ use flexure::mechanism::spatial::{
 };
 use flexure::report::placements;
 use flexure::section::{Profile, Shear, SpatialSection};
+use flexure::space::Spatial;
 use flexure::spatial::{MassQuadrature, SpatialFlexure, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
 
@@ -226,18 +228,18 @@ fn the_stations_velocity_products_are_lagranges_from_their_mass_matrix() {
     let m = tree();
     let q = configuration(&m);
     let v: Vec<f64> = (0..m.dof()).map(|i| 0.7 * (2.1 * i as f64).cos()).collect();
-    let mut sys = SpatialSystem::new(&m).unwrap();
-    let mm = sys.mass_matrix(&q);
+    let mut sys = MechanismSystem::<Spatial>::new(&m).unwrap();
+    let mm = sys.mass_matrix(&q).unwrap();
     assert!((&mm - mm.transpose()).amax() < 1e-14 * mm.amax());
     assert!(mm.clone().cholesky().is_some(), "the stations' translation and rotation make M positive definite");
-    let h = sys.velocity_product(&q, &v);
+    let h = sys.velocity_product(&q, &v).unwrap();
     let qd = DVector::from_column_slice(&v);
     let e = 1e-6;
     let n = m.dof();
     let mut mdot = DMatrix::zeros(n, n);
     let mut grad = DVector::zeros(n);
     for i in 0..n {
-        let (up, down) = (sys.mass_matrix(&step(&q, i, e)), sys.mass_matrix(&step(&q, i, -e)));
+        let (up, down) = (sys.mass_matrix(&step(&q, i, e)).unwrap(), sys.mass_matrix(&step(&q, i, -e)).unwrap());
         mdot += (&up - &down) / (2.0 * e) * v[i];
         grad[i] = qd.dot(&((&up - &down) / (2.0 * e) * &qd));
     }
@@ -420,7 +422,7 @@ fn a_massive_rod_swinging_free_keeps_its_energy() {
     m.initial = vec![(0, vec![0.0]), (1, vec![0.0; 4])];
     m.initial_velocity = vec![(0, vec![0.5])];
     let motion = Motion { duration: 0.1, every: 0.01, tolerance: 1e-9, absolute: 1e-12, ..Default::default() };
-    let run = simulate(&m, &motion, &Default::default(), false).unwrap();
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     let scale = weight * 0.05;
     let e0 = run.energy[0];

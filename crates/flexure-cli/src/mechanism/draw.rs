@@ -103,8 +103,7 @@ fn spatial_picture(
             .collect::<Result<_, String>>()?
     } else if let Some(duration) = args.simulate {
         let settings = args.motion.settings(duration);
-        let equilibrium = args.motion.start() == flexure::dynamics::simulation::Start::Equilibrium;
-        let sim = flexure::dynamics::spatial::simulate(m, &settings.motion, &settings.equilibrium, equilibrium)
+        let sim = flexure::dynamics::simulation::simulate(m, &settings, args.motion.start())
             .map_err(|e| format!("{}: {}", args.file.display(), crate::simulate::simulation_error(e, duration)))?;
         let samples: Vec<(f64, &[f64])> = (0..sim.time.len()).map(|k| (sim.time[k], sim.q(k))).collect();
         findings.extend(crate::findings::spatial_along(m, &samples, ("t (s)", "samples"), "time", &args.file));

@@ -366,13 +366,13 @@ pub fn planar_motion(
 /// $\theta = \varphi\thinspace\hat n$ (angle times unit axis, rad).
 pub fn spatial_motion(
     m: &SpatialMechanism,
-    sim: &flexure::dynamics::spatial::SpatialSimulation,
+    sim: &flexure::dynamics::Simulation<flexure::space::Spatial>,
     picked: &[usize],
 ) -> Result<(Shapes, Vec<Track>), String> {
     let snapshots = picked
         .iter()
         .map(|&k| {
-            let loads = flexure::dynamics::schedule::spatial_loads_at(m, sim.time[k]);
+            let loads = flexure::dynamics::schedule::loads_at(m, sim.time[k]);
             let label = format!("t = {} s", short(sim.time[k]));
             Ok((label.clone(), spatial(m, &label, sim.q(k), &loads)?))
         })
@@ -398,7 +398,7 @@ pub fn spatial_motion_figures(
     m: &SpatialMechanism,
     title: &str,
     unloaded: &SpatialSolution,
-    sim: &flexure::dynamics::spatial::SpatialSimulation,
+    sim: &flexure::dynamics::Simulation<flexure::space::Spatial>,
     view: View,
     stress: bool,
 ) -> Result<MotionFigures, String> {

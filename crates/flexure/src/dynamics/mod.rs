@@ -23,7 +23,6 @@ pub mod mechanism;
 pub mod modes;
 pub mod schedule;
 pub mod simulation;
-pub mod spatial;
 pub mod system;
 
 // The mass models sit beside the section they integrate; their old paths stay.
@@ -32,6 +31,8 @@ pub mod system;
 /// one body type.
 pub use crate::inertia::RigidInertia as Body;
 pub use crate::mass::{self, MassData, MassModel, update as update_mass};
+pub use mechanism::{Dynamics, MechanismSystem};
 pub use modes::{Modes, modes};
 pub use simulation::{Simulation, SimulationSettings, Start, simulate};
+
 pub use system::System;

@@ -1,55 +1,16 @@
 //! The [`System`] that applies a mechanism's schedules: its loads at each
-//! time it is evaluated, for either dimension ([`Scheduled`] over a
-//! [`Loaded`] system). The schedules themselves are plain data of the
+//! time it is evaluated, for either dimension ([`ScheduledSystem`]). The schedules themselves are plain data of the
 //! mechanism ([`crate::mechanism::schedule`], re-exported here).
 
-use super::mechanism::MechanismSystem;
-use super::spatial::SpatialSystem;
+use super::mechanism::{Dynamics, MechanismSystem};
 use super::system::System;
 use crate::error::Result;
 pub use crate::mechanism::schedule::{Schedule, Waveform};
-use crate::mechanism::spatial::sweep::SpatialParameter;
-use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
-use crate::mechanism::sweep::Parameter;
 use crate::mechanism::{Loads, Mechanism};
-
-/// A system whose loads a schedule sets: the planar [`MechanismSystem`]
-/// and the [`SpatialSystem`].
-pub trait Loaded: System {
-    /// Its loads.
-    type Loads: Clone;
-    /// The one load a schedule sets.
-    type Parameter;
-    /// Takes `loads` from now on.
-    fn set_loads(&mut self, loads: Self::Loads) -> Result<()>;
-    /// Sets `parameter` of `loads` to `value`.
-    fn set(parameter: &Self::Parameter, loads: &mut Self::Loads, value: f64);
-}
-
-impl Loaded for MechanismSystem {
-    type Loads = Loads;
-    type Parameter = Parameter;
-    fn set_loads(&mut self, loads: Loads) -> Result<()> {
-        MechanismSystem::set_loads(self, loads)
-    }
-    fn set(parameter: &Parameter, loads: &mut Loads, value: f64) {
-        parameter.set(loads, value)
-    }
-}
-
-impl Loaded for SpatialSystem<'_> {
-    type Loads = SpatialLoads;
-    type Parameter = SpatialParameter;
-    fn set_loads(&mut self, loads: SpatialLoads) -> Result<()> {
-        SpatialSystem::set_loads(self, loads)
-    }
-    fn set(parameter: &SpatialParameter, loads: &mut SpatialLoads, value: f64) {
-        parameter.set(loads, value)
-    }
-}
+use crate::space::Planar;
 
 /// The loads of `m` at time `t` (s): its own, each scheduled one replaced by
-/// its [`Schedule::value`].
+/// its [`Schedule::value`]; in either dimension.
 ///
 /// # Example
 /// ```
@@ -65,22 +26,15 @@ impl Loaded for SpatialSystem<'_> {
 /// assert_eq!(loads_at(&m, 0.05).force, [Wrench { moment: 1.0, fx: 0.0, fy: 5.0 }]);
 /// assert_eq!(loads_at(&m, 1.0).force, [Wrench { moment: 2.0, fx: 0.0, fy: 5.0 }]);
 /// ```
-pub fn loads_at(m: &Mechanism, t: f64) -> Loads {
+pub fn loads_at<D: Dynamics>(m: &Mechanism<D>, t: f64) -> Loads<D> {
     let mut loads = m.loads();
-    apply(&m.schedules, t, &mut loads, Parameter::set);
+    apply(&m.schedules, t, &mut loads);
     loads
 }
 
-/// The loads of a spatial mechanism at time `t` (s), as [`loads_at`].
-pub fn spatial_loads_at(m: &SpatialMechanism, t: f64) -> SpatialLoads {
-    let mut loads = m.loads();
-    apply(&m.schedules, t, &mut loads, SpatialParameter::set);
-    loads
-}
-
-fn apply<P, L>(schedules: &[Schedule<P>], t: f64, loads: &mut L, set: impl Fn(&P, &mut L, f64)) {
+fn apply<D: Dynamics>(schedules: &[Schedule<D::Parameter>], t: f64, loads: &mut Loads<D>) {
     for s in schedules {
-        set(&s.parameter, loads, s.value(t));
+        D::set(&s.parameter, loads, s.value(t));
     }
 }
 
@@ -104,44 +58,32 @@ fn apply<P, L>(schedules: &[Schedule<P>], t: f64, loads: &mut L, set: impl Fn(&P
 /// sys.dynamics(&[0.0], &[0.0], 0.25, &mut mass, &mut force).unwrap();
 /// assert!((force[0] - 0.5).abs() < 1e-15);
 /// ```
-pub type ScheduledSystem = Scheduled<MechanismSystem>;
-
-/// A [`Loaded`] system whose loads follow schedules: at each time it is
-/// evaluated it sets the base loads with each scheduled one at its value then.
 #[derive(Debug, Clone)]
-pub struct Scheduled<S: Loaded> {
-    system: S,
-    schedules: Vec<Schedule<S::Parameter>>,
+pub struct ScheduledSystem<D: Dynamics = Planar> {
+    system: MechanismSystem<D>,
+    schedules: Vec<Schedule<D::Parameter>>,
     /// The loads without schedules, and the time the system's loads were last set for.
-    base: S::Loads,
+    base: Loads<D>,
     time: f64,
 }
 
-impl ScheduledSystem {
-    /// The system of `m` ([`MechanismSystem::new`]) with its schedules.
-    pub fn new(m: &Mechanism) -> Result<Self> {
-        Scheduled::with(MechanismSystem::new(m)?, m.schedules.clone(), m.loads())
-    }
-}
-
-impl<S: Loaded> Scheduled<S> {
-    /// `system` under `base` with `schedules` applied, its loads set for t = 0.
-    pub fn with(mut system: S, schedules: Vec<Schedule<S::Parameter>>, base: S::Loads) -> Result<Self> {
-        let mut loads = base.clone();
-        apply(&schedules, 0.0, &mut loads, S::set);
-        system.set_loads(loads)?;
-        Ok(Scheduled { system, schedules, base, time: 0.0 })
+impl<D: Dynamics> ScheduledSystem<D> {
+    /// The system of `m` ([`MechanismSystem::new`]) with its schedules, its loads set for t = 0.
+    pub fn new(m: &Mechanism<D>) -> Result<Self> {
+        let (mut system, base) = (MechanismSystem::new(m)?, m.loads());
+        system.set_loads(loads_at(m, 0.0))?;
+        Ok(ScheduledSystem { system, schedules: m.schedules.clone(), base, time: 0.0 })
     }
 
     /// The system, with the loads of the last time evaluated.
-    pub fn system(&mut self) -> &mut S {
+    pub fn system(&mut self) -> &mut MechanismSystem<D> {
         &mut self.system
     }
 
     fn at(&mut self, t: f64) -> Result<()> {
         if t != self.time && !self.schedules.is_empty() {
             let mut loads = self.base.clone();
-            apply(&self.schedules, t, &mut loads, S::set);
+            apply(&self.schedules, t, &mut loads);
             self.system.set_loads(loads)?;
             self.time = t;
         }
@@ -149,7 +91,7 @@ impl<S: Loaded> Scheduled<S> {
     }
 }
 
-impl<S: Loaded> System for Scheduled<S> {
+impl<D: Dynamics> System for ScheduledSystem<D> {
     fn dim(&self) -> usize {
         self.system.dim()
     }

@@ -1,5 +1,5 @@
-//! Motion of a mechanism over time: its start, its loads in time and its
-//! integration, end to end.
+//! Motion of a mechanism of either dimension over time: its start, its
+//! loads in time and its integration, end to end.
 //!
 //! The equations of motion are those of [`super::mechanism`], with the loads
 //! of [`super::schedule`] at each time, integrated by [`super::integrate`].
@@ -17,11 +17,12 @@
 //! started there stays at rest.
 
 use super::integrate::{self, Trajectory, integrate_kept};
+use super::mechanism::Dynamics;
 use super::schedule::{ScheduledSystem, loads_at};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
-use crate::mechanism::kinematics::frames;
-use crate::mechanism::statics::{self, assemble_unloaded, solve_between};
+use crate::mechanism::statics;
+use crate::space::Planar;
 
 /// Where a simulation starts, before `[initial]` and `[initial_velocity]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -44,7 +45,7 @@ pub struct SimulationSettings {
     pub equilibrium: statics::Settings,
 }
 
-/// One body's motion: its frame in the ground frame at each sample.
+/// One body's motion in the plane: its frame in the ground frame at each sample.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct BodyMotion {
     /// The body's name.
@@ -57,6 +58,17 @@ pub struct BodyMotion {
     pub phi: Vec<f64>,
 }
 
+/// One body's motion in space: its frame in the ground frame at each sample.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BodyPoses {
+    /// The body's name.
+    pub name: String,
+    /// Its origin (m), ground frame, at each sample.
+    pub position: Vec<[f64; 3]>,
+    /// Its rotation matrix (rows), ground frame, at each sample.
+    pub rotation: Vec<[[f64; 3]; 3]>,
+}
+
 /// A simulated motion, sampled at [`integrate::Settings::times`]: the
 /// integrator's [`Trajectory`] (times, coordinates, rates, energy, steps,
 /// closure violation; read through it directly, `simulation.time`), and
@@ -65,9 +77,10 @@ pub struct BodyMotion {
 /// It serializes as the trajectory's fields beside `bodies`, and `stopped`
 /// as the error's message when the run stopped early.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Simulation {
-    /// Every moving body (not the ground), in the mechanism's order.
-    pub bodies: Vec<BodyMotion>,
+pub struct Simulation<D: Dynamics = Planar> {
+    /// Every moving body (not the ground), in the mechanism's order
+    /// ([`BodyMotion`] in the plane, [`BodyPoses`] in space).
+    pub bodies: Vec<D::BodyMotion>,
     /// The integrator's samples and counts. Its energy is the kinetic,
     /// elastic and gravitational energy (J); the work of the other loads and
     /// of damping is not in it.
@@ -88,7 +101,7 @@ fn message<S: serde::Serializer>(error: &Option<Error>, s: S) -> std::result::Re
     }
 }
 
-impl std::ops::Deref for Simulation {
+impl<D: Dynamics> std::ops::Deref for Simulation<D> {
     type Target = Trajectory;
 
     fn deref(&self) -> &Trajectory {
@@ -100,17 +113,22 @@ impl std::ops::Deref for Simulation {
 /// When `[initial]` names every joint, no static solve is made.
 ///
 /// Errors: those of the static solve of the start.
-pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) -> Result<(Vec<f64>, Vec<f64>)> {
+pub fn initial_state<D: Dynamics>(
+    m: &Mechanism<D>,
+    settings: &statics::Settings,
+    start: Start,
+) -> Result<(Vec<f64>, Vec<f64>)> {
     // `[initial]` for every joint leaves nothing to solve for (and a free
     // joint, a pendulum's, has no static start to solve).
     let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
     let mut q = if (0..m.joints.len()).all(given) {
         m.rest()
     } else {
-        let unloaded = assemble_unloaded(m, settings)?;
+        let loads = loads_at(m, 0.0);
+        let unloaded = D::assemble_unloaded(m, &loads, settings)?;
         match start {
             Start::Rest => unloaded.q,
-            Start::Equilibrium => solve_between(m, &unloaded, &loads_at(m, 0.0), settings)?.q,
+            Start::Equilibrium => D::solve_between(m, &unloaded, &loads, settings)?.q,
         }
     };
     let mut v = vec![0.0; m.dof()];
@@ -149,7 +167,7 @@ pub fn initial_state(m: &Mechanism, settings: &statics::Settings, start: Start) 
 /// assert_eq!(run.time, [0.0, 0.5, 1.0]);
 /// assert!((run.bodies[0].phi[2] - 0.1 * 2f64.cos()).abs() < 1e-8);
 /// ```
-pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> Result<Simulation> {
+pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Simulation<D>> {
     settings.motion.validate()?;
     settings.equilibrium.validate()?;
     let mut system = ScheduledSystem::new(m)?;
@@ -162,22 +180,5 @@ pub fn simulate(m: &Mechanism, settings: &SimulationSettings, start: Start) -> R
     }
     let (q0, v0) = initial_state(m, &settings.equilibrium, start)?;
     let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
-    let mut bodies: Vec<BodyMotion> = m.bodies[1..]
-        .iter()
-        .map(|b| BodyMotion {
-            name: b.name.clone(),
-            x: Vec::with_capacity(run.time.len()),
-            y: Vec::with_capacity(run.time.len()),
-            phi: Vec::with_capacity(run.time.len()),
-        })
-        .collect();
-    for k in 0..run.time.len() {
-        let f = frames(m, run.q(k));
-        for (motion, frame) in bodies.iter_mut().zip(&f.bodies[1..]) {
-            motion.x.push(frame.x);
-            motion.y.push(frame.y);
-            motion.phi.push(frame.phi);
-        }
-    }
-    Ok(Simulation { bodies, trajectory: run, stopped })
+    Ok(Simulation { bodies: D::motions(m, &run), trajectory: run, stopped })
 }

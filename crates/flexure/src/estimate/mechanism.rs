@@ -107,7 +107,7 @@ impl Refined for Spatial {
     }
 
     fn modes(m: &Mechanism<Spatial>, settings: &Settings, count: usize) -> Result<Modes> {
-        crate::dynamics::spatial::modes(m, settings, count)
+        crate::dynamics::mechanism::modes(m, settings, count)
     }
 }
 
@@ -252,7 +252,7 @@ pub fn buckle_auto<D: Refined>(
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::spatial::modes;
+/// use flexure::dynamics::mechanism::modes;
 /// use flexure::estimate::mechanism_modes_error;
 /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
 /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};

@@ -154,8 +154,7 @@ impl Analyses for Spatial {
         settings: &SimulationSettings,
         start: Start,
     ) -> Result<(Trajectory, Option<Error>)> {
-        let equilibrium = start == Start::Equilibrium;
-        let run = crate::dynamics::spatial::simulate(m, &settings.motion, &settings.equilibrium, equilibrium)?;
+        let run = crate::dynamics::simulation::simulate(m, settings, start)?;
         Ok((run.trajectory, run.stopped))
     }
 

@@ -1,4 +1,9 @@
-//! The equations of motion of a [`Mechanism`](crate::mechanism::Mechanism) and its vibration modes.
+//! The equations of motion of a [`Mechanism`](crate::mechanism::Mechanism)
+//! of either dimension ([`MechanismSystem`]) and its vibration modes
+//! ([`modes`]), written once over [`Dynamics`]: what differs between the
+//! plane and space is the mass elements' evaluation, below.
+//!
+//! # In the plane
 //!
 //! Every mass element of the mechanism (a body's mass $m$ at its centre of
 //! mass, its inertia $I_c$; a flexure section's mass $\mu\thinspace ds$ and
@@ -34,11 +39,48 @@
 //! constant magnitudes, the joints' elastic forces, gravity on every mass
 //! element (bodies and flexure sections), and the damping
 //! $D = \operatorname{diag}(\beta_jK_j, c_k)$ of the joints.
+//!
+//! # In space
+//!
+//! Each body of mass $m$, centre of mass $c(q)$ and inertia $I_c$ (in the
+//! world, $I_w = RI_cR^T$) turning at $\omega = J_\omega\dot q$ has
+//! $T = \frac12 m\lvert J_c\dot q\rvert^2 + \frac12\omega\cdot I_w\omega$, so
+//! $$M = \sum_b m J_c^TJ_c + J_\omega^TI_wJ_\omega,\qquad
+//! h = \sum_b m J_c^T(\dot J_c\dot q) + J_\omega^T\big(I_w\dot J_\omega\dot q + \omega\times I_w\omega\big),$$
+//! Newton–Euler's equations projected on the coordinates (which are
+//! Lagrange's, $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$). The
+//! accelerations at $\ddot q = 0$, $\dot J_c\dot q = \dot q^T\nabla^2c\thinspace\dot q$
+//! and $\dot J_\omega\dot q = \sum_{ab}\partial_b\omega_a\dot q_a\dot q_b$, come from
+//! the tree's second derivatives ([`crate::mechanism::spatial::kinematics`]).
+//!
+//! A spatial flexure with a density or mass per length adds its stations
+//! ([`crate::spatial::MassQuadrature`]) as bodies: station $k$ of joint $j$,
+//! at $x_k = o_A + R_Ap_k$ with axes $R_AR_k$ ($A$ the joint's root frame),
+//! has $J_{v,k}$ of a point fixed in the parent body for the coordinates
+//! upstream and $R_A\partial_ap_k$ for the joint's own, $J_{\omega,k}$ the
+//! upstream $\omega_c$ and $R_A\omega_{k,a}$, so
+//! $$M_f = \sum_k \mu_kw_k J_{v,k}^TJ_{v,k} + J_{\omega,k}^T\big(R\rho I_kR^T\big)J_{\omega,k}.$$
+//! Its velocity products are Lagrange's from $M_f$ itself,
+//! $h_f = \dot M_f\dot q - \frac12\nabla(\dot q^TM_f\dot q)$, from central
+//! differences of $M_f$ along each coordinate that moves a station (steps
+//! $10^{-5}(1 + \lvert q_i\rvert)$, truncation about $10^{-10}$ relative), kept
+//! for the configuration they were taken at. Being Lagrange's equations of
+//! the same $T$, they keep $T + V$ to the differences' error, which a free
+//! swing checks (`tests/spatial_flexure_mass.rs`).
+//!
+//! The generalized force is $f = -(\nabla V - Q_m) - h - D\dot q$, with the
+//! potential and dead moments of [`crate::mechanism::spatial::lagrangian`]
+//! and $D = \operatorname{diag}(\beta_jK_j, c_k)$. The tangent stiffness
+//! adds $\partial h/\partial q$ by central differences.
 
+mod dimension;
 mod distributed;
 mod equations;
 mod moments;
+mod planar;
+mod spatial;
 mod vibration;
 
+pub use dimension::{Dynamics, MassElements};
 pub use equations::MechanismSystem;
 pub use vibration::modes;
