@@ -54,16 +54,12 @@ pub struct Exported {
 /// Fits, builds and writes the model; warnings (flagged fits, what the
 /// format cannot hold) and notes are queued for stderr.
 pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
-    let text = crate::input::read_mechanism(&args.file)?;
-    if let flexure::model::Model::Spatial(_) =
-        flexure::model::Model::from_toml(&text).map_err(|e| format!("{}: {e}", args.file.display()))?
-    {
+    let flexure::model::Model::Planar(m) = crate::input::read_model(&args.file)? else {
         return Err(format!(
             "{}: a spatial mechanism (dimension = 3): export fits pseudo-rigid-body joints to planar flexures only for now",
             args.file.display()
         ));
-    }
-    let m = flexure::mechanism::file::from_toml(&text).map_err(|e| format!("{}: {e}", args.file.display()))?;
+    };
     let name = args.name.clone().unwrap_or_else(|| {
         args.file.file_stem().map_or_else(|| "mechanism".into(), |s| s.to_string_lossy().into_owned())
     });

@@ -10,17 +10,6 @@ use std::path::Path;
 /// ([`flexure::mechanism::file::MAX_TEXT_BYTES`]).
 pub const MAX_BYTES: u64 = flexure::mechanism::file::MAX_TEXT_BYTES as u64;
 
-/// The text of the mechanism file `path` ([`read_text`]), warning of each
-/// number it gives that is implausible as written
-/// ([`flexure::mechanism::file::habits`]), placed in the file.
-pub fn read_mechanism(path: &Path) -> Result<String, String> {
-    let text = read_text(path, "")?;
-    for h in flexure::mechanism::file::habits(&text) {
-        crate::options::warn(format!("{}: {h}", path.display()));
-    }
-    Ok(text)
-}
-
 /// The text of `path`, read to at most [`MAX_BYTES`]; errors name `what`
 /// (the option or the file's role) and the path.
 pub fn read_text(path: &Path, what: &str) -> Result<String, String> {
@@ -39,8 +28,14 @@ pub fn read_text(path: &Path, what: &str) -> Result<String, String> {
 }
 
 /// The mechanism of either dimension that the file at `path` describes,
-/// read, parsed and built once.
+/// read, parsed and built once, warning of each number it gives that is
+/// implausible as written ([`flexure::mechanism::file::habits`]), placed
+/// in the file.
 pub fn read_model(path: &Path) -> Result<flexure::model::Model, String> {
-    let text = read_mechanism(path)?;
-    flexure::model::Model::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let text = read_text(path, "")?;
+    let document = flexure::mechanism::file::Document::parse(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    for h in flexure::mechanism::file::habits(&document) {
+        crate::options::warn(format!("{}: {h}", path.display()));
+    }
+    flexure::model::Model::from_document(document).map_err(|e| format!("{}: {e}", path.display()))
 }

@@ -391,3 +391,27 @@ fn a_force_without_at_acts_at_the_body_origin() {
     // Small rotation: k θ = F L cos θ, so θ ≈ 1e-3 to 1e-6.
     assert!((s.q[0] - 1e-3).abs() < 1e-6, "{}", s.q[0]);
 }
+
+/// Reference: the sources themselves. A file is parsed once: the reader's
+/// one `DeTable::parse` (`file::Document::parse`), which the door
+/// (`Model::from_document`), the hints and both dimensions' readers share;
+/// no other parse of the text sits in the reader or the door.
+#[test]
+fn a_file_is_parsed_in_one_place() {
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut parses = Vec::new();
+    for dir in ["mechanism/file", "model"] {
+        for entry in std::fs::read_dir(src.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (n, line) in text.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                if ["DeTable::parse", "toml::from_str", "toml::de::from_str"].iter().any(|p| code.contains(p)) {
+                    parses.push(format!("{}:{}", path.display(), n + 1));
+                }
+            }
+        }
+    }
+    assert_eq!(parses.len(), 1, "{parses:?}");
+    assert!(parses[0].contains("document.rs"), "{parses:?}");
+}

@@ -4,7 +4,7 @@
 //! rounding, said as such (issue "the first hour", items 2; "robust",
 //! item 5).
 
-use flexure::mechanism::file::{habits, spatial_from_toml};
+use flexure::mechanism::file::{Document, habits, spatial_from_toml};
 use flexure::section::{Profile, SectionSpec, SpatialSection, thinner_than_long};
 use flexure::spatial::{SpatialFlexure, SpatialSpec};
 use flexure::{Error, Flexure, Statics, TipLoad, deflect};
@@ -104,18 +104,23 @@ fn habits_are_told_at_their_keys_with_what_was_meant() {
              [[joint]]\nname = \"c\"\nkind = \"flexure\"\nparent = \"b\"\nchild = \"d\"\norigin = [0.03, 0.0, 0.0]\nlength = 0.012\nei = 1e-3\n"
         )
     };
-    let found = habits(&joint("length = 0.04\nmodulus = 200\nwidth = 0.01\nthickness = 2e-4"));
+    let found =
+        habits(&Document::parse(&joint("length = 0.04\nmodulus = 200\nwidth = 0.01\nthickness = 2e-4")).unwrap());
     assert_eq!(found.len(), 1, "{found:?}");
     assert!(found[0].starts_with("line 7, column 11: joint \"a\": modulus = 200 is read as Pa"), "{found:?}");
     assert!(found[0].ends_with("write 200e9 if GPa were meant"), "{found:?}");
-    let found = habits(&joint("length = 40\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4"));
+    let found =
+        habits(&Document::parse(&joint("length = 40\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4")).unwrap());
     assert!(found.len() == 1 && found[0].contains("length = 40 is read as metres") && found[0].contains("write 0.04"));
-    let found = habits(&joint("length = 15\nei = 1.4558e-3"));
+    let found = habits(&Document::parse(&joint("length = 15\nei = 1.4558e-3")).unwrap());
     assert!(found.len() == 1 && found[0].starts_with("line 6, column 10: joint \"a\": length = 15 is read as metres"));
     assert!(
         found[0].contains("every other length of the mechanism is 0.03 m or less") && found[0].contains("write 0.015")
     );
-    assert!(habits(&joint("length = 0.015\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4")).is_empty());
+    assert!(
+        habits(&Document::parse(&joint("length = 0.015\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4")).unwrap())
+            .is_empty()
+    );
     // In space: the planar habit origin = [x, y, φ], and the same file with rpy.
     let spatial = |rpy: &str| {
         format!(
@@ -123,13 +128,15 @@ fn habits_are_told_at_their_keys_with_what_was_meant() {
              origin = [0.0, 0.0, 1.5708]\n{rpy}length = 0.03\nei = 1e-3\n"
         )
     };
-    let found = habits(&spatial(""));
+    let found = habits(&Document::parse(&spatial("")).unwrap());
     assert_eq!(found.len(), 1, "{found:?}");
     assert!(
         found[0].starts_with("line 7, column 10: joint \"a\": origin's third number 1.5708 is read as z = 1.5708 m")
     );
     assert!(found[0].contains("rpy = [0.0, 0.0, 1.5708]"), "{found:?}");
-    assert!(habits(&spatial("rpy = [0.0, 0.0, 0.5]\n")).is_empty());
+    assert!(habits(&Document::parse(&spatial("rpy = [0.0, 0.0, 0.5]\n")).unwrap()).is_empty());
     // A planar file's origin holds its angle: nothing to tell.
-    assert!(habits(&joint("length = 0.03\nei = 1e-3\norigin = [0.0, 0.0, 1.5708]")).is_empty());
+    assert!(
+        habits(&Document::parse(&joint("length = 0.03\nei = 1e-3\norigin = [0.0, 0.0, 1.5708]")).unwrap()).is_empty()
+    );
 }

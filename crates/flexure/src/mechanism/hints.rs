@@ -24,7 +24,7 @@ struct Joint {
 }
 
 #[derive(Deserialize)]
-struct Document {
+struct JointsView {
     dimension: Option<toml::Value>,
     #[serde(default)]
     joint: Vec<Joint>,
@@ -56,7 +56,7 @@ fn largest(v: &toml::Value) -> Option<f64> {
 /// The largest length of the mechanism other than joint `j`'s: the other
 /// flexures' lengths and every joint's origin offsets (its first two
 /// numbers, a planar origin's third being an angle).
-fn lengths(doc: &Document, j: &Joint) -> f64 {
+fn lengths(doc: &JointsView, j: &Joint) -> f64 {
     let origin = |o: &Joint| -> f64 {
         o.origin
             .as_ref()
@@ -87,16 +87,17 @@ fn angle_sized(z: f64) -> bool {
 ///
 /// # Example
 /// ```
-/// use flexure::mechanism::file::habits;
+/// use flexure::mechanism::file::{Document, habits};
 /// let text = "dimension = 3\n[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\n\
 ///             origin = [0.0, 0.0, 1.5708]\nlength = 0.03\nmodulus = 200\nwidth = 0.01\nthickness = 3e-4\n";
-/// let found = habits(text);
+/// let found = habits(&Document::parse(text).unwrap());
 /// assert_eq!(found.len(), 2);
 /// assert!(found[0].starts_with("line 9, column 11: joint \"a\": modulus = 200 is read as Pa"));
 /// assert!(found[1].starts_with("line 7, column 10: joint \"a\": origin's third number 1.5708 is read as z = 1.5708 m"));
 /// ```
-pub fn habits(text: &str) -> Vec<String> {
-    let Ok(doc) = toml::from_str::<Document>(text) else { return Vec::new() };
+pub fn habits(document: &super::file::Document) -> Vec<String> {
+    let text = document.text();
+    let Some(doc) = document.view::<JointsView>() else { return Vec::new() };
     let spatial = doc.dimension.as_ref().and_then(number) == Some(3.0);
     let size = doc.joint.iter().filter_map(|j| j.length.as_ref().and_then(|l| number(l.get_ref()))).fold(0.0, f64::max);
     let mut out = Vec::new();

@@ -122,10 +122,15 @@ impl Model {
     /// assert!(Model::from_toml("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
     /// ```
     pub fn from_toml(text: &str) -> Result<Self> {
-        if text.len() <= file::MAX_TEXT_BYTES && file::dimension(text)? == 3 {
-            return file::spatial_from_toml(text).map(Model::Spatial);
+        Self::from_document(file::Document::parse(text)?)
+    }
+
+    /// The mechanism of a file already parsed, as its `dimension` says.
+    pub fn from_document(document: file::Document<'_>) -> Result<Self> {
+        match document.dimension() {
+            3 => document.spatial().map(Model::Spatial),
+            _ => document.planar().map(Model::Planar),
         }
-        file::from_toml(text).map(Model::Planar)
     }
 
     /// 2 or 3.

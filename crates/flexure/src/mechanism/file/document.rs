@@ -40,11 +40,77 @@ pub(super) struct FileToml<D: FileDimension> {
     pub(super) initial_velocity: Option<BTreeMap<String, Spanned<toml::Value>>>,
 }
 
+/// A mechanism file parsed once: its text, its TOML document with every
+/// span, and its `dimension` with the offset of its value (0 when absent).
+/// [`super::Document::read`] then reads its tables in that dimension.
+pub struct Document<'i> {
+    pub(super) text: &'i str,
+    pub(super) doc: Spanned<DeTable<'i>>,
+    pub(super) dimension: (u8, usize),
+}
+
+impl<'i> Document<'i> {
+    /// Parses `text` as TOML once and reads its `dimension`: 2 (a planar
+    /// mechanism, also when absent) or 3 (a spatial one); any other value
+    /// is an error at its place, as is a TOML error.
+    pub fn parse(text: &'i str) -> Result<Self> {
+        if text.len() > super::MAX_TEXT_BYTES {
+            return Err(Error::File {
+                place: "the whole file".into(),
+                message: format!(
+                    "{} bytes, more than the {} MiB a mechanism file may hold",
+                    text.len(),
+                    super::MAX_TEXT_BYTES >> 20
+                ),
+            });
+        }
+        let doc = DeTable::parse(text).map_err(|e| Error::File {
+            place: place(text, e.span().map_or(0, |s| s.start).min(text.len())),
+            message: e.message().trim().to_string(),
+        })?;
+        let dimension = match doc.get_ref().get("dimension") {
+            None => (2, 0),
+            Some(d) => {
+                let at = d.span().start;
+                let value = toml::Value::deserialize(toml::de::ValueDeserializer::from(d.clone()));
+                match value {
+                    Ok(toml::Value::Integer(n @ (2 | 3))) => (n as u8, at),
+                    v => {
+                        let shown = v.map_or_else(|_| "a value".into(), |v| written(&v));
+                        return Err(Error::File {
+                            place: place(text, at),
+                            message: format!(
+                                "dimension = {shown}: must be 2 (a planar mechanism, the default) or 3 (a spatial one)"
+                            ),
+                        });
+                    }
+                }
+            }
+        };
+        Ok(Document { text, doc, dimension })
+    }
+
+    /// 2 or 3.
+    pub fn dimension(&self) -> u8 {
+        self.dimension.0
+    }
+
+    /// The text it was parsed from.
+    pub fn text(&self) -> &str {
+        self.text
+    }
+
+    /// The document read as `T` (a view of some of its tables, for the
+    /// hints), without parsing the text again; `None` if it does not fit.
+    pub(crate) fn view<T: serde::de::DeserializeOwned>(&self) -> Option<T> {
+        T::deserialize(toml::de::Deserializer::from(self.doc.clone())).ok()
+    }
+}
+
 /// The document's tables, in the dimension `D`, or the first error placed
-/// where it is: a TOML or serde error, or a key that only the other
-/// dimension's file takes (with why).
-pub(super) fn parse<D: FileDimension>(text: &str) -> Result<FileToml<D>> {
-    let doc = DeTable::parse(text).map_err(|e| toml_error::<D>(text, e))?;
+/// where it is: a serde error, or a key that only the other dimension's
+/// file takes (with why).
+pub(super) fn parse<D: FileDimension>(text: &str, doc: Spanned<DeTable<'_>>) -> Result<FileToml<D>> {
     refused::<D>(text, doc.get_ref())?;
     FileToml::deserialize(toml::de::Deserializer::from(doc)).map_err(|e| toml_error::<D>(text, e))
 }
@@ -117,30 +183,6 @@ fn unknown_field<D: FileDimension>(rest: &str) -> Option<String> {
         many => format!("one of {}", many.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")),
     };
     Some(format!("unknown field `{key}`, expected {list}"))
-}
-
-/// The file's `dimension` and the offset of its value (0 when absent): 2
-/// when absent; an error naming it unless 2 or 3.
-pub(super) fn dimension(text: &str) -> Result<(u8, usize)> {
-    // Every top-level value with its place: only `dimension` is read here.
-    let top: BTreeMap<String, Spanned<toml::Value>> = toml::from_str(text).map_err(|e| Error::File {
-        place: place(text, e.span().map_or(0, |s| s.start)),
-        message: e.message().trim().to_string(),
-    })?;
-    match top.get("dimension") {
-        None => Ok((2, 0)),
-        Some(d) => match d.get_ref() {
-            toml::Value::Integer(2) => Ok((2, d.span().start)),
-            toml::Value::Integer(3) => Ok((3, d.span().start)),
-            v => Err(Error::File {
-                place: place(text, d.span().start),
-                message: format!(
-                    "dimension = {}: must be 2 (a planar mechanism, the default) or 3 (a spatial one)",
-                    written(v)
-                ),
-            }),
-        },
-    }
 }
 
 /// A value as the file writes it: `3`, `2.5`, `"six"`, or its type.

@@ -25,6 +25,7 @@ use crate::flexure::FlexureSpec;
 use crate::section::{Notch, Profile, SectionSpec};
 use crate::space::{Planar, Spatial};
 use dimension::FileDimension;
+pub use document::Document;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -132,7 +133,7 @@ pub const PLANAR_ONLY: &[(&str, &[&str], &str)] = &[
 /// assert!(e.unwrap_err().to_string().starts_with("line 6, column 13: joint \"a\": stiffness = 5e-324"));
 /// ```
 pub fn from_toml(text: &str) -> Result<Mechanism> {
-    read::<Planar>(text)
+    Document::parse(text)?.planar()
 }
 
 /// Parses and checks a spatial mechanism file (one with `dimension = 3`),
@@ -158,42 +159,51 @@ pub fn from_toml(text: &str) -> Result<Mechanism> {
 /// assert!(e.unwrap_err().to_string().starts_with("line 7, column 8: joint \"h\": axis"));
 /// ```
 pub fn spatial_from_toml(text: &str) -> Result<Mechanism<Spatial>> {
-    read::<Spatial>(text)
+    Document::parse(text)?.spatial()
 }
 
-/// The mechanism of a file of dimension `D`: the tree of joints and its
-/// bodies, the loads, the closures, the checks of the whole, the schedules
-/// and the initial state.
-fn read<D: FileDimension>(text: &str) -> Result<Mechanism<D>> {
-    if text.len() > MAX_TEXT_BYTES {
-        return Err(Error::File {
-            place: "the whole file".into(),
-            message: format!(
-                "{} bytes, more than the {} MiB a mechanism file may hold",
-                text.len(),
-                MAX_TEXT_BYTES >> 20
-            ),
-        });
+impl Document<'_> {
+    /// The planar mechanism of this file ([`Document::read`]).
+    pub fn planar(self) -> Result<Mechanism<Planar>> {
+        self.read()
     }
-    match document::dimension(text)? {
-        (d, _) if d == D::DIMENSION => {}
-        (3, at) => {
-            return Err(Error::File {
-                place: place(text, at),
-                message: "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
-                    .into(),
-            });
-        }
-        _ => {
-            return Err(Error::File {
-                place: place(text, 0),
-                message: "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `Model::from_toml` for either"
-                    .into(),
-            });
-        }
+
+    /// The spatial mechanism of this file ([`Document::read`]).
+    pub fn spatial(self) -> Result<Mechanism<Spatial>> {
+        self.read()
     }
+
+    /// The mechanism of this file in the dimension `D`: the tree of joints
+    /// and its bodies, the loads, the closures, the checks of the whole, the
+    /// schedules and the initial state; an error placed at the file's
+    /// `dimension` if it is the other one.
+    fn read<D: FileDimension>(self) -> Result<Mechanism<D>> {
+        let Document { text, doc, dimension } = self;
+        match dimension {
+            (d, _) if d == D::DIMENSION => {}
+            (3, at) => {
+                return Err(Error::File {
+                    place: place(text, at),
+                    message:
+                        "dimension = 3: a spatial mechanism; read it with `Model::from_toml` (or `spatial_from_toml`)"
+                            .into(),
+                });
+            }
+            _ => {
+                return Err(Error::File {
+                    place: place(text, 0),
+                    message: "a planar mechanism (no `dimension = 3`): read it with `from_toml`, or `Model::from_toml` for either"
+                        .into(),
+                });
+            }
+        }
+        read_tables(text, document::parse::<D>(text, doc)?)
+    }
+}
+
+/// The mechanism of the tables `file` of `text`, in the dimension `D`.
+fn read_tables<D: FileDimension>(text: &str, file: document::FileToml<D>) -> Result<Mechanism<D>> {
     let src = Source { text };
-    let file = document::parse::<D>(text)?;
     let mut bodies = bodies::from_joints(&src, &file.joint)?;
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
     let find: &Find = &|name| bodies::find(&src, &names, name);
@@ -231,5 +241,5 @@ fn read<D: FileDimension>(text: &str) -> Result<Mechanism<D>> {
 /// assert!(dimension("dimension = 4").unwrap_err().to_string().contains("dimension = 4"));
 /// ```
 pub fn dimension(text: &str) -> Result<u8> {
-    document::dimension(text).map(|d| d.0)
+    Document::parse(text).map(|d| d.dimension())
 }
