@@ -10,7 +10,7 @@
 use flexure::dynamics::spatial::modes;
 use flexure::estimate::Accuracy;
 use flexure::estimate::spatial_mechanism::{buckle_error, modes_error};
-use flexure::mechanism::spatial::buckling::buckle;
+use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
 };

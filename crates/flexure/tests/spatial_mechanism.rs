@@ -4,11 +4,11 @@
 use flexure::Error;
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
-use flexure::mechanism::spatial::statics::{body_frames, compliance, solve};
 use flexure::mechanism::spatial::{
     Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
     Spherical,
 };
+use flexure::mechanism::statics::{body_frames, compliance, solve};
 use flexure::section::SpatialSection;
 use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, correct};
 use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
@@ -108,7 +108,7 @@ fn two_flexures_in_perpendicular_planes_compose_their_compliances() {
         correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default()).unwrap();
         flexure::spatial::compliance(f, &data).unwrap()
     };
-    let frames = body_frames(&m, &s);
+    let frames = body_frames(&m, &s).bodies;
     let tip = frames[2].translation.vector;
     // Flexure one: root = world, compliance at its tip (mid's origin).
     let c1 = moved(&own(&f1), tip - frames[1].translation.vector);
@@ -164,7 +164,7 @@ fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     assert!(s.stable);
-    let stage = body_frames(&m, &s)[1];
+    let stage = body_frames(&m, &s).bodies[1];
     let p = pframes.bodies[1];
     let (angle, axis) = (stage.rotation.angle(), stage.rotation.axis().unwrap());
     assert!(
@@ -221,7 +221,7 @@ fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
 /// buckles), which is also Prandtl's $P L^2/\sqrt{EI_yGJ} = 4.013$ to 2e-2.
 #[test]
 fn linear_buckling_meets_the_flexures_own_stability_limit() {
-    use flexure::mechanism::spatial::buckling::buckle;
+    use flexure::mechanism::buckling::buckle;
     for (stiffness, moment, force, tol) in
         [([1.0, 1.0, 1.5], [0.0; 3], [-1.0, 0.0, 0.0], 1e-4), ([0.6, 0.5, 200.0], [0.0; 3], [0.0, 1.0, 0.0], 2e-2)]
     {
@@ -271,7 +271,7 @@ fn a_flexure_carries_the_wrench_of_the_loads_beyond_it() {
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     let w = flexure_loads(&m, &s)[0].unwrap();
-    let frames = body_frames(&m, &s);
+    let frames = body_frames(&m, &s).bodies;
     let arm = frames[2] * Point3::new(0.0, 0.0, 0.01) - frames[1].translation.vector;
     let r = root.rotation.to_rotation_matrix();
     let expected_moment = r.transpose() * arm.coords.cross(&force);
@@ -312,7 +312,7 @@ fn each_flexures_error_estimate_is_the_size_of_its_true_error() {
         )
         .unwrap();
         let s = solve(&m, &Default::default()).unwrap();
-        (body_frames(&m, &s)[1].translation.vector, flexure_errors(&m, &s, &Default::default()).unwrap())
+        (body_frames(&m, &s).bodies[1].translation.vector, flexure_errors(&m, &s, &Default::default()).unwrap())
     };
     let (exact, _) = at([8, 8, 8]);
     let (model, errors) = at([2, 2, 2]);
@@ -360,7 +360,7 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
     let solve_tip = |m: &SpatialMechanism| {
         let s = solve(m, &Default::default()).unwrap();
         assert!(s.stable);
-        let f = body_frames(m, &s);
+        let f = body_frames(m, &s).bodies;
         (f[count].translation.vector, f[count].rotation.to_rotation_matrix().into_inner())
     };
     let (in_plane, r_in) = solve_tip(&tendon_chain(count, [0.0, h, 0.0], tension));
@@ -407,7 +407,7 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
 /// planar sweep's example, in space about an axis out of the plane).
 #[test]
 fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
-    use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep};
+    use flexure::mechanism::sweep::{SpatialParameter, sweep};
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
     let hinge = spec(
         "pivot",

@@ -15,8 +15,8 @@ use flexure::Error;
 use flexure::estimate::Accuracy;
 use flexure::mechanism::spatial::SpatialMechanism;
 use flexure::mechanism::spatial::findings::{crossings_along, open_closures};
-use flexure::mechanism::spatial::statics::{SpatialSolution, compliance};
-use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep as run_sweep};
+use flexure::mechanism::statics::{Solution, compliance};
+use flexure::mechanism::sweep::{SpatialParameter, sweep as run_sweep};
 use flexure::report::{BodyPose, Reported};
 use flexure::solver::Settings;
 use flexure::space::Spatial;
@@ -49,7 +49,7 @@ fn placements(m: &SpatialMechanism, q: &[f64]) -> Vec<Placement> {
 fn rows_dict<'py>(
     py: Python<'py>,
     m: &SpatialMechanism,
-    rows: &[(f64, SpatialSolution)],
+    rows: &[(f64, Solution<Spatial>)],
 ) -> PyResult<Bound<'py, PyDict>> {
     let n = rows.len();
     let out = PyDict::new(py);

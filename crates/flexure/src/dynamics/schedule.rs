@@ -8,9 +8,9 @@ use super::spatial::SpatialSystem;
 use super::system::System;
 use crate::error::Result;
 pub use crate::mechanism::schedule::{Schedule, Waveform};
-use crate::mechanism::spatial::sweep::SpatialParameter;
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::mechanism::sweep::Parameter;
+use crate::mechanism::sweep::SpatialParameter;
 use crate::mechanism::{Loads, Mechanism};
 
 /// A system whose loads a schedule sets: the planar [`MechanismSystem`]

@@ -43,8 +43,8 @@ use crate::mechanism::spatial::kinematics::{
     SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames_into,
 };
 use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
-use crate::mechanism::spatial::statics::{self, assemble_unloaded, solve_between};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
+use crate::mechanism::statics::{self, assemble_unloaded, solve_between};
 use crate::solver::Settings;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
@@ -456,7 +456,7 @@ pub fn modes(m: &SpatialMechanism, settings: &Settings, count: usize) -> Result<
     if !s.stable {
         return Err(Error::Unstable { what: "modes", load_fraction: s.limit.unwrap_or(1.0) });
     }
-    let (z, k) = statics::stiffness(m, &s);
+    let (z, k) = statics::stiffness(m, &s)?;
     if z.ncols() == 0 {
         return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can vibrate".into() });
     }
@@ -538,7 +538,7 @@ pub fn initial_state(m: &SpatialMechanism, settings: &Settings, equilibrium: boo
         m.rest()
     } else {
         let loads = spatial_loads_at(m, 0.0);
-        let unloaded = assemble_unloaded(m, &loads.zero_like(), settings)?;
+        let unloaded = assemble_unloaded(m, settings)?;
         if equilibrium { solve_between(m, &unloaded, &loads, settings)?.q } else { unloaded.q }
     };
     let mut v = vec![0.0; m.dof()];

@@ -12,9 +12,10 @@ use crate::dynamics::{Modes, spatial as spatial_dynamics};
 use crate::error::Result;
 use crate::flexure::MAX_ORDER;
 use crate::mechanism::buckling::Buckling;
+use crate::mechanism::buckling::buckle;
 use crate::mechanism::spatial::SpatialMechanism;
-use crate::mechanism::spatial::buckling::buckle;
-use crate::mechanism::spatial::statics::{SpatialSolution, flexure_loads};
+use crate::mechanism::spatial::statics::flexure_loads;
+use crate::mechanism::statics::Solution;
 use crate::solver::Settings;
 use crate::spatial::SpatialFlexure;
 
@@ -27,7 +28,7 @@ use crate::spatial::SpatialFlexure;
 /// # Example
 /// ```
 /// use flexure::estimate::spatial_mechanism::flexure_errors;
-/// use flexure::mechanism::spatial::statics::solve;
+/// use flexure::mechanism::statics::solve;
 /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::section::SpatialSection;
 /// use flexure::spatial::SpatialFlexure;
@@ -42,7 +43,7 @@ use crate::spatial::SpatialFlexure;
 /// ```
 pub fn flexure_errors(
     m: &SpatialMechanism,
-    s: &SpatialSolution,
+    s: &Solution<crate::space::Spatial>,
     target: &Accuracy,
 ) -> Result<Vec<Option<ErrorEstimate>>> {
     let loads = flexure_loads(m, s);
@@ -127,7 +128,7 @@ pub fn reference_mechanism(m: &SpatialMechanism, q: &[f64]) -> Result<(SpatialMe
 /// # Example
 /// ```
 /// use flexure::estimate::spatial_mechanism::buckle_error;
-/// use flexure::mechanism::spatial::buckling::buckle;
+/// use flexure::mechanism::buckling::buckle;
 /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::{section::SpatialSection, spatial::SpatialFlexure};
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};

@@ -145,7 +145,7 @@ impl Analyses for Spatial {
         values: &[f64],
         settings: &Settings,
     ) -> Result<Sweep<Solution<Spatial>>> {
-        let p = spatial::sweep::SpatialParameter::parse(m, parameter)?;
+        let p = crate::mechanism::sweep::SpatialParameter::parse(m, parameter)?;
         crate::mechanism::sweep::sweep(m, &p, values, settings)
     }
 
@@ -165,12 +165,12 @@ impl Analyses for Spatial {
     }
 
     fn solve(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Solution<Spatial>> {
-        spatial::statics::solve(m, settings)
+        crate::mechanism::statics::solve(m, settings)
     }
 
     fn compliance(m: &Mechanism<Spatial>, s: &Solution<Spatial>, body: usize, at: &[f64]) -> Result<DMatrix<f64>> {
         let [x, y, z] = point(at)?;
-        let c = spatial::statics::compliance(m, s, body, nalgebra::Point3::new(x, y, z))?;
+        let c = crate::mechanism::statics::compliance(m, s, body, nalgebra::Point3::new(x, y, z))?;
         Ok(DMatrix::from_fn(6, 6, |i, j| c[(i, j)]))
     }
 

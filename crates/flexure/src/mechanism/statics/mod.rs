@@ -37,6 +37,7 @@
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
 mod assembly;
+mod dimension;
 mod kkt;
 mod path;
 mod solve;
@@ -44,11 +45,12 @@ mod stiffness;
 mod workspace;
 
 pub use assembly::assemble_unloaded;
+pub use dimension::Statics;
 pub(crate) use kkt::FAR_MARGIN;
 pub use kkt::Kkt;
 pub(super) use kkt::constrained;
 pub use path::solve_between;
-pub(super) use path::{follow, free_motion, moving_joints};
+pub(super) use path::{follow, free_motion};
 pub use solve::{solve, solve_with};
 pub use stiffness::{body_frames, compliance, stiffness};
 pub use workspace::Workspace;

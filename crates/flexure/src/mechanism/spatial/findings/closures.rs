@@ -10,7 +10,7 @@ use crate::mechanism::findings::OpenClosure;
 use crate::mechanism::findings::closures::{closure_name, first_rows, open_gaps};
 use crate::mechanism::spatial::SpatialMechanism;
 use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
-use crate::mechanism::spatial::statics::assemble_unloaded;
+use crate::mechanism::statics::assemble_unloaded;
 use crate::mechanism::{Closure, Holds};
 use crate::solver::Settings;
 use nalgebra::{UnitQuaternion, Vector3};
@@ -69,7 +69,7 @@ pub fn open_closures(m: &SpatialMechanism, settings: &Settings) -> Result<Vec<Op
     if open.is_empty() {
         return Ok(Vec::new());
     }
-    let unloaded = match assemble_unloaded(m, &m.loads().zero_like(), settings) {
+    let unloaded = match assemble_unloaded(m, settings) {
         Ok(s) => Some(s),
         Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
         Err(e) => return Err(e),
