@@ -1,4 +1,4 @@
-//! Spatial mechanisms' statics (`mechanism::spatial::statics`): equilibria,
+//! Spatial mechanisms' statics (`mechanism::statics` in space): equilibria,
 //! stability and compliances, each test against its named reference.
 
 use flexure::Error;
@@ -508,4 +508,45 @@ fn open_closures_say_their_gap_and_the_preload_that_closes_them() {
 
     let closed = format!("{hinges}[[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.0, 0.1, 0.0]\n");
     assert!(open_closures(&spatial_from_toml(&closed).unwrap(), &Default::default()).unwrap().is_empty());
+}
+
+/// The one statics gives a spatial mechanism the planar Model/Data split:
+/// `solve_with` in a kept `Workspace` (the assembled start reused from the
+/// second solve on) equals a fresh `solve` to the bit, on
+/// `examples/stage3d.toml` (two flexures welded to one stage: closures,
+/// an assembly, and a continuation). Reference: the fresh solve; exact.
+#[test]
+fn a_spatial_solve_in_a_kept_workspace_equals_a_fresh_one() {
+    use flexure::mechanism::statics::{Workspace, solve_with};
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/stage3d.toml")).unwrap();
+    let m = flexure::mechanism::file::spatial_from_toml(&text).unwrap();
+    assert!(m.constraints() > 0, "the example has closures");
+    let fresh = solve(&m, &Default::default()).unwrap();
+    let mut work = Workspace::new(&m);
+    for _ in 0..3 {
+        let kept = solve_with(&m, &Default::default(), &mut work).unwrap();
+        assert_eq!(kept, fresh);
+    }
+}
+
+/// A spatial compliance names a body that is not there and a point that is
+/// not finite, as the planar one does (no panic).
+#[test]
+fn a_spatial_compliance_names_its_bad_body_and_point() {
+    let hinge = spec(
+        "hinge",
+        SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
+    let m = SpatialMechanism::new(bodies(&["ground", "arm"]), vec![hinge], vec![], vec![], vec![], Vector3::zeros())
+        .unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    let body = compliance(&m, &s, 2, Point3::origin()).unwrap_err().to_string();
+    assert!(body.contains("body") && body.contains('2'), "{body}");
+    let at = compliance(&m, &s, 1, Point3::new(f64::NAN, 0.0, 0.0)).unwrap_err().to_string();
+    assert!(at.contains("at") && at.contains("finite"), "{at}");
+    // The hinge's own compliance about z: 1/k.
+    assert!((compliance(&m, &s, 1, Point3::origin()).unwrap()[(2, 2)] - 0.5).abs() < 1e-15);
 }
