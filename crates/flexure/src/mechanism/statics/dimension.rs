@@ -44,15 +44,12 @@ pub struct Parts<'a> {
 /// // A closure's position rows: x, y in the plane; x, y, z in space.
 /// assert_eq!((Planar::POSITION_ROWS, Spatial::POSITION_ROWS), (2, 3));
 /// ```
-#[allow(private_interfaces, private_bounds)]
 pub trait Statics: Dimension + PartialEq + Sized {
     /// The frames of every body and joint at one configuration.
     type Frames: Clone + Debug;
     /// The buffers of one assembly of the Lagrangian.
-    #[doc(hidden)]
     type Assembly: Clone + Debug;
     /// The buffers only this dimension's problem uses.
-    #[doc(hidden)]
     type Own: Clone + Debug;
     /// A point's compliance: $3\times3$ in the plane, $6\times6$ in space.
     type Compliance;
@@ -65,40 +62,26 @@ pub trait Statics: Dimension + PartialEq + Sized {
     /// Whether the assembly converges to the tolerance of its own loads
     /// (those at $\lambda = 0$), not of the whole path's; and whether a
     /// path's iterations leave out the assembly's.
-    #[doc(hidden)]
     const OWN_ASSEMBLY: bool;
     /// What loads that do not soften this dimension's mechanism are, for
     /// [`crate::mechanism::buckling::buckle`]'s error.
-    #[doc(hidden)]
     const NO_SOFTENING: &'static str;
 
-    #[doc(hidden)]
     fn new_frames(m: &Mechanism<Self>) -> Self::Frames;
-    #[doc(hidden)]
     fn new_assembly(m: &Mechanism<Self>) -> Self::Assembly;
-    #[doc(hidden)]
     fn new_own(m: &Mechanism<Self>) -> Self::Own;
-    #[doc(hidden)]
     fn copy_frames(from: &Self::Frames, to: &mut Self::Frames);
-    #[doc(hidden)]
     fn joint_states(f: &Self::Frames) -> &[JointState<Self>];
     /// The frames with every joint's exact second derivatives.
-    #[doc(hidden)]
     fn exact_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
     /// The frames of the bodies (poses alone, where that is cheaper).
-    #[doc(hidden)]
     fn pose_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
     /// The Jacobian of the frame at `at` on `body`, rows in the order of the wrench.
-    #[doc(hidden)]
     fn point_jacobian(m: &Mechanism<Self>, q: &[f64], body: usize, at: Self::Point) -> DMatrix<f64>;
-    #[doc(hidden)]
     fn point_finite(at: &Self::Point) -> bool;
-    #[doc(hidden)]
     fn compliance_matrix(c: &DMatrix<f64>) -> Self::Compliance;
     /// The frames Newton's residual and matrix are assembled from.
-    #[doc(hidden)]
     fn newton_frames(m: &Mechanism<Self>, q: &[f64], f: &mut Self::Frames);
-    #[doc(hidden)]
     fn assemble(
         m: &Mechanism<Self>,
         f: &Self::Frames,
@@ -107,10 +90,8 @@ pub trait Statics: Dimension + PartialEq + Sized {
         hessian: bool,
         a: &mut Self::Assembly,
     ) -> Result<()>;
-    #[doc(hidden)]
     fn parts(a: &Self::Assembly) -> Parts<'_>;
     /// Adds the gradient of the potential of `loads` to `gradient`.
-    #[doc(hidden)]
     fn add_loads(
         m: &Mechanism<Self>,
         f: &Self::Frames,
@@ -129,7 +110,11 @@ pub trait Statics: Dimension + PartialEq + Sized {
         out
     }
     /// `from` into `to`, in `to`'s buffers.
-    fn copy_loads(from: &Loads<Self>, to: &mut Loads<Self>);
+    fn copy_loads(from: &Loads<Self>, to: &mut Loads<Self>) {
+        to.tension.clone_from(&from.tension);
+        to.force.clone_from(&from.force);
+        to.gravity = from.gravity;
+    }
     /// `b − a` into `out` (shaped like them).
     fn difference_into(a: &Loads<Self>, b: &Loads<Self>, out: &mut Loads<Self>);
     /// $(1 - s)a + sb$ into `out`.
@@ -143,31 +128,23 @@ pub trait Statics: Dimension + PartialEq + Sized {
     /// Checks that a start solution's sizes fit `m`.
     fn check_start(m: &Mechanism<Self>, q: &[f64], mu: &[f64], loads: &Loads<Self>) -> Result<()>;
     /// Whether Newton steps and stability tests may factor the tree in $O(n)$.
-    #[doc(hidden)]
     fn tree(m: &Mechanism<Self>) -> bool;
     /// [`crate::solver::Problem::stable`].
-    #[doc(hidden)]
     fn stable(k: &mut Kkt<'_, Self>, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool;
     /// [`crate::solver::Problem::far_from_instability`].
-    #[doc(hidden)]
     fn far_from_instability(k: &mut Kkt<'_, Self>, jacobian: &[f64]) -> bool;
     /// [`crate::solver::Problem::factor`].
-    #[doc(hidden)]
     fn factor(k: &mut Kkt<'_, Self>, jacobian: &[f64]) -> bool;
     /// [`crate::solver::Problem::solve_factored`].
-    #[doc(hidden)]
     fn solve_factored(k: &mut Kkt<'_, Self>, b: &mut [f64]);
     /// [`crate::solver::Problem::distance`].
-    #[doc(hidden)]
     fn distance(k: &Kkt<'_, Self>, a: &[f64], b: &[f64]) -> f64;
     /// The multipliers `mu` of a solution at `q` under `loads`, their
     /// statically indeterminate part settled (see [`super::Solution::multipliers`]);
     /// leaves the frames at `q` in the workspace.
-    #[doc(hidden)]
     fn settled(k: &mut Kkt<'_, Self>, q: &[f64], mu: Vec<f64>, loads: &Loads<Self>) -> Vec<f64>;
     /// The pre-buckling closure forces `mu` (at the frames `f`, assembly
     /// `a`) with their indeterminate part settled under `loads`.
-    #[doc(hidden)]
     fn settle_pre_buckling(
         m: &Mechanism<Self>,
         f: &Self::Frames,
@@ -176,7 +153,6 @@ pub trait Statics: Dimension + PartialEq + Sized {
         loads: &Loads<Self>,
     ) -> Vec<f64>;
     /// The error for closures Newton could not close from rest.
-    #[doc(hidden)]
     fn unassembled(m: &Mechanism<Self>, length: f64, e: Error) -> Error;
 }
 
@@ -197,7 +173,6 @@ pub struct SpatialOwn {
     pub(crate) pair: RefCell<([SpatialFrames; 2], [bool; 2])>,
 }
 
-#[allow(private_interfaces)]
 impl Statics for Planar {
     type Frames = Frames;
     type Assembly = Assembly;
@@ -266,13 +241,6 @@ impl Statics for Planar {
         Self::copy_loads(l, out);
         out.scale(0.0);
     }
-    fn copy_loads(from: &Loads, to: &mut Loads) {
-        to.tension.clear();
-        to.tension.extend_from_slice(&from.tension);
-        to.force.clear();
-        to.force.extend_from_slice(&from.force);
-        to.gravity = from.gravity;
-    }
     fn difference_into(a: &Loads, b: &Loads, out: &mut Loads) {
         Self::copy_loads(b, out);
         out.tension.iter_mut().zip(&a.tension).for_each(|(b, a)| *b -= a);
@@ -336,7 +304,6 @@ impl Statics for Planar {
     }
 }
 
-#[allow(private_interfaces)]
 impl Statics for Spatial {
     type Frames = SpatialFrames;
     type Assembly = SpatialAssembly;
@@ -440,9 +407,6 @@ impl Statics for Spatial {
         out.tension.fill(0.0);
         out.force.fill(nalgebra::Vector6::zeros());
         out.gravity = nalgebra::Vector3::zeros();
-    }
-    fn copy_loads(from: &Loads<Spatial>, to: &mut Loads<Spatial>) {
-        to.clone_from(from);
     }
     fn difference_into(a: &Loads<Spatial>, b: &Loads<Spatial>, out: &mut Loads<Spatial>) {
         *out = a.difference(b);
