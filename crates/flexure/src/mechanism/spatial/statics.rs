@@ -5,13 +5,14 @@
 //! frames, the indeterminate closure forces, and each flexure's carried wrench.
 
 use super::kinematics::{SpatialFrames, distance_of, frames_level_into};
-use super::lagrangian::{SpatialAssembly, add_closure_hessian};
+use super::lagrangian::add_closure_hessian;
 use super::{SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
 use crate::linalg;
+use crate::mechanism::indeterminate::settle;
 use crate::mechanism::statics::{FAR_MARGIN, Kkt, Solution};
 use crate::space::Spatial;
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::DMatrix;
 
 impl Kkt<'_, Spatial> {
     /// $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\thinspace I$ positive
@@ -40,9 +41,9 @@ impl Kkt<'_, Spatial> {
             return linalg::positive_definite(k, n, &mut w.scratch);
         }
         let mut h = DMatrix::from_fn(n, n, |r, c| 0.5 * (entry(r, c) + entry(c, r)) * s[r] * s[c]);
-        // Redundant closures: their indeterminate part of μ taken least (see `settled`).
+        // Redundant closures: their indeterminate part of μ taken least (`mechanism::indeterminate`).
         let mu = &w.mu;
-        let best = settled(m, &w.frames, &w.assembly, mu, &w.loads);
+        let best = settle(m, &w.frames, &w.assembly.closure_jacobian, mu, &w.loads);
         if best != *mu {
             let change: Vec<f64> = best.iter().zip(mu).map(|(a, b)| a - b).collect();
             let mut extra = DMatrix::zeros(n, n);
@@ -111,7 +112,7 @@ impl Kkt<'_, Spatial> {
         distance_of(m, &frames[ia], &frames[ib])
     }
 
-    /// The multipliers of a solution at `q` (see [`settled`]), with the
+    /// The multipliers of a solution at `q` (`mechanism::indeterminate`), with the
     /// frames there: without closures, the energy alone needs them, at any
     /// level, so the last evaluation's if it was at `q`.
     pub(crate) fn settled_spatial(&mut self, q: &[f64], mu: Vec<f64>, loads: &SpatialLoads) -> Vec<f64> {
@@ -126,86 +127,8 @@ impl Kkt<'_, Spatial> {
         }
         frames_level_into(m, q, Level::Jacobian, &mut w.frames);
         super::lagrangian::assemble_into(m, &w.frames, &mu, loads, false, &mut w.assembly);
-        settled(m, &w.frames, &w.assembly, &mu, loads)
+        settle(m, &w.frames, &w.assembly.closure_jacobian, &mu, loads)
     }
-}
-
-/// The multipliers `mu` with the part that redundant closures leave
-/// statically indeterminate (the left null space of $G$, as with several
-/// legs welded to one stage) chosen as the planar mechanism chooses it
-/// (`mechanism::indeterminate`): the least transmitted force
-/// $\sum_j L_j\lvert F_j\rvert^2$ over the flexures, $F_j$ the force the bodies
-/// beyond flexure $j$ pass through it (the point loads, weights and tendon
-/// pulls on them, and the closures' $-\mu$ on `a` and $+\mu$ on `b`).
-/// Otherwise the free part is whatever the continuation left, and the
-/// self-stress it carries through the closures' curvature makes a stable
-/// mechanism look unstable. `mu` itself where $G$ has full row rank.
-fn settled(m: &SpatialMechanism, f: &SpatialFrames, a: &SpatialAssembly, mu: &[f64], loads: &SpatialLoads) -> Vec<f64> {
-    let g = &a.closure_jacobian;
-    let rows = g.nrows();
-    if rows == 0 {
-        return mu.to_vec();
-    }
-    // Full row rank by a wide margin (a Cholesky of $GG^T$) is full rank to
-    // the singular values too; only a doubtful case pays for them.
-    let mut gram = vec![0.0; rows * rows];
-    if linalg::columns_independent(g.transpose().as_slice(), g.ncols(), rows, &mut gram)
-        || g.clone().svd(false, false).rank(1e-10 * g.amax().max(f64::MIN_POSITIVE)) == rows
-    {
-        return mu.to_vec();
-    }
-    let free = linalg::null_space(&g.transpose());
-    let flexures: Vec<(usize, f64)> =
-        m.joints.iter().enumerate().filter_map(|(j, spec)| spec.kind.flexure().map(|fl| (j, fl.length()))).collect();
-    if free.ncols() == 0 || flexures.is_empty() {
-        return mu.to_vec();
-    }
-    let mut body_forces: Vec<(usize, Vector3<f64>)> = Vec::new();
-    for (p, w) in m.forces.iter().zip(&loads.force) {
-        body_forces.push((p.body, Vector3::new(w[3], w[4], w[5])));
-    }
-    for (i, body) in m.bodies.iter().enumerate() {
-        body_forces.push((i, loads.gravity * body.mass));
-    }
-    for (t, &tension) in m.tendons.iter().zip(&loads.tension) {
-        let w: Vec<Vector3<f64>> = t.path.iter().map(|(b, r)| (f.bodies[*b] * r).coords).collect();
-        for (i, pair) in w.windows(2).enumerate() {
-            let d = pair[1] - pair[0];
-            if d.norm() > 0.0 {
-                let pull = d * (tension / d.norm());
-                body_forces.push((t.path[i].0, pull));
-                body_forces.push((t.path[i + 1].0, -pull));
-            }
-        }
-    }
-    let (mut e, mut b) = (DVector::zeros(3 * flexures.len()), DMatrix::zeros(3 * flexures.len(), rows));
-    for (k, &(j, length)) in flexures.iter().enumerate() {
-        let inside: Vec<bool> = (0..m.bodies.len()).map(|body| m.path(body).contains(&j)).collect();
-        let w = length.sqrt();
-        for (body, force) in &body_forces {
-            if inside[*body] {
-                for i in 0..3 {
-                    e[3 * k + i] += w * force[i];
-                }
-            }
-        }
-        let mut row = 0;
-        for c in &m.closures {
-            let [ca, cb] = c.bodies();
-            let sign = match (inside[ca], inside[cb]) {
-                (true, false) => -1.0,
-                (false, true) => 1.0,
-                _ => 0.0,
-            };
-            for i in 0..3 {
-                b[(3 * k + i, row + i)] = sign * w;
-            }
-            row += c.equations();
-        }
-    }
-    let mu0 = DVector::from_column_slice(mu);
-    let y = linalg::least_squares(&(&b * &free), &-(e + &b * &mu0));
-    if y.iter().all(|v| v.is_finite()) { (mu0 + &free * y).iter().copied().collect() } else { mu.to_vec() }
 }
 
 /// The wrench each flexure joint carries at a solution: for joint `j`, the

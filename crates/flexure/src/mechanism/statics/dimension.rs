@@ -11,7 +11,8 @@
 use super::Kkt;
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
-use crate::mechanism::indeterminate::settle;
+use crate::linalg;
+use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::joints::JointState;
 use crate::mechanism::kinematics::{Frames, frames, frames_into, point};
 use crate::mechanism::lagrangian::{Assembly, assemble_into, check_sizes};
@@ -20,8 +21,9 @@ use crate::mechanism::spatial::lagrangian::{SpatialAssembly, add_loads, assemble
 use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
 use crate::mechanism::{Dimension, Loads, Mechanism};
+use crate::space::Wrench;
 use crate::space::{Planar, Spatial};
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, Vector2, Vector3, Vector6};
 use std::cell::RefCell;
 use std::fmt::Debug;
 
@@ -152,6 +154,15 @@ pub trait Statics: Dimension + PartialEq + Sized {
         mu: &[f64],
         loads: &Loads<Self>,
     ) -> Vec<f64>;
+    /// Whether the rows of `g` are independent, so that no closure force is indeterminate.
+    fn full_row_rank(g: &DMatrix<f64>) -> bool;
+    /// A point load's force, padded with zeros.
+    fn force(w: &Self::Wrench) -> [f64; 3];
+    /// A vector's components, padded with zeros.
+    fn vector(v: &Self::Vector) -> [f64; 3];
+    /// The pulls of a tendon along `path` (at the frames `f`) on the bodies
+    /// of its via points, each toward its neighbours, into `out`.
+    fn tendon_pulls(f: &Self::Frames, path: &[(usize, Self::Point)], tension: f64, out: &mut Vec<(usize, [f64; 3])>);
     /// The error for closures Newton could not close from rest.
     fn unassembled(m: &Mechanism<Self>, length: f64, e: Error) -> Error;
 }
@@ -298,6 +309,28 @@ impl Statics for Planar {
     }
     fn settle_pre_buckling(m: &Mechanism, f: &Frames, a: &Assembly, mu: &[f64], loads: &Loads) -> Vec<f64> {
         settle(m, f, &a.closure_jacobian, mu, loads)
+    }
+    /// Independent by a wide margin ([`crate::linalg::columns_independent`] of $G^T$).
+    fn full_row_rank(g: &DMatrix<f64>) -> bool {
+        full_row_rank(g)
+    }
+    fn force(w: &Wrench) -> [f64; 3] {
+        [w.fx, w.fy, 0.0]
+    }
+    fn vector(v: &Vector2<f64>) -> [f64; 3] {
+        [v[0], v[1], 0.0]
+    }
+    fn tendon_pulls(f: &Frames, path: &[(usize, Point2<f64>)], tension: f64, out: &mut Vec<(usize, [f64; 3])>) {
+        let w: Vec<[f64; 2]> = path.iter().map(|(b, r)| f.bodies[*b].act_components([r.x, r.y])).collect();
+        for (i, pair) in w.windows(2).enumerate() {
+            let d = [pair[1][0] - pair[0][0], pair[1][1] - pair[0][1]];
+            let len = d[0].hypot(d[1]);
+            if len > 0.0 {
+                let pull = [tension * d[0] / len, tension * d[1] / len];
+                out.push((path[i].0, [pull[0], pull[1], 0.0]));
+                out.push((path[i + 1].0, [-pull[0], -pull[1], 0.0]));
+            }
+        }
     }
     fn unassembled(m: &Mechanism, length: f64, e: Error) -> Error {
         super::assembly::unassembled(m, length, e)
@@ -457,6 +490,30 @@ impl Statics for Spatial {
         _: &Loads<Spatial>,
     ) -> Vec<f64> {
         mu.to_vec()
+    }
+    /// Independent by a wide margin (a Cholesky of $GG^T$), or else to the singular values.
+    fn full_row_rank(g: &DMatrix<f64>) -> bool {
+        let rows = g.nrows();
+        let mut gram = vec![0.0; rows * rows];
+        linalg::columns_independent(g.transpose().as_slice(), g.ncols(), rows, &mut gram)
+            || g.clone().svd(false, false).rank(1e-10 * g.amax().max(f64::MIN_POSITIVE)) == rows
+    }
+    fn force(w: &Vector6<f64>) -> [f64; 3] {
+        [w[3], w[4], w[5]]
+    }
+    fn vector(v: &Vector3<f64>) -> [f64; 3] {
+        [v[0], v[1], v[2]]
+    }
+    fn tendon_pulls(f: &SpatialFrames, path: &[(usize, Point3<f64>)], tension: f64, out: &mut Vec<(usize, [f64; 3])>) {
+        let w: Vec<Vector3<f64>> = path.iter().map(|(b, r)| (f.bodies[*b] * r).coords).collect();
+        for (i, pair) in w.windows(2).enumerate() {
+            let d = pair[1] - pair[0];
+            if d.norm() > 0.0 {
+                let pull = d * (tension / d.norm());
+                out.push((path[i].0, [pull[0], pull[1], pull[2]]));
+                out.push((path[i + 1].0, [-pull[0], -pull[1], -pull[2]]));
+            }
+        }
     }
     fn unassembled(_: &Mechanism<Spatial>, _: f64, e: Error) -> Error {
         Error::Singular {
