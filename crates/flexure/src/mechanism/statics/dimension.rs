@@ -41,10 +41,22 @@ pub struct Parts<'a> {
 ///
 /// # Example
 /// ```
-/// use flexure::mechanism::statics::Statics;
+/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::mechanism::statics::{Statics, solve};
 /// use flexure::space::{Planar, Spatial};
+/// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// // A closure's position rows: x, y in the plane; x, y, z in space.
 /// assert_eq!((Planar::POSITION_ROWS, Spatial::POSITION_ROWS), (2, 3));
+/// // The one `solve`, in space: a sprung hinge (k = 2 N·m/rad) under 0.5 N·m about its axis.
+/// let hinge = SpatialJointSpec {
+///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::x_axis(), stiffness: 2.0, rest: 0.0 }),
+///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
+/// };
+/// let push = SpatialPointLoad { name: "m".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.5, 0.0, 0.0, 0.0, 0.0, 0.0) };
+/// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];
+/// let m = SpatialMechanism::new(bodies, vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
+/// let s = solve(&m, &Default::default()).unwrap();
+/// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
 pub trait Statics: Dimension + PartialEq + Sized {
     /// The frames of every body and joint at one configuration.
