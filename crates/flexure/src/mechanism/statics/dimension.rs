@@ -77,6 +77,10 @@ pub trait Statics: Dimension + PartialEq + Sized {
     /// (those at $\lambda = 0$), not of the whole path's; and whether a
     /// path's iterations leave out the assembly's.
     const OWN_ASSEMBLY: bool;
+    /// Whether a path that cannot start names the joints of the start's
+    /// free motion (else it says the solver's words: the rest state has a
+    /// zero-stiffness mode along the load).
+    const NAMES_FREE_MOTION: bool;
     /// What loads that do not soften this dimension's mechanism are, for
     /// [`crate::mechanism::buckling::buckle`]'s error.
     const NO_SOFTENING: &'static str;
@@ -204,6 +208,7 @@ impl Statics for Planar {
     const POSITION_ROWS: usize = 2;
     const DEAD_MOMENTS: bool = false;
     const OWN_ASSEMBLY: bool = false;
+    const NAMES_FREE_MOTION: bool = true;
     const NO_SOFTENING: &'static str = "a pure moment, or only tension";
 
     fn new_frames(m: &Mechanism) -> Frames {
@@ -357,6 +362,7 @@ impl Statics for Spatial {
     const POSITION_ROWS: usize = 3;
     const DEAD_MOMENTS: bool = true;
     const OWN_ASSEMBLY: bool = true;
+    const NAMES_FREE_MOTION: bool = false;
     const NO_SOFTENING: &'static str = "only tension, or loads that stiffen it";
 
     fn new_frames(m: &Mechanism<Spatial>) -> SpatialFrames {

@@ -127,7 +127,7 @@ pub(super) fn follow_path<D: Statics>(
     let path = match solver::trace(problem, ws, settings) {
         Ok(path) => path,
         // No path starts: the start has a zero-stiffness motion along the load; name it.
-        Err(Error::Singular { what }) => {
+        Err(Error::Singular { what }) if D::NAMES_FREE_MOTION => {
             let joints = match start {
                 Start::Given(s) => free_motion(m, s),
                 Start::Assembled(path) => {
