@@ -16,11 +16,12 @@ use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::frames;
-use flexure::mechanism::spatial::statics::{SpatialSolution, assemble_unloaded, solve};
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad, SpatialTendon,
 };
+use flexure::mechanism::statics::{Solution, assemble_unloaded, solve};
 use flexure::section::{Profile, Shear, SpatialSection};
+use flexure::space::Spatial;
 use flexure::spatial::SpatialFlexure;
 use flexure_chart::{Figure, Mark};
 use flexure_cli::drawing::Marks;
@@ -139,11 +140,11 @@ fn chain() -> SpatialMechanism {
         .unwrap()
 }
 
-fn unloaded(m: &SpatialMechanism) -> SpatialSolution {
-    assemble_unloaded(m, &m.loads().zero_like(), &Default::default()).unwrap()
+fn unloaded(m: &SpatialMechanism) -> Solution<Spatial> {
+    assemble_unloaded(m, &Default::default()).unwrap()
 }
 
-fn picture(m: &SpatialMechanism, view: View, stress: bool) -> (Figure, SpatialSolution) {
+fn picture(m: &SpatialMechanism, view: View, stress: bool) -> (Figure, Solution<Spatial>) {
     let s = solve(m, &Default::default()).unwrap();
     let (fig, _) =
         spatial_figure(m, "test", &unloaded(m), &[("loaded".into(), s.clone())], &Marks::default(), view, stress)
@@ -614,7 +615,7 @@ fn a_shape_that_does_not_fit_is_refused_by_name() {
     let m = rod(vec![]);
     let mut bad = unloaded(&m);
     bad.q.pop();
-    let draw = |s: &SpatialSolution, label: &str| {
+    let draw = |s: &Solution<Spatial>, label: &str| {
         spatial_figure(&m, "rod", &unloaded(&m), &[(label.into(), s.clone())], &Marks::default(), View::Iso, true)
             .err()
             .unwrap()

@@ -53,7 +53,7 @@ fn the_spatial_examples_answer_every_mechanism_subcommand() {
         assert!(err.is_empty(), "{name}: {err}");
         assert_eq!(v["dimension"], 3);
         let m = flexure::mechanism::file::spatial_from_toml(&text).unwrap();
-        let s = flexure::mechanism::spatial::statics::solve(&m, &Default::default()).unwrap();
+        let s = flexure::mechanism::statics::solve(&m, &Default::default()).unwrap();
         let library =
             serde_json::to_value(flexure::report::solve_report(&m, &s, &Default::default()).unwrap()).unwrap();
         // The same numbers (to the last bits that JSON's text round trip may move).
@@ -171,7 +171,7 @@ fn spatial_buckle_and_modes_carry_their_error_estimate() {
     assert!(err.is_empty() && !has_null(&v), "{err}\n{v}");
     let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
     let settings = Default::default();
-    let b = flexure::mechanism::spatial::buckling::buckle(&m, &settings).unwrap();
+    let b = flexure::mechanism::buckling::buckle(&m, &settings).unwrap();
     let e = flexure::estimate::buckle_error(&m, &b, &settings, &Default::default()).unwrap();
     let estimate = &v["error_estimate"];
     let close = |a: &Value, b: f64| (a.as_f64().unwrap() - b).abs() <= 1e-15 * b.abs();
@@ -387,11 +387,8 @@ fn draw_sweeps_a_spatial_file() {
     ]);
     assert!(err.is_empty(), "{err}");
     let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    let p = flexure::mechanism::spatial::sweep::SpatialParameter::parse(&m, "tendon.side.tension").unwrap();
-    let rows = flexure::mechanism::spatial::sweep::sweep(&m, &p, &[0.0, 0.2, 0.4, 0.6], &Default::default())
-        .unwrap()
-        .rows
-        .len();
+    let p = flexure::mechanism::sweep::SpatialParameter::parse(&m, "tendon.side.tension").unwrap();
+    let rows = flexure::mechanism::sweep::sweep(&m, &p, &[0.0, 0.2, 0.4, 0.6], &Default::default()).unwrap().rows.len();
     assert_eq!((rows, v["shapes"].as_u64()), (4, Some(5)), "{v}");
     let svg = std::fs::read_to_string(&out).unwrap();
     for value in ["0 N", "0.2 N", "0.4 N", "0.6 N"] {

@@ -423,7 +423,7 @@ fn the_spatial_example_solves_as_the_page_says() {
         .find(|b| b.contains("dimension = 3"))
         .unwrap();
     let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
-    let s = flexure::mechanism::spatial::statics::solve(&m, &Settings::default()).unwrap();
+    let s = flexure::mechanism::statics::solve(&m, &Settings::default()).unwrap();
     assert!(s.stable);
     let tip = &placements(&m, &s.q)[0];
     let ei_z = 200e9 * 0.01 * 0.0005f64.powi(3) / 12.0;

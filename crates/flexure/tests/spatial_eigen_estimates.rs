@@ -10,7 +10,7 @@
 use flexure::dynamics::mechanism::modes;
 use flexure::estimate::Accuracy;
 use flexure::estimate::{buckle_error, mechanism_modes_error as modes_error};
-use flexure::mechanism::spatial::buckling::buckle;
+use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
 };

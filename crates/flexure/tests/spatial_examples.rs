@@ -5,7 +5,7 @@
 use flexure::estimate::Accuracy;
 use flexure::mechanism::file::spatial_from_toml;
 use flexure::mechanism::spatial::SpatialMechanism;
-use flexure::mechanism::spatial::statics::solve;
+use flexure::mechanism::statics::solve;
 use flexure::report::{Placement, SolveReport, placements, solve_report};
 
 fn example(name: &str) -> (SpatialMechanism, Report) {

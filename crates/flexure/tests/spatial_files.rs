@@ -139,8 +139,7 @@ fn planar_examples_with_dimension_3_give_the_planar_answers() {
         let pf = flexure::mechanism::statics::body_frames(&planar, &ps);
         let spatial_text = converted(&text);
         let m = spatial_from_toml(&spatial_text).unwrap_or_else(|e| panic!("{name}: {e}\n{spatial_text}"));
-        let s = flexure::mechanism::spatial::statics::solve(&m, &Default::default())
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let s = flexure::mechanism::statics::solve(&m, &Default::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(s.stable, ps.stable, "{name}");
         let size = planar.size();
         for p in placements(&m, &s.q) {
@@ -271,11 +270,11 @@ fn a_stage_whose_legs_lie_in_one_plane_tilts_out_of_it() {
     let m = spatial_from_toml(&toml::to_string(&doc).unwrap()).unwrap();
     let mut axial = m.clone();
     axial.forces[0].wrench[3] = 0.0;
-    let factor = flexure::mechanism::spatial::buckling::buckle(&axial, &Default::default()).unwrap().load_factor;
+    let factor = flexure::mechanism::buckling::buckle(&axial, &Default::default()).unwrap().load_factor;
     let cantilevers = 4.0 * 2.4677 * 2.0e-3 / 0.05f64.powi(2) / 10.0;
     assert!((factor - cantilevers).abs() < 2e-3 * cantilevers, "{factor} against {cantilevers}");
     // The loading path loses stability there too.
-    let e = flexure::mechanism::spatial::statics::solve(&m, &Default::default()).unwrap_err();
+    let e = flexure::mechanism::statics::solve(&m, &Default::default()).unwrap_err();
     assert!(matches!(e, flexure::Error::Unstable { load_fraction, .. } if (load_fraction - 0.789).abs() < 0.01), "{e}");
 }
 
@@ -332,11 +331,11 @@ fn mutated_spatial_examples_fail_cleanly() {
                                 | Error::InvalidParameter { .. }
                         )
                     };
-                    match flexure::mechanism::spatial::statics::solve(&m, &Default::default()) {
+                    match flexure::mechanism::statics::solve(&m, &Default::default()) {
                         Ok(s) => assert!(s.q.iter().chain(&s.multipliers).all(|v| v.is_finite()), "{text}"),
                         Err(e) => assert!(numerical(&e), "{e}\n{text}"),
                     }
-                    match flexure::mechanism::spatial::buckling::buckle(&m, &Default::default()) {
+                    match flexure::mechanism::buckling::buckle(&m, &Default::default()) {
                         Ok(b) => assert!(b.load_factor.is_finite(), "{text}"),
                         Err(e) => assert!(numerical(&e), "{e}\n{text}"),
                     }

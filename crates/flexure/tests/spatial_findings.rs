@@ -5,7 +5,7 @@
 use flexure::mechanism::file::spatial_from_toml;
 use flexure::mechanism::findings::Part;
 use flexure::mechanism::findings::{crossings, crossings_along};
-use flexure::mechanism::spatial::statics::solve;
+use flexure::mechanism::statics::solve;
 use std::f64::consts::PI;
 use std::path::Path;
 

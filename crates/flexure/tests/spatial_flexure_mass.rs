@@ -346,7 +346,7 @@ fn a_cantilever_sags_under_its_own_weight_as_the_closed_form() {
     let section = SpatialSection::uniform(ei_y, ei_y, 3.0 * ei_y).unwrap();
     let f = SpatialFlexure::new(l, section, [3, 3, 3]).unwrap().with_mass_per_length(Profile::Constant(mu)).unwrap();
     let m = cantilever(f, Vector3::new(0.0, 0.0, -g));
-    let s = flexure::mechanism::spatial::statics::solve(&m, &Default::default()).unwrap();
+    let s = flexure::mechanism::statics::solve(&m, &Default::default()).unwrap();
     let tip = placements(&m, &s.q).into_iter().find(|p| p.name == "tip").unwrap();
     let w = mu * g * l.powi(4) / (8.0 * ei_y);
     assert!((tip.position[2] + w).abs() < 1e-7 * w, "sag {} against {w}", -tip.position[2]);
@@ -378,7 +378,7 @@ fn a_flexure_in_a_plane_sags_as_the_planar_mechanism_with_the_same_density() {
         -g
     ))
     .unwrap();
-    let s = flexure::mechanism::spatial::statics::solve(&spatial, &Default::default()).unwrap();
+    let s = flexure::mechanism::statics::solve(&spatial, &Default::default()).unwrap();
     let tip = placements(&spatial, &s.q).into_iter().find(|p| p.name == "tip").unwrap();
     let angle = tip.rotation[1][0].atan2(tip.rotation[0][0]);
     println!(

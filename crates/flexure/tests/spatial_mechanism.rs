@@ -1,14 +1,14 @@
-//! Spatial mechanisms' statics (`mechanism::spatial::statics`): equilibria,
+//! Spatial mechanisms' statics (`mechanism::statics` in space): equilibria,
 //! stability and compliances, each test against its named reference.
 
 use flexure::Error;
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
-use flexure::mechanism::spatial::statics::{body_frames, compliance, solve};
 use flexure::mechanism::spatial::{
     Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
     Spherical,
 };
+use flexure::mechanism::statics::{body_frames, compliance, solve};
 use flexure::section::SpatialSection;
 use flexure::spatial::{SpatialFlexure, SpatialLoad, SpatialStatics, correct};
 use nalgebra::{Isometry3, Matrix3, Matrix6, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
@@ -108,7 +108,7 @@ fn two_flexures_in_perpendicular_planes_compose_their_compliances() {
         correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default()).unwrap();
         flexure::spatial::compliance(f, &data).unwrap()
     };
-    let frames = body_frames(&m, &s);
+    let frames = body_frames(&m, &s).bodies;
     let tip = frames[2].translation.vector;
     // Flexure one: root = world, compliance at its tip (mid's origin).
     let c1 = moved(&own(&f1), tip - frames[1].translation.vector);
@@ -164,7 +164,7 @@ fn the_parallelogram_stage_in_space_gives_the_planar_answers() {
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     assert!(s.stable);
-    let stage = body_frames(&m, &s)[1];
+    let stage = body_frames(&m, &s).bodies[1];
     let p = pframes.bodies[1];
     let (angle, axis) = (stage.rotation.angle(), stage.rotation.axis().unwrap());
     assert!(
@@ -221,7 +221,7 @@ fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
 /// buckles), which is also Prandtl's $P L^2/\sqrt{EI_yGJ} = 4.013$ to 2e-2.
 #[test]
 fn linear_buckling_meets_the_flexures_own_stability_limit() {
-    use flexure::mechanism::spatial::buckling::buckle;
+    use flexure::mechanism::buckling::buckle;
     for (stiffness, moment, force, tol) in
         [([1.0, 1.0, 1.5], [0.0; 3], [-1.0, 0.0, 0.0], 1e-4), ([0.6, 0.5, 200.0], [0.0; 3], [0.0, 1.0, 0.0], 2e-2)]
     {
@@ -271,7 +271,7 @@ fn a_flexure_carries_the_wrench_of_the_loads_beyond_it() {
     .unwrap();
     let s = solve(&m, &Default::default()).unwrap();
     let w = flexure_loads(&m, &s)[0].unwrap();
-    let frames = body_frames(&m, &s);
+    let frames = body_frames(&m, &s).bodies;
     let arm = frames[2] * Point3::new(0.0, 0.0, 0.01) - frames[1].translation.vector;
     let r = root.rotation.to_rotation_matrix();
     let expected_moment = r.transpose() * arm.coords.cross(&force);
@@ -312,7 +312,7 @@ fn each_flexures_error_estimate_is_the_size_of_its_true_error() {
         )
         .unwrap();
         let s = solve(&m, &Default::default()).unwrap();
-        (body_frames(&m, &s)[1].translation.vector, flexure_errors(&m, &s, &Default::default()).unwrap())
+        (body_frames(&m, &s).bodies[1].translation.vector, flexure_errors(&m, &s, &Default::default()).unwrap())
     };
     let (exact, _) = at([8, 8, 8]);
     let (model, errors) = at([2, 2, 2]);
@@ -360,7 +360,7 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
     let solve_tip = |m: &SpatialMechanism| {
         let s = solve(m, &Default::default()).unwrap();
         assert!(s.stable);
-        let f = body_frames(m, &s);
+        let f = body_frames(m, &s).bodies;
         (f[count].translation.vector, f[count].rotation.to_rotation_matrix().into_inner())
     };
     let (in_plane, r_in) = solve_tip(&tendon_chain(count, [0.0, h, 0.0], tension));
@@ -407,7 +407,7 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
 /// planar sweep's example, in space about an axis out of the plane).
 #[test]
 fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
-    use flexure::mechanism::spatial::sweep::{SpatialParameter, sweep};
+    use flexure::mechanism::sweep::{SpatialParameter, sweep};
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
     let hinge = spec(
         "pivot",
@@ -508,4 +508,45 @@ fn open_closures_say_their_gap_and_the_preload_that_closes_them() {
 
     let closed = format!("{hinges}[[ball]]\na = \"a\"\na_at = [0.1, 0.0, 0.0]\nb = \"b\"\nb_at = [0.0, 0.1, 0.0]\n");
     assert!(open_closures(&spatial_from_toml(&closed).unwrap(), &Default::default()).unwrap().is_empty());
+}
+
+/// The one statics gives a spatial mechanism the planar Model/Data split:
+/// `solve_with` in a kept `Workspace` (the assembled start reused from the
+/// second solve on) equals a fresh `solve` to the bit, on
+/// `examples/stage3d.toml` (two flexures welded to one stage: closures,
+/// an assembly, and a continuation). Reference: the fresh solve; exact.
+#[test]
+fn a_spatial_solve_in_a_kept_workspace_equals_a_fresh_one() {
+    use flexure::mechanism::statics::{Workspace, solve_with};
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/stage3d.toml")).unwrap();
+    let m = flexure::mechanism::file::spatial_from_toml(&text).unwrap();
+    assert!(m.constraints() > 0, "the example has closures");
+    let fresh = solve(&m, &Default::default()).unwrap();
+    let mut work = Workspace::new(&m);
+    for _ in 0..3 {
+        let kept = solve_with(&m, &Default::default(), &mut work).unwrap();
+        assert_eq!(kept, fresh);
+    }
+}
+
+/// A spatial compliance names a body that is not there and a point that is
+/// not finite, as the planar one does (no panic).
+#[test]
+fn a_spatial_compliance_names_its_bad_body_and_point() {
+    let hinge = spec(
+        "hinge",
+        SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+        0,
+        1,
+        Isometry3::identity(),
+    );
+    let m = SpatialMechanism::new(bodies(&["ground", "arm"]), vec![hinge], vec![], vec![], vec![], Vector3::zeros())
+        .unwrap();
+    let s = solve(&m, &Default::default()).unwrap();
+    let body = compliance(&m, &s, 2, Point3::origin()).unwrap_err().to_string();
+    assert!(body.contains("body") && body.contains('2'), "{body}");
+    let at = compliance(&m, &s, 1, Point3::new(f64::NAN, 0.0, 0.0)).unwrap_err().to_string();
+    assert!(at.contains("at") && at.contains("finite"), "{at}");
+    // The hinge's own compliance about z: 1/k.
+    assert!((compliance(&m, &s, 1, Point3::origin()).unwrap()[(2, 2)] - 0.5).abs() < 1e-15);
 }

@@ -10,11 +10,11 @@ use flexure::Level;
 use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::{SpatialFrames, attach, frames, frames_level_into};
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into};
-use flexure::mechanism::spatial::statics::{SpatialSolution, compliance, solve};
 use flexure::mechanism::spatial::{
     Prismatic, Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialLoads,
     SpatialMechanism, SpatialPointLoad, SpatialTendon, Spherical,
 };
+use flexure::mechanism::statics::{Solution, compliance, solve};
 use flexure::mechanism::{Fixed, Joint, JointState};
 use flexure::section::{Profile, SpatialSection};
 use flexure::space::Spatial;
@@ -415,7 +415,7 @@ fn jacobian_level_frames_give_the_full_hessian_but_for_the_flexures_quadrature()
 
 /// One spatial flexure of length 1 under a tip force that bends it by
 /// about a radian, solved, with its tip compliance.
-fn bent_cantilever(subintervals: Option<usize>, force: [f64; 3]) -> (SpatialMechanism, SpatialSolution) {
+fn bent_cantilever(subintervals: Option<usize>, force: [f64; 3]) -> (SpatialMechanism, Solution<Spatial>) {
     let mut f = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [3, 3, 3]).unwrap();
     if let Some(s) = subintervals {
         f = f.with_subintervals(s).unwrap();
@@ -434,7 +434,7 @@ fn bent_cantilever(subintervals: Option<usize>, force: [f64; 3]) -> (SpatialMech
 }
 
 /// $JH^{-1}J^T$ at the tip from frames evaluated to `level` (no closures).
-fn tip_compliance(m: &SpatialMechanism, s: &SpatialSolution, level: Level) -> DMatrix<f64> {
+fn tip_compliance(m: &SpatialMechanism, s: &Solution<Spatial>, level: Level) -> DMatrix<f64> {
     let mut f = SpatialFrames::new(m);
     frames_level_into(m, &s.q, level, &mut f);
     let mut a = SpatialAssembly::new(m);

@@ -159,7 +159,7 @@ fn a_trajectory_says_why_it_ended() {
 /// that names the bound and says how to avoid it: lower orders.
 #[test]
 fn a_spatial_file_at_the_order_cap_under_1e12_n_stops_at_its_work_bound() {
-    use flexure::mechanism::spatial::statics::solve;
+    use flexure::mechanism::statics::solve;
     let text = "dimension = 3\n\
         [[joint]]\nname = \"blade\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
         length = 0.03\nmodulus = 200e9\nwidth = 0.01\nthickness = 0.0003\npoisson = 0.3\norders = [64, 64, 64]\n\

@@ -5,10 +5,10 @@
 //! `mechanism/chain_10` of the same run. And one blade at the order cap.
 
 use criterion::Criterion;
-use flexure::mechanism::spatial::statics::solve;
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
 };
+use flexure::mechanism::statics::solve;
 use flexure::section::SpatialSection;
 use flexure::spatial::SpatialFlexure;
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};

@@ -67,12 +67,12 @@ fn spatial_picture(
     model: &Model,
     m: &flexure::mechanism::spatial::SpatialMechanism,
 ) -> Result<Picture, String> {
-    use flexure::mechanism::spatial::{statics, sweep};
+    use flexure::mechanism::{statics, sweep};
     let settings = Settings::default();
     let err = |e: flexure::Error| super::file_error(&args.file, e);
     // First, so that an open closure that keeps the mechanism from assembling is told.
     let mut findings = crate::findings::spatial_closures(m, &args.file)?;
-    let unloaded = statics::assemble_unloaded(m, &m.loads().zero_like(), &settings).map_err(err)?;
+    let unloaded = statics::assemble_unloaded(m, &settings).map_err(err)?;
     let mut answer = json!({});
     let mut marks = Marks::default();
     let mut motion = None;

@@ -8,9 +8,10 @@
 use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
 use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::kinematics::frames as spatial_frames;
-use flexure::mechanism::spatial::statics::SpatialSolution;
 use flexure::mechanism::spatial::{SpatialLoads, SpatialMechanism};
+use flexure::mechanism::statics::Solution;
 use flexure::mechanism::{Holds, Loads, Mechanism};
+use flexure::space::Spatial;
 use flexure_chart::Figure;
 use nalgebra::{Point2, Point3, Rotation3, Vector3};
 
@@ -301,7 +302,7 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 /// use flexure_cli::drawing::{Marks, View};
 /// use flexure_cli::scene::spatial_figure;
 /// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
-/// use flexure::mechanism::spatial::statics::{assemble_unloaded, solve};
+/// use flexure::mechanism::statics::{assemble_unloaded, solve};
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// let hinge = SpatialJointSpec {
 ///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
@@ -311,7 +312,7 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 /// let bodies = vec![SpatialBody::massless("ground"), SpatialBody::massless("arm")];
 /// let m = SpatialMechanism::new(bodies, vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
 /// let s = solve(&m, &Default::default()).unwrap();
-/// let unloaded = assemble_unloaded(&m, &m.loads().zero_like(), &Default::default()).unwrap();
+/// let unloaded = assemble_unloaded(&m, &Default::default()).unwrap();
 /// let (fig, per_newton) = spatial_figure(&m, "arm", &unloaded, &[("loaded".into(), s)], &Marks::default(), View::Top, true).unwrap();
 /// // The largest force drawn a quarter of the arm's 0.1 m, at a round scale: 0.02 m per N.
 /// assert_eq!(per_newton, Some(0.02));
@@ -321,8 +322,8 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 pub fn spatial_figure(
     m: &SpatialMechanism,
     title: &str,
-    unloaded: &SpatialSolution,
-    loaded: &[(String, SpatialSolution)],
+    unloaded: &Solution<Spatial>,
+    loaded: &[(String, Solution<Spatial>)],
     marks: &Marks,
     view: View,
     stress: bool,
@@ -397,7 +398,7 @@ pub fn spatial_motion(
 pub fn spatial_motion_figures(
     m: &SpatialMechanism,
     title: &str,
-    unloaded: &SpatialSolution,
+    unloaded: &Solution<Spatial>,
     sim: &flexure::dynamics::Simulation<flexure::space::Spatial>,
     view: View,
     stress: bool,

@@ -125,10 +125,10 @@ pub fn initial_state<D: Dynamics>(
         m.rest()
     } else {
         let loads = loads_at(m, 0.0);
-        let unloaded = D::assemble_unloaded(m, &loads, settings)?;
+        let unloaded = crate::mechanism::statics::assemble_unloaded(m, settings)?;
         match start {
             Start::Rest => unloaded.q,
-            Start::Equilibrium => D::solve_between(m, &unloaded, &loads, settings)?.q,
+            Start::Equilibrium => crate::mechanism::statics::solve_between(m, &unloaded, &loads, settings)?.q,
         }
     };
     let mut v = vec![0.0; m.dof()];

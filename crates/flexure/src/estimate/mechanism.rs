@@ -9,7 +9,7 @@
 //! What differs between the plane and space is the flexure's refinement
 //! ([`Refined`], implemented for [`Planar`] and [`Spatial`] side by side
 //! below): the planar reference raises the order and the Gauss points
-//! ([`eigen_reference`](super::eigen_reference)), the spatial one each
+//! ([`super::eigen_reference`]), the spatial one each
 //! component's order and the Magnus subintervals
 //! ([`reference`](super::spatial::reference)); both go to order 32 at the
 //! cap, where more points alone would report a false 0.
@@ -27,9 +27,9 @@ use crate::solver::Settings;
 use crate::space::{Planar, Spatial};
 
 /// What a mechanism's eigenvalue estimate needs of its dimension: the
-/// flexure's reference and its next automatic order, and the analyses
-/// themselves (each the dimension's own, one line).
-pub trait Refined: Dimension {
+/// flexure's reference and its next automatic order; the analyses it
+/// estimates are the generic ones.
+pub trait Refined: crate::dynamics::Dynamics {
     /// The reference of `f` for an eigenvalue answer about the shape `alpha`.
     fn eigen_reference(f: &Self::Flexure, alpha: &[f64]) -> Result<Self::Flexure>;
     /// A reference's (order, count) as the estimate reports it: (order,
@@ -43,10 +43,6 @@ pub trait Refined: Dimension {
         m: &Mechanism<Self>,
         refine: impl FnMut(usize, &Self::Flexure) -> Result<Option<Self::Flexure>>,
     ) -> Result<Mechanism<Self>>;
-    /// Linear buckling of `m` under its loads.
-    fn buckle(m: &Mechanism<Self>, settings: &Settings) -> Result<Buckling>;
-    /// The `count` lowest vibration modes of `m` about its equilibrium.
-    fn modes(m: &Mechanism<Self>, settings: &Settings, count: usize) -> Result<Modes>;
 }
 
 impl Refined for Planar {
@@ -67,14 +63,6 @@ impl Refined for Planar {
         refine: impl FnMut(usize, &crate::Flexure) -> Result<Option<crate::Flexure>>,
     ) -> Result<Mechanism> {
         m.with_flexures(refine)
-    }
-
-    fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
-        crate::mechanism::buckling::buckle(m, settings)
-    }
-
-    fn modes(m: &Mechanism, settings: &Settings, count: usize) -> Result<Modes> {
-        crate::dynamics::mechanism::modes(m, settings, count)
     }
 }
 
@@ -100,14 +88,6 @@ impl Refined for Spatial {
         refine: impl FnMut(usize, &crate::spatial::SpatialFlexure) -> Result<Option<crate::spatial::SpatialFlexure>>,
     ) -> Result<Mechanism<Spatial>> {
         m.with_flexures(refine)
-    }
-
-    fn buckle(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Buckling> {
-        crate::mechanism::spatial::buckling::buckle(m, settings)
-    }
-
-    fn modes(m: &Mechanism<Spatial>, settings: &Settings, count: usize) -> Result<Modes> {
-        crate::dynamics::mechanism::modes(m, settings, count)
     }
 }
 
@@ -198,7 +178,7 @@ pub fn buckle_error<D: Refined>(
 ) -> Result<ValueEstimate> {
     target.validate()?;
     let (reference, orders) = reference_mechanism(m, &[])?;
-    let exact = D::buckle(&reference, settings)?.load_factor;
+    let exact = crate::mechanism::buckling::buckle(&reference, settings)?.load_factor;
     Ok(ValueEstimate::new(&[b.load_factor], vec![exact], true, orders, target))
 }
 
@@ -230,7 +210,7 @@ pub fn buckle_auto<D: Refined>(
 ) -> Result<(Mechanism<D>, Buckling, ValueEstimate)> {
     let mut m = m.clone();
     loop {
-        let b = D::buckle(&m, settings)?;
+        let b = crate::mechanism::buckling::buckle(&m, settings)?;
         let e = buckle_error(&m, &b, settings, target)?;
         if !e.flagged {
             return Ok((m, b, e));
@@ -276,7 +256,7 @@ pub fn mechanism_modes_error<D: Refined>(
     target.validate()?;
     let (reference, orders) = reference_mechanism(m, &modes.coordinates)?;
     let count = modes.omega.len().max(1).min(reference.dof().max(1));
-    let (omega, stable) = reference_values(D::modes(&reference, settings, count))?;
+    let (omega, stable) = reference_values(crate::dynamics::mechanism::modes(&reference, settings, count))?;
     Ok(ValueEstimate::new(&modes.omega, omega, stable, orders, target))
 }
 
@@ -291,7 +271,7 @@ pub fn mechanism_modes_auto<D: Refined>(
 ) -> Result<(Mechanism<D>, Modes, ValueEstimate)> {
     let mut m = m.clone();
     loop {
-        let modes = D::modes(&m, settings, count)?;
+        let modes = crate::dynamics::mechanism::modes(&m, settings, count)?;
         let e = mechanism_modes_error(&m, &modes, settings, target)?;
         if !e.flagged {
             return Ok((m, modes, e));

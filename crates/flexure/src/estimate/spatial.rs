@@ -82,7 +82,7 @@ pub(super) fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result
 /// # Example
 /// ```
 /// use flexure::estimate::spatial::flexure_errors;
-/// use flexure::mechanism::spatial::statics::solve;
+/// use flexure::mechanism::statics::solve;
 /// use flexure::mechanism::spatial::{SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::section::SpatialSection;
 /// use flexure::spatial::SpatialFlexure;
@@ -99,7 +99,7 @@ pub(super) fn eigen_reference(flexure: &SpatialFlexure, alpha: &[f64]) -> Result
 /// [`flexure_loads`]: crate::mechanism::spatial::statics::flexure_loads
 pub fn flexure_errors(
     m: &crate::mechanism::spatial::SpatialMechanism,
-    s: &crate::mechanism::spatial::statics::SpatialSolution,
+    s: &crate::mechanism::statics::Solution<crate::space::Spatial>,
     target: &Accuracy,
 ) -> Result<Vec<Option<ErrorEstimate>>> {
     let loads = crate::mechanism::spatial::statics::flexure_loads(m, s);

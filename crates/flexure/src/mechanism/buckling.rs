@@ -1,11 +1,8 @@
 //! Linear buckling of a mechanism about its unloaded, assembled configuration.
 
-use super::Mechanism;
-use super::indeterminate::settle;
-use super::kinematics::frames;
-use super::lagrangian::lagrangian;
 use super::pencil::{pre_buckling_forces, smallest_load_factor};
-use super::statics::{Settings, assemble_unloaded, constrained, free_motion};
+use super::statics::{Settings, Statics, assemble_unloaded, constrained, free_motion};
+use super::{Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::linalg;
 
@@ -24,7 +21,13 @@ pub struct Buckling {
 /// with the closure forces of the linear pre-buckling solve, and $Z$ =
 /// [`linalg::null_space`]$(G)$. With redundant closures the indeterminate
 /// part of the pre-buckling closure forces is the one with the least force
-/// through the flexures (see [`super::statics::Solution::multipliers`]).
+/// through the flexures (see [`super::statics::Solution::multipliers`]),
+/// in the plane ([`Statics::settle_pre_buckling`]). A dead moment in space
+/// makes $K_g$ unsymmetric (its follower part, as in lateral-torsional
+/// buckling); the eigenvalues are then those of the unsymmetric pencil, and
+/// the smallest positive real one is taken. Such loads may have none (a
+/// cantilever under a dead end torque has no adjacent equilibrium, only
+/// flutter: Ziegler's example), which is an error that says so.
 ///
 /// # Example
 /// ```
@@ -38,15 +41,16 @@ pub struct Buckling {
 /// .unwrap();
 /// assert!((buckle(&m, &Settings::default()).unwrap().load_factor - 5.0).abs() < 1e-12);
 /// ```
-pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
+pub fn buckle<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Buckling> {
     if m.dof() == 0 {
         return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can buckle".into() });
     }
     let s0 = assemble_unloaded(m, settings)?;
     let (zero, base) = (&s0.loads, m.loads());
-    let a0 = lagrangian(m, &s0.q, &s0.multipliers, zero)?;
-    let a1 = lagrangian(m, &s0.q, &s0.multipliers, &base)?;
-    let g = &a0.closure_jacobian;
+    let (f0, a0) = hessian(m, &s0.q, &s0.multipliers, zero)?;
+    let (_, a1) = hessian(m, &s0.q, &s0.multipliers, &base)?;
+    let p0 = D::parts(&a0);
+    let g = p0.closure_jacobian;
     let z = linalg::null_space(g);
     if z.ncols() == 0 {
         return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can buckle".into() });
@@ -57,20 +61,29 @@ pub fn buckle(m: &Mechanism, settings: &Settings) -> Result<Buckling> {
             "the unloaded mechanism has a zero-stiffness motion{moving}: linear buckling is undefined; give a joint on it a stiffness, or hold it with a closure"
         ),
     };
-    let k0 = constrained(&a0.hessian, &z);
+    let k0 = constrained(p0.hessian, &z);
     if !linalg::is_positive_definite(&k0) {
         return Err(free());
     }
     // Linear pre-buckling state and its closure forces (least norm).
-    let load_gradient = &a1.gradient - &a0.gradient;
-    let dmu = pre_buckling_forces(&k0, &z, &a0.hessian, &load_gradient, g, free)?;
+    let p1 = D::parts(&a1);
+    let load_gradient = p1.gradient - p0.gradient;
+    let dmu = pre_buckling_forces(&k0, &z, p0.hessian, &load_gradient, g, free)?;
     // The indeterminate part of δμ: least transmitted force under the base loads.
-    let f0 = frames(m, &s0.q);
-    let dmu = settle(m, &f0, g, dmu.as_slice(), &base);
+    let dmu = D::settle_pre_buckling(m, &f0, &a0, dmu.as_slice(), &base);
     let mu1: Vec<f64> = s0.multipliers.iter().zip(&dmu).map(|(a, b)| a + b).collect();
-    let closure_part = lagrangian(m, &s0.q, &mu1, zero)?.hessian - &a0.hessian;
-    let geometric = &a1.hessian - &a0.hessian + closure_part;
+    let closure_part = D::parts(&hessian(m, &s0.q, &mu1, zero)?.1).hessian - p0.hessian;
+    let geometric = p1.hessian - p0.hessian + closure_part;
     let b = z.transpose() * &geometric * &z;
-    let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, "a pure moment, or only tension")?;
+    let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, D::NO_SOFTENING)?;
     Ok(Buckling { load_factor, mode })
+}
+
+/// The frames and the Lagrangian with its exact Hessian at `q`.
+fn hessian<D: Statics>(m: &Mechanism<D>, q: &[f64], mu: &[f64], loads: &Loads<D>) -> Result<(D::Frames, D::Assembly)> {
+    D::check_start(m, q, mu, loads)?;
+    let f = D::exact_frames(m, q);
+    let mut a = D::new_assembly(m);
+    D::assemble(m, &f, mu, loads, true, &mut a)?;
+    Ok((f, a))
 }

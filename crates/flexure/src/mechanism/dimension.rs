@@ -6,8 +6,8 @@
 //! dimensions (Pinocchio's one model; parry's one set of dimension aliases).
 
 use super::joints::{Joint, JointKind};
-use super::spatial::{SpatialJointKind, sweep::SpatialParameter};
-use super::sweep::Parameter;
+use super::spatial::SpatialJointKind;
+use super::sweep::{Parameter, SpatialParameter};
 use crate::flexure::Flexure;
 use crate::space::{Planar, Space, Spatial};
 use crate::spatial::SpatialFlexure;

@@ -83,7 +83,8 @@ pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, wit
 
 /// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Assembly {
+#[doc(hidden)]
+pub struct Assembly {
     /// $\nabla V$.
     pub gradient: DVector<f64>,
     /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$ (when asked for).

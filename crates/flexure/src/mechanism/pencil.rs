@@ -1,8 +1,6 @@
 //! The linear buckling pencil of a mechanism, whatever its dimension: the
 //! pre-buckling closure forces and the smallest load factor of
-//! $Z^T(K_0 + \lambda K_g)Z$. The planar [`super::buckling::buckle`] and the
-//! spatial [`super::spatial::buckling::buckle`] assemble $K_0$, $K_g$ and
-//! $G$ their own way and share this algebra.
+//! $Z^T(K_0 + \lambda K_g)Z$, for [`super::buckling::buckle`] in either dimension.
 
 use crate::buckling::normalized;
 use crate::error::{Error, Result};

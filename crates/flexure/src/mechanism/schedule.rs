@@ -47,7 +47,7 @@ pub enum Waveform {
 
 /// One load given in time (module docs), checked by the file parser; its
 /// `parameter` is a planar [`Parameter`] or, in a spatial mechanism, a
-/// [`crate::mechanism::spatial::sweep::SpatialParameter`].
+/// [`crate::mechanism::sweep::SpatialParameter`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Schedule<P = Parameter> {
     /// The load's name, as in the file (`tendon.flexor.tension`).

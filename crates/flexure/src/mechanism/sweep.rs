@@ -1,9 +1,10 @@
 //! Sweeps of one load, with the stability limit found between two values.
 
-use super::equilibria::{Equilibria, ParameterOf, first_loss, refine_limit};
-use super::statics::{LIMIT_PRECISION, Settings, Solution};
+use super::equilibria::{ParameterOf, first_loss, refine_limit};
+use super::statics::{LIMIT_PRECISION, Settings, Solution, Statics, assemble_unloaded, follow};
 use super::{Loads, Mechanism};
 use crate::error::{Error, Result};
+use crate::space::Spatial;
 
 /// A load that a sweep varies.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,6 +66,81 @@ impl Parameter {
     }
 }
 
+/// The one load a spatial mechanism's sweep varies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpatialParameter {
+    /// Component 0..6 (`mx, my, mz, fx, fy, fz`) of point load `i`.
+    Force(usize, usize),
+    /// Tendon `i`'s tension.
+    Tension(usize),
+    /// Gravity's component 0..3 (`x, y, z`).
+    Gravity(usize),
+}
+
+/// The components of a point load, by name.
+pub const WRENCH_COMPONENTS: [&str; 6] = ["mx", "my", "mz", "fx", "fy", "fz"];
+
+impl SpatialParameter {
+    /// `force.NAME.mx|my|mz|fx|fy|fz`, `tendon.NAME.tension` or `gravity.x|y|z`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::sweep::SpatialParameter;
+    /// # use flexure::mechanism::spatial::{SpatialBody, SpatialMechanism};
+    /// # let m = SpatialMechanism::new(vec![SpatialBody::massless("ground")], vec![], vec![], vec![], vec![], Default::default()).unwrap();
+    /// assert_eq!(SpatialParameter::parse(&m, "gravity.z").unwrap(), SpatialParameter::Gravity(2));
+    /// assert!(SpatialParameter::parse(&m, "force.none.fx").unwrap_err().to_string().contains("none"));
+    /// ```
+    pub fn parse(m: &Mechanism<Spatial>, text: &str) -> Result<Self> {
+        let bad = |why: &'static str| Error::invalid("sweep", text, why);
+        let parts: Vec<&str> = text.split('.').collect();
+        match parts.as_slice() {
+            ["gravity", axis] => ["x", "y", "z"]
+                .iter()
+                .position(|a| a == axis)
+                .map(SpatialParameter::Gravity)
+                .ok_or_else(|| bad("gravity's component must be x, y or z")),
+            ["force", name, component] => {
+                let i = m
+                    .forces
+                    .iter()
+                    .position(|f| f.name == *name)
+                    .ok_or_else(|| bad("names no force of the mechanism"))?;
+                let c = WRENCH_COMPONENTS
+                    .iter()
+                    .position(|c| c == component)
+                    .ok_or_else(|| bad("a force's component must be mx, my, mz, fx, fy or fz"))?;
+                Ok(SpatialParameter::Force(i, c))
+            }
+            ["tendon", name, "tension"] => {
+                let i = m
+                    .tendons
+                    .iter()
+                    .position(|t| t.name == *name)
+                    .ok_or_else(|| bad("names no tendon of the mechanism"))?;
+                Ok(SpatialParameter::Tension(i))
+            }
+            _ => Err(bad("must be force.NAME.mx|my|mz|fx|fy|fz, tendon.NAME.tension or gravity.x|y|z")),
+        }
+    }
+
+    /// `loads` with this parameter set to `value`.
+    pub fn apply(&self, loads: &Loads<Spatial>, value: f64) -> Loads<Spatial> {
+        let mut out = loads.clone();
+        self.set(&mut out, value);
+        out
+    }
+
+    /// Sets this parameter of `loads` to `value`, in place.
+    pub fn set(&self, loads: &mut Loads<Spatial>, value: f64) {
+        match *self {
+            SpatialParameter::Force(i, c) => loads.force[i][c] = value,
+            SpatialParameter::Tension(i) => loads.tension[i] = value,
+            SpatialParameter::Gravity(c) => loads.gravity[c] = value,
+        }
+    }
+}
+
 /// Where a sweep lost stability, in the swept quantity (serialized as a
 /// sweep's `stability_limit`; [`crate::StabilityLimit`] is the factor on a load).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -78,8 +154,8 @@ pub struct SweepLimit {
 /// What [`sweep`] reached; serialized with each row as
 /// `{"value", "solution"}` and `stopped` as `{"value", "error"}` (the
 /// error's message).
-/// Written over [`Equilibria`], for either dimension: `Sweep<SpatialSolution>`
-/// is a spatial mechanism's.
+/// Written once for either dimension: `Sweep<Solution<Spatial>>` is a
+/// spatial mechanism's.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(bound = "S: serde::Serialize")]
 pub struct Sweep<S = Solution> {
@@ -148,12 +224,12 @@ fn stopped<S: serde::Serializer>(stopped: &Option<(f64, Error)>, s: S) -> std::r
 /// let limit = out.stability_limit.unwrap();
 /// assert!((limit.value + 10.0).abs() < 1e-4 && (limit.fraction - 0.625).abs() < 1e-5);
 /// ```
-pub fn sweep<M: Equilibria>(
-    m: &M,
-    parameter: &ParameterOf<M>,
+pub fn sweep<D: Statics>(
+    m: &Mechanism<D>,
+    parameter: &ParameterOf<D>,
     values: &[f64],
     settings: &Settings,
-) -> Result<Sweep<Solution<M::Dim>>> {
+) -> Result<Sweep<Solution<D>>> {
     settings.validate()?;
     if values.is_empty() {
         return Err(Error::invalid("sweep", "no values", "a sweep needs at least one value"));
@@ -161,7 +237,7 @@ pub fn sweep<M: Equilibria>(
     if let Some(v) = values.iter().find(|v| !v.is_finite()) {
         return Err(Error::invalid("sweep", v, "values must be finite"));
     }
-    if M::is_tension(parameter)
+    if D::is_tension(parameter)
         && let Some(v) = values.iter().find(|v| **v < 0.0)
     {
         return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
@@ -170,12 +246,12 @@ pub fn sweep<M: Equilibria>(
     let (first, last) = (values[0], values[values.len() - 1]);
     let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
-    let mut start = m.unloaded(settings)?;
+    let mut start = assemble_unloaded(m, settings)?;
     for (i, &v) in values.iter().enumerate() {
-        let target = m.apply(parameter, &base, v);
+        let target = D::apply(parameter, &base, v);
         // The first value is reached from the unloaded state with every load
         // ramped together: a loss there is refined as a solve's.
-        let found = m.follow(&start, &target, settings);
+        let found = follow(m, &start, &target, settings);
         let found = if i == 0 { refine_limit(m, &start, &target, settings, found) } else { found };
         let lost = i > 0
             && match &found {

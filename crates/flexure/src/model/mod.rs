@@ -371,7 +371,7 @@ fn sweep<D: Analyses>(
     };
     let out = D::sweep(m, parameter, values, &Settings::default())?;
     let mut columns = vec![parameter.to_string()];
-    let poses = D::poses(m, &m.rest());
+    let poses = <D as crate::report::Reported>::poses(m, &m.rest());
     for (b, pose) in m.bodies.iter().zip(&poses).skip(1) {
         columns.extend(pose.columns().iter().map(|c| format!("{}.{c}", b.name)));
     }
@@ -428,7 +428,7 @@ fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start:
     let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
     for q in &samples {
-        for (body, pose) in bodies.iter_mut().zip(D::poses(m, q).into_iter().skip(1)) {
+        for (body, pose) in bodies.iter_mut().zip(<D as crate::report::Reported>::poses(m, q).into_iter().skip(1)) {
             body.1.push(pose);
         }
     }

@@ -10,8 +10,8 @@ use crate::dynamics::integrate::Trajectory;
 use crate::dynamics::simulation::{BodyMotion, BodyPoses};
 use crate::error::Result;
 use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
-use crate::mechanism::statics::{Settings, Solution};
-use crate::mechanism::{Dimension, Loads, Mechanism, kinematics, spatial as space_mechanism, statics};
+use crate::mechanism::statics::Statics;
+use crate::mechanism::{Dimension, Loads, Mechanism, kinematics};
 use crate::space::{Planar, Pose, Spatial};
 use nalgebra::{DMatrix, DVector, Matrix3};
 use std::fmt::Debug;
@@ -25,29 +25,14 @@ use std::fmt::Debug;
 /// starts from and the modes are taken about, and how a body's motion is
 /// written down. The rest of the equations of motion, their integration
 /// and the modes are generic.
-pub trait Dynamics: Dimension {
+pub trait Dynamics: Statics {
     /// The mass elements and the buffers of their evaluation.
     type Masses: MassElements<Self>;
     /// One moving body's frame at each sample of a simulation.
     type BodyMotion: Debug + Clone + PartialEq + serde::Serialize;
 
-    /// Checks `loads` against `m`.
-    fn validate(loads: &Loads<Self>, m: &Mechanism<Self>) -> Result<()>;
     /// Sets the load `parameter` names to `value`.
     fn set(parameter: &Self::Parameter, loads: &mut Loads<Self>, value: f64);
-    /// The equilibrium under the mechanism's loads.
-    fn solve(m: &Mechanism<Self>, settings: &Settings) -> Result<Solution<Self>>;
-    /// The unloaded rest shape, closures assembled (`start`: the loads at $t = 0$).
-    fn assemble_unloaded(m: &Mechanism<Self>, start: &Loads<Self>, settings: &Settings) -> Result<Solution<Self>>;
-    /// The equilibrium under `to`, continued from `start`.
-    fn solve_between(
-        m: &Mechanism<Self>,
-        start: &Solution<Self>,
-        to: &Loads<Self>,
-        s: &Settings,
-    ) -> Result<Solution<Self>>;
-    /// The motions the closures allow, $Z$, and the loaded stiffness on them.
-    fn reduced_stiffness(m: &Mechanism<Self>, s: &Solution<Self>) -> Result<(DMatrix<f64>, DMatrix<f64>)>;
     /// Every moving body's frame at each sample of `run`.
     fn motions(m: &Mechanism<Self>, run: &Trajectory) -> Vec<Self::BodyMotion>;
 }
@@ -97,24 +82,8 @@ impl Dynamics for Planar {
     type Masses = planar::Masses;
     type BodyMotion = BodyMotion;
 
-    fn validate(loads: &Loads, m: &Mechanism) -> Result<()> {
-        loads.validate(m)
-    }
     fn set(parameter: &Self::Parameter, loads: &mut Loads, value: f64) {
         parameter.set(loads, value)
-    }
-
-    fn solve(m: &Mechanism, settings: &Settings) -> Result<Solution> {
-        statics::solve(m, settings)
-    }
-    fn assemble_unloaded(m: &Mechanism, _: &Loads, settings: &Settings) -> Result<Solution> {
-        statics::assemble_unloaded(m, settings)
-    }
-    fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
-        statics::solve_between(m, start, to, settings)
-    }
-    fn reduced_stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-        statics::stiffness(m, s)
     }
 
     fn motions(m: &Mechanism, run: &Trajectory) -> Vec<BodyMotion> {
@@ -135,33 +104,8 @@ impl Dynamics for Spatial {
     type Masses = spatial::Masses;
     type BodyMotion = BodyPoses;
 
-    fn validate(loads: &Loads<Spatial>, m: &Mechanism<Spatial>) -> Result<()> {
-        loads.validate(m)
-    }
     fn set(parameter: &Self::Parameter, loads: &mut Loads<Spatial>, value: f64) {
         parameter.set(loads, value)
-    }
-
-    fn solve(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Solution<Spatial>> {
-        space_mechanism::statics::solve(m, settings)
-    }
-    fn assemble_unloaded(
-        m: &Mechanism<Spatial>,
-        start: &Loads<Spatial>,
-        settings: &Settings,
-    ) -> Result<Solution<Spatial>> {
-        space_mechanism::statics::assemble_unloaded(m, &start.zero_like(), settings)
-    }
-    fn solve_between(
-        m: &Mechanism<Spatial>,
-        start: &Solution<Spatial>,
-        to: &Loads<Spatial>,
-        settings: &Settings,
-    ) -> Result<Solution<Spatial>> {
-        space_mechanism::statics::solve_between(m, start, to, settings)
-    }
-    fn reduced_stiffness(m: &Mechanism<Spatial>, s: &Solution<Spatial>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-        Ok(space_mechanism::statics::stiffness(m, s))
     }
 
     fn motions(m: &Mechanism<Spatial>, run: &Trajectory) -> Vec<BodyPoses> {

@@ -8,13 +8,13 @@ use crate::mechanism::Mechanism;
 use crate::mechanism::statics::Settings;
 
 /// The vibration modes of `m` about its equilibrium under its loads
-/// ([`Dynamics::solve`] with `settings`): the finite solutions of
+/// ([`crate::mechanism::statics::solve`] with `settings`): the finite solutions of
 ///
 /// $$Z^T\nabla^2L\thinspace Z\thinspace a = \omega^2Z^TM Z\thinspace a,\qquad v = Za,$$
 ///
 /// where $\nabla^2L$ is the loaded stiffness with the closure forces' part
 /// and the columns of $Z$ span the motions the closures allow
-/// ([`Dynamics::reduced_stiffness`]), so a frequency falls to zero as the loads
+/// ([`crate::mechanism::statics::stiffness`]), so a frequency falls to zero as the loads
 /// reach a buckling load. Directions without inertia are condensed out
 /// as quasi-static ([`finite_modes`]); at most `count` modes are returned.
 /// Shapes are in the coordinates $q$, normalized to $v^TMv = 1$.
@@ -69,11 +69,11 @@ pub fn modes<D: Dynamics>(m: &Mechanism<D>, settings: &Settings, count: usize) -
     if m.dof() == 0 {
         return Err(Error::Singular { what: "the mechanism has no coordinates: nothing can vibrate".into() });
     }
-    let s = D::solve(m, settings)?;
+    let s = crate::mechanism::statics::solve(m, settings)?;
     if !s.stable {
         return Err(Error::Unstable { what: "modes", load_fraction: s.limit.unwrap_or(1.0) });
     }
-    let (z, k) = D::reduced_stiffness(m, &s)?;
+    let (z, k) = crate::mechanism::statics::stiffness(m, &s)?;
     if z.ncols() == 0 {
         return Err(Error::Singular { what: "the closures leave the mechanism no motion: nothing can vibrate".into() });
     }

@@ -42,7 +42,7 @@ pub(super) struct FileToml<D: FileDimension> {
 
 /// A mechanism file parsed once: its text, its TOML document with every
 /// span, and its `dimension` with the offset of its value (0 when absent).
-/// [`super::Document::read`] then reads its tables in that dimension.
+/// [`Document::planar`] or [`Document::spatial`] then reads its tables.
 pub struct Document<'i> {
     pub(super) text: &'i str,
     pub(super) doc: Spanned<DeTable<'i>>,

@@ -163,12 +163,14 @@ pub fn spatial_from_toml(text: &str) -> Result<Mechanism<Spatial>> {
 }
 
 impl Document<'_> {
-    /// The planar mechanism of this file ([`Document::read`]).
+    /// The planar mechanism of this file: the tree of joints and its bodies,
+    /// the loads, the closures, the checks of the whole, the schedules and
+    /// the initial state; an error at its `dimension` if it is 3.
     pub fn planar(self) -> Result<Mechanism<Planar>> {
         self.read()
     }
 
-    /// The spatial mechanism of this file ([`Document::read`]).
+    /// The spatial mechanism of this file, as [`Document::planar`] a planar one.
     pub fn spatial(self) -> Result<Mechanism<Spatial>> {
         self.read()
     }

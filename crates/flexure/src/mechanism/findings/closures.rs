@@ -128,7 +128,7 @@ pub fn open_closures<D: Findings>(m: &Mechanism<D>, settings: &Settings) -> Resu
     if open.is_empty() {
         return Ok(Vec::new());
     }
-    let unloaded = match D::unloaded(m, settings) {
+    let unloaded = match crate::mechanism::statics::assemble_unloaded(m, settings) {
         Ok(s) => Some(s),
         Err(Error::File { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => None,
         Err(e) => return Err(e),

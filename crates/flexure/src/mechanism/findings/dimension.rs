@@ -8,11 +8,11 @@
 use super::convex::{Convex, distinct, hull_edges};
 use super::crossing::{self, CrossingAt, Drawn, Piece, Shape, TOUCH_TOLERANCE};
 use super::geometry::{convex_hull, distance};
-use crate::error::Result;
+
 use crate::kinematics::{Level, backbone};
 use crate::mechanism::lagrangian::wrap;
-use crate::mechanism::statics::{Settings, Solution};
-use crate::mechanism::{Closure, Dimension, Holds, Mechanism};
+
+use crate::mechanism::{Closure, Holds, Mechanism};
 use crate::section::Outline;
 use crate::space::{Planar, Spatial};
 use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
@@ -30,7 +30,7 @@ use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
 /// // A weld's force, then its moment: (3, 4) N and 5 N·m in the plane.
 /// assert_eq!(Planar::preload(&[3.0, 4.0, -5.0]), (5.0, Some(5.0)));
 /// ```
-pub trait Findings: Dimension {
+pub trait Findings: crate::mechanism::statics::Statics {
     /// A point where two parts meet, as a [`super::Crossing`] gives it:
     /// `[f64; 2]` in the plane, `[f64; 3]` in space.
     type At: AsRef<[f64]> + Copy + std::fmt::Debug + PartialEq;
@@ -40,8 +40,6 @@ pub trait Findings: Dimension {
 
     /// The bodies' frames and the joints' root frames at coordinates `q`.
     fn poses(m: &Mechanism<Self>, q: &[f64]) -> (Vec<Self::Pose>, Vec<Self::Pose>);
-    /// The unloaded mechanism assembled from rest (its statics).
-    fn unloaded(m: &Mechanism<Self>, settings: &Settings) -> Result<Solution<Self>>;
     /// A closure's gap at rest, given the bodies' frames: the distance
     /// between its points (m) and the angle it holds between its frames (rad).
     fn rest_gap(c: &Closure<Self>, bodies: &[Self::Pose]) -> (f64, Option<f64>);
@@ -75,10 +73,6 @@ impl Findings for Planar {
     fn poses(m: &Mechanism, q: &[f64]) -> (Vec<crate::Pose>, Vec<crate::Pose>) {
         let f = crate::mechanism::kinematics::frames(m, q);
         (f.bodies, f.roots)
-    }
-
-    fn unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution> {
-        crate::mechanism::statics::assemble_unloaded(m, settings)
     }
 
     fn rest_gap(c: &Closure, bodies: &[crate::Pose]) -> (f64, Option<f64>) {
@@ -143,10 +137,6 @@ impl Findings for Spatial {
         let mut f = crate::mechanism::spatial::kinematics::SpatialFrames::new(m);
         crate::mechanism::spatial::kinematics::frames_level_into(m, q, Level::Pose, &mut f);
         (f.bodies, f.roots)
-    }
-
-    fn unloaded(m: &Mechanism<Spatial>, settings: &Settings) -> Result<Solution<Spatial>> {
-        crate::mechanism::spatial::statics::assemble_unloaded(m, &m.loads().zero_like(), settings)
     }
 
     fn rest_gap(c: &Closure<Spatial>, bodies: &[nalgebra::Isometry3<f64>]) -> (f64, Option<f64>) {

@@ -13,12 +13,10 @@
 //! any joint kind; the planar mechanism keeps its own, with the planar fast
 //! paths (rotations that add, the tree's $O(n)$ factorization).
 
-pub mod buckling;
 pub mod joints;
 pub mod kinematics;
 pub mod lagrangian;
 pub mod statics;
-pub mod sweep;
 
 pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
 

@@ -1,5 +1,6 @@
 //! The unloaded, assembled configuration: the start of every path.
 
+use super::dimension::Statics;
 use super::kkt::Kkt;
 use super::path::solution;
 use super::workspace::{Buffers, Workspace};
@@ -12,13 +13,17 @@ use crate::solver;
 
 /// The unloaded, assembled configuration: the rest coordinates moved, if
 /// the closures require it, to the nearest configuration that closes them.
-pub fn assemble_unloaded(m: &Mechanism, settings: &Settings) -> Result<Solution> {
+pub fn assemble_unloaded<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Solution<D>> {
     assemble_in(m, settings, &mut Workspace::new(m))
 }
 
 /// [`assemble_unloaded`] in the buffers `work` (made for `m`).
-pub(super) fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspace) -> Result<Solution> {
-    let zero = m.loads().zero_like();
+pub(super) fn assemble_in<D: Statics>(
+    m: &Mechanism<D>,
+    settings: &Settings,
+    work: &mut Workspace<D>,
+) -> Result<Solution<D>> {
+    let zero = D::zero(&m.loads());
     if !work.fits(m) {
         return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
     }
@@ -33,41 +38,56 @@ pub(super) fn assemble_in(m: &Mechanism, settings: &Settings, work: &mut Workspa
 
 /// The unloaded, assembled configuration, by Newton from rest on the
 /// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
-pub(super) fn assemble(problem: &mut Kkt, ws: &mut solver::Workspace<f64>, settings: &Settings) -> Result<Solution> {
+pub(super) fn assemble<D: Statics>(
+    problem: &mut Kkt<D>,
+    ws: &mut solver::Workspace<f64>,
+    settings: &Settings,
+) -> Result<Solution<D>> {
     let path = assembled(problem, ws, settings)?;
     solution(problem, &ws.x, false, &path)
 }
 
-/// [`assemble`] without the solution: how the path to it went.
-pub(super) fn assembled(
-    problem: &mut Kkt,
+/// [`assemble`] without the solution: how the path to it went. Newton
+/// converges to the tolerance of the whole path, or with
+/// [`Statics::OWN_ASSEMBLY`] to that of the loads at $\lambda = 0$ alone.
+pub(super) fn assembled<D: Statics>(
+    problem: &mut Kkt<D>,
     ws: &mut solver::Workspace<f64>,
     settings: &Settings,
 ) -> Result<solver::Path> {
     let m = problem.mechanism;
     ws.x.fill(0.0);
     m.rest_into(&mut ws.x[..m.dof()]);
-    match solver::newton(problem, ws, 0.0, settings) {
+    let start = assembly_scale(problem);
+    let full = std::mem::replace(&mut problem.scale, start);
+    let report = solver::newton(problem, ws, 0.0, settings);
+    problem.scale = full;
+    match report {
         Ok(report) => {
             let stable = solver::Problem::stable(problem, &ws.x, 0.0, &ws.jacobian);
             Ok(solver::Path::at_start(report, stable))
         }
-        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(unassembled(m, problem.length, e)),
+        Err(e @ (Error::NoConvergence { .. } | Error::Singular { .. })) => Err(D::unassembled(m, problem.length, e)),
         Err(e) => Err(e),
     }
+}
+
+/// The scale of the assembly's Newton tolerance ([`assembled`]).
+fn assembly_scale<D: Statics>(problem: &Kkt<D>) -> f64 {
+    if D::OWN_ASSEMBLY { problem.start_scale } else { problem.scale }
 }
 
 /// [`assembled`] for [`solve_with`](super::solve_with): the start the workspace keeps if it
 /// is this problem's (`StartCache::holds`), with the load derivative of
 /// this problem's loads; else solved, and kept.
-pub(super) fn assembled_kept(
-    problem: &mut Kkt,
+pub(super) fn assembled_kept<D: Statics>(
+    problem: &mut Kkt<D>,
     ws: &mut solver::Workspace<f64>,
     settings: &Settings,
 ) -> Result<solver::Path> {
     let m = problem.mechanism;
     // The tolerance of solver::newton.
-    let tolerance = settings.tolerance * solver::Problem::scale(problem);
+    let tolerance = settings.tolerance * assembly_scale(problem);
     if let Some((report, stable)) = problem.work.start.holds(m, settings, tolerance) {
         let Workspace { start, assembled, .. } = &mut *problem.work;
         ws.x.copy_from_slice(&start.x);

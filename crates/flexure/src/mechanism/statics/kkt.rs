@@ -3,14 +3,16 @@
 use super::Settings;
 #[cfg(doc)]
 use super::Solution;
-use super::workspace::{Buffers, Spare, Workspace, copy_loads};
+use super::dimension::{PlanarOwn, Statics};
+use super::workspace::{Buffers, Spare, Workspace};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::kinematics::frames_into;
-use crate::mechanism::lagrangian::{add_loads, assemble_into, closure_hessian};
+use crate::mechanism::lagrangian::closure_hessian;
 use crate::mechanism::{Loads, Mechanism};
 use crate::solver;
+use crate::space::Planar;
 use nalgebra::DMatrix;
 
 /// The shift of the multiplier block of the Newton matrix (see the module docs).
@@ -33,43 +35,46 @@ pub(crate) const FAR_MARGIN: f64 = 0.5;
 /// dimensionless, unit "relative". Arc-length weights: 1 for angles,
 /// $1/\ell$ for slider travel, 0 for multipliers.
 #[derive(Debug, Clone)]
-pub struct Kkt<'a> {
-    pub(super) mechanism: &'a Mechanism,
-    pub(super) from: Loads,
-    pub(super) to: Loads,
-    pub(super) change: Loads,
+pub struct Kkt<'a, D: Statics = Planar> {
+    pub(crate) mechanism: &'a Mechanism<D>,
+    pub(crate) from: Loads<D>,
+    pub(crate) to: Loads<D>,
+    pub(crate) change: Loads<D>,
     /// $1/k_i$ per coordinate row.
-    pub(super) row_scale: Vec<f64>,
+    pub(crate) row_scale: Vec<f64>,
     /// $1/\ell$ or 1 per closure row.
-    pub(super) closure_scale: Vec<f64>,
+    pub(crate) closure_scale: Vec<f64>,
     /// $s_i$ per closure row.
-    pub(super) multiplier_scale: Vec<f64>,
+    pub(crate) multiplier_scale: Vec<f64>,
     pub(super) weight: Vec<f64>,
     pub(super) length: f64,
     pub(super) scale: f64,
+    /// The scale of the assembly alone (the loads at $\lambda = 0$ at both
+    /// ends), to whose tolerance a dimension with [`Statics::OWN_ASSEMBLY`] assembles.
+    pub(super) start_scale: f64,
     /// Smallest relative stiffness of a stable state.
-    pub(super) margin: f64,
+    pub(crate) margin: f64,
     /// Whether the Hessian has the tree's form ([`crate::mechanism::tree`]): no
     /// closures, no tendons. Then Newton steps, tangents and stability
     /// tests factor in $O(n)$.
-    pub(super) tree: bool,
-    pub(super) work: Buffers<'a>,
+    pub(crate) tree: bool,
+    pub(crate) work: Buffers<'a, D>,
 }
 
-impl<'a> Kkt<'a> {
+impl<'a, D: Statics> Kkt<'a, D> {
     /// The problem of moving `m` from `from` to `to` (both validated), for
     /// a solver run with `settings` (whose tolerance sets the stability margin).
-    pub fn new(m: &'a Mechanism, from: &Loads, to: &Loads, settings: &Settings) -> Result<Self> {
+    pub fn new(m: &'a Mechanism<D>, from: &Loads<D>, to: &Loads<D>, settings: &Settings) -> Result<Self> {
         Self::with_workspace(m, from, to, settings, Workspace::new(m))
     }
 
     /// [`Kkt::new`] with the buffers `work` (made for `m` by [`Workspace::new`]).
     pub fn with_workspace(
-        m: &'a Mechanism,
-        from: &Loads,
-        to: &Loads,
+        m: &'a Mechanism<D>,
+        from: &Loads<D>,
+        to: &Loads<D>,
         settings: &Settings,
-        work: Workspace,
+        work: Workspace<D>,
     ) -> Result<Self> {
         if !work.fits(m) {
             return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
@@ -79,15 +84,15 @@ impl<'a> Kkt<'a> {
 
     /// [`Kkt::with_workspace`] with `work` known to fit `m`.
     pub(super) fn fitted(
-        m: &'a Mechanism,
-        from: &Loads,
-        to: &Loads,
+        m: &'a Mechanism<D>,
+        from: &Loads<D>,
+        to: &Loads<D>,
         settings: &Settings,
-        work: Buffers<'a>,
+        work: Buffers<'a, D>,
     ) -> Result<Self> {
         settings.validate()?;
-        from.validate(m)?;
-        to.validate(m)?;
+        D::validate(m, from)?;
+        D::validate(m, to)?;
         let n = m.dof();
         let length = m.size();
         // Diagonal stiffness of each coordinate (constant for every joint
@@ -103,12 +108,13 @@ impl<'a> Kkt<'a> {
         stiffness.resize(n, 0.0);
         unit.clear();
         unit.resize(n, 1.0);
-        for (j, s) in m.joints.iter().zip(&work.frames.joints) {
+        for (j, s) in m.joints.iter().zip(D::joint_states(&work.frames)) {
+            let translation = D::joint(&j.kind).is_translation();
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
-            }
-            if j.kind.joint().is_translation() {
-                unit[j.offset] = length * length;
+                if translation {
+                    unit[j.offset + i] = length * length;
+                }
             }
         }
         let moments = || stiffness.iter().zip(unit.iter()).map(|(k, u)| k * u);
@@ -127,19 +133,15 @@ impl<'a> Kkt<'a> {
         multiplier_scale.clear();
         for c in &m.closures {
             for row in 0..c.equations() {
-                let position = row < 2;
+                let position = row < D::POSITION_ROWS;
                 closure_scale.push(if position { 1.0 / length } else { 1.0 });
                 multiplier_scale.push(if position { k_max / length } else { k_max });
             }
         }
         // Largest load, as a moment, in radians of the softest joint.
-        let magnitude = |l: &Loads| {
-            let forces: f64 = l.force.iter().map(|f| f.fx.hypot(f.fy) * length + f.moment.abs()).sum();
-            let tendons: f64 = l.tension.iter().map(|t| t * length).sum();
-            let mass: f64 = m.bodies.iter().map(|b| b.mass).sum();
-            forces + tendons + mass * l.gravity[0].hypot(l.gravity[1]) * length
-        };
+        let magnitude = |l: &Loads<D>| D::load_size(m, l, length);
         let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
+        let start_scale = 1.0 + (magnitude(from) + magnitude(from)) / k_min;
         if !scale.is_finite() {
             return Err(Error::invalid(
                 "loads",
@@ -147,12 +149,9 @@ impl<'a> Kkt<'a> {
                 "are too large for the joints' stiffness to be represented",
             ));
         }
-        copy_loads(from, &mut from_);
-        copy_loads(to, &mut to_);
-        copy_loads(to, &mut change);
-        change.tension.iter_mut().zip(&from.tension).for_each(|(b, a)| *b -= a);
-        change.force.iter_mut().zip(&from.force).for_each(|(b, a)| (0..3).for_each(|i| b[i] -= a[i]));
-        change.gravity = to.gravity - from.gravity;
+        D::copy_loads(from, &mut from_);
+        D::copy_loads(to, &mut to_);
+        D::difference_into(from, to, &mut change);
         Ok(Self {
             mechanism: m,
             from: from_,
@@ -164,22 +163,23 @@ impl<'a> Kkt<'a> {
             weight,
             length,
             scale,
+            start_scale,
             margin: settings.tolerance.sqrt(),
-            tree: m.closures.is_empty() && m.tendons.is_empty() && crate::mechanism::tree::Tree::applies(m),
+            tree: D::tree(m),
             work,
         })
     }
 
     /// The buffers, for the next problem on the same mechanism.
-    pub fn into_workspace(self) -> Workspace {
+    pub fn into_workspace(self) -> Workspace<D> {
         match self.release() {
             Buffers::Owned(w) => *w,
-            Buffers::Borrowed(w) => std::mem::take(w),
+            Buffers::Borrowed(w) => w.clone(),
         }
     }
 
     /// The buffers, with this problem's scales and loads put back for the next problem.
-    pub(super) fn release(self) -> Buffers<'a> {
+    pub(super) fn release(self) -> Buffers<'a, D> {
         let mut work = self.work;
         work.spare = Spare {
             vectors: [self.row_scale, self.weight, self.closure_scale, self.multiplier_scale],
@@ -199,8 +199,10 @@ impl<'a> Kkt<'a> {
     }
 
     /// The loads at load factor `lambda`.
-    pub fn loads(&self, lambda: f64) -> Loads {
-        self.from.lerp(&self.to, lambda)
+    pub fn loads(&self, lambda: f64) -> Loads<D> {
+        let mut out = self.from.clone();
+        D::lerp_into(&self.from, &self.to, lambda, &mut out);
+        out
     }
 
     /// $\partial_\lambda r$ into `d`, at the frames last evaluated, or at
@@ -210,14 +212,41 @@ impl<'a> Kkt<'a> {
         let m = self.mechanism;
         let n = m.dof();
         let Workspace { frames, start, assembly: a, load_gradient, .. } = &mut *self.work;
-        let f = if at_start { &start.frames } else { frames };
+        let f = match &start.frames {
+            Some(kept) if at_start => kept,
+            _ => frames,
+        };
         load_gradient.as_mut_slice().fill(0.0);
-        add_loads(m, f, &self.change, load_gradient, None, &mut a.points, &mut a.weights)?;
+        D::add_loads(m, f, &self.change, load_gradient, a)?;
         for i in 0..n {
             d[i] = load_gradient[i] * self.row_scale[i];
         }
         d[n..].fill(0.0);
         Ok(())
+    }
+}
+
+impl Kkt<'_, Planar> {
+    /// [`Statics::settled`]: the frames and $G$ of the last evaluation if it
+    /// was at `q`; `mu` itself where $G$'s rows are independent.
+    pub(super) fn settled_planar(&mut self, q: &[f64], mu: Vec<f64>, loads: &Loads) -> Vec<f64> {
+        let m = self.mechanism;
+        let n = m.dof();
+        let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut *self.work;
+        if !(*assembled && assembled_at[..] == *q) {
+            *assembled = false;
+            frames_into(m, q, f);
+            a.closures_at(m, f);
+        }
+        // settle changes nothing where G has independent rows: it need not be called.
+        let g = &a.closure_jacobian;
+        let rows = g.nrows();
+        for i in 0..rows {
+            for c in 0..n {
+                closure_t[i * n + c] = g[(i, c)];
+            }
+        }
+        if linalg::columns_independent(closure_t, n, rows, gram) { mu } else { settle(m, f, g, &mu, loads) }
     }
 
     /// [`solver::Problem::stable`] with closures on dense matrices, the
@@ -379,7 +408,7 @@ impl<'a> Kkt<'a> {
         if !m.tendons.is_empty() {
             return false;
         }
-        let Workspace { tree, root_scale: s, .. } = &mut *self.work;
+        let Workspace { own: PlanarOwn { tree, .. }, root_scale: s, .. } = &mut *self.work;
         let s: &[f64] = s;
         let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
         let trace: f64 = (0..n).map(|i| (scaled(i, i) - self.margin).max(0.0)).sum();
@@ -389,9 +418,91 @@ impl<'a> Kkt<'a> {
         let shift = self.margin + 1e-12 * trace;
         tree.factor(|r, c| scaled(r, c) - if r == c { shift } else { 0.0 }, s, true) == Some(true)
     }
+
+    /// $Z^T\nabla^2 L\thinspace Z$ positive definite with the margin of the module
+    /// docs: in coordinates $\tilde q_i = \sqrt{k_i}\thinspace q_i$ (each joint's own
+    /// stiffness 1), $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\thinspace I$
+    /// positive definite, $\tilde Z$ = [`linalg::null_space`]$(\tilde G)$.
+    /// Where redundant closures leave part of $\mu$ indeterminate, that
+    /// part is taken with the least transmitted force first (see [`Solution::multipliers`]).
+    /// A whole Hessian that passes the test passes it on every subspace:
+    /// that is tried first, by the tree's pivots in $O(n)$.
+    pub(super) fn stable_planar(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let (n, rows) = (m.dof(), m.constraints());
+        let size = n + rows;
+        if rows == 0 && self.tree {
+            // Z = I, and the tree's pivots: positive_definite's test of the
+            // matrix below, in O(n).
+            let Workspace { own: PlanarOwn { tree, .. }, root_scale: s, .. } = &mut *self.work;
+            let s: &[f64] = s;
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
+            let scale = (0..n).map(|i| scaled(i, i) - self.margin).fold(0.0_f64, f64::max);
+            if n == 0 {
+                return true;
+            }
+            if !(scale > 0.0 && scale.is_finite()) {
+                return false;
+            }
+            let shift = self.margin + 1e-12 * scale;
+            return tree.factor(|r, c| scaled(r, c) - if r == c { shift } else { 0.0 }, s, true) == Some(true);
+        }
+        if rows == 0 {
+            // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
+            let Workspace { stiffness: k, scratch, root_scale: s, .. } = &mut *self.work;
+            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
+            for c in 0..n {
+                for r in 0..n {
+                    k[c * n + r] = (scaled(r, c) + scaled(c, r)) * 0.5;
+                }
+                k[c * n + c] -= self.margin;
+            }
+            return linalg::positive_definite(k, n, scratch);
+        }
+        if !self.closure_rows_independent(jacobian) {
+            return self.stable_dense(x, lambda, jacobian);
+        }
+        if self.hessian_definite(jacobian) {
+            return true;
+        }
+        if let Some(definite) = self.constrained_definite(jacobian, 0.0, self.margin) {
+            return definite;
+        }
+        self.stable_dense(x, lambda, jacobian)
+    }
+
+    /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
+    /// the joints' elastic stiffness (as a single flexure's
+    /// [`crate::statics`] does), by the tree's pivots or by Cholesky.
+    pub(super) fn far_planar(&mut self, jacobian: &[f64]) -> bool {
+        let m = self.mechanism;
+        let n = m.dof();
+        if m.constraints() > 0 || n == 0 {
+            return false;
+        }
+        let Workspace { own: PlanarOwn { tree, .. }, frames, stiffness, joint_of, .. } = &mut *self.work;
+        let elastic = |r: usize, c: usize| {
+            let j = joint_of[r];
+            if joint_of[c] != j {
+                return 0.0;
+            }
+            let o = m.joints[j].offset;
+            frames.joints[j].stiffness[(r - o, c - o)]
+        };
+        let entry = |r: usize, c: usize| jacobian[c * n + r] / self.row_scale[r] - FAR_MARGIN * elastic(r, c);
+        if self.tree {
+            return tree.factor(entry, &[], true) == Some(true);
+        }
+        for c in 0..n {
+            for r in 0..n {
+                stiffness[c * n + r] = entry(r, c);
+            }
+        }
+        linalg::cholesky(stiffness, n)
+    }
 }
 
-impl solver::Problem<f64> for Kkt<'_> {
+impl<D: Statics> solver::Problem<f64> for Kkt<'_, D> {
     fn dim(&self) -> usize {
         self.mechanism.dof() + self.mechanism.constraints()
     }
@@ -413,11 +524,12 @@ impl solver::Problem<f64> for Kkt<'_> {
             *m = v * s;
         }
         *assembled = false;
-        frames_into(m, q, f);
-        self.from.lerp_into(&self.to, lambda, loads);
-        assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
+        D::newton_frames(m, q, f);
+        D::lerp_into(&self.from, &self.to, lambda, loads);
+        D::assemble(m, f, mu, loads, jacobian.is_some(), a)?;
         assembled_at.copy_from_slice(q);
         *assembled = true;
+        let a = D::parts(a);
         // Column-major: G's column i holds coordinate i's closure rows.
         let g = a.closure_jacobian.as_slice();
         for i in 0..n {
@@ -462,111 +574,28 @@ impl solver::Problem<f64> for Kkt<'_> {
         Ok(())
     }
 
-    /// $Z^T\nabla^2 L\thinspace Z$ positive definite with the margin of the module
-    /// docs: in coordinates $\tilde q_i = \sqrt{k_i}\thinspace q_i$ (each joint's own
-    /// stiffness 1), $\tilde Z^T\tilde H\tilde Z - \sqrt{\text{tolerance}}\thinspace I$
-    /// positive definite, $\tilde Z$ = [`linalg::null_space`]$(\tilde G)$.
-    /// Where redundant closures leave part of $\mu$ indeterminate, that
-    /// part is taken with the least transmitted force first (see [`Solution::multipliers`]).
-    /// A whole Hessian that passes the test passes it on every subspace:
-    /// that is tried first, by the tree's pivots in $O(n)$.
+    /// $Z^T\nabla^2 L\thinspace Z$ positive definite with the margin of the
+    /// module docs ([`Statics::stable`]).
     fn stable(&mut self, x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
-        let m = self.mechanism;
-        let (n, rows) = (m.dof(), m.constraints());
-        let size = n + rows;
-        if rows == 0 && self.tree {
-            // Z = I, and the tree's pivots: positive_definite's test of the
-            // matrix below, in O(n).
-            let Workspace { tree, root_scale: s, .. } = &mut *self.work;
-            let s: &[f64] = s;
-            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
-            let scale = (0..n).map(|i| scaled(i, i) - self.margin).fold(0.0_f64, f64::max);
-            if n == 0 {
-                return true;
-            }
-            if !(scale > 0.0 && scale.is_finite()) {
-                return false;
-            }
-            let shift = self.margin + 1e-12 * scale;
-            return tree.factor(|r, c| scaled(r, c) - if r == c { shift } else { 0.0 }, s, true) == Some(true);
-        }
-        if rows == 0 {
-            // Z = I: the scaled, symmetrized Hessian itself, in the workspace.
-            let Workspace { stiffness: k, scratch, root_scale: s, .. } = &mut *self.work;
-            let scaled = |r: usize, c: usize| jacobian[c * size + r] / self.row_scale[r] * s[r] * s[c];
-            for c in 0..n {
-                for r in 0..n {
-                    k[c * n + r] = (scaled(r, c) + scaled(c, r)) * 0.5;
-                }
-                k[c * n + c] -= self.margin;
-            }
-            return linalg::positive_definite(k, n, scratch);
-        }
-        if !self.closure_rows_independent(jacobian) {
-            return self.stable_dense(x, lambda, jacobian);
-        }
-        if self.hessian_definite(jacobian) {
-            return true;
-        }
-        if let Some(definite) = self.constrained_definite(jacobian, 0.0, self.margin) {
-            return definite;
-        }
-        self.stable_dense(x, lambda, jacobian)
+        D::stable(self, x, lambda, jacobian)
     }
 
     /// Without closures: $\nabla^2 V - \tfrac12 K$ positive definite, $K$
-    /// the joints' elastic stiffness (as a single flexure's
-    /// [`crate::statics`] does), by the tree's pivots or by Cholesky.
+    /// the joints' elastic stiffness (as a single flexure's [`crate::statics`] does).
     fn far_from_instability(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
-        let m = self.mechanism;
-        let n = m.dof();
-        if m.constraints() > 0 || n == 0 {
-            return false;
-        }
-        let Workspace { tree, frames, stiffness, joint_of, .. } = &mut *self.work;
-        let elastic = |r: usize, c: usize| {
-            let j = joint_of[r];
-            if joint_of[c] != j {
-                return 0.0;
-            }
-            let o = m.joints[j].offset;
-            frames.joints[j].stiffness[(r - o, c - o)]
-        };
-        let entry = |r: usize, c: usize| jacobian[c * n + r] / self.row_scale[r] - FAR_MARGIN * elastic(r, c);
-        if self.tree {
-            return tree.factor(entry, &[], true) == Some(true);
-        }
-        for c in 0..n {
-            for r in 0..n {
-                stiffness[c * n + r] = entry(r, c);
-            }
-        }
-        linalg::cholesky(stiffness, n)
+        D::far_from_instability(self, jacobian)
     }
 
     fn factor(&mut self, jacobian: &[f64]) -> bool {
-        let n = self.mechanism.dof();
-        if !self.tree || n == 0 {
-            return false;
-        }
-        let rows = &self.row_scale;
-        self.work.tree.factor(|r, c| jacobian[c * n + r] / rows[r], &[], false).is_some()
+        D::factor(self, jacobian)
     }
 
     fn solve_factored(&mut self, b: &mut [f64]) {
-        // ∂r/∂q = diag(row_scale) ∇²V.
-        for (b, r) in b.iter_mut().zip(&self.row_scale) {
-            *b /= r;
-        }
-        self.work.tree.solve(b);
+        D::solve_factored(self, b)
     }
 
-    /// The largest rotation of a body, or of a flexure's cross-section
-    /// relative to its root, and a slider's travel over the mechanism's length.
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        let n = self.mechanism.dof();
-        let mut buffers = self.work.angles.borrow_mut();
-        crate::mechanism::kinematics::distance(self.mechanism, &a[..n], &b[..n], self.length, &mut buffers)
+        D::distance(self, a, b)
     }
 
     fn scale(&self) -> f64 {

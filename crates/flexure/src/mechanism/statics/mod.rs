@@ -1,10 +1,16 @@
-//! Static equilibrium, stiffness and compliance of a mechanism.
+//! Static equilibrium, stiffness and compliance of a mechanism, in either
+//! dimension: written once over [`Statics`], which the plane and space
+//! implement side by side (`dimension.rs`) with what differs (frames,
+//! Lagrangian assembly, loads' arithmetic, closure rows, and the planar
+//! fast paths: the tree's $O(n)$ pivots and Householder stability tests).
 //!
 //! Equilibrium makes the potential $V(q)$ ([`crate::mechanism::lagrangian`])
 //! stationary subject to the closures $c(q) = 0$: the KKT conditions
 //! $$\nabla V + G^T\mu = 0,\qquad c(q) = 0,\qquad G = \partial c/\partial q,$$
 //! with Jacobian the KKT matrix $\begin{bmatrix}\nabla^2 L & G^T\cr G & 0\end{bmatrix}$,
-//! $L = V + \mu^T c$, from exact Hessians. [`Kkt`] states them as a
+//! $L = V + \mu^T c$, from exact Hessians (in space, Newton's matrix
+//! contracts each joint's second derivatives with the wrench it carries
+//! instead, [`Statics::newton_frames`]; the residual stays exact). [`Kkt`] states them as a
 //! [`solver::Problem`] in the load factor $\lambda$ (every load is linear
 //! in its magnitude, so $\partial_\lambda r$ is the gradient of the load
 //! potential of the load change), and the shared continuation
@@ -37,6 +43,7 @@
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
 mod assembly;
+mod dimension;
 mod kkt;
 mod path;
 mod solve;
@@ -44,11 +51,12 @@ mod stiffness;
 mod workspace;
 
 pub use assembly::assemble_unloaded;
+pub use dimension::Statics;
 pub(crate) use kkt::FAR_MARGIN;
 pub use kkt::Kkt;
 pub(super) use kkt::constrained;
 pub use path::solve_between;
-pub(super) use path::{follow, free_motion, moving_joints};
+pub(super) use path::{follow, free_motion};
 pub use solve::{solve, solve_with};
 pub use stiffness::{body_frames, compliance, stiffness};
 pub use workspace::Workspace;

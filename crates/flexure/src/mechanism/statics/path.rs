@@ -1,5 +1,6 @@
 //! Following the equilibrium path between two loads, and bisecting for where it first loses stability.
 
+use super::dimension::Statics;
 use super::kkt::Kkt;
 use super::stiffness::stiffness;
 use super::workspace::{Buffers, Workspace};
@@ -7,38 +8,24 @@ use super::{Settings, Solution};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::mechanism::equilibria::refine_limit;
-use crate::mechanism::indeterminate::settle;
-use crate::mechanism::kinematics::frames_into;
-use crate::mechanism::lagrangian::check_sizes;
 use crate::mechanism::{Loads, Mechanism};
 use crate::solver;
 
 /// The solution at the unknowns `x`, under the problem's loads at the
 /// end of its path (`end`) or at its start, computed in the problem's
 /// buffers: the frames and $G$ of the last evaluation if it was at `x`.
-pub(super) fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::Path) -> Result<Solution> {
-    let m = problem.mechanism;
-    let n = m.dof();
+pub(super) fn solution<D: Statics>(
+    problem: &mut Kkt<D>,
+    x: &[f64],
+    end: bool,
+    path: &solver::Path,
+) -> Result<Solution<D>> {
+    let n = problem.mechanism.dof();
     let (q, mu) = (&x[..n], problem.multipliers(x));
     let loads = if end { problem.to.clone() } else { problem.from.clone() };
-    let Workspace { frames: f, assembly: a, assembled_at, assembled, closure_t, gram, .. } = &mut *problem.work;
-    if !(*assembled && assembled_at[..] == *q) {
-        *assembled = false;
-        frames_into(m, q, f);
-        a.closures_at(m, f);
-    }
-    // settle changes nothing where G has independent rows: it need not be called.
-    let g = &a.closure_jacobian;
-    let rows = g.nrows();
-    for i in 0..rows {
-        for c in 0..n {
-            closure_t[i * n + c] = g[(i, c)];
-        }
-    }
-    let multipliers =
-        if linalg::columns_independent(closure_t, n, rows, gram) { mu } else { settle(m, f, g, &mu, &loads) };
+    let multipliers = D::settled(problem, q, mu, &loads);
     // + 0.0: an empty sum is −0.
-    let energy = f.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
+    let energy = D::joint_states(&problem.work.frames).iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
         return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
     }
@@ -65,47 +52,52 @@ pub(super) fn solution(problem: &mut Kkt, x: &[f64], end: bool, path: &solver::P
 /// [`Error::Unstable`] at that fraction. The fraction is the continuation's
 /// ([`solver::Path::limit`]) refined by bisection to a relative
 /// [`super::LIMIT_PRECISION`] (as [`crate::mechanism::sweep::sweep`] does between two values).
-pub fn solve_between(m: &Mechanism, start: &Solution, to: &Loads, settings: &Settings) -> Result<Solution> {
+pub fn solve_between<D: Statics>(
+    m: &Mechanism<D>,
+    start: &Solution<D>,
+    to: &Loads<D>,
+    settings: &Settings,
+) -> Result<Solution<D>> {
     solve_between_in(m, start, to, settings, &mut Workspace::new(m))
 }
 
-pub(super) fn solve_between_in(
-    m: &Mechanism,
-    start: &Solution,
-    to: &Loads,
+pub(super) fn solve_between_in<D: Statics>(
+    m: &Mechanism<D>,
+    start: &Solution<D>,
+    to: &Loads<D>,
     settings: &Settings,
-    work: &mut Workspace,
-) -> Result<Solution> {
+    work: &mut Workspace<D>,
+) -> Result<Solution<D>> {
     let found = follow_in(m, start, to, settings, work);
     refine_limit(m, start, to, settings, found)
 }
 
 /// Where a path starts: a solution, or the assembled state at $\lambda = 0$
 /// of the problem itself (its unknowns in [`Workspace::start_x`], reached by `path`).
-pub(super) enum Start<'s> {
-    Given(&'s Solution),
+pub(super) enum Start<'s, D: Statics> {
+    Given(&'s Solution<D>),
     Assembled(&'s solver::Path),
 }
 
 /// [`solve_between`] with the continuation's own limit, unrefined.
-pub(in crate::mechanism) fn follow(
-    m: &Mechanism,
-    start: &Solution,
-    to: &Loads,
+pub(in crate::mechanism) fn follow<D: Statics>(
+    m: &Mechanism<D>,
+    start: &Solution<D>,
+    to: &Loads<D>,
     settings: &Settings,
-) -> Result<Solution> {
+) -> Result<Solution<D>> {
     follow_in(m, start, to, settings, &mut Workspace::new(m))
 }
 
 /// [`follow`] in the buffers `work` (made for `m`).
-pub(super) fn follow_in(
-    m: &Mechanism,
-    start: &Solution,
-    to: &Loads,
+pub(super) fn follow_in<D: Statics>(
+    m: &Mechanism<D>,
+    start: &Solution<D>,
+    to: &Loads<D>,
     settings: &Settings,
-    work: &mut Workspace,
-) -> Result<Solution> {
-    check_sizes(m, &start.q, &start.multipliers, &start.loads)?;
+    work: &mut Workspace<D>,
+) -> Result<Solution<D>> {
+    D::check_start(m, &start.q, &start.multipliers, &start.loads)?;
     if !work.fits(m) {
         return Err(Error::invalid("workspace", work.dof, "was made for another mechanism"));
     }
@@ -123,19 +115,19 @@ pub(super) fn follow_in(
     found
 }
 
-pub(super) fn follow_path(
-    m: &Mechanism,
-    start: Start,
-    problem: &mut Kkt,
+pub(super) fn follow_path<D: Statics>(
+    m: &Mechanism<D>,
+    start: Start<D>,
+    problem: &mut Kkt<D>,
     ws: &mut solver::Workspace<f64>,
     settings: &Settings,
-) -> Result<Solution> {
+) -> Result<Solution<D>> {
     let unstable =
         |limit: Option<f64>| Error::Unstable { what: "mechanism equilibrium", load_fraction: limit.unwrap_or(0.0) };
     let path = match solver::trace(problem, ws, settings) {
         Ok(path) => path,
         // No path starts: the start has a zero-stiffness motion along the load; name it.
-        Err(Error::Singular { what }) => {
+        Err(Error::Singular { what }) if D::NAMES_FREE_MOTION => {
             let joints = match start {
                 Start::Given(s) => free_motion(m, s),
                 Start::Assembled(path) => {
@@ -165,13 +157,13 @@ pub(super) fn follow_path(
 
 /// The joints that move in a zero-stiffness motion of `s` (the constrained
 /// stiffness's softest mode, if it is singular), as "joint \"a\" and joint \"b\"".
-pub(in crate::mechanism) fn free_motion(m: &Mechanism, s: &Solution) -> Option<String> {
+pub(in crate::mechanism) fn free_motion<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Option<String> {
     let (z, k) = stiffness(m, s).ok()?;
     if k.nrows() == 0 || linalg::is_positive_definite(&k) {
         return None;
     }
     let (_, soft) = linalg::softest_mode(&k)?;
-    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof())), &(&z * soft))
+    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, D::joint(&j.kind).dof())), &(&z * soft))
 }
 
 /// The joints, given as (name, offset, coordinates), whose coordinates move

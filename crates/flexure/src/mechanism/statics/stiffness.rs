@@ -1,30 +1,40 @@
 //! Stiffness and compliance of a mechanism at an equilibrium.
 
 use super::Solution;
+use super::dimension::Statics;
 use super::kkt::constrained;
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kinematics::{Frames, frames, point};
-use crate::mechanism::lagrangian::lagrangian;
-use nalgebra::{DMatrix, Matrix3};
+use nalgebra::DMatrix;
 
 /// Frames of the solution.
-pub fn body_frames(m: &Mechanism, s: &Solution) -> Frames {
-    frames(m, &s.q)
+pub fn body_frames<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> D::Frames {
+    D::pose_frames(m, &s.q)
 }
 
 /// $Z$ and the generalized stiffness on the admissible motions,
-/// $Z^T\nabla^2 L\thinspace Z$ (Eq. 27, projected), at a solution.
-pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
-    let a = lagrangian(m, &s.q, &s.multipliers, &s.loads)?;
-    let z = linalg::null_space(&a.closure_jacobian);
-    let k = constrained(&a.hessian, &z);
+/// $Z^T\nabla^2 L\thinspace Z$ (Eq. 27, projected), at a solution, from the
+/// exact Hessian (the joints' own second derivatives): symmetrized, unless
+/// a dead moment may make it unsymmetric ([`Statics::DEAD_MOMENTS`]).
+pub fn stiffness<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    D::check_start(m, &s.q, &s.multipliers, &s.loads)?;
+    let f = D::exact_frames(m, &s.q);
+    let mut a = D::new_assembly(m);
+    D::assemble(m, &f, &s.multipliers, &s.loads, true, &mut a)?;
+    let a = D::parts(&a);
+    let z = linalg::null_space(a.closure_jacobian);
+    let k = if D::DEAD_MOMENTS { z.transpose() * a.hessian * &z } else { constrained(a.hessian, &z) };
     Ok((z, k))
 }
 
-/// Compliance of the frame at `at` on `body` to a small extra load
-/// $(M, F_x, F_y)$ there: $C = J Z (Z^T\nabla^2 L Z)^{-1} Z^T J^T$, order $(\phi, x, y)$.
+/// Compliance of the frame at `at` on `body` to a small extra load there:
+/// $C = J Z (Z^T\nabla^2 L Z)^{-1} Z^T J^T$, $J$ the point's Jacobian, in the
+/// order of the dimension's wrench, $(M, F_x, F_y)$ in the plane,
+/// $(m, f)$ in space (the small rotation and displacement in the ground
+/// frame). A symmetric stiffness must be positive definite (else
+/// [`Error::Singular`]: unstable, or a joint is free); an unsymmetric one
+/// ([`Statics::DEAD_MOMENTS`]) is solved by LU, and not symmetrized.
 ///
 /// # Example
 /// ```
@@ -35,28 +45,37 @@ pub fn stiffness(m: &Mechanism, s: &Solution) -> Result<(DMatrix<f64>, DMatrix<f
 /// let c = compliance(&m, &s, m.body("arm").unwrap(), [0.1, 0.0].into()).unwrap();
 /// assert!((c[(0, 0)] - 0.5).abs() < 1e-15 && (c[(2, 2)] - 0.005).abs() < 1e-15);
 /// ```
-pub fn compliance(m: &Mechanism, s: &Solution, body: usize, at: nalgebra::Point2<f64>) -> Result<Matrix3<f64>> {
+pub fn compliance<D: Statics>(m: &Mechanism<D>, s: &Solution<D>, body: usize, at: D::Point) -> Result<D::Compliance> {
     if body >= m.bodies.len() {
         return Err(Error::invalid("body", body, "names no body of the mechanism"));
     }
-    if !at.iter().all(|v| v.is_finite()) {
+    if !D::point_finite(&at) {
         return Err(Error::invalid("at", format!("{at:?}"), "must be finite"));
     }
     let (z, k) = stiffness(m, s)?;
-    let not_definite = || Error::Singular {
-        what: "the constrained stiffness is not positive definite: the equilibrium is unstable or a joint is free"
-            .into(),
-    };
-    if !linalg::is_positive_definite(&k) {
-        return Err(not_definite());
-    }
-    let chol = k.cholesky().ok_or_else(not_definite)?;
-    let jz = point(m, &frames(m, &s.q), body, at, false).jacobian * &z;
-    let c = &jz * chol.solve(&jz.transpose());
-    let c = Matrix3::from_fn(|i, j| c[(i, j)]);
-    if c.iter().all(|v| v.is_finite()) {
-        Ok(c)
+    let jz = D::point_jacobian(m, &s.q, body, at) * &z;
+    let c = if D::DEAD_MOMENTS {
+        // Not symmetrized: under a dead moment the tangent stiffness is not symmetric, nor is the compliance.
+        let solved = k.lu().solve(&jz.transpose()).filter(|x| x.iter().all(|v| v.is_finite())).ok_or_else(|| {
+            Error::Singular {
+                what: "mechanism compliance: the constrained stiffness is singular (a free motion)".into(),
+            }
+        })?;
+        &jz * solved
     } else {
-        Err(Error::Singular { what: "the compliance is not finite".into() })
-    }
+        let not_definite = || Error::Singular {
+            what: "the constrained stiffness is not positive definite: the equilibrium is unstable or a joint is free"
+                .into(),
+        };
+        if !linalg::is_positive_definite(&k) {
+            return Err(not_definite());
+        }
+        let chol = k.cholesky().ok_or_else(not_definite)?;
+        let c = &jz * chol.solve(&jz.transpose());
+        if !c.iter().all(|v| v.is_finite()) {
+            return Err(Error::Singular { what: "the compliance is not finite".into() });
+        }
+        c
+    };
+    Ok(D::compliance_matrix(&c))
 }

@@ -3,13 +3,11 @@
 #[cfg(doc)]
 use super::Kkt;
 use super::Settings;
-use crate::mechanism::kinematics::Frames;
-use crate::mechanism::lagrangian::Assembly;
-use crate::mechanism::tree::Tree;
-use crate::mechanism::{Closure, Loads, Mechanism};
+use super::dimension::Statics;
+use crate::mechanism::{Closure, JointSpec, Loads, Mechanism};
 use crate::solver;
+use crate::space::Planar;
 use nalgebra::DVector;
-use std::cell::RefCell;
 
 /// The reusable buffers of a mechanism's equilibrium problem (the Data;
 /// the [`Mechanism`] is the Model): frames, the assembled Lagrangian, the
@@ -17,18 +15,18 @@ use std::cell::RefCell;
 /// [`Workspace::new`], evaluating [`Kkt`] (residual, Jacobian, load
 /// derivative) allocates nothing, and neither does its stability test
 /// when the mechanism has no closures.
-#[derive(Debug, Clone, Default)]
-pub struct Workspace {
+#[derive(Debug, Clone)]
+pub struct Workspace<D: Statics = Planar> {
     pub(super) dof: usize,
     pub(super) constraints: usize,
-    pub(super) frames: Frames,
-    pub(super) assembly: Assembly,
+    pub(crate) frames: D::Frames,
+    pub(crate) assembly: D::Assembly,
     pub(super) load_gradient: DVector<f64>,
-    pub(super) mu: Vec<f64>,
-    pub(super) loads: Loads,
+    pub(crate) mu: Vec<f64>,
+    pub(crate) loads: Loads<D>,
     /// $n\times n$ column-major: the scaled stiffness and its Cholesky copy.
-    pub(super) stiffness: Vec<f64>,
-    pub(super) scratch: Vec<f64>,
+    pub(crate) stiffness: Vec<f64>,
+    pub(crate) scratch: Vec<f64>,
     /// The closure test's $\tilde G^T$ ($n\times m$), its Householder
     /// reflections ($n\times m$), $\tilde Z$ and $\tilde H\tilde Z$ ($n\times(n-m)$),
     /// $\tilde H$ ($n\times n$), a Gram matrix ($m\times m$) and $\sqrt{1/k_i}$ ($n$).
@@ -39,21 +37,19 @@ pub struct Workspace {
     pub(super) hessian: Vec<f64>,
     pub(super) gram: Vec<f64>,
     /// $S = \operatorname{diag}(\sqrt{1/k_i})$, set with the row scales by `Kkt::fitted`.
-    pub(super) root_scale: Vec<f64>,
-    /// Body angles of two states, for [`solver::Problem::distance`].
-    pub(super) angles: RefCell<[Vec<f64>; 2]>,
-    /// The tree's $O(n)$ factorization of the Hessian ([`crate::mechanism::tree`]).
-    pub(super) tree: Tree,
+    pub(crate) root_scale: Vec<f64>,
+    /// The buffers only this dimension's problem uses ([`Statics::Own`]).
+    pub(crate) own: D::Own,
     /// The joint of each coordinate.
     pub(super) joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
     pub(super) solver: Option<solver::Workspace<f64>>,
     /// The joints these buffers were made for.
-    pub(super) joints: Vec<crate::mechanism::JointSpec>,
+    pub(super) joints: Vec<JointSpec<D>>,
     /// The last problem's scales and loads.
-    pub(super) spare: Spare,
+    pub(super) spare: Spare<D>,
     /// The loads of a [`solve_with`](super::solve_with): none, and the mechanism's.
-    pub(super) given: [Loads; 2],
+    pub(super) given: [Loads<D>; 2],
     /// The unknowns of the assembled start of a [`solve_with`](super::solve_with).
     pub(super) start_x: Vec<f64>,
     /// The coordinates at which `frames` and the assembly's $c$ and $G$
@@ -61,18 +57,18 @@ pub struct Workspace {
     pub(super) assembled_at: Vec<f64>,
     pub(super) assembled: bool,
     /// The assembled start of the last [`solve_with`](super::solve_with), for the next one.
-    pub(super) start: StartCache,
+    pub(super) start: StartCache<D>,
 }
 
 /// The assembled, unloaded start of a [`solve_with`](super::solve_with) and what made it: it
 /// depends on the joints, the closures and the settings, and on the loads
 /// only through the Newton tolerance (tolerance × [`solver::Problem::scale`]),
 /// since every load is zero at $\lambda = 0$.
-#[derive(Debug, Clone, Default)]
-pub(super) struct StartCache {
+#[derive(Debug, Clone)]
+pub(super) struct StartCache<D: Statics> {
     /// Whether the fields below hold a start.
     pub(super) valid: bool,
-    pub(super) closures: Vec<Closure>,
+    pub(super) closures: Vec<Closure<D>>,
     pub(super) settings: Option<Settings>,
     /// The Newton tolerance it was converged to.
     pub(super) tolerance: f64,
@@ -81,10 +77,26 @@ pub(super) struct StartCache {
     /// The unknowns, the Jacobian and the frames there.
     pub(super) x: Vec<f64>,
     pub(super) jacobian: Vec<f64>,
-    pub(super) frames: Frames,
+    pub(super) frames: Option<D::Frames>,
 }
 
-impl StartCache {
+impl<D: Statics> Default for StartCache<D> {
+    fn default() -> Self {
+        StartCache {
+            valid: false,
+            closures: Vec::new(),
+            settings: None,
+            tolerance: 0.0,
+            report: None,
+            stable: false,
+            x: Vec::new(),
+            jacobian: Vec::new(),
+            frames: None,
+        }
+    }
+}
+
+impl<D: Statics> StartCache<D> {
     /// Whether the start of `m` (whose joints the workspace was made for)
     /// under `settings`, converged to `tolerance`, is this one: the same
     /// closures and settings, and either the
@@ -92,7 +104,7 @@ impl StartCache {
     /// to within `tolerance` (Newton would stop there again).
     pub(super) fn holds(
         &self,
-        m: &Mechanism,
+        m: &Mechanism<D>,
         settings: &Settings,
         tolerance: f64,
     ) -> Option<(solver::NewtonReport, bool)> {
@@ -109,19 +121,18 @@ impl StartCache {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn keep(
         &mut self,
-        m: &Mechanism,
+        m: &Mechanism<D>,
         settings: &Settings,
         tolerance: f64,
         report: solver::NewtonReport,
         stable: bool,
         x: &[f64],
         jacobian: &[f64],
-        frames: &Frames,
+        frames: &D::Frames,
     ) {
-        if (self.frames.bodies.len(), self.frames.joints.len()) != (frames.bodies.len(), frames.joints.len()) {
-            self.frames = frames.clone();
-        } else {
-            self.frames.copy_from(frames);
+        match &mut self.frames {
+            Some(kept) => D::copy_frames(frames, kept),
+            None => self.frames = Some(frames.clone()),
         }
         if self.closures != m.closures {
             self.closures.clone_from(&m.closures);
@@ -138,15 +149,15 @@ impl StartCache {
     }
 }
 
-impl Workspace {
+impl<D: Statics> Workspace<D> {
     /// Buffers for `m`.
-    pub fn new(m: &Mechanism) -> Self {
+    pub fn new(m: &Mechanism<D>) -> Self {
         let (n, rows) = (m.dof(), m.constraints());
         Workspace {
             dof: n,
             constraints: rows,
-            frames: Frames::new(m),
-            assembly: Assembly::new(m),
+            frames: D::new_frames(m),
+            assembly: D::new_assembly(m),
             load_gradient: DVector::zeros(n),
             mu: vec![0.0; rows],
             loads: m.loads(),
@@ -159,13 +170,12 @@ impl Workspace {
             hessian: vec![0.0; n * n],
             gram: vec![0.0; rows * rows],
             root_scale: vec![0.0; n],
-            angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]),
-            tree: Tree::new(m),
+            own: D::new_own(m),
             joint_of: m
                 .joints
                 .iter()
                 .enumerate()
-                .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
+                .flat_map(|(i, j)| std::iter::repeat_n(i, D::joint(&j.kind).dof()))
                 .collect(),
             solver: None,
             joints: m.joints.clone(),
@@ -185,12 +195,12 @@ impl Workspace {
 
     /// Whether these buffers were made for `m`'s joints (whose states
     /// carry each joint's constant stiffness and tables) and fit its shape.
-    pub(super) fn fits(&self, m: &Mechanism) -> bool {
+    pub(super) fn fits(&self, m: &Mechanism<D>) -> bool {
         self.joints == m.joints
             && self.dof == m.dof()
             && self.constraints == m.constraints()
-            && self.frames.bodies.len() == m.bodies.len()
-            && self.frames.joints.len() == m.joints.len()
+            && self.joint_of.len() == m.dof()
+            && D::joint_states(&self.frames).len() == m.joints.len()
             && self.loads.tension.len() == m.tendons.len()
             && self.loads.force.len() == m.forces.len()
     }
@@ -199,14 +209,14 @@ impl Workspace {
 /// The buffers a [`Kkt`] works in: its own, or a caller's, borrowed for
 /// the problem's life (moving a [`Workspace`] copies a few kilobytes).
 #[derive(Debug)]
-pub(super) enum Buffers<'a> {
-    Owned(Box<Workspace>),
-    Borrowed(&'a mut Workspace),
+pub(crate) enum Buffers<'a, D: Statics> {
+    Owned(Box<Workspace<D>>),
+    Borrowed(&'a mut Workspace<D>),
 }
 
-impl std::ops::Deref for Buffers<'_> {
-    type Target = Workspace;
-    fn deref(&self) -> &Workspace {
+impl<D: Statics> std::ops::Deref for Buffers<'_, D> {
+    type Target = Workspace<D>;
+    fn deref(&self) -> &Workspace<D> {
         match self {
             Buffers::Owned(w) => w,
             Buffers::Borrowed(w) => w,
@@ -214,8 +224,8 @@ impl std::ops::Deref for Buffers<'_> {
     }
 }
 
-impl std::ops::DerefMut for Buffers<'_> {
-    fn deref_mut(&mut self) -> &mut Workspace {
+impl<D: Statics> std::ops::DerefMut for Buffers<'_, D> {
+    fn deref_mut(&mut self) -> &mut Workspace<D> {
         match self {
             Buffers::Owned(w) => w,
             Buffers::Borrowed(w) => w,
@@ -223,24 +233,21 @@ impl std::ops::DerefMut for Buffers<'_> {
     }
 }
 
-impl Clone for Buffers<'_> {
+impl<D: Statics> Clone for Buffers<'_, D> {
     fn clone(&self) -> Self {
         Buffers::Owned(Box::new(Workspace::clone(self)))
     }
 }
 
 /// A problem's scales and loads ([`Kkt`]), kept for the next problem.
-#[derive(Debug, Clone, Default)]
-pub(super) struct Spare {
+#[derive(Debug, Clone)]
+pub(super) struct Spare<D: Statics> {
     pub(super) vectors: [Vec<f64>; 4],
-    pub(super) loads: [Loads; 3],
+    pub(super) loads: [Loads<D>; 3],
 }
 
-/// `from` into `to`, in `to`'s buffers.
-pub(super) fn copy_loads(from: &Loads, to: &mut Loads) {
-    to.tension.clear();
-    to.tension.extend_from_slice(&from.tension);
-    to.force.clear();
-    to.force.extend_from_slice(&from.force);
-    to.gravity = from.gravity;
+impl<D: Statics> Default for Spare<D> {
+    fn default() -> Self {
+        Spare { vectors: Default::default(), loads: Default::default() }
+    }
 }
