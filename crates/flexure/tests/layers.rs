@@ -243,3 +243,31 @@ fn a_cycle_is_found() {
     let graph = BTreeMap::from([edge("a", "b"), edge("b", "c"), edge("c", "a"), edge("d", "a")]);
     assert_eq!(cycles(&graph).len(), 3);
 }
+
+/// Reference: the tree. Every file or folder ARCHITECTURE.md names in
+/// backticks (`….rs`, `…/`, `….md`, `….mjs`) exists, under the repository,
+/// the library's `src/` or tests, or a front end's `src/`; and the page
+/// stays short enough to read first (at most 250 lines).
+#[test]
+fn architecture_names_only_what_exists() {
+    let repo = root().join("../..");
+    let architecture = std::fs::read_to_string(repo.join("ARCHITECTURE.md")).unwrap();
+    assert!(architecture.lines().count() <= 250, "ARCHITECTURE.md has {} lines", architecture.lines().count());
+    let bases = ["", "crates/flexure/src", "crates/flexure", "crates/flexure-cli/src", "crates/flexure-py/src"];
+    let mut missing = Vec::new();
+    let mut named = 0;
+    for quoted in architecture.split('`').skip(1).step_by(2) {
+        let path = quoted.trim_start_matches("../");
+        let is_path = [".rs", "/", ".md", ".mjs"].iter().any(|e| path.ends_with(e))
+            && path.chars().all(|c| c.is_ascii_alphanumeric() || "_-./".contains(c));
+        if !is_path || path.contains("NAME") {
+            continue;
+        }
+        named += 1;
+        if !bases.iter().any(|b| repo.join(b).join(path).exists()) {
+            missing.push(path.to_string());
+        }
+    }
+    assert!(named > 40, "only {named} paths read");
+    assert!(missing.is_empty(), "ARCHITECTURE.md names paths that do not exist: {missing:?}");
+}
