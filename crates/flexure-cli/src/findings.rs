@@ -5,8 +5,7 @@
 
 use crate::options::{note, warn};
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::findings::{Crossing, OpenClosure, Severity, crossings_along, open_closures};
-use flexure::mechanism::spatial::SpatialMechanism;
+use flexure::mechanism::findings::{Crossing, Findings, OpenClosure, Severity, crossings_along, open_closures};
 use flexure::mechanism::statics::Settings;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -58,7 +57,7 @@ fn crossing_json<P: AsRef<[f64]>>(c: &Crossing<P>) -> Value {
 }
 
 /// The closures of `m` open at rest, told (warnings, or notes with `preload = true`) and listed.
-pub fn closures(m: &Mechanism, file: &Path) -> Result<Vec<Value>, String> {
+pub fn closures<D: Findings>(m: &Mechanism<D>, file: &Path) -> Result<Vec<Value>, String> {
     let open = open_closures(m, &Settings::default()).map_err(|e| format!("{}: {e}", file.display()))?;
     Ok(open_answers(&open, file))
 }
@@ -75,17 +74,8 @@ pub fn open_answers(open: &[OpenClosure], file: &Path) -> Vec<Value> {
     open.iter().map(closure_json).collect()
 }
 
-/// The closures of a spatial mechanism open at rest, told and listed as
-/// [`closures`] tells the planar ones'.
-pub fn spatial_closures(m: &SpatialMechanism, file: &Path) -> Result<Vec<Value>, String> {
-    let open = flexure::mechanism::findings::open_closures(m, &Settings::default())
-        .map_err(|e| format!("{}: {e}", file.display()))?;
-    Ok(open_answers(&open, file))
-}
-
-/// The parts of a spatial mechanism that cross at coordinates `q`, told and
-/// listed as [`shape`] tells the planar ones.
-pub fn spatial_shape(m: &SpatialMechanism, q: &[f64], file: &Path) -> Vec<Value> {
+/// The parts of `m` that cross at coordinates `q`, told and listed.
+pub fn shape<D: Findings>(m: &Mechanism<D>, q: &[f64], file: &Path) -> Vec<Value> {
     crossing_answers(flexure::mechanism::findings::crossings(m, q), file)
 }
 
@@ -102,26 +92,14 @@ pub fn crossing_answers<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -
 /// `shapes_are` ("swept values", "samples"): one warning per pair of parts,
 /// at the first value where they cross, saying at how many more; each
 /// shape's crossings listed with its value under `key`.
-pub fn along(
-    m: &Mechanism,
+pub fn along<D: Findings>(
+    m: &Mechanism<D>,
     shapes: &[(f64, &[f64])],
     (what, shapes_are): (&str, &str),
     key: &str,
     file: &Path,
 ) -> Vec<Value> {
     crossing_answers_along(crossings_along(m, shapes.iter().map(|s| s.1)), shapes, (what, shapes_are), key, file)
-}
-
-/// [`along`] for a spatial mechanism.
-pub fn spatial_along(
-    m: &SpatialMechanism,
-    shapes: &[(f64, &[f64])],
-    (what, shapes_are): (&str, &str),
-    key: &str,
-    file: &Path,
-) -> Vec<Value> {
-    let found = flexure::mechanism::findings::crossings_along(m, shapes.iter().map(|s| s.1));
-    crossing_answers_along(found, shapes, (what, shapes_are), key, file)
 }
 
 /// Crossings found along a series of shapes (see [`along`]), told and listed.

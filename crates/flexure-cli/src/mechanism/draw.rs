@@ -71,7 +71,7 @@ fn spatial_picture(
     let settings = Settings::default();
     let err = |e: flexure::Error| super::file_error(&args.file, e);
     // First, so that an open closure that keeps the mechanism from assembling is told.
-    let mut findings = crate::findings::spatial_closures(m, &args.file)?;
+    let mut findings = crate::findings::closures(m, &args.file)?;
     let unloaded = statics::assemble_unloaded(m, &settings).map_err(err)?;
     let mut answer = json!({});
     let mut marks = Marks::default();
@@ -106,7 +106,7 @@ fn spatial_picture(
         let sim = flexure::dynamics::simulation::simulate(m, &settings, args.motion.start())
             .map_err(|e| format!("{}: {}", args.file.display(), crate::simulate::simulation_error(e, duration)))?;
         let samples: Vec<(f64, &[f64])> = (0..sim.time.len()).map(|k| (sim.time[k], sim.q(k))).collect();
-        findings.extend(crate::findings::spatial_along(m, &samples, ("t (s)", "samples"), "time", &args.file));
+        findings.extend(crate::findings::along(m, &samples, ("t (s)", "samples"), "time", &args.file));
         let picked = snapshot_samples(sim.time.len());
         let (snapshots, tracks) = scene::spatial_motion(m, &sim, &picked)?;
         (answer["steps"], answer["rejected"]) = (json!(sim.steps), json!(sim.rejected));
@@ -114,7 +114,7 @@ fn spatial_picture(
         snapshots
     } else {
         let s = statics::solve(m, &settings).map_err(err)?;
-        findings.extend(crate::findings::spatial_shape(m, &s.q, &args.file));
+        findings.extend(crate::findings::shape(m, &s.q, &args.file));
         vec![("loaded".into(), scene::spatial(m, "loaded", &s.q, &s.loads)?)]
     };
     if !findings.is_empty() {
