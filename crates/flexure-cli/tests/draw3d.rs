@@ -363,7 +363,7 @@ fn pictures_of_the_finger_and_the_stage() {
 /// was laid out in columns the entries past the 14th fell off the foot.
 #[test]
 fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
-    use flexure::mechanism::spatial::Revolute;
+    use flexure::mechanism::spatial::RevoluteUnaligned;
     let count = 20;
     let names: Vec<String> =
         std::iter::once("ground".to_string()).chain((1..=count).map(|i| format!("link_{i}"))).collect();
@@ -377,7 +377,7 @@ fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
         .map(|i| {
             let axis = if i % 2 == 0 { Vector3::y_axis() } else { Vector3::z_axis() };
             let origin = if i == 1 { Isometry3::identity() } else { Isometry3::translation(0.01, 0.0, 0.0) };
-            let hinge = SpatialJointKind::Revolute(Revolute { axis, stiffness: 0.02, rest: 0.0 });
+            let hinge = SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 0.02, rest: 0.0 });
             spec(&format!("hinge_{i}"), hinge, i - 1, i, origin)
         })
         .collect();
@@ -669,10 +669,10 @@ fn a_lifted_tip_is_up_in_the_front_view() {
 /// (seen end-on) there is no line, only its circle.
 #[test]
 fn each_rigid_joint_has_its_symbol() {
-    use flexure::mechanism::spatial::{Prismatic, Revolute, Spherical};
+    use flexure::mechanism::spatial::{PrismaticUnaligned, RevoluteUnaligned, Spherical};
     use flexure_cli::scene::{Symbol, spatial};
-    let hinge = Revolute { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 };
-    let slide = Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 };
+    let hinge = RevoluteUnaligned { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 };
+    let slide = PrismaticUnaligned { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 };
     let step = Isometry3::translation(0.1, 0.0, 0.0);
     let ball = SpatialJointKind::Spherical(Spherical { stiffness: 1.0, rest: [0.0; 3] });
     let joints = vec![

@@ -7,7 +7,7 @@ use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::{
-    Prismatic, Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
+    PrismaticUnaligned, RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
 use flexure::section::SpatialSection;
 use flexure::space::Spatial;
@@ -44,7 +44,7 @@ fn velocity_products_are_lagranges_from_the_mass_matrix() {
         spec("flex", SpatialJointKind::Flexure(Box::new(flexure)), 0, 1, placed([0.0; 3], [0.2, 0.1, 0.0])),
         spec(
             "hinge",
-            SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+            SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 1.0, rest: 0.0 }),
             1,
             2,
             placed([0.02, 0.0, 0.0], [0.0, 0.3, 0.1]),
@@ -58,7 +58,7 @@ fn velocity_products_are_lagranges_from_the_mass_matrix() {
         ),
         spec(
             "slide",
-            SpatialJointKind::Prismatic(Prismatic { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 }),
+            SpatialJointKind::Prismatic(PrismaticUnaligned { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 }),
             3,
             4,
             placed([0.0, 0.02, 0.0], [0.4, 0.0, 0.0]),

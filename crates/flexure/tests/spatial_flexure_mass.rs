@@ -14,7 +14,7 @@ use flexure::mechanism::file::{from_toml, spatial_from_toml};
 use flexure::mechanism::spatial::kinematics::frames;
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
 use flexure::mechanism::spatial::{
-    Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
+    RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
 use flexure::report::placements;
 use flexure::section::{Profile, Shear, SpatialSection};
@@ -130,7 +130,7 @@ fn tree() -> SpatialMechanism {
         flexure_joint("root", massive([2, 2, 3]), 0, 1, placed([0.0, 0.01, 0.0], [0.1, -0.2, 0.3])),
         spec(
             "hinge",
-            SpatialJointKind::Revolute(Revolute { axis: Vector3::y_axis(), stiffness: 0.4, rest: 0.0 }),
+            SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::y_axis(), stiffness: 0.4, rest: 0.0 }),
             1,
             2,
             placed([0.01, 0.0, 0.0], [0.0, 0.3, 0.0]),
@@ -406,7 +406,7 @@ fn a_massive_rod_swinging_free_keeps_its_energy() {
         vec![
             spec(
                 "hinge",
-                SpatialJointKind::Revolute(Revolute { axis: Vector3::y_axis(), stiffness: 0.0, rest: 0.0 }),
+                SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::y_axis(), stiffness: 0.0, rest: 0.0 }),
                 0,
                 1,
                 Isometry3::identity(),

@@ -5,8 +5,8 @@ use flexure::Error;
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::{
-    Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad,
-    Spherical,
+    RevoluteUnaligned, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism,
+    SpatialPointLoad, Spherical,
 };
 use flexure::mechanism::statics::{body_frames, compliance, solve};
 use flexure::section::SpatialSection;
@@ -192,7 +192,7 @@ fn a_hinge_under_a_skew_moment_turns_by_its_component_along_the_axis() {
     let axis = nalgebra::Unit::new_normalize(Vector3::new(1.0, 2.0, 2.0));
     let hinge = spec(
         "h",
-        SpatialJointKind::Revolute(Revolute { axis, stiffness: 4.0, rest: 0.0 }),
+        SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 4.0, rest: 0.0 }),
         0,
         1,
         placed([0.1, 0.0, 0.0], [0.0; 3]),
@@ -411,7 +411,7 @@ fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
     let hinge = spec(
         "pivot",
-        SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+        SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 1.0, rest: 0.0 }),
         0,
         1,
         Isometry3::identity(),
@@ -444,7 +444,7 @@ fn a_solve_refines_where_a_pushed_arm_loses_stability() {
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
     let hinge = spec(
         "pivot",
-        SpatialJointKind::Revolute(Revolute { axis, stiffness: 1.0, rest: 0.0 }),
+        SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 1.0, rest: 0.0 }),
         0,
         1,
         Isometry3::identity(),
@@ -535,7 +535,7 @@ fn a_spatial_solve_in_a_kept_workspace_equals_a_fresh_one() {
 fn a_spatial_compliance_names_its_bad_body_and_point() {
     let hinge = spec(
         "hinge",
-        SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+        SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
         0,
         1,
         Isometry3::identity(),

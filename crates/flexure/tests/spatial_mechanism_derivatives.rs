@@ -11,8 +11,8 @@ use flexure::mechanism::Holds;
 use flexure::mechanism::spatial::kinematics::{SpatialFrames, attach, frames, frames_level_into};
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into};
 use flexure::mechanism::spatial::{
-    Prismatic, Revolute, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialLoads,
-    SpatialMechanism, SpatialPointLoad, SpatialTendon, Spherical,
+    PrismaticUnaligned, RevoluteUnaligned, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec,
+    SpatialLoads, SpatialMechanism, SpatialPointLoad, SpatialTendon, Spherical,
 };
 use flexure::mechanism::statics::{Solution, compliance, solve};
 use flexure::mechanism::{Fixed, Joint, JointState};
@@ -63,7 +63,7 @@ fn mechanism() -> SpatialMechanism {
         joint("flex", SpatialJointKind::Flexure(Box::new(flexure)), 0, 1, placed([0.0, 0.01, 0.0], [0.1, -0.2, 0.3])),
         joint(
             "hinge",
-            SpatialJointKind::Revolute(Revolute { axis, stiffness: 0.4, rest: 0.1 }),
+            SpatialJointKind::Revolute(RevoluteUnaligned { axis, stiffness: 0.4, rest: 0.1 }),
             1,
             2,
             placed([0.02, 0.0, 0.01], [0.0, 0.4, 0.0]),
@@ -77,7 +77,7 @@ fn mechanism() -> SpatialMechanism {
         ),
         joint(
             "slide",
-            SpatialJointKind::Prismatic(Prismatic { axis: Vector3::y_axis(), stiffness: 5.0, rest: 0.0 }),
+            SpatialJointKind::Prismatic(PrismaticUnaligned { axis: Vector3::y_axis(), stiffness: 5.0, rest: 0.0 }),
             3,
             4,
             placed([0.0, 0.03, 0.0], [0.0, 0.0, 0.7]),

@@ -301,11 +301,11 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 /// ```
 /// use flexure_cli::drawing::{Marks, View};
 /// use flexure_cli::scene::spatial_figure;
-/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::mechanism::spatial::{RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::mechanism::statics::{assemble_unloaded, solve};
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// let hinge = SpatialJointSpec {
-///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+///     name: "hinge".into(), kind: SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
 ///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let push = SpatialPointLoad { name: "push".into(), body: 1, at: Point3::new(0.1, 0.0, 0.0), wrench: Vector6::new(0.0, 0.0, 0.0, 0.0, 1.0, 0.0) };

@@ -43,10 +43,10 @@ use crate::mechanism::statics::Settings;
 /// assert!(w.len() == 1 && (w[0] - 20.0).abs() < 1e-12);
 ///
 /// // The same arm in space: a sprung hinge about z.
-/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
+/// use flexure::mechanism::spatial::{RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism};
 /// use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 /// let hinge = SpatialJointSpec {
-///     name: "pin".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
+///     name: "pin".into(), kind: SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::z_axis(), stiffness: 2.0, rest: 0.0 }),
 ///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let arm = SpatialBody { name: "arm".into(), mass: 0.5, com: Point3::new(0.1, 0.0, 0.0), inertia: Matrix3::zeros() };

@@ -183,12 +183,14 @@ pub(super) fn spatial_kind(src: &Source, owner: &str, j: &JointToml) -> Result<K
     };
     Ok(match kind {
         "flexure" => spatial_flexure(src, owner, j)?,
-        "revolute" => {
-            spring(j, SpatialJointKind::Revolute(spatial::Revolute { axis: axis(Vector3::z())?, stiffness, rest }))
-        }
-        "prismatic" => {
-            spring(j, SpatialJointKind::Prismatic(spatial::Prismatic { axis: axis(Vector3::x())?, stiffness, rest }))
-        }
+        "revolute" => spring(
+            j,
+            SpatialJointKind::Revolute(spatial::RevoluteUnaligned { axis: axis(Vector3::z())?, stiffness, rest }),
+        ),
+        "prismatic" => spring(
+            j,
+            SpatialJointKind::Prismatic(spatial::PrismaticUnaligned { axis: axis(Vector3::x())?, stiffness, rest }),
+        ),
         "spherical" => {
             let rest = match &j.rest {
                 None => [0.0; 3],

@@ -18,7 +18,7 @@ pub mod kinematics;
 pub mod lagrangian;
 pub mod statics;
 
-pub use joints::{Prismatic, Revolute, SpatialJointKind, Spherical};
+pub use joints::{PrismaticUnaligned, RevoluteUnaligned, SpatialJointKind, Spherical};
 
 use crate::error::{Error, Result};
 #[cfg(doc)]

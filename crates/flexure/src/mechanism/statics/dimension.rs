@@ -41,7 +41,7 @@ pub struct Parts<'a> {
 ///
 /// # Example
 /// ```
-/// use flexure::mechanism::spatial::{Revolute, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
+/// use flexure::mechanism::spatial::{RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::mechanism::statics::{Statics, solve};
 /// use flexure::space::{Planar, Spatial};
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
@@ -49,7 +49,7 @@ pub struct Parts<'a> {
 /// assert_eq!((Planar::POSITION_ROWS, Spatial::POSITION_ROWS), (2, 3));
 /// // The one `solve`, in space: a sprung hinge (k = 2 N·m/rad) under 0.5 N·m about its axis.
 /// let hinge = SpatialJointSpec {
-///     name: "hinge".into(), kind: SpatialJointKind::Revolute(Revolute { axis: Vector3::x_axis(), stiffness: 2.0, rest: 0.0 }),
+///     name: "hinge".into(), kind: SpatialJointKind::Revolute(RevoluteUnaligned { axis: Vector3::x_axis(), stiffness: 2.0, rest: 0.0 }),
 ///     parent: 0, child: 1, origin: Isometry3::identity(), offset: 0, damping: 0.0, auto_order: false, report: Default::default(),
 /// };
 /// let push = SpatialPointLoad { name: "m".into(), body: 1, at: Point3::origin(), wrench: Vector6::new(0.5, 0.0, 0.0, 0.0, 0.0, 0.0) };

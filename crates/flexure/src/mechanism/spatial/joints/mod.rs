@@ -10,8 +10,8 @@ mod prismatic;
 mod revolute;
 mod spherical;
 
-pub use prismatic::Prismatic;
-pub use revolute::Revolute;
+pub use prismatic::PrismaticUnaligned;
+pub use revolute::RevoluteUnaligned;
 pub use spherical::Spherical;
 
 use crate::mechanism::joints::{Fixed, Joint};
@@ -26,9 +26,9 @@ pub enum SpatialJointKind {
     /// (boxed: it carries its tables).
     Flexure(Box<SpatialFlexure>),
     /// A hinge about an axis.
-    Revolute(Revolute),
+    Revolute(RevoluteUnaligned),
     /// A slider along an axis.
-    Prismatic(Prismatic),
+    Prismatic(PrismaticUnaligned),
     /// A ball joint.
     Spherical(Spherical),
     /// A weld of child to parent.

@@ -7,18 +7,21 @@ use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 /// A slider along `axis`, travel $q$, with an optional linear spring
 /// $U = \frac12 k(q - q_0)^2$: the output frame is $(I, q a)$ and the motion
 /// subspace the constant twist $(0, a)$ (URDF's `prismatic`, MuJoCo's `slide`).
+/// Named as Pinocchio names a prismatic joint along any axis
+/// (`JointModelPrismaticUnaligned`), apart from the planar
+/// [`crate::mechanism::Prismatic`].
 ///
 /// # Example
 /// ```
 /// use flexure::mechanism::Joint;
-/// use flexure::mechanism::spatial::Prismatic;
+/// use flexure::mechanism::spatial::PrismaticUnaligned;
 /// use flexure::space::Spatial;
-/// let slide = Prismatic { axis: nalgebra::Vector3::z_axis(), stiffness: 0.0, rest: 0.0 };
+/// let slide = PrismaticUnaligned { axis: nalgebra::Vector3::z_axis(), stiffness: 0.0, rest: 0.0 };
 /// let s = Joint::<Spatial>::evaluate(&slide, &[0.25]);
 /// assert_eq!((s.pose.translation.vector.z, s.jacobian[(5, 0)]), (0.25, 1.0));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Prismatic {
+pub struct PrismaticUnaligned {
     /// The axis, in the root frame.
     pub axis: Unit<Vector3<f64>>,
     /// N/m (0: free).
@@ -27,7 +30,7 @@ pub struct Prismatic {
     pub rest: f64,
 }
 
-impl Joint<Spatial> for Prismatic {
+impl Joint<Spatial> for PrismaticUnaligned {
     fn dof(&self) -> usize {
         1
     }

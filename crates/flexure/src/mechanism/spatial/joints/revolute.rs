@@ -7,20 +7,22 @@ use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 /// A hinge about `axis` through the root frame's origin, rotation $q$,
 /// with an optional torsional spring $U = \frac12 k(q - q_0)^2$: the output
 /// frame is $(\exp(q\hat a), 0)$ and the motion subspace the constant twist
-/// $(a, 0)$ (URDF's `revolute`, MuJoCo's `hinge`).
+/// $(a, 0)$ (URDF's `revolute`, MuJoCo's `hinge`). Named as Pinocchio names
+/// a revolute joint about any axis (`JointModelRevoluteUnaligned`), apart
+/// from the planar [`crate::mechanism::Revolute`] about z.
 ///
 /// # Example
 /// ```
 /// use flexure::mechanism::Joint;
-/// use flexure::mechanism::spatial::Revolute;
+/// use flexure::mechanism::spatial::RevoluteUnaligned;
 /// use flexure::space::Spatial;
-/// let hinge = Revolute { axis: nalgebra::Vector3::x_axis(), stiffness: 2.0, rest: 0.0 };
+/// let hinge = RevoluteUnaligned { axis: nalgebra::Vector3::x_axis(), stiffness: 2.0, rest: 0.0 };
 /// let s = Joint::<Spatial>::evaluate(&hinge, &[0.5]);
 /// assert!((s.pose.rotation.angle() - 0.5).abs() < 1e-15 && s.jacobian[(0, 0)] == 1.0);
 /// assert!((s.energy - 0.25).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Revolute {
+pub struct RevoluteUnaligned {
     /// The axis, in the root frame.
     pub axis: Unit<Vector3<f64>>,
     /// N·m/rad (0: free).
@@ -29,7 +31,7 @@ pub struct Revolute {
     pub rest: f64,
 }
 
-impl Joint<Spatial> for Revolute {
+impl Joint<Spatial> for RevoluteUnaligned {
     fn dof(&self) -> usize {
         1
     }
