@@ -32,7 +32,7 @@ fn put_orders(py: Python<'_>, out: &Bound<'_, PyDict>, used: &Model) -> PyResult
 }
 
 /// What to do about an eigenvalue answer of `used` that misses its target.
-fn raise(used: &Model) -> &'static str {
+fn order_hint(used: &Model) -> &'static str {
     if used.auto_order() {
         "the flexures of order = \"auto\" are at the cap of 64, or there are none left to raise: give the others order = \"auto\""
     } else {
@@ -80,7 +80,7 @@ pub fn buckle<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResul
     out.set_item("flagged", e.flagged)?;
     put_orders(py, &out, used)?;
     let name = |_| format!("the load factor {}", sig(b.load_factor));
-    warn_missed(py, ("Mechanism.buckle", raise(used)), used, e, target, name)?;
+    warn_missed(py, ("Mechanism.buckle", order_hint(used)), used, e, target, name)?;
     finite_answer("Mechanism.buckle", out.as_any())?;
     Ok(out)
 }
@@ -119,7 +119,7 @@ pub fn modes<'py>(
     crate::modes::put_estimate(py, &out, e, Some(&used.flexure_names()))?;
     put_orders(py, &out, used)?;
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
-    let hint = format!("{}, or ask fewer modes", raise(used));
+    let hint = format!("{}, or ask fewer modes", order_hint(used));
     warn_missed(py, ("Mechanism.modes", &hint), used, e, target, name)?;
     if let Some(limit) = modes.limit {
         out.set_item("limit_fraction", limit)?;
