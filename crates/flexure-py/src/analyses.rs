@@ -76,7 +76,7 @@ pub fn stability_limit<'py>(
 /// Bending and estimate of an answer `alpha` into `out`, with their warnings
 /// (`what` names the answer): `stress` or `curvature_max`, `safety_factor`
 /// with a yield strength, `error_estimate` and `flagged`.
-fn put_checks(
+fn insert_checks(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
     (f, yield_strength): (&flexure::Flexure, Option<f64>),
@@ -150,7 +150,7 @@ pub fn tendon<'py>(
     } else {
         "use tendon(..., order=\"auto\") to raise the order until the target is met"
     };
-    put_checks(py, &out, (&used, yield_strength), &alpha, &estimated, (target, "tendon", hint))?;
+    insert_checks(py, &out, (&used, yield_strength), &alpha, &estimated, (target, "tendon", hint))?;
     if let Some(l) = &l {
         out.set_item("stability_limit", limit_dict(py, l, "tendon(limit=...)", 1)?)?;
     }
@@ -188,7 +188,7 @@ pub fn connect<'py>(
     } else {
         "use connect(..., order=\"auto\") to raise the order until the target is met"
     };
-    put_checks(py, &out, (&used, yield_strength), &c.alpha, &estimated, (target, "connect", hint))?;
+    insert_checks(py, &out, (&used, yield_strength), &c.alpha, &estimated, (target, "connect", hint))?;
     if let Some(l) = &l {
         out.set_item("stability_limit", limit_dict(py, l, "connect(limit=...)", 1)?)?;
     }

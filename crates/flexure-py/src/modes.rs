@@ -68,7 +68,7 @@ pub fn wanted(value: Option<&Bound<'_, PyAny>>, coordinates: usize, what: &str) 
 }
 
 /// omega, frequency and quasi_static of `modes`, into `out`.
-fn put_frequencies(py: Python<'_>, out: &Bound<'_, PyDict>, modes: &Modes) -> PyResult<()> {
+fn insert_frequencies(py: Python<'_>, out: &Bound<'_, PyDict>, modes: &Modes) -> PyResult<()> {
     out.set_item("omega", PyArray1::from_vec(py, modes.omega.clone()))?;
     out.set_item("frequency", PyArray1::from_vec(py, modes.frequency.clone()))?;
     out.set_item("quasi_static", modes.quasi_static)?;
@@ -77,7 +77,7 @@ fn put_frequencies(py: Python<'_>, out: &Bound<'_, PyDict>, modes: &Modes) -> Py
 
 /// `reference_order` and `reference_quadrature` into `d`, each {joint: int}
 /// for the flexure joints `names` of a mechanism's estimate.
-pub fn put_reference_orders(
+pub fn insert_reference_orders(
     py: Python<'_>,
     d: &Bound<'_, PyDict>,
     names: &[String],
@@ -96,7 +96,7 @@ pub fn put_reference_orders(
 /// NaN where the reference pairs none), reference_omega, reference_order and
 /// reference_quadrature (ints for one flexure, {joint: int} for a mechanism
 /// of `names`), reference_stable and flagged; into `out`.
-pub(crate) fn put_estimate(
+pub(crate) fn insert_estimate(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
     e: &ValueEstimate,
@@ -112,7 +112,7 @@ pub(crate) fn put_estimate(
             d.set_item("reference_order", order)?;
             d.set_item("reference_quadrature", points)?;
         }
-        Some(names) => put_reference_orders(py, &d, names, &e.reference_orders)?,
+        Some(names) => insert_reference_orders(py, &d, names, &e.reference_orders)?,
     }
     d.set_item("reference_stable", e.reference_stable)?;
     d.set_item("flagged", e.flagged)?;
@@ -136,11 +136,11 @@ pub fn flexure_modes<'py>(
         Ok((modes, e))
     })?;
     let out = PyDict::new(py);
-    put_frequencies(py, &out, &modes)?;
+    insert_frequencies(py, &out, &modes)?;
     // Checked before the estimate, whose omega holds NaN where the reference pairs no mode.
     crate::strict::finite_answer("Flexure.modes", out.as_any())?;
     crate::strict::finite_slice("Flexure.modes error_estimate reference_omega", &e.reference)?;
-    put_estimate(py, &out, &e, None)?;
+    insert_estimate(py, &out, &e, None)?;
     let (order, points) = e.reference_orders[0];
     let reference = format!("order {order} with {points} quadrature points");
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));

@@ -17,7 +17,7 @@ use pyo3::types::PyDict;
 
 /// `order` {joint: int (planar) or [n_twist, n_y, n_z] (spatial)} when a
 /// flexure has `order = "auto"`: the orders the answer was found at, as the CLI's.
-fn put_orders(py: Python<'_>, out: &Bound<'_, PyDict>, used: &Model) -> PyResult<()> {
+fn insert_orders(py: Python<'_>, out: &Bound<'_, PyDict>, used: &Model) -> PyResult<()> {
     if used.auto_order() {
         let orders = PyDict::new(py);
         for (name, o) in used.orders().0 {
@@ -75,10 +75,10 @@ pub fn buckle<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResul
     if let Some(r) = e.reference.first() {
         d.set_item("reference_load_factor", *r)?;
     }
-    crate::modes::put_reference_orders(py, &d, &used.flexure_names(), &e.reference_orders)?;
+    crate::modes::insert_reference_orders(py, &d, &used.flexure_names(), &e.reference_orders)?;
     out.set_item("error_estimate", d)?;
     out.set_item("flagged", e.flagged)?;
-    put_orders(py, &out, used)?;
+    insert_orders(py, &out, used)?;
     let name = |_| format!("the load factor {}", sig(b.load_factor));
     warn_missed(py, ("Mechanism.buckle", order_hint(used)), used, e, target, name)?;
     finite_answer("Mechanism.buckle", out.as_any())?;
@@ -116,8 +116,8 @@ pub fn modes<'py>(
         shapes.set_item(name, a.into_pyarray(py))?;
     }
     out.set_item("shapes", shapes)?;
-    crate::modes::put_estimate(py, &out, e, Some(&used.flexure_names()))?;
-    put_orders(py, &out, used)?;
+    crate::modes::insert_estimate(py, &out, e, Some(&used.flexure_names()))?;
+    insert_orders(py, &out, used)?;
     let name = |k: usize| format!("mode {} ({} rad/s)", k + 1, sig(modes.omega[k]));
     let hint = format!("{}, or ask fewer modes", order_hint(used));
     warn_missed(py, ("Mechanism.modes", &hint), used, e, target, name)?;
