@@ -719,3 +719,54 @@ fn each_rigid_joint_has_its_symbol() {
     let top = axis_lines(View::Top);
     assert!(!top.is_empty() && top.iter().all(|(dx, dy)| *dy == 0.0 && *dx != 0.0), "{top:?}");
 }
+
+/// Issue 34 item 4 (one drawing for both dimensions): a spatial `draw`
+/// shows what only the planar one did. A steel blade stressed past its
+/// `yield_strength` (1 MPa): the colour bar marks it and names it, and
+/// `draw` gives the warnings `solve` gives on the same file (reference:
+/// `solve`'s yield warning, `a_spatial_flexure_reports_its_safety_factor_and_shape`).
+/// And a sweep past a stability limit says in its legend which shapes are
+/// past it: a sprung arm (k = 1 N·m/rad about z) pushed along its
+/// l = 0.1 m loses stability at P = k/l = 10 N (Euler's rigid bar), drawn
+/// to its three digits; the sweep stops there, so no shape is past it.
+#[test]
+fn a_spatial_draw_marks_yield_strengths_and_the_shapes_past_a_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let blade = dir.path().join("blade.toml");
+    std::fs::write(
+        &blade,
+        "dimension = 3\n[[joint]]\nname = \"blade\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
+         length = 0.05\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4\nyield_strength = 1e6\n\
+         [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, 0.5, 0.1]\n",
+    )
+    .unwrap();
+    let (blade, out) = (blade.to_str().unwrap(), dir.path().join("blade.svg"));
+    let warnings = |e: &str| e.lines().filter(|l| l.starts_with("warning:")).map(String::from).collect::<Vec<_>>();
+    let (_, _, solved) = crate::cli::run(&["solve", blade]);
+    let (code, _, drawn) = crate::cli::run(&["draw", blade, "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{drawn}");
+    assert!(solved.contains("exceeds the yield strength"), "{solved}");
+    assert_eq!(warnings(&drawn), warnings(&solved));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("black line: yield strength (blade 1 MPa)"), "no yield in the bar's label");
+    assert_eq!(svg.matches(r##"stroke="#000000" stroke-width="2.5""##).count(), 1, "one yield mark");
+
+    let arm = dir.path().join("arm.toml");
+    std::fs::write(
+        &arm,
+        "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\naxis = [0.0, 0.0, 1.0]\nparent = \"ground\"\n\
+         child = \"arm\"\nstiffness = 1.0\n[[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("arm.svg");
+    let args = ["draw", arm.to_str().unwrap(), "--out", out.to_str().unwrap(), "--sweep", "force.push.fx=0:-12:4"];
+    let (code, _, err) = crate::cli::run(&args);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        ["−10", "-10"]
+            .iter()
+            .any(|v| svg.contains(&format!("stability lost at force.push.fx = {v}: no shape is drawn past it"))),
+        "no limit with its shapes in the legend"
+    );
+}
