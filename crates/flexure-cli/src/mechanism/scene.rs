@@ -200,22 +200,35 @@ impl Drawn for Spatial {
     }
 }
 
+/// A shape's rigid part: its links and tendons through `at` (a body's
+/// point in the world), its bodies' `origins` and joints' `roots`; its
+/// flexures, joints and loads are the dimension's to fill.
+fn rigid<D: Drawn>(
+    m: &Mechanism<D>,
+    at: &impl Fn(usize, &D::Point) -> V,
+    (origins, roots): (Vec<V>, Vec<V>),
+    tensions: &[f64],
+) -> Pose {
+    Pose {
+        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
+        origins,
+        roots,
+        leaving: Vec::new(),
+        flexures: Vec::new(),
+        joints: Vec::new(),
+        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
+        tensions: tensions.to_vec(),
+        loads: Vec::new(),
+    }
+}
+
 /// A planar shape (coordinates `q` under `loads`) at z = 0.
 fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
     let f = frames(m, q);
     let at = |b: usize, r: &Point2<f64>| flat(f.bodies[b].act(r));
     let turn = |phi: f64, (x, y): (f64, f64)| V::new(phi.cos() * x - phi.sin() * y, phi.sin() * x + phi.cos() * y, 0.0);
-    let mut pose = Pose {
-        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
-        origins: f.bodies.iter().map(|b| V::new(b.x, b.y, 0.0)).collect(),
-        roots: f.roots.iter().map(|r| V::new(r.x, r.y, 0.0)).collect(),
-        leaving: Vec::new(),
-        flexures: Vec::new(),
-        joints: Vec::new(),
-        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
-        tensions: loads.tension.clone(),
-        loads: Vec::new(),
-    };
+    let origins = f.bodies.iter().map(|b| V::new(b.x, b.y, 0.0)).collect();
+    let mut pose = rigid(m, &at, (origins, f.roots.iter().map(|r| V::new(r.x, r.y, 0.0)).collect()), &loads.tension);
     for (ji, j) in m.joints.iter().enumerate() {
         let (root, kind) = (f.roots[ji], j.kind.joint());
         let origin = pose.roots[ji];
@@ -289,17 +302,8 @@ fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -
     check_shape(m, label, q, loads)?;
     let f = spatial_frames(m, q);
     let at = |b: usize, r: &Point3<f64>| (f.bodies[b] * r).coords;
-    let mut pose = Pose {
-        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
-        origins: f.bodies.iter().map(|b| b.translation.vector).collect(),
-        roots: f.roots.iter().map(|r| r.translation.vector).collect(),
-        leaving: Vec::new(),
-        flexures: Vec::new(),
-        joints: Vec::new(),
-        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
-        tensions: loads.tension.clone(),
-        loads: Vec::new(),
-    };
+    let origins = f.bodies.iter().map(|b| b.translation.vector).collect();
+    let mut pose = rigid(m, &at, (origins, f.roots.iter().map(|r| r.translation.vector).collect()), &loads.tension);
     let named = |name: &str, e: flexure::Error| format!("shape {label:?}, flexure {name}: {}", crate::describe(e));
     for (ji, j) in m.joints.iter().enumerate() {
         let (root, kind) = (f.roots[ji], j.kind.joint());
