@@ -74,11 +74,6 @@ pub fn open_answers(open: &[OpenClosure], file: &Path) -> Vec<Value> {
     open.iter().map(closure_json).collect()
 }
 
-/// The parts of `m` that cross at coordinates `q`, told and listed.
-pub fn shape<D: Findings>(m: &Mechanism<D>, q: &[f64], file: &Path) -> Vec<Value> {
-    crossing_answers(flexure::mechanism::findings::crossings(m, q), file)
-}
-
 /// Parts that cross, each told and listed.
 pub fn crossing_answers<P: AsRef<[f64]>>(found: Vec<Crossing<P>>, file: &Path) -> Vec<Value> {
     for c in &found {

@@ -95,12 +95,12 @@ fn checked_settings(
 
 /// The motion of `m` (read from `file`) over `duration` (set by the option
 /// `duration_option`) with `options`; a bad setting is named as its option.
-pub fn run_motion(
-    m: &Mechanism,
+pub fn run_motion<D: flexure::dynamics::Dynamics>(
+    m: &Mechanism<D>,
     file: &Path,
     (duration, duration_option): (f64, &str),
     options: &MotionOptions,
-) -> Result<Simulation, String> {
+) -> Result<Simulation<D>, String> {
     let settings = checked_settings(options, (duration, duration_option))?;
     with_progress_bar(duration, || simulate(m, &settings, options.start()))
         .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))
@@ -215,7 +215,12 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
 /// The checks `simulate` makes of a run, shared by `draw --simulate`:
 /// closures open at rest, and parts that cross at a sample (`findings`,
 /// each told on stderr).
-pub fn insert_motion_checks(v: &mut Value, m: &Mechanism, run: &Simulation, file: &Path) -> Result<(), String> {
+pub fn insert_motion_checks<D: flexure::model::Analyses>(
+    v: &mut Value,
+    m: &Mechanism<D>,
+    run: &Simulation<D>,
+    file: &Path,
+) -> Result<(), String> {
     let mut findings = crate::findings::closures(m, file)?;
     let samples: Vec<(f64, &[f64])> = (0..run.time.len()).map(|k| (run.time[k], run.q(k))).collect();
     findings.extend(crate::findings::along(m, &samples, ("t (s)", "samples"), "time", file));

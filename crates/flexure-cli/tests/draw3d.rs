@@ -26,7 +26,7 @@ use flexure::spatial::SpatialFlexure;
 use flexure_chart::{Figure, Mark};
 use flexure_cli::drawing::Marks;
 use flexure_cli::projection::View;
-use flexure_cli::scene::{spatial_figure, spatial_motion_figures};
+use flexure_cli::scene::{run_figures, shapes_figure};
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 fn spec(name: &str, kind: SpatialJointKind, parent: usize, child: usize, origin: Isometry3<f64>) -> SpatialJointSpec {
@@ -147,7 +147,7 @@ fn unloaded(m: &SpatialMechanism) -> Solution<Spatial> {
 fn picture(m: &SpatialMechanism, view: View, stress: bool) -> (Figure, Solution<Spatial>) {
     let s = solve(m, &Default::default()).unwrap();
     let (fig, _) =
-        spatial_figure(m, "test", &unloaded(m), &[("loaded".into(), s.clone())], &Marks::default(), view, stress)
+        shapes_figure(m, "test", &unloaded(m), &[("loaded".into(), s.clone())], &Marks::default(), view, stress)
             .unwrap();
     (fig, s)
 }
@@ -263,7 +263,7 @@ fn near_parts_are_painted_over_far_ones() {
     // The loaded shape's two hulls are the last two (the unloaded grey ones come first).
     let order = |view: View| {
         let (fig, _) =
-            spatial_figure(&m, "links", &s, &[("same".into(), s.clone())], &Marks::default(), view, false).unwrap();
+            shapes_figure(&m, "links", &s, &[("same".into(), s.clone())], &Marks::default(), view, false).unwrap();
         let h = hull_order(&fig);
         assert_eq!(h.len(), 4);
         h[2..].to_vec()
@@ -304,7 +304,7 @@ fn a_motion_draws_five_snapshots_over_the_rest_shape() {
     let motion = Motion { duration: 0.05, every: 0.005, ..Default::default() };
     let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     assert!(run.stopped.is_none());
-    let drawn = spatial_motion_figures(&m, "bob", &unloaded(&m), &run, View::Front, true).unwrap();
+    let drawn = run_figures(&m, "bob", &unloaded(&m), &run, View::Front, true).unwrap();
     // Eleven samples, 0 to 10: the planar picks (k · 10 + 2)/4 for k = 0…4.
     assert_eq!(run.time.len(), 11);
     assert_eq!(drawn.snapshots, [0, 3, 5, 8, 10].map(|k| run.time[k]));
@@ -331,7 +331,7 @@ fn pictures_of_the_finger_and_the_stage() {
         assert!(s.stable, "{name}");
         for view in View::ALL {
             let marks = Marks { yields: vec![], limit: None };
-            let (fig, per_newton) = spatial_figure(
+            let (fig, per_newton) = shapes_figure(
                 &m,
                 &format!("{name} ({} view)", view.name()),
                 &unloaded(&m),
@@ -384,7 +384,7 @@ fn a_motion_of_many_bodies_keeps_every_legend_entry_inside_its_figure() {
     let m = SpatialMechanism::new(b, joints, vec![], vec![], vec![], Vector3::new(0.0, -9.81, -9.81)).unwrap();
     let motion = Motion { duration: 0.01, every: 0.002, ..Default::default() };
     let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
-    let drawn = spatial_motion_figures(&m, "chain", &unloaded(&m), &run, View::Iso, true).unwrap();
+    let drawn = run_figures(&m, "chain", &unloaded(&m), &run, View::Iso, true).unwrap();
     let svg = flexure_chart::stack(&drawn.figures).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let number = |n: roxmltree::Node, a: &str| n.attribute(a).and_then(|v| v.parse::<f64>().ok()).unwrap();
@@ -580,18 +580,26 @@ fn colour_bar_titles_stay_inside_the_figure_in_both_dimensions() {
 /// curl in y.
 #[test]
 fn a_planar_file_is_the_spatial_picture_seen_from_the_top() {
+    use flexure::space::Planar;
     use flexure_cli::drawing::figure;
-    use flexure_cli::scene::{planar, planar_scene};
+    use flexure_cli::scene::{Drawn, scene};
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/finger.toml")).unwrap();
     let m = flexure::mechanism::file::from_toml(&text).unwrap();
     let settings = flexure::mechanism::statics::Settings::default();
     let rest = flexure::mechanism::statics::assemble_unloaded(&m, &settings).unwrap();
     let s = flexure::mechanism::statics::solve(&m, &settings).unwrap();
-    let scene = planar_scene(&m);
-    let shapes = [("loaded".to_string(), planar(&m, &s.q, &s.loads))];
+    let scene = scene(&m);
+    let shapes = [("loaded".to_string(), Planar::pose(&m, "loaded", &s.q, &s.loads).unwrap())];
     let centrelines = |view: View| -> Vec<(f64, f64)> {
-        let (fig, _) =
-            figure(&scene, "finger", &planar(&m, &rest.q, &rest.loads), &shapes, &Marks::default(), view, false);
+        let (fig, _) = figure(
+            &scene,
+            "finger",
+            &Planar::pose(&m, "rest", &rest.q, &rest.loads).unwrap(),
+            &shapes,
+            &Marks::default(),
+            view,
+            false,
+        );
         fig.marks
             .iter()
             .filter_map(|mk| match mk {
@@ -616,7 +624,7 @@ fn a_shape_that_does_not_fit_is_refused_by_name() {
     let mut bad = unloaded(&m);
     bad.q.pop();
     let draw = |s: &Solution<Spatial>, label: &str| {
-        spatial_figure(&m, "rod", &unloaded(&m), &[(label.into(), s.clone())], &Marks::default(), View::Iso, true)
+        shapes_figure(&m, "rod", &unloaded(&m), &[(label.into(), s.clone())], &Marks::default(), View::Iso, true)
             .err()
             .unwrap()
     };
@@ -651,8 +659,7 @@ fn a_lifted_tip_is_up_in_the_front_view() {
     let beam = 2.0 * 0.1f64.powi(3) / 3.0;
     assert!((tip.z - beam).abs() < 1e-3 * beam && tip.y.abs() < 1e-12, "{tip}");
     let (fig, per_newton) =
-        spatial_figure(&m, "rod", &unloaded(&m), &[("loaded".into(), s)], &Marks::default(), View::Front, true)
-            .unwrap();
+        shapes_figure(&m, "rod", &unloaded(&m), &[("loaded".into(), s)], &Marks::default(), View::Front, true).unwrap();
     assert_eq!(per_newton, Some(0.01));
     let arrows = force_arrows(&fig);
     assert_eq!(arrows.len(), 1);
@@ -670,7 +677,8 @@ fn a_lifted_tip_is_up_in_the_front_view() {
 #[test]
 fn each_rigid_joint_has_its_symbol() {
     use flexure::mechanism::spatial::{PrismaticUnaligned, RevoluteUnaligned, Spherical};
-    use flexure_cli::scene::{Symbol, spatial};
+    use flexure::space::Spatial;
+    use flexure_cli::scene::{Drawn, Symbol};
     let hinge = RevoluteUnaligned { axis: Vector3::z_axis(), stiffness: 1.0, rest: 0.0 };
     let slide = PrismaticUnaligned { axis: Vector3::x_axis(), stiffness: 1.0, rest: 0.0 };
     let step = Isometry3::translation(0.1, 0.0, 0.0);
@@ -684,14 +692,14 @@ fn each_rigid_joint_has_its_symbol() {
     let names = ["ground", "a", "b", "c", "d"];
     let m = SpatialMechanism::new(bodies(&names), joints, vec![], vec![], vec![], Vector3::zeros()).unwrap();
     let rest = unloaded(&m);
-    let pose = spatial(&m, "rest", &rest.q, &rest.loads).unwrap();
+    let pose = Spatial::pose(&m, "rest", &rest.q, &rest.loads).unwrap();
     let got: Vec<Symbol> = pose.joints.iter().map(|j| j.symbol).collect();
     assert_eq!(got, [Symbol::Hinge, Symbol::Ball, Symbol::Slider]);
     assert!((pose.joints[0].axis - Vector3::z()).norm() < 1e-15 && (pose.joints[2].axis - Vector3::x()).norm() < 1e-15);
     // Hinge axis lines: 2 px wide, solid, two points, the first symbol drawn of the loaded shape.
     let axis_lines = |view: View| -> Vec<(f64, f64)> {
         let (fig, _) =
-            spatial_figure(&m, "j", &rest, &[("same".into(), rest.clone())], &Marks::default(), view, false).unwrap();
+            shapes_figure(&m, "j", &rest, &[("same".into(), rest.clone())], &Marks::default(), view, false).unwrap();
         fig.marks
             .iter()
             .filter_map(|mk| match mk {
@@ -710,4 +718,55 @@ fn each_rigid_joint_has_its_symbol() {
     // From the top the slider's double line (along x) remains, the hinge's none.
     let top = axis_lines(View::Top);
     assert!(!top.is_empty() && top.iter().all(|(dx, dy)| *dy == 0.0 && *dx != 0.0), "{top:?}");
+}
+
+/// Issue 34 item 4 (one drawing for both dimensions): a spatial `draw`
+/// shows what only the planar one did. A steel blade stressed past its
+/// `yield_strength` (1 MPa): the colour bar marks it and names it, and
+/// `draw` gives the warnings `solve` gives on the same file (reference:
+/// `solve`'s yield warning, `a_spatial_flexure_reports_its_safety_factor_and_shape`).
+/// And a sweep past a stability limit says in its legend which shapes are
+/// past it: a sprung arm (k = 1 N·m/rad about z) pushed along its
+/// l = 0.1 m loses stability at P = k/l = 10 N (Euler's rigid bar), drawn
+/// to its three digits; the sweep stops there, so no shape is past it.
+#[test]
+fn a_spatial_draw_marks_yield_strengths_and_the_shapes_past_a_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let blade = dir.path().join("blade.toml");
+    std::fs::write(
+        &blade,
+        "dimension = 3\n[[joint]]\nname = \"blade\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
+         length = 0.05\nmodulus = 2e11\nwidth = 0.01\nthickness = 2e-4\nyield_strength = 1e6\n\
+         [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, 0.5, 0.1]\n",
+    )
+    .unwrap();
+    let (blade, out) = (blade.to_str().unwrap(), dir.path().join("blade.svg"));
+    let warnings = |e: &str| e.lines().filter(|l| l.starts_with("warning:")).map(String::from).collect::<Vec<_>>();
+    let (_, _, solved) = crate::cli::run(&["solve", blade]);
+    let (code, _, drawn) = crate::cli::run(&["draw", blade, "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{drawn}");
+    assert!(solved.contains("exceeds the yield strength"), "{solved}");
+    assert_eq!(warnings(&drawn), warnings(&solved));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("black line: yield strength (blade 1 MPa)"), "no yield in the bar's label");
+    assert_eq!(svg.matches(r##"stroke="#000000" stroke-width="2.5""##).count(), 1, "one yield mark");
+
+    let arm = dir.path().join("arm.toml");
+    std::fs::write(
+        &arm,
+        "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\naxis = [0.0, 0.0, 1.0]\nparent = \"ground\"\n\
+         child = \"arm\"\nstiffness = 1.0\n[[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("arm.svg");
+    let args = ["draw", arm.to_str().unwrap(), "--out", out.to_str().unwrap(), "--sweep", "force.push.fx=0:-12:4"];
+    let (code, _, err) = crate::cli::run(&args);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        ["−10", "-10"]
+            .iter()
+            .any(|v| svg.contains(&format!("stability lost at force.push.fx = {v}: no shape is drawn past it"))),
+        "no limit with its shapes in the legend"
+    );
 }

@@ -3,13 +3,12 @@
 
 use super::checks::solved_answer;
 use super::drawing::{self, Marks, Track, View, snapshot_samples, swept};
-use super::scene::{self, Pose, Scene};
+use super::scene::{self, Drawn, Pose, Scene, Shapes};
 use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::statics::{Settings, Solution};
-use flexure::mechanism::sweep::Parameter;
+use flexure::mechanism::statics::{Settings, assemble_unloaded};
 use flexure::model::Model;
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -61,156 +60,80 @@ fn sweep_label(parameter: &str, limit: Option<f64>, first: f64) -> impl Fn(f64) 
     }
 }
 
-/// `draw` of a spatial file: its shapes, with the findings solve and simulate give.
-fn spatial_picture(
-    args: &DrawArgs,
-    model: &Model,
-    m: &flexure::mechanism::spatial::SpatialMechanism,
-) -> Result<Picture, String> {
-    use flexure::mechanism::{statics, sweep};
-    let settings = Settings::default();
-    let err = |e: flexure::Error| super::file_error(&args.file, e);
-    // First, so that an open closure that keeps the mechanism from assembling is told.
-    let mut findings = crate::findings::closures(m, &args.file)?;
-    let unloaded = statics::assemble_unloaded(m, &settings).map_err(err)?;
-    let mut answer = json!({});
-    let mut marks = Marks::default();
-    let mut motion = None;
-    let shapes: Vec<(String, Pose)> = if let Some(spec) = &args.sweep {
-        let values = sweep_values(&spec.range);
-        let target = args.accuracy.target();
-        let (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
-        let none = Vec::new();
-        if out.rows.is_empty() {
-            let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
-            return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
-        }
-        findings = checks.get("findings").and_then(Value::as_array).unwrap_or(&none).clone();
-        for key in ["flagged", "stability_limit", "stopped"] {
-            if let Some(x) = checks.get(key) {
-                answer[key] = x.clone();
-            }
-        }
-        if let Some(l) = &out.stability_limit {
-            marks.limit = Some(format!("stability lost at {} = {}", spec.parameter, drawing::short(l.value)));
-        }
-        let p = sweep::SpatialParameter::parse(m, &spec.parameter).map_err(crate::describe)?;
-        let label = sweep_label(&spec.parameter, out.stability_limit.map(|l| l.value), values[0]);
-        out.rows
-            .iter()
-            .zip(&out.q)
-            .map(|(r, q)| Ok((label(r[0]), scene::spatial(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
-            .collect::<Result<_, String>>()?
-    } else if let Some(duration) = args.simulate {
-        let settings = args.motion.settings(duration);
-        let sim = flexure::dynamics::simulation::simulate(m, &settings, args.motion.start())
-            .map_err(|e| format!("{}: {}", args.file.display(), crate::simulate::simulation_error(e, duration)))?;
-        let samples: Vec<(f64, &[f64])> = (0..sim.time.len()).map(|k| (sim.time[k], sim.q(k))).collect();
-        findings.extend(crate::findings::along(m, &samples, ("t (s)", "samples"), "time", &args.file));
-        let picked = snapshot_samples(sim.time.len());
-        let (snapshots, tracks) = scene::spatial_motion(m, &sim, &picked)?;
-        (answer["steps"], answer["rejected"]) = (json!(sim.steps), json!(sim.rejected));
-        motion = Some((sim.time.clone(), tracks, picked));
-        snapshots
-    } else {
-        let s = statics::solve(m, &settings).map_err(err)?;
-        findings.extend(crate::findings::shape(m, &s.q, &args.file));
-        vec![("loaded".into(), scene::spatial(m, "loaded", &s.q, &s.loads)?)]
-    };
-    if !findings.is_empty() {
-        answer["findings"] = Value::Array(findings);
-    }
-    let rest = scene::spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
-    Ok(Picture { scene: scene::spatial_scene(m), rest, shapes, marks, motion, answer, view: View::Iso })
-}
-
-/// `draw` of a planar file: its shapes, with the warnings and verdicts solve and simulate give.
-fn planar_picture(args: &DrawArgs, model: &Model, m: &Mechanism) -> Result<Picture, String> {
-    let settings = Settings::default();
-    let err = |e: flexure::Error| super::file_error(&args.file, e);
-    // The checks' warnings are solve's (simulate's); of their answer, draw keeps only the verdicts.
-    let mut checks = json!({});
-    if let Some(duration) = args.simulate {
-        let run = crate::simulate::run_motion(m, &args.file, (duration, "--simulate"), &args.motion)?;
-        crate::simulate::insert_motion_checks(&mut checks, m, &run, &args.file)?;
-        crate::simulate::insert_stopped(&mut checks, (&run.trajectory, &run.stopped), &args.file, duration);
-        let unloaded = flexure::mechanism::statics::assemble_unloaded(m, &settings).map_err(err)?;
-        let picked = snapshot_samples(run.time.len());
-        let (shapes, tracks) = scene::planar_motion(m, &run, &picked);
-        let mut answer = json!({ "steps": run.steps, "rejected": run.rejected });
-        for key in ["findings", "stopped"] {
-            if let Some(x) = checks.get(key) {
-                answer[key] = x.clone();
-            }
-        }
-        let motion = Some((run.time.clone(), tracks, picked));
-        let (scene, rest) = (scene::planar_scene(m), scene::planar(m, &unloaded.q, &unloaded.loads));
-        return Ok(Picture { scene, rest, shapes, marks: Marks::default(), motion, answer, view: View::Top });
-    }
+/// `draw` of a mechanism of either dimension: its shapes, with the
+/// warnings and verdicts solve (sweep, simulate) gives, the yield strengths
+/// asked for, and a sweep's shapes past its stability limit marked.
+fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result<Picture, String> {
     let target = args.accuracy.target();
-    let unloaded = flexure::mechanism::statics::assemble_unloaded(m, &settings).map_err(err)?;
+    // The checks' warnings are solve's (sweep's, simulate's); of their answer, draw keeps only the verdicts.
+    let mut checks = json!({});
     let mut marks = Marks {
         yields: m.joints.iter().filter_map(|j| Some((j.name.clone(), j.report.yield_strength?))).collect(),
         limit: None,
     };
-    let loaded: Vec<(String, (Vec<f64>, flexure::mechanism::Loads))> = match &args.sweep {
-        Some(spec) => {
-            let values = sweep_values(&spec.range);
-            let out;
-            (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
-            let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
-            let limit = out.stability_limit.map(|l| l.value);
-            let past = |value: f64| limit.is_some_and(|l| (value - l) * (values[0] - l) < 0.0);
-            marks.limit = limit.map(|l| {
-                let shapes = match out.rows.iter().filter(|r| past(r[0])).count() {
-                    0 => "no shape is drawn past it",
-                    1 => "the last shape is past it, reached by snap-through",
-                    _ => "the shapes marked past it were reached by snap-through",
-                };
-                format!("stability lost at {} = {}: {shapes}", spec.parameter, drawing::short(l))
-            });
-            let label = sweep_label(&spec.parameter, limit, values[0]);
-            out.rows.iter().zip(out.q).map(|(r, q)| (label(r[0]), (q, p.apply(&m.loads(), r[0])))).collect()
+    let mut motion = None;
+    let shapes: Shapes = if let Some(duration) = args.simulate {
+        let run = crate::simulate::run_motion(m, &args.file, (duration, "--simulate"), &args.motion)?;
+        (checks["steps"], checks["rejected"]) = (json!(run.steps), json!(run.rejected));
+        crate::simulate::insert_motion_checks(&mut checks, m, &run, &args.file)?;
+        crate::simulate::insert_stopped(&mut checks, (&run.trajectory, &run.stopped), &args.file, duration);
+        let picked = snapshot_samples(run.time.len());
+        let (shapes, tracks) = scene::motion(m, &run, &picked)?;
+        motion = Some((run.time.clone(), tracks, picked));
+        shapes
+    } else if let Some(spec) = &args.sweep {
+        let values = sweep_values(&spec.range);
+        let out;
+        (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
+        if out.rows.is_empty() {
+            let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
+            return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
         }
-        None => {
-            let findings = crate::findings::open_at_rest(model, &args.file)?;
-            let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
-            let q = solved.q.clone();
-            checks = solved_answer(model, findings, solved, &target, &args.file)?;
-            vec![("loaded".into(), (q, m.loads()))]
-        }
+        let p = D::parameter(m, &spec.parameter).map_err(crate::describe)?;
+        let limit = out.stability_limit.map(|l| l.value);
+        let past = |value: f64| limit.is_some_and(|l| (value - l) * (values[0] - l) < 0.0);
+        marks.limit = limit.map(|l| {
+            let shapes = match out.rows.iter().filter(|r| past(r[0])).count() {
+                0 => "no shape is drawn past it",
+                1 => "the last shape is past it, reached by snap-through",
+                _ => "the shapes marked past it were reached by snap-through",
+            };
+            format!("stability lost at {} = {}: {shapes}", spec.parameter, drawing::short(l))
+        });
+        let label = sweep_label(&spec.parameter, limit, values[0]);
+        out.rows
+            .iter()
+            .zip(&out.q)
+            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &D::apply(&p, &m.loads(), r[0]))?)))
+            .collect::<Result<_, String>>()?
+    } else {
+        let findings = crate::findings::open_at_rest(model, &args.file)?;
+        let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
+        let q = solved.q.clone();
+        checks = solved_answer(model, findings, solved, &target, &args.file)?;
+        vec![("loaded".into(), D::pose(m, "loaded", &q, &m.loads())?)]
     };
-    Ok(planar_shapes(m, &unloaded, loaded, marks, &checks))
-}
-
-/// A planar picture of the unloaded assembly and the `loaded` shapes
-/// (coordinates and loads, by label), with the verdicts of `checks`.
-fn planar_shapes(
-    m: &Mechanism,
-    unloaded: &Solution,
-    loaded: Vec<(String, (Vec<f64>, flexure::mechanism::Loads))>,
-    marks: Marks,
-    checks: &Value,
-) -> Picture {
     let mut answer = json!({});
-    for key in ["findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {
+    for key in ["steps", "rejected", "findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {
         if let Some(x) = checks.get(key) {
             answer[key] = x.clone();
         }
     }
-    let shapes = loaded.iter().map(|(label, (q, loads))| (label.clone(), scene::planar(m, q, loads))).collect();
-    let (scene, rest) = (scene::planar_scene(m), scene::planar(m, &unloaded.q, &unloaded.loads));
-    Picture { scene, rest, shapes, marks, motion: None, answer, view: View::Top }
+    // Last, so that the closures open at rest are told before an assembly they keep from closing fails.
+    let unloaded = assemble_unloaded(m, &Settings::default()).map_err(|e| super::file_error(&args.file, e))?;
+    let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
+    Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
 }
 
 /// An SVG of the unloaded and loaded shapes (or a motion's snapshots and
 /// charts), to one scale on both axes, with the warnings `solve` (or
-/// `simulate`) gives on the same file. The one place that asks the dimension.
+/// `simulate`) gives on the same file. The one place that asks the dimension:
+/// it sends the mechanism to [`picture`], as the door does.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let model = crate::input::read_model(&args.file)?;
     let p = match &model {
-        Model::Planar(m) => planar_picture(args, &model, m)?,
-        Model::Spatial(m) => spatial_picture(args, &model, m)?,
+        Model::Planar(m) => picture(args, &model, m)?,
+        Model::Spatial(m) => picture(args, &model, m)?,
     };
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let view = args.view.unwrap_or(p.view);

@@ -1,17 +1,19 @@
 //! What `draw` draws of a mechanism, in the world (m): the one block of the
-//! drawing that knows the dimension. A planar mechanism is drawn as the
-//! spatial one lying in the plane z = 0, its rotations about z ([`planar`]);
-//! a spatial one as it is ([`spatial`]). The drawing
+//! drawing that knows the dimension, [`Drawn`]. A planar mechanism is drawn
+//! as the spatial one lying in the plane z = 0, its rotations about z; a
+//! spatial one as it is. The drawing
 //! ([`super::drawing`]) reads only a [`Scene`] and its [`Pose`]s, so the
 //! planar picture is the spatial one seen from the top.
 
 use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
+use flexure::dynamics::Simulation;
 use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::kinematics::frames as spatial_frames;
 use flexure::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use flexure::mechanism::statics::Solution;
 use flexure::mechanism::{Holds, Loads, Mechanism};
-use flexure::space::Spatial;
+use flexure::model::Analyses;
+use flexure::space::{Planar, Spatial};
 use flexure_chart::Figure;
 use nalgebra::{Point2, Point3, Rotation3, Vector3};
 
@@ -103,37 +105,130 @@ fn flat(p: Point2<f64>) -> V {
     V::new(p.x, p.y, 0.0)
 }
 
-/// A planar mechanism's scene.
-pub fn planar_scene(m: &Mechanism) -> Scene {
+/// What the drawing asks of a dimension, the rest of the picture being
+/// written once: a point in the world, a shape's world points, a run's
+/// body tracks, and the scene's words. The plane and space side by side.
+pub trait Drawn: Analyses {
+    /// The view when `--view` is not given: top in the plane (x right, y up), iso in space.
+    const VIEW: View;
+    /// [`Scene::components`].
+    const COMPONENTS: usize;
+    /// [`Scene::rotations`].
+    const ROTATIONS: &'static [usize];
+    /// [`Scene::stress`].
+    const STRESS: &'static str;
+    /// [`Scene::plain`].
+    const PLAIN: &'static str;
+    /// A point of the dimension in the world (m): at z = 0 in the plane.
+    fn world(p: &Self::Point) -> V;
+    /// The shape at coordinates `q` under `loads`, named `label` in its
+    /// errors: a shape that does not fit `m`, or a flexure whose
+    /// coordinates the library refuses.
+    fn pose(m: &Mechanism<Self>, label: &str, q: &[f64], loads: &Loads<Self>) -> Result<Pose, String>;
+    /// Each moving body's track of a run: its rotation vector and its origin.
+    fn tracks(run: &Simulation<Self>) -> Vec<Track>;
+}
+
+/// A mechanism's scene.
+pub fn scene<D: Drawn>(m: &Mechanism<D>) -> Scene {
     let forces = m.forces.iter().map(|p| (p.name.clone(), Some(m.bodies[p.body].name.clone())));
     let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| (format!("weight of {}", b.name), None));
     Scene {
-        ground: m.attachments(0).into_iter().map(flat).collect(),
+        ground: m.attachments(0).iter().map(D::world).collect(),
         tendons: m.tendons.iter().map(|t| t.name.clone()).collect(),
         loads: forces.chain(weights).collect(),
-        components: 2,
-        rotations: &[2],
-        stress: "bending",
-        plain: "ei alone",
+        components: D::COMPONENTS,
+        rotations: D::ROTATIONS,
+        stress: D::STRESS,
+        plain: D::PLAIN,
     }
 }
 
-/// A planar shape (coordinates `q` under `loads`) at z = 0: hinges about z, moments along z.
-pub fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
-    let f = frames(m, q);
-    let at = |b: usize, r: &Point2<f64>| flat(f.bodies[b].act(r));
-    let turn = |phi: f64, (x, y): (f64, f64)| V::new(phi.cos() * x - phi.sin() * y, phi.sin() * x + phi.cos() * y, 0.0);
-    let mut pose = Pose {
+/// A planar mechanism is drawn lying at z = 0: hinges about z, moments along z.
+impl Drawn for Planar {
+    const VIEW: View = View::Top;
+    const COMPONENTS: usize = 2;
+    const ROTATIONS: &'static [usize] = &[2];
+    const STRESS: &'static str = "bending";
+    const PLAIN: &'static str = "ei alone";
+
+    fn world(p: &Point2<f64>) -> V {
+        flat(*p)
+    }
+
+    fn pose(m: &Mechanism, _: &str, q: &[f64], loads: &Loads) -> Result<Pose, String> {
+        Ok(planar(m, q, loads))
+    }
+
+    fn tracks(run: &Simulation) -> Vec<Track> {
+        let track = |b: &flexure::dynamics::simulation::BodyMotion| Track {
+            name: b.name.clone(),
+            rotation: b.phi.iter().map(|&phi| V::new(0.0, 0.0, phi)).collect(),
+            position: b.x.iter().zip(&b.y).map(|(x, y)| V::new(*x, *y, 0.0)).collect(),
+        };
+        run.bodies.iter().map(track).collect()
+    }
+}
+
+/// A spatial mechanism is drawn as it is; a body's rotation is tracked as
+/// its rotation vector $\theta = \varphi\thinspace\hat n$ (angle times unit axis, rad).
+impl Drawn for Spatial {
+    const VIEW: View = View::Iso;
+    const COMPONENTS: usize = 3;
+    const ROTATIONS: &'static [usize] = &[0, 1, 2];
+    const STRESS: &'static str = "von Mises";
+    const PLAIN: &'static str = "stiffnesses alone";
+
+    fn world(p: &Point3<f64>) -> V {
+        p.coords
+    }
+
+    fn pose(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
+        spatial(m, label, q, loads)
+    }
+
+    fn tracks(run: &Simulation<Spatial>) -> Vec<Track> {
+        let rotation = |r: &[[f64; 3]; 3]| {
+            Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_fn(|i, j| r[i][j])).scaled_axis()
+        };
+        let track = |b: &flexure::dynamics::simulation::BodyPoses| Track {
+            name: b.name.clone(),
+            rotation: b.rotation.iter().map(rotation).collect(),
+            position: b.position.iter().map(|p| V::from(*p)).collect(),
+        };
+        run.bodies.iter().map(track).collect()
+    }
+}
+
+/// A shape's rigid part: its links and tendons through `at` (a body's
+/// point in the world), its bodies' `origins` and joints' `roots`; its
+/// flexures, joints and loads are the dimension's to fill.
+fn rigid<D: Drawn>(
+    m: &Mechanism<D>,
+    at: &impl Fn(usize, &D::Point) -> V,
+    (origins, roots): (Vec<V>, Vec<V>),
+    tensions: &[f64],
+) -> Pose {
+    Pose {
         links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
-        origins: f.bodies.iter().map(|b| V::new(b.x, b.y, 0.0)).collect(),
-        roots: f.roots.iter().map(|r| V::new(r.x, r.y, 0.0)).collect(),
+        origins,
+        roots,
         leaving: Vec::new(),
         flexures: Vec::new(),
         joints: Vec::new(),
         tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
-        tensions: loads.tension.clone(),
+        tensions: tensions.to_vec(),
         loads: Vec::new(),
-    };
+    }
+}
+
+/// A planar shape (coordinates `q` under `loads`) at z = 0.
+fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
+    let f = frames(m, q);
+    let at = |b: usize, r: &Point2<f64>| flat(f.bodies[b].act(r));
+    let turn = |phi: f64, (x, y): (f64, f64)| V::new(phi.cos() * x - phi.sin() * y, phi.sin() * x + phi.cos() * y, 0.0);
+    let origins = f.bodies.iter().map(|b| V::new(b.x, b.y, 0.0)).collect();
+    let mut pose = rigid(m, &at, (origins, f.roots.iter().map(|r| V::new(r.x, r.y, 0.0)).collect()), &loads.tension);
     for (ji, j) in m.joints.iter().enumerate() {
         let (root, kind) = (f.roots[ji], j.kind.joint());
         let origin = pose.roots[ji];
@@ -185,21 +280,6 @@ pub fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
     pose
 }
 
-/// A spatial mechanism's scene.
-pub fn spatial_scene(m: &SpatialMechanism) -> Scene {
-    let forces = m.forces.iter().map(|p| (p.name.clone(), Some(m.bodies[p.body].name.clone())));
-    let weights = m.bodies.iter().filter(|b| b.mass > 0.0).map(|b| (format!("weight of {}", b.name), None));
-    Scene {
-        ground: m.attachments(0).into_iter().map(|p| p.coords).collect(),
-        tendons: m.tendons.iter().map(|t| t.name.clone()).collect(),
-        loads: forces.chain(weights).collect(),
-        components: 3,
-        rotations: &[0, 1, 2],
-        stress: "von Mises",
-        plain: "stiffnesses alone",
-    }
-}
-
 /// Checks that a shape has one finite coordinate per coordinate of `m`.
 fn check_shape(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<(), String> {
     if q.len() != m.dof() {
@@ -218,21 +298,12 @@ fn check_shape(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 
 /// A spatial shape, named `label` in its errors: a shape that does not fit
 /// `m`, or a flexure whose coordinates the library refuses.
-pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
+fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
     check_shape(m, label, q, loads)?;
     let f = spatial_frames(m, q);
     let at = |b: usize, r: &Point3<f64>| (f.bodies[b] * r).coords;
-    let mut pose = Pose {
-        links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
-        origins: f.bodies.iter().map(|b| b.translation.vector).collect(),
-        roots: f.roots.iter().map(|r| r.translation.vector).collect(),
-        leaving: Vec::new(),
-        flexures: Vec::new(),
-        joints: Vec::new(),
-        tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
-        tensions: loads.tension.clone(),
-        loads: Vec::new(),
-    };
+    let origins = f.bodies.iter().map(|b| b.translation.vector).collect();
+    let mut pose = rigid(m, &at, (origins, f.roots.iter().map(|r| r.translation.vector).collect()), &loads.tension);
     let named = |name: &str, e: flexure::Error| format!("shape {label:?}, flexure {name}: {}", crate::describe(e));
     for (ji, j) in m.joints.iter().enumerate() {
         let (root, kind) = (f.roots[ji], j.kind.joint());
@@ -292,15 +363,15 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
     Ok(pose)
 }
 
-/// The figure of a spatial mechanism's unloaded and loaded shapes seen
-/// from `view` ([`figure`]), and the force arrows' scale (m per N) if any
-/// force is drawn. Errors name the shape whose coordinates or loads do not
-/// fit `m`, or the flexure whose coordinates the library refuses.
+/// The figure of a mechanism's unloaded and loaded shapes seen from
+/// `view` ([`figure`]), and the force arrows' scale (m per N) if any force
+/// is drawn. Errors name the shape whose coordinates or loads do not fit
+/// `m`, or the flexure whose coordinates the library refuses.
 ///
 /// # Example
 /// ```
 /// use flexure_cli::drawing::{Marks, View};
-/// use flexure_cli::scene::spatial_figure;
+/// use flexure_cli::scene::shapes_figure;
 /// use flexure::mechanism::spatial::{RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad};
 /// use flexure::mechanism::statics::{assemble_unloaded, solve};
 /// use nalgebra::{Isometry3, Point3, Vector3, Vector6};
@@ -313,102 +384,64 @@ pub fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 /// let m = SpatialMechanism::new(bodies, vec![hinge], vec![], vec![push], vec![], Vector3::zeros()).unwrap();
 /// let s = solve(&m, &Default::default()).unwrap();
 /// let unloaded = assemble_unloaded(&m, &Default::default()).unwrap();
-/// let (fig, per_newton) = spatial_figure(&m, "arm", &unloaded, &[("loaded".into(), s)], &Marks::default(), View::Top, true).unwrap();
+/// let (fig, per_newton) = shapes_figure(&m, "arm", &unloaded, &[("loaded".into(), s)], &Marks::default(), View::Top, true).unwrap();
 /// // The largest force drawn a quarter of the arm's 0.1 m, at a round scale: 0.02 m per N.
 /// assert_eq!(per_newton, Some(0.02));
 /// assert!(fig.legend.iter().any(|e| e.label == "force push on arm: (0, 1, 0) N"));
 /// assert!(flexure_chart::render(&fig).unwrap().starts_with("<svg"));
 /// ```
-pub fn spatial_figure(
-    m: &SpatialMechanism,
+pub fn shapes_figure<D: Drawn>(
+    m: &Mechanism<D>,
     title: &str,
-    unloaded: &Solution<Spatial>,
-    loaded: &[(String, Solution<Spatial>)],
+    unloaded: &Solution<D>,
+    loaded: &[(String, Solution<D>)],
     marks: &Marks,
     view: View,
     stress: bool,
 ) -> Result<(Figure, Option<f64>), String> {
-    let rest = spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
+    let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     let shapes = loaded
         .iter()
-        .map(|(l, s)| Ok((l.clone(), spatial(m, l, &s.q, &s.loads)?)))
+        .map(|(l, s)| Ok((l.clone(), D::pose(m, l, &s.q, &s.loads)?)))
         .collect::<Result<Shapes, String>>()?;
-    Ok(figure(&spatial_scene(m), title, &rest, &shapes, marks, view, stress))
+    Ok(figure(&scene(m), title, &rest, &shapes, marks, view, stress))
 }
 
-/// The snapshots (their loads, schedules applied, at their times) of a
-/// planar run, and each moving body's track: its rotation about z and its
-/// origin at z = 0.
-pub fn planar_motion(
-    m: &Mechanism,
-    run: &flexure::dynamics::simulation::Simulation,
-    picked: &[usize],
-) -> (Shapes, Vec<Track>) {
-    let snapshots = picked
-        .iter()
-        .map(|&k| {
-            let loads = flexure::dynamics::schedule::loads_at(m, run.time[k]);
-            (format!("t = {} s", short(run.time[k])), planar(m, run.q(k), &loads))
-        })
-        .collect();
-    let tracks = run
-        .bodies
-        .iter()
-        .map(|b| Track {
-            name: b.name.clone(),
-            rotation: b.phi.iter().map(|&phi| V::new(0.0, 0.0, phi)).collect(),
-            position: b.x.iter().zip(&b.y).map(|(x, y)| V::new(*x, *y, 0.0)).collect(),
-        })
-        .collect();
-    (snapshots, tracks)
-}
-
-/// The same of a spatial run: each body's rotation as its rotation vector
-/// $\theta = \varphi\thinspace\hat n$ (angle times unit axis, rad).
-pub fn spatial_motion(
-    m: &SpatialMechanism,
-    sim: &flexure::dynamics::Simulation<flexure::space::Spatial>,
+/// The snapshots of a run at its samples `picked` (their loads, schedules
+/// applied, at their times), and each moving body's track ([`Drawn::tracks`]).
+pub fn motion<D: Drawn>(
+    m: &Mechanism<D>,
+    run: &Simulation<D>,
     picked: &[usize],
 ) -> Result<(Shapes, Vec<Track>), String> {
     let snapshots = picked
         .iter()
         .map(|&k| {
-            let loads = flexure::dynamics::schedule::loads_at(m, sim.time[k]);
-            let label = format!("t = {} s", short(sim.time[k]));
-            Ok((label.clone(), spatial(m, &label, sim.q(k), &loads)?))
+            let loads = flexure::dynamics::schedule::loads_at(m, run.time[k]);
+            let label = format!("t = {} s", short(run.time[k]));
+            Ok((label.clone(), D::pose(m, &label, run.q(k), &loads)?))
         })
         .collect::<Result<Shapes, String>>()?;
-    let rotation =
-        |r: &[[f64; 3]; 3]| Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from_fn(|i, j| r[i][j])).scaled_axis();
-    let tracks = sim
-        .bodies
-        .iter()
-        .map(|b| Track {
-            name: b.name.clone(),
-            rotation: b.rotation.iter().map(rotation).collect(),
-            position: b.position.iter().map(|p| V::from(*p)).collect(),
-        })
-        .collect();
-    Ok((snapshots, tracks))
+    Ok((snapshots, D::tracks(run)))
 }
 
-/// `draw --simulate` of a spatial run ([`motion_figures`]).
+/// `draw --simulate` of a run ([`motion_figures`]).
 ///
 /// Errors name an empty run or a shape that does not fit `m`.
-pub fn spatial_motion_figures(
-    m: &SpatialMechanism,
+pub fn run_figures<D: Drawn>(
+    m: &Mechanism<D>,
     title: &str,
-    unloaded: &Solution<Spatial>,
-    sim: &flexure::dynamics::Simulation<flexure::space::Spatial>,
+    unloaded: &Solution<D>,
+    run: &Simulation<D>,
     view: View,
     stress: bool,
 ) -> Result<MotionFigures, String> {
-    let samples = sim.time.len();
-    if samples == 0 || sim.coordinates.len() != samples * m.dof() {
-        return Err(format!("the run has {samples} samples of {} coordinates: nothing to draw", sim.dim));
+    let samples = run.time.len();
+    if samples == 0 || run.coordinates.len() != samples * m.dof() {
+        return Err(format!("the run has {samples} samples of {} coordinates: nothing to draw", run.dim));
     }
     let picked = super::drawing::snapshot_samples(samples);
-    let (snapshots, tracks) = spatial_motion(m, sim, &picked)?;
-    let rest = spatial(m, "unloaded", &unloaded.q, &unloaded.loads)?;
-    motion_figures(&spatial_scene(m), title, (&rest, &snapshots), (&sim.time, &tracks), &picked, view, stress)
+    let (snapshots, tracks) = motion(m, run, &picked)?;
+    let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
+    motion_figures(&scene(m), title, (&rest, &snapshots), (&run.time, &tracks), &picked, view, stress)
 }
