@@ -7,7 +7,7 @@ use clap::Args;
 use flexure::connect::{Connection, connect};
 use flexure::estimate::Accuracy;
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, equilibrium};
+use flexure::tendon::{TendonData, TendonOffsets, equilibrium};
 use flexure::{Error, Flexure, Pose, TipLoad};
 use serde_json::{Value, json};
 
@@ -50,7 +50,7 @@ pub struct ConnectArgs {
 
 /// The exact connection, seeded by the order-3 model's multipliers (on the
 /// same section, when order 3 can hold it).
-pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<elastica::Connection> {
+pub fn exact_connection(flexure: &Flexure, target: &Pose) -> flexure::Result<elastica::ElasticaConnection> {
     // The seed is the order-3 model of the same flexure: its section and its
     // rest shape (the basis is nested, so the first three coefficients).
     let seed = match flexure.order() {
@@ -132,7 +132,7 @@ pub fn connect_cmd(args: &ConnectArgs) -> flexure::Result<Value> {
 
 /// A sweep `F0:F1:COUNT` of tendon tension.
 #[derive(Debug, Clone, Copy)]
-pub struct Sweep {
+pub struct SweepRange {
     pub from: f64,
     pub to: f64,
     pub count: usize,
@@ -142,17 +142,17 @@ pub struct Sweep {
 pub const MAX_SWEEP: usize = 10_000;
 
 /// Parses `F0:F1:COUNT` with finite ends and 2 to [`MAX_SWEEP`] values.
-fn range(s: &str) -> Result<Sweep, String> {
+fn range(s: &str) -> Result<SweepRange, String> {
     let parts: Vec<&str> = s.split(':').collect();
     if parts.len() != 3 {
         return Err(format!("{s:?} must be F0:F1:COUNT"));
     }
     let count = count(parts[2], 2, MAX_SWEEP).map_err(|e| format!("COUNT {e}"))?;
-    Ok(Sweep { from: number(parts[0])?, to: number(parts[1])?, count })
+    Ok(SweepRange { from: number(parts[0])?, to: number(parts[1])?, count })
 }
 
 /// A tendon-tension sweep: a range whose ends are not negative.
-pub fn sweep_arg(s: &str) -> Result<Sweep, String> {
+pub fn sweep_arg(s: &str) -> Result<SweepRange, String> {
     let sweep = range(s)?;
     if sweep.from < 0.0 || sweep.to < 0.0 {
         return Err(format!("{s:?}: a tendon's tension cannot be negative"));
@@ -178,7 +178,7 @@ pub struct TendonArgs {
     tip_offset: f64,
     /// Sweep the tension F0:F1:COUNT, following the loading path.
     #[arg(long, value_parser = sweep_arg, allow_hyphen_values = true, conflicts_with_all = ["tension", "force"])]
-    sweep: Option<Sweep>,
+    sweep: Option<SweepRange>,
     #[command(flatten)]
     accuracy: AccuracyOptions,
     #[command(flatten)]
@@ -202,7 +202,7 @@ impl TendonArgs {
 
 fn tendon_row(
     f: &Flexure,
-    t: &Tendon,
+    t: &TendonOffsets,
     tension: f64,
     data: &mut TendonData,
     target: &Accuracy,
@@ -219,7 +219,7 @@ fn tendon_row(
 
 /// Tendon-driven joint equilibrium (Sec. III-D), or a sweep of tensions.
 pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
-    let t = Tendon { root_offset: args.root_offset, tip_offset: args.tip_offset };
+    let t = TendonOffsets { root_offset: args.root_offset, tip_offset: args.tip_offset };
     let target = args.accuracy.target();
     if args.sweep.is_some() && args.flexure.auto() {
         return Err(Error::invalid("order", "auto", "a sweep's rows share one order: give a number with --sweep"));
@@ -278,7 +278,7 @@ pub fn tendon_cmd(args: &TendonArgs) -> flexure::Result<Value> {
 #[derive(Debug, Clone)]
 pub struct SweepSpec {
     pub parameter: String,
-    pub range: Sweep,
+    pub range: SweepRange,
 }
 
 pub fn sweep_spec(s: &str) -> Result<SweepSpec, String> {
@@ -287,6 +287,6 @@ pub fn sweep_spec(s: &str) -> Result<SweepSpec, String> {
 }
 
 /// The values of a sweep, ends included.
-pub fn sweep_values(s: &Sweep) -> Vec<f64> {
+pub fn sweep_values(s: &SweepRange) -> Vec<f64> {
     (0..s.count).map(|i| s.from + (s.to - s.from) * i as f64 / (s.count - 1) as f64).collect()
 }

@@ -6,7 +6,7 @@
 use crate::joint::pose as pose_json;
 use crate::options::{number, parse_angle, warn};
 use flexure::kinematics::{Pose, par_poses_root_tip};
-use flexure::{Flexure, Statics, TipLoad, deflect, energy};
+use flexure::{Flexure, StaticsData, TipLoad, deflect, energy};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -134,7 +134,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
     if polar && (column(&table, "fx").is_some() || column(&table, "fy").is_some()) {
         return Err(format!("--input {}: give force,angle or fx,fy, not both", path.display()));
     }
-    let mut data = Statics::new(f);
+    let mut data = StaticsData::new(f);
     // The rows share the flexure, so its reference model is built once.
     let mut estimator = flexure::estimate::Estimator::new();
     let mut flagged = 0;
@@ -161,7 +161,7 @@ pub fn deflect_rows(f: &Flexure, path: &Path, target: &flexure::estimate::Accura
                 }
                 Err(e) => {
                     // Nothing of a failed solve carries over to the next row.
-                    data = Statics::new(f);
+                    data = StaticsData::new(f);
                     Err(e.to_string())
                 }
             }

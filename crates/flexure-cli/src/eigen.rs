@@ -42,7 +42,7 @@ impl EigenAccuracyOptions {
 /// (`critical_load`, `load_factor`, `omega`), `one` whether there is a
 /// single value (a number) or one per mode (an array), `flexures` the
 /// flexure joints' names for a mechanism (empty for one joint).
-pub struct Shape<'a> {
+pub struct EigenKeys<'a> {
     pub key: &'static str,
     pub one: bool,
     pub flexures: &'a [String],
@@ -54,7 +54,7 @@ pub struct Shape<'a> {
 /// reference_quadrature (numbers for one joint, {joint: n} for a
 /// mechanism), and where some value has no estimate, `unestimated` (their
 /// numbers from 1) and `reference_stable`}.
-pub fn insert_eigen_estimate(answer: &mut Value, e: &ValueEstimate, shape: &Shape) {
+pub fn insert_eigen_estimate(answer: &mut Value, e: &ValueEstimate, shape: &EigenKeys) {
     let paired: Vec<f64> = e.relative.iter().map_while(|r| *r).collect();
     let mut out = Map::new();
     let relative = if shape.one { paired.first().map_or(Value::Null, |r| json!(r)) } else { json!(paired) };
@@ -130,7 +130,7 @@ pub fn reference_of_joint(e: &ValueEstimate) -> String {
 /// flexure has `order = "auto"`: the orders the answer was found at).
 pub fn insert_mechanism_estimate(answer: &mut Value, used: &Model, e: &ValueEstimate, key: &'static str) {
     let flexures = used.flexure_names();
-    insert_eigen_estimate(answer, e, &Shape { key, one: key == "load_factor", flexures: &flexures });
+    insert_eigen_estimate(answer, e, &EigenKeys { key, one: key == "load_factor", flexures: &flexures });
     if used.auto_order() {
         let orders = used.orders().0.into_iter().map(|(name, o)| match o.as_slice() {
             [one] => (name, json!(one)),

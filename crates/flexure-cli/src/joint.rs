@@ -9,7 +9,7 @@ use flexure::kinematics::TipKinematics;
 use flexure::reference::elastica::Trace;
 use flexure::reference::{self, elastica};
 use flexure::{
-    Error, Pose, Statics, TipConstraint, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
+    Error, Pose, StaticsData, TipConstraint, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
 };
 use serde_json::{Value, json};
 
@@ -71,7 +71,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let target = args.accuracy.target();
     let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
     crate::stress::check(&f, &args.stress)?;
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let settings =
         flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
     let eq = deflect(&f, &load, &mut data, &settings)?;
@@ -198,7 +198,7 @@ pub fn buckling(args: &BucklingArgs) -> flexure::Result<Value> {
     crate::eigen::insert_eigen_estimate(
         &mut answer,
         &e,
-        &crate::eigen::Shape { key: "critical_load", one: true, flexures: &[] },
+        &crate::eigen::EigenKeys { key: "critical_load", one: true, flexures: &[] },
     );
     let hint = if !args.flexure.auto() {
         "try --order auto".to_string()

@@ -320,7 +320,7 @@ fn joint_modes(args: &ModesArgs) -> Result<Value, String> {
     crate::eigen::insert_eigen_estimate(
         &mut answer,
         &estimate,
-        &crate::eigen::Shape { key: "omega", one: false, flexures: &[] },
+        &crate::eigen::EigenKeys { key: "omega", one: false, flexures: &[] },
     );
     let hint = if !auto {
         "try --order auto, or fewer --count".to_string()

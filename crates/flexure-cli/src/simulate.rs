@@ -58,7 +58,7 @@ pub struct MotionOptions {
 impl MotionOptions {
     /// The library's settings over `duration` (checked by the library, by name).
     pub fn settings(&self, duration: f64) -> SimulationSettings {
-        let motion = integrate::Settings {
+        let motion = integrate::MotionSettings {
             duration,
             every: self.every.unwrap_or(duration / 100.0),
             tolerance: self.tolerance,

@@ -128,7 +128,7 @@ fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> flexure::Result<Val
 /// [`shape`] prints them): each carried from the rod's nearest frame
 /// ([`rod::sections`]), its curvature $K^{-1}R^Tm + u^0$ from its moment,
 /// and its stress that of the change $K^{-1}R^Tm$.
-fn rod_shape(rod: &Rod, load: &SpatialLoad, exact: &rod::Solution, model: &Value) -> flexure::Result<Value> {
+fn rod_shape(rod: &Rod, load: &SpatialLoad, exact: &rod::RodSolution, model: &Value) -> flexure::Result<Value> {
     let at: Vec<f64> = model.as_array().into_iter().flatten().filter_map(|p| p["s"].as_f64()).collect();
     let (l, section) = (rod.length(), rod.section());
     let sections = rod::sections(rod, load, exact, &at, &Default::default())?;

@@ -11,7 +11,7 @@
 //! and `a_motion_draws_five_snapshots_over_the_rest_shape` also write their
 //! SVGs into DIR, to be looked at.
 
-use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;

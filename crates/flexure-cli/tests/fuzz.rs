@@ -32,10 +32,10 @@
 
 use flexure::kinematics::{Level, backbone, par_poses_root_tip};
 use flexure::reference::{compliance as exact_compliance, elastica};
-use flexure::tendon::{Tendon, TendonData, pull};
+use flexure::tendon::{TendonData, TendonOffsets, pull};
 use flexure::{
-    Flexure, Kinematics, Pose, Statics, TipConstraint, TipLoad, bending_stiffness, buckling_load, compliance_tip_rest,
-    connect::connect, deflect, energy, energy_gradient, update_kinematics,
+    Flexure, Kinematics, Pose, StaticsData, TipConstraint, TipLoad, bending_stiffness, buckling_load,
+    compliance_tip_rest, connect::connect, deflect, energy, energy_gradient, update_kinematics,
 };
 use serde_json::Value;
 use std::cell::{Cell, RefCell};
@@ -868,8 +868,8 @@ fn library_case(r: &mut Rng, call: &mut String) -> Result<(), String> {
                 max_evaluations: flexure::Settings::default().max_evaluations,
             };
             let l = load(r);
-            let c = set(format!("deflect(&f, &{l:?}, &mut Statics::new(&f), &{settings:?})"));
-            let mut data = Statics::new(&f);
+            let c = set(format!("deflect(&f, &{l:?}, &mut StaticsData::new(&f), &{settings:?})"));
+            let mut data = StaticsData::new(&f);
             match deflect(&f, &l, &mut data, &settings) {
                 Ok(eq) => finite(&c, data.alpha().iter().chain(&data.stiffness).copied().chain([eq.residual])),
                 Err(_) => Ok(()),
@@ -933,7 +933,7 @@ fn library_case(r: &mut Rng, call: &mut String) -> Result<(), String> {
             }
         }
         9 => {
-            let t = Tendon { root_offset: num(r, -0.2, 0.2), tip_offset: num(r, -0.2, 0.2) };
+            let t = TendonOffsets { root_offset: num(r, -0.2, 0.2), tip_offset: num(r, -0.2, 0.2) };
             let tension = num(r, 0.0, 10.0);
             let c = set(format!("tendon::pull(&f, &{t:?}, {tension:?}, &mut TendonData::new(&f))"));
             let mut data = TendonData::new(&f);

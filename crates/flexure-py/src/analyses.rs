@@ -14,7 +14,7 @@ use crate::strict::finite_answer;
 use crate::warnings::{sig, warn, warn_inaccurate, warn_unestimated};
 use flexure::connect::connect as connect_pose;
 use flexure::estimate::{self, Accuracy};
-use flexure::tendon::{Tendon, TendonData, equilibrium};
+use flexure::tendon::{TendonData, TendonOffsets, equilibrium};
 use flexure::{Error, Pose, StabilityLimit, TipLoad};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -115,7 +115,7 @@ pub fn tendon<'py>(
     f: &flexure::Flexure,
     yield_strength: Option<f64>,
     tension: f64,
-    t: Tendon,
+    t: TendonOffsets,
     target: &Accuracy,
     auto: bool,
     limit: Option<f64>,

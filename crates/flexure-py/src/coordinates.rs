@@ -50,17 +50,17 @@ impl std::ops::Deref for Row {
 
 /// Rows of coordinates, row after row: borrowed from the caller's array when
 /// it is C-contiguous float64, else NumPy's conversion copied once.
-pub enum Rows<'py> {
+pub enum CoordinateRows<'py> {
     Borrowed(PyArrayLikeDyn<'py, f64, AllowTypeChange>),
     Copied(Vec<f64>),
 }
 
-impl Rows<'_> {
+impl CoordinateRows<'_> {
     pub fn as_slice(&self) -> &[f64] {
         match self {
             // Only made when `as_slice` succeeds (a C-contiguous array).
-            Rows::Borrowed(a) => a.as_slice().unwrap_or(&[]),
-            Rows::Copied(v) => v,
+            CoordinateRows::Borrowed(a) => a.as_slice().unwrap_or(&[]),
+            CoordinateRows::Copied(v) => v,
         }
     }
 }
@@ -68,7 +68,7 @@ impl Rows<'_> {
 /// `alpha` as read: one configuration, or `count` of them.
 pub enum Coordinates<'py> {
     One(Row),
-    Many { count: usize, rows: Rows<'py> },
+    Many { count: usize, rows: CoordinateRows<'py> },
 }
 
 /// Reads `alpha` as an (N,) or (n, N) array of finite values for order `n`.
@@ -110,10 +110,10 @@ pub fn read<'py>(n: usize, alpha: &Bound<'py, PyAny>) -> PyResult<Coordinates<'p
     };
     // `as_slice` takes Fortran order too, which is not row after row.
     let rows = if array.is_c_contiguous() && array.as_slice().is_ok() {
-        Rows::Borrowed(array)
+        CoordinateRows::Borrowed(array)
     } else {
         // Not C-contiguous (a transposed or strided view): one copy, in row order.
-        Rows::Copied(array.as_array().iter().copied().collect())
+        CoordinateRows::Copied(array.as_array().iter().copied().collect())
     };
     all_finite("alpha", rows.as_slice())?;
     Ok(Coordinates::Many { count, rows })

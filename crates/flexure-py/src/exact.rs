@@ -33,7 +33,7 @@ use std::sync::OnceLock;
 pub struct Elastica {
     flexure: Py<Flexure>,
     load: TipLoad,
-    solution: elastica::Solution,
+    solution: elastica::ElasticaSolution,
     /// The peak stress (`None` without a thickness), once known.
     stress: OnceLock<Option<Peak>>,
     /// The largest change of curvature, once known.

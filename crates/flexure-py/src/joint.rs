@@ -442,7 +442,7 @@ impl Flexure {
                 "invalid {name} = {tension}: a tendon's tension must not be negative (N)"
             )));
         }
-        let t = flexure::tendon::Tendon {
+        let t = flexure::tendon::TendonOffsets {
             root_offset: real("root_offset", root_offset.ok_or_else(|| missing("root_offset"))?)?,
             tip_offset: real("tip_offset", tip_offset.ok_or_else(|| missing("tip_offset"))?)?,
         };

@@ -32,7 +32,7 @@ pub fn motion<'py>(
             return Err(PyValueError::new_err(format!("start = {other:?}: must be \"equilibrium\" or \"rest\"")));
         }
     };
-    let motion = integrate::Settings {
+    let motion = integrate::MotionSettings {
         duration,
         every: every.unwrap_or(duration / 100.0),
         tolerance,

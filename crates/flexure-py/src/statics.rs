@@ -12,7 +12,7 @@ use crate::strict::{self, Real};
 use crate::warnings::{sig, warn_inaccurate, warn_unestimated, warn_unstable, warn_values};
 use flexure::estimate;
 use flexure::{
-    Error, Kinematics, Level, Statics, TipConstraint, TipLoad, buckling_load as buckling, deflect as solve,
+    Error, Kinematics, Level, StaticsData, TipConstraint, TipLoad, buckling_load as buckling, deflect as solve,
     update_kinematics,
 };
 use numpy::PyArray1;
@@ -78,7 +78,7 @@ pub fn deflect<'py>(
         return Ok((Some(used), PyArray1::from_vec(py, alpha)));
     }
     let (alpha, stable, estimated) = interruptible(py, || {
-        let mut data = Statics::new(f);
+        let mut data = StaticsData::new(f);
         let eq = solve(f, &load, &mut data, &Default::default())?;
         let alpha = data.alpha().to_vec();
         // One estimator per thread: its reference model is rebuilt only for another flexure.

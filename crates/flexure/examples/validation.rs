@@ -12,7 +12,7 @@
 use flexure::estimate::{Accuracy, deflect_auto, deflect_error};
 use flexure::reference::elastica;
 use flexure::section::{Profile, Section};
-use flexure::{Flexure, Statics, TipLoad, deflect};
+use flexure::{Flexure, StaticsData, TipLoad, deflect};
 
 /// SplitMix64: a seeded, reproducible stream in [0, 1).
 struct Rng(u64);
@@ -104,7 +104,7 @@ pub fn sweep(cases: usize) -> Sweep {
     for _ in 0..cases {
         let (_name, load, kappa) = case(&mut rng);
         let f = Flexure::new(1.0, 1.0, 3).and_then(|f| f.with_rest(&kappa)).expect("a valid flexure");
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         if deflect(&f, &load, &mut data, &Default::default()).is_err() {
             out.model_failed += 1;
             continue;
@@ -172,7 +172,7 @@ fn taper_sweep(t: &Accuracy) {
         for m in [0.1, 0.3, 1.0] {
             let exact = if k == 0 { m } else { m * r.ln() / (r - 1.0) };
             let load = TipLoad { moment: m, fx: 0.0, fy: 0.0 };
-            let mut data = Statics::new(&cap);
+            let mut data = StaticsData::new(&cap);
             let row = deflect(&cap, &load, &mut data, &Default::default())
                 .and_then(|_| deflect_error(&cap, &load, data.alpha(), t));
             let auto = match deflect_auto(&f, &load, t) {

@@ -1,4 +1,4 @@
-//! Buckling of a flexure in compression under tip constraints (paper Sec. IV-D, Eqs. 39–44).
+//! CriticalLoad of a flexure in compression under tip constraints (paper Sec. IV-D, Eqs. 39–44).
 
 use crate::error::{Error, Result};
 use crate::flexure::Flexure;
@@ -56,10 +56,10 @@ impl FromStr for TipConstraint {
 
 /// The critical load and its mode (the mode serialized as a list).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Buckling {
+pub struct CriticalLoad {
     /// Smallest compressive tip load $P$ (N) at which the constrained stiffness is singular.
     pub critical_load: f64,
-    /// Buckling mode in joint coordinates, unit length, largest entry positive.
+    /// CriticalLoad mode in joint coordinates, unit length, largest entry positive.
     #[serde(serialize_with = "as_list")]
     pub mode: DVector<f64>,
 }
@@ -90,7 +90,7 @@ fn as_list<S: serde::Serializer>(v: &DVector<f64>, s: S) -> std::result::Result<
 /// let b = buckling_load(&f, TipConstraint::Guided).unwrap();
 /// assert!((b.critical_load - 10.0).abs() < 1e-9);
 /// ```
-pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> {
+pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<CriticalLoad> {
     let n = flexure.order();
     let mut k = Kinematics::new(flexure);
     kinematics::update(flexure, flexure.rest(), &mut k, Level::Hessian);
@@ -117,7 +117,7 @@ pub fn buckling_load(flexure: &Flexure, tip: TipConstraint) -> Result<Buckling> 
         });
     }
     let mode = normalized(z * modes.column(best));
-    Ok(Buckling { critical_load: 1.0 / mu, mode })
+    Ok(CriticalLoad { critical_load: 1.0 / mu, mode })
 }
 
 /// Orthonormal basis of $\lbrace\delta\alpha : J_r\thinspace\delta\alpha = 0\ \forall r \in \text{rows}\rbrace$.

@@ -34,7 +34,7 @@ pub fn compliance_tip_rest(flexure: &Flexure) -> Matrix3<f64> {
 
 /// Tip compliance at any configuration, $C = \mathcal J K^{-1}\mathcal J^T$,
 /// for the Jacobian in `kinematics` and a generalized stiffness such as
-/// [`crate::Statics::stiffness`] or [`crate::statics::loaded_stiffness`]
+/// [`crate::StaticsData::stiffness`] or [`crate::statics::loaded_stiffness`]
 /// (Eq. 32): the response to a small extra load
 /// about a loaded equilibrium.
 ///

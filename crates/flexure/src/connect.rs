@@ -82,13 +82,13 @@ pub fn check_pose(flexure: &Flexure, target: &Pose) -> Result<()> {
 #[derive(Debug, Clone)]
 pub struct ConnectData {
     kinematics: Kinematics<f64>,
-    solver: solver::Workspace<f64>,
+    solver: solver::SolverWorkspace<f64>,
 }
 
 impl ConnectData {
     /// Buffers sized for `flexure`.
     pub fn new(flexure: &Flexure) -> Self {
-        Self { kinematics: Kinematics::new(flexure), solver: solver::Workspace::new(flexure.order() + 3) }
+        Self { kinematics: Kinematics::new(flexure), solver: solver::SolverWorkspace::new(flexure.order() + 3) }
     }
 }
 

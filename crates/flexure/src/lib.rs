@@ -32,12 +32,12 @@
 //! ```
 //! use flexure::estimate::{Accuracy, deflect_error};
 //! use flexure::reference::elastica;
-//! use flexure::{Flexure, Statics, TipLoad, deflect};
+//! use flexure::{Flexure, StaticsData, TipLoad, deflect};
 //!
 //! // L = 1 m, EI = 1 N·m², three curvature coefficients (the paper's).
 //! let f = Flexure::new(1.0, 1.0, 3)?;
 //! let load = TipLoad { moment: 0.0, fx: 0.0, fy: 1.0 };
-//! let mut data = Statics::new(&f);
+//! let mut data = StaticsData::new(&f);
 //! let eq = deflect(&f, &load, &mut data, &Default::default())?;
 //! let tip = data.pose_root_tip();
 //! assert!(eq.stable);
@@ -89,7 +89,7 @@
 //! | model one flexure: length, section, order, rest shape | [`Flexure`], [`section::Section`] |
 //! | evaluate it: tip pose, Jacobian, Hessians | [`Kinematics`], [`update_kinematics`], [`Pose`] |
 //! | its energy and gradient (Eqs. 9, 18) | [`energy()`], [`energy_gradient`] |
-//! | equilibrium under a tip load (Eq. 22) | [`deflect`] with [`Statics`] and [`TipLoad`]; [`statics::stability_limit`] |
+//! | equilibrium under a tip load (Eq. 22) | [`deflect`] with [`StaticsData`] and [`TipLoad`]; [`statics::stability_limit`] |
 //! | a tendon-driven joint (Eqs. 23–26) | [`tendon::pull`], [`tendon::stability_limit`] |
 //! | the shape through a tip pose (Eq. 16) | [`connect::connect`] |
 //! | tip compliance (Eqs. 33–36) | [`compliance_tip_rest`], [`compliance_tip`] |
@@ -105,7 +105,7 @@
 //! | the solver core every model solve shares | [`solver`] |
 //!
 //! An immutable [`Flexure`] (the model) and reusable buffers ([`Kinematics`],
-//! [`Statics`]) that evaluations fill without allocating; algorithms are
+//! [`StaticsData`]) that evaluations fill without allocating; algorithms are
 //! plain functions over them. Kernels and solvers are generic over
 //! [`Scalar`], so `num-dual` numbers differentiate through the same code.
 //! For `f64`, the quadrature nodes' sines and cosines are computed all at
@@ -220,7 +220,7 @@ pub mod statics;
 pub mod stress;
 pub mod tendon;
 
-pub use buckling::{Buckling, TipConstraint, buckling_load};
+pub use buckling::{CriticalLoad, TipConstraint, buckling_load};
 pub use compliance::{compliance_tip, compliance_tip_rest};
 pub use energy::{energy, energy_gradient};
 pub use error::{Error, Result};
@@ -229,4 +229,4 @@ pub use kinematics::{Kinematics, Level, Pose, pose_root_tip, update as update_ki
 pub use limit::StabilityLimit;
 pub use scalar::Scalar;
 pub use section::bending_stiffness;
-pub use statics::{Equilibrium, Settings, Statics, TipLoad, deflect};
+pub use statics::{Equilibrium, Settings, StaticsData, TipLoad, deflect};

@@ -21,23 +21,23 @@ pub use crate::space::MAX_LOAD;
 
 /// Work buffers and results of [`deflect`] for one flexure (the Data).
 #[derive(Debug, Clone)]
-pub struct Statics<T: Scalar = f64> {
+pub struct StaticsData<T: Scalar = f64> {
     /// Kinematics at the solution.
     pub kinematics: Kinematics<T>,
     /// Generalized stiffness $K$ at the solution (Eq. 32).
     pub stiffness: DMatrix<T>,
-    solver: solver::Workspace<T>,
+    solver: solver::SolverWorkspace<T>,
     scratch: Vec<T>,
 }
 
-impl<T: Scalar> Statics<T> {
+impl<T: Scalar> StaticsData<T> {
     /// Buffers sized for `flexure`.
     pub fn new(flexure: &Flexure) -> Self {
         let n = flexure.order();
         Self {
             kinematics: Kinematics::new(flexure),
             stiffness: DMatrix::zeros(n, n),
-            solver: solver::Workspace::new(n),
+            solver: solver::SolverWorkspace::new(n),
             scratch: vec![T::zero(); n * n],
         }
     }
@@ -53,7 +53,7 @@ impl<T: Scalar> Statics<T> {
     }
 }
 
-/// What [`deflect`] found, beside the data left in [`Statics`];
+/// What [`deflect`] found, beside the data left in [`StaticsData`];
 /// serialized with `limit` as `limit_fraction`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Equilibrium {
@@ -250,9 +250,9 @@ pub fn loaded_stiffness(flexure: &Flexure, kinematics: &Kinematics<f64>, load: &
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, Flexure, Statics, TipLoad};
+/// use flexure::{deflect, Flexure, StaticsData, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// // A pure moment bends the flexure into an arc of angle ML/EI.
 /// let eq = deflect(&f, &TipLoad { moment: 1.2, fx: 0.0, fy: 0.0 }, &mut data, &Default::default()).unwrap();
 /// assert!(eq.stable && (data.alpha()[0] - 1.2).abs() < 1e-12);
@@ -260,7 +260,7 @@ pub fn loaded_stiffness(flexure: &Flexure, kinematics: &Kinematics<f64>, load: &
 pub fn deflect<T: Scalar>(
     flexure: &Flexure,
     load: &TipLoad<T>,
-    data: &mut Statics<T>,
+    data: &mut StaticsData<T>,
     settings: &Settings,
 ) -> Result<Equilibrium> {
     follow(flexure, load, data, settings, false)
@@ -270,7 +270,7 @@ pub fn deflect<T: Scalar>(
 fn follow<T: Scalar>(
     flexure: &Flexure,
     load: &TipLoad<T>,
-    data: &mut Statics<T>,
+    data: &mut StaticsData<T>,
     settings: &Settings,
     while_stable: bool,
 ) -> Result<Equilibrium> {
@@ -303,7 +303,7 @@ pub fn correct<T: Scalar>(
     flexure: &Flexure,
     load: &TipLoad<T>,
     alpha: &[T],
-    data: &mut Statics<T>,
+    data: &mut StaticsData<T>,
     settings: &Settings,
 ) -> Result<Equilibrium> {
     TipLoad { moment: load.moment.re(), fx: load.fx.re(), fy: load.fy.re() }.validate()?;
@@ -365,7 +365,7 @@ pub(crate) fn rotation<T: Scalar>(flexure: &Flexure, a: &[T], b: Option<&[T]>) -
 /// ```
 pub fn stability_limit(flexure: &Flexure, load: &TipLoad, max_factor: f64) -> Result<StabilityLimit> {
     load.validate()?;
-    let mut data = Statics::new(flexure);
+    let mut data = StaticsData::new(flexure);
     // Each probe stops where its path loses stability: only that is asked.
     limit::search(max_factor, |factor| {
         let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };

@@ -14,14 +14,14 @@ use crate::statics::{Equilibrium, Settings, rotation};
 /// $T_1$ = translation $(0, d_1)$ in the root frame and $T_2$ = translation
 /// $(0, d_2)$ in the tip frame (Eq. 26): offsets from the neutral axis (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tendon {
+pub struct TendonOffsets {
     /// $d_1$: offset at the root.
     pub root_offset: f64,
     /// $d_2$: offset at the tip.
     pub tip_offset: f64,
 }
 
-impl Tendon {
+impl TendonOffsets {
     /// Checks that both offsets are finite.
     pub fn validate(&self) -> Result<()> {
         finite("root-offset", self.root_offset)?;
@@ -42,13 +42,13 @@ impl Tendon {
 ///
 /// # Example
 /// ```
-/// use flexure::{tendon::{tendon_length, Tendon}, Flexure};
+/// use flexure::{tendon::{tendon_length, TendonOffsets}, Flexure};
 /// let f = Flexure::new(0.015, 1.4558e-3, 3).unwrap();
-/// let t = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+/// let t = TendonOffsets { root_offset: 0.005, tip_offset: 0.005 };
 /// // Straight: the tendon runs parallel to the flexure.
 /// assert!((tendon_length(&f, &t, &[0.0, 0.0, 0.0]) - 0.015).abs() < 1e-15);
 /// ```
-pub fn tendon_length<T: Scalar>(flexure: &Flexure, tendon: &Tendon, alpha: &[T]) -> T {
+pub fn tendon_length<T: Scalar>(flexure: &Flexure, tendon: &TendonOffsets, alpha: &[T]) -> T {
     let p = kinematics::pose_root_tip(flexure, alpha);
     let [dx, dy] = tendon.span(p.phi, p.x, p.y);
     (dx * dx + dy * dy).sqrt()
@@ -60,7 +60,7 @@ pub struct TendonPotential<'a, T: Scalar> {
     /// The joint.
     pub flexure: &'a Flexure,
     /// The tendon's attachments.
-    pub tendon: Tendon,
+    pub tendon: TendonOffsets,
     /// Tension $f$ (N).
     pub tension: T,
     /// Kinematics buffers.
@@ -130,7 +130,7 @@ impl<T: Scalar> TendonPotential<'_, T> {
 pub struct TendonData {
     /// Kinematics at the solution.
     pub kinematics: Kinematics<f64>,
-    solver: solver::Workspace<f64>,
+    solver: solver::SolverWorkspace<f64>,
     alpha: Vec<f64>,
     tension: f64,
     scratch: Vec<f64>,
@@ -142,7 +142,7 @@ impl TendonData {
         let n = flexure.order();
         Self {
             kinematics: Kinematics::new(flexure),
-            solver: solver::Workspace::new(n),
+            solver: solver::SolverWorkspace::new(n),
             alpha: flexure.rest().to_vec(),
             tension: 0.0,
             scratch: vec![0.0; n * n],
@@ -240,16 +240,16 @@ impl solver::Problem<f64> for TendonProblem<'_> {
 ///
 /// # Example
 /// ```
-/// use flexure::{tendon::{pull, Tendon, TendonData}, Flexure};
+/// use flexure::{tendon::{pull, TendonOffsets, TendonData}, Flexure};
 /// let ei = flexure::bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap();
 /// let f = Flexure::new(0.015, ei, 3).unwrap();
-/// let t = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+/// let t = TendonOffsets { root_offset: 0.005, tip_offset: 0.005 };
 /// let mut data = TendonData::new(&f);
 /// pull(&f, &t, 10.0, &mut data).unwrap();
 /// // Tension bends the joint toward the tendon (errata, Eq. 24).
 /// assert!(data.alpha()[0] > 0.1);
 /// ```
-pub fn pull(flexure: &Flexure, tendon: &Tendon, tension: f64, data: &mut TendonData) -> Result<Equilibrium> {
+pub fn pull(flexure: &Flexure, tendon: &TendonOffsets, tension: f64, data: &mut TendonData) -> Result<Equilibrium> {
     follow(flexure, tendon, tension, data, false)
 }
 
@@ -277,9 +277,9 @@ pub struct TendonEquilibrium {
 ///
 /// # Example
 /// ```
-/// use flexure::{tendon::{equilibrium, pull, tendon_length, Tendon, TendonData}, Flexure};
+/// use flexure::{tendon::{equilibrium, pull, tendon_length, TendonOffsets, TendonData}, Flexure};
 /// let f = Flexure::new(1.0, 1.0, 3)?;
-/// let t = Tendon { root_offset: 0.1, tip_offset: 0.05 };
+/// let t = TendonOffsets { root_offset: 0.1, tip_offset: 0.05 };
 /// let answer = equilibrium(&f, &t, 5.0, &mut TendonData::new(&f))?;
 /// // The same equilibrium as `pull`'s, described at its own α.
 /// let mut data = TendonData::new(&f);
@@ -297,7 +297,7 @@ pub struct TendonEquilibrium {
 /// ```
 pub fn equilibrium(
     flexure: &Flexure,
-    tendon: &Tendon,
+    tendon: &TendonOffsets,
     tension: f64,
     data: &mut TendonData,
 ) -> Result<TendonEquilibrium> {
@@ -321,20 +321,25 @@ pub fn equilibrium(
 ///
 /// # Example
 /// ```
-/// use flexure::{tendon::{stability_limit, Tendon}, Flexure, StabilityLimit};
+/// use flexure::{tendon::{stability_limit, TendonOffsets}, Flexure, StabilityLimit};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
 /// // A tendon that crosses the flexure pulls its tip attachment onto its root
 /// // attachment near 22.9 N, where the path ends (|Δx| has a kink there)…
-/// let crossing = Tendon { root_offset: 0.1, tip_offset: -0.05 };
+/// let crossing = TendonOffsets { root_offset: 0.1, tip_offset: -0.05 };
 /// let l = stability_limit(&f, &crossing, 1.0, 1000.0).unwrap();
 /// assert!(matches!(l, StabilityLimit::StableUpTo { stalled: Some(_), .. }));
 /// assert!((l.factor() - 22.893).abs() < 1e-3);
 /// // …and so does its mirror image, at the same tension.
-/// let mirror = Tendon { root_offset: -0.1, tip_offset: 0.05 };
+/// let mirror = TendonOffsets { root_offset: -0.1, tip_offset: 0.05 };
 /// let m = stability_limit(&f, &mirror, 1.0, 1000.0).unwrap();
 /// assert!((m.factor() / l.factor() - 1.0).abs() < 1e-9);
 /// ```
-pub fn stability_limit(flexure: &Flexure, tendon: &Tendon, tension: f64, max_factor: f64) -> Result<StabilityLimit> {
+pub fn stability_limit(
+    flexure: &Flexure,
+    tendon: &TendonOffsets,
+    tension: f64,
+    max_factor: f64,
+) -> Result<StabilityLimit> {
     let mut data = TendonData::new(flexure);
     limit::search(max_factor, |factor| {
         data = TendonData::new(flexure);
@@ -345,7 +350,7 @@ pub fn stability_limit(flexure: &Flexure, tendon: &Tendon, tension: f64, max_fac
 /// [`pull`], or with `while_stable` stopping where the path loses stability.
 fn follow(
     flexure: &Flexure,
-    tendon: &Tendon,
+    tendon: &TendonOffsets,
     tension: f64,
     data: &mut TendonData,
     while_stable: bool,
@@ -381,7 +386,7 @@ fn follow(
 /// alone, with no continuation. Leaves the solution in `data`.
 pub fn correct(
     flexure: &Flexure,
-    tendon: &Tendon,
+    tendon: &TendonOffsets,
     tension: f64,
     alpha: &[f64],
     data: &mut TendonData,

@@ -2,7 +2,7 @@
 //! energy and deflect, at orders 3 and 6 (the fixed-size kernels) and 9
 //! (the any-order path), counted by a global allocator.
 
-use flexure::{Flexure, Kinematics, Level, Statics, TipLoad, deflect, energy, energy_gradient, update_kinematics};
+use flexure::{Flexure, Kinematics, Level, StaticsData, TipLoad, deflect, energy, energy_gradient, update_kinematics};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -43,7 +43,7 @@ fn evaluation_path_does_not_allocate() {
         let alpha: Vec<f64> = (0..order).map(|i| 0.3 / (i + 1) as f64).collect();
         let mut k = Kinematics::new(&f);
         let mut g = vec![0.0; order];
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         let load = TipLoad::polar(0.2, 3.8477, 45f64.to_radians());
         // The counter must see allocations at all, or the test proves nothing.
         assert!(allocations(|| drop(std::hint::black_box(vec![0u8; 16]))) > 0);
@@ -86,7 +86,7 @@ fn mechanism_newton_does_not_allocate() {
     let settings = Settings::default();
     let zero = chain.loads().zero_like();
     let mut kkt = Kkt::new(&chain, &zero, &chain.loads(), &settings).unwrap();
-    let mut ws = solver::Workspace::new(kkt.dim());
+    let mut ws = solver::SolverWorkspace::new(kkt.dim());
     let start = kkt.state(&chain.rest(), &[]);
     ws.x.copy_from_slice(&start);
     solver::newton(&mut kkt, &mut ws, 1.0, &settings).unwrap();
@@ -200,7 +200,7 @@ fn sections_and_mass_do_not_allocate() {
         let f = Flexure::new(0.01, 1.0, order).unwrap().with_section(section).unwrap();
         let alpha: Vec<f64> = (0..order).map(|i| 0.3 / (i + 1) as f64).collect();
         let mut g = vec![0.0; order];
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         let load = TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * f.ei() / (0.01 * 0.01) };
         let body = RigidInertia::new(0.005, 1e-7, [0.002, 0.0]).unwrap();
         let model = MassModel::new(&f, Some(&body)).unwrap();

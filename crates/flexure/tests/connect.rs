@@ -8,7 +8,7 @@ use std::f64::consts::FRAC_PI_2;
 /// The stand-in for the paper's Fig. 4 pose (the paper does not print it).
 const FIG4: Pose = Pose { phi: FRAC_PI_2, x: 0.55, y: 0.65 };
 
-fn exact(c: &Connection, target: &Pose) -> elastica::Connection {
+fn exact(c: &Connection, target: &Pose) -> elastica::ElasticaConnection {
     // The model's multipliers are the tip load; move the moment to the root.
     let m0 = c.load.moment + target.x * c.load.fy - target.y * c.load.fx;
     elastica::connect(&Flexure::new(1.0, 1.0, 3).unwrap(), target, [m0, c.load.fx, c.load.fy], &Default::default())

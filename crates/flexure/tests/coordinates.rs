@@ -4,8 +4,8 @@
 //! truncate to the overlapping entries.
 
 use flexure::{
-    Flexure, Kinematics, Level, Statics, compliance_tip, energy, energy_gradient, kinematics::backbone, pose_root_tip,
-    update_kinematics,
+    Flexure, Kinematics, Level, StaticsData, compliance_tip, energy, energy_gradient, kinematics::backbone,
+    pose_root_tip, update_kinematics,
 };
 use nalgebra::DMatrix;
 
@@ -91,6 +91,6 @@ fn backbone_panics_on_a_short_alpha() {
 #[should_panic(expected = "stiffness must be 3 x 3 (one row and column per coordinate), got 2 x 2")]
 fn compliance_panics_on_a_stiffness_of_another_order() {
     let f = order_3();
-    let data = Statics::new(&f);
+    let data = StaticsData::new(&f);
     let _ = compliance_tip(&data.kinematics, &DMatrix::identity(2, 2));
 }

@@ -7,13 +7,13 @@
 //! hundred periods, and the settings' validation.
 
 use flexure::dynamics::System;
-use flexure::dynamics::integrate::{Settings, Trajectory, integrate};
+use flexure::dynamics::integrate::{MotionSettings, Trajectory, integrate};
 use flexure::{Error, Result};
 
 const G: f64 = 9.81;
 
-fn settings(duration: f64, every: f64, tolerance: f64) -> Settings {
-    Settings { duration, every, tolerance, absolute: tolerance, ..Default::default() }
+fn settings(duration: f64, every: f64, tolerance: f64) -> MotionSettings {
+    MotionSettings { duration, every, tolerance, absolute: tolerance, ..Default::default() }
 }
 
 /// A rigid pendulum of mass `m` on a massless rod of length `l`, angle θ
@@ -616,7 +616,7 @@ fn energy_drifts_less_than_1e6_over_100_periods() {
     assert!(drift <= 1e-6, "energy drifted by {drift}");
 }
 
-fn bad(s: Settings) -> &'static str {
+fn bad(s: MotionSettings) -> &'static str {
     let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
     match integrate(&mut p, &[0.1], &[0.0], &s) {
         Err(Error::InvalidParameter { name, .. }) => name,
@@ -630,19 +630,19 @@ fn bad(s: Settings) -> &'static str {
 #[test]
 fn bad_settings_name_the_parameter() {
     let good = settings(1.0, 0.1, 1e-8);
-    assert_eq!(bad(Settings { duration: 0.0, ..good }), "duration");
-    assert_eq!(bad(Settings { duration: -1.0, ..good }), "duration");
-    assert_eq!(bad(Settings { duration: f64::NAN, ..good }), "duration");
-    assert_eq!(bad(Settings { every: 0.0, ..good }), "every");
-    assert_eq!(bad(Settings { every: -0.1, ..good }), "every");
-    assert_eq!(bad(Settings { every: 1e-9, ..good }), "every");
-    assert_eq!(bad(Settings { tolerance: 0.0, ..good }), "tolerance");
-    assert_eq!(bad(Settings { tolerance: -1e-8, ..good }), "tolerance");
-    assert_eq!(bad(Settings { tolerance: 2.0, ..good }), "tolerance");
-    assert_eq!(bad(Settings { absolute: 0.0, ..good }), "absolute");
-    assert_eq!(bad(Settings { max_step: 0.0, ..good }), "max_step");
-    assert_eq!(bad(Settings { max_rotation_per_step: -1.0, ..good }), "max_rotation_per_step");
-    assert_eq!(bad(Settings { max_steps: Some(0), ..good }), "max_steps");
+    assert_eq!(bad(MotionSettings { duration: 0.0, ..good }), "duration");
+    assert_eq!(bad(MotionSettings { duration: -1.0, ..good }), "duration");
+    assert_eq!(bad(MotionSettings { duration: f64::NAN, ..good }), "duration");
+    assert_eq!(bad(MotionSettings { every: 0.0, ..good }), "every");
+    assert_eq!(bad(MotionSettings { every: -0.1, ..good }), "every");
+    assert_eq!(bad(MotionSettings { every: 1e-9, ..good }), "every");
+    assert_eq!(bad(MotionSettings { tolerance: 0.0, ..good }), "tolerance");
+    assert_eq!(bad(MotionSettings { tolerance: -1e-8, ..good }), "tolerance");
+    assert_eq!(bad(MotionSettings { tolerance: 2.0, ..good }), "tolerance");
+    assert_eq!(bad(MotionSettings { absolute: 0.0, ..good }), "absolute");
+    assert_eq!(bad(MotionSettings { max_step: 0.0, ..good }), "max_step");
+    assert_eq!(bad(MotionSettings { max_rotation_per_step: -1.0, ..good }), "max_rotation_per_step");
+    assert_eq!(bad(MotionSettings { max_steps: Some(0), ..good }), "max_steps");
     let mut p = Pendulum { m: 1.0, l: 1.0, c: 0.0 };
     let e = integrate(&mut p, &[0.1, 0.2], &[0.0], &good).unwrap_err();
     assert!(matches!(e, Error::InvalidParameter { name: "initial", .. }), "{e}");
@@ -660,12 +660,17 @@ fn samples_steps_and_rotation_bound() {
     let run = integrate(&mut p, &[1.0], &[0.0], &settings(1.05, 0.25, 1e-6)).unwrap();
     assert_eq!(run.time, [0.0, 0.25, 0.5, 0.75, 1.0, 1.05]);
     let loose = integrate(&mut p, &[1.0], &[0.0], &settings(2.0, 2.0, 1e-4)).unwrap();
-    let capped = integrate(&mut p, &[1.0], &[0.0], &Settings { max_step: 0.01, ..settings(2.0, 2.0, 1e-4) }).unwrap();
+    let capped =
+        integrate(&mut p, &[1.0], &[0.0], &MotionSettings { max_step: 0.01, ..settings(2.0, 2.0, 1e-4) }).unwrap();
     assert!(capped.steps >= 200 && capped.steps > loose.steps, "{} vs {}", capped.steps, loose.steps);
     let bound = 0.02;
-    let turned =
-        integrate(&mut p, &[1.0], &[0.0], &Settings { max_rotation_per_step: bound, ..settings(2.0, 0.01, 1e-4) })
-            .unwrap();
+    let turned = integrate(
+        &mut p,
+        &[1.0],
+        &[0.0],
+        &MotionSettings { max_rotation_per_step: bound, ..settings(2.0, 0.01, 1e-4) },
+    )
+    .unwrap();
     let travel: f64 = (1..turned.time.len()).map(|k| (turned.q(k)[0] - turned.q(k - 1)[0]).abs()).sum();
     assert!(turned.steps as f64 >= travel / bound, "{} steps for {travel} rad", turned.steps);
 }
@@ -780,7 +785,7 @@ fn flexure_vibration_matches_its_mode_and_a_tight_run() {
     let q0: Vec<f64> = shape.iter().map(|s| amplitude * s / shape[0]).collect();
     let v0 = vec![0.0; q0.len()];
     let run = |tolerance: f64| {
-        let s = Settings {
+        let s = MotionSettings {
             duration: 10.0 * period,
             every: period / 4.0,
             tolerance,

@@ -7,7 +7,7 @@
 //! kept over 100 periods, and the four-bar's pin kept closed as it swings.
 
 use flexure::Error;
-use flexure::dynamics::integrate::Settings;
+use flexure::dynamics::integrate::MotionSettings;
 use flexure::dynamics::schedule::loads_at;
 use flexure::dynamics::simulation::{SimulationSettings, Start, initial_state, simulate};
 use flexure::mechanism::file::from_toml;
@@ -16,7 +16,7 @@ use std::f64::consts::FRAC_PI_2;
 
 fn settings(duration: f64, every: f64, tolerance: f64) -> SimulationSettings {
     SimulationSettings {
-        motion: Settings { duration, every, tolerance, absolute: tolerance, ..Default::default() },
+        motion: MotionSettings { duration, every, tolerance, absolute: tolerance, ..Default::default() },
         ..Default::default()
     }
 }

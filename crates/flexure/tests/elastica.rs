@@ -58,7 +58,7 @@ fn tip_force(force: f64, delta: f64) -> TipLoad {
     TipLoad { moment: 0.0, fx: -force * delta.cos(), fy: force * delta.sin() }
 }
 
-fn assert_pose(s: &elastica::Solution, closed: [f64; 3], tolerance: f64, what: &str) {
+fn assert_pose(s: &elastica::ElasticaSolution, closed: [f64; 3], tolerance: f64, what: &str) {
     let got = [s.pose.phi, s.pose.x, s.pose.y];
     for (i, name) in ["φ", "x", "y"].iter().enumerate() {
         assert!((got[i] - closed[i]).abs() < tolerance, "{what}: {name} = {} vs {} (closed form)", got[i], closed[i]);
@@ -174,7 +174,7 @@ fn snap_through_reaches_the_stable_shape_and_reports_the_limit() {
     assert!(elastica::is_stable(&f, s.root_moment, load.fx, load.fy, &Default::default()).unwrap());
 
     let model = Flexure::new(1.0, 1.0, 8).unwrap();
-    let mut data = flexure::Statics::new(&model);
+    let mut data = flexure::StaticsData::new(&model);
     let eq = flexure::deflect(&model, &load, &mut data, &Default::default()).unwrap();
     assert!(eq.stable && (data.pose_root_tip().phi - s.pose.phi).abs() < 1e-5);
 
@@ -205,7 +205,7 @@ fn refusals_name_the_parameter() {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let bad = elastica::deflect(&f, &TipLoad { moment: f64::NAN, fx: 0.0, fy: 0.0 }, &Default::default());
     assert!(matches!(bad, Err(Error::InvalidParameter { name: "moment", .. })), "{bad:?}");
-    let mut settings = elastica::Settings::default();
+    let mut settings = elastica::ShootingSettings::default();
     settings.ode.max_steps = 0;
     let bad = elastica::deflect(&f, &TipLoad::default(), &settings);
     assert!(matches!(bad, Err(Error::InvalidParameter { name: "max_steps", .. })), "{bad:?}");

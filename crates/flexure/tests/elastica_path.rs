@@ -1,10 +1,10 @@
 //! The exact elastica's loading path, integrated loosely
-//! (`Settings::path_tolerance`, 1e-6 by default) and refined at its end,
+//! (`ShootingSettings::path_tolerance`, 1e-6 by default) and refined at its end,
 //! against the same path integrated at the full tolerance (`path_tolerance`
 //! 0), in the same run; and the load family of the `reference/elastica_*`
 //! benches, whose tip angles the exact solver itself checks.
 
-use flexure::reference::elastica::{self, Settings};
+use flexure::reference::elastica::{self, ShootingSettings};
 use flexure::{Error, Flexure, TipLoad};
 
 /// The benches' family (`crates/flexure-bench/benches/speed/reference.rs`):
@@ -46,7 +46,7 @@ fn bench_loads_turn_the_tip_by_their_angles() {
     }
 }
 
-fn assert_same(loose: &elastica::Solution, full: &elastica::Solution, what: &str) {
+fn assert_same(loose: &elastica::ElasticaSolution, full: &elastica::ElasticaSolution, what: &str) {
     let (a, b) = (loose.pose, full.pose);
     let d = (a.phi - b.phi).abs().max((a.x - b.x).abs()).max((a.y - b.y).abs());
     assert!(d < 1e-10, "{what}: loose path {a:?} vs full {b:?}");
@@ -62,7 +62,7 @@ fn assert_same(loose: &elastica::Solution, full: &elastica::Solution, what: &str
 /// the side force's branch.
 #[test]
 fn loose_path_ends_where_the_full_path_does() {
-    let full = Settings { path_tolerance: 0.0, ..Default::default() };
+    let full = ShootingSettings { path_tolerance: 0.0, ..Default::default() };
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let mut cases: Vec<(Flexure, TipLoad)> = FAMILY.iter().map(|&(_, s)| (f.clone(), family(s))).collect();
     for delta in [0.01, std::f64::consts::FRAC_PI_2, 2.0, 3.0_f64] {
@@ -91,7 +91,7 @@ fn loose_path_ends_where_the_full_path_does() {
 /// test asks).
 #[test]
 fn loose_path_reports_the_same_limits() {
-    let full = Settings { path_tolerance: 0.0, ..Default::default() };
+    let full = ShootingSettings { path_tolerance: 0.0, ..Default::default() };
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let snap = TipLoad { moment: -5.155527614759166, fx: 0.0, fy: 7.2595493570994885 };
     let euler = std::f64::consts::PI.powi(2) / 4.0;
@@ -111,7 +111,7 @@ fn loose_path_reports_the_same_limits() {
 fn bad_path_tolerance_is_refused() {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     for bad in [f64::NAN, -1e-6, 1e-2] {
-        let settings = Settings { path_tolerance: bad, ..Default::default() };
+        let settings = ShootingSettings { path_tolerance: bad, ..Default::default() };
         let r = elastica::deflect(&f, &TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 }, &settings);
         assert!(matches!(r, Err(Error::InvalidParameter { name: "path_tolerance", .. })), "{bad}: {r:?}");
     }

@@ -2,8 +2,8 @@
 
 use flexure::estimate::{Accuracy, deflect_auto, deflect_error, tendon_error};
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, pull};
-use flexure::{Flexure, Pose, Statics, TipLoad, deflect};
+use flexure::tendon::{TendonData, TendonOffsets, pull};
+use flexure::{Flexure, Pose, StaticsData, TipLoad, deflect};
 
 fn unit(order: usize) -> Flexure {
     Flexure::new(1.0, 1.0, order).unwrap()
@@ -11,7 +11,7 @@ fn unit(order: usize) -> Flexure {
 
 /// (estimate, true error) of the tip position for one load, the truth from the exact elastica.
 fn estimate_and_truth(f: &Flexure, load: &TipLoad) -> (f64, f64, bool) {
-    let mut data = Statics::new(f);
+    let mut data = StaticsData::new(f);
     deflect(f, load, &mut data, &Default::default()).unwrap();
     let e = deflect_error(f, load, data.alpha(), &Accuracy::default()).unwrap();
     let exact = elastica::deflect(f, load, &Default::default()).unwrap().pose;
@@ -27,7 +27,7 @@ fn estimate_and_truth(f: &Flexure, load: &TipLoad) -> (f64, f64, bool) {
 fn pure_moment_quadrature_error_is_caught() {
     let f = unit(3);
     for m in [2.0, 8.0, 14.0, 20.0, -23.0] {
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         let load = TipLoad { moment: m, fx: 0.0, fy: 0.0 };
         deflect(&f, &load, &mut data, &Default::default()).unwrap();
         let e = deflect_error(&f, &load, data.alpha(), &Accuracy::default()).unwrap();
@@ -71,7 +71,7 @@ fn auto_order_meets_the_target_in_truth() {
 #[test]
 fn tendon_estimate_matches_a_converged_model() {
     let ei = flexure::bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap();
-    let t = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+    let t = TendonOffsets { root_offset: 0.005, tip_offset: 0.005 };
     let f = Flexure::new(0.015, ei, 3).unwrap();
     let fine = Flexure::new(0.015, ei, 12).unwrap().with_quadrature(40).unwrap();
     for tension in [10.0, 28.0, 45.0] {
@@ -127,7 +127,7 @@ fn peak_curvature_estimate_is_honest() {
     for p in [1.0, 2.0, 4.0, 8.0] {
         for theta in [20f64.to_radians(), 60f64.to_radians(), 100f64.to_radians()] {
             let load = TipLoad::polar(0.0, p, theta);
-            let mut data = Statics::new(&f);
+            let mut data = StaticsData::new(&f);
             deflect(&f, &load, &mut data, &Default::default()).unwrap();
             let exact = flexure::reference::elastica::deflect(&f, &load, &Default::default()).unwrap();
             let exact_peak = exact.root_moment.abs() / f.ei();
@@ -187,7 +187,7 @@ fn taper_sweep_is_met_or_flagged() {
             }
             // Order 64, estimated against the exact elastica: flagged wherever it misses.
             let cap = Flexure::new(1.0, 1.0, 64).unwrap().with_section(f.section().clone()).unwrap();
-            let mut data = Statics::new(&cap);
+            let mut data = StaticsData::new(&cap);
             deflect(&cap, &load, &mut data, &Default::default()).unwrap();
             let e = deflect_error(&cap, &load, data.alpha(), &target).unwrap();
             let miss = (data.pose_root_tip().phi - exact).abs();
@@ -253,7 +253,7 @@ fn an_answer_off_the_loading_path_is_flagged() {
     let (estimate, truth, flagged) = estimate_and_truth(&f, &load);
     assert!(truth < 1e-3, "the answer is on the exact path's branch: {truth}");
     assert!(!flagged && (estimate / truth - 1.0).abs() < 0.01, "estimate {estimate} against {truth}");
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let start = [0.744, -6.750, 0.066, -0.319, -0.256, 0.255];
     let eq = flexure::statics::correct(&f, &load, &start, &mut data, &Default::default()).unwrap();
     let p = data.pose_root_tip();

@@ -3,7 +3,7 @@
 //! each format writes and warns of. The checks in a real simulator (MuJoCo)
 //! are `python/tests/test_export.py`.
 
-use flexure::export::model::{Chain, Model, Motion, build};
+use flexure::export::model::{Chain, LinkMotion, RigidModel, build};
 use flexure::export::{Format, LoadRange, Options, chain, export, fits, lump, wrench};
 use flexure::mechanism::file::from_toml;
 use flexure::mechanism::statics::Settings;
@@ -22,7 +22,7 @@ fn about(p: Point2<f64>, theta: f64) -> Pose {
 
 /// Each link's world pose with its hinge at `theta[k]` (the k-th moving joint), by composing
 /// the model's link poses: the forward kinematics any simulator does with the file's tree.
-fn world(model: &Model, theta: &[f64]) -> Vec<Pose> {
+fn world(model: &RigidModel, theta: &[f64]) -> Vec<Pose> {
     let mut out: Vec<Pose> = Vec::with_capacity(model.links.len());
     let mut k = 0;
     for (i, l) in model.links.iter().enumerate() {
@@ -32,7 +32,7 @@ fn world(model: &Model, theta: &[f64]) -> Vec<Pose> {
         }
         let mut p = out[l.parent].compose(&l.pose);
         if let Some(j) = &l.joint {
-            assert_eq!(j.motion, Motion::Hinge);
+            assert_eq!(j.motion, LinkMotion::Hinge);
             p = p.compose(&about(j.at, theta[k]));
             k += 1;
         }

@@ -271,3 +271,56 @@ fn architecture_names_only_what_exists() {
     assert!(named > 40, "only {named} paths read");
     assert!(missing.is_empty(), "ARCHITECTURE.md names paths that do not exist: {missing:?}");
 }
+
+/// Every `pub struct|enum|trait|type|union NAME` in `text`, each with
+/// whether a `#[pyclass` attribute stands right above it.
+fn public_types(text: &str) -> Vec<(String, bool)> {
+    let mut out = Vec::new();
+    let mut pyclass = false;
+    for line in text.lines() {
+        let t = line.trim_start();
+        if t.starts_with("#[") {
+            pyclass |= t.starts_with("#[pyclass");
+            continue;
+        }
+        let kinds = ["pub struct ", "pub enum ", "pub trait ", "pub type ", "pub union "];
+        if let Some(rest) = kinds.iter().find_map(|k| t.strip_prefix(k)) {
+            out.push((ident(rest), pyclass));
+        }
+        if !t.starts_with("///") {
+            pyclass = false;
+        }
+    }
+    out
+}
+
+/// Reference: the sources of the library, the CLI and the Python crate
+/// (issue 34, item 7: one word for one thing). No two public types share
+/// a name, so a name found in a message, a doc or a search is one type. A
+/// Python class (`#[pyclass]`) is the library's type in the other
+/// language and takes its name on purpose.
+#[test]
+fn no_two_public_types_share_a_name() {
+    let mut places: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for krate in ["flexure", "flexure-cli", "flexure-py"] {
+        let mut files = Vec::new();
+        sources(&root().join("..").join(krate).join("src"), &mut files);
+        for file in files {
+            let text = std::fs::read_to_string(&file).unwrap();
+            for (name, pyclass) in public_types(&text) {
+                if !pyclass {
+                    places.entry(name).or_default().push(file.display().to_string());
+                }
+            }
+        }
+    }
+    assert!(places.len() > 200, "only {} public types read", places.len());
+    let shared: Vec<_> = places.iter().filter(|(_, at)| at.len() > 1).collect();
+    assert!(shared.is_empty(), "public types that share a name: {shared:#?}");
+}
+
+#[test]
+fn a_shared_name_is_found_and_a_python_class_is_told_apart() {
+    let text = "/// A.\n#[pyclass(frozen)]\n/// More.\npub struct Flexure {}\n#[derive(Debug)]\npub enum Stop { A }\npub(crate) struct Hidden;";
+    assert_eq!(public_types(text), [("Flexure".to_string(), true), ("Stop".to_string(), false)]);
+}

@@ -7,7 +7,7 @@ use flexure::mechanism::statics::{Settings, assemble_unloaded, body_frames, comp
 use flexure::mechanism::sweep::{Parameter, sweep};
 use flexure::mechanism::{Holds, JointKind, Mechanism};
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, pull};
+use flexure::tendon::{TendonData, TendonOffsets, pull};
 use flexure::{Error, Flexure, TipLoad, bending_stiffness};
 
 fn example(name: &str) -> Mechanism {
@@ -22,7 +22,7 @@ fn paper_tendon_matches_the_tendon_module() {
     let s = solve(&m, &Settings::default()).unwrap();
     let f = Flexure::new(0.015, bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap(), 3).unwrap();
     let mut d = TendonData::new(&f);
-    pull(&f, &Tendon { root_offset: 0.005, tip_offset: 0.005 }, 28.0, &mut d).unwrap();
+    pull(&f, &TendonOffsets { root_offset: 0.005, tip_offset: 0.005 }, 28.0, &mut d).unwrap();
     for (a, b) in s.q.iter().zip(d.alpha()) {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
@@ -522,13 +522,13 @@ fn arc_chain(count: usize, force: [f64; 2], moment: f64) -> Mechanism {
 /// quadratures differ in rounding only).
 #[test]
 fn arc_chain_is_the_segmented_flexure() {
-    use flexure::{Statics, deflect};
+    use flexure::{StaticsData, deflect};
     for count in [6, 24] {
         for (force, moment) in [([0.0, 1.5], 0.0), ([-1.0, 3.0], 0.5), ([0.5, -2.0], -1.5)] {
             let m = arc_chain(count, force, moment);
             let s = solve(&m, &Settings::default()).unwrap();
             let f = Flexure::segments(1.0, 1.0, count).unwrap();
-            let mut data = Statics::new(&f);
+            let mut data = StaticsData::new(&f);
             let e =
                 deflect(&f, &TipLoad { moment, fx: force[0], fy: force[1] }, &mut data, &Default::default()).unwrap();
             assert!(s.stable && e.stable);
@@ -638,7 +638,7 @@ fn tree_factorization_follows_the_dense_path() {
             let zero = m.loads().zero_like();
             let run = |dense: bool| {
                 let kkt = Kkt::new(&m, &zero, &m.loads(), &settings).unwrap();
-                let mut ws = solver::Workspace::new(kkt.dim());
+                let mut ws = solver::SolverWorkspace::new(kkt.dim());
                 ws.x.copy_from_slice(&kkt.state(&m.rest(), &[]));
                 let path = if dense {
                     solver::continuation(&mut DenseLu(kkt), &mut ws, &settings)

@@ -3,7 +3,7 @@
 //! against central differences, and the dynamics starting at rest on the
 //! statics' equilibrium.
 
-use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::{SimulationSettings, Start, simulate};
 use flexure::mechanism::buckling::buckle;
 use flexure::mechanism::file::from_toml;

@@ -7,7 +7,7 @@
 use flexure::mechanism::file::{Document, habits, spatial_from_toml};
 use flexure::section::{Profile, SectionSpec, SpatialSection, thinner_than_long};
 use flexure::spatial::{SpatialFlexure, SpatialSpec};
-use flexure::{Error, Flexure, Statics, TipLoad, deflect};
+use flexure::{Error, Flexure, StaticsData, TipLoad, deflect};
 
 /// The planar refusal and the spatial one are one check: the same message
 /// for a 2 m thick section on a 1 m flexure, rectangle and rod alike.
@@ -77,7 +77,7 @@ fn a_spatial_section_without_a_modulus_refuses_the_keys_it_would_ignore() {
 fn a_stall_at_rounding_is_not_called_non_convergence() {
     let ei = flexure::bending_stiffness(200.0, 0.01, 2e-4, None).unwrap();
     let f = Flexure::new(0.04, ei, 3).unwrap();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let e = deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 }, &mut data, &Default::default()).unwrap_err();
     let Error::ContinuationStalled { rounding, residual, .. } = &e else { panic!("expected a stall, got {e}") };
     assert!(*rounding && *residual < 1e-12, "{e}");
@@ -88,7 +88,7 @@ fn a_stall_at_rounding_is_not_called_non_convergence() {
     // The steel it was meant to be bends, answered.
     let ei = flexure::bending_stiffness(200e9, 0.01, 2e-4, None).unwrap();
     let f = Flexure::new(0.04, ei, 3).unwrap();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     assert!(deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 }, &mut data, &Default::default()).is_ok());
 }
 

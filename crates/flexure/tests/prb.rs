@@ -6,7 +6,7 @@
 use flexure::prb::howell::{self, ErrorMeasure, PathPoint};
 use flexure::prb::{self, PrbKind};
 use flexure::reference::elastica;
-use flexure::{Error, Flexure, Statics, TipLoad, deflect};
+use flexure::{Error, Flexure, StaticsData, TipLoad, deflect};
 
 /// Vertical end forces up to $PL^2/EI$ = `top` on a unit flexure, `count` of them.
 fn vertical(top: f64, count: usize) -> Vec<TipLoad> {
@@ -117,7 +117,7 @@ fn one_r_reports_the_error_it_has() {
     let p = fit.joints[0].pivot;
     assert!((p.x - (1.0 - gamma)).abs() < 1e-14 && p.y == 0.0);
     let spring = |t: f64| fit.joints[0].torque(t);
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let (mut position, mut angle) = (0.0_f64, 0.0_f64);
     for load in &loads {
         deflect(&f, load, &mut data, &Default::default()).unwrap();

@@ -94,7 +94,7 @@ fn post_buckled_branch_is_followed() {
     let load = TipLoad { moment: 0.0, fx: -4.0, fy: 0.05 };
     let exact = elastica::deflect(&f, &load, &Default::default()).unwrap();
     assert!(exact.stable && exact.pose.phi > 1.8, "{exact:?}");
-    let mut data = flexure::Statics::new(&f);
+    let mut data = flexure::StaticsData::new(&f);
     let model = flexure::deflect(&f, &load, &mut data, &Default::default()).unwrap();
     assert!(model.stable && (data.pose_root_tip().phi - exact.pose.phi).abs() < 5e-3);
 }

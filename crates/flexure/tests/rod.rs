@@ -4,7 +4,7 @@
 //! buckling loads, and the Bathe–Bolourchi 45° bend; and bad input.
 
 use flexure::reference::elastica;
-use flexure::reference::rod::{self, Rod, Settings, compliance_rest};
+use flexure::reference::rod::{self, Rod, ShootingSettings, compliance_rest};
 use flexure::section::{Profile, Section, Shear, SpatialSection};
 use flexure::spatial::SpatialLoad;
 use flexure::{Error, Flexure, StabilityLimit, TipLoad};
@@ -172,7 +172,7 @@ fn compliance_matches_the_loaded_rod() {
 fn euler_column_by_the_conjugate_point() {
     let rod = Rod::new(2.0, SpatialSection::uniform(1.0, 3.0, 1.5).unwrap()).unwrap();
     let load = wrench([0.0; 3], [-1.0, 0.0, 0.0]);
-    let limit = rod::stability_limit(&rod, &load, 2.0, &Settings::with_tolerance(1e-7)).unwrap();
+    let limit = rod::stability_limit(&rod, &load, 2.0, &ShootingSettings::with_tolerance(1e-7)).unwrap();
     let euler = PI * PI * 1.5 / 16.0;
     assert!(matches!(limit, StabilityLimit::Lost { .. }), "{limit:?}");
     assert!((limit.factor() - euler).abs() < 1e-6 * euler, "{} vs {euler}", limit.factor());
@@ -190,7 +190,7 @@ fn euler_column_by_the_conjugate_point() {
 fn michell_lateral_torsional_buckling() {
     let (ei_z, gj, l): (f64, f64, f64) = (1.0, 0.8, 1.0);
     let michell = 4.0126 * (ei_z * gj).sqrt() / (l * l);
-    let settings = Settings::with_tolerance(1e-6);
+    let settings = ShootingSettings::with_tolerance(1e-6);
     let rigid = Rod::new(l, SpatialSection::uniform(gj, 1e4 * ei_z, ei_z).unwrap()).unwrap();
     let load = wrench([0.0; 3], [0.0, 0.0, michell]);
     let stiff = rod::stability_limit(&rigid, &load, 1.5, &settings).unwrap();
@@ -244,8 +244,9 @@ fn round_column_double_conjugate_point() {
     let ei = section.stiffness(0.0)[1];
     let rod = Rod::new(0.1, section).unwrap();
     let euler = PI * PI * ei / (4.0 * 0.01);
-    let limit = rod::stability_limit(&rod, &wrench([0.0; 3], [-euler, 0.0, 0.0]), 3.0, &Settings::with_tolerance(1e-7))
-        .unwrap();
+    let limit =
+        rod::stability_limit(&rod, &wrench([0.0; 3], [-euler, 0.0, 0.0]), 3.0, &ShootingSettings::with_tolerance(1e-7))
+            .unwrap();
     assert!(matches!(limit, StabilityLimit::Lost { .. }), "{limit:?}");
     assert!((limit.factor() - 1.0).abs() < 1e-6, "{}", limit.factor());
 }
@@ -264,19 +265,19 @@ fn bad_input_and_stalls_are_reported() {
         "rest_curvature"
     );
     let rod = Rod::new(1.0, section()).unwrap();
-    let d = |load: SpatialLoad, settings: &Settings| rod::deflect(&rod, &load, settings);
+    let d = |load: SpatialLoad, settings: &ShootingSettings| rod::deflect(&rod, &load, settings);
     // The load is a SpatialLoad: its errors name the component.
     assert_eq!(name_of(d(wrench([0.0; 3], [f64::NAN, 0.0, 0.0]), &Default::default()).unwrap_err()), "fx");
     assert_eq!(name_of(d(wrench([0.0, f64::INFINITY, 0.0], [0.0; 3]), &Default::default()).unwrap_err()), "my");
     assert_eq!(name_of(d(wrench([0.0; 3], [0.0, 1e4, 0.0]), &Default::default()).unwrap_err()), "force");
-    let bad = Settings { path_tolerance: 1.0, ..Default::default() };
+    let bad = ShootingSettings { path_tolerance: 1.0, ..Default::default() };
     assert_eq!(name_of(d(wrench([0.0; 3], [0.0; 3]), &bad).unwrap_err()), "path_tolerance");
     assert_eq!(
         name_of(rod::stability_limit(&rod, &wrench([0.0; 3], [-1.0, 0.0, 0.0]), 0.0, &Default::default()).unwrap_err()),
         "max_factor"
     );
     // Two steps cannot wind the rod twice round: stalled, with the fraction reached.
-    let mut short = Settings::default();
+    let mut short = ShootingSettings::default();
     short.solver.max_steps = 2;
     match d(wrench([0.0, 0.0, 4.0 * PI], [0.0; 3]), &short) {
         Err(Error::ContinuationStalled { load_fraction, steps, .. }) => assert!(load_fraction < 1.0 && steps == 2),
@@ -291,7 +292,7 @@ fn bad_input_and_stalls_are_reported() {
 fn dead_moment_alone_has_no_conjugate_point() {
     let rod = Rod::new(1.0, SpatialSection::uniform(0.8, 1.0, 1.2).unwrap()).unwrap();
     let load = wrench([1.5, 0.3, -0.2], [0.0; 3]);
-    let limit = rod::stability_limit(&rod, &load, 2.0, &Settings::with_tolerance(1e-6)).unwrap();
+    let limit = rod::stability_limit(&rod, &load, 2.0, &ShootingSettings::with_tolerance(1e-6)).unwrap();
     assert_eq!(limit, StabilityLimit::StableUpTo { factor: 2.0, stalled: None });
 }
 

@@ -222,7 +222,7 @@ fn tapered_cantilever_stress_matches_beam_theory() {
     let section = rectangle(Profile::Constant(b), Profile::Linear { root: h0, tip: h1 });
     let f = Flexure::new(l, 1.0, 12).unwrap().with_section(section).unwrap();
     let force = 1e-4 * f.ei() / (l * l);
-    let mut data = flexure::Statics::new(&f);
+    let mut data = flexure::StaticsData::new(&f);
     let eq =
         flexure::deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: force }, &mut data, &Default::default()).unwrap();
     assert!(eq.stable);
@@ -270,7 +270,7 @@ fn bad_sections_name_the_field() {
 #[test]
 fn a_root_peak_is_reported_at_the_root() {
     let f = Flexure::new(0.05, 1.0, 12).unwrap();
-    let mut data = flexure::Statics::new(&f);
+    let mut data = flexure::StaticsData::new(&f);
     flexure::deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: 10.0 }, &mut data, &Default::default()).unwrap();
     let p = flexure::stress::peak_curvature(&f, data.alpha());
     assert_eq!(p.at, 0.0);

@@ -6,7 +6,7 @@
 
 use flexure::reference::{column, compliance, elastica, euler};
 use flexure::section::{Notch, Profile, Section};
-use flexure::{Flexure, Statics, TipConstraint, TipLoad, buckling_load, deflect};
+use flexure::{Flexure, StaticsData, TipConstraint, TipLoad, buckling_load, deflect};
 use nalgebra::Matrix3;
 
 /// Composite Simpson on [a, b] with `panels` (even) panels and one
@@ -175,7 +175,7 @@ fn model_converges_to_the_exact_elastica_with_order() {
         let mut last = f64::INFINITY;
         for order in orders {
             let f = build(order);
-            let mut data = Statics::new(&f);
+            let mut data = StaticsData::new(&f);
             deflect(&f, &load, &mut data, &Default::default()).unwrap();
             let p = data.pose_root_tip();
             let error = (p.x - exact.pose.x).hypot(p.y - exact.pose.y) / f.length();
@@ -390,7 +390,7 @@ fn exact_stress_of_a_tapered_cantilever_is_beam_theory() {
 
 fn tapered_model_peak(f: &Flexure, force: f64, order: usize) -> flexure::stress::Peak {
     let g = Flexure::new(f.length(), 1.0, order).unwrap().with_section(f.section().clone()).unwrap();
-    let mut data = Statics::new(&g);
+    let mut data = StaticsData::new(&g);
     deflect(&g, &TipLoad { moment: 0.0, fx: 0.0, fy: force }, &mut data, &Default::default()).unwrap();
     flexure::stress::peak_stress(&g, data.alpha()).unwrap()
 }

@@ -1,7 +1,7 @@
 //! The shared solver core on problems with closed-form answers.
 
 use flexure::Error;
-use flexure::solver::{Problem, Settings, Stop, Workspace, continuation, newton, trace, with_interrupt};
+use flexure::solver::{Problem, Settings, SolverWorkspace, Stop, continuation, newton, trace, with_interrupt};
 
 /// $r(x, \lambda) = x^3 - 3x + 3 - 8\lambda$: the gradient of a one-degree
 /// potential with a fold at $x = -1$, $\lambda = 5/8$ (the limit load) and
@@ -56,7 +56,7 @@ fn cardano(p: f64, q: f64) -> f64 {
 
 #[test]
 fn snap_through_reaches_the_stable_root_and_names_the_limit_load() {
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = cardano(-3.0, 3.0);
     let path = continuation(&mut Snap, &mut ws, &Settings::default()).unwrap();
     // Closed form: the root of x³ − 3x − 5 = 0 (tolerance: Newton's, 1e-12 on r).
@@ -71,7 +71,7 @@ fn snap_through_reaches_the_stable_root_and_names_the_limit_load() {
 
 #[test]
 fn newton_converges_quadratically_on_a_cubic() {
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = 3.0;
     let r = newton(&mut Snap, &mut ws, 1.0, &Settings::default()).unwrap();
     assert!((ws.x[0] - cardano(-3.0, -5.0)).abs() < 1e-12 && r.iterations <= 8, "{r:?}");
@@ -79,7 +79,7 @@ fn newton_converges_quadratically_on_a_cubic() {
 
 #[test]
 fn limits_are_reported_with_what_was_reached() {
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = 3.0;
     let one = Settings { max_iterations: 1, ..Default::default() };
     match newton(&mut Snap, &mut ws, 1.0, &one) {
@@ -96,7 +96,7 @@ fn limits_are_reported_with_what_was_reached() {
 
 #[test]
 fn an_interrupt_stops_the_solver() {
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = cardano(-3.0, 3.0);
     let r = with_interrupt(|| true, || continuation(&mut Snap, &mut ws, &Settings::default()));
     assert!(matches!(r, Err(Error::Interrupted { load_fraction }) if load_fraction == 0.0), "{r:?}");
@@ -107,7 +107,7 @@ fn an_interrupt_stops_the_solver() {
 
 #[test]
 fn a_workspace_of_another_size_is_refused() {
-    let mut ws = Workspace::new(2);
+    let mut ws = SolverWorkspace::new(2);
     assert!(matches!(newton(&mut Snap, &mut ws, 0.0, &Settings::default()), Err(Error::InvalidParameter { .. })));
 }
 
@@ -118,7 +118,7 @@ fn a_workspace_of_another_size_is_refused() {
 /// bound; the same run with the default bound reaches the load.
 #[test]
 fn a_work_bound_stops_the_continuation_and_names_itself() {
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = cardano(-3.0, 3.0);
     let few = Settings { max_evaluations: 6, ..Default::default() };
     let path = trace(&mut Snap, &mut ws, &few).unwrap();
@@ -138,7 +138,7 @@ fn a_work_bound_stops_the_continuation_and_names_itself() {
 #[test]
 fn a_traced_path_says_why_it_stopped() {
     use std::sync::atomic::{AtomicUsize, Ordering};
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = cardano(-3.0, 3.0);
     let path = trace(&mut Snap, &mut ws, &Settings::default()).unwrap();
     assert!(path.reached() && path.load_fraction == 1.0 && path.stable, "{path:?}");

@@ -2,7 +2,7 @@
 //! velocity products against Lagrange's equations by finite differences,
 //! modes against closed forms, and motion against a conical pendulum.
 
-use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::spatial::kinematics::frames;

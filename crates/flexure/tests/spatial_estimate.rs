@@ -34,7 +34,7 @@ fn exact() -> Vector3<f64> {
     let l = length();
     let r = Rod::new(l, section()).unwrap().with_rest(move |_| [0.0, 0.0, PI / 4.0 / l]).unwrap();
     let w = SpatialLoad { moment: [0.0; 3], force: LOAD.force };
-    rod::deflect(&r, &w, &rod::Settings::with_tolerance(1e-12)).unwrap().position
+    rod::deflect(&r, &w, &rod::ShootingSettings::with_tolerance(1e-12)).unwrap().position
 }
 
 /// The model's equilibrium and its tip error against `exact`, over L.
@@ -119,7 +119,7 @@ fn auto_with_the_curvature_target() {
     let l = length();
     let r = Rod::new(l, section()).unwrap().with_rest(move |_| [0.0, 0.0, PI / 4.0 / l]).unwrap();
     let w = SpatialLoad { moment: [0.0; 3], force: LOAD.force };
-    let m = rod::deflect(&r, &w, &rod::Settings::with_tolerance(1e-12)).unwrap().root_moment;
+    let m = rod::deflect(&r, &w, &rod::ShootingSettings::with_tolerance(1e-12)).unwrap().root_moment;
     let k = section().stiffness(0.0);
     let rod_root = Vector3::new(m.x / k[0], m.y / k[1], m.z / k[2]).norm();
     let change: Vec<f64> = alpha.iter().zip(f.rest()).map(|(a, k)| a - k).collect();

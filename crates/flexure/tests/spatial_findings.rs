@@ -168,7 +168,7 @@ fn a_pendulum_meets_a_thick_post_in_the_window_its_thickness_widens() {
 /// samples whose angle lies in the window (away from its edges by 1e-3 rad).
 #[test]
 fn a_swing_through_the_post_crosses_it_at_its_samples() {
-    use flexure::dynamics::integrate::Settings as Motion;
+    use flexure::dynamics::integrate::MotionSettings as Motion;
     use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
     let m = spatial_from_toml(PENDULUM).unwrap();
     let motion = Motion { duration: 0.3, every: 0.01, ..Default::default() };

@@ -7,7 +7,7 @@
 //! energy kept in a free swing, and the file's keys.
 
 use flexure::Level;
-use flexure::dynamics::integrate::Settings as Motion;
+use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::file::{from_toml, spatial_from_toml};

@@ -8,7 +8,7 @@ use flexure::spatial::{
     SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics, compliance, correct, deflect, energy_gradient,
     generalized_force, pose_root_tip, update,
 };
-use flexure::{Flexure, Level, Statics, TipLoad};
+use flexure::{Flexure, Level, StaticsData, TipLoad};
 use nalgebra::{Matrix3, Vector3};
 
 fn flexure(l: f64, [gj, ei_y, ei_z]: [f64; 3], orders: [usize; 3]) -> SpatialFlexure {
@@ -48,7 +48,7 @@ fn in_plane_loads_meet_the_planar_flexure_at_the_same_order() {
     let (mz, fx, fy) = (0.3, -0.2, 0.7);
     let mut data = SpatialStatics::new(&f);
     let eq = deflect(&f, &load([0.0, 0.0, mz], [fx, fy, 0.0]), &mut data, &Default::default()).unwrap();
-    let mut p = Statics::new(&planar);
+    let mut p = StaticsData::new(&planar);
     flexure::deflect(&planar, &TipLoad { moment: mz, fx, fy }, &mut p, &Default::default()).unwrap();
     assert!(eq.stable);
     let a = data.alpha();

@@ -3,7 +3,7 @@
 //! Bathe–Bolourchi bend, and the model's convergence with order on 3-D loads.
 
 use flexure::StabilityLimit;
-use flexure::reference::rod::{self, Rod, Settings};
+use flexure::reference::rod::{self, Rod, ShootingSettings};
 use flexure::section::{Profile, Shear, SpatialSection};
 use flexure::spatial::{
     SpatialFlexure, SpatialLoad, SpatialStatics, StabilityTest, deflect, pose_root_tip, stability_limit,
@@ -152,7 +152,7 @@ fn a_dead_twisting_moment_has_no_critical_value_in_either() {
     let greenhill = SpatialLoad { moment: [2.0 * PI, 0.0, 0.0], force: [0.0; 3] };
     let none = StabilityLimit::StableUpTo { factor: 3.0, stalled: None };
     assert_eq!(stability_limit(&f, &greenhill, 3.0).unwrap(), none);
-    assert_eq!(rod::stability_limit(&rod, &greenhill, 3.0, &Settings::with_tolerance(1e-8)).unwrap(), none);
+    assert_eq!(rod::stability_limit(&rod, &greenhill, 3.0, &ShootingSettings::with_tolerance(1e-8)).unwrap(), none);
 }
 
 /// Reference: the closed form of the clamped–free rod under a dead thrust P

@@ -2,7 +2,7 @@
 //! and the loaded stiffness (Eq. 32) against differentiation through the solver.
 
 use flexure::reference::elastica;
-use flexure::{Error, Flexure, Settings, StabilityLimit, Statics, TipLoad, compliance_tip, deflect};
+use flexure::{Error, Flexure, Settings, StabilityLimit, StaticsData, TipLoad, compliance_tip, deflect};
 use num_dual::Dual64;
 use std::f64::consts::FRAC_PI_2;
 
@@ -32,7 +32,7 @@ fn exact_load_for_right_angle(moment: f64, theta: f64, mut p0: f64, mut p1: f64)
 /// position and 1° in angle of the exact elastica (paper Sec. III-C).
 fn check_path(name: &str, load_at: impl Fn(f64) -> TipLoad) {
     let f = unit();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     for i in 1..=10 {
         let load = load_at(i as f64 / 10.0);
         let eq = deflect(&f, &load, &mut data, &Default::default()).unwrap();
@@ -71,7 +71,7 @@ fn case_c_force_opposed_by_moment() {
 #[test]
 fn pure_moment_is_exact() {
     let f = Flexure::new(0.4, 2.5, 5).unwrap();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     deflect(&f, &TipLoad { moment: 7.0, fx: 0.0, fy: 0.0 }, &mut data, &Default::default()).unwrap();
     let expected = 7.0 * 0.4 / 2.5;
     assert!((data.alpha()[0] - expected).abs() < 1e-12);
@@ -86,11 +86,11 @@ fn pure_moment_is_exact() {
 fn loaded_compliance_is_the_solvers_derivative() {
     let f = unit();
     let load = TipLoad::polar(0.3, 2.0, 0.6);
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     deflect(&f, &load, &mut data, &Default::default()).unwrap();
     let c = compliance_tip(&data.kinematics, &data.stiffness).unwrap();
 
-    let mut dual = Statics::<Dual64>::new(&f);
+    let mut dual = StaticsData::<Dual64>::new(&f);
     let dload = TipLoad { moment: Dual64::from(load.moment), fx: Dual64::from(load.fx), fy: Dual64::new(load.fy, 1.0) };
     deflect(&f, &dload, &mut dual, &Default::default()).unwrap();
     let p = dual.pose_root_tip();
@@ -99,8 +99,8 @@ fn loaded_compliance_is_the_solvers_derivative() {
     }
 
     let h = 1e-5;
-    let mut up = Statics::new(&f);
-    let mut dn = Statics::new(&f);
+    let mut up = StaticsData::new(&f);
+    let mut dn = StaticsData::new(&f);
     deflect(&f, &TipLoad { fx: load.fx + h, ..load }, &mut up, &Default::default()).unwrap();
     deflect(&f, &TipLoad { fx: load.fx - h, ..load }, &mut dn, &Default::default()).unwrap();
     let (pu, pd) = (up.pose_root_tip(), dn.pose_root_tip());
@@ -117,7 +117,7 @@ fn loaded_compliance_is_the_solvers_derivative() {
 #[test]
 fn instability_is_reported() {
     let f = unit();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     assert!(deflect(&f, &TipLoad { moment: 0.0, fx: -2.4, fy: 0.0 }, &mut data, &Default::default()).unwrap().stable);
     assert!(!deflect(&f, &TipLoad { moment: 0.0, fx: -2.5, fy: 0.0 }, &mut data, &Default::default()).unwrap().stable);
     assert!(compliance_tip(&data.kinematics, &data.stiffness).is_err(), "an unstable equilibrium has no compliance");
@@ -126,7 +126,7 @@ fn instability_is_reported() {
 #[test]
 fn bad_load_is_named() {
     let f = unit();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let err = deflect(&f, &TipLoad { moment: 0.0, fx: f64::NAN, fy: 0.0 }, &mut data, &Default::default()).unwrap_err();
     assert!(matches!(err, Error::InvalidParameter { name: "fx", .. }), "{err}");
 }
@@ -135,7 +135,7 @@ fn bad_load_is_named() {
 #[test]
 fn a_stalled_continuation_reports_the_load_reached() {
     let f = unit();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let settings = Settings { max_iterations: 1, min_step: 0.5, ..Default::default() };
     match deflect(&f, &TipLoad::polar(0.0, 20.0, 0.3), &mut data, &settings) {
         Err(Error::ContinuationStalled { residual, load_fraction, .. }) => {
@@ -157,7 +157,7 @@ fn a_stalled_continuation_reports_the_load_reached() {
 #[test]
 fn settings_are_validated() {
     let f = unit();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let load = TipLoad { moment: 1.0, fx: 0.0, fy: 0.0 };
     let base = Settings::default();
     let bad = [
@@ -187,7 +187,7 @@ fn settings_are_validated() {
 fn large_load_stays_on_the_loading_branch() {
     let f = unit();
     let load = TipLoad { moment: 0.0, fx: 0.0, fy: 15.0 };
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     deflect(&f, &load, &mut data, &Default::default()).unwrap();
     let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
     let model = data.pose_root_tip();
@@ -203,7 +203,7 @@ fn large_load_stays_on_the_loading_branch() {
 fn converges_beyond_a_right_angle() {
     let f = unit();
     let load = TipLoad::polar(0.0, 6.0, 45f64.to_radians());
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let eq = deflect(&f, &load, &mut data, &Default::default()).unwrap();
     let exact = elastica::deflect(&f, &load, &Default::default()).unwrap().pose;
     assert!(exact.phi > FRAC_PI_2 + 0.1, "exact tip {}", exact.phi);
@@ -235,7 +235,7 @@ fn stability_limit_answers_on_the_whole_grid() {
     let f = unit();
     let stable_at = |load: &TipLoad, factor: f64| {
         let scaled = TipLoad { moment: factor * load.moment, fx: factor * load.fx, fy: factor * load.fy };
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         deflect(&f, &scaled, &mut data, &Default::default()).map(|e| e.stable && e.limit.is_none())
     };
     for moment in [0.0, 0.2, 0.5, 1.0, 2.0] {
@@ -267,7 +267,7 @@ fn stability_limit_answers_on_the_whole_grid() {
 fn far_from_instability_the_continuation_takes_long_steps() {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let load = TipLoad::polar(0.0, 3.8477, 45f64.to_radians());
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let long = deflect(&f, &load, &mut data, &Settings::default()).unwrap();
     let alpha = data.alpha().to_vec();
     let short_settings = Settings { max_rotation_per_step: 0.5 / flexure::solver::FAR_STEP, ..Default::default() };
@@ -290,7 +290,7 @@ fn a_long_step_does_not_land_past_a_fold() {
     let kappa = [0.13682064279451467, 0.1878018480661532, 0.2852641999269957];
     let f = Flexure::new(1.0, 1.0, 3).unwrap().with_rest(&kappa).unwrap();
     let load = TipLoad { moment: 0.0, fx: -21.53936555702723, fy: 0.14229491318230522 };
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let eq = deflect(&f, &load, &mut data, &Settings::default()).unwrap();
     let exact = flexure::reference::elastica::deflect(&f, &load, &Default::default()).unwrap();
     assert!(eq.stable && exact.stable, "{eq:?}");
@@ -322,7 +322,7 @@ const BRANCH_JUMPS: [(usize, TipLoad, f64); 7] = [
 fn a_long_step_does_not_jump_to_another_branch() {
     for (order, load, phi) in BRANCH_JUMPS {
         let f = Flexure::new(1.0, 1.0, order).unwrap();
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         let eq = deflect(&f, &load, &mut data, &Settings::default()).unwrap();
         let exact = elastica::deflect(&f, &load, &Default::default()).unwrap();
         assert!(exact.stable && (exact.pose.phi - phi).abs() < 1e-5, "{load:?}: exact {exact:?}");
@@ -358,7 +358,7 @@ fn one_flexure_mechanism_reaches_the_same_branch() {
         let m = from_toml(&text).unwrap();
         let s = solve(&m, &flexure::mechanism::statics::Settings::default()).unwrap();
         let f = Flexure::new(1.0, 1.0, order).unwrap();
-        let mut data = Statics::new(&f);
+        let mut data = StaticsData::new(&f);
         deflect(&f, &load, &mut data, &Settings::default()).unwrap();
         assert!(s.stable, "order {order}, {load:?}");
         for (a, b) in s.q.iter().zip(data.alpha()) {
@@ -373,7 +373,7 @@ fn an_overflowing_step_is_an_error() {
     let f = Flexure::new(2.0339121109392635, 1.6035678019230033, 6).unwrap().with_quadrature(3).unwrap();
     let load = TipLoad { moment: 1.9659202388348458, fx: 4.437708090274985, fy: 1e300 };
     let settings = Settings { max_rotation_per_step: f64::MAX, ..Default::default() };
-    assert!(deflect(&f, &load, &mut Statics::new(&f), &settings).is_err());
+    assert!(deflect(&f, &load, &mut StaticsData::new(&f), &settings).is_err());
 }
 
 /// Buffers made for another flexure are refused by name, never a panic:
@@ -382,22 +382,22 @@ fn an_overflowing_step_is_an_error() {
 /// `deflect`, `correct` and the tendon's `pull`.
 #[test]
 fn buffers_of_another_flexure_are_an_error_naming_data() {
-    use flexure::tendon::{Tendon, TendonData, pull};
+    use flexure::tendon::{TendonData, TendonOffsets, pull};
     let load = TipLoad { moment: 0.5, fx: 0.0, fy: 0.0 };
     let chain = Flexure::segments(1.0, 1.0, 3).unwrap();
     for other in [Flexure::new(1.0, 1.0, 4).unwrap(), chain.clone()] {
-        let mut data = Statics::new(&unit());
+        let mut data = StaticsData::new(&unit());
         let e = deflect(&other, &load, &mut data, &Settings::default()).unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
         let e = flexure::statics::correct(&other, &load, &vec![0.0; other.order()], &mut data, &Settings::default())
             .unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
-        let tendon = Tendon { root_offset: 0.01, tip_offset: 0.01 };
+        let tendon = TendonOffsets { root_offset: 0.01, tip_offset: 0.01 };
         let e = pull(&other, &tendon, 1.0, &mut TendonData::new(&unit())).unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { name: "data", .. }), "{e}");
     }
     // Any flexure of the same order and rule may share them.
-    let mut data = Statics::new(&unit());
+    let mut data = StaticsData::new(&unit());
     assert!(deflect(&Flexure::new(2.0, 3.0, 3).unwrap(), &load, &mut data, &Settings::default()).is_ok());
-    assert!(deflect(&chain, &load, &mut Statics::new(&chain), &Settings::default()).is_ok());
+    assert!(deflect(&chain, &load, &mut StaticsData::new(&chain), &Settings::default()).is_ok());
 }

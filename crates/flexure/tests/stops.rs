@@ -1,10 +1,10 @@
 //! Why a solver stopped: [`NewtonStop`] on a Newton solve and the time
-//! integrator's [`Stop`] on a trajectory, each way each can end, on
+//! integrator's [`TrajectoryStop`] on a trajectory, each way each can end, on
 //! problems with closed-form answers.
 
 use flexure::dynamics::System;
-use flexure::dynamics::integrate::{Settings, Stop, integrate, integrate_kept};
-use flexure::solver::{NewtonStop, Problem, Workspace, newton, with_interrupt};
+use flexure::dynamics::integrate::{MotionSettings, TrajectoryStop, integrate, integrate_kept};
+use flexure::solver::{NewtonStop, Problem, SolverWorkspace, newton, with_interrupt};
 use flexure::{Error, Result};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -52,7 +52,7 @@ impl Problem<f64> for Root {
 #[test]
 fn a_newton_solve_that_returns_converged() {
     let settings = flexure::solver::Settings::default();
-    let mut ws = Workspace::new(1);
+    let mut ws = SolverWorkspace::new(1);
     ws.x[0] = 5.0;
     let r = newton(&mut Root, &mut ws, 1.0, &settings).unwrap();
     assert_eq!(r.stop, NewtonStop::Converged);
@@ -109,8 +109,8 @@ impl System for Spring {
     }
 }
 
-fn settings() -> Settings {
-    Settings { duration: 3.0, every: 0.5, tolerance: 1e-10, absolute: 1e-10, ..Default::default() }
+fn settings() -> MotionSettings {
+    MotionSettings { duration: 3.0, every: 0.5, tolerance: 1e-10, absolute: 1e-10, ..Default::default() }
 }
 
 /// A run that records every sample reached its duration; one that ends
@@ -122,18 +122,18 @@ fn settings() -> Settings {
 fn a_trajectory_says_why_it_ended() {
     let mut fine = Spring { dynamics_until: f64::INFINITY, energy_until: f64::INFINITY };
     let run = integrate(&mut fine, &[1.0], &[0.0], &settings()).unwrap();
-    assert_eq!(run.stop, Stop::Reached);
+    assert_eq!(run.stop, TrajectoryStop::Reached);
     // Closed form q = cos t, to the tolerance's order (1e-8).
     for (k, t) in run.time.iter().enumerate() {
         assert!((run.q(k)[0] - t.cos()).abs() < 1e-8, "t = {t}: {}", run.q(k)[0]);
     }
     let stall = &mut Spring { dynamics_until: 1.2, energy_until: f64::INFINITY };
     let (run, e) = integrate_kept(stall, &[1.0], &[0.0], &settings()).unwrap();
-    assert_eq!((run.stop, run.time.as_slice()), (Stop::Stalled, &[0.0, 0.5, 1.0][..]));
+    assert_eq!((run.stop, run.time.as_slice()), (TrajectoryStop::Stalled, &[0.0, 0.5, 1.0][..]));
     assert!(matches!(e, Some(Error::IntegrationStalled { .. })), "{e:?}");
     let fail = &mut Spring { dynamics_until: f64::INFINITY, energy_until: 1.2 };
     let (run, e) = integrate_kept(fail, &[1.0], &[0.0], &settings()).unwrap();
-    assert_eq!((run.stop, run.time.as_slice()), (Stop::Failed, &[0.0, 0.5, 1.0][..]));
+    assert_eq!((run.stop, run.time.as_slice()), (TrajectoryStop::Failed, &[0.0, 0.5, 1.0][..]));
     assert!(matches!(e, Some(Error::Singular { .. })), "{e:?}");
     // `integrate` returns the error itself.
     assert!(matches!(integrate(fail, &[1.0], &[0.0], &settings()), Err(Error::Singular { .. })));
@@ -143,7 +143,7 @@ fn a_trajectory_says_why_it_ended() {
         || integrate_kept(&mut fine, &[1.0], &[0.0], &settings()),
     )
     .unwrap();
-    assert_eq!(run.stop, Stop::Interrupted);
+    assert_eq!(run.stop, TrajectoryStop::Interrupted);
     assert!(!run.time.is_empty() && run.time.len() < 7, "{:?}", run.time);
     assert!(matches!(e, Some(Error::InterruptedAt { .. })), "{e:?}");
 }

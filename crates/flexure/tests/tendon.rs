@@ -2,7 +2,7 @@
 //! exact elastica loaded by the tendon's own force.
 
 use flexure::reference::elastica;
-use flexure::tendon::{Tendon, TendonData, TendonPotential, pull, stability_limit, tendon_length};
+use flexure::tendon::{TendonData, TendonOffsets, TendonPotential, pull, stability_limit, tendon_length};
 use flexure::{Flexure, Kinematics, StabilityLimit, TipLoad, bending_stiffness};
 use num_dual::Dual64;
 use std::f64::consts::FRAC_PI_2;
@@ -10,9 +10,9 @@ use std::f64::consts::FRAC_PI_2;
 fn steel() -> Flexure {
     Flexure::new(0.015, bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).unwrap(), 3).unwrap()
 }
-const PAPER: Tendon = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+const PAPER: TendonOffsets = TendonOffsets { root_offset: 0.005, tip_offset: 0.005 };
 
-fn angle_at(f: &Flexure, t: &Tendon, force: f64) -> f64 {
+fn angle_at(f: &Flexure, t: &TendonOffsets, force: f64) -> f64 {
     let mut d = TendonData::new(f);
     pull(f, t, force, &mut d).unwrap();
     d.alpha()[0]
@@ -36,7 +36,7 @@ fn fig_10_right_angle_near_28_newtons() {
 fn bends_toward_the_tendon() {
     let f = steel();
     assert!(angle_at(&f, &PAPER, 10.0) > 0.3);
-    assert!(angle_at(&f, &Tendon { root_offset: -0.005, tip_offset: -0.005 }, 10.0) < -0.3);
+    assert!(angle_at(&f, &TendonOffsets { root_offset: -0.005, tip_offset: -0.005 }, 10.0) < -0.3);
     let mut d = TendonData::new(&f);
     assert!(pull(&f, &PAPER, -1.0, &mut d).is_err(), "negative tension");
 }
@@ -149,7 +149,9 @@ fn agrees_with_the_exact_elastica() {
 #[test]
 fn stability_limit_meets_its_definition() {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
-    for tendon in [Tendon { root_offset: 0.1, tip_offset: -0.05 }, Tendon { root_offset: 0.1, tip_offset: 0.05 }] {
+    for tendon in
+        [TendonOffsets { root_offset: 0.1, tip_offset: -0.05 }, TendonOffsets { root_offset: 0.1, tip_offset: 0.05 }]
+    {
         let l = stability_limit(&f, &tendon, 1.0, 1000.0).unwrap();
         let StabilityLimit::StableUpTo { factor, stalled: Some(_) } = l else { panic!("{tendon:?}: {l:?}") };
         assert!(factor > 1.0 && factor < 1000.0, "{tendon:?}: {factor}");

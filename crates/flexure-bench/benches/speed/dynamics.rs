@@ -13,7 +13,7 @@
 //! and absolute), sampled every 10 ms.
 
 use criterion::Criterion;
-use flexure::dynamics::integrate::{Settings, Trajectory, integrate};
+use flexure::dynamics::integrate::{MotionSettings, Trajectory, integrate};
 use flexure::dynamics::mechanism::modes;
 use flexure::dynamics::schedule::ScheduledSystem;
 use flexure::dynamics::simulation::{Start, initial_state};
@@ -57,7 +57,7 @@ fn finger() -> Mechanism {
 
 /// One second of the ramped finger's motion from `start` (at rest).
 fn finger_1s(m: &Mechanism, start: &[f64]) -> Trajectory {
-    let settings = Settings { duration: 1.0, every: 0.01, tolerance: 1e-6, absolute: 1e-6, ..Default::default() };
+    let settings = MotionSettings { duration: 1.0, every: 0.01, tolerance: 1e-6, absolute: 1e-6, ..Default::default() };
     let mut system = ScheduledSystem::new(m).unwrap();
     let run = integrate(&mut system, start, &vec![0.0; start.len()], &settings).unwrap();
     assert!(run.time.len() == 101 && run.time[100] == 1.0, "the run did not reach 1 s");

@@ -5,7 +5,7 @@
 //! reference the spatial model is timed against.
 
 use criterion::Criterion;
-use flexure::reference::rod::{self, Rod, Settings};
+use flexure::reference::rod::{self, Rod, ShootingSettings};
 use flexure::section::SpatialSection;
 use flexure::spatial::SpatialLoad;
 use std::hint::black_box;
@@ -19,10 +19,10 @@ pub fn run(c: &mut Criterion) {
     let load = SpatialLoad { moment: [0.0; 3], force: [0.0, 0.0, 600.0] };
     let mut g = c.benchmark_group("rod");
     g.sample_size(10);
-    let loose = Settings::with_tolerance(1e-3);
+    let loose = ShootingSettings::with_tolerance(1e-3);
     g.bench_function("bathe_bolourchi_tol_1e-3", |b| b.iter(|| rod::deflect(&bend, black_box(&load), &loose).unwrap()));
     g.bench_function("bathe_bolourchi_default", |b| {
-        b.iter(|| rod::deflect(&bend, black_box(&load), &Settings::default()).unwrap())
+        b.iter(|| rod::deflect(&bend, black_box(&load), &ShootingSettings::default()).unwrap())
     });
     g.finish();
 }

@@ -3,14 +3,14 @@
 use criterion::Criterion;
 use flexure::connect::{ConnectData, connect_with};
 use flexure::estimate::{Accuracy, Estimator};
-use flexure::{Flexure, Pose, Settings, Statics, TipLoad, deflect};
+use flexure::{Flexure, Pose, Settings, StaticsData, TipLoad, deflect};
 use std::f64::consts::FRAC_PI_2;
 use std::hint::black_box;
 
 pub fn run(c: &mut Criterion) {
     let f = Flexure::new(1.0, 1.0, 3).unwrap();
     let load = TipLoad::polar(0.0, 3.8477, 45f64.to_radians());
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let settings = Settings { tolerance: 1e-12, ..Default::default() };
     let target = Pose { phi: FRAC_PI_2, x: 0.55, y: 0.65 };
     // Buffers made once, as for deflect_90: the solve itself is measured.

@@ -3,7 +3,7 @@
 
 use super::checks::solved_answer;
 use super::drawing::{self, Marks, Track, View, snapshot_samples, swept};
-use super::scene::{self, Drawn, Pose, Scene, Shapes};
+use super::scene::{self, Drawn, Scene, Shapes, Snapshot};
 use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::number;
 use clap::Args;
@@ -41,8 +41,8 @@ pub struct DrawArgs {
 /// so far (the checks' verdicts and findings).
 struct Picture {
     scene: Scene,
-    rest: Pose,
-    shapes: Vec<(String, Pose)>,
+    rest: Snapshot,
+    shapes: Vec<(String, Snapshot)>,
     marks: Marks,
     /// A motion's sample times, its bodies' tracks and the samples drawn.
     motion: Option<(Vec<f64>, Vec<Track>, Vec<usize>)>,

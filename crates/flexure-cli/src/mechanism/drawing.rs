@@ -1,6 +1,6 @@
 //! `flexure draw`: a mechanism's shapes as one figure, seen from a [`View`]
 //! ([`super::projection`]), in both dimensions alike: it reads only the
-//! [`Scene`] and its [`Pose`]s ([`super::scene`], where a planar mechanism
+//! [`Scene`] and its [`Snapshot`]s ([`super::scene`], where a planar mechanism
 //! lies at z = 0 and is seen from the top).
 //!
 //! # What is drawn
@@ -40,7 +40,7 @@
 //! points and loads go on top. Shapes are layered in order, unloaded first.
 
 pub use super::projection::View;
-use super::scene::{Pose, Scene, Symbol};
+use super::scene::{Scene, Snapshot, Symbol};
 use flexure_chart::{
     Anchor, COLORS, Chart, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Series, Stroke,
     Swatch, chart_figure, ramp,
@@ -225,7 +225,7 @@ enum Drawn {
 /// longest). Arrows from one point in one direction (within 25°) go side
 /// by side, each moved across its direction by [`BESIDE`] of the longest
 /// arrow from the one before.
-fn forces(pose: &Pose, view: View, per_newton: Option<f64>) -> Vec<Option<Drawn>> {
+fn forces(pose: &Snapshot, view: View, per_newton: Option<f64>) -> Vec<Option<Drawn>> {
     let Some(k) = per_newton else { return vec![None; pose.loads.len()] };
     let longest = pose.loads.iter().map(|l| k * l.force.norm()).fold(0.0, f64::max);
     let mut drawn: Vec<Option<Drawn>> = Vec::new();
@@ -285,7 +285,7 @@ fn sight(at: (f64, f64), toward: bool, r: f64, color: Color) -> Vec<Mark> {
 }
 
 /// One shape's marks: links, flexures and tendons in increasing depth, then its symbols and loads.
-fn draw_shape(pose: &Pose, view: View, color: Color, sizes: &Sizes, loads: Loads) -> Vec<Mark> {
+fn draw_shape(pose: &Snapshot, view: View, color: Color, sizes: &Sizes, loads: Loads) -> Vec<Mark> {
     let mut parts: Vec<Part> = Vec::new();
     let link_fill = Fill { color: color.tint(0.55), opacity: 0.55 };
     for pts in &pose.links {
@@ -360,7 +360,7 @@ fn draw_shape(pose: &Pose, view: View, color: Color, sizes: &Sizes, loads: Loads
 }
 
 /// The joints' and closures' symbols of a shape.
-fn symbols(pose: &Pose, view: View, color: Color, sizes: &Sizes) -> Vec<Mark> {
+fn symbols(pose: &Snapshot, view: View, color: Color, sizes: &Sizes) -> Vec<Mark> {
     let mut out = Vec::new();
     let reach = 2.5 * sizes.thick;
     for j in &pose.joints {
@@ -416,7 +416,7 @@ fn anchor(view: View, at: &V, away: (f64, f64), sizes: &Sizes) -> Vec<Mark> {
 
 /// The ground's anchors: one at each joint leaving it (unloaded), one at
 /// each other point attached to it unless one is drawn within a bar's length.
-fn ground(scene: &Scene, rest: &Pose, view: View, sizes: &Sizes) -> Vec<Mark> {
+fn ground(scene: &Scene, rest: &Snapshot, view: View, sizes: &Sizes) -> Vec<Mark> {
     let mut out = Vec::new();
     let up = (0.0, 1.0);
     let mut placed: Vec<V> = Vec::new();
@@ -494,7 +494,7 @@ fn triad(view: View, marks: &[Mark]) -> Vec<Mark> {
 
 /// Names beside the last shape's loads: past a force's head (stacked when
 /// side by side), beside a force along the line of sight, else at its moment.
-fn load_names(scene: &Scene, pose: &Pose, view: View, color: Color, sizes: &Sizes) -> Vec<Mark> {
+fn load_names(scene: &Scene, pose: &Snapshot, view: View, color: Color, sizes: &Sizes) -> Vec<Mark> {
     let mut out = Vec::new();
     let drawn = forces(pose, view, sizes.per_newton);
     for (((name, _), l), d) in scene.loads.iter().zip(&pose.loads).zip(drawn) {
@@ -523,7 +523,7 @@ fn load_names(scene: &Scene, pose: &Pose, view: View, color: Color, sizes: &Size
 
 /// The legend's entries for the loads: each force (and moment) with its
 /// value or range over the shapes, each weight, and the arrows' scales.
-fn load_entries(scene: &Scene, loaded: &[(String, Pose)], view: View, sizes: &Sizes) -> Vec<Entry> {
+fn load_entries(scene: &Scene, loaded: &[(String, Snapshot)], view: View, sizes: &Sizes) -> Vec<Entry> {
     let mut out = Vec::new();
     let n = scene.components;
     for (i, (name, body)) in scene.loads.iter().enumerate() {
@@ -579,7 +579,7 @@ fn load_entries(scene: &Scene, loaded: &[(String, Pose)], view: View, sizes: &Si
 }
 
 /// The legend's keys for the joints, flexures and tendons every shape shows.
-fn keys(scene: &Scene, rest: &Pose, loaded: &[(String, Pose)], view: View) -> Vec<Entry> {
+fn keys(scene: &Scene, rest: &Snapshot, loaded: &[(String, Snapshot)], view: View) -> Vec<Entry> {
     let mut out = Vec::new();
     if !rest.flexures.is_empty() {
         let swatch = Swatch::Line(Some(Stroke::solid(KEY, FLEXURE_WIDTH)), None);
@@ -629,8 +629,8 @@ fn keys(scene: &Scene, rest: &Pose, loaded: &[(String, Pose)], view: View) -> Ve
 pub fn figure(
     scene: &Scene,
     title: &str,
-    rest: &Pose,
-    loaded: &[(String, Pose)],
+    rest: &Snapshot,
+    loaded: &[(String, Snapshot)],
     marks: &Marks,
     view: View,
     stress: bool,
@@ -770,7 +770,7 @@ pub struct MotionFigures {
 pub fn motion_figures(
     scene: &Scene,
     title: &str,
-    (rest, snapshots): (&Pose, &[(String, Pose)]),
+    (rest, snapshots): (&Snapshot, &[(String, Snapshot)]),
     (time, tracks): (&[f64], &[Track]),
     picked: &[usize],
     view: View,

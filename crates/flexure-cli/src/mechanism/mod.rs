@@ -63,17 +63,17 @@ fn check_frame(model: &Model, name: &str, point: &[f64], file: &Path) -> Result<
 }
 
 /// A point `X,Y` (a planar file) or `X,Y,Z` (a spatial one).
-pub fn point_any(s: &str) -> Result<Point, String> {
+pub fn point_any(s: &str) -> Result<PointArg, String> {
     let parts: Vec<&str> = s.split(',').collect();
     if !(2..=3).contains(&parts.len()) {
         return Err(format!("{s:?} must be X,Y (a planar mechanism) or X,Y,Z (a spatial one)"));
     }
-    parts.into_iter().map(number).collect::<Result<_, _>>().map(Point)
+    parts.into_iter().map(number).collect::<Result<_, _>>().map(PointArg)
 }
 
 /// A point of two or three coordinates (one value to clap, not a list).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Point(pub Vec<f64>);
+pub struct PointArg(pub Vec<f64>);
 
 /// A point `X,Y`.
 pub fn point_arg(s: &str) -> Result<[f64; 2], String> {

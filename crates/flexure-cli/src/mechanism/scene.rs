@@ -2,7 +2,7 @@
 //! drawing that knows the dimension, [`Drawn`]. A planar mechanism is drawn
 //! as the spatial one lying in the plane z = 0, its rotations about z; a
 //! spatial one as it is. The drawing
-//! ([`super::drawing`]) reads only a [`Scene`] and its [`Pose`]s, so the
+//! ([`super::drawing`]) reads only a [`Scene`] and its [`Snapshot`]s, so the
 //! planar picture is the spatial one seen from the top.
 
 use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
@@ -25,7 +25,7 @@ pub struct Scene {
     pub ground: Vec<V>,
     /// Each tendon's name.
     pub tendons: Vec<String>,
-    /// Each load of [`Pose::loads`]: its name and the body it acts on
+    /// Each load of [`Snapshot::loads`]: its name and the body it acts on
     /// (`None`: the weight of the body named).
     pub loads: Vec<(String, Option<String>)>,
     /// The components a load or a position is written with: 2 in the plane (x, y), 3 in space.
@@ -50,7 +50,7 @@ pub enum Symbol {
 }
 
 /// A rigid joint or closure, where it is.
-pub struct Joint {
+pub struct JointMark {
     pub symbol: Symbol,
     /// Its root (a joint's) or its frame on body `a` (a closure's).
     pub at: V,
@@ -73,7 +73,7 @@ pub struct Centreline {
 }
 
 /// Shapes, each with its name.
-pub type Shapes = Vec<(String, Pose)>;
+pub type Shapes = Vec<(String, Snapshot)>;
 
 /// A load: a force (N) and a moment (N·m) at a point (world).
 pub struct Load {
@@ -83,7 +83,7 @@ pub struct Load {
 }
 
 /// One shape of the mechanism, in the world.
-pub struct Pose {
+pub struct Snapshot {
     /// Every point attached to each body but the ground.
     pub links: Vec<Vec<V>>,
     /// Every body's origin.
@@ -93,7 +93,7 @@ pub struct Pose {
     /// Each joint leaving the ground: its root and the direction it leaves in.
     pub leaving: Vec<(V, V)>,
     pub flexures: Vec<Centreline>,
-    pub joints: Vec<Joint>,
+    pub joints: Vec<JointMark>,
     /// Each tendon's via points.
     pub tendons: Vec<Vec<V>>,
     pub tensions: Vec<f64>,
@@ -124,7 +124,7 @@ pub trait Drawn: Analyses {
     /// The shape at coordinates `q` under `loads`, named `label` in its
     /// errors: a shape that does not fit `m`, or a flexure whose
     /// coordinates the library refuses.
-    fn pose(m: &Mechanism<Self>, label: &str, q: &[f64], loads: &Loads<Self>) -> Result<Pose, String>;
+    fn pose(m: &Mechanism<Self>, label: &str, q: &[f64], loads: &Loads<Self>) -> Result<Snapshot, String>;
     /// Each moving body's track of a run: its rotation vector and its origin.
     fn tracks(run: &Simulation<Self>) -> Vec<Track>;
 }
@@ -156,7 +156,7 @@ impl Drawn for Planar {
         flat(*p)
     }
 
-    fn pose(m: &Mechanism, _: &str, q: &[f64], loads: &Loads) -> Result<Pose, String> {
+    fn pose(m: &Mechanism, _: &str, q: &[f64], loads: &Loads) -> Result<Snapshot, String> {
         Ok(planar(m, q, loads))
     }
 
@@ -183,7 +183,7 @@ impl Drawn for Spatial {
         p.coords
     }
 
-    fn pose(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
+    fn pose(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Snapshot, String> {
         spatial(m, label, q, loads)
     }
 
@@ -208,8 +208,8 @@ fn rigid<D: Drawn>(
     at: &impl Fn(usize, &D::Point) -> V,
     (origins, roots): (Vec<V>, Vec<V>),
     tensions: &[f64],
-) -> Pose {
-    Pose {
+) -> Snapshot {
+    Snapshot {
         links: (1..m.bodies.len()).map(|b| m.attachments(b).iter().map(|r| at(b, r)).collect()).collect(),
         origins,
         roots,
@@ -223,7 +223,7 @@ fn rigid<D: Drawn>(
 }
 
 /// A planar shape (coordinates `q` under `loads`) at z = 0.
-fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
+fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Snapshot {
     let f = frames(m, q);
     let at = |b: usize, r: &Point2<f64>| flat(f.bodies[b].act(r));
     let turn = |phi: f64, (x, y): (f64, f64)| V::new(phi.cos() * x - phi.sin() * y, phi.sin() * x + phi.cos() * y, 0.0);
@@ -258,12 +258,12 @@ fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Pose {
             } else {
                 (Symbol::Hinge, V::z())
             };
-            pose.joints.push(Joint { symbol, at: origin, axis, child, closure: false });
+            pose.joints.push(JointMark { symbol, at: origin, axis, child, closure: false });
         }
     }
     for c in m.closures.iter().filter(|c| c.holds == Holds::Pin) {
         let p = at(c.a, &c.a_origin.origin());
-        pose.joints.push(Joint { symbol: Symbol::Hinge, at: p, axis: V::z(), child: p, closure: true });
+        pose.joints.push(JointMark { symbol: Symbol::Hinge, at: p, axis: V::z(), child: p, closure: true });
     }
     let g = loads.gravity;
     let forces = m.forces.iter().zip(&loads.force).map(|(p, l)| Load {
@@ -298,7 +298,7 @@ fn check_shape(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 
 /// A spatial shape, named `label` in its errors: a shape that does not fit
 /// `m`, or a flexure whose coordinates the library refuses.
-fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Pose, String> {
+fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Snapshot, String> {
     check_shape(m, label, q, loads)?;
     let f = spatial_frames(m, q);
     let at = |b: usize, r: &Point3<f64>| (f.bodies[b] * r).coords;
@@ -335,7 +335,7 @@ fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -
             } else {
                 (Symbol::Ball, V::z())
             };
-            pose.joints.push(Joint { symbol, at: pose.roots[ji], axis, child, closure: false });
+            pose.joints.push(JointMark { symbol, at: pose.roots[ji], axis, child, closure: false });
         }
     }
     for c in &m.closures {
@@ -346,7 +346,7 @@ fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -
             Holds::Ball => Symbol::Ball,
             Holds::Weld => continue,
         };
-        pose.joints.push(Joint { symbol, at: p, axis: frame.rotation * V::z(), child: p, closure: true });
+        pose.joints.push(JointMark { symbol, at: p, axis: frame.rotation * V::z(), child: p, closure: true });
     }
     let g = loads.gravity;
     let forces = m.forces.iter().zip(&loads.force).map(|(p, w)| Load {

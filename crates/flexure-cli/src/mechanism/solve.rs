@@ -17,7 +17,7 @@ pub struct SolveArgs {
     compliance: Option<String>,
     /// …at this point X,Y of the body's frame (m); X,Y,Z on a spatial file (its 6 × 6 compliance).
     #[arg(long, value_parser = point_any, allow_hyphen_values = true, requires = "compliance")]
-    at: Option<super::Point>,
+    at: Option<super::PointArg>,
     /// Sweep one load, e.g. tendon.flexor.tension=0:30:31 (or force.NAME.fx|fy|moment, gravity.x|y):
     /// a table with one row per value reached stably, then `stability_limit` (value, fraction) if
     /// stability is lost between two values (found by bisection; a warning on stderr, exit 0).

@@ -112,7 +112,7 @@ pub(super) fn dynamics(out: &Path, md: &mut String) -> Run<Value> {
     // The finger in motion: examples/finger_dynamics.toml, its tendon ramped in over 0.1 s.
     let finger =
         flexure::mechanism::file::from_toml(include_str!("../../../../examples/finger_dynamics.toml")).map_err(lib)?;
-    let motion = flexure::dynamics::integrate::Settings {
+    let motion = flexure::dynamics::integrate::MotionSettings {
         duration: 0.3,
         every: 0.001,
         tolerance: 1e-6,

@@ -3,7 +3,7 @@
 
 use super::{Run, lib, svg};
 use flexure::reference::euler;
-use flexure::tendon::{Tendon, TendonData, pull};
+use flexure::tendon::{TendonData, TendonOffsets, pull};
 use flexure::{Flexure, TipConstraint, bending_stiffness};
 use flexure_chart::{COLORS, Chart, Series};
 use serde_json::{Value, json};
@@ -15,7 +15,7 @@ use std::path::Path;
 pub(super) fn fig10(out: &Path, md: &mut String) -> Run<Value> {
     let ei = bending_stiffness(200e9, 0.01, 0.0002, Some(0.29)).map_err(lib)?;
     let f = Flexure::new(0.015, ei, 3).map_err(lib)?;
-    let t = Tendon { root_offset: 0.005, tip_offset: 0.005 };
+    let t = TendonOffsets { root_offset: 0.005, tip_offset: 0.005 };
     let mut data = TendonData::new(&f);
     let mut rows = Vec::new();
     for i in 0..=40 {

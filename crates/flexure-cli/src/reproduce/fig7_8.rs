@@ -3,7 +3,7 @@
 
 use super::{DASHES, MARKERS, Run, lib, svg, unit};
 use flexure::reference::elastica;
-use flexure::{Flexure, Statics, TipLoad, deflect};
+use flexure::{Flexure, StaticsData, TipLoad, deflect};
 use flexure_chart::{COLORS, Chart, Series};
 use serde_json::{Value, json};
 use std::f64::consts::FRAC_PI_2;
@@ -39,7 +39,7 @@ pub(super) fn fig7_8(out: &Path, md: &mut String) -> Run<Value> {
         ("B", "force at θ = 45°", 0.0, pb),
         ("C", "force at θ = 45° against M = −π/2", -FRAC_PI_2, pc),
     ];
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let (mut rows, mut pos_series, mut ang_series) = (Vec::new(), Vec::new(), Vec::new());
     let mut table = String::from(
         "| case | load | exact tip (φ, x, y) | model tip | position error / L | angle error |\n|---|---|---|---|---|---|\n",

@@ -3,7 +3,7 @@
 
 use super::{DASHES, MARKERS, Run, lib, svg, unit};
 use flexure::reference::elastica;
-use flexure::{Statics, TipLoad, deflect};
+use flexure::{StaticsData, TipLoad, deflect};
 use flexure_chart::{COLORS, Chart, Series};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -17,7 +17,7 @@ pub(super) fn prb_fits(out: &Path, md: &mut String) -> Run<Value> {
     let f = unit(3)?;
     // A vertical end force PL²/EI = 0.5 … 6 across the unit strip (tip angles to about 70°).
     let loads: Vec<TipLoad> = (1..=12).map(|k| TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * k as f64 }).collect();
-    let mut data = Statics::new(&f);
+    let mut data = StaticsData::new(&f);
     let (mut model, mut exact_phi) = (Vec::new(), Vec::new());
     let (mut scm_pos, mut scm_ang) = (Vec::new(), Vec::new());
     for load in &loads {

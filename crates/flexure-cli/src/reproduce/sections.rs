@@ -4,7 +4,7 @@
 use super::{DASHES, MARKERS, Run, lib, svg};
 use flexure::reference::{self, elastica};
 use flexure::section::{Notch, Profile};
-use flexure::{Flexure, Statics, TipLoad, compliance_tip_rest, deflect};
+use flexure::{Flexure, StaticsData, TipLoad, compliance_tip_rest, deflect};
 use flexure_chart::{COLORS, Chart, Dash, Series};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -63,7 +63,7 @@ pub(super) fn sections(out: &Path, md: &mut String) -> Run<Value> {
         let mut errors = Vec::new();
         for &n in &orders {
             let g = build(n)?;
-            let mut data = Statics::new(&g);
+            let mut data = StaticsData::new(&g);
             deflect(&g, &load, &mut data, &Default::default()).map_err(lib)?;
             let m = data.pose_root_tip();
             errors.push(((m.x - exact.x).hypot(m.y - exact.y) / g.length(), (m.phi - exact.phi).abs()));

@@ -4,7 +4,7 @@ use crate::error::{Error, Result};
 use crate::flexure::Flexure;
 use crate::inertia::RigidInertia;
 use crate::mass::{MassData, MassModel, update};
-use crate::statics::{Statics, TipLoad, deflect};
+use crate::statics::{StaticsData, TipLoad, deflect};
 use nalgebra::DMatrix;
 
 /// Directions whose mass is at most this share of the largest eigenvalue
@@ -88,7 +88,7 @@ pub fn modes(flexure: &Flexure, load: &TipLoad, body: Option<&RigidInertia>, cou
             "the flexure has no density or mass per length and there is no tip body with mass or inertia",
         ));
     }
-    let mut statics = Statics::new(flexure);
+    let mut statics = StaticsData::new(flexure);
     let eq = deflect(flexure, load, &mut statics, &Default::default())?;
     if !eq.stable {
         return Err(Error::Unstable { what: "modes", load_fraction: eq.limit.unwrap_or(1.0) });

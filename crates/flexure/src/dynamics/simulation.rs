@@ -40,7 +40,7 @@ pub enum Start {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SimulationSettings {
     /// The integration: duration, sample interval, tolerances, bounds.
-    pub motion: integrate::Settings,
+    pub motion: integrate::MotionSettings,
     /// The static solves of the start.
     pub equilibrium: statics::Settings,
 }
@@ -69,7 +69,7 @@ pub struct BodyPoses {
     pub rotation: Vec<[[f64; 3]; 3]>,
 }
 
-/// A simulated motion, sampled at [`integrate::Settings::times`]: the
+/// A simulated motion, sampled at [`integrate::MotionSettings::times`]: the
 /// integrator's [`Trajectory`] (times, coordinates, rates, energy, steps,
 /// closure violation; read through it directly, `simulation.time`), and
 /// every moving body's frame at each sample.
@@ -146,7 +146,7 @@ pub fn initial_state<D: Dynamics>(
 /// `settings.motion.duration`.
 ///
 /// Errors: `mass` when nothing has mass or inertia (no motion to
-/// simulate); a bad setting by name ([`integrate::Settings::validate`]);
+/// simulate); a bad setting by name ([`integrate::MotionSettings::validate`]);
 /// those of the start's static solve. A run that stops after its first
 /// sample ([`Error::IntegrationStalled`], [`Error::InterruptedAt`]) keeps the
 /// samples it reached, with the error in [`Simulation::stopped`].
@@ -154,7 +154,7 @@ pub fn initial_state<D: Dynamics>(
 /// # Example
 /// ```
 /// use flexure::dynamics::simulation::{simulate, SimulationSettings, Start};
-/// use flexure::dynamics::integrate::Settings;
+/// use flexure::dynamics::integrate::MotionSettings;
 /// use flexure::mechanism::file::from_toml;
 /// // A sprung arm (k = 2 N·m/rad, I = 0.5 kg·m²), started at 0.1 rad: φ = 0.1 cos 2t.
 /// let m = from_toml(
@@ -162,7 +162,7 @@ pub fn initial_state<D: Dynamics>(
 ///      [[body]]\nname = \"arm\"\ninertia = 0.5\n[initial]\npin = 0.1\n",
 /// )
 /// .unwrap();
-/// let motion = Settings { duration: 1.0, every: 0.5, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
+/// let motion = MotionSettings { duration: 1.0, every: 0.5, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
 /// let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Equilibrium).unwrap();
 /// assert_eq!(run.time, [0.0, 0.5, 1.0]);
 /// assert!((run.bodies[0].phi[2] - 0.1 * 2f64.cos()).abs() < 1e-8);

@@ -54,11 +54,11 @@ impl Accuracy {
 ///
 /// ```
 /// use flexure::estimate::{Accuracy, deflect_error};
-/// use flexure::{Flexure, Statics, TipLoad, deflect};
+/// use flexure::{Flexure, StaticsData, TipLoad, deflect};
 ///
 /// let f = Flexure::new(1.0, 1.0, 3)?;
 /// let load = TipLoad { moment: 0.5, fx: 0.0, fy: 0.2 };
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// deflect(&f, &load, &mut data, &Default::default())?;
 /// let e = deflect_error(&f, &load, data.alpha(), &Accuracy::default())?;
 /// // Against the refined model, without a thickness: no stress is printed.

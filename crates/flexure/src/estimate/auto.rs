@@ -9,8 +9,8 @@ use super::statics::{connect_error, deflect_error, tendon_error};
 use crate::error::{Error, Result};
 use crate::flexure::{Flexure, MAX_ORDER};
 use crate::kinematics::Pose;
-use crate::statics::{Settings, Statics, TipLoad, deflect};
-use crate::tendon::{Tendon, TendonData, pull};
+use crate::statics::{Settings, StaticsData, TipLoad, deflect};
+use crate::tendon::{TendonData, TendonOffsets, pull};
 
 /// The lowest order (from 3, doubling, with the reference's quadrature)
 /// whose [`deflect`] answer under `load` meets `target`, with that answer's
@@ -29,7 +29,7 @@ pub fn deflect_auto(
     target: &Accuracy,
 ) -> Result<(Flexure, Vec<f64>, ErrorEstimate)> {
     auto(flexure, |f| {
-        let mut data = Statics::new(f);
+        let mut data = StaticsData::new(f);
         deflect(f, load, &mut data, &Settings::default())?;
         let alpha = data.alpha().to_vec();
         let e = deflect_error(f, load, &alpha, target)?;
@@ -40,7 +40,7 @@ pub fn deflect_auto(
 /// [`deflect_auto`] for the tendon joint.
 pub fn tendon_auto(
     flexure: &Flexure,
-    tendon: &Tendon,
+    tendon: &TendonOffsets,
     tension: f64,
     target: &Accuracy,
 ) -> Result<(Flexure, Vec<f64>, ErrorEstimate)> {

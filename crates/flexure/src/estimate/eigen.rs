@@ -6,7 +6,7 @@ use super::accuracy::Accuracy;
 use super::auto::raise;
 use super::refinement::{eigen_reference, refined};
 use super::value::ValueEstimate;
-use crate::buckling::{Buckling, TipConstraint, buckling_load};
+use crate::buckling::{CriticalLoad, TipConstraint, buckling_load};
 use crate::dynamics::{self, Body, Modes};
 use crate::error::{Error, Result};
 use crate::flexure::{Flexure, MAX_ORDER};
@@ -25,7 +25,12 @@ use crate::statics::TipLoad;
 /// let truth = b.critical_load / (4.0 * std::f64::consts::PI.powi(2)) - 1.0;
 /// assert!(e.flagged && (e.relative[0].unwrap() / truth - 1.0).abs() < 0.01);
 /// ```
-pub fn buckling_error(flexure: &Flexure, tip: TipConstraint, b: &Buckling, target: &Accuracy) -> Result<ValueEstimate> {
+pub fn buckling_error(
+    flexure: &Flexure,
+    tip: TipConstraint,
+    b: &CriticalLoad,
+    target: &Accuracy,
+) -> Result<ValueEstimate> {
     target.validate()?;
     let reference = eigen_reference(flexure, flexure.rest())?;
     let exact = buckling_load(&reference, tip)?.critical_load;
@@ -50,7 +55,7 @@ pub fn buckling_auto(
     flexure: &Flexure,
     tip: TipConstraint,
     target: &Accuracy,
-) -> Result<(Flexure, Buckling, ValueEstimate)> {
+) -> Result<(Flexure, CriticalLoad, ValueEstimate)> {
     let (f, (b, e)) = raise(flexure, |f| {
         let b = buckling_load(f, tip)?;
         let e = buckling_error(f, tip, &b, target)?;

@@ -8,8 +8,8 @@ use super::refinement::{eigen_reference, legendre, reference_size, refined};
 use crate::error::Result;
 use crate::flexure::{Flexure, MAX_ORDER};
 use crate::kinematics::{self, Pose, backbone};
-use crate::statics::{Settings, Statics, TipLoad, deflect};
-use crate::tendon::{Tendon, TendonData, pull};
+use crate::statics::{Settings, StaticsData, TipLoad, deflect};
+use crate::tendon::{TendonData, TendonOffsets, pull};
 
 fn padded(alpha: &[f64], order: usize) -> Vec<f64> {
     let mut a = alpha.to_vec();
@@ -27,9 +27,9 @@ fn pose_error(a: &Pose, b: &Pose) -> (f64, f64) {
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, estimate, Flexure, Statics, TipLoad};
+/// use flexure::{deflect, estimate, Flexure, StaticsData, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// // A moment of 20 N·m winds the flexure 3 times round: 5 points cannot integrate it.
 /// let load = TipLoad { moment: 20.0, fx: 0.0, fy: 0.0 };
 /// deflect(&f, &load, &mut data, &Default::default()).unwrap();
@@ -53,9 +53,9 @@ pub fn deflect_error(flexure: &Flexure, load: &TipLoad, alpha: &[f64], target: &
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, estimate::Estimator, Flexure, Statics, TipLoad};
+/// use flexure::{deflect, estimate::Estimator, Flexure, StaticsData, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
-/// let (mut data, mut estimator) = (Statics::new(&f), Estimator::new());
+/// let (mut data, mut estimator) = (StaticsData::new(&f), Estimator::new());
 /// for fy in [1.0, 2.0, 3.0] {
 ///     let load = TipLoad { moment: 0.0, fx: 0.0, fy };
 ///     deflect(&f, &load, &mut data, &Default::default()).unwrap();
@@ -67,7 +67,7 @@ pub fn deflect_error(flexure: &Flexure, load: &TipLoad, alpha: &[f64], target: &
 #[derive(Debug, Clone, Default)]
 pub struct Estimator {
     /// The flexure estimated last, its reference model and that model's buffers.
-    cached: Option<(Flexure, Flexure, Statics)>,
+    cached: Option<(Flexure, Flexure, StaticsData)>,
     /// The answer padded to the reference's order: the start of its Newton solve.
     warm: Vec<f64>,
 }
@@ -80,14 +80,14 @@ impl Estimator {
 
     /// The reference model for the answer `alpha` of `flexure` ([`reference()`](super::reference())),
     /// built only when the last one was for another flexure or size, with its buffers.
-    fn reference(&mut self, flexure: &Flexure, alpha: &[f64]) -> Result<(&Flexure, &mut Statics)> {
+    fn reference(&mut self, flexure: &Flexure, alpha: &[f64]) -> Result<(&Flexure, &mut StaticsData)> {
         let size = reference_size(flexure, alpha)?;
         let fits = self.cached.as_ref().is_some_and(|(source, reference, _)| {
             (reference.order(), reference.quadrature_points()) == size && source == flexure
         });
         if !fits {
             let reference = refined(flexure, size.0, size.1)?;
-            let data = Statics::new(&reference);
+            let data = StaticsData::new(&reference);
             self.cached = Some((flexure.clone(), reference, data));
         }
         let (_, reference, data) = self.cached.as_mut().expect("built above");
@@ -154,8 +154,8 @@ impl Estimator {
 /// away). Equilibria of one model on one branch agree to the solver's
 /// tolerance; $10^{-6}$ of the length or radian tells them apart. Where the
 /// path cannot be followed, the corrected reference stays.
-fn on_the_loading_path(reference: &Flexure, load: &TipLoad, data: &mut Statics, settings: &Settings) {
-    let mut path = Statics::new(reference);
+fn on_the_loading_path(reference: &Flexure, load: &TipLoad, data: &mut StaticsData, settings: &Settings) {
+    let mut path = StaticsData::new(reference);
     if deflect(reference, load, &mut path, settings).is_err() {
         return;
     }
@@ -185,7 +185,7 @@ fn exact_deflect_error(
 /// The error of a tendon joint's answer `alpha` under `tension` (see [`deflect_error`]).
 pub fn tendon_error(
     flexure: &Flexure,
-    tendon: &Tendon,
+    tendon: &TendonOffsets,
     tension: f64,
     alpha: &[f64],
     target: &Accuracy,
@@ -226,9 +226,9 @@ pub fn connect_error(flexure: &Flexure, target_pose: &Pose, alpha: &[f64], targe
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, estimate, Flexure, Statics, TipLoad};
+/// use flexure::{deflect, estimate, Flexure, StaticsData, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// let load = TipLoad { moment: 0.0, fx: 0.0, fy: 10.0 };
 /// deflect(&f, &load, &mut data, &Default::default()).unwrap();
 /// let direct = estimate::deflect_error(&f, &load, data.alpha(), &Default::default()).unwrap();

@@ -1,6 +1,6 @@
 //! MuJoCo's MJCF.
 
-use super::model::{Attachment, Link, Model, Motion};
+use super::model::{Attachment, Link, LinkMotion, RigidModel};
 use super::xml::{Element, number, numbers};
 use crate::space::Pose;
 
@@ -48,7 +48,7 @@ fn placed(mut e: Element, p: &Pose) -> Element {
 ///   each control is also the fraction of its load);
 /// - a weld is `<weld site1 site2>`, a pin `<connect site1 site2>`; MuJoCo
 ///   snaps sites apart at rest together (a preload).
-pub fn write(model: &Model, name: &str, comment: &[String]) -> String {
+pub fn write(model: &RigidModel, name: &str, comment: &[String]) -> String {
     let mut root = Element::new("mujoco").attr("model", name);
     for c in comment {
         root.comment(c.clone());
@@ -120,20 +120,22 @@ pub fn write(model: &Model, name: &str, comment: &[String]) -> String {
     root.document()
 }
 
-fn sites(model: &Model, link: usize, e: &mut Element) {
+fn sites(model: &RigidModel, link: usize, e: &mut Element) {
     for s in model.sites.iter().filter(|s| s.link == link) {
         e.push(placed(Element::new("site").attr("name", s.name.as_str()), &s.pose).attr("size", "0.001"));
     }
 }
 
-fn body(model: &Model, i: usize, children: &[Vec<usize>]) -> Element {
+fn body(model: &RigidModel, i: usize, children: &[Vec<usize>]) -> Element {
     let l: &Link = &model.links[i];
     let mut b = placed(Element::new("body").attr("name", l.name.as_str()), &l.pose);
     if let Some(j) = &l.joint {
         let mut e = Element::new("joint").attr("name", j.name.as_str());
         e = match j.motion {
-            Motion::Hinge => e.attr("type", "hinge").attr("pos", numbers(&[j.at.x, j.at.y, 0.0])).attr("axis", "0 0 1"),
-            Motion::Slide => e.attr("type", "slide").attr("axis", numbers(&[j.axis.x, j.axis.y, 0.0])),
+            LinkMotion::Hinge => {
+                e.attr("type", "hinge").attr("pos", numbers(&[j.at.x, j.at.y, 0.0])).attr("axis", "0 0 1")
+            }
+            LinkMotion::Slide => e.attr("type", "slide").attr("axis", numbers(&[j.axis.x, j.axis.y, 0.0])),
         };
         if j.reference != 0.0 {
             e = e.attr("ref", number(j.reference));

@@ -245,7 +245,7 @@ pub struct Export {
     /// Every warning: flagged fits, and what the format cannot hold, each naming it.
     pub warnings: Vec<String>,
     /// The rigid-body model the XML writes.
-    pub model: model::Model,
+    pub model: model::RigidModel,
 }
 
 /// Each flexure joint's tip wrenches along the range, and its fit.
@@ -329,7 +329,7 @@ fn fit_line(name: &str, f: &PrbFit, length: f64) -> String {
 
 /// Every number the writers print must be finite: a fit or a pose that is
 /// not is refused here, naming the link or joint, rather than written.
-fn check_finite(model: &model::Model) -> Result<()> {
+fn check_finite(model: &model::RigidModel) -> Result<()> {
     for l in &model.links {
         let i = &l.inertia;
         let mut values = vec![l.pose.phi, l.pose.x, l.pose.y, i.mass, i.inertia, i.com[0], i.com[1]];
@@ -348,7 +348,7 @@ fn check_finite(model: &model::Model) -> Result<()> {
 /// ones `--armature` applies to) of a model with links at the mass floor to
 /// a period of 20 of MuJoCo's default 2 ms steps, $k_1(20\thinspace\Delta t/2\pi)^2$;
 /// `None` when no link is at the floor or no flexure became hinges.
-fn offered_armature(m: &Mechanism, model: &model::Model) -> Option<f64> {
+fn offered_armature(m: &Mechanism, model: &model::RigidModel) -> Option<f64> {
     const STEP: f64 = 0.002;
     const STEPS_PER_PERIOD: f64 = 20.0;
     if !model.links.iter().any(|l| l.floored) {

@@ -32,7 +32,7 @@ pub struct Chain {
 
 /// How a link moves in its parent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Motion {
+pub enum LinkMotion {
     /// About the z axis through [`ModelJoint::at`].
     Hinge,
     /// Along [`ModelJoint::axis`].
@@ -46,7 +46,7 @@ pub struct ModelJoint {
     /// Its name: the file joint's, or `NAME_1`… for a 3R chain's hinges.
     pub name: String,
     /// Hinge or slide.
-    pub motion: Motion,
+    pub motion: LinkMotion,
     /// The hinge's point, in the link's frame (m).
     pub at: Point2<f64>,
     /// The slide's direction, in the link's frame (unit).
@@ -117,7 +117,7 @@ pub enum Attachment {
 /// The rigid-body model: links in parent-first order (link 0 is the ground,
 /// the world), sites, loads and closures, and gravity (m/s², in the plane).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Model {
+pub struct RigidModel {
     /// Links; 0 is the ground.
     pub links: Vec<Link>,
     /// Sites.
@@ -145,7 +145,7 @@ pub struct Model {
 /// rest tip. A flexure with mass has it cut at its pivots' arc lengths and
 /// each piece lumped ([`lump::segment`]) on the link it moves with: the piece
 /// before the first pivot on the parent body.
-pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<Model> {
+pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<RigidModel> {
     if !(armature.is_finite() && armature >= 0.0) {
         return Err(Error::invalid("armature", armature, "must be a finite number, zero or greater (kg·m²)"));
     }
@@ -204,9 +204,9 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<M
                 let at_rest = joint.evaluate(&rest);
                 let (motion, axis) = if joint.is_translation() {
                     let column = Vector2::new(at_rest.jacobian[(1, 0)], at_rest.jacobian[(2, 0)]);
-                    (Motion::Slide, column)
+                    (LinkMotion::Slide, column)
                 } else {
-                    (Motion::Hinge, Vector2::x())
+                    (LinkMotion::Hinge, Vector2::x())
                 };
                 let pose = spec.origin.compose(&at_rest.pose);
                 let j = one(motion, Point2::origin(), axis, rest[0], at_rest.stiffness[(0, 0)], spec.damping);
@@ -232,7 +232,7 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<M
                 let tip = crate::kinematics::pose_root_tip(f, f.rest());
                 let hinge = |i: usize, at: Point2<f64>| ModelJoint {
                     name: if k == 1 { spec.name.clone() } else { format!("{}_{}", spec.name, i + 1) },
-                    motion: Motion::Hinge,
+                    motion: LinkMotion::Hinge,
                     at,
                     axis: Vector2::x(),
                     reference: 0.0,
@@ -298,15 +298,15 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<M
             l.inertia.inertia = l.inertia.inertia.max(MIN_INERTIA);
         }
     }
-    let mut model = Model { links, sites: Vec::new(), attachments: Vec::new(), gravity: m.gravity, body_link };
+    let mut model = RigidModel { links, sites: Vec::new(), attachments: Vec::new(), gravity: m.gravity, body_link };
     attach(m, &mut model);
     check_names(&model)?;
     Ok(model)
 }
 
 /// The file's tendons, forces and closures on sites of the model.
-fn attach(m: &Mechanism, model: &mut Model) {
-    let site = |model: &mut Model, name: String, body: usize, pose: Pose| {
+fn attach(m: &Mechanism, model: &mut RigidModel) {
+    let site = |model: &mut RigidModel, name: String, body: usize, pose: Pose| {
         let link = model.body_link[body];
         model.sites.push(Site { name, link, pose });
         model.sites.len() - 1
@@ -352,7 +352,7 @@ fn attach(m: &Mechanism, model: &mut Model) {
 }
 
 /// Generated names (pseudo-rigid links, sites) must not take a body's or a joint's.
-fn check_names(model: &Model) -> Result<()> {
+fn check_names(model: &RigidModel) -> Result<()> {
     let mut seen = std::collections::HashSet::new();
     for l in &model.links {
         if !seen.insert(l.name.as_str()) {
@@ -386,7 +386,7 @@ fn check_names(model: &Model) -> Result<()> {
     Ok(())
 }
 
-impl Model {
+impl RigidModel {
     /// Site `s`'s rest pose in the world.
     pub fn world(&self, s: usize) -> Pose {
         let site = &self.sites[s];

@@ -1,6 +1,6 @@
 //! SDFormat (Gazebo), version 1.9.
 
-use super::model::{Attachment, Model, Motion};
+use super::model::{Attachment, LinkMotion, RigidModel};
 use super::xml::{Element, number, numbers};
 use crate::space::Pose;
 
@@ -26,7 +26,7 @@ fn leaf(name: &str, v: f64) -> Element {
 /// depends on the physics engine); one open at rest cannot be written (an
 /// SDFormat joint has one frame), nor can tendons or forces (no static
 /// loads without a plugin): each is warned of by name.
-pub fn write(model: &Model, name: &str, comment: &[String]) -> (String, Vec<String>) {
+pub fn write(model: &RigidModel, name: &str, comment: &[String]) -> (String, Vec<String>) {
     let mut warnings = Vec::new();
     let mut m = Element::new("model").attr("name", name);
     for l in model.links.iter().skip(1) {
@@ -55,8 +55,8 @@ pub fn write(model: &Model, name: &str, comment: &[String]) -> (String, Vec<Stri
             }
             Some(h) => {
                 let (kind, axis) = match h.motion {
-                    Motion::Hinge => ("revolute", [0.0, 0.0, 1.0]),
-                    Motion::Slide => ("prismatic", [h.axis.x, h.axis.y, 0.0]),
+                    LinkMotion::Hinge => ("revolute", [0.0, 0.0, 1.0]),
+                    LinkMotion::Slide => ("prismatic", [h.axis.x, h.axis.y, 0.0]),
                 };
                 j = j.attr("type", kind);
                 j.push(Element::new("parent").text(parent_name(l.parent)));

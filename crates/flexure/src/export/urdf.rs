@@ -1,6 +1,6 @@
 //! URDF (ROS): the tree only.
 
-use super::model::{Attachment, Model, Motion};
+use super::model::{Attachment, LinkMotion, RigidModel};
 use super::xml::{Element, number, numbers};
 use crate::space::Pose;
 
@@ -21,7 +21,7 @@ fn origin(p: &Pose) -> Element {
 /// stays the file's. Hinges are `continuous`; a slide is `prismatic`, whose
 /// required limits are written as $\pm$ `travel` (m) with zero effort and
 /// velocity, with a warning. Coordinates are measured from rest.
-pub fn write(model: &Model, name: &str, comment: &[String], travel: f64) -> (String, Vec<String>) {
+pub fn write(model: &RigidModel, name: &str, comment: &[String], travel: f64) -> (String, Vec<String>) {
     let mut warnings = Vec::new();
     let mut robot = Element::new("robot").attr("name", name);
     for c in comment {
@@ -56,8 +56,8 @@ pub fn write(model: &Model, name: &str, comment: &[String], travel: f64) -> (Str
             continue;
         };
         let (kind, axis) = match h.motion {
-            Motion::Hinge => ("continuous", [0.0, 0.0, 1.0]),
-            Motion::Slide => ("prismatic", [h.axis.x, h.axis.y, 0.0]),
+            LinkMotion::Hinge => ("continuous", [0.0, 0.0, 1.0]),
+            LinkMotion::Slide => ("prismatic", [h.axis.x, h.axis.y, 0.0]),
         };
         let pivot = h.at.x != 0.0 || h.at.y != 0.0;
         let (child, place) = if pivot {
@@ -72,7 +72,7 @@ pub fn write(model: &Model, name: &str, comment: &[String], travel: f64) -> (Str
             .child(Element::new("child").attr("link", child.as_str()))
             .child(origin(&place))
             .child(Element::new("axis").attr("xyz", numbers(&axis)));
-        if h.motion == Motion::Slide {
+        if h.motion == LinkMotion::Slide {
             j.push(
                 Element::new("limit")
                     .attr("lower", number(-travel))

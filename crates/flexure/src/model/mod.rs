@@ -262,7 +262,7 @@ impl Model {
     /// let m = Model::from_toml("[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
     ///     [[body]]\nname = \"arm\"\nmass = 0.1\ncom = [0.1, 0.0]\n[initial]\npivot = [0.1]\n").unwrap();
     /// let half = std::f64::consts::PI / 1000f64.sqrt();
-    /// let motion = integrate::Settings { duration: half, every: half, ..Default::default() };
+    /// let motion = integrate::MotionSettings { duration: half, every: half, ..Default::default() };
     /// let run = m.simulate(&SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
     /// assert!((run.trajectory.q(1)[0] + 0.1).abs() < 1e-5 && run.stopped.is_none());
     /// assert_eq!((run.bodies[0].0.as_str(), run.bodies[0].1.len()), ("arm", 2));

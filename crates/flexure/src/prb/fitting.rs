@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::flexure::Flexure;
 use crate::kinematics::{Pose, pose_root_tip};
 use crate::space::MAX_LOAD;
-use crate::statics::{Settings, Statics, TipLoad, deflect};
+use crate::statics::{Settings, StaticsData, TipLoad, deflect};
 use nalgebra::{DMatrix, DVector, Point2};
 
 /// A fit is [`PrbFit::flagged`] when its position error exceeds this fraction of $L$.
@@ -116,10 +116,10 @@ pub fn fit(f: &Flexure, loads: &[TipLoad], kind: PrbKind) -> Result<PrbFit> {
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, Flexure, Statics, TipLoad, prb};
+/// use flexure::{deflect, Flexure, StaticsData, TipLoad, prb};
 /// let f = Flexure::new(1.0, 1.0, 4)?;
 /// let loads: Vec<TipLoad> = (1..=6).map(|i| TipLoad { moment: 0.0, fx: 0.0, fy: 0.5 * i as f64 }).collect();
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// let alphas: Vec<Vec<f64>> = loads
 ///     .iter()
 ///     .map(|l| deflect(&f, l, &mut data, &Default::default()).map(|_| data.alpha().to_vec()))
@@ -215,7 +215,7 @@ fn finish(mut fit: PrbFit, f: &Flexure, loads: &[TipLoad], targets: &[Pose]) -> 
 /// The model's tip poses under each load, followed from rest.
 fn model_tips(f: &Flexure, loads: &[TipLoad]) -> Result<Vec<Pose>> {
     check_loads(loads)?;
-    let mut data = Statics::new(f);
+    let mut data = StaticsData::new(f);
     let settings = Settings::default();
     loads
         .iter()

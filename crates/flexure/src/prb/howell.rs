@@ -5,7 +5,7 @@
 use crate::error::{Error, Result};
 use crate::flexure::Flexure;
 use crate::kinematics::Pose;
-use crate::statics::{Settings, Statics, TipLoad, correct, deflect};
+use crate::statics::{Settings, StaticsData, TipLoad, correct, deflect};
 
 /// What Howell's relative error is measured against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -84,7 +84,7 @@ pub fn path(f: &Flexure, n: f64, top: f64, count: usize) -> Result<Vec<PathPoint
         return Err(Error::invalid("count", count, "must be at least 2"));
     }
     let scale = f.ei() / (f.length() * f.length());
-    let mut data = Statics::new(f);
+    let mut data = StaticsData::new(f);
     let settings = Settings::default();
     let mut alpha = Vec::new();
     (1..=count)

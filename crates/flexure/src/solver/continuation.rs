@@ -4,7 +4,7 @@
 use super::interrupt::interrupted;
 use super::newton::{Mode, check_dim, correct};
 use super::structured::structured_solve;
-use super::{NewtonReport, Problem, Settings, Workspace, newton};
+use super::{NewtonReport, Problem, Settings, SolverWorkspace, newton};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::scalar::Scalar;
@@ -162,7 +162,7 @@ impl Path {
 /// returns the same runs as a [`Path`] that says where they stopped.
 pub fn continuation<T: Scalar, P: Problem<T>>(
     problem: &mut P,
-    ws: &mut Workspace<T>,
+    ws: &mut SolverWorkspace<T>,
     settings: &Settings,
 ) -> Result<Path> {
     trace(problem, ws, settings)?.into_result(problem)
@@ -172,7 +172,7 @@ pub fn continuation<T: Scalar, P: Problem<T>>(
 /// loses stability, for callers that only ask whether it stays stable.
 pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
     problem: &mut P,
-    ws: &mut Workspace<T>,
+    ws: &mut SolverWorkspace<T>,
     settings: &Settings,
 ) -> Result<Path> {
     follow(problem, ws, settings, true)?.into_result(problem)
@@ -187,7 +187,7 @@ pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
 ///
 /// # Example
 /// ```
-/// use flexure::solver::{trace, Problem, Stop, Workspace};
+/// use flexure::solver::{trace, Problem, Stop, SolverWorkspace};
 /// /// $r = x - 2\lambda$.
 /// struct Line;
 /// impl Problem<f64> for Line {
@@ -203,18 +203,22 @@ pub(crate) fn continuation_while_stable<T: Scalar, P: Problem<T>>(
 ///     fn unit(&self) -> &'static str { "" }
 ///     fn name(&self) -> &'static str { "line" }
 /// }
-/// let mut ws = Workspace::new(1);
+/// let mut ws = SolverWorkspace::new(1);
 /// let path = trace(&mut Line, &mut ws, &Default::default()).unwrap();
 /// assert_eq!(path.stop, Stop::Reached);
 /// assert!(path.load_fraction == 1.0 && (ws.x[0] - 2.0).abs() < 1e-12);
 /// ```
-pub fn trace<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>, settings: &Settings) -> Result<Path> {
+pub fn trace<T: Scalar, P: Problem<T>>(
+    problem: &mut P,
+    ws: &mut SolverWorkspace<T>,
+    settings: &Settings,
+) -> Result<Path> {
     follow(problem, ws, settings, false)
 }
 
 fn follow<T: Scalar, P: Problem<T>>(
     problem: &mut P,
-    ws: &mut Workspace<T>,
+    ws: &mut SolverWorkspace<T>,
     settings: &Settings,
     stop_when_unstable: bool,
 ) -> Result<Path> {
@@ -467,7 +471,7 @@ const STRAY: f64 = 1.0;
 /// $(x, \lambda) + h\thinspace t$ to the state in `ws.trial` at `new_lambda`, in the weighted arc length.
 fn strayed<T: Scalar, P: Problem<T>>(
     problem: &P,
-    ws: &Workspace<T>,
+    ws: &SolverWorkspace<T>,
     lambda: f64,
     new_lambda: f64,
     h: f64,
@@ -560,7 +564,7 @@ fn stalled<T: Scalar, P: Problem<T>>(problem: &P, path: &Path, residual: f64, ca
 }
 
 /// Rotation caused by a unit step along the tangent.
-fn unit_rotation<T: Scalar, P: Problem<T>>(problem: &P, ws: &mut Workspace<T>) -> f64 {
+fn unit_rotation<T: Scalar, P: Problem<T>>(problem: &P, ws: &mut SolverWorkspace<T>) -> f64 {
     let n = ws.n;
     for i in 0..n {
         ws.step[i] = ws.x[i] + ws.tangent[i];
@@ -569,7 +573,7 @@ fn unit_rotation<T: Scalar, P: Problem<T>>(problem: &P, ws: &mut Workspace<T>) -
 }
 
 /// Scales the tangent to unit weighted length; returns the length it had.
-fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambda_weight: f64) -> f64 {
+fn normalize<T: Scalar, P: Problem<T>>(ws: &mut SolverWorkspace<T>, problem: &P, lambda_weight: f64) -> f64 {
     let n = ws.n;
     let norm = ((0..n).map(|i| (ws.tangent[i].re() * problem.weight(i)).powi(2)).sum::<f64>()
         + (ws.tangent[n].re() * lambda_weight).powi(2))
@@ -590,14 +594,15 @@ fn normalize<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &P, lambd
 /// $t_\lambda = 1/e$, $t_x = U^{-1}(0 - t_\lambda L^{-1}P\thinspace\partial_\lambda r)$: the
 /// same operations, so the same tangent to the bit. The Jacobian's factors
 /// are kept while it stays the same to the bit (a start restored for
-/// other loads, [`Workspace::restore_start`]). Only plain values: the bit
+/// other loads, [`SolverWorkspace::restore_start`]). Only plain values: the bit
 /// comparison sees no derivative parts. Applies only where every factor
 /// and the eliminated $\partial_\lambda r$ are finite (where zeros times
 /// infinities would make the bordered LU differ).
-fn tangent_along_load<T: Scalar>(ws: &mut Workspace<T>) -> bool {
+fn tangent_along_load<T: Scalar>(ws: &mut SolverWorkspace<T>) -> bool {
     let n = ws.n;
     let m = n + 1;
-    let Workspace { jacobian, dlambda, matrix, tangent, factored, factors, factor_pivots, factors_valid, .. } = ws;
+    let SolverWorkspace { jacobian, dlambda, matrix, tangent, factored, factors, factor_pivots, factors_valid, .. } =
+        ws;
     let same =
         *factors_valid && factored.iter().zip(jacobian.iter()).all(|(a, b)| a.re().to_bits() == b.re().to_bits());
     if !same {
@@ -628,9 +633,9 @@ fn tangent_along_load<T: Scalar>(ws: &mut Workspace<T>) -> bool {
 
 /// Evaluates `ws.jacobian` and `ws.dlambda` at the landed state `ws.trial`
 /// ($\lambda = 1$) again, with the load derivative; false if that fails.
-fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut Workspace<T>) -> bool {
+fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut SolverWorkspace<T>) -> bool {
     let n = ws.n;
-    let Workspace { trial, trial_residual, jacobian, dlambda, evaluations, .. } = ws;
+    let SolverWorkspace { trial, trial_residual, jacobian, dlambda, evaluations, .. } = ws;
     *evaluations += 1;
     problem.evaluate(&trial[..n], 1.0, &mut trial_residual[..n], Some(jacobian), Some(dlambda)).is_ok()
 }
@@ -639,7 +644,7 @@ fn load_derivative_at_trial<T: Scalar, P: Problem<T>>(problem: &mut P, ws: &mut 
 /// derivative in `ws`), oriented along `ws.previous_tangent`:
 /// $[\partial_x r,\ \partial_\lambda r;\ t_{prev}^T W]\thinspace t = (0, 1)$.
 /// False where that bordered matrix is singular.
-fn tangent<T: Scalar, P: Problem<T>>(ws: &mut Workspace<T>, problem: &mut P, lambda_weight: f64) -> bool {
+fn tangent<T: Scalar, P: Problem<T>>(ws: &mut SolverWorkspace<T>, problem: &mut P, lambda_weight: f64) -> bool {
     let n = ws.n;
     let m = n + 1;
     for c in 0..n {
@@ -687,7 +692,7 @@ mod tests {
         let mut compared = 0;
         for n in 1..=12 {
             let m = n + 1;
-            let mut ws = Workspace::<f64>::new(n);
+            let mut ws = SolverWorkspace::<f64>::new(n);
             for trial in 0..6 {
                 // Every other trial keeps the Jacobian and changes only ∂λr.
                 if trial % 2 == 0 {

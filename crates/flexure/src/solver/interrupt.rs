@@ -16,9 +16,9 @@ thread_local! {
 ///
 /// # Example
 /// ```
-/// use flexure::{deflect, solver::with_interrupt, Error, Flexure, Statics, TipLoad};
+/// use flexure::{deflect, solver::with_interrupt, Error, Flexure, StaticsData, TipLoad};
 /// let f = Flexure::new(1.0, 1.0, 3).unwrap();
-/// let mut data = Statics::new(&f);
+/// let mut data = StaticsData::new(&f);
 /// let load = TipLoad { moment: 100.0, fx: 0.0, fy: 0.0 };
 /// let r = with_interrupt(|| true, || deflect(&f, &load, &mut data, &Default::default()));
 /// assert!(matches!(r, Err(Error::Interrupted { .. })));

@@ -54,4 +54,4 @@ pub use interrupt::with_interrupt;
 pub use newton::{NewtonReport, NewtonStop, newton};
 pub use problem::Problem;
 pub use settings::{MAX_COUNT, Settings};
-pub use workspace::Workspace;
+pub use workspace::SolverWorkspace;

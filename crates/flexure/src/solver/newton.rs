@@ -3,7 +3,7 @@
 
 use super::interrupt::interrupted;
 use super::structured::structured_solve;
-use super::{Problem, Settings, Workspace};
+use super::{Problem, Settings, SolverWorkspace};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::scalar::Scalar;
@@ -21,7 +21,7 @@ use crate::scalar::Scalar;
 ///
 /// # Example
 /// ```
-/// use flexure::solver::{newton, NewtonStop, Problem, Settings, Workspace};
+/// use flexure::solver::{newton, NewtonStop, Problem, Settings, SolverWorkspace};
 /// /// $r(x, \lambda) = x^2 - 2 - \lambda$: root $\sqrt{2 + \lambda}$.
 /// struct Root;
 /// impl Problem<f64> for Root {
@@ -37,7 +37,7 @@ use crate::scalar::Scalar;
 ///     fn unit(&self) -> &'static str { "1" }
 ///     fn name(&self) -> &'static str { "root" }
 /// }
-/// let mut ws = Workspace::new(1);
+/// let mut ws = SolverWorkspace::new(1);
 /// ws.x[0] = 1.0;
 /// let report = newton(&mut Root, &mut ws, 0.0, &Settings::default()).unwrap();
 /// assert_eq!(report.stop, NewtonStop::Converged);
@@ -133,7 +133,7 @@ fn system<T: Scalar, P: Problem<T>>(
 #[allow(clippy::too_many_arguments)]
 pub(super) fn correct<T: Scalar, P: Problem<T>>(
     problem: &mut P,
-    ws: &mut Workspace<T>,
+    ws: &mut SolverWorkspace<T>,
     mode: Mode,
     lambda: f64,
     lambda_weight: f64,
@@ -149,7 +149,7 @@ pub(super) fn correct<T: Scalar, P: Problem<T>>(
     };
     let tolerance = settings.tolerance * problem.scale();
     let (name, unit) = (problem.name(), problem.unit());
-    let Workspace {
+    let SolverWorkspace {
         trial,
         trial_residual,
         jacobian,
@@ -292,7 +292,7 @@ fn scratch_copy<T: Scalar>(matrix: &[T], scratch: &mut [T], m: usize, shift: f64
 /// Stops with [`Error::NoConvergence`] at the iteration limit.
 pub fn newton<T: Scalar, P: Problem<T>>(
     problem: &mut P,
-    ws: &mut Workspace<T>,
+    ws: &mut SolverWorkspace<T>,
     lambda: f64,
     settings: &Settings,
 ) -> Result<NewtonReport> {
@@ -309,7 +309,7 @@ pub fn newton<T: Scalar, P: Problem<T>>(
     Ok(report)
 }
 
-pub(super) fn check_dim<T: Scalar, P: Problem<T>>(problem: &P, ws: &Workspace<T>) -> Result<()> {
+pub(super) fn check_dim<T: Scalar, P: Problem<T>>(problem: &P, ws: &SolverWorkspace<T>) -> Result<()> {
     if problem.dim() != ws.n {
         return Err(Error::invalid("workspace", ws.n, "was made for a problem of another size"));
     }

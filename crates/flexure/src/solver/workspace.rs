@@ -8,7 +8,7 @@ use crate::scalar::Scalar;
 /// Buffers for [`newton`](fn@newton) and [`continuation`](fn@continuation) on an $n$-unknown problem;
 /// nothing is allocated once they exist.
 #[derive(Debug, Clone)]
-pub struct Workspace<T: Scalar> {
+pub struct SolverWorkspace<T: Scalar> {
     pub(super) n: usize,
     /// The current state $x$: the start on entry, the solution on success.
     pub x: Vec<T>,
@@ -51,7 +51,7 @@ pub struct Workspace<T: Scalar> {
     pub(super) evaluations: usize,
 }
 
-impl<T: Scalar> Workspace<T> {
+impl<T: Scalar> SolverWorkspace<T> {
     /// Buffers for an `n`-unknown problem.
     pub fn new(n: usize) -> Self {
         let z = T::zero();
@@ -88,16 +88,16 @@ impl<T: Scalar> Workspace<T> {
     }
 
     /// $\partial_\lambda r$ at the current state, as left by the last
-    /// evaluation: for a caller that restores a start ([`Workspace::restore_start`]).
+    /// evaluation: for a caller that restores a start ([`SolverWorkspace::restore_start`]).
     pub fn dlambda_mut(&mut self) -> &mut [T] {
         &mut self.dlambda
     }
 
     /// Declares `x` a start at $\lambda = 0$ that [`newton`](fn@newton) on the same
     /// problem reached as `report` says, with stability `stable`: what
-    /// [`Workspace::start_stable`] does after that solve, for a caller that
-    /// kept the solve's result and has put back `x`, [`Workspace::jacobian`]
-    /// and [`Workspace::dlambda_mut`] exactly as that solve left them.
+    /// [`SolverWorkspace::start_stable`] does after that solve, for a caller that
+    /// kept the solve's result and has put back `x`, [`SolverWorkspace::jacobian`]
+    /// and [`SolverWorkspace::dlambda_mut`] exactly as that solve left them.
     pub fn restore_start(&mut self, report: NewtonReport, stable: bool) {
         self.lambda = 0.0;
         self.start = Some(report);

@@ -164,7 +164,7 @@ pub struct SpatialStatics<T: Scalar = f64> {
     /// $\partial r/\partial\alpha$ at the solution: the loaded generalized
     /// stiffness (symmetric without a tip moment).
     pub stiffness: DMatrix<T>,
-    solver: solver::Workspace<T>,
+    solver: solver::SolverWorkspace<T>,
     quadrature: Quadrature,
     work: Work<T>,
     scratch: Vec<T>,
@@ -180,7 +180,7 @@ impl<T: Scalar> SpatialStatics<T> {
         Self {
             kinematics: SpatialKinematics::new(flexure),
             stiffness: DMatrix::zeros(n, n),
-            solver: solver::Workspace::new(n),
+            solver: solver::SolverWorkspace::new(n),
             quadrature: Quadrature::new(flexure),
             work: Work::new(flexure),
             scratch: vec![T::zero(); 2 * n * n],
@@ -412,7 +412,7 @@ fn problem<'a, T: Scalar>(
     flexure: &'a SpatialFlexure,
     load: &SpatialLoad,
     data: &'a mut SpatialStatics<T>,
-) -> Result<(WrenchProblem<'a, T>, &'a mut solver::Workspace<T>)> {
+) -> Result<(WrenchProblem<'a, T>, &'a mut solver::SolverWorkspace<T>)> {
     load.validate()?;
     data.fits(flexure)?;
     let SpatialStatics { quadrature, work, solver, scratch, shapes, .. } = data;

@@ -71,8 +71,8 @@
 //! (and if the start could not be made consistent, the first step projects
 //! it, its velocity jumping by the offset over $h$).
 //! A step is also refused when it turns a section or body by more than
-//! [`Settings::max_rotation_per_step`] ([`System::distance`]), and none
-//! exceeds [`Settings::max_step`]. Steps land on the sample times exactly.
+//! [`MotionSettings::max_rotation_per_step`] ([`System::distance`]), and none
+//! exceeds [`MotionSettings::max_step`]. Steps land on the sample times exactly.
 //!
 //! **Bounded and honest.** Each step takes at most 7 simplified Newton
 //! iterations; a contraction above 0.99 or a non-finite state ends them
@@ -80,8 +80,8 @@
 //! shrinking at rounding's level (in an ill-conditioned mechanism), or
 //! iterations that run out, are accepted when the estimated distance to the
 //! solution is within 1 % of the tolerance; a refused step is retried shorter at most
-//! [`Settings::max_rejections`] times in a row, at most
-//! [`Settings::step_budget`] steps are tried in all (a run whose pace would
+//! [`MotionSettings::max_rejections`] times in a row, at most
+//! [`MotionSettings::step_budget`] steps are tried in all (a run whose pace would
 //! need more than [`PACE_MARGIN`] times the budget left stops as soon as it
 //! knows, [`PACE_WINDOW`]), and no step falls to rounding's level: past any
 //! of these the run stops with [`Error::IntegrationStalled`], saying the
@@ -89,7 +89,7 @@
 //! samples reached before it. Every Newton iteration polls the hook of
 //! [`crate::solver::with_interrupt`].
 //!
-//! The parts live apart: [`Settings`] and the progress hook; the consistent
+//! The parts live apart: [`MotionSettings`] and the progress hook; the consistent
 //! start; the step loop and its control; the stage Newton method; the local
 //! error estimate; the Radau IIA tableau.
 
@@ -105,9 +105,9 @@ mod trajectory;
 mod work;
 
 pub use progress::with_progress;
-pub use settings::{MAX_SAMPLES, MAX_STEPS, Settings};
+pub use settings::{MAX_SAMPLES, MAX_STEPS, MotionSettings};
 pub use step::{PACE_MARGIN, PACE_WINDOW};
-pub use trajectory::{Stop, Trajectory};
+pub use trajectory::{Trajectory, TrajectoryStop};
 
 use super::System;
 use crate::error::{Error, Result};
@@ -123,8 +123,8 @@ pub(super) fn largest(x: &[f64]) -> f64 {
 }
 
 /// Integrates `system` from the state (`q0`, `v0`) at $t = 0$ over
-/// [`Settings::duration`], reporting the state and energy at
-/// [`Settings::times`] (see the [module docs](self) for the method).
+/// [`MotionSettings::duration`], reporting the state and energy at
+/// [`MotionSettings::times`] (see the [module docs](self) for the method).
 ///
 /// Fails with [`Error::InvalidParameter`] naming a bad setting, or
 /// `initial` / `initial_velocity` when a state has the wrong length or a
@@ -137,7 +137,7 @@ pub(super) fn largest(x: &[f64]) -> f64 {
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::{integrate::{integrate, Settings}, System};
+/// use flexure::dynamics::{integrate::{integrate, MotionSettings}, System};
 /// use flexure::Result;
 /// /// A unit mass on a unit spring: q = cos t.
 /// struct Spring;
@@ -157,10 +157,10 @@ pub(super) fn largest(x: &[f64]) -> f64 {
 ///     fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> { Ok(0.5 * (q[0] * q[0] + v[0] * v[0])) }
 ///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
 /// }
-/// let s = Settings { duration: 3.0, every: 1.0, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
+/// let s = MotionSettings { duration: 3.0, every: 1.0, tolerance: 1e-10, absolute: 1e-10, ..Default::default() };
 /// let run = integrate(&mut Spring, &[1.0], &[0.0], &s).unwrap();
 /// assert_eq!(run.time, [0.0, 1.0, 2.0, 3.0]);
-/// assert_eq!(run.stop, flexure::dynamics::integrate::Stop::Reached);
+/// assert_eq!(run.stop, flexure::dynamics::integrate::TrajectoryStop::Reached);
 /// for (k, t) in run.time.iter().enumerate() {
 ///     assert!((run.q(k)[0] - t.cos()).abs() < 1e-8);
 /// }
@@ -169,7 +169,7 @@ pub fn integrate<S: System + ?Sized>(
     system: &mut S,
     q0: &[f64],
     v0: &[f64],
-    settings: &Settings,
+    settings: &MotionSettings,
 ) -> Result<Trajectory> {
     let (run, stopped) = integrate_kept(system, q0, v0, settings)?;
     stopped.map_or(Ok(run), Err)
@@ -183,7 +183,7 @@ pub fn integrate<S: System + ?Sized>(
 ///
 /// # Example
 /// ```
-/// use flexure::dynamics::integrate::{integrate_kept, Settings};
+/// use flexure::dynamics::integrate::{integrate_kept, MotionSettings};
 /// use flexure::dynamics::System;
 /// use flexure::{Error, Result};
 /// /// A unit mass on a unit spring, which cannot be evaluated past t = 1.5 s.
@@ -205,17 +205,17 @@ pub fn integrate<S: System + ?Sized>(
 ///     fn energy(&mut self, q: &[f64], v: &[f64], _: f64) -> Result<f64> { Ok(0.5 * (q[0] * q[0] + v[0] * v[0])) }
 ///     fn distance(&self, a: &[f64], b: &[f64]) -> f64 { (a[0] - b[0]).abs() }
 /// }
-/// let s = Settings { duration: 3.0, every: 0.5, ..Default::default() };
+/// let s = MotionSettings { duration: 3.0, every: 0.5, ..Default::default() };
 /// let (run, stopped) = integrate_kept(&mut Brittle, &[1.0], &[0.0], &s).unwrap();
 /// assert_eq!(run.time, [0.0, 0.5, 1.0, 1.5]);
 /// assert!(matches!(stopped, Some(Error::IntegrationStalled { .. })));
-/// assert_eq!(run.stop, flexure::dynamics::integrate::Stop::Stalled);
+/// assert_eq!(run.stop, flexure::dynamics::integrate::TrajectoryStop::Stalled);
 /// ```
 pub fn integrate_kept<S: System + ?Sized>(
     system: &mut S,
     q0: &[f64],
     v0: &[f64],
-    settings: &Settings,
+    settings: &MotionSettings,
 ) -> Result<(Trajectory, Option<Error>)> {
     settings.validate()?;
     let n = system.dim();
@@ -237,13 +237,13 @@ pub fn integrate_kept<S: System + ?Sized>(
         steps: 0,
         rejected: 0,
         violation: 0.0,
-        stop: Stop::Reached,
+        stop: TrajectoryStop::Reached,
     };
     match step::advance(system, q0, v0, settings, &mut run) {
         Ok(()) => Ok((run, None)),
         Err(e) if run.time.is_empty() => Err(e),
         Err(e) => {
-            run.stop = Stop::of(&e);
+            run.stop = TrajectoryStop::of(&e);
             Ok((run, Some(e)))
         }
     }

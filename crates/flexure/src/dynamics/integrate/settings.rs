@@ -3,9 +3,9 @@
 
 use crate::error::{Error, Result};
 
-/// Settings of [`integrate`](super::integrate), checked by [`Settings::validate`].
+/// Settings of [`integrate`](super::integrate), checked by [`MotionSettings::validate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
+pub struct MotionSettings {
     /// Duration $T$ (s): the motion is integrated over $[0, T]$.
     pub duration: f64,
     /// Sample interval $\Delta t$ (s): states are reported at $0, \Delta t,
@@ -22,13 +22,13 @@ pub struct Settings {
     pub max_rotation_per_step: f64,
     /// Steps tried (accepted and rejected) before giving up; `None` (the
     /// default) follows the samples asked for: $10^6$ plus 10 per sample
-    /// ([`Settings::step_budget`]).
+    /// ([`MotionSettings::step_budget`]).
     pub max_steps: Option<usize>,
     /// Successive rejections of one step before giving up.
     pub max_rejections: usize,
 }
 
-impl Default for Settings {
+impl Default for MotionSettings {
     fn default() -> Self {
         Self {
             duration: 1.0,
@@ -46,17 +46,17 @@ impl Default for Settings {
 /// The most samples a run may report.
 pub const MAX_SAMPLES: usize = 1_000_000;
 
-/// The largest step budget that may be set ([`Settings::max_steps`]).
+/// The largest step budget that may be set ([`MotionSettings::max_steps`]).
 pub const MAX_STEPS: usize = 1_000_000_000;
 
-impl Settings {
+impl MotionSettings {
     /// Checks every setting: a duration, interval or tolerance that is not a
     /// finite number greater than zero is an error naming it.
     ///
     /// # Example
     /// ```
-    /// use flexure::{dynamics::integrate::Settings, Error};
-    /// let bad = Settings { every: 0.0, ..Default::default() };
+    /// use flexure::{dynamics::integrate::MotionSettings, Error};
+    /// let bad = MotionSettings { every: 0.0, ..Default::default() };
     /// assert!(matches!(bad.validate(), Err(Error::InvalidParameter { name: "every", .. })));
     /// ```
     pub fn validate(&self) -> Result<()> {
@@ -92,16 +92,16 @@ impl Settings {
         Ok(())
     }
 
-    /// The steps a run may try: [`Settings::max_steps`], or $10^6$ plus 10
+    /// The steps a run may try: [`MotionSettings::max_steps`], or $10^6$ plus 10
     /// per sample (a sample ends a step, so a run of $10^6$ samples is not
     /// cut short by a budget of $10^6$ steps).
     ///
     /// # Example
     /// ```
-    /// use flexure::dynamics::integrate::Settings;
-    /// let s = Settings { duration: 1.0, every: 1e-6, ..Default::default() };
+    /// use flexure::dynamics::integrate::MotionSettings;
+    /// let s = MotionSettings { duration: 1.0, every: 1e-6, ..Default::default() };
     /// assert_eq!(s.step_budget(), 1_000_000 + 10 * 1_000_001);
-    /// assert_eq!(Settings { max_steps: Some(500), ..s }.step_budget(), 500);
+    /// assert_eq!(MotionSettings { max_steps: Some(500), ..s }.step_budget(), 500);
     /// ```
     pub fn step_budget(&self) -> usize {
         let samples = (self.duration / self.every).ceil().min(MAX_SAMPLES as f64) as usize + 1;

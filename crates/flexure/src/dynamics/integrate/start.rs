@@ -2,7 +2,7 @@
 //! obey algebraic equations at $t = 0$, and a start off them is first
 //! moved onto them (IDA's `IDACalcIC`).
 
-use super::{Settings, fatal, largest};
+use super::{MotionSettings, fatal, largest};
 use crate::dynamics::System;
 use crate::error::Result;
 use crate::linalg;
@@ -34,7 +34,7 @@ pub(super) fn consistent_start<S: System + ?Sized>(
     system: &mut S,
     q: &mut [f64],
     v: &[f64],
-    settings: &Settings,
+    settings: &MotionSettings,
 ) -> Result<bool> {
     use nalgebra::{DMatrix, DVector};
     let (n, m) = (system.dim(), system.closures());

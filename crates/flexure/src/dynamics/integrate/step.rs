@@ -9,7 +9,7 @@ use super::radau::Radau;
 use super::start::consistent_start;
 use super::trajectory::{Trajectory, record};
 use super::work::Work;
-use super::{Settings, fatal, largest};
+use super::{MotionSettings, fatal, largest};
 use crate::dynamics::System;
 use crate::error::{Error, Result};
 
@@ -47,7 +47,7 @@ pub(super) fn advance<S: System + ?Sized>(
     system: &mut S,
     q0: &[f64],
     v0: &[f64],
-    settings: &Settings,
+    settings: &MotionSettings,
     run: &mut Trajectory,
 ) -> Result<()> {
     let (n, m) = (system.dim(), system.closures());
@@ -253,7 +253,7 @@ fn attempt<S: System + ?Sized>(
     w: &mut Work,
     (t0, h, duration, jump): (f64, f64, f64, Option<f64>),
     (q0, v0): (&[f64], &[f64]),
-    settings: &Settings,
+    settings: &MotionSettings,
     eta: &mut f64,
     (refine, start, index2): (bool, bool, bool),
 ) -> Result<std::result::Result<f64, Refusal>> {

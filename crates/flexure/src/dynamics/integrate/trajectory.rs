@@ -12,8 +12,8 @@ use crate::error::{Error, Result};
 /// this names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(tag = "reason", rename_all = "snake_case")]
-pub enum Stop {
-    /// It recorded every sample up to [`Settings::duration`](super::Settings::duration).
+pub enum TrajectoryStop {
+    /// It recorded every sample up to [`MotionSettings::duration`](super::MotionSettings::duration).
     Reached,
     /// The step fell to rounding, or a rejection, step or pace limit was
     /// reached: [`Error::IntegrationStalled`].
@@ -26,7 +26,7 @@ pub enum Stop {
     Failed,
 }
 
-impl Stop {
+impl TrajectoryStop {
     /// The way a run ends with `error`.
     pub(super) fn of(error: &Error) -> Self {
         match error {
@@ -37,7 +37,7 @@ impl Stop {
     }
 }
 
-/// A simulated motion, sampled at [`Settings::times`](super::Settings::times).
+/// A simulated motion, sampled at [`MotionSettings::times`](super::MotionSettings::times).
 ///
 /// It serializes with its fields' names; `coordinates` and `velocities`
 /// stay flat, `dim` per sample.
@@ -60,8 +60,8 @@ pub struct Trajectory {
     /// Largest closure violation $\max_k\lvert c_k(q)\rvert$ over the
     /// start and every accepted step (0 without closures).
     pub violation: f64,
-    /// Why it ended: [`Stop::Reached`] unless it ended before its duration.
-    pub stop: Stop,
+    /// Why it ended: [`TrajectoryStop::Reached`] unless it ended before its duration.
+    pub stop: TrajectoryStop,
 }
 
 impl Trajectory {

@@ -79,7 +79,7 @@ pub trait MassElements<D: Dimension>: Debug + Clone + Sized {
 }
 
 impl Dynamics for Planar {
-    type Masses = planar::Masses;
+    type Masses = planar::ClosedFormMasses;
     type BodyMotion = BodyMotion;
 
     fn set(parameter: &Self::Parameter, loads: &mut Loads, value: f64) {
@@ -101,7 +101,7 @@ impl Dynamics for Planar {
 }
 
 impl Dynamics for Spatial {
-    type Masses = spatial::Masses;
+    type Masses = spatial::StationMasses;
     type BodyMotion = BodyPoses;
 
     fn set(parameter: &Self::Parameter, loads: &mut Loads<Spatial>, value: f64) {

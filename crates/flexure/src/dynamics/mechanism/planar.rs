@@ -1,4 +1,4 @@
-//! The plane's mass elements ([`Masses`]): bodies and flexure sections,
+//! The plane's mass elements ([`ClosedFormMasses`]): bodies and flexure sections,
 //! their mass matrix, velocity-product terms and gravity in one pass down
 //! the tree, with a flexure's sections summed into its mass moments
 //! (the parent module's docs give the equations).
@@ -25,7 +25,7 @@ struct Rate {
 
 /// A planar mechanism's mass elements and the buffers of one pass over them.
 #[derive(Debug, Clone)]
-pub struct Masses {
+pub struct ClosedFormMasses {
     /// The loads without gravity, which the pass applies to every mass element.
     loads_weightless: Loads,
     distributed: Vec<Distributed>,
@@ -64,7 +64,7 @@ struct Pass {
     gravity_potential: f64,
 }
 
-impl MassElements<Planar> for Masses {
+impl MassElements<Planar> for ClosedFormMasses {
     fn new(m: &Mechanism) -> Result<Self> {
         let n = m.dof();
         let mut distributed = Vec::new();
@@ -82,7 +82,7 @@ impl MassElements<Planar> for Masses {
             .collect();
         let largest = m.joints.iter().map(|j| j.kind.joint().dof()).max().unwrap_or(0);
         let nodes = distributed.iter().map(|d: &Distributed| d.inner_weight.len()).max().unwrap_or(0);
-        Ok(Masses {
+        Ok(ClosedFormMasses {
             loads_weightless: Loads::default(),
             distributed,
             bodies,
@@ -192,7 +192,7 @@ impl MassElements<Planar> for Masses {
     }
 }
 
-impl Masses {
+impl ClosedFormMasses {
     /// One pass over the mass elements at $(q, \dot q)$ under gravity `g`:
     /// adds $M$ (if asked) and $h$, and returns gravity's force and potential.
     fn pass(

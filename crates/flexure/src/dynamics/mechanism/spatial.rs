@@ -1,4 +1,4 @@
-//! Space's mass elements ([`Masses`]): bodies, and a spatial flexure's
+//! Space's mass elements ([`StationMasses`]): bodies, and a spatial flexure's
 //! stations as bodies, with Lagrange's velocity products of the stations'
 //! mass matrix from its differences (the parent module's docs give the
 //! equations).
@@ -18,7 +18,7 @@ use std::cell::RefCell;
 
 /// A spatial mechanism's mass elements and the buffers of their evaluation.
 #[derive(Debug, Clone)]
-pub struct Masses {
+pub struct StationMasses {
     frames: SpatialFrames,
     assembly: SpatialAssembly,
     pair: RefCell<[SpatialFrames; 2]>,
@@ -49,7 +49,7 @@ struct BodyTerms {
     inertia: Matrix3<f64>,
 }
 
-impl MassElements<Spatial> for Masses {
+impl MassElements<Spatial> for StationMasses {
     fn new(m: &SpatialMechanism) -> Result<Self> {
         let n = m.dof();
         let mut flexures = Vec::new();
@@ -64,7 +64,7 @@ impl MassElements<Spatial> for Masses {
             }
             flexures.push((j, quadrature, buffers));
         }
-        Ok(Masses {
+        Ok(StationMasses {
             frames: SpatialFrames::new(m),
             assembly: SpatialAssembly::new(m),
             pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
@@ -184,7 +184,7 @@ impl MassElements<Spatial> for Masses {
     }
 }
 
-impl Masses {
+impl StationMasses {
     /// Adds the flexures' stations' $M_f$ (module docs) at the frames `f` to `mass`.
     fn add_flexure_mass(&self, m: &SpatialMechanism, f: &SpatialFrames, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {

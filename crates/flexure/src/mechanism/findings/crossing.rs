@@ -123,7 +123,7 @@ impl<D: Findings> Piece<D> {
 /// A part's geometry: its pieces, the points where it is joined to others,
 /// its largest section half-diagonal (0 without a section), and its
 /// bounding box.
-pub struct Shape<D: Findings> {
+pub struct PartGeometry<D: Findings> {
     pub(super) pieces: Vec<Piece<D>>,
     pub(super) ends: Vec<D::Point>,
     pub(super) reach: f64,
@@ -131,20 +131,20 @@ pub struct Shape<D: Findings> {
     pub(super) hi: [f64; 3],
 }
 
-impl<D: Findings> Shape<D> {
+impl<D: Findings> PartGeometry<D> {
     /// A shape whose bounding box is its pieces'.
     pub(super) fn new(pieces: Vec<Piece<D>>, ends: Vec<D::Point>, reach: f64) -> Self {
         let (lo, hi) = bounds(pieces.iter().flat_map(|p| [p.lo, p.hi]), 0.0);
-        Shape { pieces, ends, reach, lo, hi }
+        PartGeometry { pieces, ends, reach, lo, hi }
     }
 }
 
 /// A part as drawn: which it is, the bodies it belongs to (a closure's or a
 /// rigid joint's bodies count as one, see [`crossings`]), and its shape.
-pub struct Drawn<D: Findings> {
+pub struct PlacedPart<D: Findings> {
     pub(super) part: Part,
     pub(super) groups: Vec<usize>,
-    pub(super) shape: Shape<D>,
+    pub(super) shape: PartGeometry<D>,
 }
 
 /// The box of `corners`, each grown by `grow`.
@@ -254,14 +254,14 @@ fn drawn<D: Findings>(
     roots: &[D::Pose],
     group: &[usize],
     tolerance: f64,
-) -> Vec<Drawn<D>> {
+) -> Vec<PlacedPart<D>> {
     let mut parts = Vec::new();
     for (ji, j) in m.joints.iter().enumerate() {
         let Some(f) = D::flexure(&j.kind) else { continue };
         let alpha = &q[j.offset..j.offset + D::joint(&j.kind).dof()];
         let tip = D::origin(&bodies[j.child]);
         let Some(shape) = D::flexure_shape(f, alpha, chords(alpha) + 1, &roots[ji], tip) else { continue };
-        parts.push(Drawn { part: Part::Flexure(ji), groups: vec![group[j.parent], group[j.child]], shape });
+        parts.push(PlacedPart { part: Part::Flexure(ji), groups: vec![group[j.parent], group[j.child]], shape });
     }
     for b in 0..m.bodies.len() {
         let anchors = m.tendons.iter().flat_map(|t| &t.path).filter(|v| v.0 == b).map(|v| v.1);
@@ -270,7 +270,7 @@ fn drawn<D: Findings>(
         // Where a body it carries by a rigid joint (a slider's carriage, a hinge's child) is held.
         let carried = m.joints.iter().filter(|j| j.parent == b && D::flexure(&j.kind).is_none());
         shape.ends.extend(carried.map(|j| D::origin(&bodies[j.child])));
-        parts.push(Drawn { part: Part::Link(b), groups: vec![group[b]], shape });
+        parts.push(PlacedPart { part: Part::Link(b), groups: vec![group[b]], shape });
     }
     parts
 }
@@ -334,13 +334,13 @@ pub(super) fn chords_in_plane(points: &[Point2<f64>], length: f64) -> Vec<Piece<
 /// from there. A flexure against itself: its chords other than consecutive
 /// ones at their shared point.
 pub(super) fn segments_cross(
-    a: &Drawn<Planar>,
-    b: &Drawn<Planar>,
+    a: &PlacedPart<Planar>,
+    b: &PlacedPart<Planar>,
     joined: bool,
     tolerance: f64,
 ) -> Option<CrossingAt<Planar>> {
     let itself = a.part == b.part;
-    let at_end = |d: &Drawn<Planar>, p: &Point2<f64>| d.shape.ends.iter().any(|e| distance(e, p) <= tolerance);
+    let at_end = |d: &PlacedPart<Planar>, p: &Point2<f64>| d.shape.ends.iter().any(|e| distance(e, p) <= tolerance);
     let mut first: Option<CrossingAt<Planar>> = None;
     let mut contacts: Vec<Point2<f64>> = Vec::new();
     for (k, pa) in a.shape.pieces.iter().enumerate() {
@@ -392,7 +392,7 @@ const RESOLUTION: f64 = 1e-13;
 /// Whether a part is near enough the origin that rounding there is below
 /// `tolerance`: one farther out (an origin of 1e30 m) cannot be told
 /// touching from apart, and is not tested.
-fn resolved(d: &Drawn<Spatial>, tolerance: f64) -> bool {
+fn resolved(d: &PlacedPart<Spatial>, tolerance: f64) -> bool {
     (0..3).all(|i| d.shape.lo[i].abs().max(d.shape.hi[i].abs()) * RESOLUTION <= tolerance)
 }
 
@@ -405,8 +405,8 @@ fn resolved(d: &Drawn<Spatial>, tolerance: f64) -> bool {
 /// section's half-diagonal (which only a bend tighter than the section
 /// could make meet).
 pub(super) fn solids_cross(
-    a: &Drawn<Spatial>,
-    b: &Drawn<Spatial>,
+    a: &PlacedPart<Spatial>,
+    b: &PlacedPart<Spatial>,
     joined: bool,
     tolerance: f64,
 ) -> Option<CrossingAt<Spatial>> {
@@ -453,7 +453,12 @@ pub(super) fn solids_cross(
 
 /// The crossing of `a` and `b` at their pieces' pair `(k, l)`: the midpoint
 /// of the nearest points of the two centrelines, and the arc lengths there.
-fn crossing(a: &Drawn<Spatial>, b: &Drawn<Spatial>, (k, l): (usize, usize), contacts: usize) -> CrossingAt<Spatial> {
+fn crossing(
+    a: &PlacedPart<Spatial>,
+    b: &PlacedPart<Spatial>,
+    (k, l): (usize, usize),
+    contacts: usize,
+) -> CrossingAt<Spatial> {
     let (pa, pb) = (&a.shape.pieces[k], &b.shape.pieces[l]);
     let (s, t) = nearest_on_segments(&pa.line, &pb.line);
     let (xa, xb) = (pa.line[0] + (pa.line[1] - pa.line[0]) * s, pb.line[0] + (pb.line[1] - pb.line[0]) * t);
@@ -479,8 +484,8 @@ fn passes(piece: &Piece<Spatial>, p: &Point3<f64>, tolerance: f64) -> bool {
 
 /// The touching pairs of pieces grouped into contacts: two pairs are one
 /// contact when each side's pieces are the same or neighbours.
-fn clusters(pairs: &[(usize, usize)], a: &Drawn<Spatial>, b: &Drawn<Spatial>) -> Vec<Vec<(usize, usize)>> {
-    let near = |d: &Drawn<Spatial>, i: usize, j: usize| {
+fn clusters(pairs: &[(usize, usize)], a: &PlacedPart<Spatial>, b: &PlacedPart<Spatial>) -> Vec<Vec<(usize, usize)>> {
+    let near = |d: &PlacedPart<Spatial>, i: usize, j: usize| {
         i == j || d.shape.pieces[i].ends.iter().any(|e| d.shape.pieces[j].ends.contains(e))
     };
     let mut root: Vec<usize> = (0..pairs.len()).collect();

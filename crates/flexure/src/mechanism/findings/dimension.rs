@@ -6,7 +6,7 @@
 //! ([`super::open_closures`], [`super::crossings`]) are written once over it.
 
 use super::convex::{Convex, distinct, hull_edges};
-use super::crossing::{self, CrossingAt, Drawn, Piece, Shape, TOUCH_TOLERANCE};
+use super::crossing::{self, CrossingAt, PartGeometry, Piece, PlacedPart, TOUCH_TOLERANCE};
 use super::geometry::{convex_hull, distance};
 
 use crate::kinematics::{Level, backbone};
@@ -58,12 +58,12 @@ pub trait Findings: crate::mechanism::statics::Statics {
         samples: usize,
         root: &Self::Pose,
         tip: Self::Point,
-    ) -> Option<Shape<Self>>;
+    ) -> Option<PartGeometry<Self>>;
     /// A link through the points `points` (world frame); `None` for fewer than two.
-    fn link_shape(points: Vec<Self::Point>, tolerance: f64) -> Option<Shape<Self>>;
+    fn link_shape(points: Vec<Self::Point>, tolerance: f64) -> Option<PartGeometry<Self>>;
     /// Where two parts cross, if they do (a flexure, itself, when `a` is
     /// `b`); `joined` when a joint or a closure connects them.
-    fn cross(a: &Drawn<Self>, b: &Drawn<Self>, joined: bool, tolerance: f64) -> Option<CrossingAt<Self>>;
+    fn cross(a: &PlacedPart<Self>, b: &PlacedPart<Self>, joined: bool, tolerance: f64) -> Option<CrossingAt<Self>>;
 }
 
 impl Findings for Planar {
@@ -104,14 +104,14 @@ impl Findings for Planar {
         samples: usize,
         root: &crate::Pose,
         tip: Point2<f64>,
-    ) -> Option<Shape<Planar>> {
+    ) -> Option<PartGeometry<Planar>> {
         let centre: Vec<Point2<f64>> = backbone(f, alpha, samples).iter().map(|p| root.act(&p.origin())).collect();
         let points = crossing::ending_at(centre, tip);
         let ends = vec![points[0], points[samples - 1], tip];
-        Some(Shape::new(crossing::chords_in_plane(&points, f.length()), ends, 0.0))
+        Some(PartGeometry::new(crossing::chords_in_plane(&points, f.length()), ends, 0.0))
     }
 
-    fn link_shape(points: Vec<Point2<f64>>, _: f64) -> Option<Shape<Planar>> {
+    fn link_shape(points: Vec<Point2<f64>>, _: f64) -> Option<PartGeometry<Planar>> {
         let mut outline = convex_hull(points.clone());
         if outline.len() < 2 {
             return None;
@@ -120,10 +120,15 @@ impl Findings for Planar {
             outline.push(outline[0]);
         }
         let pieces = outline.windows(2).enumerate().map(|(k, e)| Piece::new((), [e[0], e[1]], [k, k + 1], None));
-        Some(Shape::new(pieces.collect(), points, 0.0))
+        Some(PartGeometry::new(pieces.collect(), points, 0.0))
     }
 
-    fn cross(a: &Drawn<Planar>, b: &Drawn<Planar>, joined: bool, tolerance: f64) -> Option<CrossingAt<Planar>> {
+    fn cross(
+        a: &PlacedPart<Planar>,
+        b: &PlacedPart<Planar>,
+        joined: bool,
+        tolerance: f64,
+    ) -> Option<CrossingAt<Planar>> {
         crossing::segments_cross(a, b, joined, tolerance)
     }
 }
@@ -180,7 +185,7 @@ impl Findings for Spatial {
         samples: usize,
         root: &nalgebra::Isometry3<f64>,
         tip: Point3<f64>,
-    ) -> Option<Shape<Spatial>> {
+    ) -> Option<PartGeometry<Spatial>> {
         // The convex pieces between the sections at the ends of each chord (see the module docs of `super`).
         let sections = crate::spatial::shape(f, alpha, samples).ok()?;
         let centres = crossing::ending_at(sections.iter().map(|s| root * Point3::from(s.position)).collect(), tip);
@@ -233,10 +238,10 @@ impl Findings for Spatial {
                 hi,
             });
         }
-        Some(Shape::new(pieces, vec![solids[0].0, tip], reach))
+        Some(PartGeometry::new(pieces, vec![solids[0].0, tip], reach))
     }
 
-    fn link_shape(points: Vec<Point3<f64>>, tolerance: f64) -> Option<Shape<Spatial>> {
+    fn link_shape(points: Vec<Point3<f64>>, tolerance: f64) -> Option<PartGeometry<Spatial>> {
         let points = distinct(points, tolerance);
         let edges = hull_edges(&points, tolerance);
         if edges.is_empty() {
@@ -247,10 +252,15 @@ impl Findings for Spatial {
             Piece::new(Convex::Hull(line.to_vec()), line, [i, k], None)
         });
         let (lo, hi) = crossing::bounds(points.iter().map(Self::coordinates), 0.0);
-        Some(Shape { pieces: pieces.collect(), ends: points, reach: 0.0, lo, hi })
+        Some(PartGeometry { pieces: pieces.collect(), ends: points, reach: 0.0, lo, hi })
     }
 
-    fn cross(a: &Drawn<Spatial>, b: &Drawn<Spatial>, joined: bool, tolerance: f64) -> Option<CrossingAt<Spatial>> {
+    fn cross(
+        a: &PlacedPart<Spatial>,
+        b: &PlacedPart<Spatial>,
+        joined: bool,
+        tolerance: f64,
+    ) -> Option<CrossingAt<Spatial>> {
         crossing::solids_cross(a, b, joined, tolerance)
     }
 }

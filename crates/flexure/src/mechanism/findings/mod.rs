@@ -81,8 +81,8 @@ pub use closures::{GAP_TOLERANCE, OpenClosure, closure_name, open_closures, rest
 pub use convex::{Convex, MAX_ITERATIONS, within};
 
 pub use crossing::{
-    CHORD_TURN, Crossing, CrossingAt, Drawn, MAX_CHORDS, MIN_CHORDS, Part, Piece, Shape, TOUCH_TOLERANCE, chords,
-    crossings, crossings_along,
+    CHORD_TURN, Crossing, CrossingAt, MAX_CHORDS, MIN_CHORDS, Part, PartGeometry, Piece, PlacedPart, TOUCH_TOLERANCE,
+    chords, crossings, crossings_along,
 };
 pub use dimension::Findings;
 pub use geometry::{Contact, hull, segments_meet};

@@ -40,7 +40,7 @@ pub(super) fn assemble_in<D: Statics>(
 /// problem at $\lambda = 0$ (whose loads there must be zero), left in `ws`.
 pub(super) fn assemble<D: Statics>(
     problem: &mut Kkt<D>,
-    ws: &mut solver::Workspace<f64>,
+    ws: &mut solver::SolverWorkspace<f64>,
     settings: &Settings,
 ) -> Result<Solution<D>> {
     let path = assembled(problem, ws, settings)?;
@@ -52,7 +52,7 @@ pub(super) fn assemble<D: Statics>(
 /// [`Statics::OWN_ASSEMBLY`] to that of the loads at $\lambda = 0$ alone.
 pub(super) fn assembled<D: Statics>(
     problem: &mut Kkt<D>,
-    ws: &mut solver::Workspace<f64>,
+    ws: &mut solver::SolverWorkspace<f64>,
     settings: &Settings,
 ) -> Result<solver::Path> {
     let m = problem.mechanism;
@@ -82,7 +82,7 @@ fn assembly_scale<D: Statics>(problem: &Kkt<D>) -> f64 {
 /// this problem's loads; else solved, and kept.
 pub(super) fn assembled_kept<D: Statics>(
     problem: &mut Kkt<D>,
-    ws: &mut solver::Workspace<f64>,
+    ws: &mut solver::SolverWorkspace<f64>,
     settings: &Settings,
 ) -> Result<solver::Path> {
     let m = problem.mechanism;

@@ -119,7 +119,7 @@ pub(super) fn follow_path<D: Statics>(
     m: &Mechanism<D>,
     start: Start<D>,
     problem: &mut Kkt<D>,
-    ws: &mut solver::Workspace<f64>,
+    ws: &mut solver::SolverWorkspace<f64>,
     settings: &Settings,
 ) -> Result<Solution<D>> {
     let unstable =

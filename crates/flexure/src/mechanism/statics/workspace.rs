@@ -43,7 +43,7 @@ pub struct Workspace<D: Statics = Planar> {
     /// The joint of each coordinate.
     pub(super) joint_of: Vec<usize>,
     /// The solver core's buffers, kept between solves.
-    pub(super) solver: Option<solver::Workspace<f64>>,
+    pub(super) solver: Option<solver::SolverWorkspace<f64>>,
     /// The joints these buffers were made for.
     pub(super) joints: Vec<JointSpec<D>>,
     /// The last problem's scales and loads.
@@ -189,8 +189,8 @@ impl<D: Statics> Workspace<D> {
     }
 
     /// The solver core's buffers for `dim` unknowns, kept ones if they fit.
-    pub(super) fn solver(&mut self, dim: usize) -> solver::Workspace<f64> {
-        self.solver.take().filter(|w| w.dim() == dim).unwrap_or_else(|| solver::Workspace::new(dim))
+    pub(super) fn solver(&mut self, dim: usize) -> solver::SolverWorkspace<f64> {
+        self.solver.take().filter(|w| w.dim() == dim).unwrap_or_else(|| solver::SolverWorkspace::new(dim))
     }
 
     /// Whether these buffers were made for `m`'s joints (whose states

@@ -1,6 +1,6 @@
 //! The exact minimum-energy shape between two poses (Eq. 16).
 
-use super::Settings;
+use super::ShootingSettings;
 use super::chain::MAX_FORCE_GROWTH;
 use super::trace::Trace;
 use crate::error::{Error, Result};
@@ -14,7 +14,7 @@ use num_dual::DualSVec64;
 
 /// An exact minimum-energy shape between two poses.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Connection {
+pub struct ElasticaConnection {
     /// Bending energy $U^* = \int_0^L \frac{EI}{2}(\omega - \omega_0)^2 ds$ (J).
     pub energy: f64,
     /// Bending moment at the root, $M_0$ (N·m).
@@ -142,7 +142,12 @@ impl Problem<f64> for Through<'_> {
 /// let c = elastica::connect(&f, &target, [0.9, 0.0, 0.0], &Default::default()).unwrap();
 /// assert!((c.energy - 0.5).abs() < 1e-10 && (c.root_moment - 1.0).abs() < 1e-9);
 /// ```
-pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Settings) -> Result<Connection> {
+pub fn connect(
+    flexure: &Flexure,
+    target: &Pose,
+    guess: [f64; 3],
+    settings: &ShootingSettings,
+) -> Result<ElasticaConnection> {
     crate::connect::check_pose(flexure, target)?;
     settings.validate()?;
     for (name, g) in ["guess[0]", "guess[1]", "guess[2]"].into_iter().zip(guess) {
@@ -152,14 +157,14 @@ pub fn connect(flexure: &Flexure, target: &Pose, guess: [f64; 3], settings: &Set
     let (flexibility, stretch) = (s.flexibility, s.total());
     let stops = crate::reference::stops(flexure);
     let mut problem = Through { flexure, target: *target, ode: settings.ode, stops, flexibility, stretch };
-    let mut ws = solver::Workspace::new(3);
+    let mut ws = solver::SolverWorkspace::new(3);
     ws.x.copy_from_slice(&guess);
     solver::newton(&mut problem, &mut ws, 1.0, &settings.solver)?;
     let tip = shoot_with_energy(flexure, &problem.stops, ws.x[0], ws.x[1], ws.x[2], &settings.ode)?;
-    Ok(Connection { energy: tip[3], root_moment: ws.x[0], fx: ws.x[1], fy: ws.x[2] })
+    Ok(ElasticaConnection { energy: tip[3], root_moment: ws.x[0], fx: ws.x[1], fy: ws.x[2] })
 }
 
-impl Connection {
+impl ElasticaConnection {
     /// The exact shape of this connection on `flexure` (the one it was
     /// found for): the shot from the root with its moment and force.
     pub fn trace<'a>(&self, flexure: &'a Flexure, tol: &Tolerance) -> Result<Trace<'a>> {

@@ -1,6 +1,6 @@
 //! The loaded elastica, followed from rest along its path.
 
-use super::Settings;
+use super::ShootingSettings;
 use super::chain::Chain;
 use super::trace::Trace;
 use crate::error::Result;
@@ -11,7 +11,7 @@ use crate::statics::TipLoad;
 
 /// An exact solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Solution {
+pub struct ElasticaSolution {
     /// Tip pose in the root frame.
     pub pose: Pose<f64>,
     /// Bending moment at the root, $M_0 = EI(\omega(0) - \omega_0(0))$ (N·m).
@@ -33,13 +33,13 @@ pub struct Solution {
 /// ([`solver::continuation`]) from the rest shape, so the solution lies on
 /// the loading path: a small imperfection decides which way a column
 /// buckles, a snap-through load reaches the stable shape the path leads to
-/// ([`Solution::limit`] names the load fraction where stability was lost),
+/// ([`ElasticaSolution::limit`] names the load fraction where stability was lost),
 /// and no step turns a node's cross-section by more than
 /// `settings.solver.max_rotation_per_step`. The path is integrated to
 /// `settings.path_tolerance` and its end refined by Newton to `settings.ode`,
 /// so that the cost grows little with the angle the tip turns. Newton's
 /// derivatives come from dual numbers carried through the integrator;
-/// [`Solution::stable`] is the Jacobi test ([`is_stable`](super::is_stable)) of the refined state.
+/// [`ElasticaSolution::stable`] is the Jacobi test ([`is_stable`](super::is_stable)) of the refined state.
 ///
 /// The beam is cut into $N = \lceil L\sqrt{|F|/EI}\rceil$ segments (at
 /// least 4), so that shooting across one segment stays well conditioned and
@@ -59,7 +59,7 @@ pub struct Solution {
 /// let s = elastica::deflect(&f, &TipLoad { moment: 0.0, fx: 0.0, fy: 1.0 }, &Default::default()).unwrap();
 /// assert!((s.pose.x - 0.94357).abs() < 1e-5 && (s.pose.y - 0.30172).abs() < 1e-5);
 /// ```
-pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result<Solution> {
+pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &ShootingSettings) -> Result<ElasticaSolution> {
     deflect_traced(flexure, load, settings).map(|(solution, _)| solution)
 }
 
@@ -77,11 +77,15 @@ pub fn deflect(flexure: &Flexure, load: &TipLoad, settings: &Settings) -> Result
 /// let mid = trace.at(0.5).unwrap();
 /// assert!((mid.moment - 0.5).abs() < 1e-9 && (mid.phi - 0.25).abs() < 1e-9);
 /// ```
-pub fn deflect_traced<'a>(flexure: &'a Flexure, load: &TipLoad, settings: &Settings) -> Result<(Solution, Trace<'a>)> {
+pub fn deflect_traced<'a>(
+    flexure: &'a Flexure,
+    load: &TipLoad,
+    settings: &ShootingSettings,
+) -> Result<(ElasticaSolution, Trace<'a>)> {
     load.validate()?;
     settings.validate()?;
     let mut chain = Chain::new(flexure, *load, settings.path_ode())?;
-    let mut ws = solver::Workspace::new(chain.dim());
+    let mut ws = solver::SolverWorkspace::new(chain.dim());
     // The rest shape: no moment anywhere, the nodes at their rest angles.
     ws.x = chain.shot(0.0, 0.0)?;
     let path = solver::continuation(&mut chain, &mut ws, &settings.solver)?;
@@ -93,7 +97,7 @@ pub fn deflect_traced<'a>(flexure: &'a Flexure, load: &TipLoad, settings: &Setti
     let stable = chain.stable(&ws.x, 1.0, &ws.jacobian);
     let nodes = chain.states(&ws.x)?;
     let tip = nodes[nodes.len() - 1].1;
-    let solution = Solution {
+    let solution = ElasticaSolution {
         stable,
         pose: Pose { phi: tip[0], x: tip[2], y: tip[3] },
         root_moment: ws.x[0] * chain.stiffness,

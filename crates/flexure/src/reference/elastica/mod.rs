@@ -7,14 +7,14 @@
 //! - `chain.rs`: the tip-load elastica by multiple shooting, the solver
 //!   core's problem ([`MAX_FORCE_GROWTH`] bounds the force it follows);
 //! - `deflection.rs`: the load followed from rest ([`deflect`],
-//!   [`deflect_traced`], [`Solution`]);
+//!   [`deflect_traced`], [`ElasticaSolution`]);
 //! - `jacobi.rs`: its stability, the Jacobi (conjugate-point) test ([`is_stable`]);
 //! - `connection.rs`: the exact minimum-energy shape through a pose (Eq. 16,
-//!   [`connect`](fn@connect), [`Connection`]);
+//!   [`connect`](fn@connect), [`ElasticaConnection`]);
 //! - `trace.rs`: cross-sections, bending moment and stress along a solved
 //!   shape ([`Trace`], [`Point`]).
 //!
-//! [`Settings`] here serve them all.
+//! [`ShootingSettings`] here serve them all.
 
 mod chain;
 mod connection;
@@ -24,8 +24,8 @@ mod shot;
 mod trace;
 
 pub use chain::MAX_FORCE_GROWTH;
-pub use connection::{Connection, connect};
-pub use deflection::{Solution, deflect, deflect_traced};
+pub use connection::{ElasticaConnection, connect};
+pub use deflection::{ElasticaSolution, deflect, deflect_traced};
 pub use jacobi::is_stable;
 pub use shot::shoot;
 pub use trace::{Point, Trace};
@@ -36,7 +36,7 @@ use crate::solver;
 
 /// Settings of [`deflect`] and [`connect`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
+pub struct ShootingSettings {
     /// Integrator tolerance.
     pub ode: Tolerance,
     /// Newton and load-continuation settings. The residual is the tip-moment
@@ -52,25 +52,25 @@ pub struct Settings {
     pub path_tolerance: f64,
 }
 
-impl Default for Settings {
+impl Default for ShootingSettings {
     fn default() -> Self {
         Self { ode: Tolerance::default(), solver: solver::Settings::default(), path_tolerance: PATH_TOLERANCE }
     }
 }
 
-/// The default [`Settings::path_tolerance`]: where the loading path still
+/// The default [`ShootingSettings::path_tolerance`]: where the loading path still
 /// costs a few times less than the refinement of its end (a tip angle of
 /// 45° to 270°), while its states and stability stay those of the exact
 /// elastica to about that tolerance.
 pub const PATH_TOLERANCE: f64 = 1e-6;
 
-impl Settings {
+impl ShootingSettings {
     /// Checks the integrator and solver settings, naming the first bad one.
     ///
     /// # Example
     /// ```
-    /// use flexure::reference::elastica::Settings;
-    /// let mut s = Settings::default();
+    /// use flexure::reference::elastica::ShootingSettings;
+    /// let mut s = ShootingSettings::default();
     /// s.ode.relative = f64::NAN;
     /// assert!(s.validate().is_err());
     /// ```
@@ -91,9 +91,9 @@ impl Settings {
     ///
     /// # Example
     /// ```
-    /// let s = flexure::reference::elastica::Settings::with_tolerance(1e-6);
+    /// let s = flexure::reference::elastica::ShootingSettings::with_tolerance(1e-6);
     /// assert_eq!(s.ode.relative, 1e-6);
-    /// assert!(flexure::reference::rod::Settings::with_tolerance(0.0).validate().is_err());
+    /// assert!(flexure::reference::rod::ShootingSettings::with_tolerance(0.0).validate().is_err());
     /// ```
     pub fn with_tolerance(tolerance: f64) -> Self {
         let ode = Tolerance { relative: tolerance, absolute: tolerance, ..Tolerance::default() };

@@ -43,7 +43,7 @@ pub struct Point {
 /// from the root to the tip, from which any cross-section is integrated by
 /// $$\phi^{\prime} = \omega_0(s) + \frac{m}{EI(s)}, \quad m^{\prime} = F_x\sin\phi - F_y\cos\phi, \quad x^{\prime} = \cos\phi, \quad y^{\prime} = \sin\phi,$$
 /// the force $(F_x, F_y)$ carried along the beam being the tip force. Made
-/// by [`deflect_traced`](super::deflect_traced), [`Trace::shot`] or [`Connection::trace`](super::Connection::trace).
+/// by [`deflect_traced`](super::deflect_traced), [`Trace::shot`] or [`ElasticaConnection::trace`](super::ElasticaConnection::trace).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trace<'a> {
     pub(super) flexure: &'a Flexure,

@@ -593,7 +593,7 @@ mod tests {
         let load = TipWrench { moment: Vector3::new(2.6, 0.0, 0.0), force: Vector3::zeros() };
         let follow = |used: usize| {
             let mut chain = Chain::new(&rod, load, Tolerance::default()).unwrap();
-            let mut ws = crate::solver::Workspace::new(chain.dim());
+            let mut ws = crate::solver::SolverWorkspace::new(chain.dim());
             ws.x = chain.shot([0.0; 3], 0.0).unwrap();
             chain.integrations = used;
             crate::solver::continuation(&mut chain, &mut ws, &Default::default()).map(|_| ws.x[..3].to_vec())

@@ -48,7 +48,7 @@
 //! point (a round column's two bending planes at once), where the
 //! determinant touches zero without changing sign. The loading path is
 //! stable until the first load factor where that fails, and stays
-//! unstable after it ([`Solution::stable`] reads the whole path). So that
+//! unstable after it ([`RodSolution::stable`] reads the whole path). So that
 //! no continuation step passes two conjugate points where the shape
 //! itself hardly changes (a straight column), the shooting carries the
 //! load's phase $z = \lambda\omega L$ as an unknown, $\omega$ the fastest rate
@@ -193,7 +193,7 @@ impl TipWrench {
 }
 
 // Settings of `deflect` and `stability_limit`: the elastica's, one type for both exact references.
-pub use crate::reference::elastica::Settings;
+pub use crate::reference::elastica::ShootingSettings;
 
 /// One cross-section of a solved rod.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -210,7 +210,7 @@ pub struct Frame {
 
 /// An exact solution.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Solution {
+pub struct RodSolution {
     /// The tip's position in the root frame (m).
     pub position: Vector3<f64>,
     /// The tip's rotation: its columns are the tip axes in the root frame.
@@ -236,7 +236,7 @@ pub struct Solution {
 ///
 /// The solver's residual is the moment mismatch at the nodes and the tip,
 /// relative to $k + |M| + L|F|$ with $k = \min(GJ, EI_y, EI_z)/L$ at
-/// mid-length; `settings` are the elastica's ([`Settings`]).
+/// mid-length; `settings` are the elastica's ([`ShootingSettings`]).
 ///
 /// Pseudo-arclength continuation in the load factor ([`solver::continuation`])
 /// from the rest shape, integrated to `settings.path_tolerance`, and the end
@@ -264,11 +264,11 @@ pub struct Solution {
 /// assert!((s.rotation[(2, 1)] - (0.4f64).sin()).abs() < 1e-10);
 /// assert!((s.position - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-10 && s.stable);
 /// ```
-pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &Settings) -> Result<Solution> {
+pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &ShootingSettings) -> Result<RodSolution> {
     let load = TipWrench::of(load, 1.0)?;
     settings.validate()?;
     let mut chain = Chain::new(rod, load, settings.path_ode())?;
-    let mut ws = solver::Workspace::new(chain.dim());
+    let mut ws = solver::SolverWorkspace::new(chain.dim());
     // A rest shape that cannot even be shot (past the bound on its work) is a path that did not start.
     ws.x = chain.shot([0.0; 3], 0.0).map_err(|e| match e {
         Error::Singular { what } => Error::ContinuationStalled {
@@ -290,7 +290,7 @@ pub fn deflect(rod: &Rod, load: &SpatialLoad, settings: &Settings) -> Result<Sol
     let stable = path.limit.is_none() && chain.stable(&ws.x, 1.0, &ws.jacobian);
     let shape = chain.shape(&ws.x)?;
     let (root, tip) = (shape[0], shape[shape.len() - 1]);
-    Ok(Solution {
+    Ok(RodSolution {
         position: tip.position,
         rotation: tip.rotation,
         root_moment: root.moment,
@@ -324,17 +324,22 @@ pub const MAX_BISECTIONS: usize = 60;
 ///
 /// # Example
 /// ```
-/// use flexure::reference::rod::{self, Rod, Settings};
+/// use flexure::reference::rod::{self, Rod, ShootingSettings};
 /// use flexure::section::SpatialSection;
 /// use flexure::spatial::SpatialLoad;
 /// // Euler's column, clamped and free, about its softer axis: π²EI_z/4L².
 /// let rod = Rod::new(1.0, SpatialSection::uniform(1.0, 2.0, 1.0).unwrap()).unwrap();
 /// let load = SpatialLoad { moment: [0.0; 3], force: [-1.0, 0.0, 0.0] };
-/// let limit = rod::stability_limit(&rod, &load, 4.0, &Settings::with_tolerance(1e-9)).unwrap();
+/// let limit = rod::stability_limit(&rod, &load, 4.0, &ShootingSettings::with_tolerance(1e-9)).unwrap();
 /// let euler = std::f64::consts::PI.powi(2) / 4.0;
 /// assert!((limit.factor() - euler).abs() < 1e-8 * euler);
 /// ```
-pub fn stability_limit(rod: &Rod, load: &SpatialLoad, max_factor: f64, settings: &Settings) -> Result<StabilityLimit> {
+pub fn stability_limit(
+    rod: &Rod,
+    load: &SpatialLoad,
+    max_factor: f64,
+    settings: &ShootingSettings,
+) -> Result<StabilityLimit> {
     load.validate()?;
     settings.validate()?;
     crate::error::positive("max_factor", max_factor)?;
@@ -343,11 +348,11 @@ pub fn stability_limit(rod: &Rod, load: &SpatialLoad, max_factor: f64, settings:
     // The paths only place the loss for the bisection, which starts 2 %
     // either side of it: steps need not shrink below a thousandth.
     let coarse = solver::Settings { min_step: settings.solver.min_step.max(1e-3), ..settings.solver };
-    let follow = |chain: &mut Chain, ws: &mut solver::Workspace<f64>| -> Result<solver::Path> {
+    let follow = |chain: &mut Chain, ws: &mut solver::SolverWorkspace<f64>| -> Result<solver::Path> {
         ws.x = chain.shot([0.0; 3], 0.0)?;
         solver::continuation_while_stable(chain, ws, &coarse)
     };
-    let mut ws = solver::Workspace::new(chain.dim());
+    let mut ws = solver::SolverWorkspace::new(chain.dim());
     let first = match follow(&mut chain, &mut ws) {
         Ok(path) if path.limit.is_none() && chain.stable(&ws.x, 1.0, &ws.jacobian) => {
             return Ok(StabilityLimit::StableUpTo { factor: max_factor, stalled: None });

@@ -1,7 +1,7 @@
 //! The exact rod's cross-sections at arc lengths of one's choosing, from a
 //! solution's frames.
 //!
-//! A [`Frame`] of [`Solution::shape`] holds the whole state of the rod's
+//! A [`Frame`] of [`RodSolution::shape`] holds the whole state of the rod's
 //! equations at its arc length (rotation, position, internal moment), so
 //! the section at any $s$ is the state of the nearest frame at or before
 //! $s$ carried on to $s$ by the same equations and integrator
@@ -11,7 +11,7 @@
 
 use super::chain::frame;
 use super::shot::{MU, P, STATE, rhs};
-use super::{Frame, Rod, Solution};
+use super::{Frame, Rod, RodSolution};
 use crate::error::{Error, Result};
 use crate::ode::{Tolerance, integrate};
 use crate::spatial::SpatialLoad;
@@ -42,7 +42,7 @@ use nalgebra::{Rotation3, UnitQuaternion, Vector3};
 pub fn sections(
     rod: &Rod,
     load: &SpatialLoad,
-    solution: &Solution,
+    solution: &RodSolution,
     at: &[f64],
     tolerance: &Tolerance,
 ) -> Result<Vec<Frame>> {
