@@ -169,11 +169,12 @@ enum Stiffness {
     Rectangle { modulus: f64, width: Profile, thickness: Profile, notch: Option<Notch> },
 }
 
-/// Where the mass per length comes from.
+/// Where a section's mass per length comes from, in both dimensions.
 #[derive(Debug, Clone, PartialEq)]
 enum Mass {
+    /// None: the flexure is massless.
     None,
-    /// Density (kg/m³) times the rectangle's area.
+    /// A density $\rho$ (kg/m³), times the section's area.
     Density(f64),
     /// $\mu(t)$ given directly (kg/m).
     PerLength(Profile),

@@ -9,8 +9,8 @@
 //! about the rest shape, so [`SpatialSection::stiffness`] lists the three in
 //! that order. $EI_z$ is the planar model's $EI$: in-plane bending.
 
-use super::Profile;
 use super::torsion;
+use super::{Mass, Profile};
 use crate::error::{Error, Result};
 
 /// The three stiffnesses of a spatial flexure's section along its length.
@@ -27,17 +27,6 @@ use crate::error::{Error, Result};
 pub struct SpatialSection {
     stiffness: Stiffness,
     mass: Mass,
-}
-
-/// How a section's mass is given.
-#[derive(Debug, Clone, PartialEq)]
-enum Mass {
-    /// None: the flexure is massless.
-    None,
-    /// A density $\rho$ (kg/m³), with the section's geometry.
-    Density(f64),
-    /// A mass per length $\mu(t)$ (kg/m) given directly.
-    PerLength(Profile),
 }
 
 /// How the stiffnesses are given.

@@ -53,5 +53,7 @@ pub(crate) use interrupt::interrupted;
 pub use interrupt::with_interrupt;
 pub use newton::{NewtonReport, NewtonStop, newton};
 pub use problem::Problem;
+#[cfg(test)]
+pub(crate) use problem::assert_derivatives;
 pub use settings::{MAX_COUNT, Settings};
 pub use workspace::SolverWorkspace;

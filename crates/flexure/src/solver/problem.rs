@@ -81,3 +81,35 @@ pub trait Problem<T: Scalar> {
         1.0
     }
 }
+
+/// Asserts a problem's Jacobian and load derivative at `(x, λ)` against
+/// central differences of its residual: step $h = 10^{-6}$ (truncation
+/// about $10^{-12}$, rounding about $10^{-10}$ of residuals of order 1), so
+/// they agree to $10^{-6}$ absolute. Every problem's derivative test calls it.
+#[cfg(test)]
+pub(crate) fn assert_derivatives<P: Problem<f64>>(problem: &mut P, x: &[f64], lambda: f64) {
+    let n = problem.dim();
+    let (mut r, mut jac, mut dl) = (vec![0.0; n], vec![0.0; n * n], vec![0.0; n]);
+    problem.evaluate(x, lambda, &mut r, Some(&mut jac), Some(&mut dl)).unwrap();
+    let h = 1e-6;
+    let mut residual_at = |x: &[f64], lambda: f64| {
+        let mut r = vec![0.0; n];
+        problem.evaluate(x, lambda, &mut r, None, None).unwrap();
+        r
+    };
+    for col in 0..n {
+        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
+        xp[col] += h;
+        xm[col] -= h;
+        let (rp, rm) = (residual_at(&xp, lambda), residual_at(&xm, lambda));
+        for row in 0..n {
+            let fd = (rp[row] - rm[row]) / (2.0 * h);
+            assert!((jac[col * n + row] - fd).abs() < 1e-6, "J[{row},{col}] {} vs {fd}", jac[col * n + row]);
+        }
+    }
+    let (rp, rm) = (residual_at(x, lambda + h), residual_at(x, lambda - h));
+    for row in 0..n {
+        let fd = (rp[row] - rm[row]) / (2.0 * h);
+        assert!((dl[row] - fd).abs() < 1e-6, "∂r{row}/∂λ {} vs {fd}", dl[row]);
+    }
+}

@@ -390,29 +390,6 @@ mod tests {
         let n = chain.dim();
         assert_eq!(n, 2 * segments, "L√(|F|/EI) = 4.56 when uniform");
         let x: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * (i as f64).sin()).collect();
-        let lambda = 0.6;
-        let (mut r, mut jac, mut dl) = (vec![0.0; n], vec![0.0; n * n], vec![0.0; n]);
-        chain.evaluate(&x, lambda, &mut r, Some(&mut jac), Some(&mut dl)).unwrap();
-        let h = 1e-6;
-        let mut residual_at = |x: &[f64], lambda: f64| {
-            let mut r = vec![0.0; n];
-            chain.evaluate(x, lambda, &mut r, None, None).unwrap();
-            r
-        };
-        for col in 0..n {
-            let (mut xp, mut xm) = (x.clone(), x.clone());
-            xp[col] += h;
-            xm[col] -= h;
-            let (rp, rm) = (residual_at(&xp, lambda), residual_at(&xm, lambda));
-            for row in 0..n {
-                let fd = (rp[row] - rm[row]) / (2.0 * h);
-                assert!((jac[col * n + row] - fd).abs() < 1e-6, "J[{row},{col}] {} vs {fd}", jac[col * n + row]);
-            }
-        }
-        let (rp, rm) = (residual_at(&x, lambda + h), residual_at(&x, lambda - h));
-        for row in 0..n {
-            let fd = (rp[row] - rm[row]) / (2.0 * h);
-            assert!((dl[row] - fd).abs() < 1e-6, "∂r{row}/∂λ {} vs {fd}", dl[row]);
-        }
+        crate::solver::assert_derivatives(&mut chain, &x, 0.6);
     }
 }

@@ -553,27 +553,7 @@ mod tests {
         let mut plain = vec![0.0; n];
         chain.evaluate(&x, lambda, &mut plain, None, None).unwrap();
         assert!(r.iter().zip(&plain).all(|(a, b)| (a - b).abs() < 1e-12), "residual with and without derivatives");
-        let h = 1e-6;
-        let mut residual_at = |x: &[f64], lambda: f64| {
-            let mut r = vec![0.0; n];
-            chain.evaluate(x, lambda, &mut r, None, None).unwrap();
-            r
-        };
-        for col in 0..n {
-            let (mut xp, mut xm) = (x.clone(), x.clone());
-            xp[col] += h;
-            xm[col] -= h;
-            let (rp, rm) = (residual_at(&xp, lambda), residual_at(&xm, lambda));
-            for row in 0..n {
-                let fd = (rp[row] - rm[row]) / (2.0 * h);
-                assert!((jac[col * n + row] - fd).abs() < 1e-6, "J[{row},{col}] {} vs {fd}", jac[col * n + row]);
-            }
-        }
-        let (rp, rm) = (residual_at(&x, lambda + h), residual_at(&x, lambda - h));
-        for row in 0..n {
-            let fd = (rp[row] - rm[row]) / (2.0 * h);
-            assert!((dl[row] - fd).abs() < 1e-6, "∂r{row}/∂λ {} vs {fd}", dl[row]);
-        }
+        crate::solver::assert_derivatives(&mut chain, &x, lambda);
     }
 
     /// The pieces one sweep of the chain for `load` integrates.
