@@ -589,6 +589,19 @@ pub fn softest_mode(a: &DMatrix<f64>) -> Option<(f64, nalgebra::DVector<f64>)> {
     Some((value, eig.eigenvectors.column(i).into_owned()))
 }
 
+/// Seeded uniform numbers in $[-1, 1)$ (xorshift*): the random matrices
+/// of the to-the-bit tests, the same on every machine.
+#[cfg(test)]
+pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -625,13 +638,7 @@ mod tests {
     /// (the exact reference: the same operations in the same order).
     #[test]
     fn cholesky_is_the_dot_product_form_to_the_bit() {
-        let mut state = 0x853C_49E6_748F_EA9B_u64;
-        let mut next = || {
-            state ^= state >> 12;
-            state ^= state << 25;
-            state ^= state >> 27;
-            (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut next = crate::linalg::uniform(0x853C_49E6_748F_EA9B_u64);
         let lower = |a: &[Dual64], n: usize| -> Vec<u64> {
             (0..n)
                 .flat_map(|j| (j..n).map(move |i| (j, i)))
@@ -747,13 +754,7 @@ mod tests {
     /// factors the same factors to the bit.
     #[test]
     fn lu_is_the_right_looking_form_to_the_bit() {
-        let mut state = 0x1234_5678_9ABC_DEF1_u64;
-        let mut next = || {
-            state ^= state >> 12;
-            state ^= state << 25;
-            state ^= state >> 27;
-            (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut next = crate::linalg::uniform(0x1234_5678_9ABC_DEF1_u64);
         let mut factored = 0;
         for n in 1..=40 {
             for case in 0..7 {

@@ -682,13 +682,7 @@ mod tests {
     /// kept ones, and after the Jacobian changes (factors made again).
     #[test]
     fn tangent_along_load_is_the_bordered_solve_to_the_bit() {
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = || {
-            state ^= state >> 12;
-            state ^= state << 25;
-            state ^= state >> 27;
-            (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut next = crate::linalg::uniform(0x9E37_79B9_7F4A_7C15_u64);
         let mut compared = 0;
         for n in 1..=12 {
             let m = n + 1;
