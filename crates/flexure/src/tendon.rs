@@ -347,14 +347,9 @@ pub fn stability_limit(
     })
 }
 
-/// [`pull`], or with `while_stable` stopping where the path loses stability.
-fn follow(
-    flexure: &Flexure,
-    tendon: &TendonOffsets,
-    tension: f64,
-    data: &mut TendonData,
-    while_stable: bool,
-) -> Result<Equilibrium> {
+/// Checks a tendon, its tension and the data against the flexure, and
+/// gives the residual's scale: $EI/L$ plus the tension's largest moment.
+fn checked(flexure: &Flexure, tendon: &TendonOffsets, tension: f64, data: &mut TendonData) -> Result<f64> {
     tendon.validate()?;
     if !(tension.is_finite() && tension >= 0.0) {
         return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
@@ -363,7 +358,18 @@ fn follow(
         return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
     }
     data.kinematics.check_fits(flexure)?;
-    let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
+    Ok(flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs()))
+}
+
+/// [`pull`], or with `while_stable` stopping where the path loses stability.
+fn follow(
+    flexure: &Flexure,
+    tendon: &TendonOffsets,
+    tension: f64,
+    data: &mut TendonData,
+    while_stable: bool,
+) -> Result<Equilibrium> {
+    let scale = checked(flexure, tendon, tension, data)?;
     data.solver.x.copy_from_slice(&data.alpha);
     let mut problem = TendonProblem {
         potential: TendonPotential { flexure, tendon: *tendon, tension: 0.0, kinematics: &mut data.kinematics },
@@ -391,16 +397,9 @@ pub fn correct(
     alpha: &[f64],
     data: &mut TendonData,
 ) -> Result<Equilibrium> {
-    tendon.validate()?;
+    tendon.validate()?; // before alpha's check, as the errors have always come
     flexure.check_coordinates("alpha", alpha)?;
-    if !(tension.is_finite() && tension >= 0.0) {
-        return Err(Error::invalid("force", tension, "a tendon's tension must be finite and not negative"));
-    }
-    if data.alpha.len() != flexure.order() {
-        return Err(Error::invalid("data", data.alpha.len(), "was made for a flexure of another order"));
-    }
-    data.kinematics.check_fits(flexure)?;
-    let scale = flexure.ei() / flexure.length() + tension * (tendon.root_offset.abs() + tendon.tip_offset.abs());
+    let scale = checked(flexure, tendon, tension, data)?;
     data.solver.x.copy_from_slice(alpha);
     let mut problem = TendonProblem {
         potential: TendonPotential { flexure, tendon: *tendon, tension: 0.0, kinematics: &mut data.kinematics },
