@@ -589,7 +589,7 @@ pub fn softest_mode(a: &DMatrix<f64>) -> Option<(f64, nalgebra::DVector<f64>)> {
     Some((value, eig.eigenvectors.column(i).into_owned()))
 }
 
-/// Seeded uniform numbers in $[-1, 1)$ (xorshift*): the random matrices
+/// Seeded uniform numbers in [-1, 1) (xorshift*): the random matrices
 /// of the to-the-bit tests, the same on every machine.
 #[cfg(test)]
 pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {

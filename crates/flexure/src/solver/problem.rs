@@ -83,9 +83,9 @@ pub trait Problem<T: Scalar> {
 }
 
 /// Asserts a problem's Jacobian and load derivative at `(x, λ)` against
-/// central differences of its residual: step $h = 10^{-6}$ (truncation
-/// about $10^{-12}$, rounding about $10^{-10}$ of residuals of order 1), so
-/// they agree to $10^{-6}$ absolute. Every problem's derivative test calls it.
+/// central differences of its residual: step 1e-6 (truncation about
+/// 1e-12, rounding about 1e-10 of residuals of order 1), so they agree to
+/// 1e-6 absolute. Every problem's derivative test calls it.
 #[cfg(test)]
 pub(crate) fn assert_derivatives<P: Problem<f64>>(problem: &mut P, x: &[f64], lambda: f64) {
     let n = problem.dim();
