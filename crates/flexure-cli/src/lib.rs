@@ -20,6 +20,7 @@ mod modes;
 mod options;
 mod render;
 mod reproduce;
+mod samples;
 mod simulate;
 mod spatial;
 mod stress;

@@ -4,8 +4,8 @@
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Set by the first Ctrl-C (SIGINT): the running solve or simulation stops
-/// at its next step and the command prints what it reached.
+/// Set by the first Ctrl-C (SIGINT) or SIGTERM: the running solve or
+/// simulation stops at its next step and the command prints what it reached.
 static STOP: AtomicBool = AtomicBool::new(false);
 
 /// The library's interrupt hook ([`flexure::solver::with_interrupt`]).
@@ -14,7 +14,7 @@ fn stop_asked() -> bool {
 }
 
 fn main() -> ExitCode {
-    // The first Ctrl-C asks the work to stop and keep what it reached
+    // The first Ctrl-C (or SIGTERM, as a job scheduler sends it) asks the work to stop and keep what it reached
     // (`simulate` prints its samples, a sweep its rows, then `stopped`, exit
     // 2); a second ends the process at once, as Ctrl-C did without a handler
     // (130 = 128 + SIGINT). Without a handler (it could not be installed)

@@ -7,10 +7,8 @@ use flexure::dynamics::integrate::Trajectory;
 use flexure::dynamics::simulation::{Simulation, SimulationSettings, Start, simulate};
 use flexure::mechanism::Mechanism;
 use flexure::model::{Model, Motion};
-use flexure::report::BodyPose;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
-use std::fmt::Write;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -187,8 +185,13 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     let settings = checked_settings(&args.motion, (args.duration, "--duration"))?;
     let model = crate::input::read_model(&args.file)?;
     let mut findings = crate::findings::open_at_rest(&model, &args.file)?;
-    let run = with_progress_bar(args.duration, || model.simulate(&settings, args.motion.start()))
-        .map_err(|e| format!("{}: {}", args.file.display(), simulation_error(e, args.duration)))?;
+    let work = || with_progress_bar(args.duration, || model.simulate(&settings, args.motion.start()));
+    let (run, written) = match out {
+        Some((path, file)) => crate::samples::written_as_reached(&model, (path, file), work),
+        None => (work(), Ok(())),
+    };
+    let run = run.map_err(|e| format!("{}: {}", args.file.display(), simulation_error(e, args.duration)))?;
+    written?;
     let samples: Vec<(f64, &[f64])> =
         (0..run.trajectory.time.len()).map(|k| (run.trajectory.time[k], run.trajectory.q(k))).collect();
     let crossings = run.crossings.clone();
@@ -203,9 +206,7 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     if !findings.is_empty() {
         v["findings"] = json!(findings);
     }
-    if let Some((path, mut file)) = out {
-        use std::io::Write as _;
-        file.write_all(csv(&model, &run).as_bytes()).map_err(|e| format!("writing {}: {e}", path.display()))?;
+    if let Some(path) = &args.out {
         v["out"] = json!(path.display().to_string());
     }
     insert_stopped(&mut v, (&run.trajectory, &run.stopped), &args.file, args.duration);
@@ -268,68 +269,4 @@ fn motion_json(model: &Model, run: &Motion) -> Value {
         "rejected": t.rejected,
         "violation": t.violation,
     })
-}
-
-/// One row per sample, under a header naming each column: each moving
-/// body's pose, a spatial one's rotation as a unit quaternion, scalar first
-/// (MuJoCo's `qpos` order), sign chosen with $q_w \ge 0$.
-fn csv(model: &Model, run: &Motion) -> String {
-    let joints: Vec<(String, usize)> = model.joints().into_iter().map(|(n, r)| (n, r.len())).collect();
-    let joints: Vec<(&str, usize)> = joints.iter().map(|(n, k)| (n.as_str(), *k)).collect();
-    let bodies: Vec<&str> = run.bodies.iter().map(|b| b.0.as_str()).collect();
-    let columns: &[&str] = match model.dimension() {
-        2 => &["x", "y", "phi"],
-        _ => &["x", "y", "z", "qw", "qx", "qy", "qz"],
-    };
-    table(&bodies, columns, &joints, &run.trajectory, |k, row| {
-        for (_, poses) in &run.bodies {
-            match poses[k] {
-                BodyPose::Planar { x, y, phi } => row.extend([x, y, phi]),
-                BodyPose::Spatial { x, y, z, rotation, .. } => {
-                    let r = nalgebra::Matrix3::from_fn(|i, j| rotation[i][j]);
-                    let q =
-                        nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(r));
-                    let q = if q.w < 0.0 { -q.into_inner() } else { q.into_inner() };
-                    row.extend([x, y, z, q.w, q.i, q.j, q.k]);
-                }
-            }
-        }
-    })
-}
-
-/// The CSV of a run: time, each body's `columns` (filled by `bodies_at`
-/// for sample k), each joint's coordinates then their rates, energy.
-fn table(
-    bodies: &[&str],
-    columns: &[&str],
-    joints: &[(&str, usize)],
-    run: &flexure::dynamics::integrate::Trajectory,
-    bodies_at: impl Fn(usize, &mut Vec<f64>),
-) -> String {
-    let mut header = vec!["time".to_string()];
-    for b in bodies {
-        header.extend(columns.iter().map(|c| format!("{b}.{c}")));
-    }
-    for suffix in ["", ".rate"] {
-        for (name, dof) in joints {
-            header.extend((0..*dof).map(|i| format!("{name}[{i}]{suffix}")));
-        }
-    }
-    header.push("energy".into());
-    let mut text = header.join(",");
-    text.push('\n');
-    let mut row = Vec::new();
-    for k in 0..run.time.len() {
-        row.clear();
-        row.push(run.time[k]);
-        bodies_at(k, &mut row);
-        row.extend(run.q(k));
-        row.extend(run.v(k));
-        row.push(run.energy[k]);
-        for (i, x) in row.iter().enumerate() {
-            let _ = write!(text, "{}{}", if i > 0 { "," } else { "" }, crate::render::shortest(*x));
-        }
-        text.push('\n');
-    }
-    text
 }

@@ -294,21 +294,13 @@ fn initial_coordinates_are_bounded() {
     );
 }
 
-/// Ctrl-C (SIGINT) during `simulate` keeps the work (issue 39 item 1: the
-/// process used to die with 130, nothing on stdout and an empty `--out`):
-/// the binary prints every sample reached, `stopped` with "interrupted at
-/// t = …", writes the same samples to the CSV, and exits 2. The arm is
-/// started from `[initial]` (no static solve, so the t = 0 sample is taken
-/// at once) over 10⁶ s, which would take minutes; the signal is sent once
-/// the `--out` file exists (it is created after the handler is installed)
-/// and the integrator has run a while.
+/// A long `simulate --json --out` of the arm, started from `[initial]` (no
+/// static solve, so the t = 0 sample is taken at once) over 10⁶ s, which
+/// would take minutes: the running child and its CSV's path.
 #[cfg(unix)]
-#[test]
-fn ctrl_c_keeps_the_samples_reached() {
-    use std::time::Duration;
-    let dir = tempfile::tempdir().unwrap();
-    let file = arm(dir.path(), "[initial]\npin = 0.3\n");
-    let csv = dir.path().join("run.csv");
+fn long_run(dir: &std::path::Path) -> (std::process::Child, std::path::PathBuf) {
+    let file = arm(dir, "[initial]\npin = 0.3\n");
+    let csv = dir.join("run.csv");
     let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexure"))
         .args(["simulate", &file, "--duration", "1e6", "--every", "1e3", "--max-steps", "1e9", "--json", "--out"])
         .arg(&csv)
@@ -317,26 +309,70 @@ fn ctrl_c_keeps_the_samples_reached() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // At most 6000 looks, 10 ms apart: a bound on the wait, not a timing asserted.
-    let opened = (0..6000).any(|_| {
-        std::thread::sleep(Duration::from_millis(10));
-        csv.exists()
-    });
-    assert!(opened, "the run never opened its --out file");
-    std::thread::sleep(Duration::from_millis(500));
-    let sent = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
-    assert!(sent.success());
-    let out = child.wait_with_output().unwrap();
-    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    let v: Value = serde_json::from_str(&stdout).unwrap();
-    let time = floats(&v["time"]);
-    let error = v["stopped"]["error"].as_str().unwrap();
-    assert!(error.contains("interrupted at t = ") && stderr.contains(error), "{error}\n{stderr}");
-    assert_eq!(v["stopped"]["time"].as_f64(), time.last().copied());
-    assert!(!time.is_empty() && *time.last().unwrap() < 1e6, "{time:?}");
-    // The CSV holds the header and one row per sample printed, same times.
-    let text = std::fs::read_to_string(&csv).unwrap();
-    let rows: Vec<f64> = text.lines().skip(1).map(|l| l.split(',').next().unwrap().parse().unwrap()).collect();
-    assert_eq!(rows, time);
+    (child, csv)
+}
+
+/// The complete rows' times of the CSV at `csv` (a row cut short by a
+/// kill is not complete), once it holds at least `rows` of them: at most
+/// 6000 looks, 10 ms apart, a bound on the wait, not a timing asserted.
+#[cfg(unix)]
+fn rows_on_disk(csv: &std::path::Path, rows: usize) -> Vec<f64> {
+    let read = || -> Vec<f64> {
+        let text = std::fs::read_to_string(csv).unwrap_or_default();
+        let complete = &text[..text.rfind('\n').map_or(0, |i| i + 1)];
+        complete.lines().skip(1).map(|l| l.split(',').next().unwrap().parse().unwrap()).collect()
+    };
+    for _ in 0..6000 {
+        let times = read();
+        if times.len() >= rows {
+            return times;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    panic!("the CSV never held {rows} rows: {:?}", read());
+}
+
+/// Ctrl-C (SIGINT) or SIGTERM during `simulate` keeps the work (issue 39
+/// item 1 and issue 37 item 4: the process used to die with 130, nothing
+/// on stdout and an empty `--out`): the binary prints every sample reached,
+/// `stopped` with "interrupted at t = …", has written the same samples to
+/// the CSV, and exits 2. The signal is sent once rows are on disk.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_or_sigterm_keeps_the_samples_reached() {
+    for signal in ["-INT", "-TERM"] {
+        let dir = tempfile::tempdir().unwrap();
+        let (child, csv) = long_run(dir.path());
+        rows_on_disk(&csv, 3);
+        let sent = std::process::Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
+        assert!(sent.success());
+        let out = child.wait_with_output().unwrap();
+        let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert_eq!(out.status.code(), Some(2), "{signal}: {stderr}");
+        let v: Value = serde_json::from_str(&stdout).unwrap();
+        let time = floats(&v["time"]);
+        let error = v["stopped"]["error"].as_str().unwrap();
+        assert!(error.contains("interrupted at t = ") && stderr.contains(error), "{signal}: {error}\n{stderr}");
+        assert_eq!(v["stopped"]["time"].as_f64(), time.last().copied());
+        assert!(!time.is_empty() && *time.last().unwrap() < 1e6, "{time:?}");
+        // The CSV holds the header and one row per sample printed, same times.
+        assert_eq!(rows_on_disk(&csv, 1), time, "{signal}");
+    }
+}
+
+/// `--out` rows reach the disk as the samples are reached (issue 37 item
+/// 4): a run killed outright (SIGKILL, which no program can catch) keeps
+/// the rows written before, every one complete and in time order, the
+/// first at t = 0 and 1000 s apart (`--every 1e3`).
+#[cfg(unix)]
+#[test]
+fn rows_are_on_disk_before_the_run_ends() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut child, csv) = long_run(dir.path());
+    let before = rows_on_disk(&csv, 3);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let kept = rows_on_disk(&csv, before.len());
+    assert_eq!(kept[..before.len()], before[..]);
+    assert!(kept.iter().enumerate().all(|(k, t)| *t == 1e3 * k as f64), "{kept:?}");
 }

@@ -183,6 +183,12 @@ impl Model {
         each!(self, m => m.bodies.iter().map(|b| b.name.clone()).collect())
     }
 
+    /// Each body's pose in the world at coordinates `q`, the ground first,
+    /// as [`Model::simulate`] gives them at each sample.
+    pub fn body_poses(&self, q: &[f64]) -> Vec<BodyPose> {
+        each!(self, m => body_poses(m, q))
+    }
+
     /// The compliance of the frame at point `at` (2 or 3 numbers, as the
     /// dimension) of body `body` at the loaded equilibrium, as
     /// [`Model::solve`] gives it, without the report.
@@ -428,12 +434,16 @@ fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start:
     let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
     for q in &samples {
-        for (body, pose) in bodies.iter_mut().zip(<D as crate::report::Reported>::poses(m, q).into_iter().skip(1)) {
+        for (body, pose) in bodies.iter_mut().zip(body_poses(m, q).into_iter().skip(1)) {
             body.1.push(pose);
         }
     }
     let crossings = D::crossings_along(m, &samples);
     Ok(Motion { trajectory, stopped, bodies, crossings })
+}
+
+fn body_poses<D: Analyses>(m: &Mechanism<D>, q: &[f64]) -> Vec<BodyPose> {
+    <D as crate::report::Reported>::poses(m, q)
 }
 
 fn no_body(name: &str) -> Error {

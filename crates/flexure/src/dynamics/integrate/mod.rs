@@ -104,7 +104,7 @@ mod step;
 mod trajectory;
 mod work;
 
-pub use progress::with_progress;
+pub use progress::{Sample, with_progress, with_samples};
 pub use settings::{MAX_SAMPLES, MAX_STEPS, MotionSettings};
 pub use step::{PACE_MARGIN, PACE_WINDOW};
 pub use trajectory::{Trajectory, TrajectoryStop};

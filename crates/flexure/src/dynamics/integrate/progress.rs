@@ -1,8 +1,61 @@
-//! Progress of a run, reported to a hook the caller sets: the library
-//! itself prints nothing.
+//! Progress of a run, and each sample as it is reached, reported to hooks
+//! the caller sets: the library itself prints and writes nothing.
+
+/// One sample of a run, as [`with_samples`] reports it the moment it is recorded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample<'a> {
+    /// Time (s).
+    pub time: f64,
+    /// The coordinates $q$.
+    pub coordinates: &'a [f64],
+    /// The rates $\dot q$.
+    pub velocities: &'a [f64],
+    /// Kinetic plus potential energy (J).
+    pub energy: f64,
+}
 
 thread_local! {
     static PROGRESS: std::cell::Cell<Option<fn(f64)>> = const { std::cell::Cell::new(None) };
+    static SAMPLES: std::cell::Cell<Option<fn(&Sample)>> = const { std::cell::Cell::new(None) };
+}
+
+/// Runs `work` with `hook` called on this thread with every sample that
+/// [`integrate`](super::integrate) records, as it records it: a command
+/// line writes its rows with it, so a run stopped by a signal or a crash
+/// keeps on disk the samples it reached.
+///
+/// # Example
+/// ```
+/// use flexure::dynamics::{integrate::{with_samples, Sample}, simulate, SimulationSettings, Start};
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// static SEEN: AtomicUsize = AtomicUsize::new(0);
+/// let m = flexure::mechanism::file::from_toml(
+///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+///      [[body]]\nname = \"arm\"\ninertia = 0.5\n[initial]\npin = 0.1\n",
+/// )
+/// .unwrap();
+/// let hook = |s: &Sample| _ = SEEN.fetch_add(s.coordinates.len(), Ordering::Relaxed);
+/// let run = with_samples(hook, || simulate(&m, &SimulationSettings::default(), Start::Equilibrium)).unwrap();
+/// // One coordinate at each of the 101 samples, each reported once.
+/// assert_eq!((run.trajectory.time.len(), SEEN.load(Ordering::Relaxed)), (101, 101));
+/// ```
+pub fn with_samples<R>(hook: fn(&Sample), work: impl FnOnce() -> R) -> R {
+    /// Restores the previous hook on every exit, unwinding included.
+    struct Restore(Option<fn(&Sample)>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            SAMPLES.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(SAMPLES.with(|c| c.replace(Some(hook))));
+    work()
+}
+
+/// Calls the hook of [`with_samples`], if one is set, with `sample`.
+pub(super) fn sampled(sample: &Sample) {
+    if let Some(hook) = SAMPLES.with(|c| c.get()) {
+        hook(sample);
+    }
 }
 
 /// Runs `work` with `report` called on this thread after every accepted

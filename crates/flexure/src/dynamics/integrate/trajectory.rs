@@ -89,5 +89,6 @@ pub(super) fn record<S: System + ?Sized>(
     run.coordinates.extend_from_slice(q);
     run.velocities.extend_from_slice(v);
     run.energy.push(energy);
+    super::progress::sampled(&super::progress::Sample { time: t, coordinates: q, velocities: v, energy });
     Ok(())
 }
