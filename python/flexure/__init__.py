@@ -145,6 +145,7 @@ class Mechanism:
         tolerance: float = 1e-8,
         start: str = "equilibrium",
         max_steps: _Optional[int] = None,
+        accuracy: _Optional[_Tuple[float, float]] = None,
     ) -> dict:
         """Motion over [0, duration] (s), as `flexure simulate --json` gives it, in NumPy arrays:
         time (N,) at 0, every, 2 every, ... and duration (every defaults to duration/100);
@@ -161,6 +162,11 @@ class Mechanism:
         rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
         once per pair of parts; each sample's crossing listed with its time).
         `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
+        error_estimate {position (m), angle (rad), at (s), reference_tolerance, samples,
+        complete, position_tolerance (m)} is the largest difference of a body's pose from a
+        run at a tenth of `tolerance`, held to `accuracy` (position as a fraction of the
+        mechanism's size, angle in rad; default 1 % and 1 deg): flagged, with AccuracyWarning,
+        when it misses it (error_estimate is left out when no finer run is left).
         A duration, every or tolerance not above zero raises ValueError naming it; an
         integration that stalls (its budget included) raises ConvergenceError saying
         where; Ctrl-C stops it with KeyboardInterrupt saying the time reached. Runs
@@ -173,10 +179,10 @@ class Mechanism:
         gravity.x ... z) give the loads in time, and findings lists closures open at rest
         and parts that cross, with the thickness of their sections (each with a 3-vector `at`)."""
         try:
-            return self._inner.simulate(duration, every, tolerance, start, max_steps)
+            return self._inner.simulate(duration, every, tolerance, start, max_steps, accuracy)
         except (ValueError, ConvergenceError) as e:
             # Name the file, unless the error is about an argument.
-            arguments = ("duration", "every", "tolerance", "start", "max_steps")
+            arguments = ("duration", "every", "tolerance", "start", "max_steps", "accuracy")
             about_argument = str(e.args[0]).removeprefix("invalid ").startswith(arguments) if e.args else False
             if self._source is not None and not about_argument:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]

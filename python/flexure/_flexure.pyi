@@ -314,9 +314,11 @@ class Mechanism:
         tolerance: float = 1e-8,
         start: str = "equilibrium",
         max_steps: Optional[int] = None,
+        accuracy: _Accuracy = None,
     ) -> dict:
         """As flexure.Mechanism.simulate: time, bodies {name: {x, y, phi}}, coordinates and
-        velocities {joint: (N, k) array}, energy, steps, rejected, violation, dimension; spatial:
+        velocities {joint: (N, k) array}, energy, steps, rejected, violation, dimension,
+        error_estimate, flagged; spatial:
         bodies {name: {x, y, z, roll, pitch, yaw (N,), rotation (N, 3, 3)}}."""
     def solve(self, accuracy: _Accuracy = None) -> dict:
         """As flexure.Mechanism.solve, one shape in both dimensions: dimension, bodies (planar

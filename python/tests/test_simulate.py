@@ -112,3 +112,22 @@ def test_file_errors_name_the_file(tmp_path):
     bad.write_text(ARM + '[[schedule]]\nload = "force.turn.moment"\npoints = [[0.5, 0.0], [0.1, 1.0]]\n')
     with pytest.raises(ValueError, match=r"bad\.toml: line 20, column 23: .*points\[1\]"):
         flexure.Mechanism.from_file(bad)
+
+
+def test_the_error_estimate_is_near_the_true_error_and_warns_when_it_misses():
+    """Reference: the closed form phi = 0.1 + 0.2 cos 2t. At tolerance 1e-3 over 20 s the
+    estimate (a run at a tenth of the tolerance) is within a factor 2 of the true largest
+    angle error; 1 deg is met; a target of 1e-6 rad is missed with AccuracyWarning."""
+    m = flexure.Mechanism.from_toml(ARM + "[initial]\npin = 0.3\n")
+    run = m.simulate(20.0, every=2.0, tolerance=1e-3)
+    t, phi = run["time"], run["bodies"]["arm"]["phi"]
+    truth = np.max(np.abs(phi - 0.1 - 0.2 * np.cos(2 * t)))
+    e = run["error_estimate"]
+    assert truth > 1e-5 and 0.5 * truth < e["angle"] < 2.0 * truth, (e, truth)
+    assert (e["complete"], e["samples"], e["reference_tolerance"]) == (True, 11, pytest.approx(1e-4))
+    assert run["flagged"] is False
+    with pytest.warns(flexure.AccuracyWarning, match="misses accuracy"):
+        tight = m.simulate(20.0, every=2.0, tolerance=1e-3, accuracy=(0.01, 1e-6))
+    assert tight["flagged"] is True
+    with pytest.raises(ValueError, match="accuracy"):
+        m.simulate(1.0, accuracy=(0.01,))

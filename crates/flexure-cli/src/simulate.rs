@@ -34,6 +34,10 @@ pub struct SimulateArgs {
     /// rotation's unit quaternion qw, qx, qy, qz, MuJoCo's order), each joint's coordinates and rates, energy.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// The error estimate's target: the motion is run again at a tenth of `--tolerance`, and the
+    /// largest difference of a body's position (as a fraction of the mechanism's size) or angle is held to it.
+    #[command(flatten)]
+    accuracy: crate::options::AccuracyOptions,
 }
 
 /// The options of a simulation, shared with `draw --simulate`.
@@ -100,7 +104,7 @@ pub fn run_motion<D: flexure::dynamics::Dynamics>(
     options: &MotionOptions,
 ) -> Result<Simulation<D>, String> {
     let settings = checked_settings(options, (duration, duration_option))?;
-    with_progress_bar(duration, || simulate(m, &settings, options.start()))
+    with_progress_bar(duration, "simulated", || simulate(m, &settings, options.start()))
         .map_err(|e| format!("{}: {}", file.display(), simulation_error(e, duration)))
 }
 
@@ -147,18 +151,18 @@ thread_local! {
 /// Runs `work` (a simulation of `duration` seconds) with a progress bar on
 /// stderr when it is a terminal: the simulated time reached, updated after
 /// every step (indicatif limits the redraws), cleared at the end.
-fn with_progress_bar<R>(duration: f64, work: impl FnOnce() -> R) -> R {
+fn with_progress_bar<R>(duration: f64, what: &str, work: impl FnOnce() -> R) -> R {
     if !std::io::stderr().is_terminal() {
         return work();
     }
     BAR.with(|bar| {
         // Style and length before the target, so no default frame is drawn.
-        if let Ok(style) = ProgressStyle::with_template(&format!("{{bar:30}} {{percent}} % of {duration} s simulated"))
-        {
+        if let Ok(style) = ProgressStyle::with_template(&format!("{{bar:30}} {{percent}} % of {duration} s {what}")) {
             bar.set_style(style);
         }
         bar.set_length(1000);
-        bar.set_position(0);
+        // In progress again after an earlier bar of this thread finished.
+        bar.reset();
         bar.set_draw_target(ProgressDrawTarget::stderr());
     });
     let result =
@@ -185,7 +189,7 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     let settings = checked_settings(&args.motion, (args.duration, "--duration"))?;
     let model = crate::input::read_model(&args.file)?;
     let mut findings = crate::findings::open_at_rest(&model, &args.file)?;
-    let work = || with_progress_bar(args.duration, || model.simulate(&settings, args.motion.start()));
+    let work = || with_progress_bar(args.duration, "simulated", || model.simulate(&settings, args.motion.start()));
     let (run, written) = match out {
         Some((path, file)) => crate::samples::written_as_reached(&model, (path, file), work),
         None => (work(), Ok(())),
@@ -209,8 +213,52 @@ pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     if let Some(path) = &args.out {
         v["out"] = json!(path.display().to_string());
     }
+    if run.stopped.is_none() {
+        insert_motion_error(&mut v, &model, (&settings, args.motion.start()), &run, &args.accuracy.target());
+    }
     insert_stopped(&mut v, (&run.trajectory, &run.stopped), &args.file, args.duration);
     Ok(v)
+}
+
+/// `error_estimate` and `flagged` of a run that reached its duration,
+/// against a reference run at a tenth of its tolerance (a progress bar of
+/// its own on a terminal), with a warning when it misses `target` or
+/// cannot be made (then flagged, without `error_estimate`).
+fn insert_motion_error(
+    v: &mut Value,
+    model: &Model,
+    (settings, start): (&SimulationSettings, Start),
+    run: &Motion,
+    target: &flexure::estimate::Accuracy,
+) {
+    let duration = settings.motion.duration;
+    let estimate = with_progress_bar(duration, "simulated again for the error estimate", || {
+        model.motion_error(settings, start, run, target)
+    });
+    match estimate {
+        Ok(e) => {
+            if !e.complete {
+                crate::options::warn(format!(
+                    "simulate: the error estimate's reference run stopped after {} of {} samples: it covers t ≤ {:e} s only",
+                    e.samples,
+                    run.trajectory.time.len(),
+                    run.trajectory.time[e.samples.saturating_sub(1)]
+                ));
+            } else if e.flagged {
+                crate::options::warn(format!(
+                    "simulate: estimated error {:.3e} m (tolerance {:.3e} m) and {:.3e} rad (tolerance {:.3e} rad), largest at t = {:e} s, misses --accuracy: tighten --tolerance",
+                    e.position, e.position_tolerance, e.angle, target.angle, e.at
+                ));
+            }
+            v["flagged"] = json!(e.flagged);
+            v["error_estimate"] = json!(e);
+        }
+        Err(e) => {
+            crate::options::warn(format!("simulate: no error estimate: {}", simulation_error(e, duration)));
+            // No `error_estimate` key: an answer holds finite numbers only.
+            v["flagged"] = json!(true);
+        }
+    }
 }
 
 /// The checks `simulate` makes of a run, shared by `draw --simulate`:

@@ -56,6 +56,8 @@ const ADDED_TOP: &[(&str, &str)] = &[
     ("modes", "quasi_static"),
     ("modes", "note"),
     ("simulate", "dimension"),
+    ("simulate", "error_estimate"),
+    ("simulate", "flagged"),
 ];
 
 /// `now` without the [`ADDED_TOP`] keys that `golden` lacks.

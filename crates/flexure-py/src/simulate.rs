@@ -1,9 +1,12 @@
 //! `Mechanism.simulate`: a mechanism file's motion as NumPy arrays, in both
 //! dimensions through the door ([`Model::simulate`]).
 
+use crate::errors::AccuracyWarning;
+use crate::warnings::warn;
 use flexure::dynamics::integrate;
 use flexure::dynamics::simulation::{SimulationSettings, Start};
-use flexure::model::Model;
+use flexure::estimate::Accuracy;
+use flexure::model::{Model, MotionEstimate};
 use flexure::report::BodyPose;
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array1, Array2, Array3};
@@ -16,14 +19,16 @@ use pyo3::types::PyDict;
 /// ("equilibrium" or "rest"), with a step budget of `max_steps` (default:
 /// the library's, 1e6 plus 10 per sample), as a dict of arrays: each body's
 /// pose keys one array each (planar x, y, phi; spatial x, y, z, roll, pitch,
-/// yaw, and rotation (N, 3, 3)), as `flexure simulate --json`; runs without the GIL.
+/// yaw, and rotation (N, 3, 3)), as `flexure simulate --json`, with its
+/// `error_estimate` against a run at a tenth of the tolerance and `flagged`
+/// (`AccuracyWarning` when it misses `target`); runs without the GIL.
 pub fn motion<'py>(
     py: Python<'py>,
     model: &Model,
     (duration, every): (f64, Option<f64>),
     tolerance: f64,
-    start: &str,
-    max_steps: Option<usize>,
+    (start, max_steps): (&str, Option<usize>),
+    target: &Accuracy,
 ) -> PyResult<Bound<'py, PyDict>> {
     let start = match start {
         "equilibrium" => Start::Equilibrium,
@@ -41,14 +46,15 @@ pub fn motion<'py>(
         ..Default::default()
     };
     let settings = SimulationSettings { motion, ..Default::default() };
-    let (run, open) = crate::interrupt::interruptible(py, || {
+    let (run, open, estimate) = crate::interrupt::interruptible(py, || {
         let open = model.open_closures()?;
         // Python raises on a run that stopped early, as before.
         let run = model.simulate(&settings, start)?;
-        match &run.stopped {
-            Some(e) => Err(e.clone()),
-            None => Ok((run, open)),
+        if let Some(e) = &run.stopped {
+            return Err(e.clone());
         }
+        let estimate = model.motion_error(&settings, start, &run, target);
+        Ok((run, open, estimate))
     })?;
     let t = &run.trajectory;
     let crossings: Vec<(Option<f64>, _)> =
@@ -76,7 +82,49 @@ pub fn motion<'py>(
     if !findings.is_empty() {
         out.set_item("findings", findings)?;
     }
+    insert_motion_error(py, &out, estimate, target)?;
     Ok(out)
+}
+
+/// `error_estimate` (left out when it could not be made) and `flagged`,
+/// warning `AccuracyWarning` when the estimate misses `target`, is
+/// incomplete or could not be made, as `flexure simulate` warns.
+fn insert_motion_error(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    estimate: flexure::Result<MotionEstimate>,
+    target: &Accuracy,
+) -> PyResult<()> {
+    let warning = |text: String| warn(py, &py.get_type::<AccuracyWarning>(), text, 2);
+    match estimate {
+        Ok(e) => {
+            if !e.complete {
+                warning(format!(
+                    "Mechanism.simulate: the error estimate's reference run stopped after {} samples: it covers those only",
+                    e.samples
+                ))?;
+            } else if e.flagged {
+                warning(format!(
+                    "Mechanism.simulate: estimated error {:.3e} m (tolerance {:.3e} m) and {:.3e} rad (tolerance {:.3e} rad), largest at t = {:e} s, misses accuracy: lower tolerance",
+                    e.position, e.position_tolerance, e.angle, target.angle, e.at
+                ))?;
+            }
+            let d = PyDict::new(py);
+            d.set_item("position", e.position)?;
+            d.set_item("angle", e.angle)?;
+            d.set_item("at", e.at)?;
+            d.set_item("reference_tolerance", e.reference_tolerance)?;
+            d.set_item("samples", e.samples)?;
+            d.set_item("complete", e.complete)?;
+            d.set_item("position_tolerance", e.position_tolerance)?;
+            out.set_item("error_estimate", d)?;
+            out.set_item("flagged", e.flagged)
+        }
+        Err(e) => {
+            warning(format!("Mechanism.simulate: no error estimate: {e}"))?;
+            out.set_item("flagged", true)
+        }
+    }
 }
 
 /// Each body's poses as arrays, one per pose key (planar x, y, phi; spatial

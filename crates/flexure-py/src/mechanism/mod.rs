@@ -67,7 +67,8 @@ impl Mechanism {
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.
-    #[pyo3(signature = (duration, every=None, tolerance=Real(1e-8), start="equilibrium", max_steps=None))]
+    #[pyo3(signature = (duration, every=None, tolerance=Real(1e-8), start="equilibrium", max_steps=None, accuracy=None))]
+    #[allow(clippy::too_many_arguments)] // Python's keywords, each its own argument
     fn simulate<'py>(
         &self,
         py: Python<'py>,
@@ -76,10 +77,11 @@ impl Mechanism {
         tolerance: Real,
         start: &str,
         max_steps: Option<strict::Whole>,
+        accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let times = (duration.0, every.map(|v| v.0));
-        let max_steps = max_steps.map(|m| m.0);
-        let out = simulate::motion(py, &self.model, times, tolerance.0, start, max_steps)?;
+        let target = crate::accuracy::accuracy(accuracy)?;
+        let out = simulate::motion(py, &self.model, times, tolerance.0, (start, max_steps.map(|m| m.0)), &target)?;
         strict::finite_answer("Mechanism.simulate", out.as_any())?;
         Ok(out)
     }

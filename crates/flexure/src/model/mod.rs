@@ -6,10 +6,12 @@
 //! dimensions, serialized in one shape.
 
 mod analyses;
+mod motion_error;
 
 pub use analyses::Analyses;
+pub use motion_error::MotionEstimate;
 
-use crate::dynamics::integrate::Trajectory;
+use crate::dynamics::integrate::{MotionSettings, Trajectory};
 use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ValueEstimate};
@@ -275,6 +277,65 @@ impl Model {
     /// ```
     pub fn simulate(&self, settings: &SimulationSettings, start: Start) -> Result<Motion> {
         each!(self, m => simulate(m, settings, start))
+    }
+
+    /// The error estimate of `run`, a [`Model::simulate`] of this model
+    /// with `settings` from `start`: against a reference run at a tenth of
+    /// its tolerances ([`MotionEstimate`]), held to `target` with positions
+    /// scaled by the mechanism's size.
+    ///
+    /// # Errors
+    /// A tolerance below 1e-13 (no tighter run is left) or an invalid
+    /// target, by name; the reference run's failure to start.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::dynamics::integrate::MotionSettings;
+    /// use flexure::dynamics::simulation::{SimulationSettings, Start};
+    /// use flexure::model::Model;
+    /// // A sprung arm released from 0.1 rad: 20 s at a coarse tolerance.
+    /// let m = Model::from_toml(
+    ///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\n\
+    ///      stiffness = 2.0\n[[body]]\nname = \"arm\"\ninertia = 0.5\ncom = [0.1, 0.0]\n[initial]\npin = 0.1\n",
+    /// )?;
+    /// let motion = MotionSettings { duration: 20.0, every: 2.0, tolerance: 1e-3, absolute: 1e-3, ..Default::default() };
+    /// let settings = SimulationSettings { motion, ..Default::default() };
+    /// let run = m.simulate(&settings, Start::Equilibrium)?;
+    /// let e = m.motion_error(&settings, Start::Equilibrium, &run, &Default::default())?;
+    /// // The closed form: φ(t) = 0.1 cos 2t (ω² = k/I = 4). The estimate is
+    /// // near the run's true largest angle error.
+    /// let truth = (0..run.trajectory.time.len())
+    ///     .map(|k| (run.trajectory.q(k)[0] - 0.1 * (2.0 * run.trajectory.time[k]).cos()).abs())
+    ///     .fold(0.0, f64::max);
+    /// assert!(e.complete && e.samples == 11 && e.angle > 0.5 * truth && e.angle < 2.0 * truth, "{e:?} {truth}");
+    /// # Ok::<(), flexure::Error>(())
+    /// ```
+    pub fn motion_error(
+        &self,
+        settings: &SimulationSettings,
+        start: Start,
+        run: &Motion,
+        target: &Accuracy,
+    ) -> Result<MotionEstimate> {
+        target.validate()?;
+        let motion = settings.motion;
+        if motion.tolerance / 10.0 < 1e-14 {
+            return Err(Error::invalid(
+                "tolerance",
+                motion.tolerance,
+                "leaves the error estimate no run at a tenth of it (the finest is 1e-14): at least 1e-13",
+            ));
+        }
+        let max_steps = motion.max_steps.map(|n| n.saturating_mul(3).min(crate::dynamics::integrate::MAX_STEPS));
+        let reference = MotionSettings {
+            tolerance: motion.tolerance / 10.0,
+            absolute: motion.absolute / 10.0,
+            max_steps,
+            ..motion
+        };
+        let reference_run = self.simulate(&SimulationSettings { motion: reference, ..*settings }, start)?;
+        let size = each!(self, m => m.size());
+        Ok(motion_error::motion_error(run, &reference_run, (reference.tolerance, size), target))
     }
 
     /// Linear buckling on all loads, with its estimate ([`Analyses::buckle`]).
