@@ -329,25 +329,29 @@ class Mechanism:
     def export(
         self,
         to: str = "mjcf",
-        prb: str = "1R",
+        prb: str = "3R",
         range: _Union[None, str, _Sequence[float]] = None,
         armature: float = 0.0,
+        step: float = 0.002,
         name: _Optional[str] = None,
     ) -> _Tuple[str, dict]:
         """The mechanism as a rigid-body model for a simulator, as `flexure export`: returns
         (xml, report). to: "mjcf" (MuJoCo), "sdf" (SDFormat 1.9, Gazebo) or "urdf" (ROS).
-        Each flexure becomes a pseudo-rigid-body chain, prb "1R" (Howell's characteristic
-        pivot) or "3R" (Su's), fitted to the Smooth Curvature Model over the file's loads
-        times each fraction of range ("F0:F1:N" or (F0, F1, N); default 0 to 1 at 12).
-        armature (kg m^2) is added to every pseudo-rigid hinge; name is the model's (default
+        Each flexure becomes a pseudo-rigid-body chain, prb "3R" (Su's, the default) or "1R"
+        (Howell's characteristic pivot), fitted to the Smooth Curvature Model over the file's
+        loads times each fraction of range ("F0:F1:N" or (F0, F1, N); default 0 to 1 at 12).
+        step (s, default MuJoCo's 2 ms; 0: none) is the simulator step the model is sized for:
+        each sprung joint whose own link would ring faster than 10 steps gets the armature
+        that slows it to that, and MJCF's timestep and closures' solref follow it. armature
+        (kg m^2) is added to every pseudo-rigid hinge on top; name is the model's (default
         the file's stem). report: format, prb, range, joints {flexure joint: {prb, gamma,
-        k_theta, stiffness, pivots, error {position, angle}, flagged, samples, length}},
-        warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
+        k_theta, stiffness, pivots, error {position, angle}, flagged (past 1 % of L or 1°),
+        samples, length}}, step, armature {joint: armature written}, warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
         notes. Bad arguments raise ValueError naming them (docs/export.md in the repository)."""
         if name is None:
             name = _Path(self._source).stem if self._source else "mechanism"
         try:
-            return self._inner.export(to, prb, range, armature, name)
+            return self._inner.export(to, prb, range, armature, step, name)
         except (ValueError, ConvergenceError) as e:
             if self._source is not None and e.args and not str(e.args[0]).startswith("invalid"):
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]

@@ -337,9 +337,9 @@ class Mechanism:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
         stability_limit, findings; a sweep that stops raises with the rows in `result`; bodies
         keyed as simulate's (spatial: x, y, z, roll, pitch, yaw, rotation) and compliance (n, 6, 6)."""
-    def export(self, to: str = "mjcf", prb: str = "1R", range: Union[None, str, Sequence[float]] = None,
-               armature: float = 0.0, name: str = "mechanism") -> Tuple[str, dict]:
-        """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, warnings, notes})."""
+    def export(self, to: str = "mjcf", prb: str = "3R", range: Union[None, str, Sequence[float]] = None,
+               armature: float = 0.0, step: float = 0.002, name: str = "mechanism") -> Tuple[str, dict]:
+        """As flexure.Mechanism.export: (xml, report {format, prb, range, joints, step, armature, warnings, notes})."""
     def modes(self, count: Optional[int] = None, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.modes: omega, frequency, shapes {joint: (modes, coordinates)},
         quasi_static, and limit_fraction after a snap-through; spatial: the same keys, with

@@ -20,12 +20,15 @@ pub struct ExportArgs {
     /// The loads the fits are made over, F0:F1:N: N fractions of all the file's loads from F0 to F1 (2 ≤ N ≤ 64).
     #[arg(long, value_parser = range, default_value = "0:1:12")]
     range: LoadRange,
-    /// Each flexure's pseudo-rigid-body chain: 1R (Howell's characteristic pivot) or 3R (Su's chain).
-    #[arg(long, value_parser = prb, default_value = "1R")]
+    /// Each flexure's pseudo-rigid-body chain: 3R (Su's chain) or 1R (Howell's characteristic pivot, whose tip angle is flagged past 1°).
+    #[arg(long, value_parser = prb, default_value = "3R")]
     prb: PrbKind,
-    /// Rotor inertia (kg·m²) on every pseudo-rigid hinge (MJCF's armature), to keep stiff hinges on light links stable in a simulator's steps.
+    /// Rotor inertia (kg·m²) added to every pseudo-rigid hinge (MJCF's armature), on top of what --step sizes.
     #[arg(long, value_parser = crate::options::number, default_value = "0")]
     armature: f64,
+    /// The simulator's time step (s) the model is sized for: a sprung joint whose own link would ring faster than 10 steps gets the armature that slows it to that, and MJCF's timestep and closures' solref are set from it (0: no sizing).
+    #[arg(long, value_parser = crate::options::number, default_value = "0.002")]
+    step: f64,
     /// The model's name.
     #[arg(long)]
     name: Option<String>,
@@ -68,6 +71,7 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
         prb: args.prb,
         range: args.range,
         armature: args.armature,
+        step: args.step,
         name,
         ..Default::default()
     };

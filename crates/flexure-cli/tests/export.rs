@@ -12,13 +12,16 @@ fn the_model_goes_to_stdout_and_the_fits_to_stderr() {
     assert_eq!(code, 0, "{err}");
     assert!(out.starts_with("<?xml") && out.contains(r#"<mujoco model="finger">"#), "{out}");
     assert!(out.contains(r#"<body name="proximal""#) && out.contains(r#"<body name="distal""#));
-    // Each fit told on stderr, by joint, with its error.
+    // Each fit told on stderr, by joint, with its error: 3R by default.
     for joint in ["mcp", "pip"] {
         assert!(
-            err.lines().any(|l| l.starts_with(&format!("note: {joint}: 1R gamma")) && l.contains("% of L")),
+            err.lines().any(|l| l.starts_with(&format!("note: {joint}: 3R gamma")) && l.contains("% of L")),
             "{err}"
         );
     }
+    // Sized for MuJoCo's default step: its timestep, and the armature on each hinge, in a note.
+    assert!(out.contains(r#"<option timestep="0.002""#) && out.contains("armature="), "{out}");
+    assert!(err.lines().any(|l| l.starts_with("note: sized for a 0.002 s step")), "{err}");
 }
 
 #[test]
@@ -60,7 +63,7 @@ fn urdf_warns_of_each_loss_by_name() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("<robot name=\"four_bar\">"));
     for s in [
-        "warning: joint \"input_hinge\": URDF has no springs",
+        "warning: joint \"input_hinge_1\": URDF has no springs",
         "warning: tendon \"pull\"",
         "warning: force \"push\"",
         "warning: gravity",
@@ -73,13 +76,24 @@ fn urdf_warns_of_each_loss_by_name() {
 /// A 1R fit of the paper's tendon joint pulled to twice its tension (the
 /// range 0:2:12, turning it well past 90°) is more than 1 % of L off
 /// (measured 4.0 %; to 90° it is 0.38 %): flagged in the report, and a
-/// warning naming the joint.
+/// warning naming the joint. To 90° it is flagged too, for its tip angle
+/// (0.50 rad, past 1°); the 3R chain is not.
 #[test]
 fn a_poor_fit_is_flagged_and_warned_of() {
     let tendon = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/paper_tendon.toml");
-    let (v, err) = answer(&["export", tendon, "--to", "mjcf", "--out", "/dev/null", "--range", "0:2:12"]);
+    let (v, err) =
+        answer(&["export", tendon, "--to", "mjcf", "--prb", "1R", "--out", "/dev/null", "--range", "0:2:12"]);
     assert_eq!(v["joints"]["hinge"]["flagged"], true);
+    assert!(v["joints"]["hinge"]["error"]["position"].as_f64().unwrap() > 0.01 * 0.015);
     assert!(err.contains("warning: joint \"hinge\": the 1R fit's tip is up to"), "{err}");
+    let (v, err) = answer(&["export", tendon, "--to", "mjcf", "--prb", "1R", "--out", "/dev/null"]);
+    let e = &v["joints"]["hinge"]["error"];
+    assert!(e["position"].as_f64().unwrap() < 0.01 * 0.015 && e["angle"].as_f64().unwrap() > 1f64.to_radians());
+    assert_eq!(v["joints"]["hinge"]["flagged"], true);
+    assert!(err.contains("more than 1 % of L or 1°"), "{err}");
+    let (v, err) = answer(&["export", tendon, "--to", "mjcf", "--out", "/dev/null"]);
+    assert_eq!((v["prb"].as_str(), &v["joints"]["hinge"]["flagged"]), (Some("3R"), &serde_json::json!(false)));
+    assert!(!err.contains("warning:"), "{err}");
 }
 
 #[test]
@@ -90,6 +104,7 @@ fn bad_options_exit_2_naming_them() {
         (vec!["--to", "mjcf", "--range", "0:1"], "--range"),
         (vec!["--to", "mjcf", "--range", "0:1:100"], "--range"),
         (vec!["--to", "mjcf", "--armature=-1"], "--armature"),
+        (vec!["--to", "mjcf", "--step=-0.002"], "step"),
     ] {
         let mut a = vec!["export", FINGER];
         a.extend(args);

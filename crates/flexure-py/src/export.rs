@@ -34,6 +34,7 @@ fn load_range(range: Option<&Bound<'_, PyAny>>) -> PyResult<LoadRange> {
 
 /// The model as text and the fit report as a dict (`flexure export --json`'s
 /// keys); each warning is also raised as a `UserWarning`.
+#[allow(clippy::too_many_arguments)]
 pub fn export<'py>(
     py: Python<'py>,
     m: &flexure::mechanism::Mechanism,
@@ -41,12 +42,14 @@ pub fn export<'py>(
     prb: &str,
     range: Option<&Bound<'py, PyAny>>,
     armature: Real,
+    step: Real,
     name: &str,
 ) -> PyResult<(String, Bound<'py, PyDict>)> {
     let format: Format = to.parse().map_err(to_py)?;
     let prb: PrbKind = prb.parse().map_err(to_py)?;
     let range = load_range(range)?;
-    let options = Options { format, prb, range, armature: armature.0, name: name.into(), ..Default::default() };
+    let options =
+        Options { format, prb, range, armature: armature.0, step: step.0, name: name.into(), ..Default::default() };
     let e = interruptible(py, || flexure::export::export(m, &options))?;
     for w in &e.warnings {
         crate::warnings::warn(py, &py.get_type::<PyUserWarning>(), w.clone(), 2)?;

@@ -100,7 +100,8 @@ impl Mechanism {
     }
 
     /// The mechanism as MJCF, SDFormat or URDF text with its fit report: see `flexure.Mechanism.export`.
-    #[pyo3(signature = (to="mjcf", prb="1R", range=None, armature=Real(0.0), name="mechanism"))]
+    #[pyo3(signature = (to="mjcf", prb="3R", range=None, armature=Real(0.0), step=Real(0.002), name="mechanism"))]
+    #[allow(clippy::too_many_arguments)]
     fn export<'py>(
         &self,
         py: Python<'py>,
@@ -108,9 +109,10 @@ impl Mechanism {
         prb: &str,
         range: Option<&Bound<'py, PyAny>>,
         armature: Real,
+        step: Real,
         name: &str,
     ) -> PyResult<(String, Bound<'py, PyDict>)> {
-        crate::export::export(py, self.planar("export")?, to, prb, range, armature, name)
+        crate::export::export(py, self.planar("export")?, to, prb, range, armature, step, name)
     }
 
     /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see

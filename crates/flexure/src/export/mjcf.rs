@@ -1,6 +1,6 @@
 //! MuJoCo's MJCF.
 
-use super::model::{Attachment, Link, LinkMotion, RigidModel};
+use super::model::{Attachment, Link, LinkMotion, ModelJoint, RigidModel};
 use super::xml::{Element, number, numbers};
 use crate::space::Pose;
 
@@ -9,6 +9,36 @@ use crate::space::Pose;
 pub const WORLD_SITE: &str = "world_frame";
 /// The name of the keyframe whose controls apply the file's loads.
 pub const KEYFRAME: &str = "loads";
+
+/// A closure's impedance: MuJoCo's largest, 0.9999, at every violation.
+/// At rest a soft constraint is open by $(1-d)/(d\thinspace k)$ times the
+/// acceleration it holds back, $k = 1/(d\,t_c)^2$; MuJoCo's default
+/// $d = 0.9$–$0.95$ with $t_c = 0.02$ s leaves the four-bar's pin 0.54 mm
+/// open, this with $t_c = 2\Delta t$ about $10^{-7}$ m.
+pub const CLOSURE_SOLIMP: &str = "0.9999 0.9999 0.001 0.5 2";
+
+/// A closure's `solref`: time constant twice the step (the least MuJoCo
+/// keeps stable), critically damped; MuJoCo's default 0.02 s when the step
+/// is zero (unsized).
+pub fn closure_solref(step: f64) -> String {
+    let tc = if step > 0.0 { 2.0 * step } else { 0.02 };
+    numbers(&[tc, 1.0])
+}
+
+/// A hinge's `range` (its coordinate, about `ref`): where its spring stops
+/// holding ([`super::step::soft_limits`]), ±π on a side where it never
+/// does; `None` when it holds everywhere or is not a hinge.
+pub fn hinge_range(j: &ModelJoint) -> Option<(f64, f64)> {
+    if j.motion != LinkMotion::Hinge {
+        return None;
+    }
+    let (lo, hi) = super::step::soft_limits(j.stiffness);
+    if lo.is_none() && hi.is_none() {
+        return None;
+    }
+    let pi = std::f64::consts::PI;
+    Some((j.reference + lo.unwrap_or(-pi), j.reference + hi.unwrap_or(pi)))
+}
 
 fn pos(p: &Pose) -> String {
     numbers(&[p.x, p.y, 0.0])
@@ -47,20 +77,34 @@ fn placed(mut e: Element, p: &Pose) -> Element {
 ///   [`KEYFRAME`] (`mj_resetDataKeyframe(model, data, 0)` applies them;
 ///   each control is also the fraction of its load);
 /// - a weld is `<weld site1 site2>`, a pin `<connect site1 site2>`; MuJoCo
-///   snaps sites apart at rest together (a preload).
-pub fn write(model: &RigidModel, name: &str, comment: &[String]) -> String {
+///   snaps sites apart at rest together (a preload). Each is as stiff as
+///   the step allows ([`closure_solref`], [`CLOSURE_SOLIMP`]): MuJoCo's
+///   default (`solref` 0.02 s, impedance 0.9–0.95) leaves a loaded pin
+///   open by a share of a millimetre at rest;
+/// - a hinge whose fitted spring softens to nothing at some angle is
+///   limited there (`range`, [`hinge_range`], as stiff as a closure): not
+///   met at rest, it stops a hinge thrown past its spring's reach (a load
+///   applied at once, undamped) from running away;
+/// - `step` (s), when not zero, is `<option timestep>`: the step the
+///   joints' armatures are sized for ([`super::step`]).
+pub fn write(model: &RigidModel, name: &str, comment: &[String], step: f64) -> String {
     let mut root = Element::new("mujoco").attr("model", name);
     for c in comment {
         root.comment(c.clone());
     }
     root.push(Element::new("compiler").attr("angle", "radian").attr("autolimits", "true"));
-    root.push(Element::new("option").attr("gravity", numbers(&[model.gravity.x, model.gravity.y, 0.0])));
+    let mut option = Element::new("option");
+    if step > 0.0 {
+        option = option.attr("timestep", number(step));
+    }
+    root.push(option.attr("gravity", numbers(&[model.gravity.x, model.gravity.y, 0.0])));
+    let solref = closure_solref(step);
     let children = model.children();
     let mut world = Element::new("worldbody");
     world.push(Element::new("site").attr("name", WORLD_SITE).attr("pos", "0 0 0").attr("size", "0.001"));
     sites(model, 0, &mut world);
     for &c in &children[0] {
-        world.push(body(model, c, &children));
+        world.push(body(model, c, &children, step));
     }
     root.push(world);
     let mut tendons = Element::new("tendon");
@@ -97,13 +141,17 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String]) -> String {
                 Element::new("weld")
                     .attr("name", name.as_str())
                     .attr("site1", model.sites[*a].name.as_str())
-                    .attr("site2", model.sites[*b].name.as_str()),
+                    .attr("site2", model.sites[*b].name.as_str())
+                    .attr("solref", solref.as_str())
+                    .attr("solimp", CLOSURE_SOLIMP),
             ),
             Attachment::Pin { name, a, b, .. } => equality.push(
                 Element::new("connect")
                     .attr("name", name.as_str())
                     .attr("site1", model.sites[*a].name.as_str())
-                    .attr("site2", model.sites[*b].name.as_str()),
+                    .attr("site2", model.sites[*b].name.as_str())
+                    .attr("solref", solref.as_str())
+                    .attr("solimp", CLOSURE_SOLIMP),
             ),
         }
     }
@@ -126,7 +174,7 @@ fn sites(model: &RigidModel, link: usize, e: &mut Element) {
     }
 }
 
-fn body(model: &RigidModel, i: usize, children: &[Vec<usize>]) -> Element {
+fn body(model: &RigidModel, i: usize, children: &[Vec<usize>], step: f64) -> Element {
     let l: &Link = &model.links[i];
     let mut b = placed(Element::new("body").attr("name", l.name.as_str()), &l.pose);
     if let Some(j) = &l.joint {
@@ -153,6 +201,14 @@ fn body(model: &RigidModel, i: usize, children: &[Vec<usize>]) -> Element {
         if j.armature > 0.0 {
             e = e.attr("armature", number(j.armature));
         }
+        if let Some((lo, hi)) = hinge_range(j) {
+            // As stiff as a closure: MuJoCo's default limit (0.02 s) lets a
+            // hinge thrown at it by a load applied at once run through.
+            e = e
+                .attr("range", numbers(&[lo, hi]))
+                .attr("solreflimit", closure_solref(step))
+                .attr("solimplimit", CLOSURE_SOLIMP);
+        }
         b.push(e);
     }
     let m = &l.inertia;
@@ -166,7 +222,7 @@ fn body(model: &RigidModel, i: usize, children: &[Vec<usize>]) -> Element {
     }
     sites(model, i, &mut b);
     for &c in &children[i] {
-        b.push(body(model, c, children));
+        b.push(body(model, c, children, step));
     }
     b
 }

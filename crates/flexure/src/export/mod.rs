@@ -18,13 +18,15 @@
 //!    fitted to the model's tip poses at those equilibria (the shapes the
 //!    mechanism reaches, not each wrench held dead from rest), with the
 //!    largest tip position and angle error of the chain against the model;
-//!    a fit more than 1 % of $L$ off is flagged, with a warning.
+//!    a fit more than 1 % of $L$ or 1° off is flagged, with a warning.
 //! 3. **The rigid-body model** ([`model::build`]): bodies keep their names,
 //!    frames, masses, inertias and centres of mass; each flexure becomes its
 //!    hinges, with links `NAME_prbK` between them and its own mass lumped
 //!    on the links it moves with; revolute joints are hinges, prismatic
 //!    joints slides, fixed joints rigid attachments. The rest pose is the
-//!    file's rest configuration.
+//!    file's rest configuration. Sized for a simulator's step
+//!    ([`step::size`]): a sprung joint whose own link would ring faster than
+//!    10 steps gets the armature that slows it to that.
 //! 4. **The format** ([`mjcf`], [`sdf`], [`urdf`]): what a format cannot
 //!    hold is named in a warning ([`Export::warnings`]); nothing is dropped
 //!    silently.
@@ -32,6 +34,7 @@
 //! # Example
 //! ```
 //! use flexure::export::{export, Format, Options};
+//! use flexure::prb::PrbKind;
 //! use flexure::mechanism::file::from_toml;
 //! let m = from_toml(r#"
 //! [[joint]]
@@ -48,12 +51,17 @@
 //! at = [0.0, 0.0]
 //! force = [0.0, -0.5]
 //! "#)?;
-//! let e = export(&m, &Options { format: Format::Mjcf, ..Default::default() })?;
+//! let e = export(&m, &Options { format: Format::Mjcf, prb: PrbKind::OneR, ..Default::default() })?;
 //! assert!(e.xml.contains(r#"<body name="arm""#) && e.xml.contains(r#"<joint name="hinge" type="hinge""#));
 //! let fit = &e.report.joints[0].1;
 //! // An end force across the strip: Howell's characteristic radius factor is
-//! // near 0.85 (0.83 over this range), and the fit is good to 1 % of L.
-//! assert!((fit.gamma[1] - 0.85).abs() < 0.05 && !fit.flagged);
+//! // near 0.85 (0.83 over this range), and the tip is within 1 % of L; its
+//! // angle is Howell's Θ, not the strip's c_θ Θ, and past 1° off it is flagged.
+//! assert!((fit.gamma[1] - 0.85).abs() < 0.05 && fit.error.position < 0.01 * 0.02);
+//! assert_eq!(fit.flagged, fit.error.angle > flexure::export::ANGLE_FLAG);
+//! // The default chain, 3R, holds both.
+//! let e = export(&m, &Options::default())?;
+//! assert!(!e.report.joints[0].1.flagged && e.xml.contains(r#"<joint name="hinge_3""#));
 //! # Ok::<(), flexure::Error>(())
 //! ```
 
@@ -62,6 +70,7 @@ pub mod mjcf;
 pub mod model;
 mod range;
 pub mod sdf;
+pub mod step;
 pub mod urdf;
 pub mod wrench;
 pub mod xml;
@@ -117,15 +126,22 @@ impl Format {
 pub struct Options {
     /// The format.
     pub format: Format,
-    /// The PRB chain of every flexure.
+    /// The PRB chain of every flexure: 3R by default, whose fits are
+    /// unflagged on every example (a 1R chain turns its tip by its hinge
+    /// angle, not the strip's $c_\theta$ times it, and is flagged past 1°).
     pub prb: PrbKind,
     /// The load range the chains are fitted over.
     pub range: LoadRange,
-    /// Rotor inertia (kg·m²) added to every PRB hinge (MJCF's `armature`):
-    /// a stiff hinge on light links rings faster than a simulator's step can
-    /// follow, and an armature $I_a \ge k_1(n\Delta t/2\pi)^2$ slows it to a
-    /// period of $n$ steps $\Delta t$. Zero by default: it changes the dynamics.
+    /// Rotor inertia (kg·m²) added to every PRB hinge (MJCF's `armature`),
+    /// on top of what [`Options::step`] sizes. Zero by default.
     pub armature: f64,
+    /// The simulator's time step (s) the model is sized for: every sprung
+    /// joint whose own link would ring faster than [`step::STEPS_PER_PERIOD`]
+    /// steps is given the armature that slows it to that ([`step::size`]),
+    /// and MJCF's `timestep` and its closures' `solref` are set from it.
+    /// MuJoCo's default, 2 ms, by default; zero sizes nothing. MJCF only:
+    /// SDFormat and URDF hold no armature, and are not sized.
+    pub step: f64,
     /// The model's name (MJCF's `model`, SDFormat's world and model, URDF's robot).
     pub name: String,
     /// Settings of the mechanism's solves along the range.
@@ -136,9 +152,10 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             format: Format::Mjcf,
-            prb: PrbKind::OneR,
+            prb: PrbKind::ThreeR,
             range: LoadRange::default(),
             armature: 0.0,
+            step: step::DEFAULT_STEP,
             name: "mechanism".into(),
             settings: Settings::default(),
         }
@@ -165,7 +182,7 @@ impl std::ops::Deref for JointFit {
 /// Serialized as `{"format", "prb", "range": {"from", "to", "count"},
 /// "joints": {NAME: {"prb", "gamma", "k_theta", "stiffness", "pivots",
 /// "error": {"position", "angle"}, "flagged", "samples", "length"}},
-/// "warnings": [...], "notes": [...]}`.
+/// "step", "armature": {HINGE: kg·m²}, "warnings": [...], "notes": [...]}`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitReport {
     /// The format written.
@@ -176,6 +193,11 @@ pub struct FitReport {
     pub range: LoadRange,
     /// (joint name, its fit), in the file's order.
     pub joints: Vec<(String, JointFit)>,
+    /// The time step (s) the model is sized for ([`Options::step`]; 0 for SDFormat and URDF).
+    pub step: f64,
+    /// (model joint name, armature written on it, kg·m² or kg for a slide),
+    /// in link order: the step's sizing plus [`Options::armature`].
+    pub armature: Vec<(String, f64)>,
     /// What the model or the format could not hold, and fits flagged: the
     /// same as [`Export::warnings`].
     pub warnings: Vec<String>,
@@ -190,6 +212,18 @@ impl serde::Serialize for Joints<'_> {
         let mut m = s.serialize_map(Some(self.0.len()))?;
         for (name, f) in self.0 {
             m.serialize_entry(name, &JointEntry(f))?;
+        }
+        m.end()
+    }
+}
+
+struct Armature<'a>(&'a [(String, f64)]);
+
+impl serde::Serialize for Armature<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.len()))?;
+        for (name, a) in self.0 {
+            m.serialize_entry(name, a)?;
         }
         m.end()
     }
@@ -224,11 +258,13 @@ impl serde::Serialize for FitReport {
             to: f64,
             count: usize,
         }
-        let mut m = s.serialize_struct("FitReport", 6)?;
+        let mut m = s.serialize_struct("FitReport", 8)?;
         m.serialize_field("format", self.format.name())?;
         m.serialize_field("prb", &self.prb)?;
         m.serialize_field("range", &Range { from: self.range.from, to: self.range.to, count: self.range.count })?;
         m.serialize_field("joints", &Joints(&self.joints))?;
+        m.serialize_field("step", &self.step)?;
+        m.serialize_field("armature", &Armature(&self.armature))?;
         m.serialize_field("warnings", &self.warnings)?;
         m.serialize_field("notes", &self.notes)?;
         m.end()
@@ -248,7 +284,12 @@ pub struct Export {
     pub model: model::RigidModel,
 }
 
-/// Each flexure joint's tip wrenches along the range, and its fit.
+/// The tip angle error (rad) past which a fit is flagged: 1°.
+pub const ANGLE_FLAG: f64 = std::f64::consts::PI / 180.0;
+
+/// Each flexure joint's tip wrenches along the range, and its fit, flagged
+/// when its tip is more than 1 % of L ([`prb::FLAG_FRACTION`]) or more than
+/// 1° ([`ANGLE_FLAG`]) from the model's.
 ///
 /// # Example
 /// ```
@@ -281,10 +322,13 @@ pub fn fits(m: &Mechanism, kind: PrbKind, range: &LoadRange, settings: &Settings
         }
         // To the shapes the mechanism reaches, not each wrench held dead from
         // rest: a tendon's or a closure's pull turns with the bodies.
-        let fit = prb::fit_along(f, &loads, &shapes, kind).map_err(|e| match e {
+        let mut fit = prb::fit_along(f, &loads, &shapes, kind).map_err(|e| match e {
             Error::Singular { what } => Error::Singular { what: format!("joint {:?}: {what}", spec.name) },
             other => other,
         })?;
+        // A body on the tip points by the tip's angle: past 1° off, the fit
+        // is flagged as for a position 1 % of L off.
+        fit.flagged |= fit.error.angle > ANGLE_FLAG;
         out.push(Some(fit));
     }
     Ok(out)
@@ -344,36 +388,17 @@ fn check_finite(model: &model::RigidModel) -> Result<()> {
     Ok(())
 }
 
-/// The armature (kg·m²) that slows the stiffest pseudo-rigid hinge (the
-/// ones `--armature` applies to) of a model with links at the mass floor to
-/// a period of 20 of MuJoCo's default 2 ms steps, $k_1(20\thinspace\Delta t/2\pi)^2$;
-/// `None` when no link is at the floor or no flexure became hinges.
-fn offered_armature(m: &Mechanism, model: &model::RigidModel) -> Option<f64> {
-    const STEP: f64 = 0.002;
-    const STEPS_PER_PERIOD: f64 = 20.0;
-    if !model.links.iter().any(|l| l.floored) {
-        return None;
-    }
-    let stiffest = model
-        .links
-        .iter()
-        .filter_map(|l| l.joint.as_ref())
-        .filter(|j| m.joints[j.source].kind.flexure().is_some())
-        .map(|j| j.stiffness[0].abs())
-        .fold(0.0, f64::max);
-    (stiffest > 0.0).then(|| stiffest * (STEPS_PER_PERIOD * STEP / std::f64::consts::TAU).powi(2))
-}
-
 /// Exports `m` as `options` say: fits every flexure's chain over the load
 /// range ([`fits`]), builds the rigid-body model ([`model::build`]) and
 /// writes it ([`mjcf::write`], [`sdf::write`], [`urdf::write`]).
 ///
-/// Errors: the range's ([`LoadRange::validate`]) or the armature's when
-/// invalid; the mechanism's solves along the range (a load range past a
+/// Errors: the range's ([`LoadRange::validate`]), the armature's or the
+/// step's when invalid; the mechanism's solves along the range (a load range past a
 /// limit the mechanism cannot pass); a fit's; a body or joint named as a
 /// generated link or hinge.
 pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
     options.range.validate()?;
+    step::validate(options.step)?;
     let fitted = fits(m, options.prb, &options.range, &options.settings)?;
     let mut warnings = Vec::new();
     let mut joints = Vec::new();
@@ -390,11 +415,14 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
         let length = spec.kind.flexure().map_or(1.0, |f| f.length());
         if fit.flagged {
             warnings.push(format!(
-                "joint {:?}: the {} fit's tip is up to {} m ({:.2} % of L) from the model's over the range, more than 1 % of L",
+                "joint {:?}: the {} fit's tip is up to {} m ({:.2} % of L) and {} rad ({:.2}°) from the model's over the range, \
+                 more than 1 % of L or 1°",
                 spec.name,
                 fit.kind,
                 xml::number(fit.error.position),
-                100.0 * fit.error.position / length
+                100.0 * fit.error.position / length,
+                xml::number(fit.error.angle),
+                fit.error.angle.to_degrees()
             ));
         }
         if wrench::weighs_itself(m, j) {
@@ -410,7 +438,10 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
     if joints.is_empty() {
         comment.clear();
     }
-    let model = model::build(m, &chains, options.armature)?;
+    let mut model = model::build(m, &chains, options.armature)?;
+    // Only MJCF holds an armature: the other formats are not sized.
+    let step = if options.format == Format::Mjcf { options.step } else { 0.0 };
+    let sized = step::size(&mut model, step)?;
     check_finite(&model)?;
     let mut notes = Vec::new();
     for l in model.links.iter().skip(1).filter(|l| l.floored) {
@@ -421,17 +452,36 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
             xml::number(model::MIN_INERTIA)
         ));
     }
-    if let Some(offer) = offered_armature(m, &model).filter(|a| options.armature < *a) {
-        // Two digits, rounded up, so the value given back meets the bound.
-        let offer = format!("{:.1e}", offer * 1.05);
+    if !sized.is_empty() {
+        let list: Vec<String> = sized.iter().map(|(j, a)| format!("{j} {}", xml::number(*a))).collect();
         notes.push(format!(
-            "links at the mass floor ring on their springs far faster than a simulator steps (the model's statics are \
-             right, its motion is not): for MuJoCo's default 2 ms step give --armature {offer} (k1·(20·Δt/2π)², the stiffest \
-             hinge then ringing over 20 steps), which changes the dynamics but not the balance"
+            "sized for a {} s step: each sprung joint whose own link would ring faster than {} steps is given the armature \
+             (rotor inertia, kg·m²; kg on a slide) that slows it to that, k1·({}·Δt/2π)² less the link's own inertia \
+             (the balance is unchanged; the light parts' own modes come down to the step's reach): {}",
+            xml::number(step),
+            step::STEPS_PER_PERIOD,
+            step::STEPS_PER_PERIOD,
+            list.join(", ")
         ));
     }
+    if options.format == Format::Mjcf {
+        let limited: Vec<String> = model
+            .joints()
+            .filter_map(|(_, j)| {
+                mjcf::hinge_range(j).map(|(lo, hi)| format!("{} [{}, {}]", j.name, xml::number(lo), xml::number(hi)))
+            })
+            .collect();
+        if !limited.is_empty() {
+            notes.push(format!(
+                "hinges limited (MJCF range, rad) where their fitted spring's tangent stiffness vanishes, not met at rest: {}",
+                limited.join(", ")
+            ));
+        }
+    }
+    let armature: Vec<(String, f64)> =
+        model.joints().filter(|(_, j)| j.armature > 0.0).map(|(_, j)| (j.name.clone(), j.armature)).collect();
     let (xml, lost) = match options.format {
-        Format::Mjcf => (mjcf::write(&model, &options.name, &comment), Vec::new()),
+        Format::Mjcf => (mjcf::write(&model, &options.name, &comment, step), Vec::new()),
         Format::Sdf => sdf::write(&model, &options.name, &comment),
         Format::Urdf => urdf::write(&model, &options.name, &comment, m.size()),
     };
@@ -441,6 +491,8 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
         prb: options.prb,
         range: options.range,
         joints,
+        step,
+        armature,
         warnings: warnings.clone(),
         notes,
     };

@@ -412,16 +412,26 @@ fn wrap(a: f64) -> f64 {
     a - two_pi * ((a + std::f64::consts::PI) / two_pi).floor()
 }
 
+/// The largest hinge angle (rad) below which a spring is fitted by its
+/// linear term alone.
+const CURVED_ANGLE: f64 = 1e-6;
+
 /// The least-squares cubic through the origin, $\tau = k_1\theta + k_2\theta^2 + k_3\theta^3$,
 /// with as many terms as there are deflected samples (at most three), and
 /// fewer when the fit would soften to a non-positive tangent stiffness
 /// $\tau^{\prime}$ anywhere on the sampled range stretched by a quarter (a
 /// spring that could not hold the chain); `None` when no sample is deflected.
+/// Below [`CURVED_ANGLE`] the angles are rounding, not a curve: one term
+/// (a centred axial load bends nothing, and a cubic through its noise is
+/// $k_2 \sim 10^8$, a spring that softens to nothing a nanoradian away).
 fn spring(angles: &[f64], torques: &[f64]) -> Option<[f64; 3]> {
     let scale = angles.iter().fold(0.0, |m: f64, t| m.max(t.abs()));
-    let deflected = angles.iter().filter(|t| t.abs() > 1e-9 * scale.max(1e-300)).count();
+    let mut deflected = angles.iter().filter(|t| t.abs() > 1e-9 * scale.max(1e-300)).count();
     if scale <= 1e-14 || deflected == 0 {
         return None;
+    }
+    if scale < CURVED_ANGLE {
+        deflected = 1;
     }
     let lo = 1.25 * angles.iter().fold(0.0, |m: f64, &t| m.min(t));
     let hi = 1.25 * angles.iter().fold(0.0, |m: f64, &t| m.max(t));
