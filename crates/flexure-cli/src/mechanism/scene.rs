@@ -41,11 +41,11 @@ pub struct Scene {
 /// The mark of a rigid joint or a closure.
 #[derive(Clone, Copy, PartialEq, Debug)]
 pub enum Symbol {
-    /// One rotation: a hinge about [`Joint::axis`].
+    /// One rotation: a hinge about [`JointMark::axis`].
     Hinge,
     /// Rotations about more than one axis: a ball joint.
     Ball,
-    /// A translation along [`Joint::axis`]: a slider.
+    /// A translation along [`JointMark::axis`]: a slider.
     Slider,
 }
 
