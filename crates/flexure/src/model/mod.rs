@@ -6,8 +6,14 @@
 //! dimensions, serialized in one shape.
 
 mod analyses;
+mod flexure;
 
 pub use analyses::Analyses;
+pub use flexure::{
+    Alpha, Bending, Compared, Curvature, Deflect, Deflected, Deflection, ExactDeflected, ExactReference,
+    FlexureAnalyses, FlexureShape, Found, Headroom, OneFlexure, Posed, Refinement, RestCompliance, ShapeSection,
+    SpatialKeys, TipMotion, TipPose, check_yield,
+};
 
 use crate::dynamics::integrate::Trajectory;
 use crate::dynamics::simulation::{SimulationSettings, Start};
