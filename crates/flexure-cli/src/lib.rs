@@ -21,7 +21,6 @@ mod options;
 mod render;
 mod reproduce;
 mod simulate;
-mod spatial;
 mod stress;
 
 /// The drawing (`draw`): its views, the scene each dimension makes of a
