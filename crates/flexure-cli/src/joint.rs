@@ -1,35 +1,41 @@
-//! Subcommands on one flexure joint: kinematics, deflect, compliance, buckling.
+//! Subcommands on one flexure joint: kinematics, deflect, compliance,
+//! buckling. The first three, planar or with `--spatial`, are one call each
+//! of the library's door to one flexure ([`OneFlexure`]).
 
-use crate::answer::{MAX_FACTOR, estimate, insert_limit, matrix, misses, serialized, warn_unstable};
-use crate::joint_options::{BucklingArgs, ComplianceArgs, DeflectArgs, KinematicsArgs};
+use crate::answer::{MAX_FACTOR, insert_limit, misses, serialized, warn_unstable};
+use crate::joint_options::{BucklingArgs, ComplianceArgs, DeflectArgs, KinematicsArgs, SpatialOptions};
 use crate::options::{FlexureOptions, StressOptions, warn};
-use flexure::Flexure;
 use flexure::estimate::{Accuracy, ErrorEstimate};
-use flexure::kinematics::TipKinematics;
+use flexure::model::{Deflect, Deflection, FlexureAnalyses, Headroom, OneFlexure};
+use flexure::reference;
 use flexure::reference::elastica::Trace;
-use flexure::reference::{self, elastica};
-use flexure::{
-    Error, Pose, StaticsData, TipConstraint, buckling_load, compliance_tip_rest, deflect, energy, energy_gradient,
-};
+use flexure::space::Planar;
+use flexure::spatial::{SpatialLoad, StabilityTest};
+use flexure::{Error, Flexure, Pose, TipConstraint, buckling_load};
 use serde_json::{Value, json};
 
-/// Writes `error_estimate` and `flagged` into `answer`, warning on stderr
-/// when the estimate misses `target` (`what` names the answer).
+/// Writes `error_estimate` and `flagged` of a planar answer into `answer`,
+/// warning on stderr when the estimate misses `target` (`what` names the answer).
 pub fn insert_estimate(answer: &mut Value, e: &ErrorEstimate, f: &Flexure, target: &Accuracy, what: &str) {
-    if e.flagged {
-        // At the highest order no order is left to try: the estimate is against the exact elastica.
-        let hint = if e.exact {
-            format!(
-                "even order {} misses it (estimated against the exact elastica): loosen --accuracy or reduce the load",
-                f.order()
-            )
-        } else {
-            "try --order auto".into()
-        };
-        warn(format!("{what}: {}; {hint}", misses(e, f.length(), target)));
-    }
-    answer["error_estimate"] = estimate(e);
+    warn_missed(e, f.length(), target, Planar::headroom(f, e), what);
+    answer["error_estimate"] = serialized(e);
     answer["flagged"] = json!(e.flagged);
+}
+
+/// Warns when the estimate `e` of a flexure of `length` misses `target`,
+/// with what is left to try (`what` names the answer).
+fn warn_missed(e: &ErrorEstimate, length: f64, target: &Accuracy, headroom: Headroom, what: &str) {
+    if !e.flagged {
+        return;
+    }
+    let hint = match headroom {
+        Headroom::Higher => "; try --order auto".to_string(),
+        Headroom::Exhausted { order, against_exact: true } => format!(
+            "; even order {order} misses it (estimated against the exact elastica): loosen --accuracy or reduce the load"
+        ),
+        Headroom::Exhausted { .. } => String::new(),
+    };
+    warn(format!("{what}: {}{hint}", misses(e, length, target)));
 }
 
 /// The flexure to answer with: as given, or with `--order auto` the lowest
@@ -47,75 +53,65 @@ pub fn pose(p: &Pose) -> Value {
     serialized(p)
 }
 
-/// Pose, transform, Jacobian, Hessians, energy and gradient at α.
-pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
-    if args.spatial.spatial {
-        return crate::spatial::kinematics(args, &args.spatial);
-    }
-    let f = args.flexure.build_fixed("kinematics")?;
-    let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
-    let mut out = serialized(&TipKinematics::at(&f, &alpha)?);
-    let mut gradient = vec![0.0; f.order()];
-    energy_gradient(&f, &alpha, &mut gradient);
-    out["energy"] = json!(energy(&f, &alpha));
-    out["gradient"] = json!(gradient);
-    Ok(out)
+/// The flexure the options describe, through the door: planar, or with
+/// `--spatial` two bendings and a twist. The planar options keep their
+/// meaning in space: `--ei` is EI_z, `--kappa` the in-plane rest
+/// curvature; planar-only options are refused by name.
+fn one_flexure(f: &FlexureOptions, s: &SpatialOptions) -> flexure::Result<OneFlexure> {
+    f.hint_units(s.diameter.as_ref());
+    OneFlexure::build(&f.spec(), s.keys().as_ref())
 }
 
-/// Equilibrium under a tip load (Eq. 22), and optionally the exact elastica.
+/// Pose, Jacobian (in the plane also the transform and Hessians), energy
+/// and gradient at α.
+pub fn kinematics(args: &KinematicsArgs) -> flexure::Result<Value> {
+    args.flexure.fixed("kinematics")?;
+    let f = one_flexure(&args.flexure, &args.spatial)?;
+    let alpha = args.alpha.as_ref().map(|a| a.0.clone()).unwrap_or_default();
+    Ok(serialized(&f.kinematics(&alpha)?))
+}
+
+/// Equilibrium under a tip load (Eq. 22), and optionally the exact
+/// reference (the elastica, the Kirchhoff rod), with the warnings its
+/// answer calls for.
 pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
-    if args.spatial.spatial {
-        return crate::spatial::deflect(args);
-    }
-    let load = args.load.load();
-    let target = args.accuracy.target();
-    let f = chosen(&args.flexure, |f| Ok(flexure::estimate::deflect_auto(f, &load, &target)?.0))?;
-    crate::stress::check(&f, &args.stress)?;
-    let mut data = StaticsData::new(&f);
-    let settings =
-        flexure::Settings { tolerance: args.tolerance, max_iterations: args.max_iterations, ..Default::default() };
-    let eq = deflect(&f, &load, &mut data, &settings)?;
-    let mut model = json!({
-        "alpha": data.alpha(),
-        "pose": data.pose_root_tip(),
-        "stiffness": matrix(&data.stiffness),
-        "stable": eq.stable,
-        "residual": eq.residual,
-    });
-    // With --limit, its refined factor is the one number printed.
-    if let Some(limit) = eq.limit.filter(|_| !args.limit) {
-        model["limit_fraction"] = json!(limit);
-    }
-    warn_unstable(eq.stable, "deflect");
-    crate::stress::insert_stress(&mut model, &f, data.alpha(), &args.stress, "deflect");
-    if args.flexure.auto() {
-        model["order"] = json!(f.order());
-        model["quadrature"] = json!(f.quadrature_points());
-    }
-    let e = flexure::estimate::deflect_error(&f, &load, data.alpha(), &target)?;
-    insert_estimate(&mut model, &e, &f, &target, "deflect");
-    if args.limit {
-        insert_limit(&mut model, &flexure::statics::stability_limit(&f, &load, MAX_FACTOR)?, "deflect --limit");
-    }
-    if !args.exact {
-        return Ok(model);
-    }
-    let (exact, trace) = elastica::deflect_traced(&f, &load, &Default::default())?;
-    let (m, e) = (data.pose_root_tip(), exact.pose);
-    let mut answer = json!({
-        "pose": e,
-        "root_moment": exact.root_moment,
-        "stable": exact.stable,
-        "model": model,
-        "error": {
-            "position": (m.x - e.x).hypot(m.y - e.y),
-            "position_over_length": (m.x - e.x).hypot(m.y - e.y) / f.length(),
-            "angle": (m.phi - e.phi).abs(),
-            "angle_degrees": (m.phi - e.phi).abs().to_degrees(),
+    let (planar, extra) = (args.load.load(), &args.spatial_load);
+    let options = Deflect {
+        load: SpatialLoad {
+            moment: [extra.mx.unwrap_or(0.0), extra.my.unwrap_or(0.0), planar.moment],
+            force: [planar.fx, planar.fy, extra.fz.unwrap_or(0.0)],
         },
-    });
-    insert_exact_stress(&mut answer, &trace, &args.stress, "deflect (exact)")?;
-    Ok(answer)
+        settings: flexure::Settings {
+            tolerance: args.tolerance,
+            max_iterations: args.max_iterations,
+            ..Default::default()
+        },
+        target: args.accuracy.target(),
+        auto: args.flexure.auto(),
+        limit: args.limit.then_some(MAX_FACTOR),
+        exact: args.exact,
+        yield_strength: args.stress.yield_strength,
+        shape: args.stress.shape,
+    };
+    let answer = one_flexure(&args.flexure, &args.spatial)?.deflect(&options)?;
+    let model = answer.model();
+    match model.stability_test {
+        Some(StabilityTest::Static) if !model.stable => warn(
+            "deflect: the equilibrium is unstable (`stable: false`, `stability_test: static`): a neighbouring equilibrium branched off the loading path (a dead moment has no potential, so this is Euler's static test, not an energy minimum)".into(),
+        ),
+        _ => warn_unstable(model.stable, "deflect"),
+    }
+    crate::stress::warn_yield(&model.bending, options.yield_strength, "deflect");
+    warn_missed(&model.error_estimate, model.length, &options.target, model.headroom, "deflect");
+    let mut out = serialized(&answer);
+    if let Some(limit) = &model.stability_limit {
+        let at = if args.exact { &mut out["model"] } else { &mut out };
+        insert_limit(at, limit, "deflect --limit");
+    }
+    if let Deflection::Exact(e) = &answer {
+        crate::stress::warn_yield(&e.bending, options.yield_strength, "deflect (exact)");
+    }
+    Ok(out)
 }
 
 /// The exact answer's bending, from its [`Trace`], as
@@ -146,18 +142,13 @@ pub fn insert_exact_stress(
     Ok(())
 }
 
-/// Small-load tip compliance at the rest shape, order (φ, x, y).
+/// Small-load tip compliance at the rest shape: (φ, x, y) in the plane,
+/// (rx, ry, rz, x, y, z) with `--spatial`; with `--exact` the compliance
+/// ODE's (Eq. 34, with EI(s)) or the linearized rod's.
 pub fn compliance(args: &ComplianceArgs) -> flexure::Result<Value> {
-    if args.spatial.spatial {
-        return crate::spatial::compliance(&args.flexure, &args.spatial, args.exact);
-    }
-    let f = args.flexure.build_fixed("compliance")?;
-    let c = if args.exact {
-        reference::compliance::compliance_tip(&f, &Default::default())?
-    } else {
-        compliance_tip_rest(&f)
-    };
-    Ok(json!({ "compliance": matrix(&c) }))
+    args.flexure.fixed("compliance")?;
+    let f = one_flexure(&args.flexure, &args.spatial)?;
+    Ok(serialized(&f.compliance(args.exact)?))
 }
 
 /// Critical compressive tip load under a tip constraint, with its error

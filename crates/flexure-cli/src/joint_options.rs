@@ -6,6 +6,7 @@ use crate::options::{
     tolerance,
 };
 use clap::{Args, ValueEnum};
+use flexure::model::SpatialKeys;
 use flexure::{Error, TipConstraint, TipLoad};
 
 #[derive(Debug, Args)]
@@ -178,6 +179,22 @@ pub struct SpatialOptions {
     /// Rest twist coefficients (one per order) [default: untwisted].
     #[arg(long, value_parser = numbers, allow_hyphen_values = true, requires = "spatial")]
     pub twist: Option<List>,
+}
+
+impl SpatialOptions {
+    /// The spatial flexure's own keys with `--spatial`, for the library's door.
+    pub fn keys(&self) -> Option<SpatialKeys> {
+        let profile = |p: &Option<ProfileArg>| p.as_ref().map(|p| p.0.clone());
+        let list = |l: &Option<List>| l.as_ref().map(|l| l.0.clone());
+        self.spatial.then(|| SpatialKeys {
+            ei_y: profile(&self.ei_y),
+            gj: profile(&self.gj),
+            diameter: profile(&self.diameter),
+            shear_modulus: self.shear_modulus,
+            kappa_y: list(&self.kappa_y),
+            twist: list(&self.twist),
+        })
+    }
 }
 
 /// The out-of-plane load components (each needs `--spatial`).

@@ -22,7 +22,6 @@ mod render;
 mod reproduce;
 mod samples;
 mod simulate;
-mod spatial;
 mod stress;
 
 /// The drawing (`draw`): its views, the scene each dimension makes of a

@@ -274,6 +274,12 @@ pub struct FlexureOptions {
 impl FlexureOptions {
     /// Builds the flexure, refusing `--order auto` where `command` has no error estimate.
     pub fn build_fixed(&self, command: &'static str) -> flexure::Result<Flexure> {
+        self.fixed(command)?;
+        self.build()
+    }
+
+    /// Refuses `--order auto` where `command` has no error estimate.
+    pub fn fixed(&self, command: &'static str) -> flexure::Result<()> {
         if self.order == Order::Auto {
             return Err(flexure::Error::invalid(
                 "order",
@@ -286,7 +292,7 @@ impl FlexureOptions {
                 },
             ));
         }
-        self.build()
+        Ok(())
     }
 
     /// Whether `--order auto` was given.

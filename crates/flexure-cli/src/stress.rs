@@ -3,21 +3,15 @@
 //! factor against a yield strength, and the deformed shape.
 
 use crate::options::{StressOptions, warn};
+use flexure::Flexure;
+use flexure::model::Bending;
 use flexure::stress::{Peak, peak_curvature, peak_stress};
-use flexure::{Error, Flexure};
 use serde_json::{Value, json};
 
 /// Refuses a yield strength on a flexure that has no thickness, whose
 /// stress is therefore unknown (`name` is the option or key that gave it).
 pub fn check(f: &Flexure, options: &StressOptions) -> flexure::Result<()> {
-    match options.yield_strength {
-        Some(s) if f.section().modulus().is_none() => Err(Error::invalid(
-            "yield_strength",
-            s,
-            "needs a thickness to give a stress: give --modulus, --width and --thickness (a flexure given by --ei alone has no stress)",
-        )),
-        _ => Ok(()),
-    }
+    flexure::model::check_yield(f, options.yield_strength)
 }
 
 /// The peak: `stress: {max (Pa), at (m)}` with a thickness, else
@@ -55,12 +49,7 @@ pub fn insert_peak<E>(
             {
                 let factor = s / p.value;
                 answer["safety_factor"] = json!(factor);
-                if factor < 1.0 {
-                    warn(format!(
-                        "{what}: the peak bending stress {:.4e} Pa (at s = {:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}",
-                        p.value, p.at
-                    ));
-                }
+                warn_past_yield("bending", (p.value, p.at), (s, factor), what);
             }
         }
         None => {
@@ -69,6 +58,26 @@ pub fn insert_peak<E>(
         }
     }
     Ok(())
+}
+
+/// Warns when the safety `factor` against the yield strength `s` (Pa) is
+/// below 1: the peak stress of `kind` is `max` (Pa) at `at` (m); `what` names the answer.
+fn warn_past_yield(kind: &str, (max, at): (f64, f64), (s, factor): (f64, f64), what: &str) {
+    if factor < 1.0 {
+        warn(format!(
+            "{what}: the peak {kind} stress {max:.4e} Pa (at s = {at:.4e} m) exceeds the yield strength {s:e} Pa: safety factor {factor:.3}"
+        ));
+    }
+}
+
+/// [`warn_past_yield`] for an answer's [`Bending`]: a
+/// stress with its point over the section is the peak von Mises stress of
+/// a spatial section's parts; without one, the bending stress.
+pub fn warn_yield(bending: &Bending, yield_strength: Option<f64>, what: &str) {
+    if let (Some(p), Some(factor), Some(s)) = (&bending.stress, bending.safety_factor, yield_strength) {
+        let kind = if p.point.is_some() { "von Mises" } else { "bending" };
+        warn_past_yield(kind, (p.max, p.at), (s, factor), what);
+    }
 }
 
 /// The deformed flexure at `count` points evenly spaced in arc length, ends

@@ -4,16 +4,15 @@
 
 use crate::accuracy::{auto_order, eigen_accuracy};
 use crate::convert::{MatrixPair, along, count, matrix, real, shape_points, tip_load};
-use crate::coordinates::{self, single, vector};
+use crate::coordinates::single;
 use crate::error_estimate::estimate_dict;
 use crate::errors::to_py;
 use crate::interrupt::interruptible;
 use crate::statics::loaded_stiffness;
 use crate::strict::{self, Real};
-use crate::{analyses, convert, kinematics, modes, section, statics, stress};
-use flexure::FlexureSpec;
+use crate::{analyses, convert, kinematics, modes, one_flexure, section, statics, stress};
 use flexure::estimate;
-use flexure::{Kinematics, Level, Pose, compliance_tip, compliance_tip_rest, energy, update_kinematics};
+use flexure::{Kinematics, Level, Pose, compliance_tip, energy, update_kinematics};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -86,11 +85,10 @@ impl Flexure {
             density: density.map(|v| v.0),
             mass_per_length,
         })?;
-        let order = order.map(|o| count("order", o, flexure::flexure::MAX_ORDER)).transpose()?.unwrap_or(3);
-        let quadrature = quadrature.map(|q| count("quadrature", q, flexure::quadrature::MAX_POINTS)).transpose()?;
-        let kappa = kappa.map(|(name, k)| vector(name, &coordinates::array_like(name, k)?, Some(order))).transpose()?;
+        let mut spec = one_flexure::spec(length, section, order, kappa)?;
+        spec.quadrature = quadrature.map(|q| count("quadrature", q, flexure::quadrature::MAX_POINTS)).transpose()?;
         // The library builds it, as for the CLI and mechanism files, and names what it refuses.
-        let f = FlexureSpec { length, section, order, quadrature, kappa }.build().map_err(to_py)?;
+        let f = spec.build().map_err(to_py)?;
         if let Some(s) = yield_strength {
             if !(s.is_finite() && s > 0.0) {
                 return Err(PyValueError::new_err(format!(
@@ -355,9 +353,7 @@ impl Flexure {
 
     /// Tip compliance (3, 3) of the unloaded flexure at its rest shape (Eqs. 35–36).
     fn rest_compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let c = compliance_tip_rest(&self.inner);
-        strict::finite_slice("rest_compliance", c.as_slice())?;
-        Ok(Array2::from_shape_fn((3, 3), |(i, j)| c[(i, j)]).into_pyarray(py))
+        one_flexure::rest_compliance(py, self.inner.clone().into(), "rest_compliance")
     }
 
     /// Vibration modes about the equilibrium under a tip load (moment, fx, fy; Eq. 32's loaded

@@ -29,6 +29,7 @@ mod joint;
 mod kinematics;
 mod mechanism;
 mod modes;
+mod one_flexure;
 mod section;
 mod serialize;
 mod simulate;

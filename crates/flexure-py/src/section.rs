@@ -101,7 +101,8 @@ fn finite(name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() { Ok(v) } else { Err(PyValueError::new_err(format!("{name} = {v}: must be a finite number"))) }
 }
 
-/// The section arguments of `Flexure(...)`, each `None` when not given.
+/// The section arguments of `Flexure(...)` (and those `SpatialFlexure(...)`
+/// shares), each `None` when not given.
 pub struct Arguments<'a, 'py> {
     pub ei: Option<&'a Bound<'py, PyAny>>,
     pub modulus: Option<f64>,
@@ -156,6 +157,12 @@ pub fn spec(a: &Arguments<'_, '_>) -> PyResult<SectionSpec> {
             "density = {rho} and mass_per_length were both given: give one (density with width and thickness, or mass_per_length)"
         )));
     }
+    read(a)
+}
+
+/// The section arguments read, as they are, into the library's
+/// [`SectionSpec`]: what `Flexure(...)` and `SpatialFlexure(...)` share.
+pub fn read(a: &Arguments<'_, '_>) -> PyResult<SectionSpec> {
     let read = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
     Ok(SectionSpec {
         ei: read("ei", a.ei)?,

@@ -2,16 +2,17 @@
 //! twist in SE(3) (issue 23), built by the library's `SpatialSpec` as the
 //! CLI's `--spatial` builds it.
 
-use crate::convert::count;
 use crate::coordinates::{self, Coordinates, single, vector};
 use crate::error_estimate::estimate_dict;
 use crate::errors::{AccuracyWarning, StabilityWarning, to_py};
 use crate::section::{profile, profile_object};
 use crate::strict::{self, Real};
 use crate::warnings::{sig, warn};
-use flexure::estimate::{self, Accuracy};
+use crate::{one_flexure, section};
+use flexure::estimate::Accuracy;
+use flexure::model::{Deflect, OneFlexure, SpatialKeys};
 use flexure::section::Profile;
-use flexure::spatial::{self, MassQuadrature, SpatialLoad, SpatialSpec, SpatialStatics, StabilityTest};
+use flexure::spatial::{self, MassQuadrature, SpatialLoad, StabilityTest};
 use nalgebra::{Matrix3, Vector3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
@@ -88,27 +89,29 @@ impl SpatialFlexure {
         mass_per_length: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let p = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
-        let n = order.map(|o| count("order", o, flexure::flexure::MAX_ORDER)).transpose()?.unwrap_or(3);
-        let rest = |name: &str, v: Option<&Bound<'_, PyAny>>| {
-            v.map(|v| vector(name, &coordinates::array_like(name, v)?, Some(n))).transpose()
-        };
-        let spec = SpatialSpec {
-            length: length.0,
-            gj: p("gj", gj)?,
-            ei_y: p("ei_y", ei_y)?,
-            ei_z: p("ei", ei)?,
+        // The arguments the planar flexure shares, read as it reads them; its mass comes after.
+        let section = section::read(&section::Arguments {
+            ei,
             modulus: modulus.map(|v| v.0),
-            width: p("width", width)?,
-            thickness: p("thickness", thickness)?,
-            diameter: p("diameter", diameter)?,
+            width,
+            thickness,
             poisson: poisson.map(|v| v.0),
+            notch: None,
+            density: None,
+            mass_per_length: None,
+        })?;
+        let spec = one_flexure::spec(length.0, section, order, kappa.map(|k| ("kappa", k)))?;
+        let n = spec.order;
+        let rest = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| one_flexure::rest(name, v, n)).transpose();
+        let keys = SpatialKeys {
+            ei_y: p("ei_y", ei_y)?,
+            gj: p("gj", gj)?,
+            diameter: p("diameter", diameter)?,
             shear_modulus: shear_modulus.map(|v| v.0),
-            orders: [n; 3],
-            twist: rest("twist", twist)?,
             kappa_y: rest("kappa_y", kappa_y)?,
-            kappa_z: rest("kappa", kappa)?,
+            twist: rest("twist", twist)?,
         };
-        let mut inner = spec.build().map_err(to_py)?;
+        let mut inner = OneFlexure::spatial(&spec, &keys).map_err(to_py)?;
         let density = density.map(|v| v.0);
         let mass_per_length = p("mass_per_length", mass_per_length)?;
         // As a mechanism file's flexure: one of the two, each checked by the library.
@@ -232,30 +235,27 @@ impl SpatialFlexure {
     ) -> PyResult<Bound<'py, PyDict>> {
         let load = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
         let target: Accuracy = crate::accuracy::accuracy(accuracy)?;
-        let f = &self.inner;
+        let f = OneFlexure::from(self.inner.clone());
         // Ctrl-C stops it, saying how far it got.
-        let (eq, alpha, stiffness, e) = crate::interrupt::interruptible(py, || -> flexure::Result<_> {
-            let mut data = SpatialStatics::new(f);
-            let eq = spatial::deflect(f, &load, &mut data, &Default::default())?;
-            let e = estimate::spatial::deflect_error(f, &load, data.alpha(), &target)?;
-            Ok((eq, data.alpha().to_vec(), data.stiffness.clone(), e))
-        })?;
-        let (r, p) = spatial::pose_root_tip(f, &alpha);
-        let g = transform(&r, &p);
+        let options = Deflect { load, target, ..Default::default() };
+        let answer = crate::interrupt::interruptible(py, || f.deflect(&options))?;
+        let (m, e) = (answer.model(), &answer.model().error_estimate);
+        let alpha = m.alpha.flat();
         strict::finite_slice("deflect", &alpha)?;
         let d = PyDict::new(py);
         d.set_item("alpha", numpy::PyArray1::from_slice(py, &alpha))?;
+        let g = m.pose.transform();
         d.set_item("pose", Array2::from_shape_fn((4, 4), |(i, j)| g[i][j]).into_pyarray(py))?;
-        d.set_item("stable", eq.stable)?;
+        d.set_item("stable", m.stable)?;
         d.set_item("stability_test", load.stability_test().name())?;
-        d.set_item("stiffness", crate::convert::matrix(&stiffness).into_pyarray(py))?;
-        d.set_item("residual", eq.residual)?;
-        if let Some(l) = eq.limit {
+        d.set_item("stiffness", one_flexure::array(&m.stiffness).into_pyarray(py))?;
+        d.set_item("residual", m.residual)?;
+        if let Some(l) = m.limit_fraction {
             d.set_item("limit_fraction", l)?;
         }
-        d.set_item("error_estimate", estimate_dict(py, &e)?)?;
+        d.set_item("error_estimate", estimate_dict(py, e)?)?;
         d.set_item("flagged", e.flagged)?;
-        if !eq.stable {
+        if !m.stable {
             let why = match load.stability_test() {
                 StabilityTest::Energy => "the stiffness is not positive definite",
                 StabilityTest::Static => {
@@ -271,7 +271,7 @@ impl SpatialFlexure {
         if e.flagged {
             let text = format!(
                 "SpatialFlexure.deflect: the estimated error exceeds the accuracy target: tip position {} % of L (target {} %), tip rotation {}° (target {}°)",
-                sig(100.0 * e.position / f.length()),
+                sig(100.0 * e.position / m.length),
                 sig(100.0 * target.position),
                 sig(e.angle.to_degrees()),
                 sig(target.angle.to_degrees())
@@ -283,12 +283,7 @@ impl SpatialFlexure {
 
     /// The tip's 6 × 6 compliance at rest, order (rx, ry, rz, x, y, z) in the root frame.
     fn compliance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let f = &self.inner;
-        let mut data = SpatialStatics::new(f);
-        spatial::correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default()).map_err(to_py)?;
-        let c = spatial::compliance(f, &data).map_err(to_py)?;
-        strict::finite_slice("compliance", c.as_slice())?;
-        Ok(Array2::from_shape_fn((6, 6), |(i, j)| c[(i, j)]).into_pyarray(py))
+        one_flexure::rest_compliance(py, self.inner.clone().into(), "compliance")
     }
 
     /// The peak von Mises stress along the flexure at alpha: a dict of max (Pa), at (m),

@@ -324,3 +324,40 @@ fn a_shared_name_is_found_and_a_python_class_is_told_apart() {
     let text = "/// A.\n#[pyclass(frozen)]\n/// More.\npub struct Flexure {}\n#[derive(Debug)]\npub enum Stop { A }\npub(crate) struct Hidden;";
     assert_eq!(public_types(text), [("Flexure".to_string(), true), ("Stop".to_string(), false)]);
 }
+
+/// The front ends' source files (CLI and Python) whose code, comments
+/// left out, contains any of `needles`, as paths under `crates/`.
+fn front_end_files_naming(needles: &[&str]) -> BTreeSet<String> {
+    let mut found = BTreeSet::new();
+    for krate in ["flexure-cli", "flexure-py"] {
+        let mut files = Vec::new();
+        sources(&root().join("..").join(krate).join("src"), &mut files);
+        for file in files {
+            let text = code(&std::fs::read_to_string(&file).unwrap());
+            if needles.iter().any(|n| text.contains(n)) {
+                let at = file.strip_prefix(root().join("..")).unwrap().display().to_string();
+                found.insert(at);
+            }
+        }
+    }
+    found
+}
+
+/// Reference: the front ends' sources (issue 34, item 4: one door for the
+/// front ends). They match on no flexure's dimension: the door to one
+/// flexure's variants are named nowhere, and `--spatial` is read only
+/// where the options become the door's keys (and a batch of planar rows
+/// is refused it). A mechanism's variants are named only by the two
+/// commands ARCHITECTURE.md lists ("The door: `model/`").
+#[test]
+fn the_front_ends_match_on_the_dimension_only_in_the_door() {
+    assert_eq!(front_end_files_naming(&["OneFlexure::Planar", "OneFlexure::Spatial"]), BTreeSet::new());
+    let flag = front_end_files_naming(&["spatial.spatial", "self.spatial.then"]);
+    assert_eq!(flag, BTreeSet::from(["flexure-cli/src/joint_options.rs".to_string()]));
+    let known = ["flexure-cli/src/export.rs", "flexure-cli/src/mechanism/draw.rs", "flexure-py/src/mechanism/mod.rs"];
+    let mechanism = front_end_files_naming(&["Model::Planar", "Model::Spatial"]);
+    let unknown: Vec<_> = mechanism.iter().filter(|f| !known.contains(&f.as_str())).collect();
+    assert!(unknown.is_empty(), "front-end files that match on a mechanism's dimension: {unknown:?}");
+    // The files deleted with the twins stay deleted.
+    assert!(!root().join("../flexure-cli/src/spatial.rs").exists());
+}

@@ -400,9 +400,15 @@ fn a_force_without_at_acts_at_the_body_origin() {
 fn a_file_is_parsed_in_one_place() {
     let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut parses = Vec::new();
-    for dir in ["mechanism/file", "model"] {
-        for entry in std::fs::read_dir(src.join(dir)).unwrap() {
+    // The folders' files, and their subfolders' (the door to one flexure is `model/flexure/`).
+    let mut dirs = vec![src.join("mechanism/file"), src.join("model")];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
+            if path.is_dir() {
+                dirs.push(path);
+                continue;
+            }
             let text = std::fs::read_to_string(&path).unwrap();
             for (n, line) in text.lines().enumerate() {
                 let code = line.split("//").next().unwrap_or("");

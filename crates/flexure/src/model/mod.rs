@@ -6,9 +6,15 @@
 //! dimensions, serialized in one shape.
 
 mod analyses;
+mod flexure;
 mod motion_error;
 
 pub use analyses::Analyses;
+pub use flexure::{
+    Alpha, Bending, Compared, Curvature, Deflect, Deflected, Deflection, ExactDeflected, ExactReference,
+    FlexureAnalyses, FlexureShape, Found, Headroom, OneFlexure, Posed, Refinement, RestCompliance, ShapeSection,
+    SpatialKeys, TipMotion, TipPose, check_yield,
+};
 pub use motion_error::MotionEstimate;
 
 use crate::dynamics::integrate::{MotionSettings, Trajectory};

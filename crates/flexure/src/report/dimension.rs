@@ -48,15 +48,7 @@ impl Reported for Planar {
     }
 
     fn peak_stress(f: &Flexure, alpha: &[f64]) -> Result<Option<PeakStress>> {
-        let peak = crate::stress::peak_stress(f, alpha);
-        Ok(peak.map(|p| PeakStress {
-            max: p.value,
-            at: p.at,
-            point: None,
-            bending_y: None,
-            bending_z: None,
-            shear: None,
-        }))
+        Ok(crate::stress::peak_stress(f, alpha).map(PeakStress::from))
     }
 
     fn peak_curvature(f: &Flexure, alpha: &[f64]) -> Option<MaxAt> {

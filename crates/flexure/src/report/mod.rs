@@ -188,6 +188,13 @@ pub struct PeakStress {
     pub shear: Option<f64>,
 }
 
+impl From<Peak> for PeakStress {
+    /// A planar flexure's peak bending stress.
+    fn from(p: Peak) -> Self {
+        Self { max: p.value, at: p.at, point: None, bending_y: None, bending_z: None, shear: None }
+    }
+}
+
 /// The tip load a flexure joint carries, in its root frame: the wrench
 /// with which the flexure alone is in equilibrium at its coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
