@@ -12,7 +12,7 @@ pub const KEYFRAME: &str = "loads";
 
 /// A closure's impedance: MuJoCo's largest, 0.9999, at every violation.
 /// At rest a soft constraint is open by $(1-d)/(d\thinspace k)$ times the
-/// acceleration it holds back, $k = 1/(d\,t_c)^2$; MuJoCo's default
+/// acceleration it holds back, $k = 1/(d\thinspace t_c)^2$; MuJoCo's default
 /// $d = 0.9$–$0.95$ with $t_c = 0.02$ s leaves the four-bar's pin 0.54 mm
 /// open, this with $t_c = 2\Delta t$ about $10^{-7}$ m.
 pub const CLOSURE_SOLIMP: &str = "0.9999 0.9999 0.001 0.5 2";

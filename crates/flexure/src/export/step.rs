@@ -9,8 +9,8 @@
 //! flexure, or a massless body, rings far faster (the finger's links at the
 //! mass floor: $\omega\Delta t \sim 10^4$). Such a joint is given the armature
 //! (rotor inertia on its coordinate) that brings it to a period of
-//! [`STEPS_PER_PERIOD`] steps:
-//! $$I_a = k_1\left(\frac{n\Delta t}{2\pi}\right)^2 - I, \qquad n = \mathtt{STEPS\_PER\_PERIOD}.$$
+//! $n$ = [`STEPS_PER_PERIOD`] steps:
+//! $$I_a = k_1\left(\frac{n\Delta t}{2\pi}\right)^2 - I.$$
 //! An armature adds inertia and nothing else: the balance is unchanged,
 //! the motion of the light parts is slowed (their own modes, far above the
 //! step's reach, come down to $2\pi/(n\Delta t)$).

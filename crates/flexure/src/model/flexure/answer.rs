@@ -41,7 +41,7 @@ impl Alpha {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum TipPose {
-    /// $\{\varphi, x, y\}$.
+    /// $\lbrace\varphi, x, y\rbrace$.
     Planar(Pose),
     /// The position (m) and the rotation by rows: its columns are the tip frame's axes.
     Spatial { position: [f64; 3], rotation: [[f64; 3]; 3] },
