@@ -18,7 +18,9 @@ Targets (issue "Speed where users feel it"):
 - per pose, a batch of 10^6 rows at most 1.5 x a batch of 10^4 rows;
 - `f.deflect` at the paper's 90° load (with its error estimate) at most 4 x the library's
   deflect plus its estimate, criterion's `statics/deflect_90_estimated` (printed here in µs
-  for that comparison; this script cannot run criterion).
+  for that comparison; this script cannot run criterion);
+- `SpatialFlexure.deflect` at orders 4 (with its error estimate) at most 3 x the library's
+  call of it, criterion's `spatial/deflect_with_estimate_order_4`, on the same load.
 """
 
 import math
@@ -70,6 +72,9 @@ def main():
     small = rng.uniform(-1.0, 1.0, (10_000, 3))
     large = rng.uniform(-1.0, 1.0, (1_000_000, 3))
     names = {"f": f, "vector": vector}
+    # As criterion's spatial/deflect_with_estimate_order_4: L = 1, EI_z = EI_y = GJ = 1.
+    spatial = flexure.SpatialFlexure(1.0, ei=1.0, order=4, ei_y=1.0, gj=1.0)
+    force, moment = [0.1, 0.2, 0.3], [0.2, 0.1, 0.3]
 
     t = best_of(
         {
@@ -83,6 +88,7 @@ def main():
             "large": (lambda: f.pose(large), 1, None),
             # The paper's 90° load, TipLoad::polar(0, 3.8477, 45°) as in statics/deflect_90.
             "deflect": (lambda: f.deflect(fx=-FORCE_45, fy=FORCE_45), 5_000, None),
+            "spatial": (lambda: spatial.deflect(force=force, moment=moment), 40, None),
         }
     )
     per_small, per_large = t["small"] / small.shape[0], t["large"] / large.shape[0]
@@ -95,6 +101,7 @@ def main():
     print(f"  batch of 10^4 rows, per pose    {per_small * 1e9:8.2f} ns")
     print(f"  batch of 10^6 rows, per pose    {per_large * 1e9:8.2f} ns")
     print(f"  f.deflect at the 90° load       {t['deflect'] * 1e6:8.2f} µs (with its estimate)")
+    print(f"  SpatialFlexure.deflect, order 4 {t['spatial'] * 1e6:8.2f} µs (with its estimate)")
     for name, ratio, target in [
         ("f.pose(vector) / property read", t["pose"] / t["read"], POSE_TARGET),
         ("per pose, 10^6 rows / 10^4 rows", per_large / per_small, BATCH_TARGET),

@@ -5,10 +5,14 @@
 //! rod's parameters (GJ = EI), orders 3 (the tip within 2.4e-4 of L of the
 //! rod, tests/spatial_validation.rs), at the default subintervals and at
 //! the two that suffice for 1e-3 of L, against `rod/bathe_bolourchi_tol_1e-3`;
-//! and the Jacobian and Hessian at the order cap, [64, 64, 64].
+//! and the Jacobian and Hessian at the order cap, [64, 64, 64]; and
+//! the door's `deflect` with its error estimate at orders [4, 4, 4], the
+//! call Python's `SpatialFlexure.deflect` makes (issue 37 item 5: that call
+//! is timed from Python against this one, `scripts/python_speed.py`).
 
 use criterion::Criterion;
 use flexure::Level;
+use flexure::model::{Deflect, OneFlexure};
 use flexure::section::SpatialSection;
 use flexure::spatial::{
     SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics, deflect, pose_root_tip, update,
@@ -84,6 +88,13 @@ pub fn run(c: &mut Criterion) {
     let mut data = SpatialStatics::new(&coarse);
     g.bench_function("bathe_bolourchi_1e-3", |b| {
         b.iter(|| deflect(&coarse, black_box(&out_of_plane), &mut data, &Default::default()).unwrap().iterations)
+    });
+    // EI_z = EI_y = GJ = 1, L = 1, orders 4: SpatialFlexure(1.0, ei=1.0, order=4, ei_y=1.0, gj=1.0) in Python.
+    let four = SpatialFlexure::new(1.0, SpatialSection::uniform(1.0, 1.0, 1.0).unwrap(), [4, 4, 4]).unwrap();
+    let options =
+        Deflect { load: SpatialLoad { moment: [0.2, 0.1, 0.3], force: [0.1, 0.2, 0.3] }, ..Default::default() };
+    g.bench_function("deflect_with_estimate_order_4", |b| {
+        b.iter(|| OneFlexure::from(black_box(&four).clone()).deflect(&options).unwrap().model().residual)
     });
     g.finish();
 }
