@@ -545,3 +545,38 @@ fn a_planar_finger_in_space_moves_as_in_the_plane_at_1e_8() {
     // And it moved: the force turns the fingertip by more than 0.05 rad.
     assert!(p.phi.last().unwrap().abs() > 0.05, "{:?}", p.phi);
 }
+
+/// The ramped continuum robot with material damping on its backbone
+/// (β = 0.023 s on each segment: its two lowest modes, 61 rad/s, damped
+/// near critically, the others overdamped, decaying at about 1/β) settles,
+/// 0.4 s after the ramp began, where the statics put it under the final
+/// tensions (0.6 N and 0.3 N). Reference: `statics::solve_between` from
+/// the unloaded shape (what `flexure solve` answers). Every disc within
+/// 2e-9 m of it (measured 3.7e-10 m against a deflection of 13 mm; the
+/// last 40 ms still moved it 7.7e-10 m), at the default tolerance 1e-8.
+#[test]
+fn the_damped_ramped_continuum_robot_settles_at_its_static_equilibrium_at_1e_8() {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/continuum_robot.toml")).unwrap();
+    let ramp = "\n[[schedule]]\nload = \"tendon.up.tension\"\npoints = [[0.0, 0.0], [0.01, 0.6]]\n";
+    let damped = text.replace("poisson = 0.33\n", "poisson = 0.33\ndamping = 0.023\n");
+    assert_eq!(damped.matches("damping").count(), 5);
+    let m = flexure::mechanism::file::spatial_from_toml(&format!("{damped}{ramp}")).unwrap();
+    let motion = Motion { duration: 0.4, every: 0.04, ..Default::default() };
+    let run = simulate(&m, &SimulationSettings { motion, ..Default::default() }, Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let settings = flexure::mechanism::statics::Settings::default();
+    let unloaded = flexure::mechanism::statics::assemble_unloaded(&m, &settings).unwrap();
+    let loads = flexure::dynamics::schedule::loads_at(&m, 0.4);
+    assert_eq!(loads.tension, [0.6, 0.3]);
+    let statics = flexure::mechanism::statics::solve_between(&m, &unloaded, &loads, &settings).unwrap();
+    let f = frames(&m, &statics.q);
+    let last = run.time.len() - 1;
+    for (b, body) in run.bodies.iter().enumerate() {
+        let expected = f.bodies[b + 1].translation.vector;
+        let off = (Vector3::from(body.position[last]) - expected).norm();
+        assert!(off <= 2e-9, "{}: {:?} against {expected:?}, {off:e} m", body.name, body.position[last]);
+    }
+    // And it bent: the last disc 13 mm off the axis.
+    assert!(f.bodies[5].translation.vector.y > 0.01, "{:?}", f.bodies[5].translation.vector);
+}
