@@ -1,6 +1,8 @@
 //! The stage equations' simplified Newton method: the Newton matrix built
-//! from kept data and factored once per step length, its start from the
-//! last step's collocation polynomial, and RADAU5's stopping test.
+//! from kept data and factored once per step length (or, once the run has
+//! needed it, with each stage's own mass matrix, factored at every
+//! iteration), its start from the last step's collocation polynomial, and
+//! RADAU5's stopping test.
 
 use super::fatal;
 use super::norm::{scaled_dot, scaled_norm};
@@ -48,7 +50,8 @@ pub(super) fn solve<S: System + ?Sized>(
     };
     let (n, m) = (w.n, w.m);
     let big = 3 * (n + m);
-    if w.factored != h && !factor(rk, w, h) {
+    // A staged matrix is factored at each iteration, with the stages' masses.
+    if !w.staged && w.factored != h && !factor(rk, w, h) {
         return Ok(Err(Refusal::Failed(
             "the Newton matrix is singular (a direction with neither mass nor stiffness, or dependent closures)".into(),
         )));
@@ -88,9 +91,19 @@ pub(super) fn solve<S: System + ?Sized>(
             for k in 0..m {
                 w.r[3 * n + i * m + k] = -w.closure[k] / (h * h);
             }
+            if w.staged {
+                w.stage_mass[i * n * n..(i + 1) * n * n].copy_from_slice(&w.mass);
+            }
         }
         if w.r.iter().any(|x| !x.is_finite()) {
             return Ok(Err(Refusal::Failed("a non-finite force or closure at a stage".into())));
+        }
+        if w.staged && !factor(rk, w, h) {
+            return Ok(Err(Refusal::Failed(
+                "the Newton matrix with the stages' masses is singular (a direction with neither mass nor \
+                 stiffness, or dependent closures)"
+                    .into(),
+            )));
         }
         linalg::lu_solve(&w.matrix, big, &w.pivots, &mut w.r);
         for i in 0..3 {
@@ -172,7 +185,9 @@ pub(super) fn stages(rk: &Radau, w: &mut Work, h: f64, q0: &[f64], v0: &[f64]) {
 }
 
 /// Builds and factors the Newton matrix of the stages for a step `h` from
-/// the kept data (`w.mj`, `w.k0`, `w.d0`, `w.g0`); false if it is singular.
+/// the kept data (`w.mj`, `w.k0`, `w.d0`, `w.g0`), or with
+/// [`Work::staged`] each stage's own mass matrix (`w.stage_mass`) in place
+/// of `w.mj` on its diagonal block; false if it is singular.
 pub(super) fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
     let (n, m) = (w.n, w.m);
     let big = 3 * (n + m);
@@ -185,7 +200,8 @@ pub(super) fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
             for c in 0..n {
                 for r in 0..n {
                     let k = c * n + r;
-                    w.matrix[(j * n + c) * big + i * n + r] = diag * w.mj[k] + ha * w.d0[k] + h2a * w.k0[k];
+                    let mass = if w.staged { w.stage_mass[i * n * n + k] } else { w.mj[k] };
+                    w.matrix[(j * n + c) * big + i * n + r] = diag * mass + ha * w.d0[k] + h2a * w.k0[k];
                 }
                 for k in 0..m {
                     w.matrix[(j * n + c) * big + 3 * n + i * m + k] = rk.a2[i][j] * w.g0[c * m + k];
@@ -201,7 +217,8 @@ pub(super) fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
     if !linalg::lu(&mut w.matrix, big, &mut w.pivots) {
         return false;
     }
-    w.factored = h;
+    // A staged matrix holds this iteration's masses: none is kept.
+    w.factored = if w.staged { f64::NAN } else { h };
     true
 }
 

@@ -29,7 +29,8 @@ pub(super) enum Refusal {
     /// The state could not be evaluated: halve the step.
     Failed(String),
     /// Newton diverged or did not converge: retry with fresh matrix data
-    /// if they were kept, else halve the step.
+    /// if they were kept, else with the stages' own masses if the matrix
+    /// did not yet take them, else halve the step.
     Newton(String),
 }
 
@@ -227,7 +228,20 @@ pub(super) fn advance<S: System + ?Sized>(
                     }
                     Refusal::Newton(why) => {
                         cause = why;
-                        if current { 0.5 } else { 1.0 }
+                        if !current {
+                            // Kept data: retry with fresh.
+                            1.0
+                        } else if !w.staged {
+                            // Fresh data at the step's start, yet no
+                            // convergence: the mass matrix changes within
+                            // the step by much of itself where inertia is
+                            // small, which a shorter step does not cure.
+                            // Retry (and go on) with the stages' own masses.
+                            w.staged = true;
+                            1.0
+                        } else {
+                            0.5
+                        }
                     }
                 };
                 h = step * ratio;

@@ -60,6 +60,13 @@ pub(super) struct Work {
     /// The previous Newton iteration's increments, for the rounding test.
     pub(super) dq_prev: Vec<f64>,
     pub(super) dv_prev: Vec<f64>,
+    /// Whether the Newton matrix takes each stage's own mass matrix
+    /// $M(Q_i)$, evaluated with the residual at every iteration, rather
+    /// than the kept one: set for the rest of the run when Newton fails
+    /// with fresh data (the integrator's module docs say why).
+    pub(super) staged: bool,
+    /// $M(Q_i)$ of the three stages at the current iterate ($3n^2$), for a staged matrix.
+    pub(super) stage_mass: Vec<f64>,
 }
 
 impl Work {
@@ -105,6 +112,8 @@ impl Work {
             dv: z(3 * n),
             dq_prev: z(3 * n),
             dv_prev: z(3 * n),
+            staged: false,
+            stage_mass: z(3 * n * n),
         }
     }
 }
