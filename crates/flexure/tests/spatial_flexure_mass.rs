@@ -11,7 +11,7 @@ use flexure::dynamics::integrate::Settings as Motion;
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::file::{from_toml, spatial_from_toml};
-use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
 use flexure::mechanism::spatial::{
     RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,

@@ -10,7 +10,7 @@
 //! $d_i = w_{i+1} - w_i$, has $\nabla\ell = \sum_i \partial d_i^T u_i$ and
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
-use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
+use super::kinematics::{Attached, Frames, add_attached_hessian, attach_into, frames};
 use super::{Holds, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::mass::{MassModel, Weight, weight};
@@ -82,7 +82,7 @@ pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, wit
 }
 
 /// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 #[doc(hidden)]
 pub struct Assembly {
     /// $\nabla V$.
@@ -94,7 +94,7 @@ pub struct Assembly {
     /// $G$.
     pub closure_jacobian: DMatrix<f64>,
     /// Two points' derivatives.
-    pub points: [PointBuffer; 2],
+    pub points: [Attached; 2],
     /// The flexures' distributed mass, for their weight.
     pub weights: Weights,
 }
@@ -107,7 +107,7 @@ impl Assembly {
             hessian: DMatrix::zeros(n, n),
             closure: DVector::zeros(rows),
             closure_jacobian: DMatrix::zeros(rows, n),
-            points: [PointBuffer::new(m), PointBuffer::new(m)],
+            points: [Attached::new(m), Attached::new(m)],
             weights: Weights::new(m),
         }
     }
@@ -181,7 +181,7 @@ impl Assembly {
 /// $c$ and $G$ at the frames `f`.
 pub(super) fn closures(m: &Mechanism, f: &Frames) -> (DVector<f64>, DMatrix<f64>) {
     let (mut c, mut g) = (DVector::zeros(m.constraints()), DMatrix::zeros(m.constraints(), m.dof()));
-    add_closures(m, f, &[], &mut c, &mut g, None, &mut [PointBuffer::new(m), PointBuffer::new(m)]);
+    add_closures(m, f, &[], &mut c, &mut g, None, &mut [Attached::new(m), Attached::new(m)]);
     (c, g)
 }
 
@@ -193,7 +193,7 @@ pub(super) fn add_closures(
     closure: &mut DVector<f64>,
     g: &mut DMatrix<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    points: &mut [PointBuffer; 2],
+    points: &mut [Attached; 2],
 ) {
     let mut row = 0;
     let [pa, pb] = points;
@@ -201,10 +201,10 @@ pub(super) fn add_closures(
         let (a, ar, aphi, b, br, bphi) =
             (c.a, c.a_origin.origin(), c.a_origin.phi, c.b, c.b_origin.origin(), c.b_origin.phi);
         let angle = c.holds == Holds::Weld;
-        point_into(m, f, a, ar, pa);
-        point_into(m, f, b, br, pb);
+        attach_into(m, f, a, ar.coords, true, pa);
+        attach_into(m, f, b, br.coords, true, pb);
         for k in 0..2 {
-            closure[row + k] = pa.position[k] - pb.position[k];
+            closure[row + k] = pa.value[k] - pb.value[k];
         }
         // Column-major: G's column `col` and the points' (θ, x, y) columns.
         let rows = g.nrows();
@@ -219,11 +219,11 @@ pub(super) fn add_closures(
         }
         // The angle is linear in q for every joint kind: no Hessian term.
         if let Some(h) = hessian.as_deref_mut() {
-            add_point_hessian(m, f, pa, Vector2::new(mu[row], mu[row + 1]), h);
-            add_point_hessian(m, f, pb, Vector2::new(-mu[row], -mu[row + 1]), h);
+            add_attached_hessian(m, f, pa, &Vector2::new(mu[row], mu[row + 1]), h);
+            add_attached_hessian(m, f, pb, &Vector2::new(-mu[row], -mu[row + 1]), h);
         }
         if angle {
-            closure[row + 2] = wrap(pa.phi + aphi - pb.phi - bphi);
+            closure[row + 2] = wrap(f.bodies[a].phi + aphi - f.bodies[b].phi - bphi);
         }
         row += c.equations();
     }
@@ -233,7 +233,7 @@ pub(super) fn add_closures(
 pub(super) fn closure_hessian(m: &Mechanism, f: &Frames, mu: &[f64]) -> DMatrix<f64> {
     let (n, rows) = (m.dof(), m.constraints());
     let mut h = DMatrix::zeros(n, n);
-    let mut points = [PointBuffer::new(m), PointBuffer::new(m)];
+    let mut points = [Attached::new(m), Attached::new(m)];
     add_closures(m, f, mu, &mut DVector::zeros(rows), &mut DMatrix::zeros(rows, n), Some(&mut h), &mut points);
     h
 }
@@ -246,7 +246,7 @@ pub(super) fn add_loads(
     loads: &Loads,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    points: &mut [PointBuffer; 2],
+    points: &mut [Attached; 2],
     weights: &mut Weights,
 ) -> Result<f64> {
     let n = m.dof();
@@ -270,14 +270,14 @@ pub(super) fn add_loads(
         }
         let [first, second] = points;
         let (mut a, mut b) = (first, second);
-        point_into(m, f, t.path[0].0, t.path[0].1, a);
+        attach_into(m, f, t.path[0].0, t.path[0].1.coords, true, a);
         for i in 0..t.path.len() - 1 {
             let (body, r) = t.path[i + 1];
-            point_into(m, f, body, r, b);
-            let d = [b.position[0] - a.position[0], b.position[1] - a.position[1]];
+            attach_into(m, f, body, r.coords, true, b);
+            let d = [b.value[0] - a.value[0], b.value[1] - a.value[1]];
             let len = d[0].hypot(d[1]);
             // Coincident to rounding: the direction u is undefined.
-            let size = a.position.coords.iter().chain(b.position.coords.iter()).map(|v| v.abs()).sum::<f64>();
+            let size = a.value.iter().chain(b.value.iter()).map(|v| v.abs()).sum::<f64>();
             if len.is_nan() || len <= 1e-14 * size {
                 return Err(Error::Singular {
                     what: format!("tendon {:?}: via points {} and {} coincide", t.name, i + 1, i + 2),
@@ -302,8 +302,8 @@ pub(super) fn add_loads(
                         h[(r, c)] += (jd(0, r) * pc[0] + jd(1, r) * pc[1]) * tension;
                     }
                 }
-                add_point_hessian(m, f, b, Vector2::new(u[0] * tension, u[1] * tension), h);
-                add_point_hessian(m, f, a, Vector2::new(-u[0] * tension, -u[1] * tension), h);
+                add_attached_hessian(m, f, b, &Vector2::new(u[0] * tension, u[1] * tension), h);
+                add_attached_hessian(m, f, a, &Vector2::new(-u[0] * tension, -u[1] * tension), h);
             }
             std::mem::swap(&mut a, &mut b);
         }
@@ -326,17 +326,17 @@ fn add_point_load(
     w: &Wrench,
     gradient: &mut DVector<f64>,
     hessian: Option<&mut DMatrix<f64>>,
-    p: &mut PointBuffer,
+    p: &mut Attached,
 ) -> f64 {
-    point_into(m, f, body, at, p);
+    attach_into(m, f, body, at.coords, true, p);
     // Column-major 3 × n: coordinate c's (φ, x, y).
     for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
         *g -= w.fx * j[1] + w.fy * j[2] + w.moment * j[0];
     }
     if let Some(h) = hessian {
-        add_point_hessian(m, f, p, Vector2::new(-w.fx, -w.fy), h);
+        add_attached_hessian(m, f, p, &Vector2::new(-w.fx, -w.fy), h);
     }
-    -(w.fx * p.position[0] + w.fy * p.position[1] + w.moment * p.phi)
+    -(w.fx * p.value[0] + w.fy * p.value[1] + w.moment * f.bodies[body].phi)
 }
 
 /// The flexures' weight: with the first moment $c(\alpha)$ of a flexure's
@@ -353,7 +353,7 @@ fn add_flexure_weights(
     g: Vector2<f64>,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    p: &mut PointBuffer,
+    p: &mut Attached,
     weights: &mut Weights,
 ) -> Result<f64> {
     let n = m.dof();
@@ -421,7 +421,7 @@ fn add_flexure_weights(
 #[derive(Debug, Clone)]
 pub struct GradientWork {
     gradient: DVector<f64>,
-    points: [PointBuffer; 2],
+    points: [Attached; 2],
     weights: Weights,
 }
 
@@ -430,7 +430,7 @@ impl GradientWork {
     pub fn new(m: &Mechanism) -> Self {
         GradientWork {
             gradient: DVector::zeros(m.dof()),
-            points: [PointBuffer::new(m), PointBuffer::new(m)],
+            points: [Attached::new(m), Attached::new(m)],
             weights: Weights::new(m),
         }
     }

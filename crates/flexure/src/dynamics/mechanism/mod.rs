@@ -51,7 +51,7 @@
 //! Lagrange's, $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$). The
 //! accelerations at $\ddot q = 0$, $\dot J_c\dot q = \dot q^T\nabla^2c\thinspace\dot q$
 //! and $\dot J_\omega\dot q = \sum_{ab}\partial_b\omega_a\dot q_a\dot q_b$, come from
-//! the tree's second derivatives ([`crate::mechanism::spatial::kinematics`]).
+//! the tree's second derivatives ([`crate::mechanism::kinematics`]).
 //!
 //! A spatial flexure with a density or mass per length adds its stations
 //! ([`crate::spatial::MassQuadrature`]) as bodies: station $k$ of joint $j$,

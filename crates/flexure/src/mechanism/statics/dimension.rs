@@ -1,7 +1,7 @@
-//! What the statics needs of a dimension beyond [`Dimension`]: its frames
-//! and Lagrangian assembly (the planar fast path of
-//! [`crate::mechanism::kinematics`] and [`crate::mechanism::lagrangian`], the
-//! SE(3) path of [`crate::mechanism::spatial::kinematics`] and
+//! What the statics needs of a dimension beyond [`Dimension`]: the level
+//! its frames ([`crate::mechanism::kinematics`]) are evaluated to, its
+//! Lagrangian assembly (the planar fast path of
+//! [`crate::mechanism::lagrangian`], the SE(3) path of
 //! [`crate::mechanism::spatial::lagrangian`]), its loads' arithmetic, the
 //! size of its closure rows and loads, and the few tests whose fast paths
 //! only one dimension has. [`Kkt`], the paths, the assembly, stiffness,
@@ -14,9 +14,8 @@ use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::joints::JointState;
-use crate::mechanism::kinematics::{Frames, frames, frames_into, point};
+use crate::mechanism::kinematics::{Frames, attach, frames, frames_into, frames_level_into};
 use crate::mechanism::lagrangian::{Assembly, assemble_into, check_sizes};
-use crate::mechanism::spatial::kinematics::{SpatialFrames, attach, frames_level_into};
 use crate::mechanism::spatial::lagrangian::{SpatialAssembly, add_loads, assemble_into as spatial_assemble_into};
 use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
@@ -197,7 +196,7 @@ pub struct PlanarOwn {
 #[derive(Debug, Clone)]
 #[doc(hidden)]
 pub struct SpatialOwn {
-    pub(crate) pair: RefCell<([SpatialFrames; 2], [bool; 2])>,
+    pub(crate) pair: RefCell<([Frames<Spatial>; 2], [bool; 2])>,
 }
 
 impl Statics for Planar {
@@ -238,7 +237,7 @@ impl Statics for Planar {
     }
     /// Rows $(\phi, x, y)$.
     fn point_jacobian(m: &Mechanism, q: &[f64], body: usize, at: Point2<f64>) -> DMatrix<f64> {
-        point(m, &frames(m, q), body, at, false).jacobian
+        attach(m, &frames(m, q), body, at.coords, true).jacobian
     }
     fn point_finite(at: &Point2<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
@@ -355,7 +354,7 @@ impl Statics for Planar {
 }
 
 impl Statics for Spatial {
-    type Frames = SpatialFrames;
+    type Frames = Frames<Spatial>;
     type Assembly = SpatialAssembly;
     type Own = SpatialOwn;
     type Compliance = Matrix6<f64>;
@@ -365,19 +364,19 @@ impl Statics for Spatial {
     const NAMES_FREE_MOTION: bool = false;
     const NO_SOFTENING: &'static str = "only tension, or loads that stiffen it";
 
-    fn new_frames(m: &Mechanism<Spatial>) -> SpatialFrames {
-        SpatialFrames::new(m)
+    fn new_frames(m: &Mechanism<Spatial>) -> Frames<Spatial> {
+        Frames::new(m)
     }
     fn new_assembly(m: &Mechanism<Spatial>) -> SpatialAssembly {
         SpatialAssembly::new(m)
     }
     fn new_own(m: &Mechanism<Spatial>) -> SpatialOwn {
-        SpatialOwn { pair: RefCell::new(([SpatialFrames::new(m), SpatialFrames::new(m)], [false; 2])) }
+        SpatialOwn { pair: RefCell::new(([Frames::new(m), Frames::new(m)], [false; 2])) }
     }
-    fn copy_frames(from: &SpatialFrames, to: &mut SpatialFrames) {
+    fn copy_frames(from: &Frames<Spatial>, to: &mut Frames<Spatial>) {
         to.clone_from(from);
     }
-    fn joint_states(f: &SpatialFrames) -> &[JointState<Spatial>] {
+    fn joint_states(f: &Frames<Spatial>) -> &[JointState<Spatial>] {
         &f.joints
     }
     /// Jacobian-level frames even for the Newton matrix: each joint's
@@ -387,34 +386,18 @@ impl Statics for Spatial {
     /// $h^6$ of the exact Hessian). The residual is exact, so only Newton's
     /// rate and the stability tests see the difference; [`super::stiffness()`]
     /// takes the exact Hessian.
-    fn newton_frames(m: &Mechanism<Spatial>, q: &[f64], f: &mut SpatialFrames) {
+    fn newton_frames(m: &Mechanism<Spatial>, q: &[f64], f: &mut Frames<Spatial>) {
         frames_level_into(m, q, Level::Jacobian, f);
     }
-    fn exact_frames(m: &Mechanism<Spatial>, q: &[f64]) -> SpatialFrames {
+    fn exact_frames(m: &Mechanism<Spatial>, q: &[f64]) -> Frames<Spatial> {
         spatial_frames_at(m, q, Level::Hessian)
     }
-    fn pose_frames(m: &Mechanism<Spatial>, q: &[f64]) -> SpatialFrames {
+    fn pose_frames(m: &Mechanism<Spatial>, q: &[f64]) -> Frames<Spatial> {
         spatial_frames_at(m, q, Level::Pose)
     }
     /// Rows $(\delta\theta, \delta x)$: the body's rotation, then the point's displacement.
     fn point_jacobian(m: &Mechanism<Spatial>, q: &[f64], body: usize, at: Point3<f64>) -> DMatrix<f64> {
-        let f = spatial_frames_at(m, q, Level::Jacobian);
-        let point = attach(m, &f, body, at.coords, true);
-        let mut j = DMatrix::zeros(6, m.dof());
-        for jt in m.path(body) {
-            let o = m.joints[jt].offset;
-            for c in o..o + m.joints[jt].kind.joint().dof() {
-                for i in 0..3 {
-                    j[(i, c)] = f.omega[(i, c)];
-                }
-            }
-        }
-        for c in 0..m.dof() {
-            for i in 0..3 {
-                j[(3 + i, c)] = point.jacobian[(i, c)];
-            }
-        }
-        j
+        attach(m, &spatial_frames_at(m, q, Level::Jacobian), body, at.coords, true).jacobian
     }
     fn point_finite(at: &Point3<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
@@ -424,7 +407,7 @@ impl Statics for Spatial {
     }
     fn assemble(
         m: &Mechanism<Spatial>,
-        f: &SpatialFrames,
+        f: &Frames<Spatial>,
         mu: &[f64],
         loads: &Loads<Spatial>,
         hessian: bool,
@@ -438,7 +421,7 @@ impl Statics for Spatial {
     }
     fn add_loads(
         m: &Mechanism<Spatial>,
-        f: &SpatialFrames,
+        f: &Frames<Spatial>,
         l: &Loads<Spatial>,
         g: &mut DVector<f64>,
         _: &mut SpatialAssembly,
@@ -502,7 +485,7 @@ impl Statics for Spatial {
     /// The least-norm forces as they are (the spatial buckling has never settled them).
     fn settle_pre_buckling(
         _: &Mechanism<Spatial>,
-        _: &SpatialFrames,
+        _: &Frames<Spatial>,
         _: &SpatialAssembly,
         mu: &[f64],
         _: &Loads<Spatial>,
@@ -522,7 +505,12 @@ impl Statics for Spatial {
     fn vector(v: &Vector3<f64>) -> [f64; 3] {
         [v[0], v[1], v[2]]
     }
-    fn tendon_pulls(f: &SpatialFrames, path: &[(usize, Point3<f64>)], tension: f64, out: &mut Vec<(usize, [f64; 3])>) {
+    fn tendon_pulls(
+        f: &Frames<Spatial>,
+        path: &[(usize, Point3<f64>)],
+        tension: f64,
+        out: &mut Vec<(usize, [f64; 3])>,
+    ) {
         let w: Vec<Vector3<f64>> = path.iter().map(|(b, r)| (f.bodies[*b] * r).coords).collect();
         for (i, pair) in w.windows(2).enumerate() {
             let d = pair[1] - pair[0];
@@ -541,8 +529,8 @@ impl Statics for Spatial {
 }
 
 /// The frames of `m` at `q`, with the joints evaluated to `level`.
-fn spatial_frames_at(m: &Mechanism<Spatial>, q: &[f64], level: Level) -> SpatialFrames {
-    let mut f = SpatialFrames::new(m);
+fn spatial_frames_at(m: &Mechanism<Spatial>, q: &[f64], level: Level) -> Frames<Spatial> {
+    let mut f = Frames::new(m);
     frames_level_into(m, q, level, &mut f);
     f
 }
