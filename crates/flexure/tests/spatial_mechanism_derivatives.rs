@@ -9,7 +9,7 @@
 use flexure::Level;
 use flexure::mechanism::Holds;
 use flexure::mechanism::kinematics::{Frames, attach, frames, frames_level_into};
-use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into};
+use flexure::mechanism::lagrangian::{Assembly, assemble_into, closures_into};
 use flexure::mechanism::spatial::{
     PrismaticUnaligned, RevoluteUnaligned, SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec,
     SpatialLoads, SpatialMechanism, SpatialPointLoad, SpatialTendon, Spherical,
@@ -131,9 +131,9 @@ fn configuration(m: &SpatialMechanism) -> Vec<f64> {
     q
 }
 
-fn assembled(m: &SpatialMechanism, q: &[f64], mu: &[f64], loads: &SpatialLoads) -> SpatialAssembly {
-    let mut a = SpatialAssembly::new(m);
-    assemble_into(m, &frames(m, q), mu, loads, true, &mut a);
+fn assembled(m: &SpatialMechanism, q: &[f64], mu: &[f64], loads: &SpatialLoads) -> Assembly<Spatial> {
+    let mut a = Assembly::new(m);
+    assemble_into(m, &frames(m, q), mu, loads, true, &mut a).unwrap();
     a
 }
 
@@ -392,8 +392,8 @@ fn jacobian_level_frames_give_the_full_hessian_but_for_the_flexures_quadrature()
         let mut f = Frames::new(&m);
         frames_level_into(&m, &q, Level::Jacobian, &mut f);
         assert_eq!(f.level(), Level::Jacobian);
-        let mut a = SpatialAssembly::new(&m);
-        assemble_into(&m, &f, &mu, loads, true, &mut a);
+        let mut a = Assembly::new(&m);
+        assemble_into(&m, &f, &mu, loads, true, &mut a).unwrap();
         a.hessian
     };
     let exact = assembled(&m, &q, &mu, &loads).hessian;
@@ -437,8 +437,8 @@ fn bent_cantilever(subintervals: Option<usize>, force: [f64; 3]) -> (SpatialMech
 fn tip_compliance(m: &SpatialMechanism, s: &Solution<Spatial>, level: Level) -> DMatrix<f64> {
     let mut f = Frames::new(m);
     frames_level_into(m, &s.q, level, &mut f);
-    let mut a = SpatialAssembly::new(m);
-    assemble_into(m, &f, &[], &s.loads, true, &mut a);
+    let mut a = Assembly::new(m);
+    assemble_into(m, &f, &[], &s.loads, true, &mut a).unwrap();
     let x = attach(m, &f, 1, Vector3::zeros(), true);
     let j = DMatrix::from_fn(6, m.dof(), |r, c| if r < 3 { f.omega[c][r] } else { x.jacobian[(r, c)] });
     &j * a.hessian.lu().solve(&j.transpose()).unwrap()

@@ -69,7 +69,7 @@
 //! swing checks (`tests/spatial_flexure_mass.rs`).
 //!
 //! The generalized force is $f = -(\nabla V - Q_m) - h - D\dot q$, with the
-//! potential and dead moments of [`crate::mechanism::spatial::lagrangian`]
+//! potential and dead moments of [`crate::mechanism::lagrangian`]
 //! and $D = \operatorname{diag}(\beta_jK_j, c_k)$. The tangent stiffness
 //! adds $\partial h/\partial q$ by central differences.
 

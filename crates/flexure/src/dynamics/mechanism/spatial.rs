@@ -9,7 +9,7 @@ use crate::kinematics::Level;
 use crate::mechanism::kinematics::{
     Frames, add_attached_hessian, add_rotation_derivative, attach, frame_distance, frames_into, frames_level_into,
 };
-use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
+use crate::mechanism::lagrangian::{Assembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
@@ -20,7 +20,7 @@ use std::cell::RefCell;
 #[derive(Debug, Clone)]
 pub struct Masses {
     frames: Frames<Spatial>,
-    assembly: SpatialAssembly,
+    assembly: Assembly<Spatial>,
     pair: RefCell<[Frames<Spatial>; 2]>,
     /// An orthonormal basis $U^T$ ($r\times m$) of the closure equations'
     /// independent combinations, where they are dependent at rest (a
@@ -66,7 +66,7 @@ impl MassElements<Spatial> for Masses {
         }
         Ok(Masses {
             frames: Frames::new(m),
-            assembly: SpatialAssembly::new(m),
+            assembly: Assembly::new(m),
             pair: RefCell::new([Frames::new(m), Frames::new(m)]),
             independent: independent_closures(m),
             flexures,
@@ -91,7 +91,7 @@ impl MassElements<Spatial> for Masses {
     ) -> Result<()> {
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
-        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
+        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly)?;
         let mm = self.mass_at(m, &self.frames);
         let h = self.velocity_product_at(m, &self.frames, v);
         for (i, f) in force.iter_mut().enumerate() {
@@ -113,7 +113,7 @@ impl MassElements<Spatial> for Masses {
         let n = m.dof();
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
-        assemble_into(m, &self.frames, &mu, loads, true, &mut self.assembly);
+        assemble_into(m, &self.frames, &mu, loads, true, &mut self.assembly)?;
         let mut k = self.assembly.hessian.clone();
         if v.iter().any(|x| *x != 0.0) {
             let mut shifted = q.to_vec();

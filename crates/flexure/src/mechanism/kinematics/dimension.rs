@@ -26,8 +26,8 @@ use std::fmt::Debug;
 /// use flexure::space::{Planar, Spatial};
 /// use nalgebra::{Vector2, Vector3};
 /// // ω × r: the quarter turn in the plane, the cross product in space.
-/// assert_eq!(Planar::cross(&2.0, &Vector2::new(1.0, 0.0)), Vector2::new(0.0, 2.0));
-/// assert_eq!(Spatial::cross(&Vector3::z(), &Vector3::x()), Vector3::y());
+/// assert_eq!(Planar::spin(&2.0, &Vector2::new(1.0, 0.0)), Vector2::new(0.0, 2.0));
+/// assert_eq!(Spatial::spin(&Vector3::z(), &Vector3::x()), Vector3::y());
 /// ```
 pub trait Chain: Dimension {
     /// An angular velocity: a rate about $z$ in the plane, a vector in space.
@@ -51,7 +51,7 @@ pub trait Chain: Dimension {
     /// `s` (`TWIST_DIM` components), turned by its root frame's `turn`.
     fn twist(turn: &Self::Turn, s: &[f64]) -> (Self::Angular, Self::Vector);
     /// $\omega\times r$.
-    fn cross(w: &Self::Angular, r: &Self::Vector) -> Self::Vector;
+    fn spin(w: &Self::Angular, r: &Self::Vector) -> Self::Vector;
     /// $u\cdot(\omega\times x)$, each dimension in its cheapest form.
     fn triple(u: &Self::Vector, w: &Self::Angular, x: &Self::Vector) -> f64;
     /// Writes $(\omega, x)$ into a Jacobian column of `TWIST_DIM` rows.
@@ -98,7 +98,7 @@ impl Chain for Planar {
         let v = rotate_turned(*turn, [s[1], s[2]]);
         (s[0], Vector2::new(v[0], v[1]))
     }
-    fn cross(w: &f64, r: &Vector2<f64>) -> Vector2<f64> {
+    fn spin(w: &f64, r: &Vector2<f64>) -> Vector2<f64> {
         Vector2::new(w * -r.y, w * r.x)
     }
     fn triple(u: &Vector2<f64>, w: &f64, x: &Vector2<f64>) -> f64 {
@@ -171,7 +171,7 @@ impl Chain for Spatial {
     fn twist(turn: &Matrix3<f64>, s: &[f64]) -> (Vector3<f64>, Vector3<f64>) {
         (turn * Vector3::new(s[0], s[1], s[2]), turn * Vector3::new(s[3], s[4], s[5]))
     }
-    fn cross(w: &Vector3<f64>, r: &Vector3<f64>) -> Vector3<f64> {
+    fn spin(w: &Vector3<f64>, r: &Vector3<f64>) -> Vector3<f64> {
         w.cross(r)
     }
     /// $-x\cdot(\omega\times u)$.

@@ -225,7 +225,7 @@ pub fn attach_into<D: Chain>(
         let columns = jacobian[rows * spec.offset..rows * (spec.offset + k)].chunks_exact_mut(rows);
         for (c, column) in (spec.offset..).zip(columns) {
             let w = &f.omega[c];
-            let mut d = D::cross(w, &r);
+            let mut d = D::spin(w, &r);
             if point {
                 d = d + f.velocity[c];
             }

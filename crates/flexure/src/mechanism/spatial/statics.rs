@@ -4,12 +4,12 @@
 //! null spaces): stability and distance on dense matrices and pose-level
 //! frames, the indeterminate closure forces, and each flexure's carried wrench.
 
-use super::lagrangian::add_closure_hessian;
 use super::{SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::indeterminate::settle;
 use crate::mechanism::kinematics::{Frames, distance_of, frames_level_into};
+use crate::mechanism::lagrangian::{add_closure_hessian, assemble_into};
 use crate::mechanism::statics::{FAR_MARGIN, Kkt, Solution};
 use crate::space::Spatial;
 use nalgebra::DMatrix;
@@ -126,7 +126,8 @@ impl Kkt<'_, Spatial> {
             return mu;
         }
         frames_level_into(m, q, Level::Jacobian, &mut w.frames);
-        super::lagrangian::assemble_into(m, &w.frames, &mu, loads, false, &mut w.assembly);
+        // The closures' G alone is read: no load can make this fail.
+        let _ = assemble_into(m, &w.frames, &mu, loads, false, &mut w.assembly);
         settle(m, &w.frames, &w.assembly.closure_jacobian, &mu, loads)
     }
 }

@@ -1,8 +1,7 @@
-//! What the statics needs of a dimension beyond [`Dimension`]: the level
-//! its frames ([`crate::mechanism::kinematics`]) are evaluated to, its
-//! Lagrangian assembly (the planar fast path of
-//! [`crate::mechanism::lagrangian`], the SE(3) path of
-//! [`crate::mechanism::spatial::lagrangian`]), its loads' arithmetic, the
+//! What the statics needs of a dimension beyond [`Potential`] (its frames,
+//! [`crate::mechanism::kinematics`], and its Lagrangian,
+//! [`crate::mechanism::lagrangian`]): the level its frames are evaluated
+//! to for Newton, its loads' arithmetic, the
 //! size of its closure rows and loads, and the few tests whose fast paths
 //! only one dimension has. [`Kkt`], the paths, the assembly, stiffness,
 //! compliance, sweeps and buckling are written once over it; the plane and
@@ -15,11 +14,10 @@ use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::joints::JointState;
 use crate::mechanism::kinematics::{Frames, attach, frames, frames_into, frames_level_into};
-use crate::mechanism::lagrangian::{Assembly, assemble_into, check_sizes};
-use crate::mechanism::spatial::lagrangian::{SpatialAssembly, add_loads, assemble_into as spatial_assemble_into};
+use crate::mechanism::lagrangian::{Assembly, Potential, assemble_into, check_sizes};
 use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
-use crate::mechanism::{Dimension, Loads, Mechanism};
+use crate::mechanism::{Loads, Mechanism};
 use crate::space::Wrench;
 use crate::space::{Planar, Spatial};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, Vector2, Vector3, Vector6};
@@ -57,7 +55,7 @@ pub struct Parts<'a> {
 /// let s = solve(&m, &Default::default()).unwrap();
 /// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
-pub trait Statics: Dimension + PartialEq + Sized {
+pub trait Statics: Potential + PartialEq + Sized {
     /// The frames of every body and joint at one configuration.
     type Frames: Clone + Debug;
     /// The buffers of one assembly of the Lagrangian.
@@ -249,13 +247,13 @@ impl Statics for Planar {
         frames_into(m, q, f);
     }
     fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, hessian: bool, a: &mut Assembly) -> Result<()> {
-        assemble_into(m, f, mu, loads, hessian, a).map(|_| ())
+        assemble_into(m, f, mu, loads, hessian, a)
     }
     fn parts(a: &Assembly) -> Parts<'_> {
         Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
     }
     fn add_loads(m: &Mechanism, f: &Frames, l: &Loads, g: &mut DVector<f64>, a: &mut Assembly) -> Result<()> {
-        crate::mechanism::lagrangian::add_loads(m, f, l, g, None, &mut a.points, &mut a.weights).map(|_| ())
+        <Planar as Potential>::load_terms(m, f, l, g, None, &mut a.points, &mut a.kept).map(|_| ())
     }
     fn load_size(m: &Mechanism, l: &Loads, length: f64) -> f64 {
         let forces: f64 = l.force.iter().map(|f| f.fx.hypot(f.fy) * length + f.moment.abs()).sum();
@@ -355,7 +353,7 @@ impl Statics for Planar {
 
 impl Statics for Spatial {
     type Frames = Frames<Spatial>;
-    type Assembly = SpatialAssembly;
+    type Assembly = Assembly<Spatial>;
     type Own = SpatialOwn;
     type Compliance = Matrix6<f64>;
     const POSITION_ROWS: usize = 3;
@@ -367,8 +365,8 @@ impl Statics for Spatial {
     fn new_frames(m: &Mechanism<Spatial>) -> Frames<Spatial> {
         Frames::new(m)
     }
-    fn new_assembly(m: &Mechanism<Spatial>) -> SpatialAssembly {
-        SpatialAssembly::new(m)
+    fn new_assembly(m: &Mechanism<Spatial>) -> Assembly<Spatial> {
+        Assembly::new(m)
     }
     fn new_own(m: &Mechanism<Spatial>) -> SpatialOwn {
         SpatialOwn { pair: RefCell::new(([Frames::new(m), Frames::new(m)], [false; 2])) }
@@ -411,12 +409,11 @@ impl Statics for Spatial {
         mu: &[f64],
         loads: &Loads<Spatial>,
         hessian: bool,
-        a: &mut SpatialAssembly,
+        a: &mut Assembly<Spatial>,
     ) -> Result<()> {
-        spatial_assemble_into(m, f, mu, loads, hessian, a);
-        Ok(())
+        assemble_into(m, f, mu, loads, hessian, a)
     }
-    fn parts(a: &SpatialAssembly) -> Parts<'_> {
+    fn parts(a: &Assembly<Spatial>) -> Parts<'_> {
         Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
     }
     fn add_loads(
@@ -424,10 +421,9 @@ impl Statics for Spatial {
         f: &Frames<Spatial>,
         l: &Loads<Spatial>,
         g: &mut DVector<f64>,
-        _: &mut SpatialAssembly,
+        a: &mut Assembly<Spatial>,
     ) -> Result<()> {
-        add_loads(m, f, l, g, None);
-        Ok(())
+        <Spatial as Potential>::load_terms(m, f, l, g, None, &mut a.points, &mut a.kept).map(|_| ())
     }
     fn load_size(m: &Mechanism<Spatial>, l: &Loads<Spatial>, length: f64) -> f64 {
         let forces: f64 =
@@ -486,7 +482,7 @@ impl Statics for Spatial {
     fn settle_pre_buckling(
         _: &Mechanism<Spatial>,
         _: &Frames<Spatial>,
-        _: &SpatialAssembly,
+        _: &Assembly<Spatial>,
         mu: &[f64],
         _: &Loads<Spatial>,
     ) -> Vec<f64> {

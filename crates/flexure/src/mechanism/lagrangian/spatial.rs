@@ -1,120 +1,28 @@
-//! The potential of a spatial mechanism, its gradient and Hessian, and the
-//! closure equations with their Jacobian and the Hessian of $\mu^Tc$: what
-//! the statics' KKT conditions and the dynamics' forces are made of.
-//!
-//! $$V(q) = \sum_j U_j(q_j) + \sum_t T_t\thinspace\ell_t(q) - \sum_b m_b\thinspace g\cdot c_b(q) - \sum_k \mu_kw_k\thinspace g\cdot x_k(q) - \sum_i f_i\cdot x_i(q),$$
-//! with the tendons' lengths $\ell_t$ through their via points, the bodies'
-//! centres of mass $c_b$, the stations $x_k$ of the spatial flexures' own
-//! mass ([`crate::spatial::MassQuadrature`], a dead load $\mu_kw_kg$ at each)
-//! and the load points $x_i$; a point load's moment
-//! $m_i$, fixed in space, adds the generalized force $Q_a = m_i\cdot\omega_a$,
-//! which has no potential (its derivative is not symmetric). The
-//! "gradient" below is $\nabla V - Q_m$ and its "Hessian" the derivative of
-//! that, so that equilibrium is gradient $+\thinspace G^T\mu = 0$ in every case.
-//! Point derivatives come from [`crate::mechanism::kinematics`].
+//! Space's part of the Lagrangian ([`super`]): point forces and dead
+//! moments, the bodies' and the spatial flexures' weights, tendons, and the
+//! closures, which compare the two frames' axes. The stations $x_k$ of a
+//! spatial flexure's own mass ([`crate::spatial::MassQuadrature`]) carry
+//! dead loads $\mu_kw_kg$; a moment $m_i$ fixed in space adds the
+//! generalized force $Q_a = m_i\cdot\omega_a$.
 
-use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
 use crate::mechanism::Holds;
 use crate::mechanism::kinematics::{
     Attached, Frames, JointWrenches, add_rotation_derivative, attach, gather_attached_hessian,
 };
+use crate::mechanism::spatial::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Point3, Vector3};
 
-/// The assembled forces of one configuration.
-#[derive(Debug, Clone)]
-pub struct SpatialAssembly {
-    /// $V$ (J): elastic, tendon, gravity and force potentials (moments have none).
-    pub potential: f64,
-    /// $\nabla V - Q_m$ ($n$).
-    pub gradient: DVector<f64>,
-    /// Its derivative plus $\sum_i\mu_i\nabla^2c_i$ ($n\times n$), when asked for.
-    pub hessian: DMatrix<f64>,
-    /// $c(q)$ ($m$).
-    pub closure: DVector<f64>,
-    /// $G = \partial c/\partial q$ ($m\times n$).
-    pub closure_jacobian: DMatrix<f64>,
-    /// The Hessian's same-joint parts, gathered per joint.
-    wrenches: JointWrenches,
-}
-
-impl SpatialAssembly {
-    /// Buffers for `m`.
-    pub fn new(m: &SpatialMechanism) -> Self {
-        let (n, r) = (m.dof(), m.constraints());
-        SpatialAssembly {
-            potential: 0.0,
-            gradient: DVector::zeros(n),
-            hessian: DMatrix::zeros(n, n),
-            closure: DVector::zeros(r),
-            closure_jacobian: DMatrix::zeros(r, n),
-            wrenches: JointWrenches::new(m),
-        }
-    }
-}
-
-/// Assembles everything at the frames `f` (of [`crate::mechanism::kinematics::frames_into`]),
-/// with multipliers `mu` (one per closure equation) and `loads`.
-pub fn assemble_into(
-    m: &SpatialMechanism,
-    f: &Frames<Spatial>,
-    mu: &[f64],
-    loads: &SpatialLoads,
-    with_hessian: bool,
-    out: &mut SpatialAssembly,
-) {
-    out.gradient.fill(0.0);
-    out.potential = 0.0;
-    if with_hessian {
-        out.hessian.fill(0.0);
-    }
-    for (j, s) in m.joints.iter().zip(&f.joints) {
-        let k = s.gradient.len();
-        out.potential += s.energy;
-        out.gradient.rows_mut(j.offset, k).copy_from(&s.gradient);
-        if with_hessian {
-            out.hessian.view_mut((j.offset, j.offset), (k, k)).copy_from(&s.stiffness);
-        }
-    }
-    let w = &mut out.wrenches;
-    let hessian = with_hessian.then_some((&mut out.hessian, &mut *w));
-    out.potential += gather_loads(m, f, loads, &mut out.gradient, hessian);
-    closures_into(m, f, &mut out.closure, &mut out.closure_jacobian);
-    if with_hessian {
-        gather_closure_hessian(m, f, mu, &mut out.hessian, w);
-        w.flush(m, f, &mut out.hessian);
-    }
-}
-
-/// Adds the loads' part of the gradient (and of its derivative, when asked
-/// for) and returns their potential. Linear in `loads`: with a change of
-/// loads it gives the load derivative of the equilibrium equations.
-pub fn add_loads(
-    m: &SpatialMechanism,
-    f: &Frames<Spatial>,
-    loads: &SpatialLoads,
-    gradient: &mut DVector<f64>,
-    hessian: Option<&mut DMatrix<f64>>,
-) -> f64 {
-    match hessian {
-        None => gather_loads(m, f, loads, gradient, None),
-        Some(h) => {
-            let mut w = JointWrenches::new(m);
-            let potential = gather_loads(m, f, loads, gradient, Some((&mut *h, &mut w)));
-            w.flush(m, f, h);
-            potential
-        }
-    }
-}
-
 /// The Hessian and the sums its same-joint parts are gathered in.
 type Gathered<'a> = Option<(&'a mut DMatrix<f64>, &'a mut JointWrenches)>;
 
-/// [`add_loads`] with the Hessian's same-joint parts gathered into the
-/// given [`JointWrenches`], not yet added.
-fn gather_loads(
+/// Adds the loads' part of the gradient (and of its derivative, when asked
+/// for, its same-joint parts gathered into the given [`JointWrenches`], not
+/// yet added) and returns their potential. Linear in `loads`: with a change
+/// of loads it gives the load derivative of the equilibrium equations.
+pub(super) fn gather_loads(
     m: &SpatialMechanism,
     f: &Frames<Spatial>,
     loads: &SpatialLoads,
@@ -391,7 +299,7 @@ pub fn add_closure_hessian(m: &SpatialMechanism, f: &Frames<Spatial>, mu: &[f64]
 }
 
 /// [`add_closure_hessian`] with the same-joint parts gathered into `w`, not yet added.
-fn gather_closure_hessian(
+pub(super) fn gather_closure_hessian(
     m: &SpatialMechanism,
     f: &Frames<Spatial>,
     mu: &[f64],
