@@ -12,9 +12,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
-use crate::mechanism::joints::JointState;
-use crate::mechanism::kinematics::{Frames, attach, frames, frames_into, frames_level_into};
-use crate::mechanism::lagrangian::{Assembly, Potential, assemble_into, check_sizes};
+use crate::mechanism::kinematics::{Frames, frames, frames_into, frames_level_into};
+use crate::mechanism::lagrangian::{Assembly, Potential, check_sizes};
 use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
 use crate::mechanism::{Loads, Mechanism};
@@ -32,6 +31,11 @@ pub struct Parts<'a> {
     pub hessian: &'a DMatrix<f64>,
     pub closure: &'a DVector<f64>,
     pub closure_jacobian: &'a DMatrix<f64>,
+}
+
+/// The parts of an assembly the KKT conditions read.
+pub(crate) fn parts<D: Potential>(a: &Assembly<D>) -> Parts<'_> {
+    Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
 }
 
 /// A dimension the statics of a [`Mechanism`] is solved in: [`Planar`] or [`Spatial`].
@@ -56,10 +60,6 @@ pub struct Parts<'a> {
 /// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
 pub trait Statics: Potential + PartialEq + Sized {
-    /// The frames of every body and joint at one configuration.
-    type Frames: Clone + Debug;
-    /// The buffers of one assembly of the Lagrangian.
-    type Assembly: Clone + Debug;
     /// The buffers only this dimension's problem uses.
     type Own: Clone + Debug;
     /// A point's compliance: $3\times3$ in the plane, $6\times6$ in space.
@@ -82,38 +82,14 @@ pub trait Statics: Potential + PartialEq + Sized {
     /// [`crate::mechanism::buckling::buckle`]'s error.
     const NO_SOFTENING: &'static str;
 
-    fn new_frames(m: &Mechanism<Self>) -> Self::Frames;
-    fn new_assembly(m: &Mechanism<Self>) -> Self::Assembly;
     fn new_own(m: &Mechanism<Self>) -> Self::Own;
-    fn copy_frames(from: &Self::Frames, to: &mut Self::Frames);
-    fn joint_states(f: &Self::Frames) -> &[JointState<Self>];
-    /// The frames with every joint's exact second derivatives.
-    fn exact_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
+    fn copy_frames(from: &Frames<Self>, to: &mut Frames<Self>);
     /// The frames of the bodies (poses alone, where that is cheaper).
-    fn pose_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
-    /// The Jacobian of the frame at `at` on `body`, rows in the order of the wrench.
-    fn point_jacobian(m: &Mechanism<Self>, q: &[f64], body: usize, at: Self::Point) -> DMatrix<f64>;
+    fn pose_frames(m: &Mechanism<Self>, q: &[f64]) -> Frames<Self>;
     fn point_finite(at: &Self::Point) -> bool;
     fn compliance_matrix(c: &DMatrix<f64>) -> Self::Compliance;
     /// The frames Newton's residual and matrix are assembled from.
-    fn newton_frames(m: &Mechanism<Self>, q: &[f64], f: &mut Self::Frames);
-    fn assemble(
-        m: &Mechanism<Self>,
-        f: &Self::Frames,
-        mu: &[f64],
-        loads: &Loads<Self>,
-        hessian: bool,
-        a: &mut Self::Assembly,
-    ) -> Result<()>;
-    fn parts(a: &Self::Assembly) -> Parts<'_>;
-    /// Adds the gradient of the potential of `loads` to `gradient`.
-    fn add_loads(
-        m: &Mechanism<Self>,
-        f: &Self::Frames,
-        loads: &Loads<Self>,
-        gradient: &mut DVector<f64>,
-        a: &mut Self::Assembly,
-    ) -> Result<()>;
+    fn newton_frames(m: &Mechanism<Self>, q: &[f64], f: &mut Frames<Self>);
     /// The largest moment `l` applies (N·m), with the mechanism's length `length`.
     fn load_size(m: &Mechanism<Self>, l: &Loads<Self>, length: f64) -> f64;
     /// No load, shaped like `l`, into `out`.
@@ -134,8 +110,6 @@ pub trait Statics: Potential + PartialEq + Sized {
     fn difference_into(a: &Loads<Self>, b: &Loads<Self>, out: &mut Loads<Self>);
     /// $(1 - s)a + sb$ into `out`.
     fn lerp_into(a: &Loads<Self>, b: &Loads<Self>, s: f64, out: &mut Loads<Self>);
-    /// Checks that `l` fits `m`, is finite, and pulls no tendon negative.
-    fn validate(m: &Mechanism<Self>, l: &Loads<Self>) -> Result<()>;
     /// `loads` with `parameter` set to `value`.
     fn apply(parameter: &Self::Parameter, loads: &Loads<Self>, value: f64) -> Loads<Self>;
     /// Whether `parameter` is a tendon's tension (which cannot be negative).
@@ -162,8 +136,8 @@ pub trait Statics: Potential + PartialEq + Sized {
     /// `a`) with their indeterminate part settled under `loads`.
     fn settle_pre_buckling(
         m: &Mechanism<Self>,
-        f: &Self::Frames,
-        a: &Self::Assembly,
+        f: &Frames<Self>,
+        a: &Assembly<Self>,
         mu: &[f64],
         loads: &Loads<Self>,
     ) -> Vec<f64>;
@@ -175,7 +149,7 @@ pub trait Statics: Potential + PartialEq + Sized {
     fn vector(v: &Self::Vector) -> [f64; 3];
     /// The pulls of a tendon along `path` (at the frames `f`) on the bodies
     /// of its via points, each toward its neighbours, into `out`.
-    fn tendon_pulls(f: &Self::Frames, path: &[(usize, Self::Point)], tension: f64, out: &mut Vec<(usize, [f64; 3])>);
+    fn tendon_pulls(f: &Frames<Self>, path: &[(usize, Self::Point)], tension: f64, out: &mut Vec<(usize, [f64; 3])>);
     /// The error for closures Newton could not close from rest.
     fn unassembled(m: &Mechanism<Self>, length: f64, e: Error) -> Error;
 }
@@ -198,8 +172,6 @@ pub struct SpatialOwn {
 }
 
 impl Statics for Planar {
-    type Frames = Frames;
-    type Assembly = Assembly;
     type Own = PlanarOwn;
     type Compliance = Matrix3<f64>;
     const POSITION_ROWS: usize = 2;
@@ -208,12 +180,6 @@ impl Statics for Planar {
     const NAMES_FREE_MOTION: bool = true;
     const NO_SOFTENING: &'static str = "a pure moment, or only tension";
 
-    fn new_frames(m: &Mechanism) -> Frames {
-        Frames::new(m)
-    }
-    fn new_assembly(m: &Mechanism) -> Assembly {
-        Assembly::new(m)
-    }
     fn new_own(m: &Mechanism) -> PlanarOwn {
         PlanarOwn { tree: Tree::new(m), angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]) }
     }
@@ -224,18 +190,8 @@ impl Statics for Planar {
             to.copy_from(from);
         }
     }
-    fn joint_states(f: &Frames) -> &[JointState] {
-        &f.joints
-    }
-    fn exact_frames(m: &Mechanism, q: &[f64]) -> Frames {
-        frames(m, q)
-    }
     fn pose_frames(m: &Mechanism, q: &[f64]) -> Frames {
         frames(m, q)
-    }
-    /// Rows $(\phi, x, y)$.
-    fn point_jacobian(m: &Mechanism, q: &[f64], body: usize, at: Point2<f64>) -> DMatrix<f64> {
-        attach(m, &frames(m, q), body, at.coords, true).jacobian
     }
     fn point_finite(at: &Point2<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
@@ -245,15 +201,6 @@ impl Statics for Planar {
     }
     fn newton_frames(m: &Mechanism, q: &[f64], f: &mut Frames) {
         frames_into(m, q, f);
-    }
-    fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, hessian: bool, a: &mut Assembly) -> Result<()> {
-        assemble_into(m, f, mu, loads, hessian, a)
-    }
-    fn parts(a: &Assembly) -> Parts<'_> {
-        Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
-    }
-    fn add_loads(m: &Mechanism, f: &Frames, l: &Loads, g: &mut DVector<f64>, a: &mut Assembly) -> Result<()> {
-        <Planar as Potential>::load_terms(m, f, l, g, None, &mut a.points, &mut a.kept).map(|_| ())
     }
     fn load_size(m: &Mechanism, l: &Loads, length: f64) -> f64 {
         let forces: f64 = l.force.iter().map(|f| f.fx.hypot(f.fy) * length + f.moment.abs()).sum();
@@ -274,9 +221,6 @@ impl Statics for Planar {
     }
     fn lerp_into(a: &Loads, b: &Loads, s: f64, out: &mut Loads) {
         a.lerp_into(b, s, out);
-    }
-    fn validate(m: &Mechanism, l: &Loads) -> Result<()> {
-        l.validate(m)
     }
     fn apply(parameter: &Parameter, loads: &Loads, value: f64) -> Loads {
         parameter.apply(loads, value)
@@ -352,8 +296,6 @@ impl Statics for Planar {
 }
 
 impl Statics for Spatial {
-    type Frames = Frames<Spatial>;
-    type Assembly = Assembly<Spatial>;
     type Own = SpatialOwn;
     type Compliance = Matrix6<f64>;
     const POSITION_ROWS: usize = 3;
@@ -362,20 +304,11 @@ impl Statics for Spatial {
     const NAMES_FREE_MOTION: bool = false;
     const NO_SOFTENING: &'static str = "only tension, or loads that stiffen it";
 
-    fn new_frames(m: &Mechanism<Spatial>) -> Frames<Spatial> {
-        Frames::new(m)
-    }
-    fn new_assembly(m: &Mechanism<Spatial>) -> Assembly<Spatial> {
-        Assembly::new(m)
-    }
     fn new_own(m: &Mechanism<Spatial>) -> SpatialOwn {
         SpatialOwn { pair: RefCell::new(([Frames::new(m), Frames::new(m)], [false; 2])) }
     }
     fn copy_frames(from: &Frames<Spatial>, to: &mut Frames<Spatial>) {
         to.clone_from(from);
-    }
-    fn joint_states(f: &Frames<Spatial>) -> &[JointState<Spatial>] {
-        &f.joints
     }
     /// Jacobian-level frames even for the Newton matrix: each joint's
     /// second derivatives enter contracted with the wrench it carries
@@ -387,43 +320,14 @@ impl Statics for Spatial {
     fn newton_frames(m: &Mechanism<Spatial>, q: &[f64], f: &mut Frames<Spatial>) {
         frames_level_into(m, q, Level::Jacobian, f);
     }
-    fn exact_frames(m: &Mechanism<Spatial>, q: &[f64]) -> Frames<Spatial> {
-        spatial_frames_at(m, q, Level::Hessian)
-    }
     fn pose_frames(m: &Mechanism<Spatial>, q: &[f64]) -> Frames<Spatial> {
         spatial_frames_at(m, q, Level::Pose)
-    }
-    /// Rows $(\delta\theta, \delta x)$: the body's rotation, then the point's displacement.
-    fn point_jacobian(m: &Mechanism<Spatial>, q: &[f64], body: usize, at: Point3<f64>) -> DMatrix<f64> {
-        attach(m, &spatial_frames_at(m, q, Level::Jacobian), body, at.coords, true).jacobian
     }
     fn point_finite(at: &Point3<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
     }
     fn compliance_matrix(c: &DMatrix<f64>) -> Matrix6<f64> {
         Matrix6::from_fn(|r, col| c[(r, col)])
-    }
-    fn assemble(
-        m: &Mechanism<Spatial>,
-        f: &Frames<Spatial>,
-        mu: &[f64],
-        loads: &Loads<Spatial>,
-        hessian: bool,
-        a: &mut Assembly<Spatial>,
-    ) -> Result<()> {
-        assemble_into(m, f, mu, loads, hessian, a)
-    }
-    fn parts(a: &Assembly<Spatial>) -> Parts<'_> {
-        Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
-    }
-    fn add_loads(
-        m: &Mechanism<Spatial>,
-        f: &Frames<Spatial>,
-        l: &Loads<Spatial>,
-        g: &mut DVector<f64>,
-        a: &mut Assembly<Spatial>,
-    ) -> Result<()> {
-        <Spatial as Potential>::load_terms(m, f, l, g, None, &mut a.points, &mut a.kept).map(|_| ())
     }
     fn load_size(m: &Mechanism<Spatial>, l: &Loads<Spatial>, length: f64) -> f64 {
         let forces: f64 =
@@ -443,9 +347,6 @@ impl Statics for Spatial {
     }
     fn lerp_into(a: &Loads<Spatial>, b: &Loads<Spatial>, s: f64, out: &mut Loads<Spatial>) {
         a.lerp_into(b, s, out);
-    }
-    fn validate(m: &Mechanism<Spatial>, l: &Loads<Spatial>) -> Result<()> {
-        l.validate(m)
     }
     fn apply(parameter: &SpatialParameter, loads: &Loads<Spatial>, value: f64) -> Loads<Spatial> {
         parameter.apply(loads, value)
