@@ -15,7 +15,7 @@ use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::Fixed;
 use flexure::mechanism::Holds;
-use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::{
     SpatialBody, SpatialClosure, SpatialJointKind, SpatialJointSpec, SpatialMechanism, SpatialPointLoad, SpatialTendon,
 };

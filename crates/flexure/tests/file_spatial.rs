@@ -6,7 +6,7 @@
 //! answers; `tests/format.rs` keeps the page's key tables and the parser in step.)
 
 use flexure::mechanism::file::{from_toml, spatial_from_toml};
-use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::{SpatialClosure, SpatialJointKind, SpatialMechanism};
 use flexure::mechanism::{Holds, JointKind};
 use flexure::model::Model;

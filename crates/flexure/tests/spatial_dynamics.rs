@@ -5,7 +5,7 @@
 use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
-use flexure::mechanism::spatial::kinematics::frames;
+use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::{
     PrismaticUnaligned, RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };

@@ -1,5 +1,5 @@
 //! A spatial flexure's own mass (`spatial::mass`, its weight in
-//! `mechanism::spatial::lagrangian` and its inertia in `dynamics::mechanism`):
+//! `mechanism::lagrangian` and its inertia in `dynamics::mechanism`):
 //! the stations' Jacobians against central differences, the weight's
 //! gradient and Hessian against differences of the potential and gradient,
 //! Euler–Bernoulli's bending and the rod's torsion frequencies, the
@@ -11,8 +11,8 @@ use flexure::dynamics::integrate::MotionSettings as Motion;
 use flexure::dynamics::mechanism::{MechanismSystem, modes};
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::file::{from_toml, spatial_from_toml};
-use flexure::mechanism::spatial::kinematics::frames;
-use flexure::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into};
+use flexure::mechanism::kinematics::frames;
+use flexure::mechanism::lagrangian::{Assembly, assemble_into};
 use flexure::mechanism::spatial::{
     RevoluteUnaligned, SpatialBody, SpatialJointKind, SpatialJointSpec, SpatialMechanism, Spherical,
 };
@@ -160,9 +160,9 @@ fn configuration(m: &SpatialMechanism) -> Vec<f64> {
     (0..m.dof()).map(|i| 0.3 * (i as f64 * 1.7 + 0.4).sin()).collect()
 }
 
-fn assembled(m: &SpatialMechanism, q: &[f64]) -> SpatialAssembly {
-    let mut a = SpatialAssembly::new(m);
-    assemble_into(m, &frames(m, q), &[], &m.loads(), true, &mut a);
+fn assembled(m: &SpatialMechanism, q: &[f64]) -> Assembly<Spatial> {
+    let mut a = Assembly::new(m);
+    assemble_into(m, &frames(m, q), &[], &m.loads(), true, &mut a).unwrap();
     a
 }
 

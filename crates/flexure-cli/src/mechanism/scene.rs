@@ -8,7 +8,6 @@
 use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
 use flexure::dynamics::Simulation;
 use flexure::mechanism::kinematics::frames;
-use flexure::mechanism::spatial::kinematics::frames as spatial_frames;
 use flexure::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use flexure::mechanism::statics::Solution;
 use flexure::mechanism::{Holds, Loads, Mechanism};
@@ -300,7 +299,7 @@ fn check_shape(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoad
 /// `m`, or a flexure whose coordinates the library refuses.
 fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -> Result<Snapshot, String> {
     check_shape(m, label, q, loads)?;
-    let f = spatial_frames(m, q);
+    let f = frames(m, q);
     let at = |b: usize, r: &Point3<f64>| (f.bodies[b] * r).coords;
     let origins = f.bodies.iter().map(|b| b.translation.vector).collect();
     let mut pose = rigid(m, &at, (origins, f.roots.iter().map(|r| r.translation.vector).collect()), &loads.tension);
@@ -329,9 +328,9 @@ fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -
         }
         if j.kind.flexure().is_none() && kind.dof() > 0 {
             let (symbol, axis) = if kind.is_translation() {
-                (Symbol::Slider, f.velocity.column(j.offset).into_owned())
+                (Symbol::Slider, f.velocity[j.offset])
             } else if kind.dof() == 1 {
-                (Symbol::Hinge, f.omega.column(j.offset).into_owned())
+                (Symbol::Hinge, f.omega[j.offset])
             } else {
                 (Symbol::Ball, V::z())
             };

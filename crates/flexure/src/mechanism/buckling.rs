@@ -1,6 +1,9 @@
 //! Linear buckling of a mechanism about its unloaded, assembled configuration.
 
+use super::kinematics::{Frames, frames};
+use super::lagrangian::{Assembly, assemble_into};
 use super::pencil::{pre_buckling_forces, smallest_load_factor};
+use super::statics::parts;
 use super::statics::{Settings, Statics, assemble_unloaded, constrained, free_motion};
 use super::{Loads, Mechanism};
 use crate::error::{Error, Result};
@@ -49,7 +52,7 @@ pub fn buckle<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Buckl
     let (zero, base) = (&s0.loads, m.loads());
     let (f0, a0) = hessian(m, &s0.q, &s0.multipliers, zero)?;
     let (_, a1) = hessian(m, &s0.q, &s0.multipliers, &base)?;
-    let p0 = D::parts(&a0);
+    let p0 = parts(&a0);
     let g = p0.closure_jacobian;
     let z = linalg::null_space(g);
     if z.ncols() == 0 {
@@ -66,13 +69,13 @@ pub fn buckle<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Buckl
         return Err(free());
     }
     // Linear pre-buckling state and its closure forces (least norm).
-    let p1 = D::parts(&a1);
+    let p1 = parts(&a1);
     let load_gradient = p1.gradient - p0.gradient;
     let dmu = pre_buckling_forces(&k0, &z, p0.hessian, &load_gradient, g, free)?;
     // The indeterminate part of δμ: least transmitted force under the base loads.
     let dmu = D::settle_pre_buckling(m, &f0, &a0, dmu.as_slice(), &base);
     let mu1: Vec<f64> = s0.multipliers.iter().zip(&dmu).map(|(a, b)| a + b).collect();
-    let closure_part = D::parts(&hessian(m, &s0.q, &mu1, zero)?.1).hessian - p0.hessian;
+    let closure_part = parts(&hessian(m, &s0.q, &mu1, zero)?.1).hessian - p0.hessian;
     let geometric = p1.hessian - p0.hessian + closure_part;
     let b = z.transpose() * &geometric * &z;
     let (load_factor, mode) = smallest_load_factor(&k0, &b, &z, free, D::NO_SOFTENING)?;
@@ -80,10 +83,10 @@ pub fn buckle<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Buckl
 }
 
 /// The frames and the Lagrangian with its exact Hessian at `q`.
-fn hessian<D: Statics>(m: &Mechanism<D>, q: &[f64], mu: &[f64], loads: &Loads<D>) -> Result<(D::Frames, D::Assembly)> {
+fn hessian<D: Statics>(m: &Mechanism<D>, q: &[f64], mu: &[f64], loads: &Loads<D>) -> Result<(Frames<D>, Assembly<D>)> {
     D::check_start(m, q, mu, loads)?;
-    let f = D::exact_frames(m, q);
-    let mut a = D::new_assembly(m);
-    D::assemble(m, &f, mu, loads, true, &mut a)?;
+    let f = frames(m, q);
+    let mut a = Assembly::new(m);
+    assemble_into(m, &f, mu, loads, true, &mut a)?;
     Ok((f, a))
 }

@@ -5,6 +5,7 @@
 //! does no work and the joints, being inextensible, cannot fix it. This
 //! module fixes it by the least transmitted force.
 
+use super::kinematics::Frames;
 use super::statics::Statics;
 use super::{Loads, Mechanism};
 use crate::linalg;
@@ -21,7 +22,7 @@ use nalgebra::{DMatrix, DVector};
 /// stage in the tree). `mu` unchanged if no part is indeterminate.
 pub(super) fn settle<D: Statics>(
     m: &Mechanism<D>,
-    f: &D::Frames,
+    f: &Frames<D>,
     g: &DMatrix<f64>,
     mu: &[f64],
     loads: &Loads<D>,

@@ -63,8 +63,8 @@ impl Reported for Planar {
 impl Reported for Spatial {
     fn poses(m: &Mechanism<Spatial>, q: &[f64]) -> Vec<BodyPose> {
         // Poses alone: the Hessians of flexures at high orders cost most.
-        let mut f = crate::mechanism::spatial::kinematics::SpatialFrames::new(m);
-        crate::mechanism::spatial::kinematics::frames_level_into(m, q, crate::kinematics::Level::Pose, &mut f);
+        let mut f = crate::mechanism::kinematics::Frames::new(m);
+        crate::mechanism::kinematics::frames_level_into(m, q, crate::kinematics::Level::Pose, &mut f);
         (0..m.bodies.len())
             .map(|b| {
                 let p = f.bodies[b].translation.vector;

@@ -65,7 +65,12 @@ pub trait Space: Copy + Debug + Default + 'static {
     /// A position.
     type Point: Copy + Debug + PartialEq;
     /// A direction or displacement.
-    type Vector: Copy + Debug + PartialEq + Default;
+    type Vector: Copy
+        + Debug
+        + PartialEq
+        + Default
+        + std::ops::Add<Output = Self::Vector>
+        + std::ops::Sub<Output = Self::Vector>;
     /// A velocity of a frame (angular, then linear).
     type Twist: Copy + Debug + PartialEq + Default;
     /// A force and moment on a frame (moment, then force).

@@ -9,7 +9,7 @@ use super::{planar, spatial};
 use crate::dynamics::integrate::Trajectory;
 use crate::dynamics::simulation::{BodyMotion, BodyPoses};
 use crate::error::Result;
-use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
+use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::statics::Statics;
 use crate::mechanism::{Dimension, Loads, Mechanism, kinematics};
 use crate::space::{Planar, Pose, Spatial};
@@ -109,7 +109,7 @@ impl Dynamics for Spatial {
     }
 
     fn motions(m: &Mechanism<Spatial>, run: &Trajectory) -> Vec<BodyPoses> {
-        let mut f = SpatialFrames::new(m);
+        let mut f = Frames::new(m);
         let poses: Vec<Vec<_>> = (0..run.time.len())
             .map(|k| {
                 // The bodies' poses alone (the flexures' Hessians cost most at high orders).

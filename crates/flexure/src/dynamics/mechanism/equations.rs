@@ -6,7 +6,6 @@
 use super::dimension::{Dynamics, MassElements};
 use crate::dynamics::system::System;
 use crate::error::{Error, Result};
-use crate::mechanism::statics::Statics;
 use crate::mechanism::{Loads, Mechanism};
 use crate::space::Planar;
 use nalgebra::{DMatrix, DVector};
@@ -71,7 +70,7 @@ impl<D: Dynamics> MechanismSystem<D> {
 
     /// Replaces the loads (validated against the mechanism: [`Loads::validate`]).
     pub fn set_loads(&mut self, loads: Loads<D>) -> Result<()> {
-        <D as Statics>::validate(&self.mechanism, &loads)?;
+        D::check_loads(&self.mechanism, &loads)?;
         self.masses.set_loads(&loads);
         self.loads = loads;
         Ok(())

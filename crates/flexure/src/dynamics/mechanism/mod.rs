@@ -51,7 +51,7 @@
 //! Lagrange's, $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$). The
 //! accelerations at $\ddot q = 0$, $\dot J_c\dot q = \dot q^T\nabla^2c\thinspace\dot q$
 //! and $\dot J_\omega\dot q = \sum_{ab}\partial_b\omega_a\dot q_a\dot q_b$, come from
-//! the tree's second derivatives ([`crate::mechanism::spatial::kinematics`]).
+//! the tree's second derivatives ([`crate::mechanism::kinematics`]).
 //!
 //! A spatial flexure with a density or mass per length adds its stations
 //! ([`crate::spatial::MassQuadrature`]) as bodies: station $k$ of joint $j$,
@@ -69,7 +69,7 @@
 //! swing checks (`tests/spatial_flexure_mass.rs`).
 //!
 //! The generalized force is $f = -(\nabla V - Q_m) - h - D\dot q$, with the
-//! potential and dead moments of [`crate::mechanism::spatial::lagrangian`]
+//! potential and dead moments of [`crate::mechanism::lagrangian`]
 //! and $D = \operatorname{diag}(\beta_jK_j, c_k)$. The tangent stiffness
 //! adds $\partial h/\partial q$ by central differences.
 

@@ -7,12 +7,12 @@ use super::dimension::MassElements;
 use super::distributed::{Distributed, path_columns};
 use super::moments::{Moments, quarter};
 use crate::error::Result;
-use crate::mechanism::kinematics::{Frames, PointBuffer, frames_into, point_into};
+use crate::mechanism::kinematics::{Attached, Frames, attach_into, frames_into};
 use crate::mechanism::lagrangian::{Assembly, GradientWork, assemble_into, gradient_into, lagrangian};
 use crate::mechanism::{Loads, Mechanism};
 use crate::sincos::cos_sin;
 use crate::space::Planar;
-use nalgebra::{DMatrix, DVector, Vector2};
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
 
 /// The angular velocity (rad/s), velocity and velocity-product
 /// acceleration ($\ddot q = 0$) of a frame's origin, in the world.
@@ -34,7 +34,7 @@ pub struct ClosedFormMasses {
     length: f64,
     frames: Frames,
     rates: Vec<Rate>,
-    point: PointBuffer,
+    point: Attached,
     jx: Vec<f64>,
     jy: Vec<f64>,
     jt: Vec<f64>,
@@ -89,7 +89,7 @@ impl MassElements<Planar> for ClosedFormMasses {
             length: m.size(),
             frames: Frames::new(m),
             rates: vec![Rate::default(); m.bodies.len()],
-            point: PointBuffer::new(m),
+            point: Attached::new(m),
             jx: vec![0.0; n],
             jy: vec![0.0; n],
             jt: vec![0.0; n],
@@ -267,8 +267,8 @@ impl ClosedFormMasses {
         };
         for (b, cols) in &self.bodies {
             let body = &m.bodies[*b];
-            point_into(m, f, *b, body.com, &mut self.point);
-            let (w, o) = (self.point.position, f.bodies[*b].origin());
+            attach_into(m, f, *b, body.com.coords, true, &mut self.point);
+            let (w, o) = (Point2::from(self.point.value), f.bodies[*b].origin());
             let r = self.rates[*b];
             let d = w - o;
             let a = r.acceleration - d * (r.omega * r.omega);
@@ -283,7 +283,7 @@ impl ClosedFormMasses {
         for d in &self.distributed {
             let spec = &m.joints[d.joint];
             let (off, k) = (spec.offset, d.order);
-            point_into(m, f, spec.parent, spec.origin.origin(), &mut self.point);
+            attach_into(m, f, spec.parent, spec.origin.origin().coords, true, &mut self.point);
             let root = f.roots[d.joint];
             let rate = self.rates[spec.parent];
             let arm = root.origin() - f.bodies[spec.parent].origin();

@@ -6,10 +6,10 @@
 use super::dimension::MassElements;
 use crate::error::Result;
 use crate::kinematics::Level;
-use crate::mechanism::spatial::kinematics::{
-    SpatialFrames, add_attached_hessian, add_rotation_derivative, attach, distance, frames_into, frames_level_into,
+use crate::mechanism::kinematics::{
+    Frames, add_attached_hessian, add_rotation_derivative, attach, frame_distance, frames_into, frames_level_into,
 };
-use crate::mechanism::spatial::lagrangian::{SpatialAssembly, assemble_into, closures_into, flexure_weight_potential};
+use crate::mechanism::lagrangian::{Assembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
@@ -19,9 +19,9 @@ use std::cell::RefCell;
 /// A spatial mechanism's mass elements and the buffers of their evaluation.
 #[derive(Debug, Clone)]
 pub struct StationMasses {
-    frames: SpatialFrames,
-    assembly: SpatialAssembly,
-    pair: RefCell<[SpatialFrames; 2]>,
+    frames: Frames<Spatial>,
+    assembly: Assembly<Spatial>,
+    pair: RefCell<[Frames<Spatial>; 2]>,
     /// An orthonormal basis $U^T$ ($r\times m$) of the closure equations'
     /// independent combinations, where they are dependent at rest (a
     /// planar linkage's pins in space: their out-of-plane rows vanish), so
@@ -33,7 +33,7 @@ pub struct StationMasses {
     /// The coordinates that move a station (the flexures' own and upstream), ascending.
     moving: Vec<usize>,
     /// Frames for the velocity products' differences.
-    shifted: RefCell<SpatialFrames>,
+    shifted: RefCell<Frames<Spatial>>,
     /// $\partial_iM_f$ for each coordinate in `moving`, at the coordinates
     /// they were taken at: $h_f$ is quadratic in $\dot q$ through them, so
     /// every $\dot q$ at one $q$ (the tangent's differences in $\dot q$) reuses them.
@@ -65,13 +65,13 @@ impl MassElements<Spatial> for StationMasses {
             flexures.push((j, quadrature, buffers));
         }
         Ok(StationMasses {
-            frames: SpatialFrames::new(m),
-            assembly: SpatialAssembly::new(m),
-            pair: RefCell::new([SpatialFrames::new(m), SpatialFrames::new(m)]),
+            frames: Frames::new(m),
+            assembly: Assembly::new(m),
+            pair: RefCell::new([Frames::new(m), Frames::new(m)]),
             independent: independent_closures(m),
             flexures,
             moving: (0..n).filter(|&i| moving[i]).collect(),
-            shifted: RefCell::new(SpatialFrames::new(m)),
+            shifted: RefCell::new(Frames::new(m)),
             derivatives: RefCell::new((Vec::new(), Vec::new())),
         })
     }
@@ -91,7 +91,7 @@ impl MassElements<Spatial> for StationMasses {
     ) -> Result<()> {
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
-        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly);
+        assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly)?;
         let mm = self.mass_at(m, &self.frames);
         let h = self.velocity_product_at(m, &self.frames, v);
         for (i, f) in force.iter_mut().enumerate() {
@@ -113,11 +113,11 @@ impl MassElements<Spatial> for StationMasses {
         let n = m.dof();
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
-        assemble_into(m, &self.frames, &mu, loads, true, &mut self.assembly);
+        assemble_into(m, &self.frames, &mu, loads, true, &mut self.assembly)?;
         let mut k = self.assembly.hessian.clone();
         if v.iter().any(|x| *x != 0.0) {
             let mut shifted = q.to_vec();
-            let mut f = SpatialFrames::new(m);
+            let mut f = Frames::new(m);
             for i in 0..n {
                 let e = 1e-6 * (1.0 + q[i].abs());
                 shifted[i] = q[i] + e;
@@ -167,7 +167,7 @@ impl MassElements<Spatial> for StationMasses {
     }
 
     fn distance(&self, m: &SpatialMechanism, a: &[f64], b: &[f64]) -> f64 {
-        distance(m, a, b, &mut self.pair.borrow_mut())
+        frame_distance(m, a, b, &mut self.pair.borrow_mut())
     }
 
     fn mass_matrix(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64]) -> DMatrix<f64> {
@@ -186,7 +186,7 @@ impl MassElements<Spatial> for StationMasses {
 
 impl StationMasses {
     /// Adds the flexures' stations' $M_f$ (module docs) at the frames `f` to `mass`.
-    fn add_flexure_mass(&self, m: &SpatialMechanism, f: &SpatialFrames, mass: &mut DMatrix<f64>) {
+    fn add_flexure_mass(&self, m: &SpatialMechanism, f: &Frames<Spatial>, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
             let Some(flexure) = spec.kind.flexure() else { continue };
@@ -211,8 +211,8 @@ impl StationMasses {
                 let x = root * nalgebra::Point3::from(k.position[i]);
                 for (col, &(c, joint)) in upstream.iter().enumerate() {
                     let origin = f.bodies[m.joints[joint].child].translation.vector;
-                    let w = f.omega.column(c).into_owned();
-                    jv.set_column(col, &(f.velocity.column(c) + w.cross(&(x.coords - origin))));
+                    let w = f.omega[c];
+                    jv.set_column(col, &(f.velocity[c] + w.cross(&(x.coords - origin))));
                     jw.set_column(col, &w);
                 }
                 for a in 0..n {
@@ -232,7 +232,7 @@ impl StationMasses {
     }
 
     /// $M_f$ at `q`, frames in `f`.
-    fn flexure_mass(&self, m: &SpatialMechanism, q: &[f64], f: &mut SpatialFrames) -> DMatrix<f64> {
+    fn flexure_mass(&self, m: &SpatialMechanism, q: &[f64], f: &mut Frames<Spatial>) -> DMatrix<f64> {
         let n = m.dof();
         frames_level_into(m, q, Level::Jacobian, f);
         let mut mass = DMatrix::zeros(n, n);
@@ -274,19 +274,15 @@ impl StationMasses {
         h
     }
 
-    fn bodies(m: &SpatialMechanism, f: &SpatialFrames) -> Vec<(usize, BodyTerms)> {
+    fn bodies(m: &SpatialMechanism, f: &Frames<Spatial>) -> Vec<(usize, BodyTerms)> {
         let mut out = Vec::new();
         for (b, body) in m.bodies.iter().enumerate().skip(1) {
             if body.mass == 0.0 && body.inertia == Matrix3::zeros() {
                 continue;
             }
-            let com = attach(m, f, b, body.com.coords, true).jacobian;
-            let mut rotation = Matrix3xX::zeros(m.dof());
-            for j in m.path(b) {
-                let o = m.joints[j].offset;
-                let k = m.joints[j].kind.joint().dof();
-                rotation.columns_mut(o, k).copy_from(&f.omega.columns(o, k));
-            }
+            // Rows ω (zero off the path), then the centre of mass's.
+            let jacobian = attach(m, f, b, body.com.coords, true).jacobian;
+            let (rotation, com) = (jacobian.fixed_rows::<3>(0).into_owned(), jacobian.fixed_rows::<3>(3).into_owned());
             let r = f.body_rotation(b);
             out.push((b, BodyTerms { mass: body.mass, com, rotation, inertia: r * body.inertia * r.transpose() }));
         }
@@ -294,7 +290,7 @@ impl StationMasses {
     }
 
     /// $M(q)$ at the frames `f`.
-    fn mass_at(&self, m: &SpatialMechanism, f: &SpatialFrames) -> DMatrix<f64> {
+    fn mass_at(&self, m: &SpatialMechanism, f: &Frames<Spatial>) -> DMatrix<f64> {
         let n = m.dof();
         let mut mass = DMatrix::zeros(n, n);
         for (_, t) in Self::bodies(m, f) {
@@ -305,7 +301,7 @@ impl StationMasses {
     }
 
     /// $h(q, \dot q)$ at the frames `f` (of $q$).
-    fn velocity_product_at(&self, m: &SpatialMechanism, f: &SpatialFrames, v: &[f64]) -> DVector<f64> {
+    fn velocity_product_at(&self, m: &SpatialMechanism, f: &Frames<Spatial>, v: &[f64]) -> DVector<f64> {
         let n = m.dof();
         let qd = DVector::from_column_slice(v);
         let mut h = DVector::zeros(n);
@@ -322,7 +318,7 @@ impl StationMasses {
                 add_attached_hessian(m, f, &c, &e, &mut scratch);
                 bias[i] = quadratic(&scratch);
                 scratch.fill(0.0);
-                add_rotation_derivative(m, f, b, &e, &mut scratch);
+                add_rotation_derivative(m, f, b, &e, &mut scratch, None);
                 turn[i] = quadratic(&scratch);
             }
             let omega = &t.rotation * &qd;
@@ -334,7 +330,7 @@ impl StationMasses {
     }
 
     /// The elastic and gravitational energy (J) at the frames `f`.
-    fn potential_at(m: &SpatialMechanism, loads: &SpatialLoads, f: &SpatialFrames) -> f64 {
+    fn potential_at(m: &SpatialMechanism, loads: &SpatialLoads, f: &Frames<Spatial>) -> f64 {
         let elastic: f64 = f.joints.iter().map(|s| s.energy).sum();
         let gravity: f64 = m
             .bodies
@@ -355,7 +351,7 @@ fn independent_closures(m: &SpatialMechanism) -> Option<DMatrix<f64>> {
     if rows == 0 {
         return None;
     }
-    let mut f = SpatialFrames::new(m);
+    let mut f = Frames::new(m);
     // G needs the joints' motion subspaces, not their Hessians.
     frames_level_into(m, &m.rest(), Level::Jacobian, &mut f);
     let (mut c, mut g) = (DVector::zeros(rows), DMatrix::zeros(rows, m.dof()));

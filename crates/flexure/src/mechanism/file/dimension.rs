@@ -19,8 +19,8 @@ use super::joints::{JointToml, planar_kind, spatial_kind};
 use super::{PLANAR_ONLY, Result, SPATIAL_ONLY, Spanned};
 use crate::kinematics::{Level, Pose};
 use crate::mechanism::joints::JointState;
+use crate::mechanism::kinematics::frames_level_into;
 use crate::mechanism::spatial::joints::unit_axis;
-use crate::mechanism::spatial::kinematics::{SpatialFrames, frames_level_into};
 use crate::mechanism::sweep::Parameter;
 use crate::mechanism::sweep::SpatialParameter;
 use crate::mechanism::{Closure, Dimension, Holds, Mechanism, ReportOptions, kinematics};
@@ -246,7 +246,7 @@ impl FileDimension for Spatial {
     fn rest(m: &Mechanism<Spatial>) -> (Vec<Isometry3<f64>>, Vec<JointState<Spatial>>) {
         // At the pose level: the Hessians cost most at high orders, and the
         // checks read the stiffness, which every level gives.
-        let mut f = SpatialFrames::new(m);
+        let mut f = kinematics::Frames::new(m);
         frames_level_into(m, &m.rest(), Level::Pose, &mut f);
         (f.bodies, f.joints)
     }

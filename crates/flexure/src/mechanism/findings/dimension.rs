@@ -139,8 +139,8 @@ impl Findings for Spatial {
 
     fn poses(m: &Mechanism<Spatial>, q: &[f64]) -> (Vec<nalgebra::Isometry3<f64>>, Vec<nalgebra::Isometry3<f64>>) {
         // Poses alone: the bodies' frames are the same at every level.
-        let mut f = crate::mechanism::spatial::kinematics::SpatialFrames::new(m);
-        crate::mechanism::spatial::kinematics::frames_level_into(m, q, Level::Pose, &mut f);
+        let mut f = crate::mechanism::kinematics::Frames::new(m);
+        crate::mechanism::kinematics::frames_level_into(m, q, Level::Pose, &mut f);
         (f.bodies, f.roots)
     }
 

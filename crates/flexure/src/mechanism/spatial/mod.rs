@@ -9,13 +9,11 @@
 //! `origin` is the pose of its root frame in the parent body's frame, and
 //! the child body's frame is the joint's output frame (a flexure's tip
 //! frame). The joints are reached only through [`Joint<Spatial>`], so the
-//! algorithms ([`kinematics`], [`lagrangian`], [`statics`]) are those of
-//! any joint kind; the planar mechanism keeps its own, with the planar fast
-//! paths (rotations that add, the tree's $O(n)$ factorization).
+//! algorithms ([`crate::mechanism::kinematics`], [`crate::mechanism::lagrangian`],
+//! [`statics`]) are those of any joint kind, and the planar fast paths
+//! (rotations that add, the tree's $O(n)$ factorization) sit behind them.
 
 pub mod joints;
-pub mod kinematics;
-pub mod lagrangian;
 pub mod statics;
 
 pub use joints::{PrismaticUnaligned, RevoluteUnaligned, SpatialJointKind, Spherical};

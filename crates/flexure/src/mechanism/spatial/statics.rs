@@ -4,12 +4,12 @@
 //! null spaces): stability and distance on dense matrices and pose-level
 //! frames, the indeterminate closure forces, and each flexure's carried wrench.
 
-use super::kinematics::{SpatialFrames, distance_of, frames_level_into};
-use super::lagrangian::add_closure_hessian;
 use super::{SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::indeterminate::settle;
+use crate::mechanism::kinematics::{Frames, distance_of, frames_level_into};
+use crate::mechanism::lagrangian::{add_closure_hessian, assemble_into};
 use crate::mechanism::statics::{FAR_MARGIN, Kkt, Solution};
 use crate::space::Spatial;
 use nalgebra::DMatrix;
@@ -87,7 +87,7 @@ impl Kkt<'_, Spatial> {
         linalg::positive_definite(k, n, &mut w.scratch)
     }
 
-    /// [`super::kinematics::distance`], with the frames at a configuration
+    /// [`crate::mechanism::kinematics::frame_distance`], with the frames at a configuration
     /// of the last call kept (the same coordinates, bit for bit, give the
     /// same frames).
     pub(crate) fn distance_spatial(&self, a: &[f64], b: &[f64]) -> f64 {
@@ -95,7 +95,7 @@ impl Kkt<'_, Spatial> {
         let n = m.dof();
         let (a, b) = (&a[..n], &b[..n]);
         let (frames, held) = &mut *self.work.own.pair.borrow_mut();
-        let holds = |f: &SpatialFrames, held: bool, q: &[f64]| {
+        let holds = |f: &Frames<Spatial>, held: bool, q: &[f64]| {
             held && f.coordinates.iter().zip(q).all(|(x, y)| x.to_bits() == y.to_bits())
         };
         // Frames for `b` (slot 1 unless slot 0 already holds them), then for `a` in the other.
@@ -126,7 +126,8 @@ impl Kkt<'_, Spatial> {
             return mu;
         }
         frames_level_into(m, q, Level::Jacobian, &mut w.frames);
-        super::lagrangian::assemble_into(m, &w.frames, &mu, loads, false, &mut w.assembly);
+        // The closures' G alone is read: no load can make this fail.
+        let _ = assemble_into(m, &w.frames, &mu, loads, false, &mut w.assembly);
         settle(m, &w.frames, &w.assembly.closure_jacobian, &mu, loads)
     }
 }
@@ -138,7 +139,7 @@ impl Kkt<'_, Spatial> {
 /// load beyond the joint reaches it through its tip, so the equations are
 /// consistent at an equilibrium). `None` for the other kinds.
 pub fn flexure_loads(m: &SpatialMechanism, s: &Solution<Spatial>) -> Vec<Option<crate::spatial::SpatialLoad>> {
-    let mut f = SpatialFrames::new(m);
+    let mut f = Frames::new(m);
     frames_level_into(m, &s.q, Level::Jacobian, &mut f);
     m.joints
         .iter()

@@ -1,8 +1,7 @@
-//! What the statics needs of a dimension beyond [`Dimension`]: its frames
-//! and Lagrangian assembly (the planar fast path of
-//! [`crate::mechanism::kinematics`] and [`crate::mechanism::lagrangian`], the
-//! SE(3) path of [`crate::mechanism::spatial::kinematics`] and
-//! [`crate::mechanism::spatial::lagrangian`]), its loads' arithmetic, the
+//! What the statics needs of a dimension beyond [`Potential`] (its frames,
+//! [`crate::mechanism::kinematics`], and its Lagrangian,
+//! [`crate::mechanism::lagrangian`]): the level its frames are evaluated
+//! to for Newton, its loads' arithmetic, the
 //! size of its closure rows and loads, and the few tests whose fast paths
 //! only one dimension has. [`Kkt`], the paths, the assembly, stiffness,
 //! compliance, sweeps and buckling are written once over it; the plane and
@@ -13,14 +12,11 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
-use crate::mechanism::joints::JointState;
-use crate::mechanism::kinematics::{Frames, frames, frames_into, point};
-use crate::mechanism::lagrangian::{Assembly, assemble_into, check_sizes};
-use crate::mechanism::spatial::kinematics::{SpatialFrames, attach, frames_level_into};
-use crate::mechanism::spatial::lagrangian::{SpatialAssembly, add_loads, assemble_into as spatial_assemble_into};
+use crate::mechanism::kinematics::{Frames, frames, frames_into, frames_level_into};
+use crate::mechanism::lagrangian::{Assembly, Potential, check_sizes};
 use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
-use crate::mechanism::{Dimension, Loads, Mechanism};
+use crate::mechanism::{Loads, Mechanism};
 use crate::space::Wrench;
 use crate::space::{Planar, Spatial};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, Vector2, Vector3, Vector6};
@@ -35,6 +31,11 @@ pub struct Parts<'a> {
     pub hessian: &'a DMatrix<f64>,
     pub closure: &'a DVector<f64>,
     pub closure_jacobian: &'a DMatrix<f64>,
+}
+
+/// The parts of an assembly the KKT conditions read.
+pub(crate) fn parts<D: Potential>(a: &Assembly<D>) -> Parts<'_> {
+    Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
 }
 
 /// A dimension the statics of a [`Mechanism`] is solved in: [`Planar`] or [`Spatial`].
@@ -58,11 +59,7 @@ pub struct Parts<'a> {
 /// let s = solve(&m, &Default::default()).unwrap();
 /// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
-pub trait Statics: Dimension + PartialEq + Sized {
-    /// The frames of every body and joint at one configuration.
-    type Frames: Clone + Debug;
-    /// The buffers of one assembly of the Lagrangian.
-    type Assembly: Clone + Debug;
+pub trait Statics: Potential + PartialEq + Sized {
     /// The buffers only this dimension's problem uses.
     type Own: Clone + Debug;
     /// A point's compliance: $3\times3$ in the plane, $6\times6$ in space.
@@ -85,38 +82,14 @@ pub trait Statics: Dimension + PartialEq + Sized {
     /// [`crate::mechanism::buckling::buckle`]'s error.
     const NO_SOFTENING: &'static str;
 
-    fn new_frames(m: &Mechanism<Self>) -> Self::Frames;
-    fn new_assembly(m: &Mechanism<Self>) -> Self::Assembly;
     fn new_own(m: &Mechanism<Self>) -> Self::Own;
-    fn copy_frames(from: &Self::Frames, to: &mut Self::Frames);
-    fn joint_states(f: &Self::Frames) -> &[JointState<Self>];
-    /// The frames with every joint's exact second derivatives.
-    fn exact_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
+    fn copy_frames(from: &Frames<Self>, to: &mut Frames<Self>);
     /// The frames of the bodies (poses alone, where that is cheaper).
-    fn pose_frames(m: &Mechanism<Self>, q: &[f64]) -> Self::Frames;
-    /// The Jacobian of the frame at `at` on `body`, rows in the order of the wrench.
-    fn point_jacobian(m: &Mechanism<Self>, q: &[f64], body: usize, at: Self::Point) -> DMatrix<f64>;
+    fn pose_frames(m: &Mechanism<Self>, q: &[f64]) -> Frames<Self>;
     fn point_finite(at: &Self::Point) -> bool;
     fn compliance_matrix(c: &DMatrix<f64>) -> Self::Compliance;
     /// The frames Newton's residual and matrix are assembled from.
-    fn newton_frames(m: &Mechanism<Self>, q: &[f64], f: &mut Self::Frames);
-    fn assemble(
-        m: &Mechanism<Self>,
-        f: &Self::Frames,
-        mu: &[f64],
-        loads: &Loads<Self>,
-        hessian: bool,
-        a: &mut Self::Assembly,
-    ) -> Result<()>;
-    fn parts(a: &Self::Assembly) -> Parts<'_>;
-    /// Adds the gradient of the potential of `loads` to `gradient`.
-    fn add_loads(
-        m: &Mechanism<Self>,
-        f: &Self::Frames,
-        loads: &Loads<Self>,
-        gradient: &mut DVector<f64>,
-        a: &mut Self::Assembly,
-    ) -> Result<()>;
+    fn newton_frames(m: &Mechanism<Self>, q: &[f64], f: &mut Frames<Self>);
     /// The largest moment `l` applies (N·m), with the mechanism's length `length`.
     fn load_size(m: &Mechanism<Self>, l: &Loads<Self>, length: f64) -> f64;
     /// No load, shaped like `l`, into `out`.
@@ -137,8 +110,6 @@ pub trait Statics: Dimension + PartialEq + Sized {
     fn difference_into(a: &Loads<Self>, b: &Loads<Self>, out: &mut Loads<Self>);
     /// $(1 - s)a + sb$ into `out`.
     fn lerp_into(a: &Loads<Self>, b: &Loads<Self>, s: f64, out: &mut Loads<Self>);
-    /// Checks that `l` fits `m`, is finite, and pulls no tendon negative.
-    fn validate(m: &Mechanism<Self>, l: &Loads<Self>) -> Result<()>;
     /// `loads` with `parameter` set to `value`.
     fn apply(parameter: &Self::Parameter, loads: &Loads<Self>, value: f64) -> Loads<Self>;
     /// Whether `parameter` is a tendon's tension (which cannot be negative).
@@ -165,8 +136,8 @@ pub trait Statics: Dimension + PartialEq + Sized {
     /// `a`) with their indeterminate part settled under `loads`.
     fn settle_pre_buckling(
         m: &Mechanism<Self>,
-        f: &Self::Frames,
-        a: &Self::Assembly,
+        f: &Frames<Self>,
+        a: &Assembly<Self>,
         mu: &[f64],
         loads: &Loads<Self>,
     ) -> Vec<f64>;
@@ -178,7 +149,7 @@ pub trait Statics: Dimension + PartialEq + Sized {
     fn vector(v: &Self::Vector) -> [f64; 3];
     /// The pulls of a tendon along `path` (at the frames `f`) on the bodies
     /// of its via points, each toward its neighbours, into `out`.
-    fn tendon_pulls(f: &Self::Frames, path: &[(usize, Self::Point)], tension: f64, out: &mut Vec<(usize, [f64; 3])>);
+    fn tendon_pulls(f: &Frames<Self>, path: &[(usize, Self::Point)], tension: f64, out: &mut Vec<(usize, [f64; 3])>);
     /// The error for closures Newton could not close from rest.
     fn unassembled(m: &Mechanism<Self>, length: f64, e: Error) -> Error;
 }
@@ -197,12 +168,10 @@ pub struct PlanarOwn {
 #[derive(Debug, Clone)]
 #[doc(hidden)]
 pub struct SpatialOwn {
-    pub(crate) pair: RefCell<([SpatialFrames; 2], [bool; 2])>,
+    pub(crate) pair: RefCell<([Frames<Spatial>; 2], [bool; 2])>,
 }
 
 impl Statics for Planar {
-    type Frames = Frames;
-    type Assembly = Assembly;
     type Own = PlanarOwn;
     type Compliance = Matrix3<f64>;
     const POSITION_ROWS: usize = 2;
@@ -211,12 +180,6 @@ impl Statics for Planar {
     const NAMES_FREE_MOTION: bool = true;
     const NO_SOFTENING: &'static str = "a pure moment, or only tension";
 
-    fn new_frames(m: &Mechanism) -> Frames {
-        Frames::new(m)
-    }
-    fn new_assembly(m: &Mechanism) -> Assembly {
-        Assembly::new(m)
-    }
     fn new_own(m: &Mechanism) -> PlanarOwn {
         PlanarOwn { tree: Tree::new(m), angles: RefCell::new([vec![0.0; m.bodies.len()], vec![0.0; m.bodies.len()]]) }
     }
@@ -227,18 +190,8 @@ impl Statics for Planar {
             to.copy_from(from);
         }
     }
-    fn joint_states(f: &Frames) -> &[JointState] {
-        &f.joints
-    }
-    fn exact_frames(m: &Mechanism, q: &[f64]) -> Frames {
-        frames(m, q)
-    }
     fn pose_frames(m: &Mechanism, q: &[f64]) -> Frames {
         frames(m, q)
-    }
-    /// Rows $(\phi, x, y)$.
-    fn point_jacobian(m: &Mechanism, q: &[f64], body: usize, at: Point2<f64>) -> DMatrix<f64> {
-        point(m, &frames(m, q), body, at, false).jacobian
     }
     fn point_finite(at: &Point2<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
@@ -248,15 +201,6 @@ impl Statics for Planar {
     }
     fn newton_frames(m: &Mechanism, q: &[f64], f: &mut Frames) {
         frames_into(m, q, f);
-    }
-    fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, hessian: bool, a: &mut Assembly) -> Result<()> {
-        assemble_into(m, f, mu, loads, hessian, a).map(|_| ())
-    }
-    fn parts(a: &Assembly) -> Parts<'_> {
-        Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
-    }
-    fn add_loads(m: &Mechanism, f: &Frames, l: &Loads, g: &mut DVector<f64>, a: &mut Assembly) -> Result<()> {
-        crate::mechanism::lagrangian::add_loads(m, f, l, g, None, &mut a.points, &mut a.weights).map(|_| ())
     }
     fn load_size(m: &Mechanism, l: &Loads, length: f64) -> f64 {
         let forces: f64 = l.force.iter().map(|f| f.fx.hypot(f.fy) * length + f.moment.abs()).sum();
@@ -277,9 +221,6 @@ impl Statics for Planar {
     }
     fn lerp_into(a: &Loads, b: &Loads, s: f64, out: &mut Loads) {
         a.lerp_into(b, s, out);
-    }
-    fn validate(m: &Mechanism, l: &Loads) -> Result<()> {
-        l.validate(m)
     }
     fn apply(parameter: &Parameter, loads: &Loads, value: f64) -> Loads {
         parameter.apply(loads, value)
@@ -355,8 +296,6 @@ impl Statics for Planar {
 }
 
 impl Statics for Spatial {
-    type Frames = SpatialFrames;
-    type Assembly = SpatialAssembly;
     type Own = SpatialOwn;
     type Compliance = Matrix6<f64>;
     const POSITION_ROWS: usize = 3;
@@ -365,20 +304,11 @@ impl Statics for Spatial {
     const NAMES_FREE_MOTION: bool = false;
     const NO_SOFTENING: &'static str = "only tension, or loads that stiffen it";
 
-    fn new_frames(m: &Mechanism<Spatial>) -> SpatialFrames {
-        SpatialFrames::new(m)
-    }
-    fn new_assembly(m: &Mechanism<Spatial>) -> SpatialAssembly {
-        SpatialAssembly::new(m)
-    }
     fn new_own(m: &Mechanism<Spatial>) -> SpatialOwn {
-        SpatialOwn { pair: RefCell::new(([SpatialFrames::new(m), SpatialFrames::new(m)], [false; 2])) }
+        SpatialOwn { pair: RefCell::new(([Frames::new(m), Frames::new(m)], [false; 2])) }
     }
-    fn copy_frames(from: &SpatialFrames, to: &mut SpatialFrames) {
+    fn copy_frames(from: &Frames<Spatial>, to: &mut Frames<Spatial>) {
         to.clone_from(from);
-    }
-    fn joint_states(f: &SpatialFrames) -> &[JointState<Spatial>] {
-        &f.joints
     }
     /// Jacobian-level frames even for the Newton matrix: each joint's
     /// second derivatives enter contracted with the wrench it carries
@@ -387,64 +317,17 @@ impl Statics for Spatial {
     /// $h^6$ of the exact Hessian). The residual is exact, so only Newton's
     /// rate and the stability tests see the difference; [`super::stiffness()`]
     /// takes the exact Hessian.
-    fn newton_frames(m: &Mechanism<Spatial>, q: &[f64], f: &mut SpatialFrames) {
+    fn newton_frames(m: &Mechanism<Spatial>, q: &[f64], f: &mut Frames<Spatial>) {
         frames_level_into(m, q, Level::Jacobian, f);
     }
-    fn exact_frames(m: &Mechanism<Spatial>, q: &[f64]) -> SpatialFrames {
-        spatial_frames_at(m, q, Level::Hessian)
-    }
-    fn pose_frames(m: &Mechanism<Spatial>, q: &[f64]) -> SpatialFrames {
+    fn pose_frames(m: &Mechanism<Spatial>, q: &[f64]) -> Frames<Spatial> {
         spatial_frames_at(m, q, Level::Pose)
-    }
-    /// Rows $(\delta\theta, \delta x)$: the body's rotation, then the point's displacement.
-    fn point_jacobian(m: &Mechanism<Spatial>, q: &[f64], body: usize, at: Point3<f64>) -> DMatrix<f64> {
-        let f = spatial_frames_at(m, q, Level::Jacobian);
-        let point = attach(m, &f, body, at.coords, true);
-        let mut j = DMatrix::zeros(6, m.dof());
-        for jt in m.path(body) {
-            let o = m.joints[jt].offset;
-            for c in o..o + m.joints[jt].kind.joint().dof() {
-                for i in 0..3 {
-                    j[(i, c)] = f.omega[(i, c)];
-                }
-            }
-        }
-        for c in 0..m.dof() {
-            for i in 0..3 {
-                j[(3 + i, c)] = point.jacobian[(i, c)];
-            }
-        }
-        j
     }
     fn point_finite(at: &Point3<f64>) -> bool {
         at.iter().all(|v| v.is_finite())
     }
     fn compliance_matrix(c: &DMatrix<f64>) -> Matrix6<f64> {
         Matrix6::from_fn(|r, col| c[(r, col)])
-    }
-    fn assemble(
-        m: &Mechanism<Spatial>,
-        f: &SpatialFrames,
-        mu: &[f64],
-        loads: &Loads<Spatial>,
-        hessian: bool,
-        a: &mut SpatialAssembly,
-    ) -> Result<()> {
-        spatial_assemble_into(m, f, mu, loads, hessian, a);
-        Ok(())
-    }
-    fn parts(a: &SpatialAssembly) -> Parts<'_> {
-        Parts { gradient: &a.gradient, hessian: &a.hessian, closure: &a.closure, closure_jacobian: &a.closure_jacobian }
-    }
-    fn add_loads(
-        m: &Mechanism<Spatial>,
-        f: &SpatialFrames,
-        l: &Loads<Spatial>,
-        g: &mut DVector<f64>,
-        _: &mut SpatialAssembly,
-    ) -> Result<()> {
-        add_loads(m, f, l, g, None);
-        Ok(())
     }
     fn load_size(m: &Mechanism<Spatial>, l: &Loads<Spatial>, length: f64) -> f64 {
         let forces: f64 =
@@ -464,9 +347,6 @@ impl Statics for Spatial {
     }
     fn lerp_into(a: &Loads<Spatial>, b: &Loads<Spatial>, s: f64, out: &mut Loads<Spatial>) {
         a.lerp_into(b, s, out);
-    }
-    fn validate(m: &Mechanism<Spatial>, l: &Loads<Spatial>) -> Result<()> {
-        l.validate(m)
     }
     fn apply(parameter: &SpatialParameter, loads: &Loads<Spatial>, value: f64) -> Loads<Spatial> {
         parameter.apply(loads, value)
@@ -502,8 +382,8 @@ impl Statics for Spatial {
     /// The least-norm forces as they are (the spatial buckling has never settled them).
     fn settle_pre_buckling(
         _: &Mechanism<Spatial>,
-        _: &SpatialFrames,
-        _: &SpatialAssembly,
+        _: &Frames<Spatial>,
+        _: &Assembly<Spatial>,
         mu: &[f64],
         _: &Loads<Spatial>,
     ) -> Vec<f64> {
@@ -522,7 +402,12 @@ impl Statics for Spatial {
     fn vector(v: &Vector3<f64>) -> [f64; 3] {
         [v[0], v[1], v[2]]
     }
-    fn tendon_pulls(f: &SpatialFrames, path: &[(usize, Point3<f64>)], tension: f64, out: &mut Vec<(usize, [f64; 3])>) {
+    fn tendon_pulls(
+        f: &Frames<Spatial>,
+        path: &[(usize, Point3<f64>)],
+        tension: f64,
+        out: &mut Vec<(usize, [f64; 3])>,
+    ) {
         let w: Vec<Vector3<f64>> = path.iter().map(|(b, r)| (f.bodies[*b] * r).coords).collect();
         for (i, pair) in w.windows(2).enumerate() {
             let d = pair[1] - pair[0];
@@ -541,8 +426,8 @@ impl Statics for Spatial {
 }
 
 /// The frames of `m` at `q`, with the joints evaluated to `level`.
-fn spatial_frames_at(m: &Mechanism<Spatial>, q: &[f64], level: Level) -> SpatialFrames {
-    let mut f = SpatialFrames::new(m);
+fn spatial_frames_at(m: &Mechanism<Spatial>, q: &[f64], level: Level) -> Frames<Spatial> {
+    let mut f = Frames::new(m);
     frames_level_into(m, q, level, &mut f);
     f
 }

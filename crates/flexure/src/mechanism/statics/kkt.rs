@@ -3,13 +3,13 @@
 use super::Settings;
 #[cfg(doc)]
 use super::Solution;
-use super::dimension::{PlanarOwn, Statics};
+use super::dimension::{PlanarOwn, Statics, parts};
 use super::workspace::{Buffers, Spare, Workspace};
 use crate::error::{Error, Result};
 use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::kinematics::frames_into;
-use crate::mechanism::lagrangian::closure_hessian;
+use crate::mechanism::lagrangian::{assemble_into, closure_hessian};
 use crate::mechanism::{Loads, Mechanism};
 use crate::solver;
 use crate::space::Planar;
@@ -91,8 +91,8 @@ impl<'a, D: Statics> Kkt<'a, D> {
         work: Buffers<'a, D>,
     ) -> Result<Self> {
         settings.validate()?;
-        D::validate(m, from)?;
-        D::validate(m, to)?;
+        D::check_loads(m, from)?;
+        D::check_loads(m, to)?;
         let n = m.dof();
         let length = m.size();
         // Diagonal stiffness of each coordinate (constant for every joint
@@ -108,7 +108,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
         stiffness.resize(n, 0.0);
         unit.clear();
         unit.resize(n, 1.0);
-        for (j, s) in m.joints.iter().zip(D::joint_states(&work.frames)) {
+        for (j, s) in m.joints.iter().zip(&work.frames.joints) {
             let translation = D::joint(&j.kind).is_translation();
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
@@ -217,7 +217,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
             _ => frames,
         };
         load_gradient.as_mut_slice().fill(0.0);
-        D::add_loads(m, f, &self.change, load_gradient, a)?;
+        D::load_terms(m, f, &self.change, load_gradient, None, &mut a.points, &mut a.kept)?;
         for i in 0..n {
             d[i] = load_gradient[i] * self.row_scale[i];
         }
@@ -526,10 +526,10 @@ impl<D: Statics> solver::Problem<f64> for Kkt<'_, D> {
         *assembled = false;
         D::newton_frames(m, q, f);
         D::lerp_into(&self.from, &self.to, lambda, loads);
-        D::assemble(m, f, mu, loads, jacobian.is_some(), a)?;
+        assemble_into(m, f, mu, loads, jacobian.is_some(), a)?;
         assembled_at.copy_from_slice(q);
         *assembled = true;
-        let a = D::parts(a);
+        let a = parts(a);
         // Column-major: G's column i holds coordinate i's closure rows.
         let g = a.closure_jacobian.as_slice();
         for i in 0..n {

@@ -52,6 +52,7 @@ mod workspace;
 
 pub use assembly::assemble_unloaded;
 pub use dimension::Statics;
+pub(crate) use dimension::parts;
 pub(crate) use kkt::FAR_MARGIN;
 pub use kkt::Kkt;
 pub(super) use kkt::constrained;

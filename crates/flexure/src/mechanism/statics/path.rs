@@ -25,7 +25,7 @@ pub(super) fn solution<D: Statics>(
     let loads = if end { problem.to.clone() } else { problem.from.clone() };
     let multipliers = D::settled(problem, q, mu, &loads);
     // + 0.0: an empty sum is −0.
-    let energy = D::joint_states(&problem.work.frames).iter().map(|s| s.energy).sum::<f64>() + 0.0;
+    let energy = problem.work.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     if !(energy.is_finite() && q.iter().chain(&multipliers).all(|v| v.is_finite())) {
         return Err(Error::Singular { what: "mechanism equilibrium: the solution is not finite".into() });
     }

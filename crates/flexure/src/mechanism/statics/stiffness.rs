@@ -1,15 +1,18 @@
 //! Stiffness and compliance of a mechanism at an equilibrium.
 
 use super::Solution;
-use super::dimension::Statics;
+use super::dimension::{Statics, parts};
 use super::kkt::constrained;
 use crate::error::{Error, Result};
+use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::Mechanism;
+use crate::mechanism::kinematics::{Frames, attach, frames, frames_level_into};
+use crate::mechanism::lagrangian::{Assembly, assemble_into};
 use nalgebra::DMatrix;
 
 /// Frames of the solution.
-pub fn body_frames<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> D::Frames {
+pub fn body_frames<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Frames<D> {
     D::pose_frames(m, &s.q)
 }
 
@@ -19,10 +22,10 @@ pub fn body_frames<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> D::Frames {
 /// a dead moment may make it unsymmetric ([`Statics::DEAD_MOMENTS`]).
 pub fn stiffness<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     D::check_start(m, &s.q, &s.multipliers, &s.loads)?;
-    let f = D::exact_frames(m, &s.q);
-    let mut a = D::new_assembly(m);
-    D::assemble(m, &f, &s.multipliers, &s.loads, true, &mut a)?;
-    let a = D::parts(&a);
+    let f = frames(m, &s.q);
+    let mut a = Assembly::new(m);
+    assemble_into(m, &f, &s.multipliers, &s.loads, true, &mut a)?;
+    let a = parts(&a);
     let z = linalg::null_space(a.closure_jacobian);
     let k = if D::DEAD_MOMENTS { z.transpose() * a.hessian * &z } else { constrained(a.hessian, &z) };
     Ok((z, k))
@@ -53,7 +56,7 @@ pub fn compliance<D: Statics>(m: &Mechanism<D>, s: &Solution<D>, body: usize, at
         return Err(Error::invalid("at", format!("{at:?}"), "must be finite"));
     }
     let (z, k) = stiffness(m, s)?;
-    let jz = D::point_jacobian(m, &s.q, body, at) * &z;
+    let jz = point_jacobian(m, &s.q, body, at) * &z;
     let c = if D::DEAD_MOMENTS {
         // Not symmetrized: under a dead moment the tangent stiffness is not symmetric, nor is the compliance.
         let solved = k.lu().solve(&jz.transpose()).filter(|x| x.iter().all(|v| v.is_finite())).ok_or_else(|| {
@@ -78,4 +81,12 @@ pub fn compliance<D: Statics>(m: &Mechanism<D>, s: &Solution<D>, body: usize, at
         c
     };
     Ok(D::compliance_matrix(&c))
+}
+
+/// The Jacobian of the frame at `at` on `body` at `q`, rows in the order of
+/// the wrench: the body's rotation ($\phi$, or $\delta\theta$), then the point's displacement.
+fn point_jacobian<D: Statics>(m: &Mechanism<D>, q: &[f64], body: usize, at: D::Point) -> DMatrix<f64> {
+    let mut f = Frames::new(m);
+    frames_level_into(m, q, Level::Jacobian, &mut f);
+    attach(m, &f, body, D::translation(&D::at(&at)), true).jacobian
 }

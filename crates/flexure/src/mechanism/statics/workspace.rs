@@ -4,6 +4,8 @@
 use super::Kkt;
 use super::Settings;
 use super::dimension::Statics;
+use crate::mechanism::kinematics::Frames;
+use crate::mechanism::lagrangian::Assembly;
 use crate::mechanism::{Closure, JointSpec, Loads, Mechanism};
 use crate::solver;
 use crate::space::Planar;
@@ -19,8 +21,8 @@ use nalgebra::DVector;
 pub struct Workspace<D: Statics = Planar> {
     pub(super) dof: usize,
     pub(super) constraints: usize,
-    pub(crate) frames: D::Frames,
-    pub(crate) assembly: D::Assembly,
+    pub(crate) frames: Frames<D>,
+    pub(crate) assembly: Assembly<D>,
     pub(super) load_gradient: DVector<f64>,
     pub(crate) mu: Vec<f64>,
     pub(crate) loads: Loads<D>,
@@ -77,7 +79,7 @@ pub(super) struct StartCache<D: Statics> {
     /// The unknowns, the Jacobian and the frames there.
     pub(super) x: Vec<f64>,
     pub(super) jacobian: Vec<f64>,
-    pub(super) frames: Option<D::Frames>,
+    pub(super) frames: Option<Frames<D>>,
 }
 
 impl<D: Statics> Default for StartCache<D> {
@@ -128,7 +130,7 @@ impl<D: Statics> StartCache<D> {
         stable: bool,
         x: &[f64],
         jacobian: &[f64],
-        frames: &D::Frames,
+        frames: &Frames<D>,
     ) {
         match &mut self.frames {
             Some(kept) => D::copy_frames(frames, kept),
@@ -156,8 +158,8 @@ impl<D: Statics> Workspace<D> {
         Workspace {
             dof: n,
             constraints: rows,
-            frames: D::new_frames(m),
-            assembly: D::new_assembly(m),
+            frames: Frames::new(m),
+            assembly: Assembly::new(m),
             load_gradient: DVector::zeros(n),
             mu: vec![0.0; rows],
             loads: m.loads(),
@@ -200,7 +202,7 @@ impl<D: Statics> Workspace<D> {
             && self.dof == m.dof()
             && self.constraints == m.constraints()
             && self.joint_of.len() == m.dof()
-            && D::joint_states(&self.frames).len() == m.joints.len()
+            && self.frames.joints.len() == m.joints.len()
             && self.loads.tension.len() == m.tendons.len()
             && self.loads.force.len() == m.forces.len()
     }

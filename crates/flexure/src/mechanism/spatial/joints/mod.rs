@@ -3,7 +3,7 @@
 //! and a slider along an axis, a ball joint and a weld.
 //!
 //! [`SpatialJointKind::joint`] is the one match on the kind; the
-//! mechanism's algorithms ([`super::kinematics`], [`super::lagrangian`])
+//! mechanism's algorithms ([`crate::mechanism::kinematics`], [`crate::mechanism::lagrangian`])
 //! only call the interface.
 
 mod prismatic;

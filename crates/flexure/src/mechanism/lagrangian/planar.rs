@@ -1,120 +1,25 @@
-//! The potential of a mechanism, its exact derivatives, and its closures.
+//! The plane's part of the Lagrangian ([`super`]): point loads $V = -F\cdot w - M\phi$
+//! (a moment has a potential, since planar rotations add), the weight of a
+//! flexure's distributed mass ([`Weight`]), tendons, and the closures, whose
+//! angle is the difference of two bodies' angles.
 //!
-//! $V(q) = \sum_j U_j(q_j) - \sum_k (F_k\cdot w_k + M_k\theta_k) -
-//! \sum_b m_b\thinspace g\cdot w_b - \sum_f\int\mu\thinspace g\cdot w\thinspace ds +
-//! \sum_t T_t\thinspace\ell_t(q)$ (elastic joints, point forces and moments,
-//! the weights of bodies and of flexures with mass, tendons of constant
-//! tension), and the closures $c(q) = 0$ with $G = \partial c/\partial q$.
-//! Point derivatives come from [`super::kinematics::point`], chained
-//! through the tree; a tendon of length $\ell = \sum_i\lvert d_i\rvert$,
+//! A tendon of length $\ell = \sum_i\lvert d_i\rvert$,
 //! $d_i = w_{i+1} - w_i$, has $\nabla\ell = \sum_i \partial d_i^T u_i$ and
 //! $\nabla^2\ell = \sum_i \partial d_i^T(I - u_iu_i^T)\partial d_i/\lvert d_i\rvert + u_i\cdot\partial^2 d_i$.
 
-use super::kinematics::{Frames, PointBuffer, add_point_hessian, frames, point_into};
-use super::{Holds, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::mass::{MassModel, Weight, weight};
+use crate::mechanism::kinematics::{Attached, Frames, add_attached_hessian, attach_into};
+use crate::mechanism::{Holds, Loads, Mechanism};
 use crate::space::Wrench;
 use nalgebra::{DMatrix, DVector, Matrix2, Point2, Vector2};
 
-/// The potential, its derivatives and the closures at one configuration.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Lagrangian {
-    /// $V(q)$ (J).
-    pub potential: f64,
-    /// $\sum_j U_j$: the elastic part of $V$ (J).
-    pub elastic: f64,
-    /// $\nabla V$.
-    pub gradient: DVector<f64>,
-    /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$.
-    pub hessian: DMatrix<f64>,
-    /// $c(q)$: per weld $(\Delta x, \Delta y, \Delta\theta)$ (m, m, rad, the
-    /// angle wrapped to $(-\pi, \pi]$), per pin $(\Delta x, \Delta y)$.
-    pub closure: DVector<f64>,
-    /// $G = \partial c/\partial q$.
-    pub closure_jacobian: DMatrix<f64>,
-}
-
-pub(super) fn wrap(a: f64) -> f64 {
+pub(crate) fn wrap(a: f64) -> f64 {
     a - std::f64::consts::TAU * (a / std::f64::consts::TAU).round()
 }
 
-pub(super) fn check_sizes(m: &Mechanism, q: &[f64], mu: &[f64], loads: &Loads) -> Result<()> {
-    if q.len() != m.dof() {
-        return Err(Error::invalid("q", format!("{} values", q.len()), "must have one value per coordinate"));
-    }
-    if mu.len() != m.constraints() {
-        return Err(Error::invalid(
-            "multipliers",
-            format!("{} values", mu.len()),
-            "must have one per closure equation",
-        ));
-    }
-    if q.iter().chain(mu).any(|v| !v.is_finite()) {
-        return Err(Error::invalid("q", format!("{q:?}"), "coordinates and multipliers must be finite"));
-    }
-    loads.validate(m)
-}
-
-/// $V$, $\nabla V$, $\nabla^2 V + \sum_i\mu_i\nabla^2 c_i$, $c$ and $G$ at `q`
-/// under `loads` (exact derivatives; see [`Lagrangian`]).
-///
-/// # Example
-/// ```
-/// let m = flexure::mechanism::file::from_toml(
-///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n",
-/// )
-/// .unwrap();
-/// let l = flexure::mechanism::lagrangian::lagrangian(&m, &[0.5], &[], &m.loads()).unwrap();
-/// // A torsional spring: V = k q²/2, ∇V = k q.
-/// assert!((l.potential - 0.25).abs() < 1e-15 && (l.gradient[0] - 1.0).abs() < 1e-15);
-/// ```
-pub fn lagrangian(m: &Mechanism, q: &[f64], mu: &[f64], loads: &Loads) -> Result<Lagrangian> {
-    check_sizes(m, q, mu, loads)?;
-    assemble(m, &frames(m, q), mu, loads, true)
-}
-
-pub(super) fn assemble(m: &Mechanism, f: &Frames, mu: &[f64], loads: &Loads, with_hessian: bool) -> Result<Lagrangian> {
-    let mut a = Assembly::new(m);
-    let (potential, elastic) = assemble_into(m, f, mu, loads, with_hessian, &mut a)?;
-    let Assembly { gradient, hessian, closure, closure_jacobian, .. } = a;
-    Ok(Lagrangian { potential, elastic, gradient, hessian, closure, closure_jacobian })
-}
-
-/// The buffers of one assembly of the Lagrangian (the Data of [`assemble_into`]).
-#[derive(Debug, Clone, Default)]
-#[doc(hidden)]
-pub struct Assembly {
-    /// $\nabla V$.
-    pub gradient: DVector<f64>,
-    /// $\nabla^2 V + \sum_i \mu_i\nabla^2 c_i$ (when asked for).
-    pub hessian: DMatrix<f64>,
-    /// $c(q)$.
-    pub closure: DVector<f64>,
-    /// $G$.
-    pub closure_jacobian: DMatrix<f64>,
-    /// Two points' derivatives.
-    pub points: [PointBuffer; 2],
-    /// The flexures' distributed mass, for their weight.
-    pub weights: Weights,
-}
-
-impl Assembly {
-    pub fn new(m: &Mechanism) -> Self {
-        let (n, rows) = (m.dof(), m.constraints());
-        Assembly {
-            gradient: DVector::zeros(n),
-            hessian: DMatrix::zeros(n, n),
-            closure: DVector::zeros(rows),
-            closure_jacobian: DMatrix::zeros(rows, n),
-            points: [PointBuffer::new(m), PointBuffer::new(m)],
-            weights: Weights::new(m),
-        }
-    }
-}
-
 /// The joints' own distributed mass, for their weight: per joint with an
-/// inertia ([`super::Joint::inertia`]: a flexure with a density or mass per
+/// inertia ([`crate::mechanism::Joint::inertia`]: a flexure with a density or mass per
 /// length), the nested quadrature tables of [`MassModel`] and a buffer for
 /// its [`Weight`], asked for the first time gravity acts (so a weightless
 /// assembly costs nothing more).
@@ -136,64 +41,22 @@ impl Weights {
     }
 }
 
-/// [`assemble`] into `a` (made for `m`): returns $V$ and its elastic part.
-/// Allocates nothing.
-pub(crate) fn assemble_into(
-    m: &Mechanism,
-    f: &Frames,
-    mu: &[f64],
-    loads: &Loads,
-    with_hessian: bool,
-    a: &mut Assembly,
-) -> Result<(f64, f64)> {
-    let Assembly { gradient, hessian, closure, closure_jacobian, points, weights } = a;
-    // Each joint's block is written, not added: the blocks do not overlap.
-    let n = gradient.len();
-    gradient.as_mut_slice().fill(0.0);
-    if with_hessian {
-        hessian.as_mut_slice().fill(0.0);
-    }
-    let mut elastic = 0.0;
-    for (j, s) in m.joints.iter().zip(&f.joints) {
-        let (o, k) = (j.offset, s.gradient.len());
-        elastic += s.energy;
-        gradient.as_mut_slice()[o..o + k].copy_from_slice(s.gradient.as_slice());
-        if with_hessian && k > 0 {
-            let h = hessian.as_mut_slice();
-            for (c, column) in s.stiffness.as_slice().chunks_exact(k).enumerate() {
-                h[(o + c) * n + o..(o + c) * n + o + k].copy_from_slice(column);
-            }
-        }
-    }
-    let load = add_loads(m, f, loads, gradient, with_hessian.then_some(&mut *hessian), points, weights)?;
-    add_closures(m, f, mu, closure, closure_jacobian, with_hessian.then_some(hessian), points);
-    Ok((elastic + load, elastic))
-}
-
-impl Assembly {
-    /// $c$ and $G$ alone at the frames `f`, into `closure` and
-    /// `closure_jacobian` (no potential, no Hessian, no allocation).
-    pub(crate) fn closures_at(&mut self, m: &Mechanism, f: &Frames) {
-        add_closures(m, f, &[], &mut self.closure, &mut self.closure_jacobian, None, &mut self.points);
-    }
-}
-
 /// $c$ and $G$ at the frames `f`.
-pub(super) fn closures(m: &Mechanism, f: &Frames) -> (DVector<f64>, DMatrix<f64>) {
+pub(crate) fn closures(m: &Mechanism, f: &Frames) -> (DVector<f64>, DMatrix<f64>) {
     let (mut c, mut g) = (DVector::zeros(m.constraints()), DMatrix::zeros(m.constraints(), m.dof()));
-    add_closures(m, f, &[], &mut c, &mut g, None, &mut [PointBuffer::new(m), PointBuffer::new(m)]);
+    add_closures(m, f, &[], &mut c, &mut g, None, &mut [Attached::new(m), Attached::new(m)]);
     (c, g)
 }
 
 /// Writes $c$ and $G$, and adds $\sum_i\mu_i\nabla^2 c_i$ to `hessian` if given.
-pub(super) fn add_closures(
+pub(crate) fn add_closures(
     m: &Mechanism,
     f: &Frames,
     mu: &[f64],
     closure: &mut DVector<f64>,
     g: &mut DMatrix<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    points: &mut [PointBuffer; 2],
+    points: &mut [Attached; 2],
 ) {
     let mut row = 0;
     let [pa, pb] = points;
@@ -201,10 +64,10 @@ pub(super) fn add_closures(
         let (a, ar, aphi, b, br, bphi) =
             (c.a, c.a_origin.origin(), c.a_origin.phi, c.b, c.b_origin.origin(), c.b_origin.phi);
         let angle = c.holds == Holds::Weld;
-        point_into(m, f, a, ar, pa);
-        point_into(m, f, b, br, pb);
+        attach_into(m, f, a, ar.coords, true, pa);
+        attach_into(m, f, b, br.coords, true, pb);
         for k in 0..2 {
-            closure[row + k] = pa.position[k] - pb.position[k];
+            closure[row + k] = pa.value[k] - pb.value[k];
         }
         // Column-major: G's column `col` and the points' (θ, x, y) columns.
         let rows = g.nrows();
@@ -219,34 +82,34 @@ pub(super) fn add_closures(
         }
         // The angle is linear in q for every joint kind: no Hessian term.
         if let Some(h) = hessian.as_deref_mut() {
-            add_point_hessian(m, f, pa, Vector2::new(mu[row], mu[row + 1]), h);
-            add_point_hessian(m, f, pb, Vector2::new(-mu[row], -mu[row + 1]), h);
+            add_attached_hessian(m, f, pa, &Vector2::new(mu[row], mu[row + 1]), h);
+            add_attached_hessian(m, f, pb, &Vector2::new(-mu[row], -mu[row + 1]), h);
         }
         if angle {
-            closure[row + 2] = wrap(pa.phi + aphi - pb.phi - bphi);
+            closure[row + 2] = wrap(f.bodies[a].phi + aphi - f.bodies[b].phi - bphi);
         }
         row += c.equations();
     }
 }
 
 /// $\sum_i\mu_i\nabla^2 c_i$ alone.
-pub(super) fn closure_hessian(m: &Mechanism, f: &Frames, mu: &[f64]) -> DMatrix<f64> {
+pub(crate) fn closure_hessian(m: &Mechanism, f: &Frames, mu: &[f64]) -> DMatrix<f64> {
     let (n, rows) = (m.dof(), m.constraints());
     let mut h = DMatrix::zeros(n, n);
-    let mut points = [PointBuffer::new(m), PointBuffer::new(m)];
+    let mut points = [Attached::new(m), Attached::new(m)];
     add_closures(m, f, mu, &mut DVector::zeros(rows), &mut DMatrix::zeros(rows, n), Some(&mut h), &mut points);
     h
 }
 
 /// Adds the loads' gradient (and Hessian) to `gradient` (`hessian`);
 /// returns their potential. `points` are scratch buffers.
-pub(super) fn add_loads(
+pub(crate) fn add_loads(
     m: &Mechanism,
     f: &Frames,
     loads: &Loads,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    points: &mut [PointBuffer; 2],
+    points: &mut [Attached; 2],
     weights: &mut Weights,
 ) -> Result<f64> {
     let n = m.dof();
@@ -270,14 +133,14 @@ pub(super) fn add_loads(
         }
         let [first, second] = points;
         let (mut a, mut b) = (first, second);
-        point_into(m, f, t.path[0].0, t.path[0].1, a);
+        attach_into(m, f, t.path[0].0, t.path[0].1.coords, true, a);
         for i in 0..t.path.len() - 1 {
             let (body, r) = t.path[i + 1];
-            point_into(m, f, body, r, b);
-            let d = [b.position[0] - a.position[0], b.position[1] - a.position[1]];
+            attach_into(m, f, body, r.coords, true, b);
+            let d = [b.value[0] - a.value[0], b.value[1] - a.value[1]];
             let len = d[0].hypot(d[1]);
             // Coincident to rounding: the direction u is undefined.
-            let size = a.position.coords.iter().chain(b.position.coords.iter()).map(|v| v.abs()).sum::<f64>();
+            let size = a.value.iter().chain(b.value.iter()).map(|v| v.abs()).sum::<f64>();
             if len.is_nan() || len <= 1e-14 * size {
                 return Err(Error::Singular {
                     what: format!("tendon {:?}: via points {} and {} coincide", t.name, i + 1, i + 2),
@@ -302,8 +165,8 @@ pub(super) fn add_loads(
                         h[(r, c)] += (jd(0, r) * pc[0] + jd(1, r) * pc[1]) * tension;
                     }
                 }
-                add_point_hessian(m, f, b, Vector2::new(u[0] * tension, u[1] * tension), h);
-                add_point_hessian(m, f, a, Vector2::new(-u[0] * tension, -u[1] * tension), h);
+                add_attached_hessian(m, f, b, &Vector2::new(u[0] * tension, u[1] * tension), h);
+                add_attached_hessian(m, f, a, &Vector2::new(-u[0] * tension, -u[1] * tension), h);
             }
             std::mem::swap(&mut a, &mut b);
         }
@@ -326,17 +189,17 @@ fn add_point_load(
     w: &Wrench,
     gradient: &mut DVector<f64>,
     hessian: Option<&mut DMatrix<f64>>,
-    p: &mut PointBuffer,
+    p: &mut Attached,
 ) -> f64 {
-    point_into(m, f, body, at, p);
+    attach_into(m, f, body, at.coords, true, p);
     // Column-major 3 × n: coordinate c's (φ, x, y).
     for (g, j) in gradient.as_mut_slice().iter_mut().zip(p.jacobian.as_slice().chunks_exact(3)) {
         *g -= w.fx * j[1] + w.fy * j[2] + w.moment * j[0];
     }
     if let Some(h) = hessian {
-        add_point_hessian(m, f, p, Vector2::new(-w.fx, -w.fy), h);
+        add_attached_hessian(m, f, p, &Vector2::new(-w.fx, -w.fy), h);
     }
-    -(w.fx * p.position[0] + w.fy * p.position[1] + w.moment * p.phi)
+    -(w.fx * p.value[0] + w.fy * p.value[1] + w.moment * f.bodies[body].phi)
 }
 
 /// The flexures' weight: with the first moment $c(\alpha)$ of a flexure's
@@ -353,7 +216,7 @@ fn add_flexure_weights(
     g: Vector2<f64>,
     gradient: &mut DVector<f64>,
     mut hessian: Option<&mut DMatrix<f64>>,
-    p: &mut PointBuffer,
+    p: &mut Attached,
     weights: &mut Weights,
 ) -> Result<f64> {
     let n = m.dof();
@@ -415,59 +278,4 @@ fn add_flexure_weights(
         }
     }
     Ok(potential)
-}
-
-/// The buffers of [`gradient_into`], made once for a mechanism.
-#[derive(Debug, Clone)]
-pub struct GradientWork {
-    gradient: DVector<f64>,
-    points: [PointBuffer; 2],
-    weights: Weights,
-}
-
-impl GradientWork {
-    /// Buffers for `m`.
-    pub fn new(m: &Mechanism) -> Self {
-        GradientWork {
-            gradient: DVector::zeros(m.dof()),
-            points: [PointBuffer::new(m), PointBuffer::new(m)],
-            weights: Weights::new(m),
-        }
-    }
-}
-
-/// $V$, its elastic part and $\nabla V$ under `loads` at the frames `f`
-/// (of [`super::kinematics::frames_into`] at $q$), without the Hessian or
-/// the closures: the part of [`lagrangian`] the equations of motion need at
-/// every evaluation. Allocates nothing; the gradient is `work`'s.
-///
-/// # Example
-/// ```
-/// use flexure::mechanism::kinematics::frames;
-/// use flexure::mechanism::lagrangian::{GradientWork, gradient_into, lagrangian};
-/// let m = flexure::mechanism::file::from_toml(
-///     "[[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n",
-/// )
-/// .unwrap();
-/// let mut work = GradientWork::new(&m);
-/// let (v, elastic, g) = gradient_into(&m, &frames(&m, &[0.5]), &m.loads(), &mut work).unwrap();
-/// let full = lagrangian(&m, &[0.5], &[], &m.loads()).unwrap();
-/// assert!(v == full.potential && elastic == full.elastic && g == &full.gradient);
-/// ```
-pub fn gradient_into<'a>(
-    m: &Mechanism,
-    f: &Frames,
-    loads: &Loads,
-    work: &'a mut GradientWork,
-) -> Result<(f64, f64, &'a DVector<f64>)> {
-    let GradientWork { gradient, points, weights } = work;
-    gradient.fill(0.0);
-    let mut elastic = 0.0;
-    for (j, s) in m.joints.iter().zip(&f.joints) {
-        elastic += s.energy;
-        let mut g = gradient.rows_mut(j.offset, s.gradient.len());
-        g += &s.gradient;
-    }
-    let load = add_loads(m, f, loads, gradient, None, points, weights)?;
-    Ok((elastic + load, elastic, gradient))
 }

@@ -1,129 +1,38 @@
-//! The potential of a spatial mechanism, its gradient and Hessian, and the
-//! closure equations with their Jacobian and the Hessian of $\mu^Tc$: what
-//! the statics' KKT conditions and the dynamics' forces are made of.
-//!
-//! $$V(q) = \sum_j U_j(q_j) + \sum_t T_t\thinspace\ell_t(q) - \sum_b m_b\thinspace g\cdot c_b(q) - \sum_k \mu_kw_k\thinspace g\cdot x_k(q) - \sum_i f_i\cdot x_i(q),$$
-//! with the tendons' lengths $\ell_t$ through their via points, the bodies'
-//! centres of mass $c_b$, the stations $x_k$ of the spatial flexures' own
-//! mass ([`crate::spatial::MassQuadrature`], a dead load $\mu_kw_kg$ at each)
-//! and the load points $x_i$; a point load's moment
-//! $m_i$, fixed in space, adds the generalized force $Q_a = m_i\cdot\omega_a$,
-//! which has no potential (its derivative is not symmetric). The
-//! "gradient" below is $\nabla V - Q_m$ and its "Hessian" the derivative of
-//! that, so that equilibrium is gradient $+\thinspace G^T\mu = 0$ in every case.
-//! Point derivatives come from [`super::kinematics`].
+//! Space's part of the Lagrangian ([`super`]): point forces and dead
+//! moments, the bodies' and the spatial flexures' weights, tendons, and the
+//! closures, which compare the two frames' axes. The stations $x_k$ of a
+//! spatial flexure's own mass ([`crate::spatial::MassQuadrature`]) carry
+//! dead loads $\mu_kw_kg$; a moment $m_i$ fixed in space adds the
+//! generalized force $Q_a = m_i\cdot\omega_a$.
 
-use super::kinematics::{
-    Attached, JointWrenches, SpatialFrames, attach, gather_attached_hessian, gather_rotation_derivative,
-};
-use super::{SpatialClosure, SpatialLoads, SpatialMechanism};
 use crate::kinematics::Level;
 use crate::mechanism::Holds;
+use crate::mechanism::kinematics::{
+    Attached, Frames, JointWrenches, add_rotation_derivative, attach, gather_attached_hessian,
+};
+use crate::mechanism::spatial::{SpatialClosure, SpatialLoads, SpatialMechanism};
+use crate::space::Spatial;
 use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
-use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
-
-/// The assembled forces of one configuration.
-#[derive(Debug, Clone)]
-pub struct SpatialAssembly {
-    /// $V$ (J): elastic, tendon, gravity and force potentials (moments have none).
-    pub potential: f64,
-    /// $\nabla V - Q_m$ ($n$).
-    pub gradient: DVector<f64>,
-    /// Its derivative plus $\sum_i\mu_i\nabla^2c_i$ ($n\times n$), when asked for.
-    pub hessian: DMatrix<f64>,
-    /// $c(q)$ ($m$).
-    pub closure: DVector<f64>,
-    /// $G = \partial c/\partial q$ ($m\times n$).
-    pub closure_jacobian: DMatrix<f64>,
-    /// The Hessian's same-joint parts, gathered per joint.
-    wrenches: JointWrenches,
-}
-
-impl SpatialAssembly {
-    /// Buffers for `m`.
-    pub fn new(m: &SpatialMechanism) -> Self {
-        let (n, r) = (m.dof(), m.constraints());
-        SpatialAssembly {
-            potential: 0.0,
-            gradient: DVector::zeros(n),
-            hessian: DMatrix::zeros(n, n),
-            closure: DVector::zeros(r),
-            closure_jacobian: DMatrix::zeros(r, n),
-            wrenches: JointWrenches::new(m),
-        }
-    }
-}
-
-/// Assembles everything at the frames `f` (of [`super::kinematics::frames_into`]),
-/// with multipliers `mu` (one per closure equation) and `loads`.
-pub fn assemble_into(
-    m: &SpatialMechanism,
-    f: &SpatialFrames,
-    mu: &[f64],
-    loads: &SpatialLoads,
-    with_hessian: bool,
-    out: &mut SpatialAssembly,
-) {
-    out.gradient.fill(0.0);
-    out.potential = 0.0;
-    if with_hessian {
-        out.hessian.fill(0.0);
-    }
-    for (j, s) in m.joints.iter().zip(&f.joints) {
-        let k = s.gradient.len();
-        out.potential += s.energy;
-        out.gradient.rows_mut(j.offset, k).copy_from(&s.gradient);
-        if with_hessian {
-            out.hessian.view_mut((j.offset, j.offset), (k, k)).copy_from(&s.stiffness);
-        }
-    }
-    let w = &mut out.wrenches;
-    let hessian = with_hessian.then_some((&mut out.hessian, &mut *w));
-    out.potential += gather_loads(m, f, loads, &mut out.gradient, hessian);
-    closures_into(m, f, &mut out.closure, &mut out.closure_jacobian);
-    if with_hessian {
-        gather_closure_hessian(m, f, mu, &mut out.hessian, w);
-        w.flush(m, f, &mut out.hessian);
-    }
-}
-
-/// Adds the loads' part of the gradient (and of its derivative, when asked
-/// for) and returns their potential. Linear in `loads`: with a change of
-/// loads it gives the load derivative of the equilibrium equations.
-pub fn add_loads(
-    m: &SpatialMechanism,
-    f: &SpatialFrames,
-    loads: &SpatialLoads,
-    gradient: &mut DVector<f64>,
-    hessian: Option<&mut DMatrix<f64>>,
-) -> f64 {
-    match hessian {
-        None => gather_loads(m, f, loads, gradient, None),
-        Some(h) => {
-            let mut w = JointWrenches::new(m);
-            let potential = gather_loads(m, f, loads, gradient, Some((&mut *h, &mut w)));
-            w.flush(m, f, h);
-            potential
-        }
-    }
-}
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Point3, Vector3};
 
 /// The Hessian and the sums its same-joint parts are gathered in.
 type Gathered<'a> = Option<(&'a mut DMatrix<f64>, &'a mut JointWrenches)>;
 
-/// [`add_loads`] with the Hessian's same-joint parts gathered into the
-/// given [`JointWrenches`], not yet added.
-fn gather_loads(
+/// Adds the loads' part of the gradient (and of its derivative, when asked
+/// for, its same-joint parts gathered into the given [`JointWrenches`], not
+/// yet added) and returns their potential. Linear in `loads`: with a change
+/// of loads it gives the load derivative of the equilibrium equations.
+pub(super) fn gather_loads(
     m: &SpatialMechanism,
-    f: &SpatialFrames,
+    f: &Frames<Spatial>,
     loads: &SpatialLoads,
     gradient: &mut DVector<f64>,
     mut hessian: Gathered<'_>,
 ) -> f64 {
     let mut potential = 0.0;
     // A force u at a point: V = −u·x, ∇V = −Jᵀu, ∇²V = −Σ u_c ∇²x_c.
-    let push = |x: &Attached, u: Vector3<f64>, gradient: &mut DVector<f64>, hessian: &mut Gathered<'_>| {
-        gradient.gemv_tr(-1.0, &x.jacobian, &u, 1.0);
+    let push = |x: &Attached<Spatial>, u: Vector3<f64>, gradient: &mut DVector<f64>, hessian: &mut Gathered<'_>| {
+        gradient.gemv_tr(-1.0, &x.jacobian.fixed_rows::<3>(3), &u, 1.0);
         if let Some((h, w)) = hessian {
             gather_attached_hessian(m, f, x, &(-u), h, Some(w));
         }
@@ -157,12 +66,12 @@ fn gather_loads(
             while let Some(j) = m.parent_joint(b) {
                 let o = m.joints[j].offset;
                 for c in o..o + f.joints[j].gradient.len() {
-                    gradient[c] -= moment.dot(&f.omega.column(c));
+                    gradient[c] -= moment.dot(&f.omega[c]);
                 }
                 b = m.joints[j].parent;
             }
             if let Some((h, w)) = &mut hessian {
-                gather_rotation_derivative(m, f, load.body, &(-moment), h, Some(w));
+                add_rotation_derivative(m, f, load.body, &(-moment), h, Some(w));
             }
         }
     }
@@ -170,7 +79,7 @@ fn gather_loads(
         if tension == 0.0 {
             continue;
         }
-        let points: Vec<Attached> = t.path.iter().map(|(b, r)| attach(m, f, *b, r.coords, true)).collect();
+        let points: Vec<Attached<Spatial>> = t.path.iter().map(|(b, r)| attach(m, f, *b, r.coords, true)).collect();
         for pair in points.windows(2) {
             let (x0, x1) = (&pair[0], &pair[1]);
             let d = x1.value - x0.value;
@@ -180,7 +89,7 @@ fn gather_loads(
             }
             let u = d / l;
             potential += tension * l;
-            let dj = &x1.jacobian - &x0.jacobian;
+            let dj: Matrix3xX<f64> = x1.jacobian.fixed_rows::<3>(3) - x0.jacobian.fixed_rows::<3>(3);
             gradient.gemv_tr(tension, &dj, &u, 1.0);
             if let Some((h, w)) = &mut hessian {
                 let projector = (Matrix3::identity() - u * u.transpose()) * (tension / l);
@@ -208,7 +117,7 @@ fn gather_loads(
 /// coordinate $c$ upstream gives $-g\cdot(\omega_c\times R_A\partial_aS)$.
 fn flexure_weight(
     m: &SpatialMechanism,
-    f: &SpatialFrames,
+    f: &Frames<Spatial>,
     j: usize,
     quadrature: &MassQuadrature,
     gravity: Vector3<f64>,
@@ -242,13 +151,13 @@ fn flexure_weight(
     let centroid = f.bodies[spec.parent].inverse() * Point3::from(first / total);
     let x = attach(m, f, spec.parent, centroid.coords, true);
     let weight = gravity * total;
-    gradient.gemv_tr(-1.0, &x.jacobian, &weight, 1.0);
+    gradient.gemv_tr(-1.0, &x.jacobian.fixed_rows::<3>(3), &weight, 1.0);
     if let Some((h, w)) = hessian {
         gather_attached_hessian(m, f, &x, &(-weight), h, Some(w));
         for &up in x.path() {
             let ou = m.joints[up].offset;
             for c in ou..ou + f.joints[up].gradient.len() {
-                let omega = f.omega.column(c).into_owned();
+                let omega = f.omega[c];
                 for (a, d) in turned.iter().enumerate() {
                     let v = -gravity.dot(&omega.cross(d));
                     h[(o + a, c)] += v;
@@ -268,7 +177,7 @@ fn flexure_weight(
 
 /// The potential $-g\cdot\sum_k\mu_kw_kx_k$ of every spatial flexure's own
 /// mass under `gravity` at the frames `f` (their poses alone).
-pub(crate) fn flexure_weight_potential(m: &SpatialMechanism, f: &SpatialFrames, gravity: Vector3<f64>) -> f64 {
+pub(crate) fn flexure_weight_potential(m: &SpatialMechanism, f: &Frames<Spatial>, gravity: Vector3<f64>) -> f64 {
     if gravity == Vector3::zeros() {
         return 0.0;
     }
@@ -289,13 +198,13 @@ pub(crate) fn flexure_weight_potential(m: &SpatialMechanism, f: &SpatialFrames, 
 /// The vectors a closure is made of: its two points, and the directions
 /// its rotation equations compare.
 struct ClosureVectors {
-    points: [Attached; 2],
+    points: [Attached<Spatial>; 2],
     /// Weld: the three axes of each frame; pin: the axis on `a` and the two normals on `b`.
-    a_directions: Vec<Attached>,
-    b_directions: Vec<Attached>,
+    a_directions: Vec<Attached<Spatial>>,
+    b_directions: Vec<Attached<Spatial>>,
 }
 
-fn closure_vectors(m: &SpatialMechanism, f: &SpatialFrames, c: &SpatialClosure) -> ClosureVectors {
+fn closure_vectors(m: &SpatialMechanism, f: &Frames<Spatial>, c: &SpatialClosure) -> ClosureVectors {
     let point = |b: usize, r: Vector3<f64>| attach(m, f, b, r, true);
     let direction = |b: usize, r: Vector3<f64>| attach(m, f, b, r, false);
     let points = [point(c.a, c.a_origin.translation.vector), point(c.b, c.b_origin.translation.vector)];
@@ -323,7 +232,7 @@ fn closure_vectors(m: &SpatialMechanism, f: &SpatialFrames, c: &SpatialClosure) 
 }
 
 /// $c(q)$ and $G$ into `c` ($m$) and `g` ($m\times n$).
-pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f64>, g: &mut DMatrix<f64>) {
+pub fn closures_into(m: &SpatialMechanism, f: &Frames<Spatial>, c: &mut DVector<f64>, g: &mut DMatrix<f64>) {
     let mut row = 0;
     for closure in &m.closures {
         let v = closure_vectors(m, f, closure);
@@ -331,7 +240,7 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
         for i in 0..3 {
             c[row + i] = pa.value[i] - pb.value[i];
             for k in 0..g.ncols() {
-                g[(row + i, k)] = pa.jacobian[(i, k)] - pb.jacobian[(i, k)];
+                g[(row + i, k)] = pa.jacobian[(3 + i, k)] - pb.jacobian[(3 + i, k)];
             }
         }
         row += 3;
@@ -345,7 +254,7 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
                 for k in 0..g.ncols() {
                     let mut d = Vector3::zeros();
                     for (a, b) in v.a_directions.iter().zip(&v.b_directions) {
-                        d += (b.jacobian.column(k).cross(&a.value) + b.value.cross(&a.jacobian.column(k))) * 0.5;
+                        d += (b.linear(k).cross(&a.value) + b.value.cross(&a.linear(k))) * 0.5;
                     }
                     for i in 0..3 {
                         g[(row + i, k)] = d[i];
@@ -362,7 +271,7 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
                 for (i, n) in v.b_directions.iter().enumerate() {
                     c[row + i] = n.value.dot(&z.value);
                     for k in 0..g.ncols() {
-                        g[(row + i, k)] = n.jacobian.column(k).dot(&z.value) + n.value.dot(&z.jacobian.column(k));
+                        g[(row + i, k)] = n.linear(k).dot(&z.value) + n.value.dot(&z.linear(k));
                     }
                 }
                 row += 2;
@@ -374,31 +283,32 @@ pub fn closures_into(m: &SpatialMechanism, f: &SpatialFrames, c: &mut DVector<f6
 
 /// Adds $\mu\cdot(x\times y)$'s Hessian's cross terms, $C + C^T$ with
 /// $C_{cd} = \mu\cdot(\partial_cx\times\partial_dy)$, to `h`.
-fn add_cross_terms(x: &Attached, y: &Attached, mu: &Vector3<f64>, h: &mut DMatrix<f64>) {
+fn add_cross_terms(x: &Attached<Spatial>, y: &Attached<Spatial>, mu: &Vector3<f64>, h: &mut DMatrix<f64>) {
     // μ·(X_c × Y_d) = X_c · (Y_d × μ).
-    let ymu = DMatrix::from_fn(3, y.jacobian.ncols(), |i, d| y.jacobian.column(d).cross(mu)[i]);
-    let c = x.jacobian.transpose() * ymu;
+    let ymu = DMatrix::from_fn(3, y.jacobian.ncols(), |i, d| y.linear(d).cross(mu)[i]);
+    let c = x.jacobian.fixed_rows::<3>(3).transpose() * ymu;
     *h += &c + c.transpose();
 }
 
 /// Adds $\sum_i\mu_i\nabla^2c_i$ to `h` (within each joint as
-/// [`super::kinematics::add_attached_hessian`]).
-pub fn add_closure_hessian(m: &SpatialMechanism, f: &SpatialFrames, mu: &[f64], h: &mut DMatrix<f64>) {
+/// [`crate::mechanism::kinematics::add_attached_hessian`]).
+pub fn add_closure_hessian(m: &SpatialMechanism, f: &Frames<Spatial>, mu: &[f64], h: &mut DMatrix<f64>) {
     let mut w = JointWrenches::new(m);
     gather_closure_hessian(m, f, mu, h, &mut w);
     w.flush(m, f, h);
 }
 
 /// [`add_closure_hessian`] with the same-joint parts gathered into `w`, not yet added.
-fn gather_closure_hessian(
+pub(super) fn gather_closure_hessian(
     m: &SpatialMechanism,
-    f: &SpatialFrames,
+    f: &Frames<Spatial>,
     mu: &[f64],
     h: &mut DMatrix<f64>,
     sums: &mut JointWrenches,
 ) {
-    let mut add =
-        |x: &Attached, u: &Vector3<f64>, h: &mut DMatrix<f64>| gather_attached_hessian(m, f, x, u, h, Some(sums));
+    let mut add = |x: &Attached<Spatial>, u: &Vector3<f64>, h: &mut DMatrix<f64>| {
+        gather_attached_hessian(m, f, x, u, h, Some(sums))
+    };
     let mut row = 0;
     for closure in &m.closures {
         let v = closure_vectors(m, f, closure);
@@ -423,7 +333,7 @@ fn gather_closure_hessian(
                     let weight = mu[row + i];
                     add(z, &(n.value * weight), h);
                     add(n, &(z.value * weight), h);
-                    let c = n.jacobian.transpose() * &z.jacobian * weight;
+                    let c = n.jacobian.fixed_rows::<3>(3).transpose() * z.jacobian.fixed_rows::<3>(3) * weight;
                     *h += &c + c.transpose();
                 }
                 row += 2;
