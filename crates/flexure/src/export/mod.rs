@@ -70,6 +70,7 @@ pub mod mjcf;
 pub mod model;
 mod range;
 pub mod sdf;
+pub mod spatial;
 pub mod step;
 pub mod urdf;
 pub mod wrench;
