@@ -34,13 +34,12 @@
 use super::xml::{Element, number, numbers};
 use super::{LoadRange, Options, step};
 use crate::error::{Error, Result};
-use crate::mechanism::statics::{Settings, Solution, assemble_unloaded, solve_between};
 use crate::mechanism::{Holds, Mechanism};
 use crate::prb::PrbKind;
 use crate::space::Spatial;
 use crate::spatial::{SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics};
 use nalgebra::{DVector, Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
-use serde::ser::{SerializeMap, SerializeStruct};
+use serde::ser::SerializeStruct;
 
 /// Where a chain's pivots sit, as fractions of the length from the root:
 /// Howell's 1R characteristic pivot, $1 - \gamma$ with $\gamma$ =
@@ -139,40 +138,14 @@ impl serde::Serialize for Entry<'_> {
 
 impl serde::Serialize for SpatialReport {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        struct Joints<'a>(&'a [(String, SpatialFit)]);
-        impl serde::Serialize for Joints<'_> {
-            fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-                let mut m = s.serialize_map(Some(self.0.len()))?;
-                for (n, f) in self.0 {
-                    m.serialize_entry(n, &Entry(f))?;
-                }
-                m.end()
-            }
-        }
-        struct Armature<'a>(&'a [(String, f64)]);
-        impl serde::Serialize for Armature<'_> {
-            fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-                let mut m = s.serialize_map(Some(self.0.len()))?;
-                for (n, a) in self.0 {
-                    m.serialize_entry(n, a)?;
-                }
-                m.end()
-            }
-        }
-        #[derive(serde::Serialize)]
-        struct Range {
-            from: f64,
-            to: f64,
-            count: usize,
-        }
         let mut m = s.serialize_struct("SpatialReport", 9)?;
         m.serialize_field("format", "mjcf")?;
         m.serialize_field("dimension", &3)?;
         m.serialize_field("prb", &self.prb)?;
-        m.serialize_field("range", &Range { from: self.range.from, to: self.range.to, count: self.range.count })?;
-        m.serialize_field("joints", &Joints(&self.joints))?;
+        m.serialize_field("range", &super::RangeEntry::from(&self.range))?;
+        m.serialize_field("joints", &super::Map(&self.joints, Entry))?;
         m.serialize_field("step", &self.step)?;
-        m.serialize_field("armature", &Armature(&self.armature))?;
+        m.serialize_field("armature", &super::Map(&self.armature, |a: &f64| *a))?;
         m.serialize_field("warnings", &self.warnings)?;
         m.serialize_field("notes", &self.notes)?;
         m.end()
@@ -188,25 +161,6 @@ pub struct SpatialExport {
     pub report: SpatialReport,
     /// Every warning (as in the report).
     pub warnings: Vec<String>,
-}
-
-/// The spatial mechanism's equilibria along `range`, each continued from
-/// the last, from the unloaded, assembled shape.
-fn equilibria(m: &Mechanism<Spatial>, range: &LoadRange, settings: &Settings) -> Result<Vec<Solution<Spatial>>> {
-    range.validate()?;
-    let full = m.loads();
-    let mut last = assemble_unloaded(m, settings)?;
-    let mut out = Vec::with_capacity(range.count);
-    for lambda in range.fractions() {
-        let mut loads = full.clone();
-        loads.tension.iter_mut().for_each(|t| *t *= lambda);
-        loads.force.iter_mut().for_each(|f| *f *= lambda);
-        loads.gravity *= lambda;
-        let s = solve_between(m, &last, &loads, settings)?;
-        out.push(s.clone());
-        last = s;
-    }
-    Ok(out)
 }
 
 /// The flexure's tip compliance at rest (root frame; straight at rest).
@@ -379,7 +333,11 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
             }
         }
     }
-    let solutions = equilibria(m, &options.range, &options.settings)?;
+    let solutions = super::wrench::equilibria_scaled(m, &options.range, &options.settings, |loads, lambda| {
+        loads.tension.iter_mut().for_each(|t| *t *= lambda);
+        loads.force.iter_mut().for_each(|f| *f *= lambda);
+        loads.gravity *= lambda;
+    })?;
     let mut joints = Vec::new();
     for (spec, fit) in m.joints.iter().zip(fits.iter_mut()) {
         let (Some(fit), Some(f)) = (fit.as_mut(), spec.kind.flexure()) else { continue };
@@ -579,19 +537,11 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         }
         closures.push((name, c.holds, pair));
     }
-    let solref = format!("{} 1", number(2.0 * if options.step > 0.0 { options.step } else { step::DEFAULT_STEP }));
+    let solref = super::mjcf::closure_solref(options.step);
     for (name, idx, tension) in &tendon_sites {
-        let mut t = Element::new("spatial").attr("name", name.as_str());
-        for s in idx {
-            t.push(Element::new("site").attr("site", sites[*s].name.as_str()));
-        }
+        let (t, motor) = super::mjcf::tendon(name, idx.iter().map(|s| sites[*s].name.as_str()));
         tendons.push(t);
-        actuators.push(
-            Element::new("motor")
-                .attr("name", format!("tendon_{name}"))
-                .attr("tendon", name.as_str())
-                .attr("gear", "-1"),
-        );
+        actuators.push(motor);
         ctrl.push(*tension);
     }
     for (name, s, w) in &force_sites {
