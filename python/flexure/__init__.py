@@ -75,8 +75,8 @@ _MAX_FILE_BYTES = 64 << 20
 class Mechanism:
     """A flexure-jointed mechanism described in TOML (docs/mechanism-format.md in the repository):
     planar, or spatial for a file with `dimension = 3` (`dimension` says which). A spatial
-    mechanism answers solve, compliance, sweep, modes, simulate and buckle, each documented
-    with its spatial form; export raises ValueError saying it is planar only for now."""
+    mechanism answers solve, compliance, sweep, modes, simulate, buckle and export (MJCF
+    only), each documented with its spatial form."""
 
     def __init__(self, inner: _Mechanism, source: _Optional[str] = None):
         self._inner = inner
@@ -347,7 +347,11 @@ class Mechanism:
         the file's stem). report: format, prb, range, joints {flexure joint: {prb, gamma,
         k_theta, stiffness, pivots, error {position, angle}, flagged (past 1 % of L or 1°),
         samples, length}}, step, armature {joint: armature written}, warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
-        notes. Bad arguments raise ValueError naming them (docs/export.md in the repository)."""
+        notes. A spatial mechanism is written to MJCF only, each flexure a chain of pivots of
+        three hinges (bending about z and y, twist about x) with springs fitted to its tip
+        compliance at rest; its report adds dimension 3, 3-D pivots and one [k_z, k_y, k_x]
+        stiffness per pivot. Bad arguments raise ValueError naming them (docs/export.md in
+        the repository)."""
         if name is None:
             name = _Path(self._source).stem if self._source else "mechanism"
         try:

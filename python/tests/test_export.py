@@ -27,7 +27,7 @@ import yourdfpy
 import flexure
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-# The planar examples: export is planar for now (a spatial file is refused: test_spatial_mechanism.py).
+# The planar examples (the spatial ones are exported in test_export_spatial.py).
 PLANAR = sorted(p.name for p in EXAMPLES.glob("*.toml") if "dimension = 3" not in p.read_text())
 
 # A mechanism of rigid joints only: springs with rest values, a slider, a fixed joint,

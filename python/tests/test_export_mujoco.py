@@ -64,6 +64,28 @@ def gaps(m, d):
     return out
 
 
+def check_flags(fits, caught):
+    """Each fit is flagged exactly when past 1 % of L or 1°, and each flagged one warned of by name."""
+    for j, f in fits.items():
+        over = f["error"]["position"] > 0.01 * f["length"] or f["error"]["angle"] > np.pi / 180
+        assert f["flagged"] == over, j
+        if over:
+            assert any(f'"{j}"' in w and "1 % of L or 1°" in w for w in caught), caught
+
+
+def bounds(fits, g, span):
+    """(margin, e_pos, e_ang, soft_pos, soft_ang) of the rest check: the fit errors carried through
+    lever arms (position: sum of e_pos + e_angle * span; angle: sum of e_angle), the margin (1.1
+    for a tree, 2 with closures), and the closures' softness from their gaps g."""
+    e_pos = sum(f["error"]["position"] + f["error"]["angle"] * span for f in fits.values())
+    e_ang = sum(f["error"]["angle"] for f in fits.values())
+    margin = 2.0 if g else 1.1
+    shortest = min(f["length"] for f in fits.values())
+    soft_pos = margin * sum(p + t * span for p, t in g)
+    soft_ang = margin * sum(t + p / shortest for p, t in g)
+    return margin, e_pos, e_ang, soft_pos, soft_ang
+
+
 @pytest.mark.parametrize("name, prb", CASES)
 def test_examples_step_stably_from_rest_and_from_their_keyframe(name, prb):
     # Two seconds, no damping but the file's, at the model's own step (MuJoCo's default 2 ms),
@@ -96,11 +118,7 @@ def test_examples_rest_in_mujoco_where_solve_says(name, prb):
     path = EXAMPLES / name
     xml, report, caught = exported(path, prb)
     fits = report["joints"]
-    for j, f in fits.items():
-        over = f["error"]["position"] > 0.01 * f["length"] or f["error"]["angle"] > np.pi / 180
-        assert f["flagged"] == over, j
-        if over:
-            assert any(f'"{j}"' in w and "1 % of L or 1°" in w for w in caught), caught
+    check_flags(fits, caught)
     if prb == "3R":
         assert not any(f["flagged"] for f in fits.values()), "the default chain is unflagged on every example"
     m, d = settle(xml)
@@ -109,13 +127,7 @@ def test_examples_rest_in_mujoco_where_solve_says(name, prb):
     solved = flexure.Mechanism.from_file(path).solve()["bodies"]
     points = np.array([[b["x"], b["y"]] for b in solved.values()])
     span = max(np.hypot(*(p - r)) for p in points for r in points) + max(f["length"] for f in fits.values())
-    e_pos = sum(f["error"]["position"] + f["error"]["angle"] * span for f in fits.values())
-    e_ang = sum(f["error"]["angle"] for f in fits.values())
-    g = gaps(m, d)
-    margin = 2.0 if g else 1.1
-    shortest = min(f["length"] for f in fits.values())
-    soft_pos = margin * sum(p + t * span for p, t in g)
-    soft_ang = margin * sum(t + p / shortest for p, t in g)
+    margin, e_pos, e_ang, soft_pos, soft_ang = bounds(fits, gaps(m, d), span)
     for body, (x, y, phi) in poses(m, d).items():
         if body not in solved:
             continue  # a pseudo-rigid link

@@ -562,7 +562,9 @@ def test_mujoco_agrees_on_a_rigid_3d_chain():
 
 def test_what_spatial_files_do_not_have_yet_is_refused_by_name():
     m = hinges()
-    with pytest.raises(ValueError, match=r"Mechanism\.export: a spatial mechanism \(dimension = 3\) has no export"):
+    # Export writes spatial flexures and fixed joints (test_export_spatial.py); a rigid joint with
+    # coordinates is refused, naming it.
+    with pytest.raises(ValueError, match=r"joint = yaw: is a rigid joint with coordinates"):
         m.export()
 
 

@@ -57,12 +57,7 @@ pub struct Exported {
 /// Fits, builds and writes the model; warnings (flagged fits, what the
 /// format cannot hold) and notes are queued for stderr.
 pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
-    let flexure::model::Model::Planar(m) = crate::input::read_model(&args.file)? else {
-        return Err(format!(
-            "{}: a spatial mechanism (dimension = 3): export fits pseudo-rigid-body joints to planar flexures only for now",
-            args.file.display()
-        ));
-    };
+    let model = crate::input::read_model(&args.file)?;
     let name = args.name.clone().unwrap_or_else(|| {
         args.file.file_stem().map_or_else(|| "mechanism".into(), |s| s.to_string_lossy().into_owned())
     });
@@ -75,15 +70,14 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
         name,
         ..Default::default()
     };
-    let e = flexure::export::export(&m, &options)
-        .map_err(|e| format!("{}: {}", args.file.display(), crate::describe(e)))?;
-    for w in &e.warnings {
+    let e = model.export(&options).map_err(|e| format!("{}: {}", args.file.display(), crate::describe(e)))?;
+    for w in e.warnings() {
         crate::options::warn(w.clone());
     }
-    for n in &e.report.notes {
+    for n in e.notes() {
         crate::options::note(n.clone());
     }
-    let mut report = json!(e.report);
+    let mut report = json!(e);
     if !json {
         // The table form: warnings and notes are on stderr already, one a line.
         if let Some(r) = report.as_object_mut() {
@@ -93,28 +87,20 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
     }
     match &args.out {
         Some(path) => {
-            std::fs::write(path, &e.xml).map_err(|err| format!("--out {}: {err}", path.display()))?;
+            std::fs::write(path, e.xml()).map_err(|err| format!("--out {}: {err}", path.display()))?;
             report["out"] = json!(path.display().to_string());
             Ok(Exported { report, model: None })
         }
         None if json => {
-            report["model"] = json!(e.xml);
+            report["model"] = json!(e.xml());
             Ok(Exported { report, model: None })
         }
         None => {
             // The model on stdout; the fits told on stderr.
-            for (joint, f) in &e.report.joints {
-                crate::options::note(format!(
-                    "{joint}: {} gamma {:?}, k_theta {:?}, error {:.3e} m ({:.3} % of L), {:.3e} rad",
-                    f.kind,
-                    f.gamma,
-                    f.k_theta,
-                    f.error.position,
-                    100.0 * f.error.position / f.length,
-                    f.error.angle
-                ));
+            for line in e.fit_lines() {
+                crate::options::note(line);
             }
-            Ok(Exported { report, model: Some(e.xml) })
+            Ok(Exported { report, model: Some(e.xml().to_string()) })
         }
     }
 }

@@ -129,8 +129,12 @@ fn bad_spatial_input_names_its_key_line_and_column() {
     }
     // What spatial files do not have yet says so.
     let file = example("stage3d.toml");
-    let (code, out, err) = run(&["export", &file, "--to", "mjcf"]);
+    let (code, out, err) = run(&["export", &file, "--to", "sdf"]);
     assert!(code == 2 && out.is_empty() && err.contains("a spatial mechanism (dimension = 3)"), "{err}");
+    assert!(err.contains("to") && err.contains("mjcf only"), "{err}");
+    // MJCF it writes (checked in MuJoCo in python/tests/test_export_spatial.py).
+    let (code, out, _) = run(&["export", &file, "--to", "mjcf"]);
+    assert!(code == 0 && out.contains(r#"<weld name="weld_0""#) && out.contains(r#"<joint name="left_3x""#), "{out}");
     // Draw renders it, from each view.
     for view in ["iso", "front", "top", "side"] {
         let out = dir.path().join(format!("{view}.svg"));

@@ -37,7 +37,7 @@ fn load_range(range: Option<&Bound<'_, PyAny>>) -> PyResult<LoadRange> {
 #[allow(clippy::too_many_arguments)]
 pub fn export<'py>(
     py: Python<'py>,
-    m: &flexure::mechanism::Mechanism,
+    m: &flexure::model::Model,
     to: &str,
     prb: &str,
     range: Option<&Bound<'py, PyAny>>,
@@ -50,10 +50,10 @@ pub fn export<'py>(
     let range = load_range(range)?;
     let options =
         Options { format, prb, range, armature: armature.0, step: step.0, name: name.into(), ..Default::default() };
-    let e = interruptible(py, || flexure::export::export(m, &options))?;
-    for w in &e.warnings {
+    let e = interruptible(py, || m.export(&options))?;
+    for w in e.warnings() {
         crate::warnings::warn(py, &py.get_type::<PyUserWarning>(), w.clone(), 2)?;
     }
-    let report = to_dict(py, &e.report)?;
-    Ok((e.xml, report))
+    let report = to_dict(py, &e)?;
+    Ok((e.xml().to_string(), report))
 }

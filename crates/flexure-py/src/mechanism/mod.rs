@@ -2,8 +2,8 @@
 //! (`dimension = 3`), as the door `flexure::model::Model`, and the analyses
 //! it answers, each written once for both dimensions through the door:
 //! `solve.rs`, `sweep.rs`, `buckle` and `modes` (`eigen.rs`), `compliance`
-//! (`frame.rs`) and `simulate` (`crate::simulate`). Only `export` is planar
-//! for now (issue 36: spatial export).
+//! (`frame.rs`), `simulate` (`crate::simulate`) and `export` (`crate::export`,
+//! MJCF only for a spatial file).
 
 mod eigen;
 mod frame;
@@ -26,17 +26,6 @@ pub struct Mechanism {
 }
 
 impl Mechanism {
-    /// The planar mechanism, or a ValueError saying that `what` answers
-    /// planar files only for now.
-    fn planar(&self, what: &str) -> PyResult<&flexure::mechanism::Mechanism> {
-        match &self.model {
-            Model::Planar(m) => Ok(m),
-            Model::Spatial(_) => Err(PyValueError::new_err(format!(
-                "Mechanism.{what}: a spatial mechanism (dimension = 3) has no {what} yet; it answers solve, compliance, sweep, modes, simulate and buckle"
-            ))),
-        }
-    }
-
     /// The frame named by `body` and the point `at` on it (its origin when
     /// `None`), of the mechanism's dimension ([`frame::point`]).
     fn frame(&self, body: &str, at: Option<&Bound<'_, PyAny>>) -> PyResult<(usize, Vec<f64>)> {
@@ -112,7 +101,7 @@ impl Mechanism {
         step: Real,
         name: &str,
     ) -> PyResult<(String, Bound<'py, PyDict>)> {
-        crate::export::export(py, self.planar("export")?, to, prb, range, armature, step, name)
+        crate::export::export(py, &self.model, to, prb, range, armature, step, name)
     }
 
     /// Linear buckling about the unloaded configuration, as `flexure buckle --json`: see

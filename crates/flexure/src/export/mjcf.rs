@@ -25,6 +25,18 @@ pub fn closure_solref(step: f64) -> String {
     numbers(&[tc, 1.0])
 }
 
+/// A tendon through the sites named, `<spatial>`, and its motor, gear −1
+/// (MuJoCo's tendon force is positive when it lengthens the tendon), whose
+/// control is the tension (N).
+pub fn tendon<'a>(name: &str, sites: impl Iterator<Item = &'a str>) -> (Element, Element) {
+    let mut t = Element::new("spatial").attr("name", name);
+    for s in sites {
+        t.push(Element::new("site").attr("site", s));
+    }
+    let motor = Element::new("motor").attr("name", format!("tendon_{name}")).attr("tendon", name).attr("gear", "-1");
+    (t, motor)
+}
+
 /// A hinge's `range` (its coordinate, about `ref`): where its spring stops
 /// holding ([`super::step::soft_limits`]), ±π on a side where it never
 /// does; `None` when it holds everywhere or is not a hinge.
@@ -114,17 +126,9 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String], step: f64) -> S
     for a in &model.attachments {
         match a {
             Attachment::Tendon { name, sites, tension } => {
-                let mut t = Element::new("spatial").attr("name", name.as_str());
-                for s in sites {
-                    t.push(Element::new("site").attr("site", model.sites[*s].name.as_str()));
-                }
+                let (t, motor) = tendon(name, sites.iter().map(|s| model.sites[*s].name.as_str()));
                 tendons.push(t);
-                actuators.push(
-                    Element::new("motor")
-                        .attr("name", format!("tendon_{name}"))
-                        .attr("tendon", name.as_str())
-                        .attr("gear", "-1"),
-                );
+                actuators.push(motor);
                 ctrl.push(*tension);
             }
             Attachment::Force { name, site, wrench } => {

@@ -70,6 +70,7 @@ pub mod mjcf;
 pub mod model;
 mod range;
 pub mod sdf;
+pub mod spatial;
 pub mod step;
 pub mod urdf;
 pub mod wrench;
@@ -205,27 +206,31 @@ pub struct FitReport {
     pub notes: Vec<String>,
 }
 
-struct Joints<'a>(&'a [(String, JointFit)]);
+/// A list of (name, value) serialized as a map, each value through `.1`:
+/// the reports' `joints` and `armature`.
+pub(crate) struct Map<'a, T, E>(pub &'a [(String, T)], pub fn(&'a T) -> E);
 
-impl serde::Serialize for Joints<'_> {
+impl<'a, T, E: serde::Serialize> serde::Serialize for Map<'a, T, E> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         let mut m = s.serialize_map(Some(self.0.len()))?;
-        for (name, f) in self.0 {
-            m.serialize_entry(name, &JointEntry(f))?;
+        for (name, v) in self.0 {
+            m.serialize_entry(name, &(self.1)(v))?;
         }
         m.end()
     }
 }
 
-struct Armature<'a>(&'a [(String, f64)]);
+/// A load range as the reports write it: `{"from", "to", "count"}`.
+#[derive(serde::Serialize)]
+pub(crate) struct RangeEntry {
+    from: f64,
+    to: f64,
+    count: usize,
+}
 
-impl serde::Serialize for Armature<'_> {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(self.0.len()))?;
-        for (name, a) in self.0 {
-            m.serialize_entry(name, a)?;
-        }
-        m.end()
+impl From<&LoadRange> for RangeEntry {
+    fn from(r: &LoadRange) -> Self {
+        RangeEntry { from: r.from, to: r.to, count: r.count }
     }
 }
 
@@ -252,19 +257,13 @@ impl serde::Serialize for JointEntry<'_> {
 
 impl serde::Serialize for FitReport {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        #[derive(serde::Serialize)]
-        struct Range {
-            from: f64,
-            to: f64,
-            count: usize,
-        }
         let mut m = s.serialize_struct("FitReport", 8)?;
         m.serialize_field("format", self.format.name())?;
         m.serialize_field("prb", &self.prb)?;
-        m.serialize_field("range", &Range { from: self.range.from, to: self.range.to, count: self.range.count })?;
-        m.serialize_field("joints", &Joints(&self.joints))?;
+        m.serialize_field("range", &RangeEntry::from(&self.range))?;
+        m.serialize_field("joints", &Map(&self.joints, JointEntry))?;
         m.serialize_field("step", &self.step)?;
-        m.serialize_field("armature", &Armature(&self.armature))?;
+        m.serialize_field("armature", &Map(&self.armature, |a: &f64| *a))?;
         m.serialize_field("warnings", &self.warnings)?;
         m.serialize_field("notes", &self.notes)?;
         m.end()

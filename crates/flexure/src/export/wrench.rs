@@ -3,21 +3,31 @@
 use super::LoadRange;
 use crate::error::Result;
 use crate::kinematics::{self, Kinematics, Level};
-use crate::mechanism::Mechanism;
-use crate::mechanism::statics::{Settings, Solution, assemble_unloaded, solve_between};
+use crate::mechanism::statics::{Settings, Solution, Statics, assemble_unloaded, solve_between};
+use crate::mechanism::{Loads, Mechanism};
 use crate::statics::TipLoad;
 
 /// The mechanism's equilibria along `range` (the file's loads times each
 /// fraction), each continued from the last, starting from the unloaded,
 /// assembled shape.
 pub fn equilibria(m: &Mechanism, range: &LoadRange, settings: &Settings) -> Result<Vec<Solution>> {
+    equilibria_scaled(m, range, settings, |loads, lambda| loads.scale(lambda))
+}
+
+/// [`equilibria`] in either dimension, `scale` multiplying every load by a fraction.
+pub fn equilibria_scaled<D: Statics>(
+    m: &Mechanism<D>,
+    range: &LoadRange,
+    settings: &Settings,
+    scale: impl Fn(&mut Loads<D>, f64),
+) -> Result<Vec<Solution<D>>> {
     range.validate()?;
     let full = m.loads();
     let mut last = assemble_unloaded(m, settings)?;
     let mut out = Vec::with_capacity(range.count);
     for lambda in range.fractions() {
         let mut loads = full.clone();
-        loads.scale(lambda);
+        scale(&mut loads, lambda);
         let s = solve_between(m, &last, &loads, settings)?;
         out.push(s.clone());
         last = s;

@@ -1,0 +1,775 @@
+//! Export of a spatial mechanism (`dimension = 3`) to MuJoCo's MJCF.
+//!
+//! Each spatial flexure becomes a chain of pivots along its straight rest
+//! shape, at the planar chains' places (1R: Howell's pivot $0.15L$ from the
+//! root; 3R: Su's, at $0.1L$, $0.45L$ and $0.85L$), each pivot three hinges:
+//! bending about the local $z$, bending about $y$, twist about $x$, each
+//! with a linear spring. The springs are fitted to the flexure's tip
+//! compliance at rest ([`crate::spatial::compliance`]): a hinge of
+//! compliance $c_h$ about axis $e$ at pivot $p$ moves the tip, at $t$, by the
+//! twist $u_h = (e, e\times(t - p))$ per radian, so the chain's compliance
+//! is $C = \sum_h c_h u_h u_h^T$. Per bending axis the 3R chain matches the
+//! model's three entries (moment–rotation, force–rotation, force–position)
+//! exactly, a 1R chain the force–position entry (the tip position under a
+//! tip force, as Howell's); the twist springs share the model's twist
+//! compliance in the bending springs' proportions.
+//!
+//! The fit's error is measured as in the plane, over the file's loads: at
+//! each equilibrium along the [`LoadRange`] the wrench at each flexure's
+//! tip is the least-squares one holding its coordinates
+//! ($\nabla U = J^T w$), and the chain's small-motion tip response $Cw$ is
+//! compared with the model's tip displacement and rotation there. This
+//! linear response leaves out what the large motion adds, which the model
+//! has: the error grows with the deflection, and is reported.
+//!
+//! What is written: bodies with their masses, centres of mass and full
+//! inertia tensors; flexures as above; fixed joints; tendons through sites
+//! with a motor each; forces and moments as site motors in the world's
+//! frame; gravity; welds as `weld`, balls as `connect`, pins as two
+//! `connect` (the origins, and a point on the axis). Not yet: rigid
+//! revolute, prismatic and spherical joints, flexures curved or twisted at
+//! rest (errors name the joint), a flexure's own mass (dropped, warned of),
+//! SDFormat and URDF.
+
+use super::xml::{Element, number, numbers};
+use super::{LoadRange, Options, step};
+use crate::error::{Error, Result};
+use crate::mechanism::{Holds, Mechanism};
+use crate::prb::PrbKind;
+use crate::space::Spatial;
+use crate::spatial::{SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics};
+use nalgebra::{DVector, Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
+use serde::ser::SerializeStruct;
+
+/// Where a chain's pivots sit, as fractions of the length from the root:
+/// Howell's 1R characteristic pivot, $1 - \gamma$ with $\gamma$ =
+/// [`crate::prb::HOWELL_GAMMA`], and Su's 3R, the partial sums of
+/// [`crate::prb::SU_GAMMA`] (0.1, 0.45, 0.85).
+pub fn pivot_fractions(kind: PrbKind) -> Vec<f64> {
+    match kind {
+        PrbKind::OneR => vec![1.0 - crate::prb::HOWELL_GAMMA],
+        PrbKind::ThreeR => {
+            let g = crate::prb::SU_GAMMA;
+            vec![g[0], g[0] + g[1], g[0] + g[1] + g[2]]
+        }
+    }
+}
+
+/// The hinge axes of each pivot, in the order written: bending about $z$,
+/// bending about $y$, twist about $x$.
+pub const AXES: [[f64; 3]; 3] = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
+
+/// One spatial flexure's fitted chain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialFit {
+    /// The chain.
+    pub kind: PrbKind,
+    /// The pivots (m), in the flexure's root frame, root first.
+    pub pivots: Vec<Point3<f64>>,
+    /// Each pivot's spring constants (N·m/rad) about $z$, $y$ and $x$ ([`AXES`]).
+    pub stiffness: Vec<[f64; 3]>,
+    /// Largest tip position (m) and rotation (rad) of the chain's small-motion
+    /// response against the model's over the samples.
+    pub error: crate::prb::FitError,
+    /// Whether the position error passes 1 % of L or the angle 1°.
+    pub flagged: bool,
+    /// Samples the error is taken over.
+    pub samples: usize,
+    /// The flexure's length (m).
+    pub length: f64,
+}
+
+impl SpatialFit {
+    /// The chain's tip compliance at rest (6 × 6, rows and columns
+    /// $(r_x, r_y, r_z, x, y, z)$, the wrench at the tip in the root frame's axes).
+    pub fn compliance(&self) -> Matrix6<f64> {
+        let tip = Vector3::new(self.length, 0.0, 0.0);
+        let mut c = Matrix6::zeros();
+        for (p, k) in self.pivots.iter().zip(&self.stiffness) {
+            for (axis, k) in AXES.iter().zip(k) {
+                let e = Vector3::from(*axis);
+                let v = e.cross(&(tip - p.coords));
+                let u = Vector6::new(e.x, e.y, e.z, v.x, v.y, v.z);
+                c += u * u.transpose() / *k;
+            }
+        }
+        c
+    }
+}
+
+/// The spatial export's report: as the planar [`super::FitReport`], each
+/// joint's `pivots` (3-D) and `stiffness` (per pivot, about $z$, $y$, $x$).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialReport {
+    /// The chain.
+    pub prb: PrbKind,
+    /// The range fitted over.
+    pub range: LoadRange,
+    /// (joint name, its fit), in the file's order.
+    pub joints: Vec<(String, SpatialFit)>,
+    /// The step the model is sized for (s).
+    pub step: f64,
+    /// (hinge, armature written), kg·m².
+    pub armature: Vec<(String, f64)>,
+    /// What could not be written, and flagged fits.
+    pub warnings: Vec<String>,
+    /// What was added to make the model loadable.
+    pub notes: Vec<String>,
+}
+
+struct Entry<'a>(&'a SpatialFit);
+
+impl serde::Serialize for Entry<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let f = self.0;
+        let pivots: Vec<[f64; 3]> = f.pivots.iter().map(|p| [p.x, p.y, p.z]).collect();
+        let mut m = s.serialize_struct("SpatialFit", 8)?;
+        m.serialize_field("prb", &f.kind)?;
+        m.serialize_field("pivots", &pivots)?;
+        m.serialize_field("stiffness", &f.stiffness)?;
+        m.serialize_field("axes", &["z", "y", "x"])?;
+        m.serialize_field("error", &f.error)?;
+        m.serialize_field("flagged", &f.flagged)?;
+        m.serialize_field("samples", &f.samples)?;
+        m.serialize_field("length", &f.length)?;
+        m.end()
+    }
+}
+
+impl serde::Serialize for SpatialReport {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut m = s.serialize_struct("SpatialReport", 9)?;
+        m.serialize_field("format", "mjcf")?;
+        m.serialize_field("dimension", &3)?;
+        m.serialize_field("prb", &self.prb)?;
+        m.serialize_field("range", &super::RangeEntry::from(&self.range))?;
+        m.serialize_field("joints", &super::Map(&self.joints, Entry))?;
+        m.serialize_field("step", &self.step)?;
+        m.serialize_field("armature", &super::Map(&self.armature, |a: &f64| *a))?;
+        m.serialize_field("warnings", &self.warnings)?;
+        m.serialize_field("notes", &self.notes)?;
+        m.end()
+    }
+}
+
+/// A spatial mechanism exported: the MJCF text, the report, the warnings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpatialExport {
+    /// The MJCF.
+    pub xml: String,
+    /// The fits and what was lost.
+    pub report: SpatialReport,
+    /// Every warning (as in the report).
+    pub warnings: Vec<String>,
+}
+
+/// The flexure's tip compliance at rest (root frame; straight at rest).
+fn rest_compliance(f: &SpatialFlexure) -> Result<Matrix6<f64>> {
+    let mut data = SpatialStatics::new(f);
+    crate::spatial::correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default())?;
+    crate::spatial::compliance(f, &data)
+}
+
+/// Fits the springs of a chain of `kind` to `f`'s compliance at rest
+/// (the module's page says how); errors name `joint`.
+pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<SpatialFit> {
+    if f.rest().iter().any(|a| *a != 0.0) {
+        return Err(Error::invalid(
+            "joint",
+            joint,
+            "is curved or twisted at rest (rest): the spatial export fits straight flexures only for now",
+        ));
+    }
+    let c = rest_compliance(f)?;
+    let l = f.length();
+    let fractions = pivot_fractions(kind);
+    let levers: Vec<f64> = fractions.iter().map(|x| (1.0 - x) * l).collect();
+    // Per bending axis: (moment–rotation, force–rotation, force–position)
+    // of the model, the last two with the sign of e × (t − p).
+    let blocks = [(c[(2, 2)], c[(2, 4)], c[(4, 4)]), (c[(1, 1)], -c[(1, 5)], c[(5, 5)])];
+    let mut compliances = [vec![0.0; levers.len()], vec![0.0; levers.len()], vec![0.0; levers.len()]];
+    for (axis, (mm, mf, ff)) in blocks.iter().enumerate() {
+        let w = match kind {
+            PrbKind::OneR => vec![ff / (levers[0] * levers[0])],
+            PrbKind::ThreeR => {
+                let a = nalgebra::Matrix3::from_fn(|r, i| levers[i].powi(r as i32));
+                let b = Vector3::new(*mm, *mf, *ff);
+                let x = a.lu().solve(&b).ok_or(Error::Singular { what: format!("joint {joint:?}: the 3R fit") })?;
+                x.iter().copied().collect()
+            }
+        };
+        if w.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(Error::Singular {
+                what: format!("joint {joint:?}: a spring of its {kind} chain came out not positive: {w:?} rad/N·m"),
+            });
+        }
+        compliances[axis] = w;
+    }
+    let total: f64 = compliances[0].iter().sum();
+    compliances[2] = compliances[0].iter().map(|w| c[(0, 0)] * w / total).collect();
+    let stiffness = (0..levers.len())
+        .map(|i| [1.0 / compliances[0][i], 1.0 / compliances[1][i], 1.0 / compliances[2][i]])
+        .collect();
+    Ok(SpatialFit {
+        kind,
+        pivots: fractions.iter().map(|x| Point3::new(x * l, 0.0, 0.0)).collect(),
+        stiffness,
+        error: Default::default(),
+        flagged: false,
+        samples: 0,
+        length: l,
+    })
+}
+
+/// The rotation vector of `r` (axis times angle, rad).
+fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
+    nalgebra::Rotation3::from_matrix_unchecked(*r).scaled_axis()
+}
+
+/// The error of `fit` against flexure `f` at its coordinates along the
+/// equilibria: the largest tip position and rotation difference between
+/// the chain's small-motion response to the tip wrench holding them and
+/// the model's tip.
+fn fit_error(f: &SpatialFlexure, fit: &mut SpatialFit, shapes: &[Vec<f64>]) {
+    let c = fit.compliance();
+    let n = f.coordinates();
+    let mut k = SpatialKinematics::new(f);
+    let mut g = vec![0.0; n];
+    let (mut pos, mut ang) = (0.0f64, 0.0f64);
+    for alpha in shapes {
+        crate::spatial::update(f, alpha, crate::Level::Jacobian, &mut k);
+        crate::spatial::energy_gradient(f, alpha, &mut g);
+        let w = crate::linalg::least_squares(&k.jacobian.transpose(), &DVector::from_vec(g.clone()));
+        // The tip-frame wrench at the tip, in the root frame's axes.
+        let r = k.rotation;
+        let m = r * Vector3::new(w[0], w[1], w[2]);
+        let force = r * Vector3::new(w[3], w[4], w[5]);
+        let response = c * Vector6::new(m.x, m.y, m.z, force.x, force.y, force.z);
+        let moved = k.position - Vector3::new(fit.length, 0.0, 0.0);
+        let turned = rotation_vector(&r);
+        pos = pos.max((Vector3::new(response[3], response[4], response[5]) - moved).norm());
+        ang = ang.max((Vector3::new(response[0], response[1], response[2]) - turned).norm());
+    }
+    fit.error = crate::prb::FitError { position: pos, angle: ang };
+    fit.samples = shapes.len();
+    fit.flagged = pos > crate::prb::FLAG_FRACTION * fit.length || ang > super::ANGLE_FLAG;
+}
+
+/// A link of the model.
+struct Link {
+    name: String,
+    parent: usize,
+    /// Pose in the parent's frame.
+    pose: Isometry3<f64>,
+    mass: f64,
+    com: Point3<f64>,
+    /// About the centre of mass, in the link's axes.
+    inertia: Matrix3<f64>,
+    /// Hinges: (name, point in the link's frame, axis, stiffness, damping, armature).
+    hinges: Vec<Hinge>,
+}
+
+struct Hinge {
+    name: String,
+    at: Point3<f64>,
+    axis: Vector3<f64>,
+    stiffness: f64,
+    damping: f64,
+    armature: f64,
+}
+
+struct Site {
+    name: String,
+    link: usize,
+    pose: Isometry3<f64>,
+}
+
+/// Exports the spatial mechanism `m` to MJCF as `options` say (format
+/// `mjcf` only; its `armature`, `step`, `prb`, `range`, `name`).
+///
+/// # Example
+/// ```
+/// use flexure::export::{Options, spatial};
+/// let m = flexure::mechanism::file::spatial_from_toml(
+///     "dimension = 3\n[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"a\"\nlength = 0.02\n\
+///      modulus = 200e9\nwidth = 0.006\nthickness = 0.0003\n\
+///      [[body]]\nname = \"a\"\nmass = 0.001\nixx = 1e-8\niyy = 1e-8\nizz = 1e-8\n\
+///      [[force]]\nbody = \"a\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, -0.05, 0.0]\n",
+/// )?;
+/// let e = spatial::export(&m, &Options::default())?;
+/// assert!(e.xml.contains(r#"<joint name="f_1z" type="hinge""#) && e.xml.contains(r#"<joint name="f_3x""#));
+/// // A small tip force: the chain's tip is within 1 % of L of the model's.
+/// assert!(!e.report.joints[0].1.flagged);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport> {
+    options.range.validate()?;
+    step::validate(options.step)?;
+    if options.format != super::Format::Mjcf {
+        return Err(Error::invalid(
+            "to",
+            options.format.name(),
+            "a spatial mechanism (dimension = 3) is exported to mjcf only for now",
+        ));
+    }
+    if !(options.armature.is_finite() && options.armature >= 0.0) {
+        return Err(Error::invalid("armature", options.armature, "must be a finite number, zero or greater (kg·m²)"));
+    }
+    let mut warnings = Vec::new();
+    let mut notes = Vec::new();
+    // Fits, before the solves: a joint the export cannot write errors first.
+    let mut fits: Vec<Option<SpatialFit>> = Vec::with_capacity(m.joints.len());
+    for spec in &m.joints {
+        let joint = spec.kind.joint();
+        match spec.kind.flexure() {
+            Some(f) => fits.push(Some(fit_springs(f, options.prb, &spec.name)?)),
+            None if joint.dof() == 0 => fits.push(None),
+            None => {
+                return Err(Error::invalid(
+                    "joint",
+                    &spec.name,
+                    "is a rigid joint with coordinates: the spatial export writes flexures and fixed joints only for now",
+                ));
+            }
+        }
+    }
+    let solutions = super::wrench::equilibria_scaled(m, &options.range, &options.settings, |loads, lambda| {
+        loads.tension.iter_mut().for_each(|t| *t *= lambda);
+        loads.force.iter_mut().for_each(|f| *f *= lambda);
+        loads.gravity *= lambda;
+    })?;
+    let mut joints = Vec::new();
+    for (spec, fit) in m.joints.iter().zip(fits.iter_mut()) {
+        let (Some(fit), Some(f)) = (fit.as_mut(), spec.kind.flexure()) else { continue };
+        let n = f.coordinates();
+        let shapes: Vec<Vec<f64>> = solutions.iter().map(|s| s.q[spec.offset..spec.offset + n].to_vec()).collect();
+        fit_error(f, fit, &shapes);
+        if fit.flagged {
+            warnings.push(format!(
+                "joint {:?}: the {} fit's tip is up to {} m ({:.2} % of L) and {} rad ({:.2}°) from the model's over the range, \
+                 more than 1 % of L or 1°",
+                spec.name,
+                fit.kind,
+                number(fit.error.position),
+                100.0 * fit.error.position / fit.length,
+                number(fit.error.angle),
+                fit.error.angle.to_degrees()
+            ));
+        }
+        if f.section().mass_per_length(0.5).is_some() {
+            warnings.push(format!(
+                "joint {:?}: its own mass is not written (the spatial export lumps no flexure mass yet)",
+                spec.name
+            ));
+        }
+        joints.push((spec.name.clone(), fit.clone()));
+    }
+    // The links.
+    let mut links = vec![Link {
+        name: m.bodies[0].name.clone(),
+        parent: 0,
+        pose: Isometry3::identity(),
+        mass: 0.0,
+        com: Point3::origin(),
+        inertia: Matrix3::zeros(),
+        hinges: Vec::new(),
+    }];
+    let mut body_link = vec![0usize; m.bodies.len()];
+    for (spec, fit) in m.joints.iter().zip(&fits) {
+        let parent = body_link[spec.parent];
+        let body = &m.bodies[spec.child];
+        let new = |name: String, parent: usize, pose: Isometry3<f64>, hinges: Vec<Hinge>| Link {
+            name,
+            parent,
+            pose,
+            mass: 0.0,
+            com: Point3::origin(),
+            inertia: Matrix3::zeros(),
+            hinges,
+        };
+        let child = match fit {
+            None => {
+                let joint = spec.kind.joint();
+                let pose = spec.origin * joint.evaluate(&joint.rest()).pose;
+                links.push(new(body.name.clone(), parent, pose, Vec::new()));
+                links.len() - 1
+            }
+            Some(fit) => {
+                let k = fit.pivots.len();
+                let tip = Isometry3::translation(fit.length, 0.0, 0.0);
+                let hinges = |i: usize, at: Point3<f64>| -> Vec<Hinge> {
+                    AXES.iter()
+                        .zip(["z", "y", "x"])
+                        .zip(fit.stiffness[i])
+                        .map(|((axis, a), s)| Hinge {
+                            name: format!("{}_{}{a}", spec.name, i + 1),
+                            at,
+                            axis: Vector3::from(*axis),
+                            stiffness: s,
+                            damping: spec.damping * s,
+                            armature: options.armature,
+                        })
+                        .collect()
+                };
+                let mut up = parent;
+                let mut before = spec.origin;
+                let mut prev = Isometry3::identity();
+                for i in 0..k {
+                    let last = i + 1 == k;
+                    let frame = if last { tip } else { Isometry3::translation(fit.pivots[i].x, 0.0, 0.0) };
+                    let pose = before * prev.inverse() * frame;
+                    let at = if last { tip.inverse() * fit.pivots[i] } else { Point3::origin() };
+                    let name = if last { body.name.clone() } else { format!("{}_prb{}", spec.name, i + 1) };
+                    links.push(new(name, up, pose, hinges(i, at)));
+                    up = links.len() - 1;
+                    before = Isometry3::identity();
+                    prev = frame;
+                }
+                up
+            }
+        };
+        body_link[spec.child] = child;
+    }
+    for (b, body) in m.bodies.iter().enumerate().skip(1) {
+        let l = &mut links[body_link[b]];
+        l.mass = body.mass;
+        l.com = body.com;
+        l.inertia = body.inertia;
+    }
+    let mut floored = Vec::new();
+    for l in links.iter_mut().skip(1) {
+        let least = l.inertia.symmetric_eigenvalues().min();
+        if l.mass < super::model::MIN_MASS || least < super::model::MIN_INERTIA {
+            l.mass = l.mass.max(super::model::MIN_MASS);
+            if least < super::model::MIN_INERTIA {
+                l.inertia += Matrix3::identity() * (super::model::MIN_INERTIA - least.max(0.0));
+            }
+            floored.push(l.name.clone());
+        }
+    }
+    for name in &floored {
+        notes.push(format!(
+            "link {name:?} had less than {} kg or {} kg·m²: given that much, as simulators need",
+            number(super::model::MIN_MASS),
+            number(super::model::MIN_INERTIA)
+        ));
+    }
+    // Sized for the step, as the plane's ([`step::size`]): each hinge's own
+    // link's inertia about its axis.
+    let mut armature = Vec::new();
+    if options.step > 0.0 {
+        let period = step::STEPS_PER_PERIOD * options.step / std::f64::consts::TAU;
+        for l in links.iter_mut().skip(1) {
+            let (mass, com, inertia) = (l.mass, l.com, l.inertia);
+            for h in &mut l.hinges {
+                let d = (com - h.at).cross(&h.axis);
+                let own = (h.axis.transpose() * inertia * h.axis)[0] + mass * d.norm_squared() + h.armature;
+                let need = h.stiffness * period * period;
+                if own < need {
+                    h.armature += need - own;
+                }
+            }
+        }
+    }
+    for l in &links {
+        for h in &l.hinges {
+            if h.armature > 0.0 {
+                armature.push((h.name.clone(), h.armature));
+            }
+        }
+    }
+    if options.step > 0.0 && !armature.is_empty() {
+        notes.push(format!(
+            "sized for a {} s step: each hinge whose own link would ring faster than {} steps is given the armature \
+             (kg·m²) that slows it to that: {}",
+            number(options.step),
+            step::STEPS_PER_PERIOD,
+            armature.iter().map(|(n, a)| format!("{n} {}", number(*a))).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    for l in &links {
+        let values = [l.mass, l.com.x, l.com.y, l.com.z, l.pose.translation.vector.norm()];
+        if values.iter().chain(l.inertia.iter()).any(|v| !v.is_finite())
+            || l.hinges.iter().any(|h| !(h.stiffness.is_finite() && h.armature.is_finite() && h.damping.is_finite()))
+        {
+            return Err(Error::Singular { what: format!("export: link {:?} has a value that is not finite", l.name) });
+        }
+    }
+    // Sites, loads, closures.
+    let mut sites = Vec::new();
+    let mut site = |name: String, body: usize, pose: Isometry3<f64>| {
+        sites.push(Site { name, link: body_link[body], pose });
+        sites.len() - 1
+    };
+    let mut tendons = Element::new("tendon");
+    let mut equality = Element::new("equality");
+    let mut actuators = Element::new("actuator");
+    let mut ctrl = Vec::new();
+    let mut tendon_sites = Vec::new();
+    for t in &m.tendons {
+        let names: Vec<usize> = t
+            .path
+            .iter()
+            .enumerate()
+            .map(|(i, (b, p))| site(format!("{}_{i}", t.name), *b, Isometry3::translation(p.x, p.y, p.z)))
+            .collect();
+        tendon_sites.push((t.name.clone(), names, t.tension));
+    }
+    let mut force_sites = Vec::new();
+    for f in &m.forces {
+        let s = site(format!("force_{}", f.name), f.body, Isometry3::translation(f.at.x, f.at.y, f.at.z));
+        force_sites.push((f.name.clone(), s, f.wrench));
+    }
+    let axis_length =
+        m.joints.iter().filter_map(|j| j.kind.flexure().map(|f| f.length())).fold(f64::INFINITY, f64::min);
+    let axis_length = if axis_length.is_finite() { axis_length } else { 0.01 * m.size().max(1.0) };
+    let mut closures = Vec::new();
+    for (i, c) in m.closures.iter().enumerate() {
+        let name = format!("{}_{i}", c.holds.name());
+        let a = site(format!("{name}_a"), c.a, c.a_origin);
+        let b = site(format!("{name}_b"), c.b, c.b_origin);
+        let mut pair = vec![(a, b)];
+        if c.holds == Holds::Pin {
+            let up = Isometry3::translation(0.0, 0.0, axis_length);
+            let a2 = site(format!("{name}_a_axis"), c.a, c.a_origin * up);
+            let b2 = site(format!("{name}_b_axis"), c.b, c.b_origin * up);
+            pair.push((a2, b2));
+        }
+        closures.push((name, c.holds, pair));
+    }
+    let solref = super::mjcf::closure_solref(options.step);
+    for (name, idx, tension) in &tendon_sites {
+        let (t, motor) = super::mjcf::tendon(name, idx.iter().map(|s| sites[*s].name.as_str()));
+        tendons.push(t);
+        actuators.push(motor);
+        ctrl.push(*tension);
+    }
+    for (name, s, w) in &force_sites {
+        actuators.push(
+            Element::new("motor")
+                .attr("name", format!("force_{name}"))
+                .attr("site", sites[*s].name.as_str())
+                .attr("refsite", super::mjcf::WORLD_SITE)
+                .attr("gear", numbers(&[w[3], w[4], w[5], w[0], w[1], w[2]])),
+        );
+        ctrl.push(1.0);
+    }
+    for (name, holds, pair) in &closures {
+        for (k, (a, b)) in pair.iter().enumerate() {
+            let tag = if *holds == Holds::Weld { "weld" } else { "connect" };
+            let n = if k == 0 { name.clone() } else { format!("{name}_axis") };
+            equality.push(
+                Element::new(tag)
+                    .attr("name", n)
+                    .attr("site1", sites[*a].name.as_str())
+                    .attr("site2", sites[*b].name.as_str())
+                    .attr("solref", solref.as_str())
+                    .attr("solimp", super::mjcf::CLOSURE_SOLIMP),
+            );
+        }
+    }
+    // The document.
+    let mut root = Element::new("mujoco").attr("model", options.name.as_str());
+    root.comment(format!(
+        "flexure export (spatial): each flexure is a {} chain of pivots, each three hinges (bending about z and y, twist about x) \
+         with springs fitted to its tip compliance at rest, its error measured over the file's loads times {} to {} ({} samples)",
+        options.prb, options.range.from, options.range.to, options.range.count
+    ));
+    for (n, f) in &joints {
+        root.comment(format!(
+            "{n}: {} pivots at {:?} m, springs (z, y, x) {:?} N·m/rad, error {} m ({:.3} % of L) and {} rad{}",
+            f.kind,
+            f.pivots.iter().map(|p| p.x).collect::<Vec<_>>(),
+            f.stiffness,
+            number(f.error.position),
+            100.0 * f.error.position / f.length,
+            number(f.error.angle),
+            if f.flagged { ", FLAGGED" } else { "" }
+        ));
+    }
+    root.push(Element::new("compiler").attr("angle", "radian").attr("autolimits", "true"));
+    let mut option = Element::new("option");
+    if options.step > 0.0 {
+        option = option.attr("timestep", number(options.step));
+    }
+    root.push(option.attr("gravity", numbers(&[m.gravity.x, m.gravity.y, m.gravity.z])));
+    let mut children = vec![Vec::new(); links.len()];
+    for (i, l) in links.iter().enumerate().skip(1) {
+        children[l.parent].push(i);
+    }
+    let mut world = Element::new("worldbody");
+    world.push(Element::new("site").attr("name", super::mjcf::WORLD_SITE).attr("pos", "0 0 0").attr("size", "0.001"));
+    write_sites(&sites, 0, &mut world);
+    for &c in &children[0] {
+        world.push(write_body(&links, &sites, c, &children));
+    }
+    root.push(world);
+    for e in [tendons, equality, actuators] {
+        if !e.children.is_empty() {
+            root.push(e);
+        }
+    }
+    if !ctrl.is_empty() {
+        root.push(
+            Element::new("keyframe")
+                .child(Element::new("key").attr("name", super::mjcf::KEYFRAME).attr("ctrl", numbers(&ctrl))),
+        );
+    }
+    let xml = root.document();
+    let report = SpatialReport {
+        prb: options.prb,
+        range: options.range,
+        joints,
+        step: options.step,
+        armature,
+        warnings: warnings.clone(),
+        notes,
+    };
+    Ok(SpatialExport { xml, report, warnings })
+}
+
+/// `pos` and, unless it is the identity, `quat` (w x y z) of a pose.
+fn placed(e: Element, pose: &Isometry3<f64>) -> Element {
+    let t = pose.translation.vector;
+    let e = e.attr("pos", numbers(&[t.x, t.y, t.z]));
+    let q = pose.rotation.quaternion();
+    if pose.rotation.angle() == 0.0 { e } else { e.attr("quat", numbers(&[q.w, q.i, q.j, q.k])) }
+}
+
+fn write_sites(sites: &[Site], link: usize, e: &mut Element) {
+    for s in sites.iter().filter(|s| s.link == link) {
+        e.push(placed(Element::new("site").attr("name", s.name.as_str()), &s.pose).attr("size", "0.001"));
+    }
+}
+
+fn write_body(links: &[Link], sites: &[Site], i: usize, children: &[Vec<usize>]) -> Element {
+    let l = &links[i];
+    let mut b = placed(Element::new("body").attr("name", l.name.as_str()), &l.pose);
+    for h in &l.hinges {
+        let mut e = Element::new("joint")
+            .attr("name", h.name.as_str())
+            .attr("type", "hinge")
+            .attr("pos", numbers(&[h.at.x, h.at.y, h.at.z]))
+            .attr("axis", numbers(&[h.axis.x, h.axis.y, h.axis.z]))
+            .attr("springref", "0")
+            .attr("stiffness", number(h.stiffness));
+        if h.damping > 0.0 {
+            e = e.attr("damping", number(h.damping));
+        }
+        if h.armature > 0.0 {
+            e = e.attr("armature", number(h.armature));
+        }
+        b.push(e);
+    }
+    let j = &l.inertia;
+    b.push(
+        Element::new("inertial")
+            .attr("pos", numbers(&[l.com.x, l.com.y, l.com.z]))
+            .attr("mass", number(l.mass))
+            .attr("fullinertia", numbers(&[j[(0, 0)], j[(1, 1)], j[(2, 2)], j[(0, 1)], j[(0, 2)], j[(1, 2)]])),
+    );
+    write_sites(sites, i, &mut b);
+    for &c in &children[i] {
+        b.push(write_body(links, sites, c, children));
+    }
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanism::file::spatial_from_toml;
+    use crate::section::SpatialSection;
+
+    const STAGE: &str = "dimension = 3\n\
+        [[joint]]\nname = \"left\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"stage\"\nrpy_deg = [0.0, 0.0, 90.0]\n\
+        length = 0.03\nmodulus = 200e9\nwidth = 0.01\nthickness = 0.0003\n\
+        [[joint]]\nname = \"right\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\norigin = [0.04, 0.0, 0.0]\n\
+        rpy_deg = [0.0, 0.0, 90.0]\nlength = 0.03\nmodulus = 200e9\nwidth = 0.01\nthickness = 0.0003\n\
+        [[weld]]\na = \"stage\"\na_origin = [0.0, -0.04, 0.0]\nb = \"tip\"\n\
+        [[body]]\nname = \"stage\"\nmass = 0.005\nixx = 1e-7\niyy = 1e-7\nizz = 1e-7\n\
+        [[force]]\nname = \"push\"\nbody = \"stage\"\nat = [0.0, -0.02, 0.0]\nforce = [0.1, 0.0, 0.2]\n";
+
+    #[test]
+    fn a_3r_chain_holds_the_beams_compliance_at_rest() {
+        let (gj, ei_y, ei_z, l) = (0.5, 2.0, 1.0, 1.5);
+        let f = SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), [3, 3, 3]).unwrap();
+        let fit = fit_springs(&f, PrbKind::ThreeR, "f").unwrap();
+        let (chain, model) = (fit.compliance(), rest_compliance(&f).unwrap());
+        // Twist, the bendings' rotation, and a tip force's rotation and deflection, each axis.
+        for (i, j) in [(0, 0), (1, 1), (2, 2), (1, 5), (2, 4), (4, 4), (5, 5)] {
+            assert!((chain[(i, j)] - model[(i, j)]).abs() < 1e-12 * model[(i, i)].abs().max(1.0), "({i}, {j})");
+        }
+        // L³/3EI and L/GJ: the beam's own.
+        assert!((chain[(4, 4)] - l.powi(3) / (3.0 * ei_z)).abs() < 1e-12);
+        assert!((chain[(0, 0)] - l / gj).abs() < 1e-12);
+        // The springs, as K_Θ = k L / EI, are 3.99, 2.47, 2.90: within 20 % of Su's 3.51, 2.99,
+        // 2.58 (fitted to large deflections, averaged over load directions), not taken from them.
+        let k: Vec<f64> = fit.stiffness.iter().map(|k| k[0] * l / ei_z).collect();
+        for (k, su) in k.iter().zip(crate::prb::SU_K_THETA) {
+            assert!((k / su - 1.0).abs() < 0.2, "{k:?} against {su}");
+        }
+        // 1R: Howell's pivot, the tip's deflection under a tip force exact.
+        let one = fit_springs(&f, PrbKind::OneR, "f").unwrap();
+        assert_eq!(one.pivots.len(), 1);
+        assert!((one.compliance()[(4, 4)] - model[(4, 4)]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_writer_places_pivots_hinges_sites_and_closures() {
+        let m = spatial_from_toml(STAGE).unwrap();
+        let e = export(&m, &Options::default()).unwrap();
+        let x = &e.xml;
+        // Three pivots of three hinges per flexure; the last pivot's hinges on the child body.
+        for f in ["left", "right"] {
+            for i in 1..=3 {
+                for a in ["z", "y", "x"] {
+                    assert!(x.contains(&format!(r#"<joint name="{f}_{i}{a}" type="hinge""#)), "{f}_{i}{a}");
+                }
+            }
+            assert!(
+                x.contains(&format!(r#"<body name="{f}_prb2""#)) && !x.contains(&format!(r#"<body name="{f}_prb3""#))
+            );
+        }
+        // rpy 90° about z: the first link turned by a quaternion (cos 45°, 0, 0, sin 45°).
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let q = nalgebra::UnitQuaternion::from_euler_angles(0.0, 0.0, std::f64::consts::FRAC_PI_2);
+        assert!((q.w - h).abs() < 1e-15 && (q.k - h).abs() < 1e-15);
+        assert!(x.contains(&format!(r#"quat="{} 0 0 {}">"#, number(q.w), number(q.k))), "{x}");
+        assert!(x.contains(r#"<weld name="weld_0" site1="weld_0_a" site2="weld_0_b""#));
+        assert!(x.contains(r#"gear="0.1 0 0.2 0 0 0""#) && x.contains(r#"<key name="loads" ctrl="1"/>"#));
+        assert!(x.contains(r#"fullinertia="1e-7 1e-7 1e-7 0 0 0""#));
+        assert_eq!(e.report.joints.len(), 2);
+        assert!(e.report.joints.iter().all(|(_, f)| f.samples == 12 && f.error.position.is_finite()));
+        let json = serde_json::to_value(&e.report).unwrap();
+        assert_eq!(json["joints"]["left"]["stiffness"].as_array().unwrap().len(), 3);
+        assert_eq!(json["dimension"], 3);
+    }
+
+    #[test]
+    fn a_pin_is_two_connects_and_a_ball_one() {
+        let text =
+            STAGE.replace("[[weld]]\na = \"stage\"\na_origin", "[[pin]]\naxis = [0.0, 0.0, 1.0]\na = \"stage\"\na_at");
+        let e = export(&spatial_from_toml(&text).unwrap(), &Options::default()).unwrap();
+        assert!(e.xml.contains(r#"<connect name="pin_0" site1="pin_0_a""#));
+        assert!(e.xml.contains(r#"<connect name="pin_0_axis" site1="pin_0_a_axis""#));
+        let text = STAGE.replace("[[weld]]\na = \"stage\"\na_origin", "[[ball]]\na = \"stage\"\na_at");
+        let e = export(&spatial_from_toml(&text).unwrap(), &Options::default()).unwrap();
+        assert!(e.xml.contains(r#"<connect name="ball_0""#) && !e.xml.contains("ball_0_axis"));
+    }
+
+    #[test]
+    fn what_it_cannot_write_is_refused_by_name() {
+        let m = spatial_from_toml(STAGE).unwrap();
+        for format in [super::super::Format::Sdf, super::super::Format::Urdf] {
+            let err = export(&m, &Options { format, ..Default::default() }).unwrap_err().to_string();
+            assert!(err.contains("to") && err.contains("mjcf only"), "{err}");
+        }
+        let err = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
+        assert!(err.contains("armature"), "{err}");
+        let hinge = "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\n\
+                     stiffness = 1.0\n[[body]]\nname = \"a\"\nmass = 1.0\nixx = 1.0\niyy = 1.0\nizz = 1.0\n";
+        let err = export(&spatial_from_toml(hinge).unwrap(), &Options::default()).unwrap_err().to_string();
+        assert!(err.contains("pivot") && err.contains("flexures and fixed joints only"), "{err}");
+    }
+}
