@@ -237,7 +237,13 @@ pub fn attach_into<D: FrameChain>(
 }
 
 /// [`attach_into`] in fresh buffers.
-pub fn attach<D: FrameChain>(m: &Mechanism<D>, f: &Frames<D>, body: usize, local: D::Vector, point: bool) -> Attached<D> {
+pub fn attach<D: FrameChain>(
+    m: &Mechanism<D>,
+    f: &Frames<D>,
+    body: usize,
+    local: D::Vector,
+    point: bool,
+) -> Attached<D> {
     let mut out = Attached::new(m);
     attach_into(m, f, body, local, point, &mut out);
     out
