@@ -37,7 +37,7 @@ use crate::error::{Error, Result};
 use crate::mechanism::{Holds, Mechanism};
 use crate::prb::PrbKind;
 use crate::space::Spatial;
-use crate::spatial::{SpatialFlexure, SpatialKinematics, SpatialLoad, SpatialStatics};
+use crate::spatial::{SpatialFlexure, SpatialKinematics};
 use nalgebra::{DVector, Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
 use serde::ser::SerializeStruct;
 
@@ -163,13 +163,6 @@ pub struct SpatialExport {
     pub warnings: Vec<String>,
 }
 
-/// The flexure's tip compliance at rest (root frame; straight at rest).
-fn rest_compliance(f: &SpatialFlexure) -> Result<Matrix6<f64>> {
-    let mut data = SpatialStatics::new(f);
-    crate::spatial::correct(f, &SpatialLoad::default(), f.rest(), &mut data, &Default::default())?;
-    crate::spatial::compliance(f, &data)
-}
-
 /// Fits the springs of a chain of `kind` to `f`'s compliance at rest
 /// (the module's page says how); errors name `joint`.
 pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<SpatialFit> {
@@ -180,7 +173,7 @@ pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<Spa
             "is curved or twisted at rest (rest): the spatial export fits straight flexures only for now",
         ));
     }
-    let c = rest_compliance(f)?;
+    let c = crate::spatial::compliance_rest(f)?;
     let l = f.length();
     let fractions = pivot_fractions(kind);
     let levers: Vec<f64> = fractions.iter().map(|x| (1.0 - x) * l).collect();
@@ -695,7 +688,7 @@ mod tests {
         let (gj, ei_y, ei_z, l) = (0.5, 2.0, 1.0, 1.5);
         let f = SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), [3, 3, 3]).unwrap();
         let fit = fit_springs(&f, PrbKind::ThreeR, "f").unwrap();
-        let (chain, model) = (fit.compliance(), rest_compliance(&f).unwrap());
+        let (chain, model) = (fit.compliance(), crate::spatial::compliance_rest(&f).unwrap());
         // Twist, the bendings' rotation, and a tip force's rotation and deflection, each axis.
         for (i, j) in [(0, 0), (1, 1), (2, 2), (1, 5), (2, 4), (4, 4), (5, 5)] {
             assert!((chain[(i, j)] - model[(i, j)]).abs() < 1e-12 * model[(i, i)].abs().max(1.0), "({i}, {j})");

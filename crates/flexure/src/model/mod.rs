@@ -365,7 +365,7 @@ impl Model {
     /// assert_eq!((run.bodies[0].0.as_str(), run.bodies[0].1.len()), ("arm", 2));
     /// ```
     pub fn simulate(&self, settings: &SimulationSettings, start: Start) -> Result<Motion> {
-        each!(self, m => simulate(m, settings, start))
+        each!(self, m => simulate(m, settings, start, true))
     }
 
     /// The error estimate of `run`, a [`Model::simulate`] of this model
@@ -422,7 +422,9 @@ impl Model {
             max_steps,
             ..motion
         };
-        let reference_run = self.simulate(&SimulationSettings { motion: reference, ..*settings }, start)?;
+        // The reference needs only its bodies' poses, not the parts that cross.
+        let reference_settings = SimulationSettings { motion: reference, ..*settings };
+        let reference_run = each!(self, m => simulate(m, &reference_settings, start, false))?;
         let size = each!(self, m => m.size());
         Ok(motion_error::motion_error(run, &reference_run, (reference.tolerance, size), target))
     }
@@ -588,7 +590,13 @@ fn sweep<D: Analyses>(
     Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded }))
 }
 
-fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Motion> {
+/// The motion of `m`, with the parts that cross at its samples when `crossings`.
+fn simulate<D: Analyses>(
+    m: &Mechanism<D>,
+    settings: &SimulationSettings,
+    start: Start,
+    crossings: bool,
+) -> Result<Motion> {
     let (trajectory, stopped) = D::simulate(m, settings, start)?;
     let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
@@ -597,7 +605,7 @@ fn simulate<D: Analyses>(m: &Mechanism<D>, settings: &SimulationSettings, start:
             body.1.push(pose);
         }
     }
-    let crossings = D::crossings_along(m, &samples);
+    let crossings = if crossings { D::crossings_along(m, &samples) } else { Vec::new() };
     Ok(Motion { trajectory, stopped, bodies, crossings })
 }
 

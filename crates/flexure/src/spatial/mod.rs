@@ -47,8 +47,8 @@ pub use mass::{MassQuadrature, MassStation, StationKinematics, stations_update};
 pub use shape::{MAX_SHAPE_POINTS, SpatialPoint, shape, shape_at};
 pub use spec::{DEFAULT_POISSON, SpatialSpec};
 pub use statics::{
-    SpatialLoad, SpatialStatics, StabilityTest, compliance, correct, deflect, rotation_between, stability_limit,
-    tip_stiffness,
+    SpatialLoad, SpatialStatics, StabilityTest, compliance, compliance_rest, correct, deflect, rotation_between,
+    stability_limit, tip_stiffness,
 };
 pub use stress::{SpatialPeak, peak_stress, stress};
 pub use work::generalized_force;

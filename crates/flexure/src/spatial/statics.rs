@@ -553,6 +553,14 @@ pub fn compliance(flexure: &SpatialFlexure, data: &SpatialStatics) -> Result<Mat
     }
 }
 
+/// The tip compliance at rest ([`compliance`] at the flexure's own rest
+/// coordinates, unloaded): the export's springs and `compliance` fit it.
+pub fn compliance_rest(flexure: &SpatialFlexure) -> Result<Matrix6<f64>> {
+    let mut data = SpatialStatics::new(flexure);
+    correct(flexure, &SpatialLoad::default(), flexure.rest(), &mut data, &Default::default())?;
+    compliance(flexure, &data)
+}
+
 /// The tip's loaded stiffness, the inverse of [`compliance`] (6 × 6, N·m/rad … N/m).
 pub fn tip_stiffness(flexure: &SpatialFlexure, data: &SpatialStatics) -> Result<Matrix6<f64>> {
     compliance(flexure, data)?
