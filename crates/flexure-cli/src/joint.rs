@@ -96,7 +96,7 @@ pub fn deflect_cmd(args: &DeflectArgs) -> flexure::Result<Value> {
     let answer = one_flexure(&args.flexure, &args.spatial)?.deflect(&options)?;
     let model = answer.model();
     match model.stability_test {
-        Some(StabilityTest::Static) if !model.stable => warn(
+        StabilityTest::Static if !model.stable => warn(
             "deflect: the equilibrium is unstable (`stable: false`, `stability_test: static`): a neighbouring equilibrium branched off the loading path (a dead moment has no potential, so this is Euler's static test, not an energy minimum)".into(),
         ),
         _ => warn_unstable(model.stable, "deflect"),

@@ -125,7 +125,35 @@ fn reshaped(answer: &Value) -> Value {
 /// Keys added at any depth of an answer since the file was written
 /// (`CHANGELOG.md`, *Added*), as [`ADDED`]: (the calls, by the start of
 /// their text; the key).
-const ADDED_ANYWHERE: &[(&str, &str)] = &[("deflect --spatial", "stability_test")];
+const ADDED_ANYWHERE: &[(&str, &str)] = &[
+    ("deflect", "stability_test"),
+    ("deflect --spatial", "roll"),
+    ("deflect --spatial", "pitch"),
+    ("deflect --spatial", "yaw"),
+    ("kinematics --spatial", "roll"),
+    ("kinematics --spatial", "pitch"),
+    ("kinematics --spatial", "yaw"),
+];
+
+/// A single spatial flexure's golden `pose` `{position, rotation}` in
+/// today's shape, a mechanism body's (`CHANGELOG.md`, *Changed*): `x`,
+/// `y`, `z` and `rotation`, every number compared; roll, pitch and yaw
+/// are [`ADDED_ANYWHERE`].
+fn poses_reshaped(answer: &Value) -> Value {
+    match answer {
+        Value::Object(map) => Value::Object(
+            map.iter()
+                .map(|(k, v)| match (k.as_str(), v.get("position")) {
+                    ("pose", Some(p)) => {
+                        (k.clone(), json!({ "x": p[0], "y": p[1], "z": p[2], "rotation": v["rotation"] }))
+                    }
+                    _ => (k.clone(), poses_reshaped(v)),
+                })
+                .collect(),
+        ),
+        other => other.clone(),
+    }
+}
 
 /// `now` without the [`ADDED`] keys that `golden` lacks, inside an
 /// `error_estimate` of `call`, and without the [`ADDED_ANYWHERE`] keys it lacks.
@@ -185,7 +213,7 @@ fn today(entry: &Value) -> Value {
     for (old, new) in CALLS {
         call = call.replacen(old, new, 1);
     }
-    json!({ "call": call, "status": entry["status"], "answer": reshaped(&renamed(&call, &entry["answer"])) })
+    json!({ "call": call, "status": entry["status"], "answer": poses_reshaped(&reshaped(&renamed(&call, &entry["answer"]))) })
 }
 
 /// The calls: each example through the mechanism subcommands, then single

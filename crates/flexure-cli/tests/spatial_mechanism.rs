@@ -424,9 +424,7 @@ fn both_dimensions_answer_solve_in_one_shape() {
     let (three, err) = answer(&["solve", &written(&dir, &spatial)]);
     assert!(err.is_empty(), "{err}");
     let keys = |v: &Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
-    // The plane's `curvature_max` has no spatial twin yet; every other key is shared.
-    let planar_keys: Vec<String> = keys(&two).into_iter().filter(|k| k != "curvature_max").collect();
-    assert_eq!(planar_keys, keys(&three));
+    assert_eq!(keys(&two), keys(&three));
     assert_eq!((two["dimension"].as_u64(), three["dimension"].as_u64()), (Some(2), Some(3)));
     let near = |a: &Value, b: &Value, tolerance: f64| {
         let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
@@ -442,6 +440,20 @@ fn both_dimensions_answer_solve_in_one_shape() {
     // The blade carries the tip force, in its root frame: 0.5 N along y.
     assert!((two["load"]["blade"]["fy"].as_f64().unwrap() - 0.5).abs() < 1e-9, "{two}");
     assert!((three["load"]["blade"]["force"][1].as_f64().unwrap() - 0.5).abs() < 1e-9, "{three}");
+    // Given by its stiffnesses alone, each answers the peak change of
+    // curvature instead, in one shape: the plane's |κ − κ₀| and space's
+    // bending |(κ_y, κ_z) − (κ_y0, κ_z0)| agree in the plane, to 1e-6 as
+    // the stress above (the same series by two integrations), at the root.
+    let stiff = |text: &str| {
+        text.replace("modulus = 2e11\nwidth = 0.01\nthickness = 2e-4\n", "ei = 2e-3\ngj = 1e-3\nei_y = 0.1\n")
+    };
+    let (two, err) = answer(&["solve", &written(&dir, &stiff(&planar).replace("gj = 1e-3\nei_y = 0.1\n", ""))]);
+    assert!(err.is_empty(), "{err}");
+    let (three, err) = answer(&["solve", &written(&dir, &stiff(&spatial))]);
+    assert!(err.is_empty(), "{err}");
+    assert_eq!(keys(&two), keys(&three));
+    let (a, b) = (&two["curvature_max"]["blade"], &three["curvature_max"]["blade"]);
+    assert!(near(&a["max"], &b["max"], 1e-6) && a["at"] == 0.0 && b["at"] == 0.0, "{a} {b}");
 }
 
 /// A spatial flexure's `yield_strength` and `shape`, as in the plane: the

@@ -13,7 +13,7 @@ pub use analyses::Analyses;
 pub use flexure::{
     Alpha, Bending, Compared, Curvature, Deflect, Deflected, Deflection, ExactDeflected, ExactReference,
     FlexureAnalyses, FlexureShape, Found, Headroom, OneFlexure, Posed, Refinement, RestCompliance, ShapeSection,
-    SpatialKeys, TipMotion, TipPose, check_yield,
+    SpatialKeys, TipMotion, check_yield,
 };
 pub use motion_error::MotionEstimate;
 

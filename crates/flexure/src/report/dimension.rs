@@ -26,9 +26,8 @@ pub trait Reported: Dimension {
     ) -> Vec<Result<(ErrorEstimate, CarriedLoad)>>;
     /// A flexure's peak stress, if its section gives one.
     fn peak_stress(f: &Self::Flexure, alpha: &[f64]) -> Result<Option<PeakStress>>;
-    /// A flexure's peak change of curvature, where it has no stress and the
-    /// dimension reports one (the plane).
-    fn peak_curvature(f: &Self::Flexure, alpha: &[f64]) -> Option<MaxAt>;
+    /// A flexure's peak change of (bending) curvature, for a section without a shape.
+    fn peak_curvature(f: &Self::Flexure, alpha: &[f64]) -> Result<MaxAt>;
     /// A flexure's deformed shape at `count` points.
     fn shape(f: &Self::Flexure, alpha: &[f64], count: usize) -> Result<Shape>;
 }
@@ -51,8 +50,8 @@ impl Reported for Planar {
         Ok(crate::stress::peak_stress(f, alpha).map(PeakStress::from))
     }
 
-    fn peak_curvature(f: &Flexure, alpha: &[f64]) -> Option<MaxAt> {
-        Some(crate::stress::peak_curvature(f, alpha).into())
+    fn peak_curvature(f: &Flexure, alpha: &[f64]) -> Result<MaxAt> {
+        Ok(crate::stress::peak_curvature(f, alpha).into())
     }
 
     fn shape(f: &Flexure, alpha: &[f64], count: usize) -> Result<Shape> {
@@ -106,8 +105,8 @@ impl Reported for Spatial {
         }))
     }
 
-    fn peak_curvature(_: &SpatialFlexure, _: &[f64]) -> Option<MaxAt> {
-        None
+    fn peak_curvature(f: &SpatialFlexure, alpha: &[f64]) -> Result<MaxAt> {
+        crate::spatial::peak_curvature(f, alpha).map(MaxAt::from)
     }
 
     fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> Result<Shape> {

@@ -77,6 +77,31 @@ pub enum BodyPose {
 }
 
 impl BodyPose {
+    /// A planar pose.
+    pub fn planar(p: &crate::kinematics::Pose) -> Self {
+        Self::Planar { x: p.x, y: p.y, phi: p.phi }
+    }
+
+    /// A spatial pose from its origin (m) and rotation matrix.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::report::BodyPose;
+    /// let r = nalgebra::Rotation3::from_euler_angles(0.1, -0.2, 0.3);
+    /// let p = BodyPose::spatial([1.0, 2.0, 3.0], r.matrix());
+    /// let rpy = p.rpy();
+    /// assert!((rpy[0] - 0.1).abs() < 1e-15 && (rpy[1] + 0.2).abs() < 1e-15 && (rpy[2] - 0.3).abs() < 1e-15);
+    /// assert_eq!(p.transform()[2][3], 3.0);
+    /// ```
+    pub fn spatial(position: [f64; 3], rotation: &nalgebra::Matrix3<f64>) -> Self {
+        let (roll, pitch, yaw) = nalgebra::Rotation3::from_matrix_unchecked(*rotation).euler_angles();
+        // + 0.0 prints a zero angle as 0, not −0.
+        let (roll, pitch, yaw) = (roll + 0.0, pitch + 0.0, yaw + 0.0);
+        let [x, y, z] = position;
+        let rotation = std::array::from_fn(|i| std::array::from_fn(|j| rotation[(i, j)]));
+        Self::Spatial { x, y, z, roll, pitch, yaw, rotation }
+    }
+
     /// The names of [`BodyPose::coordinates`].
     pub fn columns(&self) -> &'static [&'static str] {
         match self {
@@ -109,6 +134,29 @@ impl BodyPose {
         match *self {
             Self::Planar { phi, .. } => [0.0, 0.0, phi],
             Self::Spatial { roll, pitch, yaw, .. } => [roll, pitch, yaw],
+        }
+    }
+
+    /// The 4 × 4 homogeneous transform, by rows.
+    pub fn transform(&self) -> [[f64; 4]; 4] {
+        let (r, p) = (self.rotation(), self.position());
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| match (i, j) {
+                (3, j) => f64::from(j == 3),
+                (i, 3) => p[i],
+                (i, j) => r[i][j],
+            })
+        })
+    }
+
+    /// The angle (rad) of the rotation that takes this pose's to `other`'s.
+    pub(crate) fn angle_to(&self, other: &BodyPose) -> f64 {
+        match (self, other) {
+            (Self::Planar { phi: a, .. }, Self::Planar { phi: b, .. }) => (a - b).abs(),
+            (a, b) => {
+                let m = |r: [[f64; 3]; 3]| nalgebra::Matrix3::from_fn(|i, j| r[i][j]);
+                crate::space::rotation_angle(&m(a.rotation()), &m(b.rotation()))
+            }
         }
     }
 
@@ -253,7 +301,7 @@ pub struct SolveReport {
     /// The peak stress of each flexure joint with a section.
     #[serde(skip_serializing_if = "Named::is_empty")]
     pub stress: Named<PeakStress>,
-    /// The peak change of curvature (1/m) of each planar flexure joint given by $EI$ alone.
+    /// The peak change of (bending) curvature (1/m) of each flexure joint given by its stiffnesses alone.
     #[serde(skip_serializing_if = "Named::is_empty")]
     pub curvature_max: Named<MaxAt>,
     /// Yield strength over peak stress, of each flexure joint whose file
@@ -366,7 +414,7 @@ pub fn solve_report<D: Reported>(
                     r.safety_factor.0.push((name.clone(), strength / p.max));
                 }
             }
-            None => r.curvature_max.0.extend(D::peak_curvature(f, q).map(|c| (name.clone(), c))),
+            None => r.curvature_max.0.push((name.clone(), D::peak_curvature(f, q).map_err(failed)?)),
         }
         if let Some(count) = j.report.shape {
             r.shape.0.push((name.clone(), D::shape(f, q, count).map_err(failed)?));

@@ -26,7 +26,7 @@
 //!   their frames and Jacobians (for the spatial mechanism's dynamics and weight);
 //! - its error estimate against a refined model, and the orders that meet
 //!   an accuracy target, are [`crate::estimate::spatial`]'s;
-//! - [`peak_stress`]: the peak von Mises stress along it.
+//! - [`peak_stress`]: the peak von Mises stress along it; [`peak_curvature`], the peak change of bending curvature.
 
 mod energy;
 mod flexure;
@@ -50,5 +50,5 @@ pub use statics::{
     SpatialLoad, SpatialStatics, StabilityTest, compliance, compliance_rest, correct, deflect, rotation_between,
     stability_limit, tip_stiffness,
 };
-pub use stress::{SpatialPeak, peak_stress, stress};
+pub use stress::{SpatialPeak, peak_curvature, peak_stress, stress};
 pub use work::generalized_force;

@@ -39,8 +39,7 @@ pub struct SpatialPeak {
 /// ```
 pub fn stress(flexure: &SpatialFlexure, alpha: &[f64], s: f64) -> Result<SpatialStress> {
     flexure.check_coordinates("alpha", alpha)?;
-    let change: Vec<f64> = alpha.iter().zip(flexure.rest()).map(|(a, k)| a - k).collect();
-    flexure.section().stress(s / flexure.length(), flexure.curvature(&change, s))
+    flexure.section().stress(s / flexure.length(), flexure.curvature(&change(flexure, alpha), s))
 }
 
 /// The peak von Mises stress along the flexure (Pa) and the section's
@@ -61,19 +60,54 @@ pub fn stress(flexure: &SpatialFlexure, alpha: &[f64], s: f64) -> Result<Spatial
 pub fn peak_stress(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<SpatialPeak> {
     flexure.check_coordinates("alpha", alpha)?;
     let (section, l) = (flexure.section(), flexure.length());
-    let change: Vec<f64> = alpha.iter().zip(flexure.rest()).map(|(a, k)| a - k).collect();
+    let change = change(flexure, alpha);
     let at = |s: f64| section.stress((s / l).clamp(0.0, 1.0), flexure.curvature(&change, s));
+    let peak = peak_along(flexure, |s| at(s).map(|p| p.von_mises))?;
+    Ok(SpatialPeak { stress: at(peak.at)?, at: peak.at })
+}
+
+/// The peak change of bending curvature along the flexure (1/m) and where:
+/// $\max_s \lVert(\kappa_y - \kappa_{y0}, \kappa_z - \kappa_{z0})\rVert$, the
+/// planar flexure's `curvature_max` in space, for a section without a
+/// shape (the twist's rate is left out: it strains by shear, not bending).
+///
+/// # Example
+/// ```
+/// use flexure::section::SpatialSection;
+/// use flexure::spatial::{SpatialFlexure, peak_curvature};
+/// let f = SpatialFlexure::new(0.5, SpatialSection::uniform(1.0, 2.0, 2.0).unwrap(), [1, 2, 1]).unwrap();
+/// // κ_y = (0.3 + 0.3 P̃₁(s/L))/L, κ_z = 0.2/L: largest at the tip, |(1.2, 0.4)|.
+/// let p = peak_curvature(&f, &[5.0, 0.3, 0.3, 0.2]).unwrap();
+/// assert!((p.at - 0.5).abs() < 1e-12 && (p.value - 1.2f64.hypot(0.4)).abs() < 1e-12);
+/// ```
+pub fn peak_curvature(flexure: &SpatialFlexure, alpha: &[f64]) -> Result<Peak> {
+    flexure.check_coordinates("alpha", alpha)?;
+    let change = change(flexure, alpha);
+    peak_along(flexure, |s| {
+        let [_, ky, kz] = flexure.curvature(&change, s);
+        Ok(ky.hypot(kz))
+    })
+}
+
+/// The coordinates' change from rest.
+fn change(flexure: &SpatialFlexure, alpha: &[f64]) -> Vec<f64> {
+    alpha.iter().zip(flexure.rest()).map(|(a, k)| a - k).collect()
+}
+
+/// The maximum of `g` on $[0, L]$: a scan of evenly spaced points and the
+/// section's breakpoints, then golden section between the best point's neighbours.
+fn peak_along(flexure: &SpatialFlexure, g: impl Fn(f64) -> Result<f64>) -> Result<Peak> {
+    let l = flexure.length();
     let count = (SAMPLES_PER_COORDINATE * flexure.coordinates()).max(64);
     let mut points: Vec<f64> = (0..=count).map(|k| k as f64 / count as f64).collect();
-    points.extend(section.breakpoints());
+    points.extend(flexure.section().breakpoints());
     points.sort_by(f64::total_cmp);
     let mut values = Vec::with_capacity(points.len());
     for t in &points {
-        values.push(at(t * l)?.von_mises);
+        values.push(g(t * l)?);
     }
     let best = (0..points.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap_or(0);
     let bracket = (points[best.saturating_sub(1)] * l, points[(best + 1).min(points.len() - 1)] * l);
     let top = Peak { value: values[best], at: points[best] * l };
-    let peak = refine(bracket, top, l, REFINEMENTS, |s| at(s).map(|p| p.von_mises))?;
-    Ok(SpatialPeak { stress: at(peak.at)?, at: peak.at })
+    refine(bracket, top, l, REFINEMENTS, g)
 }

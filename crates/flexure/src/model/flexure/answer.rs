@@ -4,10 +4,9 @@
 //! shape, the orders) is an untagged enum, as [`crate::report::BodyPose`].
 
 use crate::estimate::ErrorEstimate;
-use crate::kinematics::Pose;
 use crate::kinematics::TipKinematics;
 use crate::limit::StabilityLimit;
-use crate::report::{MaxAt, PeakStress, ShapePoint};
+use crate::report::{BodyPose, MaxAt, PeakStress, ShapePoint};
 use crate::spatial::{SpatialPoint, StabilityTest};
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde::Serialize;
@@ -33,60 +32,6 @@ impl Alpha {
         match self {
             Alpha::Planar(a) => a.clone(),
             Alpha::Spatial { twist, kappa_y, kappa_z } => [twist.as_slice(), kappa_y, kappa_z].concat(),
-        }
-    }
-}
-
-/// The tip's pose in the root frame.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum TipPose {
-    /// $\lbrace\varphi, x, y\rbrace$.
-    Planar(Pose),
-    /// The position (m) and the rotation by rows: its columns are the tip frame's axes.
-    Spatial { position: [f64; 3], rotation: [[f64; 3]; 3] },
-}
-
-impl TipPose {
-    /// The position in space (m): the plane is $z = 0$.
-    pub fn position(&self) -> [f64; 3] {
-        match *self {
-            TipPose::Planar(p) => [p.x, p.y, 0.0],
-            TipPose::Spatial { position, .. } => position,
-        }
-    }
-
-    /// The 4 × 4 homogeneous transform, by rows.
-    pub fn transform(&self) -> [[f64; 4]; 4] {
-        let r = match *self {
-            TipPose::Planar(p) => {
-                let (s, c) = p.phi.sin_cos();
-                [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
-            }
-            TipPose::Spatial { rotation, .. } => rotation,
-        };
-        let p = self.position();
-        std::array::from_fn(|i| {
-            std::array::from_fn(|j| {
-                if i == 3 {
-                    f64::from(j == 3)
-                } else if j == 3 {
-                    p[i]
-                } else {
-                    r[i][j]
-                }
-            })
-        })
-    }
-
-    /// The angle (rad) of the rotation that takes this pose's to `other`'s.
-    fn angle_to(&self, other: &TipPose) -> f64 {
-        match (self, other) {
-            (TipPose::Planar(a), TipPose::Planar(b)) => (a.phi - b.phi).abs(),
-            (a, b) => {
-                let m = |t: [[f64; 4]; 4]| nalgebra::Matrix3::from_fn(|i, j| t[i][j]);
-                crate::space::rotation_angle(&m(a.transform()), &m(b.transform()))
-            }
         }
     }
 }
@@ -151,13 +96,13 @@ pub enum Headroom {
 }
 
 /// What an answer gives of the flexure's bending: the peak stress (in
-/// space with its parts), or the peak change of curvature for a planar
-/// flexure without thickness; the safety factor; the deformed shape.
+/// space with its parts), or the peak change of (bending) curvature for a
+/// section without a shape; the safety factor; the deformed shape.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Bending {
     #[serde(skip_serializing_if = "Option::is_none", serialize_with = "point_last")]
     pub stress: Option<PeakStress>,
-    /// The peak change of curvature, for a planar flexure without thickness.
+    /// The peak change of (bending) curvature, for a section without a shape.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub curvature_max: Option<MaxAt>,
     /// The yield strength over the peak stress, when both are known and it is stressed.
@@ -171,12 +116,11 @@ pub struct Bending {
 #[derive(Debug, Clone, Serialize)]
 pub struct Deflected {
     pub alpha: Alpha,
-    pub pose: TipPose,
+    pub pose: BodyPose,
     pub stiffness: Vec<Vec<f64>>,
     pub stable: bool,
-    /// What `stable` answers (space: `energy` or `static`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stability_test: Option<StabilityTest>,
+    /// What `stable` answers: `energy`, or `static` under a dead moment in space.
+    pub stability_test: StabilityTest,
     pub residual: f64,
     /// Where the path from rest lost stability, if it did (left out with a stability limit).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -228,9 +172,9 @@ pub struct Compared {
 
 impl Compared {
     /// The model's pose against the exact one, for a flexure of `length`.
-    pub(super) fn of(model: &TipPose, exact: &TipPose, length: f64) -> Self {
+    pub(super) fn of(model: &BodyPose, exact: &BodyPose, length: f64) -> Self {
         let position = match (model, exact) {
-            (TipPose::Planar(m), TipPose::Planar(e)) => (m.x - e.x).hypot(m.y - e.y),
+            (BodyPose::Planar { x, y, .. }, BodyPose::Planar { x: ex, y: ey, .. }) => (x - ex).hypot(y - ey),
             _ => (nalgebra::Vector3::from(model.position()) - nalgebra::Vector3::from(exact.position())).norm(),
         };
         let angle = model.angle_to(exact);
@@ -241,7 +185,7 @@ impl Compared {
 /// The exact reference's equilibrium, without the model's.
 #[derive(Debug, Clone)]
 pub struct ExactReference {
-    pub pose: TipPose,
+    pub pose: BodyPose,
     /// The root's reaction moment: one number in the plane, three in space.
     pub root_moment: Vec<f64>,
     pub stable: bool,
@@ -252,12 +196,11 @@ pub struct ExactReference {
 /// The exact reference's equilibrium, with the model's under `model`.
 #[derive(Debug, Clone, Serialize)]
 pub struct ExactDeflected {
-    pub pose: TipPose,
+    pub pose: BodyPose,
     #[serde(serialize_with = "one_or_three")]
     pub root_moment: Vec<f64>,
     pub stable: bool,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stability_test: Option<StabilityTest>,
+    pub stability_test: StabilityTest,
     pub model: Deflected,
     pub error: Compared,
     #[serde(flatten)]
@@ -301,7 +244,7 @@ pub enum TipMotion {
     /// Pose, transform, Jacobian rows and Hessians (Eqs. 7, 19–21, 30–31).
     Planar(TipKinematics),
     /// Pose and the body Jacobian (6 × n, rows rx, ry, rz, x, y, z in the tip frame).
-    Spatial { pose: TipPose, jacobian: Vec<Vec<f64>> },
+    Spatial { pose: BodyPose, jacobian: Vec<Vec<f64>> },
 }
 
 /// What [`super::OneFlexure::kinematics`] answers.

@@ -6,7 +6,7 @@
 
 use super::answer::{
     Alpha, Bending, Compared, ExactReference, FlexureShape, Headroom, Refinement, RestCompliance, ShapeSection,
-    TipMotion, TipPose, rows,
+    TipMotion, rows,
 };
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ErrorEstimate};
@@ -15,7 +15,7 @@ use crate::kinematics::TipKinematics;
 use crate::limit::StabilityLimit;
 use crate::model::Analyses;
 use crate::reference::rod::{self, Rod};
-use crate::report::{MaxAt, PeakStress, Reported};
+use crate::report::{BodyPose, MaxAt, PeakStress, Reported};
 use crate::space::{Planar, Spatial};
 use crate::spatial::{SpatialFlexure, SpatialLoad, SpatialPoint, SpatialStatics, StabilityTest};
 use crate::statics::Settings;
@@ -27,7 +27,7 @@ pub struct Found {
     /// Its coordinates.
     pub alpha: Vec<f64>,
     /// The tip's pose.
-    pub pose: TipPose,
+    pub pose: BodyPose,
     /// The loaded stiffness.
     pub stiffness: DMatrix<f64>,
     /// The statics' answer: stable, residual, where stability was lost.
@@ -42,9 +42,9 @@ pub trait FlexureAnalyses: Analyses {
     type Load;
     /// The load from a wrench in space: the plane takes $M_z$, $F_x$, $F_y$.
     fn load(w: &SpatialLoad) -> Result<Self::Load>;
-    /// The stability question the load's `stable` answers, where the
-    /// dimension has more than one (space: a dead moment has no potential).
-    fn stability_test(load: &Self::Load) -> Option<StabilityTest>;
+    /// The stability question the load's `stable` answers: the energy's,
+    /// except under a dead moment in space, which has no potential.
+    fn stability_test(load: &Self::Load) -> StabilityTest;
     /// The lowest orders that meet `target` under `load` (`--order auto`).
     fn auto(f: &Self::Flexure, load: &Self::Load, target: &Accuracy) -> Result<Self::Flexure>;
     /// Refuses a yield strength the flexure cannot give a stress for,
@@ -75,7 +75,7 @@ pub trait FlexureAnalyses: Analyses {
     fn exact(
         f: &Self::Flexure,
         load: &Self::Load,
-        model: (&TipPose, Option<&FlexureShape>),
+        model: (&BodyPose, Option<&FlexureShape>),
         stress: (Option<f64>, Option<usize>),
     ) -> Result<ExactReference>;
     /// Pose, Jacobian (and the plane's transform and Hessians) at `alpha`.
@@ -101,8 +101,9 @@ impl FlexureAnalyses for Planar {
         }
     }
 
-    fn stability_test(_: &TipLoad) -> Option<StabilityTest> {
-        None
+    fn stability_test(_: &TipLoad) -> StabilityTest {
+        // A moment in the plane has the potential −Mφ: every planar load does.
+        StabilityTest::Energy
     }
 
     fn auto(f: &Flexure, load: &TipLoad, target: &Accuracy) -> Result<Flexure> {
@@ -116,7 +117,7 @@ impl FlexureAnalyses for Planar {
     fn deflect(f: &Flexure, load: &TipLoad, settings: &Settings) -> Result<Found> {
         let mut data = StaticsData::new(f);
         let equilibrium = crate::statics::deflect(f, load, &mut data, settings)?;
-        let pose = TipPose::Planar(data.pose_root_tip());
+        let pose = BodyPose::planar(&data.pose_root_tip());
         Ok(Found { alpha: data.alpha().to_vec(), pose, stiffness: data.stiffness, equilibrium })
     }
 
@@ -153,11 +154,11 @@ impl FlexureAnalyses for Planar {
     fn exact(
         f: &Flexure,
         load: &TipLoad,
-        (model, _): (&TipPose, Option<&FlexureShape>),
+        (model, _): (&BodyPose, Option<&FlexureShape>),
         (yield_strength, shape): (Option<f64>, Option<usize>),
     ) -> Result<ExactReference> {
         let (exact, trace) = crate::reference::elastica::deflect_traced(f, load, &Default::default())?;
-        let pose = TipPose::Planar(exact.pose);
+        let pose = BodyPose::planar(&exact.pose);
         let stress = trace.peak_stress()?.map(PeakStress::from);
         let curvature_max = if stress.is_none() { Some(trace.peak_curvature()?.into()) } else { None };
         let points = |k| -> Result<FlexureShape> {
@@ -219,8 +220,8 @@ impl FlexureAnalyses for Spatial {
         Ok(*w)
     }
 
-    fn stability_test(load: &SpatialLoad) -> Option<StabilityTest> {
-        Some(load.stability_test())
+    fn stability_test(load: &SpatialLoad) -> StabilityTest {
+        load.stability_test()
     }
 
     fn auto(f: &SpatialFlexure, load: &SpatialLoad, target: &Accuracy) -> Result<SpatialFlexure> {
@@ -235,7 +236,7 @@ impl FlexureAnalyses for Spatial {
         let mut data = SpatialStatics::new(f);
         let equilibrium = crate::spatial::deflect(f, load, &mut data, settings)?;
         let (r, p) = crate::spatial::pose_root_tip(f, data.alpha());
-        let pose = TipPose::Spatial { position: p.into(), rotation: rows3(&r) };
+        let pose = BodyPose::spatial(p.into(), &r);
         Ok(Found { alpha: data.alpha().to_vec(), pose, stiffness: data.stiffness.clone(), equilibrium })
     }
 
@@ -250,6 +251,7 @@ impl FlexureAnalyses for Spatial {
                 s,
                 "needs a section with a shape to give a stress: give --modulus with --width and --thickness, or --diameter",
             )),
+            (None, None) => Ok((None, Some(crate::spatial::peak_curvature(f, alpha)?.into()))),
             (stress, _) => Ok((stress, None)),
         }
     }
@@ -289,12 +291,12 @@ impl FlexureAnalyses for Spatial {
     fn exact(
         f: &SpatialFlexure,
         load: &SpatialLoad,
-        (model, shape): (&TipPose, Option<&FlexureShape>),
+        (model, shape): (&BodyPose, Option<&FlexureShape>),
         _: (Option<f64>, Option<usize>),
     ) -> Result<ExactReference> {
         let rod = rod_of(f)?;
         let exact = rod::deflect(&rod, load, &Default::default())?;
-        let pose = TipPose::Spatial { position: exact.position.into(), rotation: rows3(&exact.rotation) };
+        let pose = BodyPose::spatial(exact.position.into(), &exact.rotation);
         let shape = match shape {
             Some(FlexureShape::Spatial(points)) => Some(rod_shape(&rod, load, &exact, points)?),
             _ => None,
@@ -313,7 +315,7 @@ impl FlexureAnalyses for Spatial {
         f.check_coordinates("alpha", alpha)?;
         let mut k = crate::spatial::SpatialKinematics::new(f);
         crate::spatial::update(f, alpha, crate::kinematics::Level::Jacobian, &mut k);
-        let pose = TipPose::Spatial { position: k.position.into(), rotation: rows3(&k.rotation) };
+        let pose = BodyPose::spatial(k.position.into(), &k.rotation);
         Ok(TipMotion::Spatial { pose, jacobian: rows(&k.jacobian) })
     }
 

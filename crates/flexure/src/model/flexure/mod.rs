@@ -11,7 +11,7 @@ mod dimension;
 
 pub use answer::{
     Alpha, Bending, Compared, Curvature, Deflected, Deflection, ExactDeflected, ExactReference, FlexureShape, Headroom,
-    Posed, Refinement, RestCompliance, ShapeSection, TipMotion, TipPose,
+    Posed, Refinement, RestCompliance, ShapeSection, TipMotion,
 };
 pub use dimension::{FlexureAnalyses, Found};
 
