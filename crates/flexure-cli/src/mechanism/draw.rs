@@ -9,7 +9,7 @@ use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, assemble_unloaded};
-use flexure::model::Model;
+use flexure::model::{Model, Visit};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -125,16 +125,23 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
     Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
 }
 
+/// [`picture`] of the model's mechanism, which the door sends it of either dimension.
+struct Draw<'a>(&'a DrawArgs, &'a Model);
+
+impl<D: Drawn> Visit<D> for Draw<'_> {
+    type Output = Result<Picture, String>;
+
+    fn visit(self, m: &Mechanism<D>) -> Result<Picture, String> {
+        picture(self.0, self.1, m)
+    }
+}
+
 /// An SVG of the unloaded and loaded shapes (or a motion's snapshots and
 /// charts), to one scale on both axes, with the warnings `solve` (or
-/// `simulate`) gives on the same file. The one place that asks the dimension:
-/// it sends the mechanism to [`picture`], as the door does.
+/// `simulate`) gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let model = crate::input::read_model(&args.file)?;
-    let p = match &model {
-        Model::Planar(m) => picture(args, &model, m)?,
-        Model::Spatial(m) => picture(args, &model, m)?,
-    };
+    let p = model.visit(Draw(args, &model))?;
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let view = args.view.unwrap_or(p.view);
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": p.shapes.len() + 1 });

@@ -25,7 +25,7 @@ use crate::mechanism::buckling::Buckling;
 use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::Settings;
 use crate::mechanism::sweep::SweepLimit;
-use crate::mechanism::{Mechanism, file};
+use crate::mechanism::{Dimension, Mechanism, file};
 use crate::report::{BodyPose, EstimateFailed, Named, SolveReport, solve_report};
 use crate::space::{Planar, Spatial};
 use nalgebra::DMatrix;
@@ -47,6 +47,19 @@ macro_rules! each {
             Model::Spatial($m) => $body,
         }
     };
+}
+
+/// What a front end does with a model's mechanism, written once over the
+/// dimension and handed to [`Model::visit`], which matches on the
+/// dimension for it: a front end's own work that needs the mechanism's
+/// type (the CLI's picture), so that the door stays the one match. A
+/// visitor is usually one generic impl, `impl<D: Bound> Visit<D> for V`,
+/// bounded by what its work needs.
+pub trait Visit<D: Dimension> {
+    /// What the visit answers, the same in both dimensions.
+    type Output;
+    /// The work on the mechanism.
+    fn visit(self, m: &Mechanism<D>) -> Self::Output;
 }
 
 /// What [`Model::export`] answers: the model's text, its fit report
@@ -222,6 +235,29 @@ impl Model {
             3 => document.spatial().map(Model::Spatial),
             _ => document.planar().map(Model::Planar),
         }
+    }
+
+    /// `visitor`'s work on the mechanism, whichever its dimension.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::{Dimension, Mechanism};
+    /// use flexure::model::{Model, Visit};
+    /// struct Twists;
+    /// impl<D: Dimension> Visit<D> for Twists {
+    ///     type Output = usize;
+    ///     fn visit(self, m: &Mechanism<D>) -> usize {
+    ///         D::TWIST_DIM * m.bodies.len()
+    ///     }
+    /// }
+    /// let m = Model::from_toml("dimension = 3\n[[joint]]\nname = \"ball\"\nkind = \"spherical\"\nparent = \"ground\"\nchild = \"bob\"\n").unwrap();
+    /// assert_eq!(m.visit(Twists), 12);
+    /// ```
+    pub fn visit<V, T>(&self, visitor: V) -> T
+    where
+        V: Visit<Planar, Output = T> + Visit<Spatial, Output = T>,
+    {
+        each!(self, m => visitor.visit(m))
     }
 
     /// 2 or 3.
