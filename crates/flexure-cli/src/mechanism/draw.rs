@@ -9,6 +9,7 @@ use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, assemble_unloaded};
+use flexure::mechanism::sweep::Parameter;
 use flexure::model::{Model, Visit};
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -89,7 +90,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
             let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
             return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
         }
-        let p = D::parameter(m, &spec.parameter).map_err(crate::describe)?;
+        let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
         let limit = out.stability_limit.map(|l| l.value);
         let past = |value: f64| limit.is_some_and(|l| (value - l) * (values[0] - l) < 0.0);
         marks.limit = limit.map(|l| {
@@ -104,7 +105,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         out.rows
             .iter()
             .zip(&out.q)
-            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &D::apply(&p, &m.loads(), r[0]))?)))
+            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
             .collect::<Result<_, String>>()?
     } else {
         let findings = crate::findings::open_at_rest(model, &args.file)?;

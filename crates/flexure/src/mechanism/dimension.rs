@@ -1,13 +1,13 @@
 //! What a mechanism needs of its dimension beyond the group operations of
 //! [`Space`]: its joint kinds, its flexure, a body's rotary inertia and its
-//! load parameters. The plane and space implement it here, side by side, so
+//! loads' names. The plane and space implement it here, side by side, so
 //! that [`Mechanism<D>`](super::Mechanism) and its parts (bodies, joints,
 //! tendons, point loads, closures, loads, solutions) are one model for both
 //! dimensions (Pinocchio's one model; parry's one set of dimension aliases).
 
 use super::joints::{Joint, JointKind};
 use super::spatial::SpatialJointKind;
-use super::sweep::{Parameter, SpatialParameter};
+use super::sweep::LoadNames;
 use crate::flexure::Flexure;
 use crate::space::{Planar, Space, Spatial};
 use crate::spatial::SpatialFlexure;
@@ -32,8 +32,8 @@ pub trait Dimension: Space {
     type JointKind: Clone + Debug + PartialEq;
     /// The Smooth Curvature flexure of this dimension.
     type Flexure: Clone + Debug + PartialEq;
-    /// A load that a sweep or a schedule sets.
-    type Parameter: Clone + Debug + PartialEq;
+    /// How its loads are named in a sweep or a schedule.
+    const LOADS: LoadNames;
 
     /// The kind as its interface: the one match on the kind.
     fn joint(kind: &Self::JointKind) -> &dyn Joint<Self>;
@@ -47,7 +47,15 @@ impl Dimension for Planar {
     type AngularInertia = f64;
     type JointKind = JointKind;
     type Flexure = Flexure;
-    type Parameter = Parameter;
+    const LOADS: LoadNames = LoadNames {
+        components: &["moment", "fx", "fy"],
+        axes: &["x", "y"],
+        must_be: "must be tendon.NAME.tension, force.NAME.fx|fy|moment or gravity.x|y",
+        component: "a force's component is fx, fy or moment",
+        axis: None,
+        dotted: true,
+        quoted: true,
+    };
 
     fn joint(kind: &JointKind) -> &dyn Joint<Planar> {
         kind.joint()
@@ -66,7 +74,15 @@ impl Dimension for Spatial {
     type AngularInertia = Matrix3<f64>;
     type JointKind = SpatialJointKind;
     type Flexure = SpatialFlexure;
-    type Parameter = SpatialParameter;
+    const LOADS: LoadNames = LoadNames {
+        components: &["mx", "my", "mz", "fx", "fy", "fz"],
+        axes: &["x", "y", "z"],
+        must_be: "must be force.NAME.mx|my|mz|fx|fy|fz, tendon.NAME.tension or gravity.x|y|z",
+        component: "a force's component must be mx, my, mz, fx, fy or fz",
+        axis: Some("gravity's component must be x, y or z"),
+        dotted: false,
+        quoted: false,
+    };
 
     fn joint(kind: &SpatialJointKind) -> &dyn Joint<Spatial> {
         kind.joint()

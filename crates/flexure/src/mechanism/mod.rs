@@ -353,7 +353,7 @@ pub struct Mechanism<D: Dimension = Planar> {
     /// Gravity (m/s²), zero if absent.
     pub gravity: D::Vector,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
-    pub schedules: Vec<schedule::Schedule<D::Parameter>>,
+    pub schedules: Vec<schedule::Schedule>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
