@@ -527,7 +527,7 @@ impl From<Mechanism<Spatial>> for Model {
 }
 
 fn joints<D: Analyses>(m: &Mechanism<D>) -> Vec<(String, std::ops::Range<usize>)> {
-    m.joints.iter().map(|j| (j.name.clone(), j.offset..j.offset + D::joint(&j.kind).dof())).collect()
+    m.joints.iter().map(|j| (j.name.clone(), j.offset..j.offset + j.kind.joint().dof())).collect()
 }
 
 fn refined<D: Analyses>(_: &Mechanism<D>) -> [&'static str; 2] {
@@ -535,15 +535,15 @@ fn refined<D: Analyses>(_: &Mechanism<D>) -> [&'static str; 2] {
 }
 
 fn flexure_names<D: Analyses>(m: &Mechanism<D>) -> Vec<String> {
-    m.joints.iter().filter(|j| D::flexure(&j.kind).is_some()).map(|j| j.name.clone()).collect()
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
 }
 
 fn flexure_length<D: Analyses>(m: &Mechanism<D>, name: &str) -> Option<f64> {
-    m.joints.iter().find(|j| j.name == name).and_then(|j| D::flexure(&j.kind)).map(D::flexure_length)
+    m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map(D::flexure_length)
 }
 
 fn orders<D: Analyses>(m: &Mechanism<D>) -> Named<Vec<usize>> {
-    Named(m.joints.iter().filter_map(|j| Some((j.name.clone(), D::orders(D::flexure(&j.kind)?)))).collect())
+    Named(m.joints.iter().filter_map(|j| Some((j.name.clone(), D::orders(j.kind.flexure()?)))).collect())
 }
 
 fn open_closures<D: Analyses>(m: &Mechanism<D>) -> Result<Vec<OpenClosure>> {
@@ -579,7 +579,7 @@ fn sweep<D: Analyses>(
         columns.extend(pose.columns().iter().map(|c| format!("{}.{c}", b.name)));
     }
     for j in &m.joints {
-        columns.extend((0..D::joint(&j.kind).dof()).map(|i| format!("{}[{i}]", j.name)));
+        columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]", j.name)));
     }
     columns.push("energy".into());
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());

@@ -21,14 +21,14 @@ use crate::kinematics::{Level, Pose};
 use crate::mechanism::joints::JointState;
 use crate::mechanism::kinematics::frames_level_into;
 use crate::mechanism::spatial::joints::unit_axis;
-use crate::mechanism::{Closure, Dimension, Holds, Mechanism, ReportOptions, kinematics};
+use crate::mechanism::{Closure, Dimension, Holds, JointKind, Mechanism, ReportOptions, kinematics};
 use crate::space::{Planar, Spatial, Wrench};
 use nalgebra::{Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector2, Vector3, Vector6};
 use serde::de::DeserializeOwned;
 
 /// A joint's kind as its keys give it.
 pub(super) struct Kind<D: Dimension> {
-    pub(super) kind: D::JointKind,
+    pub(super) kind: JointKind<D>,
     /// Where its stiffness is given (the joint's name when it has none),
     /// for the check of the stiffness ratio.
     pub(super) stiffness_place: Span,

@@ -158,7 +158,7 @@ pub(super) fn initial_state<D: FileDimension>(
             toml::Value::Array(items) => items.iter().map(number).collect::<Option<Vec<f64>>>(),
             v => number(v).map(|x| vec![x]),
         };
-        let dof = D::joint(&m.joints[j].kind).dof();
+        let dof = m.joints[j].kind.joint().dof();
         let Some(values) = values else {
             return src.fail(&span, format!("{owner}must be a number or an array of {dof} numbers"));
         };
