@@ -391,7 +391,7 @@ fn draw_sweeps_a_spatial_file() {
     ]);
     assert!(err.is_empty(), "{err}");
     let m = flexure::mechanism::file::spatial_from_toml(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    let p = flexure::mechanism::sweep::SpatialParameter::parse(&m, "tendon.side.tension").unwrap();
+    let p = flexure::mechanism::sweep::Parameter::parse(&m, "tendon.side.tension").unwrap();
     let rows = flexure::mechanism::sweep::sweep(&m, &p, &[0.0, 0.2, 0.4, 0.6], &Default::default()).unwrap().rows.len();
     assert_eq!((rows, v["shapes"].as_u64()), (4, Some(5)), "{v}");
     let svg = std::fs::read_to_string(&out).unwrap();

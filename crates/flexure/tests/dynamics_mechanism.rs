@@ -113,6 +113,7 @@ fn state(m: &Mechanism, rng: &mut Rng) -> (Vec<f64>, Vec<f64>) {
             JointKind::Flexure(f) => (f.order(), 0.4),
             JointKind::Revolute(_) => (1, 0.5),
             JointKind::Prismatic(_) => (1, 0.005),
+            JointKind::Spherical(none) => match *none {},
             JointKind::Fixed(_) => (0, 0.0),
         };
         for i in 0..k {

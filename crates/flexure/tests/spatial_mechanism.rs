@@ -407,7 +407,7 @@ fn a_tendon_offset_in_z_bends_the_chain_out_of_plane_as_in_plane() {
 /// planar sweep's example, in space about an axis out of the plane).
 #[test]
 fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
-    use flexure::mechanism::sweep::{SpatialParameter, sweep};
+    use flexure::mechanism::sweep::{Parameter, sweep};
     let axis = nalgebra::Unit::new_normalize(Vector3::new(0.0, 1.0, 1.0));
     let hinge = spec(
         "pivot",
@@ -425,7 +425,7 @@ fn a_sweep_finds_where_a_pushed_arm_loses_stability() {
         Vector3::zeros(),
     )
     .unwrap();
-    let p = SpatialParameter::parse(&m, "force.push.fx").unwrap();
+    let p = Parameter::parse(&m, "force.push.fx").unwrap();
     let out = sweep(&m, &p, &[0.0, -4.0, -8.0, -12.0, -16.0], &Default::default()).unwrap();
     assert_eq!(out.rows.len(), 3);
     let limit = out.stability_limit.unwrap();

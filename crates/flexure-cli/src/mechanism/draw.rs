@@ -9,7 +9,8 @@ use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
 use flexure::mechanism::statics::{Settings, assemble_unloaded};
-use flexure::model::Model;
+use flexure::mechanism::sweep::Parameter;
+use flexure::model::{Model, Visit};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -89,7 +90,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
             let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
             return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
         }
-        let p = D::parameter(m, &spec.parameter).map_err(crate::describe)?;
+        let p = Parameter::parse(m, &spec.parameter).map_err(crate::describe)?;
         let limit = out.stability_limit.map(|l| l.value);
         let past = |value: f64| limit.is_some_and(|l| (value - l) * (values[0] - l) < 0.0);
         marks.limit = limit.map(|l| {
@@ -104,7 +105,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         out.rows
             .iter()
             .zip(&out.q)
-            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &D::apply(&p, &m.loads(), r[0]))?)))
+            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
             .collect::<Result<_, String>>()?
     } else {
         let findings = crate::findings::open_at_rest(model, &args.file)?;
@@ -125,16 +126,23 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
     Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
 }
 
+/// [`picture`] of the model's mechanism, which the door sends it of either dimension.
+struct Draw<'a>(&'a DrawArgs, &'a Model);
+
+impl<D: Drawn> Visit<D> for Draw<'_> {
+    type Output = Result<Picture, String>;
+
+    fn visit(self, m: &Mechanism<D>) -> Result<Picture, String> {
+        picture(self.0, self.1, m)
+    }
+}
+
 /// An SVG of the unloaded and loaded shapes (or a motion's snapshots and
 /// charts), to one scale on both axes, with the warnings `solve` (or
-/// `simulate`) gives on the same file. The one place that asks the dimension:
-/// it sends the mechanism to [`picture`], as the door does.
+/// `simulate`) gives on the same file.
 pub fn draw_cmd(args: &DrawArgs) -> Result<Value, String> {
     let model = crate::input::read_model(&args.file)?;
-    let p = match &model {
-        Model::Planar(m) => picture(args, &model, m)?,
-        Model::Spatial(m) => picture(args, &model, m)?,
-    };
+    let p = model.visit(Draw(args, &model))?;
     let title = args.file.file_name().map_or("mechanism".into(), |n| n.to_string_lossy().into_owned());
     let view = args.view.unwrap_or(p.view);
     let mut v = json!({ "out": args.out.display().to_string(), "shapes": p.shapes.len() + 1 });

@@ -32,9 +32,9 @@ pub fn loads_at<D: Dynamics>(m: &Mechanism<D>, t: f64) -> Loads<D> {
     loads
 }
 
-fn apply<D: Dynamics>(schedules: &[Schedule<D::Parameter>], t: f64, loads: &mut Loads<D>) {
+fn apply<D: Dynamics>(schedules: &[Schedule], t: f64, loads: &mut Loads<D>) {
     for s in schedules {
-        D::set(&s.parameter, loads, s.value(t));
+        s.parameter.set(loads, s.value(t));
     }
 }
 
@@ -61,7 +61,7 @@ fn apply<D: Dynamics>(schedules: &[Schedule<D::Parameter>], t: f64, loads: &mut 
 #[derive(Debug, Clone)]
 pub struct ScheduledSystem<D: Dynamics = Planar> {
     system: MechanismSystem<D>,
-    schedules: Vec<Schedule<D::Parameter>>,
+    schedules: Vec<Schedule>,
     /// The loads without schedules, and the time the system's loads were last set for.
     base: Loads<D>,
     time: f64,

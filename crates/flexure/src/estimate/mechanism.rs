@@ -101,7 +101,7 @@ fn coordinates_or_rest<'a, D: Dimension>(m: &Mechanism<D>, q: &'a [f64]) -> std:
 
 /// Joint `j`'s coordinates in `q`.
 fn joint_coordinates<'a, D: Dimension>(m: &Mechanism<D>, j: usize, q: &'a [f64]) -> &'a [f64] {
-    let (offset, dof) = (m.joints[j].offset, D::joint(&m.joints[j].kind).dof());
+    let (offset, dof) = (m.joints[j].offset, m.joints[j].kind.joint().dof());
     &q[offset..offset + dof]
 }
 

@@ -1,13 +1,13 @@
 //! What a mechanism needs of its dimension beyond the group operations of
-//! [`Space`]: its joint kinds, its flexure, a body's rotary inertia and its
-//! load parameters. The plane and space implement it here, side by side, so
+//! [`Space`]: the types of its joint kinds, a body's rotary inertia and its
+//! loads' names. The plane and space implement it here, side by side, so
 //! that [`Mechanism<D>`](super::Mechanism) and its parts (bodies, joints,
 //! tendons, point loads, closures, loads, solutions) are one model for both
 //! dimensions (Pinocchio's one model; parry's one set of dimension aliases).
 
-use super::joints::{Joint, JointKind};
-use super::spatial::SpatialJointKind;
-use super::sweep::{Parameter, SpatialParameter};
+use super::joints::{Fixed, Joint, NoBall, Prismatic, Revolute};
+use super::spatial::{PrismaticUnaligned, RevoluteUnaligned, Spherical};
+use super::sweep::LoadNames;
 use crate::flexure::Flexure;
 use crate::space::{Planar, Space, Spatial};
 use crate::spatial::SpatialFlexure;
@@ -19,43 +19,48 @@ use std::fmt::Debug;
 /// # Example
 /// ```
 /// use flexure::mechanism::{Dimension, JointKind, Revolute};
-/// use flexure::space::Planar;
-/// let pin = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
-/// assert_eq!(Planar::joint(&pin).dof(), 1);
-/// assert!(Planar::flexure(&pin).is_none());
+/// use flexure::space::{Planar, Spatial};
+/// let pin: JointKind<Planar> = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
+/// assert_eq!(pin.joint().dof(), 1);
+/// assert_eq!((Planar::LOADS.axes.len(), Spatial::LOADS.axes.len()), (2, 3));
 /// ```
 pub trait Dimension: Space {
     /// A body's rotary inertia about its centre of mass: kg·m² in the plane,
     /// a 3 × 3 matrix (kg·m²) in the body frame's axes in space.
     type AngularInertia: Copy + Debug + PartialEq + Default;
-    /// The joint kinds of this dimension.
-    type JointKind: Clone + Debug + PartialEq;
     /// The Smooth Curvature flexure of this dimension.
-    type Flexure: Clone + Debug + PartialEq;
-    /// A load that a sweep or a schedule sets.
-    type Parameter: Clone + Debug + PartialEq;
+    type Flexure: Joint<Self> + Clone + Debug + PartialEq;
+    /// A hinge: about the plane's normal, or about an axis in space.
+    type Revolute: Joint<Self> + Clone + Debug + PartialEq;
+    /// A slider: along the root frame's x in the plane, along an axis in space.
+    type Prismatic: Joint<Self> + Clone + Debug + PartialEq;
+    /// A ball joint: none in the plane ([`NoBall`]).
+    type Spherical: Joint<Self> + Clone + Debug + PartialEq;
+    /// A weld: [`Fixed`] in both.
+    type Fixed: Joint<Self> + Clone + Debug + PartialEq;
+    /// How its loads are named in a sweep or a schedule.
+    const LOADS: LoadNames;
 
-    /// The kind as its interface: the one match on the kind.
-    fn joint(kind: &Self::JointKind) -> &dyn Joint<Self>;
-    /// The flexure, where the kind is one.
-    fn flexure(kind: &Self::JointKind) -> Option<&Self::Flexure>;
     /// A flexure's length (m).
     fn flexure_length(f: &Self::Flexure) -> f64;
 }
 
 impl Dimension for Planar {
     type AngularInertia = f64;
-    type JointKind = JointKind;
     type Flexure = Flexure;
-    type Parameter = Parameter;
-
-    fn joint(kind: &JointKind) -> &dyn Joint<Planar> {
-        kind.joint()
-    }
-
-    fn flexure(kind: &JointKind) -> Option<&Flexure> {
-        kind.flexure()
-    }
+    type Revolute = Revolute;
+    type Prismatic = Prismatic;
+    type Spherical = NoBall;
+    type Fixed = Fixed;
+    const LOADS: LoadNames = LoadNames {
+        components: &["moment", "fx", "fy"],
+        axes: &["x", "y"],
+        must_be: "must be tendon.NAME.tension, force.NAME.fx|fy|moment or gravity.x|y",
+        component: "a force's component is fx, fy or moment",
+        axis: None,
+        dotted: true,
+        quoted: true,
+    };
 
     fn flexure_length(f: &Flexure) -> f64 {
         f.length()
@@ -64,17 +69,20 @@ impl Dimension for Planar {
 
 impl Dimension for Spatial {
     type AngularInertia = Matrix3<f64>;
-    type JointKind = SpatialJointKind;
     type Flexure = SpatialFlexure;
-    type Parameter = SpatialParameter;
-
-    fn joint(kind: &SpatialJointKind) -> &dyn Joint<Spatial> {
-        kind.joint()
-    }
-
-    fn flexure(kind: &SpatialJointKind) -> Option<&SpatialFlexure> {
-        kind.flexure()
-    }
+    type Revolute = RevoluteUnaligned;
+    type Prismatic = PrismaticUnaligned;
+    type Spherical = Spherical;
+    type Fixed = Fixed;
+    const LOADS: LoadNames = LoadNames {
+        components: &["mx", "my", "mz", "fx", "fy", "fz"],
+        axes: &["x", "y", "z"],
+        must_be: "must be force.NAME.mx|my|mz|fx|fy|fz, tendon.NAME.tension or gravity.x|y|z",
+        component: "a force's component must be mx, my, mz, fx, fy or fz",
+        axis: Some("gravity's component must be x, y or z"),
+        dotted: false,
+        quoted: false,
+    };
 
     fn flexure_length(f: &SpatialFlexure) -> f64 {
         f.length()

@@ -11,9 +11,6 @@ use super::{Dimension, Loads, Mechanism};
 use crate::error::{Error, Result};
 use crate::solver::Settings;
 
-/// The load parameter of the dimension `D`.
-pub type ParameterOf<D> = <D as Dimension>::Parameter;
-
 /// Whether the path that `found` ends lost stability on the way (from a
 /// start that was `stable`), so that its limit is refined.
 pub(in crate::mechanism) fn lost<D: Dimension>(found: &Result<Solution<D>>, stable: bool) -> bool {

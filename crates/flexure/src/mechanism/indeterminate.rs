@@ -37,7 +37,7 @@ pub(super) fn settle<D: Statics>(
         .joints
         .iter()
         .enumerate()
-        .filter_map(|(j, spec)| D::flexure(&spec.kind).map(|fl| (j, D::flexure_length(fl))))
+        .filter_map(|(j, spec)| spec.kind.flexure().map(|fl| (j, D::flexure_length(fl))))
         .collect();
     if free.ncols() == 0 || flexures.is_empty() {
         return mu.to_vec();

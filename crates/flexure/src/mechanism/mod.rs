@@ -81,7 +81,7 @@ pub struct JointSpec<D: Dimension = Planar> {
     /// Its name.
     pub name: String,
     /// What it is.
-    pub kind: D::JointKind,
+    pub kind: JointKind<D>,
     /// Parent body index.
     pub parent: usize,
     /// Child body index.
@@ -118,7 +118,7 @@ impl<D: Dimension> JointSpec<D> {
     /// let j: JointSpec = JointSpec::new("pin", pin, 0, 1, Pose { x: 0.1, y: 0.0, phi: 0.0 });
     /// assert_eq!((j.offset, j.damping, j.auto_order), (0, 0.0, false));
     /// ```
-    pub fn new(name: &str, kind: D::JointKind, parent: usize, child: usize, origin: D::Pose) -> Self {
+    pub fn new(name: &str, kind: JointKind<D>, parent: usize, child: usize, origin: D::Pose) -> Self {
         let (offset, damping, auto_order, report) = (0, 0.0, false, ReportOptions::default());
         Self { name: name.into(), kind, parent, child, origin, offset, damping, auto_order, report }
     }
@@ -353,7 +353,7 @@ pub struct Mechanism<D: Dimension = Planar> {
     /// Gravity (m/s²), zero if absent.
     pub gravity: D::Vector,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
-    pub schedules: Vec<schedule::Schedule<D::Parameter>>,
+    pub schedules: Vec<schedule::Schedule>,
     /// `[initial]`: (joint, coordinates) that override a simulation's start.
     pub initial: Vec<(usize, Vec<f64>)>,
     /// `[initial_velocity]`: (joint, coordinate rates) of a simulation's start.
@@ -417,7 +417,7 @@ impl<D: Dimension> Mechanism<D> {
             placed[j.child] = true;
             parent_joint[j.child] = Some(i);
             j.offset = offset;
-            offset += D::joint(&j.kind).dof();
+            offset += j.kind.joint().dof();
         }
         if let Some(b) = placed.iter().position(|p| !p) {
             return Err(Error::invalid("body", &bodies[b].name, "is not the child of any joint"));
@@ -470,7 +470,7 @@ impl<D: Dimension> Mechanism<D> {
         let length = self
             .joints
             .iter()
-            .map(|j| D::reach(&j.origin) + D::flexure(&j.kind).map_or(0.0, D::flexure_length))
+            .map(|j| D::reach(&j.origin) + j.kind.flexure().map_or(0.0, D::flexure_length))
             .sum::<f64>();
         if length > 0.0 && length.is_finite() { length } else { 1.0 }
     }
@@ -505,7 +505,7 @@ impl<D: Dimension> Mechanism<D> {
     /// [`Mechanism::rest`] into `q` (one value per coordinate), without allocating.
     pub(crate) fn rest_into(&self, q: &mut [f64]) {
         for j in &self.joints {
-            let joint = D::joint(&j.kind);
+            let joint = j.kind.joint();
             joint.rest_into(&mut q[j.offset..j.offset + joint.dof()]);
         }
     }

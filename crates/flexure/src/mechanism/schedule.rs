@@ -45,20 +45,18 @@ pub enum Waveform {
     },
 }
 
-/// One load given in time (module docs), checked by the file parser; its
-/// `parameter` is a planar [`Parameter`] or, in a spatial mechanism, a
-/// [`crate::mechanism::sweep::SpatialParameter`].
+/// One load given in time (module docs), checked by the file parser.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Schedule<P = Parameter> {
+pub struct Schedule {
     /// The load's name, as in the file (`tendon.flexor.tension`).
     pub load: String,
     /// The load it sets.
-    pub parameter: P,
+    pub parameter: Parameter,
     /// Its values in time.
     pub waveform: Waveform,
 }
 
-impl<P> Schedule<P> {
+impl Schedule {
     /// The load's value at time `t` (s): linear between points (the later
     /// value at a step's time), constant outside them; or the harmonic.
     ///

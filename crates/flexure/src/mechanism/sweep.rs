@@ -1,143 +1,106 @@
 //! Sweeps of one load, with the stability limit found between two values.
 
-use super::equilibria::{ParameterOf, first_loss, refine_limit};
+use super::equilibria::{first_loss, refine_limit};
 use super::statics::{LIMIT_PRECISION, Settings, Solution, Statics, assemble_unloaded, follow};
-use super::{Loads, Mechanism};
+use super::{Dimension, Loads, Mechanism};
 use crate::error::{Error, Result};
-use crate::space::Spatial;
 
-/// A load that a sweep varies.
-#[derive(Debug, Clone, PartialEq)]
+/// A load that a sweep or a schedule varies, in either dimension.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Parameter {
-    /// `tendon.NAME.tension`
+    /// `tendon.NAME.tension`: tendon `i`'s tension.
     Tension(usize),
-    /// `force.NAME.moment`, `.fx` or `.fy`: the component of its [`crate::space::Wrench`]
-    /// (0, 1, 2, in the wrench's order $(M, F_x, F_y)$).
+    /// `force.NAME.C`: component `c` of point load `i`'s wrench, in the
+    /// wrench's order, moment first ([`LoadNames::components`]): 0, 1, 2 for
+    /// $(M, F_x, F_y)$ in the plane, 0..6 for `mx, my, mz, fx, fy, fz` in space.
     Force(usize, usize),
-    /// `gravity.x` or `gravity.y`.
+    /// `gravity.x`, `.y` (or `.z` in space): gravity's component.
     Gravity(usize),
+}
+
+/// How a dimension names its loads in a sweep or a schedule
+/// ([`crate::mechanism::Dimension::LOADS`]), and what [`Parameter::parse`]
+/// says of a name it refuses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadNames {
+    /// A point load's components, in its wrench's order.
+    pub components: &'static [&'static str],
+    /// Gravity's components.
+    pub axes: &'static [&'static str],
+    /// What a load must be.
+    pub must_be: &'static str,
+    /// What a point load's component must be.
+    pub component: &'static str,
+    /// What gravity's component must be, where a wrong one is told apart
+    /// from a wrong load (in space; in the plane it is a wrong load).
+    pub axis: Option<&'static str>,
+    /// Whether a NAME may hold dots (in the plane), or holds none (in space).
+    pub dotted: bool,
+    /// Whether a refused name is shown quoted (in the plane).
+    pub quoted: bool,
 }
 
 impl Parameter {
-    /// Parses `tendon.NAME.tension`, `force.NAME.fx|fy|moment` or `gravity.x|y`
-    /// (NAME may itself hold dots).
-    pub fn parse(m: &Mechanism, spec: &str) -> Result<Parameter> {
-        let bad = |why: &'static str| Error::invalid("sweep", format!("{spec:?}"), why);
-        if let Some(name) = spec.strip_prefix("tendon.").and_then(|s| s.strip_suffix(".tension")) {
-            return m
-                .tendons
-                .iter()
-                .position(|t| t.name == name)
-                .map(Parameter::Tension)
-                .ok_or_else(|| bad("names no tendon of the mechanism"));
-        }
-        if let Some((name, comp)) = spec.strip_prefix("force.").and_then(|s| s.rsplit_once('.')) {
-            let k =
-                m.forces.iter().position(|f| f.name == name).ok_or_else(|| bad("names no force of the mechanism"))?;
-            let c = match comp {
-                "moment" => 0,
-                "fx" => 1,
-                "fy" => 2,
-                _ => return Err(bad("a force's component is fx, fy or moment")),
-            };
-            return Ok(Parameter::Force(k, c));
-        }
-        match spec {
-            "gravity.x" => Ok(Parameter::Gravity(0)),
-            "gravity.y" => Ok(Parameter::Gravity(1)),
-            _ => Err(bad("must be tendon.NAME.tension, force.NAME.fx|fy|moment or gravity.x|y")),
-        }
-    }
-
-    /// `loads` with this parameter set to `value`.
-    pub fn apply(&self, loads: &Loads, value: f64) -> Loads {
-        let mut l = loads.clone();
-        self.set(&mut l, value);
-        l
-    }
-
-    /// Sets this parameter of `loads` to `value`, in place.
-    pub fn set(&self, loads: &mut Loads, value: f64) {
-        match *self {
-            Parameter::Tension(t) => loads.tension[t] = value,
-            Parameter::Force(k, c) => loads.force[k][c] = value,
-            Parameter::Gravity(c) => loads.gravity[c] = value,
-        }
-    }
-}
-
-/// The one load a spatial mechanism's sweep varies.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SpatialParameter {
-    /// Component 0..6 (`mx, my, mz, fx, fy, fz`) of point load `i`.
-    Force(usize, usize),
-    /// Tendon `i`'s tension.
-    Tension(usize),
-    /// Gravity's component 0..3 (`x, y, z`).
-    Gravity(usize),
-}
-
-/// The components of a point load, by name.
-pub const WRENCH_COMPONENTS: [&str; 6] = ["mx", "my", "mz", "fx", "fy", "fz"];
-
-impl SpatialParameter {
-    /// `force.NAME.mx|my|mz|fx|fy|fz`, `tendon.NAME.tension` or `gravity.x|y|z`.
+    /// Parses `tendon.NAME.tension`, `force.NAME.C` with `C` one of the
+    /// dimension's [`LoadNames::components`] (`fx`, `fy`, `moment` in the
+    /// plane; `mx`, `my`, `mz`, `fx`, `fy`, `fz` in space), or `gravity.A`
+    /// with `A` one of its [`LoadNames::axes`].
     ///
     /// # Example
     /// ```
-    /// use flexure::mechanism::sweep::SpatialParameter;
+    /// use flexure::mechanism::sweep::Parameter;
     /// # use flexure::mechanism::spatial::{SpatialBody, SpatialMechanism};
     /// # let m = SpatialMechanism::new(vec![SpatialBody::massless("ground")], vec![], vec![], vec![], vec![], Default::default()).unwrap();
-    /// assert_eq!(SpatialParameter::parse(&m, "gravity.z").unwrap(), SpatialParameter::Gravity(2));
-    /// assert!(SpatialParameter::parse(&m, "force.none.fx").unwrap_err().to_string().contains("none"));
+    /// assert_eq!(Parameter::parse(&m, "gravity.z").unwrap(), Parameter::Gravity(2));
+    /// assert!(Parameter::parse(&m, "force.none.fx").unwrap_err().to_string().contains("none"));
     /// ```
-    pub fn parse(m: &Mechanism<Spatial>, text: &str) -> Result<Self> {
-        let bad = |why: &'static str| Error::invalid("sweep", text, why);
-        let parts: Vec<&str> = text.split('.').collect();
-        match parts.as_slice() {
-            ["gravity", axis] => ["x", "y", "z"]
+    pub fn parse<D: Dimension>(m: &Mechanism<D>, text: &str) -> Result<Parameter> {
+        let words = D::LOADS;
+        let shown = if words.quoted { format!("{text:?}") } else { text.to_string() };
+        let bad = |why: &'static str| Error::invalid("sweep", &shown, why);
+        let name = |n: &str| words.dotted || !n.contains('.');
+        if let Some(n) = text.strip_prefix("tendon.").and_then(|s| s.strip_suffix(".tension")).filter(|n| name(n)) {
+            return m
+                .tendons
                 .iter()
-                .position(|a| a == axis)
-                .map(SpatialParameter::Gravity)
-                .ok_or_else(|| bad("gravity's component must be x, y or z")),
-            ["force", name, component] => {
-                let i = m
-                    .forces
-                    .iter()
-                    .position(|f| f.name == *name)
-                    .ok_or_else(|| bad("names no force of the mechanism"))?;
-                let c = WRENCH_COMPONENTS
-                    .iter()
-                    .position(|c| c == component)
-                    .ok_or_else(|| bad("a force's component must be mx, my, mz, fx, fy or fz"))?;
-                Ok(SpatialParameter::Force(i, c))
-            }
-            ["tendon", name, "tension"] => {
-                let i = m
-                    .tendons
-                    .iter()
-                    .position(|t| t.name == *name)
-                    .ok_or_else(|| bad("names no tendon of the mechanism"))?;
-                Ok(SpatialParameter::Tension(i))
-            }
-            _ => Err(bad("must be force.NAME.mx|my|mz|fx|fy|fz, tendon.NAME.tension or gravity.x|y|z")),
+                .position(|t| t.name == n)
+                .map(Parameter::Tension)
+                .ok_or_else(|| bad("names no tendon of the mechanism"));
         }
+        if let Some((n, c)) = text.strip_prefix("force.").and_then(|s| s.rsplit_once('.')).filter(|(n, _)| name(n)) {
+            let i = m.forces.iter().position(|f| f.name == n).ok_or_else(|| bad("names no force of the mechanism"))?;
+            let c = words.components.iter().position(|w| *w == c).ok_or_else(|| bad(words.component))?;
+            return Ok(Parameter::Force(i, c));
+        }
+        if let Some(a) = text.strip_prefix("gravity.").filter(|a| !a.contains('.')) {
+            match (words.axes.iter().position(|w| *w == a), words.axis) {
+                (Some(c), _) => return Ok(Parameter::Gravity(c)),
+                (None, Some(why)) => return Err(bad(why)),
+                (None, None) => {}
+            }
+        }
+        Err(bad(words.must_be))
     }
 
     /// `loads` with this parameter set to `value`.
-    pub fn apply(&self, loads: &Loads<Spatial>, value: f64) -> Loads<Spatial> {
+    pub fn apply<D: Dimension>(&self, loads: &Loads<D>, value: f64) -> Loads<D> {
         let mut out = loads.clone();
         self.set(&mut out, value);
         out
     }
 
     /// Sets this parameter of `loads` to `value`, in place.
-    pub fn set(&self, loads: &mut Loads<Spatial>, value: f64) {
+    pub fn set<D: Dimension>(&self, loads: &mut Loads<D>, value: f64) {
         match *self {
-            SpatialParameter::Force(i, c) => loads.force[i][c] = value,
-            SpatialParameter::Tension(i) => loads.tension[i] = value,
-            SpatialParameter::Gravity(c) => loads.gravity[c] = value,
+            Parameter::Tension(i) => loads.tension[i] = value,
+            Parameter::Force(i, c) => loads.force[i][c] = value,
+            Parameter::Gravity(c) => loads.gravity[c] = value,
         }
+    }
+
+    /// Whether it is a tendon's tension (which cannot be negative).
+    pub fn is_tension(&self) -> bool {
+        matches!(self, Parameter::Tension(_))
     }
 }
 
@@ -226,7 +189,7 @@ fn stopped<S: serde::Serializer>(stopped: &Option<(f64, Error)>, s: S) -> std::r
 /// ```
 pub fn sweep<D: Statics>(
     m: &Mechanism<D>,
-    parameter: &ParameterOf<D>,
+    parameter: &Parameter,
     values: &[f64],
     settings: &Settings,
 ) -> Result<Sweep<Solution<D>>> {
@@ -237,7 +200,7 @@ pub fn sweep<D: Statics>(
     if let Some(v) = values.iter().find(|v| !v.is_finite()) {
         return Err(Error::invalid("sweep", v, "values must be finite"));
     }
-    if D::is_tension(parameter)
+    if parameter.is_tension()
         && let Some(v) = values.iter().find(|v| **v < 0.0)
     {
         return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
@@ -248,7 +211,7 @@ pub fn sweep<D: Statics>(
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut start = assemble_unloaded(m, settings)?;
     for (i, &v) in values.iter().enumerate() {
-        let target = D::apply(parameter, &base, v);
+        let target = parameter.apply(&base, v);
         // The first value is reached from the unloaded state with every load
         // ramped together: a loss there is refined as a solve's.
         let found = follow(m, &start, &target, settings);

@@ -1,8 +1,8 @@
 //! What the door needs of a dimension beyond its report ([`Reported`]):
 //! the analyses, each written once over the dimension's traits (its
-//! statics, dynamics, findings and estimates), and the three things only
-//! the door asks of a dimension: a load parameter named in words, a
-//! compliance as a square matrix, and a flexure's orders. The plane and
+//! statics, dynamics, findings and estimates), and the two things only
+//! the door asks of a dimension: a compliance as a square matrix and a
+//! flexure's orders. The plane and
 //! space implement those here, side by side; [`super::Model`] is written
 //! once over it.
 
@@ -12,10 +12,9 @@ use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, Refined, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
-use crate::mechanism::equilibria::ParameterOf;
 use crate::mechanism::findings::{Crossing, Findings, OpenClosure};
 use crate::mechanism::statics::{Settings, Solution};
-use crate::mechanism::sweep::Sweep;
+use crate::mechanism::sweep::{Parameter, Sweep};
 use crate::mechanism::{Mechanism, findings, statics};
 use crate::report::Reported;
 use crate::space::{Planar, Spatial};
@@ -29,8 +28,6 @@ pub trait Analyses: Reported + Refined + Findings {
     const REFINED: [&'static str; 2];
     /// The rows and columns of a compliance: the twist's parts, rotations first.
     const COMPLIANCE_AXES: &'static [&'static str];
-    /// The load a sweep sets, named as the CLI writes it (`tendon.NAME.tension`, `force.NAME.fx`, …).
-    fn parameter(m: &Mechanism<Self>, text: &str) -> Result<ParameterOf<Self>>;
     /// The compliance of the frame at point `at` (its body's frame; `POINT_DIM` numbers) of `body`.
     fn compliance(m: &Mechanism<Self>, s: &Solution<Self>, body: usize, at: &[f64]) -> Result<DMatrix<f64>>;
     /// A flexure's orders: one number in the plane, the three of twist and bendings in space.
@@ -55,7 +52,7 @@ pub trait Analyses: Reported + Refined + Findings {
         values: &[f64],
         settings: &Settings,
     ) -> Result<Sweep<Solution<Self>>> {
-        crate::mechanism::sweep::sweep(m, &Self::parameter(m, parameter)?, values, settings)
+        crate::mechanism::sweep::sweep(m, &Parameter::parse(m, parameter)?, values, settings)
     }
     /// The parts that cross at each of `shapes`, by index, where any do.
     fn crossings_along(m: &Mechanism<Self>, shapes: &[&[f64]]) -> Vec<(usize, Vec<Crossing<Vec<f64>>>)> {
@@ -110,10 +107,6 @@ impl Analyses for Planar {
     const REFINED: [&'static str; 2] = ["order", "points"];
     const COMPLIANCE_AXES: &'static [&'static str] = &["phi", "x", "y"];
 
-    fn parameter(m: &Mechanism, text: &str) -> Result<ParameterOf<Planar>> {
-        crate::mechanism::sweep::Parameter::parse(m, text)
-    }
-
     fn compliance(m: &Mechanism, s: &Solution, body: usize, at: &[f64]) -> Result<DMatrix<f64>> {
         let [x, y] = point(at)?;
         let c = statics::compliance(m, s, body, nalgebra::Point2::new(x, y))?;
@@ -128,10 +121,6 @@ impl Analyses for Planar {
 impl Analyses for Spatial {
     const REFINED: [&'static str; 2] = ["orders up to", "subintervals"];
     const COMPLIANCE_AXES: &'static [&'static str] = &["rx", "ry", "rz", "x", "y", "z"];
-
-    fn parameter(m: &Mechanism<Spatial>, text: &str) -> Result<ParameterOf<Spatial>> {
-        crate::mechanism::sweep::SpatialParameter::parse(m, text)
-    }
 
     fn compliance(m: &Mechanism<Spatial>, s: &Solution<Spatial>, body: usize, at: &[f64]) -> Result<DMatrix<f64>> {
         let [x, y, z] = point(at)?;

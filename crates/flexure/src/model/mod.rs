@@ -25,7 +25,7 @@ use crate::mechanism::buckling::Buckling;
 use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::Settings;
 use crate::mechanism::sweep::SweepLimit;
-use crate::mechanism::{Mechanism, file};
+use crate::mechanism::{Dimension, Mechanism, file};
 use crate::report::{BodyPose, EstimateFailed, Named, SolveReport, solve_report};
 use crate::space::{Planar, Spatial};
 use nalgebra::DMatrix;
@@ -47,6 +47,19 @@ macro_rules! each {
             Model::Spatial($m) => $body,
         }
     };
+}
+
+/// What a front end does with a model's mechanism, written once over the
+/// dimension and handed to [`Model::visit`], which matches on the
+/// dimension for it: a front end's own work that needs the mechanism's
+/// type (the CLI's picture), so that the door stays the one match. A
+/// visitor is usually one generic impl, `impl<D: Bound> Visit<D> for V`,
+/// bounded by what its work needs.
+pub trait Visit<D: Dimension> {
+    /// What the visit answers, the same in both dimensions.
+    type Output;
+    /// The work on the mechanism.
+    fn visit(self, m: &Mechanism<D>) -> Self::Output;
 }
 
 /// What [`Model::export`] answers: the model's text, its fit report
@@ -222,6 +235,29 @@ impl Model {
             3 => document.spatial().map(Model::Spatial),
             _ => document.planar().map(Model::Planar),
         }
+    }
+
+    /// `visitor`'s work on the mechanism, whichever its dimension.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::{Dimension, Mechanism};
+    /// use flexure::model::{Model, Visit};
+    /// struct Twists;
+    /// impl<D: Dimension> Visit<D> for Twists {
+    ///     type Output = usize;
+    ///     fn visit(self, m: &Mechanism<D>) -> usize {
+    ///         D::TWIST_DIM * m.bodies.len()
+    ///     }
+    /// }
+    /// let m = Model::from_toml("dimension = 3\n[[joint]]\nname = \"ball\"\nkind = \"spherical\"\nparent = \"ground\"\nchild = \"bob\"\n").unwrap();
+    /// assert_eq!(m.visit(Twists), 12);
+    /// ```
+    pub fn visit<V, T>(&self, visitor: V) -> T
+    where
+        V: Visit<Planar, Output = T> + Visit<Spatial, Output = T>,
+    {
+        each!(self, m => visitor.visit(m))
     }
 
     /// 2 or 3.
@@ -491,7 +527,7 @@ impl From<Mechanism<Spatial>> for Model {
 }
 
 fn joints<D: Analyses>(m: &Mechanism<D>) -> Vec<(String, std::ops::Range<usize>)> {
-    m.joints.iter().map(|j| (j.name.clone(), j.offset..j.offset + D::joint(&j.kind).dof())).collect()
+    m.joints.iter().map(|j| (j.name.clone(), j.offset..j.offset + j.kind.joint().dof())).collect()
 }
 
 fn refined<D: Analyses>(_: &Mechanism<D>) -> [&'static str; 2] {
@@ -499,15 +535,15 @@ fn refined<D: Analyses>(_: &Mechanism<D>) -> [&'static str; 2] {
 }
 
 fn flexure_names<D: Analyses>(m: &Mechanism<D>) -> Vec<String> {
-    m.joints.iter().filter(|j| D::flexure(&j.kind).is_some()).map(|j| j.name.clone()).collect()
+    m.joints.iter().filter(|j| j.kind.flexure().is_some()).map(|j| j.name.clone()).collect()
 }
 
 fn flexure_length<D: Analyses>(m: &Mechanism<D>, name: &str) -> Option<f64> {
-    m.joints.iter().find(|j| j.name == name).and_then(|j| D::flexure(&j.kind)).map(D::flexure_length)
+    m.joints.iter().find(|j| j.name == name).and_then(|j| j.kind.flexure()).map(D::flexure_length)
 }
 
 fn orders<D: Analyses>(m: &Mechanism<D>) -> Named<Vec<usize>> {
-    Named(m.joints.iter().filter_map(|j| Some((j.name.clone(), D::orders(D::flexure(&j.kind)?)))).collect())
+    Named(m.joints.iter().filter_map(|j| Some((j.name.clone(), D::orders(j.kind.flexure()?)))).collect())
 }
 
 fn open_closures<D: Analyses>(m: &Mechanism<D>) -> Result<Vec<OpenClosure>> {
@@ -543,7 +579,7 @@ fn sweep<D: Analyses>(
         columns.extend(pose.columns().iter().map(|c| format!("{}.{c}", b.name)));
     }
     for j in &m.joints {
-        columns.extend((0..D::joint(&j.kind).dof()).map(|i| format!("{}[{i}]", j.name)));
+        columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]", j.name)));
     }
     columns.push("energy".into());
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());

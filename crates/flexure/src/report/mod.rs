@@ -378,7 +378,7 @@ pub fn solve_report<D: Reported>(
 ) -> std::result::Result<SolveReport, EstimateFailed> {
     let bodies = m.bodies.iter().map(|b| b.name.clone()).zip(D::poses(m, &s.q)).collect();
     let coordinates =
-        m.joints.iter().map(|j| (j.name.clone(), s.q[j.offset..j.offset + D::joint(&j.kind).dof()].to_vec())).collect();
+        m.joints.iter().map(|j| (j.name.clone(), s.q[j.offset..j.offset + j.kind.joint().dof()].to_vec())).collect();
     let mut r = SolveReport {
         dimension: D::POINT_DIM as u8,
         bodies: Named(bodies),
@@ -398,9 +398,9 @@ pub fn solve_report<D: Reported>(
         load_steps: s.load_steps,
         iterations: s.iterations,
     };
-    let flexures = m.joints.iter().filter_map(|j| Some((j, D::flexure(&j.kind)?)));
+    let flexures = m.joints.iter().filter_map(|j| Some((j, j.kind.flexure()?)));
     for ((j, f), estimate) in flexures.zip(D::estimates(m, s, target)) {
-        let q = &s.q[j.offset..j.offset + D::joint(&j.kind).dof()];
+        let q = &s.q[j.offset..j.offset + j.kind.joint().dof()];
         let name = j.name.clone();
         let failed = |error| EstimateFailed { joint: name.clone(), error };
         let (e, load) = estimate.map_err(failed)?;

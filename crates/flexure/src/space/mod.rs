@@ -70,11 +70,12 @@ pub trait Space: Copy + Debug + Default + 'static {
         + PartialEq
         + Default
         + std::ops::Add<Output = Self::Vector>
-        + std::ops::Sub<Output = Self::Vector>;
+        + std::ops::Sub<Output = Self::Vector>
+        + std::ops::IndexMut<usize, Output = f64>;
     /// A velocity of a frame (angular, then linear).
     type Twist: Copy + Debug + PartialEq + Default;
-    /// A force and moment on a frame (moment, then force).
-    type Wrench: Copy + Debug + PartialEq + Default;
+    /// A force and moment on a frame (moment, then force), by component.
+    type Wrench: Copy + Debug + PartialEq + Default + std::ops::IndexMut<usize, Output = f64>;
     /// The matrix of [`Space::adjoint`], `TWIST_DIM` square.
     type Adjoint: Copy + Debug + PartialEq;
 

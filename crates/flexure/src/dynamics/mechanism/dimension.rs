@@ -31,8 +31,6 @@ pub trait Dynamics: Statics {
     /// One moving body's frame at each sample of a simulation.
     type BodyMotion: Debug + Clone + PartialEq + serde::Serialize;
 
-    /// Sets the load `parameter` names to `value`.
-    fn set(parameter: &Self::Parameter, loads: &mut Loads<Self>, value: f64);
     /// Every moving body's frame at each sample of `run`.
     fn motions(m: &Mechanism<Self>, run: &Trajectory) -> Vec<Self::BodyMotion>;
 }
@@ -82,10 +80,6 @@ impl Dynamics for Planar {
     type Masses = planar::ClosedFormMasses;
     type BodyMotion = BodyMotion;
 
-    fn set(parameter: &Self::Parameter, loads: &mut Loads, value: f64) {
-        parameter.set(loads, value)
-    }
-
     fn motions(m: &Mechanism, run: &Trajectory) -> Vec<BodyMotion> {
         let poses: Vec<_> = (0..run.time.len()).map(|k| kinematics::frames(m, run.q(k)).bodies).collect();
         let along = |b: usize, part: fn(&Pose) -> f64| poses.iter().map(|p| part(&p[b])).collect();
@@ -103,10 +97,6 @@ impl Dynamics for Planar {
 impl Dynamics for Spatial {
     type Masses = spatial::StationMasses;
     type BodyMotion = BodyPoses;
-
-    fn set(parameter: &Self::Parameter, loads: &mut Loads<Spatial>, value: f64) {
-        parameter.set(loads, value)
-    }
 
     fn motions(m: &Mechanism<Spatial>, run: &Trajectory) -> Vec<BodyPoses> {
         let mut f = Frames::new(m);

@@ -48,7 +48,7 @@ impl<D: Dynamics> MechanismSystem<D> {
         let n = m.dof();
         let mut damping = DMatrix::zeros(n, n);
         for j in m.joints.iter().filter(|j| j.damping != 0.0) {
-            let joint = D::joint(&j.kind);
+            let joint = j.kind.joint();
             let k = joint.dof();
             joint.add_damping(j.damping, &mut damping.view_mut((j.offset, j.offset), (k, k)));
         }

@@ -21,16 +21,14 @@ use crate::kinematics::{Level, Pose};
 use crate::mechanism::joints::JointState;
 use crate::mechanism::kinematics::frames_level_into;
 use crate::mechanism::spatial::joints::unit_axis;
-use crate::mechanism::sweep::Parameter;
-use crate::mechanism::sweep::SpatialParameter;
-use crate::mechanism::{Closure, Dimension, Holds, Mechanism, ReportOptions, kinematics};
+use crate::mechanism::{Closure, Dimension, Holds, JointKind, Mechanism, ReportOptions, kinematics};
 use crate::space::{Planar, Spatial, Wrench};
 use nalgebra::{Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector2, Vector3, Vector6};
 use serde::de::DeserializeOwned;
 
 /// A joint's kind as its keys give it.
 pub(super) struct Kind<D: Dimension> {
-    pub(super) kind: D::JointKind,
+    pub(super) kind: JointKind<D>,
     /// Where its stiffness is given (the joint's name when it has none),
     /// for the check of the stiffness ratio.
     pub(super) stiffness_place: Span,
@@ -84,8 +82,6 @@ pub(super) trait FileDimension: Dimension {
     ) -> Result<Closure<Self>>;
     /// The bodies' frames and the joints' states at rest.
     fn rest(m: &Mechanism<Self>) -> (Vec<Self::Pose>, Vec<JointState<Self>>);
-    /// A load that a schedule names, and whether it is a tension (never negative).
-    fn parameter(m: &Mechanism<Self>, load: &str) -> crate::Result<(Self::Parameter, bool)>;
 }
 
 impl FileDimension for Planar {
@@ -149,10 +145,6 @@ impl FileDimension for Planar {
     fn rest(m: &Mechanism) -> (Vec<Pose>, Vec<JointState>) {
         let f = kinematics::frames(m, &m.rest());
         (f.bodies, f.joints)
-    }
-
-    fn parameter(m: &Mechanism, load: &str) -> crate::Result<(Parameter, bool)> {
-        Parameter::parse(m, load).map(|p| (p.clone(), matches!(p, Parameter::Tension(_))))
     }
 }
 
@@ -249,9 +241,5 @@ impl FileDimension for Spatial {
         let mut f = kinematics::Frames::new(m);
         frames_level_into(m, &m.rest(), Level::Pose, &mut f);
         (f.bodies, f.joints)
-    }
-
-    fn parameter(m: &Mechanism<Spatial>, load: &str) -> crate::Result<(SpatialParameter, bool)> {
-        SpatialParameter::parse(m, load).map(|p| (p, matches!(p, SpatialParameter::Tension(_))))
     }
 }

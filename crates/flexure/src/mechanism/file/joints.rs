@@ -149,7 +149,7 @@ fn rest_number(src: &Source, owner: &str, kind: &str, j: &JointToml) -> Result<f
 
 /// A kind other than a flexure: its stiffness given at `stiffness` (the
 /// joint's name when absent).
-fn spring<D: Dimension>(j: &JointToml, kind: D::JointKind) -> Kind<D> {
+fn spring<D: Dimension>(j: &JointToml, kind: JointKind<D>) -> Kind<D> {
     let stiffness_place = j.stiffness.as_ref().map_or(j.name.span(), Spanned::span);
     Kind { kind, stiffness_place, auto_order: false, report: ReportOptions::default() }
 }
@@ -163,9 +163,9 @@ pub(super) fn planar_kind(src: &Source, owner: &str, j: &JointToml) -> Result<Ki
     };
     Ok(match kind {
         "flexure" => planar_flexure(src, owner, j)?,
-        "revolute" => spring(j, JointKind::Revolute(Revolute { stiffness, rest })),
-        "prismatic" => spring(j, JointKind::Prismatic(Prismatic { stiffness, rest })),
-        _ => spring(j, JointKind::Fixed(Fixed)),
+        "revolute" => spring::<Planar>(j, JointKind::Revolute(Revolute { stiffness, rest })),
+        "prismatic" => spring::<Planar>(j, JointKind::Prismatic(Prismatic { stiffness, rest })),
+        _ => spring::<Planar>(j, JointKind::Fixed(Fixed)),
     })
 }
 

@@ -3,6 +3,7 @@
 use super::dimension::FileDimension;
 use super::document::{Sign, Source, number};
 use super::{BTreeMap, Deserialize, Error, Mechanism, Result, Schedule, Spanned, Waveform};
+use crate::mechanism::sweep::Parameter;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -29,12 +30,12 @@ pub(super) fn schedules<D: FileDimension>(
     src: &Source,
     m: &Mechanism<D>,
     tables: &[ScheduleToml],
-) -> Result<Vec<Schedule<D::Parameter>>> {
-    let mut out: Vec<Schedule<D::Parameter>> = Vec::new();
+) -> Result<Vec<Schedule>> {
+    let mut out: Vec<Schedule> = Vec::new();
     for s in tables {
         let load = s.load.get_ref();
         let owner = format!("schedule {load:?}: ");
-        let (parameter, tension) = D::parameter(m, load).map_err(|e| match e {
+        let parameter = Parameter::parse(m, load).map_err(|e| match e {
             Error::InvalidParameter { reason, .. } => {
                 src.error(&s.load.span(), format!("{owner}load {load:?} {reason}"))
             }
@@ -44,8 +45,8 @@ pub(super) fn schedules<D: FileDimension>(
             return src.fail(&s.load.span(), format!("{owner}load {load:?} is scheduled twice"));
         }
         let waveform = match (&s.points, &s.harmonic) {
-            (Some(points), None) => Waveform::Points(schedule_points(src, &owner, points, tension)?),
-            (None, Some(h)) => schedule_harmonic(src, &owner, h, tension)?,
+            (Some(points), None) => Waveform::Points(schedule_points(src, &owner, points, parameter.is_tension())?),
+            (None, Some(h)) => schedule_harmonic(src, &owner, h, parameter.is_tension())?,
             (Some(_), Some(h)) => {
                 return src.fail(&h.span(), format!("{owner}give points or harmonic, not both"));
             }
@@ -157,7 +158,7 @@ pub(super) fn initial_state<D: FileDimension>(
             toml::Value::Array(items) => items.iter().map(number).collect::<Option<Vec<f64>>>(),
             v => number(v).map(|x| vec![x]),
         };
-        let dof = D::joint(&m.joints[j].kind).dof();
+        let dof = m.joints[j].kind.joint().dof();
         let Some(values) = values else {
             return src.fail(&span, format!("{owner}must be a number or an array of {dof} numbers"));
         };

@@ -15,7 +15,7 @@ pub(super) fn check_stiffness_ratio<D: FileDimension>(
     // (joint, stiffness in N·m)
     let mut all: Vec<(usize, f64)> = Vec::new();
     for (i, (j, s)) in m.joints.iter().zip(joints).enumerate() {
-        let unit = if D::joint(&j.kind).is_translation() { length * length } else { 1.0 };
+        let unit = if j.kind.joint().is_translation() { length * length } else { 1.0 };
         all.extend((0..s.gradient.len()).map(|k| (i, s.stiffness[(k, k)] * unit)).filter(|&(_, k)| k > 0.0));
     }
     let (Some(stiff), Some(soft)) = (

@@ -237,7 +237,7 @@ fn groups<D: Dimension>(m: &Mechanism<D>) -> Vec<usize> {
     }
     let closed = m.closures.iter().map(|c| (c.a, c.b));
     // Rigid joints (revolute, prismatic, fixed, ball) hold their bodies together at a point, as closures do.
-    let rigid = m.joints.iter().filter(|j| D::flexure(&j.kind).is_none()).map(|j| (j.parent, j.child));
+    let rigid = m.joints.iter().filter(|j| j.kind.flexure().is_none()).map(|j| (j.parent, j.child));
     for (a, b) in closed.chain(rigid) {
         let (ra, rb) = (root(&mut g, a), root(&mut g, b));
         g[ra.max(rb)] = ra.min(rb);
@@ -257,8 +257,8 @@ fn drawn<D: Findings>(
 ) -> Vec<PlacedPart<D>> {
     let mut parts = Vec::new();
     for (ji, j) in m.joints.iter().enumerate() {
-        let Some(f) = D::flexure(&j.kind) else { continue };
-        let alpha = &q[j.offset..j.offset + D::joint(&j.kind).dof()];
+        let Some(f) = j.kind.flexure() else { continue };
+        let alpha = &q[j.offset..j.offset + j.kind.joint().dof()];
         let tip = D::origin(&bodies[j.child]);
         let Some(shape) = D::flexure_shape(f, alpha, chords(alpha) + 1, &roots[ji], tip) else { continue };
         parts.push(PlacedPart { part: Part::Flexure(ji), groups: vec![group[j.parent], group[j.child]], shape });
@@ -268,7 +268,7 @@ fn drawn<D: Findings>(
         let points = hull_points(m.attachments(b), b, anchors).iter().map(|r| D::act(&bodies[b], r)).collect();
         let Some(mut shape) = D::link_shape(points, tolerance) else { continue };
         // Where a body it carries by a rigid joint (a slider's carriage, a hinge's child) is held.
-        let carried = m.joints.iter().filter(|j| j.parent == b && D::flexure(&j.kind).is_none());
+        let carried = m.joints.iter().filter(|j| j.parent == b && j.kind.flexure().is_none());
         shape.ends.extend(carried.map(|j| D::origin(&bodies[j.child])));
         parts.push(PlacedPart { part: Part::Link(b), groups: vec![group[b]], shape });
     }

@@ -4,9 +4,11 @@
 //! mechanism's algorithms only call it.
 //!
 //! A kind is a type implementing [`Joint`] in its own file; [`JointKind`]
-//! lists them, and its [`JointKind::joint`] is the one place that matches
-//! on the kind. Adding a kind touches its file, that enum, the file
-//! format's table of kinds (`file`) and its docs (`docs/mechanism-format.md`).
+//! lists them for both dimensions, each variant of the dimension's type
+//! ([`Dimension`]), and its [`JointKind::joint`] is the one place that
+//! matches on the kind. Adding a kind touches its file, that enum, its
+//! type in each [`Dimension`], the file format's table of kinds (`file`)
+//! and its docs (`docs/mechanism-format.md`).
 
 mod fixed;
 mod flexure;
@@ -18,6 +20,7 @@ pub use fixed::Fixed;
 pub use prismatic::Prismatic;
 pub use revolute::Revolute;
 
+use super::Dimension;
 use crate::error::Result;
 use crate::flexure::Flexure;
 use crate::kinematics::{Kinematics, Level};
@@ -246,32 +249,86 @@ pub trait Joint<S: Space = Planar> {
     }
 }
 
-/// One of the joint kinds.
+/// One of the joint kinds, in the dimension `D` ([`Planar`] by default),
+/// each kind of the dimension's own type ([`Dimension`]): a pin and a
+/// slider about and along the plane's fixed axes ([`Revolute`],
+/// [`Prismatic`]) or along any axis in space, and no ball in the plane
+/// ([`NoBall`]). `SpatialJointKind` names it in space.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::{JointKind, Revolute};
+/// use flexure::mechanism::spatial::{SpatialJointKind, Spherical};
+/// let pin: JointKind = JointKind::Revolute(Revolute { stiffness: 1.0, rest: 0.0 });
+/// let ball = SpatialJointKind::Spherical(Spherical { stiffness: 0.0, rest: [0.0; 3] });
+/// assert_eq!((pin.joint().dof(), ball.joint().dof()), (1, 3));
+/// assert!(pin.flexure().is_none() && ball.flexure().is_none());
+/// ```
 #[derive(Debug, Clone, PartialEq)]
-pub enum JointKind {
-    /// The Smooth Curvature flexure (boxed: it carries its tables).
-    Flexure(Box<Flexure>),
-    /// Pin joint.
-    Revolute(Revolute),
-    /// Slider.
-    Prismatic(Prismatic),
-    /// Weld of child to parent.
-    Fixed(Fixed),
+pub enum JointKind<D: Dimension = Planar> {
+    /// The Smooth Curvature flexure of the dimension (boxed: it carries
+    /// its tables): in space, two bendings and a twist.
+    Flexure(Box<D::Flexure>),
+    /// A hinge.
+    Revolute(D::Revolute),
+    /// A slider.
+    Prismatic(D::Prismatic),
+    /// A ball joint (in space only).
+    Spherical(D::Spherical),
+    /// A weld of child to parent.
+    Fixed(D::Fixed),
 }
 
-impl JointKind {
+impl<D: Dimension> JointKind<D> {
     /// The kind as its interface: the one match on the kind.
-    pub fn joint(&self) -> &dyn Joint {
+    pub fn joint(&self) -> &dyn Joint<D> {
         match self {
             JointKind::Flexure(f) => f.as_ref(),
             JointKind::Revolute(r) => r,
             JointKind::Prismatic(p) => p,
+            JointKind::Spherical(s) => s,
             JointKind::Fixed(f) => f,
         }
     }
 
-    /// [`Joint::flexure`] of the kind.
-    pub fn flexure(&self) -> Option<&Flexure> {
-        self.joint().flexure()
+    /// The flexure, where the kind is one: for what only a flexure has
+    /// (its error estimate, stress and backbone).
+    pub fn flexure(&self) -> Option<&D::Flexure> {
+        match self {
+            JointKind::Flexure(f) => Some(f),
+            _ => None,
+        }
+    }
+}
+
+/// The plane's ball joint: there is none. A type without values, so that a
+/// planar [`JointKind::Spherical`] cannot be made and one kind type serves
+/// both dimensions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NoBall {}
+
+impl Joint for NoBall {
+    fn dof(&self) -> usize {
+        match *self {}
+    }
+
+    fn rest_into(&self, _: &mut [f64]) {
+        match *self {}
+    }
+
+    fn evaluate_into(&self, _: &[f64], _: &mut JointState) {
+        match *self {}
+    }
+
+    fn add_damping(&self, _: f64, _: &mut nalgebra::DMatrixViewMut<'_, f64>) {
+        match *self {}
+    }
+
+    fn angle_row(&self) -> Option<&[f64]> {
+        match *self {}
+    }
+
+    fn distance(&self, _: &[f64], _: &[f64], _: f64) -> f64 {
+        match *self {}
     }
 }

@@ -69,7 +69,7 @@ impl<D: FrameChain> Frames<D> {
         Frames {
             bodies: vec![identity; m.bodies.len()],
             roots: vec![identity; m.joints.len()],
-            joints: m.joints.iter().map(|j| D::joint(&j.kind).state()).collect(),
+            joints: m.joints.iter().map(|j| j.kind.joint().state()).collect(),
             coordinates: vec![0.0; n],
             omega: vec![D::Angular::default(); n],
             velocity: vec![D::Vector::default(); n],
@@ -138,7 +138,7 @@ pub fn frames_level_into<D: FrameChain>(m: &Mechanism<D>, q: &[f64], level: Leve
     f.level = level;
     let nb = m.bodies.len();
     for (i, j) in m.joints.iter().enumerate() {
-        let joint = D::joint(&j.kind);
+        let joint = j.kind.joint();
         let k = joint.dof();
         let state = &mut f.joints[i];
         joint.evaluate_level_into(&q[j.offset..j.offset + k], level, state);
@@ -365,7 +365,7 @@ pub(crate) fn distance_of(m: &Mechanism<Spatial>, fa: &Frames<Spatial>, fb: &Fra
 /// `d`, or the largest distance inside a joint if more.
 fn joint_distance<D: FrameChain>(m: &Mechanism<D>, a: &[f64], b: &[f64], length: f64, mut d: f64) -> f64 {
     for j in &m.joints {
-        let joint = D::joint(&j.kind);
+        let joint = j.kind.joint();
         let range = j.offset..j.offset + joint.dof();
         d = d.max(joint.distance(&a[range.clone()], &b[range], length));
     }

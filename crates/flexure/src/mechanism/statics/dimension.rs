@@ -14,7 +14,6 @@ use crate::linalg;
 use crate::mechanism::indeterminate::{full_row_rank, settle};
 use crate::mechanism::kinematics::{Frames, frames, frames_into, frames_level_into};
 use crate::mechanism::lagrangian::{Assembly, Potential, check_sizes};
-use crate::mechanism::sweep::{Parameter, SpatialParameter};
 use crate::mechanism::tree::Tree;
 use crate::mechanism::{Loads, Mechanism};
 use crate::space::Wrench;
@@ -110,10 +109,6 @@ pub trait Statics: Potential + PartialEq + Sized {
     fn difference_into(a: &Loads<Self>, b: &Loads<Self>, out: &mut Loads<Self>);
     /// $(1 - s)a + sb$ into `out`.
     fn lerp_into(a: &Loads<Self>, b: &Loads<Self>, s: f64, out: &mut Loads<Self>);
-    /// `loads` with `parameter` set to `value`.
-    fn apply(parameter: &Self::Parameter, loads: &Loads<Self>, value: f64) -> Loads<Self>;
-    /// Whether `parameter` is a tendon's tension (which cannot be negative).
-    fn is_tension(parameter: &Self::Parameter) -> bool;
     /// Checks that a start solution's sizes fit `m`.
     fn check_start(m: &Mechanism<Self>, q: &[f64], mu: &[f64], loads: &Loads<Self>) -> Result<()>;
     /// Whether Newton steps and stability tests may factor the tree in $O(n)$.
@@ -221,12 +216,6 @@ impl Statics for Planar {
     }
     fn lerp_into(a: &Loads, b: &Loads, s: f64, out: &mut Loads) {
         a.lerp_into(b, s, out);
-    }
-    fn apply(parameter: &Parameter, loads: &Loads, value: f64) -> Loads {
-        parameter.apply(loads, value)
-    }
-    fn is_tension(parameter: &Parameter) -> bool {
-        matches!(parameter, Parameter::Tension(_))
     }
     fn check_start(m: &Mechanism, q: &[f64], mu: &[f64], loads: &Loads) -> Result<()> {
         check_sizes(m, q, mu, loads)
@@ -347,12 +336,6 @@ impl Statics for Spatial {
     }
     fn lerp_into(a: &Loads<Spatial>, b: &Loads<Spatial>, s: f64, out: &mut Loads<Spatial>) {
         a.lerp_into(b, s, out);
-    }
-    fn apply(parameter: &SpatialParameter, loads: &Loads<Spatial>, value: f64) -> Loads<Spatial> {
-        parameter.apply(loads, value)
-    }
-    fn is_tension(parameter: &SpatialParameter) -> bool {
-        matches!(parameter, SpatialParameter::Tension(_))
     }
     fn check_start(m: &Mechanism<Spatial>, q: &[f64], mu: &[f64], _: &Loads<Spatial>) -> Result<()> {
         if q.len() != m.dof() || mu.len() != m.constraints() {

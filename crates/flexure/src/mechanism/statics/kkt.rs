@@ -109,7 +109,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
         unit.clear();
         unit.resize(n, 1.0);
         for (j, s) in m.joints.iter().zip(&work.frames.joints) {
-            let translation = D::joint(&j.kind).is_translation();
+            let translation = j.kind.joint().is_translation();
             for i in 0..s.gradient.len() {
                 stiffness[j.offset + i] = s.stiffness[(i, i)];
                 if translation {

@@ -163,7 +163,7 @@ pub(in crate::mechanism) fn free_motion<D: Statics>(m: &Mechanism<D>, s: &Soluti
         return None;
     }
     let (_, soft) = linalg::softest_mode(&k)?;
-    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, D::joint(&j.kind).dof())), &(&z * soft))
+    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof())), &(&z * soft))
 }
 
 /// The joints, given as (name, offset, coordinates), whose coordinates move

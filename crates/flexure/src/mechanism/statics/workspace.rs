@@ -177,7 +177,7 @@ impl<D: Statics> Workspace<D> {
                 .joints
                 .iter()
                 .enumerate()
-                .flat_map(|(i, j)| std::iter::repeat_n(i, D::joint(&j.kind).dof()))
+                .flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()))
                 .collect(),
             solver: None,
             joints: m.joints.clone(),
