@@ -47,10 +47,22 @@ def test_spatial_export_writes_three_hinges_per_pivot_and_the_closures():
     assert m.nu == 1 and m.nkey == 1
     for j in ("left", "right"):
         f = report["joints"][j]
-        assert len(f["pivots"]) == 3 and len(f["stiffness"]) == 3 and f["axes"] == ["z", "y", "x"]
+        assert len(f["pivots"]) == 3 and len(f["pivots"][0]) == 3
+        assert len(f["stiffness"]) == len(f["stiffness_y"]) == len(f["stiffness_x"]) == 3
     # The stage's blade is wide along z: bending about y (the stiff axis) is (w / t)^2 stiffer.
-    k = np.array(report["joints"]["left"]["stiffness"])
-    assert np.allclose(k[:, 1] / k[:, 0], (0.01 / 0.0003) ** 2, rtol=1e-6)
+    f = report["joints"]["left"]
+    kz, ky = np.array(f["stiffness"])[:, 0], np.array(f["stiffness_y"])
+    assert np.allclose(ky / kz, (0.01 / 0.0003) ** 2, rtol=1e-6)
+
+
+def test_one_report_shape_in_both_dimensions():
+    # The planar report's keys, top and per joint, in the spatial one: only stiffness_y and
+    # stiffness_x are added (issue 34).
+    _, planar, _ = exported(EXAMPLES / "finger_dynamics.toml", "3R")
+    _, spatial, _ = exported(EXAMPLES / "finger3d.toml", "3R")
+    assert set(planar) == set(spatial) and planar["dimension"] == 2 and spatial["dimension"] == 3
+    for p, s in zip(planar["joints"].values(), spatial["joints"].values()):
+        assert set(s) - set(p) == {"stiffness_y", "stiffness_x"} and set(p) <= set(s)
 
 
 def test_spatial_sdf_and_urdf_are_refused_by_name():
