@@ -455,7 +455,7 @@ fn check_finite(model: &model::RigidModel) -> Result<()> {
     for l in &model.links {
         let i = &l.inertia;
         let mut values = vec![l.pose.phi, l.pose.x, l.pose.y, i.mass, i.inertia, i.com[0], i.com[1]];
-        if let Some(j) = &l.joint {
+        for j in &l.joints {
             values.extend([j.at.x, j.at.y, j.reference, j.damping, j.armature]);
             values.extend(j.stiffness);
         }
@@ -508,19 +508,41 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
     if joints.is_empty() {
         comment.clear();
     }
-    let mut model = model::build(m, &chains, options.armature)?;
+    let mut model = model::build(m, &chains, options.armature, options.format == Format::Mjcf)?;
     // Only MJCF holds an armature: the other formats are not sized.
     let step = if options.format == Format::Mjcf { options.step } else { 0.0 };
     let sized = step::size(&mut model, step)?;
     check_finite(&model)?;
     let mut notes = Vec::new();
-    for l in model.links.iter().skip(1).filter(|l| l.floored) {
-        notes.push(format!(
-            "link {:?} had less than {} kg or {} kg·m²: given that much, as simulators need",
-            l.name,
-            xml::number(model::MIN_MASS),
-            xml::number(model::MIN_INERTIA)
-        ));
+    let floor = format!("{} kg and {} kg·m²", xml::number(model::MIN_MASS), xml::number(model::MIN_INERTIA));
+    let least = floor.replace(" and ", " or ");
+    for (i, l) in model.links.iter().enumerate().skip(1).filter(|(_, l)| l.floored) {
+        if model.body_link.contains(&i) {
+            notes.push(format!(
+                "body {:?} has less than {least} in the file: given that much, as simulators need",
+                l.name
+            ));
+        } else {
+            // SDFormat and URDF hold one joint a link: a massless flexure's links stay.
+            warnings.push(format!(
+                "link {:?}: a pseudo-rigid link of a massless flexure, kept because {} holds one joint a link, is given \
+                 {floor} (the least simulators accept), so it rings far faster than the bodies; give the flexure its \
+                 mass (density or mass_per_length) or export to mjcf, which merges such links away",
+                l.name,
+                if options.format == Format::Sdf { "SDFormat" } else { "URDF" }
+            ));
+        }
+    }
+    if options.format == Format::Mjcf {
+        for l in model.links.iter().filter(|l| l.joints.len() > 1) {
+            let names: Vec<&str> = l.joints.iter().map(|j| j.name.as_str()).collect();
+            notes.push(format!(
+                "body {:?} carries the hinges {} of a massless flexure, in order, each at its pivot: its links are merged \
+                 away (MuJoCo applies a body's joints in order, each about its own pos), none at a mass floor",
+                l.name,
+                names.join(", ")
+            ));
+        }
     }
     if !sized.is_empty() {
         let list: Vec<String> = sized.iter().map(|(j, a)| format!("{j} {}", xml::number(*a))).collect();

@@ -350,23 +350,41 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         l.com = body.com;
         l.inertia = body.inertia;
     }
-    let mut floored = Vec::new();
-    for l in links.iter_mut().skip(1) {
+    // Each flexure's links are massless (its own mass is not lumped yet):
+    // merged away, their hinges on the child in order, each at its pivot
+    // in the child's frame, as MuJoCo applies a body's joints.
+    let merged = merge_massless(&mut links, &mut body_link);
+    for (body, hinges) in &merged {
+        notes.push(format!(
+            "body {body:?} carries the hinges {} of a massless flexure, in order, each at its pivot: its links are merged \
+             away (MuJoCo applies a body's joints in order, each about its own pos), none at a mass floor",
+            hinges.join(", ")
+        ));
+    }
+    let floor = format!("{} kg and {} kg·m²", number(super::model::MIN_MASS), number(super::model::MIN_INERTIA));
+    let below = floor.replace(" and ", " or ");
+    for (i, l) in links.iter_mut().enumerate().skip(1) {
         let least = l.inertia.symmetric_eigenvalues().min();
         if l.mass < super::model::MIN_MASS || least < super::model::MIN_INERTIA {
             l.mass = l.mass.max(super::model::MIN_MASS);
             if least < super::model::MIN_INERTIA {
                 l.inertia += Matrix3::identity() * (super::model::MIN_INERTIA - least.max(0.0));
             }
-            floored.push(l.name.clone());
+            if body_link.contains(&i) {
+                notes.push(format!(
+                    "body {:?} has less than {below} in the file: given that much, as simulators need",
+                    l.name
+                ));
+            } else {
+                warnings.push(format!(
+                    "link {:?}: MuJoCo holds at most {MAX_BODY_DOFS} degrees of freedom a body, so a 3R chain's nine \
+                     hinges take two bodies; this link of a massless flexure (its first pivot's hinges) is given {floor}, \
+                     the least simulators accept, and its hinges the step's armature; give the flexure its mass to \
+                     weigh it, or export 1R (one body)",
+                    l.name
+                ));
+            }
         }
-    }
-    for name in &floored {
-        notes.push(format!(
-            "link {name:?} had less than {} kg or {} kg·m²: given that much, as simulators need",
-            number(super::model::MIN_MASS),
-            number(super::model::MIN_INERTIA)
-        ));
     }
     // Sized for the step, as the plane's ([`step::size`]): each hinge's own
     // link's inertia about its axis.
@@ -375,13 +393,23 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         let period = step::STEPS_PER_PERIOD * options.step / std::f64::consts::TAU;
         for l in links.iter_mut().skip(1) {
             let (mass, com, inertia) = (l.mass, l.com, l.inertia);
-            for h in &mut l.hinges {
-                let d = (com - h.at).cross(&h.axis);
-                let own = (h.axis.transpose() * inertia * h.axis)[0] + mass * d.norm_squared() + h.armature;
-                let need = h.stiffness * period * period;
-                if own < need {
-                    h.armature += need - own;
-                }
+            // The link's mass matrix over its sprung hinges at rest (several
+            // on one body: a merged chain), sized as the plane's.
+            let sprung: Vec<usize> = (0..l.hinges.len()).filter(|&h| l.hinges[h].stiffness > 0.0).collect();
+            if sprung.is_empty() {
+                continue;
+            }
+            let hinges = &l.hinges;
+            let need: Vec<f64> = sprung.iter().map(|&h| hinges[h].stiffness * period * period).collect();
+            let own = |a: usize, b: usize| {
+                let (ha, hb) = (&hinges[sprung[a]], &hinges[sprung[b]]);
+                let (va, vb) = (ha.axis.cross(&(com - ha.at)), hb.axis.cross(&(com - hb.at)));
+                let m = (ha.axis.transpose() * inertia * hb.axis)[0] + mass * va.dot(&vb);
+                m + if a == b { ha.armature } else { 0.0 }
+            };
+            let added = step::added_inertia(&need, own);
+            for (&h, a) in sprung.iter().zip(added) {
+                l.hinges[h].armature += a;
             }
         }
     }
@@ -535,6 +563,51 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     Ok(Export { xml, report, warnings, model: None })
 }
 
+/// The most degrees of freedom MuJoCo holds on one body ("more than 6 dofs
+/// in body", its compiler's error): a 3R chain's nine hinges fit on two.
+pub const MAX_BODY_DOFS: usize = 6;
+
+/// Merges each link without mass that is no file body into its one child,
+/// as the plane's ([`super::model::build`]): the child takes its place and
+/// its hinges first, each point and axis carried into the child's frame.
+/// A merge that would put more than [`MAX_BODY_DOFS`] hinges on one body
+/// is not made (a 3R chain keeps its first link, at the least mass).
+/// Returns each body given more than one link's hinges, with their names.
+fn merge_massless(links: &mut Vec<Link>, body_link: &mut [usize]) -> Vec<(String, Vec<String>)> {
+    let n = links.len();
+    let mut gone = vec![false; n];
+    // Tip first, so a chain too long for one body keeps its root links.
+    for i in (1..n).rev() {
+        let children: Vec<usize> = (i + 1..n).filter(|&c| !gone[c] && links[c].parent == i).collect();
+        let massless = links[i].mass == 0.0 && links[i].inertia == Matrix3::zeros();
+        if body_link.contains(&i) || !massless || children.len() != 1 {
+            continue;
+        }
+        if links[i].hinges.len() + links[children[0]].hinges.len() > MAX_BODY_DOFS {
+            continue;
+        }
+        let c = children[0];
+        let inward = links[c].pose.inverse();
+        let mut hinges = std::mem::take(&mut links[i].hinges);
+        for h in &mut hinges {
+            h.at = inward * h.at;
+            h.axis = inward.rotation * h.axis;
+        }
+        hinges.append(&mut links[c].hinges);
+        links[c].hinges = hinges;
+        links[c].pose = links[i].pose * links[c].pose;
+        links[c].parent = links[i].parent;
+        gone[i] = true;
+    }
+    super::model::remove_merged(links, &gone, body_link, |l| &mut l.parent);
+    let merged = gone.iter().any(|g| *g);
+    links
+        .iter()
+        .filter(|l| merged && l.hinges.len() > AXES.len())
+        .map(|l| (l.name.clone(), l.hinges.iter().map(|h| h.name.clone()).collect()))
+        .collect()
+}
+
 /// `pos` and, unless it is the identity, `quat` (w x y z) of a pose.
 fn placed(e: Element, pose: &Isometry3<f64>) -> Element {
     let t = pose.translation.vector;
@@ -629,7 +702,10 @@ mod tests {
         let m = spatial_from_toml(STAGE).unwrap();
         let e = export(&m, &Options::default()).unwrap();
         let x = &e.xml;
-        // Three pivots of three hinges per flexure; the last pivot's hinges on the child body.
+        // Three pivots of three hinges per flexure. MuJoCo holds six a body: the second and
+        // third pivots' on the child body (the massless link between them merged away), each
+        // at its pivot in the child's frame (Su's second at 0.45 L from the root, 0.55 L =
+        // 0.0165 m behind the tip), the first's on the one link kept, said so.
         for f in ["left", "right"] {
             for i in 1..=3 {
                 for a in ["z", "y", "x"] {
@@ -637,9 +713,17 @@ mod tests {
                 }
             }
             assert!(
-                x.contains(&format!(r#"<body name="{f}_prb2""#)) && !x.contains(&format!(r#"<body name="{f}_prb3""#))
+                x.contains(&format!(r#"<body name="{f}_prb1""#)) && !x.contains(&format!(r#"<body name="{f}_prb2""#))
             );
+            assert!(e.warnings.iter().any(|w| w.contains(&format!("{f}_prb1")) && w.contains("at most 6")));
         }
+        let second = format!(r#"<joint name="left_2z" type="hinge" pos="{} 0 0""#, number(0.45 * 0.03 - 0.03));
+        assert!(x.contains(&second), "{x}");
+        assert!(
+            e.report.notes.iter().any(|n| n.contains("\"stage\" carries the hinges left_2z")),
+            "{:?}",
+            e.report.notes
+        );
         // rpy 90° about z: the first link turned by a quaternion (cos 45°, 0, 0, sin 45°).
         let h = std::f64::consts::FRAC_1_SQRT_2;
         let q = nalgebra::UnitQuaternion::from_euler_angles(0.0, 0.0, std::f64::consts::FRAC_PI_2);
