@@ -176,9 +176,9 @@ def lowest(m, d):
 # The lowest frequency of MuJoCo's linearization about the stepped rest, against `modes`. Each
 # model is exported for a step that resolves that mode (omega h <= 0.05, at most MuJoCo's 2 ms:
 # tapered_finger's 5704 rad/s cannot be followed at 2 ms, where its armature brings it to 309
-# rad/s), and the settling damping is taken off again for the linearization. Measured (issue 36):
-# finger_dynamics 1R +23.5 %, 3R -0.3 %; four_bar 1R +15.9 %, 3R -4.7 %; tapered_finger 1R -8.2 %,
-# 3R -3.4 %. Bands: 1R 25 % (a secant spring fitted over the range, and the tip's angle
+# rad/s), and the settling damping is taken off again for the linearization. Measured (issue 36,
+# massless flexures' links merged): finger_dynamics 1R +23.4 %, 3R -0.6 %; four_bar 1R +16.3 %,
+# 3R -4.8 %; tapered_finger 1R -8.2 %, 3R -3.4 %. Bands: 1R 25 % (a secant spring fitted over the range, and the tip's angle
 # mismatch), 3R 5 % (the flexures' mass lumped on rigid links).
 @pytest.mark.parametrize("name", ["finger_dynamics.toml", "four_bar.toml", "tapered_finger.toml"])
 @pytest.mark.parametrize("prb, band", [("1R", 0.25), ("3R", 0.05)])

@@ -130,12 +130,12 @@ def test_spatial_closures_hold_at_rest(prb):
 
 # The lowest frequency of MuJoCo's linearization about the stepped rest, against `modes`, each
 # model exported for a step resolving that mode (omega h <= 0.05, at most 2 ms), the settling
-# damping taken off. Measured (issue 36, item 5): finger3d 1R +36.4 %, 3R -0.2 %; stage3d 3R
-# -0.3 %; continuum_robot 1R +32.6 %, 3R -0.6 %. Bands: 3R 5 %; 1R 40 % (one spring per axis
+# damping taken off. Measured (issue 36, item 1, links merged): finger3d 1R +35.6 %, 3R -0.3 %;
+# stage3d 3R -0.3 %; continuum_robot 1R +32.4 %, 3R -0.6 %. Bands: 3R 5 %; 1R 40 % (one spring per axis
 # fitted to the tip's position under a tip force, so its rotation is off; the plane's 1R, fitted
 # along the loads, is within 25 %). The stage's 1R model is left out: a 1R leg's tip cannot move
 # without turning, so the welded stage cannot slide as the blades let it, and its lowest mode is
-# of another kind (measured +1107 %); its rest is still checked above, and 3R is the default.
+# of another kind (measured +954 %); its rest is still checked above, and 3R is the default.
 BAND = {"1R": 0.40, "3R": 0.05}
 RINGS = [
     pytest.param(f, prb, id=f"{f}-{prb}")
