@@ -22,7 +22,8 @@
 //! 3. **The rigid-body model** ([`model::build`]): bodies keep their names,
 //!    frames, masses, inertias and centres of mass; each flexure becomes its
 //!    hinges, with links `NAME_prbK` between them and its own mass lumped
-//!    on the links it moves with; revolute joints are hinges, prismatic
+//!    on the links it moves with, or, massless in MJCF, its hinges all on
+//!    the child body (its links merged away); revolute joints are hinges, prismatic
 //!    joints slides, fixed joints rigid attachments. The rest pose is the
 //!    file's rest configuration. Sized for a simulator's step
 //!    ([`step::size`]): a sprung joint whose own link would ring faster than
