@@ -71,13 +71,13 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
         ..Default::default()
     };
     let e = model.export(&options).map_err(|e| format!("{}: {}", args.file.display(), crate::describe(e)))?;
-    for w in e.warnings() {
+    for w in &e.warnings {
         crate::options::warn(w.clone());
     }
-    for n in e.notes() {
+    for n in &e.report.notes {
         crate::options::note(n.clone());
     }
-    let mut report = json!(e);
+    let mut report = json!(e.report);
     if !json {
         // The table form: warnings and notes are on stderr already, one a line.
         if let Some(r) = report.as_object_mut() {
@@ -87,20 +87,20 @@ pub fn export_cmd(args: &ExportArgs, json: bool) -> Result<Exported, String> {
     }
     match &args.out {
         Some(path) => {
-            std::fs::write(path, e.xml()).map_err(|err| format!("--out {}: {err}", path.display()))?;
+            std::fs::write(path, &e.xml).map_err(|err| format!("--out {}: {err}", path.display()))?;
             report["out"] = json!(path.display().to_string());
             Ok(Exported { report, model: None })
         }
         None if json => {
-            report["model"] = json!(e.xml());
+            report["model"] = json!(e.xml);
             Ok(Exported { report, model: None })
         }
         None => {
             // The model on stdout; the fits told on stderr.
-            for line in e.fit_lines() {
+            for line in e.report.fit_lines() {
                 crate::options::note(line);
             }
-            Ok(Exported { report, model: Some(e.xml().to_string()) })
+            Ok(Exported { report, model: Some(e.xml) })
         }
     }
 }

@@ -51,9 +51,9 @@ pub fn export<'py>(
     let options =
         Options { format, prb, range, armature: armature.0, step: step.0, name: name.into(), ..Default::default() };
     let e = interruptible(py, || m.export(&options))?;
-    for w in e.warnings() {
+    for w in &e.warnings {
         crate::warnings::warn(py, &py.get_type::<PyUserWarning>(), w.clone(), 2)?;
     }
-    let report = to_dict(py, &e)?;
-    Ok((e.xml().to_string(), report))
+    let report = to_dict(py, &e.report)?;
+    Ok((e.xml, report))
 }

@@ -31,7 +31,7 @@ fn world(model: &RigidModel, theta: &[f64]) -> Vec<Pose> {
             continue;
         }
         let mut p = out[l.parent].compose(&l.pose);
-        if let Some(j) = &l.joint {
+        for j in &l.joints {
             assert_eq!(j.motion, LinkMotion::Hinge);
             p = p.compose(&about(j.at, theta[k]));
             k += 1;
@@ -85,33 +85,74 @@ fn tip_wrenches_are_the_loads_the_bodies_pass_on() {
     assert!(!wrench::weighs_itself(&m, 0));
 }
 
+/// A flexure curved at rest, placed off the origin and turned, under a tip force.
+const CURVED: &str = "[[joint]]\nname = \"h\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\n\
+    origin = [0.01, 0.02, 0.7]\nlength = 0.02\nei = 1e-3\norder = 4\nkappa = [0.3, -0.1, 0.05, 0.0]\n\
+    [[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\nforce = [0.0, -0.3]\n";
+
 /// The model's links, with their hinges turned, put each flexure's child
 /// where the PRB chain's own kinematics ([`prb::tip_pose`]) puts its tip,
-/// for 1R and 3R and a rest-curved flexure: to 1e-15 m (rounding of
-/// composed poses).
+/// for 1R and 3R and a rest-curved flexure, its links kept (SDFormat,
+/// URDF) or merged on the child (MJCF, each hinge turning the body about
+/// its own point as the ones before moved it, as MuJoCo does): to 1e-15 m
+/// (rounding of composed poses).
 #[test]
 fn the_links_move_as_the_chain() {
     let f = flexure::Flexure::new(0.02, 1e-3, 4).unwrap().with_rest(&[0.3, -0.1, 0.05, 0.0]).unwrap();
-    let toml = "[[joint]]\nname = \"h\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.01, 0.02, 0.7]\n\
-                length = 0.02\nei = 1e-3\norder = 4\nkappa = [0.3, -0.1, 0.05, 0.0]\n\
-                [[force]]\nbody = \"arm\"\nat = [0.0, 0.0]\nforce = [0.0, -0.3]\n";
-    let m = from_toml(toml).unwrap();
+    let m = from_toml(CURVED).unwrap();
     for kind in [PrbKind::OneR, PrbKind::ThreeR] {
         let fit = fits(&m, kind, &LoadRange::default(), &Settings::default()).unwrap().remove(0).unwrap();
-        let model = build(&m, &[Some(chain(&fit, f.length()))], 0.0).unwrap();
-        let n = fit.joints.len();
-        assert_eq!(model.joints().count(), n);
-        for theta in [vec![0.0; n], vec![0.4; n], (0..n).map(|i| -0.3 + 0.2 * i as f64).collect()] {
-            let tip = prb::tip_pose(&fit, &f, &theta);
-            let expected = m.joints[0].origin.compose(&tip);
-            let got = world(&model, &theta)[model.body_link[1]];
-            let d = (got.x - expected.x).hypot(got.y - expected.y);
-            assert!(
-                d < 1e-15 && (got.phi - expected.phi).abs() < 1e-15,
-                "{kind} at {theta:?}: {got:?} against {expected:?}"
-            );
+        for merge in [false, true] {
+            let model = build(&m, &[Some(chain(&fit, f.length()))], 0.0, merge).unwrap();
+            let n = fit.joints.len();
+            assert_eq!(model.joints().count(), n);
+            assert_eq!(model.links.len(), if merge { 2 } else { n + 1 }, "{kind} merge {merge}");
+            for theta in [vec![0.0; n], vec![0.4; n], (0..n).map(|i| -0.3 + 0.2 * i as f64).collect()] {
+                let tip = prb::tip_pose(&fit, &f, &theta);
+                let expected = m.joints[0].origin.compose(&tip);
+                let got = world(&model, &theta)[model.body_link[1]];
+                let d = (got.x - expected.x).hypot(got.y - expected.y);
+                assert!(
+                    d < 1e-15 && (got.phi - expected.phi).abs() < 1e-15,
+                    "{kind} merge {merge} at {theta:?}: {got:?} against {expected:?}"
+                );
+            }
         }
     }
+}
+
+/// Reference: the fit's pivots ([`prb::PrbFit`]'s, in the flexure's root
+/// frame). A massless flexure exported to MJCF is one body, the child,
+/// carrying its hinges in order; each hinge sits at its pivot, carried into
+/// the child's frame at rest: to 1e-15 m in the world. A flexure with mass
+/// keeps its links (their own mass lumped), none at the floor.
+#[test]
+fn a_merged_bodys_joints_sit_at_the_pivots() {
+    let m = from_toml(CURVED).unwrap();
+    for kind in [PrbKind::OneR, PrbKind::ThreeR] {
+        let fit = fits(&m, kind, &LoadRange::default(), &Settings::default()).unwrap().remove(0).unwrap();
+        let e = export(&m, &Options { prb: kind, ..Default::default() }).unwrap();
+        let model = e.model.as_ref().unwrap();
+        assert_eq!(model.links.len(), 2, "{kind}: the ground and the arm");
+        let arm = &model.links[model.body_link[1]];
+        assert_eq!(arm.joints.len(), fit.joints.len());
+        for (j, p) in arm.joints.iter().zip(&fit.joints) {
+            let (got, want) = (arm.world.act(&j.at), m.joints[0].origin.act(&p.pivot));
+            assert!((got - want).norm() < 1e-15, "{kind} {}: {got} against {want}", j.name);
+        }
+        // Written so, root first, each hinge at its point in the arm's frame.
+        let first = &arm.joints[0];
+        let at = flexure::export::xml::numbers(&[first.at.x, first.at.y, 0.0]);
+        assert!(e.xml.contains(&format!(r#"<joint name="{}" type="hinge" pos="{at}""#, first.name)), "{}", e.xml);
+        assert!(!e.xml.contains("_prb"), "{kind}: no pseudo-rigid body");
+        // SDFormat keeps one joint a link: the links, at the least mass, said so.
+        let sdf = export(&m, &Options { prb: kind, format: Format::Sdf, ..Default::default() }).unwrap();
+        assert_eq!(sdf.model.as_ref().unwrap().links.len(), fit.joints.len() + 1);
+    }
+    let steel = from_toml(include_str!("../../../examples/finger_dynamics.toml")).unwrap();
+    let e = export(&steel, &Options::default()).unwrap();
+    let model = e.model.as_ref().unwrap();
+    assert!(model.links.iter().any(|l| l.name.contains("_prb")) && model.links.iter().all(|l| !l.floored));
 }
 
 /// A uniform strip's pieces against the closed forms of a rod: mass
@@ -158,7 +199,7 @@ fn the_model_keeps_every_mass() {
     let m = from_toml(include_str!("../../../examples/finger_dynamics.toml")).unwrap();
     let e = export(&m, &Options { format: Format::Mjcf, prb: PrbKind::ThreeR, ..Default::default() }).unwrap();
     let (mut mass, mut moment) = (0.0, [0.0, 0.0]);
-    for l in e.model.links.iter().skip(1) {
+    for l in e.model.as_ref().unwrap().links.iter().skip(1) {
         let c = l.world.act(&Point2::new(l.inertia.com[0], l.inertia.com[1]));
         mass += l.inertia.mass;
         moment[0] += l.inertia.mass * c.x;
@@ -181,7 +222,7 @@ fn the_model_keeps_every_mass() {
         m1[0] += p.mass * c.x;
         m1[1] += p.mass * c.y;
     }
-    assert!(e.model.links.iter().skip(1).all(|l| !l.floored), "every link of this finger has mass");
+    assert!(e.model.as_ref().unwrap().links.iter().skip(1).all(|l| !l.floored), "every link of this finger has mass");
     assert!((mass - m0).abs() < 1e-12 * m0, "{mass} against {m0}");
     for i in 0..2 {
         assert!((moment[i] / mass - m1[i] / m0).abs() < 1e-12 * 0.05, "centre of mass {i}");
@@ -206,7 +247,7 @@ fn mjcf_writes_every_load_and_closure() {
     }
     // Three hinges per flexure; each stiffness is the fit's polynomial, as written.
     for (name, fit) in &e.report.joints {
-        let k = fit.joints[0].stiffness;
+        let k = fit.stiffness[0];
         let written = format!(r#"<joint name="{name}_1" type="hinge""#);
         assert!(e.xml.contains(&written), "{name}");
         let poly = flexure::export::xml::numbers(&k);
@@ -262,7 +303,7 @@ fn rigid_joints_are_written_as_they_are() {
     assert!(
         e.xml.contains(r#"<joint name="slide" type="slide" axis="1 0 0" ref="0.01" springref="0.01" stiffness="50"/>"#)
     );
-    assert_eq!(e.model.links[3].joint, None);
+    assert_eq!(e.model.as_ref().unwrap().links[3].joints, vec![]);
     assert!(e.report.joints.is_empty());
     // Massless bodies get the least mass simulators accept, and say so; with
     // no step, no armature.
@@ -284,34 +325,51 @@ fn generated_names_do_not_take_a_files() {
     assert!(e.contains("mcp_prb1"), "{e}");
     let bad = Chain { pivots: vec![Point2::origin()], stiffness: vec![], arcs: vec![0.0] };
     let m = from_toml(FINGER).unwrap();
-    assert!(build(&m, &[Some(bad), None], 0.0).is_err());
-    assert!(build(&m, &[None, None], 0.0).unwrap_err().to_string().contains("mcp"));
+    assert!(build(&m, &[Some(bad), None], 0.0, true).is_err());
+    assert!(build(&m, &[None, None], 0.0, true).unwrap_err().to_string().contains("mcp"));
     let e = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
     assert!(e.contains("armature"), "{e}");
 }
 
 /// Reference: a hinge of stiffness k on a link of inertia I rings at
-/// √(k/I), so a massless link (floored at 1e-14 kg·m²) rings far faster than
-/// MuJoCo's 2 ms step. Sized for the step, every hinge of the massless
-/// finger carries the armature k₁(10Δt/2π)² less its link's own inertia
-/// (a period of 10 steps, by hand), written in the MJCF and in the report;
-/// for a step ten times shorter, a hundredth of it.
+/// √(k/I), so a massless body (floored at 1e-14 kg·m²) rings far faster
+/// than MuJoCo's 2 ms step. Sized for the step, every hinge of the massless
+/// finger carries an armature, written in the MJCF and in the report: one
+/// hinge on a body (1R), k₁(10Δt/2π)² less its body's own inertia about it
+/// (a period of 10 steps, by hand), to 1e-12; several on one body (3R, the
+/// chain merged), enough that the body's mass matrix over its hinges plus
+/// the armature is at least D = diag(k₁)(10Δt/2π)², so no combination of
+/// them rings faster than 10 steps: the least eigenvalue of
+/// D^(-1/2)(M + A)D^(-1/2), M by hand from the body's mass, centre and
+/// inertia, is 1 to 1e-12. For a step ten times shorter, a hundredth.
 #[test]
 fn light_links_get_the_armature_of_the_step() {
     let m = from_toml(FINGER).unwrap();
     for kind in [PrbKind::OneR, PrbKind::ThreeR] {
         for step in [0.002, 0.0002] {
             let e = export(&m, &Options { prb: kind, step, ..Default::default() }).unwrap();
-            let hinges: Vec<_> = e.model.joints().collect();
+            let model = e.model.as_ref().unwrap();
+            let hinges: Vec<_> = model.joints().collect();
             assert_eq!(e.report.armature.len(), hinges.len(), "{kind} {step}");
-            for ((i, j), (name, a)) in hinges.iter().zip(&e.report.armature) {
-                let l = &e.model.links[*i];
-                let (dx, dy) = (l.inertia.com[0] - j.at.x, l.inertia.com[1] - j.at.y);
-                let own = l.inertia.inertia + l.inertia.mass * (dx * dx + dy * dy);
-                let want = j.stiffness[0] * (10.0 * step / std::f64::consts::TAU).powi(2);
+            let period = 10.0 * step / std::f64::consts::TAU;
+            for ((_, j), (name, a)) in hinges.iter().zip(&e.report.armature) {
                 assert_eq!(name, &j.name);
-                assert!((a + own - want).abs() < 1e-12 * want, "{name}: {a} + {own} against {want}");
                 assert!(e.xml.contains(&format!("armature=\"{}\"", flexure::export::xml::number(*a))), "{name}");
+            }
+            for l in model.links.iter().filter(|l| !l.joints.is_empty()) {
+                let i = &l.inertia;
+                let arm = |j: &flexure::export::model::ModelJoint| [-(i.com[1] - j.at.y), i.com[0] - j.at.x];
+                let n = l.joints.len();
+                let d: Vec<f64> = l.joints.iter().map(|j| j.stiffness[0] * period * period).collect();
+                let scaled = nalgebra::DMatrix::from_fn(n, n, |a, b| {
+                    let (ja, jb) = (&l.joints[a], &l.joints[b]);
+                    let (va, vb) = (arm(ja), arm(jb));
+                    let own = i.inertia + i.mass * (va[0] * vb[0] + va[1] * vb[1]);
+                    (own + if a == b { ja.armature } else { 0.0 }) / (d[a] * d[b]).sqrt()
+                });
+                let least = scaled.symmetric_eigenvalues().min();
+                assert_eq!(n, if kind == PrbKind::OneR { 1 } else { 3 }, "{}", l.name);
+                assert!((least - 1.0).abs() < 1e-12, "{kind} {step} {}: {least}", l.name);
             }
             assert!(e.xml.contains(&format!("timestep=\"{step}\"")), "{}", e.xml);
             assert!(e.report.notes.iter().any(|n| n.contains("armature")), "{:?}", e.report.notes);

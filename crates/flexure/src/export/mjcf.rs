@@ -181,7 +181,9 @@ fn sites(model: &RigidModel, link: usize, e: &mut Element) {
 fn body(model: &RigidModel, i: usize, children: &[Vec<usize>], step: f64) -> Element {
     let l: &Link = &model.links[i];
     let mut b = placed(Element::new("body").attr("name", l.name.as_str()), &l.pose);
-    if let Some(j) = &l.joint {
+    // Several joints on a body (a massless flexure's merged chain) act in
+    // order, each about its own `pos`.
+    for j in &l.joints {
         let mut e = Element::new("joint").attr("name", j.name.as_str());
         e = match j.motion {
             LinkMotion::Hinge => {

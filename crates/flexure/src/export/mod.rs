@@ -22,7 +22,8 @@
 //! 3. **The rigid-body model** ([`model::build`]): bodies keep their names,
 //!    frames, masses, inertias and centres of mass; each flexure becomes its
 //!    hinges, with links `NAME_prbK` between them and its own mass lumped
-//!    on the links it moves with; revolute joints are hinges, prismatic
+//!    on the links it moves with, or, massless in MJCF, its hinges all on
+//!    the child body (its links merged away); revolute joints are hinges, prismatic
 //!    joints slides, fixed joints rigid attachments. The rest pose is the
 //!    file's rest configuration. Sized for a simulator's step
 //!    ([`step::size`]): a sprung joint whose own link would ring faster than
@@ -163,29 +164,113 @@ impl Default for Options {
     }
 }
 
-/// One flexure's fit, as reported.
+/// One flexure's fitted chain, as reported, in either dimension: the same
+/// quantities in the plane and in space, with what only space has (the
+/// springs out of the plane) in [`JointFit::out_of_plane`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointFit {
-    /// The fitted chain.
-    pub fit: PrbFit,
+    /// The chain.
+    pub kind: PrbKind,
+    /// The links' length fractions, root to tip: $[1-\gamma, \gamma]$ for
+    /// 1R (Howell's $\gamma$ last), $[\gamma_0, \dots, \gamma_3]$ for 3R.
+    pub gamma: Vec<f64>,
+    /// Each hinge's nondimensional spring about $z$: Howell's $K_\Theta$ for
+    /// 1R ($k_1 = \gamma K_\Theta EI/L$), $K_{\Theta i}$ for 3R
+    /// ($k_{1,i} = K_{\Theta i}EI/L$); in space $EI$ is the flexure's
+    /// $L/C_{\theta M}$ about $z$ at rest (its $EI_z$ when uniform).
+    pub k_theta: Vec<f64>,
+    /// The pivots at rest (m), in the flexure's root frame, root first
+    /// ($z = 0$ in the plane).
+    pub pivots: Vec<nalgebra::Point3<f64>>,
+    /// Each pivot's spring about $z$ (the plane's hinge), $[k_1, k_2, k_3]$
+    /// of $\tau = -(k_1\theta + k_2\theta^2 + k_3\theta^3)$ (N·m/rad,
+    /// N·m/rad², N·m/rad³); linear in space.
+    pub stiffness: Vec<[f64; 3]>,
+    /// Space only (`None` in the plane): each pivot's linear springs out of
+    /// the plane, $[k_y, k_x]$, bending about the local $y$ and twist about
+    /// $x$ (N·m/rad).
+    pub out_of_plane: Option<Vec<[f64; 2]>>,
+    /// The largest tip position (m) and angle (rad) error of the chain
+    /// against the model over the samples.
+    pub error: prb::FitError,
+    /// Whether the position error passes 1 % of L or the angle 1°.
+    pub flagged: bool,
+    /// Samples the error is taken over.
+    pub samples: usize,
     /// The flexure's length (m), for the error relative to it.
     pub length: f64,
 }
 
-impl std::ops::Deref for JointFit {
-    type Target = PrbFit;
-    fn deref(&self) -> &PrbFit {
-        &self.fit
+impl JointFit {
+    /// A planar fit as reported.
+    pub fn planar(fit: &PrbFit, length: f64) -> Self {
+        JointFit {
+            kind: fit.kind,
+            gamma: fit.gamma.clone(),
+            k_theta: fit.k_theta.clone(),
+            pivots: fit.joints.iter().map(|j| nalgebra::Point3::new(j.pivot.x, j.pivot.y, 0.0)).collect(),
+            stiffness: fit.joints.iter().map(|j| j.stiffness).collect(),
+            out_of_plane: None,
+            error: fit.error,
+            flagged: fit.flagged,
+            samples: fit.samples,
+            length,
+        }
+    }
+
+    /// The fit in a line, as the MJCF's comments and the command line's
+    /// notes give it, named `name`: chain, $\gamma$, $K_\Theta$, springs and
+    /// error, and `FLAGGED` past 1 % of L or 1°.
+    pub fn line(&self, name: &str) -> String {
+        use xml::number;
+        let list = |v: &[f64]| v.iter().map(|x| number(*x)).collect::<Vec<_>>().join(", ");
+        let k: Vec<String> = self.stiffness.iter().map(|k| format!("[{}]", list(k))).collect();
+        let out = match &self.out_of_plane {
+            None => String::new(),
+            Some(o) => {
+                let (y, x): (Vec<f64>, Vec<f64>) = o.iter().map(|k| (k[0], k[1])).unzip();
+                format!(", stiffness_y [{}], stiffness_x [{}]", list(&y), list(&x))
+            }
+        };
+        format!(
+            "{name}: {} gamma [{}], k_theta [{}], stiffness {}{out}, error {} m ({:.3} % of L) and {} rad{}",
+            self.kind,
+            list(&self.gamma),
+            list(&self.k_theta),
+            k.join(" "),
+            number(self.error.position),
+            100.0 * self.error.position / self.length,
+            number(self.error.angle),
+            if self.flagged { ", FLAGGED" } else { "" }
+        )
+    }
+
+    /// The warning of a flagged fit of joint `name`.
+    fn flag_warning(&self, name: &str) -> String {
+        format!(
+            "joint {name:?}: the {} fit's tip is up to {} m ({:.2} % of L) and {} rad ({:.2}°) from the model's over the range, \
+             more than 1 % of L or 1°",
+            self.kind,
+            xml::number(self.error.position),
+            100.0 * self.error.position / self.length,
+            xml::number(self.error.angle),
+            self.error.angle.to_degrees()
+        )
     }
 }
 
-/// The fit report: each flexure joint's fit, by name in the file's order.
-/// Serialized as `{"format", "prb", "range": {"from", "to", "count"},
-/// "joints": {NAME: {"prb", "gamma", "k_theta", "stiffness", "pivots",
-/// "error": {"position", "angle"}, "flagged", "samples", "length"}},
-/// "step", "armature": {HINGE: kg·m²}, "warnings": [...], "notes": [...]}`.
+/// The export report, one shape in both dimensions: each flexure joint's
+/// fit, by name in the file's order, and what the model was given.
+/// Serialized as `{"dimension", "format", "prb", "range": {"from", "to",
+/// "count"}, "joints": {NAME: {"prb", "gamma", "k_theta", "stiffness",
+/// "pivots", "error": {"position", "angle"}, "flagged", "samples",
+/// "length"}}, "step", "armature": {HINGE: kg·m²}, "warnings": [...],
+/// "notes": [...]}`; in space each joint adds `"stiffness_y"` and
+/// `"stiffness_x"` ([`JointFit::out_of_plane`]), and its `pivots` are 3-D.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitReport {
+    /// The mechanism's dimension, 2 or 3.
+    pub dimension: usize,
     /// The format written.
     pub format: Format,
     /// The chain.
@@ -202,13 +287,21 @@ pub struct FitReport {
     /// What the model or the format could not hold, and fits flagged: the
     /// same as [`Export::warnings`].
     pub warnings: Vec<String>,
-    /// What was added to make the model loadable (the least mass of massless links).
+    /// What the model was given to simulate well (armature, limits), and
+    /// how massless links were written.
     pub notes: Vec<String>,
 }
 
+impl FitReport {
+    /// Each flexure joint's fit in a line ([`JointFit::line`]).
+    pub fn fit_lines(&self) -> Vec<String> {
+        self.joints.iter().map(|(name, f)| f.line(name)).collect()
+    }
+}
+
 /// A list of (name, value) serialized as a map, each value through `.1`:
-/// the reports' `joints` and `armature`.
-pub(crate) struct Map<'a, T, E>(pub &'a [(String, T)], pub fn(&'a T) -> E);
+/// the report's `joints` and `armature`.
+struct Map<'a, T, E>(&'a [(String, T)], fn(&'a T) -> E);
 
 impl<'a, T, E: serde::Serialize> serde::Serialize for Map<'a, T, E> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
@@ -220,47 +313,50 @@ impl<'a, T, E: serde::Serialize> serde::Serialize for Map<'a, T, E> {
     }
 }
 
-/// A load range as the reports write it: `{"from", "to", "count"}`.
+/// A load range as the report writes it: `{"from", "to", "count"}`.
 #[derive(serde::Serialize)]
-pub(crate) struct RangeEntry {
+struct RangeEntry {
     from: f64,
     to: f64,
     count: usize,
-}
-
-impl From<&LoadRange> for RangeEntry {
-    fn from(r: &LoadRange) -> Self {
-        RangeEntry { from: r.from, to: r.to, count: r.count }
-    }
 }
 
 struct JointEntry<'a>(&'a JointFit);
 
 impl serde::Serialize for JointEntry<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let f = &self.0.fit;
-        let stiffness: Vec<[f64; 3]> = f.joints.iter().map(|j| j.stiffness).collect();
-        let pivots: Vec<[f64; 2]> = f.joints.iter().map(|j| [j.pivot.x, j.pivot.y]).collect();
-        let mut m = s.serialize_struct("JointFit", 9)?;
-        m.serialize_field("prb", &f.kind)?;
-        m.serialize_field("gamma", &f.gamma)?;
-        m.serialize_field("k_theta", &f.k_theta)?;
-        m.serialize_field("stiffness", &stiffness)?;
-        m.serialize_field("pivots", &pivots)?;
-        m.serialize_field("error", &f.error)?;
-        m.serialize_field("flagged", &f.flagged)?;
-        m.serialize_field("samples", &f.samples)?;
-        m.serialize_field("length", &self.0.length)?;
+        let f = self.0;
+        let pivots: Vec<Vec<f64>> = f
+            .pivots
+            .iter()
+            .map(|p| if f.out_of_plane.is_some() { vec![p.x, p.y, p.z] } else { vec![p.x, p.y] })
+            .collect();
+        let mut m = s.serialize_map(None)?;
+        m.serialize_entry("prb", &f.kind)?;
+        m.serialize_entry("gamma", &f.gamma)?;
+        m.serialize_entry("k_theta", &f.k_theta)?;
+        m.serialize_entry("stiffness", &f.stiffness)?;
+        if let Some(o) = &f.out_of_plane {
+            m.serialize_entry("stiffness_y", &o.iter().map(|k| k[0]).collect::<Vec<_>>())?;
+            m.serialize_entry("stiffness_x", &o.iter().map(|k| k[1]).collect::<Vec<_>>())?;
+        }
+        m.serialize_entry("pivots", &pivots)?;
+        m.serialize_entry("error", &f.error)?;
+        m.serialize_entry("flagged", &f.flagged)?;
+        m.serialize_entry("samples", &f.samples)?;
+        m.serialize_entry("length", &f.length)?;
         m.end()
     }
 }
 
 impl serde::Serialize for FitReport {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut m = s.serialize_struct("FitReport", 8)?;
+        let mut m = s.serialize_struct("FitReport", 10)?;
+        m.serialize_field("dimension", &self.dimension)?;
         m.serialize_field("format", self.format.name())?;
         m.serialize_field("prb", &self.prb)?;
-        m.serialize_field("range", &RangeEntry::from(&self.range))?;
+        let r = &self.range;
+        m.serialize_field("range", &RangeEntry { from: r.from, to: r.to, count: r.count })?;
         m.serialize_field("joints", &Map(&self.joints, JointEntry))?;
         m.serialize_field("step", &self.step)?;
         m.serialize_field("armature", &Map(&self.armature, |a: &f64| *a))?;
@@ -270,7 +366,8 @@ impl serde::Serialize for FitReport {
     }
 }
 
-/// An exported model: the XML, the fit report, and the warnings.
+/// An exported model of either dimension: the XML, the report, and the
+/// warnings ([`crate::model::Model::export`] answers it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Export {
     /// The model, in the format asked for.
@@ -279,8 +376,8 @@ pub struct Export {
     pub report: FitReport,
     /// Every warning: flagged fits, and what the format cannot hold, each naming it.
     pub warnings: Vec<String>,
-    /// The rigid-body model the XML writes.
-    pub model: model::RigidModel,
+    /// The planar rigid-body model the XML writes (`None` for a spatial mechanism).
+    pub model: Option<model::RigidModel>,
 }
 
 /// The tip angle error (rad) past which a fit is flagged: 1°.
@@ -353,30 +450,13 @@ pub fn chain(fit: &PrbFit, length: f64) -> Chain {
     }
 }
 
-fn fit_line(name: &str, f: &PrbFit, length: f64) -> String {
-    use xml::number;
-    let list = |v: &[f64]| v.iter().map(|x| number(*x)).collect::<Vec<_>>().join(", ");
-    let k: Vec<String> = f.joints.iter().map(|j| format!("[{}]", list(&j.stiffness))).collect();
-    format!(
-        "{name}: {} gamma [{}], k_theta [{}], stiffness {}, error {} m ({:.3} % of L) and {} rad{}",
-        f.kind,
-        list(&f.gamma),
-        list(&f.k_theta),
-        k.join(" "),
-        number(f.error.position),
-        100.0 * f.error.position / length,
-        number(f.error.angle),
-        if f.flagged { ", FLAGGED" } else { "" }
-    )
-}
-
 /// Every number the writers print must be finite: a fit or a pose that is
 /// not is refused here, naming the link or joint, rather than written.
 fn check_finite(model: &model::RigidModel) -> Result<()> {
     for l in &model.links {
         let i = &l.inertia;
         let mut values = vec![l.pose.phi, l.pose.x, l.pose.y, i.mass, i.inertia, i.com[0], i.com[1]];
-        if let Some(j) = &l.joint {
+        for j in &l.joints {
             values.extend([j.at.x, j.at.y, j.reference, j.damping, j.armature]);
             values.extend(j.stiffness);
         }
@@ -412,17 +492,9 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
             continue;
         };
         let length = spec.kind.flexure().map_or(1.0, |f| f.length());
+        let reported = JointFit::planar(&fit, length);
         if fit.flagged {
-            warnings.push(format!(
-                "joint {:?}: the {} fit's tip is up to {} m ({:.2} % of L) and {} rad ({:.2}°) from the model's over the range, \
-                 more than 1 % of L or 1°",
-                spec.name,
-                fit.kind,
-                xml::number(fit.error.position),
-                100.0 * fit.error.position / length,
-                xml::number(fit.error.angle),
-                fit.error.angle.to_degrees()
-            ));
+            warnings.push(reported.flag_warning(&spec.name));
         }
         if wrench::weighs_itself(m, j) {
             warnings.push(format!(
@@ -430,26 +502,48 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
                 spec.name
             ));
         }
-        comment.push(fit_line(&spec.name, &fit, length));
+        comment.push(reported.line(&spec.name));
         chains.push(Some(chain(&fit, length)));
-        joints.push((spec.name.clone(), JointFit { fit, length }));
+        joints.push((spec.name.clone(), reported));
     }
     if joints.is_empty() {
         comment.clear();
     }
-    let mut model = model::build(m, &chains, options.armature)?;
+    let mut model = model::build(m, &chains, options.armature, options.format == Format::Mjcf)?;
     // Only MJCF holds an armature: the other formats are not sized.
     let step = if options.format == Format::Mjcf { options.step } else { 0.0 };
     let sized = step::size(&mut model, step)?;
     check_finite(&model)?;
     let mut notes = Vec::new();
-    for l in model.links.iter().skip(1).filter(|l| l.floored) {
-        notes.push(format!(
-            "link {:?} had less than {} kg or {} kg·m²: given that much, as simulators need",
-            l.name,
-            xml::number(model::MIN_MASS),
-            xml::number(model::MIN_INERTIA)
-        ));
+    let floor = format!("{} kg and {} kg·m²", xml::number(model::MIN_MASS), xml::number(model::MIN_INERTIA));
+    let least = floor.replace(" and ", " or ");
+    for (i, l) in model.links.iter().enumerate().skip(1).filter(|(_, l)| l.floored) {
+        if model.body_link.contains(&i) {
+            notes.push(format!(
+                "body {:?} has less than {least} in the file: given that much, as simulators need",
+                l.name
+            ));
+        } else {
+            // SDFormat and URDF hold one joint a link: a massless flexure's links stay.
+            warnings.push(format!(
+                "link {:?}: a pseudo-rigid link of a massless flexure, kept because {} holds one joint a link, is given \
+                 {floor} (the least simulators accept), so it rings far faster than the bodies; give the flexure its \
+                 mass (density or mass_per_length) or export to mjcf, which merges such links away",
+                l.name,
+                if options.format == Format::Sdf { "SDFormat" } else { "URDF" }
+            ));
+        }
+    }
+    if options.format == Format::Mjcf {
+        for l in model.links.iter().filter(|l| l.joints.len() > 1) {
+            let names: Vec<&str> = l.joints.iter().map(|j| j.name.as_str()).collect();
+            notes.push(format!(
+                "body {:?} carries the hinges {} of a massless flexure, in order, each at its pivot: its links are merged \
+                 away (MuJoCo applies a body's joints in order, each about its own pos), none at a mass floor",
+                l.name,
+                names.join(", ")
+            ));
+        }
     }
     if !sized.is_empty() {
         let list: Vec<String> = sized.iter().map(|(j, a)| format!("{j} {}", xml::number(*a))).collect();
@@ -486,6 +580,7 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
     };
     warnings.extend(lost);
     let report = FitReport {
+        dimension: 2,
         format: options.format,
         prb: options.prb,
         range: options.range,
@@ -495,5 +590,5 @@ pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
         warnings: warnings.clone(),
         notes,
     };
-    Ok(Export { xml, report, warnings, model })
+    Ok(Export { xml, report, warnings, model: Some(model) })
 }

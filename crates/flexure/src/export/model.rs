@@ -10,8 +10,10 @@ use crate::space::{Pose, Wrench};
 use nalgebra::{Point2, Vector2};
 
 /// The least mass (kg) a moving link is given: MuJoCo refuses a moving body
-/// of less than $10^{-15}$ kg, Gazebo's solvers misbehave with none. Massless
-/// bodies and pseudo-rigid links get it, and weigh $10^{-8}$ N under Earth's gravity.
+/// of less than $10^{-15}$ kg, Gazebo's solvers misbehave with none. The
+/// file's massless bodies get it, and the pseudo-rigid links of a massless
+/// flexure where they are kept (SDFormat and URDF, one joint a link; MJCF
+/// merges them away, [`build`]); it weighs $10^{-8}$ N under Earth's gravity.
 pub const MIN_MASS: f64 = 1e-9;
 /// The least rotary inertia (kg·m²) a moving link is given, for the same reason.
 pub const MIN_INERTIA: f64 = 1e-14;
@@ -40,7 +42,10 @@ pub enum LinkMotion {
 }
 
 /// A moving joint of the model: it moves its link, at coordinate
-/// `reference` the link is at its rest pose.
+/// `reference` the link is at its rest pose. A link's joints act in order,
+/// each about its own point in the link's frame as the joints before it
+/// have moved it (MuJoCo's rule for a body's joints), so several hinges on
+/// one link move it as a chain of massless links would.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelJoint {
     /// Its name: the file joint's, or `NAME_1`… for a 3R chain's hinges.
@@ -82,8 +87,10 @@ pub struct Link {
     pub inertia: RigidInertia,
     /// Whether the inertia was raised to the floor.
     pub floored: bool,
-    /// Its joint to the parent; `None` for the ground and a fixed joint's child.
-    pub joint: Option<ModelJoint>,
+    /// Its joints to the parent, applied in order ([`ModelJoint`]): none for
+    /// the ground and a fixed joint's child, one for a hinge or slide, a
+    /// massless flexure's whole chain on its child when merged.
+    pub joints: Vec<ModelJoint>,
     /// The name of the connection to the parent (the file joint's, or a
     /// hinge's), for formats that name fixed joints too.
     pub connection: String,
@@ -145,7 +152,15 @@ pub struct RigidModel {
 /// rest tip. A flexure with mass has it cut at its pivots' arc lengths and
 /// each piece lumped ([`lump::segment`]) on the link it moves with: the piece
 /// before the first pivot on the parent body.
-pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<RigidModel> {
+///
+/// With `merge` (MJCF, whose body may carry several joints), a massless
+/// flexure's links are merged away: its hinges all go on the child body,
+/// in order, each at its pivot in the child's frame at rest, which moves
+/// the child exactly as the chain of massless links would (MuJoCo applies a
+/// body's joints in order, each about its own anchor in the body's frame as
+/// moved by the ones before: `mj_kinematics`). Without it (SDFormat and
+/// URDF, one joint a link) they are kept, at the least mass.
+pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64, merge: bool) -> Result<RigidModel> {
     if !(armature.is_finite() && armature >= 0.0) {
         return Err(Error::invalid("armature", armature, "must be a finite number, zero or greater (kg·m²)"));
     }
@@ -156,7 +171,7 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<R
         world: Pose::default(),
         inertia: RigidInertia::default(),
         floored: false,
-        joint: None,
+        joints: Vec::new(),
         connection: String::new(),
     };
     let mut links = vec![ground];
@@ -175,7 +190,7 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<R
                 world,
                 inertia: RigidInertia::default(),
                 floored: false,
-                joint,
+                joints: joint.into_iter().collect(),
                 connection,
             });
             links.len() - 1
@@ -291,6 +306,12 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<R
         // The last flexure piece (on the child) was added to the link already.
         links[l].inertia = lump::add(&links[l].inertia, &total);
     }
+    // Names are checked before merging: a name a generated link takes is
+    // refused in every format.
+    check_names(&links, &[])?;
+    if merge {
+        merge_massless(&mut links, &mut body_link);
+    }
     for l in links.iter_mut().skip(1) {
         if l.inertia.mass < MIN_MASS || l.inertia.inertia < MIN_INERTIA {
             l.floored = true;
@@ -300,8 +321,71 @@ pub fn build(m: &Mechanism, chains: &[Option<Chain>], armature: f64) -> Result<R
     }
     let mut model = RigidModel { links, sites: Vec::new(), attachments: Vec::new(), gravity: m.gravity, body_link };
     attach(m, &mut model);
-    check_names(&model)?;
+    check_names(&model.links, &model.sites)?;
     Ok(model)
+}
+
+/// Merges each pseudo-rigid link without mass (of a massless flexure) into
+/// its one child: the child takes the link's place (its pose composed) and
+/// its joints first, each point carried into the child's frame; taken tip
+/// first, a chain's hinges all end on the body, root first.
+fn merge_massless(links: &mut Vec<Link>, body_link: &mut [usize]) {
+    let n = links.len();
+    let mut gone = vec![false; n];
+    // Tip first: each link's joints go on the body, carried through the
+    // links merged into it before.
+    for i in (1..n).rev() {
+        let is_body = body_link.contains(&i);
+        let massless = links[i].inertia.mass == 0.0 && links[i].inertia.inertia == 0.0;
+        let children: Vec<usize> = (i + 1..n).filter(|&c| !gone[c] && links[c].parent == i).collect();
+        if is_body || !massless || children.len() != 1 {
+            continue;
+        }
+        let c = children[0];
+        let inward = links[c].pose.inverse();
+        let mut joints: Vec<ModelJoint> = std::mem::take(&mut links[i].joints);
+        for j in &mut joints {
+            j.at = inward.act(&j.at);
+            j.axis = inward.rotate(&j.axis);
+        }
+        joints.append(&mut links[c].joints);
+        links[c].joints = joints;
+        links[c].pose = links[i].pose.compose(&links[c].pose);
+        links[c].parent = links[i].parent;
+        gone[i] = true;
+    }
+    remove_merged(links, &gone, body_link, |l| &mut l.parent);
+}
+
+/// Removes the links marked `gone` (merged into their children), renumbering
+/// each remaining link's parent and each body's link: the merges of either
+/// dimension.
+pub(crate) fn remove_merged<T>(
+    links: &mut Vec<T>,
+    gone: &[bool],
+    body_link: &mut [usize],
+    parent: fn(&mut T) -> &mut usize,
+) {
+    let mut index = Vec::with_capacity(gone.len());
+    let mut k = 0;
+    for g in gone {
+        index.push(k);
+        if !g {
+            k += 1;
+        }
+    }
+    let mut i = 0;
+    links.retain(|_| {
+        i += 1;
+        !gone[i - 1]
+    });
+    for l in links.iter_mut() {
+        let p = parent(l);
+        *p = index[*p];
+    }
+    for b in body_link.iter_mut() {
+        *b = index[*b];
+    }
 }
 
 /// The file's tendons, forces and closures on sites of the model.
@@ -352,9 +436,9 @@ fn attach(m: &Mechanism, model: &mut RigidModel) {
 }
 
 /// Generated names (pseudo-rigid links, sites) must not take a body's or a joint's.
-fn check_names(model: &RigidModel) -> Result<()> {
+fn check_names(links: &[Link], sites: &[Site]) -> Result<()> {
     let mut seen = std::collections::HashSet::new();
-    for l in &model.links {
+    for l in links {
         if !seen.insert(l.name.as_str()) {
             return Err(Error::invalid(
                 "body",
@@ -364,18 +448,24 @@ fn check_names(model: &RigidModel) -> Result<()> {
         }
     }
     let mut joints = std::collections::HashSet::new();
-    for l in &model.links {
-        if !l.connection.is_empty() && !joints.insert(l.connection.as_str()) {
-            return Err(Error::invalid(
-                "joint",
-                format!("{:?}", l.connection),
-                "is also the name of a generated pseudo-rigid hinge",
-            ));
+    for l in links {
+        let mut names: Vec<&str> = l.joints.iter().map(|j| j.name.as_str()).collect();
+        if names.is_empty() && !l.connection.is_empty() {
+            names.push(l.connection.as_str());
+        }
+        for name in names {
+            if !joints.insert(name) {
+                return Err(Error::invalid(
+                    "joint",
+                    format!("{name:?}"),
+                    "is also the name of a generated pseudo-rigid hinge",
+                ));
+            }
         }
     }
-    let mut sites = std::collections::HashSet::new();
-    for s in &model.sites {
-        if !sites.insert(s.name.as_str()) {
+    let mut names = std::collections::HashSet::new();
+    for s in sites {
+        if !names.insert(s.name.as_str()) {
             return Err(Error::invalid(
                 "site",
                 format!("{:?}", s.name),
@@ -402,8 +492,8 @@ impl RigidModel {
         c
     }
 
-    /// The moving joints, in link order.
+    /// The moving joints, with their link, in link order (a link's in its order).
     pub fn joints(&self) -> impl Iterator<Item = (usize, &ModelJoint)> {
-        self.links.iter().enumerate().filter_map(|(i, l)| l.joint.as_ref().map(|j| (i, j)))
+        self.links.iter().enumerate().flat_map(|(i, l)| l.joints.iter().map(move |j| (i, j)))
     }
 }

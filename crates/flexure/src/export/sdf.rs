@@ -47,7 +47,7 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String]) -> (String, Vec
     let parent_name = |i: usize| if i == 0 { "world".to_string() } else { model.links[i].name.clone() };
     for l in model.links.iter().skip(1) {
         let mut j = Element::new("joint").attr("name", l.connection.as_str());
-        match &l.joint {
+        match l.joints.first() {
             None => {
                 j = j.attr("type", "fixed");
                 j.push(Element::new("parent").text(parent_name(l.parent)));

@@ -15,7 +15,7 @@
 //! compliance in the bending springs' proportions.
 //!
 //! The fit's error is measured as in the plane, over the file's loads: at
-//! each equilibrium along the [`LoadRange`] the wrench at each flexure's
+//! each equilibrium along the [`super::LoadRange`] the wrench at each flexure's
 //! tip is the least-squares one holding its coordinates
 //! ($\nabla U = J^T w$), and the chain's small-motion tip response $Cw$ is
 //! compared with the model's tip displacement and rotation there. This
@@ -32,14 +32,13 @@
 //! SDFormat and URDF.
 
 use super::xml::{Element, number, numbers};
-use super::{LoadRange, Options, step};
+use super::{Export, FitReport, JointFit, Options, step};
 use crate::error::{Error, Result};
 use crate::mechanism::{Holds, Mechanism};
 use crate::prb::PrbKind;
 use crate::space::Spatial;
 use crate::spatial::{SpatialFlexure, SpatialKinematics};
 use nalgebra::{DVector, Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
-use serde::ser::SerializeStruct;
 
 /// Where a chain's pivots sit, as fractions of the length from the root:
 /// Howell's 1R characteristic pivot, $1 - \gamma$ with $\gamma$ =
@@ -59,113 +58,30 @@ pub fn pivot_fractions(kind: PrbKind) -> Vec<f64> {
 /// bending about $y$, twist about $x$.
 pub const AXES: [[f64; 3]; 3] = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
 
-/// One spatial flexure's fitted chain.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialFit {
-    /// The chain.
-    pub kind: PrbKind,
-    /// The pivots (m), in the flexure's root frame, root first.
-    pub pivots: Vec<Point3<f64>>,
-    /// Each pivot's spring constants (N·m/rad) about $z$, $y$ and $x$ ([`AXES`]).
-    pub stiffness: Vec<[f64; 3]>,
-    /// Largest tip position (m) and rotation (rad) of the chain's small-motion
-    /// response against the model's over the samples.
-    pub error: crate::prb::FitError,
-    /// Whether the position error passes 1 % of L or the angle 1°.
-    pub flagged: bool,
-    /// Samples the error is taken over.
-    pub samples: usize,
-    /// The flexure's length (m).
-    pub length: f64,
-}
-
-impl SpatialFit {
-    /// The chain's tip compliance at rest (6 × 6, rows and columns
-    /// $(r_x, r_y, r_z, x, y, z)$, the wrench at the tip in the root frame's axes).
-    pub fn compliance(&self) -> Matrix6<f64> {
-        let tip = Vector3::new(self.length, 0.0, 0.0);
-        let mut c = Matrix6::zeros();
-        for (p, k) in self.pivots.iter().zip(&self.stiffness) {
-            for (axis, k) in AXES.iter().zip(k) {
-                let e = Vector3::from(*axis);
-                let v = e.cross(&(tip - p.coords));
-                let u = Vector6::new(e.x, e.y, e.z, v.x, v.y, v.z);
-                c += u * u.transpose() / *k;
-            }
+/// The tip compliance at rest of a spatial chain `fit` (6 × 6, rows and
+/// columns $(r_x, r_y, r_z, x, y, z)$, the wrench at the tip in the root
+/// frame's axes): each hinge's twist $u$ per radian weighed by its
+/// compliance, $\sum u u^T/k$. Springs about $z$ are [`JointFit::stiffness`]'s
+/// $k_1$, about $y$ and $x$ [`JointFit::out_of_plane`]'s (held rigid when
+/// there are none, as in the plane).
+pub fn compliance(fit: &JointFit) -> Matrix6<f64> {
+    let tip = Vector3::new(fit.length, 0.0, 0.0);
+    let mut c = Matrix6::zeros();
+    for (i, p) in fit.pivots.iter().enumerate() {
+        let out = fit.out_of_plane.as_ref().map_or([f64::INFINITY; 2], |o| o[i]);
+        for (axis, k) in AXES.iter().zip([fit.stiffness[i][0], out[0], out[1]]) {
+            let e = Vector3::from(*axis);
+            let v = e.cross(&(tip - p.coords));
+            let u = Vector6::new(e.x, e.y, e.z, v.x, v.y, v.z);
+            c += u * u.transpose() / k;
         }
-        c
     }
-}
-
-/// The spatial export's report: as the planar [`super::FitReport`], each
-/// joint's `pivots` (3-D) and `stiffness` (per pivot, about $z$, $y$, $x$).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialReport {
-    /// The chain.
-    pub prb: PrbKind,
-    /// The range fitted over.
-    pub range: LoadRange,
-    /// (joint name, its fit), in the file's order.
-    pub joints: Vec<(String, SpatialFit)>,
-    /// The step the model is sized for (s).
-    pub step: f64,
-    /// (hinge, armature written), kg·m².
-    pub armature: Vec<(String, f64)>,
-    /// What could not be written, and flagged fits.
-    pub warnings: Vec<String>,
-    /// What was added to make the model loadable.
-    pub notes: Vec<String>,
-}
-
-struct Entry<'a>(&'a SpatialFit);
-
-impl serde::Serialize for Entry<'_> {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let f = self.0;
-        let pivots: Vec<[f64; 3]> = f.pivots.iter().map(|p| [p.x, p.y, p.z]).collect();
-        let mut m = s.serialize_struct("SpatialFit", 8)?;
-        m.serialize_field("prb", &f.kind)?;
-        m.serialize_field("pivots", &pivots)?;
-        m.serialize_field("stiffness", &f.stiffness)?;
-        m.serialize_field("axes", &["z", "y", "x"])?;
-        m.serialize_field("error", &f.error)?;
-        m.serialize_field("flagged", &f.flagged)?;
-        m.serialize_field("samples", &f.samples)?;
-        m.serialize_field("length", &f.length)?;
-        m.end()
-    }
-}
-
-impl serde::Serialize for SpatialReport {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut m = s.serialize_struct("SpatialReport", 9)?;
-        m.serialize_field("format", "mjcf")?;
-        m.serialize_field("dimension", &3)?;
-        m.serialize_field("prb", &self.prb)?;
-        m.serialize_field("range", &super::RangeEntry::from(&self.range))?;
-        m.serialize_field("joints", &super::Map(&self.joints, Entry))?;
-        m.serialize_field("step", &self.step)?;
-        m.serialize_field("armature", &super::Map(&self.armature, |a: &f64| *a))?;
-        m.serialize_field("warnings", &self.warnings)?;
-        m.serialize_field("notes", &self.notes)?;
-        m.end()
-    }
-}
-
-/// A spatial mechanism exported: the MJCF text, the report, the warnings.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpatialExport {
-    /// The MJCF.
-    pub xml: String,
-    /// The fits and what was lost.
-    pub report: SpatialReport,
-    /// Every warning (as in the report).
-    pub warnings: Vec<String>,
+    c
 }
 
 /// Fits the springs of a chain of `kind` to `f`'s compliance at rest
 /// (the module's page says how); errors name `joint`.
-pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<SpatialFit> {
+pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<JointFit> {
     if f.rest().iter().any(|a| *a != 0.0) {
         return Err(Error::invalid(
             "joint",
@@ -200,13 +116,26 @@ pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<Spa
     }
     let total: f64 = compliances[0].iter().sum();
     compliances[2] = compliances[0].iter().map(|w| c[(0, 0)] * w / total).collect();
-    let stiffness = (0..levers.len())
-        .map(|i| [1.0 / compliances[0][i], 1.0 / compliances[1][i], 1.0 / compliances[2][i]])
+    // K_Θ as the plane's, EI the bending stiffness about z, L/C_θM (EI_z when uniform).
+    let ei_l = 1.0 / c[(2, 2)];
+    let gamma = match kind {
+        PrbKind::OneR => vec![1.0 - crate::prb::HOWELL_GAMMA, crate::prb::HOWELL_GAMMA],
+        PrbKind::ThreeR => crate::prb::SU_GAMMA.to_vec(),
+    };
+    let k_theta = compliances[0]
+        .iter()
+        .map(|w| match kind {
+            PrbKind::OneR => 1.0 / (w * gamma[1] * ei_l),
+            PrbKind::ThreeR => 1.0 / (w * ei_l),
+        })
         .collect();
-    Ok(SpatialFit {
+    Ok(JointFit {
         kind,
+        gamma,
+        k_theta,
         pivots: fractions.iter().map(|x| Point3::new(x * l, 0.0, 0.0)).collect(),
-        stiffness,
+        stiffness: compliances[0].iter().map(|w| [1.0 / w, 0.0, 0.0]).collect(),
+        out_of_plane: Some((0..levers.len()).map(|i| [1.0 / compliances[1][i], 1.0 / compliances[2][i]]).collect()),
         error: Default::default(),
         flagged: false,
         samples: 0,
@@ -223,8 +152,8 @@ fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
 /// equilibria: the largest tip position and rotation difference between
 /// the chain's small-motion response to the tip wrench holding them and
 /// the model's tip.
-fn fit_error(f: &SpatialFlexure, fit: &mut SpatialFit, shapes: &[Vec<f64>]) {
-    let c = fit.compliance();
+fn fit_error(f: &SpatialFlexure, fit: &mut JointFit, shapes: &[Vec<f64>]) {
+    let c = compliance(fit);
     let n = f.coordinates();
     let mut k = SpatialKinematics::new(f);
     let mut g = vec![0.0; n];
@@ -295,7 +224,7 @@ struct Site {
 /// assert!(!e.report.joints[0].1.flagged);
 /// # Ok::<(), flexure::Error>(())
 /// ```
-pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport> {
+pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     options.range.validate()?;
     step::validate(options.step)?;
     if options.format != super::Format::Mjcf {
@@ -311,7 +240,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
     let mut warnings = Vec::new();
     let mut notes = Vec::new();
     // Fits, before the solves: a joint the export cannot write errors first.
-    let mut fits: Vec<Option<SpatialFit>> = Vec::with_capacity(m.joints.len());
+    let mut fits: Vec<Option<JointFit>> = Vec::with_capacity(m.joints.len());
     for spec in &m.joints {
         let joint = spec.kind.joint();
         match spec.kind.flexure() {
@@ -338,16 +267,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         let shapes: Vec<Vec<f64>> = solutions.iter().map(|s| s.q[spec.offset..spec.offset + n].to_vec()).collect();
         fit_error(f, fit, &shapes);
         if fit.flagged {
-            warnings.push(format!(
-                "joint {:?}: the {} fit's tip is up to {} m ({:.2} % of L) and {} rad ({:.2}°) from the model's over the range, \
-                 more than 1 % of L or 1°",
-                spec.name,
-                fit.kind,
-                number(fit.error.position),
-                100.0 * fit.error.position / fit.length,
-                number(fit.error.angle),
-                fit.error.angle.to_degrees()
-            ));
+            warnings.push(fit.flag_warning(&spec.name));
         }
         if f.section().mass_per_length(0.5).is_some() {
             warnings.push(format!(
@@ -391,9 +311,10 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
                 let k = fit.pivots.len();
                 let tip = Isometry3::translation(fit.length, 0.0, 0.0);
                 let hinges = |i: usize, at: Point3<f64>| -> Vec<Hinge> {
+                    let out = fit.out_of_plane.as_ref().map_or([0.0; 2], |o| o[i]);
                     AXES.iter()
                         .zip(["z", "y", "x"])
-                        .zip(fit.stiffness[i])
+                        .zip([fit.stiffness[i][0], out[0], out[1]])
                         .map(|((axis, a), s)| Hinge {
                             name: format!("{}_{}{a}", spec.name, i + 1),
                             at,
@@ -429,23 +350,41 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         l.com = body.com;
         l.inertia = body.inertia;
     }
-    let mut floored = Vec::new();
-    for l in links.iter_mut().skip(1) {
+    // Each flexure's links are massless (its own mass is not lumped yet):
+    // merged away, their hinges on the child in order, each at its pivot
+    // in the child's frame, as MuJoCo applies a body's joints.
+    let merged = merge_massless(&mut links, &mut body_link);
+    for (body, hinges) in &merged {
+        notes.push(format!(
+            "body {body:?} carries the hinges {} of a massless flexure, in order, each at its pivot: its links are merged \
+             away (MuJoCo applies a body's joints in order, each about its own pos), none at a mass floor",
+            hinges.join(", ")
+        ));
+    }
+    let floor = format!("{} kg and {} kg·m²", number(super::model::MIN_MASS), number(super::model::MIN_INERTIA));
+    let below = floor.replace(" and ", " or ");
+    for (i, l) in links.iter_mut().enumerate().skip(1) {
         let least = l.inertia.symmetric_eigenvalues().min();
         if l.mass < super::model::MIN_MASS || least < super::model::MIN_INERTIA {
             l.mass = l.mass.max(super::model::MIN_MASS);
             if least < super::model::MIN_INERTIA {
                 l.inertia += Matrix3::identity() * (super::model::MIN_INERTIA - least.max(0.0));
             }
-            floored.push(l.name.clone());
+            if body_link.contains(&i) {
+                notes.push(format!(
+                    "body {:?} has less than {below} in the file: given that much, as simulators need",
+                    l.name
+                ));
+            } else {
+                warnings.push(format!(
+                    "link {:?}: MuJoCo holds at most {MAX_BODY_DOFS} degrees of freedom a body, so a 3R chain's nine \
+                     hinges take two bodies; this link of a massless flexure (its first pivot's hinges) is given {floor}, \
+                     the least simulators accept, and its hinges the step's armature; give the flexure its mass to \
+                     weigh it, or export 1R (one body)",
+                    l.name
+                ));
+            }
         }
-    }
-    for name in &floored {
-        notes.push(format!(
-            "link {name:?} had less than {} kg or {} kg·m²: given that much, as simulators need",
-            number(super::model::MIN_MASS),
-            number(super::model::MIN_INERTIA)
-        ));
     }
     // Sized for the step, as the plane's ([`step::size`]): each hinge's own
     // link's inertia about its axis.
@@ -454,13 +393,23 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         let period = step::STEPS_PER_PERIOD * options.step / std::f64::consts::TAU;
         for l in links.iter_mut().skip(1) {
             let (mass, com, inertia) = (l.mass, l.com, l.inertia);
-            for h in &mut l.hinges {
-                let d = (com - h.at).cross(&h.axis);
-                let own = (h.axis.transpose() * inertia * h.axis)[0] + mass * d.norm_squared() + h.armature;
-                let need = h.stiffness * period * period;
-                if own < need {
-                    h.armature += need - own;
-                }
+            // The link's mass matrix over its sprung hinges at rest (several
+            // on one body: a merged chain), sized as the plane's.
+            let sprung: Vec<usize> = (0..l.hinges.len()).filter(|&h| l.hinges[h].stiffness > 0.0).collect();
+            if sprung.is_empty() {
+                continue;
+            }
+            let hinges = &l.hinges;
+            let need: Vec<f64> = sprung.iter().map(|&h| hinges[h].stiffness * period * period).collect();
+            let own = |a: usize, b: usize| {
+                let (ha, hb) = (&hinges[sprung[a]], &hinges[sprung[b]]);
+                let (va, vb) = (ha.axis.cross(&(com - ha.at)), hb.axis.cross(&(com - hb.at)));
+                let m = (ha.axis.transpose() * inertia * hb.axis)[0] + mass * va.dot(&vb);
+                m + if a == b { ha.armature } else { 0.0 }
+            };
+            let added = step::added_inertia(&need, own);
+            for (&h, a) in sprung.iter().zip(added) {
+                l.hinges[h].armature += a;
             }
         }
     }
@@ -569,16 +518,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         options.prb, options.range.from, options.range.to, options.range.count
     ));
     for (n, f) in &joints {
-        root.comment(format!(
-            "{n}: {} pivots at {:?} m, springs (z, y, x) {:?} N·m/rad, error {} m ({:.3} % of L) and {} rad{}",
-            f.kind,
-            f.pivots.iter().map(|p| p.x).collect::<Vec<_>>(),
-            f.stiffness,
-            number(f.error.position),
-            100.0 * f.error.position / f.length,
-            number(f.error.angle),
-            if f.flagged { ", FLAGGED" } else { "" }
-        ));
+        root.comment(f.line(n));
     }
     root.push(Element::new("compiler").attr("angle", "radian").attr("autolimits", "true"));
     let mut option = Element::new("option");
@@ -609,7 +549,9 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         );
     }
     let xml = root.document();
-    let report = SpatialReport {
+    let report = FitReport {
+        dimension: 3,
+        format: options.format,
         prb: options.prb,
         range: options.range,
         joints,
@@ -618,7 +560,52 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<SpatialExport
         warnings: warnings.clone(),
         notes,
     };
-    Ok(SpatialExport { xml, report, warnings })
+    Ok(Export { xml, report, warnings, model: None })
+}
+
+/// The most degrees of freedom MuJoCo holds on one body ("more than 6 dofs
+/// in body", its compiler's error): a 3R chain's nine hinges fit on two.
+pub const MAX_BODY_DOFS: usize = 6;
+
+/// Merges each link without mass that is no file body into its one child,
+/// as the plane's ([`super::model::build`]): the child takes its place and
+/// its hinges first, each point and axis carried into the child's frame.
+/// A merge that would put more than [`MAX_BODY_DOFS`] hinges on one body
+/// is not made (a 3R chain keeps its first link, at the least mass).
+/// Returns each body given more than one link's hinges, with their names.
+fn merge_massless(links: &mut Vec<Link>, body_link: &mut [usize]) -> Vec<(String, Vec<String>)> {
+    let n = links.len();
+    let mut gone = vec![false; n];
+    // Tip first, so a chain too long for one body keeps its root links.
+    for i in (1..n).rev() {
+        let children: Vec<usize> = (i + 1..n).filter(|&c| !gone[c] && links[c].parent == i).collect();
+        let massless = links[i].mass == 0.0 && links[i].inertia == Matrix3::zeros();
+        if body_link.contains(&i) || !massless || children.len() != 1 {
+            continue;
+        }
+        if links[i].hinges.len() + links[children[0]].hinges.len() > MAX_BODY_DOFS {
+            continue;
+        }
+        let c = children[0];
+        let inward = links[c].pose.inverse();
+        let mut hinges = std::mem::take(&mut links[i].hinges);
+        for h in &mut hinges {
+            h.at = inward * h.at;
+            h.axis = inward.rotation * h.axis;
+        }
+        hinges.append(&mut links[c].hinges);
+        links[c].hinges = hinges;
+        links[c].pose = links[i].pose * links[c].pose;
+        links[c].parent = links[i].parent;
+        gone[i] = true;
+    }
+    super::model::remove_merged(links, &gone, body_link, |l| &mut l.parent);
+    let merged = gone.iter().any(|g| *g);
+    links
+        .iter()
+        .filter(|l| merged && l.hinges.len() > AXES.len())
+        .map(|l| (l.name.clone(), l.hinges.iter().map(|h| h.name.clone()).collect()))
+        .collect()
 }
 
 /// `pos` and, unless it is the identity, `quat` (w x y z) of a pose.
@@ -688,7 +675,7 @@ mod tests {
         let (gj, ei_y, ei_z, l) = (0.5, 2.0, 1.0, 1.5);
         let f = SpatialFlexure::new(l, SpatialSection::uniform(gj, ei_y, ei_z).unwrap(), [3, 3, 3]).unwrap();
         let fit = fit_springs(&f, PrbKind::ThreeR, "f").unwrap();
-        let (chain, model) = (fit.compliance(), crate::spatial::compliance_rest(&f).unwrap());
+        let (chain, model) = (compliance(&fit), crate::spatial::compliance_rest(&f).unwrap());
         // Twist, the bendings' rotation, and a tip force's rotation and deflection, each axis.
         for (i, j) in [(0, 0), (1, 1), (2, 2), (1, 5), (2, 4), (4, 4), (5, 5)] {
             assert!((chain[(i, j)] - model[(i, j)]).abs() < 1e-12 * model[(i, i)].abs().max(1.0), "({i}, {j})");
@@ -699,13 +686,15 @@ mod tests {
         // The springs, as K_Θ = k L / EI, are 3.99, 2.47, 2.90: within 20 % of Su's 3.51, 2.99,
         // 2.58 (fitted to large deflections, averaged over load directions), not taken from them.
         let k: Vec<f64> = fit.stiffness.iter().map(|k| k[0] * l / ei_z).collect();
-        for (k, su) in k.iter().zip(crate::prb::SU_K_THETA) {
+        for ((k, su), reported) in k.iter().zip(crate::prb::SU_K_THETA).zip(&fit.k_theta) {
             assert!((k / su - 1.0).abs() < 0.2, "{k:?} against {su}");
+            // The reported K_Θ is this, EI from the rest compliance (uniform: exact).
+            assert!((reported / k - 1.0).abs() < 1e-12, "{reported} against {k}");
         }
         // 1R: Howell's pivot, the tip's deflection under a tip force exact.
         let one = fit_springs(&f, PrbKind::OneR, "f").unwrap();
         assert_eq!(one.pivots.len(), 1);
-        assert!((one.compliance()[(4, 4)] - model[(4, 4)]).abs() < 1e-12);
+        assert!((compliance(&one)[(4, 4)] - model[(4, 4)]).abs() < 1e-12);
     }
 
     #[test]
@@ -713,7 +702,10 @@ mod tests {
         let m = spatial_from_toml(STAGE).unwrap();
         let e = export(&m, &Options::default()).unwrap();
         let x = &e.xml;
-        // Three pivots of three hinges per flexure; the last pivot's hinges on the child body.
+        // Three pivots of three hinges per flexure. MuJoCo holds six a body: the second and
+        // third pivots' on the child body (the massless link between them merged away), each
+        // at its pivot in the child's frame (Su's second at 0.45 L from the root, 0.55 L =
+        // 0.0165 m behind the tip), the first's on the one link kept, said so.
         for f in ["left", "right"] {
             for i in 1..=3 {
                 for a in ["z", "y", "x"] {
@@ -721,9 +713,17 @@ mod tests {
                 }
             }
             assert!(
-                x.contains(&format!(r#"<body name="{f}_prb2""#)) && !x.contains(&format!(r#"<body name="{f}_prb3""#))
+                x.contains(&format!(r#"<body name="{f}_prb1""#)) && !x.contains(&format!(r#"<body name="{f}_prb2""#))
             );
+            assert!(e.warnings.iter().any(|w| w.contains(&format!("{f}_prb1")) && w.contains("at most 6")));
         }
+        let second = format!(r#"<joint name="left_2z" type="hinge" pos="{} 0 0""#, number(0.45 * 0.03 - 0.03));
+        assert!(x.contains(&second), "{x}");
+        assert!(
+            e.report.notes.iter().any(|n| n.contains("\"stage\" carries the hinges left_2z")),
+            "{:?}",
+            e.report.notes
+        );
         // rpy 90° about z: the first link turned by a quaternion (cos 45°, 0, 0, sin 45°).
         let h = std::f64::consts::FRAC_1_SQRT_2;
         let q = nalgebra::UnitQuaternion::from_euler_angles(0.0, 0.0, std::f64::consts::FRAC_PI_2);
@@ -735,8 +735,15 @@ mod tests {
         assert_eq!(e.report.joints.len(), 2);
         assert!(e.report.joints.iter().all(|(_, f)| f.samples == 12 && f.error.position.is_finite()));
         let json = serde_json::to_value(&e.report).unwrap();
-        assert_eq!(json["joints"]["left"]["stiffness"].as_array().unwrap().len(), 3);
-        assert_eq!(json["dimension"], 3);
+        // The planar report's keys, with the springs out of the plane and 3-D pivots added.
+        let left = &json["joints"]["left"];
+        for key in ["prb", "gamma", "k_theta", "stiffness", "pivots", "error", "flagged", "samples", "length"] {
+            assert!(left.get(key).is_some(), "{key}");
+        }
+        assert_eq!(left["stiffness"].as_array().unwrap().len(), 3);
+        assert_eq!(left["stiffness_y"].as_array().unwrap().len(), 3);
+        assert_eq!(left["pivots"][0].as_array().unwrap().len(), 3);
+        assert_eq!((json["dimension"].as_u64(), json["format"].as_str()), (Some(3), Some("mjcf")));
     }
 
     #[test]

@@ -47,7 +47,7 @@ pub fn validate(step: f64) -> Result<()> {
 ///     "[[joint]]\nname = \"h\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\nstiffness = 4.0\n\
 ///      [[body]]\nname = \"a\"\nmass = 1e-3\ninertia = 1e-8\n",
 /// )?;
-/// let mut rigid = model::build(&m, &[None], 0.0)?;
+/// let mut rigid = model::build(&m, &[None], 0.0, true)?;
 /// let added = step::size(&mut rigid, 0.002)?;
 /// // k (10 Δt / 2π)² = 4 × 1.013e-5 kg·m², less the link's own 1e-8.
 /// let want = 4.0 * (10.0 * 0.002 / std::f64::consts::TAU).powi(2) - 1e-8;
@@ -64,25 +64,70 @@ pub fn size(model: &mut RigidModel, step: f64) -> Result<Vec<(String, f64)>> {
     let period = STEPS_PER_PERIOD * step / std::f64::consts::TAU;
     for l in model.links.iter_mut().skip(1) {
         let inertia = &l.inertia;
-        let Some(j) = l.joint.as_mut() else { continue };
-        let k = j.stiffness[0];
-        if k.is_nan() || k <= 0.0 {
-            continue;
-        }
-        let own = match j.motion {
-            LinkMotion::Hinge => {
-                let (dx, dy) = (inertia.com[0] - j.at.x, inertia.com[1] - j.at.y);
-                inertia.inertia + inertia.mass * (dx * dx + dy * dy)
-            }
-            LinkMotion::Slide => inertia.mass,
-        } + j.armature;
-        let need = k * period * period;
-        if own < need {
-            j.armature += need - own;
-            added.push((j.name.clone(), need - own));
+        // Each joint's motion of the link at rest: its turn, and its centre
+        // of mass's velocity, per unit rate.
+        let motions: Vec<(f64, [f64; 2])> = l
+            .joints
+            .iter()
+            .map(|j| match j.motion {
+                LinkMotion::Hinge => (1.0, [-(inertia.com[1] - j.at.y), inertia.com[0] - j.at.x]),
+                LinkMotion::Slide => (0.0, [j.axis.x, j.axis.y]),
+            })
+            .collect();
+        let m = |a: usize, b: usize| {
+            let ((wa, va), (wb, vb)) = (motions[a], motions[b]);
+            inertia.inertia * wa * wb + inertia.mass * (va[0] * vb[0] + va[1] * vb[1])
+        };
+        for (name, a) in armature_for(&mut l.joints, m, period) {
+            added.push((name, a));
         }
     }
     Ok(added)
+}
+
+/// The armature each sprung joint of one link needs, added to it: the
+/// link's mass matrix over its joints at rest is `m(a, b)` (its own, not
+/// its children's). Each joint alone would ring at $\sqrt{k_1/(M_{jj}+I_a)}$;
+/// several on one link (a massless flexure's merged chain) also move it in
+/// combinations, one of which may turn it about its centre of mass alone,
+/// its least inertia. So with $D = \mathrm{diag}(k_{1,j})\tau^2$,
+/// $\tau = n\Delta t/2\pi$, each gets $I_a = sD_{jj}$, $s = 1 - \mu$ (none
+/// if $\mu \ge 1$), $\mu$ the least eigenvalue of $D^{-1/2}(M + A_0)D^{-1/2}$:
+/// then $M + A \succeq D$, and no mode of the link's springs rings faster
+/// than $n$ steps. One joint: $I_a = D - M - A_0$, as before.
+fn armature_for(
+    joints: &mut [super::model::ModelJoint],
+    m: impl Fn(usize, usize) -> f64,
+    period: f64,
+) -> Vec<(String, f64)> {
+    let sprung: Vec<usize> =
+        (0..joints.len()).filter(|&j| joints[j].stiffness[0].is_finite() && joints[j].stiffness[0] > 0.0).collect();
+    let mut added = Vec::new();
+    if sprung.is_empty() {
+        return added;
+    }
+    let need: Vec<f64> = sprung.iter().map(|&j| joints[j].stiffness[0] * period * period).collect();
+    let own = |a: usize, b: usize| m(sprung[a], sprung[b]) + if a == b { joints[sprung[a]].armature } else { 0.0 };
+    for (&j, a) in sprung.iter().zip(added_inertia(&need, own)) {
+        if a > 0.0 {
+            joints[j].armature += a;
+            added.push((joints[j].name.clone(), a));
+        }
+    }
+    added
+}
+
+/// The armature to add to each of a link's sprung joints ([`armature_for`]'s
+/// rule, in either dimension): `need` is each joint's $k_1\tau^2$, `own(a, b)`
+/// the link's mass matrix over them with the armature already on them.
+pub(crate) fn added_inertia(need: &[f64], own: impl Fn(usize, usize) -> f64) -> Vec<f64> {
+    let n = need.len();
+    if n == 1 {
+        return vec![(need[0] - own(0, 0)).max(0.0)];
+    }
+    let scaled = nalgebra::DMatrix::from_fn(n, n, |a, b| own(a, b) / (need[a] * need[b]).sqrt());
+    let s = (1.0 - scaled.symmetric_eigenvalues().min()).max(0.0);
+    need.iter().map(|d| s * d).collect()
 }
 
 /// Where a spring $\tau = k_1 x + k_2 x^2 + k_3 x^3$ stops holding: the

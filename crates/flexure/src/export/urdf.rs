@@ -44,7 +44,7 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String], travel: f64) ->
             .child(inertia);
         robot.push(Element::new("link").attr("name", l.name.as_str()).child(inertial));
         let parent = link_name(l.parent);
-        let Some(h) = &l.joint else {
+        let Some(h) = l.joints.first() else {
             robot.push(
                 Element::new("joint")
                     .attr("name", l.connection.as_str())

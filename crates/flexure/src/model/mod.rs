@@ -62,89 +62,6 @@ pub trait Visit<D: Dimension> {
     fn visit(self, m: &Mechanism<D>) -> Self::Output;
 }
 
-/// What [`Model::export`] answers: the model's text, its fit report
-/// (serialized as `flexure export --json`'s keys) and warnings.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ModelExport {
-    /// A planar mechanism's.
-    Planar(crate::export::Export),
-    /// A spatial mechanism's.
-    Spatial(crate::export::spatial::SpatialExport),
-}
-
-impl ModelExport {
-    /// The model, in the format asked for.
-    pub fn xml(&self) -> &str {
-        match self {
-            ModelExport::Planar(e) => &e.xml,
-            ModelExport::Spatial(e) => &e.xml,
-        }
-    }
-
-    /// Every warning: flagged fits, and what the format cannot hold.
-    pub fn warnings(&self) -> &[String] {
-        match self {
-            ModelExport::Planar(e) => &e.warnings,
-            ModelExport::Spatial(e) => &e.warnings,
-        }
-    }
-
-    /// What was added to make the model loadable.
-    pub fn notes(&self) -> &[String] {
-        match self {
-            ModelExport::Planar(e) => &e.report.notes,
-            ModelExport::Spatial(e) => &e.report.notes,
-        }
-    }
-
-    /// Each flexure joint's fit in a line: its chain, springs and error.
-    pub fn fit_lines(&self) -> Vec<String> {
-        match self {
-            ModelExport::Planar(e) => e
-                .report
-                .joints
-                .iter()
-                .map(|(joint, f)| {
-                    format!(
-                        "{joint}: {} gamma {:?}, k_theta {:?}, error {:.3e} m ({:.3} % of L), {:.3e} rad",
-                        f.kind,
-                        f.gamma,
-                        f.k_theta,
-                        f.error.position,
-                        100.0 * f.error.position / f.length,
-                        f.error.angle
-                    )
-                })
-                .collect(),
-            ModelExport::Spatial(e) => e
-                .report
-                .joints
-                .iter()
-                .map(|(joint, f)| {
-                    format!(
-                        "{joint}: {} springs (z, y, x) {:?} N·m/rad, error {:.3e} m ({:.3} % of L), {:.3e} rad",
-                        f.kind,
-                        f.stiffness,
-                        f.error.position,
-                        100.0 * f.error.position / f.length,
-                        f.error.angle
-                    )
-                })
-                .collect(),
-        }
-    }
-}
-
-impl serde::Serialize for ModelExport {
-    /// The fit report.
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        match self {
-            ModelExport::Planar(e) => e.report.serialize(s),
-            ModelExport::Spatial(e) => e.report.serialize(s),
-        }
-    }
-}
-
 /// What [`Model::solve`] answers.
 #[derive(Debug)]
 pub struct Solved {
@@ -483,10 +400,10 @@ impl Model {
 
     /// The mechanism as a rigid-body model for a simulator ([`crate::export::export`];
     /// a spatial one to MJCF only, [`crate::export::spatial::export`]).
-    pub fn export(&self, options: &crate::export::Options) -> Result<ModelExport> {
+    pub fn export(&self, options: &crate::export::Options) -> Result<crate::export::Export> {
         match self {
-            Model::Planar(m) => crate::export::export(m, options).map(ModelExport::Planar),
-            Model::Spatial(m) => crate::export::spatial::export(m, options).map(ModelExport::Spatial),
+            Model::Planar(m) => crate::export::export(m, options),
+            Model::Spatial(m) => crate::export::spatial::export(m, options),
         }
     }
 
