@@ -64,6 +64,19 @@ impl Stretch {
         self.tau.last().map_or(0.0, |p| p.1)
     }
 
+    /// The nodes $0 = s_0 < \dots < s_N = L$ of `segments` shooting
+    /// segments equal in $\tau$ (equal in $s$ when `uniform`), `length` $= L$.
+    pub fn nodes(&self, length: f64, uniform: bool, segments: usize) -> Vec<f64> {
+        (0..=segments)
+            .map(|j| match j {
+                0 => 0.0,
+                _ if j == segments => length,
+                _ if uniform => length * j as f64 / segments as f64,
+                _ => self.at_fraction(j as f64 / segments as f64),
+            })
+            .collect()
+    }
+
     /// The arc length where $\tau$ reaches `fraction` of $\tau(L)$ (linear between table points).
     pub fn at_fraction(&self, fraction: f64) -> f64 {
         let target = fraction * self.total();
