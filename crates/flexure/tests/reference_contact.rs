@@ -2,6 +2,7 @@
 //! closed forms, the plain elastica, and its own balance laws.
 
 use flexure::reference::elastica::{self, contact::*};
+use flexure::section::{Profile, Section};
 use flexure::{Error, Flexure, TipLoad};
 
 fn unit() -> Flexure {
@@ -65,19 +66,52 @@ fn propped_cantilever_matches_the_closed_form() {
 }
 
 /// With obstacles out of the way the answer is `elastica::deflect`'s, to
-/// 1e-10 (both integrate to 1e-12): Bisshopp–Drucker's load, a floor far
-/// below and a post far off.
+/// 1e-10 (both integrate to 1e-12): Bisshopp–Drucker's flexure under a
+/// moment and both force components, a floor far below and a post far off;
+/// then a flexure with rest curvature and a section table with a kink.
 #[test]
 fn no_obstacle_in_the_way_is_the_plain_elastica() {
     let tip = load(0.2, -0.3, 1.0);
     let far = [Obstacle::half_plane([0.0, -5.0], [0.0, 1.0]), Obstacle::circle([3.0, 3.0], 1.0)];
-    let s = solve(&far, 0.0, &[tip]);
-    assert!(s.events.is_empty() && s.contacts.is_empty());
-    let exact = elastica::deflect(&unit(), &tip, &Default::default()).unwrap();
+    let table = Profile::Table(vec![[0.0, 1.2], [0.35, 0.5], [1.0, 0.9]]);
+    let curved = Flexure::new(1.0, 1.0, 3).unwrap().with_rest(&[0.4, -0.2, 0.1]).unwrap();
+    let kinked = curved.clone().with_section(Section::given(table).unwrap()).unwrap();
+    for f in [unit(), curved, kinked] {
+        let s = elastica::contact(&f, &far, 0.0, &[tip], &Default::default()).unwrap();
+        assert!(s.reached() && s.events.is_empty() && s.contacts.is_empty());
+        let exact = elastica::deflect(&f, &tip, &Default::default()).unwrap();
+        let end = s.shape.last().unwrap();
+        let error =
+            (end.x - exact.pose.x).abs().max((end.y - exact.pose.y).abs()).max((end.phi - exact.pose.phi).abs());
+        assert!(error < 1e-10, "tip pose differs by {error:e}");
+        assert!((s.root_moment - exact.root_moment).abs() < 1e-10);
+    }
+}
+
+/// Case (a) backwards: from the interior contact, a second leg takes the
+/// load to a push along the flexure alone. The contact runs back to the tip
+/// (reaching it within $10^{-9}L$), then opens as the flexure straightens;
+/// no gap below $-10^{-12}$ on the way, and at the end the plain elastica's
+/// straight column under the push (1e-10).
+#[test]
+fn floor_contact_returns_to_the_tip_then_opens() {
+    let floor = [Obstacle::half_plane([0.0, -0.01], [0.0, 1.0])];
+    let path = [load(0.4, 0.0, -1.0), load(0.0, -1.0, 0.0)];
+    let s = solve(&floor, 0.0, &path);
+    let kinds: Vec<_> = s.events.iter().map(|e| e.kind).collect();
+    assert_eq!(kinds, [EventKind::Touch, EventKind::Roll, EventKind::Unroll, EventKind::Open]);
+    assert!((s.events[2].s - 1.0).abs() < 1e-9 && s.events[2].load > 1.0, "{:?}", s.events[2]);
+    for t in [1.5, 0.5 * (s.events[2].load + s.events[3].load)] {
+        let at = [path[0], scaled(&path[0], 2.0 - t)];
+        let at = [at[0], load(at[1].moment, -(t - 1.0), at[1].fy)];
+        let partway = solve(&floor, 0.0, &at);
+        assert!(partway.min_gap(&floor[0], 0.0) >= -1e-12 && partway.contacts.len() == 1);
+        assert!(partway.contacts[0].normal_force > 0.0);
+    }
+    assert!(s.contacts.is_empty());
+    let exact = elastica::deflect(&unit(), &path[1], &Default::default()).unwrap();
     let end = s.shape.last().unwrap();
-    let error = (end.x - exact.pose.x).abs().max((end.y - exact.pose.y).abs()).max((end.phi - exact.pose.phi).abs());
-    assert!(error < 1e-10, "tip pose differs by {error:e}");
-    assert!((s.root_moment - exact.root_moment).abs() < 1e-10);
+    assert!((end.x - exact.pose.x).abs().max(end.y.abs()).max(end.phi.abs()) < 1e-10, "{end:?}");
 }
 
 /// Large deflection with the tip alone on the floor: the plain elastica

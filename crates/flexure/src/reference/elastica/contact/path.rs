@@ -31,6 +31,14 @@ const FLAT_LENGTH: f64 = 1e-3;
 /// A local minimum of the gap this close to an active contact (× $L$) is that contact.
 const SAME_POINT: f64 = 1e-6;
 
+/// An interior contact this close to the tip (× $L$), where no load step
+/// beyond converges (bisected to [`EVENT_RESOLUTION`]), has reached the tip;
+/// the bisection starts from a failed step while one lies within half the length.
+const NEAR_TIP: f64 = 1e-4;
+
+/// A tip's tangent turned away from the surface by more than this (rad) has lifted.
+const ROLL_TOLERANCE: f64 = 1e-10;
+
 /// A force violation (N) smaller than this × the residual scale / $L$ is rounding.
 const FORCE_TOLERANCE: f64 = 1e-11;
 
@@ -49,6 +57,8 @@ enum Violation {
     Touch { obstacle: usize, s: f64, point: [f64; 2] },
     /// The shape lies along `obstacle` (distributed contact).
     Flat(usize),
+    /// Interior contact `c` reached the tip (no state beyond).
+    Unroll(usize),
 }
 
 /// The exact elastica clamped at the root (at the origin, along $+x$) under
@@ -87,7 +97,9 @@ enum Violation {
 /// ([`crate::solver::newton`]) from the secant predictor. After each step the
 /// shape is checked: a normal force below zero (the contact opens), a tip
 /// tangent turned away from the surface (the tip lifts: its contact moves
-/// into the span), a stuck tip needing more than $\mu N$ (it slips), a
+/// into the span), a contact in the span reaching the tip (no step past
+/// it converges: bisected, it becomes the tip's), a stuck tip needing
+/// more than $\mu N$ (it slips), a
 /// slipping tip moving with its friction (it sticks), and the gap scanned
 /// along the whole shape, its local minima found to $10^{-12}L$ (a new
 /// contact where it is below $-10^{-13}L$). A violated step is bisected
@@ -193,42 +205,43 @@ pub fn contact(
                 }
             })
             .and_then(|_| sh.inspect(&ws.x, target));
-        let (seen_t, samples_t) = match solved {
-            Ok(v) => v,
+        match solved {
             Err(e) => {
                 last_error = Some(e);
                 match &mut upper {
                     Some((u, _)) => *u = target,
-                    None => step *= 0.5,
+                    // No state past an interior contact near the tip: it
+                    // reaches the tip there; bisect onto that load.
+                    None => match nearest_tip(&sh, &x, 0.5) {
+                        Some(c) => upper = Some((target, Violation::Unroll(c))),
+                        None => step *= 0.5,
+                    },
                 }
-                if target - lambda < solver_settings.min_step * 1e-6
-                    || (upper.is_none() && step < solver_settings.min_step)
-                {
+                if upper.is_none() && step < solver_settings.min_step {
                     stop =
                         ContactStop::Stalled(stalled(&sh, lambda / total, steps, "no load step converged", last_error));
                     break;
                 }
-                continue;
             }
-        };
-        match check(&sh, &seen_t, &samples_t, Some(&seen)) {
-            None => {
-                previous = Some((std::mem::replace(&mut x, ws.x.clone()), lambda));
-                (lambda, seen, samples) = (target, seen_t, samples_t);
-                steps += 1;
-                if upper.is_none() {
-                    step = (2.0 * step).min(LARGEST_STEP);
+            Ok((seen_t, samples_t)) => match check(&sh, &seen_t, &samples_t, Some(&seen)) {
+                None => {
+                    previous = Some((std::mem::replace(&mut x, ws.x.clone()), lambda));
+                    (lambda, seen, samples) = (target, seen_t, samples_t);
+                    steps += 1;
+                    if upper.is_none() {
+                        step = (2.0 * step).min(LARGEST_STEP);
+                    }
                 }
-            }
-            Some(Violation::Flat(o)) => {
-                stop = ContactStop::Refused(Error::invalid(
-                    "obstacle",
-                    o,
-                    "is met along an interval (the flexure lies along it): distributed contact is not handled",
-                ));
-                break;
-            }
-            Some(v) => upper = Some((target, v)),
+                Some(Violation::Flat(o)) => {
+                    stop = ContactStop::Refused(Error::invalid(
+                        "obstacle",
+                        o,
+                        "is met along an interval (the flexure lies along it): distributed contact is not handled",
+                    ));
+                    break;
+                }
+                Some(v) => upper = Some((target, v)),
+            },
         }
         let Some((u, v)) = upper else { continue };
         if u - lambda > EVENT_RESOLUTION * lambda.max(1.0) {
@@ -238,6 +251,12 @@ pub fn contact(
         // active set there and settle it.
         upper = None;
         previous = None;
+        if let Violation::Unroll(c) = v
+            && nearest_tip(&sh, &x, NEAR_TIP) != Some(c)
+        {
+            stop = ContactStop::Stalled(stalled(&sh, lambda / total, steps, "no load step converged", last_error));
+            break;
+        }
         let mut pending = Some(v);
         let mut changes = 0;
         while let Some(v) = pending.take() {
@@ -286,6 +305,14 @@ pub fn contact(
         }
     }
     Ok(solution(&sh, &x, lambda, &seen, &samples, steps, events, stop))
+}
+
+/// The interior contact nearest the tip in the state `x`, if within `within` × $L$ of it.
+fn nearest_tip(sh: &Shooting, x: &[f64], within: f64) -> Option<usize> {
+    let sigma = |c: usize| x[sh.base(c) + 2];
+    (0..sh.active.len())
+        .filter(|&c| !sh.active[c].tip && sigma(c) > 1.0 - within)
+        .max_by(|&a, &b| sigma(a).total_cmp(&sigma(b)))
 }
 
 fn stalled(sh: &Shooting, fraction: f64, steps: usize, cause: &str, last: Option<Error>) -> Error {
@@ -375,6 +402,12 @@ fn apply(
             sh.active.push(Active { obstacle, tip, law });
             event(EventKind::Touch, obstacle, s);
         }
+        Violation::Unroll(c) => {
+            let b = sh.base(c);
+            x.remove(b + 2);
+            sh.active[c].tip = true;
+            event(EventKind::Unroll, sh.active[c].obstacle, seen[c].s);
+        }
         Violation::Flat(_) => unreachable!("refused before"),
     }
     Ok(())
@@ -393,7 +426,7 @@ fn check(sh: &Shooting, seen: &[Seen], samples: &[Sample], before: Option<&[Seen
         if push < -force_tolerance {
             found.push(Violation::Open(c));
         }
-        if a.tip && q.normal[0] * q.phi.cos() + q.normal[1] * q.phi.sin() > 1e-12 {
+        if a.tip && q.normal[0] * q.phi.cos() + q.normal[1] * q.phi.sin() > ROLL_TOLERANCE {
             found.push(Violation::Roll(c));
         }
         let mu = sh.obstacles[a.obstacle].friction;
@@ -491,7 +524,7 @@ fn check(sh: &Shooting, seen: &[Seen], samples: &[Sample], before: Option<&[Seen
         Violation::Slip(..) => 2,
         Violation::Stick(_) => 3,
         Violation::Touch { .. } => 4,
-        Violation::Flat(_) => 5,
+        Violation::Flat(_) | Violation::Unroll(_) => 5,
     })
 }
 

@@ -77,6 +77,8 @@ pub enum EventKind {
     /// The tip's tangent turned away from the surface (the tip lifts): its
     /// contact moved into the span.
     Roll,
+    /// A contact inside the span reached the tip and stays there: a tip contact again.
+    Unroll,
     /// A stuck contact's friction reached $\mu N$: it slips.
     Slip,
     /// A slipping contact stopped and sticks again.
