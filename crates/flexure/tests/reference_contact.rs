@@ -275,6 +275,24 @@ fn friction_sticks_then_slips_and_remembers_the_path() {
     assert!(c.point[0] < at_touch.x - 1e-5, "{c:?} vs leg 1's tip at x = {}", at_touch.x);
 }
 
+/// Case (c) with a tip moment: pressed by a clockwise moment onto a floor
+/// with $\mu = 0.2$, the stuck tip would need more friction than that from
+/// the first touch on (the bent flexure pulls its tip back), so it slips at
+/// once: the events are the touch and the slip at the same load (1e-9), with
+/// no stick–slip flicker, and $\lvert T\rvert = \mu N$ at the end (1e-12 relative).
+#[test]
+fn a_tip_pressed_by_a_moment_slips_from_the_touch() {
+    let mu = 0.2;
+    let floor = [Obstacle::half_plane([0.0, -0.1], [0.0, 1.0]).with_friction(mu)];
+    let s = solve(&floor, 0.0, &[load(-2.0, 0.0, 0.0)]);
+    let kinds: Vec<_> = s.events.iter().map(|e| e.kind).collect();
+    assert_eq!(kinds, [EventKind::Touch, EventKind::Slip], "{:?}", s.events);
+    assert!((s.events[1].load - s.events[0].load).abs() < 1e-9, "{:?}", s.events);
+    let c = s.contacts[0];
+    assert!(c.state == ContactState::Slip && c.friction_force < 0.0, "pulled back toward the root: {c:?}");
+    assert!((c.friction_force.abs() - mu * c.normal_force).abs() < 1e-12 * c.normal_force, "{c:?}");
+}
+
 fn refused(obstacles: &[Obstacle], h: f64, path: &[TipLoad]) -> &'static str {
     match elastica::contact(&unit(), obstacles, h, path, &Default::default()) {
         Err(Error::InvalidParameter { name, .. }) => name,

@@ -54,7 +54,7 @@ enum Violation {
     /// Slipping contact `c` moved with its friction force, not against it.
     Stick(usize),
     /// The shape enters `obstacle` at arc length `s`.
-    Touch { obstacle: usize, s: f64, point: [f64; 2] },
+    Touch { obstacle: usize, s: f64 },
     /// The shape lies along `obstacle` (distributed contact).
     Flat(usize),
     /// Interior contact `c` reached the tip (no state beyond).
@@ -151,7 +151,6 @@ pub fn contact(
             return Err(Error::invalid("obstacle", i, "holds the root: the root must lie outside every obstacle"));
         }
     }
-    let l = flexure.length();
     let segments = Shooting::segments(flexure, path)?;
     let mut sh = Shooting::new(flexure, obstacles, half_thickness, path, segments, settings.ode)?;
     let total = path.len() as f64;
@@ -271,7 +270,7 @@ pub fn contact(
                 ));
                 break;
             }
-            match apply(&mut sh, &mut x, &seen, v, l, lambda, &mut events) {
+            match apply(&mut sh, &mut x, (&seen, &samples), v, lambda, &mut events) {
                 Ok(()) => {}
                 Err(e) => {
                     stop = ContactStop::Refused(e);
@@ -334,16 +333,16 @@ fn stalled(sh: &Shooting, fraction: f64, steps: usize, cause: &str, last: Option
     }
 }
 
-/// Changes the active set (and the unknowns `x`) by `v`, found at the state `seen`.
+/// Changes the active set (and the unknowns `x`) by `v`, at the state (`seen`, `samples`) at `lambda`.
 fn apply(
     sh: &mut Shooting,
     x: &mut Vec<f64>,
-    seen: &[Seen],
+    (seen, samples): (&[Seen], &[Sample]),
     v: Violation,
-    l: f64,
     lambda: f64,
     events: &mut Vec<ContactEvent>,
 ) -> Result<()> {
+    let l = sh.flexure.length();
     let mut event = |kind, obstacle, s| events.push(ContactEvent { load: lambda, kind, obstacle, s });
     match v {
         Violation::Open(c) => {
@@ -374,7 +373,7 @@ fn apply(
             sh.active[c].law = Law::Stick { at: seen[c].point };
             event(EventKind::Stick, sh.active[c].obstacle, seen[c].s);
         }
-        Violation::Touch { obstacle, s, point } => {
+        Violation::Touch { obstacle, s } => {
             if sh.active.len() == MAX_CONTACTS {
                 return Err(Error::invalid(
                     "contacts",
@@ -386,7 +385,12 @@ fn apply(
             let mu = sh.obstacles[obstacle].friction;
             let law = match (mu > 0.0, tip) {
                 (false, _) => Law::Frictionless,
-                (true, true) => Law::Stick { at: point },
+                // Stuck where the tip is now, not where the step past the
+                // event put it: no tangential force yet.
+                (true, true) => {
+                    let tip = samples.last().expect("a shape has points").state;
+                    Law::Stick { at: [tip[2], tip[3]] }
+                }
                 (true, false) => {
                     return Err(Error::invalid(
                         "friction",
@@ -458,11 +462,11 @@ fn check(sh: &Shooting, seen: &[Seen], samples: &[Sample], before: Option<&[Seen
         let near_active =
             |s: f64| sh.active.iter().zip(seen).any(|(a, q)| a.obstacle == o && (q.s - s).abs() <= SAME_POINT * l);
         let mut flat = 0.0;
-        let mut worst: Option<(f64, f64, [f64; 2])> = None;
+        let mut worst: Option<(f64, f64)> = None;
         let mut consider = |s: f64, q: &[f64; 4]| {
             let g = gap(q);
             if g < -GAP_TOLERANCE * l && !near_active(s) && worst.is_none_or(|w| g < w.0) {
-                worst = Some((g, s, [q[2], q[3]]));
+                worst = Some((g, s));
             }
         };
         for w in samples.windows(2) {
@@ -514,8 +518,8 @@ fn check(sh: &Shooting, seen: &[Seen], samples: &[Sample], before: Option<&[Seen
         if flat > FLAT_LENGTH * l {
             return Some(Violation::Flat(o));
         }
-        if let Some((_, s, point)) = worst {
-            found.push(Violation::Touch { obstacle: o, s, point });
+        if let Some((_, s)) = worst {
+            found.push(Violation::Touch { obstacle: o, s });
         }
     }
     found.into_iter().min_by_key(|v| match v {
