@@ -4,7 +4,8 @@
 //! across its breakpoints (table points, notch edges) piece by piece.
 //!
 //! - [`elastica`]: the large-deflection elastica (Eq. 3) solved by shooting,
-//!   with its shape and bending stress ([`elastica::Trace`]);
+//!   with its shape and bending stress ([`elastica::Trace`]), and touching
+//!   rigid obstacles ([`elastica::contact`](mod@elastica::contact));
 //! - [`compliance`]: the compliance ODE (Eq. 34);
 //! - [`mod@column`]: the linearized buckling load of a straight column by shooting;
 //! - [`euler`]: Euler's closed-form buckling loads (uniform columns);
