@@ -15,6 +15,6 @@ mod path;
 mod shooting;
 mod solution;
 
-pub use obstacle::{Obstacle, Shape};
+pub use obstacle::{Obstacle, ObstacleShape};
 pub use path::contact;
-pub use solution::{Contact, ContactEvent, ContactSolution, ContactState, ContactStop, EventKind, ShapePoint};
+pub use solution::{ContactEvent, ContactPoint, ContactSolution, ContactState, ContactStop, EventKind};

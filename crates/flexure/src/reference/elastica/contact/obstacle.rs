@@ -5,7 +5,7 @@ use crate::scalar::Scalar;
 
 /// The shape of a rigid obstacle in the root frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Shape {
+pub enum ObstacleShape {
     /// The half-plane $\lbrace p : (p - q)\cdot n < 0\rbrace$ behind the line
     /// through `point` $q$ (m) with outward normal `normal` $n$ (any length
     /// but zero; it points to the free side).
@@ -24,7 +24,7 @@ pub enum Shape {
     },
 }
 
-/// A rigid obstacle: its [`Shape`] and the Coulomb friction coefficient
+/// A rigid obstacle: its [`ObstacleShape`] and the Coulomb friction coefficient
 /// $\mu \ge 0$ between it and the flexure's tip.
 ///
 /// The flexure's centreline $p(s)$ must keep the gap
@@ -47,7 +47,7 @@ pub enum Shape {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Obstacle {
     /// Where the obstacle is.
-    pub shape: Shape,
+    pub shape: ObstacleShape,
     /// Coulomb's $\mu$ at a tip contact (0: frictionless).
     pub friction: f64,
 }
@@ -63,7 +63,7 @@ impl Obstacle {
     /// assert_eq!((wall.gap([1.5, 7.0], 0.0), wall.friction), (0.5, 0.0));
     /// ```
     pub fn half_plane(point: [f64; 2], normal: [f64; 2]) -> Self {
-        Self { shape: Shape::HalfPlane { point, normal }, friction: 0.0 }
+        Self { shape: ObstacleShape::HalfPlane { point, normal }, friction: 0.0 }
     }
 
     /// The frictionless disc of `radius` about `centre`.
@@ -75,7 +75,7 @@ impl Obstacle {
     /// assert_eq!(post.gap([0.0, 0.0], 0.25), 0.75);
     /// ```
     pub fn circle(centre: [f64; 2], radius: f64) -> Self {
-        Self { shape: Shape::Circle { centre, radius }, friction: 0.0 }
+        Self { shape: ObstacleShape::Circle { centre, radius }, friction: 0.0 }
     }
 
     /// The same obstacle with friction coefficient `mu`.
@@ -109,14 +109,14 @@ impl Obstacle {
             }
         };
         match self.shape {
-            Shape::HalfPlane { point, normal } => {
+            ObstacleShape::HalfPlane { point, normal } => {
                 finite("point", point)?;
                 finite("normal", normal)?;
                 if normal[0].hypot(normal[1]) == 0.0 {
                     return Err(Error::invalid("normal", format!("{normal:?}"), "must not be zero"));
                 }
             }
-            Shape::Circle { centre, radius } => {
+            ObstacleShape::Circle { centre, radius } => {
                 finite("centre", centre)?;
                 crate::error::positive("radius", radius)?;
             }
@@ -144,11 +144,11 @@ impl Obstacle {
     /// [`Obstacle::gap`] for any scalar.
     pub(super) fn gap_of<T: Scalar>(&self, p: [T; 2], h: f64) -> T {
         match self.shape {
-            Shape::HalfPlane { point, normal } => {
+            ObstacleShape::HalfPlane { point, normal } => {
                 let n = unit(normal);
                 (p[0] - T::c(point[0])) * T::c(n[0]) + (p[1] - T::c(point[1])) * T::c(n[1]) - T::c(h)
             }
-            Shape::Circle { centre, radius } => {
+            ObstacleShape::Circle { centre, radius } => {
                 let (dx, dy) = (p[0] - T::c(centre[0]), p[1] - T::c(centre[1]));
                 (dx * dx + dy * dy).sqrt() - T::c(radius + h)
             }
@@ -158,11 +158,11 @@ impl Obstacle {
     /// The unit outward normal $\hat n(p)$ at the boundary point nearest `p`.
     pub(super) fn normal_of<T: Scalar>(&self, p: [T; 2]) -> [T; 2] {
         match self.shape {
-            Shape::HalfPlane { normal, .. } => {
+            ObstacleShape::HalfPlane { normal, .. } => {
                 let n = unit(normal);
                 [T::c(n[0]), T::c(n[1])]
             }
-            Shape::Circle { centre, .. } => {
+            ObstacleShape::Circle { centre, .. } => {
                 let (dx, dy) = (p[0] - T::c(centre[0]), p[1] - T::c(centre[1]));
                 let d = (dx * dx + dy * dy).sqrt();
                 [dx / d, dy / d]

@@ -1,9 +1,10 @@
 //! The load path: continuation in the load with the active set found on
 //! the way, each change bisected onto the load where it happens.
 
+use super::super::trace::cross_section;
 use super::obstacle::Obstacle;
 use super::shooting::{Active, Law, MAX_CONTACTS, Sample, Seen, Shooting};
-use super::solution::{Contact, ContactEvent, ContactSolution, ContactState, ContactStop, EventKind, ShapePoint};
+use super::solution::{ContactEvent, ContactPoint, ContactSolution, ContactState, ContactStop, EventKind};
 use crate::error::{Error, Result};
 use crate::flexure::Flexure;
 use crate::reference::elastica::ShootingSettings;
@@ -543,13 +544,13 @@ fn solution(
     events: Vec<ContactEvent>,
     stop: ContactStop,
 ) -> ContactSolution {
-    let mut contacts: Vec<Contact> = sh
+    let mut contacts: Vec<ContactPoint> = sh
         .active
         .iter()
         .zip(seen)
         .map(|(a, q)| {
             let t = [-q.normal[1], q.normal[0]];
-            Contact {
+            ContactPoint {
                 obstacle: a.obstacle,
                 s: q.s,
                 point: q.point,
@@ -572,9 +573,6 @@ fn solution(
         reaction[0] -= q.force[0];
         reaction[1] -= q.force[1];
     }
-    let shape = samples
-        .iter()
-        .map(|p| ShapePoint { s: p.s, phi: p.state[0], x: p.state[2], y: p.state[3], moment: p.state[1] })
-        .collect();
+    let shape = samples.iter().map(|p| cross_section(sh.flexure, p.s, &p.state)).collect();
     ContactSolution { shape, contacts, root_moment: x[0] * sh.k, reaction, load: lambda, steps, events, stop }
 }

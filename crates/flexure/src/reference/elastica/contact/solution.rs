@@ -16,7 +16,7 @@ pub enum ContactState {
 
 /// One contact of a solved shape.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
+pub struct ContactPoint {
     /// Index of the obstacle touched.
     pub obstacle: usize,
     /// Arc length of the contact point (m): $L$ at the tip.
@@ -36,13 +36,13 @@ pub struct Contact {
     pub state: ContactState,
 }
 
-impl Contact {
+impl ContactPoint {
     /// The force $f = N\hat n + T\hat t$ (N) the obstacle puts on the flexure.
     ///
     /// # Example
     /// ```
-    /// use flexure::reference::elastica::contact::{Contact, ContactState};
-    /// let c = Contact { obstacle: 0, s: 1.0, point: [1.0, 0.0], normal: [0.0, 1.0],
+    /// use flexure::reference::elastica::contact::{ContactPoint, ContactState};
+    /// let c = ContactPoint { obstacle: 0, s: 1.0, point: [1.0, 0.0], normal: [0.0, 1.0],
     ///     normal_force: 2.0, friction_force: 0.5, gap: 0.0, state: ContactState::Stick };
     /// assert_eq!(c.force(), [-0.5, 2.0]);
     /// ```
@@ -50,21 +50,6 @@ impl Contact {
         let (n, t) = (self.normal, [-self.normal[1], self.normal[0]]);
         [self.normal_force * n[0] + self.friction_force * t[0], self.normal_force * n[1] + self.friction_force * t[1]]
     }
-}
-
-/// A point of a solved shape.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ShapePoint {
-    /// Arc length (m).
-    pub s: f64,
-    /// Tangent angle (rad).
-    pub phi: f64,
-    /// Position (m).
-    pub x: f64,
-    /// Position (m).
-    pub y: f64,
-    /// Bending moment $m = EI(\phi^{\prime} - \omega_0)$ (N·m).
-    pub moment: f64,
 }
 
 /// What changed in the active set.
@@ -113,10 +98,11 @@ pub enum ContactStop {
 /// An exact elastica with contacts, at the end of its load path (or where it stopped).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactSolution {
-    /// The shape from root to tip, at the integrator's steps.
-    pub shape: Vec<ShapePoint>,
+    /// The shape from root to tip, at the integrator's steps (the contact
+    /// points twice: before and after the force's jump).
+    pub shape: Vec<super::super::Point>,
     /// The closed contacts, by arc length.
-    pub contacts: Vec<Contact>,
+    pub contacts: Vec<ContactPoint>,
     /// Bending moment at the root $m(0)$ (N·m).
     pub root_moment: f64,
     /// The force the clamp puts on the flexure (N): $-(F + \sum_c f_c)$.
