@@ -41,6 +41,7 @@ mod plausible;
 mod prb;
 mod quadrature;
 mod reference;
+mod reference_contact;
 mod rod;
 mod section;
 mod section_exact;

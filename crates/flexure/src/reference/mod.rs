@@ -4,7 +4,8 @@
 //! across its breakpoints (table points, notch edges) piece by piece.
 //!
 //! - [`elastica`]: the large-deflection elastica (Eq. 3) solved by shooting,
-//!   with its shape and bending stress ([`elastica::Trace`]);
+//!   with its shape and bending stress ([`elastica::Trace`]), and touching
+//!   rigid obstacles ([`elastica::contact`](mod@elastica::contact));
 //! - [`compliance`]: the compliance ODE (Eq. 34);
 //! - [`mod@column`]: the linearized buckling load of a straight column by shooting;
 //! - [`euler`]: Euler's closed-form buckling loads (uniform columns);
@@ -62,6 +63,19 @@ impl Stretch {
     /// $\tau(L)$.
     pub fn total(&self) -> f64 {
         self.tau.last().map_or(0.0, |p| p.1)
+    }
+
+    /// The nodes $0 = s_0 < \dots < s_N = L$ of `segments` shooting
+    /// segments equal in $\tau$ (equal in $s$ when `uniform`), `length` $= L$.
+    pub fn nodes(&self, length: f64, uniform: bool, segments: usize) -> Vec<f64> {
+        (0..=segments)
+            .map(|j| match j {
+                0 => 0.0,
+                _ if j == segments => length,
+                _ if uniform => length * j as f64 / segments as f64,
+                _ => self.at_fraction(j as f64 / segments as f64),
+            })
+            .collect()
     }
 
     /// The arc length where $\tau$ reaches `fraction` of $\tau(L)$ (linear between table points).

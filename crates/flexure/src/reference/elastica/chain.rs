@@ -109,14 +109,7 @@ impl<'a> Chain<'a> {
             ));
         }
         let segments = (growth.ceil() as usize).max(MIN_SEGMENTS);
-        let nodes = (0..=segments)
-            .map(|j| match j {
-                0 => 0.0,
-                _ if j == segments => l,
-                _ if uniform => l * j as f64 / segments as f64,
-                _ => stretch.at_fraction(j as f64 / segments as f64),
-            })
-            .collect();
+        let nodes = stretch.nodes(l, uniform, segments);
         let (stiffness, last) = (flexure.ei() / l, Jacobi::default());
         let load_moment = load.moment.abs() + l * load.fx.hypot(load.fy);
         let reach = load_moment / stiffness;

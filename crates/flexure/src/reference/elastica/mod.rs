@@ -11,6 +11,8 @@
 //! - `jacobi.rs`: its stability, the Jacobi (conjugate-point) test ([`is_stable`]);
 //! - `connection.rs`: the exact minimum-energy shape through a pose (Eq. 16,
 //!   [`connect`](fn@connect), [`ElasticaConnection`]);
+//! - `contact/`: the elastica touching rigid obstacles, frictionless or with
+//!   friction at the tip, along a load path ([`contact`](fn@contact), [`contact::Obstacle`]);
 //! - `trace.rs`: cross-sections, bending moment and stress along a solved
 //!   shape ([`Trace`], [`Point`]).
 //!
@@ -18,6 +20,7 @@
 
 mod chain;
 mod connection;
+pub mod contact;
 mod deflection;
 mod jacobi;
 mod shot;
@@ -25,6 +28,7 @@ mod trace;
 
 pub use chain::MAX_FORCE_GROWTH;
 pub use connection::{ElasticaConnection, connect};
+pub use contact::contact;
 pub use deflection::{ElasticaSolution, deflect, deflect_traced};
 pub use jacobi::is_stable;
 pub use shot::shoot;

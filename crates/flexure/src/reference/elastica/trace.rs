@@ -127,20 +127,7 @@ impl<'a> Trace<'a> {
 
     /// The cross-section at `s` from its state.
     fn point(&self, s: f64, y: &[f64; 4]) -> Point {
-        let (f, l) = (self.flexure, self.flexure.length());
-        let change = y[1] / f.ei_at(s);
-        let section = f.section();
-        let stress = section.modulus().zip(section.thickness(s / l, l)).map(|(e, h)| e * 0.5 * h * change.abs());
-        Point {
-            s,
-            phi: y[0],
-            x: y[2],
-            y: y[3],
-            moment: y[1],
-            curvature: f.curvature(f.rest(), s) + change,
-            curvature_change: change,
-            stress,
-        }
+        cross_section(self.flexure, s, y)
     }
 
     /// The cross-section at arc length `s` (m).
@@ -210,5 +197,23 @@ impl<'a> Trace<'a> {
         crate::stress::refine(bracket, top, l, PEAK_REFINEMENTS, |s| {
             Ok(g(&self.point(s, &self.advance(base, s, &mut 0.0)?)))
         })
+    }
+}
+
+/// The cross-section of `flexure` at `s` from its state $(\phi, m, x, y)$.
+pub(super) fn cross_section(flexure: &Flexure, s: f64, y: &[f64; 4]) -> Point {
+    let (f, l) = (flexure, flexure.length());
+    let change = y[1] / f.ei_at(s);
+    let section = f.section();
+    let stress = section.modulus().zip(section.thickness(s / l, l)).map(|(e, h)| e * 0.5 * h * change.abs());
+    Point {
+        s,
+        phi: y[0],
+        x: y[2],
+        y: y[3],
+        moment: y[1],
+        curvature: f.curvature(f.rest(), s) + change,
+        curvature_change: change,
+        stress,
     }
 }
