@@ -121,8 +121,9 @@ fn differenced<D: Dynamics>(sys: &mut MechanismSystem<D>, q: &[f64], v: &[f64]) 
 
 /// $M(q)$ and $f(q, \dot q)$ of the right-angle cantilever at a bent,
 /// twisted and moving state: `spatial_equations_24` as the system
-/// evaluates them, `spatial_equations_24_differences` the former way
-/// ($M$, the forces at rest, and $h$ from $2n$ mass matrices).
+/// evaluates them, `spatial_mass_matrix_24` $M$ alone, and
+/// `spatial_equations_24_differences` the former way ($M$, the forces at
+/// rest, and $h$ from $2n$ mass matrices).
 fn equations(c: &mut Criterion) {
     let path = format!("{}/../../examples/simo_vu_quoc.toml", env!("CARGO_MANIFEST_DIR"));
     let m = spatial_from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
@@ -143,6 +144,8 @@ fn equations(c: &mut Criterion) {
     g.bench_function("spatial_equations_24", |b| {
         b.iter(|| sys.dynamics(black_box(&q), black_box(&v), 0.0, &mut mass, &mut force).unwrap())
     });
+    // M alone: the stations' Jacobian-level pass, which h rides along.
+    g.bench_function("spatial_mass_matrix_24", |b| b.iter(|| sys.mass_matrix(black_box(&q)).unwrap()));
     g.bench_function("spatial_equations_24_differences", |b| {
         b.iter(|| {
             sys.dynamics(black_box(&q), &vec![0.0; n], 0.0, &mut at_rest, &mut f0).unwrap();

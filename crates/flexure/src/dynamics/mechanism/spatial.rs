@@ -238,45 +238,76 @@ impl StationMasses {
     }
 
     /// Adds the flexures' stations' $M_f$ (module docs) to `mass`, their
-    /// buffers brought to the frames `f` ([`Self::update_stations`]).
+    /// buffers brought to the frames `f` ([`Self::update_stations`]). With
+    /// $r_k = R_Ap_k$ from the root's origin $o_A$, a coordinate $c$ upstream moves
+    /// every station as a point of the parent, by $u_c + \omega_c\times r_k$ ($u_c$
+    /// the velocity of $o_A$), so the upstream block is the stations' rigid
+    /// inertia, $m\thinspace u_c\cdot u_d + u_c\cdot(\omega_d\times s) + u_d\cdot(\omega_c\times s) + \omega_c\cdot\Theta\omega_d$
+    /// with $m = \sum_km_k$, $s = \sum_km_kr_k$ and $\Theta = \sum_kI_k + m_k(\lvert r_k\rvert^21 - r_kr_k^T)$;
+    /// across, $u_c\cdot F_a + \omega_c\cdot N_a$ with the wrench of the joint's own
+    /// coordinate $a$, $F_a = \sum_km_kR_A\partial_ap_k$ and $N_a = \sum_kr_k\times m_kR_A\partial_ap_k + I_kR_A\omega_{k,a}$.
     fn add_flexure_mass(&self, m: &SpatialMechanism, f: &Frames<Spatial>, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
             let Some(flexure) = spec.kind.flexure() else { continue };
             let (o, n) = (spec.offset, flexure.coordinates());
             let k = buffers.borrow();
-            let root = &f.roots[*j];
-            let ra = root.rotation.to_rotation_matrix().into_inner();
-            // The columns a station moves with: upstream, then the joint's own.
-            let upstream: Vec<(usize, usize)> = m
+            let ra = *f.root_turn(*j);
+            let oa = f.roots[*j].translation.vector;
+            let (mut total, mut first, mut second) = (0.0, Vector3::zeros(), Matrix3::zeros());
+            let (mut forces, mut moments) = (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]);
+            let mut turned = vec![Vector3::zeros(); n];
+            for (i, st) in quadrature.stations().iter().enumerate() {
+                let (vel, omg) = (&k.velocity[i * n..(i + 1) * n], &k.omega[i * n..(i + 1) * n]);
+                // The station's inertia in the root frame, on each ω_a.
+                let local =
+                    k.rotation[i] * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * k.rotation[i].transpose();
+                for (t, w) in turned.iter_mut().zip(omg) {
+                    *t = local * w;
+                }
+                for a in 0..n {
+                    for b in a..n {
+                        let v = st.mass * vel[a].dot(&vel[b]) + omg[a].dot(&turned[b]);
+                        mass[(o + a, o + b)] += v;
+                        if a != b {
+                            mass[(o + b, o + a)] += v;
+                        }
+                    }
+                }
+                let r = ra * k.position[i];
+                for a in 0..n {
+                    let fa = ra * vel[a] * st.mass;
+                    forces[a] += fa;
+                    moments[a] += r.cross(&fa) + ra * turned[a];
+                }
+                total += st.mass;
+                first += r * st.mass;
+                second += ra * local * ra.transpose()
+                    + (Matrix3::from_diagonal_element(r.norm_squared()) - r * r.transpose()) * st.mass;
+            }
+            let upstream: Vec<(usize, Vector3<f64>, Vector3<f64>)> = m
                 .path(spec.parent)
                 .into_iter()
                 .flat_map(|i| {
-                    let oi = m.joints[i].offset;
-                    (oi..oi + m.joints[i].kind.joint().dof()).map(move |c| (c, i))
+                    let (oi, origin) = (m.joints[i].offset, f.bodies[m.joints[i].child].translation.vector);
+                    (oi..oi + m.joints[i].kind.joint().dof())
+                        .map(move |c| (c, f.omega[c], f.velocity[c] + f.omega[c].cross(&(oa - origin))))
                 })
                 .collect();
-            let columns: Vec<usize> = upstream.iter().map(|&(c, _)| c).chain(o..o + n).collect();
-            let width = columns.len();
-            let (mut jv, mut jw) = (Matrix3xX::zeros(width), Matrix3xX::zeros(width));
-            for (i, st) in quadrature.stations().iter().enumerate() {
-                let x = root * nalgebra::Point3::from(k.position[i]);
-                for (col, &(c, joint)) in upstream.iter().enumerate() {
-                    let origin = f.bodies[m.joints[joint].child].translation.vector;
-                    let w = f.omega[c];
-                    jv.set_column(col, &(f.velocity[c] + w.cross(&(x.coords - origin))));
-                    jw.set_column(col, &w);
-                }
+            for (e, &(c, wc, uc)) in upstream.iter().enumerate() {
                 for a in 0..n {
-                    jv.set_column(upstream.len() + a, &(ra * k.velocity[i * n + a]));
-                    jw.set_column(upstream.len() + a, &(ra * k.omega[i * n + a]));
+                    let v = uc.dot(&forces[a]) + wc.dot(&moments[a]);
+                    mass[(c, o + a)] += v;
+                    mass[(o + a, c)] += v;
                 }
-                let r = ra * k.rotation[i];
-                let inertia = r * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * r.transpose();
-                let block = jv.transpose() * &jv * st.mass + jw.transpose() * (inertia * &jw);
-                for (a, &ca) in columns.iter().enumerate() {
-                    for (b, &cb) in columns.iter().enumerate() {
-                        mass[(ca, cb)] += block[(a, b)];
+                for &(d, wd, ud) in &upstream[e..] {
+                    let v = total * uc.dot(&ud)
+                        + uc.dot(&wd.cross(&first))
+                        + ud.dot(&wc.cross(&first))
+                        + wc.dot(&(second * wd));
+                    mass[(c, d)] += v;
+                    if c != d {
+                        mass[(d, c)] += v;
                     }
                 }
             }
