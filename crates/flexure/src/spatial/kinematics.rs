@@ -444,9 +444,105 @@ pub(super) fn advance<T: Scalar>(
     h: f64,
     order: usize,
 ) -> Step<T> {
-    let n = data.columns.len();
     let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
-    let step = Step::new(w, v, order);
+    advance_step(data, xi, derivative, h, order, Step::new(w, v, order))
+}
+
+/// A rate $\dot\alpha$'s body twist $V = \sum_a\dot\alpha_aJ_a$ and its
+/// bias $B = \sum_{ab}\dot\alpha_a\dot\alpha_bH_{ab}$, the body
+/// acceleration at $\ddot\alpha = 0$ (6-vectors, angular then linear, in
+/// the frame reached).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Rate {
+    pub twist: Vector6<f64>,
+    pub bias: Vector6<f64>,
+}
+
+impl Rate {
+    /// In the frame $(R, p)$ of the root: the angular velocity $RV^{\omega}$,
+    /// the velocity $\dot p = RV^{v}$, the angular acceleration $\dot\omega = RB^{\omega}$
+    /// and the acceleration $\ddot p = R(V^{\omega}\times V^{v} + B^{v})$, at $\ddot\alpha = 0$.
+    pub fn in_root(&self, r: &Matrix3<f64>) -> [Vector3<f64>; 4] {
+        let ((w, v), (bw, bv)) = (parts(&self.twist), parts(&self.bias));
+        [r * w, r * v, r * bw, r * (w.cross(&v) + bv)]
+    }
+}
+
+/// [`advance`] at order 1, carrying the rate `rate` (one entry per
+/// coordinate) in `state` as well: the module docs' recursion contracted
+/// with the rate twice,
+/// $$B \leftarrow A_kB - \big[J_{\dot\alpha}^{(k)},\ A_kV\big] + \partial_{\dot\alpha}J_{\dot\alpha}^{(k)},$$
+/// where $J_{\dot\alpha}^{(k)}$ and its derivative are the step's along the one
+/// direction $\sum_a\dot\alpha_a\partial_a\xi$ (one jet, not $n^2$): the
+/// exact second derivative along the rate for the cost of a first.
+pub(super) fn advance_rate(
+    data: &mut SpatialKinematics<f64>,
+    xi: &[Vector6<f64>; 3],
+    derivative: impl Fn(usize) -> [Vector6<f64>; 3],
+    h: f64,
+    rate: &[f64],
+    state: &mut Rate,
+) -> Step<f64> {
+    let mut along = [Vector6::zeros(); 3];
+    for (a, &u) in rate.iter().enumerate() {
+        if u != 0.0 {
+            let d = derivative(a);
+            for (x, y) in along.iter_mut().zip(d) {
+                *x += y * u;
+            }
+        }
+    }
+    let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
+    let step = advance_step(data, xi, derivative, h, 1, Step::new(w, v, 2));
+    let jets: [Jet2<f64>; 3] =
+        std::array::from_fn(|j| Jet2 { v: xi[j], a: along[j], b: along[j], ab: Vector6::zeros() });
+    let e = exponent(&jets, h);
+    let (dw, dv) = parts(&e.a);
+    let t = step.tangent(dw, dv);
+    let (dww, dvv) = parts(&e.ab);
+    let (sw, sv) = step.second(&t, &t, dww, dvv);
+    let moved = adjoint_inverse(&step.r, &step.p, &state.twist);
+    let own = six(&t.angular, &t.linear);
+    state.bias = adjoint_inverse(&step.r, &step.p, &state.bias) - bracket(&own, &moved) + six(&sw, &sv);
+    state.twist = moved + own;
+    step
+}
+
+/// The tip's [`Rate`] for the rate `rate` at `alpha`, with the body
+/// Jacobian (as [`update`] at [`Level::Jacobian`]) into `data`, in one pass
+/// ([`advance_rate`]).
+pub(crate) fn update_rate(flexure: &SpatialFlexure, alpha: &[f64], rate: &[f64], data: &mut SpatialKinematics) -> Rate {
+    assert!(alpha.len() == flexure.coordinates() && rate.len() == alpha.len() && data.fits(flexure));
+    let m = flexure.subintervals();
+    let h = flexure.length() / m as f64;
+    let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
+    data.columns.fill(Vector6::zeros());
+    let mut state = Rate::default();
+    for k in 0..m {
+        let xi = node_twists(flexure, alpha, k);
+        let step = advance_rate(data, &xi, |a| node_derivatives(flexure, k, a), h, rate, &mut state);
+        p += r * step.p;
+        r *= step.r;
+    }
+    data.rotation = r;
+    data.position = p;
+    for (a, col) in data.columns.iter().enumerate() {
+        data.jacobian.column_mut(a).copy_from(col);
+    }
+    state
+}
+
+/// [`advance`] with its step made (coefficients to at least `order`).
+#[inline(always)]
+fn advance_step<T: Scalar>(
+    data: &mut SpatialKinematics<T>,
+    xi: &[Vector6<T>; 3],
+    derivative: impl Fn(usize) -> [Vector6<T>; 3],
+    h: f64,
+    order: usize,
+    step: Step<T>,
+) -> Step<T> {
+    let n = data.columns.len();
     if order >= 1 {
         if n > SLOTS {
             tangents_by_directions(data, xi, &derivative, h, &step);

@@ -26,7 +26,7 @@
 //! stiffness needs.
 
 use super::SpatialFlexure;
-use super::kinematics::{SpatialKinematics, advance, row_curvature};
+use super::kinematics::{Rate, SpatialKinematics, advance, advance_rate, row_curvature};
 use super::magnus::NODES;
 use crate::basis;
 use crate::kinematics::Level;
@@ -132,6 +132,11 @@ pub struct StationKinematics {
     pub moment: Vector3<f64>,
     /// $\partial_a\partial_bS$ at `[a * n + b]` (kg·m; at [`Level::Hessian`]).
     pub moment_hessian: Vec<Vector3<f64>>,
+    /// Each station's motion under a rate $\dot\alpha$ at $\ddot\alpha = 0$
+    /// ([`Rate::in_root`]: $\omega_k$, $\dot p_k$, $\dot\omega_k$, $\ddot p_k$), filled by [`stations_rate_update`].
+    pub(crate) rates: Vec<[Vector3<f64>; 4]>,
+    /// The tip's, in the same form.
+    pub(crate) tip: [Vector3<f64>; 4],
     main: SpatialKinematics,
     scratch: SpatialKinematics,
 }
@@ -147,6 +152,8 @@ impl StationKinematics {
             velocity: vec![Vector3::zeros(); k * n],
             moment: Vector3::zeros(),
             moment_hessian: vec![Vector3::zeros(); n * n],
+            rates: vec![[Vector3::zeros(); 4]; k],
+            tip: [Vector3::zeros(); 4],
             main: SpatialKinematics::new(flexure),
             scratch: SpatialKinematics::new(flexure),
         }
@@ -191,6 +198,32 @@ pub fn stations_update(
     level: Level,
     out: &mut StationKinematics,
 ) {
+    pass(flexure, quadrature, alpha, level, None, out);
+}
+
+/// [`stations_update`] at [`Level::Jacobian`] with the stations' and the
+/// tip's motion under the rate `rate` at $\ddot\alpha = 0$ into `out.rates` and
+/// `out.tip`: their exact second derivatives contracted with the rate
+/// twice, carried through the same pass (`kinematics::advance_rate`).
+pub(crate) fn stations_rate_update(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    alpha: &[f64],
+    rate: &[f64],
+    out: &mut StationKinematics,
+) {
+    assert_eq!(rate.len(), alpha.len(), "rate must have one entry per coordinate");
+    pass(flexure, quadrature, alpha, Level::Jacobian, Some(rate), out);
+}
+
+fn pass(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    alpha: &[f64],
+    level: Level,
+    rate: Option<&[f64]>,
+    out: &mut StationKinematics,
+) {
     assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
     assert!(quadrature.fits(flexure) && out.fits(flexure, quadrature), "mass buffers made for another flexure");
     let (n, m, w) = (flexure.coordinates(), flexure.subintervals(), quadrature.width);
@@ -208,6 +241,7 @@ pub fn stations_update(
         out.moment_hessian.fill(Vector3::zeros());
     }
     out.moment = Vector3::zeros();
+    let mut main = Rate::default();
     let twist = |row: &[f64]| {
         let u = row_curvature(row, orders, alpha);
         Vector6::new(u[0], u[1], u[2], 1.0, 0.0, 0.0)
@@ -232,7 +266,15 @@ pub fn stations_update(
                     d
                 })
             };
-            let step = advance(scratch, &xi, derivative, tau * h, order);
+            let step = match rate {
+                Some(u) => {
+                    let mut state = main;
+                    let step = advance_rate(scratch, &xi, derivative, tau * h, u, &mut state);
+                    out.rates[station] = state.in_root(&(r * step.r));
+                    step
+                }
+                None => advance(scratch, &xi, derivative, tau * h, order),
+            };
             let (rs, ps) = (r * step.r, p + r * step.p);
             out.rotation[station] = rs;
             out.position[station] = ps;
@@ -267,8 +309,14 @@ pub fn stations_update(
                 d
             })
         };
-        let step = advance(&mut out.main, &xi, derivative, h, order);
+        let step = match rate {
+            Some(u) => advance_rate(&mut out.main, &xi, derivative, h, u, &mut main),
+            None => advance(&mut out.main, &xi, derivative, h, order),
+        };
         p += r * step.p;
         r *= step.r;
+    }
+    if rate.is_some() {
+        out.tip = main.in_root(&r);
     }
 }

@@ -48,10 +48,25 @@
 //! $$M = \sum_b m J_c^TJ_c + J_\omega^TI_wJ_\omega,\qquad
 //! h = \sum_b m J_c^T(\dot J_c\dot q) + J_\omega^T\big(I_w\dot J_\omega\dot q + \omega\times I_w\omega\big),$$
 //! Newton–Euler's equations projected on the coordinates (which are
-//! Lagrange's, $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$). The
-//! accelerations at $\ddot q = 0$, $\dot J_c\dot q = \dot q^T\nabla^2c\thinspace\dot q$
-//! and $\dot J_\omega\dot q = \sum_{ab}\partial_b\omega_a\dot q_a\dot q_b$, come from
-//! the tree's second derivatives ([`crate::mechanism::kinematics`]).
+//! Lagrange's, $h = \dot M\dot q - \frac12\nabla(\dot q^TM\dot q)$). They are
+//! evaluated by Newton–Euler's recursion: down the tree, each body's
+//! angular velocity $\omega$, angular acceleration $\alpha$ and origin's
+//! acceleration $a$ at $\ddot q = 0$; a joint of root frame $A$ fixed in its
+//! parent $P$, whose output moves in $A$ at $(\omega_j, \dot p_j) = S\dot q_j$ with the bias
+//! $b_j = \sum_{ab}\partial_bS_a\dot q_a\dot q_b$, gives its child $C$
+//! $$\omega_C = \omega_P + R_A\omega_j,\quad
+//!   \alpha_C = \alpha_P + \omega_P\times R_A\omega_j + R_Ab_j^{\omega},$$
+//! $$a_C = a_P + \alpha_P\times r + \omega_P\times(\omega_P\times r) + 2\omega_P\times R_A\dot p_j + R_Ab_j^{p},\qquad r = o_C - o_P,$$
+//! and a point $x$ of a body moves with $\dot J_x\dot q = a + \alpha\times(x - o) + \omega\times(\omega\times(x - o))$.
+//! Each mass element's inertial force $F = m\dot J_c\dot q$ and moment
+//! $\tau = I_w\alpha + \omega\times I_w\omega$ are summed up the tree into each
+//! subtree's wrench $(F, M_O)$ about the world's origin, and a coordinate of
+//! world twist $(\omega_a, v_a)$ (its joint's output origin $o$) takes
+//! $h_a = v_a\cdot F + \omega_a\cdot(M_O - o\times F)$. A rigid joint's bias is
+//! its $\partial S$ contracted; a spatial flexure's is carried through its
+//! Magnus pass along the rate ([`crate::spatial::SpatialKinematics`]'s
+//! recursion contracted with $\dot q_j$ twice, one jet a step), so that no
+//! Hessian of the pass is formed.
 //!
 //! A spatial flexure with a density or mass per length adds its stations
 //! ([`crate::spatial::MassQuadrature`]) as bodies: station $k$ of joint $j$,
@@ -60,18 +75,21 @@
 //! upstream and $R_A\partial_ap_k$ for the joint's own, $J_{\omega,k}$ the
 //! upstream $\omega_c$ and $R_A\omega_{k,a}$, so
 //! $$M_f = \sum_k \mu_kw_k J_{v,k}^TJ_{v,k} + J_{\omega,k}^T\big(R\rho I_kR^T\big)J_{\omega,k}.$$
-//! Its velocity products are Lagrange's from $M_f$ itself,
-//! $h_f = \dot M_f\dot q - \frac12\nabla(\dot q^TM_f\dot q)$, from central
-//! differences of $M_f$ along each coordinate that moves a station (steps
-//! $10^{-5}(1 + \lvert q_i\rvert)$, truncation about $10^{-10}$ relative), kept
-//! for the configuration they were taken at. Being Lagrange's equations of
-//! the same $T$, they keep $T + V$ to the differences' error, which a free
-//! swing checks (`tests/spatial_flexure_mass.rs`).
+//! Its velocity products are the same recursion's: the station moves
+//! with its parent $P$ and within the joint by $\dot p_k$, $\ddot p_k$, $\omega_k$
+//! and $\dot\omega_k$ at $\ddot q = 0$, carried along the rate in the same
+//! pass as its Jacobian ([`crate::spatial::stations_update`]'s, one more jet
+//! a step), so its acceleration is $a_k = a_P + \alpha_P\times(x_k - o_P) + \omega_P\times(\omega_P\times(x_k - o_P)) + 2\omega_P\times R_A\dot p_k + R_A\ddot p_k$;
+//! its force and moment project on the joint's own coordinates by its
+//! Jacobian and go to $P$'s wrench for the rest. These are the exact
+//! derivatives of the discrete $M_f$ (`tests/spatial_flexure_mass.rs`
+//! checks them against Lagrange's equations of $T$ by differences).
 //!
 //! The generalized force is $f = -(\nabla V - Q_m) - h - D\dot q$, with the
 //! potential and dead moments of [`crate::mechanism::lagrangian`]
 //! and $D = \operatorname{diag}(\beta_jK_j, c_k)$. The tangent stiffness
-//! adds $\partial h/\partial q$ by central differences.
+//! adds $\partial h/\partial q$ by central differences of the exact $h$ (step
+//! $10^{-6}(1 + \lvert q_i\rvert)$); exact, it would take the Magnus pass's third derivatives.
 
 mod dimension;
 mod distributed;

@@ -1,18 +1,18 @@
 //! Space's mass elements ([`StationMasses`]): bodies, and a spatial flexure's
-//! stations as bodies, with Lagrange's velocity products of the stations'
-//! mass matrix from its differences (the parent module's docs give the
-//! equations).
+//! stations as bodies, with their velocity products by Newton–Euler's
+//! recursion over the tree and the stations (the parent module's docs give
+//! the equations).
 
 use super::dimension::MassElements;
 use crate::error::Result;
 use crate::kinematics::Level;
-use crate::mechanism::kinematics::{
-    Frames, add_attached_hessian, add_rotation_derivative, attach, frame_distance, frames_into, frames_level_into,
-};
+use crate::mechanism::kinematics::{Frames, attach, frame_distance, frames_into, frames_level_into};
 use crate::mechanism::lagrangian::{Assembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
-use crate::spatial::{MassQuadrature, StationKinematics, stations_update};
+use crate::spatial::{
+    MassQuadrature, SpatialKinematics, StationKinematics, stations_rate_update, stations_update, update_rate,
+};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 use std::cell::RefCell;
 
@@ -30,14 +30,38 @@ pub struct StationMasses {
     independent: Option<DMatrix<f64>>,
     /// The spatial flexures with mass: joint, stations and their buffers.
     flexures: Vec<(usize, MassQuadrature, RefCell<StationKinematics>)>,
-    /// The coordinates that move a station (the flexures' own and upstream), ascending.
-    moving: Vec<usize>,
-    /// Frames for the velocity products' differences.
-    shifted: RefCell<Frames<Spatial>>,
-    /// $\partial_iM_f$ for each coordinate in `moving`, at the coordinates
-    /// they were taken at: $h_f$ is quadratic in $\dot q$ through them, so
-    /// every $\dot q$ at one $q$ (the tangent's differences in $\dot q$) reuses them.
-    derivatives: RefCell<(Vec<f64>, Vec<DMatrix<f64>>)>,
+    /// Each joint's entry in `flexures`, if it has one.
+    station: Vec<Option<usize>>,
+    /// A massless spatial flexure's kinematics for its rate's bias, by joint (made on first use).
+    tips: RefCell<Vec<Option<SpatialKinematics>>>,
+    /// The recursion's buffers.
+    motion: RefCell<Motion>,
+}
+
+/// Each body's motion at $\ddot q = 0$ and the inertial wrench of what it
+/// carries (the Data of the velocity products' recursion): angular
+/// velocity and acceleration, its origin's acceleration, and the force
+/// and moment about the world's origin of its subtree.
+#[derive(Debug, Clone, Default)]
+struct Motion {
+    omega: Vec<Vector3<f64>>,
+    alpha: Vec<Vector3<f64>>,
+    accel: Vec<Vector3<f64>>,
+    force: Vec<Vector3<f64>>,
+    moment: Vec<Vector3<f64>>,
+}
+
+impl Motion {
+    fn reset(&mut self, bodies: usize) {
+        for v in [&mut self.omega, &mut self.alpha, &mut self.accel, &mut self.force, &mut self.moment] {
+            v.clear();
+            v.resize(bodies, Vector3::zeros());
+        }
+    }
+}
+
+fn origin_of(pose: &nalgebra::Isometry3<f64>) -> Vector3<f64> {
+    pose.translation.vector
 }
 
 /// A body's mass terms at one configuration: its centre of mass's
@@ -51,17 +75,13 @@ struct BodyTerms {
 
 impl MassElements<Spatial> for StationMasses {
     fn new(m: &SpatialMechanism) -> Result<Self> {
-        let n = m.dof();
         let mut flexures = Vec::new();
-        let mut moving = vec![false; n];
+        let mut station = vec![None; m.joints.len()];
         for (j, spec) in m.joints.iter().enumerate() {
             let Some(flexure) = spec.kind.flexure() else { continue };
             let Some(quadrature) = MassQuadrature::new(flexure) else { continue };
             let buffers = RefCell::new(StationKinematics::new(flexure, &quadrature));
-            for i in m.path(spec.child) {
-                let o = m.joints[i].offset;
-                moving[o..o + m.joints[i].kind.joint().dof()].fill(true);
-            }
+            station[j] = Some(flexures.len());
             flexures.push((j, quadrature, buffers));
         }
         Ok(StationMasses {
@@ -70,9 +90,9 @@ impl MassElements<Spatial> for StationMasses {
             pair: RefCell::new([Frames::new(m), Frames::new(m)]),
             independent: independent_closures(m),
             flexures,
-            moving: (0..n).filter(|&i| moving[i]).collect(),
-            shifted: RefCell::new(Frames::new(m)),
-            derivatives: RefCell::new((Vec::new(), Vec::new())),
+            station,
+            tips: RefCell::new(vec![None; m.joints.len()]),
+            motion: RefCell::new(Motion::default()),
         })
     }
 
@@ -89,9 +109,11 @@ impl MassElements<Spatial> for StationMasses {
         mass: &mut [f64],
         force: &mut [f64],
     ) -> Result<()> {
-        frames_into(m, q, &mut self.frames);
+        // The gradient, M and h need the joints' first derivatives alone.
+        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
         assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly)?;
+        self.update_stations(m, &self.frames, Some(v));
         let mm = self.mass_at(m, &self.frames);
         let h = self.velocity_product_at(m, &self.frames, v);
         for (i, f) in force.iter_mut().enumerate() {
@@ -109,7 +131,8 @@ impl MassElements<Spatial> for StationMasses {
         v: &[f64],
         out: &mut [f64],
     ) -> Result<()> {
-        // The static Hessian and ∂h/∂q (central differences).
+        // The static Hessian and ∂h/∂q: central differences of the exact h
+        // (exact, it would take the stations' third derivatives).
         let n = m.dof();
         frames_into(m, q, &mut self.frames);
         let mu = vec![0.0; m.constraints()];
@@ -121,11 +144,9 @@ impl MassElements<Spatial> for StationMasses {
             for i in 0..n {
                 let e = 1e-6 * (1.0 + q[i].abs());
                 shifted[i] = q[i] + e;
-                frames_into(m, &shifted, &mut f);
-                let up = self.velocity_product_at(m, &f, v);
+                let up = self.velocity_product_from(m, &shifted, v, &mut f);
                 shifted[i] = q[i] - e;
-                frames_into(m, &shifted, &mut f);
-                let down = self.velocity_product_at(m, &f, v);
+                let down = self.velocity_product_from(m, &shifted, v, &mut f);
                 shifted[i] = q[i];
                 k.set_column(i, &(k.column(i) + (up - down) / (2.0 * e)));
             }
@@ -160,7 +181,8 @@ impl MassElements<Spatial> for StationMasses {
     }
 
     fn energy(&mut self, m: &SpatialMechanism, loads: &SpatialLoads, q: &[f64], v: &[f64]) -> Result<f64> {
-        frames_into(m, q, &mut self.frames);
+        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
+        self.update_stations(m, &self.frames, None);
         let mm = self.mass_at(m, &self.frames);
         let qd = DVector::from_column_slice(v);
         Ok(0.5 * qd.dot(&(mm * &qd)) + Self::potential_at(m, loads, &self.frames))
@@ -171,107 +193,125 @@ impl MassElements<Spatial> for StationMasses {
     }
 
     fn mass_matrix(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64]) -> DMatrix<f64> {
-        frames_into(m, q, &mut self.frames);
+        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
+        self.update_stations(m, &self.frames, None);
         self.mass_at(m, &self.frames)
     }
 
     fn velocity_product(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64], v: &[f64]) -> DVector<f64> {
         // The tangent asks for h at one q and many rates: the frames are kept.
-        if self.frames.level() != Level::Hessian || self.frames.coordinates != q {
-            frames_into(m, q, &mut self.frames);
+        if self.frames.level() == Level::Pose || self.frames.coordinates != q {
+            frames_level_into(m, q, Level::Jacobian, &mut self.frames);
         }
+        self.update_stations(m, &self.frames, Some(v));
         self.velocity_product_at(m, &self.frames, v)
     }
 }
 
 impl StationMasses {
-    /// Adds the flexures' stations' $M_f$ (module docs) at the frames `f` to `mass`.
+    /// $h(q, \dot q)$ with the frames of `q` into `f`.
+    fn velocity_product_from(
+        &self,
+        m: &SpatialMechanism,
+        q: &[f64],
+        v: &[f64],
+        f: &mut Frames<Spatial>,
+    ) -> DVector<f64> {
+        frames_level_into(m, q, Level::Jacobian, f);
+        self.update_stations(m, f, Some(v));
+        self.velocity_product_at(m, f, v)
+    }
+
+    /// Brings the stations' buffers to the frames `f`: their Jacobians, and
+    /// with a rate `v` their motion under it ([`stations_rate_update`]).
+    fn update_stations(&self, m: &SpatialMechanism, f: &Frames<Spatial>, v: Option<&[f64]>) {
+        for (j, quadrature, buffers) in &self.flexures {
+            let spec = &m.joints[*j];
+            let Some(flexure) = spec.kind.flexure() else { continue };
+            let (o, n) = (spec.offset, flexure.coordinates());
+            let (alpha, k) = (&f.coordinates[o..o + n], &mut *buffers.borrow_mut());
+            match v {
+                Some(v) => stations_rate_update(flexure, quadrature, alpha, &v[o..o + n], k),
+                None => stations_update(flexure, quadrature, alpha, Level::Jacobian, k),
+            }
+        }
+    }
+
+    /// Adds the flexures' stations' $M_f$ (module docs) to `mass`, their
+    /// buffers brought to the frames `f` ([`Self::update_stations`]). With
+    /// $r_k = R_Ap_k$ from the root's origin $o_A$, a coordinate $c$ upstream moves
+    /// every station as a point of the parent, by $u_c + \omega_c\times r_k$ ($u_c$
+    /// the velocity of $o_A$), so the upstream block is the stations' rigid
+    /// inertia, $m\thinspace u_c\cdot u_d + u_c\cdot(\omega_d\times s) + u_d\cdot(\omega_c\times s) + \omega_c\cdot\Theta\omega_d$
+    /// with $m = \sum_km_k$, $s = \sum_km_kr_k$ and $\Theta = \sum_kI_k + m_k(\lvert r_k\rvert^21 - r_kr_k^T)$;
+    /// across, $u_c\cdot F_a + \omega_c\cdot N_a$ with the wrench of the joint's own
+    /// coordinate $a$, $F_a = \sum_km_kR_A\partial_ap_k$ and $N_a = \sum_kr_k\times m_kR_A\partial_ap_k + I_kR_A\omega_{k,a}$.
     fn add_flexure_mass(&self, m: &SpatialMechanism, f: &Frames<Spatial>, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
             let Some(flexure) = spec.kind.flexure() else { continue };
             let (o, n) = (spec.offset, flexure.coordinates());
-            let mut k = buffers.borrow_mut();
-            stations_update(flexure, quadrature, &f.coordinates[o..o + n], Level::Jacobian, &mut k);
-            let root = &f.roots[*j];
-            let ra = root.rotation.to_rotation_matrix().into_inner();
-            // The columns a station moves with: upstream, then the joint's own.
-            let upstream: Vec<(usize, usize)> = m
+            let k = buffers.borrow();
+            let ra = *f.root_turn(*j);
+            let oa = f.roots[*j].translation.vector;
+            let (mut total, mut first, mut second) = (0.0, Vector3::zeros(), Matrix3::zeros());
+            let (mut forces, mut moments) = (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]);
+            let mut turned = vec![Vector3::zeros(); n];
+            for (i, st) in quadrature.stations().iter().enumerate() {
+                let (vel, omg) = (&k.velocity[i * n..(i + 1) * n], &k.omega[i * n..(i + 1) * n]);
+                // The station's inertia in the root frame, on each ω_a.
+                let local =
+                    k.rotation[i] * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * k.rotation[i].transpose();
+                for (t, w) in turned.iter_mut().zip(omg) {
+                    *t = local * w;
+                }
+                for a in 0..n {
+                    for b in a..n {
+                        let v = st.mass * vel[a].dot(&vel[b]) + omg[a].dot(&turned[b]);
+                        mass[(o + a, o + b)] += v;
+                        if a != b {
+                            mass[(o + b, o + a)] += v;
+                        }
+                    }
+                }
+                let r = ra * k.position[i];
+                for a in 0..n {
+                    let fa = ra * vel[a] * st.mass;
+                    forces[a] += fa;
+                    moments[a] += r.cross(&fa) + ra * turned[a];
+                }
+                total += st.mass;
+                first += r * st.mass;
+                second += ra * local * ra.transpose()
+                    + (Matrix3::from_diagonal_element(r.norm_squared()) - r * r.transpose()) * st.mass;
+            }
+            let upstream: Vec<(usize, Vector3<f64>, Vector3<f64>)> = m
                 .path(spec.parent)
                 .into_iter()
                 .flat_map(|i| {
-                    let oi = m.joints[i].offset;
-                    (oi..oi + m.joints[i].kind.joint().dof()).map(move |c| (c, i))
+                    let (oi, origin) = (m.joints[i].offset, f.bodies[m.joints[i].child].translation.vector);
+                    (oi..oi + m.joints[i].kind.joint().dof())
+                        .map(move |c| (c, f.omega[c], f.velocity[c] + f.omega[c].cross(&(oa - origin))))
                 })
                 .collect();
-            let columns: Vec<usize> = upstream.iter().map(|&(c, _)| c).chain(o..o + n).collect();
-            let width = columns.len();
-            let (mut jv, mut jw) = (Matrix3xX::zeros(width), Matrix3xX::zeros(width));
-            for (i, st) in quadrature.stations().iter().enumerate() {
-                let x = root * nalgebra::Point3::from(k.position[i]);
-                for (col, &(c, joint)) in upstream.iter().enumerate() {
-                    let origin = f.bodies[m.joints[joint].child].translation.vector;
-                    let w = f.omega[c];
-                    jv.set_column(col, &(f.velocity[c] + w.cross(&(x.coords - origin))));
-                    jw.set_column(col, &w);
-                }
+            for (e, &(c, wc, uc)) in upstream.iter().enumerate() {
                 for a in 0..n {
-                    jv.set_column(upstream.len() + a, &(ra * k.velocity[i * n + a]));
-                    jw.set_column(upstream.len() + a, &(ra * k.omega[i * n + a]));
+                    let v = uc.dot(&forces[a]) + wc.dot(&moments[a]);
+                    mass[(c, o + a)] += v;
+                    mass[(o + a, c)] += v;
                 }
-                let r = ra * k.rotation[i];
-                let inertia = r * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * r.transpose();
-                let block = jv.transpose() * &jv * st.mass + jw.transpose() * (inertia * &jw);
-                for (a, &ca) in columns.iter().enumerate() {
-                    for (b, &cb) in columns.iter().enumerate() {
-                        mass[(ca, cb)] += block[(a, b)];
+                for &(d, wd, ud) in &upstream[e..] {
+                    let v = total * uc.dot(&ud)
+                        + uc.dot(&wd.cross(&first))
+                        + ud.dot(&wc.cross(&first))
+                        + wc.dot(&(second * wd));
+                    mass[(c, d)] += v;
+                    if c != d {
+                        mass[(d, c)] += v;
                     }
                 }
             }
         }
-    }
-
-    /// $M_f$ at `q`, frames in `f`.
-    fn flexure_mass(&self, m: &SpatialMechanism, q: &[f64], f: &mut Frames<Spatial>) -> DMatrix<f64> {
-        let n = m.dof();
-        frames_level_into(m, q, Level::Jacobian, f);
-        let mut mass = DMatrix::zeros(n, n);
-        self.add_flexure_mass(m, f, &mut mass);
-        mass
-    }
-
-    /// The flexures' velocity products $h_f$ (module docs) at `q`, `v`:
-    /// with $D_i = \partial_iM_f$ (central differences, step $10^{-5}(1 + \lvert q_i\rvert)$),
-    /// $h_f = \sum_i\dot q_iD_i\dot q - \frac12\big(\dot q^TD_i\dot q\big)_i$.
-    fn flexure_velocity_product(&self, m: &SpatialMechanism, q: &[f64], v: &[f64]) -> DVector<f64> {
-        let n = m.dof();
-        if self.flexures.is_empty() || v.iter().all(|x| *x == 0.0) {
-            return DVector::zeros(n);
-        }
-        let mut cache = self.derivatives.borrow_mut();
-        if cache.0 != q {
-            let f = &mut *self.shifted.borrow_mut();
-            let mut shifted = q.to_vec();
-            cache.1.clear();
-            for &i in &self.moving {
-                let e = 1e-5 * (1.0 + q[i].abs());
-                shifted[i] = q[i] + e;
-                let up = self.flexure_mass(m, &shifted, f);
-                shifted[i] = q[i] - e;
-                let down = self.flexure_mass(m, &shifted, f);
-                shifted[i] = q[i];
-                cache.1.push((up - down) / (2.0 * e));
-            }
-            cache.0 = q.to_vec();
-        }
-        let qd = DVector::from_column_slice(v);
-        let mut h = DVector::zeros(n);
-        for (&i, d) in self.moving.iter().zip(&cache.1) {
-            let dv = d * &qd;
-            h.axpy(v[i], &dv, 1.0);
-            h[i] -= 0.5 * qd.dot(&dv);
-        }
-        h
     }
 
     fn bodies(m: &SpatialMechanism, f: &Frames<Spatial>) -> Vec<(usize, BodyTerms)> {
@@ -289,7 +329,7 @@ impl StationMasses {
         out
     }
 
-    /// $M(q)$ at the frames `f`.
+    /// $M(q)$ at the frames `f`, the stations' buffers brought to them ([`Self::update_stations`]).
     fn mass_at(&self, m: &SpatialMechanism, f: &Frames<Spatial>) -> DMatrix<f64> {
         let n = m.dof();
         let mut mass = DMatrix::zeros(n, n);
@@ -300,33 +340,102 @@ impl StationMasses {
         mass
     }
 
-    /// $h(q, \dot q)$ at the frames `f` (of $q$).
+    /// $h(q, \dot q)$ at the frames `f` (of $q$, at [`Level::Jacobian`] or
+    /// above), the stations' buffers brought to them with the rate `v`
+    /// ([`Self::update_stations`]): Newton–Euler's recursion (module docs),
+    /// each frame's accelerations at $\ddot q = 0$ down the tree, each mass
+    /// element's inertial wrench, and their sums projected on the
+    /// coordinates up the tree.
     fn velocity_product_at(&self, m: &SpatialMechanism, f: &Frames<Spatial>, v: &[f64]) -> DVector<f64> {
         let n = m.dof();
-        let qd = DVector::from_column_slice(v);
         let mut h = DVector::zeros(n);
-        let mut scratch = DMatrix::zeros(n, n);
-        let quadratic = |s: &DMatrix<f64>| qd.dot(&(s * &qd));
-        for (b, t) in Self::bodies(m, f) {
-            let body = &m.bodies[b];
-            let c = attach(m, f, b, body.com.coords, true);
-            let mut bias = Vector3::zeros();
-            let mut turn = Vector3::zeros();
-            for i in 0..3 {
-                let e = Vector3::ith(i, 1.0);
-                scratch.fill(0.0);
-                add_attached_hessian(m, f, &c, &e, &mut scratch);
-                bias[i] = quadratic(&scratch);
-                scratch.fill(0.0);
-                add_rotation_derivative(m, f, b, &e, &mut scratch, None);
-                turn[i] = quadratic(&scratch);
+        let motion = &mut *self.motion.borrow_mut();
+        motion.reset(m.bodies.len());
+        let Motion { omega, alpha, accel, force, moment } = motion;
+        let origin = |b: usize| f.bodies[b].translation.vector;
+        for (i, spec) in m.joints.iter().enumerate() {
+            let (o, k, state) = (spec.offset, f.joints[i].gradient.len(), &f.joints[i]);
+            let (p, c, u) = (spec.parent, spec.child, &v[o..o + k]);
+            let ra = f.root_turn(i);
+            // The joint's own rate in the world, and its bias Σ ∂_b S_a u_a u_b in the root frame.
+            let (mut spin, mut slide) = (Vector3::zeros(), Vector3::zeros());
+            for (a, &ua) in u.iter().enumerate() {
+                spin += f.omega[o + a] * ua;
+                slide += f.velocity[o + a] * ua;
             }
-            let omega = &t.rotation * &qd;
-            let omega = Vector3::new(omega[0], omega[1], omega[2]);
-            let moment = t.inertia * turn + omega.cross(&(t.inertia * omega));
-            h += t.com.transpose() * (bias * t.mass) + t.rotation.transpose() * moment;
+            let (turning, moving) = match (spec.kind.flexure(), self.station[i]) {
+                (Some(_), Some(s)) => {
+                    let tip = self.flexures[s].2.borrow().tip;
+                    (tip[2], tip[3])
+                }
+                (Some(flexure), None) => {
+                    let mut tips = self.tips.borrow_mut();
+                    let data = tips[i].get_or_insert_with(|| SpatialKinematics::new(flexure));
+                    let rate = update_rate(flexure, &f.coordinates[o..o + k], u, data);
+                    let [_, _, turning, moving] = rate.in_root(&data.rotation);
+                    (turning, moving)
+                }
+                (None, _) => {
+                    let contract = |c: usize| {
+                        (0..k).map(|a| u[a] * (0..k).map(|b| state.hessian[c][(a, b)] * u[b]).sum::<f64>()).sum()
+                    };
+                    (Vector3::from_fn(|c, _| contract(c)), Vector3::from_fn(|c, _| contract(c + 3)))
+                }
+            };
+            let (wp, ap, acc) = (omega[p], alpha[p], accel[p]);
+            let r = origin(c) - origin(p);
+            omega[c] = wp + spin;
+            alpha[c] = ap + wp.cross(&spin) + ra * turning;
+            accel[c] = acc + ap.cross(&r) + wp.cross(&wp.cross(&r)) + 2.0 * wp.cross(&slide) + ra * moving;
+            let Some(s) = self.station[i] else { continue };
+            // The stations: x_k = o_A + R_A p_k, moving with the parent and within the joint.
+            let (_, quadrature, buffers) = &self.flexures[s];
+            let b = buffers.borrow();
+            let root = origin_of(&f.roots[i]);
+            for (kk, st) in quadrature.stations().iter().enumerate() {
+                let [w, pd, wd, pdd] = b.rates[kk];
+                let x = root + ra * b.position[kk];
+                let arm = x - origin(p);
+                let (w, pd) = (ra * w, ra * pd);
+                let spin = wp + w;
+                let turn = ap + wp.cross(&w) + ra * wd;
+                let a = acc + ap.cross(&arm) + wp.cross(&wp.cross(&arm)) + 2.0 * wp.cross(&pd) + ra * pdd;
+                let axes = ra * b.rotation[kk];
+                let inertia = axes * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * axes.transpose();
+                let (fk, tk) = (a * st.mass, inertia * turn + spin.cross(&(inertia * spin)));
+                let (fl, tl) = (ra.tr_mul(&fk), ra.tr_mul(&tk));
+                for c in 0..k {
+                    h[o + c] += b.velocity[kk * k + c].dot(&fl) + b.omega[kk * k + c].dot(&tl);
+                }
+                force[p] += fk;
+                moment[p] += x.cross(&fk) + tk;
+            }
         }
-        h + self.flexure_velocity_product(m, &f.coordinates, v)
+        for (b, body) in m.bodies.iter().enumerate().skip(1) {
+            if body.mass == 0.0 && body.inertia == Matrix3::zeros() {
+                continue;
+            }
+            let turn = f.body_rotation(b);
+            let x = (f.bodies[b] * body.com).coords;
+            let arm = x - origin(b);
+            let a = accel[b] + alpha[b].cross(&arm) + omega[b].cross(&omega[b].cross(&arm));
+            let inertia = turn * body.inertia * turn.transpose();
+            let fb = a * body.mass;
+            force[b] += fb;
+            moment[b] += x.cross(&fb) + inertia * alpha[b] + omega[b].cross(&(inertia * omega[b]));
+        }
+        for (i, spec) in m.joints.iter().enumerate().rev() {
+            let (o, c, p) = (spec.offset, spec.child, spec.parent);
+            let (fc, mc) = (force[c], moment[c]);
+            // The wrench about the joint's output origin, on each of its twists.
+            let about = mc - origin(c).cross(&fc);
+            for a in o..o + f.joints[i].gradient.len() {
+                h[a] += f.velocity[a].dot(&fc) + f.omega[a].dot(&about);
+            }
+            force[p] += fc;
+            moment[p] += mc;
+        }
+        h
     }
 
     /// The elastic and gravitational energy (J) at the frames `f`.
