@@ -352,7 +352,7 @@ pub struct StressOptions {
     pub yield_strength: Option<f64>,
     /// Print the deformed flexure at K points evenly spaced in arc length,
     /// ends included (2 to 10000): shape: [{s, x, y, phi, curvature, stress}];
-    /// deflect --spatial gives [{s, position, rotation, curvature: {twist, kappa_y, kappa_z}, stress}].
+    /// deflect --spatial gives [{s, x, y, z, roll, pitch, yaw, rotation, curvature: {twist, kappa_y, kappa_z}, stress}].
     #[arg(long, value_parser = shape, allow_hyphen_values = true)]
     pub shape: Option<usize>,
 }

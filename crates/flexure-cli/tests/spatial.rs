@@ -4,7 +4,7 @@
 use crate::joint::{f, json, run};
 use serde_json::Value;
 
-/// A printed pose's origin: `x`, `y`, `z`, as a mechanism's bodies print it.
+/// A printed pose's origin (a tip's or a shape section's): `x`, `y`, `z`, as a mechanism's bodies print it.
 fn position(pose: &Value) -> [f64; 3] {
     ["x", "y", "z"].map(|k| f(&pose[k]))
 }
@@ -119,8 +119,8 @@ fn deflect_shape_ends_at_the_pose() {
     let (first, last) = (&shape[0], &shape[8]);
     assert!(f(&first["s"]) == 0.0 && f(&last["s"]) == 0.05 && (f(&shape[4]["s"]) - 0.025).abs() < 1e-15);
     for i in 0..3 {
-        assert!((f(&last["position"][i]) - position(&v["pose"])[i]).abs() < 1e-12 * 0.05, "{last}");
-        assert_eq!(f(&first["position"][i]), 0.0);
+        assert!((position(last)[i] - position(&v["pose"])[i]).abs() < 1e-12 * 0.05, "{last}");
+        assert_eq!(position(first)[i], 0.0);
         for j in 0..3 {
             let (r, want) = (&last["rotation"][i][j], &v["pose"]["rotation"][i][j]);
             assert!((f(r) - f(want)).abs() < 1e-12, "{last}");
@@ -136,21 +136,21 @@ fn deflect_shape_ends_at_the_pose() {
     assert!((most - peak).abs() < 1e-9 * peak, "{most} against the peak {peak}");
     // Without a section's shape there is no stress, as for the planar --shape.
     let plain = json("deflect --spatial --fz 0.3 --shape 3");
-    assert!(plain["shape"].as_array().unwrap().iter().all(|p| p.get("stress").is_none() && p["position"].is_array()));
+    assert!(plain["shape"].as_array().unwrap().iter().all(|p| p.get("stress").is_none() && p["z"].is_number()));
     // With --exact the model's shape sits under `model`, beside its pose, and
     // `shape` is the exact rod's at the same arc lengths: its last section is
     // the rod's pose (1e-12), and at orders 6 the model's sections lie within
     // 1e-6 of L of the rod's (measured 2.7e-11 L).
     let v = json("deflect --spatial --fz 0.3 --order 6 --exact --shape 5");
     let last = &v["model"]["shape"][4];
-    assert!((f(&last["position"][2]) - position(&v["model"]["pose"])[2]).abs() < 1e-12, "{last}");
+    assert!((position(last)[2] - position(&v["model"]["pose"])[2]).abs() < 1e-12, "{last}");
     let rod = v["shape"].as_array().unwrap();
     assert_eq!(rod.len(), 5);
-    assert!((f(&rod[4]["position"][2]) - position(&v["pose"])[2]).abs() < 1e-12, "{}", rod[4]);
+    assert!((position(&rod[4])[2] - position(&v["pose"])[2]).abs() < 1e-12, "{}", rod[4]);
     for (a, b) in rod.iter().zip(v["model"]["shape"].as_array().unwrap()) {
         assert_eq!(f(&a["s"]), f(&b["s"]));
         for i in 0..3 {
-            let d = (f(&a["position"][i]) - f(&b["position"][i])).abs();
+            let d = (position(a)[i] - position(b)[i]).abs();
             assert!(d < 1e-6, "section at s = {}: {d}", a["s"]);
         }
     }

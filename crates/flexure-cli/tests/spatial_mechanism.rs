@@ -475,8 +475,8 @@ fn a_spatial_flexure_reports_its_safety_factor_and_shape() {
     assert_eq!(shape.len(), 5);
     let last = &shape[4];
     let tip = &v["bodies"]["tip"];
-    for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-        let (a, b) = (last["position"][i].as_f64().unwrap(), tip[*axis].as_f64().unwrap());
+    for axis in ["x", "y", "z"] {
+        let (a, b) = (last[axis].as_f64().unwrap(), tip[axis].as_f64().unwrap());
         assert!((a - b).abs() < 1e-12, "{axis}: {a} against {b}");
     }
     // Past its yield strength it warns, as the plane does.

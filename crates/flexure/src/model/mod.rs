@@ -11,9 +11,8 @@ mod motion_error;
 
 pub use analyses::Analyses;
 pub use flexure::{
-    Alpha, Bending, Compared, Curvature, Deflect, Deflected, Deflection, ExactDeflected, ExactReference,
-    FlexureAnalyses, FlexureShape, Found, Headroom, OneFlexure, Posed, Refinement, RestCompliance, ShapeSection,
-    SpatialKeys, TipMotion, check_yield,
+    Alpha, Bending, Compared, Deflect, Deflected, Deflection, ExactDeflected, ExactReference, FlexureAnalyses, Found,
+    Headroom, OneFlexure, Posed, Refinement, RestCompliance, SpatialKeys, TipMotion, check_yield,
 };
 pub use motion_error::MotionEstimate;
 

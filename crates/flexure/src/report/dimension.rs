@@ -110,6 +110,7 @@ impl Reported for Spatial {
     }
 
     fn shape(f: &SpatialFlexure, alpha: &[f64], count: usize) -> Result<Shape> {
-        crate::spatial::shape(f, alpha, count).map(Shape::Spatial)
+        let points = crate::spatial::shape(f, alpha, count)?;
+        Ok(Shape::Spatial(points.iter().map(super::ShapeSection::from).collect()))
     }
 }

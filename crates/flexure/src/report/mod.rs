@@ -268,14 +268,47 @@ pub struct ShapePoint {
     pub stress: Option<f64>,
 }
 
+/// One section of a deformed spatial flexure in its root frame, as answers
+/// print it: arc length `s` (m), the section's pose as a body's
+/// ([`BodyPose`], flattened as the plane's [`ShapePoint`] is), its total
+/// body-frame curvature by component (1/m) and, with a section's shape,
+/// the peak von Mises stress over it (Pa).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ShapeSection {
+    pub s: f64,
+    #[serde(flatten)]
+    pub pose: BodyPose,
+    pub curvature: Curvature,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<f64>,
+}
+
+/// A spatial curvature by component (1/m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Curvature {
+    pub twist: f64,
+    pub kappa_y: f64,
+    pub kappa_z: f64,
+}
+
+impl From<&SpatialPoint> for ShapeSection {
+    fn from(p: &SpatialPoint) -> Self {
+        let [twist, kappa_y, kappa_z] = p.curvature;
+        let rotation = nalgebra::Matrix3::from_fn(|i, j| p.rotation[i][j]);
+        let pose = BodyPose::spatial(p.position, &rotation);
+        ShapeSection { s: p.s, pose, curvature: Curvature { twist, kappa_y, kappa_z }, stress: p.stress }
+    }
+}
+
 /// A deformed flexure's points, evenly spaced in arc length, ends included.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Shape {
-    /// In the plane ([`shape`]).
+    /// In the plane ([`shape`]): `{s, x, y, phi, curvature, stress}`.
     Planar(Vec<ShapePoint>),
-    /// In space ([`crate::spatial::shape`]).
-    Spatial(Vec<SpatialPoint>),
+    /// In space ([`crate::spatial::shape`]): `{s, x, y, z, roll, pitch,
+    /// yaw, rotation, curvature: {twist, kappa_y, kappa_z}, stress}`.
+    Spatial(Vec<ShapeSection>),
 }
 
 /// The answer of a mechanism solve; see the module docs. Maps left empty

@@ -6,8 +6,8 @@
 use crate::estimate::ErrorEstimate;
 use crate::kinematics::TipKinematics;
 use crate::limit::StabilityLimit;
-use crate::report::{BodyPose, MaxAt, PeakStress, ShapePoint};
-use crate::spatial::{SpatialPoint, StabilityTest};
+use crate::report::{BodyPose, MaxAt, PeakStress, Shape};
+use crate::spatial::StabilityTest;
 use nalgebra::{Dim, Matrix, RawStorage};
 use serde::Serialize;
 
@@ -34,44 +34,6 @@ impl Alpha {
             Alpha::Spatial { twist, kappa_y, kappa_z } => [twist.as_slice(), kappa_y, kappa_z].concat(),
         }
     }
-}
-
-/// One section of a deformed spatial flexure as an answer prints it: its
-/// curvature by component.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ShapeSection {
-    pub s: f64,
-    pub position: [f64; 3],
-    pub rotation: [[f64; 3]; 3],
-    pub curvature: Curvature,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stress: Option<f64>,
-}
-
-/// A spatial curvature by component (1/m).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Curvature {
-    pub twist: f64,
-    pub kappa_y: f64,
-    pub kappa_z: f64,
-}
-
-impl From<&SpatialPoint> for ShapeSection {
-    fn from(p: &SpatialPoint) -> Self {
-        let [twist, kappa_y, kappa_z] = p.curvature;
-        let curvature = Curvature { twist, kappa_y, kappa_z };
-        ShapeSection { s: p.s, position: p.position, rotation: p.rotation, curvature, stress: p.stress }
-    }
-}
-
-/// A deformed flexure at points evenly spaced in arc length, ends included.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum FlexureShape {
-    /// `{s, x, y, phi, curvature, stress}`.
-    Planar(Vec<ShapePoint>),
-    /// `{s, position, rotation, curvature: {twist, kappa_y, kappa_z}, stress}`.
-    Spatial(Vec<ShapeSection>),
 }
 
 /// The orders an answer was found at, with `--order auto`.
@@ -109,7 +71,7 @@ pub struct Bending {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub safety_factor: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub shape: Option<FlexureShape>,
+    pub shape: Option<Shape>,
 }
 
 /// The model's equilibrium under a tip load, with its estimate.

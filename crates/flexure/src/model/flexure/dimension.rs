@@ -4,10 +4,7 @@
 //! compliance). The plane and space implement it here, side by side; the
 //! analyses are written once over it.
 
-use super::answer::{
-    Alpha, Bending, Compared, ExactReference, FlexureShape, Headroom, Refinement, RestCompliance, ShapeSection,
-    TipMotion, rows,
-};
+use super::answer::{Alpha, Bending, Compared, ExactReference, Headroom, Refinement, RestCompliance, TipMotion, rows};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ErrorEstimate};
 use crate::flexure::Flexure;
@@ -15,7 +12,7 @@ use crate::kinematics::TipKinematics;
 use crate::limit::StabilityLimit;
 use crate::model::Analyses;
 use crate::reference::rod::{self, Rod};
-use crate::report::{BodyPose, MaxAt, PeakStress, Reported};
+use crate::report::{BodyPose, MaxAt, PeakStress, Reported, Shape, ShapeSection};
 use crate::space::{Planar, Spatial};
 use crate::spatial::{SpatialFlexure, SpatialLoad, SpatialPoint, SpatialStatics, StabilityTest};
 use crate::statics::Settings;
@@ -59,7 +56,7 @@ pub trait FlexureAnalyses: Analyses {
         yield_strength: Option<f64>,
     ) -> Result<(Option<PeakStress>, Option<MaxAt>)>;
     /// The deformed flexure at `count` points.
-    fn deformed(f: &Self::Flexure, alpha: &[f64], count: usize) -> Result<FlexureShape>;
+    fn deformed(f: &Self::Flexure, alpha: &[f64], count: usize) -> Result<Shape>;
     /// The coordinates by component.
     fn alpha(f: &Self::Flexure, alpha: &[f64]) -> Alpha;
     /// The orders and points (or subintervals) an answer was found at.
@@ -75,7 +72,7 @@ pub trait FlexureAnalyses: Analyses {
     fn exact(
         f: &Self::Flexure,
         load: &Self::Load,
-        model: (&BodyPose, Option<&FlexureShape>),
+        model: (&BodyPose, Option<&Shape>),
         stress: (Option<f64>, Option<usize>),
     ) -> Result<ExactReference>;
     /// Pose, Jacobian (and the plane's transform and Hessians) at `alpha`.
@@ -126,8 +123,8 @@ impl FlexureAnalyses for Planar {
         Ok((stress, stress.is_none().then(|| crate::stress::peak_curvature(f, alpha).into())))
     }
 
-    fn deformed(f: &Flexure, alpha: &[f64], count: usize) -> Result<FlexureShape> {
-        Ok(FlexureShape::Planar(crate::report::shape(f, alpha, count)))
+    fn deformed(f: &Flexure, alpha: &[f64], count: usize) -> Result<Shape> {
+        Ok(Shape::Planar(crate::report::shape(f, alpha, count)))
     }
 
     fn alpha(_: &Flexure, alpha: &[f64]) -> Alpha {
@@ -154,14 +151,14 @@ impl FlexureAnalyses for Planar {
     fn exact(
         f: &Flexure,
         load: &TipLoad,
-        (model, _): (&BodyPose, Option<&FlexureShape>),
+        (model, _): (&BodyPose, Option<&Shape>),
         (yield_strength, shape): (Option<f64>, Option<usize>),
     ) -> Result<ExactReference> {
         let (exact, trace) = crate::reference::elastica::deflect_traced(f, load, &Default::default())?;
         let pose = BodyPose::planar(&exact.pose);
         let stress = trace.peak_stress()?.map(PeakStress::from);
         let curvature_max = if stress.is_none() { Some(trace.peak_curvature()?.into()) } else { None };
-        let points = |k| -> Result<FlexureShape> {
+        let points = |k| -> Result<Shape> {
             let at = trace.shape(k)?.into_iter().map(|p| crate::report::ShapePoint {
                 s: p.s,
                 x: p.x,
@@ -170,7 +167,7 @@ impl FlexureAnalyses for Planar {
                 curvature: p.curvature,
                 stress: p.stress,
             });
-            Ok(FlexureShape::Planar(at.collect()))
+            Ok(Shape::Planar(at.collect()))
         };
         Ok(ExactReference {
             compared: Compared::of(model, &pose, f.length()),
@@ -256,7 +253,7 @@ impl FlexureAnalyses for Spatial {
         }
     }
 
-    fn deformed(f: &SpatialFlexure, alpha: &[f64], count: usize) -> Result<FlexureShape> {
+    fn deformed(f: &SpatialFlexure, alpha: &[f64], count: usize) -> Result<Shape> {
         Ok(sections(&crate::spatial::shape(f, alpha, count)?))
     }
 
@@ -291,14 +288,14 @@ impl FlexureAnalyses for Spatial {
     fn exact(
         f: &SpatialFlexure,
         load: &SpatialLoad,
-        (model, shape): (&BodyPose, Option<&FlexureShape>),
+        (model, shape): (&BodyPose, Option<&Shape>),
         _: (Option<f64>, Option<usize>),
     ) -> Result<ExactReference> {
         let rod = rod_of(f)?;
         let exact = rod::deflect(&rod, load, &Default::default())?;
         let pose = BodyPose::spatial(exact.position.into(), &exact.rotation);
         let shape = match shape {
-            Some(FlexureShape::Spatial(points)) => Some(rod_shape(&rod, load, &exact, points)?),
+            Some(Shape::Spatial(points)) => Some(rod_shape(&rod, load, &exact, points)?),
             _ => None,
         };
         let m = exact.root_moment;
@@ -341,15 +338,15 @@ fn rows3(m: &nalgebra::Matrix3<f64>) -> [[f64; 3]; 3] {
 }
 
 /// The spatial flexure's sections, curvature by component.
-fn sections(points: &[SpatialPoint]) -> FlexureShape {
-    FlexureShape::Spatial(points.iter().map(ShapeSection::from).collect())
+fn sections(points: &[SpatialPoint]) -> Shape {
+    Shape::Spatial(points.iter().map(ShapeSection::from).collect())
 }
 
 /// The exact rod's sections at the arc lengths of the model's `shape`: each
 /// carried from the rod's nearest frame ([`rod::sections`]), its curvature
 /// $K^{-1}R^Tm + u^0$ from its moment, and its stress that of the change
 /// $K^{-1}R^Tm$.
-fn rod_shape(rod: &Rod, load: &SpatialLoad, exact: &rod::RodSolution, model: &[ShapeSection]) -> Result<FlexureShape> {
+fn rod_shape(rod: &Rod, load: &SpatialLoad, exact: &rod::RodSolution, model: &[ShapeSection]) -> Result<Shape> {
     let at: Vec<f64> = model.iter().map(|p| p.s).collect();
     let (l, section) = (rod.length(), rod.section());
     let found = rod::sections(rod, load, exact, &at, &Default::default())?;

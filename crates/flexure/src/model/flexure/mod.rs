@@ -10,8 +10,8 @@ mod answer;
 mod dimension;
 
 pub use answer::{
-    Alpha, Bending, Compared, Curvature, Deflected, Deflection, ExactDeflected, ExactReference, FlexureShape, Headroom,
-    Posed, Refinement, RestCompliance, ShapeSection, TipMotion,
+    Alpha, Bending, Compared, Deflected, Deflection, ExactDeflected, ExactReference, Headroom, Posed, Refinement,
+    RestCompliance, TipMotion,
 };
 pub use dimension::{FlexureAnalyses, Found};
 
