@@ -9,6 +9,8 @@ No Newton here: the rest is reached by mj_step alone. Damping is added for the s
 (2 sqrt(k M_ii) on each coordinate, M_ii from mj_fullM): it moves no balance.
 """
 
+import contextlib
+import io
 import warnings
 
 import mujoco
@@ -223,3 +225,27 @@ def test_no_body_sits_at_a_mass_floor(name, prb):
         # pseudo-rigid body is left only with its flexure's own mass, above the 1e-9 kg floor.
         light = [n for i, n in names.items() if n not in real and m.body_mass[i] <= 1e-9]
         assert not light, light
+
+
+def test_the_readmes_mujoco_snippet_rests_where_solve_says(tmp_path, monkeypatch):
+    # The README's snippet, run as written on the finger exported as its `flexure export` line
+    # does (3R, the default): what it prints is each body where `solve` puts it, to the six
+    # digits it prints, and the README's own printed lines are that output.
+    readme = (EXAMPLES.parent / "README.md").read_text()
+    block = readme[readme.index('flexure export examples/finger.toml') :]
+    code = block[block.index('python -c "') + len('python -c "') :]
+    code, shown = code[: code.index('"\n')], block[: block.index("```\n")]
+    xml, _, _ = exported(EXAMPLES / "finger.toml", "3R")
+    (tmp_path / "finger.xml").write_text(xml)
+    monkeypatch.chdir(tmp_path)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(code, {})
+    lines = out.getvalue().strip().splitlines()
+    assert [f"# {line}" for line in lines] == [l for l in shown.splitlines() if l.startswith("# ")]
+    solved = flexure.Mechanism.from_file(EXAMPLES / "finger.toml").solve()["bodies"]
+    for line in lines:
+        name, rest = line.split(" ", 1)
+        numbers = [float(x) for x in rest.replace("[", " ").replace("]", " ").split()]
+        s = solved[name]
+        assert np.allclose(numbers, [s["x"], s["y"], s["phi"]], atol=1e-6), (line, s)
