@@ -217,7 +217,8 @@ def main():
     p.add_argument("--reference-links", type=int, default=128, help="0: no MuJoCo check of the reference")
     p.add_argument("--reference-cache", type=str, default=None,
                    help="a .npy of the reference tip: read if it exists, else written")
-    p.add_argument("--links", type=str, default="16,32,64,96,128,192", help="MuJoCo chains to try")
+    p.add_argument("--links", type=str, default="16,24,32,40,48,56,64,80,96,128,160,192",
+                   help="MuJoCo chains to try, shortest first")
     p.add_argument("--orders", type=str, default="5,6,7,8,9,10", help="flexure orders to try")
     a = p.parse_args()
     print(f"strip release at {a.force:g} N, {DURATION} s, target {a.target:g} L; "
