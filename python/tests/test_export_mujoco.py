@@ -34,6 +34,19 @@ def unstable(d):
     return d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number > 0 or not np.all(np.isfinite(d.qpos))
 
 
+def steps_stably(xml, report):
+    """Two seconds at the model's own step, MuJoCo's default 2 ms, with no damping but the
+    file's: from qpos0 unloaded, then from the keyframe with every load applied at once."""
+    m = mujoco.MjModel.from_xml_string(xml)
+    assert m.opt.timestep == 0.002 and report["step"] == 0.002
+    for key in (False, True):
+        d = mujoco.MjData(m)
+        mujoco.mj_resetDataKeyframe(m, d, 0) if key and m.nkey else mujoco.mj_resetData(m, d)
+        for _ in range(1000):
+            mujoco.mj_step(m, d)
+            assert not unstable(d), f"{'keyframe' if key else 'qpos0'}: unstable at t = {d.time:.4f} s"
+
+
 def settle(m, tol=1e-10, seconds=20.0):
     """Steps from the keyframe (loads on) with settling damping until every velocity is under
     tol; fails on an unstable step or no rest in `seconds`. Returns the data at rest."""
@@ -93,15 +106,7 @@ def test_examples_step_stably_from_rest_and_from_their_keyframe(name, prb):
     # Two seconds, no damping but the file's, at the model's own step (MuJoCo's default 2 ms),
     # from qpos0 unloaded and from the keyframe with every load applied at once. Before issue 36,
     # 15 of these 16 models blew up ("Nan, Inf or huge value in QACC") within 8 ms.
-    xml, report, _ = exported(EXAMPLES / name, prb)
-    m = mujoco.MjModel.from_xml_string(xml)
-    assert m.opt.timestep == 0.002 and report["step"] == 0.002
-    for key in (False, True):
-        d = mujoco.MjData(m)
-        mujoco.mj_resetDataKeyframe(m, d, 0) if key and m.nkey else mujoco.mj_resetData(m, d)
-        for _ in range(1000):
-            mujoco.mj_step(m, d)
-            assert not unstable(d), f"{'keyframe' if key else 'qpos0'}: unstable at t = {d.time:.4f} s"
+    steps_stably(*exported(EXAMPLES / name, prb)[:2])
 
 
 @pytest.mark.parametrize("name, prb", CASES)
