@@ -205,3 +205,14 @@ fn deflect_answers_in_one_shape_in_both_dimensions() {
     let (a, b) = (&two["curvature_max"], &three["curvature_max"]);
     assert!((f(&a["max"]) - f(&b["max"])).abs() < 1e-6 * f(&a["max"]) && f(&a["at"]) == f(&b["at"]), "{a} {b}");
 }
+
+/// A yield strength needs a section's shape to give a stress: refused by
+/// name before any solve, in space as in the plane.
+#[test]
+fn deflect_refuses_a_yield_strength_without_a_section_shape() {
+    for spatial in ["", " --spatial"] {
+        let (code, out, err) = run(&format!("deflect{spatial} --yield-strength 1e8 --fy 1 --json"));
+        assert_eq!(code, 2, "{out}");
+        assert!(out.is_empty() && err.contains("--yield-strength = 100000000"), "{err}");
+    }
+}

@@ -28,6 +28,14 @@ pub trait Reported: Dimension {
     fn peak_stress(f: &Self::Flexure, alpha: &[f64]) -> Result<Option<PeakStress>>;
     /// A flexure's peak change of (bending) curvature, for a section without a shape.
     fn peak_curvature(f: &Self::Flexure, alpha: &[f64]) -> Result<MaxAt>;
+    /// A flexure's peak stress where its section gives one, else its peak
+    /// change of (bending) curvature: what an answer reports of its bending.
+    fn bending(f: &Self::Flexure, alpha: &[f64]) -> Result<(Option<PeakStress>, Option<MaxAt>)> {
+        match Self::peak_stress(f, alpha)? {
+            Some(p) => Ok((Some(p), None)),
+            None => Ok((None, Some(Self::peak_curvature(f, alpha)?))),
+        }
+    }
     /// A flexure's deformed shape at `count` points.
     fn shape(f: &Self::Flexure, alpha: &[f64], count: usize) -> Result<Shape>;
 }

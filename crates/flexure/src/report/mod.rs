@@ -440,14 +440,14 @@ pub fn solve_report<D: Reported>(
         r.flagged |= e.flagged;
         r.error_estimate.0.push((name.clone(), e));
         r.load.0.push((name.clone(), load));
-        match D::peak_stress(f, q).map_err(failed)? {
-            Some(p) => {
+        match D::bending(f, q).map_err(failed)? {
+            (Some(p), _) => {
                 r.stress.0.push((name.clone(), p));
                 if let Some(strength) = j.report.yield_strength.filter(|_| p.max > 0.0) {
                     r.safety_factor.0.push((name.clone(), strength / p.max));
                 }
             }
-            None => r.curvature_max.0.push((name.clone(), D::peak_curvature(f, q).map_err(failed)?)),
+            (None, c) => r.curvature_max.0.extend(c.map(|c| (name.clone(), c))),
         }
         if let Some(count) = j.report.shape {
             r.shape.0.push((name.clone(), D::shape(f, q, count).map_err(failed)?));

@@ -12,7 +12,7 @@ use crate::kinematics::TipKinematics;
 use crate::limit::StabilityLimit;
 use crate::model::Analyses;
 use crate::reference::rod::{self, Rod};
-use crate::report::{BodyPose, MaxAt, PeakStress, Reported, Shape, ShapeSection};
+use crate::report::{BodyPose, PeakStress, Shape, ShapeSection};
 use crate::space::{Planar, Spatial};
 use crate::spatial::{SpatialFlexure, SpatialLoad, SpatialPoint, SpatialStatics, StabilityTest};
 use crate::statics::Settings;
@@ -44,19 +44,10 @@ pub trait FlexureAnalyses: Analyses {
     fn stability_test(load: &Self::Load) -> StabilityTest;
     /// The lowest orders that meet `target` under `load` (`--order auto`).
     fn auto(f: &Self::Flexure, load: &Self::Load, target: &Accuracy) -> Result<Self::Flexure>;
-    /// Refuses a yield strength the flexure cannot give a stress for,
-    /// before solving (the plane) or after (space, [`FlexureAnalyses::peak`]).
+    /// Refuses a yield strength the flexure cannot give a stress for, before solving.
     fn check_yield(f: &Self::Flexure, yield_strength: Option<f64>) -> Result<()>;
     /// The equilibrium under `load`, followed from rest.
     fn deflect(f: &Self::Flexure, load: &Self::Load, settings: &Settings) -> Result<Found>;
-    /// The peak stress, or the peak change of curvature where the dimension reports one.
-    fn peak(
-        f: &Self::Flexure,
-        alpha: &[f64],
-        yield_strength: Option<f64>,
-    ) -> Result<(Option<PeakStress>, Option<MaxAt>)>;
-    /// The deformed flexure at `count` points.
-    fn deformed(f: &Self::Flexure, alpha: &[f64], count: usize) -> Result<Shape>;
     /// The coordinates by component.
     fn alpha(f: &Self::Flexure, alpha: &[f64]) -> Alpha;
     /// The orders and points (or subintervals) an answer was found at.
@@ -116,15 +107,6 @@ impl FlexureAnalyses for Planar {
         let equilibrium = crate::statics::deflect(f, load, &mut data, settings)?;
         let pose = BodyPose::planar(&data.pose_root_tip());
         Ok(Found { alpha: data.alpha().to_vec(), pose, stiffness: data.stiffness, equilibrium })
-    }
-
-    fn peak(f: &Flexure, alpha: &[f64], _: Option<f64>) -> Result<(Option<PeakStress>, Option<MaxAt>)> {
-        let stress = Planar::peak_stress(f, alpha)?;
-        Ok((stress, stress.is_none().then(|| crate::stress::peak_curvature(f, alpha).into())))
-    }
-
-    fn deformed(f: &Flexure, alpha: &[f64], count: usize) -> Result<Shape> {
-        Ok(Shape::Planar(crate::report::shape(f, alpha, count)))
     }
 
     fn alpha(_: &Flexure, alpha: &[f64]) -> Alpha {
@@ -225,8 +207,15 @@ impl FlexureAnalyses for Spatial {
         Ok(crate::estimate::spatial::deflect_auto(f, load, target)?.0)
     }
 
-    fn check_yield(_: &SpatialFlexure, _: Option<f64>) -> Result<()> {
-        Ok(())
+    fn check_yield(f: &SpatialFlexure, yield_strength: Option<f64>) -> Result<()> {
+        match yield_strength {
+            Some(s) if !f.section().has_geometry() => Err(Error::invalid(
+                "yield_strength",
+                s,
+                "needs a section with a shape to give a stress: give --modulus with --width and --thickness, or --diameter",
+            )),
+            _ => Ok(()),
+        }
     }
 
     fn deflect(f: &SpatialFlexure, load: &SpatialLoad, settings: &Settings) -> Result<Found> {
@@ -235,26 +224,6 @@ impl FlexureAnalyses for Spatial {
         let (r, p) = crate::spatial::pose_root_tip(f, data.alpha());
         let pose = BodyPose::spatial(p.into(), &r);
         Ok(Found { alpha: data.alpha().to_vec(), pose, stiffness: data.stiffness.clone(), equilibrium })
-    }
-
-    fn peak(
-        f: &SpatialFlexure,
-        alpha: &[f64],
-        yield_strength: Option<f64>,
-    ) -> Result<(Option<PeakStress>, Option<MaxAt>)> {
-        match (Spatial::peak_stress(f, alpha)?, yield_strength) {
-            (None, Some(s)) => Err(Error::invalid(
-                "yield_strength",
-                s,
-                "needs a section with a shape to give a stress: give --modulus with --width and --thickness, or --diameter",
-            )),
-            (None, None) => Ok((None, Some(crate::spatial::peak_curvature(f, alpha)?.into()))),
-            (stress, _) => Ok((stress, None)),
-        }
-    }
-
-    fn deformed(f: &SpatialFlexure, alpha: &[f64], count: usize) -> Result<Shape> {
-        Ok(sections(&crate::spatial::shape(f, alpha, count)?))
     }
 
     fn alpha(f: &SpatialFlexure, alpha: &[f64]) -> Alpha {

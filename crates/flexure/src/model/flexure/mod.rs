@@ -229,8 +229,8 @@ fn deflect<D: FlexureAnalyses>(given: &D::Flexure, o: &Deflect) -> Result<Deflec
     D::check_yield(f, o.yield_strength)?;
     let found = D::deflect(f, &load, &o.settings)?;
     let alpha = &found.alpha;
-    let (stress, curvature_max) = D::peak(f, alpha, o.yield_strength)?;
-    let shape = o.shape.map(|k| D::deformed(f, alpha, k)).transpose()?;
+    let (stress, curvature_max) = D::bending(f, alpha)?;
+    let shape = o.shape.map(|k| D::shape(f, alpha, k)).transpose()?;
     let error_estimate = D::estimate(f, &load, alpha, &o.target)?;
     let stability_limit = o.limit.map(|max| D::limit(f, &load, max)).transpose()?;
     let model = Deflected {
