@@ -22,7 +22,7 @@
 //! $\partial_a\partial_bp = R\thinspace(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$, symmetric.
 
 use super::SpatialFlexure;
-use super::magnus::{Jet1, Jet2, exponent, exponent_value, exponential};
+use super::magnus::{Exponent, Jet2, exponent, exponential};
 use super::step::{Step, Tangent};
 use crate::kinematics::Level;
 use crate::scalar::Scalar;
@@ -254,9 +254,8 @@ fn hessians_by_directions<T: Scalar>(data: &mut SpatialKinematics<T>, xi: &[Vect
 /// costs no more.
 fn tangents_by_directions<T: Scalar>(
     data: &mut SpatialKinematics<T>,
-    xi: &[Vector6<T>; 3],
     derivative: &impl Fn(usize) -> [Vector6<T>; 3],
-    h: f64,
+    exponent: &Exponent<T>,
     step: &Step<T>,
 ) {
     let n = data.columns.len();
@@ -268,14 +267,9 @@ fn tangents_by_directions<T: Scalar>(
     for p in 0..SLOTS {
         used[p] = data.derivatives.iter().any(|d| d[p / 6][p % 6] != zero);
         if used[p] {
-            let jets: [Jet1<T>; 3] = std::array::from_fn(|j| {
-                let mut d = Vector6::zeros();
-                if p / 6 == j {
-                    d[p % 6] = T::one();
-                }
-                Jet1 { v: xi[j], d }
-            });
-            let (dw, dv) = parts(&exponent(&jets, h).d);
+            let mut d = [Vector6::zeros(); 3];
+            d[p / 6][p % 6] = T::one();
+            let (dw, dv) = exponent.derivative(&d.map(|x| parts(&x).0));
             along[p] = step.tangent(dw, dv);
         }
     }
@@ -444,8 +438,9 @@ pub(super) fn advance<T: Scalar>(
     h: f64,
     order: usize,
 ) -> Step<T> {
-    let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
-    advance_step(data, xi, derivative, h, order, Step::new(w, v, order))
+    let e = Exponent::new(&xi.map(|x| parts(&x).0), h);
+    let (w, v) = e.value();
+    advance_step(data, xi, derivative, &e, h, order, Step::new(w, v, order))
 }
 
 /// A rate $\dot\alpha$'s body twist $V = \sum_a\dot\alpha_aJ_a$ and its
@@ -473,7 +468,7 @@ impl Rate {
 /// with the rate twice,
 /// $$B \leftarrow A_kB - \big[J_{\dot\alpha}^{(k)},\ A_kV\big] + \partial_{\dot\alpha}J_{\dot\alpha}^{(k)},$$
 /// where $J_{\dot\alpha}^{(k)}$ and its derivative are the step's along the one
-/// direction $\sum_a\dot\alpha_a\partial_a\xi$ (one jet, not $n^2$): the
+/// direction $\sum_a\dot\alpha_a\partial_a\xi$ ([`Exponent::along`], not $n^2$ pairs): the
 /// exact second derivative along the rate for the cost of a first.
 pub(super) fn advance_rate(
     data: &mut SpatialKinematics<f64>,
@@ -492,14 +487,11 @@ pub(super) fn advance_rate(
             }
         }
     }
-    let (w, v) = exponent_value(&xi.map(|x| parts(&x).0), h);
-    let step = advance_step(data, xi, derivative, h, 1, Step::new(w, v, 2));
-    let jets: [Jet2<f64>; 3] =
-        std::array::from_fn(|j| Jet2 { v: xi[j], a: along[j], b: along[j], ab: Vector6::zeros() });
-    let e = exponent(&jets, h);
-    let (dw, dv) = parts(&e.a);
+    let e = Exponent::new(&xi.map(|x| parts(&x).0), h);
+    let (w, v) = e.value();
+    let step = advance_step(data, xi, derivative, &e, h, 1, Step::new(w, v, 2));
+    let ((dw, dv), (dww, dvv)) = e.along(&along.map(|x| parts(&x).0));
     let t = step.tangent(dw, dv);
-    let (dww, dvv) = parts(&e.ab);
     let (sw, sv) = step.second(&t, &t, dww, dvv);
     let moved = adjoint_inverse(&step.r, &step.p, &state.twist);
     let own = six(&t.angular, &t.linear);
@@ -538,6 +530,7 @@ fn advance_step<T: Scalar>(
     data: &mut SpatialKinematics<T>,
     xi: &[Vector6<T>; 3],
     derivative: impl Fn(usize) -> [Vector6<T>; 3],
+    e: &Exponent<T>,
     h: f64,
     order: usize,
     step: Step<T>,
@@ -545,13 +538,10 @@ fn advance_step<T: Scalar>(
     let n = data.columns.len();
     if order >= 1 {
         if n > SLOTS {
-            tangents_by_directions(data, xi, &derivative, h, &step);
+            tangents_by_directions(data, &derivative, e, &step);
         } else {
             for a in 0..n {
-                let da = derivative(a);
-                let jets: [Jet1<T>; 3] = std::array::from_fn(|j| Jet1 { v: xi[j], d: da[j] });
-                let d = exponent(&jets, h).d;
-                let (dw, dv) = parts(&d);
+                let (dw, dv) = e.derivative(&derivative(a).map(|x| parts(&x).0));
                 data.tangents[a] = step.tangent(dw, dv);
             }
         }

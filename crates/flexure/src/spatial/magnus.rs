@@ -17,9 +17,10 @@
 //!
 //! The exponent is a polynomial in the nodal twists, each affine in the
 //! coordinates, so its derivatives follow by the product rule through the
-//! same formula: [`Algebra`] is implemented by a twist with one derivative
-//! ([`Jet1`]) and a twist with two ([`Jet2`]); [`exponent_value`] is the
-//! value alone, written out.
+//! same formula: [`Algebra`] is implemented by a twist with two derivatives
+//! ([`Jet2`]). [`exponent_value`] is the value alone, written out, and
+//! [`Exponent::derivative`] its first derivative along any change of the
+//! nodal curvatures, written out on the value's terms.
 
 use crate::scalar::Scalar;
 use crate::space::{bracket, exp_coefficients, exp_parts};
@@ -34,28 +35,6 @@ pub(crate) trait Algebra: Copy {
     fn add(&self, o: &Self) -> Self;
     fn scale(&self, k: f64) -> Self;
     fn br(&self, o: &Self) -> Self;
-}
-
-/// A twist and its derivative along one coordinate.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Jet1<T: Scalar> {
-    pub v: Vector6<T>,
-    pub d: Vector6<T>,
-}
-
-impl<T: Scalar> Algebra for Jet1<T> {
-    #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
-        Jet1 { v: self.v + o.v, d: self.d + o.d }
-    }
-    #[inline(always)]
-    fn scale(&self, k: f64) -> Self {
-        Jet1 { v: self.v * T::c(k), d: self.d * T::c(k) }
-    }
-    #[inline(always)]
-    fn br(&self, o: &Self) -> Self {
-        Jet1 { v: bracket(&o.v, &self.v), d: bracket(&o.d, &self.v) + bracket(&o.v, &self.d) }
-    }
 }
 
 /// A twist, its derivatives along coordinates $a$ and $b$, and $\partial_a\partial_b$.
@@ -110,30 +89,139 @@ fn cross_e1<T: Scalar>(a: &Vector3<T>, h: T) -> Vector3<T> {
 /// [`exponent`] of plain twists written out, as $(\omega, v)$ from the nodal
 /// curvatures `u`: $\alpha_2$ and $\alpha_3$ have no linear part and
 /// $\alpha_1$'s is $h e_1$, so 8 cross products do what the general
-/// formula's 18 do (the tests check one against the other: dual numbers
-/// through this one against [`Jet1`] through that one).
+/// formula's 18 do (`tests/spatial_kinematics.rs` checks the Jacobians
+/// built on it and on [`Exponent::derivative`] against num-dual's dual
+/// numbers through it).
 #[inline(always)]
 pub(crate) fn exponent_value<T: Scalar>(u: &[Vector3<T>; 3], h: f64) -> (Vector3<T>, Vector3<T>) {
-    let ht = T::c(h);
-    let w1 = u[1] * ht;
-    let w2 = (u[2] - u[0]) * T::c(15f64.sqrt() * h / 3.0);
-    let w3 = (u[2] - u[1] * T::c(2.0) + u[0]) * T::c(10.0 * h / 3.0);
-    // C₁ = [α₁, α₂]′ = [α₂, α₁] = (w₂ × w₁, w₂ × h e₁).
-    let c1w = w2.cross(&w1);
-    let c1v = cross_e1(&w2, ht);
-    // C₂ = −[α₁, 2α₃ + C₁]′/60 = −[2α₃ + C₁, α₁]/60.
-    let xw = w3 * T::c(2.0) + c1w;
-    let k = T::c(-1.0 / 60.0);
-    let c2w = xw.cross(&w1) * k;
-    let c2v = (cross_e1(&xw, ht) - w1.cross(&c1v)) * k;
-    // [L, R]′ = [R, L] with L = −20α₁ − α₃ + C₁, R = α₂ + C₂.
-    let lw = c1w - w1 * T::c(20.0) - w3;
-    let lv = c1v - Vector3::new(ht * T::c(20.0), T::zero(), T::zero());
-    let rw = w2 + c2w;
-    let k = T::c(1.0 / 240.0);
-    let omega = w1 + w3 * T::c(1.0 / 12.0) + rw.cross(&lw) * k;
-    let v = Vector3::new(ht, T::zero(), T::zero()) + (rw.cross(&lv) - lw.cross(&c2v)) * k;
-    (omega, v)
+    Exponent::new(u, h).value()
+}
+
+/// The terms of [`exponent_value`] at one set of nodal curvatures, kept so
+/// that its derivatives along any change of them ([`Exponent::derivative`],
+/// [`Exponent::along`]) reuse them: the exponent is a polynomial in the
+/// curvatures, so its derivative is linear in their change. A step's
+/// Jacobian takes it along each coordinate's change rather than a jet of
+/// the whole formula.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Exponent<T: Scalar> {
+    h: f64,
+    at: Terms<T>,
+}
+
+/// The angular parts $w_i$ of $\alpha_i$, $C_1$'s linear part, $2\alpha_3 + C_1$'s
+/// angular part $x$, $C_2$'s linear part, and the bracket's $L$ and $R$ (angular
+/// parts; $L$'s linear part too): the terms of the module docs' formula
+/// whose brackets remain once $\alpha_1$'s constant $h e_1$ is written out; or their
+/// derivatives along a change of the curvatures.
+#[derive(Debug, Clone, Copy)]
+struct Terms<T: Scalar> {
+    w1: Vector3<T>,
+    w2: Vector3<T>,
+    w3: Vector3<T>,
+    c1v: Vector3<T>,
+    xw: Vector3<T>,
+    c2v: Vector3<T>,
+    lw: Vector3<T>,
+    lv: Vector3<T>,
+    rw: Vector3<T>,
+}
+
+impl<T: Scalar> Exponent<T> {
+    /// The terms at the nodal curvatures `u` on a subinterval of length `h`.
+    #[inline(always)]
+    pub fn new(u: &[Vector3<T>; 3], h: f64) -> Self {
+        let ht = T::c(h);
+        let (w1, w2, w3) = Self::alphas(u, h);
+        // C₁ = [α₁, α₂]′ = [α₂, α₁] = (w₂ × w₁, w₂ × h e₁).
+        let c1w = w2.cross(&w1);
+        let c1v = cross_e1(&w2, ht);
+        // C₂ = −[α₁, 2α₃ + C₁]′/60 = −[2α₃ + C₁, α₁]/60.
+        let xw = w3 * T::c(2.0) + c1w;
+        let k = T::c(-1.0 / 60.0);
+        let c2w = xw.cross(&w1) * k;
+        let c2v = (cross_e1(&xw, ht) - w1.cross(&c1v)) * k;
+        // [L, R]′ = [R, L] with L = −20α₁ − α₃ + C₁, R = α₂ + C₂.
+        let lw = c1w - w1 * T::c(20.0) - w3;
+        let lv = c1v - Vector3::new(ht * T::c(20.0), T::zero(), T::zero());
+        let rw = w2 + c2w;
+        Exponent { h, at: Terms { w1, w2, w3, c1v, xw, c2v, lw, lv, rw } }
+    }
+
+    /// $w_1, w_2, w_3$: linear in the curvatures, so also their change along a change of them.
+    #[inline(always)]
+    fn alphas(u: &[Vector3<T>; 3], h: f64) -> (Vector3<T>, Vector3<T>, Vector3<T>) {
+        let w1 = u[1] * T::c(h);
+        let w2 = (u[2] - u[0]) * T::c(15f64.sqrt() * h / 3.0);
+        let w3 = (u[2] - u[1] * T::c(2.0) + u[0]) * T::c(10.0 * h / 3.0);
+        (w1, w2, w3)
+    }
+
+    /// $\Omega = (\omega, v)$.
+    #[inline(always)]
+    pub fn value(&self) -> (Vector3<T>, Vector3<T>) {
+        let (t, k) = (&self.at, T::c(1.0 / 240.0));
+        let omega = t.w1 + t.w3 * T::c(1.0 / 12.0) + t.rw.cross(&t.lw) * k;
+        let v = Vector3::new(T::c(self.h), T::zero(), T::zero()) + (t.rw.cross(&t.lv) - t.lw.cross(&t.c2v)) * k;
+        (omega, v)
+    }
+
+    /// The terms' derivatives along the change `du`, by the product rule.
+    #[inline(always)]
+    fn change(&self, du: &[Vector3<T>; 3]) -> Terms<T> {
+        let (t, ht) = (&self.at, T::c(self.h));
+        let (w1, w2, w3) = Self::alphas(du, self.h);
+        let c1w = w2.cross(&t.w1) + t.w2.cross(&w1);
+        let c1v = cross_e1(&w2, ht);
+        let xw = w3 * T::c(2.0) + c1w;
+        let k = T::c(-1.0 / 60.0);
+        let c2w = (xw.cross(&t.w1) + t.xw.cross(&w1)) * k;
+        let c2v = (cross_e1(&xw, ht) - w1.cross(&t.c1v) - t.w1.cross(&c1v)) * k;
+        let lw = c1w - w1 * T::c(20.0) - w3;
+        Terms { w1, w2, w3, c1v, xw, c2v, lw, lv: c1v, rw: w2 + c2w }
+    }
+
+    /// $D\Omega[\delta u] = (\delta\omega, \delta v)$: the derivative along
+    /// the change `du` of the nodal curvatures.
+    #[inline(always)]
+    pub fn derivative(&self, du: &[Vector3<T>; 3]) -> (Vector3<T>, Vector3<T>) {
+        self.first(&self.change(du))
+    }
+
+    /// [`Exponent::value`]'s derivative from the terms' derivatives `d`.
+    #[inline(always)]
+    fn first(&self, d: &Terms<T>) -> (Vector3<T>, Vector3<T>) {
+        let (t, k) = (&self.at, T::c(1.0 / 240.0));
+        let omega = d.w1 + d.w3 * T::c(1.0 / 12.0) + (d.rw.cross(&t.lw) + t.rw.cross(&d.lw)) * k;
+        let v = (d.rw.cross(&t.lv) + t.rw.cross(&d.lv) - d.lw.cross(&t.c2v) - t.lw.cross(&d.c2v)) * k;
+        (omega, v)
+    }
+
+    /// The first and second derivatives $D\Omega[\delta u]$ and
+    /// $D^2\Omega[\delta u, \delta u]$ along one change `du` of the nodal
+    /// curvatures: what a rate's bias needs, for the cost of about two
+    /// first derivatives rather than a [`Jet2`] of the whole formula.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    pub fn along(&self, du: &[Vector3<T>; 3]) -> ((Vector3<T>, Vector3<T>), (Vector3<T>, Vector3<T>)) {
+        let (t, d) = (&self.at, self.change(du));
+        let (two, ht) = (T::c(2.0), T::c(self.h));
+        // The w's and C₁'s linear part are linear in the curvatures: only
+        // the products' cross terms have second derivatives.
+        let k = T::c(-1.0 / 60.0);
+        let c1w = d.w2.cross(&d.w1) * two;
+        let c2w = (c1w.cross(&t.w1) + d.xw.cross(&d.w1) * two) * k;
+        let c2v = (cross_e1(&c1w, ht) - d.w1.cross(&d.c1v) * two) * k;
+        let (lw, rw) = (c1w, c2w);
+        let k = T::c(1.0 / 240.0);
+        let omega = (rw.cross(&t.lw) + d.rw.cross(&d.lw) * two + t.rw.cross(&lw)) * k;
+        let v = (rw.cross(&t.lv) + d.rw.cross(&d.lv) * two
+            - lw.cross(&t.c2v)
+            - d.lw.cross(&d.c2v) * two
+            - t.lw.cross(&c2v))
+            * k;
+        (self.first(&d), (omega, v))
+    }
 }
 
 /// One Magnus step of length `h` from the nodal curvatures `u`: $\exp\Omega$ as $(R, p)$.
