@@ -21,14 +21,22 @@ Usage (MuJoCo's Python package; run from a scratch directory so MUJOCO_LOG.TXT s
 
     python3 scripts/right_angle_mujoco.py --links 40 --step 1e-3 --out scripts/right_angle_cantilever_mujoco.csv
     python3 scripts/right_angle_mujoco.py --links 20 --compare flexure.csv   # flexure simulate --out's CSV
+    python3 scripts/right_angle_mujoco.py --links 40 --step 0.025 --flexure target/release/flexure
 
 It writes t, the elbow's z and the tip's z every 0.05 s, prints the extremes (Exudyn's figures
 for the same benchmark: tip 8.24 at t = 7.40 and -9.75 at 15.85, elbow -4.07 at 10.85) and, with
---compare, the largest differences from a flexure run. It reports and does not judge.
+--compare, the largest differences from a flexure run. With --flexure (the `flexure` command) it
+runs scripts/right_angle_cantilever.toml itself (30 s at tolerance 1e-4, from rest), times it (CPU
+of the child process, including the error estimate `simulate` adds: a second run at 1e-5) and
+compares. It reports and does not judge.
 """
 
 import argparse
 import csv
+import pathlib
+import resource
+import subprocess
+import tempfile
 import time
 
 import mujoco
@@ -135,7 +143,18 @@ def main():
     p.add_argument("--step", type=float, default=1e-3, help="RK4 step (s), dividing 0.05 [1e-3]")
     p.add_argument("--out", help="write t, elbow z, tip z here (CSV)")
     p.add_argument("--compare", help="a CSV of `flexure simulate --out` to compare with")
+    p.add_argument("--flexure", help="the flexure command: run and time scripts/right_angle_cantilever.toml")
     args = p.parse_args()
+    if args.flexure:
+        example = pathlib.Path(__file__).resolve().parent / "right_angle_cantilever.toml"
+        args.compare = str(pathlib.Path(tempfile.mkdtemp()) / "flexure.csv")
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        command = [args.flexure, "simulate", str(example), "--duration", "30", "--every", "0.05"]
+        command += ["--tolerance", "1e-4", "--start", "rest", "--out", args.compare]
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        spent = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+        print(f"flexure simulate, order 4 at 1e-4 with its error estimate: {spent:.1f} s CPU")
     a, cpu = run(args.links, args.step)
     extremes(a, f"MuJoCo {mujoco.__version__}, {args.links} links per leg, step {args.step}: {cpu:.1f} s CPU")
     if args.out:
