@@ -141,6 +141,14 @@ fn reproduce_writes_a_checked_report() {
     let finger = &r["dynamics"]["finger"];
     assert!(f(&finger["steps"]) > 0.0 && f(&finger["distal_angle_end"]).is_finite());
 
+    // The right-angle cantilever: within 0.1 of the MuJoCo chain all along
+    // (crates/flexure/tests/right_angle_cantilever.rs holds the history and
+    // Exudyn's extremes; this, that the report draws the same run).
+    let corner = &r["right_angle"];
+    let off = &corner["largest_difference_from_mujoco"];
+    assert!(f(&off["elbow"]) < 0.1 && f(&off["tip"]) < 0.1, "{off}");
+    assert_eq!(corner["extremes"].as_array().map(Vec::len), Some(3));
+
     // The report and the figures: every SVG it embeds exists, with axis labels.
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     for name in md.split("](").skip(1).map(|s| s.split(')').next().unwrap()) {

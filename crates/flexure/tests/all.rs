@@ -42,6 +42,7 @@ mod prb;
 mod quadrature;
 mod reference;
 mod reference_contact;
+mod right_angle_cantilever;
 mod rod;
 mod section;
 mod section_exact;

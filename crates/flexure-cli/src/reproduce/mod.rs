@@ -5,7 +5,8 @@
 //! One file per section of the report, in the order [`run`] writes them:
 //! the paper's figures and table ([`fig4_5`], [`fig7_8`], [`fig10`],
 //! [`fig12_13`], [`table1`]), then what goes beyond it ([`convergence`],
-//! [`mod@sections`], [`mod@dynamics`], [`prb`], [`mod@spatial`]).
+//! [`mod@sections`], [`mod@dynamics`], [`prb`], [`mod@spatial`],
+//! [`right_angle`]).
 
 mod convergence;
 mod dynamics;
@@ -14,6 +15,7 @@ mod fig12_13;
 mod fig4_5;
 mod fig7_8;
 mod prb;
+mod right_angle;
 mod sections;
 mod spatial;
 mod table1;
@@ -56,7 +58,7 @@ fn lib(e: flexure::Error) -> String {
 /// Runs every section, writes the files, and returns a summary.
 pub fn run(args: &ReproduceArgs) -> Result<Value, String> {
     std::fs::create_dir_all(&args.out).map_err(|e| format!("--out = {}: {e}", args.out.display()))?;
-    let sections: [(&str, Section); 10] = [
+    let sections: [(&str, Section); 11] = [
         ("fig4_5", fig4_5::fig4_5),
         ("fig7_8", fig7_8::fig7_8),
         ("fig10", fig10::fig10),
@@ -67,6 +69,7 @@ pub fn run(args: &ReproduceArgs) -> Result<Value, String> {
         ("dynamics", dynamics::dynamics),
         ("prb", prb::prb_fits),
         ("spatial", spatial::spatial),
+        ("right_angle", right_angle::right_angle),
     ];
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::with_draw_target(Some(sections.len() as u64), ProgressDrawTarget::stderr())

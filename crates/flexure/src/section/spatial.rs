@@ -27,6 +27,8 @@ use crate::error::{Error, Result};
 pub struct SpatialSection {
     stiffness: Stiffness,
     mass: Mass,
+    /// Rotary inertia per length given directly (kg·m), with a mass per length.
+    rotary: Option<[f64; 3]>,
 }
 
 /// How the stiffnesses are given.
@@ -146,7 +148,7 @@ impl SpatialSection {
         gj.check("gj")?;
         ei_y.check("ei_y")?;
         ei_z.check("ei_z")?;
-        Ok(Self { stiffness: Stiffness::Given { gj, ei_y, ei_z }, mass: Mass::None })
+        Ok(Self { stiffness: Stiffness::Given { gj, ei_y, ei_z }, mass: Mass::None, rotary: None })
     }
 
     /// A uniform section of torsional stiffness `gj` and bending
@@ -183,7 +185,11 @@ impl SpatialSection {
         let g = shear.modulus(e)?;
         width.check("width")?;
         thickness.check("thickness")?;
-        Ok(Self { stiffness: Stiffness::Rectangle { modulus: e, shear: g, width, thickness }, mass: Mass::None })
+        Ok(Self {
+            stiffness: Stiffness::Rectangle { modulus: e, shear: g, width, thickness },
+            mass: Mass::None,
+            rotary: None,
+        })
     }
 
     /// A solid circle of Young's modulus `modulus` $E$ (Pa), Poisson's ratio
@@ -204,7 +210,7 @@ impl SpatialSection {
         let e = crate::error::positive("modulus", modulus)?;
         let g = Shear::Poisson(poisson).modulus(e)?;
         diameter.check("diameter")?;
-        Ok(Self { stiffness: Stiffness::Circle { modulus: e, shear: g, diameter }, mass: Mass::None })
+        Ok(Self { stiffness: Stiffness::Circle { modulus: e, shear: g, diameter }, mass: Mass::None, rotary: None })
     }
 
     /// $(GJ, EI_y, EI_z)$ (N·m²) at $t = s/L$: the weights of the twist and
@@ -331,6 +337,7 @@ impl SpatialSection {
             ));
         }
         self.mass = Mass::Density(density);
+        self.rotary = None;
         Ok(self)
     }
 
@@ -349,6 +356,51 @@ impl SpatialSection {
     pub fn with_mass_per_length(mut self, mass_per_length: Profile) -> Result<Self> {
         mass_per_length.check("mass_per_length")?;
         self.mass = Mass::PerLength(mass_per_length);
+        Ok(self)
+    }
+
+    /// The same section with its rotary inertia per length given directly,
+    /// $(\rho J_x, \rho J_y, \rho J_z)$ (kg·m) about the section's axes
+    /// $(x, y, z)$, the polar moment about the axis first, in place of
+    /// $\mu/A$ times the geometry's second moments (or zero without a
+    /// geometry). It needs a mass per length
+    /// ([`SpatialSection::with_mass_per_length`], given first): a density
+    /// takes its rotary inertia from the section. Each must be finite and not
+    /// negative, and, as the moments of a section's mass, they must meet the
+    /// triangle inequality $\rho J_x \le \rho J_y + \rho J_z$ (and its turns)
+    /// within $10^{-12}$ of their sum; errors name `rotary_inertia_per_length`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// let s = SpatialSection::uniform(1e3, 1e3, 1e3).unwrap().with_mass_per_length(Profile::Constant(1.0)).unwrap();
+    /// let s = s.with_rotary_inertia_per_length([20.0, 10.0, 10.0]).unwrap();
+    /// assert_eq!(s.rotary_inertia_per_length(0.4), Some([20.0, 10.0, 10.0]));
+    /// assert!(s.clone().with_rotary_inertia_per_length([30.0, 10.0, 10.0]).is_err());
+    /// assert!(SpatialSection::uniform(1.0, 1.0, 1.0).unwrap().with_rotary_inertia_per_length([2.0, 1.0, 1.0]).is_err());
+    /// ```
+    pub fn with_rotary_inertia_per_length(mut self, rotary: [f64; 3]) -> Result<Self> {
+        let name = "rotary_inertia_per_length";
+        let shown = |r: [f64; 3]| format!("[{}]", r.iter().map(|v| format!("{v}")).collect::<Vec<_>>().join(", "));
+        if !matches!(self.mass, Mass::PerLength(_)) {
+            return Err(Error::invalid(
+                name,
+                shown(rotary),
+                "needs mass_per_length (a density takes it from the section)",
+            ));
+        }
+        if rotary.iter().any(|v| !v.is_finite() || *v < 0.0) {
+            return Err(Error::invalid(name, shown(rotary), "each must be finite and not negative"));
+        }
+        let sum: f64 = rotary.iter().sum();
+        if (0..3).any(|i| rotary[i] > sum - rotary[i] + 1e-12 * sum) {
+            return Err(Error::invalid(
+                name,
+                shown(rotary),
+                "must meet the triangle inequality, as a section's moments do (the polar one is the sum of the other two)",
+            ));
+        }
+        self.rotary = Some(rotary);
         Ok(self)
     }
 
@@ -399,7 +451,8 @@ impl SpatialSection {
     /// $(x, y, z)$: $\rho\thinspace(I_y + I_z, I_y, I_z)$, the polar moment
     /// about the axis first, with $\rho = \mu/A$ when the mass per length is
     /// given. Zero for a mass per length on stiffnesses given directly (no
-    /// geometry: a string of point masses); `None` without mass.
+    /// geometry: a string of point masses), unless given directly
+    /// ([`SpatialSection::with_rotary_inertia_per_length`]); `None` without mass.
     ///
     /// # Example
     /// ```
@@ -415,6 +468,9 @@ impl SpatialSection {
     /// ```
     pub fn rotary_inertia_per_length(&self, t: f64) -> Option<[f64; 3]> {
         let mu = self.mass_per_length(t)?;
+        if let Some(rotary) = self.rotary {
+            return Some(rotary);
+        }
         Some(match (self.area(t), self.second_moments(t)) {
             (Some(a), Some([iy, iz])) => {
                 let rho = mu / a;

@@ -178,6 +178,24 @@ impl SpatialFlexure {
         Ok(self)
     }
 
+    /// The same flexure with its rotary inertia per length given directly
+    /// (kg·m, twist then bending about $y$ and $z$;
+    /// [`SpatialSection::with_rotary_inertia_per_length`]), after its mass
+    /// per length; errors name `rotary_inertia_per_length`.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::section::{Profile, SpatialSection};
+    /// use flexure::spatial::SpatialFlexure;
+    /// let f = SpatialFlexure::new(10.0, SpatialSection::uniform(1e3, 1e3, 1e3).unwrap(), [4, 4, 4]).unwrap();
+    /// let f = f.with_mass_per_length(Profile::Constant(1.0)).unwrap().with_rotary_inertia_per_length([20.0, 10.0, 10.0]).unwrap();
+    /// assert_eq!(f.section().rotary_inertia_per_length(0.5), Some([20.0, 10.0, 10.0]));
+    /// ```
+    pub fn with_rotary_inertia_per_length(mut self, rotary: [f64; 3]) -> Result<Self> {
+        self.section = self.section.with_rotary_inertia_per_length(rotary)?;
+        Ok(self)
+    }
+
     /// The default number of Magnus subintervals for `orders`,
     /// $$M = \max\big(8,\thinspace 4(n - 1),\thinspace \lfloor n(n - 1)/4\rfloor\big),\qquad n = \max(n_\tau, n_y, n_z)$$
     /// (at most [`MAX_SUBINTERVALS`]): 8 ([`DEFAULT_SUBINTERVALS`]) up to

@@ -310,6 +310,15 @@ pub(super) fn spatial_flexure(src: &Source, owner: &str, j: &JointToml) -> Resul
         }
         (None, None) => {}
     }
+    if let Some(r) = &j.rotary_inertia_per_length {
+        if j.mass_per_length.is_none() {
+            return src.fail(
+                &r.span(),
+                format!("{owner}rotary_inertia_per_length needs mass_per_length (a density takes it from the section)"),
+            );
+        }
+        f = f.with_rotary_inertia_per_length(*r.get_ref()).map_err(|e| src.placed(owner, &r.span(), e))?;
+    }
     let report = report_keys(src, owner, (&j.yield_strength, &j.shape), f.section().has_geometry())?;
     let stiffness_place =
         ["ei", "ei_z", "ei_y", "gj", "modulus"].iter().find_map(|k| j.span(k)).unwrap_or(j.name.span());

@@ -42,6 +42,8 @@ pub(super) struct JointToml {
     pub(super) notch: Option<Spanned<toml::Value>>,
     pub(super) density: Option<Spanned<f64>>,
     pub(super) mass_per_length: Option<Spanned<toml::Value>>,
+    // `[twist, y, z]` (kg·m), in space only.
+    pub(super) rotary_inertia_per_length: Option<Spanned<[f64; 3]>>,
     pub(super) yield_strength: Option<Spanned<f64>>,
     pub(super) shape: Option<Spanned<usize>>,
     // A whole number, or `"auto"`: read by `flexure_order`.
@@ -71,7 +73,7 @@ impl JointToml {
 }
 
 /// A flexure's keys, each with where it is written.
-fn flexure_keys(j: &JointToml) -> [(&'static str, Option<Span>); 24] {
+fn flexure_keys(j: &JointToml) -> [(&'static str, Option<Span>); 25] {
     [
         ("length", span_of(&j.length)),
         ("ei", span_of(&j.ei)),
@@ -87,6 +89,7 @@ fn flexure_keys(j: &JointToml) -> [(&'static str, Option<Span>); 24] {
         ("notch", span_of(&j.notch)),
         ("density", span_of(&j.density)),
         ("mass_per_length", span_of(&j.mass_per_length)),
+        ("rotary_inertia_per_length", span_of(&j.rotary_inertia_per_length)),
         ("yield_strength", span_of(&j.yield_strength)),
         ("shape", span_of(&j.shape)),
         ("order", span_of(&j.order)),

@@ -87,6 +87,11 @@ pub const SPATIAL_ONLY: &[(&str, &[&str], &str)] = &[
         "a planar flexure bends in its plane only, with no twist",
     ),
     ("joint", &["ei_z"], "in the plane the one bending stiffness is `ei`"),
+    (
+        "joint",
+        &["rotary_inertia_per_length"],
+        "a planar flexure's rotary inertia per length is ρI of its rectangle, with density or mass_per_length",
+    ),
     ("joint", &["kappa_z"], "in the plane the rest curvature is `kappa`"),
     ("joint", &["orders"], "a planar flexure has one `order`"),
     ("joint", &["subintervals"], "a planar flexure integrates by its Gauss rule, whose points `quadrature` sets"),
