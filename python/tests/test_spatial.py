@@ -136,6 +136,21 @@ def test_mass_of_a_strip_and_a_tapered_rod_is_the_closed_form():
     assert bare.mass() is None and bare.mass_per_length_at(0.5) is None and bare.density is None
 
 
+def test_rotary_inertia_per_length_as_the_file_key_takes_it():
+    # The file key's rules (crates/flexure/src/section/spatial.rs): with mass_per_length only,
+    # finite and not negative, the twist's at most the sum of the bendings' (a section's polar
+    # moment); each refusal names the argument and its value.
+    f = flexure.SpatialFlexure(length=10.0, ei=1e3, order=4, mass_per_length=1.0, rotary_inertia_per_length=[20.0, 10.0, 10.0])
+    assert f.rotary_inertia_per_length == (20.0, 10.0, 10.0)
+    assert flexure.SpatialFlexure(mass_per_length=1.0).rotary_inertia_per_length is None
+    with pytest.raises(ValueError, match="rotary_inertia_per_length"):
+        flexure.SpatialFlexure(rotary_inertia_per_length=[2.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match="rotary_inertia_per_length.*-1"):
+        flexure.SpatialFlexure(mass_per_length=1.0, rotary_inertia_per_length=[2.0, -1.0, 1.0])
+    with pytest.raises(ValueError, match="rotary_inertia_per_length.*twist, y, z"):
+        flexure.SpatialFlexure(mass_per_length=1.0, rotary_inertia_per_length=[2.0, 1.0])
+
+
 def test_mass_per_length_as_given_and_its_mass():
     # Reference: a taper μ = (root, tip) has mass (root + tip)/2·L; a table's piecewise-linear
     # μ whose kink lies on a Magnus subinterval's end (t = 1/2, of 8) integrates exactly:

@@ -32,7 +32,9 @@ use pyo3::types::PyDict;
 /// `kappa`, `kappa_y` and `twist` are the rest coefficients of each component.
 /// The flexure's own mass, as a mechanism file's keys give it: `density` (kg/m³, with a
 /// rectangle's or circle's geometry: μ = ρA) or `mass_per_length` (kg/m, a number, pair or
-/// table as `ei`), not both; `mass()` is its total.
+/// table as `ei`), not both; `mass()` is its total. With `mass_per_length`,
+/// `rotary_inertia_per_length` (kg·m, three numbers: twist, bending about y, about z) gives
+/// the section's rotary inertia directly, as the file key of that name does.
 #[pyclass(frozen, module = "flexure")]
 pub struct SpatialFlexure {
     inner: flexure::spatial::SpatialFlexure,
@@ -40,6 +42,8 @@ pub struct SpatialFlexure {
     density: Option<f64>,
     /// The `mass_per_length` given (kg/m), for its property.
     mass_per_length: Option<Profile>,
+    /// The `rotary_inertia_per_length` given (kg·m), for its property.
+    rotary_inertia_per_length: Option<[f64; 3]>,
 }
 
 /// A rotation and position as a 4 × 4 homogeneous transform.
@@ -55,20 +59,20 @@ fn transform(r: &Matrix3<f64>, p: &Vector3<f64>) -> [[f64; 4]; 4] {
     g
 }
 
-/// A 3-vector argument (`force`, `moment`): three finite numbers.
-fn triple(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<[f64; 3]> {
+/// A 3-vector argument (`force`, `moment`): three finite numbers, the `entries` named in its error.
+fn triple(name: &str, entries: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<[f64; 3]> {
     let Some(v) = value else { return Ok([0.0; 3]) };
     let values = vector(name, &coordinates::array_like(name, v)?, None)?;
     <[f64; 3]>::try_from(values.as_slice()).map_err(|_| {
-        pyo3::exceptions::PyValueError::new_err(format!("{name} must have 3 entries (x, y, z), got {}", values.len()))
+        pyo3::exceptions::PyValueError::new_err(format!("{name} must have 3 entries ({entries}), got {}", values.len()))
     })
 }
 
 #[pymethods]
 impl SpatialFlexure {
-    /// SpatialFlexure(length=1.0, ei=None, order=3, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None)
+    /// SpatialFlexure(length=1.0, ei=None, order=3, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None, rotary_inertia_per_length=None)
     #[new]
-    #[pyo3(signature = (length=Real(1.0), ei=None, order=None, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None))]
+    #[pyo3(signature = (length=Real(1.0), ei=None, order=None, *, ei_y=None, gj=None, modulus=None, width=None, thickness=None, diameter=None, poisson=None, shear_modulus=None, kappa=None, kappa_y=None, twist=None, density=None, mass_per_length=None, rotary_inertia_per_length=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         length: Real,
@@ -87,6 +91,7 @@ impl SpatialFlexure {
         twist: Option<&Bound<'_, PyAny>>,
         density: Option<Real>,
         mass_per_length: Option<&Bound<'_, PyAny>>,
+        rotary_inertia_per_length: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let p = |name: &str, v: Option<&Bound<'_, PyAny>>| v.map(|v| profile(name, v)).transpose();
         // The arguments the planar flexure shares, read as it reads them; its mass comes after.
@@ -125,7 +130,15 @@ impl SpatialFlexure {
             (None, Some(mu)) => inner = inner.with_mass_per_length(mu.clone()).map_err(to_py)?,
             (None, None) => {}
         }
-        Ok(Self { inner, density, mass_per_length })
+        let rotary_inertia_per_length = match rotary_inertia_per_length {
+            Some(v) => {
+                let rotary = triple("rotary_inertia_per_length", "twist, y, z", Some(v))?;
+                inner = inner.with_rotary_inertia_per_length(rotary).map_err(to_py)?;
+                Some(rotary)
+            }
+            None => None,
+        };
+        Ok(Self { inner, density, mass_per_length, rotary_inertia_per_length })
     }
 
     /// The `density` given (kg/m³), or None.
@@ -139,6 +152,12 @@ impl SpatialFlexure {
     #[getter]
     fn mass_per_length<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         self.mass_per_length.as_ref().map(|p| profile_object(py, p)).transpose()
+    }
+
+    /// The `rotary_inertia_per_length` given (kg·m: twist, about y, about z), or None.
+    #[getter]
+    fn rotary_inertia_per_length(&self) -> Option<(f64, f64, f64)> {
+        self.rotary_inertia_per_length.map(|[t, y, z]| (t, y, z))
     }
 
     /// Mass per length μ(s) (kg/m) at arc length s (m): ρA(s) or the one given; a float, or an
@@ -233,7 +252,8 @@ impl SpatialFlexure {
         moment: Option<&Bound<'py, PyAny>>,
         accuracy: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let load = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
+        let load =
+            SpatialLoad { moment: triple("moment", "x, y, z", moment)?, force: triple("force", "x, y, z", force)? };
         let target: Accuracy = crate::accuracy::accuracy(accuracy)?;
         let f = OneFlexure::from(self.inner.clone());
         // Ctrl-C stops it, saying how far it got.
@@ -350,7 +370,7 @@ impl SpatialFlexure {
         moment: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use flexure::reference::rod::{self, Rod};
-        let w = SpatialLoad { moment: triple("moment", moment)?, force: triple("force", force)? };
+        let w = SpatialLoad { moment: triple("moment", "x, y, z", moment)?, force: triple("force", "x, y, z", force)? };
         let f = self.inner.clone();
         // Bounded by its segment integrations; Ctrl-C stops it, saying how far it got.
         let solution = crate::interrupt::interruptible(py, || -> flexure::Result<_> {
