@@ -12,6 +12,8 @@ mod basis;
 mod buckling;
 mod compliance;
 mod connect;
+mod contact_file;
+mod contact_shape;
 mod coordinates;
 mod dynamics_integrate;
 mod dynamics_mass;
