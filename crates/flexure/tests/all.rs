@@ -13,6 +13,7 @@ mod buckling;
 mod compliance;
 mod connect;
 mod contact_file;
+mod contact_gap;
 mod contact_shape;
 mod coordinates;
 mod dynamics_integrate;

@@ -17,12 +17,14 @@
 //! passes through a shape silently.
 
 mod dimension;
+mod gap;
 mod shape;
 
 use super::{Dimension, JointKind, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
 pub use dimension::Touch;
+pub use gap::{Gap, gap};
 pub use shape::GeomShape;
 
 /// A shape on a body (body 0 is the ground): it moves with the body.
@@ -55,6 +57,13 @@ pub struct Geom<D: Dimension = Planar> {
 }
 
 /// A part a geom may touch: a flexure joint or another geom (by index).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::Toucher;
+/// // Flexures sort before geoms, each by index (`exclude` is kept sorted).
+/// assert!(Toucher::Flexure(3) < Toucher::Geom(0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Toucher {
     /// The flexure of this joint.
@@ -64,6 +73,13 @@ pub enum Toucher {
 }
 
 /// A geom and a part that may touch it.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{Pair, Toucher};
+/// let p = Pair { geom: 0, part: Toucher::Flexure(1) };
+/// assert_eq!(p.part, Toucher::Flexure(1));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Pair {
     /// The geom.

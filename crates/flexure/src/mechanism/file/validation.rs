@@ -1,10 +1,9 @@
 //! Checks of the assembled mechanism that no single table shows.
 
 use super::dimension::FileDimension;
-use super::document::{Numbers, Source, Span, number};
+use super::document::{Numbers, Source, Span};
 use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
-use crate::mechanism::JointKind;
-use crate::mechanism::contact::{GeomShape, Toucher, pairs};
+use crate::mechanism::contact::{GeomShape, Toucher, gap, pairs};
 
 /// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
 pub(super) fn check_stiffness_ratio<D: FileDimension>(
@@ -73,13 +72,11 @@ pub(super) fn check_tendon_directions<D: FileDimension>(
 }
 
 /// No part starts inside a geom it may touch (`bodies`: the bodies' frames
-/// at rest; `places`: each geom's `shape`). A flexure is checked at 65
-/// points of its surface at rest, evenly spaced in arc length; a geom
-/// against another by the largest ball about its centre that it holds
-/// (its radius for a circle, sphere, capsule or cylinder, the smallest
-/// half extent for a box; a plane's own point is on its surface), which
-/// finds every overlap of a circle or sphere with anything and the deep
-/// overlaps of the rest.
+/// at rest; `places`: each geom's `shape`). A flexure, and a circle or
+/// sphere, by the pair's [`gap`] at rest; two other geoms by the largest
+/// ball about each one's centre that it holds (its radius for a capsule
+/// or cylinder, the smallest half extent for a box; a plane's own point is
+/// on its surface), which finds their deep overlaps.
 pub(super) fn check_geoms_clear<D: FileDimension>(
     src: &Source,
     m: &Mechanism<D>,
@@ -93,17 +90,9 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
         let at = &bodies[geom.body];
         let (deepest, what) = match pair.part {
             Toucher::Flexure(j) => {
-                let joint = &m.joints[j];
-                let JointKind::Flexure(f) = &joint.kind else { continue };
-                let root = D::compose(&bodies[joint.parent], &joint.origin);
-                let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
-                let surface = D::surface(f, alpha, 65).map_err(|e| src.placed("", &places[pair.geom], e))?;
-                let (s, gap) = surface
-                    .iter()
-                    .map(|(s, p, h)| (*s, geom.gap(at, &D::act(&root, p), *h).0))
-                    .min_by(|a, b| a.1.total_cmp(&b.1))
-                    .expect("65 points");
-                (gap, format!("flexure {:?} starts inside it at s = {} m", joint.name, number(s)))
+                let g = gap(m, &q, bodies, &pair).map_err(|e| src.placed("", &places[pair.geom], e))?;
+                let s = g.s.unwrap_or(0.0);
+                (g.gap, format!("flexure {:?} starts inside it at s = {s:.6} m", m.joints[j].name))
             }
             Toucher::Geom(h) => {
                 let other = &m.geoms[h];
