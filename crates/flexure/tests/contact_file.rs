@@ -23,18 +23,9 @@ thickness = 0.001
 "#;
 
 /// The same strip in space.
-const STRIP3: &str = r#"
-dimension = 3
-[[joint]]
-name = "strip"
-kind = "flexure"
-parent = "ground"
-child = "tip"
-length = 0.1
-modulus = 2e11
-width = 0.01
-thickness = 0.001
-"#;
+fn strip3() -> String {
+    format!("dimension = 3{STRIP}")
+}
 
 /// "line L, column C" of the first `needle` in `text`, found by search.
 fn at(text: &str, needle: &str) -> String {
@@ -49,16 +40,9 @@ fn place(text: &str, offset: usize) -> String {
     format!("line {line}, column {column}")
 }
 
-/// The planar file's error, which must start with the place of `needle` and contain `says`.
+/// The file's error (either dimension), which must start with the place of `needle` and contain `says`.
 fn refused(text: &str, needle: &str, says: &str) {
-    let e = from_toml(text).err().unwrap_or_else(|| panic!("accepted:\n{text}")).to_string();
-    assert!(e.starts_with(&format!("{}: ", at(text, needle))), "{e}\nexpected at {needle:?}: {}", at(text, needle));
-    assert!(e.contains(says), "{e}\nexpected to say {says:?}");
-}
-
-/// As [`refused`], for a spatial file.
-fn refused3(text: &str, needle: &str, says: &str) {
-    let e = spatial_from_toml(text).err().unwrap_or_else(|| panic!("accepted:\n{text}")).to_string();
+    let e = Model::from_toml(text).err().unwrap_or_else(|| panic!("accepted:\n{text}")).to_string();
     assert!(e.starts_with(&format!("{}: ", at(text, needle))), "{e}\nexpected at {needle:?}: {}", at(text, needle));
     assert!(e.contains(says), "{e}\nexpected to say {says:?}");
 }
@@ -200,28 +184,28 @@ fn bad_geoms_are_refused_at_their_place_naming_the_field_and_value() {
 
 #[test]
 fn bad_spatial_geoms_are_refused_at_their_place() {
-    let geom = |keys: &str| format!("{STRIP3}[[geom]]\nname = \"g\"\nbody = \"ground\"\n{keys}");
-    refused3(
+    let geom = |keys: &str| format!("{}[[geom]]\nname = \"g\"\nbody = \"ground\"\n{keys}", strip3());
+    refused(
         &geom("shape = \"circle\"\nradius = 0.1\n"),
         "\"circle\"",
         "shape = \"circle\" is for planar mechanisms: in space a round obstacle is a sphere",
     );
-    refused3(
+    refused(
         &geom("shape = \"sphere\"\norigin = [0.0, 0.0, 0.5]\nradius = 0.1\nangle = 0.2\n"),
         "angle",
         "`angle` is for planar mechanisms: a spatial geom turns by `rpy`",
     );
-    refused3(
+    refused(
         &geom("shape = \"cylinder\"\norigin = [0.0, 0.0, 0.5]\nradius = 0.1\nhalf_length = 0.0\n"),
         "0.0\n",
         "half_length = 0: must be greater than zero",
     );
-    refused3(
+    refused(
         &geom("shape = \"plane\"\norigin = [0.0, 0.0, -0.5]\nnormal = [0.0, 0.0, 0.0]\n"),
         "[0.0, 0.0, 0.0]",
         "normal = [0, 0, 0]: must not be zero",
     );
-    refused3(
+    refused(
         &geom("shape = \"cone\"\n"),
         "\"cone\"",
         "must be one of \"plane\", \"sphere\", \"capsule\", \"box\", \"cylinder\"",
@@ -277,7 +261,8 @@ fn a_part_that_starts_inside_a_geom_is_refused_with_its_depth() {
 #[test]
 fn a_spatial_flexure_that_starts_inside_a_sphere_is_refused() {
     let ball = format!(
-        "{STRIP3}[[geom]]\nname = \"ball\"\nbody = \"ground\"\nshape = \"sphere\"\norigin = [0.1, 0.0, 0.0052]\nradius = 0.005\n"
+        "{}[[geom]]\nname = \"ball\"\nbody = \"ground\"\nshape = \"sphere\"\norigin = [0.1, 0.0, 0.0052]\nradius = 0.005\n",
+        strip3()
     );
     let e = spatial_from_toml(&ball).unwrap_err().to_string();
     assert!(

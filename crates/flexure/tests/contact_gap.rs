@@ -81,3 +81,33 @@ fn a_ball_on_a_body_meets_a_floor_and_two_boxes_are_refused() {
         "{e}"
     );
 }
+
+/// The planar–spatial cross-check: the arc in a spatial file (its rest
+/// curvature about z, in the xy plane) near a sphere centred in that plane
+/// has the planar arc's gap to the circle of the same centre and radius,
+/// at the same arc length. The two flexures are integrated differently
+/// (Gauss quadrature of the angle; Magnus steps of the frame), each exact
+/// for a constant curvature to rounding: gaps to 1e-12 m, arc lengths to 1e-7 m.
+#[test]
+fn a_spatial_file_of_a_planar_gap_gives_the_planar_gap() {
+    let (sin, cos) = 0.3f64.sin_cos();
+    let (x, y) = (2.0 * sin + 0.1, 1.0 - 2.0 * cos);
+    let planar = from_toml(&format!(
+        "{ARC}[[geom]]\nbody = \"ground\"\nshape = \"circle\"\norigin = [{x}, {y}]\nradius = 0.4\n"
+    ))
+    .unwrap();
+    let spatial = spatial_from_toml(&format!(
+        "dimension = 3\n[[joint]]\nname = \"arc\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\nkappa_z = [1.0, 0.0, 0.0]\n[[geom]]\nbody = \"ground\"\nshape = \"sphere\"\norigin = [{x}, {y}, 0.0]\nradius = 0.4\n"
+    ))
+    .unwrap();
+    let (qp, qs) = (planar.rest(), spatial.rest());
+    let a = gap(&planar, &qp, &frames(&planar, &qp).bodies, &pairs(&planar)[0]).unwrap();
+    let b = gap(&spatial, &qs, &Spatial::poses(&spatial, &qs).0, &pairs(&spatial)[0]).unwrap();
+    assert!((a.gap - b.gap).abs() < 1e-12, "planar {a:?}, spatial {b:?}");
+    assert!((a.s.unwrap() - b.s.unwrap()).abs() < 1e-7, "planar {a:?}, spatial {b:?}");
+    assert!((a.point.x - b.point.x).abs() < 1e-7 && (a.point.y - b.point.y).abs() < 1e-7 && b.point.z.abs() < 1e-12);
+    assert!(
+        (a.normal.x - b.normal.x).abs() < 1e-7 && (a.normal.y - b.normal.y).abs() < 1e-7 && b.normal.z.abs() < 1e-12
+    );
+    assert!(a.gap > 0.3 && a.s.unwrap() > 0.05 && a.s.unwrap() < 0.95, "an interior nearest point: {a:?}");
+}
