@@ -97,6 +97,14 @@ fn bad_files_exit_2_naming_the_place() {
             "line 10",
         ),
         ("[[joint]\n", "line 1"),
+        (
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n[[geom]]\nbody = \"ground\"\nshape = \"circle\"\nradius = -0.1\n",
+            "line 11, column 10: geom \"geom 1\": radius = -0.1: must be greater than zero",
+        ),
+        (
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n",
+            "geom \"floor\" (plane) and flexure \"a\": may touch, and no analysis solves contact yet",
+        ),
     ];
     for (i, (text, place)) in cases.iter().enumerate() {
         let path = dir.path().join(format!("bad{i}.toml"));

@@ -8,6 +8,7 @@
 //! frame (for a flexure, the tip frame of Eq. 7).
 
 pub mod buckling;
+pub mod contact;
 mod dimension;
 pub mod equilibria;
 pub mod file;
@@ -350,6 +351,9 @@ pub struct Mechanism<D: Dimension = Planar> {
     pub forces: Vec<PointLoad<D>>,
     /// Loop closures.
     pub closures: Vec<Closure<D>>,
+    /// The shapes on the ground and on bodies that parts may touch
+    /// (`[[geom]]`; [`contact`]).
+    pub geoms: Vec<contact::Geom<D>>,
     /// Gravity (m/s²), zero if absent.
     pub gravity: D::Vector,
     /// Loads in time (`[[schedule]]`), for dynamics; statics use the loads as given.
@@ -444,6 +448,7 @@ impl<D: Dimension> Mechanism<D> {
             tendons,
             forces,
             closures,
+            geoms: Vec::new(),
             gravity,
             schedules: Vec::new(),
             initial: Vec::new(),

@@ -21,6 +21,7 @@ use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
 use crate::estimate::{Accuracy, ValueEstimate};
 use crate::mechanism::buckling::Buckling;
+use crate::mechanism::contact::refuse_unsolved;
 use crate::mechanism::findings::{Crossing, OpenClosure};
 use crate::mechanism::statics::Settings;
 use crate::mechanism::sweep::SweepLimit;
@@ -237,6 +238,7 @@ impl Model {
     /// [`Model::solve`] gives it, without the report.
     pub fn compliance(&self, body: &str, at: &[f64]) -> Result<DMatrix<f64>> {
         each!(self, m => {
+            refuse_unsolved(m)?;
             let b = m.body(body).ok_or_else(|| no_body(body))?;
             let s = Analyses::solve(m, &Settings::default())?;
             Analyses::compliance(m, &s, b, at)
@@ -384,6 +386,7 @@ impl Model {
     /// Linear buckling on all loads, with its estimate ([`Analyses::buckle`]).
     pub fn buckle(&self, target: &Accuracy) -> Result<Eigen<Buckling>> {
         each!(self, m => {
+            refuse_unsolved(m)?;
             let (used, answer, estimate) = Analyses::buckle(m, &Settings::default(), target)?;
             Ok(Eigen { answer, estimate, model: used.into() })
         })
@@ -392,6 +395,7 @@ impl Model {
     /// `count` vibration modes about the loaded equilibrium, with their estimate ([`Analyses::modes`]).
     pub fn modes(&self, count: usize, target: &Accuracy) -> Result<Eigen<crate::dynamics::modes::Modes>> {
         each!(self, m => {
+            refuse_unsolved(m)?;
             let (used, answer, estimate) = Analyses::modes(m, &Settings::default(), count, target)?;
             Ok(Eigen { answer, estimate, model: used.into() })
         })
@@ -400,6 +404,7 @@ impl Model {
     /// The mechanism as a rigid-body model for a simulator ([`crate::export::export`];
     /// a spatial one to MJCF only, [`crate::export::spatial::export`]).
     pub fn export(&self, options: &crate::export::Options) -> Result<crate::export::Export> {
+        each!(self, m => refuse_unsolved(m))?;
         match self {
             Model::Planar(m) => crate::export::export(m, options),
             Model::Spatial(m) => crate::export::spatial::export(m, options),
@@ -471,6 +476,7 @@ fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
     };
+    refuse_unsolved(m)?;
     let s = D::solve(m, &Settings::default())?;
     let crossings = D::crossings(m, &s.q);
     let report = solve_report(m, &s, target);
@@ -488,6 +494,7 @@ fn sweep<D: Analyses>(
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
     };
+    refuse_unsolved(m)?;
     let out = D::sweep(m, parameter, values, &Settings::default())?;
     let mut columns = vec![parameter.to_string()];
     let poses = <D as crate::report::Reported>::poses(m, &m.rest());
@@ -549,6 +556,7 @@ fn simulate<D: Analyses>(
     start: Start,
     crossings: bool,
 ) -> Result<Motion> {
+    refuse_unsolved(m)?;
     let (trajectory, stopped) = D::simulate(m, settings, start)?;
     let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();

@@ -11,23 +11,26 @@
 //! | a body's `inertia` | $I_{zz}$ | 3 × 3, or `ixx` … `iyz` |
 //! | the joint kinds | flexure, revolute, prismatic, fixed | and spherical; an `axis` for a hinge or slider |
 //! | closures | weld, pin | weld, pin about an `axis`, ball |
+//! | geoms | plane, circle, capsule, box; turned by `angle` | plane, sphere, capsule, box, cylinder; turned by `rpy` |
 
 use super::bodies::{BodyToml, inertia_matrix};
 use super::closures::PinToml;
 use super::document::{Numbers, Sign, Source, Span};
+use super::geoms::GeomToml;
 use super::joints::{JointToml, planar_kind, spatial_kind};
 use super::{PLANAR_ONLY, Result, SPATIAL_ONLY, Spanned};
 use crate::kinematics::{Level, Pose};
+use crate::mechanism::contact::Touch;
 use crate::mechanism::joints::JointState;
 use crate::mechanism::kinematics::frames_level_into;
 use crate::mechanism::spatial::joints::unit_axis;
-use crate::mechanism::{Closure, Dimension, Holds, JointKind, Mechanism, ReportOptions, kinematics};
+use crate::mechanism::{Closure, Holds, JointKind, Mechanism, ReportOptions, kinematics};
 use crate::space::{Planar, Spatial, Wrench};
 use nalgebra::{Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector2, Vector3, Vector6};
 use serde::de::DeserializeOwned;
 
 /// A joint's kind as its keys give it.
-pub(super) struct Kind<D: Dimension> {
+pub(super) struct Kind<D: crate::mechanism::Dimension> {
     pub(super) kind: JointKind<D>,
     /// Where its stiffness is given (the joint's name when it has none),
     /// for the check of the stiffness ratio.
@@ -42,7 +45,7 @@ pub(super) struct Kind<D: Dimension> {
 pub(super) type Via<C> = (Spanned<String>, C);
 
 /// A dimension's file: what differs between the plane and space.
-pub(super) trait FileDimension: Dimension {
+pub(super) trait FileDimension: Touch {
     /// Its `dimension`.
     const DIMENSION: u8;
     /// The keys of the other dimension's file it refuses: (table, keys, why).
@@ -82,6 +85,13 @@ pub(super) trait FileDimension: Dimension {
     ) -> Result<Closure<Self>>;
     /// The bodies' frames and the joints' states at rest.
     fn rest(m: &Mechanism<Self>) -> (Vec<Self::Pose>, Vec<JointState<Self>>);
+    /// Whether a geom may be of this `shape` here.
+    fn takes_shape(shape: &str) -> bool;
+    /// Why a geom's `shape` is the other dimension's, if it is.
+    fn refused_shape(shape: &str) -> Option<&'static str>;
+    /// A geom's frame in its body's: `origin`, turned by `angle` in the
+    /// plane, by `rpy` or `rpy_deg` in space.
+    fn geom_frame(src: &Source, owner: &str, g: &GeomToml<Self>) -> Result<Self::Pose>;
 }
 
 impl FileDimension for Planar {
@@ -145,6 +155,24 @@ impl FileDimension for Planar {
     fn rest(m: &Mechanism) -> (Vec<Pose>, Vec<JointState>) {
         let f = kinematics::frames(m, &m.rest());
         (f.bodies, f.joints)
+    }
+
+    fn takes_shape(shape: &str) -> bool {
+        !matches!(shape, "sphere" | "cylinder")
+    }
+
+    fn refused_shape(shape: &str) -> Option<&'static str> {
+        match shape {
+            "sphere" => Some("in the plane a sphere is a circle: shape = \"circle\""),
+            "cylinder" => Some("in the plane a cylinder about z is its circle: shape = \"circle\""),
+            _ => None,
+        }
+    }
+
+    fn geom_frame(src: &Source, owner: &str, g: &GeomToml<Planar>) -> Result<Pose> {
+        let [x, y] = src.array(owner, "origin", &g.origin)?;
+        let phi = g.angle.as_ref().map_or(Ok(0.0), |a| src.number(owner, "angle", a, Sign::Any))?;
+        Ok(Pose { phi, x, y })
     }
 }
 
@@ -241,5 +269,19 @@ impl FileDimension for Spatial {
         let mut f = kinematics::Frames::new(m);
         frames_level_into(m, &m.rest(), Level::Pose, &mut f);
         (f.bodies, f.joints)
+    }
+
+    fn takes_shape(shape: &str) -> bool {
+        shape != "circle"
+    }
+
+    fn refused_shape(shape: &str) -> Option<&'static str> {
+        (shape == "circle").then_some(
+            "in space a round obstacle is a sphere (shape = \"sphere\") or a cylinder (shape = \"cylinder\", about its frame's z)",
+        )
+    }
+
+    fn geom_frame(src: &Source, owner: &str, g: &GeomToml<Spatial>) -> Result<Isometry3<f64>> {
+        Self::pose(src, owner, ["origin", "rpy", "rpy_deg"], [&g.origin, &g.rpy, &g.rpy_deg])
     }
 }

@@ -4,6 +4,7 @@
 
 use super::closures::{BallToml, PinToml, WeldToml};
 use super::dimension::FileDimension;
+use super::geoms::GeomToml;
 use super::{BTreeMap, Deserialize, Error, Range, Result, Spanned};
 use super::{BodyToml, ForceToml, JointToml, MAX_MAGNITUDE, MIN_MAGNITUDE, ScheduleToml, TendonToml};
 use toml::de::{DeTable, DeValue};
@@ -31,6 +32,8 @@ pub(super) struct FileToml<D: FileDimension> {
     pub(super) pin: Vec<PinToml<D>>,
     #[serde(default)]
     pub(super) ball: Vec<BallToml<D>>,
+    #[serde(default)]
+    pub(super) geom: Vec<GeomToml<D>>,
     pub(super) gravity: Option<Spanned<D::Coords>>,
     #[serde(default)]
     pub(super) schedule: Vec<ScheduleToml>,

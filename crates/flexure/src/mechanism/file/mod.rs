@@ -36,6 +36,7 @@ mod closures;
 mod dimension;
 mod document;
 mod flexures;
+mod geoms;
 mod joints;
 mod loads;
 mod schedules;
@@ -103,6 +104,7 @@ pub const SPATIAL_ONLY: &[(&str, &[&str], &str)] = &[
         "a planar weld's frame is [x, y, phi], its angle the third number",
     ),
     ("pin", &["axis", "b_axis"], "a planar pin turns about z"),
+    ("geom", &["rpy", "rpy_deg"], "a planar geom turns by `angle` (rad) about z"),
 ];
 
 /// The keys only a planar file takes, which a spatial one refuses (as [`SPATIAL_ONLY`]).
@@ -117,6 +119,7 @@ pub const PLANAR_ONLY: &[(&str, &[&str], &str)] = &[
         &["quadrature"],
         "the planar flexure's Gauss rule: a spatial flexure integrates by Magnus steps, whose number `subintervals` sets",
     ),
+    ("geom", &["angle"], "a spatial geom turns by `rpy` (rad) or `rpy_deg` (degrees)"),
 ];
 
 /// Parses and checks a mechanism file (at most [`MAX_TEXT_BYTES`]).
@@ -231,6 +234,9 @@ fn read_tables<D: FileDimension>(text: &str, file: document::FileToml<D>) -> Res
     m = m.with_closure_places(places, preloads);
     validation::check_stiffness_ratio(&src, &m, &states, &stiffness_places)?;
     validation::check_tendon_directions(&src, &m, &rest, &via_places)?;
+    let (geoms, geom_places) = geoms::geoms(&src, find, &m, &file.geom)?;
+    m.geoms = geoms;
+    validation::check_geoms_clear(&src, &m, &rest, &geom_places)?;
     m.schedules = schedules::schedules(&src, &m, &file.schedule)?;
     m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
     m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;

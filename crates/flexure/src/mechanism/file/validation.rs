@@ -3,6 +3,7 @@
 use super::dimension::FileDimension;
 use super::document::{Numbers, Source, Span};
 use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
+use crate::mechanism::contact::{GeomShape, Toucher, gap, pairs};
 
 /// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
 pub(super) fn check_stiffness_ratio<D: FileDimension>(
@@ -65,6 +66,65 @@ pub(super) fn check_tendon_directions<D: FileDimension>(
                     ),
                 );
             }
+        }
+    }
+    Ok(())
+}
+
+/// No part starts inside a geom it may touch (`bodies`: the bodies' frames
+/// at rest; `places`: each geom's `shape`). A flexure, and a circle or
+/// sphere, by the pair's [`gap`] at rest; two other geoms by the largest
+/// ball about each one's centre that it holds (its radius for a capsule
+/// or cylinder, the smallest half extent for a box; a plane's own point is
+/// on its surface), which finds their deep overlaps.
+pub(super) fn check_geoms_clear<D: FileDimension>(
+    src: &Source,
+    m: &Mechanism<D>,
+    bodies: &[D::Pose],
+    places: &[Span],
+) -> Result<()> {
+    let tolerance = 1e-9 * m.size();
+    let q = m.rest();
+    for pair in pairs(m) {
+        let geom = &m.geoms[pair.geom];
+        let at = &bodies[geom.body];
+        let (deepest, what) = match pair.part {
+            Toucher::Flexure(j) => {
+                let g = gap(m, &q, bodies, &pair).map_err(|e| src.placed("", &places[pair.geom], e))?;
+                let s = g.s.unwrap_or(0.0);
+                (g.gap, format!("flexure {:?} starts inside it at s = {s:.6} m", m.joints[j].name))
+            }
+            Toucher::Geom(h) => {
+                let other = &m.geoms[h];
+                let centre = |g: &crate::mechanism::contact::Geom<D>| {
+                    D::act(&D::compose(&bodies[g.body], &g.frame), &D::origin(&D::identity()))
+                };
+                let inner = |g: &crate::mechanism::contact::Geom<D>| match g.shape {
+                    GeomShape::Plane { .. } => 0.0,
+                    GeomShape::Ball { radius } | GeomShape::Capsule { radius, .. } => radius,
+                    GeomShape::Box { half_extents } => {
+                        (0..D::POINT_DIM).map(|i| half_extents[i]).fold(f64::INFINITY, f64::min)
+                    }
+                    GeomShape::Cylinder { radius, half_length } => radius.min(half_length),
+                };
+                let one = geom.gap(at, &centre(other), inner(other)).0;
+                let two = other.gap(&bodies[other.body], &centre(geom), inner(geom)).0;
+                (
+                    one.min(two),
+                    format!("geom {:?} on body {:?} starts inside it", other.name, m.bodies[other.body].name),
+                )
+            }
+        };
+        if deepest < -tolerance {
+            return src.fail(
+                &places[pair.geom],
+                format!(
+                    "geom {:?} ({}): {what}, {:.3e} m deep; move one of them, or name the part in the geom's `exclude`",
+                    geom.name,
+                    geom.shape.name(),
+                    -deepest
+                ),
+            );
         }
     }
     Ok(())

@@ -91,6 +91,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
         work: Buffers<'a, D>,
     ) -> Result<Self> {
         settings.validate()?;
+        crate::mechanism::contact::refuse_unsolved(m)?;
         D::check_loads(m, from)?;
         D::check_loads(m, to)?;
         let n = m.dof();

@@ -1,0 +1,149 @@
+//! The gap of a pair that may touch, at a configuration: how far apart its
+//! two parts are (negative: how deep one is in the other), where, and along
+//! which normal. What a contact watches while it is open, and reports.
+//!
+//! For a geom and a flexure the gap is the least over the flexure's arc
+//! length $s$ of
+//! $$g(s) = d(p(s)) - h(s),$$
+//! $d$ the geom's signed distance ([`GeomShape::distance`]), $p(s)$ the
+//! centreline and $h(s)$ half the thickness. It is found on 65 evenly
+//! spaced points, then refined on the two intervals about the least of
+//! them by golden-section search (80 steps: the interval shrinks by
+//! $0.618^{80} \approx 2\times 10^{-17}$), so an interior least meets the
+//! tangency condition $\hat n\cdot p^{\prime}(s) = 0$ and an end's is that end.
+
+use super::{Geom, GeomShape, Pair, Touch, Toucher, named};
+use crate::error::{Error, Result};
+use crate::mechanism::{JointKind, Mechanism};
+
+/// A pair's gap at a configuration ([`gap`]).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::Gap;
+/// use flexure::space::Planar;
+/// use nalgebra::{Point2, Vector2};
+/// let g: Gap<Planar> = Gap { s: Some(0.05), point: Point2::new(0.05, 0.0), normal: Vector2::y(), gap: -1e-4 };
+/// assert!(g.gap < 0.0); // overlapping by 0.1 mm
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gap<D: Touch> {
+    /// The arc length (m) of the flexure's nearest point; `None` for two geoms.
+    pub s: Option<f64>,
+    /// The toucher's surface point nearest the geom (world frame): a
+    /// flexure's centreline point at `s` moved by its half thickness
+    /// against `normal`; for a ball touching a geom, its surface point
+    /// along `normal`.
+    pub point: D::Point,
+    /// The geom's outward unit normal there (world frame); of two geoms
+    /// one of which is a ball, the other's.
+    pub normal: D::Vector,
+    /// The gap (m): positive apart, negative overlapping by that depth.
+    pub gap: f64,
+}
+
+/// The gap of the pair `pair` of `m` with coordinates `q`, its bodies'
+/// frames (world) `bodies` (as [`crate::mechanism::kinematics`] gives
+/// them at `q`). A geom and a flexure, or a circle or sphere and any
+/// geom (the ball's centre's distance less its radius, exact); other
+/// pairs of two geoms are refused by name.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{gap, pairs};
+/// use flexure::mechanism::kinematics::frames;
+/// // A 1 mm strip 0.1 m long along x, and a post of radius 5 mm whose
+/// // centre is 10.2 mm above its middle: 4.7 mm apart at s = 0.05 m.
+/// let m = flexure::mechanism::file::from_toml(r#"
+/// [[joint]]
+/// name = "strip"
+/// kind = "flexure"
+/// parent = "ground"
+/// child = "tip"
+/// length = 0.1
+/// modulus = 2e11
+/// width = 0.01
+/// thickness = 0.001
+/// [[geom]]
+/// name = "post"
+/// body = "ground"
+/// shape = "circle"
+/// origin = [0.05, 0.0102]
+/// radius = 0.005
+/// "#).unwrap();
+/// let q = m.rest();
+/// let g = gap(&m, &q, &frames(&m, &q).bodies, &pairs(&m)[0]).unwrap();
+/// assert!((g.gap - 0.0047).abs() < 1e-12 && (g.s.unwrap() - 0.05).abs() < 1e-9);
+/// assert!((g.point.y - 0.0005).abs() < 1e-12 && (g.normal.y + 1.0).abs() < 1e-12);
+/// ```
+pub fn gap<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pair) -> Result<Gap<D>> {
+    let geom = &m.geoms[pair.geom];
+    let at = &bodies[geom.body];
+    match pair.part {
+        Toucher::Flexure(j) => {
+            let joint = &m.joints[j];
+            let JointKind::Flexure(f) = &joint.kind else {
+                return Err(Error::invalid("pair", named(m, pair), "names a joint that is not a flexure"));
+            };
+            let root = D::compose(&bodies[joint.parent], &joint.origin);
+            let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
+            let length = D::flexure_length(f);
+            let at_s = |s: f64| -> Result<(f64, D::Point, D::Vector)> {
+                let (_, p, h) = D::surface_at(f, alpha, s)?;
+                let world = D::act(&root, &p);
+                let (g, n) = geom.gap(at, &world, h);
+                Ok((g, D::moved(&world, &n, -h), n))
+            };
+            let samples = D::surface(f, alpha, 65)?;
+            let gaps: Vec<f64> = samples.iter().map(|(_, p, h)| geom.gap(at, &D::act(&root, p), *h).0).collect();
+            let k = (0..gaps.len()).min_by(|a, b| gaps[*a].total_cmp(&gaps[*b])).expect("65 samples");
+            let step = length / 64.0;
+            let (mut a, mut b) = ((k as f64 - 1.0).max(0.0) * step, ((k + 1) as f64 * step).min(length));
+            let ratio = 0.5 * (5f64.sqrt() - 1.0);
+            let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
+            let (mut gc, mut gd) = (at_s(c)?.0, at_s(d)?.0);
+            for _ in 0..80 {
+                if gc < gd {
+                    (b, d, gd) = (d, c, gc);
+                    c = b - ratio * (b - a);
+                    gc = at_s(c)?.0;
+                } else {
+                    (a, c, gc) = (c, d, gd);
+                    d = a + ratio * (b - a);
+                    gd = at_s(d)?.0;
+                }
+            }
+            // The least of the refined point and the interval's ends.
+            let s = [a, 0.5 * (a + b), b]
+                .into_iter()
+                .map(|s| at_s(s).map(|v| (s, v)))
+                .collect::<Result<Vec<_>>>()?
+                .into_iter()
+                .min_by(|x, y| x.1.0.total_cmp(&y.1.0))
+                .expect("three points");
+            let (s, (g, point, normal)) = s;
+            Ok(Gap { s: Some(s), point, normal, gap: g })
+        }
+        Toucher::Geom(h) => {
+            let other = &m.geoms[h];
+            let ball = |g: &Geom<D>| match g.shape {
+                GeomShape::Ball { radius } => Some(radius),
+                _ => None,
+            };
+            let (round, flat, radius) = match (ball(other), ball(geom)) {
+                (Some(r), _) => (other, geom, r),
+                (None, Some(r)) => (geom, other, r),
+                (None, None) => {
+                    return Err(Error::invalid(
+                        "pair",
+                        named(m, pair),
+                        "the gap of two geoms is found only where one is a circle or sphere",
+                    ));
+                }
+            };
+            let centre = D::act(&D::compose(&bodies[round.body], &round.frame), &D::origin(&D::identity()));
+            let (g, normal) = flat.gap(&bodies[flat.body], &centre, radius);
+            Ok(Gap { s: None, point: D::moved(&centre, &normal, -radius), normal, gap: g })
+        }
+    }
+}

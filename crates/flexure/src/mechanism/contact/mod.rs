@@ -1,0 +1,232 @@
+//! Contact: the shapes ("geoms") on the ground and on bodies that a
+//! mechanism's flexures and other bodies' geoms may touch.
+//!
+//! A [`Geom`] is a [`GeomShape`] placed in a body's frame (`frame`), with a
+//! Coulomb coefficient. Its gap to a point is the shape's signed distance
+//! ([`shape`](self::GeomShape::distance)) less the toucher's half thickness:
+//! a flexure touches with its surface, its centreline offset by half its
+//! thickness ([`Touch::surface`]). The pairs that may touch
+//! ([`pairs`]) are every geom with every flexure and every geom with every
+//! other body's geom, less those a geom's `exclude` names: a flexure's
+//! own parent and child bodies' geoms too (a finger's pad around its
+//! flexure's tip must exclude the flexure, or the file refuses it as
+//! starting inside the pad).
+//!
+//! Contact is not yet part of any analysis: [`refuse_unsolved`] refuses,
+//! naming the pair, a mechanism with a pair that may touch, so nothing
+//! passes through a shape silently.
+
+mod dimension;
+mod gap;
+mod shape;
+
+use super::{Dimension, JointKind, Mechanism};
+use crate::error::{Error, Result};
+use crate::space::Planar;
+pub use dimension::Touch;
+pub use gap::{Gap, gap};
+pub use shape::GeomShape;
+
+/// A shape on a body (body 0 is the ground): it moves with the body.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{Geom, GeomShape};
+/// use flexure::space::Planar;
+/// use flexure::Pose;
+/// use nalgebra::{Point2, Vector2};
+/// // A floor at y = -0.2 on the ground.
+/// let floor = Geom::<Planar>::new("floor", 0, Pose { phi: 0.0, x: 0.0, y: -0.2 }, GeomShape::Plane { normal: Vector2::y() });
+/// let (gap, normal) = floor.gap(&Pose::default(), &Point2::new(3.0, 0.5), 0.1);
+/// assert!((gap - 0.6).abs() < 1e-15 && normal == Vector2::y());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Geom<D: Dimension = Planar> {
+    /// Its name (`geom N`, its place among the file's geoms, when the file gives none).
+    pub name: String,
+    /// The body it is on.
+    pub body: usize,
+    /// Its frame in the body's frame: where the shape's own frame lies.
+    pub frame: D::Pose,
+    /// Its solid.
+    pub shape: GeomShape<D>,
+    /// Coulomb's $\mu \ge 0$ against whatever touches it (0: frictionless).
+    pub friction: f64,
+    /// The parts it never touches, besides its own body's.
+    pub exclude: Vec<Toucher>,
+}
+
+/// A part a geom may touch: a flexure joint or another geom (by index).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::Toucher;
+/// // Flexures sort before geoms, each by index (`exclude` is kept sorted).
+/// assert!(Toucher::Flexure(3) < Toucher::Geom(0));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Toucher {
+    /// The flexure of this joint.
+    Flexure(usize),
+    /// This geom.
+    Geom(usize),
+}
+
+/// A geom and a part that may touch it.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{Pair, Toucher};
+/// let p = Pair { geom: 0, part: Toucher::Flexure(1) };
+/// assert_eq!(p.part, Toucher::Flexure(1));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Pair {
+    /// The geom.
+    pub geom: usize,
+    /// What may touch it.
+    pub part: Toucher,
+}
+
+impl<D: Dimension> Geom<D> {
+    /// A frictionless geom excluding nothing.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::contact::{Geom, GeomShape};
+    /// let g: Geom = Geom::new("post", 0, Default::default(), GeomShape::Ball { radius: 0.1 });
+    /// assert_eq!((g.friction, g.exclude.len()), (0.0, 0));
+    /// ```
+    pub fn new(name: &str, body: usize, frame: D::Pose, shape: GeomShape<D>) -> Self {
+        Geom { name: name.into(), body, frame, shape, friction: 0.0, exclude: Vec::new() }
+    }
+
+    /// Whether it never touches `part` by its own `exclude`.
+    fn excludes(&self, part: Toucher) -> bool {
+        self.exclude.contains(&part)
+    }
+}
+
+impl<D: Touch> Geom<D> {
+    /// The gap $g = d(p) - h$ (m) between the geom, its body at `body`
+    /// (world frame), and a point `p` (world frame) of a toucher of half
+    /// thickness $h$ (`half_thickness`), and the geom's outward unit
+    /// normal there (world frame); $d$ is [`GeomShape::distance`] in the
+    /// geom's frame.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::contact::{Geom, GeomShape};
+    /// use flexure::space::Spatial;
+    /// use nalgebra::{Isometry3, Point3, Vector3};
+    /// let ball = Geom::<Spatial>::new("ball", 1, Isometry3::translation(0.0, 0.0, 1.0), GeomShape::Ball { radius: 0.5 });
+    /// let body = Isometry3::translation(1.0, 0.0, 0.0);
+    /// let (gap, n) = ball.gap(&body, &Point3::new(1.0, 0.0, 3.0), 0.25);
+    /// assert!((gap - 1.25).abs() < 1e-15 && (n - Vector3::z()).norm() < 1e-15);
+    /// ```
+    pub fn gap(&self, body: &D::Pose, p: &D::Point, half_thickness: f64) -> (f64, D::Vector) {
+        let frame = D::compose(body, &self.frame);
+        let local = D::position(&D::act(&D::inverse(&frame), p));
+        let (d, n) = self.shape.distance(&local);
+        (d - half_thickness, D::rotate(&frame, &n))
+    }
+}
+
+/// The pairs of `m` that may touch, geom by geom: each geom with each
+/// flexure, then with each later geom on another body; a pair the geom's
+/// (or either geom's) `exclude` names is left out.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{pairs, Toucher};
+/// let m = flexure::mechanism::file::from_toml(r#"
+/// [[joint]]
+/// name = "hinge"
+/// kind = "flexure"
+/// parent = "ground"
+/// child = "link"
+/// length = 0.02
+/// ei = 1e-3
+/// [[geom]]
+/// body = "ground"
+/// shape = "plane"
+/// origin = [0.0, -0.01]
+/// normal = [0.0, 1.0]
+/// [[geom]]
+/// body = "link"
+/// shape = "circle"
+/// origin = [0.001, 0.0]
+/// radius = 0.002
+/// exclude = ["hinge"]
+/// "#).unwrap();
+/// let found: Vec<_> = pairs(&m).iter().map(|p| (p.geom, p.part)).collect();
+/// // The link's circle holds the flexure's tip, so it excludes the flexure.
+/// assert_eq!(found, [(0, Toucher::Flexure(0)), (0, Toucher::Geom(1))]);
+/// ```
+pub fn pairs<D: Dimension>(m: &Mechanism<D>) -> Vec<Pair> {
+    let mut out = Vec::new();
+    for (g, geom) in m.geoms.iter().enumerate() {
+        for (j, joint) in m.joints.iter().enumerate() {
+            if matches!(joint.kind, JointKind::Flexure(_)) && !geom.excludes(Toucher::Flexure(j)) {
+                out.push(Pair { geom: g, part: Toucher::Flexure(j) });
+            }
+        }
+        for (h, other) in m.geoms.iter().enumerate().skip(g + 1) {
+            if other.body != geom.body && !geom.excludes(Toucher::Geom(h)) && !other.excludes(Toucher::Geom(g)) {
+                out.push(Pair { geom: g, part: Toucher::Geom(h) });
+            }
+        }
+    }
+    out
+}
+
+/// A pair as a message names it: `geom "floor" (plane) and flexure "hinge"`.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{Geom, GeomShape, Pair, Toucher, named};
+/// let mut m = flexure::mechanism::file::from_toml("[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n").unwrap();
+/// m.geoms.push(Geom::new("post", 0, Default::default(), GeomShape::Ball { radius: 0.01 }));
+/// let p = Pair { geom: 0, part: Toucher::Flexure(0) };
+/// assert_eq!(named(&m, &p), "geom \"post\" (circle) and flexure \"hinge\"");
+/// ```
+pub fn named<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
+    let g = &m.geoms[p.geom];
+    let other = match p.part {
+        Toucher::Flexure(j) => format!("flexure {:?}", m.joints[j].name),
+        Toucher::Geom(h) => format!(
+            "geom {:?} ({}) on body {:?}",
+            m.geoms[h].name,
+            m.geoms[h].shape.name(),
+            m.bodies[m.geoms[h].body].name
+        ),
+    };
+    format!("geom {:?} ({}) and {other}", g.name, g.shape.name())
+}
+
+/// An error naming the first pair of `m` that may touch: no analysis
+/// solves contact yet, and none may let a part pass through a shape
+/// silently. `Ok` when no pair may touch (no geoms, or every pair
+/// excluded), so a mechanism's other analyses are unchanged.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::refuse_unsolved;
+/// let text = "[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n";
+/// let free = flexure::mechanism::file::from_toml(text).unwrap();
+/// assert!(refuse_unsolved(&free).is_ok());
+/// let floor = "[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+/// let m = flexure::mechanism::file::from_toml(&format!("{text}{floor}")).unwrap();
+/// let e = refuse_unsolved(&m).unwrap_err().to_string();
+/// assert!(e.contains("geom \"floor\" (plane) and flexure \"hinge\""), "{e}");
+/// ```
+pub fn refuse_unsolved<D: Dimension>(m: &Mechanism<D>) -> Result<()> {
+    match pairs(m).first() {
+        None => Ok(()),
+        Some(p) => Err(Error::invalid(
+            "geom",
+            named(m, p),
+            "may touch, and no analysis solves contact yet: remove the geom, or name the other part in its `exclude` to let them pass through each other",
+        )),
+    }
+}
