@@ -23,16 +23,18 @@
 //! has: the error grows with the deflection, and is reported.
 //!
 //! What is written: bodies with their masses, centres of mass and full
-//! inertia tensors; flexures as above; fixed joints; tendons through sites
-//! with a motor each; forces and moments as site motors in the world's
-//! frame; gravity; welds as `weld`, balls as `connect`, pins as two
-//! `connect` (the origins, and a point on the axis). Not yet: rigid
-//! revolute, prismatic and spherical joints, flexures curved or twisted at
-//! rest (errors name the joint), a flexure's own mass (dropped, warned of),
+//! inertia tensors; flexures as above, a flexure's own mass cut at its
+//! pivots and lumped on the links it moves with
+//! ([`super::lump::spatial_segment`]); rigid joints as MuJoCo's hinge,
+//! slide and ball at the child's origin, the child at its rest; fixed
+//! joints; tendons through sites with a motor each; forces and moments as
+//! site motors in the world's frame; gravity; welds as `weld`, balls as
+//! `connect`, pins as two `connect` (the origins, and a point on the axis).
+//! Not yet: flexures curved or twisted at rest (errors name the joint),
 //! SDFormat and URDF.
 
 use super::xml::{Element, number, numbers};
-use super::{Export, FitReport, JointFit, Options, step};
+use super::{Export, FitReport, JointFit, Options, lump, step};
 use crate::error::{Error, Result};
 use crate::mechanism::{Holds, Mechanism};
 use crate::prb::PrbKind;
@@ -193,11 +195,98 @@ struct Link {
 
 struct Hinge {
     name: String,
+    motion: Motion,
     at: Point3<f64>,
     axis: Vector3<f64>,
+    /// The coordinate at the link's rest pose (MJCF's `ref` and `springref`; a ball's is its pose).
+    reference: f64,
     stiffness: f64,
     damping: f64,
     armature: f64,
+}
+
+/// How a joint of the model moves its link.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Motion {
+    /// About an axis through a point.
+    Hinge,
+    /// Along an axis.
+    Slide,
+    /// About a point, freely (MJCF's `ball`).
+    Ball,
+    /// Not at all (a fixed joint: no joint written).
+    Fixed,
+}
+
+/// A rigid joint of the file as the model writes it: its motion, its axis
+/// in the child's frame at rest, its coordinate there, its spring, and the
+/// child's rest pose in the joint's root frame.
+struct Rigid {
+    motion: Motion,
+    axis: Vector3<f64>,
+    reference: f64,
+    stiffness: f64,
+    /// A ball's rest rotation vector (zero otherwise).
+    rest: Vector3<f64>,
+    pose: Isometry3<f64>,
+}
+
+/// A rigid joint read from the joint interface, as the plane's
+/// ([`super::model::build`]), so a new kind is written without a case here:
+/// no coordinates, fixed; one, a hinge about its motion subspace's turn, or
+/// a slide along it if it is a length; three that only turn, a ball. Others
+/// are refused, naming the joint.
+fn rigid_joint(spec: &crate::mechanism::JointSpec<Spatial>) -> Result<Rigid> {
+    let joint = spec.kind.joint();
+    let rest = joint.rest();
+    let at_rest = joint.evaluate(&rest);
+    let pose = at_rest.pose;
+    let mut r = Rigid {
+        motion: Motion::Fixed,
+        axis: Vector3::x(),
+        reference: 0.0,
+        stiffness: 0.0,
+        rest: Vector3::zeros(),
+        pose,
+    };
+    match joint.dof() {
+        0 => {}
+        1 => {
+            let s = at_rest.jacobian.column(0);
+            let (turn, along) = (Vector3::new(s[0], s[1], s[2]), Vector3::new(s[3], s[4], s[5]));
+            let (motion, axis) = if joint.is_translation() { (Motion::Slide, along) } else { (Motion::Hinge, turn) };
+            r.motion = motion;
+            r.axis = pose.rotation.inverse() * axis.normalize();
+            r.reference = rest[0];
+            r.stiffness = at_rest.stiffness[(0, 0)];
+        }
+        3 => {
+            // A ball: its coordinates turn the child about the root's origin only.
+            let zero = joint.evaluate(&[0.0; 3]);
+            let k = at_rest.stiffness;
+            let turns =
+                zero.jacobian.rows(0, 3).is_identity(1e-12) && zero.jacobian.rows(3, 3).iter().all(|v| *v == 0.0);
+            let isotropic = (0..3).all(|i| (0..3).all(|j| k[(i, j)] == if i == j { k[(0, 0)] } else { 0.0 }));
+            if !(turns && isotropic && zero.pose.translation.vector == Vector3::zeros()) {
+                return Err(Error::invalid(
+                    "joint",
+                    &spec.name,
+                    "has three coordinates that are not a ball's with one spring: the export writes balls",
+                ));
+            }
+            r.motion = Motion::Ball;
+            r.stiffness = k[(0, 0)];
+            r.rest = Vector3::new(rest[0], rest[1], rest[2]);
+        }
+        _ => {
+            return Err(Error::invalid(
+                "joint",
+                &spec.name,
+                "is a rigid joint the export cannot write: it writes fixed joints, hinges, slides and balls",
+            ));
+        }
+    }
+    Ok(r)
 }
 
 struct Site {
@@ -241,17 +330,26 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     let mut notes = Vec::new();
     // Fits, before the solves: a joint the export cannot write errors first.
     let mut fits: Vec<Option<JointFit>> = Vec::with_capacity(m.joints.len());
+    let mut rigid: Vec<Option<Rigid>> = Vec::with_capacity(m.joints.len());
     for spec in &m.joints {
-        let joint = spec.kind.joint();
         match spec.kind.flexure() {
-            Some(f) => fits.push(Some(fit_springs(f, options.prb, &spec.name)?)),
-            None if joint.dof() == 0 => fits.push(None),
+            Some(f) => {
+                fits.push(Some(fit_springs(f, options.prb, &spec.name)?));
+                rigid.push(None);
+            }
             None => {
-                return Err(Error::invalid(
-                    "joint",
-                    &spec.name,
-                    "is a rigid joint with coordinates: the spatial export writes flexures and fixed joints only for now",
-                ));
+                let r = rigid_joint(spec)?;
+                if r.motion == Motion::Ball && r.rest != Vector3::zeros() {
+                    warnings.push(format!(
+                        "joint {:?}: a ball whose spring rests turned ({} rad): MuJoCo's ball spring is k times the \
+                         rotation vector from the rest orientation, the file's k times the difference of rotation vectors \
+                         from the root; they agree at rest, not away from it",
+                        spec.name,
+                        numbers(&[r.rest.x, r.rest.y, r.rest.z])
+                    ));
+                }
+                fits.push(None);
+                rigid.push(Some(r));
             }
         }
     }
@@ -269,9 +367,10 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         if fit.flagged {
             warnings.push(fit.flag_warning(&spec.name));
         }
-        if f.section().mass_per_length(0.5).is_some() {
+        if f.section().has_mass() && m.gravity != Vector3::zeros() {
             warnings.push(format!(
-                "joint {:?}: its own mass is not written (the spatial export lumps no flexure mass yet)",
+                "joint {:?}: its own weight loads it along its length; the fit's error is measured with the tip \
+                 wrenches nearest to it (least squares)",
                 spec.name
             ));
         }
@@ -288,7 +387,10 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         hinges: Vec::new(),
     }];
     let mut body_link = vec![0usize; m.bodies.len()];
-    for (spec, fit) in m.joints.iter().zip(&fits) {
+    // Pieces of flexure mass: (link, lump in its frame); on the parent body
+    // by body, its link known only once every joint is placed.
+    let mut pieces: Vec<(usize, lump::SpatialLump)> = Vec::new();
+    for ((spec, fit), rigid) in m.joints.iter().zip(&fits).zip(&rigid) {
         let parent = body_link[spec.parent];
         let body = &m.bodies[spec.child];
         let new = |name: String, parent: usize, pose: Isometry3<f64>, hinges: Vec<Hinge>| Link {
@@ -300,14 +402,28 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             inertia: Matrix3::zeros(),
             hinges,
         };
-        let child = match fit {
-            None => {
-                let joint = spec.kind.joint();
-                let pose = spec.origin * joint.evaluate(&joint.rest()).pose;
-                links.push(new(body.name.clone(), parent, pose, Vec::new()));
+        let child = match (fit, rigid) {
+            (None, Some(r)) => {
+                // The child at its rest pose, its joint at its origin: about or along
+                // the joint's axis as it lies in the child at rest, or a ball.
+                let hinges = match r.motion {
+                    Motion::Fixed => Vec::new(),
+                    motion => vec![Hinge {
+                        name: spec.name.clone(),
+                        motion,
+                        at: Point3::origin(),
+                        axis: r.axis,
+                        reference: r.reference,
+                        stiffness: r.stiffness,
+                        damping: spec.damping,
+                        armature: 0.0,
+                    }],
+                };
+                links.push(new(body.name.clone(), parent, spec.origin * r.pose, hinges));
                 links.len() - 1
             }
-            Some(fit) => {
+            (None, None) => unreachable!("every joint is a flexure or rigid"),
+            (Some(fit), _) => {
                 let k = fit.pivots.len();
                 let tip = Isometry3::translation(fit.length, 0.0, 0.0);
                 let hinges = |i: usize, at: Point3<f64>| -> Vec<Hinge> {
@@ -317,8 +433,10 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
                         .zip([fit.stiffness[i][0], out[0], out[1]])
                         .map(|((axis, a), s)| Hinge {
                             name: format!("{}_{}{a}", spec.name, i + 1),
+                            motion: Motion::Hinge,
                             at,
                             axis: Vector3::from(*axis),
+                            reference: 0.0,
                             stiffness: s,
                             damping: spec.damping * s,
                             armature: options.armature,
@@ -328,6 +446,16 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
                 let mut up = parent;
                 let mut before = spec.origin;
                 let mut prev = Isometry3::identity();
+                let f = spec.kind.flexure().expect("a fit is a flexure's");
+                // Its mass, cut at the pivots: the piece before the first on the
+                // parent (none on the ground, which does not move), each other
+                // on the link it moves with.
+                let cut = |i: usize| if i < k { fit.pivots[i].x } else { fit.length };
+                if parent != 0
+                    && let Some(p) = lump::spatial_segment(f, 0.0, cut(0))?
+                {
+                    pieces.push((parent, p.moved(&spec.origin)));
+                }
                 for i in 0..k {
                     let last = i + 1 == k;
                     let frame = if last { tip } else { Isometry3::translation(fit.pivots[i].x, 0.0, 0.0) };
@@ -336,6 +464,9 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
                     let name = if last { body.name.clone() } else { format!("{}_prb{}", spec.name, i + 1) };
                     links.push(new(name, up, pose, hinges(i, at)));
                     up = links.len() - 1;
+                    if let Some(p) = lump::spatial_segment(f, cut(i), cut(i + 1))? {
+                        pieces.push((up, p.moved(&frame.inverse())));
+                    }
                     before = Isometry3::identity();
                     prev = frame;
                 }
@@ -350,9 +481,14 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         l.com = body.com;
         l.inertia = body.inertia;
     }
-    // Each flexure's links are massless (its own mass is not lumped yet):
-    // merged away, their hinges on the child in order, each at its pivot
-    // in the child's frame, as MuJoCo applies a body's joints.
+    for (i, p) in &pieces {
+        let l = &mut links[*i];
+        let sum = lump::SpatialLump { mass: l.mass, com: l.com, inertia: l.inertia }.add(p);
+        (l.mass, l.com, l.inertia) = (sum.mass, sum.com, sum.inertia);
+    }
+    // A massless flexure's links are merged away, their hinges on the child
+    // in order, each at its pivot in the child's frame, as MuJoCo applies a
+    // body's joints; a flexure with mass keeps them, each with its piece.
     let merged = merge_massless(&mut links, &mut body_link);
     for (body, hinges) in &merged {
         notes.push(format!(
@@ -366,6 +502,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     for (i, l) in links.iter_mut().enumerate().skip(1) {
         let least = l.inertia.symmetric_eigenvalues().min();
         if l.mass < super::model::MIN_MASS || least < super::model::MIN_INERTIA {
+            let massless = l.mass == 0.0;
             l.mass = l.mass.max(super::model::MIN_MASS);
             if least < super::model::MIN_INERTIA {
                 l.inertia += Matrix3::identity() * (super::model::MIN_INERTIA - least.max(0.0));
@@ -375,12 +512,17 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
                     "body {:?} has less than {below} in the file: given that much, as simulators need",
                     l.name
                 ));
-            } else {
+            } else if massless {
                 warnings.push(format!(
                     "link {:?}: MuJoCo holds at most {MAX_BODY_DOFS} degrees of freedom a body, so a 3R chain's nine \
                      hinges take two bodies; this link of a massless flexure (its first pivot's hinges) is given {floor}, \
                      the least simulators accept, and its hinges the step's armature; give the flexure its mass to \
                      weigh it, or export 1R (one body)",
+                    l.name
+                ));
+            } else {
+                warnings.push(format!(
+                    "link {:?}: its piece of its flexure has less than {below}: raised to that, the least simulators accept",
                     l.name
                 ));
             }
@@ -393,23 +535,41 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         let period = step::STEPS_PER_PERIOD * options.step / std::f64::consts::TAU;
         for l in links.iter_mut().skip(1) {
             let (mass, com, inertia) = (l.mass, l.com, l.inertia);
-            // The link's mass matrix over its sprung hinges at rest (several
-            // on one body: a merged chain), sized as the plane's.
-            let sprung: Vec<usize> = (0..l.hinges.len()).filter(|&h| l.hinges[h].stiffness > 0.0).collect();
-            if sprung.is_empty() {
+            // The link's mass matrix over its sprung coordinates at rest
+            // (several on one body: a merged chain; a ball's three), sized
+            // as the plane's. Each coordinate: (its joint, its turn and its
+            // centre of mass's velocity per unit rate).
+            let mut dofs: Vec<(usize, Vector3<f64>, Vector3<f64>)> = Vec::new();
+            for (h, j) in l.hinges.iter().enumerate().filter(|(_, j)| j.stiffness > 0.0) {
+                match j.motion {
+                    Motion::Slide => dofs.push((h, Vector3::zeros(), j.axis)),
+                    Motion::Hinge => dofs.push((h, j.axis, j.axis.cross(&(com - j.at)))),
+                    Motion::Ball => {
+                        for e in [Vector3::x(), Vector3::y(), Vector3::z()] {
+                            dofs.push((h, e, e.cross(&(com - j.at))));
+                        }
+                    }
+                    Motion::Fixed => {}
+                }
+            }
+            if dofs.is_empty() {
                 continue;
             }
             let hinges = &l.hinges;
-            let need: Vec<f64> = sprung.iter().map(|&h| hinges[h].stiffness * period * period).collect();
+            let need: Vec<f64> = dofs.iter().map(|&(h, ..)| hinges[h].stiffness * period * period).collect();
             let own = |a: usize, b: usize| {
-                let (ha, hb) = (&hinges[sprung[a]], &hinges[sprung[b]]);
-                let (va, vb) = (ha.axis.cross(&(com - ha.at)), hb.axis.cross(&(com - hb.at)));
-                let m = (ha.axis.transpose() * inertia * hb.axis)[0] + mass * va.dot(&vb);
-                m + if a == b { ha.armature } else { 0.0 }
+                let ((ha, wa, va), (_, wb, vb)) = (dofs[a], dofs[b]);
+                let m = (wa.transpose() * inertia * wb)[0] + mass * va.dot(&vb);
+                m + if a == b { hinges[ha].armature } else { 0.0 }
             };
             let added = step::added_inertia(&need, own);
-            for (&h, a) in sprung.iter().zip(added) {
-                l.hinges[h].armature += a;
+            // One armature a joint: a ball's the largest of its three.
+            let mut most = vec![0.0f64; l.hinges.len()];
+            for (&(h, ..), a) in dofs.iter().zip(added) {
+                most[h] = most[h].max(a);
+            }
+            for (h, a) in l.hinges.iter_mut().zip(most) {
+                h.armature += a;
             }
         }
     }
@@ -626,13 +786,20 @@ fn write_body(links: &[Link], sites: &[Site], i: usize, children: &[Vec<usize>])
     let l = &links[i];
     let mut b = placed(Element::new("body").attr("name", l.name.as_str()), &l.pose);
     for h in &l.hinges {
-        let mut e = Element::new("joint")
-            .attr("name", h.name.as_str())
-            .attr("type", "hinge")
-            .attr("pos", numbers(&[h.at.x, h.at.y, h.at.z]))
-            .attr("axis", numbers(&[h.axis.x, h.axis.y, h.axis.z]))
-            .attr("springref", "0")
-            .attr("stiffness", number(h.stiffness));
+        let mut e = Element::new("joint").attr("name", h.name.as_str());
+        e = match h.motion {
+            Motion::Ball => e.attr("type", "ball").attr("pos", numbers(&[h.at.x, h.at.y, h.at.z])),
+            motion => {
+                let kind = if motion == Motion::Slide { "slide" } else { "hinge" };
+                let e = e
+                    .attr("type", kind)
+                    .attr("pos", numbers(&[h.at.x, h.at.y, h.at.z]))
+                    .attr("axis", numbers(&[h.axis.x, h.axis.y, h.axis.z]));
+                let e = if h.reference != 0.0 { e.attr("ref", number(h.reference)) } else { e };
+                e.attr("springref", number(h.reference))
+            }
+        };
+        e = e.attr("stiffness", number(h.stiffness));
         if h.damping > 0.0 {
             e = e.attr("damping", number(h.damping));
         }
@@ -767,9 +934,60 @@ mod tests {
         }
         let err = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
         assert!(err.contains("armature"), "{err}");
-        let hinge = "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\n\
-                     stiffness = 1.0\n[[body]]\nname = \"a\"\nmass = 1.0\nixx = 1.0\niyy = 1.0\nizz = 1.0\n";
-        let err = export(&spatial_from_toml(hinge).unwrap(), &Options::default()).unwrap_err().to_string();
-        assert!(err.contains("pivot") && err.contains("flexures and fixed joints only"), "{err}");
+    }
+
+    const RIGID: &str = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n\
+        [[joint]]\nname = \"base\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"a\"\naxis = [0.0, 0.0, 1.0]\n\
+        stiffness = 0.05\nrest = 0.2\ndamping = 0.001\n\
+        [[joint]]\nname = \"lift\"\nkind = \"prismatic\"\nparent = \"a\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\n\
+        origin = [0.01, 0.0, 0.0]\nstiffness = 40.0\nrest = 0.005\n\
+        [[joint]]\nname = \"wrist\"\nkind = \"spherical\"\nparent = \"b\"\nchild = \"c\"\norigin = [0.01, 0.0, 0.0]\n\
+        stiffness = 0.02\n\
+        [[joint]]\nname = \"blade\"\nkind = \"flexure\"\nparent = \"c\"\nchild = \"d\"\norigin = [0.005, 0.0, 0.0]\n\
+        length = 0.02\nmodulus = 200e9\nwidth = 0.004\nthickness = 0.0003\ndensity = 7850.0\n\
+        [[body]]\nname = \"a\"\nmass = 0.02\nixx = 2e-6\niyy = 2e-6\nizz = 2e-6\n\
+        [[body]]\nname = \"b\"\nmass = 0.01\nixx = 1e-6\niyy = 1e-6\nizz = 1e-6\n\
+        [[body]]\nname = \"c\"\nmass = 0.005\nixx = 2e-7\niyy = 2e-7\nizz = 2e-7\n\
+        [[body]]\nname = \"d\"\nmass = 0.003\nixx = 1e-7\niyy = 2e-7\nizz = 2e-7\n\
+        [[force]]\nname = \"push\"\nbody = \"d\"\nat = [0.01, 0.0, 0.0]\nforce = [0.0, 0.1, -0.05]\n";
+
+    #[test]
+    fn rigid_joints_are_a_hinge_a_slide_and_a_ball_at_their_rest() {
+        let m = spatial_from_toml(RIGID).unwrap();
+        let e = export(&m, &Options { step: 0.0, ..Default::default() }).unwrap();
+        let x = &e.xml;
+        // The child placed at its rest coordinate, which is MuJoCo's ref and springref:
+        // qpos0 is the file's rest, the spring's zero there.
+        let turned = nalgebra::UnitQuaternion::from_euler_angles(0.0, 0.0, 0.2);
+        assert!(
+            x.contains(&format!(r#"<body name="a" pos="0 0 0" quat="{} 0 0 {}">"#, number(turned.w), number(turned.k))),
+            "{x}"
+        );
+        assert!(x.contains(r#"<joint name="base" type="hinge" pos="0 0 0" axis="0 0 1" ref="0.2" springref="0.2" stiffness="0.05" damping="0.001"/>"#), "{x}");
+        assert!(x.contains(r#"<body name="b" pos="0.01 0 0.005">"#), "{x}");
+        assert!(x.contains(r#"<joint name="lift" type="slide" pos="0 0 0" axis="0 0 1" ref="0.005" springref="0.005" stiffness="40"/>"#), "{x}");
+        assert!(x.contains(r#"<joint name="wrist" type="ball" pos="0 0 0" stiffness="0.02"/>"#), "{x}");
+        // The blade's own mass, ρ w t L = 7850 × 0.004 × 0.0003 × 0.02 kg, cut at Su's pivots
+        // (0.1, 0.45, 0.85 L): its first tenth on the hub, the rest on its two links and the tip.
+        let total = 7850.0 * 0.004 * 0.0003 * 0.02;
+        let mass = |name: &str| -> f64 {
+            let at = x.find(&format!(r#"<body name="{name}""#)).unwrap();
+            let tail = &x[at..];
+            let m = tail.find(r#"mass=""#).unwrap() + 6;
+            tail[m..m + tail[m..].find('"').unwrap()].parse().unwrap()
+        };
+        for (name, want) in [
+            ("c", 0.005 + 0.1 * total),
+            ("blade_prb1", 0.35 * total),
+            ("blade_prb2", 0.4 * total),
+            ("d", 0.003 + 0.15 * total),
+        ] {
+            assert!((mass(name) - want).abs() < 1e-12 * want.max(1.0), "{name}: {} against {want}", mass(name));
+        }
+        assert!(!e.warnings.iter().any(|w| w.contains("at most 6")), "{:?}", e.warnings);
+        assert!(e.warnings.iter().any(|w| w.contains("\"blade\"") && w.contains("own weight")), "{:?}", e.warnings);
+        // Sized for a step: the ball's armature is one, the largest its three turns need.
+        let sized = export(&m, &Options::default()).unwrap();
+        assert!(sized.report.armature.iter().all(|(_, a)| a.is_finite() && *a > 0.0));
     }
 }
