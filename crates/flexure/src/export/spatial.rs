@@ -1,18 +1,22 @@
 //! Export of a spatial mechanism (`dimension = 3`) to MuJoCo's MJCF.
 //!
 //! Each spatial flexure becomes a chain of pivots along its straight rest
-//! shape, at the planar chains' places (1R: Howell's pivot $0.15L$ from the
-//! root; 3R: Su's, at $0.1L$, $0.45L$ and $0.85L$), each pivot three hinges:
-//! bending about the local $z$, bending about $y$, twist about $x$, each
-//! with a linear spring. The springs are fitted to the flexure's tip
+//! shape ([`pivot_fractions`]: 3R at Su's $0.1L$, $0.45L$ and $0.85L$; 1R
+//! one pivot $\gamma L$ from the tip and one at the tip), each pivot three
+//! hinges: bending about the local $z$, bending about $y$, twist about $x$,
+//! each with a linear spring. The springs are fitted to the flexure's tip
 //! compliance at rest ([`crate::spatial::compliance`]): a hinge of
 //! compliance $c_h$ about axis $e$ at pivot $p$ moves the tip, at $t$, by the
 //! twist $u_h = (e, e\times(t - p))$ per radian, so the chain's compliance
 //! is $C = \sum_h c_h u_h u_h^T$. Per bending axis the 3R chain matches the
 //! model's three entries (moment–rotation, force–rotation, force–position)
-//! exactly, a 1R chain the force–position entry (the tip position under a
-//! tip force, as Howell's); the twist springs share the model's twist
-//! compliance in the bending springs' proportions.
+//! exactly; the 1R chain matches them too, its pivot at the lever
+//! $\gamma L = C_{yy}/C_{\theta_z y}$ with compliance $C_{yy}/(\gamma L)^2$ and
+//! the tip's hinge the rest of $C_{\theta M}$ (about $y$ at the same pivot,
+//! exact when the section is uniform), so that its tip can move without
+//! turning, as a guided blade's (a single pivot locks a parallelogram
+//! stage). The twist springs share the model's twist compliance in the
+//! bending springs' proportions.
 //!
 //! The fit's error is measured as in the plane, over the file's loads: at
 //! each equilibrium along the [`super::LoadRange`] the wrench at each flexure's
@@ -42,13 +46,31 @@ use crate::space::Spatial;
 use crate::spatial::{SpatialFlexure, SpatialKinematics};
 use nalgebra::{DVector, Isometry3, Matrix3, Matrix6, Point3, Vector3, Vector6};
 
-/// Where a chain's pivots sit, as fractions of the length from the root:
-/// Howell's 1R characteristic pivot, $1 - \gamma$ with $\gamma$ =
-/// [`crate::prb::HOWELL_GAMMA`], and Su's 3R, the partial sums of
-/// [`crate::prb::SU_GAMMA`] (0.1, 0.45, 0.85).
-pub fn pivot_fractions(kind: PrbKind) -> Vec<f64> {
+/// Where a chain's pivots sit, as fractions of the length from the root,
+/// for a flexure of tip compliance `c` at rest ([`crate::spatial::compliance_rest`]):
+/// Su's 3R, the partial sums of [`crate::prb::SU_GAMMA`] (0.1, 0.45, 0.85);
+/// 1R, one pivot $\gamma L$ from the tip and one at the tip, with
+/// $\gamma L = C_{yy}/C_{\theta_z y}$, the force–position over the
+/// force–rotation compliance of bending about $z$: the lever at which one
+/// hinge turns the tip by the model's angle under a tip force while it moves
+/// it the model's distance ($2L/3$ on a uniform strip, so $\gamma = 2/3$).
+///
+/// # Example
+/// ```
+/// use flexure::export::spatial::pivot_fractions;
+/// use flexure::prb::PrbKind;
+/// use flexure::section::SpatialSection;
+/// use flexure::spatial::{SpatialFlexure, compliance_rest};
+/// let f = SpatialFlexure::new(0.03, SpatialSection::uniform(0.5, 2.0, 1.0)?, [3, 3, 3])?;
+/// let c = compliance_rest(&f)?;
+/// let one = pivot_fractions(PrbKind::OneR, &c, 0.03);
+/// assert!((one[0] - 1.0 / 3.0).abs() < 1e-12 && one[1] == 1.0);
+/// assert_eq!(pivot_fractions(PrbKind::ThreeR, &c, 0.03).len(), 3);
+/// # Ok::<(), flexure::Error>(())
+/// ```
+pub fn pivot_fractions(kind: PrbKind, c: &Matrix6<f64>, length: f64) -> Vec<f64> {
     match kind {
-        PrbKind::OneR => vec![1.0 - crate::prb::HOWELL_GAMMA],
+        PrbKind::OneR => vec![1.0 - c[(4, 4)] / c[(2, 4)] / length, 1.0],
         PrbKind::ThreeR => {
             let g = crate::prb::SU_GAMMA;
             vec![g[0], g[0] + g[1], g[0] + g[1] + g[2]]
@@ -93,7 +115,12 @@ pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<Joi
     }
     let c = crate::spatial::compliance_rest(f)?;
     let l = f.length();
-    let fractions = pivot_fractions(kind);
+    let fractions = pivot_fractions(kind, &c, l);
+    if !fractions.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x)) {
+        return Err(Error::Singular {
+            what: format!("joint {joint:?}: its {kind} chain's pivots came out off the flexure: {fractions:?} of L"),
+        });
+    }
     let levers: Vec<f64> = fractions.iter().map(|x| (1.0 - x) * l).collect();
     // Per bending axis: (moment–rotation, force–rotation, force–position)
     // of the model, the last two with the sign of e × (t − p).
@@ -101,7 +128,12 @@ pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<Joi
     let mut compliances = [vec![0.0; levers.len()], vec![0.0; levers.len()], vec![0.0; levers.len()]];
     for (axis, (mm, mf, ff)) in blocks.iter().enumerate() {
         let w = match kind {
-            PrbKind::OneR => vec![ff / (levers[0] * levers[0])],
+            // The pivot's spring holds the tip's position under a tip force,
+            // the tip's own what a moment turns besides: C_θM = w₁ + w₂.
+            PrbKind::OneR => {
+                let w = ff / (levers[0] * levers[0]);
+                vec![w, mm - w]
+            }
             PrbKind::ThreeR => {
                 let a = nalgebra::Matrix3::from_fn(|r, i| levers[i].powi(r as i32));
                 let b = Vector3::new(*mm, *mf, *ff);
@@ -121,14 +153,15 @@ pub fn fit_springs(f: &SpatialFlexure, kind: PrbKind, joint: &str) -> Result<Joi
     // K_Θ as the plane's, EI the bending stiffness about z, L/C_θM (EI_z when uniform).
     let ei_l = 1.0 / c[(2, 2)];
     let gamma = match kind {
-        PrbKind::OneR => vec![1.0 - crate::prb::HOWELL_GAMMA, crate::prb::HOWELL_GAMMA],
+        PrbKind::OneR => vec![fractions[0], 1.0 - fractions[0], 0.0],
         PrbKind::ThreeR => crate::prb::SU_GAMMA.to_vec(),
     };
     let k_theta = compliances[0]
         .iter()
-        .map(|w| match kind {
-            PrbKind::OneR => 1.0 / (w * gamma[1] * ei_l),
-            PrbKind::ThreeR => 1.0 / (w * ei_l),
+        .enumerate()
+        .map(|(i, w)| match kind {
+            PrbKind::OneR if i == 0 => 1.0 / (w * gamma[1] * ei_l),
+            _ => 1.0 / (w * ei_l),
         })
         .collect();
     Ok(JointFit {
@@ -858,10 +891,19 @@ mod tests {
             // The reported K_Θ is this, EI from the rest compliance (uniform: exact).
             assert!((reported / k - 1.0).abs() < 1e-12, "{reported} against {k}");
         }
-        // 1R: Howell's pivot, the tip's deflection under a tip force exact.
+        // 1R: one pivot 2L/3 from the tip and the tip's own hinges. On a uniform beam it holds
+        // every entry the 3R chain does: a body on its tip turns by the tip's angle, and a
+        // guided tip (moving without turning, as a parallelogram stage's legs') has the beam's
+        // stiffness 12 EI / L³, not a lock.
         let one = fit_springs(&f, PrbKind::OneR, "f").unwrap();
-        assert_eq!(one.pivots.len(), 1);
-        assert!((compliance(&one)[(4, 4)] - model[(4, 4)]).abs() < 1e-12);
+        assert_eq!(one.pivots.len(), 2);
+        assert!((one.pivots[0].x - l / 3.0).abs() < 1e-12 && one.pivots[1].x == l);
+        let chain = compliance(&one);
+        for (i, j) in [(0, 0), (1, 1), (2, 2), (1, 5), (2, 4), (4, 4), (5, 5)] {
+            assert!((chain[(i, j)] - model[(i, j)]).abs() < 1e-12 * model[(i, i)].abs().max(1.0), "1R ({i}, {j})");
+        }
+        let guided = chain[(4, 4)] - chain[(2, 4)].powi(2) / chain[(2, 2)];
+        assert!((guided - l.powi(3) / (12.0 * ei_z)).abs() < 1e-12);
     }
 
     #[test]
