@@ -290,3 +290,40 @@ def flexure_sections(text):
             area = float(get("width").group(1)) * float(get("thickness").group(1))
         out.append((parent, area, length))
     return out
+
+
+def test_mujoco_refuses_nine_hinges_on_one_body_so_a_massless_3r_chain_keeps_one_link():
+    # Why a massless spatial 3R chain keeps a link: MuJoCo's compiler refuses more than 6 dofs
+    # on a body ("more than 6 dofs in body", user_objects.cc), and a 3R chain needs 7 at least
+    # (three pivots' two bendings and a twist). Checked here in MuJoCo itself, on the chain the
+    # export would write: the stage's left flexure's nine hinges, each at its pivot, on one body.
+    xml, report, caught = exported(EXAMPLES / "stage3d.toml", "3R")
+    m = mujoco.MjModel.from_xml_string(xml)
+    fit = report["joints"]["left"]
+    hinges = "".join(
+        f'<joint name="h{p}{a}" type="hinge" pos="{x - fit["length"]} 0 0" axis="{axis}" stiffness="1"/>'
+        for p, (x, _, _) in enumerate(fit["pivots"])
+        for a, axis in (("z", "0 0 1"), ("y", "0 1 0"), ("x", "1 0 0"))
+    )
+    nine = (
+        f'<mujoco><worldbody><body name="stage" pos="{fit["length"]} 0 0">{hinges}'
+        '<inertial pos="0 0 0" mass="0.0054" diaginertia="1e-7 1e-7 1e-7"/></body></worldbody></mujoco>'
+    )
+    with pytest.raises(ValueError, match="more than 6 dofs in body 'stage'"):
+        mujoco.MjModel.from_xml_string(nine)
+    # So the first pivot's three hinges stay on a link, warned of by name. Without the flexure's
+    # mass it holds the least mass; its centre of mass sits on its hinges' pivot (it neither swings
+    # nor weighs more than 1e-8 N), and each of its hinges carries the armature sized for the step,
+    # which is what it turns with.
+    for f in ("left", "right"):
+        i = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"{f}_prb1")
+        assert m.body_mass[i] == 1e-9 and any(f'"{f}_prb1"' in w and "at most 6" in w for w in caught)
+        assert np.all(m.body_ipos[i] == 0)
+        joints = [j for j in range(m.njnt) if m.jnt_bodyid[j] == i]
+        assert len(joints) == 3 and np.all(m.jnt_pos[joints] == 0)
+        assert np.all(m.dof_armature[m.jnt_dofadr[joints]] > 0)
+    # A 1R chain (one pivot and the tip's hinges: six) goes on the body itself, no link kept.
+    xml, _, caught = exported(EXAMPLES / "stage3d.toml", "1R")
+    m = mujoco.MjModel.from_xml_string(xml)
+    names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, i) for i in range(1, m.nbody)]
+    assert names == ["stage", "right_tip"] and not any("at most 6" in w for w in caught)
