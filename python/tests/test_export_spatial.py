@@ -101,10 +101,22 @@ def with_density(text, rho):
     return re.sub(r'(kind = "flexure"\n)', rf"\1density = {rho}\n", text)
 
 
+def curved(text, rest):
+    """The file with every flexure curved and twisted at rest (`rest`: its keys, each the tip's turn, rad)."""
+    return re.sub(r'(kind = "flexure"\n)', rf"\1{rest}", text)
+
+
 # Each spatial example as written, each with its flexures' own mass (spring steel, 7850 kg/m^3;
-# the continuum robot's nitinol, 6450 kg/m^3), and the arm of rigid joints.
+# the continuum robot's nitinol, 6450 kg/m^3), each of the finger and the robot with its flexures
+# curved and twisted at rest (the finger's blades 0.2 rad about z, 0.1 rad of twist; the robot's
+# segments 0.12 rad about y, 0.06 of twist), and the arm of rigid joints.
 MODELS = {f: (EXAMPLES / f).read_text() for f in SPATIAL}
 MODELS.update({f"{f}+mass": with_density(MODELS[f], 6450 if "continuum" in f else 7850) for f in SPATIAL})
+MODELS["finger3d.toml+curved"] = curved(MODELS["finger3d.toml"], "kappa_z = [0.2, 0.0, 0.0]\ntwist = [0.1, 0.0, 0.0]\n")
+MODELS["finger3d.toml+curved+mass"] = with_density(MODELS["finger3d.toml+curved"], 7850)
+MODELS["continuum_robot.toml+curved"] = curved(
+    MODELS["continuum_robot.toml"], "kappa_y = [0.12, 0.0, 0.0]\ntwist = [0.06, 0.0, 0.0]\n"
+)
 MODELS["arm"] = ARM
 CASES = [pytest.param(f, prb, id=f"{f}-{prb}") for f in MODELS for prb in ("1R", "3R")]
 
@@ -221,7 +233,8 @@ def test_spatial_closures_hold_at_rest(name, prb):
 # model exported for a step resolving that mode (omega h <= 0.05, at most 2 ms), the settling
 # damping taken off. Measured (issue 36), 1R / 3R: finger3d -0.3 % / -0.3 % (with the blades'
 # mass the same); stage3d -0.3 % / -0.3 % (+1.5 % / -0.5 %); continuum_robot -1.5 % / -0.6 %
-# (the same); the arm of rigid joints 0.0 % either way (its lowest mode is its rigid joints').
+# (the same); curved at rest, finger3d -0.3 % / -0.3 %, continuum_robot -1.6 % / -0.7 %; the arm
+# of rigid joints 0.0 % either way (its lowest mode is its rigid joints').
 # Band: 5 % for both chains, each holding the flexure's tip compliance at rest, the mass lumped
 # on rigid links. Before the 1R chain carried the tip's own hinges, a 1R leg's tip could not move
 # without turning, the welded stage could not slide as its blades let it, and its lowest mode in
@@ -242,7 +255,7 @@ def test_spatial_examples_ring_in_mujoco_as_modes(name, prb):
     assert abs(got / want - 1) < BAND, f"{got:.4g} rad/s against {want:.4g}"
 
 
-@pytest.mark.parametrize("name", [f"{f}+mass" for f in SPATIAL] + ["arm"])
+@pytest.mark.parametrize("name", [f"{f}+mass" for f in SPATIAL] + ["finger3d.toml+curved+mass", "arm"])
 @pytest.mark.parametrize("prb", ["1R", "3R"])
 def test_a_flexure_with_mass_gives_its_links_its_own(name, prb):
     # Issue 36: no link at a mass floor. A flexure with its own mass has it cut at its pivots and
@@ -267,7 +280,7 @@ def test_a_flexure_with_mass_gives_its_links_its_own(name, prb):
     rho = float(re.search(r"density = ([0-9.e]+)", text).group(1))
     moving = 0.0
     for (joint, fit), (parent, area, length) in zip(report["joints"].items(), flexure_sections(text)):
-        first = fit["pivots"][0][0] / length
+        first = fit["gamma"][0]
         assert abs(first - (0.1 if prb == "3R" else 1 / 3)) < 1e-9, (joint, first)
         moving += rho * area * length * (1 - first if parent == "ground" else 1)
     bodies = sum(float(x) for x in re.findall(r"^mass = ([0-9.e-]+)", text, re.M))

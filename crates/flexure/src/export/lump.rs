@@ -170,14 +170,14 @@ impl SpatialLump {
 }
 
 /// The rigid inertia, in its root frame, of the piece of a spatial flexure
-/// `f`, straight at rest along its $x$ axis, from arc length `from` to `to`
-/// (m): mass $m = \int\mu\thinspace ds$, centre of mass
-/// $c = (\frac1m\int\mu s\thinspace ds, 0, 0)$, and about it
-/// $I = \int\left(\mu\thinspace\mathrm{diag}(0, (s - c_x)^2, (s - c_x)^2) + \rho I(s)\right)ds$,
-/// with $\rho I = \rho\thinspace\mathrm{diag}(I_y + I_z, I_y, I_z)$ the sections' own
-/// ([`crate::section::SpatialSection::rotary_inertia_per_length`]). By
-/// Gauss–Legendre on each smooth piece (split at the section's breakpoints).
-/// `None` when the flexure has no mass.
+/// `f` from arc length `from` to `to` (m), held in its rest shape (sections
+/// at $p(s)$ turned by $R(s)$, [`crate::spatial::shape_at`]): mass
+/// $m = \int\mu\thinspace ds$, centre of mass $c = \frac1m\int\mu p\thinspace ds$, and
+/// about it $I = \int\left(\mu(\lvert d\rvert^2 1 - d d^T) + R\rho I R^T\right)ds$,
+/// $d = p(s) - c$, with $\rho I = \rho\thinspace\mathrm{diag}(I_y + I_z, I_y, I_z)$ the
+/// sections' own ([`crate::section::SpatialSection::rotary_inertia_per_length`]).
+/// By Gauss–Legendre on each smooth piece (split at the section's
+/// breakpoints). `None` when the flexure has no mass.
 ///
 /// # Example
 /// ```
@@ -191,7 +191,14 @@ impl SpatialLump {
 /// // m l²/12 about y and z through its middle, nothing about its axis.
 /// assert!((b.mass - 1.0).abs() < 1e-14 && (b.com.x - 0.5).abs() < 1e-14);
 /// assert!((b.inertia[(1, 1)] - 0.25 / 12.0).abs() < 1e-14 && (b.inertia[(2, 2)] - 0.25 / 12.0).abs() < 1e-14);
-/// assert_eq!(b.inertia[(0, 0)], 0.0);
+/// assert!(b.inertia[(0, 0)].abs() < 1e-14);
+/// // Bent at rest into a half circle about z (κ = π, radius 1/π): p(s) = (sin πs, 1 − cos πs)/π,
+/// // whose mean over the length is (2/π², 1/π, 0).
+/// let pi = std::f64::consts::PI;
+/// let bent = f.with_rest(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, pi, 0.0, 0.0])?;
+/// let all = spatial_segment(&bent, 0.0, 1.0)?.unwrap();
+/// assert!((all.mass - 2.0).abs() < 1e-12 && (all.com.x - 2.0 / (pi * pi)).abs() < 1e-9);
+/// assert!((all.com.y - 1.0 / pi).abs() < 1e-9 && all.com.z.abs() < 1e-12);
 /// # Ok::<(), flexure::Error>(())
 /// ```
 pub fn spatial_segment(f: &crate::spatial::SpatialFlexure, from: f64, to: f64) -> Result<Option<SpatialLump>> {
@@ -204,29 +211,36 @@ pub fn spatial_segment(f: &crate::spatial::SpatialFlexure, from: f64, to: f64) -
     let mut cuts: Vec<f64> = vec![from];
     cuts.extend(section.breakpoints().into_iter().map(|t| t * length).filter(|s| *s > from && *s < to));
     cuts.push(to);
-    // Sums of μ, μ s, μ s² and ρI.
-    let (mut m0, mut m1, mut m2, mut rot) = (0.0, 0.0, 0.0, [0.0; 3]);
+    // The nodes and weights, in order along the length.
+    let mut nodes: Vec<(f64, f64)> = Vec::new();
     for piece in cuts.windows(2) {
         let (a, b) = (piece[0], piece[1]);
         for (&t, &w) in rule.nodes().iter().zip(rule.weights()) {
-            let s = a + (b - a) * t;
-            let ds = w * (b - a);
-            let mu = section.mass_per_length(s / length).unwrap_or(0.0);
-            m0 += mu * ds;
-            m1 += mu * s * ds;
-            m2 += mu * s * s * ds;
-            let r = section.rotary_inertia_per_length(s / length).unwrap_or([0.0; 3]);
-            for (sum, r) in rot.iter_mut().zip(r) {
-                *sum += r * ds;
-            }
+            nodes.push((a + (b - a) * t, w * (b - a)));
         }
+    }
+    nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let at: Vec<f64> = nodes.iter().map(|n| n.0).collect();
+    let sections = crate::spatial::shape_at(f, f.rest(), &at)?;
+    // Sums of μ, μ p, μ p pᵀ and R ρI Rᵀ.
+    let (mut m0, mut m1, mut m2, mut rot) =
+        (0.0, nalgebra::Vector3::zeros(), nalgebra::Matrix3::zeros(), nalgebra::Matrix3::zeros());
+    for ((s, ds), p) in nodes.iter().zip(&sections) {
+        let mu = section.mass_per_length(s / length).unwrap_or(0.0);
+        let r = nalgebra::Matrix3::from_fn(|i, j| p.rotation[i][j]);
+        let x = nalgebra::Vector3::from(p.position);
+        m0 += mu * ds;
+        m1 += x * (mu * ds);
+        m2 += x * x.transpose() * (mu * ds);
+        let own = section.rotary_inertia_per_length(s / length).unwrap_or([0.0; 3]);
+        rot += r * nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::from(own)) * r.transpose() * *ds;
     }
     if m0 <= 0.0 {
         return Ok(None);
     }
     let c = m1 / m0;
-    // ∫μ(s − c)² = ∫μs² − m c² (never below zero for rounding).
-    let spread = (m2 - m0 * c * c).max(0.0);
-    let inertia = nalgebra::Matrix3::from_diagonal(&nalgebra::Vector3::new(rot[0], spread + rot[1], spread + rot[2]));
-    Ok(Some(SpatialLump { mass: m0, com: nalgebra::Point3::new(c, 0.0, 0.0), inertia }))
+    // ∫μ d dᵀ = ∫μ p pᵀ − m c cᵀ; the inertia is its trace times 1 less it.
+    let spread = m2 - c * c.transpose() * m0;
+    let inertia = nalgebra::Matrix3::identity() * spread.trace() - spread + rot;
+    Ok(Some(SpatialLump { mass: m0, com: nalgebra::Point3::from(c), inertia }))
 }
