@@ -8,7 +8,6 @@ No Newton here: the rest is reached by mj_step alone (test_export_mujoco.settle)
 """
 
 import re
-import warnings
 
 import mujoco
 import numpy as np
@@ -121,12 +120,6 @@ MODELS["arm"] = ARM
 CASES = [pytest.param(f, prb, id=f"{f}-{prb}") for f in MODELS for prb in ("1R", "3R")]
 
 
-def exported_text(text, prb, **kwargs):
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        xml, report = flexure.Mechanism.from_toml(text).export(to="mjcf", prb=prb, **kwargs)
-    return xml, report, [str(w.message) for w in caught]
-
 
 def turn(a, b):
     """The angle (rad) of the rotation between two rotation matrices."""
@@ -183,7 +176,7 @@ def test_spatial_sdf_and_urdf_are_refused_by_name():
 
 @pytest.mark.parametrize("name, prb", CASES)
 def test_spatial_examples_step_stably_from_rest_and_from_their_keyframe(name, prb):
-    steps_stably(*exported_text(MODELS[name], prb)[:2])
+    steps_stably(*exported(MODELS[name], prb)[:2])
 
 
 @pytest.mark.parametrize("name, prb", CASES)
@@ -193,7 +186,7 @@ def test_spatial_examples_rest_in_mujoco_where_solve_says(name, prb):
     # closure's softness (its gap g, and g / L_min of turn). The fit error here is the chain's
     # small-motion response against the model's tip over the load range, so it holds the large
     # motion's part too.
-    xml, report, caught = exported_text(MODELS[name], prb)
+    xml, report, caught = exported(MODELS[name], prb)
     fits = report["joints"]
     check_flags(fits, caught)
     m, d = settle(xml)
@@ -216,7 +209,7 @@ def test_spatial_examples_rest_in_mujoco_where_solve_says(name, prb):
 @pytest.mark.parametrize("name", ["stage3d.toml", "stage3d.toml+mass"])
 @pytest.mark.parametrize("prb", ["1R", "3R"])
 def test_spatial_closures_hold_at_rest(name, prb):
-    xml, report, _ = exported_text(MODELS[name], prb)
+    xml, report, _ = exported(MODELS[name], prb)
     m, d = settle(xml)
     fits = report["joints"].values()
     e_pos = sum(f["error"]["position"] + f["error"]["angle"] * f["length"] for f in fits)
@@ -247,7 +240,7 @@ RINGS = [pytest.param(f, prb, id=f"{f}-{prb}") for f in MODELS for prb in ("1R",
 def test_spatial_examples_ring_in_mujoco_as_modes(name, prb):
     want = flexure.Mechanism.from_toml(MODELS[name]).modes(count=1)["omega"][0]
     step = min(0.002, 0.05 / want)
-    xml, report, _ = exported_text(MODELS[name], prb, step=step)
+    xml, report, _ = exported(MODELS[name], prb, step=step)
     m0 = mujoco.MjModel.from_xml_string(xml)
     m, d = settle(xml)
     m.dof_damping[:] = m0.dof_damping
@@ -262,7 +255,7 @@ def test_a_flexure_with_mass_gives_its_links_its_own(name, prb):
     # lumped on the links it moves with (the piece before the first pivot on its parent body): every
     # pseudo-rigid link weighs its piece, no link is warned of at the floor, and the model's moving
     # mass is the bodies' and the flexures' but for the pieces on the ground.
-    xml, report, caught = exported_text(MODELS[name], prb)
+    xml, report, caught = exported(MODELS[name], prb)
     m = mujoco.MjModel.from_xml_string(xml)
     mech = flexure.Mechanism.from_toml(MODELS[name])
     real = set(mech.solve()["bodies"]) - {"ground"}
