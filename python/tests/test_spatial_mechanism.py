@@ -562,10 +562,13 @@ def test_mujoco_agrees_on_a_rigid_3d_chain():
 
 def test_what_spatial_files_do_not_have_yet_is_refused_by_name():
     m = hinges()
-    # Export writes spatial flexures and fixed joints (test_export_spatial.py); a rigid joint with
-    # coordinates is refused, naming it.
-    with pytest.raises(ValueError, match=r"joint = yaw: is a rigid joint with coordinates"):
-        m.export()
+    # Export writes a spatial file's rigid joints as MuJoCo's own (test_export_spatial.py), and
+    # refuses SDFormat and URDF of it, naming `to`.
+    xml, _ = m.export()
+    assert '<joint name="yaw" type="hinge"' in xml and '<joint name="roll" type="hinge"' in xml
+    for to in ("sdf", "urdf"):
+        with pytest.raises(ValueError, match=rf"to = {to}: a spatial mechanism \(dimension = 3\) is exported to mjcf only"):
+            m.export(to=to)
 
 
 @pytest.mark.parametrize(
