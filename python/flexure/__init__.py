@@ -347,7 +347,8 @@ class Mechanism:
         the file's stem). report: format, prb, range, joints {flexure joint: {prb, gamma,
         k_theta, stiffness, pivots, error {position, angle}, flagged (past 1 % of L or 1°),
         samples, length}}, step, armature {joint: armature written}, warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
-        notes. A spatial mechanism is written to MJCF only, each flexure a chain of pivots of
+        notes. A spatial mechanism is written to MJCF, SDF or URDF (each hinge a link of its own
+        in the last two; URDF refuses a ball joint), each flexure a chain of pivots of
         three hinges (bending about z and y, twist about x) along its rest shape, with springs
         fitted to its tip compliance at rest (1R there: one pivot and the tip's own hinges);
         rigid hinges, slides and balls are MuJoCo's own, and a flexure's mass is lumped on its

@@ -7,11 +7,16 @@ linearization (mjd_transitionFD) rings at `modes`' lowest frequency within a sta
 No Newton here: the rest is reached by mj_step alone (test_export_mujoco.settle).
 """
 
+import io
 import re
+import warnings
 
 import mujoco
 import numpy as np
 import pytest
+
+import pysdf
+import yourdfpy
 
 import flexure
 from test_export import EXAMPLES
@@ -169,11 +174,58 @@ def test_one_report_shape_in_both_dimensions():
         assert set(s) - set(p) == {"stiffness_y", "stiffness_x"} and set(p) <= set(s)
 
 
-def test_spatial_sdf_and_urdf_are_refused_by_name():
-    m = flexure.Mechanism.from_file(EXAMPLES / "finger3d.toml")
-    for to in ("sdf", "urdf"):
-        with pytest.raises(ValueError, match="mjcf only"):
-            m.export(to=to)
+def rpy_matrix(r, p, y):
+    """SDFormat's and URDF's fixed-axis roll, pitch, yaw: Rz(y) Ry(p) Rx(r)."""
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+@pytest.mark.parametrize("name, prb", CASES)
+def test_spatial_sdf_and_urdf_parse_and_place_every_body_as_mujoco_does(name, prb):
+    # SDFormat and URDF hold one joint a link: each hinge gets a link of its own. Parsed by the
+    # published parsers (python-sdformat, yourdfpy), every body is placed at rest where MuJoCo
+    # puts it at qpos0 from the MJCF export (SDFormat's link poses; URDF's scene graph at zero),
+    # every hinge of the MJCF is a joint, and what each format cannot hold is named.
+    text = MODELS[name]
+    xml, _, _ = exported(text, prb)
+    m = mujoco.MjModel.from_xml_string(xml)
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    bodies = set(flexure.Mechanism.from_toml(text).solve()["bodies"]) - {"ground"}
+    hinges = {mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) for j in range(m.njnt)}
+    where = {b: (d.xpos[i], d.xmat[i].reshape(3, 3)) for b in bodies for i in [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, b)]}
+    mechanism = flexure.Mechanism.from_toml(text)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sdf, report = mechanism.export(to="sdf", prb=prb)
+    model = pysdf.SDF.from_xml(sdf)
+    assert model.version == "1.9" and report["dimension"] == 3 and report["format"] == "sdf"
+    links = {link.name: link for link in model.iter("link")}
+    assert bodies <= set(links) and hinges <= {j.name for j in model.iter("joint")}
+    for b, (x, r) in where.items():
+        pose = links[b].pose
+        assert np.allclose(pose.position, x, atol=1e-12) and np.allclose(rpy_matrix(*pose.orientation), r, atol=1e-12), b
+    for kind in ("tendon", "force"):
+        assert sum(w.startswith(f"{kind} ") and "not written" in w for w in map(str, (c.message for c in caught))) == text.count(f"[[{kind}]]")
+    if "spherical" in text:
+        with pytest.raises(ValueError, match="is a ball, which URDF cannot hold"):
+            mechanism.export(to="urdf", prb=prb)
+        return
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        urdf, report = mechanism.export(to="urdf", prb=prb)
+    robot = yourdfpy.URDF.load(io.StringIO(urdf), build_scene_graph=True, load_meshes=False)
+    assert bodies <= set(robot.link_map) and hinges <= set(robot.joint_map)
+    for b, (x, r) in where.items():
+        t = robot.get_transform(frame_to=b, frame_from="world")
+        assert np.allclose(t[:3, 3], x, atol=1e-12) and np.allclose(t[:3, :3], r, atol=1e-12), b
+    said = [str(c.message) for c in caught]
+    for j in hinges:
+        assert any(f'"{j}"' in w and "no springs" in w for w in said), j
+    assert sum("no loops" in w for w in said) == sum(text.count(k) for k in ("[[weld]]", "[[pin]]", "[[ball]]"))
 
 
 @pytest.mark.parametrize("name, prb", CASES)

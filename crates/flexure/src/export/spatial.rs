@@ -1,4 +1,5 @@
-//! Export of a spatial mechanism (`dimension = 3`) to MuJoCo's MJCF.
+//! Export of a spatial mechanism (`dimension = 3`) to MuJoCo's MJCF,
+//! SDFormat and URDF.
 //!
 //! Each spatial flexure becomes a chain of pivots along its rest
 //! shape ([`pivot_fractions`]: 3R at Su's $0.1L$, $0.45L$ and $0.85L$; 1R
@@ -36,7 +37,8 @@
 //! `connect`, pins as two `connect` (the origins, and a point on the axis).
 //! A flexure curved or twisted at rest has its straightened springs placed
 //! along its rest shape, each hinge about its section's axes there
-//! ([`rest_frames`]). Not yet: SDFormat and URDF.
+//! ([`rest_frames`]). SDFormat and URDF hold one joint a link: each hinge
+//! gets a link of its own there, and what each format cannot hold is named.
 
 use super::xml::{Element, number, numbers};
 use super::{Export, FitReport, JointFit, Options, lump, step};
@@ -311,6 +313,9 @@ struct Link {
     inertia: Matrix3<f64>,
     /// Hinges: (name, point in the link's frame, axis, stiffness, damping, armature).
     hinges: Vec<Hinge>,
+    /// The name of its rigid connection to the parent when it has no hinges
+    /// (a fixed joint's), for SDFormat and URDF, which name it.
+    fixed: String,
 }
 
 struct Hinge {
@@ -415,8 +420,9 @@ struct Site {
     pose: Isometry3<f64>,
 }
 
-/// Exports the spatial mechanism `m` to MJCF as `options` say (format
-/// `mjcf` only; its `armature`, `step`, `prb`, `range`, `name`).
+/// Exports the spatial mechanism `m` as `options` say (its `format`,
+/// `armature`, `step`, `prb`, `range`, `name`; the step and armature are
+/// MJCF's only).
 ///
 /// # Example
 /// ```
@@ -436,13 +442,9 @@ struct Site {
 pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     options.range.validate()?;
     step::validate(options.step)?;
-    if options.format != super::Format::Mjcf {
-        return Err(Error::invalid(
-            "to",
-            options.format.name(),
-            "a spatial mechanism (dimension = 3) is exported to mjcf only for now",
-        ));
-    }
+    let mjcf = options.format == super::Format::Mjcf;
+    // Only MJCF holds an armature: the other formats are not sized.
+    let step_for = if mjcf { options.step } else { 0.0 };
     if !(options.armature.is_finite() && options.armature >= 0.0) {
         return Err(Error::invalid("armature", options.armature, "must be a finite number, zero or greater (kg·m²)"));
     }
@@ -459,6 +461,13 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             }
             None => {
                 let r = rigid_joint(spec)?;
+                if r.motion == Motion::Ball && options.format == super::Format::Urdf {
+                    return Err(Error::invalid(
+                        "joint",
+                        &spec.name,
+                        "is a ball, which URDF cannot hold (its joints turn about one axis): export to mjcf or sdf",
+                    ));
+                }
                 if r.motion == Motion::Ball && r.rest != Vector3::zeros() {
                     warnings.push(format!(
                         "joint {:?}: a ball whose spring rests turned ({} rad): MuJoCo's ball spring is k times the \
@@ -505,6 +514,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         com: Point3::origin(),
         inertia: Matrix3::zeros(),
         hinges: Vec::new(),
+        fixed: String::new(),
     }];
     let mut body_link = vec![0usize; m.bodies.len()];
     // Pieces of flexure mass: (link, lump in its frame); on the parent body
@@ -521,6 +531,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             com: Point3::origin(),
             inertia: Matrix3::zeros(),
             hinges,
+            fixed: spec.name.clone(),
         };
         let child = match (fit, rigid) {
             (None, Some(r)) => {
@@ -621,7 +632,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     // A massless flexure's links are merged away, their hinges on the child
     // in order, each at its pivot in the child's frame, as MuJoCo applies a
     // body's joints; a flexure with mass keeps them, each with its piece.
-    let merged = merge_massless(&mut links, &mut body_link);
+    let merged = if mjcf { merge_massless(&mut links, &mut body_link) } else { one_joint_a_link(&mut links) };
     for (body, hinges) in &merged {
         notes.push(format!(
             "body {body:?} carries the hinges {} of a massless flexure, in order, each at its pivot: its links are merged \
@@ -644,6 +655,14 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
                     "body {:?} has less than {below} in the file: given that much, as simulators need",
                     l.name
                 ));
+            } else if massless && !mjcf {
+                warnings.push(format!(
+                    "link {:?}: a link of one hinge, kept because {} holds one joint a link, is given {floor} (the least \
+                     simulators accept), so it rings far faster than the bodies; give the flexure its mass (density or \
+                     mass_per_length) or export to mjcf, which puts a pivot's hinges on one body",
+                    l.name,
+                    if options.format == super::Format::Sdf { "SDFormat" } else { "URDF" }
+                ));
             } else if massless {
                 warnings.push(format!(
                     "link {:?}: MuJoCo holds at most {MAX_BODY_DOFS} degrees of freedom a body, so a 3R chain's nine \
@@ -663,7 +682,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
     // Sized for the step, as the plane's ([`step::size`]): each hinge's own
     // link's inertia about its axis.
     let mut armature = Vec::new();
-    if options.step > 0.0 {
+    if step_for > 0.0 {
         let period = step::STEPS_PER_PERIOD * options.step / std::f64::consts::TAU;
         for l in links.iter_mut().skip(1) {
             let (mass, com, inertia) = (l.mass, l.com, l.inertia);
@@ -712,7 +731,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             }
         }
     }
-    if options.step > 0.0 && !armature.is_empty() {
+    if step_for > 0.0 && !armature.is_empty() {
         notes.push(format!(
             "sized for a {} s step: each hinge whose own link would ring faster than {} steps is given the armature \
              (kg·m²) that slows it to that: {}",
@@ -770,6 +789,41 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             pair.push((a2, b2));
         }
         closures.push((name, c.holds, pair));
+    }
+    if !mjcf {
+        let size = m.size();
+        let (xml, lost) = match options.format {
+            super::Format::Sdf => write_sdf(&links, &sites, &closures, m, &options.name, &joints),
+            _ => write_urdf(&links, m, &options.name, &joints, &closures, size),
+        };
+        for (name, ..) in &tendon_sites {
+            let format = options.format.name();
+            let format = if format == "sdf" { "SDFormat" } else { "URDF" };
+            warnings.push(format!("tendon {name:?}: {format} has no tendons; not written"));
+        }
+        for (name, ..) in &force_sites {
+            let format = if options.format == super::Format::Sdf { "SDFormat" } else { "URDF" };
+            warnings.push(format!("force {name:?}: {format} has no applied loads; not written"));
+        }
+        warnings.extend(lost);
+        if !armature.is_empty() {
+            let format = if options.format == super::Format::Sdf { "SDFormat" } else { "URDF" };
+            let names: Vec<&str> = armature.iter().map(|(n, _)| n.as_str()).collect();
+            warnings.push(format!("armature: {format} has no armature; dropped on {}", names.join(", ")));
+            armature.clear();
+        }
+        let report = FitReport {
+            dimension: 3,
+            format: options.format,
+            prb: options.prb,
+            range: options.range,
+            joints,
+            step: 0.0,
+            armature,
+            warnings: warnings.clone(),
+            notes,
+        };
+        return Ok(Export { xml, report, warnings, model: None });
     }
     let solref = super::mjcf::closure_solref(options.step);
     for (name, idx, tension) in &tendon_sites {
@@ -898,6 +952,291 @@ fn merge_massless(links: &mut Vec<Link>, body_link: &mut [usize]) -> Vec<(String
         .filter(|l| merged && l.hinges.len() > AXES.len())
         .map(|l| (l.name.clone(), l.hinges.iter().map(|h| h.name.clone()).collect()))
         .collect()
+}
+
+/// Gives each hinge a link of its own, for SDFormat and URDF (one joint a
+/// link): a link of $n$ hinges, each at its point $a_j$ in the link's frame,
+/// becomes a chain of links `HINGE_link` at $a_1, \dots, a_n$ (turned as the
+/// link), each carrying its hinge at its origin, the last hinge on the link
+/// itself when it is at the link's origin, else the link fixed to the last
+/// (`LINK_tip`). At rest every hinge is at zero, so each chain composes as
+/// MuJoCo's several joints on one body do. The new links have no mass.
+/// Returns nothing to note (the signature of [`merge_massless`]).
+fn one_joint_a_link(links: &mut Vec<Link>) -> Vec<(String, Vec<String>)> {
+    for i in 1..links.len() {
+        let n = links[i].hinges.len();
+        if n <= 1 && links[i].hinges.first().is_none_or(|h| h.at == Point3::origin()) {
+            continue;
+        }
+        let hinges = std::mem::take(&mut links[i].hinges);
+        let (mut up, mut pose, mut at) = (links[i].parent, links[i].pose, Point3::origin());
+        for (j, mut h) in hinges.into_iter().enumerate() {
+            let step = Isometry3::translation(h.at.x - at.x, h.at.y - at.y, h.at.z - at.z);
+            at = h.at;
+            h.at = Point3::origin();
+            if j + 1 == n && at == Point3::origin() {
+                links[i].parent = up;
+                links[i].pose = pose * step;
+                links[i].hinges = vec![h];
+                break;
+            }
+            links.push(Link {
+                name: format!("{}_link", h.name),
+                parent: up,
+                pose: pose * step,
+                mass: 0.0,
+                com: Point3::origin(),
+                inertia: Matrix3::zeros(),
+                hinges: vec![h],
+                fixed: String::new(),
+            });
+            up = links.len() - 1;
+            pose = Isometry3::identity();
+            if j + 1 == n {
+                links[i].parent = up;
+                links[i].pose = Isometry3::translation(-at.x, -at.y, -at.z);
+                links[i].fixed = format!("{}_tip", links[i].name);
+            }
+        }
+    }
+    Vec::new()
+}
+
+/// Each link's pose in the root (the model's frame at rest).
+fn world_poses(links: &[Link]) -> Vec<Isometry3<f64>> {
+    fn at(links: &[Link], i: usize, memo: &mut Vec<Option<Isometry3<f64>>>) -> Isometry3<f64> {
+        if let Some(p) = memo[i] {
+            return p;
+        }
+        let p = if i == 0 { Isometry3::identity() } else { at(links, links[i].parent, memo) * links[i].pose };
+        memo[i] = Some(p);
+        p
+    }
+    let mut memo = vec![None; links.len()];
+    (0..links.len()).map(|i| at(links, i, &mut memo)).collect()
+}
+
+/// `x y z roll pitch yaw` of a pose (SDFormat's and URDF's fixed-axis angles).
+fn xyz_rpy(p: &Isometry3<f64>) -> ([f64; 3], [f64; 3]) {
+    let t = p.translation.vector;
+    let (r, pi, y) = p.rotation.euler_angles();
+    ([t.x, t.y, t.z], [r, pi, y])
+}
+
+fn inertia_leaves(l: &Link) -> Vec<(&'static str, f64)> {
+    let j = &l.inertia;
+    vec![
+        ("ixx", j[(0, 0)]),
+        ("ixy", j[(0, 1)]),
+        ("ixz", j[(0, 2)]),
+        ("iyy", j[(1, 1)]),
+        ("iyz", j[(1, 2)]),
+        ("izz", j[(2, 2)]),
+    ]
+}
+
+type Closures = [(String, Holds, Vec<(usize, usize)>)];
+
+/// The spatial model as SDFormat 1.9: a world holding gravity and the model,
+/// links posed in the model's frame at rest, each joint at its child's
+/// origin (axis in that frame), springs about rest; closed closures as
+/// joints (weld fixed, pin revolute about its frames' z, ball ball), open
+/// ones warned of. Returns the document and what it could not hold.
+fn write_sdf(
+    links: &[Link],
+    sites: &[Site],
+    closures: &Closures,
+    m: &Mechanism<Spatial>,
+    name: &str,
+    fits: &[(String, JointFit)],
+) -> (String, Vec<String>) {
+    let mut lost = Vec::new();
+    let world = world_poses(links);
+    let pose = |p: &Isometry3<f64>| {
+        let (x, r) = xyz_rpy(p);
+        Element::new("pose").text(numbers(&[x[0], x[1], x[2], r[0], r[1], r[2]]))
+    };
+    let leaf = |n: &str, v: f64| Element::new(n).text(number(v));
+    let link_name = |i: usize| if i == 0 { "world".to_string() } else { links[i].name.clone() };
+    let mut model = Element::new("model").attr("name", name);
+    for (i, l) in links.iter().enumerate().skip(1) {
+        let mut inertia = Element::new("inertia");
+        for (k, v) in inertia_leaves(l) {
+            inertia.push(leaf(k, v));
+        }
+        let inertial = Element::new("inertial")
+            .child(pose(&Isometry3::translation(l.com.x, l.com.y, l.com.z)))
+            .child(leaf("mass", l.mass))
+            .child(inertia);
+        model.push(Element::new("link").attr("name", l.name.as_str()).child(pose(&world[i])).child(inertial));
+    }
+    for (i, l) in links.iter().enumerate().skip(1) {
+        let joint = |n: &str, kind: &str| {
+            Element::new("joint")
+                .attr("name", n)
+                .attr("type", kind)
+                .child(Element::new("parent").text(link_name(l.parent)))
+                .child(Element::new("child").text(link_name(i)))
+        };
+        match l.hinges.first() {
+            None => model.push(joint(&l.fixed, "fixed")),
+            Some(h) => {
+                let kind = match h.motion {
+                    Motion::Hinge => "revolute",
+                    Motion::Slide => "prismatic",
+                    Motion::Ball => "ball",
+                    Motion::Fixed => "fixed",
+                };
+                let mut j = joint(&h.name, kind);
+                if h.motion == Motion::Ball {
+                    if h.stiffness > 0.0 {
+                        lost.push(format!(
+                            "joint {:?}: SDFormat's ball joint has no spring; its stiffness {} is not written",
+                            h.name,
+                            number(h.stiffness)
+                        ));
+                    }
+                } else {
+                    let dynamics = Element::new("dynamics")
+                        .child(leaf("damping", h.damping))
+                        .child(leaf("spring_reference", 0.0))
+                        .child(leaf("spring_stiffness", h.stiffness));
+                    j.push(
+                        Element::new("axis")
+                            .child(Element::new("xyz").text(numbers(&[h.axis.x, h.axis.y, h.axis.z])))
+                            .child(dynamics),
+                    );
+                }
+                model.push(j);
+            }
+        }
+    }
+    for (closure, holds, pair) in closures {
+        let (a, b) = (&sites[pair[0].0], &sites[pair[0].1]);
+        let (wa, wb) = (world[a.link] * a.pose, world[b.link] * b.pose);
+        let apart = (wa.translation.vector - wb.translation.vector).norm() > 1e-9 * m.size().max(1e-3)
+            || (*holds != Holds::Ball && wa.rotation.angle_to(&wb.rotation) > 1e-9);
+        if apart {
+            lost.push(format!(
+                "closure {closure:?}: open at rest (a preload); an SDFormat joint has one frame and cannot close it; not written"
+            ));
+            continue;
+        }
+        // SDFormat's child cannot be the world: the other end is the child then.
+        let (parent, child) = if b.link == 0 { (b, a) } else { (a, b) };
+        let kind = match holds {
+            Holds::Weld => "fixed",
+            Holds::Pin => "revolute",
+            Holds::Ball => "ball",
+        };
+        let mut j = Element::new("joint")
+            .attr("name", closure.as_str())
+            .attr("type", kind)
+            .child(Element::new("parent").text(link_name(parent.link)))
+            .child(Element::new("child").text(link_name(child.link)))
+            .child(pose(&child.pose));
+        if *holds == Holds::Pin {
+            j.push(Element::new("axis").child(Element::new("xyz").text("0 0 1")));
+        }
+        model.push(j);
+    }
+    let mut w = Element::new("world").attr("name", name);
+    w.push(Element::new("gravity").text(numbers(&[m.gravity.x, m.gravity.y, m.gravity.z])));
+    w.push(model);
+    let mut root = Element::new("sdf").attr("version", "1.9");
+    for (n, f) in fits {
+        root.comment(f.line(n));
+    }
+    root.push(w);
+    (root.document(), lost)
+}
+
+/// The spatial model as URDF: the tree (root link `world`), each joint's
+/// origin the child's pose in its parent at rest and its axis in the
+/// child's frame; hinges `continuous`, slides `prismatic` with limits of
+/// the mechanism's size (warned), fixed joints `fixed`. URDF holds no
+/// springs, gravity or closures: each is named in what it could not hold.
+fn write_urdf(
+    links: &[Link],
+    m: &Mechanism<Spatial>,
+    name: &str,
+    fits: &[(String, JointFit)],
+    closures: &Closures,
+    size: f64,
+) -> (String, Vec<String>) {
+    let mut lost = Vec::new();
+    let link_name = |i: usize| if i == 0 { "world".to_string() } else { links[i].name.clone() };
+    let origin = |p: &Isometry3<f64>| {
+        let (x, r) = xyz_rpy(p);
+        Element::new("origin").attr("xyz", numbers(&x)).attr("rpy", numbers(&r))
+    };
+    let mut robot = Element::new("robot").attr("name", name);
+    for (n, f) in fits {
+        robot.comment(f.line(n));
+    }
+    robot.push(Element::new("link").attr("name", "world"));
+    for l in links.iter().skip(1) {
+        let mut inertia = Element::new("inertia");
+        for (k, v) in inertia_leaves(l) {
+            inertia = inertia.attr(k, number(v));
+        }
+        let inertial = Element::new("inertial")
+            .child(origin(&Isometry3::translation(l.com.x, l.com.y, l.com.z)))
+            .child(Element::new("mass").attr("value", number(l.mass)))
+            .child(inertia);
+        robot.push(Element::new("link").attr("name", l.name.as_str()).child(inertial));
+    }
+    for (i, l) in links.iter().enumerate().skip(1) {
+        let (n, kind) = match l.hinges.first() {
+            None => (l.fixed.as_str(), "fixed"),
+            Some(h) if h.motion == Motion::Slide => (h.name.as_str(), "prismatic"),
+            Some(h) => (h.name.as_str(), "continuous"),
+        };
+        let mut j = Element::new("joint")
+            .attr("name", n)
+            .attr("type", kind)
+            .child(Element::new("parent").attr("link", link_name(l.parent)))
+            .child(Element::new("child").attr("link", link_name(i)))
+            .child(origin(&l.pose));
+        if let Some(h) = l.hinges.first() {
+            j.push(Element::new("axis").attr("xyz", numbers(&[h.axis.x, h.axis.y, h.axis.z])));
+            if h.damping > 0.0 {
+                j.push(Element::new("dynamics").attr("damping", number(h.damping)));
+            }
+            if h.motion == Motion::Slide {
+                j.push(
+                    Element::new("limit")
+                        .attr("lower", number(-size))
+                        .attr("upper", number(size))
+                        .attr("effort", "0")
+                        .attr("velocity", "0"),
+                );
+                lost.push(format!(
+                    "joint {:?}: URDF requires a prismatic joint's limits; written as ±{} m (the mechanism's size), effort and velocity 0",
+                    h.name,
+                    number(size)
+                ));
+            }
+            if h.stiffness > 0.0 {
+                lost.push(format!(
+                    "joint {:?}: URDF has no springs; its stiffness [{}] is not written",
+                    h.name,
+                    number(h.stiffness)
+                ));
+            }
+        }
+        robot.push(j);
+    }
+    if m.gravity != Vector3::zeros() {
+        lost.push(format!(
+            "gravity [{}]: URDF has no gravity (the simulator's world sets it); not written",
+            numbers(&[m.gravity.x, m.gravity.y, m.gravity.z]).replace(' ', ", ")
+        ));
+    }
+    for (closure, ..) in closures {
+        lost.push(format!("closure {closure:?}: URDF has no loops (a tree only); this closure is not written"));
+    }
+    (robot.document(), lost)
 }
 
 /// `pos` and, unless it is the identity, `quat` (w x y z) of a pose.
@@ -1098,12 +1437,42 @@ mod tests {
     }
 
     #[test]
+    fn sdformat_and_urdf_hold_one_joint_a_link_and_name_what_they_cannot_hold() {
+        use super::super::Format;
+        let m = spatial_from_toml(STAGE).unwrap();
+        let sdf = export(&m, &Options { format: Format::Sdf, ..Default::default() }).unwrap();
+        // Each hinge a link of its own: the stage's last pivot's three at 0.15 L behind its tip
+        // (Su's 0.85 L), the body fixed to the last of them.
+        assert!(sdf.xml.contains(r#"<joint name="left_3z" type="revolute">"#), "{}", sdf.xml);
+        assert!(
+            sdf.xml.contains(r#"<link name="left_3x_link">"#)
+                && sdf.xml.contains(r#"<joint name="stage_tip" type="fixed">"#)
+        );
+        assert!(sdf.xml.contains(r#"<joint name="weld_0" type="fixed">"#));
+        assert!(
+            sdf.warnings.iter().any(|w| w.contains("force \"push\"") && w.contains("not written")),
+            "{:?}",
+            sdf.warnings
+        );
+        assert!(
+            sdf.warnings
+                .iter()
+                .any(|w| w.contains("\"left_1z_link\"") && w.contains("SDFormat holds one joint a link"))
+        );
+        assert_eq!((sdf.report.step, sdf.report.armature.len()), (0.0, 0));
+        let urdf = export(&m, &Options { format: Format::Urdf, ..Default::default() }).unwrap();
+        assert!(urdf.xml.contains(r#"<joint name="left_1y" type="continuous">"#), "{}", urdf.xml);
+        assert!(urdf.warnings.iter().any(|w| w.contains("\"left_1y\"") && w.contains("no springs")));
+        assert!(urdf.warnings.iter().any(|w| w.contains("\"weld_0\"") && w.contains("no loops")));
+        let err = export(&spatial_from_toml(RIGID).unwrap(), &Options { format: Format::Urdf, ..Default::default() })
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("wrist") && err.contains("URDF cannot hold"), "{err}");
+    }
+
+    #[test]
     fn what_it_cannot_write_is_refused_by_name() {
         let m = spatial_from_toml(STAGE).unwrap();
-        for format in [super::super::Format::Sdf, super::super::Format::Urdf] {
-            let err = export(&m, &Options { format, ..Default::default() }).unwrap_err().to_string();
-            assert!(err.contains("to") && err.contains("mjcf only"), "{err}");
-        }
         let err = export(&m, &Options { armature: -1.0, ..Default::default() }).unwrap_err().to_string();
         assert!(err.contains("armature"), "{err}");
     }
