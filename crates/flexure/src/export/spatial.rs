@@ -812,18 +812,7 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
             warnings.push(format!("armature: {format} has no armature; dropped on {}", names.join(", ")));
             armature.clear();
         }
-        let report = FitReport {
-            dimension: 3,
-            format: options.format,
-            prb: options.prb,
-            range: options.range,
-            joints,
-            step: 0.0,
-            armature,
-            warnings: warnings.clone(),
-            notes,
-        };
-        return Ok(Export { xml, report, warnings, model: None });
+        return Ok(spatial_export(xml, options, joints, 0.0, armature, warnings, notes));
     }
     let solref = super::mjcf::closure_solref(options.step);
     for (name, idx, tension) in &tendon_sites {
@@ -895,18 +884,32 @@ pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
         );
     }
     let xml = root.document();
+    Ok(spatial_export(xml, options, joints, options.step, armature, warnings, notes))
+}
+
+/// The export of a spatial mechanism: its XML and the report of its fits,
+/// step, armature, warnings and notes.
+fn spatial_export(
+    xml: String,
+    options: &Options,
+    joints: Vec<(String, JointFit)>,
+    step: f64,
+    armature: Vec<(String, f64)>,
+    warnings: Vec<String>,
+    notes: Vec<String>,
+) -> Export {
     let report = FitReport {
         dimension: 3,
         format: options.format,
         prb: options.prb,
         range: options.range,
         joints,
-        step: options.step,
+        step,
         armature,
         warnings: warnings.clone(),
         notes,
     };
-    Ok(Export { xml, report, warnings, model: None })
+    Export { xml, report, warnings, model: None }
 }
 
 /// The most degrees of freedom MuJoCo holds on one body ("more than 6 dofs
@@ -1204,18 +1207,9 @@ fn write_urdf(
                 j.push(Element::new("dynamics").attr("damping", number(h.damping)));
             }
             if h.motion == Motion::Slide {
-                j.push(
-                    Element::new("limit")
-                        .attr("lower", number(-size))
-                        .attr("upper", number(size))
-                        .attr("effort", "0")
-                        .attr("velocity", "0"),
-                );
-                lost.push(format!(
-                    "joint {:?}: URDF requires a prismatic joint's limits; written as ±{} m (the mechanism's size), effort and velocity 0",
-                    h.name,
-                    number(size)
-                ));
+                let (limit, said) = super::urdf::slide_limit(&h.name, size);
+                j.push(limit);
+                lost.push(said);
             }
             if h.stiffness > 0.0 {
                 lost.push(format!(
