@@ -347,10 +347,13 @@ class Mechanism:
         the file's stem). report: format, prb, range, joints {flexure joint: {prb, gamma,
         k_theta, stiffness, pivots, error {position, angle}, flagged (past 1 % of L or 1°),
         samples, length}}, step, armature {joint: armature written}, warnings (also raised as UserWarning: flagged fits, what the format cannot hold) and
-        notes. A spatial mechanism is written to MJCF only, each flexure a chain of pivots of
-        three hinges (bending about z and y, twist about x) with springs fitted to its tip
-        compliance at rest; its report adds dimension 3, 3-D pivots and one [k_z, k_y, k_x]
-        stiffness per pivot. Bad arguments raise ValueError naming them (docs/export.md in
+        notes. A spatial mechanism is written to MJCF, SDF or URDF (each hinge a link of its own
+        in the last two; URDF refuses a ball joint), each flexure a chain of pivots of
+        three hinges (bending about z and y, twist about x) along its rest shape, with springs
+        fitted to its tip compliance at rest (1R there: one pivot and the tip's own hinges);
+        rigid hinges, slides and balls are MuJoCo's own, and a flexure's mass is lumped on its
+        links; its report adds dimension 3, 3-D pivots, and stiffness_y and stiffness_x per
+        pivot. Bad arguments raise ValueError naming them (docs/export.md in
         the repository)."""
         if name is None:
             name = _Path(self._source).stem if self._source else "mechanism"

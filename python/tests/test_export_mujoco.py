@@ -23,10 +23,12 @@ from test_export import EXAMPLES, PLANAR, poses
 CASES = [pytest.param(f, prb, id=f"{f}-{prb}") for f in PLANAR for prb in ("1R", "3R")]
 
 
-def exported(path, prb, **kwargs):
+def exported(source, prb, **kwargs):
+    """The MJCF, report and warnings of a mechanism file (a path) or its text (a str)."""
+    mechanism = flexure.Mechanism.from_toml(source) if isinstance(source, str) else flexure.Mechanism.from_file(source)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        xml, report = flexure.Mechanism.from_file(path).export(to="mjcf", prb=prb, **kwargs)
+        xml, report = mechanism.export(to="mjcf", prb=prb, **kwargs)
     return xml, report, [str(w.message) for w in caught]
 
 

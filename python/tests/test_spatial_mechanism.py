@@ -562,10 +562,13 @@ def test_mujoco_agrees_on_a_rigid_3d_chain():
 
 def test_what_spatial_files_do_not_have_yet_is_refused_by_name():
     m = hinges()
-    # Export writes spatial flexures and fixed joints (test_export_spatial.py); a rigid joint with
-    # coordinates is refused, naming it.
-    with pytest.raises(ValueError, match=r"joint = yaw: is a rigid joint with coordinates"):
-        m.export()
+    # Export writes a spatial file's rigid joints as MuJoCo's own (test_export_spatial.py); a ball
+    # in URDF, which has none, is refused naming it.
+    xml, _ = m.export()
+    assert '<joint name="yaw" type="hinge"' in xml and '<joint name="roll" type="hinge"' in xml
+    ball = flexure.Mechanism.from_toml(HINGES.format(k1=1.0, k2=2.0).replace('"revolute"\nparent = "arm"', '"spherical"\nparent = "arm"').replace("axis = [1.0, 0.0, 0.0]\n", ""))
+    with pytest.raises(ValueError, match=r"joint = roll: is a ball, which URDF cannot hold"):
+        ball.export(to="urdf")
 
 
 @pytest.mark.parametrize(

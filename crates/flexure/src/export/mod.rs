@@ -172,7 +172,8 @@ pub struct JointFit {
     /// The chain.
     pub kind: PrbKind,
     /// The links' length fractions, root to tip: $[1-\gamma, \gamma]$ for
-    /// 1R (Howell's $\gamma$ last), $[\gamma_0, \dots, \gamma_3]$ for 3R.
+    /// 1R (Howell's $\gamma$ last; in space $[1-\gamma, \gamma, 0]$, its pivot
+    /// $\gamma L$ from the tip and one at the tip), $[\gamma_0, \dots, \gamma_3]$ for 3R.
     pub gamma: Vec<f64>,
     /// Each hinge's nondimensional spring about $z$: Howell's $K_\Theta$ for
     /// 1R ($k_1 = \gamma K_\Theta EI/L$), $K_{\Theta i}$ for 3R

@@ -73,18 +73,9 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String], travel: f64) ->
             .child(origin(&place))
             .child(Element::new("axis").attr("xyz", numbers(&axis)));
         if h.motion == LinkMotion::Slide {
-            j.push(
-                Element::new("limit")
-                    .attr("lower", number(-travel))
-                    .attr("upper", number(travel))
-                    .attr("effort", "0")
-                    .attr("velocity", "0"),
-            );
-            warnings.push(format!(
-                "joint {:?}: URDF requires a prismatic joint's limits; written as ±{} m (the mechanism's size), effort and velocity 0",
-                h.name,
-                number(travel)
-            ));
+            let (limit, said) = slide_limit(&h.name, travel);
+            j.push(limit);
+            warnings.push(said);
         }
         if h.damping > 0.0 {
             j.push(Element::new("dynamics").attr("damping", number(h.damping)));
@@ -132,4 +123,19 @@ pub fn write(model: &RigidModel, name: &str, comment: &[String], travel: f64) ->
         });
     }
     (robot.document(), warnings)
+}
+
+/// A prismatic joint's `limit` of ±`travel` (m), which URDF requires, with
+/// the warning naming joint `name` that says so (both dimensions' URDF).
+pub(super) fn slide_limit(name: &str, travel: f64) -> (Element, String) {
+    let limit = Element::new("limit")
+        .attr("lower", number(-travel))
+        .attr("upper", number(travel))
+        .attr("effort", "0")
+        .attr("velocity", "0");
+    let said = format!(
+        "joint {name:?}: URDF requires a prismatic joint's limits; written as ±{} m (the mechanism's size), effort and velocity 0",
+        number(travel)
+    );
+    (limit, said)
 }
