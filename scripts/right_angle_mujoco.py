@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Simo and Vu-Quoc's right-angle cantilever as a MuJoCo hinge chain: the independent check of
-scripts/right_angle_cantilever.toml (issue 37, item 2).
+examples/right_angle_cantilever.toml (issue 37, item 2).
 
 The structure (Simo and Vu-Quoc 1988, CMAME 66:125-161): two legs of L = 10 at a right angle, the
 first along y clamped at the origin, the second along x from the elbow (0, 10, 0); EI = GJ = 1e3,
@@ -26,7 +26,7 @@ Usage (MuJoCo's Python package; run from a scratch directory so MUJOCO_LOG.TXT s
 It writes t, the elbow's z and the tip's z every 0.05 s, prints the extremes (Exudyn's figures
 for the same benchmark: tip 8.24 at t = 7.40 and -9.75 at 15.85, elbow -4.07 at 10.85) and, with
 --compare, the largest differences from a flexure run. With --flexure (the `flexure` command) it
-runs scripts/right_angle_cantilever.toml itself (30 s at tolerance 1e-4, from rest), times it (CPU
+runs examples/right_angle_cantilever.toml itself (30 s at tolerance 1e-4, from rest), times it (CPU
 of the child process, including the error estimate `simulate` adds: a second run at 1e-5) and
 compares. It reports and does not judge.
 """
@@ -143,10 +143,10 @@ def main():
     p.add_argument("--step", type=float, default=1e-3, help="RK4 step (s), dividing 0.05 [1e-3]")
     p.add_argument("--out", help="write t, elbow z, tip z here (CSV)")
     p.add_argument("--compare", help="a CSV of `flexure simulate --out` to compare with")
-    p.add_argument("--flexure", help="the flexure command: run and time scripts/right_angle_cantilever.toml")
+    p.add_argument("--flexure", help="the flexure command: run and time examples/right_angle_cantilever.toml")
     args = p.parse_args()
     if args.flexure:
-        example = pathlib.Path(__file__).resolve().parent / "right_angle_cantilever.toml"
+        example = pathlib.Path(__file__).resolve().parent.parent / "examples" / "right_angle_cantilever.toml"
         args.compare = str(pathlib.Path(tempfile.mkdtemp()) / "flexure.csv")
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         command = [args.flexure, "simulate", str(example), "--duration", "30", "--every", "0.05"]

@@ -36,12 +36,14 @@ const PENDULUM: &str = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n\
 /// solve's bodies being the library's report.
 #[test]
 fn the_spatial_examples_answer_every_mechanism_subcommand() {
+    // The last: why `buckle` refuses, as its header says (None: it answers).
     let cases = [
-        ("finger3d.toml", "force.contact.fz=0:0.1:3", ("fingertip", "0,0,0.003")),
-        ("continuum_robot.toml", "tendon.side.tension=0:0.6:4", ("disc5", "0,0,0")),
-        ("stage3d.toml", "force.load.fz=0:2:3", ("stage", "0,-0.02,0")),
+        ("finger3d.toml", "force.contact.fz=0:0.1:3", ("fingertip", "0,0,0.003"), None),
+        ("continuum_robot.toml", "tendon.side.tension=0:0.6:4", ("disc5", "0,0,0"), None),
+        ("stage3d.toml", "force.load.fz=0:2:3", ("stage", "0,-0.02,0"), None),
+        ("right_angle_cantilever.toml", "force.pulse.fz=0:50:3", ("tip", "0,0,0"), Some("no buckling load")),
     ];
-    for (name, sweep, (body, at)) in cases {
+    for (name, sweep, (body, at), refused) in cases {
         let file = example(name);
         let text = std::fs::read_to_string(&file).unwrap();
         // The comments show the commands run here.
@@ -67,8 +69,20 @@ fn the_spatial_examples_answer_every_mechanism_subcommand() {
         assert!(err.is_empty(), "{name} --compliance: {err}");
         let c = v["compliance"].as_array().unwrap();
         assert_eq!((c.len(), c[0].as_array().unwrap().len()), (6, 6), "{name}");
-        let (v, _) = answer(&["buckle", &file]);
-        assert!(v["load_factor"].as_f64().unwrap() > 1.0, "{name}: {v}");
+        match refused {
+            None => {
+                let (v, _) = answer(&["buckle", &file]);
+                assert!(v["load_factor"].as_f64().unwrap() > 1.0, "{name}: {v}");
+            }
+            Some(reason) => {
+                let (code, stdout, stderr) = run(&["buckle", &file]);
+                assert!(code == 2 && stdout.is_empty() && stderr.contains(reason), "{name} buckle: {code} {stderr}");
+                assert!(
+                    text.contains("`buckle` does not apply") && text.contains(reason),
+                    "{name}: the header must say why"
+                );
+            }
+        }
     }
 }
 

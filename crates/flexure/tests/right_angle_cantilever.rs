@@ -1,5 +1,5 @@
 //! Simo and Vu-Quoc's right-angle cantilever (issue 37, item 2),
-//! `scripts/right_angle_cantilever.toml`: 30 s of its motion from its file,
+//! `examples/right_angle_cantilever.toml`: 30 s of its motion from its file,
 //! at the file's order 4 and the tolerance 1e-4 BENCHMARKS.md chose, against
 //! two references independent of this code:
 //!
@@ -19,7 +19,7 @@ use flexure::dynamics::integrate::MotionSettings;
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
 use flexure::mechanism::file::spatial_from_toml;
 
-const FILE: &str = include_str!("../../../scripts/right_angle_cantilever.toml");
+const FILE: &str = include_str!("../../../examples/right_angle_cantilever.toml");
 const MUJOCO: &str = include_str!("../../../scripts/right_angle_cantilever_mujoco.csv");
 
 /// The elbow's and the tip's z at each sample (every 0.05 s over 30 s).

@@ -23,7 +23,7 @@
 //! without the error estimate `simulate` adds.
 //!
 //! The right-angle cantilever in motion (issue 37, item 2):
-//! `scripts/right_angle_cantilever.toml` as it is (order 4, Simo and
+//! `examples/right_angle_cantilever.toml` as it is (order 4, Simo and
 //! Vu-Quoc's rotary inertia), 30 s from rest sampled every 0.05 s at
 //! tolerance 1e-4 (`right_angle_cantilever_30s`): faster than real time
 //! when under 30 s. The run alone, as the strip's.
@@ -128,7 +128,7 @@ const STRIP_60N: (usize, f64) = (7, 1e-3);
 /// Order and tolerance of the 6 N release that reach 1e-3 L.
 const STRIP_6N: (usize, f64) = (6, 1e-3);
 
-/// 30 s of `scripts/right_angle_cantilever.toml` from rest at tolerance 1e-4 (its elbow's z at each sample).
+/// 30 s of `examples/right_angle_cantilever.toml` from rest at tolerance 1e-4 (its elbow's z at each sample).
 fn right_angle_30s(m: &flexure::mechanism::spatial::SpatialMechanism) -> Vec<f64> {
     use flexure::dynamics::simulation::{SimulationSettings, simulate};
     let motion = MotionSettings { duration: 30.0, every: 0.05, tolerance: 1e-4, absolute: 1e-4, ..Default::default() };
@@ -139,7 +139,7 @@ fn right_angle_30s(m: &flexure::mechanism::spatial::SpatialMechanism) -> Vec<f64
 
 /// The right-angle cantilever's 30 s (issue 37, item 2).
 fn right_angle(c: &mut Criterion) {
-    let path = format!("{}/../../scripts/right_angle_cantilever.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/../../examples/right_angle_cantilever.toml", env!("CARGO_MANIFEST_DIR"));
     let m = spatial_from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
     assert_eq!(m.dof(), 24, "two flexures of order 4");
     // The elbow swings as tests/right_angle_cantilever.rs checks: down to about −4.06 near t = 10.85.
@@ -183,7 +183,7 @@ pub fn run(c: &mut Criterion) {
 /// inertia), struck out of its plane at the elbow by a triangular pulse of
 /// 50 over 0 ≤ t ≤ 2; consistent units. Without the published rotary
 /// inertia (the evaluation's cost does not depend on it): the benchmark
-/// itself, with it, is `scripts/right_angle_cantilever.toml` (above).
+/// itself, with it, is `examples/right_angle_cantilever.toml` (above).
 fn cantilever() -> String {
     let leg = |name: &str, parent: &str, child: &str, turn: f64| {
         format!(

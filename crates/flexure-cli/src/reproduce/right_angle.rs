@@ -1,5 +1,5 @@
 //! Beyond the paper: Simo and Vu-Quoc's right-angle cantilever in motion
-//! (`scripts/right_angle_cantilever.toml`, issue 37 item 2), beside a
+//! (`examples/right_angle_cantilever.toml`, issue 37 item 2), beside a
 //! MuJoCo hinge chain, Exudyn's extremes and the published tip curve as
 //! digitized by others.
 
@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::path::Path;
 
-const FILE: &str = include_str!("../../../../scripts/right_angle_cantilever.toml");
+const FILE: &str = include_str!("../../../../examples/right_angle_cantilever.toml");
 /// `scripts/right_angle_mujoco.py --links 40 --step 1e-3`: time, elbow z, tip z.
 const MUJOCO: &str = include_str!("../../../../scripts/right_angle_cantilever_mujoco.csv");
 
@@ -118,7 +118,7 @@ pub(super) fn right_angle(out: &Path, md: &mut String) -> Run<Value> {
     let mut text = String::from("## Beyond the paper: Simo and Vu-Quoc's right-angle cantilever\n\n");
     let _ = write!(
         text,
-        "`scripts/right_angle_cantilever.toml`: two legs of 10 at a right angle, clamped at one end, EI = GJ = 1e3, \
+        "`examples/right_angle_cantilever.toml`: two legs of 10 at a right angle, clamped at one end, EI = GJ = 1e3, \
          ρA = 1, rotary inertia per length ρJ = diag(20, 10, 10), a force along z at the elbow rising to 50 at t = 1 \
          and back to 0 at t = 2 (Simo and Vu-Quoc 1988). Two spatial flexures of order 4, 24 coordinates, tolerance 1e-4: \
          **{} steps** ({} rejected) for 30 s sampled every 0.05 s. Beside it a MuJoCo chain of 40 rigid links a leg with \
