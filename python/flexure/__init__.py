@@ -216,7 +216,7 @@ class Mechanism:
         preload_force_n and preload_moment_n_m, that it carries with no load) warns
         PreloadWarning, unless the file says `preload = true` in it (severity
         "note", no warning). Two parts that cross in the answer (kind "crossing":
-        parts, at, s_a and s_b along flexures, contacts) warn IntersectionWarning.
+        parts, at, s_a and s_b along flexures, points) warn IntersectionWarning.
 
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and

@@ -83,7 +83,7 @@ def test_a_spatial_simulation_that_crosses_warns_and_lists_the_samples():
     found = [f for f in run["findings"] if f["parts"] == ('flexure "post"', 'link "bob"')]
     assert found and min(f["time"] for f in found) > 0.0
     for f in found:
-        assert len(f["at"]) == 3 and f["s_b"] is None and 0.0 < f["s_a"] <= 0.28
+        assert len(f["at"]) == 3 and f["s_b"] is None and 0.0 < f["s_a"] <= 0.28 and f["points"] == 1
         k = int(round(f["time"] / 0.01))
         theta = float(run["coordinates"]["pivot"][k][0])
         assert math.radians(-77.01) < theta < math.radians(-19.97), (f["time"], theta)

@@ -45,7 +45,7 @@ fn crossing_json<P: AsRef<[f64]>>(c: &Crossing<P>) -> Value {
         "severity": "warning",
         "parts": c.names,
         "at": c.at.as_ref(),
-        "contacts": c.contacts,
+        "points": c.points,
         "message": c.message(),
     });
     for (k, key) in ["s_a", "s_b"].iter().enumerate() {

@@ -32,7 +32,7 @@ fn crossing_dict<'py, P: AsRef<[f64]>>(py: Python<'py>, c: &Crossing<P>) -> PyRe
     d.set_item("at", PyTuple::new(py, c.at.as_ref())?)?;
     d.set_item("s_a", c.s[0])?;
     d.set_item("s_b", c.s[1])?;
-    d.set_item("contacts", c.contacts)?;
+    d.set_item("points", c.points)?;
     d.set_item("message", c.message())?;
     Ok(d)
 }

@@ -37,7 +37,7 @@ fn round_rods_meet_when_their_axes_are_a_diameter_apart() {
         assert_eq!(!found.is_empty(), meet, "gap {gap}: {found:?}");
         if meet {
             let c = &found[0];
-            assert_eq!((c.a, c.b, c.contacts), (Part::Flexure(0), Part::Flexure(1), 1), "{c:?}");
+            assert_eq!((c.a, c.b, c.points), (Part::Flexure(0), Part::Flexure(1), 1), "{c:?}");
             // All along: the first contact is at the roots, halfway between the axes.
             assert!(c.at[0].abs() < 1e-3 && (c.at[2] - gap / 2.0).abs() < 1e-12, "{c:?}");
         }
@@ -108,7 +108,7 @@ fn a_helix_touches_its_next_turn_when_thicker_than_their_distance() {
         if let Some(x) = found.first() {
             assert_eq!((x.a, x.b), (Part::Flexure(0), Part::Flexure(0)));
             // One contact, running along the 1.5 turns that have a turn before them.
-            assert_eq!(x.contacts, 1, "{x:?}");
+            assert_eq!(x.points, 1, "{x:?}");
             let [s0, s1] = [x.s[0].unwrap(), x.s[1].unwrap()];
             let turn = 2.0 * PI * (r * r + c * c).sqrt();
             assert!(((s1 - s0) / turn - 1.0).abs() < 0.02, "a turn apart: {x:?}");

@@ -100,7 +100,7 @@ fn point<const N: usize>(at: &[f64]) -> Result<[f64; N]> {
 }
 
 fn crossing_at<P: AsRef<[f64]>>(c: Crossing<P>) -> Crossing<Vec<f64>> {
-    Crossing { a: c.a, b: c.b, names: c.names, at: c.at.as_ref().to_vec(), s: c.s, contacts: c.contacts }
+    Crossing { a: c.a, b: c.b, names: c.names, at: c.at.as_ref().to_vec(), s: c.s, points: c.points }
 }
 
 impl Analyses for Planar {

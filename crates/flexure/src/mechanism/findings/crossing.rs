@@ -60,7 +60,7 @@ pub struct Crossing<P = [f64; 2]> {
     /// there, for a flexure; `None` for a link.
     pub s: [Option<f64>; 2],
     /// At how many distinct points their segments meet (one crossing, or several).
-    pub contacts: usize,
+    pub points: usize,
 }
 
 impl<P: AsRef<[f64]>> Crossing<P> {
@@ -82,7 +82,7 @@ impl<P: AsRef<[f64]>> Crossing<P> {
         if !along.is_empty() {
             where_ += &format!(" ({})", along.join(", "));
         }
-        let more = if self.contacts > 1 { format!(", {} contacts in all", self.contacts) } else { String::new() };
+        let more = if self.points > 1 { format!(", {} points in all", self.points) } else { String::new() };
         format!(
             "{} crosses {} {where_}{more}; the model has no contact, so this shape passes through itself",
             self.names[0], self.names[1]
@@ -173,7 +173,7 @@ pub fn chords(alpha: &[f64]) -> usize {
 
 /// Every part of `m` at coordinates `q` that crosses another, or itself
 /// (see the module docs): at most one [`Crossing`] per pair of parts, the
-/// first along the first part, with the number of contacts between them.
+/// first along the first part, with the number of points where they meet.
 ///
 /// # Panics
 /// If `q` does not have [`Mechanism::dof`] entries.
@@ -342,7 +342,7 @@ pub(super) fn segments_cross(
     let itself = a.part == b.part;
     let at_end = |d: &PlacedPart<Planar>, p: &Point2<f64>| d.shape.ends.iter().any(|e| distance(e, p) <= tolerance);
     let mut first: Option<CrossingAt<Planar>> = None;
-    let mut contacts: Vec<Point2<f64>> = Vec::new();
+    let mut points: Vec<Point2<f64>> = Vec::new();
     for (k, pa) in a.shape.pieces.iter().enumerate() {
         for pb in &b.shape.pieces[if itself { (k + 2).min(b.shape.pieces.len()) } else { 0 }..] {
             let (sa, sb) = (&pa.line, &pb.line);
@@ -354,21 +354,21 @@ pub(super) fn segments_cross(
                     continue;
                 }
             }
-            add_contact(&mut contacts, at, tolerance);
+            add_point(&mut points, at, tolerance);
             if first.is_none() {
                 let s = [pa.arc_at(c.t[0]), pb.arc_at(c.t[1])];
-                first = Some(Crossing { a: a.part, b: b.part, names: Default::default(), at: c.at, s, contacts: 0 });
+                first = Some(Crossing { a: a.part, b: b.part, names: Default::default(), at: c.at, s, points: 0 });
             }
         }
     }
-    first.map(|c| Crossing { contacts: contacts.len(), ..c })
+    first.map(|c| Crossing { points: points.len(), ..c })
 }
 
 /// Counts the contact at `p` unless one already counted is within `tolerance`
 /// (a crossing through a chord's end is met by both chords there).
-fn add_contact(contacts: &mut Vec<Point2<f64>>, p: Point2<f64>, tolerance: f64) {
-    if contacts.iter().all(|c| distance(c, &p) > tolerance) {
-        contacts.push(p);
+fn add_point(points: &mut Vec<Point2<f64>>, p: Point2<f64>, tolerance: f64) {
+    if points.iter().all(|c| distance(c, &p) > tolerance) {
+        points.push(p);
     }
 }
 
@@ -397,7 +397,7 @@ fn resolved(d: &PlacedPart<Spatial>, tolerance: f64) -> bool {
 }
 
 /// Where two spatial parts' pieces first touch (the least pair of pieces),
-/// with the number of separate contacts: touching pairs grouped by
+/// with the number of separate points where they touch: touching pairs grouped by
 /// neighbourhood ([`clusters`]), less those at a joint, if `joined`: a
 /// contact holding a piece of each whose centreline passes through a point
 /// that is an end of both, however far it runs on from there. A flexure
@@ -457,20 +457,13 @@ fn crossing(
     a: &PlacedPart<Spatial>,
     b: &PlacedPart<Spatial>,
     (k, l): (usize, usize),
-    contacts: usize,
+    points: usize,
 ) -> CrossingAt<Spatial> {
     let (pa, pb) = (&a.shape.pieces[k], &b.shape.pieces[l]);
     let (s, t) = nearest_on_segments(&pa.line, &pb.line);
     let (xa, xb) = (pa.line[0] + (pa.line[1] - pa.line[0]) * s, pb.line[0] + (pb.line[1] - pb.line[0]) * t);
     let at = nalgebra::center(&xa, &xb);
-    Crossing {
-        a: a.part,
-        b: b.part,
-        names: Default::default(),
-        at: at.into(),
-        s: [pa.arc_at(s), pb.arc_at(t)],
-        contacts,
-    }
+    Crossing { a: a.part, b: b.part, names: Default::default(), at: at.into(), s: [pa.arc_at(s), pb.arc_at(t)], points }
 }
 
 /// Whether a piece's centreline passes within `tolerance` of `p`.
@@ -482,8 +475,8 @@ fn passes(piece: &Piece<Spatial>, p: &Point3<f64>, tolerance: f64) -> bool {
     (a + ab * t - p).norm() <= tolerance
 }
 
-/// The touching pairs of pieces grouped into contacts: two pairs are one
-/// contact when each side's pieces are the same or neighbours.
+/// The touching pairs of pieces grouped into places: two pairs are one
+/// place when each side's pieces are the same or neighbours.
 fn clusters(pairs: &[(usize, usize)], a: &PlacedPart<Spatial>, b: &PlacedPart<Spatial>) -> Vec<Vec<(usize, usize)>> {
     let near = |d: &PlacedPart<Spatial>, i: usize, j: usize| {
         i == j || d.shape.pieces[i].ends.iter().any(|e| d.shape.pieces[j].ends.contains(e))
