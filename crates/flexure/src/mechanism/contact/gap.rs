@@ -14,7 +14,7 @@
 
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named};
 use crate::error::{Error, Result};
-use crate::mechanism::{JointKind, Mechanism};
+use crate::mechanism::Mechanism;
 
 /// A pair's gap at a configuration ([`gap`]).
 ///
@@ -82,7 +82,7 @@ pub fn gap<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pai
     match pair.part {
         Toucher::Flexure(j) => {
             let joint = &m.joints[j];
-            let JointKind::Flexure(f) = &joint.kind else {
+            let Some(f) = joint.kind.flexure() else {
                 return Err(Error::invalid("pair", named(m, pair), "names a joint that is not a flexure"));
             };
             let root = D::compose(&bodies[joint.parent], &joint.origin);

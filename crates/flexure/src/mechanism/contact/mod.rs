@@ -20,7 +20,7 @@ mod dimension;
 mod gap;
 mod shape;
 
-use super::{Dimension, JointKind, Mechanism};
+use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
 pub use dimension::Touch;
@@ -167,7 +167,7 @@ pub fn pairs<D: Dimension>(m: &Mechanism<D>) -> Vec<Pair> {
     let mut out = Vec::new();
     for (g, geom) in m.geoms.iter().enumerate() {
         for (j, joint) in m.joints.iter().enumerate() {
-            if matches!(joint.kind, JointKind::Flexure(_)) && !geom.excludes(Toucher::Flexure(j)) {
+            if joint.kind.flexure().is_some() && !geom.excludes(Toucher::Flexure(j)) {
                 out.push(Pair { geom: g, part: Toucher::Flexure(j) });
             }
         }
