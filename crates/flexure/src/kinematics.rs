@@ -384,28 +384,79 @@ fn accumulate<T: Scalar>(
 /// ```
 pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f64>> {
     assert_coordinates(flexure, "alpha", alpha.len());
-    let n = flexure.order();
-    let rule = crate::quadrature::GaussLegendre::new(5).expect("five points");
-    let mut psi = vec![0.0; n];
-    let mut angle = |t: f64| {
-        flexure.angle_shapes(t, &mut psi);
-        psi.iter().zip(alpha).map(|(p, a)| p * a).sum::<f64>()
-    };
+    let mut centreline = Centreline::new(flexure, alpha);
     let count = samples.max(2);
     let h = 1.0 / (count - 1) as f64;
     let mut out = Vec::with_capacity(count);
-    let (mut x, mut y) = (0.0, 0.0);
-    out.push(Pose { phi: angle(0.0), x, y });
+    let mut xy = (0.0, 0.0);
+    out.push(Pose { phi: centreline.angle(0.0), x: xy.0, y: xy.1 });
     for i in 1..count {
-        let t0 = (i - 1) as f64 * h;
-        for (&t, &w) in rule.nodes().iter().zip(rule.weights()) {
-            let (s, c) = angle(t0 + t * h).sin_cos();
-            x += w * h * flexure.length() * c;
-            y += w * h * flexure.length() * s;
-        }
-        out.push(Pose { phi: angle(i as f64 * h), x, y });
+        centreline.run((i - 1) as f64 * h, h, &mut xy);
+        out.push(Pose { phi: centreline.angle(i as f64 * h), x: xy.0, y: xy.1 });
     }
     out
+}
+
+/// The pose of the cross-section at arc length `s` (m, from 0 to $L$):
+/// $x + iy = \int_0^s e^{i\theta(u)}\thinspace du$, $\theta(u) = \sum_i \psi_i(u/L)\alpha_i$,
+/// by the 5-point Gauss rule on `pieces` equal pieces of $[0, s]$, as
+/// [`backbone`] integrates between its samples.
+///
+/// # Panics
+/// If `alpha` does not have [`Flexure::order`] entries (validate user
+/// input with [`Flexure::check_coordinates`]).
+///
+/// # Example
+/// ```
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// // On an arc of angle 1, a quarter along: φ = 1/4, (x, y) = (sin 1/4, 1 − cos 1/4).
+/// let p = flexure::kinematics::pose_at(&f, &[1.0, 0.0, 0.0], 0.25, 8);
+/// assert!((p.phi - 0.25).abs() < 1e-14 && (p.x - 0.25f64.sin()).abs() < 1e-14 && (p.y - (1.0 - 0.25f64.cos())).abs() < 1e-14);
+/// ```
+pub fn pose_at(flexure: &Flexure, alpha: &[f64], s: f64, pieces: usize) -> Pose<f64> {
+    assert_coordinates(flexure, "alpha", alpha.len());
+    let mut centreline = Centreline::new(flexure, alpha);
+    let (count, t) = (pieces.max(1), s / flexure.length());
+    let h = t / count as f64;
+    let mut xy = (0.0, 0.0);
+    for k in 0..count {
+        centreline.run(k as f64 * h, h, &mut xy);
+    }
+    Pose { phi: centreline.angle(t), x: xy.0, y: xy.1 }
+}
+
+/// A flexure's centreline at coordinates $\alpha$: its angle
+/// $\theta(t) = \sum_i \psi_i(t)\alpha_i$ along $t = s/L$, and its run
+/// between two $t$ by the 5-point Gauss rule ([`backbone`], [`pose_at`]).
+struct Centreline<'a> {
+    flexure: &'a Flexure,
+    alpha: &'a [f64],
+    rule: crate::quadrature::GaussLegendre,
+    psi: Vec<f64>,
+}
+
+impl<'a> Centreline<'a> {
+    fn new(flexure: &'a Flexure, alpha: &'a [f64]) -> Self {
+        let rule = crate::quadrature::GaussLegendre::new(5).expect("five points");
+        Centreline { flexure, alpha, rule, psi: vec![0.0; flexure.order()] }
+    }
+
+    /// $\theta(t)$.
+    fn angle(&mut self, t: f64) -> f64 {
+        self.flexure.angle_shapes(t, &mut self.psi);
+        self.psi.iter().zip(self.alpha).map(|(p, a)| p * a).sum::<f64>()
+    }
+
+    /// Adds to `xy` the run $L\int(\cos\theta, \sin\theta)\thinspace dt$ over $[t_0, t_0 + h]$.
+    fn run(&mut self, t0: f64, h: f64, xy: &mut (f64, f64)) {
+        let length = self.flexure.length();
+        for k in 0..self.rule.nodes().len() {
+            let (t, w) = (self.rule.nodes()[k], self.rule.weights()[k]);
+            let (s, c) = self.angle(t0 + t * h).sin_cos();
+            xy.0 += w * h * length * c;
+            xy.1 += w * h * length * s;
+        }
+    }
 }
 
 /// Tip poses of many configurations: `alphas` holds one row of

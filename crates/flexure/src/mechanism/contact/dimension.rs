@@ -3,7 +3,7 @@
 //! with the half thickness it touches with. The plane and space side by side.
 
 use crate::error::Result;
-use crate::kinematics::backbone;
+use crate::kinematics::{backbone, pose_at};
 use crate::mechanism::Dimension;
 use crate::section::Outline;
 use crate::space::{Planar, Spatial};
@@ -62,29 +62,15 @@ impl Touch for Planar {
             .collect())
     }
 
-    /// $p(s) = \int_0^s (\cos\theta, \sin\theta)\thinspace du$, $\theta(u) = \sum_i \psi_i(u/L)\alpha_i$,
-    /// by five-point Gauss rules on 64 equal pieces of $[0, s]$.
+    /// The centreline point by [`crate::kinematics::pose_at`], on 64 pieces of $[0, s]$.
     fn surface_at(f: &crate::Flexure, alpha: &[f64], s: f64) -> Result<SurfacePoint<Planar>> {
         f.check_coordinates("alpha", alpha)?;
         let l = f.length();
         if !(0.0..=l).contains(&s) {
             return Err(crate::Error::invalid("s", s, "must be an arc length on the flexure, from 0 to its length"));
         }
-        let rule = crate::quadrature::GaussLegendre::new(5)?;
-        let mut psi = vec![0.0; f.order()];
-        let mut angle = |u: f64| {
-            f.angle_shapes(u / l, &mut psi);
-            psi.iter().zip(alpha).map(|(p, a)| p * a).sum::<f64>()
-        };
-        let (pieces, mut x, mut y) = (64, 0.0, 0.0);
-        let h = s / pieces as f64;
-        for k in 0..pieces {
-            for (&t, &w) in rule.nodes().iter().zip(rule.weights()) {
-                let (sin, cos) = angle((k as f64 + t) * h).sin_cos();
-                (x, y) = (x + w * h * cos, y + w * h * sin);
-            }
-        }
-        Ok((s, Point2::new(x, y), 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0)))
+        let p = pose_at(f, alpha, s, 64);
+        Ok((s, p.origin(), 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0)))
     }
 }
 
