@@ -218,6 +218,13 @@ class Mechanism:
         "note", no warning). Two parts that cross in the answer (kind "crossing":
         parts, at, s_a and s_b along flexures, points) warn IntersectionWarning.
 
+        contacts (left out when no geom is touched, as in `flexure solve --json`): a list
+        of dicts, each pair touching then each that touched on the way and opened: geom,
+        flexure (or body, for a geom's touch), s (m along the flexure), point and normal
+        (ground frame), normal_force (N, not negative), friction_force, gap (m) and state
+        ("slip" touching without friction, "open"). A geom with friction above 0 raises
+        ValueError naming it: statics with friction is not solved yet.
+
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and
         rotation matrix in the ground frame); coordinates {joint: array} (a flexure's twist

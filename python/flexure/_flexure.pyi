@@ -24,7 +24,7 @@ class PreloadWarning(UserWarning):
     """A weld or pin of a mechanism is open at rest: closing it preloads the mechanism."""
 
 class IntersectionWarning(UserWarning):
-    """Two parts of a solved mechanism cross: the model has no contact."""
+    """Two parts of a solved mechanism cross: parts touch only geoms, not each other."""
 
 class _Peak(TypedDict):
     """The largest value of a quantity along the flexure (Pa for stress, 1/m for curvature) and where."""

@@ -45,7 +45,7 @@ create_exception!(
     _flexure,
     IntersectionWarning,
     PyUserWarning,
-    "Two parts of a solved mechanism (flexures, links) cross: the model has no contact, so the shape passes through itself."
+    "Two parts of a solved mechanism (flexures, links) cross: parts touch only geoms, not each other, so the shape passes through itself."
 );
 
 /// The library's error as a Python exception.

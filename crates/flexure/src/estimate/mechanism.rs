@@ -14,7 +14,7 @@
 //! ([`reference`](super::spatial::reference)); both go to order 32 at the
 //! cap, where more points alone would report a false 0.
 
-use super::accuracy::Accuracy;
+use super::accuracy::{Accuracy, ErrorEstimate};
 use super::eigen::reference_values;
 use super::refinement::{eigen_reference, refined};
 use super::value::ValueEstimate;
@@ -38,6 +38,10 @@ pub trait Refined: crate::dynamics::Dynamics {
     /// `f` of `order = "auto"` raised, given its coordinates `alpha` and its
     /// reference's [`refinement`](Refined::refinement); `None` at the cap.
     fn raised(f: &Self::Flexure, alpha: &[f64], reference: (usize, usize)) -> Option<Result<Self::Flexure>>;
+    /// The estimate of `f` at `alpha` against the reference `r` at `exact`
+    /// of the same joint: their tip poses in the joint's root frame
+    /// compared, and their peaks along it.
+    fn against(f: &Self::Flexure, alpha: &[f64], r: &Self::Flexure, exact: &[f64], target: &Accuracy) -> ErrorEstimate;
     /// `m` with flexure joints replaced ([`Mechanism::with_flexures`]).
     fn with_flexures(
         m: &Mechanism<Self>,
@@ -56,6 +60,18 @@ impl Refined for Planar {
 
     fn raised(f: &crate::Flexure, _: &[f64], (order, points): (usize, usize)) -> Option<Result<crate::Flexure>> {
         (f.order() < MAX_ORDER).then(|| refined(f, order.max(f.order() + 1).min(MAX_ORDER), points))
+    }
+
+    fn against(
+        f: &crate::Flexure,
+        alpha: &[f64],
+        r: &crate::Flexure,
+        exact: &[f64],
+        target: &Accuracy,
+    ) -> ErrorEstimate {
+        let (a, b) = (crate::pose_root_tip(f, alpha), crate::pose_root_tip(r, exact));
+        let position = (a.x - b.x).hypot(a.y - b.y);
+        ErrorEstimate::new((f, alpha), (r, exact), position, (a.phi - b.phi).abs(), target)
     }
 
     fn with_flexures(
@@ -81,6 +97,16 @@ impl Refined for Spatial {
         _: (usize, usize),
     ) -> Option<Result<crate::spatial::SpatialFlexure>> {
         f.orders().iter().any(|n| *n < MAX_ORDER).then(|| super::spatial::reference(f, alpha))
+    }
+
+    fn against(
+        f: &crate::spatial::SpatialFlexure,
+        alpha: &[f64],
+        r: &crate::spatial::SpatialFlexure,
+        exact: &[f64],
+        target: &Accuracy,
+    ) -> ErrorEstimate {
+        super::spatial::against((f, alpha), (r, exact), target)
     }
 
     fn with_flexures(
@@ -130,6 +156,47 @@ pub fn reference_mechanism<D: Refined>(m: &Mechanism<D>, q: &[f64]) -> Result<(M
         Ok(Some(r))
     })?;
     Ok((reference, orders))
+}
+
+/// Each flexure joint's estimate, in joint order, for an equilibrium `s`
+/// of `m` that touches its geoms: a joint alone under the load at its tip
+/// would miss the contact forces along its span, so the whole mechanism is
+/// solved again with every flexure joint refined ([`reference_mechanism`]),
+/// contacts and all, and each joint compared with its reference
+/// ([`Refined::against`]). Contact concentrates curvature where it
+/// touches; the refined model resolves it better, and the estimate shows
+/// how far the answer is from it.
+///
+/// # Example
+/// ```
+/// use flexure::estimate::{Accuracy, contact_estimates};
+/// use flexure::mechanism::{file::from_toml, statics::{Settings, solve}};
+/// // A tip moment presses a strip's tip onto a floor.
+/// let m = from_toml("[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = 6\n\
+///     [[force]]\nbody = \"tip\"\nmoment = -0.1\n\
+///     [[geom]]\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n").unwrap();
+/// let s = solve(&m, &Settings::default()).unwrap();
+/// assert_eq!(s.contacts.len(), 1);
+/// let e = &contact_estimates(&m, &s, &Accuracy::default()).unwrap()[0];
+/// assert!(!e.flagged && e.position < 1e-9 && e.reference_order == 12);
+/// ```
+pub fn contact_estimates<D: Refined>(
+    m: &Mechanism<D>,
+    s: &crate::mechanism::statics::Solution<D>,
+    target: &Accuracy,
+) -> Result<Vec<ErrorEstimate>> {
+    target.validate()?;
+    let (reference, _) = reference_mechanism(m, &s.q)?;
+    let exact = crate::mechanism::statics::solve(&reference, &Settings::default())?;
+    let flexures = m.joints.iter().zip(&reference.joints).filter_map(|(a, b)| Some((a, a.kind.flexure()?, b)));
+    flexures
+        .map(|(joint, f, refined)| {
+            let r = refined.kind.flexure().expect("a flexure's reference is a flexure");
+            let alpha = &s.q[joint.offset..joint.offset + joint.kind.joint().dof()];
+            let exact = &exact.q[refined.offset..refined.offset + refined.kind.joint().dof()];
+            Ok(D::against(f, alpha, r, exact, target))
+        })
+        .collect()
 }
 
 /// The next mechanism of an automatic order: each flexure joint of

@@ -173,13 +173,23 @@ pub fn deflect_error(
         deflect(&reference, load, &mut data, &settings)?;
     }
     let exact = data.alpha().to_vec();
+    Ok(against((flexure, alpha), (&reference, &exact), target))
+}
+
+/// The estimate of the answer `alpha` of `flexure` against the reference
+/// `reference` at `exact`: their tips (root frame) and peak curvature changes compared.
+pub(super) fn against(
+    (flexure, alpha): (&SpatialFlexure, &[f64]),
+    (reference, exact): (&SpatialFlexure, &[f64]),
+    target: &Accuracy,
+) -> ErrorEstimate {
     let (ra, pa) = spatial_flexure::pose_root_tip(flexure, alpha);
-    let (rb, pb) = spatial_flexure::pose_root_tip(&reference, &exact);
+    let (rb, pb) = spatial_flexure::pose_root_tip(reference, exact);
     let position = (pa - pb).norm();
     let angle = rotation_angle(&ra, &rb);
-    let (model_peak, exact_peak) = (peak_curvature(flexure, alpha), peak_curvature(&reference, &exact));
+    let (model_peak, exact_peak) = (peak_curvature(flexure, alpha), peak_curvature(reference, exact));
     let curvature = (model_peak - exact_peak).abs();
-    Ok(ErrorEstimate {
+    ErrorEstimate {
         position,
         angle,
         stress: None,
@@ -191,7 +201,7 @@ pub fn deflect_error(
         reference_order: reference.orders().into_iter().max().unwrap_or(0),
         reference_quadrature: reference.subintervals(),
         exact: false,
-    })
+    }
 }
 
 /// The highest order `--order auto` raises a spatial component to: 32

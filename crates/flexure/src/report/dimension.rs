@@ -7,13 +7,13 @@ use super::{BodyPose, CarriedLoad, MaxAt, PeakStress, Shape};
 use crate::error::Result;
 use crate::estimate::{Accuracy, ErrorEstimate, joint_error_and_load, spatial::deflect_error};
 use crate::flexure::Flexure;
+use crate::mechanism::Mechanism;
 use crate::mechanism::statics::Solution;
-use crate::mechanism::{Dimension, Mechanism};
 use crate::space::{Planar, Spatial};
 use crate::spatial::SpatialFlexure;
 
 /// A dimension whose solutions [`super::solve_report`] reports.
-pub trait Reported: Dimension {
+pub trait Reported: crate::estimate::Refined {
     /// Every body's pose at coordinates `q`, in body order (the ground first).
     fn poses(m: &Mechanism<Self>, q: &[f64]) -> Vec<BodyPose>;
     /// Each flexure joint's error estimate at `s`, the joint alone under

@@ -24,6 +24,7 @@ use crate::Flexure;
 use crate::estimate::{Accuracy, ErrorEstimate};
 use crate::kinematics::backbone;
 use crate::mechanism::Mechanism;
+use crate::mechanism::contact::{Contact, ContactMode};
 use crate::mechanism::statics::Solution;
 use crate::section::StressPoint;
 use crate::space::Wrench;
@@ -358,6 +359,9 @@ pub struct SolveReport {
     pub load_steps: usize,
     /// Newton iterations over all steps.
     pub iterations: usize,
+    /// The contacts with the mechanism's geoms ([`Solution::contacts`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<Contact>,
 }
 
 /// A flexure joint whose error estimate (the joint alone under the tip
@@ -430,9 +434,29 @@ pub fn solve_report<D: Reported>(
         residual: s.residual,
         load_steps: s.load_steps,
         iterations: s.iterations,
+        contacts: Vec::new(),
     };
     let flexures = m.joints.iter().filter_map(|j| Some((j, j.kind.flexure()?)));
-    for ((j, f), estimate) in flexures.zip(D::estimates(m, s, target)) {
+    let mut estimates = D::estimates(m, s, target);
+    if s.contacts.iter().any(|c| c.state != ContactMode::Open) {
+        // Contact forces along a span: the refined mechanism's estimate, the loads as carried.
+        match crate::estimate::contact_estimates(m, s, target) {
+            Ok(found) => {
+                for (e, c) in estimates.iter_mut().zip(found) {
+                    if let Ok((old, _)) = e {
+                        *old = c;
+                    }
+                }
+            }
+            Err(error) => {
+                let joint =
+                    m.joints.iter().find(|j| j.kind.flexure().is_some()).map_or(String::new(), |j| j.name.clone());
+                return Err(EstimateFailed { joint, error });
+            }
+        }
+    }
+    r.contacts = s.contacts.clone();
+    for ((j, f), estimate) in flexures.zip(estimates) {
         let q = &s.q[j.offset..j.offset + j.kind.joint().dof()];
         let name = j.name.clone();
         let failed = |error| EstimateFailed { joint: name.clone(), error };

@@ -33,6 +33,7 @@ mod flexure;
 mod kinematics;
 mod magnus;
 mod mass;
+mod point;
 mod shape;
 mod spec;
 mod statics;
@@ -46,6 +47,7 @@ pub(crate) use kinematics::update_rate;
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
 pub(crate) use mass::stations_rate_update;
 pub use mass::{MassQuadrature, MassStation, StationKinematics, stations_update};
+pub use point::section_at;
 pub use shape::{MAX_SHAPE_POINTS, SpatialPoint, shape, shape_at};
 pub use spec::{DEFAULT_POISSON, SpatialSpec};
 pub use statics::{

@@ -7,7 +7,7 @@ use crate::kinematics::{backbone, pose_at};
 use crate::mechanism::Dimension;
 use crate::section::Outline;
 use crate::space::{Planar, Spatial};
-use nalgebra::{Point2, Point3, Vector2, Vector3};
+use nalgebra::{DMatrix, Point2, Point3, Vector2, Vector3};
 
 /// A point of a flexure's surface: its arc length $s$ (m), its centreline
 /// point in the flexure's root frame, and the half thickness $h$ (m) it
@@ -37,6 +37,31 @@ pub trait Touch: Dimension {
     fn surface(f: &Self::Flexure, alpha: &[f64], samples: usize) -> Result<Vec<SurfacePoint<Self>>>;
     /// The surface point at arc length `s` (m, in $[0, L]$), as [`Touch::surface`] gives them.
     fn surface_at(f: &Self::Flexure, alpha: &[f64], s: f64) -> Result<SurfacePoint<Self>>;
+    /// The centreline point at arc length `s` with its first and second
+    /// derivatives in the coordinates `alpha` and in `s` ([`SectionJet`]),
+    /// exact for the integration [`Touch::surface_at`] uses.
+    fn section_jet(f: &Self::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Self>>;
+}
+
+/// A flexure's centreline point $p(\alpha, s)$ at one arc length, in its
+/// root frame, with what a contact there needs of its derivatives (the
+/// Data of [`Touch::section_jet`]); $k$ the flexure's coordinates.
+#[derive(Debug, Clone)]
+pub struct SectionJet<D: Dimension> {
+    /// $p$ (m).
+    pub point: D::Vector,
+    /// $\partial p/\partial\alpha_a$, one per coordinate.
+    pub jacobian: Vec<D::Vector>,
+    /// $\partial^2 p_i/\partial\alpha_a\partial\alpha_b$: one $k\times k$ matrix per component $i$.
+    pub hessian: Vec<DMatrix<f64>>,
+    /// The unit tangent $t = \partial p/\partial s$.
+    pub tangent: D::Vector,
+    /// $\partial t/\partial\alpha_a$, one per coordinate.
+    pub tangent_jacobian: Vec<D::Vector>,
+    /// $\partial t/\partial s$: the curvature's bend of the tangent (1/m).
+    pub bend: D::Vector,
+    /// The half thickness $h(s)$ it touches with (m), $h^{\prime}$ and $h^{\prime\prime}$ (1/m).
+    pub half: [f64; 3],
 }
 
 impl Touch for Planar {
@@ -72,6 +97,59 @@ impl Touch for Planar {
         let p = pose_at(f, alpha, s, 64);
         Ok((s, p.origin(), 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0)))
     }
+
+    /// $p = L\int_0^{s/L} e(\theta)\thinspace dt$ with $e = (\cos\theta, \sin\theta)$,
+    /// $e_\perp = (-\sin\theta, \cos\theta)$, so
+    /// $\partial_a p = L\int\psi_a e_\perp\thinspace dt$ and
+    /// $\partial_a\partial_b p = -L\int\psi_a\psi_b\thinspace e\thinspace dt$, by the Gauss rule
+    /// and pieces of [`pose_at`]; $t = e(\theta(s))$, $\partial_a t = \psi_a e_\perp$,
+    /// $\partial_s t = \theta^{\prime}(s)\thinspace e_\perp$.
+    fn section_jet(f: &crate::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Planar>> {
+        f.check_coordinates("alpha", alpha)?;
+        let (l, k) = (f.length(), f.order());
+        if !(0.0..=l).contains(&s) {
+            return Err(crate::Error::invalid("s", s, "must be an arc length on the flexure, from 0 to its length"));
+        }
+        let rule = crate::quadrature::GaussLegendre::new(5).expect("five points");
+        let mut psi = vec![0.0; k];
+        let angle = |psi: &[f64]| psi.iter().zip(alpha).map(|(p, a)| p * a).sum::<f64>();
+        let mut jet = SectionJet::<Planar> {
+            point: Vector2::zeros(),
+            jacobian: vec![Vector2::zeros(); k],
+            hessian: vec![DMatrix::zeros(k, k); 2],
+            tangent: Vector2::zeros(),
+            tangent_jacobian: vec![Vector2::zeros(); k],
+            bend: Vector2::zeros(),
+            half: half_planar(f, s),
+        };
+        let pieces = 64;
+        let h = s / l / pieces as f64;
+        for piece in 0..pieces {
+            for (t, w) in rule.nodes().iter().zip(rule.weights()) {
+                f.angle_shapes((piece as f64 + t) * h, &mut psi);
+                let (sin, cos) = angle(&psi).sin_cos();
+                let w = w * h * l;
+                jet.point += Vector2::new(cos, sin) * w;
+                for a in 0..k {
+                    jet.jacobian[a] += Vector2::new(-sin, cos) * (w * psi[a]);
+                    for b in 0..k {
+                        let v = w * psi[a] * psi[b];
+                        jet.hessian[0][(a, b)] -= v * cos;
+                        jet.hessian[1][(a, b)] -= v * sin;
+                    }
+                }
+            }
+        }
+        f.angle_shapes(s / l, &mut psi);
+        let (sin, cos) = angle(&psi).sin_cos();
+        let normal = Vector2::new(-sin, cos);
+        jet.tangent = Vector2::new(cos, sin);
+        for a in 0..k {
+            jet.tangent_jacobian[a] = normal * psi[a];
+        }
+        jet.bend = normal * f.curvature(alpha, s);
+        Ok(jet)
+    }
 }
 
 impl Touch for Spatial {
@@ -99,6 +177,58 @@ impl Touch for Spatial {
         let sec = crate::spatial::shape_at(f, alpha, &[s])?.remove(0);
         Ok((s, Point3::from(sec.position), half_thickness(f, s / f.length())))
     }
+
+    /// From [`crate::spatial::section_at`]: $\partial_a p = RJ_a^{v}$,
+    /// $\partial_a\partial_b p = R(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$,
+    /// $t = Re_1$, $\partial_a t = R(J_a^{\omega}\times e_1)$ and
+    /// $\partial_s t = R(u\times e_1)$, $u$ the body curvature.
+    fn section_jet(f: &crate::spatial::SpatialFlexure, alpha: &[f64], s: f64) -> Result<SectionJet<Spatial>> {
+        f.check_coordinates("alpha", alpha)?;
+        let (l, k) = (f.length(), f.coordinates());
+        if !(0.0..=l).contains(&s) {
+            return Err(crate::Error::invalid("s", s, "must be an arc length on the flexure, from 0 to its length"));
+        }
+        let mut data = crate::spatial::SpatialKinematics::new(f);
+        let (r, p) = crate::spatial::section_at(f, alpha, s, &mut data);
+        let parts = |x: &nalgebra::Vector6<f64>| (Vector3::new(x[0], x[1], x[2]), Vector3::new(x[3], x[4], x[5]));
+        let columns: Vec<_> = data.jacobian_columns().iter().map(parts).collect();
+        let mut hessian = vec![DMatrix::zeros(k, k); 3];
+        for a in 0..k {
+            for b in 0..k {
+                let v = r * (columns[b].0.cross(&columns[a].1) + parts(data.column_derivative(a, b)).1);
+                for (i, m) in hessian.iter_mut().enumerate() {
+                    m[(a, b)] = v[i];
+                }
+            }
+        }
+        let u = Vector3::from(f.curvature(alpha, s));
+        Ok(SectionJet {
+            point: p,
+            jacobian: columns.iter().map(|(_, v)| r * v).collect(),
+            hessian,
+            tangent: r * Vector3::x(),
+            tangent_jacobian: columns.iter().map(|(w, _)| r * w.cross(&Vector3::x())).collect(),
+            bend: r * u.cross(&Vector3::x()),
+            half: slopes(|s| half_thickness(f, s / l), s, l),
+        })
+    }
+}
+
+/// $h$, $h^{\prime}$ and $h^{\prime\prime}$ of a planar flexure at `s`:
+/// the section's thickness is a closed form of $s$ without derivatives, so
+/// they are central differences over $10^{-4}L$ (one-sided at the ends),
+/// exactly zero for a uniform strip; a notch's corner is a kink either way.
+fn half_planar(f: &crate::Flexure, s: f64) -> [f64; 3] {
+    let l = f.length();
+    slopes(|s| 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0), s, l)
+}
+
+/// $h$, $h^{\prime}$ and $h^{\prime\prime}$ of `half` at `s` on $[0, L]$ (see [`half_planar`]).
+fn slopes(half: impl Fn(f64) -> f64, s: f64, l: f64) -> [f64; 3] {
+    let d = 1e-4 * l;
+    let c = s.clamp(d, l - d);
+    let (a, m, b) = (half(c - d), half(c), half(c + d));
+    [half(s), (b - a) / (2.0 * d), (b - 2.0 * m + a) / (d * d)]
 }
 
 /// Half a spatial flexure's thickness (a strip's) or diameter (a rod's) at

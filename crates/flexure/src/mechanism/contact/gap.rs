@@ -14,7 +14,7 @@
 
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named};
 use crate::error::{Error, Result};
-use crate::mechanism::Mechanism;
+use crate::mechanism::{Dimension, Mechanism};
 
 /// A pair's gap at a configuration ([`gap`]).
 ///
@@ -77,6 +77,40 @@ pub struct Gap<D: Touch> {
 /// assert!((g.point.y - 0.0005).abs() < 1e-12 && (g.normal.y + 1.0).abs() < 1e-12);
 /// ```
 pub fn gap<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pair) -> Result<Gap<D>> {
+    let found = minima(m, q, bodies, pair)?;
+    Ok(found.into_iter().min_by(|a, b| a.gap.total_cmp(&b.gap)).expect("at least one least"))
+}
+
+/// Every local least of the gap of `pair` along its flexure (the sampled
+/// points lower than their neighbours, each refined as [`gap`] refines
+/// its least), root to tip: where a flexure may touch a geom at several
+/// places at once. For two geoms, their one gap.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{minima, pairs};
+/// use flexure::mechanism::kinematics::frames;
+/// // A straight strip above a floor tilted down toward the tip, so the tip is nearest.
+/// let m = flexure::mechanism::file::from_toml(r#"
+/// [[joint]]
+/// name = "strip"
+/// kind = "flexure"
+/// parent = "ground"
+/// child = "tip"
+/// length = 0.1
+/// ei = 1e-3
+/// [[geom]]
+/// body = "ground"
+/// shape = "plane"
+/// origin = [0.0, -0.02]
+/// normal = [-0.1, 1.0]
+/// "#).unwrap();
+/// let q = m.rest();
+/// let found = minima(&m, &q, &frames(&m, &q).bodies, &pairs(&m)[0]).unwrap();
+/// assert_eq!(found.len(), 1);
+/// assert_eq!(found[0].s, Some(0.1));
+/// ```
+pub fn minima<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pair) -> Result<Vec<Gap<D>>> {
     let geom = &m.geoms[pair.geom];
     let at = &bodies[geom.body];
     match pair.part {
@@ -88,62 +122,91 @@ pub fn gap<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pai
             let root = D::compose(&bodies[joint.parent], &joint.origin);
             let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
             let length = D::flexure_length(f);
-            let at_s = |s: f64| -> Result<(f64, D::Point, D::Vector)> {
+            let at_s = |s: f64| -> Result<Nearest<D>> {
                 let (_, p, h) = D::surface_at(f, alpha, s)?;
                 let world = D::act(&root, &p);
                 let (g, n) = geom.gap(at, &world, h);
                 Ok((g, D::moved(&world, &n, -h), n))
             };
-            let samples = D::surface(f, alpha, 65)?;
+            let samples = D::surface(f, alpha, SAMPLES)?;
             let gaps: Vec<f64> = samples.iter().map(|(_, p, h)| geom.gap(at, &D::act(&root, p), *h).0).collect();
-            let k = (0..gaps.len()).min_by(|a, b| gaps[*a].total_cmp(&gaps[*b])).expect("65 samples");
-            let step = length / 64.0;
-            let (mut a, mut b) = ((k as f64 - 1.0).max(0.0) * step, ((k + 1) as f64 * step).min(length));
-            let ratio = 0.5 * (5f64.sqrt() - 1.0);
-            let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
-            let (mut gc, mut gd) = (at_s(c)?.0, at_s(d)?.0);
-            for _ in 0..80 {
-                if gc < gd {
-                    (b, d, gd) = (d, c, gc);
-                    c = b - ratio * (b - a);
-                    gc = at_s(c)?.0;
-                } else {
-                    (a, c, gc) = (c, d, gd);
-                    d = a + ratio * (b - a);
-                    gd = at_s(d)?.0;
-                }
+            let last = gaps.len() - 1;
+            let lows =
+                (0..gaps.len()).filter(|&k| (k == 0 || gaps[k] < gaps[k - 1]) && (k == last || gaps[k] <= gaps[k + 1]));
+            let step = length / last as f64;
+            let mut out = Vec::new();
+            for k in lows {
+                let (a, b) = ((k as f64 - 1.0).max(0.0) * step, ((k + 1) as f64 * step).min(length));
+                let (s, (g, point, normal)) = least::<D>(&at_s, a, b)?;
+                out.push(Gap { s: Some(s), point, normal, gap: g });
             }
-            // The least of the refined point and the interval's ends.
-            let s = [a, 0.5 * (a + b), b]
-                .into_iter()
-                .map(|s| at_s(s).map(|v| (s, v)))
-                .collect::<Result<Vec<_>>>()?
-                .into_iter()
-                .min_by(|x, y| x.1.0.total_cmp(&y.1.0))
-                .expect("three points");
-            let (s, (g, point, normal)) = s;
-            Ok(Gap { s: Some(s), point, normal, gap: g })
+            Ok(out)
         }
-        Toucher::Geom(h) => {
-            let other = &m.geoms[h];
-            let ball = |g: &Geom<D>| match g.shape {
-                GeomShape::Ball { radius } => Some(radius),
-                _ => None,
-            };
-            let (round, flat, radius) = match (ball(other), ball(geom)) {
-                (Some(r), _) => (other, geom, r),
-                (None, Some(r)) => (geom, other, r),
-                (None, None) => {
-                    return Err(Error::invalid(
-                        "pair",
-                        named(m, pair),
-                        "the gap of two geoms is found only where one is a circle or sphere",
-                    ));
-                }
-            };
+        Toucher::Geom(_) => {
+            let (round, flat, radius) = ball_and_other(m, pair)?;
             let centre = D::act(&D::compose(&bodies[round.body], &round.frame), &D::origin(&D::identity()));
             let (g, normal) = flat.gap(&bodies[flat.body], &centre, radius);
-            Ok(Gap { s: None, point: D::moved(&centre, &normal, -radius), normal, gap: g })
+            Ok(vec![Gap { s: None, point: D::moved(&centre, &normal, -radius), normal, gap: g }])
         }
     }
+}
+
+/// Of a pair of two geoms, the circle or sphere (the later geom's when
+/// both are), the other geom, and the ball's radius; an error naming the
+/// pair when neither is a ball, whose gap is not found.
+pub(crate) fn ball_and_other<'m, D: Dimension>(
+    m: &'m Mechanism<D>,
+    pair: &Pair,
+) -> Result<(&'m Geom<D>, &'m Geom<D>, f64)> {
+    let Toucher::Geom(h) = pair.part else {
+        return Err(Error::invalid("pair", named(m, pair), "is not a pair of two geoms"));
+    };
+    let (geom, other) = (&m.geoms[pair.geom], &m.geoms[h]);
+    let ball = |g: &Geom<D>| match g.shape {
+        GeomShape::Ball { radius } => Some(radius),
+        _ => None,
+    };
+    match (ball(other), ball(geom)) {
+        (Some(r), _) => Ok((other, geom, r)),
+        (None, Some(r)) => Ok((geom, other, r)),
+        (None, None) => Err(Error::invalid(
+            "pair",
+            named(m, pair),
+            "the gap of two geoms is found only where one is a circle or sphere",
+        )),
+    }
+}
+
+/// A gap at an arc length, with the surface point and normal there.
+type Nearest<D> = (f64, <D as crate::space::Space>::Point, <D as crate::space::Space>::Vector);
+
+/// Points sampled along a flexure before refining.
+const SAMPLES: usize = 65;
+
+/// The least of `at_s` on $[a, b]$ by golden-section search (80 steps) and
+/// the interval's ends: its arc length and value.
+fn least<D: Touch>(at_s: &impl Fn(f64) -> Result<Nearest<D>>, a: f64, b: f64) -> Result<(f64, Nearest<D>)> {
+    let (mut a, mut b) = (a, b);
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
+    let (mut gc, mut gd) = (at_s(c)?.0, at_s(d)?.0);
+    for _ in 0..80 {
+        if gc < gd {
+            (b, d, gd) = (d, c, gc);
+            c = b - ratio * (b - a);
+            gc = at_s(c)?.0;
+        } else {
+            (a, c, gc) = (c, d, gd);
+            d = a + ratio * (b - a);
+            gd = at_s(d)?.0;
+        }
+    }
+    // The least of the refined point and the interval's ends.
+    Ok([a, 0.5 * (a + b), b]
+        .into_iter()
+        .map(|s| at_s(s).map(|v| (s, v)))
+        .collect::<Result<Vec<_>>>()?
+        .into_iter()
+        .min_by(|x, y| x.1.0.total_cmp(&y.1.0))
+        .expect("three points"))
 }

@@ -12,20 +12,26 @@
 //! flexure's tip must exclude the flexure, or the file refuses it as
 //! starting inside the pad).
 //!
-//! Contact is not yet part of any analysis: [`refuse_unsolved`] refuses,
-//! naming the pair, a mechanism with a pair that may touch, so nothing
-//! passes through a shape silently.
+//! The equilibrium solve handles contact without friction
+//! ([`crate::mechanism::statics::solve`]): each pair's gap ([`gap()`],
+//! [`minima`]) and its derivatives ([`gap_jet`]) enter its equations as
+//! unilateral constraints, and [`Contact`]s are in its answer. Every other
+//! analysis refuses a mechanism with a pair that may touch, naming the
+//! pair ([`refuse_unsolved`]), so nothing passes through a shape silently.
 
 mod dimension;
 mod gap;
+mod jet;
 mod shape;
 
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
-pub use dimension::Touch;
-pub use gap::{Gap, gap};
-pub use shape::GeomShape;
+pub use dimension::{SectionJet, Touch};
+pub(crate) use gap::ball_and_other;
+pub use gap::{Gap, gap, minima};
+pub use jet::{GapJet, gap_jet};
+pub use shape::{DistanceHessian, GeomShape};
 
 /// A shape on a body (body 0 is the ground): it moves with the body.
 ///
@@ -180,6 +186,68 @@ pub fn pairs<D: Dimension>(m: &Mechanism<D>) -> Vec<Pair> {
     out
 }
 
+/// A contact's mode at an equilibrium (its `state` in answers): `"open"` (apart), `"stick"`
+/// (held in place along the surface by friction) or `"slip"` (sliding, or
+/// free to: a frictionless contact that touches slips, nothing holds it
+/// along the surface).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::ContactMode;
+/// assert_eq!(serde_json::to_string(&ContactMode::Slip).unwrap(), "\"slip\"");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactMode {
+    /// Apart: no force.
+    Open,
+    /// Touching, held in place along the surface by friction.
+    Stick,
+    /// Touching, free to slide (or sliding) along the surface.
+    Slip,
+}
+
+/// A contact of an equilibrium: a pair that touches, or touched on the way
+/// and has opened. Forces are what the geom exerts on the toucher (world
+/// frame, N); vectors have the dimension's 2 or 3 components.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{Contact, ContactMode};
+/// let c = Contact { geom: "floor".into(), flexure: Some("strip".into()), body: None, s: Some(0.1),
+///     point: vec![0.1, -0.01], normal: vec![0.0, 1.0], normal_force: 0.12,
+///     friction_force: vec![0.0, 0.0], gap: 0.0, state: ContactMode::Slip };
+/// let json = serde_json::to_value(&c).unwrap();
+/// assert_eq!(json["state"], "slip");
+/// assert!(json.get("body").is_none());
+/// ```
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Contact {
+    /// The geom touched: of two geoms, the one that is not a circle or sphere (or the first).
+    pub geom: String,
+    /// The flexure touching it (its joint's name), if a flexure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flexure: Option<String>,
+    /// The body whose circle or sphere touches it, if a geom.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// Where on the flexure (m from its root).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub s: Option<f64>,
+    /// The toucher's surface point (world frame, m).
+    pub point: Vec<f64>,
+    /// The geom's outward unit normal there (world frame).
+    pub normal: Vec<f64>,
+    /// The compressive force along the normal (N), not negative.
+    pub normal_force: f64,
+    /// The tangential (friction) force (N, world frame).
+    pub friction_force: Vec<f64>,
+    /// The gap (m): 0 to the solver's tolerance where touching.
+    pub gap: f64,
+    /// What it does.
+    pub state: ContactMode,
+}
+
 /// A pair as a message names it: `geom "floor" (plane) and flexure "hinge"`.
 ///
 /// # Example
@@ -204,9 +272,9 @@ pub fn named<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
     format!("geom {:?} ({}) and {other}", g.name, g.shape.name())
 }
 
-/// An error naming the first pair of `m` that may touch: no analysis
-/// solves contact yet, and none may let a part pass through a shape
-/// silently. `Ok` when no pair may touch (no geoms, or every pair
+/// An error naming the first pair of `m` that may touch, for the analyses
+/// that do not solve contact yet (all but the equilibrium solve): none may
+/// let a part pass through a shape silently. `Ok` when no pair may touch (no geoms, or every pair
 /// excluded), so a mechanism's other analyses are unchanged.
 ///
 /// # Example
@@ -226,7 +294,7 @@ pub fn refuse_unsolved<D: Dimension>(m: &Mechanism<D>) -> Result<()> {
         Some(p) => Err(Error::invalid(
             "geom",
             named(m, p),
-            "may touch, and no analysis solves contact yet: remove the geom, or name the other part in its `exclude` to let them pass through each other",
+            "may touch, and only a solve of the equilibrium (without a sweep or a compliance) handles contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
         )),
     }
 }

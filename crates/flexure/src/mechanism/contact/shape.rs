@@ -94,6 +94,26 @@ fn away<D: Dimension>(v: &D::Vector, radius: f64) -> (f64, D::Vector) {
     if r == 0.0 { (-radius, axis::<D>(0)) } else { (r - radius, scaled::<D>(v, 1.0 / r)) }
 }
 
+/// $\nabla^2 d$ of a distance $d = \lvert v\rvert$ to a point, or to a line
+/// along `free` (a capsule's or cylinder's axis): $(I - \hat n\hat n^T - ff^T)/\lvert v\rvert$.
+fn round<D: Dimension>(v: &D::Vector, free: Option<&D::Vector>) -> DistanceHessian {
+    let r = dot::<D>(v, v).sqrt();
+    let mut c = [[0.0; 3]; 3];
+    if r == 0.0 {
+        return c;
+    }
+    for i in 0..D::POINT_DIM {
+        for j in 0..D::POINT_DIM {
+            let along = free.map_or(0.0, |f| f[i] * f[j]);
+            c[i][j] = (f64::from(u8::from(i == j)) - v[i] * v[j] / (r * r) - along) / r;
+        }
+    }
+    c
+}
+
+/// A shape's $\nabla^2 d$ at a point, row by row ($3\times3$; in the plane its $2\times2$ corner).
+pub type DistanceHessian = [[f64; 3]; 3];
+
 /// The signed distance and normal of a box of half extents `e` (its first
 /// `n` components) at `p`: outside, to the nearest surface point; inside,
 /// the face nearest (the first of equals).
@@ -160,6 +180,116 @@ impl<D: Dimension> GeomShape<D> {
     /// assert!((d - 5.0).abs() < 1e-15 && (n - Vector3::new(0.0, 0.6, 0.8)).norm() < 1e-15);
     /// ```
     pub fn distance(&self, p: &D::Vector) -> (f64, D::Vector) {
+        self.distance_curvature(p, false).0
+    }
+
+    /// The Hessian $\nabla^2 d$ of the signed distance at `p` (1/m, in the
+    /// shape's frame): how the normal turns as the point moves, which a
+    /// contact's stiffness needs, inside as outside. Zero on flat parts and inside a box; about a
+    /// ball's centre, a capsule's axis, a box's edge or corner and a
+    /// cylinder's side or rim, that of the distance to that point or line
+    /// (`round`), less what the nearest point's own motion along a
+    /// cylinder's circles takes away ($R/\rho$ of the motion along them).
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::contact::GeomShape;
+    /// use flexure::space::Planar;
+    /// use nalgebra::Vector2;
+    /// let post: GeomShape<Planar> = GeomShape::Ball { radius: 0.5 };
+    /// // 2 from the centre on y: the normal turns along x at 1/2 per metre.
+    /// let c = post.curvature(&Vector2::new(0.0, 2.0));
+    /// assert!((c[0][0] - 0.5).abs() < 1e-15 && c[1][1] == 0.0 && c[0][1] == 0.0);
+    /// ```
+    pub fn curvature(&self, p: &D::Vector) -> DistanceHessian {
+        self.distance_curvature(p, true).1
+    }
+
+    /// [`GeomShape::distance`] and, when `curved`, [`GeomShape::curvature`].
+    fn distance_curvature(&self, p: &D::Vector, curved: bool) -> ((f64, D::Vector), DistanceHessian) {
+        let flat = [[0.0; 3]; 3];
+        let found = self.distance_only(p);
+        if !curved {
+            return (found, flat);
+        }
+        let inside = found.0 < 0.0;
+        let c = match self {
+            GeomShape::Plane { .. } => flat,
+            GeomShape::Ball { .. } => round::<D>(p, None),
+            GeomShape::Cylinder { .. } if D::POINT_DIM == 2 => round::<D>(p, None),
+            GeomShape::Capsule { half_length, .. } => {
+                let mut off = *p;
+                off[0] -= p[0].clamp(-half_length, *half_length);
+                round::<D>(&off, (p[0].abs() < *half_length).then(|| axis::<D>(0)).as_ref())
+            }
+            GeomShape::Box { .. } if inside => flat,
+            GeomShape::Box { half_extents } => {
+                // Outside, the distance to the nearest face, edge or corner:
+                // free along the axes within the box's extent.
+                let mut off = D::Vector::default();
+                let mut free = [None; 3];
+                for i in 0..D::POINT_DIM {
+                    let q = p[i].abs() - half_extents[i];
+                    if q > 0.0 {
+                        off[i] = p[i].signum() * q;
+                    } else {
+                        free[i] = Some(axis::<D>(i));
+                    }
+                }
+                let r = dot::<D>(&off, &off).sqrt();
+                let mut c = round::<D>(&off, None);
+                for f in free.iter().flatten().filter(|_| r > 0.0) {
+                    for i in 0..D::POINT_DIM {
+                        for j in 0..D::POINT_DIM {
+                            c[i][j] -= f[i] * f[j] / r;
+                        }
+                    }
+                }
+                c
+            }
+            GeomShape::Cylinder { half_length, radius } => {
+                let rho = p[0].hypot(p[1]);
+                if inside {
+                    // Nearest the side (ρ − R), or a flat face.
+                    let side = rho - radius >= p[2].abs() - half_length && rho > 0.0;
+                    let mut c = [[0.0; 3]; 3];
+                    if side {
+                        let t = [-p[1] / rho, p[0] / rho];
+                        for i in 0..2 {
+                            for j in 0..2 {
+                                c[i][j] = t[i] * t[j] / rho;
+                            }
+                        }
+                    }
+                    c
+                } else if rho <= *radius {
+                    flat
+                } else {
+                    // The side (free along z) or the rim (free along its tangent).
+                    let mut off = *p;
+                    let scale = (rho - radius) / rho;
+                    (off[0], off[1]) = (p[0] * scale, p[1] * scale);
+                    off[2] = p[2] - p[2].clamp(-half_length, *half_length);
+                    let mut tangent = D::Vector::default();
+                    (tangent[0], tangent[1]) = (-p[1] / rho, p[0] / rho);
+                    let side = p[2].abs() < *half_length;
+                    let mut c = round::<D>(&off, side.then(|| axis::<D>(2)).as_ref());
+                    // Along the rim's tangent the nearest point moves by R/ρ of the point.
+                    let r = dot::<D>(&off, &off).sqrt();
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            c[i][j] -= if r > 0.0 { radius / rho * tangent[i] * tangent[j] / r } else { 0.0 };
+                        }
+                    }
+                    c
+                }
+            }
+        };
+        (found, c)
+    }
+
+    /// [`GeomShape::distance`] itself.
+    fn distance_only(&self, p: &D::Vector) -> (f64, D::Vector) {
         match self {
             GeomShape::Plane { normal } => (dot::<D>(p, normal), *normal),
             GeomShape::Ball { radius } => away::<D>(p, *radius),

@@ -75,7 +75,7 @@ impl<P: AsRef<[f64]>> Crossing<P> {
                 where_ += &format!(" ({s0:.6e} and {s1:.6e} m along it)");
             }
             return format!(
-                "{} crosses itself {where_}; the model has no contact, so this shape passes through itself",
+                "{} crosses itself {where_}; parts touch only geoms, not each other, so this shape passes through itself",
                 self.names[0]
             );
         }
@@ -84,7 +84,7 @@ impl<P: AsRef<[f64]>> Crossing<P> {
         }
         let more = if self.points > 1 { format!(", {} points in all", self.points) } else { String::new() };
         format!(
-            "{} crosses {} {where_}{more}; the model has no contact, so this shape passes through itself",
+            "{} crosses {} {where_}{more}; parts touch only geoms, not each other, so this shape passes through itself",
             self.names[0], self.names[1]
         )
     }

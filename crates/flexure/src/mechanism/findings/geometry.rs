@@ -6,7 +6,7 @@ use nalgebra::{Point2, Vector2};
 
 /// How two segments meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
+pub struct Meeting {
     /// The point (the start of the overlap, along the first segment, for collinear ones).
     pub at: [f64; 2],
     /// Where it is along each segment, from 0 at its start to 1 at its end.
@@ -36,7 +36,7 @@ fn length(v: &Vector2<f64>) -> f64 {
 /// assert_eq!(c.at, [1.0, 1.0]);
 /// assert!(segments_meet([0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], 1e-12).is_none());
 /// ```
-pub fn segments_meet(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2], tolerance: f64) -> Option<Contact> {
+pub fn segments_meet(p0: [f64; 2], p1: [f64; 2], q0: [f64; 2], q1: [f64; 2], tolerance: f64) -> Option<Meeting> {
     meet(&p0.into(), &p1.into(), &q0.into(), &q1.into(), tolerance)
 }
 
@@ -47,7 +47,7 @@ pub(super) fn meet(
     q0: &Point2<f64>,
     q1: &Point2<f64>,
     tolerance: f64,
-) -> Option<Contact> {
+) -> Option<Meeting> {
     let (r, s) = (p1 - p0, q1 - q0);
     let (lr, ls) = (length(&r), length(&s));
     if lr == 0.0 || ls == 0.0 {
@@ -62,7 +62,7 @@ pub(super) fn meet(
         let (et, eu) = (tolerance / lr, tolerance / ls);
         if (-et..=1.0 + et).contains(&t) && (-eu..=1.0 + eu).contains(&u) {
             let t = t.clamp(0.0, 1.0);
-            return Some(Contact { at: (p0 + r * t).into(), t: [t, u.clamp(0.0, 1.0)], collinear: false });
+            return Some(Meeting { at: (p0 + r * t).into(), t: [t, u.clamp(0.0, 1.0)], collinear: false });
         }
         return None;
     }
@@ -79,7 +79,7 @@ pub(super) fn meet(
     let t = lo.min(1.0);
     let at = p0 + r * t;
     let u = ((at - q0).dot(&s) / (ls * ls)).clamp(0.0, 1.0);
-    Some(Contact { at: at.into(), t: [t, u], collinear: true })
+    Some(Meeting { at: at.into(), t: [t, u], collinear: true })
 }
 
 /// The convex hull of `p`, counter-clockwise (Andrew's monotone chain),

@@ -1,6 +1,6 @@
 //! What is not an error but must not pass without a word: closures open at
 //! rest, whose closing preloads the mechanism, and parts that cross each
-//! other in a solved shape (self-intersection; the model has no contact).
+//! other in a solved shape (self-intersection; parts touch only geoms, not each other).
 //!
 //! The library prints nothing: each finding has a [`Severity`] and a
 //! message, and the callers (the command line, Python) report them.
@@ -85,7 +85,7 @@ pub use crossing::{
     chords, crossings, crossings_along,
 };
 pub use dimension::Findings;
-pub use geometry::{Contact, hull, segments_meet};
+pub use geometry::{Meeting, hull, segments_meet};
 
 /// How much a finding matters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

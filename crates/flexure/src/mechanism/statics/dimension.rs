@@ -58,7 +58,7 @@ pub(crate) fn parts<D: Potential>(a: &Assembly<D>) -> Parts<'_> {
 /// let s = solve(&m, &Default::default()).unwrap();
 /// assert!(s.stable && (s.q[0] - 0.25).abs() < 1e-12); // M/k
 /// ```
-pub trait Statics: Potential + PartialEq + Sized {
+pub trait Statics: Potential + crate::mechanism::contact::Touch + PartialEq + Sized {
     /// The buffers only this dimension's problem uses.
     type Own: Clone + Debug;
     /// A point's compliance: $3\times3$ in the plane, $6\times6$ in space.

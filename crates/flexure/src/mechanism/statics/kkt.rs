@@ -91,7 +91,9 @@ impl<'a, D: Statics> Kkt<'a, D> {
         work: Buffers<'a, D>,
     ) -> Result<Self> {
         settings.validate()?;
-        crate::mechanism::contact::refuse_unsolved(m)?;
+        if !work.touching {
+            crate::mechanism::contact::refuse_unsolved(m)?;
+        }
         D::check_loads(m, from)?;
         D::check_loads(m, to)?;
         let n = m.dof();

@@ -43,6 +43,7 @@
 //! part with the least force through the flexures (see [`Solution::multipliers`]).
 
 mod assembly;
+mod contact;
 mod dimension;
 mod kkt;
 mod path;
@@ -102,6 +103,10 @@ pub struct Solution<D: Dimension = Planar> {
     pub load_steps: usize,
     /// Newton iterations over all steps.
     pub iterations: usize,
+    /// The contacts with the mechanism's geoms ([`crate::mechanism::contact`]):
+    /// each pair that touches, and each that touched on the way and opened.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<crate::mechanism::contact::Contact>,
 }
 
 /// Relative precision of a reported stability limit (a load fraction, or a sweep's swept value).

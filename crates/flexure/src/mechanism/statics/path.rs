@@ -39,6 +39,7 @@ pub(super) fn solution<D: Statics>(
         residual: path.residual,
         load_steps: path.steps,
         iterations: path.iterations,
+        contacts: Vec::new(),
     })
 }
 

@@ -53,6 +53,9 @@ pub fn solve_with<D: Statics>(m: &Mechanism<D>, settings: &Settings, work: &mut 
     if !work.fits(m) {
         *work = Workspace::new(m);
     }
+    if !crate::mechanism::contact::pairs(m).is_empty() {
+        return super::contact::solve_touching(m, settings, work);
+    }
     // One problem from no load to the full load: assembled at λ = 0, then
     // continued from there without a second solve or stability test.
     let [mut zero, mut to] = std::mem::take(&mut work.given);

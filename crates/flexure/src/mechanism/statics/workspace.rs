@@ -60,6 +60,9 @@ pub struct Workspace<D: Statics = Planar> {
     pub(super) assembled: bool,
     /// The assembled start of the last [`solve_with`](super::solve_with), for the next one.
     pub(super) start: StartCache<D>,
+    /// Whether the problem on these buffers solves the mechanism's contacts
+    /// itself ([`super::contact`]): else a pair that may touch is refused.
+    pub(super) touching: bool,
 }
 
 /// The assembled, unloaded start of a [`solve_with`](super::solve_with) and what made it: it
@@ -187,6 +190,7 @@ impl<D: Statics> Workspace<D> {
             assembled_at: vec![0.0; n],
             assembled: false,
             start: StartCache::default(),
+            touching: false,
         }
     }
 

@@ -1,0 +1,231 @@
+//! A contact's gap as a function of the coordinates $q$ and of the arc
+//! length $s$ where it sits on a flexure, with its first and second
+//! derivatives: the row a touching contact adds to the equilibrium
+//! equations, and its stiffness.
+//!
+//! The toucher's point $x(q, s)$ is a flexure's centreline point (its root
+//! frame's placement times [`Touch::section_jet`]) or a ball's centre, and
+//! the gap is $g = d(y) - h$, $y = T_G^{-1}x$ in the frame of the geom's
+//! shape, $d$ its signed distance. With $\Delta_c = \partial_c x - \partial_c x_G$
+//! the point's velocity relative to the geom's body (the body's material
+//! point at $x$) per unit $q_c$, and $n$ the world normal,
+//! $$\partial_c g = n\cdot\Delta_c,\qquad
+//!   \partial_b\partial_c g = n\cdot\big(\partial_{bc}x - \partial_{bc}x_G -
+//!   \omega^G_c\times\Delta_b - \omega^G_b\times\Delta_c\big) + \Delta_b^T\nabla^2d\thinspace\Delta_c,$$
+//! $\omega^G$ the geom body's angular velocity per coordinate and $\nabla^2 d$
+//! the shape's curvature ([`super::GeomShape::curvature`], turned to the world). In
+//! $s$, $\partial_s x = t$ (the unit tangent), so $\partial_s g = n\cdot t - h^{\prime}$.
+
+use super::{Pair, Touch, Toucher, named};
+use crate::error::{Error, Result};
+use crate::mechanism::Mechanism;
+use crate::mechanism::kinematics::{Attached, FrameChain, Frames, add_attached_hessian, attach_into};
+use nalgebra::DMatrix;
+
+/// A pair's gap at $(q, s)$ with its derivatives ([`gap_jet`]); $n$ the mechanism's coordinates.
+#[derive(Debug, Clone)]
+pub struct GapJet<D: Touch> {
+    /// $g$ (m): positive apart, negative overlapping.
+    pub gap: f64,
+    /// The toucher's surface point nearest the geom (world frame).
+    pub point: D::Point,
+    /// The geom's outward unit normal there (world frame).
+    pub normal: D::Vector,
+    /// $\partial g/\partial q$ ($n$ entries).
+    pub gradient: Vec<f64>,
+    /// $\partial^2 g/\partial q^2$ ($n\times n$).
+    pub hessian: DMatrix<f64>,
+    /// $\partial g/\partial s$ (0 for two geoms).
+    pub ds: f64,
+    /// $\partial^2 g/\partial q\thinspace\partial s$ ($n$ entries; 0 for two geoms).
+    pub dqs: Vec<f64>,
+    /// $\partial^2 g/\partial s^2$ (1/m; 0 for two geoms).
+    pub dss: f64,
+}
+
+/// The flexure side of a pair: its joint, first coordinate, root frame and jet at $s$.
+struct Own<'a, D: Touch> {
+    offset: usize,
+    root: &'a D::Pose,
+    jet: super::SectionJet<D>,
+}
+
+/// The gap of `pair` of `m` at coordinates `q`, frames `f` (at them, with
+/// their Jacobian level) and, for a flexure, arc length `s` (m), with its
+/// derivatives in $q$ and $s$ (see the module docs). A pair of two geoms
+/// one of which is a ball, as [`super::gap()`] takes it; others are refused by name.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{gap_jet, pairs};
+/// use flexure::mechanism::kinematics::frames;
+/// // A strip 0.1 m long along x, and a floor 5 mm below it.
+/// let m = flexure::mechanism::file::from_toml(r#"
+/// [[joint]]
+/// name = "strip"
+/// kind = "flexure"
+/// parent = "ground"
+/// child = "tip"
+/// length = 0.1
+/// ei = 1e-3
+/// [[geom]]
+/// body = "ground"
+/// shape = "plane"
+/// origin = [0.0, -0.005]
+/// normal = [0.0, 1.0]
+/// "#).unwrap();
+/// let q = m.rest();
+/// let g = gap_jet(&m, &frames(&m, &q), &q, &pairs(&m)[0], Some(0.1)).unwrap();
+/// // The tip's height moves by L/2 per unit of the first coordinate (Eq. 11).
+/// assert!((g.gap - 0.005).abs() < 1e-15 && (g.gradient[0] - 0.05).abs() < 1e-15);
+/// ```
+pub fn gap_jet<D: Touch + FrameChain>(
+    m: &Mechanism<D>,
+    f: &Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    s: Option<f64>,
+) -> Result<GapJet<D>> {
+    let n = m.dof();
+    let mut att = Attached::new(m);
+    // The shape touched, the toucher's point (world), its half thickness and own part.
+    let (shape, x, half, own) = match pair.part {
+        Toucher::Flexure(j) => {
+            let joint = &m.joints[j];
+            let Some(flexure) = joint.kind.flexure() else {
+                return Err(Error::invalid("pair", named(m, pair), "names a joint that is not a flexure"));
+            };
+            let s = s.ok_or_else(|| Error::invalid("s", "none", "is needed where a flexure touches"))?;
+            let k = joint.kind.joint().dof();
+            let jet = D::section_jet(flexure, &q[joint.offset..joint.offset + k], s)?;
+            let local = D::moved(&D::origin(&D::identity()), &jet.point, 1.0);
+            attach_into(m, f, joint.parent, D::position(&D::act(&joint.origin, &local)), true, &mut att);
+            let root = &f.roots[j];
+            let half = jet.half;
+            (&m.geoms[pair.geom], D::act(root, &local), half, Some(Own { offset: joint.offset, root, jet }))
+        }
+        Toucher::Geom(_) => {
+            let (round, flat, r) = super::gap::ball_and_other(m, pair)?;
+            let centre = D::translation(&round.frame);
+            attach_into(m, f, round.body, centre, true, &mut att);
+            let x = D::act(&f.bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
+            (flat, x, [r, 0.0, 0.0], None)
+        }
+    };
+    let frame = D::compose(&f.bodies[shape.body], &shape.frame);
+    let (d, normal) = shape.gap(&f.bodies[shape.body], &x, 0.0);
+    let y = D::position(&D::act(&D::inverse(&frame), &x));
+    let curvature = world_curvature::<D>(&frame, &shape.shape.curvature(&y));
+    let moving = m.parent_joint(shape.body).is_some();
+    let mut attg = Attached::new(m);
+    if moving {
+        let local = D::position(&D::act(&D::inverse(&f.bodies[shape.body]), &x));
+        attach_into(m, f, shape.body, local, true, &mut attg);
+    }
+    // Δ_c, the point's velocity relative to the geom's body per unit q_c.
+    let mut delta: Vec<D::Vector> = (0..n).map(|c| att.linear(c) - attg.linear(c)).collect();
+    if let Some(own) = &own {
+        for (a, p) in own.jet.jacobian.iter().enumerate() {
+            delta[own.offset + a] = delta[own.offset + a] + D::rotate(own.root, p);
+        }
+    }
+    let gradient: Vec<f64> = delta.iter().map(|v| dot::<D>(&normal, v)).collect();
+    let mut hessian = DMatrix::zeros(n, n);
+    add_attached_hessian(m, f, &att, &normal, &mut hessian);
+    if moving {
+        add_attached_hessian(m, f, &attg, &(D::Vector::default() - normal), &mut hessian);
+    }
+    let bilinear = |a: &D::Vector, b: &D::Vector| quadratic::<D>(&curvature, a, b);
+    for b in 0..n {
+        for c in 0..n {
+            hessian[(b, c)] += bilinear(&delta[b], &delta[c]);
+        }
+    }
+    // The geom's turning turns its normal: −n·(ω^G_c × Δ_b) − n·(ω^G_b × Δ_c).
+    let geom_columns = columns(m, &attg);
+    for &c in &geom_columns {
+        for b in 0..n {
+            let v = D::triple(&normal, &f.omega[c], &delta[b]);
+            hessian[(b, c)] -= v;
+            hessian[(c, b)] -= v;
+        }
+    }
+    let (mut ds, mut dqs, mut dss) = (0.0, vec![0.0; n], 0.0);
+    if let Some(own) = &own {
+        let k = own.jet.jacobian.len();
+        // Within the flexure: n·R ∂²p/∂α², with n in its root frame.
+        let local = normal_in::<D>(own.root, &normal);
+        for a in 0..k {
+            for b in 0..k {
+                let v: f64 = (0..D::POINT_DIM).map(|i| local[i] * own.jet.hessian[i][(a, b)]).sum();
+                hessian[(own.offset + a, own.offset + b)] += v;
+            }
+        }
+        // With the joints below it: n·(ω_b × ∂_a x).
+        for &b in &columns(m, &att) {
+            for a in 0..k {
+                let v = D::triple(&normal, &f.omega[b], &D::rotate(own.root, &own.jet.jacobian[a]));
+                hessian[(own.offset + a, b)] += v;
+                hessian[(b, own.offset + a)] += v;
+            }
+        }
+        let t = D::rotate(own.root, &own.jet.tangent);
+        ds = dot::<D>(&normal, &t) - half[1];
+        for c in 0..n {
+            dqs[c] = bilinear(&delta[c], &t);
+        }
+        for (a, dt) in own.jet.tangent_jacobian.iter().enumerate() {
+            dqs[own.offset + a] += dot::<D>(&normal, &D::rotate(own.root, dt));
+        }
+        for &b in &columns(m, &att) {
+            dqs[b] += dot::<D>(&normal, &D::spin(&f.omega[b], &t));
+        }
+        for &c in &geom_columns {
+            dqs[c] -= D::triple(&normal, &f.omega[c], &t);
+        }
+        dss = dot::<D>(&normal, &D::rotate(own.root, &own.jet.bend)) + bilinear(&t, &t) - half[2];
+    }
+    Ok(GapJet { gap: d - half[0], point: D::moved(&x, &normal, -half[0]), normal, gradient, hessian, ds, dqs, dss })
+}
+
+/// The coordinates of the joints on `x`'s path.
+fn columns<D: FrameChain>(m: &Mechanism<D>, x: &Attached<D>) -> Vec<usize> {
+    x.path().iter().flat_map(|&j| m.joints[j].offset..m.joints[j].offset + m.joints[j].kind.joint().dof()).collect()
+}
+
+/// `v` (world) in the frame `pose`.
+fn normal_in<D: Touch>(pose: &D::Pose, v: &D::Vector) -> D::Vector {
+    D::rotate(&D::inverse(pose), v)
+}
+
+/// $a\cdot b$ over the dimension's components.
+fn dot<D: Touch>(a: &D::Vector, b: &D::Vector) -> f64 {
+    (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
+}
+
+/// $a^TCb$.
+fn quadratic<D: Touch>(c: &super::DistanceHessian, a: &D::Vector, b: &D::Vector) -> f64 {
+    (0..D::POINT_DIM).map(|i| (0..D::POINT_DIM).map(|j| a[i] * c[i][j] * b[j]).sum::<f64>()).sum()
+}
+
+/// $RCR^T$: a shape's curvature in its frame turned to the world by `frame`'s rotation.
+fn world_curvature<D: Touch>(frame: &D::Pose, c: &super::DistanceHessian) -> super::DistanceHessian {
+    let axes: Vec<D::Vector> = (0..D::POINT_DIM)
+        .map(|i| {
+            let mut e = D::Vector::default();
+            e[i] = 1.0;
+            D::rotate(frame, &e)
+        })
+        .collect();
+    let mut out = [[0.0; 3]; 3];
+    for (a, ra) in axes.iter().enumerate() {
+        for (b, rb) in axes.iter().enumerate() {
+            for i in 0..D::POINT_DIM {
+                for j in 0..D::POINT_DIM {
+                    out[i][j] += ra[i] * c[a][b] * rb[j];
+                }
+            }
+        }
+    }
+    out
+}

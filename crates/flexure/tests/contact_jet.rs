@@ -1,0 +1,227 @@
+//! `mechanism/contact/jet.rs`: a pair's gap with its derivatives in the
+//! coordinates and the arc length, against central differences of its own
+//! value (step 1e-6, compared to 1e-6 of the largest first or second
+//! derivative at the point: truncation about 1e-12, rounding about 1e-10
+//! of values of order 1). The states are random, so some points lie
+//! inside a shape, where the shapes' curvature must hold too. Every kind of
+//! pair and motion: a flexure downstream of a hinge touching a post on the
+//! ground and a capsule on a body that turns, and a ball on a moving body
+//! touching a floor; in the plane and in space (with a sphere, a cylinder
+//! and a box).
+
+use flexure::mechanism::contact::{GapJet, Geom, GeomShape, Touch, Toucher, gap_jet, pairs};
+use flexure::mechanism::file::{from_toml, spatial_from_toml};
+use flexure::mechanism::kinematics::{FrameChain, frames};
+use flexure::mechanism::{Dimension, Mechanism};
+
+const PLANAR: &str = r#"
+[[joint]]
+name = "pin"
+kind = "revolute"
+parent = "ground"
+child = "arm"
+stiffness = 1.0
+[[joint]]
+name = "strip"
+kind = "flexure"
+parent = "arm"
+child = "tip"
+origin = [0.02, 0.01, 0.0]
+length = 0.1
+modulus = 2e11
+width = 0.01
+thickness = 0.001
+order = 4
+[[joint]]
+name = "wrist"
+kind = "revolute"
+parent = "ground"
+child = "hand"
+origin = [0.05, 0.08, 0.0]
+stiffness = 1.0
+[[geom]]
+name = "post"
+body = "ground"
+shape = "circle"
+origin = [0.07, -0.05]
+radius = 0.02
+[[geom]]
+name = "pad"
+body = "hand"
+shape = "capsule"
+origin = [0.03, -0.01]
+angle = 0.3
+half_length = 0.02
+radius = 0.005
+[[geom]]
+name = "floor"
+body = "ground"
+shape = "plane"
+origin = [0.0, -0.2]
+normal = [0.1, 1.0]
+exclude = ["strip", "pad"]
+[[geom]]
+name = "knob"
+body = "tip"
+shape = "circle"
+radius = 0.004
+exclude = ["strip"]
+"#;
+
+const SPATIAL: &str = r#"
+dimension = 3
+[[joint]]
+name = "pin"
+kind = "revolute"
+parent = "ground"
+child = "arm"
+axis = [0.0, 1.0, 0.2]
+stiffness = 1.0
+[[joint]]
+name = "strip"
+kind = "flexure"
+parent = "arm"
+child = "tip"
+origin = [0.02, 0.01, 0.0]
+length = 0.1
+modulus = 2e11
+width = 0.01
+thickness = 0.001
+order = 3
+[[joint]]
+name = "wrist"
+kind = "revolute"
+parent = "ground"
+child = "hand"
+origin = [0.05, 0.0, 0.08]
+axis = [0.3, 1.0, 0.0]
+stiffness = 1.0
+[[geom]]
+name = "ball"
+body = "ground"
+shape = "sphere"
+origin = [0.07, 0.01, -0.05]
+radius = 0.02
+[[geom]]
+name = "can"
+body = "hand"
+shape = "cylinder"
+origin = [0.03, 0.0, -0.01]
+rpy = [0.3, 1.2, 0.1]
+half_length = 0.01
+radius = 0.005
+[[geom]]
+name = "block"
+body = "hand"
+shape = "box"
+origin = [0.0, 0.03, -0.03]
+rpy = [0.1, 0.2, 0.3]
+half_extents = [0.01, 0.002, 0.003]
+[[geom]]
+name = "knob"
+body = "tip"
+shape = "sphere"
+radius = 0.004
+exclude = ["strip"]
+"#;
+
+/// Seeded uniform numbers in [−1, 1) (xorshift64*).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+fn jet<D: Touch + FrameChain>(m: &Mechanism<D>, q: &[f64], pair: usize, s: Option<f64>) -> GapJet<D> {
+    gap_jet(m, &frames(m, q), q, &pairs(m)[pair], s).unwrap()
+}
+
+/// Every derivative of every pair of `m` at seeded configurations, against differences.
+fn check<D: Touch + FrameChain + Dimension>(m: &Mechanism<D>, seed: u64) -> usize {
+    let mut rng = Rng(seed);
+    let n = m.dof();
+    let h = 1e-6;
+    // Each derivative against 1e-6 of the largest of its kind at the point.
+    let close = |a: f64, b: f64, size: f64, what: &str| {
+        assert!((a - b).abs() <= 1e-6 * size, "{what}: exact {a:e}, differences {b:e} (size {size:e})")
+    };
+    let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+    let mut checked = 0;
+    for _ in 0..4 {
+        let q: Vec<f64> = m.rest().iter().map(|q| q + 0.4 * rng.next()).collect();
+        for (p, pair) in pairs(m).iter().enumerate() {
+            let s = matches!(pair.part, Toucher::Flexure(_)).then(|| 0.05 + 0.045 * rng.next());
+            let at = jet(m, &q, p, s);
+            let first = largest(&mut at.gradient.iter().copied().chain([at.ds]));
+            let second = largest(&mut at.hessian.iter().copied().chain(at.dqs.iter().copied()).chain([at.dss]));
+            for c in 0..n {
+                let (mut up, mut down) = (q.clone(), q.clone());
+                up[c] += h;
+                down[c] -= h;
+                let (a, b) = (jet(m, &up, p, s), jet(m, &down, p, s));
+                close(at.gradient[c], (a.gap - b.gap) / (2.0 * h), first, &format!("pair {p}: dg/dq{c}"));
+                for r in 0..n {
+                    let fd = (a.gradient[r] - b.gradient[r]) / (2.0 * h);
+                    close(at.hessian[(r, c)], fd, second, &format!("pair {p}: d2g/dq{r}dq{c}"));
+                }
+                close(at.dqs[c], (a.ds - b.ds) / (2.0 * h), second, &format!("pair {p}: d2g/dq{c}ds"));
+                checked += 1;
+            }
+            if let Some(s) = s {
+                let (a, b) = (jet(m, &q, p, Some(s + h)), jet(m, &q, p, Some(s - h)));
+                close(at.ds, (a.gap - b.gap) / (2.0 * h), first, &format!("pair {p}: dg/ds"));
+                close(at.dss, (a.ds - b.ds) / (2.0 * h), second, &format!("pair {p}: d2g/ds2"));
+                for c in 0..n {
+                    close(at.dqs[c], (a.gradient[c] - b.gradient[c]) / (2.0 * h), second, "d2g/dsdq");
+                }
+            }
+        }
+    }
+    checked
+}
+
+/// Adds `shapes` on the ground at `frame`, around the strip (a file
+/// refuses shapes a part starts inside), touching the strip alone.
+fn around<D: Dimension>(m: &mut Mechanism<D>, frame: D::Pose, shapes: &[GeomShape<D>]) {
+    let others: Vec<Toucher> = (0..m.geoms.len()).map(Toucher::Geom).collect();
+    for (i, shape) in shapes.iter().enumerate() {
+        let mut g = Geom::new(&format!("blob {i}"), 0, frame, *shape);
+        g.exclude = others.clone();
+        for earlier in 0..i {
+            g.exclude.push(Toucher::Geom(m.geoms.len() - 1 - earlier));
+        }
+        m.geoms.push(g);
+    }
+}
+
+#[test]
+fn planar_gap_derivatives_match_differences() {
+    let mut m = from_toml(PLANAR).unwrap();
+    assert_eq!(pairs(&m).len(), 6);
+    assert!(check(&m, 0x9E37_79B9_7F4A_7C15) >= 4 * 6 * m.dof());
+    let frame = flexure::Pose { phi: 0.3, x: 0.08, y: 0.02 };
+    around(&mut m, frame, &[GeomShape::Ball { radius: 0.2 }, GeomShape::Capsule { half_length: 0.03, radius: 0.15 }]);
+    assert_eq!(pairs(&m).len(), 8);
+    assert!(check(&m, 0x9E37_79B9_7F4A_7C15) >= 4 * 8 * m.dof());
+}
+
+#[test]
+fn spatial_gap_derivatives_match_differences() {
+    let mut m = spatial_from_toml(SPATIAL).unwrap();
+    assert_eq!(pairs(&m).len(), 8);
+    assert!(check(&m, 0x2545_F491_4F6C_DD1D) >= 4 * 8 * m.dof());
+    let frame =
+        nalgebra::Isometry3::new(nalgebra::Vector3::new(0.08, 0.02, 0.01), nalgebra::Vector3::new(0.1, 1.4, 0.2));
+    let inside = [
+        GeomShape::Ball { radius: 0.2 },
+        GeomShape::Capsule { half_length: 0.03, radius: 0.15 },
+        GeomShape::Cylinder { half_length: 0.3, radius: 0.15 },
+    ];
+    around(&mut m, frame, &inside);
+    assert_eq!(pairs(&m).len(), 11);
+    assert!(check(&m, 0x2545_F491_4F6C_DD1D) >= 4 * 11 * m.dof());
+}

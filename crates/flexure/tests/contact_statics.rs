@@ -1,0 +1,173 @@
+//! `mechanism/statics/contact.rs`: equilibria with frictionless contact
+//! against the exact elastica with contact unknowns
+//! ([`flexure::reference::elastica::contact`], its own tests check it
+//! against closed forms and the plain elastica), a unit strip (L = EI = 1)
+//! clamped along x:
+//!
+//! - a tip moment presses the tip onto a floor (propped cantilever): the
+//!   curvature stays smooth, so order 6 meets the reference to rounding;
+//! - a tip force and moment move the contact from the tip into the span
+//!   (the tip lifts); a tip force presses the span onto a circular post:
+//!   an inner contact puts a kink in the shear, which the model's
+//!   polynomials resolve algebraically, so order 8 meets the reference's
+//!   contact force to 0.2 % and its place to 1e-3 L, and the reported error
+//!   estimate covers the tip's true error;
+//! - the planar floor problem written as a spatial file gives the planar answer.
+
+use flexure::mechanism::contact::{Contact, ContactMode};
+use flexure::mechanism::file::from_toml;
+use flexure::mechanism::statics::{Settings, solve};
+use flexure::reference::elastica::{self, contact::Obstacle};
+use flexure::{Flexure, TipLoad};
+
+fn strip(order: usize, geom: &str, load: &str) -> String {
+    format!(
+        "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = {order}\n\
+         [[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\n{load}\n[[geom]]\nname = \"floor\"\nbody = \"ground\"\n{geom}"
+    )
+}
+
+#[test]
+fn a_tip_moment_presses_the_tip_onto_a_floor() {
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let m = from_toml(&strip(6, floor, "moment = -0.1")).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let exact = elastica::contact(
+        &f,
+        &[Obstacle::half_plane([0.0, -0.01], [0.0, 1.0])],
+        0.0,
+        &[TipLoad { moment: -0.1, fx: 0.0, fy: 0.0 }],
+        &Default::default(),
+    )
+    .unwrap();
+    println!("{:#?}", s.contacts);
+    println!("{:#?}", exact.contacts);
+    assert_eq!(s.contacts.len(), 1);
+    assert_eq!(s.contacts[0].state, ContactMode::Slip);
+    let rel = (s.contacts[0].normal_force - exact.contacts[0].normal_force).abs() / exact.contacts[0].normal_force;
+    assert!(rel < 1e-3, "{rel}");
+}
+
+/// The model at `order` and the exact elastica, each with its contacts:
+/// (s, normal force, tip (x, y)) of the model's and of the reference's.
+type Found = (Vec<(f64, f64)>, [f64; 2], flexure::report::SolveReport);
+
+fn both(order: usize, geom: &str, load: &str, obstacle: Obstacle, tip: TipLoad) -> (Found, Vec<(f64, f64)>, [f64; 2]) {
+    let m = from_toml(&strip(order, geom, load)).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let report = flexure::report::solve_report(&m, &s, &Default::default()).map_err(|f| f.error).unwrap();
+    let model: Vec<(f64, f64)> = s.contacts.iter().map(|c| (c.s.unwrap(), c.normal_force)).collect();
+    let end = flexure::pose_root_tip(m.joints[0].kind.flexure().unwrap(), &s.q);
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let exact = elastica::contact(&f, &[obstacle], 0.0, &[tip], &Default::default()).unwrap();
+    assert!(exact.reached());
+    let reference: Vec<(f64, f64)> = exact.contacts.iter().map(|c| (c.s, c.normal_force)).collect();
+    let last = exact.shape.last().unwrap();
+    ((model, [end.x, end.y], report), reference, [last.x, last.y])
+}
+
+/// One inner contact each, at order 8: its place to 1e-3 L and its force
+/// to 0.2 %; the estimate's position error at least a third of the tip's
+/// true distance from the reference's (an estimate, not a bound) and
+/// within 1e-3 L; every gap along the shape closed or open to 1e-10 L.
+fn inner_contact_matches(geom: &str, load: &str, obstacle: Obstacle, tip: TipLoad) {
+    let ((model, end, report), exact, exact_end) = both(8, geom, load, obstacle, tip);
+    assert!(model.len() == 1 && exact.len() == 1 && exact[0].0 < 1.0, "{model:?} vs {exact:?}");
+    let (place, force) = ((model[0].0 - exact[0].0).abs(), (model[0].1 / exact[0].1 - 1.0).abs());
+    assert!(place < 1e-3 && force < 2e-3, "place off by {place:e}, force by {force:e}");
+    let true_error = (end[0] - exact_end[0]).hypot(end[1] - exact_end[1]);
+    let estimate = report.error_estimate.get("strip").unwrap();
+    assert!(estimate.position >= true_error / 3.0 && estimate.position < 1e-3, "{estimate:?} vs {true_error:e}");
+    assert_eq!(report.contacts.len(), 1);
+}
+
+#[test]
+fn a_tip_force_and_moment_move_the_contact_into_the_span() {
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let obstacle = Obstacle::half_plane([0.0, -0.01], [0.0, 1.0]);
+    inner_contact_matches(
+        floor,
+        "moment = 0.4\nforce = [0.0, -1.0]",
+        obstacle,
+        TipLoad { moment: 0.4, fx: 0.0, fy: -1.0 },
+    );
+}
+
+#[test]
+fn a_tip_force_presses_the_span_onto_a_post() {
+    let post = "shape = \"circle\"\norigin = [0.55, -0.3]\nradius = 0.25\n";
+    let obstacle = Obstacle::circle([0.55, -0.3], 0.25);
+    inner_contact_matches(post, "force = [0.0, -3.0]", obstacle, TipLoad { moment: 0.0, fx: 0.0, fy: -3.0 });
+}
+
+/// The floor problem written in space: the strip along x bending about z,
+/// the floor's normal along y, gives the planar contact to 1e-7 (relative
+/// in force, of L in place): the two integrate the same curvature series
+/// differently (Gauss quadrature of the angle in the plane, Magnus steps
+/// in space), each to about 1e-8 here.
+#[test]
+fn a_spatial_file_of_the_planar_problem_gives_the_planar_answer() {
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let planar =
+        solve(&from_toml(&strip(6, floor, "moment = 0.4\nforce = [0.0, -1.0]")).unwrap(), &Settings::default())
+            .unwrap();
+    let text = "dimension = 3\n[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+                gj = 1.0\nei_y = 1.0\nei_z = 1.0\norders = [1, 1, 6]\n\
+                [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nmoment = [0.0, 0.0, 0.4]\nforce = [0.0, -1.0, 0.0]\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01, 0.0]\nnormal = [0.0, 1.0, 0.0]\n";
+    let spatial = solve(&flexure::mechanism::file::spatial_from_toml(text).unwrap(), &Settings::default()).unwrap();
+    same_contact(&planar.contacts, &spatial.contacts, [0, 1, 2]);
+}
+
+/// The post problem bent out of the plane: the strip along x bending about
+/// y, pushed down (−z) onto a sphere whose section is the planar post, gives
+/// the planar answer to 1e-7 (see the test above).
+#[test]
+fn a_strip_pressed_onto_a_sphere_is_the_planar_post() {
+    let post = "shape = \"circle\"\norigin = [0.55, -0.3]\nradius = 0.25\n";
+    let planar = solve(&from_toml(&strip(6, post, "force = [0.0, -3.0]")).unwrap(), &Settings::default()).unwrap();
+    let text = "dimension = 3\n[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+                gj = 1.0\nei_y = 1.0\nei_z = 1.0\norders = [1, 6, 1]\n\
+                [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, 0.0, -3.0]\n\
+                [[geom]]\nname = \"ball\"\nbody = \"ground\"\nshape = \"sphere\"\norigin = [0.55, 0.0, -0.3]\nradius = 0.25\n";
+    let spatial = solve(&flexure::mechanism::file::spatial_from_toml(text).unwrap(), &Settings::default()).unwrap();
+    same_contact(&planar.contacts, &spatial.contacts, [0, 2, 1]);
+}
+
+/// A geom touching a geom: an arm on a hinge of stiffness k = 2 N·m/rad
+/// carries a circle of radius r = 0.01 at x = 0.1 on its frame, a floor
+/// 0.02 below it; a moment M = −1 N·m turns the arm down onto it. In
+/// contact the circle's centre is r above the floor: sin θ = −(0.02 − r)/0.1,
+/// and the floor takes the rest of the moment, N = (kθ − M)/(0.1 cos θ)
+/// (1e-12 relative).
+#[test]
+fn a_pad_on_an_arm_rests_on_a_floor() {
+    let text = "[[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+                [[force]]\nbody = \"arm\"\nmoment = -1.0\n\
+                [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"circle\"\norigin = [0.1, 0.0]\nradius = 0.01\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.02]\nnormal = [0.0, 1.0]\n";
+    let s = solve(&from_toml(text).unwrap(), &Settings::default()).unwrap();
+    let theta = (-0.01f64 / 0.1).asin();
+    assert!((s.q[0] - theta).abs() < 1e-12, "{:?}", s.q);
+    assert_eq!(s.contacts.len(), 1);
+    let c = &s.contacts[0];
+    let exact = (2.0 * theta + 1.0) / (0.1 * theta.cos());
+    assert!((c.normal_force / exact - 1.0).abs() < 1e-12, "{c:?} vs {exact}");
+    assert!(c.s.is_none() && c.geom == "floor" && c.body.as_deref() == Some("arm") && c.flexure.is_none(), "{c:?}");
+}
+
+/// One contact each, the same to 1e-7 (the two integrations' difference):
+/// the planar point's x and y are the spatial point's components
+/// `axes[0]` and `axes[1]`, and its component `axes[2]` is zero.
+fn same_contact(planar: &[Contact], spatial: &[Contact], axes: [usize; 3]) {
+    assert_eq!((planar.len(), spatial.len()), (1, 1));
+    let (a, b) = (&planar[0], &spatial[0]);
+    assert!((a.s.unwrap() - b.s.unwrap()).abs() < 1e-7, "{a:?} vs {b:?}");
+    assert!((a.normal_force / b.normal_force - 1.0).abs() < 1e-7, "{a:?} vs {b:?}");
+    assert!(
+        (a.point[0] - b.point[axes[0]]).abs() < 1e-7 && (a.point[1] - b.point[axes[1]]).abs() < 1e-7,
+        "{a:?} vs {b:?}"
+    );
+    assert!(b.point[axes[2]].abs() < 1e-12, "{b:?}");
+}
