@@ -20,6 +20,13 @@
 //! position's Hessian check the pass instead of being built into it. The tip position's
 //! Hessian in the root frame, which a force's load stiffness needs, is
 //! $\partial_a\partial_bp = R\thinspace(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$, symmetric.
+//!
+//! Without Hessians, the columns can ride in the root frame instead
+//! ([`jacobian_pass`], which the stations' mass and a rate's bias use):
+//! $\omega_a \leftarrow \omega_a + RJ_l(\omega)\thinspace\partial_a\omega$ and
+//! $\partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\thinspace\partial_ap_k$,
+//! both linear in the coordinate's nodal derivatives, so each step takes its
+//! derivative along nine unit changes once and every column combines three.
 
 use super::SpatialFlexure;
 use super::magnus::{Exponent, Jet2, Nine, exponent, exponential};
@@ -592,8 +599,10 @@ pub(super) fn root_step<T: Scalar>(
     (turn, arm)
 }
 
-/// [`update`] at [`Level::Jacobian`], in the root frame ([`carry`]): the
-/// tip's pose and, at its end, the body Jacobian $(R^T\omega_a, R^T\partial_ap)$.
+/// The tip's pose and body Jacobian, as [`update`] at [`Level::Jacobian`]
+/// gives them, carried in the root frame ([`carry`]) and turned at the end,
+/// $(R^T\omega_a, R^T\partial_ap)$ (equal to rounding; `update` keeps the
+/// body-frame pass, so that statics answers stay bit for bit).
 /// Each step's coefficients are made to `order` (at least 1), and
 /// `each(k, exponent, step)` is called on subinterval `k`'s step.
 pub(super) fn jacobian_pass<T: Scalar>(

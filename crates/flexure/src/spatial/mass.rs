@@ -18,10 +18,16 @@
 //! Magnus step from the start $s_j$ of its subinterval over $d = s_k - s_j$:
 //! $g(s_k) = g(s_j)\exp\Omega(s_j, d)$, with the curvature at that step's own
 //! three Gauss nodes. Its Jacobian rides along the tip's recursion
-//! ([`super::kinematics`]): the body Jacobian at $s_j$ is carried through the
+//! ([`super::kinematics`]): the Jacobian at $s_j$ is carried through the
 //! partial step as through a whole one, so it is the exact derivative of the
 //! station's pose (`tests/spatial_flexure_mass.rs` checks it against central
-//! differences). At [`Level::Hessian`] the pass also gives the first moment
+//! differences at both levels). At [`Level::Jacobian`], what dynamics asks for
+//! at every evaluation, the columns are carried in the root frame,
+//! $\omega_a \leftarrow \omega_a + RJ_l\delta\omega_a$ and
+//! $\partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\delta p_a$, whose
+//! increments combine nine unit images a step (three curvatures at three
+//! nodes) rather than a tangent and an adjoint a coordinate; at
+//! [`Level::Hessian`] the body-frame recursion with its $H_{ab}$. At [`Level::Hessian`] the pass also gives the first moment
 //! $S = \sum_k w_k\mu_kp_k$ with its exact Hessian, what the weight's
 //! stiffness needs.
 
