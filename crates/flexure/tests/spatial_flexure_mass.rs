@@ -81,14 +81,18 @@ fn station_jacobians_are_their_poses_central_differences() {
     };
     let e = 1e-6;
     let l = f.length();
+    // The Jacobian level's root-frame pass and the Hessian level's body-frame one, each against the differences.
+    let jacobian_level = kinematics(&f, &q, &alpha, Level::Jacobian);
     for i in 0..n {
         let (up, down) = (shifted(i, e), shifted(i, -e));
         for s in 0..q.stations().len() {
             let dp = (up.position[s] - down.position[s]) / (2.0 * e);
-            assert!((dp - k.velocity[s * n + i]).amax() < 1e-8 * l, "∂p station {s}, coordinate {i}");
             let u = up.rotation[s] * down.rotation[s].transpose();
             let turn = Vector3::new(u[(2, 1)] - u[(1, 2)], u[(0, 2)] - u[(2, 0)], u[(1, 0)] - u[(0, 1)]) / (4.0 * e);
-            assert!((turn - k.omega[s * n + i]).amax() < 1e-8, "ω station {s}, coordinate {i}");
+            for (k, level) in [(&k, "Hessian"), (&jacobian_level, "Jacobian")] {
+                assert!((dp - k.velocity[s * n + i]).amax() < 1e-8 * l, "∂p station {s}, coordinate {i} ({level})");
+                assert!((turn - k.omega[s * n + i]).amax() < 1e-8, "ω station {s}, coordinate {i} ({level})");
+            }
         }
     }
     // The first moment S = Σ m_k p_k, its Jacobian Σ m_k ∂p_k, and its Hessian.

@@ -20,9 +20,16 @@
 //! position's Hessian check the pass instead of being built into it. The tip position's
 //! Hessian in the root frame, which a force's load stiffness needs, is
 //! $\partial_a\partial_bp = R\thinspace(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$, symmetric.
+//!
+//! Without Hessians, the columns can ride in the root frame instead
+//! ([`jacobian_pass`], which the stations' mass and a rate's bias use):
+//! $\omega_a \leftarrow \omega_a + RJ_l(\omega)\thinspace\partial_a\omega$ and
+//! $\partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\thinspace\partial_ap_k$,
+//! both linear in the coordinate's nodal derivatives, so each step takes its
+//! derivative along nine unit changes once and every column combines three.
 
 use super::SpatialFlexure;
-use super::magnus::{Exponent, Jet2, exponent, exponential};
+use super::magnus::{Exponent, Jet2, Nine, exponent, exponential};
 use super::step::{Step, Tangent};
 use crate::kinematics::Level;
 use crate::scalar::Scalar;
@@ -45,6 +52,10 @@ pub struct SpatialKinematics<T: Scalar = f64> {
     hessian_position: Vec<Vector3<T>>,
     /// The body Jacobian's columns during the pass.
     pub(super) columns: Vec<Vector6<T>>,
+    /// The Jacobian-level pass's columns in the root frame ([`carry`]):
+    /// the angular velocity $\omega_a$ of the frame reached per unit $\alpha_a$, and $\partial_ap$.
+    pub(super) turning: Vec<Vector3<T>>,
+    pub(super) moving: Vec<Vector3<T>>,
     /// $\mathrm{Ad}_{g_k^{-1}}J_a$ of the step being taken.
     moved: Vec<Vector6<T>>,
     /// The step's tangents, one per coordinate.
@@ -83,6 +94,8 @@ impl<T: Scalar> SpatialKinematics<T> {
             hessian: vec![Vector6::zeros(); n * n],
             hessian_position: vec![Vector3::zeros(); n * n],
             columns: vec![Vector6::zeros(); n],
+            turning: vec![Vector3::zeros(); n],
+            moving: vec![Vector3::zeros(); n],
             moved: vec![Vector6::zeros(); n],
             tangents: vec![Tangent::default(); n],
             exponent_second: vec![Vector6::zeros(); n * n],
@@ -463,65 +476,163 @@ impl Rate {
     }
 }
 
-/// [`advance`] at order 1, carrying the rate `rate` (one entry per
-/// coordinate) in `state` as well: the module docs' recursion contracted
-/// with the rate twice,
-/// $$B \leftarrow A_kB - \big[J_{\dot\alpha}^{(k)},\ A_kV\big] + \partial_{\dot\alpha}J_{\dot\alpha}^{(k)},$$
+/// The rate $\dot\alpha$'s twist and bias carried over one step (the
+/// module docs' recursion contracted with the rate twice),
+/// $$B \leftarrow A_kB - \big[J_{\dot\alpha}^{(k)},\ A_kV\big] + \partial_{\dot\alpha}J_{\dot\alpha}^{(k)},\qquad V \leftarrow A_kV + J_{\dot\alpha}^{(k)},$$
 /// where $J_{\dot\alpha}^{(k)}$ and its derivative are the step's along the one
-/// direction $\sum_a\dot\alpha_a\partial_a\xi$ ([`Exponent::along`], not $n^2$ pairs): the
-/// exact second derivative along the rate for the cost of a first.
-pub(super) fn advance_rate(
-    data: &mut SpatialKinematics<f64>,
-    xi: &[Vector6<f64>; 3],
-    derivative: impl Fn(usize) -> [Vector6<f64>; 3],
-    h: f64,
-    rate: &[f64],
-    state: &mut Rate,
-) -> Step<f64> {
-    let mut along = [Vector6::zeros(); 3];
-    for (a, &u) in rate.iter().enumerate() {
-        if u != 0.0 {
-            let d = derivative(a);
-            for (x, y) in along.iter_mut().zip(d) {
-                *x += y * u;
-            }
-        }
-    }
-    let e = Exponent::new(&xi.map(|x| parts(&x).0), h);
-    let (w, v) = e.value();
-    let step = advance_step(data, xi, derivative, &e, h, 1, Step::new(w, v, 2));
-    let ((dw, dv), (dww, dvv)) = e.along(&along.map(|x| parts(&x).0));
+/// change `along` $= \sum_a\dot\alpha_a\partial_au$ of the nodal curvatures ([`Exponent::along`], not $n^2$ pairs): the
+/// exact second derivative along the rate for the cost of a first. The
+/// step's coefficients must be made to order 2.
+pub(super) fn carry_rate(state: &mut Rate, e: &Exponent<f64>, step: &Step<f64>, along: &[Vector3<f64>; 3]) {
+    let ((dw, dv), (dww, dvv)) = e.along(along);
     let t = step.tangent(dw, dv);
     let (sw, sv) = step.second(&t, &t, dww, dvv);
     let moved = adjoint_inverse(&step.r, &step.p, &state.twist);
     let own = six(&t.angular, &t.linear);
     state.bias = adjoint_inverse(&step.r, &step.p, &state.bias) - bracket(&own, &moved) + six(&sw, &sv);
     state.twist = moved + own;
-    step
+}
+
+/// $\sum_a\dot\alpha_a\partial_au$ at the three nodes whose shape values are `rows`: the change of the nodal curvatures along the rate `rate`.
+pub(super) fn rate_direction(flexure: &SpatialFlexure, rows: &[f64], rate: &[f64]) -> [Vector3<f64>; 3] {
+    let w = flexure.width();
+    let mut along = [Vector3::zeros(); 3];
+    for (a, &u) in rate.iter().enumerate() {
+        if u != 0.0 {
+            let (c, i) = flexure.component(a);
+            for (g, x) in along.iter_mut().enumerate() {
+                x[c] += rows[g * w + i] * u;
+            }
+        }
+    }
+    along
 }
 
 /// The tip's [`Rate`] for the rate `rate` at `alpha`, with the body
 /// Jacobian (as [`update`] at [`Level::Jacobian`]) into `data`, in one pass
-/// ([`advance_rate`]).
+/// ([`carry_rate`] on each step of [`jacobian_pass`]).
 pub(crate) fn update_rate(flexure: &SpatialFlexure, alpha: &[f64], rate: &[f64], data: &mut SpatialKinematics) -> Rate {
     assert!(alpha.len() == flexure.coordinates() && rate.len() == alpha.len() && data.fits(flexure));
+    let mut state = Rate::default();
+    jacobian_pass(flexure, alpha, 2, data, |k, e, step| {
+        carry_rate(&mut state, e, step, &rate_direction(flexure, flexure.shapes(k), rate));
+    });
+    state
+}
+
+/// What a step adds to the root-frame columns ([`carry`]) per unit change
+/// of one nodal curvature: angular then linear, column `3 * g + c` for curvature `c` at node `g`.
+pub(super) type Images<T> = (Nine<T>, Nine<T>);
+
+/// The [`Images`] of the step `step` (exponent `e`) taken from the frame
+/// of rotation `frame` $= R$: for the unit change
+/// $\delta u$, $\big(RJ_l(\omega)\thinspace\delta\omega,\ R\thinspace\delta p_k\big)$ with
+/// $(\delta\omega, \delta v) = D\Omega[\delta u]$ ([`Exponent::jacobian`],
+/// [`Step::images`]). A coordinate's nodal derivatives are a combination
+/// of these nine unit changes, and the images are linear in them: nine
+/// tangents a step serve every coordinate.
+#[inline(always)]
+pub(super) fn images<T: Scalar>(e: &Exponent<T>, step: &Step<T>, frame: &Matrix3<T>) -> Images<T> {
+    let (dw, dv) = e.jacobian();
+    step.images(&dw, &dv, frame)
+}
+
+/// Column `a`'s [`Images`] combination for a step whose nodal shape
+/// values are `rows`: $\sum_g\tilde P_i(s_g)\thinspace I_{c,g}$ for the coordinate's curvature $c$ and shape $i$.
+#[inline(always)]
+pub(super) fn increment<T: Scalar>(
+    flexure: &SpatialFlexure,
+    images: &Images<T>,
+    rows: &[f64],
+    a: usize,
+) -> (Vector3<T>, Vector3<T>) {
+    let (w, (c, i)) = (flexure.width(), flexure.component(a));
+    let (mut dw, mut dp) = (Vector3::zeros(), Vector3::zeros());
+    for g in 0..3 {
+        let k = T::c(rows[g * w + i]);
+        dw += images.0.column(3 * g + c) * k;
+        dp += images.1.column(3 * g + c) * k;
+    }
+    (dw, dp)
+}
+
+/// The root-frame columns carried over one step $(R_k, p_k)$ from the frame
+/// $(R, p)$, whose images are `images` and whose nodal shape values are `rows`:
+/// as $R' = RR_k$ and $p' = p + Rp_k$,
+/// $$\omega_a \leftarrow \omega_a + RJ_l(\omega)\thinspace\partial_a\omega,\qquad
+///   \partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\thinspace\partial_ap_k,$$
+/// with `arm` $= Rp_k$. Against the body recursion's $\mathrm{Ad}$ on every
+/// column and a tangent for each coordinate, this is a combination of
+/// three images and a cross product a column.
+#[inline(always)]
+fn carry<T: Scalar>(
+    data: &mut SpatialKinematics<T>,
+    flexure: &SpatialFlexure,
+    rows: &[f64],
+    images: &Images<T>,
+    arm: &Vector3<T>,
+) {
+    for a in 0..data.turning.len() {
+        let (dw, dp) = increment(flexure, images, rows, a);
+        data.moving[a] += data.turning[a].cross(arm) + dp;
+        data.turning[a] += dw;
+    }
+}
+
+/// One step of [`jacobian_pass`] from the frame rotation `r`: the step
+/// `step` (exponent `e`, nodal shape values `rows`) carries `data`'s
+/// root-frame columns when its coefficients have their derivatives
+/// (order 1 and up), and gives the frame reached, $(RR_k, Rp_k)$ (the rotation, and the position's change).
+#[inline(always)]
+pub(super) fn root_step<T: Scalar>(
+    flexure: &SpatialFlexure,
+    rows: &[f64],
+    e: &Exponent<T>,
+    step: &Step<T>,
+    r: &Matrix3<T>,
+    data: &mut SpatialKinematics<T>,
+) -> (Matrix3<T>, Vector3<T>) {
+    let (turn, arm) = (r * step.r, r * step.p);
+    if step.order >= 1 {
+        carry(data, flexure, rows, &images(e, step, r), &arm);
+    }
+    (turn, arm)
+}
+
+/// The tip's pose and body Jacobian, as [`update`] at [`Level::Jacobian`]
+/// gives them, carried in the root frame ([`carry`]) and turned at the end,
+/// $(R^T\omega_a, R^T\partial_ap)$ (equal to rounding; `update` keeps the
+/// body-frame pass, so that statics answers stay bit for bit).
+/// Each step's coefficients are made to `order` (at least 1), and
+/// `each(k, exponent, step)` is called on subinterval `k`'s step.
+pub(super) fn jacobian_pass<T: Scalar>(
+    flexure: &SpatialFlexure,
+    alpha: &[T],
+    order: usize,
+    data: &mut SpatialKinematics<T>,
+    mut each: impl FnMut(usize, &Exponent<T>, &Step<T>),
+) {
     let m = flexure.subintervals();
     let h = flexure.length() / m as f64;
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
-    data.columns.fill(Vector6::zeros());
-    let mut state = Rate::default();
+    data.turning.fill(Vector3::zeros());
+    data.moving.fill(Vector3::zeros());
     for k in 0..m {
-        let xi = node_twists(flexure, alpha, k);
-        let step = advance_rate(data, &xi, |a| node_derivatives(flexure, k, a), h, rate, &mut state);
-        p += r * step.p;
-        r *= step.r;
+        let e = Exponent::new(&node_twists(flexure, alpha, k).map(|x| parts(&x).0), h);
+        let (w, v) = e.value();
+        let step = Step::new(w, v, order);
+        let (turn, arm) = root_step(flexure, flexure.shapes(k), &e, &step, &r, data);
+        each(k, &e, &step);
+        p += arm;
+        r = turn;
     }
     data.rotation = r;
     data.position = p;
-    for (a, col) in data.columns.iter().enumerate() {
-        data.jacobian.column_mut(a).copy_from(col);
+    for a in 0..data.columns.len() {
+        let column = six(&r.tr_mul(&data.turning[a]), &r.tr_mul(&data.moving[a]));
+        data.columns[a] = column;
+        data.jacobian.column_mut(a).copy_from(&column);
     }
-    state
 }
 
 /// [`advance`] with its step made (coefficients to at least `order`).

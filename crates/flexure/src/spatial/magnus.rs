@@ -24,7 +24,10 @@
 
 use crate::scalar::Scalar;
 use crate::space::{bracket, exp_coefficients, exp_parts};
-use nalgebra::{Matrix3, Vector3, Vector6};
+use nalgebra::{Matrix3, SMatrix, Vector3, Vector6};
+
+/// Nine changes at once, as columns: one per curvature at each of the three nodes, column `3 * g + c`.
+pub(crate) type Nine<T> = SMatrix<T, 3, 9>;
 
 /// The Gauss nodes on $[0, 1]$: $\frac12 \mp \frac{\sqrt{15}}{10}$ and $\frac12$.
 pub(crate) const NODES: [f64; 3] = [0.5 - 0.387_298_334_620_741_7, 0.5, 0.5 + 0.387_298_334_620_741_7];
@@ -197,6 +200,36 @@ impl<T: Scalar> Exponent<T> {
         (omega, v)
     }
 
+    /// $D\Omega$ along each of the nine unit changes of the nodal
+    /// curvatures (curvature $c$ at node $g$, column `3 * g + c`), as
+    /// $(\delta\omega, \delta v)$: [`Exponent::derivative`]'s product rule
+    /// with each change's cross products as matrices, $a\times\delta x = \hat a\thinspace\delta x$,
+    /// taken first along $w_1$, $w_2$, $w_3$ and then combined as the nodes
+    /// enter them. Nine derivatives in a few $3\times3$ by $3\times9$ products.
+    #[inline(always)]
+    pub fn jacobian(&self) -> (Nine<T>, Nine<T>) {
+        let (t, h) = (&self.at, self.h);
+        let i = Matrix3::<T>::identity();
+        let (x1, x2) = (t.w1.cross_matrix(), t.w2.cross_matrix());
+        // cross_e1(a, h) = h a × e₁ = −h ê₁ a.
+        let e1 = -Vector3::new(T::c(h), T::zero(), T::zero()).cross_matrix();
+        // Each term's blocks along w₁, w₂, w₃: C₁ = (x̂₂, −x̂₁, 0) and its
+        // linear part (0, ê, 0), 2α₃ + C₁'s angular part (x̂₂, −x̂₁, 2I).
+        let k = T::c(-1.0 / 60.0);
+        let c2w = [(t.xw.cross_matrix() - x1 * x2) * k, x1 * x1 * k, x1 * (T::c(-2.0) * k)];
+        let c2v = [(e1 * x2 + t.c1v.cross_matrix()) * k, -(e1 * x1 + x1 * e1) * k, e1 * (T::c(2.0) * k)];
+        let lw = [x2 - i * T::c(20.0), -x1, -i];
+        let rw = [c2w[0], i + c2w[1], c2w[2]];
+        let (lwx, rwx, lvx, cvx) =
+            (t.lw.cross_matrix(), t.rw.cross_matrix(), t.lv.cross_matrix(), t.c2v.cross_matrix());
+        let k = T::c(1.0 / 240.0);
+        let own = [i, Matrix3::zeros(), i * T::c(1.0 / 12.0)];
+        let omega = std::array::from_fn(|b| own[b] + (rwx * lw[b] - lwx * rw[b]) * k);
+        let c1v = [Matrix3::zeros(), e1, Matrix3::zeros()];
+        let v = std::array::from_fn(|b| (rwx * c1v[b] - lvx * rw[b] + cvx * lw[b] - lwx * c2v[b]) * k);
+        (by_nodes(&omega, h), by_nodes(&v, h))
+    }
+
     /// The first and second derivatives $D\Omega[\delta u]$ and
     /// $D^2\Omega[\delta u, \delta u]$ along one change `du` of the nodal
     /// curvatures: what a rate's bias needs, for the cost of about two
@@ -222,6 +255,27 @@ impl<T: Scalar> Exponent<T> {
             * k;
         (self.first(&d), (omega, v))
     }
+}
+
+/// Three $3\times3$ blocks side by side.
+#[inline(always)]
+fn blocks<T: Scalar>(a: &Matrix3<T>, b: &Matrix3<T>, c: &Matrix3<T>) -> Nine<T> {
+    let mut m = Nine::zeros();
+    m.fixed_view_mut::<3, 3>(0, 0).copy_from(a);
+    m.fixed_view_mut::<3, 3>(0, 3).copy_from(b);
+    m.fixed_view_mut::<3, 3>(0, 6).copy_from(c);
+    m
+}
+
+/// Derivatives along $w_1$, $w_2$, $w_3$ (the blocks `d`) as derivatives along
+/// the nodal curvatures of a subinterval of length `h`, by [`Exponent::alphas`]:
+/// node 0 is $-sA_2 + qA_3$, node 1 $hA_1 - 2qA_3$, node 2 $sA_2 + qA_3$ with
+/// $s = \sqrt{15}h/3$ and $q = 10h/3$.
+#[inline(always)]
+fn by_nodes<T: Scalar>(d: &[Matrix3<T>; 3], h: f64) -> Nine<T> {
+    let (s, q) = (T::c(15f64.sqrt() * h / 3.0), T::c(10.0 * h / 3.0));
+    let [a1, a2, a3] = d;
+    blocks(&(a3 * q - a2 * s), &(a1 * T::c(h) - a3 * (q * T::c(2.0))), &(a2 * s + a3 * q))
 }
 
 /// One Magnus step of length `h` from the nodal curvatures `u`: $\exp\Omega$ as $(R, p)$.

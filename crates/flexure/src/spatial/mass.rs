@@ -18,16 +18,25 @@
 //! Magnus step from the start $s_j$ of its subinterval over $d = s_k - s_j$:
 //! $g(s_k) = g(s_j)\exp\Omega(s_j, d)$, with the curvature at that step's own
 //! three Gauss nodes. Its Jacobian rides along the tip's recursion
-//! ([`super::kinematics`]): the body Jacobian at $s_j$ is carried through the
+//! ([`super::kinematics`]): the Jacobian at $s_j$ is carried through the
 //! partial step as through a whole one, so it is the exact derivative of the
 //! station's pose (`tests/spatial_flexure_mass.rs` checks it against central
-//! differences). At [`Level::Hessian`] the pass also gives the first moment
+//! differences at both levels). At [`Level::Jacobian`], what dynamics asks for
+//! at every evaluation, the columns are carried in the root frame,
+//! $\omega_a \leftarrow \omega_a + RJ_l\delta\omega_a$ and
+//! $\partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\delta p_a$, whose
+//! increments combine nine unit images a step (three curvatures at three
+//! nodes) rather than a tangent and an adjoint a coordinate; at
+//! [`Level::Hessian`] the body-frame recursion with its $H_{ab}$. At [`Level::Hessian`] the pass also gives the first moment
 //! $S = \sum_k w_k\mu_kp_k$ with its exact Hessian, what the weight's
 //! stiffness needs.
 
 use super::SpatialFlexure;
-use super::kinematics::{Rate, SpatialKinematics, advance, advance_rate, row_curvature};
-use super::magnus::NODES;
+use super::kinematics::{
+    Images, Rate, SpatialKinematics, advance, carry_rate, images, increment, rate_direction, root_step, row_curvature,
+};
+use super::magnus::{Exponent, NODES};
+use super::step::Step;
 use crate::basis;
 use crate::kinematics::Level;
 use nalgebra::{Matrix3, Vector3, Vector6};
@@ -204,7 +213,7 @@ pub fn stations_update(
 /// [`stations_update`] at [`Level::Jacobian`] with the stations' and the
 /// tip's motion under the rate `rate` at $\ddot\alpha = 0$ into `out.rates` and
 /// `out.tip`: their exact second derivatives contracted with the rate
-/// twice, carried through the same pass (`kinematics::advance_rate`).
+/// twice, carried through the same pass (`kinematics::carry_rate`).
 pub(crate) fn stations_rate_update(
     flexure: &SpatialFlexure,
     quadrature: &MassQuadrature,
@@ -226,22 +235,94 @@ fn pass(
 ) {
     assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
     assert!(quadrature.fits(flexure) && out.fits(flexure, quadrature), "mass buffers made for another flexure");
+    match level {
+        Level::Hessian => hessian_pass(flexure, quadrature, alpha, out),
+        Level::Jacobian => root_pass(flexure, quadrature, alpha, 1, rate, out),
+        Level::Pose => root_pass(flexure, quadrature, alpha, 0, rate, out),
+    }
+}
+
+/// The pass to `order` 0 or 1 in the root frame: each station one partial
+/// step from the tip's root-frame columns at its subinterval's start
+/// (`kinematics::jacobian_pass`'s recursion, the station's step's images
+/// added to a copy of them), with the rate's motion at order 1 when asked.
+fn root_pass(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    alpha: &[f64],
+    order: usize,
+    rate: Option<&[f64]>,
+    out: &mut StationKinematics,
+) {
+    let (m, w) = (flexure.subintervals(), quadrature.width);
+    let h = flexure.length() / m as f64;
+    let orders = flexure.orders();
+    let order = if rate.is_some() { 2 } else { order };
+    let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
+    out.moment = Vector3::zeros();
+    out.main.turning.fill(Vector3::zeros());
+    out.main.moving.fill(Vector3::zeros());
+    let mut state = Rate::default();
+    let curvatures = |rows: &[f64]| -> [Vector3<f64>; 3] {
+        std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
+    };
+    for k in 0..m {
+        for (j, tau) in NODES.iter().enumerate() {
+            let station = 3 * k + j;
+            let rows = &quadrature.partial[station * 3 * w..(station + 1) * 3 * w];
+            let e = Exponent::new(&curvatures(rows), tau * h);
+            let (wv, v) = e.value();
+            let step = Step::new(wv, v, order);
+            let (rs, arm) = (r * step.r, r * step.p);
+            let ps = p + arm;
+            out.rotation[station] = rs;
+            out.position[station] = ps;
+            out.moment += ps * quadrature.stations[station].mass;
+            if order >= 1 {
+                station_columns(
+                    flexure,
+                    &out.main,
+                    rows,
+                    &images(&e, &step, &r),
+                    &arm,
+                    station,
+                    (&mut out.omega, &mut out.velocity),
+                );
+            }
+            if let Some(u) = rate {
+                let mut s = state;
+                carry_rate(&mut s, &e, &step, &rate_direction(flexure, rows, u));
+                out.rates[station] = s.in_root(&rs);
+            }
+        }
+        let rows = flexure.shapes(k);
+        let e = Exponent::new(&curvatures(rows), h);
+        let (wv, v) = e.value();
+        let step = Step::new(wv, v, order);
+        let (rs, arm) = root_step(flexure, rows, &e, &step, &r, &mut out.main);
+        if let Some(u) = rate {
+            carry_rate(&mut state, &e, &step, &rate_direction(flexure, rows, u));
+        }
+        p += arm;
+        r = rs;
+    }
+    if rate.is_some() {
+        out.tip = state.in_root(&r);
+    }
+}
+
+/// The pass at [`Level::Hessian`], in the body frame: every station's
+/// partial step carries the tip's columns and their derivatives
+/// (`kinematics::advance`), for the first moment's Hessian.
+fn hessian_pass(flexure: &SpatialFlexure, quadrature: &MassQuadrature, alpha: &[f64], out: &mut StationKinematics) {
     let (n, m, w) = (flexure.coordinates(), flexure.subintervals(), quadrature.width);
     let h = flexure.length() / m as f64;
-    let order = match level {
-        Level::Pose => 0,
-        Level::Jacobian => 1,
-        Level::Hessian => 2,
-    };
     let orders = flexure.orders();
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
     out.main.columns.fill(Vector6::zeros());
-    if order >= 2 {
-        out.main.hessian.fill(Vector6::zeros());
-        out.moment_hessian.fill(Vector3::zeros());
-    }
+    out.main.hessian.fill(Vector6::zeros());
+    out.moment_hessian.fill(Vector3::zeros());
     out.moment = Vector3::zeros();
-    let mut main = Rate::default();
     let twist = |row: &[f64]| {
         let u = row_curvature(row, orders, alpha);
         Vector6::new(u[0], u[1], u[2], 1.0, 0.0, 0.0)
@@ -252,43 +333,21 @@ fn pass(
             let rows = &quadrature.partial[station * 3 * w..(station + 1) * 3 * w];
             let xi: [Vector6<f64>; 3] = std::array::from_fn(|g| twist(&rows[g * w..(g + 1) * w]));
             let scratch = &mut out.scratch;
-            if order >= 1 {
-                scratch.columns.copy_from_slice(&out.main.columns);
-            }
-            if order >= 2 {
-                scratch.hessian.copy_from_slice(&out.main.hessian);
-            }
-            let derivative = |a: usize| {
-                let (c, i) = flexure.component(a);
-                std::array::from_fn(|g| {
-                    let mut d = Vector6::zeros();
-                    d[c] = rows[g * w + i];
-                    d
-                })
-            };
-            let step = match rate {
-                Some(u) => {
-                    let mut state = main;
-                    let step = advance_rate(scratch, &xi, derivative, tau * h, u, &mut state);
-                    out.rates[station] = state.in_root(&(r * step.r));
-                    step
-                }
-                None => advance(scratch, &xi, derivative, tau * h, order),
-            };
+            scratch.columns.copy_from_slice(&out.main.columns);
+            scratch.hessian.copy_from_slice(&out.main.hessian);
+            let step = advance(scratch, &xi, |a| nodal(flexure, rows, a), tau * h, 2);
             let (rs, ps) = (r * step.r, p + r * step.p);
             out.rotation[station] = rs;
             out.position[station] = ps;
             let mass = quadrature.stations[station].mass;
             out.moment += ps * mass;
             let part = |x: &Vector6<f64>| (Vector3::new(x[0], x[1], x[2]), Vector3::new(x[3], x[4], x[5]));
-            if order >= 1 {
-                for a in 0..n {
-                    let (wa, va) = part(&scratch.columns[a]);
-                    out.omega[station * n + a] = rs * wa;
-                    out.velocity[station * n + a] = rs * va;
-                }
+            for a in 0..n {
+                let (wa, va) = part(&scratch.columns[a]);
+                out.omega[station * n + a] = rs * wa;
+                out.velocity[station * n + a] = rs * va;
             }
-            if order >= 2 && mass != 0.0 {
+            if mass != 0.0 {
                 for a in 0..n {
                     let va = part(&scratch.columns[a]).1;
                     for b in 0..n {
@@ -301,22 +360,42 @@ fn pass(
         }
         let rows = flexure.shapes(k);
         let xi: [Vector6<f64>; 3] = std::array::from_fn(|g| twist(&rows[g * w..(g + 1) * w]));
-        let derivative = |a: usize| {
-            let (c, i) = flexure.component(a);
-            std::array::from_fn(|g| {
-                let mut d = Vector6::zeros();
-                d[c] = rows[g * w + i];
-                d
-            })
-        };
-        let step = match rate {
-            Some(u) => advance_rate(&mut out.main, &xi, derivative, h, u, &mut main),
-            None => advance(&mut out.main, &xi, derivative, h, order),
-        };
+        let step = advance(&mut out.main, &xi, |a| nodal(flexure, rows, a), h, 2);
         p += r * step.p;
         r *= step.r;
     }
-    if rate.is_some() {
-        out.tip = main.in_root(&r);
+}
+
+/// Coordinate `a`'s nodal twist derivatives $(\partial_au(s_g), 0)$ at the nodes whose shape values are `rows`.
+fn nodal(flexure: &SpatialFlexure, rows: &[f64], a: usize) -> [Vector6<f64>; 3] {
+    let (w, (c, i)) = (flexure.width(), flexure.component(a));
+    std::array::from_fn(|g| {
+        let mut d = Vector6::zeros();
+        d[c] = rows[g * w + i];
+        d
+    })
+}
+
+/// A station's root-frame columns into `into` (its $\omega_{k,a}$ and
+/// $\partial_ap_k$ at `[station * n + a]`): the tip's at its subinterval's
+/// start, `main`'s, carried over its partial step as `kinematics::jacobian_pass`
+/// carries them over a whole one, $\omega_{k,a} = \omega_a + \delta\omega_a$ and
+/// $\partial_ap_k = \partial_ap + \omega_a\times Rp_k + \delta p_a$, with the
+/// step's `images` and `arm` $= Rp_k$.
+fn station_columns(
+    flexure: &SpatialFlexure,
+    main: &SpatialKinematics,
+    rows: &[f64],
+    images: &Images<f64>,
+    arm: &Vector3<f64>,
+    station: usize,
+    into: (&mut [Vector3<f64>], &mut [Vector3<f64>]),
+) {
+    let n = flexure.coordinates();
+    let (omega, velocity) = into;
+    for a in 0..n {
+        let (dw, dp) = increment(flexure, images, rows, a);
+        omega[station * n + a] = main.turning[a] + dw;
+        velocity[station * n + a] = main.moving[a] + main.turning[a].cross(arm) + dp;
     }
 }

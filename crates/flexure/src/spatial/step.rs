@@ -13,6 +13,7 @@
 //! The second derivative $\partial_b(g^{-1}\partial_a g)$ differentiates these once more:
 //! its linear part is $R^T\partial_a\partial_b p - (J_r\partial_b\omega)\times(R^T\partial_a p)$.
 
+use super::magnus::Nine;
 use crate::scalar::Scalar;
 use crate::space::{ExpCoefficients, exp_coefficients, exp_parts};
 use nalgebra::{Matrix3, Vector3};
@@ -30,6 +31,8 @@ pub(crate) struct Step<T: Scalar> {
     s: Vector3<T>,
     /// $\omega\times(\omega\times v)$.
     t: Vector3<T>,
+    /// The order of the coefficients' derivatives made.
+    pub order: usize,
 }
 
 /// The first derivative of a step along one coordinate.
@@ -78,7 +81,7 @@ impl<T: Scalar> Step<T> {
         let (r, p) = exp_parts(&omega, &v, &c.f);
         let s = omega.cross(&v);
         let t = omega.cross(&s);
-        Step { omega, v, c, r, p, s, t }
+        Step { omega, v, c, r, p, s, t, order }
     }
 
     /// $J_r(\omega)\thinspace x = x - f_2\thinspace\omega\times x + f_3\thinspace\omega\times(\omega\times x)$.
@@ -100,6 +103,26 @@ impl<T: Scalar> Step<T> {
         let two = T::c(2.0);
         let dp = dv + ds * f2 + dt * f3 + (self.s * d2 + self.t * d3) * (two * wdw);
         Tangent { dw, dv, wdw, ds, dt, angular: self.right_jacobian(&dw), linear: self.r.tr_mul(&dp) }
+    }
+
+    /// [`Step::tangent`] along nine exponent changes at once (columns of
+    /// `dw`, `dv`), seen from the frame $(R, p)$ the step is taken from:
+    /// $(RJ_l(\omega)\thinspace\delta\omega,\ R\thinspace\delta p)$, the tangent's body
+    /// twist turned by $RR_k$ ($J_l = R_kJ_r = I + f_2\hat\omega + f_3\hat\omega^2$). With the
+    /// cross products as matrices, $\delta p = J_l\delta v + Q\delta\omega$ and
+    /// $Q = -f_2\hat v - f_3(\hat\omega\hat v + \hat s) + 2(f_2^{\prime}s + f_3^{\prime}t)\thinspace\omega^T$
+    /// ($s = \omega\times v$, $t = \omega\times s$): the $3\times3$ maps are
+    /// composed first, so the nine columns see three products.
+    #[inline(always)]
+    pub fn images(&self, dw: &Nine<T>, dv: &Nine<T>, frame: &Matrix3<T>) -> (Nine<T>, Nine<T>) {
+        let (w, v) = (self.omega.cross_matrix(), self.v.cross_matrix());
+        let [f2, f3] = [self.c.f[1], self.c.f[2]];
+        let [d2, d3] = self.c.d;
+        let left = frame * (Matrix3::identity() + w * f2 + w * w * f3);
+        let q = (self.s * d2 + self.t * d3) * (self.omega.transpose() * T::c(2.0))
+            - v * f2
+            - (w * v + self.s.cross_matrix()) * f3;
+        (left * dw, left * dv + (frame * q) * dw)
     }
 
     /// $\partial_b$ of the body twist $g^{-1}\partial_a g$ of the step, as

@@ -36,6 +36,8 @@ pub struct StationMasses {
     tips: RefCell<Vec<Option<SpatialKinematics>>>,
     /// The recursion's buffers.
     motion: RefCell<Motion>,
+    /// A flexure's stations' Jacobians stacked and weighted ([`Self::add_flexure_mass`]).
+    stack: RefCell<DMatrix<f64>>,
 }
 
 /// Each body's motion at $\ddot q = 0$ and the inertial wrench of what it
@@ -93,6 +95,7 @@ impl MassElements<Spatial> for StationMasses {
             station,
             tips: RefCell::new(vec![None; m.joints.len()]),
             motion: RefCell::new(Motion::default()),
+            stack: RefCell::new(DMatrix::zeros(0, 0)),
         })
     }
 
@@ -257,6 +260,10 @@ impl StationMasses {
             let (mut total, mut first, mut second) = (0.0, Vector3::zeros(), Matrix3::zeros());
             let (mut forces, mut moments) = (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]);
             let mut turned = vec![Vector3::zeros(); n];
+            let stack = &mut *self.stack.borrow_mut();
+            if stack.shape() != (6 * quadrature.stations().len(), n) {
+                *stack = DMatrix::zeros(6 * quadrature.stations().len(), n);
+            }
             for (i, st) in quadrature.stations().iter().enumerate() {
                 let (vel, omg) = (&k.velocity[i * n..(i + 1) * n], &k.omega[i * n..(i + 1) * n]);
                 // The station's inertia in the root frame, on each ω_a.
@@ -265,15 +272,7 @@ impl StationMasses {
                 for (t, w) in turned.iter_mut().zip(omg) {
                     *t = local * w;
                 }
-                for a in 0..n {
-                    for b in a..n {
-                        let v = st.mass * vel[a].dot(&vel[b]) + omg[a].dot(&turned[b]);
-                        mass[(o + a, o + b)] += v;
-                        if a != b {
-                            mass[(o + b, o + a)] += v;
-                        }
-                    }
-                }
+                stack_station(stack, i, st, &k.rotation[i], vel, omg);
                 let r = ra * k.position[i];
                 for a in 0..n {
                     let fa = ra * vel[a] * st.mass;
@@ -284,6 +283,17 @@ impl StationMasses {
                 first += r * st.mass;
                 second += ra * local * ra.transpose()
                     + (Matrix3::from_diagonal_element(r.norm_squared()) - r * r.transpose()) * st.mass;
+            }
+            // The joint's own block, Σ_k m_k ∂p_k·∂p_k + ω_k·I_kω_k, as XᵀX:
+            // dot products of contiguous columns, each pair once (symmetric).
+            for a in 0..n {
+                for b in a..n {
+                    let v = stack.column(a).dot(&stack.column(b));
+                    mass[(o + a, o + b)] += v;
+                    if a != b {
+                        mass[(o + b, o + a)] += v;
+                    }
+                }
             }
             let upstream: Vec<(usize, Vector3<f64>, Vector3<f64>)> = m
                 .path(spec.parent)
@@ -449,6 +459,29 @@ impl StationMasses {
             .map(|(b, body)| -body.mass * loads.gravity.dot(&(f.bodies[b] * body.com).coords))
             .sum();
         elastic + gravity + flexure_weight_potential(m, f, loads.gravity)
+    }
+}
+
+/// Station `i`'s six rows of the stack $X$ whose $X^TX$ is a flexure's own
+/// block of $M$ ([`StationMasses::add_flexure_mass`]): $\sqrt{m_k}\thinspace\partial_ap_k$ and
+/// $\sqrt{I_{k,c}}\thinspace(R_k^T\omega_{k,a})_c$, so that row pairs sum to
+/// $m_k\thinspace\partial_ap_k\cdot\partial_bp_k + \omega_{k,a}\cdot R_kI_kR_k^T\omega_{k,b}$ (the diagonal $I_k$ in the section frame).
+fn stack_station(
+    stack: &mut DMatrix<f64>,
+    i: usize,
+    station: &crate::spatial::MassStation,
+    rotation: &Matrix3<f64>,
+    velocity: &[Vector3<f64>],
+    omega: &[Vector3<f64>],
+) {
+    let (m, rotary) = (station.mass.sqrt(), station.rotary.map(f64::sqrt));
+    for (a, (v, w)) in velocity.iter().zip(omega).enumerate() {
+        let (v, w) = (v * m, rotation.tr_mul(w));
+        let mut column = stack.column_mut(a);
+        for c in 0..3 {
+            column[6 * i + c] = v[c];
+            column[6 * i + 3 + c] = w[c] * rotary[c];
+        }
     }
 }
 
