@@ -171,3 +171,48 @@ fn same_contact(planar: &[Contact], spatial: &[Contact], axes: [usize; 3]) {
     );
     assert!(b.point[axes[2]].abs() < 1e-12, "{b:?}");
 }
+
+/// A sweep of the tip moment follows the tip from free to pressed onto the
+/// floor (linear theory: it touches at M = −2EIg/L² = −0.02), each value
+/// from the last; without friction the answer does not depend on the path,
+/// so each row is the solve at its value (1e-9), each row's estimate is
+/// made under its own load (the refined model within 1e-12 m: a tip contact
+/// keeps the curvature smooth), and the last is the exact elastica's (1e-9
+/// relative).
+#[test]
+fn a_sweep_follows_the_tip_onto_the_floor() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let text = strip(6, floor, "moment = -0.1").replace("[[force]]\n", "[[force]]\nname = \"push\"\n");
+    let m = from_toml(&text).unwrap();
+    let values = [0.0, -0.01, -0.05, -0.1];
+    let out = sweep(&m, &Parameter::parse(&m, "force.push.moment").unwrap(), &values, &Settings::default()).unwrap();
+    assert!(out.stopped.is_none() && out.rows.len() == 4);
+    let touching: Vec<usize> =
+        out.rows.iter().map(|(_, s)| s.contacts.iter().filter(|c| c.normal_force > 0.0).count()).collect();
+    assert_eq!(touching, [0, 0, 1, 1]);
+    for (v, s) in &out.rows {
+        let alone = solve(
+            &from_toml(&text.replace("moment = -0.1", &format!("moment = {v:?}"))).unwrap(),
+            &Settings::default(),
+        )
+        .unwrap();
+        let force = |s: &flexure::mechanism::statics::Solution| s.contacts.iter().map(|c| c.normal_force).sum::<f64>();
+        assert!((force(s) - force(&alone)).abs() < 1e-9 && (s.q[0] - alone.q[0]).abs() < 1e-9, "at {v}");
+        // The estimate is made under the row's loads, not the file's: a tip
+        // contact leaves the curvature smooth, so the refined model agrees.
+        let report = flexure::report::solve_report(&m, s, &Default::default()).map_err(|f| f.error).unwrap();
+        let e = report.error_estimate.get("strip").unwrap();
+        assert!(!report.flagged && e.position < 1e-12, "at {v}: {e:?}");
+    }
+    let exact = elastica::contact(
+        &Flexure::new(1.0, 1.0, 3).unwrap(),
+        &[Obstacle::half_plane([0.0, -0.01], [0.0, 1.0])],
+        0.0,
+        &[TipLoad { moment: -0.1, fx: 0.0, fy: 0.0 }],
+        &Default::default(),
+    )
+    .unwrap();
+    let last = &out.rows[3].1.contacts[0];
+    assert!((last.normal_force / exact.contacts[0].normal_force - 1.0).abs() < 1e-9, "{last:?}");
+}

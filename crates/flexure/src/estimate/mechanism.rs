@@ -162,7 +162,7 @@ pub fn reference_mechanism<D: Refined>(m: &Mechanism<D>, q: &[f64]) -> Result<(M
 /// of `m` that touches its geoms: a joint alone under the load at its tip
 /// would miss the contact forces along its span, so the whole mechanism is
 /// solved again with every flexure joint refined ([`reference_mechanism`]),
-/// contacts and all, and each joint compared with its reference
+/// under the answer's loads, contacts and all, and each joint compared with its reference
 /// ([`Refined::against`]). Contact concentrates curvature where it
 /// touches; the refined model resolves it better, and the estimate shows
 /// how far the answer is from it.
@@ -187,7 +187,10 @@ pub fn contact_estimates<D: Refined>(
 ) -> Result<Vec<ErrorEstimate>> {
     target.validate()?;
     let (reference, _) = reference_mechanism(m, &s.q)?;
-    let exact = crate::mechanism::statics::solve(&reference, &Settings::default())?;
+    // Under the answer's own loads (a sweep's value), not the file's.
+    let mut work = crate::mechanism::statics::Workspace::new(&reference);
+    let (exact, _) =
+        crate::mechanism::statics::follow_touching(&reference, None, &s.loads, &Settings::default(), &mut work)?;
     let flexures = m.joints.iter().zip(&reference.joints).filter_map(|(a, b)| Some((a, a.kind.flexure()?, b)));
     flexures
         .map(|(joint, f, refined)| {

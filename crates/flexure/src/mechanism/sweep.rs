@@ -1,7 +1,9 @@
 //! Sweeps of one load, with the stability limit found between two values.
 
 use super::equilibria::{first_loss, refine_limit};
-use super::statics::{LIMIT_PRECISION, Settings, Solution, Statics, assemble_unloaded, follow};
+use super::statics::{
+    LIMIT_PRECISION, Settings, Solution, Statics, Touched, Workspace, assemble_unloaded, follow, follow_touching,
+};
 use super::{Dimension, Loads, Mechanism};
 use crate::error::{Error, Result};
 
@@ -205,6 +207,9 @@ pub fn sweep<D: Statics>(
     {
         return Err(Error::invalid("sweep", v, "a tendon's tension must be finite and not negative"));
     }
+    if !super::contact::pairs(m).is_empty() {
+        return Ok(sweep_touching(m, parameter, values, settings));
+    }
     let base = m.loads();
     let (first, last) = (values[0], values[values.len() - 1]);
     let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
@@ -257,4 +262,33 @@ pub fn sweep<D: Statics>(
         }
     }
     Ok(out)
+}
+
+/// [`sweep`] of a mechanism with contact: each value followed from the
+/// last with its contacts ([`follow_touching`]), the first from no load.
+/// A value it cannot reach (a path that loses stability, one that stalls,
+/// friction) stops the sweep there, with the rows before it.
+fn sweep_touching<D: Statics>(
+    m: &Mechanism<D>,
+    parameter: &Parameter,
+    values: &[f64],
+    settings: &Settings,
+) -> Sweep<Solution<D>> {
+    let base = m.loads();
+    let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
+    let mut work = Workspace::new(m);
+    let mut from: Option<Touched<D>> = None;
+    for &v in values {
+        match follow_touching(m, from.as_ref(), &parameter.apply(&base, v), settings, &mut work) {
+            Ok((s, next)) => {
+                out.rows.push((v, s));
+                from = Some(next);
+            }
+            Err(e) => {
+                out.stopped = Some((v, e));
+                break;
+            }
+        }
+    }
+    out
 }

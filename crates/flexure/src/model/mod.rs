@@ -496,8 +496,11 @@ fn sweep<D: Analyses>(
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
     };
-    refuse_unsolved(m)?;
+    if frame.is_some() {
+        refuse_unsolved(m)?;
+    }
     let out = D::sweep(m, parameter, values, &Settings::default())?;
+    let touching = crate::mechanism::contact::pairs(m);
     let mut columns = vec![parameter.to_string()];
     let poses = <D as crate::report::Reported>::poses(m, &m.rest());
     for (b, pose) in m.bodies.iter().zip(&poses).skip(1) {
@@ -507,6 +510,8 @@ fn sweep<D: Analyses>(
         columns.extend((0..j.kind.joint().dof()).map(|i| format!("{}[{i}]", j.name)));
     }
     columns.push("energy".into());
+    // Each pair's normal force (N), summed over its contacts: 0 while open.
+    columns.extend(touching.iter().map(|p| format!("{}.normal_force", crate::mechanism::contact::column(m, p))));
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
     for (k, (value, s)) in out.rows.iter().enumerate() {
@@ -524,6 +529,12 @@ fn sweep<D: Analyses>(
         }
         row.extend(&s.q);
         row.push(s.energy);
+        // + 0.0: an empty sum is −0.
+        row.extend(
+            touching
+                .iter()
+                .map(|p| s.contacts.iter().filter(|c| c.pair == *p).map(|c| c.normal_force).sum::<f64>() + 0.0),
+        );
         row.extend(report.stress.0.iter().map(|(_, p)| p.max));
         if let Some((b, at)) = frame {
             let c = D::compliance(m, s, b, at)?;

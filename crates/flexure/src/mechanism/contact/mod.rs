@@ -12,8 +12,8 @@
 //! flexure's tip must exclude the flexure, or the file refuses it as
 //! starting inside the pad).
 //!
-//! The equilibrium solve handles contact without friction
-//! ([`crate::mechanism::statics::solve`]): each pair's gap ([`gap()`],
+//! The equilibrium solve and sweep handle contact without friction
+//! ([`crate::mechanism::statics::solve`], [`crate::mechanism::sweep::sweep`]): each pair's gap ([`gap()`],
 //! [`minima`]) and its derivatives ([`gap_jet`]) enter its equations as
 //! unilateral constraints, and [`Contact`]s are in its answer. Every other
 //! analysis refuses a mechanism with a pair that may touch, naming the
@@ -216,7 +216,8 @@ pub enum ContactMode {
 /// use flexure::mechanism::contact::{Contact, ContactMode};
 /// let c = Contact { geom: "floor".into(), flexure: Some("strip".into()), body: None, s: Some(0.1),
 ///     point: vec![0.1, -0.01], normal: vec![0.0, 1.0], normal_force: 0.12,
-///     friction_force: vec![0.0, 0.0], gap: 0.0, state: ContactMode::Slip };
+///     friction_force: vec![0.0, 0.0], gap: 0.0, state: ContactMode::Slip,
+///     pair: flexure::mechanism::contact::Pair { geom: 0, part: flexure::mechanism::contact::Toucher::Flexure(0) } };
 /// let json = serde_json::to_value(&c).unwrap();
 /// assert_eq!(json["state"], "slip");
 /// assert!(json.get("body").is_none());
@@ -246,6 +247,27 @@ pub struct Contact {
     pub gap: f64,
     /// What it does.
     pub state: ContactMode,
+    /// The pair it is of (not serialized: `geom` and `flexure` or `body` name it).
+    #[serde(skip)]
+    pub pair: Pair,
+}
+
+/// A pair's column name in a sweep's table: `contact.GEOM.PART`, PART the
+/// flexure's joint or, for two geoms, the other geom's body.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{column, pairs};
+/// let m = flexure::mechanism::file::from_toml("[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n\
+///     [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.01, 0.01]\nradius = 0.002\n").unwrap();
+/// assert_eq!(column(&m, &pairs(&m)[0]), "contact.post.hinge");
+/// ```
+pub fn column<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
+    let part = match p.part {
+        Toucher::Flexure(j) => &m.joints[j].name,
+        Toucher::Geom(h) => &m.bodies[m.geoms[h].body].name,
+    };
+    format!("contact.{}.{part}", m.geoms[p.geom].name)
 }
 
 /// A pair as a message names it: `geom "floor" (plane) and flexure "hinge"`.
@@ -294,7 +316,7 @@ pub fn refuse_unsolved<D: Dimension>(m: &Mechanism<D>) -> Result<()> {
         Some(p) => Err(Error::invalid(
             "geom",
             named(m, p),
-            "may touch, and only a solve of the equilibrium (without a sweep or a compliance) handles contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
+            "may touch, and only equilibrium solves and sweeps (without a compliance) handle contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
         )),
     }
 }

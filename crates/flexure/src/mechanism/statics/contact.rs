@@ -40,11 +40,11 @@ use super::workspace::{Buffers, Workspace};
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
-use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
     Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, gap_jet, minima, named, pairs,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
+use crate::mechanism::{Loads, Mechanism};
 use crate::solver::{self, Problem};
 use nalgebra::DMatrix;
 
@@ -410,6 +410,18 @@ fn lies_along<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> Error {
     )
 }
 
+/// An equilibrium with contact and what the path to it left: its
+/// touching contacts and the pairs that touched, where a path under other
+/// loads goes on from (a sweep's next value).
+#[derive(Debug, Clone)]
+pub struct Touched<D: Statics> {
+    q: Vec<f64>,
+    multipliers: Vec<f64>,
+    loads: Loads<D>,
+    touching: Vec<Touching>,
+    touched: Vec<Pair>,
+}
+
 /// Equilibrium of `m` under its loads, with its contacts (see the module
 /// docs), in the buffers `work` (made for `m`).
 pub(super) fn solve_touching<D: Statics>(
@@ -417,6 +429,19 @@ pub(super) fn solve_touching<D: Statics>(
     settings: &Settings,
     work: &mut Workspace<D>,
 ) -> Result<Solution<D>> {
+    follow_touching(m, None, &m.loads(), settings, work).map(|(s, _)| s)
+}
+
+/// Equilibrium of `m` under `to`, with its contacts, followed from `from`
+/// (an equilibrium and its contacts), or from the unloaded, assembled
+/// mechanism; with where a next path goes on from.
+pub fn follow_touching<D: Statics>(
+    m: &Mechanism<D>,
+    from: Option<&Touched<D>>,
+    to: &Loads<D>,
+    settings: &Settings,
+    work: &mut Workspace<D>,
+) -> Result<(Solution<D>, Touched<D>)> {
     let all = pairs(m);
     if let Some(p) = all.iter().find(|p| m.geoms[p.geom].friction > 0.0) {
         return Err(Error::invalid(
@@ -425,46 +450,69 @@ pub(super) fn solve_touching<D: Statics>(
             "is not solved in statics yet: set the geom's friction to 0 for frictionless contact",
         ));
     }
+    if !work.fits(m) {
+        *work = Workspace::new(m);
+    }
     work.touching = true;
-    let found = follow(m, settings, work, &all);
+    let found = follow(m, from, to, settings, work, &all);
     work.touching = false;
     found
 }
 
 fn follow<D: Statics>(
     m: &Mechanism<D>,
+    from: Option<&Touched<D>>,
+    to: &Loads<D>,
     settings: &Settings,
     work: &mut Workspace<D>,
     all: &[Pair],
-) -> Result<Solution<D>> {
-    let start = assemble_in(m, settings, work)?;
-    let to = m.loads();
-    let zero = D::zero(&to);
-    let kkt = Kkt::fitted(m, &zero, &to, settings, Buffers::Borrowed(work))?;
-    let length = kkt.length;
-    let bodies = crate::mechanism::kinematics::frames(m, &start.q).bodies;
-    for pair in all {
-        for low in minima(m, &start.q, &bodies, pair)? {
-            if low.gap < -GAP_TOLERANCE * length {
-                return Err(Error::invalid(
-                    "geom",
-                    format!("{} (overlapping by {:.3e} m)", named(m, pair), -low.gap),
-                    "must not overlap once the mechanism is assembled, before any load",
-                ));
+) -> Result<(Solution<D>, Touched<D>)> {
+    D::check_loads(m, to)?;
+    let start = match from {
+        Some(t) => t.clone(),
+        None => {
+            let start = assemble_in(m, settings, work)?;
+            let length = m.size();
+            let bodies = crate::mechanism::kinematics::frames(m, &start.q).bodies;
+            for pair in all {
+                for low in minima(m, &start.q, &bodies, pair)? {
+                    if low.gap < -GAP_TOLERANCE * length {
+                        return Err(Error::invalid(
+                            "geom",
+                            format!("{} (overlapping by {:.3e} m)", named(m, pair), -low.gap),
+                            "must not overlap once the mechanism is assembled, before any load",
+                        ));
+                    }
+                }
+            }
+            Touched {
+                q: start.q,
+                multipliers: start.multipliers,
+                loads: D::zero(to),
+                touching: Vec::new(),
+                touched: Vec::new(),
             }
         }
-    }
+    };
+    let kkt = Kkt::fitted(m, &start.loads, to, settings, Buffers::Borrowed(work))?;
+    let length = kkt.length;
     // As a position closure row's multiplier: the stiffest joint's k over ℓ.
     let sigma = kkt.row_scale.iter().map(|r| 1.0 / r).fold(f64::MIN_POSITIVE, f64::max) / length;
     let x0 = kkt.state(&start.q, &start.multipliers);
-    let mut problem =
-        ContactKkt { kkt, touching: Vec::new(), frames: Frames::new(m), inner: Vec::new(), sigma, jets: Vec::new() };
-    let mut x = x0;
+    let mut problem = ContactKkt {
+        kkt,
+        touching: start.touching,
+        frames: Frames::new(m),
+        inner: Vec::new(),
+        sigma,
+        jets: Vec::new(),
+    };
+    let mut x = problem.state(&x0);
     let mut lambda = 0.0;
     let mut step = FIRST_STEP;
     let mut previous: Option<(f64, Vec<f64>)> = None;
     let (mut steps, mut iterations, mut residual) = (0, 0, 0.0);
-    let mut touched: Vec<Pair> = Vec::new();
+    let mut touched = start.touched;
     let stalled = |lambda: f64, steps: usize, residual: f64, cause: String| Error::ContinuationStalled {
         cause,
         rounding: false,
@@ -552,8 +600,16 @@ fn follow<D: Statics>(
     let energy = problem.kkt.work.frames.joints.iter().map(|s| s.energy).sum::<f64>() + 0.0;
     let contacts = report(&problem, &q, &touched)?;
     let loads = problem.kkt.to.clone();
+    problem.read(&x);
+    let next = Touched {
+        q: q.clone(),
+        multipliers: multipliers.clone(),
+        loads: loads.clone(),
+        touching: problem.touching.clone(),
+        touched: touched.clone(),
+    };
     let _ = problem.kkt.release();
-    Ok(Solution {
+    let solution = Solution {
         q,
         multipliers,
         loads,
@@ -564,7 +620,8 @@ fn follow<D: Statics>(
         load_steps: steps,
         iterations,
         contacts,
-    })
+    };
+    Ok((solution, next))
 }
 
 /// Solves at `lambda` with the set as it stands, then changes it while an
@@ -642,6 +699,7 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
             friction_force: vec![0.0; D::POINT_DIM],
             gap: jet.gap,
             state: ContactMode::Slip,
+            pair: t.pair,
         });
     }
     for pair in touched.iter().filter(|p| !problem.touching.iter().any(|t| t.pair == **p)) {
@@ -661,6 +719,7 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
             friction_force: vec![0.0; D::POINT_DIM],
             gap: low.gap,
             state: ContactMode::Open,
+            pair: *pair,
         });
     }
     Ok(out)

@@ -44,6 +44,7 @@
 
 mod assembly;
 mod contact;
+pub use contact::{Touched, follow_touching};
 mod dimension;
 mod kkt;
 mod path;
