@@ -558,7 +558,7 @@ pub(super) fn increment<T: Scalar>(
 
 /// The root-frame columns carried over one step $(R_k, p_k)$ from the frame
 /// $(R, p)$, whose images are `images` and whose nodal shape values are `rows`:
-/// as $R' = RR_k$ and $p' = p + Rp_k$,
+/// as $R^{\prime} = RR_k$ and $p^{\prime} = p + Rp_k$,
 /// $$\omega_a \leftarrow \omega_a + RJ_l(\omega)\thinspace\partial_a\omega,\qquad
 ///   \partial_ap \leftarrow \partial_ap + \omega_a\times Rp_k + R\thinspace\partial_ap_k,$$
 /// with `arm` $= Rp_k$. Against the body recursion's $\mathrm{Ad}$ on every

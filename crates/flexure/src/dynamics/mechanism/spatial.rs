@@ -464,7 +464,7 @@ impl StationMasses {
 
 /// Station `i`'s six rows of the stack $X$ whose $X^TX$ is a flexure's own
 /// block of $M$ ([`StationMasses::add_flexure_mass`]): $\sqrt{m_k}\thinspace\partial_ap_k$ and
-/// $\sqrt{I_{k,c}}\thinspace(R_k^T\omega_{k,a})_c$, so that row pairs sum to
+/// $\sqrt{I_{k,c}}\thinspace w_c$ with $w = R_k^T\omega_{k,a}$, so that row pairs sum to
 /// $m_k\thinspace\partial_ap_k\cdot\partial_bp_k + \omega_{k,a}\cdot R_kI_kR_k^T\omega_{k,b}$ (the diagonal $I_k$ in the section frame).
 fn stack_station(
     stack: &mut DMatrix<f64>,
