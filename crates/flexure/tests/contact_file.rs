@@ -125,6 +125,13 @@ fn only_the_solve_handles_a_pair_that_may_touch() {
             "{e}"
         );
     }
+    // The library itself, not only the door: motion and export refuse it too.
+    let motion = flexure::dynamics::simulate(&m, &Default::default(), flexure::dynamics::Start::Rest);
+    let export = flexure::export::export(&m, &Default::default());
+    for e in [motion.err().map(|e| e.to_string()), export.err().map(|e| e.to_string())] {
+        let e = e.expect("refused");
+        assert!(e.contains("geom \"floor\" (plane) and flexure \"strip\": may touch"), "{e}");
+    }
     let rough =
         Model::from_toml(&text.replace("normal = [0.0, 1.0]\n", "normal = [0.0, 1.0]\nfriction = 0.3\n")).unwrap();
     let e = rough.solve(&Accuracy::default(), None).err().unwrap().to_string();

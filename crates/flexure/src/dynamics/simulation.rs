@@ -168,6 +168,8 @@ pub fn initial_state<D: Dynamics>(
 /// assert!((run.bodies[0].phi[2] - 0.1 * 2f64.cos()).abs() < 1e-8);
 /// ```
 pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Simulation<D>> {
+    // Motion does not solve contact yet: a part must not pass through a shape silently.
+    crate::mechanism::contact::refuse_unsolved(m)?;
     settings.motion.validate()?;
     settings.equilibrium.validate()?;
     let mut system = ScheduledSystem::new(m)?;

@@ -477,6 +477,8 @@ fn check_finite(model: &model::RigidModel) -> Result<()> {
 /// limit the mechanism cannot pass); a fit's; a body or joint named as a
 /// generated link or hinge.
 pub fn export(m: &Mechanism, options: &Options) -> Result<Export> {
+    // A chain fitted without its contacts would pass through the shapes.
+    crate::mechanism::contact::refuse_unsolved(m)?;
     options.range.validate()?;
     step::validate(options.step)?;
     let fitted = fits(m, options.prb, &options.range, &options.settings)?;

@@ -440,6 +440,8 @@ struct Site {
 /// # Ok::<(), flexure::Error>(())
 /// ```
 pub fn export(m: &Mechanism<Spatial>, options: &Options) -> Result<Export> {
+    // A chain fitted without its contacts would pass through the shapes.
+    crate::mechanism::contact::refuse_unsolved(m)?;
     options.range.validate()?;
     step::validate(options.step)?;
     let mjcf = options.format == super::Format::Mjcf;
