@@ -216,3 +216,15 @@ fn a_sweep_follows_the_tip_onto_the_floor() {
     let last = &out.rows[3].1.contacts[0];
     assert!((last.normal_force / exact.contacts[0].normal_force - 1.0).abs() < 1e-9, "{last:?}");
 }
+
+/// A flexure without thickness meeting a box's corner: the gap has a kink
+/// there and no point of the flexure is tangent to the box, so the path
+/// stops with an error naming the pair and what to do, not a panic or a
+/// penetration.
+#[test]
+fn a_box_corner_against_a_bare_centreline_is_refused_by_name() {
+    let corner = "shape = \"box\"\norigin = [0.55, -0.3]\nhalf_extents = [0.3, 0.2]\n";
+    let e = solve(&from_toml(&strip(6, corner, "force = [0.0, -3.0]")).unwrap(), &Settings::default()).unwrap_err();
+    let text = e.to_string();
+    assert!(text.contains("geom \"floor\" (box) and flexure \"strip\"") && text.contains("round the edge"), "{text}");
+}

@@ -637,8 +637,7 @@ fn settle_events<D: Statics>(
 ) -> Result<()> {
     let m = problem.kkt.mechanism;
     for _ in 0..=MAX_CHANGES_AT_ONCE {
-        let (y, r) = newton(problem, x, lambda, settings)
-            .inspect_err(|e| eprintln!("DEBUG settle at {lambda}: {e} touching {:?}", problem.touching))?;
+        let (y, r) = newton(problem, x, lambda, settings).map_err(|e| unsettled(m, &problem.touching, lambda, &e))?;
         *iterations += r.iterations;
         *x = y;
         match event(problem, x, lambda, all)? {
@@ -660,6 +659,29 @@ fn settle_events<D: Statics>(
         residual: 0.0,
         unit: "relative",
     })
+}
+
+/// The error of a set of contacts that Newton could not solve at the load
+/// where it changed, naming them: most often a flexure touching a sharp
+/// edge or corner (a box's), where the gap has a kink and no point of the
+/// flexure is tangent to the geom.
+fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e: &Error) -> Error {
+    let names: Vec<String> = touching.iter().map(|t| named(m, &t.pair)).collect();
+    Error::ContinuationStalled {
+        cause: format!(
+            "the contacts of {} could not be solved where they changed ({e}); a flexure touching a sharp edge or corner of a box, where no point of it is tangent to the geom, is not solved: round the edge (a capsule) or give the flexure a thickness",
+            names.join(" and ")
+        ),
+        rounding: false,
+        solver: "mechanism equilibrium with contact",
+        load_fraction: lambda,
+        steps: 0,
+        residual: match e {
+            Error::NoConvergence { residual, .. } => *residual,
+            _ => f64::NAN,
+        },
+        unit: "relative",
+    }
 }
 
 /// Adds a new contact's pair to `touched` (the pairs an answer reports).
