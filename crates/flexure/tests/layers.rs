@@ -361,3 +361,24 @@ fn the_front_ends_match_on_the_dimension_only_in_the_door() {
     // The files deleted with the twins stay deleted.
     assert!(!root().join("../flexure-cli/src/spatial.rs").exists());
 }
+
+/// The library does no I/O and prints nothing: no `print!`, `println!`,
+/// `eprint!`, `eprintln!` or `dbg!` in its code (doc comments and line
+/// comments aside). The front ends print what it returns.
+#[test]
+fn the_library_prints_nothing() {
+    let mut files = Vec::new();
+    sources(&root().join("src"), &mut files);
+    assert!(files.len() > 100, "only {} library files read", files.len());
+    let mut found = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            if ["print!(", "println!(", "eprint!(", "eprintln!(", "dbg!("].iter().any(|m| code.contains(m)) {
+                found.push(format!("{}:{}", file.display(), i + 1));
+            }
+        }
+    }
+    assert!(found.is_empty(), "the library prints at {found:#?}");
+}
