@@ -222,8 +222,10 @@ class Mechanism:
         of dicts, each pair touching then each that touched on the way and opened: geom,
         flexure (or body, for a geom's touch), s (m along the flexure), point and normal
         (ground frame), normal_force (N, not negative), friction_force, gap (m) and state
-        ("slip" touching without friction, "open"). A geom with friction above 0 raises
-        ValueError naming it: statics with friction is not solved yet.
+        ("stick" held by friction, "slip" sliding or touching without friction, "open").
+        Friction holds where a flexure's bare end touches; where a contact with
+        friction would roll (inside a span, at a thick end, between two geoms)
+        it raises ValueError naming the geom's friction.
 
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and

@@ -47,10 +47,26 @@ def test_no_contact_no_key():
     assert "contacts" not in flexure.Mechanism.from_toml(far).solve()
 
 
-def test_friction_is_refused_by_name():
-    rough = STRIP + "friction = 0.3\n"
-    with pytest.raises(ValueError, match=r"friction = 0.3 \(geom \"floor\" \(plane\) and flexure \"strip\"\)"):
-        flexure.Mechanism.from_toml(rough).solve()
+def test_a_rough_floor_holds_the_tip_with_friction():
+    """The tip slides back toward the root from the touch (a stuck tip
+    would need more than any finite friction: an inextensible strip cannot
+    bend further with both its tip's coordinates held), so its friction is
+    mu N forward, exactly (1e-12 relative); the Rust tests hold the same case
+    to the exact elastica with friction."""
+    answer = flexure.Mechanism.from_toml(STRIP + "friction = 0.3\n").solve()
+    (contact,) = answer["contacts"]
+    assert contact["state"] == "slip"
+    assert contact["friction_force"][0] == pytest.approx(0.3 * contact["normal_force"], rel=1e-12)
+    assert contact["normal_force"] > 0.11
+
+
+def test_friction_where_a_contact_rolls_is_refused_by_name():
+    post = STRIP.replace("moment = -0.1", "force = [0.0, -3.0]").replace(
+        'shape = "plane"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]',
+        'shape = "circle"\norigin = [0.55, -0.3]\nradius = 0.25',
+    )
+    with pytest.raises(ValueError, match=r"friction = 0.3 \(geom \"floor\" \(circle\) and flexure \"strip\": .*rolls"):
+        flexure.Mechanism.from_toml(post + "friction = 0.3\n").solve()
 
 
 def test_other_analyses_refuse_a_pair_that_may_touch():

@@ -102,8 +102,8 @@ fn bad_files_exit_2_naming_the_place() {
             "line 11, column 10: geom \"geom 1\": radius = -0.1: must be greater than zero",
         ),
         (
-            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\nfriction = 0.3\n",
-            "friction = 0.3 (geom \"floor\" (plane) and flexure \"a\"): is not solved in statics yet",
+            "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 0.01\nei = 1.0\n[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\nfriction = -0.3\n",
+            "line 14, column 12: geom \"floor\": friction = -0.3: must not be negative",
         ),
     ];
     for (i, (text, place)) in cases.iter().enumerate() {

@@ -99,7 +99,7 @@ fn exclude_names_flexures_bodies_and_geoms() {
 /// onto a floor touches it, its gap closed to 1e-12 of its length, with a
 /// compressive force, in the library and through the door, whose answer
 /// carries the contact); every other analysis refuses it by name, and so
-/// does friction, which statics does not solve yet.
+/// does the solve friction where the contact rolls (the strip's span on a floor).
 #[test]
 fn only_the_solve_handles_a_pair_that_may_touch() {
     let text = format!(
@@ -135,7 +135,7 @@ fn only_the_solve_handles_a_pair_that_may_touch() {
     let rough =
         Model::from_toml(&text.replace("normal = [0.0, 1.0]\n", "normal = [0.0, 1.0]\nfriction = 0.3\n")).unwrap();
     let e = rough.solve(&Accuracy::default(), None).err().unwrap().to_string();
-    assert!(e.contains("friction = 0.3") && e.contains("is not solved in statics yet"), "{e}");
+    assert!(e.contains("friction = 0.3 (geom \"floor\" (plane) and flexure \"strip\"") && e.contains("rolls"), "{e}");
 }
 
 #[test]

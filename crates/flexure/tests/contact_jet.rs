@@ -169,6 +169,10 @@ fn check<D: Touch + FrameChain + Dimension>(m: &Mechanism<D>, seed: u64) -> usiz
                     close(at.hessian[(r, c)], fd, second, &format!("pair {p}: d2g/dq{r}dq{c}"));
                 }
                 close(at.dqs[c], (a.ds - b.ds) / (2.0 * h), second, &format!("pair {p}: d2g/dq{c}ds"));
+                for i in 0..D::POINT_DIM {
+                    let fd = (a.normal[i] - b.normal[i]) / (2.0 * h);
+                    close(at.normal_jacobian[c][i], fd, second, &format!("pair {p}: dn{i}/dq{c}"));
+                }
                 checked += 1;
             }
             if let Some(s) = s {

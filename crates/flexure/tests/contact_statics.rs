@@ -228,3 +228,111 @@ fn a_box_corner_against_a_bare_centreline_is_refused_by_name() {
     let text = e.to_string();
     assert!(text.contains("geom \"floor\" (box) and flexure \"strip\"") && text.contains("round the edge"), "{text}");
 }
+
+/// The floor's friction along its tangent $t = (-n_y, n_x)$, as the reference reports it.
+fn along_floor(c: &Contact) -> f64 {
+    -c.normal[1] * c.friction_force[0] + c.normal[0] * c.friction_force[1]
+}
+
+/// Friction, case (c) of the reference: a clockwise tip moment presses the
+/// tip onto a floor with $\mu = 0.2$; the stuck tip would need more
+/// friction than that from the touch on, so it slides back toward the
+/// root with friction $\mu N$ forward. Against the exact elastica with
+/// contact unknowns ([`elastica::contact`]): the tip's curvature stays
+/// smooth, so order 8 meets its N, T and place to 1e-8 (measured 7e-12).
+#[test]
+fn a_tip_pressed_by_a_moment_slides_on_a_rough_floor() {
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.1]\nnormal = [0.0, 1.0]\nfriction = 0.2\n";
+    let m = from_toml(&strip(8, floor, "moment = -2.0")).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let exact = elastica::contact(
+        &Flexure::new(1.0, 1.0, 3).unwrap(),
+        &[Obstacle::half_plane([0.0, -0.1], [0.0, 1.0]).with_friction(0.2)],
+        0.0,
+        &[TipLoad { moment: -2.0, fx: 0.0, fy: 0.0 }],
+        &Default::default(),
+    )
+    .unwrap();
+    let (c, e) = (&s.contacts[0], &exact.contacts[0]);
+    assert!(s.contacts.len() == 1 && c.state == ContactMode::Slip, "{:?}", s.contacts);
+    assert!((c.normal_force / e.normal_force - 1.0).abs() < 1e-8, "{c:?} vs {e:?}");
+    assert!((along_floor(c) / e.friction_force - 1.0).abs() < 1e-8, "{c:?} vs {e:?}");
+    // Sliding back toward the root, held forward by friction.
+    assert!((c.friction_force[0] - 0.2 * c.normal_force).abs() < 1e-12 * c.normal_force, "{c:?}");
+    assert!((c.point[0] - e.point[0]).abs() < 1e-8, "{c:?} vs {e:?}");
+}
+
+/// Friction on a path, case (c) of the reference: a tip force presses the
+/// tip onto a floor with $\mu = 0.3$, then a growing pull along the floor
+/// (a sweep of the force's x from 0 to −0.6, each value followed from the
+/// last): the tip sticks, then slips where $0.6t = \mu(1 - \lambda_t)$. Each
+/// row against the exact elastica along the same path (legs: the press,
+/// then the pull to the row's value): state, N, T and place to 1e-8 at order 8
+/// (measured 5e-10 stuck, 1e-13 sliding).
+/// A sweep back to no pull sticks the tip and then slides it back part of
+/// the way, not to where the press left it: the answer remembers the path.
+#[test]
+fn a_sweep_sticks_then_slips_the_tip_along_a_rough_floor() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.2]\nnormal = [0.0, 1.0]\nfriction = 0.3\n";
+    let text = strip(8, floor, "force = [0.0, -1.0]").replace("[[force]]\n", "[[force]]\nname = \"push\"\n");
+    let m = from_toml(&text).unwrap();
+    let values = [0.0, -0.05, -0.1, -0.2, -0.4, -0.6, -0.3, 0.0];
+    let p = Parameter::parse(&m, "force.push.fx").unwrap();
+    let out = sweep(&m, &p, &values, &Settings::default()).unwrap();
+    assert!(out.stopped.is_none() && out.rows.len() == values.len());
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let rough = [Obstacle::half_plane([0.0, -0.2], [0.0, 1.0]).with_friction(0.3)];
+    let press = TipLoad { moment: 0.0, fx: 0.0, fy: -1.0 };
+    let mut path = vec![press];
+    let mut states = Vec::new();
+    for (k, (v, s)) in out.rows.iter().enumerate() {
+        if k > 0 {
+            path.push(TipLoad { fx: *v, ..press });
+        }
+        let exact = elastica::contact(&f, &rough, 0.0, &path, &Default::default()).unwrap();
+        assert!(exact.reached());
+        let (c, e) = (&s.contacts[0], &exact.contacts[0]);
+        let state = match e.state {
+            elastica::contact::ContactState::Stick => ContactMode::Stick,
+            elastica::contact::ContactState::Slip | elastica::contact::ContactState::Closed => ContactMode::Slip,
+        };
+        assert_eq!(c.state, state, "at {v}: {c:?} vs {e:?}");
+        assert!((c.normal_force - e.normal_force).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
+        assert!((along_floor(c) - e.friction_force).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
+        assert!((c.point[0] - e.point[0]).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
+        states.push(c.state);
+    }
+    assert!(states.contains(&ContactMode::Stick) && states.contains(&ContactMode::Slip), "{states:?}");
+    let (start, end) = (&out.rows[0].1.contacts[0], &out.rows[values.len() - 1].1.contacts[0]);
+    assert!(end.point[0] < start.point[0] - 1e-5, "the same load, another place: {start:?} vs {end:?}");
+}
+
+/// The rough-floor sweep written in space (the strip bending about z, the
+/// pull along x) gives the planar rows: each row's state, and its N, its
+/// friction and its place to 1e-7 (the two integrations differ by about
+/// 1e-8, as without friction).
+#[test]
+fn a_spatial_file_of_the_rough_floor_sweep_gives_the_planar_rows() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.2]\nnormal = [0.0, 1.0]\nfriction = 0.3\n";
+    let planar =
+        from_toml(&strip(6, floor, "force = [0.0, -1.0]").replace("[[force]]\n", "[[force]]\nname = \"push\"\n"))
+            .unwrap();
+    let text = "dimension = 3\n[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+                gj = 1.0\nei_y = 1.0\nei_z = 1.0\norders = [1, 1, 6]\n\
+                [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, -1.0, 0.0]\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.2, 0.0]\nnormal = [0.0, 1.0, 0.0]\nfriction = 0.3\n";
+    let spatial = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+    let values = [0.0, -0.1, -0.4, -0.6, -0.3, 0.0];
+    let settings = Settings::default();
+    let a = sweep(&planar, &Parameter::parse(&planar, "force.push.fx").unwrap(), &values, &settings).unwrap();
+    let b = sweep(&spatial, &Parameter::parse(&spatial, "force.push.fx").unwrap(), &values, &settings).unwrap();
+    for ((v, p), (_, s)) in a.rows.iter().zip(&b.rows) {
+        let (p, s) = (&p.contacts[0], &s.contacts[0]);
+        assert_eq!(p.state, s.state, "at {v}: {p:?} vs {s:?}");
+        assert!((p.normal_force - s.normal_force).abs() < 1e-7, "at {v}: {p:?} vs {s:?}");
+        assert!((p.friction_force[0] - s.friction_force[0]).abs() < 1e-7, "at {v}: {p:?} vs {s:?}");
+        assert!((p.point[0] - s.point[0]).abs() < 1e-7 && s.friction_force[2].abs() < 1e-12, "at {v}: {p:?} vs {s:?}");
+    }
+}

@@ -41,6 +41,8 @@ pub struct GapJet<D: Touch> {
     pub dqs: Vec<f64>,
     /// $\partial^2 g/\partial s^2$ (1/m; 0 for two geoms).
     pub dss: f64,
+    /// $\partial n/\partial q_c = \nabla^2d\thinspace\Delta_c + \omega^G_c\times n$, one per coordinate (world).
+    pub normal_jacobian: Vec<D::Vector>,
 }
 
 /// The flexure side of a pair: its joint, first coordinate, root frame and jet at $s$.
@@ -87,8 +89,89 @@ pub fn gap_jet<D: Touch + FrameChain>(
     s: Option<f64>,
 ) -> Result<GapJet<D>> {
     let n = m.dof();
+    let p = point_jet(m, f, q, pair, s, None)?;
+    let shape = p.shape;
+    let frame = D::compose(&f.bodies[shape.body], &shape.frame);
+    let (d, normal) = shape.gap(&f.bodies[shape.body], &p.x, 0.0);
+    let y = D::position(&D::act(&D::inverse(&frame), &p.x));
+    let curvature = world_curvature::<D>(&frame, &shape.shape.curvature(&y));
+    let delta = &p.delta;
+    let gradient: Vec<f64> = delta.iter().map(|v| dot::<D>(&normal, v)).collect();
+    let mut hessian = p.hessian_along(m, f, &normal);
+    let bilinear = |a: &D::Vector, b: &D::Vector| quadratic::<D>(&curvature, a, b);
+    for b in 0..n {
+        for c in 0..n {
+            hessian[(b, c)] += bilinear(&delta[b], &delta[c]);
+        }
+    }
+    // The geom's turning turns its normal: −n·(ω^G_c × Δ_b) − n·(ω^G_b × Δ_c).
+    for &c in &p.geom_columns {
+        for b in 0..n {
+            let v = D::triple(&normal, &f.omega[c], &delta[b]);
+            hessian[(b, c)] -= v;
+            hessian[(c, b)] -= v;
+        }
+    }
+    let (mut ds, mut dqs, mut dss) = (0.0, vec![0.0; n], 0.0);
+    if let Some(own) = &p.own {
+        let t = D::rotate(own.root, &own.jet.tangent);
+        ds = dot::<D>(&normal, &t) - p.half[1];
+        for c in 0..n {
+            dqs[c] = bilinear(&delta[c], &t);
+        }
+        for (a, dt) in own.jet.tangent_jacobian.iter().enumerate() {
+            dqs[own.offset + a] += dot::<D>(&normal, &D::rotate(own.root, dt));
+        }
+        for &b in &columns(m, &p.att) {
+            dqs[b] += dot::<D>(&normal, &D::spin(&f.omega[b], &t));
+        }
+        for &c in &p.geom_columns {
+            dqs[c] -= D::triple(&normal, &f.omega[c], &t);
+        }
+        dss = dot::<D>(&normal, &D::rotate(own.root, &own.jet.bend)) + bilinear(&t, &t) - p.half[2];
+    }
+    let mut normal_jacobian: Vec<D::Vector> = delta.iter().map(|v| product::<D>(&curvature, v)).collect();
+    for &c in &p.geom_columns {
+        normal_jacobian[c] = normal_jacobian[c] + D::spin(&f.omega[c], &normal);
+    }
+    let point = D::moved(&p.x, &normal, -p.half[0]);
+    Ok(GapJet { gap: d - p.half[0], point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian })
+}
+
+/// A toucher's point $x$ (a flexure's centreline point at $s$, or a
+/// ball's centre) and its motion relative to a material point $a$ of the
+/// geom's body: $\Delta_c = \partial_c x - \partial_c a$
+/// ([`point_jet`]); $a$ is where $x$ is unless anchored elsewhere.
+pub(crate) struct PointJet<'a, D: Touch + FrameChain> {
+    /// $x$ (world).
+    pub x: D::Point,
+    /// $\Delta_c$ for each coordinate (world).
+    pub delta: Vec<D::Vector>,
+    /// The toucher's half thickness and its first two derivatives in $s$.
+    pub half: [f64; 3],
+    /// The geom touched.
+    pub shape: &'a super::Geom<D>,
+    /// The coordinates that move the geom's body.
+    pub geom_columns: Vec<usize>,
+    att: Attached<D>,
+    attg: Attached<D>,
+    moving: bool,
+    own: Option<Own<'a, D>>,
+}
+
+/// The point of `pair`'s toucher at `q` (frames `f`, Jacobian level) and
+/// $s$, with its motion relative to the geom body's material point at
+/// `anchor` (in the body's frame), or at the point itself when `None`.
+pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
+    m: &'a Mechanism<D>,
+    f: &'a Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    s: Option<f64>,
+    anchor: Option<D::Vector>,
+) -> Result<PointJet<'a, D>> {
+    let n = m.dof();
     let mut att = Attached::new(m);
-    // The shape touched, the toucher's point (world), its half thickness and own part.
     let (shape, x, half, own) = match pair.part {
         Toucher::Flexure(j) => {
             let joint = &m.joints[j];
@@ -112,80 +195,53 @@ pub fn gap_jet<D: Touch + FrameChain>(
             (flat, x, [r, 0.0, 0.0], None)
         }
     };
-    let frame = D::compose(&f.bodies[shape.body], &shape.frame);
-    let (d, normal) = shape.gap(&f.bodies[shape.body], &x, 0.0);
-    let y = D::position(&D::act(&D::inverse(&frame), &x));
-    let curvature = world_curvature::<D>(&frame, &shape.shape.curvature(&y));
     let moving = m.parent_joint(shape.body).is_some();
     let mut attg = Attached::new(m);
     if moving {
-        let local = D::position(&D::act(&D::inverse(&f.bodies[shape.body]), &x));
+        let local = anchor.unwrap_or_else(|| D::position(&D::act(&D::inverse(&f.bodies[shape.body]), &x)));
         attach_into(m, f, shape.body, local, true, &mut attg);
     }
-    // Δ_c, the point's velocity relative to the geom's body per unit q_c.
     let mut delta: Vec<D::Vector> = (0..n).map(|c| att.linear(c) - attg.linear(c)).collect();
     if let Some(own) = &own {
         for (a, p) in own.jet.jacobian.iter().enumerate() {
             delta[own.offset + a] = delta[own.offset + a] + D::rotate(own.root, p);
         }
     }
-    let gradient: Vec<f64> = delta.iter().map(|v| dot::<D>(&normal, v)).collect();
-    let mut hessian = DMatrix::zeros(n, n);
-    add_attached_hessian(m, f, &att, &normal, &mut hessian);
-    if moving {
-        add_attached_hessian(m, f, &attg, &(D::Vector::default() - normal), &mut hessian);
-    }
-    let bilinear = |a: &D::Vector, b: &D::Vector| quadratic::<D>(&curvature, a, b);
-    for b in 0..n {
-        for c in 0..n {
-            hessian[(b, c)] += bilinear(&delta[b], &delta[c]);
-        }
-    }
-    // The geom's turning turns its normal: −n·(ω^G_c × Δ_b) − n·(ω^G_b × Δ_c).
     let geom_columns = columns(m, &attg);
-    for &c in &geom_columns {
-        for b in 0..n {
-            let v = D::triple(&normal, &f.omega[c], &delta[b]);
-            hessian[(b, c)] -= v;
-            hessian[(c, b)] -= v;
+    Ok(PointJet { x, delta, half, shape, geom_columns, att, attg, moving, own })
+}
+
+impl<D: Touch + FrameChain> PointJet<'_, D> {
+    /// $w\cdot\partial_b\partial_c(x - a)$ for a fixed world vector $w$,
+    /// $a$ the material point of the geom's body where it is anchored.
+    pub fn hessian_along(&self, m: &Mechanism<D>, f: &Frames<D>, w: &D::Vector) -> DMatrix<f64> {
+        let n = m.dof();
+        let mut hessian = DMatrix::zeros(n, n);
+        add_attached_hessian(m, f, &self.att, w, &mut hessian);
+        if self.moving {
+            add_attached_hessian(m, f, &self.attg, &(D::Vector::default() - *w), &mut hessian);
         }
-    }
-    let (mut ds, mut dqs, mut dss) = (0.0, vec![0.0; n], 0.0);
-    if let Some(own) = &own {
-        let k = own.jet.jacobian.len();
-        // Within the flexure: n·R ∂²p/∂α², with n in its root frame.
-        let local = normal_in::<D>(own.root, &normal);
-        for a in 0..k {
-            for b in 0..k {
-                let v: f64 = (0..D::POINT_DIM).map(|i| local[i] * own.jet.hessian[i][(a, b)]).sum();
-                hessian[(own.offset + a, own.offset + b)] += v;
-            }
-        }
-        // With the joints below it: n·(ω_b × ∂_a x).
-        for &b in &columns(m, &att) {
+        if let Some(own) = &self.own {
+            let k = own.jet.jacobian.len();
+            // Within the flexure: w·R ∂²p/∂α², with w in its root frame.
+            let local = normal_in::<D>(own.root, w);
             for a in 0..k {
-                let v = D::triple(&normal, &f.omega[b], &D::rotate(own.root, &own.jet.jacobian[a]));
-                hessian[(own.offset + a, b)] += v;
-                hessian[(b, own.offset + a)] += v;
+                for b in 0..k {
+                    let v: f64 = (0..D::POINT_DIM).map(|i| local[i] * own.jet.hessian[i][(a, b)]).sum();
+                    hessian[(own.offset + a, own.offset + b)] += v;
+                }
+            }
+            // With the joints below it: w·(ω_b × ∂_a x).
+            for &b in &columns(m, &self.att) {
+                for a in 0..k {
+                    let v = D::triple(w, &f.omega[b], &D::rotate(own.root, &own.jet.jacobian[a]));
+                    hessian[(own.offset + a, b)] += v;
+                    hessian[(b, own.offset + a)] += v;
+                }
             }
         }
-        let t = D::rotate(own.root, &own.jet.tangent);
-        ds = dot::<D>(&normal, &t) - half[1];
-        for c in 0..n {
-            dqs[c] = bilinear(&delta[c], &t);
-        }
-        for (a, dt) in own.jet.tangent_jacobian.iter().enumerate() {
-            dqs[own.offset + a] += dot::<D>(&normal, &D::rotate(own.root, dt));
-        }
-        for &b in &columns(m, &att) {
-            dqs[b] += dot::<D>(&normal, &D::spin(&f.omega[b], &t));
-        }
-        for &c in &geom_columns {
-            dqs[c] -= D::triple(&normal, &f.omega[c], &t);
-        }
-        dss = dot::<D>(&normal, &D::rotate(own.root, &own.jet.bend)) + bilinear(&t, &t) - half[2];
+        hessian
     }
-    Ok(GapJet { gap: d - half[0], point: D::moved(&x, &normal, -half[0]), normal, gradient, hessian, ds, dqs, dss })
 }
 
 /// The coordinates of the joints on `x`'s path.
@@ -206,6 +262,15 @@ fn dot<D: Touch>(a: &D::Vector, b: &D::Vector) -> f64 {
 /// $a^TCb$.
 fn quadratic<D: Touch>(c: &super::DistanceHessian, a: &D::Vector, b: &D::Vector) -> f64 {
     (0..D::POINT_DIM).map(|i| (0..D::POINT_DIM).map(|j| a[i] * c[i][j] * b[j]).sum::<f64>()).sum()
+}
+
+/// $Cv$.
+fn product<D: Touch>(c: &super::DistanceHessian, v: &D::Vector) -> D::Vector {
+    let mut out = D::Vector::default();
+    for i in 0..D::POINT_DIM {
+        out[i] = (0..D::POINT_DIM).map(|j| c[i][j] * v[j]).sum();
+    }
+    out
 }
 
 /// $RCR^T$: a shape's curvature in its frame turned to the world by `frame`'s rotation.

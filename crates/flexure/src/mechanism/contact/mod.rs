@@ -12,8 +12,8 @@
 //! flexure's tip must exclude the flexure, or the file refuses it as
 //! starting inside the pad).
 //!
-//! The equilibrium solve and sweep handle contact without friction
-//! ([`crate::mechanism::statics::solve`], [`crate::mechanism::sweep::sweep`]): each pair's gap ([`gap()`],
+//! The equilibrium solve and sweep handle contact, with friction where a
+//! flexure's bare end touches ([`crate::mechanism::statics::solve`], [`crate::mechanism::sweep::sweep`]): each pair's gap ([`gap()`],
 //! [`minima`]) and its derivatives ([`gap_jet`]) enter its equations as
 //! unilateral constraints, and [`Contact`]s are in its answer. Every other
 //! analysis refuses a mechanism with a pair that may touch, naming the
@@ -30,6 +30,7 @@ use crate::space::Planar;
 pub use dimension::{SectionJet, Touch};
 pub(crate) use gap::ball_and_other;
 pub use gap::{Gap, gap, minima};
+pub(crate) use jet::point_jet;
 pub use jet::{GapJet, gap_jet};
 pub use shape::{DistanceHessian, GeomShape};
 

@@ -25,7 +25,18 @@
 //! step with an event is bisected to $10^{-10}$ of the load, the set changed
 //! at the near side and solved there again (at most 8 changes at one load).
 //!
-//! **Refused by name:** friction (not yet solved in statics), a mechanism
+//! **Friction** (Coulomb's $\mu$ of the geom) holds where a flexure's bare
+//! end touches. A stuck end keeps its point at a material point $a$ of the
+//! geom's body: its rows are $x - a = 0$ and its unknown the whole force
+//! $f$, entering as $-f\cdot\partial_c(x - a)$; it slips where
+//! $\lvert f_t\rvert > \mu N$. A sliding end keeps its gap row with $N$
+//! and takes the force $N(n - \mu\hat s)$, $\hat s$ its direction of
+//! sliding relative to the geom kept in the tangent plane; it sticks
+//! again where it would move back. Both are events of the path. In space
+//! $\hat s$ turns, at each accepted step, to the way the end moved.
+//!
+//! **Refused by name:** friction where a contact rolls (inside a span, at
+//! a thick end, between two geoms), a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -41,7 +52,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, gap_jet, minima, named, pairs,
+    Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, gap_jet, minima, named, pairs, point_jet,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -79,15 +90,32 @@ enum Place {
     Geoms,
 }
 
-/// A contact that touches: its pair, place, force unknown and, inside a span, $s/L$.
+/// How a touching contact holds along the surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Law {
+    /// Frictionless: no tangential force.
+    Free,
+    /// Stuck at `anchor`, a material point of the geom's body (its frame):
+    /// the force is any vector in the friction cone.
+    Stick { anchor: [f64; 3] },
+    /// Sliding along `direction` (a unit tangent in the geom body's frame),
+    /// the friction $-\mu N$ along it.
+    Slip { direction: [f64; 3] },
+}
+
+/// A contact that touches: its pair, place, law, force unknowns and, inside a span, $s/L$.
 #[derive(Debug, Clone, Copy)]
 struct Touching {
     pair: Pair,
     place: Place,
-    force: f64,
+    law: Law,
+    /// $N$ (N), or a stuck contact's force (world frame, N).
+    force: [f64; 3],
     at: f64,
     /// The flexure's length (1 between geoms).
     length: f64,
+    /// Its point in the geom body's frame at the last accepted state.
+    from: [f64; 3],
 }
 
 impl Touching {
@@ -98,6 +126,21 @@ impl Touching {
             Place::Geoms => None,
         }
     }
+
+    /// Its force unknowns: the force's components when stuck, else $N$.
+    fn width<D: Statics>(&self) -> usize {
+        if matches!(self.law, Law::Stick { .. }) { D::POINT_DIM } else { 1 }
+    }
+}
+
+/// What friction adds to a touching contact's equations.
+enum Friction<D: Statics> {
+    /// Frictionless.
+    None,
+    /// Stuck: $x - a$ (world), $\Delta_c = \partial_c(x - a)$ and $\partial_b\partial_c\thinspace f\cdot(x - a)$.
+    Pin { offset: D::Vector, delta: Vec<D::Vector>, hessian: DMatrix<f64> },
+    /// Sliding: the unit direction $\hat s$, $\hat s\cdot\Delta_c$ and $\partial_b(\hat s\cdot\Delta_c)$ at $(b, c)$.
+    Slide { direction: D::Vector, along: Vec<f64>, jacobian: DMatrix<f64> },
 }
 
 /// [`Kkt`] with the rows and unknowns of the contacts that touch.
@@ -110,6 +153,7 @@ struct ContactKkt<'a, D: Statics> {
     /// $\sigma$: a contact's force unknown in N.
     sigma: f64,
     jets: Vec<GapJet<D>>,
+    friction: Vec<Friction<D>>,
 }
 
 impl<D: Statics> ContactKkt<'_, D> {
@@ -117,9 +161,21 @@ impl<D: Statics> ContactKkt<'_, D> {
         self.kkt.mechanism.dof() + self.kkt.mechanism.constraints()
     }
 
-    /// The inner contacts' places among the unknowns after the forces.
+    /// Each touching contact's first force unknown (and row) among all.
+    fn force_index(&self) -> Vec<usize> {
+        let mut k = self.inner_dim();
+        self.touching
+            .iter()
+            .map(|t| {
+                k += t.width::<D>();
+                k - t.width::<D>()
+            })
+            .collect()
+    }
+
+    /// The inner contacts' tangency unknowns (and rows) among all.
     fn inner_index(&self) -> Vec<Option<usize>> {
-        let mut k = 0;
+        let mut k = self.inner_dim() + self.touching.iter().map(|t| t.width::<D>()).sum::<usize>();
         self.touching
             .iter()
             .map(|t| {
@@ -134,27 +190,196 @@ impl<D: Statics> ContactKkt<'_, D> {
     /// The unknowns of the Kkt state `x` and the touching contacts.
     fn state(&self, x: &[f64]) -> Vec<f64> {
         let mut out = x[..self.inner_dim()].to_vec();
-        out.extend(self.touching.iter().map(|t| t.force / self.sigma));
+        for t in &self.touching {
+            out.extend(t.force[..t.width::<D>()].iter().map(|f| f / self.sigma));
+        }
         out.extend(self.touching.iter().filter(|t| t.place == Place::Inner).map(|t| t.at));
         out
     }
 
     /// The touching contacts' forces and places read from the unknowns `x`.
     fn read(&mut self, x: &[f64]) {
-        let (kd, count) = (self.inner_dim(), self.touching.len());
-        let index = self.inner_index();
+        let (forces, inner) = (self.force_index(), self.inner_index());
+        let sigma = self.sigma;
         for (c, t) in self.touching.iter_mut().enumerate() {
-            t.force = x[kd + c] * self.sigma;
-            if let Some(i) = index[c] {
-                t.at = x[kd + count + i];
+            let w = t.width::<D>();
+            t.force = [0.0; 3];
+            for (k, f) in t.force[..w].iter_mut().enumerate() {
+                *f = x[forces[c] + k] * sigma;
             }
+            if let Some(i) = inner[c] {
+                t.at = x[i];
+            }
+        }
+    }
+
+    /// Contact `c`'s normal force $N$ (after [`Problem::evaluate`]).
+    fn normal_force(&self, c: usize) -> f64 {
+        let t = &self.touching[c];
+        match t.law {
+            Law::Stick { .. } => (0..D::POINT_DIM).map(|i| t.force[i] * self.jets[c].normal[i]).sum(),
+            _ => t.force[0],
+        }
+    }
+
+    /// Contact `c`'s friction force (world, after [`Problem::evaluate`]).
+    fn friction_force(&self, c: usize) -> D::Vector {
+        let (t, n) = (&self.touching[c], self.jets[c].normal);
+        match (&t.law, &self.friction[c]) {
+            (Law::Stick { .. }, _) => vector::<D>(&t.force) - scaled::<D>(&n, self.normal_force(c)),
+            (_, Friction::Slide { direction, .. }) => scaled::<D>(direction, -self.mu(c) * t.force[0]),
+            _ => D::Vector::default(),
+        }
+    }
+
+    fn mu(&self, c: usize) -> f64 {
+        self.kkt.mechanism.geoms[self.touching[c].pair.geom].friction
+    }
+
+    /// The geom body's pose of contact `c` (after [`Problem::evaluate`]).
+    fn geom_body(&self, c: usize) -> &D::Pose {
+        &self.frames.bodies[self.kkt.mechanism.geoms[self.touching[c].pair.geom].body]
+    }
+
+    /// Contact `c`'s point in its geom body's frame (after [`Problem::evaluate`]).
+    fn local_point(&self, c: usize) -> [f64; 3] {
+        array::<D>(&D::position(&D::act(&D::inverse(self.geom_body(c)), &self.jets[c].point)))
+    }
+
+    /// What friction adds to contact `c`'s equations at `q` (frames and jets evaluated).
+    fn friction_of(&self, c: usize, q: &[f64]) -> Result<Friction<D>> {
+        let (m, f, t, jet) = (self.kkt.mechanism, &self.frames, &self.touching[c], &self.jets[c]);
+        Ok(match t.law {
+            Law::Free => Friction::None,
+            Law::Stick { anchor } => {
+                let p = point_jet(m, f, q, &t.pair, t.s(), Some(vector::<D>(&anchor)))?;
+                let a = D::act(self.geom_body(c), &D::moved(&D::origin(&D::identity()), &vector::<D>(&anchor), 1.0));
+                let hessian = p.hessian_along(m, f, &vector::<D>(&t.force));
+                Friction::Pin { offset: D::position(&p.x) - D::position(&a), delta: p.delta, hessian }
+            }
+            Law::Slip { direction } => {
+                let p = point_jet(m, f, q, &t.pair, t.s(), None)?;
+                let (s, turn) = slide::<D>(&D::rotate(self.geom_body(c), &vector::<D>(&direction)), &jet.normal);
+                let along: Vec<f64> = p.delta.iter().map(|d| dot::<D>(&s, d)).collect();
+                let n = m.dof();
+                let mut jacobian = p.hessian_along(m, f, &s);
+                for &g in &p.geom_columns {
+                    for b in 0..n {
+                        jacobian[(b, g)] -= D::triple(&s, &f.omega[g], &p.delta[b]);
+                    }
+                }
+                for b in 0..n {
+                    let ds = turn(&jet.normal_jacobian[b]);
+                    for (c, d) in p.delta.iter().enumerate() {
+                        jacobian[(b, c)] += dot::<D>(&ds, d);
+                    }
+                }
+                Friction::Slide { direction: s, along, jacobian }
+            }
+        })
+    }
+}
+
+impl<D: Statics> ContactKkt<'_, D> {
+    /// Anchors a contact that `event` made stick where it meets the geom:
+    /// a new touch between its point in the state `x` at `lambda` (just
+    /// apart) and where the event found it (just inside), where the gap
+    /// is zero along that chord; a sliding contact that turns back where
+    /// it is in `x`. A stuck end is stiff along the surface, so an anchor
+    /// off by the bisection's width would be a force of its own.
+    fn anchor(&mut self, x: &[f64], lambda: f64, event: Event) -> Result<()> {
+        let c = match event {
+            Event::Stick(c, ..) => c,
+            Event::Touch(..) if matches!(self.touching.last().map(|t| t.law), Some(Law::Stick { .. })) => {
+                self.touching.len() - 1
+            }
+            _ => return Ok(()),
+        };
+        let mut r = vec![0.0; self.dim()];
+        self.evaluate(x, lambda, &mut r, None, None)?;
+        let here = self.local_point(c);
+        let anchor = match event {
+            Event::Touch(_, _, there, _, inside) => {
+                let t = self.jets[c].gap / (self.jets[c].gap - inside);
+                std::array::from_fn(|i| here[i] + t * (there[i] - here[i]))
+            }
+            _ => here,
+        };
+        self.touching[c].law = Law::Stick { anchor };
+        Ok(())
+    }
+
+    /// Takes the state last evaluated as accepted: each contact's point is
+    /// where the next step's motion is measured from, and a sliding
+    /// contact's direction turns to the way it moved (in the plane it only
+    /// keeps its sense).
+    fn accept(&mut self) {
+        let length = self.kkt.length;
+        for c in 0..self.touching.len() {
+            let here = self.local_point(c);
+            let t = &mut self.touching[c];
+            if let Law::Slip { direction } = &mut t.law {
+                let moved: Vec<f64> = (0..D::POINT_DIM).map(|i| here[i] - t.from[i]).collect();
+                let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
+                let ahead: f64 = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
+                if size > 1e-9 * length && ahead > 0.0 {
+                    for i in 0..D::POINT_DIM {
+                        direction[i] = moved[i] / size;
+                    }
+                }
+            }
+            t.from = here;
         }
     }
 }
 
+/// $\hat s = Pe/\lvert Pe\rvert$, $P = I - nn^T$: the slide direction `e`
+/// kept in the tangent plane of the normal `n`, with its derivative along
+/// a change of $n$.
+fn slide<D: Statics>(e: &D::Vector, n: &D::Vector) -> (D::Vector, impl Fn(&D::Vector) -> D::Vector + use<D>) {
+    let (e, n) = (*e, *n);
+    let ne = dot::<D>(&n, &e);
+    let u = e - scaled::<D>(&n, ne);
+    let size = dot::<D>(&u, &u).sqrt();
+    let s = scaled::<D>(&u, 1.0 / size);
+    (s, move |dn: &D::Vector| {
+        let du = scaled::<D>(dn, -ne) - scaled::<D>(&n, dot::<D>(dn, &e));
+        scaled::<D>(&(du - scaled::<D>(&s, dot::<D>(&s, &du))), 1.0 / size)
+    })
+}
+
+fn dot<D: Statics>(a: &D::Vector, b: &D::Vector) -> f64 {
+    (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
+}
+
+fn scaled<D: Statics>(v: &D::Vector, k: f64) -> D::Vector {
+    let mut out = *v;
+    for i in 0..D::POINT_DIM {
+        out[i] *= k;
+    }
+    out
+}
+
+fn vector<D: Statics>(a: &[f64; 3]) -> D::Vector {
+    let mut v = D::Vector::default();
+    for i in 0..D::POINT_DIM {
+        v[i] = a[i];
+    }
+    v
+}
+
+fn array<D: Statics>(v: &D::Vector) -> [f64; 3] {
+    let mut a = [0.0; 3];
+    for (i, x) in a.iter_mut().enumerate().take(D::POINT_DIM) {
+        *x = v[i];
+    }
+    a
+}
+
 impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
     fn dim(&self) -> usize {
-        self.inner_dim() + self.touching.len() + self.touching.iter().filter(|t| t.place == Place::Inner).count()
+        let forces: usize = self.touching.iter().map(|t| t.width::<D>()).sum();
+        self.inner_dim() + forces + self.touching.iter().filter(|t| t.place == Place::Inner).count()
     }
 
     fn evaluate(
@@ -188,15 +413,36 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
             let s = t.s().map(|s| s.clamp(0.0, t.length));
             self.jets.push(gap_jet(m, &self.frames, q, &t.pair, s)?);
         }
-        let index = self.inner_index();
-        let (rows, length) = (&self.kkt.row_scale, self.kkt.length);
+        self.friction.clear();
+        for c in 0..count {
+            let f = self.friction_of(c, q)?;
+            self.friction.push(f);
+        }
+        let (forces, index) = (self.force_index(), self.inner_index());
+        let (rows, length, sigma) = (&self.kkt.row_scale, self.kkt.length, self.sigma);
         for (c, (t, jet)) in self.touching.iter().zip(&self.jets).enumerate() {
-            for i in 0..n {
-                residual[i] -= t.force * jet.gradient[i] * rows[i];
+            let at = forces[c];
+            match &self.friction[c] {
+                Friction::Pin { offset, delta, .. } => {
+                    let force = vector::<D>(&t.force);
+                    for i in 0..n {
+                        residual[i] -= dot::<D>(&force, &delta[i]) * rows[i];
+                    }
+                    for k in 0..D::POINT_DIM {
+                        residual[at + k] = offset[k] / length;
+                    }
+                }
+                other => {
+                    let mu = self.kkt.mechanism.geoms[t.pair.geom].friction;
+                    for i in 0..n {
+                        let along = if let Friction::Slide { along, .. } = other { mu * along[i] } else { 0.0 };
+                        residual[i] -= t.force[0] * (jet.gradient[i] - along) * rows[i];
+                    }
+                    residual[at] = jet.gap / length;
+                }
             }
-            residual[kd + c] = jet.gap / length;
             if let Some(f) = index[c] {
-                residual[kd + count + f] = jet.ds;
+                residual[f] = jet.ds;
             }
         }
         if !residual.iter().all(|r| r.is_finite()) {
@@ -208,16 +454,42 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                 jac[c * size..c * size + kd].copy_from_slice(&inner[c * kd..(c + 1) * kd]);
             }
             for (c, (t, jet)) in self.touching.iter().zip(&self.jets).enumerate() {
-                let (force, row) = (t.force, kd + c);
-                for j in 0..n {
-                    for i in 0..n {
-                        jac[j * size + i] -= force * jet.hessian[(i, j)] * rows[i];
+                let row = forces[c];
+                let force = t.force[0];
+                match &self.friction[c] {
+                    Friction::Pin { delta, hessian, .. } => {
+                        for j in 0..n {
+                            for i in 0..n {
+                                jac[j * size + i] -= hessian[(i, j)] * rows[i];
+                            }
+                            for k in 0..D::POINT_DIM {
+                                jac[(row + k) * size + j] = -sigma * delta[j][k] * rows[j];
+                                jac[j * size + row + k] = delta[j][k] / length;
+                            }
+                        }
                     }
-                    jac[(kd + c) * size + j] = -self.sigma * jet.gradient[j] * rows[j];
-                    jac[j * size + row] = jet.gradient[j] / length;
+                    Friction::None => {
+                        for j in 0..n {
+                            for i in 0..n {
+                                jac[j * size + i] -= force * jet.hessian[(i, j)] * rows[i];
+                            }
+                            jac[row * size + j] = -sigma * jet.gradient[j] * rows[j];
+                            jac[j * size + row] = jet.gradient[j] / length;
+                        }
+                    }
+                    Friction::Slide { along, jacobian, .. } => {
+                        let mu = self.kkt.mechanism.geoms[t.pair.geom].friction;
+                        for j in 0..n {
+                            for i in 0..n {
+                                jac[j * size + i] -= force * (jet.hessian[(i, j)] - mu * jacobian[(j, i)]) * rows[i];
+                            }
+                            jac[row * size + j] = -sigma * (jet.gradient[j] - mu * along[j]) * rows[j];
+                            jac[j * size + row] = jet.gradient[j] / length;
+                        }
+                    }
                 }
                 if let Some(f) = index[c] {
-                    let (column, tangency) = (kd + count + f, kd + count + f);
+                    let (column, tangency) = (f, f);
                     for i in 0..n {
                         jac[column * size + i] = -force * jet.dqs[i] * rows[i] * t.length;
                         jac[i * size + tangency] = jet.dqs[i];
@@ -242,18 +514,22 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
         let mut g: Vec<Vec<f64>> = (0..rows)
             .map(|i| (0..n).map(|c| jacobian[c * size + n + i] / self.kkt.closure_scale[i]).collect())
             .collect();
-        for (t, jet) in self.touching.iter().zip(&self.jets) {
+        for ((t, jet), friction) in self.touching.iter().zip(&self.jets).zip(&self.friction) {
+            if let Friction::Pin { delta, .. } = friction {
+                g.extend((0..D::POINT_DIM).map(|k| delta.iter().map(|d| d[k]).collect()));
+                continue;
+            }
             if t.place == Place::Inner {
                 if jet.dss <= 0.0 {
                     return false;
                 }
                 for r in 0..n {
                     for c in 0..n {
-                        h[(r, c)] += t.force * jet.dqs[r] * jet.dqs[c] / jet.dss;
+                        h[(r, c)] += t.force[0] * jet.dqs[r] * jet.dqs[c] / jet.dss;
                     }
                 }
             }
-            if t.force > 0.0 {
+            if t.force[0] > 0.0 {
                 g.push(jet.gradient.clone());
             }
         }
@@ -299,8 +575,16 @@ enum Event {
     AtEnd(usize, f64),
     /// End contact `c`'s flexure turns into the geom beside the end.
     Roll(usize),
-    /// The pair's gap has a least below the tolerance at this arc length.
-    Touch(Pair, Option<f64>),
+    /// The pair's gap has a least below the tolerance at this arc length;
+    /// where, in the geom body's frame, whether a flexure's centreline
+    /// touches there at an end (where friction can hold it), and the gap.
+    Touch(Pair, Option<f64>, [f64; 3], bool, f64),
+    /// Stuck contact `c` needs more than $\mu N$: it slides along this
+    /// direction (geom body's frame), with this $N$.
+    Slip(usize, [f64; 3], f64),
+    /// Sliding contact `c` turned back: it sticks here (geom body's frame)
+    /// with this force (world).
+    Stick(usize, [f64; 3], [f64; 3]),
     /// The equilibrium is no longer stable.
     Unstable,
 }
@@ -324,9 +608,12 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
     let (mut r, mut jac) = (vec![0.0; size], vec![0.0; size * size]);
     problem.evaluate(x, lambda, &mut r, Some(&mut jac), None)?;
     let m = problem.kkt.mechanism;
-    let pull = -FORCE_TOLERANCE * problem.sigma * problem.kkt.scale();
-    for (c, (t, jet)) in problem.touching.iter().zip(&problem.jets).enumerate() {
-        if t.force < pull {
+    let scale = problem.sigma * problem.kkt.scale();
+    let pull = -FORCE_TOLERANCE * scale;
+    for c in 0..problem.touching.len() {
+        let (t, jet) = (&problem.touching[c], &problem.jets[c]);
+        let normal = problem.normal_force(c);
+        if normal < pull {
             return Ok(Some(Event::Open(c)));
         }
         match t.place {
@@ -337,6 +624,26 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 return Ok(Some(Event::Roll(c)));
             }
             _ => {}
+        }
+        let body = problem.geom_body(c);
+        match t.law {
+            Law::Stick { .. } => {
+                let tangential = problem.friction_force(c);
+                let size = dot::<D>(&tangential, &tangential).sqrt();
+                if size > problem.mu(c) * normal + FORCE_TOLERANCE * scale {
+                    let direction = D::rotate(&D::inverse(body), &scaled::<D>(&tangential, -1.0 / size));
+                    return Ok(Some(Event::Slip(c, array::<D>(&direction), normal)));
+                }
+            }
+            Law::Slip { direction } => {
+                let here = problem.local_point(c);
+                let moved: f64 = (0..D::POINT_DIM).map(|i| (here[i] - t.from[i]) * direction[i]).sum();
+                if moved < -GAP_TOLERANCE * problem.kkt.length {
+                    let force = scaled::<D>(&jet.normal, normal) + problem.friction_force(c);
+                    return Ok(Some(Event::Stick(c, here, array::<D>(&force))));
+                }
+            }
+            Law::Free => {}
         }
     }
     let length = problem.kkt.length;
@@ -349,7 +656,18 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 _ => true,
             });
             if low.gap < -GAP_TOLERANCE * length && !known {
-                return Ok(Some(Event::Touch(*pair, low.s)));
+                let body = &problem.frames.bodies[m.geoms[pair.geom].body];
+                let at = array::<D>(&D::position(&D::act(&D::inverse(body), &low.point)));
+                let bare_end = match (pair.part, low.s) {
+                    (Toucher::Flexure(j), Some(s)) => {
+                        let (f, offset) = (m.joints[j].kind.flexure().expect("a flexure pair"), m.joints[j].offset);
+                        let length = D::flexure_length(f);
+                        let alpha = &q[offset..offset + m.joints[j].kind.joint().dof()];
+                        (s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && D::surface_at(f, alpha, s)?.2 == 0.0
+                    }
+                    _ => false,
+                };
+                return Ok(Some(Event::Touch(*pair, low.s, at, bare_end, low.gap)));
             }
         }
     }
@@ -369,12 +687,27 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         }
         Event::AtEnd(c, s) => out[c].place = Place::End(s),
         Event::Roll(c) => {
+            if m.geoms[out[c].pair.geom].friction > 0.0 {
+                return Err(rolls(
+                    m,
+                    &out[c].pair,
+                    "its flexure turns onto the geom and the contact moves into the span",
+                ));
+            }
             // Just inside the end, where Newton finds the least.
             let s = out[c].s().unwrap_or(0.0);
             out[c].at = if s > 0.0 { 1.0 - 1e-6 } else { 1e-6 };
             out[c].place = Place::Inner;
         }
-        Event::Touch(pair, s) => {
+        Event::Slip(c, direction, normal) => {
+            out[c].law = Law::Slip { direction };
+            out[c].force = [normal, 0.0, 0.0];
+        }
+        Event::Stick(c, anchor, force) => {
+            out[c].law = Law::Stick { anchor };
+            out[c].force = force;
+        }
+        Event::Touch(pair, s, point, bare_end, _) => {
             let length = match pair.part {
                 Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
                 Toucher::Geom(_) => 1.0,
@@ -393,13 +726,29 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             if out.iter().any(|t| t.pair == pair && close(t)) {
                 return Err(lies_along(m, &pair));
             }
-            out.push(Touching { pair, place, force: 0.0, at, length });
+            let law = match (m.geoms[pair.geom].friction > 0.0, bare_end) {
+                (false, _) => Law::Free,
+                (true, true) => Law::Stick { anchor: point },
+                (true, false) => {
+                    return Err(rolls(m, &pair, "it touches inside a span, at a thick end, or between two geoms"));
+                }
+            };
+            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point });
         }
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
         }
     }
     Ok(out)
+}
+
+/// The error of friction where a contact rolls, which is not solved.
+fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
+    Error::invalid(
+        "friction",
+        format!("{} ({}: {why})", m.geoms[pair.geom].friction, named(m, pair)),
+        "holds only where a flexure's bare end (no thickness) touches; where a contact rolls (inside a span, at a thick end, between two geoms) friction is not solved yet: set the geom's friction to 0",
+    )
 }
 
 fn lies_along<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> Error {
@@ -443,13 +792,6 @@ pub fn follow_touching<D: Statics>(
     work: &mut Workspace<D>,
 ) -> Result<(Solution<D>, Touched<D>)> {
     let all = pairs(m);
-    if let Some(p) = all.iter().find(|p| m.geoms[p.geom].friction > 0.0) {
-        return Err(Error::invalid(
-            "friction",
-            format!("{} ({})", m.geoms[p.geom].friction, named(m, p)),
-            "is not solved in statics yet: set the geom's friction to 0 for frictionless contact",
-        ));
-    }
     if !work.fits(m) {
         *work = Workspace::new(m);
     }
@@ -506,6 +848,7 @@ fn follow<D: Statics>(
         inner: Vec::new(),
         sigma,
         jets: Vec::new(),
+        friction: Vec::new(),
     };
     let mut x = problem.state(&x0);
     let mut lambda = 0.0;
@@ -559,6 +902,7 @@ fn follow<D: Statics>(
         };
         iterations += report.iterations;
         let Some(found) = found else {
+            problem.accept();
             previous = Some((lambda, std::mem::replace(&mut x, y)));
             lambda = next;
             residual = report.residual;
@@ -585,6 +929,7 @@ fn follow<D: Statics>(
         problem.touching = changed(m, &problem.touching, first, hi)?;
         remember(&mut touched, first);
         x = problem.state(&x);
+        problem.anchor(&x, lo, first)?;
         settle_events(&mut problem, &mut x, lo, settings, all, &mut touched, &mut iterations)?;
         lambda = lo;
         previous = None;
@@ -641,12 +986,16 @@ fn settle_events<D: Statics>(
         *iterations += r.iterations;
         *x = y;
         match event(problem, x, lambda, all)? {
-            None => return Ok(()),
+            None => {
+                problem.accept();
+                return Ok(());
+            }
             Some(e) => {
                 problem.read(x);
                 problem.touching = changed(m, &problem.touching, e, lambda)?;
                 remember(touched, e);
                 *x = problem.state(x);
+                problem.anchor(x, lambda, e)?;
             }
         }
     }
@@ -686,7 +1035,7 @@ fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e
 
 /// Adds a new contact's pair to `touched` (the pairs an answer reports).
 fn remember(touched: &mut Vec<Pair>, event: Event) {
-    if let Event::Touch(pair, _) = event
+    if let Event::Touch(pair, ..) = event
         && !touched.contains(&pair)
     {
         touched.push(pair);
@@ -708,7 +1057,7 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
         },
     };
     let mut out = Vec::new();
-    for (t, jet) in problem.touching.iter().zip(&problem.jets) {
+    for (c, (t, jet)) in problem.touching.iter().zip(&problem.jets).enumerate() {
         let (geom, flexure, body) = named_part(&t.pair);
         out.push(Contact {
             geom,
@@ -717,10 +1066,10 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
             s: t.s(),
             point: point(&jet.point),
             normal: vector(&jet.normal),
-            normal_force: t.force.max(0.0),
-            friction_force: vec![0.0; D::POINT_DIM],
+            normal_force: problem.normal_force(c).max(0.0),
+            friction_force: vector(&problem.friction_force(c)),
             gap: jet.gap,
-            state: ContactMode::Slip,
+            state: if matches!(t.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip },
             pair: t.pair,
         });
     }
@@ -758,8 +1107,8 @@ mod tests {
     fn the_jacobian_matches_differences() {
         let text = "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = 4\n\
                     [[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, -3.0]\n\
-                    [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.55, -0.3]\nradius = 0.25\n\
-                    [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.5]\nnormal = [0.0, 1.0]\n";
+                    [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.55, -0.3]\nradius = 0.25\nfriction = 0.3\n\
+                    [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.5]\nnormal = [0.0, 1.0]\nfriction = 0.4\n";
         let m = crate::mechanism::file::from_toml(text).unwrap();
         let settings = Settings::default();
         let mut work = Workspace::new(&m);
@@ -774,14 +1123,49 @@ mod tests {
             inner: Vec::new(),
             sigma: 1.0,
             jets: Vec::new(),
+            friction: Vec::new(),
         };
         let all = pairs(&m);
-        problem.touching = vec![
-            Touching { pair: all[0], place: Place::Inner, force: 0.7, at: 0.6, length: 1.0 },
-            Touching { pair: all[1], place: Place::End(1.0), force: 0.3, at: 1.0, length: 1.0 },
-        ];
+        let touching =
+            |pair, place, law, force, at| Touching { pair, place, law, force, at, length: 1.0, from: [0.0; 3] };
         let q = [-0.4, 0.1, -0.05, 0.02];
-        let x = problem.state(&q);
-        crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        let (stuck, sliding) = (Law::Stick { anchor: [0.9, 0.0, 0.0] }, Law::Slip { direction: [-0.8, 0.6, 0.0] });
+        // Free, then the tip stuck to the floor at a point off it, then
+        // sliding along it, then sliding on the post (its normal turns).
+        for (first, second) in [
+            (touching(all[0], Place::Inner, Law::Free, [0.7, 0.0, 0.0], 0.6), Law::Free),
+            (touching(all[0], Place::Inner, Law::Free, [0.7, 0.0, 0.0], 0.6), stuck),
+            (touching(all[0], Place::Inner, Law::Free, [0.7, 0.0, 0.0], 0.6), sliding),
+            (
+                touching(all[0], Place::End(1.0), Law::Slip { direction: [0.6, 0.8, 0.0] }, [0.5, 0.0, 0.0], 1.0),
+                sliding,
+            ),
+        ] {
+            let force = if second == stuck { [0.2, 0.5, 0.0] } else { [0.3, 0.0, 0.0] };
+            problem.touching = vec![first, touching(all[1], Place::End(1.0), second, force, 1.0)];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+
+        // On a round cap on a sprung arm: the geom moves and turns.
+        let text = "[[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 2.0\n\
+                    [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = 4\n\
+                    [[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, -3.0]\n\
+                    [[geom]]\nname = \"cap\"\nbody = \"arm\"\nshape = \"circle\"\norigin = [0.6, -0.4]\nradius = 0.2\nfriction = 0.3\n";
+        let m = crate::mechanism::file::from_toml(text).unwrap();
+        let mut work = Workspace::new(&m);
+        work.touching = true;
+        let (to, all) = (m.loads(), pairs(&m));
+        let zero = crate::mechanism::Planar::zero(&to);
+        let kkt = Kkt::fitted(&m, &zero, &to, &settings, Buffers::Borrowed(&mut work)).unwrap();
+        let (frames, inner) = (Frames::new(&m), Vec::new());
+        let mut problem =
+            ContactKkt { kkt, touching: Vec::new(), frames, inner, sigma: 1.0, jets: Vec::new(), friction: Vec::new() };
+        let q = [0.3, -0.4, 0.1, -0.05, 0.02];
+        for law in [Law::Stick { anchor: [0.7, -0.1, 0.0] }, Law::Slip { direction: [0.6, 0.8, 0.0] }] {
+            problem.touching = vec![touching(all[0], Place::End(1.0), law, [0.5, -0.2, 0.0], 1.0)];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
     }
 }
