@@ -8,6 +8,7 @@
 mod analyses;
 mod flexure;
 mod motion_error;
+mod raise;
 
 pub use analyses::Analyses;
 pub use flexure::{
@@ -73,6 +74,13 @@ pub struct Solved {
     pub compliance: Option<DMatrix<f64>>,
     /// The parts that cross in the answer.
     pub crossings: Vec<Crossing<Vec<f64>>>,
+    /// The model the answer was found with: the one solved, its flexure
+    /// joints of `order = "auto"` raised where their estimate missed the
+    /// target (`q` is its coordinates; [`Model::orders`] says the orders used).
+    pub model: Model,
+    /// The flexure joints of `order = "auto"` whose estimate still misses
+    /// the target at the cap (order 64): flagged, with nothing left to raise.
+    pub capped: Vec<String>,
 }
 
 /// What [`Model::sweep`] answers: a table of one row per value reached
@@ -101,6 +109,13 @@ pub struct Swept {
     /// Each flexure joint with a `yield_strength` that a row stresses past
     /// it: the joint, the first such value, and its peak stress there (Pa).
     pub yielded: Vec<(String, f64, f64)>,
+    /// The model every row was found with, as [`Solved::model`]: a flexure
+    /// joint of `order = "auto"` raised where its estimate missed at a row,
+    /// to the order the row that asks for most needs, the same for all rows.
+    pub model: Model,
+    /// The flexure joints of `order = "auto"` whose estimate still misses
+    /// the target at a row at the cap (order 64), as [`Solved::capped`].
+    pub capped: Vec<String>,
 }
 
 /// What [`Model::simulate`] answers: the integrator's samples, every
@@ -471,7 +486,10 @@ fn open_closures<D: Analyses>(m: &Mechanism<D>) -> Result<Vec<OpenClosure>> {
     D::open_closures(m, &Settings::default())
 }
 
-fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved> {
+fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved>
+where
+    Model: From<Mechanism<D>>,
+{
     let body = match compliance {
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
@@ -479,11 +497,15 @@ fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&
     if compliance.is_some() {
         refuse_unsolved(m)?;
     }
-    let s = D::solve(m, &Settings::default())?;
-    let crossings = D::crossings(m, &s.q);
-    let report = solve_report(m, &s, target);
-    let compliance = body.map(|(b, at)| D::compliance(m, &s, b, at)).transpose()?;
-    Ok(Solved { q: s.q, report, compliance, crossings })
+    let (used, (s, report)) = raise::raising(m, |m| {
+        let s = D::solve(m, &Settings::default())?;
+        let report = solve_report(m, &s, target);
+        Ok((s, report))
+    })?;
+    let capped = raise::capped(&used, &report.iter().map(|r| (s.q.as_slice(), r)).collect::<Vec<_>>());
+    let crossings = D::crossings(&used, &s.q);
+    let compliance = body.map(|(b, at)| D::compliance(&used, &s, b, at)).transpose()?;
+    Ok(Solved { q: s.q, report, compliance, crossings, model: used.into_owned().into(), capped })
 }
 
 fn sweep<D: Analyses>(
@@ -491,7 +513,10 @@ fn sweep<D: Analyses>(
     (parameter, values): (&str, &[f64]),
     target: &Accuracy,
     compliance: Option<(&str, &[f64])>,
-) -> Result<std::result::Result<Swept, EstimateFailed>> {
+) -> Result<std::result::Result<Swept, EstimateFailed>>
+where
+    Model: From<Mechanism<D>>,
+{
     let frame = match compliance {
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
@@ -499,7 +524,17 @@ fn sweep<D: Analyses>(
     if frame.is_some() {
         refuse_unsolved(m)?;
     }
-    let out = D::sweep(m, parameter, values, &Settings::default())?;
+    let (used, (out, reports)) = raise::raising(m, |m| {
+        let out = D::sweep(m, parameter, values, &Settings::default())?;
+        let reports = out.rows.iter().map(|(_, s)| solve_report(m, s, target)).collect();
+        Ok((out, reports))
+    })?;
+    let reports = match reports {
+        Ok(reports) => reports,
+        Err(failed) => return Ok(Err(failed)),
+    };
+    let capped = raise::capped(&used, &out.rows.iter().map(|(_, s)| s.q.as_slice()).zip(&reports).collect::<Vec<_>>());
+    let m = used.as_ref();
     let touching = crate::mechanism::contact::pairs(m);
     let mut columns = vec![parameter.to_string()];
     let poses = <D as crate::report::Reported>::poses(m, &m.rest());
@@ -514,11 +549,7 @@ fn sweep<D: Analyses>(
     columns.extend(touching.iter().map(|p| format!("{}.normal_force", crate::mechanism::contact::column(m, p))));
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
-    for (k, (value, s)) in out.rows.iter().enumerate() {
-        let report = match solve_report(m, s, target) {
-            Ok(r) => r,
-            Err(failed) => return Ok(Err(failed)),
-        };
+    for (k, ((value, s), report)) in out.rows.iter().zip(&reports).enumerate() {
         if k == 0 {
             columns.extend(report.stress.0.iter().map(|(name, _)| format!("{name}.stress")));
         }
@@ -559,7 +590,8 @@ fn sweep<D: Analyses>(
     let crossings = D::crossings_along(m, &shapes);
     let q = shapes.iter().map(|q| q.to_vec()).collect();
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
-    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded }))
+    let model = used.into_owned().into();
+    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded, model, capped }))
 }
 
 /// The motion of `m`, with the parts that cross at its samples when `crossings`.
