@@ -230,7 +230,7 @@ pub type Asked<'a> = Option<(&'a [f64], (usize, usize))>;
 /// use flexure::estimate::raise_auto;
 /// use flexure::mechanism::file::from_toml;
 /// let two = "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 1.0\nei = 1.0\norder = \"auto\"\n\
-///     [[joint]]\nname = \"c\"\nkind = \"flexure\"\nparent = \"b\"\nchild = \"d\"\nlength = 1.0\nei = 1.0\norigin = [1.0, 0.0]\norder = \"auto\"\n";
+///     [[joint]]\nname = \"c\"\nkind = \"flexure\"\nparent = \"b\"\nchild = \"d\"\nlength = 1.0\nei = 1.0\norigin = [1.0, 0.0, 0.0]\norder = \"auto\"\n";
 /// let m = from_toml(two).unwrap();
 /// // Only the second asks: it goes to its reference's order 6; the first stays at 3.
 /// let next = raise_auto(&m, &[None, Some((&[][..], (6, 12)))]).unwrap().unwrap();

@@ -280,7 +280,21 @@ impl Model {
     /// assert!(r.stable && r.dimension == 2 && s.crossings.is_empty());
     /// // The tip's compliance along y (the link's frame is the tip's) is L³/3EI to first order.
     /// assert!((s.compliance.unwrap()[(2, 2)] / (0.05f64.powi(3) / 0.03) - 1.0).abs() < 0.05);
+    /// // With order = "auto", under 8 N across the tip of a unit strip: order 3 misses the
+    /// // target, so the joint is raised until it meets it.
+    /// let text = "[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\n\
+    ///             order = \"auto\"\n[[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, 8.0]\n";
+    /// let s = Model::from_toml(text).unwrap().solve(&Default::default(), None).unwrap();
+    /// let order = s.model.orders().get("f").unwrap()[0];
+    /// assert!(!s.report.unwrap().flagged && order > 3 && s.q.len() == order && s.capped.is_empty());
     /// ```
+    ///
+    /// A flexure joint of `order = "auto"` whose estimate misses `target` is
+    /// raised (to its reference's order and quadrature, or orders and
+    /// subintervals, up to 64), and the mechanism solved again, until it
+    /// meets it: only such joints, with contact too ([`crate::estimate::contact_estimates`]).
+    /// [`Solved::model`] is the mechanism the answer was found with;
+    /// [`Solved::capped`] names those still missing at the cap.
     pub fn solve(&self, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved> {
         each!(self, m => solve(m, target, compliance))
     }
@@ -290,7 +304,10 @@ impl Model {
     /// names), each row with its estimate against `target` and, with
     /// `compliance`, the compliance of that frame ([`Model::solve`]). The
     /// outer error is the sweep's (bad input); the inner, a flexure joint
-    /// whose error estimate failed at a row.
+    /// whose error estimate failed at a row. A flexure joint of
+    /// `order = "auto"` that misses at a row is raised as [`Model::solve`]
+    /// raises it, once for all rows (every row then has the same columns),
+    /// to the order the row that asks most needs, and the sweep run again.
     ///
     /// # Example
     /// ```
