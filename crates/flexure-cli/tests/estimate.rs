@@ -286,7 +286,8 @@ fn a_taper_order_64_cannot_resolve_is_flagged_not_blind() {
 /// is raised until its estimate meets the target, unflagged and silent,
 /// `order` says the order used, its coordinates are that many, and its
 /// tip is the exact elastica's within the target (1 % of L). A sweep of the
-/// force is raised once for all its rows, and says the order too. A target
+/// force is raised once for all its rows, and says the order too; `draw`,
+/// which pictures the file's mechanism, refuses the raised answer. A target
 /// no order meets (1e-9 of L, of a radian and of the peak, with the span
 /// pressed onto a post: the contact's kink converges only algebraically)
 /// stops at the cap of 64 and says so.
@@ -321,6 +322,13 @@ fn solve_raises_order_auto_until_the_estimate_meets_the_target() {
     let (v, err) = json(&["solve", file, "--sweep", "force.push.fy=0:8:3"]);
     assert!(err.is_empty() && v.get("flagged").is_none(), "{err}");
     assert_eq!(v["order"]["strip"].as_u64(), Some(order as u64));
+    // `draw` pictures the file's mechanism, which the raised answer does not fit: refused by name, not drawn wrong.
+    let svg = dir.path().join("strip.svg");
+    let (code, _, err) = run(&["draw", file, "--out", svg.to_str().unwrap()]);
+    assert!(
+        code == 2 && err.contains("draw: the answer was found with order = \"auto\" raised (\"strip\" to order"),
+        "{err}"
+    );
 
     let post =
         "[[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.55, -0.3]\nradius = 0.25\n";
