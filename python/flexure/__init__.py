@@ -201,7 +201,11 @@ class Mechanism:
         of its length, angle in rad; default (0.01, 1 degree)) warns AccuracyWarning
         naming it; one whose error could not be estimated warns so and raises the
         library's error, as `flexure solve` fails. Errors name the
-        mechanism's file, if it was read from one.
+        mechanism's file, if it was read from one. A flexure joint of
+        order = "auto" that misses `accuracy` is raised (up to order 64) and the
+        mechanism solved again until it meets it; then `order` {joint: int, or
+        [n_twist, n_y, n_z] in space} says the orders used, and its coordinates
+        are that many. One still missing at 64 warns AccuracyWarning saying so.
 
         Per flexure joint, in maps by joint name (each left out when empty):
         stress {max (Pa), at (m from its root)} for one with a thickness, else
@@ -312,7 +316,9 @@ class Mechanism:
         `simulate`'s: x, y, phi in the plane; x, y, z, roll, pitch, yaw and rotation (n, 3, 3)
         in space; coordinates {joint: (n, k)}; energy (n,); stress {flexure joint with a
         section: (n,) peak stress, Pa; in space the von Mises peak}; flagged, the values at
-        which a flexure joint's estimated error misses `accuracy` (AccuracyWarning);
+        which a flexure joint's estimated error misses `accuracy` (AccuracyWarning); order
+        as `solve`'s, when a flexure has order = "auto" (raised once for all rows, to the
+        order the row that asks most needs);
         stability_limit {value, fraction} where stability is first lost (found by bisection
         between the two values that bracket it, to a relative 1e-6; StabilityWarning): values
         past it with no stable equilibrium reachable by loading are left out, and rows past a

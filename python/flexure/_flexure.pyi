@@ -328,7 +328,7 @@ class Mechanism:
         {x, y, phi}; spatial {x, y, z, roll, pitch, yaw, rotation (3, 3)}), coordinates, energy,
         stable, error_estimate {flexure joint: _ErrorEstimate}, flagged, findings, and per flexure
         joint stress (or curvature_max), safety_factor and shape where they apply, load,
-        multipliers, residual, load_steps, iterations."""
+        multipliers, residual, load_steps, iterations[, order]."""
     def buckle(self, accuracy: Optional[float] = None) -> dict:
         """As flexure.Mechanism.buckle, in both dimensions: load_factor, mode, dimension,
         error_estimate, flagged[, order, findings]."""
@@ -338,7 +338,7 @@ class Mechanism:
     def sweep(self, parameter: str, values: ArrayLike, accuracy: _Accuracy = None,
               compliance: Optional[str] = None, at: Optional[ArrayLike] = None) -> dict:
         """As flexure.Mechanism.sweep: values, bodies, coordinates, energy, stress, flagged,
-        stability_limit, findings; a sweep that stops raises with the rows in `result`; bodies
+        stability_limit, findings[, order]; a sweep that stops raises with the rows in `result`; bodies
         keyed as simulate's (spatial: x, y, z, roll, pitch, yaw, rotation) and compliance (n, 6, 6)."""
     def export(self, to: str = "mjcf", prb: str = "3R", range: Union[None, str, Sequence[float]] = None,
                armature: float = 0.0, step: float = 0.002, name: str = "mechanism") -> Tuple[str, dict]:

@@ -271,3 +271,34 @@ def test_order_64_on_a_steep_taper_is_estimated_against_the_elastica():
     # order="auto" cannot do better than the cap: it refuses, saying by how much and against what.
     with pytest.raises(ValueError, match=r"even order 64 misses .*tip angle.*against the exact elastica"):
         flexure.Flexure(ei=(1.0, 1e-6)).deflect(moment=1.0, order="auto")
+
+
+def _strip(order):
+    """A unit strip (L = EI = 1) clamped along x, 8 N across its tip (it turns past 70 degrees)."""
+    return flexure.Mechanism.from_toml(
+        '[[joint]]\nname = "strip"\nkind = "flexure"\nparent = "ground"\nchild = "tip"\n'
+        f'length = 1.0\nei = 1.0\norder = {order}\n'
+        '[[force]]\nname = "push"\nbody = "tip"\nat = [0.0, 0.0]\nforce = [0.0, 8.0]\n'
+    )
+
+
+def test_solve_raises_order_auto_until_the_estimate_meets_the_target():
+    # Issue 38. Reference: the exact elastica by shooting (flexure.exact.deflect); tolerance the
+    # accuracy target the answer is held to, 1 % of L in tip position and 1 degree in tip angle.
+    # At order 3 the joint misses it (AccuracyWarning, no `order`); with order = "auto" the joint
+    # is raised, silently, and `order` says the order used, as buckle's and modes' do.
+    with pytest.warns(flexure.AccuracyWarning, match=r"flexure joint 'strip'.*raise the joint's order"):
+        r = _strip("3").solve()
+    assert r["flagged"] and "order" not in r
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = _strip('"auto"').solve()
+        swept = _strip('"auto"').sweep("force.push.fy", [0.0, 4.0, 8.0])
+    assert not r["flagged"] and r["order"]["strip"] > 3
+    assert len(r["coordinates"]["strip"]) == r["order"]["strip"]
+    phi, x, y = flexure.exact.deflect(fy=8.0, length=1.0, ei=1.0)
+    tip = r["bodies"]["tip"]
+    assert math.hypot(tip["x"] - x, tip["y"] - y) < 0.01 and abs(tip["phi"] - phi) < math.radians(1)
+    # A sweep is raised once for all its rows: one order, that many coordinates in every row.
+    assert len(swept["flagged"]) == 0 and swept["order"]["strip"] == r["order"]["strip"]
+    assert swept["coordinates"]["strip"].shape == (3, r["order"]["strip"])

@@ -131,6 +131,13 @@ pub fn reference_of_joint(e: &ValueEstimate) -> String {
 pub fn insert_mechanism_estimate(answer: &mut Value, used: &Model, e: &ValueEstimate, key: &'static str) {
     let flexures = used.flexure_names();
     insert_eigen_estimate(answer, e, &EigenKeys { key, one: key == "load_factor", flexures: &flexures });
+    insert_orders(answer, used);
+}
+
+/// `order`, {joint: N (planar) or [n_twist, n_y, n_z] (spatial)}, when a
+/// flexure of `used` has `order = "auto"`: the orders an answer was found
+/// at (`buckle`, `modes`, `solve` and `solve --sweep` alike).
+pub fn insert_orders(answer: &mut Value, used: &Model) {
     if used.auto_order() {
         let orders = used.orders().0.into_iter().map(|(name, o)| match o.as_slice() {
             [one] => (name, json!(one)),

@@ -8,6 +8,7 @@
 //!
 //! One subject: `cargo test -p flexure --test all basis::`.
 
+mod auto_solve;
 mod basis;
 mod buckling;
 mod compliance;

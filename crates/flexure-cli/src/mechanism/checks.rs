@@ -21,12 +21,23 @@ fn estimate_failed(file: &Path, f: EstimateFailed) -> String {
     )
 }
 
-/// Warns of each flexure joint whose estimate misses `target`, then of each
-/// stressed past its yield strength.
-fn warn_joints(r: &SolveReport, model: &Model, target: &Accuracy, file: &Path) {
+/// What to do about a flexure joint whose estimate misses the target:
+/// raise its order, unless it has `order = "auto"` and stopped at the cap.
+fn order_hint(joint: &str, capped: &[String]) -> &'static str {
+    if capped.iter().any(|c| c == joint) { CAPPED } else { "raise its order" }
+}
+
+/// What a flexure of `order = "auto"` that still misses at the cap says.
+const CAPPED: &str =
+    "order = \"auto\" raised it to the cap of 64 and it still misses: loosen --accuracy or reduce the load";
+
+/// Warns of each flexure joint whose estimate misses `target` (`capped`:
+/// those of `order = "auto"` at the cap), then of each stressed past its
+/// yield strength.
+fn warn_joints(r: &SolveReport, (model, capped): (&Model, &[String]), target: &Accuracy, file: &Path) {
     for (name, e) in r.error_estimate.0.iter().filter(|(_, e)| e.flagged) {
         let misses = crate::answer::misses(e, model.flexure_length(name).unwrap_or(0.0), target);
-        warn(format!("{}: flexure joint {name:?}: {misses}; raise its order", file.display()));
+        warn(format!("{}: flexure joint {name:?}: {misses}; {}", file.display(), order_hint(name, capped)));
     }
     for (name, factor) in r.safety_factor.0.iter().filter(|(_, factor)| *factor < 1.0) {
         if let (Some(p), Some(strength)) = (r.stress.get(name), model.yield_strength(name)) {
@@ -60,13 +71,49 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Swept, values: &[f64]) -> O
     ))
 }
 
+/// `draw` pictures its answer on the mechanism of the file, so an answer
+/// found with an `order = "auto"` flexure raised (whose coordinates are of
+/// the raised order) is refused by name until `draw` pictures the model
+/// the answer was found with; `solve` answers it.
+fn drawable(model: &Model, used: &Model, file: &Path) -> Result<(), String> {
+    if used.dof() == model.dof() {
+        return Ok(());
+    }
+    let raised: Vec<String> = (used.orders().0.iter().zip(&model.orders().0))
+        .filter(|((_, a), (_, b))| a != b)
+        .map(|((name, o), _)| match o.as_slice() {
+            [one] => format!("{name:?} to order {one}"),
+            all => format!("{name:?} to orders {all:?}"),
+        })
+        .collect();
+    Err(format!(
+        "{}: draw: the answer was found with order = \"auto\" raised ({}), which draw cannot picture yet: give those flexure joints that order in the file to draw it (`solve` answers it as it is)",
+        file.display(),
+        raised.join(", ")
+    ))
+}
+
+/// `draw`'s check of a solve: [`solve_answer`], refused where an
+/// `order = "auto"` flexure was raised ([`drawable`]).
+pub(super) fn solved_answer(
+    model: &Model,
+    findings: Vec<Value>,
+    solved: Solved,
+    target: &Accuracy,
+    file: &Path,
+) -> Result<Value, String> {
+    drawable(model, &solved.model, file)?;
+    solve_answer(model, findings, solved, target, file)
+}
+
 /// `solve`'s answer, shared by `draw`: the library's report
-/// ([`flexure::report::solve_report`]) with the compliance asked for, and
+/// ([`flexure::report::solve_report`]) with the compliance asked for,
+/// `order` (the orders used) when a flexure has `order = "auto"`, and
 /// after the `findings` told before the solve (the closures open at rest)
 /// the parts that cross; each told
 /// on stderr, as are each flagged estimate, a stress past its yield
 /// strength, a snap-through on the way, and an unstable answer.
-pub(super) fn solved_answer(
+pub(super) fn solve_answer(
     model: &Model,
     mut findings: Vec<Value>,
     solved: Solved,
@@ -75,8 +122,9 @@ pub(super) fn solved_answer(
 ) -> Result<Value, String> {
     findings.extend(crate::findings::crossing_answers(solved.crossings, file));
     let r = solved.report.map_err(|f| estimate_failed(file, f))?;
-    warn_joints(&r, model, target, file);
+    warn_joints(&r, (model, &solved.capped), target, file);
     let mut v = serde_json::to_value(&r).map_err(|e| format!("{}: {e}", file.display()))?;
+    crate::eigen::insert_orders(&mut v, &solved.model);
     if let Some(c) = &solved.compliance {
         v["compliance"] = crate::answer::matrix(c);
     }
@@ -113,6 +161,7 @@ pub(super) fn swept_answer(
     (parameter, values): (&str, &[f64]),
 ) -> Value {
     let mut v = json!({ "dimension": model.dimension(), "columns": out.columns, "rows": out.rows });
+    crate::eigen::insert_orders(&mut v, &out.model);
     let shapes: Vec<(f64, &[f64])> = out.rows.iter().zip(&out.q).map(|(r, q)| (r[0], q.as_slice())).collect();
     let found = out.crossings.clone();
     findings.extend(crate::findings::crossing_answers_along(
@@ -133,8 +182,12 @@ pub(super) fn swept_answer(
     }
     if !out.flagged.is_empty() {
         v["flagged"] = json!(out.flagged);
+        let hint = match out.capped.as_slice() {
+            [] => "raise its order".to_string(),
+            capped => format!("flexure joints {capped:?}: {CAPPED}"),
+        };
         warn(format!(
-            "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); raise its order",
+            "{}: at {} of the swept values a flexure joint's estimated error exceeds the accuracy target (listed in `flagged`); {hint}",
             file.display(),
             out.flagged.len()
         ));
@@ -158,9 +211,23 @@ pub(super) fn swept_answer(
     v
 }
 
+/// `draw`'s sweep: [`sweep_table`], refused where an `order = "auto"`
+/// flexure was raised ([`drawable`]).
+pub(super) fn sweep_answer(
+    model: &Model,
+    sweep: (&str, &[f64]),
+    compliance: Option<(&str, &[f64])>,
+    target: &Accuracy,
+    file: &Path,
+) -> Result<(Value, Swept), String> {
+    let (v, out) = sweep_table(model, sweep, compliance, target, file)?;
+    drawable(model, &out.model, file)?;
+    Ok((v, out))
+}
+
 /// The sweep of `parameter` over `values` on `model`, with the compliance
 /// of a frame in each row if asked for: the table and its checks ([`swept_answer`]).
-pub(super) fn sweep_answer(
+pub(super) fn sweep_table(
     model: &Model,
     (parameter, values): (&str, &[f64]),
     compliance: Option<(&str, &[f64])>,

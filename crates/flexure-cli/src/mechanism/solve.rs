@@ -1,7 +1,7 @@
 //! `flexure solve`: a mechanism's equilibrium, optionally with the
 //! compliance of a frame or a sweep of one load.
 
-use super::checks::{solved_answer, sweep_answer};
+use super::checks::{solve_answer, sweep_table};
 use super::point_any;
 use crate::analyses::{SweepSpec, sweep_values};
 use clap::Args;
@@ -37,9 +37,9 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     }
     if let Some(spec) = &args.sweep {
         let values = sweep_values(&spec.range);
-        return Ok(sweep_answer(&model, (&spec.parameter, &values), at, &target, &args.file)?.0);
+        return Ok(sweep_table(&model, (&spec.parameter, &values), at, &target, &args.file)?.0);
     }
     let findings = crate::findings::open_at_rest(&model, &args.file)?;
     let solved = model.solve(&target, at).map_err(super::solver_error(&args.file))?;
-    solved_answer(&model, findings, solved, &target, &args.file)
+    solve_answer(&model, findings, solved, &target, &args.file)
 }

@@ -16,8 +16,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// `order` {joint: int (planar) or [n_twist, n_y, n_z] (spatial)} when a
-/// flexure has `order = "auto"`: the orders the answer was found at, as the CLI's.
-fn insert_orders(py: Python<'_>, out: &Bound<'_, PyDict>, used: &Model) -> PyResult<()> {
+/// flexure has `order = "auto"`: the orders the answer was found at, as the
+/// CLI's (`buckle`, `modes`, `solve` and `sweep` alike).
+pub(crate) fn insert_orders(py: Python<'_>, out: &Bound<'_, PyDict>, used: &Model) -> PyResult<()> {
     if used.auto_order() {
         let orders = PyDict::new(py);
         for (name, o) in used.orders().0 {

@@ -22,6 +22,21 @@ use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+/// What to do about a flexure joint whose estimate misses the target:
+/// raise its order, unless it has `order = "auto"` and stopped at the cap
+/// (`capped`), as the CLI says.
+fn order_hint(joint: &str, capped: &[String]) -> String {
+    if capped.iter().any(|c| c == joint) {
+        CAPPED.into()
+    } else {
+        "raise the joint's order (and quadrature) in the mechanism file".into()
+    }
+}
+
+/// What a flexure of `order = "auto"` that still misses at the cap says.
+pub(super) const CAPPED: &str =
+    "order = \"auto\" raised it to the cap of 64 and it still misses: loosen the accuracy or reduce the load";
+
 /// The equilibrium of `model` as `Mechanism.solve` documents it.
 pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
     let (solved, open) = interruptible(py, || {
@@ -76,12 +91,13 @@ pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult
         }
     }
     out.set_item("load", loads)?;
+    super::eigen::insert_orders(py, &out, &solved.model)?;
     let estimates = PyDict::new(py);
     for (name, e) in &r.error_estimate.0 {
         if e.flagged {
-            let hint = "raise the joint's order (and quadrature) in the mechanism file";
+            let hint = order_hint(name, &solved.capped);
             let length = model.flexure_length(name).unwrap_or(f64::NAN);
-            warn_inaccurate(py, &what(name), length, e, target, hint, 2)?;
+            warn_inaccurate(py, &what(name), length, e, target, &hint, 2)?;
         }
         estimates.set_item(name, estimate_dict(py, e)?)?;
     }

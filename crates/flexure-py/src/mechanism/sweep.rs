@@ -133,7 +133,8 @@ fn answer<'py>(
     result.set_item("values", values_at(0).into_pyarray(py))?;
     result.set_item("bodies", bodies_dict(py, &swept.bodies)?)?;
     let coordinates = PyDict::new(py);
-    for (name, range) in model.joints() {
+    // The coordinates of the model the rows were found with: an `order = "auto"` flexure's raised.
+    for (name, range) in swept.model.joints() {
         let a = Array2::from_shape_fn((n, range.len()), |(r, i)| swept.q[r][range.start + i]);
         coordinates.set_item(&name, a.into_pyarray(py))?;
     }
@@ -168,9 +169,14 @@ fn answer<'py>(
         );
         warn(py, &py.get_type::<StabilityWarning>(), text, 2)?;
     }
+    super::eigen::insert_orders(py, &result, &swept.model)?;
     if !swept.flagged.is_empty() {
+        let hint = match swept.capped.as_slice() {
+            [] => "raise its order".to_string(),
+            capped => format!("flexure joints {capped:?}: {}", super::solve::CAPPED),
+        };
         let text = format!(
-            "Mechanism.sweep: at {} of the swept values a flexure joint's estimated error misses the accuracy target (listed in `flagged`); raise its order",
+            "Mechanism.sweep: at {} of the swept values a flexure joint's estimated error misses the accuracy target (listed in `flagged`); {hint}",
             swept.flagged.len()
         );
         warn(py, &py.get_type::<AccuracyWarning>(), text, 2)?;

@@ -207,14 +207,45 @@ pub fn contact_estimates<D: Refined>(
 /// coordinates in `q` (the rest shape when `q` is not the mechanism's),
 /// given its reference's `orders`; `None` when no joint can be raised.
 fn raised<D: Refined>(m: &Mechanism<D>, q: &[f64], orders: &[(usize, usize)]) -> Result<Option<Mechanism<D>>> {
-    let q = coordinates_or_rest(m, q);
+    let every: Vec<_> = orders.iter().map(|o| Some((q, *o))).collect();
+    raise_auto(m, &every)
+}
+
+/// What [`raise_auto`] is asked of one flexure joint: nothing, or the
+/// coordinates of the mechanism to raise it about and its reference's
+/// [`Refined::refinement`].
+pub type Asked<'a> = Option<(&'a [f64], (usize, usize))>;
+
+/// The next mechanism of an automatic order, raising only the joints that
+/// ask: per flexure joint in joint order, `None` to leave it, or the
+/// coordinates of `m` it is raised about (the rest shape when they are not
+/// the mechanism's) and its reference's [`Refined::refinement`]; each such
+/// joint of `order = "auto"` below the cap is raised ([`Refined::raised`]),
+/// a joint of a fixed order never. `None` when no joint was raised. Each
+/// raise is a strict one (the order grows by at least one, up to 64), so a
+/// loop that raises until this answers `None` ends.
+///
+/// # Example
+/// ```
+/// use flexure::estimate::raise_auto;
+/// use flexure::mechanism::file::from_toml;
+/// let two = "[[joint]]\nname = \"a\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"b\"\nlength = 1.0\nei = 1.0\norder = \"auto\"\n\
+///     [[joint]]\nname = \"c\"\nkind = \"flexure\"\nparent = \"b\"\nchild = \"d\"\nlength = 1.0\nei = 1.0\norigin = [1.0, 0.0, 0.0]\norder = \"auto\"\n";
+/// let m = from_toml(two).unwrap();
+/// // Only the second asks: it goes to its reference's order 6; the first stays at 3.
+/// let next = raise_auto(&m, &[None, Some((&[][..], (6, 12)))]).unwrap().unwrap();
+/// assert_eq!(next.joints[1].kind.flexure().unwrap().order(), 6);
+/// assert_eq!(next.joints[0].kind.flexure().unwrap().order(), 3);
+/// // Neither asks: nothing to raise.
+/// assert!(raise_auto(&m, &[None, None]).unwrap().is_none());
+/// ```
+pub fn raise_auto<D: Refined>(m: &Mechanism<D>, wanted: &[Asked<'_>]) -> Result<Option<Mechanism<D>>> {
     let (mut k, mut any) = (0, false);
     let next = D::with_flexures(m, |j, f| {
-        let reference = orders[k];
+        let asked = wanted.get(k).copied().flatten();
         k += 1;
-        if !m.joints[j].auto_order {
-            return Ok(None);
-        }
+        let Some((q, reference)) = asked.filter(|_| m.joints[j].auto_order) else { return Ok(None) };
+        let q = coordinates_or_rest(m, q);
         let Some(next) = D::raised(f, joint_coordinates(m, j, &q), reference) else { return Ok(None) };
         any = true;
         next.map(Some)

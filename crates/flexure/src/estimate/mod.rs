@@ -47,8 +47,8 @@ pub use accuracy::{Accuracy, ErrorEstimate};
 pub use auto::{connect_auto, deflect_auto, tendon_auto};
 pub use eigen::{buckling_auto, buckling_error, modes_auto, modes_error};
 pub use mechanism::{
-    Refined, Refinements, buckle_auto, buckle_error, contact_estimates, mechanism_modes_auto, mechanism_modes_error,
-    reference_mechanism,
+    Asked, Refined, Refinements, buckle_auto, buckle_error, contact_estimates, mechanism_modes_auto,
+    mechanism_modes_error, raise_auto, reference_mechanism,
 };
 pub use refinement::{eigen_reference, reference, turning};
 pub use statics::{Estimator, connect_error, deflect_error, joint_error, joint_error_and_load, tendon_error};

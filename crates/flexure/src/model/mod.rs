@@ -8,6 +8,7 @@
 mod analyses;
 mod flexure;
 mod motion_error;
+mod raise;
 
 pub use analyses::Analyses;
 pub use flexure::{
@@ -73,6 +74,13 @@ pub struct Solved {
     pub compliance: Option<DMatrix<f64>>,
     /// The parts that cross in the answer.
     pub crossings: Vec<Crossing<Vec<f64>>>,
+    /// The model the answer was found with: the one solved, its flexure
+    /// joints of `order = "auto"` raised where their estimate missed the
+    /// target (`q` is its coordinates; [`Model::orders`] says the orders used).
+    pub model: Model,
+    /// The flexure joints of `order = "auto"` whose estimate still misses
+    /// the target at the cap (order 64): flagged, with nothing left to raise.
+    pub capped: Vec<String>,
 }
 
 /// What [`Model::sweep`] answers: a table of one row per value reached
@@ -101,6 +109,13 @@ pub struct Swept {
     /// Each flexure joint with a `yield_strength` that a row stresses past
     /// it: the joint, the first such value, and its peak stress there (Pa).
     pub yielded: Vec<(String, f64, f64)>,
+    /// The model every row was found with, as [`Solved::model`]: a flexure
+    /// joint of `order = "auto"` raised where its estimate missed at a row,
+    /// to the order the row that asks for most needs, the same for all rows.
+    pub model: Model,
+    /// The flexure joints of `order = "auto"` whose estimate still misses
+    /// the target at a row at the cap (order 64), as [`Solved::capped`].
+    pub capped: Vec<String>,
 }
 
 /// What [`Model::simulate`] answers: the integrator's samples, every
@@ -265,7 +280,21 @@ impl Model {
     /// assert!(r.stable && r.dimension == 2 && s.crossings.is_empty());
     /// // The tip's compliance along y (the link's frame is the tip's) is L³/3EI to first order.
     /// assert!((s.compliance.unwrap()[(2, 2)] / (0.05f64.powi(3) / 0.03) - 1.0).abs() < 0.05);
+    /// // With order = "auto", under 8 N across the tip of a unit strip: order 3 misses the
+    /// // target, so the joint is raised until it meets it.
+    /// let text = "[[joint]]\nname = \"f\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\n\
+    ///             order = \"auto\"\n[[force]]\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, 8.0]\n";
+    /// let s = Model::from_toml(text).unwrap().solve(&Default::default(), None).unwrap();
+    /// let order = s.model.orders().get("f").unwrap()[0];
+    /// assert!(!s.report.unwrap().flagged && order > 3 && s.q.len() == order && s.capped.is_empty());
     /// ```
+    ///
+    /// A flexure joint of `order = "auto"` whose estimate misses `target` is
+    /// raised (to its reference's order and quadrature, or orders and
+    /// subintervals, up to 64), and the mechanism solved again, until it
+    /// meets it: only such joints, with contact too ([`crate::estimate::contact_estimates`]).
+    /// [`Solved::model`] is the mechanism the answer was found with;
+    /// [`Solved::capped`] names those still missing at the cap.
     pub fn solve(&self, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved> {
         each!(self, m => solve(m, target, compliance))
     }
@@ -275,7 +304,10 @@ impl Model {
     /// names), each row with its estimate against `target` and, with
     /// `compliance`, the compliance of that frame ([`Model::solve`]). The
     /// outer error is the sweep's (bad input); the inner, a flexure joint
-    /// whose error estimate failed at a row.
+    /// whose error estimate failed at a row. A flexure joint of
+    /// `order = "auto"` that misses at a row is raised as [`Model::solve`]
+    /// raises it, once for all rows (every row then has the same columns),
+    /// to the order the row that asks most needs, and the sweep run again.
     ///
     /// # Example
     /// ```
@@ -471,7 +503,10 @@ fn open_closures<D: Analyses>(m: &Mechanism<D>) -> Result<Vec<OpenClosure>> {
     D::open_closures(m, &Settings::default())
 }
 
-fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved> {
+fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&str, &[f64])>) -> Result<Solved>
+where
+    Model: From<Mechanism<D>>,
+{
     let body = match compliance {
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
@@ -479,11 +514,15 @@ fn solve<D: Analyses>(m: &Mechanism<D>, target: &Accuracy, compliance: Option<(&
     if compliance.is_some() {
         refuse_unsolved(m)?;
     }
-    let s = D::solve(m, &Settings::default())?;
-    let crossings = D::crossings(m, &s.q);
-    let report = solve_report(m, &s, target);
-    let compliance = body.map(|(b, at)| D::compliance(m, &s, b, at)).transpose()?;
-    Ok(Solved { q: s.q, report, compliance, crossings })
+    let (used, (s, report)) = raise::raising(m, |m| {
+        let s = D::solve(m, &Settings::default())?;
+        let report = solve_report(m, &s, target);
+        Ok((s, report))
+    })?;
+    let capped = raise::capped(&used, &report.iter().map(|r| (s.q.as_slice(), r)).collect::<Vec<_>>());
+    let crossings = D::crossings(&used, &s.q);
+    let compliance = body.map(|(b, at)| D::compliance(&used, &s, b, at)).transpose()?;
+    Ok(Solved { q: s.q, report, compliance, crossings, model: used.into_owned().into(), capped })
 }
 
 fn sweep<D: Analyses>(
@@ -491,7 +530,10 @@ fn sweep<D: Analyses>(
     (parameter, values): (&str, &[f64]),
     target: &Accuracy,
     compliance: Option<(&str, &[f64])>,
-) -> Result<std::result::Result<Swept, EstimateFailed>> {
+) -> Result<std::result::Result<Swept, EstimateFailed>>
+where
+    Model: From<Mechanism<D>>,
+{
     let frame = match compliance {
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
@@ -499,7 +541,17 @@ fn sweep<D: Analyses>(
     if frame.is_some() {
         refuse_unsolved(m)?;
     }
-    let out = D::sweep(m, parameter, values, &Settings::default())?;
+    let (used, (out, reports)) = raise::raising(m, |m| {
+        let out = D::sweep(m, parameter, values, &Settings::default())?;
+        let reports = out.rows.iter().map(|(_, s)| solve_report(m, s, target)).collect();
+        Ok((out, reports))
+    })?;
+    let reports = match reports {
+        Ok(reports) => reports,
+        Err(failed) => return Ok(Err(failed)),
+    };
+    let capped = raise::capped(&used, &out.rows.iter().map(|(_, s)| s.q.as_slice()).zip(&reports).collect::<Vec<_>>());
+    let m = used.as_ref();
     let touching = crate::mechanism::contact::pairs(m);
     let mut columns = vec![parameter.to_string()];
     let poses = <D as crate::report::Reported>::poses(m, &m.rest());
@@ -514,11 +566,7 @@ fn sweep<D: Analyses>(
     columns.extend(touching.iter().map(|p| format!("{}.normal_force", crate::mechanism::contact::column(m, p))));
     let (mut rows, mut flagged, mut yielded) = (Vec::new(), Vec::new(), Vec::<(String, f64, f64)>::new());
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
-    for (k, (value, s)) in out.rows.iter().enumerate() {
-        let report = match solve_report(m, s, target) {
-            Ok(r) => r,
-            Err(failed) => return Ok(Err(failed)),
-        };
+    for (k, ((value, s), report)) in out.rows.iter().zip(&reports).enumerate() {
         if k == 0 {
             columns.extend(report.stress.0.iter().map(|(name, _)| format!("{name}.stress")));
         }
@@ -559,7 +607,8 @@ fn sweep<D: Analyses>(
     let crossings = D::crossings_along(m, &shapes);
     let q = shapes.iter().map(|q| q.to_vec()).collect();
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
-    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded }))
+    let model = used.into_owned().into();
+    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded, model, capped }))
 }
 
 /// The motion of `m`, with the parts that cross at its samples when `crossings`.
