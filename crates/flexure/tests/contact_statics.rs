@@ -301,6 +301,11 @@ fn a_sweep_sticks_then_slips_the_tip_along_a_rough_floor() {
         assert!((c.normal_force - e.normal_force).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
         assert!((along_floor(c) - e.friction_force).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
         assert!((c.point[0] - e.point[0]).abs() < 1e-8, "at {v}: {c:?} vs {e:?}");
+        // The estimate follows the refined mechanism along the same path:
+        // the tip's curvature stays smooth, so it agrees to 1e-9 L.
+        let report = flexure::report::solve_report(&m, s, &Default::default()).map_err(|f| f.error).unwrap();
+        let estimate = report.error_estimate.get("strip").unwrap();
+        assert!(!report.flagged && estimate.position < 1e-9, "at {v}: {estimate:?}");
         states.push(c.state);
     }
     assert!(states.contains(&ContactMode::Stick) && states.contains(&ContactMode::Slip), "{states:?}");

@@ -187,10 +187,23 @@ pub fn contact_estimates<D: Refined>(
 ) -> Result<Vec<ErrorEstimate>> {
     target.validate()?;
     let (reference, _) = reference_mechanism(m, &s.q)?;
-    // Under the answer's own loads (a sweep's value), not the file's.
+    // Under the answer's own loads (a sweep's value), not the file's; with
+    // friction, along the answer's own path, which it remembers.
+    let rough = crate::mechanism::contact::pairs(m).iter().any(|p| m.geoms[p.geom].friction > 0.0);
+    let path = if rough { &s.path[..] } else { &[] };
     let mut work = crate::mechanism::statics::Workspace::new(&reference);
-    let (exact, _) =
-        crate::mechanism::statics::follow_touching(&reference, None, &s.loads, &Settings::default(), &mut work)?;
+    let (mut exact, mut from) = (None, None);
+    for loads in path.iter().chain([&s.loads]) {
+        let (solution, next) = crate::mechanism::statics::follow_touching(
+            &reference,
+            from.as_ref(),
+            loads,
+            &Settings::default(),
+            &mut work,
+        )?;
+        (exact, from) = (Some(solution), Some(next));
+    }
+    let exact = exact.expect("the answer's own loads at least");
     let flexures = m.joints.iter().zip(&reference.joints).filter_map(|(a, b)| Some((a, a.kind.flexure()?, b)));
     flexures
         .map(|(joint, f, refined)| {

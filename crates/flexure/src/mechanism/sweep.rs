@@ -278,10 +278,13 @@ fn sweep_touching<D: Statics>(
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut work = Workspace::new(m);
     let mut from: Option<Touched<D>> = None;
+    let mut path = Vec::new();
     for &v in values {
-        match follow_touching(m, from.as_ref(), &parameter.apply(&base, v), settings, &mut work) {
+        let loads = parameter.apply(&base, v);
+        match follow_touching(m, from.as_ref(), &loads, settings, &mut work) {
             Ok((s, next)) => {
-                out.rows.push((v, s));
+                out.rows.push((v, Solution { path: path.clone(), ..s }));
+                path.push(loads);
                 from = Some(next);
             }
             Err(e) => {

@@ -965,6 +965,7 @@ fn follow<D: Statics>(
         load_steps: steps,
         iterations,
         contacts,
+        path: Vec::new(),
     };
     Ok((solution, next))
 }

@@ -108,6 +108,11 @@ pub struct Solution<D: Dimension = Planar> {
     /// each pair that touches, and each that touched on the way and opened.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub contacts: Vec<crate::mechanism::contact::Contact>,
+    /// The loads the path went through before [`Solution::loads`], in
+    /// order, from none: a sweep's earlier values, which friction
+    /// remembers (empty for a path straight from no load).
+    #[serde(skip)]
+    pub path: Vec<Loads<D>>,
 }
 
 /// Relative precision of a reported stability limit (a load fraction, or a sweep's swept value).

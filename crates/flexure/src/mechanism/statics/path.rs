@@ -40,6 +40,7 @@ pub(super) fn solution<D: Statics>(
         load_steps: path.steps,
         iterations: path.iterations,
         contacts: Vec::new(),
+        path: Vec::new(),
     })
 }
 
