@@ -287,7 +287,8 @@ class Mechanism:
         unloaded: diag(L/EI, 0, L^3/3EI) with L^2/2EI coupling phi and y. An unknown body, or
         an `at` that is not two finite numbers within 1e6 m, raises ValueError naming it; an
         unstable equilibrium (or a free joint) raises ValueError; errors name the file.
-        `at` defaults to the body's origin.
+        `at` defaults to the body's origin. Contacts that touch are held as they are
+        (closed, and stuck where stuck); a sliding contact with friction raises ValueError.
 
         Spatial (dimension = 3): (6, 6), rows and columns (rx, ry, rz, x, y, z), small
         rotations then displacements per unit moment then force, in the ground frame, of the

@@ -69,6 +69,15 @@ def test_friction_where_a_contact_rolls_is_refused_by_name():
         flexure.Mechanism.from_toml(post + "friction = 0.3\n").solve()
 
 
+def test_the_compliance_holds_the_contact_closed():
+    """Propped cantilever: the tip's turn per unit tip moment is L/(4 EI) in
+    linear theory (0.25 here; large deflection moves it by 8e-5, so 1e-3
+    relative), and the floor holds the tip's height."""
+    c = flexure.Mechanism.from_toml(STRIP).compliance("tip", [0.0, 0.0])
+    assert c[0, 0] == pytest.approx(0.25, rel=1e-3)
+    assert abs(c[2, 2]) < 1e-12 * c[0, 0]
+
+
 def test_other_analyses_refuse_a_pair_that_may_touch():
     m = flexure.Mechanism.from_toml(STRIP)
     with pytest.raises(ValueError, match=r"geom \"floor\" \(plane\) and flexure \"strip\": may touch"):

@@ -341,3 +341,81 @@ fn a_spatial_file_of_the_rough_floor_sweep_gives_the_planar_rows() {
         assert!((p.point[0] - s.point[0]).abs() < 1e-7 && s.friction_force[2].abs() < 1e-12, "at {v}: {p:?} vs {s:?}");
     }
 }
+
+/// The tip frame's compliance with its contact held, against central
+/// differences (δ = 1e-5) of the exact elastica with contact unknowns:
+/// frictionless, the tip pressed onto a floor by a moment slides along it
+/// ($\partial\phi/\partial M$, $\partial\phi/\partial F_x$, $\partial x/\partial F_x$), and the floor holds its height
+/// ($C_{yy} = 0$); stuck by friction after a press, it only turns. Order 8,
+/// to 1e-6 relative to the largest entry (measured 8e-8). A spatial file of
+/// the frictionless case gives the same entries to 1e-7.
+#[test]
+fn the_compliance_holds_the_contacts_as_they_are() {
+    use flexure::mechanism::statics::compliance;
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let tip = |obstacle: Obstacle, path: &[TipLoad]| {
+        let s = elastica::contact(&f, &[obstacle], 0.0, path, &Default::default()).unwrap();
+        assert!(s.reached());
+        *s.shape.last().unwrap()
+    };
+    let h = 1e-5;
+    // The path on to the nudged load (friction remembers where it touched).
+    let nudged = |path: &[TipLoad], k: usize, by: f64| {
+        let mut p = path.to_vec();
+        p.push(*path.last().unwrap());
+        let last = p.last_mut().unwrap();
+        match k {
+            0 => last.moment += by,
+            1 => last.fx += by,
+            _ => last.fy += by,
+        }
+        p
+    };
+    let cases = [
+        (
+            "shape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n",
+            "moment = -0.1",
+            0.0,
+            vec![TipLoad { moment: -0.1, fx: 0.0, fy: 0.0 }],
+        ),
+        (
+            "shape = \"plane\"\norigin = [0.0, -0.2]\nnormal = [0.0, 1.0]\nfriction = 0.3\n",
+            "force = [0.0, -1.0]",
+            0.3,
+            vec![TipLoad { moment: 0.0, fx: 0.0, fy: -1.0 }],
+        ),
+    ];
+    for (geom, load, mu, path) in cases {
+        let m = from_toml(&strip(8, geom, load)).unwrap();
+        let s = solve(&m, &Settings::default()).unwrap();
+        let c = compliance(&m, &s, m.body("tip").unwrap(), [0.0, 0.0].into()).unwrap();
+        let floor = match geom.contains("-0.2") {
+            true => Obstacle::half_plane([0.0, -0.2], [0.0, 1.0]).with_friction(mu),
+            false => Obstacle::half_plane([0.0, -0.01], [0.0, 1.0]),
+        };
+        let largest = c.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        for k in 0..3 {
+            let (up, down) = (tip(floor, &nudged(&path, k, h)), tip(floor, &nudged(&path, k, -h)));
+            let exact = [(up.phi - down.phi) / (2.0 * h), (up.x - down.x) / (2.0 * h), (up.y - down.y) / (2.0 * h)];
+            for (r, e) in exact.iter().enumerate() {
+                assert!((c[(r, k)] - e).abs() < 1e-6 * largest, "{load}: C[{r}][{k}] = {:e}, exact {e:e}", c[(r, k)]);
+            }
+        }
+        assert!(c[(2, 2)].abs() < 1e-12 * largest && largest > 0.1, "{load}: the floor holds the tip's height: {c}");
+        if mu == 0.0 {
+            let text = "dimension = 3\n[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+                        gj = 1.0\nei_y = 1.0\nei_z = 1.0\norders = [1, 1, 8]\n\
+                        [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nmoment = [0.0, 0.0, -0.1]\n\
+                        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01, 0.0]\nnormal = [0.0, 1.0, 0.0]\n";
+            let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+            let s = solve(&m, &Settings::default()).unwrap();
+            let d = compliance(&m, &s, m.body("tip").unwrap(), [0.0, 0.0, 0.0].into()).unwrap();
+            // (M, Fx, Fy) of the plane are (m_z, f_x, f_y) of space: rows and columns 2, 3, 4.
+            for (a, b) in [(0, 2), (1, 3), (2, 4)] {
+                for (k, l) in [(0, 2), (1, 3), (2, 4)] {
+                    assert!((c[(a, k)] - d[(b, l)]).abs() < 1e-7 * largest, "C[{a}][{k}] {c} vs {d}");
+                }
+            }
+        }
+    }
+}

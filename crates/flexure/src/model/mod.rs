@@ -253,7 +253,6 @@ impl Model {
     /// [`Model::solve`] gives it, without the report.
     pub fn compliance(&self, body: &str, at: &[f64]) -> Result<DMatrix<f64>> {
         each!(self, m => {
-            refuse_unsolved(m)?;
             let b = m.body(body).ok_or_else(|| no_body(body))?;
             let s = Analyses::solve(m, &Settings::default())?;
             Analyses::compliance(m, &s, b, at)
@@ -511,9 +510,6 @@ where
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
     };
-    if compliance.is_some() {
-        refuse_unsolved(m)?;
-    }
     let (used, (s, report)) = raise::raising(m, |m| {
         let s = D::solve(m, &Settings::default())?;
         let report = solve_report(m, &s, target);
@@ -538,9 +534,6 @@ where
         Some((name, at)) => Some((m.body(name).ok_or_else(|| no_body(name))?, at)),
         None => None,
     };
-    if frame.is_some() {
-        refuse_unsolved(m)?;
-    }
     let (used, (out, reports)) = raise::raising(m, |m| {
         let out = D::sweep(m, parameter, values, &Settings::default())?;
         let reports = out.rows.iter().map(|(_, s)| solve_report(m, s, target)).collect();

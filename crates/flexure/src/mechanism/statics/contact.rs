@@ -1034,6 +1034,64 @@ fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e
     }
 }
 
+/// What the contacts touching at the equilibrium `s` add to its stiffness
+/// when they are held as they are (closed, and stuck where stuck): the
+/// Hessian of $-\sum_c N_c g_c$ (an inner contact's place eliminated, as
+/// in the stability test) or of a stuck contact's $-f\cdot(x - a)$, and
+/// their constraint gradients, $\nabla g_c$ or $\partial(x - a)$. A small
+/// extra load that would open a contact, or slide a stuck one, is outside
+/// it; a sliding contact with friction has none (its friction turns with
+/// the motion) and is refused by name.
+pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMatrix<f64>, Vec<Vec<f64>>)> {
+    let n = m.dof();
+    let (mut h, mut rows) = (DMatrix::zeros(n, n), Vec::new());
+    let touching: Vec<&Contact> = s.contacts.iter().filter(|c| c.state != ContactMode::Open).collect();
+    if touching.is_empty() {
+        return Ok((h, rows));
+    }
+    let mut f = Frames::new(m);
+    frames_level_into(m, &s.q, Level::Hessian, &mut f);
+    for c in touching {
+        let jet = gap_jet(m, &f, &s.q, &c.pair, c.s)?;
+        let rough = m.geoms[c.pair.geom].friction > 0.0;
+        match c.state {
+            ContactMode::Stick => {
+                let body = &f.bodies[m.geoms[c.pair.geom].body];
+                let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
+                let p = point_jet(m, &f, &s.q, &c.pair, c.s, Some(anchor))?;
+                let force = vector::<D>(&std::array::from_fn(|i| {
+                    if i < D::POINT_DIM { c.normal_force * jet.normal[i] + c.friction_force[i] } else { 0.0 }
+                }));
+                h -= p.hessian_along(m, &f, &force);
+                rows.extend((0..D::POINT_DIM).map(|k| p.delta.iter().map(|d| d[k]).collect()));
+            }
+            _ if rough => {
+                return Err(Error::invalid(
+                    "compliance",
+                    format!("at {} (sliding, friction {})", named(m, &c.pair), m.geoms[c.pair.geom].friction),
+                    "has no linear answer: a sliding contact's friction turns with the motion; a compliance holds contacts that touch without friction or stick",
+                ));
+            }
+            _ => {
+                h -= jet.hessian * c.normal_force;
+                let length = match c.pair.part {
+                    Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
+                    Toucher::Geom(_) => 1.0,
+                };
+                if c.s.is_some_and(|s| s > 0.0 && s < length) && jet.dss > 0.0 {
+                    for r in 0..n {
+                        for k in 0..n {
+                            h[(r, k)] += c.normal_force * jet.dqs[r] * jet.dqs[k] / jet.dss;
+                        }
+                    }
+                }
+                rows.push(jet.gradient);
+            }
+        }
+    }
+    Ok((h, rows))
+}
+
 /// Adds a new contact's pair to `touched` (the pairs an answer reports).
 fn remember(touched: &mut Vec<Pair>, event: Event) {
     if let Event::Touch(pair, ..) = event

@@ -19,19 +19,30 @@ pub fn body_frames<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Frames<D> {
 /// $Z$ and the generalized stiffness on the admissible motions,
 /// $Z^T\nabla^2 L\thinspace Z$ (Eq. 27, projected), at a solution, from the
 /// exact Hessian (the joints' own second derivatives): symmetrized, unless
-/// a dead moment may make it unsymmetric ([`Statics::DEAD_MOMENTS`]).
+/// a dead moment may make it unsymmetric ([`Statics::DEAD_MOMENTS`]). The
+/// contacts that touch are held as they are: closed, and stuck where
+/// stuck (their gap's curvature and force in $\nabla^2 L$, their gradients
+/// among the constraints); a sliding one with friction is refused.
 pub fn stiffness<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     D::check_start(m, &s.q, &s.multipliers, &s.loads)?;
     let f = frames(m, &s.q);
     let mut a = Assembly::new(m);
     assemble_into(m, &f, &s.multipliers, &s.loads, true, &mut a)?;
     let a = parts(&a);
-    let z = linalg::null_space(a.closure_jacobian);
-    let k = if D::DEAD_MOMENTS { z.transpose() * a.hessian * &z } else { constrained(a.hessian, &z) };
+    // The contacts that touch, held as they are (super::contact::held).
+    let (extra, rows) = super::contact::held(m, s)?;
+    let hessian = a.hessian + extra;
+    let g = a.closure_jacobian;
+    let g = DMatrix::from_fn(g.nrows() + rows.len(), g.ncols(), |r, c| {
+        if r < g.nrows() { g[(r, c)] } else { rows[r - g.nrows()][c] }
+    });
+    let z = linalg::null_space(&g);
+    let k = if D::DEAD_MOMENTS { z.transpose() * &hessian * &z } else { constrained(&hessian, &z) };
     Ok((z, k))
 }
 
-/// Compliance of the frame at `at` on `body` to a small extra load there:
+/// Compliance of the frame at `at` on `body` to a small extra load there,
+/// with the contacts that touch held as they are ([`stiffness`]):
 /// $C = J Z (Z^T\nabla^2 L Z)^{-1} Z^T J^T$, $J$ the point's Jacobian, in the
 /// order of the dimension's wrench, $(M, F_x, F_y)$ in the plane,
 /// $(m, f)$ in space (the small rotation and displacement in the ground
