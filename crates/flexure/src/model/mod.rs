@@ -426,7 +426,6 @@ impl Model {
     /// `count` vibration modes about the loaded equilibrium, with their estimate ([`Analyses::modes`]).
     pub fn modes(&self, count: usize, target: &Accuracy) -> Result<Eigen<crate::dynamics::modes::Modes>> {
         each!(self, m => {
-            refuse_unsolved(m)?;
             let (used, answer, estimate) = Analyses::modes(m, &Settings::default(), count, target)?;
             Ok(Eigen { answer, estimate, model: used.into() })
         })

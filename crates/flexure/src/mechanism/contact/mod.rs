@@ -296,8 +296,8 @@ pub fn named<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
 }
 
 /// An error naming the first pair of `m` that may touch, for the analyses
-/// that do not solve contact yet (all but the equilibrium solve, sweep and
-/// compliance): none may
+/// that do not solve contact yet (all but the equilibrium solve, sweep,
+/// compliance and modes): none may
 /// let a part pass through a shape silently. `Ok` when no pair may touch (no geoms, or every pair
 /// excluded), so a mechanism's other analyses are unchanged.
 ///
@@ -318,7 +318,7 @@ pub fn refuse_unsolved<D: Dimension>(m: &Mechanism<D>) -> Result<()> {
         Some(p) => Err(Error::invalid(
             "geom",
             named(m, p),
-            "may touch, and only equilibrium solves, sweeps and compliances handle contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
+            "may touch, and only equilibrium solves, sweeps, compliances and modes handle contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
         )),
     }
 }
