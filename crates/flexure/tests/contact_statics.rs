@@ -436,3 +436,33 @@ fn modes_about_a_touching_tip_are_the_clamped_pinned_beams() {
         assert!((w / (beta * beta) - 1.0).abs() < 1e-5, "{w} vs {}", beta * beta);
     }
 }
+
+/// A tip pressed onto a rough floor and pulled across it, along and off
+/// the strip's plane at once, slides (no reference: properties of Coulomb
+/// sliding): its friction is μN (1e-12 relative), in the floor's plane
+/// (1e-12 of it), and against the way the tip went over the last hundredth
+/// of the load (the same path, solved to 0.99 of the load), within 0.02
+/// rad: each step's friction follows the way the tip moved in the step
+/// before, and a step turns it by at most 0.01 rad.
+#[test]
+fn a_tip_pulled_across_a_rough_floor_slides_against_its_motion() {
+    let text = "dimension = 3\n[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\n\
+                gj = 1.0\nei_y = 1.0\nei_z = 1.0\norders = [4, 4, 4]\n\
+                [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [-0.5, -1.0, 0.5]\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.2, 0.0]\nnormal = [0.0, 1.0, 0.0]\nfriction = 0.3\n";
+    let m = flexure::mechanism::file::spatial_from_toml(text).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let c = &s.contacts[0];
+    assert_eq!(c.state, ContactMode::Slip, "{c:?}");
+    let t = &c.friction_force;
+    let size = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+    assert!((size - 0.3 * c.normal_force).abs() < 1e-12 * c.normal_force && t[1].abs() < 1e-12 * size, "{c:?}");
+    let before =
+        flexure::mechanism::file::spatial_from_toml(&text.replace("[-0.5, -1.0, 0.5]", "[-0.495, -0.99, 0.495]"))
+            .unwrap();
+    let b = solve(&before, &Settings::default()).unwrap();
+    let (p, q) = (&b.contacts[0].point, &c.point);
+    let moved = nalgebra::Vector3::new(q[0] - p[0], q[1] - p[1], q[2] - p[2]).normalize();
+    let along = nalgebra::Vector3::new(t[0], t[1], t[2]) / size;
+    assert!(along.dot(&moved) < -(0.02f64).cos(), "friction {along:?} vs moved {moved:?}");
+}

@@ -33,7 +33,8 @@
 //! and takes the force $N(n - \mu\hat s)$, $\hat s$ its direction of
 //! sliding relative to the geom kept in the tangent plane; it sticks
 //! again where it would move back. Both are events of the path. In space
-//! $\hat s$ turns, at each accepted step, to the way the end moved.
+//! $\hat s$ turns, at each accepted step, to the way the end moved, in
+//! steps short enough that it turns by at most 0.01 rad.
 //!
 //! **Refused by name:** friction where a contact rolls (inside a span, at
 //! a thick end, between two geoms), a mechanism
@@ -76,6 +77,8 @@ const ROLL_TOLERANCE: f64 = 1e-9;
 const FLAT_LENGTH: f64 = 1e-2;
 /// Changes of the set at one load before the path is declared stalled.
 const MAX_CHANGES_AT_ONCE: usize = 8;
+/// The most a sliding contact's direction may turn in one step (rad).
+const MAX_SLIDE_TURN: f64 = 1e-2;
 /// Accepted steps before the path is declared stalled.
 const MAX_STEPS: usize = 10_000;
 
@@ -307,6 +310,23 @@ impl<D: Statics> ContactKkt<'_, D> {
         };
         self.touching[c].law = Law::Stick { anchor };
         Ok(())
+    }
+
+    /// The most a sliding contact turned its way in the state last
+    /// evaluated, from its direction to the way it moved since the last
+    /// accepted state (rad; 0 in the plane, where it only keeps its sense).
+    fn slide_turn(&self) -> f64 {
+        let length = self.kkt.length;
+        (0..self.touching.len())
+            .filter_map(|c| {
+                let Law::Slip { direction } = self.touching[c].law else { return None };
+                let here = self.local_point(c);
+                let moved: Vec<f64> = (0..D::POINT_DIM).map(|i| here[i] - self.touching[c].from[i]).collect();
+                let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
+                let ahead: f64 = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
+                (size > 1e-9 * length).then(|| (ahead / size).clamp(-1.0, 1.0).acos())
+            })
+            .fold(0.0, f64::max)
     }
 
     /// Takes the state last evaluated as accepted: each contact's point is
@@ -902,6 +922,12 @@ fn follow<D: Statics>(
         };
         iterations += report.iterations;
         let Some(found) = found else {
+            // A slide that turns is followed in steps that turn it little,
+            // each along the way it moved (its direction lags by one step).
+            if problem.slide_turn() > MAX_SLIDE_TURN && step > 1e3 * SMALLEST_STEP {
+                step *= 0.5;
+                continue;
+            }
             problem.accept();
             previous = Some((lambda, std::mem::replace(&mut x, y)));
             lambda = next;
