@@ -414,13 +414,36 @@ pub fn backbone(flexure: &Flexure, alpha: &[f64], samples: usize) -> Vec<Pose<f6
 /// assert!((p.phi - 0.25).abs() < 1e-14 && (p.x - 0.25f64.sin()).abs() < 1e-14 && (p.y - (1.0 - 0.25f64.cos())).abs() < 1e-14);
 /// ```
 pub fn pose_at(flexure: &Flexure, alpha: &[f64], s: f64, pieces: usize) -> Pose<f64> {
+    pose_from(flexure, alpha, (0.0, 0.0, 0.0), s, pieces)
+}
+
+/// [`pose_at`] from a section already known: the pose at `s` (m) run from
+/// the section at arc length $s_0$ whose position is $(x_0, y_0)$
+/// (`from`), by the 5-point Gauss rule on `pieces` equal pieces of
+/// $[s_0, s]$: a point near a known one costs a piece, not a whole run.
+///
+/// # Panics
+/// As [`pose_at`].
+///
+/// # Example
+/// ```
+/// use flexure::kinematics::{pose_at, pose_from};
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// let alpha = [0.3, -0.2, 0.1];
+/// let half = pose_at(&f, &alpha, 0.5, 32);
+/// let on = pose_from(&f, &alpha, (0.5, half.x, half.y), 0.75, 16);
+/// let whole = pose_at(&f, &alpha, 0.75, 48);
+/// assert!((on.x - whole.x).abs() < 1e-15 && (on.y - whole.y).abs() < 1e-15 && on.phi == whole.phi);
+/// ```
+pub fn pose_from(flexure: &Flexure, alpha: &[f64], from: (f64, f64, f64), s: f64, pieces: usize) -> Pose<f64> {
     assert_coordinates(flexure, "alpha", alpha.len());
     let mut centreline = Centreline::new(flexure, alpha);
-    let (count, t) = (pieces.max(1), s / flexure.length());
-    let h = t / count as f64;
-    let mut xy = (0.0, 0.0);
+    let (count, length) = (pieces.max(1), flexure.length());
+    let (t0, t) = (from.0 / length, s / length);
+    let h = (t - t0) / count as f64;
+    let mut xy = (from.1, from.2);
     for k in 0..count {
-        centreline.run(k as f64 * h, h, &mut xy);
+        centreline.run(t0 + k as f64 * h, h, &mut xy);
     }
     Pose { phi: centreline.angle(t), x: xy.0, y: xy.1 }
 }

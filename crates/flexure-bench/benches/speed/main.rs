@@ -7,6 +7,7 @@
 use criterion::{criterion_group, criterion_main};
 
 mod batch;
+mod contact;
 mod dynamics;
 mod joint;
 mod linalg;
@@ -36,6 +37,7 @@ criterion_group!(
     statics::run,
     batch::run,
     mechanism::run,
+    contact::run,
     reference::run,
     rod::run,
     dynamics::run,

@@ -37,6 +37,13 @@ pub trait Touch: Dimension {
     fn surface(f: &Self::Flexure, alpha: &[f64], samples: usize) -> Result<Vec<SurfacePoint<Self>>>;
     /// The surface point at arc length `s` (m, in $[0, L]$), as [`Touch::surface`] gives them.
     fn surface_at(f: &Self::Flexure, alpha: &[f64], s: f64) -> Result<SurfacePoint<Self>>;
+    /// [`Touch::surface_at`] from a surface point `from` of the same
+    /// flexure (at an arc length at most `s`), where the integration may
+    /// start rather than at the root; by default from the root.
+    fn surface_from(f: &Self::Flexure, alpha: &[f64], from: &SurfacePoint<Self>, s: f64) -> Result<SurfacePoint<Self>> {
+        let _ = from;
+        Self::surface_at(f, alpha, s)
+    }
     /// The centreline point at arc length `s` with its first and second
     /// derivatives in the coordinates `alpha` and in `s` ([`SectionJet`]),
     /// exact for the integration [`Touch::surface_at`] uses.
@@ -95,6 +102,28 @@ impl Touch for Planar {
             return Err(crate::Error::invalid("s", s, "must be an arc length on the flexure, from 0 to its length"));
         }
         let p = pose_at(f, alpha, s, 64);
+        Ok((s, p.origin(), 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0)))
+    }
+
+    /// The centreline run from `from` on pieces of at most a 64th of the
+    /// length, as [`Touch::surface_at`] runs from the root.
+    fn surface_from(
+        f: &crate::Flexure,
+        alpha: &[f64],
+        from: &SurfacePoint<Planar>,
+        s: f64,
+    ) -> Result<SurfacePoint<Planar>> {
+        f.check_coordinates("alpha", alpha)?;
+        let l = f.length();
+        if !(from.0..=l).contains(&s) {
+            return Err(crate::Error::invalid(
+                "s",
+                s,
+                "must be an arc length on the flexure, from the start point to its length",
+            ));
+        }
+        let pieces = ((s - from.0) / l * 64.0).ceil() as usize;
+        let p = crate::kinematics::pose_from(f, alpha, (from.0, from.1.x, from.1.y), s, pieces);
         Ok((s, p.origin(), 0.5 * f.section().thickness(s / l, l).unwrap_or(0.0)))
     }
 

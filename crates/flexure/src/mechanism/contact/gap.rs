@@ -8,9 +8,11 @@
 //! $d$ the geom's signed distance ([`GeomShape::distance`]), $p(s)$ the
 //! centreline and $h(s)$ half the thickness. It is found on 65 evenly
 //! spaced points, then refined on the two intervals about the least of
-//! them by golden-section search (80 steps: the interval shrinks by
-//! $0.618^{80} \approx 2\times 10^{-17}$), so an interior least meets the
-//! tangency condition $\hat n\cdot p^{\prime}(s) = 0$ and an end's is that end.
+//! them by golden-section search (48 steps: the interval, a thirty-second
+//! of the length, shrinks by $0.618^{48} \approx 10^{-10}$, which puts the
+//! least's value at rounding, the gap being flat there to second order),
+//! so an interior least meets the tangency condition $\hat n\cdot p^{\prime}(s) = 0$
+//! to about $10^{-12}$ of the length and an end's is that end.
 
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named};
 use crate::error::{Error, Result};
@@ -122,18 +124,21 @@ pub fn minima<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &
             let root = D::compose(&bodies[joint.parent], &joint.origin);
             let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
             let length = D::flexure_length(f);
+            let samples = D::surface(f, alpha, SAMPLES)?;
+            let step = length / (samples.len() - 1) as f64;
+            // From the sample at or before s: a piece, not a run from the root.
             let at_s = |s: f64| -> Result<Nearest<D>> {
-                let (_, p, h) = D::surface_at(f, alpha, s)?;
+                let from = &samples[((s / step).floor() as usize).min(samples.len() - 1)];
+                let (_, p, h) =
+                    if from.0 <= s { D::surface_from(f, alpha, from, s)? } else { D::surface_at(f, alpha, s)? };
                 let world = D::act(&root, &p);
                 let (g, n) = geom.gap(at, &world, h);
                 Ok((g, D::moved(&world, &n, -h), n))
             };
-            let samples = D::surface(f, alpha, SAMPLES)?;
             let gaps: Vec<f64> = samples.iter().map(|(_, p, h)| geom.gap(at, &D::act(&root, p), *h).0).collect();
             let last = gaps.len() - 1;
             let lows =
                 (0..gaps.len()).filter(|&k| (k == 0 || gaps[k] < gaps[k - 1]) && (k == last || gaps[k] <= gaps[k + 1]));
-            let step = length / last as f64;
             let mut out = Vec::new();
             for k in lows {
                 let (a, b) = ((k as f64 - 1.0).max(0.0) * step, ((k + 1) as f64 * step).min(length));
@@ -183,14 +188,17 @@ type Nearest<D> = (f64, <D as crate::space::Space>::Point, <D as crate::space::S
 /// Points sampled along a flexure before refining.
 const SAMPLES: usize = 65;
 
-/// The least of `at_s` on $[a, b]$ by golden-section search (80 steps) and
+/// Golden-section steps refining a least (see the module docs).
+const GOLDEN_STEPS: usize = 48;
+
+/// The least of `at_s` on $[a, b]$ by golden-section search ([`GOLDEN_STEPS`]) and
 /// the interval's ends: its arc length and value.
 fn least<D: Touch>(at_s: &impl Fn(f64) -> Result<Nearest<D>>, a: f64, b: f64) -> Result<(f64, Nearest<D>)> {
     let (mut a, mut b) = (a, b);
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
     let (mut c, mut d) = (b - ratio * (b - a), a + ratio * (b - a));
     let (mut gc, mut gd) = (at_s(c)?.0, at_s(d)?.0);
-    for _ in 0..80 {
+    for _ in 0..GOLDEN_STEPS {
         if gc < gd {
             (b, d, gd) = (d, c, gc);
             c = b - ratio * (b - a);
