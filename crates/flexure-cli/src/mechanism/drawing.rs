@@ -152,8 +152,10 @@ pub struct Marks {
 pub(super) struct Sizes {
     /// The mechanism's size (m): the largest span of its unloaded points, or its longest flexure.
     pub(super) extent: f64,
-    /// The middle of its unloaded points' box (world, m): a plane is drawn about its foot.
+    /// The middle of its unloaded points' box and half that box's sides
+    /// (world, m): a plane is drawn about the middle's foot, across the box.
     pub(super) centre: V,
+    pub(super) half: V,
     /// The links' half thickness (m): 1.2 % of the size.
     pub(super) thick: f64,
     /// The largest force drawn (N): a load's or a contact's.
@@ -663,12 +665,14 @@ pub fn figure(
         let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
         if hi >= lo { 0.5 * (lo + hi) } else { 0.0 }
     };
+    let half = V::new(span(0), span(1), span(2)) * 0.5;
     let all_loads = || loaded.iter().flat_map(|(_, p)| &p.loads);
     let largest = all_loads().map(|l| l.force.norm()).fold(solids::largest_contact(loaded), f64::max);
     let largest_moment = all_loads().map(|l| l.moment.norm()).fold(0.0, f64::max);
     let sizes = Sizes {
         extent,
         centre: V::new(middle(0), middle(1), middle(2)),
+        half,
         thick: 0.012 * extent,
         largest,
         per_newton: (largest > 0.0).then(|| round_down(0.25 * extent / largest)),

@@ -6,9 +6,9 @@
 //!   points): a circle or sphere as a circle, a capsule as two circles and
 //!   the band between them, a box and a cylinder as the hull of their
 //!   corners or end circles. A plane, unbounded, is drawn as a band behind
-//!   its surface under the mechanism, as long as the mechanism is across
-//!   (about its centre's foot on the plane), so that it never widens the
-//!   view beyond the mechanism. A geom on the ground is drawn once, grey,
+//!   its surface under the mechanism, across the mechanism's box and a
+//!   little past it (about its centre's foot on the plane), so that it
+//!   never widens the view much beyond the mechanism. A geom on the ground is drawn once, grey,
 //!   named beside it; one on a moving body with each shape, in its colour.
 //! - **Contacts** (of the loaded shapes): a dot where each touches and an
 //!   arrow for the normal force the geom exerts on the part, its head at
@@ -28,9 +28,9 @@ type V = Vector3<f64>;
 
 /// Points sampled around each circle of an outline.
 const AROUND: usize = 48;
-/// A plane's band: its half length and its depth behind the surface, as
-/// fractions of the mechanism's size.
-const PLANE_REACH: f64 = 0.75;
+/// A plane's band: how far it reaches past the mechanism's box, and its
+/// depth behind the surface, as fractions of the mechanism's size.
+const PLANE_MARGIN: f64 = 0.15;
 const PLANE_DEPTH: f64 = 0.04;
 /// The geoms' fill: light, so that the parts on them show.
 const OPACITY: f64 = 0.35;
@@ -48,8 +48,8 @@ fn across(n: &V) -> V {
 }
 
 /// The world points whose picture's hull is the solid's outline in `view`;
-/// a plane's band about the foot of `centre` (the mechanism's), `extent` its size.
-fn silhouette(view: View, solid: &Solid, (centre, extent): (V, f64)) -> Vec<V> {
+/// a plane's band about the foot of the mechanism's box's centre, across its box.
+fn silhouette(view: View, solid: &Solid, sizes: &Sizes) -> Vec<V> {
     let f = &solid.frame;
     let at = |x: f64, y: f64, z: f64| (f * nalgebra::Point3::new(x, y, z)).coords;
     let [right, up, _] = view.basis();
@@ -75,14 +75,17 @@ fn silhouette(view: View, solid: &Solid, (centre, extent): (V, f64)) -> Vec<V> {
         }
         GeomShape::Plane { normal } => {
             let n = (f.rotation * normal).normalize();
-            let foot = centre - n * (centre - f.translation.vector).dot(&n);
+            let c = sizes.centre;
+            let foot = c - n * (c - f.translation.vector).dot(&n);
             let t1 = across(&n);
             let t2 = n.cross(&t1);
-            let (reach, depth) = (PLANE_REACH * extent, PLANE_DEPTH * extent);
+            // How far the box reaches along t: its support, Σ|tᵢ| hᵢ.
+            let reach = |t: &V| t.abs().dot(&sizes.half) + PLANE_MARGIN * sizes.extent;
+            let (r1, r2, depth) = (reach(&t1), reach(&t2), PLANE_DEPTH * sizes.extent);
             let mut out = Vec::new();
             for (u, v) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
                 for back in [0.0, depth] {
-                    out.push(foot + (t1 * u + t2 * v) * reach - n * back);
+                    out.push(foot + t1 * (u * r1) + t2 * (v * r2) - n * back);
                 }
             }
             out
@@ -91,8 +94,8 @@ fn silhouette(view: View, solid: &Solid, (centre, extent): (V, f64)) -> Vec<V> {
 }
 
 /// The solid's outline in the picture, and its depth (its farthest point's).
-fn outline(view: View, solid: &Solid, around: (V, f64)) -> (Vec<(f64, f64)>, f64) {
-    let pts = silhouette(view, solid, around);
+fn outline(view: View, solid: &Solid, sizes: &Sizes) -> (Vec<(f64, f64)>, f64) {
+    let pts = silhouette(view, solid, sizes);
     let far = pts.iter().map(|p| view.project(p).1).fold(f64::INFINITY, f64::min);
     (hull(pts.iter().map(|p| pic(view, p)).collect()), if far.is_finite() { far } else { 0.0 })
 }
@@ -116,17 +119,17 @@ fn named(points: &[(f64, f64)], name: &str, color: Color) -> Mark {
 
 /// The geoms on the ground, grey, each named: drawn once, under every shape.
 pub(super) fn ground_geoms(scene: &Scene, rest: &Snapshot, view: View, sizes: &Sizes) -> Vec<Mark> {
-    let mut out = Vec::new();
+    let (mut solids, mut names) = (Vec::new(), Vec::new());
     for ((name, _, grounded), solid) in scene.geoms.iter().zip(&rest.geoms) {
         if *grounded {
-            let (points, _) = outline(view, solid, (sizes.centre, sizes.extent));
-            out.push(named(&points, name, GRAY));
-            out.push(filled(points, GRAY));
+            let (points, _) = outline(view, solid, sizes);
+            names.push(named(&points, name, GRAY));
+            solids.push(filled(points, GRAY));
         }
     }
-    // The names over the solids.
-    out.reverse();
-    out
+    // The names over every solid.
+    solids.extend(names);
+    solids
 }
 
 /// A shape's geoms on moving bodies, in its colour, each at its depth (its back).
@@ -134,7 +137,7 @@ pub(super) fn moving_geoms(scene: &Scene, pose: &Snapshot, view: View, color: Co
     let mut out = Vec::new();
     for ((_, _, grounded), solid) in scene.geoms.iter().zip(&pose.geoms) {
         if !grounded {
-            let (points, depth) = outline(view, solid, (sizes.centre, sizes.extent));
+            let (points, depth) = outline(view, solid, sizes);
             out.push(Part { depth, marks: vec![filled(points, color)] });
         }
     }
