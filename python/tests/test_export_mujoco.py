@@ -203,7 +203,9 @@ def test_examples_ring_in_mujoco_as_modes(name, prb, band):
     assert abs(got / want - 1) < band, f"{got:.4g} rad/s against {want:.4g}"
 
 
-ALL = [pytest.param(f, prb, id=f"{f}-{prb}") for f in sorted(p.name for p in EXAMPLES.glob("*.toml")) for prb in ("1R", "3R")]
+# Every example export takes (not those with `[[geom]]` shapes: export refuses parts that may touch).
+EXPORTED = sorted(p.name for p in EXAMPLES.glob("*.toml") if "[[geom]]" not in p.read_text())
+ALL = [pytest.param(f, prb, id=f"{f}-{prb}") for f in EXPORTED for prb in ("1R", "3R")]
 
 
 @pytest.mark.parametrize("name, prb", ALL)

@@ -22,8 +22,9 @@ import flexure
 from test_export import EXAMPLES
 from test_export_mujoco import bounds, check_flags, exported, lowest, settle, steps_stably
 
-# Every spatial example (a new one is exported and stepped here without a change).
-SPATIAL = sorted(p.name for p in EXAMPLES.glob("*.toml") if "dimension = 3" in p.read_text())
+# Every spatial example (a new one is exported and stepped here without a change), but those
+# with shapes their parts may touch (`[[geom]]`), which export refuses.
+SPATIAL = sorted(p.name for p in EXAMPLES.glob("*.toml") if "dimension = 3" in p.read_text() and "[[geom]]" not in p.read_text())
 assert {"finger3d.toml", "stage3d.toml", "continuum_robot.toml"} <= set(SPATIAL), SPATIAL
 
 # A spatial arm of every rigid joint kind (a sprung hinge resting turned, a sprung slide resting

@@ -770,3 +770,54 @@ fn a_spatial_draw_marks_yield_strengths_and_the_shapes_past_a_limit() {
         "no limit with its shapes in the legend"
     );
 }
+
+/// A steel strip (50 mm) pushed onto a capsule post above a floor: the
+/// contact is drawn where the solve puts it, and the unbounded floor is a
+/// band that does not widen the picture. References: the solve's own
+/// contact (point, normal, force) for the arrow, to rounding: its head at
+/// the point, its tail k·N back along the normal (k the figure's scale);
+/// the drawing's rule for the band, to rounding: across the mechanism's box
+/// (x from 0 to 0.05 m) and 15 % of its 0.05 m size past it, 4 % of it
+/// deep behind the floor's line y = −0.01.
+#[test]
+fn a_contact_is_drawn_at_its_point_and_a_floor_does_not_widen_the_view() {
+    use flexure::mechanism::statics::{Settings, Statics, Workspace, follow_touching};
+    let text = "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.05\n\
+                modulus = 200e9\nwidth = 0.01\nthickness = 0.0003\norder = 6\n\
+                [[force]]\nname = \"push\"\nbody = \"tip\"\nforce = [0.0, -3.0]\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n\
+                [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"capsule\"\norigin = [0.03, -0.006]\nangle = 0.3\n\
+                half_length = 0.004\nradius = 0.002\n";
+    let m = flexure::mechanism::file::from_toml(text).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let zero = flexure::space::Planar::zero(&m.loads());
+    let (rest, _) = follow_touching(&m, None, &zero, &Settings::default(), &mut Workspace::new(&m)).unwrap();
+    let (fig, k) =
+        shapes_figure(&m, "strip", &rest, &[("loaded".into(), s.clone())], &Marks::default(), View::Top, true).unwrap();
+    let k = k.unwrap();
+    let touching: Vec<_> = s.contacts.iter().filter(|c| c.normal_force > 0.0).collect();
+    assert!(!touching.is_empty(), "{:?}", s.contacts);
+    let arrows = force_arrows(&fig);
+    for c in touching {
+        let head = (c.point[0], c.point[1]);
+        let tail = (head.0 - k * c.normal_force * c.normal[0], head.1 - k * c.normal_force * c.normal[1]);
+        let near = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1) < 1e-12;
+        assert!(arrows.iter().any(|(from, to)| near(*to, head) && near(*from, tail)), "{c:?} in {arrows:?}");
+    }
+    // The floor's band: the closed path reaching below the post.
+    let band = fig
+        .marks
+        .iter()
+        .find_map(|mk| match mk {
+            Mark::Path { points, closed: true, .. } if points.iter().any(|p| p.1 < -0.0105) => Some(points.clone()),
+            _ => None,
+        })
+        .unwrap();
+    let bounds = |i: usize| {
+        band.iter().map(|p| if i == 0 { p.0 } else { p.1 }).fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)))
+    };
+    let ((x0, x1), (y0, y1)) = (bounds(0), bounds(1));
+    let eps = 1e-12;
+    assert!((x0 + 0.0075).abs() < eps && (x1 - 0.0575).abs() < eps, "{x0} {x1}");
+    assert!((y0 + 0.012).abs() < eps && (y1 + 0.01).abs() < eps, "{y0} {y1}");
+}

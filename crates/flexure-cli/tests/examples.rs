@@ -6,6 +6,7 @@
 //! gives; the commands its closing comment shows are the ones run here.
 //! Then the answers with an independent reference are held to it.
 
+use flexure::model::Model;
 use serde_json::Value;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::{Path, PathBuf};
@@ -76,57 +77,75 @@ struct Example {
     sweep: &'static str,
     /// `--compliance BODY --at X,Y`: where its load acts, or its tip.
     compliance: (&'static str, &'static str),
+    /// What `solve --compliance` does (it answers with contacts held).
+    compliance_expect: Expect,
     buckle: Expect,
 }
 
-const EXAMPLES: [Example; 8] = [
+const EXAMPLES: [Example; 9] = [
     Example {
         name: "finger",
         sweep: "tendon.flexor.tension=0:6:4",
         compliance: ("distal", "0.025,0"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Answers,
     },
     Example {
         name: "finger_dynamics",
         sweep: "tendon.flexor.tension=0:6:4",
         compliance: ("distal", "0.025,0"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Answers,
     },
     Example {
         name: "four_bar",
         sweep: "tendon.pull.tension=0:1.5:4",
         compliance: ("output", "0.04,0"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Answers,
     },
     Example {
         name: "four_leg_stage",
         sweep: "force.push.fx=0:2:3",
         compliance: ("stage", "0,-0.06"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Flagged,
     },
     // A pure moment adds no geometric stiffness: see the file's header.
+    // Its rod and pads may touch: buckling does not apply.
+    Example {
+        name: "grasp",
+        sweep: "tendon.flexor.tension=0:4:9",
+        compliance: ("distal", "0.025,0"),
+        compliance_expect: Expect::Answers,
+        buckle: Expect::Refused("may touch"),
+    },
     Example {
         name: "mixed_chain",
         sweep: "force.grip.moment=0:0.01:3",
         compliance: ("hand", "0.02,0"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Refused("no buckling load"),
     },
     Example {
         name: "paper_tendon",
         sweep: "tendon.flexor.tension=0:28:5",
         compliance: ("link", "0,0.005"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Answers,
     },
     Example {
         name: "parallelogram",
         sweep: "force.push.fy=0:-1:2",
         compliance: ("stage", "0,-0.02"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Flagged,
     },
     Example {
         name: "tapered_finger",
         sweep: "tendon.flexor.tension=0:8:5",
         compliance: ("distal", "0.02,0"),
+        compliance_expect: Expect::Answers,
         buckle: Expect::Answers,
     },
 ];
@@ -212,7 +231,7 @@ fn every_example_with_every_subcommand() {
         let pairs: [(&str, Vec<&str>, Expect, &Path); 6] = [
             ("solve", vec!["solve", &path], Expect::Answers, &out),
             ("solve --sweep", vec!["solve", &path, "--sweep", ex.sweep], Expect::Answers, &out),
-            ("solve --compliance", vec!["solve", &path, "--compliance", body, "--at", at], Expect::Answers, &out),
+            ("solve --compliance", vec!["solve", &path, "--compliance", body, "--at", at], ex.compliance_expect, &out),
             ("buckle", vec!["buckle", &path], ex.buckle, &out),
             ("draw", vec!["draw", &path, "--out", &out_str], Expect::Answers, &out),
             (
@@ -258,7 +277,7 @@ fn every_example_with_every_subcommand() {
             outcomes.push(format!("{} {what}: {expect:?}", ex.name));
         }
     }
-    assert_eq!(outcomes.len(), 48, "{outcomes:#?}");
+    assert_eq!(outcomes.len(), 54, "{outcomes:#?}");
 }
 
 /// No example escapes the table above.
@@ -430,4 +449,225 @@ fn four_bar_pin_holds() {
         let (a, b) = (c("coupler"), c("output"));
         assert!((a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9, "row {row}: {a:?} {b:?}");
     }
+}
+
+/// A mechanism file without its `[[geom]]` tables (the grasp's come last,
+/// before its closing comments).
+fn without_geoms(text: &str) -> String {
+    text.split("[[geom]]").next().unwrap().to_string()
+}
+
+/// Every number of the bodies' poses in a solve answer (a spatial one's rotation too).
+fn poses(v: &Value) -> Vec<f64> {
+    fn numbers(v: &Value, out: &mut Vec<f64>) {
+        match v {
+            Value::Number(n) => out.push(n.as_f64().unwrap()),
+            Value::Array(a) => a.iter().for_each(|x| numbers(x, out)),
+            Value::Object(o) => o.values().for_each(|x| numbers(x, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    numbers(&v["bodies"], &mut out);
+    out
+}
+
+/// Reference for a contact file's answer `v` (of file `text`): each
+/// touching contact's force applied back as a plain `[[force]]`, the geoms
+/// removed, solves to the same equilibrium. Each pad (a geom on a body)
+/// pushes a ground geom with N·n at the point, so the ground's geom pushes
+/// the pad's body with −N·n there: a force at that point in the body's
+/// frame (from its reported pose: `x`, `y`, `phi` or `rotation`).
+/// Checked to 1e-9 m and rad on every pose number: both are solved to
+/// Newton's tolerance, far below; the grasp's force made 0.1 % larger
+/// moves its distal link by 50 µm and 1.3 mrad (tried), so the check can fail.
+fn balances_its_contact_forces(text: &str, v: &Value, dir: &Path) {
+    let m = Model::from_toml(text).unwrap();
+    let touching: Vec<&Value> = v["contacts"].as_array().unwrap().iter().filter(|c| c["state"] != "open").collect();
+    assert!(!touching.is_empty(), "it must touch under its own load: {v}");
+    let spatial = v["dimension"] == 3;
+    let mut loads = String::new();
+    for (i, c) in touching.iter().enumerate() {
+        // The object on the ground is the geom touched; the pad's body touches it,
+        // pushed along the object's outward normal.
+        let grounded = match &m {
+            Model::Planar(m) => m.geoms.iter().any(|g| g.name == c["geom"] && g.body == 0),
+            Model::Spatial(m) => m.geoms.iter().any(|g| g.name == c["geom"] && g.body == 0),
+        };
+        assert!(grounded && c["body"] != "ground", "{c}: a pad touches the object on the ground");
+        let body = c["body"].as_str().unwrap();
+        let b = &v["bodies"][body];
+        let n = c["normal_force"].as_f64().unwrap();
+        let point: Vec<f64> = c["point"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let force: Vec<f64> = c["normal"].as_array().unwrap().iter().map(|x| n * x.as_f64().unwrap()).collect();
+        let origin: Vec<f64> = ["x", "y", "z"].iter().take(point.len()).map(|k| b[k].as_f64().unwrap()).collect();
+        let d: Vec<f64> = point.iter().zip(&origin).map(|(p, o)| p - o).collect();
+        // Into the body's frame: Rᵀ d.
+        let at: Vec<f64> = if spatial {
+            let r = |i: usize, j: usize| b["rotation"][i][j].as_f64().unwrap();
+            (0..3).map(|j| (0..3).map(|i| r(i, j) * d[i]).sum()).collect()
+        } else {
+            let phi = b["phi"].as_f64().unwrap();
+            vec![phi.cos() * d[0] + phi.sin() * d[1], -phi.sin() * d[0] + phi.cos() * d[1]]
+        };
+        let list = |x: &[f64]| x.iter().map(|v| format!("{v:e}")).collect::<Vec<_>>().join(", ");
+        loads += &format!(
+            "\n[[force]]\nname = \"contact{i}\"\nbody = \"{body}\"\nat = [{}]\nforce = [{}]\n",
+            list(&at),
+            list(&force)
+        );
+    }
+    let bare = dir.join("bare.toml");
+    std::fs::write(&bare, without_geoms(text) + &loads).unwrap();
+    let free = json(&["solve", bare.to_str().unwrap()]);
+    let (a, b) = (poses(v), poses(&free));
+    assert_eq!(a.len(), b.len());
+    assert!(a.iter().zip(&b).all(|(p, q)| (p - q).abs() < 1e-9), "{a:?} with contact, {b:?} loaded");
+}
+
+/// The grasp held to what contact means, not to its own earlier output:
+/// (a) each touching contact's force, applied back as a plain load, makes
+/// the mechanism without its geoms rest where the grasp does; (b) before
+/// the first contact the sweep is the sweep without geoms; (c) a touching
+/// contact's gap is zero and an open one's positive.
+#[test]
+fn the_grasp_balances_its_contact_forces() {
+    let path = file("grasp");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let bare = dir.path().join("bare.toml");
+    let v = json(&["solve", &path]);
+    let contacts = v["contacts"].as_array().unwrap();
+    // (c) Touching: the gap solved to zero, 1e-10 of the 0.08 m finger
+    // (the solver's contact tolerance is 1e-10 of the size, a bound on it).
+    // Open: apart.
+    let size = 0.08;
+    for c in contacts {
+        let gap = c["gap"].as_f64().unwrap();
+        match c["state"].as_str().unwrap() {
+            "open" => assert!(gap > 0.0 && c["normal_force"].as_f64().unwrap() == 0.0, "{c}"),
+            _ => assert!(gap.abs() < 1e-10 * size && c["normal_force"].as_f64().unwrap() > 0.0, "{c}"),
+        }
+    }
+    // (a) At 4 N the distal pad presses the rod.
+    balances_its_contact_forces(&text, &v, dir.path());
+    // (b) The rows before the first contact (every normal force 0) are the
+    // sweep without geoms: the same equilibria, to 1e-9 m and rad.
+    let sweep = "tendon.flexor.tension=0:4:9";
+    let with = json(&["solve", &path, "--sweep", sweep]);
+    std::fs::write(&bare, without_geoms(&text)).unwrap();
+    let plain = json(&["solve", bare.to_str().unwrap(), "--sweep", sweep]);
+    let forces: Vec<&str> = with["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|c| c.as_str())
+        .filter(|c| c.starts_with("contact."))
+        .collect();
+    let first = (0..9).find(|&r| forces.iter().any(|c| cell(&with, r, c) > 0.0)).unwrap();
+    assert!(first >= 2, "the sweep must show rows before the first contact: {first}");
+    // Then the first contact's force grows before the distal pad takes over.
+    for r in 0..first {
+        for body in ["proximal", "distal"] {
+            for k in ["x", "y", "phi"] {
+                let name = format!("{body}.{k}");
+                let (a, b) = (cell(&with, r, &name), cell(&plain, r, &name));
+                assert!((a - b).abs() < 1e-9, "row {r}, {name}: {a} with geoms, {b} without");
+            }
+        }
+    }
+    let proximal = "contact.cylinder.proximal.normal_force";
+    assert!(cell(&with, first + 1, proximal) > cell(&with, first, proximal), "the squeeze grows");
+    let distal = "contact.cylinder.distal.normal_force";
+    let last = (0..9).map(|r| cell(&with, r, distal)).collect::<Vec<_>>();
+    assert!(last[8] > last[7] && last[7] > last[6] && last[6] > 0.0, "the distal pad squeezes harder: {last:?}");
+}
+
+/// The grasp's drawing shows its rod, its pads' contacts and their forces:
+/// the geoms named in the legend, each touching contact's entry and its
+/// value in N beside its arrow (the solve's own normal force, to its four
+/// digits); `--simulate` is refused.
+#[test]
+fn the_grasp_is_drawn_with_its_contacts() {
+    let path = file("grasp");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("grasp.svg");
+    json(&["draw", &path, "--out", out.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("geom: cylinder (circle), proximal_pad (box), distal_pad (box)"), "the geoms' key");
+    assert!(svg.contains(">cylinder<"), "the rod named beside it");
+    let v = json(&["solve", &path]);
+    for c in v["contacts"].as_array().unwrap().iter().filter(|c| c["state"] != "open") {
+        let n = c["normal_force"].as_f64().unwrap();
+        let value = format!("{:.4}", n).trim_end_matches('0').to_string();
+        assert!(svg.contains(&format!(">{value} N<")), "{c}: its value {value} N beside its arrow");
+        let (geom, body) = (c["geom"].as_str().unwrap(), c["body"].as_str().unwrap());
+        assert!(svg.contains(&format!("contact {geom} on {body}: normal force")), "{c}: its legend");
+    }
+    // The sweep draws the first contact's range from 0.
+    let out = dir.path().join("grasp-sweep.svg");
+    json(&["draw", &path, "--out", out.to_str().unwrap(), "--sweep", "tendon.flexor.tension=0:4:9"]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("contact cylinder on proximal: normal force 0 to "), "the sweep's contacts");
+    // A motion with contact is not solved: `draw --simulate` refuses it, writing nothing.
+    let out = dir.path().join("grasp-motion.svg");
+    let (code, stdout, err) = run(&["draw", &path, "--out", out.to_str().unwrap(), "--simulate", "0.01"]);
+    assert!(code == 2 && stdout.is_empty() && err.contains("may touch") && !out.exists(), "{code}: {err}");
+}
+
+/// The commands an example's closing comment lists (`#   flexure …`),
+/// its path and `--out` files made absolute (the outputs in `dir`).
+fn listed(name: &str, dir: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(file(name)).unwrap();
+    let commands = text.lines().filter_map(|l| l.strip_prefix("#   flexure "));
+    let args = |line: &str| {
+        let mut out: Vec<String> = Vec::new();
+        for word in line.split_whitespace() {
+            let word = match out.last().map(String::as_str) {
+                Some("--out") => dir.join(word).display().to_string(),
+                _ if word == format!("examples/{name}.toml") => file(name),
+                _ => word.to_string(),
+            };
+            out.push(word);
+        }
+        out
+    };
+    commands.map(args).collect()
+}
+
+/// The spatial grasp: every command its closing comment lists answers
+/// without a warning (draws write an SVG with the ball and the pad's
+/// contact), `solve --compliance` answers with the contact held, `buckle` is
+/// refused as its header says, and its contact force balances (as the
+/// planar grasp's).
+#[test]
+fn the_spatial_grasp_runs_its_commands_and_balances() {
+    let dir = tempfile::tempdir().unwrap();
+    let commands = listed("grasp3d", dir.path());
+    assert_eq!(commands.len(), 5, "{commands:?}");
+    for args in &commands {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v = json(&args);
+        if args[0] == "draw" {
+            let svg = std::fs::read_to_string(v["out"].as_str().unwrap()).unwrap();
+            assert!(svg.contains("geom: ball (sphere), distal_pad (box)"), "{args:?}: the geoms' key");
+            assert!(svg.contains("contact ball on distal: normal force"), "{args:?}: the contact");
+        }
+    }
+    let path = file("grasp3d");
+    let head = comments("grasp3d", true);
+    let held = json(&["solve", &path, "--compliance", "distal", "--at", "0.025,0,0"]);
+    assert!(held["compliance"].as_array().is_some_and(|rows| rows.len() == 6), "{held}");
+    let what = "buckle";
+    let (code, out, err) = run(&["buckle", &path]);
+    assert!(code == 2 && out.is_empty() && err.contains("may touch"), "{what}: {code} {err}");
+    assert!(head.contains(&format!("`{what}` does not apply")) && head.contains("may touch"), "{what}");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let v = json(&["solve", &path]);
+    // The ball leans the normal out of the finger's plane (out of the ball,
+    // toward −z): 0.42 at 3 N, as the header says (25°).
+    let c = v["contacts"].as_array().unwrap().iter().find(|c| c["state"] != "open").unwrap();
+    let nz = -c["normal"][2].as_f64().unwrap();
+    assert!((nz.asin().to_degrees() - 25.0).abs() < 1.0, "{c}");
+    balances_its_contact_forces(&text, &v, dir.path());
 }

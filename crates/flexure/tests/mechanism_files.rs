@@ -135,8 +135,9 @@ impl Rng {
 /// a line dropped or doubled), seeded: parsing names the place of every
 /// file error; a file that parses never fails later on a value (the
 /// solvers' errors are numerical ones: no convergence, stalled, unstable,
-/// singular; or closures that cannot be assembled, placed); nothing
-/// panics; every answer is finite.
+/// singular; or closures that cannot be assembled, placed; or, where
+/// parts may touch, contact's refusals naming the geom); nothing panics;
+/// every answer is finite.
 #[test]
 fn mutated_examples() {
     let dir = format!("{}/../../examples", env!("CARGO_MANIFEST_DIR"));
@@ -204,8 +205,15 @@ fn mutated_examples() {
             Ok(m) => {
                 // Numerical outcomes, or closures that cannot be assembled
                 // (an inconsistent file, placed at the widest-open closure).
+                // A file whose parts may touch (the grasp's): contact's refusals name
+                // the geom (buckling does not handle contact; a part starting inside
+                // a geom; a contact set Newton cannot solve where it changed), or the
+                // pair of two geoms neither a circle (a dropped `exclude` line: the
+                // file takes such a pair, and only the solve refuses it, unplaced).
+                let touching = !flexure::mechanism::contact::pairs(&m).is_empty();
                 let numerical = |e: &Error| match e {
                     Error::File { place, .. } => place.starts_with("line ") && place.contains(", column "),
+                    Error::InvalidParameter { name: "geom" | "pair", .. } => touching,
                     e => matches!(
                         e,
                         Error::NoConvergence { .. }

@@ -8,7 +8,8 @@ use crate::analyses::{SweepSpec, sweep_values};
 use crate::options::number;
 use clap::Args;
 use flexure::mechanism::Mechanism;
-use flexure::mechanism::statics::{Settings, assemble_unloaded};
+use flexure::mechanism::contact::pairs;
+use flexure::mechanism::statics::{Settings, Solution, Workspace, assemble_unloaded, follow_touching};
 use flexure::mechanism::sweep::Parameter;
 use flexure::model::{Model, Visit};
 use serde_json::{Value, json};
@@ -105,14 +106,19 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         out.rows
             .iter()
             .zip(&out.q)
-            .map(|(r, q)| Ok((label(r[0]), D::pose(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?)))
+            .zip(&out.contacts)
+            .map(|((r, q), contacts)| {
+                let shape = D::pose(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?;
+                Ok((label(r[0]), shape.with_contacts(contacts)))
+            })
             .collect::<Result<_, String>>()?
     } else {
         let findings = crate::findings::open_at_rest(model, &args.file)?;
         let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
         let q = solved.q.clone();
+        let contacts = solved.report.as_ref().map(|r| r.contacts.clone()).unwrap_or_default();
         checks = solved_answer(model, findings, solved, &target, &args.file)?;
-        vec![("loaded".into(), D::pose(m, "loaded", &q, &m.loads())?)]
+        vec![("loaded".into(), D::pose(m, "loaded", &q, &m.loads())?.with_contacts(&contacts))]
     };
     let mut answer = json!({});
     for key in ["steps", "rejected", "findings", "flagged", "limit_fraction", "stability_limit", "stopped"] {
@@ -121,9 +127,20 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         }
     }
     // Last, so that the closures open at rest are told before an assembly they keep from closing fails.
-    let unloaded = assemble_unloaded(m, &Settings::default()).map_err(|e| super::file_error(&args.file, e))?;
+    let unloaded = unloaded(m).map_err(|e| super::file_error(&args.file, e))?;
     let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
+}
+
+/// The unloaded, assembled mechanism; with geoms that may touch, followed
+/// to no load with its contacts (where the library checks that nothing
+/// starts inside a geom), which the plain assembly refuses.
+fn unloaded<D: Drawn>(m: &Mechanism<D>) -> flexure::Result<Solution<D>> {
+    if pairs(m).is_empty() {
+        return assemble_unloaded(m, &Settings::default());
+    }
+    let zero = D::zero(&m.loads());
+    follow_touching(m, None, &zero, &Settings::default(), &mut Workspace::new(m)).map(|(s, _)| s)
 }
 
 /// [`picture`] of the model's mechanism, which the door sends it of either dimension.

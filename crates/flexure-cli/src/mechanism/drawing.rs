@@ -41,6 +41,7 @@
 
 pub use super::projection::View;
 use super::scene::{Scene, Snapshot, Symbol};
+use super::solids;
 use flexure_chart::{
     Anchor, COLORS, Chart, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Series, Stroke,
     Swatch, chart_figure, ramp,
@@ -51,7 +52,7 @@ use std::f64::consts::TAU;
 type V = Vector3<f64>;
 
 /// The colour of legend keys that stand for every shape.
-const KEY: Color = Color(60, 60, 60);
+pub(super) const KEY: Color = Color(60, 60, 60);
 const GROUND: Color = Color(90, 90, 90);
 /// The loaded shapes' colours, in order.
 const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4]];
@@ -64,7 +65,7 @@ pub const FLEXURE_SAMPLES: usize = 41;
 /// The fewest of the longest arrow's length an arrow is drawn at: a force
 /// far smaller than the others would be an arrow of no length, its head
 /// and name on its tail (the legend still gives its value).
-const LEAST_ARROW: f64 = 0.02;
+pub(super) const LEAST_ARROW: f64 = 0.02;
 /// How far apart arrows from one point in one direction are drawn, as a
 /// fraction of the longest arrow: their heads (about 12 px across) apart
 /// once the longest is 80 px or more.
@@ -104,7 +105,7 @@ pub fn swept(parameter: &str, value: f64) -> String {
 }
 
 /// The convex hull, counter-clockwise: the library's, which the crossing test uses.
-fn hull(p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+pub(super) fn hull(p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
     let points = p.into_iter().map(|(x, y)| [x, y]).collect();
     flexure::mechanism::findings::hull(points).into_iter().map(|[x, y]| (x, y)).collect()
 }
@@ -148,15 +149,21 @@ pub struct Marks {
 
 /// The sizes every shape of one figure shares.
 #[derive(Clone, Copy)]
-struct Sizes {
+pub(super) struct Sizes {
     /// The mechanism's size (m): the largest span of its unloaded points, or its longest flexure.
-    extent: f64,
+    pub(super) extent: f64,
+    /// The middle of its unloaded points' box and half that box's sides
+    /// (world, m): a plane is drawn about the middle's foot, across the box.
+    pub(super) centre: V,
+    pub(super) half: V,
     /// The links' half thickness (m): 1.2 % of the size.
-    thick: f64,
+    pub(super) thick: f64,
+    /// The largest force drawn (N): a load's or a contact's.
+    pub(super) largest: f64,
     /// Force arrows' length per newton (m/N), if any force acts.
-    per_newton: Option<f64>,
+    pub(super) per_newton: Option<f64>,
     /// Moment arrows' length per newton metre (m/(N·m)), if any moment acts.
-    per_newton_metre: Option<f64>,
+    pub(super) per_newton_metre: Option<f64>,
 }
 
 /// How a shape's loads are drawn: not at all (the unloaded shape), or with
@@ -168,7 +175,7 @@ enum Loads {
 }
 
 /// A picture point from a world point.
-fn pic(view: View, p: &V) -> (f64, f64) {
+pub(super) fn pic(view: View, p: &V) -> (f64, f64) {
     view.project(p).0
 }
 
@@ -189,7 +196,7 @@ fn picture_direction(view: View, v: &V) -> Option<(f64, f64)> {
 }
 
 /// A text anchor for a label placed past a head pointing along `ux` (picture).
-fn anchor_along(ux: f64) -> Anchor {
+pub(super) fn anchor_along(ux: f64) -> Anchor {
     if ux > 0.3 {
         Anchor::Start
     } else if ux < -0.3 {
@@ -205,14 +212,14 @@ fn line(points: Vec<(f64, f64)>, stroke: Stroke) -> Mark {
 }
 
 /// A part of one shape, painted at its depth (larger: nearer).
-struct Part {
-    depth: f64,
-    marks: Vec<Mark>,
+pub(super) struct Part {
+    pub(super) depth: f64,
+    pub(super) marks: Vec<Mark>,
 }
 
 /// How a force is drawn.
 #[derive(Clone, Copy, Debug)]
-enum Drawn {
+pub(super) enum Drawn {
     /// An arrow, tail and head (picture), and how many arrows from its
     /// point in its direction were drawn before it (side by side).
     Arrow((f64, f64), (f64, f64), usize),
@@ -275,7 +282,7 @@ fn moment(view: View, at: &V, m: &V, per_newton_metre: Option<f64>) -> Option<Tu
 }
 
 /// ⊙ (toward the viewer) or ⊗ at `at`, `r` px across.
-fn sight(at: (f64, f64), toward: bool, r: f64, color: Color) -> Vec<Mark> {
+pub(super) fn sight(at: (f64, f64), toward: bool, r: f64, color: Color) -> Vec<Mark> {
     let mut out = vec![Mark::Dot { at, shape: Marker::Circle, radius: r, color, filled: false }];
     out.push(match toward {
         true => Mark::Dot { at, shape: Marker::Circle, radius: 0.28 * r, color, filled: true },
@@ -285,8 +292,8 @@ fn sight(at: (f64, f64), toward: bool, r: f64, color: Color) -> Vec<Mark> {
 }
 
 /// One shape's marks: links, flexures and tendons in increasing depth, then its symbols and loads.
-fn draw_shape(pose: &Snapshot, view: View, color: Color, sizes: &Sizes, loads: Loads) -> Vec<Mark> {
-    let mut parts: Vec<Part> = Vec::new();
+fn draw_shape(scene: &Scene, pose: &Snapshot, view: View, color: Color, sizes: &Sizes, loads: Loads) -> Vec<Mark> {
+    let mut parts: Vec<Part> = solids::moving_geoms(scene, pose, view, color, sizes);
     let link_fill = Fill { color: color.tint(0.55), opacity: 0.55 };
     for pts in &pose.links {
         let flat: Vec<(f64, f64)> = pts.iter().map(|p| pic(view, p)).collect();
@@ -335,6 +342,7 @@ fn draw_shape(pose: &Snapshot, view: View, color: Color, sizes: &Sizes, loads: L
         }
     }
     if let Loads::Drawn { .. } = loads {
+        out.extend(solids::contact_marks(pose, view, color, sizes));
         for d in forces(pose, view, sizes.per_newton).into_iter().flatten() {
             match d {
                 Drawn::Arrow(from, to, _) => out.push(Mark::Arrow { from, to, color, width: 2.5 }),
@@ -653,12 +661,20 @@ pub fn figure(
     };
     let longest_flexure = rest.flexures.iter().map(|c| c.length).fold(0.0, f64::max);
     let extent = span(0).max(span(1)).max(span(2)).max(longest_flexure).max(1e-9);
+    let middle = |i: usize| {
+        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
+        if hi >= lo { 0.5 * (lo + hi) } else { 0.0 }
+    };
+    let half = V::new(span(0), span(1), span(2)) * 0.5;
     let all_loads = || loaded.iter().flat_map(|(_, p)| &p.loads);
-    let largest = all_loads().map(|l| l.force.norm()).fold(0.0, f64::max);
+    let largest = all_loads().map(|l| l.force.norm()).fold(solids::largest_contact(loaded), f64::max);
     let largest_moment = all_loads().map(|l| l.moment.norm()).fold(0.0, f64::max);
     let sizes = Sizes {
         extent,
+        centre: V::new(middle(0), middle(1), middle(2)),
+        half,
         thick: 0.012 * extent,
+        largest,
         per_newton: (largest > 0.0).then(|| round_down(0.25 * extent / largest)),
         per_newton_metre: (largest_moment > 0.0).then(|| round_down(0.25 * extent / largest_moment)),
     };
@@ -673,18 +689,21 @@ pub fn figure(
         .map(|top| top.max(1.05 * highest_yield));
 
     fig.marks.extend(ground(scene, rest, view, &sizes));
+    fig.marks.extend(solids::ground_geoms(scene, rest, view, &sizes));
     let ground_swatch = Swatch::Area(Fill { color: GROUND.tint(0.4), opacity: 0.8 }, Stroke::solid(GROUND, 1.5));
     fig.legend.push(Entry { swatch: ground_swatch, label: "ground".into() });
     let link = |c: Color| Swatch::Area(Fill { color: c.tint(0.55), opacity: 0.55 }, Stroke::solid(c, 1.5));
-    fig.marks.extend(draw_shape(rest, view, GRAY, &sizes, Loads::Hidden));
+    fig.marks.extend(draw_shape(scene, rest, view, GRAY, &sizes, Loads::Hidden));
     fig.legend.push(Entry { swatch: link(GRAY), label: "unloaded".into() });
     for (i, (label, pose)) in loaded.iter().enumerate() {
         let color = SHAPES[i % SHAPES.len()];
-        fig.marks.extend(draw_shape(pose, view, color, &sizes, Loads::Drawn { stress_top }));
+        fig.marks.extend(draw_shape(scene, pose, view, color, &sizes, Loads::Drawn { stress_top }));
         fig.legend.push(Entry { swatch: link(color), label: label.clone() });
     }
     if let Some((_, pose)) = loaded.last() {
-        fig.marks.extend(load_names(scene, pose, view, SHAPES[(loaded.len() - 1) % SHAPES.len()], &sizes));
+        let color = SHAPES[(loaded.len() - 1) % SHAPES.len()];
+        fig.marks.extend(load_names(scene, pose, view, color, &sizes));
+        fig.marks.extend(solids::contact_values(pose, view, color, &sizes));
     }
     // The axes of the other views are the picture's own, named on its axes.
     if view == View::Iso {
@@ -694,6 +713,7 @@ pub fn figure(
 
     fig.legend.extend(keys(scene, rest, loaded, view));
     fig.legend.extend(load_entries(scene, loaded, view, &sizes));
+    fig.legend.extend(solids::contact_entries(scene, loaded));
     if let Some(limit) = &marks.limit {
         fig.legend.push(Entry { swatch: Swatch::Note, label: limit.clone() });
     }

@@ -7,6 +7,7 @@ mod draw;
 pub mod drawing;
 pub mod projection;
 pub mod scene;
+mod solids;
 mod solve;
 
 pub use buckle::{BuckleArgs, buckle_cmd};

@@ -7,6 +7,7 @@
 
 use super::drawing::{FLEXURE_SAMPLES, Marks, MotionFigures, Track, View, figure, motion_figures, short};
 use flexure::dynamics::Simulation;
+use flexure::mechanism::contact::{Contact, ContactMode, GeomShape};
 use flexure::mechanism::kinematics::frames;
 use flexure::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use flexure::mechanism::statics::Solution;
@@ -14,7 +15,7 @@ use flexure::mechanism::{Holds, Loads, Mechanism};
 use flexure::model::Analyses;
 use flexure::space::{Planar, Spatial};
 use flexure_chart::Figure;
-use nalgebra::{Point2, Point3, Rotation3, Vector3};
+use nalgebra::{Isometry3, Point2, Point3, Rotation3, Vector3};
 
 type V = Vector3<f64>;
 
@@ -35,6 +36,30 @@ pub struct Scene {
     pub stress: &'static str,
     /// How a flexure without a stress (no section geometry) is given.
     pub plain: &'static str,
+    /// Each geom's name, its shape's name and whether it is on the ground
+    /// (drawn once) rather than on a moving body (drawn with each shape).
+    pub geoms: Vec<(String, &'static str, bool)>,
+}
+
+/// A geom where a shape puts it: its frame in the world and its solid, a
+/// planar one lying at z = 0 (its normal and box in the plane, its circle
+/// and cylinder about z).
+pub struct Solid {
+    pub frame: Isometry3<f64>,
+    pub shape: GeomShape<Spatial>,
+}
+
+/// A contact of a shape, as its answer gives it (world): where the toucher
+/// touches, the geom's outward normal there, and the forces the geom exerts.
+pub struct ContactMark {
+    /// What touches what: `cylinder on distal`.
+    pub name: String,
+    pub point: V,
+    pub normal: V,
+    /// Along the normal (N), not negative.
+    pub normal_force: f64,
+    /// Along the surface (N).
+    pub friction_force: V,
 }
 
 /// The mark of a rigid joint or a closure.
@@ -98,6 +123,34 @@ pub struct Snapshot {
     pub tensions: Vec<f64>,
     /// The loads of [`Scene::loads`], in its order.
     pub loads: Vec<Load>,
+    /// The geoms of [`Scene::geoms`], in its order.
+    pub geoms: Vec<Solid>,
+    /// The contacts that touch (none unless given: [`Snapshot::with_contacts`]).
+    pub contacts: Vec<ContactMark>,
+}
+
+/// A vector of 2 or 3 components (a contact's) in the world.
+fn world(v: &[f64]) -> V {
+    V::new(v.first().copied().unwrap_or(0.0), v.get(1).copied().unwrap_or(0.0), v.get(2).copied().unwrap_or(0.0))
+}
+
+impl Snapshot {
+    /// The shape with the contacts of its answer that touch (an open one
+    /// has no force to draw).
+    pub fn with_contacts(mut self, contacts: &[Contact]) -> Self {
+        self.contacts = contacts
+            .iter()
+            .filter(|c| c.state != ContactMode::Open)
+            .map(|c| ContactMark {
+                name: format!("{} on {}", c.geom, c.flexure.as_ref().or(c.body.as_ref()).map_or("?", |s| s.as_str())),
+                point: world(&c.point),
+                normal: world(&c.normal),
+                normal_force: c.normal_force,
+                friction_force: world(&c.friction_force),
+            })
+            .collect();
+        self
+    }
 }
 
 fn flat(p: Point2<f64>) -> V {
@@ -140,6 +193,7 @@ pub fn scene<D: Drawn>(m: &Mechanism<D>) -> Scene {
         rotations: D::ROTATIONS,
         stress: D::STRESS,
         plain: D::PLAIN,
+        geoms: m.geoms.iter().map(|g| (g.name.clone(), g.shape.name(), g.body == 0)).collect(),
     }
 }
 
@@ -218,6 +272,19 @@ fn rigid<D: Drawn>(
         tendons: m.tendons.iter().map(|t| t.path.iter().map(|(b, r)| at(*b, r)).collect()).collect(),
         tensions: tensions.to_vec(),
         loads: Vec::new(),
+        geoms: Vec::new(),
+        contacts: Vec::new(),
+    }
+}
+
+/// A planar geom's solid lying at z = 0.
+fn flat_shape(shape: &GeomShape<Planar>) -> GeomShape<Spatial> {
+    match *shape {
+        GeomShape::Plane { normal } => GeomShape::Plane { normal: V::new(normal.x, normal.y, 0.0) },
+        GeomShape::Ball { radius } => GeomShape::Ball { radius },
+        GeomShape::Capsule { half_length, radius } => GeomShape::Capsule { half_length, radius },
+        GeomShape::Box { half_extents: e } => GeomShape::Box { half_extents: V::new(e.x, e.y, 0.0) },
+        GeomShape::Cylinder { half_length, radius } => GeomShape::Cylinder { half_length, radius },
     }
 }
 
@@ -276,6 +343,14 @@ fn planar(m: &Mechanism, q: &[f64], loads: &Loads) -> Snapshot {
         moment: V::zeros(),
     });
     pose.loads = forces.chain(weights).collect();
+    pose.geoms = m
+        .geoms
+        .iter()
+        .map(|g| {
+            let p = f.bodies[g.body].compose(&g.frame);
+            Solid { frame: Isometry3::new(V::new(p.x, p.y, 0.0), V::z() * p.phi), shape: flat_shape(&g.shape) }
+        })
+        .collect();
     pose
 }
 
@@ -359,6 +434,7 @@ fn spatial(m: &SpatialMechanism, label: &str, q: &[f64], loads: &SpatialLoads) -
         moment: V::zeros(),
     });
     pose.loads = forces.chain(weights).collect();
+    pose.geoms = m.geoms.iter().map(|g| Solid { frame: f.bodies[g.body] * g.frame, shape: g.shape }).collect();
     Ok(pose)
 }
 
@@ -401,7 +477,7 @@ pub fn shapes_figure<D: Drawn>(
     let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     let shapes = loaded
         .iter()
-        .map(|(l, s)| Ok((l.clone(), D::pose(m, l, &s.q, &s.loads)?)))
+        .map(|(l, s)| Ok((l.clone(), D::pose(m, l, &s.q, &s.loads)?.with_contacts(&s.contacts))))
         .collect::<Result<Shapes, String>>()?;
     Ok(figure(&scene(m), title, &rest, &shapes, marks, view, stress))
 }

@@ -96,6 +96,8 @@ pub struct Swept {
     pub rows: Vec<Vec<f64>>,
     /// Each row's coordinates (what a picture draws).
     pub q: Vec<Vec<f64>>,
+    /// Each row's contacts (what a picture draws of them): as [`SolveReport::contacts`].
+    pub contacts: Vec<Vec<crate::mechanism::contact::Contact>>,
     /// Each moving body (the ground left out) by name, with its pose at each row.
     pub bodies: Vec<(String, Vec<BodyPose>)>,
     /// The parts that cross, by row, where any do.
@@ -598,9 +600,23 @@ where
     let shapes: Vec<&[f64]> = out.rows.iter().map(|(_, s)| s.q.as_slice()).collect();
     let crossings = D::crossings_along(m, &shapes);
     let q = shapes.iter().map(|q| q.to_vec()).collect();
+    let contacts = out.rows.iter().map(|(_, s)| s.contacts.clone()).collect();
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
     let model = used.into_owned().into();
-    Ok(Ok(Swept { columns, rows, q, bodies, crossings, stability_limit, stopped, flagged, yielded, model, capped }))
+    Ok(Ok(Swept {
+        columns,
+        rows,
+        q,
+        contacts,
+        bodies,
+        crossings,
+        stability_limit,
+        stopped,
+        flagged,
+        yielded,
+        model,
+        capped,
+    }))
 }
 
 /// The motion of `m`, with the parts that cross at its samples when `crossings`.

@@ -225,12 +225,13 @@ pub enum ContactMode {
 /// ```
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Contact {
-    /// The geom touched: of two geoms, the one that is not a circle or sphere (or the first).
+    /// The geom touched: of two geoms, the one on the ground when one is
+    /// (the object a pad closes on), else the pair's first.
     pub geom: String,
     /// The flexure touching it (its joint's name), if a flexure.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flexure: Option<String>,
-    /// The body whose circle or sphere touches it, if a geom.
+    /// The body that touches it with its own geom, for two geoms.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// Where on the flexure (m from its root).
@@ -253,8 +254,19 @@ pub struct Contact {
     pub pair: Pair,
 }
 
+/// Of a pair of two geoms, the geom touched and the body that touches it
+/// with its own geom: the geom on the ground when one is (the object a
+/// finger's pad closes on), else the pair's first.
+pub(crate) fn sides<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> Option<(usize, usize)> {
+    let Toucher::Geom(h) = pair.part else { return None };
+    let (a, b) = (pair.geom, h);
+    let grounded = |g: usize| m.geoms[g].body == 0;
+    Some(if grounded(b) && !grounded(a) { (b, m.geoms[a].body) } else { (a, m.geoms[b].body) })
+}
+
 /// A pair's column name in a sweep's table: `contact.GEOM.PART`, PART the
-/// flexure's joint or, for two geoms, the other geom's body.
+/// flexure's joint or, for two geoms, the body that touches GEOM with its
+/// own geom ([`Contact`]'s `geom` and `flexure` or `body`).
 ///
 /// # Example
 /// ```
@@ -264,11 +276,12 @@ pub struct Contact {
 /// assert_eq!(column(&m, &pairs(&m)[0]), "contact.post.hinge");
 /// ```
 pub fn column<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
-    let part = match p.part {
-        Toucher::Flexure(j) => &m.joints[j].name,
-        Toucher::Geom(h) => &m.bodies[m.geoms[h].body].name,
+    let (geom, part) = match (p.part, sides(m, p)) {
+        (Toucher::Flexure(j), _) => (p.geom, &m.joints[j].name),
+        (_, Some((geom, body))) => (geom, &m.bodies[body].name),
+        (Toucher::Geom(_), None) => unreachable!("two geoms have sides"),
     };
-    format!("contact.{}.{part}", m.geoms[p.geom].name)
+    format!("contact.{}.{part}", m.geoms[geom].name)
 }
 
 /// A pair as a message names it: `geom "floor" (plane) and flexure "hinge"`.
