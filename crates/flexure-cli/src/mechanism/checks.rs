@@ -71,41 +71,6 @@ fn sweep_warning(file: &Path, parameter: &str, out: &Swept, values: &[f64]) -> O
     ))
 }
 
-/// `draw` pictures its answer on the mechanism of the file, so an answer
-/// found with an `order = "auto"` flexure raised (whose coordinates are of
-/// the raised order) is refused by name until `draw` pictures the model
-/// the answer was found with; `solve` answers it.
-fn drawable(model: &Model, used: &Model, file: &Path) -> Result<(), String> {
-    if used.dof() == model.dof() {
-        return Ok(());
-    }
-    let raised: Vec<String> = (used.orders().0.iter().zip(&model.orders().0))
-        .filter(|((_, a), (_, b))| a != b)
-        .map(|((name, o), _)| match o.as_slice() {
-            [one] => format!("{name:?} to order {one}"),
-            all => format!("{name:?} to orders {all:?}"),
-        })
-        .collect();
-    Err(format!(
-        "{}: draw: the answer was found with order = \"auto\" raised ({}), which draw cannot picture yet: give those flexure joints that order in the file to draw it (`solve` answers it as it is)",
-        file.display(),
-        raised.join(", ")
-    ))
-}
-
-/// `draw`'s check of a solve: [`solve_answer`], refused where an
-/// `order = "auto"` flexure was raised ([`drawable`]).
-pub(super) fn solved_answer(
-    model: &Model,
-    findings: Vec<Value>,
-    solved: Solved,
-    target: &Accuracy,
-    file: &Path,
-) -> Result<Value, String> {
-    drawable(model, &solved.model, file)?;
-    solve_answer(model, findings, solved, target, file)
-}
-
 /// `solve`'s answer, shared by `draw`: the library's report
 /// ([`flexure::report::solve_report`]) with the compliance asked for,
 /// `order` (the orders used) when a flexure has `order = "auto"`, and
@@ -209,20 +174,6 @@ pub(super) fn swept_answer(
         v["stopped"] = json!({ "value": value, "error": error });
     }
     v
-}
-
-/// `draw`'s sweep: [`sweep_table`], refused where an `order = "auto"`
-/// flexure was raised ([`drawable`]).
-pub(super) fn sweep_answer(
-    model: &Model,
-    sweep: (&str, &[f64]),
-    compliance: Option<(&str, &[f64])>,
-    target: &Accuracy,
-    file: &Path,
-) -> Result<(Value, Swept), String> {
-    let (v, out) = sweep_table(model, sweep, compliance, target, file)?;
-    drawable(model, &out.model, file)?;
-    Ok((v, out))
 }
 
 /// The sweep of `parameter` over `values` on `model`, with the compliance

@@ -1,7 +1,7 @@
 //! `flexure draw`: a mechanism's unloaded and loaded shapes (or a
 //! simulated motion) as one SVG, with the warnings `solve` gives.
 
-use super::checks::solved_answer;
+use super::checks::solve_answer;
 use super::drawing::{self, Marks, Track, View, snapshot_samples, swept};
 use super::scene::{self, Drawn, Scene, Shapes, Snapshot};
 use crate::analyses::{SweepSpec, sweep_values};
@@ -86,7 +86,10 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
     } else if let Some(spec) = &args.sweep {
         let values = sweep_values(&spec.range);
         let out;
-        (checks, out) = super::checks::sweep_answer(model, (&spec.parameter, &values), None, &target, &args.file)?;
+        (checks, out) = super::checks::sweep_table(model, (&spec.parameter, &values), None, &target, &args.file)?;
+        if out.model.dof() != model.dof() {
+            return raised(args, &out.model);
+        }
         if out.rows.is_empty() {
             let why = out.stopped.as_ref().map_or("no value was reached".into(), |(v, e)| format!("at {v}: {e}"));
             return Err(format!("{}: --sweep {}: nothing to draw: {why}", args.file.display(), spec.parameter));
@@ -115,9 +118,12 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
     } else {
         let findings = crate::findings::open_at_rest(model, &args.file)?;
         let solved = model.solve(&target, None).map_err(super::solver_error(&args.file))?;
+        if solved.model.dof() != model.dof() {
+            return raised(args, &solved.model);
+        }
         let q = solved.q.clone();
         let contacts = solved.report.as_ref().map(|r| r.contacts.clone()).unwrap_or_default();
-        checks = solved_answer(model, findings, solved, &target, &args.file)?;
+        checks = solve_answer(model, findings, solved, &target, &args.file)?;
         vec![("loaded".into(), D::pose(m, "loaded", &q, &m.loads())?.with_contacts(&contacts))]
     };
     let mut answer = json!({});
@@ -130,6 +136,13 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
     let unloaded = unloaded(m).map_err(|e| super::file_error(&args.file, e))?;
     let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
+}
+
+/// The picture of an answer found with an `order = "auto"` flexure raised:
+/// drawn on the mechanism it was found with, whose own solve meets the
+/// target at those orders (or stops at the cap), so it is not raised again.
+fn raised(args: &DrawArgs, used: &Model) -> Result<Picture, String> {
+    used.visit(Draw(args, used))
 }
 
 /// The unloaded, assembled mechanism; with geoms that may touch, followed
