@@ -207,13 +207,13 @@ fn mutated_examples() {
                 // (an inconsistent file, placed at the widest-open closure).
                 // A file whose parts may touch (the grasp's): contact's refusals name
                 // the geom (buckling does not handle contact; a part starting inside
-                // a geom; a contact set Newton cannot solve where it changed), or the
-                // pair of two geoms neither a circle (a dropped `exclude` line: the
-                // file takes such a pair, and only the solve refuses it, unplaced).
+                // a geom; a contact set Newton cannot solve where it changed). Two
+                // geoms neither a circle (a dropped `exclude` line) are refused by the
+                // file, placed.
                 let touching = !flexure::mechanism::contact::pairs(&m).is_empty();
                 let numerical = |e: &Error| match e {
                     Error::File { place, .. } => place.starts_with("line ") && place.contains(", column "),
-                    Error::InvalidParameter { name: "geom" | "pair", .. } => touching,
+                    Error::InvalidParameter { name: "geom", .. } => touching,
                     e => matches!(
                         e,
                         Error::NoConvergence { .. }

@@ -96,6 +96,20 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
             }
             Toucher::Geom(h) => {
                 let other = &m.geoms[h];
+                let round = |g: &crate::mechanism::contact::Geom<D>| matches!(g.shape, GeomShape::Ball { .. });
+                if !round(geom) && !round(other) {
+                    return src.fail(
+                        &places[h.max(pair.geom)],
+                        format!(
+                            "geom {:?} ({}) and geom {:?} ({}) may touch, and two geoms touch only where one is a {}: name one in the other's `exclude`",
+                            geom.name,
+                            geom.shape.name(),
+                            other.name,
+                            other.shape.name(),
+                            if D::POINT_DIM == 2 { "circle" } else { "sphere" }
+                        ),
+                    );
+                }
                 let centre = |g: &crate::mechanism::contact::Geom<D>| {
                     D::act(&D::compose(&bodies[g.body], &g.frame), &D::origin(&D::identity()))
                 };
