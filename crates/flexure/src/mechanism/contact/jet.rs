@@ -16,7 +16,7 @@
 //! the shape's curvature ([`super::GeomShape::curvature`], turned to the world). In
 //! $s$, $\partial_s x = t$ (the unit tangent), so $\partial_s g = n\cdot t - h^{\prime}$.
 
-use super::{Pair, Touch, Toucher, named};
+use super::{Pair, Touch, Toucher, dot, named};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kinematics::{Attached, FrameChain, Frames, add_attached_hessian, attach_into};
@@ -252,11 +252,6 @@ fn columns<D: FrameChain>(m: &Mechanism<D>, x: &Attached<D>) -> Vec<usize> {
 /// `v` (world) in the frame `pose`.
 fn normal_in<D: Touch>(pose: &D::Pose, v: &D::Vector) -> D::Vector {
     D::rotate(&D::inverse(pose), v)
-}
-
-/// $a\cdot b$ over the dimension's components.
-fn dot<D: Touch>(a: &D::Vector, b: &D::Vector) -> f64 {
-    (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
 }
 
 /// $a^TCb$.

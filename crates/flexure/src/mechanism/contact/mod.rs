@@ -33,6 +33,7 @@ pub use gap::{Gap, gap, minima};
 pub(crate) use jet::point_jet;
 pub use jet::{GapJet, gap_jet};
 pub use shape::{DistanceHessian, GeomShape};
+pub(crate) use shape::{dot, scaled};
 
 /// A shape on a body (body 0 is the ground): it moves with the body.
 ///

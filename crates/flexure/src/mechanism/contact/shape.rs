@@ -67,7 +67,7 @@ pub enum GeomShape<D: Dimension> {
 }
 
 /// $a\cdot b$ over the dimension's components.
-fn dot<D: Dimension>(a: &D::Vector, b: &D::Vector) -> f64 {
+pub(crate) fn dot<D: Dimension>(a: &D::Vector, b: &D::Vector) -> f64 {
     (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
 }
 
@@ -79,7 +79,7 @@ fn axis<D: Dimension>(i: usize) -> D::Vector {
 }
 
 /// `v` scaled by `k`.
-fn scaled<D: Dimension>(v: &D::Vector, k: f64) -> D::Vector {
+pub(crate) fn scaled<D: Dimension>(v: &D::Vector, k: f64) -> D::Vector {
     let mut out = *v;
     for i in 0..D::POINT_DIM {
         out[i] *= k;

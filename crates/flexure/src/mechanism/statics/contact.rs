@@ -53,7 +53,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, gap_jet, minima, named, pairs, point_jet, sides,
+    Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, dot, gap_jet, minima, named, pairs, point_jet, scaled,
+    sides,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -319,14 +320,23 @@ impl<D: Statics> ContactKkt<'_, D> {
         let length = self.kkt.length;
         (0..self.touching.len())
             .filter_map(|c| {
-                let Law::Slip { direction } = self.touching[c].law else { return None };
-                let here = self.local_point(c);
-                let moved: Vec<f64> = (0..D::POINT_DIM).map(|i| here[i] - self.touching[c].from[i]).collect();
-                let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
-                let ahead: f64 = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
+                let (_, size, ahead) = self.slid(c)?;
                 (size > 1e-9 * length).then(|| (ahead / size).clamp(-1.0, 1.0).acos())
             })
             .fold(0.0, f64::max)
+    }
+
+    /// Sliding contact `c`'s motion since the last accepted state, in its
+    /// geom body's frame (after [`Problem::evaluate`]): the move, its
+    /// length and its part along the sliding direction; `None` unless it slides.
+    fn slid(&self, c: usize) -> Option<([f64; 3], f64, f64)> {
+        let t = &self.touching[c];
+        let Law::Slip { direction } = t.law else { return None };
+        let here = self.local_point(c);
+        let moved: [f64; 3] = std::array::from_fn(|i| if i < D::POINT_DIM { here[i] - t.from[i] } else { 0.0 });
+        let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let ahead = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
+        Some((moved, size, ahead))
     }
 
     /// Takes the state last evaluated as accepted: each contact's point is
@@ -336,16 +346,14 @@ impl<D: Statics> ContactKkt<'_, D> {
     fn accept(&mut self) {
         let length = self.kkt.length;
         for c in 0..self.touching.len() {
-            let here = self.local_point(c);
+            let (here, slid) = (self.local_point(c), self.slid(c));
             let t = &mut self.touching[c];
-            if let Law::Slip { direction } = &mut t.law {
-                let moved: Vec<f64> = (0..D::POINT_DIM).map(|i| here[i] - t.from[i]).collect();
-                let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
-                let ahead: f64 = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
-                if size > 1e-9 * length && ahead > 0.0 {
-                    for i in 0..D::POINT_DIM {
-                        direction[i] = moved[i] / size;
-                    }
+            if let (Law::Slip { direction }, Some((moved, size, ahead))) = (&mut t.law, slid)
+                && size > 1e-9 * length
+                && ahead > 0.0
+            {
+                for i in 0..D::POINT_DIM {
+                    direction[i] = moved[i] / size;
                 }
             }
             t.from = here;
@@ -368,16 +376,20 @@ fn slide<D: Statics>(e: &D::Vector, n: &D::Vector) -> (D::Vector, impl Fn(&D::Ve
     })
 }
 
-fn dot<D: Statics>(a: &D::Vector, b: &D::Vector) -> f64 {
-    (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
+/// A stuck contact's constraint rows, $\partial_c(x - a)$ per component.
+fn pin_rows<D: Statics>(delta: &[D::Vector]) -> impl Iterator<Item = Vec<f64>> + '_ {
+    (0..D::POINT_DIM).map(move |k| delta.iter().map(|d| d[k]).collect())
 }
 
-fn scaled<D: Statics>(v: &D::Vector, k: f64) -> D::Vector {
-    let mut out = *v;
-    for i in 0..D::POINT_DIM {
-        out[i] *= k;
+/// Adds an inner contact's place eliminated from the stiffness `h`:
+/// $N g_{qs}g_{sq}/g_{ss}$ (the Hessian of $-Ng$ at the least in $s$).
+fn add_place<D: Statics>(h: &mut DMatrix<f64>, force: f64, jet: &GapJet<D>) {
+    let n = h.nrows();
+    for r in 0..n {
+        for c in 0..n {
+            h[(r, c)] += force * jet.dqs[r] * jet.dqs[c] / jet.dss;
+        }
     }
-    out
 }
 
 fn vector<D: Statics>(a: &[f64; 3]) -> D::Vector {
@@ -536,18 +548,14 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
             .collect();
         for ((t, jet), friction) in self.touching.iter().zip(&self.jets).zip(&self.friction) {
             if let Friction::Pin { delta, .. } = friction {
-                g.extend((0..D::POINT_DIM).map(|k| delta.iter().map(|d| d[k]).collect()));
+                g.extend(pin_rows::<D>(delta));
                 continue;
             }
             if t.place == Place::Inner {
                 if jet.dss <= 0.0 {
                     return false;
                 }
-                for r in 0..n {
-                    for c in 0..n {
-                        h[(r, c)] += t.force[0] * jet.dqs[r] * jet.dqs[c] / jet.dss;
-                    }
-                }
+                add_place(&mut h, t.force[0], jet);
             }
             if t.force[0] > 0.0 {
                 g.push(jet.gradient.clone());
@@ -655,12 +663,11 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                     return Ok(Some(Event::Slip(c, array::<D>(&direction), normal)));
                 }
             }
-            Law::Slip { direction } => {
-                let here = problem.local_point(c);
-                let moved: f64 = (0..D::POINT_DIM).map(|i| (here[i] - t.from[i]) * direction[i]).sum();
-                if moved < -GAP_TOLERANCE * problem.kkt.length {
+            Law::Slip { .. } => {
+                let (_, _, ahead) = problem.slid(c).expect("a sliding contact");
+                if ahead < -GAP_TOLERANCE * problem.kkt.length {
                     let force = scaled::<D>(&jet.normal, normal) + problem.friction_force(c);
-                    return Ok(Some(Event::Stick(c, here, array::<D>(&force))));
+                    return Ok(Some(Event::Stick(c, problem.local_point(c), array::<D>(&force))));
                 }
             }
             Law::Free => {}
@@ -1089,7 +1096,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                     if i < D::POINT_DIM { c.normal_force * jet.normal[i] + c.friction_force[i] } else { 0.0 }
                 }));
                 h -= p.hessian_along(m, &f, &force);
-                rows.extend((0..D::POINT_DIM).map(|k| p.delta.iter().map(|d| d[k]).collect()));
+                rows.extend(pin_rows::<D>(&p.delta));
             }
             _ if rough => {
                 return Err(Error::invalid(
@@ -1099,17 +1106,13 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 ));
             }
             _ => {
-                h -= jet.hessian * c.normal_force;
+                h -= &jet.hessian * c.normal_force;
                 let length = match c.pair.part {
                     Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
                     Toucher::Geom(_) => 1.0,
                 };
                 if c.s.is_some_and(|s| s > 0.0 && s < length) && jet.dss > 0.0 {
-                    for r in 0..n {
-                        for k in 0..n {
-                            h[(r, k)] += c.normal_force * jet.dqs[r] * jet.dqs[k] / jet.dss;
-                        }
-                    }
+                    add_place(&mut h, c.normal_force, &jet);
                 }
                 rows.push(jet.gradient);
             }
