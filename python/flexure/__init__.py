@@ -161,6 +161,11 @@ class Mechanism:
         findings (left out when empty) lists what `solve` lists: closures open at
         rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
         once per pair of parts; each sample's crossing listed with its time).
+        With geoms a part may touch (frictionless in motion: friction raises ValueError),
+        contacts lists each sample's contacts as `solve` reports them (each touching
+        contact, then each other pair at its least gap, state "open"), and changes lists
+        where one touched ("slip") or opened ("open"): {time, contact, state}. A contact
+        that touches while approaching takes a perfectly inelastic impact.
         `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
         error_estimate {position (m), angle (rad), at (s), reference_tolerance, samples,
         complete, position_tolerance (m)} is the largest difference of a body's pose from a

@@ -1,4 +1,5 @@
-"""Contact in `Mechanism.solve` (crates/flexure/src/mechanism/statics/contact.rs):
+"""Contact in `Mechanism.solve` (crates/flexure/src/mechanism/statics/contact.rs) and
+`Mechanism.simulate` (crates/flexure/src/dynamics/contact.rs):
 the answer's `contacts`, as `flexure solve --json` prints them.
 
 Reference: the propped cantilever, a tip moment M pressing a strip's tip
@@ -82,3 +83,50 @@ def test_other_analyses_refuse_a_pair_that_may_touch():
     m = flexure.Mechanism.from_toml(STRIP)
     with pytest.raises(ValueError, match=r"geom \"floor\" \(plane\) and flexure \"strip\": may touch"):
         m.buckle()
+
+
+DROP = """
+gravity = [0.0, -9.81]
+[[joint]]
+name = "slide"
+kind = "prismatic"
+parent = "ground"
+child = "ball"
+origin = [0.0, 0.0, 1.5707963267948966]
+[[body]]
+name = "ball"
+mass = 2.0
+[[geom]]
+name = "shot"
+body = "ball"
+shape = "circle"
+radius = 0.05
+[[geom]]
+name = "floor"
+body = "ground"
+shape = "plane"
+origin = [0.0, -0.25]
+normal = [0.0, 1.0]
+"""
+
+
+def test_a_dropped_ball_lands_and_rests_on_the_floor():
+    """Reference: free fall from 0.2 m lands at sqrt(2h/g) = 0.2019 s and rests pushed by mg
+    (crates/flexure/src/dynamics/contact.rs); 1e-6 s, 1e-6 of mg."""
+    run = flexure.Mechanism.from_toml(DROP).simulate(0.4, every=0.02, tolerance=1e-9, start="rest")
+    landing = (2 * 0.2 / 9.81) ** 0.5
+    assert [c["state"] for c in run["changes"]] == ["slip"]
+    assert run["changes"][0]["contact"] == "contact.floor.ball"
+    assert abs(run["changes"][0]["time"] - landing) < 1e-6
+    for t, contacts in zip(run["time"], run["contacts"]):
+        (c,) = contacts
+        if t > landing:
+            assert c["state"] == "slip" and abs(c["normal_force"] - 2 * 9.81) < 1e-6 * 2 * 9.81
+        else:
+            assert c["state"] == "open" and c["normal_force"] == 0.0 and c["gap"] > 0.0
+
+
+def test_friction_in_motion_is_refused_by_name():
+    rough = flexure.Mechanism.from_toml(DROP + "friction = 0.3\n")
+    with pytest.raises(ValueError, match=r"friction.*geom \"floor\""):
+        rough.simulate(0.1, start="rest")

@@ -174,8 +174,9 @@ fn with_progress_bar<R>(duration: f64, what: &str, work: impl FnOnce() -> R) -> 
 /// `dimension`, `time`, `bodies` {name: {each pose key: one value per
 /// sample}} (planar x, y, phi; spatial x, y, z, roll, pitch, yaw and
 /// rotation), `coordinates` {joint: one row per sample}, `energy`, `steps`,
-/// `rejected` and `violation`; with `findings`, and `stopped` after a run
-/// that ended early.
+/// `rejected` and `violation`; `contacts` (each sample's) and `changes`
+/// (where contacts touched and opened) where the mechanism has geoms; with
+/// `findings`, and `stopped` after a run that ended early.
 pub fn simulate_cmd(args: &SimulateArgs) -> Result<Value, String> {
     // The output file is opened before the run, so a path that cannot be
     // written is said before the work, not after it.
@@ -307,7 +308,7 @@ fn motion_json(model: &Model, run: &Motion) -> Value {
             (name, json!(rows))
         })
         .collect();
-    json!({
+    let mut v = json!({
         "dimension": model.dimension(),
         "time": t.time,
         "bodies": bodies,
@@ -316,5 +317,10 @@ fn motion_json(model: &Model, run: &Motion) -> Value {
         "steps": t.steps,
         "rejected": t.rejected,
         "violation": t.violation,
-    })
+    });
+    if !run.contacts.is_empty() {
+        v["contacts"] = json!(run.contacts);
+        v["changes"] = json!(run.changes);
+    }
+    v
 }

@@ -586,7 +586,7 @@ fn the_grasp_balances_its_contact_forces() {
 /// The grasp's drawing shows its rod, its pads' contacts and their forces:
 /// the geoms named in the legend, each touching contact's entry and its
 /// value in N beside its arrow (the solve's own normal force, to its four
-/// digits); `--simulate` is refused.
+/// digits); `--simulate` is refused (it has no mass).
 #[test]
 fn the_grasp_is_drawn_with_its_contacts() {
     let path = file("grasp");
@@ -609,10 +609,10 @@ fn the_grasp_is_drawn_with_its_contacts() {
     json(&["draw", &path, "--out", out.to_str().unwrap(), "--sweep", "tendon.flexor.tension=0:4:9"]);
     let svg = std::fs::read_to_string(&out).unwrap();
     assert!(svg.contains("contact cylinder on proximal: normal force 0 to "), "the sweep's contacts");
-    // A motion with contact is not solved: `draw --simulate` refuses it, writing nothing.
+    // The grasp has no mass: `draw --simulate` refuses it for that, writing nothing.
     let out = dir.path().join("grasp-motion.svg");
     let (code, stdout, err) = run(&["draw", &path, "--out", out.to_str().unwrap(), "--simulate", "0.01"]);
-    assert!(code == 2 && stdout.is_empty() && err.contains("may touch") && !out.exists(), "{code}: {err}");
+    assert!(code == 2 && stdout.is_empty() && err.contains("nothing moves") && !out.exists(), "{code}: {err}");
 }
 
 /// The commands an example's closing comment lists (`#   flexure …`),

@@ -19,7 +19,8 @@ use pyo3::types::PyDict;
 /// ("equilibrium" or "rest"), with a step budget of `max_steps` (default:
 /// the library's, 1e6 plus 10 per sample), as a dict of arrays: each body's
 /// pose keys one array each (planar x, y, phi; spatial x, y, z, roll, pitch,
-/// yaw, and rotation (N, 3, 3)), as `flexure simulate --json`, with its
+/// yaw, and rotation (N, 3, 3)), with `contacts` (a list per sample) and
+/// `changes` where it has geoms, as `flexure simulate --json`, with its
 /// `error_estimate` against a run at a tenth of the tolerance and `flagged`
 /// (`AccuracyWarning` when it misses `target`); runs without the GIL.
 pub fn motion<'py>(
@@ -79,6 +80,10 @@ pub fn motion<'py>(
     out.set_item("rejected", t.rejected)?;
     out.set_item("violation", t.violation)?;
     out.set_item("energy", Array1::from_vec(t.energy.clone()).into_pyarray(py))?;
+    if !run.contacts.is_empty() {
+        out.set_item("contacts", crate::serialize::to_python(py, &run.contacts)?)?;
+        out.set_item("changes", crate::serialize::to_python(py, &run.changes)?)?;
+    }
     if !findings.is_empty() {
         out.set_item("findings", findings)?;
     }

@@ -18,6 +18,7 @@
 //! $M(\alpha)\ddot\alpha + h(\alpha,\dot\alpha) + \nabla U = Q$ with
 //! $h = \dot M\dot\alpha - \frac12\nabla_\alpha(\dot\alpha^TM\dot\alpha)$.
 
+pub mod contact;
 pub mod integrate;
 pub mod mechanism;
 pub mod modes;

@@ -16,11 +16,13 @@
 //! start is an equilibrium of the equations of motion, and a mechanism
 //! started there stays at rest.
 
+use super::contact::{ContactChange, ContactSystem};
 use super::integrate::{self, Trajectory, integrate_kept};
 use super::mechanism::Dynamics;
 use super::schedule::{ScheduledSystem, loads_at};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
+use crate::mechanism::contact::{Contact, pairs};
 use crate::mechanism::statics;
 use crate::space::Planar;
 
@@ -86,6 +88,13 @@ pub struct Simulation<D: Dynamics = Planar> {
     /// of damping is not in it.
     #[serde(flatten)]
     pub trajectory: Trajectory,
+    /// The contacts at each sample, where the mechanism has geoms a part may
+    /// touch ([`super::contact::ContactSystem::samples`]; empty otherwise).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<Vec<Contact>>,
+    /// Where contacts touched and opened, in time.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub changes: Vec<ContactChange>,
     /// Why the run ended before its duration, if it did (stalled,
     /// interrupted, a state that cannot be evaluated): the samples above
     /// are those reached ([`integrate::integrate_kept`]).
@@ -132,13 +141,18 @@ pub fn initial_state<D: Dynamics>(
         }
     };
     let mut v = vec![0.0; m.dof()];
-    for (state, given) in [(&mut q, &m.initial), (&mut v, &m.initial_velocity)] {
+    set_given(m, &mut q, &mut v);
+    Ok((q, v))
+}
+
+/// The file's `[initial]` and `[initial_velocity]` written over `q` and `v`.
+fn set_given<D: Dynamics>(m: &Mechanism<D>, q: &mut [f64], v: &mut [f64]) {
+    for (state, given) in [(q, &m.initial), (v, &m.initial_velocity)] {
         for (j, values) in given {
             let o = m.joints[*j].offset;
             state[o..o + values.len()].copy_from_slice(values);
         }
     }
-    Ok((q, v))
 }
 
 /// Simulates `m` from `start` (with the file's `[initial]` and
@@ -168,8 +182,6 @@ pub fn initial_state<D: Dynamics>(
 /// assert!((run.bodies[0].phi[2] - 0.1 * 2f64.cos()).abs() < 1e-8);
 /// ```
 pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, start: Start) -> Result<Simulation<D>> {
-    // Motion does not solve contact yet: a part must not pass through a shape silently.
-    crate::mechanism::contact::refuse_unsolved(m)?;
     settings.motion.validate()?;
     settings.equilibrium.validate()?;
     let mut system = ScheduledSystem::new(m)?;
@@ -180,7 +192,39 @@ pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, st
             "no body has mass or inertia and no flexure has a density or mass per length: nothing moves",
         ));
     }
-    let (q0, v0) = initial_state(m, &settings.equilibrium, start)?;
-    let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
-    Ok(Simulation { bodies: D::motions(m, &run), trajectory: run, stopped })
+    let (run, stopped, contacts, changes) = if pairs(m).is_empty() {
+        let (q0, v0) = initial_state(m, &settings.equilibrium, start)?;
+        let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
+        (run, stopped, Vec::new(), Vec::new())
+    } else {
+        let (q0, v0, touching) = initial_touching(m, &settings.equilibrium, start)?;
+        let mut system = ContactSystem::new(m, &q0, &touching, settings.motion.tolerance)?;
+        let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
+        (run, stopped, system.samples().to_vec(), system.changes().to_vec())
+    };
+    Ok(Simulation { bodies: D::motions(m, &run), trajectory: run, contacts, changes, stopped })
+}
+
+/// [`initial_state`] of a mechanism with geoms, and the contacts that touch
+/// there: an equilibrium's, with their pushes ([`statics::follow_touching`]);
+/// none from the rest shape or where `[initial]` sets coordinates (a part
+/// there that overlaps a geom is refused by [`ContactSystem::new`], and one
+/// that touches is held once it presses in).
+fn initial_touching<D: Dynamics>(
+    m: &Mechanism<D>,
+    settings: &statics::Settings,
+    start: Start,
+) -> Result<(Vec<f64>, Vec<f64>, Vec<Contact>)> {
+    let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
+    if start == Start::Rest || (0..m.joints.len()).all(given) {
+        let (q, v) = initial_state(m, settings, start)?;
+        return Ok((q, v, Vec::new()));
+    }
+    let work = &mut statics::Workspace::new(m);
+    let (solution, _) = statics::follow_touching(m, None, &loads_at(m, 0.0), settings, work)?;
+    let (mut q, mut v) = (solution.q, vec![0.0; m.dof()]);
+    set_given(m, &mut q, &mut v);
+    // Coordinates set by hand leave the equilibrium's contacts behind.
+    let touching = if m.initial.is_empty() { solution.contacts } else { Vec::new() };
+    Ok((q, v, touching))
 }

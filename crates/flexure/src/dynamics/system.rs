@@ -58,4 +58,37 @@ pub trait System {
     fn jumps(&self) -> Vec<f64> {
         Vec::new()
     }
+
+    /// Writes the system's guards at a state the integrator reached: the
+    /// functions whose fall below zero is an event that changes its mode
+    /// (a contact that touches, or one that pulls and opens), each scaled so
+    /// that 1 is the resolution it asks ($\lvert g\rvert \le 1$ is on the
+    /// event). `multipliers` are the closures' $\lambda$ there, as the
+    /// stage equations solved them, or `None` where none were (the start, or
+    /// just after a switch): a guard on them is then reported positive. `out`
+    /// has [`System::guard_count`] entries. The default: none.
+    fn guards(&mut self, _q: &[f64], _v: &[f64], _multipliers: Option<&[f64]>, _out: &mut [f64]) -> Result<()> {
+        Ok(())
+    }
+
+    /// The number of guards in the current mode ([`System::guards`]).
+    fn guard_count(&self) -> usize {
+        0
+    }
+
+    /// The events of guards `ks` (of the current mode) at time `t` and the state
+    /// $(q, \dot q)$ the integrator landed on: the mode changes, and
+    /// [`System::closures`] and [`System::guard_count`] may change with it.
+    /// The integrator then moves the state onto the new closures, the
+    /// velocities by a perfectly inelastic impact.
+    fn switch(&mut self, _ks: &[usize], _t: f64, _q: &[f64], _v: &[f64]) -> Result<()> {
+        Ok(())
+    }
+
+    /// Told of each sample as it is recorded, with the closures' multipliers
+    /// of the step that reached it (`None` at the start and just after a
+    /// switch). An error ends the run there, as a sample's energy's does.
+    fn sampled(&mut self, _t: f64, _q: &[f64], _v: &[f64], _multipliers: Option<&[f64]>) -> Result<()> {
+        Ok(())
+    }
 }

@@ -6,7 +6,6 @@
 //! space implement those here, side by side; [`super::Model`] is written
 //! once over it.
 
-use crate::dynamics::integrate::Trajectory;
 use crate::dynamics::modes::Modes;
 use crate::dynamics::simulation::{SimulationSettings, Start};
 use crate::error::{Error, Result};
@@ -65,9 +64,8 @@ pub trait Analyses: Reported + Refined + Findings {
         m: &Mechanism<Self>,
         settings: &SimulationSettings,
         start: Start,
-    ) -> Result<(Trajectory, Option<Error>)> {
-        let run = crate::dynamics::simulation::simulate(m, settings, start)?;
-        Ok((run.trajectory, run.stopped))
+    ) -> Result<crate::dynamics::Simulation<Self>> {
+        crate::dynamics::simulation::simulate(m, settings, start)
     }
     /// Linear buckling with its estimate, flexures of `order = "auto"` raised.
     fn buckle(

@@ -132,6 +132,10 @@ pub struct Motion {
     pub bodies: Vec<(String, Vec<BodyPose>)>,
     /// The parts that cross, by sample, where any do.
     pub crossings: Vec<(usize, Vec<Crossing<Vec<f64>>>)>,
+    /// The contacts at each sample, where the mechanism has geoms a part may touch.
+    pub contacts: Vec<Vec<crate::mechanism::contact::Contact>>,
+    /// Where contacts touched and opened, in time.
+    pub changes: Vec<crate::dynamics::contact::ContactChange>,
 }
 
 /// What [`Model::buckle`] and [`Model::modes`] answer: the analysis on the
@@ -626,8 +630,7 @@ fn simulate<D: Analyses>(
     start: Start,
     crossings: bool,
 ) -> Result<Motion> {
-    refuse_unsolved(m)?;
-    let (trajectory, stopped) = D::simulate(m, settings, start)?;
+    let crate::dynamics::Simulation { trajectory, stopped, contacts, changes, .. } = D::simulate(m, settings, start)?;
     let samples: Vec<&[f64]> = (0..trajectory.time.len()).map(|k| trajectory.q(k)).collect();
     let mut bodies: Vec<(String, Vec<BodyPose>)> = m.bodies[1..].iter().map(|b| (b.name.clone(), Vec::new())).collect();
     for q in &samples {
@@ -636,7 +639,7 @@ fn simulate<D: Analyses>(
         }
     }
     let crossings = if crossings { D::crossings_along(m, &samples) } else { Vec::new() };
-    Ok(Motion { trajectory, stopped, bodies, crossings })
+    Ok(Motion { trajectory, stopped, bodies, crossings, contacts, changes })
 }
 
 fn body_poses<D: Analyses>(m: &Mechanism<D>, q: &[f64]) -> Vec<BodyPose> {

@@ -104,6 +104,7 @@
 //! start; the step loop and its control; the stage Newton method; the local
 //! error estimate; the Radau IIA tableau.
 
+mod event;
 mod local_error;
 mod newton;
 mod norm;

@@ -2,6 +2,7 @@
 //! its error estimate, rotation and closures; the next length chosen; the
 //! samples and jumps landed on; the budgets that end a run.
 
+use super::event::{self, MAX_AIMS, PROJECTION_STEP, Pending, Verdict};
 use super::local_error::estimate;
 use super::newton::{self, REUSE, stages};
 use super::progress;
@@ -28,6 +29,8 @@ pub(super) enum Refusal {
     Shorter(f64, String),
     /// The state could not be evaluated: halve the step.
     Failed(String),
+    /// It passed over an event: the next step aims at it.
+    Event,
     /// Newton diverged or did not converge: retry with fresh matrix data
     /// if they were kept, else with the stages' own masses if the matrix
     /// did not yet take them, else halve the step.
@@ -51,7 +54,7 @@ pub(super) fn advance<S: System + ?Sized>(
     settings: &MotionSettings,
     run: &mut Trajectory,
 ) -> Result<()> {
-    let (n, m) = (system.dim(), system.closures());
+    let (n, mut m) = (system.dim(), system.closures());
     let rk = Radau::new();
     let mut w = Work::new(n, m);
     let times = settings.times();
@@ -61,7 +64,15 @@ pub(super) fn advance<S: System + ?Sized>(
     let (mut q1, mut v1) = (q.clone(), v.clone());
     let mut t = 0.0;
     run.violation = violation(system, &q, &mut w)?;
-    record(system, run, 0.0, &q, &v)?;
+    record(system, run, 0.0, &q, &v, None)?;
+    // The guards at the last state accepted, at a step's end, and the event aimed at.
+    let (mut g_now, mut g_end) = (Vec::new(), Vec::new());
+    event::guards(system, &q, &v, None, &mut g_now)?;
+    let mut pending: Option<Pending> = None;
+    // Accepted steps since the start or the last switch, and the multipliers
+    // of the last step accepted (none at the start or after a switch).
+    let mut since_switch = 0;
+    let mut multipliers: Option<Vec<f64>> = None;
     // A first step well inside the sample interval; the controller grows it
     // by up to 5 per step.
     let mut h = 1e-2 * settings.every.min(settings.max_step).min(duration);
@@ -78,10 +89,13 @@ pub(super) fn advance<S: System + ?Sized>(
     let (mut window_start, mut window_steps) = (0.0, 0);
     for &target in &times[1..] {
         while t < target {
-            // The next jump of the loads up to this sample, landed on like a sample.
+            // The next jump of the loads up to this sample, landed on like a
+            // sample, and the event aimed at, before either.
             let jump = jumps.iter().copied().find(|&j| j > t && j <= target);
-            let stop = jump.unwrap_or(target);
-            let stalled = |cause: &str, h: f64, run: &Trajectory| Error::IntegrationStalled {
+            let aim = pending.as_ref().map(|p| p.aim(t, &g_now));
+            let stop = aim.into_iter().chain(jump).fold(target, f64::min);
+            let jump = jump.filter(|&j| j == stop);
+            let stalled = move |cause: &str, h: f64, run: &Trajectory| Error::IntegrationStalled {
                 cause: cause.to_string(),
                 time: t,
                 duration,
@@ -169,7 +183,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 (&q, &v),
                 settings,
                 &mut eta,
-                (last_rejected || run.steps == 0, run.steps < 2, m > 0 || massless),
+                (last_rejected || run.steps == 0, since_switch < 2, m > 0 || massless),
             );
             let refusal = match attempt {
                 Err(e) => return Err(e),
@@ -185,8 +199,40 @@ pub(super) fn advance<S: System + ?Sized>(
                     } else {
                         q1.copy_from_slice(qn);
                         v1.copy_from_slice(vn);
-                        match violation(system, &q1, &mut w) {
-                            Ok(c) if c.is_finite() => {
+                        let lambda = &w.x[3 * n + 2 * m..3 * n + 3 * m];
+                        let verdict = event::guards(system, &q1, &v1, Some(lambda), &mut g_end)
+                            .map(|()| event::verdict(&g_now, &g_end, pending.as_ref()));
+                        let checked = match verdict {
+                            Ok(Verdict::Overshot) => Err(None),
+                            Ok(verdict) => violation(system, &q1, &mut w).map(|c| (c, verdict)).map_err(Some),
+                            Err(e) => Err(Some(e)),
+                        };
+                        match checked {
+                            Err(None) => {
+                                // An event within the step: aim at it, from this step's start.
+                                match pending.as_mut() {
+                                    Some(p) => p.overshot(t + step, &g_end),
+                                    None => pending = Some(Pending::new(t + step, &g_end)),
+                                }
+                                let p = pending.as_ref().expect("just set");
+                                if p.aims > MAX_AIMS {
+                                    return Err(stalled(
+                                        &format!("an event was not landed on in {MAX_AIMS} aimed steps"),
+                                        step,
+                                        run,
+                                    ));
+                                }
+                                if p.t_hi - t <= 1e-12 * t.abs().max(settings.every) {
+                                    // The guards jump at the step's start (a load's jump):
+                                    // the events are there.
+                                    let ks: Vec<usize> = (0..g_end.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
+                                    enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
+                                    (m, pending, multipliers, since_switch, stale, fresh) =
+                                        (w.m, None, None, 0, true, false);
+                                }
+                                Some(Refusal::Event)
+                            }
+                            Ok((c, verdict)) if c.is_finite() => {
                                 run.violation = run.violation.max(c);
                                 // Accept; next step from the controller, within the rotation bound.
                                 t = if landing { stop } else { t + step };
@@ -195,8 +241,11 @@ pub(super) fn advance<S: System + ?Sized>(
                                 w.prev.copy_from_slice(&w.x);
                                 w.prev_h = step;
                                 run.steps += 1;
+                                since_switch += 1;
                                 progress::report(t / duration);
                                 fresh = false;
+                                multipliers = Some(w.x[3 * n + 2 * m..3 * n + 3 * m].to_vec());
+                                std::mem::swap(&mut g_now, &mut g_end);
                                 // Past a jump the loads, and so the tangents, are new.
                                 stale = w.theta > REUSE || (landing && jump.is_some());
                                 let mut next = step * ratio.min(if last_rejected { 1.0 } else { 5.0 });
@@ -206,11 +255,23 @@ pub(super) fn advance<S: System + ?Sized>(
                                 h = if landing && next >= step { next.max(h) } else { next };
                                 last_rejected = false;
                                 rejections = 0;
+                                match verdict {
+                                    Verdict::Landed(ks) => {
+                                        // The mode changes here; the next steps start afresh.
+                                        enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
+                                        (m, pending, multipliers, since_switch, stale) = (w.m, None, None, 0, true);
+                                    }
+                                    Verdict::Clear | Verdict::Overshot => {
+                                        if let Some(p) = pending.as_mut() {
+                                            p.fell_short();
+                                        }
+                                    }
+                                }
                                 None
                             }
-                            Ok(c) => Some(Refusal::Failed(format!("a closure violation of {c}"))),
-                            Err(e) if fatal(&e) => return Err(e),
-                            Err(e) => Some(Refusal::Failed(e.to_string())),
+                            Ok((c, _)) => Some(Refusal::Failed(format!("a closure violation of {c}"))),
+                            Err(Some(e)) if fatal(&e) => return Err(e),
+                            Err(Some(e)) => Some(Refusal::Failed(e.to_string())),
                         }
                     }
                 }
@@ -225,6 +286,12 @@ pub(super) fn advance<S: System + ?Sized>(
                     Refusal::Failed(why) => {
                         cause = why;
                         0.5
+                    }
+                    // Aimed at the event next: the step that overshot was
+                    // sound, its matrix too, and it is no failure in a row.
+                    Refusal::Event => {
+                        run.rejected += 1;
+                        continue;
                     }
                     Refusal::Newton(why) => {
                         cause = why;
@@ -252,9 +319,39 @@ pub(super) fn advance<S: System + ?Sized>(
                 last_rejected = true;
             }
         }
-        record(system, run, target, &q, &v)?;
+        record(system, run, target, &q, &v, multipliers.as_deref())?;
     }
     Ok(())
+}
+
+/// Enters the mode after the events of guards `ks` at time `t`: the
+/// system switches, the buffers fit its closures, the state moves onto them
+/// ([`event::project`]: an impact), and `g_now` takes the new guards, none
+/// of which may be past its band.
+fn enter<S: System + ?Sized>(
+    system: &mut S,
+    ks: &[usize],
+    t: f64,
+    (q, v): (&mut [f64], &mut [f64]),
+    w: &mut Work,
+    settings: &MotionSettings,
+    g_now: &mut Vec<f64>,
+) -> Result<()> {
+    system.switch(ks, t, q, v)?;
+    if system.closures() != w.m {
+        let staged = w.staged;
+        *w = Work::new(w.n, system.closures());
+        w.staged = staged;
+    }
+    w.prev_h = 0.0;
+    event::project(system, t, (q, v), PROJECTION_STEP * settings.every.min(settings.max_step))?;
+    event::guards(system, q, v, None, g_now)?;
+    match g_now.iter().find(|g| **g < -1.0 || g.is_nan()) {
+        Some(g) => {
+            Err(Error::Singular { what: format!("a guard {g:.3e} times past its band just after an event at {t} s") })
+        }
+        None => Ok(()),
+    }
 }
 
 /// Tries one step of length `h` from $(q_0, \dot q_0)$ at $t_0$: on success

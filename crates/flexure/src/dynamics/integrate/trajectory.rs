@@ -82,9 +82,11 @@ pub(super) fn record<S: System + ?Sized>(
     t: f64,
     q: &[f64],
     v: &[f64],
+    multipliers: Option<&[f64]>,
 ) -> Result<()> {
     // The energy first: a sample that cannot be evaluated is not half recorded.
     let energy = system.energy(q, v, t)?;
+    system.sampled(t, q, v, multipliers)?;
     run.time.push(t);
     run.coordinates.extend_from_slice(q);
     run.velocities.extend_from_slice(v);

@@ -90,13 +90,9 @@ pub fn gap_jet<D: Touch + FrameChain>(
 ) -> Result<GapJet<D>> {
     let n = m.dof();
     let p = point_jet(m, f, q, pair, s, None)?;
-    let shape = p.shape;
-    let frame = D::compose(&f.bodies[shape.body], &shape.frame);
-    let (d, normal) = shape.gap(&f.bodies[shape.body], &p.x, 0.0);
-    let y = D::position(&D::act(&D::inverse(&frame), &p.x));
-    let curvature = world_curvature::<D>(&frame, &shape.shape.curvature(&y));
+    let (slope, curvature) = first_order(f, &p);
+    let GapSlope { gap, point, normal, gradient, ds, dss } = slope;
     let delta = &p.delta;
-    let gradient: Vec<f64> = delta.iter().map(|v| dot::<D>(&normal, v)).collect();
     let mut hessian = p.hessian_along(m, f, &normal);
     let bilinear = |a: &D::Vector, b: &D::Vector| quadratic::<D>(&curvature, a, b);
     for b in 0..n {
@@ -112,10 +108,9 @@ pub fn gap_jet<D: Touch + FrameChain>(
             hessian[(c, b)] -= v;
         }
     }
-    let (mut ds, mut dqs, mut dss) = (0.0, vec![0.0; n], 0.0);
+    let mut dqs = vec![0.0; n];
     if let Some(own) = &p.own {
         let t = D::rotate(own.root, &own.jet.tangent);
-        ds = dot::<D>(&normal, &t) - p.half[1];
         for c in 0..n {
             dqs[c] = bilinear(&delta[c], &t);
         }
@@ -128,14 +123,76 @@ pub fn gap_jet<D: Touch + FrameChain>(
         for &c in &p.geom_columns {
             dqs[c] -= D::triple(&normal, &f.omega[c], &t);
         }
-        dss = dot::<D>(&normal, &D::rotate(own.root, &own.jet.bend)) + bilinear(&t, &t) - p.half[2];
     }
     let mut normal_jacobian: Vec<D::Vector> = delta.iter().map(|v| product::<D>(&curvature, v)).collect();
     for &c in &p.geom_columns {
         normal_jacobian[c] = normal_jacobian[c] + D::spin(&f.omega[c], &normal);
     }
+    Ok(GapJet { gap, point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian })
+}
+
+/// A pair's gap at $(q, s)$ to first order in $q$ ([`gap_slope`]): what
+/// motion needs of a touching contact at each stage.
+#[derive(Debug, Clone)]
+pub struct GapSlope<D: Touch> {
+    /// $g$ (m): positive apart, negative overlapping.
+    pub gap: f64,
+    /// The toucher's surface point nearest the geom (world frame).
+    pub point: D::Point,
+    /// The geom's outward unit normal there (world frame).
+    pub normal: D::Vector,
+    /// $\partial g/\partial q$ ($n$ entries).
+    pub gradient: Vec<f64>,
+    /// $\partial g/\partial s$ (0 for two geoms).
+    pub ds: f64,
+    /// $\partial^2 g/\partial s^2$ (1/m; 0 for two geoms).
+    pub dss: f64,
+}
+
+/// [`gap_jet`] without its second derivatives in $q$: the gap of `pair`
+/// at `q` (frames `f` at Jacobian level) and `s`, its gradient
+/// $\partial_cg = n\cdot\Delta_c$, and its first two derivatives in $s$.
+///
+/// # Example
+/// ```
+/// use flexure::kinematics::Level;
+/// use flexure::mechanism::contact::{gap_jet, gap_slope, pairs};
+/// use flexure::mechanism::kinematics::{frames, frames_level_into, Frames};
+/// let m = flexure::mechanism::file::from_toml("[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 1e-3\n\
+///     [[geom]]\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.05, -0.01]\nradius = 0.005\n").unwrap();
+/// let q = [0.1, -0.05, 0.02];
+/// let mut f = Frames::new(&m);
+/// frames_level_into(&m, &q, Level::Jacobian, &mut f);
+/// let (slope, jet) = (gap_slope(&m, &f, &q, &pairs(&m)[0], Some(0.04)).unwrap(), gap_jet(&m, &frames(&m, &q), &q, &pairs(&m)[0], Some(0.04)).unwrap());
+/// assert_eq!((slope.gap, slope.gradient, slope.ds, slope.dss), (jet.gap, jet.gradient, jet.ds, jet.dss));
+/// ```
+pub fn gap_slope<D: Touch + FrameChain>(
+    m: &Mechanism<D>,
+    f: &Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    s: Option<f64>,
+) -> Result<GapSlope<D>> {
+    Ok(first_order(f, &point_jet(m, f, q, pair, s, None)?).0)
+}
+
+/// The gap's value, normal, gradient and derivatives in $s$ from its point's
+/// jet, with the shape's curvature turned to the world.
+fn first_order<D: Touch + FrameChain>(f: &Frames<D>, p: &PointJet<D>) -> (GapSlope<D>, super::DistanceHessian) {
+    let shape = p.shape;
+    let frame = D::compose(&f.bodies[shape.body], &shape.frame);
+    let (d, normal) = shape.gap(&f.bodies[shape.body], &p.x, 0.0);
+    let y = D::position(&D::act(&D::inverse(&frame), &p.x));
+    let curvature = world_curvature::<D>(&frame, &shape.shape.curvature(&y));
+    let gradient: Vec<f64> = p.delta.iter().map(|v| dot::<D>(&normal, v)).collect();
+    let (mut ds, mut dss) = (0.0, 0.0);
+    if let Some(own) = &p.own {
+        let t = D::rotate(own.root, &own.jet.tangent);
+        ds = dot::<D>(&normal, &t) - p.half[1];
+        dss = dot::<D>(&normal, &D::rotate(own.root, &own.jet.bend)) + quadratic::<D>(&curvature, &t, &t) - p.half[2];
+    }
     let point = D::moved(&p.x, &normal, -p.half[0]);
-    Ok(GapJet { gap: d - p.half[0], point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian })
+    (GapSlope { gap: d - p.half[0], point, normal, gradient, ds, dss }, curvature)
 }
 
 /// A toucher's point $x$ (a flexure's centreline point at $s$, or a

@@ -31,7 +31,7 @@ pub use dimension::{SectionJet, Touch};
 pub(crate) use gap::ball_and_other;
 pub use gap::{Gap, gap, minima};
 pub(crate) use jet::point_jet;
-pub use jet::{GapJet, gap_jet};
+pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
 pub use shape::{DistanceHessian, GeomShape};
 pub(crate) use shape::{dot, scaled};
 
@@ -255,6 +255,45 @@ pub struct Contact {
     pub pair: Pair,
 }
 
+impl Contact {
+    /// The contact of `pair` of `m` at `place` (its arc length on a flexure,
+    /// the toucher's point, the normal of the gap, the gap) with `forces`
+    /// (the normal force, the friction force) and `state`, named as answers
+    /// and the sweep's columns name it: the geom touched, and the flexure or
+    /// the body that touches it, the normal out of the geom touched.
+    pub(crate) fn of<D: Touch>(
+        m: &Mechanism<D>,
+        pair: &Pair,
+        (s, point, normal, gap): (Option<f64>, &D::Point, &D::Vector, f64),
+        (normal_force, friction_force): (f64, &D::Vector),
+        state: ContactMode,
+    ) -> Contact {
+        let vector = |v: &D::Vector| (0..D::POINT_DIM).map(|i| v[i]).collect::<Vec<f64>>();
+        // The gap's normal is out of the geom that is not the ball.
+        let (geom, flexure, body, side) = match (pair.part, sides(m, pair)) {
+            (_, Some((geom, body))) => {
+                let ball = ball_and_other(m, pair).is_ok_and(|(round, ..)| std::ptr::eq(round, &m.geoms[geom]));
+                (m.geoms[geom].name.clone(), None, Some(m.bodies[body].name.clone()), if ball { -1.0 } else { 1.0 })
+            }
+            (Toucher::Flexure(j), None) => (m.geoms[pair.geom].name.clone(), Some(m.joints[j].name.clone()), None, 1.0),
+            (Toucher::Geom(_), None) => unreachable!("two geoms have sides"),
+        };
+        Contact {
+            geom,
+            flexure,
+            body,
+            s,
+            point: vector(&D::position(point)),
+            normal: vector(&scaled::<D>(normal, side)),
+            normal_force,
+            friction_force: vector(friction_force),
+            gap,
+            state,
+            pair: *pair,
+        }
+    }
+}
+
 /// Of a pair of two geoms, the geom touched and the body that touches it
 /// with its own geom: the geom on the ground when one is (the object a
 /// finger's pad closes on), else the pair's first.
@@ -310,7 +349,7 @@ pub fn named<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
 }
 
 /// An error naming the first pair of `m` that may touch, for the analyses
-/// that do not solve contact yet (all but the equilibrium solve, sweep,
+/// that do not solve contact yet (all but the equilibrium solve, sweep, motion,
 /// compliance and modes): none may
 /// let a part pass through a shape silently. `Ok` when no pair may touch (no geoms, or every pair
 /// excluded), so a mechanism's other analyses are unchanged.
@@ -332,7 +371,7 @@ pub fn refuse_unsolved<D: Dimension>(m: &Mechanism<D>) -> Result<()> {
         Some(p) => Err(Error::invalid(
             "geom",
             named(m, p),
-            "may touch, and only equilibrium solves, sweeps, compliances and modes handle contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
+            "may touch, and only equilibrium solves, sweeps, compliances, modes and motion handle contact yet: solve it, remove the geom, or name the other part in its `exclude` to let them pass through each other",
         )),
     }
 }

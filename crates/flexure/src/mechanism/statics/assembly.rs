@@ -13,8 +13,11 @@ use crate::solver;
 
 /// The unloaded, assembled configuration: the rest coordinates moved, if
 /// the closures require it, to the nearest configuration that closes them.
+/// Its geoms play no part: whether a part there overlaps one is the caller's to check.
 pub fn assemble_unloaded<D: Statics>(m: &Mechanism<D>, settings: &Settings) -> Result<Solution<D>> {
-    assemble_in(m, settings, &mut Workspace::new(m))
+    let mut work = Workspace::new(m);
+    work.touching = true;
+    assemble_in(m, settings, &mut work)
 }
 
 /// [`assemble_unloaded`] in the buffers `work` (made for `m`).

@@ -53,8 +53,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, ball_and_other, dot, gap_jet, minima, named, pairs, point_jet, scaled,
-    sides,
+    Contact, ContactMode, GapJet, Pair, Toucher, dot, gap_jet, minima, named, pairs, point_jet, scaled,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -1134,55 +1133,24 @@ fn remember(touched: &mut Vec<Pair>, event: Event) {
 /// touching one, then each pair in `touched` that no longer touches.
 fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> Result<Vec<Contact>> {
     let m = problem.kkt.mechanism;
-    let vector = |v: &D::Vector| (0..D::POINT_DIM).map(|i| v[i]).collect::<Vec<f64>>();
-    let point = |p: &D::Point| vector(&D::position(p));
-    // (the geom touched, the flexure or the body that touches it), as the
-    // sweep's columns name them; the normal out of the geom touched (the
-    // gap's is out of the geom that is not the ball).
-    let named_part = |pair: &Pair| match (pair.part, sides(m, pair)) {
-        (_, Some((geom, body))) => {
-            let ball = ball_and_other(m, pair).is_ok_and(|(round, ..)| std::ptr::eq(round, &m.geoms[geom]));
-            (m.geoms[geom].name.clone(), None, Some(m.bodies[body].name.clone()), if ball { -1.0 } else { 1.0 })
-        }
-        (Toucher::Flexure(j), None) => (m.geoms[pair.geom].name.clone(), Some(m.joints[j].name.clone()), None, 1.0),
-        (Toucher::Geom(_), None) => unreachable!("two geoms have sides"),
-    };
     let mut out = Vec::new();
     for (c, (t, jet)) in problem.touching.iter().zip(&problem.jets).enumerate() {
-        let (geom, flexure, body, side) = named_part(&t.pair);
-        out.push(Contact {
-            geom,
-            flexure,
-            body,
-            s: t.s(),
-            point: point(&jet.point),
-            normal: vector(&scaled::<D>(&jet.normal, side)),
-            normal_force: problem.normal_force(c).max(0.0),
-            friction_force: vector(&problem.friction_force(c)),
-            gap: jet.gap,
-            state: if matches!(t.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip },
-            pair: t.pair,
-        });
+        let state = if matches!(t.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+        out.push(Contact::of(
+            m,
+            &t.pair,
+            (t.s(), &jet.point, &jet.normal, jet.gap),
+            (problem.normal_force(c).max(0.0), &problem.friction_force(c)),
+            state,
+        ));
     }
     for pair in touched.iter().filter(|p| !problem.touching.iter().any(|t| t.pair == **p)) {
         let low = minima(m, q, &problem.frames.bodies, pair)?
             .into_iter()
             .min_by(|a, b| a.gap.total_cmp(&b.gap))
             .expect("at least one least");
-        let (geom, flexure, body, side) = named_part(pair);
-        out.push(Contact {
-            geom,
-            flexure,
-            body,
-            s: low.s,
-            point: point(&low.point),
-            normal: vector(&scaled::<D>(&low.normal, side)),
-            normal_force: 0.0,
-            friction_force: vec![0.0; D::POINT_DIM],
-            gap: low.gap,
-            state: ContactMode::Open,
-            pair: *pair,
-        });
+        let none = D::Vector::default();
+        out.push(Contact::of(m, pair, (low.s, &low.point, &low.normal, low.gap), (0.0, &none), ContactMode::Open));
     }
     Ok(out)
 }

@@ -1,0 +1,191 @@
+//! Landing on a system's events ([`System::guards`]): a step whose end
+//! leaves a guard below its band ($g < -1$) is refused, and the steps that
+//! follow aim at the crossing, found by the Illinois variant of regula falsi
+//! on the guards at the bracket's ends, until one ends on it ($\lvert g\rvert \le 1$).
+//! Each aimed step is a whole Radau step from the last state accepted, so
+//! the state landed on is as accurate as any other.
+
+use crate::dynamics::System;
+
+/// The most steps aimed at one event before the run is declared stalled:
+/// regula falsi with Illinois' halving shrinks the bracket superlinearly,
+/// so this is far more than a smooth guard needs.
+pub(super) const MAX_AIMS: usize = 60;
+
+/// An event bracketed: a refused step ended at `t_hi` with the guards `g_hi`,
+/// at least one below its band.
+pub(super) struct Pending {
+    pub(super) t_hi: f64,
+    pub(super) g_hi: Vec<f64>,
+    /// Steps aimed so far, and whether the last one ended short of the event.
+    pub(super) aims: usize,
+    short: bool,
+}
+
+impl Pending {
+    pub(super) fn new(t_hi: f64, g_hi: &[f64]) -> Self {
+        Pending { t_hi, g_hi: g_hi.to_vec(), aims: 0, short: false }
+    }
+
+    /// The time to aim the next step at from `t`, where the guards are
+    /// `g_now` (each at least $-1$): the earliest of the guards' crossings,
+    /// each of the line through its two values at a level inside its band
+    /// (halfway from where it is, or from 0, to $-1$), kept inside the bracket.
+    pub(super) fn aim(&self, t: f64, g_now: &[f64]) -> f64 {
+        let span = self.t_hi - t;
+        let theta = g_now
+            .iter()
+            .zip(&self.g_hi)
+            .filter(|(_, hi)| **hi < -1.0)
+            .map(|(&a, &b)| {
+                let level = 0.5 * (a.min(0.0) - 1.0);
+                (a - level) / (a - b)
+            })
+            .fold(1.0, f64::min);
+        t + span * theta.clamp(1e-3, 1.0 - 1e-3)
+    }
+
+    /// A step aimed at the event ended short of it at `t` with guards `g`:
+    /// the bracket keeps its far end; a second short step in a row halves
+    /// the far guards (Illinois), so the aim moves toward it.
+    pub(super) fn fell_short(&mut self) {
+        if self.short {
+            for g in self.g_hi.iter_mut().filter(|g| **g < -1.0) {
+                *g *= 0.5;
+                // Still below the band: the guard's own band is what it aims within.
+                *g = g.min(-1.0 - f64::EPSILON);
+            }
+        }
+        self.short = true;
+        self.aims += 1;
+    }
+
+    /// A step aimed at the event overshot it, ending at `t` with guards `g`: the new far end.
+    pub(super) fn overshot(&mut self, t: f64, g: &[f64]) {
+        self.t_hi = t;
+        self.g_hi.copy_from_slice(g);
+        self.short = false;
+        self.aims += 1;
+    }
+}
+
+/// What a step's end says of the events, from the guards at its start `g0`
+/// and its end `g1`, and the event aimed at if any.
+pub(super) enum Verdict {
+    /// No event at or before its end.
+    Clear,
+    /// A guard fell below its band within the step: refuse it, aim at the crossing.
+    Overshot,
+    /// The step ends on the events of these guards: accept it and switch.
+    Landed(Vec<usize>),
+}
+
+/// The [`Verdict`] of a step: overshot if any guard ends below $-1$; else it
+/// lands on each guard that crossed 0 within it, and on each the aim was at
+/// that ends within its band.
+pub(super) fn verdict(g0: &[f64], g1: &[f64], pending: Option<&Pending>) -> Verdict {
+    if g1.iter().any(|g| *g < -1.0 || g.is_nan()) {
+        return Verdict::Overshot;
+    }
+    let landed: Vec<usize> = (0..g1.len())
+        .filter(|&k| {
+            let crossed = g0[k] >= 0.0 && g1[k] < 0.0;
+            let aimed = pending.is_some_and(|p| p.g_hi[k] < -1.0 && g1[k] <= 1.0);
+            crossed || aimed
+        })
+        .collect();
+    if landed.is_empty() { Verdict::Clear } else { Verdict::Landed(landed) }
+}
+
+/// The guards of `system` at $(q, \dot q)$ with the closures' multipliers, into `out` (resized).
+pub(super) fn guards<S: System + ?Sized>(
+    system: &mut S,
+    q: &[f64],
+    v: &[f64],
+    multipliers: Option<&[f64]>,
+    out: &mut Vec<f64>,
+) -> crate::error::Result<()> {
+    out.resize(system.guard_count(), 0.0);
+    system.guards(q, v, multipliers, out)
+}
+
+/// The first step's scale after an event (× the sample interval), for [`project`]'s metric.
+pub(super) const PROJECTION_STEP: f64 = 1e-6;
+
+/// Newton steps of [`project`]'s position projection.
+const PROJECTION_ITERATIONS: usize = 8;
+
+/// Moves the state $(q, \dot q)$ at time `t` onto the closures of the mode
+/// just entered: $q$ by Newton's method onto $c(q) = 0$, then $\dot q$ onto
+/// $G\dot q = 0$, each the least change in the metric
+/// $\tilde M = M + hD_t + h^2K_t$ ($h$ = `step`, short: where there is mass,
+/// $\tilde M \approx M$; massless directions keep their stiffness):
+/// $$\begin{bmatrix}\tilde M & G^T\cr G & 0\end{bmatrix}\begin{bmatrix}\Delta\cr\mu\end{bmatrix} = \begin{bmatrix}0\cr -r\end{bmatrix},$$
+/// $r = c(q)$, then $r = G\dot q$. The velocity's is a perfectly inelastic
+/// impact: the $\tilde M$-orthogonal projection, which takes the kinetic
+/// energy of the motion the closures stop and adds none. So the first step
+/// of the new mode starts consistent, and its multipliers are forces, not
+/// an impulse spread over it.
+pub(super) fn project<S: System + ?Sized>(
+    system: &mut S,
+    t: f64,
+    (q, v): (&mut [f64], &mut [f64]),
+    step: f64,
+) -> crate::error::Result<()> {
+    let (n, m) = (system.dim(), system.closures());
+    if m == 0 {
+        return Ok(());
+    }
+    let big = n + m;
+    let (mut mass, mut force, mut k, mut d) = (vec![0.0; n * n], vec![0.0; n], vec![0.0; n * n], vec![0.0; n * n]);
+    system.dynamics(q, v, t, &mut mass, &mut force)?;
+    system.tangent(q, v, t, &mut k, &mut d)?;
+    let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
+    let mut kkt = vec![0.0; big * big];
+    let mut pivots = vec![0; big];
+    // The KKT matrix at the state's G (column-major), factored; false if singular.
+    let factor = |g: &[f64], kkt: &mut Vec<f64>, pivots: &mut Vec<usize>| {
+        kkt.fill(0.0);
+        for col in 0..n {
+            for row in 0..n {
+                let e = col * n + row;
+                kkt[col * big + row] = mass[e] + step * d[e] + step * step * k[e];
+            }
+            for r in 0..m {
+                kkt[col * big + n + r] = g[col * m + r];
+                kkt[(n + r) * big + col] = g[col * m + r];
+            }
+        }
+        crate::linalg::lu(kkt, big, pivots)
+    };
+    let singular = || crate::error::Error::Singular {
+        what: "the closures after an event: their Jacobian is singular in the metric of the mass and stiffness".into(),
+    };
+    let mut rhs = vec![0.0; big];
+    for _ in 0..PROJECTION_ITERATIONS {
+        system.closure(q, &mut c, &mut g)?;
+        if super::largest(&c) <= 1e-15 * (1.0 + super::largest(q)) {
+            break;
+        }
+        if !factor(&g, &mut kkt, &mut pivots) {
+            return Err(singular());
+        }
+        rhs.fill(0.0);
+        for r in 0..m {
+            rhs[n + r] = -c[r];
+        }
+        crate::linalg::lu_solve(&kkt, big, &pivots, &mut rhs);
+        q.iter_mut().zip(&rhs).for_each(|(q, dq)| *q += dq);
+    }
+    system.closure(q, &mut c, &mut g)?;
+    if !factor(&g, &mut kkt, &mut pivots) {
+        return Err(singular());
+    }
+    rhs.fill(0.0);
+    for r in 0..m {
+        rhs[n + r] = -(0..n).map(|col| g[col * m + r] * v[col]).sum::<f64>();
+    }
+    crate::linalg::lu_solve(&kkt, big, &pivots, &mut rhs);
+    v.iter_mut().zip(&rhs).for_each(|(v, dv)| *v += dv);
+    Ok(())
+}

@@ -1,0 +1,221 @@
+//! Motion with contact (`flexure::dynamics::contact`, through
+//! `flexure::dynamics::simulation::simulate`): a ball dropped onto a floor
+//! and one sliding down a frictionless incline against their closed forms,
+//! a strip that falls onto a floor and comes to rest where the contact
+//! statics (checked against the exact elastica with contact in
+//! `contact_statics.rs`) says, the same drop written in space, and the
+//! refusals. Tolerances as each test says.
+
+use flexure::dynamics::integrate::MotionSettings;
+use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
+use flexure::mechanism::contact::ContactMode;
+use flexure::mechanism::file::{from_toml, spatial_from_toml};
+
+const G: f64 = 9.81;
+
+fn settings(duration: f64, every: f64, tolerance: f64) -> SimulationSettings {
+    let motion = MotionSettings { duration, every, tolerance, absolute: tolerance, ..Default::default() };
+    SimulationSettings { motion, ..Default::default() }
+}
+
+/// A ball of 2 kg and radius 0.05 m on a vertical slider, its lowest point
+/// `h` above a floor, under gravity.
+fn drop(h: f64) -> String {
+    format!(
+        "gravity = [0.0, -{G}]\n\
+         [[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"ball\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+         [[body]]\nname = \"ball\"\nmass = 2.0\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"circle\"\norigin = [0.0, 0.0]\nradius = 0.05\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, {}]\nnormal = [0.0, 1.0]\n",
+        -h - 0.05
+    )
+}
+
+/// Dropped from rest 0.2 m above the floor, the ball falls freely, lands at
+/// $\sqrt{2h/g}$ (0.2019 s) and stays there, pushed up by $mg$: its height
+/// to $10^{-7}$ m and the push to $10^{-6}$ of $mg$ against the closed form,
+/// the landing to $10^{-6}$ s, and the energy loses the impact's $\frac12mv^2$
+/// (all of it, at a floor) and never grows.
+#[test]
+fn a_dropped_ball_lands_and_rests_as_the_closed_form_says() {
+    let (h, m) = (0.2, 2.0);
+    let mech = from_toml(&drop(h)).unwrap();
+    let run = simulate(&mech, &settings(0.5, 0.01, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let landing = (2.0 * h / G).sqrt();
+    assert_eq!(run.changes.len(), 1, "{:?}", run.changes);
+    assert!((run.changes[0].time - landing).abs() < 1e-6, "{:?}, not {landing}", run.changes[0]);
+    assert_eq!((run.changes[0].contact.as_str(), run.changes[0].state), ("contact.floor.ball", ContactMode::Slip));
+    for (k, &t) in run.time.iter().enumerate() {
+        let q = run.q(k)[0];
+        let exact = if t < landing { -G * t * t / 2.0 } else { -h };
+        assert!((q - exact).abs() < 1e-7, "t = {t}: {q}, not {exact}");
+        let contacts = &run.contacts[k];
+        if t > landing {
+            let c = &contacts[0];
+            assert_eq!((c.geom.as_str(), c.body.as_deref(), c.state), ("floor", Some("ball"), ContactMode::Slip));
+            assert!((c.normal_force - m * G).abs() < 1e-6 * m * G, "t = {t}: N = {}", c.normal_force);
+            assert!(c.gap.abs() < 1e-12, "t = {t}: gap {}", c.gap);
+        } else if t < landing {
+            // Open, at the gap the fall leaves.
+            let c = &contacts[0];
+            assert_eq!((c.state, c.normal_force), (ContactMode::Open, 0.0));
+            assert!((c.gap - (h + q)).abs() < 1e-12, "t = {t}: gap {}", c.gap);
+        }
+    }
+    let energy = &run.energy;
+    assert!(energy.windows(2).all(|w| w[1] <= w[0] + 1e-9 * m * G * h), "{energy:?}");
+    // Before: m g q + ½ m v² = 0; at rest on the floor: −m g h.
+    assert!((energy.last().unwrap() + m * G * h).abs() < 1e-6 * m * G * h, "{energy:?}");
+}
+
+/// The same drop written in space (the slider along z, gravity −z, a
+/// sphere on a floor) lands at the same time and rests with the same push.
+#[test]
+fn the_drop_in_space_is_the_drop_in_the_plane() {
+    let text = format!(
+        "dimension = 3\ngravity = [0.0, 0.0, -{G}]\n\
+         [[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"ball\"\naxis = [0.0, 0.0, 1.0]\n\
+         [[body]]\nname = \"ball\"\nmass = 2.0\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"sphere\"\norigin = [0.0, 0.0, 0.0]\nradius = 0.05\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0, -0.25]\nnormal = [0.0, 0.0, 1.0]\n"
+    );
+    let space = spatial_from_toml(&text).unwrap();
+    let plane = from_toml(&drop(0.2)).unwrap();
+    let s = settings(0.5, 0.01, 1e-9);
+    let (a, b) = (simulate(&plane, &s, Start::Rest).unwrap(), simulate(&space, &s, Start::Rest).unwrap());
+    assert_eq!(a.time, b.time);
+    assert!((a.changes[0].time - b.changes[0].time).abs() < 1e-9, "{:?} {:?}", a.changes, b.changes);
+    for k in 0..a.time.len() {
+        assert!((a.q(k)[0] - b.q(k)[0]).abs() < 1e-9, "t = {}: {} and {}", a.time[k], a.q(k)[0], b.q(k)[0]);
+        let forces = |c: &[flexure::mechanism::contact::Contact]| c.first().map(|c| c.normal_force);
+        if let (Some(x), Some(y)) = (forces(&a.contacts[k]), forces(&b.contacts[k])) {
+            assert!((x - y).abs() < 1e-6 * x.abs().max(1.0), "t = {}: {x} and {y}", a.time[k]);
+        }
+    }
+}
+
+/// A ball on two sliders (x, then y) set on a frictionless incline of 30°
+/// slides down it from rest with $\ddot s = g\sin\theta$, pushed by
+/// $mg\cos\theta$: positions to $10^{-7}$ m, the push to $10^{-6}$ of itself.
+#[test]
+fn a_ball_slides_down_a_frictionless_incline_as_the_closed_form_says() {
+    let (m, theta) = (2.0, 30f64.to_radians());
+    let (sin, cos) = theta.sin_cos();
+    let text = format!(
+        "gravity = [0.0, -{G}]\n\
+         [[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\n\
+         [[joint]]\nname = \"y\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"ball\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+         [[body]]\nname = \"ball\"\nmass = {m}\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"circle\"\norigin = [0.0, 0.0]\nradius = 0.05\n\
+         [[geom]]\nname = \"incline\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [{}, {}]\nnormal = [{sin}, {cos}]\n",
+        -0.05 * sin,
+        -0.05 * cos
+    );
+    let mech = from_toml(&text).unwrap();
+    let run = simulate(&mech, &settings(0.4, 0.02, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    for (k, &t) in run.time.iter().enumerate() {
+        let s = G * sin * t * t / 2.0;
+        let (x, y) = (s * cos, -s * sin);
+        let q = run.q(k);
+        assert!((q[0] - x).abs() < 1e-7 && (q[1] - y).abs() < 1e-7, "t = {t}: {q:?}, not [{x}, {y}]");
+        if t > 0.0 {
+            let c = &run.contacts[k][0];
+            assert!((c.normal_force - m * G * cos).abs() < 1e-6 * m * G, "t = {t}: N = {}", c.normal_force);
+        }
+    }
+}
+
+/// Friction in motion and a start inside a geom are refused by name.
+#[test]
+fn friction_and_an_overlapping_start_are_refused() {
+    let rough = from_toml(&format!("{}friction = 0.3\n", drop(0.2))).unwrap();
+    let e = simulate(&rough, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
+    assert!(e.contains("friction") && e.contains("geom \"floor\""), "{e}");
+    let inside = from_toml(&format!("{}[initial]\nslide = -0.3\n", drop(0.2))).unwrap();
+    let e = simulate(&inside, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
+    assert!(e.contains("overlapping by 1.000e-1 m"), "{e}");
+}
+
+/// A strip (EI = 0.01 N·m², 0.1 m) carrying a 50 g tip mass, let go
+/// straight 10 mm above a floor under gravity, strikes the floor with its
+/// tip and, damped (β = 5 ms), comes to rest there: its coordinates to
+/// $10^{-7}$ rad and the floor's push to $10^{-6}$ of itself at the
+/// equilibrium the contact statics finds (checked against the exact
+/// elastica with contact in `contact_statics.rs`); the energy never grows.
+#[test]
+fn a_strip_that_falls_onto_a_floor_rests_where_the_statics_says() {
+    let text = "gravity = [0.0, -9.81]\n\
+        [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 0.01\norder = 4\ndamping = 5e-3\n\
+        [[body]]\nname = \"tip\"\nmass = 0.05\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let m = from_toml(text).unwrap();
+    let run = simulate(&m, &settings(1.0, 0.05, 1e-8), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    assert!(!run.changes.is_empty() && run.changes[0].state == ContactMode::Slip, "{:?}", run.changes);
+    let rest = flexure::mechanism::statics::solve(&m, &Default::default()).unwrap();
+    let last = run.time.len() - 1;
+    let q = run.q(last);
+    for (a, b) in q.iter().zip(&rest.q) {
+        assert!((a - b).abs() < 1e-7, "{q:?}, at rest {:?}", rest.q);
+    }
+    let (moving, resting) = (&run.contacts[last][0], &rest.contacts[0]);
+    assert_eq!((moving.state, moving.s), (ContactMode::Slip, Some(0.1)));
+    assert!(
+        (moving.normal_force - resting.normal_force).abs() < 1e-6 * resting.normal_force,
+        "{} N, at rest {} N",
+        moving.normal_force,
+        resting.normal_force
+    );
+    let scale = run.energy.iter().fold(0.0, |a: f64, e| a.max(e.abs()));
+    assert!(run.energy.windows(2).all(|w| w[1] <= w[0] + 1e-9 * scale), "{:?}", run.energy);
+}
+
+/// The strip falls onto a post under its span (the contact inside the
+/// span, rolling along the post as it settles) and, heavily damped
+/// (β = 50 ms), rests where the contact statics says; from 1 s an upward
+/// tip force rising to 1.5 N (three times the weight) in 10 ms lifts it off
+/// the post, which opens, and it comes to rest where the statics under that
+/// load says.
+/// Coordinates to $10^{-7}$, the push to $10^{-6}$ of itself.
+#[test]
+fn a_strip_settles_on_a_post_and_is_lifted_off_it_where_the_statics_says() {
+    let strip = "gravity = [0.0, -9.81]\n\
+        [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 0.01\norder = 6\ndamping = 0.05\n\
+        [[body]]\nname = \"tip\"\nmass = 0.05\n\
+        [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.06, -0.008]\nradius = 0.005\n\
+        [[force]]\nname = \"lift\"\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, 0.0]\n";
+    let schedule =
+        "[[schedule]]\nload = \"force.lift.fy\"\npoints = [[0.0, 0.0], [1.0, 0.0], [1.01, 1.5], [3.0, 1.5]]\n";
+    let m = from_toml(&format!("{strip}{schedule}")).unwrap();
+    let run = simulate(&m, &settings(2.0, 0.05, 1e-8), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let states: Vec<ContactMode> = run.changes.iter().map(|c| c.state).collect();
+    assert_eq!(states.first(), Some(&ContactMode::Slip), "{:?}", run.changes);
+    assert_eq!(states.last(), Some(&ContactMode::Open), "{:?}", run.changes);
+    let lifted = run.changes.last().unwrap().time;
+    assert!(lifted > 1.0 && lifted < 1.01, "{:?}", run.changes);
+    let resting = from_toml(strip).unwrap();
+    let lifting = from_toml(&strip.replace("force = [0.0, 0.0]", "force = [0.0, 1.5]")).unwrap();
+    for (t, mech, touching) in [(1.0, &resting, true), (2.0, &lifting, false)] {
+        let k = run.time.iter().position(|&s| (s - t).abs() < 1e-9).unwrap();
+        let rest = flexure::mechanism::statics::solve(mech, &Default::default()).unwrap();
+        for (a, b) in run.q(k).iter().zip(&rest.q) {
+            assert!((a - b).abs() < 1e-7, "t = {t}: {:?}, at rest {:?}", run.q(k), rest.q);
+        }
+        let moving = &run.contacts[k][0];
+        if touching {
+            let resting = rest.contacts.iter().find(|c| c.state != ContactMode::Open).unwrap();
+            let (s, r) = (moving.s.unwrap(), resting.s.unwrap());
+            assert!(s > 0.0 && s < 0.1 && (s - r).abs() < 1e-7, "s = {s}, at rest {r}");
+            assert!((moving.normal_force - resting.normal_force).abs() < 1e-6 * resting.normal_force);
+        } else {
+            assert_eq!(moving.state, ContactMode::Open);
+            assert!(moving.gap > 1e-3, "{moving:?}");
+        }
+    }
+    let scale = run.energy.iter().fold(0.0, |a: f64, e| a.max(e.abs()));
+    let before = run.time.iter().position(|&t| t > 1.0).unwrap();
+    assert!(run.energy[..before].windows(2).all(|w| w[1] <= w[0] + 1e-9 * scale), "{:?}", run.energy);
+}
