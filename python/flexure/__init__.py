@@ -161,11 +161,14 @@ class Mechanism:
         findings (left out when empty) lists what `solve` lists: closures open at
         rest (PreloadWarning), and parts that cross at a sample (IntersectionWarning,
         once per pair of parts; each sample's crossing listed with its time).
-        With geoms a part may touch (frictionless in motion: friction raises ValueError),
-        contacts lists each sample's contacts as `solve` reports them (each touching
-        contact, then each other pair at its least gap, state "open"), and changes lists
-        where one touched ("slip") or opened ("open"): {time, contact, state}. A contact
-        that touches while approaching takes a perfectly inelastic impact.
+        With geoms a part may touch, contacts lists each sample's contacts as `solve`
+        reports them (each touching contact, "stick" or "slip", then each other pair at
+        its least gap, "open"), and changes lists where one touched or began to slide
+        ("slip"), stuck ("stick") or opened ("open"): {time, contact, state}. A contact
+        that touches while approaching takes a perfectly inelastic impact. Friction
+        holds where the touching point is material (a flexure's bare end, a ball whose
+        body only translates); where a contact with friction would roll the run stops
+        with ValueError naming it.
         `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
         error_estimate {position (m), angle (rad), at (s), reference_tolerance, samples,
         complete, position_tolerance (m)} is the largest difference of a body's pose from a

@@ -126,7 +126,51 @@ def test_a_dropped_ball_lands_and_rests_on_the_floor():
             assert c["state"] == "open" and c["normal_force"] == 0.0 and c["gap"] > 0.0
 
 
-def test_friction_in_motion_is_refused_by_name():
-    rough = flexure.Mechanism.from_toml(DROP + "friction = 0.3\n")
-    with pytest.raises(ValueError, match=r"friction.*geom \"floor\""):
-        rough.simulate(0.1, start="rest")
+def test_rolling_friction_in_motion_is_refused_by_name():
+    """A ball on a turning arm touching a rough floor rolls: the run stops there, naming it."""
+    arm = """
+gravity = [0.0, -9.81]
+[[joint]]
+name = "pin"
+kind = "revolute"
+parent = "ground"
+child = "arm"
+[[body]]
+name = "arm"
+mass = 1.0
+com = [0.2, 0.0]
+[[geom]]
+name = "bob"
+body = "arm"
+shape = "circle"
+origin = [0.2, 0.0]
+radius = 0.02
+[[geom]]
+name = "floor"
+body = "ground"
+shape = "plane"
+origin = [0.0, -0.1]
+normal = [0.0, 1.0]
+friction = 0.3
+"""
+    with pytest.raises(Exception, match=r"friction = 0.3 \(geom \"bob\" \(circle\) and geom \"floor\""):
+        flexure.Mechanism.from_toml(arm).simulate(1.0, start="rest")
+
+
+def test_a_ball_on_a_rough_floor_sticks_until_pulled_past_its_friction():
+    """Reference: Coulomb, a ball resting on a floor (mu = 0.5) pulled by 20 t N slips at
+    t = mu m g / 20 = 0.4905 s (crates/flexure/src/dynamics/contact.rs); 1e-6 s."""
+    carriage = (
+        "[[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\n"
+    )
+    pulled = (
+        DROP.replace("parent = \"ground\"\nchild = \"ball\"", "parent = \"carriage\"\nchild = \"ball\"")
+        .replace("origin = [0.0, -0.25]", "origin = [0.0, -0.05]")
+        .replace("[[joint]]", carriage + "[[joint]]", 1)
+        + "friction = 0.5\n[[force]]\nname = \"pull\"\nbody = \"ball\"\nforce = [0.0, 0.0]\n"
+        + "[[schedule]]\nload = \"force.pull.fx\"\npoints = [[0.0, 0.0], [1.0, 20.0]]\n"
+    )
+    run = flexure.Mechanism.from_toml(pulled).simulate(0.6, every=0.05, tolerance=1e-9, start="rest")
+    assert [c["state"] for c in run["changes"]] == ["slip"]
+    assert abs(run["changes"][0]["time"] - 0.5 * 2 * 9.81 / 20) < 1e-6
+    assert run["contacts"][0][0]["state"] == "stick"

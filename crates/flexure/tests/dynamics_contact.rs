@@ -1,10 +1,12 @@
 //! Motion with contact (`flexure::dynamics::contact`, through
-//! `flexure::dynamics::simulation::simulate`): a ball dropped onto a floor
-//! and one sliding down a frictionless incline against their closed forms,
-//! a strip that falls onto a floor and comes to rest where the contact
-//! statics (checked against the exact elastica with contact in
-//! `contact_statics.rs`) says, the same drop written in space, and the
-//! refusals. Tolerances as each test says.
+//! `flexure::dynamics::simulation::simulate`): a ball dropped onto a floor,
+//! sliding down an incline (frictionless and rough) and pulled along a rough
+//! floor, against Coulomb's closed forms; a strip that falls onto a floor
+//! or a post and comes to rest where the contact statics (checked against
+//! the exact elastica with contact in `contact_statics.rs`) says; a strip's
+//! tip pulled slowly on a rough floor against the exact elastica with tip
+//! friction; the drop written in space; and the refusals. Tolerances as
+//! each test says.
 
 use flexure::dynamics::integrate::MotionSettings;
 use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
@@ -127,12 +129,115 @@ fn a_ball_slides_down_a_frictionless_incline_as_the_closed_form_says() {
     }
 }
 
-/// Friction in motion and a start inside a geom are refused by name.
+/// A ball on two sliders (x, then y) on an incline of 30°, set on it at rest.
+fn incline(mu: f64) -> String {
+    let (sin, cos) = 30f64.to_radians().sin_cos();
+    format!(
+        "gravity = [0.0, -{G}]\n\
+         [[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\n\
+         [[joint]]\nname = \"y\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"ball\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+         [[body]]\nname = \"ball\"\nmass = 2.0\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"circle\"\norigin = [0.0, 0.0]\nradius = 0.05\n\
+         [[geom]]\nname = \"incline\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [{}, {}]\nnormal = [{sin}, {cos}]\nfriction = {mu}\n",
+        -0.05 * sin,
+        -0.05 * cos
+    )
+}
+
+/// Coulomb's law on the 30° incline (the ball's body only translates, so
+/// its touching point is material): with μ = 0.3 < tan 30° it slides down
+/// with $\ddot s = g(\sin\theta - \mu\cos\theta)$, the friction μN up the
+/// slope; with μ = 0.7 it sticks where it was set, held by $mg\sin\theta$
+/// up the slope. Positions to $10^{-7}$ m, forces to $10^{-6}$ of $mg$.
 #[test]
-fn friction_and_an_overlapping_start_are_refused() {
-    let rough = from_toml(&format!("{}friction = 0.3\n", drop(0.2))).unwrap();
-    let e = simulate(&rough, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
-    assert!(e.contains("friction") && e.contains("geom \"floor\""), "{e}");
+fn a_ball_on_a_rough_incline_slides_or_sticks_as_coulomb_says() {
+    let (m, theta) = (2.0, 30f64.to_radians());
+    let (sin, cos) = theta.sin_cos();
+    for mu in [0.3, 0.7] {
+        let run = simulate(&from_toml(&incline(mu)).unwrap(), &settings(0.4, 0.02, 1e-9), Start::Rest).unwrap();
+        assert!(run.stopped.is_none(), "μ = {mu}: {:?}", run.stopped);
+        let slides = mu < theta.tan();
+        let a = if slides { G * (sin - mu * cos) } else { 0.0 };
+        for (k, &t) in run.time.iter().enumerate() {
+            let s = a * t * t / 2.0;
+            let q = run.q(k);
+            assert!(
+                (q[0] - s * cos).abs() < 1e-7 && (q[1] + s * sin).abs() < 1e-7,
+                "μ = {mu}, t = {t}: {q:?}, not {s} m down ({:e}, {:e})",
+                q[0] - s * cos,
+                q[1] + s * sin
+            );
+            if t > 0.0 {
+                let c = &run.contacts[k][0];
+                let state = if slides { ContactMode::Slip } else { ContactMode::Stick };
+                assert_eq!(c.state, state, "μ = {mu}, t = {t}");
+                assert!(
+                    (c.normal_force - m * G * cos).abs() < 1e-6 * m * G,
+                    "μ = {mu}, t = {t}: N = {}",
+                    c.normal_force
+                );
+                // Up the slope: (−cos θ, sin θ).
+                let friction = if slides { mu * m * G * cos } else { m * G * sin };
+                let along = -c.friction_force[0] * cos + c.friction_force[1] * sin;
+                assert!((along - friction).abs() < 1e-6 * m * G, "μ = {mu}, t = {t}: friction {:?}", c.friction_force);
+            }
+        }
+        // Set on the slope, it is stuck from the start, and slips at once where it slides.
+        let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+        assert_eq!(run.contacts[0][0].state, ContactMode::Stick, "μ = {mu}");
+        if slides {
+            assert!(states.len() == 1 && states[0].0 == ContactMode::Slip && states[0].1 < 1e-9, "{states:?}");
+        } else {
+            assert!(states.is_empty(), "{states:?}");
+        }
+    }
+}
+
+/// A ball resting on a rough floor (μ = 0.5) pulled sideways by a force
+/// growing as $kt$ sticks until $kt^* = \mu mg$, then slides with
+/// $m\ddot x = k t - \mu mg$: $x = k(t - t^*)^3/6m$. The slip to
+/// $10^{-6}$ s, its travel to $10^{-7}$ m.
+#[test]
+fn a_ball_pulled_along_a_rough_floor_sticks_then_slips_as_coulomb_says() {
+    let (m, mu, k) = (2.0, 0.5, 20.0);
+    let text = format!(
+        "{}[[force]]\nname = \"pull\"\nbody = \"ball\"\nat = [0.0, 0.0]\nforce = [0.0, 0.0]\n\
+         [[schedule]]\nload = \"force.pull.fx\"\npoints = [[0.0, 0.0], [1.0, {k}]]\n",
+        incline(mu).replace("normal = [0.49999999999999994, 0.8660254037844387]", "normal = [0.0, 1.0]")
+    );
+    let text = text.replace(
+        &format!("origin = [{}, {}]", -0.05 * 30f64.to_radians().sin(), -0.05 * 30f64.to_radians().cos()),
+        "origin = [0.0, -0.05]",
+    );
+    let run = simulate(&from_toml(&text).unwrap(), &settings(1.0, 0.02, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let slip = mu * m * G / k;
+    let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    // Set on the floor, it is stuck from the start.
+    assert_eq!(states.len(), 1, "{states:?}");
+    assert_eq!(states[0].0, ContactMode::Slip, "{states:?}");
+    assert!((states[0].1 - slip).abs() < 1e-6, "slipped at {} s, not {slip}", states[0].1);
+    assert_eq!(run.contacts[0][0].state, ContactMode::Stick);
+    for (i, &t) in run.time.iter().enumerate() {
+        let x = if t > slip { k * (t - slip).powi(3) / (6.0 * m) } else { 0.0 };
+        assert!((run.q(i)[0] - x).abs() < 1e-7 && run.q(i)[1].abs() < 1e-9, "t = {t}: {:?}, not x = {x}", run.q(i));
+    }
+}
+
+/// Friction where a contact rolls (a ball on a turning arm) stops the
+/// run where it touches, naming the pair; a start inside a geom is refused.
+#[test]
+fn rolling_friction_and_an_overlapping_start_are_refused() {
+    let arm = format!(
+        "gravity = [0.0, -{G}]\n\
+         [[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\n\
+         [[body]]\nname = \"arm\"\nmass = 1.0\ncom = [0.2, 0.0]\n\
+         [[geom]]\nname = \"bob\"\nbody = \"arm\"\nshape = \"circle\"\norigin = [0.2, 0.0]\nradius = 0.02\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.1]\nnormal = [0.0, 1.0]\nfriction = 0.3\n"
+    );
+    let run = simulate(&from_toml(&arm).unwrap(), &settings(1.0, 0.01, 1e-8), Start::Rest).unwrap();
+    let e = run.stopped.as_ref().map(ToString::to_string).expect("stopped");
+    assert!(e.contains("friction = 0.3 (geom \"bob\" (circle) and geom \"floor\"") && e.contains("rolls"), "{e}");
     let inside = from_toml(&format!("{}[initial]\nslide = -0.3\n", drop(0.2))).unwrap();
     let e = simulate(&inside, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
     assert!(e.contains("overlapping by 1.000e-1 m"), "{e}");
@@ -218,4 +323,56 @@ fn a_strip_settles_on_a_post_and_is_lifted_off_it_where_the_statics_says() {
     let scale = run.energy.iter().fold(0.0, |a: f64, e| a.max(e.abs()));
     let before = run.time.iter().position(|&t| t > 1.0).unwrap();
     assert!(run.energy[..before].windows(2).all(|w| w[1] <= w[0] + 1e-9 * scale), "{:?}", run.energy);
+}
+
+/// A strip's bare tip (EI = 1 N·m², 1 m, order 8, a 0.1 g tip mass)
+/// pressed by 1 N onto a rough floor (μ = 0.3) 0.2 m below its root, from
+/// that equilibrium (stuck), pulled back by a tip force growing to 0.6 N
+/// over 2 s: slowly (its lowest mode rings at about 170 rad/s), so each
+/// sample is the quasi-static state the exact elastica with contact and
+/// tip friction reaches along the same path of loads
+/// (`reference::elastica::contact`, the press then the pull so far). The
+/// tip sticks, then slips toward the root with friction μN against it:
+/// the state at each sample away from the slip (±0.02 s), and N, the
+/// friction and the tip's place to $10^{-4}$ of the press.
+#[test]
+fn a_strip_tip_pulled_on_a_rough_floor_sticks_then_slips_as_the_exact_elastica_says() {
+    use flexure::reference::elastica::{self, contact::Obstacle};
+    use flexure::{Flexure, TipLoad};
+    let text = "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = 8\n\
+        [[body]]\nname = \"tip\"\nmass = 1e-4\n\
+        [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, -1.0]\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.2]\nnormal = [0.0, 1.0]\nfriction = 0.3\n\
+        [[schedule]]\nload = \"force.push.fx\"\npoints = [[0.0, 0.0], [2.0, -0.6]]\n";
+    let m = from_toml(text).unwrap();
+    let run = simulate(&m, &settings(2.0, 0.1, 1e-6), Start::Equilibrium).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let changes: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    assert!(matches!(changes[..], [(ContactMode::Slip, _)]), "{changes:?}");
+    let slipped = changes[0].1;
+    let f = Flexure::new(1.0, 1.0, 3).unwrap();
+    let rough = [Obstacle::half_plane([0.0, -0.2], [0.0, 1.0]).with_friction(0.3)];
+    let press = TipLoad { moment: 0.0, fx: 0.0, fy: -1.0 };
+    for (k, &t) in run.time.iter().enumerate() {
+        if (t - slipped).abs() < 0.02 {
+            continue;
+        }
+        let path = [press, TipLoad { fx: -0.3 * t, ..press }];
+        let exact = elastica::contact(&f, &rough, 0.0, &path, &Default::default()).unwrap();
+        let (c, e) = (&run.contacts[k][0], &exact.contacts[0]);
+        let state = match e.state {
+            elastica::contact::ContactState::Stick => ContactMode::Stick,
+            _ => ContactMode::Slip,
+        };
+        assert_eq!(c.state, state, "t = {t}: {c:?} vs {e:?}");
+        assert!((c.normal_force - e.normal_force).abs() < 1e-4, "t = {t}: N {} vs {}", c.normal_force, e.normal_force);
+        // Along the floor's tangent (−n_y, n_x) = (−1, 0), as the reference reports it.
+        assert!(
+            (-c.friction_force[0] - e.friction_force).abs() < 1e-4,
+            "t = {t}: {:?} vs {}",
+            c.friction_force,
+            e.friction_force
+        );
+        assert!((c.point[0] - e.point[0]).abs() < 1e-4, "t = {t}: at {:?} vs {:?}", c.point, e.point);
+    }
 }

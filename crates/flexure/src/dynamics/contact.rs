@@ -1,6 +1,7 @@
 //! Motion with contact: the equations of motion of a mechanism whose parts
 //! touch its geoms ([`crate::mechanism::contact`]), as a [`System`] that
-//! changes its mode where a contact touches or opens ([`ContactSystem`]).
+//! changes its mode where a contact touches, opens, sticks or slips
+//! ([`ContactSystem`]).
 //!
 //! **A touching contact** holds its gap at zero: it is a closure row
 //! $g_c(q) = 0$ after the mechanism's own, with the gradient
@@ -9,23 +10,44 @@
 //! least, $\partial_s g_c = 0$, which Newton's method in $s$ keeps at each
 //! evaluation from the last place; since $s$ minimizes $g$, the gradient at
 //! fixed $s$ is the whole gradient. At an end it stays while the gap rises
-//! into the span. Frictionless: no force along the surface.
+//! into the span.
 //!
-//! **Events** ([`System::guards`]): an open pair's least gap (each least of
-//! its flexure but those within a hundredth of its length of a touching
-//! contact of the same pair) falling below zero, and a touching contact's
-//! $N_c$ falling below zero. The integrator lands on each within a band: the
-//! gap to `tolerance` × the mechanism's size, the push to `tolerance` × the
-//! largest push the contact has carried. A contact that touches while its
-//! parts approach ($\dot g_c < 0$) takes a perfectly inelastic impact: the
-//! first step of the new mode, whose stages keep the gap closed, takes the
-//! normal speed away (for Radau IIA exactly, for closures linear over the
-//! step), so the impact dissipates energy and never adds any. A pair that
-//! reaches zero gap without approaching is not held: it touches when it
-//! presses in. A contact that pulls at its first step is let go there.
+//! **Friction** (Coulomb's $\mu$: a flexure's geom's, or the larger of two
+//! geoms', as MuJoCo combines them) holds where the touching point is
+//! material: a flexure's bare end (no thickness), or a ball whose body only
+//! translates against the geom's (sliders between them). **Stuck**, the
+//! point $x$ is held at a material point $a$ of the geom's body: its rows
+//! are $x - a = 0$ and the force on it is $-\lambda$ (its normal part $N$, its
+//! tangential part $f_t$). **Sliding** along $\hat s$, the direction of its
+//! velocity $v_t$ relative to the geom in the tangent plane, it keeps its gap
+//! row and takes the force $N(n - \mu\hat s)$: its multiplier acts along
+//! $\nabla g - \mu\hat s^T\Delta$ ([`System::closure_forces`]; $\Delta$ the
+//! point's Jacobian relative to the geom), so friction does work only
+//! against the sliding. ($\hat s$ is $v_t$ normalized with the direction
+//! it slid from added at $10^{-12}$ of the mechanism's size per second,
+//! so a slide that starts from rest has a direction.)
 //!
-//! **Refused by name:** friction in motion (a geom with `friction` > 0 that
-//! a part may touch), and a start where a part overlaps a geom.
+//! **Events** ([`System::guards`], two per touching contact, then one per
+//! pair): a touching contact's $N$ falling below zero opens it; a stuck
+//! one's $\mu N - \lvert f_t\rvert$ falling below zero slips it, toward
+//! $-f_t$; a sliding one's $v_t\cdot\hat s_0$ ($\hat s_0$ the direction it
+//! slid from) falling below zero sticks it where it is; an open pair's
+//! least gap (each least of its flexure but those within a hundredth of its
+//! length of a touching contact of the same pair) falling below zero
+//! touches. The integrator lands on each within a band: a gap to
+//! `tolerance` × the mechanism's size, a force or speed to `tolerance` ×
+//! the largest the contact has had. A contact that touches while its parts
+//! approach ($\dot g_c < 0$) takes a perfectly inelastic impact (the
+//! integrator's projection onto the new closures: the energy never grows);
+//! with friction it slides on in the direction it moved, or sticks where it
+//! touched without sliding. A pair that reaches zero gap without approaching
+//! is not held: it touches when it presses in. A contact that pulls at its
+//! first step is let go there.
+//!
+//! **Refused by name:** friction where a contact rolls (inside a span, at a
+//! thick end, a ball whose body turns against the geom's), met in the run
+//! (it stops there, with the samples reached), and a start where a part
+//! overlaps a geom.
 
 use super::mechanism::Dynamics;
 use super::schedule::ScheduledSystem;
@@ -34,7 +56,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, column, gap_slope, minima, named, pairs,
+    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, gap_slope, minima, named, pairs, point_jet,
+    scaled, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -42,17 +65,42 @@ use crate::mechanism::kinematics::{Frames, frames_level_into};
 const NEAR: f64 = 1e-2;
 /// Newton iterations for a contact's place along its flexure.
 const PLACE_ITERATIONS: usize = 30;
+/// The speed (× the mechanism's size, per second) at which a slide's last
+/// direction is added to its velocity, so a slide from rest has a direction.
+const CREEP: f64 = 1e-12;
 
-/// A touching contact: its pair, its place on a flexure, and the push it carries.
+/// How a touching contact holds along the surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Law {
+    /// Frictionless.
+    Free,
+    /// Stuck at `anchor`, a material point of the geom's body (its frame).
+    Stick { anchor: [f64; 3] },
+    /// Sliding, from the direction `from` (a unit tangent, world), its fastest speed so far `fastest`.
+    Slip { from: [f64; 3], fastest: f64 },
+}
+
+/// A touching contact: its pair, its place on a flexure, its law, and the forces it carries.
 #[derive(Debug, Clone, Copy)]
 struct Held {
     pair: Pair,
     s: Option<f64>,
     /// Its flexure's length (m; 1 between geoms).
     length: f64,
-    /// The last push reported (N), and the largest it has carried.
+    law: Law,
+    /// Coulomb's $\mu$ of the pair.
+    mu: f64,
+    /// The last push (N) and friction force (world) reported, and the largest push it has carried.
     force: f64,
+    friction: [f64; 3],
     largest: f64,
+}
+
+impl Held {
+    /// Its closure rows: the point's components when stuck, else the gap.
+    fn rows<D: Dynamics>(&self) -> usize {
+        if matches!(self.law, Law::Stick { .. }) { D::POINT_DIM } else { 1 }
+    }
 }
 
 /// A change of a contact during a motion: when, which pair (its column
@@ -63,12 +111,22 @@ pub struct ContactChange {
     pub time: f64,
     /// The pair, as a sweep's column names it.
     pub contact: String,
-    /// `"slip"` where it touched (frictionless), `"open"` where it opened.
+    /// What it became: `"slip"` where it touched without friction or began
+    /// to slide, `"stick"` where friction holds it, `"open"` where it opened.
     pub state: ContactMode,
 }
 
+/// What a touching contact is doing at a state ([`ContactSystem::read`]).
+struct Reading<D: Dynamics> {
+    slope: GapSlope<D>,
+    /// Its normal push (N), its friction force (world), and its speed along the surface (world).
+    push: f64,
+    friction: D::Vector,
+    slide: D::Vector,
+}
+
 /// A mechanism's motion with its contacts (module docs): the scheduled
-/// equations of motion ([`ScheduledSystem`]) with a closure row for each
+/// equations of motion ([`ScheduledSystem`]) with closure rows for each
 /// touching contact, and the contacts at each sample.
 #[derive(Debug, Clone)]
 pub struct ContactSystem<D: Dynamics> {
@@ -77,11 +135,15 @@ pub struct ContactSystem<D: Dynamics> {
     pairs: Vec<Pair>,
     held: Vec<Held>,
     frames: Frames<D>,
-    /// The relative band of the events ([`crate::dynamics::integrate::MotionSettings::tolerance`]) and the gap's (m).
+    /// The relative band of the events ([`crate::dynamics::integrate::MotionSettings::tolerance`]),
+    /// the gap's (m), and the creep speed (m/s).
     tolerance: f64,
     gap_band: f64,
+    creep: f64,
     /// The mechanism's own closure Jacobian ($m_0\times n$).
     own: Vec<f64>,
+    /// The multipliers of the last guards' evaluation: where an event landed.
+    last: Vec<f64>,
     /// The contacts at each sample, and the changes so far.
     samples: Vec<Vec<Contact>>,
     changes: Vec<ContactChange>,
@@ -92,51 +154,50 @@ impl<D: Dynamics> ContactSystem<D> {
     /// `touching` (an equilibrium's, say) touch with their pushes, events
     /// landed on within `tolerance` (relative).
     ///
-    /// Errors: friction on a geom a part may touch, a part that overlaps a
-    /// geom at `q0` by more than the band, those of [`ScheduledSystem::new`].
-    pub fn new(m: &Mechanism<D>, q0: &[f64], touching: &[Contact], tolerance: f64) -> Result<Self> {
-        let all = pairs(m);
-        if let Some(p) = all.iter().find(|p| m.geoms[p.geom].friction > 0.0 || rough_ball(m, p)) {
-            return Err(Error::invalid(
-                "friction",
-                named(m, p),
-                "may touch in motion, which is frictionless yet: set the geom's friction to 0 for `simulate` (solve and sweep take it)",
-            ));
-        }
-        let held = touching
-            .iter()
-            .filter(|c| c.state != ContactMode::Open)
-            .map(|c| Held {
-                pair: c.pair,
-                s: c.s,
-                length: length(m, &c.pair),
-                force: c.normal_force,
-                largest: c.normal_force,
-            })
-            .collect();
+    /// Errors: a part that overlaps a geom at `q0` by more than the band,
+    /// friction where a contact of `touching` rolls, those of [`ScheduledSystem::new`].
+    pub fn new(m: &Mechanism<D>, (q0, v0): (&[f64], &[f64]), touching: &[Contact], tolerance: f64) -> Result<Self> {
         let mut system = ContactSystem {
             inner: ScheduledSystem::new(m)?,
             mechanism: m.clone(),
-            pairs: all,
-            held,
+            pairs: pairs(m),
+            held: Vec::new(),
             frames: Frames::new(m),
             tolerance,
             gap_band: tolerance * m.size(),
+            creep: CREEP * m.size(),
             own: vec![0.0; m.constraints() * m.dof()],
+            last: Vec::new(),
             samples: Vec::new(),
             changes: Vec::new(),
         };
         frames_level_into(m, q0, Level::Jacobian, &mut system.frames);
+        for c in touching.iter().filter(|c| c.state != ContactMode::Open) {
+            let mut h = system.touch(&c.pair, c.s, q0)?;
+            h.force = c.normal_force;
+            h.largest = c.normal_force;
+            // An equilibrium's contact with friction is at rest: stuck.
+            if h.mu > 0.0 {
+                h.law = Law::Stick { anchor: system.anchor(&h, q0)? };
+            }
+            system.held.push(h);
+        }
         for k in 0..system.pairs.len() {
             let pair = system.pairs[k];
-            if let Some(low) = system.open_least(&pair, q0)?
-                && low.gap < -system.gap_band
-            {
+            let Some(low) = system.open_least(&pair, q0)? else { continue };
+            if low.gap < -system.gap_band {
                 return Err(Error::invalid(
                     "geom",
                     format!("{} (overlapping by {:.3e} m)", named(m, &pair), -low.gap),
                     "overlap where the motion starts: start from an equilibrium, or move the geom or the [initial] coordinates apart",
                 ));
+            }
+            if low.gap <= system.gap_band {
+                // Set on the geom: held from the start (let go at the first
+                // step if it pulls), stuck unless it slides.
+                let mut h = system.touch(&pair, low.s, q0)?;
+                h.law = system.starting_law(&h, &low, (q0, v0))?;
+                system.held.push(h);
             }
         }
         Ok(system)
@@ -158,6 +219,82 @@ impl<D: Dynamics> ContactSystem<D> {
         &self.changes
     }
 
+    /// A new touching contact of `pair` at `s` (frames at `q`), frictionless
+    /// or, with friction, sliding as it moves (stuck if it does not): an
+    /// error by name where friction would hold a contact that rolls.
+    fn touch(&self, pair: &Pair, s: Option<f64>, q: &[f64]) -> Result<Held> {
+        let m = &self.mechanism;
+        let (length, mu) = match pair.part {
+            Toucher::Flexure(j) => {
+                (m.joints[j].kind.flexure().map_or(1.0, D::flexure_length), m.geoms[pair.geom].friction)
+            }
+            Toucher::Geom(h) => (1.0, m.geoms[pair.geom].friction.max(m.geoms[h].friction)),
+        };
+        let mut h = Held { pair: *pair, s, length, law: Law::Free, mu, force: 0.0, friction: [0.0; 3], largest: 0.0 };
+        if mu > 0.0 {
+            let p = point_jet(m, &self.frames, q, pair, s, None)?;
+            let rolls = match pair.part {
+                Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < length),
+                Toucher::Geom(h) => !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body),
+            };
+            if rolls {
+                return Err(Error::invalid(
+                    "friction",
+                    format!("{mu} ({})", named(m, pair)),
+                    "holds in motion only where the touching point is material (a flexure's bare end, or a ball whose body only translates against the geom's); where a contact rolls (inside a span, at a thick end, a turning ball) friction is not solved yet: set the friction to 0",
+                ));
+            }
+            h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
+        }
+        Ok(h)
+    }
+
+    /// The law of `h` as it touches at `low` (frames at `q`): frictionless,
+    /// or with friction sliding on the way it moves along the surface, or
+    /// stuck where it touches if it does not move along it.
+    fn starting_law(&self, h: &Held, low: &Gap<D>, (q, v): (&[f64], &[f64])) -> Result<Law> {
+        if h.law == Law::Free {
+            return Ok(Law::Free);
+        }
+        let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+        let slide = sliding::<D>(&p.delta, v, &low.normal);
+        let speed = dot::<D>(&slide, &slide).sqrt();
+        Ok(if speed > self.creep {
+            Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed }
+        } else {
+            Law::Stick { anchor: self.anchor(h, q)? }
+        })
+    }
+
+    /// Whether body `a` only translates against body `b` (frames at Jacobian
+    /// level): no coordinate between them turns either.
+    fn translates_only(&self, a: usize, b: usize) -> bool {
+        let m = &self.mechanism;
+        let path = |mut body: usize| {
+            let mut joints = Vec::new();
+            while let Some(j) = m.parent_joint(body) {
+                joints.push(j);
+                body = m.joints[j].parent;
+            }
+            joints
+        };
+        let (pa, pb) = (path(a), path(b));
+        let axes = [vector::<D>(&[1.0, 0.0, 0.0]), vector::<D>(&[0.0, 1.0, 0.0])];
+        pa.iter().filter(|j| !pb.contains(j)).chain(pb.iter().filter(|j| !pa.contains(j))).all(|&j| {
+            let (o, k) = (m.joints[j].offset, m.joints[j].kind.joint().dof());
+            (o..o + k).all(|c| axes.iter().all(|e| D::spin(&self.frames.omega[c], e) == D::Vector::default()))
+        })
+    }
+
+    /// Where contact `h`'s point is, in the frame of the body of the geom it
+    /// touches (frames at `q`).
+    fn anchor(&self, h: &Held, q: &[f64]) -> Result<[f64; 3]> {
+        let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+        // The geom touched: of a ball and another geom, the other.
+        let body = &self.frames.bodies[p.shape.body];
+        Ok(array::<D>(&D::position(&D::act(&D::inverse(body), &p.x))))
+    }
+
     /// The least gap of `pair` at `q` (frames at `q` in `self.frames`) away
     /// from its touching contacts; `None` when every least is touching.
     fn open_least(&self, pair: &Pair, q: &[f64]) -> Result<Option<Gap<D>>> {
@@ -171,10 +308,12 @@ impl<D: Dynamics> ContactSystem<D> {
     }
 
     /// Touching contact `i` at `q` (frames in `self.frames`, Jacobian level):
-    /// its place settled where the gap is least (module docs), and its gap there.
+    /// its place settled where the gap is least (module docs), and its gap
+    /// there. A contact with friction stays where it is: one that would roll
+    /// into a span is refused by name.
     fn settle(&mut self, i: usize, q: &[f64]) -> Result<GapSlope<D>> {
         let (m, f) = (&self.mechanism, &self.frames);
-        let Held { pair, s, length, .. } = self.held[i];
+        let Held { pair, s, length, law, .. } = self.held[i];
         let Some(mut s) = s else { return gap_slope(m, f, q, &pair, None) };
         for _ in 0..PLACE_ITERATIONS {
             let slope = gap_slope(m, f, q, &pair, Some(s))?;
@@ -183,6 +322,13 @@ impl<D: Dynamics> ContactSystem<D> {
             if stays || (slope.ds.abs() <= 1e-12 && slope.dss > 0.0) {
                 self.held[i].s = Some(s);
                 return Ok(slope);
+            }
+            if law != Law::Free {
+                return Err(Error::invalid(
+                    "friction",
+                    format!("{} ({})", self.held[i].mu, named(m, &pair)),
+                    "holds in motion only where the touching point is material: this end would roll onto its flexure's span, where friction is not solved yet: set the friction to 0",
+                ));
             }
             let next = if slope.dss > 0.0 {
                 (s - slope.ds / slope.dss).clamp(0.0, length)
@@ -206,20 +352,62 @@ impl<D: Dynamics> ContactSystem<D> {
         })
     }
 
-    fn report(&mut self, q: &[f64], multipliers: Option<&[f64]>) -> Result<Vec<Contact>> {
-        let m0 = self.inner.closures();
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
-        let none = D::Vector::default();
-        let mut out = Vec::new();
-        for i in 0..self.held.len() {
-            if let Some(l) = multipliers {
-                self.held[i].force = -l[m0 + i];
+    /// The first row of each touching contact among the closures.
+    fn first_rows(&self) -> Vec<usize> {
+        let mut row = self.inner.closures();
+        self.held
+            .iter()
+            .map(|h| {
+                let r = row;
+                row += h.rows::<D>();
+                r
+            })
+            .collect()
+    }
+
+    /// Contact `i` at $(q, \dot q)$ (frames at `q`, Jacobian level) with the
+    /// closures' multipliers `lambda` (or its last forces without them).
+    fn read(&mut self, i: usize, row: usize, (q, v): (&[f64], &[f64]), lambda: Option<&[f64]>) -> Result<Reading<D>> {
+        let slope = self.settle(i, q)?;
+        let h = self.held[i];
+        let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+        let n = slope.normal;
+        let slide = sliding::<D>(&p.delta, v, &n);
+        let (push, friction) = match (h.law, lambda) {
+            (_, None) => (h.force, vector::<D>(&h.friction)),
+            (Law::Stick { .. }, Some(l)) => {
+                let force = scaled::<D>(&vector::<D>(&array_of(&l[row..row + D::POINT_DIM])), -1.0);
+                let push = dot::<D>(&n, &force);
+                (push, force - scaled::<D>(&n, push))
             }
-            let slope = self.settle(i, q)?;
-            let h = self.held[i];
-            let place = (h.s, &slope.point, &slope.normal, slope.gap);
-            out.push(Contact::of(&self.mechanism, &h.pair, place, (h.force.max(0.0), &none), ContactMode::Slip));
+            (Law::Slip { from, .. }, Some(l)) => {
+                let push = -l[row];
+                (push, scaled::<D>(&self.direction(&slide, &vector::<D>(&from)), -h.mu * push))
+            }
+            (Law::Free, Some(l)) => (-l[row], D::Vector::default()),
+        };
+        Ok(Reading { slope, push, friction, slide })
+    }
+
+    /// $\hat s$: the slide `slide` with the direction it slid from, `from`, added at the creep speed.
+    fn direction(&self, slide: &D::Vector, from: &D::Vector) -> D::Vector {
+        let s = *slide + scaled::<D>(from, self.creep);
+        let size = dot::<D>(&s, &s).sqrt();
+        if size > 0.0 { scaled::<D>(&s, 1.0 / size) } else { s }
+    }
+
+    fn report(&mut self, q: &[f64], v: &[f64], multipliers: Option<&[f64]>) -> Result<Vec<Contact>> {
+        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        let mut out = Vec::new();
+        for (i, row) in self.first_rows().into_iter().enumerate() {
+            let r = self.read(i, row, (q, v), multipliers)?;
+            let h = &mut self.held[i];
+            (h.force, h.friction) = (r.push, array::<D>(&r.friction));
+            let state = if matches!(h.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            let place = (h.s, &r.slope.point, &r.slope.normal, r.slope.gap);
+            out.push(Contact::of(&self.mechanism, &h.pair, place, (r.push.max(0.0), &r.friction), state));
         }
+        let none = D::Vector::default();
         for pair in self.pairs.clone() {
             if self.held.iter().any(|h| h.pair == pair) {
                 continue;
@@ -233,17 +421,21 @@ impl<D: Dynamics> ContactSystem<D> {
     }
 }
 
-/// A pair of two geoms whose other geom is rough.
-fn rough_ball<D: Dynamics>(m: &Mechanism<D>, p: &Pair) -> bool {
-    matches!(p.part, Toucher::Geom(h) if m.geoms[h].friction > 0.0)
+/// A point's velocity relative to the geom, $\sum_c\Delta_c\dot q_c$, in the
+/// tangent plane of the normal `n`.
+fn sliding<D: Dynamics>(delta: &[D::Vector], v: &[f64], n: &D::Vector) -> D::Vector {
+    let mut velocity = D::Vector::default();
+    for (d, v) in delta.iter().zip(v) {
+        velocity = velocity + scaled::<D>(d, *v);
+    }
+    velocity - scaled::<D>(n, dot::<D>(n, &velocity))
 }
 
-/// The length of the flexure of `pair` (1 between geoms).
-fn length<D: Dynamics>(m: &Mechanism<D>, pair: &Pair) -> f64 {
-    match pair.part {
-        Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
-        Toucher::Geom(_) => 1.0,
-    }
+/// `x`'s entries (two or three), padded with zeros to three.
+fn array_of(x: &[f64]) -> [f64; 3] {
+    let mut a = [0.0; 3];
+    a[..x.len()].copy_from_slice(x);
+    a
 }
 
 impl<D: Dynamics> System for ContactSystem<D> {
@@ -252,7 +444,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     }
 
     fn closures(&self) -> usize {
-        self.inner.closures() + self.held.len()
+        self.inner.closures() + self.held.iter().map(Held::rows::<D>).sum::<usize>()
     }
 
     fn dynamics(&mut self, q: &[f64], v: &[f64], t: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
@@ -276,11 +468,46 @@ impl<D: Dynamics> System for ContactSystem<D> {
             return Ok(());
         }
         frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
-        for i in 0..self.held.len() {
+        for (i, row) in self.first_rows().into_iter().enumerate() {
             let slope = self.settle(i, q)?;
-            c[m0 + i] = slope.gap;
-            for col in 0..n {
-                g[col * rows + m0 + i] = slope.gradient[col];
+            let h = self.held[i];
+            if let Law::Stick { anchor } = h.law {
+                let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, Some(vector::<D>(&anchor)))?;
+                let body = &self.frames.bodies[p.shape.body];
+                let a = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&anchor), 1.0));
+                let offset = D::position(&p.x) - D::position(&a);
+                for k in 0..D::POINT_DIM {
+                    c[row + k] = offset[k];
+                    for col in 0..n {
+                        g[col * rows + row + k] = p.delta[col][k];
+                    }
+                }
+            } else {
+                c[row] = slope.gap;
+                for col in 0..n {
+                    g[col * rows + row] = slope.gradient[col];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// $G$, but a sliding contact's row pushes along $\nabla g - \mu\hat s^T\Delta$ (module docs).
+    fn closure_forces(&mut self, q: &[f64], v: &[f64], g: &[f64], w: &mut [f64]) -> Result<()> {
+        w.copy_from_slice(g);
+        if !self.held.iter().any(|h| matches!(h.law, Law::Slip { .. })) {
+            return Ok(());
+        }
+        let rows = self.closures();
+        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        for (i, row) in self.first_rows().into_iter().enumerate() {
+            let h = self.held[i];
+            let Law::Slip { from, .. } = h.law else { continue };
+            let r = self.read(i, row, (q, v), None)?;
+            let s = self.direction(&r.slide, &vector::<D>(&from));
+            let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+            for (col, d) in p.delta.iter().enumerate() {
+                w[col * rows + row] -= h.mu * dot::<D>(&s, d);
             }
         }
         Ok(())
@@ -299,30 +526,46 @@ impl<D: Dynamics> System for ContactSystem<D> {
     }
 
     fn guard_count(&self) -> usize {
-        self.held.len() + self.pairs.len()
+        2 * self.held.len() + self.pairs.len()
     }
 
-    /// Each touching contact's push over its band, then each pair's least
-    /// open gap over its band (module docs).
-    fn guards(&mut self, q: &[f64], _v: &[f64], multipliers: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
-        let m0 = self.inner.closures();
-        for (i, h) in self.held.iter_mut().enumerate() {
-            out[i] = match multipliers {
-                None => 1.0,
-                Some(l) => {
-                    let push = -l[m0 + i];
-                    if h.largest <= 0.0 && push < 0.0 {
-                        // Pulling from its first step: let go at once.
-                        -0.5
-                    } else {
-                        h.largest = h.largest.max(push);
-                        push / (self.tolerance * h.largest)
-                    }
+    /// Each touching contact's push and its friction's (module docs), then
+    /// each pair's least open gap, over their bands.
+    fn guards(&mut self, q: &[f64], v: &[f64], multipliers: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
+        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.last = multipliers.map(<[f64]>::to_vec).unwrap_or_default();
+        for (i, row) in self.first_rows().into_iter().enumerate() {
+            let r = self.read(i, row, (q, v), multipliers)?;
+            let tolerance = self.tolerance;
+            let h = &mut self.held[i];
+            (out[2 * i], out[2 * i + 1]) = match multipliers {
+                None => (1.0, 1.0),
+                // Pulling from its first step: let go where it began to hold,
+                // as if the push had crossed zero there.
+                Some(_) if h.largest <= 0.0 && r.push < 0.0 => (-1e12, 1.0),
+                Some(_) => {
+                    h.largest = h.largest.max(r.push);
+                    let band = tolerance * h.largest;
+                    let friction = match &mut h.law {
+                        Law::Free => f64::MAX,
+                        Law::Stick { .. } => (h.mu * r.push - dot::<D>(&r.friction, &r.friction).sqrt()) / band,
+                        Law::Slip { from, fastest } => {
+                            let speed = dot::<D>(&r.slide, &vector::<D>(from));
+                            *fastest = fastest.max(speed);
+                            match *fastest > 0.0 {
+                                true => speed / (tolerance * *fastest),
+                                // Turning back from its first step: it sticks where it began.
+                                false if speed < 0.0 => -1e12,
+                                false => 1.0,
+                            }
+                        }
+                    };
+                    (r.push / band, friction)
                 }
             };
         }
         frames_level_into(&self.mechanism, q, Level::Pose, &mut self.frames);
-        let a = self.held.len();
+        let a = 2 * self.held.len();
         for k in 0..self.pairs.len() {
             let pair = self.pairs[k];
             out[a + k] = self.open_least(&pair, q)?.map_or(f64::MAX, |g| g.gap / self.gap_band);
@@ -331,37 +574,61 @@ impl<D: Dynamics> System for ContactSystem<D> {
     }
 
     /// A pair that touches while approaching is held; a touching contact
-    /// that pulls is let go.
+    /// that pulls is let go; a stuck one that needs more than its friction
+    /// slides, and a sliding one that turns back sticks (module docs).
     fn switch(&mut self, ks: &[usize], t: f64, q: &[f64], v: &[f64]) -> Result<()> {
         let a = self.held.len();
         frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        let change = |changes: &mut Vec<ContactChange>, m: &Mechanism<D>, pair: &Pair, state| {
+            changes.push(ContactChange { time: t, contact: column(m, pair), state });
+        };
+        // The laws first, at the contacts' own rows (the last multipliers).
+        let last = std::mem::take(&mut self.last);
+        let rows = self.first_rows();
+        for &k in ks.iter().filter(|&&k| k < 2 * a && k % 2 == 1) {
+            let i = k / 2;
+            let r = self.read(i, rows[i], (q, v), Some(&last).filter(|l| !l.is_empty()).map(Vec::as_slice))?;
+            let h = self.held[i];
+            let law = match h.law {
+                Law::Stick { .. } => {
+                    let size = dot::<D>(&r.friction, &r.friction).sqrt();
+                    let from = if size > 0.0 { scaled::<D>(&r.friction, -1.0 / size) } else { r.slide };
+                    Law::Slip { from: array::<D>(&from), fastest: 0.0 }
+                }
+                _ => Law::Stick { anchor: self.anchor(&h, q)? },
+            };
+            self.held[i].law = law;
+            let state = if matches!(law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            change(&mut self.changes, &self.mechanism, &h.pair, state);
+        }
         let mut added = Vec::new();
-        for &k in ks.iter().filter(|&&k| k >= a) {
-            let pair = self.pairs[k - a];
+        for &k in ks.iter().filter(|&&k| k >= 2 * a) {
+            let pair = self.pairs[k - 2 * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
             if approach < 0.0 {
-                let length = length(&self.mechanism, &pair);
-                added.push(Held { pair, s: low.s, length, force: 0.0, largest: 0.0 });
+                let mut h = self.touch(&pair, low.s, q)?;
+                h.law = self.starting_law(&h, &low, (q, v))?;
+                added.push(h);
             }
         }
-        let released: Vec<usize> = ks.iter().copied().filter(|&k| k < a).collect();
+        let mut released: Vec<usize> = ks.iter().filter(|&&k| k < 2 * a && k % 2 == 0).map(|k| k / 2).collect();
+        released.dedup();
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
-            let contact = column(&self.mechanism, &h.pair);
-            self.changes.push(ContactChange { time: t, contact, state: ContactMode::Open });
+            change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
         }
         for h in added {
-            let contact = column(&self.mechanism, &h.pair);
-            self.changes.push(ContactChange { time: t, contact, state: ContactMode::Slip });
+            let state = if matches!(h.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            change(&mut self.changes, &self.mechanism, &h.pair, state);
             self.held.push(h);
         }
         Ok(())
     }
 
-    fn sampled(&mut self, _t: f64, q: &[f64], _v: &[f64], multipliers: Option<&[f64]>) -> Result<()> {
-        let contacts = self.report(q, multipliers)?;
+    fn sampled(&mut self, _t: f64, q: &[f64], v: &[f64], multipliers: Option<&[f64]>) -> Result<()> {
+        let contacts = self.report(q, v, multipliers)?;
         self.samples.push(contacts);
         Ok(())
     }

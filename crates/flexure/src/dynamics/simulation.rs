@@ -198,7 +198,7 @@ pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, st
         (run, stopped, Vec::new(), Vec::new())
     } else {
         let (q0, v0, touching) = initial_touching(m, &settings.equilibrium, start)?;
-        let mut system = ContactSystem::new(m, &q0, &touching, settings.motion.tolerance)?;
+        let mut system = ContactSystem::new(m, (&q0, &v0), &touching, settings.motion.tolerance)?;
         let (run, stopped) = integrate_kept(&mut system, &q0, &v0, &settings.motion)?;
         (run, stopped, system.samples().to_vec(), system.changes().to_vec())
     };

@@ -41,6 +41,18 @@ pub trait System {
         Ok(())
     }
 
+    /// Writes $W$ ($m\times n$), the directions in which the closures'
+    /// multipliers act: the equations of motion read
+    /// $M\ddot q = f - W^T\lambda$. It is $G$ (given) for closures that do no
+    /// work, the default; a contact sliding with friction pushes off its
+    /// gap's gradient, its row $\nabla g - \mu\thinspace\hat s^T\Delta$ ($\hat s$ the
+    /// sliding direction, $\Delta$ its point's Jacobian), which depends on the
+    /// velocities.
+    fn closure_forces(&mut self, _q: &[f64], _v: &[f64], g: &[f64], w: &mut [f64]) -> Result<()> {
+        w.copy_from_slice(g);
+        Ok(())
+    }
+
     /// The total energy $T + U$ (kinetic, elastic and gravitational; J) at a
     /// state, for energy checks and reports. Work done by the applied loads
     /// $Q$ and by damping is not included.

@@ -76,7 +76,7 @@ pub(super) fn estimate<S: System + ?Sized>(
         }
         for k in 0..m {
             w.e[c * size + n + k] = w.g_start[c * m + k];
-            w.e[(n + k) * size + c] = w.g_start[c * m + k];
+            w.e[(n + k) * size + c] = w.w_start[c * m + k];
         }
     }
     if !linalg::lu(&mut w.e, size, &mut w.epiv) {

@@ -72,7 +72,8 @@ pub(super) fn solve<S: System + ?Sized>(
             let (qi, vi) = (&w.qs[i * n..(i + 1) * n], &w.vs[i * n..(i + 1) * n]);
             let evaluated = system
                 .dynamics(qi, vi, stage_time(i), &mut w.mass, &mut w.force)
-                .and_then(|()| if m > 0 { system.closure(qi, &mut w.closure, &mut w.jac) } else { Ok(()) });
+                .and_then(|()| if m > 0 { system.closure(qi, &mut w.closure, &mut w.jac) } else { Ok(()) })
+                .and_then(|()| if m > 0 { system.closure_forces(qi, vi, &w.jac, &mut w.forces) } else { Ok(()) });
             match evaluated {
                 Ok(()) => {}
                 Err(e) if fatal(&e) => return Err(e),
@@ -84,7 +85,7 @@ pub(super) fn solve<S: System + ?Sized>(
                     s += w.mass[c * n + r] * w.x[i * n + c];
                 }
                 for k in 0..m {
-                    s += w.jac[r * m + k] * w.x[3 * n + i * m + k];
+                    s += w.forces[r * m + k] * w.x[3 * n + i * m + k];
                 }
                 w.r[i * n + r] = -s;
             }
@@ -210,7 +211,7 @@ pub(super) fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
         }
         for k in 0..m {
             for r in 0..n {
-                w.matrix[(3 * n + i * m + k) * big + i * n + r] = w.g0[r * m + k];
+                w.matrix[(3 * n + i * m + k) * big + i * n + r] = w.w0[r * m + k];
             }
         }
     }

@@ -155,6 +155,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 system.dynamics(&q, &v, t, &mut w.m0, &mut w.f0)?;
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g_start)?;
+                    system.closure_forces(&q, &v, &w.g_start, &mut w.w_start)?;
                 }
                 fresh = true;
                 current = false;
@@ -170,6 +171,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 w.mj.copy_from_slice(&w.m0);
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g0)?;
+                    system.closure_forces(&q, &v, &w.g0, &mut w.w0)?;
                 }
                 w.factored = f64::NAN;
                 stale = false;

@@ -19,6 +19,11 @@ pub(super) struct Work {
     /// estimate's multipliers absorb them exactly (with a kept $G$ they would
     /// leak, as a growing error in the directions without inertia).
     pub(super) g_start: Vec<f64>,
+    /// $W$ ([`System::closure_forces`](crate::dynamics::System::closure_forces))
+    /// kept with `g0`, at the step's start with `g_start`, and at a stage.
+    pub(super) w0: Vec<f64>,
+    pub(super) w_start: Vec<f64>,
+    pub(super) forces: Vec<f64>,
     /// The step for which `matrix` and `e` hold their LU factors (NaN: none).
     pub(super) factored: f64,
     /// The last accepted step's unknowns and length (0 before the first):
@@ -87,6 +92,9 @@ impl Work {
             d0: z(n * n),
             g0: z(m * n),
             g_start: z(m * n),
+            w0: z(m * n),
+            w_start: z(m * n),
+            forces: z(m * n),
             mass: z(n * n),
             force: z(n),
             closure: z(m),

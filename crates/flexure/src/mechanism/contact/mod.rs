@@ -33,7 +33,7 @@ pub use gap::{Gap, gap, minima};
 pub(crate) use jet::point_jet;
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
 pub use shape::{DistanceHessian, GeomShape};
-pub(crate) use shape::{dot, scaled};
+pub(crate) use shape::{array, dot, scaled, vector};
 
 /// A shape on a body (body 0 is the ground): it moves with the body.
 ///

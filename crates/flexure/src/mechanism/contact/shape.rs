@@ -71,6 +71,24 @@ pub(crate) fn dot<D: Dimension>(a: &D::Vector, b: &D::Vector) -> f64 {
     (0..D::POINT_DIM).map(|i| a[i] * b[i]).sum()
 }
 
+/// A vector of the dimension from the first components of `a`.
+pub(crate) fn vector<D: Dimension>(a: &[f64; 3]) -> D::Vector {
+    let mut v = D::Vector::default();
+    for i in 0..D::POINT_DIM {
+        v[i] = a[i];
+    }
+    v
+}
+
+/// `v`'s components, padded with zeros to three.
+pub(crate) fn array<D: Dimension>(v: &D::Vector) -> [f64; 3] {
+    let mut a = [0.0; 3];
+    for (i, x) in a.iter_mut().enumerate().take(D::POINT_DIM) {
+        *x = v[i];
+    }
+    a
+}
+
 /// The unit vector along axis `i`.
 fn axis<D: Dimension>(i: usize) -> D::Vector {
     let mut e = D::Vector::default();

@@ -53,7 +53,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, dot, gap_jet, minima, named, pairs, point_jet, scaled,
+    Contact, ContactMode, GapJet, Pair, Toucher, array, dot, gap_jet, minima, named, pairs, point_jet, scaled, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -389,22 +389,6 @@ fn add_place<D: Statics>(h: &mut DMatrix<f64>, force: f64, jet: &GapJet<D>) {
             h[(r, c)] += force * jet.dqs[r] * jet.dqs[c] / jet.dss;
         }
     }
-}
-
-fn vector<D: Statics>(a: &[f64; 3]) -> D::Vector {
-    let mut v = D::Vector::default();
-    for i in 0..D::POINT_DIM {
-        v[i] = a[i];
-    }
-    v
-}
-
-fn array<D: Statics>(v: &D::Vector) -> [f64; 3] {
-    let mut a = [0.0; 3];
-    for (i, x) in a.iter_mut().enumerate().take(D::POINT_DIM) {
-        *x = v[i];
-    }
-    a
 }
 
 impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
