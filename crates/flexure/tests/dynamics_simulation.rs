@@ -528,3 +528,27 @@ fn world(frame: &flexure::Pose, r: impl Into<nalgebra::Point2<f64>>) -> [f64; 2]
     let w = frame.act(&r.into());
     [w.x, w.y]
 }
+
+/// A load's jump at 0.6 s lands where the sample 12 × 0.05 s is, one
+/// rounding unit later: the run takes the sample there rather than a step
+/// of 1e-16 s (which stalled it), and the strip, heavily damped, comes to
+/// rest where the statics under the jumped load says (to $10^{-7}$).
+#[test]
+fn a_jump_within_rounding_of_a_sample_is_landed_on_once() {
+    let strip = "gravity = [0.0, -9.81]\n\
+        [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 0.01\norder = 6\ndamping = 0.05\n\
+        [[body]]\nname = \"tip\"\nmass = 0.05\n\
+        [[force]]\nname = \"lift\"\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, 0.0]\n";
+    let schedule =
+        "[[schedule]]\nload = \"force.lift.fy\"\npoints = [[0.0, 0.0], [0.6, 0.0], [0.6, 1.5], [3.0, 1.5]]\n";
+    let m = from_toml(&format!("{strip}{schedule}")).unwrap();
+    assert_ne!(12.0 * 0.05, 0.6);
+    let run = simulate(&m, &settings(2.4, 0.05, 1e-8), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let lifted = from_toml(&strip.replace("force = [0.0, 0.0]", "force = [0.0, 1.5]")).unwrap();
+    let rest = solve(&lifted, &statics::Settings::default()).unwrap();
+    let last = run.time.len() - 1;
+    for (a, b) in run.q(last).iter().zip(&rest.q) {
+        assert!((a - b).abs() < 1e-7, "{:?}, at rest {:?}", run.q(last), rest.q);
+    }
+}
