@@ -168,6 +168,13 @@ impl StationKinematics {
         }
     }
 
+    /// The tip's motion subspace in the root frame after a pass at
+    /// [`Level::Jacobian`]: $\omega_a$ and $\partial_ap$ of each coordinate, the columns
+    /// a joint's [`crate::mechanism::JointState::jacobian`] holds, carried by the same pass as the stations'.
+    pub(crate) fn tip_columns(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
+        (&self.main.turning, &self.main.moving)
+    }
+
     /// Whether these buffers fit `flexure` and `quadrature`.
     pub fn fits(&self, flexure: &SpatialFlexure, quadrature: &MassQuadrature) -> bool {
         self.position.len() == quadrature.stations.len() && self.main.fits(flexure)
@@ -254,18 +261,53 @@ fn root_pass(
     rate: Option<&[f64]>,
     out: &mut StationKinematics,
 ) {
+    // Fixed sizes for equal orders 2 to 4: the nodal sums unroll (the same sums, in the same order).
+    match (flexure.orders(), quadrature.width) {
+        ([2, 2, 2], 2) => root_pass_with(flexure, quadrature, alpha, order, rate, out, fixed_curvatures::<2>),
+        ([3, 3, 3], 3) => root_pass_with(flexure, quadrature, alpha, order, rate, out, fixed_curvatures::<3>),
+        ([4, 4, 4], 4) => root_pass_with(flexure, quadrature, alpha, order, rate, out, fixed_curvatures::<4>),
+        (orders, w) => root_pass_with(flexure, quadrature, alpha, order, rate, out, |rows, alpha| {
+            std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
+        }),
+    }
+}
+
+/// The nodal curvatures at the three nodes whose shape values are `rows`, for orders `[N, N, N]`.
+#[inline(always)]
+fn fixed_curvatures<const N: usize>(rows: &[f64], alpha: &[f64]) -> [Vector3<f64>; 3] {
+    let (rows, alpha) = (&rows[..3 * N], &alpha[..3 * N]);
+    std::array::from_fn(|g| {
+        let row = &rows[g * N..(g + 1) * N];
+        Vector3::from_fn(|c, _| {
+            let mut sum = 0.0;
+            for i in 0..N {
+                sum += row[i] * alpha[c * N + i];
+            }
+            sum
+        })
+    })
+}
+
+/// [`root_pass`] with the nodal curvatures of a step's shape rows from `curvatures`.
+#[inline(always)]
+fn root_pass_with(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    alpha: &[f64],
+    order: usize,
+    rate: Option<&[f64]>,
+    out: &mut StationKinematics,
+    curvatures: impl Fn(&[f64], &[f64]) -> [Vector3<f64>; 3],
+) {
     let (m, w) = (flexure.subintervals(), quadrature.width);
     let h = flexure.length() / m as f64;
-    let orders = flexure.orders();
     let order = if rate.is_some() { 2 } else { order };
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
     out.moment = Vector3::zeros();
     out.main.turning.fill(Vector3::zeros());
     out.main.moving.fill(Vector3::zeros());
     let mut state = Rate::default();
-    let curvatures = |rows: &[f64]| -> [Vector3<f64>; 3] {
-        std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
-    };
+    let curvatures = |rows: &[f64]| curvatures(rows, alpha);
     for k in 0..m {
         for (j, tau) in NODES.iter().enumerate() {
             let station = 3 * k + j;
