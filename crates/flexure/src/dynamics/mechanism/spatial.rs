@@ -11,9 +11,7 @@ use crate::mechanism::kinematics::{Frames, attach, frame_distance, frames_given_
 use crate::mechanism::lagrangian::{Assembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
-use crate::spatial::{
-    MassQuadrature, SpatialKinematics, StationKinematics, stations_rate_update, stations_update, update_rate,
-};
+use crate::spatial::{MassQuadrature, SpatialKinematics, StationKinematics, stations_dynamics_update, update_rate};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 use std::cell::RefCell;
 
@@ -247,17 +245,14 @@ impl StationMasses {
     }
 
     /// Brings the stations' buffers to the coordinates `q`: their Jacobians, and
-    /// with a rate `v` their motion under it ([`stations_rate_update`]).
+    /// with a rate `v` their motion under it ([`stations_dynamics_update`]).
     fn update_stations(&self, m: &SpatialMechanism, q: &[f64], v: Option<&[f64]>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
             let Some(flexure) = spec.kind.flexure() else { continue };
             let (o, n) = (spec.offset, flexure.coordinates());
             let (alpha, k) = (&q[o..o + n], &mut *buffers.borrow_mut());
-            match v {
-                Some(v) => stations_rate_update(flexure, quadrature, alpha, &v[o..o + n], k),
-                None => stations_update(flexure, quadrature, alpha, Level::Jacobian, k),
-            }
+            stations_dynamics_update(flexure, quadrature, alpha, v.map(|v| &v[o..o + n]), k);
         }
     }
 
@@ -548,4 +543,36 @@ fn independent_closures(m: &SpatialMechanism) -> Option<DMatrix<f64>> {
     let u = svd.u?;
     let kept: Vec<usize> = (0..svd.singular_values.len()).filter(|&k| svd.singular_values[k] > 1e-10 * top).collect();
     Some(DMatrix::from_fn(kept.len(), rows, |r, c| u[(c, kept[r])]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The frames the dynamics take, a massive flexure's motion subspace
+    /// from its stations' pass, meet the joints' own Jacobian-level frames to
+    /// rounding: every coordinate's world twist and every body's pose.
+    #[test]
+    fn stations_give_the_joints_motion_subspace() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/right_angle_cantilever.toml");
+        let m = crate::mechanism::file::spatial_from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let mut masses = StationMasses::new(&m).unwrap();
+        assert!(masses.given.iter().all(|g| *g), "both legs have mass");
+        let q: Vec<f64> = (0..m.dof()).map(|i| 0.08 * (i as f64 * 1.3 + 0.2).sin()).collect();
+        let mut own = Frames::new(&m);
+        frames_level_into(&m, &q, Level::Jacobian, &mut own);
+        masses.frames_at(&m, &q, None);
+        let f = &masses.frames;
+        for c in 0..m.dof() {
+            let (dw, dv) = ((f.omega[c] - own.omega[c]).amax(), (f.velocity[c] - own.velocity[c]).amax());
+            assert!(dw < 1e-14 && dv < 1e-13 * own.velocity[c].amax().max(1.0), "coordinate {c}: {dw:e} {dv:e}");
+        }
+        for (a, b) in f.bodies.iter().zip(&own.bodies) {
+            assert!((a.translation.vector - b.translation.vector).amax() < 1e-13);
+            assert!(
+                (a.rotation.to_rotation_matrix().into_inner() - b.rotation.to_rotation_matrix().into_inner()).amax()
+                    < 1e-15
+            );
+        }
+    }
 }
