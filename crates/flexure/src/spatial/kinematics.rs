@@ -537,6 +537,13 @@ pub(super) fn images<T: Scalar>(e: &Exponent<T>, step: &Step<T>, frame: &Matrix3
     step.images(&dw, &dv, frame)
 }
 
+/// [`images`] from [`Exponent::jacobian_expanded`]: equal to rounding, for the dynamics.
+#[inline(always)]
+pub(super) fn images_expanded(e: &Exponent<f64>, step: &Step<f64>, frame: &Matrix3<f64>) -> Images<f64> {
+    let (dw, dv) = e.jacobian_expanded();
+    step.images(&dw, &dv, frame)
+}
+
 /// Column `a`'s [`Images`] combination for a step whose nodal shape
 /// values are `rows`: $\sum_g\tilde P_i(s_g)\thinspace I_{c,g}$ for the coordinate's curvature $c$ and shape $i$.
 #[inline(always)]
@@ -591,6 +598,7 @@ pub(super) fn root_step<T: Scalar>(
     step: &Step<T>,
     r: &Matrix3<T>,
     data: &mut SpatialKinematics<T>,
+    images: impl Fn(&Exponent<T>, &Step<T>, &Matrix3<T>) -> Images<T>,
 ) -> (Matrix3<T>, Vector3<T>) {
     let (turn, arm) = (r * step.r, r * step.p);
     if step.order >= 1 {
@@ -621,7 +629,7 @@ pub(super) fn jacobian_pass<T: Scalar>(
         let e = Exponent::new(&node_twists(flexure, alpha, k).map(|x| parts(&x).0), h);
         let (w, v) = e.value();
         let step = Step::new(w, v, order);
-        let (turn, arm) = root_step(flexure, flexure.shapes(k), &e, &step, &r, data);
+        let (turn, arm) = root_step(flexure, flexure.shapes(k), &e, &step, &r, data, images);
         each(k, &e, &step);
         p += arm;
         r = turn;

@@ -33,7 +33,8 @@
 
 use super::SpatialFlexure;
 use super::kinematics::{
-    Images, Rate, SpatialKinematics, advance, carry_rate, images, increment, rate_direction, root_step, row_curvature,
+    Images, Rate, SpatialKinematics, advance, carry_rate, images, images_expanded, increment, rate_direction,
+    root_step, row_curvature,
 };
 use super::magnus::{Exponent, NODES};
 use super::step::Step;
@@ -142,7 +143,7 @@ pub struct StationKinematics {
     /// $\partial_a\partial_bS$ at `[a * n + b]` (kg·m; at [`Level::Hessian`]).
     pub moment_hessian: Vec<Vector3<f64>>,
     /// Each station's motion under a rate $\dot\alpha$ at $\ddot\alpha = 0$
-    /// ([`Rate::in_root`]: $\omega_k$, $\dot p_k$, $\dot\omega_k$, $\ddot p_k$), filled by [`stations_rate_update`].
+    /// ([`Rate::in_root`]: $\omega_k$, $\dot p_k$, $\dot\omega_k$, $\ddot p_k$), filled by [`stations_dynamics_update`].
     pub(crate) rates: Vec<[Vector3<f64>; 4]>,
     /// The tip's, in the same form.
     pub(crate) tip: [Vector3<f64>; 4],
@@ -166,6 +167,13 @@ impl StationKinematics {
             main: SpatialKinematics::new(flexure),
             scratch: SpatialKinematics::new(flexure),
         }
+    }
+
+    /// The tip's motion subspace in the root frame after a pass at
+    /// [`Level::Jacobian`]: $\omega_a$ and $\partial_ap$ of each coordinate, the columns
+    /// a joint's [`crate::mechanism::JointState::jacobian`] holds, carried by the same pass as the stations'.
+    pub(crate) fn tip_columns(&self) -> (&[Vector3<f64>], &[Vector3<f64>]) {
+        (&self.main.turning, &self.main.moving)
     }
 
     /// Whether these buffers fit `flexure` and `quadrature`.
@@ -207,22 +215,24 @@ pub fn stations_update(
     level: Level,
     out: &mut StationKinematics,
 ) {
-    pass(flexure, quadrature, alpha, level, None, out);
+    pass(flexure, quadrature, alpha, level, None, out, images);
 }
 
-/// [`stations_update`] at [`Level::Jacobian`] with the stations' and the
-/// tip's motion under the rate `rate` at $\ddot\alpha = 0$ into `out.rates` and
-/// `out.tip`: their exact second derivatives contracted with the rate
-/// twice, carried through the same pass (`kinematics::carry_rate`).
-pub(crate) fn stations_rate_update(
+/// [`stations_update`] at [`Level::Jacobian`] for the dynamics, each
+/// step's images from [`Exponent::jacobian_expanded`] (equal to rounding,
+/// cheaper), and with a rate `rate` the stations' and the tip's motion under
+/// it at $\ddot\alpha = 0$ into `out.rates` and `out.tip`: their exact second
+/// derivatives contracted with the rate twice, carried through the same
+/// pass (`kinematics::carry_rate`).
+pub(crate) fn stations_dynamics_update(
     flexure: &SpatialFlexure,
     quadrature: &MassQuadrature,
     alpha: &[f64],
-    rate: &[f64],
+    rate: Option<&[f64]>,
     out: &mut StationKinematics,
 ) {
-    assert_eq!(rate.len(), alpha.len(), "rate must have one entry per coordinate");
-    pass(flexure, quadrature, alpha, Level::Jacobian, Some(rate), out);
+    assert!(rate.is_none_or(|u| u.len() == alpha.len()), "rate must have one entry per coordinate");
+    pass(flexure, quadrature, alpha, Level::Jacobian, rate, out, images_expanded);
 }
 
 fn pass(
@@ -232,13 +242,14 @@ fn pass(
     level: Level,
     rate: Option<&[f64]>,
     out: &mut StationKinematics,
+    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
 ) {
     assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
     assert!(quadrature.fits(flexure) && out.fits(flexure, quadrature), "mass buffers made for another flexure");
     match level {
         Level::Hessian => hessian_pass(flexure, quadrature, alpha, out),
-        Level::Jacobian => root_pass(flexure, quadrature, alpha, 1, rate, out),
-        Level::Pose => root_pass(flexure, quadrature, alpha, 0, rate, out),
+        Level::Jacobian => root_pass(flexure, quadrature, alpha, 1, rate, out, images),
+        Level::Pose => root_pass(flexure, quadrature, alpha, 0, rate, out, images),
     }
 }
 
@@ -253,19 +264,60 @@ fn root_pass(
     order: usize,
     rate: Option<&[f64]>,
     out: &mut StationKinematics,
+    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
+) {
+    // Fixed sizes for equal orders 2 to 4: the nodal sums unroll (the same sums, in the same order).
+    match (flexure.orders(), quadrature.width) {
+        ([2, 2, 2], 2) => {
+            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<2>(rows, alpha))
+        }
+        ([3, 3, 3], 3) => {
+            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<3>(rows, alpha))
+        }
+        ([4, 4, 4], 4) => {
+            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<4>(rows, alpha))
+        }
+        (orders, w) => root_pass_with(flexure, quadrature, order, rate, out, images, |rows| {
+            std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
+        }),
+    }
+}
+
+/// The nodal curvatures at the three nodes whose shape values are `rows`, for orders `[N, N, N]`.
+#[inline(always)]
+fn fixed_curvatures<const N: usize>(rows: &[f64], alpha: &[f64]) -> [Vector3<f64>; 3] {
+    let (rows, alpha) = (&rows[..3 * N], &alpha[..3 * N]);
+    std::array::from_fn(|g| {
+        let row = &rows[g * N..(g + 1) * N];
+        Vector3::from_fn(|c, _| {
+            let mut sum = 0.0;
+            for i in 0..N {
+                sum += row[i] * alpha[c * N + i];
+            }
+            sum
+        })
+    })
+}
+
+/// [`root_pass`] with the nodal curvatures of a step's shape rows from `curvatures`.
+#[inline(always)]
+fn root_pass_with(
+    flexure: &SpatialFlexure,
+    quadrature: &MassQuadrature,
+    order: usize,
+    rate: Option<&[f64]>,
+    out: &mut StationKinematics,
+    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
+    curvatures: impl Fn(&[f64]) -> [Vector3<f64>; 3],
 ) {
     let (m, w) = (flexure.subintervals(), quadrature.width);
     let h = flexure.length() / m as f64;
-    let orders = flexure.orders();
     let order = if rate.is_some() { 2 } else { order };
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
     out.moment = Vector3::zeros();
     out.main.turning.fill(Vector3::zeros());
     out.main.moving.fill(Vector3::zeros());
     let mut state = Rate::default();
-    let curvatures = |rows: &[f64]| -> [Vector3<f64>; 3] {
-        std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
-    };
     for k in 0..m {
         for (j, tau) in NODES.iter().enumerate() {
             let station = 3 * k + j;
@@ -299,7 +351,7 @@ fn root_pass(
         let e = Exponent::new(&curvatures(rows), h);
         let (wv, v) = e.value();
         let step = Step::new(wv, v, order);
-        let (rs, arm) = root_step(flexure, rows, &e, &step, &r, &mut out.main);
+        let (rs, arm) = root_step(flexure, rows, &e, &step, &r, &mut out.main, images);
         if let Some(u) = rate {
             carry_rate(&mut state, &e, &step, &rate_direction(flexure, rows, u));
         }

@@ -45,7 +45,7 @@ pub use energy::{energy, energy_gradient};
 pub use flexure::{DEFAULT_SUBINTERVALS, MAX_SUBINTERVALS, SpatialFlexure};
 pub(crate) use kinematics::update_rate;
 pub use kinematics::{SpatialKinematics, pose_root_tip, update};
-pub(crate) use mass::stations_rate_update;
+pub(crate) use mass::stations_dynamics_update;
 pub use mass::{MassQuadrature, MassStation, StationKinematics, stations_update};
 pub use point::section_at;
 pub use shape::{MAX_SHAPE_POINTS, SpatialPoint, shape, shape_at};

@@ -6,13 +6,12 @@
 use super::dimension::MassElements;
 use crate::error::Result;
 use crate::kinematics::Level;
-use crate::mechanism::kinematics::{Frames, attach, frame_distance, frames_into, frames_level_into};
+use crate::mechanism::JointState;
+use crate::mechanism::kinematics::{Frames, attach, frame_distance, frames_given_into, frames_into, frames_level_into};
 use crate::mechanism::lagrangian::{Assembly, assemble_into, closures_into, flexure_weight_potential};
 use crate::mechanism::spatial::{SpatialLoads, SpatialMechanism};
 use crate::space::Spatial;
-use crate::spatial::{
-    MassQuadrature, SpatialKinematics, StationKinematics, stations_rate_update, stations_update, update_rate,
-};
+use crate::spatial::{MassQuadrature, SpatialKinematics, StationKinematics, stations_dynamics_update, update_rate};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 use std::cell::RefCell;
 
@@ -32,12 +31,24 @@ pub struct StationMasses {
     flexures: Vec<(usize, MassQuadrature, RefCell<StationKinematics>)>,
     /// Each joint's entry in `flexures`, if it has one.
     station: Vec<Option<usize>>,
+    /// Whether each joint has one: its motion subspace comes from the stations' pass ([`Self::frames_at`]).
+    given: Vec<bool>,
     /// A massless spatial flexure's kinematics for its rate's bias, by joint (made on first use).
     tips: RefCell<Vec<Option<SpatialKinematics>>>,
     /// The recursion's buffers.
     motion: RefCell<Motion>,
-    /// A flexure's stations' Jacobians stacked and weighted ([`Self::add_flexure_mass`]).
-    stack: RefCell<DMatrix<f64>>,
+    /// The buffers of [`Self::add_flexure_mass`].
+    work: RefCell<FlexureMassWork>,
+}
+
+/// A flexure's stations' Jacobians stacked and weighted, $X$ with
+/// $X^TX$ its own block of $M$, and the wrench of each of its coordinates
+/// on the parent ([`StationMasses::add_flexure_mass`]).
+#[derive(Debug, Clone, Default)]
+struct FlexureMassWork {
+    stack: DMatrix<f64>,
+    forces: Vec<Vector3<f64>>,
+    moments: Vec<Vector3<f64>>,
 }
 
 /// Each body's motion at $\ddot q = 0$ and the inertial wrench of what it
@@ -92,10 +103,11 @@ impl MassElements<Spatial> for StationMasses {
             pair: RefCell::new([Frames::new(m), Frames::new(m)]),
             independent: independent_closures(m),
             flexures,
+            given: station.iter().map(Option::is_some).collect(),
             station,
             tips: RefCell::new(vec![None; m.joints.len()]),
             motion: RefCell::new(Motion::default()),
-            stack: RefCell::new(DMatrix::zeros(0, 0)),
+            work: RefCell::new(FlexureMassWork::default()),
         })
     }
 
@@ -113,10 +125,9 @@ impl MassElements<Spatial> for StationMasses {
         force: &mut [f64],
     ) -> Result<()> {
         // The gradient, M and h need the joints' first derivatives alone.
-        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(m, q, Some(v));
         let mu = vec![0.0; m.constraints()];
         assemble_into(m, &self.frames, &mu, loads, false, &mut self.assembly)?;
-        self.update_stations(m, &self.frames, Some(v));
         let mm = self.mass_at(m, &self.frames);
         let h = self.velocity_product_at(m, &self.frames, v);
         for (i, f) in force.iter_mut().enumerate() {
@@ -184,8 +195,7 @@ impl MassElements<Spatial> for StationMasses {
     }
 
     fn energy(&mut self, m: &SpatialMechanism, loads: &SpatialLoads, q: &[f64], v: &[f64]) -> Result<f64> {
-        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
-        self.update_stations(m, &self.frames, None);
+        self.frames_at(m, q, None);
         let mm = self.mass_at(m, &self.frames);
         let qd = DVector::from_column_slice(v);
         Ok(0.5 * qd.dot(&(mm * &qd)) + Self::potential_at(m, loads, &self.frames))
@@ -196,17 +206,17 @@ impl MassElements<Spatial> for StationMasses {
     }
 
     fn mass_matrix(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64]) -> DMatrix<f64> {
-        frames_level_into(m, q, Level::Jacobian, &mut self.frames);
-        self.update_stations(m, &self.frames, None);
+        self.frames_at(m, q, None);
         self.mass_at(m, &self.frames)
     }
 
     fn velocity_product(&mut self, m: &SpatialMechanism, _: &SpatialLoads, q: &[f64], v: &[f64]) -> DVector<f64> {
         // The tangent asks for h at one q and many rates: the frames are kept.
         if self.frames.level() == Level::Pose || self.frames.coordinates != q {
-            frames_level_into(m, q, Level::Jacobian, &mut self.frames);
+            self.frames_at(m, q, Some(v));
+        } else {
+            self.update_stations(m, q, Some(v));
         }
-        self.update_stations(m, &self.frames, Some(v));
         self.velocity_product_at(m, &self.frames, v)
     }
 }
@@ -220,23 +230,29 @@ impl StationMasses {
         v: &[f64],
         f: &mut Frames<Spatial>,
     ) -> DVector<f64> {
-        frames_level_into(m, q, Level::Jacobian, f);
-        self.update_stations(m, f, Some(v));
+        self.update_stations(m, q, Some(v));
+        fill_frames(m, q, f, &self.given, &self.station, &self.flexures);
         self.velocity_product_at(m, f, v)
     }
 
-    /// Brings the stations' buffers to the frames `f`: their Jacobians, and
-    /// with a rate `v` their motion under it ([`stations_rate_update`]).
-    fn update_stations(&self, m: &SpatialMechanism, f: &Frames<Spatial>, v: Option<&[f64]>) {
+    /// The frames at `q` into `self.frames` with the stations' buffers
+    /// brought to them ([`Self::update_stations`]): a massive flexure's
+    /// motion subspace is the tip's columns of its stations' pass
+    /// (`fill_frames`), so that its own Jacobian pass is not run as well.
+    fn frames_at(&mut self, m: &SpatialMechanism, q: &[f64], v: Option<&[f64]>) {
+        self.update_stations(m, q, v);
+        fill_frames(m, q, &mut self.frames, &self.given, &self.station, &self.flexures);
+    }
+
+    /// Brings the stations' buffers to the coordinates `q`: their Jacobians, and
+    /// with a rate `v` their motion under it ([`stations_dynamics_update`]).
+    fn update_stations(&self, m: &SpatialMechanism, q: &[f64], v: Option<&[f64]>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
             let Some(flexure) = spec.kind.flexure() else { continue };
             let (o, n) = (spec.offset, flexure.coordinates());
-            let (alpha, k) = (&f.coordinates[o..o + n], &mut *buffers.borrow_mut());
-            match v {
-                Some(v) => stations_rate_update(flexure, quadrature, alpha, &v[o..o + n], k),
-                None => stations_update(flexure, quadrature, alpha, Level::Jacobian, k),
-            }
+            let (alpha, k) = (&q[o..o + n], &mut *buffers.borrow_mut());
+            stations_dynamics_update(flexure, quadrature, alpha, v.map(|v| &v[o..o + n]), k);
         }
     }
 
@@ -249,6 +265,10 @@ impl StationMasses {
     /// with $m = \sum_km_k$, $s = \sum_km_kr_k$ and $\Theta = \sum_kI_k + m_k(\lvert r_k\rvert^21 - r_kr_k^T)$;
     /// across, $u_c\cdot F_a + \omega_c\cdot N_a$ with the wrench of the joint's own
     /// coordinate $a$, $F_a = \sum_km_kR_A\partial_ap_k$ and $N_a = \sum_kr_k\times m_kR_A\partial_ap_k + I_kR_A\omega_{k,a}$.
+    /// The sums are taken in the root frame, where the stations' columns
+    /// are, and turned by $R_A$ once: $F_a = R_A\sum_km_k\partial_ap_k$,
+    /// $N_a = R_A\sum_k(p_k\times m_k\partial_ap_k + R_kI_kR_k^T\omega_{k,a})$, $s = R_A\sum_km_kp_k$
+    /// and $\Theta = R_A\big(\sum_kR_kI_kR_k^T + m_k(\lvert p_k\rvert^21 - p_kp_k^T)\big)R_A^T$.
     fn add_flexure_mass(&self, m: &SpatialMechanism, f: &Frames<Spatial>, mass: &mut DMatrix<f64>) {
         for (j, quadrature, buffers) in &self.flexures {
             let spec = &m.joints[*j];
@@ -258,32 +278,41 @@ impl StationMasses {
             let ra = *f.root_turn(*j);
             let oa = f.roots[*j].translation.vector;
             let (mut total, mut first, mut second) = (0.0, Vector3::zeros(), Matrix3::zeros());
-            let (mut forces, mut moments) = (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]);
-            let mut turned = vec![Vector3::zeros(); n];
-            let stack = &mut *self.stack.borrow_mut();
+            let work = &mut *self.work.borrow_mut();
+            work.forces.clear();
+            work.forces.resize(n, Vector3::zeros());
+            work.moments.clear();
+            work.moments.resize(n, Vector3::zeros());
+            let stack = &mut work.stack;
             if stack.shape() != (6 * quadrature.stations().len(), n) {
                 *stack = DMatrix::zeros(6 * quadrature.stations().len(), n);
             }
             for (i, st) in quadrature.stations().iter().enumerate() {
                 let (vel, omg) = (&k.velocity[i * n..(i + 1) * n], &k.omega[i * n..(i + 1) * n]);
-                // The station's inertia in the root frame, on each ω_a.
-                let local =
-                    k.rotation[i] * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * k.rotation[i].transpose();
-                for (t, w) in turned.iter_mut().zip(omg) {
-                    *t = local * w;
-                }
-                stack_station(stack, i, st, &k.rotation[i], vel, omg);
-                let r = ra * k.position[i];
+                let (axes, p) = (&k.rotation[i], k.position[i]);
+                let rotary = Vector3::from(st.rotary);
+                let (root_mass, root_rotary) = (st.mass.sqrt(), rotary.map(f64::sqrt));
                 for a in 0..n {
-                    let fa = ra * vel[a] * st.mass;
-                    forces[a] += fa;
-                    moments[a] += r.cross(&fa) + ra * turned[a];
+                    let (v, w) = (vel[a] * st.mass, axes.tr_mul(&omg[a]));
+                    // Station i's rows of X: √m_k ∂_ap_k and √I_k R_kᵀω_{k,a}, so that
+                    // row pairs sum to m_k ∂_ap_k·∂_bp_k + ω_{k,a}·R_kI_kR_kᵀω_{k,b}.
+                    let mut column = stack.column_mut(a);
+                    let mut rows = column.fixed_rows_mut::<6>(6 * i);
+                    rows.fixed_rows_mut::<3>(0).copy_from(&(vel[a] * root_mass));
+                    rows.fixed_rows_mut::<3>(3).copy_from(&w.component_mul(&root_rotary));
+                    work.forces[a] += v;
+                    work.moments[a] += p.cross(&v) + axes * w.component_mul(&rotary);
                 }
                 total += st.mass;
-                first += r * st.mass;
-                second += ra * local * ra.transpose()
-                    + (Matrix3::from_diagonal_element(r.norm_squared()) - r * r.transpose()) * st.mass;
+                first += p * st.mass;
+                second += axes * Matrix3::from_diagonal(&rotary) * axes.transpose()
+                    + (Matrix3::from_diagonal_element(p.norm_squared()) - p * p.transpose()) * st.mass;
             }
+            let (first, second) = (ra * first, ra * second * ra.transpose());
+            for (fa, na) in work.forces.iter_mut().zip(work.moments.iter_mut()) {
+                (*fa, *na) = (ra * *fa, ra * *na);
+            }
+            let (forces, moments) = (&work.forces, &work.moments);
             // The joint's own block, Σ_k m_k ∂p_k·∂p_k + ω_k·I_kω_k, as XᵀX:
             // dot products of contiguous columns, each pair once (symmetric).
             for a in 0..n {
@@ -398,28 +427,35 @@ impl StationMasses {
             alpha[c] = ap + wp.cross(&spin) + ra * turning;
             accel[c] = acc + ap.cross(&r) + wp.cross(&wp.cross(&r)) + 2.0 * wp.cross(&slide) + ra * moving;
             let Some(s) = self.station[i] else { continue };
-            // The stations: x_k = o_A + R_A p_k, moving with the parent and within the joint.
+            // The stations: x_k = o_A + R_A p_k, moving with the parent and
+            // within the joint. Their wrenches are taken in the root frame,
+            // where their motion is, and turned once: the parent's motion
+            // and o_A's arm from the parent's origin turned by R_Aᵀ, and
+            // x_k × f_k = o_A × R_Af + R_A(p_k × f).
             let (_, quadrature, buffers) = &self.flexures[s];
             let b = buffers.borrow();
             let root = origin_of(&f.roots[i]);
+            let (wp, ap, acc, arm) = (ra.tr_mul(&wp), ra.tr_mul(&ap), ra.tr_mul(&acc), ra.tr_mul(&(root - origin(p))));
+            let (mut fs, mut ms) = (Vector3::zeros(), Vector3::zeros());
             for (kk, st) in quadrature.stations().iter().enumerate() {
                 let [w, pd, wd, pdd] = b.rates[kk];
-                let x = root + ra * b.position[kk];
-                let arm = x - origin(p);
-                let (w, pd) = (ra * w, ra * pd);
+                let (x, axes) = (b.position[kk], &b.rotation[kk]);
+                let arm = arm + x;
                 let spin = wp + w;
-                let turn = ap + wp.cross(&w) + ra * wd;
-                let a = acc + ap.cross(&arm) + wp.cross(&wp.cross(&arm)) + 2.0 * wp.cross(&pd) + ra * pdd;
-                let axes = ra * b.rotation[kk];
-                let inertia = axes * Matrix3::from_diagonal(&Vector3::from(st.rotary)) * axes.transpose();
-                let (fk, tk) = (a * st.mass, inertia * turn + spin.cross(&(inertia * spin)));
-                let (fl, tl) = (ra.tr_mul(&fk), ra.tr_mul(&tk));
+                let turn = ap + wp.cross(&w) + wd;
+                let a = acc + ap.cross(&arm) + wp.cross(&wp.cross(&arm)) + 2.0 * wp.cross(&pd) + pdd;
+                // I_k v = R_k I (R_kᵀ v), I diagonal in the section frame.
+                let inertia = |v: &Vector3<f64>| axes * axes.tr_mul(v).component_mul(&Vector3::from(st.rotary));
+                let (fl, tl) = (a * st.mass, inertia(&turn) + spin.cross(&inertia(&spin)));
                 for c in 0..k {
                     h[o + c] += b.velocity[kk * k + c].dot(&fl) + b.omega[kk * k + c].dot(&tl);
                 }
-                force[p] += fk;
-                moment[p] += x.cross(&fk) + tk;
+                fs += fl;
+                ms += x.cross(&fl) + tl;
             }
+            let fk = ra * fs;
+            force[p] += fk;
+            moment[p] += root.cross(&fk) + ra * ms;
         }
         for (b, body) in m.bodies.iter().enumerate().skip(1) {
             if body.mass == 0.0 && body.inertia == Matrix3::zeros() {
@@ -462,27 +498,27 @@ impl StationMasses {
     }
 }
 
-/// Station `i`'s six rows of the stack $X$ whose $X^TX$ is a flexure's own
-/// block of $M$ ([`StationMasses::add_flexure_mass`]): $\sqrt{m_k}\thinspace\partial_ap_k$ and
-/// $\sqrt{I_{k,c}}\thinspace w_c$ with $w = R_k^T\omega_{k,a}$, so that row pairs sum to
-/// $m_k\thinspace\partial_ap_k\cdot\partial_bp_k + \omega_{k,a}\cdot R_kI_kR_k^T\omega_{k,b}$ (the diagonal $I_k$ in the section frame).
-fn stack_station(
-    stack: &mut DMatrix<f64>,
-    i: usize,
-    station: &crate::spatial::MassStation,
-    rotation: &Matrix3<f64>,
-    velocity: &[Vector3<f64>],
-    omega: &[Vector3<f64>],
+/// The frames at `q` into `f` at [`Level::Jacobian`], a joint with
+/// `given` taking its motion subspace from its stations' pass (brought to
+/// `q` first): column $a$ is $(\omega_a, \partial_ap)$ in the flexure's root frame.
+fn fill_frames(
+    m: &SpatialMechanism,
+    q: &[f64],
+    f: &mut Frames<Spatial>,
+    given: &[bool],
+    station: &[Option<usize>],
+    flexures: &[(usize, MassQuadrature, RefCell<StationKinematics>)],
 ) {
-    let (m, rotary) = (station.mass.sqrt(), station.rotary.map(f64::sqrt));
-    for (a, (v, w)) in velocity.iter().zip(omega).enumerate() {
-        let (v, w) = (v * m, rotation.tr_mul(w));
-        let mut column = stack.column_mut(a);
-        for c in 0..3 {
-            column[6 * i + c] = v[c];
-            column[6 * i + 3 + c] = w[c] * rotary[c];
+    frames_given_into(m, q, f, given, |i, state: &mut JointState<Spatial>| {
+        let Some(s) = station[i] else { return };
+        let k = flexures[s].2.borrow();
+        let (turning, moving) = k.tip_columns();
+        for (a, (w, p)) in turning.iter().zip(moving).enumerate() {
+            let mut column = state.jacobian.column_mut(a);
+            column.fixed_rows_mut::<3>(0).copy_from(w);
+            column.fixed_rows_mut::<3>(3).copy_from(p);
         }
-    }
+    });
 }
 
 /// $U^T$ for the closures: the left singular vectors of
@@ -507,4 +543,36 @@ fn independent_closures(m: &SpatialMechanism) -> Option<DMatrix<f64>> {
     let u = svd.u?;
     let kept: Vec<usize> = (0..svd.singular_values.len()).filter(|&k| svd.singular_values[k] > 1e-10 * top).collect();
     Some(DMatrix::from_fn(kept.len(), rows, |r, c| u[(c, kept[r])]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The frames the dynamics take, a massive flexure's motion subspace
+    /// from its stations' pass, meet the joints' own Jacobian-level frames to
+    /// rounding: every coordinate's world twist and every body's pose.
+    #[test]
+    fn stations_give_the_joints_motion_subspace() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/right_angle_cantilever.toml");
+        let m = crate::mechanism::file::spatial_from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let mut masses = StationMasses::new(&m).unwrap();
+        assert!(masses.given.iter().all(|g| *g), "both legs have mass");
+        let q: Vec<f64> = (0..m.dof()).map(|i| 0.08 * (i as f64 * 1.3 + 0.2).sin()).collect();
+        let mut own = Frames::new(&m);
+        frames_level_into(&m, &q, Level::Jacobian, &mut own);
+        masses.frames_at(&m, &q, None);
+        let f = &masses.frames;
+        for c in 0..m.dof() {
+            let (dw, dv) = ((f.omega[c] - own.omega[c]).amax(), (f.velocity[c] - own.velocity[c]).amax());
+            assert!(dw < 1e-14 && dv < 1e-13 * own.velocity[c].amax().max(1.0), "coordinate {c}: {dw:e} {dv:e}");
+        }
+        for (a, b) in f.bodies.iter().zip(&own.bodies) {
+            assert!((a.translation.vector - b.translation.vector).amax() < 1e-13);
+            assert!(
+                (a.rotation.to_rotation_matrix().into_inner() - b.rotation.to_rotation_matrix().into_inner()).amax()
+                    < 1e-15
+            );
+        }
+    }
 }

@@ -134,6 +134,35 @@ pub fn frames_into<D: FrameChain>(m: &Mechanism<D>, q: &[f64], f: &mut Frames<D>
 /// (enough for residuals and point Jacobians), and the joints' second
 /// derivatives too at [`Level::Hessian`] (for point Hessians).
 pub fn frames_level_into<D: FrameChain>(m: &Mechanism<D>, q: &[f64], level: Level, f: &mut Frames<D>) {
+    chain_into(m, q, level, f, &[], |_, _| {});
+}
+
+/// [`frames_level_into`] at [`Level::Jacobian`] where the caller already
+/// holds some joints' motion subspaces: a joint `i` with `given[i]` is
+/// evaluated only at [`Level::Pose`] (its pose, energy and gradient), and
+/// `fill(i, state)` then writes its motion subspace into `state.jacobian`.
+/// The dynamics take a massive spatial flexure's from its stations' pass,
+/// which carries the tip's columns anyway, rather than from a second pass
+/// of the joint's own.
+pub(crate) fn frames_given_into<D: FrameChain>(
+    m: &Mechanism<D>,
+    q: &[f64],
+    f: &mut Frames<D>,
+    given: &[bool],
+    fill: impl FnMut(usize, &mut JointState<D>),
+) {
+    chain_into(m, q, Level::Jacobian, f, given, fill);
+}
+
+/// The frames down the tree, each joint to `level` unless `given` (then `fill` writes its motion subspace).
+fn chain_into<D: FrameChain>(
+    m: &Mechanism<D>,
+    q: &[f64],
+    level: Level,
+    f: &mut Frames<D>,
+    given: &[bool],
+    mut fill: impl FnMut(usize, &mut JointState<D>),
+) {
     f.coordinates.copy_from_slice(q);
     f.level = level;
     let nb = m.bodies.len();
@@ -141,7 +170,13 @@ pub fn frames_level_into<D: FrameChain>(m: &Mechanism<D>, q: &[f64], level: Leve
         let joint = j.kind.joint();
         let k = joint.dof();
         let state = &mut f.joints[i];
-        joint.evaluate_level_into(&q[j.offset..j.offset + k], level, state);
+        let coordinates = &q[j.offset..j.offset + k];
+        if level >= Level::Jacobian && given.get(i) == Some(&true) {
+            joint.evaluate_level_into(coordinates, Level::Pose, state);
+            fill(i, state);
+        } else {
+            joint.evaluate_level_into(coordinates, level, state);
+        }
         let root = D::compose_turned(&f.bodies[j.parent], &f.turns[j.parent], &j.origin);
         let turn = D::turn(&root);
         let child = D::compose_turned(&root, &turn, &state.pose);
