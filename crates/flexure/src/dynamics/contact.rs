@@ -56,8 +56,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, gap_slope, minima, named, pairs, point_jet,
-    scaled, vector,
+    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, gap_slope, length, minima, named, pairs,
+    point_jet, scaled, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -123,6 +123,8 @@ struct Reading<D: Dynamics> {
     push: f64,
     friction: D::Vector,
     slide: D::Vector,
+    /// Its point's Jacobian relative to the geom, $\Delta_c$ per coordinate (world).
+    delta: Vec<D::Vector>,
 }
 
 /// A mechanism's motion with its contacts (module docs): the scheduled
@@ -171,7 +173,7 @@ impl<D: Dynamics> ContactSystem<D> {
             samples: Vec::new(),
             changes: Vec::new(),
         };
-        frames_level_into(m, q0, Level::Jacobian, &mut system.frames);
+        system.frames_at(q0);
         for c in touching.iter().filter(|c| c.state != ContactMode::Open) {
             let mut h = system.touch(&c.pair, c.s, q0)?;
             h.force = c.normal_force;
@@ -203,11 +205,6 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(system)
     }
 
-    /// The scheduled system within.
-    pub fn inner(&mut self) -> &mut ScheduledSystem<D> {
-        &mut self.inner
-    }
-
     /// The contacts at each sample recorded so far: each touching contact,
     /// then each pair that does not touch, at its least gap.
     pub fn samples(&self) -> &[Vec<Contact>] {
@@ -224,17 +221,24 @@ impl<D: Dynamics> ContactSystem<D> {
     /// error by name where friction would hold a contact that rolls.
     fn touch(&self, pair: &Pair, s: Option<f64>, q: &[f64]) -> Result<Held> {
         let m = &self.mechanism;
-        let (length, mu) = match pair.part {
-            Toucher::Flexure(j) => {
-                (m.joints[j].kind.flexure().map_or(1.0, D::flexure_length), m.geoms[pair.geom].friction)
-            }
-            Toucher::Geom(h) => (1.0, m.geoms[pair.geom].friction.max(m.geoms[h].friction)),
+        let mu = match pair.part {
+            Toucher::Flexure(_) => m.geoms[pair.geom].friction,
+            Toucher::Geom(h) => m.geoms[pair.geom].friction.max(m.geoms[h].friction),
         };
-        let mut h = Held { pair: *pair, s, length, law: Law::Free, mu, force: 0.0, friction: [0.0; 3], largest: 0.0 };
+        let mut h = Held {
+            pair: *pair,
+            s,
+            length: length(m, pair),
+            law: Law::Free,
+            mu,
+            force: 0.0,
+            friction: [0.0; 3],
+            largest: 0.0,
+        };
         if mu > 0.0 {
             let p = point_jet(m, &self.frames, q, pair, s, None)?;
             let rolls = match pair.part {
-                Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < length),
+                Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < h.length),
                 Toucher::Geom(h) => !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body),
             };
             if rolls {
@@ -293,6 +297,14 @@ impl<D: Dynamics> ContactSystem<D> {
         // The geom touched: of a ball and another geom, the other.
         let body = &self.frames.bodies[p.shape.body];
         Ok(array::<D>(&D::position(&D::act(&D::inverse(body), &p.x))))
+    }
+
+    /// The frames at `q`, Jacobian level: the integrator asks the closures,
+    /// then their forces, the guards and the switch at one state each.
+    fn frames_at(&mut self, q: &[f64]) {
+        if self.frames.level() < Level::Jacobian || self.frames.coordinates != q {
+            frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        }
     }
 
     /// The least gap of `pair` at `q` (frames at `q` in `self.frames`) away
@@ -386,7 +398,7 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             (Law::Free, Some(l)) => (-l[row], D::Vector::default()),
         };
-        Ok(Reading { slope, push, friction, slide })
+        Ok(Reading { slope, push, friction, slide, delta: p.delta })
     }
 
     /// $\hat s$: the slide `slide` with the direction it slid from, `from`, added at the creep speed.
@@ -397,7 +409,7 @@ impl<D: Dynamics> ContactSystem<D> {
     }
 
     fn report(&mut self, q: &[f64], v: &[f64], multipliers: Option<&[f64]>) -> Result<Vec<Contact>> {
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(q);
         let mut out = Vec::new();
         for (i, row) in self.first_rows().into_iter().enumerate() {
             let r = self.read(i, row, (q, v), multipliers)?;
@@ -467,7 +479,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
         if self.held.is_empty() {
             return Ok(());
         }
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(q);
         for (i, row) in self.first_rows().into_iter().enumerate() {
             let slope = self.settle(i, q)?;
             let h = self.held[i];
@@ -499,14 +511,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
             return Ok(());
         }
         let rows = self.closures();
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(q);
         for (i, row) in self.first_rows().into_iter().enumerate() {
             let h = self.held[i];
             let Law::Slip { from, .. } = h.law else { continue };
             let r = self.read(i, row, (q, v), None)?;
             let s = self.direction(&r.slide, &vector::<D>(&from));
-            let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
-            for (col, d) in p.delta.iter().enumerate() {
+            for (col, d) in r.delta.iter().enumerate() {
                 w[col * rows + row] -= h.mu * dot::<D>(&s, d);
             }
         }
@@ -532,7 +543,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// Each touching contact's push and its friction's (module docs), then
     /// each pair's least open gap, over their bands.
     fn guards(&mut self, q: &[f64], v: &[f64], multipliers: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(q);
         self.last = multipliers.map(<[f64]>::to_vec).unwrap_or_default();
         for (i, row) in self.first_rows().into_iter().enumerate() {
             let r = self.read(i, row, (q, v), multipliers)?;
@@ -564,7 +575,6 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 }
             };
         }
-        frames_level_into(&self.mechanism, q, Level::Pose, &mut self.frames);
         let a = 2 * self.held.len();
         for k in 0..self.pairs.len() {
             let pair = self.pairs[k];
@@ -578,7 +588,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// slides, and a sliding one that turns back sticks (module docs).
     fn switch(&mut self, ks: &[usize], t: f64, q: &[f64], v: &[f64]) -> Result<()> {
         let a = self.held.len();
-        frames_level_into(&self.mechanism, q, Level::Jacobian, &mut self.frames);
+        self.frames_at(q);
         let change = |changes: &mut Vec<ContactChange>, m: &Mechanism<D>, pair: &Pair, state| {
             changes.push(ContactChange { time: t, contact: column(m, pair), state });
         };

@@ -129,8 +129,7 @@ pub fn initial_state<D: Dynamics>(
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     // `[initial]` for every joint leaves nothing to solve for (and a free
     // joint, a pendulum's, has no static start to solve).
-    let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
-    let mut q = if (0..m.joints.len()).all(given) {
+    let mut q = if every_joint_given(m) {
         m.rest()
     } else {
         let loads = loads_at(m, 0.0);
@@ -143,6 +142,11 @@ pub fn initial_state<D: Dynamics>(
     let mut v = vec![0.0; m.dof()];
     set_given(m, &mut q, &mut v);
     Ok((q, v))
+}
+
+/// Whether `[initial]` names every joint: nothing is left to solve for.
+fn every_joint_given<D: Dynamics>(m: &Mechanism<D>) -> bool {
+    (0..m.joints.len()).all(|j| m.initial.iter().any(|(k, _)| *k == j))
 }
 
 /// The file's `[initial]` and `[initial_velocity]` written over `q` and `v`.
@@ -215,8 +219,7 @@ fn initial_touching<D: Dynamics>(
     settings: &statics::Settings,
     start: Start,
 ) -> Result<(Vec<f64>, Vec<f64>, Vec<Contact>)> {
-    let given = |j: usize| m.initial.iter().any(|(k, _)| *k == j);
-    if start == Start::Rest || (0..m.joints.len()).all(given) {
+    if start == Start::Rest || every_joint_given(m) {
         let (q, v) = initial_state(m, settings, start)?;
         return Ok((q, v, Vec::new()));
     }

@@ -45,8 +45,8 @@ impl Pending {
         t + span * theta.clamp(1e-3, 1.0 - 1e-3)
     }
 
-    /// A step aimed at the event ended short of it at `t` with guards `g`:
-    /// the bracket keeps its far end; a second short step in a row halves
+    /// A step aimed at the event ended short of it (and was taken): the
+    /// bracket keeps its far end; a second short step in a row halves
     /// the far guards (Illinois), so the aim moves toward it.
     pub(super) fn fell_short(&mut self) {
         if self.short {

@@ -304,6 +304,14 @@ pub(crate) fn sides<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> Option<(usiz
     Some(if grounded(b) && !grounded(a) { (b, m.geoms[a].body) } else { (a, m.geoms[b].body) })
 }
 
+/// The length (m) of the flexure of `pair`, the scale of its place `s`; 1 between two geoms.
+pub(crate) fn length<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> f64 {
+    match pair.part {
+        Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
+        Toucher::Geom(_) => 1.0,
+    }
+}
+
 /// A pair's column name in a sweep's table: `contact.GEOM.PART`, PART the
 /// flexure's joint or, for two geoms, the body that touches GEOM with its
 /// own geom ([`Contact`]'s `geom` and `flexure` or `body`).

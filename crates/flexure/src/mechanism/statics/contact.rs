@@ -53,7 +53,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, array, dot, gap_jet, minima, named, pairs, point_jet, scaled, vector,
+    Contact, ContactMode, GapJet, Pair, Toucher, array, dot, gap_jet, length, minima, named, pairs, point_jet, scaled,
+    vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -718,10 +719,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             out[c].force = force;
         }
         Event::Touch(pair, s, point, bare_end, _) => {
-            let length = match pair.part {
-                Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
-                Toucher::Geom(_) => 1.0,
-            };
+            let length = length(m, &pair);
             let place = match s {
                 None => Place::Geoms,
                 Some(s) if s <= 1e-9 * length => Place::End(0.0),
@@ -1090,10 +1088,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
             }
             _ => {
                 h -= &jet.hessian * c.normal_force;
-                let length = match c.pair.part {
-                    Toucher::Flexure(j) => m.joints[j].kind.flexure().map_or(1.0, D::flexure_length),
-                    Toucher::Geom(_) => 1.0,
-                };
+                let length = length(m, &c.pair);
                 if c.s.is_some_and(|s| s > 0.0 && s < length) && jet.dss > 0.0 {
                     add_place(&mut h, c.normal_force, &jet);
                 }
