@@ -16,6 +16,7 @@ mod connect;
 mod contact_file;
 mod contact_gap;
 mod contact_jet;
+mod contact_rolling;
 mod contact_shape;
 mod contact_statics;
 mod coordinates;

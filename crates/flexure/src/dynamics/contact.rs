@@ -56,8 +56,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, gap_slope, length, minima, named, pairs,
-    point_jet, scaled, vector,
+    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, friction, gap_slope, length, minima, named,
+    pairs, point_jet, scaled, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -221,10 +221,7 @@ impl<D: Dynamics> ContactSystem<D> {
     /// error by name where friction would hold a contact that rolls.
     fn touch(&self, pair: &Pair, s: Option<f64>, q: &[f64]) -> Result<Held> {
         let m = &self.mechanism;
-        let mu = match pair.part {
-            Toucher::Flexure(_) => m.geoms[pair.geom].friction,
-            Toucher::Geom(h) => m.geoms[pair.geom].friction.max(m.geoms[h].friction),
-        };
+        let mu = friction(m, pair);
         let mut h = Held {
             pair: *pair,
             s,

@@ -43,6 +43,8 @@ pub struct GapJet<D: Touch> {
     pub dss: f64,
     /// $\partial n/\partial q_c = \nabla^2d\thinspace\Delta_c + \omega^G_c\times n$, one per coordinate (world).
     pub normal_jacobian: Vec<D::Vector>,
+    /// $\partial n/\partial s = \nabla^2d\thinspace t$ (world, 1/m; 0 for two geoms).
+    pub normal_ds: D::Vector,
 }
 
 /// The flexure side of a pair: its joint, first coordinate, root frame and jet at $s$.
@@ -109,8 +111,10 @@ pub fn gap_jet<D: Touch + FrameChain>(
         }
     }
     let mut dqs = vec![0.0; n];
+    let mut normal_ds = D::Vector::default();
     if let Some(own) = &p.own {
         let t = D::rotate(own.root, &own.jet.tangent);
+        normal_ds = product::<D>(&curvature, &t);
         for c in 0..n {
             dqs[c] = bilinear(&delta[c], &t);
         }
@@ -128,7 +132,7 @@ pub fn gap_jet<D: Touch + FrameChain>(
     for &c in &p.geom_columns {
         normal_jacobian[c] = normal_jacobian[c] + D::spin(&f.omega[c], &normal);
     }
-    Ok(GapJet { gap, point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian })
+    Ok(GapJet { gap, point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian, normal_ds })
 }
 
 /// A pair's gap at $(q, s)$ to first order in $q$ ([`gap_slope`]): what
@@ -227,6 +231,37 @@ pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
     s: Option<f64>,
     anchor: Option<D::Vector>,
 ) -> Result<PointJet<'a, D>> {
+    jet_at(m, f, q, pair, s, None, anchor)
+}
+
+/// [`point_jet`] of a material point of the toucher: a flexure's
+/// centreline point at `on[0]` (its arc length), or the point `on` of a
+/// ball's body (its frame), relative to the geom body's material point
+/// `anchor` (its frame). A stuck contact that rolls pins these two.
+pub(crate) fn material_jet<'a, D: Touch + FrameChain>(
+    m: &'a Mechanism<D>,
+    f: &'a Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    on: &[f64; 3],
+    anchor: D::Vector,
+) -> Result<PointJet<'a, D>> {
+    match pair.part {
+        Toucher::Flexure(_) => jet_at(m, f, q, pair, Some(on[0]), None, Some(anchor)),
+        Toucher::Geom(_) => jet_at(m, f, q, pair, None, Some(super::vector::<D>(on)), Some(anchor)),
+    }
+}
+
+/// [`point_jet`], of the ball's material point `ball` (its body's frame) rather than its centre.
+fn jet_at<'a, D: Touch + FrameChain>(
+    m: &'a Mechanism<D>,
+    f: &'a Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    s: Option<f64>,
+    ball: Option<D::Vector>,
+    anchor: Option<D::Vector>,
+) -> Result<PointJet<'a, D>> {
     let n = m.dof();
     let mut att = Attached::new(m);
     let (shape, x, half, own) = match pair.part {
@@ -246,7 +281,7 @@ pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
         }
         Toucher::Geom(_) => {
             let (round, flat, r) = super::gap::ball_and_other(m, pair)?;
-            let centre = D::translation(&round.frame);
+            let centre = ball.unwrap_or_else(|| D::translation(&round.frame));
             attach_into(m, f, round.body, centre, true, &mut att);
             let x = D::act(&f.bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
             (flat, x, [r, 0.0, 0.0], None)
@@ -269,6 +304,11 @@ pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
 }
 
 impl<D: Touch + FrameChain> PointJet<'_, D> {
+    /// A flexure's unit tangent at the point (world); `None` for a ball.
+    pub fn tangent(&self) -> Option<D::Vector> {
+        self.own.as_ref().map(|o| D::rotate(o.root, &o.jet.tangent))
+    }
+
     /// $w\cdot\partial_b\partial_c(x - a)$ for a fixed world vector $w$,
     /// $a$ the material point of the geom's body where it is anchored.
     pub fn hessian_along(&self, m: &Mechanism<D>, f: &Frames<D>, w: &D::Vector) -> DMatrix<f64> {

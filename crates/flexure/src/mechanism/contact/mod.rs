@@ -30,8 +30,8 @@ use crate::space::Planar;
 pub use dimension::{SectionJet, Touch};
 pub(crate) use gap::ball_and_other;
 pub use gap::{Gap, gap, minima};
-pub(crate) use jet::point_jet;
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
+pub(crate) use jet::{PointJet, material_jet, point_jet};
 pub use shape::{DistanceHessian, GeomShape};
 pub(crate) use shape::{array, dot, scaled, vector};
 
@@ -302,6 +302,15 @@ pub(crate) fn sides<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> Option<(usiz
     let (a, b) = (pair.geom, h);
     let grounded = |g: usize| m.geoms[g].body == 0;
     Some(if grounded(b) && !grounded(a) { (b, m.geoms[a].body) } else { (a, m.geoms[b].body) })
+}
+
+/// Coulomb's $\mu$ of `pair`: its geom's against a flexure, the larger of
+/// the two geoms' between geoms (MuJoCo's rule).
+pub(crate) fn friction<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> f64 {
+    match pair.part {
+        Toucher::Flexure(_) => m.geoms[pair.geom].friction,
+        Toucher::Geom(h) => m.geoms[pair.geom].friction.max(m.geoms[h].friction),
+    }
 }
 
 /// The length (m) of the flexure of `pair`, the scale of its place `s`; 1 between two geoms.

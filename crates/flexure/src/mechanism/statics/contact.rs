@@ -36,8 +36,22 @@
 //! $\hat s$ turns, at each accepted step, to the way the end moved, in
 //! steps short enough that it turns by at most 0.01 rad.
 //!
-//! **Refused by name:** friction where a contact rolls (inside a span, at
-//! a thick end, between two geoms), a mechanism
+//! **Friction where a contact rolls** (inside a span of a flexure with no
+//! thickness, or a ball on a geom): the point that touches moves over both
+//! surfaces, so a stuck contact is no pinned point. Over each step the
+//! toucher's material point and the geom body's that met at the last
+//! accepted state are held together along the surface there, $t_k\cdot(x -
+//! a) = 0$ for its unit tangents $t_k$ (fixed for the step), beside the gap
+//! row; the unknowns are $N$ and the tangential $f_k$, entering as
+//! $-f_k t_k\cdot\partial_c(x - a)$. A sliding one's friction acts at the
+//! same two points. At each accepted step the points and tangents are set
+//! anew where it touches, in steps that turn either surface under the
+//! contact by at most 0.01 rad: a wheel so pinned rolls $r\sin\Delta\theta$
+//! for $r\Delta\theta$, a relative error of $\Delta\theta^2/6 \approx
+//! 2\times10^{-5}$.
+//!
+//! **Refused by name:** friction where a flexure touches with its
+//! thickness (its surface's material points lie off its centreline), a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -53,8 +67,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, Toucher, array, dot, gap_jet, length, minima, named, pairs, point_jet, scaled,
-    vector,
+    Contact, ContactMode, GapJet, Pair, PointJet, Toucher, array, ball_and_other, dot, gap_jet, length, material_jet,
+    minima, named, pairs, point_jet, scaled, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -80,6 +94,8 @@ const FLAT_LENGTH: f64 = 1e-2;
 const MAX_CHANGES_AT_ONCE: usize = 8;
 /// The most a sliding contact's direction may turn in one step (rad).
 const MAX_SLIDE_TURN: f64 = 1e-2;
+/// The most a rolling contact with friction may turn either surface under it in one step (rad).
+const MAX_ROLL_TURN: f64 = 1e-2;
 /// Accepted steps before the path is declared stalled.
 const MAX_STEPS: usize = 10_000;
 
@@ -105,6 +121,10 @@ enum Law {
     /// Sliding along `direction` (a unit tangent in the geom body's frame),
     /// the friction $-\mu N$ along it.
     Slip { direction: [f64; 3] },
+    /// Rolling without slipping: over a step, the toucher's material point
+    /// and the geom body's that met at the last accepted state do not move
+    /// apart along `tangents` (world, unit, orthogonal: the surface's there).
+    Roll { tangents: [[f64; 3]; 2] },
 }
 
 /// A contact that touches: its pair, place, law, force unknowns and, inside a span, $s/L$.
@@ -120,6 +140,9 @@ struct Touching {
     length: f64,
     /// Its point in the geom body's frame at the last accepted state.
     from: [f64; 3],
+    /// The toucher's material point there: a flexure's arc length (first
+    /// entry), or the point in a ball's body frame.
+    on: [f64; 3],
 }
 
 impl Touching {
@@ -131,9 +154,16 @@ impl Touching {
         }
     }
 
-    /// Its force unknowns: the force's components when stuck, else $N$.
+    /// Its force unknowns: the force's components when stuck ($N$ and the
+    /// tangential components when it rolls), else $N$.
     fn width<D: Statics>(&self) -> usize {
-        if matches!(self.law, Law::Stick { .. }) { D::POINT_DIM } else { 1 }
+        if matches!(self.law, Law::Stick { .. } | Law::Roll { .. }) { D::POINT_DIM } else { 1 }
+    }
+
+    /// Whether it rolls: the point that touches is not one material point
+    /// (inside a span, or a ball).
+    fn rolls(&self) -> bool {
+        matches!(self.place, Place::Inner | Place::Geoms)
     }
 }
 
@@ -143,8 +173,22 @@ enum Friction<D: Statics> {
     None,
     /// Stuck: $x - a$ (world), $\Delta_c = \partial_c(x - a)$ and $\partial_b\partial_c\thinspace f\cdot(x - a)$.
     Pin { offset: D::Vector, delta: Vec<D::Vector>, hessian: DMatrix<f64> },
-    /// Sliding: the unit direction $\hat s$, $\hat s\cdot\Delta_c$ and $\partial_b(\hat s\cdot\Delta_c)$ at $(b, c)$.
-    Slide { direction: D::Vector, along: Vec<f64>, jacobian: DMatrix<f64> },
+    /// Sliding: the unit direction $\hat s$, $\hat s\cdot\Delta_c$ and
+    /// $\partial_b(\hat s\cdot\Delta_c)$ at $(b, c)$; where it rolls,
+    /// $\partial_s(\hat s\cdot\Delta_c)$ inside a span, the toucher's
+    /// material point (world) and how far the surfaces turned under it.
+    Slide { direction: D::Vector, along: Vec<f64>, jacobian: DMatrix<f64>, ds: Vec<f64>, rolled: Option<Rolled<D>> },
+    /// Rolling: $r_k = t_k\cdot(x - a)$ for each tangent, $t_k\cdot\Delta_c$,
+    /// $\sum_k f_k t_k\cdot\partial_b\partial_c(x - a)$, and the material point.
+    Roll { offsets: Vec<f64>, along: Vec<Vec<f64>>, hessian: DMatrix<f64>, tangents: Vec<D::Vector>, rolled: Rolled<D> },
+}
+
+/// A rolling contact's toucher material point (world) and the most either
+/// surface turned under the contact since the last accepted state (rad).
+#[derive(Clone, Copy)]
+struct Rolled<D: Statics> {
+    point: D::Point,
+    turn: f64,
 }
 
 /// [`Kkt`] with the rows and unknowns of the contacts that touch.
@@ -217,32 +261,87 @@ impl<D: Statics> ContactKkt<'_, D> {
         }
     }
 
+    /// Contact `c`'s whole force on the toucher (world, after [`Problem::evaluate`]) when it is held:
+    /// a stuck end's unknowns, or a rolling one's $Nn + \sum_k f_kt_k$.
+    fn held_force(&self, c: usize) -> Option<D::Vector> {
+        let t = &self.touching[c];
+        match (&t.law, &self.friction[c]) {
+            (Law::Stick { .. }, _) => Some(vector::<D>(&t.force)),
+            (Law::Roll { .. }, Friction::Roll { tangents, .. }) => {
+                Some(tangents.iter().enumerate().fold(scaled::<D>(&self.jets[c].normal, t.force[0]), |f, (k, u)| {
+                    f + scaled::<D>(u, t.force[1 + k])
+                }))
+            }
+            _ => None,
+        }
+    }
+
     /// Contact `c`'s normal force $N$ (after [`Problem::evaluate`]).
     fn normal_force(&self, c: usize) -> f64 {
-        let t = &self.touching[c];
-        match t.law {
-            Law::Stick { .. } => (0..D::POINT_DIM).map(|i| t.force[i] * self.jets[c].normal[i]).sum(),
-            _ => t.force[0],
+        match self.held_force(c) {
+            Some(f) => dot::<D>(&f, &self.jets[c].normal),
+            None => self.touching[c].force[0],
         }
     }
 
     /// Contact `c`'s friction force (world, after [`Problem::evaluate`]).
     fn friction_force(&self, c: usize) -> D::Vector {
         let (t, n) = (&self.touching[c], self.jets[c].normal);
-        match (&t.law, &self.friction[c]) {
-            (Law::Stick { .. }, _) => vector::<D>(&t.force) - scaled::<D>(&n, self.normal_force(c)),
-            (_, Friction::Slide { direction, .. }) => scaled::<D>(direction, -self.mu(c) * t.force[0]),
+        match (self.held_force(c), &self.friction[c]) {
+            (Some(f), _) => f - scaled::<D>(&n, self.normal_force(c)),
+            (None, Friction::Slide { direction, .. }) => scaled::<D>(direction, -self.mu(c) * t.force[0]),
             _ => D::Vector::default(),
         }
     }
 
     fn mu(&self, c: usize) -> f64 {
-        self.kkt.mechanism.geoms[self.touching[c].pair.geom].friction
+        crate::mechanism::contact::friction(self.kkt.mechanism, &self.touching[c].pair)
     }
 
     /// The geom body's pose of contact `c` (after [`Problem::evaluate`]).
     fn geom_body(&self, c: usize) -> &D::Pose {
-        &self.frames.bodies[self.kkt.mechanism.geoms[self.touching[c].pair.geom].body]
+        &self.frames.bodies[geom_body(self.kkt.mechanism, &self.touching[c].pair)]
+    }
+
+    /// Where contact `c`'s toucher touches, as [`Touching::on`] holds it:
+    /// a flexure's arc length, or the point in a ball's body frame (after [`Problem::evaluate`]).
+    fn material(&self, c: usize) -> [f64; 3] {
+        let (m, t) = (self.kkt.mechanism, &self.touching[c]);
+        match (t.s(), ball_and_other(m, &t.pair)) {
+            (Some(s), _) => [s, 0.0, 0.0],
+            (None, Ok((ball, ..))) => {
+                array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &self.jets[c].point)))
+            }
+            (None, Err(_)) => [0.0; 3],
+        }
+    }
+
+    /// How far contact `c` rolled since the last accepted state: the toucher's
+    /// material point `p` that touched there (after [`Problem::evaluate`]),
+    /// and the most either surface turned under the contact (rad).
+    fn rolled(&self, c: usize, p: &PointJet<'_, D>) -> Result<Rolled<D>> {
+        let (m, t, jet) = (self.kkt.mechanism, &self.touching[c], &self.jets[c]);
+        let angle = |a: &D::Vector, b: &D::Vector| dot::<D>(a, b).clamp(-1.0, 1.0).acos();
+        // The geom's normal where the anchor is, against the normal now:
+        // seen from just outside it along the normal now, so that a box's
+        // corner, whose normal is any between its faces', has that one.
+        let geom = touched(m, &t.pair);
+        let body = self.geom_body(c);
+        let anchor = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&t.from), 1.0));
+        let outside = D::moved(&anchor, &jet.normal, 1e-3 * self.kkt.length);
+        let there = geom.gap(body, &outside, 0.0).1;
+        let mut turn = angle(&there, &jet.normal);
+        // The toucher's: its tangent's tilt out of the surface, or the arc
+        // of a ball between its point and the contact.
+        turn = turn.max(match (p.tangent(), ball_and_other(m, &t.pair)) {
+            (Some(u), _) => dot::<D>(&u, &jet.normal).abs().min(1.0).asin(),
+            (None, Ok((.., r))) => {
+                let chord = D::position(&p.x) - D::position(&jet.point);
+                2.0 * (0.5 * dot::<D>(&chord, &chord).sqrt() / r).min(1.0).asin()
+            }
+            (None, Err(e)) => return Err(e),
+        });
+        Ok(Rolled { point: p.x, turn })
     }
 
     /// Contact `c`'s point in its geom body's frame (after [`Problem::evaluate`]).
@@ -261,15 +360,53 @@ impl<D: Statics> ContactKkt<'_, D> {
                 let hessian = p.hessian_along(m, f, &vector::<D>(&t.force));
                 Friction::Pin { offset: D::position(&p.x) - D::position(&a), delta: p.delta, hessian }
             }
+            Law::Roll { tangents } => {
+                let p = material_jet(m, f, q, &t.pair, &t.on, vector::<D>(&t.from))?;
+                let a = D::act(self.geom_body(c), &D::moved(&D::origin(&D::identity()), &vector::<D>(&t.from), 1.0));
+                let offset = D::position(&p.x) - D::position(&a);
+                let tangents: Vec<D::Vector> = tangents[..D::POINT_DIM - 1].iter().map(vector::<D>).collect();
+                let offsets = tangents.iter().map(|u| dot::<D>(u, &offset)).collect();
+                let along = tangents.iter().map(|u| p.delta.iter().map(|d| dot::<D>(u, d)).collect()).collect();
+                let w = tangents
+                    .iter()
+                    .enumerate()
+                    .fold(D::Vector::default(), |w, (k, u)| w + scaled::<D>(u, t.force[1 + k]));
+                let hessian = p.hessian_along(m, f, &w);
+                let rolled = self.rolled(c, &p)?;
+                Friction::Roll { offsets, along, hessian, tangents, rolled }
+            }
             Law::Slip { direction } => {
-                let p = point_jet(m, f, q, &t.pair, t.s(), None)?;
+                // Where it rolls, friction acts at the material points that
+                // met at the last accepted state (as a rolling stuck one's
+                // pin), so the slide does work only along the surface.
+                let p = if t.rolls() {
+                    material_jet(m, f, q, &t.pair, &t.on, vector::<D>(&t.from))?
+                } else {
+                    point_jet(m, f, q, &t.pair, t.s(), None)?
+                };
                 let (s, turn) = slide::<D>(&D::rotate(self.geom_body(c), &vector::<D>(&direction)), &jet.normal);
                 let along: Vec<f64> = p.delta.iter().map(|d| dot::<D>(&s, d)).collect();
                 let n = m.dof();
                 let mut jacobian = p.hessian_along(m, f, &s);
-                for &g in &p.geom_columns {
-                    for b in 0..n {
-                        jacobian[(b, g)] -= D::triple(&s, &f.omega[g], &p.delta[b]);
+                if t.rolls() {
+                    // The direction turns with the geom's body: ∂_g ŝ from ω_g × e.
+                    let (e, normal) = (D::rotate(self.geom_body(c), &vector::<D>(&direction)), jet.normal);
+                    let pe = e - scaled::<D>(&normal, dot::<D>(&normal, &e));
+                    let size = dot::<D>(&pe, &pe).sqrt();
+                    for &g in &p.geom_columns {
+                        let de = D::spin(&f.omega[g], &e);
+                        let u = de - scaled::<D>(&normal, dot::<D>(&normal, &de));
+                        let ds = scaled::<D>(&(u - scaled::<D>(&s, dot::<D>(&s, &u))), 1.0 / size);
+                        for (k, d) in p.delta.iter().enumerate() {
+                            jacobian[(g, k)] += dot::<D>(&ds, d);
+                        }
+                    }
+                } else {
+                    // The geom's material point under the end moves with it.
+                    for &g in &p.geom_columns {
+                        for b in 0..n {
+                            jacobian[(b, g)] -= D::triple(&s, &f.omega[g], &p.delta[b]);
+                        }
                     }
                 }
                 for b in 0..n {
@@ -278,7 +415,15 @@ impl<D: Statics> ContactKkt<'_, D> {
                         jacobian[(b, c)] += dot::<D>(&ds, d);
                     }
                 }
-                Friction::Slide { direction: s, along, jacobian }
+                // Inside a span the normal turns with the place: ∂ŝ/∂s·Δ_c.
+                let ds = if t.place == Place::Inner {
+                    let along_s = turn(&jet.normal_ds);
+                    p.delta.iter().map(|d| dot::<D>(&along_s, d)).collect()
+                } else {
+                    vec![0.0; n]
+                };
+                let rolled = if t.rolls() { Some(self.rolled(c, &p)?) } else { None };
+                Friction::Slide { direction: s, along, jacobian, ds, rolled }
             }
         })
     }
@@ -293,17 +438,18 @@ impl<D: Statics> ContactKkt<'_, D> {
     /// off by the bisection's width would be a force of its own.
     fn anchor(&mut self, x: &[f64], lambda: f64, event: Event) -> Result<()> {
         let c = match event {
-            Event::Stick(c, ..) => c,
-            Event::Touch(..) if matches!(self.touching.last().map(|t| t.law), Some(Law::Stick { .. })) => {
-                self.touching.len() - 1
-            }
+            Event::Stick(c, ..) | Event::AtEnd(c, _) => c,
+            Event::Touch { .. } => self.touching.len() - 1,
             _ => return Ok(()),
         };
+        if !matches!(self.touching[c].law, Law::Stick { .. }) {
+            return Ok(());
+        }
         let mut r = vec![0.0; self.dim()];
         self.evaluate(x, lambda, &mut r, None, None)?;
         let here = self.local_point(c);
         let anchor = match event {
-            Event::Touch(_, _, there, _, inside) => {
+            Event::Touch { point: there, gap: inside, .. } => {
                 let t = self.jets[c].gap / (self.jets[c].gap - inside);
                 std::array::from_fn(|i| here[i] + t * (there[i] - here[i]))
             }
@@ -326,28 +472,59 @@ impl<D: Statics> ContactKkt<'_, D> {
             .fold(0.0, f64::max)
     }
 
+    /// The most a rolling contact with friction turned either surface under
+    /// it since the last accepted state, in the state last evaluated (rad).
+    fn roll_turn(&self) -> f64 {
+        self.friction
+            .iter()
+            .filter_map(|f| match f {
+                Friction::Roll { rolled, .. } | Friction::Slide { rolled: Some(rolled), .. } => Some(rolled.turn),
+                _ => None,
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Sliding contact `c`'s motion since the last accepted state, in its
     /// geom body's frame (after [`Problem::evaluate`]): the move, its
-    /// length and its part along the sliding direction; `None` unless it slides.
+    /// length and its part along the sliding direction; `None` unless it
+    /// slides. Where it rolls, the motion of the toucher's material point
+    /// that touched there.
     fn slid(&self, c: usize) -> Option<([f64; 3], f64, f64)> {
         let t = &self.touching[c];
         let Law::Slip { direction } = t.law else { return None };
-        let here = self.local_point(c);
-        let moved: [f64; 3] = std::array::from_fn(|i| if i < D::POINT_DIM { here[i] - t.from[i] } else { 0.0 });
+        let mut moved: [f64; 3] = match &self.friction[c] {
+            Friction::Slide { rolled: Some(r), .. } => {
+                // Where it rolls, the material point also leaves the surface: only its slide counts.
+                let inverse = D::inverse(self.geom_body(c));
+                let here = D::position(&D::act(&inverse, &r.point)) - vector::<D>(&t.from);
+                let n = D::rotate(&inverse, &self.jets[c].normal);
+                array::<D>(&(here - scaled::<D>(&n, dot::<D>(&n, &here))))
+            }
+            _ => {
+                let here = self.local_point(c);
+                std::array::from_fn(|i| if i < D::POINT_DIM { here[i] - t.from[i] } else { 0.0 })
+            }
+        };
+        moved[D::POINT_DIM..].fill(0.0);
         let size = moved.iter().map(|v| v * v).sum::<f64>().sqrt();
         let ahead = (0..D::POINT_DIM).map(|i| moved[i] * direction[i]).sum();
         Some((moved, size, ahead))
     }
 
     /// Takes the state last evaluated as accepted: each contact's point is
-    /// where the next step's motion is measured from, and a sliding
-    /// contact's direction turns to the way it moved (in the plane it only
-    /// keeps its sense).
+    /// where the next step's motion is measured from, a sliding contact's
+    /// direction turns to the way it moved (in the plane it only keeps its
+    /// sense), and a rolling stuck one is pinned anew where it touches.
     fn accept(&mut self) {
         let length = self.kkt.length;
         for c in 0..self.touching.len() {
-            let (here, slid) = (self.local_point(c), self.slid(c));
+            let (here, slid, on) = (self.local_point(c), self.slid(c), self.material(c));
+            let normal = array::<D>(&self.jets[c].normal);
             let t = &mut self.touching[c];
+            if let Law::Roll { tangents: u } = &mut t.law {
+                *u = tangents::<D>(&normal, Some(u));
+            }
+            t.on = on;
             if let (Law::Slip { direction }, Some((moved, size, ahead))) = (&mut t.law, slid)
                 && size > 1e-9 * length
                 && ahead > 0.0
@@ -374,6 +551,49 @@ fn slide<D: Statics>(e: &D::Vector, n: &D::Vector) -> (D::Vector, impl Fn(&D::Ve
         let du = scaled::<D>(dn, -ne) - scaled::<D>(&n, dot::<D>(dn, &e));
         scaled::<D>(&(du - scaled::<D>(&s, dot::<D>(&s, &du))), 1.0 / size)
     })
+}
+
+/// The geom whose surface `pair` touches: its geom, or between two geoms the one that is not the ball.
+fn touched<'m, D: Statics>(m: &'m Mechanism<D>, pair: &Pair) -> &'m crate::mechanism::contact::Geom<D> {
+    match ball_and_other(m, pair) {
+        Ok((_, other, _)) => other,
+        Err(_) => &m.geoms[pair.geom],
+    }
+}
+
+/// The body of the geom `pair` touches ([`touched`]).
+fn geom_body<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> usize {
+    touched(m, pair).body
+}
+
+/// Unit tangents of the surface with normal `n` (world), orthogonal to it
+/// and to each other: one in the plane, two in space; the `previous`
+/// tangents kept in the new plane where given, so the basis turns with it.
+fn tangents<D: Statics>(n: &[f64; 3], previous: Option<&[[f64; 3]; 2]>) -> [[f64; 3]; 2] {
+    let n = vector::<D>(n);
+    let mut axes: Vec<usize> = (0..D::POINT_DIM).collect();
+    axes.sort_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()));
+    let mut basis = vec![n];
+    let old = previous.map_or(Vec::new(), |p| p[..D::POINT_DIM - 1].iter().map(vector::<D>).collect());
+    let units = axes.into_iter().map(|i| {
+        let mut e = D::Vector::default();
+        e[i] = 1.0;
+        e
+    });
+    for mut e in old.into_iter().chain(units) {
+        for b in &basis {
+            e = e - scaled::<D>(b, dot::<D>(b, &e));
+        }
+        let size = dot::<D>(&e, &e).sqrt();
+        if basis.len() < D::POINT_DIM && size > 1e-3 {
+            basis.push(scaled::<D>(&e, 1.0 / size));
+        }
+    }
+    let mut out = [[0.0; 3]; 2];
+    for (k, u) in basis[1..].iter().enumerate() {
+        out[k] = array::<D>(u);
+    }
+    out
 }
 
 /// A stuck contact's constraint rows, $\partial_c(x - a)$ per component.
@@ -448,8 +668,18 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                         residual[at + k] = offset[k] / length;
                     }
                 }
+                Friction::Roll { offsets, along, .. } => {
+                    for i in 0..n {
+                        let tangential: f64 = along.iter().enumerate().map(|(k, a)| t.force[1 + k] * a[i]).sum();
+                        residual[i] -= (t.force[0] * jet.gradient[i] + tangential) * rows[i];
+                    }
+                    residual[at] = jet.gap / length;
+                    for (k, r) in offsets.iter().enumerate() {
+                        residual[at + 1 + k] = r / length;
+                    }
+                }
                 other => {
-                    let mu = self.kkt.mechanism.geoms[t.pair.geom].friction;
+                    let mu = crate::mechanism::contact::friction(m, &t.pair);
                     for i in 0..n {
                         let along = if let Friction::Slide { along, .. } = other { mu * along[i] } else { 0.0 };
                         residual[i] -= t.force[0] * (jet.gradient[i] - along) * rows[i];
@@ -493,8 +723,21 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             jac[j * size + row] = jet.gradient[j] / length;
                         }
                     }
+                    Friction::Roll { along, hessian, .. } => {
+                        for j in 0..n {
+                            for i in 0..n {
+                                jac[j * size + i] -= (force * jet.hessian[(i, j)] + hessian[(i, j)]) * rows[i];
+                            }
+                            jac[row * size + j] = -sigma * jet.gradient[j] * rows[j];
+                            jac[j * size + row] = jet.gradient[j] / length;
+                            for (k, a) in along.iter().enumerate() {
+                                jac[(row + 1 + k) * size + j] = -sigma * a[j] * rows[j];
+                                jac[j * size + row + 1 + k] = a[j] / length;
+                            }
+                        }
+                    }
                     Friction::Slide { along, jacobian, .. } => {
-                        let mu = self.kkt.mechanism.geoms[t.pair.geom].friction;
+                        let mu = crate::mechanism::contact::friction(m, &t.pair);
                         for j in 0..n {
                             for i in 0..n {
                                 jac[j * size + i] -= force * (jet.hessian[(i, j)] - mu * jacobian[(j, i)]) * rows[i];
@@ -506,8 +749,13 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                 }
                 if let Some(f) = index[c] {
                     let (column, tangency) = (f, f);
+                    let mu = crate::mechanism::contact::friction(m, &t.pair);
                     for i in 0..n {
-                        jac[column * size + i] = -force * jet.dqs[i] * rows[i] * t.length;
+                        let turning = match &self.friction[c] {
+                            Friction::Slide { ds, .. } => mu * ds[i],
+                            _ => 0.0,
+                        };
+                        jac[column * size + i] = -force * (jet.dqs[i] - turning) * rows[i] * t.length;
                         jac[i * size + tangency] = jet.dqs[i];
                     }
                     jac[column * size + row] = jet.ds * t.length / length;
@@ -531,9 +779,13 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
             .map(|i| (0..n).map(|c| jacobian[c * size + n + i] / self.kkt.closure_scale[i]).collect())
             .collect();
         for ((t, jet), friction) in self.touching.iter().zip(&self.jets).zip(&self.friction) {
-            if let Friction::Pin { delta, .. } = friction {
-                g.extend(pin_rows::<D>(delta));
-                continue;
+            match friction {
+                Friction::Pin { delta, .. } => {
+                    g.extend(pin_rows::<D>(delta));
+                    continue;
+                }
+                Friction::Roll { along, .. } => g.extend(along.iter().cloned()),
+                _ => {}
             }
             if t.place == Place::Inner {
                 if jet.dss <= 0.0 {
@@ -585,18 +837,32 @@ enum Event {
     Open(usize),
     /// Inner contact `c` reached the end at this arc length.
     AtEnd(usize, f64),
-    /// End contact `c`'s flexure turns into the geom beside the end.
-    Roll(usize),
-    /// The pair's gap has a least below the tolerance at this arc length;
-    /// where, in the geom body's frame, whether a flexure's centreline
-    /// touches there at an end (where friction can hold it), and the gap.
-    Touch(Pair, Option<f64>, [f64; 3], bool, f64),
+    /// End contact `c`'s flexure turns into the geom beside the end, whose normal is this (world).
+    Roll(usize, [f64; 3]),
+    /// The pair's gap has a least below the tolerance.
+    Touch {
+        pair: Pair,
+        /// Its arc length on a flexure.
+        s: Option<f64>,
+        /// Where, in the geom body's frame.
+        point: [f64; 3],
+        /// Where on the toucher, as [`Touching::on`].
+        on: [f64; 3],
+        /// The geom's normal there (world).
+        normal: [f64; 3],
+        /// Whether a flexure's centreline touches there at an end (a material point).
+        bare_end: bool,
+        /// Whether a flexure touches there with a thickness.
+        thick: bool,
+        gap: f64,
+    },
     /// Stuck contact `c` needs more than $\mu N$: it slides along this
     /// direction (geom body's frame), with this $N$.
     Slip(usize, [f64; 3], f64),
     /// Sliding contact `c` turned back: it sticks here (geom body's frame)
-    /// with this force (world).
-    Stick(usize, [f64; 3], [f64; 3]),
+    /// with this force (world), where the normal is this (world), the
+    /// toucher's material point there as [`Touching::on`] last.
+    Stick(usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3]),
     /// The equilibrium is no longer stable.
     Unstable,
 }
@@ -633,13 +899,13 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 return Ok(Some(Event::AtEnd(c, t.at.clamp(0.0, 1.0) * t.length)));
             }
             Place::End(s) if (s > 0.0 && jet.ds > ROLL_TOLERANCE) || (s == 0.0 && jet.ds < -ROLL_TOLERANCE) => {
-                return Ok(Some(Event::Roll(c)));
+                return Ok(Some(Event::Roll(c, array::<D>(&jet.normal))));
             }
             _ => {}
         }
         let body = problem.geom_body(c);
         match t.law {
-            Law::Stick { .. } => {
+            Law::Stick { .. } | Law::Roll { .. } => {
                 let tangential = problem.friction_force(c);
                 let size = dot::<D>(&tangential, &tangential).sqrt();
                 if size > problem.mu(c) * normal + FORCE_TOLERANCE * scale {
@@ -651,7 +917,9 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 let (_, _, ahead) = problem.slid(c).expect("a sliding contact");
                 if ahead < -GAP_TOLERANCE * problem.kkt.length {
                     let force = scaled::<D>(&jet.normal, normal) + problem.friction_force(c);
-                    return Ok(Some(Event::Stick(c, problem.local_point(c), array::<D>(&force))));
+                    let normal = array::<D>(&jet.normal);
+                    let (here, on) = (problem.local_point(c), problem.material(c));
+                    return Ok(Some(Event::Stick(c, here, array::<D>(&force), normal, on)));
                 }
             }
             Law::Free => {}
@@ -667,18 +935,33 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 _ => true,
             });
             if low.gap < -GAP_TOLERANCE * length && !known {
-                let body = &problem.frames.bodies[m.geoms[pair.geom].body];
+                let body = &problem.frames.bodies[geom_body(m, pair)];
                 let at = array::<D>(&D::position(&D::act(&D::inverse(body), &low.point)));
-                let bare_end = match (pair.part, low.s) {
+                let (bare_end, thick, on) = match (pair.part, low.s) {
                     (Toucher::Flexure(j), Some(s)) => {
                         let (f, offset) = (m.joints[j].kind.flexure().expect("a flexure pair"), m.joints[j].offset);
                         let length = D::flexure_length(f);
                         let alpha = &q[offset..offset + m.joints[j].kind.joint().dof()];
-                        (s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && D::surface_at(f, alpha, s)?.2 == 0.0
+                        let thick = D::surface_at(f, alpha, s)?.2 != 0.0;
+                        ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && !thick, thick, [s, 0.0, 0.0])
                     }
-                    _ => false,
+                    _ => {
+                        let ball = ball_and_other(m, pair)?.0.body;
+                        let on = D::act(&D::inverse(&problem.frames.bodies[ball]), &low.point);
+                        (false, false, array::<D>(&D::position(&on)))
+                    }
                 };
-                return Ok(Some(Event::Touch(*pair, low.s, at, bare_end, low.gap)));
+                let normal = array::<D>(&low.normal);
+                return Ok(Some(Event::Touch {
+                    pair: *pair,
+                    s: low.s,
+                    point: at,
+                    on,
+                    normal,
+                    bare_end,
+                    thick,
+                    gap: low.gap,
+                }));
             }
         }
     }
@@ -696,17 +979,23 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::Open(c) => {
             out.remove(c);
         }
-        Event::AtEnd(c, s) => out[c].place = Place::End(s),
-        Event::Roll(c) => {
-            if m.geoms[out[c].pair.geom].friction > 0.0 {
-                return Err(rolls(
-                    m,
-                    &out[c].pair,
-                    "its flexure turns onto the geom and the contact moves into the span",
-                ));
+        Event::AtEnd(c, s) => {
+            out[c].place = Place::End(s);
+            // A bare end is one material point: pinned where it is ([`ContactKkt::anchor`]).
+            if let Law::Roll { .. } = out[c].law {
+                out[c].law = Law::Stick { anchor: out[c].from };
+                out[c].force = [0.0; 3];
             }
+        }
+        Event::Roll(c, normal) => {
             // Just inside the end, where Newton finds the least.
             let s = out[c].s().unwrap_or(0.0);
+            out[c].on = [s, 0.0, 0.0];
+            if let Law::Stick { anchor } = out[c].law {
+                out[c].from = anchor;
+                out[c].law = Law::Roll { tangents: tangents::<D>(&normal, None) };
+                out[c].force = [0.0; 3];
+            }
             out[c].at = if s > 0.0 { 1.0 - 1e-6 } else { 1e-6 };
             out[c].place = Place::Inner;
         }
@@ -714,11 +1003,19 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             out[c].law = Law::Slip { direction };
             out[c].force = [normal, 0.0, 0.0];
         }
-        Event::Stick(c, anchor, force) => {
+        Event::Stick(c, anchor, force, normal, on) if out[c].rolls() => {
+            out[c].on = on;
+            let u = tangents::<D>(&normal, None);
+            let along = |v: &[f64; 3]| (0..3).map(|i| force[i] * v[i]).sum::<f64>();
+            out[c].law = Law::Roll { tangents: u };
+            out[c].force = [along(&normal), along(&u[0]), along(&u[1])];
+            out[c].from = anchor;
+        }
+        Event::Stick(c, anchor, force, ..) => {
             out[c].law = Law::Stick { anchor };
             out[c].force = force;
         }
-        Event::Touch(pair, s, point, bare_end, _) => {
+        Event::Touch { pair, s, point, on, normal, bare_end, thick, .. } => {
             let length = length(m, &pair);
             let place = match s {
                 None => Place::Geoms,
@@ -734,14 +1031,15 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             if out.iter().any(|t| t.pair == pair && close(t)) {
                 return Err(lies_along(m, &pair));
             }
-            let law = match (m.geoms[pair.geom].friction > 0.0, bare_end) {
-                (false, _) => Law::Free,
-                (true, true) => Law::Stick { anchor: point },
-                (true, false) => {
-                    return Err(rolls(m, &pair, "it touches inside a span, at a thick end, or between two geoms"));
+            let law = match (crate::mechanism::contact::friction(m, &pair) > 0.0, bare_end, thick) {
+                (false, ..) => Law::Free,
+                (true, true, _) => Law::Stick { anchor: point },
+                (true, false, false) => Law::Roll { tangents: tangents::<D>(&normal, None) },
+                (true, false, true) => {
+                    return Err(rolls(m, &pair, "it touches with a flexure's thickness"));
                 }
             };
-            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point });
+            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on });
         }
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
@@ -755,7 +1053,7 @@ fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
     Error::invalid(
         "friction",
         format!("{} ({}: {why})", m.geoms[pair.geom].friction, named(m, pair)),
-        "holds only where a flexure's bare end (no thickness) touches; where a contact rolls (inside a span, at a thick end, between two geoms) friction is not solved yet: set the geom's friction to 0",
+        "holds where a flexure with no thickness touches, or a ball; where a flexure touches with its thickness (its surface's material points are off its centreline) friction is not solved yet: set the geom's friction to 0, or the flexure's thickness",
     )
 }
 
@@ -911,8 +1209,11 @@ fn follow<D: Statics>(
         iterations += report.iterations;
         let Some(found) = found else {
             // A slide that turns is followed in steps that turn it little,
-            // each along the way it moved (its direction lags by one step).
-            if problem.slide_turn() > MAX_SLIDE_TURN && step > 1e3 * SMALLEST_STEP {
+            // each along the way it moved (its direction lags by one step);
+            // a contact that rolls with friction, in steps that roll it
+            // little (its material points are pinned anew at each).
+            let turned = problem.slide_turn() > MAX_SLIDE_TURN || problem.roll_turn() > MAX_ROLL_TURN;
+            if turned && step > 1e3 * SMALLEST_STEP {
                 step *= 0.5;
                 continue;
             }
@@ -1052,7 +1353,8 @@ fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e
 /// when they are held as they are (closed, and stuck where stuck): the
 /// Hessian of $-\sum_c N_c g_c$ (an inner contact's place eliminated, as
 /// in the stability test) or of a stuck contact's $-f\cdot(x - a)$, and
-/// their constraint gradients, $\nabla g_c$ or $\partial(x - a)$. A small
+/// their constraint gradients, $\nabla g_c$ or $\partial(x - a)$; a stuck
+/// contact that rolls holds its gap and its material points along the surface. A small
 /// extra load that would open a contact, or slide a stuck one, is outside
 /// it; a sliding contact with friction has none (its friction turns with
 /// the motion) and is refused by name.
@@ -1067,10 +1369,36 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
     frames_level_into(m, &s.q, Level::Hessian, &mut f);
     for c in touching {
         let jet = gap_jet(m, &f, &s.q, &c.pair, c.s)?;
-        let rough = m.geoms[c.pair.geom].friction > 0.0;
+        let rough = crate::mechanism::contact::friction(m, &c.pair) > 0.0;
+        let inner = c.s.is_some_and(|s| s > 0.0 && s < length(m, &c.pair));
+        let friction = vector::<D>(&std::array::from_fn(|i| c.friction_force.get(i).copied().unwrap_or(0.0)));
         match c.state {
+            ContactMode::Stick if inner || c.s.is_none() => {
+                // Rolling: the gap as a frictionless contact's, and the
+                // material points that touch held together along the surface.
+                h -= &jet.hessian * c.normal_force;
+                if inner && jet.dss > 0.0 {
+                    add_place(&mut h, c.normal_force, &jet);
+                }
+                let body = &f.bodies[geom_body(m, &c.pair)];
+                let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
+                let on = match (c.s, ball_and_other(m, &c.pair)) {
+                    (Some(s), _) => [s, 0.0, 0.0],
+                    (None, Ok((ball, ..))) => {
+                        array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point)))
+                    }
+                    (None, Err(e)) => return Err(e),
+                };
+                let p = material_jet(m, &f, &s.q, &c.pair, &on, anchor)?;
+                h -= p.hessian_along(m, &f, &friction);
+                rows.push(jet.gradient.clone());
+                for u in &tangents::<D>(&array::<D>(&jet.normal), None)[..D::POINT_DIM - 1] {
+                    let u = vector::<D>(u);
+                    rows.push(p.delta.iter().map(|d| dot::<D>(&u, d)).collect());
+                }
+            }
             ContactMode::Stick => {
-                let body = &f.bodies[m.geoms[c.pair.geom].body];
+                let body = &f.bodies[geom_body(m, &c.pair)];
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
                 let p = point_jet(m, &f, &s.q, &c.pair, c.s, Some(anchor))?;
                 let force = vector::<D>(&std::array::from_fn(|i| {
@@ -1101,7 +1429,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
 
 /// Adds a new contact's pair to `touched` (the pairs an answer reports).
 fn remember(touched: &mut Vec<Pair>, event: Event) {
-    if let Event::Touch(pair, ..) = event
+    if let Event::Touch { pair, .. } = event
         && !touched.contains(&pair)
     {
         touched.push(pair);
@@ -1114,7 +1442,8 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
     let m = problem.kkt.mechanism;
     let mut out = Vec::new();
     for (c, (t, jet)) in problem.touching.iter().zip(&problem.jets).enumerate() {
-        let state = if matches!(t.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+        let state =
+            if matches!(t.law, Law::Stick { .. } | Law::Roll { .. }) { ContactMode::Stick } else { ContactMode::Slip };
         out.push(Contact::of(
             m,
             &t.pair,
@@ -1137,6 +1466,21 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::space::Planar;
+
+    /// The problem of `m` with no contact touching, fitted from no load to its own.
+    fn bare<'a>(
+        m: &'a Mechanism<Planar>,
+        settings: &Settings,
+        work: &'a mut Workspace<Planar>,
+    ) -> ContactKkt<'a, Planar> {
+        work.touching = true;
+        let to = m.loads();
+        let zero = crate::mechanism::Planar::zero(&to);
+        let kkt = Kkt::fitted(m, &zero, &to, settings, Buffers::Borrowed(work)).unwrap();
+        let (frames, inner, jets, friction) = (Frames::new(m), Vec::new(), Vec::new(), Vec::new());
+        ContactKkt { kkt, touching: Vec::new(), frames, inner, sigma: 1.0, jets, friction }
+    }
 
     /// The problem's Jacobian and load derivative against central
     /// differences of its residual, with an inner contact on a post and a
@@ -1150,22 +1494,18 @@ mod tests {
         let m = crate::mechanism::file::from_toml(text).unwrap();
         let settings = Settings::default();
         let mut work = Workspace::new(&m);
-        work.touching = true;
-        let to = m.loads();
-        let zero = crate::mechanism::Planar::zero(&to);
-        let kkt = Kkt::fitted(&m, &zero, &to, &settings, Buffers::Borrowed(&mut work)).unwrap();
-        let mut problem = ContactKkt {
-            kkt,
-            touching: Vec::new(),
-            frames: Frames::new(&m),
-            inner: Vec::new(),
-            sigma: 1.0,
-            jets: Vec::new(),
-            friction: Vec::new(),
-        };
+        let mut problem = bare(&m, &settings, &mut work);
         let all = pairs(&m);
-        let touching =
-            |pair, place, law, force, at| Touching { pair, place, law, force, at, length: 1.0, from: [0.0; 3] };
+        let touching = |pair, place, law, force, at| Touching {
+            pair,
+            place,
+            law,
+            force,
+            at,
+            length: 1.0,
+            from: [0.0; 3],
+            on: [0.6, 0.0, 0.0],
+        };
         let q = [-0.4, 0.1, -0.05, 0.02];
         let (stuck, sliding) = (Law::Stick { anchor: [0.9, 0.0, 0.0] }, Law::Slip { direction: [-0.8, 0.6, 0.0] });
         // Free, then the tip stuck to the floor at a point off it, then
@@ -1192,16 +1532,60 @@ mod tests {
                     [[geom]]\nname = \"cap\"\nbody = \"arm\"\nshape = \"circle\"\norigin = [0.6, -0.4]\nradius = 0.2\nfriction = 0.3\n";
         let m = crate::mechanism::file::from_toml(text).unwrap();
         let mut work = Workspace::new(&m);
-        work.touching = true;
-        let (to, all) = (m.loads(), pairs(&m));
-        let zero = crate::mechanism::Planar::zero(&to);
-        let kkt = Kkt::fitted(&m, &zero, &to, &settings, Buffers::Borrowed(&mut work)).unwrap();
-        let (frames, inner) = (Frames::new(&m), Vec::new());
-        let mut problem =
-            ContactKkt { kkt, touching: Vec::new(), frames, inner, sigma: 1.0, jets: Vec::new(), friction: Vec::new() };
+        let all = pairs(&m);
+        let mut problem = bare(&m, &settings, &mut work);
         let q = [0.3, -0.4, 0.1, -0.05, 0.02];
         for law in [Law::Stick { anchor: [0.7, -0.1, 0.0] }, Law::Slip { direction: [0.6, 0.8, 0.0] }] {
             problem.touching = vec![touching(all[0], Place::End(1.0), law, [0.5, -0.2, 0.0], 1.0)];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+        // Rolling inside the span over the turning cap: stuck (material
+        // points pinned apart, as within a step) and sliding.
+        let rolling = [
+            Law::Roll { tangents: tangents::<Planar>(&[0.6, 0.8, 0.0], None) },
+            Law::Slip { direction: [0.8, -0.6, 0.0] },
+        ];
+        for law in rolling {
+            let mut t = touching(all[0], Place::Inner, law, [0.5, -0.2, 0.0], 0.45);
+            (t.from, t.on) = ([0.65, -0.15, 0.0], [0.4, 0.0, 0.0]);
+            problem.touching = vec![t];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+    }
+
+    /// As above, between two geoms that both move: a wheel on a sprung,
+    /// sliding hub and a pad on a sprung arm, rolling stuck and sliding.
+    #[test]
+    fn the_jacobian_of_rolling_between_geoms_matches_differences() {
+        let text = "[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"hub\"\nstiffness = 3.0\n\
+                    [[joint]]\nname = \"spin\"\nkind = \"revolute\"\nparent = \"hub\"\nchild = \"wheel\"\nstiffness = 2.0\n\
+                    [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.0, -1.0, 0.0]\nstiffness = 5.0\n\
+                    [[force]]\nbody = \"hub\"\nat = [0.0, 0.0]\nforce = [1.0, -3.0]\n\
+                    [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"circle\"\nradius = 0.4\nfriction = 0.3\n\
+                    [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5]\nnormal = [0.0, 1.0]\n";
+        let m = crate::mechanism::file::from_toml(text).unwrap();
+        let mut work = Workspace::new(&m);
+        let all = pairs(&m);
+        let mut problem = bare(&m, &Settings::default(), &mut work);
+        let q = [0.2, 0.7, -0.3];
+        let rolling = [
+            Law::Roll { tangents: tangents::<Planar>(&[0.1, 0.995, 0.0], None) },
+            Law::Slip { direction: [1.0, 0.0, 0.0] },
+        ];
+        for law in rolling {
+            let t = Touching {
+                pair: all[0],
+                place: Place::Geoms,
+                law,
+                force: [0.5, -0.2, 0.0],
+                at: 0.0,
+                length: 1.0,
+                from: [0.1, 0.45, 0.0],
+                on: [0.05, -0.38, 0.0],
+            };
+            problem.touching = vec![t];
             let x = problem.state(&q);
             crate::solver::assert_derivatives(&mut problem, &x, 0.7);
         }
