@@ -117,7 +117,8 @@ const EXAMPLES: [Example; 9] = [
         name: "grasp",
         sweep: "tendon.flexor.tension=0:4:9",
         compliance: ("distal", "0.025,0"),
-        compliance_expect: Expect::Answers,
+        // Its distal pad slides on the rod at the file's tension.
+        compliance_expect: Expect::Refused("no linear answer"),
         buckle: Expect::Refused("may touch"),
     },
     Example {
@@ -474,9 +475,9 @@ fn poses(v: &Value) -> Vec<f64> {
 
 /// Reference for a contact file's answer `v` (of file `text`): each
 /// touching contact's force applied back as a plain `[[force]]`, the geoms
-/// removed, solves to the same equilibrium. Each pad (a geom on a body)
-/// pushes a ground geom with N·n at the point, so the ground's geom pushes
-/// the pad's body with −N·n there: a force at that point in the body's
+/// removed, solves to the same equilibrium. The ground's geom pushes the
+/// pad's body with N·n (n out of the ground's geom) and its friction
+/// force there: a force at that point in the body's
 /// frame (from its reported pose: `x`, `y`, `phi` or `rotation`).
 /// Checked to 1e-9 m and rad on every pose number: both are solved to
 /// Newton's tolerance, far below; the grasp's force made 0.1 % larger
@@ -499,7 +500,10 @@ fn balances_its_contact_forces(text: &str, v: &Value, dir: &Path) {
         let b = &v["bodies"][body];
         let n = c["normal_force"].as_f64().unwrap();
         let point: Vec<f64> = c["point"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-        let force: Vec<f64> = c["normal"].as_array().unwrap().iter().map(|x| n * x.as_f64().unwrap()).collect();
+        // N·n and the friction on the pad's body.
+        let friction = c["friction_force"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap());
+        let normal = c["normal"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap());
+        let force: Vec<f64> = normal.zip(friction).map(|(x, f)| n * x + f).collect();
         let origin: Vec<f64> = ["x", "y", "z"].iter().take(point.len()).map(|k| b[k].as_f64().unwrap()).collect();
         let d: Vec<f64> = point.iter().zip(&origin).map(|(p, o)| p - o).collect();
         // Into the body's frame: Rᵀ d.
@@ -526,10 +530,11 @@ fn balances_its_contact_forces(text: &str, v: &Value, dir: &Path) {
 }
 
 /// The grasp held to what contact means, not to its own earlier output:
-/// (a) each touching contact's force, applied back as a plain load, makes
-/// the mechanism without its geoms rest where the grasp does; (b) before
-/// the first contact the sweep is the sweep without geoms; (c) a touching
-/// contact's gap is zero and an open one's positive.
+/// (a) each touching contact's force, normal and friction, applied back as
+/// a plain load, makes the mechanism without its geoms rest where the grasp
+/// does; (b) before the first contact the sweep is the sweep without geoms;
+/// (c) a touching contact's gap is zero and an open one's positive; (d) its
+/// friction is on Coulomb's cone where it slides, inside it where it sticks.
 #[test]
 fn the_grasp_balances_its_contact_forces() {
     let path = file("grasp");
@@ -581,6 +586,22 @@ fn the_grasp_balances_its_contact_forces() {
     let distal = "contact.cylinder.distal.normal_force";
     let last = (0..9).map(|r| cell(&with, r, distal)).collect::<Vec<_>>();
     assert!(last[8] > last[7] && last[7] > last[6] && last[6] > 0.0, "the distal pad squeezes harder: {last:?}");
+    // (d) Each row's contacts (μ = 0.5): a sliding pad's friction is μN, a
+    // stuck one's within it (to 1e-9 of N); both happen along the sweep.
+    let mut states = Vec::new();
+    for row in with["contacts"].as_array().unwrap() {
+        for c in row.as_array().unwrap().iter().filter(|c| c["state"] != "open") {
+            let n = c["normal_force"].as_f64().unwrap();
+            let f =
+                c["friction_force"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap().powi(2)).sum::<f64>().sqrt();
+            match c["state"].as_str().unwrap() {
+                "slip" => assert!((f - 0.5 * n).abs() < 1e-9 * n, "{c}"),
+                _ => assert!(f <= 0.5 * n * (1.0 + 1e-9), "{c}"),
+            }
+            states.push(c["state"].as_str().unwrap().to_string());
+        }
+    }
+    assert!(states.iter().any(|s| s == "stick") && states.iter().any(|s| s == "slip"), "{states:?}");
 }
 
 /// The grasp's drawing shows its rod, its pads' contacts and their forces:

@@ -18,7 +18,7 @@
 //!   labelled with their value (N); the legend gives each contact's range.
 
 use super::drawing::{Drawn, KEY, LEAST_ARROW, Part, Sizes, View, anchor_along, hull, pic, short, sight};
-use super::scene::{Scene, Snapshot, Solid};
+use super::scene::{ContactMark, Scene, Snapshot, Solid};
 use flexure::mechanism::contact::GeomShape;
 use flexure_chart::{Anchor, Color, Entry, Fill, GRAY, Mark, Marker, Stroke, Swatch};
 use nalgebra::Vector3;
@@ -217,12 +217,23 @@ pub(super) fn contact_entries(scene: &Scene, loaded: &[(String, Snapshot)]) -> V
             names.push(&c.name);
         }
     }
-    for name in names {
-        let force = |p: &Snapshot| p.contacts.iter().filter(|c| c.name == name).map(|c| c.normal_force).sum::<f64>();
-        let v: Vec<f64> = loaded.iter().map(|(_, p)| force(p)).collect();
+    // Over the shapes: its least and largest (one value where they agree).
+    let range = |v: Vec<f64>| {
         let (lo, hi) = v.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
-        let value = if lo == hi { format!("{} N", short(lo)) } else { format!("{} to {} N", short(lo), short(hi)) };
-        out.push(Entry { swatch: Swatch::Arrow(KEY), label: format!("contact {name}: normal force {value}") });
+        if lo == hi { format!("{} N", short(lo)) } else { format!("{} to {} N", short(lo), short(hi)) }
+    };
+    for name in names {
+        let sum = |p: &Snapshot, f: &dyn Fn(&ContactMark) -> f64| {
+            p.contacts.iter().filter(|c| c.name == name).map(f).sum::<f64>()
+        };
+        let normal = range(loaded.iter().map(|(_, p)| sum(p, &|c| c.normal_force)).collect());
+        let friction: Vec<f64> = loaded.iter().map(|(_, p)| sum(p, &|c| c.friction_force.norm())).collect();
+        // The thinner arrow, where friction holds it.
+        let label = match friction.iter().any(|f| *f > 0.0) {
+            true => format!("contact {name}: normal force {normal}, friction {} (thin arrow)", range(friction)),
+            false => format!("contact {name}: normal force {normal}"),
+        };
+        out.push(Entry { swatch: Swatch::Arrow(KEY), label });
     }
     if loaded.iter().any(|(_, p)| !p.contacts.is_empty()) {
         let label = "contact: a dot where a part touches a geom, an arrow for the force the geom exerts (its head at the point)";

@@ -244,7 +244,7 @@ pub struct Contact {
     pub normal: Vec<f64>,
     /// The compressive force along the normal (N), not negative.
     pub normal_force: f64,
-    /// The tangential (friction) force (N, world frame).
+    /// The tangential (friction) force on the toucher, the flexure or `body` (N, world frame).
     pub friction_force: Vec<f64>,
     /// The gap (m): 0 to the solver's tolerance where touching.
     pub gap: f64,
@@ -269,7 +269,8 @@ impl Contact {
         state: ContactMode,
     ) -> Contact {
         let vector = |v: &D::Vector| (0..D::POINT_DIM).map(|i| v[i]).collect::<Vec<f64>>();
-        // The gap's normal is out of the geom that is not the ball.
+        // The gap's normal is out of the geom that is not the ball, and its
+        // friction acts on the ball: both turned when the ball is the geom named.
         let (geom, flexure, body, side) = match (pair.part, sides(m, pair)) {
             (_, Some((geom, body))) => {
                 let ball = ball_and_other(m, pair).is_ok_and(|(round, ..)| std::ptr::eq(round, &m.geoms[geom]));
@@ -286,7 +287,8 @@ impl Contact {
             point: vector(&D::position(point)),
             normal: vector(&scaled::<D>(normal, side)),
             normal_force,
-            friction_force: vector(friction_force),
+            // + 0.0: a turned zero is −0.
+            friction_force: vector(&scaled::<D>(friction_force, side)).into_iter().map(|f| f + 0.0).collect(),
             gap,
             state,
             pair: *pair,
