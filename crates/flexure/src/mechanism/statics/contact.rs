@@ -1469,14 +1469,10 @@ mod tests {
     use crate::space::Planar;
 
     /// The problem of `m` with no contact touching, fitted from no load to its own.
-    fn bare<'a>(
-        m: &'a Mechanism<Planar>,
-        settings: &Settings,
-        work: &'a mut Workspace<Planar>,
-    ) -> ContactKkt<'a, Planar> {
+    fn bare<'a, D: Statics>(m: &'a Mechanism<D>, settings: &Settings, work: &'a mut Workspace<D>) -> ContactKkt<'a, D> {
         work.touching = true;
         let to = m.loads();
-        let zero = crate::mechanism::Planar::zero(&to);
+        let zero = D::zero(&to);
         let kkt = Kkt::fitted(m, &zero, &to, settings, Buffers::Borrowed(work)).unwrap();
         let (frames, inner, jets, friction) = (Frames::new(m), Vec::new(), Vec::new(), Vec::new());
         ContactKkt { kkt, touching: Vec::new(), frames, inner, sigma: 1.0, jets, friction }
@@ -1584,6 +1580,46 @@ mod tests {
                 length: 1.0,
                 from: [0.1, 0.45, 0.0],
                 on: [0.05, -0.38, 0.0],
+            };
+            problem.touching = vec![t];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+    }
+
+    /// The spatial rolling rows against differences: a ball on a hub that
+    /// slides and turns about a tilted axis, on a pad on a turning arm,
+    /// stuck (two tangents) and sliding.
+    #[test]
+    fn the_jacobian_of_rolling_in_space_matches_differences() {
+        let text = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"hub\"\naxis = [1.0, 0.0, 0.2]\nstiffness = 3.0\n\
+                    [[joint]]\nname = \"spin\"\nkind = \"revolute\"\nparent = \"hub\"\nchild = \"wheel\"\naxis = [0.3, 0.1, 1.0]\nstiffness = 2.0\n\
+                    [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.0, -1.0, 0.0]\naxis = [1.0, 0.2, 0.1]\nstiffness = 5.0\n\
+                    [[force]]\nbody = \"hub\"\nat = [0.0, 0.0, 0.0]\nforce = [1.0, -3.0, 0.5]\n\
+                    [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"sphere\"\nradius = 0.4\nfriction = 0.3\n\
+                    [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5, 0.0]\nnormal = [0.1, 1.0, 0.2]\n";
+        let m = crate::mechanism::file::spatial_from_toml(text).unwrap();
+        let mut work = Workspace::new(&m);
+        let all = pairs(&m);
+        let mut problem = bare(&m, &Settings::default(), &mut work);
+        let q = [0.2, 0.7, -0.3];
+        let n = [0.1f64, 0.98, 0.17];
+        let size = n.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let n = n.map(|v| v / size);
+        let rolling = [
+            Law::Roll { tangents: tangents::<crate::space::Spatial>(&n, None) },
+            Law::Slip { direction: [1.0, 0.0, 0.3] },
+        ];
+        for law in rolling {
+            let t = Touching {
+                pair: all[0],
+                place: Place::Geoms,
+                law,
+                force: [0.5, -0.2, 0.3],
+                at: 0.0,
+                length: 1.0,
+                from: [0.1, 0.45, -0.05],
+                on: [0.05, -0.38, 0.1],
             };
             problem.touching = vec![t];
             let x = problem.state(&q);
