@@ -178,3 +178,46 @@ fn a_strip_rolls_on_a_rough_post_without_slipping() {
     let (s, phi, _) = smooth[4];
     assert!(((s - s0) + radius * (phi - phi0)).abs() > 1e-2 * (s - s0).abs(), "frictionless, it slides");
 }
+
+/// A unit strip 20 mm thick (EI = 1), its root on a sprung slide along x,
+/// pressed onto a rough floor by its tip ($\mu = 1$), then turned by a tip
+/// moment: its tip's rounded end (radius
+/// $h$, half the thickness) rolls on the floor without slipping, so its
+/// centre keeps $h$ above the floor and moves by $-h\Delta\theta$ as the
+/// tip turns by $\Delta\theta$ (the closed form of a rolling circle), to
+/// 1e-6 of $h\Delta\theta$ (measured 2.3e-7); a strip with no thickness
+/// would keep its tip still.
+#[test]
+fn a_thick_tip_rolls_on_a_rough_floor() {
+    use flexure::mechanism::kinematics::frames;
+    let h = 0.01;
+    let text = format!(
+        "[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"base\"\nstiffness = 1.0\n\
+         [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"base\"\nchild = \"tip\"\nlength = 1.0\nmodulus = 1.5e8\nwidth = 0.01\nthickness = {}\norder = 8\n\
+         [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0]\nforce = [0.0, -1.0]\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.05]\nnormal = [0.0, 1.0]\nfriction = 1.0\n",
+        2.0 * h
+    );
+    let m = from_toml(&text).unwrap();
+    let values = [0.0, 0.05, 0.1, 0.15, 0.2];
+    let out = sweep(&m, &Parameter::parse(&m, "force.push.moment").unwrap(), &values, &Settings::default()).unwrap();
+    assert!(out.stopped.is_none(), "{:?}", out.stopped);
+    let tip = m.body("tip").unwrap();
+    let pose = |q: &[f64]| {
+        let p = frames(&m, q).bodies[tip];
+        (p.x, p.y, p.phi)
+    };
+    let (x0, _, t0) = pose(&out.rows[0].1.q);
+    for (v, s) in &out.rows[1..] {
+        let (x, y, t) = pose(&s.q);
+        let c = &s.contacts[0];
+        assert_eq!((c.state, c.s), (ContactMode::Stick, Some(1.0)), "at {v}: {c:?}");
+        assert!((y - (-0.05 + h)).abs() < 1e-9, "at {v}: the tip's centre {y}");
+        assert!(
+            (t - t0).abs() > 1e-3 && ((x - x0) + h * (t - t0)).abs() < 1e-6 * h * (t - t0).abs(),
+            "at {v}: {} for {}",
+            x - x0,
+            -h * (t - t0)
+        );
+    }
+}

@@ -48,6 +48,24 @@ pub trait Touch: Dimension {
     /// derivatives in the coordinates `alpha` and in `s` ([`SectionJet`]),
     /// exact for the integration [`Touch::surface_at`] uses.
     fn section_jet(f: &Self::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Self>>;
+    /// Whether a material point off the centreline (on a strip's surface)
+    /// has its jet ([`Touch::offset_jet`]): in the plane, where a section
+    /// turns by one angle; not yet in space.
+    const SURFACE_JET: bool = false;
+    /// `v` (world) in the section's axes where the world tangent is `t`:
+    /// along $t$, then along its normal; `None` where not known (in space)
+    /// unless `v` is zero.
+    fn section_axes(t: &Self::Vector, v: &Self::Vector) -> Option<[f64; 2]> {
+        let _ = t;
+        (0..Self::POINT_DIM).all(|i| v[i] == 0.0).then_some([0.0; 2])
+    }
+    /// The jet of the section's material point `offset` from the
+    /// centreline (along the tangent, then its normal, m): $p + R(\theta)o$
+    /// with its derivatives; `None` where not known (in space) unless
+    /// `offset` is zero.
+    fn offset_jet(jet: &SectionJet<Self>, offset: [f64; 2]) -> Option<SectionJet<Self>> {
+        (offset == [0.0; 2]).then(|| jet.clone())
+    }
 }
 
 /// A flexure's centreline point $p(\alpha, s)$ at one arc length, in its
@@ -133,6 +151,34 @@ impl Touch for Planar {
     /// $\partial_a\partial_b p = -L\int\psi_a\psi_b\thinspace e\thinspace dt$, by the Gauss rule
     /// and pieces of [`pose_at`]; $t = e(\theta(s))$, $\partial_a t = \psi_a e_\perp$,
     /// $\partial_s t = \theta^{\prime}(s)\thinspace e_\perp$.
+    const SURFACE_JET: bool = true;
+
+    fn section_axes(t: &Vector2<f64>, v: &Vector2<f64>) -> Option<[f64; 2]> {
+        Some([t.dot(v), t.x * v.y - t.y * v.x])
+    }
+
+    /// With $\theta$ linear in $\alpha$ ($\partial_a\theta = \psi_a = t\times\partial_at$):
+    /// $\partial_a(Ro) = \psi_a\thinspace(Ro)^\perp$, $\partial_a\partial_b(Ro) = -\psi_a\psi_b\thinspace Ro$.
+    fn offset_jet(jet: &SectionJet<Planar>, offset: [f64; 2]) -> Option<SectionJet<Planar>> {
+        let t = jet.tangent;
+        let r = t * offset[0] + Vector2::new(-t.y, t.x) * offset[1];
+        let turned = Vector2::new(-r.y, r.x);
+        let psi: Vec<f64> = jet.tangent_jacobian.iter().map(|d| t.x * d.y - t.y * d.x).collect();
+        let mut out = jet.clone();
+        out.point += r;
+        for (j, p) in out.jacobian.iter_mut().zip(&psi) {
+            *j += turned * *p;
+        }
+        for (i, h) in out.hessian.iter_mut().enumerate() {
+            for (a, pa) in psi.iter().enumerate() {
+                for (b, pb) in psi.iter().enumerate() {
+                    h[(a, b)] -= pa * pb * r[i];
+                }
+            }
+        }
+        Some(out)
+    }
+
     fn section_jet(f: &crate::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Planar>> {
         f.check_coordinates("alpha", alpha)?;
         let (l, k) = (f.length(), f.order());

@@ -45,6 +45,10 @@ pub struct GapJet<D: Touch> {
     pub normal_jacobian: Vec<D::Vector>,
     /// $\partial n/\partial s = \nabla^2d\thinspace t$ (world, 1/m; 0 for two geoms).
     pub normal_ds: D::Vector,
+    /// The flexure's unit tangent there (world; 0 for two geoms).
+    pub tangent: D::Vector,
+    /// The half thickness it touches with (m): the point is $h$ off its centreline (a ball's radius).
+    pub half: f64,
 }
 
 /// The flexure side of a pair: its joint, first coordinate, root frame and jet at $s$.
@@ -111,7 +115,7 @@ pub fn gap_jet<D: Touch + FrameChain>(
         }
     }
     let mut dqs = vec![0.0; n];
-    let mut normal_ds = D::Vector::default();
+    let (mut normal_ds, tangent) = (D::Vector::default(), p.tangent().unwrap_or_default());
     if let Some(own) = &p.own {
         let t = D::rotate(own.root, &own.jet.tangent);
         normal_ds = product::<D>(&curvature, &t);
@@ -132,7 +136,20 @@ pub fn gap_jet<D: Touch + FrameChain>(
     for &c in &p.geom_columns {
         normal_jacobian[c] = normal_jacobian[c] + D::spin(&f.omega[c], &normal);
     }
-    Ok(GapJet { gap, point, normal, gradient, hessian, ds, dqs, dss, normal_jacobian, normal_ds })
+    Ok(GapJet {
+        gap,
+        point,
+        normal,
+        gradient,
+        hessian,
+        ds,
+        dqs,
+        dss,
+        normal_jacobian,
+        normal_ds,
+        tangent,
+        half: p.half[0],
+    })
 }
 
 /// A pair's gap at $(q, s)$ to first order in $q$ ([`gap_slope`]): what
@@ -210,6 +227,8 @@ pub(crate) struct PointJet<'a, D: Touch + FrameChain> {
     pub delta: Vec<D::Vector>,
     /// The toucher's half thickness and its first two derivatives in $s$.
     pub half: [f64; 3],
+    /// A material point's offset from the centreline (world; 0 unless asked for).
+    pub offset: D::Vector,
     /// The geom touched.
     pub shape: &'a super::Geom<D>,
     /// The coordinates that move the geom's body.
@@ -231,13 +250,15 @@ pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
     s: Option<f64>,
     anchor: Option<D::Vector>,
 ) -> Result<PointJet<'a, D>> {
-    jet_at(m, f, q, pair, s, None, anchor)
+    jet_at(m, f, q, pair, (s, [0.0; 2]), None, anchor)
 }
 
-/// [`point_jet`] of a material point of the toucher: a flexure's
-/// centreline point at `on[0]` (its arc length), or the point `on` of a
-/// ball's body (its frame), relative to the geom body's material point
-/// `anchor` (its frame). A stuck contact that rolls pins these two.
+/// [`point_jet`] of a material point of the toucher: a flexure's section
+/// at `on[0]` (its arc length), the point `on[1]` along its tangent and
+/// `on[2]` along its normal off the centreline ([`Touch::offset_jet`]: on
+/// a strip's surface), or the point `on` of a ball's body (its frame),
+/// relative to the geom body's material point `anchor` (its frame). A
+/// stuck contact that rolls pins these two.
 pub(crate) fn material_jet<'a, D: Touch + FrameChain>(
     m: &'a Mechanism<D>,
     f: &'a Frames<D>,
@@ -247,24 +268,26 @@ pub(crate) fn material_jet<'a, D: Touch + FrameChain>(
     anchor: D::Vector,
 ) -> Result<PointJet<'a, D>> {
     match pair.part {
-        Toucher::Flexure(_) => jet_at(m, f, q, pair, Some(on[0]), None, Some(anchor)),
-        Toucher::Geom(_) => jet_at(m, f, q, pair, None, Some(super::vector::<D>(on)), Some(anchor)),
+        Toucher::Flexure(_) => jet_at(m, f, q, pair, (Some(on[0]), [on[1], on[2]]), None, Some(anchor)),
+        Toucher::Geom(_) => jet_at(m, f, q, pair, (None, [0.0; 2]), Some(super::vector::<D>(on)), Some(anchor)),
     }
 }
 
-/// [`point_jet`], of the ball's material point `ball` (its body's frame) rather than its centre.
+/// [`point_jet`], of a flexure's section's material point `offset` off
+/// its centreline, or of the ball's material point `ball` (its body's
+/// frame) rather than its centre.
 fn jet_at<'a, D: Touch + FrameChain>(
     m: &'a Mechanism<D>,
     f: &'a Frames<D>,
     q: &[f64],
     pair: &Pair,
-    s: Option<f64>,
+    (s, offset): (Option<f64>, [f64; 2]),
     ball: Option<D::Vector>,
     anchor: Option<D::Vector>,
 ) -> Result<PointJet<'a, D>> {
     let n = m.dof();
     let mut att = Attached::new(m);
-    let (shape, x, half, own) = match pair.part {
+    let (shape, x, half, own, moved) = match pair.part {
         Toucher::Flexure(j) => {
             let joint = &m.joints[j];
             let Some(flexure) = joint.kind.flexure() else {
@@ -272,19 +295,27 @@ fn jet_at<'a, D: Touch + FrameChain>(
             };
             let s = s.ok_or_else(|| Error::invalid("s", "none", "is needed where a flexure touches"))?;
             let k = joint.kind.joint().dof();
-            let jet = D::section_jet(flexure, &q[joint.offset..joint.offset + k], s)?;
+            let centre = D::section_jet(flexure, &q[joint.offset..joint.offset + k], s)?;
+            let jet = D::offset_jet(&centre, offset).ok_or_else(|| {
+                Error::invalid(
+                    "friction",
+                    named(m, pair),
+                    "holds where a flexure touches with its thickness only in the plane: in space a section's turning at its surface is not solved yet",
+                )
+            })?;
             let local = D::moved(&D::origin(&D::identity()), &jet.point, 1.0);
             attach_into(m, f, joint.parent, D::position(&D::act(&joint.origin, &local)), true, &mut att);
             let root = &f.roots[j];
-            let half = jet.half;
-            (&m.geoms[pair.geom], D::act(root, &local), half, Some(Own { offset: joint.offset, root, jet }))
+            let (half, moved) = (jet.half, D::rotate(root, &(jet.point - centre.point)));
+            let own = Some(Own { offset: joint.offset, root, jet });
+            (&m.geoms[pair.geom], D::act(root, &local), half, own, moved)
         }
         Toucher::Geom(_) => {
             let (round, flat, r) = super::gap::ball_and_other(m, pair)?;
             let centre = ball.unwrap_or_else(|| D::translation(&round.frame));
             attach_into(m, f, round.body, centre, true, &mut att);
             let x = D::act(&f.bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
-            (flat, x, [r, 0.0, 0.0], None)
+            (flat, x, [r, 0.0, 0.0], None, D::Vector::default())
         }
     };
     let moving = m.parent_joint(shape.body).is_some();
@@ -300,7 +331,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
         }
     }
     let geom_columns = columns(m, &attg);
-    Ok(PointJet { x, delta, half, shape, geom_columns, att, attg, moving, own })
+    Ok(PointJet { x, delta, half, offset: moved, shape, geom_columns, att, attg, moving, own })
 }
 
 impl<D: Touch + FrameChain> PointJet<'_, D> {

@@ -36,9 +36,11 @@
 //! $\hat s$ turns, at each accepted step, to the way the end moved, in
 //! steps short enough that it turns by at most 0.01 rad.
 //!
-//! **Friction where a contact rolls** (inside a span of a flexure with no
-//! thickness, or a ball on a geom): the point that touches moves over both
-//! surfaces, so a stuck contact is no pinned point. Over each step the
+//! **Friction where a contact rolls** (inside a flexure's span, at a thick
+//! end, or a ball on a geom): the point that touches moves over both
+//! surfaces, so a stuck contact is no pinned point. A thick flexure's
+//! material point is on its surface, off the centreline in its section's
+//! axes ([`crate::mechanism::contact::Touch::offset_jet`]). Over each step the
 //! toucher's material point and the geom body's that met at the last
 //! accepted state are held together along the surface there, $t_k\cdot(x -
 //! a) = 0$ for its unit tangents $t_k$ (fixed for the step), beside the gap
@@ -50,8 +52,8 @@
 //! for $r\Delta\theta$, a relative error of $\Delta\theta^2/6 \approx
 //! 2\times10^{-5}$.
 //!
-//! **Refused by name:** friction where a flexure touches with its
-//! thickness (its surface's material points lie off its centreline), a mechanism
+//! **Refused by name:** friction where a spatial flexure touches with its
+//! thickness (its surface's material points turn with its twist too), a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -140,9 +142,12 @@ struct Touching {
     length: f64,
     /// Its point in the geom body's frame at the last accepted state.
     from: [f64; 3],
-    /// The toucher's material point there: a flexure's arc length (first
-    /// entry), or the point in a ball's body frame.
+    /// The toucher's material point there: a flexure's arc length and the
+    /// point's offset from its centreline in the section's axes, or the
+    /// point in a ball's body frame.
     on: [f64; 3],
+    /// Whether a flexure touches with a thickness (off its centreline).
+    thick: bool,
 }
 
 impl Touching {
@@ -161,9 +166,9 @@ impl Touching {
     }
 
     /// Whether it rolls: the point that touches is not one material point
-    /// (inside a span, or a ball).
+    /// (inside a span, at a thick end, or a ball).
     fn rolls(&self) -> bool {
-        matches!(self.place, Place::Inner | Place::Geoms)
+        matches!(self.place, Place::Inner | Place::Geoms) || self.thick
     }
 }
 
@@ -307,10 +312,11 @@ impl<D: Statics> ContactKkt<'_, D> {
     /// a flexure's arc length, or the point in a ball's body frame (after [`Problem::evaluate`]).
     fn material(&self, c: usize) -> [f64; 3] {
         let (m, t) = (self.kkt.mechanism, &self.touching[c]);
+        let jet = &self.jets[c];
         match (t.s(), ball_and_other(m, &t.pair)) {
-            (Some(s), _) => [s, 0.0, 0.0],
+            (Some(s), _) => on_flexure::<D>(s, jet),
             (None, Ok((ball, ..))) => {
-                array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &self.jets[c].point)))
+                array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &jet.point)))
             }
             (None, Err(_)) => [0.0; 3],
         }
@@ -333,7 +339,10 @@ impl<D: Statics> ContactKkt<'_, D> {
         let mut turn = angle(&there, &jet.normal);
         // The toucher's: its tangent's tilt out of the surface, or the arc
         // of a ball between its point and the contact.
+        let off = dot::<D>(&p.offset, &p.offset).sqrt();
         turn = turn.max(match (p.tangent(), ball_and_other(m, &t.pair)) {
+            // A strip's surface point: its offset from the centreline against the normal.
+            (Some(_), _) if off > 0.0 => angle(&scaled::<D>(&p.offset, -1.0 / off), &jet.normal),
             (Some(u), _) => dot::<D>(&u, &jet.normal).abs().min(1.0).asin(),
             (None, Ok((.., r))) => {
                 let chord = D::position(&p.x) - D::position(&jet.point);
@@ -551,6 +560,14 @@ fn slide<D: Statics>(e: &D::Vector, n: &D::Vector) -> (D::Vector, impl Fn(&D::Ve
         let du = scaled::<D>(dn, -ne) - scaled::<D>(&n, dot::<D>(dn, &e));
         scaled::<D>(&(du - scaled::<D>(&s, dot::<D>(&s, &du))), 1.0 / size)
     })
+}
+
+/// A flexure's material point where its gap jet `jet` at `s` touches, as
+/// [`Touching::on`] holds it: its offset $-hn$ from the centreline in the
+/// section's axes (zero where not known: in space, where friction there is refused).
+fn on_flexure<D: Statics>(s: f64, jet: &GapJet<D>) -> [f64; 3] {
+    let o = D::section_axes(&jet.tangent, &scaled::<D>(&jet.normal, -jet.half)).unwrap_or([0.0; 2]);
+    [s, o[0], o[1]]
 }
 
 /// The geom whose surface `pair` touches: its geom, or between two geoms the one that is not the ball.
@@ -858,7 +875,9 @@ enum Event {
     },
     /// Stuck contact `c` needs more than $\mu N$: it slides along this
     /// direction (geom body's frame), with this $N$.
-    Slip(usize, [f64; 3], f64),
+    /// Where it rolls, its point in the geom body's frame and the toucher's
+    /// material point there, from where its slide is measured.
+    Slip(usize, [f64; 3], f64, [f64; 3], [f64; 3]),
     /// Sliding contact `c` turned back: it sticks here (geom body's frame)
     /// with this force (world), where the normal is this (world), the
     /// toucher's material point there as [`Touching::on`] last.
@@ -910,7 +929,8 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 let size = dot::<D>(&tangential, &tangential).sqrt();
                 if size > problem.mu(c) * normal + FORCE_TOLERANCE * scale {
                     let direction = D::rotate(&D::inverse(body), &scaled::<D>(&tangential, -1.0 / size));
-                    return Ok(Some(Event::Slip(c, array::<D>(&direction), normal)));
+                    let (here, on) = (problem.local_point(c), problem.material(c));
+                    return Ok(Some(Event::Slip(c, array::<D>(&direction), normal, here, on)));
                 }
             }
             Law::Slip { .. } => {
@@ -942,8 +962,12 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         let (f, offset) = (m.joints[j].kind.flexure().expect("a flexure pair"), m.joints[j].offset);
                         let length = D::flexure_length(f);
                         let alpha = &q[offset..offset + m.joints[j].kind.joint().dof()];
-                        let thick = D::surface_at(f, alpha, s)?.2 != 0.0;
-                        ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && !thick, thick, [s, 0.0, 0.0])
+                        let half = D::surface_at(f, alpha, s)?.2;
+                        let on = match half != 0.0 {
+                            true => on_flexure::<D>(s, &gap_jet(m, &problem.frames, q, pair, Some(s))?),
+                            false => [s, 0.0, 0.0],
+                        };
+                        ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
                         let ball = ball_and_other(m, pair)?.0.body;
@@ -982,7 +1006,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::AtEnd(c, s) => {
             out[c].place = Place::End(s);
             // A bare end is one material point: pinned where it is ([`ContactKkt::anchor`]).
-            if let Law::Roll { .. } = out[c].law {
+            if let (Law::Roll { .. }, false) = (out[c].law, out[c].thick) {
                 out[c].law = Law::Stick { anchor: out[c].from };
                 out[c].force = [0.0; 3];
             }
@@ -990,16 +1014,20 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::Roll(c, normal) => {
             // Just inside the end, where Newton finds the least.
             let s = out[c].s().unwrap_or(0.0);
-            out[c].on = [s, 0.0, 0.0];
             if let Law::Stick { anchor } = out[c].law {
-                out[c].from = anchor;
+                (out[c].from, out[c].on) = (anchor, [s, 0.0, 0.0]);
                 out[c].law = Law::Roll { tangents: tangents::<D>(&normal, None) };
                 out[c].force = [0.0; 3];
             }
             out[c].at = if s > 0.0 { 1.0 - 1e-6 } else { 1e-6 };
             out[c].place = Place::Inner;
         }
-        Event::Slip(c, direction, normal) => {
+        Event::Slip(c, direction, normal, here, on) => {
+            // A rolling contact slides from where it begins to: what it
+            // rolled since the last accepted state is no slide.
+            if out[c].rolls() {
+                (out[c].from, out[c].on) = (here, on);
+            }
             out[c].law = Law::Slip { direction };
             out[c].force = [normal, 0.0, 0.0];
         }
@@ -1034,12 +1062,14 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             let law = match (crate::mechanism::contact::friction(m, &pair) > 0.0, bare_end, thick) {
                 (false, ..) => Law::Free,
                 (true, true, _) => Law::Stick { anchor: point },
-                (true, false, false) => Law::Roll { tangents: tangents::<D>(&normal, None) },
-                (true, false, true) => {
+                (true, false, thick) if !thick || D::SURFACE_JET => {
+                    Law::Roll { tangents: tangents::<D>(&normal, None) }
+                }
+                (true, false, _) => {
                     return Err(rolls(m, &pair, "it touches with a flexure's thickness"));
                 }
             };
-            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on });
+            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on, thick });
         }
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
@@ -1053,7 +1083,7 @@ fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
     Error::invalid(
         "friction",
         format!("{} ({}: {why})", m.geoms[pair.geom].friction, named(m, pair)),
-        "holds where a flexure with no thickness touches, or a ball; where a flexure touches with its thickness (its surface's material points are off its centreline) friction is not solved yet: set the geom's friction to 0, or the flexure's thickness",
+        "holds in space where a flexure with no thickness touches, or a ball; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too) friction is not solved yet: set the geom's friction to 0",
     )
 }
 
@@ -1373,7 +1403,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
         let inner = c.s.is_some_and(|s| s > 0.0 && s < length(m, &c.pair));
         let friction = vector::<D>(&std::array::from_fn(|i| c.friction_force.get(i).copied().unwrap_or(0.0)));
         match c.state {
-            ContactMode::Stick if inner || c.s.is_none() => {
+            ContactMode::Stick if inner || c.s.is_none() || jet.half > 0.0 => {
                 // Rolling: the gap as a frictionless contact's, and the
                 // material points that touch held together along the surface.
                 h -= &jet.hessian * c.normal_force;
@@ -1383,7 +1413,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 let body = &f.bodies[geom_body(m, &c.pair)];
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
                 let on = match (c.s, ball_and_other(m, &c.pair)) {
-                    (Some(s), _) => [s, 0.0, 0.0],
+                    (Some(s), _) => on_flexure::<D>(s, &jet),
                     (None, Ok((ball, ..))) => {
                         array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point)))
                     }
@@ -1501,6 +1531,7 @@ mod tests {
             length: 1.0,
             from: [0.0; 3],
             on: [0.6, 0.0, 0.0],
+            thick: false,
         };
         let q = [-0.4, 0.1, -0.05, 0.02];
         let (stuck, sliding) = (Law::Stick { anchor: [0.9, 0.0, 0.0] }, Law::Slip { direction: [-0.8, 0.6, 0.0] });
@@ -1542,9 +1573,16 @@ mod tests {
             Law::Roll { tangents: tangents::<Planar>(&[0.6, 0.8, 0.0], None) },
             Law::Slip { direction: [0.8, -0.6, 0.0] },
         ];
-        for law in rolling {
-            let mut t = touching(all[0], Place::Inner, law, [0.5, -0.2, 0.0], 0.45);
-            (t.from, t.on) = ([0.65, -0.15, 0.0], [0.4, 0.0, 0.0]);
+        // Pinned at the centreline, then at a point of a strip's surface
+        // (off it along the tangent and the normal: the section turns it),
+        // inside the span and at the tip.
+        for (law, on, place) in rolling
+            .iter()
+            .flat_map(|l| [[0.4, 0.0, 0.0], [0.4, 0.003, -0.02]].map(|on| (*l, on, Place::Inner)))
+            .chain([(rolling[0], [1.0, 0.004, -0.02], Place::End(1.0))])
+        {
+            let mut t = touching(all[0], place, law, [0.5, -0.2, 0.0], 0.45);
+            (t.from, t.on, t.thick) = ([0.65, -0.15, 0.0], on, on[2] != 0.0);
             problem.touching = vec![t];
             let x = problem.state(&q);
             crate::solver::assert_derivatives(&mut problem, &x, 0.7);
@@ -1580,6 +1618,7 @@ mod tests {
                 length: 1.0,
                 from: [0.1, 0.45, 0.0],
                 on: [0.05, -0.38, 0.0],
+                thick: false,
             };
             problem.touching = vec![t];
             let x = problem.state(&q);
@@ -1620,6 +1659,7 @@ mod tests {
                 length: 1.0,
                 from: [0.1, 0.45, -0.05],
                 on: [0.05, -0.38, 0.1],
+                thick: false,
             };
             problem.touching = vec![t];
             let x = problem.state(&q);
