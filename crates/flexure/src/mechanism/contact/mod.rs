@@ -22,6 +22,7 @@
 mod dimension;
 mod gap;
 mod jet;
+mod rolling;
 mod shape;
 
 use super::{Dimension, Mechanism};
@@ -32,6 +33,7 @@ pub(crate) use gap::ball_and_other;
 pub use gap::{Gap, gap, minima};
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
 pub(crate) use jet::{PointJet, material_jet, point_jet};
+pub(crate) use rolling::{on_flexure, tangents, touched, turned};
 pub use shape::{DistanceHessian, GeomShape};
 pub(crate) use shape::{array, dot, scaled, vector};
 

@@ -70,7 +70,7 @@ use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
     Contact, ContactMode, GapJet, Pair, PointJet, Toucher, array, ball_and_other, dot, gap_jet, length, material_jet,
-    minima, named, pairs, point_jet, scaled, vector,
+    minima, named, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -314,7 +314,7 @@ impl<D: Statics> ContactKkt<'_, D> {
         let (m, t) = (self.kkt.mechanism, &self.touching[c]);
         let jet = &self.jets[c];
         match (t.s(), ball_and_other(m, &t.pair)) {
-            (Some(s), _) => on_flexure::<D>(s, jet),
+            (Some(s), _) => on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half),
             (None, Ok((ball, ..))) => {
                 array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &jet.point)))
             }
@@ -327,29 +327,8 @@ impl<D: Statics> ContactKkt<'_, D> {
     /// and the most either surface turned under the contact (rad).
     fn rolled(&self, c: usize, p: &PointJet<'_, D>) -> Result<Rolled<D>> {
         let (m, t, jet) = (self.kkt.mechanism, &self.touching[c], &self.jets[c]);
-        let angle = |a: &D::Vector, b: &D::Vector| dot::<D>(a, b).clamp(-1.0, 1.0).acos();
-        // The geom's normal where the anchor is, against the normal now:
-        // seen from just outside it along the normal now, so that a box's
-        // corner, whose normal is any between its faces', has that one.
-        let geom = touched(m, &t.pair);
-        let body = self.geom_body(c);
-        let anchor = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&t.from), 1.0));
-        let outside = D::moved(&anchor, &jet.normal, 1e-3 * self.kkt.length);
-        let there = geom.gap(body, &outside, 0.0).1;
-        let mut turn = angle(&there, &jet.normal);
-        // The toucher's: its tangent's tilt out of the surface, or the arc
-        // of a ball between its point and the contact.
-        let off = dot::<D>(&p.offset, &p.offset).sqrt();
-        turn = turn.max(match (p.tangent(), ball_and_other(m, &t.pair)) {
-            // A strip's surface point: its offset from the centreline against the normal.
-            (Some(_), _) if off > 0.0 => angle(&scaled::<D>(&p.offset, -1.0 / off), &jet.normal),
-            (Some(u), _) => dot::<D>(&u, &jet.normal).abs().min(1.0).asin(),
-            (None, Ok((.., r))) => {
-                let chord = D::position(&p.x) - D::position(&jet.point);
-                2.0 * (0.5 * dot::<D>(&chord, &chord).sqrt() / r).min(1.0).asin()
-            }
-            (None, Err(e)) => return Err(e),
-        });
+        let place = (&jet.point, &jet.normal);
+        let turn = turned(m, &self.frames, (&t.pair, &t.from), p, place, self.kkt.length)?;
         Ok(Rolled { point: p.x, turn })
     }
 
@@ -562,55 +541,9 @@ fn slide<D: Statics>(e: &D::Vector, n: &D::Vector) -> (D::Vector, impl Fn(&D::Ve
     })
 }
 
-/// A flexure's material point where its gap jet `jet` at `s` touches, as
-/// [`Touching::on`] holds it: its offset $-hn$ from the centreline in the
-/// section's axes (zero where not known: in space, where friction there is refused).
-fn on_flexure<D: Statics>(s: f64, jet: &GapJet<D>) -> [f64; 3] {
-    let o = D::section_axes(&jet.tangent, &scaled::<D>(&jet.normal, -jet.half)).unwrap_or([0.0; 2]);
-    [s, o[0], o[1]]
-}
-
-/// The geom whose surface `pair` touches: its geom, or between two geoms the one that is not the ball.
-fn touched<'m, D: Statics>(m: &'m Mechanism<D>, pair: &Pair) -> &'m crate::mechanism::contact::Geom<D> {
-    match ball_and_other(m, pair) {
-        Ok((_, other, _)) => other,
-        Err(_) => &m.geoms[pair.geom],
-    }
-}
-
 /// The body of the geom `pair` touches ([`touched`]).
 fn geom_body<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> usize {
     touched(m, pair).body
-}
-
-/// Unit tangents of the surface with normal `n` (world), orthogonal to it
-/// and to each other: one in the plane, two in space; the `previous`
-/// tangents kept in the new plane where given, so the basis turns with it.
-fn tangents<D: Statics>(n: &[f64; 3], previous: Option<&[[f64; 3]; 2]>) -> [[f64; 3]; 2] {
-    let n = vector::<D>(n);
-    let mut axes: Vec<usize> = (0..D::POINT_DIM).collect();
-    axes.sort_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()));
-    let mut basis = vec![n];
-    let old = previous.map_or(Vec::new(), |p| p[..D::POINT_DIM - 1].iter().map(vector::<D>).collect());
-    let units = axes.into_iter().map(|i| {
-        let mut e = D::Vector::default();
-        e[i] = 1.0;
-        e
-    });
-    for mut e in old.into_iter().chain(units) {
-        for b in &basis {
-            e = e - scaled::<D>(b, dot::<D>(b, &e));
-        }
-        let size = dot::<D>(&e, &e).sqrt();
-        if basis.len() < D::POINT_DIM && size > 1e-3 {
-            basis.push(scaled::<D>(&e, 1.0 / size));
-        }
-    }
-    let mut out = [[0.0; 3]; 2];
-    for (k, u) in basis[1..].iter().enumerate() {
-        out[k] = array::<D>(u);
-    }
-    out
 }
 
 /// A stuck contact's constraint rows, $\partial_c(x - a)$ per component.
@@ -964,7 +897,10 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         let alpha = &q[offset..offset + m.joints[j].kind.joint().dof()];
                         let half = D::surface_at(f, alpha, s)?.2;
                         let on = match half != 0.0 {
-                            true => on_flexure::<D>(s, &gap_jet(m, &problem.frames, q, pair, Some(s))?),
+                            true => {
+                                let jet = gap_jet(m, &problem.frames, q, pair, Some(s))?;
+                                on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half)
+                            }
                             false => [s, 0.0, 0.0],
                         };
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
@@ -1413,7 +1349,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 let body = &f.bodies[geom_body(m, &c.pair)];
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
                 let on = match (c.s, ball_and_other(m, &c.pair)) {
-                    (Some(s), _) => on_flexure::<D>(s, &jet),
+                    (Some(s), _) => on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half),
                     (None, Ok((ball, ..))) => {
                         array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point)))
                     }
