@@ -589,8 +589,9 @@ fn the_grasp_balances_its_contact_forces() {
     // (d) Each row's contacts (μ = 0.5): a sliding pad's friction is μN, a
     // stuck one's within it (to 1e-9 of N); both happen along the sweep.
     let mut states = Vec::new();
-    for row in with["contacts"].as_array().unwrap() {
-        for c in row.as_array().unwrap().iter().filter(|c| c["state"] != "open") {
+    for (r, row) in with["contacts"].as_array().unwrap().iter().enumerate() {
+        assert_eq!(row["value"], with["rows"][r][0], "each row's contacts by its value");
+        for c in row["contacts"].as_array().unwrap().iter().filter(|c| c["state"] != "open") {
             let n = c["normal_force"].as_f64().unwrap();
             let f =
                 c["friction_force"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap().powi(2)).sum::<f64>().sqrt();

@@ -127,9 +127,10 @@ pub(super) fn swept_answer(
 ) -> Value {
     let mut v = json!({ "dimension": model.dimension(), "columns": out.columns, "rows": out.rows });
     // Each row's contacts as `solve` reports them (state and friction too),
-    // where a pair touched: the table has only their normal forces.
+    // by its value, where a pair touched: the table has only their normal forces.
     if out.contacts.iter().any(|c| !c.is_empty()) {
-        v["contacts"] = json!(out.contacts);
+        let rows = out.rows.iter().zip(&out.contacts);
+        v["contacts"] = json!(rows.map(|(r, c)| json!({ "value": r[0], "contacts": c })).collect::<Vec<_>>());
     }
     crate::eigen::insert_orders(&mut v, &out.model);
     let shapes: Vec<(f64, &[f64])> = out.rows.iter().zip(&out.q).map(|(r, q)| (r[0], q.as_slice())).collect();
