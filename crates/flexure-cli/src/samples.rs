@@ -73,7 +73,7 @@ fn write_row(sample: &Sample) {
 }
 
 /// `time`, each moving body's pose columns, each joint's coordinates then
-/// their rates, `energy`.
+/// their rates, `energy`, then each pair's push where it has geoms.
 fn header(model: &Model) -> String {
     let columns: &[&str] = match model.dimension() {
         2 => &["x", "y", "phi"],
@@ -90,6 +90,7 @@ fn header(model: &Model) -> String {
         }
     }
     header.push("energy".into());
+    header.extend(model.contact_columns());
     header.join(",") + "\n"
 }
 
@@ -111,6 +112,7 @@ fn row(model: &Model, sample: &Sample) -> String {
     row.extend(sample.coordinates);
     row.extend(sample.velocities);
     row.push(sample.energy);
+    row.extend(sample.columns);
     let mut text = String::new();
     for (i, x) in row.iter().enumerate() {
         let _ = write!(text, "{}{}", if i > 0 { "," } else { "" }, crate::render::shortest(*x));

@@ -31,7 +31,8 @@ pub struct SimulateArgs {
     #[command(flatten)]
     motion: MotionOptions,
     /// Write one CSV row per sample: time, each moving body's x, y, phi (a spatial file's: x, y, z and its
-    /// rotation's unit quaternion qw, qx, qy, qz, MuJoCo's order), each joint's coordinates and rates, energy.
+    /// rotation's unit quaternion qw, qx, qy, qz, MuJoCo's order), each joint's coordinates and rates, energy,
+    /// and with geoms each pair's push contact.GEOM.PART.normal_force.
     #[arg(long)]
     out: Option<PathBuf>,
     /// The error estimate's target: the motion is run again at a tenth of `--tolerance`, and the

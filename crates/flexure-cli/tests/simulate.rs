@@ -112,6 +112,43 @@ fn start_and_csv() {
     assert_eq!(v["out"], csv_s.as_str());
 }
 
+/// With geoms, `--out`'s rows end with each pair's push: a 2 kg ball on a
+/// slider dropped 0.2 m onto a floor pushes 0 until it lands, then mg
+/// (the closed form, to 1e-6 of it), as the answer's own `contacts` say
+/// sample by sample (read back exactly).
+#[test]
+fn csv_rows_carry_the_contacts_push() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("drop.toml");
+    let g: f64 = 9.81;
+    std::fs::write(
+        &file,
+        format!(
+            "gravity = [0.0, -{g}]\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"ball\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+             [[body]]\nname = \"ball\"\nmass = 2.0\n\
+             [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"circle\"\nradius = 0.05\n\
+             [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.25]\nnormal = [0.0, 1.0]\n"
+        ),
+    )
+    .unwrap();
+    let (file, csv) = (file.display().to_string(), dir.path().join("drop.csv"));
+    let csv_s = csv.display().to_string();
+    let args = ["simulate", &file, "--duration", "0.4", "--every", "0.05", "--start", "rest", "--tolerance", "1e-9"];
+    let v = json(&[&args[..], &["--out", &csv_s]].concat());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].ends_with(",energy,contact.floor.ball.normal_force"), "{}", lines[0]);
+    let landing = (2.0 * 0.2 / g).sqrt();
+    for (k, line) in lines[1..].iter().enumerate() {
+        let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let (t, push) = (row[0], *row.last().unwrap());
+        let told = v["contacts"][k].as_array().unwrap().iter().find(|c| c["geom"] == "floor").unwrap();
+        assert_eq!(push, told["normal_force"].as_f64().unwrap(), "t = {t}");
+        let exact = if t > landing { 2.0 * g } else { 0.0 };
+        assert!((push - exact).abs() < 1e-6 * 2.0 * g, "t = {t}: {push}, not {exact}");
+    }
+}
+
 /// A duration, interval or tolerance not above zero exits 2 naming its option.
 #[test]
 fn bad_settings_exit_2_by_name() {

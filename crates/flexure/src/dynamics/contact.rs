@@ -639,4 +639,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
         self.samples.push(contacts);
         Ok(())
     }
+
+    /// Each pair's push at the last sample (N; 0 while open), in the order
+    /// of [`pairs`]: a sweep's `contact.GEOM.PART.normal_force` columns.
+    fn sample_columns(&self) -> Vec<f64> {
+        let last = self.samples.last().map_or(&[][..], Vec::as_slice);
+        // + 0.0: an empty sum is −0.
+        let push = |p: &Pair| last.iter().filter(|c| c.pair == *p).map(|c| c.normal_force).sum::<f64>() + 0.0;
+        self.pairs.iter().map(push).collect()
+    }
 }

@@ -103,4 +103,11 @@ pub trait System {
     fn sampled(&mut self, _t: f64, _q: &[f64], _v: &[f64], _multipliers: Option<&[f64]>) -> Result<()> {
         Ok(())
     }
+
+    /// Numbers of its own at the sample it was last told of
+    /// ([`System::sampled`]), reported beside the sample's
+    /// ([`crate::dynamics::integrate::Sample::columns`]): none by default.
+    fn sample_columns(&self) -> Vec<f64> {
+        Vec::new()
+    }
 }

@@ -248,6 +248,14 @@ impl Model {
         each!(self, m => m.bodies.iter().map(|b| b.name.clone()).collect())
     }
 
+    /// The column of each pair that may touch, `contact.GEOM.PART.normal_force`,
+    /// in the order of [`crate::mechanism::contact::pairs`] (a sweep's, and
+    /// a motion's [`crate::dynamics::integrate::Sample::columns`]).
+    pub fn contact_columns(&self) -> Vec<String> {
+        use crate::mechanism::contact::{column, pairs};
+        each!(self, m => pairs(m).iter().map(|p| format!("{}.normal_force", column(m, p))).collect())
+    }
+
     /// Each body's pose in the world at coordinates `q`, the ground first,
     /// as [`Model::simulate`] gives them at each sample.
     pub fn body_poses(&self, q: &[f64]) -> Vec<BodyPose> {

@@ -12,6 +12,9 @@ pub struct Sample<'a> {
     pub velocities: &'a [f64],
     /// Kinetic plus potential energy (J).
     pub energy: f64,
+    /// The system's own numbers there ([`crate::dynamics::System::sample_columns`]):
+    /// with contact, each pair's push (N).
+    pub columns: &'a [f64],
 }
 
 thread_local! {

@@ -91,6 +91,8 @@ pub(super) fn record<S: System + ?Sized>(
     run.coordinates.extend_from_slice(q);
     run.velocities.extend_from_slice(v);
     run.energy.push(energy);
-    super::progress::sampled(&super::progress::Sample { time: t, coordinates: q, velocities: v, energy });
+    let columns = system.sample_columns();
+    let sample = super::progress::Sample { time: t, coordinates: q, velocities: v, energy, columns: &columns };
+    super::progress::sampled(&sample);
     Ok(())
 }
