@@ -76,7 +76,14 @@ fn rolls_then_slides_as_the_closed_form_says(spatial: bool) {
         (rows, out.stopped.map(|e| e.1.to_string()))
     };
     let (rows, stopped) = out;
-    assert!(stopped.is_none() && rows.len() == values.len(), "{stopped:?}");
+    if spatial {
+        // In space a rolling slide is refused by name: the sweep stops at
+        // 6 N, where the wheel would slide, with the stuck rows reached.
+        let e = stopped.expect("stopped where it would slide");
+        assert!(rows.len() == 4 && e.contains("rolls in space and would slide"), "{e}");
+    } else {
+        assert!(stopped.is_none() && rows.len() == values.len(), "{stopped:?}");
+    }
     let (n, k) = (FY - KY * G0, KT / (R * R));
     // x + rθ, kept while it sticks (where it last slid).
     let mut held = 0.0;
@@ -99,7 +106,8 @@ fn rolls_then_slides_as_the_closed_form_says(spatial: bool) {
         assert!((c.friction_force[0] + f).abs() < KX * 5e-5 * 0.05, "at {fx}: f {:?} vs {f}", c.friction_force);
         states.push(state);
     }
-    assert_eq!(states.iter().filter(|s| **s == ContactMode::Slip).count(), 3, "{states:?}");
+    let slips = if spatial { 0 } else { 3 };
+    assert_eq!(states.iter().filter(|s| **s == ContactMode::Slip).count(), slips, "{states:?}");
 }
 
 #[test]
@@ -107,8 +115,9 @@ fn a_wheel_rolls_then_slides_as_the_closed_form_says() {
     rolls_then_slides_as_the_closed_form_says(false);
 }
 
+/// In space: the stuck rows as in the plane, and the slide refused by name.
 #[test]
-fn a_spatial_wheel_rolls_then_slides_as_the_closed_form_says() {
+fn a_spatial_wheel_rolls_as_the_closed_form_says_and_its_slide_is_refused() {
     rolls_then_slides_as_the_closed_form_says(true);
 }
 

@@ -53,7 +53,9 @@
 //! 2\times10^{-5}$.
 //!
 //! **Refused by name:** friction where a spatial flexure touches with its
-//! thickness (its surface's material points turn with its twist too), a mechanism
+//! thickness (its surface's material points turn with its twist too) or
+//! where a contact that rolls in space would slide (its slide's direction
+//! turns with the rolling), a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -958,6 +960,13 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             out[c].at = if s > 0.0 { 1.0 - 1e-6 } else { 1e-6 };
             out[c].place = Place::Inner;
         }
+        Event::Slip(c, ..) if D::POINT_DIM == 3 && out[c].rolls() => {
+            return Err(rolls(
+                m,
+                &out[c].pair,
+                "it rolls in space and would slide, its slide's direction turning with the rolling",
+            ));
+        }
         Event::Slip(c, direction, normal, here, on) => {
             // A rolling contact slides from where it begins to: what it
             // rolled since the last accepted state is no slide.
@@ -1018,8 +1027,8 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
 fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
     Error::invalid(
         "friction",
-        format!("{} ({}: {why})", m.geoms[pair.geom].friction, named(m, pair)),
-        "holds in space where a flexure with no thickness touches, or a ball; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too) friction is not solved yet: set the geom's friction to 0",
+        format!("{} ({}: {why})", crate::mechanism::contact::friction(m, pair), named(m, pair)),
+        "holds in space where a flexure with no thickness or a ball touches, while it sticks; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too), or a contact that rolls in space would slide, friction is not solved yet: set the geom's friction to 0",
     )
 }
 
