@@ -224,20 +224,164 @@ fn a_ball_pulled_along_a_rough_floor_sticks_then_slips_as_coulomb_says() {
     }
 }
 
-/// Friction where a contact rolls (a ball on a turning arm) stops the
-/// run where it touches, naming the pair; a start inside a geom is refused.
-#[test]
-fn rolling_friction_and_an_overlapping_start_are_refused() {
-    let arm = format!(
+/// A disc (2 kg, radius 5 cm, I = mr²/2) on a hub free to slide in x and y
+/// and to turn, set on a plane tilted by `degrees` with Coulomb's `mu`.
+fn disc(mu: f64, degrees: f64) -> String {
+    let (sin, cos) = degrees.to_radians().sin_cos();
+    format!(
         "gravity = [0.0, -{G}]\n\
-         [[joint]]\nname = \"pin\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\n\
-         [[body]]\nname = \"arm\"\nmass = 1.0\ncom = [0.2, 0.0]\n\
-         [[geom]]\nname = \"bob\"\nbody = \"arm\"\nshape = \"circle\"\norigin = [0.2, 0.0]\nradius = 0.02\n\
-         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.1]\nnormal = [0.0, 1.0]\nfriction = 0.3\n"
+         [[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\n\
+         [[joint]]\nname = \"y\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"hub\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+         [[joint]]\nname = \"spin\"\nkind = \"revolute\"\nparent = \"hub\"\nchild = \"disc\"\n\
+         [[body]]\nname = \"disc\"\nmass = 2.0\ninertia = 0.0025\n\
+         [[geom]]\nname = \"rim\"\nbody = \"disc\"\nshape = \"circle\"\nradius = 0.05\n\
+         [[geom]]\nname = \"incline\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [{}, {}]\nnormal = [{sin}, {cos}]\nfriction = {mu}\n",
+        -0.05 * sin,
+        -0.05 * cos
+    )
+}
+
+/// The disc on a rough incline of 30° ($\mu = 0.5$) rolls down without
+/// slipping, its touching point never a material point for more than an
+/// instant: $\ddot s = g\sin\theta/(1 + I/mr^2)$ with the friction
+/// $I\ddot s/r^2$ (less than $\mu N$), turning by $-s/r$; on a nearly smooth
+/// one ($\mu = 0.05$) it slides, $\ddot s = g(\sin\theta - \mu\cos\theta)$,
+/// spun by the friction, $I\ddot\varphi = -\mu Nr$. The accelerations are
+/// constant, which Radau IIA integrates exactly: travel and turn to $10^{-9}$
+/// of themselves, N and the friction to $10^{-9}$ of $mg$ (the tolerance),
+/// at spin rates up to 20 rad/s.
+#[test]
+fn a_disc_rolls_or_slides_down_a_rough_incline_as_the_closed_form_says() {
+    let (m, r, i, theta) = (2.0, 0.05, 0.0025, 30f64.to_radians());
+    let (sin, cos) = theta.sin_cos();
+    for (mu, rolls) in [(0.5, true), (0.05, false)] {
+        let run = simulate(&from_toml(&disc(mu, 30.0)).unwrap(), &settings(0.3, 0.02, 1e-9), Start::Rest).unwrap();
+        assert!(run.stopped.is_none(), "{:?}", run.stopped);
+        let n = m * G * cos;
+        let (a, alpha) = match rolls {
+            true => (G * sin / (1.0 + i / (m * r * r)), -G * sin / (1.0 + i / (m * r * r)) / r),
+            false => (G * (sin - mu * cos), -mu * n * r / i),
+        };
+        let friction = if rolls { i * a / (r * r) } else { mu * n };
+        for (k, &t) in run.time.iter().enumerate().skip(1) {
+            let q = run.q(k);
+            // Down the incline: along (cos θ, -sin θ).
+            let travel = q[0] * cos - q[1] * sin;
+            let (s, phi) = (a * t * t / 2.0, alpha * t * t / 2.0);
+            assert!((travel - s).abs() < 1e-9 * s, "mu {mu}, t = {t}: travel {travel}, not {s}");
+            assert!((q[2] - phi).abs() < 1e-9 * phi.abs(), "mu {mu}, t = {t}: turn {}, not {phi}", q[2]);
+            let c = &run.contacts[k][0];
+            let state = if rolls { ContactMode::Stick } else { ContactMode::Slip };
+            assert_eq!(c.state, state, "mu {mu}, t = {t}: {c:?}");
+            assert!((c.normal_force - n).abs() < 1e-9 * m * G, "mu {mu}, t = {t}: {c:?}");
+            let f = c.friction_force.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((f - friction).abs() < 1e-9 * m * G, "mu {mu}, t = {t}: friction {f}, not {friction}");
+        }
+    }
+}
+
+/// The disc set on a rough floor ($\mu = 0.2$) moving at $v_0 = 1$ m/s
+/// without spin slides, slowed by $\mu g$ and spun by $\mu mgr/I$, until its
+/// touching point stops at $t^* = v_0/(3\mu g)$ (0.170 s); then it rolls on
+/// at $2v_0/3$ with no friction. The stick to $10^{-6}$ s, positions to
+/// $10^{-8}$ m, the friction to $10^{-6}$ of $mg$, and the energy falls by
+/// the friction's work $\mu mg\thinspace(v_0t^* - \frac12\mu gt^{*2})$ less the
+/// spin's $\frac12I\omega^{*2}$, to $10^{-8}$ J, then keeps.
+#[test]
+fn a_disc_launched_on_a_rough_floor_slides_then_rolls_as_the_closed_form_says() {
+    let (m, r, i, mu, v0) = (2.0, 0.05, 0.0025, 0.2, 1.0);
+    let text = format!("{}[initial_velocity]\nx = {v0}\n", disc(mu, 0.0));
+    let run = simulate(&from_toml(&text).unwrap(), &settings(0.4, 0.01, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let stick = v0 / (3.0 * mu * G);
+    let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    assert!(states.len() == 1 && states[0].0 == ContactMode::Stick, "{states:?}");
+    assert!((states[0].1 - stick).abs() < 1e-6, "rolls from {} s, not {stick}", states[0].1);
+    let alpha = -mu * m * G * r / i;
+    let (x_star, phi_star) = (v0 * stick - mu * G * stick * stick / 2.0, alpha * stick * stick / 2.0);
+    for (k, &t) in run.time.iter().enumerate().skip(1) {
+        let q = run.q(k);
+        let (x, phi) = match t < stick {
+            true => (v0 * t - mu * G * t * t / 2.0, alpha * t * t / 2.0),
+            false => (x_star + 2.0 * v0 / 3.0 * (t - stick), phi_star - 2.0 * v0 / (3.0 * r) * (t - stick)),
+        };
+        assert!((q[0] - x).abs() < 1e-8 && q[1].abs() < 1e-9, "t = {t}: {q:?}, not x = {x}");
+        assert!((q[2] - phi).abs() * r < 1e-8, "t = {t}: turned {}, not {phi}", q[2]);
+        let c = &run.contacts[k][0];
+        let friction = if t < stick { mu * m * G } else { 0.0 };
+        assert!((c.friction_force[0] + friction).abs() < 1e-6 * m * G, "t = {t}: {c:?}");
+        assert_eq!(c.state, if t < stick { ContactMode::Slip } else { ContactMode::Stick }, "t = {t}");
+    }
+    let energy =
+        |k: usize| 0.5 * m * run.v(k)[0].powi(2) + 0.5 * m * run.v(k)[1].powi(2) + 0.5 * i * run.v(k)[2].powi(2);
+    let last = run.time.len() - 1;
+    let lost = mu * m * G * x_star - 0.5 * i * (alpha * stick).powi(2);
+    assert!((energy(0) - energy(last) - lost).abs() < 1e-8, "lost {}, not {lost}", energy(0) - energy(last));
+}
+
+/// A ball (2 kg, radius 5 cm, $I = \frac25mr^2$) on three sliders and a ball
+/// joint, thrown along x at 1 m/s spinning about x at 10 rad/s onto a rough
+/// floor ($\mu = 0.2$, z up): its touching point slides at
+/// $u_0 = v_0 + \omega_0\times(-r\hat z)$, off its path, and the friction
+/// $-\mu mg\hat u_0$ stops that slide along a straight line at the rate
+/// $\mu g(1 + mr^2/I)$, at $t^* = \lvert u_0\rvert/(3.5\mu g)$; then it rolls
+/// straight on, in space, where rolling is held by its velocity alone. The
+/// stick to $10^{-6}$ s, the centre to $10^{-8}$ m, the friction to $10^{-6}$
+/// of $mg$.
+#[test]
+fn a_spinning_ball_thrown_on_a_rough_floor_slides_then_rolls_in_space_as_the_closed_form_says() {
+    let (m, r, mu, w) = (2.0, 0.05, 0.2, 10.0);
+    let inertia = 0.4 * m * r * r;
+    let slider = |name: &str, parent: &str, child: &str, axis: &str| {
+        format!(
+            "[[joint]]\nname = \"{name}\"\nkind = \"prismatic\"\nparent = \"{parent}\"\nchild = \"{child}\"\naxis = {axis}\n"
+        )
+    };
+    let text = format!(
+        "dimension = 3\ngravity = [0.0, 0.0, -{G}]\n{}{}{}\
+         [[joint]]\nname = \"turn\"\nkind = \"spherical\"\nparent = \"c\"\nchild = \"ball\"\n\
+         [[body]]\nname = \"ball\"\nmass = {m}\ninertia = [[{inertia}, 0.0, 0.0], [0.0, {inertia}, 0.0], [0.0, 0.0, {inertia}]]\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"sphere\"\nradius = {r}\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0, -{r}]\nnormal = [0.0, 0.0, 1.0]\nfriction = {mu}\n\
+         [initial_velocity]\nx = 1.0\nturn = [{w}, 0.0, 0.0]\n",
+        slider("x", "ground", "a", "[1.0, 0.0, 0.0]"),
+        slider("y", "a", "b", "[0.0, 1.0, 0.0]"),
+        slider("z", "b", "c", "[0.0, 0.0, 1.0]"),
     );
-    let run = simulate(&from_toml(&arm).unwrap(), &settings(1.0, 0.01, 1e-8), Start::Rest).unwrap();
-    let e = run.stopped.as_ref().map(ToString::to_string).expect("stopped");
-    assert!(e.contains("friction = 0.3 (geom \"bob\" (circle) and geom \"floor\"") && e.contains("rolls"), "{e}");
+    let run = simulate(&spatial_from_toml(&text).unwrap(), &settings(0.3, 0.01, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    // u0 = (1, 0, 0) + (w, 0, 0) × (0, 0, -r) = (1, w r, 0).
+    let u0: [f64; 2] = [1.0, w * r];
+    let speed = (u0[0] * u0[0] + u0[1] * u0[1]).sqrt();
+    let unit = [u0[0] / speed, u0[1] / speed];
+    let stick = speed / (3.5 * mu * G);
+    let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    assert!(states.len() == 1 && states[0].0 == ContactMode::Stick, "{states:?}");
+    assert!((states[0].1 - stick).abs() < 1e-6, "rolls from {} s, not {stick}", states[0].1);
+    let centre = |t: f64| {
+        let slid = t.min(stick);
+        let a = mu * G;
+        let at_stick = [1.0 - a * stick * unit[0], -a * stick * unit[1]];
+        (0..2)
+            .map(|k| [1.0, 0.0][k] * slid - a * unit[k] * slid * slid / 2.0 + at_stick[k] * (t - slid))
+            .collect::<Vec<f64>>()
+    };
+    for (k, &t) in run.time.iter().enumerate().skip(1) {
+        let (q, x) = (run.q(k), centre(t));
+        assert!(
+            (q[0] - x[0]).abs() < 1e-8 && (q[1] - x[1]).abs() < 1e-8 && q[2].abs() < 1e-9,
+            "t = {t}: {q:?}, not {x:?}"
+        );
+        let c = &run.contacts[k][0];
+        let f = if t < stick { [-mu * m * G * unit[0], -mu * m * G * unit[1]] } else { [0.0; 2] };
+        let off = (c.friction_force[0] - f[0]).abs().max((c.friction_force[1] - f[1]).abs());
+        assert!(off < 1e-6 * m * G && c.friction_force[2].abs() < 1e-9, "t = {t}: {c:?}, not {f:?}");
+    }
+}
+
+/// A start inside a geom is refused.
+#[test]
+fn an_overlapping_start_is_refused() {
     let inside = from_toml(&format!("{}[initial]\nslide = -0.3\n", drop(0.2))).unwrap();
     let e = simulate(&inside, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
     assert!(e.contains("overlapping by 1.000e-1 m"), "{e}");
@@ -375,4 +519,41 @@ fn a_strip_tip_pulled_on_a_rough_floor_sticks_then_slips_as_the_exact_elastica_s
         );
         assert!((c.point[0] - e.point[0]).abs() < 1e-4, "t = {t}: at {:?} vs {:?}", c.point, e.point);
     }
+}
+
+/// The unit strip of `contact_rolling.rs` (EI = 1, 10 g/m, β = 0.01 s)
+/// curled onto a rough post ($\mu = 1$) by a tip moment of 3 N·m, let go
+/// to 2 N·m over 0.5 s from its equilibrium: it rolls back on the post
+/// without slipping, its touching point inside its span, so the arc it
+/// rolls along itself is the arc it rolls around the post,
+/// $\Delta s = -R\Delta\varphi$ (the closed form of rolling without
+/// slipping), to $10^{-6}$ of the arc at every sample.
+#[test]
+fn a_strip_rolls_back_on_a_rough_post_in_motion_without_slipping() {
+    let (radius, centre) = (0.25, [0.55, -0.3]);
+    let text = format!(
+        "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nei = 1.0\norder = 8\nmass_per_length = 0.01\ndamping = 0.01\n\
+         [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0]\nmoment = -3.0\n\
+         [[geom]]\nname = \"post\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [{}, {}]\nradius = {radius}\nfriction = 1.0\n\
+         [[schedule]]\nload = \"force.push.moment\"\npoints = [[0.0, -3.0], [0.5, -2.0]]\n",
+        centre[0], centre[1]
+    );
+    let run = simulate(&from_toml(&text).unwrap(), &settings(0.6, 0.02, 1e-8), Start::Equilibrium).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let place = |k: usize| {
+        let c = &run.contacts[k][0];
+        assert_eq!(c.state, ContactMode::Stick, "t = {}: {c:?}", run.time[k]);
+        (c.s.unwrap(), (c.point[1] - centre[1]).atan2(c.point[0] - centre[0]))
+    };
+    let (s0, phi0) = place(0);
+    for k in 1..run.time.len() {
+        let (s, phi) = place(k);
+        let (along, around) = (s - s0, -radius * (phi - phi0));
+        assert!(
+            (along - around).abs() < 1e-6 * along.abs().max(1e-3),
+            "t = {}: {along} along the strip, {around} around the post",
+            run.time[k]
+        );
+    }
+    assert!(s0 - place(run.time.len() - 1).0 > 1e-2, "it rolled back");
 }

@@ -13,17 +13,26 @@
 //! into the span.
 //!
 //! **Friction** (Coulomb's $\mu$: a flexure's geom's, or the larger of two
-//! geoms', as MuJoCo combines them) holds where the touching point is
-//! material: a flexure's bare end (no thickness), or a ball whose body only
-//! translates against the geom's (sliders between them). **Stuck**, the
-//! point $x$ is held at a material point $a$ of the geom's body: its rows
-//! are $x - a = 0$ and the force on it is $-\lambda$ (its normal part $N$, its
-//! tangential part $f_t$). **Sliding** along $\hat s$, the direction of its
-//! velocity $v_t$ relative to the geom in the tangent plane, it keeps its gap
-//! row and takes the force $N(n - \mu\hat s)$: its multiplier acts along
+//! geoms', as MuJoCo combines them). Where the touching point is material
+//! (a flexure's bare end, or a ball whose body only translates against the
+//! geom's: sliders between them), **stuck**, the point $x$ is held at a
+//! material point $a$ of the geom's body: its rows are $x - a = 0$ and the
+//! force on it is $-\lambda$ (its normal part $N$, its tangential part
+//! $f_t$). Where it is not (inside a flexure's span, at a thick strip's
+//! end, a ball that turns against the geom), the touching point moves over
+//! both surfaces as they roll, and **stuck** means rolling without
+//! slipping: the velocity of the toucher's material point at the contact
+//! relative to the geom's material point there, $\Delta_m\dot q$, is zero
+//! along the surface. It keeps its gap row and adds one row per tangent
+//! $t_k$, $t_k^T\Delta_m\dot q = 0$, held on the velocities
+//! ([`System::velocity_closures`]: in space rolling is not integrable,
+//! no function of $q$ says it), the force along them $-\sum_k\lambda_kt_k$.
+//! **Sliding** along $\hat s$, the direction of its (material point's)
+//! velocity $v_t$ relative to the geom in the tangent plane, it keeps its
+//! gap row and takes the force $N(n - \mu\hat s)$: its multiplier acts along
 //! $\nabla g - \mu\hat s^T\Delta$ ([`System::closure_forces`]; $\Delta$ the
-//! point's Jacobian relative to the geom), so friction does work only
-//! against the sliding. ($\hat s$ is $v_t$ normalized with the direction
+//! material point's Jacobian relative to the geom), so friction does work
+//! only against the sliding. ($\hat s$ is $v_t$ normalized with the direction
 //! it slid from added at $10^{-12}$ of the mechanism's size per second,
 //! so a slide that starts from rest has a direction.)
 //!
@@ -44,9 +53,10 @@
 //! is not held: it touches when it presses in. A contact that pulls at its
 //! first step is let go there.
 //!
-//! **Refused by name:** friction where a contact rolls (inside a span, at a
-//! thick end, a ball whose body turns against the geom's), met in the run
-//! (it stops there, with the samples reached), and a start where a part
+//! **Refused by name**, met in the run (it stops there, with the samples
+//! reached): friction where a spatial flexure touches with its thickness
+//! (its surface's material points turn with its twist too), and where a
+//! bare end with friction would roll onto its span; and a start where a part
 //! overlaps a geom.
 
 use super::mechanism::Dynamics;
@@ -56,8 +66,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Pair, Toucher, array, column, dot, friction, gap_slope, length, minima, named,
-    pairs, point_jet, scaled, vector,
+    Contact, ContactMode, Gap, GapSlope, Pair, PointJet, Toucher, array, ball_and_other, column, dot, friction,
+    gap_slope, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -78,6 +88,11 @@ enum Law {
     Stick { anchor: [f64; 3] },
     /// Sliding, from the direction `from` (a unit tangent, world), its fastest speed so far `fastest`.
     Slip { from: [f64; 3], fastest: f64 },
+    /// Rolling without slipping: the velocity of the toucher's material
+    /// point where it touches, relative to the geom's there, held at zero
+    /// along the surface's tangents, those nearest `tangents` (world, kept
+    /// from sample to sample so that in space they turn smoothly).
+    Roll { tangents: [[f64; 3]; 2] },
 }
 
 /// A touching contact: its pair, its place on a flexure, its law, and the forces it carries.
@@ -88,6 +103,9 @@ struct Held {
     /// Its flexure's length (m; 1 between geoms).
     length: f64,
     law: Law,
+    /// Whether it rolls: the point that touches is not one material point
+    /// (inside a span, a thick flexure, a ball that turns against the geom).
+    rolls: bool,
     /// Coulomb's $\mu$ of the pair.
     mu: f64,
     /// The last push (N) and friction force (world) reported, and the largest push it has carried.
@@ -99,7 +117,7 @@ struct Held {
 impl Held {
     /// Its closure rows: the point's components when stuck, else the gap.
     fn rows<D: Dynamics>(&self) -> usize {
-        if matches!(self.law, Law::Stick { .. }) { D::POINT_DIM } else { 1 }
+        if matches!(self.law, Law::Stick { .. } | Law::Roll { .. }) { D::POINT_DIM } else { 1 }
     }
 }
 
@@ -180,7 +198,10 @@ impl<D: Dynamics> ContactSystem<D> {
             h.largest = c.normal_force;
             // An equilibrium's contact with friction is at rest: stuck.
             if h.mu > 0.0 {
-                h.law = Law::Stick { anchor: system.anchor(&h, q0)? };
+                h.law = match h.rolls {
+                    true => system.rolling(&h, q0)?,
+                    false => Law::Stick { anchor: system.anchor(&h, q0)? },
+                };
             }
             system.held.push(h);
         }
@@ -227,6 +248,7 @@ impl<D: Dynamics> ContactSystem<D> {
             s,
             length: length(m, pair),
             law: Law::Free,
+            rolls: false,
             mu,
             force: 0.0,
             friction: [0.0; 3],
@@ -234,15 +256,15 @@ impl<D: Dynamics> ContactSystem<D> {
         };
         if mu > 0.0 {
             let p = point_jet(m, &self.frames, q, pair, s, None)?;
-            let rolls = match pair.part {
+            h.rolls = match pair.part {
                 Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < h.length),
                 Toucher::Geom(h) => !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body),
             };
-            if rolls {
+            if p.half[0] != 0.0 && matches!(pair.part, Toucher::Flexure(_)) && !D::SURFACE_JET {
                 return Err(Error::invalid(
                     "friction",
                     format!("{mu} ({})", named(m, pair)),
-                    "holds in motion only where the touching point is material (a flexure's bare end, or a ball whose body only translates against the geom's); where a contact rolls (inside a span, at a thick end, a turning ball) friction is not solved yet: set the friction to 0",
+                    "holds in space where a flexure with no thickness touches, or a ball; where a spatial flexure touches with its thickness (its surface's material points turn with its twist too) friction is not solved yet: set the friction to 0",
                 ));
             }
             h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
@@ -258,13 +280,44 @@ impl<D: Dynamics> ContactSystem<D> {
             return Ok(Law::Free);
         }
         let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
-        let slide = sliding::<D>(&p.delta, v, &low.normal);
+        let delta = match h.rolls {
+            true => self.material_delta(h, &p, q)?,
+            false => p.delta.clone(),
+        };
+        let slide = sliding::<D>(&delta, v, &low.normal);
         let speed = dot::<D>(&slide, &slide).sqrt();
-        Ok(if speed > self.creep {
-            Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed }
-        } else {
-            Law::Stick { anchor: self.anchor(h, q)? }
+        Ok(match (speed > self.creep, h.rolls) {
+            (true, _) => Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed },
+            (false, true) => self.rolling(h, q)?,
+            (false, false) => Law::Stick { anchor: self.anchor(h, q)? },
         })
+    }
+
+    /// The toucher's material point where `h` touches at `q` (`p` its point,
+    /// frames at `q`), as [`Law::Roll`]'s `on`, and the geom body's there (its frame).
+    fn material(&self, h: &Held, p: &PointJet<'_, D>, q: &[f64]) -> Result<([f64; 3], [f64; 3])> {
+        let (m, f) = (&self.mechanism, &self.frames);
+        let slope = gap_slope(m, f, q, &h.pair, h.s)?;
+        let local = |body: usize| array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[body]), &slope.point)));
+        let on = match (h.s, p.tangent()) {
+            (Some(s), Some(t)) => on_flexure::<D>(s, &t, &slope.normal, p.half[0]),
+            _ => local(ball_and_other(m, &h.pair)?.0.body),
+        };
+        Ok((on, local(p.shape.body)))
+    }
+
+    /// The Jacobian of the motion of the toucher's material point where `h`
+    /// touches at `q`, relative to the geom body's there (`p` its point): a
+    /// rolling contact's slide is theirs.
+    fn material_delta(&self, h: &Held, p: &PointJet<'_, D>, q: &[f64]) -> Result<Vec<D::Vector>> {
+        let (on, anchor) = self.material(h, p, q)?;
+        Ok(material_jet(&self.mechanism, &self.frames, q, &h.pair, &on, vector::<D>(&anchor))?.delta)
+    }
+
+    /// Contact `h` rolling stuck where it touches at `q` (frames at `q`).
+    fn rolling(&self, h: &Held, q: &[f64]) -> Result<Law> {
+        let normal = gap_slope(&self.mechanism, &self.frames, q, &h.pair, h.s)?.normal;
+        Ok(Law::Roll { tangents: tangents::<D>(&array::<D>(&normal), None) })
     }
 
     /// Whether body `a` only translates against body `b` (frames at Jacobian
@@ -332,7 +385,7 @@ impl<D: Dynamics> ContactSystem<D> {
                 self.held[i].s = Some(s);
                 return Ok(slope);
             }
-            if law != Law::Free {
+            if law != Law::Free && !self.held[i].rolls {
                 return Err(Error::invalid(
                     "friction",
                     format!("{} ({})", self.held[i].mu, named(m, &pair)),
@@ -380,10 +433,19 @@ impl<D: Dynamics> ContactSystem<D> {
         let slope = self.settle(i, q)?;
         let h = self.held[i];
         let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+        let delta = match h.rolls && h.law != Law::Free {
+            true => self.material_delta(&h, &p, q)?,
+            false => p.delta,
+        };
         let n = slope.normal;
-        let slide = sliding::<D>(&p.delta, v, &n);
+        let slide = sliding::<D>(&delta, v, &n);
         let (push, friction) = match (h.law, lambda) {
             (_, None) => (h.force, vector::<D>(&h.friction)),
+            (Law::Roll { tangents: kept }, Some(l)) => {
+                let units = tangents::<D>(&array::<D>(&n), Some(&kept));
+                let along = (0..D::POINT_DIM - 1).map(|k| scaled::<D>(&vector::<D>(&units[k]), -l[row + 1 + k]));
+                (-l[row], along.fold(D::Vector::default(), |a, b| a + b))
+            }
             (Law::Stick { .. }, Some(l)) => {
                 let force = scaled::<D>(&vector::<D>(&array_of(&l[row..row + D::POINT_DIM])), -1.0);
                 let push = dot::<D>(&n, &force);
@@ -395,7 +457,7 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             (Law::Free, Some(l)) => (-l[row], D::Vector::default()),
         };
-        Ok(Reading { slope, push, friction, slide, delta: p.delta })
+        Ok(Reading { slope, push, friction, slide, delta })
     }
 
     /// $\hat s$: the slide `slide` with the direction it slid from, `from`, added at the creep speed.
@@ -412,7 +474,8 @@ impl<D: Dynamics> ContactSystem<D> {
             let r = self.read(i, row, (q, v), multipliers)?;
             let h = &mut self.held[i];
             (h.force, h.friction) = (r.push, array::<D>(&r.friction));
-            let state = if matches!(h.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
+            let state = if stuck { ContactMode::Stick } else { ContactMode::Slip };
             let place = (h.s, &r.slope.point, &r.slope.normal, r.slope.gap);
             out.push(Contact::of(&self.mechanism, &h.pair, place, (r.push.max(0.0), &r.friction), state));
         }
@@ -497,6 +560,19 @@ impl<D: Dynamics> System for ContactSystem<D> {
                     g[col * rows + row] = slope.gradient[col];
                 }
             }
+            if let Law::Roll { tangents: kept } = h.law {
+                // Velocity rows: its material points' relative velocity
+                // along the surface (`velocity_closures`); c is not read.
+                let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+                let delta = self.material_delta(&h, &p, q)?;
+                let units = tangents::<D>(&array::<D>(&slope.normal), Some(&kept));
+                for (k, u) in units[..D::POINT_DIM - 1].iter().map(vector::<D>).enumerate() {
+                    c[row + 1 + k] = 0.0;
+                    for col in 0..n {
+                        g[col * rows + row + 1 + k] = dot::<D>(&u, &delta[col]);
+                    }
+                }
+            }
         }
         Ok(())
     }
@@ -556,7 +632,9 @@ impl<D: Dynamics> System for ContactSystem<D> {
                     let band = tolerance * h.largest;
                     let friction = match &mut h.law {
                         Law::Free => f64::MAX,
-                        Law::Stick { .. } => (h.mu * r.push - dot::<D>(&r.friction, &r.friction).sqrt()) / band,
+                        Law::Stick { .. } | Law::Roll { .. } => {
+                            (h.mu * r.push - dot::<D>(&r.friction, &r.friction).sqrt()) / band
+                        }
                         Law::Slip { from, fastest } => {
                             let speed = dot::<D>(&r.slide, &vector::<D>(from));
                             *fastest = fastest.max(speed);
@@ -596,16 +674,21 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let i = k / 2;
             let r = self.read(i, rows[i], (q, v), Some(&last).filter(|l| !l.is_empty()).map(Vec::as_slice))?;
             let h = self.held[i];
+            let size = dot::<D>(&r.friction, &r.friction).sqrt();
             let law = match h.law {
-                Law::Stick { .. } => {
-                    let size = dot::<D>(&r.friction, &r.friction).sqrt();
+                Law::Stick { .. } | Law::Roll { .. } => {
                     let from = if size > 0.0 { scaled::<D>(&r.friction, -1.0 / size) } else { r.slide };
                     Law::Slip { from: array::<D>(&from), fastest: 0.0 }
                 }
+                _ if h.rolls => self.rolling(&h, q)?,
                 _ => Law::Stick { anchor: self.anchor(&h, q)? },
             };
             self.held[i].law = law;
-            let state = if matches!(law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            let state = if matches!(law, Law::Stick { .. } | Law::Roll { .. }) {
+                ContactMode::Stick
+            } else {
+                ContactMode::Slip
+            };
             change(&mut self.changes, &self.mechanism, &h.pair, state);
         }
         let mut added = Vec::new();
@@ -627,15 +710,33 @@ impl<D: Dynamics> System for ContactSystem<D> {
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
         }
         for h in added {
-            let state = if matches!(h.law, Law::Stick { .. }) { ContactMode::Stick } else { ContactMode::Slip };
+            let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
+            let state = if stuck { ContactMode::Stick } else { ContactMode::Slip };
             change(&mut self.changes, &self.mechanism, &h.pair, state);
             self.held.push(h);
         }
         Ok(())
     }
 
+    /// The contact rows after the mechanism's own: a rolling contact's
+    /// tangential rows hold velocities (module docs).
+    fn velocity_closures(&self) -> Vec<bool> {
+        let mut rows = vec![false; self.inner.closures()];
+        for h in &self.held {
+            let rolls = matches!(h.law, Law::Roll { .. });
+            rows.extend((0..h.rows::<D>()).map(|k| rolls && k > 0));
+        }
+        rows
+    }
+
     fn sampled(&mut self, _t: f64, q: &[f64], v: &[f64], multipliers: Option<&[f64]>) -> Result<()> {
         let contacts = self.report(q, v, multipliers)?;
+        // A rolling contact's tangents follow its normal, kept near the last.
+        for (h, c) in self.held.iter_mut().zip(&contacts) {
+            if let Law::Roll { tangents: kept } = &mut h.law {
+                *kept = tangents::<D>(&array_of(&c.normal), Some(kept));
+            }
+        }
         self.samples.push(contacts);
         Ok(())
     }

@@ -41,6 +41,16 @@ pub trait System {
         Ok(())
     }
 
+    /// Which closure rows hold velocities, not positions: for such a row $k$
+    /// the integrator holds $G_k(q)\dot q = 0$ and ignores $c_k$ (a contact
+    /// that rolls without slipping: its material points' relative velocity
+    /// along the surface is zero, which no function of $q$ alone says in
+    /// space). One entry per closure row, asked at the start and after each
+    /// [`System::switch`]. The default: none.
+    fn velocity_closures(&self) -> Vec<bool> {
+        vec![false; self.closures()]
+    }
+
     /// Writes $W$ ($m\times n$), the directions in which the closures'
     /// multipliers act: the equations of motion read
     /// $M\ddot q = f - W^T\lambda$. It is $G$ (given) for closures that do no

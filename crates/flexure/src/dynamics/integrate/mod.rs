@@ -39,8 +39,12 @@
 //! start of a step, whose $(i, j)$ block is
 //! $$\delta_{ij}M + h\thinspace a_{ij}D_t + h^2(A^2)_ {ij}K_t\quad\text{with
 //! closure rows } (A^2)_ {ij}G \text{ and columns } \delta_{ij}G^T,$$
-//! ($K_t = -\partial f/\partial q$, $D_t = -\partial f/\partial\dot q$):
-//! regular when $M$ is singular as long as the stiffness holds the
+//! ($K_t = -\partial f/\partial q$, $D_t = -\partial f/\partial\dot q$).
+//! A closure row that holds velocities
+//! ([`System::velocity_closures`]: a rolling contact) reads
+//! $G_k(Q_i)\dot Q_i/h = 0$ instead, with the row $a_{ij}G_k$: an index-2
+//! constraint, for which Radau IIA converges too (Hairer & Wanner, *Solving
+//! ODEs II*, VII.4). The matrix is regular when $M$ is singular as long as the stiffness holds the
 //! massless directions, and at any step size. The new state is
 //! $(q_1, \dot q_1) = (Q_3, \dot Q_3)$, as $c_3 = 1$. As in RADAU5, the
 //! matrix's data $M$, $K_t$, $D_t$, $G$ are kept over the following steps

@@ -89,8 +89,14 @@ pub(super) fn solve<S: System + ?Sized>(
                 }
                 w.r[i * n + r] = -s;
             }
+            // A position row's residual is c/h², a velocity row's G v/h: each
+            // the stage accelerations' scale (their rows in `factor` agree).
             for k in 0..m {
-                w.r[3 * n + i * m + k] = -w.closure[k] / (h * h);
+                w.r[3 * n + i * m + k] = if w.velocity[k] {
+                    -(0..n).map(|c| w.jac[c * m + k] * vi[c]).sum::<f64>() / h
+                } else {
+                    -w.closure[k] / (h * h)
+                };
             }
             if w.staged {
                 w.stage_mass[i * n * n..(i + 1) * n * n].copy_from_slice(&w.mass);
@@ -205,7 +211,8 @@ pub(super) fn factor(rk: &Radau, w: &mut Work, h: f64) -> bool {
                     w.matrix[(j * n + c) * big + i * n + r] = diag * mass + ha * w.d0[k] + h2a * w.k0[k];
                 }
                 for k in 0..m {
-                    w.matrix[(j * n + c) * big + 3 * n + i * m + k] = rk.a2[i][j] * w.g0[c * m + k];
+                    let a = if w.velocity[k] { rk.a[i][j] } else { rk.a2[i][j] };
+                    w.matrix[(j * n + c) * big + 3 * n + i * m + k] = a * w.g0[c * m + k];
                 }
             }
         }

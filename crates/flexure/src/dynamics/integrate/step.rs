@@ -57,6 +57,7 @@ pub(super) fn advance<S: System + ?Sized>(
     let (n, mut m) = (system.dim(), system.closures());
     let rk = Radau::new();
     let mut w = Work::new(n, m);
+    w.velocity = system.velocity_closures();
     let times = settings.times();
     let duration = settings.duration;
     let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
@@ -351,6 +352,7 @@ fn enter<S: System + ?Sized>(
         *w = Work::new(w.n, system.closures());
         w.staged = staged;
     }
+    w.velocity = system.velocity_closures();
     w.prev_h = 0.0;
     event::project(system, t, (q, v), PROJECTION_STEP * settings.every.min(settings.max_step))?;
     event::guards(system, q, v, None, g_now)?;

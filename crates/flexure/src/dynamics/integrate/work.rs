@@ -24,6 +24,8 @@ pub(super) struct Work {
     pub(super) w0: Vec<f64>,
     pub(super) w_start: Vec<f64>,
     pub(super) forces: Vec<f64>,
+    /// Which closure rows hold velocities ([`System::velocity_closures`](crate::dynamics::System::velocity_closures)).
+    pub(super) velocity: Vec<bool>,
     /// The step for which `matrix` and `e` hold their LU factors (NaN: none).
     pub(super) factored: f64,
     /// The last accepted step's unknowns and length (0 before the first):
@@ -120,6 +122,7 @@ impl Work {
             dv: z(3 * n),
             dq_prev: z(3 * n),
             dv_prev: z(3 * n),
+            velocity: vec![false; m],
             staged: false,
             stage_mass: z(3 * n * n),
         }
