@@ -154,8 +154,13 @@ def test_a_dropped_ball_lands_and_rests_on_the_floor():
             assert c["state"] == "open" and c["normal_force"] == 0.0 and c["gap"] > 0.0
 
 
-def test_rolling_friction_in_motion_is_refused_by_name():
-    """A ball on a turning arm touching a rough floor rolls: the run stops there, naming it."""
+def test_a_pendulum_swung_onto_a_rough_floor_rests_on_it():
+    """Reference: statics of the arm on its pin. Its bob (0.02 m, 0.2 m out, where its mass
+    is) swung from level onto a rough floor 0.1 m below the pin, where the ball rolls: the
+    gap stops its one coordinate at sin(phi) = -0.08/0.2, the bob stuck (its friction row
+    left out: nothing is left to slide), pushed by N = m g (moments about the pin); the
+    angle to 1e-9 rad, N to 1e-6 of m g. Friction where a contact rolls was refused in
+    motion before."""
     arm = """
 gravity = [0.0, -9.81]
 [[joint]]
@@ -181,8 +186,15 @@ origin = [0.0, -0.1]
 normal = [0.0, 1.0]
 friction = 0.3
 """
-    with pytest.raises(Exception, match=r"friction = 0.3 \(geom \"bob\" \(circle\) and geom \"floor\""):
-        flexure.Mechanism.from_toml(arm).simulate(1.0, start="rest")
+    run = flexure.Mechanism.from_toml(arm).simulate(0.5, every=0.05, tolerance=1e-9, start="rest")
+    assert run.get("stopped") is None, run.get("stopped")
+    assert [c["state"] for c in run["changes"]][-1] == "stick"
+    rest = run["changes"][-1]["time"]
+    for t, phi, contacts in zip(run["time"], run["coordinates"]["pin"], run["contacts"]):
+        if t > rest:
+            (c,) = contacts
+            assert c["state"] == "stick" and abs(c["normal_force"] - 9.81) < 1e-6 * 9.81, c
+            assert abs(phi[0] + math.asin(0.4)) < 1e-9, phi
 
 
 def test_a_ball_on_a_rough_floor_sticks_until_pulled_past_its_friction():

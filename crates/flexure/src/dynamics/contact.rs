@@ -48,8 +48,11 @@
 //! the largest the contact has had. A contact that touches while its parts
 //! approach ($\dot g_c < 0$) takes a perfectly inelastic impact (the
 //! integrator's projection onto the new closures: the energy never grows);
-//! with friction it slides on in the direction it moved, or sticks where it
-//! touched without sliding. A pair that reaches zero gap without approaching
+//! with friction it slides on the way it moves after the impact (which can
+//! turn a slide back: a turning body takes the normal impulse too), or
+//! sticks where it touched without sliding. A stuck contact's rows that
+//! depend on the rows before them are left out (a Gram–Schmidt of $G$):
+//! what they would hold is held, and their force is indeterminate. A pair that reaches zero gap without approaching
 //! is not held: it touches when it presses in. A contact that pulls at its
 //! first step is let go there.
 //!
@@ -108,6 +111,10 @@ struct Held {
     rolls: bool,
     /// Coulomb's $\mu$ of the pair.
     mu: f64,
+    /// Its stuck rows left out, each dependent on the rows before it (a
+    /// pendulum's bob on a floor: the gap stops its one coordinate, and
+    /// nothing is left to slide): [`ContactSystem::prune`].
+    dropped: [bool; 3],
     /// The last push (N) and friction force (world) reported, and the largest push it has carried.
     force: f64,
     friction: [f64; 3],
@@ -115,9 +122,31 @@ struct Held {
 }
 
 impl Held {
-    /// Its closure rows: the point's components when stuck, else the gap.
+    /// Its closure rows: the point's components when stuck (a rolling one:
+    /// its gap, then its tangents), else the gap; each with whether it is
+    /// held (not [`Held::dropped`]).
+    fn all_rows<D: Dynamics>(&self) -> impl Iterator<Item = bool> + '_ {
+        let all = if matches!(self.law, Law::Stick { .. } | Law::Roll { .. }) { D::POINT_DIM } else { 1 };
+        (0..all).map(|k| !self.dropped[k])
+    }
+
+    /// The number of its rows held.
     fn rows<D: Dynamics>(&self) -> usize {
-        if matches!(self.law, Law::Stick { .. } | Law::Roll { .. }) { D::POINT_DIM } else { 1 }
+        self.all_rows::<D>().filter(|&held| held).count()
+    }
+
+    /// Where each of its rows sits among the closures, its first held row
+    /// at `first` (`None`: left out, or beyond its rows).
+    fn slots<D: Dynamics>(&self, first: usize) -> [Option<usize>; 3] {
+        let mut slots = [None; 3];
+        let mut next = first;
+        for (k, held) in self.all_rows::<D>().enumerate() {
+            if held {
+                slots[k] = Some(next);
+                next += 1;
+            }
+        }
+        slots
     }
 }
 
@@ -223,6 +252,7 @@ impl<D: Dynamics> ContactSystem<D> {
                 system.held.push(h);
             }
         }
+        system.prune(q0)?;
         Ok(system)
     }
 
@@ -250,6 +280,7 @@ impl<D: Dynamics> ContactSystem<D> {
             law: Law::Free,
             rolls: false,
             mu,
+            dropped: [false; 3],
             force: 0.0,
             friction: [0.0; 3],
             largest: 0.0,
@@ -414,6 +445,57 @@ impl<D: Dynamics> ContactSystem<D> {
         })
     }
 
+    /// Leaves out each stuck contact's rows that depend on the rows before
+    /// them at `q`: Gram–Schmidt over $G$'s rows in order, a row whose
+    /// remainder is under $10^{-9}$ of the largest row being dependent. Its force is
+    /// indeterminate (a pendulum's bob stopped on a rough floor: the gap row
+    /// stops its one coordinate, and no friction is needed to hold it), and
+    /// held, it would make the closures singular. A rolling contact's gap row
+    /// is never left out; its friction along a row left out is reported 0.
+    fn prune(&mut self, q: &[f64]) -> Result<()> {
+        for h in &mut self.held {
+            h.dropped = [false; 3];
+        }
+        let (n, m, m0) = (self.dim(), self.closures(), self.inner.closures());
+        let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
+        self.closure(q, &mut c, &mut g)?;
+        let mut basis: Vec<Vec<f64>> = Vec::new();
+        // The largest row: a row all of rounding's size (a slider's motion
+        // across itself, cos(π/2)) is no row.
+        let row_size = |r: usize| (0..n).map(|col| g[col * m + r].powi(2)).sum::<f64>().sqrt();
+        let scale = (0..m).map(row_size).fold(0.0, f64::max);
+        // Adds row `r` of G to the basis if it is independent of it.
+        let mut independent = |r: usize| {
+            let mut rest: Vec<f64> = (0..n).map(|col| g[col * m + r]).collect();
+            let size = row_size(r).max(scale);
+            for b in &basis {
+                let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
+                rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
+            }
+            let left = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let kept = left > 1e-9 * size;
+            if kept {
+                basis.push(rest.iter().map(|x| x / left).collect());
+            }
+            kept
+        };
+        (0..m0).for_each(|r| {
+            independent(r);
+        });
+        let firsts = self.first_rows();
+        for (h, first) in self.held.iter_mut().zip(firsts) {
+            let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
+            for (k, slot) in h.slots::<D>(first).into_iter().enumerate() {
+                let Some(r) = slot else { continue };
+                let rolls_gap = k == 0 && matches!(h.law, Law::Roll { .. });
+                if !independent(r) && stuck && !rolls_gap {
+                    h.dropped[k] = true;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The first row of each touching contact among the closures.
     fn first_rows(&self) -> Vec<usize> {
         let mut row = self.inner.closures();
@@ -443,11 +525,14 @@ impl<D: Dynamics> ContactSystem<D> {
             (_, None) => (h.force, vector::<D>(&h.friction)),
             (Law::Roll { tangents: kept }, Some(l)) => {
                 let units = tangents::<D>(&array::<D>(&n), Some(&kept));
-                let along = (0..D::POINT_DIM - 1).map(|k| scaled::<D>(&vector::<D>(&units[k]), -l[row + 1 + k]));
+                let slots = h.slots::<D>(row);
+                let along = (0..D::POINT_DIM - 1)
+                    .filter_map(|k| slots[1 + k].map(|r| scaled::<D>(&vector::<D>(&units[k]), -l[r])));
                 (-l[row], along.fold(D::Vector::default(), |a, b| a + b))
             }
             (Law::Stick { .. }, Some(l)) => {
-                let force = scaled::<D>(&vector::<D>(&array_of(&l[row..row + D::POINT_DIM])), -1.0);
+                let held = h.slots::<D>(row).map(|r| r.map_or(0.0, |r| l[r]));
+                let force = scaled::<D>(&vector::<D>(&held), -1.0);
                 let push = dot::<D>(&n, &force);
                 (push, force - scaled::<D>(&n, push))
             }
@@ -543,15 +628,16 @@ impl<D: Dynamics> System for ContactSystem<D> {
         for (i, row) in self.first_rows().into_iter().enumerate() {
             let slope = self.settle(i, q)?;
             let h = self.held[i];
+            let slots = h.slots::<D>(row);
             if let Law::Stick { anchor } = h.law {
                 let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, Some(vector::<D>(&anchor)))?;
                 let body = &self.frames.bodies[p.shape.body];
                 let a = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&anchor), 1.0));
                 let offset = D::position(&p.x) - D::position(&a);
-                for k in 0..D::POINT_DIM {
-                    c[row + k] = offset[k];
+                for (k, r) in slots.iter().enumerate().take(D::POINT_DIM).filter_map(|(k, r)| r.map(|r| (k, r))) {
+                    c[r] = offset[k];
                     for col in 0..n {
-                        g[col * rows + row + k] = p.delta[col][k];
+                        g[col * rows + r] = p.delta[col][k];
                     }
                 }
             } else {
@@ -567,9 +653,10 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 let delta = self.material_delta(&h, &p, q)?;
                 let units = tangents::<D>(&array::<D>(&slope.normal), Some(&kept));
                 for (k, u) in units[..D::POINT_DIM - 1].iter().map(vector::<D>).enumerate() {
-                    c[row + 1 + k] = 0.0;
+                    let Some(r) = slots[1 + k] else { continue };
+                    c[r] = 0.0;
                     for col in 0..n {
-                        g[col * rows + row + 1 + k] = dot::<D>(&u, &delta[col]);
+                        g[col * rows + r] = dot::<D>(&u, &delta[col]);
                     }
                 }
             }
@@ -623,7 +710,18 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let tolerance = self.tolerance;
             let h = &mut self.held[i];
             (out[2 * i], out[2 * i + 1]) = match multipliers {
-                None => (1.0, 1.0),
+                None => {
+                    // Just after a switch, the velocities moved onto the
+                    // closures (an impact can turn a slide back): a real
+                    // slide is measured from where it now goes.
+                    let speed = dot::<D>(&r.slide, &r.slide).sqrt();
+                    if let Law::Slip { from, fastest } = &mut h.law
+                        && speed > self.creep
+                    {
+                        (*from, *fastest) = (array::<D>(&scaled::<D>(&r.slide, 1.0 / speed)), speed);
+                    }
+                    (1.0, 1.0)
+                }
                 // Pulling from its first step: let go where it began to hold,
                 // as if the push had crossed zero there.
                 Some(_) if h.largest <= 0.0 && r.push < 0.0 => (-1e12, 1.0),
@@ -715,7 +813,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             change(&mut self.changes, &self.mechanism, &h.pair, state);
             self.held.push(h);
         }
-        Ok(())
+        self.prune(q)
     }
 
     /// The contact rows after the mechanism's own: a rolling contact's
@@ -724,7 +822,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
         let mut rows = vec![false; self.inner.closures()];
         for h in &self.held {
             let rolls = matches!(h.law, Law::Roll { .. });
-            rows.extend((0..h.rows::<D>()).map(|k| rolls && k > 0));
+            rows.extend(h.all_rows::<D>().enumerate().filter(|(_, held)| *held).map(|(k, _)| rolls && k > 0));
         }
         rows
     }

@@ -4,6 +4,11 @@
 //! on the guards at the bracket's ends, until one ends on it ($\lvert g\rvert \le 1$).
 //! Each aimed step is a whole Radau step from the last state accepted, so
 //! the state landed on is as accurate as any other.
+//! An aimed step holds the closures at its start's violation (see
+//! `newton`), and its guards read the multipliers of the equations of
+//! motion at its end ([`consistent_multipliers`]), not the step's own: a
+//! short step's own err by the start's violation over $h^2$, and a push
+//! falling to zero is a guard.
 
 use crate::dynamics::System;
 
@@ -188,4 +193,70 @@ pub(super) fn project<S: System + ?Sized>(
     crate::linalg::lu_solve(&kkt, big, &pivots, &mut rhs);
     v.iter_mut().zip(&rhs).for_each(|(v, dv)| *v += dv);
     Ok(())
+}
+
+/// The closures' multipliers at $(q, \dot q, t)$ from the equations of
+/// motion themselves, independent of any step:
+/// $$\begin{bmatrix}M & W^T\cr G & 0\end{bmatrix}\begin{bmatrix}\ddot q\cr\lambda\end{bmatrix} = \begin{bmatrix}f\cr -\dot G\dot q\end{bmatrix},$$
+/// $\dot G\dot q$ by a central difference of $G$ along $\dot q$ (the
+/// closures' acceleration held at zero; a velocity row's too). A step's own
+/// multipliers correct its start's closure violation $\epsilon$ with forces
+/// of order $\epsilon/h^2$, which swamp a push that falls to zero on the short
+/// steps aimed at its event; these do not. `None` where $M$ is singular
+/// (directions without inertia, or with less than $10^{-10}$ of the
+/// largest) or the matrix is: the step's own then serve.
+pub(super) fn consistent_multipliers<S: System + ?Sized>(
+    system: &mut S,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> crate::error::Result<Option<Vec<f64>>> {
+    let (n, m) = (system.dim(), system.closures());
+    let big = n + m;
+    let (mut mass, mut force) = (vec![0.0; n * n], vec![0.0; n]);
+    let (mut c, mut g, mut w) = (vec![0.0; m], vec![0.0; m * n], vec![0.0; m * n]);
+    system.dynamics(q, v, t, &mut mass, &mut force)?;
+    // Only where every direction has inertia: elsewhere these equations
+    // leave the multipliers to the stiffness, which the step's own hold.
+    let largest_mass = (0..n).map(|i| mass[i * n + i]).fold(0.0, f64::max);
+    let regular = nalgebra::DMatrix::from_column_slice(n, n, &mass)
+        .cholesky()
+        .is_some_and(|l| l.l_dirty().diagonal().iter().all(|d| d * d > 1e-10 * largest_mass));
+    if !regular {
+        return Ok(None);
+    }
+    // Ġ q̇ first, so that the closures are last evaluated at q itself.
+    let speed = super::largest(v);
+    let mut rate = vec![0.0; m];
+    if speed > 0.0 {
+        let delta = 1e-6 * (1.0 + super::largest(q)) / speed;
+        let mut moved = q.to_vec();
+        for (sign, scale) in [(1.0, 0.5 / delta), (-1.0, -0.5 / delta)] {
+            moved.iter_mut().zip(q.iter().zip(v)).for_each(|(x, (q, v))| *x = q + sign * delta * v);
+            system.closure(&moved, &mut c, &mut g)?;
+            for (k, r) in rate.iter_mut().enumerate() {
+                *r += scale * (0..n).map(|col| g[col * m + k] * v[col]).sum::<f64>();
+            }
+        }
+    }
+    system.closure(q, &mut c, &mut g)?;
+    system.closure_forces(q, v, &g, &mut w)?;
+    let mut kkt = vec![0.0; big * big];
+    for col in 0..n {
+        for row in 0..n {
+            kkt[col * big + row] = mass[col * n + row];
+        }
+        for k in 0..m {
+            kkt[col * big + n + k] = g[col * m + k];
+            kkt[(n + k) * big + col] = w[col * m + k];
+        }
+    }
+    let mut pivots = vec![0; big];
+    if !crate::linalg::lu(&mut kkt, big, &mut pivots) {
+        return Ok(None);
+    }
+    let mut rhs: Vec<f64> = force.iter().copied().chain(rate.iter().map(|r| -r)).collect();
+    crate::linalg::lu_solve(&kkt, big, &pivots, &mut rhs);
+    let lambda = rhs.split_off(n);
+    Ok(lambda.iter().all(|x| x.is_finite()).then_some(lambda))
 }

@@ -3,6 +3,13 @@
 //! needed it, with each stage's own mass matrix, factored at every
 //! iteration), its start from the last step's collocation polynomial, and
 //! RADAU5's stopping test.
+//!
+//! A step aimed at an event ([`Work::carry`]) holds each closure at its
+//! start's violation, $c(Q_i) = c(q_0)$, rather than at zero: aimed steps can
+//! be very short, and correcting a violation $\epsilon$ within a step $h$
+//! moves the velocities by $\epsilon/h$, which on a step of $10^{-11}$ s from
+//! a violation of $10^{-16}$ m is a velocity error of $10^{-5}$ m/s. The steps
+//! after the event correct it.
 
 use super::fatal;
 use super::norm::{scaled_dot, scaled_norm};
@@ -95,7 +102,7 @@ pub(super) fn solve<S: System + ?Sized>(
                 w.r[3 * n + i * m + k] = if w.velocity[k] {
                     -(0..n).map(|c| w.jac[c * m + k] * vi[c]).sum::<f64>() / h
                 } else {
-                    -w.closure[k] / (h * h)
+                    -(w.closure[k] - if w.carry { w.violation[k] } else { 0.0 }) / (h * h)
                 };
             }
             if w.staged {

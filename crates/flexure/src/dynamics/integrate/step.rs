@@ -163,6 +163,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g_start)?;
                     system.closure_forces(&q, &v, &w.g_start, &mut w.w_start)?;
+                    w.violation.copy_from_slice(&w.closure);
                 }
                 fresh = true;
                 current = false;
@@ -184,6 +185,9 @@ pub(super) fn advance<S: System + ?Sized>(
                 stale = false;
                 current = true;
             }
+            // Aimed at an event, a step may be very short: it carries its
+            // start's closure violation rather than correct it (module docs of `newton`).
+            w.carry = pending.is_some();
             let attempt = attempt(
                 system,
                 &rk,
@@ -208,7 +212,13 @@ pub(super) fn advance<S: System + ?Sized>(
                     } else {
                         q1.copy_from_slice(qn);
                         v1.copy_from_slice(vn);
-                        let lambda = &w.x[3 * n + 2 * m..3 * n + 3 * m];
+                        // Aimed at an event, the step is short: its guards take
+                        // the multipliers of the equations themselves.
+                        let consistent = match pending.is_some() && m > 0 {
+                            true => event::consistent_multipliers(system, t + step, &q1, &v1)?,
+                            false => None,
+                        };
+                        let lambda = consistent.as_deref().unwrap_or(&w.x[3 * n + 2 * m..3 * n + 3 * m]);
                         let verdict = event::guards(system, &q1, &v1, Some(lambda), &mut g_end)
                             .map(|()| event::verdict(&g_now, &g_end, pending.as_ref()));
                         let checked = match verdict {

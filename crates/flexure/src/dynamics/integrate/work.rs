@@ -26,6 +26,11 @@ pub(super) struct Work {
     pub(super) forces: Vec<f64>,
     /// Which closure rows hold velocities ([`System::velocity_closures`](crate::dynamics::System::velocity_closures)).
     pub(super) velocity: Vec<bool>,
+    /// The closures' violation $c(q_0)$ at the step's start, and whether the
+    /// step holds it rather than correct it (an aimed step: module docs of
+    /// `newton`).
+    pub(super) violation: Vec<f64>,
+    pub(super) carry: bool,
     /// The step for which `matrix` and `e` hold their LU factors (NaN: none).
     pub(super) factored: f64,
     /// The last accepted step's unknowns and length (0 before the first):
@@ -123,6 +128,8 @@ impl Work {
             dq_prev: z(3 * n),
             dv_prev: z(3 * n),
             velocity: vec![false; m],
+            violation: vec![0.0; m],
+            carry: false,
             staged: false,
             stage_mass: z(3 * n * n),
         }
