@@ -683,3 +683,44 @@ fn stuck_rows_that_nothing_could_slide_are_left_out() {
     let last = run.contacts.last().unwrap()[0].clone();
     assert!((last.normal_force - 2.0 * G).abs() < 1e-6 * 2.0 * G, "{last:?}");
 }
+
+/// The disc of [`disc`] on a rough floor ($\mu = 0.2$) pushed at its hub by
+/// a force growing as $kt$ ($k = 40$ N/s): it rolls, its friction $F/3$
+/// (for $I = mr^2/2$), until that reaches $\mu mg$ at $t^* = 3\mu mg/k$
+/// (0.2943 s); then it slides, $m\ddot x = kt - \mu mg$, spun by
+/// $I\ddot\varphi = -\mu mgr$. The slip to 1e-6 s, the hub to 1e-8 m and the
+/// turn to 1e-8 m of rim at each sample; a slide that starts from stuck
+/// keeps the way its stuck force pulled it (its first speeds are the
+/// rolling rows' rounding, which can point anywhere).
+#[test]
+fn a_disc_pushed_on_a_rough_floor_rolls_then_slides_as_the_closed_form_says() {
+    let (m, r, i, mu, k) = (2.0, 0.05, 0.0025, 0.2, 40.0);
+    let text = format!(
+        "{}[[force]]\nname = \"push\"\nbody = \"disc\"\nforce = [0.0, 0.0]\n\
+         [[schedule]]\nload = \"force.push.fx\"\npoints = [[0.0, 0.0], [1.0, {k}]]\n",
+        disc(mu, 0.0)
+    );
+    let run = simulate(&from_toml(&text).unwrap(), &settings(0.5, 0.01, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let slip = 3.0 * mu * m * G / k;
+    let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    assert!(states.len() == 1 && states[0].0 == ContactMode::Slip, "{states:?}");
+    assert!((states[0].1 - slip).abs() < 1e-6, "slid from {} s, not {slip}", states[0].1);
+    // Rolling: x = k t³/(9 m) (a = 2F/3m), φ = -x/r; then sliding from there.
+    let (x_star, v_star) = (k * slip.powi(3) / (9.0 * m), k * slip * slip / (3.0 * m));
+    let alpha = -mu * m * G * r / i;
+    for (n, &t) in run.time.iter().enumerate().skip(1) {
+        let q = run.q(n);
+        let (x, phi) = match t <= slip {
+            true => (k * t.powi(3) / (9.0 * m), -k * t.powi(3) / (9.0 * m * r)),
+            false => {
+                let d = t - slip;
+                let x =
+                    x_star + v_star * d + (k * (slip * d * d / 2.0 + d.powi(3) / 6.0) - mu * m * G * d * d / 2.0) / m;
+                (x, -x_star / r - v_star / r * d + alpha * d * d / 2.0)
+            }
+        };
+        assert!((q[0] - x).abs() < 1e-8, "t = {t}: x {}, not {x}", q[0]);
+        assert!((q[2] - phi).abs() * r < 1e-8, "t = {t}: turned {}, not {phi}", q[2]);
+    }
+}

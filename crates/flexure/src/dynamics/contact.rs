@@ -711,11 +711,15 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let h = &mut self.held[i];
             (out[2 * i], out[2 * i + 1]) = match multipliers {
                 None => {
-                    // Just after a switch, the velocities moved onto the
-                    // closures (an impact can turn a slide back): a real
-                    // slide is measured from where it now goes.
+                    // Just after a touch, the velocities moved onto the
+                    // closures (an impact can turn a slide back): a slide
+                    // that moved into the touch is measured from where it
+                    // now goes. (One that starts from stuck, `fastest` 0,
+                    // keeps the way its stuck force pulled it: its speed is
+                    // still the closures' rounding.)
                     let speed = dot::<D>(&r.slide, &r.slide).sqrt();
                     if let Law::Slip { from, fastest } = &mut h.law
+                        && *fastest > 0.0
                         && speed > self.creep
                     {
                         (*from, *fastest) = (array::<D>(&scaled::<D>(&r.slide, 1.0 / speed)), speed);
