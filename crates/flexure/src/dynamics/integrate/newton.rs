@@ -5,7 +5,8 @@
 //! RADAU5's stopping test.
 //!
 //! A step aimed at an event ([`Work::carry`]) holds each closure at its
-//! start's violation, $c(Q_i) = c(q_0)$, rather than at zero: aimed steps can
+//! start's violation, $c(Q_i) = c(q_0)$ (a velocity row at its start's
+//! rate, $G_k\dot Q_i = G_k\dot q_0$), rather than at zero: aimed steps can
 //! be very short, and correcting a violation $\epsilon$ within a step $h$
 //! moves the velocities by $\epsilon/h$, which on a step of $10^{-11}$ s from
 //! a violation of $10^{-16}$ m is a velocity error of $10^{-5}$ m/s. The steps
@@ -99,10 +100,11 @@ pub(super) fn solve<S: System + ?Sized>(
             // A position row's residual is c/h², a velocity row's G v/h: each
             // the stage accelerations' scale (their rows in `factor` agree).
             for k in 0..m {
+                let carried = if w.carry { w.violation[k] } else { 0.0 };
                 w.r[3 * n + i * m + k] = if w.velocity[k] {
-                    -(0..n).map(|c| w.jac[c * m + k] * vi[c]).sum::<f64>() / h
+                    -((0..n).map(|c| w.jac[c * m + k] * vi[c]).sum::<f64>() - carried) / h
                 } else {
-                    -(w.closure[k] - if w.carry { w.violation[k] } else { 0.0 }) / (h * h)
+                    -(w.closure[k] - carried) / (h * h)
                 };
             }
             if w.staged {

@@ -163,7 +163,13 @@ pub(super) fn advance<S: System + ?Sized>(
                 if m > 0 {
                     system.closure(&q, &mut w.closure, &mut w.g_start)?;
                     system.closure_forces(&q, &v, &w.g_start, &mut w.w_start)?;
-                    w.violation.copy_from_slice(&w.closure);
+                    // A velocity row's violation is its rate, G q̇.
+                    for k in 0..m {
+                        w.violation[k] = match w.velocity[k] {
+                            true => (0..n).map(|c| w.g_start[c * m + k] * v[c]).sum(),
+                            false => w.closure[k],
+                        };
+                    }
                 }
                 fresh = true;
                 current = false;
