@@ -724,3 +724,41 @@ fn a_disc_pushed_on_a_rough_floor_rolls_then_slides_as_the_closed_form_says() {
         assert!((q[2] - phi).abs() * r < 1e-8, "t = {t}: turned {}, not {phi}", q[2]);
     }
 }
+
+/// The ball of [`incline`] thrown up the rough 30° incline ($\mu = 0.3 <
+/// \tan 30°$) at 1 m/s: it slides up slowed by $g(\sin\theta + \mu\cos\theta)$,
+/// turns back at $t_1 = v_0/g(\sin\theta + \mu\cos\theta)$ (0.1342 s) and
+/// slides down at $g(\sin\theta - \mu\cos\theta)$, its friction $\mu N$ turned
+/// over. Stuck at the top it would need $mg\sin\theta > \mu N$: the equations
+/// of motion say so where its slide stops, and it slides on the other way
+/// there, one change, not a stick and a slip at once. The turn to 1e-8 s
+/// (measured 7e-11: the friction keeps pushing against the slide's way
+/// until the event, so the slide crosses zero where the motion does; turned
+/// over with the slide it held it near zero, and the turn landed 4e-6 s
+/// late), the travel to 1e-8 m, the friction to 1e-6 of $mg$.
+#[test]
+fn a_ball_thrown_up_a_rough_incline_turns_back_without_sticking() {
+    let (m, mu, v0, theta) = (2.0, 0.3, 1.0, 30f64.to_radians());
+    let (sin, cos) = theta.sin_cos();
+    let text = format!("{}[initial_velocity]\nx = {}\ny = {}\n", incline(mu), -v0 * cos, v0 * sin);
+    let run = simulate(&from_toml(&text).unwrap(), &settings(0.4, 0.02, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let (up, down) = (G * (sin + mu * cos), G * (sin - mu * cos));
+    let turn = v0 / up;
+    let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+    assert!(states.len() == 1 && states[0].0 == ContactMode::Slip, "{states:?}");
+    assert!((states[0].1 - turn).abs() < 1e-8, "turned at {} s, not {turn}", states[0].1);
+    for (k, &t) in run.time.iter().enumerate().skip(1) {
+        // Down the slope: along (cos θ, -sin θ).
+        let s = match t < turn {
+            true => -(v0 * t - up * t * t / 2.0),
+            false => -v0 * v0 / (2.0 * up) + down * (t - turn).powi(2) / 2.0,
+        };
+        let q = run.q(k);
+        assert!((q[0] * cos - q[1] * sin - s).abs() < 1e-8, "t = {t}: {q:?}, not {s} down");
+        let c = &run.contacts[k][0];
+        let along = c.friction_force[0] * cos - c.friction_force[1] * sin;
+        let friction = if t < turn { mu * m * G * cos } else { -mu * m * G * cos };
+        assert!((along - friction).abs() < 1e-6 * m * G, "t = {t}: {c:?}");
+    }
+}

@@ -62,6 +62,7 @@
 //! bare end with friction would roll onto its span; and a start where a part
 //! overlaps a geom.
 
+use super::integrate::consistent_multipliers;
 use super::mechanism::Dynamics;
 use super::schedule::ScheduledSystem;
 use super::system::System;
@@ -496,6 +497,35 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(())
     }
 
+    /// Each contact of `stopped` (its pair and place) that
+    /// a slide stopped and that, stuck at $(q, \dot q, t)$, needs more than
+    /// its friction by the equations of motion themselves
+    /// ([`consistent_multipliers`]): it slides on, the other way, toward
+    /// where the stuck force pulls it (its slide turned back rather than
+    /// stopped), and the change said is a slide.
+    fn slide_on(&mut self, stopped: &[(Pair, Option<f64>)], t: f64, (q, v): (&[f64], &[f64])) -> Result<()> {
+        if stopped.is_empty() {
+            return Ok(());
+        }
+        let Some(lambda) = consistent_multipliers(self, t, q, v)? else { return Ok(()) };
+        let rows = self.first_rows();
+        let mut changed = false;
+        for (pair, s) in stopped {
+            let Some(i) = self.held.iter().position(|h| h.pair == *pair && h.s == *s) else { continue };
+            let r = self.read(i, rows[i], (q, v), Some(&lambda))?;
+            let h = &mut self.held[i];
+            let size = dot::<D>(&r.friction, &r.friction).sqrt();
+            if size > h.mu * r.push * (1.0 + self.tolerance) && size > 0.0 {
+                h.law = Law::Slip { from: array::<D>(&scaled::<D>(&r.friction, -1.0 / size)), fastest: 0.0 };
+                if let Some(c) = self.changes.iter_mut().rev().find(|c| c.contact == column(&self.mechanism, &h.pair)) {
+                    c.state = ContactMode::Slip;
+                }
+                changed = true;
+            }
+        }
+        if changed { self.prune(q) } else { Ok(()) }
+    }
+
     /// The first row of each touching contact among the closures.
     fn first_rows(&self) -> Vec<usize> {
         let mut row = self.inner.closures();
@@ -545,8 +575,18 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(Reading { slope, push, friction, slide, delta })
     }
 
-    /// $\hat s$: the slide `slide` with the direction it slid from, `from`, added at the creep speed.
+    /// $\hat s$: the slide `slide` with the direction it slid from, `from`,
+    /// added at the creep speed; `from` itself once the slide has turned
+    /// back from it. A slide turns back only through an event (it sticks,
+    /// or slides on the other way), which the steps land on: within a step
+    /// the friction keeps pushing against `from`, so the slide crosses zero
+    /// where the motion does, rather than being held near zero by a friction
+    /// that turns over with it (the steps aimed at the stop then found it
+    /// anywhere after the crossing).
     fn direction(&self, slide: &D::Vector, from: &D::Vector) -> D::Vector {
+        if dot::<D>(slide, from) <= 0.0 {
+            return *from;
+        }
         let s = *slide + scaled::<D>(from, self.creep);
         let size = dot::<D>(&s, &s).sqrt();
         if size > 0.0 { scaled::<D>(&s, 1.0 / size) } else { s }
@@ -772,6 +812,8 @@ impl<D: Dynamics> System for ContactSystem<D> {
         // The laws first, at the contacts' own rows (the last multipliers).
         let last = std::mem::take(&mut self.last);
         let rows = self.first_rows();
+        // The sliding contacts that stopped: stuck, unless that needs more than their friction.
+        let mut stopped = Vec::new();
         for &k in ks.iter().filter(|&&k| k < 2 * a && k % 2 == 1) {
             let i = k / 2;
             let r = self.read(i, rows[i], (q, v), Some(&last).filter(|l| !l.is_empty()).map(Vec::as_slice))?;
@@ -787,6 +829,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             };
             self.held[i].law = law;
             let state = if matches!(law, Law::Stick { .. } | Law::Roll { .. }) {
+                stopped.push((h.pair, h.s));
                 ContactMode::Stick
             } else {
                 ContactMode::Slip
@@ -817,7 +860,8 @@ impl<D: Dynamics> System for ContactSystem<D> {
             change(&mut self.changes, &self.mechanism, &h.pair, state);
             self.held.push(h);
         }
-        self.prune(q)
+        self.prune(q)?;
+        self.slide_on(&stopped, t, (q, v))
     }
 
     /// The contact rows after the mechanism's own: a rolling contact's

@@ -205,7 +205,7 @@ pub(super) fn project<S: System + ?Sized>(
 /// steps aimed at its event; these do not. `None` where $M$ is singular
 /// (directions without inertia, or with less than $10^{-10}$ of the
 /// largest) or the matrix is: the step's own then serve.
-pub(super) fn consistent_multipliers<S: System + ?Sized>(
+pub(crate) fn consistent_multipliers<S: System + ?Sized>(
     system: &mut S,
     t: f64,
     q: &[f64],

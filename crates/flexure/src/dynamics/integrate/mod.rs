@@ -109,6 +109,7 @@
 //! error estimate; the Radau IIA tableau.
 
 mod event;
+pub(crate) use event::consistent_multipliers;
 mod local_error;
 mod newton;
 mod norm;
