@@ -166,9 +166,10 @@ class Mechanism:
         its least gap, "open"), and changes lists where one touched or began to slide
         ("slip"), stuck ("stick") or opened ("open"): {time, contact, state}. A contact
         that touches while approaching takes a perfectly inelastic impact. Friction
-        holds where the touching point is material (a flexure's bare end, a ball whose
-        body only translates); where a contact with friction would roll the run stops
-        with ValueError naming it.
+        holds stuck where the touching point is material (a flexure's bare end, a ball
+        whose body only translates) and rolling without slipping where it is not
+        (inside a span, a ball that turns); where a spatial flexure touches with its
+        thickness, friction stops the run with ValueError naming it.
         `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
         error_estimate {position (m), angle (rad), at (s), reference_tolerance, samples,
         complete, position_tolerance (m)} is the largest difference of a body's pose from a
@@ -235,9 +236,10 @@ class Mechanism:
         flexure (or body, for a geom's touch), s (m along the flexure), point and normal
         (ground frame), normal_force (N, not negative), friction_force, gap (m) and state
         ("stick" held by friction, "slip" sliding or touching without friction, "open").
-        Friction holds where a flexure's bare end touches; where a contact with
-        friction would roll (inside a span, at a thick end, between two geoms)
-        it raises ValueError naming the geom's friction.
+        Friction holds where a flexure's bare end touches, and rolls without slipping
+        where a contact rolls (inside a span, at a thick strip's end in the plane,
+        between two geoms); in space a rolling contact's slide, and friction where a
+        flexure touches with its thickness, raise ValueError naming the friction.
 
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and
