@@ -1534,6 +1534,39 @@ mod tests {
         }
     }
 
+    /// The rows of a contact between two geoms of `m` (its first pair) in
+    /// each of `laws`, stuck rolling and sliding, against differences at a
+    /// state with the contact force `force`, the toucher's point `from` and
+    /// the material point `on`: the planar and spatial tests' one check.
+    fn rolling_rows_match_differences<D: Statics>(
+        m: &Mechanism<D>,
+        laws: [Law; 2],
+        force: [f64; 3],
+        from: [f64; 3],
+        on: [f64; 3],
+    ) {
+        let mut work = Workspace::new(m);
+        let all = pairs(m);
+        let mut problem = bare(m, &Settings::default(), &mut work);
+        let q = [0.2, 0.7, -0.3];
+        for law in laws {
+            let t = Touching {
+                pair: all[0],
+                place: Place::Geoms,
+                law,
+                force,
+                at: 0.0,
+                length: 1.0,
+                from,
+                on,
+                thick: false,
+            };
+            problem.touching = vec![t];
+            let x = problem.state(&q);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+    }
+
     /// As above, between two geoms that both move: a wheel on a sprung,
     /// sliding hub and a pad on a sprung arm, rolling stuck and sliding.
     #[test]
@@ -1545,30 +1578,11 @@ mod tests {
                     [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"circle\"\nradius = 0.4\nfriction = 0.3\n\
                     [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5]\nnormal = [0.0, 1.0]\n";
         let m = crate::mechanism::file::from_toml(text).unwrap();
-        let mut work = Workspace::new(&m);
-        let all = pairs(&m);
-        let mut problem = bare(&m, &Settings::default(), &mut work);
-        let q = [0.2, 0.7, -0.3];
         let rolling = [
             Law::Roll { tangents: tangents::<Planar>(&[0.1, 0.995, 0.0], None) },
             Law::Slip { direction: [1.0, 0.0, 0.0] },
         ];
-        for law in rolling {
-            let t = Touching {
-                pair: all[0],
-                place: Place::Geoms,
-                law,
-                force: [0.5, -0.2, 0.0],
-                at: 0.0,
-                length: 1.0,
-                from: [0.1, 0.45, 0.0],
-                on: [0.05, -0.38, 0.0],
-                thick: false,
-            };
-            problem.touching = vec![t];
-            let x = problem.state(&q);
-            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
-        }
+        rolling_rows_match_differences(&m, rolling, [0.5, -0.2, 0.0], [0.1, 0.45, 0.0], [0.05, -0.38, 0.0]);
     }
 
     /// The spatial rolling rows against differences: a ball on a hub that
@@ -1583,10 +1597,6 @@ mod tests {
                     [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"sphere\"\nradius = 0.4\nfriction = 0.3\n\
                     [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5, 0.0]\nnormal = [0.1, 1.0, 0.2]\n";
         let m = crate::mechanism::file::spatial_from_toml(text).unwrap();
-        let mut work = Workspace::new(&m);
-        let all = pairs(&m);
-        let mut problem = bare(&m, &Settings::default(), &mut work);
-        let q = [0.2, 0.7, -0.3];
         let n = [0.1f64, 0.98, 0.17];
         let size = n.iter().map(|v| v * v).sum::<f64>().sqrt();
         let n = n.map(|v| v / size);
@@ -1594,21 +1604,6 @@ mod tests {
             Law::Roll { tangents: tangents::<crate::space::Spatial>(&n, None) },
             Law::Slip { direction: [1.0, 0.0, 0.3] },
         ];
-        for law in rolling {
-            let t = Touching {
-                pair: all[0],
-                place: Place::Geoms,
-                law,
-                force: [0.5, -0.2, 0.3],
-                at: 0.0,
-                length: 1.0,
-                from: [0.1, 0.45, -0.05],
-                on: [0.05, -0.38, 0.1],
-                thick: false,
-            };
-            problem.touching = vec![t];
-            let x = problem.state(&q);
-            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
-        }
+        rolling_rows_match_differences(&m, rolling, [0.5, -0.2, 0.3], [0.1, 0.45, -0.05], [0.05, -0.38, 0.1]);
     }
 }
