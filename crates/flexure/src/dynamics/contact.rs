@@ -229,7 +229,7 @@ impl<D: Dynamics> ContactSystem<D> {
             // An equilibrium's contact with friction is at rest: stuck.
             if h.mu > 0.0 {
                 h.law = match h.rolls {
-                    true => system.rolling(&h, q0)?,
+                    true => rolling::<D>(&gap_slope(m, &system.frames, q0, &h.pair, h.s)?.normal),
                     false => Law::Stick { anchor: system.anchor(&h, q0)? },
                 };
             }
@@ -312,24 +312,29 @@ impl<D: Dynamics> ContactSystem<D> {
             return Ok(Law::Free);
         }
         let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
-        let delta = match h.rolls {
-            true => self.material_delta(h, &p, q)?,
-            false => p.delta.clone(),
+        // Rolling: its place and normal, for its material point and its tangents.
+        let slope = match h.rolls {
+            true => Some(gap_slope(&self.mechanism, &self.frames, q, &h.pair, h.s)?),
+            false => None,
+        };
+        let delta = match &slope {
+            Some(slope) => self.material_delta(h, &p, slope, q)?,
+            None => p.delta.clone(),
         };
         let slide = sliding::<D>(&delta, v, &low.normal);
         let speed = dot::<D>(&slide, &slide).sqrt();
-        Ok(match (speed > self.creep, h.rolls) {
+        Ok(match (speed > self.creep, &slope) {
             (true, _) => Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed },
-            (false, true) => self.rolling(h, q)?,
-            (false, false) => Law::Stick { anchor: self.anchor(h, q)? },
+            (false, Some(slope)) => rolling::<D>(&slope.normal),
+            (false, None) => Law::Stick { anchor: self.anchor(h, q)? },
         })
     }
 
-    /// The toucher's material point where `h` touches at `q` (`p` its point,
-    /// frames at `q`), as [`Law::Roll`]'s `on`, and the geom body's there (its frame).
-    fn material(&self, h: &Held, p: &PointJet<'_, D>, q: &[f64]) -> Result<([f64; 3], [f64; 3])> {
+    /// The toucher's material point where `h` touches (`p` its point,
+    /// `slope` its gap there, frames at its state), as [`material_jet`]'s
+    /// `on`, and the geom body's there (its frame).
+    fn material(&self, h: &Held, p: &PointJet<'_, D>, slope: &GapSlope<D>) -> Result<([f64; 3], [f64; 3])> {
         let (m, f) = (&self.mechanism, &self.frames);
-        let slope = gap_slope(m, f, q, &h.pair, h.s)?;
         let local = |body: usize| array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[body]), &slope.point)));
         let on = match (h.s, p.tangent()) {
             (Some(s), Some(t)) => on_flexure::<D>(s, &t, &slope.normal, p.half[0]),
@@ -339,17 +344,11 @@ impl<D: Dynamics> ContactSystem<D> {
     }
 
     /// The Jacobian of the motion of the toucher's material point where `h`
-    /// touches at `q`, relative to the geom body's there (`p` its point): a
-    /// rolling contact's slide is theirs.
-    fn material_delta(&self, h: &Held, p: &PointJet<'_, D>, q: &[f64]) -> Result<Vec<D::Vector>> {
-        let (on, anchor) = self.material(h, p, q)?;
+    /// touches at `q` (`p` its point, `slope` its gap there), relative to the
+    /// geom body's there: a rolling contact's slide is theirs.
+    fn material_delta(&self, h: &Held, p: &PointJet<'_, D>, slope: &GapSlope<D>, q: &[f64]) -> Result<Vec<D::Vector>> {
+        let (on, anchor) = self.material(h, p, slope)?;
         Ok(material_jet(&self.mechanism, &self.frames, q, &h.pair, &on, vector::<D>(&anchor))?.delta)
-    }
-
-    /// Contact `h` rolling stuck where it touches at `q` (frames at `q`).
-    fn rolling(&self, h: &Held, q: &[f64]) -> Result<Law> {
-        let normal = gap_slope(&self.mechanism, &self.frames, q, &h.pair, h.s)?.normal;
-        Ok(Law::Roll { tangents: tangents::<D>(&array::<D>(&normal), None) })
     }
 
     /// Whether body `a` only translates against body `b` (frames at Jacobian
@@ -546,7 +545,7 @@ impl<D: Dynamics> ContactSystem<D> {
         let h = self.held[i];
         let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
         let delta = match h.rolls && h.law != Law::Free {
-            true => self.material_delta(&h, &p, q)?,
+            true => self.material_delta(&h, &p, &slope, q)?,
             false => p.delta,
         };
         let n = slope.normal;
@@ -628,6 +627,11 @@ fn sliding<D: Dynamics>(delta: &[D::Vector], v: &[f64], n: &D::Vector) -> D::Vec
     velocity - scaled::<D>(n, dot::<D>(n, &velocity))
 }
 
+/// A contact rolling stuck where the geom's normal is `normal`: its tangents from it.
+fn rolling<D: Dynamics>(normal: &D::Vector) -> Law {
+    Law::Roll { tangents: tangents::<D>(&array::<D>(normal), None) }
+}
+
 /// `x`'s entries (two or three), padded with zeros to three.
 fn array_of(x: &[f64]) -> [f64; 3] {
     let mut a = [0.0; 3];
@@ -690,7 +694,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 // Velocity rows: its material points' relative velocity
                 // along the surface (`velocity_closures`); c is not read.
                 let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
-                let delta = self.material_delta(&h, &p, q)?;
+                let delta = self.material_delta(&h, &p, &slope, q)?;
                 let units = tangents::<D>(&array::<D>(&slope.normal), Some(&kept));
                 for (k, u) in units[..D::POINT_DIM - 1].iter().map(vector::<D>).enumerate() {
                     let Some(r) = slots[1 + k] else { continue };
@@ -824,7 +828,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                     let from = if size > 0.0 { scaled::<D>(&r.friction, -1.0 / size) } else { r.slide };
                     Law::Slip { from: array::<D>(&from), fastest: 0.0 }
                 }
-                _ if h.rolls => self.rolling(&h, q)?,
+                _ if h.rolls => rolling::<D>(&r.slope.normal),
                 _ => Law::Stick { anchor: self.anchor(&h, q)? },
             };
             self.held[i].law = law;
