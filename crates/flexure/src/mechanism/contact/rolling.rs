@@ -1,8 +1,9 @@
 //! What friction needs where a contact rolls: the two material points that
 //! touch (the toucher's and the geom body's), the surface's tangents there,
 //! and how far the surfaces have turned under the contact since they were
-//! pinned. Statics and motion both hold a rolling stuck contact by pinning
-//! these points along the surface, set anew as it rolls.
+//! pinned. Statics holds a rolling stuck contact by pinning these points
+//! along the surface, set anew as it rolls; motion holds their relative
+//! velocity at zero along the tangents (`dynamics/contact.rs`).
 
 use super::{Geom, Pair, PointJet, Touch, ball_and_other, dot, scaled, vector};
 use crate::error::Result;
