@@ -238,8 +238,8 @@ class Mechanism:
         ("stick" held by friction, "slip" sliding or touching without friction, "open").
         Friction holds where a flexure's bare end touches, and rolls without slipping
         where a contact rolls (inside a span, at a thick strip's end in the plane,
-        between two geoms); in space a rolling contact's slide, and friction where a
-        flexure touches with its thickness, raise ValueError naming the friction.
+        between two geoms); in space, friction where a flexure touches with its
+        thickness raises ValueError naming the friction.
 
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and

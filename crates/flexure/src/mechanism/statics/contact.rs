@@ -52,10 +52,14 @@
 //! for $r\Delta\theta$, a relative error of $\Delta\theta^2/6 \approx
 //! 2\times10^{-5}$.
 //!
+//! **Sliding where it rolls, in space,** the slide's direction turns with
+//! the rolling, so it is solved with each step rather than lagged: the
+//! friction's two tangential components stay unknowns, with Alart and
+//! Curnier's sliding rows ([`Skid`]) in place of the stuck ones, and steps
+//! short enough that the friction turns by at most 0.01 rad.
+//!
 //! **Refused by name:** friction where a spatial flexure touches with its
-//! thickness (its surface's material points turn with its twist too) or
-//! where a contact that rolls in space would slide (its slide's direction
-//! turns with the rolling), a mechanism
+//! thickness (its surface's material points turn with its twist too), a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -98,6 +102,10 @@ const FLAT_LENGTH: f64 = 1e-2;
 const MAX_CHANGES_AT_ONCE: usize = 8;
 /// The most a sliding contact's direction may turn in one step (rad).
 const MAX_SLIDE_TURN: f64 = 1e-2;
+/// The most a skidding contact's friction may turn in one step (rad):
+/// implicit Euler's error is first order in it (on the wheel held aside
+/// of `tests/contact_rolling.rs`, about a quarter of it, relative to $\mu N$).
+const MAX_SKID_TURN: f64 = 2e-3;
 /// The most a rolling contact with friction may turn either surface under it in one step (rad).
 const MAX_ROLL_TURN: f64 = 1e-2;
 /// Accepted steps before the path is declared stalled.
@@ -129,6 +137,12 @@ enum Law {
     /// and the geom body's that met at the last accepted state do not move
     /// apart along `tangents` (world, unit, orthogonal: the surface's there).
     Roll { tangents: [[f64; 3]; 2] },
+    /// A contact that rolls in space, sliding: its friction's components
+    /// along `tangents` (as [`Law::Roll`]'s) are unknowns, solved with the
+    /// step so that the friction is $\mu N$ against the slide of the
+    /// material points that met at the last accepted state; `accepted`,
+    /// those components there (N).
+    Skid { tangents: [[f64; 3]; 2], accepted: [f64; 2] },
 }
 
 /// A contact that touches: its pair, place, law, force unknowns and, inside a span, $s/L$.
@@ -164,7 +178,7 @@ impl Touching {
     /// Its force unknowns: the force's components when stuck ($N$ and the
     /// tangential components when it rolls), else $N$.
     fn width<D: Statics>(&self) -> usize {
-        if matches!(self.law, Law::Stick { .. } | Law::Roll { .. }) { D::POINT_DIM } else { 1 }
+        if matches!(self.law, Law::Stick { .. } | Law::Roll { .. } | Law::Skid { .. }) { D::POINT_DIM } else { 1 }
     }
 
     /// Whether it rolls: the point that touches is not one material point
@@ -186,8 +200,16 @@ enum Friction<D: Statics> {
     /// material point (world) and how far the surfaces turned under it.
     Slide { direction: D::Vector, along: Vec<f64>, jacobian: DMatrix<f64>, ds: Vec<f64>, rolled: Option<Rolled<D>> },
     /// Rolling: $r_k = t_k\cdot(x - a)$ for each tangent, $t_k\cdot\Delta_c$,
-    /// $\sum_k f_k t_k\cdot\partial_b\partial_c(x - a)$, and the material point.
-    Roll { offsets: Vec<f64>, along: Vec<Vec<f64>>, hessian: DMatrix<f64>, tangents: Vec<D::Vector>, rolled: Rolled<D> },
+    /// $\sum_k f_k t_k\cdot\partial_b\partial_c(x - a)$, and the material
+    /// point; `skids` where it slides in space ([`Law::Skid`]).
+    Roll {
+        offsets: Vec<f64>,
+        along: Vec<Vec<f64>>,
+        hessian: DMatrix<f64>,
+        tangents: Vec<D::Vector>,
+        rolled: Rolled<D>,
+        skids: bool,
+    },
 }
 
 /// A rolling contact's toucher material point (world) and the most either
@@ -274,7 +296,7 @@ impl<D: Statics> ContactKkt<'_, D> {
         let t = &self.touching[c];
         match (&t.law, &self.friction[c]) {
             (Law::Stick { .. }, _) => Some(vector::<D>(&t.force)),
-            (Law::Roll { .. }, Friction::Roll { tangents, .. }) => {
+            (Law::Roll { .. } | Law::Skid { .. }, Friction::Roll { tangents, .. }) => {
                 Some(tangents.iter().enumerate().fold(scaled::<D>(&self.jets[c].normal, t.force[0]), |f, (k, u)| {
                     f + scaled::<D>(u, t.force[1 + k])
                 }))
@@ -350,7 +372,7 @@ impl<D: Statics> ContactKkt<'_, D> {
                 let hessian = p.hessian_along(m, f, &vector::<D>(&t.force));
                 Friction::Pin { offset: D::position(&p.x) - D::position(&a), delta: p.delta, hessian }
             }
-            Law::Roll { tangents } => {
+            Law::Roll { tangents } | Law::Skid { tangents, .. } => {
                 let p = material_jet(m, f, q, &t.pair, &t.on, vector::<D>(&t.from))?;
                 let a = D::act(self.geom_body(c), &D::moved(&D::origin(&D::identity()), &vector::<D>(&t.from), 1.0));
                 let offset = D::position(&p.x) - D::position(&a);
@@ -363,7 +385,8 @@ impl<D: Statics> ContactKkt<'_, D> {
                     .fold(D::Vector::default(), |w, (k, u)| w + scaled::<D>(u, t.force[1 + k]));
                 let hessian = p.hessian_along(m, f, &w);
                 let rolled = self.rolled(c, &p)?;
-                Friction::Roll { offsets, along, hessian, tangents, rolled }
+                let skids = matches!(t.law, Law::Skid { .. });
+                Friction::Roll { offsets, along, hessian, tangents, rolled, skids }
             }
             Law::Slip { direction } => {
                 // Where it rolls, friction acts at the material points that
@@ -462,6 +485,22 @@ impl<D: Statics> ContactKkt<'_, D> {
             .fold(0.0, f64::max)
     }
 
+    /// The most a skidding contact's friction turned since the last
+    /// accepted state, in the state last evaluated (rad).
+    fn skid_turn(&self) -> f64 {
+        self.touching
+            .iter()
+            .filter_map(|t| match t.law {
+                Law::Skid { accepted: a, .. } => {
+                    let f = [t.force[1], t.force[2]];
+                    let cross = a[0] * f[1] - a[1] * f[0];
+                    Some(cross.atan2(a[0] * f[0] + a[1] * f[1]).abs())
+                }
+                _ => None,
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// The most a rolling contact with friction turned either surface under
     /// it since the last accepted state, in the state last evaluated (rad).
     fn roll_turn(&self) -> f64 {
@@ -514,6 +553,13 @@ impl<D: Statics> ContactKkt<'_, D> {
             if let Law::Roll { tangents: u } = &mut t.law {
                 *u = tangents::<D>(&normal, Some(u));
             }
+            if let Law::Skid { tangents: u, accepted } = &mut t.law {
+                // Its friction, kept in the new tangents.
+                let old = *u;
+                *u = tangents::<D>(&normal, Some(u));
+                let f: [f64; 3] = std::array::from_fn(|i| t.force[1] * old[0][i] + t.force[2] * old[1][i]);
+                *accepted = u.map(|e| (0..3).map(|i| e[i] * f[i]).sum());
+            }
             t.on = on;
             if let (Law::Slip { direction }, Some((moved, size, ahead))) = (&mut t.law, slid)
                 && size > 1e-9 * length
@@ -524,6 +570,43 @@ impl<D: Statics> ContactKkt<'_, D> {
                 }
             }
             t.from = here;
+        }
+    }
+}
+
+/// A skidding contact's tangential rows ([`Law::Skid`]), in the unknowns'
+/// units ($F_k = f_k/\sigma$, $\nu = N/\sigma$): with $w = F - r/\ell$ ($r_k =
+/// t_k\cdot(x - a)$, the material points' slide since the last accepted
+/// state),
+/// $$F_k - \mu\nu\frac{w_k}{\lvert w\rvert} = 0,$$
+/// Alart and Curnier's sliding rows: $\lvert F\rvert = \mu\nu$ and $F$ along
+/// $w$, so $r = \ell F(1 - \lvert w\rvert/\mu\nu)$ lies against $F$ while
+/// $\lvert w\rvert > \mu\nu$ (the slide turned back is a stick event). The
+/// direction is solved with the step (implicit Euler), and the rows stay
+/// regular where the slide starts ($r = 0$, $w = F \ne 0$). With their
+/// derivatives in $\nu$, in each $F_i$ and in each $r_i$ (per metre).
+struct Skid {
+    rows: [f64; 2],
+    normal: [f64; 2],
+    friction: [[f64; 2]; 2],
+    offset: [[f64; 2]; 2],
+}
+
+impl Skid {
+    fn new(mu: f64, t: &Touching, sigma: f64, offsets: &[f64], length: f64) -> Skid {
+        let m = offsets.len();
+        let (nu, f) = (t.force[0] / sigma, [t.force[1] / sigma, t.force[2] / sigma]);
+        let w: [f64; 2] = std::array::from_fn(|k| if k < m { f[k] - offsets[k] / length } else { 0.0 });
+        let size = w.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+        let unit = w.map(|v| v / size);
+        let projector = |k: usize, i: usize| f64::from(u8::from(k == i)) - unit[k] * unit[i];
+        Skid {
+            rows: std::array::from_fn(|k| f[k] - mu * nu * unit[k]),
+            normal: unit.map(|u| -mu * u),
+            friction: std::array::from_fn(|k| {
+                std::array::from_fn(|i| f64::from(u8::from(k == i)) - mu * nu * projector(k, i) / size)
+            }),
+            offset: std::array::from_fn(|k| std::array::from_fn(|i| mu * nu * projector(k, i) / (size * length))),
         }
     }
 }
@@ -620,14 +703,16 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                         residual[at + k] = offset[k] / length;
                     }
                 }
-                Friction::Roll { offsets, along, .. } => {
+                Friction::Roll { offsets, along, skids, .. } => {
                     for i in 0..n {
                         let tangential: f64 = along.iter().enumerate().map(|(k, a)| t.force[1 + k] * a[i]).sum();
                         residual[i] -= (t.force[0] * jet.gradient[i] + tangential) * rows[i];
                     }
                     residual[at] = jet.gap / length;
+                    let skid = skids
+                        .then(|| Skid::new(crate::mechanism::contact::friction(m, &t.pair), t, sigma, offsets, length));
                     for (k, r) in offsets.iter().enumerate() {
-                        residual[at + 1 + k] = r / length;
+                        residual[at + 1 + k] = skid.as_ref().map_or(r / length, |s| s.rows[k]);
                     }
                 }
                 other => {
@@ -675,7 +760,7 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             jac[j * size + row] = jet.gradient[j] / length;
                         }
                     }
-                    Friction::Roll { along, hessian, .. } => {
+                    Friction::Roll { along, hessian, offsets, skids, .. } => {
                         for j in 0..n {
                             for i in 0..n {
                                 jac[j * size + i] -= (force * jet.hessian[(i, j)] + hessian[(i, j)]) * rows[i];
@@ -685,6 +770,20 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             for (k, a) in along.iter().enumerate() {
                                 jac[(row + 1 + k) * size + j] = -sigma * a[j] * rows[j];
                                 jac[j * size + row + 1 + k] = a[j] / length;
+                            }
+                        }
+                        if *skids {
+                            let s =
+                                Skid::new(crate::mechanism::contact::friction(m, &t.pair), t, sigma, offsets, length);
+                            for k in 0..along.len() {
+                                for j in 0..n {
+                                    jac[j * size + row + 1 + k] =
+                                        along.iter().enumerate().map(|(i, a)| s.offset[k][i] * a[j]).sum();
+                                }
+                                jac[row * size + row + 1 + k] = s.normal[k];
+                                for i in 0..along.len() {
+                                    jac[(row + 1 + i) * size + row + 1 + k] = s.friction[k][i];
+                                }
                             }
                         }
                     }
@@ -736,7 +835,7 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                     g.extend(pin_rows::<D>(delta));
                     continue;
                 }
-                Friction::Roll { along, .. } => g.extend(along.iter().cloned()),
+                Friction::Roll { along, skids: false, .. } => g.extend(along.iter().cloned()),
                 _ => {}
             }
             if t.place == Place::Inner {
@@ -868,6 +967,19 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                     return Ok(Some(Event::Slip(c, array::<D>(&direction), normal, here, on)));
                 }
             }
+            Law::Skid { .. } => {
+                // Its slide since the last accepted state, along its friction.
+                let Friction::Roll { offsets, .. } = &problem.friction[c] else { continue };
+                let f = &t.force[1..D::POINT_DIM];
+                let size = f.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+                let ahead = -offsets.iter().zip(f).map(|(r, f)| r * f).sum::<f64>() / size;
+                if ahead < -GAP_TOLERANCE * problem.kkt.length {
+                    let force = problem.held_force(c).expect("a skidding contact is held");
+                    let normal = array::<D>(&jet.normal);
+                    let (here, on) = (problem.local_point(c), problem.material(c));
+                    return Ok(Some(Event::Stick(c, here, array::<D>(&force), normal, on)));
+                }
+            }
             Law::Slip { .. } => {
                 let (_, _, ahead) = problem.slid(c).expect("a sliding contact");
                 if ahead < -GAP_TOLERANCE * problem.kkt.length {
@@ -960,12 +1072,13 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             out[c].at = if s > 0.0 { 1.0 - 1e-6 } else { 1e-6 };
             out[c].place = Place::Inner;
         }
-        Event::Slip(c, ..) if D::POINT_DIM == 3 && out[c].rolls() => {
-            return Err(rolls(
-                m,
-                &out[c].pair,
-                "it rolls in space and would slide, its slide's direction turning with the rolling",
-            ));
+        Event::Slip(c, _, _, here, on) if D::POINT_DIM == 3 && matches!(out[c].law, Law::Roll { .. }) => {
+            // In space its slide's direction turns with the rolling: it is
+            // solved with each step, from the force it had stuck.
+            if let Law::Roll { tangents } = out[c].law {
+                out[c].law = Law::Skid { tangents, accepted: [out[c].force[1], out[c].force[2]] };
+            }
+            (out[c].from, out[c].on) = (here, on);
         }
         Event::Slip(c, direction, normal, here, on) => {
             // A rolling contact slides from where it begins to: what it
@@ -1028,7 +1141,7 @@ fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
     Error::invalid(
         "friction",
         format!("{} ({}: {why})", crate::mechanism::contact::friction(m, pair), named(m, pair)),
-        "holds in space where a flexure with no thickness or a ball touches, while it sticks; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too), or a contact that rolls in space would slide, friction is not solved yet: set the geom's friction to 0",
+        "holds in space where a flexure with no thickness or a ball touches; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too) friction is not solved yet: set the geom's friction to 0",
     )
 }
 
@@ -1184,10 +1297,13 @@ fn follow<D: Statics>(
         iterations += report.iterations;
         let Some(found) = found else {
             // A slide that turns is followed in steps that turn it little,
-            // each along the way it moved (its direction lags by one step);
+            // each along the way it moved (its direction lags by one step,
+            // or, rolling in space, is solved with it);
             // a contact that rolls with friction, in steps that roll it
             // little (its material points are pinned anew at each).
-            let turned = problem.slide_turn() > MAX_SLIDE_TURN || problem.roll_turn() > MAX_ROLL_TURN;
+            let turned = problem.slide_turn() > MAX_SLIDE_TURN
+                || problem.skid_turn() > MAX_SKID_TURN
+                || problem.roll_turn() > MAX_ROLL_TURN;
             if turned && step > 1e3 * SMALLEST_STEP {
                 step *= 0.5;
                 continue;
@@ -1540,7 +1656,7 @@ mod tests {
     /// the material point `on`: the planar and spatial tests' one check.
     fn rolling_rows_match_differences<D: Statics>(
         m: &Mechanism<D>,
-        laws: [Law; 2],
+        laws: &[Law],
         force: [f64; 3],
         from: [f64; 3],
         on: [f64; 3],
@@ -1549,7 +1665,7 @@ mod tests {
         let all = pairs(m);
         let mut problem = bare(m, &Settings::default(), &mut work);
         let q = [0.2, 0.7, -0.3];
-        for law in laws {
+        for &law in laws {
             let t = Touching {
                 pair: all[0],
                 place: Place::Geoms,
@@ -1582,12 +1698,13 @@ mod tests {
             Law::Roll { tangents: tangents::<Planar>(&[0.1, 0.995, 0.0], None) },
             Law::Slip { direction: [1.0, 0.0, 0.0] },
         ];
-        rolling_rows_match_differences(&m, rolling, [0.5, -0.2, 0.0], [0.1, 0.45, 0.0], [0.05, -0.38, 0.0]);
+        rolling_rows_match_differences(&m, &rolling, [0.5, -0.2, 0.0], [0.1, 0.45, 0.0], [0.05, -0.38, 0.0]);
     }
 
     /// The spatial rolling rows against differences: a ball on a hub that
     /// slides and turns about a tilted axis, on a pad on a turning arm,
-    /// stuck (two tangents) and sliding.
+    /// stuck (two tangents), sliding with a lagged direction, and skidding
+    /// (the direction solved with the step).
     #[test]
     fn the_jacobian_of_rolling_in_space_matches_differences() {
         let text = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"hub\"\naxis = [1.0, 0.0, 0.2]\nstiffness = 3.0\n\
@@ -1600,10 +1717,12 @@ mod tests {
         let n = [0.1f64, 0.98, 0.17];
         let size = n.iter().map(|v| v * v).sum::<f64>().sqrt();
         let n = n.map(|v| v / size);
+        let u = tangents::<crate::space::Spatial>(&n, None);
         let rolling = [
-            Law::Roll { tangents: tangents::<crate::space::Spatial>(&n, None) },
+            Law::Roll { tangents: u },
             Law::Slip { direction: [1.0, 0.0, 0.3] },
+            Law::Skid { tangents: u, accepted: [0.0; 2] },
         ];
-        rolling_rows_match_differences(&m, rolling, [0.5, -0.2, 0.3], [0.1, 0.45, -0.05], [0.05, -0.38, 0.1]);
+        rolling_rows_match_differences(&m, &rolling, [0.5, -0.2, 0.3], [0.1, 0.45, -0.05], [0.05, -0.38, 0.1]);
     }
 }
