@@ -168,8 +168,7 @@ class Mechanism:
         that touches while approaching takes a perfectly inelastic impact. Friction
         holds stuck where the touching point is material (a flexure's bare end, a ball
         whose body only translates) and rolling without slipping where it is not
-        (inside a span, a ball that turns); where a spatial flexure touches with its
-        thickness, friction stops the run with ValueError naming it.
+        (inside a span, a ball that turns, a strip touching with its thickness).
         `max_steps` is the step budget (default 1e6 plus 10 per sample, as the CLI's).
         error_estimate {position (m), angle (rad), at (s), reference_tolerance, samples,
         complete, position_tolerance (m)} is the largest difference of a body's pose from a
@@ -237,9 +236,9 @@ class Mechanism:
         (ground frame), normal_force (N, not negative), friction_force, gap (m) and state
         ("stick" held by friction, "slip" sliding or touching without friction, "open").
         Friction holds where a flexure's bare end touches, and rolls without slipping
-        where a contact rolls (inside a span, at a thick strip's end in the plane,
-        between two geoms); in space, friction where a flexure touches with its
-        thickness raises ValueError naming the friction.
+        where a contact rolls (inside a span, where a strip touches with its thickness,
+        between two geoms); in space, where a rolling contact slides, its direction is
+        solved with each load step.
 
         Spatial (dimension = 3): the same dict, as `flexure solve --json` prints it: bodies
         {name: {x, y, z, roll, pitch, yaw, rotation (3, 3)}} (origin, URDF roll, pitch, yaw and

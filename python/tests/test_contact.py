@@ -83,19 +83,22 @@ def test_friction_where_a_contact_rolls_holds_it_in_its_cone():
         assert f == pytest.approx(0.3 * n, rel=1e-9)
 
 
-def test_friction_where_a_thick_flexure_touches_in_space_is_refused_by_name():
+def test_friction_where_a_thick_flexure_touches_in_space_is_the_planes():
     """A spatial strip with a thickness touches with its surface, off its
-    centreline, whose material points turn with its twist too: its friction
-    is not solved yet, and the error says so with a way out. (In the plane
-    it is: `crates/flexure/tests/contact_rolling.rs`.)"""
-    thick = (
+    centreline, whose material point turns with its section (its twist
+    too): the spatial file of a planar problem gives the plane's contact,
+    its state and its push to 1e-6 (`crates/flexure/tests/contact_rolling.rs`
+    holds both to closed forms of rolling)."""
+    thick = STRIP.replace("ei = 1.0", "modulus = 1.2e9\nwidth = 0.01\nthickness = 0.01") + "friction = 0.3\n"
+    spatial = (
         "dimension = 3\n"
-        + STRIP.replace("ei = 1.0", "modulus = 1.2e9\nwidth = 0.01\nthickness = 0.01")
-        .replace("moment = -0.1", "moment = [0.0, 0.0, -0.1]")
+        + thick.replace("moment = -0.1", "moment = [0.0, 0.0, -0.1]")
         .replace("origin = [0.0, -0.01]\nnormal = [0.0, 1.0]", "origin = [0.0, -0.01, 0.0]\nnormal = [0.0, 1.0, 0.0]")
     )
-    with pytest.raises(ValueError, match=r"friction = 0.3 \(geom \"floor\" \(plane\) and flexure \"strip\": .*thickness"):
-        flexure.Mechanism.from_toml(thick + "friction = 0.3\n").solve()
+    (plane,) = flexure.Mechanism.from_toml(thick).solve()["contacts"]
+    (space,) = flexure.Mechanism.from_toml(spatial).solve()["contacts"]
+    assert space["state"] == plane["state"] and space["s"] == pytest.approx(plane["s"], rel=1e-9)
+    assert space["normal_force"] == pytest.approx(plane["normal_force"], rel=1e-6)
 
 
 def test_the_compliance_holds_the_contact_closed():

@@ -229,3 +229,59 @@ fn spatial_gap_derivatives_match_differences() {
     assert_eq!(pairs(&m).len(), 11);
     assert!(check(&m, 0x2545_F491_4F6C_DD1D) >= 4 * 11 * m.dof());
 }
+
+/// A section's axes and a material point off its centreline
+/// (`offset_jet`), which turn with the section (in space with its twist):
+/// the axes against the rotation of `spatial::shape_at` (an independent
+/// integration) to 1e-12, the point's Jacobian and Hessian against central
+/// differences of its value and Jacobian (step 1e-6, to 1e-6 of the
+/// largest), at seeded coordinates of the spatial strip and the planar one.
+#[test]
+fn a_sections_surface_point_turns_with_it() {
+    use flexure::mechanism::contact::offset_jet;
+    fn points<D: Touch>(f: &D::Flexure, alpha: &[f64], s: f64, offset: [f64; 3]) {
+        let h = 1e-6;
+        let at = |a: &[f64]| offset_jet(&D::section_jet(f, a, s).unwrap(), offset);
+        let x = at(alpha);
+        let k = alpha.len();
+        let first = x.jacobian.iter().flat_map(|v| (0..D::POINT_DIM).map(move |i| v[i].abs())).fold(0.0, f64::max);
+        let second = x.hessian.iter().flat_map(|m| m.iter().map(|v| v.abs())).fold(0.0, f64::max);
+        for a in 0..k {
+            let (mut up, mut down) = (alpha.to_vec(), alpha.to_vec());
+            up[a] += h;
+            down[a] -= h;
+            let (u, d) = (at(&up), at(&down));
+            for i in 0..D::POINT_DIM {
+                let fd = (u.point[i] - d.point[i]) / (2.0 * h);
+                assert!((x.jacobian[a][i] - fd).abs() < 1e-6 * first, "dx{i}/da{a}: {} vs {fd}", x.jacobian[a][i]);
+                for b in 0..k {
+                    let fd = (u.jacobian[b][i] - d.jacobian[b][i]) / (2.0 * h);
+                    assert!((x.hessian[i][(b, a)] - fd).abs() < 1e-6 * second, "d2x{i}/da{b}da{a}");
+                }
+            }
+        }
+        // Off the centreline by the offset in the section's axes, which are the tangent first.
+        let jet = D::section_jet(f, alpha, s).unwrap();
+        let t = (0..D::POINT_DIM).map(|i| (jet.frame[0][i] - jet.tangent[i]).abs()).fold(0.0, f64::max);
+        assert!(t < 1e-15 && x.frame.len() == D::POINT_DIM);
+    }
+    let mut rng = Rng(0x5DEE_CE66_D1CE_4E5B);
+    let m = spatial_from_toml(SPATIAL).unwrap();
+    let f = m.joints[1].kind.flexure().unwrap();
+    for _ in 0..3 {
+        let alpha: Vec<f64> = (0..m.joints[1].kind.joint().dof()).map(|_| 20.0 * rng.next()).collect();
+        let s = 0.05 + 0.045 * rng.next();
+        points::<flexure::space::Spatial>(f, &alpha, s, [0.0004 * rng.next(), 0.0005, -0.0003]);
+        let jet = flexure::space::Spatial::section_jet(f, &alpha, s).unwrap();
+        let r = flexure::spatial::shape_at(f, &alpha, &[s]).unwrap()[0].rotation;
+        for (j, e) in jet.frame.iter().enumerate() {
+            for i in 0..3 {
+                assert!((e[i] - r[i][j]).abs() < 1e-12, "axis {j}: {e} vs column {j} of {r:?}");
+            }
+        }
+    }
+    let m = from_toml(PLANAR).unwrap();
+    let f = m.joints[1].kind.flexure().unwrap();
+    let alpha: Vec<f64> = (0..m.joints[1].kind.joint().dof()).map(|_| 5.0 * rng.next()).collect();
+    points::<flexure::space::Planar>(f, &alpha, 0.07, [0.0003, -0.0005, 0.0]);
+}

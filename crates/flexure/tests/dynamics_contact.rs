@@ -762,3 +762,47 @@ fn a_ball_thrown_up_a_rough_incline_turns_back_without_sticking() {
         assert!((along - friction).abs() < 1e-6 * m * G, "t = {t}: {c:?}");
     }
 }
+
+/// A spatial strip 20 mm thick (mass 0.01 kg/m, damped), its root on a
+/// sprung slide, its tip pressed by 1 N onto a rough floor and twisted by
+/// a tip moment rising from 0 to 0.01 N·m over 0.5 s: its tip's rounded
+/// end rolls sideways without slipping, the material point under it
+/// turning with the twist, so between samples the tip's centre, $h$ above
+/// the floor, moves by $h\thinspace\Delta\vartheta\times\hat y$ ($\Delta\vartheta$
+/// the rotation vector of the tip's section; a ball rolling on a plane):
+/// to 1e-4 of each move (held exactly as a velocity constraint; the rest is
+/// the rotation vector's second order and the tolerance).
+#[test]
+fn a_twisted_thick_tip_rolls_sideways_in_motion() {
+    use flexure::mechanism::kinematics::frames;
+    let h = 0.01;
+    let text = format!(
+        "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"base\"\nstiffness = 1.0\n\
+         [[body]]\nname = \"base\"\nmass = 0.01\n\
+         [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"base\"\nchild = \"tip\"\nlength = 1.0\nmodulus = 1.5e8\nwidth = 0.01\nthickness = {}\norder = 3\nmass_per_length = 0.01\ndamping = 0.01\n\
+         [[force]]\nname = \"push\"\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, -1.0, 0.0]\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.05, 0.0]\nnormal = [0.0, 1.0, 0.0]\nfriction = 1.0\n\
+         [[schedule]]\nload = \"force.push.mx\"\npoints = [[0.0, 0.0], [0.5, 0.01]]\n",
+        2.0 * h
+    );
+    let m = spatial_from_toml(&text).unwrap();
+    let run = simulate(&m, &settings(0.6, 0.05, 1e-8), Start::Equilibrium).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let tip = m.body("tip").unwrap();
+    let poses: Vec<_> = (0..run.time.len()).map(|k| frames(&m, run.q(k)).bodies[tip]).collect();
+    for (k, pair) in poses.windows(2).enumerate() {
+        let (a, b) = (pair[0], pair[1]);
+        let turn = (b.rotation * a.rotation.inverse()).scaled_axis();
+        let moved = b.translation.vector - a.translation.vector;
+        let rolled = turn.cross(&nalgebra::Vector3::y()) * h;
+        let c = &run.contacts[k + 1][0];
+        assert_eq!(c.state, ContactMode::Stick, "t = {}: {c:?}", run.time[k + 1]);
+        assert!((b.translation.vector.y - (-0.05 + h)).abs() < 1e-9, "t = {}", run.time[k + 1]);
+        assert!(
+            (moved - rolled).norm() < 1e-4 * rolled.norm(),
+            "t = {}: moved {moved}, rolled {rolled}",
+            run.time[k + 1]
+        );
+    }
+    assert!(poses[poses.len() - 1].translation.vector.z > 1e-4, "it rolled sideways");
+}

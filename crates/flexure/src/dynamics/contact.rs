@@ -57,8 +57,7 @@
 //! first step is let go there.
 //!
 //! **Refused by name**, met in the run (it stops there, with the samples
-//! reached): friction where a spatial flexure touches with its thickness
-//! (its surface's material points turn with its twist too), and where a
+//! reached): friction where a
 //! bare end with friction would roll onto its span; and a start where a part
 //! overlaps a geom.
 
@@ -70,8 +69,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Pair, PointJet, Toucher, array, ball_and_other, column, dot, friction,
-    gap_slope, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents, vector,
+    Contact, ContactMode, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, ball_and_other, column, dot,
+    friction, gap_slope, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents,
+    vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -292,13 +292,6 @@ impl<D: Dynamics> ContactSystem<D> {
                 Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < h.length),
                 Toucher::Geom(h) => !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body),
             };
-            if p.half[0] != 0.0 && matches!(pair.part, Toucher::Flexure(_)) && !D::SURFACE_JET {
-                return Err(Error::invalid(
-                    "friction",
-                    format!("{mu} ({})", named(m, pair)),
-                    "holds in space where a flexure with no thickness touches, or a ball; where a spatial flexure touches with its thickness (its surface's material points turn with its twist too) friction is not solved yet: set the friction to 0",
-                ));
-            }
             h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
         }
         Ok(h)
@@ -333,12 +326,12 @@ impl<D: Dynamics> ContactSystem<D> {
     /// The toucher's material point where `h` touches (`p` its point,
     /// `slope` its gap there, frames at its state), as [`material_jet`]'s
     /// `on`, and the geom body's there (its frame).
-    fn material(&self, h: &Held, p: &PointJet<'_, D>, slope: &GapSlope<D>) -> Result<([f64; 3], [f64; 3])> {
+    fn material(&self, h: &Held, p: &PointJet<'_, D>, slope: &GapSlope<D>) -> Result<(Material, [f64; 3])> {
         let (m, f) = (&self.mechanism, &self.frames);
         let local = |body: usize| array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[body]), &slope.point)));
-        let on = match (h.s, p.tangent()) {
-            (Some(s), Some(t)) => on_flexure::<D>(s, &t, &slope.normal, p.half[0]),
-            _ => local(ball_and_other(m, &h.pair)?.0.body),
+        let on = match h.s {
+            Some(s) => on_flexure::<D>(s, &p.frame(), &slope.normal, p.half[0]),
+            None => on_ball(local(ball_and_other(m, &h.pair)?.0.body)),
         };
         Ok((on, local(p.shape.body)))
     }

@@ -48,24 +48,44 @@ pub trait Touch: Dimension {
     /// derivatives in the coordinates `alpha` and in `s` ([`SectionJet`]),
     /// exact for the integration [`Touch::surface_at`] uses.
     fn section_jet(f: &Self::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Self>>;
-    /// Whether a material point off the centreline (on a strip's surface)
-    /// has its jet ([`Touch::offset_jet`]): in the plane, where a section
-    /// turns by one angle; not yet in space.
-    const SURFACE_JET: bool = false;
-    /// `v` (world) in the section's axes where the world tangent is `t`:
-    /// along $t$, then along its normal; `None` where not known (in space)
-    /// unless `v` is zero.
-    fn section_axes(t: &Self::Vector, v: &Self::Vector) -> Option<[f64; 2]> {
-        let _ = t;
-        (0..Self::POINT_DIM).all(|i| v[i] == 0.0).then_some([0.0; 2])
+}
+
+/// The jet of the section's material point `offset` (m) from the
+/// centreline, in the section's axes $e_i$ (tangent first; in the plane
+/// the first two entries): $x = p + \sum_i o_ie_i$, so $\partial_a x =
+/// \partial_a p + \sum_i o_i\partial_ae_i$ and likewise its second
+/// derivatives ([`SectionJet::frame`]). A strip's surface point turns with
+/// its section: in space with its twist too.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{offset_jet, Touch};
+/// use flexure::space::Planar;
+/// // A straight strip of unit length: its section at s = 0.5 turns by
+/// // alpha_0 s per unit of its first coordinate, so a point 0.01 above
+/// // the centreline moves back by 0.01 along it.
+/// let f = flexure::Flexure::new(1.0, 1.0, 3).unwrap();
+/// let jet = Planar::section_jet(&f, &[0.0; 3], 0.5).unwrap();
+/// let x = offset_jet(&jet, [0.0, 0.01, 0.0]);
+/// assert!((x.point.y - 0.01).abs() < 1e-15);
+/// assert!((x.jacobian[0].x - (jet.jacobian[0].x - 0.01 * 0.5)).abs() < 1e-15);
+/// ```
+pub fn offset_jet<D: Touch>(jet: &SectionJet<D>, offset: [f64; 3]) -> SectionJet<D> {
+    let mut out = jet.clone();
+    let k = jet.jacobian.len();
+    for (i, o) in offset.iter().enumerate().take(D::POINT_DIM).filter(|(_, o)| **o != 0.0) {
+        out.point = out.point + super::scaled::<D>(&jet.frame[i], *o);
+        for a in 0..k {
+            out.jacobian[a] = out.jacobian[a] + super::scaled::<D>(&jet.frame_jacobian[i][a], *o);
+            for b in 0..k {
+                let v = super::scaled::<D>(&jet.frame_hessian[i][a * k + b], *o);
+                for (c, h) in out.hessian.iter_mut().enumerate() {
+                    h[(a, b)] += v[c];
+                }
+            }
+        }
     }
-    /// The jet of the section's material point `offset` from the
-    /// centreline (along the tangent, then its normal, m): $p + R(\theta)o$
-    /// with its derivatives; `None` where not known (in space) unless
-    /// `offset` is zero.
-    fn offset_jet(jet: &SectionJet<Self>, offset: [f64; 2]) -> Option<SectionJet<Self>> {
-        (offset == [0.0; 2]).then(|| jet.clone())
-    }
+    out
 }
 
 /// A flexure's centreline point $p(\alpha, s)$ at one arc length, in its
@@ -87,6 +107,13 @@ pub struct SectionJet<D: Dimension> {
     pub bend: D::Vector,
     /// The half thickness $h(s)$ it touches with (m), $h^{\prime}$ and $h^{\prime\prime}$ (1/m).
     pub half: [f64; 3],
+    /// The section's material axes $e_i$ (unit, tangent first; two in the
+    /// plane, three in space).
+    pub frame: Vec<D::Vector>,
+    /// $\partial e_i/\partial\alpha_a$: per axis, one per coordinate.
+    pub frame_jacobian: Vec<Vec<D::Vector>>,
+    /// $\partial^2 e_i/\partial\alpha_a\partial\alpha_b$: per axis, at $ak + b$.
+    pub frame_hessian: Vec<Vec<D::Vector>>,
 }
 
 impl Touch for Planar {
@@ -150,35 +177,9 @@ impl Touch for Planar {
     /// $\partial_a p = L\int\psi_a e_\perp\thinspace dt$ and
     /// $\partial_a\partial_b p = -L\int\psi_a\psi_b\thinspace e\thinspace dt$, by the Gauss rule
     /// and pieces of [`pose_at`]; $t = e(\theta(s))$, $\partial_a t = \psi_a e_\perp$,
-    /// $\partial_s t = \theta^{\prime}(s)\thinspace e_\perp$.
-    const SURFACE_JET: bool = true;
-
-    fn section_axes(t: &Vector2<f64>, v: &Vector2<f64>) -> Option<[f64; 2]> {
-        Some([t.dot(v), t.x * v.y - t.y * v.x])
-    }
-
-    /// With $\theta$ linear in $\alpha$ ($\partial_a\theta = \psi_a = t\times\partial_at$):
-    /// $\partial_a(Ro) = \psi_a\thinspace(Ro)^\perp$, $\partial_a\partial_b(Ro) = -\psi_a\psi_b\thinspace Ro$.
-    fn offset_jet(jet: &SectionJet<Planar>, offset: [f64; 2]) -> Option<SectionJet<Planar>> {
-        let t = jet.tangent;
-        let r = t * offset[0] + Vector2::new(-t.y, t.x) * offset[1];
-        let turned = Vector2::new(-r.y, r.x);
-        let psi: Vec<f64> = jet.tangent_jacobian.iter().map(|d| t.x * d.y - t.y * d.x).collect();
-        let mut out = jet.clone();
-        out.point += r;
-        for (j, p) in out.jacobian.iter_mut().zip(&psi) {
-            *j += turned * *p;
-        }
-        for (i, h) in out.hessian.iter_mut().enumerate() {
-            for (a, pa) in psi.iter().enumerate() {
-                for (b, pb) in psi.iter().enumerate() {
-                    h[(a, b)] -= pa * pb * r[i];
-                }
-            }
-        }
-        Some(out)
-    }
-
+    /// $\partial_s t = \theta^{\prime}(s)\thinspace e_\perp$. The section's axes
+    /// $(t, e_\perp)$ turn by $\theta$, linear in $\alpha$: $\partial_ae =
+    /// \psi_ae^\perp$ and $\partial_a\partial_be = -\psi_a\psi_be$.
     fn section_jet(f: &crate::Flexure, alpha: &[f64], s: f64) -> Result<SectionJet<Planar>> {
         f.check_coordinates("alpha", alpha)?;
         let (l, k) = (f.length(), f.order());
@@ -196,6 +197,9 @@ impl Touch for Planar {
             tangent_jacobian: vec![Vector2::zeros(); k],
             bend: Vector2::zeros(),
             half: half_planar(f, s),
+            frame: Vec::new(),
+            frame_jacobian: Vec::new(),
+            frame_hessian: Vec::new(),
         };
         let pieces = 64;
         let h = s / l / pieces as f64;
@@ -223,6 +227,11 @@ impl Touch for Planar {
             jet.tangent_jacobian[a] = normal * psi[a];
         }
         jet.bend = normal * f.curvature(alpha, s);
+        jet.frame = vec![jet.tangent, normal];
+        jet.frame_jacobian =
+            jet.frame.iter().map(|e| psi.iter().map(|p| Vector2::new(-e.y, e.x) * *p).collect()).collect();
+        jet.frame_hessian =
+            jet.frame.iter().map(|e| (0..k * k).map(|ab| -e * (psi[ab / k] * psi[ab % k])).collect()).collect();
         Ok(jet)
     }
 }
@@ -256,7 +265,9 @@ impl Touch for Spatial {
     /// From [`crate::spatial::section_at`]: $\partial_a p = RJ_a^{v}$,
     /// $\partial_a\partial_b p = R(J_b^{\omega}\times J_a^{v} + H_{ab}^{v})$,
     /// $t = Re_1$, $\partial_a t = R(J_a^{\omega}\times e_1)$ and
-    /// $\partial_s t = R(u\times e_1)$, $u$ the body curvature.
+    /// $\partial_s t = R(u\times e_1)$, $u$ the body curvature; the
+    /// section's axes $Re_i$, $\partial_a(Re_i) = R(J_a^{\omega}\times e_i)$ and
+    /// $\partial_a\partial_b(Re_i) = R\big(J_b^{\omega}\times(J_a^{\omega}\times e_i) + H_{ab}^{\omega}\times e_i\big)$.
     fn section_jet(f: &crate::spatial::SpatialFlexure, alpha: &[f64], s: f64) -> Result<SectionJet<Spatial>> {
         f.check_coordinates("alpha", alpha)?;
         let (l, k) = (f.length(), f.coordinates());
@@ -277,6 +288,20 @@ impl Touch for Spatial {
             }
         }
         let u = Vector3::from(f.curvature(alpha, s));
+        let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
+        let frame_jacobian = axes.iter().map(|e| columns.iter().map(|(w, _)| r * w.cross(e)).collect()).collect();
+        let frame_hessian = axes
+            .iter()
+            .map(|e| {
+                (0..k * k)
+                    .map(|ab| {
+                        let (a, b) = (ab / k, ab % k);
+                        let turn = parts(data.column_derivative(a, b)).0;
+                        r * (columns[b].0.cross(&columns[a].0.cross(e)) + turn.cross(e))
+                    })
+                    .collect()
+            })
+            .collect();
         Ok(SectionJet {
             point: p,
             jacobian: columns.iter().map(|(_, v)| r * v).collect(),
@@ -285,6 +310,9 @@ impl Touch for Spatial {
             tangent_jacobian: columns.iter().map(|(w, _)| r * w.cross(&Vector3::x())).collect(),
             bend: r * u.cross(&Vector3::x()),
             half: slopes(|s| half_thickness(f, s / l), s, l),
+            frame: axes.iter().map(|e| r * e).collect(),
+            frame_jacobian,
+            frame_hessian,
         })
     }
 }

@@ -47,6 +47,8 @@ pub struct GapJet<D: Touch> {
     pub normal_ds: D::Vector,
     /// The flexure's unit tangent there (world; 0 for two geoms).
     pub tangent: D::Vector,
+    /// The flexure's section axes there (world, tangent first; empty for two geoms).
+    pub frame: Vec<D::Vector>,
     /// The half thickness it touches with (m): the point is $h$ off its centreline (a ball's radius).
     pub half: f64,
 }
@@ -148,6 +150,7 @@ pub fn gap_jet<D: Touch + FrameChain>(
         normal_jacobian,
         normal_ds,
         tangent,
+        frame: p.frame(),
         half: p.half[0],
     })
 }
@@ -250,13 +253,24 @@ pub(crate) fn point_jet<'a, D: Touch + FrameChain>(
     s: Option<f64>,
     anchor: Option<D::Vector>,
 ) -> Result<PointJet<'a, D>> {
-    jet_at(m, f, q, pair, (s, [0.0; 2]), None, anchor)
+    jet_at(m, f, q, pair, (s, [0.0; 3]), None, anchor)
 }
 
-/// [`point_jet`] of a material point of the toucher: a flexure's section
-/// at `on[0]` (its arc length), the point `on[1]` along its tangent and
-/// `on[2]` along its normal off the centreline ([`Touch::offset_jet`]: on
-/// a strip's surface), or the point `on` of a ball's body (its frame),
+/// Where on a toucher a material point is: a flexure's arc length (m) and
+/// the point's offset from its centreline in the section's axes (m,
+/// tangent first; [`super::offset_jet`]), or the point in a ball's body
+/// frame (its first three entries).
+pub(crate) type Material = [f64; 4];
+
+/// A ball's material point `p` (its body's frame) as a [`Material`].
+pub(crate) fn on_ball(p: [f64; 3]) -> Material {
+    [p[0], p[1], p[2], 0.0]
+}
+
+/// [`point_jet`] of a material point of the toucher ([`Material`]): a
+/// flexure's section at `on[0]` (its arc length), the point off the
+/// centreline by `on[1..]` in the section's axes (on a strip's surface), or
+/// the point `on[..3]` of a ball's body (its frame),
 /// relative to the geom body's material point `anchor` (its frame). A
 /// stuck contact that rolls pins these two.
 pub(crate) fn material_jet<'a, D: Touch + FrameChain>(
@@ -264,12 +278,15 @@ pub(crate) fn material_jet<'a, D: Touch + FrameChain>(
     f: &'a Frames<D>,
     q: &[f64],
     pair: &Pair,
-    on: &[f64; 3],
+    on: &Material,
     anchor: D::Vector,
 ) -> Result<PointJet<'a, D>> {
     match pair.part {
-        Toucher::Flexure(_) => jet_at(m, f, q, pair, (Some(on[0]), [on[1], on[2]]), None, Some(anchor)),
-        Toucher::Geom(_) => jet_at(m, f, q, pair, (None, [0.0; 2]), Some(super::vector::<D>(on)), Some(anchor)),
+        Toucher::Flexure(_) => jet_at(m, f, q, pair, (Some(on[0]), [on[1], on[2], on[3]]), None, Some(anchor)),
+        Toucher::Geom(_) => {
+            let ball = super::vector::<D>(&[on[0], on[1], on[2]]);
+            jet_at(m, f, q, pair, (None, [0.0; 3]), Some(ball), Some(anchor))
+        }
     }
 }
 
@@ -281,7 +298,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
     f: &'a Frames<D>,
     q: &[f64],
     pair: &Pair,
-    (s, offset): (Option<f64>, [f64; 2]),
+    (s, offset): (Option<f64>, [f64; 3]),
     ball: Option<D::Vector>,
     anchor: Option<D::Vector>,
 ) -> Result<PointJet<'a, D>> {
@@ -296,13 +313,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
             let s = s.ok_or_else(|| Error::invalid("s", "none", "is needed where a flexure touches"))?;
             let k = joint.kind.joint().dof();
             let centre = D::section_jet(flexure, &q[joint.offset..joint.offset + k], s)?;
-            let jet = D::offset_jet(&centre, offset).ok_or_else(|| {
-                Error::invalid(
-                    "friction",
-                    named(m, pair),
-                    "holds where a flexure touches with its thickness only in the plane: in space a section's turning at its surface is not solved yet",
-                )
-            })?;
+            let jet = super::offset_jet(&centre, offset);
             let local = D::moved(&D::origin(&D::identity()), &jet.point, 1.0);
             attach_into(m, f, joint.parent, D::position(&D::act(&joint.origin, &local)), true, &mut att);
             let root = &f.roots[j];
@@ -338,6 +349,11 @@ impl<D: Touch + FrameChain> PointJet<'_, D> {
     /// A flexure's unit tangent at the point (world); `None` for a ball.
     pub fn tangent(&self) -> Option<D::Vector> {
         self.own.as_ref().map(|o| D::rotate(o.root, &o.jet.tangent))
+    }
+
+    /// A flexure's section axes at the point (world, tangent first); empty for a ball.
+    pub fn frame(&self) -> Vec<D::Vector> {
+        self.own.as_ref().map_or(Vec::new(), |o| o.jet.frame.iter().map(|e| D::rotate(o.root, e)).collect())
     }
 
     /// $w\cdot\partial_b\partial_c(x - a)$ for a fixed world vector $w$,

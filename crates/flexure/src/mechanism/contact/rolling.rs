@@ -20,12 +20,16 @@ pub(crate) fn touched<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> &'m Geo
 }
 
 /// A flexure's material point where it touches at `s`, $h$ off its
-/// centreline against the `normal` (world), its unit `tangent` there
-/// (world): the arc length, then the offset in the section's axes (zero
-/// where not known: in space, where friction there is refused).
-pub(crate) fn on_flexure<D: Touch>(s: f64, tangent: &D::Vector, normal: &D::Vector, half: f64) -> [f64; 3] {
-    let o = D::section_axes(tangent, &scaled::<D>(normal, -half)).unwrap_or([0.0; 2]);
-    [s, o[0], o[1]]
+/// centreline against the `normal` (world), its section's axes `frame`
+/// there (world, [`super::SectionJet::frame`]): the arc length, then the
+/// offset in those axes ([`super::jet::Material`]).
+pub(crate) fn on_flexure<D: Touch>(s: f64, frame: &[D::Vector], normal: &D::Vector, half: f64) -> [f64; 4] {
+    let offset = scaled::<D>(normal, -half);
+    let mut out = [s, 0.0, 0.0, 0.0];
+    for (o, e) in out[1..].iter_mut().zip(frame) {
+        *o = dot::<D>(e, &offset);
+    }
+    out
 }
 
 /// Unit tangents of the surface with normal `n` (world), orthogonal to it

@@ -40,7 +40,7 @@
 //! end, or a ball on a geom): the point that touches moves over both
 //! surfaces, so a stuck contact is no pinned point. A thick flexure's
 //! material point is on its surface, off the centreline in its section's
-//! axes ([`crate::mechanism::contact::Touch::offset_jet`]). Over each step the
+//! axes ([`crate::mechanism::contact::offset_jet`]). Over each step the
 //! toucher's material point and the geom body's that met at the last
 //! accepted state are held together along the surface there, $t_k\cdot(x -
 //! a) = 0$ for its unit tangents $t_k$ (fixed for the step), beside the gap
@@ -58,8 +58,7 @@
 //! Curnier's sliding rows ([`Skid`]) in place of the stuck ones, and steps
 //! short enough that the friction turns by at most 0.01 rad.
 //!
-//! **Refused by name:** friction where a spatial flexure touches with its
-//! thickness (its surface's material points turn with its twist too), a mechanism
+//! **Refused by name:** a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
 //! contact), and a path that loses stability (snap-through is not followed
@@ -75,8 +74,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Pair, PointJet, Toucher, array, ball_and_other, dot, gap_jet, length, material_jet,
-    minima, named, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
+    Contact, ContactMode, GapJet, Material, Pair, PointJet, Toucher, array, ball_and_other, dot, gap_jet, length,
+    material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -161,7 +160,7 @@ struct Touching {
     /// The toucher's material point there: a flexure's arc length and the
     /// point's offset from its centreline in the section's axes, or the
     /// point in a ball's body frame.
-    on: [f64; 3],
+    on: Material,
     /// Whether a flexure touches with a thickness (off its centreline).
     thick: bool,
 }
@@ -334,15 +333,15 @@ impl<D: Statics> ContactKkt<'_, D> {
 
     /// Where contact `c`'s toucher touches, as [`Touching::on`] holds it:
     /// a flexure's arc length, or the point in a ball's body frame (after [`Problem::evaluate`]).
-    fn material(&self, c: usize) -> [f64; 3] {
+    fn material(&self, c: usize) -> Material {
         let (m, t) = (self.kkt.mechanism, &self.touching[c]);
         let jet = &self.jets[c];
         match (t.s(), ball_and_other(m, &t.pair)) {
-            (Some(s), _) => on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half),
+            (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
             (None, Ok((ball, ..))) => {
-                array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &jet.point)))
+                on_ball(array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &jet.point))))
             }
-            (None, Err(_)) => [0.0; 3],
+            (None, Err(_)) => [0.0; 4],
         }
     }
 
@@ -898,7 +897,7 @@ enum Event {
         /// Where, in the geom body's frame.
         point: [f64; 3],
         /// Where on the toucher, as [`Touching::on`].
-        on: [f64; 3],
+        on: Material,
         /// The geom's normal there (world).
         normal: [f64; 3],
         /// Whether a flexure's centreline touches there at an end (a material point).
@@ -911,11 +910,11 @@ enum Event {
     /// direction (geom body's frame), with this $N$.
     /// Where it rolls, its point in the geom body's frame and the toucher's
     /// material point there, from where its slide is measured.
-    Slip(usize, [f64; 3], f64, [f64; 3], [f64; 3]),
+    Slip(usize, [f64; 3], f64, [f64; 3], Material),
     /// Sliding contact `c` turned back: it sticks here (geom body's frame)
     /// with this force (world), where the normal is this (world), the
     /// toucher's material point there as [`Touching::on`] last.
-    Stick(usize, [f64; 3], [f64; 3], [f64; 3], [f64; 3]),
+    Stick(usize, [f64; 3], [f64; 3], [f64; 3], Material),
     /// The equilibrium is no longer stable.
     Unstable,
 }
@@ -1013,16 +1012,16 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         let on = match half != 0.0 {
                             true => {
                                 let jet = gap_jet(m, &problem.frames, q, pair, Some(s))?;
-                                on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half)
+                                on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half)
                             }
-                            false => [s, 0.0, 0.0],
+                            false => [s, 0.0, 0.0, 0.0],
                         };
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
                         let ball = ball_and_other(m, pair)?.0.body;
                         let on = D::act(&D::inverse(&problem.frames.bodies[ball]), &low.point);
-                        (false, false, array::<D>(&D::position(&on)))
+                        (false, false, on_ball(array::<D>(&D::position(&on))))
                     }
                 };
                 let normal = array::<D>(&low.normal);
@@ -1065,7 +1064,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             // Just inside the end, where Newton finds the least.
             let s = out[c].s().unwrap_or(0.0);
             if let Law::Stick { anchor } = out[c].law {
-                (out[c].from, out[c].on) = (anchor, [s, 0.0, 0.0]);
+                (out[c].from, out[c].on) = (anchor, [s, 0.0, 0.0, 0.0]);
                 out[c].law = Law::Roll { tangents: tangents::<D>(&normal, None) };
                 out[c].force = [0.0; 3];
             }
@@ -1120,12 +1119,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             let law = match (crate::mechanism::contact::friction(m, &pair) > 0.0, bare_end, thick) {
                 (false, ..) => Law::Free,
                 (true, true, _) => Law::Stick { anchor: point },
-                (true, false, thick) if !thick || D::SURFACE_JET => {
-                    Law::Roll { tangents: tangents::<D>(&normal, None) }
-                }
-                (true, false, _) => {
-                    return Err(rolls(m, &pair, "it touches with a flexure's thickness"));
-                }
+                (true, false, _) => Law::Roll { tangents: tangents::<D>(&normal, None) },
             };
             out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on, thick });
         }
@@ -1134,15 +1128,6 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         }
     }
     Ok(out)
-}
-
-/// The error of friction where a contact rolls, which is not solved.
-fn rolls<D: Statics>(m: &Mechanism<D>, pair: &Pair, why: &str) -> Error {
-    Error::invalid(
-        "friction",
-        format!("{} ({}: {why})", crate::mechanism::contact::friction(m, pair), named(m, pair)),
-        "holds in space where a flexure with no thickness or a ball touches; where a spatial flexure touches with its thickness (its surface's material points are off its centreline, turned by its twist too) friction is not solved yet: set the geom's friction to 0",
-    )
 }
 
 fn lies_along<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> Error {
@@ -1474,9 +1459,9 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 let body = &f.bodies[geom_body(m, &c.pair)];
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
                 let on = match (c.s, ball_and_other(m, &c.pair)) {
-                    (Some(s), _) => on_flexure::<D>(s, &jet.tangent, &jet.normal, jet.half),
+                    (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
                     (None, Ok((ball, ..))) => {
-                        array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point)))
+                        on_ball(array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point))))
                     }
                     (None, Err(e)) => return Err(e),
                 };
@@ -1591,7 +1576,7 @@ mod tests {
             at,
             length: 1.0,
             from: [0.0; 3],
-            on: [0.6, 0.0, 0.0],
+            on: [0.6, 0.0, 0.0, 0.0],
             thick: false,
         };
         let q = [-0.4, 0.1, -0.05, 0.02];
@@ -1639,14 +1624,57 @@ mod tests {
         // inside the span and at the tip.
         for (law, on, place) in rolling
             .iter()
-            .flat_map(|l| [[0.4, 0.0, 0.0], [0.4, 0.003, -0.02]].map(|on| (*l, on, Place::Inner)))
-            .chain([(rolling[0], [1.0, 0.004, -0.02], Place::End(1.0))])
+            .flat_map(|l| [[0.4, 0.0, 0.0, 0.0], [0.4, 0.003, -0.02, 0.0]].map(|on| (*l, on, Place::Inner)))
+            .chain([(rolling[0], [1.0, 0.004, -0.02, 0.0], Place::End(1.0))])
         {
             let mut t = touching(all[0], place, law, [0.5, -0.2, 0.0], 0.45);
             (t.from, t.on, t.thick) = ([0.65, -0.15, 0.0], on, on[2] != 0.0);
             problem.touching = vec![t];
             let x = problem.state(&q);
             crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
+    }
+
+    /// A spatial strip with a thickness rolling on a ball carried by a
+    /// sprung arm that turns about a tilted axis: its surface's material
+    /// point turns with its section (twist too), stuck (two tangents),
+    /// sliding with a lagged direction and skidding; inside the span and
+    /// at the tip.
+    #[test]
+    fn the_jacobian_of_a_thick_spatial_strip_rolling_matches_differences() {
+        let text = "dimension = 3\n[[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\naxis = [0.2, 0.1, 1.0]\nstiffness = 2.0\n\
+                    [[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 1.0\nmodulus = 1e8\nwidth = 0.05\nthickness = 0.04\norder = 2\n\
+                    [[force]]\nbody = \"tip\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, -3.0, 0.5]\n\
+                    [[geom]]\nname = \"cap\"\nbody = \"arm\"\nshape = \"sphere\"\norigin = [0.6, -0.4, 0.1]\nradius = 0.2\nfriction = 0.3\n";
+        let m = crate::mechanism::file::spatial_from_toml(text).unwrap();
+        let mut work = Workspace::new(&m);
+        let all = pairs(&m);
+        let mut problem = bare(&m, &Settings::default(), &mut work);
+        let q: Vec<f64> = (0..m.dof()).map(|i| 0.3 * (1.7 * i as f64 + 0.4).sin()).collect();
+        let u = tangents::<crate::space::Spatial>(&[0.36, 0.48, 0.8], None);
+        let laws = [
+            Law::Roll { tangents: u },
+            Law::Slip { direction: [0.6, 0.0, -0.8] },
+            Law::Skid { tangents: u, accepted: [0.0; 2] },
+        ];
+        let places = [(Place::Inner, [0.4, 0.004, -0.012, 0.015]), (Place::End(1.0), [1.0, 0.01, -0.014, 0.012])];
+        for law in laws {
+            for (place, on) in places {
+                let t = Touching {
+                    pair: all[0],
+                    place,
+                    law,
+                    force: [0.5, -0.2, 0.3],
+                    at: 0.45,
+                    length: 1.0,
+                    from: [0.65, -0.15, 0.05],
+                    on,
+                    thick: true,
+                };
+                problem.touching = vec![t];
+                let x = problem.state(&q);
+                crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+            }
         }
     }
 
@@ -1661,6 +1689,7 @@ mod tests {
         from: [f64; 3],
         on: [f64; 3],
     ) {
+        let on = on_ball(on);
         let mut work = Workspace::new(m);
         let all = pairs(m);
         let mut problem = bare(m, &Settings::default(), &mut work);
