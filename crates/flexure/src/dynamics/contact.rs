@@ -45,7 +45,9 @@
 //! length of a touching contact of the same pair) falling below zero
 //! touches. The integrator lands on each within a band: a gap to
 //! `tolerance` × the mechanism's size, a force or speed to `tolerance` ×
-//! the largest the contact has had. A contact that touches while its parts
+//! the largest the contact has had (a speed, at least $\lVert\Delta\rVert$: the
+//! slide a unit of each rate makes, which the integrator resolves only to
+//! about the tolerance). A contact that touches while its parts
 //! approach ($\dot g_c < 0$) takes a perfectly inelastic impact (the
 //! integrator's projection onto the new closures: the energy never grows);
 //! with friction it slides on the way it moves after the impact (which can
@@ -777,8 +779,12 @@ impl<D: Dynamics> System for ContactSystem<D> {
                         Law::Slip { from, fastest } => {
                             let speed = dot::<D>(&r.slide, &vector::<D>(from));
                             *fastest = fastest.max(speed);
+                            // Not finer than the integrator resolves a slide:
+                            // the rates to about the tolerance, each moving it
+                            // by its Δ_c.
+                            let reach = r.delta.iter().map(|d| dot::<D>(d, d)).sum::<f64>().sqrt();
                             match *fastest > 0.0 {
-                                true => speed / (tolerance * *fastest),
+                                true => speed / (tolerance * fastest.max(reach)),
                                 // Turning back from its first step: it sticks where it began.
                                 false if speed < 0.0 => -1e12,
                                 false => 1.0,

@@ -225,8 +225,30 @@ pub(super) fn advance<S: System + ?Sized>(
                             false => None,
                         };
                         let lambda = consistent.as_deref().unwrap_or(&w.x[3 * n + 2 * m..3 * n + 3 * m]);
-                        let verdict = event::guards(system, &q1, &v1, Some(lambda), &mut g_end)
+                        let mut verdict = event::guards(system, &q1, &v1, Some(lambda), &mut g_end)
                             .map(|()| event::verdict(&g_now, &g_end, pending.as_ref()));
+                        // An event seen through the step's own multipliers is
+                        // checked with the equations' own, which the steps
+                        // aimed at it read: one that only the step's own see
+                        // (they err by its start's closure violation over h²)
+                        // is one those steps never find, and they shrank to
+                        // rounding (a fast grasp with friction stalled so).
+                        // One that both see is aimed at as before.
+                        if matches!(verdict, Ok(Verdict::Overshot))
+                            && consistent.is_none()
+                            && m > 0
+                            && let Some(lambda) = event::consistent_multipliers(system, t + step, &q1, &v1)?
+                        {
+                            let mut g_check = Vec::new();
+                            event::guards(system, &q1, &v1, Some(&lambda), &mut g_check)?;
+                            match event::verdict(&g_now, &g_check, pending.as_ref()) {
+                                Verdict::Overshot => {
+                                    let own = &w.x[3 * n + 2 * m..3 * n + 3 * m];
+                                    event::guards(system, &q1, &v1, Some(own), &mut g_end)?;
+                                }
+                                seen => (g_end, verdict) = (g_check, Ok(seen)),
+                            }
+                        }
                         let checked = match verdict {
                             Ok(Verdict::Overshot) => Err(None),
                             Ok(verdict) => violation(system, &q1, &mut w).map(|c| (c, verdict)).map_err(Some),
