@@ -560,12 +560,11 @@ pub(super) fn images<T: Scalar>(e: &Exponent<T>, step: &Step<T>, frame: &Matrix3
 /// (`MassQuadrature`'s), so that the blocks need not be combined by nodes. For the dynamics; into `out`.
 #[inline(always)]
 pub(super) fn images_alphas(e: &Exponent<f64>, step: &Step<f64>, frame: &Matrix3<f64>, out: &mut Images<f64>) {
-    let (omega, v) = e.jacobian_alphas();
     let (left, shift) = step.maps(frame);
-    for b in 0..3 {
-        out.turning.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * omega[b]));
-        out.moving.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * v[b] + shift * omega[b]));
-    }
+    e.jacobian_alphas(|b, omega, v| {
+        out.turning.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * omega));
+        out.moving.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * v + shift * omega));
+    });
     (out.left, out.shift) = (left, shift);
 }
 

@@ -246,8 +246,8 @@ impl<T: Scalar> Exponent<T> {
     }
 
     /// [`Exponent::jacobian`]'s blocks before they are combined as the nodes
-    /// enter $w_1, w_2, w_3$ ($(\delta\omega, \delta v)$ along unit changes of $w_b$, block $b$
-    /// of each), with each product by a cross matrix written out,
+    /// enter $w_1, w_2, w_3$, `each(b, δω, δv)` along unit changes of $w_b$
+    /// (a block given as made, not kept), with each product by a cross matrix written out,
     /// $\hat a\hat b = ba^T - (a\cdot b)\thinspace 1$ and $\hat aM$ as $a$ crossed with each column:
     /// the same blocks for about a third of the multiplications, equal to
     /// rounding (the unit test below compares them). The dynamics' stations
@@ -255,7 +255,7 @@ impl<T: Scalar> Exponent<T> {
     /// (`MassQuadrature`); the weight's statics keep [`Exponent::jacobian`],
     /// whose answers stay bit for bit.
     #[inline(always)]
-    pub fn jacobian_alphas(&self) -> ([Matrix3<T>; 3], [Matrix3<T>; 3]) {
+    pub fn jacobian_alphas(&self, mut each: impl FnMut(usize, &Matrix3<T>, &Matrix3<T>)) {
         let t = &self.at;
         let i = Matrix3::<T>::identity();
         // ê₁ of the code above is the cross matrix of e = −h e₁.
@@ -281,12 +281,11 @@ impl<T: Scalar> Exponent<T> {
         let k = T::c(1.0 / 240.0);
         let own = [i, Matrix3::zeros(), i * T::c(1.0 / 12.0)];
         let rc1v = [Matrix3::zeros(), crosses(&t.rw, &e), Matrix3::zeros()];
-        let (mut omega, mut v) = ([Matrix3::zeros(); 3], [Matrix3::zeros(); 3]);
         for b in 0..3 {
-            omega[b] = own[b] + (rlw[b] - cross_columns(&t.lw, &rw[b])) * k;
-            v[b] = (rc1v[b] - cross_columns(&t.lv, &rw[b]) + clw[b] - cross_columns(&t.lw, &c2v[b])) * k;
+            let omega = own[b] + (rlw[b] - cross_columns(&t.lw, &rw[b])) * k;
+            let v = (rc1v[b] - cross_columns(&t.lv, &rw[b]) + clw[b] - cross_columns(&t.lw, &c2v[b])) * k;
+            each(b, &omega, &v);
         }
-        (omega, v)
     }
 
     /// The first and second derivatives $D\Omega[\delta u]$ and
@@ -388,7 +387,8 @@ mod tests {
                 std::array::from_fn(|g| Vector3::from_fn(|c, _| scale * ((3 * g + c) as f64 * 1.7 + 0.3).sin()));
             let e = Exponent::new(&u, h);
             let (w, v) = e.jacobian();
-            let (wa, va) = e.jacobian_alphas();
+            let (mut wa, mut va) = ([Matrix3::zeros(); 3], [Matrix3::zeros(); 3]);
+            e.jacobian_alphas(|b, w, v| (wa[b], va[b]) = (*w, *v));
             let (we, ve) = (by_nodes(&wa, h), by_nodes(&va, h));
             let size = w.amax().max(v.amax());
             assert!((w - we).amax() <= 1e-15 * size && (v - ve).amax() <= 1e-15 * size, "{w} {we} {v} {ve}");
