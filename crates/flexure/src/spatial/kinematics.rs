@@ -521,46 +521,119 @@ pub(crate) fn update_rate(flexure: &SpatialFlexure, alpha: &[f64], rate: &[f64],
 }
 
 /// What a step adds to the root-frame columns ([`carry`]) per unit change
-/// of one nodal curvature: angular then linear, column `3 * g + c` for curvature `c` at node `g`.
-pub(super) type Images<T> = (Nine<T>, Nine<T>);
+/// of one of nine directions (three curvatures at three nodes, or in three
+/// of the exponent's $w_b$): angular then linear, column `3 * g + c` for curvature `c`
+/// at node (or $w$) `g`; and the maps they are made with ([`Step::maps`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Images<T: Scalar> {
+    pub turning: Nine<T>,
+    pub moving: Nine<T>,
+    /// $RJ_l(\omega)$ and $RQ$.
+    pub left: Matrix3<T>,
+    pub shift: Matrix3<T>,
+}
+
+impl<T: Scalar> Default for Images<T> {
+    fn default() -> Self {
+        Images { turning: Nine::zeros(), moving: Nine::zeros(), left: Matrix3::zeros(), shift: Matrix3::zeros() }
+    }
+}
 
 /// The [`Images`] of the step `step` (exponent `e`) taken from the frame
 /// of rotation `frame` $= R$: for the unit change
 /// $\delta u$, $\big(RJ_l(\omega)\thinspace\delta\omega,\ R\thinspace\delta p_k\big)$ with
 /// $(\delta\omega, \delta v) = D\Omega[\delta u]$ ([`Exponent::jacobian`],
-/// [`Step::images`]). A coordinate's nodal derivatives are a combination
+/// [`Step::maps`]). A coordinate's nodal derivatives are a combination
 /// of these nine unit changes, and the images are linear in them: nine
 /// tangents a step serve every coordinate.
 #[inline(always)]
 pub(super) fn images<T: Scalar>(e: &Exponent<T>, step: &Step<T>, frame: &Matrix3<T>) -> Images<T> {
     let (dw, dv) = e.jacobian();
-    step.images(&dw, &dv, frame)
+    let (left, shift) = step.maps(frame);
+    Images { turning: left * dw, moving: left * dv + shift * dw, left, shift }
 }
 
-/// [`images`] from [`Exponent::jacobian_expanded`]: equal to rounding, for the dynamics.
+/// [`images`] along unit changes of the exponent's $w_1, w_2, w_3$ rather
+/// than of the nodal curvatures ([`Exponent::jacobian_alphas`]): a coordinate's
+/// change of them combines three as its nodal one does, with the
+/// coefficients of [`Exponent::alphas`] folded into its table
+/// (`MassQuadrature`'s), so that the blocks need not be combined by nodes. For the dynamics; into `out`.
 #[inline(always)]
-pub(super) fn images_expanded(e: &Exponent<f64>, step: &Step<f64>, frame: &Matrix3<f64>) -> Images<f64> {
-    let (dw, dv) = e.jacobian_expanded();
-    step.images(&dw, &dv, frame)
+pub(super) fn images_alphas(e: &Exponent<f64>, step: &Step<f64>, frame: &Matrix3<f64>, out: &mut Images<f64>) {
+    let (left, shift) = step.maps(frame);
+    e.jacobian_alphas(|b, omega, v| {
+        out.turning.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * omega));
+        out.moving.fixed_view_mut::<3, 3>(0, 3 * b).copy_from(&(left * v + shift * omega));
+    });
+    (out.left, out.shift) = (left, shift);
 }
 
-/// Column `a`'s [`Images`] combination for a step whose nodal shape
-/// values are `rows`: $\sum_g\tilde P_i(s_g)\thinspace I_{c,g}$ for the coordinate's curvature $c$ and shape $i$.
+/// A frame's motion under a rate $\dot\alpha$ at $\ddot\alpha = 0$ in the flexure's
+/// root frame ([`Rate::in_root`]'s form): its angular velocity $\omega$, its
+/// origin's velocity $\dot p$, its angular acceleration $\dot\omega$ and its origin's acceleration $\ddot p$.
+pub(crate) type Motion = [Vector3<f64>; 4];
+
+/// The [`Motion`] `from` of the frame $(R, p)$ a step is taken from, carried
+/// to the frame reached, $(RR_k, p + Rp_k)$ with `arm` $= Rp_k$: the step
+/// turns it at $\omega_k = RJ_l\delta\omega$ and moves it at $\dot p_k = R\delta p$
+/// relative to $(R, p)$ (the step's `images`' maps on the exponent's first
+/// derivative along the rate's change `along` of its directions), with
+/// $\dot\omega_k$ and $\ddot p_k$ from its second ([`Step::quadratic`]), so
+/// $$\omega^{\prime} = \omega + \omega_k,\quad \dot p^{\prime} = \dot p + \omega\times Rp_k + \dot p_k,\quad
+///   \dot\omega^{\prime} = \dot\omega + \omega\times\omega_k + \dot\omega_k,$$
+/// $$\ddot p^{\prime} = \ddot p + \dot\omega\times Rp_k + \omega\times(\omega\times Rp_k) + 2\omega\times\dot p_k + \ddot p_k:$$
+/// [`carry_rate`]'s body-frame recursion in the root frame, where the
+/// stations' motion is wanted, without the adjoints.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(super) fn increment<T: Scalar>(
+pub(super) fn carry_motion(
+    from: &Motion,
+    first: (Vector3<f64>, Vector3<f64>),
+    second: (Vector3<f64>, Vector3<f64>),
+    step: &Step<f64>,
+    r: &Matrix3<f64>,
+    images: &Images<f64>,
+    arm: &Vector3<f64>,
+) -> Motion {
+    let ((dw, dv), (dww, dvv)) = (first, second);
+    let (left, shift) = (&images.left, &images.shift);
+    let (turn, slide) = (left * dw, left * dv + shift * dw);
+    let (a, b) = step.quadratic(&dw, &dv);
+    let (turning, moving) = (left * dww + r * a, left * dvv + shift * dww + r * b);
+    let [w, pd, wd, pdd] = *from;
+    let wa = w.cross(arm);
+    [
+        w + turn,
+        pd + wa + slide,
+        wd + w.cross(&turn) + turning,
+        pdd + wd.cross(arm) + w.cross(&wa) + w.cross(&slide) * 2.0 + moving,
+    ]
+}
+
+/// Each column's [`Images`] combination for a step whose nodal shape values
+/// are `rows`, `each(a, δω_a, δp_a)` in the order of the coordinates:
+/// $\sum_g\tilde P_i(s_g)\thinspace I_{c,g}$ for coordinate $a$'s curvature $c$ and shape $i$.
+#[inline(always)]
+pub(super) fn increments<T: Scalar>(
     flexure: &SpatialFlexure,
     images: &Images<T>,
     rows: &[f64],
-    a: usize,
-) -> (Vector3<T>, Vector3<T>) {
-    let (w, (c, i)) = (flexure.width(), flexure.component(a));
-    let (mut dw, mut dp) = (Vector3::zeros(), Vector3::zeros());
-    for g in 0..3 {
-        let k = T::c(rows[g * w + i]);
-        dw += images.0.column(3 * g + c) * k;
-        dp += images.1.column(3 * g + c) * k;
+    mut each: impl FnMut(usize, Vector3<T>, Vector3<T>),
+) {
+    let (w, orders) = (flexure.width(), flexure.orders());
+    let mut a = 0;
+    for (c, &order) in orders.iter().enumerate() {
+        for i in 0..order {
+            let (mut dw, mut dp) = (Vector3::zeros(), Vector3::zeros());
+            for g in 0..3 {
+                let k = T::c(rows[g * w + i]);
+                dw += images.turning.column(3 * g + c) * k;
+                dp += images.moving.column(3 * g + c) * k;
+            }
+            each(a, dw, dp);
+            a += 1;
+        }
     }
-    (dw, dp)
 }
 
 /// The root-frame columns carried over one step $(R_k, p_k)$ from the frame
@@ -572,18 +645,17 @@ pub(super) fn increment<T: Scalar>(
 /// column and a tangent for each coordinate, this is a combination of
 /// three images and a cross product a column.
 #[inline(always)]
-fn carry<T: Scalar>(
+pub(super) fn carry<T: Scalar>(
     data: &mut SpatialKinematics<T>,
     flexure: &SpatialFlexure,
     rows: &[f64],
     images: &Images<T>,
     arm: &Vector3<T>,
 ) {
-    for a in 0..data.turning.len() {
-        let (dw, dp) = increment(flexure, images, rows, a);
+    increments(flexure, images, rows, |a, dw, dp| {
         data.moving[a] += data.turning[a].cross(arm) + dp;
         data.turning[a] += dw;
-    }
+    });
 }
 
 /// One step of [`jacobian_pass`] from the frame rotation `r`: the step

@@ -134,8 +134,16 @@ impl<T: Scalar> Exponent<T> {
     /// The terms at the nodal curvatures `u` on a subinterval of length `h`.
     #[inline(always)]
     pub fn new(u: &[Vector3<T>; 3], h: f64) -> Self {
-        let ht = T::c(h);
         let (w1, w2, w3) = Self::alphas(u, h);
+        Self::with_alphas(&[w1, w2, w3], h)
+    }
+
+    /// The terms from the angular parts $w_1, w_2, w_3$ of $\alpha_1, \alpha_2, \alpha_3$
+    /// ([`Exponent::alphas`] of the nodal curvatures) on a subinterval of length `h`.
+    #[inline(always)]
+    pub fn with_alphas(w: &[Vector3<T>; 3], h: f64) -> Self {
+        let ht = T::c(h);
+        let [w1, w2, w3] = *w;
         // C₁ = [α₁, α₂]′ = [α₂, α₁] = (w₂ × w₁, w₂ × h e₁).
         let c1w = w2.cross(&w1);
         let c1v = cross_e1(&w2, ht);
@@ -172,8 +180,15 @@ impl<T: Scalar> Exponent<T> {
     /// The terms' derivatives along the change `du`, by the product rule.
     #[inline(always)]
     fn change(&self, du: &[Vector3<T>; 3]) -> Terms<T> {
-        let (t, ht) = (&self.at, T::c(self.h));
         let (w1, w2, w3) = Self::alphas(du, self.h);
+        self.change_alphas(&[w1, w2, w3])
+    }
+
+    /// [`Exponent::change`] along the change `dw` of $w_1, w_2, w_3$.
+    #[inline(always)]
+    fn change_alphas(&self, dw: &[Vector3<T>; 3]) -> Terms<T> {
+        let (t, ht) = (&self.at, T::c(self.h));
+        let [w1, w2, w3] = *dw;
         let c1w = w2.cross(&t.w1) + t.w2.cross(&w1);
         let c1v = cross_e1(&w2, ht);
         let xw = w3 * T::c(2.0) + c1w;
@@ -230,18 +245,21 @@ impl<T: Scalar> Exponent<T> {
         (by_nodes(&omega, h), by_nodes(&v, h))
     }
 
-    /// [`Exponent::jacobian`] with each product by a cross matrix written
-    /// out, $\hat a\hat b = ba^T - (a\cdot b)\thinspace 1$ and $\hat aM$ as $a$ crossed with each
-    /// column: the same blocks for about a third of the multiplications,
-    /// equal to rounding (the unit test below compares them). The
-    /// dynamics' stations take it; the weight's statics keep
-    /// [`Exponent::jacobian`], whose answers stay bit for bit.
+    /// [`Exponent::jacobian`]'s blocks before they are combined as the nodes
+    /// enter $w_1, w_2, w_3$, `each(b, δω, δv)` along unit changes of $w_b$
+    /// (a block given as made, not kept), with each product by a cross matrix written out,
+    /// $\hat a\hat b = ba^T - (a\cdot b)\thinspace 1$ and $\hat aM$ as $a$ crossed with each column:
+    /// the same blocks for about a third of the multiplications, equal to
+    /// rounding (the unit test below compares them). The dynamics' stations
+    /// take it, their tables giving each coordinate's change of the $w_b$
+    /// (`MassQuadrature`); the weight's statics keep [`Exponent::jacobian`],
+    /// whose answers stay bit for bit.
     #[inline(always)]
-    pub fn jacobian_expanded(&self) -> (Nine<T>, Nine<T>) {
-        let (t, h) = (&self.at, self.h);
+    pub fn jacobian_alphas(&self, mut each: impl FnMut(usize, &Matrix3<T>, &Matrix3<T>)) {
+        let t = &self.at;
         let i = Matrix3::<T>::identity();
         // ê₁ of the code above is the cross matrix of e = −h e₁.
-        let e = Vector3::new(-T::c(h), T::zero(), T::zero());
+        let e = Vector3::new(-T::c(self.h), T::zero(), T::zero());
         let k = T::c(-1.0 / 60.0);
         let c2w = [
             (t.xw.cross_matrix() - crosses(&t.w1, &t.w2)) * k,
@@ -262,12 +280,12 @@ impl<T: Scalar> Exponent<T> {
         let (rlw, clw) = (by_lw(&t.rw), by_lw(&t.c2v));
         let k = T::c(1.0 / 240.0);
         let own = [i, Matrix3::zeros(), i * T::c(1.0 / 12.0)];
-        let omega = std::array::from_fn(|b| own[b] + (rlw[b] - cross_columns(&t.lw, &rw[b])) * k);
         let rc1v = [Matrix3::zeros(), crosses(&t.rw, &e), Matrix3::zeros()];
-        let v = std::array::from_fn(|b| {
-            (rc1v[b] - cross_columns(&t.lv, &rw[b]) + clw[b] - cross_columns(&t.lw, &c2v[b])) * k
-        });
-        (by_nodes(&omega, h), by_nodes(&v, h))
+        for b in 0..3 {
+            let omega = own[b] + (rlw[b] - cross_columns(&t.lw, &rw[b])) * k;
+            let v = (rc1v[b] - cross_columns(&t.lv, &rw[b]) + clw[b] - cross_columns(&t.lw, &c2v[b])) * k;
+            each(b, &omega, &v);
+        }
     }
 
     /// The first and second derivatives $D\Omega[\delta u]$ and
@@ -277,7 +295,21 @@ impl<T: Scalar> Exponent<T> {
     #[inline(always)]
     #[allow(clippy::type_complexity)]
     pub fn along(&self, du: &[Vector3<T>; 3]) -> ((Vector3<T>, Vector3<T>), (Vector3<T>, Vector3<T>)) {
-        let (t, d) = (&self.at, self.change(du));
+        self.along_terms(&self.change(du))
+    }
+
+    /// [`Exponent::along`] along the change `dw` of $w_1, w_2, w_3$ rather than of the nodal curvatures.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    pub fn along_alphas(&self, dw: &[Vector3<T>; 3]) -> ((Vector3<T>, Vector3<T>), (Vector3<T>, Vector3<T>)) {
+        self.along_terms(&self.change_alphas(dw))
+    }
+
+    /// [`Exponent::along`] from the terms' derivatives `d` along the change.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn along_terms(&self, d: &Terms<T>) -> ((Vector3<T>, Vector3<T>), (Vector3<T>, Vector3<T>)) {
+        let (t, d) = (&self.at, *d);
         let (two, ht) = (T::c(2.0), T::c(self.h));
         // The w's and C₁'s linear part are linear in the curvatures: only
         // the products' cross terms have second derivatives.
@@ -346,15 +378,18 @@ pub(crate) fn exponential<T: Scalar>(u: &[Vector3<T>; 3], h: f64) -> (Matrix3<T>
 mod tests {
     use super::*;
 
-    /// The expanded Jacobian meets the matrix form to rounding, at curvatures
+    /// The expanded Jacobian, combined by nodes, meets the matrix form to rounding, at curvatures
     /// large and small and at rest (where both are exact).
     #[test]
-    fn jacobian_expanded_meets_jacobian() {
+    fn jacobian_alphas_meets_jacobian() {
         for (scale, h) in [(0.0, 0.5), (1e-3, 0.1), (0.3, 1.25), (2.0, 0.7)] {
             let u: [Vector3<f64>; 3] =
                 std::array::from_fn(|g| Vector3::from_fn(|c, _| scale * ((3 * g + c) as f64 * 1.7 + 0.3).sin()));
             let e = Exponent::new(&u, h);
-            let ((w, v), (we, ve)) = (e.jacobian(), e.jacobian_expanded());
+            let (w, v) = e.jacobian();
+            let (mut wa, mut va) = ([Matrix3::zeros(); 3], [Matrix3::zeros(); 3]);
+            e.jacobian_alphas(|b, w, v| (wa[b], va[b]) = (*w, *v));
+            let (we, ve) = (by_nodes(&wa, h), by_nodes(&va, h));
             let size = w.amax().max(v.amax());
             assert!((w - we).amax() <= 1e-15 * size && (v - ve).amax() <= 1e-15 * size, "{w} {we} {v} {ve}");
             if scale != 0.0 {

@@ -33,8 +33,7 @@
 
 use super::SpatialFlexure;
 use super::kinematics::{
-    Images, Rate, SpatialKinematics, advance, carry_rate, images, images_expanded, increment, rate_direction,
-    root_step, row_curvature,
+    Images, Motion, SpatialKinematics, advance, carry, carry_motion, images, images_alphas, increments, row_curvature,
 };
 use super::magnus::{Exponent, NODES};
 use super::step::Step;
@@ -66,6 +65,11 @@ pub struct MassQuadrature {
     /// $\tilde P_i(t)/L$ at the Gauss node $g$ of the partial step to
     /// station $k$, `[(k * 3 + g) * width + i]`.
     partial: Vec<f64>,
+    /// The same shape values as they enter the step's exponent's $w_1, w_2, w_3$
+    /// ([`by_alphas`]): of the partial step to station $k$ at `[(k * 3 + b) * width + i]`,
+    /// and of subinterval $j$'s whole step at `[(j * 3 + b) * width + i]`.
+    partial_alphas: Vec<f64>,
+    whole_alphas: Vec<f64>,
 }
 
 impl MassQuadrature {
@@ -106,7 +110,10 @@ impl MassQuadrature {
                 }
             }
         }
-        Some(MassQuadrature { stations, width, partial })
+        let partial_alphas =
+            (0..3 * m).flat_map(|k| by_alphas(&partial[k * 3 * width..], width, NODES[k % 3] * h)).collect();
+        let whole_alphas = (0..m).flat_map(|k| by_alphas(flexure.shapes(k), width, h)).collect();
+        Some(MassQuadrature { stations, width, partial, partial_alphas, whole_alphas })
     }
 
     /// The stations, root to tip.
@@ -119,10 +126,28 @@ impl MassQuadrature {
         self.stations.iter().map(|s| s.mass).sum()
     }
 
+    /// Whether any station has rotary inertia (a section of mass per length alone has none).
+    pub fn rotary(&self) -> bool {
+        self.stations.iter().any(|s| s.rotary != [0.0; 3])
+    }
+
     /// Whether it was made for `flexure` (its subintervals and orders).
     pub fn fits(&self, flexure: &SpatialFlexure) -> bool {
         self.stations.len() == 3 * flexure.subintervals() && self.width == flexure.width()
     }
+}
+
+/// Three nodes' shape values `rows` (rows of `width`) of a step of length `h` as
+/// they enter its exponent's $w_1 = hu_2$, $w_2 = \frac{\sqrt{15}h}3(u_3 - u_1)$ and
+/// $w_3 = \frac{10h}3(u_3 - 2u_2 + u_1)$ ([`Exponent::alphas`]): three rows of `width`.
+fn by_alphas(rows: &[f64], width: usize, h: f64) -> Vec<f64> {
+    let (s, q) = (15f64.sqrt() * h / 3.0, 10.0 * h / 3.0);
+    let node = |g: usize, i: usize| rows[g * width + i];
+    let mut out = Vec::with_capacity(3 * width);
+    out.extend((0..width).map(|i| h * node(1, i)));
+    out.extend((0..width).map(|i| s * (node(2, i) - node(0, i))));
+    out.extend((0..width).map(|i| q * (node(2, i) - 2.0 * node(1, i) + node(0, i))));
+    out
 }
 
 /// The stations' frames and derivatives at one configuration, in the
@@ -143,10 +168,10 @@ pub struct StationKinematics {
     /// $\partial_a\partial_bS$ at `[a * n + b]` (kg·m; at [`Level::Hessian`]).
     pub moment_hessian: Vec<Vector3<f64>>,
     /// Each station's motion under a rate $\dot\alpha$ at $\ddot\alpha = 0$
-    /// ([`Rate::in_root`]: $\omega_k$, $\dot p_k$, $\dot\omega_k$, $\ddot p_k$), filled by [`stations_dynamics_update`].
-    pub(crate) rates: Vec<[Vector3<f64>; 4]>,
+    /// ([`Motion`]: $\omega_k$, $\dot p_k$, $\dot\omega_k$, $\ddot p_k$), filled by [`stations_dynamics_update`].
+    pub(crate) rates: Vec<Motion>,
     /// The tip's, in the same form.
-    pub(crate) tip: [Vector3<f64>; 4],
+    pub(crate) tip: Motion,
     main: SpatialKinematics,
     scratch: SpatialKinematics,
 }
@@ -215,15 +240,20 @@ pub fn stations_update(
     level: Level,
     out: &mut StationKinematics,
 ) {
-    pass(flexure, quadrature, alpha, level, None, out, images);
+    check(flexure, quadrature, alpha, out);
+    match level {
+        Level::Hessian => hessian_pass(flexure, quadrature, alpha, out),
+        Level::Jacobian => root_pass::<false>(flexure, quadrature, alpha, 1, None, out),
+        Level::Pose => root_pass::<false>(flexure, quadrature, alpha, 0, None, out),
+    }
 }
 
 /// [`stations_update`] at [`Level::Jacobian`] for the dynamics, each
-/// step's images from [`Exponent::jacobian_expanded`] (equal to rounding,
-/// cheaper), and with a rate `rate` the stations' and the tip's motion under
-/// it at $\ddot\alpha = 0$ into `out.rates` and `out.tip`: their exact second
-/// derivatives contracted with the rate twice, carried through the same
-/// pass (`kinematics::carry_rate`).
+/// step's exponent and images along its $w_1, w_2, w_3$ (`root_pass`'s `ALPHAS`: equal to
+/// rounding, cheaper), and with a rate `rate` the stations' and the tip's
+/// motion under it at $\ddot\alpha = 0$ into `out.rates` and `out.tip`: their
+/// exact second derivatives contracted with the rate twice, carried
+/// through the same pass in the root frame (`kinematics::carry_motion`).
 pub(crate) fn stations_dynamics_update(
     flexure: &SpatialFlexure,
     quadrature: &MassQuadrature,
@@ -232,53 +262,45 @@ pub(crate) fn stations_dynamics_update(
     out: &mut StationKinematics,
 ) {
     assert!(rate.is_none_or(|u| u.len() == alpha.len()), "rate must have one entry per coordinate");
-    pass(flexure, quadrature, alpha, Level::Jacobian, rate, out, images_expanded);
+    check(flexure, quadrature, alpha, out);
+    root_pass::<true>(flexure, quadrature, alpha, 1, rate, out);
 }
 
-fn pass(
-    flexure: &SpatialFlexure,
-    quadrature: &MassQuadrature,
-    alpha: &[f64],
-    level: Level,
-    rate: Option<&[f64]>,
-    out: &mut StationKinematics,
-    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
-) {
+fn check(flexure: &SpatialFlexure, quadrature: &MassQuadrature, alpha: &[f64], out: &StationKinematics) {
     assert_eq!(alpha.len(), flexure.coordinates(), "alpha must have one entry per coordinate");
     assert!(quadrature.fits(flexure) && out.fits(flexure, quadrature), "mass buffers made for another flexure");
-    match level {
-        Level::Hessian => hessian_pass(flexure, quadrature, alpha, out),
-        Level::Jacobian => root_pass(flexure, quadrature, alpha, 1, rate, out, images),
-        Level::Pose => root_pass(flexure, quadrature, alpha, 0, rate, out, images),
-    }
 }
 
 /// The pass to `order` 0 or 1 in the root frame: each station one partial
 /// step from the tip's root-frame columns at its subinterval's start
 /// (`kinematics::jacobian_pass`'s recursion, the station's step's images
 /// added to a copy of them), with the rate's motion at order 1 when asked.
-fn root_pass(
+/// With `ALPHAS` (the dynamics) each step's exponent is made from the sums
+/// of the coordinates on the tables of [`by_alphas`] and its images are
+/// along its $w_1, w_2, w_3$ ([`images_alphas`]); without (the statics, whose
+/// answers stay bit for bit), from the nodal curvatures ([`images`]).
+fn root_pass<const ALPHAS: bool>(
     flexure: &SpatialFlexure,
     quadrature: &MassQuadrature,
     alpha: &[f64],
     order: usize,
     rate: Option<&[f64]>,
     out: &mut StationKinematics,
-    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
 ) {
     // Fixed sizes for equal orders 2 to 4: the nodal sums unroll (the same sums, in the same order).
     match (flexure.orders(), quadrature.width) {
-        ([2, 2, 2], 2) => {
-            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<2>(rows, alpha))
-        }
-        ([3, 3, 3], 3) => {
-            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<3>(rows, alpha))
-        }
-        ([4, 4, 4], 4) => {
-            root_pass_with(flexure, quadrature, order, rate, out, images, |rows| fixed_curvatures::<4>(rows, alpha))
-        }
-        (orders, w) => root_pass_with(flexure, quadrature, order, rate, out, images, |rows| {
-            std::array::from_fn(|g| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha))
+        ([2, 2, 2], 2) => root_pass_with::<ALPHAS>(flexure, quadrature, alpha, order, rate, out, |rows, x| {
+            fixed_curvatures::<2>(rows, x)
+        }),
+        ([3, 3, 3], 3) => root_pass_with::<ALPHAS>(flexure, quadrature, alpha, order, rate, out, |rows, x| {
+            fixed_curvatures::<3>(rows, x)
+        }),
+        ([4, 4, 4], 4) => root_pass_with::<ALPHAS>(flexure, quadrature, alpha, order, rate, out, |rows, x| {
+            fixed_curvatures::<4>(rows, x)
+        }),
+        (orders, w) => root_pass_with::<ALPHAS>(flexure, quadrature, alpha, order, rate, out, |rows, alpha| {
+            let g = |g: usize| row_curvature(&rows[g * w..(g + 1) * w], orders, alpha);
+            [g(0), g(1), g(2)]
         }),
     }
 }
@@ -287,42 +309,66 @@ fn root_pass(
 #[inline(always)]
 fn fixed_curvatures<const N: usize>(rows: &[f64], alpha: &[f64]) -> [Vector3<f64>; 3] {
     let (rows, alpha) = (&rows[..3 * N], &alpha[..3 * N]);
-    std::array::from_fn(|g| {
-        let row = &rows[g * N..(g + 1) * N];
-        Vector3::from_fn(|c, _| {
+    let mut out = [Vector3::zeros(); 3];
+    for (g, node) in out.iter_mut().enumerate() {
+        for c in 0..3 {
             let mut sum = 0.0;
             for i in 0..N {
-                sum += row[i] * alpha[c * N + i];
+                sum += rows[g * N + i] * alpha[c * N + i];
             }
-            sum
-        })
-    })
+            node[c] = sum;
+        }
+    }
+    out
 }
 
-/// [`root_pass`] with the nodal curvatures of a step's shape rows from `curvatures`.
+/// [`root_pass`] with the sums `curvatures(rows, x)` of the coordinates or a rate `x` on a step's shape rows `rows`
+/// (for a rate, its change of them: $\sum_a\dot\alpha_a\partial_a$ of the sums, which are linear).
 #[inline(always)]
-fn root_pass_with(
+fn root_pass_with<const ALPHAS: bool>(
     flexure: &SpatialFlexure,
     quadrature: &MassQuadrature,
+    alpha: &[f64],
     order: usize,
     rate: Option<&[f64]>,
     out: &mut StationKinematics,
-    images: impl Fn(&Exponent<f64>, &Step<f64>, &Matrix3<f64>) -> Images<f64> + Copy,
-    curvatures: impl Fn(&[f64]) -> [Vector3<f64>; 3],
+    curvatures: impl Fn(&[f64], &[f64]) -> [Vector3<f64>; 3],
 ) {
     let (m, w) = (flexure.subintervals(), quadrature.width);
     let h = flexure.length() / m as f64;
     let order = if rate.is_some() { 2 } else { order };
+    let partial = if ALPHAS { &quadrature.partial_alphas } else { &quadrature.partial };
+    let exponent =
+        |sums: &[Vector3<f64>; 3], h: f64| if ALPHAS { Exponent::with_alphas(sums, h) } else { Exponent::new(sums, h) };
+    let images_into = |e: &Exponent<f64>, step: &Step<f64>, r: &Matrix3<f64>, out: &mut Images<f64>| {
+        if ALPHAS {
+            images_alphas(e, step, r, out);
+        } else {
+            *out = images(e, step, r);
+        }
+    };
     let (mut r, mut p) = (Matrix3::identity(), Vector3::zeros());
     out.moment = Vector3::zeros();
     out.main.turning.fill(Vector3::zeros());
     out.main.moving.fill(Vector3::zeros());
-    let mut state = Rate::default();
+    let (mut motion, mut images): (Motion, _) = ([Vector3::zeros(); 4], Images::default());
+    // The rate's motion carried over a step from the frame of rotation r.
+    let carried = |from: &Motion,
+                   rows: &[f64],
+                   e: &Exponent<f64>,
+                   step: &Step<f64>,
+                   images: &Images<f64>,
+                   arm: &Vector3<f64>,
+                   r: &Matrix3<f64>| {
+        let along = curvatures(rows, rate.expect("a rate"));
+        let (first, second) = if ALPHAS { e.along_alphas(&along) } else { e.along(&along) };
+        carry_motion(from, first, second, step, r, images, arm)
+    };
     for k in 0..m {
         for (j, tau) in NODES.iter().enumerate() {
             let station = 3 * k + j;
-            let rows = &quadrature.partial[station * 3 * w..(station + 1) * 3 * w];
-            let e = Exponent::new(&curvatures(rows), tau * h);
+            let rows = &partial[station * 3 * w..(station + 1) * 3 * w];
+            let e = exponent(&curvatures(rows, alpha), tau * h);
             let (wv, v) = e.value();
             let step = Step::new(wv, v, order);
             let (rs, arm) = (r * step.r, r * step.p);
@@ -331,35 +377,30 @@ fn root_pass_with(
             out.position[station] = ps;
             out.moment += ps * quadrature.stations[station].mass;
             if order >= 1 {
-                station_columns(
-                    flexure,
-                    &out.main,
-                    rows,
-                    &images(&e, &step, &r),
-                    &arm,
-                    station,
-                    (&mut out.omega, &mut out.velocity),
-                );
-            }
-            if let Some(u) = rate {
-                let mut s = state;
-                carry_rate(&mut s, &e, &step, &rate_direction(flexure, rows, u));
-                out.rates[station] = s.in_root(&rs);
+                images_into(&e, &step, &r, &mut images);
+                station_columns(flexure, &out.main, rows, &images, &arm, station, (&mut out.omega, &mut out.velocity));
+                if rate.is_some() {
+                    out.rates[station] = carried(&motion, rows, &e, &step, &images, &arm, &r);
+                }
             }
         }
-        let rows = flexure.shapes(k);
-        let e = Exponent::new(&curvatures(rows), h);
+        let rows = if ALPHAS { &quadrature.whole_alphas[k * 3 * w..(k + 1) * 3 * w] } else { flexure.shapes(k) };
+        let e = exponent(&curvatures(rows, alpha), h);
         let (wv, v) = e.value();
         let step = Step::new(wv, v, order);
-        let (rs, arm) = root_step(flexure, rows, &e, &step, &r, &mut out.main, images);
-        if let Some(u) = rate {
-            carry_rate(&mut state, &e, &step, &rate_direction(flexure, rows, u));
+        let (rs, arm) = (r * step.r, r * step.p);
+        if order >= 1 {
+            images_into(&e, &step, &r, &mut images);
+            carry(&mut out.main, flexure, rows, &images, &arm);
+            if rate.is_some() {
+                motion = carried(&motion, rows, &e, &step, &images, &arm, &r);
+            }
         }
         p += arm;
         r = rs;
     }
     if rate.is_some() {
-        out.tip = state.in_root(&r);
+        out.tip = motion;
     }
 }
 
@@ -445,9 +486,84 @@ fn station_columns(
 ) {
     let n = flexure.coordinates();
     let (omega, velocity) = into;
-    for a in 0..n {
-        let (dw, dp) = increment(flexure, images, rows, a);
+    increments(flexure, images, rows, |a, dw, dp| {
         omega[station * n + a] = main.turning[a] + dw;
         velocity[station * n + a] = main.moving[a] + main.turning[a].cross(arm) + dp;
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::kinematics::{Rate, carry_rate, rate_direction, update_rate};
+    use super::*;
+    use crate::section::{Profile, SpatialSection};
+
+    /// The largest difference of two lists of vectors, against the largest entry of the first.
+    fn apart(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
+        let size = a.iter().fold(0.0_f64, |m, x| m.max(x.amax()));
+        a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).amax())) / size
+    }
+
+    /// The dynamics' pass (its exponents from the tables of $w_1, w_2, w_3$,
+    /// its images along them, the rate's motion carried in the root frame)
+    /// meets the statics' pass (nodal curvatures) in the stations' frames and
+    /// columns, and the body-frame recursion it replaced (`carry_rate` on
+    /// each step, turned into the root frame at each station) in the
+    /// stations' and the tip's motion, to 1e-13 of each quantity's largest
+    /// entry: equal orders (the unrolled sums) and unequal ones.
+    #[test]
+    fn the_dynamics_pass_meets_the_statics_pass_and_the_body_frame_rate() {
+        for orders in [[4, 4, 4], [3, 2, 4]] {
+            let f = SpatialFlexure::new(10.0, SpatialSection::uniform(1e3, 1e3, 1e3).unwrap(), orders)
+                .unwrap()
+                .with_mass_per_length(Profile::Constant(1.0))
+                .unwrap();
+            let (quadrature, n, w) = (MassQuadrature::new(&f).unwrap(), f.coordinates(), f.width());
+            let alpha: Vec<f64> = (0..n).map(|i| 0.3 * (i as f64 * 1.3 + 0.2).sin()).collect();
+            let rate: Vec<f64> = (0..n).map(|i| 0.5 * (1.9 * i as f64 + 0.5).cos()).collect();
+            let (mut old, mut new) = (StationKinematics::new(&f, &quadrature), StationKinematics::new(&f, &quadrature));
+            stations_update(&f, &quadrature, &alpha, Level::Jacobian, &mut old);
+            stations_dynamics_update(&f, &quadrature, &alpha, Some(&rate), &mut new);
+            let rotation = |k: &StationKinematics| -> Vec<Vector3<f64>> {
+                k.rotation.iter().flat_map(|r| [0, 1, 2].map(|c| r.column(c).into_owned())).collect()
+            };
+            for (what, d) in [
+                ("rotation", apart(&rotation(&old), &rotation(&new))),
+                ("position", apart(&old.position, &new.position)),
+                ("omega", apart(&old.omega, &new.omega)),
+                ("velocity", apart(&old.velocity, &new.velocity)),
+            ] {
+                assert!(d < 1e-13, "orders {orders:?}: {what} apart by {d:e}");
+            }
+            // The body-frame recursion, step by step as the pass takes them.
+            let h = f.length() / f.subintervals() as f64;
+            let (mut state, mut r, mut rates) = (Rate::default(), Matrix3::identity(), Vec::new());
+            let curvatures = |rows: &[f64]| std::array::from_fn(|g| row_curvature(&rows[g * w..], orders, &alpha));
+            for k in 0..f.subintervals() {
+                for (j, tau) in NODES.iter().enumerate() {
+                    let rows = &quadrature.partial[(3 * k + j) * 3 * w..];
+                    let e = Exponent::new(&curvatures(rows), tau * h);
+                    let (wv, v) = e.value();
+                    let (step, mut s) = (Step::new(wv, v, 2), state);
+                    carry_rate(&mut s, &e, &step, &rate_direction(&f, rows, &rate));
+                    rates.extend(s.in_root(&(r * step.r)));
+                }
+                let e = Exponent::new(&curvatures(f.shapes(k)), h);
+                let (wv, v) = e.value();
+                let step = Step::new(wv, v, 2);
+                carry_rate(&mut state, &e, &step, &rate_direction(&f, f.shapes(k), &rate));
+                r *= step.r;
+            }
+            let flat: Vec<Vector3<f64>> = new.rates.iter().flatten().copied().collect();
+            for part in 0..4 {
+                let pick = |v: &[Vector3<f64>]| v.iter().skip(part).step_by(4).copied().collect::<Vec<_>>();
+                let d = apart(&pick(&rates), &pick(&flat));
+                assert!(d < 1e-13, "orders {orders:?}: the stations' motion, part {part}, apart by {d:e}");
+            }
+            let tip = update_rate(&f, &alpha, &rate, &mut SpatialKinematics::new(&f));
+            let tip = tip.in_root(&r);
+            let d = apart(&tip, &new.tip);
+            assert!(d < 1e-13, "orders {orders:?}: the tip's motion apart by {d:e}");
+        }
     }
 }

@@ -13,7 +13,6 @@
 //! The second derivative $\partial_b(g^{-1}\partial_a g)$ differentiates these once more:
 //! its linear part is $R^T\partial_a\partial_b p - (J_r\partial_b\omega)\times(R^T\partial_a p)$.
 
-use super::magnus::Nine;
 use crate::scalar::Scalar;
 use crate::space::{ExpCoefficients, exp_coefficients, exp_parts};
 use nalgebra::{Matrix3, Vector3};
@@ -105,16 +104,15 @@ impl<T: Scalar> Step<T> {
         Tangent { dw, dv, wdw, ds, dt, angular: self.right_jacobian(&dw), linear: self.r.tr_mul(&dp) }
     }
 
-    /// [`Step::tangent`] along nine exponent changes at once (columns of
-    /// `dw`, `dv`), seen from the frame $(R, p)$ the step is taken from:
-    /// $(RJ_l(\omega)\thinspace\delta\omega,\ R\thinspace\delta p)$, the tangent's body
-    /// twist turned by $RR_k$ ($J_l = R_kJ_r = I + f_2\hat\omega + f_3\hat\omega^2$). With the
-    /// cross products as matrices, $\delta p = J_l\delta v + Q\delta\omega$ and
+    /// [`Step::tangent`] as maps of the exponent's change $(\delta\omega, \delta v)$, seen
+    /// from the frame $(R, p)$ the step is taken from: the frame reached turns by
+    /// $RJ_l(\omega)\thinspace\delta\omega$ and moves by $R\thinspace\delta p = RJ_l\delta v + RQ\delta\omega$,
+    /// the tangent's body twist turned by $RR_k$ ($J_l = R_kJ_r = I + f_2\hat\omega + f_3\hat\omega^2$), with
     /// $Q = -f_2\hat v - f_3(\hat\omega\hat v + \hat s) + 2(f_2^{\prime}s + f_3^{\prime}t)\thinspace\omega^T$
-    /// ($s = \omega\times v$, $t = \omega\times s$): the $3\times3$ maps are
-    /// composed first, so the nine columns see three products.
+    /// ($s = \omega\times v$, $t = \omega\times s$): $(RJ_l, RQ)$. Composed first, so that
+    /// many changes (the columns of a $3\times9$) see three products.
     #[inline(always)]
-    pub fn images(&self, dw: &Nine<T>, dv: &Nine<T>, frame: &Matrix3<T>) -> (Nine<T>, Nine<T>) {
+    pub fn maps(&self, frame: &Matrix3<T>) -> (Matrix3<T>, Matrix3<T>) {
         let (w, v) = (self.omega.cross_matrix(), self.v.cross_matrix());
         let [f2, f3] = [self.c.f[1], self.c.f[2]];
         let [d2, d3] = self.c.d;
@@ -122,7 +120,38 @@ impl<T: Scalar> Step<T> {
         let q = (self.s * d2 + self.t * d3) * (self.omega.transpose() * T::c(2.0))
             - v * f2
             - (w * v + self.s.cross_matrix()) * f3;
-        (left * dw, left * dv + (frame * q) * dw)
+        (left, frame * q)
+    }
+
+    /// The parts of the second derivatives along one change $(\delta\omega, \delta v)$
+    /// of the exponent, twice, that are quadratic in it: with $\delta^2\omega$ and $\delta^2v$
+    /// the exponent's second derivative along the change, the frame reached
+    /// turns at $\dot\omega = J_l\delta^2\omega + a$ and moves at $\ddot p = J_l\delta^2v + Q\delta^2\omega + b$ ([`Step::maps`]'s $J_l$
+    /// and $Q$), and this is $(a, b)$ in the step's own frame: by the product rule on $J_l(\omega)\dot\omega$
+    /// and on $p = v + f_2\thinspace\omega\times v + f_3\thinspace\omega\times(\omega\times v)$, the terms of
+    /// [`Step::second`] along one direction without those of $\delta^2$.
+    #[inline(always)]
+    pub fn quadratic(&self, dw: &Vector3<T>, dv: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
+        let two = T::c(2.0);
+        let (w, v) = (&self.omega, &self.v);
+        let [f2, f3] = [self.c.f[1], self.c.f[2]];
+        let [d2, d3] = self.c.d;
+        let [e2, e3] = self.c.dd;
+        let wdw = w.dot(dw);
+        // The coefficients' first derivative ∂f_m = 2 f_m' ω·δω.
+        let (g2, g3) = (d2 * (two * wdw), d3 * (two * wdw));
+        let a = w.cross(dw);
+        let turn = dw.cross(&a) * f3 + a * g2 + w.cross(&a) * g3;
+        let ds = dw.cross(v) + w.cross(dv);
+        let dt = dw.cross(&self.s) + w.cross(&ds);
+        let sab = dw.cross(dv) * two;
+        let tab = dw.cross(&ds) * two + w.cross(&sab);
+        let move_ = sab * f2
+            + tab * f3
+            + (ds * g2 + dt * g3) * two
+            + (self.s * d2 + self.t * d3) * (two * dw.dot(dw))
+            + (self.s * e2 + self.t * e3) * (T::c(4.0) * wdw * wdw);
+        (turn, move_)
     }
 
     /// $\partial_b$ of the body twist $g^{-1}\partial_a g$ of the step, as
