@@ -200,14 +200,14 @@ enum Friction<D: Statics> {
     Slide { direction: D::Vector, along: Vec<f64>, jacobian: DMatrix<f64>, ds: Vec<f64>, rolled: Option<Rolled<D>> },
     /// Rolling: $r_k = t_k\cdot(x - a)$ for each tangent, $t_k\cdot\Delta_c$,
     /// $\sum_k f_k t_k\cdot\partial_b\partial_c(x - a)$, and the material
-    /// point; `skids` where it slides in space ([`Law::Skid`]).
+    /// point; where it slides in space ([`Law::Skid`]), its sliding rows.
     Roll {
         offsets: Vec<f64>,
         along: Vec<Vec<f64>>,
         hessian: DMatrix<f64>,
         tangents: Vec<D::Vector>,
         rolled: Rolled<D>,
-        skids: bool,
+        skid: Option<Skid>,
     },
 }
 
@@ -376,7 +376,7 @@ impl<D: Statics> ContactKkt<'_, D> {
                 let a = D::act(self.geom_body(c), &D::moved(&D::origin(&D::identity()), &vector::<D>(&t.from), 1.0));
                 let offset = D::position(&p.x) - D::position(&a);
                 let tangents: Vec<D::Vector> = tangents[..D::POINT_DIM - 1].iter().map(vector::<D>).collect();
-                let offsets = tangents.iter().map(|u| dot::<D>(u, &offset)).collect();
+                let offsets: Vec<f64> = tangents.iter().map(|u| dot::<D>(u, &offset)).collect();
                 let along = tangents.iter().map(|u| p.delta.iter().map(|d| dot::<D>(u, d)).collect()).collect();
                 let w = tangents
                     .iter()
@@ -384,8 +384,9 @@ impl<D: Statics> ContactKkt<'_, D> {
                     .fold(D::Vector::default(), |w, (k, u)| w + scaled::<D>(u, t.force[1 + k]));
                 let hessian = p.hessian_along(m, f, &w);
                 let rolled = self.rolled(c, &p)?;
-                let skids = matches!(t.law, Law::Skid { .. });
-                Friction::Roll { offsets, along, hessian, tangents, rolled, skids }
+                let skid = matches!(t.law, Law::Skid { .. })
+                    .then(|| Skid::new(self.mu(c), t, self.sigma, &offsets, self.kkt.length));
+                Friction::Roll { offsets, along, hessian, tangents, rolled, skid }
             }
             Law::Slip { direction } => {
                 // Where it rolls, friction acts at the material points that
@@ -702,14 +703,12 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                         residual[at + k] = offset[k] / length;
                     }
                 }
-                Friction::Roll { offsets, along, skids, .. } => {
+                Friction::Roll { offsets, along, skid, .. } => {
                     for i in 0..n {
                         let tangential: f64 = along.iter().enumerate().map(|(k, a)| t.force[1 + k] * a[i]).sum();
                         residual[i] -= (t.force[0] * jet.gradient[i] + tangential) * rows[i];
                     }
                     residual[at] = jet.gap / length;
-                    let skid = skids
-                        .then(|| Skid::new(crate::mechanism::contact::friction(m, &t.pair), t, sigma, offsets, length));
                     for (k, r) in offsets.iter().enumerate() {
                         residual[at + 1 + k] = skid.as_ref().map_or(r / length, |s| s.rows[k]);
                     }
@@ -759,7 +758,7 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             jac[j * size + row] = jet.gradient[j] / length;
                         }
                     }
-                    Friction::Roll { along, hessian, offsets, skids, .. } => {
+                    Friction::Roll { along, hessian, skid, .. } => {
                         for j in 0..n {
                             for i in 0..n {
                                 jac[j * size + i] -= (force * jet.hessian[(i, j)] + hessian[(i, j)]) * rows[i];
@@ -771,9 +770,7 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                                 jac[j * size + row + 1 + k] = a[j] / length;
                             }
                         }
-                        if *skids {
-                            let s =
-                                Skid::new(crate::mechanism::contact::friction(m, &t.pair), t, sigma, offsets, length);
+                        if let Some(s) = skid {
                             for k in 0..along.len() {
                                 for j in 0..n {
                                     jac[j * size + row + 1 + k] =
@@ -834,7 +831,7 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                     g.extend(pin_rows::<D>(delta));
                     continue;
                 }
-                Friction::Roll { along, skids: false, .. } => g.extend(along.iter().cloned()),
+                Friction::Roll { along, skid: None, .. } => g.extend(along.iter().cloned()),
                 _ => {}
             }
             if t.place == Place::Inner {
