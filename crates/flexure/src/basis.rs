@@ -63,6 +63,31 @@ pub fn energy_weight(n: usize) -> f64 {
     1.0 / (2 * n + 1) as f64
 }
 
+/// The root mean square of the angle shape $\psi_n$ over the length,
+/// relative to $\psi_0$'s: how much a unit of coefficient $n$ turns the
+/// sections, next to the uniform bending. From the orthogonality of the
+/// $\tilde P_k$ (Eq. 10 and [`angle_shapes`]),
+/// $$\int_0^1\psi_n^2\thinspace dt = \frac{1}{4(2n+1)^2}\Bigl(\frac1{2n+3} +
+/// \frac1{2n-1}\Bigr)\quad(n \ge 1),\qquad \int_0^1\psi_0^2\thinspace dt = \frac13.$$
+/// It falls about as $n^{-3/2}$: the integrator weighs a coefficient's
+/// error by it ([`crate::mechanism::Joint::error_weights`]).
+///
+/// # Example
+/// ```
+/// // ψ₁ = t² − t: ∫ψ₁² = 1/30, against ψ₀'s 1/3.
+/// let w = flexure::basis::angle_shape_rms(1);
+/// assert!((w - (0.1f64).sqrt()).abs() < 1e-15);
+/// assert_eq!(flexure::basis::angle_shape_rms(0), 1.0);
+/// ```
+pub fn angle_shape_rms(n: usize) -> f64 {
+    if n == 0 {
+        return 1.0;
+    }
+    let k = n as f64;
+    let square = (1.0 / (2.0 * k + 3.0) + 1.0 / (2.0 * k - 1.0)) / (4.0 * (2.0 * k + 1.0).powi(2));
+    (3.0 * square).sqrt()
+}
+
 /// Curvature $\hat\omega(c, s)$ of coefficients `c` at arc length `s` (Eq. 8).
 ///
 /// # Example

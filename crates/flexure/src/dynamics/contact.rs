@@ -731,6 +731,17 @@ impl<D: Dynamics> System for ContactSystem<D> {
         self.inner.distance(a, b)
     }
 
+    /// The default, not the mechanism's: the contact events are landed on
+    /// to `tolerance` of each push and speed, which every coefficient's
+    /// motion moves, so each is resolved to its own scale (with the
+    /// mechanism's weights, a strip lifted off a post at 1e-8 could not land
+    /// on its opening: the push, read through the high coefficients' looser
+    /// rates, missed its band at every aimed step).
+    fn error_weights(&self) -> crate::dynamics::system::ErrorWeights {
+        let n = self.inner.dim();
+        crate::dynamics::system::ErrorWeights { group: (0..n).collect(), weight: vec![1.0; n] }
+    }
+
     fn jumps(&self) -> Vec<f64> {
         self.inner.jumps()
     }

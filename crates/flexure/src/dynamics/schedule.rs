@@ -123,6 +123,10 @@ impl<D: Dynamics> System for ScheduledSystem<D> {
         self.system.distance(a, b)
     }
 
+    fn error_weights(&self) -> crate::dynamics::system::ErrorWeights {
+        self.system.error_weights()
+    }
+
     fn jumps(&self) -> Vec<f64> {
         let mut times: Vec<f64> = self.schedules.iter().flat_map(Schedule::jumps).collect();
         times.sort_by(f64::total_cmp);

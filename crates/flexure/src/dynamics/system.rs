@@ -73,6 +73,12 @@ pub trait System {
     /// continuation's ([`crate::solver::Problem::distance`]).
     fn distance(&self, a: &[f64], b: &[f64]) -> f64;
 
+    /// How the error test measures each coordinate ([`ErrorWeights`]). The
+    /// default: each coordinate on its own, with weight 1.
+    fn error_weights(&self) -> ErrorWeights {
+        ErrorWeights { group: (0..self.dim()).collect(), weight: vec![1.0; self.dim()] }
+    }
+
     /// The times (s, ascending) at which the applied loads jump: at each,
     /// [`System::dynamics`] gives the new load from that time on, and the
     /// integrator lands on it and evaluates the step that ends there just
@@ -120,4 +126,20 @@ pub trait System {
     fn sample_columns(&self) -> Vec<f64> {
         Vec::new()
     }
+}
+
+/// How the integrator's error test measures the coordinates
+/// ([`System::error_weights`]; module docs of [`crate::dynamics::integrate`]).
+/// A coordinate's error counts times its `weight` (greater than 0, at most
+/// 1), and is measured against `absolute` plus `tolerance` times the largest
+/// weighted size in its `group`. A mechanism groups each joint's
+/// coordinates and weighs them by the section turn a unit of each makes
+/// ([`crate::mechanism::Joint::error_weights`]): its error test is in
+/// radians of turn, relative to the joint's own.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ErrorWeights {
+    /// Each coordinate's group (any labels; equal labels share a size).
+    pub group: Vec<usize>,
+    /// Each coordinate's weight.
+    pub weight: Vec<f64>,
 }

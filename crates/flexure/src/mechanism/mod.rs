@@ -485,6 +485,17 @@ impl<D: Dimension> Mechanism<D> {
         self.dof
     }
 
+    /// Each coordinate's weight in the integrator's error test, joint by
+    /// joint ([`Joint::error_weights`]).
+    pub fn error_weights(&self) -> Vec<f64> {
+        let mut out = vec![1.0; self.dof];
+        for j in &self.joints {
+            let joint = j.kind.joint();
+            joint.error_weights(&mut out[j.offset..j.offset + joint.dof()]);
+        }
+        out
+    }
+
     /// Number of closure equations.
     pub fn constraints(&self) -> usize {
         self.closures.iter().map(Closure::equations).sum()

@@ -76,11 +76,26 @@
 //! the Newton matrix of one stage (with the step's own $M$ and $G$ and the
 //! kept $K_t$, $D_t$: $G$ must be the step's, since the closure forces
 //! missing from $f$ lie in its row space and its multipliers must absorb
-//! them exactly), filtered so stiff components are not overestimated. Its root mean square, each coordinate weighted by
-//! `absolute` + `tolerance` × its size (velocities times $h$ when there
-//! are closures or directions without inertia: they are index-2 variables
-//! there), must be at most 1; the
-//! step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
+//! them exactly), filtered so stiff components are not overestimated. Its
+//! root mean square must be at most 1, each coordinate's error $e_r$
+//! measured as
+//! $$\frac{w_re_r}{\texttt{absolute} + \texttt{tolerance}\cdot\max_{k\in
+//! g(r)}w_k\lvert q_k\rvert}$$
+//! (the size the larger over the step's two ends; velocities alike, and
+//! times $h$ when there are closures or directions without inertia: they
+//! are index-2 variables there), with the weights $w$ and groups $g$ of
+//! [`System::error_weights`]. A mechanism's are its joints' section turns:
+//! a flexure's coefficient $\alpha_n$ weighs the root mean square of its
+//! angle shape $\psi_n$ over the length relative to $\psi_0$'s
+//! ([`crate::basis::angle_shape_rms`], about $n^{-3/2}$), and its size is
+//! the flexure's largest such turn. So the test is in radians of section
+//! turn, and a high coefficient, whose top modes are the truncation's own
+//! (their frequencies move with the order: what they add is the order's
+//! error, not the motion's), is not resolved below what the sections'
+//! angles need; unresolved, L-stability damps it. A release from a large
+//! deflection excites those modes: on the strip of BENCHMARKS.md the steps
+//! then stop growing with the order. Newton's stopping test keeps each
+//! coordinate's own scale, unweighted. The step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
 //! In the first two steps only positions are weighed: the velocities of
 //! massless directions at the start are not consistent with their motion
 //! (and if the start could not be made consistent, the first step projects

@@ -12,6 +12,7 @@ use super::trajectory::{Trajectory, record};
 use super::work::Work;
 use super::{MotionSettings, fatal, largest};
 use crate::dynamics::System;
+use crate::dynamics::system::ErrorWeights;
 use crate::error::{Error, Result};
 
 /// Every this many accepted steps, the run checks its pace: if the time
@@ -58,6 +59,7 @@ pub(super) fn advance<S: System + ?Sized>(
     let rk = Radau::new();
     let mut w = Work::new(n, m);
     w.velocity = system.velocity_closures();
+    weigh(system, &mut w)?;
     let times = settings.times();
     let duration = settings.duration;
     let (mut q, mut v) = (q0.to_vec(), v0.to_vec());
@@ -387,8 +389,9 @@ fn enter<S: System + ?Sized>(
     system.switch(ks, t, q, v)?;
     if system.closures() != w.m {
         let staged = w.staged;
+        let (weights, groups) = (std::mem::take(&mut w.weights), std::mem::take(&mut w.groups));
         *w = Work::new(w.n, system.closures());
-        w.staged = staged;
+        (w.staged, w.weights, w.groups) = (staged, weights, groups);
     }
     w.velocity = system.velocity_closures();
     w.prev_h = 0.0;
@@ -445,10 +448,19 @@ fn attempt<S: System + ?Sized>(
         return Ok(Err(refusal));
     }
     stages(rk, w, h, q0, v0);
-    // Error scales over the step's two ends.
+    // Error scales over the step's two ends, each coordinate's in its
+    // group's weighted units (System::error_weights).
+    w.group_q.fill(0.0);
+    w.group_v.fill(0.0);
     for r in 0..n {
-        w.sq[r] = atol + rtol * q0[r].abs().max(w.qs[2 * n + r].abs());
-        w.sv[r] = atol + rtol * v0[r].abs().max(w.vs[2 * n + r].abs());
+        let (g, weight) = (w.groups[r], w.weights[r]);
+        w.group_q[g] = w.group_q[g].max(weight * q0[r].abs().max(w.qs[2 * n + r].abs()));
+        w.group_v[g] = w.group_v[g].max(weight * v0[r].abs().max(w.vs[2 * n + r].abs()));
+    }
+    for r in 0..n {
+        let (g, weight) = (w.groups[r], w.weights[r]);
+        w.sq[r] = (atol + rtol * w.group_q[g]) / weight;
+        w.sv[r] = (atol + rtol * w.group_v[g]) / weight;
     }
     let err = estimate(system, rk, w, t0, h, q0, v0, vw, false)?;
     let err = match err {
@@ -466,4 +478,37 @@ fn attempt<S: System + ?Sized>(
     } else {
         Ok(Ok(ratio))
     }
+}
+
+/// The system's error weights into `w`, checked, with its groups numbered
+/// from 0 in their order of first appearance.
+fn weigh<S: System + ?Sized>(system: &S, w: &mut Work) -> Result<()> {
+    let ErrorWeights { group, weight } = system.error_weights();
+    let n = w.n;
+    if group.len() != n || weight.len() != n {
+        return Err(Error::invalid(
+            "error_weights",
+            format!("{} groups and {} weights", group.len(), weight.len()),
+            "must give one group and one weight per coordinate",
+        ));
+    }
+    if let Some(k) = (0..n).find(|&k| !(weight[k] > 0.0 && weight[k] <= 1.0)) {
+        return Err(Error::invalid(
+            "error_weights",
+            format!("{} at coordinate {k}", weight[k]),
+            "must each be greater than 0 and at most 1",
+        ));
+    }
+    let mut labels: Vec<usize> = Vec::new();
+    for (r, label) in group.iter().enumerate() {
+        w.groups[r] = match labels.iter().position(|l| l == label) {
+            Some(g) => g,
+            None => {
+                labels.push(*label);
+                labels.len() - 1
+            }
+        };
+    }
+    w.weights = weight;
+    Ok(())
 }

@@ -65,6 +65,15 @@ pub(super) struct Work {
     pub(super) vt: Vec<f64>,
     /// Error scales of positions and velocities.
     pub(super) sq: Vec<f64>,
+    /// Each coordinate's weight and group (numbered from 0) in the error
+    /// test ([`System::error_weights`]), and each group's largest weighted
+    /// position and velocity over a step.
+    ///
+    /// [`System::error_weights`]: crate::dynamics::System::error_weights
+    pub(super) weights: Vec<f64>,
+    pub(super) groups: Vec<usize>,
+    pub(super) group_q: Vec<f64>,
+    pub(super) group_v: Vec<f64>,
     pub(super) sv: Vec<f64>,
     /// Newton increments of the stage positions and velocities ($3n$ each).
     pub(super) dq: Vec<f64>,
@@ -122,6 +131,10 @@ impl Work {
             qt: z(n),
             vt: z(n),
             sq: z(n),
+            weights: vec![1.0; n],
+            groups: (0..n).collect(),
+            group_q: z(n),
+            group_v: z(n),
             sv: z(n),
             dq: z(3 * n),
             dv: z(3 * n),

@@ -182,4 +182,10 @@ impl<D: Dynamics> System for MechanismSystem<D> {
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
         self.masses.distance(&self.mechanism, a, b)
     }
+
+    fn error_weights(&self) -> crate::dynamics::system::ErrorWeights {
+        let group =
+            self.mechanism.joints.iter().enumerate().flat_map(|(i, j)| std::iter::repeat_n(i, j.kind.joint().dof()));
+        crate::dynamics::system::ErrorWeights { group: group.collect(), weight: self.mechanism.error_weights() }
+    }
 }

@@ -74,6 +74,12 @@ impl Joint for Flexure {
         d
     }
 
+    fn error_weights(&self, out: &mut [f64]) {
+        for (n, w) in out.iter_mut().enumerate() {
+            *w = crate::basis::angle_shape_rms(n);
+        }
+    }
+
     fn inertia(&self) -> Option<Result<MassModel>> {
         self.section().mass_per_length(0.5, self.length())?;
         Some(MassModel::new(self, None))

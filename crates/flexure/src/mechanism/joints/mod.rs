@@ -233,6 +233,16 @@ pub trait Joint<S: Space = Planar> {
     /// slider's travel over `length`: with the bodies' rotations, what bounds
     /// a continuation or integration step.
     fn distance(&self, a: &[f64], b: &[f64], length: f64) -> f64;
+    /// How much an error in each coordinate counts in the integrator's error
+    /// test, into `out` ($k$ values, at most 1): the section turn a unit of it
+    /// makes, relative to the joint's largest. A flexure's coefficient $n$
+    /// weighs [`crate::basis::angle_shape_rms`]: its high coefficients turn
+    /// the sections little, and their top modes are the truncation's own
+    /// (their frequencies move with the order), which the answer does not
+    /// need resolved. The default: every coordinate 1.
+    fn error_weights(&self, out: &mut [f64]) {
+        out.fill(1.0);
+    }
     /// The joint's own inertia, distributed along it: a flexure's sections'
     /// mass per length $\mu(s)$ and rotary inertia $\rho I(s)$, tabulated as
     /// a [`MassModel`]. `None` where the joint carries no mass of its own: a

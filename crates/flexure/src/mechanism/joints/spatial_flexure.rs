@@ -163,6 +163,19 @@ impl Joint<Spatial> for SpatialFlexure {
         None
     }
 
+    /// Each component's coefficients (twist, then the two bendings) as the
+    /// planar flexure's.
+    fn error_weights(&self, out: &mut [f64]) {
+        let mut rest = out;
+        for n in self.orders() {
+            let (part, tail) = rest.split_at_mut(n);
+            for (i, w) in part.iter_mut().enumerate() {
+                *w = crate::basis::angle_shape_rms(i);
+            }
+            rest = tail;
+        }
+    }
+
     fn distance(&self, a: &[f64], b: &[f64], _: f64) -> f64 {
         spatial::rotation_between(self, a, b)
     }
