@@ -133,3 +133,76 @@ fn a_dropped_mass_lands_rests_and_lifts_off_as_the_closed_form_says() {
     let before = run.time.iter().position(|&t| t > landing).unwrap();
     assert!(run.energy[before] <= run.energy[before - 1] + 1e-9, "{:?}", &run.energy[before - 1..=before]);
 }
+
+/// A mass gliding at unit speed whose every mode has a guard that holds
+/// where the mode starts and falls past its band as soon as the mass moves
+/// $10^{-16}$ m on: no mode can be kept, so each switch brings another at
+/// the same instant (as contacts whose release and retouch disagree at
+/// rounding's level).
+struct Restless {
+    start: f64,
+    switches: Vec<f64>,
+}
+
+impl System for Restless {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn closures(&self) -> usize {
+        0
+    }
+    fn dynamics(&mut self, _: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        (mass[0], force[0]) = (1.0, 0.0);
+        Ok(())
+    }
+    fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        (k[0], d[0]) = (0.0, 0.0);
+        Ok(())
+    }
+    fn energy(&mut self, _: &[f64], v: &[f64], _: f64) -> Result<f64> {
+        Ok(0.5 * v[0] * v[0])
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        (a[0] - b[0]).abs()
+    }
+    fn guard_count(&self) -> usize {
+        1
+    }
+    fn guards(&mut self, q: &[f64], _: &[f64], _: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
+        out[0] = 0.5 - (q[0] - self.start) * 1e16;
+        Ok(())
+    }
+    fn switch(&mut self, _: &[usize], t: f64, q: &[f64], _: &[f64]) -> Result<()> {
+        self.start = q[0];
+        self.switches.push(t);
+        Ok(())
+    }
+}
+
+/// Switches that take no time are bounded on their own, not only by the
+/// step budget: a system that can keep no mode (`Restless`, its guard
+/// past the band after 1e-16 m) stops at its first such instant after
+/// `MAX_SWITCHES_AT_ONCE` + 2 per guard switches, saying so, with the time
+/// reached; the first switch comes within 1e-9 s of the start.
+#[test]
+fn switches_that_take_no_time_stop_the_run_saying_so() {
+    use flexure::dynamics::integrate::MAX_SWITCHES_AT_ONCE;
+    let mut restless = Restless { start: 0.0, switches: Vec::new() };
+    let s = MotionSettings { duration: 1.0, every: 0.1, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
+    let err = integrate(&mut restless, &[0.0], &[1.0], &s).unwrap_err();
+    let cap = MAX_SWITCHES_AT_ONCE + 2;
+    assert_eq!(restless.switches.len(), cap, "{:?}", &restless.switches[..restless.switches.len().min(5)]);
+    let first = restless.switches[0];
+    assert!(
+        first < 1e-9 && restless.switches.iter().all(|&t| (t - first).abs() <= 1e-12 * 0.1),
+        "{:?}",
+        restless.switches
+    );
+    match err {
+        flexure::Error::IntegrationStalled { cause, time, .. } => {
+            assert!(cause.contains(&format!("switched {cap} times at one instant")), "{cause}");
+            assert!((time - first).abs() <= 1e-12, "stopped at {time} s, switched at {first} s");
+        }
+        e => panic!("{e}"),
+    }
+}

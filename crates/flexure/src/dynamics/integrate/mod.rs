@@ -113,7 +113,8 @@
 //! [`MotionSettings::max_rejections`] times in a row, at most
 //! [`MotionSettings::step_budget`] steps are tried in all (a run whose pace would
 //! need more than [`PACE_MARGIN`] times the budget left stops as soon as it
-//! knows, [`PACE_WINDOW`]), and no step falls to rounding's level: past any
+//! knows, [`PACE_WINDOW`]), at most [`MAX_SWITCHES_AT_ONCE`] plus two per
+//! guard switches happen at one instant, and no step falls to rounding's level: past any
 //! of these the run stops with [`Error::IntegrationStalled`], saying the
 //! time reached and why the last step failed; [`integrate_kept`] keeps the
 //! samples reached before it. Every Newton iteration polls the hook of
@@ -138,7 +139,7 @@ mod work;
 
 pub use progress::{Sample, with_progress, with_samples};
 pub use settings::{MAX_SAMPLES, MAX_STEPS, MotionSettings};
-pub use step::{PACE_MARGIN, PACE_WINDOW};
+pub use step::{MAX_SWITCHES_AT_ONCE, PACE_MARGIN, PACE_WINDOW};
 pub use trajectory::{Trajectory, TrajectoryStop};
 
 use super::System;

@@ -24,6 +24,32 @@ pub const PACE_WINDOW: usize = 1000;
 /// See [`PACE_WINDOW`].
 pub const PACE_MARGIN: f64 = 10.0;
 
+/// The most switches at one instant (within $10^{-12}$ of its time, as a
+/// jump's bracket): [`MAX_SWITCHES_AT_ONCE`] plus two per guard. A set of
+/// contacts that settles switches each guard once or twice there; one
+/// that keeps switching (each new set's guards past their bands at once)
+/// has no consistent set the integrator finds, and the run stops saying
+/// so rather than spend its step budget on switches that take no time.
+pub const MAX_SWITCHES_AT_ONCE: usize = 16;
+
+/// Switches at one instant: its time and how many so far.
+struct Burst {
+    t: f64,
+    count: usize,
+}
+
+impl Burst {
+    /// Counts a switch at `t`, a new instant if farther than `close` from
+    /// the last; the count at this instant.
+    fn note(&mut self, t: f64, close: f64) -> usize {
+        if (t - self.t).abs() > close {
+            *self = Burst { t, count: 0 };
+        }
+        self.count += 1;
+        self.count
+    }
+}
+
 /// Why a step was not taken.
 pub(super) enum Refusal {
     /// Its error estimate (scaled, > 1) or rotation asks for a step of this ratio.
@@ -90,6 +116,8 @@ pub(super) fn advance<S: System + ?Sized>(
     let budget = settings.step_budget();
     // The time and accepted steps at the start of the pace window (PACE_WINDOW).
     let (mut window_start, mut window_steps) = (0.0, 0);
+    let mut burst = Burst { t: f64::NAN, count: 0 };
+    let most_switches = MAX_SWITCHES_AT_ONCE + 2 * system.guard_count();
     for &target in &times[1..] {
         while t < target {
             // The next jump of the loads up to this sample, landed on like a
@@ -105,6 +133,18 @@ pub(super) fn advance<S: System + ?Sized>(
                 steps: run.steps,
                 rejected: run.rejected,
                 step: h,
+            };
+            let close = 1e-12 * t.abs().max(settings.every);
+            let unsettled = move |count: usize, run: &Trajectory| {
+                stalled(
+                    &format!(
+                        "the contacts or modes switched {count} times at one instant without time advancing: no set \
+                         of them was found whose guards all hold there (a release that is inconsistent, or guards \
+                         that disagree at rounding's level)"
+                    ),
+                    0.0,
+                    run,
+                )
             };
             if run.steps + run.rejected >= budget {
                 // Many short steps that each passed or nearly passed: the
@@ -275,6 +315,10 @@ pub(super) fn advance<S: System + ?Sized>(
                                     // The guards jump at the step's start (a load's jump):
                                     // the events are there.
                                     let ks: Vec<usize> = (0..g_end.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
+                                    let count = burst.note(t, close);
+                                    if count > most_switches {
+                                        return Err(unsettled(count - 1, run));
+                                    }
                                     enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                     (m, pending, multipliers, since_switch, stale, fresh) =
                                         (w.m, None, None, 0, true, false);
@@ -307,6 +351,10 @@ pub(super) fn advance<S: System + ?Sized>(
                                 match verdict {
                                     Verdict::Landed(ks) => {
                                         // The mode changes here; the next steps start afresh.
+                                        let count = burst.note(t, close);
+                                        if count > most_switches {
+                                            return Err(unsettled(count - 1, run));
+                                        }
                                         enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                         (m, pending, multipliers, since_switch, stale) = (w.m, None, None, 0, true);
                                     }
