@@ -195,6 +195,18 @@ pub(super) fn advance<S: System + ?Sized>(
                 step = stop - t;
             }
             if step < 1e-14 * t.max(settings.every) || t + step == t {
+                // Aimed at an event closer than a step can be: it is here,
+                // as a jump's (below).
+                if let Some(p) = pending.as_ref().filter(|_| landing && aim == Some(stop)) {
+                    let ks: Vec<usize> = (0..p.g_hi.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
+                    let count = burst.note(t, close);
+                    if count > most_switches {
+                        return Err(unsettled(count - 1, run));
+                    }
+                    enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
+                    (m, pending, multipliers, since_switch, stale, fresh) = (w.m, None, None, 0, true, false);
+                    continue;
+                }
                 return Err(stalled(&format!("{cause}; the step fell to rounding's level"), step, run));
             }
             // Whether the last state passed to `dynamics` is this step's start.
