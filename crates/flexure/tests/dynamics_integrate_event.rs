@@ -206,3 +206,62 @@ fn switches_that_take_no_time_stop_the_run_saying_so() {
         e => panic!("{e}"),
     }
 }
+
+/// A mass gliding at unit speed whose guard falls through its band each
+/// time the mass has moved 0.01 m since the last switch: a switch every
+/// 0.01 s, each at its own instant.
+struct Ticker {
+    start: f64,
+    switches: Vec<f64>,
+}
+
+impl System for Ticker {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn closures(&self) -> usize {
+        0
+    }
+    fn dynamics(&mut self, _: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
+        (mass[0], force[0]) = (1.0, 0.0);
+        Ok(())
+    }
+    fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
+        (k[0], d[0]) = (0.0, 0.0);
+        Ok(())
+    }
+    fn energy(&mut self, _: &[f64], v: &[f64], _: f64) -> Result<f64> {
+        Ok(0.5 * v[0] * v[0])
+    }
+    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        (a[0] - b[0]).abs()
+    }
+    fn guard_count(&self) -> usize {
+        1
+    }
+    fn guards(&mut self, q: &[f64], _: &[f64], _: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
+        out[0] = (self.start + 0.01 - q[0]) / 1e-9;
+        Ok(())
+    }
+    fn switch(&mut self, _: &[usize], t: f64, q: &[f64], _: &[f64]) -> Result<()> {
+        self.start = q[0];
+        self.switches.push(t);
+        Ok(())
+    }
+}
+
+/// The bound counts switches at one instant, not in the run: `Ticker`
+/// switches every 0.01 s for 1 s, 99 switches (far over the bound of 18),
+/// and runs through, each switch within 1e-9 s of its closed-form time
+/// 0.01 k (the guard's band is 1e-9 m at unit speed).
+#[test]
+fn switches_at_separate_instants_are_not_bounded_together() {
+    let mut ticker = Ticker { start: 0.0, switches: Vec::new() };
+    let s = MotionSettings { duration: 1.0, every: 0.1, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
+    let run = integrate(&mut ticker, &[0.0], &[1.0], &s).unwrap();
+    assert_eq!(run.stop, TrajectoryStop::Reached);
+    assert!(ticker.switches.len() >= 99, "{} switches", ticker.switches.len());
+    for (k, t) in ticker.switches.iter().enumerate() {
+        assert!((t - 0.01 * (k + 1) as f64).abs() < 1e-9 * (k + 1) as f64, "switch {k} at {t} s");
+    }
+}

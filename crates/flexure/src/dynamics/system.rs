@@ -73,8 +73,9 @@ pub trait System {
     /// continuation's ([`crate::solver::Problem::distance`]).
     fn distance(&self, a: &[f64], b: &[f64]) -> f64;
 
-    /// How the error test measures each coordinate ([`ErrorWeights`]). The
-    /// default: each coordinate on its own, with weight 1.
+    /// How the error test measures each coordinate ([`ErrorWeights`]), read
+    /// once at the run's start. The default: each coordinate on its own,
+    /// with weight 1 (a mechanism with geoms keeps it).
     fn error_weights(&self) -> ErrorWeights {
         ErrorWeights { group: (0..self.dim()).collect(), weight: vec![1.0; self.dim()] }
     }

@@ -95,7 +95,8 @@
 //! angles need; unresolved, L-stability damps it. A release from a large
 //! deflection excites those modes: on the strip of BENCHMARKS.md the steps
 //! then stop growing with the order. Newton's stopping test keeps each
-//! coordinate's own scale, unweighted. The step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
+//! coordinate's own scale, unweighted, and a mechanism with geoms keeps
+//! every weight 1 ([`crate::dynamics::contact::ContactSystem`]). The step then changes by $0.9\thinspace\mathrm{err}^{-1/4}$ within $[1/8, 5]$.
 //! In the first two steps only positions are weighed: the velocities of
 //! massless directions at the start are not consistent with their motion
 //! (and if the start could not be made consistent, the first step projects

@@ -24,8 +24,10 @@ pub const PACE_WINDOW: usize = 1000;
 /// See [`PACE_WINDOW`].
 pub const PACE_MARGIN: f64 = 10.0;
 
-/// The most switches at one instant (within $10^{-12}$ of its time, as a
-/// jump's bracket): [`MAX_SWITCHES_AT_ONCE`] plus two per guard. A set of
+/// The most switches at one instant (within $10^{-12}$ of its time
+/// relative to the larger of it and the sample interval, as a jump's
+/// bracket): [`MAX_SWITCHES_AT_ONCE`] plus two per guard (the guards at
+/// the run's start). A set of
 /// contacts that settles switches each guard once or twice there; one
 /// that keeps switching (each new set's guards past their bands at once)
 /// has no consistent set the integrator finds, and the run stops saying
@@ -116,7 +118,8 @@ pub(super) fn advance<S: System + ?Sized>(
     let budget = settings.step_budget();
     // The time and accepted steps at the start of the pace window (PACE_WINDOW).
     let (mut window_start, mut window_steps) = (0.0, 0);
-    let mut burst = Burst { t: f64::NAN, count: 0 };
+    // No instant yet: the first switch starts one.
+    let mut burst = Burst { t: f64::NEG_INFINITY, count: 0 };
     let most_switches = MAX_SWITCHES_AT_ONCE + 2 * system.guard_count();
     for &target in &times[1..] {
         while t < target {
