@@ -738,8 +738,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// on its opening: the push, read through the high coefficients' looser
     /// rates, missed its band at every aimed step).
     fn error_weights(&self) -> crate::dynamics::system::ErrorWeights {
-        let n = self.inner.dim();
-        crate::dynamics::system::ErrorWeights { group: (0..n).collect(), weight: vec![1.0; n] }
+        crate::dynamics::system::ErrorWeights::unit(self.inner.dim())
     }
 
     fn jumps(&self) -> Vec<f64> {

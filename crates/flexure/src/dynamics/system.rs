@@ -77,7 +77,7 @@ pub trait System {
     /// once at the run's start. The default: each coordinate on its own,
     /// with weight 1 (a mechanism with geoms keeps it).
     fn error_weights(&self) -> ErrorWeights {
-        ErrorWeights { group: (0..self.dim()).collect(), weight: vec![1.0; self.dim()] }
+        ErrorWeights::unit(self.dim())
     }
 
     /// The times (s, ascending) at which the applied loads jump: at each,
@@ -143,4 +143,18 @@ pub struct ErrorWeights {
     pub group: Vec<usize>,
     /// Each coordinate's weight.
     pub weight: Vec<f64>,
+}
+
+impl ErrorWeights {
+    /// `n` coordinates each on its own, with weight 1: each measured
+    /// against its own size.
+    ///
+    /// # Example
+    /// ```
+    /// let w = flexure::dynamics::system::ErrorWeights::unit(2);
+    /// assert_eq!((w.group, w.weight), (vec![0, 1], vec![1.0, 1.0]));
+    /// ```
+    pub fn unit(n: usize) -> Self {
+        ErrorWeights { group: (0..n).collect(), weight: vec![1.0; n] }
+    }
 }
