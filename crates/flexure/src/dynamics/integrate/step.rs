@@ -34,21 +34,24 @@ pub const PACE_MARGIN: f64 = 10.0;
 /// so rather than spend its step budget on switches that take no time.
 pub const MAX_SWITCHES_AT_ONCE: usize = 16;
 
-/// Switches at one instant: its time and how many so far.
+/// Switches at one instant: its time, how many so far, and how many it
+/// may take.
 struct Burst {
     t: f64,
     count: usize,
+    most: usize,
 }
 
 impl Burst {
     /// Counts a switch at `t`, a new instant if farther than `close` from
-    /// the last; the count at this instant.
-    fn note(&mut self, t: f64, close: f64) -> usize {
+    /// the last; the switches already made there if this one would pass
+    /// the bound.
+    fn past_bound(&mut self, t: f64, close: f64) -> Option<usize> {
         if (t - self.t).abs() > close {
-            *self = Burst { t, count: 0 };
+            (self.t, self.count) = (t, 0);
         }
         self.count += 1;
-        self.count
+        (self.count > self.most).then_some(self.count - 1)
     }
 }
 
@@ -119,8 +122,7 @@ pub(super) fn advance<S: System + ?Sized>(
     // The time and accepted steps at the start of the pace window (PACE_WINDOW).
     let (mut window_start, mut window_steps) = (0.0, 0);
     // No instant yet: the first switch starts one.
-    let mut burst = Burst { t: f64::NEG_INFINITY, count: 0 };
-    let most_switches = MAX_SWITCHES_AT_ONCE + 2 * system.guard_count();
+    let mut burst = Burst { t: f64::NEG_INFINITY, count: 0, most: MAX_SWITCHES_AT_ONCE + 2 * system.guard_count() };
     for &target in &times[1..] {
         while t < target {
             // The next jump of the loads up to this sample, landed on like a
@@ -202,9 +204,8 @@ pub(super) fn advance<S: System + ?Sized>(
                 // as a jump's (below).
                 if let Some(p) = pending.as_ref().filter(|_| landing && aim == Some(stop)) {
                     let ks: Vec<usize> = (0..p.g_hi.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
-                    let count = burst.note(t, close);
-                    if count > most_switches {
-                        return Err(unsettled(count - 1, run));
+                    if let Some(count) = burst.past_bound(t, close) {
+                        return Err(unsettled(count, run));
                     }
                     enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                     (m, pending, multipliers, since_switch, stale, fresh) = (w.m, None, None, 0, true, false);
@@ -330,9 +331,8 @@ pub(super) fn advance<S: System + ?Sized>(
                                     // The guards jump at the step's start (a load's jump):
                                     // the events are there.
                                     let ks: Vec<usize> = (0..g_end.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
-                                    let count = burst.note(t, close);
-                                    if count > most_switches {
-                                        return Err(unsettled(count - 1, run));
+                                    if let Some(count) = burst.past_bound(t, close) {
+                                        return Err(unsettled(count, run));
                                     }
                                     enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                     (m, pending, multipliers, since_switch, stale, fresh) =
@@ -366,9 +366,8 @@ pub(super) fn advance<S: System + ?Sized>(
                                 match verdict {
                                     Verdict::Landed(ks) => {
                                         // The mode changes here; the next steps start afresh.
-                                        let count = burst.note(t, close);
-                                        if count > most_switches {
-                                            return Err(unsettled(count - 1, run));
+                                        if let Some(count) = burst.past_bound(t, close) {
+                                            return Err(unsettled(count, run));
                                         }
                                         enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                         (m, pending, multipliers, since_switch, stale) = (w.m, None, None, 0, true);
