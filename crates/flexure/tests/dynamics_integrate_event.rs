@@ -134,17 +134,23 @@ fn a_dropped_mass_lands_rests_and_lifts_off_as_the_closed_form_says() {
     assert!(run.energy[before] <= run.energy[before - 1] + 1e-9, "{:?}", &run.energy[before - 1..=before]);
 }
 
-/// A mass gliding at unit speed whose every mode has a guard that holds
-/// where the mode starts and falls past its band as soon as the mass moves
-/// $10^{-16}$ m on: no mode can be kept, so each switch brings another at
-/// the same instant (as contacts whose release and retouch disagree at
-/// rounding's level).
-struct Restless {
+/// A mass gliding at unit speed, whose guard holds where each mode starts
+/// and falls through its band (`band` m) once the mass has moved `reach`
+/// on: each switch starts the next mode there.
+struct Glider {
+    reach: f64,
+    band: f64,
     start: f64,
     switches: Vec<f64>,
 }
 
-impl System for Restless {
+impl Glider {
+    fn new(reach: f64, band: f64) -> Self {
+        Glider { reach, band, start: 0.0, switches: Vec::new() }
+    }
+}
+
+impl System for Glider {
     fn dim(&self) -> usize {
         1
     }
@@ -169,7 +175,7 @@ impl System for Restless {
         1
     }
     fn guards(&mut self, q: &[f64], _: &[f64], _: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
-        out[0] = 0.5 - (q[0] - self.start) * 1e16;
+        out[0] = (self.start + self.reach - q[0]) / self.band;
         Ok(())
     }
     fn switch(&mut self, _: &[usize], t: f64, q: &[f64], _: &[f64]) -> Result<()> {
@@ -180,14 +186,16 @@ impl System for Restless {
 }
 
 /// Switches that take no time are bounded on their own, not only by the
-/// step budget: a system that can keep no mode (`Restless`, its guard
-/// past the band after 1e-16 m) stops at its first such instant after
+/// step budget: a system that can keep no mode (a `Glider` whose guard is
+/// past its band of 1e-16 m after 0.5e-16 m: each switch brings another at
+/// the same instant, as contacts whose release and retouch disagree at
+/// rounding's level) stops at its first such instant after
 /// `MAX_SWITCHES_AT_ONCE` + 2 per guard switches, saying so, with the time
 /// reached; the first switch comes within 1e-9 s of the start.
 #[test]
 fn switches_that_take_no_time_stop_the_run_saying_so() {
     use flexure::dynamics::integrate::MAX_SWITCHES_AT_ONCE;
-    let mut restless = Restless { start: 0.0, switches: Vec::new() };
+    let mut restless = Glider::new(0.5e-16, 1e-16);
     let s = MotionSettings { duration: 1.0, every: 0.1, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
     let err = integrate(&mut restless, &[0.0], &[1.0], &s).unwrap_err();
     let cap = MAX_SWITCHES_AT_ONCE + 2;
@@ -207,56 +215,14 @@ fn switches_that_take_no_time_stop_the_run_saying_so() {
     }
 }
 
-/// A mass gliding at unit speed whose guard falls through its band each
-/// time the mass has moved 0.01 m since the last switch: a switch every
-/// 0.01 s, each at its own instant.
-struct Ticker {
-    start: f64,
-    switches: Vec<f64>,
-}
-
-impl System for Ticker {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn closures(&self) -> usize {
-        0
-    }
-    fn dynamics(&mut self, _: &[f64], _: &[f64], _: f64, mass: &mut [f64], force: &mut [f64]) -> Result<()> {
-        (mass[0], force[0]) = (1.0, 0.0);
-        Ok(())
-    }
-    fn tangent(&mut self, _: &[f64], _: &[f64], _: f64, k: &mut [f64], d: &mut [f64]) -> Result<()> {
-        (k[0], d[0]) = (0.0, 0.0);
-        Ok(())
-    }
-    fn energy(&mut self, _: &[f64], v: &[f64], _: f64) -> Result<f64> {
-        Ok(0.5 * v[0] * v[0])
-    }
-    fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        (a[0] - b[0]).abs()
-    }
-    fn guard_count(&self) -> usize {
-        1
-    }
-    fn guards(&mut self, q: &[f64], _: &[f64], _: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
-        out[0] = (self.start + 0.01 - q[0]) / 1e-9;
-        Ok(())
-    }
-    fn switch(&mut self, _: &[usize], t: f64, q: &[f64], _: &[f64]) -> Result<()> {
-        self.start = q[0];
-        self.switches.push(t);
-        Ok(())
-    }
-}
-
-/// The bound counts switches at one instant, not in the run: `Ticker`
-/// switches every 0.01 s for 1 s, 99 switches (far over the bound of 18),
+/// The bound counts switches at one instant, not in the run: a `Glider`
+/// whose guard falls through its band of 1e-9 m every 0.01 m switches
+/// every 0.01 s for 1 s, 99 switches (far over the bound of 18),
 /// and runs through, each switch within 1e-9 s of its closed-form time
 /// 0.01 k (the guard's band is 1e-9 m at unit speed).
 #[test]
 fn switches_at_separate_instants_are_not_bounded_together() {
-    let mut ticker = Ticker { start: 0.0, switches: Vec::new() };
+    let mut ticker = Glider::new(0.01, 1e-9);
     let s = MotionSettings { duration: 1.0, every: 0.1, tolerance: 1e-9, absolute: 1e-9, ..Default::default() };
     let run = integrate(&mut ticker, &[0.0], &[1.0], &s).unwrap();
     assert_eq!(run.stop, TrajectoryStop::Reached);
