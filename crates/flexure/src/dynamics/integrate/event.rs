@@ -3,7 +3,14 @@
 //! follow aim at the crossing, found by the Illinois variant of regula falsi
 //! on the guards at the bracket's ends, until one ends on it ($\lvert g\rvert \le 1$).
 //! Each aimed step is a whole Radau step from the last state accepted, so
-//! the state landed on is as accurate as any other.
+//! the state landed on is as accurate as any other. A step aimed at the
+//! event that ends short of it is not accepted: it moves the bracket's near
+//! end, and the next aim starts from the same state. Were it accepted, the
+//! run would creep up on the event and aim from ever closer, and a step of
+//! $h$ carries rounding's error in its positions, about
+//! $\epsilon_{\text{mach}}\lvert q\rvert$, into its velocities over $h$: a slide that
+//! stops at a tolerance of $10^{-8}$ was read from steps of $10^{-13}$ s whose
+//! velocities were off by 25 (the run let go a contact that pushed).
 //! An aimed step holds the closures at its start's violation (see
 //! `newton`), and its guards read the multipliers of the equations of
 //! motion at its end ([`consistent_multipliers`]), not the step's own: a
@@ -22,22 +29,47 @@ pub(super) const MAX_AIMS: usize = 60;
 pub(super) struct Pending {
     pub(super) t_hi: f64,
     pub(super) g_hi: Vec<f64>,
+    /// The near end, where a step aimed at the event ended short of it
+    /// (not accepted); the last state accepted until one does.
+    near: Option<(f64, Vec<f64>)>,
+    /// The bracket's width when it last halved (at first, its whole), and
+    /// the steps aimed since.
+    halved: f64,
+    since: usize,
     /// Steps aimed so far, and whether the last one ended short of the event.
     pub(super) aims: usize,
     short: bool,
 }
 
 impl Pending {
-    pub(super) fn new(t_hi: f64, g_hi: &[f64]) -> Self {
-        Pending { t_hi, g_hi: g_hi.to_vec(), aims: 0, short: false }
+    /// A bracket from `t`, the last state accepted, to `t_hi`.
+    pub(super) fn new(t: f64, t_hi: f64, g_hi: &[f64]) -> Self {
+        Pending { t_hi, g_hi: g_hi.to_vec(), near: None, halved: t_hi - t, since: 0, aims: 0, short: false }
+    }
+
+    /// The bracket's near end: where a step aimed at the event fell short,
+    /// if after `t` (the last state accepted, its guards `g_now`), else `t`.
+    pub(super) fn near<'a>(&'a self, t: f64, g_now: &'a [f64]) -> (f64, &'a [f64]) {
+        match &self.near {
+            Some((t_near, g)) if *t_near > t => (*t_near, g),
+            _ => (t, g_now),
+        }
     }
 
     /// The time to aim the next step at from `t`, where the guards are
     /// `g_now` (each at least $-1$): the earliest of the guards' crossings,
-    /// each of the line through its two values at a level inside its band
-    /// (halfway from where it is, or from 0, to $-1$), kept inside the bracket.
+    /// each of the line through its values at the bracket's ends at a level
+    /// inside its band (halfway from where it is, or from 0, to $-1$), kept
+    /// inside the bracket; the bracket's middle where two steps aimed so
+    /// did not halve it (a guard that jumps: a line through a jump aims
+    /// beside it, and Illinois' halving takes many steps to undo a far
+    /// value a thousand bands deep).
     pub(super) fn aim(&self, t: f64, g_now: &[f64]) -> f64 {
+        let (t, g_now) = self.near(t, g_now);
         let span = self.t_hi - t;
+        if self.since >= 2 {
+            return t + 0.5 * span;
+        }
         let theta = g_now
             .iter()
             .zip(&self.g_hi)
@@ -50,10 +82,16 @@ impl Pending {
         t + span * theta.clamp(1e-3, 1.0 - 1e-3)
     }
 
-    /// A step aimed at the event ended short of it (and was taken): the
-    /// bracket keeps its far end; a second short step in a row halves
-    /// the far guards (Illinois), so the aim moves toward it.
-    pub(super) fn fell_short(&mut self) {
+    /// A step ended short of the event: aimed at it, at `end` (its time
+    /// and guards: the bracket's new near end, the step not taken), or
+    /// taken at the controller's length. The bracket keeps its far end; a
+    /// second short step in a row halves the far guards (Illinois), so the
+    /// aim moves toward it.
+    pub(super) fn fell_short(&mut self, t: f64, end: Option<(f64, &[f64])>) {
+        if let Some((t_end, g)) = end {
+            self.near = Some((t_end, g.to_vec()));
+        }
+        self.narrowed(t);
         if self.short {
             for g in self.g_hi.iter_mut().filter(|g| **g < -1.0) {
                 *g *= 0.5;
@@ -65,12 +103,27 @@ impl Pending {
         self.aims += 1;
     }
 
-    /// A step aimed at the event overshot it, ending at `t` with guards `g`: the new far end.
-    pub(super) fn overshot(&mut self, t: f64, g: &[f64]) {
-        self.t_hi = t;
+    /// A step from `t` aimed at the event overshot it, ending at `t_end`
+    /// with guards `g`: the new far end.
+    pub(super) fn overshot(&mut self, t: f64, t_end: f64, g: &[f64]) {
+        self.t_hi = t_end;
         self.g_hi.copy_from_slice(g);
+        self.narrowed(t);
         self.short = false;
         self.aims += 1;
+    }
+}
+
+impl Pending {
+    /// Counts a step aimed, the last state accepted at `t`: whether the bracket has halved since it last did.
+    fn narrowed(&mut self, t: f64) {
+        let near = self.near.as_ref().map_or(t, |(t_near, _)| t_near.max(t));
+        let width = self.t_hi - near;
+        if width <= 0.5 * self.halved {
+            (self.halved, self.since) = (width, 0);
+        } else {
+            self.since += 1;
+        }
     }
 }
 

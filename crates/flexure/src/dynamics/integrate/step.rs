@@ -307,6 +307,33 @@ pub(super) fn advance<S: System + ?Sized>(
                                 seen => (g_end, verdict) = (g_check, Ok(seen)),
                             }
                         }
+                        // Aimed at the event and short of it, a step is not
+                        // taken: it is the bracket's near end (module docs of `event`).
+                        let aimed = landing && aim == Some(stop);
+                        // A bracket narrower than the tolerance of the step
+                        // (or rounding), its near end past the last state
+                        // accepted: the events are here, at the end of this
+                        // step, with the guards past their bands at the far
+                        // end. A guard that jumps (a slide in space whose
+                        // friction turns over) has no crossing to land on
+                        // within its band; landing there, the step's own
+                        // end is as accurate as any.
+                        if let Some(p) = pending.as_ref()
+                            && let (t_near, _) = p.near(t, &g_now)
+                            && let Ok(found) = &verdict
+                            && let narrow = close.max(settings.tolerance * step)
+                        {
+                            let past = match found {
+                                Verdict::Overshot if t_near > t && t + step - t_near <= narrow => Some(&g_end),
+                                Verdict::Clear if aimed && p.t_hi - (t + step) <= narrow => Some(&p.g_hi),
+                                _ => None,
+                            };
+                            let ks: Vec<usize> =
+                                past.map_or(Vec::new(), |g| (0..g.len()).filter(|&k| g[k] < -1.0).collect());
+                            if !ks.is_empty() {
+                                verdict = Ok(Verdict::Landed(ks));
+                            }
+                        }
                         let checked = match verdict {
                             Ok(Verdict::Overshot) => Err(None),
                             Ok(verdict) => violation(system, &q1, &mut w).map(|c| (c, verdict)).map_err(Some),
@@ -316,8 +343,8 @@ pub(super) fn advance<S: System + ?Sized>(
                             Err(None) => {
                                 // An event within the step: aim at it, from this step's start.
                                 match pending.as_mut() {
-                                    Some(p) => p.overshot(t + step, &g_end),
-                                    None => pending = Some(Pending::new(t + step, &g_end)),
+                                    Some(p) => p.overshot(t, t + step, &g_end),
+                                    None => pending = Some(Pending::new(t, t + step, &g_end)),
                                 }
                                 let p = pending.as_ref().expect("just set");
                                 if p.aims > MAX_AIMS {
@@ -337,6 +364,18 @@ pub(super) fn advance<S: System + ?Sized>(
                                     enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                     (m, pending, multipliers, since_switch, stale, fresh) =
                                         (w.m, None, None, 0, true, false);
+                                }
+                                Some(Refusal::Event)
+                            }
+                            Ok((c, Verdict::Clear)) if c.is_finite() && aimed => {
+                                let p = pending.as_mut().expect("aimed at an event");
+                                p.fell_short(t, Some((t + step, &g_end)));
+                                if p.aims > MAX_AIMS {
+                                    return Err(stalled(
+                                        &format!("an event was not landed on in {MAX_AIMS} aimed steps"),
+                                        step,
+                                        run,
+                                    ));
                                 }
                                 Some(Refusal::Event)
                             }
@@ -374,7 +413,7 @@ pub(super) fn advance<S: System + ?Sized>(
                                     }
                                     Verdict::Clear | Verdict::Overshot => {
                                         if let Some(p) = pending.as_mut() {
-                                            p.fell_short();
+                                            p.fell_short(t, None);
                                         }
                                     }
                                 }
