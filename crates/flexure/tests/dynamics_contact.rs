@@ -5,8 +5,9 @@
 //! or a post and comes to rest where the contact statics (checked against
 //! the exact elastica with contact in `contact_statics.rs`) says; a strip's
 //! tip pulled slowly on a rough floor against the exact elastica with tip
-//! friction; the drop written in space; and the refusals. Tolerances as
-//! each test says.
+//! friction; the drop written in space; a sliding contact's friction where
+//! the surface turns; fingers closing fast on a rough rod and a rough ball,
+//! across tolerances; and the refusals. Tolerances as each test says.
 
 use flexure::dynamics::contact::ContactChange;
 use flexure::dynamics::integrate::MotionSettings;
@@ -859,10 +860,12 @@ fn closing_fast(file: &str, bodies: &str, tension: f64, friction: Option<f64>) -
 /// never let go (at 1e-8, μ 0.1 and 1, and at 1e-7, μ 0.5, it was let go
 /// and retouched within 1 µs where a slide stopped: the run crept up on the
 /// stop and read it from steps of 1e-13 s, whose velocities rounding's
-/// error over the step had moved by 25). At
+/// error over the step had moved by 25, and the friction's direction, kept
+/// from where the slide began, leaned into the normal as it stopped). At
 /// every sample each contact's friction is within Coulomb's cone, on it
 /// where it slides (to 1e-9 of its push), and along the surface (to 1e-9
-/// of itself).
+/// of itself: a sliding pad's friction kept the way it began, where the
+/// rod's surface has turned since, leaned into the normal).
 #[test]
 fn a_finger_closing_fast_on_a_rough_rod_runs_through() {
     let bodies = "[[body]]\nname = \"proximal\"\nmass = 0.005\ninertia = 5e-7\ncom = [0.02, 0.0]\n\
@@ -891,5 +894,75 @@ fn a_finger_closing_fast_on_a_rough_rod_runs_through() {
             firsts.push(turns);
         }
         converge(&firsts);
+    }
+}
+
+/// `examples/grasp3d.toml` with friction μ = 0.5 on its ball, given mass
+/// (as in the plane) and its tendon pulled from 0 to 3 N in 50 ms: the
+/// distal pad lands on the ball sliding, sticks, slides and sticks again
+/// as it rises onto it out of the finger's plane. At tolerances 1e-6, 1e-7
+/// and 1e-8 each run goes through 0.1 s, with the same four changes at
+/// times within 2e-5 s (at 1e-6) and 2e-6 s (at 1e-7) of 1e-8's (measured
+/// 6.2e-6 and 4.5e-7; a self-consistency check).
+/// Before, the pad's slide was measured from the way it began: turning as
+/// it rose onto the ball, its speed along that way fell to zero where it had
+/// only turned a right angle, a stop the runs then saw at 0.0393 s; and
+/// its friction turned over there, a guard that jumped a thousand bands,
+/// on which the run at 1e-8 stopped (switching at one instant without end).
+#[test]
+fn a_finger_closing_fast_on_a_rough_ball_runs_through_in_space() {
+    let bodies = "[[body]]\nname = \"proximal\"\nmass = 0.005\n\
+                  inertia = [[5e-7, 0.0, 0.0], [0.0, 5e-7, 0.0], [0.0, 0.0, 5e-7]]\ncom = [0.02, 0.0, 0.0]\n\
+                  [[body]]\nname = \"distal\"\nmass = 0.003\n\
+                  inertia = [[2e-7, 0.0, 0.0], [0.0, 2e-7, 0.0], [0.0, 0.0, 2e-7]]\ncom = [0.012, 0.0, 0.0]\n";
+    let text =
+        closing_fast("grasp3d.toml", bodies, 3.0, None).replace("radius = 0.01\n", "radius = 0.01\nfriction = 0.5\n");
+    let m = spatial_from_toml(&text).unwrap();
+    let expected = [ContactMode::Slip, ContactMode::Stick, ContactMode::Slip, ContactMode::Stick];
+    let mut firsts: Vec<Vec<(f64, ContactMode)>> = Vec::new();
+    for tolerance in [1e-6, 1e-7, 1e-8] {
+        let run = simulate(&m, &settings(0.1, 0.001, tolerance), Start::Equilibrium).unwrap();
+        assert!(run.stopped.is_none(), "at {tolerance}: {:?}", run.stopped);
+        let turns = turns(&run.changes, "contact.ball.distal");
+        let states: Vec<ContactMode> = turns.iter().map(|(_, s)| *s).collect();
+        assert_eq!(states, expected, "at {tolerance}: {turns:?}");
+        firsts.push(turns);
+    }
+    converge(&firsts);
+}
+
+/// A ball (on x and y sliders) touching a rough dome (μ = 0.5) from above,
+/// sliding along +x: its contact slides from that way. Moved 0.3 rad
+/// around the dome, where the surface has turned, its friction row
+/// ($\nabla g - \mu\hat s^T\Delta$, `closure_forces`) is
+/// $n - \mu t$ (to 1e-12) with $t$ the tangent there, whether it slides on
+/// (along $t$) or has turned back (against it, where $\hat s$ is the way it
+/// slid): the friction stays in the tangent plane, and is continuous where
+/// the slide stops. The way it began, (1, 0), would give $n\cdot W = 1 - \mu
+/// \sin 0.3 = 0.85$ once it turned back.
+#[test]
+fn a_sliding_contacts_friction_stays_in_the_tangent_plane_where_the_surface_turns() {
+    use flexure::dynamics::System;
+    use flexure::dynamics::contact::ContactSystem;
+    let text = "[[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\n\
+         [[joint]]\nname = \"y\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"ball\"\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+         [[body]]\nname = \"ball\"\nmass = 1.0\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"circle\"\nradius = 0.05\n\
+         [[geom]]\nname = \"dome\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.0, -0.25]\nradius = 0.2\nfriction = 0.5\n";
+    let m = from_toml(text).unwrap();
+    let mut system = ContactSystem::new(&m, (&[0.0, 0.0], &[0.3, 0.0]), &[], 1e-8).unwrap();
+    assert_eq!(system.closures(), 1, "the ball slides on the dome: one gap row");
+    let alpha: f64 = 0.3;
+    let (n, t) = ([alpha.sin(), alpha.cos()], [alpha.cos(), -alpha.sin()]);
+    let q = [0.25 * alpha.sin(), -0.25 + 0.25 * alpha.cos()];
+    for (sign, how) in [(1.0, "sliding on"), (-1.0, "turned back")] {
+        let v = [sign * 0.3 * t[0], sign * 0.3 * t[1]];
+        let (mut c, mut g, mut w) = ([0.0], [0.0; 2], [0.0; 2]);
+        system.closure(&q, &mut c, &mut g).unwrap();
+        system.closure_forces(&q, &v, &g, &mut w).unwrap();
+        let dot = |a: &[f64; 2], b: &[f64]| a[0] * b[0] + a[1] * b[1];
+        assert!(c[0].abs() < 1e-12 && (dot(&n, &g) - 1.0).abs() < 1e-12, "{how}: the gap row {c:?}, {g:?}");
+        assert!((dot(&n, &w) - 1.0).abs() < 1e-12, "{how}: n·W = {}", dot(&n, &w));
+        assert!((dot(&t, &w) + 0.5).abs() < 1e-12, "{how}: t·W = {}", dot(&t, &w));
     }
 }

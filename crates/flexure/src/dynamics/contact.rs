@@ -33,14 +33,16 @@
 //! $\nabla g - \mu\hat s^T\Delta$ ([`System::closure_forces`]; $\Delta$ the
 //! material point's Jacobian relative to the geom), so friction does work
 //! only against the sliding. ($\hat s$ is $v_t$ normalized with the direction
-//! it slid from added at $10^{-12}$ of the mechanism's size per second,
-//! so a slide that starts from rest has a direction.)
+//! it slid in, $\hat s_0$, added at $10^{-12}$ of the mechanism's size per
+//! second, so a slide that starts from rest has a direction; each in the
+//! tangent plane.)
 //!
 //! **Events** ([`System::guards`], two per touching contact, then one per
 //! pair): a touching contact's $N$ falling below zero opens it; a stuck
 //! one's $\mu N - \lvert f_t\rvert$ falling below zero slips it, toward
 //! $-f_t$; a sliding one's $v_t\cdot\hat s_0$ ($\hat s_0$ the direction it
-//! slid from) falling below zero sticks it where it is; an open pair's
+//! slid in at the last step accepted, [`System::accepted`]: in space a
+//! slide turns as it goes) falling below zero sticks it where it is; an open pair's
 //! least gap (each least of its flexure but those within a hundredth of its
 //! length of a touching contact of the same pair) falling below zero
 //! touches. The integrator lands on each within a band: a gap to
@@ -92,7 +94,8 @@ enum Law {
     Free,
     /// Stuck at `anchor`, a material point of the geom's body (its frame).
     Stick { anchor: [f64; 3] },
-    /// Sliding, from the direction `from` (a unit tangent, world), its fastest speed so far `fastest`.
+    /// Sliding in the direction `from` (a unit tangent, world: where it
+    /// began, then at each step accepted), its fastest speed so far `fastest`.
     Slip { from: [f64; 3], fastest: f64 },
     /// Rolling without slipping: the velocity of the toucher's material
     /// point where it touches, relative to the geom's there, held at zero
@@ -562,7 +565,7 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             (Law::Slip { from, .. }, Some(l)) => {
                 let push = -l[row];
-                (push, scaled::<D>(&self.direction(&slide, &vector::<D>(&from)), -h.mu * push))
+                (push, scaled::<D>(&self.direction(&slide, &vector::<D>(&from), &n), -h.mu * push))
             }
             (Law::Free, Some(l)) => (-l[row], D::Vector::default()),
         };
@@ -571,17 +574,22 @@ impl<D: Dynamics> ContactSystem<D> {
 
     /// $\hat s$: the slide `slide` with the direction it slid from, `from`,
     /// added at the creep speed; `from` itself once the slide has turned
-    /// back from it. A slide turns back only through an event (it sticks,
-    /// or slides on the other way), which the steps land on: within a step
-    /// the friction keeps pushing against `from`, so the slide crosses zero
-    /// where the motion does, rather than being held near zero by a friction
-    /// that turns over with it (the steps aimed at the stop then found it
-    /// anywhere after the crossing).
-    fn direction(&self, slide: &D::Vector, from: &D::Vector) -> D::Vector {
-        if dot::<D>(slide, from) <= 0.0 {
-            return *from;
-        }
-        let s = *slide + scaled::<D>(from, self.creep);
+    /// back from it; each in the tangent plane of the normal `n`. A slide
+    /// turns back only through an event (it sticks, or slides on the other
+    /// way), which the steps land on: within a step the friction keeps
+    /// pushing against `from`, so the slide crosses zero where the motion
+    /// does, rather than being held near zero by a friction that turns over
+    /// with it (the steps aimed at the stop then found it anywhere after the
+    /// crossing). In the tangent plane, $\hat s$ is continuous where the slide
+    /// stops, and the friction has no part along the normal: `from` as it
+    /// was, where the surface has turned since, leaned the friction into the
+    /// normal as the slide stopped, and the push jumped there.
+    fn direction(&self, slide: &D::Vector, from: &D::Vector, n: &D::Vector) -> D::Vector {
+        let from = *from - scaled::<D>(n, dot::<D>(n, from));
+        let s = match dot::<D>(slide, &from) <= 0.0 {
+            true => from,
+            false => *slide + scaled::<D>(&from, self.creep),
+        };
         let size = dot::<D>(&s, &s).sqrt();
         if size > 0.0 { scaled::<D>(&s, 1.0 / size) } else { s }
     }
@@ -715,7 +723,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let h = self.held[i];
             let Law::Slip { from, .. } = h.law else { continue };
             let r = self.read(i, row, (q, v), None)?;
-            let s = self.direction(&r.slide, &vector::<D>(&from));
+            let s = self.direction(&r.slide, &vector::<D>(&from), &r.slope.normal);
             for (col, d) in r.delta.iter().enumerate() {
                 w[col * rows + row] -= h.mu * dot::<D>(&s, d);
             }
@@ -886,6 +894,34 @@ impl<D: Dynamics> System for ContactSystem<D> {
             rows.extend(h.all_rows::<D>().enumerate().filter(|(_, held)| *held).map(|(k, _)| rolls && k > 0));
         }
         rows
+    }
+
+    /// Each sliding contact's direction $\hat s_0$ becomes the way it slides
+    /// at the step accepted, unless it slides slower than the creep or has
+    /// turned back from it (the event the steps land on): in space a slide
+    /// turns as it goes (a pad rising onto a ball), and measured from where
+    /// it began, its speed along it fell to zero where it had only turned
+    /// a right angle, and its friction turned over there (a guard that
+    /// jumped a thousand bands).
+    fn accepted(&mut self, q: &[f64], v: &[f64]) -> Result<()> {
+        if !self.held.iter().any(|h| matches!(h.law, Law::Slip { .. })) {
+            return Ok(());
+        }
+        self.frames_at(q);
+        for (i, row) in self.first_rows().into_iter().enumerate() {
+            if !matches!(self.held[i].law, Law::Slip { .. }) {
+                continue;
+            }
+            let slide = self.read(i, row, (q, v), None)?.slide;
+            let speed = dot::<D>(&slide, &slide).sqrt();
+            if let Law::Slip { from, .. } = &mut self.held[i].law
+                && speed > self.creep
+                && dot::<D>(&slide, &vector::<D>(from)) > 0.0
+            {
+                *from = array::<D>(&scaled::<D>(&slide, 1.0 / speed));
+            }
+        }
+        Ok(())
     }
 
     fn sampled(&mut self, _t: f64, q: &[f64], v: &[f64], multipliers: Option<&[f64]>) -> Result<()> {

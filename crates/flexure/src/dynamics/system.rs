@@ -114,6 +114,14 @@ pub trait System {
         Ok(())
     }
 
+    /// Told of each step the run accepts, at its end $(q, \dot q)$ (before
+    /// any switch there): a system whose guards are measured from the state
+    /// the run has reached takes it here (a slide's direction, which turns
+    /// as it slides in space). Not told of steps refused. The default: nothing.
+    fn accepted(&mut self, _q: &[f64], _v: &[f64]) -> Result<()> {
+        Ok(())
+    }
+
     /// Told of each sample as it is recorded, with the closures' multipliers
     /// of the step that reached it (`None` at the start and just after a
     /// switch). An error ends the run there, as a sample's energy's does.

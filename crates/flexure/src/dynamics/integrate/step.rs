@@ -385,6 +385,7 @@ pub(super) fn advance<S: System + ?Sized>(
                                 t = if landing { stop } else { t + step };
                                 std::mem::swap(&mut q, &mut q1);
                                 std::mem::swap(&mut v, &mut v1);
+                                system.accepted(&q, &v)?;
                                 w.prev.copy_from_slice(&w.x);
                                 w.prev_h = step;
                                 run.steps += 1;
