@@ -325,7 +325,11 @@ class Mechanism:
         dimension; values (n,); bodies {name: {key: (n,)}} (the ground left out), keyed as
         `simulate`'s: x, y, phi in the plane; x, y, z, roll, pitch, yaw and rotation (n, 3, 3)
         in space; coordinates {joint: (n, k)}; energy (n,); stress {flexure joint with a
-        section: (n,) peak stress, Pa; in space the von Mises peak}; flagged, the values at
+        section: (n,) peak stress, Pa; in space the von Mises peak}; where a part may touch
+        a geom, normal_force {contact.GEOM.PART: (n,) its push, 0 while open, as the CLI's
+        `contact.GEOM.PART.normal_force` column} and contacts, a list per row of its
+        contacts as `solve` reports them (state and friction too: the path's stick and
+        slip); flagged, the values at
         which a flexure joint's estimated error misses `accuracy` (AccuracyWarning); order
         as `solve`'s, when a flexure has order = "auto" (raised once for all rows, to the
         order the row that asks most needs);

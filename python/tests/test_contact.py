@@ -8,6 +8,7 @@ here); large deflection moves it by about 2e-5 N (the exact elastica with
 contact gives 0.1200185, `reference::elastica::contact`), so 1e-3 relative."""
 
 import math
+import pathlib
 
 import pytest
 
@@ -217,3 +218,39 @@ def test_a_ball_on_a_rough_floor_sticks_until_pulled_past_its_friction():
     assert [c["state"] for c in run["changes"]] == ["slip"]
     assert abs(run["changes"][0]["time"] - 0.5 * 2 * 9.81 / 20) < 1e-6
     assert run["contacts"][0][0]["state"] == "stick"
+
+
+
+GRASP = pathlib.Path(__file__).resolve().parents[2] / "examples" / "grasp.toml"
+
+
+def test_a_sweep_reports_each_rows_contacts():
+    """`examples/grasp.toml`'s tendon sweep tells the story of its header:
+    no touch at 0 N, the proximal pad on the rod by 1 N, both pads at 2.5 N,
+    the distal pad alone at 4 N (the proximal lifted off by 3 N). Each
+    pair's push (`normal_force`, the CLI's `contact.GEOM.PART.normal_force`
+    column; the hinges may touch the rod too) is its row's contact's, 0
+    while open; each friction is within
+    Coulomb's cone (mu = 0.5, to 1e-9 of the push); and the last row is
+    `solve`'s at the file's 4 N, which follows the same path in its own
+    steps (to 1e-9 of the push; measured 7e-15)."""
+    m = flexure.Mechanism.from_file(str(GRASP))
+    answer = m.sweep("tendon.flexor.tension", [0.0, 1.0, 2.5, 4.0])
+    touching = [{c.get("body", c.get("flexure")) for c in row if c["state"] != "open"} for row in answer["contacts"]]
+    assert touching == [set(), {"proximal"}, {"proximal", "distal"}, {"distal"}], touching
+    pushes = answer["normal_force"]
+    parts = ["mcp", "pip", "proximal", "distal"]
+    assert sorted(pushes) == sorted(f"contact.cylinder.{p}" for p in parts), pushes.keys()
+    for name, push in pushes.items():
+        part = name.split(".")[2]
+        for k, row in enumerate(answer["contacts"]):
+            mine = [c["normal_force"] for c in row if c.get("body", c.get("flexure")) == part and c["state"] != "open"]
+            assert push[k] == (mine[0] if mine else 0.0), (name, k, row)
+    for row in answer["contacts"]:
+        for c in row:
+            friction = math.hypot(*c["friction_force"])
+            assert friction <= 0.5 * c["normal_force"] * (1 + 1e-9) + 1e-15, c
+    (solved,) = [c for c in m.solve()["contacts"] if c["state"] != "open"]
+    (last,) = [c for c in answer["contacts"][-1] if c["state"] != "open"]
+    assert (solved["body"], solved["state"]) == (last["body"], last["state"])
+    assert solved["normal_force"] == pytest.approx(last["normal_force"], rel=1e-9)

@@ -115,8 +115,9 @@ pub fn sweep<'py>(
 /// The answer of a sweep, its warnings given: values (n,), bodies (each
 /// pose key an (n,) array; a spatial body's rotation (n, 3, 3)), coordinates
 /// {joint: (n, k)}, energy (n,), stress {flexure joint with a section: (n,)},
-/// compliance (n, k, k) if asked for, `stability_limit`, `flagged`,
-/// `findings` and `stopped`.
+/// normal_force {contact.GEOM.PART: (n,)} and contacts (a list per row)
+/// where a part may touch a geom, compliance (n, k, k) if asked for,
+/// `stability_limit`, `flagged`, `findings` and `stopped`.
 fn answer<'py>(
     py: Python<'py>,
     model: &Model,
@@ -149,6 +150,20 @@ fn answer<'py>(
     }
     if !stress.is_empty() {
         result.set_item("stress", stress)?;
+    }
+    // Where a part may touch a geom: each pair's push by row, and each row's
+    // contacts as `solve` lists them (as `simulate`'s, one list per row).
+    let normal_force = PyDict::new(py);
+    for (c, name) in swept.columns.iter().enumerate() {
+        if let Some(pair) = name.strip_suffix(".normal_force").filter(|p| p.starts_with("contact.")) {
+            normal_force.set_item(pair, values_at(c).into_pyarray(py))?;
+        }
+    }
+    if !normal_force.is_empty() {
+        result.set_item("normal_force", normal_force)?;
+    }
+    if swept.contacts.iter().any(|c| !c.is_empty()) {
+        result.set_item("contacts", crate::serialize::to_python(py, &swept.contacts)?)?;
     }
     if let Some(first) = swept.columns.iter().position(|c| c.starts_with("compliance.")) {
         let k = (swept.columns.len() - first).isqrt();
