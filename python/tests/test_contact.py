@@ -113,7 +113,7 @@ def test_the_compliance_holds_the_contact_closed():
 
 def test_other_analyses_refuse_a_pair_that_may_touch():
     m = flexure.Mechanism.from_toml(STRIP)
-    with pytest.raises(ValueError, match=r"geom \"floor\" \(plane\) and flexure \"strip\": may touch"):
+    with pytest.raises(ValueError, match=r"invalid geom \"floor\" \(plane\) and flexure \"strip\": may touch"):
         m.buckle()
 
 

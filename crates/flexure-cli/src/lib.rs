@@ -257,7 +257,11 @@ fn write_failed(e: std::io::Error, stderr: &mut dyn Write) -> u8 {
 /// The library's error with the parameter spelled as the option that set it.
 pub fn describe(e: flexure::Error) -> String {
     match &e {
-        flexure::Error::InvalidParameter { name, value, reason } => format!("{} = {value}: {reason}", option(name)),
+        // A value that names itself (a pair of parts) is no option's.
+        flexure::Error::InvalidParameter { name, value, reason } => match flexure::error::assignment(name, value) {
+            named if named == *value => format!("{value}: {reason}"),
+            _ => format!("{} = {value}: {reason}", option(name)),
+        },
         other => other.to_string(),
     }
 }

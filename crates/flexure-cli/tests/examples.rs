@@ -683,6 +683,8 @@ fn the_spatial_grasp_runs_its_commands_and_balances() {
     let what = "buckle";
     let (code, out, err) = run(&["buckle", &path]);
     assert!(code == 2 && out.is_empty() && err.contains("may touch"), "{what}: {code} {err}");
+    // The pair names itself: no option `--geom` was given.
+    assert!(err.contains("error: ") && err.contains(": geom \"ball\" (sphere) and "), "{what}: {err}");
     assert!(head.contains(&format!("`{what}` does not apply")) && head.contains("may touch"), "{what}");
     let text = std::fs::read_to_string(&path).unwrap();
     let v = json(&["solve", &path]);

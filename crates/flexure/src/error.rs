@@ -7,7 +7,7 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A parameter is out of its domain.
-    #[error("invalid {name} = {value}: {reason}")]
+    #[error("invalid {}: {reason}", assignment(name, value))]
     InvalidParameter {
         /// The parameter's name, as the CLI and Python bindings spell it.
         name: &'static str,
@@ -200,4 +200,21 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
 /// Checks that a count lies in `1..=max`.
 pub(crate) fn count(name: &'static str, value: usize, max: usize, reason: &'static str) -> Result<usize> {
     if (1..=max).contains(&value) { Ok(value) } else { Err(Error::invalid(name, value, reason)) }
+}
+
+/// `name = value`, or the value alone where it names itself (`geom "floor"
+/// (plane) and flexure "strip"`: a pair of parts, not a value given to a
+/// parameter `geom`).
+///
+/// # Example
+/// ```
+/// use flexure::error::assignment;
+/// assert_eq!(assignment("radius", "-1"), "radius = -1");
+/// assert_eq!(assignment("geom", "geom \"floor\" (plane)"), "geom \"floor\" (plane)");
+/// ```
+pub fn assignment(name: &str, value: &str) -> String {
+    match value.strip_prefix(name).is_some_and(|rest| rest.starts_with(' ')) {
+        true => value.to_string(),
+        false => format!("{name} = {value}"),
+    }
 }
