@@ -97,6 +97,11 @@ const FORCE_TOLERANCE: f64 = 1e-9;
 const ROLL_TOLERANCE: f64 = 1e-9;
 /// Two contacts of one pair this close (× the flexure's length) lie along the geom.
 const FLAT_LENGTH: f64 = 1e-2;
+/// A contact on a flexure whose gap curves along it by less than this over
+/// the flexure's length ($g_{ss}L$: the strip's curvature against the geom's,
+/// its radius past a hundred lengths) where the path loses stability lies
+/// along the geom: its least gap is spreading into an interval.
+const FLAT_CURVATURE: f64 = 1e-2;
 /// Changes of the set at one load before the path is declared stalled.
 const MAX_CHANGES_AT_ONCE: usize = 8;
 /// The most a sliding contact's direction may turn in one step (rad).
@@ -914,6 +919,9 @@ enum Event {
     Stick(usize, [f64; 3], [f64; 3], [f64; 3], Material),
     /// The equilibrium is no longer stable.
     Unstable,
+    /// The equilibrium is no longer stable where contact `c` lies flat
+    /// along its geom ([`FLAT_CURVATURE`]): distributed contact.
+    LiesAlong(usize),
 }
 
 /// A Newton solve of `problem` at `lambda` from `x`: the solution and its iterations.
@@ -1036,7 +1044,14 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         }
     }
     if !problem.stable(x, lambda, &jac) {
-        return Ok(Some(Event::Unstable));
+        // Flat against the geom, with no slope along it at an end: the
+        // strip begins to lie along it, not to buckle.
+        let flat = (0..problem.touching.len()).find(|&c| {
+            let (t, jet) = (&problem.touching[c], &problem.jets[c]);
+            let level = matches!(t.place, Place::Inner) || jet.ds.abs() <= FLAT_CURVATURE;
+            t.s().is_some() && level && jet.dss * t.length <= FLAT_CURVATURE
+        });
+        return Ok(Some(flat.map_or(Event::Unstable, Event::LiesAlong)));
     }
     Ok(None)
 }
@@ -1123,16 +1138,19 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
         }
+        Event::LiesAlong(c) => {
+            let at = format!("{} (at {:.4} % of the load)", named(m, &touching[c].pair), 100.0 * lambda);
+            return Err(Error::invalid("geom", at, LIES_ALONG));
+        }
     }
     Ok(out)
 }
 
+const LIES_ALONG: &str =
+    "touch along an interval (distributed contact), which is not solved: the flexure lies along the geom";
+
 fn lies_along<D: Statics>(m: &Mechanism<D>, pair: &Pair) -> Error {
-    Error::invalid(
-        "geom",
-        named(m, pair),
-        "touch along an interval (distributed contact), which is not solved: the flexure lies along the geom",
-    )
+    Error::invalid("geom", named(m, pair), LIES_ALONG)
 }
 
 /// An equilibrium with contact and what the path to it left: its
