@@ -204,3 +204,31 @@ fn the_spatial_examples_cross_nothing() {
         assert!(loaded.is_empty(), "{name}: {:?}", loaded.iter().map(|c| c.message()).collect::<Vec<_>>());
     }
 }
+
+/// A blade 10 mm wide (along z) and 0.5 mm thick at rest along x, beside a
+/// ball of radius 1 mm centred in its plane (y = 0) at x = 45 mm and
+/// `z` off its centreline. Contact holds the tube of its thickness, so a
+/// ball within the width but clear of the tube passes through the blade:
+/// that is found (closed form: a ball at z meets the blade's mid-plane where
+/// |z| − r < 5 mm), with its point inside the ball and its arc length
+/// within the ball's span along x; a ball past the edge is not.
+#[test]
+fn a_blades_width_passing_through_a_ball_is_found() {
+    let (r, c) = (1e-3, 0.045);
+    for (z, found) in [(0.004, true), (0.0059, true), (0.0061, false), (0.0075, false), (-0.003, true)] {
+        let text = format!(
+            "dimension = 3\n{}[[geom]]\nname = \"ball\"\nbody = \"ground\"\nshape = \"sphere\"\n\
+             origin = [{c}, 0.0, {z}]\nradius = {r}\n",
+            rod("blade", [0.0; 3], [0.0; 3], "width = 0.01\nthickness = 0.0005")
+        );
+        let m = spatial_from_toml(&text).unwrap();
+        let all = crossings(&m, &m.rest());
+        assert_eq!(all.len(), usize::from(found), "z = {z}: {all:?}");
+        let Some(x) = all.first() else { continue };
+        assert_eq!((x.a, x.b), (Part::Flexure(0), Part::Geom(0)), "{x:?}");
+        assert!(x.message().starts_with("flexure \"blade\"'s width crosses geom \"ball\""), "{}", x.message());
+        let inside = ((x.at[0] - c).powi(2) + x.at[1].powi(2) + (x.at[2] - z).powi(2)).sqrt();
+        let s = x.s[0].unwrap();
+        assert!(inside < r && (s - c).abs() < r, "z = {z}: {x:?}");
+    }
+}

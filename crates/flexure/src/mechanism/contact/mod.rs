@@ -24,6 +24,7 @@ mod gap;
 mod jet;
 mod rolling;
 mod shape;
+mod width;
 
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
@@ -36,6 +37,7 @@ pub(crate) use jet::{Material, PointJet, material_jet, on_ball, point_jet};
 pub(crate) use rolling::{on_flexure, tangents, touched, turned};
 pub use shape::{DistanceHessian, GeomShape};
 pub(crate) use shape::{array, dot, scaled, vector};
+pub use width::width_crossings;
 
 /// A shape on a body (body 0 is the ground): it moves with the body.
 ///

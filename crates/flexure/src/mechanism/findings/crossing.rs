@@ -32,6 +32,9 @@ pub enum Part {
     Flexure(usize),
     /// A body's link (the ground included), by index in [`Mechanism::bodies`].
     Link(usize),
+    /// A geom, by index in [`Mechanism::geoms`]: a spatial strip's width
+    /// that passes through it ([`crate::mechanism::contact::width_crossings`]).
+    Geom(usize),
 }
 
 impl Part {
@@ -40,6 +43,7 @@ impl Part {
         match *self {
             Part::Flexure(j) => format!("flexure {:?}", m.joints[j].name),
             Part::Link(b) => format!("link {:?}", m.bodies[b].name),
+            Part::Geom(g) => format!("geom {:?}", m.geoms[g].name),
         }
     }
 }
@@ -81,6 +85,15 @@ impl<P: AsRef<[f64]>> Crossing<P> {
         }
         if !along.is_empty() {
             where_ += &format!(" ({})", along.join(", "));
+        }
+        if matches!(self.b, Part::Geom(_)) {
+            let more = if self.points > 1 { format!(", {} sections in all", self.points) } else { String::new() };
+            return format!(
+                "{}'s width crosses {} {where_}{more}; a spatial flexure touches geoms with the tube of half its \
+                 thickness about its centreline, so its width passes through this one (a narrower strip, or the \
+                 geom moved, if they should touch)",
+                self.names[0], self.names[1]
+            );
         }
         let more = if self.points > 1 { format!(", {} points in all", self.points) } else { String::new() };
         format!(
@@ -217,6 +230,7 @@ pub fn crossings<D: Findings>(m: &Mechanism<D>, q: &[f64]) -> Vec<CrossingAt<D>>
             }
         }
     }
+    out.extend(D::width_crossings(m, q, (&bodies, &roots), tolerance));
     out
 }
 

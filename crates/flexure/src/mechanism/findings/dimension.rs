@@ -40,6 +40,18 @@ pub trait Findings: crate::mechanism::statics::Statics {
 
     /// The bodies' frames and the joints' root frames at coordinates `q`.
     fn poses(m: &Mechanism<Self>, q: &[f64]) -> (Vec<Self::Pose>, Vec<Self::Pose>);
+    /// The geoms a strip's width passes through at `q` (the bodies' and
+    /// joints' root frames given), by more than `tolerance` (m): none in the
+    /// plane, where a flexure is its section; in space
+    /// [`crate::mechanism::contact::width_crossings`].
+    fn width_crossings(
+        _m: &Mechanism<Self>,
+        _q: &[f64],
+        _frames: (&[Self::Pose], &[Self::Pose]),
+        _tolerance: f64,
+    ) -> Vec<super::CrossingAt<Self>> {
+        Vec::new()
+    }
     /// A closure's gap at rest, given the bodies' frames: the distance
     /// between its points (m) and the angle it holds between its frames (rad).
     fn rest_gap(c: &Closure<Self>, bodies: &[Self::Pose]) -> (f64, Option<f64>);
@@ -136,6 +148,15 @@ impl Findings for Planar {
 impl Findings for Spatial {
     type At = [f64; 3];
     type Solid = Convex;
+
+    fn width_crossings(
+        m: &Mechanism<Spatial>,
+        q: &[f64],
+        frames: (&[nalgebra::Isometry3<f64>], &[nalgebra::Isometry3<f64>]),
+        tolerance: f64,
+    ) -> Vec<super::CrossingAt<Spatial>> {
+        crate::mechanism::contact::width_crossings(m, q, frames, tolerance)
+    }
 
     fn poses(m: &Mechanism<Spatial>, q: &[f64]) -> (Vec<nalgebra::Isometry3<f64>>, Vec<nalgebra::Isometry3<f64>>) {
         // Poses alone: the bodies' frames are the same at every level.
