@@ -277,6 +277,8 @@ fn option(name: &str) -> String {
         "kappa_z" => "--kappa".into(),
         // The mechanism's or flexure's masses, set by several options or keys.
         "mass" => "mass".into(),
+        // A geom's key, or a pair of parts: no option sets them.
+        "friction" | "pair" => name.into(),
         _ => format!("--{}", name.replace('_', "-")),
     }
 }

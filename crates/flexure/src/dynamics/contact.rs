@@ -897,8 +897,9 @@ impl<D: Dynamics> System for ContactSystem<D> {
     }
 
     /// Each sliding contact's direction $\hat s_0$ becomes the way it slides
-    /// at the step accepted, unless it slides slower than the creep or has
-    /// turned back from it (the event the steps land on): in space a slide
+    /// at the step accepted, unless it slides slower than its stop's band
+    /// (the speed the integrator resolves) or has turned back from it (the
+    /// event the steps land on): in space a slide
     /// turns as it goes (a pad rising onto a ball), and measured from where
     /// it began, its speed along it fell to zero where it had only turned
     /// a right angle, and its friction turned over there (a guard that
@@ -912,10 +913,14 @@ impl<D: Dynamics> System for ContactSystem<D> {
             if !matches!(self.held[i].law, Law::Slip { .. }) {
                 continue;
             }
-            let slide = self.read(i, row, (q, v), None)?.slide;
+            let r = self.read(i, row, (q, v), None)?;
+            let (slide, tolerance) = (r.slide, self.tolerance);
             let speed = dot::<D>(&slide, &slide).sqrt();
-            if let Law::Slip { from, .. } = &mut self.held[i].law
-                && speed > self.creep
+            // Above the speed the integrator resolves (its stop guard's
+            // band): below it, the slide's way is mostly the rates' error.
+            let reach = r.delta.iter().map(|d| dot::<D>(d, d)).sum::<f64>().sqrt();
+            if let Law::Slip { from, fastest } = &mut self.held[i].law
+                && speed > self.creep.max(tolerance * fastest.max(reach))
                 && dot::<D>(&slide, &vector::<D>(from)) > 0.0
             {
                 *from = array::<D>(&scaled::<D>(&slide, 1.0 / speed));

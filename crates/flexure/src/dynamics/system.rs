@@ -117,7 +117,9 @@ pub trait System {
     /// Told of each step the run accepts, at its end $(q, \dot q)$ (before
     /// any switch there): a system whose guards are measured from the state
     /// the run has reached takes it here (a slide's direction, which turns
-    /// as it slides in space). Not told of steps refused. The default: nothing.
+    /// as it slides in space). Not told of steps refused, nor of steps taken
+    /// within an event's bracket (its guards stay those it was bracketed
+    /// with). The default: nothing.
     fn accepted(&mut self, _q: &[f64], _v: &[f64]) -> Result<()> {
         Ok(())
     }

@@ -32,10 +32,16 @@ pub(super) struct Pending {
     /// The near end, where a step aimed at the event ended short of it
     /// (not accepted); the last state accepted until one does.
     near: Option<(f64, Vec<f64>)>,
-    /// The bracket's width when it last halved (at first, its whole), and
-    /// the steps aimed since.
+    /// The bracket's width when it last halved (at first, its whole), the
+    /// steps aimed since, and whether it is bisected from now on (two aims
+    /// once did not halve it).
     halved: f64,
     since: usize,
+    bisect: bool,
+    /// Whether the next step aims at the far end itself: the bracket is
+    /// narrower than the events need, and that step says which guards are
+    /// past their bands there ([`Pending::take_far_end`]).
+    pub(super) far: bool,
     /// Steps aimed so far, and whether the last one ended short of the event.
     pub(super) aims: usize,
     short: bool,
@@ -44,7 +50,18 @@ pub(super) struct Pending {
 impl Pending {
     /// A bracket from `t`, the last state accepted, to `t_hi`.
     pub(super) fn new(t: f64, t_hi: f64, g_hi: &[f64]) -> Self {
-        Pending { t_hi, g_hi: g_hi.to_vec(), near: None, halved: t_hi - t, since: 0, aims: 0, short: false }
+        let halved = t_hi - t;
+        Pending {
+            t_hi,
+            g_hi: g_hi.to_vec(),
+            near: None,
+            halved,
+            since: 0,
+            bisect: false,
+            far: false,
+            aims: 0,
+            short: false,
+        }
     }
 
     /// The bracket's near end: where a step aimed at the event fell short,
@@ -60,14 +77,19 @@ impl Pending {
     /// `g_now` (each at least $-1$): the earliest of the guards' crossings,
     /// each of the line through its values at the bracket's ends at a level
     /// inside its band (halfway from where it is, or from 0, to $-1$), kept
-    /// inside the bracket; the bracket's middle where two steps aimed so
-    /// did not halve it (a guard that jumps: a line through a jump aims
-    /// beside it, and Illinois' halving takes many steps to undo a far
-    /// value a thousand bands deep).
+    /// inside the bracket; its middle once two steps aimed so did not halve
+    /// it (a guard that jumps: a line through a jump aims beside it, and
+    /// Illinois' halving takes many steps to undo a far value a thousand
+    /// bands deep; bisected from then on, the bracket narrows to the
+    /// tolerance of the step in about $\log_2(1/\text{tolerance})$ steps); the far
+    /// end itself once it is that narrow ([`Pending::take_far_end`]).
     pub(super) fn aim(&self, t: f64, g_now: &[f64]) -> f64 {
+        if self.far {
+            return self.t_hi;
+        }
         let (t, g_now) = self.near(t, g_now);
         let span = self.t_hi - t;
-        if self.since >= 2 {
+        if self.bisect || self.since >= 2 {
             return t + 0.5 * span;
         }
         let theta = g_now
@@ -108,8 +130,13 @@ impl Pending {
     pub(super) fn overshot(&mut self, t: f64, t_end: f64, g: &[f64]) {
         self.t_hi = t_end;
         self.g_hi.copy_from_slice(g);
+        // A near end at or past the new far end (a shorter step, after a
+        // refusal, overshot before it) is no end of this bracket.
+        if self.near.as_ref().is_some_and(|(t_near, _)| *t_near >= t_end) {
+            self.near = None;
+        }
         self.narrowed(t);
-        self.short = false;
+        (self.short, self.far) = (false, false);
         self.aims += 1;
     }
 }
@@ -123,7 +150,16 @@ impl Pending {
             (self.halved, self.since) = (width, 0);
         } else {
             self.since += 1;
+            self.bisect |= self.since >= 2;
         }
+    }
+
+    /// The bracket is narrower than the events need, its near end short of
+    /// them: the next step aims at the far end, and lands there on the
+    /// guards its own end finds past their bands (or, finding none, is
+    /// taken as any step: the event was not there).
+    pub(super) fn take_far_end(&mut self) {
+        self.far = true;
     }
 }
 

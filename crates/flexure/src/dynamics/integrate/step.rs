@@ -308,30 +308,38 @@ pub(super) fn advance<S: System + ?Sized>(
                             }
                         }
                         // Aimed at the event and short of it, a step is not
-                        // taken: it is the bracket's near end (module docs of `event`).
+                        // taken: it is the bracket's near end (module docs of
+                        // `event`); aimed at the far end itself and clear, it
+                        // is (the event was not there).
                         let aimed = landing && aim == Some(stop);
+                        let at_far_end = pending.as_ref().is_some_and(|p| p.far);
                         // A bracket narrower than the tolerance of the step
                         // (or rounding), its near end past the last state
-                        // accepted: the events are here, at the end of this
-                        // step, with the guards past their bands at the far
-                        // end. A guard that jumps (a slide in space whose
-                        // friction turns over) has no crossing to land on
-                        // within its band; landing there, the step's own
-                        // end is as accurate as any.
+                        // accepted: a step that overshoots to its far end
+                        // lands there, on the guards it finds past their
+                        // bands; one short of it aims at the far end next. A
+                        // guard that jumps (a slide in space whose friction
+                        // turns over) has no crossing to land on within its
+                        // band; landing there, the step's own end is as
+                        // accurate as any.
+                        let mut narrow_short = false;
                         if let Some(p) = pending.as_ref()
                             && let (t_near, _) = p.near(t, &g_now)
                             && let Ok(found) = &verdict
                             && let narrow = close.max(settings.tolerance * step)
+                            && t_near > t
                         {
-                            let past = match found {
-                                Verdict::Overshot if t_near > t && t + step - t_near <= narrow => Some(&g_end),
-                                Verdict::Clear if aimed && p.t_hi - (t + step) <= narrow => Some(&p.g_hi),
-                                _ => None,
-                            };
-                            let ks: Vec<usize> =
-                                past.map_or(Vec::new(), |g| (0..g.len()).filter(|&k| g[k] < -1.0).collect());
-                            if !ks.is_empty() {
-                                verdict = Ok(Verdict::Landed(ks));
+                            match found {
+                                Verdict::Overshot if t + step > t_near && t + step - t_near <= narrow => {
+                                    let ks: Vec<usize> = (0..g_end.len()).filter(|&k| g_end[k] < -1.0).collect();
+                                    if !ks.is_empty() {
+                                        verdict = Ok(Verdict::Landed(ks));
+                                    }
+                                }
+                                Verdict::Clear if aimed && !at_far_end && p.t_hi - (t + step) <= narrow => {
+                                    narrow_short = true;
+                                }
+                                _ => {}
                             }
                         }
                         let checked = match verdict {
@@ -367,9 +375,12 @@ pub(super) fn advance<S: System + ?Sized>(
                                 }
                                 Some(Refusal::Event)
                             }
-                            Ok((c, Verdict::Clear)) if c.is_finite() && aimed => {
+                            Ok((c, Verdict::Clear)) if c.is_finite() && aimed && !at_far_end => {
                                 let p = pending.as_mut().expect("aimed at an event");
                                 p.fell_short(t, Some((t + step, &g_end)));
+                                if narrow_short {
+                                    p.take_far_end();
+                                }
                                 if p.aims > MAX_AIMS {
                                     return Err(stalled(
                                         &format!("an event was not landed on in {MAX_AIMS} aimed steps"),
@@ -385,7 +396,10 @@ pub(super) fn advance<S: System + ?Sized>(
                                 t = if landing { stop } else { t + step };
                                 std::mem::swap(&mut q, &mut q1);
                                 std::mem::swap(&mut v, &mut v1);
-                                system.accepted(&q, &v)?;
+                                // Not within an event's bracket: its guards stay those it was bracketed with.
+                                if pending.is_none() {
+                                    system.accepted(&q, &v)?;
+                                }
                                 w.prev.copy_from_slice(&w.x);
                                 w.prev_h = step;
                                 run.steps += 1;
@@ -412,6 +426,8 @@ pub(super) fn advance<S: System + ?Sized>(
                                         enter(system, &ks, t, (&mut q, &mut v), &mut w, settings, &mut g_now)?;
                                         (m, pending, multipliers, since_switch, stale) = (w.m, None, None, 0, true);
                                     }
+                                    // Aimed at the far end and clear there: the event was not there.
+                                    Verdict::Clear | Verdict::Overshot if at_far_end => pending = None,
                                     Verdict::Clear | Verdict::Overshot => {
                                         if let Some(p) = pending.as_mut() {
                                             p.fell_short(t, None);
