@@ -492,3 +492,34 @@ fn a_blade_sagging_onto_a_floor_is_refused_where_it_begins_to_lie_along_it() {
     let g = percent / 100.0 * 9.81;
     assert!((g / g_flat - 1.0).abs() < 0.02, "lies along at g = {g}, linear theory {g_flat}");
 }
+
+/// A free-clamped column (L = EI = 1, order 8) pushed along its axis, a
+/// wall 0.5 beside it that it never reaches: a sweep of the push from 0 to
+/// −3 N loses stability at Euler's load π²/4 (to 1e-5 relative; the order's
+/// own error is 1e-6), the same as the sweep without the wall (to 1e-6, the
+/// precision to which that sweep refines its limit; measured 1.1e-8), and
+/// keeps the rows before it, leaving out the two past it. Before, a sweep
+/// with contact stopped there with an error instead.
+#[test]
+fn a_sweep_with_contact_finds_eulers_load_as_one_without() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let column = "[[joint]]\nname = \"column\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\n\
+                  length = 1.0\nei = 1.0\norder = 8\n[[force]]\nname = \"push\"\nbody = \"tip\"\nforce = [-1.0, 0.0]\n";
+    let wall =
+        "[[geom]]\nname = \"wall\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.5]\nnormal = [0.0, -1.0]\n";
+    let values: Vec<f64> = (0..7).map(|k| -0.5 * k as f64).collect();
+    let limits: Vec<f64> = [column.to_string(), format!("{column}{wall}")]
+        .iter()
+        .map(|text| {
+            let m = from_toml(text).unwrap();
+            let p = Parameter::parse(&m, "force.push.fx").unwrap();
+            let out = sweep(&m, &p, &values, &Settings::default()).unwrap();
+            assert!(out.stopped.is_none(), "{:?}", out.stopped);
+            assert_eq!(out.rows.len(), 5, "the rows to −2 N");
+            out.stability_limit.expect("Euler's load").value
+        })
+        .collect();
+    let euler = std::f64::consts::PI.powi(2) / 4.0;
+    assert!((limits[1] + euler).abs() < 1e-5 * euler, "{limits:?}");
+    assert!((limits[1] - limits[0]).abs() < 1e-6 * euler, "{limits:?}");
+}

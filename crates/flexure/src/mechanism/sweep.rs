@@ -266,8 +266,12 @@ pub fn sweep<D: Statics>(
 
 /// [`sweep`] of a mechanism with contact: each value followed from the
 /// last with its contacts ([`follow_touching`]), the first from no load.
-/// A value it cannot reach (a path that loses stability, one that stalls,
-/// friction) stops the sweep there, with the rows before it.
+/// Where the path from one value to the next loses stability, that is the
+/// sweep's `stability_limit` (at the fraction of the way the path found,
+/// to its event resolution), and the values past it are left out, as
+/// without contact (snap-through is not followed with contact). A value it
+/// cannot reach otherwise (one that stalls, distributed contact, a first
+/// value unstable from no load) stops the sweep there, with the rows before it.
 fn sweep_touching<D: Statics>(
     m: &Mechanism<D>,
     parameter: &Parameter,
@@ -275,17 +279,24 @@ fn sweep_touching<D: Statics>(
     settings: &Settings,
 ) -> Sweep<Solution<D>> {
     let base = m.loads();
+    let (first, last) = (values[0], values[values.len() - 1]);
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut work = Workspace::new(m);
     let mut from: Option<Touched<D>> = None;
     let mut path = Vec::new();
-    for &v in values {
+    for (i, &v) in values.iter().enumerate() {
         let loads = parameter.apply(&base, v);
         match follow_touching(m, from.as_ref(), &loads, settings, &mut work) {
             Ok((s, next)) => {
                 out.rows.push((v, Solution { path: path.clone(), ..s }));
                 path.push(loads);
                 from = Some(next);
+            }
+            Err(Error::Unstable { load_fraction, .. }) if i > 0 => {
+                let value = values[i - 1] + load_fraction * (v - values[i - 1]);
+                let fraction = if last != first { (value - first) / (last - first) } else { 0.0 };
+                out.stability_limit = Some(SweepLimit { value, fraction });
+                break;
             }
             Err(e) => {
                 out.stopped = Some((v, e));
