@@ -39,8 +39,9 @@ pub(super) struct Pending {
     since: usize,
     bisect: bool,
     /// Whether the next step aims at the far end itself: the bracket is
-    /// narrower than the events need, and that step says which guards are
-    /// past their bands there ([`Pending::take_far_end`]).
+    /// narrower than the events need, its near end short of them, and that
+    /// step lands there on the guards its own end finds past their bands
+    /// (or, finding none, is taken as any step: the event was not there).
     pub(super) far: bool,
     /// Steps aimed so far, and whether the last one ended short of the event.
     pub(super) aims: usize,
@@ -82,14 +83,14 @@ impl Pending {
     /// Illinois' halving takes many steps to undo a far value a thousand
     /// bands deep; bisected from then on, the bracket narrows to the
     /// tolerance of the step in about $\log_2(1/\text{tolerance})$ steps); the far
-    /// end itself once it is that narrow ([`Pending::take_far_end`]).
+    /// end itself once it is that narrow ([`Pending::far`]).
     pub(super) fn aim(&self, t: f64, g_now: &[f64]) -> f64 {
         if self.far {
             return self.t_hi;
         }
         let (t, g_now) = self.near(t, g_now);
         let span = self.t_hi - t;
-        if self.bisect || self.since >= 2 {
+        if self.bisect {
             return t + 0.5 * span;
         }
         let theta = g_now
@@ -139,13 +140,10 @@ impl Pending {
         (self.short, self.far) = (false, false);
         self.aims += 1;
     }
-}
 
-impl Pending {
     /// Counts a step aimed, the last state accepted at `t`: whether the bracket has halved since it last did.
     fn narrowed(&mut self, t: f64) {
-        let near = self.near.as_ref().map_or(t, |(t_near, _)| t_near.max(t));
-        let width = self.t_hi - near;
+        let width = self.t_hi - self.near(t, &[]).0;
         if width <= 0.5 * self.halved {
             (self.halved, self.since) = (width, 0);
         } else {
@@ -153,14 +151,11 @@ impl Pending {
             self.bisect |= self.since >= 2;
         }
     }
+}
 
-    /// The bracket is narrower than the events need, its near end short of
-    /// them: the next step aims at the far end, and lands there on the
-    /// guards its own end finds past their bands (or, finding none, is
-    /// taken as any step: the event was not there).
-    pub(super) fn take_far_end(&mut self) {
-        self.far = true;
-    }
+/// The guards of `g` past their bands ($g < -1$): the events a switch takes.
+pub(super) fn past_bands(g: &[f64]) -> Vec<usize> {
+    (0..g.len()).filter(|&k| g[k] < -1.0).collect()
 }
 
 /// What a step's end says of the events, from the guards at its start `g0`

@@ -139,6 +139,9 @@ pub(super) fn advance<S: System + ?Sized>(
                 rejected: run.rejected,
                 step: h,
             };
+            let out_of_aims = move |step: f64, run: &Trajectory| {
+                stalled(&format!("an event was not landed on in {MAX_AIMS} aimed steps"), step, run)
+            };
             let close = 1e-12 * t.abs().max(settings.every);
             let unsettled = move |count: usize, run: &Trajectory| {
                 stalled(
@@ -203,7 +206,7 @@ pub(super) fn advance<S: System + ?Sized>(
                 // Aimed at an event closer than a step can be: it is here,
                 // as a jump's (below).
                 if let Some(p) = pending.as_ref().filter(|_| landing && aim == Some(stop)) {
-                    let ks: Vec<usize> = (0..p.g_hi.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
+                    let ks = event::past_bands(&p.g_hi);
                     if let Some(count) = burst.past_bound(t, close) {
                         return Err(unsettled(count, run));
                     }
@@ -331,7 +334,7 @@ pub(super) fn advance<S: System + ?Sized>(
                         {
                             match found {
                                 Verdict::Overshot if t + step > t_near && t + step - t_near <= narrow => {
-                                    let ks: Vec<usize> = (0..g_end.len()).filter(|&k| g_end[k] < -1.0).collect();
+                                    let ks = event::past_bands(&g_end);
                                     if !ks.is_empty() {
                                         verdict = Ok(Verdict::Landed(ks));
                                     }
@@ -356,16 +359,12 @@ pub(super) fn advance<S: System + ?Sized>(
                                 }
                                 let p = pending.as_ref().expect("just set");
                                 if p.aims > MAX_AIMS {
-                                    return Err(stalled(
-                                        &format!("an event was not landed on in {MAX_AIMS} aimed steps"),
-                                        step,
-                                        run,
-                                    ));
+                                    return Err(out_of_aims(step, run));
                                 }
                                 if p.t_hi - t <= 1e-12 * t.abs().max(settings.every) {
                                     // The guards jump at the step's start (a load's jump):
                                     // the events are there.
-                                    let ks: Vec<usize> = (0..g_end.len()).filter(|&k| p.g_hi[k] < -1.0).collect();
+                                    let ks = event::past_bands(&p.g_hi);
                                     if let Some(count) = burst.past_bound(t, close) {
                                         return Err(unsettled(count, run));
                                     }
@@ -378,15 +377,9 @@ pub(super) fn advance<S: System + ?Sized>(
                             Ok((c, Verdict::Clear)) if c.is_finite() && aimed && !at_far_end => {
                                 let p = pending.as_mut().expect("aimed at an event");
                                 p.fell_short(t, Some((t + step, &g_end)));
-                                if narrow_short {
-                                    p.take_far_end();
-                                }
+                                p.far = narrow_short;
                                 if p.aims > MAX_AIMS {
-                                    return Err(stalled(
-                                        &format!("an event was not landed on in {MAX_AIMS} aimed steps"),
-                                        step,
-                                        run,
-                                    ));
+                                    return Err(out_of_aims(step, run));
                                 }
                                 Some(Refusal::Event)
                             }
