@@ -116,6 +116,16 @@ pub struct SweepLimit {
     pub fraction: f64,
 }
 
+impl SweepLimit {
+    /// The limit at `value` of a sweep over `values` (its fraction 0 for a
+    /// sweep of one value, or of equal first and last).
+    fn at(value: f64, values: &[f64]) -> Self {
+        let (first, last) = (values[0], values[values.len() - 1]);
+        let fraction = if last != first { (value - first) / (last - first) } else { 0.0 };
+        SweepLimit { value, fraction }
+    }
+}
+
 /// What [`sweep`] reached; serialized with each row as
 /// `{"value", "solution"}` and `stopped` as `{"value", "error"}` (the
 /// error's message).
@@ -211,8 +221,6 @@ pub fn sweep<D: Statics>(
         return Ok(sweep_touching(m, parameter, values, settings));
     }
     let base = m.loads();
-    let (first, last) = (values[0], values[values.len() - 1]);
-    let fraction = |v: f64| if last != first { (v - first) / (last - first) } else { 0.0 };
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut start = assemble_unloaded(m, settings)?;
     for (i, &v) in values.iter().enumerate() {
@@ -243,7 +251,7 @@ pub fn sweep<D: Statics>(
             };
             limit = Some(s);
             if out.stability_limit.is_none() {
-                out.stability_limit = Some(SweepLimit { value: value(s), fraction: fraction(value(s)) });
+                out.stability_limit = Some(SweepLimit::at(value(s), values));
             }
         }
         match found {
@@ -279,7 +287,6 @@ fn sweep_touching<D: Statics>(
     settings: &Settings,
 ) -> Sweep<Solution<D>> {
     let base = m.loads();
-    let (first, last) = (values[0], values[values.len() - 1]);
     let mut out = Sweep { rows: Vec::with_capacity(values.len()), stability_limit: None, stopped: None };
     let mut work = Workspace::new(m);
     let mut from: Option<Touched<D>> = None;
@@ -294,8 +301,7 @@ fn sweep_touching<D: Statics>(
             }
             Err(Error::Unstable { load_fraction, .. }) if i > 0 => {
                 let value = values[i - 1] + load_fraction * (v - values[i - 1]);
-                let fraction = if last != first { (value - first) / (last - first) } else { 0.0 };
-                out.stability_limit = Some(SweepLimit { value, fraction });
+                out.stability_limit = Some(SweepLimit::at(value, values));
                 break;
             }
             Err(e) => {
