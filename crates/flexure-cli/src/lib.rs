@@ -258,10 +258,10 @@ fn write_failed(e: std::io::Error, stderr: &mut dyn Write) -> u8 {
 pub fn describe(e: flexure::Error) -> String {
     match &e {
         // A value that names itself (a pair of parts) is no option's.
-        flexure::Error::InvalidParameter { name, value, reason } => match flexure::error::assignment(name, value) {
-            named if named == *value => format!("{value}: {reason}"),
-            _ => format!("{} = {value}: {reason}", option(name)),
-        },
+        flexure::Error::InvalidParameter { name, value, reason } if flexure::error::names_itself(name, value) => {
+            format!("{value}: {reason}")
+        }
+        flexure::Error::InvalidParameter { name, value, reason } => format!("{} = {value}: {reason}", option(name)),
         other => other.to_string(),
     }
 }

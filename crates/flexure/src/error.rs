@@ -213,8 +213,20 @@ pub(crate) fn count(name: &'static str, value: usize, max: usize, reason: &'stat
 /// assert_eq!(assignment("geom", "geom \"floor\" (plane)"), "geom \"floor\" (plane)");
 /// ```
 pub fn assignment(name: &str, value: &str) -> String {
-    match value.strip_prefix(name).is_some_and(|rest| rest.starts_with(' ')) {
+    match names_itself(name, value) {
         true => value.to_string(),
         false => format!("{name} = {value}"),
     }
+}
+
+/// Whether `value` begins with the parameter's own `name` and a space: it
+/// names what it is about, and is shown alone ([`assignment`]).
+///
+/// # Example
+/// ```
+/// use flexure::error::names_itself;
+/// assert!(names_itself("geom", "geom \"floor\" (plane)") && !names_itself("geom", "geoms"));
+/// ```
+pub fn names_itself(name: &str, value: &str) -> bool {
+    value.strip_prefix(name).is_some_and(|rest| rest.starts_with(' '))
 }
