@@ -88,6 +88,21 @@ pub fn angle_shape_rms(n: usize) -> f64 {
     (3.0 * square).sqrt()
 }
 
+/// [`angle_shape_rms`] of coefficients $0, 1, \ldots$ into `out`, one per entry:
+/// a flexure's error weights, one bending's or the twist's.
+///
+/// # Example
+/// ```
+/// let mut w = [0.0; 3];
+/// flexure::basis::angle_shape_rms_each(&mut w);
+/// assert_eq!(w, [1.0, flexure::basis::angle_shape_rms(1), flexure::basis::angle_shape_rms(2)]);
+/// ```
+pub fn angle_shape_rms_each(out: &mut [f64]) {
+    for (n, w) in out.iter_mut().enumerate() {
+        *w = angle_shape_rms(n);
+    }
+}
+
 /// Curvature $\hat\omega(c, s)$ of coefficients `c` at arc length `s` (Eq. 8).
 ///
 /// # Example

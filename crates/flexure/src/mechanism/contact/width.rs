@@ -10,6 +10,7 @@ use crate::mechanism::Mechanism;
 use crate::mechanism::findings::{Crossing, Part};
 use crate::section::Outline;
 use crate::space::Spatial;
+use crate::spatial::SpatialPoint;
 use nalgebra::{Isometry3, Point3, Vector3};
 
 /// Sections sampled along each strip.
@@ -50,17 +51,23 @@ pub fn width_crossings(
     tolerance: f64,
 ) -> Vec<Crossing<[f64; 3]>> {
     let mut out = Vec::new();
+    // Each flexure's sections, drawn once for all the geoms it may touch.
+    let mut drawn: Vec<Option<Vec<SpatialPoint>>> = vec![None; m.joints.len()];
     for pair in pairs(m) {
         let Toucher::Flexure(j) = pair.part else { continue };
         let (joint, geom) = (&m.joints[j], &m.geoms[pair.geom]);
         let Some(f) = joint.kind.flexure() else { continue };
-        let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
-        // A shape that cannot be drawn is no finding: the solve said why.
-        let Ok(sections) = crate::spatial::shape(f, alpha, SECTIONS) else { continue };
+        if drawn[j].is_none() {
+            let alpha = &q[joint.offset..joint.offset + joint.kind.joint().dof()];
+            // A shape that cannot be drawn is no finding: the solve said why.
+            let Ok(sections) = crate::spatial::shape(f, alpha, SECTIONS) else { continue };
+            drawn[j] = Some(sections);
+        }
+        let sections = drawn[j].as_deref().expect("just drawn");
         let at = &bodies[geom.body];
         let mut first: Option<(Point3<f64>, f64)> = None;
         let mut count = 0;
-        for sec in &sections {
+        for sec in sections {
             let Some(Outline::Rectangle { width, thickness }) = f.section().outline(sec.s / f.length()) else {
                 continue;
             };

@@ -75,9 +75,7 @@ impl Joint for Flexure {
     }
 
     fn error_weights(&self, out: &mut [f64]) {
-        for (n, w) in out.iter_mut().enumerate() {
-            *w = crate::basis::angle_shape_rms(n);
-        }
+        crate::basis::angle_shape_rms_each(out);
     }
 
     fn inertia(&self) -> Option<Result<MassModel>> {

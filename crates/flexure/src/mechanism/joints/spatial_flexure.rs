@@ -169,9 +169,7 @@ impl Joint<Spatial> for SpatialFlexure {
         let mut rest = out;
         for n in self.orders() {
             let (part, tail) = rest.split_at_mut(n);
-            for (i, w) in part.iter_mut().enumerate() {
-                *w = crate::basis::angle_shape_rms(i);
-            }
+            crate::basis::angle_shape_rms_each(part);
             rest = tail;
         }
     }
