@@ -13,6 +13,7 @@ mod basis;
 mod buckling;
 mod compliance;
 mod connect;
+mod contact_corner;
 mod contact_file;
 mod contact_gap;
 mod contact_jet;

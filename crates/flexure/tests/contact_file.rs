@@ -63,17 +63,72 @@ fn a_geom_becomes_its_shape_frame_and_friction() {
     assert_eq!(pad.shape, GeomShape::Plane { normal: nalgebra::Vector2::new(0.0, 1.0) });
     // The strip may touch the peg and the tip's plane, 0.03 m below it at
     // rest; the pad around the strip's tip excludes it; geoms on different
-    // bodies may touch, but the tip's plane excludes the peg (two geoms
-    // touch only where one is a circle: without the exclude the file is
-    // refused at the plane, naming both).
+    // bodies may touch, but the tip's plane excludes the peg (without the
+    // exclude they touch at the capsule's two end balls).
     assert_eq!(m.geoms[2].exclude, [Toucher::Flexure(0)]);
     let found: Vec<_> = pairs(&m).iter().map(|p| (p.geom, p.part)).collect();
     assert_eq!(found, [(0, Toucher::Flexure(0)), (0, Toucher::Geom(2)), (1, Toucher::Flexure(0))]);
-    refused(
-        &text.replace("exclude = [\"peg\"]\n", ""),
-        "\"plane\"",
-        "geom \"peg\" (capsule) and geom \"geom 2\" (plane) may touch, and two geoms touch only where one is a circle",
-    );
+    let both = from_toml(&text.replace("exclude = [\"peg\"]\n", "")).unwrap();
+    let found: Vec<_> = pairs(&both).iter().map(|p| (p.geom, p.part, p.corner)).collect();
+    let ends = [(0, Toucher::Geom(1), 0), (0, Toucher::Geom(1), 1)];
+    assert_eq!(found[1..3], ends);
+}
+
+/// Two geoms touch at corners (`corners`): a plane and a box at the box's
+/// corners, a plane and a capsule at its end balls, and in the plane two
+/// boxes or capsules at each one's corners against the other. Two planes,
+/// and in space two boxes, a box and a capsule, or a cylinder (which meet
+/// edge across edge or along a rim) are refused at the later geom's
+/// `shape`, naming both.
+#[test]
+fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
+    let geoms = |d: usize, a: &str, b: &str| {
+        let (head, origin) = if d == 3 { (strip3(), "[0.0, 0.0, -0.5]") } else { (STRIP.to_string(), "[0.0, -0.5]") };
+        format!(
+            "{head}[[geom]]\nname = \"a\"\nbody = \"ground\"\norigin = {origin}\n{a}\nexclude = [\"strip\"]\n[[geom]]\nname = \"b\"\nbody = \"tip\"\n{b}\nexclude = [\"strip\"]\n"
+        )
+    };
+    let plane2 = "shape = \"plane\"\nnormal = [0.0, 1.0]";
+    let plane3 = "shape = \"plane\"\nnormal = [0.0, 0.0, 1.0]";
+    let box2 = "shape = \"box\"\nhalf_extents = [0.01, 0.02]";
+    let box3 = "shape = \"box\"\nhalf_extents = [0.01, 0.02, 0.03]";
+    let capsule = "shape = \"capsule\"\nradius = 0.01\nhalf_length = 0.02";
+    let count = |text: &str| Model::from_toml(text).unwrap().contact_columns().len();
+    let corners = |d: usize, text: &str| match d {
+        2 => pairs(&from_toml(text).unwrap()).len(),
+        _ => pairs(&spatial_from_toml(text).unwrap()).len(),
+    };
+    for (d, a, b, n) in [
+        (2, plane2, box2, 4),
+        (2, plane2, capsule, 2),
+        (2, box2, box2, 8),
+        (2, box2, capsule, 6),
+        (2, capsule, capsule, 4),
+        (3, plane3, box3, 8),
+        (3, plane3, capsule, 2),
+    ] {
+        let text = geoms(d, a, b);
+        // One column for the two geoms, a pair for each corner.
+        assert_eq!((count(&text), corners(d, &text)), (1, n), "{a} and {b} in {d}-D");
+    }
+    let said = |d: usize| match d {
+        2 => "two geoms touch only where one is a circle, or neither is a plane",
+        _ => "two geoms touch only where one is a sphere, or one is a plane and the other a box or capsule",
+    };
+    let cylinder = "shape = \"cylinder\"\nradius = 0.01\nhalf_length = 0.02";
+    for (d, a, b, names) in [
+        (2, plane2, "shape = \"plane\"\nnormal = [0.0, -1.0]", "(plane) and geom \"b\" (plane)"),
+        (3, box3, box3, "(box) and geom \"b\" (box)"),
+        (3, box3, capsule, "(box) and geom \"b\" (capsule)"),
+        (3, plane3, cylinder, "(plane) and geom \"b\" (cylinder)"),
+        (3, capsule, capsule, "(capsule) and geom \"b\" (capsule)"),
+    ] {
+        let text = geoms(d, a, b);
+        let at_shape = text.rfind("shape = ").expect("a shape") + "shape = ".len();
+        let e = Model::from_toml(&text).err().unwrap_or_else(|| panic!("accepted:\n{text}")).to_string();
+        assert!(e.starts_with(&format!("{}: ", place(&text, at_shape))), "{e}");
+        assert!(e.contains(&format!("geom \"a\" {names} may touch")) && e.contains(said(d)), "{e}");
+    }
 }
 
 #[test]

@@ -62,7 +62,7 @@ fn a_spatial_strip_meets_its_closed_forms() {
 }
 
 #[test]
-fn a_ball_on_a_body_meets_a_floor_and_two_boxes_are_refused() {
+fn a_ball_on_a_body_meets_a_floor_two_boxes_meet_at_corners_and_two_planes_are_refused() {
     let strip = "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 1.0\n";
     let text = format!(
         "{strip}[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\nexclude = [\"strip\"]\n[[geom]]\nname = \"pad\"\nbody = \"tip\"\nshape = \"circle\"\nradius = 0.002\nexclude = [\"strip\"]\n"
@@ -72,12 +72,25 @@ fn a_ball_on_a_body_meets_a_floor_and_two_boxes_are_refused() {
     let g = gap(&m, &q, &frames(&m, &q).bodies, &pairs(&m)[0]).unwrap();
     assert!((g.gap - 0.008).abs() < 1e-15 && g.s.is_none(), "{g:?}");
     assert!((g.point.x - 0.1).abs() < 1e-15 && (g.point.y + 0.002).abs() < 1e-15 && g.normal.y == 1.0, "{g:?}");
+    // Two boxes in the plane touch at their corners: the pad's lower ones,
+    // 1 mm below its centre, are 8 mm above the floor box's top.
     let mut boxes = m.clone();
     boxes.geoms[1].shape = GeomShape::Box { half_extents: nalgebra::Vector2::new(0.001, 0.001) };
     boxes.geoms[0].shape = GeomShape::Box { half_extents: nalgebra::Vector2::new(1.0, 0.001) };
-    let e = gap(&boxes, &q, &frames(&boxes, &q).bodies, &pairs(&boxes)[0]).unwrap_err().to_string();
+    let all = pairs(&boxes);
+    let gaps: Vec<_> = all.iter().map(|p| gap(&boxes, &q, &frames(&boxes, &q).bodies, p).unwrap()).collect();
+    assert_eq!(gaps.len(), 8);
+    let least = gaps.iter().min_by(|a, b| a.gap.total_cmp(&b.gap)).unwrap();
     assert!(
-        e.contains("geom \"floor\" (box) and geom \"pad\" (box) on body \"tip\"") && e.contains("circle or sphere"),
+        (least.gap - 0.008).abs() < 1e-15 && least.normal.y == 1.0 && (least.point.y + 0.001).abs() < 1e-15,
+        "{least:?}"
+    );
+    // Two planes never part: their gap is refused by name.
+    boxes.geoms[1].shape = GeomShape::Plane { normal: nalgebra::Vector2::new(0.0, -1.0) };
+    boxes.geoms[0].shape = GeomShape::Plane { normal: nalgebra::Vector2::new(0.0, 1.0) };
+    let e = gap(&boxes, &q, &frames(&boxes, &q).bodies, &all[0]).unwrap_err().to_string();
+    assert!(
+        e.contains("geom \"floor\" (plane) and geom \"pad\" (plane) on body \"tip\"") && e.contains("circle"),
         "{e}"
     );
 }

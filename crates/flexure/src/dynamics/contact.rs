@@ -73,9 +73,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, ball_and_other, column, dot,
-    friction, gap_slope, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents,
-    vector,
+    Contact, ContactMode, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, column, corner, dot, friction,
+    gap_slope, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -336,7 +335,7 @@ impl<D: Dynamics> ContactSystem<D> {
         let local = |body: usize| array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[body]), &slope.point)));
         let on = match h.s {
             Some(s) => on_flexure::<D>(s, &p.frame(), &slope.normal, p.half[0]),
-            None => on_ball(local(ball_and_other(m, &h.pair)?.0.body)),
+            None => on_ball(local(corner(m, &h.pair)?.round.body)),
         };
         Ok((on, local(p.shape.body)))
     }
@@ -857,20 +856,34 @@ impl<D: Dynamics> System for ContactSystem<D> {
             };
             change(&mut self.changes, &self.mechanism, &h.pair, state);
         }
+        let mut released: Vec<usize> = ks.iter().filter(|&&k| k < 2 * a && k % 2 == 0).map(|k| k / 2).collect();
+        released.dedup();
+        // The gaps' gradients held on: a contact whose gradient they span
+        // (a box's face landing flat on a body that one corner already
+        // holds) would make the rows dependent, and stays open, its gap
+        // held at zero by the others.
+        let n = self.mechanism.dof();
+        let mut rows = Vec::new();
+        for (i, h) in self.held.iter().enumerate().filter(|(i, _)| !released.contains(i)) {
+            debug_assert!(i < a);
+            rows.extend(gap_slope(&self.mechanism, &self.frames, q, &h.pair, h.s)?.gradient);
+        }
         let mut added = Vec::new();
         for &k in ks.iter().filter(|&&k| k >= 2 * a) {
             let pair = self.pairs[k - 2 * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
-            if approach < 0.0 {
+            let mut with = rows.clone();
+            with.extend(&slope.gradient);
+            let count = with.len() / n;
+            if approach < 0.0 && crate::linalg::columns_independent(&with, n, count, &mut vec![0.0; count * count]) {
+                rows = with;
                 let mut h = self.touch(&pair, low.s, q)?;
                 h.law = self.starting_law(&h, &low, (q, v))?;
                 added.push(h);
             }
         }
-        let mut released: Vec<usize> = ks.iter().filter(|&&k| k < 2 * a && k % 2 == 0).map(|k| k / 2).collect();
-        released.dedup();
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
@@ -941,12 +954,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
         Ok(())
     }
 
-    /// Each pair's push at the last sample (N; 0 while open), in the order
-    /// of [`pairs`]: a sweep's `contact.GEOM.PART.normal_force` columns.
+    /// Each pair's push at the last sample (N; 0 while open; two geoms' summed
+    /// over their corners), in the order of [`crate::mechanism::contact::column_pairs`]: a sweep's
+    /// `contact.GEOM.PART.normal_force` columns.
     fn sample_columns(&self) -> Vec<f64> {
         let last = self.samples.last().map_or(&[][..], Vec::as_slice);
         // + 0.0: an empty sum is −0.
-        let push = |p: &Pair| last.iter().filter(|c| c.pair == *p).map(|c| c.normal_force).sum::<f64>() + 0.0;
-        self.pairs.iter().map(push).collect()
+        let push = |p: &Pair| last.iter().filter(|c| c.pair.parts(p)).map(|c| c.normal_force).sum::<f64>() + 0.0;
+        self.pairs.iter().filter(|p| p.corner == 0).map(push).collect()
     }
 }

@@ -249,11 +249,11 @@ impl Model {
     }
 
     /// The column of each pair that may touch, `contact.GEOM.PART.normal_force`,
-    /// in the order of [`crate::mechanism::contact::pairs`] (a sweep's, and
+    /// in the order of [`crate::mechanism::contact::column_pairs`] (a sweep's, and
     /// a motion's [`crate::dynamics::integrate::Sample::columns`]).
     pub fn contact_columns(&self) -> Vec<String> {
-        use crate::mechanism::contact::{column, pairs};
-        each!(self, m => pairs(m).iter().map(|p| format!("{}.normal_force", column(m, p))).collect())
+        use crate::mechanism::contact::{column, column_pairs};
+        each!(self, m => column_pairs(m).iter().map(|p| format!("{}.normal_force", column(m, p))).collect())
     }
 
     /// Each body's pose in the world at coordinates `q`, the ground first,
@@ -558,7 +558,7 @@ where
     };
     let capped = raise::capped(&used, &out.rows.iter().map(|(_, s)| s.q.as_slice()).zip(&reports).collect::<Vec<_>>());
     let m = used.as_ref();
-    let touching = crate::mechanism::contact::pairs(m);
+    let touching = crate::mechanism::contact::column_pairs(m);
     let mut columns = vec![parameter.to_string()];
     let poses = <D as crate::report::Reported>::poses(m, &m.rest());
     for (b, pose) in m.bodies.iter().zip(&poses).skip(1) {
@@ -587,7 +587,7 @@ where
         row.extend(
             touching
                 .iter()
-                .map(|p| s.contacts.iter().filter(|c| c.pair == *p).map(|c| c.normal_force).sum::<f64>() + 0.0),
+                .map(|p| s.contacts.iter().filter(|c| c.pair.parts(p)).map(|c| c.normal_force).sum::<f64>() + 0.0),
         );
         row.extend(report.stress.0.iter().map(|(_, p)| p.max));
         if let Some((b, at)) = frame {

@@ -5,7 +5,7 @@
 //! For a geom and a flexure the gap is the least over the flexure's arc
 //! length $s$ of
 //! $$g(s) = d(p(s)) - h(s),$$
-//! $d$ the geom's signed distance ([`GeomShape::distance`]), $p(s)$ the
+//! $d$ the geom's signed distance ([`super::GeomShape::distance`]), $p(s)$ the
 //! centreline and $h(s)$ half the thickness. It is found on 65 evenly
 //! spaced points, then refined on the two intervals about the least of
 //! them by golden-section search (48 steps: the interval, a thirty-second
@@ -14,9 +14,9 @@
 //! so an interior least meets the tangency condition $\hat n\cdot p^{\prime}(s) = 0$
 //! to about $10^{-12}$ of the length and an end's is that end.
 
-use super::{Geom, GeomShape, Pair, Touch, Toucher, named};
+use super::{Corner, Pair, Touch, Toucher, corner, named};
 use crate::error::{Error, Result};
-use crate::mechanism::{Dimension, Mechanism};
+use crate::mechanism::Mechanism;
 
 /// A pair's gap at a configuration ([`gap`]).
 ///
@@ -34,11 +34,11 @@ pub struct Gap<D: Touch> {
     pub s: Option<f64>,
     /// The toucher's surface point nearest the geom (world frame): a
     /// flexure's centreline point at `s` moved by its half thickness
-    /// against `normal`; for a ball touching a geom, its surface point
+    /// against `normal`; for two geoms, the corner's surface point
     /// along `normal`.
     pub point: D::Point,
-    /// The geom's outward unit normal there (world frame); of two geoms
-    /// one of which is a ball, the other's.
+    /// The geom's outward unit normal there (world frame); of two geoms,
+    /// the one's that the corner touches.
     pub normal: D::Vector,
     /// The gap (m): positive apart, negative overlapping by that depth.
     pub gap: f64,
@@ -46,9 +46,9 @@ pub struct Gap<D: Touch> {
 
 /// The gap of the pair `pair` of `m` with coordinates `q`, its bodies'
 /// frames (world) `bodies` (as [`crate::mechanism::kinematics`] gives
-/// them at `q`). A geom and a flexure, or a circle or sphere and any
-/// geom (the ball's centre's distance less its radius, exact); other
-/// pairs of two geoms are refused by name.
+/// them at `q`). A geom and a flexure, or two geoms at a corner (its
+/// centre's distance less its radius, exact: [`super::corners`]); two geoms
+/// without corners are refused by name.
 ///
 /// # Example
 /// ```
@@ -86,7 +86,7 @@ pub fn gap<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &Pai
 /// Every local least of the gap of `pair` along its flexure (the sampled
 /// points lower than their neighbours, each refined as [`gap`] refines
 /// its least), root to tip: where a flexure may touch a geom at several
-/// places at once. For two geoms, their one gap.
+/// places at once. For two geoms, the gap at their corner.
 ///
 /// # Example
 /// ```
@@ -148,37 +148,11 @@ pub fn minima<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &
             Ok(out)
         }
         Toucher::Geom(_) => {
-            let (round, flat, radius) = ball_and_other(m, pair)?;
-            let centre = D::act(&D::compose(&bodies[round.body], &round.frame), &D::origin(&D::identity()));
+            let Corner { round, flat, centre, radius } = corner(m, pair)?;
+            let centre = D::act(&bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
             let (g, normal) = flat.gap(&bodies[flat.body], &centre, radius);
             Ok(vec![Gap { s: None, point: D::moved(&centre, &normal, -radius), normal, gap: g }])
         }
-    }
-}
-
-/// Of a pair of two geoms, the circle or sphere (the later geom's when
-/// both are), the other geom, and the ball's radius; an error naming the
-/// pair when neither is a ball, whose gap is not found.
-pub(crate) fn ball_and_other<'m, D: Dimension>(
-    m: &'m Mechanism<D>,
-    pair: &Pair,
-) -> Result<(&'m Geom<D>, &'m Geom<D>, f64)> {
-    let Toucher::Geom(h) = pair.part else {
-        return Err(Error::invalid("pair", named(m, pair), "is not a pair of two geoms"));
-    };
-    let (geom, other) = (&m.geoms[pair.geom], &m.geoms[h]);
-    let ball = |g: &Geom<D>| match g.shape {
-        GeomShape::Ball { radius } => Some(radius),
-        _ => None,
-    };
-    match (ball(other), ball(geom)) {
-        (Some(r), _) => Ok((other, geom, r)),
-        (None, Some(r)) => Ok((geom, other, r)),
-        (None, None) => Err(Error::invalid(
-            "pair",
-            named(m, pair),
-            "the gap of two geoms is found only where one is a circle or sphere",
-        )),
     }
 }
 

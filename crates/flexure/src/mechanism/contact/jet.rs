@@ -4,7 +4,8 @@
 //! equations, and its stiffness.
 //!
 //! The toucher's point $x(q, s)$ is a flexure's centreline point (its root
-//! frame's placement times [`Touch::section_jet`]) or a ball's centre, and
+//! frame's placement times [`Touch::section_jet`]) or a corner's centre
+//! (a ball of radius $r \ge 0$ between two geoms, [`super::corners`]), and
 //! the gap is $g = d(y) - h$, $y = T_G^{-1}x$ in the frame of the geom's
 //! shape, $d$ its signed distance. With $\Delta_c = \partial_c x - \partial_c x_G$
 //! the point's velocity relative to the geom's body (the body's material
@@ -62,8 +63,8 @@ struct Own<'a, D: Touch> {
 
 /// The gap of `pair` of `m` at coordinates `q`, frames `f` (at them, with
 /// their Jacobian level) and, for a flexure, arc length `s` (m), with its
-/// derivatives in $q$ and $s$ (see the module docs). A pair of two geoms
-/// one of which is a ball, as [`super::gap()`] takes it; others are refused by name.
+/// derivatives in $q$ and $s$ (see the module docs). Two geoms at their
+/// corner, as [`super::gap()`] takes it; two geoms without corners are refused by name.
 ///
 /// # Example
 /// ```
@@ -322,8 +323,8 @@ fn jet_at<'a, D: Touch + FrameChain>(
             (&m.geoms[pair.geom], D::act(root, &local), half, own, moved)
         }
         Toucher::Geom(_) => {
-            let (round, flat, r) = super::gap::ball_and_other(m, pair)?;
-            let centre = ball.unwrap_or_else(|| D::translation(&round.frame));
+            let super::Corner { round, flat, centre, radius: r } = super::corner(m, pair)?;
+            let centre = ball.unwrap_or(centre);
             attach_into(m, f, round.body, centre, true, &mut att);
             let x = D::act(&f.bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
             (flat, x, [r, 0.0, 0.0], None, D::Vector::default())

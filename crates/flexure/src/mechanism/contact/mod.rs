@@ -7,7 +7,7 @@
 //! a flexure touches with its surface, its centreline offset by half its
 //! thickness ([`Touch::surface`]). The pairs that may touch
 //! ([`pairs`]) are every geom with every flexure and every geom with every
-//! other body's geom, less those a geom's `exclude` names: a flexure's
+//! other body's geom (at each of their [`corners`]), less those a geom's `exclude` names: a flexure's
 //! own parent and child bodies' geoms too (a finger's pad around its
 //! flexure's tip must exclude the flexure, or the file refuses it as
 //! starting inside the pad).
@@ -19,6 +19,7 @@
 //! analysis refuses a mechanism with a pair that may touch, naming the
 //! pair ([`refuse_unsolved`]), so nothing passes through a shape silently.
 
+mod corner;
 mod dimension;
 mod gap;
 mod jet;
@@ -29,8 +30,9 @@ mod width;
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
+pub(crate) use corner::{Corner, corner};
+pub use corner::{CornerOf, corners};
 pub use dimension::{SectionJet, Touch, offset_jet};
-pub(crate) use gap::ball_and_other;
 pub use gap::{Gap, gap, minima};
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
 pub(crate) use jet::{Material, PointJet, material_jet, on_ball, point_jet};
@@ -84,13 +86,16 @@ pub enum Toucher {
     Geom(usize),
 }
 
-/// A geom and a part that may touch it.
+/// A geom and a part that may touch it; of two geoms, at one of their
+/// corners ([`corners`]), each corner a pair of its own.
 ///
 /// # Example
 /// ```
 /// use flexure::mechanism::contact::{Pair, Toucher};
-/// let p = Pair { geom: 0, part: Toucher::Flexure(1) };
+/// let p = Pair { geom: 0, part: Toucher::Flexure(1), corner: 0 };
 /// assert_eq!(p.part, Toucher::Flexure(1));
+/// // Another corner of the same two parts.
+/// assert!(p.parts(&Pair { corner: 3, ..p }));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Pair {
@@ -98,6 +103,16 @@ pub struct Pair {
     pub geom: usize,
     /// What may touch it.
     pub part: Toucher,
+    /// Of two geoms, which of their [`corners`] (0 for a flexure).
+    pub corner: usize,
+}
+
+impl Pair {
+    /// Whether `other` is of the same two parts (at any corner): what a
+    /// sweep's column sums.
+    pub fn parts(&self, other: &Pair) -> bool {
+        (self.geom, self.part) == (other.geom, other.part)
+    }
 }
 
 impl<D: Dimension> Geom<D> {
@@ -145,8 +160,8 @@ impl<D: Touch> Geom<D> {
 }
 
 /// The pairs of `m` that may touch, geom by geom: each geom with each
-/// flexure, then with each later geom on another body; a pair the geom's
-/// (or either geom's) `exclude` names is left out.
+/// flexure, then with each later geom on another body (a pair for each of
+/// their [`corners`]); a pair the geom's (or either geom's) `exclude` names is left out.
 ///
 /// # Example
 /// ```
@@ -180,16 +195,35 @@ pub fn pairs<D: Dimension>(m: &Mechanism<D>) -> Vec<Pair> {
     for (g, geom) in m.geoms.iter().enumerate() {
         for (j, joint) in m.joints.iter().enumerate() {
             if joint.kind.flexure().is_some() && !geom.excludes(Toucher::Flexure(j)) {
-                out.push(Pair { geom: g, part: Toucher::Flexure(j) });
+                out.push(Pair { geom: g, part: Toucher::Flexure(j), corner: 0 });
             }
         }
         for (h, other) in m.geoms.iter().enumerate().skip(g + 1) {
             if other.body != geom.body && !geom.excludes(Toucher::Geom(h)) && !other.excludes(Toucher::Geom(g)) {
-                out.push(Pair { geom: g, part: Toucher::Geom(h) });
+                let part = Toucher::Geom(h);
+                out.extend((0..corner::count(m, g, h)).map(|corner| Pair { geom: g, part, corner }));
             }
         }
     }
     out
+}
+
+/// The pairs that name a sweep's columns ([`column()`]): of [`pairs`], one
+/// per two parts, its first corner; a column sums the pairs of the same
+/// two parts ([`Pair::parts`]).
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{column_pairs, pairs};
+/// let m = flexure::mechanism::file::from_toml("[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n\
+///     [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n\
+///     [[geom]]\nname = \"foot\"\nbody = \"link\"\nshape = \"box\"\norigin = [0.005, 0.0]\nhalf_extents = [0.002, 0.001]\nexclude = [\"hinge\"]\n").unwrap();
+/// // The floor with the flexure, and with the foot at its four corners.
+/// assert_eq!(pairs(&m).len(), 5);
+/// assert_eq!(column_pairs(&m).len(), 2);
+/// ```
+pub fn column_pairs<D: Dimension>(m: &Mechanism<D>) -> Vec<Pair> {
+    pairs(m).into_iter().filter(|p| p.corner == 0).collect()
 }
 
 /// A contact's mode at an equilibrium (its `state` in answers): `"open"` (apart), `"stick"`
@@ -223,7 +257,7 @@ pub enum ContactMode {
 /// let c = Contact { geom: "floor".into(), flexure: Some("strip".into()), body: None, s: Some(0.1),
 ///     point: vec![0.1, -0.01], normal: vec![0.0, 1.0], normal_force: 0.12,
 ///     friction_force: vec![0.0, 0.0], gap: 0.0, state: ContactMode::Slip,
-///     pair: flexure::mechanism::contact::Pair { geom: 0, part: flexure::mechanism::contact::Toucher::Flexure(0) } };
+///     pair: flexure::mechanism::contact::Pair { geom: 0, part: flexure::mechanism::contact::Toucher::Flexure(0), corner: 0 } };
 /// let json = serde_json::to_value(&c).unwrap();
 /// assert_eq!(json["state"], "slip");
 /// assert!(json.get("body").is_none());
@@ -273,12 +307,12 @@ impl Contact {
         state: ContactMode,
     ) -> Contact {
         let vector = |v: &D::Vector| (0..D::POINT_DIM).map(|i| v[i]).collect::<Vec<f64>>();
-        // The gap's normal is out of the geom that is not the ball, and its
-        // friction acts on the ball: both turned when the ball is the geom named.
+        // The gap's normal is out of the geom the corner touches, and its
+        // friction acts on the corner: both turned when the corner's geom is the one named.
         let (geom, flexure, body, side) = match (pair.part, sides(m, pair)) {
             (_, Some((geom, body))) => {
-                let ball = ball_and_other(m, pair).is_ok_and(|(round, ..)| std::ptr::eq(round, &m.geoms[geom]));
-                (m.geoms[geom].name.clone(), None, Some(m.bodies[body].name.clone()), if ball { -1.0 } else { 1.0 })
+                let own = corner(m, pair).is_ok_and(|c| std::ptr::eq(c.round, &m.geoms[geom]));
+                (m.geoms[geom].name.clone(), None, Some(m.bodies[body].name.clone()), if own { -1.0 } else { 1.0 })
             }
             (Toucher::Flexure(j), None) => (m.geoms[pair.geom].name.clone(), Some(m.joints[j].name.clone()), None, 1.0),
             (Toucher::Geom(_), None) => unreachable!("two geoms have sides"),
@@ -354,7 +388,7 @@ pub fn column<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {
 /// use flexure::mechanism::contact::{Geom, GeomShape, Pair, Toucher, named};
 /// let mut m = flexure::mechanism::file::from_toml("[[joint]]\nname = \"hinge\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"link\"\nlength = 0.02\nei = 1e-3\n").unwrap();
 /// m.geoms.push(Geom::new("post", 0, Default::default(), GeomShape::Ball { radius: 0.01 }));
-/// let p = Pair { geom: 0, part: Toucher::Flexure(0) };
+/// let p = Pair { geom: 0, part: Toucher::Flexure(0), corner: 0 };
 /// assert_eq!(named(&m, &p), "geom \"post\" (circle) and flexure \"hinge\"");
 /// ```
 pub fn named<D: Dimension>(m: &Mechanism<D>, p: &Pair) -> String {

@@ -5,16 +5,16 @@
 //! along the surface, set anew as it rolls; motion holds their relative
 //! velocity at zero along the tangents (`dynamics/contact.rs`).
 
-use super::{Geom, Pair, PointJet, Touch, ball_and_other, dot, scaled, vector};
+use super::{Geom, Pair, PointJet, Touch, corner, dot, scaled, vector};
 use crate::error::Result;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kinematics::{FrameChain, Frames};
 
 /// The geom whose surface `pair` touches: its geom, or between two geoms
-/// the one that is not the ball.
+/// the one its corner touches.
 pub(crate) fn touched<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> &'m Geom<D> {
-    match ball_and_other(m, pair) {
-        Ok((_, other, _)) => other,
+    match corner(m, pair) {
+        Ok(c) => c.flat,
         Err(_) => &m.geoms[pair.geom],
     }
 }
@@ -87,13 +87,14 @@ pub(crate) fn turned<D: Touch + FrameChain>(
     let off = dot::<D>(&p.offset, &p.offset).sqrt();
     // The toucher's: a strip's surface point's offset against the normal,
     // a centreline's tilt out of the surface, or the arc of a ball between
-    // its point and the contact.
-    let toucher = match (p.tangent(), ball_and_other(m, pair)) {
+    // its point and the contact (none on a sharp corner, which does not roll).
+    let toucher = match (p.tangent(), corner(m, pair)) {
         (Some(_), _) if off > 0.0 => angle(&scaled::<D>(&p.offset, -1.0 / off), normal),
         (Some(u), _) => dot::<D>(&u, normal).abs().min(1.0).asin(),
-        (None, Ok((.., r))) => {
+        (None, Ok(c)) if c.radius == 0.0 => 0.0,
+        (None, Ok(c)) => {
             let chord = D::position(&p.x) - D::position(point);
-            2.0 * (0.5 * dot::<D>(&chord, &chord).sqrt() / r).min(1.0).asin()
+            2.0 * (0.5 * dot::<D>(&chord, &chord).sqrt() / c.radius).min(1.0).asin()
         }
         (None, Err(e)) => return Err(e),
     };

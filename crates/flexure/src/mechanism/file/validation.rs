@@ -3,7 +3,7 @@
 use super::dimension::FileDimension;
 use super::document::{Numbers, Source, Span};
 use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
-use crate::mechanism::contact::{GeomShape, Toucher, gap, pairs};
+use crate::mechanism::contact::{GeomShape, Toucher, corners, gap, pairs};
 
 /// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
 pub(super) fn check_stiffness_ratio<D: FileDimension>(
@@ -96,20 +96,25 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
             }
             Toucher::Geom(h) => {
                 let other = &m.geoms[h];
-                let round = |g: &crate::mechanism::contact::Geom<D>| matches!(g.shape, GeomShape::Ball { .. });
-                if !round(geom) && !round(other) {
+                if corners(&geom.shape, &other.shape).is_none() {
                     return src.fail(
                         &places[h.max(pair.geom)],
                         format!(
-                            "geom {:?} ({}) and geom {:?} ({}) may touch, and two geoms touch only where one is a {}: name one in the other's `exclude`",
+                            "geom {:?} ({}) and geom {:?} ({}) may touch, and two geoms touch only {}: name one in the other's `exclude`",
                             geom.name,
                             geom.shape.name(),
                             other.name,
                             other.shape.name(),
-                            if D::POINT_DIM == 2 { "circle" } else { "sphere" }
+                            if D::POINT_DIM == 2 {
+                                "where one is a circle, or neither is a plane"
+                            } else {
+                                "where one is a sphere, or one is a plane and the other a box or capsule (two boxes, a box and a capsule, and a cylinder meet edge across edge or along a rim)"
+                            }
                         ),
                     );
                 }
+                let corner = gap(m, &q, bodies, &pair).map_err(|e| src.placed("", &places[pair.geom], e))?.gap;
+                // Corners outside each other's solid, and neither's centre deep in the other (two bars crossed).
                 let centre = |g: &crate::mechanism::contact::Geom<D>| {
                     D::act(&D::compose(&bodies[g.body], &g.frame), &D::origin(&D::identity()))
                 };
@@ -124,7 +129,7 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
                 let one = geom.gap(at, &centre(other), inner(other)).0;
                 let two = other.gap(&bodies[other.body], &centre(geom), inner(geom)).0;
                 (
-                    one.min(two),
+                    one.min(two).min(corner),
                     format!("geom {:?} on body {:?} starts inside it", other.name, m.bodies[other.body].name),
                 )
             }

@@ -74,8 +74,8 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Material, Pair, PointJet, Toucher, array, ball_and_other, dot, gap_jet, length,
-    material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
+    Contact, ContactMode, GapJet, Material, Pair, PointJet, Toucher, array, corner, dot, gap_jet, length, material_jet,
+    minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -341,10 +341,10 @@ impl<D: Statics> ContactKkt<'_, D> {
     fn material(&self, c: usize) -> Material {
         let (m, t) = (self.kkt.mechanism, &self.touching[c]);
         let jet = &self.jets[c];
-        match (t.s(), ball_and_other(m, &t.pair)) {
+        match (t.s(), corner(m, &t.pair)) {
             (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
-            (None, Ok((ball, ..))) => {
-                on_ball(array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[ball.body]), &jet.point))))
+            (None, Ok(c)) => {
+                on_ball(array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[c.round.body]), &jet.point))))
             }
             (None, Err(_)) => [0.0; 4],
         }
@@ -1024,7 +1024,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
-                        let ball = ball_and_other(m, pair)?.0.body;
+                        let ball = corner(m, pair)?.round.body;
                         let on = D::act(&D::inverse(&problem.frames.bodies[ball]), &low.point);
                         (false, false, on_ball(array::<D>(&D::position(&on))))
                     }
@@ -1473,10 +1473,10 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 }
                 let body = &f.bodies[geom_body(m, &c.pair)];
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
-                let on = match (c.s, ball_and_other(m, &c.pair)) {
+                let on = match (c.s, corner(m, &c.pair)) {
                     (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
-                    (None, Ok((ball, ..))) => {
-                        on_ball(array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[ball.body]), &jet.point))))
+                    (None, Ok(k)) => {
+                        on_ball(array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[k.round.body]), &jet.point))))
                     }
                     (None, Err(e)) => return Err(e),
                 };

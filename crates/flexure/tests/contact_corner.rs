@@ -1,0 +1,149 @@
+//! `mechanism/contact/corner.rs`: two geoms touching at corners, against
+//! closed forms. A lid on a sprung hinge (k = 0.5 N·m/rad), pushed down by
+//! F at 0.1 m from the hinge, carries a box; the box's corner that meets a
+//! floor (or a post's corner that meets the box) stops the lid at the
+//! angle $\theta_c$ where it touches, and the moment balance about the
+//! hinge, $k\theta_c + M_F(\theta_c) + M_N = 0$, gives the push $N$.
+//! Tolerances: the angle to 1e-12 rad (the gap row solved to rounding),
+//! the push to 1e-9 relative.
+
+use flexure::mechanism::contact::ContactMode;
+use flexure::mechanism::file::{from_toml, spatial_from_toml};
+use flexure::mechanism::statics::{Settings, solve};
+
+/// The angle in $[-1, 0]$ where `f` (increasing there) crosses zero, by bisection to rounding.
+fn root(f: impl Fn(f64) -> f64) -> f64 {
+    let (mut lo, mut hi) = (-1.0, 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) * f(lo) <= 0.0 { hi = mid } else { lo = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The planar lid: a hinge at the origin, the lid along x, a box on it,
+/// `geom` below, and the push `force` N down at x = 0.1 m.
+fn lid(block: &str, geom: &str, force: f64) -> String {
+    format!(
+        "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"lid\"\nstiffness = 0.5\n\
+         [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\n{block}\n\
+         [[geom]]\nname = \"below\"\nbody = \"ground\"\n{geom}\n\
+         [[force]]\nname = \"push\"\nbody = \"lid\"\nat = [0.1, 0.0]\nforce = [0.0, {}]\n",
+        -force
+    )
+}
+
+/// A box 40 × 10 mm centred 80 mm along the lid meets a floor 30 mm below
+/// the hinge at its outer lower corner, $c = (0.1, -0.005)$: there
+/// $c_x\sin\theta + c_y\cos\theta = -0.03$, and
+/// $N = (k\theta + F\,0.1\cos\theta)/p_x$, $p_x$ the corner's arm. Below
+/// the push that first brings it down, nothing touches.
+#[test]
+fn a_lid_pushed_onto_a_floor_rests_on_its_boxs_corner() {
+    let block = "origin = [0.08, 0.0]\nhalf_extents = [0.02, 0.005]";
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.03]\nnormal = [0.0, 1.0]";
+    let theta = root(|t| 0.1 * t.sin() - 0.005 * t.cos() + 0.03);
+    let touches = -0.5 * theta / (0.1 * theta.cos());
+    for force in [0.5 * touches, 20.0] {
+        let m = from_toml(&lid(block, floor, force)).unwrap();
+        let s = solve(&m, &Settings::default()).unwrap();
+        if force < touches {
+            assert!(s.contacts.is_empty(), "{:?}", s.contacts);
+            assert!((s.q[0] + force * 0.1 * s.q[0].cos() / 0.5).abs() < 1e-12);
+            continue;
+        }
+        assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+        let c = &s.contacts[0];
+        let arm = 0.1 * theta.cos() + 0.005 * theta.sin();
+        let push = (0.5 * theta + force * 0.1 * theta.cos()) / arm;
+        assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+        assert!((c.normal_force - push).abs() < 1e-9 * push, "{} against {push}", c.normal_force);
+        assert!((c.point[0] - arm).abs() < 1e-12 && (c.point[1] + 0.03).abs() < 1e-12, "{:?}", c.point);
+        assert_eq!((c.geom.as_str(), c.body.as_deref(), c.state), ("below", Some("lid"), ContactMode::Slip));
+        assert_eq!(c.normal, [0.0, 1.0]);
+    }
+}
+
+/// A post (a box on the ground, its top right corner at P = (0.09, −0.02))
+/// meets the lid's box, which reaches past it, from below: the corner is the post's, against the
+/// lid's face $y = -0.005$ in the lid's frame, so
+/// $-\sin\theta\,P_x + \cos\theta\,P_y = -0.005$, and the face's outward
+/// normal $n = (\sin\theta, -\cos\theta)$ takes the push $-Nn$ on the lid:
+/// $N = (k\theta + F\,0.1\cos\theta)/(P_yn_x - P_xn_y)$. The contact names
+/// the post as the geom touched, the normal out of it ($-n$), and P.
+#[test]
+fn a_posts_corner_meets_the_lids_box_along_its_face() {
+    let block = "origin = [0.08, 0.0]\nhalf_extents = [0.04, 0.005]";
+    let post = "shape = \"box\"\norigin = [0.07, -0.03]\nhalf_extents = [0.02, 0.01]";
+    let (px, py) = (0.09, -0.02);
+    let theta = root(|t| -t.sin() * px + t.cos() * py + 0.005);
+    let force = 10.0;
+    let m = from_toml(&lid(block, post, force)).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+    let c = &s.contacts[0];
+    let n = [theta.sin(), -theta.cos()];
+    let push = (0.5 * theta + force * 0.1 * theta.cos()) / (py * n[0] - px * n[1]);
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    assert!((c.normal_force - push).abs() < 1e-9 * push, "{} against {push}", c.normal_force);
+    assert!((c.point[0] - px).abs() < 1e-12 && (c.point[1] - py).abs() < 1e-12, "{:?}", c.point);
+    assert!((c.normal[0] + n[0]).abs() < 1e-12 && (c.normal[1] + n[1]).abs() < 1e-12, "{:?} against -{n:?}", c.normal);
+    assert_eq!((c.geom.as_str(), c.body.as_deref()), ("below", Some("lid")));
+}
+
+/// The lid's capsule (radius 5 mm, its segment from x = 0.06 to 0.10)
+/// meets the floor with its outer end ball: the ball's centre
+/// $(0.1\cos\theta, 0.1\sin\theta)$ sits 5 mm above the floor, and $N = (k\theta + F\,0.1\cos\theta)/(0.1\cos\theta)$.
+#[test]
+fn a_capsule_meets_a_floor_with_its_end_ball() {
+    let text = lid(
+        "origin = [0.08, 0.0]\nhalf_extents = [0.001, 0.001]",
+        "shape = \"plane\"\norigin = [0.0, -0.03]\nnormal = [0.0, 1.0]",
+        20.0,
+    )
+    .replace(
+        "shape = \"box\"\norigin = [0.08, 0.0]\nhalf_extents = [0.001, 0.001]",
+        "shape = \"capsule\"\norigin = [0.08, 0.0]\nradius = 0.005\nhalf_length = 0.02",
+    );
+    let m = from_toml(&text).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    let theta = (-0.025f64 / 0.1).asin();
+    let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / (0.1 * theta.cos());
+    assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    assert!((s.contacts[0].normal_force - push).abs() < 1e-9 * push);
+    assert!((s.contacts[0].point[0] - 0.1 * theta.cos()).abs() < 1e-12);
+}
+
+/// In space: a hinge about x, the lid along y, a box on it turned 0.3 rad
+/// about its own z so that one lower corner leads; the floor 30 mm below.
+/// Each corner $c$ (in the lid's frame) goes to
+/// $z = c_y\sin\theta + c_z\cos\theta$; the first to reach −0.03 stops
+/// the lid, and about the hinge $N = (k\theta + F\,0.1\cos\theta)/p_y$,
+/// $p_y = c_y\cos\theta - c_z\sin\theta$. The same problem in the plane
+/// (the box's section in the y–z plane) is the planar lid.
+#[test]
+fn a_spatial_lid_rests_on_its_leading_corner() {
+    let text = "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"lid\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.5\n\
+        [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 0.3]\nhalf_extents = [0.01, 0.02, 0.005]\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]\n\
+        [[force]]\nname = \"push\"\nbody = \"lid\"\nat = [0.0, 0.1, 0.0]\nforce = [0.0, 0.0, -20.0]\n";
+    let m = spatial_from_toml(text).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    // The corners in the lid's frame: the box's (±0.01, ±0.02, −0.005) turned by 0.3 about z.
+    let (cos, sin) = (0.3f64.cos(), 0.3f64.sin());
+    let lower = [(0.01, 0.02), (-0.01, 0.02), (0.01, -0.02), (-0.01, -0.02)]
+        .map(|(x, y): (f64, f64)| (cos * x - sin * y, 0.08 + sin * x + cos * y, -0.005));
+    let (theta, c) = lower
+        .iter()
+        .map(|&(x, y, z)| (root(|t| y * t.sin() + z * t.cos() + 0.03), (x, y, z)))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .unwrap();
+    let p_y = c.1 * theta.cos() - c.2 * theta.sin();
+    let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / p_y;
+    assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+    let k = &s.contacts[0];
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    assert!((k.normal_force - push).abs() < 1e-9 * push, "{} against {push}", k.normal_force);
+    assert!((k.point[0] - c.0).abs() < 1e-12 && (k.point[1] - p_y).abs() < 1e-12 && (k.point[2] + 0.03).abs() < 1e-12);
+}
