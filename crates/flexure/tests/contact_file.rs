@@ -111,6 +111,17 @@ fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
         // One column for the two geoms, a pair for each corner.
         assert_eq!((count(&text), corners(d, &text)), (1, n), "{a} and {b} in {d}-D");
     }
+    // Two bars crossed at rest, no corner of either inside the other and
+    // each centre outside the other, are found by their edges: 5 mm deep.
+    let crossed = format!(
+        "{STRIP}[[geom]]\nname = \"bar\"\nbody = \"ground\"\nshape = \"box\"\norigin = [0.0, -0.5]\nhalf_extents = [0.05, 0.005]\nexclude = [\"strip\"]\n\
+         [[geom]]\nname = \"post\"\nbody = \"tip\"\nshape = \"box\"\norigin = [-0.07, -0.47]\nhalf_extents = [0.005, 0.05]\nexclude = [\"strip\"]\n"
+    );
+    refused(
+        &crossed,
+        "\"box\"\norigin = [0.0, -0.5]",
+        "geom \"post\" on body \"tip\" starts inside it, 5.000e-3 m deep",
+    );
     let said = |d: usize| match d {
         2 => "two geoms touch only where one is a circle, or neither is a plane",
         _ => "two geoms touch only where one is a sphere, or one is a plane and the other a box or capsule",

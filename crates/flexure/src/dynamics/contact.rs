@@ -453,7 +453,27 @@ impl<D: Dynamics> ContactSystem<D> {
         for h in &mut self.held {
             h.dropped = [false; 3];
         }
-        let (n, m, m0) = (self.dim(), self.closures(), self.inner.closures());
+        let independent = self.independent_rows(q)?;
+        let firsts = self.first_rows();
+        for (h, first) in self.held.iter_mut().zip(firsts) {
+            let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
+            for (k, slot) in h.slots::<D>(first).into_iter().enumerate() {
+                let Some(r) = slot else { continue };
+                let rolls_gap = k == 0 && matches!(h.law, Law::Roll { .. });
+                if !independent[r] && stuck && !rolls_gap {
+                    h.dropped[k] = true;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether each row of the closures' $G$ at `q` (the mechanism's, then
+    /// each held contact's) is independent of the rows before it:
+    /// Gram–Schmidt in order, a row whose remainder is under $10^{-9}$ of
+    /// the largest row being dependent.
+    fn independent_rows(&mut self, q: &[f64]) -> Result<Vec<bool>> {
+        let (n, m) = (self.dim(), self.closures());
         let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
         self.closure(q, &mut c, &mut g)?;
         let mut basis: Vec<Vec<f64>> = Vec::new();
@@ -461,36 +481,22 @@ impl<D: Dynamics> ContactSystem<D> {
         // across itself, cos(π/2)) is no row.
         let row_size = |r: usize| (0..n).map(|col| g[col * m + r].powi(2)).sum::<f64>().sqrt();
         let scale = (0..m).map(row_size).fold(0.0, f64::max);
-        // Adds row `r` of G to the basis if it is independent of it.
-        let mut independent = |r: usize| {
-            let mut rest: Vec<f64> = (0..n).map(|col| g[col * m + r]).collect();
-            let size = row_size(r).max(scale);
-            for b in &basis {
-                let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
-                rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
-            }
-            let left = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
-            let kept = left > 1e-9 * size;
-            if kept {
-                basis.push(rest.iter().map(|x| x / left).collect());
-            }
-            kept
-        };
-        (0..m0).for_each(|r| {
-            independent(r);
-        });
-        let firsts = self.first_rows();
-        for (h, first) in self.held.iter_mut().zip(firsts) {
-            let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
-            for (k, slot) in h.slots::<D>(first).into_iter().enumerate() {
-                let Some(r) = slot else { continue };
-                let rolls_gap = k == 0 && matches!(h.law, Law::Roll { .. });
-                if !independent(r) && stuck && !rolls_gap {
-                    h.dropped[k] = true;
+        Ok((0..m)
+            .map(|r| {
+                let mut rest: Vec<f64> = (0..n).map(|col| g[col * m + r]).collect();
+                let size = row_size(r).max(scale);
+                for b in &basis {
+                    let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
+                    rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
                 }
-            }
-        }
-        Ok(())
+                let left = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let kept = left > 1e-9 * size;
+                if kept {
+                    basis.push(rest.iter().map(|x| x / left).collect());
+                }
+                kept
+            })
+            .collect())
     }
 
     /// Each contact of `stopped` (its pair and place) that
@@ -858,27 +864,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
         }
         let mut released: Vec<usize> = ks.iter().filter(|&&k| k < 2 * a && k % 2 == 0).map(|k| k / 2).collect();
         released.dedup();
-        // The gaps' gradients held on: a contact whose gradient they span
-        // (a box's face landing flat on a body that one corner already
-        // holds) would make the rows dependent, and stays open, its gap
-        // held at zero by the others.
-        let n = self.mechanism.dof();
-        let mut rows = Vec::new();
-        for (i, h) in self.held.iter().enumerate().filter(|(i, _)| !released.contains(i)) {
-            debug_assert!(i < a);
-            rows.extend(gap_slope(&self.mechanism, &self.frames, q, &h.pair, h.s)?.gradient);
-        }
         let mut added = Vec::new();
         for &k in ks.iter().filter(|&&k| k >= 2 * a) {
             let pair = self.pairs[k - 2 * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
-            let mut with = rows.clone();
-            with.extend(&slope.gradient);
-            let count = with.len() / n;
-            if approach < 0.0 && crate::linalg::columns_independent(&with, n, count, &mut vec![0.0; count * count]) {
-                rows = with;
+            if approach < 0.0 {
                 let mut h = self.touch(&pair, low.s, q)?;
                 h.law = self.starting_law(&h, &low, (q, v))?;
                 added.push(h);
@@ -888,11 +880,28 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
         }
+        // A new contact none of whose rows adds a direction to the rows
+        // before it (a box's face landing flat on a body that one corner
+        // already holds) would make the closures singular: it stays open,
+        // its gap held at zero by the others. A rolling one needs its gap
+        // row, which `prune` never leaves out.
         for h in added {
+            self.held.push(h);
+            let first = self.first_rows()[self.held.len() - 1];
+            let independent = self.independent_rows(q)?;
+            let slots = h.slots::<D>(first);
+            let adds = match h.law {
+                Law::Roll { .. } => slots[0].is_some_and(|r| independent[r]),
+                _ => slots.iter().flatten().any(|&r| independent[r]),
+            };
+            if !adds {
+                self.held.pop();
+                continue;
+            }
+            let h = &self.held[self.held.len() - 1];
             let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
             let state = if stuck { ContactMode::Stick } else { ContactMode::Slip };
             change(&mut self.changes, &self.mechanism, &h.pair, state);
-            self.held.push(h);
         }
         self.prune(q)?;
         self.slide_on(&stopped, t, (q, v))

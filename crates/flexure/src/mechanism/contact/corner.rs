@@ -13,7 +13,9 @@
 //! These are exact: a convex solid is first touched by a plane at a
 //! corner, and in the plane two convex polygons (a capsule is its
 //! segment's, rounded) are nearest at a vertex of one of them, so holding
-//! each corner's gap $\ge 0$ holds the two apart. In space two boxes, or
+//! each corner's gap $\ge 0$ keeps two that start apart apart (two bars
+//! crossed have no corner inside the other: the file's check at rest also
+//! runs each one's edges, [`deepest_edge`]). In space two boxes, or
 //! a box and a capsule, also meet edge across edge, and a cylinder's rim
 //! is no finite set of points: those pairs are refused by name, as are two
 //! planes.
@@ -141,4 +143,57 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
     let (round, flat) = if c.of_part { (other, geom) } else { (geom, other) };
     let centre = D::position(&D::act(&round.frame, &D::moved(&D::origin(&D::identity()), &c.centre, 1.0)));
     Ok(Corner { round, flat, centre, radius: c.radius })
+}
+
+/// A box's edges (pairs of corners one axis apart) or a capsule's segment,
+/// each with its radius, in the shape's frame; a ball is its centre.
+fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {
+    match s {
+        GeomShape::Box { .. } => {
+            let corners = points(s);
+            let mut out = Vec::new();
+            for (k, a) in corners.iter().enumerate() {
+                for i in 0..D::POINT_DIM {
+                    if k >> i & 1 == 0 {
+                        out.push((a.0, corners[k | 1 << i].0, 0.0));
+                    }
+                }
+            }
+            out
+        }
+        GeomShape::Capsule { half_length, radius } => {
+            let end = vector::<D>(&[*half_length, 0.0, 0.0]);
+            vec![(end, super::scaled::<D>(&end, -1.0), *radius)]
+        }
+        GeomShape::Ball { radius } => vec![(D::Vector::default(), D::Vector::default(), *radius)],
+        _ => Vec::new(),
+    }
+}
+
+/// The deepest any edge of geom `a` (a box's, a capsule's segment) goes
+/// into geom `b`, and the other way (m; negative: overlapping by that
+/// depth), bodies at `bodies`: what finds two bars crossed with no
+/// corner inside the other. A convex solid's signed distance is convex
+/// along a line, so golden-section search finds each edge's least.
+pub(crate) fn deepest_edge<D: Touch>(m: &Mechanism<D>, bodies: &[D::Pose], a: usize, b: usize) -> f64 {
+    let one_way = |a: &Geom<D>, b: &Geom<D>| {
+        let frame = D::compose(&bodies[a.body], &a.frame);
+        let at = |from: &D::Vector, to: &D::Vector, r: f64, t: f64| {
+            let p = *from + super::scaled::<D>(&(*to - *from), t);
+            b.gap(&bodies[b.body], &D::act(&frame, &D::moved(&D::origin(&D::identity()), &p, 1.0)), r).0
+        };
+        edges(&a.shape)
+            .iter()
+            .map(|(from, to, r)| {
+                let ratio = 0.5 * (5f64.sqrt() - 1.0);
+                let (mut lo, mut hi) = (0.0, 1.0);
+                for _ in 0..80 {
+                    let (c, d) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                    if at(from, to, *r, c) < at(from, to, *r, d) { hi = d } else { lo = c }
+                }
+                [0.0, 0.5 * (lo + hi), 1.0].map(|t| at(from, to, *r, t)).into_iter().fold(f64::INFINITY, f64::min)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    one_way(&m.geoms[a], &m.geoms[b]).min(one_way(&m.geoms[b], &m.geoms[a]))
 }

@@ -30,7 +30,7 @@ mod width;
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
-pub(crate) use corner::{Corner, corner};
+pub(crate) use corner::{Corner, corner, deepest_edge};
 pub use corner::{CornerOf, corners};
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};

@@ -3,7 +3,7 @@
 use super::dimension::FileDimension;
 use super::document::{Numbers, Source, Span};
 use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
-use crate::mechanism::contact::{GeomShape, Toucher, corners, gap, pairs};
+use crate::mechanism::contact::{GeomShape, Toucher, corners, deepest_edge, gap, pairs};
 
 /// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
 pub(super) fn check_stiffness_ratio<D: FileDimension>(
@@ -128,8 +128,9 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
                 };
                 let one = geom.gap(at, &centre(other), inner(other)).0;
                 let two = other.gap(&bodies[other.body], &centre(geom), inner(geom)).0;
+                let crossed = deepest_edge(m, bodies, pair.geom, h);
                 (
-                    one.min(two).min(corner),
+                    one.min(two).min(corner).min(crossed),
                     format!("geom {:?} on body {:?} starts inside it", other.name, m.bodies[other.body].name),
                 )
             }
