@@ -115,21 +115,29 @@ fn a_capsule_meets_a_floor_with_its_end_ball() {
     assert!((s.contacts[0].point[0] - 0.1 * theta.cos()).abs() < 1e-12);
 }
 
-/// In space: a hinge about x, the lid along y, a box on it turned 0.3 rad
-/// about its own z so that one lower corner leads; the floor 30 mm below.
-/// Each corner $c$ (in the lid's frame) goes to
-/// $z = c_y\sin\theta + c_z\cos\theta$; the first to reach −0.03 stops
-/// the lid, and about the hinge $N = (k\theta + F\,0.1\cos\theta)/p_y$,
-/// $p_y = c_y\cos\theta - c_z\sin\theta$. The same problem in the plane
-/// (the box's section in the y–z plane) is the planar lid.
+/// The spatial lid: a hinge about x, the lid along y, a box on it (`block`),
+/// `below` on the ground, the push `force` N down at y = 0.1 m.
+fn lid3(block: &str, below: &str, force: f64) -> String {
+    format!(
+        "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"lid\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.5\n\
+         [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\n{block}\n\
+         [[geom]]\nname = \"below\"\nbody = \"ground\"\n{below}\n\
+         [[force]]\nname = \"push\"\nbody = \"lid\"\nat = [0.0, 0.1, 0.0]\nforce = [0.0, 0.0, {}]\n",
+        -force
+    )
+}
+
+/// In space: the lid's box turned 0.3 rad about its own z so that one
+/// lower corner leads, onto a floor 30 mm below the hinge, or onto a
+/// table (a box whose top face is there). Each corner $c$ (in the lid's
+/// frame) goes to $z = c_y\sin\theta + c_z\cos\theta$; the first to
+/// reach −0.03 stops the lid, and about the hinge
+/// $N = (k\theta + F\,0.1\cos\theta)/p_y$, $p_y = c_y\cos\theta - c_z\sin\theta$.
 #[test]
-fn a_spatial_lid_rests_on_its_leading_corner() {
-    let text = "dimension = 3\n[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"lid\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.5\n\
-        [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 0.3]\nhalf_extents = [0.01, 0.02, 0.005]\n\
-        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]\n\
-        [[force]]\nname = \"push\"\nbody = \"lid\"\nat = [0.0, 0.1, 0.0]\nforce = [0.0, 0.0, -20.0]\n";
-    let m = spatial_from_toml(text).unwrap();
-    let s = solve(&m, &Settings::default()).unwrap();
+fn a_spatial_lid_rests_on_its_leading_corner_on_a_floor_or_a_table() {
+    let block = "origin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 0.3]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let floor = "shape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]";
+    let table = "shape = \"box\"\norigin = [0.0, 0.08, -0.04]\nhalf_extents = [0.1, 0.1, 0.01]";
     // The corners in the lid's frame: the box's (±0.01, ±0.02, −0.005) turned by 0.3 about z.
     let (cos, sin) = (0.3f64.cos(), 0.3f64.sin());
     let lower = [(0.01, 0.02), (-0.01, 0.02), (0.01, -0.02), (-0.01, -0.02)]
@@ -141,9 +149,61 @@ fn a_spatial_lid_rests_on_its_leading_corner() {
         .unwrap();
     let p_y = c.1 * theta.cos() - c.2 * theta.sin();
     let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / p_y;
-    assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
-    let k = &s.contacts[0];
-    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
-    assert!((k.normal_force - push).abs() < 1e-9 * push, "{} against {push}", k.normal_force);
-    assert!((k.point[0] - c.0).abs() < 1e-12 && (k.point[1] - p_y).abs() < 1e-12 && (k.point[2] + 0.03).abs() < 1e-12);
+    for below in [floor, table] {
+        let s = solve(&spatial_from_toml(&lid3(block, below, 20.0)).unwrap(), &Settings::default()).unwrap();
+        assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+        let k = &s.contacts[0];
+        assert!((s.q[0] - theta).abs() < 1e-12, "{below}: {} against {theta}", s.q[0]);
+        assert!((k.normal_force - push).abs() < 1e-9 * push, "{below}: {} against {push}", k.normal_force);
+        assert!(
+            (k.point[0] - c.0).abs() < 1e-12 && (k.point[1] - p_y).abs() < 1e-12 && (k.point[2] + 0.03).abs() < 1e-12
+        );
+        assert!((k.normal[2] - 1.0).abs() < 1e-12, "{below}: {:?}", k.normal);
+    }
+}
+
+/// In space two boxes may meet edge across edge, where no corner touches:
+/// the lid's box (not turned) comes down onto a rail, a box 4 mm wide
+/// across it. The rail's outer top edge, $(x, 0.092, -0.03)$, meets the
+/// box's lower face $z = -0.005$ (the lid's frame) where
+/// $-0.092\sin\theta - 0.03\cos\theta = -0.005$, between the box's
+/// corners and far from the rail's: the solve stops there, naming the two,
+/// at the load fraction $\lambda = -k\theta/(F\,0.1\cos\theta)$ (the
+/// free lid's balance), to the printed 1e-4 %. The motion stops there too.
+#[test]
+fn edge_across_edge_in_space_is_stopped_where_it_begins() {
+    let block = "origin = [0.0, 0.08, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let rail = "shape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]";
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.005);
+    let lambda = -0.5 * theta / (20.0 * 0.1 * theta.cos());
+    let text = lid3(block, rail, 20.0);
+    let e = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap_err().to_string();
+    let named = "geom \"block\" (box) and geom \"below\" (box) on body \"ground\" (at ";
+    assert!(e.contains(named) && e.contains("meet edge across edge, where no corner touches"), "{e}");
+    let at: f64 = e[e.find(named).unwrap() + named.len()..].split(' ').next().unwrap().parse().unwrap();
+    assert!((at - 100.0 * lambda).abs() < 1e-4, "{at} % against {} %", 100.0 * lambda);
+    // Given mass and pushed from rest, the lid swings down onto the rail.
+    let moving = format!("{text}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n");
+    let settings = flexure::dynamics::simulation::SimulationSettings {
+        motion: flexure::dynamics::integrate::MotionSettings {
+            duration: 0.2,
+            every: 0.01,
+            tolerance: 1e-8,
+            absolute: 1e-8,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let run = flexure::dynamics::simulation::simulate(
+        &spatial_from_toml(&moving).unwrap(),
+        &settings,
+        flexure::dynamics::simulation::Start::Rest,
+    )
+    .unwrap();
+    let stopped = run.stopped.as_ref().map(|e| e.to_string()).expect("stopped");
+    assert!(
+        stopped.contains("geom \"block\" (box) and geom \"below\" (box)") && stopped.contains("edge across edge"),
+        "{stopped}"
+    );
+    assert!(run.q(run.time.len() - 1)[0] > theta - 1e-3, "{:?}", run.q(run.time.len() - 1));
 }

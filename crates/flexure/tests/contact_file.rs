@@ -75,11 +75,10 @@ fn a_geom_becomes_its_shape_frame_and_friction() {
 }
 
 /// Two geoms touch at corners (`corners`): a plane and a box at the box's
-/// corners, a plane and a capsule at its end balls, and in the plane two
-/// boxes or capsules at each one's corners against the other. Two planes,
-/// and in space two boxes, a box and a capsule, or a cylinder (which meet
-/// edge across edge or along a rim) are refused at the later geom's
-/// `shape`, naming both.
+/// corners, a plane and a capsule at its end balls, and two boxes or
+/// capsules at each one's corners against the other. Two planes, and in
+/// space a cylinder and anything but a sphere (which meet along its rim),
+/// are refused at the later geom's `shape`, naming both.
 #[test]
 fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
     let geoms = |d: usize, a: &str, b: &str| {
@@ -106,6 +105,9 @@ fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
         (2, capsule, capsule, 4),
         (3, plane3, box3, 8),
         (3, plane3, capsule, 2),
+        (3, box3, box3, 16),
+        (3, box3, capsule, 10),
+        (3, capsule, capsule, 4),
     ] {
         let text = geoms(d, a, b);
         // One column for the two geoms, a pair for each corner.
@@ -124,15 +126,15 @@ fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
     );
     let said = |d: usize| match d {
         2 => "two geoms touch only where one is a circle, or neither is a plane",
-        _ => "two geoms touch only where one is a sphere, or one is a plane and the other a box or capsule",
+        _ => "two geoms touch only where one is a sphere, or neither is a plane or a cylinder",
     };
     let cylinder = "shape = \"cylinder\"\nradius = 0.01\nhalf_length = 0.02";
     for (d, a, b, names) in [
         (2, plane2, "shape = \"plane\"\nnormal = [0.0, -1.0]", "(plane) and geom \"b\" (plane)"),
-        (3, box3, box3, "(box) and geom \"b\" (box)"),
-        (3, box3, capsule, "(box) and geom \"b\" (capsule)"),
+        (3, plane3, "shape = \"plane\"\nnormal = [0.0, 0.0, -1.0]", "(plane) and geom \"b\" (plane)"),
+        (3, box3, cylinder, "(box) and geom \"b\" (cylinder)"),
         (3, plane3, cylinder, "(plane) and geom \"b\" (cylinder)"),
-        (3, capsule, capsule, "(capsule) and geom \"b\" (capsule)"),
+        (3, cylinder, capsule, "(cylinder) and geom \"b\" (capsule)"),
     ] {
         let text = geoms(d, a, b);
         let at_shape = text.rfind("shape = ").expect("a shape") + "shape = ".len();

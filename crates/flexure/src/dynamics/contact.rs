@@ -73,8 +73,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, column, corner, dot, friction,
-    gap_slope, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, vector,
+    Contact, ContactMode, EDGES_CROSS, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, column, corner,
+    deepest_edge, dot, edges_cross, friction, gap_slope, length, material_jet, minima, named, on_ball, on_flexure,
+    pairs, point_jet, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -440,6 +441,33 @@ impl<D: Dynamics> ContactSystem<D> {
                 named(m, &pair)
             ),
         })
+    }
+
+    /// An error naming the first pair of two geoms one of whose edges
+    /// crosses the other past the gap's band at `q`, where no corner
+    /// touches ([`edges_cross`]): edge across edge is not solved in space.
+    fn edges_apart(&mut self, q: &[f64]) -> Result<()> {
+        let m = &self.mechanism;
+        let watched: Vec<(Pair, usize)> = self
+            .pairs
+            .iter()
+            .filter_map(|p| match p.part {
+                Toucher::Geom(h) if p.corner == 0 && edges_cross(&m.geoms[p.geom].shape, &m.geoms[h].shape) => {
+                    Some((*p, h))
+                }
+                _ => None,
+            })
+            .collect();
+        if watched.is_empty() {
+            return Ok(());
+        }
+        self.frames_at(q);
+        for (pair, h) in watched {
+            if deepest_edge(&self.mechanism, &self.frames.bodies, pair.geom, h) < -self.gap_band {
+                return Err(Error::invalid("geom", named(&self.mechanism, &pair), EDGES_CROSS));
+            }
+        }
+        Ok(())
     }
 
     /// Leaves out each stuck contact's rows that depend on the rows before
@@ -927,6 +955,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// a right angle, and its friction turned over there (a guard that
     /// jumped a thousand bands).
     fn accepted(&mut self, q: &[f64], v: &[f64]) -> Result<()> {
+        self.edges_apart(q)?;
         if !self.held.iter().any(|h| matches!(h.law, Law::Slip { .. })) {
             return Ok(());
         }

@@ -8,17 +8,20 @@
 //! | a circle or sphere and any geom | the ball itself (the later geom's, when both are) |
 //! | a plane and a box | the box's $2^n$ corners ($r = 0$) |
 //! | a plane and a capsule | the capsule's two end balls ($r$ its radius) |
-//! | in the plane, two of box and capsule | each one's corners against the other |
+//! | two of box and capsule | each one's corners against the other |
 //!
-//! These are exact: a convex solid is first touched by a plane at a
-//! corner, and in the plane two convex polygons (a capsule is its
-//! segment's, rounded) are nearest at a vertex of one of them, so holding
-//! each corner's gap $\ge 0$ keeps two that start apart apart (two bars
-//! crossed have no corner inside the other: the file's check at rest also
-//! runs each one's edges, [`deepest_edge`]). In space two boxes, or
-//! a box and a capsule, also meet edge across edge, and a cylinder's rim
-//! is no finite set of points: those pairs are refused by name, as are two
-//! planes.
+//! These are exact where the two touch at a corner of one of them: a
+//! plane first touches a convex solid at a corner, and in the plane two
+//! convex outlines (a capsule is its segment's, rounded) are nearest at a
+//! corner of one of them, so holding each corner's gap $\ge 0$ keeps two
+//! that start apart apart (two bars crossed have no corner inside the
+//! other: the file's check at rest also runs each one's edges,
+//! [`deepest_edge`]). In space two boxes, or a box and a capsule, or two
+//! capsules, may also meet edge across edge, where no corner touches:
+//! [`edges_cross`] says which pairs may, and the solve and the motion
+//! watch their edges ([`deepest_edge`]) and stop, naming the pair, where
+//! one crosses the other. A cylinder's rim is no finite set of points: a
+//! cylinder and anything but a sphere is refused by name, as are two planes.
 
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named, vector};
 use crate::error::{Error, Result};
@@ -47,8 +50,11 @@ pub struct CornerOf<D: Dimension> {
 /// let floor = GeomShape::<Spatial>::Plane { normal: Vector3::z() };
 /// let brick = GeomShape::<Spatial>::Box { half_extents: Vector3::new(0.1, 0.2, 0.3) };
 /// assert_eq!(corners(&floor, &brick).unwrap().len(), 8);
-/// // In space two boxes also meet edge across edge: refused.
-/// assert!(corners(&brick, &brick).is_none());
+/// // Two boxes: each one's corners against the other.
+/// assert_eq!(corners(&brick, &brick).unwrap().len(), 16);
+/// // A cylinder's rim is no finite set of points: refused.
+/// let can = GeomShape::<Spatial>::Cylinder { half_length: 0.1, radius: 0.05 };
+/// assert!(corners(&floor, &can).is_none());
 /// // In the plane they are nearest at a vertex of one of them.
 /// let tile = GeomShape::<Planar>::Box { half_extents: Vector2::new(0.1, 0.2) };
 /// assert_eq!(corners(&tile, &tile).unwrap().len(), 8);
@@ -72,7 +78,7 @@ pub fn corners<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> Option<Vec<C
     let found: Vec<CornerOf<D>> = match (plane(a), plane(b)) {
         (true, false) if cornered(b) => of(true, b).collect(),
         (false, true) if cornered(a) => of(false, a).collect(),
-        (false, false) if D::POINT_DIM == 2 && cornered(a) && cornered(b) => of(true, b).chain(of(false, a)).collect(),
+        (false, false) if cornered(a) && cornered(b) => of(true, b).chain(of(false, a)).collect(),
         _ => return None,
     };
     Some(found)
@@ -98,6 +104,26 @@ fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
         }
         _ => Vec::new(),
     }
+}
+
+/// Why two geoms that meet edge across edge are stopped at ([`edges_cross`]).
+pub(crate) const EDGES_CROSS: &str = "meet edge across edge, where no corner touches, which is not solved in space: make one of them a sphere, or turn them to meet at a corner";
+
+/// Whether two shapes that touch at corners may also meet edge across
+/// edge, where no corner touches: two of box and capsule, in space.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::contact::{edges_cross, GeomShape};
+/// use flexure::space::{Planar, Spatial};
+/// use nalgebra::{Vector2, Vector3};
+/// let brick = GeomShape::<Spatial>::Box { half_extents: Vector3::new(0.1, 0.2, 0.3) };
+/// assert!(edges_cross(&brick, &brick));
+/// let tile = GeomShape::<Planar>::Box { half_extents: Vector2::new(0.1, 0.2) };
+/// assert!(!edges_cross(&tile, &tile));
+/// ```
+pub fn edges_cross<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> bool {
+    D::POINT_DIM == 3 && !points(a).is_empty() && !points(b).is_empty()
 }
 
 /// The number of corners of geoms `g` and `h` of `m` (1 where their gap
@@ -134,7 +160,7 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
             if D::POINT_DIM == 2 {
                 "the gap of two geoms is found where one is a circle, or neither is a plane (two planes never part)"
             } else {
-                "the gap of two geoms is found where one is a sphere, or a plane and a box or capsule (two boxes, a box and a capsule, and a cylinder meet edge across edge or along a rim)"
+                "the gap of two geoms is found where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
             },
         )
     };

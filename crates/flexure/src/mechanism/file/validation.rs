@@ -108,7 +108,7 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
                             if D::POINT_DIM == 2 {
                                 "where one is a circle, or neither is a plane"
                             } else {
-                                "where one is a sphere, or one is a plane and the other a box or capsule (two boxes, a box and a capsule, and a cylinder meet edge across edge or along a rim)"
+                                "where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
                             }
                         ),
                     );

@@ -74,8 +74,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Material, Pair, PointJet, Toucher, array, corner, dot, gap_jet, length, material_jet,
-    minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents, touched, turned, vector,
+    Contact, ContactMode, EDGES_CROSS, GapJet, Material, Pair, PointJet, Toucher, array, corner, deepest_edge, dot,
+    edges_cross, gap_jet, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents,
+    touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -922,6 +923,9 @@ enum Event {
     /// The equilibrium is no longer stable where contact `c` lies flat
     /// along its geom ([`FLAT_CURVATURE`]): distributed contact.
     LiesAlong(usize),
+    /// An edge of one of the pair's two geoms crosses the other, where no
+    /// corner touches ([`edges_cross`]).
+    EdgesCross(Pair),
 }
 
 /// A Newton solve of `problem` at `lambda` from `x`: the solution and its iterations.
@@ -1043,6 +1047,15 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             }
         }
     }
+    // Edge across edge: no corner touches, and an edge is inside the other geom.
+    for pair in all.iter().filter(|p| p.corner == 0) {
+        let Toucher::Geom(h) = pair.part else { continue };
+        if edges_cross(&m.geoms[pair.geom].shape, &m.geoms[h].shape)
+            && deepest_edge(m, &problem.frames.bodies, pair.geom, h) < -2.0 * GAP_TOLERANCE * length
+        {
+            return Ok(Some(Event::EdgesCross(*pair)));
+        }
+    }
     if !problem.stable(x, lambda, &jac) {
         // Flat against the geom, with no slope along it at an end: the
         // strip begins to lie along it, not to buckle.
@@ -1141,6 +1154,10 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::LiesAlong(c) => {
             let at = format!("{} (at {:.4} % of the load)", named(m, &touching[c].pair), 100.0 * lambda);
             return Err(Error::invalid("geom", at, LIES_ALONG));
+        }
+        Event::EdgesCross(pair) => {
+            let at = format!("{} (at {:.4} % of the load)", named(m, &pair), 100.0 * lambda);
+            return Err(Error::invalid("geom", at, EDGES_CROSS));
         }
     }
     Ok(out)
