@@ -457,3 +457,35 @@ fn a_tolerance_with_no_finer_run_left_has_no_estimate_and_says_so() {
         "{err}"
     );
 }
+
+/// `draw --simulate` draws each snapshot's contacts: a 2 kg box on a
+/// vertical slider (its frame turned a quarter: the box's x up; a spring
+/// of 50 N/m), let go 0.2 m above a floor from rest, falls as
+/// $x = -(g/\omega^2)(1 - \cos\omega t)$, $\omega = 5$/s, onto the floor at
+/// 0.2116 s and stays (its weight beyond the spring's pull there): of
+/// the snapshots at 0, 0.125, 0.25, 0.375 and 0.5 s the last three rest
+/// on it, pushed by $mg - k\,0.2$ = 9.62 N (its label beside the arrow),
+/// and the legend names the contact from 0 (the first two) to that.
+/// (Without the snapshots' contacts the legend has no contact.)
+#[test]
+fn draw_simulate_draws_each_snapshots_contacts() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("drop.toml");
+    let text = "gravity = [0.0, -9.81]\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"block\"\norigin = [0.0, 0.0, 1.5707963267948966]\nstiffness = 50.0\n\
+        [[body]]\nname = \"block\"\nmass = 2.0\n\
+        [[geom]]\nname = \"cube\"\nbody = \"block\"\nshape = \"box\"\nhalf_extents = [0.05, 0.03]\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.25]\nnormal = [0.0, 1.0]\n";
+    std::fs::write(&path, text).unwrap();
+    let out = dir.path().join("drop.svg");
+    let v =
+        json(&["draw", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--simulate", "0.5", "--start", "rest"]);
+    assert_eq!(floats(&v["snapshots"]), [0.0, 0.125, 0.25, 0.375, 0.5]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains("contact floor on block: normal force 0 to 9.62 N"), "the legend");
+    // The three snapshots at rest lie on one another: one label shows.
+    assert!(svg.contains(">9.62 N<"), "its push beside its arrow");
+    // The view is sized by the box too (a slider has no link): the weight's
+    // arrow is a visible part of it, not 2e-10 m as it was.
+    let scale = v["force_scale_m_per_n"].as_f64().unwrap();
+    assert!((1e-3..0.1).contains(&(scale * 2.0 * 9.81)), "{scale} m per N");
+}

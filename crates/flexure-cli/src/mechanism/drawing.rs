@@ -42,6 +42,7 @@
 pub use super::projection::View;
 use super::scene::{Scene, Snapshot, Symbol};
 use super::solids;
+use flexure::mechanism::contact::GeomShape;
 use flexure_chart::{
     Anchor, COLORS, Chart, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Series, Stroke,
     Swatch, chart_figure, ramp,
@@ -653,8 +654,32 @@ pub fn figure(
 
     // Sizes from the unloaded mechanism in the world (the same in every
     // view): links 2.4 % of it thick, the longest arrow about a quarter of it.
-    let pts: Vec<&V> =
-        rest.links.iter().flatten().chain(&scene.ground).chain(&rest.roots).chain(&rest.origins).collect();
+    // Bounded geoms by their bounding balls: a block on a slider has no link to size the view by.
+    let solids: Vec<V> = rest
+        .geoms
+        .iter()
+        .filter_map(|g| {
+            let bound = match g.shape {
+                GeomShape::Plane { .. } => return None,
+                GeomShape::Ball { radius } => radius,
+                GeomShape::Capsule { half_length, radius } => half_length + radius,
+                GeomShape::Box { half_extents } => half_extents.norm(),
+                GeomShape::Cylinder { half_length, radius } => half_length.hypot(radius),
+            };
+            let c = g.frame.translation.vector;
+            Some((0..3).flat_map(move |i| [c - V::ith(i, bound), c + V::ith(i, bound)]))
+        })
+        .flatten()
+        .collect();
+    let pts: Vec<&V> = rest
+        .links
+        .iter()
+        .flatten()
+        .chain(&scene.ground)
+        .chain(&rest.roots)
+        .chain(&rest.origins)
+        .chain(&solids)
+        .collect();
     let span = |i: usize| {
         let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
         if hi > lo { hi - lo } else { 0.0 }

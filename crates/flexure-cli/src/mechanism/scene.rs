@@ -494,7 +494,8 @@ pub fn motion<D: Drawn>(
         .map(|&k| {
             let loads = flexure::dynamics::schedule::loads_at(m, run.time[k]);
             let label = format!("t = {} s", short(run.time[k]));
-            Ok((label.clone(), D::pose(m, &label, run.q(k), &loads)?))
+            let contacts = run.contacts.get(k).map_or(&[][..], Vec::as_slice);
+            Ok((label.clone(), D::pose(m, &label, run.q(k), &loads)?.with_contacts(contacts)))
         })
         .collect::<Result<Shapes, String>>()?;
     Ok((snapshots, D::tracks(run)))

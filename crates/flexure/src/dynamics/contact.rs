@@ -167,6 +167,11 @@ pub struct ContactChange {
     /// What it became: `"slip"` where it touched without friction or began
     /// to slide, `"stick"` where friction holds it, `"open"` where it opened.
     pub state: ContactMode,
+    /// The pair it is of, at its corner between two geoms (not serialized:
+    /// `contact` names the two parts, and each corner of two geoms is a
+    /// pair of its own).
+    #[serde(skip)]
+    pub pair: Pair,
 }
 
 /// What a touching contact is doing at a state ([`ContactSystem::read`]).
@@ -547,7 +552,7 @@ impl<D: Dynamics> ContactSystem<D> {
             let size = dot::<D>(&r.friction, &r.friction).sqrt();
             if size > h.mu * r.push * (1.0 + self.tolerance) && size > 0.0 {
                 h.law = Law::Slip { from: array::<D>(&scaled::<D>(&r.friction, -1.0 / size)), fastest: 0.0 };
-                if let Some(c) = self.changes.iter_mut().rev().find(|c| c.contact == column(&self.mechanism, &h.pair)) {
+                if let Some(c) = self.changes.iter_mut().rev().find(|c| c.pair == h.pair) {
                     c.state = ContactMode::Slip;
                 }
                 changed = true;
@@ -861,7 +866,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
         let a = self.held.len();
         self.frames_at(q);
         let change = |changes: &mut Vec<ContactChange>, m: &Mechanism<D>, pair: &Pair, state| {
-            changes.push(ContactChange { time: t, contact: column(m, pair), state });
+            changes.push(ContactChange { time: t, contact: column(m, pair), state, pair: *pair });
         };
         // The laws first, at the contacts' own rows (the last multipliers).
         let last = std::mem::take(&mut self.last);
