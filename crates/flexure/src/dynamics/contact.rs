@@ -300,7 +300,10 @@ impl<D: Dynamics> ContactSystem<D> {
             let p = point_jet(m, &self.frames, q, pair, s, None)?;
             h.rolls = match pair.part {
                 Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < h.length),
-                Toucher::Geom(h) => !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body),
+                // A box's sharp corner is one material point: it does not roll.
+                Toucher::Geom(h) => {
+                    corner(m, pair)?.radius > 0.0 && !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body)
+                }
             };
             h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
         }

@@ -196,11 +196,13 @@ fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {
     }
 }
 
-/// The deepest any edge of geom `a` (a box's, a capsule's segment) goes
-/// into geom `b`, and the other way (m; negative: overlapping by that
-/// depth), bodies at `bodies`: what finds two bars crossed with no
-/// corner inside the other. A convex solid's signed distance is convex
-/// along a line, so golden-section search finds each edge's least.
+/// How far any edge of geom `a` (a box's, a capsule's segment) dips into
+/// geom `b` below its own ends and below the surface, and the other way
+/// (m; negative: that deep), bodies at `bodies`: what finds two bars
+/// crossed with no corner inside the other. An edge along a face dips no
+/// deeper than its ends (its corners, which their own gaps watch). A
+/// convex solid's signed distance is convex along a line, so
+/// golden-section search finds each edge's least.
 pub(crate) fn deepest_edge<D: Touch>(m: &Mechanism<D>, bodies: &[D::Pose], a: usize, b: usize) -> f64 {
     let one_way = |a: &Geom<D>, b: &Geom<D>| {
         let frame = D::compose(&bodies[a.body], &a.frame);
@@ -217,7 +219,8 @@ pub(crate) fn deepest_edge<D: Touch>(m: &Mechanism<D>, bodies: &[D::Pose], a: us
                     let (c, d) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
                     if at(from, to, *r, c) < at(from, to, *r, d) { hi = d } else { lo = c }
                 }
-                [0.0, 0.5 * (lo + hi), 1.0].map(|t| at(from, to, *r, t)).into_iter().fold(f64::INFINITY, f64::min)
+                let ends = at(from, to, *r, 0.0).min(at(from, to, *r, 1.0));
+                at(from, to, *r, 0.5 * (lo + hi)).min(ends) - ends.min(0.0)
             })
             .fold(f64::INFINITY, f64::min)
     };

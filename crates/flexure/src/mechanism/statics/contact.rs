@@ -123,8 +123,10 @@ enum Place {
     End(f64),
     /// Inside a flexure's span, where the gap is least (its arc length an unknown).
     Inner,
-    /// Between two geoms.
+    /// Between two geoms, at a ball's surface or a capsule's end (it rolls).
     Geoms,
+    /// Between two geoms, at a box's sharp corner: one material point.
+    Corner,
 }
 
 /// How a touching contact holds along the surface.
@@ -176,7 +178,7 @@ impl Touching {
         match self.place {
             Place::End(s) => Some(s),
             Place::Inner => Some(self.at * self.length),
-            Place::Geoms => None,
+            Place::Geoms | Place::Corner => None,
         }
     }
 
@@ -469,7 +471,9 @@ impl<D: Statics> ContactKkt<'_, D> {
         let here = self.local_point(c);
         let anchor = match event {
             Event::Touch { point: there, gap: inside, .. } => {
-                let t = self.jets[c].gap / (self.jets[c].gap - inside);
+                // Where the gap crosses zero between here and there (here, where it does not change).
+                let change = self.jets[c].gap - inside;
+                let t = if change != 0.0 { (self.jets[c].gap / change).clamp(0.0, 1.0) } else { 0.0 };
                 std::array::from_fn(|i| here[i] + t * (there[i] - here[i]))
             }
             _ => here,
@@ -903,7 +907,8 @@ enum Event {
         on: Material,
         /// The geom's normal there (world).
         normal: [f64; 3],
-        /// Whether a flexure's centreline touches there at an end (a material point).
+        /// Whether a flexure's centreline touches there at an end, or a box's
+        /// sharp corner (a material point).
         bare_end: bool,
         /// Whether a flexure touches there with a thickness.
         thick: bool,
@@ -1028,9 +1033,10 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
-                        let ball = corner(m, pair)?.round.body;
-                        let on = D::act(&D::inverse(&problem.frames.bodies[ball]), &low.point);
-                        (false, false, on_ball(array::<D>(&D::position(&on))))
+                        // A box's sharp corner is one material point, as a flexure's bare end.
+                        let round = corner(m, pair)?;
+                        let on = D::act(&D::inverse(&problem.frames.bodies[round.round.body]), &low.point);
+                        (round.radius == 0.0, false, on_ball(array::<D>(&D::position(&on))))
                     }
                 };
                 let normal = array::<D>(&low.normal);
@@ -1128,6 +1134,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::Touch { pair, s, point, on, normal, bare_end, thick, .. } => {
             let length = length(m, &pair);
             let place = match s {
+                None if bare_end => Place::Corner,
                 None => Place::Geoms,
                 Some(s) if s <= 1e-9 * length => Place::End(0.0),
                 Some(s) if s >= (1.0 - 1e-9) * length => Place::End(length),
