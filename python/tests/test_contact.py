@@ -254,3 +254,60 @@ def test_a_sweep_reports_each_rows_contacts():
     (last,) = [c for c in answer["contacts"][-1] if c["state"] != "open"]
     assert (solved["body"], solved["state"]) == (last["body"], last["state"])
     assert solved["normal_force"] == pytest.approx(last["normal_force"], rel=1e-9)
+
+
+LID = """
+[[joint]]
+name = "pivot"
+kind = "revolute"
+parent = "ground"
+child = "lid"
+stiffness = 0.5
+
+[[geom]]
+name = "block"
+body = "lid"
+shape = "box"
+origin = [0.08, 0.0]
+half_extents = [0.02, 0.005]
+
+[[geom]]
+name = "floor"
+body = "ground"
+shape = "plane"
+origin = [0.0, -0.03]
+normal = [0.0, 1.0]
+
+[[force]]
+name = "push"
+body = "lid"
+at = [0.1, 0.0]
+force = [0.0, -20.0]
+"""
+
+
+def test_two_geoms_touch_at_corners_summed_in_one_column():
+    """A lid on a sprung hinge (k = 0.5 N m/rad) pushed by F at 0.1 m
+    carries a box whose outer lower corner (0.1, -0.005) meets a floor
+    30 mm below the hinge: there 0.1 sin(t) - 0.005 cos(t) = -0.03, and
+    N = (k t + 0.1 F cos t) / (0.1 cos t + 0.005 sin t) (the moments about
+    the hinge). The sweep's one column for the box and the floor sums their
+    four corners' pushes, and equals the closed form to 1e-9."""
+
+    def f(t):
+        return 0.1 * math.sin(t) - 0.005 * math.cos(t) + 0.03
+
+    lo, hi = -1.0, 0.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
+    t = 0.5 * (lo + hi)
+    m = flexure.Mechanism.from_toml(LID)
+    answer = m.sweep("force.push.fy", [-10.0, -20.0])
+    assert list(answer["normal_force"]) == ["contact.floor.lid"]
+    for k, force in enumerate([10.0, 20.0]):
+        push = (0.5 * t + 0.1 * force * math.cos(t)) / (0.1 * math.cos(t) + 0.005 * math.sin(t))
+        assert answer["normal_force"]["contact.floor.lid"][k] == pytest.approx(push, rel=1e-9)
+        touching = [c for c in answer["contacts"][k] if c["state"] != "open"]
+        assert sum(c["normal_force"] for c in touching) == pytest.approx(push, rel=1e-9)
+        assert [c["point"] for c in touching] == [pytest.approx([0.1 * math.cos(t) + 0.005 * math.sin(t), -0.03], abs=1e-12)]
