@@ -1015,3 +1015,40 @@ fn a_box_dropped_flat_lands_on_its_face_and_rests() {
         }
     }
 }
+
+/// A tilted foot on a sprung slider and a soft hinge (the statics test's
+/// of `contact_corner.rs`, given mass), pushed down by a force ramped to
+/// 5 N over 50 ms onto a rough floor (μ = 0.3): it lands on the lower
+/// corner of its leading edge, slides, and tips flat onto its face, where
+/// the floor holds it still. Against the closed form of its rest: the
+/// face flat (the hinge at −0.05 rad), the slide $0.01 - 0.012\cos 0.05$
+/// (to 1e-9), the pushes summing to 5 N less the spring's pull (to 1e-6 of
+/// it) from 60 ms on, each friction within its cone. Where the face
+/// landed, the stuck corner's rows held its offset along the world's axes
+/// and the others' friction rows went before its push: the run switched
+/// without end at 31.65 ms.
+#[test]
+fn a_tilted_foot_lands_flat_on_a_rough_floor_and_rests() {
+    let text = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+        [[joint]]\nname = \"tilt\"\nkind = \"revolute\"\nparent = \"carriage\"\nchild = \"foot\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.01\n\
+        [[body]]\nname = \"carriage\"\nmass = 0.05\n[[body]]\nname = \"foot\"\nmass = 0.05\nixx = 1e-5\niyy = 1e-5\nizz = 1e-5\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 0.0, 1.0]\nfriction = 0.3\n\
+        [[geom]]\nname = \"sole\"\nbody = \"foot\"\nshape = \"box\"\norigin = [0.0, 0.0, 0.012]\nrpy = [0.05, 0.0, 0.0]\nhalf_extents = [0.005, 0.01, 0.01]\n\
+        [[force]]\nname = \"push\"\nbody = \"foot\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, 0.0, 0.0]\n\
+        [[schedule]]\nload = \"force.push.fz\"\npoints = [[0.0, 0.0], [0.05, -5.0]]\n";
+    let run = simulate(&spatial_from_toml(text).unwrap(), &settings(0.1, 0.002, 1e-8), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let slide = 0.01 - 0.012 * 0.05f64.cos();
+    let held = 5.0 + 100.0 * slide;
+    for (k, &t) in run.time.iter().enumerate().filter(|(_, t)| **t >= 0.06) {
+        let q = run.q(k);
+        assert!((q[0] - slide).abs() < 1e-9 && (q[1] + 0.05).abs() < 1e-9, "t = {t}: {q:?}");
+        let touching: Vec<_> = run.contacts[k].iter().filter(|c| c.state != ContactMode::Open).collect();
+        let pushes: f64 = touching.iter().map(|c| c.normal_force).sum();
+        assert!((pushes - held).abs() < 1e-6 * held, "t = {t}: {pushes} against {held}");
+        for c in &touching {
+            let f = c.friction_force.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!(f <= 0.3 * c.normal_force * (1.0 + 1e-9) + 1e-12, "t = {t}: {c:?}");
+        }
+    }
+}

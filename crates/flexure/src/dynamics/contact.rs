@@ -479,8 +479,9 @@ impl<D: Dynamics> ContactSystem<D> {
     }
 
     /// Leaves out each stuck contact's rows that depend on the rows before
-    /// them at `q`: Gram–Schmidt over $G$'s rows in order, a row whose
-    /// remainder is under $10^{-9}$ of the largest row being dependent. Its force is
+    /// them at `q` ([`ContactSystem::independent_rows`]: the pushes before
+    /// any friction, a stuck contact's rows along its normal and tangents,
+    /// [`stuck_axes`]). Its force is
     /// indeterminate (a pendulum's bob stopped on a rough floor: the gap row
     /// stops its one coordinate, and no friction is needed to hold it), and
     /// held, it would make the closures singular. A rolling contact's gap row
@@ -504,35 +505,43 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(())
     }
 
-    /// Whether each row of the closures' $G$ at `q` (the mechanism's, then
-    /// each held contact's) is independent of the rows before it:
-    /// Gram–Schmidt in order, a row whose remainder is under $10^{-9}$ of
-    /// the largest row being dependent.
+    /// Whether each row of the closures' $G$ at `q` is independent of the
+    /// rows before it, taken in the order the mechanism's, each contact's
+    /// first (its push), then the contacts' others (their friction):
+    /// Gram–Schmidt, a row whose remainder is under $10^{-9}$ of the
+    /// largest row being dependent.
     fn independent_rows(&mut self, q: &[f64]) -> Result<Vec<bool>> {
         let (n, m) = (self.dim(), self.closures());
         let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
         self.closure(q, &mut c, &mut g)?;
+        // The mechanism's rows, then each contact's normal (its first),
+        // then their tangential rows: a push goes before any friction.
+        let firsts = self.first_rows();
+        let mut order: Vec<usize> = (0..self.inner.closures()).collect();
+        order.extend(firsts.iter().copied());
+        for (h, &first) in self.held.iter().zip(&firsts) {
+            order.extend(h.slots::<D>(first).into_iter().skip(1).flatten());
+        }
         let mut basis: Vec<Vec<f64>> = Vec::new();
         // The largest row: a row all of rounding's size (a slider's motion
         // across itself, cos(π/2)) is no row.
         let row_size = |r: usize| (0..n).map(|col| g[col * m + r].powi(2)).sum::<f64>().sqrt();
         let scale = (0..m).map(row_size).fold(0.0, f64::max);
-        Ok((0..m)
-            .map(|r| {
-                let mut rest: Vec<f64> = (0..n).map(|col| g[col * m + r]).collect();
-                let size = row_size(r).max(scale);
-                for b in &basis {
-                    let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
-                    rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
-                }
-                let left = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
-                let kept = left > 1e-9 * size;
-                if kept {
-                    basis.push(rest.iter().map(|x| x / left).collect());
-                }
-                kept
-            })
-            .collect())
+        let mut independent = vec![false; m];
+        for r in order {
+            let mut rest: Vec<f64> = (0..n).map(|col| g[col * m + r]).collect();
+            let size = row_size(r).max(scale);
+            for b in &basis {
+                let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
+                rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
+            }
+            let left = rest.iter().map(|x| x * x).sum::<f64>().sqrt();
+            independent[r] = left > 1e-9 * size;
+            if independent[r] {
+                basis.push(rest.iter().map(|x| x / left).collect());
+            }
+        }
+        Ok(independent)
     }
 
     /// Each contact of `stopped` (its pair and place) that
@@ -600,7 +609,8 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             (Law::Stick { .. }, Some(l)) => {
                 let held = h.slots::<D>(row).map(|r| r.map_or(0.0, |r| l[r]));
-                let force = scaled::<D>(&vector::<D>(&held), -1.0);
+                let axes = stuck_axes::<D>(&n);
+                let force = (0..D::POINT_DIM).fold(D::Vector::default(), |f, k| f - scaled::<D>(&axes[k], held[k]));
                 let push = dot::<D>(&n, &force);
                 (push, force - scaled::<D>(&n, push))
             }
@@ -671,6 +681,15 @@ fn sliding<D: Dynamics>(delta: &[D::Vector], v: &[f64], n: &D::Vector) -> D::Vec
     velocity - scaled::<D>(n, dot::<D>(n, &velocity))
 }
 
+/// A stuck contact's row axes: the normal `n` first, then its tangents
+/// ([`tangents`]). Its pinned point's offset is held along each; where the
+/// rows are dependent (`prune`), the tangential ones go before the normal
+/// one, so a corner whose push the others' rows do not fix keeps it.
+fn stuck_axes<D: Dynamics>(n: &D::Vector) -> Vec<D::Vector> {
+    let t = tangents::<D>(&array::<D>(n), None);
+    std::iter::once(*n).chain(t[..D::POINT_DIM - 1].iter().map(vector::<D>)).collect()
+}
+
 /// A contact rolling stuck where the geom's normal is `normal`: its tangents from it.
 fn rolling<D: Dynamics>(normal: &D::Vector) -> Law {
     Law::Roll { tangents: tangents::<D>(&array::<D>(normal), None) }
@@ -722,10 +741,11 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 let body = &self.frames.bodies[p.shape.body];
                 let a = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&anchor), 1.0));
                 let offset = D::position(&p.x) - D::position(&a);
+                let axes = stuck_axes::<D>(&slope.normal);
                 for (k, r) in slots.iter().enumerate().take(D::POINT_DIM).filter_map(|(k, r)| r.map(|r| (k, r))) {
-                    c[r] = offset[k];
+                    c[r] = dot::<D>(&axes[k], &offset);
                     for col in 0..n {
-                        g[col * rows + r] = p.delta[col][k];
+                        g[col * rows + r] = dot::<D>(&axes[k], &p.delta[col]);
                     }
                 }
             } else {
