@@ -1052,3 +1052,30 @@ fn a_tilted_foot_lands_flat_on_a_rough_floor_and_rests() {
         }
     }
 }
+
+/// A box on a sprung slider (100 N/m) pushed flat onto a rough floor by
+/// 5 N, its face 1 mm above the floor unloaded, let go from its
+/// equilibrium: it rests there, the slide at −1 mm (each to 1e-12 m; the
+/// statics anchored its stuck corner 1e-10 m inside the floor where it
+/// clamped the anchor's interpolation) and the pushes summing to 5 N less
+/// the spring's pull (to 1e-9 of it). The equilibrium holds one corner (the
+/// others rest at zero gap); held from the start, all four stuck made the
+/// run switch without end at t = 0.
+#[test]
+fn a_box_resting_flat_stays_at_rest() {
+    let text = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"foot\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+        [[body]]\nname = \"foot\"\nmass = 0.01\ncom = [0.0, 0.0, 0.011]\nixx = 1e-6\niyy = 1e-6\nizz = 1e-6\n\
+        [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 0.0, 1.0]\nfriction = 0.3\n\
+        [[geom]]\nname = \"sole\"\nbody = \"foot\"\nshape = \"box\"\norigin = [0.0, 0.0, 0.011]\nhalf_extents = [0.005, 0.01, 0.01]\n\
+        [[force]]\nname = \"push\"\nbody = \"foot\"\nat = [0.0, 0.0, 0.0]\nforce = [0.0, 0.0, -5.0]\n";
+    let run = simulate(&spatial_from_toml(text).unwrap(), &settings(0.05, 0.01, 1e-8), Start::Equilibrium).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    // The equilibrium: its stuck corner anchored where its gap is zero.
+    let start = run.q(0)[0];
+    assert!((start + 0.001).abs() < 1e-12, "{start}");
+    for (k, &t) in run.time.iter().enumerate() {
+        assert!((run.q(k)[0] - start).abs() < 1e-12, "t = {t}: {:?}", run.q(k));
+        let pushes: f64 = run.contacts[k].iter().map(|c| c.normal_force).sum();
+        assert!((pushes - (5.0 + 100.0 * start)).abs() < 1e-9 * 4.9, "t = {t}: {pushes}");
+    }
+}

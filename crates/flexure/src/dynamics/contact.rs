@@ -243,7 +243,7 @@ impl<D: Dynamics> ContactSystem<D> {
                     false => Law::Stick { anchor: system.anchor(&h, q0)? },
                 };
             }
-            system.held.push(h);
+            system.hold(h, q0)?;
         }
         for k in 0..system.pairs.len() {
             let pair = system.pairs[k];
@@ -260,7 +260,7 @@ impl<D: Dynamics> ContactSystem<D> {
                 // step if it pulls), stuck unless it slides.
                 let mut h = system.touch(&pair, low.s, q0)?;
                 h.law = system.starting_law(&h, &low, (q0, v0))?;
-                system.held.push(h);
+                system.hold(h, q0)?;
             }
         }
         system.prune(q0)?;
@@ -503,6 +503,26 @@ impl<D: Dynamics> ContactSystem<D> {
             }
         }
         Ok(())
+    }
+
+    /// Holds `h` at `q` if one of its rows adds a direction to the rows
+    /// held (a rolling one, its gap row, which `prune` never leaves out),
+    /// and says whether it did. One that adds none (a box's face landing
+    /// flat on a body that one corner already holds) would make the
+    /// closures singular: it stays open, its gap held at zero by the others.
+    fn hold(&mut self, h: Held, q: &[f64]) -> Result<bool> {
+        self.held.push(h);
+        let first = self.first_rows()[self.held.len() - 1];
+        let independent = self.independent_rows(q)?;
+        let slots = h.slots::<D>(first);
+        let adds = match h.law {
+            Law::Roll { .. } => slots[0].is_some_and(|r| independent[r]),
+            _ => slots.iter().flatten().any(|&r| independent[r]),
+        };
+        if !adds {
+            self.held.pop();
+        }
+        Ok(adds)
     }
 
     /// Whether each row of the closures' $G$ at `q` is independent of the
@@ -936,25 +956,10 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
         }
-        // A new contact none of whose rows adds a direction to the rows
-        // before it (a box's face landing flat on a body that one corner
-        // already holds) would make the closures singular: it stays open,
-        // its gap held at zero by the others. A rolling one needs its gap
-        // row, which `prune` never leaves out.
         for h in added {
-            self.held.push(h);
-            let first = self.first_rows()[self.held.len() - 1];
-            let independent = self.independent_rows(q)?;
-            let slots = h.slots::<D>(first);
-            let adds = match h.law {
-                Law::Roll { .. } => slots[0].is_some_and(|r| independent[r]),
-                _ => slots.iter().flatten().any(|&r| independent[r]),
-            };
-            if !adds {
-                self.held.pop();
+            if !self.hold(h, q)? {
                 continue;
             }
-            let h = &self.held[self.held.len() - 1];
             let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
             let state = if stuck { ContactMode::Stick } else { ContactMode::Slip };
             change(&mut self.changes, &self.mechanism, &h.pair, state);

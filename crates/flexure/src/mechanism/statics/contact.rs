@@ -471,9 +471,9 @@ impl<D: Statics> ContactKkt<'_, D> {
         let here = self.local_point(c);
         let anchor = match event {
             Event::Touch { point: there, gap: inside, .. } => {
-                // Where the gap crosses zero between here and there (here, where it does not change).
+                // Where the gap is zero on the line through here and there (here, where it does not change).
                 let change = self.jets[c].gap - inside;
-                let t = if change != 0.0 { (self.jets[c].gap / change).clamp(0.0, 1.0) } else { 0.0 };
+                let t = if change != 0.0 { self.jets[c].gap / change } else { 0.0 };
                 std::array::from_fn(|i| here[i] + t * (there[i] - here[i]))
             }
             _ => here,
