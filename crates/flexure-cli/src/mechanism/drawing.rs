@@ -42,7 +42,6 @@
 pub use super::projection::View;
 use super::scene::{Scene, Snapshot, Symbol};
 use super::solids;
-use flexure::mechanism::contact::GeomShape;
 use flexure_chart::{
     Anchor, COLORS, Chart, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Series, Stroke,
     Swatch, chart_figure, ramp,
@@ -658,18 +657,8 @@ pub fn figure(
     let solids: Vec<V> = rest
         .geoms
         .iter()
-        .filter_map(|g| {
-            let bound = match g.shape {
-                GeomShape::Plane { .. } => return None,
-                GeomShape::Ball { radius } => radius,
-                GeomShape::Capsule { half_length, radius } => half_length + radius,
-                GeomShape::Box { half_extents } => half_extents.norm(),
-                GeomShape::Cylinder { half_length, radius } => half_length.hypot(radius),
-            };
-            let c = g.frame.translation.vector;
-            Some((0..3).flat_map(move |i| [c - V::ith(i, bound), c + V::ith(i, bound)]))
-        })
-        .flatten()
+        .filter_map(solids::bounding_ball)
+        .flat_map(|(c, r)| (0..3).flat_map(move |i| [c - V::ith(i, r), c + V::ith(i, r)]))
         .collect();
     let pts: Vec<&V> = rest
         .links

@@ -117,6 +117,18 @@ fn named(points: &[(f64, f64)], name: &str, color: Color) -> Mark {
     Mark::Label { at: (0.5 * (lo + hi), bottom), offset: (0.0, 16.0), text: name.into(), color, anchor: Anchor::Middle }
 }
 
+/// A bounded solid's bounding ball (world): its centre and radius; none for a plane.
+pub(super) fn bounding_ball(solid: &Solid) -> Option<(V, f64)> {
+    let radius = match solid.shape {
+        GeomShape::Plane { .. } => return None,
+        GeomShape::Ball { radius } => radius,
+        GeomShape::Capsule { half_length, radius } => half_length + radius,
+        GeomShape::Box { half_extents } => half_extents.norm(),
+        GeomShape::Cylinder { half_length, radius } => half_length.hypot(radius),
+    };
+    Some((solid.frame.translation.vector, radius))
+}
+
 /// The geoms on the ground, grey, each named: drawn once, under every shape.
 pub(super) fn ground_geoms(scene: &Scene, rest: &Snapshot, view: View, sizes: &Sizes) -> Vec<Mark> {
     let (mut solids, mut names) = (Vec::new(), Vec::new());

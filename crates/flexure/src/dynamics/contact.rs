@@ -74,8 +74,8 @@ use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
     Contact, ContactMode, EDGES_CROSS, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, column, corner,
-    deepest_edge, dot, edges_cross, friction, gap_slope, length, material_jet, minima, named, on_ball, on_flexure,
-    pairs, point_jet, scaled, tangents, vector,
+    crossed_edges, dot, friction, gap_slope, length, material_jet, may_cross, minima, named, on_flexure, pairs,
+    point_jet, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -344,7 +344,7 @@ impl<D: Dynamics> ContactSystem<D> {
         let local = |body: usize| array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[body]), &slope.point)));
         let on = match h.s {
             Some(s) => on_flexure::<D>(s, &p.frame(), &slope.normal, p.half[0]),
-            None => on_ball(local(corner(m, &h.pair)?.round.body)),
+            None => corner(m, &h.pair)?.material(&f.bodies, &slope.point),
         };
         Ok((on, local(p.shape.body)))
     }
@@ -453,29 +453,16 @@ impl<D: Dynamics> ContactSystem<D> {
 
     /// An error naming the first pair of two geoms one of whose edges
     /// crosses the other past the gap's band at `q`, where no corner
-    /// touches ([`edges_cross`]): edge across edge is not solved in space.
+    /// touches ([`crossed_edges`]): edge across edge is not solved in space.
     fn edges_apart(&mut self, q: &[f64]) -> Result<()> {
-        let m = &self.mechanism;
-        let watched: Vec<(Pair, usize)> = self
-            .pairs
-            .iter()
-            .filter_map(|p| match p.part {
-                Toucher::Geom(h) if p.corner == 0 && edges_cross(&m.geoms[p.geom].shape, &m.geoms[h].shape) => {
-                    Some((*p, h))
-                }
-                _ => None,
-            })
-            .collect();
-        if watched.is_empty() {
+        if !self.pairs.iter().any(|p| may_cross(&self.mechanism, p)) {
             return Ok(());
         }
         self.frames_at(q);
-        for (pair, h) in watched {
-            if deepest_edge(&self.mechanism, &self.frames.bodies, pair.geom, h) < -self.gap_band {
-                return Err(Error::invalid("geom", named(&self.mechanism, &pair), EDGES_CROSS));
-            }
+        match crossed_edges(&self.mechanism, &self.frames.bodies, &self.pairs, self.gap_band) {
+            Some(pair) => Err(Error::invalid("geom", named(&self.mechanism, &pair), EDGES_CROSS)),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// Leaves out each stuck contact's rows that depend on the rows before

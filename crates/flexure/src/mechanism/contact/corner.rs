@@ -126,6 +126,16 @@ pub fn edges_cross<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> bool {
     D::POINT_DIM == 3 && !points(a).is_empty() && !points(b).is_empty()
 }
 
+/// Which two geoms touch ([`corners`]), as refusals say it.
+pub(crate) fn touching<D: Dimension>() -> &'static str {
+    match D::POINT_DIM {
+        2 => "two geoms touch only where one is a circle, or neither is a plane (two planes never part)",
+        _ => {
+            "two geoms touch only where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
+        }
+    }
+}
+
 /// The number of corners of geoms `g` and `h` of `m` (1 where their gap
 /// is not found, so that the pair is kept and refused by name where it is used).
 pub(crate) fn count<D: Dimension>(m: &Mechanism<D>, g: usize, h: usize) -> usize {
@@ -145,6 +155,15 @@ pub(crate) struct Corner<'m, D: Touch> {
     pub radius: f64,
 }
 
+impl<D: Touch> Corner<'_, D> {
+    /// The material point of its geom at `point` (world), its body at
+    /// `bodies[round.body]`, as [`super::material_jet`] takes it.
+    pub fn material(&self, bodies: &[D::Pose], point: &D::Point) -> super::Material {
+        let local = D::act(&D::inverse(&bodies[self.round.body]), point);
+        super::on_ball(super::array::<D>(&D::position(&local)))
+    }
+}
+
 /// The corner of `pair` of `m` (its [`Pair::corner`]th, [`corners`]); an
 /// error naming the pair where two geoms' gap is not found, or where the
 /// pair is no pair of two geoms.
@@ -153,17 +172,7 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
         return Err(Error::invalid("pair", named(m, pair), "is not a pair of two geoms"));
     };
     let (geom, other) = (&m.geoms[pair.geom], &m.geoms[h]);
-    let refused = || {
-        Error::invalid(
-            "pair",
-            named(m, pair),
-            if D::POINT_DIM == 2 {
-                "the gap of two geoms is found where one is a circle, or neither is a plane (two planes never part)"
-            } else {
-                "the gap of two geoms is found where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
-            },
-        )
-    };
+    let refused = || Error::invalid("pair", named(m, pair), touching::<D>());
     let found = corners(&geom.shape, &other.shape).ok_or_else(refused)?;
     let c = found.get(pair.corner).ok_or_else(refused)?;
     let (round, flat) = if c.of_part { (other, geom) } else { (geom, other) };
@@ -194,6 +203,32 @@ fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {
         GeomShape::Ball { radius } => vec![(D::Vector::default(), D::Vector::default(), *radius)],
         _ => Vec::new(),
     }
+}
+
+/// Whether `pair` is two geoms that may meet edge across edge
+/// ([`edges_cross`]), at its first corner (one for the two).
+pub(crate) fn may_cross<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> bool {
+    match pair.part {
+        Toucher::Geom(h) => pair.corner == 0 && edges_cross(&m.geoms[pair.geom].shape, &m.geoms[h].shape),
+        Toucher::Flexure(_) => false,
+    }
+}
+
+/// The first pair of `pairs` whose two geoms may meet edge across edge
+/// ([`may_cross`]) and do, an edge dipping into the other deeper than
+/// `depth` (m) below its own corners ([`deepest_edge`]), bodies at `bodies`:
+/// where the solve and the motion stop.
+pub(crate) fn crossed_edges<D: Touch>(
+    m: &Mechanism<D>,
+    bodies: &[D::Pose],
+    pairs: &[Pair],
+    depth: f64,
+) -> Option<Pair> {
+    let dips = |p: &Pair| match p.part {
+        Toucher::Geom(h) => deepest_edge(m, bodies, p.geom, h) < -depth,
+        Toucher::Flexure(_) => false,
+    };
+    pairs.iter().copied().find(|p| may_cross(m, p) && dips(p))
 }
 
 /// How far any edge of geom `a` (a box's, a capsule's segment) dips into

@@ -30,7 +30,7 @@ mod width;
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
-pub(crate) use corner::{Corner, EDGES_CROSS, corner, deepest_edge};
+pub(crate) use corner::{Corner, EDGES_CROSS, corner, crossed_edges, deepest_edge, may_cross, touching};
 pub use corner::{CornerOf, corners, edges_cross};
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};

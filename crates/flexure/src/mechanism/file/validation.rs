@@ -3,7 +3,7 @@
 use super::dimension::FileDimension;
 use super::document::{Numbers, Source, Span};
 use super::{JointState, MAX_STIFFNESS_RATIO, Mechanism, Result};
-use crate::mechanism::contact::{GeomShape, Toucher, corners, deepest_edge, gap, pairs};
+use crate::mechanism::contact::{GeomShape, Toucher, corners, deepest_edge, gap, pairs, touching};
 
 /// The joints' diagonal stiffnesses at rest (`joints`) span at most [`MAX_STIFFNESS_RATIO`].
 pub(super) fn check_stiffness_ratio<D: FileDimension>(
@@ -100,16 +100,12 @@ pub(super) fn check_geoms_clear<D: FileDimension>(
                     return src.fail(
                         &places[h.max(pair.geom)],
                         format!(
-                            "geom {:?} ({}) and geom {:?} ({}) may touch, and two geoms touch only {}: name one in the other's `exclude`",
+                            "geom {:?} ({}) and geom {:?} ({}) may touch, and {}: name one in the other's `exclude`",
                             geom.name,
                             geom.shape.name(),
                             other.name,
                             other.shape.name(),
-                            if D::POINT_DIM == 2 {
-                                "where one is a circle, or neither is a plane"
-                            } else {
-                                "where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
-                            }
+                            touching::<D>()
                         ),
                     );
                 }

@@ -74,9 +74,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, EDGES_CROSS, GapJet, Material, Pair, PointJet, Toucher, array, corner, deepest_edge, dot,
-    edges_cross, gap_jet, length, material_jet, minima, named, on_ball, on_flexure, pairs, point_jet, scaled, tangents,
-    touched, turned, vector,
+    Contact, ContactMode, EDGES_CROSS, GapJet, Material, Pair, PointJet, Toucher, array, corner, crossed_edges, dot,
+    gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents, touched, turned,
+    vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -346,9 +346,7 @@ impl<D: Statics> ContactKkt<'_, D> {
         let jet = &self.jets[c];
         match (t.s(), corner(m, &t.pair)) {
             (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
-            (None, Ok(c)) => {
-                on_ball(array::<D>(&D::position(&D::act(&D::inverse(&self.frames.bodies[c.round.body]), &jet.point))))
-            }
+            (None, Ok(c)) => c.material(&self.frames.bodies, &jet.point),
             (None, Err(_)) => [0.0; 4],
         }
     }
@@ -929,7 +927,7 @@ enum Event {
     /// along its geom ([`FLAT_CURVATURE`]): distributed contact.
     LiesAlong(usize),
     /// An edge of one of the pair's two geoms crosses the other, where no
-    /// corner touches ([`edges_cross`]).
+    /// corner touches ([`crate::mechanism::contact::edges_cross`]).
     EdgesCross(Pair),
 }
 
@@ -1035,8 +1033,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                     _ => {
                         // A box's sharp corner is one material point, as a flexure's bare end.
                         let round = corner(m, pair)?;
-                        let on = D::act(&D::inverse(&problem.frames.bodies[round.round.body]), &low.point);
-                        (round.radius == 0.0, false, on_ball(array::<D>(&D::position(&on))))
+                        (round.radius == 0.0, false, round.material(&problem.frames.bodies, &low.point))
                     }
                 };
                 let normal = array::<D>(&low.normal);
@@ -1054,13 +1051,8 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         }
     }
     // Edge across edge: no corner touches, and an edge is inside the other geom.
-    for pair in all.iter().filter(|p| p.corner == 0) {
-        let Toucher::Geom(h) = pair.part else { continue };
-        if edges_cross(&m.geoms[pair.geom].shape, &m.geoms[h].shape)
-            && deepest_edge(m, &problem.frames.bodies, pair.geom, h) < -2.0 * GAP_TOLERANCE * length
-        {
-            return Ok(Some(Event::EdgesCross(*pair)));
-        }
+    if let Some(pair) = crossed_edges(m, &problem.frames.bodies, all, 2.0 * GAP_TOLERANCE * length) {
+        return Ok(Some(Event::EdgesCross(pair)));
     }
     if !problem.stable(x, lambda, &jac) {
         // Flat against the geom, with no slope along it at an end: the
@@ -1499,9 +1491,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
                 let anchor = D::position(&D::act(&D::inverse(body), &jet.point));
                 let on = match (c.s, corner(m, &c.pair)) {
                     (Some(s), _) => on_flexure::<D>(s, &jet.frame, &jet.normal, jet.half),
-                    (None, Ok(k)) => {
-                        on_ball(array::<D>(&D::position(&D::act(&D::inverse(&f.bodies[k.round.body]), &jet.point))))
-                    }
+                    (None, Ok(k)) => k.material(&f.bodies, &jet.point),
                     (None, Err(e)) => return Err(e),
                 };
                 let p = material_jet(m, &f, &s.q, &c.pair, &on, anchor)?;
@@ -1581,6 +1571,7 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mechanism::contact::on_ball;
     use crate::space::Planar;
 
     /// The problem of `m` with no contact touching, fitted from no load to its own.
