@@ -162,28 +162,68 @@ fn a_spatial_lid_rests_on_its_leading_corner_on_a_floor_or_a_table() {
     }
 }
 
-/// In space two boxes may meet edge across edge, where no corner touches:
-/// the lid's box (not turned) comes down onto a rail, a box 4 mm wide
-/// across it. The rail's outer top edge, $(x, 0.092, -0.03)$, meets the
-/// box's lower face $z = -0.005$ (the lid's frame) where
-/// $-0.092\sin\theta - 0.03\cos\theta = -0.005$, between the box's
-/// corners and far from the rail's: the solve stops there, naming the two,
-/// at the load fraction $\lambda = -k\theta/(F\,0.1\cos\theta)$ (the
-/// free lid's balance), to the printed 1e-4 %. The motion stops there too.
+/// In space two boxes may meet edge across edge, where no corner touches
+/// (`mechanism/contact/crossing.rs`). The lid's box comes down onto a
+/// rail, a box 4 mm wide across it whose outer top edge is
+/// $(x, y_0, z_0) = (x, 0.092, -0.03)$. In the lid's frame that line is at height
+/// $z = -y_0\sin\theta + z_0\cos\theta$ and $y_l = y_0\cos\theta + z_0\sin\theta$
+/// along the lid, and it pushes along the lid's normal, so about the hinge
+/// $N = (k\theta + F\,0.1\cos\theta)/y_l$. The box turned 45° about the lid's
+/// $y$ meets it with its lowest edge, $z = -(0.01 + 0.005)/\sqrt2$, one edge
+/// across the other; not turned, with its lower face $z = -0.005$ (two of
+/// its edges across the rail's, one push shared between them). A rod
+/// across the lid (a capsule of radius $r_1$ = 3 mm along its $y$) meets
+/// the rail's edge at $z = -r_1$, and a rod along $x$ (radius $r_2$ = 8 mm, its
+/// axis at $z_0 = -0.03 - r_2$) at $z = -r_1 - r_2$. The angle to 1e-12 rad and
+/// the total push to 1e-9 relative; the point on the rail's edge, or on
+/// the lower rod's surface, to 1e-12 m.
 #[test]
-fn edge_across_edge_in_space_is_stopped_where_it_begins() {
-    let block = "origin = [0.0, 0.08, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+fn a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space() {
     let rail = "shape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]";
-    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.005);
-    let lambda = -0.5 * theta / (20.0 * 0.1 * theta.cos());
-    let text = lid3(block, rail, 20.0);
-    let e = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap_err().to_string();
-    let named = "geom \"block\" (box) and geom \"below\" (box) on body \"ground\" (at ";
-    assert!(e.contains(named) && e.contains("meet edge across edge, where no corner touches"), "{e}");
-    let at: f64 = e[e.find(named).unwrap() + named.len()..].split(' ').next().unwrap().parse().unwrap();
-    assert!((at - 100.0 * lambda).abs() < 1e-4, "{at} % against {} %", 100.0 * lambda);
-    // Given mass and pushed from rest, the lid swings down onto the rail.
-    let moving = format!("{text}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n");
+    let rod = "shape = \"capsule\"\norigin = [0.0, 0.092, -0.038]\nhalf_length = 0.1\nradius = 0.008";
+    let turned = "shape = \"box\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let flat = "shape = \"box\"\norigin = [0.0, 0.08, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let across = "shape = \"capsule\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 1.5707963267948966]\nhalf_length = 0.02\nradius = 0.003";
+    let cases = [
+        (turned, rail, -0.03, -0.015 * 0.5f64.sqrt(), 1),
+        (flat, rail, -0.03, -0.005, 2),
+        (across, rail, -0.03, -0.003, 1),
+        (across, rod, -0.038, -0.011, 1),
+    ];
+    for (block, below, z0, low, count) in cases {
+        let theta = root(|t| -0.092 * t.sin() + z0 * t.cos() - low);
+        let arm = 0.092 * theta.cos() + z0 * theta.sin();
+        let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / arm;
+        let text = lid3(block, below, 20.0).replacen("shape = \"box\"\n", "", 1);
+        let s = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap();
+        assert!((s.q[0] - theta).abs() < 1e-12, "{block}: {} against {theta}", s.q[0]);
+        assert!((1..=count).contains(&s.contacts.len()), "{block}: {:?}", s.contacts);
+        let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
+        assert!((total - push).abs() < 1e-9 * push, "{block}: {total} against {push}");
+        // Along the lid's normal, out of the rail or the rod, on its surface.
+        let (sin, cos, r2) = (theta.sin(), theta.cos(), -0.03 - z0);
+        for k in &s.contacts {
+            let point = [0.092 - r2 * sin, z0 + r2 * cos];
+            assert!((k.point[1] - point[0]).abs() < 1e-12 && (k.point[2] - point[1]).abs() < 1e-12, "{block}: {k:?}");
+            assert!((k.normal[1] + sin).abs() < 1e-12 && (k.normal[2] - cos).abs() < 1e-12, "{block}: {k:?}");
+        }
+        if block == turned {
+            assert!((s.contacts[0].point[0].abs() - 0.005 * 0.5f64.sqrt()).abs() < 1e-12, "{:?}", s.contacts[0]);
+        }
+    }
+}
+
+/// Given mass and pushed from rest, the lid of
+/// [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`] swings down and lands
+/// edge across edge on the rail, and rests where the statics put it (its
+/// closed form): the angle to 1e-7 rad, the push to 1e-6 relative.
+#[test]
+fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
+    let rail = "shape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]";
+    let turned = "origin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.015 * 0.5f64.sqrt());
+    let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
+    let moving = format!("{}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n", lid3(turned, rail, 20.0));
     let settings = flexure::dynamics::simulation::SimulationSettings {
         motion: flexure::dynamics::integrate::MotionSettings {
             duration: 0.2,
@@ -200,12 +240,13 @@ fn edge_across_edge_in_space_is_stopped_where_it_begins() {
         flexure::dynamics::simulation::Start::Rest,
     )
     .unwrap();
-    let stopped = run.stopped.as_ref().map(|e| e.to_string()).expect("stopped");
-    assert!(
-        stopped.contains("geom \"block\" (box) and geom \"below\" (box)") && stopped.contains("edge across edge"),
-        "{stopped}"
-    );
-    assert!(run.q(run.time.len() - 1)[0] > theta - 1e-3, "{:?}", run.q(run.time.len() - 1));
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let last = run.time.len() - 1;
+    assert!((run.q(last)[0] - theta).abs() < 1e-7, "{:?} against {theta}", run.q(last));
+    let k: Vec<_> = run.contacts[last].iter().filter(|k| k.state != ContactMode::Open).collect();
+    assert_eq!(k.len(), 1, "{k:?}");
+    assert!((k[0].normal_force - push).abs() < 1e-6 * push, "{} against {push}", k[0].normal_force);
+    assert!((k[0].point[1] - 0.092).abs() < 1e-9 && (k[0].point[2] + 0.03).abs() < 1e-9, "{:?}", k[0]);
 }
 
 /// A box's sharp corner is one material point: stuck, it is pinned where

@@ -76,7 +76,8 @@ fn a_geom_becomes_its_shape_frame_and_friction() {
 
 /// Two geoms touch at corners (`corners`): a plane and a box at the box's
 /// corners, a plane and a capsule at its end balls, and two boxes or
-/// capsules at each one's corners against the other. Two planes, and in
+/// capsules at each one's corners against the other, and in space also at
+/// each pair of their edges. Two planes, and in
 /// space a cylinder and anything but a sphere (which meet along its rim),
 /// are refused at the later geom's `shape`, naming both.
 #[test]
@@ -105,9 +106,10 @@ fn two_geoms_touch_at_their_corners_or_are_refused_by_name() {
         (2, capsule, capsule, 4),
         (3, plane3, box3, 8),
         (3, plane3, capsule, 2),
-        (3, box3, box3, 16),
-        (3, box3, capsule, 10),
-        (3, capsule, capsule, 4),
+        // In space, with each pair of their edges after the corners: 12 × 12, 12 × 1, 1 × 1.
+        (3, box3, box3, 16 + 144),
+        (3, box3, capsule, 10 + 12),
+        (3, capsule, capsule, 4 + 1),
     ] {
         let text = geoms(d, a, b);
         // One column for the two geoms, a pair for each corner.

@@ -285,3 +285,104 @@ fn a_sections_surface_point_turns_with_it() {
     let alpha: Vec<f64> = (0..m.joints[1].kind.joint().dof()).map(|_| 5.0 * rng.next()).collect();
     points::<flexure::space::Planar>(f, &alpha, 0.07, [0.0003, -0.0005, 0.0]);
 }
+
+/// Two bars crossing, each on its own hinge (the second hinged on the
+/// first's body, so both turn with the first hinge), and a rod (a capsule)
+/// across the lower one: where the pair of two geoms nearest each other
+/// is two edges crossing (`mechanism/contact/crossing.rs`), its gap is the
+/// lines' signed distance, whose normal turns with both bodies. Its
+/// derivatives against central differences as above, at seeded states
+/// near the crossing (each fails without the normal's turn in the
+/// Hessian: 1e-6 of the largest).
+#[test]
+fn two_edges_crossing_gap_derivatives_match_differences() {
+    let m = spatial_from_toml(
+        r#"
+dimension = 3
+[[joint]]
+name = "lower"
+kind = "revolute"
+parent = "ground"
+child = "base"
+axis = [0.2, 1.0, 0.3]
+stiffness = 1.0
+[[joint]]
+name = "upper"
+kind = "revolute"
+parent = "base"
+child = "top"
+origin = [0.0, 0.0, 0.05]
+axis = [1.0, 0.1, -0.2]
+stiffness = 1.0
+[[geom]]
+name = "bar"
+body = "base"
+shape = "box"
+origin = [0.0, 0.0, 0.02]
+rpy = [0.7, 0.0, 0.0]
+half_extents = [0.05, 0.004, 0.004]
+[[geom]]
+name = "beam"
+body = "top"
+shape = "box"
+origin = [0.0, 0.0, -0.0194]
+rpy = [0.6, 0.0, 1.5]
+half_extents = [0.05, 0.004, 0.003]
+[[geom]]
+name = "rod"
+body = "ground"
+shape = "capsule"
+origin = [0.0, 0.0, 0.009]
+rpy = [0.0, 0.0, 1.4]
+half_length = 0.04
+radius = 0.0031
+"#,
+    )
+    .unwrap();
+    let (mut rng, n, h) = (Rng(0x5851_F42D_4C95_7F2D), m.dof(), 1e-6);
+    let all = pairs(&m);
+    let mut checked = 0;
+    for _ in 0..12 {
+        let q: Vec<f64> = (0..n).map(|_| 0.02 * rng.next()).collect();
+        let f = frames(&m, &q);
+        for parts in [(0, 1), (0, 2)] {
+            // The pair of these two geoms nearest: two edges where it is past the corners.
+            let of: Vec<usize> =
+                (0..all.len()).filter(|&p| (all[p].geom, all[p].part) == (parts.0, Toucher::Geom(parts.1))).collect();
+            let corners =
+                flexure::mechanism::contact::corners(&m.geoms[parts.0].shape, &m.geoms[parts.1].shape).unwrap().len();
+            let gap = |p: usize| flexure::mechanism::contact::gap(&m, &q, &f.bodies, &all[p]).unwrap().gap;
+            let p = *of.iter().min_by(|a, b| gap(**a).total_cmp(&gap(**b))).unwrap();
+            if all[p].corner < corners {
+                continue;
+            }
+            let at = jet(&m, &q, p, None);
+            let first = at.gradient.iter().fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+            let second = at.hessian.iter().fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+            for c in 0..n {
+                let (mut up, mut down) = (q.clone(), q.clone());
+                up[c] += h;
+                down[c] -= h;
+                let (a, b) = (jet(&m, &up, p, None), jet(&m, &down, p, None));
+                let fd = (a.gap - b.gap) / (2.0 * h);
+                assert!(
+                    (at.gradient[c] - fd).abs() <= 1e-6 * first,
+                    "pair {p}: dg/dq{c} {} against {fd}",
+                    at.gradient[c]
+                );
+                for r in 0..n {
+                    let fd = (a.gradient[r] - b.gradient[r]) / (2.0 * h);
+                    let e = at.hessian[(r, c)];
+                    assert!((e - fd).abs() <= 1e-6 * second, "pair {p}: d2g/dq{r}dq{c} {e} against {fd}");
+                }
+                for i in 0..3 {
+                    let fd = (a.normal[i] - b.normal[i]) / (2.0 * h);
+                    let e = at.normal_jacobian[c][i];
+                    assert!((e - fd).abs() <= 1e-6 * second.max(1.0), "pair {p}: dn{i}/dq{c} {e} against {fd}");
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 12, "{checked} edge pairs checked");
+}

@@ -73,7 +73,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, EDGES_CROSS, Gap, GapSlope, Material, Pair, PointJet, Toucher, array, column, corner,
+    Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, column, corner,
     crossed_edges, dot, friction, gap_slope, length, material_jet, may_cross, minima, named, on_flexure, pairs,
     point_jet, scaled, tangents, vector,
 };
@@ -300,9 +300,9 @@ impl<D: Dynamics> ContactSystem<D> {
             let p = point_jet(m, &self.frames, q, pair, s, None)?;
             h.rolls = match pair.part {
                 Toucher::Flexure(_) => p.half[0] != 0.0 || s.is_some_and(|s| s > 0.0 && s < h.length),
-                // A box's sharp corner is one material point: it does not roll.
+                // A box's sharp corner, or a point of an edge crossing another, is one material point: it does not roll.
                 Toucher::Geom(h) => {
-                    corner(m, pair)?.radius > 0.0 && !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body)
+                    !corner(m, pair)?.sharp() && !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body)
                 }
             };
             h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
@@ -451,16 +451,16 @@ impl<D: Dynamics> ContactSystem<D> {
         })
     }
 
-    /// An error naming the first pair of two geoms one of whose edges
-    /// crosses the other past the gap's band at `q`, where no corner
-    /// touches ([`crossed_edges`]): edge across edge is not solved in space.
+    /// An error naming the first pair of two geoms one of whose edges went
+    /// through the other past the gap's band at `q` between two steps, with
+    /// none of their gaps negative ([`crossed_edges`]).
     fn edges_apart(&mut self, q: &[f64]) -> Result<()> {
         if !self.pairs.iter().any(|p| may_cross(&self.mechanism, p)) {
             return Ok(());
         }
         self.frames_at(q);
         match crossed_edges(&self.mechanism, &self.frames.bodies, &self.pairs, self.gap_band) {
-            Some(pair) => Err(Error::invalid("geom", named(&self.mechanism, &pair), EDGES_CROSS)),
+            Some(pair) => Err(Error::invalid("geom", named(&self.mechanism, &pair), PASSED_THROUGH)),
             None => Ok(()),
         }
     }
@@ -667,6 +667,11 @@ impl<D: Dynamics> ContactSystem<D> {
         let none = D::Vector::default();
         for pair in self.pairs.clone() {
             if self.held.iter().any(|h| h.pair == pair) {
+                continue;
+            }
+            // Two edges are a contact where they cross within both, facing each other.
+            let crossing = corner(&self.mechanism, &pair).ok().and_then(|c| c.crossing(&self.frames.bodies));
+            if crossing.is_some_and(|k| k.turn.is_none()) {
                 continue;
             }
             if let Some(low) = self.open_least(&pair, q)? {
@@ -880,6 +885,12 @@ impl<D: Dynamics> System for ContactSystem<D> {
                     (r.push / band, friction)
                 }
             };
+        }
+        // Two edges whose crossing leaves either edge are let go: the corner there takes the touch.
+        for (i, h) in self.held.iter().enumerate() {
+            if let Some(k) = corner(&self.mechanism, &h.pair).ok().and_then(|k| k.crossing(&self.frames.bodies)) {
+                out[2 * i] = out[2 * i].min(k.margin / self.gap_band);
+            }
         }
         let a = 2 * self.held.len();
         for k in 0..self.pairs.len() {

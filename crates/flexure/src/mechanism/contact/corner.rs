@@ -13,16 +13,14 @@
 //! These are exact where the two touch at a corner of one of them: a
 //! plane first touches a convex solid at a corner, and in the plane two
 //! convex outlines (a capsule is its segment's, rounded) are nearest at a
-//! corner of one of them, so holding each corner's gap $\ge 0$ keeps two
-//! that start apart apart (two bars crossed have no corner inside the
-//! other: the file's check at rest also runs each one's edges,
-//! [`deepest_edge`]). In space two boxes, or a box and a capsule, or two
-//! capsules, may also meet edge across edge, where no corner touches:
-//! [`edges_cross`] says which pairs may, and the solve and the motion
-//! watch their edges ([`deepest_edge`]) and stop, naming the pair, where
-//! one crosses the other. A cylinder's rim is no finite set of points: a
+//! corner of one of them. In space two boxes, or a box and a capsule, or
+//! two capsules, may also meet edge across edge, where no corner touches:
+//! their pairs of edges are watched too ([`edges_cross`]), after the
+//! corners, each as a corner that moves along its edge
+//! ([`super::crossing`]). A cylinder's rim is no finite set of points: a
 //! cylinder and anything but a sphere is refused by name, as are two planes.
 
+use super::crossing::{Crossing, crossing, ridges};
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named, vector};
 use crate::error::{Error, Result};
 use crate::mechanism::{Dimension, Mechanism};
@@ -106,11 +104,9 @@ fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
     }
 }
 
-/// Why two geoms that meet edge across edge are stopped at ([`edges_cross`]).
-pub(crate) const EDGES_CROSS: &str = "meet edge across edge, where no corner touches, which is not solved in space: make one of them a sphere, or turn them to meet at a corner";
-
 /// Whether two shapes that touch at corners may also meet edge across
-/// edge, where no corner touches: two of box and capsule, in space.
+/// edge, where no corner touches: two of box and capsule, in space. Their
+/// pairs of edges are then watched after their corners (`mechanism/contact/crossing.rs`).
 ///
 /// # Example
 /// ```
@@ -138,8 +134,18 @@ pub(crate) fn touching<D: Dimension>() -> &'static str {
 
 /// The number of corners of geoms `g` and `h` of `m` (1 where their gap
 /// is not found, so that the pair is kept and refused by name where it is used).
+/// Their pairs of edges ([`super::crossing`]) follow their corners.
 pub(crate) fn count<D: Dimension>(m: &Mechanism<D>, g: usize, h: usize) -> usize {
-    corners(&m.geoms[g].shape, &m.geoms[h].shape).map_or(1, |c| c.len())
+    let (a, b) = (&m.geoms[g].shape, &m.geoms[h].shape);
+    corners(a, b).map_or(1, |c| c.len()) + crossings(a, b)
+}
+
+/// The number of pairs of edges of shapes `a` and `b` that may cross ([`edges_cross`]).
+fn crossings<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> usize {
+    match edges_cross(a, b) {
+        true => ridges(a).len() * ridges(b).len(),
+        false => 0,
+    }
 }
 
 /// A corner of a pair of two geoms, placed: the geom it is of, the geom
@@ -153,6 +159,9 @@ pub(crate) struct Corner<'m, D: Touch> {
     pub centre: D::Vector,
     /// Its radius (m).
     pub radius: f64,
+    /// Of a pair of edges, `round`'s and `flat`'s ([`super::crossing`]):
+    /// its centre moves along its edge, placed by [`Corner::crossing`].
+    pub edge: Option<(usize, usize)>,
 }
 
 impl<D: Touch> Corner<'_, D> {
@@ -161,6 +170,18 @@ impl<D: Touch> Corner<'_, D> {
     pub fn material(&self, bodies: &[D::Pose], point: &D::Point) -> super::Material {
         let local = D::act(&D::inverse(&bodies[self.round.body]), point);
         super::on_ball(super::array::<D>(&D::position(&local)))
+    }
+
+    /// Whether it is one material point that slides and does not roll: a
+    /// box's sharp corner, or a point of an edge crossing another.
+    pub fn sharp(&self) -> bool {
+        self.radius == 0.0 || self.edge.is_some()
+    }
+
+    /// Of a pair of edges, where they are nearest, bodies at `bodies`
+    /// ([`super::crossing::crossing`]); `None` for a fixed corner.
+    pub fn crossing(&self, bodies: &[D::Pose]) -> Option<Crossing<D>> {
+        self.edge.map(|e| crossing(self.round, self.flat, e, bodies))
     }
 }
 
@@ -174,10 +195,21 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
     let (geom, other) = (&m.geoms[pair.geom], &m.geoms[h]);
     let refused = || Error::invalid("pair", named(m, pair), touching::<D>());
     let found = corners(&geom.shape, &other.shape).ok_or_else(refused)?;
+    if let Some(k) = pair.corner.checked_sub(found.len()).filter(|&k| k < crossings(&geom.shape, &other.shape)) {
+        let n = ridges(&geom.shape).len();
+        let radius = ridges(&other.shape)[k / n].radius;
+        return Ok(Corner {
+            round: other,
+            flat: geom,
+            centre: D::Vector::default(),
+            radius,
+            edge: Some((k / n, k % n)),
+        });
+    }
     let c = found.get(pair.corner).ok_or_else(refused)?;
     let (round, flat) = if c.of_part { (other, geom) } else { (geom, other) };
     let centre = D::position(&D::act(&round.frame, &D::moved(&D::origin(&D::identity()), &c.centre, 1.0)));
-    Ok(Corner { round, flat, centre, radius: c.radius })
+    Ok(Corner { round, flat, centre, radius: c.radius, edge: None })
 }
 
 /// A box's edges (pairs of corners one axis apart) or a capsule's segment,
@@ -205,6 +237,11 @@ fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {
     }
 }
 
+/// Why two geoms are stopped at that went through each other edge across
+/// edge between two states, neither their corners nor their edges seen to
+/// touch ([`crossed_edges`]).
+pub(crate) const PASSED_THROUGH: &str = "passed through each other edge across edge between two states, where neither their corners nor their edges were seen to touch: make the steps smaller";
+
 /// Whether `pair` is two geoms that may meet edge across edge
 /// ([`edges_cross`]), at its first corner (one for the two).
 pub(crate) fn may_cross<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> bool {
@@ -215,9 +252,10 @@ pub(crate) fn may_cross<D: Dimension>(m: &Mechanism<D>, pair: &Pair) -> bool {
 }
 
 /// The first pair of `pairs` whose two geoms may meet edge across edge
-/// ([`may_cross`]) and do, an edge dipping into the other deeper than
-/// `depth` (m) below its own corners ([`deepest_edge`]), bodies at `bodies`:
-/// where the solve and the motion stop.
+/// ([`may_cross`]) and are through each other, an edge dipping into the
+/// other deeper than `depth` (m) below its own corners ([`deepest_edge`]),
+/// bodies at `bodies`: a guard against a step that went through a thin geom,
+/// where their gaps, corners' and edges', may all be positive again.
 pub(crate) fn crossed_edges<D: Touch>(
     m: &Mechanism<D>,
     bodies: &[D::Pose],

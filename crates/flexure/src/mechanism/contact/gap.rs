@@ -14,7 +14,7 @@
 //! so an interior least meets the tangency condition $\hat n\cdot p^{\prime}(s) = 0$
 //! to about $10^{-12}$ of the length and an end's is that end.
 
-use super::{Corner, Pair, Touch, Toucher, corner, named};
+use super::{Pair, Touch, Toucher, corner, named};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
 
@@ -148,10 +148,12 @@ pub fn minima<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &
             Ok(out)
         }
         Toucher::Geom(_) => {
-            let Corner { round, flat, centre, radius } = corner(m, pair)?;
-            let centre = D::act(&bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
-            let (g, normal) = flat.gap(&bodies[flat.body], &centre, radius);
-            Ok(vec![Gap { s: None, point: D::moved(&centre, &normal, -radius), normal, gap: g }])
+            let c = corner(m, pair)?;
+            let placed = c.crossing(bodies);
+            let (centre, flat) = placed.as_ref().map_or((c.centre, c.flat), |k| (k.centre, &k.surface));
+            let centre = D::act(&bodies[c.round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
+            let (g, normal) = flat.gap(&bodies[flat.body], &centre, c.radius);
+            Ok(vec![Gap { s: None, point: D::moved(&centre, &normal, -c.radius), normal, gap: g }])
         }
     }
 }

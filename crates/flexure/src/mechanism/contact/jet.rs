@@ -17,11 +17,12 @@
 //! the shape's curvature ([`super::GeomShape::curvature`], turned to the world). In
 //! $s$, $\partial_s x = t$ (the unit tangent), so $\partial_s g = n\cdot t - h^{\prime}$.
 
-use super::{Pair, Touch, Toucher, dot, named};
+use super::{Pair, Touch, Toucher, Turn, dot, named};
 use crate::error::{Error, Result};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kinematics::{Attached, FrameChain, Frames, add_attached_hessian, attach_into};
 use nalgebra::DMatrix;
+use std::borrow::Cow;
 
 /// A pair's gap at $(q, s)$ with its derivatives ([`gap_jet`]); $n$ the mechanism's coordinates.
 #[derive(Debug, Clone)]
@@ -139,6 +140,9 @@ pub fn gap_jet<D: Touch + FrameChain>(
     for &c in &p.geom_columns {
         normal_jacobian[c] = normal_jacobian[c] + D::spin(&f.omega[c], &normal);
     }
+    if let Some(turn) = &p.turn {
+        normal_jacobian = turned(m, f, &p, turn, &mut hessian);
+    }
     Ok(GapJet {
         gap,
         point,
@@ -204,7 +208,7 @@ pub fn gap_slope<D: Touch + FrameChain>(
 /// The gap's value, normal, gradient and derivatives in $s$ from its point's
 /// jet, with the shape's curvature turned to the world.
 fn first_order<D: Touch + FrameChain>(f: &Frames<D>, p: &PointJet<D>) -> (GapSlope<D>, super::DistanceHessian) {
-    let shape = p.shape;
+    let shape = &p.shape;
     let frame = D::compose(&f.bodies[shape.body], &shape.frame);
     let (d, normal) = shape.gap(&f.bodies[shape.body], &p.x, 0.0);
     let y = D::position(&D::act(&D::inverse(&frame), &p.x));
@@ -233,14 +237,16 @@ pub(crate) struct PointJet<'a, D: Touch + FrameChain> {
     pub half: [f64; 3],
     /// A material point's offset from the centreline (world; 0 unless asked for).
     pub offset: D::Vector,
-    /// The geom touched.
-    pub shape: &'a super::Geom<D>,
+    /// The geom touched (of two edges crossing, the plane across them, [`super::crossing`]).
+    pub shape: Cow<'a, super::Geom<D>>,
     /// The coordinates that move the geom's body.
     pub geom_columns: Vec<usize>,
     att: Attached<D>,
     attg: Attached<D>,
     moving: bool,
     own: Option<Own<'a, D>>,
+    /// Of two edges crossing, how their normal turns.
+    turn: Option<Turn>,
 }
 
 /// The point of `pair`'s toucher at `q` (frames `f`, Jacobian level) and
@@ -305,6 +311,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
 ) -> Result<PointJet<'a, D>> {
     let n = m.dof();
     let mut att = Attached::new(m);
+    let mut turn = None;
     let (shape, x, half, own, moved) = match pair.part {
         Toucher::Flexure(j) => {
             let joint = &m.joints[j];
@@ -320,14 +327,21 @@ fn jet_at<'a, D: Touch + FrameChain>(
             let root = &f.roots[j];
             let (half, moved) = (jet.half, D::rotate(root, &(jet.point - centre.point)));
             let own = Some(Own { offset: joint.offset, root, jet });
-            (&m.geoms[pair.geom], D::act(root, &local), half, own, moved)
+            (Cow::Borrowed(&m.geoms[pair.geom]), D::act(root, &local), half, own, moved)
         }
         Toucher::Geom(_) => {
-            let super::Corner { round, flat, centre, radius: r } = super::corner(m, pair)?;
+            let c = super::corner(m, pair)?;
+            let (centre, shape) = match c.crossing(&f.bodies) {
+                Some(k) => {
+                    turn = k.turn;
+                    (k.centre, Cow::Owned(k.surface))
+                }
+                None => (c.centre, Cow::Borrowed(c.flat)),
+            };
             let centre = ball.unwrap_or(centre);
-            attach_into(m, f, round.body, centre, true, &mut att);
-            let x = D::act(&f.bodies[round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
-            (flat, x, [r, 0.0, 0.0], None, D::Vector::default())
+            attach_into(m, f, c.round.body, centre, true, &mut att);
+            let x = D::act(&f.bodies[c.round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
+            (shape, x, [c.radius, 0.0, 0.0], None, D::Vector::default())
         }
     };
     let moving = m.parent_joint(shape.body).is_some();
@@ -343,7 +357,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
         }
     }
     let geom_columns = columns(m, &attg);
-    Ok(PointJet { x, delta, half, offset: moved, shape, geom_columns, att, attg, moving, own })
+    Ok(PointJet { x, delta, half, offset: moved, shape, geom_columns, att, attg, moving, own, turn })
 }
 
 impl<D: Touch + FrameChain> PointJet<'_, D> {
@@ -387,6 +401,53 @@ impl<D: Touch + FrameChain> PointJet<'_, D> {
         }
         hessian
     }
+}
+
+/// Of two edges crossing ([`super::crossing`]), the gap's Hessian turned
+/// from the plane's, fixed in the touched geom's body, to the lines':
+/// their normal $\hat n = \sigma(a\times b)/\lvert a\times b\rvert$ turns
+/// with both bodies, $\partial_c\hat n = \sigma(I - \hat n\hat n^T)\partial_c(a\times b)/\lvert a\times b\rvert$,
+/// $\partial_c a = \omega^A_c\times a$, $\partial_c b = \omega^B_c\times b$, where the
+/// plane's turns as $\partial_c n_p = \omega^B_c\times\hat n$. With $d$ the lines'
+/// distance and $v_c = \Delta_c + d\thinspace\partial_c n_p$ the two nearest points'
+/// relative velocity, $g = \hat n\cdot(x_A - x_B)$ for any two material points
+/// of the lines gives
+/// $$\partial_b\partial_c g - \partial_b\partial_c g_p =
+/// (\partial_c\hat n - \partial_c n_p)\cdot v_b + (\partial_b\hat n - \partial_b n_p)\cdot v_c -
+/// d(\partial_b\hat n\cdot\partial_c\hat n - \partial_b n_p\cdot\partial_c n_p).$$
+/// Returns $\partial_c\hat n$ for each coordinate.
+fn turned<D: Touch + FrameChain>(
+    m: &Mechanism<D>,
+    f: &Frames<D>,
+    p: &PointJet<'_, D>,
+    turn: &Turn,
+    hessian: &mut DMatrix<f64>,
+) -> Vec<D::Vector> {
+    use super::crossing::{add, cross, dot as dot3, scale, sub};
+    let n = m.dof();
+    let (on_a, on_b) = (columns(m, &p.att), &p.geom_columns);
+    let w = cross(turn.a, turn.b);
+    let size = dot3(w, w).sqrt();
+    let normal = scale(w, turn.sign / size);
+    let spin = |c: usize, on: &[usize], v: [f64; 3]| match on.contains(&c) {
+        true => super::array::<D>(&D::spin(&f.omega[c], &super::vector::<D>(&v))),
+        false => [0.0; 3],
+    };
+    let dn: Vec<[f64; 3]> = (0..n)
+        .map(|c| {
+            let dw = add(cross(spin(c, &on_a, turn.a), turn.b), cross(turn.a, spin(c, on_b, turn.b)));
+            scale(sub(dw, scale(normal, dot3(normal, dw))), turn.sign / size)
+        })
+        .collect();
+    let dp: Vec<[f64; 3]> = (0..n).map(|c| spin(c, on_b, normal)).collect();
+    let v: Vec<[f64; 3]> = (0..n).map(|c| add(super::array::<D>(&p.delta[c]), scale(dp[c], turn.distance))).collect();
+    for b in 0..n {
+        for c in 0..n {
+            hessian[(b, c)] += dot3(sub(dn[c], dp[c]), v[b]) + dot3(sub(dn[b], dp[b]), v[c])
+                - turn.distance * (dot3(dn[b], dn[c]) - dot3(dp[b], dp[c]));
+        }
+    }
+    dn.iter().map(|d| super::vector::<D>(d)).collect()
 }
 
 /// The coordinates of the joints on `x`'s path.

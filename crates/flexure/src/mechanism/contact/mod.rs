@@ -20,6 +20,7 @@
 //! pair ([`refuse_unsolved`]), so nothing passes through a shape silently.
 
 mod corner;
+mod crossing;
 mod dimension;
 mod gap;
 mod jet;
@@ -30,8 +31,9 @@ mod width;
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
-pub(crate) use corner::{Corner, EDGES_CROSS, corner, crossed_edges, deepest_edge, may_cross, touching};
 pub use corner::{CornerOf, corners, edges_cross};
+pub(crate) use corner::{PASSED_THROUGH, corner, crossed_edges, deepest_edge, may_cross, touching};
+pub(crate) use crossing::Turn;
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};

@@ -74,7 +74,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, EDGES_CROSS, GapJet, Material, Pair, PointJet, Toucher, array, corner, crossed_edges, dot,
+    Contact, ContactMode, GapJet, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, corner, crossed_edges, dot,
     gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents, touched, turned,
     vector,
 };
@@ -888,7 +888,8 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
 /// What ends a load step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Event {
-    /// Touching contact `c` pulls.
+    /// Touching contact `c` pulls, or, of two edges crossing, no longer
+    /// crosses them ([`crate::mechanism::contact::edges_cross`]).
     Open(usize),
     /// Inner contact `c` reached the end at this arc length.
     AtEnd(usize, f64),
@@ -926,9 +927,10 @@ enum Event {
     /// The equilibrium is no longer stable where contact `c` lies flat
     /// along its geom ([`FLAT_CURVATURE`]): distributed contact.
     LiesAlong(usize),
-    /// An edge of one of the pair's two geoms crosses the other, where no
-    /// corner touches ([`crate::mechanism::contact::edges_cross`]).
-    EdgesCross(Pair),
+    /// Two geoms went through each other edge across edge, and none of
+    /// their gaps is negative ([`crate::mechanism::contact::crossed_edges`]):
+    /// the bisection lands where they touch, which is never this.
+    PassedThrough(Pair),
 }
 
 /// A Newton solve of `problem` at `lambda` from `x`: the solution and its iterations.
@@ -956,6 +958,12 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         let (t, jet) = (&problem.touching[c], &problem.jets[c]);
         let normal = problem.normal_force(c);
         if normal < pull {
+            return Ok(Some(Event::Open(c)));
+        }
+        // Two edges whose crossing left either edge: the corner there takes the touch.
+        if let Some(k) = corner(m, &t.pair).ok().and_then(|k| k.crossing(&problem.frames.bodies))
+            && k.margin < -GAP_TOLERANCE * problem.kkt.length
+        {
             return Ok(Some(Event::Open(c)));
         }
         match t.place {
@@ -1031,9 +1039,10 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
-                        // A box's sharp corner is one material point, as a flexure's bare end.
+                        // A box's sharp corner, or a point of an edge crossing
+                        // another, is one material point, as a flexure's bare end.
                         let round = corner(m, pair)?;
-                        (round.radius == 0.0, false, round.material(&problem.frames.bodies, &low.point))
+                        (round.sharp(), false, round.material(&problem.frames.bodies, &low.point))
                     }
                 };
                 let normal = array::<D>(&low.normal);
@@ -1050,9 +1059,9 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             }
         }
     }
-    // Edge across edge: no corner touches, and an edge is inside the other geom.
+    // Through each other between two states, and no gap negative: the bisection finds where they touch.
     if let Some(pair) = crossed_edges(m, &problem.frames.bodies, all, 2.0 * GAP_TOLERANCE * length) {
-        return Ok(Some(Event::EdgesCross(pair)));
+        return Ok(Some(Event::PassedThrough(pair)));
     }
     if !problem.stable(x, lambda, &jac) {
         // Flat against the geom, with no slope along it at an end: the
@@ -1154,9 +1163,9 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             let at = format!("{} (at {:.4} % of the load)", named(m, &touching[c].pair), 100.0 * lambda);
             return Err(Error::invalid("geom", at, LIES_ALONG));
         }
-        Event::EdgesCross(pair) => {
+        Event::PassedThrough(pair) => {
             let at = format!("{} (at {:.4} % of the load)", named(m, &pair), 100.0 * lambda);
-            return Err(Error::invalid("geom", at, EDGES_CROSS));
+            return Err(Error::invalid("geom", at, PASSED_THROUGH));
         }
     }
     Ok(out)

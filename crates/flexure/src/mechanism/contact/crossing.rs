@@ -1,0 +1,218 @@
+//! Where two geoms meet edge across edge. In space two boxes, a box and a
+//! capsule, or two capsules may touch where an edge of one crosses an
+//! edge of the other and no corner touches. Each pair of their edges (a
+//! box's twelve, a capsule's segment) is a [`super::corner::Corner`] whose point
+//! moves: the point $x_A$ of the one edge nearest the other's line,
+//! against the plane through the other's nearest point $x_B$, across both
+//! edges. With $a, b$ the edges' unit directions (world) and
+//! $\hat n = \sigma\thinspace(a\times b)/\lvert a\times b\rvert$ ($\sigma = \pm 1$,
+//! out of the geom touched),
+//! $$g = \hat n\cdot(x_A - x_B) - r_A - r_B,$$
+//! the lines' signed distance less the radii. It holds for any two points
+//! of the lines, so its derivatives are those of two material points and
+//! of $\hat n$, which turns as the two bodies turn apart ([`Turn`]).
+//!
+//! The pair applies where the lines' nearest points lie within both
+//! edges, $\hat n$ lies between the two faces that meet at a box's edge
+//! (and $-\hat n$ at the other's), and the lines are apart or $x_A$ is inside
+//! the geom touched (two edges at the far sides of two boxes are no
+//! touch). Elsewhere its gap is the two segments' distance less the radii,
+//! plus how far the lines' nearest points lie beyond the edges' ends:
+//! continuous where it begins to apply, and above the gap of the corner
+//! that touches there, which so takes the touch. A touching pair let go
+//! where it stops applying ([`Crossing::margin`] below zero) hands the touch
+//! to that corner.
+
+use super::{Geom, GeomShape, Touch, array, vector};
+use crate::mechanism::Dimension;
+
+/// An edge of a geom: a box's, between two faces, or a capsule's segment,
+/// in the shape's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Ridge {
+    /// One end (m).
+    pub from: [f64; 3],
+    /// The other end (m).
+    pub to: [f64; 3],
+    /// Its radius (m): 0 at a box's edge.
+    pub radius: f64,
+    /// The outward signs of the two faces that meet at it, by axis (0 on
+    /// its own axis; all 0 for a capsule, round every way across it).
+    faces: [f64; 3],
+}
+
+/// A box's twelve edges or a capsule's segment (in space; none in the
+/// plane, where two outlines are nearest at a corner of one of them).
+pub(crate) fn ridges<D: Dimension>(s: &GeomShape<D>) -> Vec<Ridge> {
+    if D::POINT_DIM != 3 {
+        return Vec::new();
+    }
+    match s {
+        GeomShape::Box { half_extents } => {
+            let h = [half_extents[0], half_extents[1], half_extents[2]];
+            let mut out = Vec::new();
+            for axis in 0..3 {
+                for k in 0..4 {
+                    let (j, l) = ((axis + 1) % 3, (axis + 2) % 3);
+                    let mut faces = [0.0; 3];
+                    faces[j] = if k & 1 == 0 { 1.0 } else { -1.0 };
+                    faces[l] = if k & 2 == 0 { 1.0 } else { -1.0 };
+                    let mut from = [0.0; 3];
+                    (from[j], from[l], from[axis]) = (faces[j] * h[j], faces[l] * h[l], -h[axis]);
+                    let mut to = from;
+                    to[axis] = h[axis];
+                    out.push(Ridge { from, to, radius: 0.0, faces });
+                }
+            }
+            out
+        }
+        GeomShape::Capsule { half_length, radius } if *half_length > 0.0 => {
+            vec![Ridge {
+                from: [-half_length, 0.0, 0.0],
+                to: [*half_length, 0.0, 0.0],
+                radius: *radius,
+                faces: [0.0; 3],
+            }]
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// How the normal of two crossing edges turns: their unit directions $a$
+/// (the corner's geom's) and $b$ (the geom touched's) in the world, $\sigma$,
+/// and the lines' signed distance $\hat n\cdot(x_A - x_B)$ (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Turn {
+    pub a: [f64; 3],
+    pub b: [f64; 3],
+    pub sign: f64,
+    pub distance: f64,
+}
+
+/// An edge pair placed: the point of the one edge ($x_A$, in its geom's
+/// body's frame), the plane it is held against (a geom of the other's
+/// body), and how far it is within where it applies.
+pub(crate) struct Crossing<D: Touch> {
+    /// $x_A$ in the frame of the body of the corner's geom (m).
+    pub centre: D::Vector,
+    /// The plane through $x_B$ (shifted out by the other's radius) across both edges.
+    pub surface: Geom<D>,
+    /// The least of how far the nearest points lie within the edges and
+    /// $\hat n$ within the faces' normals (m, an angle times the shorter
+    /// edge): below zero the pair no longer applies.
+    pub margin: f64,
+    /// Where the pair applies, how its normal turns.
+    pub turn: Option<Turn>,
+}
+
+/// Edge `edges.0` of `round` against edge `edges.1` of `flat`, bodies at
+/// `bodies` (see the module docs).
+pub(crate) fn crossing<D: Touch>(
+    round: &Geom<D>,
+    flat: &Geom<D>,
+    edges: (usize, usize),
+    bodies: &[D::Pose],
+) -> Crossing<D> {
+    let (ra, rb) = (ridges(&round.shape)[edges.0], ridges(&flat.shape)[edges.1]);
+    let (fa, fb) = (D::compose(&bodies[round.body], &round.frame), D::compose(&bodies[flat.body], &flat.frame));
+    let (a0, a1, b0, b1) = (at::<D>(&fa, &ra.from), at::<D>(&fa, &ra.to), at::<D>(&fb, &rb.from), at::<D>(&fb, &rb.to));
+    let (u, v, w0) = (sub(a1, a0), sub(b1, b0), sub(a0, b0));
+    let (aa, bb, cc, dd, ee) = (dot(u, u), dot(u, v), dot(v, v), dot(u, w0), dot(v, w0));
+    let (la, lb) = (aa.sqrt(), cc.sqrt());
+    let den = aa * cc - bb * bb;
+    let across = den > 1e-12 * aa * cc;
+    let (ta, tb) = if across { ((bb * ee - cc * dd) / den, (aa * ee - bb * dd) / den) } else { (0.0, ee / cc) };
+    // The least of n's components along the faces' outward axes (+∞ round every way).
+    let cone = |frame: &D::Pose, faces: [f64; 3], n: [f64; 3]| {
+        let local = array::<D>(&D::rotate(&D::inverse(frame), &vector::<D>(&n)));
+        (0..3).filter(|&k| faces[k] != 0.0).map(|k| local[k] * faces[k]).fold(f64::INFINITY, f64::min)
+    };
+    let within = [ta * la, (1.0 - ta) * la, tb * lb, (1.0 - tb) * lb].into_iter().fold(f64::INFINITY, f64::min);
+    let mut margin = -(la + lb);
+    if across {
+        let w = cross(u, v);
+        let unit = scale(w, 1.0 / dot(w, w).sqrt());
+        let (xa, xb) = (add(a0, scale(u, ta)), add(b0, scale(v, tb)));
+        let faced = |s: f64| cone(&fb, rb.faces, scale(unit, s)).min(cone(&fa, ra.faces, scale(unit, -s)));
+        let sign = match faced(1.0).is_finite() {
+            true if faced(1.0) >= faced(-1.0) => 1.0,
+            true => -1.0,
+            false if dot(sub(xa, xb), unit) >= 0.0 => 1.0,
+            false => -1.0,
+        };
+        let n = scale(unit, sign);
+        let distance = dot(n, sub(xa, xb));
+        margin = within.min(faced(sign) * la.min(lb));
+        // On the geom touched's face where an edge lies along it (to rounding).
+        let tolerance = 1e-9 * (la + lb);
+        let inside = distance >= 0.0 || flat.gap(&bodies[flat.body], &point::<D>(xa), 0.0).0 < tolerance;
+        if margin >= -tolerance && inside {
+            let turn = Turn { a: scale(u, 1.0 / la), b: scale(v, 1.0 / lb), sign, distance };
+            let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius)), n);
+            return Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: Some(turn) };
+        }
+    }
+    // The segments' nearest points (Ericson, Real-Time Collision Detection, 5.1.9).
+    let mut s = if across { ta.clamp(0.0, 1.0) } else { 0.0 };
+    let mut t = (bb * s + ee) / cc;
+    if t < 0.0 {
+        (t, s) = (0.0, (-dd / aa).clamp(0.0, 1.0));
+    } else if t > 1.0 {
+        (t, s) = (1.0, ((bb - dd) / aa).clamp(0.0, 1.0));
+    }
+    let (xa, xb) = (add(a0, scale(u, s)), add(b0, scale(v, t)));
+    let r = sub(xa, xb);
+    let size = dot(r, r).sqrt();
+    let n = if size > 0.0 { scale(r, 1.0 / size) } else { [0.0, 0.0, 1.0] };
+    let beyond = if across { (ta - s).abs() * la + (tb - t).abs() * lb } else { 0.0 };
+    let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius - beyond)), n);
+    Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None }
+}
+
+/// The plane through `origin` with outward `normal` (both world), fixed in `flat`'s body at `body`.
+fn plane<D: Touch>(flat: &Geom<D>, body: &D::Pose, origin: [f64; 3], normal: [f64; 3]) -> Geom<D> {
+    let normal = D::rotate(&D::inverse(body), &vector::<D>(&normal));
+    let mut g = Geom::new(
+        &flat.name,
+        flat.body,
+        D::at(&D::moved(&D::origin(&D::identity()), &local::<D>(body, origin), 1.0)),
+        GeomShape::Plane { normal },
+    );
+    g.friction = flat.friction;
+    g
+}
+
+/// The world point of `p` (the frame `frame`'s).
+fn at<D: Touch>(frame: &D::Pose, p: &[f64; 3]) -> [f64; 3] {
+    array::<D>(&D::position(&D::act(frame, &point::<D>(*p))))
+}
+
+/// The point at `p`.
+fn point<D: Touch>(p: [f64; 3]) -> D::Point {
+    D::moved(&D::origin(&D::identity()), &vector::<D>(&p), 1.0)
+}
+
+/// The world point `p` in the frame `frame`.
+fn local<D: Touch>(frame: &D::Pose, p: [f64; 3]) -> D::Vector {
+    D::position(&D::act(&D::inverse(frame), &point::<D>(p)))
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+pub(crate) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+pub(crate) fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
+    [a[0] * k, a[1] * k, a[2] * k]
+}
