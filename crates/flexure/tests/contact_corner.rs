@@ -279,3 +279,53 @@ fn a_tilted_foot_lands_flat_on_a_rough_floor_on_its_sharp_corners() {
     }
     assert!(touching.iter().any(|c| c.state == ContactMode::Stick), "{touching:?}");
 }
+
+/// A cylinder's side is its axis rounded by its radius: across the rail's
+/// edge it is an edge pair, exact. The lid carries a can lying along its
+/// $y$ (radius $R$ = 4 mm, so its axis is the lid's $y$ axis at $z = 0$):
+/// it meets the rail's outer top edge where that edge is at $z = -R$ in
+/// the lid's frame, and $N = (k\theta + F\,0.1\cos\theta)/y_l$ as for the box.
+/// The angle to 1e-12 rad and the push to 1e-9 relative.
+#[test]
+fn a_cans_side_meets_a_rail_edge_across_edge() {
+    let rail = "shape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]";
+    let can = "shape = \"cylinder\"\norigin = [0.0, 0.08, 0.0]\nrpy = [-1.5707963267948966, 0.0, 0.0]\nhalf_length = 0.02\nradius = 0.004";
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.004);
+    let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
+    let text = lid3(can, rail, 20.0).replacen("shape = \"box\"\n", "", 1);
+    let s = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap();
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    assert_eq!(s.contacts.len(), 1, "{:?}", s.contacts);
+    let k = &s.contacts[0];
+    assert!((k.normal_force - push).abs() < 1e-9 * push, "{} against {push}", k.normal_force);
+    assert!((k.point[1] - 0.092).abs() < 1e-12 && (k.point[2] + 0.03).abs() < 1e-12, "{k:?}");
+}
+
+/// A cylinder's rim is watched at 32 points, a regular polygon inscribed
+/// in it (`RIM_POINTS`). The lid carries a can standing on it (radius
+/// $R$ = 10 mm, half length $h$ = 5 mm), turned 0.1 rad about its axis so
+/// that no rim point is the lowest as the lid turns down onto a floor 30 mm
+/// below the hinge. The rim's lowest point is at $y_l = 0.08 + R$; the
+/// polygon's, at $0.08 + R\cos\delta$, $\delta$ = 0.0964 rad from the nearest
+/// point. The solve stops the lid where the polygon's point touches,
+/// $(0.08 + R\cos\delta)\sin\theta - h\cos\theta = -0.03$, to 1e-12 rad, and
+/// there the rim sinks into the floor by less than the documented
+/// $R(1 - \cos(\pi/32))$.
+#[test]
+fn a_cans_rim_meets_a_floor_at_its_polygons_point_within_the_bound() {
+    let floor = "shape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]";
+    let can =
+        "shape = \"cylinder\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 0.1]\nhalf_length = 0.005\nradius = 0.01";
+    let (r, h) = (0.01, 0.005);
+    let step = std::f64::consts::TAU / 32.0;
+    let delta =
+        (0..32).map(|k| (0.1 + k as f64 * step - std::f64::consts::FRAC_PI_2).abs()).fold(f64::INFINITY, f64::min);
+    assert!((delta - 0.0963495).abs() < 1e-6, "{delta}");
+    let theta = root(|t| (0.08 + r * delta.cos()) * t.sin() - h * t.cos() + 0.03);
+    let text = lid3(can, floor, 20.0).replacen("shape = \"box\"\n", "", 1);
+    let s = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap();
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    let sunk = -((0.08 + r) * theta.sin() - h * theta.cos() + 0.03);
+    let bound = r * (1.0 - (std::f64::consts::PI / 32.0).cos());
+    assert!(sunk > 0.0 && sunk < bound, "{sunk} against {bound}");
+}

@@ -8,17 +8,22 @@
 //! | a circle or sphere and any geom | the ball itself (the later geom's, when both are) |
 //! | a plane and a box | the box's $2^n$ corners ($r = 0$) |
 //! | a plane and a capsule | the capsule's two end balls ($r$ its radius) |
-//! | two of box and capsule | each one's corners against the other |
+//! | a plane and a cylinder (space) | [`RIM_POINTS`] points of each of its two rims ($r = 0$) |
+//! | two of box, capsule and cylinder | each one's corners against the other |
 //!
 //! These are exact where the two touch at a corner of one of them: a
 //! plane first touches a convex solid at a corner, and in the plane two
 //! convex outlines (a capsule is its segment's, rounded) are nearest at a
-//! corner of one of them. In space two boxes, or a box and a capsule, or
-//! two capsules, may also meet edge across edge, where no corner touches:
-//! their pairs of edges are watched too ([`edges_cross`]), after the
-//! corners, each as a corner that moves along its edge
-//! ([`super::crossing`]). A cylinder's rim is no finite set of points: a
-//! cylinder and anything but a sphere is refused by name, as are two planes.
+//! corner of one of them. In space two of box, capsule and cylinder may
+//! also meet edge across edge, where no corner touches: their pairs of
+//! edges (a cylinder's is its axis, rounded by its radius: its side) are
+//! watched too ([`edges_cross`]), after the corners, each as a corner that
+//! moves along its edge ([`super::crossing`]). A cylinder's rim is no
+//! finite set of points: it is watched at [`RIM_POINTS`] points, a regular
+//! polygon inscribed in it, so a rim may sink into the other geom by
+//! at most $R(1 - \cos(\pi/32)) = 0.0048R$ between two of them (exact at
+//! the points, and where the rim touches at one of them). Two planes are
+//! refused by name (they never part).
 
 use super::crossing::{Crossing, crossing, ridges};
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named, vector};
@@ -50,9 +55,11 @@ pub struct CornerOf<D: Dimension> {
 /// assert_eq!(corners(&floor, &brick).unwrap().len(), 8);
 /// // Two boxes: each one's corners against the other.
 /// assert_eq!(corners(&brick, &brick).unwrap().len(), 16);
-/// // A cylinder's rim is no finite set of points: refused.
+/// // A cylinder's rims are watched at RIM_POINTS points each.
 /// let can = GeomShape::<Spatial>::Cylinder { half_length: 0.1, radius: 0.05 };
-/// assert!(corners(&floor, &can).is_none());
+/// assert_eq!(corners(&floor, &can).unwrap().len(), 2 * flexure::mechanism::contact::RIM_POINTS);
+/// // Two planes never part: refused.
+/// assert!(corners(&floor, &floor).is_none());
 /// // In the plane they are nearest at a vertex of one of them.
 /// let tile = GeomShape::<Planar>::Box { half_extents: Vector2::new(0.1, 0.2) };
 /// assert_eq!(corners(&tile, &tile).unwrap().len(), 8);
@@ -82,7 +89,12 @@ pub fn corners<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> Option<Vec<C
     Some(found)
 }
 
-/// A box's or a capsule's corners in its frame: centre and radius (none for other shapes).
+/// The points of a cylinder's rim watched, on each of its two rims, evenly
+/// from its $x$ axis: a regular polygon inscribed in the rim, within
+/// $R(1 - \cos(\pi/32)) = 0.0048R$ of it ([`corners`]).
+pub const RIM_POINTS: usize = 32;
+
+/// A box's, a capsule's or a cylinder's corners in its frame: centre and radius (none for other shapes).
 fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
     match s {
         GeomShape::Box { half_extents } => (0..1usize << D::POINT_DIM)
@@ -96,6 +108,13 @@ fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
                 (c, 0.0)
             })
             .collect(),
+        GeomShape::Cylinder { half_length, radius } if D::POINT_DIM == 3 => (0..2 * RIM_POINTS)
+            .map(|k| {
+                let turn = std::f64::consts::TAU * (k % RIM_POINTS) as f64 / RIM_POINTS as f64;
+                let side = if k < RIM_POINTS { 1.0 } else { -1.0 };
+                (vector::<D>(&[radius * turn.cos(), radius * turn.sin(), side * half_length]), 0.0)
+            })
+            .collect(),
         GeomShape::Capsule { half_length, radius } if *half_length == 0.0 => vec![(D::Vector::default(), *radius)],
         GeomShape::Capsule { half_length, radius } => {
             [1.0, -1.0].map(|side| (vector::<D>(&[side * half_length, 0.0, 0.0]), *radius)).to_vec()
@@ -105,7 +124,7 @@ fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
 }
 
 /// Whether two shapes that touch at corners may also meet edge across
-/// edge, where no corner touches: two of box and capsule, in space. Their
+/// edge, where no corner touches: two of box, capsule and cylinder, in space. Their
 /// pairs of edges are then watched after their corners (`mechanism/contact/crossing.rs`).
 ///
 /// # Example
@@ -126,9 +145,7 @@ pub fn edges_cross<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> bool {
 pub(crate) fn touching<D: Dimension>() -> &'static str {
     match D::POINT_DIM {
         2 => "two geoms touch only where one is a circle, or neither is a plane (two planes never part)",
-        _ => {
-            "two geoms touch only where one is a sphere, or neither is a plane or a cylinder (two planes never part, and a cylinder meets along its rim)"
-        }
+        _ => "two geoms touch only where one is a sphere, or neither is a plane (two planes never part)",
     }
 }
 

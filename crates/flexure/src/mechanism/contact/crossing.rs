@@ -1,7 +1,7 @@
-//! Where two geoms meet edge across edge. In space two boxes, a box and a
-//! capsule, or two capsules may touch where an edge of one crosses an
-//! edge of the other and no corner touches. Each pair of their edges (a
-//! box's twelve, a capsule's segment) is a [`super::corner::Corner`] whose point
+//! Where two geoms meet edge across edge. In space two of box, capsule and
+//! cylinder may touch where an edge of one crosses an edge of the other
+//! and no corner touches. Each pair of their edges (a box's twelve, a
+//! capsule's segment, a cylinder's side as its axis rounded by its radius) is a [`super::corner::Corner`] whose point
 //! moves: the point $x_A$ of the one edge nearest the other's line,
 //! against the plane through the other's nearest point $x_B$, across both
 //! edges. With $a, b$ the edges' unit directions (world) and
@@ -26,8 +26,8 @@
 use super::{Geom, GeomShape, Touch, array, vector};
 use crate::mechanism::Dimension;
 
-/// An edge of a geom: a box's, between two faces, or a capsule's segment,
-/// in the shape's frame.
+/// An edge of a geom: a box's, between two faces, a capsule's segment, or
+/// a cylinder's axis (its side between the rims), in the shape's frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Ridge {
     /// One end (m).
@@ -41,8 +41,9 @@ pub(crate) struct Ridge {
     faces: [f64; 3],
 }
 
-/// A box's twelve edges or a capsule's segment (in space; none in the
-/// plane, where two outlines are nearest at a corner of one of them).
+/// A box's twelve edges, a capsule's segment or a cylinder's axis (in
+/// space; none in the plane, where two outlines are nearest at a corner of
+/// one of them).
 pub(crate) fn ridges<D: Dimension>(s: &GeomShape<D>) -> Vec<Ridge> {
     if D::POINT_DIM != 3 {
         return Vec::new();
@@ -65,6 +66,15 @@ pub(crate) fn ridges<D: Dimension>(s: &GeomShape<D>) -> Vec<Ridge> {
                 }
             }
             out
+        }
+        // Its side: the axis, rounded by its radius, between the rims.
+        GeomShape::Cylinder { half_length, radius } => {
+            vec![Ridge {
+                from: [0.0, 0.0, -half_length],
+                to: [0.0, 0.0, *half_length],
+                radius: *radius,
+                faces: [0.0; 3],
+            }]
         }
         GeomShape::Capsule { half_length, radius } if *half_length > 0.0 => {
             vec![Ridge {
