@@ -311,3 +311,59 @@ def test_two_geoms_touch_at_corners_summed_in_one_column():
         touching = [c for c in answer["contacts"][k] if c["state"] != "open"]
         assert sum(c["normal_force"] for c in touching) == pytest.approx(push, rel=1e-9)
         assert [c["point"] for c in touching] == [pytest.approx([0.1 * math.cos(t) + 0.005 * math.sin(t), -0.03], abs=1e-12)]
+
+
+LID3_RAIL = """
+dimension = 3
+[[joint]]
+name = "pivot"
+kind = "revolute"
+parent = "ground"
+child = "lid"
+axis = [1.0, 0.0, 0.0]
+stiffness = 0.5
+[[geom]]
+name = "block"
+body = "lid"
+shape = "box"
+origin = [0.0, 0.08, 0.0]
+rpy = [0.0, 0.7853981633974483, 0.0]
+half_extents = [0.01, 0.02, 0.005]
+[[geom]]
+name = "rail"
+body = "ground"
+shape = "box"
+origin = [0.0, 0.09, -0.04]
+half_extents = [0.1, 0.002, 0.01]
+[[force]]
+name = "push"
+body = "lid"
+at = [0.0, 0.1, 0.0]
+force = [0.0, 0.0, -20.0]
+"""
+
+
+def test_two_boxes_meet_edge_across_edge_in_space():
+    """A lid on a sprung hinge about x (k = 0.5 N m/rad) pushed by F at
+    0.1 m carries a box turned 45 degrees about the lid's y, whose lowest
+    edge (z = -0.015/sqrt 2 in the lid's frame) meets a rail's outer top
+    edge (x, 0.092, -0.03) across it: there -0.092 sin(t) - 0.03 cos(t) =
+    -0.015/sqrt 2, and N = (k t + 0.1 F cos t) / (0.092 cos t - 0.03 sin t)
+    (the moments about the hinge, the push along the lid's normal). The
+    angle to 1e-12 rad and the push to 1e-9, as the Rust solve gives."""
+
+    def f(t):
+        return -0.092 * math.sin(t) - 0.03 * math.cos(t) + 0.015 / math.sqrt(2.0)
+
+    lo, hi = -1.0, 0.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
+    t = 0.5 * (lo + hi)
+    push = (0.5 * t + 2.0 * math.cos(t)) / (0.092 * math.cos(t) - 0.03 * math.sin(t))
+    answer = flexure.Mechanism.from_toml(LID3_RAIL).solve()
+    assert answer["coordinates"]["pivot"][0] == pytest.approx(t, abs=1e-12)
+    (contact,) = answer["contacts"]
+    assert contact["normal_force"] == pytest.approx(push, rel=1e-9)
+    assert contact["point"][1:] == pytest.approx([0.092, -0.03], abs=1e-12)
+    assert contact["normal"] == pytest.approx([0.0, -math.sin(t), math.cos(t)], abs=1e-12)
