@@ -329,3 +329,29 @@ fn a_cans_rim_meets_a_floor_at_its_polygons_point_within_the_bound() {
     let bound = r * (1.0 - (std::f64::consts::PI / 32.0).cos());
     assert!(sunk > 0.0 && sunk < bound, "{sunk} against {bound}");
 }
+
+/// Two boxes that rest face on face are apart, not crossed: a box on a
+/// vertical slider (100 N/m) pushed down by 20 N lands flat on a box 0.1 m
+/// below, offset and turned about the vertical, where a bottom edge of one
+/// lies across a side edge of the other (their lines cross 0.08 m apart
+/// along a normal that is a face's normal of each, which is no depth). It
+/// rests at $q = -0.1$ with the push $20 - 100\cdot0.1 = 10$ N, to 1e-12 m and
+/// 1e-9 N; and a file of the two at rest face on face loads.
+#[test]
+fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
+    let text = |dx: f64, dy: f64, yaw: f64, z: f64| {
+        format!(
+            "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n\
+             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [{dx:?}, {dy:?}, {z:?}]\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [0.05, 0.05, 0.05]\n\
+             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{dx:?}, {dy:?}, {z:?}]\nforce = [0.0, 0.0, -20.0]\n"
+        )
+    };
+    for (dx, dy, yaw) in [(0.03, 0.02, 0.3), (0.05, 0.05, 0.0), (0.03, 0.02, 0.0)] {
+        let s = solve(&spatial_from_toml(&text(dx, dy, yaw, 0.2)).unwrap(), &Settings::default()).unwrap();
+        assert!((s.q[0] + 0.1).abs() < 1e-12, "({dx}, {dy}, {yaw}): {}", s.q[0]);
+        let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
+        assert!((total - 10.0).abs() < 1e-9, "({dx}, {dy}, {yaw}): {total}");
+        assert!(spatial_from_toml(&text(dx, dy, yaw, 0.1)).is_ok(), "({dx}, {dy}, {yaw}) at rest face on face");
+    }
+}

@@ -25,7 +25,7 @@
 //! the points, and where the rim touches at one of them). Two planes are
 //! refused by name (they never part).
 
-use super::crossing::{Crossing, crossing, ridges};
+use super::crossing::{Crossing, crossing, ridge, ridges};
 use super::{Geom, GeomShape, Pair, Touch, Toucher, named, vector};
 use crate::error::{Error, Result};
 use crate::mechanism::{Dimension, Mechanism};
@@ -65,28 +65,38 @@ pub struct CornerOf<D: Dimension> {
 /// assert_eq!(corners(&tile, &tile).unwrap().len(), 8);
 /// ```
 pub fn corners<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> Option<Vec<CornerOf<D>>> {
-    let ball = |s: &GeomShape<D>| match s {
-        GeomShape::Ball { radius } => Some(*radius),
-        _ => None,
-    };
+    let n = corner_count(a, b)?;
+    Some((0..n).map(|k| corner_of(a, b, k)).collect())
+}
+
+/// How many corners shapes `a` and `b` have ([`corners`]), or `None`.
+fn corner_count<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> Option<usize> {
     let plane = |s: &GeomShape<D>| matches!(s, GeomShape::Plane { .. });
-    let of = |of_part: bool, s: &GeomShape<D>| {
-        points(s).into_iter().map(move |(centre, radius)| CornerOf { of_part, centre, radius })
-    };
-    if let Some(radius) = ball(b) {
-        return Some(vec![CornerOf { of_part: true, centre: D::Vector::default(), radius }]);
+    let (na, nb) = (point_count(a), point_count(b));
+    match (plane(a), plane(b)) {
+        _ if matches!(b, GeomShape::Ball { .. }) || matches!(a, GeomShape::Ball { .. }) => Some(1),
+        (true, false) if nb > 0 => Some(nb),
+        (false, true) if na > 0 => Some(na),
+        (false, false) if na > 0 && nb > 0 => Some(na + nb),
+        _ => None,
     }
-    if let Some(radius) = ball(a) {
-        return Some(vec![CornerOf { of_part: false, centre: D::Vector::default(), radius }]);
-    }
-    let cornered = |s: &GeomShape<D>| !points(s).is_empty();
-    let found: Vec<CornerOf<D>> = match (plane(a), plane(b)) {
-        (true, false) if cornered(b) => of(true, b).collect(),
-        (false, true) if cornered(a) => of(false, a).collect(),
-        (false, false) if cornered(a) && cornered(b) => of(true, b).chain(of(false, a)).collect(),
-        _ => return None,
+}
+
+/// Corner `k` of shapes `a` and `b` (below [`corner_count`]): the part's
+/// (`b`'s) first, then the geom's.
+fn corner_of<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>, k: usize) -> CornerOf<D> {
+    let of = |of_part: bool, s: &GeomShape<D>, k: usize| {
+        let (centre, radius) = point(s, k);
+        CornerOf { of_part, centre, radius }
     };
-    Some(found)
+    match (a, b) {
+        (_, GeomShape::Ball { radius }) => CornerOf { of_part: true, centre: D::Vector::default(), radius: *radius },
+        (GeomShape::Ball { radius }, _) => CornerOf { of_part: false, centre: D::Vector::default(), radius: *radius },
+        (GeomShape::Plane { .. }, _) => of(true, b, k),
+        (_, GeomShape::Plane { .. }) => of(false, a, k),
+        _ if k < point_count(b) => of(true, b, k),
+        _ => of(false, a, k - point_count(b)),
+    }
 }
 
 /// The points of a cylinder's rim watched, on each of its two rims, evenly
@@ -94,32 +104,43 @@ pub fn corners<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> Option<Vec<C
 /// $R(1 - \cos(\pi/32)) = 0.0048R$ of it ([`corners`]).
 pub const RIM_POINTS: usize = 32;
 
-/// A box's, a capsule's or a cylinder's corners in its frame: centre and radius (none for other shapes).
-fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
+/// How many corners a shape has ([`point`]): a box's $2^n$, a capsule's two
+/// end balls (one ball where it has no length), a cylinder's rim points
+/// (in space); none for other shapes.
+fn point_count<D: Dimension>(s: &GeomShape<D>) -> usize {
     match s {
-        GeomShape::Box { half_extents } => (0..1usize << D::POINT_DIM)
-            .map(|k| {
-                let mut c = *half_extents;
-                for i in 0..D::POINT_DIM {
-                    if k >> i & 1 == 1 {
-                        c[i] = -c[i];
-                    }
+        GeomShape::Box { .. } => 1 << D::POINT_DIM,
+        GeomShape::Cylinder { .. } if D::POINT_DIM == 3 => 2 * RIM_POINTS,
+        GeomShape::Capsule { half_length, .. } if *half_length == 0.0 => 1,
+        GeomShape::Capsule { .. } => 2,
+        _ => 0,
+    }
+}
+
+/// Corner `k` of a box, a capsule or a cylinder (below [`point_count`]) in
+/// its frame: centre and radius.
+fn point<D: Dimension>(s: &GeomShape<D>, k: usize) -> (D::Vector, f64) {
+    match s {
+        GeomShape::Box { half_extents } => {
+            let mut c = *half_extents;
+            for i in 0..D::POINT_DIM {
+                if k >> i & 1 == 1 {
+                    c[i] = -c[i];
                 }
-                (c, 0.0)
-            })
-            .collect(),
-        GeomShape::Cylinder { half_length, radius } if D::POINT_DIM == 3 => (0..2 * RIM_POINTS)
-            .map(|k| {
-                let turn = std::f64::consts::TAU * (k % RIM_POINTS) as f64 / RIM_POINTS as f64;
-                let side = if k < RIM_POINTS { 1.0 } else { -1.0 };
-                (vector::<D>(&[radius * turn.cos(), radius * turn.sin(), side * half_length]), 0.0)
-            })
-            .collect(),
-        GeomShape::Capsule { half_length, radius } if *half_length == 0.0 => vec![(D::Vector::default(), *radius)],
-        GeomShape::Capsule { half_length, radius } => {
-            [1.0, -1.0].map(|side| (vector::<D>(&[side * half_length, 0.0, 0.0]), *radius)).to_vec()
+            }
+            (c, 0.0)
         }
-        _ => Vec::new(),
+        GeomShape::Cylinder { half_length, radius } => {
+            let turn = std::f64::consts::TAU * (k % RIM_POINTS) as f64 / RIM_POINTS as f64;
+            let side = if k < RIM_POINTS { 1.0 } else { -1.0 };
+            (vector::<D>(&[radius * turn.cos(), radius * turn.sin(), side * half_length]), 0.0)
+        }
+        GeomShape::Capsule { half_length, radius } if *half_length == 0.0 => (D::Vector::default(), *radius),
+        GeomShape::Capsule { half_length, radius } => {
+            let side = if k == 0 { 1.0 } else { -1.0 };
+            (vector::<D>(&[side * half_length, 0.0, 0.0]), *radius)
+        }
+        _ => unreachable!("a shape without corners has no corner {k}"),
     }
 }
 
@@ -138,7 +159,7 @@ fn points<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, f64)> {
 /// assert!(!edges_cross(&tile, &tile));
 /// ```
 pub fn edges_cross<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> bool {
-    D::POINT_DIM == 3 && !points(a).is_empty() && !points(b).is_empty()
+    D::POINT_DIM == 3 && point_count(a) > 0 && point_count(b) > 0
 }
 
 /// Which two geoms touch ([`corners`]), as refusals say it.
@@ -154,13 +175,13 @@ pub(crate) fn touching<D: Dimension>() -> &'static str {
 /// Their pairs of edges ([`super::crossing`]) follow their corners.
 pub(crate) fn count<D: Dimension>(m: &Mechanism<D>, g: usize, h: usize) -> usize {
     let (a, b) = (&m.geoms[g].shape, &m.geoms[h].shape);
-    corners(a, b).map_or(1, |c| c.len()) + crossings(a, b)
+    corner_count(a, b).unwrap_or(1) + crossings(a, b)
 }
 
 /// The number of pairs of edges of shapes `a` and `b` that may cross ([`edges_cross`]).
 fn crossings<D: Dimension>(a: &GeomShape<D>, b: &GeomShape<D>) -> usize {
     match edges_cross(a, b) {
-        true => ridges(a).len() * ridges(b).len(),
+        true => ridges(a) * ridges(b),
         false => 0,
     }
 }
@@ -211,10 +232,10 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
     };
     let (geom, other) = (&m.geoms[pair.geom], &m.geoms[h]);
     let refused = || Error::invalid("pair", named(m, pair), touching::<D>());
-    let found = corners(&geom.shape, &other.shape).ok_or_else(refused)?;
-    if let Some(k) = pair.corner.checked_sub(found.len()).filter(|&k| k < crossings(&geom.shape, &other.shape)) {
-        let n = ridges(&geom.shape).len();
-        let radius = ridges(&other.shape)[k / n].radius;
+    let found = corner_count(&geom.shape, &other.shape).ok_or_else(refused)?;
+    if let Some(k) = pair.corner.checked_sub(found).filter(|&k| k < crossings(&geom.shape, &other.shape)) {
+        let n = ridges(&geom.shape);
+        let radius = ridge(&other.shape, k / n).radius;
         return Ok(Corner {
             round: other,
             flat: geom,
@@ -223,7 +244,10 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
             edge: Some((k / n, k % n)),
         });
     }
-    let c = found.get(pair.corner).ok_or_else(refused)?;
+    if pair.corner >= found {
+        return Err(refused());
+    }
+    let c = corner_of(&geom.shape, &other.shape, pair.corner);
     let (round, flat) = if c.of_part { (other, geom) } else { (geom, other) };
     let centre = D::position(&D::act(&round.frame, &D::moved(&D::origin(&D::identity()), &c.centre, 1.0)));
     Ok(Corner { round, flat, centre, radius: c.radius, edge: None })
@@ -234,12 +258,11 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
 fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {
     match s {
         GeomShape::Box { .. } => {
-            let corners = points(s);
             let mut out = Vec::new();
-            for (k, a) in corners.iter().enumerate() {
+            for k in 0..point_count(s) {
                 for i in 0..D::POINT_DIM {
                     if k >> i & 1 == 0 {
-                        out.push((a.0, corners[k | 1 << i].0, 0.0));
+                        out.push((point(s, k).0, point(s, k | 1 << i).0, 0.0));
                     }
                 }
             }

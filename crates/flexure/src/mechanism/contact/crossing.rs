@@ -41,50 +41,44 @@ pub(crate) struct Ridge {
     faces: [f64; 3],
 }
 
-/// A box's twelve edges, a capsule's segment or a cylinder's axis (in
-/// space; none in the plane, where two outlines are nearest at a corner of
-/// one of them).
-pub(crate) fn ridges<D: Dimension>(s: &GeomShape<D>) -> Vec<Ridge> {
-    if D::POINT_DIM != 3 {
-        return Vec::new();
+/// How many edges a shape has ([`ridge`]): a box's twelve, a capsule's
+/// segment or a cylinder's axis, in space; none in the plane, where two
+/// outlines are nearest at a corner of one of them.
+pub(crate) fn ridges<D: Dimension>(s: &GeomShape<D>) -> usize {
+    match s {
+        _ if D::POINT_DIM != 3 => 0,
+        GeomShape::Box { .. } => 12,
+        GeomShape::Cylinder { .. } => 1,
+        GeomShape::Capsule { half_length, .. } if *half_length > 0.0 => 1,
+        _ => 0,
     }
+}
+
+/// Edge `k` of a shape (below [`ridges`]): a box's along axis `k / 4`,
+/// its other two axes' signs from `k % 4`; a capsule's segment; a
+/// cylinder's axis (its side, between the rims).
+pub(crate) fn ridge<D: Dimension>(s: &GeomShape<D>, k: usize) -> Ridge {
     match s {
         GeomShape::Box { half_extents } => {
             let h = [half_extents[0], half_extents[1], half_extents[2]];
-            let mut out = Vec::new();
-            for axis in 0..3 {
-                for k in 0..4 {
-                    let (j, l) = ((axis + 1) % 3, (axis + 2) % 3);
-                    let mut faces = [0.0; 3];
-                    faces[j] = if k & 1 == 0 { 1.0 } else { -1.0 };
-                    faces[l] = if k & 2 == 0 { 1.0 } else { -1.0 };
-                    let mut from = [0.0; 3];
-                    (from[j], from[l], from[axis]) = (faces[j] * h[j], faces[l] * h[l], -h[axis]);
-                    let mut to = from;
-                    to[axis] = h[axis];
-                    out.push(Ridge { from, to, radius: 0.0, faces });
-                }
-            }
-            out
+            let (axis, signs) = (k / 4, k % 4);
+            let (j, l) = ((axis + 1) % 3, (axis + 2) % 3);
+            let mut faces = [0.0; 3];
+            faces[j] = if signs & 1 == 0 { 1.0 } else { -1.0 };
+            faces[l] = if signs & 2 == 0 { 1.0 } else { -1.0 };
+            let mut from = [0.0; 3];
+            (from[j], from[l], from[axis]) = (faces[j] * h[j], faces[l] * h[l], -h[axis]);
+            let mut to = from;
+            to[axis] = h[axis];
+            Ridge { from, to, radius: 0.0, faces }
         }
-        // Its side: the axis, rounded by its radius, between the rims.
         GeomShape::Cylinder { half_length, radius } => {
-            vec![Ridge {
-                from: [0.0, 0.0, -half_length],
-                to: [0.0, 0.0, *half_length],
-                radius: *radius,
-                faces: [0.0; 3],
-            }]
+            Ridge { from: [0.0, 0.0, -half_length], to: [0.0, 0.0, *half_length], radius: *radius, faces: [0.0; 3] }
         }
-        GeomShape::Capsule { half_length, radius } if *half_length > 0.0 => {
-            vec![Ridge {
-                from: [-half_length, 0.0, 0.0],
-                to: [*half_length, 0.0, 0.0],
-                radius: *radius,
-                faces: [0.0; 3],
-            }]
+        GeomShape::Capsule { half_length, radius } => {
+            Ridge { from: [-half_length, 0.0, 0.0], to: [*half_length, 0.0, 0.0], radius: *radius, faces: [0.0; 3] }
         }
-        _ => Vec::new(),
+        _ => unreachable!("a shape without edges has no edge {k}"),
     }
 }
 
@@ -109,7 +103,8 @@ pub(crate) struct Crossing<D: Touch> {
     pub surface: Geom<D>,
     /// The least of how far the nearest points lie within the edges and
     /// $\hat n$ within the faces' normals (m, an angle times the shorter
-    /// edge): below zero the pair no longer applies.
+    /// edge), past rounding: below zero the pair no longer applies, and a
+    /// touching one is let go.
     pub margin: f64,
     /// Where the pair applies, how its normal turns.
     pub turn: Option<Turn>,
@@ -123,7 +118,7 @@ pub(crate) fn crossing<D: Touch>(
     edges: (usize, usize),
     bodies: &[D::Pose],
 ) -> Crossing<D> {
-    let (ra, rb) = (ridges(&round.shape)[edges.0], ridges(&flat.shape)[edges.1]);
+    let (ra, rb) = (ridge(&round.shape, edges.0), ridge(&flat.shape, edges.1));
     let (fa, fb) = (D::compose(&bodies[round.body], &round.frame), D::compose(&bodies[flat.body], &flat.frame));
     let (a0, a1, b0, b1) = (at::<D>(&fa, &ra.from), at::<D>(&fa, &ra.to), at::<D>(&fb, &rb.from), at::<D>(&fb, &rb.to));
     let (u, v, w0) = (sub(a1, a0), sub(b1, b0), sub(a0, b0));
@@ -152,11 +147,23 @@ pub(crate) fn crossing<D: Touch>(
         };
         let n = scale(unit, sign);
         let distance = dot(n, sub(xa, xb));
-        margin = within.min(faced(sign) * la.min(lb));
-        // On the geom touched's face where an edge lies along it (to rounding).
-        let tolerance = 1e-9 * (la + lb);
-        let inside = distance >= 0.0 || flat.gap(&bodies[flat.body], &point::<D>(xa), 0.0).0 < tolerance;
-        if margin >= -tolerance && inside {
+        // Within the edges and the faces' normals to rounding (an edge along a face, a crossing at an end).
+        let (tolerance, tiny) = (1e-9 * (la + lb), 1e-12 * (la + lb));
+        margin = within.min(faced(sign) * la.min(lb)) + tolerance;
+        // Crossed by δ, an edge's nearest point lies δ·c inside the other geom,
+        // c its face normals' least component along n̂ (1 round every way):
+        // at least half of that on a side where c > 0. Not so for two boxes
+        // that only rest on each other (a bottom edge across a side edge,
+        // n̂ along a face of each), nor for far sides.
+        let inside = distance >= -tiny || {
+            let depth = |g: &Geom<D>, p: [f64; 3]| -g.gap(&bodies[g.body], &point::<D>(p), 0.0).0;
+            let (c_flat, c_round) = (cone(&fb, rb.faces, n).min(1.0), cone(&fa, ra.faces, scale(n, -1.0)).min(1.0));
+            let deep = |c: f64, d: f64| c > 1e-9 && d >= -0.5 * distance * c;
+            // At the edges' own points (within them to rounding, not beyond).
+            let (ya, yb) = (add(a0, scale(u, ta.clamp(0.0, 1.0))), add(b0, scale(v, tb.clamp(0.0, 1.0))));
+            deep(c_flat, depth(flat, ya)) || deep(c_round, depth(round, yb))
+        };
+        if margin >= 0.0 && inside {
             let turn = Turn { a: scale(u, 1.0 / la), b: scale(v, 1.0 / lb), sign, distance };
             let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius)), n);
             return Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: Some(turn) };
@@ -183,7 +190,7 @@ pub(crate) fn crossing<D: Touch>(
 fn plane<D: Touch>(flat: &Geom<D>, body: &D::Pose, origin: [f64; 3], normal: [f64; 3]) -> Geom<D> {
     let normal = D::rotate(&D::inverse(body), &vector::<D>(&normal));
     let mut g = Geom::new(
-        &flat.name,
+        "",
         flat.body,
         D::at(&D::moved(&D::origin(&D::identity()), &local::<D>(body, origin), 1.0)),
         GeomShape::Plane { normal },

@@ -962,7 +962,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         }
         // Two edges whose crossing left either edge: the corner there takes the touch.
         if let Some(k) = corner(m, &t.pair).ok().and_then(|k| k.crossing(&problem.frames.bodies))
-            && k.margin < -GAP_TOLERANCE * problem.kkt.length
+            && k.margin < 0.0
         {
             return Ok(Some(Event::Open(c)));
         }
