@@ -216,7 +216,8 @@ fn a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space() {
 /// Given mass and pushed from rest, the lid of
 /// [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`] swings down and lands
 /// edge across edge on the rail, and rests where the statics put it (its
-/// closed form): the angle to 1e-7 rad, the push to 1e-6 relative.
+/// closed form): the angle to 1e-7 rad, the push to 1e-6 relative, at
+/// every sample after the touch (sampled every 5 ms, one of them just after it).
 #[test]
 fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
     let rail = "shape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]";
@@ -227,7 +228,7 @@ fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
     let settings = flexure::dynamics::simulation::SimulationSettings {
         motion: flexure::dynamics::integrate::MotionSettings {
             duration: 0.2,
-            every: 0.01,
+            every: 0.005,
             tolerance: 1e-8,
             absolute: 1e-8,
             ..Default::default()
@@ -241,12 +242,15 @@ fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
     )
     .unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
-    let last = run.time.len() - 1;
-    assert!((run.q(last)[0] - theta).abs() < 1e-7, "{:?} against {theta}", run.q(last));
-    let k: Vec<_> = run.contacts[last].iter().filter(|k| k.state != ContactMode::Open).collect();
-    assert_eq!(k.len(), 1, "{k:?}");
-    assert!((k[0].normal_force - push).abs() < 1e-6 * push, "{} against {push}", k[0].normal_force);
-    assert!((k[0].point[1] - 0.092).abs() < 1e-9 && (k[0].point[2] + 0.03).abs() < 1e-9, "{:?}", k[0]);
+    // The impact stops the lid (one coordinate): every sample after it rests there, pushed by N.
+    let landed = run.changes.last().expect("a touch").time;
+    for (i, &t) in run.time.iter().enumerate().filter(|(_, t)| **t > landed) {
+        assert!((run.q(i)[0] - theta).abs() < 1e-7, "t = {t}: {:?} against {theta}", run.q(i));
+        let k: Vec<_> = run.contacts[i].iter().filter(|k| k.state != ContactMode::Open).collect();
+        assert_eq!(k.len(), 1, "t = {t}: {k:?}");
+        assert!((k[0].normal_force - push).abs() < 1e-6 * push, "t = {t}: {} against {push}", k[0].normal_force);
+        assert!((k[0].point[1] - 0.092).abs() < 1e-9 && (k[0].point[2] + 0.03).abs() < 1e-9, "{:?}", k[0]);
+    }
 }
 
 /// A box's sharp corner is one material point: stuck, it is pinned where
@@ -353,5 +357,47 @@ fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
         let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
         assert!((total - 10.0).abs() < 1e-9, "({dx}, {dy}, {yaw}): {total}");
         assert!(spatial_from_toml(&text(dx, dy, yaw, 0.1)).is_ok(), "({dx}, {dy}, {yaw}) at rest face on face");
+    }
+}
+
+/// Given mass and pushed from rest, the spatial lid swings its box onto a
+/// floor 30 mm below the hinge, lands on its two leading corners
+/// $(\pm0.01, 0.1, -0.005)$ (lid frame) at once, where
+/// $0.1\sin\theta - 0.005\cos\theta = -0.03$, and rests there: every sample
+/// after the touch, the first of them 2 ms after it (sampled every 5 ms),
+/// reads the angle to 1e-7 rad and the corners' total push
+/// $N = (k\theta + F\,0.1\cos\theta)/(0.1\cos\theta + 0.005\sin\theta)$ to 1e-6
+/// relative (it read no push at the sample just after the touch, where the
+/// step that landed had no multipliers yet).
+#[test]
+fn a_lid_swung_onto_a_floor_reads_its_push_from_the_first_sample_after() {
+    let block = "origin = [0.0, 0.08, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+    let floor = "shape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]";
+    let theta = root(|t| 0.1 * t.sin() - 0.005 * t.cos() + 0.03);
+    let push = (0.5 * theta + 2.0 * theta.cos()) / (0.1 * theta.cos() + 0.005 * theta.sin());
+    let moving = format!("{}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n", lid3(block, floor, 20.0));
+    let motion = flexure::dynamics::integrate::MotionSettings {
+        duration: 0.04,
+        every: 0.005,
+        tolerance: 1e-8,
+        absolute: 1e-8,
+        ..Default::default()
+    };
+    let settings = flexure::dynamics::simulation::SimulationSettings { motion, ..Default::default() };
+    let run = flexure::dynamics::simulation::simulate(
+        &spatial_from_toml(&moving).unwrap(),
+        &settings,
+        flexure::dynamics::simulation::Start::Rest,
+    )
+    .unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let landed = run.changes.first().expect("a touch").time;
+    let after: Vec<usize> = (0..run.time.len()).filter(|&i| run.time[i] > landed).collect();
+    assert!(run.time[after[0]] - landed < 0.005 && after.len() >= 5, "{landed} {:?}", run.time);
+    for i in after {
+        let t = run.time[i];
+        assert!((run.q(i)[0] - theta).abs() < 1e-7, "t = {t}: {:?} against {theta}", run.q(i));
+        let total: f64 = run.contacts[i].iter().map(|k| k.normal_force).sum();
+        assert!((total - push).abs() < 1e-6 * push, "t = {t}: {total} against {push}");
     }
 }

@@ -479,7 +479,13 @@ pub(super) fn advance<S: System + ?Sized>(
                 last_rejected = true;
             }
         }
-        record(system, run, target, &q, &v, multipliers.as_deref())?;
+        // Landed on a switch at the sample: the new set's multipliers, not none
+        // (a contact just touched would read no push at rest).
+        let fresh_multipliers = match (&multipliers, system.closures()) {
+            (None, m) if m > 0 => event::consistent_multipliers(system, target, &q, &v)?,
+            _ => None,
+        };
+        record(system, run, target, &q, &v, multipliers.as_deref().or(fresh_multipliers.as_deref()))?;
     }
     Ok(())
 }
