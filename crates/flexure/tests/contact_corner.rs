@@ -213,6 +213,19 @@ fn a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space() {
     }
 }
 
+/// The spatial lid `text` given mass (0.1 kg at its box's centre) and
+/// pushed from rest for `duration` s, sampled every 5 ms (tolerance 1e-8):
+/// its run, which must reach the end.
+fn swung(text: &str, duration: f64) -> flexure::dynamics::simulation::Simulation<flexure::space::Spatial> {
+    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    let moving = format!("{text}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n");
+    let motion = MotionSettings { duration, every: 0.005, tolerance: 1e-8, absolute: 1e-8, ..Default::default() };
+    let settings = simulation::SimulationSettings { motion, ..Default::default() };
+    let run = simulation::simulate(&spatial_from_toml(&moving).unwrap(), &settings, simulation::Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    run
+}
+
 /// Given mass and pushed from rest, the lid of
 /// [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`] swings down and lands
 /// edge across edge on the rail, and rests where the statics put it (its
@@ -224,24 +237,7 @@ fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
     let turned = "origin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
     let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.015 * 0.5f64.sqrt());
     let push = (0.5 * theta + 20.0 * 0.1 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
-    let moving = format!("{}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n", lid3(turned, rail, 20.0));
-    let settings = flexure::dynamics::simulation::SimulationSettings {
-        motion: flexure::dynamics::integrate::MotionSettings {
-            duration: 0.2,
-            every: 0.005,
-            tolerance: 1e-8,
-            absolute: 1e-8,
-            ..Default::default()
-        },
-        ..Default::default()
-    };
-    let run = flexure::dynamics::simulation::simulate(
-        &spatial_from_toml(&moving).unwrap(),
-        &settings,
-        flexure::dynamics::simulation::Start::Rest,
-    )
-    .unwrap();
-    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let run = swung(&lid3(turned, rail, 20.0), 0.2);
     // The impact stops the lid (one coordinate): every sample after it rests there, pushed by N.
     let landed = run.changes.last().expect("a touch").time;
     for (i, &t) in run.time.iter().enumerate().filter(|(_, t)| **t > landed) {
@@ -375,22 +371,7 @@ fn a_lid_swung_onto_a_floor_reads_its_push_from_the_first_sample_after() {
     let floor = "shape = \"plane\"\norigin = [0.0, 0.0, -0.03]\nnormal = [0.0, 0.0, 1.0]";
     let theta = root(|t| 0.1 * t.sin() - 0.005 * t.cos() + 0.03);
     let push = (0.5 * theta + 2.0 * theta.cos()) / (0.1 * theta.cos() + 0.005 * theta.sin());
-    let moving = format!("{}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n", lid3(block, floor, 20.0));
-    let motion = flexure::dynamics::integrate::MotionSettings {
-        duration: 0.04,
-        every: 0.005,
-        tolerance: 1e-8,
-        absolute: 1e-8,
-        ..Default::default()
-    };
-    let settings = flexure::dynamics::simulation::SimulationSettings { motion, ..Default::default() };
-    let run = flexure::dynamics::simulation::simulate(
-        &spatial_from_toml(&moving).unwrap(),
-        &settings,
-        flexure::dynamics::simulation::Start::Rest,
-    )
-    .unwrap();
-    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let run = swung(&lid3(block, floor, 20.0), 0.04);
     let landed = run.changes.first().expect("a touch").time;
     let after: Vec<usize> = (0..run.time.len()).filter(|&i| run.time[i] > landed).collect();
     assert!(run.time[after[0]] - landed < 0.005 && after.len() >= 5, "{landed} {:?}", run.time);
