@@ -286,6 +286,15 @@ force = [0.0, -20.0]
 """
 
 
+def _root(f):
+    """The angle in [-1, 0] where f (of one sign at each end) crosses zero, by bisection to rounding."""
+    lo, hi = -1.0, 0.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
+    return 0.5 * (lo + hi)
+
+
 def test_two_geoms_touch_at_corners_summed_in_one_column():
     """A lid on a sprung hinge (k = 0.5 N m/rad) pushed by F at 0.1 m
     carries a box whose outer lower corner (0.1, -0.005) meets a floor
@@ -297,11 +306,7 @@ def test_two_geoms_touch_at_corners_summed_in_one_column():
     def f(t):
         return 0.1 * math.sin(t) - 0.005 * math.cos(t) + 0.03
 
-    lo, hi = -1.0, 0.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
-    t = 0.5 * (lo + hi)
+    t = _root(f)
     m = flexure.Mechanism.from_toml(LID)
     answer = m.sweep("force.push.fy", [-10.0, -20.0])
     assert list(answer["normal_force"]) == ["contact.floor.lid"]
@@ -355,11 +360,7 @@ def test_two_boxes_meet_edge_across_edge_in_space():
     def f(t):
         return -0.092 * math.sin(t) - 0.03 * math.cos(t) + 0.015 / math.sqrt(2.0)
 
-    lo, hi = -1.0, 0.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
-    t = 0.5 * (lo + hi)
+    t = _root(f)
     push = (0.5 * t + 2.0 * math.cos(t)) / (0.092 * math.cos(t) - 0.03 * math.sin(t))
     answer = flexure.Mechanism.from_toml(LID3_RAIL).solve()
     assert answer["coordinates"]["pivot"][0] == pytest.approx(t, abs=1e-12)

@@ -74,8 +74,8 @@ use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
     Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, column, corner,
-    crossed_edges, dot, friction, gap_slope, length, material_jet, may_cross, minima, named, on_flexure, pairs,
-    point_jet, scaled, tangents, vector,
+    crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross, minima, named, on_flexure,
+    pairs, point_jet, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -670,8 +670,7 @@ impl<D: Dynamics> ContactSystem<D> {
                 continue;
             }
             // Two edges are a contact where they cross within both, facing each other.
-            let crossing = corner(&self.mechanism, &pair).ok().and_then(|c| c.crossing(&self.frames.bodies));
-            if crossing.is_some_and(|k| k.turn.is_none()) {
+            if crossing_of(&self.mechanism, &pair, &self.frames.bodies).is_some_and(|k| k.turn.is_none()) {
                 continue;
             }
             if let Some(low) = self.open_least(&pair, q)? {
@@ -888,7 +887,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
         }
         // Two edges whose crossing leaves either edge are let go: the corner there takes the touch.
         for (i, h) in self.held.iter().enumerate() {
-            if let Some(k) = corner(&self.mechanism, &h.pair).ok().and_then(|k| k.crossing(&self.frames.bodies)) {
+            if let Some(k) = crossing_of(&self.mechanism, &h.pair, &self.frames.bodies) {
                 out[2 * i] = out[2 * i].min(k.margin / self.gap_band);
             }
         }

@@ -253,6 +253,12 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
     Ok(Corner { round, flat, centre, radius: c.radius, edge: None })
 }
 
+/// Of a pair of two edges ([`Corner::crossing`]), where they are nearest,
+/// bodies at `bodies`; `None` for any other pair.
+pub(crate) fn crossing_of<D: Touch>(m: &Mechanism<D>, pair: &Pair, bodies: &[D::Pose]) -> Option<Crossing<D>> {
+    corner(m, pair).ok()?.crossing(bodies)
+}
+
 /// A box's edges (pairs of corners one axis apart) or a capsule's segment,
 /// each with its radius, in the shape's frame; a ball is its centre.
 fn edges<D: Dimension>(s: &GeomShape<D>) -> Vec<(D::Vector, D::Vector, f64)> {

@@ -74,9 +74,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
-    Contact, ContactMode, GapJet, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, corner, crossed_edges, dot,
-    gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents, touched, turned,
-    vector,
+    Contact, ContactMode, GapJet, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, corner, crossed_edges,
+    crossing_of, dot, gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents,
+    touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -961,9 +961,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             return Ok(Some(Event::Open(c)));
         }
         // Two edges whose crossing left either edge: the corner there takes the touch.
-        if let Some(k) = corner(m, &t.pair).ok().and_then(|k| k.crossing(&problem.frames.bodies))
-            && k.margin < 0.0
-        {
+        if crossing_of(m, &t.pair, &problem.frames.bodies).is_some_and(|k| k.margin < 0.0) {
             return Ok(Some(Event::Open(c)));
         }
         match t.place {
