@@ -13,7 +13,11 @@ use flexure::mechanism::statics::{Settings, solve};
 
 /// The angle in $[-1, 0]$ where `f` (increasing there) crosses zero, by bisection to rounding.
 fn root(f: impl Fn(f64) -> f64) -> f64 {
-    let (mut lo, mut hi) = (-1.0, 0.0);
+    root_in(-1.0, 0.0, f)
+}
+
+/// The angle in $[lo, hi]$ where `f` changes sign, by bisection to rounding.
+fn root_in(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if f(mid) * f(lo) <= 0.0 { hi = mid } else { lo = mid }
@@ -210,6 +214,139 @@ fn a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space() {
         if block == turned {
             assert!((s.contacts[0].point[0].abs() - 0.005 * 0.5f64.sqrt()).abs() < 1e-12, "{:?}", s.contacts[0]);
         }
+    }
+}
+
+/// The lid of [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`]
+/// on a carriage sprung along x (`k_x` N/m), dragged by `f_x` N at its push.
+fn carried(block: &str, k_x: f64, f_x: f64) -> String {
+    format!(
+        "dimension = 3\n[[joint]]\nname = \"carriage\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\naxis = [1.0, 0.0, 0.0]\nstiffness = {k_x:?}\n\
+         [[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"cart\"\nchild = \"lid\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.5\n\
+         [[geom]]\nname = \"block\"\nbody = \"lid\"\n{block}\n\
+         [[geom]]\nname = \"rail\"\nbody = \"ground\"\nshape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]\n\
+         [[force]]\nname = \"push\"\nbody = \"lid\"\nat = [0.0, 0.1, 0.0]\nforce = [{f_x:?}, 0.0, -2.0]\n"
+    )
+}
+
+const TURNED: &str = "shape = \"box\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]";
+const ACROSS: &str = "shape = \"capsule\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.0, 1.5707963267948966]\nhalf_length = 0.02\nradius = 0.003";
+
+/// Where the [`carried`] lid rests with the rail's corner
+/// $c = (0.1, 0.092, -0.03)$ on the turned box's lower face (outward normal
+/// $n = -(1, 0, 1)/\sqrt2$ in the lid's frame, 5 mm from its centre) or on
+/// the rod's side (radius 3 mm): the slide $x$, the angle $\theta$ and the push $N$.
+/// With the carriage at $x$ and the lid at $\theta$, $c$ lies at
+/// $c_l = (0.1 - x,\ y^\prime,\ z^\prime)$ in the lid's frame,
+/// $(y^\prime, z^\prime) = (0.092\cos\theta - 0.03\sin\theta,\ -0.092\sin\theta - 0.03\cos\theta)$:
+/// on the face $x = 0.1 + z^\prime + 0.005\sqrt2$, on the rod
+/// $x = 0.1 + \sqrt{0.003^2 - z^{\prime 2}}$. The push $N$ along $n$ balances
+/// the carriage, $k_x x = F_x - N n_x$, and the hinge,
+/// $k\theta = -0.2\cos\theta + (c - x e_x)\times(-N n)\cdot e_x$: a bisection in $\theta$.
+fn on_the_rails_corner(rod: bool, k_x: f64, f_x: f64) -> (f64, f64, f64) {
+    let half = 0.5f64.sqrt();
+    let z_of = |t: f64| -0.092 * t.sin() - 0.03 * t.cos();
+    // The slide, and the normal in the lid's frame, at an angle.
+    let place = |t: f64| match rod {
+        false => (0.1 + z_of(t) + 0.005 / half, [-half, 0.0, -half]),
+        true => {
+            let x = 0.1 + (0.003f64.powi(2) - z_of(t).powi(2)).max(0.0).sqrt();
+            (x, [(0.1 - x) / 0.003, 0.0, z_of(t) / 0.003])
+        }
+    };
+    // The push and the hinge's unbalanced moment at an angle.
+    let balance = |t: f64| {
+        let (x, n) = place(t);
+        let push = (f_x - k_x * x) / n[0];
+        let (ny, nz) = (n[1] * t.cos() - n[2] * t.sin(), n[1] * t.sin() + n[2] * t.cos());
+        let moment = -0.2 * t.cos() + 0.092 * (-push * nz) + 0.03 * (-push * ny);
+        (push, 0.5 * t - moment)
+    };
+    // The rod rests on c where -3 mm < z' < 0 (c below its axis), z' = -R sin(θ + φ),
+    // at two angles: the path meets the one nearer the rail's end, between
+    // the arc's middle and where the push vanishes (the other is the rod
+    // hung 3 mm past the corner).
+    let (big, phi) = (0.092f64.hypot(0.03), 0.03f64.atan2(0.092));
+    let reach = (0.003 / big).asin() * (1.0 - 1e-12);
+    let (lo, hi) = match rod {
+        false => (-1.0, 0.0),
+        true => (-phi + 0.5 * reach, root_in(-phi, -phi + reach, |t| place(t).0 - f_x / k_x)),
+    };
+    let theta = root_in(lo, hi, |t| balance(t).1);
+    (place(theta).0, theta, balance(theta).0)
+}
+
+/// Where a crossing runs off an edge's end, the corner there takes the
+/// touch (`Crossing::ran_off`): the [`carried`] lid's crossing runs along
+/// the rail's top edge to its end, and the rail's corner then bears on the
+/// box's face or the rod's side ([`on_the_rails_corner`]). The slide and
+/// angle to 1e-12, the push to 1e-9 relative, the point to 1e-12 m.
+#[test]
+fn a_crossing_run_off_the_rails_end_hands_its_touch_to_the_rails_corner() {
+    for (block, k_x, f_x) in [(TURNED, 100.0, 10.2), (TURNED, 100.0, 10.5), (ACROSS, 2000.0, 200.5)] {
+        let (x, theta, push) = on_the_rails_corner(block == ACROSS, k_x, f_x);
+        let s = solve(&spatial_from_toml(&carried(block, k_x, f_x)).unwrap(), &Settings::default()).unwrap();
+        assert!(
+            (s.q[0] - x).abs() < 1e-12 && (s.q[1] - theta).abs() < 1e-12,
+            "{block}: {:?} against {x}, {theta}",
+            s.q
+        );
+        let k: Vec<_> = s.contacts.iter().filter(|k| k.state != ContactMode::Open).collect();
+        assert_eq!(k.len(), 1, "{block}: {k:?}");
+        assert!((k[0].normal_force - push).abs() < 1e-9 * push, "{block}: {} against {push}", k[0].normal_force);
+        assert!(k[0].point.iter().zip([0.1, 0.092, -0.03]).all(|(a, b)| (a - b).abs() < 1e-12), "{:?}", k[0]);
+    }
+}
+
+/// And back: swept from 200.5 N down to 199 N, the rod's crossing comes
+/// back onto the rail's edge from its corner: the two edges touch again,
+/// and the corner lets go (one touch left, not two side by side). At 199 N
+/// the rod rests across the edge, as in
+/// [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`]
+/// ($z^\prime = -r_1$, $N = (k\theta + 0.2\cos\theta)/y_l$), its carriage
+/// where its spring alone holds the drag, $x = F_x/k_x$ (the push is
+/// across it). The angle and slide to 1e-12, the push to 1e-9 relative.
+#[test]
+fn a_crossing_swept_back_from_the_rails_corner_takes_its_touch_back() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let m = spatial_from_toml(&carried(ACROSS, 2000.0, 200.5)).unwrap();
+    let drag = Parameter::parse(&m, "force.push.fx").unwrap();
+    let out = sweep(&m, &drag, &[200.5, 199.0], &Settings::default()).unwrap();
+    assert!(out.stopped.is_none() && out.rows.len() == 2, "{:?}", out.stopped);
+    let s = &out.rows[1].1;
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.003);
+    let push = (0.5 * theta + 0.2 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
+    assert!((s.q[0] - 0.0995).abs() < 1e-12 && (s.q[1] - theta).abs() < 1e-12, "{:?} against {theta}", s.q);
+    let k: Vec<_> = s.contacts.iter().filter(|k| k.state != ContactMode::Open).collect();
+    assert_eq!(k.len(), 1, "{k:?}");
+    assert!((k[0].normal_force - push).abs() < 1e-9 * push, "{} against {push}", k[0].normal_force);
+}
+
+/// In motion, given mass and damping and dragged from rest, the [`carried`]
+/// lid lands edge across edge, runs off the rail's end, and the rail's
+/// corner takes the touch at that instant: it comes to rest where
+/// [`on_the_rails_corner`] puts it (slide and angle to 1e-7 after 3 s, the
+/// slowest mode damped by about e^-20), the touch handed over once.
+#[test]
+fn a_crossing_run_off_the_rails_end_in_motion_comes_to_rest_on_the_rails_corner() {
+    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    for (block, k_x, f_x) in [(TURNED, 100.0, 10.5), (ACROSS, 2000.0, 200.5)] {
+        let (x, theta, _) = on_the_rails_corner(block == ACROSS, k_x, f_x);
+        let damped = carried(block, k_x, f_x)
+            .replace("stiffness = 0.5\n", "stiffness = 0.5\ndamping = 0.01\n")
+            .replacen("child = \"cart\"\n", "child = \"cart\"\ndamping = 5.0\n", 1);
+        let text = format!(
+            "{damped}[[body]]\nname = \"cart\"\nmass = 0.1\n[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n"
+        );
+        let motion = MotionSettings { duration: 3.0, every: 0.05, ..Default::default() };
+        let settings = simulation::SimulationSettings { motion, ..Default::default() };
+        let run = simulation::simulate(&spatial_from_toml(&text).unwrap(), &settings, simulation::Start::Rest).unwrap();
+        assert!(run.stopped.is_none(), "{:?}", run.stopped);
+        let last = run.time.len() - 1;
+        let q = run.q(last);
+        assert!((q[0] - x).abs() < 1e-7 && (q[1] - theta).abs() < 1e-7, "{block}: {q:?} against {x}, {theta}");
+        let k: Vec<_> = run.contacts[last].iter().filter(|k| k.state != ContactMode::Open).collect();
+        assert!(k.len() == 1 && k[0].point.iter().zip([0.1, 0.092, -0.03]).all(|(a, b)| (a - b).abs() < 1e-9), "{k:?}");
     }
 }
 

@@ -73,9 +73,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, column, corner,
-    crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross, minima, named, on_flexure,
-    pairs, point_jet, scaled, tangents, vector,
+    Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, came_back, column,
+    corner, crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross, minima, named,
+    on_flexure, pairs, point_jet, ran_off, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -901,7 +901,9 @@ impl<D: Dynamics> System for ContactSystem<D> {
 
     /// A pair that touches while approaching is held; a touching contact
     /// that pulls is let go; a stuck one that needs more than its friction
-    /// slides, and a sliding one that turns back sticks (module docs).
+    /// slides, and a sliding one that turns back sticks (module docs). Two
+    /// edges whose crossing ran off an edge's end hand the touch to the
+    /// corner there, and take it back where the crossing comes back.
     fn switch(&mut self, ks: &[usize], t: f64, q: &[f64], v: &[f64]) -> Result<()> {
         let a = self.held.len();
         self.frames_at(q);
@@ -949,9 +951,31 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 added.push(h);
             }
         }
+        let mut handed = Vec::new();
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
+            // Two edges whose crossing ran off an edge's end: the corner there takes the touch.
+            let (m, bodies) = (&self.mechanism, &self.frames.bodies);
+            let crossing = crossing_of(m, &h.pair, bodies).filter(|k| k.margin < 0.0);
+            handed.extend(crossing.and_then(|k| ran_off(m, &h.pair, &k)));
+        }
+        // Two edges whose crossing came back onto an edge from the corner that held the touch: they take it.
+        for h in &added {
+            let (m, bodies) = (&self.mechanism, &self.frames.bodies);
+            if let Some(i) = came_back(m, &h.pair, bodies).and_then(|c| self.held.iter().position(|k| k.pair == c)) {
+                let k = self.held.remove(i);
+                change(&mut self.changes, &self.mechanism, &k.pair, ContactMode::Open);
+            }
+        }
+        for pair in handed {
+            let Some(low) = self.open_least(&pair, q)? else { continue };
+            if added.iter().any(|h: &Held| h.pair == pair) {
+                continue;
+            }
+            let mut h = self.touch(&pair, None, q)?;
+            h.law = self.starting_law(&h, &low, (q, v))?;
+            added.push(h);
         }
         for h in added {
             if !self.hold(h, q)? {

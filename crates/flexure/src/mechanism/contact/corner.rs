@@ -219,7 +219,13 @@ impl<D: Touch> Corner<'_, D> {
     /// Of a pair of edges, where they are nearest, bodies at `bodies`
     /// ([`super::crossing::crossing`]); `None` for a fixed corner.
     pub fn crossing(&self, bodies: &[D::Pose]) -> Option<Crossing<D>> {
-        self.edge.map(|e| crossing(self.round, self.flat, e, bodies))
+        self.edge.map(|e| crossing(self.round, self.flat, e, bodies, false))
+    }
+
+    /// [`Corner::crossing`] of a pair that touches: the lines' gap
+    /// wherever they cross, smooth up to where it is let go.
+    pub fn held(&self, bodies: &[D::Pose]) -> Option<Crossing<D>> {
+        self.edge.map(|e| crossing(self.round, self.flat, e, bodies, true))
     }
 }
 
@@ -258,6 +264,48 @@ pub(crate) fn corner<'m, D: Touch>(m: &'m Mechanism<D>, pair: &Pair) -> Result<C
 pub(crate) fn crossing_of<D: Touch>(m: &Mechanism<D>, pair: &Pair, bodies: &[D::Pose]) -> Option<Crossing<D>> {
     corner(m, pair).ok()?.crossing(bodies)
 }
+
+/// Of a pair of two edges (placed as `k`), the pair of the corner at the
+/// end nearest where they cross ([`super::crossing::End`]): that edge's
+/// geom's corner nearest its surface point there. It takes the touch where
+/// the crossing runs off that end, and gives it back where it comes back.
+pub(crate) fn end_corner<D: Touch>(m: &Mechanism<D>, pair: &Pair, k: &Crossing<D>) -> Option<Pair> {
+    let end = k.end?;
+    let Toucher::Geom(h) = pair.part else { return None };
+    let (a, b) = (&m.geoms[pair.geom].shape, &m.geoms[h].shape);
+    let far = |c: &CornerOf<D>| {
+        let d = super::array::<D>(&c.centre);
+        (0..3).map(|i| (d[i] - end.point[i]).powi(2)).sum::<f64>()
+    };
+    (0..corner_count(a, b)?)
+        .map(|i| (i, corner_of(a, b, i)))
+        .filter(|(_, c)| c.of_part == end.of_round)
+        .min_by(|x, y| far(&x.1).total_cmp(&far(&y.1)))
+        .map(|(corner, _)| Pair { corner, ..*pair })
+}
+
+/// Of a touching pair of two edges (placed as `k`) let go, the pair of the
+/// corner that takes its touch: where the crossing ran off an edge's end
+/// ([`end_corner`]); `None` where it left the faces' normals instead.
+pub(crate) fn ran_off<D: Touch>(m: &Mechanism<D>, pair: &Pair, k: &Crossing<D>) -> Option<Pair> {
+    k.end.filter(|e| e.within < 0.0).and_then(|_| end_corner(m, pair, k))
+}
+
+/// Of a pair of two edges that begins to touch, bodies at `bodies`, the
+/// corner pair it takes the touch from, where its crossing came back onto
+/// an edge from that corner ([`end_corner`]; within [`COMING_BACK`] of the
+/// edge's length of its end): the same touch, not a second one beside it,
+/// whose rows the motion's closures would hold twice.
+pub(crate) fn came_back<D: Touch>(m: &Mechanism<D>, pair: &Pair, bodies: &[D::Pose]) -> Option<Pair> {
+    let k = crossing_of(m, pair, bodies)?;
+    k.end.filter(|e| e.within <= COMING_BACK * e.length).and_then(|_| end_corner(m, pair, &k))
+}
+
+/// How near an edge's end (a share of its length) a crossing that begins to
+/// touch takes the touch of the corner there ([`came_back`]): where it
+/// comes back onto a rounded edge, its gap falls below the tolerance $\epsilon$ some
+/// $\sqrt{2r\epsilon}$ in, a few micrometres.
+pub(crate) const COMING_BACK: f64 = 1e-3;
 
 /// A box's edges (pairs of corners one axis apart) or a capsule's segment,
 /// each with its radius, in the shape's frame; a ball is its centre.

@@ -19,9 +19,11 @@
 //! touch). Elsewhere its gap is the two segments' distance less the radii,
 //! plus how far the lines' nearest points lie beyond the edges' ends:
 //! continuous where it begins to apply, and above the gap of the corner
-//! that touches there, which so takes the touch. A touching pair let go
-//! where it stops applying ([`Crossing::margin`] below zero) hands the touch
-//! to that corner.
+//! that touches there, which so takes the touch. A touching pair keeps
+//! the lines' gap past where it stops applying (`held`), so its gap stays
+//! smooth up to where it is let go ([`Crossing::margin`] below zero); where
+//! the crossing ran off an edge's end ([`End`]), the corner there takes the
+//! touch at that instant (`super::corner::ran_off`).
 
 use super::{Geom, GeomShape, Touch, array, vector};
 use crate::mechanism::Dimension;
@@ -108,15 +110,36 @@ pub(crate) struct Crossing<D: Touch> {
     pub margin: f64,
     /// Where the pair applies, how its normal turns.
     pub turn: Option<Turn>,
+    /// Of crossing lines, the edges' end nearest where they cross.
+    pub end: Option<End>,
+}
+
+/// The end of two crossing edges nearest where their lines cross: where a
+/// corner takes the touch when the crossing runs off it, and gives it
+/// back when the crossing comes back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct End {
+    /// Whether that edge is the corner's geom's (`round`'s).
+    pub of_round: bool,
+    /// Its surface point at that end, toward the other, in its shape's frame (m).
+    pub point: [f64; 3],
+    /// How far the lines' nearest point lies within the edge from that end
+    /// (m; below zero beyond it).
+    pub within: f64,
+    /// The edge's length (m).
+    pub length: f64,
 }
 
 /// Edge `edges.0` of `round` against edge `edges.1` of `flat`, bodies at
-/// `bodies` (see the module docs).
+/// `bodies` (see the module docs). A pair that touches (`held`) keeps the
+/// lines' gap wherever they cross, so that its gap is smooth past where it
+/// stops applying, up to where it is let go.
 pub(crate) fn crossing<D: Touch>(
     round: &Geom<D>,
     flat: &Geom<D>,
     edges: (usize, usize),
     bodies: &[D::Pose],
+    held: bool,
 ) -> Crossing<D> {
     let (ra, rb) = (ridge(&round.shape, edges.0), ridge(&flat.shape, edges.1));
     let (fa, fb) = (D::compose(&bodies[round.body], &round.frame), D::compose(&bodies[flat.body], &flat.frame));
@@ -133,7 +156,7 @@ pub(crate) fn crossing<D: Touch>(
         (0..3).filter(|&k| faces[k] != 0.0).map(|k| local[k] * faces[k]).fold(f64::INFINITY, f64::min)
     };
     let within = [ta * la, (1.0 - ta) * la, tb * lb, (1.0 - tb) * lb].into_iter().fold(f64::INFINITY, f64::min);
-    let mut margin = -(la + lb);
+    let (mut margin, mut end) = (-(la + lb), None);
     if across {
         let w = cross(u, v);
         let unit = scale(w, 1.0 / dot(w, w).sqrt());
@@ -163,10 +186,20 @@ pub(crate) fn crossing<D: Touch>(
             let (ya, yb) = (add(a0, scale(u, ta.clamp(0.0, 1.0))), add(b0, scale(v, tb.clamp(0.0, 1.0))));
             deep(c_flat, depth(flat, ya)) || deep(c_round, depth(round, yb))
         };
-        if margin >= 0.0 && inside {
+        // The end nearest the crossing, its surface point toward the other.
+        let near = |r: &Ridge, t: f64, l: f64, frame: &D::Pose, of_round: bool| {
+            let toward = if of_round { -1.0 } else { 1.0 };
+            let n_local = array::<D>(&D::rotate(&D::inverse(frame), &vector::<D>(&scale(n, toward))));
+            let point = add(if t < 0.5 { r.from } else { r.to }, scale(n_local, r.radius));
+            End { of_round, point, within: (0.5 - (t - 0.5).abs()) * l, length: l }
+        };
+        let ends = [near(&ra, ta, la, &fa, true), near(&rb, tb, lb, &fb, false)];
+        end = ends.into_iter().min_by(|x, y| x.within.total_cmp(&y.within));
+        if held || (margin >= 0.0 && inside) {
             let turn = Turn { a: scale(u, 1.0 / la), b: scale(v, 1.0 / lb), sign, distance };
             let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius)), n);
-            return Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: Some(turn) };
+            let centre = local::<D>(&bodies[round.body], xa);
+            return Crossing { centre, surface, margin, turn: Some(turn), end };
         }
     }
     // The segments' nearest points (Ericson, Real-Time Collision Detection, 5.1.9).
@@ -183,7 +216,7 @@ pub(crate) fn crossing<D: Touch>(
     let n = if size > 0.0 { scale(r, 1.0 / size) } else { [0.0, 0.0, 1.0] };
     let beyond = if across { (ta - s).abs() * la + (tb - t).abs() * lb } else { 0.0 };
     let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius - beyond)), n);
-    Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None }
+    Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None, end }
 }
 
 /// The plane through `origin` with outward `normal` (both world), fixed in `flat`'s body at `body`.

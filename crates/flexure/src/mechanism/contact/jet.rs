@@ -331,7 +331,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
         }
         Toucher::Geom(_) => {
             let c = super::corner(m, pair)?;
-            let (centre, shape) = match c.crossing(&f.bodies) {
+            let (centre, shape) = match c.held(&f.bodies) {
                 Some(k) => {
                     turn = k.turn;
                     (k.centre, Cow::Owned(k.surface))

@@ -32,7 +32,9 @@ use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
 pub use corner::{CornerOf, RIM_POINTS, corners, edges_cross};
-pub(crate) use corner::{PASSED_THROUGH, corner, crossed_edges, crossing_of, deepest_edge, may_cross, touching};
+pub(crate) use corner::{
+    PASSED_THROUGH, came_back, corner, crossed_edges, crossing_of, deepest_edge, may_cross, ran_off, touching,
+};
 pub(crate) use crossing::Turn;
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};

@@ -21,7 +21,9 @@
 //! a touching contact pulling ($N < 0$: it opens), a gap's local least
 //! below $-10^{-10}\ell$ (a new contact), an end contact whose flexure turns
 //! into the geom beside it ($\partial_s g$ pointing inward: it rolls onto
-//! the span), an inner contact reaching an end, or a loss of stability. A
+//! the span), an inner contact reaching an end, two edges whose crossing
+//! runs off an edge's end (the corner there takes the touch and its push
+//! at that instant), or a loss of stability. A
 //! step with an event is bisected to $10^{-10}$ of the load, the set changed
 //! at the near side and solved there again (at most 8 changes at one load).
 //!
@@ -75,8 +77,8 @@ use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::contact::{
     Contact, ContactMode, GapJet, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, corner, crossed_edges,
-    crossing_of, dot, gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, scaled, tangents,
-    touched, turned, vector,
+    crossing_of, dot, gap_jet, length, material_jet, minima, named, on_flexure, pairs, point_jet, ran_off, scaled,
+    tangents, touched, turned, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
@@ -891,6 +893,11 @@ enum Event {
     /// Touching contact `c` pulls, or, of two edges crossing, no longer
     /// crosses them ([`crate::mechanism::contact::edges_cross`]).
     Open(usize),
+    /// Touching contact `c`, of two edges crossing, ran off an edge's end:
+    /// the corner there (`pair`) takes its touch and force (world) at
+    /// `point` (the new geom body's frame), where its toucher's material
+    /// point is `on` and the normal `normal` (world).
+    HandOff { c: usize, pair: Pair, point: [f64; 3], on: Material, normal: [f64; 3], force: [f64; 3] },
     /// Inner contact `c` reached the end at this arc length.
     AtEnd(usize, f64),
     /// End contact `c`'s flexure turns into the geom beside the end, whose normal is this (world).
@@ -961,8 +968,14 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             return Ok(Some(Event::Open(c)));
         }
         // Two edges whose crossing left either edge: the corner there takes the touch.
-        if crossing_of(m, &t.pair, &problem.frames.bodies).is_some_and(|k| k.margin < 0.0) {
-            return Ok(Some(Event::Open(c)));
+        if let Some(k) = crossing_of(m, &t.pair, &problem.frames.bodies).filter(|k| k.margin < 0.0) {
+            let Some(pair) = ran_off(m, &t.pair, &k) else { return Ok(Some(Event::Open(c))) };
+            let bodies = &problem.frames.bodies;
+            let body = &bodies[geom_body(m, &pair)];
+            let point = array::<D>(&D::position(&D::act(&D::inverse(body), &jet.point)));
+            let on = corner(m, &pair)?.material(bodies, &jet.point);
+            let force = array::<D>(&(scaled::<D>(&jet.normal, normal) + problem.friction_force(c)));
+            return Ok(Some(Event::HandOff { c, pair, point, on, normal: array::<D>(&jet.normal), force }));
         }
         match t.place {
             Place::Inner if !(0.0..=1.0).contains(&t.at) => {
@@ -1081,6 +1094,22 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
     match event {
         Event::Open(c) => {
             out.remove(c);
+        }
+        Event::HandOff { c, pair, point, on, normal, force } => {
+            // The same touch, force and law, now of one material point (or a capsule's end ball, which rolls).
+            let sharp = corner(m, &pair)?.sharp();
+            let t = &mut out[c];
+            (t.pair, t.from, t.on) = (pair, point, on);
+            t.place = if sharp { Place::Corner } else { Place::Geoms };
+            let along = |v: &[f64; 3]| (0..3).map(|i| force[i] * v[i]).sum::<f64>();
+            (t.law, t.force) = match t.law {
+                Law::Free => (Law::Free, [along(&normal), 0.0, 0.0]),
+                _ if sharp => (Law::Stick { anchor: point }, force),
+                _ => {
+                    let u = tangents::<D>(&normal, None);
+                    (Law::Roll { tangents: u }, [along(&normal), along(&u[0]), along(&u[1])])
+                }
+            };
         }
         Event::AtEnd(c, s) => {
             out[c].place = Place::End(s);
@@ -1541,7 +1570,7 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
 
 /// Adds a new contact's pair to `touched` (the pairs an answer reports).
 fn remember(touched: &mut Vec<Pair>, event: Event) {
-    if let Event::Touch { pair, .. } = event
+    if let Event::Touch { pair, .. } | Event::HandOff { pair, .. } = event
         && !touched.contains(&pair)
     {
         touched.push(pair);
