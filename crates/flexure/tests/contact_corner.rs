@@ -322,6 +322,26 @@ fn a_crossing_swept_back_from_the_rails_corner_takes_its_touch_back() {
     assert!((k[0].normal_force - push).abs() < 1e-9 * push, "{} against {push}", k[0].normal_force);
 }
 
+/// A can lying across a knife edge (a box turned 45° about y, its top
+/// edge along y) and dragged along its own axis: the crossing runs along
+/// the can's axis to its end at $x = h = 0.02$ m, where the carriage
+/// alone holds the drag ($x = \lambda F_x/k_x$, the push across it), so at
+/// $\lambda = k_x h/F_x$. Past it the rim's point slides off the knife's edge
+/// with nothing to hold it: the path snaps, and the solve stops there,
+/// said as a snap of two geoms (no flexure named), at that fraction to 1e-6.
+#[test]
+fn a_can_dragged_off_a_knife_edge_snaps_and_the_solve_says_where() {
+    let text = carried("shape = \"cylinder\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 1.5707963267948966, 0.0]\nhalf_length = 0.02\nradius = 0.005", 100.0, 2.05)
+        .replace(
+            "origin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]",
+            "origin = [0.0, 0.08, -0.0125]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.005, 0.03, 0.005]",
+        );
+    let e = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap_err();
+    let flexure::Error::ContinuationStalled { load_fraction, ref cause, .. } = e else { panic!("{e}") };
+    assert!((load_fraction - 0.02 * 100.0 / 2.05).abs() < 1e-6, "{e}");
+    assert!(cause.contains("snaps") && !cause.contains("flexure"), "{e}");
+}
+
 /// In motion, given mass and damping and dragged from rest, the [`carried`]
 /// lid lands edge across edge, runs off the rail's end, and the rail's
 /// corner takes the touch at that instant: it comes to rest where

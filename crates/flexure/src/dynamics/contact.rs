@@ -73,9 +73,9 @@ use crate::error::{Error, Result};
 use crate::kinematics::Level;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array, came_back, column,
-    corner, crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross, minima, named,
-    on_flexure, pairs, point_jet, ran_off, scaled, tangents, vector,
+    COMING_BACK, Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array,
+    came_back, column, corner, crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross,
+    minima, named, on_flexure, pairs, point_jet, ran_off, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -955,19 +955,16 @@ impl<D: Dynamics> System for ContactSystem<D> {
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
-            // Two edges whose crossing ran off an edge's end: the corner there takes the touch.
+            // Two edges whose crossing ran off an edge's end (the step lands
+            // on it to the tolerance, either side): the corner there takes the touch.
             let (m, bodies) = (&self.mechanism, &self.frames.bodies);
-            let crossing = crossing_of(m, &h.pair, bodies).filter(|k| k.margin < 0.0);
-            handed.extend(crossing.and_then(|k| ran_off(m, &h.pair, &k)));
+            handed.extend(crossing_of(m, &h.pair, bodies).and_then(|k| ran_off(m, &h.pair, &k, COMING_BACK)));
         }
-        // Two edges whose crossing came back onto an edge from the corner that held the touch: they take it.
-        for h in &added {
-            let (m, bodies) = (&self.mechanism, &self.frames.bodies);
-            if let Some(i) = came_back(m, &h.pair, bodies).and_then(|c| self.held.iter().position(|k| k.pair == c)) {
-                let k = self.held.remove(i);
-                change(&mut self.changes, &self.mechanism, &k.pair, ContactMode::Open);
-            }
-        }
+        // Two edges whose crossing came back onto an edge from the corner
+        // that held the touch (or is handed it now) take it: not both.
+        let backs: Vec<Option<Pair>> =
+            added.iter().map(|h| came_back(&self.mechanism, &h.pair, &self.frames.bodies)).collect();
+        handed.retain(|p| !backs.contains(&Some(*p)));
         for pair in handed {
             let Some(low) = self.open_least(&pair, q)? else { continue };
             if added.iter().any(|h: &Held| h.pair == pair) {
@@ -977,9 +974,18 @@ impl<D: Dynamics> System for ContactSystem<D> {
             h.law = self.starting_law(&h, &low, (q, v))?;
             added.push(h);
         }
-        for h in added {
+        for (k, h) in added.into_iter().enumerate() {
+            // The corner it came back from lets go only where it is held in its place.
+            let back = backs.get(k).copied().flatten().and_then(|c| self.held.iter().position(|k| k.pair == c));
+            let corner = back.map(|i| (i, self.held.remove(i)));
             if !self.hold(h, q)? {
+                if let Some((i, c)) = corner {
+                    self.held.insert(i, c);
+                }
                 continue;
+            }
+            if let Some((_, c)) = corner {
+                change(&mut self.changes, &self.mechanism, &c.pair, ContactMode::Open);
             }
             let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
             let state = if stuck { ContactMode::Stick } else { ContactMode::Slip };

@@ -285,10 +285,12 @@ pub(crate) fn end_corner<D: Touch>(m: &Mechanism<D>, pair: &Pair, k: &Crossing<D
 }
 
 /// Of a touching pair of two edges (placed as `k`) let go, the pair of the
-/// corner that takes its touch: where the crossing ran off an edge's end
-/// ([`end_corner`]); `None` where it left the faces' normals instead.
-pub(crate) fn ran_off<D: Touch>(m: &Mechanism<D>, pair: &Pair, k: &Crossing<D>) -> Option<Pair> {
-    k.end.filter(|e| e.within < 0.0).and_then(|_| end_corner(m, pair, k))
+/// corner that takes its touch: where the crossing ran off an edge's end,
+/// or lies within `near` of the edge's length of it (where a step landed on
+/// it to a tolerance; [`end_corner`]); `None` where it left the faces'
+/// normals instead.
+pub(crate) fn ran_off<D: Touch>(m: &Mechanism<D>, pair: &Pair, k: &Crossing<D>, near: f64) -> Option<Pair> {
+    k.end.filter(|e| e.within < near * e.length).and_then(|_| end_corner(m, pair, k))
 }
 
 /// Of a pair of two edges that begins to touch, bodies at `bodies`, the

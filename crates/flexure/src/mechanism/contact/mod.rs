@@ -31,10 +31,11 @@ mod width;
 use super::{Dimension, Mechanism};
 use crate::error::{Error, Result};
 use crate::space::Planar;
-pub use corner::{CornerOf, RIM_POINTS, corners, edges_cross};
 pub(crate) use corner::{
-    PASSED_THROUGH, came_back, corner, crossed_edges, crossing_of, deepest_edge, may_cross, ran_off, touching,
+    COMING_BACK, PASSED_THROUGH, came_back, corner, crossed_edges, crossing_of, deepest_edge, may_cross, ran_off,
+    touching,
 };
+pub use corner::{CornerOf, RIM_POINTS, corners, edges_cross};
 pub(crate) use crossing::Turn;
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};

@@ -969,13 +969,17 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         }
         // Two edges whose crossing left either edge: the corner there takes the touch.
         if let Some(k) = crossing_of(m, &t.pair, &problem.frames.bodies).filter(|k| k.margin < 0.0) {
-            let Some(pair) = ran_off(m, &t.pair, &k) else { return Ok(Some(Event::Open(c))) };
+            let Some(pair) = ran_off(m, &t.pair, &k, 0.0) else { return Ok(Some(Event::Open(c))) };
             let bodies = &problem.frames.bodies;
             let body = &bodies[geom_body(m, &pair)];
             let point = array::<D>(&D::position(&D::act(&D::inverse(body), &jet.point)));
-            let on = corner(m, &pair)?.material(bodies, &jet.point);
-            let force = array::<D>(&(scaled::<D>(&jet.normal, normal) + problem.friction_force(c)));
-            return Ok(Some(Event::HandOff { c, pair, point, on, normal: array::<D>(&jet.normal), force }));
+            let taker = corner(m, &pair)?;
+            let on = taker.material(bodies, &jet.point);
+            // Where the corner is the other geom's, toucher and touched swap: the normal and force turn over.
+            let sign = if std::ptr::eq(taker.round, corner(m, &t.pair)?.round) { 1.0 } else { -1.0 };
+            let force = scaled::<D>(&(scaled::<D>(&jet.normal, normal) + problem.friction_force(c)), sign);
+            let (normal, force) = (array::<D>(&scaled::<D>(&jet.normal, sign)), array::<D>(&force));
+            return Ok(Some(Event::HandOff { c, pair, point, on, normal, force }));
         }
         match t.place {
             Place::Inner if !(0.0..=1.0).contains(&t.at) => {
@@ -1477,8 +1481,14 @@ fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e
     let names: Vec<String> = touching.iter().map(|t| named(m, &t.pair)).collect();
     Error::ContinuationStalled {
         cause: format!(
-            "the contacts of {} could not be solved where they changed ({e}); a flexure touching a sharp edge or corner of a box, where no point of it is tangent to the geom, is not solved: round the edge (a capsule) or give the flexure a thickness",
-            names.join(" and ")
+            "the contacts of {} could not be solved where they changed ({e}); {}",
+            names.join(" and "),
+            match touching.iter().any(|t| matches!(t.pair.part, Toucher::Flexure(_))) {
+                true =>
+                    "a flexure touching a sharp edge or corner of a box, where no point of it is tangent to the geom, is not solved: round the edge (a capsule) or give the flexure a thickness",
+                false =>
+                    "where a geom's corner or edge slides off the other's face or edge with nothing to hold it there, the path snaps, and the solve stops there",
+            }
         ),
         rounding: false,
         solver: "mechanism equilibrium with contact",
