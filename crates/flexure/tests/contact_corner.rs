@@ -406,6 +406,78 @@ fn a_box_swung_onto_a_rail_rests_on_it_edge_across_edge() {
     }
 }
 
+/// Friction across two edges: the [`carried`] lid's turned box comes down
+/// across the rail's outer top edge, now rough (μ = 0.2), while the drag
+/// $F_x$ grows with the push. Free, the lid turns as
+/// $k\theta = -0.2\lambda\cos\theta$ and the carriage slides $\lambda F_x/k_x$;
+/// it touches at $\lambda_t = -k\theta_c/(0.2\cos\theta_c)$, $\theta_c$ the
+/// angle of [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`],
+/// and stuck, the carriage stays where it was, the friction
+/// $-(\lambda - \lambda_t)F_x$ along the edge. The push balances the hinge
+/// as without friction (friction along x has no moment about it), and the
+/// rail's tangent across the edge moves nothing the push does not hold:
+/// its friction is indeterminate and taken 0 (the least friction,
+/// `ContactKkt::prune`). Where $(1 - \lambda_t)F_x > \mu N$ it slips, and at
+/// the full load $k_xx = F_x - \mu N$. The angle to 1e-12 rad, the forces to
+/// 1e-9 relative, the slide to 1e-12 m, or stuck to 2e-11 m: a touch is
+/// found once the gap passes $-10^{-10}\ell$ ($\ell$ = 1 m here), which the
+/// lid, closing at 0.036 m per unit load, reaches $2.8\times10^{-9}$ of the
+/// load late, and the stuck carriage stays where it was then, 8e-12 m
+/// on. (Without the rows left out, the stuck force was taken as Newton
+/// found it, pulling, and the path stalled at 52 % of the load.)
+#[test]
+fn a_box_dragged_along_a_rough_rails_edge_sticks_then_slips() {
+    let z0 = -0.03;
+    let theta = root(|t| -0.092 * t.sin() + z0 * t.cos() + 0.015 * 0.5f64.sqrt());
+    let arm = 0.092 * theta.cos() + z0 * theta.sin();
+    let push = (0.5 * theta + 0.2 * theta.cos()) / arm;
+    let touch = -0.5 * theta / (0.2 * theta.cos());
+    for (f_x, state) in [(0.3, ContactMode::Stick), (5.0, ContactMode::Slip)] {
+        let text = carried(TURNED, 100.0, f_x).replacen(
+            "half_extents = [0.1, 0.002, 0.01]\n",
+            "half_extents = [0.1, 0.002, 0.01]\nfriction = 0.2\n",
+            1,
+        );
+        let s = solve(&spatial_from_toml(&text).unwrap(), &Settings::default()).unwrap();
+        let (x, friction) = match state {
+            ContactMode::Stick => (touch * f_x / 100.0, -(1.0 - touch) * f_x),
+            _ => ((f_x - 0.2 * push) / 100.0, -0.2 * push),
+        };
+        let within = if state == ContactMode::Stick { 2e-11 } else { 1e-12 };
+        assert!((s.q[0] - x).abs() < within && (s.q[1] - theta).abs() < 1e-12, "{f_x}: {:?} against {x}, {theta}", s.q);
+        let k: Vec<_> = s.contacts.iter().filter(|k| k.state != ContactMode::Open).collect();
+        assert_eq!(k.len(), 1, "{f_x}: {k:?}");
+        assert_eq!(k[0].state, state, "{f_x}: {k:?}");
+        assert!((k[0].normal_force - push).abs() < 1e-9 * push, "{f_x}: {} against {push}", k[0].normal_force);
+        let f = &k[0].friction_force;
+        assert!(
+            (f[0] - friction).abs() < 1e-9 * push && f[1].abs() < 1e-9 * push && f[2].abs() < 1e-9 * push,
+            "{f_x}: {f:?}"
+        );
+    }
+}
+
+/// A corner stuck on a rough floor that stops the lid's one coordinate:
+/// the push alone holds it, and the friction, indeterminate, is taken 0
+/// (the least friction): the push of the frictionless lid of
+/// [`a_lid_pushed_onto_a_floor_rests_on_its_boxs_corner`], to 1e-9
+/// relative, stuck. (Before the rows were left out, the stuck corner read
+/// a push of 22.46 N against 18.93 N, and slipping.)
+#[test]
+fn a_lid_stuck_on_a_rough_floor_reads_the_frictionless_push() {
+    let block = "origin = [0.08, 0.0]\nhalf_extents = [0.02, 0.005]";
+    let floor = "shape = \"plane\"\norigin = [0.0, -0.03]\nnormal = [0.0, 1.0]\nfriction = 0.3";
+    let theta = root(|t| 0.1 * t.sin() - 0.005 * t.cos() + 0.03);
+    let arm = 0.1 * theta.cos() + 0.005 * theta.sin();
+    let push = (0.5 * theta + 2.0 * theta.cos()) / arm;
+    let s = solve(&from_toml(&lid(block, floor, 20.0)).unwrap(), &Settings::default()).unwrap();
+    assert!((s.q[0] - theta).abs() < 1e-12, "{} against {theta}", s.q[0]);
+    let c = &s.contacts[0];
+    assert_eq!((s.contacts.len(), c.state), (1, ContactMode::Stick), "{:?}", s.contacts);
+    assert!((c.normal_force - push).abs() < 1e-9 * push, "{} against {push}", c.normal_force);
+    assert!(c.friction_force.iter().all(|f| f.abs() < 1e-9 * push), "{:?}", c.friction_force);
+}
+
 /// A box's sharp corner is one material point: stuck, it is pinned where
 /// it touches, and slipping, it slides (it does not roll). A foot on a
 /// sprung slider (100 N/m along z) and a soft hinge about x, its box

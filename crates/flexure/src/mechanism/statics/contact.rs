@@ -54,6 +54,15 @@
 //! for $r\Delta\theta$, a relative error of $\Delta\theta^2/6 \approx
 //! 2\times10^{-5}$.
 //!
+//! **Indeterminate friction.** Where a stuck or rolling contact's
+//! tangential rows depend on the closures' rows and the pushes (a lid's
+//! corner stuck on a floor, the lid on one hinge), its friction along them
+//! is indeterminate in a rigid model and Newton would leave it where it
+//! started. After each change of the set they are left out
+//! ([`ContactKkt::prune`]): the least friction that holds the same
+//! equilibrium, the push then the frictionless one. Two edges' crossing
+//! moves over both edges, so with friction it rolls.
+//!
 //! **Sliding where it rolls, in space,** the slide's direction turns with
 //! the rolling, so it is solved with each step rather than lagged: the
 //! friction's two tangential components stay unknowns, with Alart and
@@ -173,6 +182,26 @@ struct Touching {
     on: Material,
     /// Whether a flexure touches with a thickness (off its centreline).
     thick: bool,
+    /// Its force rows left out ([`ContactKkt::prune`]).
+    pruned: Pruned,
+}
+
+/// A touching contact's force rows left out where they depend on the rows
+/// before them ([`ContactKkt::prune`]): a stuck one's rows and force
+/// components are along `axes` (world: its normal, then its tangents;
+/// the world's axes when `None`), a rolling one's along its law's
+/// tangents; each row `dropped` holds its force component at 0.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Pruned {
+    axes: Option<[[f64; 3]; 3]>,
+    dropped: [bool; 3],
+}
+
+impl Pruned {
+    /// Its `k`th axis (world).
+    fn axis(&self, k: usize) -> [f64; 3] {
+        self.axes.map_or_else(|| std::array::from_fn(|i| f64::from(u8::from(i == k))), |a| a[k])
+    }
 }
 
 impl Touching {
@@ -277,7 +306,12 @@ impl<D: Statics> ContactKkt<'_, D> {
     fn state(&self, x: &[f64]) -> Vec<f64> {
         let mut out = x[..self.inner_dim()].to_vec();
         for t in &self.touching {
-            out.extend(t.force[..t.width::<D>()].iter().map(|f| f / self.sigma));
+            let stuck = matches!(t.law, Law::Stick { .. });
+            out.extend((0..t.width::<D>()).map(|k| match (t.pruned.dropped[k], stuck) {
+                (true, _) => 0.0,
+                (false, true) => (0..3).map(|i| t.pruned.axis(k)[i] * t.force[i]).sum::<f64>() / self.sigma,
+                (false, false) => t.force[k] / self.sigma,
+            }));
         }
         out.extend(self.touching.iter().filter(|t| t.place == Place::Inner).map(|t| t.at));
         out
@@ -290,8 +324,14 @@ impl<D: Statics> ContactKkt<'_, D> {
         for (c, t) in self.touching.iter_mut().enumerate() {
             let w = t.width::<D>();
             t.force = [0.0; 3];
-            for (k, f) in t.force[..w].iter_mut().enumerate() {
-                *f = x[forces[c] + k] * sigma;
+            // A row left out holds no force.
+            for k in (0..w).filter(|&k| !t.pruned.dropped[k]) {
+                let f = x[forces[c] + k] * sigma;
+                match t.law {
+                    // A stuck one's components are along its axes.
+                    Law::Stick { .. } => t.pruned.axis(k).iter().zip(&mut t.force).for_each(|(e, out)| *out += f * e),
+                    _ => t.force[k] = f,
+                }
             }
             if let Some(i) = inner[c] {
                 t.at = x[i];
@@ -479,6 +519,98 @@ impl<D: Statics> ContactKkt<'_, D> {
             _ => here,
         };
         self.touching[c].law = Law::Stick { anchor };
+        Ok(())
+    }
+
+    /// Leaves out each stuck or rolling contact's friction rows that depend
+    /// on the rows before them at the state `x` (at `lambda`), and sets `x`
+    /// in the forces' new components. The rows go in order: the
+    /// closures', each contact's push (never left out), then each
+    /// contact's tangential rows. Its force is otherwise indeterminate (a
+    /// lid's box stopped on a rough rail: the push already stops the one
+    /// coordinate that the rail's tangent across it moves), and Newton
+    /// would leave it where it started. Of a contact's tangential rows,
+    /// what the rows before leave of them, $r_k$, is split along the
+    /// eigenvectors of $r_ir_j$, and a direction whose part is under
+    /// $10^{-9}$ of the contact's largest row is left out, its friction
+    /// held at 0: of the forces that hold the same equilibrium, the least
+    /// friction. A contact none of whose rows depends keeps its own
+    /// components (nothing changes where the force is determinate).
+    fn prune(&mut self, x: &mut Vec<f64>, lambda: f64) -> Result<()> {
+        self.read(x);
+        for t in &mut self.touching {
+            t.pruned = Pruned::default();
+        }
+        *x = self.state(x);
+        let size = self.dim();
+        let (mut r, mut jac) = (vec![0.0; size], vec![0.0; size * size]);
+        self.evaluate(x, lambda, &mut r, Some(&mut jac), None)?;
+        let (n, kd) = (self.kkt.mechanism.dof(), self.inner_dim());
+        let mut basis = Basis::default();
+        for i in n..kd {
+            basis.add(&(0..n).map(|c| self.inner[c * kd + i]).collect::<Vec<_>>());
+        }
+        // Each contact's push row; then its tangential rows.
+        let mut tangential: Vec<Option<Along>> = Vec::new();
+        for (c, t) in self.touching.iter().enumerate() {
+            let normal = &self.jets[c].normal;
+            let (push, rest) = match (&self.friction[c], t.law) {
+                (Friction::Pin { delta, .. }, _) => {
+                    let row = |e: &D::Vector| delta.iter().map(|d| dot::<D>(e, d)).collect::<Vec<f64>>();
+                    let units = tangents::<D>(&array::<D>(normal), None)[..D::POINT_DIM - 1].to_vec();
+                    let rows = units.iter().map(|e| row(&vector::<D>(e))).collect();
+                    (row(normal), Some((units, rows)))
+                }
+                (Friction::Roll { along, skid: None, .. }, Law::Roll { tangents: u }) => {
+                    (self.jets[c].gradient.clone(), Some((u[..D::POINT_DIM - 1].to_vec(), along.clone())))
+                }
+                _ => (self.jets[c].gradient.clone(), None),
+            };
+            basis.add(&push);
+            tangential.push(rest.map(|(units, rows): (_, Vec<Vec<f64>>)| {
+                let largest = rows.iter().chain([&push]).map(|r| norm(r)).fold(0.0, f64::max);
+                Along { units, rows, largest }
+            }));
+        }
+        for (c, rest) in tangential.into_iter().enumerate() {
+            let Some(Along { units, rows, largest }) = rest else { continue };
+            let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
+            let (directions, parts) = principal(&left);
+            let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * largest).collect();
+            for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
+                basis.add(&(0..n).map(|j| w.iter().zip(&rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
+            }
+            if kept.iter().all(|&k| k) {
+                continue;
+            }
+            // The tangents along the principal directions, the kept ones first.
+            let turned: Vec<[f64; 3]> = directions
+                .iter()
+                .map(|w| std::array::from_fn(|i| w.iter().zip(&units).map(|(a, u)| a * u[i]).sum()))
+                .collect();
+            let normal = array::<D>(&self.jets[c].normal);
+            let t = &mut self.touching[c];
+            let mut axes = [[0.0; 3]; 3];
+            axes[0] = normal;
+            axes[1..1 + turned.len()].copy_from_slice(&turned);
+            for (k, &keep) in kept.iter().enumerate() {
+                t.pruned.dropped[1 + k] = !keep;
+            }
+            match &mut t.law {
+                Law::Stick { .. } => t.pruned.axes = Some(axes),
+                Law::Roll { tangents: u } => {
+                    // Its friction, in the new tangents.
+                    let f: [f64; 3] =
+                        std::array::from_fn(|i| (0..turned.len()).map(|k| t.force[1 + k] * u[k][i]).sum());
+                    for (k, e) in turned.iter().enumerate() {
+                        u[k] = *e;
+                        t.force[1 + k] = (0..3).map(|i| e[i] * f[i]).sum();
+                    }
+                }
+                _ => {}
+            }
+        }
+        *x = self.state(x);
         Ok(())
     }
 
@@ -710,7 +842,8 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                         residual[i] -= dot::<D>(&force, &delta[i]) * rows[i];
                     }
                     for k in 0..D::POINT_DIM {
-                        residual[at + k] = offset[k] / length;
+                        let e = vector::<D>(&t.pruned.axis(k));
+                        residual[at + k] = if t.pruned.dropped[k] { x[at + k] } else { dot::<D>(&e, offset) / length };
                     }
                 }
                 Friction::Roll { offsets, along, skid, .. } => {
@@ -720,7 +853,10 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                     }
                     residual[at] = jet.gap / length;
                     for (k, r) in offsets.iter().enumerate() {
-                        residual[at + 1 + k] = skid.as_ref().map_or(r / length, |s| s.rows[k]);
+                        residual[at + 1 + k] = match t.pruned.dropped[1 + k] {
+                            true => x[at + 1 + k],
+                            false => skid.as_ref().map_or(r / length, |s| s.rows[k]),
+                        };
                     }
                 }
                 other => {
@@ -753,10 +889,14 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             for i in 0..n {
                                 jac[j * size + i] -= hessian[(i, j)] * rows[i];
                             }
-                            for k in 0..D::POINT_DIM {
-                                jac[(row + k) * size + j] = -sigma * delta[j][k] * rows[j];
-                                jac[j * size + row + k] = delta[j][k] / length;
+                            for k in (0..D::POINT_DIM).filter(|&k| !t.pruned.dropped[k]) {
+                                let along = dot::<D>(&vector::<D>(&t.pruned.axis(k)), &delta[j]);
+                                jac[(row + k) * size + j] = -sigma * along * rows[j];
+                                jac[j * size + row + k] = along / length;
                             }
+                        }
+                        for k in (0..D::POINT_DIM).filter(|&k| t.pruned.dropped[k]) {
+                            jac[(row + k) * size + row + k] = 1.0;
                         }
                     }
                     Friction::None => {
@@ -775,10 +915,13 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
                             }
                             jac[row * size + j] = -sigma * jet.gradient[j] * rows[j];
                             jac[j * size + row] = jet.gradient[j] / length;
-                            for (k, a) in along.iter().enumerate() {
+                            for (k, a) in along.iter().enumerate().filter(|(k, _)| !t.pruned.dropped[1 + k]) {
                                 jac[(row + 1 + k) * size + j] = -sigma * a[j] * rows[j];
                                 jac[j * size + row + 1 + k] = a[j] / length;
                             }
+                        }
+                        for k in (0..along.len()).filter(|&k| t.pruned.dropped[1 + k]) {
+                            jac[(row + 1 + k) * size + row + 1 + k] = 1.0;
                         }
                         if let Some(s) = skid {
                             for k in 0..along.len() {
@@ -1054,10 +1197,12 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                         ((s <= 1e-9 * length || s >= (1.0 - 1e-9) * length) && half == 0.0, half != 0.0, on)
                     }
                     _ => {
-                        // A box's sharp corner, or a point of an edge crossing
-                        // another, is one material point, as a flexure's bare end.
+                        // A box's sharp corner is one material point, as a
+                        // flexure's bare end; two edges' crossing moves along
+                        // both, and rolls.
                         let round = corner(m, pair)?;
-                        (round.sharp(), false, round.material(&problem.frames.bodies, &low.point))
+                        let one = round.sharp() && round.edge.is_none();
+                        (one, false, round.material(&problem.frames.bodies, &low.point))
                     }
                 };
                 let normal = array::<D>(&low.normal);
@@ -1185,7 +1330,8 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
                 (true, true, _) => Law::Stick { anchor: point },
                 (true, false, _) => Law::Roll { tangents: tangents::<D>(&normal, None) },
             };
-            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on, thick });
+            let pruned = Pruned::default();
+            out.push(Touching { pair, place, law, force: [0.0; 3], at, length, from: point, on, thick, pruned });
         }
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
@@ -1198,6 +1344,10 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
             let at = format!("{} (at {:.4} % of the load)", named(m, &pair), 100.0 * lambda);
             return Err(Error::invalid("geom", at, PASSED_THROUGH));
         }
+    }
+    // Each stuck force in the world's axes, all rows held, until [`ContactKkt::prune`].
+    for t in &mut out {
+        t.pruned = Pruned::default();
     }
     Ok(out)
 }
@@ -1392,6 +1542,7 @@ fn follow<D: Statics>(
         remember(&mut touched, first);
         x = problem.state(&x);
         problem.anchor(&x, lo, first)?;
+        problem.prune(&mut x, lo)?;
         settle_events(&mut problem, &mut x, lo, settings, all, &mut touched, &mut iterations)?;
         lambda = lo;
         previous = None;
@@ -1459,6 +1610,7 @@ fn settle_events<D: Statics>(
                 remember(touched, e);
                 *x = problem.state(x);
                 problem.anchor(x, lambda, e)?;
+                problem.prune(x, lambda)?;
             }
         }
     }
@@ -1614,6 +1766,67 @@ fn report<D: Statics>(problem: &ContactKkt<D>, q: &[f64], touched: &[Pair]) -> R
     Ok(out)
 }
 
+/// A contact's tangential rows as [`ContactKkt::prune`] takes them: its
+/// tangents (world), their rows, and the largest of its rows (its push's too).
+struct Along {
+    units: Vec<[f64; 3]>,
+    rows: Vec<Vec<f64>>,
+    largest: f64,
+}
+
+/// An orthonormal basis of rows, grown by Gram–Schmidt.
+#[derive(Default)]
+struct Basis {
+    rows: Vec<Vec<f64>>,
+}
+
+impl Basis {
+    /// What of `row` the basis leaves.
+    fn rest(&self, row: &[f64]) -> Vec<f64> {
+        let mut rest = row.to_vec();
+        for b in &self.rows {
+            let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
+            rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
+        }
+        rest
+    }
+
+    /// Adds `row` where more than $10^{-9}$ of it is left.
+    fn add(&mut self, row: &[f64]) {
+        let rest = self.rest(row);
+        let left = norm(&rest);
+        if left > 1e-9 * norm(row) {
+            self.rows.push(rest.iter().map(|x| x / left).collect());
+        }
+    }
+}
+
+fn norm(row: &[f64]) -> f64 {
+    row.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The principal directions of one or two rows $r_k$: the unit
+/// eigenvectors $w$ of $r_ir_j$, largest first, and the size of each
+/// combination $\lvert\sum_k w_kr_k\rvert$.
+fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    match rows {
+        [a, b] => {
+            let (p, q, r) = (dot(a, a), dot(a, b), dot(b, b));
+            // The larger eigenvalue's direction, (cos φ, sin φ) with tan 2φ = 2q/(p − r).
+            let phi = 0.5 * (2.0 * q).atan2(p - r);
+            let (c, s) = (phi.cos(), phi.sin());
+            let directions = vec![vec![c, s], vec![-s, c]];
+            let parts = directions
+                .iter()
+                .map(|w| norm(&a.iter().zip(b).map(|(x, y)| w[0] * x + w[1] * y).collect::<Vec<_>>()))
+                .collect();
+            (directions, parts)
+        }
+        _ => (rows.iter().map(|_| vec![1.0]).collect(), rows.iter().map(|r| norm(r)).collect()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1654,6 +1867,7 @@ mod tests {
             from: [0.0; 3],
             on: [0.6, 0.0, 0.0, 0.0],
             thick: false,
+            pruned: Pruned::default(),
         };
         let q = [-0.4, 0.1, -0.05, 0.02];
         let (stuck, sliding) = (Law::Stick { anchor: [0.9, 0.0, 0.0] }, Law::Slip { direction: [-0.8, 0.6, 0.0] });
@@ -1746,6 +1960,7 @@ mod tests {
                     from: [0.65, -0.15, 0.05],
                     on,
                     thick: true,
+                    pruned: Pruned::default(),
                 };
                 problem.touching = vec![t];
                 let x = problem.state(&q);
@@ -1781,12 +1996,21 @@ mod tests {
                 from,
                 on,
                 thick: false,
+                pruned: Pruned::default(),
             };
             problem.touching = vec![t];
             let x = problem.state(&q);
             crate::solver::assert_derivatives(&mut problem, &x, 0.7);
         }
     }
+
+    /// A wheel on a sprung, sliding hub and a pad on a sprung arm, in space, all axes skew.
+    const WHEEL_ON_A_PAD: &str = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"hub\"\naxis = [1.0, 0.0, 0.2]\nstiffness = 3.0\n\
+                    [[joint]]\nname = \"spin\"\nkind = \"revolute\"\nparent = \"hub\"\nchild = \"wheel\"\naxis = [0.3, 0.1, 1.0]\nstiffness = 2.0\n\
+                    [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.0, -1.0, 0.0]\naxis = [1.0, 0.2, 0.1]\nstiffness = 5.0\n\
+                    [[force]]\nbody = \"hub\"\nat = [0.0, 0.0, 0.0]\nforce = [1.0, -3.0, 0.5]\n\
+                    [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"sphere\"\nradius = 0.4\nfriction = 0.3\n\
+                    [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5, 0.0]\nnormal = [0.1, 1.0, 0.2]\n";
 
     /// As above, between two geoms that both move: a wheel on a sprung,
     /// sliding hub and a pad on a sprung arm, rolling stuck and sliding.
@@ -1812,13 +2036,7 @@ mod tests {
     /// (the direction solved with the step).
     #[test]
     fn the_jacobian_of_rolling_in_space_matches_differences() {
-        let text = "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"hub\"\naxis = [1.0, 0.0, 0.2]\nstiffness = 3.0\n\
-                    [[joint]]\nname = \"spin\"\nkind = \"revolute\"\nparent = \"hub\"\nchild = \"wheel\"\naxis = [0.3, 0.1, 1.0]\nstiffness = 2.0\n\
-                    [[joint]]\nname = \"hinge\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\norigin = [0.0, -1.0, 0.0]\naxis = [1.0, 0.2, 0.1]\nstiffness = 5.0\n\
-                    [[force]]\nbody = \"hub\"\nat = [0.0, 0.0, 0.0]\nforce = [1.0, -3.0, 0.5]\n\
-                    [[geom]]\nname = \"tyre\"\nbody = \"wheel\"\nshape = \"sphere\"\nradius = 0.4\nfriction = 0.3\n\
-                    [[geom]]\nname = \"pad\"\nbody = \"arm\"\nshape = \"plane\"\norigin = [0.0, 0.5, 0.0]\nnormal = [0.1, 1.0, 0.2]\n";
-        let m = crate::mechanism::file::spatial_from_toml(text).unwrap();
+        let m = crate::mechanism::file::spatial_from_toml(WHEEL_ON_A_PAD).unwrap();
         let n = [0.1f64, 0.98, 0.17];
         let size = n.iter().map(|v| v * v).sum::<f64>().sqrt();
         let n = n.map(|v| v / size);
@@ -1829,5 +2047,43 @@ mod tests {
             Law::Skid { tangents: u, accepted: [0.0; 2] },
         ];
         rolling_rows_match_differences(&m, &rolling, [0.5, -0.2, 0.3], [0.1, 0.45, -0.05], [0.05, -0.38, 0.1]);
+    }
+
+    /// A contact with rows left out ([`ContactKkt::prune`]): stuck along
+    /// turned axes with one tangent left out, and rolling with one, against
+    /// differences on the wheel and pad of
+    /// [`the_jacobian_of_rolling_in_space_matches_differences`].
+    #[test]
+    fn the_jacobian_with_rows_left_out_matches_differences() {
+        let m = crate::mechanism::file::spatial_from_toml(WHEEL_ON_A_PAD).unwrap();
+        let n = [0.6f64, 0.0, 0.8];
+        let u = tangents::<crate::space::Spatial>(&n, None);
+        let mut work = Workspace::new(&m);
+        let all = pairs(&m);
+        let mut problem = bare(&m, &Settings::default(), &mut work);
+        let cases = [
+            (
+                Law::Stick { anchor: [0.1, 0.45, -0.05] },
+                Pruned { axes: Some([n, u[0], u[1]]), dropped: [false, false, true] },
+            ),
+            (Law::Roll { tangents: u }, Pruned { axes: None, dropped: [false, true, false] }),
+        ];
+        for (law, pruned) in cases {
+            let t = Touching {
+                pair: all[0],
+                place: Place::Geoms,
+                law,
+                force: [0.5, -0.2, 0.0],
+                at: 0.0,
+                length: 1.0,
+                from: [0.1, 0.45, -0.05],
+                on: on_ball([0.05, -0.38, 0.1]),
+                thick: false,
+                pruned,
+            };
+            problem.touching = vec![t];
+            let x = problem.state(&[0.2, 0.7, -0.3]);
+            crate::solver::assert_derivatives(&mut problem, &x, 0.7);
+        }
     }
 }
