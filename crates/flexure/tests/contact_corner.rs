@@ -322,6 +322,32 @@ fn a_crossing_swept_back_from_the_rails_corner_takes_its_touch_back() {
     assert!((k[0].normal_force - push).abs() < 1e-9 * push, "{} against {push}", k[0].normal_force);
 }
 
+/// And back for the turned box: the rail's corner slides back along the
+/// box's lower face, whose push along the rail (its normal $n$, 45° to
+/// it) holds the carriage out, $k_xx = F_x + N/\sqrt2$, until it reaches
+/// the box's lowest edge: at the angle $\theta_c$ where the edge meets the
+/// rail's (as in [`a_box_or_a_rod_meets_a_rail_or_a_rod_edge_across_edge_in_space`]),
+/// $x = 0.1 - 0.005/\sqrt2$ and $N = \sqrt2N_c$, $N_c$ the push there
+/// across the edges, so $F_x = 100x - N_c$ = 8.678 N. Below it the edges
+/// cross again only with the carriage at $F_x/k_x$, 1 cm in: the path
+/// snaps (forward, the corner took the touch at 9.646 N), and the sweep
+/// from 10.5 N to 8.5 N stops there, said as a snap of the two geoms, at
+/// that fraction of the last step to 1e-6.
+#[test]
+fn a_box_swept_back_from_the_rails_corner_snaps_onto_its_edge_and_the_sweep_says_where() {
+    use flexure::mechanism::sweep::{Parameter, sweep};
+    let m = spatial_from_toml(&carried(TURNED, 100.0, 10.5)).unwrap();
+    let drag = Parameter::parse(&m, "force.push.fx").unwrap();
+    let out = sweep(&m, &drag, &[10.5, 8.5], &Settings::default()).unwrap();
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.015 * 0.5f64.sqrt());
+    let across = (0.5 * theta + 0.2 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
+    let snap = 100.0 * (0.1 - 0.005 * 0.5f64.sqrt()) - across;
+    let Some((8.5, e)) = out.stopped else { panic!("no stop at 8.5 N: {:?}", out.stopped) };
+    let flexure::Error::ContinuationStalled { load_fraction, ref cause, .. } = e else { panic!("{e}") };
+    assert!((load_fraction - (10.5 - snap) / 2.0).abs() < 1e-6, "{load_fraction} against {}: {e}", (10.5 - snap) / 2.0);
+    assert!(cause.contains("snaps") && cause.contains("\"block\""), "{e}");
+}
+
 /// A can lying across a knife edge (a box turned 45° about y, its top
 /// edge along y) and dragged along its own axis: the crossing runs along
 /// the can's axis to its end at $x = h = 0.02$ m, where the carriage

@@ -1494,7 +1494,7 @@ fn follow<D: Statics>(
                 if step < SMALLEST_STEP {
                     return Err(match e {
                         Error::ContinuationStalled { .. } => e,
-                        other => stalled(lambda, steps, residual, other.to_string()),
+                        other => stalled(lambda, steps, residual, snapping(m, &problem.touching, other)),
                     });
                 }
                 continue;
@@ -1651,6 +1651,23 @@ fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e
             _ => f64::NAN,
         },
         unit: "relative",
+    }
+}
+
+/// The cause of a path that stalled with `touching` on the error `e`,
+/// naming the geoms that touch each other where any do: a corner or edge
+/// of one that slides off the other's face or edge with nothing to hold
+/// it there snaps (a box swept back from a rail's corner onto its edge,
+/// whose push had held it out along the rail).
+fn snapping<D: Statics>(m: &Mechanism<D>, touching: &[Touching], e: Error) -> String {
+    let names: Vec<String> =
+        touching.iter().filter(|t| matches!(t.pair.part, Toucher::Geom(_))).map(|t| named(m, &t.pair)).collect();
+    match names.is_empty() {
+        true => e.to_string(),
+        false => format!(
+            "{e}; {} touched there: where a geom's corner or edge slides off the other's face or edge, the path snaps, and the solve stops there",
+            names.join(" and ")
+        ),
     }
 }
 
