@@ -451,20 +451,6 @@ impl<D: Dynamics> ContactSystem<D> {
         })
     }
 
-    /// An error naming the first pair of two geoms one of whose edges went
-    /// through the other past the gap's band at `q` between two steps, with
-    /// none of their gaps negative ([`crossed_edges`]).
-    fn edges_apart(&mut self, q: &[f64]) -> Result<()> {
-        if !self.pairs.iter().any(|p| may_cross(&self.mechanism, p)) {
-            return Ok(());
-        }
-        self.frames_at(q);
-        match crossed_edges(&self.mechanism, &self.frames.bodies, &self.pairs, self.gap_band) {
-            Some(pair) => Err(Error::invalid("geom", named(&self.mechanism, &pair), PASSED_THROUGH)),
-            None => Ok(()),
-        }
-    }
-
     /// Leaves out each stuck contact's rows that depend on the rows before
     /// them at `q` ([`ContactSystem::independent_rows`]: the pushes before
     /// any friction, a stuck contact's rows along its normal and tangents,
@@ -1014,8 +1000,19 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// it began, its speed along it fell to zero where it had only turned
     /// a right angle, and its friction turned over there (a guard that
     /// jumped a thousand bands).
+    /// The first pair of two geoms one of whose edges went through the
+    /// other past the gap's band at `q`, with none of their gaps negative
+    /// ([`crossed_edges`]), named.
+    fn passed(&mut self, q: &[f64]) -> Result<Option<String>> {
+        if !self.pairs.iter().any(|p| may_cross(&self.mechanism, p)) {
+            return Ok(None);
+        }
+        self.frames_at(q);
+        let pair = crossed_edges(&self.mechanism, &self.frames.bodies, &self.pairs, self.gap_band);
+        Ok(pair.map(|pair| Error::invalid("geom", named(&self.mechanism, &pair), PASSED_THROUGH).to_string()))
+    }
+
     fn accepted(&mut self, q: &[f64], v: &[f64]) -> Result<()> {
-        self.edges_apart(q)?;
         if !self.held.iter().any(|h| matches!(h.law, Law::Slip { .. })) {
             return Ok(());
         }

@@ -114,6 +114,16 @@ pub trait System {
         Ok(())
     }
 
+    /// Why a step's end $q$, outside any event's bracket and clear of
+    /// every guard, went through
+    /// something between two states that no guard sees (two geoms edge
+    /// across edge past each other), if it did: the step is refused and
+    /// shortened, and the run stops with this cause only where it cannot
+    /// shorten. The default: never.
+    fn passed(&mut self, _q: &[f64]) -> Result<Option<String>> {
+        Ok(None)
+    }
+
     /// Told of each step the run accepts, at its end $(q, \dot q)$ (before
     /// any switch there): a system whose guards are measured from the state
     /// the run has reached takes it here (a slide's direction, which turns

@@ -288,6 +288,13 @@ pub(super) fn advance<S: System + ?Sized>(
                         let lambda = consistent.as_deref().unwrap_or(&w.x[3 * n + 2 * m..3 * n + 3 * m]);
                         let mut verdict = event::guards(system, &q1, &v1, Some(lambda), &mut g_end)
                             .map(|()| event::verdict(&g_now, &g_end, pending.as_ref()));
+                        // Clear of every guard, yet through a geom (which no guard sees): refused, shortened.
+                        if pending.is_none()
+                            && matches!(verdict, Ok(Verdict::Clear))
+                            && let Some(why) = system.passed(&q1)?
+                        {
+                            verdict = Err(Error::Singular { what: why });
+                        }
                         // An event seen through the step's own multipliers is
                         // checked with the equations' own, which the steps
                         // aimed at it read: one that only the step's own see
