@@ -1002,7 +1002,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// jumped a thousand bands).
     /// The first pair of two geoms one of whose edges went through the
     /// other past the gap's band at `q`, with none of their gaps negative
-    /// ([`crossed_edges`]), named.
+    /// (`crossed_edges`), named.
     fn passed(&mut self, q: &[f64]) -> Result<Option<String>> {
         if !self.pairs.iter().any(|p| may_cross(&self.mechanism, p)) {
             return Ok(None);
