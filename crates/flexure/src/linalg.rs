@@ -589,6 +589,60 @@ pub fn softest_mode(a: &DMatrix<f64>) -> Option<(f64, nalgebra::DVector<f64>)> {
     Some((value, eig.eigenvectors.column(i).into_owned()))
 }
 
+/// An orthonormal basis of rows, grown by Gram–Schmidt.
+#[derive(Default)]
+pub(crate) struct Basis {
+    rows: Vec<Vec<f64>>,
+}
+
+impl Basis {
+    /// What of `row` the basis leaves.
+    pub(crate) fn rest(&self, row: &[f64]) -> Vec<f64> {
+        let mut rest = row.to_vec();
+        for b in &self.rows {
+            let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
+            rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
+        }
+        rest
+    }
+
+    /// Adds `row` where more than $10^{-9}$ of it is left.
+    pub(crate) fn add(&mut self, row: &[f64]) {
+        let rest = self.rest(row);
+        let left = norm(&rest);
+        if left > 1e-9 * norm(row) {
+            self.rows.push(rest.iter().map(|x| x / left).collect());
+        }
+    }
+}
+
+/// The Euclidean length of `row`.
+pub(crate) fn norm(row: &[f64]) -> f64 {
+    row.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The principal directions of one or two rows $r_k$: the unit
+/// eigenvectors $w$ of $r_ir_j$, largest first, and the size of each
+/// combination $\lvert\sum_k w_kr_k\rvert$.
+pub(crate) fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    match rows {
+        [a, b] => {
+            let (p, q, r) = (dot(a, a), dot(a, b), dot(b, b));
+            // The larger eigenvalue's direction, (cos φ, sin φ) with tan 2φ = 2q/(p − r).
+            let phi = 0.5 * (2.0 * q).atan2(p - r);
+            let (c, s) = (phi.cos(), phi.sin());
+            let directions = vec![vec![c, s], vec![-s, c]];
+            let parts = directions
+                .iter()
+                .map(|w| norm(&a.iter().zip(b).map(|(x, y)| w[0] * x + w[1] * y).collect::<Vec<_>>()))
+                .collect();
+            (directions, parts)
+        }
+        _ => (rows.iter().map(|_| vec![1.0]).collect(), rows.iter().map(|r| norm(r)).collect()),
+    }
+}
+
 /// Seeded uniform numbers in [-1, 1) (xorshift*): the random matrices
 /// of the to-the-bit tests, the same on every machine.
 #[cfg(test)]

@@ -527,6 +527,53 @@ fn a_box_dragged_along_a_rough_rails_edge_sticks_then_slips() {
     }
 }
 
+/// The same drag in motion, the whole scene turned 30° about z (the rail,
+/// the carriage's axis, the hinge, the box and the loads), so that no
+/// tangent of the rail's edge is a world axis: given mass and damping and
+/// pushed from rest, the lid comes down across the rough edge and rests
+/// stuck. Its push is the frictionless one of
+/// [`a_box_dragged_along_a_rough_rails_edge_sticks_then_slips`] (the
+/// friction across the edge is indeterminate and taken 0: the least
+/// friction, whatever the world's axes), to 1e-6 relative after 3 s; its
+/// friction lies along the rail, to 1e-9 N across it, and balances the
+/// carriage's spring and drag along it, $f = k_xx - F_x$, to 1e-6 N.
+/// (With the tangents of the world's axes it read 0.9603 N against
+/// 0.9680 N, the friction leaning 10° off the rail.)
+#[test]
+fn a_turned_box_stuck_on_a_rough_rail_in_motion_reads_the_frictionless_push() {
+    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let turn = |v: [f64; 3]| format!("[{:?}, {:?}, {:?}]", c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]);
+    let (axis, yaw) = (turn([1.0, 0.0, 0.0]), 30f64.to_radians());
+    let text = format!(
+        "dimension = 3\n[[joint]]\nname = \"carriage\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\naxis = {axis}\nstiffness = 100.0\ndamping = 5.0\n\
+         [[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"cart\"\nchild = \"lid\"\naxis = {axis}\nstiffness = 0.5\ndamping = 0.01\n\
+         [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\norigin = {}\nrpy = [0.0, 0.7853981633974483, {yaw:?}]\nhalf_extents = [0.01, 0.02, 0.005]\n\
+         [[geom]]\nname = \"rail\"\nbody = \"ground\"\nshape = \"box\"\norigin = {}\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [0.1, 0.002, 0.01]\nfriction = 0.2\n\
+         [[force]]\nname = \"push\"\nbody = \"lid\"\nat = {}\nforce = {}\n\
+         [[body]]\nname = \"cart\"\nmass = 0.1\n[[body]]\nname = \"lid\"\nmass = 0.1\ncom = {}\n",
+        turn([0.0, 0.08, 0.0]),
+        turn([0.0, 0.09, -0.04]),
+        turn([0.0, 0.1, 0.0]),
+        turn([0.3, 0.0, -2.0]),
+        turn([0.0, 0.08, 0.0]),
+    );
+    let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.015 * 0.5f64.sqrt());
+    let push = (0.5 * theta + 0.2 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
+    let motion = MotionSettings { duration: 3.0, every: 0.5, ..Default::default() };
+    let settings = simulation::SimulationSettings { motion, ..Default::default() };
+    let run = simulation::simulate(&spatial_from_toml(&text).unwrap(), &settings, simulation::Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let last = run.time.len() - 1;
+    let k: Vec<_> = run.contacts[last].iter().filter(|k| k.state != ContactMode::Open).collect();
+    assert!(k.len() == 1 && k[0].state == ContactMode::Stick, "{k:?}");
+    assert!((k[0].normal_force - push).abs() < 1e-6 * push, "{} against {push}", k[0].normal_force);
+    let f = &k[0].friction_force;
+    let (along, across) = (c * f[0] + s * f[1], -s * f[0] + c * f[1]);
+    assert!(across.abs() < 1e-9 && f[2].abs() < 1e-9, "{f:?}");
+    assert!((along - (100.0 * run.q(last)[0] - 0.3)).abs() < 1e-6, "{along} against {}", 100.0 * run.q(last)[0] - 0.3);
+}
+
 /// A corner stuck on a rough floor that stops the lid's one coordinate:
 /// the push alone holds it, and the friction, indeterminate, is taken 0
 /// (the least friction): the push of the frictionless lid of

@@ -71,6 +71,7 @@ use super::schedule::ScheduledSystem;
 use super::system::System;
 use crate::error::{Error, Result};
 use crate::kinematics::Level;
+use crate::linalg;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
     COMING_BACK, Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array,
@@ -121,6 +122,9 @@ struct Held {
     /// pendulum's bob on a floor: the gap stops its one coordinate, and
     /// nothing is left to slide): [`ContactSystem::prune`].
     dropped: [bool; 3],
+    /// A stuck one's tangents where [`ContactSystem::prune`] turned them
+    /// (world; else those of [`tangents`]).
+    axes: Option<[[f64; 3]; 2]>,
     /// The last push (N) and friction force (world) reported, and the largest push it has carried.
     force: f64,
     friction: [f64; 3],
@@ -292,6 +296,7 @@ impl<D: Dynamics> ContactSystem<D> {
             rolls: false,
             mu,
             dropped: [false; 3],
+            axes: None,
             force: 0.0,
             friction: [0.0; 3],
             largest: 0.0,
@@ -459,12 +464,18 @@ impl<D: Dynamics> ContactSystem<D> {
     /// stops its one coordinate, and no friction is needed to hold it), and
     /// held, it would make the closures singular. A rolling contact's gap row
     /// is never left out; its friction along a row left out is reported 0.
+    /// Where a tangential row is left out, the contact's tangents turn to
+    /// the principal directions of what the rows before leave of its rows
+    /// ([`ContactSystem::turn_tangents`]), as the solve's do: the least
+    /// friction, whatever the world's axes.
     fn prune(&mut self, q: &[f64]) -> Result<()> {
         for h in &mut self.held {
             h.dropped = [false; 3];
+            h.axes = None;
         }
         let independent = self.independent_rows(q)?;
         let firsts = self.first_rows();
+        let mut turn = false;
         for (h, first) in self.held.iter_mut().zip(firsts) {
             let stuck = matches!(h.law, Law::Stick { .. } | Law::Roll { .. });
             for (k, slot) in h.slots::<D>(first).into_iter().enumerate() {
@@ -472,8 +483,69 @@ impl<D: Dynamics> ContactSystem<D> {
                 let rolls_gap = k == 0 && matches!(h.law, Law::Roll { .. });
                 if !independent[r] && stuck && !rolls_gap {
                     h.dropped[k] = true;
+                    turn |= k > 0;
                 }
             }
+        }
+        if turn && D::POINT_DIM == 3 { self.turn_tangents(q) } else { Ok(()) }
+    }
+
+    /// Turns each stuck or rolling contact's tangents, one of whose rows
+    /// `prune` left out, to the principal directions of what the
+    /// closures', the pushes' and the earlier contacts' rows leave of its
+    /// tangential rows at `q` (the eigenvectors of $r_ir_j$), and leaves out
+    /// a direction whose part is under $10^{-9}$ of the largest row.
+    fn turn_tangents(&mut self, q: &[f64]) -> Result<()> {
+        let pushes: Vec<bool> = self.held.iter().map(|h| h.dropped[0]).collect();
+        let before: Vec<[bool; 3]> = self.held.iter().map(|h| h.dropped).collect();
+        for h in &mut self.held {
+            h.dropped = [false; 3];
+        }
+        let (n, m) = (self.dim(), self.closures());
+        let (mut c, mut g) = (vec![0.0; m], vec![0.0; m * n]);
+        self.closure(q, &mut c, &mut g)?;
+        let row = |r: usize| (0..n).map(|col| g[col * m + r]).collect::<Vec<f64>>();
+        let scale = (0..m).map(|r| linalg::norm(&row(r))).fold(0.0, f64::max);
+        let mut basis = linalg::Basis::default();
+        (0..self.inner.closures()).for_each(|r| basis.add(&row(r)));
+        let firsts = self.first_rows();
+        for (&first, &left_out) in firsts.iter().zip(&pushes) {
+            if !left_out {
+                basis.add(&row(first));
+            }
+        }
+        // Each one's rows among all (none left out while G is read).
+        let slots: Vec<[Option<usize>; 3]> = self.held.iter().zip(&firsts).map(|(h, &f)| h.slots::<D>(f)).collect();
+        for (i, slots) in slots.into_iter().enumerate() {
+            self.held[i].dropped = before[i];
+            if !before[i][1..].contains(&true) {
+                slots[1..].iter().flatten().for_each(|&r| basis.add(&row(r)));
+                continue;
+            }
+            let rows: Vec<Vec<f64>> = slots[1..D::POINT_DIM].iter().flatten().map(|&r| row(r)).collect();
+            let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
+            let (directions, parts) = linalg::principal(&left);
+            let size = rows.iter().map(|r| linalg::norm(r)).fold(scale, f64::max);
+            let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * size).collect();
+            for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
+                basis.add(&(0..n).map(|j| w.iter().zip(&rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
+            }
+            // Its tangents as the rows took them, turned.
+            let normal = self.settle(i, q)?.normal;
+            let h = &mut self.held[i];
+            let units = match h.law {
+                Law::Roll { tangents: kept } => tangents::<D>(&array::<D>(&normal), Some(&kept)),
+                _ => tangents::<D>(&array::<D>(&normal), None),
+            };
+            let mut turned = [[0.0; 3]; 2];
+            for (k, w) in directions.iter().enumerate() {
+                turned[k] = std::array::from_fn(|j| w.iter().zip(&units).map(|(a, u)| a * u[j]).sum());
+            }
+            match &mut h.law {
+                Law::Roll { tangents: u } => *u = turned,
+                _ => h.axes = Some(turned),
+            }
+            h.dropped = [before[i][0], !kept[0], !kept[1]];
         }
         Ok(())
     }
@@ -602,7 +674,7 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             (Law::Stick { .. }, Some(l)) => {
                 let held = h.slots::<D>(row).map(|r| r.map_or(0.0, |r| l[r]));
-                let axes = stuck_axes::<D>(&n);
+                let axes = stuck_axes::<D>(&n, h.axes.as_ref());
                 let force = (0..D::POINT_DIM).fold(D::Vector::default(), |f, k| f - scaled::<D>(&axes[k], held[k]));
                 let push = dot::<D>(&n, &force);
                 (push, force - scaled::<D>(&n, push))
@@ -679,11 +751,10 @@ fn sliding<D: Dynamics>(delta: &[D::Vector], v: &[f64], n: &D::Vector) -> D::Vec
 }
 
 /// A stuck contact's row axes: the normal `n` first, then its tangents
-/// ([`tangents`]). Its pinned point's offset is held along each; where the
-/// rows are dependent (`prune`), the tangential ones go before the normal
-/// one, so a corner whose push the others' rows do not fix keeps it.
-fn stuck_axes<D: Dynamics>(n: &D::Vector) -> Vec<D::Vector> {
-    let t = tangents::<D>(&array::<D>(n), None);
+/// ([`tangents`], nearest `turned` where `prune` turned them). Its pinned
+/// point's offset is held along each.
+fn stuck_axes<D: Dynamics>(n: &D::Vector, turned: Option<&[[f64; 3]; 2]>) -> Vec<D::Vector> {
+    let t = tangents::<D>(&array::<D>(n), turned);
     std::iter::once(*n).chain(t[..D::POINT_DIM - 1].iter().map(vector::<D>)).collect()
 }
 
@@ -738,7 +809,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 let body = &self.frames.bodies[p.shape.body];
                 let a = D::act(body, &D::moved(&D::origin(&D::identity()), &vector::<D>(&anchor), 1.0));
                 let offset = D::position(&p.x) - D::position(&a);
-                let axes = stuck_axes::<D>(&slope.normal);
+                let axes = stuck_axes::<D>(&slope.normal, h.axes.as_ref());
                 for (k, r) in slots.iter().enumerate().take(D::POINT_DIM).filter_map(|(k, r)| r.map(|r| (k, r))) {
                     c[r] = dot::<D>(&axes[k], &offset);
                     for col in 0..n {

@@ -546,7 +546,7 @@ impl<D: Statics> ContactKkt<'_, D> {
         let (mut r, mut jac) = (vec![0.0; size], vec![0.0; size * size]);
         self.evaluate(x, lambda, &mut r, Some(&mut jac), None)?;
         let (n, kd) = (self.kkt.mechanism.dof(), self.inner_dim());
-        let mut basis = Basis::default();
+        let mut basis = linalg::Basis::default();
         for i in n..kd {
             basis.add(&(0..n).map(|c| self.inner[c * kd + i]).collect::<Vec<_>>());
         }
@@ -568,14 +568,14 @@ impl<D: Statics> ContactKkt<'_, D> {
             };
             basis.add(&push);
             tangential.push(rest.map(|(units, rows): (_, Vec<Vec<f64>>)| {
-                let largest = rows.iter().chain([&push]).map(|r| norm(r)).fold(0.0, f64::max);
+                let largest = rows.iter().chain([&push]).map(|r| linalg::norm(r)).fold(0.0, f64::max);
                 Along { units, rows, largest }
             }));
         }
         for (c, rest) in tangential.into_iter().enumerate() {
             let Some(Along { units, rows, largest }) = rest else { continue };
             let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
-            let (directions, parts) = principal(&left);
+            let (directions, parts) = linalg::principal(&left);
             let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * largest).collect();
             for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
                 basis.add(&(0..n).map(|j| w.iter().zip(&rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
@@ -1789,59 +1789,6 @@ struct Along {
     units: Vec<[f64; 3]>,
     rows: Vec<Vec<f64>>,
     largest: f64,
-}
-
-/// An orthonormal basis of rows, grown by Gram–Schmidt.
-#[derive(Default)]
-struct Basis {
-    rows: Vec<Vec<f64>>,
-}
-
-impl Basis {
-    /// What of `row` the basis leaves.
-    fn rest(&self, row: &[f64]) -> Vec<f64> {
-        let mut rest = row.to_vec();
-        for b in &self.rows {
-            let along: f64 = rest.iter().zip(b).map(|(x, y)| x * y).sum();
-            rest.iter_mut().zip(b).for_each(|(x, y)| *x -= along * y);
-        }
-        rest
-    }
-
-    /// Adds `row` where more than $10^{-9}$ of it is left.
-    fn add(&mut self, row: &[f64]) {
-        let rest = self.rest(row);
-        let left = norm(&rest);
-        if left > 1e-9 * norm(row) {
-            self.rows.push(rest.iter().map(|x| x / left).collect());
-        }
-    }
-}
-
-fn norm(row: &[f64]) -> f64 {
-    row.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// The principal directions of one or two rows $r_k$: the unit
-/// eigenvectors $w$ of $r_ir_j$, largest first, and the size of each
-/// combination $\lvert\sum_k w_kr_k\rvert$.
-fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    match rows {
-        [a, b] => {
-            let (p, q, r) = (dot(a, a), dot(a, b), dot(b, b));
-            // The larger eigenvalue's direction, (cos φ, sin φ) with tan 2φ = 2q/(p − r).
-            let phi = 0.5 * (2.0 * q).atan2(p - r);
-            let (c, s) = (phi.cos(), phi.sin());
-            let directions = vec![vec![c, s], vec![-s, c]];
-            let parts = directions
-                .iter()
-                .map(|w| norm(&a.iter().zip(b).map(|(x, y)| w[0] * x + w[1] * y).collect::<Vec<_>>()))
-                .collect();
-            (directions, parts)
-        }
-        _ => (rows.iter().map(|_| vec![1.0]).collect(), rows.iter().map(|r| norm(r)).collect()),
-    }
 }
 
 #[cfg(test)]
