@@ -1015,7 +1015,34 @@ impl<D: Dynamics> System for ContactSystem<D> {
             // Two edges whose crossing ran off an edge's end (the step lands
             // on it to the tolerance, either side): the corner there takes the touch.
             let (m, bodies) = (&self.mechanism, &self.frames.bodies);
-            handed.extend(crossing_of(m, &h.pair, bodies).and_then(|k| ran_off(m, &h.pair, &k, COMING_BACK)));
+            let Some(corner) = crossing_of(m, &h.pair, bodies).and_then(|k| ran_off(m, &h.pair, &k, COMING_BACK))
+            else {
+                continue;
+            };
+            // Where another crossing of the two geoms' edges applies and
+            // touches, the nearest to where it was takes the touch instead:
+            // its edge goes on from that end (a box's edge off a rail's top
+            // edge at its corner, onto its upright edge there), where the
+            // corner's normal to an edge it sits on is undefined.
+            let Some(from) = self.open_least(&h.pair, q)?.map(|g| D::position(&g.point)) else {
+                handed.push(corner);
+                continue;
+            };
+            let mut next: Option<(f64, Pair)> = None;
+            for p in self.pairs.iter().filter(|p| p.geom == h.pair.geom && p.part == h.pair.part && **p != h.pair) {
+                let applies = crossing_of(m, p, bodies).is_some_and(|k| k.margin >= 0.0);
+                let held = self.held.iter().any(|k| k.pair == *p);
+                if let (true, false, Some(g)) = (applies, held, self.open_least(p, q)?)
+                    && g.gap <= self.gap_band
+                {
+                    let d = D::position(&g.point) - from;
+                    let far = dot::<D>(&d, &d).sqrt();
+                    if next.is_none_or(|(f, _)| far < f) {
+                        next = Some((far, *p));
+                    }
+                }
+            }
+            handed.push(next.map_or(corner, |(_, p)| p));
         }
         // Two edges whose crossing came back onto an edge from the corner
         // that held the touch (or is handed it now) take it: not both.
