@@ -454,13 +454,14 @@ fn an_undamped_rod_struck_back_and_forth_at_the_rails_end_never_gains_energy() {
 }
 
 /// Undamped, the turned box's carriage (100 N/m on 0.1 kg, 10.5 N) swings
-/// about the rail's end: the box's edge runs off the rail's top edge at
-/// its corner and goes on across the rail's upright edge there, which
-/// touches at that instant and takes the touch (handed to the corner,
-/// whose normal to an edge it sits on is undefined, the released edges
-/// read 30 bands deep and the run stopped at 2.2 to 2.5 s). Regression
-/// guard and geometry: the run reaches 3 s, and at every sample no point
-/// of the box's edges (40 per edge) lies inside the rail.
+/// about the rail's end, and the box's edge comes to lie flush on the
+/// rail's end face, across its top and its upright edges: where the top
+/// crossing runs off the rail's corner, the upright crossing, touching at
+/// that instant, holds (handed to the corner, which sits on the box's
+/// edge where its normal is undefined, the released edges read 30 bands
+/// deep and the run stopped at 2.2 to 2.5 s). Regression guard and
+/// geometry: the run reaches 3 s, and at every sample no point of the
+/// box's edges (40 per edge) lies inside the rail.
 #[test]
 fn an_undamped_box_struck_back_and_forth_at_the_rails_end_runs_on_outside_it() {
     let run = undamped(TURNED, 100.0, 10.5, 3.0);

@@ -1020,10 +1020,12 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 continue;
             };
             // Where another crossing of the two geoms' edges applies and
-            // touches, the nearest to where it was takes the touch instead:
-            // its edge goes on from that end (a box's edge off a rail's top
-            // edge at its corner, onto its upright edge there), where the
-            // corner's normal to an edge it sits on is undefined.
+            // touches, the nearest to where it was holds instead: an edge
+            // lying flush on a face touches it along a segment whose ends
+            // are two crossings (a box's edge on a rail's end face, across
+            // its top and its upright edges), and the corner that ends one
+            // sits on the edge, where its normal is undefined. A corner
+            // left open that is needed is touched by its own guard.
             let Some(from) = self.open_least(&h.pair, q)?.map(|g| D::position(&g.point)) else {
                 handed.push(corner);
                 continue;
