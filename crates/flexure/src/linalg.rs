@@ -624,7 +624,7 @@ pub(crate) fn norm(row: &[f64]) -> f64 {
 /// The principal directions of one or two rows $r_k$: the unit
 /// eigenvectors $w$ of $r_ir_j$, largest first, and the size of each
 /// combination $\lvert\sum_k w_kr_k\rvert$.
-pub(crate) fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
+fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     match rows {
         [a, b] => {
@@ -641,6 +641,29 @@ pub(crate) fn principal(rows: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
         }
         _ => (rows.iter().map(|_| vec![1.0]).collect(), rows.iter().map(|r| norm(r)).collect()),
     }
+}
+
+/// A stuck contact's tangential `rows` (along the world vectors `units`)
+/// split along the principal directions of what `basis` leaves of them
+/// ([`principal`]): the units turned to those directions, largest first,
+/// and whether each is kept, its part above $10^{-9}$ of `size`. The kept
+/// combinations of the rows join the basis.
+pub(crate) fn turn_rows(
+    basis: &mut Basis,
+    rows: &[Vec<f64>],
+    units: &[[f64; 3]],
+    size: f64,
+) -> (Vec<[f64; 3]>, Vec<bool>) {
+    let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
+    let (directions, parts) = principal(&left);
+    let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * size).collect();
+    let n = rows.first().map_or(0, Vec::len);
+    for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
+        basis.add(&(0..n).map(|j| w.iter().zip(rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
+    }
+    let turned =
+        directions.iter().map(|w| std::array::from_fn(|i| w.iter().zip(units).map(|(a, u)| a * u[i]).sum())).collect();
+    (turned, kept)
 }
 
 /// Seeded uniform numbers in [-1, 1) (xorshift*): the random matrices

@@ -523,13 +523,7 @@ impl<D: Dynamics> ContactSystem<D> {
                 continue;
             }
             let rows: Vec<Vec<f64>> = slots[1..D::POINT_DIM].iter().flatten().map(|&r| row(r)).collect();
-            let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
-            let (directions, parts) = linalg::principal(&left);
             let size = rows.iter().map(|r| linalg::norm(r)).fold(scale, f64::max);
-            let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * size).collect();
-            for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
-                basis.add(&(0..n).map(|j| w.iter().zip(&rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
-            }
             // Its tangents as the rows took them, turned.
             let normal = self.settle(i, q)?.normal;
             let h = &mut self.held[i];
@@ -537,10 +531,8 @@ impl<D: Dynamics> ContactSystem<D> {
                 Law::Roll { tangents: kept } => tangents::<D>(&array::<D>(&normal), Some(&kept)),
                 _ => tangents::<D>(&array::<D>(&normal), None),
             };
-            let mut turned = [[0.0; 3]; 2];
-            for (k, w) in directions.iter().enumerate() {
-                turned[k] = std::array::from_fn(|j| w.iter().zip(&units).map(|(a, u)| a * u[j]).sum());
-            }
+            let (turned, kept) = linalg::turn_rows(&mut basis, &rows, &units[..rows.len()], size);
+            let turned = [turned[0], turned[1]];
             match &mut h.law {
                 Law::Roll { tangents: u } => *u = turned,
                 _ => h.axes = Some(turned),

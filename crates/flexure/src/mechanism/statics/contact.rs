@@ -574,20 +574,10 @@ impl<D: Statics> ContactKkt<'_, D> {
         }
         for (c, rest) in tangential.into_iter().enumerate() {
             let Some(Along { units, rows, largest }) = rest else { continue };
-            let left: Vec<Vec<f64>> = rows.iter().map(|r| basis.rest(r)).collect();
-            let (directions, parts) = linalg::principal(&left);
-            let kept: Vec<bool> = parts.iter().map(|&p| p > 1e-9 * largest).collect();
-            for (w, _) in directions.iter().zip(&kept).filter(|(_, k)| **k) {
-                basis.add(&(0..n).map(|j| w.iter().zip(&rows).map(|(a, r)| a * r[j]).sum()).collect::<Vec<_>>());
-            }
+            let (turned, kept) = linalg::turn_rows(&mut basis, &rows, &units, largest);
             if kept.iter().all(|&k| k) {
                 continue;
             }
-            // The tangents along the principal directions, the kept ones first.
-            let turned: Vec<[f64; 3]> = directions
-                .iter()
-                .map(|w| std::array::from_fn(|i| w.iter().zip(&units).map(|(a, u)| a * u[i]).sum()))
-                .collect();
             let normal = array::<D>(&self.jets[c].normal);
             let t = &mut self.touching[c];
             let mut axes = [[0.0; 3]; 3];
