@@ -375,7 +375,7 @@ fn a_can_dragged_off_a_knife_edge_snaps_and_the_solve_says_where() {
 /// slowest mode damped by about e^-20), the touch handed over once.
 #[test]
 fn a_crossing_run_off_the_rails_end_in_motion_comes_to_rest_on_the_rails_corner() {
-    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    use flexure::dynamics::integrate::MotionSettings;
     for (block, k_x, f_x) in [(TURNED, 100.0, 10.5), (ACROSS, 2000.0, 200.5)] {
         let (x, theta, _) = on_the_rails_corner(block == ACROSS, k_x, f_x);
         let damped = carried(block, k_x, f_x)
@@ -384,10 +384,7 @@ fn a_crossing_run_off_the_rails_end_in_motion_comes_to_rest_on_the_rails_corner(
         let text = format!(
             "{damped}[[body]]\nname = \"cart\"\nmass = 0.1\n[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n"
         );
-        let motion = MotionSettings { duration: 3.0, every: 0.05, ..Default::default() };
-        let settings = simulation::SimulationSettings { motion, ..Default::default() };
-        let run = simulation::simulate(&spatial_from_toml(&text).unwrap(), &settings, simulation::Start::Rest).unwrap();
-        assert!(run.stopped.is_none(), "{:?}", run.stopped);
+        let run = from_rest(&text, MotionSettings { duration: 3.0, every: 0.05, ..Default::default() });
         let last = run.time.len() - 1;
         let q = run.q(last);
         assert!((q[0] - x).abs() < 1e-7 && (q[1] - theta).abs() < 1e-7, "{block}: {q:?} against {x}, {theta}");
@@ -405,14 +402,21 @@ fn undamped(
     f_x: f64,
     duration: f64,
 ) -> flexure::dynamics::simulation::Simulation<flexure::space::Spatial> {
-    use flexure::dynamics::{integrate::MotionSettings, simulation};
     let text = format!(
         "{}[[body]]\nname = \"cart\"\nmass = 0.1\n[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n",
         carried(block, k_x, f_x)
     );
-    let motion = MotionSettings { duration, every: 0.05, ..Default::default() };
+    from_rest(&text, flexure::dynamics::integrate::MotionSettings { duration, every: 0.05, ..Default::default() })
+}
+
+/// The spatial mechanism `text` run from rest with `motion`: its run, which must reach the end.
+fn from_rest(
+    text: &str,
+    motion: flexure::dynamics::integrate::MotionSettings,
+) -> flexure::dynamics::simulation::Simulation<flexure::space::Spatial> {
+    use flexure::dynamics::simulation;
     let settings = simulation::SimulationSettings { motion, ..Default::default() };
-    let run = simulation::simulate(&spatial_from_toml(&text).unwrap(), &settings, simulation::Start::Rest).unwrap();
+    let run = simulation::simulate(&spatial_from_toml(text).unwrap(), &settings, simulation::Start::Rest).unwrap();
     assert!(run.stopped.is_none(), "{:?}", run.stopped);
     run
 }
@@ -498,13 +502,9 @@ fn edge_points(n: u32) -> impl Iterator<Item = (f64, f64, u32)> {
 /// pushed from rest for `duration` s, sampled every 5 ms (tolerance 1e-8):
 /// its run, which must reach the end.
 fn swung(text: &str, duration: f64) -> flexure::dynamics::simulation::Simulation<flexure::space::Spatial> {
-    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    use flexure::dynamics::integrate::MotionSettings;
     let moving = format!("{text}[[body]]\nname = \"lid\"\nmass = 0.1\ncom = [0.0, 0.08, 0.0]\n");
-    let motion = MotionSettings { duration, every: 0.005, tolerance: 1e-8, absolute: 1e-8, ..Default::default() };
-    let settings = simulation::SimulationSettings { motion, ..Default::default() };
-    let run = simulation::simulate(&spatial_from_toml(&moving).unwrap(), &settings, simulation::Start::Rest).unwrap();
-    assert!(run.stopped.is_none(), "{:?}", run.stopped);
-    run
+    from_rest(&moving, MotionSettings { duration, every: 0.005, tolerance: 1e-8, absolute: 1e-8, ..Default::default() })
 }
 
 /// Given mass and pushed from rest, the lid of
@@ -595,7 +595,7 @@ fn a_box_dragged_along_a_rough_rails_edge_sticks_then_slips() {
 /// 0.9680 N, the friction leaning 10° off the rail.)
 #[test]
 fn a_turned_box_stuck_on_a_rough_rail_in_motion_reads_the_frictionless_push() {
-    use flexure::dynamics::{integrate::MotionSettings, simulation};
+    use flexure::dynamics::integrate::MotionSettings;
     let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     let turn = |v: [f64; 3]| format!("[{:?}, {:?}, {:?}]", c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]);
     let (axis, yaw) = (turn([1.0, 0.0, 0.0]), 30f64.to_radians());
@@ -614,10 +614,7 @@ fn a_turned_box_stuck_on_a_rough_rail_in_motion_reads_the_frictionless_push() {
     );
     let theta = root(|t| -0.092 * t.sin() - 0.03 * t.cos() + 0.015 * 0.5f64.sqrt());
     let push = (0.5 * theta + 0.2 * theta.cos()) / (0.092 * theta.cos() - 0.03 * theta.sin());
-    let motion = MotionSettings { duration: 3.0, every: 0.5, ..Default::default() };
-    let settings = simulation::SimulationSettings { motion, ..Default::default() };
-    let run = simulation::simulate(&spatial_from_toml(&text).unwrap(), &settings, simulation::Start::Rest).unwrap();
-    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let run = from_rest(&text, MotionSettings { duration: 3.0, every: 0.5, ..Default::default() });
     let last = run.time.len() - 1;
     let k: Vec<_> = run.contacts[last].iter().filter(|k| k.state != ContactMode::Open).collect();
     assert!(k.len() == 1 && k[0].state == ContactMode::Stick, "{k:?}");
