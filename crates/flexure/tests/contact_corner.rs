@@ -630,7 +630,8 @@ fn a_turned_box_stuck_on_a_rough_rail_in_motion_reads_the_frictionless_push() {
 /// (the least friction): the push of the frictionless lid of
 /// [`a_lid_pushed_onto_a_floor_rests_on_its_boxs_corner`], to 1e-9
 /// relative, stuck. (Before the rows were left out, the stuck corner read
-/// a push of 22.46 N against 18.93 N, and slipping.)
+/// a push of 20.90 N against 18.93 N, and slipping, as measured on the
+/// solve before this work.)
 #[test]
 fn a_lid_stuck_on_a_rough_floor_reads_the_frictionless_push() {
     let block = "origin = [0.08, 0.0]\nhalf_extents = [0.02, 0.005]";
