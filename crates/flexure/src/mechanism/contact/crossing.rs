@@ -103,10 +103,11 @@ pub(crate) struct Crossing<D: Touch> {
     pub centre: D::Vector,
     /// The plane through $x_B$ (shifted out by the other's radius) across both edges.
     pub surface: Geom<D>,
-    /// The least of how far the nearest points lie within the edges and
-    /// $\hat n$ within the faces' normals (m, an angle times the shorter
-    /// edge), past rounding: below zero the pair no longer applies, and a
-    /// touching one is let go.
+    /// How far the nearest points lie within the edges (m), or, where
+    /// $\hat n$ lies beyond the faces' normals by more than rounding, how
+    /// far (an angle times the shorter edge, below zero), past rounding:
+    /// below zero the pair no longer applies, and a touching one is let go.
+    /// ($\hat n$ on the faces' bound, an edge flush on a face, is within.)
     pub margin: f64,
     /// Where the pair applies, how its normal turns.
     pub turn: Option<Turn>,
@@ -172,7 +173,12 @@ pub(crate) fn crossing<D: Touch>(
         let distance = dot(n, sub(xa, xb));
         // Within the edges and the faces' normals to rounding (an edge along a face, a crossing at an end).
         let (tolerance, tiny) = (1e-9 * (la + lb), 1e-12 * (la + lb));
-        margin = within.min(faced(sign) * la.min(lb)) + tolerance;
+        // An edge lying flush on a face (n̂ on its faces' bound to rounding)
+        // lies within: there the bound stays at zero as long as it lies so
+        // (a box's edge on a rail's end face, the lid turning about it), and
+        // how far the edges leave is what measures the margin.
+        let facing = faced(sign) * la.min(lb);
+        margin = within.min(if facing >= -tolerance { f64::INFINITY } else { facing }) + tolerance;
         // Crossed by δ, an edge's nearest point lies δ·c inside the other geom,
         // c its face normals' least component along n̂ (1 round every way):
         // at least half of that on a side where c > 0. Not so for two boxes
@@ -265,4 +271,56 @@ pub(crate) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 pub(crate) fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
     [a[0] * k, a[1] * k, a[2] * k]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::Spatial;
+    use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+    /// A box's edge flush on a rail's end face: the lid of
+    /// `tests/contact_corner.rs` (a box of half extents 10, 20, 5 mm turned
+    /// 45° about y, 80 mm along the lid) on its carriage at
+    /// $x_c = 0.1 + 0.0075\sqrt2$, where its edge between its $-x'$ and $-z'$
+    /// faces lies in the rail's end face $x = 0.1$, the lid turned
+    /// $\theta = -0.36$ about x. The edges' normal is the end face's, on the
+    /// rail edge's faces' bound, as long as the lid turns. The margin is how
+    /// far the crossing lies within the rail's top edge of the end face
+    /// ($z = -0.03$, $y \in [0.088, 0.092]$), from the closed form: the box's
+    /// edge, $(y_l, 0.0025\sqrt2)$ in the lid's frame, meets $z = -0.03$ at
+    /// $y_l = (-0.03 - 0.0025\sqrt2\cos\theta)/\sin\theta$, so at
+    /// $y = y_l\cos\theta - 0.0025\sqrt2\sin\theta$. To 1e-12 m, past the
+    /// rounding allowed (1e-9 of the two edges' lengths). Reading the bound
+    /// instead, it was that rounding alone (4.4e-11 m): inside the motion's
+    /// band all along, so the run let go and touched again at every step.
+    #[test]
+    fn an_edge_flush_on_a_face_is_within_by_how_far_it_crosses_the_faces_edge() {
+        let rail = Geom::<Spatial>::new(
+            "rail",
+            0,
+            Isometry3::translation(0.0, 0.09, -0.04),
+            GeomShape::Box { half_extents: Vector3::new(0.1, 0.002, 0.01) },
+        );
+        let turned = Isometry3::from_parts(
+            Translation3::new(0.0, 0.08, 0.0),
+            UnitQuaternion::from_euler_angles(0.0, std::f64::consts::FRAC_PI_4, 0.0),
+        );
+        let block =
+            Geom::<Spatial>::new("block", 1, turned, GeomShape::Box { half_extents: Vector3::new(0.01, 0.02, 0.005) });
+        let theta = -0.36f64;
+        let (half, x_c) = (0.5f64.sqrt(), 0.1 + 0.015 * 0.5f64.sqrt());
+        let lid =
+            Isometry3::from_parts(Translation3::new(x_c, 0.0, 0.0), UnitQuaternion::from_euler_angles(theta, 0.0, 0.0));
+        // The rail's edge 4 (along y, its +z and +x faces) against the box's edge 7 (along y', its -x' and -z' faces).
+        let k = crossing(&rail, &block, (4, 7), &[Isometry3::identity(), lid], true);
+        let z_l = 0.005 * half;
+        let y_l = (-0.03 - z_l * theta.cos()) / theta.sin();
+        let y = y_l * theta.cos() - z_l * theta.sin();
+        let within = (y - 0.088).min(0.092 - y);
+        assert!(within > 1e-3, "{y}");
+        let rounding = 1e-9 * (0.004 + 0.04);
+        assert!((k.margin - (within + rounding)).abs() < 1e-12, "{} against {}", k.margin, within + rounding);
+        assert!(k.turn.is_some_and(|t| t.distance.abs() < 1e-12), "the edge lies on the face");
+    }
 }
