@@ -82,6 +82,11 @@ use crate::mechanism::kinematics::{Frames, frames_level_into};
 
 /// Two leasts of one pair closer than this × the flexure's length are one contact.
 const NEAR: f64 = 1e-2;
+/// The move (× the mechanism's size) over which a pair's gap is read ahead
+/// of the state ([`ContactSystem::parts_ahead`]), and the share of its
+/// fastest rate above which it parts.
+const AHEAD: f64 = 1e-7;
+const PARTS: f64 = 1e-3;
 /// Newton iterations for a contact's place along its flexure.
 const PLACE_ITERATIONS: usize = 30;
 /// The speed (× the mechanism's size, per second) at which a slide's last
@@ -409,6 +414,29 @@ impl<D: Dynamics> ContactSystem<D> {
         };
         let found = minima(&self.mechanism, q, &self.frames.bodies, pair)?;
         Ok(found.into_iter().filter(apart).min_by(|a, b| a.gap.total_cmp(&b.gap)))
+    }
+
+    /// Whether `pair`, open at `low` (frames at `q`), parts as the state
+    /// moves on along $\dot q$: its gap grows faster than $10^{-3}$ of
+    /// $\lVert\nabla g\rVert \lVert\dot q\rVert$, read one-sided over a move of
+    /// $10^{-7}$ of the mechanism's size. A corner that sits on the other
+    /// geom's edge, where the gap's gradient jumps from one face's to the
+    /// other's, reads the face it moves over: handed the touch of two edges
+    /// that ran off the end of one (a box's edge off a rail's end), it
+    /// parts from the face beyond the edge, and held there the impact would
+    /// pull the box onto that face, or push it off the other.
+    fn parts_ahead(&mut self, pair: &Pair, low: &Gap<D>, (q, v): (&[f64], &[f64])) -> Result<bool> {
+        let slope = gap_slope(&self.mechanism, &self.frames, q, pair, low.s)?;
+        let bound = linalg::norm(&slope.gradient) * linalg::norm(v);
+        if bound == 0.0 {
+            return Ok(false);
+        }
+        let tau = AHEAD * self.mechanism.size() / bound;
+        let ahead: Vec<f64> = q.iter().zip(v).map(|(q, v)| q + tau * v).collect();
+        self.frames_at(&ahead);
+        let later = self.open_least(pair, &ahead);
+        self.frames_at(q);
+        Ok(later?.is_some_and(|g| g.gap - low.gap > PARTS * tau * bound))
     }
 
     /// Touching contact `i` at `q` (frames in `self.frames`, Jacobian level):
@@ -952,7 +980,9 @@ impl<D: Dynamics> System for ContactSystem<D> {
     /// that pulls is let go; a stuck one that needs more than its friction
     /// slides, and a sliding one that turns back sticks (module docs). Two
     /// edges whose crossing ran off an edge's end hand the touch to the
-    /// corner there, and take it back where the crossing comes back.
+    /// corner there, unless it parts as the state moves on
+    /// (`ContactSystem::parts_ahead`), and take it back where the
+    /// crossing comes back.
     fn switch(&mut self, ks: &[usize], t: f64, q: &[f64], v: &[f64]) -> Result<()> {
         let a = self.held.len();
         self.frames_at(q);
@@ -1045,7 +1075,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
         handed.retain(|p| !backs.contains(&Some(*p)));
         for pair in handed {
             let Some(low) = self.open_least(&pair, q)? else { continue };
-            if added.iter().any(|h: &Held| h.pair == pair) {
+            if added.iter().any(|h: &Held| h.pair == pair) || self.parts_ahead(&pair, &low, (q, v))? {
                 continue;
             }
             let mut h = self.touch(&pair, None, q)?;
