@@ -10,7 +10,9 @@
 //! least, $\partial_s g_c = 0$, which Newton's method in $s$ keeps at each
 //! evaluation from the last place; since $s$ minimizes $g$, the gradient at
 //! fixed $s$ is the whole gradient. At an end it stays while the gap rises
-//! into the span.
+//! into the span. A corner on a face of a box or a cylinder is held
+//! against that face's plane, fixed in its geom's body, so that its gap is
+//! smooth up to where it slides past the face's edge and is let go.
 //!
 //! **Friction** (Coulomb's $\mu$: a flexure's geom's, or the larger of two
 //! geoms', as MuJoCo combines them). Where the touching point is material
@@ -37,8 +39,11 @@
 //! second, so a slide that starts from rest has a direction; each in the
 //! tangent plane.)
 //!
-//! **Events** ([`System::guards`], two per touching contact, then one per
-//! pair): a touching contact's $N$ falling below zero opens it; a stuck
+//! **Events** ([`System::guards`], three per touching contact, then one per
+//! pair): a touching contact's $N$ falling below zero opens it, and so
+//! does its leaving where it applies (two edges' crossing running off
+//! either edge, a corner sliding past the edge of the face it touches,
+//! where the normal jumps to the next face's); a stuck
 //! one's $\mu N - \lvert f_t\rvert$ falling below zero slips it, toward
 //! $-f_t$; a sliding one's $v_t\cdot\hat s_0$ ($\hat s_0$ the direction it
 //! slid in at the last step accepted, [`System::accepted`]: in space a
@@ -74,9 +79,9 @@ use crate::kinematics::Level;
 use crate::linalg;
 use crate::mechanism::Mechanism;
 use crate::mechanism::contact::{
-    COMING_BACK, Contact, ContactMode, Gap, GapSlope, Material, PASSED_THROUGH, Pair, PointJet, Toucher, array,
-    came_back, column, corner, crossed_edges, crossing_of, dot, friction, gap_slope, length, material_jet, may_cross,
-    minima, named, on_flexure, pairs, point_jet, ran_off, scaled, tangents, vector,
+    COMING_BACK, Contact, ContactMode, Gap, GapSlope, Geom, GeomShape, Material, PASSED_THROUGH, Pair, PointJet,
+    Toucher, array, came_back, column, corner, crossed_edges, crossing_of, dot, friction, gap_slope, gap_slope_on,
+    length, material_jet, may_cross, minima, named, on_flexure, pairs, point_jet, ran_off, scaled, tangents, vector,
 };
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 
@@ -87,6 +92,9 @@ const NEAR: f64 = 1e-2;
 /// fastest rate above which it parts.
 const AHEAD: f64 = 1e-7;
 const PARTS: f64 = 1e-3;
+/// The guards of each touching contact ([`System::guards`]): its push, its
+/// friction's, and how far it lies within where it applies.
+const HELD_GUARDS: usize = 3;
 /// Newton iterations for a contact's place along its flexure.
 const PLACE_ITERATIONS: usize = 30;
 /// The speed (× the mechanism's size, per second) at which a slide's last
@@ -130,6 +138,11 @@ struct Held {
     /// A stuck one's tangents where [`ContactSystem::prune`] turned them
     /// (world; else those of [`tangents`]).
     axes: Option<[[f64; 3]; 2]>,
+    /// A corner's on a face of a box or a cylinder: that face's plane where
+    /// it touched, its point and outward normal in the frame of the body of
+    /// the geom touched ([`ContactSystem::face_of`]), held in place of the
+    /// geom up to where the corner slides past the face's edge and is let go.
+    face: Option<[[f64; 3]; 2]>,
     /// The last push (N) and friction force (world) reported, and the largest push it has carried.
     force: f64,
     friction: [f64; 3],
@@ -302,6 +315,7 @@ impl<D: Dynamics> ContactSystem<D> {
             mu,
             dropped: [false; 3],
             axes: None,
+            face: self.face_of(pair, q)?,
             force: 0.0,
             friction: [0.0; 3],
             largest: 0.0,
@@ -416,6 +430,39 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(found.into_iter().filter(apart).min_by(|a, b| a.gap.total_cmp(&b.gap)))
     }
 
+    /// Where `pair`'s fixed corner touches a face of a box or a cylinder
+    /// at `q` (frames there), within it past rounding: that face's plane, its
+    /// point and outward normal in the frame of the body of the geom touched.
+    /// Held against the geom itself, a corner that slides past the face's
+    /// edge must turn onto the next face in one step: Newton's method
+    /// diverged on every step across, and the steps shrank to rounding,
+    /// whose last one threw the box (a box's corner off a rail's end face).
+    fn face_of(&self, pair: &Pair, q: &[f64]) -> Result<Option<[[f64; 3]; 2]>> {
+        let m = &self.mechanism;
+        if !matches!(pair.part, Toucher::Geom(_)) {
+            return Ok(None);
+        }
+        let c = corner(m, pair)?;
+        let bodies = &self.frames.bodies;
+        let slope = gap_slope(m, &self.frames, q, pair, None)?;
+        if !c.on_face(bodies, m.size(), &slope.normal).is_some_and(|g| g.is_finite() && g > 2e-9 * m.size()) {
+            return Ok(None);
+        }
+        let on = D::moved(&slope.point, &slope.normal, -slope.gap);
+        let inverse = D::inverse(&bodies[c.flat.body]);
+        Ok(Some([array::<D>(&D::position(&D::act(&inverse, &on))), array::<D>(&D::rotate(&inverse, &slope.normal))]))
+    }
+
+    /// The plane [`Held::face`] of a touching corner, fixed in the body of the geom it touches.
+    fn face_plane(&self, h: &Held) -> Result<Option<Geom<D>>> {
+        let Some([origin, normal]) = h.face else { return Ok(None) };
+        let flat = corner(&self.mechanism, &h.pair)?.flat;
+        let at = D::at(&D::moved(&D::origin(&D::identity()), &vector::<D>(&origin), 1.0));
+        let mut plane = Geom::new("", flat.body, at, GeomShape::Plane { normal: vector::<D>(&normal) });
+        plane.friction = flat.friction;
+        Ok(Some(plane))
+    }
+
     /// Whether `pair`, open at `low` (frames at `q`), parts as the state
     /// moves on along $\dot q$: its gap grows faster than $10^{-3}$ of
     /// $\lVert\nabla g\rVert \lVert\dot q\rVert$, read one-sided over a move of
@@ -446,7 +493,12 @@ impl<D: Dynamics> ContactSystem<D> {
     fn settle(&mut self, i: usize, q: &[f64]) -> Result<GapSlope<D>> {
         let (m, f) = (&self.mechanism, &self.frames);
         let Held { pair, s, length, law, .. } = self.held[i];
-        let Some(mut s) = s else { return gap_slope(m, f, q, &pair, None) };
+        let Some(mut s) = s else {
+            return match self.face_plane(&self.held[i])? {
+                Some(plane) => gap_slope_on(m, f, q, &pair, plane),
+                None => gap_slope(m, f, q, &pair, None),
+            };
+        };
         for _ in 0..PLACE_ITERATIONS {
             let slope = gap_slope(m, f, q, &pair, Some(s))?;
             // At an end the gap rises into the span: it stays there.
@@ -903,11 +955,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
     }
 
     fn guard_count(&self) -> usize {
-        2 * self.held.len() + self.pairs.len()
+        HELD_GUARDS * self.held.len() + self.pairs.len()
     }
 
-    /// Each touching contact's push and its friction's (module docs), then
-    /// each pair's least open gap, over their bands.
+    /// Each touching contact's push, its friction's (module docs) and how
+    /// far it lies within where it applies (two edges' crossing within both
+    /// edges, a corner within the face it touches), then each pair's least
+    /// open gap, over their bands.
     fn guards(&mut self, q: &[f64], v: &[f64], multipliers: Option<&[f64]>, out: &mut [f64]) -> Result<()> {
         self.frames_at(q);
         self.last = multipliers.map(<[f64]>::to_vec).unwrap_or_default();
@@ -915,7 +969,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let r = self.read(i, row, (q, v), multipliers)?;
             let tolerance = self.tolerance;
             let h = &mut self.held[i];
-            (out[2 * i], out[2 * i + 1]) = match multipliers {
+            (out[HELD_GUARDS * i], out[HELD_GUARDS * i + 1]) = match multipliers {
                 None => {
                     // Just after a touch, the velocities moved onto the
                     // closures (an impact can turn a slide back): a slide
@@ -962,13 +1016,25 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 }
             };
         }
-        // Two edges whose crossing leaves either edge are let go: the corner there takes the touch.
+        // Two edges whose crossing leaves either edge are let go (the corner
+        // there takes the touch), and so is a corner that slides past the
+        // edge of the face it touches, where the face's normal gives way to
+        // the next face's: held on, the step across would turn it there in
+        // one jump (a box's corner off a rail's end face).
+        let (m, bodies) = (&self.mechanism, &self.frames.bodies);
         for (i, h) in self.held.iter().enumerate() {
-            if let Some(k) = crossing_of(&self.mechanism, &h.pair, &self.frames.bodies) {
-                out[2 * i] = out[2 * i].min(k.margin / self.gap_band);
-            }
+            let margin = match h.pair.part {
+                Toucher::Geom(_) => {
+                    let c = corner(m, &h.pair)?;
+                    let face = |[_, n]: [[f64; 3]; 2]| D::rotate(&bodies[c.flat.body], &vector::<D>(&n));
+                    let on_face = h.face.map(face).and_then(|n| c.on_face(bodies, m.size(), &n));
+                    c.crossing(bodies).map(|k| k.margin).or(on_face)
+                }
+                Toucher::Flexure(_) => None,
+            };
+            out[HELD_GUARDS * i + 2] = margin.map_or(f64::MAX, |g| g / self.gap_band);
         }
-        let a = 2 * self.held.len();
+        let a = HELD_GUARDS * self.held.len();
         for k in 0..self.pairs.len() {
             let pair = self.pairs[k];
             out[a + k] = self.open_least(&pair, q)?.map_or(f64::MAX, |g| g.gap / self.gap_band);
@@ -994,8 +1060,8 @@ impl<D: Dynamics> System for ContactSystem<D> {
         let rows = self.first_rows();
         // The sliding contacts that stopped: stuck, unless that needs more than their friction.
         let mut stopped = Vec::new();
-        for &k in ks.iter().filter(|&&k| k < 2 * a && k % 2 == 1) {
-            let i = k / 2;
+        for &k in ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS == 1) {
+            let i = k / HELD_GUARDS;
             let r = self.read(i, rows[i], (q, v), Some(&last).filter(|l| !l.is_empty()).map(Vec::as_slice))?;
             let h = self.held[i];
             let size = dot::<D>(&r.friction, &r.friction).sqrt();
@@ -1016,11 +1082,12 @@ impl<D: Dynamics> System for ContactSystem<D> {
             };
             change(&mut self.changes, &self.mechanism, &h.pair, state);
         }
-        let mut released: Vec<usize> = ks.iter().filter(|&&k| k < 2 * a && k % 2 == 0).map(|k| k / 2).collect();
+        let mut released: Vec<usize> =
+            ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS != 1).map(|k| k / HELD_GUARDS).collect();
         released.dedup();
         let mut added = Vec::new();
-        for &k in ks.iter().filter(|&&k| k >= 2 * a) {
-            let pair = self.pairs[k - 2 * a];
+        for &k in ks.iter().filter(|&&k| k >= HELD_GUARDS * a) {
+            let pair = self.pairs[k - HELD_GUARDS * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();

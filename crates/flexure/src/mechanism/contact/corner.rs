@@ -216,6 +216,24 @@ impl<D: Touch> Corner<'_, D> {
         self.radius == 0.0 || self.edge.is_some()
     }
 
+    /// Of a fixed corner, how far its centre lies within the face of the
+    /// geom it touches whose outward normal is `normal` (world), past
+    /// rounding ($10^{-9}$ of the mechanism's size `size`), bodies at
+    /// `bodies` (m; [`GeomShape::face_margin`]): below zero it has slid past
+    /// that face's edge. `None` for a pair of edges.
+    ///
+    /// [`GeomShape::face_margin`]: super::GeomShape::face_margin
+    pub fn on_face(&self, bodies: &[D::Pose], size: f64, normal: &D::Vector) -> Option<f64> {
+        if self.edge.is_some() {
+            return None;
+        }
+        let frame = D::compose(&bodies[self.flat.body], &self.flat.frame);
+        let world = D::act(&bodies[self.round.body], &D::moved(&D::origin(&D::identity()), &self.centre, 1.0));
+        let local = D::position(&D::act(&D::inverse(&frame), &world));
+        let n = D::rotate(&D::inverse(&frame), normal);
+        Some(self.flat.shape.face_margin(&local, &n) + 1e-9 * size)
+    }
+
     /// Of a pair of edges, where they are nearest, bodies at `bodies`
     /// ([`super::crossing::crossing`]); `None` for a fixed corner.
     pub fn crossing(&self, bodies: &[D::Pose]) -> Option<Crossing<D>> {

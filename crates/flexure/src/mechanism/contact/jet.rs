@@ -205,6 +205,22 @@ pub fn gap_slope<D: Touch + FrameChain>(
     Ok(first_order(f, &point_jet(m, f, q, pair, s, None)?).0)
 }
 
+/// [`gap_slope`] of a pair of two geoms against `surface` (a plane fixed in
+/// the body of the geom touched) in place of that geom: a corner held on a
+/// face keeps the face's plane past its edges, so its gap stays smooth up
+/// to where it is let go.
+pub(crate) fn gap_slope_on<D: Touch + FrameChain>(
+    m: &Mechanism<D>,
+    f: &Frames<D>,
+    q: &[f64],
+    pair: &Pair,
+    surface: super::Geom<D>,
+) -> Result<GapSlope<D>> {
+    let mut p = point_jet(m, f, q, pair, None, None)?;
+    p.shape = Cow::Owned(surface);
+    Ok(first_order(f, &p).0)
+}
+
 /// The gap's value, normal, gradient and derivatives in $s$ from its point's
 /// jet, with the shape's curvature turned to the world.
 fn first_order<D: Touch + FrameChain>(f: &Frames<D>, p: &PointJet<D>) -> (GapSlope<D>, super::DistanceHessian) {

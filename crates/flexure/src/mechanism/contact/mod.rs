@@ -40,7 +40,7 @@ pub(crate) use crossing::Turn;
 pub use dimension::{SectionJet, Touch, offset_jet};
 pub use gap::{Gap, gap, minima};
 pub use jet::{GapJet, GapSlope, gap_jet, gap_slope};
-pub(crate) use jet::{Material, PointJet, material_jet, on_ball, point_jet};
+pub(crate) use jet::{Material, PointJet, gap_slope_on, material_jet, on_ball, point_jet};
 pub(crate) use rolling::{on_flexure, tangents, touched, turned};
 pub use shape::{DistanceHessian, GeomShape};
 pub(crate) use shape::{array, dot, scaled, vector};

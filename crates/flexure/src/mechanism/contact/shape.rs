@@ -306,6 +306,44 @@ impl<D: Dimension> GeomShape<D> {
         (found, c)
     }
 
+    /// How far the point `p` on or near the face whose outward normal is
+    /// `normal` (both in the shape's frame) lies within that face, from the
+    /// edges where it meets the next faces (m): on a box's face across axis
+    /// $k$ (the normal's largest component), $-\max_{i \ne k}(\lvert p_i\rvert - e_i)$;
+    /// on a cylinder's flat face (in space), $R - \rho$, on its side
+    /// $h - \lvert z\rvert$; below zero past an edge or a rim, where the
+    /// normal turns from one face to the next. A plane, a ball and a capsule
+    /// are smooth: $+\infty$.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::mechanism::contact::GeomShape;
+    /// use flexure::space::Spatial;
+    /// use nalgebra::Vector3;
+    /// let brick: GeomShape<Spatial> = GeomShape::Box { half_extents: Vector3::new(1.0, 2.0, 3.0) };
+    /// // On the face x = 1, 0.5 from its edge y = 2; in its plane, 0.25 past its edge z = 3.
+    /// assert_eq!(brick.face_margin(&Vector3::new(1.0, 1.5, 0.0), &Vector3::x()), 0.5);
+    /// assert_eq!(brick.face_margin(&Vector3::new(1.0, 0.0, 3.25), &Vector3::x()), -0.25);
+    /// ```
+    pub fn face_margin(&self, p: &D::Vector, normal: &D::Vector) -> f64 {
+        match self {
+            GeomShape::Box { half_extents } => {
+                let k = (0..D::POINT_DIM).fold(0, |k, i| if normal[i].abs() > normal[k].abs() { i } else { k });
+                -(0..D::POINT_DIM)
+                    .filter(|&i| i != k)
+                    .map(|i| p[i].abs() - half_extents[i])
+                    .fold(f64::NEG_INFINITY, f64::max)
+            }
+            GeomShape::Cylinder { half_length, radius } if D::POINT_DIM == 3 => {
+                match normal[2].abs() > normal[0].hypot(normal[1]) {
+                    true => radius - p[0].hypot(p[1]),
+                    false => half_length - p[2].abs(),
+                }
+            }
+            _ => f64::INFINITY,
+        }
+    }
+
     /// [`GeomShape::distance`] itself.
     fn distance_only(&self, p: &D::Vector) -> (f64, D::Vector) {
         match self {
