@@ -603,6 +603,45 @@ fn an_undamped_box_sliding_off_the_rails_end_face_with_friction_never_gains_ener
     }
 }
 
+/// A ball (radius 10 mm, 0.1 kg on a vertical slider, on a carriage of
+/// 0.1 kg sprung at 1 N/m along x) dropped 1 mm onto a box's top face and
+/// pushed across it (0.2 N along x, 2 N down) to its edge. A ball's centre
+/// lies off the surface, where the distance to the box turns smoothly
+/// round its edge: held, it rolls over the edge and leaves only where its
+/// push falls to zero, its centre past the edge (by 5.2 mm, measured).
+/// Held against the face's plane like a sharp corner, it was let go at
+/// the edge and touched again round it (on 778b24c). Checked: the contact opens once, with the centre more than
+/// 1 mm past the edge, no sample finds the ball in the box (its centre
+/// at least its radius from it, to 1e-9 m), and the energy
+/// $E - F\cdot x$ never grows (to 1e-6 J).
+#[test]
+fn a_ball_pushed_over_a_boxs_edge_rolls_round_it_before_it_leaves() {
+    use flexure::dynamics::integrate::MotionSettings;
+    let text = "dimension = 3\n[[joint]]\nname = \"x\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"c\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 1.0\n\
+        [[joint]]\nname = \"z\"\nkind = \"prismatic\"\nparent = \"c\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 0.0\n\
+        [[geom]]\nname = \"table\"\nbody = \"ground\"\nshape = \"box\"\norigin = [0.0, 0.0, -0.05]\nhalf_extents = [0.05, 0.05, 0.05]\n\
+        [[geom]]\nname = \"ball\"\nbody = \"b\"\nshape = \"sphere\"\norigin = [0.0, 0.0, 0.011]\nradius = 0.01\n\
+        [[force]]\nname = \"push\"\nbody = \"b\"\nat = [0.0, 0.0, 0.011]\nforce = [0.2, 0.0, -2.0]\n\
+        [[body]]\nname = \"c\"\nmass = 0.1\n[[body]]\nname = \"b\"\nmass = 0.1\ncom = [0.0, 0.0, 0.011]\n";
+    let run = from_rest(text, MotionSettings { duration: 0.5, every: 0.01, ..Default::default() });
+    let opened: Vec<_> = run.changes.iter().filter(|c| c.state == ContactMode::Open).collect();
+    assert_eq!(opened.len(), 1, "{:?}", run.changes);
+    // The centre at the last sample before it opened.
+    let after = run.time.iter().position(|&t| t > opened[0].time).expect("a sample after it opened");
+    assert!(run.q(after - 1)[0] > 0.051, "opened with the centre at x = {}", run.q(after - 1)[0]);
+    for i in 0..run.time.len() {
+        let (x, z) = (run.q(i)[0], 0.011 + run.q(i)[1]);
+        // The box spans x in ±0.05 and z in [-0.1, 0].
+        let (dx, dz) = ((x.abs() - 0.05).max(0.0), ((z + 0.05).abs() - 0.05).max(0.0));
+        let out = dx.hypot(dz);
+        assert!(out > 0.01 - 1e-9, "t = {}: the ball's centre {out} m from the box", run.time[i]);
+    }
+    let total: Vec<f64> = (0..run.time.len()).map(|i| run.energy[i] - 0.2 * run.q(i)[0] + 2.0 * run.q(i)[1]).collect();
+    for (i, w) in total.windows(2).enumerate() {
+        assert!(w[1] <= w[0] + 1e-6, "t = {}: {} after {}", run.time[i + 1], w[1], w[0]);
+    }
+}
+
 /// Each corner sign pair of an edge and each of its `n` + 1 points along it.
 fn edge_points(n: u32) -> impl Iterator<Item = (f64, f64, u32)> {
     [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)]

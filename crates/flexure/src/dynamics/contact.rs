@@ -10,7 +10,7 @@
 //! least, $\partial_s g_c = 0$, which Newton's method in $s$ keeps at each
 //! evaluation from the last place; since $s$ minimizes $g$, the gradient at
 //! fixed $s$ is the whole gradient. At an end it stays while the gap rises
-//! into the span. A corner on a face of a box or a cylinder is held
+//! into the span. A sharp corner on a face of a box or a cylinder is held
 //! against that face's plane, fixed in its geom's body, so that its gap is
 //! smooth up to where it slides past the face's edge and is let go.
 //!
@@ -138,7 +138,7 @@ struct Held {
     /// A stuck one's tangents where [`ContactSystem::prune`] turned them
     /// (world; else those of [`tangents`]).
     axes: Option<[[f64; 3]; 2]>,
-    /// A corner's on a face of a box or a cylinder: that face's plane where
+    /// A sharp corner's on a face of a box or a cylinder: that face's plane where
     /// it touched, its point and outward normal in the frame of the body of
     /// the geom touched ([`ContactSystem::face_of`]), held in place of the
     /// geom up to where the corner slides past the face's edge and is let go.
@@ -430,7 +430,7 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(found.into_iter().filter(apart).min_by(|a, b| a.gap.total_cmp(&b.gap)))
     }
 
-    /// Where `pair`'s fixed corner touches a face of a box or a cylinder
+    /// Where `pair`'s fixed sharp corner touches a face of a box or a cylinder
     /// at `q` (frames there), within it past rounding: that face's plane, its
     /// point and outward normal in the frame of the body of the geom touched.
     /// Held against the geom itself, a corner that slides past the face's
@@ -443,6 +443,11 @@ impl<D: Dynamics> ContactSystem<D> {
             return Ok(None);
         }
         let c = corner(m, pair)?;
+        // A ball's centre lies off the surface, where the distance to a
+        // convex geom turns smoothly round its edges: it rolls over them.
+        if c.radius > 0.0 {
+            return Ok(None);
+        }
         let bodies = &self.frames.bodies;
         let slope = gap_slope(m, &self.frames, q, pair, None)?;
         if !c.on_face(bodies, m.size(), &slope.normal).is_some_and(|g| g.is_finite() && g > 2e-9 * m.size()) {
