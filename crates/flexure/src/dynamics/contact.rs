@@ -1094,6 +1094,10 @@ impl<D: Dynamics> System for ContactSystem<D> {
         for &k in ks.iter().filter(|&&k| k >= HELD_GUARDS * a) {
             let pair = self.pairs[k - HELD_GUARDS * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
+            // Two edges that do not cross within both: a corner touches there.
+            if crossing_of(&self.mechanism, &pair, &self.frames.bodies).is_some_and(|k| k.margin < 0.0) {
+                continue;
+            }
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
             if approach < 0.0 {

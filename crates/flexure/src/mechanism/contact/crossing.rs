@@ -13,13 +13,17 @@
 //! of $\hat n$, which turns as the two bodies turn apart ([`Turn`]).
 //!
 //! The pair applies where the lines' nearest points lie within both
-//! edges, $\hat n$ lies between the two faces that meet at a box's edge
+//! edges (a cylinder's axis by more than the edge's depth in its side, else
+//! its lid is nearer), $\hat n$ lies between the two faces that meet at a box's edge
 //! (and $-\hat n$ at the other's), and the lines are apart or $x_A$ is inside
 //! the geom touched (two edges at the far sides of two boxes are no
 //! touch). Elsewhere its gap is the two segments' distance less the radii,
-//! plus how far the lines' nearest points lie beyond the edges' ends:
-//! continuous where it begins to apply, and above the gap of the corner
-//! that touches there, which so takes the touch. A touching pair keeps
+//! plus how far the lines' nearest points lie beyond the edges' ends, and
+//! not less than a cylinder's own gap at the other edge's point (its axis
+//! rounded is a capsule, less than its lid past the ends): continuous
+//! where it begins to apply, and above the gap of the corner that touches
+//! there, which so takes the touch; in motion a pair that does not apply
+//! is never held. A touching pair keeps
 //! the lines' gap past where it stops applying (`held`), so its gap stays
 //! smooth up to where it is let go ([`Crossing::margin`] below zero); where
 //! the crossing ran off an edge's end ([`End`]), the corner there takes the
@@ -178,6 +182,16 @@ pub(crate) fn crossing<D: Touch>(
         // (a box's edge on a rail's end face, the lid turning about it), and
         // how far the edges leave is what measures the margin.
         let facing = faced(sign) * la.min(lb);
+        // A cylinder's side is the surface an edge meets only while its
+        // depth in the side is less than its way along the axis to the lid:
+        // past that, the lid is nearer (a box's edge on a can's lid, over
+        // its axis, read 2.8 mm deep in the side), and a rim's point takes it.
+        let depth = (ra.radius + rb.radius - distance).max(0.0);
+        let lid = |g: &Geom<D>, t: f64, l: f64| match g.shape {
+            GeomShape::Cylinder { .. } => (0.5 - (t - 0.5).abs()) * l - depth,
+            _ => f64::INFINITY,
+        };
+        let within = within.min(lid(round, ta, la)).min(lid(flat, tb, lb));
         margin = within.min(if facing >= -tolerance { f64::INFINITY } else { facing }) + tolerance;
         // Crossed by δ, an edge's nearest point lies δ·c inside the other geom,
         // c its face normals' least component along n̂ (1 round every way):
@@ -220,7 +234,17 @@ pub(crate) fn crossing<D: Touch>(
     let r = sub(xa, xb);
     let size = dot(r, r).sqrt();
     let n = if size > 0.0 { scale(r, 1.0 / size) } else { [0.0, 0.0, 1.0] };
-    let beyond = if across { (ta - s).abs() * la + (tb - t).abs() * lb } else { 0.0 };
+    let mut beyond = if across { (ta - s).abs() * la + (tb - t).abs() * lb } else { 0.0 };
+    // A cylinder's axis rounded by its radius is a capsule: past the axis's
+    // ends it reads less than the flat faces do (a box's edge over a can's
+    // lid read it touching 2 mm up). Not less than the cylinder's own gap
+    // at the other edge's point, which is as much where the pair applies.
+    let own = |g: &Geom<D>, p: [f64; 3], r: f64| match g.shape {
+        GeomShape::Cylinder { .. } => g.gap(&bodies[g.body], &point::<D>(p), 0.0).0 - r,
+        _ => f64::NEG_INFINITY,
+    };
+    let least = own(flat, xa, ra.radius).max(own(round, xb, rb.radius));
+    beyond = beyond.max(least - (size - ra.radius - rb.radius));
     let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius - beyond)), n);
     Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None, end }
 }
