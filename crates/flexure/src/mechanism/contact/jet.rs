@@ -511,3 +511,52 @@ fn world_curvature<D: Touch>(frame: &D::Pose, c: &super::DistanceHessian) -> sup
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::Level;
+    use crate::mechanism::contact::{Geom, GeomShape, corner, pairs};
+    use crate::mechanism::kinematics::frames_level_into;
+    use nalgebra::{Isometry3, Vector3};
+
+    /// A corner held on a face's plane ([`gap_slope_on`]): the gradient of
+    /// its gap against central differences of the gap (step 1e-6, to 1e-8),
+    /// for a box's corner on a lid (prismatic carriage, revolute lid) against
+    /// a plane fixed in the ground, and a rail's corner on the ground against
+    /// a plane fixed in the turning lid.
+    #[test]
+    fn a_corner_held_on_a_planes_gap_gradient_matches_differences() {
+        let m = crate::mechanism::file::spatial_from_toml(
+            "dimension = 3\n[[joint]]\nname = \"carriage\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 100.0\n\
+             [[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"cart\"\nchild = \"lid\"\naxis = [1.0, 0.0, 0.0]\nstiffness = 0.5\n\
+             [[geom]]\nname = \"block\"\nbody = \"lid\"\nshape = \"box\"\norigin = [0.0, 0.08, 0.0]\nrpy = [0.0, 0.7853981633974483, 0.0]\nhalf_extents = [0.01, 0.02, 0.005]\n\
+             [[geom]]\nname = \"rail\"\nbody = \"ground\"\nshape = \"box\"\norigin = [0.0, 0.09, -0.04]\nhalf_extents = [0.1, 0.002, 0.01]\n",
+        )
+        .unwrap();
+        let q = [0.05, -0.3];
+        let normal = Vector3::new(0.3, -0.4, 1.0).normalize();
+        for k in [0, 8] {
+            let pair = pairs(&m).into_iter().find(|p| p.corner == k).unwrap();
+            let body = corner(&m, &pair).unwrap().flat.body;
+            let plane = Geom::new("", body, Isometry3::translation(0.01, 0.08, -0.03), GeomShape::Plane { normal });
+            let slope = |q: &[f64]| {
+                let mut f = Frames::new(&m);
+                frames_level_into(&m, q, Level::Jacobian, &mut f);
+                gap_slope_on(&m, &f, q, &pair, plane.clone()).unwrap()
+            };
+            let at = slope(&q);
+            assert!(at.gradient.iter().all(|g| g.abs() > 1e-3), "corner {k}: {:?}", at.gradient);
+            for c in 0..2 {
+                let (mut up, mut down) = (q, q);
+                (up[c], down[c]) = (q[c] + 1e-6, q[c] - 1e-6);
+                let difference = (slope(&up).gap - slope(&down).gap) / 2e-6;
+                assert!(
+                    (at.gradient[c] - difference).abs() < 1e-8,
+                    "corner {k}, coordinate {c}: {} against {difference}",
+                    at.gradient[c]
+                );
+            }
+        }
+    }
+}
