@@ -451,15 +451,24 @@ fn undamped(
     from_rest(&text, flexure::dynamics::integrate::MotionSettings { duration, every, ..Default::default() })
 }
 
-/// That an undamped [`carried`] lid dragged by `f_x` never gains energy:
-/// with the drag's and the push's potential, $E - F_xx + 0.2\sin\theta$
-/// never grows from sample to sample (to 1e-6 J, the steps' tolerance).
-fn never_gains(run: &flexure::dynamics::simulation::Simulation<flexure::space::Spatial>, f_x: f64) {
-    let total: Vec<f64> =
-        (0..run.time.len()).map(|i| run.energy[i] - f_x * run.q(i)[0] + 0.2 * run.q(i)[1].sin()).collect();
+/// That an undamped run never gains energy: with `potential`, the constant
+/// loads' potential at the coordinates, $E + V(q)$ never grows from sample
+/// to sample (to 1e-6 J, the steps' tolerance); `what` names the run.
+fn never_grows(
+    run: &flexure::dynamics::simulation::Simulation<flexure::space::Spatial>,
+    what: &str,
+    potential: impl Fn(&[f64]) -> f64,
+) {
+    let total: Vec<f64> = (0..run.time.len()).map(|i| run.energy[i] + potential(run.q(i))).collect();
     for (i, w) in total.windows(2).enumerate() {
-        assert!(w[1] <= w[0] + 1e-6, "t = {}: {} after {}", run.time[i + 1], w[1], w[0]);
+        assert!(w[1] <= w[0] + 1e-6, "{what}, t = {}: {} after {}", run.time[i + 1], w[1], w[0]);
     }
+}
+
+/// [`never_grows`] for an undamped [`carried`] lid dragged by `f_x`: with
+/// the drag's and the push's potential, $E - F_xx + 0.2\sin\theta$.
+fn never_gains(run: &flexure::dynamics::simulation::Simulation<flexure::space::Spatial>, f_x: f64) {
+    never_grows(run, "the lid", |q| -f_x * q[0] + 0.2 * q[1].sin());
 }
 
 /// The spatial mechanism `text` run from rest with `motion`: its run, which must reach the end.
@@ -613,7 +622,7 @@ fn an_undamped_box_sliding_off_the_rails_end_face_with_friction_never_gains_ener
 /// the edge and touched again round it (on 778b24c). Checked: the contact opens once, with the centre more than
 /// 1 mm past the edge, no sample finds the ball in the box (its centre
 /// at least its radius from it, to 1e-9 m), and the energy
-/// $E - F\cdot x$ never grows (to 1e-6 J).
+/// $E - F\cdot x$ never grows ([`never_grows`], to 1e-6 J).
 #[test]
 fn a_ball_pushed_over_a_boxs_edge_rolls_round_it_before_it_leaves() {
     use flexure::dynamics::integrate::MotionSettings;
@@ -636,10 +645,7 @@ fn a_ball_pushed_over_a_boxs_edge_rolls_round_it_before_it_leaves() {
         let out = dx.hypot(dz);
         assert!(out > 0.01 - 1e-9, "t = {}: the ball's centre {out} m from the box", run.time[i]);
     }
-    let total: Vec<f64> = (0..run.time.len()).map(|i| run.energy[i] - 0.2 * run.q(i)[0] + 2.0 * run.q(i)[1]).collect();
-    for (i, w) in total.windows(2).enumerate() {
-        assert!(w[1] <= w[0] + 1e-6, "t = {}: {} after {}", run.time[i + 1], w[1], w[0]);
-    }
+    never_grows(&run, "the ball", |q| -0.2 * q[0] + 2.0 * q[1]);
 }
 
 /// A box (half extents 20 mm, turned 0.3 rad about z) dropped onto a can's
@@ -656,7 +662,7 @@ fn a_ball_pushed_over_a_boxs_edge_rolls_round_it_before_it_leaves() {
 /// 2.8 mm deep in the side at the landing: the side applies only while an
 /// edge's depth in it is less than its way to the lid.
 /// Checked: each run reaches 1 s, its energy never grows
-/// ($E - F\cdot x$, to 1e-6 J), and at every sample no point of the
+/// ([`never_grows`], $E - F\cdot x$, to 1e-6 J), and at every sample no point of the
 /// falling geom's surface (a grid on each face) lies inside the other.
 #[test]
 fn a_box_and_a_can_dropped_on_each_others_lids_land_and_slide_off() {
@@ -675,11 +681,7 @@ fn a_box_and_a_can_dropped_on_each_others_lids_land_and_slide_off() {
             );
             let run = from_rest(&text, MotionSettings { duration: 1.0, every: 0.005, ..Default::default() });
             assert!(!run.changes.is_empty(), "{above} never landed");
-            let total: Vec<f64> =
-                (0..run.time.len()).map(|i| run.energy[i] - run.q(i)[0] + 3.0 * run.q(i)[1]).collect();
-            for (i, w) in total.windows(2).enumerate() {
-                assert!(w[1] <= w[0] + 1e-6, "{above}, μ {mu}, t = {}: {} after {}", run.time[i + 1], w[1], w[0]);
-            }
+            never_grows(&run, &format!("{above}, μ {mu}"), |q| -q[0] + 3.0 * q[1]);
             let (cos, sin) = (yaw.cos(), yaw.sin());
             for i in 0..run.time.len() {
                 let centre = [0.03 + run.q(i)[0], 0.02, 0.12 + run.q(i)[1]];
