@@ -654,12 +654,12 @@ fn a_ball_pushed_over_a_boxs_edge_rolls_round_it_before_it_leaves() {
 /// on a vertical slider (0.1 kg, 1 N/m) on a carriage (0.1 kg, 10 N/m along
 /// x), pushed 3 N down and 1 N along x, lands and slides off the edge, with
 /// μ 0 and 0.3. A cylinder's side is its axis rounded by its radius, and
-/// past the axis's ends that reads less than the lid does: the box's edge
-/// read touching the can 2 mm above its lid (the run stopped at 0.015 s,
-/// a guard 1.4e7 bands past just after), and the can read touching 2 mm
+/// past the axis's ends that reads less than the lid does: the box read
+/// touching the can 47 mm above its lid (the run stopped at 0.015 s, a
+/// guard 1.4e7 bands past just after), and the can read touching 2.6 mm
 /// above the box (184 switches at one instant at 0.056 s). Read as the
 /// can's own gap there, the box's edge over the lid's centre still read
-/// 2.8 mm deep in the side at the landing: the side applies only while an
+/// 28 mm deep in the side at the landing: the side applies only while an
 /// edge's depth in it is less than its way to the lid.
 /// Checked: each run reaches 1 s, its energy never grows
 /// ([`never_grows`], $E - F\cdot x$, to 1e-6 J), and at every sample no point of the

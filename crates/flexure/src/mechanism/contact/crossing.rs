@@ -185,7 +185,7 @@ pub(crate) fn crossing<D: Touch>(
         // A cylinder's side is the surface an edge meets only while its
         // depth in the side is less than its way along the axis to the lid:
         // past that, the lid is nearer (a box's edge on a can's lid, over
-        // its axis, read 2.8 mm deep in the side), and a rim's point takes it.
+        // its axis, read 28 mm deep in the side), and a rim's point takes it.
         let depth = (ra.radius + rb.radius - distance).max(0.0);
         let lid = |g: &Geom<D>, t: f64, l: f64| match g.shape {
             GeomShape::Cylinder { .. } => (0.5 - (t - 0.5).abs()) * l - depth,
@@ -236,8 +236,8 @@ pub(crate) fn crossing<D: Touch>(
     let n = if size > 0.0 { scale(r, 1.0 / size) } else { [0.0, 0.0, 1.0] };
     let mut beyond = if across { (ta - s).abs() * la + (tb - t).abs() * lb } else { 0.0 };
     // A cylinder's axis rounded by its radius is a capsule: past the axis's
-    // ends it reads less than the flat faces do (a box's edge over a can's
-    // lid read it touching 2 mm up). Not less than the cylinder's own gap
+    // ends it reads less than the flat faces do (a box over a can's lid
+    // read it touching 47 mm up). Not less than the cylinder's own gap
     // at the other edge's point, which is as much where the pair applies.
     let own = |g: &Geom<D>, p: [f64; 3], r: f64| match g.shape {
         GeomShape::Cylinder { .. } => g.gap(&bodies[g.body], &point::<D>(p), 0.0).0 - r,
