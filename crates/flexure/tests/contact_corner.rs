@@ -971,7 +971,14 @@ fn a_cans_rim_meets_a_floor_at_its_polygons_point_within_the_bound() {
 /// lies across a side edge of the other (their lines cross 0.08 m apart
 /// along a normal that is a face's normal of each, which is no depth). It
 /// rests at $q = -0.1$ with the push $20 - 100\cdot0.1 = 10$ N, to 1e-12 m and
-/// 1e-9 N; and a file of the two at rest face on face loads.
+/// 1e-9 N; and a file of the two at rest face on face loads. Turned 45°
+/// (centred, and 20 mm off along x), no corner of either lies inside the
+/// other's face: the crossings of the two outlines carry it, two edges
+/// flush on each other's faces, and it went through (stopped at half the
+/// load as passed through) where their crossing read no depth. Aligned
+/// over it, every corner sits on the other's edges, where no gap reads
+/// depth: it went through silently, to $q = -0.2$. 30 mm off along x, it
+/// stopped as passed through.
 #[test]
 fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
     let text = |dx: f64, dy: f64, yaw: f64, z: f64| {
@@ -982,7 +989,17 @@ fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
              [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{dx:?}, {dy:?}, {z:?}]\nforce = [0.0, 0.0, -20.0]\n"
         )
     };
-    for (dx, dy, yaw) in [(0.03, 0.02, 0.3), (0.05, 0.05, 0.0), (0.03, 0.02, 0.0)] {
+    let turned = std::f64::consts::FRAC_PI_4;
+    let cases = [
+        (0.03, 0.02, 0.3),
+        (0.05, 0.05, 0.0),
+        (0.03, 0.02, 0.0),
+        (0.0, 0.0, turned),
+        (0.02, 0.0, turned),
+        (0.0, 0.0, 0.0),
+        (0.03, 0.0, 0.0),
+    ];
+    for (dx, dy, yaw) in cases {
         let s = solve(&spatial_from_toml(&text(dx, dy, yaw, 0.2)).unwrap(), &Settings::default()).unwrap();
         assert!((s.q[0] + 0.1).abs() < 1e-12, "({dx}, {dy}, {yaw}): {}", s.q[0]);
         let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();

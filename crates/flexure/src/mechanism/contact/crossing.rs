@@ -204,7 +204,25 @@ pub(crate) fn crossing<D: Touch>(
             let deep = |c: f64, d: f64| c > 1e-9 && d >= -0.5 * distance * c;
             // At the edges' own points (within them to rounding, not beyond).
             let (ya, yb) = (add(a0, scale(u, ta.clamp(0.0, 1.0))), add(b0, scale(v, tb.clamp(0.0, 1.0))));
-            deep(c_flat, depth(flat, ya)) || deep(c_round, depth(round, yb))
+            // Two faces flush (n̂ a face's normal of each): each edge lies
+            // along the other's face, no depth at either point, yet where
+            // the two faces overlap next to where the lines cross, they are
+            // inside each other between the faces' planes: a box on a box
+            // turned 45° (its corners all outside the other), or of the
+            // same width (corners on the other's edges). Not so where a
+            // bottom edge crosses a side edge's top, resting on it, nor
+            // where the faces' planes cross by more than the solids' depth
+            // behind them (a top face above another's bottom face): the
+            // point halfway between the planes, as far into the faces'
+            // overlap, is inside both.
+            let flush = c_flat <= 1e-9 && c_round <= 1e-9 && {
+                let bounds = [(&ra, &fa, ta, la, scale(n, -1.0)), (&rb, &fb, tb, lb, n)];
+                faces_meet::<D>(&bounds, n, tolerance).is_some_and(|d| {
+                    let p = add(scale(add(xa, xb), 0.5), scale(d, -distance));
+                    depth(flat, p) > 0.0 && depth(round, p) > 0.0
+                })
+            };
+            flush || deep(c_flat, depth(flat, ya)) || deep(c_round, depth(round, yb))
         };
         // The end nearest the crossing, its surface point toward the other.
         let near = |r: &Ridge, t: f64, l: f64, frame: &D::Pose, of_round: bool| {
@@ -247,6 +265,49 @@ pub(crate) fn crossing<D: Touch>(
     beyond = beyond.max(least - (size - ra.radius - rb.radius));
     let surface = plane(flat, &bodies[flat.body], add(xb, scale(n, rb.radius - beyond)), n);
     Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None, end }
+}
+
+/// Whether the faces that lie flush across two crossing box edges overlap
+/// next to where the lines cross: each edge (in its frame, at its
+/// parameter, of its length, the flush face's outward normal in the
+/// world) bounds its face there by the edge's other face, and, where the
+/// crossing is at the edge's end (to `tolerance`, m), by the next edge too.
+/// A direction across `n` (world) that points strictly into every bound
+/// (unit), or `None`.
+fn faces_meet<D: Touch>(
+    edges: &[(&Ridge, &D::Pose, f64, f64, [f64; 3]); 2],
+    n: [f64; 3],
+    tolerance: f64,
+) -> Option<[f64; 3]> {
+    let mut bounds: Vec<[f64; 3]> = Vec::new();
+    for &(r, frame, t, length, outward) in edges {
+        let world = |k: usize, sign: f64| {
+            let mut e = [0.0; 3];
+            e[k] = sign;
+            array::<D>(&D::rotate(frame, &vector::<D>(&e)))
+        };
+        let local = array::<D>(&D::rotate(&D::inverse(frame), &vector::<D>(&outward)));
+        let faces: Vec<usize> = (0..3).filter(|&k| r.faces[k] != 0.0).collect();
+        let Some(axis) = (0..3).find(|&k| r.faces[k] == 0.0) else { return None };
+        let [a, b] = faces[..] else { return None };
+        // The edge's other face: the one the flush face's normal does not point along.
+        let other = if local[a] * r.faces[a] >= local[b] * r.faces[b] { b } else { a };
+        bounds.push(world(other, r.faces[other]));
+        if t * length < tolerance {
+            bounds.push(world(axis, -1.0));
+        } else if (1.0 - t) * length < tolerance {
+            bounds.push(world(axis, 1.0));
+        }
+    }
+    // The open cone of directions within every bound is empty or a wedge
+    // between two bounds' edges (a half-plane: against one bound).
+    let rays: Vec<[f64; 3]> = bounds.iter().flat_map(|c| [cross(n, *c), cross(*c, n), scale(*c, -1.0)]).collect();
+    let within = |d: [f64; 3]| {
+        let size = dot(d, d).sqrt();
+        size > 1e-12 && bounds.iter().all(|c| dot(*c, d) < -1e-9 * size)
+    };
+    let pairs = rays.iter().flat_map(|&x| rays.iter().map(move |&y| add(x, y)));
+    rays.iter().copied().chain(pairs).find(|&d| within(d)).map(|d| scale(d, 1.0 / dot(d, d).sqrt()))
 }
 
 /// The plane through `origin` with outward `normal` (both world), fixed in `flat`'s body at `body`.
