@@ -1037,7 +1037,11 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 }
                 Toucher::Flexure(_) => None,
             };
-            out[HELD_GUARDS * i + 2] = margin.map_or(f64::MAX, |g| g / self.gap_band);
+            // Read a band later: a margin that stays at its bound (a crossing
+            // at an edge's end, two boxes' corners aligned on each other's
+            // edges) lies inside the band a guard lands in, and each step
+            // aimed at another event landed on it (1,452 switches in 1 s).
+            out[HELD_GUARDS * i + 2] = margin.map_or(f64::MAX, |g| g / self.gap_band + 1.0);
         }
         let a = HELD_GUARDS * self.held.len();
         for k in 0..self.pairs.len() {
