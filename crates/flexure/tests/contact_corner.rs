@@ -1035,6 +1035,38 @@ fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
     }
 }
 
+/// A box on a vertical slider (100 N/m) pushed down by 20 N lands flat on
+/// a can's lid (radius and half length 50 mm) 0.2 m below its centre: a
+/// box of half extent $e$ rests at $q = e - 0.15$ with the push
+/// $20 + 100q$, to 1e-12 m and 1e-9 N. Small ($e$ = 20 mm; offset and
+/// turned, and centred) its corners carry it; as wide as the lid
+/// ($e$ = 50 mm; aligned, and turned 45°) only the lid's rim does, whose
+/// polygon's points lie on the box's face. Where the box overhangs the lid, the
+/// can's side (its axis rounded, a capsule) must not read its corners
+/// touching above the lid, nor the box's edges deep in it: read so (before
+/// `01f4ebf`), the first stalled at 42 % of the load after 10,000 steps.
+#[test]
+fn a_box_pushed_flat_onto_a_cans_lid_rests_on_it() {
+    let text = |dx: f64, dy: f64, yaw: f64, e: f64| {
+        format!(
+            "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"cylinder\"\nhalf_length = 0.05\nradius = 0.05\n\
+             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [{dx:?}, {dy:?}, 0.2]\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [{e:?}, {e:?}, {e:?}]\n\
+             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{dx:?}, {dy:?}, 0.2]\nforce = [0.0, 0.0, -20.0]\n"
+        )
+    };
+    let turned = std::f64::consts::FRAC_PI_4;
+    for (dx, dy, yaw, e) in
+        [(0.03, 0.02, 0.3, 0.02), (0.0, 0.0, 0.0, 0.02), (0.0, 0.0, 0.0, 0.05), (0.0, 0.0, turned, 0.05)]
+    {
+        let s = solve(&spatial_from_toml(&text(dx, dy, yaw, e)).unwrap(), &Settings::default()).unwrap();
+        let q = e - 0.15;
+        assert!((s.q[0] - q).abs() < 1e-12, "({dx}, {dy}, {yaw}, {e}): {} against {q}", s.q[0]);
+        let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
+        assert!((total - (20.0 + 100.0 * q)).abs() < 1e-9, "({dx}, {dy}, {yaw}, {e}): {total}");
+    }
+}
+
 /// Given mass and pushed from rest, the spatial lid swings its box onto a
 /// floor 30 mm below the hinge, lands on its two leading corners
 /// $(\pm0.01, 0.1, -0.005)$ (lid frame) at once, where
