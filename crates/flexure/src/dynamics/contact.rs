@@ -1099,7 +1099,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let pair = self.pairs[k - HELD_GUARDS * a];
             let Some(low) = self.open_least(&pair, q)? else { continue };
             // Two edges that do not cross within both: a corner touches there.
-            if crossing_of(&self.mechanism, &pair, &self.frames.bodies).is_some_and(|k| k.margin < 0.0) {
+            if crossing_of(&self.mechanism, &pair, &self.frames.bodies).is_some_and(|k| !k.applies()) {
                 continue;
             }
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
@@ -1134,7 +1134,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             };
             let mut next: Option<(f64, Pair)> = None;
             for p in self.pairs.iter().filter(|p| p.geom == h.pair.geom && p.part == h.pair.part && **p != h.pair) {
-                let applies = crossing_of(m, p, bodies).is_some_and(|k| k.margin >= 0.0);
+                let applies = crossing_of(m, p, bodies).is_some_and(|k| k.applies());
                 let held = self.held.iter().any(|k| k.pair == *p);
                 if let (true, false, Some(g)) = (applies, held, self.open_least(p, q)?)
                     && g.gap <= self.gap_band

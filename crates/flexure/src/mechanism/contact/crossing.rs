@@ -17,7 +17,9 @@
 //! its lid is nearer), $\hat n$ lies between the two faces that meet at a box's edge
 //! (and $-\hat n$ at the other's), and the lines are apart or $x_A$ is inside
 //! the geom touched (two edges at the far sides of two boxes are no
-//! touch). Elsewhere its gap is the two segments' distance less the radii,
+//! touch), or, where $\hat n$ is a face's normal of each (two faces flush,
+//! neither point deep in the other), the two faces overlap next to the
+//! crossing inside both. Elsewhere its gap is the two segments' distance less the radii,
 //! plus how far the lines' nearest points lie beyond the edges' ends, and
 //! not less than a cylinder's own gap at the other edge's point (its axis
 //! rounded is a capsule, less than its lid past the ends): continuous
@@ -117,6 +119,15 @@ pub(crate) struct Crossing<D: Touch> {
     pub turn: Option<Turn>,
     /// Of crossing lines, the edges' end nearest where they cross.
     pub end: Option<End>,
+}
+
+impl<D: Touch> Crossing<D> {
+    /// Whether the pair applies where it was placed ([`Crossing::margin`]
+    /// not below zero): a touching pair is let go, and an open one is not
+    /// touched, where it does not (a corner touches there).
+    pub fn applies(&self) -> bool {
+        self.margin >= 0.0
+    }
 }
 
 /// The end of two crossing edges nearest where their lines cross: where a
@@ -267,18 +278,17 @@ pub(crate) fn crossing<D: Touch>(
     Crossing { centre: local::<D>(&bodies[round.body], xa), surface, margin, turn: None, end }
 }
 
-/// Whether the faces that lie flush across two crossing box edges overlap
-/// next to where the lines cross: each edge (in its frame, at its
-/// parameter, of its length, the flush face's outward normal in the
-/// world) bounds its face there by the edge's other face, and, where the
-/// crossing is at the edge's end (to `tolerance`, m), by the next edge too.
-/// A direction across `n` (world) that points strictly into every bound
-/// (unit), or `None`.
-fn faces_meet<D: Touch>(
-    edges: &[(&Ridge, &D::Pose, f64, f64, [f64; 3]); 2],
-    n: [f64; 3],
-    tolerance: f64,
-) -> Option<[f64; 3]> {
+/// A box edge whose face lies flush on another's ([`faces_meet`]): the
+/// edge, its geom's frame (world), the lines' nearest point's parameter
+/// along it, its length (m), and the flush face's outward normal (world).
+type FlushEdge<'a, P> = (&'a Ridge, &'a P, f64, f64, [f64; 3]);
+
+/// Where the faces that lie flush across two crossing box edges overlap
+/// next to where the lines cross: a unit direction across `n` (world)
+/// that points strictly into both faces, or `None`. Each edge bounds its
+/// face there by the edge's other face, and, where the crossing is at the
+/// edge's end (to `tolerance`, m), by the next edge too.
+fn faces_meet<D: Touch>(edges: &[FlushEdge<D::Pose>; 2], n: [f64; 3], tolerance: f64) -> Option<[f64; 3]> {
     let mut bounds: Vec<[f64; 3]> = Vec::new();
     for &(r, frame, t, length, outward) in edges {
         let world = |k: usize, sign: f64| {
@@ -288,7 +298,7 @@ fn faces_meet<D: Touch>(
         };
         let local = array::<D>(&D::rotate(&D::inverse(frame), &vector::<D>(&outward)));
         let faces: Vec<usize> = (0..3).filter(|&k| r.faces[k] != 0.0).collect();
-        let Some(axis) = (0..3).find(|&k| r.faces[k] == 0.0) else { return None };
+        let axis = (0..3).find(|&k| r.faces[k] == 0.0)?;
         let [a, b] = faces[..] else { return None };
         // The edge's other face: the one the flush face's normal does not point along.
         let other = if local[a] * r.faces[a] >= local[b] * r.faces[b] { b } else { a };

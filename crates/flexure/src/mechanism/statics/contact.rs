@@ -1101,7 +1101,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             return Ok(Some(Event::Open(c)));
         }
         // Two edges whose crossing left either edge: the corner there takes the touch.
-        if let Some(k) = crossing_of(m, &t.pair, &problem.frames.bodies).filter(|k| k.margin < 0.0) {
+        if let Some(k) = crossing_of(m, &t.pair, &problem.frames.bodies).filter(|k| !k.applies()) {
             let Some(pair) = ran_off(m, &t.pair, &k, 0.0) else { return Ok(Some(Event::Open(c))) };
             let bodies = &problem.frames.bodies;
             let body = &bodies[geom_body(m, &pair)];
