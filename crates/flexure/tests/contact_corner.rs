@@ -1067,6 +1067,53 @@ fn a_box_pushed_flat_onto_a_cans_lid_rests_on_it() {
     }
 }
 
+/// A box (half extents 50 mm) on a vertical slider (100 N/m) and a hinge
+/// about y at its centre (1 N·m/rad), 0.2 m above a box like it, pushed
+/// down by 20 N 30 mm along its x axis, tips. Over the box below (centred,
+/// and 1 mm off along y) it rests on its corner $(0.05, \mp0.05)$: with
+/// $s = 0.05(\sin\theta + \cos\theta) - 0.15$ and $N = 20 + 100s$,
+/// $0.6\cos\theta - 0.05N(\cos\theta - \sin\theta) = \theta$. Its hinge
+/// 30 mm off along x, its face rests on the edge $x = 0.05$ below: with
+/// $s = (0.05 + 0.02\sin\theta)/\cos\theta - 0.15$ and $N\cos\theta = 20 + 100s$,
+/// $0.6\cos\theta - N((0.15 + s)\sin\theta + 0.02\cos\theta) = \theta$.
+/// To 1e-9 rad and 1e-9 m, the push to 1e-7 N. Centred, the two boxes'
+/// $\pm y$ faces lie in one plane facing the same way, and a corner on it
+/// read no depth in the other box: the solve stopped at 44 % of the load
+/// as passed through (46 % with the hinge off).
+#[test]
+fn a_box_tipped_onto_a_box_of_its_width_rests_on_its_corner_or_face() {
+    let text = |x: f64, y: f64| {
+        format!(
+            "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"c\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+             [[joint]]\nname = \"tilt\"\nkind = \"revolute\"\nparent = \"c\"\nchild = \"b\"\norigin = [{x:?}, {y:?}, 0.2]\naxis = [0.0, 1.0, 0.0]\nstiffness = 1.0\n\
+             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n\
+             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n\
+             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [0.03, 0.0, 0.0]\nforce = [0.0, 0.0, -20.0]\n"
+        )
+    };
+    // On its corner: the slide and the push at an angle, then the angle.
+    let corner_slide = |t: f64| 0.05 * (t.sin() + t.cos()) - 0.15;
+    let corner_push = |t: f64| 20.0 + 100.0 * corner_slide(t);
+    let on_corner = root_in(0.0, 0.5, |t| 0.6 * t.cos() - 0.05 * corner_push(t) * (t.cos() - t.sin()) - t);
+    // On the edge below.
+    let edge_slide = |t: f64| (0.05 + 0.02 * t.sin()) / t.cos() - 0.15;
+    let edge_push = |t: f64| (20.0 + 100.0 * edge_slide(t)) / t.cos();
+    let on_edge =
+        root_in(0.0, 0.5, |t| 0.6 * t.cos() - edge_push(t) * ((0.15 + edge_slide(t)) * t.sin() + 0.02 * t.cos()) - t);
+    let cases = [
+        (0.0, 0.0, on_corner, corner_slide(on_corner), corner_push(on_corner)),
+        (0.0, 0.001, on_corner, corner_slide(on_corner), corner_push(on_corner)),
+        (0.03, 0.0, on_edge, edge_slide(on_edge), edge_push(on_edge)),
+    ];
+    for (x, y, theta, slide, push) in cases {
+        let s = solve(&spatial_from_toml(&text(x, y)).unwrap(), &Settings::default()).unwrap();
+        assert!((s.q[1] - theta).abs() < 1e-9, "({x}, {y}): {} against {theta}", s.q[1]);
+        assert!((s.q[0] - slide).abs() < 1e-9, "({x}, {y}): {} against {slide}", s.q[0]);
+        let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
+        assert!((total - push).abs() < 1e-7, "({x}, {y}): {total} against {push}");
+    }
+}
+
 /// Given mass and pushed from rest, the spatial lid swings its box onto a
 /// floor 30 mm below the hinge, lands on its two leading corners
 /// $(\pm0.01, 0.1, -0.005)$ (lid frame) at once, where

@@ -396,3 +396,41 @@ half_extents = [0.05, 0.004, 0.003]
     }
     assert!(checked >= 12, "{checked} edge pairs checked");
 }
+
+/// A box's corner in the plane of a face of the box it touches, both
+/// faces facing the same way (two boxes of one width, half extents 50 mm,
+/// the upper on a slider along z and a hinge about y at its centre, 0.2 m
+/// above the lower): at $q = (-0.1, 0.1)$ its corner $(0.05, 0.05, -0.05)$
+/// lies in the lower box's face $y = 0.05$ and sinks below its top, at
+/// $z = 0.1 - 0.05(\sin 0.1 + \cos 0.1)$. Its gap is the top face's,
+/// $z - 0.05$, along $+z$, to 1e-15 m (as the face $y = 0.05$ it read 0),
+/// and its derivatives match central differences (step 1e-6, to 1e-6 of
+/// the largest).
+#[test]
+fn a_corner_in_a_face_plane_facing_as_its_own_reads_the_other_faces_gap() {
+    let m = spatial_from_toml(
+        "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"c\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+         [[joint]]\nname = \"tilt\"\nkind = \"revolute\"\nparent = \"c\"\nchild = \"b\"\norigin = [0.0, 0.0, 0.2]\naxis = [0.0, 1.0, 0.0]\nstiffness = 1.0\n\
+         [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n\
+         [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n",
+    )
+    .unwrap();
+    let q = [-0.1, 0.1];
+    let z = 0.1 - 0.05 * (0.1f64.sin() + 0.1f64.cos());
+    let all = pairs(&m);
+    // The upper box's corners come first (16 corners, then pairs of edges).
+    let p = (0..16).min_by(|&a, &b| jet(&m, &q, a, None).gap.total_cmp(&jet(&m, &q, b, None).gap)).unwrap();
+    assert!(all[p].corner < 8, "{:?}: a corner of the upper box", all[p]);
+    let at = jet(&m, &q, p, None);
+    assert!((at.gap - (z - 0.05)).abs() < 1e-15, "{} against {}", at.gap, z - 0.05);
+    assert!((at.normal - nalgebra::Vector3::z()).norm() < 1e-15, "{}", at.normal);
+    let h = 1e-6;
+    let largest = at.gradient.iter().fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+    for c in 0..2 {
+        let (mut up, mut down) = (q.to_vec(), q.to_vec());
+        up[c] += h;
+        down[c] -= h;
+        let fd = (jet(&m, &up, p, None).gap - jet(&m, &down, p, None).gap) / (2.0 * h);
+        assert!((at.gradient[c] - fd).abs() <= 1e-6 * largest, "dg/dq{c}: {} against {fd}", at.gradient[c]);
+    }
+}

@@ -202,7 +202,7 @@ pub(crate) struct Corner<'m, D: Touch> {
     pub edge: Option<(usize, usize)>,
 }
 
-impl<D: Touch> Corner<'_, D> {
+impl<'m, D: Touch> Corner<'m, D> {
     /// The material point of its geom at `point` (world), its body at
     /// `bodies[round.body]`, as [`super::material_jet`] takes it.
     pub fn material(&self, bodies: &[D::Pose], point: &D::Point) -> super::Material {
@@ -232,6 +232,58 @@ impl<D: Touch> Corner<'_, D> {
         let local = D::position(&D::act(&D::inverse(&frame), &world));
         let n = D::rotate(&D::inverse(&frame), normal);
         Some(self.flat.shape.face_margin(&local, &n) + 1e-9 * size)
+    }
+
+    /// The geom a fixed corner touches, bodies at `bodies`: `flat`, or,
+    /// where a box's sharp corner lies in the plane of a face of the box
+    /// `flat` that faces the same way as one of its own box's faces at the
+    /// corner (two faces flush in one plane: boxes of one width stacked,
+    /// or side by side), `flat` with each such face moved out by its width.
+    /// On that plane the corner is on `flat`'s surface, and sunk below its
+    /// other face it read no depth (the box went through); the face moved
+    /// out, it reads the other face's. Off the plane, and above that face,
+    /// the two agree.
+    pub fn against(&self, bodies: &[D::Pose]) -> std::borrow::Cow<'m, Geom<D>> {
+        use std::borrow::Cow;
+        let (GeomShape::Box { half_extents: e }, GeomShape::Box { half_extents: own }) =
+            (&self.flat.shape, &self.round.shape)
+        else {
+            return Cow::Borrowed(self.flat);
+        };
+        if self.edge.is_some() || self.radius != 0.0 {
+            return Cow::Borrowed(self.flat);
+        }
+        let world = D::act(&bodies[self.round.body], &D::moved(&D::origin(&D::identity()), &self.centre, 1.0));
+        let (mine, theirs) = (
+            D::compose(&bodies[self.round.body], &self.round.frame),
+            D::compose(&bodies[self.flat.body], &self.flat.frame),
+        );
+        let (at_mine, at_theirs) =
+            (D::position(&D::act(&D::inverse(&mine), &world)), D::position(&D::act(&D::inverse(&theirs), &world)));
+        let size: f64 = (0..D::POINT_DIM).map(|i| e[i] + own[i]).sum();
+        let sign = |x: f64| if x < 0.0 { -1.0 } else { 1.0 };
+        let normal = |frame: &D::Pose, i: usize, s: f64| {
+            let mut a = D::Vector::default();
+            a[i] = s;
+            D::rotate(frame, &a)
+        };
+        let (mut half, mut shift) = (*e, D::Vector::default());
+        for i in 0..D::POINT_DIM {
+            let s = sign(at_theirs[i]);
+            let n = normal(&theirs, i, s);
+            let faces =
+                (0..D::POINT_DIM).any(|j| super::dot::<D>(&n, &normal(&mine, j, sign(at_mine[j]))) > 1.0 - 1e-9);
+            if (at_theirs[i].abs() - e[i]).abs() <= 1e-9 * size && faces {
+                (half[i], shift[i]) = (2.0 * e[i], s * e[i]);
+            }
+        }
+        if half == *e {
+            return Cow::Borrowed(self.flat);
+        }
+        let frame = D::compose(&self.flat.frame, &D::at(&D::moved(&D::origin(&D::identity()), &shift, 1.0)));
+        let mut g = Geom::new("", self.flat.body, frame, GeomShape::Box { half_extents: half });
+        g.friction = self.flat.friction;
+        Cow::Owned(g)
     }
 
     /// Of a pair of edges, where they are nearest, bodies at `bodies`

@@ -150,7 +150,8 @@ pub fn minima<D: Touch>(m: &Mechanism<D>, q: &[f64], bodies: &[D::Pose], pair: &
         Toucher::Geom(_) => {
             let c = corner(m, pair)?;
             let placed = c.crossing(bodies);
-            let (centre, flat) = placed.as_ref().map_or((c.centre, c.flat), |k| (k.centre, &k.surface));
+            let against = c.against(bodies);
+            let (centre, flat) = placed.as_ref().map_or((c.centre, &*against), |k| (k.centre, &k.surface));
             let centre = D::act(&bodies[c.round.body], &D::moved(&D::origin(&D::identity()), &centre, 1.0));
             let (g, normal) = flat.gap(&bodies[flat.body], &centre, c.radius);
             Ok(vec![Gap { s: None, point: D::moved(&centre, &normal, -c.radius), normal, gap: g }])

@@ -352,7 +352,7 @@ fn jet_at<'a, D: Touch + FrameChain>(
                     turn = k.turn;
                     (k.centre, Cow::Owned(k.surface))
                 }
-                None => (c.centre, Cow::Borrowed(c.flat)),
+                None => (c.centre, c.against(&f.bodies)),
             };
             let centre = ball.unwrap_or(centre);
             attach_into(m, f, c.round.body, centre, true, &mut att);
