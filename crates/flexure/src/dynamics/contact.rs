@@ -1094,6 +1094,9 @@ impl<D: Dynamics> System for ContactSystem<D> {
         let mut released: Vec<usize> =
             ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS != 1).map(|k| k / HELD_GUARDS).collect();
         released.dedup();
+        // Those let go where they left where they apply, not for pulling.
+        let left: Vec<usize> =
+            ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS == 2).map(|k| k / HELD_GUARDS).collect();
         let mut added = Vec::new();
         for &k in ks.iter().filter(|&&k| k >= HELD_GUARDS * a) {
             let pair = self.pairs[k - HELD_GUARDS * a];
@@ -1114,6 +1117,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
+            // A crossing that pulls hands its touch to none: at an edge's
+            // end (a box landing flat on a box offset 1 mm) it was handed
+            // to the crossing at the support's other end, which pulled too,
+            // and back (336 switches at one instant).
+            if !left.contains(&i) {
+                continue;
+            }
             // Two edges whose crossing ran off an edge's end (the step lands
             // on it to the tolerance, either side): the corner there takes the touch.
             let (m, bodies) = (&self.mechanism, &self.frames.bodies);
