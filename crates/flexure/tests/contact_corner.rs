@@ -1094,6 +1094,29 @@ fn a_box_tipping_onto_a_box_of_its_width_lands_and_rests() {
     }
 }
 
+/// In the plane, a box (half extents 50 mm) on a vertical slider
+/// (100 N/m) pushed down by 20 N lands flat on a box like it 0.2 m below,
+/// aligned over it and 30 mm off: it rests at $q = -0.1$ with the push
+/// $20 - 100\cdot0.1 = 10$ N, to 1e-12 m and 1e-9 N. Aligned, its
+/// corners lie on the lines of the other's sides, facing the same way, and
+/// read no depth below its top: it went through silently, to $q = -0.2$.
+/// In space the same scene is [`a_box_pushed_flat_onto_a_box_rests_on_its_face`].
+#[test]
+fn a_rectangle_pushed_flat_onto_one_of_its_width_rests_on_it_in_the_plane() {
+    for dx in [0.0, 0.03] {
+        let text = format!(
+            "[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\nstiffness = 100.0\norigin = [0.0, 0.0, 1.5707963267948966]\n\
+             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05]\n\
+             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [0.2, {dx:?}]\nhalf_extents = [0.05, 0.05]\n\
+             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [0.2, {dx:?}]\nforce = [0.0, -20.0]\n"
+        );
+        let s = solve(&from_toml(&text).unwrap(), &Settings::default()).unwrap();
+        assert!((s.q[0] + 0.1).abs() < 1e-12, "{dx}: {}", s.q[0]);
+        let total: f64 = s.contacts.iter().map(|k| k.normal_force).sum();
+        assert!((total - 10.0).abs() < 1e-9, "{dx}: {total}");
+    }
+}
+
 /// A box on a vertical slider (100 N/m) pushed down by 20 N lands flat on
 /// a can's lid (radius and half length 50 mm) 0.2 m below its centre: a
 /// box of half extent $e$ rests at $q = e - 0.15$ with the push
