@@ -463,9 +463,7 @@ impl<D: Dynamics> ContactSystem<D> {
         let Some([origin, normal]) = h.face else { return Ok(None) };
         let flat = corner(&self.mechanism, &h.pair)?.flat;
         let at = D::at(&D::moved(&D::origin(&D::identity()), &vector::<D>(&origin), 1.0));
-        let mut plane = Geom::new("", flat.body, at, GeomShape::Plane { normal: vector::<D>(&normal) });
-        plane.friction = flat.friction;
-        Ok(Some(plane))
+        Ok(Some(flat.stand_in(at, GeomShape::Plane { normal: vector::<D>(&normal) })))
     }
 
     /// Whether `pair`, open at `low` (frames at `q`), parts as the state
@@ -1094,9 +1092,6 @@ impl<D: Dynamics> System for ContactSystem<D> {
         let mut released: Vec<usize> =
             ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS != 1).map(|k| k / HELD_GUARDS).collect();
         released.dedup();
-        // Those let go where they left where they apply, not for pulling.
-        let left: Vec<usize> =
-            ks.iter().filter(|&&k| k < HELD_GUARDS * a && k % HELD_GUARDS == 2).map(|k| k / HELD_GUARDS).collect();
         let mut added = Vec::new();
         for &k in ks.iter().filter(|&&k| k >= HELD_GUARDS * a) {
             let pair = self.pairs[k - HELD_GUARDS * a];
@@ -1117,11 +1112,12 @@ impl<D: Dynamics> System for ContactSystem<D> {
         for &i in released.iter().rev() {
             let h = self.held.remove(i);
             change(&mut self.changes, &self.mechanism, &h.pair, ContactMode::Open);
-            // A crossing that pulls hands its touch to none: at an edge's
+            // Only one let go where it left where it applies (its third
+            // guard) hands its touch on; one that pulls, to none: at an edge's
             // end (a box landing flat on a box offset 1 mm) it was handed
             // to the crossing at the support's other end, which pulled too,
             // and back (336 switches at one instant).
-            if !left.contains(&i) {
+            if !ks.contains(&(HELD_GUARDS * i + 2)) {
                 continue;
             }
             // Two edges whose crossing ran off an edge's end (the step lands

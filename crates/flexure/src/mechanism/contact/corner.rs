@@ -281,9 +281,7 @@ impl<'m, D: Touch> Corner<'m, D> {
             return Cow::Borrowed(self.flat);
         }
         let frame = D::compose(&self.flat.frame, &D::at(&D::moved(&D::origin(&D::identity()), &shift, 1.0)));
-        let mut g = Geom::new("", self.flat.body, frame, GeomShape::Box { half_extents: half });
-        g.friction = self.flat.friction;
-        Cow::Owned(g)
+        Cow::Owned(self.flat.stand_in(frame, GeomShape::Box { half_extents: half }))
     }
 
     /// Of a pair of edges, where they are nearest, bodies at `bodies`

@@ -323,14 +323,8 @@ fn faces_meet<D: Touch>(edges: &[FlushEdge<D::Pose>; 2], n: [f64; 3], tolerance:
 /// The plane through `origin` with outward `normal` (both world), fixed in `flat`'s body at `body`.
 fn plane<D: Touch>(flat: &Geom<D>, body: &D::Pose, origin: [f64; 3], normal: [f64; 3]) -> Geom<D> {
     let normal = D::rotate(&D::inverse(body), &vector::<D>(&normal));
-    let mut g = Geom::new(
-        "",
-        flat.body,
-        D::at(&D::moved(&D::origin(&D::identity()), &local::<D>(body, origin), 1.0)),
-        GeomShape::Plane { normal },
-    );
-    g.friction = flat.friction;
-    g
+    let at = D::at(&D::moved(&D::origin(&D::identity()), &local::<D>(body, origin), 1.0));
+    flat.stand_in(at, GeomShape::Plane { normal })
 }
 
 /// The world point of `p` (the frame `frame`'s).

@@ -133,6 +133,15 @@ impl<D: Dimension> Geom<D> {
         Geom { name: name.into(), body, frame, shape, friction: 0.0, exclude: Vec::new() }
     }
 
+    /// A geom of the same body and friction with another frame and shape,
+    /// read in its place: a crossing's plane, a corner's face plane, a box
+    /// with a face moved out.
+    pub(crate) fn stand_in(&self, frame: D::Pose, shape: GeomShape<D>) -> Self {
+        let mut g = Geom::new("", self.body, frame, shape);
+        g.friction = self.friction;
+        g
+    }
+
     /// Whether it never touches `part` by its own `exclude`.
     fn excludes(&self, part: Toucher) -> bool {
         self.exclude.contains(&part)
