@@ -993,6 +993,19 @@ fn a_cans_rim_meets_a_floor_at_its_polygons_point_within_the_bound() {
     assert!(sunk > 0.0 && sunk < bound, "{sunk} against {bound}");
 }
 
+/// A cube of half extent `e` at `at`, turned `yaw` about z, on a vertical
+/// slider (100 N/m) pushed down by 20 N onto the geom `below` (its shape's
+/// keys) at the origin.
+fn pushed_flat(below: &str, at: [f64; 3], yaw: f64, e: f64) -> String {
+    let [x, y, z] = at;
+    format!(
+        "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
+         [[geom]]\nname = \"B\"\nbody = \"ground\"\n{below}\n\
+         [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [{x:?}, {y:?}, {z:?}]\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [{e:?}, {e:?}, {e:?}]\n\
+         [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{x:?}, {y:?}, {z:?}]\nforce = [0.0, 0.0, -20.0]\n"
+    )
+}
+
 /// Two boxes that rest face on face are apart, not crossed: a box on a
 /// vertical slider (100 N/m) pushed down by 20 N lands flat on a box 0.1 m
 /// below, offset and turned about the vertical, where a bottom edge of one
@@ -1009,14 +1022,8 @@ fn a_cans_rim_meets_a_floor_at_its_polygons_point_within_the_bound() {
 /// stopped as passed through.
 #[test]
 fn a_box_pushed_flat_onto_a_box_rests_on_its_face() {
-    let text = |dx: f64, dy: f64, yaw: f64, z: f64| {
-        format!(
-            "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
-             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n\
-             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [{dx:?}, {dy:?}, {z:?}]\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [0.05, 0.05, 0.05]\n\
-             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{dx:?}, {dy:?}, {z:?}]\nforce = [0.0, 0.0, -20.0]\n"
-        )
-    };
+    let below = "shape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]";
+    let text = |dx: f64, dy: f64, yaw: f64, z: f64| pushed_flat(below, [dx, dy, z], yaw, 0.05);
     let turned = std::f64::consts::FRAC_PI_4;
     let cases = [
         (0.03, 0.02, 0.3),
@@ -1129,14 +1136,8 @@ fn a_rectangle_pushed_flat_onto_one_of_its_width_rests_on_it_in_the_plane() {
 /// `01f4ebf`), the first stalled at 42 % of the load after 10,000 steps.
 #[test]
 fn a_box_pushed_flat_onto_a_cans_lid_rests_on_it() {
-    let text = |dx: f64, dy: f64, yaw: f64, e: f64| {
-        format!(
-            "dimension = 3\n[[joint]]\nname = \"slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"b\"\naxis = [0.0, 0.0, 1.0]\nstiffness = 100.0\n\
-             [[geom]]\nname = \"B\"\nbody = \"ground\"\nshape = \"cylinder\"\nhalf_length = 0.05\nradius = 0.05\n\
-             [[geom]]\nname = \"A\"\nbody = \"b\"\nshape = \"box\"\norigin = [{dx:?}, {dy:?}, 0.2]\nrpy = [0.0, 0.0, {yaw:?}]\nhalf_extents = [{e:?}, {e:?}, {e:?}]\n\
-             [[force]]\nname = \"push\"\nbody = \"b\"\nat = [{dx:?}, {dy:?}, 0.2]\nforce = [0.0, 0.0, -20.0]\n"
-        )
-    };
+    let below = "shape = \"cylinder\"\nhalf_length = 0.05\nradius = 0.05";
+    let text = |dx: f64, dy: f64, yaw: f64, e: f64| pushed_flat(below, [dx, dy, 0.2], yaw, e);
     let turned = std::f64::consts::FRAC_PI_4;
     for (dx, dy, yaw, e) in
         [(0.03, 0.02, 0.3, 0.02), (0.0, 0.0, 0.0, 0.02), (0.0, 0.0, 0.0, 0.05), (0.0, 0.0, turned, 0.05)]
