@@ -46,9 +46,13 @@ def test_a_tip_pressed_onto_a_floor_reports_its_contact():
     assert not answer["flagged"]
 
 
-def test_no_contact_no_key():
+def test_contacts_is_an_empty_list_where_none_touches_and_absent_without_geoms():
+    """A script reads `contacts` whenever a part may reach a geom: the strip
+    far above its floor touches nothing, and a file with no geom has no key."""
     far = STRIP.replace("origin = [0.0, -0.01]", "origin = [0.0, -5.0]")
-    assert "contacts" not in flexure.Mechanism.from_toml(far).solve()
+    assert flexure.Mechanism.from_toml(far).solve()["contacts"] == []
+    bare = STRIP[: STRIP.index("[[geom]]")]
+    assert "contacts" not in flexure.Mechanism.from_toml(bare).solve()
 
 
 def test_a_rough_floor_holds_the_tip_with_friction():

@@ -106,7 +106,7 @@ fn a_strip_of_order_auto_pressed_onto_a_post_is_raised_where_the_contact_needs_i
     let load = "force = [0.0, -4.0]";
     let fixed = Model::from_toml(&strip("3", load, post)).unwrap().solve(&Accuracy::default(), None).unwrap();
     let r = fixed.report.unwrap();
-    assert!(r.flagged && r.contacts.len() == 1, "{:?}", r.error_estimate);
+    assert!(r.flagged && r.contacts.map(|c| c.len()) == Some(1), "{:?}", r.error_estimate);
 
     let s = Model::from_toml(&strip("\"auto\"", load, post)).unwrap().solve(&Accuracy::default(), None).unwrap();
     let r = s.report.unwrap();
@@ -120,8 +120,9 @@ fn a_strip_of_order_auto_pressed_onto_a_post_is_raised_where_the_contact_needs_i
         &Default::default(),
     )
     .unwrap();
-    assert!(exact.reached() && exact.contacts.len() == 1 && r.contacts.len() == 1);
-    let (c, e) = (&r.contacts[0], &exact.contacts[0]);
+    let contacts = r.contacts.unwrap_or_default();
+    assert!(exact.reached() && exact.contacts.len() == 1 && contacts.len() == 1);
+    let (c, e) = (&contacts[0], &exact.contacts[0]);
     assert!(e.s < 0.9, "an inner contact: {e:?}");
     let (force, place) = ((c.normal_force / e.normal_force - 1.0).abs(), (c.s.unwrap() - e.s).abs());
     assert!(force < 0.01 && place < 0.01, "{c:?} vs {e:?}");

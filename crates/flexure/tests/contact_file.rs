@@ -190,7 +190,7 @@ fn the_solve_handles_a_pair_that_may_touch_and_buckling_refuses_it() {
     let model = Model::from_toml(&text).unwrap();
     let solved = model.solve(&Accuracy::default(), None).unwrap();
     let report = solved.report.map_err(|f| f.error).unwrap();
-    assert_eq!(report.contacts, s.contacts);
+    assert_eq!(report.contacts, Some(s.contacts));
     let e = model.buckle(&Accuracy::default()).err().map(|e| e.to_string()).expect("refused");
     let named = "geom \"floor\" (plane) and flexure \"strip\": may touch, and only equilibrium solves, sweeps, compliances, modes and motion";
     assert!(e.contains(named), "{e}");
@@ -386,4 +386,26 @@ fn a_spatial_flexure_that_starts_inside_a_sphere_is_refused() {
     );
     let clear = ball.replace("0.0052", "0.0056");
     assert!(spatial_from_toml(&clear).is_ok());
+}
+
+/// `contacts` is in every answer of a file with a pair that may touch, an
+/// empty list where nothing touched (the strip bent toward a floor it does
+/// not reach: 1 N on 0.1 m bends it 2.0 mm by FL³/3EI, 10 mm short), and
+/// absent from a file with no geom: a script reads the key whenever the
+/// file has a geom a part may reach.
+#[test]
+fn contacts_is_empty_where_nothing_touches_and_absent_without_a_geom() {
+    let force = "[[force]]\nbody = \"tip\"\nforce = [0.0, -1.0]\n";
+    let floor = "[[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.01]\nnormal = [0.0, 1.0]\n";
+    let near = Model::from_toml(&format!("{STRIP}{force}{floor}")).unwrap();
+    let bare = Model::from_toml(&format!("{STRIP}{force}")).unwrap();
+    let report = |m: &Model| m.solve(&Accuracy::default(), None).unwrap().report.map_err(|f| f.error).unwrap();
+    let sweep = |m: &Model| m.sweep("force.0.fy", &[-0.5, -1.0], &Accuracy::default(), None).unwrap().unwrap();
+    assert_eq!(report(&near).contacts, Some(Vec::new()));
+    assert_eq!(sweep(&near).contacts, Some(vec![Vec::new(), Vec::new()]));
+    let json = serde_json::to_value(report(&near)).unwrap();
+    assert_eq!(json["contacts"], serde_json::json!([]));
+    assert_eq!(report(&bare).contacts, None);
+    assert_eq!(sweep(&bare).contacts, None);
+    assert!(serde_json::to_value(report(&bare)).unwrap().get("contacts").is_none());
 }

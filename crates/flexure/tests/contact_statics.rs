@@ -79,7 +79,7 @@ fn inner_contact_matches(geom: &str, load: &str, obstacle: Obstacle, tip: TipLoa
     let true_error = (end[0] - exact_end[0]).hypot(end[1] - exact_end[1]);
     let estimate = report.error_estimate.get("strip").unwrap();
     assert!(estimate.position >= true_error / 3.0 && estimate.position < 1e-3, "{estimate:?} vs {true_error:e}");
-    assert_eq!(report.contacts.len(), 1);
+    assert_eq!(report.contacts.map(|c| c.len()), Some(1));
 }
 
 #[test]

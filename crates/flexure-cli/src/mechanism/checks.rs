@@ -127,9 +127,9 @@ pub(super) fn swept_answer(
 ) -> Value {
     let mut v = json!({ "dimension": model.dimension(), "columns": out.columns, "rows": out.rows });
     // Each row's contacts as `solve` reports them (state and friction too),
-    // by its value, where a pair touched: the table has only their normal forces.
-    if out.contacts.iter().any(|c| !c.is_empty()) {
-        let rows = out.rows.iter().zip(&out.contacts);
+    // by its value, where a pair may touch: the table has only their normal forces.
+    if let Some(contacts) = &out.contacts {
+        let rows = out.rows.iter().zip(contacts);
         v["contacts"] = json!(rows.map(|(r, c)| json!({ "value": r[0], "contacts": c })).collect::<Vec<_>>());
     }
     crate::eigen::insert_orders(&mut v, &out.model);

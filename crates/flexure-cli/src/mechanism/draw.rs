@@ -109,9 +109,10 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         out.rows
             .iter()
             .zip(&out.q)
-            .zip(&out.contacts)
-            .map(|((r, q), contacts)| {
+            .enumerate()
+            .map(|(k, (r, q))| {
                 let shape = D::pose(m, &label(r[0]), q, &p.apply(&m.loads(), r[0]))?;
+                let contacts = out.contacts.as_ref().map_or(&[][..], |c| c[k].as_slice());
                 Ok((label(r[0]), shape.with_contacts(contacts)))
             })
             .collect::<Result<_, String>>()?
@@ -122,7 +123,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
             return raised(args, &solved.model);
         }
         let q = solved.q.clone();
-        let contacts = solved.report.as_ref().map(|r| r.contacts.clone()).unwrap_or_default();
+        let contacts = solved.report.as_ref().ok().and_then(|r| r.contacts.clone()).unwrap_or_default();
         checks = solve_answer(model, findings, solved, &target, &args.file)?;
         vec![("loaded".into(), D::pose(m, "loaded", &q, &m.loads())?.with_contacts(&contacts))]
     };

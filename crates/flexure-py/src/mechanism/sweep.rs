@@ -162,8 +162,8 @@ fn answer<'py>(
     if !normal_force.is_empty() {
         result.set_item("normal_force", normal_force)?;
     }
-    if swept.contacts.iter().any(|c| !c.is_empty()) {
-        result.set_item("contacts", crate::serialize::to_python(py, &swept.contacts)?)?;
+    if let Some(contacts) = &swept.contacts {
+        result.set_item("contacts", crate::serialize::to_python(py, contacts)?)?;
     }
     if let Some(first) = swept.columns.iter().position(|c| c.starts_with("compliance.")) {
         let k = (swept.columns.len() - first).isqrt();

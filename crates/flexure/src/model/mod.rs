@@ -96,8 +96,9 @@ pub struct Swept {
     pub rows: Vec<Vec<f64>>,
     /// Each row's coordinates (what a picture draws).
     pub q: Vec<Vec<f64>>,
-    /// Each row's contacts (what a picture draws of them): as [`SolveReport::contacts`].
-    pub contacts: Vec<Vec<crate::mechanism::contact::Contact>>,
+    /// Each row's contacts (what a picture draws of them), as
+    /// [`SolveReport::contacts`]: `None` where no pair may touch.
+    pub contacts: Option<Vec<Vec<crate::mechanism::contact::Contact>>>,
     /// Each moving body (the ground left out) by name, with its pose at each row.
     pub bodies: Vec<(String, Vec<BodyPose>)>,
     /// The parts that cross, by row, where any do.
@@ -612,7 +613,7 @@ where
     let shapes: Vec<&[f64]> = out.rows.iter().map(|(_, s)| s.q.as_slice()).collect();
     let crossings = D::crossings_along(m, &shapes);
     let q = shapes.iter().map(|q| q.to_vec()).collect();
-    let contacts = out.rows.iter().map(|(_, s)| s.contacts.clone()).collect();
+    let contacts = (!touching.is_empty()).then(|| out.rows.iter().map(|(_, s)| s.contacts.clone()).collect());
     let (stability_limit, stopped) = (out.stability_limit, out.stopped);
     let model = used.into_owned().into();
     Ok(Ok(Swept {

@@ -359,9 +359,12 @@ pub struct SolveReport {
     pub load_steps: usize,
     /// Newton iterations over all steps.
     pub iterations: usize,
-    /// The contacts with the mechanism's geoms ([`Solution::contacts`]).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub contacts: Vec<Contact>,
+    /// The contacts with the mechanism's geoms ([`Solution::contacts`]): an
+    /// empty list where none touches or just opened, `None` (left out of the
+    /// JSON) where no pair may touch, so a script reads the key whenever the
+    /// file has a geom a part may reach.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<Vec<Contact>>,
 }
 
 /// A flexure joint whose error estimate (the joint alone under the tip
@@ -434,7 +437,7 @@ pub fn solve_report<D: Reported>(
         residual: s.residual,
         load_steps: s.load_steps,
         iterations: s.iterations,
-        contacts: Vec::new(),
+        contacts: None,
     };
     let flexures = m.joints.iter().filter_map(|j| Some((j, j.kind.flexure()?)));
     let mut estimates = D::estimates(m, s, target);
@@ -455,7 +458,9 @@ pub fn solve_report<D: Reported>(
             }
         }
     }
-    r.contacts = s.contacts.clone();
+    if !crate::mechanism::contact::pairs(m).is_empty() {
+        r.contacts = Some(s.contacts.clone());
+    }
     for ((j, f), estimate) in flexures.zip(estimates) {
         let q = &s.q[j.offset..j.offset + j.kind.joint().dof()];
         let name = j.name.clone();
