@@ -169,3 +169,108 @@ fn the_gap_takes_the_half_thickness_and_turns_the_normal() {
     let (gap, n) = floor.gap(&body, &Point2::new(4.0, 2.5), 0.5);
     assert!((gap - 2.0).abs() < 1e-15 && (n - Vector2::y()).norm() < 1e-15, "{gap} {n}");
 }
+
+/// Central differences of the normal of `shape` (its own frame) at points
+/// `p` against its curvature $\nabla^2 d$, to 1e-6 of its size (the
+/// difference's truncation at a 1e-7 step); points within a step of a crease
+/// (the two one-sided differences disagree) are left out. Returns how many
+/// were checked.
+fn curvature_is_the_normals_derivative<const N: usize>(
+    field: impl Fn([f64; N]) -> ([f64; N], [[f64; 3]; 3]),
+    points: impl Iterator<Item = [f64; N]>,
+    what: &str,
+) -> usize {
+    let h = 1e-7;
+    let mut checked = 0;
+    'points: for p in points {
+        let (n, c) = field(p);
+        let mut columns = Vec::new();
+        for j in 0..N {
+            let (mut a, mut b) = (p, p);
+            a[j] += h;
+            b[j] -= h;
+            let (na, nb) = (field(a).0, field(b).0);
+            let (ahead, behind): (Vec<f64>, Vec<f64>) =
+                (0..N).map(|i| ((na[i] - n[i]) / h, (n[i] - nb[i]) / h)).unzip();
+            let scale = 1.0 + ahead.iter().chain(&behind).fold(0.0f64, |m, x| m.max(x.abs()));
+            if ahead.iter().zip(&behind).any(|(x, y)| (x - y).abs() > 1e-3 * scale) {
+                continue 'points;
+            }
+            columns.push((0..N).map(|i| (na[i] - nb[i]) / (2.0 * h)).collect::<Vec<_>>());
+        }
+        for (j, column) in columns.iter().enumerate() {
+            for i in 0..N {
+                let scale = 1.0 + c[i][j].abs();
+                assert!(
+                    (c[i][j] - column[i]).abs() < 1e-6 * scale,
+                    "{what} at {p:?}: ∇²d[{i}][{j}] = {}, differences {}",
+                    c[i][j],
+                    column[i]
+                );
+            }
+        }
+        checked += 1;
+    }
+    checked
+}
+
+/// Each shape's curvature (`GeomShape::curvature`, the Hessian of its
+/// signed distance that the contact's stiffness and its stability read) is
+/// the derivative of its normal, by central differences: at random points,
+/// and on each curved surface itself, where a touching centreline (a
+/// flexure with no thickness) reads it. A cylinder's side read zero there,
+/// and a blade given by `ei` pressed onto a cylinder was refused as lying
+/// along it.
+#[test]
+fn each_shapes_curvature_is_the_derivative_of_its_normal() {
+    let spatial_shapes: [GeomShape<Spatial>; 4] = [
+        GeomShape::Ball { radius: 0.7 },
+        GeomShape::Capsule { half_length: 0.8, radius: 0.3 },
+        GeomShape::Box { half_extents: Vector3::new(0.9, 0.4, 0.6) },
+        GeomShape::Cylinder { half_length: 0.5, radius: 0.6 },
+    ];
+    let (a, b) = (0.7f64, 0.4f64);
+    let surfaces = [
+        vec![[0.7 * b.cos() * a.cos(), 0.7 * b.cos() * a.sin(), 0.7 * b.sin()]],
+        vec![
+            [0.2, 0.3 * a.cos(), 0.3 * a.sin()],
+            [0.8 + 0.3 * b.cos(), 0.3 * b.sin() * a.cos(), 0.3 * b.sin() * a.sin()],
+        ],
+        vec![[0.9, 0.1, 0.2]],
+        vec![[0.6 * a.cos(), 0.6 * a.sin(), 0.1]],
+    ];
+    for (shape, surface) in spatial_shapes.into_iter().zip(surfaces) {
+        let field = |p: [f64; 3]| {
+            let (_, n) = shape.distance(&Vector3::from(p));
+            ([n.x, n.y, n.z], shape.curvature(&Vector3::from(p)))
+        };
+        let mut rng = Lcg(5);
+        let points = (0..200).map(|_| [rng.next(), rng.next(), rng.next()]);
+        let checked = curvature_is_the_normals_derivative(field, points, shape.name());
+        assert!(checked > 150, "{}: only {checked} points away from creases", shape.name());
+        let on_surface = curvature_is_the_normals_derivative(field, surface.iter().copied(), shape.name());
+        assert_eq!(on_surface, surface.len(), "{}: a surface point on a crease", shape.name());
+        for p in &surface {
+            assert!(
+                shape.distance(&Vector3::from(*p)).0.abs() < 1e-15,
+                "{} at {p:?}: not on the surface",
+                shape.name()
+            );
+        }
+    }
+    let planar_shapes: [GeomShape<Planar>; 3] = [
+        GeomShape::Ball { radius: 0.7 },
+        GeomShape::Capsule { half_length: 0.8, radius: 0.3 },
+        GeomShape::Box { half_extents: Vector2::new(0.9, 0.4) },
+    ];
+    for shape in planar_shapes {
+        let field = |p: [f64; 2]| {
+            let (_, n) = shape.distance(&Vector2::from(p));
+            ([n.x, n.y], shape.curvature(&Vector2::from(p)))
+        };
+        let mut rng = Lcg(3);
+        let points = (0..200).map(|_| [rng.next(), rng.next()]);
+        let checked = curvature_is_the_normals_derivative(field, points, shape.name());
+        assert!(checked > 150, "{}: only {checked} points away from creases", shape.name());
+    }
+}

@@ -267,31 +267,32 @@ impl<D: Dimension> GeomShape<D> {
             }
             GeomShape::Cylinder { half_length, radius } => {
                 let rho = p[0].hypot(p[1]);
-                if inside {
-                    // Nearest the side (ρ − R), or a flat face.
-                    let side = rho - radius >= p[2].abs() - half_length && rho > 0.0;
+                let side = match inside {
+                    true => rho - radius >= p[2].abs() - half_length && rho > 0.0,
+                    false => p[2].abs() < *half_length,
+                };
+                if side {
+                    // ρ − R turns about z at 1/ρ, on the surface too.
+                    let t = [-p[1] / rho, p[0] / rho];
                     let mut c = [[0.0; 3]; 3];
-                    if side {
-                        let t = [-p[1] / rho, p[0] / rho];
-                        for i in 0..2 {
-                            for j in 0..2 {
-                                c[i][j] = t[i] * t[j] / rho;
-                            }
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            c[i][j] = t[i] * t[j] / rho;
                         }
                     }
                     c
-                } else if rho <= *radius {
+                } else if inside || rho <= *radius {
+                    // A flat face, from within or above it.
                     flat
                 } else {
-                    // The side (free along z) or the rim (free along its tangent).
+                    // The rim (free along its tangent).
                     let mut off = *p;
                     let scale = (rho - radius) / rho;
                     (off[0], off[1]) = (p[0] * scale, p[1] * scale);
                     off[2] = p[2] - p[2].clamp(-half_length, *half_length);
                     let mut tangent = D::Vector::default();
                     (tangent[0], tangent[1]) = (-p[1] / rho, p[0] / rho);
-                    let side = p[2].abs() < *half_length;
-                    let mut c = round::<D>(&off, side.then(|| axis::<D>(2)).as_ref());
+                    let mut c = round::<D>(&off, None);
                     // Along the rim's tangent the nearest point moves by R/ρ of the point.
                     let r = dot::<D>(&off, &off).sqrt();
                     for i in 0..3 {
