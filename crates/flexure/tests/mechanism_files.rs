@@ -429,3 +429,62 @@ fn a_file_is_parsed_in_one_place() {
     assert_eq!(parses.len(), 1, "{parses:?}");
     assert!(parses[0].contains("document.rs"), "{parses:?}");
 }
+
+/// Reference: each example's text. An array given one number too many is
+/// refused at its line, naming its key: the file's parser reads a
+/// fixed-length array's first entries and dropped the rest unsaid (a
+/// planar geom's `origin = [x, y, phi]` lost its angle). Every line of
+/// every example (planar and spatial) that writes numbers in brackets gets
+/// one more, before its first `]` (a tendon's via, an inertia's row, a
+/// schedule's point).
+#[test]
+fn an_array_given_a_number_too_many_is_refused_at_its_line() {
+    let dir = format!("{}/../../examples", env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<(String, String)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| (p.display().to_string(), std::fs::read_to_string(&p).unwrap()))
+        .collect();
+    // The keys no example writes: a spatial gravity, axis, rpy, inertia,
+    // moment and a plane's normal, and the planar plane's normal.
+    let spatial = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[[joint]]\nname = \"hinge\"\nkind = \"revolute\"\n\
+                   parent = \"ground\"\nchild = \"arm\"\naxis = [0.0, 0.0, 1.0]\nrpy = [0.0, 0.0, 0.0]\nstiffness = 1.0\n\
+                   [[body]]\nname = \"arm\"\nmass = 0.1\ninertia = [[1e-4, 0.0, 0.0], [0.0, 1e-4, 0.0], [0.0, 0.0, 1e-4]]\n\
+                   [[force]]\nname = \"push\"\nbody = \"arm\"\nmoment = [0.0, 0.0, 0.1]\n\
+                   [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0, -0.5]\nnormal = [0.0, 0.0, 1.0]\n";
+    let planar =
+        spatial.replace("dimension = 3\n", "").replace("gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]");
+    let planar = planar
+        .replace("axis = [0.0, 0.0, 1.0]\nrpy = [0.0, 0.0, 0.0]\n", "")
+        .replace("inertia = [[1e-4, 0.0, 0.0], [0.0, 1e-4, 0.0], [0.0, 0.0, 1e-4]]", "inertia = 1e-4");
+    let planar = planar.replace("moment = [0.0, 0.0, 0.1]", "moment = 0.1").replace("[0.0, 0.0, -0.5]", "[0.0, -0.5]");
+    files.push(("spatial".into(), spatial.into()));
+    files.push(("planar".into(), planar.replace("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 1.0]")));
+    let mut checked = 0;
+    for (path, text) in &files {
+        flexure::model::Model::from_toml(text).unwrap_or_else(|e| panic!("{path}: {e}"));
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split('#').next().unwrap_or("");
+            let (Some(open), Some(close)) = (code.find('['), code.find(']')) else { continue };
+            let inner = code[..close].rsplit('[').next().unwrap_or("");
+            let key = code.split('=').next().unwrap_or("").trim();
+            if key.is_empty() || open > close || !inner.split(',').any(|x| x.trim().parse::<f64>().is_ok()) {
+                continue;
+            }
+            let longer = format!("{}, 0.0{}", &line[..close], &line[close..]);
+            let mutated: Vec<&str> =
+                text.lines().enumerate().map(|(k, l)| if k == n { longer.as_str() } else { l }).collect();
+            let e = match flexure::model::Model::from_toml(&mutated.join("\n")) {
+                Ok(_) => panic!("{path}: line {}: {longer}: accepted", n + 1),
+                Err(e) => e.to_string(),
+            };
+            let at = format!("line {},", n + 1);
+            // A section's profile ([root, tip]) is read as a value of its own, with its own words.
+            let refused = e.contains("numbers given") || e.contains("must be a number, [root, tip]");
+            assert!(e.contains(&at) && e.contains(key) && refused, "{path}: {longer}: {e}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 90, "only {checked} arrays");
+}

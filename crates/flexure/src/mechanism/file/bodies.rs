@@ -97,6 +97,7 @@ pub(super) fn inertia_matrix(src: &Source, owner: &str, b: &BodyToml<crate::spac
             }
             (Some(i), None) => {
                 let rows = i.get_ref();
+                src.whole(owner, "inertia", &i.span(), 9)?;
                 for (r, row) in rows.iter().enumerate() {
                     src.numbers(owner, &format!("inertia[{r}]"), &i.span(), row, Sign::Any)?;
                 }

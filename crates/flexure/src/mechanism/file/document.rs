@@ -110,12 +110,38 @@ impl<'i> Document<'i> {
     }
 }
 
-/// The document's tables, in the dimension `D`, or the first error placed
-/// where it is: a serde error, or a key that only the other dimension's
-/// file takes (with why).
-pub(super) fn parse<D: FileDimension>(text: &str, doc: Spanned<DeTable<'_>>) -> Result<FileToml<D>> {
+/// How many numbers each array of a file writes, by where it starts ([`Source::whole`]).
+pub(super) type Counts = BTreeMap<usize, usize>;
+
+/// The document's tables, in the dimension `D`, with its arrays' [`Counts`],
+/// or the first error placed where it is: a serde error, or a key that only
+/// the other dimension's file takes (with why).
+pub(super) fn parse<D: FileDimension>(text: &str, doc: Spanned<DeTable<'_>>) -> Result<(FileToml<D>, Counts)> {
     refused::<D>(text, doc.get_ref())?;
-    FileToml::deserialize(toml::de::Deserializer::from(doc)).map_err(|e| toml_error::<D>(text, e))
+    let mut counts = BTreeMap::new();
+    for value in doc.get_ref().values() {
+        count_numbers(value, &mut counts);
+    }
+    let file = FileToml::deserialize(toml::de::Deserializer::from(doc)).map_err(|e| toml_error::<D>(text, e))?;
+    Ok((file, counts))
+}
+
+/// The numbers `value` writes (nested arrays' too: an inertia's rows), and
+/// into `counts` each array's count by where it starts.
+fn count_numbers(value: &Spanned<DeValue<'_>>, counts: &mut Counts) -> usize {
+    match value.get_ref() {
+        DeValue::Integer(_) | DeValue::Float(_) => 1,
+        DeValue::Array(entries) => {
+            let n = entries.iter().map(|v| count_numbers(v, counts)).sum();
+            counts.insert(value.span().start, n);
+            n
+        }
+        DeValue::Table(keys) => {
+            keys.values().for_each(|v| _ = count_numbers(v, counts));
+            0
+        }
+        _ => 0,
+    }
 }
 
 /// The first key (in the file's order) of a table that only the other
@@ -249,6 +275,8 @@ where
 /// Checks against the text they came from.
 pub(super) struct Source<'t> {
     pub(super) text: &'t str,
+    /// How many numbers each array writes, by where it starts.
+    pub(super) counts: &'t Counts,
 }
 
 impl Source<'_> {
@@ -258,6 +286,20 @@ impl Source<'_> {
 
     pub(super) fn fail<T>(&self, span: &Span, message: String) -> Result<T> {
         Err(self.error(span, message))
+    }
+
+    /// The array at `span` (shown as `key`, in `owner`'s entry) writes no
+    /// more than the `len` numbers it takes: the file's parser reads a
+    /// fixed-length array's first entries and drops the rest, so a planar
+    /// `origin = [x, y, phi]` would lose its angle unsaid.
+    pub(super) fn whole(&self, owner: &str, key: &str, span: &Span, len: usize) -> Result<()> {
+        match self.counts.get(&span.start) {
+            Some(&n) if n > len => {
+                let hint = if len == 2 { " (a planar file: x and y)" } else { "" };
+                self.fail(span, format!("{owner}{key}: {n} numbers given, where it takes {len}{hint}"))
+            }
+            _ => Ok(()),
+        }
     }
 
     /// `values` (shown as `key`, in `owner`'s entry) are finite, within the magnitudes, of `sign`.
@@ -293,6 +335,7 @@ impl Source<'_> {
     pub(super) fn array<T: Numbers>(&self, owner: &str, key: &str, value: &Option<Spanned<T>>) -> Result<T> {
         match value {
             Some(v) => {
+                self.whole(owner, key, &v.span(), v.get_ref().numbers().len())?;
                 self.numbers(owner, key, &v.span(), v.get_ref().numbers(), Sign::Any)?;
                 Ok(*v.get_ref())
             }

@@ -247,7 +247,10 @@ pub(super) fn spatial_flexure(src: &Source, owner: &str, j: &JointToml) -> Resul
     }
     let (orders, auto_order) = match (&j.order, &j.orders) {
         (Some(_), Some(o)) => return src.fail(&o.span(), format!("{owner}give order (all three) or orders, not both")),
-        (None, Some(o)) => (*o.get_ref(), false),
+        (None, Some(o)) => {
+            src.whole(owner, "orders", &o.span(), 3)?;
+            (*o.get_ref(), false)
+        }
         _ => flexure_order(src, owner, j).map(|(n, auto)| ([n; 3], auto))?,
     };
     let rest = |key: &str, v: &Option<Spanned<Vec<f64>>>| -> Result<Option<Vec<f64>>> {
@@ -317,6 +320,7 @@ pub(super) fn spatial_flexure(src: &Source, owner: &str, j: &JointToml) -> Resul
                 format!("{owner}rotary_inertia_per_length needs mass_per_length (a density takes it from the section)"),
             );
         }
+        src.whole(owner, "rotary_inertia_per_length", &r.span(), 3)?;
         f = f.with_rotary_inertia_per_length(*r.get_ref()).map_err(|e| src.placed(owner, &r.span(), e))?;
     }
     let report = report_keys(src, owner, (&j.yield_strength, &j.shape), f.section().has_geometry())?;

@@ -207,39 +207,40 @@ impl Document<'_> {
                 });
             }
         }
-        read_tables(text, document::parse::<D>(text, doc)?)
+        let (file, counts) = document::parse::<D>(text, doc)?;
+        read_tables(&Source { text, counts: &counts }, file)
     }
 }
 
-/// The mechanism of the tables `file` of `text`, in the dimension `D`.
-fn read_tables<D: FileDimension>(text: &str, file: document::FileToml<D>) -> Result<Mechanism<D>> {
-    let src = Source { text };
-    let mut bodies = bodies::from_joints(&src, &file.joint)?;
+/// The mechanism of the tables `file` of `src`'s text, in the dimension `D`.
+fn read_tables<D: FileDimension>(src: &Source, file: document::FileToml<D>) -> Result<Mechanism<D>> {
+    let text = src.text;
+    let mut bodies = bodies::from_joints(src, &file.joint)?;
     let names: Vec<String> = bodies.iter().map(|b| b.name.clone()).collect();
-    let find: &Find = &|name| bodies::find(&src, &names, name);
-    joints::check_names(&src, &file.joint)?;
+    let find: &Find = &|name| bodies::find(src, &names, name);
+    joints::check_names(src, &file.joint)?;
     let parents: Vec<usize> = file.joint.iter().map(|j| find(&j.parent)).collect::<Result<_>>()?;
-    let order = joints::tree_order(&src, &file.joint, &parents)?;
-    let (joints, stiffness_places) = joints::tree::<D>(&src, &file.joint, &parents, &order)?;
-    bodies::describe(&src, find, &mut bodies, &file.body)?;
-    let (tendons, via_places) = loads::tendons(&src, find, &file.tendon)?;
-    let forces = loads::forces(&src, find, &file.force)?;
+    let order = joints::tree_order(src, &file.joint, &parents)?;
+    let (joints, stiffness_places) = joints::tree::<D>(src, &file.joint, &parents, &order)?;
+    bodies::describe(src, find, &mut bodies, &file.body)?;
+    let (tendons, via_places) = loads::tendons(src, find, &file.tendon)?;
+    let forces = loads::forces(src, find, &file.force)?;
     let gravity = D::vector(src.array("", "gravity", &file.gravity)?);
     let mut m = Mechanism::new(bodies, joints, tendons, forces, Vec::new(), gravity)
         .map_err(|e| Error::File { place: place(text, 0), message: e.to_string() })?;
     let (rest, states) = D::rest(&m);
-    let (closures, written) = closures::closures(&src, find, &rest, (&file.weld, &file.pin, &file.ball))?;
+    let (closures, written) = closures::closures(src, find, &rest, (&file.weld, &file.pin, &file.ball))?;
     let (places, preloads) = closures::places(text, &written);
     m.closures = closures;
     m = m.with_closure_places(places, preloads);
-    validation::check_stiffness_ratio(&src, &m, &states, &stiffness_places)?;
-    validation::check_tendon_directions(&src, &m, &rest, &via_places)?;
-    let (geoms, geom_places) = geoms::geoms(&src, find, &m, &file.geom)?;
+    validation::check_stiffness_ratio(src, &m, &states, &stiffness_places)?;
+    validation::check_tendon_directions(src, &m, &rest, &via_places)?;
+    let (geoms, geom_places) = geoms::geoms(src, find, &m, &file.geom)?;
     m.geoms = geoms;
-    validation::check_geoms_clear(&src, &m, &rest, &geom_places)?;
-    m.schedules = schedules::schedules(&src, &m, &file.schedule)?;
-    m.initial = schedules::initial_state(&src, &m, "initial", file.initial.as_ref())?;
-    m.initial_velocity = schedules::initial_state(&src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
+    validation::check_geoms_clear(src, &m, &rest, &geom_places)?;
+    m.schedules = schedules::schedules(src, &m, &file.schedule)?;
+    m.initial = schedules::initial_state(src, &m, "initial", file.initial.as_ref())?;
+    m.initial_velocity = schedules::initial_state(src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
     Ok(m)
 }
 

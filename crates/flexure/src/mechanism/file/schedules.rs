@@ -79,6 +79,7 @@ pub(super) fn schedule_points(
     let sign = if tension { Sign::NotNegative } else { Sign::Any };
     for (k, p) in list.iter().enumerate() {
         let [t, v] = *p.get_ref();
+        src.whole(owner, &format!("points[{k}]"), &p.span(), 2)?;
         src.numbers(owner, &format!("points[{k}] time"), &p.span(), &[t], Sign::Any)?;
         src.numbers(owner, &format!("points[{k}] value"), &p.span(), &[v], sign)?;
         let before = |j: usize| list[j].get_ref()[0];
