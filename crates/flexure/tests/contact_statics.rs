@@ -535,3 +535,47 @@ fn a_sweep_with_contact_finds_eulers_load_as_one_without() {
     assert!((limits[1] + euler).abs() < 1e-5 * euler, "{limits:?}");
     assert!((limits[1] - limits[0]).abs() < 1e-6 * euler, "{limits:?}");
 }
+
+/// A box resting on a floor at no load, on sliders with no stiffness: the
+/// contacts that meet at the start touch, so the floor carries its weight.
+/// A 1 kg box (20 mm wide, on free x and y sliders) under gravity: its two
+/// bottom corners carry mg = 9.81 N together (1e-9 relative), and on a
+/// floor of μ = 0.5 a 2 N push along x, below μmg = 4.905 N, is held by
+/// friction (its sum −2 N, 1e-9) with the box where it rests (1e-12 m).
+/// In space, its four corners carry mg. Without friction nothing holds x:
+/// refused, naming the joint, where it read as a buckling at 0 % of the load.
+#[test]
+fn a_box_resting_on_a_floor_on_free_sliders_carries_its_weight() {
+    let planar = |friction: f64, push: f64| {
+        format!(
+            "gravity = [0.0, -9.81]\n[[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\n\
+             [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"cart\"\nchild = \"box\"\norigin = [0.0, 0.005, 1.5707963267948966]\n\
+             [[body]]\nname = \"box\"\nmass = 1.0\ninertia = 1e-5\n\
+             [[force]]\nname = \"push\"\nbody = \"box\"\nforce = [{push}, 0.0]\n\
+             [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nangle = -1.5707963267948966\nhalf_extents = [0.01, 0.005]\n\
+             [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 1.0]\nfriction = {friction}\n"
+        )
+    };
+    let sum = |contacts: &[Contact], axis: usize| -> (f64, f64) {
+        let n = contacts.iter().map(|c| c.normal_force).sum();
+        (n, contacts.iter().map(|c| c.friction_force[axis]).sum())
+    };
+    let s = solve(&from_toml(&planar(0.5, 2.0)).unwrap(), &Settings::default()).unwrap();
+    assert!(s.q.iter().all(|q| q.abs() < 1e-12), "{:?}", s.q);
+    assert_eq!(s.contacts.len(), 2);
+    assert!(s.contacts.iter().all(|c| c.state == ContactMode::Stick && c.gap.abs() < 1e-12), "{:?}", s.contacts);
+    let (n, f) = sum(&s.contacts, 0);
+    assert!((n / 9.81 - 1.0).abs() < 1e-9 && (f + 2.0).abs() < 1e-9, "N = {n}, friction {f}");
+    let e = solve(&from_toml(&planar(0.0, 0.0)).unwrap(), &Settings::default()).unwrap_err().to_string();
+    assert!(e.contains("moves freely at no load (joint \"sx\")"), "{e}");
+    let spatial = "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n\
+                   [[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\n\
+                   [[joint]]\nname = \"sz\"\nkind = \"prismatic\"\nparent = \"cart\"\nchild = \"box\"\norigin = [0.0, 0.0, 0.005]\naxis = [0.0, 0.0, 1.0]\n\
+                   [[body]]\nname = \"box\"\nmass = 1.0\nixx = 1e-5\niyy = 1e-5\nizz = 1e-5\n\
+                   [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nhalf_extents = [0.01, 0.01, 0.005]\n\
+                   [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 0.0, 1.0]\nfriction = 0.5\n";
+    let s = solve(&flexure::mechanism::file::spatial_from_toml(spatial).unwrap(), &Settings::default()).unwrap();
+    assert!(s.q.iter().all(|q| q.abs() < 1e-12) && s.contacts.len() == 4, "{:?} {:?}", s.q, s.contacts);
+    let (n, _) = sum(&s.contacts, 0);
+    assert!((n / 9.81 - 1.0).abs() < 1e-9, "N = {n}");
+}

@@ -1079,3 +1079,32 @@ fn a_box_resting_flat_stays_at_rest() {
         assert!((pushes - (5.0 + 100.0 * start)).abs() < 1e-9 * 4.9, "t = {t}: {pushes}");
     }
 }
+
+/// A 1 kg box resting on a rough floor ($\mu = 0.5$) on free sliders,
+/// launched along it at $v_0 = 1$ m/s, slides to a stop at
+/// $t^* = v_0/(\mu g)$ after $v_0^2/(2\mu g)$ (to $10^{-6}$ s and
+/// $10^{-8}$ m), from the default start (the equilibrium, where the floor
+/// carries the box from no load) as from rest. Before, that start was
+/// refused as a buckling at 0 % of the load, and once it was found, its
+/// contacts held as stuck stopped the launch at once.
+#[test]
+fn a_box_launched_on_a_rough_floor_from_its_equilibrium_slides_to_a_stop() {
+    let text = "gravity = [0.0, -9.81]\n\
+                [[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\n\
+                [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"cart\"\nchild = \"box\"\norigin = [0.0, 0.005, 1.5707963267948966]\n\
+                [[body]]\nname = \"box\"\nmass = 1.0\ninertia = 1e-5\n\
+                [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nangle = -1.5707963267948966\nhalf_extents = [0.01, 0.005]\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 1.0]\nfriction = 0.5\n\
+                [initial_velocity]\nsx = 1.0\n";
+    let (mu, v0) = (0.5, 1.0);
+    let (stop, slid) = (v0 / (mu * 9.81), v0 * v0 / (2.0 * mu * 9.81));
+    for start in [Start::Equilibrium, Start::Rest] {
+        let run = simulate(&from_toml(text).unwrap(), &settings(0.3, 0.01, 1e-9), start).unwrap();
+        assert!(run.stopped.is_none(), "{start:?}: {:?}", run.stopped);
+        let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
+        assert!(states.len() == 1 && states[0].0 == ContactMode::Stick, "{start:?}: {states:?}");
+        assert!((states[0].1 - stop).abs() < 1e-6, "{start:?}: stops at {} s, not {stop}", states[0].1);
+        let last = run.time.len() - 1;
+        assert!((run.q(last)[0] - slid).abs() < 1e-8, "{start:?}: slid {}, not {slid}", run.q(last)[0]);
+    }
+}

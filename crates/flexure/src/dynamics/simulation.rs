@@ -227,7 +227,11 @@ fn initial_touching<D: Dynamics>(
     let (solution, _) = statics::follow_touching(m, None, &loads_at(m, 0.0), settings, work)?;
     let (mut q, mut v) = (solution.q, vec![0.0; m.dof()]);
     set_given(m, &mut q, &mut v);
-    // Coordinates set by hand leave the equilibrium's contacts behind.
-    let touching = if m.initial.is_empty() { solution.contacts } else { Vec::new() };
+    // Coordinates or velocities set by hand leave the equilibrium's contacts
+    // behind: held, a contact would stop a box launched along its floor.
+    let touching = match m.initial.is_empty() && m.initial_velocity.is_empty() {
+        true => solution.contacts,
+        false => Vec::new(),
+    };
     Ok((q, v, touching))
 }

@@ -288,6 +288,60 @@ impl<D: Statics> ContactKkt<'_, D> {
             .collect()
     }
 
+    /// [`solver::Problem::stable`]'s constrained stiffness less the margin,
+    /// and the basis of the motions it is taken on (each coordinate $c$
+    /// scaled by $\sqrt{r_c}$, its row's scale); `None` where an inner
+    /// contact's gap curves the wrong way along the flexure.
+    fn reduced(&self, lambda: f64, jacobian: &[f64]) -> Option<(DMatrix<f64>, DMatrix<f64>)> {
+        let m = self.kkt.mechanism;
+        let (n, rows, size) = (m.dof(), m.constraints(), self.dim());
+        let scale = &self.kkt.row_scale;
+        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / scale[r]);
+        let mut g: Vec<Vec<f64>> = (0..rows)
+            .map(|i| (0..n).map(|c| jacobian[c * size + n + i] / self.kkt.closure_scale[i]).collect())
+            .collect();
+        for ((t, jet), friction) in self.touching.iter().zip(&self.jets).zip(&self.friction) {
+            match friction {
+                Friction::Pin { delta, .. } => {
+                    g.extend(pin_rows::<D>(delta));
+                    continue;
+                }
+                Friction::Roll { along, skid: None, .. } => g.extend(along.iter().cloned()),
+                _ => {}
+            }
+            if t.place == Place::Inner {
+                if jet.dss <= 0.0 {
+                    return None;
+                }
+                add_place(&mut h, t.force[0], jet);
+            }
+            // At no load a contact that touches holds as it will once pressed.
+            if t.force[0] > 0.0 || lambda == 0.0 {
+                g.push(jet.gradient.clone());
+            }
+        }
+        let s: Vec<f64> = scale.iter().map(|r| r.sqrt()).collect();
+        let h = DMatrix::from_fn(n, n, |r, c| 0.5 * (h[(r, c)] + h[(c, r)]) * s[r] * s[c]);
+        let g = DMatrix::from_fn(g.len(), n, |i, c| g[i][c] * s[c]);
+        let z = linalg::null_space(&g);
+        let mut k = super::constrained(&h, &z);
+        for i in 0..k.nrows() {
+            k[(i, i)] -= self.kkt.margin;
+        }
+        Some((DMatrix::from_fn(n, z.ncols(), |r, c| z[(r, c)] * s[r]), k))
+    }
+
+    /// The joints of a motion that nothing stiffens at no load (the softest
+    /// of [`ContactKkt::reduced`], where it is not positive), as
+    /// "joint \"a\" and joint \"b\"".
+    fn free_motion(&self, jacobian: &[f64]) -> Option<String> {
+        let (z, k) = self.reduced(0.0, jacobian)?;
+        let (_, soft) = linalg::softest_mode(&k)?;
+        let m = self.kkt.mechanism;
+        let joints = m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof()));
+        super::path::moving_joints(joints, &(&z * soft))
+    }
+
     /// The inner contacts' tangency unknowns (and rows) among all.
     fn inner_index(&self) -> Vec<Option<usize>> {
         let mut k = self.inner_dim() + self.touching.iter().map(|t| t.width::<D>()).sum::<usize>();
@@ -960,42 +1014,8 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
     /// The constrained stiffness positive definite with [`Kkt`]'s margin, the
     /// touching contacts' gradients among the constraints and each inner
     /// contact's place eliminated: $\nabla^2 g_{\min} = g_{qq} - g_{qs}g_{sq}/g_{ss}$.
-    fn stable(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
-        let m = self.kkt.mechanism;
-        let (n, rows, size) = (m.dof(), m.constraints(), self.dim());
-        let scale = &self.kkt.row_scale;
-        let mut h = DMatrix::from_fn(n, n, |r, c| jacobian[c * size + r] / scale[r]);
-        let mut g: Vec<Vec<f64>> = (0..rows)
-            .map(|i| (0..n).map(|c| jacobian[c * size + n + i] / self.kkt.closure_scale[i]).collect())
-            .collect();
-        for ((t, jet), friction) in self.touching.iter().zip(&self.jets).zip(&self.friction) {
-            match friction {
-                Friction::Pin { delta, .. } => {
-                    g.extend(pin_rows::<D>(delta));
-                    continue;
-                }
-                Friction::Roll { along, skid: None, .. } => g.extend(along.iter().cloned()),
-                _ => {}
-            }
-            if t.place == Place::Inner {
-                if jet.dss <= 0.0 {
-                    return false;
-                }
-                add_place(&mut h, t.force[0], jet);
-            }
-            if t.force[0] > 0.0 {
-                g.push(jet.gradient.clone());
-            }
-        }
-        let s: Vec<f64> = scale.iter().map(|r| r.sqrt()).collect();
-        let h = DMatrix::from_fn(n, n, |r, c| 0.5 * (h[(r, c)] + h[(c, r)]) * s[r] * s[c]);
-        let g = DMatrix::from_fn(g.len(), n, |i, c| g[i][c] * s[c]);
-        let z = linalg::null_space(&g);
-        let mut k = super::constrained(&h, &z);
-        for i in 0..k.nrows() {
-            k[(i, i)] -= self.kkt.margin;
-        }
-        linalg::is_positive_definite(&k)
+    fn stable(&mut self, _x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
+        self.reduced(lambda, jacobian).is_some_and(|(_, k)| linalg::is_positive_definite(&k))
     }
 
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
@@ -1168,7 +1188,9 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 (Some(a), Some(b)) => (a - b).abs() <= FLAT_LENGTH * t.length,
                 _ => true,
             });
-            if low.gap < -GAP_TOLERANCE * length && !known {
+            // At no load a pair that meets (a box resting on a floor) touches, to hold what rests on it.
+            let meets = low.gap < -GAP_TOLERANCE * length || (lambda == 0.0 && low.gap <= GAP_TOLERANCE * length);
+            if meets && !known {
                 let body = &problem.frames.bodies[geom_body(m, pair)];
                 let at = array::<D>(&D::position(&D::act(&D::inverse(body), &low.point)));
                 let (bare_end, thick, on) = match (pair.part, low.s) {
@@ -1221,6 +1243,17 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
             let level = matches!(t.place, Place::Inner) || jet.ds.abs() <= FLAT_CURVATURE;
             t.s().is_some() && level && jet.dss * t.length <= FLAT_CURVATURE
         });
+        // At no load, a motion nothing stiffens: the equilibrium is not one point.
+        if flat.is_none()
+            && lambda == 0.0
+            && let Some(joints) = problem.free_motion(&jac)
+        {
+            return Err(Error::Singular {
+                what: format!(
+                    "mechanism equilibrium with contact: the mechanism moves freely at no load ({joints}), held neither by a stiffness nor by a geom it rests on (a geom without friction holds only across its surface): its equilibrium is not one point; give a joint on it a stiffness or the geom friction, or hold it with a closure"
+                ),
+            });
+        }
         return Ok(Some(flat.map_or(Event::Unstable, Event::LiesAlong)));
     }
     Ok(None)
@@ -1326,6 +1359,7 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
         Event::Unstable => {
             return Err(Error::Unstable { what: "mechanism equilibrium with contact", load_fraction: lambda });
         }
+
         Event::LiesAlong(c) => {
             let at = format!("{} (at {:.4} % of the load)", named(m, &touching[c].pair), 100.0 * lambda);
             return Err(Error::invalid("geom", at, LIES_ALONG));
