@@ -134,7 +134,7 @@ fn picture<D: Drawn>(args: &DrawArgs, model: &Model, m: &Mechanism<D>) -> Result
         }
     }
     // Last, so that the closures open at rest are told before an assembly they keep from closing fails.
-    let unloaded = unloaded(m).map_err(|e| super::file_error(&args.file, e))?;
+    let unloaded = unloaded(m, args.simulate.is_some()).map_err(|e| super::file_error(&args.file, e))?;
     let rest = D::pose(m, "unloaded", &unloaded.q, &unloaded.loads)?;
     Ok(Picture { scene: scene::scene(m), rest, shapes, marks, motion, answer, view: D::VIEW })
 }
@@ -148,10 +148,17 @@ fn raised(args: &DrawArgs, used: &Model) -> Result<Picture, String> {
 
 /// The unloaded, assembled mechanism; with geoms that may touch, followed
 /// to no load with its contacts (where the library checks that nothing
-/// starts inside a geom), which the plain assembly refuses.
-fn unloaded<D: Drawn>(m: &Mechanism<D>) -> flexure::Result<Solution<D>> {
+/// starts inside a geom), which the plain assembly refuses. A motion's
+/// picture draws the assembly without its geoms: the motion checked its
+/// start, and a body it drops on free sliders has no one equilibrium.
+fn unloaded<D: Drawn>(m: &Mechanism<D>, motion: bool) -> flexure::Result<Solution<D>> {
     if pairs(m).is_empty() {
         return assemble_unloaded(m, &Settings::default());
+    }
+    if motion {
+        let mut bare = m.clone();
+        bare.geoms.clear();
+        return assemble_unloaded(&bare, &Settings::default());
     }
     let zero = D::zero(&m.loads());
     follow_touching(m, None, &zero, &Settings::default(), &mut Workspace::new(m)).map(|(s, _)| s)
