@@ -22,7 +22,8 @@ fn unit(parent: &str, key: &str) -> Option<&'static str> {
         ("curvature_max" | "stress", "at") => "m along the flexure",
         (_, "phi" | "angle" | "alpha" | "gap_rad" | "rpy" | "roll" | "pitch" | "yaw") => "rad",
         (_, "angle_degrees") => "°",
-        (_, "x" | "y" | "z" | "position" | "tendon_length" | "s" | "gap_m") => "m",
+        (_, "x" | "y" | "z" | "position" | "tendon_length" | "s" | "gap_m" | "gap") | ("contacts", "point") => "m",
+        (_, "normal_force" | "friction_force") => "N",
         (_, "moment" | "root_moment" | "residual") => "N·m",
         (_, "fx" | "fy" | "force" | "tension" | "critical_load" | "reference_critical_load") => "N",
         (_, "energy" | "model_energy") => "J",
@@ -166,7 +167,26 @@ pub fn csv_line(value: &Value) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::shortest;
+    use super::{readable, shortest};
+
+    /// A contact's numbers carry their units in the table form, as every
+    /// other answer's do; its normal (a unit vector) and state carry none.
+    #[test]
+    fn a_contacts_numbers_carry_their_units() {
+        let answer = serde_json::json!({ "contacts": [{
+            "geom": "floor", "s": 0.1, "point": [0.08, -0.05], "normal": [0.0, 1.0],
+            "normal_force": 0.66, "friction_force": [0.0, 0.0], "gap": 0.0, "state": "slip"
+        }] });
+        let text = readable(&answer);
+        for (key, unit) in
+            [("s", " m"), ("point", " m"), ("normal_force", " N"), ("friction_force", " N"), ("gap", " m")]
+        {
+            let line = text.lines().find(|l| l.trim_start().starts_with(&format!("{key}:"))).unwrap();
+            assert!(line.ends_with(unit), "{line:?}");
+        }
+        let normal = text.lines().find(|l| l.trim_start().starts_with("normal:")).unwrap();
+        assert!(normal.ends_with("1.000000"), "{normal:?}");
+    }
 
     /// Short forms, and every form reads back to the very same number
     /// (seeded values across the whole range of magnitudes).

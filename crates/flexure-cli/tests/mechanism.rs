@@ -54,6 +54,16 @@ fn compliance_and_buckling_of_the_stage() {
     assert_eq!(b["mode"].as_array().unwrap().len(), 6);
 }
 
+/// A compliance where a contact slides is refused naming the pair, with no
+/// option in front (it read `--compliance = at geom …`).
+#[test]
+fn a_compliance_where_a_contact_slides_is_refused_naming_the_pair() {
+    let file = format!("{}/grasp.toml", examples());
+    let (code, out, err) = run(&["solve", &file, "--compliance", "distal", "--at", "0.025,0"]);
+    let named = "grasp.toml: compliance at geom \"cylinder\" (circle) and geom \"distal_pad\" (box) on body \"distal\" (sliding, friction 0.5): has no linear answer";
+    assert!(code == 2 && out.is_empty() && err.contains(named), "exit {code}: {err}");
+}
+
 #[test]
 fn sweep_and_draw() {
     let file = format!("{}/paper_tendon.toml", examples());

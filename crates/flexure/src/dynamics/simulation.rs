@@ -192,7 +192,7 @@ pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, st
     if !system.system().has_inertia() {
         return Err(Error::invalid(
             "mass",
-            "none",
+            "mass everywhere zero",
             "no body has mass or inertia and no flexure has a density or mass per length: nothing moves",
         ));
     }

@@ -1754,7 +1754,11 @@ pub(super) fn held<D: Statics>(m: &Mechanism<D>, s: &Solution<D>) -> Result<(DMa
             _ if rough => {
                 return Err(Error::invalid(
                     "compliance",
-                    format!("at {} (sliding, friction {})", named(m, &c.pair), m.geoms[c.pair.geom].friction),
+                    format!(
+                        "compliance at {} (sliding, friction {})",
+                        named(m, &c.pair),
+                        m.geoms[c.pair.geom].friction
+                    ),
                     "has no linear answer: a sliding contact's friction turns with the motion; a compliance holds contacts that touch without friction or stick",
                 ));
             }
