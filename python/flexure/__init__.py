@@ -230,7 +230,8 @@ class Mechanism:
         "note", no warning). Two parts that cross in the answer (kind "crossing":
         parts, at, s_a and s_b along flexures, points) warn IntersectionWarning.
 
-        contacts (left out when no geom is touched, as in `flexure solve --json`): a list
+        contacts (an empty list where nothing touched, left out where no part may touch a
+        geom, as in `flexure solve --json`): a list
         of dicts, each pair touching then each that touched on the way and opened: geom,
         flexure (or body, for a geom's touch), s (m along the flexure), point and normal
         (ground frame), normal_force (N, not negative), friction_force, gap (m) and state

@@ -579,3 +579,40 @@ fn a_box_resting_on_a_floor_on_free_sliders_carries_its_weight() {
     let (n, _) = sum(&s.contacts, 0);
     assert!((n / 9.81 - 1.0).abs() < 1e-9, "N = {n}");
 }
+
+/// Pairs that only meet at no load touch there only where the mechanism
+/// needs them to rest on: a stable mechanism keeps its path as without
+/// them. Three such, each lifted off by its load, touch nothing: a bare
+/// strip lying on a floor along its length (the floor through its
+/// centreline), a strip whose root sits on a base block's face, and a
+/// sprung box set on a floor. Each answer lists no contact, and the strip's
+/// tip rises by FL³/3EI (to 1e-6 of it; a 1e-3 N tip force on L = 0.1 m,
+/// EI = 0.01 N·m²: 0.0333 mm) as without the floor.
+#[test]
+fn pairs_that_only_meet_at_no_load_touch_only_where_something_rests_on_them() {
+    let strip = |geom: &str| {
+        format!(
+            "[[joint]]\nname = \"strip\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"tip\"\nlength = 0.1\nei = 0.01\norder = 4\n\
+             [[force]]\nbody = \"tip\"\nforce = [0.0, 1e-3]\n[[geom]]\nname = \"base\"\nbody = \"ground\"\n{geom}"
+        )
+    };
+    let floor = "shape = \"plane\"\norigin = [0.0, 0.0]\nnormal = [0.0, 1.0]\n";
+    let block = "shape = \"box\"\norigin = [-0.01, 0.0]\nhalf_extents = [0.01, 0.01]\n";
+    let rise = 1e-3 * 0.1f64.powi(3) / (3.0 * 0.01);
+    for geom in [floor, block] {
+        let m = from_toml(&strip(geom)).unwrap();
+        let s = solve(&m, &Settings::default()).unwrap();
+        assert!(s.contacts.is_empty(), "{geom}: {:?}", s.contacts);
+        let tip = flexure::mechanism::kinematics::frames(&m, &s.q).bodies[1];
+        assert!((tip.y / rise - 1.0).abs() < 1e-6, "{geom}: tip at {}", tip.y);
+    }
+    let sprung = "gravity = [0.0, -9.81]\n\
+                  [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"box\"\norigin = [0.0, 0.005, 1.5707963267948966]\nstiffness = 100.0\n\
+                  [[body]]\nname = \"box\"\nmass = 1.0\ninertia = 1e-5\n\
+                  [[force]]\nbody = \"box\"\nforce = [0.0, 20.0]\n\
+                  [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nangle = -1.5707963267948966\nhalf_extents = [0.01, 0.005]\n\
+                  [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 1.0]\n";
+    let s = solve(&from_toml(sprung).unwrap(), &Settings::default()).unwrap();
+    assert!(s.contacts.is_empty(), "{:?}", s.contacts);
+    assert!((s.q[0] - (20.0 - 9.81) / 100.0).abs() < 1e-12, "{:?}", s.q);
+}

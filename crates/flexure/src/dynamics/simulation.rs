@@ -211,7 +211,8 @@ pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, st
 
 /// [`initial_state`] of a mechanism with geoms, and the contacts that touch
 /// there: an equilibrium's, with their pushes ([`statics::follow_touching`]);
-/// none from the rest shape or where `[initial]` sets coordinates (a part
+/// none from the rest shape or where `[initial]` sets coordinates or
+/// `[initial_velocity]` velocities (a part
 /// there that overlaps a geom is refused by [`ContactSystem::new`], and one
 /// that touches is held once it presses in).
 fn initial_touching<D: Dynamics>(

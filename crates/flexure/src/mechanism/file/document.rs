@@ -294,10 +294,7 @@ impl Source<'_> {
     /// `origin = [x, y, phi]` would lose its angle unsaid.
     pub(super) fn whole(&self, owner: &str, key: &str, span: &Span, len: usize) -> Result<()> {
         match self.counts.get(&span.start) {
-            Some(&n) if n > len => {
-                let hint = if len == 2 { " (a planar file: x and y)" } else { "" };
-                self.fail(span, format!("{owner}{key}: {n} numbers given, where it takes {len}{hint}"))
-            }
+            Some(&n) if n > len => self.fail(span, format!("{owner}{key}: {n} numbers given, where it takes {len}")),
             _ => Ok(()),
         }
     }

@@ -269,6 +269,12 @@ struct ContactKkt<'a, D: Statics> {
     sigma: f64,
     jets: Vec<GapJet<D>>,
     friction: Vec<Friction<D>>,
+    /// Settling a path's start from no load (not a sweep's next value): a
+    /// pair that only meets may touch there, to hold what rests on it.
+    unloaded: bool,
+    /// At that start the mechanism was unstable without the pairs that only
+    /// meet: each of them touches (a box set on a floor, all its corners).
+    resting: bool,
 }
 
 impl<D: Statics> ContactKkt<'_, D> {
@@ -292,7 +298,7 @@ impl<D: Statics> ContactKkt<'_, D> {
     /// and the basis of the motions it is taken on (each coordinate $c$
     /// scaled by $\sqrt{r_c}$, its row's scale); `None` where an inner
     /// contact's gap curves the wrong way along the flexure.
-    fn reduced(&self, lambda: f64, jacobian: &[f64]) -> Option<(DMatrix<f64>, DMatrix<f64>)> {
+    fn reduced(&self, jacobian: &[f64]) -> Option<(DMatrix<f64>, DMatrix<f64>)> {
         let m = self.kkt.mechanism;
         let (n, rows, size) = (m.dof(), m.constraints(), self.dim());
         let scale = &self.kkt.row_scale;
@@ -316,7 +322,7 @@ impl<D: Statics> ContactKkt<'_, D> {
                 add_place(&mut h, t.force[0], jet);
             }
             // At no load a contact that touches holds as it will once pressed.
-            if t.force[0] > 0.0 || lambda == 0.0 {
+            if t.force[0] > 0.0 || self.unloaded {
                 g.push(jet.gradient.clone());
             }
         }
@@ -331,12 +337,16 @@ impl<D: Statics> ContactKkt<'_, D> {
         Some((DMatrix::from_fn(n, z.ncols(), |r, c| z[(r, c)] * s[r]), k))
     }
 
-    /// The joints of a motion that nothing stiffens at no load (the softest
-    /// of [`ContactKkt::reduced`], where it is not positive), as
+    /// The joints of a motion that nothing stiffens (the softest of
+    /// [`ContactKkt::reduced`], where its stiffness is zero to the margin,
+    /// not below: that is an unstable state, not a free one), as
     /// "joint \"a\" and joint \"b\"".
     fn free_motion(&self, jacobian: &[f64]) -> Option<String> {
-        let (z, k) = self.reduced(0.0, jacobian)?;
-        let (_, soft) = linalg::softest_mode(&k)?;
+        let (z, k) = self.reduced(jacobian)?;
+        let (value, soft) = linalg::softest_mode(&k)?;
+        if value >= 0.0 || value < -2.0 * self.kkt.margin {
+            return None;
+        }
         let m = self.kkt.mechanism;
         let joints = m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof()));
         super::path::moving_joints(joints, &(&z * soft))
@@ -1014,8 +1024,8 @@ impl<D: Statics> Problem<f64> for ContactKkt<'_, D> {
     /// The constrained stiffness positive definite with [`Kkt`]'s margin, the
     /// touching contacts' gradients among the constraints and each inner
     /// contact's place eliminated: $\nabla^2 g_{\min} = g_{qq} - g_{qs}g_{sq}/g_{ss}$.
-    fn stable(&mut self, _x: &[f64], lambda: f64, jacobian: &[f64]) -> bool {
-        self.reduced(lambda, jacobian).is_some_and(|(_, k)| linalg::is_positive_definite(&k))
+    fn stable(&mut self, _x: &[f64], _lambda: f64, jacobian: &[f64]) -> bool {
+        self.reduced(jacobian).is_some_and(|(_, k)| linalg::is_positive_definite(&k))
     }
 
     fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
@@ -1180,7 +1190,50 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
         }
     }
     let length = problem.kkt.length;
-    let q = &x[..m.dof()];
+    let below = if problem.resting { GAP_TOLERANCE } else { -GAP_TOLERANCE } * length;
+    if let Some(touch) = new_touch(problem, &x[..m.dof()], all, below)? {
+        return Ok(Some(touch));
+    }
+    // Through each other between two states, and no gap negative: the bisection finds where they touch.
+    if let Some(pair) = crossed_edges(m, &problem.frames.bodies, all, 2.0 * GAP_TOLERANCE * length) {
+        return Ok(Some(Event::PassedThrough(pair)));
+    }
+    if !problem.stable(x, lambda, &jac) {
+        // Flat against the geom, with no slope along it at an end: the
+        // strip begins to lie along it, not to buckle.
+        let flat = (0..problem.touching.len()).find(|&c| {
+            let (t, jet) = (&problem.touching[c], &problem.jets[c]);
+            let level = matches!(t.place, Place::Inner) || jet.ds.abs() <= FLAT_CURVATURE;
+            t.s().is_some() && level && jet.dss * t.length <= FLAT_CURVATURE
+        });
+        if flat.is_none() && problem.unloaded && !problem.resting {
+            // Unstable from no load: the pairs that meet hold what rests on them (a box set on a floor).
+            problem.resting = true;
+            if let Some(touch) = new_touch(problem, &x[..m.dof()], all, GAP_TOLERANCE * length)? {
+                return Ok(Some(touch));
+            }
+        }
+        // At no load, a motion nothing stiffens: the equilibrium is not one point.
+        if flat.is_none()
+            && problem.unloaded
+            && let Some(joints) = problem.free_motion(&jac)
+        {
+            return Err(Error::Singular {
+                what: format!(
+                    "mechanism equilibrium with contact: the mechanism moves freely at no load ({joints}), held neither by a stiffness nor by a geom it rests on (a geom without friction holds only across its surface): its equilibrium is not one point; give a joint on it a stiffness or the geom friction, or hold it with a closure"
+                ),
+            });
+        }
+        return Ok(Some(flat.map_or(Event::Unstable, Event::LiesAlong)));
+    }
+    Ok(None)
+}
+
+/// The first pair (of `all`, at `q`, last evaluated by `problem`) whose
+/// least gap lies below `below` where no touching contact of it is: a new
+/// contact.
+fn new_touch<D: Statics>(problem: &ContactKkt<D>, q: &[f64], all: &[Pair], below: f64) -> Result<Option<Event>> {
+    let m = problem.kkt.mechanism;
     for pair in all {
         let near: Vec<&Touching> = problem.touching.iter().filter(|t| t.pair == *pair).collect();
         for low in minima(m, q, &problem.frames.bodies, pair)? {
@@ -1188,9 +1241,7 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 (Some(a), Some(b)) => (a - b).abs() <= FLAT_LENGTH * t.length,
                 _ => true,
             });
-            // At no load a pair that meets (a box resting on a floor) touches, to hold what rests on it.
-            let meets = low.gap < -GAP_TOLERANCE * length || (lambda == 0.0 && low.gap <= GAP_TOLERANCE * length);
-            if meets && !known {
+            if low.gap < below && !known {
                 let body = &problem.frames.bodies[geom_body(m, pair)];
                 let at = array::<D>(&D::position(&D::act(&D::inverse(body), &low.point)));
                 let (bare_end, thick, on) = match (pair.part, low.s) {
@@ -1230,31 +1281,6 @@ fn event<D: Statics>(problem: &mut ContactKkt<D>, x: &[f64], lambda: f64, all: &
                 }));
             }
         }
-    }
-    // Through each other between two states, and no gap negative: the bisection finds where they touch.
-    if let Some(pair) = crossed_edges(m, &problem.frames.bodies, all, 2.0 * GAP_TOLERANCE * length) {
-        return Ok(Some(Event::PassedThrough(pair)));
-    }
-    if !problem.stable(x, lambda, &jac) {
-        // Flat against the geom, with no slope along it at an end: the
-        // strip begins to lie along it, not to buckle.
-        let flat = (0..problem.touching.len()).find(|&c| {
-            let (t, jet) = (&problem.touching[c], &problem.jets[c]);
-            let level = matches!(t.place, Place::Inner) || jet.ds.abs() <= FLAT_CURVATURE;
-            t.s().is_some() && level && jet.dss * t.length <= FLAT_CURVATURE
-        });
-        // At no load, a motion nothing stiffens: the equilibrium is not one point.
-        if flat.is_none()
-            && lambda == 0.0
-            && let Some(joints) = problem.free_motion(&jac)
-        {
-            return Err(Error::Singular {
-                what: format!(
-                    "mechanism equilibrium with contact: the mechanism moves freely at no load ({joints}), held neither by a stiffness nor by a geom it rests on (a geom without friction holds only across its surface): its equilibrium is not one point; give a joint on it a stiffness or the geom friction, or hold it with a closure"
-                ),
-            });
-        }
-        return Ok(Some(flat.map_or(Event::Unstable, Event::LiesAlong)));
     }
     Ok(None)
 }
@@ -1473,6 +1499,8 @@ fn follow<D: Statics>(
         sigma,
         jets: Vec::new(),
         friction: Vec::new(),
+        unloaded: from.is_none(),
+        resting: false,
     };
     let mut x = problem.state(&x0);
     let mut lambda = 0.0;
@@ -1491,6 +1519,7 @@ fn follow<D: Statics>(
     };
     // The touching set at the start (a pair touching with no load).
     settle_events(&mut problem, &mut x, 0.0, settings, all, &mut touched, &mut iterations)?;
+    (problem.unloaded, problem.resting) = (false, false);
     while lambda < 1.0 {
         if steps >= MAX_STEPS {
             return Err(stalled(lambda, steps, residual, format!("{MAX_STEPS} steps")));
@@ -1832,7 +1861,17 @@ mod tests {
         let zero = D::zero(&to);
         let kkt = Kkt::fitted(m, &zero, &to, settings, Buffers::Borrowed(work)).unwrap();
         let (frames, inner, jets, friction) = (Frames::new(m), Vec::new(), Vec::new(), Vec::new());
-        ContactKkt { kkt, touching: Vec::new(), frames, inner, sigma: 1.0, jets, friction }
+        ContactKkt {
+            kkt,
+            touching: Vec::new(),
+            frames,
+            inner,
+            sigma: 1.0,
+            jets,
+            friction,
+            unloaded: false,
+            resting: false,
+        }
     }
 
     /// The problem's Jacobian and load derivative against central
