@@ -216,6 +216,11 @@ impl<'m, D: Touch> Corner<'m, D> {
         self.radius == 0.0 || self.edge.is_some()
     }
 
+    /// The corner's point in the world, bodies at `bodies`.
+    fn world(&self, bodies: &[D::Pose]) -> D::Point {
+        D::act(&bodies[self.round.body], &D::moved(&D::origin(&D::identity()), &self.centre, 1.0))
+    }
+
     /// Of a fixed corner, how far its centre lies within the face of the
     /// geom it touches whose outward normal is `normal` (world), past
     /// rounding ($10^{-9}$ of the mechanism's size `size`), bodies at
@@ -228,7 +233,7 @@ impl<'m, D: Touch> Corner<'m, D> {
             return None;
         }
         let frame = D::compose(&bodies[self.flat.body], &self.flat.frame);
-        let world = D::act(&bodies[self.round.body], &D::moved(&D::origin(&D::identity()), &self.centre, 1.0));
+        let world = self.world(bodies);
         let local = D::position(&D::act(&D::inverse(&frame), &world));
         let n = D::rotate(&D::inverse(&frame), normal);
         Some(self.flat.shape.face_margin(&local, &n) + 1e-9 * size)
@@ -253,7 +258,7 @@ impl<'m, D: Touch> Corner<'m, D> {
         if self.edge.is_some() || self.radius != 0.0 {
             return Cow::Borrowed(self.flat);
         }
-        let world = D::act(&bodies[self.round.body], &D::moved(&D::origin(&D::identity()), &self.centre, 1.0));
+        let world = self.world(bodies);
         let (mine, theirs) = (
             D::compose(&bodies[self.round.body], &self.round.frame),
             D::compose(&bodies[self.flat.body], &self.flat.frame),

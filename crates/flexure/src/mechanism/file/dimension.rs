@@ -252,8 +252,7 @@ impl FileDimension for Spatial {
             .as_ref()
             .ok_or_else(|| src.error(&p.a.span(), format!("{owner}a pin needs its axis (in a's frame)")))?;
         let unit = |key: &'static str, v: &Spanned<[f64; 3]>| -> Result<Vector3<f64>> {
-            src.whole(owner, key, &v.span(), 3)?;
-            src.numbers(owner, key, &v.span(), v.get_ref(), Sign::Any)?;
+            src.array_numbers(owner, key, &v.span(), v.get_ref(), Sign::Any)?;
             Ok(unit_axis(key, Vector3::from(*v.get_ref())).map_err(|e| src.placed(owner, &v.span(), e))?.into_inner())
         };
         let a_axis = unit("axis", axis)?;

@@ -299,6 +299,12 @@ impl Source<'_> {
         }
     }
 
+    /// The array at `span` is `values`, [`Source::whole`], each of them [`Source::numbers`].
+    pub(super) fn array_numbers(&self, owner: &str, key: &str, span: &Span, values: &[f64], sign: Sign) -> Result<()> {
+        self.whole(owner, key, span, values.len())?;
+        self.numbers(owner, key, span, values, sign)
+    }
+
     /// `values` (shown as `key`, in `owner`'s entry) are finite, within the magnitudes, of `sign`.
     pub(super) fn numbers(&self, owner: &str, key: &str, span: &Span, values: &[f64], sign: Sign) -> Result<()> {
         for (i, &v) in values.iter().enumerate() {
@@ -332,8 +338,7 @@ impl Source<'_> {
     pub(super) fn array<T: Numbers>(&self, owner: &str, key: &str, value: &Option<Spanned<T>>) -> Result<T> {
         match value {
             Some(v) => {
-                self.whole(owner, key, &v.span(), v.get_ref().numbers().len())?;
-                self.numbers(owner, key, &v.span(), v.get_ref().numbers(), Sign::Any)?;
+                self.array_numbers(owner, key, &v.span(), v.get_ref().numbers(), Sign::Any)?;
                 Ok(*v.get_ref())
             }
             None => Ok(T::default()),

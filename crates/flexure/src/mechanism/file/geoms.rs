@@ -150,8 +150,7 @@ fn shape<D: FileDimension>(src: &Source, owner: &str, g: &GeomToml<D>) -> Result
     Ok(match written {
         "plane" => {
             let n = g.normal.as_ref().expect("checked above");
-            src.whole(owner, "normal", &n.span(), n.get_ref().numbers().len())?;
-            src.numbers(owner, "normal", &n.span(), n.get_ref().numbers(), Sign::Any)?;
+            src.array_numbers(owner, "normal", &n.span(), n.get_ref().numbers(), Sign::Any)?;
             let v = D::vector(*n.get_ref());
             let norm = n.get_ref().numbers().iter().map(|x| x * x).sum::<f64>().sqrt();
             if norm == 0.0 {
@@ -175,8 +174,7 @@ fn shape<D: FileDimension>(src: &Source, owner: &str, g: &GeomToml<D>) -> Result
         }
         "box" => {
             let e = g.half_extents.as_ref().expect("checked above");
-            src.whole(owner, "half_extents", &e.span(), e.get_ref().numbers().len())?;
-            src.numbers(owner, "half_extents", &e.span(), e.get_ref().numbers(), Sign::Positive)?;
+            src.array_numbers(owner, "half_extents", &e.span(), e.get_ref().numbers(), Sign::Positive)?;
             GeomShape::Box { half_extents: D::vector(*e.get_ref()) }
         }
         _ => {

@@ -177,8 +177,7 @@ pub(super) fn spatial_kind(src: &Source, owner: &str, j: &JointToml) -> Result<K
     let kind = checked_kind(src, owner, j, &["flexure", "revolute", "prismatic", "spherical", "fixed"])?;
     let axis = |default: Vector3<f64>| -> Result<nalgebra::Unit<Vector3<f64>>> {
         let Some(a) = &j.axis else { return unit_axis("axis", default) };
-        src.whole(owner, "axis", &a.span(), 3)?;
-        src.numbers(owner, "axis", &a.span(), a.get_ref(), Sign::Any)?;
+        src.array_numbers(owner, "axis", &a.span(), a.get_ref(), Sign::Any)?;
         unit_axis("axis", Vector3::from(*a.get_ref())).map_err(|e| src.placed(owner, &a.span(), e))
     };
     let (stiffness, rest) = match kind {

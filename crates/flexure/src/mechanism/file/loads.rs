@@ -51,8 +51,7 @@ pub(super) fn tendons<D: FileDimension>(
         let mut places = Vec::new();
         for (k, via) in t.path.get_ref().iter().enumerate() {
             let (body, at) = D::via(via.get_ref());
-            src.whole(&owner, &format!("path[{k}]"), &via.span(), at.numbers().len())?;
-            src.numbers(&owner, &format!("path[{k}]"), &via.span(), at.numbers(), Sign::Any)?;
+            src.array_numbers(&owner, &format!("path[{k}]"), &via.span(), at.numbers(), Sign::Any)?;
             path.push((find(&body)?, D::point(at)));
             places.push(via.span());
         }

@@ -347,9 +347,7 @@ impl<D: Statics> ContactKkt<'_, D> {
         if value >= 0.0 || value < -2.0 * self.kkt.margin {
             return None;
         }
-        let m = self.kkt.mechanism;
-        let joints = m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof()));
-        super::path::moving_joints(joints, &(&z * soft))
+        super::path::moving_joints(self.kkt.mechanism, &(&z * soft))
     }
 
     /// The inner contacts' tangency unknowns (and rows) among all.

@@ -165,19 +165,21 @@ pub(in crate::mechanism) fn free_motion<D: Statics>(m: &Mechanism<D>, s: &Soluti
         return None;
     }
     let (_, soft) = linalg::softest_mode(&k)?;
-    moving_joints(m.joints.iter().map(|j| (j.name.as_str(), j.offset, j.kind.joint().dof())), &(&z * soft))
+    moving_joints(m, &(&z * soft))
 }
 
-/// The joints, given as (name, offset, coordinates), whose coordinates move
-/// by more than a tenth of the largest in `motion`, as "joint \"a\" and joint \"b\"".
-pub(in crate::mechanism) fn moving_joints<'a>(
-    joints: impl Iterator<Item = (&'a str, usize, usize)>,
+/// The joints of `m` whose coordinates move by more than a tenth of the
+/// largest in `motion`, as "joint \"a\" and joint \"b\"".
+pub(in crate::mechanism) fn moving_joints<D: Statics>(
+    m: &Mechanism<D>,
     motion: &nalgebra::DVector<f64>,
 ) -> Option<String> {
     let largest = motion.amax();
-    let names: Vec<String> = joints
-        .filter(|&(_, offset, dof)| (0..dof).any(|i| motion[offset + i].abs() > 0.1 * largest))
-        .map(|(name, ..)| format!("joint {name:?}"))
+    let names: Vec<String> = m
+        .joints
+        .iter()
+        .filter(|j| (0..j.kind.joint().dof()).any(|i| motion[j.offset + i].abs() > 0.1 * largest))
+        .map(|j| format!("joint {:?}", j.name))
         .collect();
     (!names.is_empty()).then(|| names.join(" and "))
 }
