@@ -381,12 +381,16 @@ fn a_spinning_ball_thrown_on_a_rough_floor_slides_then_rolls_in_space_as_the_clo
     }
 }
 
-/// A start inside a geom is refused.
+/// A start inside a geom is refused at the `[initial]` entry that puts
+/// the body there, by its line and column and the depth.
 #[test]
-fn an_overlapping_start_is_refused() {
-    let inside = from_toml(&format!("{}[initial]\nslide = -0.3\n", drop(0.2))).unwrap();
+fn an_overlapping_start_is_refused_at_its_initial_entry() {
+    let text = format!("{}[initial]\nslide = -0.3\n", drop(0.2));
+    let line = text.lines().count();
+    let inside = from_toml(&text).unwrap();
     let e = simulate(&inside, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
-    assert!(e.contains("overlapping by 1.000e-1 m"), "{e}");
+    let at = format!("line {line}, column 9: [initial] joint \"slide\": ");
+    assert!(e.starts_with(&at) && e.contains("overlap by 1.000e-1 m where the motion starts"), "{e}");
 }
 
 /// A strip (EI = 0.01 N·m², 0.1 m) carrying a 50 g tip mass, let go
@@ -1080,6 +1084,19 @@ fn a_box_resting_flat_stays_at_rest() {
     }
 }
 
+/// A 1 kg box, 20 mm wide and 10 mm high, on free x and y sliders under
+/// gravity, above a floor of $\mu = 0.5$ through $y$ = `floor` (on it at 0).
+fn box_on_sliders(floor: f64) -> String {
+    format!(
+        "gravity = [0.0, -9.81]\n\
+         [[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\n\
+         [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"cart\"\nchild = \"box\"\norigin = [0.0, 0.005, 1.5707963267948966]\n\
+         [[body]]\nname = \"box\"\nmass = 1.0\ninertia = 1e-5\n\
+         [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nangle = -1.5707963267948966\nhalf_extents = [0.01, 0.005]\n\
+         [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, {floor}]\nnormal = [0.0, 1.0]\nfriction = 0.5\n"
+    )
+}
+
 /// A 1 kg box resting on a rough floor ($\mu = 0.5$) on free sliders,
 /// launched along it at $v_0 = 1$ m/s, slides to a stop at
 /// $t^* = v_0/(\mu g)$ after $v_0^2/(2\mu g)$ (to $10^{-6}$ s and
@@ -1089,17 +1106,11 @@ fn a_box_resting_flat_stays_at_rest() {
 /// contacts held as stuck stopped the launch at once.
 #[test]
 fn a_box_launched_on_a_rough_floor_from_its_equilibrium_slides_to_a_stop() {
-    let text = "gravity = [0.0, -9.81]\n\
-                [[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"cart\"\n\
-                [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"cart\"\nchild = \"box\"\norigin = [0.0, 0.005, 1.5707963267948966]\n\
-                [[body]]\nname = \"box\"\nmass = 1.0\ninertia = 1e-5\n\
-                [[geom]]\nname = \"block\"\nbody = \"box\"\nshape = \"box\"\nangle = -1.5707963267948966\nhalf_extents = [0.01, 0.005]\n\
-                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\nnormal = [0.0, 1.0]\nfriction = 0.5\n\
-                [initial_velocity]\nsx = 1.0\n";
+    let text = box_on_sliders(0.0) + "[initial_velocity]\nsx = 1.0\n";
     let (mu, v0) = (0.5, 1.0);
     let (stop, slid) = (v0 / (mu * 9.81), v0 * v0 / (2.0 * mu * 9.81));
     for start in [Start::Equilibrium, Start::Rest] {
-        let run = simulate(&from_toml(text).unwrap(), &settings(0.3, 0.01, 1e-9), start).unwrap();
+        let run = simulate(&from_toml(&text).unwrap(), &settings(0.3, 0.01, 1e-9), start).unwrap();
         assert!(run.stopped.is_none(), "{start:?}: {:?}", run.stopped);
         let states: Vec<(ContactMode, f64)> = run.changes.iter().map(|c| (c.state, c.time)).collect();
         assert!(states.len() == 1 && states[0].0 == ContactMode::Stick, "{start:?}: {states:?}");
@@ -1107,4 +1118,27 @@ fn a_box_launched_on_a_rough_floor_from_its_equilibrium_slides_to_a_stop() {
         let last = run.time.len() - 1;
         assert!((run.q(last)[0] - slid).abs() < 1e-8, "{start:?}: slid {}, not {slid}", run.q(last)[0]);
     }
+}
+
+/// The same box on free sliders, held 10 mm above its floor: no
+/// equilibrium holds it at no load, so the default start is refused,
+/// naming both free joints and the start that needs no equilibrium; from
+/// rest it falls and lands at $\sqrt{2h/g}$ (to $10^{-6}$ s), where the
+/// floor carries $mg$ (to $10^{-6}$ of it).
+#[test]
+fn a_box_held_above_its_floor_on_free_sliders_starts_from_rest() {
+    let m = from_toml(&box_on_sliders(-0.01)).unwrap();
+    let e = simulate(&m, &settings(0.1, 0.01, 1e-9), Start::Equilibrium).unwrap_err().to_string();
+    let named = e.contains("moves freely at no load (joint \"sx\" and joint \"sy\")");
+    assert!(
+        named && e.ends_with("or start the motion from rest (start \"rest\"), where it needs no equilibrium"),
+        "{e}"
+    );
+    let run = simulate(&m, &settings(0.1, 0.01, 1e-9), Start::Rest).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let landing = (2.0 * 0.01 / G).sqrt();
+    assert!((run.changes[0].time - landing).abs() < 1e-6, "{:?}, not {landing}", run.changes);
+    let last = run.contacts.last().unwrap();
+    let push: f64 = last.iter().map(|c| c.normal_force).sum();
+    assert!((push / G - 1.0).abs() < 1e-6, "{last:?}");
 }

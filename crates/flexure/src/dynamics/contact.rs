@@ -271,11 +271,7 @@ impl<D: Dynamics> ContactSystem<D> {
             let pair = system.pairs[k];
             let Some(low) = system.open_least(&pair, q0)? else { continue };
             if low.gap < -system.gap_band {
-                return Err(Error::invalid(
-                    "geom",
-                    format!("{} (overlapping by {:.3e} m)", named(m, &pair), -low.gap),
-                    "overlap where the motion starts: start from an equilibrium, or move the geom or the [initial] coordinates apart",
-                ));
+                return Err(overlap(m, &pair, -low.gap));
             }
             if low.gap <= system.gap_band {
                 // Set on the geom: held from the start (let go at the first
@@ -812,6 +808,28 @@ impl<D: Dynamics> ContactSystem<D> {
             }
         }
         Ok(out)
+    }
+}
+
+/// The refusal of `pair` overlapping by `depth` (m) where the motion
+/// starts: at the `[initial]` entry that moves one of its two parts, where
+/// one does (the last such), else at the geom.
+fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
+    let mut moving = m.path(m.geoms[pair.geom].body);
+    match pair.part {
+        Toucher::Flexure(j) => moving.extend(m.path(m.joints[j].parent).into_iter().chain([j])),
+        Toucher::Geom(h) => moving.extend(m.path(m.geoms[h].body)),
+    }
+    let what = format!("{} overlap by {depth:.3e} m where the motion starts", named(m, pair));
+    match m.initial.iter().rposition(|(j, _)| moving.contains(j)) {
+        Some(k) => Error::File {
+            place: m.initial_place(k).to_string(),
+            message: format!(
+                "[initial] joint {:?}: {what}; give it coordinates where the two are apart, or leave it out to start from the equilibrium",
+                m.joints[m.initial[k].0].name
+            ),
+        },
+        None => Error::invalid("geom", what, "start from an equilibrium, or move the geom apart"),
     }
 }
 

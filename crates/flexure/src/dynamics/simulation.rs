@@ -136,12 +136,26 @@ pub fn initial_state<D: Dynamics>(
         let unloaded = crate::mechanism::statics::assemble_unloaded(m, settings)?;
         match start {
             Start::Rest => unloaded.q,
-            Start::Equilibrium => crate::mechanism::statics::solve_between(m, &unloaded, &loads, settings)?.q,
+            Start::Equilibrium => {
+                crate::mechanism::statics::solve_between(m, &unloaded, &loads, settings).map_err(or_from_rest)?.q
+            }
         }
     };
     let mut v = vec![0.0; m.dof()];
     set_given(m, &mut q, &mut v);
     Ok((q, v))
+}
+
+/// The equilibrium start's refusal of a mechanism with no single
+/// equilibrium (a part free at no load, a singular balance), with the
+/// start that needs none.
+fn or_from_rest(e: Error) -> Error {
+    match e {
+        Error::Singular { what } => Error::Singular {
+            what: format!("{what}; or start the motion from rest (start \"rest\"), where it needs no equilibrium"),
+        },
+        e => e,
+    }
 }
 
 /// Whether `[initial]` names every joint: nothing is left to solve for.
@@ -225,7 +239,7 @@ fn initial_touching<D: Dynamics>(
         return Ok((q, v, Vec::new()));
     }
     let work = &mut statics::Workspace::new(m);
-    let (solution, _) = statics::follow_touching(m, None, &loads_at(m, 0.0), settings, work)?;
+    let (solution, _) = statics::follow_touching(m, None, &loads_at(m, 0.0), settings, work).map_err(or_from_rest)?;
     let (mut q, mut v) = (solution.q, vec![0.0; m.dof()]);
     set_given(m, &mut q, &mut v);
     // Coordinates or velocities set by hand leave the equilibrium's contacts

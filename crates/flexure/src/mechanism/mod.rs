@@ -369,6 +369,8 @@ pub struct Mechanism<D: Dimension = Planar> {
     closure_places: Vec<String>,
     /// `preload = true` of each closure: its gap at rest is meant.
     closure_preloads: Vec<bool>,
+    /// "line L, column C" of each `[initial]` entry, in its order (empty if built in code).
+    initial_places: Vec<String>,
 }
 
 impl<D: Dimension> Mechanism<D> {
@@ -457,6 +459,7 @@ impl<D: Dimension> Mechanism<D> {
             dof: offset,
             closure_places: Vec::new(),
             closure_preloads: Vec::new(),
+            initial_places: Vec::new(),
         })
     }
 
@@ -547,6 +550,12 @@ impl<D: Dimension> Mechanism<D> {
     /// Where closure `i` was given in the file ("line L, column C").
     pub fn closure_place(&self, i: usize) -> &str {
         self.closure_places.get(i).map_or("the file", String::as_str)
+    }
+
+    /// Where `[initial]` entry `k` (of [`Mechanism::initial`]) was given in
+    /// the file ("line L, column C").
+    pub fn initial_place(&self, k: usize) -> &str {
+        self.initial_places.get(k).map_or("the file", String::as_str)
     }
 
     /// Whether closure `i` says `preload = true`: that it is meant to be

@@ -239,8 +239,8 @@ fn read_tables<D: FileDimension>(src: &Source, file: document::FileToml<D>) -> R
     m.geoms = geoms;
     validation::check_geoms_clear(src, &m, &rest, &geom_places)?;
     m.schedules = schedules::schedules(src, &m, &file.schedule)?;
-    m.initial = schedules::initial_state(src, &m, "initial", file.initial.as_ref())?;
-    m.initial_velocity = schedules::initial_state(src, &m, "initial_velocity", file.initial_velocity.as_ref())?;
+    (m.initial, m.initial_places) = schedules::initial_state(src, &m, "initial", file.initial.as_ref())?;
+    m.initial_velocity = schedules::initial_state(src, &m, "initial_velocity", file.initial_velocity.as_ref())?.0;
     Ok(m)
 }
 

@@ -134,16 +134,20 @@ pub(super) fn schedule_harmonic(
     Ok(Waveform::Harmonic { amplitude, frequency, phase, offset })
 }
 
+/// A joint and the coordinates (or rates) given it.
+type Given = (usize, Vec<f64>);
+
 /// `[initial]` or `[initial_velocity]` (`key`): joint name → its
 /// coordinates, a number for a joint of one coordinate or an array of as
-/// many numbers as the joint has coordinates.
+/// many numbers as the joint has coordinates; with each entry's place
+/// ("line L, column C").
 pub(super) fn initial_state<D: FileDimension>(
     src: &Source,
     m: &Mechanism<D>,
     key: &str,
     table: Option<&BTreeMap<String, Spanned<toml::Value>>>,
-) -> Result<Vec<(usize, Vec<f64>)>> {
-    let mut out = Vec::new();
+) -> Result<(Vec<Given>, Vec<String>)> {
+    let (mut out, mut places) = (Vec::new(), Vec::new());
     for (name, value) in table.into_iter().flatten() {
         let span = value.span();
         let Some(j) = m.joints.iter().position(|j| &j.name == name) else {
@@ -176,6 +180,7 @@ pub(super) fn initial_state<D: FileDimension>(
             );
         }
         out.push((j, values));
+        places.push(super::place(src.text, span.start));
     }
-    Ok(out)
+    Ok((out, places))
 }

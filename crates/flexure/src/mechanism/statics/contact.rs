@@ -92,7 +92,7 @@ use crate::mechanism::contact::{
 use crate::mechanism::kinematics::{Frames, frames_level_into};
 use crate::mechanism::{Loads, Mechanism};
 use crate::solver::{self, Problem};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 /// The first load step, and the largest.
 const FIRST_STEP: f64 = 0.05;
@@ -337,17 +337,22 @@ impl<D: Statics> ContactKkt<'_, D> {
         Some((DMatrix::from_fn(n, z.ncols(), |r, c| z[(r, c)] * s[r]), k))
     }
 
-    /// The joints of a motion that nothing stiffens (the softest of
-    /// [`ContactKkt::reduced`], where its stiffness is zero to the margin,
-    /// not below: that is an unstable state, not a free one), as
-    /// "joint \"a\" and joint \"b\"".
+    /// The joints of the motions that nothing stiffens (those of
+    /// [`ContactKkt::reduced`] whose stiffness is zero to the margin, where
+    /// the softest is not below it: that is an unstable state, not a free
+    /// one), as "joint \"a\" and joint \"b\"".
     fn free_motion(&self, jacobian: &[f64]) -> Option<String> {
         let (z, k) = self.reduced(jacobian)?;
-        let (value, soft) = linalg::softest_mode(&k)?;
-        if value >= 0.0 || value < -2.0 * self.kkt.margin {
+        let eigen = nalgebra::SymmetricEigen::new((&k + k.transpose()) * 0.5);
+        let band = 2.0 * self.kkt.margin;
+        let least = eigen.eigenvalues.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        if least >= 0.0 || least < -band {
             return None;
         }
-        super::path::moving_joints(self.kkt.mechanism, &(&z * soft))
+        // Every free motion, so that the answer names each joint to hold.
+        let free = eigen.eigenvalues.iter().zip(eigen.eigenvectors.column_iter()).filter(|(v, _)| v.abs() <= band);
+        let motion = free.fold(DVector::zeros(z.nrows()), |sum, (_, u)| sum + (&z * u).abs());
+        super::path::moving_joints(self.kkt.mechanism, &motion)
     }
 
     /// The inner contacts' tangency unknowns (and rows) among all.
