@@ -196,7 +196,7 @@ class Mechanism:
                 e.args = (f"{self._source}: {e.args[0]}",) + e.args[1:]
             raise
 
-    def solve(self, accuracy: _Optional[_Tuple[float, float]] = None) -> dict:
+    def solve(self, accuracy: _Optional[_Tuple[float, float]] = None, limit: bool = False) -> dict:
         """Static equilibrium: a dict shaped like `flexure solve --json`
         (bodies {name: {x, y, phi}}, coordinates {joint: array}, energy, stable),
         error_estimate {flexure joint: dict as `Flexure.error_estimate` returns (position (m),
@@ -248,9 +248,16 @@ class Mechanism:
         rotation vector); load {flexure joint: {moment (3,), force (3,)}}, the tip wrench it
         carries in its root frame; stress {flexure joint: {max (the peak von Mises stress, Pa),
         at, point, bending_y, bending_z, shear}}; safety_factor and shape (a list of sections
-        {s, position, rotation, curvature, stress}) as in the plane."""
+        {s, position, rotation, curvature, stress}) as in the plane.
+
+        limit=True adds stability_limit, as `flexure solve --limit`: {factor, status "lost"},
+        the factor on all the loads (tensions, forces, gravity), up to 1000, at which the
+        equilibrium followed from rest stops being stable, or {factor, status "stable_up_to",
+        stalled}, the factor it holds to (stalled None at 1000, else why the path could not
+        be followed further, with a StabilityWarning). With contact the load is followed in
+        order, as the contacts touch, stick and slip."""
         try:
-            return self._inner.solve(accuracy)
+            return self._inner.solve(accuracy, limit)
         except (ValueError, ConvergenceError) as e:
             # Name the file, unless the error is about the `accuracy` argument.
             if self._source is not None and e.args and not str(e.args[0]).startswith("accuracy"):

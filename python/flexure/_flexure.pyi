@@ -323,7 +323,7 @@ class Mechanism:
         velocities {joint: (N, k) array}, energy, steps, rejected, violation, dimension,
         error_estimate, flagged; spatial:
         bodies {name: {x, y, z, roll, pitch, yaw (N,), rotation (N, 3, 3)}}."""
-    def solve(self, accuracy: _Accuracy = None) -> dict:
+    def solve(self, accuracy: _Accuracy = None, limit: bool = False) -> dict:
         """As flexure.Mechanism.solve, one shape in both dimensions: dimension, bodies (planar
         {x, y, phi}; spatial {x, y, z, roll, pitch, yaw, rotation (3, 3)}), coordinates, energy,
         stable, error_estimate {flexure joint: _ErrorEstimate}, flagged, findings, and per flexure

@@ -260,6 +260,33 @@ def test_a_sweep_reports_each_rows_contacts():
     assert solved["normal_force"] == pytest.approx(last["normal_force"], rel=1e-9)
 
 
+COLUMN = """
+joint = [
+  { name = "feed", kind = "prismatic", parent = "ground", child = "carriage", stiffness = 100.0 },
+  { name = "strip", kind = "flexure", parent = "carriage", child = "tip", length = 0.1, ei = 0.01, order = 10 },
+]
+force = [{ name = "push", body = "carriage", force = [1.0, 0.0] }]
+geom = [{ name = "wall", body = "ground", shape = "plane", origin = [0.1001, 0.0], normal = [-1.0, 0.0], friction = 0.5 }]
+"""
+
+
+def test_solve_limit_follows_the_contacts_state():
+    """A column pushed into a wall 0.1 mm past its tip (the carriage's
+    100 N/m spring takes 0.01 N to close it): its tip sticks on a rough
+    wall, so it buckles pinned, (4.4934)^2 EI/L^2 = 20.19 N; it slides on a
+    smooth one and buckles as a cantilever, pi^2 EI/4L^2 = 2.467 N. Each
+    factor on the 1 N push to 1e-5 (the stability margin moves a limit by
+    about 1e-6 of itself). Without limit=True there is no key."""
+    pinned = 4.493409457909064**2 + 0.01
+    free = math.pi**2 / 4.0 + 0.01
+    for text, exact in [(COLUMN, pinned), (COLUMN.replace("friction = 0.5", "friction = 0.0"), free)]:
+        m = flexure.Mechanism.from_toml(text)
+        limit = m.solve(limit=True)["stability_limit"]
+        assert limit["status"] == "lost"
+        assert limit["factor"] == pytest.approx(exact, rel=1e-5)
+        assert "stability_limit" not in m.solve()
+
+
 LID = """
 [[joint]]
 name = "pivot"

@@ -271,3 +271,22 @@ fn draw_warns_as_solve_does() {
     );
     assert!(text.contains("(past the stability limit)"));
 }
+
+/// `solve --limit` on the grasp: the factor on the file's 4 N tension
+/// where the finger's grasp loses stability, followed in order with its
+/// contacts, is where a sweep of the tension, row by row, finds it (to
+/// $10^{-6}$: two paths of other steps through the same sticking and
+/// sliding). With `--sweep`, which finds its own, it is refused.
+#[test]
+fn solve_limit_of_the_grasp_is_where_its_sweep_loses_stability() {
+    let file = format!("{}/grasp.toml", examples());
+    let v = json(&["solve", &file, "--limit"]);
+    let limit = &v["stability_limit"];
+    assert_eq!(limit["status"], "lost", "{limit}");
+    let swept = json(&["solve", &file, "--sweep", "tendon.flexor.tension=0:12:13"]);
+    let value = swept["stability_limit"]["value"].as_f64().unwrap();
+    let factor = limit["factor"].as_f64().unwrap();
+    assert!((4.0 * factor / value - 1.0).abs() < 1e-6, "{factor} × 4 N, not {value} N");
+    let (code, out, err) = run(&["solve", &file, "--limit", "--sweep", "tendon.flexor.tension=0:1:2"]);
+    assert!(code == 2 && out.is_empty() && err.contains("--limit") && err.contains("--sweep"), "exit {code}: {err}");
+}

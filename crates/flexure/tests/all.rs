@@ -77,6 +77,7 @@ mod spatial_mechanism_derivatives;
 mod spatial_shape;
 mod spatial_statics;
 mod spatial_validation;
+mod stability_limit;
 mod stages;
 mod statics;
 mod stops;

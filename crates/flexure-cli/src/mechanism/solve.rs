@@ -4,6 +4,7 @@
 use super::checks::{solve_answer, sweep_table};
 use super::point_any;
 use crate::analyses::{SweepSpec, sweep_values};
+use crate::answer::{MAX_FACTOR, insert_limit};
 use clap::Args;
 use serde_json::Value;
 use std::path::PathBuf;
@@ -23,6 +24,13 @@ pub struct SolveArgs {
     /// stability is lost between two values (found by bisection; a warning on stderr, exit 0).
     #[arg(long, value_parser = crate::analyses::sweep_spec, allow_hyphen_values = true)]
     sweep: Option<SweepSpec>,
+    /// Also find the factor on all the file's loads (tendons, forces, gravity), up to 1000, at
+    /// which the equilibrium followed from rest stops being stable, or up to which it stays stable
+    /// (1000, or as far as the path could be followed, with a warning); with contact, the load is
+    /// followed in order as the contacts touch, stick and slip: `stability_limit` {factor, status:
+    /// lost | stable_up_to}.
+    #[arg(long, conflicts_with = "sweep")]
+    limit: bool,
     #[command(flatten)]
     accuracy: crate::options::AccuracyOptions,
 }
@@ -41,5 +49,12 @@ pub fn solve_cmd(args: &SolveArgs) -> Result<Value, String> {
     }
     let findings = crate::findings::open_at_rest(&model, &args.file)?;
     let solved = model.solve(&target, at).map_err(super::solver_error(&args.file))?;
-    solve_answer(&model, findings, solved, &target, &args.file)
+    // At the orders the answer was found with.
+    let limit = args.limit.then(|| solved.model.stability_limit(MAX_FACTOR)).transpose();
+    let limit = limit.map_err(super::solver_error(&args.file))?;
+    let mut answer = solve_answer(&model, findings, solved, &target, &args.file)?;
+    if let Some(limit) = &limit {
+        insert_limit(&mut answer, limit, &format!("{}: solve --limit", args.file.display()));
+    }
+    Ok(answer)
 }

@@ -49,10 +49,16 @@ impl Mechanism {
     /// `safety_factor` for one with `yield_strength` (left out while unstressed; below 1 it warns
     /// `YieldWarning`) and `shape` (a structured array, as `Flexure.shape`) for one with `shape`;
     /// each map left out when empty.
-    #[pyo3(signature = (accuracy=None))]
-    fn solve<'py>(&self, py: Python<'py>, accuracy: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    /// With `limit`, `stability_limit` as `flexure solve --limit`.
+    #[pyo3(signature = (accuracy=None, limit=false))]
+    fn solve<'py>(
+        &self,
+        py: Python<'py>,
+        accuracy: Option<&Bound<'py, PyAny>>,
+        limit: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let target = crate::accuracy::accuracy(accuracy)?;
-        solve::solve(py, &self.model, &target)
+        solve::solve(py, &self.model, &target, limit)
     }
 
     /// The motion over `duration` (s) as arrays: see `flexure.Mechanism.simulate`.

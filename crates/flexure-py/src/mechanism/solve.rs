@@ -4,6 +4,7 @@
 //! shapes as NumPy arrays and each estimate's `flagged`, and the warnings
 //! and findings Python adds about it.
 
+use crate::analyses::{MAX_FACTOR, limit_dict};
 use crate::error_estimate::estimate_dict;
 use crate::errors::{StabilityWarning, to_py};
 use crate::findings;
@@ -37,9 +38,10 @@ fn order_hint(joint: &str, capped: &[String]) -> String {
 pub(super) const CAPPED: &str =
     "order = \"auto\" raised it to the cap of 64 and it still misses: loosen the accuracy or reduce the load";
 
-/// The equilibrium of `model` as `Mechanism.solve` documents it.
-pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult<Bound<'py, PyDict>> {
-    let (solved, open) = interruptible(py, || {
+/// The equilibrium of `model` as `Mechanism.solve` documents it, with its
+/// stability limit (`limit`, as `flexure solve --limit`).
+pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy, limit: bool) -> PyResult<Bound<'py, PyDict>> {
+    let (solved, open, stability_limit) = interruptible(py, || {
         let open = model.open_closures()?;
         let solved = model.solve(target, None)?;
         if let Err(EstimateFailed { error: e @ (Error::Interrupted { .. } | Error::InterruptedAt { .. }), .. }) =
@@ -47,7 +49,9 @@ pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult
         {
             return Err(e);
         }
-        Ok((solved, open))
+        // At the orders the answer was found with.
+        let stability_limit = limit.then(|| solved.model.stability_limit(MAX_FACTOR)).transpose()?;
+        Ok((solved, open, stability_limit))
     })?;
     // Stack level 2: the line calling `flexure.Mechanism.solve`, past its Python wrapper.
     let what = |joint: &str| format!("Mechanism.solve, flexure joint '{joint}'");
@@ -125,6 +129,9 @@ pub fn solve<'py>(py: Python<'py>, model: &Model, target: &Accuracy) -> PyResult
     let listed = findings::report(py, "Mechanism.solve", &open, &crossings, 2)?;
     if !listed.is_empty() {
         out.set_item("findings", listed)?;
+    }
+    if let Some(l) = &stability_limit {
+        out.set_item("stability_limit", limit_dict(py, l, "Mechanism.solve(limit=True)", 2)?)?;
     }
     if let Some(limit) = r.limit_fraction {
         // A snap-through: the stable answer beyond a limit load, which the caller must know of.

@@ -21,6 +21,7 @@ pub mod lagrangian;
 mod pencil;
 pub mod schedule;
 pub mod spatial;
+pub mod stability_limit;
 pub mod statics;
 pub mod sweep;
 mod tree;

@@ -429,6 +429,28 @@ impl Model {
         Ok(motion_error::motion_error(run, &reference_run, (reference.tolerance, size), target))
     }
 
+    /// The factor on all loads, up to `max_factor`, at which the
+    /// equilibrium followed from no load stops being stable, or up to which
+    /// it stays stable; with contact, the load followed in order, its
+    /// contacts sticking and sliding as they do along it
+    /// ([`crate::mechanism::stability_limit::stability_limit`]). It is the
+    /// limit of this mechanism at its flexures' orders: call it on
+    /// [`Solved::model`] for those `solve` raised to.
+    ///
+    /// # Example
+    /// ```
+    /// use flexure::model::Model;
+    /// // A sprung arm (k = 1 N·m/rad, l = 0.1 m) pushed along itself by 4 N
+    /// // loses stability at P = k/l = 10 N, 2.5 times the load.
+    /// let text = "[[joint]]\nname = \"pivot\"\nkind = \"revolute\"\nparent = \"ground\"\nchild = \"arm\"\nstiffness = 1.0\n\
+    ///             [[force]]\nname = \"push\"\nbody = \"arm\"\nat = [0.1, 0.0]\nforce = [-4.0, 0.0]\n";
+    /// let limit = Model::from_toml(text).unwrap().stability_limit(1000.0).unwrap();
+    /// assert!((limit.factor() - 2.5).abs() < 1e-5);
+    /// ```
+    pub fn stability_limit(&self, max_factor: f64) -> Result<crate::StabilityLimit> {
+        each!(self, m => crate::mechanism::stability_limit::stability_limit(m, &Settings::default(), max_factor))
+    }
+
     /// Linear buckling on all loads, with its estimate ([`Analyses::buckle`]).
     pub fn buckle(&self, target: &Accuracy) -> Result<Eigen<Buckling>> {
         each!(self, m => {
