@@ -1142,3 +1142,23 @@ fn a_box_held_above_its_floor_on_free_sliders_starts_from_rest() {
     let push: f64 = last.iter().map(|c| c.normal_force).sum();
     assert!((push / G - 1.0).abs() < 1e-6, "{last:?}");
 }
+
+/// The box resting on its floor, launched straight up at $v_0 = 1$ m/s by
+/// `[initial_velocity]`, leaves it: its height is $v_0t - gt^2/2$ (to
+/// $10^{-8}$ m) and it lands at $2v_0/g$ (to $10^{-6}$ s), from the
+/// equilibrium as from rest. Before, its contacts, touching where the
+/// motion started, were held, and the box did not move.
+#[test]
+fn a_box_launched_off_its_floor_flies_and_lands() {
+    let text = box_on_sliders(0.0) + "[initial_velocity]\nsy = 1.0\n";
+    let landing = 2.0 / G;
+    for start in [Start::Equilibrium, Start::Rest] {
+        let run = simulate(&from_toml(&text).unwrap(), &settings(0.25, 0.01, 1e-9), start).unwrap();
+        assert!(run.stopped.is_none(), "{start:?}: {:?}", run.stopped);
+        assert!((run.changes[0].time - landing).abs() < 1e-6, "{start:?}: {:?}, not {landing}", run.changes);
+        for (k, &t) in run.time.iter().enumerate().filter(|(_, t)| **t < landing) {
+            let height = t - G * t * t / 2.0;
+            assert!((run.q(k)[1] - height).abs() < 1e-8, "{start:?}, t = {t}: {}, not {height}", run.q(k)[1]);
+        }
+    }
+}

@@ -258,12 +258,15 @@ impl<D: Dynamics> ContactSystem<D> {
             let mut h = system.touch(&c.pair, c.s, q0)?;
             h.force = c.normal_force;
             h.largest = c.normal_force;
-            // An equilibrium's contact with friction is at rest: stuck.
+            // An equilibrium's contact with friction is at rest, stuck (or
+            // rolling), unless `[initial_velocity]` launches it along the
+            // geom, or off it.
+            let normal = gap_slope(m, &system.frames, q0, &h.pair, h.s)?.normal;
+            if system.leaves(&h, &normal, (q0, v0))? {
+                continue;
+            }
             if h.mu > 0.0 {
-                h.law = match h.rolls {
-                    true => rolling::<D>(&gap_slope(m, &system.frames, q0, &h.pair, h.s)?.normal),
-                    false => Law::Stick { anchor: system.anchor(&h, q0)? },
-                };
+                h.law = system.starting_law(&h, &normal, (q0, v0))?;
             }
             system.hold(h, q0)?;
         }
@@ -275,9 +278,12 @@ impl<D: Dynamics> ContactSystem<D> {
             }
             if low.gap <= system.gap_band {
                 // Set on the geom: held from the start (let go at the first
-                // step if it pulls), stuck unless it slides.
+                // step if it pulls), stuck unless it slides; open if it leaves.
                 let mut h = system.touch(&pair, low.s, q0)?;
-                h.law = system.starting_law(&h, &low, (q0, v0))?;
+                if system.leaves(&h, &low.normal, (q0, v0))? {
+                    continue;
+                }
+                h.law = system.starting_law(&h, &low.normal, (q0, v0))?;
                 system.hold(h, q0)?;
             }
         }
@@ -330,10 +336,23 @@ impl<D: Dynamics> ContactSystem<D> {
         Ok(h)
     }
 
-    /// The law of `h` as it touches at `low` (frames at `q`): frictionless,
-    /// or with friction sliding on the way it moves along the surface, or
-    /// stuck where it touches if it does not move along it.
-    fn starting_law(&self, h: &Held, low: &Gap<D>, (q, v): (&[f64], &[f64])) -> Result<Law> {
+    /// Whether `h`'s toucher moves off its geom at `v` (frames at `q`): its
+    /// velocity along the geom's `normal`, relative to the geom, above the
+    /// creep.
+    fn leaves(&self, h: &Held, normal: &D::Vector, (q, v): (&[f64], &[f64])) -> Result<bool> {
+        let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
+        let mut velocity = D::Vector::default();
+        for (d, v) in p.delta.iter().zip(v) {
+            velocity = velocity + scaled::<D>(d, *v);
+        }
+        Ok(dot::<D>(normal, &velocity) > self.creep)
+    }
+
+    /// The law of `h` as it touches where the geom's normal is `normal`
+    /// (frames at `q`): frictionless, or with friction sliding on the way
+    /// it moves along the surface, or stuck where it touches if it does not
+    /// move along it.
+    fn starting_law(&self, h: &Held, normal: &D::Vector, (q, v): (&[f64], &[f64])) -> Result<Law> {
         if h.law == Law::Free {
             return Ok(Law::Free);
         }
@@ -347,7 +366,7 @@ impl<D: Dynamics> ContactSystem<D> {
             Some(slope) => self.material_delta(h, &p, slope, q)?,
             None => p.delta.clone(),
         };
-        let slide = sliding::<D>(&delta, v, &low.normal);
+        let slide = sliding::<D>(&delta, v, normal);
         let speed = dot::<D>(&slide, &slide).sqrt();
         Ok(match (speed > self.creep, &slope) {
             (true, _) => Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed },
@@ -1122,7 +1141,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
             if approach < 0.0 {
                 let mut h = self.touch(&pair, low.s, q)?;
-                h.law = self.starting_law(&h, &low, (q, v))?;
+                h.law = self.starting_law(&h, &low.normal, (q, v))?;
                 added.push(h);
             }
         }
@@ -1183,7 +1202,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 continue;
             }
             let mut h = self.touch(&pair, None, q)?;
-            h.law = self.starting_law(&h, &low, (q, v))?;
+            h.law = self.starting_law(&h, &low.normal, (q, v))?;
             added.push(h);
         }
         for (k, h) in added.into_iter().enumerate() {

@@ -224,9 +224,9 @@ pub fn simulate<D: Dynamics>(m: &Mechanism<D>, settings: &SimulationSettings, st
 }
 
 /// [`initial_state`] of a mechanism with geoms, and the contacts that touch
-/// there: an equilibrium's, with their pushes ([`statics::follow_touching`]);
-/// none from the rest shape or where `[initial]` sets coordinates or
-/// `[initial_velocity]` velocities (a part
+/// there: an equilibrium's, with their pushes ([`statics::follow_touching`]),
+/// sliding where `[initial_velocity]` moves them along their geom; none
+/// from the rest shape or where `[initial]` sets coordinates (a part
 /// there that overlaps a geom is refused by [`ContactSystem::new`], and one
 /// that touches is held once it presses in).
 fn initial_touching<D: Dynamics>(
@@ -242,9 +242,9 @@ fn initial_touching<D: Dynamics>(
     let (solution, _) = statics::follow_touching(m, None, &loads_at(m, 0.0), settings, work).map_err(or_from_rest)?;
     let (mut q, mut v) = (solution.q, vec![0.0; m.dof()]);
     set_given(m, &mut q, &mut v);
-    // Coordinates or velocities set by hand leave the equilibrium's contacts
-    // behind: held, a contact would stop a box launched along its floor.
-    let touching = match m.initial.is_empty() && m.initial_velocity.is_empty() {
+    // Coordinates set by hand leave the equilibrium's contacts behind (the
+    // parts are elsewhere); velocities keep them, sliding where launched.
+    let touching = match m.initial.is_empty() {
         true => solution.contacts,
         false => Vec::new(),
     };
