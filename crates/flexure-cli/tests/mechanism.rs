@@ -90,6 +90,29 @@ fn sweep_and_draw() {
     assert!(svg.contains("<svg") && svg.matches("<polyline").count() > 10);
 }
 
+/// `draw --sweep` of nine values: each value's shape has its own colour
+/// in the legend (past five they came round again), in the sweep's order
+/// from light to dark.
+#[test]
+fn a_drawn_sweep_of_many_values_gives_each_its_own_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("grasp.svg");
+    let file = format!("{}/grasp.toml", examples());
+    let path = out.to_str().unwrap();
+    json(&["draw", &file, "--out", path, "--sweep", "tendon.flexor.tension=0:4:9"]);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = svg.lines().collect();
+    let strokes: Vec<&str> = lines
+        .windows(2)
+        .filter(|w| w[1].contains("class=\"legend\">tendon.flexor.tension = "))
+        .map(|w| w[0].split(" stroke=\"").nth(1).and_then(|s| s.get(..7)).expect("a swatch's stroke"))
+        .collect();
+    assert_eq!(strokes.len(), 9, "{strokes:?}");
+    let lightness =
+        |hex: &str| (1..7).step_by(2).map(|i| u32::from_str_radix(&hex[i..i + 2], 16).unwrap()).sum::<u32>();
+    assert!(strokes.windows(2).all(|w| lightness(w[0]) > lightness(w[1])), "{strokes:?}");
+}
+
 #[test]
 fn bad_files_exit_2_naming_the_place() {
     let dir = tempfile::tempdir().unwrap();

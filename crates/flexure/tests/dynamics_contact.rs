@@ -382,7 +382,9 @@ fn a_spinning_ball_thrown_on_a_rough_floor_slides_then_rolls_in_space_as_the_clo
 }
 
 /// A start inside a geom is refused at the `[initial]` entry that puts
-/// the body there, by its line and column and the depth.
+/// the body there, by its line and column and the depth: not at an entry
+/// that moves the body and the geom together (a stage carrying both,
+/// given after it).
 #[test]
 fn an_overlapping_start_is_refused_at_its_initial_entry() {
     let text = format!("{}[initial]\nslide = -0.3\n", drop(0.2));
@@ -391,6 +393,14 @@ fn an_overlapping_start_is_refused_at_its_initial_entry() {
     let e = simulate(&inside, &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
     let at = format!("line {line}, column 9: [initial] joint \"slide\": ");
     assert!(e.starts_with(&at) && e.contains("overlap by 1.000e-1 m where the motion starts"), "{e}");
+    let staged = drop(0.2)
+        .replace("parent = \"ground\"\nchild = \"ball\"", "parent = \"deck\"\nchild = \"ball\"")
+        .replace("body = \"ground\"", "body = \"deck\"")
+        + "[[joint]]\nname = \"z_lift\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"deck\"\nstiffness = 100.0\n\
+           [initial]\nslide = -0.3\nz_lift = 0.1\n";
+    let line = staged.lines().count() - 1;
+    let e = simulate(&from_toml(&staged).unwrap(), &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
+    assert!(e.starts_with(&format!("line {line}, column 9: [initial] joint \"slide\": ")), "{e}");
 }
 
 /// A strip (EI = 0.01 N·m², 0.1 m) carrying a 50 g tip mass, let go

@@ -67,7 +67,8 @@ fn a_strip_sagging_onto_a_floor_holds_until_it_would_lie_along_it() {
 /// A mechanism that nothing destabilizes is stable up to the largest
 /// factor, with nothing stalled, with and without contact: a sprung arm
 /// pushed across itself, and a strip whose tip is pressed onto a floor.
-/// A largest factor that is not a finite number above zero is refused by name.
+/// A largest factor below 1 is one stage; one that is not a finite number
+/// above zero is refused by name.
 #[test]
 fn what_stays_stable_is_stable_up_to_the_largest_factor() {
     let arm = from_toml(
@@ -85,8 +86,32 @@ fn what_stays_stable_is_stable_up_to_the_largest_factor() {
         let l = stability_limit(m, &Settings::default(), 100.0).unwrap();
         assert_eq!(l, StabilityLimit::StableUpTo { factor: 100.0, stalled: None });
     }
+    // A largest factor below the first stage's.
+    let l = stability_limit(&pressed, &Settings::default(), 0.5).unwrap();
+    assert_eq!(l, StabilityLimit::StableUpTo { factor: 0.5, stalled: None });
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = stability_limit(&arm, &Settings::default(), bad).unwrap_err().to_string();
         assert!(e.contains("max_factor") && e.contains("must be a finite number greater than zero"), "{e}");
+    }
+}
+
+/// An interrupt that comes along the path stops the search, with contact
+/// as without: an error that says so, not a path that stalled (it read as
+/// stable up to where the interrupt came).
+#[test]
+fn an_interrupted_search_says_so() {
+    static POLLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    // Past the assembly at no load, on the way.
+    fn later() -> bool {
+        POLLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) >= 40
+    }
+    for mu in [0.5, 0.0] {
+        let m = from_toml(&column(10, mu)).unwrap();
+        POLLS.store(0, std::sync::atomic::Ordering::Relaxed);
+        let e = flexure::solver::with_interrupt(later, || stability_limit(&m, &Settings::default(), 1000.0));
+        assert!(
+            matches!(e, Err(flexure::Error::Interrupted { load_fraction }) if load_fraction > 0.0),
+            "μ = {mu}: {e:?}"
+        );
     }
 }

@@ -56,6 +56,17 @@ pub(super) const KEY: Color = Color(60, 60, 60);
 const GROUND: Color = Color(90, 90, 90);
 /// The loaded shapes' colours, in order.
 const SHAPES: [Color; 5] = [COLORS[0], COLORS[2], COLORS[3], COLORS[1], COLORS[4]];
+
+/// The colour of loaded shape `i` of `count`: one of [`SHAPES`] while they
+/// last, else the first of them from light to full in order (a sweep's
+/// values), so that no two shapes share a colour, and none is read on the
+/// stress map.
+fn shape_color(i: usize, count: usize) -> Color {
+    match count <= SHAPES.len() {
+        true => SHAPES[i],
+        false => SHAPES[0].tint(0.6 * (1.0 - i as f64 / (count - 1) as f64)),
+    }
+}
 /// Tendons are told apart by dash and via-point marker, not colour.
 const TENDON_DASH: [Dash; 3] = [Dash::Solid, Dash::Dashed, Dash::Chain];
 const VIA: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
@@ -710,12 +721,12 @@ pub fn figure(
     fig.marks.extend(draw_shape(scene, rest, view, GRAY, &sizes, Loads::Hidden));
     fig.legend.push(Entry { swatch: link(GRAY), label: "unloaded".into() });
     for (i, (label, pose)) in loaded.iter().enumerate() {
-        let color = SHAPES[i % SHAPES.len()];
+        let color = shape_color(i, loaded.len());
         fig.marks.extend(draw_shape(scene, pose, view, color, &sizes, Loads::Drawn { stress_top }));
         fig.legend.push(Entry { swatch: link(color), label: label.clone() });
     }
     if let Some((_, pose)) = loaded.last() {
-        let color = SHAPES[(loaded.len() - 1) % SHAPES.len()];
+        let color = shape_color(loaded.len() - 1, loaded.len());
         fig.marks.extend(load_names(scene, pose, view, color, &sizes));
         fig.marks.extend(solids::contact_values(pose, view, color, &sizes));
     }

@@ -831,14 +831,18 @@ impl<D: Dynamics> ContactSystem<D> {
 }
 
 /// The refusal of `pair` overlapping by `depth` (m) where the motion
-/// starts: at the `[initial]` entry that moves one of its two parts, where
-/// one does (the last such), else at the geom.
+/// starts: at the `[initial]` entry that moves one of its two parts
+/// against the other, where one does (the last such in the file), else at
+/// the geom.
 fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
-    let mut moving = m.path(m.geoms[pair.geom].body);
-    match pair.part {
-        Toucher::Flexure(j) => moving.extend(m.path(m.joints[j].parent).into_iter().chain([j])),
-        Toucher::Geom(h) => moving.extend(m.path(m.geoms[h].body)),
-    }
+    let geom = m.path(m.geoms[pair.geom].body);
+    let part = match pair.part {
+        Toucher::Flexure(j) => m.path(m.joints[j].parent).into_iter().chain([j]).collect(),
+        Toucher::Geom(h) => m.path(m.geoms[h].body),
+    };
+    // A joint on both paths moves the two together.
+    let moving: Vec<usize> =
+        geom.iter().chain(&part).filter(|j| geom.contains(j) != part.contains(j)).copied().collect();
     let what = format!("{} overlap by {depth:.3e} m where the motion starts", named(m, pair));
     match m.initial.iter().rposition(|(j, _)| moving.contains(j)) {
         Some(k) => Error::File {

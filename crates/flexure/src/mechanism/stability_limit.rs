@@ -38,8 +38,9 @@ const REACH_PROBES: usize = 40;
 /// stays stable (`max_factor`, or as far as the path could be followed,
 /// with why it could not go further).
 ///
-/// Errors: `max_factor` not finite and above zero, an interrupt, and the
-/// refusals of [`follow_touching`] at no load.
+/// Errors: `max_factor` not finite and above zero, an interrupt, and a
+/// path that gets nowhere from no load (the refusal [`follow_touching`]
+/// gives there, as a solve does).
 ///
 /// # Example
 /// ```
@@ -70,17 +71,20 @@ pub fn stability_limit<D: Statics>(m: &Mechanism<D>, settings: &Settings, max_fa
     let mut from: Option<Touched<D>> = None;
     let mut reached = 0.0;
     while reached < max_factor {
-        let next = (2.0 * reached).clamp(1.0, max_factor);
+        let next = (2.0 * reached).max(1.0).min(max_factor);
         match follow_touching(m, from.as_ref(), &scaled(next), settings, work) {
             Ok((_, touched)) => (reached, from) = (next, Some(touched)),
             Err(Error::Unstable { load_fraction, .. }) => {
                 return Ok(StabilityLimit::Lost { factor: reached + load_fraction * (next - reached) });
             }
-            Err(e @ (Error::Interrupted { .. } | Error::Singular { .. })) if from.is_none() => return Err(e),
             Err(e @ Error::Interrupted { .. }) => return Err(e),
             Err(e) => {
-                let why = format!("on the way from {reached} to {next} times the load, {e}");
-                return farthest(m, (from, reached), next, settings, work, &scaled).map(|l| stalled(l, why));
+                let limit = farthest(m, (from, reached), next, settings, work, &scaled)?;
+                // Nowhere from no load: the mechanism's refusal, as `solve` gives it.
+                if limit.factor() == 0.0 {
+                    return Err(e);
+                }
+                return Ok(stalled(limit, format!("on the way from {reached} to {next} times the load, {e}")));
             }
         }
     }

@@ -139,8 +139,8 @@ type Given = (usize, Vec<f64>);
 
 /// `[initial]` or `[initial_velocity]` (`key`): joint name → its
 /// coordinates, a number for a joint of one coordinate or an array of as
-/// many numbers as the joint has coordinates; with each entry's place
-/// ("line L, column C").
+/// many numbers as the joint has coordinates, in the file's order; with
+/// each entry's place ("line L, column C").
 pub(super) fn initial_state<D: FileDimension>(
     src: &Source,
     m: &Mechanism<D>,
@@ -148,7 +148,10 @@ pub(super) fn initial_state<D: FileDimension>(
     table: Option<&BTreeMap<String, Spanned<toml::Value>>>,
 ) -> Result<(Vec<Given>, Vec<String>)> {
     let (mut out, mut places) = (Vec::new(), Vec::new());
-    for (name, value) in table.into_iter().flatten() {
+    // In the file's order (the table is read sorted by name).
+    let mut entries: Vec<_> = table.into_iter().flatten().collect();
+    entries.sort_by_key(|(_, value)| value.span().start);
+    for (name, value) in entries {
         let span = value.span();
         let Some(j) = m.joints.iter().position(|j| &j.name == name) else {
             return src.fail(&span, format!("{key}: unknown joint {name:?}"));

@@ -350,7 +350,8 @@ impl<D: Statics> ContactKkt<'_, D> {
             return None;
         }
         // Every free motion, so that the answer names each joint to hold.
-        let free = eigen.eigenvalues.iter().zip(eigen.eigenvectors.column_iter()).filter(|(v, _)| v.abs() <= band);
+        let free =
+            eigen.eigenvalues.iter().zip(eigen.eigenvectors.column_iter()).filter(|(v, _)| (-band..0.0).contains(*v));
         let motion = free.fold(DVector::zeros(z.nrows()), |sum, (_, u)| sum + (&z * u).abs());
         super::path::moving_joints(self.kkt.mechanism, &motion)
     }
@@ -1545,6 +1546,7 @@ fn follow<D: Statics>(
             .and_then(|(y, r)| Ok((event(&mut problem, &y, next, all)?, y, r)));
         let (found, y, report) = match trial {
             Ok(t) => t,
+            Err(e @ Error::Interrupted { .. }) => return Err(e),
             Err(e) => {
                 step *= 0.5;
                 if step < SMALLEST_STEP {
@@ -1686,6 +1688,9 @@ fn settle_events<D: Statics>(
 /// edge or corner (a box's), where the gap has a kink and no point of the
 /// flexure is tangent to the geom.
 fn unsettled<D: Statics>(m: &Mechanism<D>, touching: &[Touching], lambda: f64, e: &Error) -> Error {
+    if let Error::Interrupted { .. } = e {
+        return Error::Interrupted { load_fraction: lambda };
+    }
     let names: Vec<String> = touching.iter().map(|t| named(m, &t.pair)).collect();
     Error::ContinuationStalled {
         cause: format!(
