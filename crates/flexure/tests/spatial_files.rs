@@ -209,7 +209,7 @@ fn every_bad_value_names_its_key_line_and_column() {
         ),
         (
             &format!("{head}kind = \"revolute\"\n[initial]\nj = [0.1, 0.2]\n"),
-            "line 8, column 5: initial: joint \"j\": the joint has 1 coordinates and 2 were given",
+            "line 8, column 5: initial: joint \"j\": the joint has 1 coordinate and 2 were given",
         ),
         (
             &format!("{head}kind = \"fixed\"\n[[schedule]]\nload = \"x\"\npoints = [[0.0, 1.0]]\n"),
