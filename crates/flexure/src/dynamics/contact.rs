@@ -261,12 +261,12 @@ impl<D: Dynamics> ContactSystem<D> {
             // An equilibrium's contact with friction is at rest, stuck (or
             // rolling), unless `[initial_velocity]` launches it along the
             // geom, or off it.
-            let normal = gap_slope(m, &system.frames, q0, &h.pair, h.s)?.normal;
-            if system.leaves(&h, &normal, (q0, v0))? {
+            let slope = gap_slope(m, &system.frames, q0, &h.pair, h.s)?;
+            if gap_rate(&slope, v0) > system.creep {
                 continue;
             }
             if h.mu > 0.0 {
-                h.law = system.starting_law(&h, &normal, (q0, v0))?;
+                h.law = system.starting_law(&h, &slope.normal, (q0, v0))?;
             }
             system.hold(h, q0)?;
         }
@@ -279,10 +279,10 @@ impl<D: Dynamics> ContactSystem<D> {
             if low.gap <= system.gap_band {
                 // Set on the geom: held from the start (let go at the first
                 // step if it pulls), stuck unless it slides; open if it leaves.
-                let mut h = system.touch(&pair, low.s, q0)?;
-                if system.leaves(&h, &low.normal, (q0, v0))? {
+                if gap_rate(&gap_slope(m, &system.frames, q0, &pair, low.s)?, v0) > system.creep {
                     continue;
                 }
+                let mut h = system.touch(&pair, low.s, q0)?;
                 h.law = system.starting_law(&h, &low.normal, (q0, v0))?;
                 system.hold(h, q0)?;
             }
@@ -334,18 +334,6 @@ impl<D: Dynamics> ContactSystem<D> {
             h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
         }
         Ok(h)
-    }
-
-    /// Whether `h`'s toucher moves off its geom at `v` (frames at `q`): its
-    /// velocity along the geom's `normal`, relative to the geom, above the
-    /// creep.
-    fn leaves(&self, h: &Held, normal: &D::Vector, (q, v): (&[f64], &[f64])) -> Result<bool> {
-        let p = point_jet(&self.mechanism, &self.frames, q, &h.pair, h.s, None)?;
-        let mut velocity = D::Vector::default();
-        for (d, v) in p.delta.iter().zip(v) {
-            velocity = velocity + scaled::<D>(d, *v);
-        }
-        Ok(dot::<D>(normal, &velocity) > self.creep)
     }
 
     /// The law of `h` as it touches where the geom's normal is `normal`
@@ -856,6 +844,12 @@ fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
     }
 }
 
+/// A pair's gap rate $\dot g = \partial g/\partial q\,\dot q$ (m/s) at the
+/// velocities `v`: below zero it approaches its geom, above it leaves it.
+fn gap_rate<D: Dynamics>(slope: &GapSlope<D>, v: &[f64]) -> f64 {
+    slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum()
+}
+
 /// A point's velocity relative to the geom, $\sum_c\Delta_c\dot q_c$, in the
 /// tangent plane of the normal `n`.
 fn sliding<D: Dynamics>(delta: &[D::Vector], v: &[f64], n: &D::Vector) -> D::Vector {
@@ -1142,8 +1136,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                 continue;
             }
             let slope = gap_slope(&self.mechanism, &self.frames, q, &pair, low.s)?;
-            let approach: f64 = slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum();
-            if approach < 0.0 {
+            if gap_rate(&slope, v) < 0.0 {
                 let mut h = self.touch(&pair, low.s, q)?;
                 h.law = self.starting_law(&h, &low.normal, (q, v))?;
                 added.push(h);

@@ -244,9 +244,6 @@ fn initial_touching<D: Dynamics>(
     set_given(m, &mut q, &mut v);
     // Coordinates set by hand leave the equilibrium's contacts behind (the
     // parts are elsewhere); velocities keep them, sliding where launched.
-    let touching = match m.initial.is_empty() {
-        true => solution.contacts,
-        false => Vec::new(),
-    };
+    let touching = if m.initial.is_empty() { solution.contacts } else { Vec::new() };
     Ok((q, v, touching))
 }

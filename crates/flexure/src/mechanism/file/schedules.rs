@@ -134,16 +134,6 @@ pub(super) fn schedule_harmonic(
     Ok(Waveform::Harmonic { amplitude, frequency, phase, offset })
 }
 
-/// `n` of `word` (`"coordinate"`, or `"was"` for how many were given), in
-/// its number: "1 coordinate", "2 were".
-fn count(n: usize, word: &str) -> String {
-    match (n, word) {
-        (1, _) => format!("1 {word}"),
-        (_, "was") => format!("{n} were"),
-        _ => format!("{n} {word}s"),
-    }
-}
-
 /// A joint and the coordinates (or rates) given it.
 type Given = (usize, Vec<f64>);
 
@@ -181,8 +171,9 @@ pub(super) fn initial_state<D: FileDimension>(
             return src.fail(&span, format!("{owner}must be a number or an array of {dof} numbers"));
         };
         if values.len() != dof {
-            let (has, given) = (count(dof, "coordinate"), count(values.len(), "was"));
-            return src.fail(&span, format!("{owner}the joint has {has} and {given} given"));
+            let (n, plural) = (values.len(), if dof == 1 { "" } else { "s" });
+            let were = if n == 1 { "was" } else { "were" };
+            return src.fail(&span, format!("{owner}the joint has {dof} coordinate{plural} and {n} {were} given"));
         }
         src.numbers(&owner, "coordinates", &span, &values, Sign::Any)?;
         // Bounded as every coordinate is (rad, m, and per second for rates).
