@@ -844,7 +844,7 @@ fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
     }
 }
 
-/// A pair's gap rate $\dot g = \partial g/\partial q\,\dot q$ (m/s) at the
+/// A pair's gap rate $\dot g = \partial g/\partial q\thinspace\dot q$ (m/s) at the
 /// velocities `v`: below zero it approaches its geom, above it leaves it.
 fn gap_rate<D: Dynamics>(slope: &GapSlope<D>, v: &[f64]) -> f64 {
     slope.gradient.iter().zip(v).map(|(g, v)| g * v).sum()
