@@ -396,3 +396,95 @@ fn a_twisted_thick_tip_rolls_sideways() {
         assert!((moved - rolled).norm() < 1e-4 * rolled.norm(), "row {}: moved {moved}, rolled {rolled}", k + 1);
     }
 }
+
+/// Two strips (10 × 1 mm, E = 1.2 GPa, 50 mm, order 8) squeeze a disc
+/// (radius 10 mm, μ = 0.5) with 0.3 N on each tip; the disc sits on a soft
+/// slide (1 N/m) and a pull draws it out between them, planar, or spatial
+/// with the disc a cylinder.
+fn two_finger_grasp(spatial: bool) -> String {
+    let (dim, at, orders, down, up, pull, shape) = if spatial {
+        let cylinder = "shape = \"cylinder\"\nhalf_length = 0.02\n";
+        (
+            "dimension = 3\n",
+            ", 0.0",
+            "orders = [1, 1, 8]",
+            "[0.0, -0.3, 0.0]",
+            "[0.0, 0.3, 0.0]",
+            "[0.0, 0.0, 0.0]",
+            cylinder,
+        )
+    } else {
+        ("", ", 0.0", "order = 8", "[0.0, -0.3]", "[0.0, 0.3]", "[0.0, 0.0]", "shape = \"circle\"\n")
+    };
+    let finger = |name: &str, tip: &str, y: f64| {
+        format!(
+            "[[joint]]\nname = \"{name}\"\nkind = \"flexure\"\nparent = \"ground\"\nchild = \"{tip}\"\norigin = [0.0, {y}{at}]\n\
+             length = 0.05\nmodulus = 1.2e9\nwidth = 0.01\nthickness = 0.001\n{orders}\n"
+        )
+    };
+    format!(
+        "{dim}{}{}[[joint]]\nname = \"slot\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"disc\"\norigin = [0.045, 0.0{at}]\nstiffness = 1.0\n\
+         [[force]]\nname = \"squeeze_upper\"\nbody = \"upper_tip\"\nforce = {down}\n\
+         [[force]]\nname = \"squeeze_lower\"\nbody = \"lower_tip\"\nforce = {up}\n\
+         [[force]]\nname = \"pull\"\nbody = \"disc\"\nforce = {pull}\n\
+         [[geom]]\nname = \"part\"\nbody = \"disc\"\n{shape}radius = 0.01\nfriction = 0.5\n",
+        finger("upper", "upper_tip", 0.0115),
+        finger("lower", "lower_tip", -0.0115),
+    )
+}
+
+/// The disc pulled from the two-finger grasp: both contacts roll stuck,
+/// inside the strips' spans, until their friction reaches μN together.
+/// Sliding on, the disc would move toward the tips, where the strips press
+/// less, so it would take less pull: the grasp lets go there, a limit point
+/// of the path, which the sweep reports as its stability limit (it had
+/// stuck again and slipped again in steps of 1e-4 of the load, for minutes).
+/// Reference: the same grasp in motion (`simulate`; strips of 1200 kg/m³
+/// with β = 1 ms, a 10 g disc), its pull ramped at 0.5 N/s from 0.1 s:
+/// both contacts slip at the sweep's limit to 1e-4 of it (measured 4e-6),
+/// and the disc then slides out (3 mm in the 70 ms to the run's end),
+/// where before it had moved less than 0.1 mm. The spatial file gives the planar limit to 1e-4 (measured 2e-5,
+/// its slide solved with each step).
+#[test]
+fn a_disc_pulled_from_a_two_finger_grasp_lets_go_where_its_friction_is_spent() {
+    use flexure::dynamics::integrate::MotionSettings;
+    use flexure::dynamics::simulation::{SimulationSettings, Start, simulate};
+    let values = [0.0, 0.1, 0.2, 0.3, 0.4];
+    let m = from_toml(&two_finger_grasp(false)).unwrap();
+    let out = sweep(&m, &Parameter::parse(&m, "force.pull.fx").unwrap(), &values, &Settings::default()).unwrap();
+    assert!(out.stopped.is_none(), "{:?}", out.stopped);
+    let limit = out.stability_limit.expect("the grasp lets go").value;
+    assert!(out.rows.len() == 4 && (0.3..0.4).contains(&limit), "{} rows, limit {limit}", out.rows.len());
+    for (v, s) in &out.rows {
+        for c in &s.contacts {
+            let f = c.friction_force.iter().map(|f| f * f).sum::<f64>().sqrt();
+            assert!(c.state == ContactMode::Stick && f < 0.5 * c.normal_force, "{v}: {c:?}");
+        }
+    }
+    let s = spatial_from_toml(&two_finger_grasp(true)).unwrap();
+    let out = sweep(&s, &Parameter::parse(&s, "force.pull.fx").unwrap(), &[0.0, 0.4], &Settings::default()).unwrap();
+    let spatial = out.stability_limit.expect("the spatial grasp lets go").value;
+    assert!((spatial - limit).abs() < 1e-4 * limit, "spatial {spatial} vs planar {limit}");
+
+    let (start, rate) = (0.1, 0.5);
+    let moving = two_finger_grasp(false).replace("order = 8\n", "order = 8\ndensity = 1200.0\ndamping = 0.001\n")
+        + &format!(
+            "[[body]]\nname = \"disc\"\nmass = 0.01\ninertia = 5e-7\n\
+             [[schedule]]\nload = \"force.pull.fx\"\npoints = [[0.0, 0.0], [{start}, 0.0], [1.1, {}]]\n",
+            rate * (1.1 - start)
+        );
+    let motion = MotionSettings { duration: 0.85, every: 0.05, tolerance: 1e-6, absolute: 1e-6, ..Default::default() };
+    let settings = SimulationSettings { motion, ..Default::default() };
+    let run = simulate(&from_toml(&moving).unwrap(), &settings, Start::Equilibrium).unwrap();
+    assert!(run.stopped.is_none(), "{:?}", run.stopped);
+    let slips: Vec<f64> = run.changes.iter().filter(|c| c.state == ContactMode::Slip).map(|c| c.time).collect();
+    assert_eq!(slips.len(), 2, "{:?}", run.changes);
+    for t in slips {
+        let pull = rate * (t - start);
+        assert!((pull - limit).abs() < 1e-4 * limit, "slips at {pull} N in motion, lets go at {limit} N in the sweep");
+    }
+    let x = &run.bodies.iter().find(|b| b.name == "disc").expect("the disc moves").x;
+    let held = run.time.iter().zip(x).filter(|(t, _)| rate * (**t - start) < limit).map(|(_, d)| d - x[0]);
+    assert!(held.clone().all(|d| d.abs() < 1e-4), "{:?}", held.collect::<Vec<_>>());
+    assert!(x[x.len() - 1] - x[0] > 1e-3, "the disc is pulled free: {x:?}");
+}

@@ -69,6 +69,12 @@
 //! Curnier's sliding rows ([`Skid`]) in place of the stuck ones, and steps
 //! short enough that the friction turns by at most 0.01 rad.
 //!
+//! **Friction's limit.** Where a slip sticks again at its own load, and
+//! again when tried from where it stuck (its rolling pins then set there,
+//! so what it rolled before is no slide), no contact slides on as the load
+//! grows: sliding on would take less load. The path has reached a limit
+//! point and ends there as it does where stability is lost.
+//!
 //! **Refused by name:** a mechanism
 //! whose assembly overlaps a geom, a flexure lying along a geom (two
 //! contacts of one pair closer than a hundredth of its length: distributed
@@ -1406,6 +1412,13 @@ fn changed<D: Statics>(m: &Mechanism<D>, touching: &[Touching], event: Event, la
     Ok(out)
 }
 
+const FRICTION_LIMIT: &str = "mechanism equilibrium with contact (friction's limit: where a contact's friction reaches μN, no contact can slide on under more load)";
+
+/// Each touching contact's pair and whether it slides.
+fn sliding(touching: &[Touching]) -> Vec<(Pair, bool)> {
+    touching.iter().map(|t| (t.pair, matches!(t.law, Law::Slip { .. } | Law::Skid { .. }))).collect()
+}
+
 const LIES_ALONG: &str =
     "touch along an interval (distributed contact), which is not solved: the flexure lies along the geom";
 
@@ -1512,6 +1525,8 @@ fn follow<D: Statics>(
     let mut previous: Option<(f64, Vec<f64>)> = None;
     let (mut steps, mut iterations, mut residual) = (0, 0, 0.0);
     let mut touched = start.touched;
+    // The load where a slip last stuck again at once, with no step since.
+    let mut restuck: Option<f64> = None;
     let stalled = |lambda: f64, steps: usize, residual: f64, cause: String| Error::ContinuationStalled {
         cause,
         rounding: false,
@@ -1573,6 +1588,7 @@ fn follow<D: Statics>(
                 continue;
             }
             problem.accept();
+            restuck = None;
             previous = Some((lambda, std::mem::replace(&mut x, y)));
             lambda = next;
             residual = report.residual;
@@ -1596,12 +1612,25 @@ fn follow<D: Statics>(
             }
         }
         problem.read(&x);
+        let before = sliding(&problem.touching);
         problem.touching = changed(m, &problem.touching, first, hi)?;
         remember(&mut touched, first);
         x = problem.state(&x);
         problem.anchor(&x, lo, first)?;
         problem.prune(&mut x, lo)?;
         settle_events(&mut problem, &mut x, lo, settings, all, &mut touched, &mut iterations)?;
+        // A slip that sticks again at its own load, tried again from there
+        // (each rolling pin then set where it sticks, so what it rolled
+        // before is no slide) and sticking again: no contact slides on as
+        // the load grows, since sliding on would take less load (a part
+        // pulled from a grasp whose squeeze drops as it slides). This is
+        // friction's limit, a limit point of the path: nothing past it holds.
+        if matches!(first, Event::Slip(..)) && sliding(&problem.touching) == before {
+            if let Some(limit) = restuck {
+                return Err(Error::Unstable { what: FRICTION_LIMIT, load_fraction: limit });
+            }
+            restuck = Some(lo);
+        }
         lambda = lo;
         previous = None;
         steps += 1;
