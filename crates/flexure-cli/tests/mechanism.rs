@@ -270,6 +270,8 @@ fn a_stopped_sweep_keeps_its_rows() {
     assert_eq!(tensions, [0.0, 25.0]);
     assert_eq!(v["stopped"]["value"], 50.0);
     assert!(err.contains("the sweep stopped at tendon.flexor.tension = 50 after 2 of 5 values"), "{err}");
+    // Its error's fraction of the load is of the way from the last value reached.
+    assert!(err.contains("on its way there from 25 (a fraction of the load below is of that way)"), "{err}");
 }
 
 /// `draw` gives the warnings `solve` gives on the same file: here a sweep

@@ -172,10 +172,11 @@ pub(super) fn swept_answer(
     }
     if let Some((value, e)) = &out.stopped {
         let error = format!(
-            "{}: the sweep stopped at {parameter} = {value} after {} of {} values (each printed above): {e}",
+            "{}: the sweep stopped at {parameter} = {value} after {} of {} values (each printed above), {}: {e}",
             file.display(),
             out.rows.len(),
-            values.len()
+            values.len(),
+            flexure::mechanism::sweep::way_to(out.rows.last().map(|r| r[0]))
         );
         v["stopped"] = json!({ "value": value, "error": error });
     }

@@ -94,9 +94,10 @@ pub fn sweep<'py>(
     };
     let Some((value, e)) = &swept.stopped else { return Ok(result) };
     let text = format!(
-        "Mechanism.sweep: the sweep stopped at {parameter} = {value} after {} of {} values (kept in the exception's `result`): {e}",
+        "Mechanism.sweep: the sweep stopped at {parameter} = {value} after {} of {} values (kept in the exception's `result`), {}: {e}",
         swept.rows.len(),
-        values.len()
+        values.len(),
+        flexure::mechanism::sweep::way_to(swept.rows.last().map(|r| r[0]))
     );
     let err = match e {
         Error::Interrupted { .. } | Error::InterruptedAt { .. } => PyKeyboardInterrupt::new_err(text),
@@ -209,7 +210,11 @@ fn answer<'py>(
         d.set_item("value", value)?;
         d.set_item(
             "error",
-            format!("the sweep stopped at {parameter} = {value} after {n} of {} values: {e}", values.len()),
+            format!(
+                "the sweep stopped at {parameter} = {value} after {n} of {} values, {}: {e}",
+                values.len(),
+                flexure::mechanism::sweep::way_to(swept.rows.last().map(|r| r[0]))
+            ),
         )?;
         result.set_item("stopped", d)?;
     }

@@ -272,6 +272,22 @@ pub fn sweep<D: Statics>(
     Ok(out)
 }
 
+/// Where a stopped sweep followed its failing value from, as its error's
+/// fraction of the load counts: the last value it reached, or no load.
+///
+/// # Example
+/// ```
+/// use flexure::mechanism::sweep::way_to;
+/// assert!(way_to(Some(3.75)).contains("from 3.75"));
+/// assert!(way_to(None).contains("from no load"));
+/// ```
+pub fn way_to(last: Option<f64>) -> String {
+    match last {
+        Some(v) => format!("on its way there from {v} (a fraction of the load below is of that way)"),
+        None => "on its way there from no load (a fraction of the load below is of all of it)".to_string(),
+    }
+}
+
 /// [`sweep`] of a mechanism with contact: each value followed from the
 /// last with its contacts ([`follow_touching`]), the first from no load.
 /// Where the path from one value to the next loses stability, that is the
