@@ -52,9 +52,12 @@
 //! length of a touching contact of the same pair) falling below zero
 //! touches. The integrator lands on each within a band: a gap to
 //! `tolerance` × the mechanism's size, a force or speed to `tolerance` ×
-//! the largest the contact has had (a speed, at least $\lVert\Delta\rVert$: the
-//! slide a unit of each rate makes, which the integrator resolves only to
-//! about the tolerance). A contact that touches while its parts
+//! the largest the contact has had at the steps accepted (a speed, at least
+//! what the integrator resolves of it: each rate to the
+//! tolerance of itself, each moving the point by its $\Delta_c$). A slip
+//! begins where a stuck contact needs more than $\mu N$ past its guard's
+//! band, and turns back at its first step only past the speed it still had
+//! the other way where it began. A contact that touches while its parts
 //! approach ($\dot g_c < 0$) takes a perfectly inelastic impact (the
 //! integrator's projection onto the new closures: the energy never grows);
 //! with friction it slides on the way it moves after the impact (which can
@@ -109,8 +112,11 @@ enum Law {
     /// Stuck at `anchor`, a material point of the geom's body (its frame).
     Stick { anchor: [f64; 3] },
     /// Sliding in the direction `from` (a unit tangent, world: where it
-    /// began, then at each step accepted), its fastest speed so far `fastest`.
-    Slip { from: [f64; 3], fastest: f64 },
+    /// began, then at each step accepted), its fastest speed so far
+    /// `fastest`; `lag`, the speed it still had the other way where it
+    /// began from stuck (a stop landed a little past its turn), which it
+    /// sheds before it can turn back.
+    Slip { from: [f64; 3], fastest: f64, lag: f64 },
     /// Rolling without slipping: the velocity of the toucher's material
     /// point where it touches, relative to the geom's there, held at zero
     /// along the surface's tangents, those nearest `tangents` (world, kept
@@ -331,7 +337,7 @@ impl<D: Dynamics> ContactSystem<D> {
                     !corner(m, pair)?.sharp() && !self.translates_only(m.geoms[h].body, m.geoms[pair.geom].body)
                 }
             };
-            h.law = Law::Slip { from: [0.0; 3], fastest: 0.0 };
+            h.law = Law::Slip { from: [0.0; 3], fastest: 0.0, lag: 0.0 };
         }
         Ok(h)
     }
@@ -357,7 +363,7 @@ impl<D: Dynamics> ContactSystem<D> {
         let slide = sliding::<D>(&delta, v, normal);
         let speed = dot::<D>(&slide, &slide).sqrt();
         Ok(match (speed > self.creep, &slope) {
-            (true, _) => Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed },
+            (true, _) => Law::Slip { from: array::<D>(&scaled::<D>(&slide, 1.0 / speed)), fastest: speed, lag: 0.0 },
             (false, Some(slope)) => rolling::<D>(&slope.normal),
             (false, None) => Law::Stick { anchor: self.anchor(h, q)? },
         })
@@ -705,8 +711,13 @@ impl<D: Dynamics> ContactSystem<D> {
             let r = self.read(i, rows[i], (q, v), Some(&lambda))?;
             let h = &mut self.held[i];
             let size = dot::<D>(&r.friction, &r.friction).sqrt();
-            if size > h.mu * r.push * (1.0 + self.tolerance) && size > 0.0 {
-                h.law = Law::Slip { from: array::<D>(&scaled::<D>(&r.friction, -1.0 / size)), fastest: 0.0 };
+            // Past the band its stick guard lands in (a friction within it
+            // of μN, stuck again, slid again and stopped at once, 24 times
+            // at one instant).
+            if size > h.mu * r.push + self.tolerance * h.largest.max(r.push) && size > 0.0 {
+                let from = scaled::<D>(&r.friction, -1.0 / size);
+                let lag = (-dot::<D>(&r.slide, &from)).max(0.0);
+                h.law = Law::Slip { from: array::<D>(&from), fastest: 0.0, lag };
                 if let Some(c) = self.changes.iter_mut().rev().find(|c| c.pair == h.pair) {
                     c.state = ContactMode::Slip;
                 }
@@ -868,6 +879,18 @@ fn stuck_axes<D: Dynamics>(n: &D::Vector, turned: Option<&[[f64; 3]; 2]>) -> Vec
     std::iter::once(*n).chain(t[..D::POINT_DIM - 1].iter().map(vector::<D>)).collect()
 }
 
+/// The slide's speed the integrator resolves, per unit of its tolerance:
+/// each rate $\dot q_c$ to about the tolerance of $1 + \lvert\dot q_c\rvert$
+/// (its error's weight), each moving the point by its $\Delta_c$,
+/// $$\sqrt{\textstyle\sum_c \lvert\Delta_c\rvert^2(1 + \lvert\dot q_c\rvert)^2}.$$
+/// A stuck slide is held to this, not to zero: where the flexures ring
+/// fast (rates of thousands per second), a stuck pad's slide is 1e-7 m/s,
+/// which read as a slip turning back at once had stuck it again 24 times
+/// at one instant.
+fn resolved<D: Dynamics>(delta: &[D::Vector], v: &[f64]) -> f64 {
+    delta.iter().zip(v).map(|(d, v)| dot::<D>(d, d) * (1.0 + v.abs()).powi(2)).sum::<f64>().sqrt()
+}
+
 /// A contact rolling stuck where the geom's normal is `normal`: its tangents from it.
 fn rolling<D: Dynamics>(normal: &D::Vector) -> Law {
     Law::Roll { tangents: tangents::<D>(&array::<D>(normal), None) }
@@ -1016,7 +1039,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
                     // keeps the way its stuck force pulled it: its speed is
                     // still the closures' rounding.)
                     let speed = dot::<D>(&r.slide, &r.slide).sqrt();
-                    if let Law::Slip { from, fastest } = &mut h.law
+                    if let Law::Slip { from, fastest, .. } = &mut h.law
                         && *fastest > 0.0
                         && speed > self.creep
                     {
@@ -1035,17 +1058,21 @@ impl<D: Dynamics> System for ContactSystem<D> {
                         Law::Stick { .. } | Law::Roll { .. } => {
                             (h.mu * r.push - dot::<D>(&r.friction, &r.friction).sqrt()) / band
                         }
-                        Law::Slip { from, fastest } => {
+                        Law::Slip { from, fastest, lag } => {
                             let speed = dot::<D>(&r.slide, &vector::<D>(from));
-                            *fastest = fastest.max(speed);
-                            // Not finer than the integrator resolves a slide:
-                            // the rates to about the tolerance, each moving it
-                            // by its Δ_c.
-                            let reach = r.delta.iter().map(|d| dot::<D>(d, d)).sum::<f64>().sqrt();
-                            match *fastest > 0.0 {
-                                true => speed / (tolerance * fastest.max(reach)),
-                                // Turning back from its first step: it sticks where it began.
-                                false if speed < 0.0 => -1e12,
+                            // Its fastest at the steps accepted, or now: a
+                            // trial step's is not kept (one refused had set
+                            // it, and a slip that began at the stop after
+                            // read as turning back, 24 times at one instant).
+                            let top = fastest.max(speed);
+                            // Not finer than the integrator resolves a slide.
+                            let reach = resolved::<D>(&r.delta, v);
+                            match top > 0.0 {
+                                true => speed / (tolerance * top.max(reach)),
+                                // Turning back from its first step, past the
+                                // speed it had the other way where it began:
+                                // it sticks where it began.
+                                false if speed < -(*lag + tolerance * reach) => -1e12,
                                 false => 1.0,
                             }
                         }
@@ -1110,7 +1137,8 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let law = match h.law {
                 Law::Stick { .. } | Law::Roll { .. } => {
                     let from = if size > 0.0 { scaled::<D>(&r.friction, -1.0 / size) } else { r.slide };
-                    Law::Slip { from: array::<D>(&from), fastest: 0.0 }
+                    let lag = (-dot::<D>(&r.slide, &from)).max(0.0);
+                    Law::Slip { from: array::<D>(&from), fastest: 0.0, lag }
                 }
                 _ if h.rolls => rolling::<D>(&r.slope.normal),
                 _ => Law::Stick { anchor: self.anchor(&h, q)? },
@@ -1268,12 +1296,13 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let speed = dot::<D>(&slide, &slide).sqrt();
             // Above the speed the integrator resolves (its stop guard's
             // band): below it, the slide's way is mostly the rates' error.
-            let reach = r.delta.iter().map(|d| dot::<D>(d, d)).sum::<f64>().sqrt();
-            if let Law::Slip { from, fastest } = &mut self.held[i].law
-                && speed > self.creep.max(tolerance * fastest.max(reach))
-                && dot::<D>(&slide, &vector::<D>(from)) > 0.0
-            {
-                *from = array::<D>(&scaled::<D>(&slide, 1.0 / speed));
+            let reach = resolved::<D>(&r.delta, v);
+            if let Law::Slip { from, fastest, .. } = &mut self.held[i].law {
+                let along = dot::<D>(&slide, &vector::<D>(from));
+                *fastest = fastest.max(along);
+                if speed > self.creep.max(tolerance * fastest.max(reach)) && along > 0.0 {
+                    *from = array::<D>(&scaled::<D>(&slide, 1.0 / speed));
+                }
             }
         }
         Ok(())
