@@ -715,9 +715,7 @@ impl<D: Dynamics> ContactSystem<D> {
             // of μN, stuck again, slid again and stopped at once, 24 times
             // at one instant).
             if size > h.mu * r.push + self.tolerance * h.largest.max(r.push) && size > 0.0 {
-                let from = scaled::<D>(&r.friction, -1.0 / size);
-                let lag = (-dot::<D>(&r.slide, &from)).max(0.0);
-                h.law = Law::Slip { from: array::<D>(&from), fastest: 0.0, lag };
+                h.law = slipping::<D>(&scaled::<D>(&r.friction, -1.0 / size), &r.slide);
                 if let Some(c) = self.changes.iter_mut().rev().find(|c| c.pair == h.pair) {
                     c.state = ContactMode::Slip;
                 }
@@ -889,6 +887,13 @@ fn stuck_axes<D: Dynamics>(n: &D::Vector, turned: Option<&[[f64; 3]; 2]>) -> Vec
 /// at one instant.
 fn resolved<D: Dynamics>(delta: &[D::Vector], v: &[f64]) -> f64 {
     delta.iter().zip(v).map(|(d, v)| dot::<D>(d, d) * (1.0 + v.abs()).powi(2)).sum::<f64>().sqrt()
+}
+
+/// A stuck contact that begins to slide along `from` (world), its slide
+/// now `slide`: from rest, first shedding the speed it still has the other
+/// way ([`Law::Slip`]'s `lag`).
+fn slipping<D: Dynamics>(from: &D::Vector, slide: &D::Vector) -> Law {
+    Law::Slip { from: array::<D>(from), fastest: 0.0, lag: (-dot::<D>(slide, from)).max(0.0) }
 }
 
 /// A contact rolling stuck where the geom's normal is `normal`: its tangents from it.
@@ -1137,8 +1142,7 @@ impl<D: Dynamics> System for ContactSystem<D> {
             let law = match h.law {
                 Law::Stick { .. } | Law::Roll { .. } => {
                     let from = if size > 0.0 { scaled::<D>(&r.friction, -1.0 / size) } else { r.slide };
-                    let lag = (-dot::<D>(&r.slide, &from)).max(0.0);
-                    Law::Slip { from: array::<D>(&from), fastest: 0.0, lag }
+                    slipping::<D>(&from, &r.slide)
                 }
                 _ if h.rolls => rolling::<D>(&r.slope.normal),
                 _ => Law::Stick { anchor: self.anchor(&h, q)? },
