@@ -21,8 +21,7 @@ pub fn estimate(e: &ErrorEstimate) -> Value {
     serialized(e)
 }
 
-/// The largest factor `--limit` tries on a load.
-pub const MAX_FACTOR: f64 = 1000.0;
+pub use flexure::limit::MAX_FACTOR;
 
 /// Writes `--limit`'s answer into `answer`: `stability_limit`, the
 /// library's serialization `{factor, status}`, `status` "lost" (stability is

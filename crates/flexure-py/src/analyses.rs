@@ -21,8 +21,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// The largest factor `stability_limit` tries by default, as the CLI's `--limit`.
-pub const MAX_FACTOR: f64 = 1000.0;
+pub use flexure::limit::MAX_FACTOR;
 
 /// `max_factor`, finite and greater than zero.
 pub fn max_factor(v: f64) -> PyResult<f64> {

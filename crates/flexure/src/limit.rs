@@ -9,6 +9,10 @@
 use crate::error::{Error, Result};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
+/// The largest factor on a load that a stability limit tries unless told
+/// otherwise: the CLI's `--limit` and Python's `max_factor` default.
+pub const MAX_FACTOR: f64 = 1000.0;
+
 /// How far a load can be scaled from rest before stability is lost.
 #[derive(Debug, Clone, PartialEq)]
 pub enum StabilityLimit {
