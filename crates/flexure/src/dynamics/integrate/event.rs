@@ -198,6 +198,35 @@ pub(super) fn guards<S: System + ?Sized>(
     system.guards(q, v, multipliers, out)
 }
 
+/// The guards at a state where a mode begins (the run's start, or just
+/// after a switch), into `out`: read first without multipliers, which
+/// sets what a mode's start sets (a slide's way after an impact) and puts
+/// each push and friction at its band's edge, then with the equations' own
+/// ([`consistent_multipliers`]) where they exist, whose values replace
+/// those within or above their bands. The steps aimed at the next event
+/// interpolate from these: with the band's edge, a push $3\times10^6$ bands from
+/// zero read as at it, each aim fell to rounding, and over steps that short
+/// rounding moved the velocities enough to read a slide turning back (a
+/// fast grasp switched stick and slip 24 times at one instant). A value
+/// past its band keeps the edge: the steps find that event.
+pub(super) fn entered<S: System + ?Sized>(
+    system: &mut S,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    out: &mut Vec<f64>,
+) -> crate::error::Result<()> {
+    guards(system, q, v, None, out)?;
+    if system.closures() > 0
+        && let Some(lambda) = consistent_multipliers(system, t, q, v)?
+    {
+        let mut read = Vec::new();
+        guards(system, q, v, Some(&lambda), &mut read)?;
+        out.iter_mut().zip(&read).filter(|(_, r)| **r >= -1.0).for_each(|(g, r)| *g = *r);
+    }
+    Ok(())
+}
+
 /// The first step's scale after an event (× the sample interval), for [`project`]'s metric.
 pub(super) const PROJECTION_STEP: f64 = 1e-6;
 

@@ -101,7 +101,7 @@ pub(super) fn advance<S: System + ?Sized>(
     record(system, run, 0.0, &q, &v, None)?;
     // The guards at the last state accepted, at a step's end, and the event aimed at.
     let (mut g_now, mut g_end) = (Vec::new(), Vec::new());
-    event::guards(system, &q, &v, None, &mut g_now)?;
+    event::entered(system, 0.0, &q, &v, &mut g_now)?;
     let mut pending: Option<Pending> = None;
     // Accepted steps since the start or the last switch, and the multipliers
     // of the last step accepted (none at the start or after a switch).
@@ -520,22 +520,7 @@ fn enter<S: System + ?Sized>(
     w.velocity = system.velocity_closures();
     w.prev_h = 0.0;
     event::project(system, t, (q, v), PROJECTION_STEP * settings.every.min(settings.max_step))?;
-    event::guards(system, q, v, None, g_now)?;
-    // Without multipliers the guards of what just touched or changed sit
-    // inside their bands; the equations' own give their values, which the
-    // steps aimed at the next event interpolate from. With the placeholders
-    // a push of 3e6 bands read as at its band, every aim fell to rounding,
-    // and the steps so short read their velocities' rounding as a slide
-    // turning back (a fast grasp switched stick and slip 24 times at one
-    // instant). One they put past its band keeps its placeholder: the steps
-    // find it.
-    if w.m > 0
-        && let Some(lambda) = event::consistent_multipliers(system, t, q, v)?
-    {
-        let mut read = Vec::new();
-        event::guards(system, q, v, Some(&lambda), &mut read)?;
-        g_now.iter_mut().zip(&read).filter(|(_, r)| **r >= -1.0).for_each(|(g, r)| *g = *r);
-    }
+    event::entered(system, t, q, v, g_now)?;
     match g_now.iter().find(|g| **g < -1.0 || g.is_nan()) {
         Some(g) => {
             Err(Error::Singular { what: format!("a guard {g:.3e} times past its band just after an event at {t} s") })
