@@ -616,3 +616,63 @@ fn pairs_that_only_meet_at_no_load_touch_only_where_something_rests_on_them() {
     assert!(s.contacts.is_empty(), "{:?}", s.contacts);
     assert!((s.q[0] - (20.0 - 9.81) / 100.0).abs() < 1e-12, "{:?}", s.q);
 }
+
+/// A ball 1 cm in radius on free x and y sliders, set on a rough incline
+/// of θ = 0.3 rad (`spatial`: the same in a spatial file), of `mass` (kg),
+/// its friction `mu`.
+fn ball_on_incline(spatial: bool, mass: f64, mu: f64) -> String {
+    let (s, c) = 0.3_f64.sin_cos();
+    let (r, up) = (0.01, if spatial { "axis = [0.0, 1.0, 0.0]" } else { "origin = [0.0, 0.0, 1.5707963267948966]" });
+    let (head, zero, ball) = match spatial {
+        true => ("dimension = 3\ngravity = [0.0, -9.81, 0.0]", ", 0.0", "sphere"),
+        false => ("gravity = [0.0, -9.81]", "", "circle"),
+    };
+    format!(
+        "{head}\n[[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\norigin = [{}, {}, 0.0]\n\
+         [[joint]]\nname = \"sy\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"ball\"\n{up}\n\
+         [[body]]\nname = \"ball\"\nmass = {mass}\n\
+         [[geom]]\nname = \"shot\"\nbody = \"ball\"\nshape = \"{ball}\"\nradius = {r}\n\
+         [[geom]]\nname = \"incline\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, 0.0{zero}]\nnormal = [{}, {c}{zero}]\nfriction = {mu}\n",
+        -r * s,
+        r * c,
+        -s
+    )
+}
+
+/// Coulomb's incline: the ball of [`ball_on_incline`] holds where
+/// $\mu \ge \tan\theta$ = 0.3093362, stuck with $N = mg\cos\theta$ and a friction
+/// of $mg\sin\theta$ (each to $10^{-9}$ of $mg$), and at $\mu$ 1e-5 below it
+/// there is no equilibrium: it slips at no load and slides away, friction's
+/// limit. So for 1 g, 100 g and 10 kg, in the plane and in space. The
+/// event tolerances took their force unit from the stiffest joint, and a
+/// mechanism with none from a stand-in of 1 N·m: a 1 g ball at μ = 0.21
+/// was answered stuck with a friction 47 % over μN (an audit's case).
+#[test]
+fn a_ball_on_a_rough_incline_holds_where_coulomb_says_whatever_its_mass() {
+    let (s, c, tan) = (0.3_f64.sin(), 0.3_f64.cos(), 0.3_f64.tan());
+    for spatial in [false, true] {
+        for mass in [1e-3, 0.1, 10.0] {
+            for (mu, holds) in [(tan + 1e-5, true), (tan - 1e-5, false)] {
+                let text = ball_on_incline(spatial, mass, mu);
+                let contacts = match spatial {
+                    true => solve(&flexure::mechanism::file::spatial_from_toml(&text).unwrap(), &Settings::default())
+                        .map(|s| s.contacts),
+                    false => solve(&from_toml(&text).unwrap(), &Settings::default()).map(|s| s.contacts),
+                };
+                let case = format!("spatial {spatial}, {mass} kg, μ {mu}");
+                match (holds, contacts) {
+                    (true, Ok(contacts)) => {
+                        let [touch] = &contacts[..] else { panic!("{case}: {contacts:?}") };
+                        let friction = touch.friction_force.iter().map(|f| f * f).sum::<f64>().sqrt();
+                        let weight = mass * 9.81;
+                        assert_eq!(touch.state, ContactMode::Stick, "{case}");
+                        assert!((touch.normal_force - weight * c).abs() < 1e-9 * weight, "{case}: {touch:?}");
+                        assert!((friction - weight * s).abs() < 1e-9 * weight, "{case}: {touch:?}");
+                    }
+                    (false, Err(e)) => assert!(e.to_string().contains("friction's limit"), "{case}: {e}"),
+                    (_, answer) => panic!("{case}: {answer:?}"),
+                }
+            }
+        }
+    }
+}

@@ -1505,8 +1505,11 @@ fn follow<D: Statics>(
     };
     let kkt = Kkt::fitted(m, &start.loads, to, settings, Buffers::Borrowed(work))?;
     let length = kkt.length;
-    // As a position closure row's multiplier: the stiffest joint's k over ℓ.
-    let sigma = kkt.row_scale.iter().map(|r| 1.0 / r).fold(f64::MIN_POSITIVE, f64::max) / length;
+    // As a position closure row's multiplier: the stiffest joint's k over
+    // ℓ, in N (a slider's k ℓ², as its moment; its k alone made a ball on
+    // free sliders 1 cm across judge its forces 1e4 times too coarsely).
+    let sigma = kkt.row_scale.iter().zip(&kkt.weight).map(|(r, w)| 1.0 / (r * w * w)).fold(f64::MIN_POSITIVE, f64::max)
+        / length;
     let x0 = kkt.state(&start.q, &start.multipliers);
     let mut problem = ContactKkt {
         kkt,
@@ -1537,7 +1540,7 @@ fn follow<D: Statics>(
         unit: "relative",
     };
     // The touching set at the start (a pair touching with no load).
-    settle_events(&mut problem, &mut x, 0.0, settings, all, &mut touched, &mut iterations)?;
+    settle_events(&mut problem, &mut x, 0.0, settings, all, &mut touched, &mut iterations, false)?;
     (problem.unloaded, problem.resting) = (false, false);
     while lambda < 1.0 {
         if steps >= MAX_STEPS {
@@ -1618,7 +1621,8 @@ fn follow<D: Statics>(
         x = problem.state(&x);
         problem.anchor(&x, lo, first)?;
         problem.prune(&mut x, lo)?;
-        settle_events(&mut problem, &mut x, lo, settings, all, &mut touched, &mut iterations)?;
+        let slipped = matches!(first, Event::Slip(..));
+        settle_events(&mut problem, &mut x, lo, settings, all, &mut touched, &mut iterations, slipped)?;
         // A slip that sticks again at its own load, tried again from there
         // (each rolling pin then set where it sticks, so what it rolled
         // before is no slide) and sticking again: no contact slides on as
@@ -1671,7 +1675,12 @@ fn follow<D: Statics>(
 }
 
 /// Solves at `lambda` with the set as it stands, then changes it while an
-/// event holds there (at most [`MAX_CHANGES_AT_ONCE`] times).
+/// event holds there (at most [`MAX_CHANGES_AT_ONCE`] times). Where a
+/// contact has just `slipped`, a sliding set that Newton cannot solve or
+/// that is unstable at once is friction's limit: the slip holds nothing
+/// at its own load (a ball on an incline steeper than its friction holds
+/// slips at no load and slides away), not a stall or a buckling.
+#[allow(clippy::too_many_arguments)]
 fn settle_events<D: Statics>(
     problem: &mut ContactKkt<D>,
     x: &mut Vec<f64>,
@@ -1680,10 +1689,16 @@ fn settle_events<D: Statics>(
     all: &[Pair],
     touched: &mut Vec<Pair>,
     iterations: &mut usize,
+    slipped: bool,
 ) -> Result<()> {
     let m = problem.kkt.mechanism;
-    for _ in 0..=MAX_CHANGES_AT_ONCE {
-        let (y, r) = newton(problem, x, lambda, settings).map_err(|e| unsettled(m, &problem.touching, lambda, &e))?;
+    let limit = Error::Unstable { what: FRICTION_LIMIT, load_fraction: lambda };
+    for k in 0..=MAX_CHANGES_AT_ONCE {
+        let (y, r) = match newton(problem, x, lambda, settings) {
+            Ok(solved) => solved,
+            Err(_) if slipped && k == 0 => return Err(limit),
+            Err(e) => return Err(unsettled(m, &problem.touching, lambda, &e)),
+        };
         *iterations += r.iterations;
         *x = y;
         match event(problem, x, lambda, all)? {
@@ -1691,6 +1706,7 @@ fn settle_events<D: Statics>(
                 problem.accept();
                 return Ok(());
             }
+            Some(Event::Unstable) if slipped => return Err(limit),
             Some(e) => {
                 problem.read(x);
                 problem.touching = changed(m, &problem.touching, e, lambda)?;

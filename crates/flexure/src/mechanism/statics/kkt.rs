@@ -121,8 +121,19 @@ impl<'a, D: Statics> Kkt<'a, D> {
             }
         }
         let moments = || stiffness.iter().zip(unit.iter()).map(|(k, u)| k * u);
+        // Largest load, as a moment, in radians of the softest joint.
+        let magnitude = |l: &Loads<D>| D::load_size(m, l, length);
         let k_max = moments().fold(0.0, f64::max);
-        let k_max = if k_max > 0.0 { k_max } else { 1.0 };
+        // Without a stiff joint (bodies on free sliders held by a geom, a
+        // pendulum) the loads set the scale: with a stand-in of 1 N·m, a
+        // 1 g ball's weight was 1e-6 of it, Newton stopped at its first
+        // guess below 1e-6 of the load, and the path read a loss of stability there.
+        let loads = magnitude(from) + magnitude(to);
+        let k_max = match (k_max > 0.0, loads > 0.0 && loads.is_finite()) {
+            (true, _) => k_max,
+            (false, true) => loads,
+            (false, false) => 1.0,
+        };
         let k_min = moments().filter(|&k| k > 0.0).fold(k_max, f64::min);
         // A free coordinate is measured against the stiffest joint.
         for (k, u) in row_scale.iter_mut().zip(weight.iter_mut()) {
@@ -141,8 +152,6 @@ impl<'a, D: Statics> Kkt<'a, D> {
                 multiplier_scale.push(if position { k_max / length } else { k_max });
             }
         }
-        // Largest load, as a moment, in radians of the softest joint.
-        let magnitude = |l: &Loads<D>| D::load_size(m, l, length);
         let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
         let start_scale = 1.0 + (magnitude(from) + magnitude(from)) / k_min;
         if !scale.is_finite() {
