@@ -805,14 +805,7 @@ fn a_contact_is_drawn_at_its_point_and_a_floor_does_not_widen_the_view() {
         assert!(arrows.iter().any(|(from, to)| near(*to, head) && near(*from, tail)), "{c:?} in {arrows:?}");
     }
     // The floor's band: the closed path reaching below the post.
-    let band = fig
-        .marks
-        .iter()
-        .find_map(|mk| match mk {
-            Mark::Path { points, closed: true, .. } if points.iter().any(|p| p.1 < -0.0105) => Some(points.clone()),
-            _ => None,
-        })
-        .unwrap();
+    let band = closed_path(&fig, |points| points.iter().any(|p| p.1 < -0.0105));
     let bounds = |i: usize| {
         band.iter().map(|p| if i == 0 { p.0 } else { p.1 }).fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)))
     };
@@ -820,4 +813,42 @@ fn a_contact_is_drawn_at_its_point_and_a_floor_does_not_widen_the_view() {
     let eps = 1e-12;
     assert!((x0 + 0.0075).abs() < eps && (x1 - 0.0575).abs() < eps, "{x0} {x1}");
     assert!((y0 + 0.012).abs() < eps && (y1 + 0.01).abs() < eps, "{y0} {y1}");
+}
+
+/// A floor's band spans the shapes as well as the unloaded mechanism: a
+/// puck 2 cm across on a sprung slider (10 N/m) pushed 2 N along x rests
+/// 0.2 m out over its floor, and the band reaches under it. Reference:
+/// the drawing's rule for the band, to rounding: across the box of what
+/// is drawn (x from −0.01 to 0.21 m) and 15 % of the mechanism's size
+/// (0.02 m, the unloaded puck's) past it. Before, the band spanned the
+/// unloaded box alone, to x = 0.013 m, and a ball thrown along its floor
+/// rested past its end, floating.
+#[test]
+fn a_floor_reaches_under_every_shape() {
+    use flexure::mechanism::statics::{Settings, Statics, Workspace, follow_touching};
+    let text = "[[joint]]\nname = \"sx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"puck\"\nstiffness = 10.0\n\
+                [[body]]\nname = \"puck\"\nmass = 0.1\n\
+                [[force]]\nname = \"push\"\nbody = \"puck\"\nforce = [2.0, 0.0]\n\
+                [[geom]]\nname = \"disc\"\nbody = \"puck\"\nshape = \"circle\"\nradius = 0.01\n\
+                [[geom]]\nname = \"floor\"\nbody = \"ground\"\nshape = \"plane\"\norigin = [0.0, -0.011]\nnormal = [0.0, 1.0]\n";
+    let m = flexure::mechanism::file::from_toml(text).unwrap();
+    let s = solve(&m, &Settings::default()).unwrap();
+    assert!((s.q[0] - 0.2).abs() < 1e-12, "{:?}", s.q);
+    let zero = flexure::space::Planar::zero(&m.loads());
+    let (rest, _) = follow_touching(&m, None, &zero, &Settings::default(), &mut Workspace::new(&m)).unwrap();
+    let (fig, _) =
+        shapes_figure(&m, "puck", &rest, &[("pushed".into(), s)], &Marks::default(), View::Top, true).unwrap();
+    // The floor's band: the closed path below the puck.
+    let band = closed_path(&fig, |points| points.iter().all(|p| p.1 < -0.0105));
+    let (x0, x1) = band.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    assert!((x0 + 0.013).abs() < 1e-12 && (x1 - 0.213).abs() < 1e-12, "{x0} {x1}");
+}
+
+/// The first closed path of `fig` whose points `pick` takes: a geom's outline.
+fn closed_path(fig: &flexure_chart::Figure, pick: impl Fn(&[(f64, f64)]) -> bool) -> Vec<(f64, f64)> {
+    let found = fig.marks.iter().find_map(|mk| match mk {
+        Mark::Path { points, closed: true, .. } if pick(points) => Some(points.clone()),
+        _ => None,
+    });
+    found.expect("a closed path")
 }

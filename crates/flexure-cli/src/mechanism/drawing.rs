@@ -163,8 +163,9 @@ pub struct Marks {
 pub(super) struct Sizes {
     /// The mechanism's size (m): the largest span of its unloaded points, or its longest flexure.
     pub(super) extent: f64,
-    /// The middle of its unloaded points' box and half that box's sides
-    /// (world, m): a plane is drawn about the middle's foot, across the box.
+    /// The middle of the box of what is drawn (the unloaded points and
+    /// every shape's) and half its sides (world, m): a plane is drawn
+    /// about the middle's foot, across the box.
     pub(super) centre: V,
     pub(super) half: V,
     /// The links' half thickness (m): 1.2 % of the size.
@@ -686,11 +687,33 @@ pub fn figure(
     };
     let longest_flexure = rest.flexures.iter().map(|c| c.length).fold(0.0, f64::max);
     let extent = span(0).max(span(1)).max(span(2)).max(longest_flexure).max(1e-9);
+    // A plane's band spans what is drawn: the shapes too, not the rest
+    // shape alone (a ball thrown 0.2 m along its floor rested past a band
+    // of 25 mm, floating).
+    let drawn: Vec<V> = pts
+        .iter()
+        .map(|p| **p)
+        .chain(loaded.iter().flat_map(|(_, s)| {
+            let balls = s.geoms.iter().filter_map(solids::bounding_ball);
+            s.links
+                .iter()
+                .flatten()
+                .chain(&s.origins)
+                .chain(&s.roots)
+                .chain(s.flexures.iter().flat_map(|c| &c.points))
+                .copied()
+                .chain(balls.flat_map(|(c, r)| (0..3).flat_map(move |i| [c - V::ith(i, r), c + V::ith(i, r)])))
+        }))
+        .collect();
+    let bounds = |i: usize| drawn.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
     let middle = |i: usize| {
-        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
+        let (lo, hi) = bounds(i);
         if hi >= lo { 0.5 * (lo + hi) } else { 0.0 }
     };
-    let half = V::new(span(0), span(1), span(2)) * 0.5;
+    let half = V::from_fn(|i, _| {
+        let (lo, hi) = bounds(i);
+        if hi > lo { 0.5 * (hi - lo) } else { 0.0 }
+    });
     let all_loads = || loaded.iter().flat_map(|(_, p)| &p.loads);
     let largest = all_loads().map(|l| l.force.norm()).fold(solids::largest_contact(loaded), f64::max);
     let largest_moment = all_loads().map(|l| l.moment.norm()).fold(0.0, f64::max);

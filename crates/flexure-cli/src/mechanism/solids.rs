@@ -6,9 +6,10 @@
 //!   points): a circle or sphere as a circle, a capsule as two circles and
 //!   the band between them, a box and a cylinder as the hull of their
 //!   corners or end circles. A plane, unbounded, is drawn as a band behind
-//!   its surface under the mechanism, across the mechanism's box and a
-//!   little past it (about its centre's foot on the plane), so that it
-//!   never widens the view much beyond the mechanism. A geom on the ground is drawn once, grey,
+//!   its surface under the mechanism, across the box of what is drawn (the
+//!   unloaded mechanism and every shape) and a little past it (about its
+//!   centre's foot on the plane), so that it never widens the view much
+//!   beyond them. A geom on the ground is drawn once, grey,
 //!   named beside it; one on a moving body with each shape, in its colour.
 //! - **Contacts** (of the loaded shapes): a dot where each touches and an
 //!   arrow for the normal force the geom exerts on the part, its head at
@@ -48,7 +49,7 @@ fn across(n: &V) -> V {
 }
 
 /// The world points whose picture's hull is the solid's outline in `view`;
-/// a plane's band about the foot of the mechanism's box's centre, across its box.
+/// a plane's band about the foot of the drawn box's centre, across the box.
 fn silhouette(view: View, solid: &Solid, sizes: &Sizes) -> Vec<V> {
     let f = &solid.frame;
     let at = |x: f64, y: f64, z: f64| (f * nalgebra::Point3::new(x, y, z)).coords;
