@@ -287,7 +287,7 @@ fn bad_geoms_are_refused_at_their_place_naming_the_field_and_value() {
         "`rpy` is for spatial mechanisms (dimension = 3): a planar geom turns by `angle`",
     );
     let unknown = format!("{STRIP}[[geom]]\nbody = \"palm\"\nshape = \"circle\"\nradius = 0.1\n");
-    refused(&unknown, "\"palm\"", "unknown body \"palm\"");
+    refused(&unknown, "\"palm\"", "geom \"geom 1\": body: unknown body \"palm\"");
     let twice = format!(
         "{STRIP}[[geom]]\nname = \"g\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.0, 0.5]\nradius = 0.1\n[[geom]]\nname = \"g\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.0, 0.9]\nradius = 0.1\n"
     );

@@ -401,6 +401,14 @@ fn an_overlapping_start_is_refused_at_its_initial_entry() {
     let line = staged.lines().count() - 1;
     let e = simulate(&from_toml(&staged).unwrap(), &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
     assert!(e.starts_with(&format!("line {line}, column 9: [initial] joint \"slide\": ")), "{e}");
+    // Nor at one given after it that leaves its joint at rest (an audit's
+    // case: "sz = 0.0" was blamed for "sy = -0.045").
+    let carried = drop(0.2).replace("parent = \"ground\"\nchild = \"ball\"", "parent = \"carriage\"\nchild = \"ball\"")
+        + "[[joint]]\nname = \"x_slide\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\nstiffness = 100.0\n\
+           [initial]\nslide = -0.3\nx_slide = 0.0\n";
+    let line = carried.lines().count() - 1;
+    let e = simulate(&from_toml(&carried).unwrap(), &settings(0.1, 0.01, 1e-8), Start::Rest).unwrap_err().to_string();
+    assert!(e.starts_with(&format!("line {line}, column 9: [initial] joint \"slide\": ")), "{e}");
 }
 
 /// A strip (EI = 0.01 N·m², 0.1 m) carrying a 50 g tip mass, let go

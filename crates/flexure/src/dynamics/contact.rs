@@ -829,8 +829,8 @@ impl<D: Dynamics> ContactSystem<D> {
 
 /// The refusal of `pair` overlapping by `depth` (m) where the motion
 /// starts: at the `[initial]` entry that moves one of its two parts
-/// against the other, where one does (the last such in the file), else at
-/// the geom.
+/// against the other, where one does (the last such in the file that
+/// moves its joint from rest, else the last such), else at the geom.
 fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
     let geom = m.path(m.geoms[pair.geom].body);
     let part = match pair.part {
@@ -841,7 +841,16 @@ fn overlap<D: Dynamics>(m: &Mechanism<D>, pair: &Pair, depth: f64) -> Error {
     let moving: Vec<usize> =
         geom.iter().chain(&part).filter(|j| geom.contains(j) != part.contains(j)).copied().collect();
     let what = format!("{} overlap by {depth:.3e} m where the motion starts", named(m, pair));
-    match m.initial.iter().rposition(|(j, _)| moving.contains(j)) {
+    // An entry that leaves its joint at rest moves nothing (a slider given
+    // 0.0 after the one that pushed the ball into its floor was blamed).
+    let rest = m.rest();
+    let from_rest = |(j, values): &(usize, Vec<f64>)| {
+        let o = m.joints[*j].offset;
+        values.iter().zip(&rest[o..]).any(|(a, b)| a != b)
+    };
+    let entries = &m.initial;
+    let culprit = entries.iter().rposition(|e| moving.contains(&e.0) && from_rest(e));
+    match culprit.or_else(|| entries.iter().rposition(|(j, _)| moving.contains(j))) {
         Some(k) => Error::File {
             place: m.initial_place(k).to_string(),
             message: format!(

@@ -5,6 +5,7 @@ use super::bodies::Find;
 use super::dimension::FileDimension;
 use super::document::{Numbers, Sign, Source, Span, number};
 use super::{Deserialize, Mechanism, Result, Spanned};
+use crate::error::Error;
 use crate::mechanism::JointKind;
 use crate::mechanism::contact::{Geom, GeomShape, Toucher};
 
@@ -60,7 +61,11 @@ pub(super) fn geoms<D: FileDimension>(
             None => format!("geom {}", i + 1),
         };
         let owner = format!("geom {name:?}: ");
-        let body = find(&g.body)?;
+        // Named by its geom and key, as its other fields are.
+        let body = find(&g.body).map_err(|e| match e {
+            Error::File { place, message } => Error::File { place, message: format!("{owner}body: {message}") },
+            e => e,
+        })?;
         let shape = shape::<D>(src, &owner, g)?;
         let frame = D::geom_frame(src, &owner, g)?;
         let friction = g.friction.as_ref().map_or(Ok(0.0), |f| src.number(&owner, "friction", f, Sign::NotNegative))?;
