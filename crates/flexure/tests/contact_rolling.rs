@@ -488,3 +488,36 @@ fn a_disc_pulled_from_a_two_finger_grasp_lets_go_where_its_friction_is_spent() {
     assert!(held.clone().all(|d| d.abs() < 1e-4), "{:?}", held.collect::<Vec<_>>());
     assert!(x[x.len() - 1] - x[0] > 1e-3, "the disc is pulled free: {x:?}");
 }
+
+/// `examples/grasp.toml` with its rod on two sprung sliders (50 N/m each
+/// way) instead of the ground: at 4 N the distal pad holds the rod, stuck
+/// where it rolls, and the rod's balance closes (Newton's third law): its
+/// springs' pull, $-k(x, y)$, against the reported contact forces on it,
+/// $-\sum(Nn + f)$, to $10^{-9}$ N of a 0.2 N push. The forces were reported
+/// in the rolling contact's tangents as turned at the last step, not
+/// those they were solved in: 1e-4 N out, along the normal (an audit's
+/// case; frictionless, it closed to 1e-12 N).
+#[test]
+fn a_sprung_rod_held_by_the_grasp_balances_its_reported_contact_forces() {
+    let path = format!("{}/../../examples/grasp.toml", env!("CARGO_MANIFEST_DIR"));
+    let k = 50.0;
+    let text = std::fs::read_to_string(path).unwrap().replace(
+        "name = \"cylinder\"\nbody = \"ground\"\nshape = \"circle\"\norigin = [0.046, 0.023]\n",
+        "name = \"cylinder\"\nbody = \"rod\"\nshape = \"circle\"\n",
+    ) + &format!(
+        "[[joint]]\nname = \"rx\"\nkind = \"prismatic\"\nparent = \"ground\"\nchild = \"carriage\"\norigin = [0.046, 0.023, 0.0]\nstiffness = {k}\n\
+         [[joint]]\nname = \"ry\"\nkind = \"prismatic\"\nparent = \"carriage\"\nchild = \"rod\"\norigin = [0.0, 0.0, 1.5707963267948966]\nstiffness = {k}\n"
+    );
+    let m = from_toml(&text).unwrap();
+    let s = flexure::mechanism::statics::solve(&m, &Settings::default()).unwrap();
+    let held: Vec<_> = s.contacts.iter().filter(|c| c.normal_force > 0.0).collect();
+    assert!(held.len() == 1 && held[0].state == ContactMode::Stick && held[0].normal_force > 0.1, "{:?}", s.contacts);
+    let on_parts =
+        held.iter().fold([0.0; 2], |a, c| [0, 1].map(|i| a[i] + c.normal[i] * c.normal_force + c.friction_force[i]));
+    let friction = held[0].friction_force.iter().map(|f| f * f).sum::<f64>().sqrt();
+    assert!(friction > 0.01, "a friction to turn: {friction}");
+    let n = m.dof();
+    let (x, y) = (s.q[n - 2], s.q[n - 1]);
+    let off = [-on_parts[0] - k * x, -on_parts[1] - k * y];
+    assert!(off[0].hypot(off[1]) < 1e-9, "out of balance by {off:?} N");
+}
