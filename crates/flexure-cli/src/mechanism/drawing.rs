@@ -40,7 +40,7 @@
 //! points and loads go on top. Shapes are layered in order, unloaded first.
 
 pub use super::projection::View;
-use super::scene::{Scene, Snapshot, Symbol};
+use super::scene::{Scene, Snapshot, Solid, Symbol};
 use super::solids;
 use flexure_chart::{
     Anchor, COLORS, Chart, Color, ColorBar, Dash, Entry, Figure, Fill, GRAY, Mark, Marker, Place, Series, Stroke,
@@ -108,6 +108,18 @@ fn unit(parameter: &str) -> &'static str {
     } else {
         "N"
     }
+}
+
+/// The ends of each bounded geom's bounding ball along the axes: what
+/// sizes a view by a geom (a block on a slider has no link).
+fn ball_ends(geoms: &[Solid]) -> impl Iterator<Item = V> + '_ {
+    let balls = geoms.iter().filter_map(solids::bounding_ball);
+    balls.flat_map(|(c, r)| (0..3).flat_map(move |i| [c - V::ith(i, r), c + V::ith(i, r)]))
+}
+
+/// The least and largest component `i` of `points` (`(MAX, MIN)` for none).
+fn bounds<'a>(points: impl Iterator<Item = &'a V>, i: usize) -> (f64, f64) {
+    points.fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])))
 }
 
 /// A swept shape's name: `tendon.flexor.tension = 4 N`.
@@ -666,12 +678,7 @@ pub fn figure(
     // Sizes from the unloaded mechanism in the world (the same in every
     // view): links 2.4 % of it thick, the longest arrow about a quarter of it.
     // Bounded geoms by their bounding balls: a block on a slider has no link to size the view by.
-    let solids: Vec<V> = rest
-        .geoms
-        .iter()
-        .filter_map(solids::bounding_ball)
-        .flat_map(|(c, r)| (0..3).flat_map(move |i| [c - V::ith(i, r), c + V::ith(i, r)]))
-        .collect();
+    let solids: Vec<V> = ball_ends(&rest.geoms).collect();
     let pts: Vec<&V> = rest
         .links
         .iter()
@@ -682,7 +689,7 @@ pub fn figure(
         .chain(&solids)
         .collect();
     let span = |i: usize| {
-        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
+        let (lo, hi) = bounds(pts.iter().copied(), i);
         if hi > lo { hi - lo } else { 0.0 }
     };
     let longest_flexure = rest.flexures.iter().map(|c| c.length).fold(0.0, f64::max);
@@ -694,24 +701,17 @@ pub fn figure(
         .iter()
         .map(|p| **p)
         .chain(loaded.iter().flat_map(|(_, s)| {
-            let balls = s.geoms.iter().filter_map(solids::bounding_ball);
-            s.links
-                .iter()
-                .flatten()
-                .chain(&s.origins)
-                .chain(&s.roots)
-                .chain(s.flexures.iter().flat_map(|c| &c.points))
-                .copied()
-                .chain(balls.flat_map(|(c, r)| (0..3).flat_map(move |i| [c - V::ith(i, r), c + V::ith(i, r)])))
+            let centrelines = s.flexures.iter().flat_map(|c| &c.points);
+            let points = s.links.iter().flatten().chain(&s.origins).chain(&s.roots).chain(centrelines);
+            points.copied().chain(ball_ends(&s.geoms))
         }))
         .collect();
-    let bounds = |i: usize| drawn.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p[i]), b.max(p[i])));
     let middle = |i: usize| {
-        let (lo, hi) = bounds(i);
+        let (lo, hi) = bounds(drawn.iter(), i);
         if hi >= lo { 0.5 * (lo + hi) } else { 0.0 }
     };
     let half = V::from_fn(|i, _| {
-        let (lo, hi) = bounds(i);
+        let (lo, hi) = bounds(drawn.iter(), i);
         if hi > lo { 0.5 * (hi - lo) } else { 0.0 }
     });
     let all_loads = || loaded.iter().flat_map(|(_, p)| &p.loads);

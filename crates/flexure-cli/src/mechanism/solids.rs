@@ -232,9 +232,9 @@ pub(super) fn contact_entries(scene: &Scene, loaded: &[(String, Snapshot)]) -> V
     }
     // Over the shapes: its least and largest (one value where they agree),
     // rounding's residue (a stuck friction of 1e-38 N) as the 0 it is.
-    let largest = largest_contact(loaded);
+    let residue = 1e-12 * largest_contact(loaded);
     let range = |v: Vec<f64>| {
-        let v = v.into_iter().map(|x| if x.abs() <= 1e-12 * largest { 0.0 } else { x });
+        let v = v.into_iter().map(|x| if x.abs() <= residue { 0.0 } else { x });
         let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
         if lo == hi { format!("{} N", short(lo)) } else { format!("{} to {} N", short(lo), short(hi)) }
     };
@@ -245,7 +245,7 @@ pub(super) fn contact_entries(scene: &Scene, loaded: &[(String, Snapshot)]) -> V
         let normal = range(loaded.iter().map(|(_, p)| sum(p, &|c| c.normal_force)).collect());
         let friction: Vec<f64> = loaded.iter().map(|(_, p)| sum(p, &|c| c.friction_force.norm())).collect();
         // The thinner arrow, where friction holds it.
-        let label = match friction.iter().any(|f| *f > 1e-12 * largest) {
+        let label = match friction.iter().any(|f| *f > residue) {
             true => format!("contact {name}: normal force {normal}, friction {} (thin arrow)", range(friction)),
             false => format!("contact {name}: normal force {normal}"),
         };

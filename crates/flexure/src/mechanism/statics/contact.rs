@@ -1505,11 +1505,10 @@ fn follow<D: Statics>(
     };
     let kkt = Kkt::fitted(m, &start.loads, to, settings, Buffers::Borrowed(work))?;
     let length = kkt.length;
-    // As a position closure row's multiplier: the stiffest joint's k over
-    // ℓ, in N (a slider's k ℓ², as its moment; its k alone made a ball on
-    // free sliders 1 cm across judge its forces 1e4 times too coarsely).
-    let sigma = kkt.row_scale.iter().zip(&kkt.weight).map(|(r, w)| 1.0 / (r * w * w)).fold(f64::MIN_POSITIVE, f64::max)
-        / length;
+    // As a position closure row's multiplier: the stiffest joint's moment
+    // over ℓ, in N (a slider's k alone, not its k ℓ², made a ball on free
+    // sliders 1 cm across judge its forces 1e4 times too coarsely).
+    let sigma = kkt.stiffest / length;
     let x0 = kkt.state(&start.q, &start.multipliers);
     let mut problem = ContactKkt {
         kkt,

@@ -47,6 +47,9 @@ pub struct Kkt<'a, D: Statics = Planar> {
     /// $s_i$ per closure row.
     pub(crate) multiplier_scale: Vec<f64>,
     pub(super) weight: Vec<f64>,
+    /// $k_{\max}$: the stiffest joint's stiffness as a moment (N·m/rad; a
+    /// slider's $k\ell^2$), or the loads' moment where no joint is stiff.
+    pub(super) stiffest: f64,
     pub(super) length: f64,
     pub(super) scale: f64,
     /// The scale of the assembly alone (the loads at $\lambda = 0$ at both
@@ -152,7 +155,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
                 multiplier_scale.push(if position { k_max / length } else { k_max });
             }
         }
-        let scale = 1.0 + (magnitude(from) + magnitude(to)) / k_min;
+        let scale = 1.0 + loads / k_min;
         let start_scale = 1.0 + (magnitude(from) + magnitude(from)) / k_min;
         if !scale.is_finite() {
             return Err(Error::invalid(
@@ -173,6 +176,7 @@ impl<'a, D: Statics> Kkt<'a, D> {
             closure_scale,
             multiplier_scale,
             weight,
+            stiffest: k_max,
             length,
             scale,
             start_scale,
